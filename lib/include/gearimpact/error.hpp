@@ -1,0 +1,33 @@
+// Errors the library reports. Each names what went wrong in the user's terms:
+// an input field with its value and allowed range, or a quadrature that did not
+// reach its requested tolerance.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace gearimpact {
+
+// A value outside the range the model allows. `field` is the name the user
+// wrote (or the library's parameter name), `allowed` the range in words.
+class InputError : public std::invalid_argument {
+ public:
+  InputError(std::string field, const std::string& value, const std::string& allowed);
+  InputError(std::string field, double value, const std::string& allowed);
+
+  const std::string& field() const noexcept { return field_; }
+
+ private:
+  std::string field_;
+};
+
+// A numerical integration that did not converge to the requested tolerance.
+class QuadratureError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Formats a double with enough digits to round-trip, for messages.
+std::string format_number(double value);
+
+}  // namespace gearimpact

@@ -1,0 +1,54 @@
+// Adaptive quadrature behind one small interface, so that every stiffness
+// integral can be computed by independent libraries and compared.
+//
+// Each routine integrates f over [a, b] and either returns a result whose error
+// estimate meets max(absolute, relative * |integral of |f||), or throws
+// QuadratureError naming the routine, the interval, the estimate and the
+// requested bound. A result that missed its tolerance is never returned.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <string_view>
+
+namespace gearimpact {
+
+struct QuadratureTolerance {
+  double relative = 1e-13;
+  double absolute = 0.0;
+};
+
+struct QuadratureResult {
+  double value = 0.0;
+  // The routine's own estimate of |value - exact|.
+  double error_estimate = 0.0;
+  std::size_t evaluations = 0;
+};
+
+using Integrand = std::function<double(double)>;
+
+// GSL QAG with the 61-point Gauss-Kronrod rule, up to 1000 subintervals.
+// Error estimate: GSL's, from the Kronrod-Gauss difference of each subinterval.
+QuadratureResult integrate_gsl_qag(const Integrand& f, double a, double b,
+                                   QuadratureTolerance tolerance = {});
+
+// GSL CQUAD, doubly adaptive Clenshaw-Curtis. Error estimate: GSL's, from the
+// difference of successive interpolants.
+QuadratureResult integrate_gsl_cquad(const Integrand& f, double a, double b,
+                                     QuadratureTolerance tolerance = {});
+
+// Boost.Math adaptive Gauss-Kronrod, 61 points, bisection depth up to 15.
+// Error estimate: Boost's, |Kronrod - Gauss| summed over the final intervals.
+QuadratureResult integrate_boost_gauss_kronrod(const Integrand& f, double a, double b,
+                                               QuadratureTolerance tolerance = {});
+
+// Boost.Math tanh-sinh (double exponential), for end-point singularities.
+// Error estimate: Boost's, the difference between the last two levels.
+QuadratureResult integrate_boost_tanh_sinh(const Integrand& f, double a, double b,
+                                           QuadratureTolerance tolerance = {});
+
+// Throws QuadratureError if a result's estimate is above the requested bound.
+void check_converged(std::string_view routine, double a, double b, double error_estimate,
+                     double l1_norm, QuadratureTolerance tolerance);
+
+}  // namespace gearimpact

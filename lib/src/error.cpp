@@ -1,0 +1,20 @@
+#include "gearimpact/error.hpp"
+
+#include <cstdio>
+
+namespace gearimpact {
+
+std::string format_number(double value) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.17g", value);
+  return buffer;
+}
+
+InputError::InputError(std::string field, const std::string& value, const std::string& allowed)
+    : std::invalid_argument(field + " = " + value + " is outside the allowed range: " + allowed),
+      field_(std::move(field)) {}
+
+InputError::InputError(std::string field, double value, const std::string& allowed)
+    : InputError(std::move(field), format_number(value), allowed) {}
+
+}  // namespace gearimpact

@@ -1,0 +1,85 @@
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "commands.hpp"
+#include "gearimpact/energy.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/gear_pair.hpp"
+#include "gearimpact/stiffness.hpp"
+
+namespace gearimpact::cli {
+
+namespace {
+
+struct StiffnessOptions {
+  int points = 201;
+  std::string method = "gsl";
+  bool flipped_moment = false;
+};
+
+StiffnessModel model_from(const StiffnessOptions& options) {
+  StiffnessModel model;
+  model.method = parse_stiffness_method(options.method);
+  if (options.flipped_moment) model.moment_sign = AxialMomentSign::flipped;
+  return model;
+}
+
+void print_stiffness_table(const StiffnessOptions& options) {
+  if (options.points < 2) throw InputError("--points", std::to_string(options.points), ">= 2");
+  const StiffnessModel model = model_from(options);
+  const GearPair pair = paper_gear_pair();
+  validate(pair);
+  const ContactSegment segment = contact_segment(pair);
+  const double step = (segment.end_m - segment.start_m) / (options.points - 1);
+  std::printf("x_m,phi1_rad,kb1,ka1,kb2,ka2,kh,ke\n");
+  for (int i = 0; i < options.points; ++i) {
+    const double x = i + 1 == options.points ? segment.end_m : segment.start_m + i * step;
+    const MeshStiffness k = mesh_stiffness(pair, x, model);
+    std::printf("%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", x,
+                contact_angle(pair, Gear::one, x), k.kb1, k.ka1, k.kb2, k.ka2, k.kh, k.ke);
+  }
+}
+
+void print_energy_ratios(const StiffnessOptions& options) {
+  const GearPair pair = paper_gear_pair();
+  validate(pair);
+  std::printf(
+      "angle_deg,pairs,hertz_over_bending_one_pair,axial_over_bending_one_pair,"
+      "hertz_over_bending_system,axial_over_bending_system\n");
+  for (const EnergyRatios& row : energy_ratio_cycle(pair, options.points, model_from(options))) {
+    std::printf("%.17g,%d,%.17g,%.17g,%.17g,%.17g\n", row.phi1_deg, row.pairs,
+                row.hertz_over_bending_one_pair, row.axial_over_bending_one_pair,
+                row.hertz_over_bending_system, row.axial_over_bending_system);
+  }
+}
+
+void add_model_options(CLI::App* command, StiffnessOptions& options) {
+  command->add_option("--points", options.points, "number of contact positions, X_start to X_end")
+      ->check(CLI::Range(2, 1000000));
+  command
+      ->add_option("--method", options.method,
+                   "quadrature: gsl (QAG), gsl-cquad, boost-gk, boost-ts, xform (x-form route)")
+      ->check(CLI::IsMember({"gsl", "gsl-cquad", "boost-gk", "boost-ts", "xform"}));
+  command->add_flag("--flipped-moment", options.flipped_moment,
+                    "add the axial-force moment Fa h instead of subtracting it (not physical)");
+}
+
+}  // namespace
+
+void register_stiffness_commands(CLI::App& app) {
+  auto options = std::make_shared<StiffnessOptions>();
+  CLI::App* stiffness = app.add_subcommand(
+      "stiffness", "CSV of Kb, Ka of both gears, Kh and Ke (N/m) over the contact segment");
+  add_model_options(stiffness, *options);
+  stiffness->callback([options] { print_stiffness_table(*options); });
+
+  auto ratio_options = std::make_shared<StiffnessOptions>();
+  ratio_options->points = 121;
+  CLI::App* ratios = app.add_subcommand(
+      "energy-ratios", "CSV of the elastic energy ratios of Fig. 8 over one meshing cycle");
+  add_model_options(ratios, *ratio_options);
+  ratios->callback([ratio_options] { print_energy_ratios(*ratio_options); });
+}
+
+}  // namespace gearimpact::cli

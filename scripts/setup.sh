@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Installs, from Debian's archive, whatever of the project's build and run
+# dependencies is missing. Idempotent: a machine that has everything runs no apt.
+set -euo pipefail
+packages=(
+  build-essential cmake
+  libeigen3-dev libgsl-dev libboost-dev
+  doctest-dev libbenchmark-dev
+  libcli11-dev libtoml11-dev
+  gnuplot-nox
+)
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  sudo_cmd=()
+  if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update -q
+  "${sudo_cmd[@]}" apt-get install -y -q "${missing[@]}"
+else
+  echo "setup: all packages present"
+fi
