@@ -21,16 +21,34 @@ const bool gsl_handler_disabled = [] {
   return true;
 }();
 
+// Counts evaluations and remembers the first non-finite value: CQUAD, for
+// one, treats NaN as a singularity to step around, and a stiffness integrand
+// that returns NaN is a bug to report, not to integrate around.
 struct CountedIntegrand {
   const Integrand* f;
   std::size_t evaluations = 0;
+  bool non_finite_seen = false;
+  double non_finite_at = 0.0;
+
+  double operator()(double x) {
+    ++evaluations;
+    const double value = (*f)(x);
+    if (!std::isfinite(value) && !non_finite_seen) {
+      non_finite_seen = true;
+      non_finite_at = x;
+    }
+    return value;
+  }
+
+  void require_finite(std::string_view routine) const {
+    if (non_finite_seen) {
+      throw QuadratureError(std::string(routine) + ": the integrand is not finite at x = " +
+                            format_number(non_finite_at));
+    }
+  }
 };
 
-double call_counted(double x, void* params) {
-  auto* counted = static_cast<CountedIntegrand*>(params);
-  ++counted->evaluations;
-  return (*counted->f)(x);
-}
+double call_counted(double x, void* params) { return (*static_cast<CountedIntegrand*>(params))(x); }
 
 void require_finite_interval(std::string_view routine, double a, double b) {
   if (!std::isfinite(a) || !std::isfinite(b)) {
@@ -49,6 +67,10 @@ void throw_gsl(std::string_view routine, int status, double a, double b, double 
 
 void check_converged(std::string_view routine, double a, double b, double error_estimate,
                      double l1_norm, QuadratureTolerance tolerance) {
+  if (!std::isfinite(l1_norm)) {
+    throw QuadratureError(std::string(routine) + " on [" + format_number(a) + ", " +
+                          format_number(b) + "]: the integrand is not finite or not integrable");
+  }
   const double bound = std::max(tolerance.absolute, tolerance.relative * std::abs(l1_norm));
   if (!(error_estimate <= bound)) {
     throw QuadratureError(std::string(routine) + " did not converge on [" + format_number(a) +
@@ -72,7 +94,9 @@ QuadratureResult integrate_gsl_qag(const Integrand& f, double a, double b,
   const int status = gsl_integration_qag(&function, a, b, tolerance.absolute, tolerance.relative,
                                          subinterval_limit, GSL_INTEG_GAUSS61, workspace.get(),
                                          &result.value, &result.error_estimate);
+  counted.require_finite("gsl_qag");
   if (status != GSL_SUCCESS) throw_gsl("gsl_qag", status, a, b, result.error_estimate);
+  check_converged("gsl_qag", a, b, result.error_estimate, result.value, tolerance);
   result.evaluations = counted.evaluations;
   return result;
 }
@@ -93,6 +117,7 @@ QuadratureResult integrate_gsl_cquad(const Integrand& f, double a, double b,
   const int status =
       gsl_integration_cquad(&function, a, b, tolerance.absolute, tolerance.relative,
                             workspace.get(), &result.value, &result.error_estimate, &evaluations);
+  counted.require_finite("gsl_cquad");
   if (status != GSL_SUCCESS) throw_gsl("gsl_cquad", status, a, b, result.error_estimate);
   // CQUAD returns success with its best estimate when the tolerance is out of
   // reach, so the bound is checked here as well.
@@ -105,17 +130,15 @@ QuadratureResult integrate_boost_gauss_kronrod(const Integrand& f, double a, dou
                                                QuadratureTolerance tolerance) {
   require_finite_interval("boost_gauss_kronrod", a, b);
   constexpr unsigned max_depth = 15;
-  std::size_t evaluations = 0;
-  auto counted = [&](double x) {
-    ++evaluations;
-    return f(x);
-  };
+  CountedIntegrand counted{&f};
   QuadratureResult result;
   double l1 = 0.0;
   result.value = boost::math::quadrature::gauss_kronrod<double, 61>::integrate(
-      counted, a, b, max_depth, tolerance.relative, &result.error_estimate, &l1);
+      [&counted](double x) { return counted(x); }, a, b, max_depth, tolerance.relative,
+      &result.error_estimate, &l1);
+  counted.require_finite("boost_gauss_kronrod");
   check_converged("boost_gauss_kronrod", a, b, result.error_estimate, l1, tolerance);
-  result.evaluations = evaluations;
+  result.evaluations = counted.evaluations;
   return result;
 }
 
@@ -124,11 +147,7 @@ QuadratureResult integrate_boost_tanh_sinh(const Integrand& f, double a, double 
   require_finite_interval("boost_tanh_sinh", a, b);
   // Building the abscissa tables is the expensive part; keep one per thread.
   thread_local boost::math::quadrature::tanh_sinh<double> integrator(15);
-  std::size_t evaluations = 0;
-  auto counted = [&](double x) {
-    ++evaluations;
-    return f(x);
-  };
+  CountedIntegrand counted{&f};
   QuadratureResult result;
   double l1 = 0.0;
   std::size_t levels = 0;
@@ -138,14 +157,16 @@ QuadratureResult integrate_boost_tanh_sinh(const Integrand& f, double a, double 
   // against what the caller asked.
   constexpr double refinement_margin = 1e-2;
   try {
-    result.value = integrator.integrate(counted, a, b, tolerance.relative * refinement_margin,
+    result.value = integrator.integrate([&counted](double x) { return counted(x); }, a, b,
+                                        tolerance.relative * refinement_margin,
                                         &result.error_estimate, &l1, &levels);
   } catch (const std::exception& e) {
     throw QuadratureError(std::string("boost_tanh_sinh failed on [") + format_number(a) + ", " +
                           format_number(b) + "]: " + e.what());
   }
+  counted.require_finite("boost_tanh_sinh");
   check_converged("boost_tanh_sinh", a, b, result.error_estimate, l1, tolerance);
-  result.evaluations = evaluations;
+  result.evaluations = counted.evaluations;
   return result;
 }
 
