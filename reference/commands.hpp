@@ -8,4 +8,7 @@ namespace gearimpact::cli {
 // `stiffness` and `energy-ratios`: tables of the mesh stiffness and of Fig. 8.
 void register_stiffness_commands(CLI::App& app);
 
+// `reproduce`: every figure of the paper and REPORT.md into a folder.
+void register_reproduce_commands(CLI::App& app);
+
 }  // namespace gearimpact::cli

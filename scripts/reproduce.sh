@@ -6,10 +6,5 @@ cd "$(dirname "$0")/.."
 out="${1:-results}"
 scripts/setup.sh
 scripts/build.sh
-mkdir -p "$out"
-echo "reproduce: mesh stiffness table -> $out/stiffness.csv"
-build/bin/gearimpact stiffness --points 401 > "$out/stiffness.csv"
-echo "reproduce: Fig. 8 energy ratios -> $out/fig8_energy_ratios.csv"
-build/bin/gearimpact energy-ratios --points 601 > "$out/fig8_energy_ratios.csv"
-build/bin/gearimpact energy-ratios --points 601 --flipped-moment > "$out/fig8_energy_ratios_flipped_moment.csv"
-echo "reproduce: done, results in $out/"
+build/bin/gearimpact reproduce --out "$out"
+echo "reproduce: results and REPORT.md in $out/"

@@ -56,9 +56,7 @@ std::vector<EnergyRatios> cycle(AxialMomentSign sign) {
 // How far a computed range is from the paper's, in units of the statement's
 // tolerance at each end.
 double miss(const PaperStatement& s, const Range& ours) {
-  const auto allowed = [&](double paper) { return s.relative ? s.tolerance * paper : s.tolerance; };
-  return std::max(std::abs(ours.low - s.paper_low) / allowed(s.paper_low),
-                  std::abs(ours.high - s.paper_high) / allowed(s.paper_high));
+  return std::max(s.tolerances_off(ours.low, s.paper_low), s.tolerances_off(ours.high, s.paper_high));
 }
 
 }  // namespace

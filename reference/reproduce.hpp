@@ -1,0 +1,35 @@
+// `gearimpact reproduce`: the paper's figures and statements, one function a
+// figure, each writing its CSV and plots into the output folder and returning
+// its section of REPORT.md.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "gearimpact/paper_statements.hpp"
+#include "gnuplot.hpp"
+#include "report.hpp"
+
+namespace gearimpact::cli {
+
+struct ReproduceContext {
+  std::filesystem::path out;
+  std::filesystem::path paper_data;
+  // Short runs and coarse grids, for the end-to-end test.
+  bool quick = false;
+};
+
+// Writes `text` to `file` through a temporary file and a rename, so an
+// interrupted run never leaves a truncated file.
+void write_output(const std::filesystem::path& file, const std::string& text);
+
+// `value` with `digits` significant digits.
+std::string number(double value, int digits);
+
+// A report row for statement `s`: the paper's value or range as text, ours
+// as given, the tolerance from the statement, pass or fail.
+ReportRow statement_row(const PaperStatement& s, const std::string& ours, bool matches);
+
+ReportSection reproduce_fig8(const ReproduceContext& context);
+
+}  // namespace gearimpact::cli
