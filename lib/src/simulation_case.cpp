@@ -37,4 +37,14 @@ SimulationCase paper_case(int number, TorqueUnit unit, double case3_angular_freq
   return c;
 }
 
+SimulationCase paper_case(int number, const PaperReading& reading) {
+  SimulationCase c = paper_case(number, reading.torque_unit, reading.case3_angular_frequency_rad_s);
+  c.model.damping_form = reading.damping_form;
+  c.model.damping_stiffness = reading.damping_stiffness;
+  c.model.restitution = reading.restitution;
+  c.model.coast_phase = reading.coast_phase;
+  c.model.stiffness.moment_sign = reading.moment_sign;
+  return c;
+}
+
 }  // namespace gearimpact

@@ -92,6 +92,20 @@ enum class TorqueUnit { kgf_mm, n_mm };
 SimulationCase paper_case(int number, TorqueUnit unit = TorqueUnit::kgf_mm,
                           double case3_angular_frequency_rad_s = 10000.0);
 
+// One choice for each reading MODEL.md leaves open; the defaults are MODEL.md's.
+struct PaperReading {
+  TorqueUnit torque_unit = TorqueUnit::kgf_mm;
+  double case3_angular_frequency_rad_s = 10000.0;
+  DampingForm damping_form = DampingForm::herbert_mcwhannell;
+  DampingStiffness damping_stiffness = DampingStiffness::current_pair;
+  RestitutionLaw restitution;
+  CoastPhase coast_phase = CoastPhase::half_base_pitch;
+  AxialMomentSign moment_sign = AxialMomentSign::physical;
+};
+
+// Table 1's case under a reading.
+SimulationCase paper_case(int number, const PaperReading& reading);
+
 // Newton metres per unit of Table 1.
 double torque_unit_n_m(TorqueUnit unit);
 
