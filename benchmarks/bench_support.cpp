@@ -66,8 +66,9 @@ std::vector<std::string> evaluate_targets(const Figures& ns_per_iteration) {
 std::vector<double> spread(double start, double end, std::size_t n) {
   std::vector<double> points(n);
   for (std::size_t i = 0; i < n; ++i) {
-    points[i] = n == 1 ? start : start + (end - start) * static_cast<double>(i) /
-                                             static_cast<double>(n - 1);
+    points[i] = n == 1
+                    ? start
+                    : start + (end - start) * static_cast<double>(i) / static_cast<double>(n - 1);
   }
   if (n > 1) points.back() = end;
   return points;

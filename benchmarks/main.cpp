@@ -37,9 +37,11 @@ class RecordingReporter : public benchmark::ConsoleReporter {
       const bool single = run.run_type == Run::RT_Iteration && run.repetitions <= 1;
       const bool median = run.run_type == Run::RT_Aggregate && run.aggregate_name == "median";
       if ((!single && !median) || run.error_occurred) continue;
-      Row row{run.run_name.function_name, run.GetAdjustedCPUTime() * to_ns(run.time_unit),
+      Row row{run.run_name.function_name,
+              run.GetAdjustedCPUTime() * to_ns(run.time_unit),
               run.GetAdjustedRealTime() * to_ns(run.time_unit),
-              static_cast<double>(run.iterations), {}};
+              static_cast<double>(run.iterations),
+              {}};
       for (const auto& [key, counter] : run.counters) row.counters[key] = counter.value;
       rows_.push_back(std::move(row));
     }
@@ -117,15 +119,16 @@ void write_markdown(const std::string& path, const RecordingReporter& reporter,
       std::snprintf(ratio, sizeof ratio, "%.3g", baseline / row.ns_per_iteration);
     }
     out << "| `" << row.name << "` | " << human_time(row.ns_per_iteration) << " | "
-        << human_time(row.real_ns_per_iteration) << " | " << counter(row, "ke_rel_err") << " | " << counter(row, "compliance_rel_err") << " | "
-        << ratio << " |\n";
+        << human_time(row.real_ns_per_iteration) << " | " << counter(row, "ke_rel_err") << " | "
+        << counter(row, "compliance_rel_err") << " | " << ratio << " |\n";
   }
   out << "\nTargets (issue 3), from this run:\n\n";
   const auto figures = [&](std::string_view name) { return reporter.ns_of(name); };
   for (const std::string& line : gearimpact::bench::evaluate_targets(figures)) {
     out << "- " << line << "\n";
   }
-  if (const Accuracy* check = gearimpact::bench::accuracy_of("reference check: gsl_cquad at 1e-13")) {
+  if (const Accuracy* check =
+          gearimpact::bench::accuracy_of("reference check: gsl_cquad at 1e-13")) {
     out << "\nReference check: GSL CQUAD at 1e-13 differs from the reference by at most "
         << scientific(check->ke) << " in Ke and " << scientific(check->compliances)
         << " in a compliance.\n";

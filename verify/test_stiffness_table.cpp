@@ -37,7 +37,9 @@ std::vector<double> positions(const ContactSegment& segment, int n) {
   return xs;
 }
 
-double relative(double value, double expected) { return std::abs(value / expected - 1.0); }
+double relative(double value, double expected) {
+  return std::abs(value / expected - 1.0);
+}
 
 // Requested of every direct quadrature below: the adaptive reference of the
 // benchmarks. Two independent rules (GSL QAG and CQUAD) at this tolerance
@@ -66,9 +68,9 @@ TEST_CASE("table Ke and compliances match direct quadrature over the whole segme
       worst_ke = std::max(worst_ke, relative(table.stiffness(x), k.ke));
       const PairCompliance c = table.compliance(x);
       CHECK(c.hertz_m_per_n == doctest::Approx(1.0 / k.kh).scale(0).epsilon(1e-15));
-      worst_compliance = std::max({worst_compliance,
-                                   relative(c.bending_m_per_n, 1.0 / k.kb1 + 1.0 / k.kb2),
-                                   relative(c.axial_m_per_n, 1.0 / k.ka1 + 1.0 / k.ka2)});
+      worst_compliance =
+          std::max({worst_compliance, relative(c.bending_m_per_n, 1.0 / k.kb1 + 1.0 / k.kb2),
+                    relative(c.axial_m_per_n, 1.0 / k.ka1 + 1.0 / k.ka2)});
     }
     // 1e-12: the accuracy the simulation is promised (issue 3), a hundred
     // times the measured worst error (near 1e-14, benchmarks/README.md), so
@@ -143,7 +145,8 @@ TEST_CASE("orders above 7 (sixteen-coefficient evaluation) are as accurate") {
   const StiffnessTable table(pair, {}, {16, 12});
   double worst = 0.0;
   for (double x : positions(contact_segment(pair), 201)) {
-    worst = std::max(worst, relative(table.stiffness(x), mesh_stiffness(pair, x, reference_model()).ke));
+    worst = std::max(worst,
+                     relative(table.stiffness(x), mesh_stiffness(pair, x, reference_model()).ke));
   }
   // The same bound and reason as the default table's.
   CHECK(worst <= 1e-12);

@@ -32,7 +32,9 @@ enum class Part { bending, axial, stiffness };
 class NodeCompliances {
  public:
   NodeCompliances(const GearPair& pair, const StiffnessModel& model)
-      : pair_(pair), model_(model), lp_(line_of_action_length(pair)),
+      : pair_(pair),
+        model_(model),
+        lp_(line_of_action_length(pair)),
         hertz_compliance_(1.0 / hertz_stiffness(pair)) {}
 
   ChebPtr fit(Part part, double a, double b, int order) {
@@ -86,8 +88,8 @@ class NodeCompliances {
     // (25),(26): gear 2 sees the contact at lp - X1 from C2.
     const ToothCompliance c2 =
         tooth_compliance(tooth_of(pair_, Gear::two), lp_ - x1_m, e, width, model_);
-    nodes_.push_back({x1_m, c1.bending_m_per_n + c2.bending_m_per_n,
-                      c1.axial_m_per_n + c2.axial_m_per_n});
+    nodes_.push_back(
+        {x1_m, c1.bending_m_per_n + c2.bending_m_per_n, c1.axial_m_per_n + c2.axial_m_per_n});
     return nodes_.back();
   }
 
