@@ -52,6 +52,16 @@ void report_accuracy(benchmark::State& state, std::string_view benchmark_name) {
   }
 }
 
+std::vector<std::pair<std::string, Accuracy>> accuracy_results() {
+  std::vector<std::pair<std::string, Accuracy>> results;
+  for (const auto& check : registry().checks) {
+    if (const Accuracy* accuracy = accuracy_of(check.first)) {
+      results.emplace_back(check.first, *accuracy);
+    }
+  }
+  return results;
+}
+
 bool register_target(Target target) {
   registry().targets.push_back(std::move(target));
   return true;

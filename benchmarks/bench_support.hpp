@@ -12,6 +12,7 @@
 #include <limits>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace gearimpact::bench {
@@ -38,6 +39,8 @@ void run_accuracy_checks(std::size_t positions);
 // its check, if one ran.
 void report_accuracy(benchmark::State& state, std::string_view benchmark_name);
 const Accuracy* accuracy_of(std::string_view benchmark_name);
+// Every check's result, in registration order.
+std::vector<std::pair<std::string, Accuracy>> accuracy_results();
 
 // Looks up what one run measured: nanoseconds per iteration of the named
 // benchmark (NaN when it did not run).

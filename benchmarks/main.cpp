@@ -127,11 +127,19 @@ void write_markdown(const std::string& path, const RecordingReporter& reporter,
   for (const std::string& line : gearimpact::bench::evaluate_targets(figures)) {
     out << "- " << line << "\n";
   }
-  if (const Accuracy* check =
-          gearimpact::bench::accuracy_of("reference check: gsl_cquad at 1e-13")) {
-    out << "\nReference check: GSL CQUAD at 1e-13 differs from the reference by at most "
-        << scientific(check->ke) << " in Ke and " << scientific(check->compliances)
-        << " in a compliance.\n";
+  const auto timed = [&](const std::string& name) { return !std::isnan(reporter.ns_of(name)); };
+  bool header = false;
+  for (const auto& [name, accuracy] : gearimpact::bench::accuracy_results()) {
+    if (timed(name)) continue;
+    if (!header) {
+      out << "\nAccuracy checks without a timing row (same positions and reference; the "
+             "reference check is an independent rule at the reference's tolerance):\n\n"
+             "| check | worst rel. error Ke | worst rel. error compliances |\n"
+             "|---|---:|---:|\n";
+      header = true;
+    }
+    out << "| " << name << " | " << scientific(accuracy.ke) << " | "
+        << scientific(accuracy.compliances) << " |\n";
   }
 }
 

@@ -272,6 +272,18 @@ const bool table_registered = [] {
       }
     })->Unit(benchmark::kMicrosecond);
   }
+  // Not timed (the cost depends on the order alone): how the error falls
+  // with the number of pieces at the orders of the eight-coefficient path.
+  for (int order : {5, 6, 7}) {
+    for (int pieces : {16, 32, 48, 64, 96, 128}) {
+      const StiffnessTableOptions options{pieces, order};
+      register_accuracy(
+          "table sweep: " + std::to_string(pieces) + " pieces of order " + std::to_string(order),
+          [options](std::size_t positions) {
+            return table_accuracy(StiffnessTable(bench_pair(), {}, options), positions);
+          });
+    }
+  }
   return true;
 }();
 
