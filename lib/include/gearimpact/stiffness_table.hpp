@@ -37,7 +37,7 @@ struct StiffnessTableOptions {
   int order = 7;    // Chebyshev order on each (order + 1 coefficients), 2 to 15
 };
 
-// Ke and dKe/dX1 at one position, from one pass over the series.
+// Ke and dKe/dX1 at one position, from one look-up of the piece.
 struct StiffnessAndDerivative {
   double stiffness_n_per_m;
   double derivative_n_per_m2;
@@ -57,7 +57,7 @@ class StiffnessTable {
 
   // Each throws InputError for x1 outside [X_start, X_end].
   PairCompliance compliance(double x1_m) const;
-  // (29) Ke = 1 / total compliance, N/m.
+  // Ke, N/m, from its own series, fitted to (29) 1/Ke = total compliance.
   double stiffness(double x1_m) const {
     const Local at = locate(x1_m);
     return polynomial(&stiffness_[at.offset], at.t);
