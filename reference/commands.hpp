@@ -8,4 +8,7 @@ namespace gearimpact::cli {
 // `stiffness` and `energy-ratios`: tables of the mesh stiffness and of Fig. 8.
 void register_stiffness_commands(CLI::App& app);
 
+// `simulate` (one case of Table 1) and `sweep-friction` (Fig. 7).
+void register_simulate_commands(CLI::App& app);
+
 }  // namespace gearimpact::cli
