@@ -572,7 +572,14 @@ double earliest_event(const Mechanics& mech, const Mode& m, const ContactDamping
     if (!(g_end < 0.0)) continue;  // this one comes after an earlier event
     const std::pair<double, double> bracket = boost::math::tools::toms748_solve(
         value, a, earliest, g_a[i], g_end, close_enough, iterations);
-    earliest = std::min(earliest, bracket.second);
+    // The solver may stop on an exact zero; the step must end where the value
+    // is negative, so that the new mode is unambiguous.
+    double after = bracket.second;
+    for (double bump = 4.0 * std::numeric_limits<double>::epsilon() * width;
+         after < earliest && !(value(after) < 0.0); bump *= 2.0) {
+      after = std::min(after + bump, earliest);
+    }
+    earliest = std::min(earliest, after);
   }
   return earliest;
 }
