@@ -396,7 +396,7 @@ class Run {
       // this event is theirs (then classify_forces has the new value).
       const int shift = next.k_first - old.k_first;
       EventValues g{};
-      Mode probe = next;
+      Mode probe = mode_;
       for (int j = 0; j < next.count; ++j) {
         const int i = j + shift;
         if (i >= 0 && i < old.count) {
