@@ -139,7 +139,7 @@ class Mechanics {
 
   // Ke and dKe/dX of one of `count` loaded pairs at X. Stage states of a step
   // that ends on a pair's entry or exit can reach a hair beyond the segment:
-  // there the stiffness is held at the end value.
+  // there Ke continues along its tangent, so the right-hand side stays smooth.
   void pair_stiffness(double x, int count, double& ke, double& dke) const {
     if (constant_k_ > 0.0) {
       ke = constant_k_ / count;
@@ -147,8 +147,8 @@ class Mechanics {
       return;
     }
     const double xc = std::clamp(x, xs_, xe_);
-    ke = table_.stiffness(xc);
-    dke = xc == x ? table_.stiffness_derivative(xc) : 0.0;
+    dke = table_.stiffness_derivative(xc);
+    ke = table_.stiffness(xc) + dke * (x - xc);
   }
 
   double damping_factor(const ContactDamping& d, double ke) const {
