@@ -48,8 +48,9 @@ struct SweepOptions {
 };
 
 SimulationCase paper_case_with(int number, const ReadingOptions& r) {
-  SimulationCase c = paper_case(number, r.torque_unit == "n-mm" ? TorqueUnit::n_mm : TorqueUnit::kgf_mm,
-                                r.case3_frequency_rad_s);
+  SimulationCase c =
+      paper_case(number, r.torque_unit == "n-mm" ? TorqueUnit::n_mm : TorqueUnit::kgf_mm,
+                 r.case3_frequency_rad_s);
   const std::map<std::string, DampingForm> forms{
       {"herbert-mcwhannell", DampingForm::herbert_mcwhannell},
       {"hunt-crossley", DampingForm::hunt_crossley},
@@ -58,8 +59,7 @@ SimulationCase paper_case_with(int number, const ReadingOptions& r) {
       {"pair", DampingStiffness::current_pair},
       {"pitch-pair", DampingStiffness::pitch_pair_at_impact},
       {"hertz", DampingStiffness::hertz}};
-  const std::map<std::string, double> speed_units{
-      {"mm/s", 1.0e-3}, {"in/s", 0.0254}, {"m/s", 1.0}};
+  const std::map<std::string, double> speed_units{{"mm/s", 1.0e-3}, {"in/s", 0.0254}, {"m/s", 1.0}};
   c.model.damping_form = forms.at(r.damping_form);
   c.model.damping_stiffness = stiffnesses.at(r.damping_stiffness);
   c.model.restitution.coefficient = r.restitution_coefficient;
@@ -141,7 +141,8 @@ void register_simulate_commands(CLI::App& app) {
       ->required();
   simulate->add_option("--friction", options->friction, "friction coefficient f of (35)")
       ->capture_default_str();
-  simulate->add_option("--dt", options->step_s, "RK4 step, s (adaptive: first step and output grid)")
+  simulate
+      ->add_option("--dt", options->step_s, "RK4 step, s (adaptive: first step and output grid)")
       ->capture_default_str();
   simulate->add_option("--t-end", options->end_time_s,
                        "end time, s (default: 0.03 for cases 1 and 2, 0.04 for case 3)");

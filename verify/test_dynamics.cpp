@@ -66,8 +66,8 @@ TEST_CASE("with f = 0 and no torques J1 w1/Rb1 + J2 w2/Rb2 is conserved to round
   }
   // RK4 keeps linear invariants exactly in exact arithmetic; what is left is the
   // rounding of each step's update, at most a few eps per step: 4 eps x steps.
-  const double bound = 4.0 * std::numeric_limits<double>::epsilon() *
-                       static_cast<double>(r.summary.steps);
+  const double bound =
+      4.0 * std::numeric_limits<double>::epsilon() * static_cast<double>(r.summary.steps);
   MESSAGE("largest relative change " << worst << ", bound " << bound);
   CHECK(worst <= bound);
 }
@@ -236,9 +236,8 @@ TEST_CASE("one impact of the damped contact against its closed-form rebound") {
     CHECK(relative_difference(impact.restitution, target) < 1e-14);
     const double realized = *impact.end_speed_m_s / impact.impact_speed_m_s;
     const double closed = closed_form_restitution(d_over_k(form, target, vi) * vi);
-    MESSAGE("form " << static_cast<int>(form) << ": e(Vi) = " << target << ", realized "
-                    << realized << ", closed form " << closed << ", approximation error "
-                    << closed - target);
+    MESSAGE("form " << static_cast<int>(form) << ": e(Vi) = " << target << ", realized " << realized
+                    << ", closed form " << closed << ", approximation error " << closed - target);
     // RK4 at h w ~ 0.006 over one contact: relative error ~ (h w)^4 ~ 1e-9.
     CHECK(std::fabs(realized - closed) < 1e-8);
   }

@@ -1,6 +1,7 @@
 // The `simulate` and `sweep-friction` subcommands of the reference program:
 // their outputs carry the columns and keys issue 5 names, in full precision.
 #include <doctest/doctest.h>
+#include <sys/wait.h>
 
 #include <algorithm>
 #include <array>
@@ -9,7 +10,6 @@
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 
 namespace {
 
@@ -41,10 +41,10 @@ TEST_CASE("simulate writes the time series and prints the JSON summary") {
   std::filesystem::remove(out);
   const Output r = run_cli("simulate --case 2 --t-end 0.002 --every 100 --out " + out.string());
   REQUIRE(r.status == 0);
-  for (const char* key : {"\"impacts_n1\"", "\"impacts_n2\"", "\"last_n2_impact_s\"",
-                          "\"damping_loss_J\"", "\"friction_loss_J\"", "\"hertz_energy_max_J\"",
-                          "\"bending_energy_max_J\"", "\"axial_energy_max_J\"",
-                          "\"ledger_residual_J\"", "\"steps\""}) {
+  for (const char* key :
+       {"\"impacts_n1\"", "\"impacts_n2\"", "\"last_n2_impact_s\"", "\"damping_loss_J\"",
+        "\"friction_loss_J\"", "\"hertz_energy_max_J\"", "\"bending_energy_max_J\"",
+        "\"axial_energy_max_J\"", "\"ledger_residual_J\"", "\"steps\""}) {
     CAPTURE(key);
     CHECK(r.text.find(key) != std::string::npos);
   }
@@ -71,9 +71,8 @@ TEST_CASE("simulate writes the time series and prints the JSON summary") {
   std::string field = last;
   for (int i = 0; i < 3; ++i) field = field.substr(field.find(',') + 1);
   field = field.substr(0, field.find(','));
-  const auto digits = std::count_if(field.begin(), field.end(), [](char ch) {
-    return ch >= '0' && ch <= '9';
-  });
+  const auto digits =
+      std::count_if(field.begin(), field.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
   CHECK(digits >= 15);
   std::filesystem::remove(out);
 }

@@ -104,9 +104,9 @@ TEST_CASE("case 2: impacts alternate between N1 and N2 at first, then only N1") 
   CHECK(r.summary.impacts_n1 > n2_before);
   REQUIRE(r.summary.last_n2_impact_s.has_value());
   const double measured = *r.summary.last_n2_impact_s;
-  MESSAGE("last N2 impact at " << measured * 1e3 << " ms (paper: about "
-                               << last_n2.value * 1e3 << " ms), " << n2_before
-                               << " N2 impacts, " << r.summary.impacts_n1 << " N1 impacts");
+  MESSAGE("last N2 impact at " << measured * 1e3 << " ms (paper: about " << last_n2.value * 1e3
+                               << " ms), " << n2_before << " N2 impacts, " << r.summary.impacts_n1
+                               << " N1 impacts");
   // The paper's "about 5 ms": missed by the default reading (MODEL.md,
   // Readings). Recorded, not asserted.
   WARN(std::fabs(measured / last_n2.value - 1.0) <= last_n2.tolerance);

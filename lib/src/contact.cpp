@@ -11,8 +11,7 @@ double restitution_coefficient(const RestitutionLaw& law, double impact_speed_m_
   return e < 0.0 ? 0.0 : (e > 1.0 ? 1.0 : e);
 }
 
-double damping_factor_per_stiffness(DampingForm form, double restitution,
-                                    double impact_speed_m_s) {
+double damping_factor_per_stiffness(DampingForm form, double restitution, double impact_speed_m_s) {
   const double e = restitution;
   // (32) in the three forms MODEL.md lists.
   switch (form) {

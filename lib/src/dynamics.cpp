@@ -87,7 +87,8 @@ double torque_at(const Torque& torque, double t_s) {
     case Torque::Kind::constant:
       return torque.constant_n_m;
     case Torque::Kind::sinusoidal:
-      return torque.amplitude_n_m * std::sin(torque.angular_frequency_rad_s * t_s + torque.phase_rad);
+      return torque.amplitude_n_m *
+             std::sin(torque.angular_frequency_rad_s * t_s + torque.phase_rad);
     case Torque::Kind::user:
       return torque.user(t_s);
   }
@@ -233,13 +234,24 @@ class Mechanics {
     for (int j = 0; j < m.count; ++j) {
       const double x = first + j * t0_;
       g[n++] = m.slip[j] * sliding_speed(y[kW1], y[kW2], x, lp_);
-      double ke = 0.0;
-      double dke = 0.0;
-      pair_stiffness(x, m.count, ke, dke);
-      const double push = ke * dl + hertzian_damping_force(damping_factor(d, ke), dl, dl_rate);
+      const double push = push_sign_function(x, m.count, d, dl, dl_rate);
       g[n++] = m.clipped[j] ? -push : push;
     }
     return n;
+  }
+
+  // A function with the sign and the zeros of F + G of one pair. With D
+  // proportional to the pair's own Ke, F + G = Ke delta (1 + (D/K) d(delta)/dt)
+  // and the positive factor Ke need not be evaluated.
+  double push_sign_function(double x, int count, const ContactDamping& d, double dl,
+                            double dl_rate) const {
+    if (case_.model.damping_stiffness == DampingStiffness::current_pair) {
+      return dl * (1.0 + d.per_stiffness_s_m * dl_rate);
+    }
+    double ke = 0.0;
+    double dke = 0.0;
+    pair_stiffness(x, count, ke, dke);
+    return ke * dl + hertzian_damping_force(damping_factor(d, ke), dl, dl_rate);
   }
 
   bool mode_holds(const State& y, const Mode& m, const ContactDamping& d) const {
@@ -280,10 +292,7 @@ class Mechanics {
     for (int j = 0; j < m.count; ++j) {
       const double x = pair_position(m, y, j);
       m.slip[j] = sliding_speed(y[kW1], y[kW2], x, lp_) >= 0.0 ? 1.0 : -1.0;
-      double ke = 0.0;
-      double dke = 0.0;
-      pair_stiffness(x, m.count, ke, dke);
-      m.clipped[j] = ke * dl + hertzian_damping_force(damping_factor(d, ke), dl, dl_rate) < 0.0;
+      m.clipped[j] = push_sign_function(x, m.count, d, dl, dl_rate) < 0.0;
     }
   }
 
@@ -354,8 +363,14 @@ class Run {
  public:
   Run(const SimulationCase& c, const StiffnessTable& table, const RunControl& control)
       : c_(c), control_(control), mech_(c, table, control) {
-    y_ = State{c.initial.theta1_rad, c.initial.theta2_rad, c.initial.w1_rad_s, c.initial.w2_rad_s,
-               0.0, 0.0, 0.0, 0.0};
+    y_ = State{c.initial.theta1_rad,
+               c.initial.theta2_rad,
+               c.initial.w1_rad_s,
+               c.initial.w2_rad_s,
+               0.0,
+               0.0,
+               0.0,
+               0.0};
     mode_ = mech_.classify_geometry(y_);
     if (mode_.region != Region::free) begin_contact(0.0);
     mech_.classify_forces(y_, damping_, mode_);
@@ -435,9 +450,9 @@ class Run {
     State dydt{};
     mech_.rhs(t, y, m, damping_, dydt, &totals);
     const double delta = m.region == Region::free ? 0.0 : mech_.delta(m.region, y);
-    result_.series.push_back(SeriesRow{t, y[kTheta1], y[kTheta2], y[kW1], y[kW2], mech_.s(y),
-                                       delta, static_cast<int>(m.region), m.count,
-                                       totals.normal_force_n, totals.friction_force_n});
+    result_.series.push_back(SeriesRow{t, y[kTheta1], y[kTheta2], y[kW1], y[kW2], mech_.s(y), delta,
+                                       static_cast<int>(m.region), m.count, totals.normal_force_n,
+                                       totals.friction_force_n});
   }
 
   SimulationResult finish(double t, const char* integrator) {
@@ -634,7 +649,8 @@ SimulationResult run_rk4(const SimulationCase& c, const StiffnessTable& table,
           rk4_step(mech, t, start, tau - t, mode, damping, x);
           evaluations += 4;
         };
-        const double t_event = earliest_event(mech, mode, damping, t, target, g_a, g_b, n, state_at);
+        const double t_event =
+            earliest_event(mech, mode, damping, t, target, g_a, g_b, n, state_at);
         run.rhs_evaluations() += evaluations;
         if (t_event < target) {
           state_at(t_event, next);
@@ -763,8 +779,7 @@ void validate_torque(const char* field, const Torque& torque) {
       require_finite((name + ".constant").c_str(), torque.constant_n_m, "a finite torque in N m");
       break;
     case Torque::Kind::sinusoidal:
-      require_finite((name + ".amplitude").c_str(), torque.amplitude_n_m,
-                     "a finite torque in N m");
+      require_finite((name + ".amplitude").c_str(), torque.amplitude_n_m, "a finite torque in N m");
       require_finite((name + ".angular_frequency").c_str(), torque.angular_frequency_rad_s,
                      "a finite value in rad/s");
       require_finite((name + ".phase").c_str(), torque.phase_rad, "a finite value in rad");
@@ -790,7 +805,8 @@ double largest_resolving_step_s(const SimulationCase& c) {
   for (int i = 0; i <= samples; ++i) {
     const double u = segment.start_m + t0 * i / samples;
     double total = 0.0;
-    for (double x = u; x <= segment.end_m; x += t0) total += mesh_stiffness(g, x, c.model.stiffness).ke;
+    for (double x = u; x <= segment.end_m; x += t0)
+      total += mesh_stiffness(g, x, c.model.stiffness).ke;
     stiffest = std::max(stiffest, total);
   }
   const double period = 2.0 * std::numbers::pi / std::sqrt(stiffest * inverse_mass);
@@ -831,8 +847,7 @@ void validate(const SimulationCase& c) {
   }
   if (!std::isfinite(s.adaptive_relative_tolerance) || s.adaptive_relative_tolerance < 1e-14 ||
       s.adaptive_relative_tolerance > 1e-3) {
-    throw InputError("adaptive_relative_tolerance", s.adaptive_relative_tolerance,
-                     "[1e-14, 1e-3]");
+    throw InputError("adaptive_relative_tolerance", s.adaptive_relative_tolerance, "[1e-14, 1e-3]");
   }
   if (!std::isfinite(s.step_s) || s.step_s <= 0.0) {
     throw InputError("step", s.step_s, "a finite value > 0 s");
@@ -969,8 +984,8 @@ std::vector<SweepRow> sweep_friction(const std::vector<SimulationCase>& cases, d
         control.keep_series = false;
         const SimulationSummary s = simulate(c, control).summary;
         if (!(s.damping_loss_j > 0.0)) {
-          throw SimulationError("no damping loss in " + c.name + " at f = " +
-                                format_number(c.model.friction_coefficient) +
+          throw SimulationError("no damping loss in " + c.name +
+                                " at f = " + format_number(c.model.friction_coefficient) +
                                 ": the ratio friction loss / damping loss is undefined");
         }
         ratio[i] = s.friction_loss_j / s.damping_loss_j;

@@ -20,8 +20,7 @@ double restitution_coefficient(const RestitutionLaw& law, double impact_speed_m_
 double damping_factor_per_stiffness(DampingForm form, double restitution, double impact_speed_m_s);
 
 // (34) G = D delta d(delta)/dt.
-inline double hertzian_damping_force(double damping_factor, double delta_m,
-                                     double delta_rate_m_s) {
+inline double hertzian_damping_force(double damping_factor, double delta_m, double delta_rate_m_s) {
   return damping_factor * delta_m * delta_rate_m_s;
 }
 

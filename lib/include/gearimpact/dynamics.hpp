@@ -89,8 +89,8 @@ struct SimulationSummary {
   double ledger_scale_j = 0.0;
   double final_w1_rad_s = 0.0;
   double final_w2_rad_s = 0.0;
-  long long steps = 0;         // accepted steps, including those cut at events
-  long long events = 0;        // mode changes located
+  long long steps = 0;   // accepted steps, including those cut at events
+  long long events = 0;  // mode changes located
   long long rhs_evaluations = 0;
 };
 
