@@ -193,6 +193,8 @@ class Mechanics {
         // every sign flips on N2.
         moment1 -= sign * (n * rb1_ + ff * x);
         moment2 += sign * (n * rb2_ + ff * (lp_ - x));
+        // The damping force is what N adds to F; with N clipped it is -F, so the
+        // stored energy released while the tooth cannot push counts as damping loss.
         damping_power += (n - f_elastic) * dl_rate;
         friction_power += friction_ * n * m.slip[j] * vs;
         parametric_power += 0.5 * dl * dl * dke * x_rate;
@@ -339,11 +341,6 @@ class Mechanics {
     }
     return u;
   }
-
-  double rb1() const { return rb1_; }
-  double rb2() const { return rb2_; }
-  double j1() const { return j1_; }
-  double j2() const { return j2_; }
 
  private:
   const StiffnessTable& table_;
@@ -908,6 +905,24 @@ void json_number(std::string& out, const char* key, double value, bool last = fa
   out += buffer;
 }
 
+// A JSON string literal: quotes, backslashes and control characters escaped.
+std::string json_string(const std::string& text) {
+  std::string out = "\"";
+  for (char ch : text) {
+    if (ch == '"' || ch == '\\') {
+      out += '\\';
+      out += ch;
+    } else if (static_cast<unsigned char>(ch) < 0x20) {
+      char buffer[8];
+      std::snprintf(buffer, sizeof buffer, "\\u%04x", static_cast<unsigned>(ch));
+      out += buffer;
+    } else {
+      out += ch;
+    }
+  }
+  return out + "\"";
+}
+
 void json_optional(std::string& out, const char* key, const std::optional<double>& value) {
   if (value) {
     json_number(out, key, *value);
@@ -920,8 +935,8 @@ void json_optional(std::string& out, const char* key, const std::optional<double
 
 std::string summary_json(const SimulationSummary& s) {
   std::string out = "{\n";
-  out += "  \"case\": \"" + s.case_name + "\",\n";
-  out += "  \"integrator\": \"" + s.integrator + "\",\n";
+  out += "  \"case\": " + json_string(s.case_name) + ",\n";
+  out += "  \"integrator\": " + json_string(s.integrator) + ",\n";
   json_number(out, "friction_coefficient", s.friction_coefficient);
   json_number(out, "end_time_s", s.end_time_s);
   json_number(out, "step_s", s.step_s);

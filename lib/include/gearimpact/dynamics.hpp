@@ -44,6 +44,7 @@ struct SeriesRow {
 
 // One impact: a contact that begins at `start_s` with approach speed Vi on
 // `line`; it ends (if it ends within the run) with separation speed `end_speed_m_s`.
+// A run that starts in contact counts that contact as an impact at t = 0.
 struct ImpactRecord {
   Region line;
   double start_s;
