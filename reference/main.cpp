@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   gearimpact::cli::register_stiffness_commands(app);
   gearimpact::cli::register_reproduce_commands(app);
+  gearimpact::cli::register_simulate_commands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
