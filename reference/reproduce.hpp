@@ -31,5 +31,9 @@ std::string number(double value, int digits);
 ReportRow statement_row(const PaperStatement& s, const std::string& ours, bool matches);
 
 ReportSection reproduce_fig8(const ReproduceContext& context);
+ReportSection reproduce_time_histories(const ReproduceContext& context);
+ReportSection reproduce_fig7(const ReproduceContext& context);
+ReportSection reproduce_readings(const ReproduceContext& context);
+ReportSection reproduce_case3_ensemble(const ReproduceContext& context);
 
 }  // namespace gearimpact::cli

@@ -23,6 +23,7 @@ struct ReadingOptions {
   double restitution_exponent = 0.375;
   std::string speed_unit = "mm/s";
   std::string coast_phase = "half-pitch";
+  bool flipped_moment = false;
 };
 
 struct SimulateOptions {
@@ -48,9 +49,6 @@ struct SweepOptions {
 };
 
 SimulationCase paper_case_with(int number, const ReadingOptions& r) {
-  SimulationCase c =
-      paper_case(number, r.torque_unit == "n-mm" ? TorqueUnit::n_mm : TorqueUnit::kgf_mm,
-                 r.case3_frequency_rad_s);
   const std::map<std::string, DampingForm> forms{
       {"herbert-mcwhannell", DampingForm::herbert_mcwhannell},
       {"hunt-crossley", DampingForm::hunt_crossley},
@@ -59,15 +57,20 @@ SimulationCase paper_case_with(int number, const ReadingOptions& r) {
       {"pair", DampingStiffness::current_pair},
       {"pitch-pair", DampingStiffness::pitch_pair_at_impact},
       {"hertz", DampingStiffness::hertz}};
-  const std::map<std::string, double> speed_units{{"mm/s", 1.0e-3}, {"in/s", 0.0254}, {"m/s", 1.0}};
-  c.model.damping_form = forms.at(r.damping_form);
-  c.model.damping_stiffness = stiffnesses.at(r.damping_stiffness);
-  c.model.restitution.coefficient = r.restitution_coefficient;
-  c.model.restitution.exponent = r.restitution_exponent;
-  c.model.restitution.speed_unit_m_s = speed_units.at(r.speed_unit);
-  c.model.coast_phase =
+  const std::map<std::string, double> speed_units{
+      {"mm/s", 1.0e-3}, {"in/s", 0.0254}, {"m/s", 1.0}};
+  PaperReading reading;
+  reading.torque_unit = r.torque_unit == "n-mm" ? TorqueUnit::n_mm : TorqueUnit::kgf_mm;
+  reading.case3_angular_frequency_rad_s = r.case3_frequency_rad_s;
+  reading.damping_form = forms.at(r.damping_form);
+  reading.damping_stiffness = stiffnesses.at(r.damping_stiffness);
+  reading.restitution.coefficient = r.restitution_coefficient;
+  reading.restitution.exponent = r.restitution_exponent;
+  reading.restitution.speed_unit_m_s = speed_units.at(r.speed_unit);
+  reading.coast_phase =
       r.coast_phase == "in-phase" ? CoastPhase::in_phase : CoastPhase::half_base_pitch;
-  return c;
+  reading.moment_sign = r.flipped_moment ? AxialMomentSign::flipped : AxialMomentSign::physical;
+  return paper_case(number, reading);
 }
 
 void add_reading_options(CLI::App* command, ReadingOptions& r) {
@@ -98,6 +101,8 @@ void add_reading_options(CLI::App* command, ReadingOptions& r) {
                    "coast-line contacts: half-pitch (geometric) or in-phase (literal (9))")
       ->check(CLI::IsMember({"half-pitch", "in-phase"}))
       ->capture_default_str();
+  command->add_flag("--flipped-moment", r.flipped_moment,
+                    "add the axial-force moment Fa h in the bending stiffness (not physical)");
 }
 
 void run_simulate(const SimulateOptions& o) {

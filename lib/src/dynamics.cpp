@@ -148,8 +148,9 @@ class Mechanics {
       return;
     }
     const double xc = std::clamp(x, xs_, xe_);
-    dke = table_.stiffness_derivative(xc);
-    ke = table_.stiffness(xc) + dke * (x - xc);
+    const StiffnessAndDerivative k = table_.stiffness_and_derivative(xc);
+    dke = k.derivative_n_per_m2;
+    ke = k.stiffness_n_per_m + dke * (x - xc);
   }
 
   double damping_factor(const ContactDamping& d, double ke) const {
