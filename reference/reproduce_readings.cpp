@@ -54,6 +54,7 @@ struct Score {
   int met = 0;
   int statements = 0;
   double worst_tolerances_off = 0.0;
+  double mean_tolerances_off = 0.0;
 };
 
 Score score(const PaperReading& reading, const ReproduceContext& context,
@@ -73,6 +74,7 @@ Score score(const PaperReading& reading, const ReproduceContext& context,
   const auto count = [&](const PaperStatement& statement, double ours) {
     const double off = statement.tolerances_off(ours, statement.paper_low);
     s.worst_tolerances_off = std::max(s.worst_tolerances_off, off);
+    s.mean_tolerances_off += off;
     s.met += off <= 1.0;
     ++s.statements;
   };
@@ -85,6 +87,7 @@ Score score(const PaperReading& reading, const ReproduceContext& context,
   }
   s.last_n2_ms = case2.summary.last_n2_impact_s.value_or(0.0) * 1e3;
   count(statements.at("case2_last_n2_impact"), s.last_n2_ms);
+  s.mean_tolerances_off /= s.statements;
   return s;
 }
 
@@ -101,7 +104,7 @@ ReportSection reproduce_readings(const ReproduceContext& context) {
       "tolerance of `paper_data/dynamics_statements.csv`. The sign of the Fa h moment is scored "
       "in the Fig. 8 section (it changes the stiffness, not the dissipation).\n\n"
       "| reading | case 1: 0.01 / 0.09 | case 2: 0.01 / 0.09 | case 3: 0.01 / 0.09 | last N2 "
-      "impact, case 2 | statements met | worst (tolerances off) |\n|---|---|---|---|---|---|---|\n";
+      "impact, case 2 | statements met | mean, worst (tolerances off) |\n|---|---|---|---|---|---|---|\n";
   const std::vector<NamedReading> list = readings();
   std::vector<Score> scores;
   for (const NamedReading& r : list) scores.push_back(score(r.reading, context, statements));
@@ -115,19 +118,34 @@ ReportSection reproduce_readings(const ReproduceContext& context) {
                     number(s.damping_over_friction[4], 3) + " / " +
                     number(s.damping_over_friction[5], 3) + " | " + number(s.last_n2_ms, 3) +
                     " ms | " + std::to_string(s.met) + " of " + std::to_string(s.statements) +
-                    " | " + number(s.worst_tolerances_off, 3) + " |\n";
+                    " | " + number(s.mean_tolerances_off, 3) + ", " +
+                    number(s.worst_tolerances_off, 3) + " |\n";
     const Score& b = scores[best];
-    if (s.met > b.met || (s.met == b.met && s.worst_tolerances_off < b.worst_tolerances_off)) {
+    if (s.met > b.met || (s.met == b.met && s.mean_tolerances_off < b.mean_tolerances_off)) {
       best = i;
     }
   }
-  section.text += "\nBest: **" + list[best].name + "**, " + std::to_string(scores[best].met) +
-                  " of " + std::to_string(scores[best].statements) +
-                  " statements met; the default (" + std::to_string(scores[0].met) + " of " +
-                  std::to_string(scores[0].statements) + ") " +
-                  (best == 0 ? "is the best reading.\n"
-                             : "stays the default unless the better reading is also physically "
-                               "sound; see the README's known differences.\n");
+  // The paper's values are "about" values with tolerances of a fifth or so;
+  // a reading that beats the default by less than a quarter of a tolerance on
+  // average, at an equal count of statements met, is not told apart by them.
+  constexpr double decisive_margin = 0.25;
+  const Score& d = scores[0];
+  const Score& b = scores[best];
+  const bool evidence_for_change =
+      b.met > d.met || (b.met == d.met && d.mean_tolerances_off - b.mean_tolerances_off > decisive_margin);
+  section.text += "\nBest (most statements met, then the smallest mean miss): **" + list[best].name +
+                  "**, " + std::to_string(b.met) + " of " + std::to_string(b.statements) +
+                  " statements met, mean " + number(b.mean_tolerances_off, 3) +
+                  " tolerances off; the default: " + std::to_string(d.met) + " of " +
+                  std::to_string(d.statements) + ", mean " + number(d.mean_tolerances_off, 3) +
+                  ". The default changes only for a reading that meets more statements, or as "
+                  "many with a mean miss smaller by more than " + number(decisive_margin, 2) +
+                  " tolerances (the paper's 'about' values cannot tell smaller differences "
+                  "apart). " +
+                  (evidence_for_change
+                       ? "**The evidence favours " + list[best].name +
+                             " over the default**: see the README on why the default stays or goes.\n"
+                       : std::string("Verdict: the default stands.\n"));
   return section;
 }
 
@@ -154,15 +172,17 @@ ReportSection reproduce_case3_ensemble(const ReproduceContext& context) {
   ReportSection section;
   section.title = "Case 3 as an ensemble";
   const int members = context.quick ? 3 : 8;
-  // A perturbation far below anything physical (1e-12 rad of gear 1 moves
-  // the contact by 2e-14 m) that still separates chaotic runs in time.
-  const double perturbation_rad = 1e-12;
+  // 2e-8 rad of gear 1 moves s by 0.38 nm, 8e-6 of the backlash and far
+  // below any manufacturing tolerance: runs that part over such a change are
+  // sensitive to their initial state.
+  const double perturbation_rad = 2e-8;
   // The runs have parted when their s differ by 1 % of the backlash.
   const double parted_m = 0.01 * paper_gear_pair().backlash_m;
   section.text =
       "Case 3 is run " + std::to_string(members) + " times with theta1(0) = k " +
-      number(perturbation_rad, 2) +
-      " rad, k = 0.." + std::to_string(members - 1) +
+      number(perturbation_rad, 2) + " rad (s(0) = k " +
+      number(perturbation_rad * base_radius(paper_gear_pair(), Gear::one) * 1e9, 2) +
+      " nm), k = 0.." + std::to_string(members - 1) +
       ". Robust quantities (first impact, peak penetration) are given as numbers, long-time ones "
       "(impact count, losses, the Fig. 7 ratio at f = 0.04) as the ensemble's range. 'Runs part' "
       "is the first time two members' s differ by 1 % of the backlash.\n\n"
