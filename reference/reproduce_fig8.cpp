@@ -12,26 +12,6 @@ namespace gearimpact::cli {
 
 namespace {
 
-struct Range {
-  double low;
-  double high;
-  double argmax_deg;
-};
-
-template <typename Value>
-Range range_of(const std::vector<EnergyRatios>& rows, Value value) {
-  Range r{value(rows.front()), value(rows.front()), rows.front().phi1_deg};
-  for (const EnergyRatios& row : rows) {
-    const double v = value(row);
-    r.low = std::min(r.low, v);
-    if (v > r.high) {
-      r.high = v;
-      r.argmax_deg = row.phi1_deg;
-    }
-  }
-  return r;
-}
-
 void write_csv(const std::filesystem::path& file, const std::vector<EnergyRatios>& rows) {
   std::string text =
       "angle_deg,pairs,hertz_over_bending_one_pair,axial_over_bending_one_pair,"
@@ -47,12 +27,7 @@ void write_csv(const std::filesystem::path& file, const std::vector<EnergyRatios
 }
 
 std::vector<std::string> one_pair_shading(const std::vector<EnergyRatios>& rows) {
-  double start = 0.0;
-  double end = 0.0;
-  for (std::size_t i = 1; i < rows.size(); ++i) {
-    if (rows[i - 1].pairs == 2 && rows[i].pairs == 1) start = rows[i].phi1_deg;
-    if (rows[i - 1].pairs == 1 && rows[i].pairs == 2) end = rows[i - 1].phi1_deg;
-  }
+  const auto [start, end] = one_pair_zone(rows);
   return {"set object 1 rect from " + number(start, 4) + ", graph 0 to " + number(end, 4) +
               ", graph 1 fc rgb '#e8e8e8' fs solid 1.0 noborder behind",
           "set label 1 'one pair' at " + number(0.5 * (start + end), 4) +
@@ -102,12 +77,7 @@ ReportSection reproduce_fig8(const ReproduceContext& context) {
       "and `fig8_energy_ratios_flipped_moment.png` (the Fa h term added). The one-pair zone is "
       "shaded.\n";
 
-  double one_pair_start = 0.0;
-  double one_pair_end = 0.0;
-  for (std::size_t i = 1; i < physical.size(); ++i) {
-    if (physical[i - 1].pairs == 2 && physical[i].pairs == 1) one_pair_start = physical[i].phi1_deg;
-    if (physical[i - 1].pairs == 1 && physical[i].pairs == 2) one_pair_end = physical[i - 1].phi1_deg;
-  }
+  const AngleZone one_pair = one_pair_zone(physical);
   const auto range_row = [&](const std::string& id, double low, double high,
                              const std::string& note_if_missed) {
     const PaperStatement& s = statements.at(id);
@@ -125,36 +95,35 @@ ReportSection reproduce_fig8(const ReproduceContext& context) {
   };
   section.rows.push_back(
       range_row("fig8_range", physical.front().phi1_deg, physical.back().phi1_deg, ""));
-  section.rows.push_back(range_row("fig8_one_pair_zone", one_pair_start, one_pair_end, ""));
+  section.rows.push_back(range_row("fig8_one_pair_zone", one_pair.start_deg, one_pair.end_deg, ""));
 
-  const auto hertz_one = [](const EnergyRatios& r) { return r.hertz_over_bending_one_pair; };
-  const auto axial_system = [](const EnergyRatios& r) { return r.axial_over_bending_system; };
-  const auto axial_one = [](const EnergyRatios& r) { return r.axial_over_bending_one_pair; };
-  const Range peak = range_of(physical, hertz_one);
+  const auto hertz_one = &EnergyRatios::hertz_over_bending_one_pair;
+  const auto axial_system = &EnergyRatios::axial_over_bending_system;
+  const auto axial_one = &EnergyRatios::axial_over_bending_one_pair;
+  const RatioExtremes hertz_physical = extremes(physical, hertz_one);
   {
     const PaperStatement& s = statements.at("fig8_bending_stiffness_peak");
-    section.rows.push_back(statement_row(s, number(peak.argmax_deg, 3),
-                                         s.matches(peak.argmax_deg, s.paper_low)));
+    const double peak = hertz_physical.phi1_at_max_deg;
+    section.rows.push_back(statement_row(s, number(peak, 3), s.matches(peak, s.paper_low)));
   }
-  const Range hertz_physical = range_of(physical, hertz_one);
-  const Range hertz_flipped = range_of(flipped, hertz_one);
-  const Range axial_sys_physical = range_of(physical, axial_system);
-  const Range axial_sys_flipped = range_of(flipped, axial_system);
-  const Range axial_one_physical = range_of(physical, axial_one);
-  const Range axial_one_flipped = range_of(flipped, axial_one);
+  const RatioExtremes hertz_flipped = extremes(flipped, hertz_one);
+  const RatioExtremes axial_sys_physical = extremes(physical, axial_system);
+  const RatioExtremes axial_sys_flipped = extremes(flipped, axial_system);
+  const RatioExtremes axial_one_physical = extremes(physical, axial_one);
+  const RatioExtremes axial_one_flipped = extremes(flipped, axial_one);
   const std::string flipped_note = "the printed, physical sign of Fa h; with it flipped: ";
   section.rows.push_back(range_row(
-      "fig8_bending_over_hertz", 1.0 / hertz_physical.high, 1.0 / hertz_physical.low,
-      flipped_note + number(1.0 / hertz_flipped.high, 3) + " to " +
-          number(1.0 / hertz_flipped.low, 3)));
+      "fig8_bending_over_hertz", 1.0 / hertz_physical.max, 1.0 / hertz_physical.min,
+      flipped_note + number(1.0 / hertz_flipped.max, 3) + " to " +
+          number(1.0 / hertz_flipped.min, 3)));
   section.rows.push_back(range_row(
-      "fig8_axial_over_bending_system", axial_sys_physical.low, axial_sys_physical.high,
-      flipped_note + number(axial_sys_flipped.low, 3) + " to " +
-          number(axial_sys_flipped.high, 3)));
+      "fig8_axial_over_bending_system", axial_sys_physical.min, axial_sys_physical.max,
+      flipped_note + number(axial_sys_flipped.min, 3) + " to " +
+          number(axial_sys_flipped.max, 3)));
   section.rows.push_back(range_row(
-      "fig8_axial_over_bending_one_pair", axial_one_physical.low, axial_one_physical.high,
-      flipped_note + number(axial_one_flipped.low, 3) + " to " +
-          number(axial_one_flipped.high, 3)));
+      "fig8_axial_over_bending_one_pair", axial_one_physical.min, axial_one_physical.max,
+      flipped_note + number(axial_one_flipped.min, 3) + " to " +
+          number(axial_one_flipped.max, 3)));
   return section;
 }
 

@@ -27,26 +27,6 @@ namespace {
 // tolerances of the zone statements.
 constexpr int cycle_points = 601;
 
-struct Range {
-  double low;
-  double high;
-  double argmax_deg;
-};
-
-template <typename Value>
-Range range_of(const std::vector<EnergyRatios>& rows, Value value) {
-  Range r{value(rows.front()), value(rows.front()), rows.front().phi1_deg};
-  for (const EnergyRatios& row : rows) {
-    const double v = value(row);
-    r.low = std::min(r.low, v);
-    if (v > r.high) {
-      r.high = v;
-      r.argmax_deg = row.phi1_deg;
-    }
-  }
-  return r;
-}
-
 std::vector<EnergyRatios> cycle(AxialMomentSign sign) {
   StiffnessModel model;
   model.moment_sign = sign;
@@ -55,8 +35,8 @@ std::vector<EnergyRatios> cycle(AxialMomentSign sign) {
 
 // How far a computed range is from the paper's, in units of the statement's
 // tolerance at each end.
-double miss(const PaperStatement& s, const Range& ours) {
-  return std::max(s.tolerances_off(ours.low, s.paper_low), s.tolerances_off(ours.high, s.paper_high));
+double miss(const PaperStatement& s, double low, double high) {
+  return std::max(s.tolerances_off(low, s.paper_low), s.tolerances_off(high, s.paper_high));
 }
 
 }  // namespace
@@ -70,12 +50,7 @@ TEST_CASE("Fig. 8 zones: one meshing cycle from about -1 to 29 deg, one pair fro
   CHECK(range.matches(rows.back().phi1_deg, range.paper_high));
 
   const PaperStatement& zone = statements.at("fig8_one_pair_zone");
-  double one_pair_start = 0.0;
-  double one_pair_end = 0.0;
-  for (std::size_t i = 1; i < rows.size(); ++i) {
-    if (rows[i - 1].pairs == 2 && rows[i].pairs == 1) one_pair_start = rows[i].phi1_deg;
-    if (rows[i - 1].pairs == 1 && rows[i].pairs == 2) one_pair_end = rows[i - 1].phi1_deg;
-  }
+  const auto [one_pair_start, one_pair_end] = one_pair_zone(rows);
   MESSAGE("one-pair zone: " << one_pair_start << " to " << one_pair_end << " deg (paper: 12 to 17)");
   CHECK(zone.matches(one_pair_start, zone.paper_low));
   CHECK(zone.matches(one_pair_end, zone.paper_high));
@@ -91,12 +66,10 @@ TEST_CASE("Fig. 8: the one-pair effective bending stiffness peaks near 22 deg") 
   const auto statements = verify::read_statements("fig8_energy_ratios.csv");
   const PaperStatement& peak = statements.at("fig8_bending_stiffness_peak");
   for (AxialMomentSign sign : {AxialMomentSign::physical, AxialMomentSign::flipped}) {
-    const Range r = range_of(cycle(sign), [](const EnergyRatios& row) {
-      return row.hertz_over_bending_one_pair;
-    });
+    const RatioExtremes r = extremes(cycle(sign), &EnergyRatios::hertz_over_bending_one_pair);
     MESSAGE(std::string(sign == AxialMomentSign::physical ? "physical" : "flipped")
-            << " moment: peak at " << r.argmax_deg << " deg (paper: 22)");
-    CHECK(peak.matches(r.argmax_deg, peak.paper_low));
+            << " moment: peak at " << r.phi1_at_max_deg << " deg (paper: 22)");
+    CHECK(peak.matches(r.phi1_at_max_deg, peak.paper_low));
   }
 }
 
@@ -104,36 +77,33 @@ TEST_CASE("Fig. 8 energy ratios: the flipped Fa h moment meets the paper, the ph
   const auto statements = verify::read_statements("fig8_energy_ratios.csv");
   const std::vector<EnergyRatios> physical = cycle(AxialMomentSign::physical);
   const std::vector<EnergyRatios> flipped = cycle(AxialMomentSign::flipped);
-  const auto bending_over_hertz = [](const std::vector<EnergyRatios>& rows) {
-    const Range r = range_of(rows, [](const EnergyRatios& row) {
-      return row.hertz_over_bending_one_pair;
-    });
-    return Range{1.0 / r.high, 1.0 / r.low, 0.0};
-  };
-  const auto axial_system = [](const std::vector<EnergyRatios>& rows) {
-    return range_of(rows, [](const EnergyRatios& row) { return row.axial_over_bending_system; });
-  };
-  const auto axial_one_pair = [](const std::vector<EnergyRatios>& rows) {
-    return range_of(rows, [](const EnergyRatios& row) { return row.axial_over_bending_one_pair; });
-  };
-
+  // Bending over Hertzian is the inverse of the tabulated ratio.
   struct Compared {
     std::string id;
-    Range physical;
-    Range flipped;
+    double physical_low, physical_high;
+    double flipped_low, flipped_high;
   };
+  const auto hertz = &EnergyRatios::hertz_over_bending_one_pair;
+  const auto axial_system = &EnergyRatios::axial_over_bending_system;
+  const auto axial_one = &EnergyRatios::axial_over_bending_one_pair;
   const std::vector<Compared> compared{
-      {"fig8_bending_over_hertz", bending_over_hertz(physical), bending_over_hertz(flipped)},
-      {"fig8_axial_over_bending_system", axial_system(physical), axial_system(flipped)},
-      {"fig8_axial_over_bending_one_pair", axial_one_pair(physical), axial_one_pair(flipped)},
+      {"fig8_bending_over_hertz", 1.0 / extremes(physical, hertz).max,
+       1.0 / extremes(physical, hertz).min, 1.0 / extremes(flipped, hertz).max,
+       1.0 / extremes(flipped, hertz).min},
+      {"fig8_axial_over_bending_system", extremes(physical, axial_system).min,
+       extremes(physical, axial_system).max, extremes(flipped, axial_system).min,
+       extremes(flipped, axial_system).max},
+      {"fig8_axial_over_bending_one_pair", extremes(physical, axial_one).min,
+       extremes(physical, axial_one).max, extremes(flipped, axial_one).min,
+       extremes(flipped, axial_one).max},
   };
   for (const Compared& c : compared) {
     const PaperStatement& s = statements.at(c.id);
-    const double miss_physical = miss(s, c.physical);
-    const double miss_flipped = miss(s, c.flipped);
+    const double miss_physical = miss(s, c.physical_low, c.physical_high);
+    const double miss_flipped = miss(s, c.flipped_low, c.flipped_high);
     MESSAGE(c.id << ": paper " << s.paper_low << " to " << s.paper_high << "; physical "
-                 << c.physical.low << " to " << c.physical.high << " (" << miss_physical
-                 << " tolerances off); flipped " << c.flipped.low << " to " << c.flipped.high
+                 << c.physical_low << " to " << c.physical_high << " (" << miss_physical
+                 << " tolerances off); flipped " << c.flipped_low << " to " << c.flipped_high
                  << " (" << miss_flipped << " tolerances off)");
     CAPTURE(c.id);
     // MODEL.md, Readings: the physical form misses, the flipped one is closer.
@@ -142,8 +112,10 @@ TEST_CASE("Fig. 8 energy ratios: the flipped Fa h moment meets the paper, the ph
   }
   // The flipped form meets the two statements the text makes of both curves
   // together within their tolerances.
-  CHECK(miss(statements.at("fig8_bending_over_hertz"), compared[0].flipped) <= 1.0);
-  CHECK(miss(statements.at("fig8_axial_over_bending_system"), compared[1].flipped) <= 1.0);
+  CHECK(miss(statements.at("fig8_bending_over_hertz"), compared[0].flipped_low,
+             compared[0].flipped_high) <= 1.0);
+  CHECK(miss(statements.at("fig8_axial_over_bending_system"), compared[1].flipped_low,
+             compared[1].flipped_high) <= 1.0);
 }
 
 TEST_CASE("section 1: the axial energy is negligible next to the bending energy") {

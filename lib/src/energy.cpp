@@ -1,5 +1,6 @@
 #include "gearimpact/energy.hpp"
 
+#include <algorithm>
 #include <numbers>
 #include <string>
 
@@ -55,6 +56,29 @@ std::vector<EnergyRatios> energy_ratio_cycle(const GearPair& pair, int points,
                     system.axial_j / system.bending_j});
   }
   return rows;
+}
+
+RatioExtremes extremes(const std::vector<EnergyRatios>& rows, double EnergyRatios::*ratio) {
+  if (rows.empty()) throw InputError("rows", "none", "at least one row of a cycle");
+  RatioExtremes r{rows.front().*ratio, rows.front().*ratio, rows.front().phi1_deg};
+  for (const EnergyRatios& row : rows) {
+    const double v = row.*ratio;
+    r.min = std::min(r.min, v);
+    if (v > r.max) {
+      r.max = v;
+      r.phi1_at_max_deg = row.phi1_deg;
+    }
+  }
+  return r;
+}
+
+AngleZone one_pair_zone(const std::vector<EnergyRatios>& rows) {
+  AngleZone zone{0.0, 0.0};
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    if (rows[i - 1].pairs == 2 && rows[i].pairs == 1) zone.start_deg = rows[i].phi1_deg;
+    if (rows[i - 1].pairs == 1 && rows[i].pairs == 2) zone.end_deg = rows[i - 1].phi1_deg;
+  }
+  return zone;
 }
 
 }  // namespace gearimpact

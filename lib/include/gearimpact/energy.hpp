@@ -38,4 +38,21 @@ struct EnergyRatios {
 std::vector<EnergyRatios> energy_ratio_cycle(const GearPair& pair, int points,
                                              const StiffnessModel& model = {});
 
+// The smallest and largest value of one ratio over a cycle, and the phi1 of
+// the largest. `ratio` names a member, e.g. &EnergyRatios::axial_over_bending_system.
+struct RatioExtremes {
+  double min;
+  double max;
+  double phi1_at_max_deg;
+};
+RatioExtremes extremes(const std::vector<EnergyRatios>& rows, double EnergyRatios::*ratio);
+
+// The phi1 interval of a cycle where a single pair is loaded: the first row
+// with one pair after two, and the last row with one pair before two.
+struct AngleZone {
+  double start_deg;
+  double end_deg;
+};
+AngleZone one_pair_zone(const std::vector<EnergyRatios>& rows);
+
 }  // namespace gearimpact
