@@ -9,6 +9,7 @@ int main(int argc, char** argv) {
   CLI::App app{"gearimpact: spur gear impact dynamics after Yang and Lin (1987)"};
   app.require_subcommand(1);
   gearimpact::cli::register_stiffness_commands(app);
+  gearimpact::cli::register_case_commands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
