@@ -387,8 +387,8 @@ GearPair read_gears(const Reader& reader, const toml::value& root) {
   // units and finiteness, and counts small enough to be gears.
   constexpr int kMostTeeth = 100000;
   GearPair gears;
-  gears.teeth1 = section.integer("teeth1", std::nullopt, 1, kMostTeeth);
-  gears.teeth2 = section.integer("teeth2", std::nullopt, 1, kMostTeeth);
+  gears.teeth1 = section.integer("teeth1", std::nullopt, 4, kMostTeeth);
+  gears.teeth2 = section.integer("teeth2", std::nullopt, 4, kMostTeeth);
   gears.module_m = section.quantity("module", Dimension::length);
   gears.pressure_angle_rad = section.quantity("pressure_angle", Dimension::angle);
   gears.face_width_m = section.quantity("face_width", Dimension::length);

@@ -204,7 +204,7 @@ double parse_quantity(std::string_view text, Dimension dimension, std::string_vi
       break;
     }
   }
-  if (digits == 0) fail("no number");
+  if (digits == 0) fail("no finite decimal number");
   Decimal number{body.substr(mantissa_begin, i - mantissa_begin), 0};
   if (i < body.size() && (body[i] == 'e' || body[i] == 'E')) {
     std::size_t j = i + 1;
