@@ -262,12 +262,28 @@ std::vector<BadInput> bad_inputs() {
        {"bad.toml", "not valid TOML"}},
       {"deep nesting", base + "x = " + std::string(40, '[') + std::string(40, ']') + "\n",
        {"bad.toml", "nested deeper than 32 levels"}},
+      // toml11 3.7.1 reads out of bounds on invalid UTF-8 in a string (found
+      // by fuzz/fuzz_case_file; the input is in its corpus).
+      {"invalid UTF-8 in a literal string", set("gears", "module", "'2 m\xe8m'"),
+       {"bad.toml", "not valid TOML: byte", "(line 11) is not part of well-formed UTF-8"}},
+      {"overlong UTF-8 in a comment", base + "# \xc0\xaf\n",
+       {"bad.toml", "not valid TOML: byte", "is not part of well-formed UTF-8"}},
+      {"UTF-16 surrogate in UTF-8", set("gears", "module", "\"2 \xed\xa0\x80mm\""),
+       {"bad.toml", "not valid TOML: byte", "is not part of well-formed UTF-8"}},
       {"section as a value", with_key(base, "", "name", "\"c\"\ninitial = 3"),
        {"not valid TOML"}},
   };
 }
 
 }  // namespace
+
+TEST_CASE("well-formed UTF-8 is accepted in strings and comments") {
+  const std::string text = with_key(case1_text(), "", "name", "\"r\xc3\xa4" "der\" # \xe2\x9a\x99\xf0\x9f\x94\xa7");
+  // The name itself must be ASCII (it names files): the error is about it, not UTF-8.
+  CHECK(contains(message_of(text), "name = \"r\xc3\xa4" "der\""));
+  const std::string comment = case1_text() + "# Zahnr\xc3\xa4" "der \xe2\x9a\x99\xf0\x9f\x94\xa7\n";
+  CHECK(parse_case(comment, "case1.toml").name == "case1");
+}
 
 TEST_CASE("the paper's case files are Table 1 as paper_case() writes it") {
   for (int n = 1; n <= 3; ++n) {

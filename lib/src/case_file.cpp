@@ -169,6 +169,45 @@ int nesting_depth(std::string_view text) {
   return deepest;
 }
 
+// The offset of the first byte that is not part of well-formed UTF-8 (RFC
+// 3629: no overlong forms, no surrogates, nothing above U+10FFFF), or npos.
+// TOML documents are UTF-8, and toml11 3.7.1 reads out of bounds when it
+// reports invalid UTF-8 inside a string (its error path resets a location on
+// one buffer to an iterator into another; found by fuzz/fuzz_case_file), so
+// such text is refused before it reaches the parser.
+std::size_t first_invalid_utf8(std::string_view text) {
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+    const unsigned char lead = byte(i);
+    std::size_t length = 0;
+    unsigned char low = 0x80;
+    unsigned char high = 0xBF;
+    if (lead < 0x80) {
+      length = 1;
+    } else if (lead >= 0xC2 && lead <= 0xDF) {
+      length = 2;
+    } else if (lead >= 0xE0 && lead <= 0xEF) {
+      length = 3;
+      if (lead == 0xE0) low = 0xA0;   // overlong
+      if (lead == 0xED) high = 0x9F;  // surrogates
+    } else if (lead >= 0xF0 && lead <= 0xF4) {
+      length = 4;
+      if (lead == 0xF0) low = 0x90;   // overlong
+      if (lead == 0xF4) high = 0x8F;  // above U+10FFFF
+    } else {
+      return i;
+    }
+    if (i + length > text.size()) return i;
+    for (std::size_t k = 1; k < length; ++k) {
+      const unsigned char next = byte(i + k);
+      if (next < (k == 1 ? low : 0x80) || next > (k == 1 ? high : 0xBF)) return i;
+    }
+    i += length;
+  }
+  return std::string_view::npos;
+}
+
 class Reader {
  public:
   explicit Reader(std::string file) : file_(std::move(file)) {}
@@ -543,6 +582,12 @@ SimulationCase parse_case(std::string_view toml_text, std::string_view file_name
     reader.fail("", nullptr,
                 "not a case file: arrays or tables nested deeper than " +
                     std::to_string(kDeepestNesting) + " levels");
+  }
+  if (const std::size_t bad = first_invalid_utf8(toml_text); bad != std::string_view::npos) {
+    const auto line = std::count(toml_text.begin(), toml_text.begin() + static_cast<long>(bad), '\n');
+    reader.fail("", nullptr,
+                "not valid TOML: byte " + std::to_string(bad + 1) + " (line " +
+                    std::to_string(line + 1) + ") is not part of well-formed UTF-8");
   }
   toml::value root;
   try {
