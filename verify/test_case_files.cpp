@@ -11,9 +11,9 @@
 #include <fstream>
 #include <numbers>
 #include <optional>
-#include <utility>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gearimpact/case_file.hpp"
@@ -100,8 +100,8 @@ std::string with_key(const std::string& text, const std::string& section, const 
     }
     while (std::getline(lines, line)) {
       if (!line.empty() && line.front() == '[') current = line.substr(1, line.find(']') - 1);
-      const bool match = current == section &&
-                         (line.rfind(key + " ", 0) == 0 || line.rfind(key + "=", 0) == 0);
+      const bool match =
+          current == section && (line.rfind(key + " ", 0) == 0 || line.rfind(key + "=", 0) == 0);
       if (match && !insert) {
         done = true;
         if (value) out += key + " = " + *value + "\n";
@@ -122,7 +122,9 @@ std::string with_key(const std::string& text, const std::string& section, const 
   return added;
 }
 
-std::string case1_text() { return read_text(kPaperData / "case1.toml"); }
+std::string case1_text() {
+  return read_text(kPaperData / "case1.toml");
+}
 
 std::string message_of(const std::string& text) {
   try {
@@ -143,14 +145,14 @@ struct CliResult {
 
 // Runs `gearimpact check-case` on `text` written to a file named `name`.
 CliResult run_check_case(const std::string& text, const std::string& name) {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("gearimpact-test-case-files-" + std::to_string(::getpid()));
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    ("gearimpact-test-case-files-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const std::filesystem::path file = dir / name;
   std::ofstream(file) << text;
-  const std::string command = std::string("'") + GEARIMPACT_CLI + "' check-case '" +
-                              file.string() + "' >'" + (dir / "out").string() + "' 2>'" +
-                              (dir / "err").string() + "'";
+  const std::string command = std::string("'") + GEARIMPACT_CLI + "' check-case '" + file.string() +
+                              "' >'" + (dir / "out").string() + "' 2>'" + (dir / "err").string() +
+                              "'";
   const int status = std::system(command.c_str());
   CliResult result{WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(dir / "out"),
                    read_text(dir / "err")};
@@ -173,115 +175,160 @@ std::vector<BadInput> bad_inputs() {
   gear_section_renamed.replace(gear_section_renamed.find("[gears]"), 7, "[gear]");
   std::string no_integrator = base.substr(0, base.find("[integrator]"));
   return {
-      {"missing key", set("gears", "module", std::nullopt),
+      {"missing key",
+       set("gears", "module", std::nullopt),
        {"bad.toml", "gears.module is missing", "a length", "m, mm, um, cm, in"}},
-      {"missing section", no_integrator,
-       {"bad.toml", "[integrator] is missing", "end_time"}},
-      {"missing torque kind", set("torque1", "kind", std::nullopt),
+      {"missing section", no_integrator, {"bad.toml", "[integrator] is missing", "end_time"}},
+      {"missing torque kind",
+       set("torque1", "kind", std::nullopt),
        {"torque1.kind is missing", "\"constant\", \"sinusoidal\""}},
-      {"unknown key", set("gears", "modul", "\"2 mm\""),
+      {"unknown key",
+       set("gears", "modul", "\"2 mm\""),
        {"bad.toml:9", "unknown key gears.modul", "teeth1, teeth2, module"}},
-      {"unknown section", gear_section_renamed,
+      {"unknown section",
+       gear_section_renamed,
        {"bad.toml", "unknown key or section \"gear\"", "[gears]"}},
-      {"key of the other torque kind", set("torque1", "amplitude", "\"5 N*mm\""),
+      {"key of the other torque kind",
+       set("torque1", "amplitude", "\"5 N*mm\""),
        {"torque1.amplitude = \"5 N*mm\" is not used by kind = \"constant\""}},
-      {"missing unit", set("gears", "module", "2"),
+      {"missing unit",
+       set("gears", "module", "2"),
        {"bad.toml:", "gears.module = 2", "a number without a unit", "m, mm, um, cm, in"}},
-      {"unit of another dimension", set("gears", "module", "\"2 deg\""),
+      {"unit of another dimension",
+       set("gears", "module", "\"2 deg\""),
        {"gears.module = \"2 deg\"", "\"deg\" is a unit of an angle", "m, mm, um, cm, in"}},
-      {"unknown unit", set("gears", "backlash", "\"0.05 furlong\""),
+      {"unknown unit",
+       set("gears", "backlash", "\"0.05 furlong\""),
        {"gears.backlash = \"0.05 furlong\"", "unknown unit \"furlong\"", "m, mm, um, cm, in"}},
-      {"non-finite quantity", set("gears", "face_width", "\"inf mm\""),
+      {"non-finite quantity",
+       set("gears", "face_width", "\"inf mm\""),
        {"gears.face_width = \"inf mm\"", "no finite decimal number"}},
-      {"overflowing quantity", set("gears", "youngs_modulus", "\"1e999 GPa\""),
+      {"overflowing quantity",
+       set("gears", "youngs_modulus", "\"1e999 GPa\""),
        {"gears.youngs_modulus = \"1e999 GPa\"", "outside the range of a double"}},
-      {"non-finite number", set("gears", "poisson_ratio", "nan"),
+      {"non-finite number",
+       set("gears", "poisson_ratio", "nan"),
        {"gears.poisson_ratio = nan", "(-1, 0.5)"}},
-      {"infinite number", set("model", "friction_coefficient", "inf"),
+      {"infinite number",
+       set("model", "friction_coefficient", "inf"),
        {"model.friction_coefficient = inf", "[0, inf)"}},
-      {"E = 0", set("gears", "youngs_modulus", "\"0 GPa\""),
+      {"E = 0",
+       set("gears", "youngs_modulus", "\"0 GPa\""),
        {"gears.youngs_modulus = 0", "> 0 Pa", "(written \"0 GPa\")"}},
-      {"E < 0", set("gears", "youngs_modulus", "\"-206.8 GPa\""),
+      {"E < 0",
+       set("gears", "youngs_modulus", "\"-206.8 GPa\""),
        {"gears.youngs_modulus = -206800000000", "> 0 Pa"}},
-      {"nu = 0.5", set("gears", "poisson_ratio", "0.5"),
+      {"nu = 0.5",
+       set("gears", "poisson_ratio", "0.5"),
        {"gears.poisson_ratio = 0.5", "(-1, 0.5), both ends excluded"}},
-      {"nu = -1", set("gears", "poisson_ratio", "-1"),
+      {"nu = -1",
+       set("gears", "poisson_ratio", "-1"),
        {"gears.poisson_ratio = -1", "(-1, 0.5), both ends excluded"}},
-      {"density = 0", set("gears", "density", "\"0 kg/m^3\""),
-       {"gears.density = 0", "> 0 kg/m^3"}},
-      {"density < 0", set("gears", "density", "\"-7.8 g/cm^3\""),
+      {"density = 0", set("gears", "density", "\"0 kg/m^3\""), {"gears.density = 0", "> 0 kg/m^3"}},
+      {"density < 0",
+       set("gears", "density", "\"-7.8 g/cm^3\""),
        {"gears.density = -7800", "> 0 kg/m^3"}},
       // 2 ha / sin^2(20 deg) = 17.097: the rack-generation undercut limit.
-      {"too few teeth", set("gears", "teeth1", "12"),
+      {"too few teeth",
+       set("gears", "teeth1", "12"),
        {"gears.teeth1 = 12", "at least 2 ha/sin^2(a0) = 17.09726", "undercuts"}},
-      {"too few teeth, 14.5 deg", set("gears", "pressure_angle", "\"14.5 deg\""),
+      {"too few teeth, 14.5 deg",
+       set("gears", "pressure_angle", "\"14.5 deg\""),
        {"gears.teeth1 = 20", "at least 2 ha/sin^2(a0) = 31.9029"}},
-      {"teeth below 4", set("gears", "teeth2", "3"),
+      {"teeth below 4",
+       set("gears", "teeth2", "3"),
        {"gears.teeth2 = 3", "an integer in [4, 100000]"}},
-      {"teeth beyond an int", set("gears", "teeth2", "9223372036854775807"),
+      {"teeth beyond an int",
+       set("gears", "teeth2", "9223372036854775807"),
        {"gears.teeth2 = 9223372036854775807", "an integer in [4, 100000]"}},
       // ha = 0.4: contact segment 0.733 base pitches (MODEL.md Geometry).
-      {"contact ratio below 1", set("gears", "addendum_coefficient", "0.4"),
+      {"contact ratio below 1",
+       set("gears", "addendum_coefficient", "0.4"),
        {"gears.contact_ratio = 0.733", "[1, 3): below 1 the gears lose contact"}},
-      {"negative backlash", set("gears", "backlash", "\"-0.01 mm\""),
+      {"negative backlash",
+       set("gears", "backlash", "\"-0.01 mm\""),
        {"gears.backlash = -1.0000000000000001e-05", ">= 0 m", "(written \"-0.01 mm\")"}},
-      {"pressure angle 50 deg", set("gears", "pressure_angle", "\"50 deg\""),
+      {"pressure angle 50 deg",
+       set("gears", "pressure_angle", "\"50 deg\""),
        {"gears.pressure_angle", "(0, 45] deg"}},
-      {"negative friction", set("model", "friction_coefficient", "-0.01"),
+      {"negative friction",
+       set("model", "friction_coefficient", "-0.01"),
        {"model.friction_coefficient = -0.01", "[0, inf)"}},
-      {"dt = 0", set("integrator", "step", "\"0 us\""),
+      {"dt = 0",
+       set("integrator", "step", "\"0 us\""),
        {"integrator.step = \"0 us\"", "a time > 0 s"}},
-      {"dt < 0", set("integrator", "step", "\"-1e-7 s\""),
+      {"dt < 0",
+       set("integrator", "step", "\"-1e-7 s\""),
        {"integrator.step = \"-1e-7 s\"", "a time > 0 s"}},
-      {"t_end = 0", set("integrator", "end_time", "\"0 ms\""),
+      {"t_end = 0",
+       set("integrator", "end_time", "\"0 ms\""),
        {"integrator.end_time = \"0 ms\"", "a time > 0 s"}},
-      {"t_end < 0", set("integrator", "end_time", "\"-30 ms\""),
+      {"t_end < 0",
+       set("integrator", "end_time", "\"-30 ms\""),
        {"integrator.end_time = \"-30 ms\"", "a time > 0 s"}},
-      {"more than 1e9 steps", set("integrator", "end_time", "\"1000 s\""),
+      {"more than 1e9 steps",
+       set("integrator", "end_time", "\"1000 s\""),
        {"integrator.end_time = \"1000 s\"", "at most 1e9 steps", "end_time <= 100 s"}},
-      {"output_every 0", set("integrator", "output_every", "0"),
+      {"output_every 0",
+       set("integrator", "output_every", "0"),
        {"integrator.output_every = 0", "an integer in [1, 2147483647]"}},
-      {"wrong type: float teeth", set("gears", "teeth1", "20.5"),
+      {"wrong type: float teeth",
+       set("gears", "teeth1", "20.5"),
        {"gears.teeth1 = 20.5", "a float; expected an integer"}},
-      {"wrong type: string teeth", set("gears", "teeth1", "\"20\""),
+      {"wrong type: string teeth",
+       set("gears", "teeth1", "\"20\""),
        {"gears.teeth1 = \"20\"", "a string; expected an integer"}},
-      {"unknown option", set("model", "damping_form", "\"hertz\""),
+      {"unknown option",
+       set("model", "damping_form", "\"hertz\""),
        {"model.damping_form = \"hertz\"",
         "one of \"herbert-mcwhannell\", \"hunt-crossley\", \"lee-wang\""}},
-      {"negative restitution exponent", set("model", "restitution_exponent", "-0.375"),
+      {"negative restitution exponent",
+       set("model", "restitution_exponent", "-0.375"),
        {"model.restitution_exponent = -0.375", "(0, inf)"}},
-      {"stiffness tolerance 0", set("model", "stiffness_tolerance", "0.0"),
+      {"stiffness tolerance 0",
+       set("model", "stiffness_tolerance", "0.0"),
        {"model.stiffness_tolerance = 0", "[1e-14, 1e-2]"}},
-      {"name with a slash", with_key(base, "", "name", "\"../case\""),
+      {"name with a slash",
+       with_key(base, "", "name", "\"../case\""),
        {"name = \"../case\"", "letters, digits"}},
-      {"malformed TOML: no value", set("gears", "teeth1", ""),
+      {"malformed TOML: no value", set("gears", "teeth1", ""), {"bad.toml", "not valid TOML"}},
+      {"malformed TOML: open string",
+       set("gears", "module", "\"2 mm"),
        {"bad.toml", "not valid TOML"}},
-      {"malformed TOML: open string", set("gears", "module", "\"2 mm"),
+      {"malformed TOML: duplicate key",
+       set("gears", "teeth1", "20\nteeth1 = 21"),
        {"bad.toml", "not valid TOML"}},
-      {"malformed TOML: duplicate key", set("gears", "teeth1", "20\nteeth1 = 21"),
-       {"bad.toml", "not valid TOML"}},
-      {"deep nesting", base + "x = " + std::string(40, '[') + std::string(40, ']') + "\n",
+      {"deep nesting",
+       base + "x = " + std::string(40, '[') + std::string(40, ']') + "\n",
        {"bad.toml", "nested deeper than 32 levels"}},
       // toml11 3.7.1 reads out of bounds on invalid UTF-8 in a string (found
       // by fuzz/fuzz_case_file; the input is in its corpus).
-      {"invalid UTF-8 in a literal string", set("gears", "module", "'2 m\xe8m'"),
+      {"invalid UTF-8 in a literal string",
+       set("gears", "module", "'2 m\xe8m'"),
        {"bad.toml", "not valid TOML: byte", "(line 11) is not part of well-formed UTF-8"}},
-      {"overlong UTF-8 in a comment", base + "# \xc0\xaf\n",
+      {"overlong UTF-8 in a comment",
+       base + "# \xc0\xaf\n",
        {"bad.toml", "not valid TOML: byte", "is not part of well-formed UTF-8"}},
-      {"UTF-16 surrogate in UTF-8", set("gears", "module", "\"2 \xed\xa0\x80mm\""),
+      {"UTF-16 surrogate in UTF-8",
+       set("gears", "module", "\"2 \xed\xa0\x80mm\""),
        {"bad.toml", "not valid TOML: byte", "is not part of well-formed UTF-8"}},
-      {"section as a value", with_key(base, "", "name", "\"c\"\ninitial = 3"),
-       {"not valid TOML"}},
+      {"section as a value", with_key(base, "", "name", "\"c\"\ninitial = 3"), {"not valid TOML"}},
   };
 }
 
 }  // namespace
 
 TEST_CASE("well-formed UTF-8 is accepted in strings and comments") {
-  const std::string text = with_key(case1_text(), "", "name", "\"r\xc3\xa4" "der\" # \xe2\x9a\x99\xf0\x9f\x94\xa7");
+  const std::string text = with_key(case1_text(), "", "name",
+                                    "\"r\xc3\xa4"
+                                    "der\" # \xe2\x9a\x99\xf0\x9f\x94\xa7");
   // The name itself must be ASCII (it names files): the error is about it, not UTF-8.
-  CHECK(contains(message_of(text), "name = \"r\xc3\xa4" "der\""));
-  const std::string comment = case1_text() + "# Zahnr\xc3\xa4" "der \xe2\x9a\x99\xf0\x9f\x94\xa7\n";
+  CHECK(contains(message_of(text),
+                 "name = \"r\xc3\xa4"
+                 "der\""));
+  const std::string comment = case1_text() +
+                              "# Zahnr\xc3\xa4"
+                              "der \xe2\x9a\x99\xf0\x9f\x94\xa7\n";
   CHECK(parse_case(comment, "case1.toml").name == "case1");
 }
 
@@ -300,10 +347,10 @@ TEST_CASE("the file's stem names a case without a name key") {
 
 TEST_CASE("optional keys take the defaults of simulation_case.hpp") {
   std::string text = case1_text();
-  for (const char* key : {"friction_coefficient", "damping_form", "damping_stiffness",
-                          "restitution_coefficient", "restitution_exponent",
-                          "restitution_speed_unit", "coast_phase", "moment_sign",
-                          "stiffness_method", "xform_rule", "stiffness_tolerance"}) {
+  for (const char* key :
+       {"friction_coefficient", "damping_form", "damping_stiffness", "restitution_coefficient",
+        "restitution_exponent", "restitution_speed_unit", "coast_phase", "moment_sign",
+        "stiffness_method", "xform_rule", "stiffness_tolerance"}) {
     text = with_key(text, "model", key, std::nullopt);
   }
   for (const char* key : {"kind", "step", "relative_tolerance", "output_every"}) {
@@ -395,8 +442,8 @@ TEST_CASE("check-case: a missing file fails, a paper case prints its SI values")
   const CliResult missing = run_check_case("", "empty.toml");
   CHECK(missing.exit_code == 1);
   CHECK(contains(missing.err, "[gears] is missing"));
-  const std::string command = std::string("'") + GEARIMPACT_CLI +
-                              "' check-case /nonexistent/case.toml >/dev/null 2>&1";
+  const std::string command =
+      std::string("'") + GEARIMPACT_CLI + "' check-case /nonexistent/case.toml >/dev/null 2>&1";
   const int status = std::system(command.c_str());
   CHECK((WIFEXITED(status) && WEXITSTATUS(status) == 1));
   const CliResult ok = run_check_case(case1_text(), "case1.toml");

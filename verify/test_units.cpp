@@ -18,7 +18,9 @@ using namespace gearimpact;
 
 namespace {
 
-double q(const char* text, Dimension dimension) { return parse_quantity(text, dimension, "f"); }
+double q(const char* text, Dimension dimension) {
+  return parse_quantity(text, dimension, "f");
+}
 
 std::string error_of(const char* text, Dimension dimension, const char* field = "gears.module") {
   try {
@@ -78,18 +80,18 @@ TEST_CASE("errors name the field, the text as written and the allowed units") {
     const char* text;
     const char* why;
   };
-  for (const Bad& bad : {Bad{"2", "no unit"}, Bad{"mm", "no finite decimal number"}, Bad{"", "no finite decimal number"},
-                         Bad{"2 furlong", "unknown unit \"furlong\""},
-                         Bad{"2 deg", "\"deg\" is a unit of an angle"},
-                         Bad{"2 GPa", "\"GPa\" is a unit of a pressure"},
-                         Bad{"2 MM", "unknown unit \"MM\""}, Bad{"inf mm", "no finite decimal number"},
-                         Bad{"nan mm", "no finite decimal number"}, Bad{"-inf mm", "no finite decimal number"},
-                         Bad{"1e400 mm", "outside the range of a double"},
-                         Bad{"1e999999999999 mm", "outside the range of a double"},
-                         Bad{"1e-400 mm", "outside the range of a double"},
-                         Bad{"1e mm", "an exponent without digits"},
-                         Bad{"1.2.3 mm", "unknown unit \".3 mm\""}, Bad{"0x10 mm", "unknown unit"},
-                         Bad{". mm", "no finite decimal number"}}) {
+  for (const Bad& bad :
+       {Bad{"2", "no unit"}, Bad{"mm", "no finite decimal number"},
+        Bad{"", "no finite decimal number"}, Bad{"2 furlong", "unknown unit \"furlong\""},
+        Bad{"2 deg", "\"deg\" is a unit of an angle"},
+        Bad{"2 GPa", "\"GPa\" is a unit of a pressure"}, Bad{"2 MM", "unknown unit \"MM\""},
+        Bad{"inf mm", "no finite decimal number"}, Bad{"nan mm", "no finite decimal number"},
+        Bad{"-inf mm", "no finite decimal number"},
+        Bad{"1e400 mm", "outside the range of a double"},
+        Bad{"1e999999999999 mm", "outside the range of a double"},
+        Bad{"1e-400 mm", "outside the range of a double"},
+        Bad{"1e mm", "an exponent without digits"}, Bad{"1.2.3 mm", "unknown unit \".3 mm\""},
+        Bad{"0x10 mm", "unknown unit"}, Bad{". mm", "no finite decimal number"}}) {
     CAPTURE(bad.text);
     const std::string message = error_of(bad.text, Dimension::length);
     CHECK(contains(message, "gears.module = \"" + std::string(bad.text) + "\""));
@@ -119,12 +121,13 @@ TEST_CASE("format_quantity reads back to the same double, in the requested unit 
     state ^= state >> 7;
     state ^= state << 17;
     double x = 0.0;
-    const std::uint64_t bits = (state & 0x800FFFFFFFFFFFFFull) | ((1023ull - 40 + state % 80) << 52);
+    const std::uint64_t bits =
+        (state & 0x800FFFFFFFFFFFFFull) | ((1023ull - 40 + state % 80) << 52);
     std::memcpy(&x, &bits, sizeof x);
-    for (Dimension dimension : {Dimension::length, Dimension::angle, Dimension::pressure,
-                                Dimension::density, Dimension::torque, Dimension::time,
-                                Dimension::angular_velocity, Dimension::angular_frequency,
-                                Dimension::speed}) {
+    for (Dimension dimension :
+         {Dimension::length, Dimension::angle, Dimension::pressure, Dimension::density,
+          Dimension::torque, Dimension::time, Dimension::angular_velocity,
+          Dimension::angular_frequency, Dimension::speed}) {
       for (const Unit& unit : units_of(dimension)) {
         const std::string text = format_quantity(x, dimension, unit.symbol);
         CAPTURE(text);

@@ -49,9 +49,8 @@ constexpr std::array kDampingStiffnesses{
 constexpr std::array kCoastPhases{
     Choice<CoastPhase>{"half-base-pitch", CoastPhase::half_base_pitch},
     Choice<CoastPhase>{"in-phase", CoastPhase::in_phase}};
-constexpr std::array kMomentSigns{
-    Choice<AxialMomentSign>{"physical", AxialMomentSign::physical},
-    Choice<AxialMomentSign>{"flipped", AxialMomentSign::flipped}};
+constexpr std::array kMomentSigns{Choice<AxialMomentSign>{"physical", AxialMomentSign::physical},
+                                  Choice<AxialMomentSign>{"flipped", AxialMomentSign::flipped}};
 constexpr std::array kStiffnessMethods{
     Choice<StiffnessMethod>{"gsl", StiffnessMethod::gsl_qag},
     Choice<StiffnessMethod>{"gsl-cquad", StiffnessMethod::gsl_cquad},
@@ -66,9 +65,8 @@ constexpr std::array kXformRules{
     Choice<StiffnessMethod>{"boost-ts", StiffnessMethod::boost_tanh_sinh}};
 constexpr std::array kTorqueKinds{Choice<Torque::Kind>{"constant", Torque::Kind::constant},
                                   Choice<Torque::Kind>{"sinusoidal", Torque::Kind::sinusoidal}};
-constexpr std::array kIntegratorKinds{
-    Choice<IntegratorKind>{"rk4", IntegratorKind::rk4},
-    Choice<IntegratorKind>{"adaptive", IntegratorKind::adaptive}};
+constexpr std::array kIntegratorKinds{Choice<IntegratorKind>{"rk4", IntegratorKind::rk4},
+                                      Choice<IntegratorKind>{"adaptive", IntegratorKind::adaptive}};
 
 template <typename T, std::size_t N>
 std::string names_of(const std::array<Choice<T>, N>& choices) {
@@ -369,8 +367,7 @@ class Section {
 
  private:
   [[noreturn]] void missing(std::string_view key, const std::string& expected) const {
-    reader_.fail(field(key), table_,
-                 field(key) + " is missing (required: " + expected + ")");
+    reader_.fail(field(key), table_, field(key) + " is missing (required: " + expected + ")");
   }
 
   static std::string list(std::initializer_list<std::string_view> keys) {
@@ -384,12 +381,20 @@ class Section {
   const toml::value* table_ = nullptr;
 };
 
-bool any_value(double) { return true; }
-bool non_negative(double x) { return x >= 0.0; }
-bool positive(double x) { return x > 0.0; }
+bool any_value(double) {
+  return true;
+}
+bool non_negative(double x) {
+  return x >= 0.0;
+}
+bool positive(double x) {
+  return x > 0.0;
+}
 // Quadrature and adaptive-step tolerances a double can meet and that still
 // mean something: 1e-14 is a few ulps of the compliances, 1e-2 a rough run.
-bool tolerance_range(double x) { return x >= 1e-14 && x <= 1e-2; }
+bool tolerance_range(double x) {
+  return x >= 1e-14 && x <= 1e-2;
+}
 
 Torque read_torque(const Reader& reader, const toml::value& root, const std::string& name) {
   const Section section(reader, root, name,
@@ -403,7 +408,8 @@ Torque read_torque(const Reader& reader, const toml::value& root, const std::str
     section.forbid("phase", because);
     torque.constant_n_m = section.quantity("value", Dimension::torque);
   } else {
-    section.forbid("value", "by kind = \"sinusoidal\" (T = amplitude sin(angular_frequency t + phase))");
+    section.forbid("value",
+                   "by kind = \"sinusoidal\" (T = amplitude sin(angular_frequency t + phase))");
     torque.amplitude_n_m = section.quantity("amplitude", Dimension::torque);
     torque.angular_frequency_rad_s =
         section.quantity("angular_frequency", Dimension::angular_frequency);
@@ -417,11 +423,11 @@ Torque read_torque(const Reader& reader, const toml::value& root, const std::str
 }
 
 GearPair read_gears(const Reader& reader, const toml::value& root) {
-  const Section section(reader, root, "gears",
-                        {"teeth1", "teeth2", "module", "pressure_angle", "face_width",
-                         "addendum_coefficient", "youngs_modulus", "poisson_ratio", "density",
-                         "backlash"},
-                        true);
+  const Section section(
+      reader, root, "gears",
+      {"teeth1", "teeth2", "module", "pressure_angle", "face_width", "addendum_coefficient",
+       "youngs_modulus", "poisson_ratio", "density", "backlash"},
+      true);
   // The range checks of the pair are validate(GearPair)'s; here only types,
   // units and finiteness, and counts small enough to be gears.
   constexpr int kMostTeeth = 100000;
@@ -450,7 +456,8 @@ GearPair read_gears(const Reader& reader, const toml::value& root) {
   return gears;
 }
 
-SimulationCase read_case(const Reader& reader, const toml::value& root, std::string_view file_name) {
+SimulationCase read_case(const Reader& reader, const toml::value& root,
+                         std::string_view file_name) {
   SimulationCase result;
   {
     const auto& top = root.as_table();
@@ -499,42 +506,40 @@ SimulationCase read_case(const Reader& reader, const toml::value& root, std::str
   }
 
   {
-    const Section section(reader, root, "model",
-                          {"friction_coefficient", "damping_form", "damping_stiffness",
-                           "restitution_coefficient", "restitution_exponent",
-                           "restitution_speed_unit", "coast_phase", "moment_sign",
-                           "stiffness_method", "xform_rule", "stiffness_tolerance"},
-                          false);
+    const Section section(
+        reader, root, "model",
+        {"friction_coefficient", "damping_form", "damping_stiffness", "restitution_coefficient",
+         "restitution_exponent", "restitution_speed_unit", "coast_phase", "moment_sign",
+         "stiffness_method", "xform_rule", "stiffness_tolerance"},
+        false);
     const ModelOptions defaults;
     ModelOptions& model = result.model;
     model.friction_coefficient = section.number(
         "friction_coefficient", defaults.friction_coefficient, non_negative, "[0, inf)");
-    model.damping_form = section.choice("damping_form", kDampingForms,
-                                        std::optional(defaults.damping_form));
+    model.damping_form =
+        section.choice("damping_form", kDampingForms, std::optional(defaults.damping_form));
     model.damping_stiffness = section.choice("damping_stiffness", kDampingStiffnesses,
                                              std::optional(defaults.damping_stiffness));
     model.restitution.coefficient =
-        section.number("restitution_coefficient", defaults.restitution.coefficient,
-                       non_negative, "[0, inf): c of (33) e = 1 - c (Vi/unit)^p");
-    model.restitution.exponent =
-        section.number("restitution_exponent", defaults.restitution.exponent, positive,
-                       "(0, inf): p of (33)");
-    model.restitution.speed_unit_m_s = section.quantity(
-        "restitution_speed_unit", Dimension::speed, defaults.restitution.speed_unit_m_s);
+        section.number("restitution_coefficient", defaults.restitution.coefficient, non_negative,
+                       "[0, inf): c of (33) e = 1 - c (Vi/unit)^p");
+    model.restitution.exponent = section.number(
+        "restitution_exponent", defaults.restitution.exponent, positive, "(0, inf): p of (33)");
+    model.restitution.speed_unit_m_s = section.quantity("restitution_speed_unit", Dimension::speed,
+                                                        defaults.restitution.speed_unit_m_s);
     if (model.restitution.speed_unit_m_s <= 0.0) {
-      reader.out_of_range(section.field("restitution_speed_unit"),
-                          section.find("restitution_speed_unit"),
-                          written(*section.find("restitution_speed_unit")),
-                          "a speed > 0, e.g. \"1 mm/s\"");
+      reader.out_of_range(
+          section.field("restitution_speed_unit"), section.find("restitution_speed_unit"),
+          written(*section.find("restitution_speed_unit")), "a speed > 0, e.g. \"1 mm/s\"");
     }
     model.coast_phase =
         section.choice("coast_phase", kCoastPhases, std::optional(defaults.coast_phase));
-    model.stiffness.moment_sign = section.choice("moment_sign", kMomentSigns,
-                                                 std::optional(defaults.stiffness.moment_sign));
+    model.stiffness.moment_sign =
+        section.choice("moment_sign", kMomentSigns, std::optional(defaults.stiffness.moment_sign));
     model.stiffness.method = section.choice("stiffness_method", kStiffnessMethods,
                                             std::optional(defaults.stiffness.method));
-    model.stiffness.xform_rule = section.choice("xform_rule", kXformRules,
-                                                std::optional(defaults.stiffness.xform_rule));
+    model.stiffness.xform_rule =
+        section.choice("xform_rule", kXformRules, std::optional(defaults.stiffness.xform_rule));
     model.stiffness.relative_tolerance =
         section.number("stiffness_tolerance", defaults.stiffness.relative_tolerance,
                        tolerance_range, "[1e-14, 1e-2]");
@@ -542,12 +547,10 @@ SimulationCase read_case(const Reader& reader, const toml::value& root, std::str
 
   {
     const Section section(reader, root, "integrator",
-                          {"kind", "step", "end_time", "relative_tolerance", "output_every"},
-                          true);
+                          {"kind", "step", "end_time", "relative_tolerance", "output_every"}, true);
     const IntegratorSettings defaults;
     IntegratorSettings& integrator = result.integrator;
-    integrator.kind =
-        section.choice("kind", kIntegratorKinds, std::optional(defaults.kind));
+    integrator.kind = section.choice("kind", kIntegratorKinds, std::optional(defaults.kind));
     integrator.step_s = section.quantity("step", Dimension::time, defaults.step_s);
     if (integrator.step_s <= 0.0) {
       reader.out_of_range(section.field("step"), section.find("step"),
@@ -559,17 +562,16 @@ SimulationCase read_case(const Reader& reader, const toml::value& root, std::str
                           written(*section.find("end_time")), "a time > 0 s");
     }
     if (integrator.end_time_s / integrator.step_s > kMostSteps) {
-      reader.out_of_range(section.field("end_time"), section.find("end_time"),
-                          written(*section.find("end_time")),
-                          "at most 1e9 steps of integrator.step = " +
-                              shortest_decimal(integrator.step_s) + " s, i.e. end_time <= " +
-                              shortest_decimal(kMostSteps * integrator.step_s) + " s");
+      reader.out_of_range(
+          section.field("end_time"), section.find("end_time"), written(*section.find("end_time")),
+          "at most 1e9 steps of integrator.step = " + shortest_decimal(integrator.step_s) +
+              " s, i.e. end_time <= " + shortest_decimal(kMostSteps * integrator.step_s) + " s");
     }
     integrator.adaptive_relative_tolerance =
-        section.number("relative_tolerance", defaults.adaptive_relative_tolerance,
-                       tolerance_range, "[1e-14, 1e-2]");
-    integrator.output_every = section.integer("output_every", defaults.output_every, 1,
-                                              std::numeric_limits<int>::max());
+        section.number("relative_tolerance", defaults.adaptive_relative_tolerance, tolerance_range,
+                       "[1e-14, 1e-2]");
+    integrator.output_every =
+        section.integer("output_every", defaults.output_every, 1, std::numeric_limits<int>::max());
   }
   return result;
 }
@@ -584,7 +586,8 @@ SimulationCase parse_case(std::string_view toml_text, std::string_view file_name
                     std::to_string(kDeepestNesting) + " levels");
   }
   if (const std::size_t bad = first_invalid_utf8(toml_text); bad != std::string_view::npos) {
-    const auto line = std::count(toml_text.begin(), toml_text.begin() + static_cast<long>(bad), '\n');
+    const auto line =
+        std::count(toml_text.begin(), toml_text.begin() + static_cast<long>(bad), '\n');
     reader.fail("", nullptr,
                 "not valid TOML: byte " + std::to_string(bad + 1) + " (line " +
                     std::to_string(line + 1) + ") is not part of well-formed UTF-8");
@@ -605,9 +608,9 @@ SimulationCase read_case_file(const std::filesystem::path& path) {
   const std::uintmax_t size = std::filesystem::file_size(path, error);
   if (error) throw CaseFileError(file, "", file + ": cannot be read: " + error.message());
   if (size > kLargestFileBytes) {
-    throw CaseFileError(file, "",
-                        file + ": is " + std::to_string(size) +
-                            " bytes; a case file is at most 1 MiB of TOML");
+    throw CaseFileError(
+        file, "",
+        file + ": is " + std::to_string(size) + " bytes; a case file is at most 1 MiB of TOML");
   }
   std::ifstream stream(path, std::ios::binary);
   if (!stream) throw CaseFileError(file, "", file + ": cannot be opened");

@@ -37,11 +37,10 @@ constexpr std::array kAngularFrequency{Unit{"rad/s", 0, 1.0},
                                        Unit{"Hz", 0, 2.0 * std::numbers::pi}};
 constexpr std::array kSpeed{Unit{"m/s", 0, 1.0}, Unit{"mm/s", -3, 1.0}, Unit{"in/s", 0, kInch}};
 
-constexpr std::array kDimensions{Dimension::length,           Dimension::angle,
-                                 Dimension::pressure,         Dimension::density,
-                                 Dimension::torque,           Dimension::time,
-                                 Dimension::angular_velocity, Dimension::angular_frequency,
-                                 Dimension::speed};
+constexpr std::array kDimensions{
+    Dimension::length, Dimension::angle, Dimension::pressure,         Dimension::density,
+    Dimension::torque, Dimension::time,  Dimension::angular_velocity, Dimension::angular_frequency,
+    Dimension::speed};
 
 // Exponents beyond this put any mantissa outside the doubles (with up to a few
 // hundred digits); it keeps the exponent arithmetic far from int overflow.
@@ -54,8 +53,12 @@ const Unit* find_unit(Dimension dimension, std::string_view symbol) {
   return nullptr;
 }
 
-bool is_digit(char c) { return c >= '0' && c <= '9'; }
-bool is_space(char c) { return c == ' ' || c == '\t'; }
+bool is_digit(char c) {
+  return c >= '0' && c <= '9';
+}
+bool is_space(char c) {
+  return c == ' ' || c == '\t';
+}
 
 std::string_view trim(std::string_view text) {
   while (!text.empty() && is_space(text.front())) text.remove_prefix(1);
@@ -103,8 +106,8 @@ struct ShortestDigits {
 
 ShortestDigits shortest_digits(double value) {
   std::array<char, 64> buffer{};
-  const auto [end, ec] =
-      std::to_chars(buffer.data(), buffer.data() + buffer.size(), value, std::chars_format::scientific);
+  const auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value,
+                                       std::chars_format::scientific);
   const std::string_view text(buffer.data(), static_cast<std::size_t>(end - buffer.data()));
   ShortestDigits result{false, {}, 0};
   std::size_t i = 0;
@@ -236,8 +239,8 @@ double parse_quantity(std::string_view text, Dimension dimension, std::string_vi
     fail("unknown unit \"" + std::string(symbol) + "\"");
   }
 
-  const std::string shifted = std::string(number.mantissa) + "e" +
-                              std::to_string(number.exponent + unit->decimal_exponent);
+  const std::string shifted =
+      std::string(number.mantissa) + "e" + std::to_string(number.exponent + unit->decimal_exponent);
   double value = 0.0;
   const auto result = std::from_chars(shifted.data(), shifted.data() + shifted.size(), value);
   if (result.ec != std::errc{} || result.ptr != shifted.data() + shifted.size() ||
