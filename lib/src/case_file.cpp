@@ -169,10 +169,11 @@ int nesting_depth(std::string_view text) {
 
 // The offset of the first byte that is not part of well-formed UTF-8 (RFC
 // 3629: no overlong forms, no surrogates, nothing above U+10FFFF), or npos.
-// TOML documents are UTF-8, and toml11 3.7.1 reads out of bounds when it
-// reports invalid UTF-8 inside a string (its error path resets a location on
-// one buffer to an iterator into another; found by fuzz/fuzz_case_file), so
-// such text is refused before it reaches the parser.
+// TOML documents are UTF-8, and toml11 3.7.1 (Debian 12) reads out of bounds
+// when it reports invalid UTF-8 inside a literal string: its error path resets
+// a location on one buffer to an iterator into another (found here by
+// fuzz/fuzz_case_file; upstream ToruNiina/toml11 issue #199, fixed by pull
+// request #208 after 3.7.1). Such text is refused before it reaches the parser.
 std::size_t first_invalid_utf8(std::string_view text) {
   std::size_t i = 0;
   while (i < text.size()) {
