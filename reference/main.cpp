@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
   gearimpact::cli::register_stiffness_commands(app);
   gearimpact::cli::register_reproduce_commands(app);
   gearimpact::cli::register_simulate_commands(app);
+  gearimpact::cli::register_case_commands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -7,6 +7,7 @@ packages=(
   libeigen3-dev libgsl-dev libboost-dev
   doctest-dev libbenchmark-dev
   libcli11-dev libtoml11-dev
+  clang libclang-rt-14-dev
   gnuplot-nox
 )
 missing=()
