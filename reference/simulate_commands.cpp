@@ -6,7 +6,9 @@
 
 #include "commands.hpp"
 #include "gearimpact/atomic_file.hpp"
+#include "gearimpact/case_file.hpp"
 #include "gearimpact/dynamics.hpp"
+#include "gearimpact/error.hpp"
 #include "gearimpact/simulation_case.hpp"
 
 namespace gearimpact::cli {
@@ -28,6 +30,7 @@ struct ReadingOptions {
 
 struct SimulateOptions {
   int case_number = 1;
+  std::string case_file;
   double friction = 0.04;
   double step_s = 1.0e-7;
   double end_time_s = 0.0;  // 0: the case's own
@@ -105,14 +108,39 @@ void add_reading_options(CLI::App* command, ReadingOptions& r) {
                     "add the axial-force moment Fa h in the bending stiffness (not physical)");
 }
 
-void run_simulate(const SimulateOptions& o) {
-  SimulationCase c = paper_case_with(o.case_number, o.reading);
-  c.model.friction_coefficient = o.friction;
-  c.integrator.step_s = o.step_s;
-  if (o.end_time_s != 0.0) c.integrator.end_time_s = o.end_time_s;
-  c.integrator.kind = o.integrator == "adaptive" ? IntegratorKind::adaptive : IntegratorKind::rk4;
-  c.integrator.adaptive_relative_tolerance = o.relative_tolerance;
-  c.integrator.output_every = o.every;
+// A case file carries every setting; a command-line option overrides the
+// file only when given explicitly.
+SimulationCase case_to_run(const SimulateOptions& o, const CLI::App& command) {
+  const auto given = [&](const char* name) { return command.get_option(name)->count() > 0; };
+  if (o.case_file.empty()) {
+    if (!given("--case")) {
+      throw InputError("--case", "none", "1, 2 or 3 (Table 1), or --case-file FILE");
+    }
+    SimulationCase c = paper_case_with(o.case_number, o.reading);
+    c.model.friction_coefficient = o.friction;
+    c.integrator.step_s = o.step_s;
+    if (o.end_time_s != 0.0) c.integrator.end_time_s = o.end_time_s;
+    c.integrator.kind =
+        o.integrator == "adaptive" ? IntegratorKind::adaptive : IntegratorKind::rk4;
+    c.integrator.adaptive_relative_tolerance = o.relative_tolerance;
+    c.integrator.output_every = o.every;
+    return c;
+  }
+  SimulationCase c = read_case_file(o.case_file);
+  if (given("--friction")) c.model.friction_coefficient = o.friction;
+  if (given("--dt")) c.integrator.step_s = o.step_s;
+  if (given("--t-end")) c.integrator.end_time_s = o.end_time_s;
+  if (given("--integrator")) {
+    c.integrator.kind =
+        o.integrator == "adaptive" ? IntegratorKind::adaptive : IntegratorKind::rk4;
+  }
+  if (given("--rtol")) c.integrator.adaptive_relative_tolerance = o.relative_tolerance;
+  if (given("--every")) c.integrator.output_every = o.every;
+  return c;
+}
+
+void run_simulate(const SimulateOptions& o, const CLI::App& command) {
+  const SimulationCase c = case_to_run(o, command);
   RunControl control;
   control.keep_series = !o.out.empty();
   const SimulationResult result = simulate(c, control);
@@ -141,9 +169,12 @@ void register_simulate_commands(CLI::App& app) {
   auto options = std::make_shared<SimulateOptions>();
   CLI::App* simulate = app.add_subcommand(
       "simulate", "run one of Table 1's cases; JSON summary on stdout, time series with --out");
-  simulate->add_option("--case", options->case_number, "Table 1 case")
-      ->check(CLI::IsMember({1, 2, 3}))
-      ->required();
+  CLI::Option* paper = simulate->add_option("--case", options->case_number, "Table 1 case")
+                           ->check(CLI::IsMember({1, 2, 3}));
+  simulate
+      ->add_option("--case-file", options->case_file,
+                   "a case file (TOML, see docs/case-files.md); other options override it")
+      ->excludes(paper);
   simulate->add_option("--friction", options->friction, "friction coefficient f of (35)")
       ->capture_default_str();
   simulate
@@ -161,7 +192,7 @@ void register_simulate_commands(CLI::App& app) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   add_reading_options(simulate, options->reading);
-  simulate->callback([options] { run_simulate(*options); });
+  simulate->callback([options, simulate] { run_simulate(*options, *simulate); });
 
   auto sweep_options = std::make_shared<SweepOptions>();
   CLI::App* sweep = app.add_subcommand(

@@ -230,11 +230,11 @@ std::vector<BadInput> bad_inputs() {
        {"gears.density = -7800", "> 0 kg/m^3"}},
       // 2 ha / sin^2(20 deg) = 17.097: the rack-generation undercut limit.
       {"too few teeth",
-       set("gears", "teeth1", "12"),
-       {"gears.teeth1 = 12", "at least 2 ha/sin^2(a0) = 17.09726", "undercuts"}},
-      {"too few teeth, 14.5 deg",
+       set("gears", "teeth1", "17"),
+       {"gears.teeth1 = 17", "at least 2 ha/sin^2(a0) = 17.09726", "undercuts"}},
+      {"interference, 14.5 deg",
        set("gears", "pressure_angle", "\"14.5 deg\""),
-       {"gears.teeth1 = 20", "at least 2 ha/sin^2(a0) = 31.9029"}},
+       {"gears.addendum_coefficient = 1", "tip of gear 2 stays before C1", "interference"}},
       {"teeth below 4",
        set("gears", "teeth2", "3"),
        {"gears.teeth2 = 3", "an integer in [4, 100000]"}},
@@ -409,16 +409,17 @@ TEST_CASE("write_case_file reads back to the same case, in readable and in SI un
   CHECK_THROWS_AS(write_case_file(user), InputError);
 }
 
-TEST_CASE("a pair whose wheel tip passes C1 is refused by the undercut limit first") {
+TEST_CASE("a pair whose wheel tip passes C1 is refused as interference, before the undercut") {
   // Interference (X_start < 0) needs fewer pinion teeth than the rack limit
   // 2 ha / sin^2(a0) when both gears have the same addendum: the rack is the
-  // worst mating gear. So the undercut message, which states the limit, is
-  // what an interfering standard pair gets.
+  // worst mating gear. Such a pair is also undercut; validate() names the
+  // more specific fault.
   GearPair pair = paper_gear_pair();
   pair.teeth1 = 12;
   REQUIRE(contact_segment(pair).start_m < 0.0);
   const std::string text = with_key(case1_text(), "gears", "teeth1", "12");
-  CHECK(contains(message_of(text), "at least 2 ha/sin^2(a0) = 17.09726"));
+  CHECK(contains(message_of(text), "interference"));
+  CHECK(contains(message_of(text), "X_start = -0.00128"));
 }
 
 TEST_CASE("every bad input: the message names file, field, value and range; check-case exits 1") {

@@ -1,4 +1,5 @@
 #include "gearimpact/case_file.hpp"
+#include "gearimpact/dynamics.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -556,6 +557,18 @@ SimulationCase read_case(const Reader& reader, const toml::value& root,
     if (integrator.step_s <= 0.0) {
       reader.out_of_range(section.field("step"), section.find("step"),
                           written(*section.find("step")), "a time > 0 s");
+    }
+    // The dynamics refuses a step that cannot resolve the contact; the file
+    // says so here, at the step's line, before any work starts.
+    const double largest_step_s = largest_resolving_step_s(result);
+    if (integrator.step_s > largest_step_s) {
+      const toml::value* at = section.find("step");
+      reader.out_of_range(section.field("step"), at,
+                          at != nullptr ? written(*at)
+                                        : shortest_decimal(integrator.step_s) + " s (the default)",
+                          "(0, " + shortest_decimal(largest_step_s) +
+                              "] s: a larger step takes fewer than 20 steps per period of the "
+                              "stiffest contact and does not resolve it");
     }
     integrator.end_time_s = section.quantity("end_time", Dimension::time);
     if (integrator.end_time_s <= 0.0) {
