@@ -560,7 +560,17 @@ SimulationCase read_case(const Reader& reader, const toml::value& root,
     }
     // The dynamics refuses a step that cannot resolve the contact; the file
     // says so here, at the step's line, before any work starts.
-    const double largest_step_s = largest_resolving_step_s(result);
+    double largest_step_s = 0.0;
+    try {
+      largest_step_s = largest_resolving_step_s(result);
+    } catch (const QuadratureError& e) {
+      reader.fail("model.stiffness_tolerance", nullptr,
+                  "model.stiffness_tolerance = " +
+                      shortest_decimal(result.model.stiffness.relative_tolerance) +
+                      " with stiffness_method = " + to_string(result.model.stiffness.method) +
+                      ": the mesh stiffness cannot be computed to it (" + e.what() +
+                      "); 1e-12 is within reach of every method");
+    }
     if (integrator.step_s > largest_step_s) {
       const toml::value* at = section.find("step");
       reader.out_of_range(section.field("step"), at,
