@@ -76,6 +76,9 @@ void check_same(const SimulationCase& a, const SimulationCase& b) {
   CHECK(a.model.stiffness.moment_sign == b.model.stiffness.moment_sign);
   CHECK(a.model.stiffness.relative_tolerance == b.model.stiffness.relative_tolerance);
   CHECK(a.model.stiffness.xform_rule == b.model.stiffness.xform_rule);
+  CHECK(a.model.stiffness.hertz_term == b.model.stiffness.hertz_term);
+  CHECK(a.model.stiffness.bending_term == b.model.stiffness.bending_term);
+  CHECK(a.model.stiffness.axial_term == b.model.stiffness.axial_term);
   CHECK(a.integrator.kind == b.integrator.kind);
   CHECK(a.integrator.step_s == b.integrator.step_s);
   CHECK(a.integrator.end_time_s == b.integrator.end_time_s);
@@ -174,6 +177,10 @@ std::vector<BadInput> bad_inputs() {
   std::string gear_section_renamed = base;
   gear_section_renamed.replace(gear_section_renamed.find("[gears]"), 7, "[gear]");
   std::string no_integrator = base.substr(0, base.find("[integrator]"));
+  std::string all_terms_off = base;
+  for (const char* key : {"hertz_term", "bending_term", "axial_term"}) {
+    all_terms_off = with_key(all_terms_off, "model", key, std::string("\"off\""));
+  }
   return {
       {"missing key",
        set("gears", "module", std::nullopt),
@@ -278,6 +285,12 @@ std::vector<BadInput> bad_inputs() {
       {"wrong type: string teeth",
        set("gears", "teeth1", "\"20\""),
        {"gears.teeth1 = \"20\"", "a string; expected an integer"}},
+      {"every stiffness term off",
+       all_terms_off,
+       {"model.hertz_term, bending_term and axial_term are all \"off\"", "at least one"}},
+      {"a stiffness term neither on nor off",
+       set("model", "axial_term", "\"no\""),
+       {"model.axial_term = \"no\"", "one of \"on\", \"off\""}},
       {"a quadrature that cannot converge",
        set("model", "stiffness_tolerance", "1e-14"),
        {"model.stiffness_tolerance = 1e-14", "cannot be computed", "gsl_qag failed"}},
@@ -353,7 +366,8 @@ TEST_CASE("optional keys take the defaults of simulation_case.hpp") {
   for (const char* key :
        {"friction_coefficient", "damping_form", "damping_stiffness", "restitution_coefficient",
         "restitution_exponent", "restitution_speed_unit", "coast_phase", "moment_sign",
-        "stiffness_method", "xform_rule", "stiffness_tolerance"}) {
+        "stiffness_method", "xform_rule", "stiffness_tolerance", "hertz_term", "bending_term",
+        "axial_term"}) {
     text = with_key(text, "model", key, std::nullopt);
   }
   for (const char* key : {"kind", "step", "relative_tolerance", "output_every"}) {
@@ -396,6 +410,7 @@ TEST_CASE("write_case_file reads back to the same case, in readable and in SI un
   other.model.stiffness.moment_sign = AxialMomentSign::flipped;
   other.model.stiffness.relative_tolerance = 1e-10;
   other.model.stiffness.xform_rule = StiffnessMethod::boost_tanh_sinh;
+  other.model.stiffness.axial_term = false;
   other.integrator = {IntegratorKind::adaptive, 3e-8, 0.125, 1e-9, 10};
   cases.push_back(other);
   for (const SimulationCase& c : cases) {

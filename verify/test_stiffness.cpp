@@ -275,3 +275,28 @@ TEST_CASE("contact positions outside (0, lp) are refused with the allowed range"
   CHECK_THROWS_AS(mesh_stiffness(pair, std::nan("")), InputError);
   CHECK_THROWS_AS(parse_stiffness_method("simpson"), InputError);
 }
+
+TEST_CASE("(29) with terms switched off: Ke is the series of the terms left on") {
+  const GearPair pair = paper_gear_pair();
+  const double x1 = pitch_point_position(pair);
+  const MeshStiffness all = mesh_stiffness(pair, x1);
+  StiffnessModel no_bending;
+  no_bending.bending_term = false;
+  const MeshStiffness k = mesh_stiffness(pair, x1, no_bending);
+  // The individual stiffnesses do not depend on which enter (29).
+  CHECK(k.kb1 == all.kb1);
+  CHECK(k.ka2 == all.ka2);
+  CHECK(relative_difference(k.ke, 1.0 / (1.0 / k.kh + 1.0 / k.ka1 + 1.0 / k.ka2)) < 1e-15);
+  StiffnessModel hertz_only;
+  hertz_only.bending_term = false;
+  hertz_only.axial_term = false;
+  CHECK(mesh_stiffness(pair, x1, hertz_only).ke == all.kh);
+  StiffnessModel none = hertz_only;
+  none.hertz_term = false;
+  try {
+    mesh_stiffness(pair, x1, none);
+    FAIL("no error with every term off");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("at least one") != std::string::npos);
+  }
+}

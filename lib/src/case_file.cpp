@@ -50,6 +50,7 @@ constexpr std::array kDampingStiffnesses{
 constexpr std::array kCoastPhases{
     Choice<CoastPhase>{"half-base-pitch", CoastPhase::half_base_pitch},
     Choice<CoastPhase>{"in-phase", CoastPhase::in_phase}};
+constexpr std::array kOnOff{Choice<bool>{"on", true}, Choice<bool>{"off", false}};
 constexpr std::array kMomentSigns{Choice<AxialMomentSign>{"physical", AxialMomentSign::physical},
                                   Choice<AxialMomentSign>{"flipped", AxialMomentSign::flipped}};
 constexpr std::array kStiffnessMethods{
@@ -512,7 +513,8 @@ SimulationCase read_case(const Reader& reader, const toml::value& root,
         reader, root, "model",
         {"friction_coefficient", "damping_form", "damping_stiffness", "restitution_coefficient",
          "restitution_exponent", "restitution_speed_unit", "coast_phase", "moment_sign",
-         "stiffness_method", "xform_rule", "stiffness_tolerance"},
+         "stiffness_method", "xform_rule", "stiffness_tolerance", "hertz_term", "bending_term",
+         "axial_term"},
         false);
     const ModelOptions defaults;
     ModelOptions& model = result.model;
@@ -542,6 +544,18 @@ SimulationCase read_case(const Reader& reader, const toml::value& root,
                                             std::optional(defaults.stiffness.method));
     model.stiffness.xform_rule =
         section.choice("xform_rule", kXformRules, std::optional(defaults.stiffness.xform_rule));
+    model.stiffness.hertz_term =
+        section.choice("hertz_term", kOnOff, std::optional(defaults.stiffness.hertz_term));
+    model.stiffness.bending_term =
+        section.choice("bending_term", kOnOff, std::optional(defaults.stiffness.bending_term));
+    model.stiffness.axial_term =
+        section.choice("axial_term", kOnOff, std::optional(defaults.stiffness.axial_term));
+    if (!model.stiffness.hertz_term && !model.stiffness.bending_term &&
+        !model.stiffness.axial_term) {
+      reader.fail("model.hertz_term", section.find("hertz_term"),
+                  "model.hertz_term, bending_term and axial_term are all \"off\": at least one "
+                  "term of (29) must stay \"on\"");
+    }
     model.stiffness.relative_tolerance =
         section.number("stiffness_tolerance", defaults.stiffness.relative_tolerance,
                        tolerance_range, "[1e-14, 1e-2]");
@@ -742,6 +756,9 @@ std::string write_case_file(const SimulationCase& c, CaseUnits units) {
   out.word("stiffness_method", name_of(kStiffnessMethods, m.stiffness.method));
   out.word("xform_rule", name_of(kXformRules, m.stiffness.xform_rule));
   out.number("stiffness_tolerance", m.stiffness.relative_tolerance);
+  out.word("hertz_term", name_of(kOnOff, m.stiffness.hertz_term));
+  out.word("bending_term", name_of(kOnOff, m.stiffness.bending_term));
+  out.word("axial_term", name_of(kOnOff, m.stiffness.axial_term));
 
   const IntegratorSettings& i = c.integrator;
   out.section("integrator");

@@ -146,12 +146,30 @@ ToothCompliance tooth_compliance(const InvoluteTooth& tooth, double contact_x_m,
           scale * integrate(model.method, axial, -phi, theta_b, model.relative_tolerance).value};
 }
 
+void validate(const StiffnessModel& model) {
+  if (!model.hertz_term && !model.bending_term && !model.axial_term) {
+    throw InputError("stiffness terms", "none",
+                     "at least one of the Hertzian, bending and axial terms of (29)");
+  }
+  if (!std::isfinite(model.relative_tolerance) || model.relative_tolerance < 1e-14 ||
+      model.relative_tolerance > 1e-2) {
+    throw InputError("stiffness tolerance", model.relative_tolerance, "[1e-14, 1e-2]");
+  }
+}
+
+IncludedCompliance included_compliance(const StiffnessModel& model, double hertz_m_per_n,
+                                       double bending_m_per_n, double axial_m_per_n) {
+  return {model.hertz_term ? hertz_m_per_n : 0.0, model.bending_term ? bending_m_per_n : 0.0,
+          model.axial_term ? axial_m_per_n : 0.0};
+}
+
 double series_stiffness(double kh, double kb1, double ka1, double kb2, double ka2) {
   // (29)
   return 1.0 / (1.0 / kh + 1.0 / kb1 + 1.0 / ka1 + 1.0 / kb2 + 1.0 / ka2);
 }
 
 MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessModel& model) {
+  validate(model);
   const double lp = line_of_action_length(pair);
   if (!std::isfinite(x1_m) || x1_m <= 0.0 || x1_m >= lp) {
     throw InputError("contact position X1", x1_m,
@@ -170,7 +188,10 @@ MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessM
   k.ka1 = 1.0 / c1.axial_m_per_n;
   k.kb2 = 1.0 / c2.bending_m_per_n;
   k.ka2 = 1.0 / c2.axial_m_per_n;
-  k.ke = series_stiffness(k.kh, k.kb1, k.ka1, k.kb2, k.ka2);
+  // (29) over the terms switched on.
+  k.ke = 1.0 / included_compliance(model, 1.0 / k.kh, c1.bending_m_per_n + c2.bending_m_per_n,
+                                   c1.axial_m_per_n + c2.axial_m_per_n)
+                   .total_m_per_n();
   return k;
 }
 

@@ -30,7 +30,16 @@ struct StiffnessModel {
   double relative_tolerance = 1e-12;
   // The quadrature rule the x-form route integrates with.
   StiffnessMethod xform_rule = StiffnessMethod::gsl_qag;
+  // Which terms of (29) enter Ke. All by default; switching one off shows
+  // what it contributes (the paper's section 8 compares them). At least one.
+  bool hertz_term = true;
+  bool bending_term = true;
+  bool axial_term = true;
 };
+
+// Throws InputError unless at least one term of (29) is on and the tolerance
+// is in [1e-14, 1e-2].
+void validate(const StiffnessModel& model);
 
 // Names used on the command line: gsl, gsl-cquad, boost-gk, boost-ts, xform.
 StiffnessMethod parse_stiffness_method(std::string_view name);
@@ -59,7 +68,8 @@ ToothCompliance tooth_compliance(const InvoluteTooth& tooth, double contact_x_m,
                                  double youngs_modulus_pa, double face_width_m,
                                  const StiffnessModel& model = {});
 
-// Every stiffness of one pair in contact at X1 (from C1), and Ke by (29).
+// Every stiffness of one pair in contact at X1 (from C1), and Ke by (29)
+// over the terms the model switches on (kh, kb, ka are reported either way).
 struct MeshStiffness {
   double kh;
   double kb1;
@@ -72,5 +82,16 @@ MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessM
 
 // (29) 1/Ke = 1/Kh + 1/Kb1 + 1/Ka1 + 1/Kb2 + 1/Ka2.
 double series_stiffness(double kh, double kb1, double ka1, double kb2, double ka2);
+
+// The compliances of one pair as they enter (29) under `model`: a term that
+// is switched off contributes nothing. m/N.
+struct IncludedCompliance {
+  double hertz_m_per_n;
+  double bending_m_per_n;  // both teeth
+  double axial_m_per_n;    // both teeth
+  double total_m_per_n() const { return hertz_m_per_n + bending_m_per_n + axial_m_per_n; }
+};
+IncludedCompliance included_compliance(const StiffnessModel& model, double hertz_m_per_n,
+                                       double bending_m_per_n, double axial_m_per_n);
 
 }  // namespace gearimpact
