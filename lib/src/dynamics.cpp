@@ -119,6 +119,18 @@ class Mechanics {
     friction_ = c.model.friction_coefficient;
     kh_ = hertz_stiffness(g);
     constant_k_ = control.constant_mesh_stiffness_n_m;
+    damping_on_current_pair_ = c.model.damping_stiffness == DampingStiffness::current_pair;
+  }
+
+  // T1(t), T2(t). An RK4 step asks for its middle time twice and for its end
+  // time again as the next step's start: the last answer is kept, so a
+  // sinusoid costs two sines a step instead of four (the same values).
+  std::pair<double, double> torques(double t) const {
+    if (t != torque_time_) {
+      torque_time_ = t;
+      torque_values_ = {torque_at(case_.torque1, t), torque_at(case_.torque2, t)};
+    }
+    return torque_values_;
   }
 
   double kinetic_energy(const State& y) const {
@@ -154,17 +166,15 @@ class Mechanics {
   }
 
   double damping_factor(const ContactDamping& d, double ke) const {
-    return case_.model.damping_stiffness == DampingStiffness::current_pair
-               ? d.per_stiffness_s_m * ke
-               : d.per_stiffness_s_m * d.frozen_stiffness_n_m;
+    return damping_on_current_pair_ ? d.per_stiffness_s_m * ke
+                                    : d.per_stiffness_s_m * d.frozen_stiffness_n_m;
   }
 
   // The equations of motion (1)-(3), (43)-(45) in the mode m, and the powers
   // of the ledger.
   void rhs(double t, const State& y, const Mode& m, const ContactDamping& d, State& dydt,
            ContactTotals* totals = nullptr) const {
-    const double t1 = torque_at(case_.torque1, t);
-    const double t2 = torque_at(case_.torque2, t);
+    const auto [t1, t2] = torques(t);
     const double w1 = y[kW1];
     const double w2 = y[kW2];
     double moment1 = t1;
@@ -248,7 +258,7 @@ class Mechanics {
   // and the positive factor Ke need not be evaluated.
   double push_sign_function(double x, int count, const ContactDamping& d, double dl,
                             double dl_rate) const {
-    if (case_.model.damping_stiffness == DampingStiffness::current_pair) {
+    if (damping_on_current_pair_) {
       return dl * (1.0 + d.per_stiffness_s_m * dl_rate);
     }
     double ke = 0.0;
@@ -349,6 +359,10 @@ class Mechanics {
   double rb1_ = 0.0, rb2_ = 0.0, j1_ = 0.0, j2_ = 0.0, backlash_ = 0.0, lp_ = 0.0;
   double x_pitch_ = 0.0, t0_ = 0.0, xs_ = 0.0, xe_ = 0.0, coast_offset_ = 0.0;
   double friction_ = 0.0, kh_ = 0.0, constant_k_ = 0.0;
+  bool damping_on_current_pair_ = true;
+  // Mechanics belongs to one run, so one thread.
+  mutable double torque_time_ = std::numeric_limits<double>::quiet_NaN();
+  mutable std::pair<double, double> torque_values_{0.0, 0.0};
 };
 
 std::string where(double t_s, long long step) {
@@ -523,7 +537,8 @@ class Run {
 
 void rk4_step(const Mechanics& mech, double t, const State& y, double h, const Mode& m,
               const ContactDamping& d, State& out) {
-  State k1{}, k2{}, k3{}, k4{}, tmp{};
+  // Not zeroed: rhs writes every component.
+  State k1, k2, k3, k4, tmp;
   mech.rhs(t, y, m, d, k1);
   for (std::size_t i = 0; i < kStateSize; ++i) tmp[i] = y[i] + 0.5 * h * k1[i];
   mech.rhs(t + 0.5 * h, tmp, m, d, k2);
