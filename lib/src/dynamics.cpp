@@ -390,7 +390,15 @@ class Run {
     result_.summary.kinetic_energy_initial_j = mech_.kinetic_energy(y_);
     result_.summary.stored_energy_initial_j = energy0_ - mech_.kinetic_energy(y_);
     book_keep();
-    if (control_.keep_series) record(0.0);
+    if (control_.keep_series) {
+      // The rows of the output grid up front, so that a long series is not
+      // copied as it grows; capped, as a guess must not fail a run.
+      constexpr double most_reserved_rows = 4e6;
+      const double rows =
+          c.integrator.end_time_s / (c.integrator.step_s * c.integrator.output_every);
+      result_.series.reserve(static_cast<std::size_t>(std::min(rows + 2.0, most_reserved_rows)));
+      record(0.0);
+    }
   }
 
   const Mechanics& mech() const { return mech_; }
