@@ -164,15 +164,24 @@ ReportSection reproduce_readings(const ReproduceContext& context) {
 
 namespace {
 
-double interpolate_s(const std::vector<SeriesRow>& rows, double t) {
-  const auto after = std::lower_bound(rows.begin(), rows.end(), t,
-                                      [](const SeriesRow& r, double time) { return r.t_s < time; });
-  if (after == rows.begin()) return rows.front().s_m;
-  if (after == rows.end()) return rows.back().s_m;
-  const SeriesRow& b = *after;
-  const SeriesRow& a = *(after - 1);
-  return a.s_m + (b.s_m - a.s_m) * (t - a.t_s) / (b.t_s - a.t_s);
-}
+// s of a series at times visited in increasing order: the first row at or
+// after t is found by walking on from the previous one, not by a search.
+class SeriesCursor {
+ public:
+  explicit SeriesCursor(const std::vector<SeriesRow>& rows) : rows_(rows) {}
+  double s_at(double t) {
+    while (next_ < rows_.size() && rows_[next_].t_s < t) ++next_;
+    if (next_ == 0) return rows_.front().s_m;
+    if (next_ == rows_.size()) return rows_.back().s_m;
+    const SeriesRow& b = rows_[next_];
+    const SeriesRow& a = rows_[next_ - 1];
+    return a.s_m + (b.s_m - a.s_m) * (t - a.t_s) / (b.t_s - a.t_s);
+  }
+
+ private:
+  const std::vector<SeriesRow>& rows_;
+  std::size_t next_ = 0;
+};
 
 std::string spread(const std::vector<double>& values, int digits) {
   const auto [low, high] = std::minmax_element(values.begin(), values.end());
@@ -236,9 +245,10 @@ ReportSection reproduce_case3_ensemble(const ReproduceContext& context) {
       damping.push_back(s.damping_loss_j);
       friction.push_back(s.friction_loss_j);
       ratio.push_back(s.damping_loss_j > 0.0 ? s.friction_loss_j / s.damping_loss_j : 0.0);
+      SeriesCursor member_s(r.series);
       for (const SeriesRow& row : results.front()->series) {
         if (parting_s >= 0.0 && row.t_s >= parting_s) break;
-        if (std::abs(interpolate_s(r.series, row.t_s) - row.s_m) > parted_m) {
+        if (std::abs(member_s.s_at(row.t_s) - row.s_m) > parted_m) {
           parting_s = row.t_s;
           break;
         }
