@@ -543,11 +543,12 @@ class Run {
   SimulationResult result_;
 };
 
-void rk4_step(const Mechanics& mech, double t, const State& y, double h, const Mode& m,
-              const ContactDamping& d, State& out) {
+// The classical RK4 step from (t, y) with k1 = f(t, y) already evaluated:
+// event location tries many step sizes from the same start.
+void rk4_step_from(const Mechanics& mech, double t, const State& y, const State& k1, double h,
+                   const Mode& m, const ContactDamping& d, State& out) {
   // Not zeroed: rhs writes every component.
-  State k1, k2, k3, k4, tmp;
-  mech.rhs(t, y, m, d, k1);
+  State k2, k3, k4, tmp;
   for (std::size_t i = 0; i < kStateSize; ++i) tmp[i] = y[i] + 0.5 * h * k1[i];
   mech.rhs(t + 0.5 * h, tmp, m, d, k2);
   for (std::size_t i = 0; i < kStateSize; ++i) tmp[i] = y[i] + 0.5 * h * k2[i];
@@ -557,6 +558,12 @@ void rk4_step(const Mechanics& mech, double t, const State& y, double h, const M
   for (std::size_t i = 0; i < kStateSize; ++i) {
     out[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
   }
+}
+
+void rk4_step(const Mechanics& mech, double t, const State& y, double h, const Mode& m,
+              const ContactDamping& d, State& out, State& k1) {
+  mech.rhs(t, y, m, d, k1);
+  rk4_step_from(mech, t, y, k1, h, m, d, out);
 }
 
 // The classical RK4 step with the mode re-evaluated at every stage: what a
@@ -649,7 +656,8 @@ SimulationResult run_rk4(const SimulationCase& c, const StiffnessTable& table,
       ++run.steps();
       run.set_mode_without_events(t);
     } else {
-      rk4_step(mech, t, y, step, run.mode(), run.damping(), next);
+      State k1;
+      rk4_step(mech, t, y, step, run.mode(), run.damping(), next, k1);
       run.rhs_evaluations() += 4;
       run.check_finite(target, next);
       if (mech.mode_holds(next, run.mode(), run.damping())) {
@@ -667,8 +675,8 @@ SimulationResult run_rk4(const SimulationCase& c, const StiffnessTable& table,
         const ContactDamping damping = run.damping();
         long long evaluations = 0;
         const auto state_at = [&](double tau, State& x) {
-          rk4_step(mech, t, start, tau - t, mode, damping, x);
-          evaluations += 4;
+          rk4_step_from(mech, t, start, k1, tau - t, mode, damping, x);
+          evaluations += 3;
         };
         const double t_event =
             earliest_event(mech, mode, damping, t, target, g_a, g_b, n, state_at);
