@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <future>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -25,6 +26,7 @@
 
 #include "bench_support.hpp"
 #include "gearimpact/dynamics.hpp"
+#include "gearimpact/energy.hpp"
 #include "gearimpact/gear_pair.hpp"
 #include "gearimpact/simulation_case.hpp"
 #include "gearimpact/stiffness_table.hpp"
@@ -152,6 +154,40 @@ void fig7_sweep(benchmark::State& state, int copies) {
   state.counters["runs"] = static_cast<double>(rows * cases.size());
 }
 
+// What issue 3 calls the whole reproduction, the computation alone (no files,
+// no plots): the three cases with their time series (thinned to 8000 rows as
+// `reproduce` keeps them), the Fig. 7 sweep of 27 runs and Fig. 8's two
+// energy cycles of 601 positions, all started at once and spread over the
+// cores.
+void issue_reproduction(benchmark::State& state) {
+  for (auto _ : state) {
+    std::vector<std::future<SimulationResult>> cases;
+    for (int number = 1; number <= 3; ++number) {
+      cases.push_back(std::async(std::launch::async, [number] {
+        SimulationCase c = paper_case(number);
+        c.integrator.output_every =
+            std::max(1, static_cast<int>(c.integrator.end_time_s / c.integrator.step_s / 8000));
+        return simulate(c);
+      }));
+    }
+    std::future<std::vector<EnergyRatios>> fig8 =
+        std::async(std::launch::async, [] { return energy_ratio_cycle(paper_gear_pair(), 601); });
+    std::future<std::vector<EnergyRatios>> fig8_flipped = std::async(std::launch::async, [] {
+      StiffnessModel flipped;
+      flipped.moment_sign = AxialMomentSign::flipped;
+      return energy_ratio_cycle(paper_gear_pair(), 601, flipped);
+    });
+    std::vector<SimulationCase> sweep_cases;
+    for (int number = 1; number <= 3; ++number) sweep_cases.push_back(paper_case(number));
+    const std::vector<SweepRow> sweep = sweep_friction(sweep_cases, 0.01, 0.09 + 1e-9, 0.01);
+    benchmark::DoNotOptimize(sweep.data());
+    for (auto& c : cases) benchmark::DoNotOptimize(c.get().summary.damping_loss_j);
+    benchmark::DoNotOptimize(fig8.get().data());
+    benchmark::DoNotOptimize(fig8_flipped.get().data());
+  }
+  state.counters["runs"] = 30;
+}
+
 // The whole reproduction as a user runs it: the program as a subprocess,
 // its own report of the wall time of each part parsed from its stderr.
 void reproduction(benchmark::State& state) {
@@ -220,6 +256,10 @@ const bool registered = [] {
                                [](benchmark::State& s) { fig7_sweep(s, 2); })
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime();
+  benchmark::RegisterBenchmark("simulation/issue_reproduction", issue_reproduction)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime()
+      ->Iterations(1);
   benchmark::RegisterBenchmark("simulation/reproduction", reproduction)
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime()
@@ -248,10 +288,28 @@ const bool targets_registered = [] {
            verdict(two <= 150.0);
   });
   register_target([](const Figures& figure) {
+    const double issue_ns = figure("simulation/issue_reproduction:real");
+    if (std::isnan(issue_ns)) {
+      return std::string(
+          "Reproduction as issue 3 defines it (three cases, Fig. 7 sweep, Fig. 8) under 3 s "
+          "wall: not measured in this run");
+    }
+    return format(
+               "Reproduction as issue 3 defines it (three cases, the 27-run Fig. 7 sweep, Fig. "
+               "8; computation only) under 3 s wall: %.2f s: ",
+               issue_ns / 1e9) +
+           verdict(issue_ns < 3e9);
+  });
+  register_target([](const Figures& figure) {
     const double wall_ns = figure("simulation/reproduction:real");
-    if (std::isnan(wall_ns))
-      return std::string("Whole reproduction under 3 s wall: not measured in this run");
-    return format("Whole reproduction under 3 s wall: %.2f s: ", wall_ns / 1e9) +
+    if (std::isnan(wall_ns)) {
+      return std::string("Whole `gearimpact reproduce` under 3 s wall: not measured in this run");
+    }
+    return format(
+               "Whole `gearimpact reproduce` (also the readings comparison, 77 runs asked for, "
+               "and the case 3 ensemble, 16 runs with series; files and plots) under 3 s wall: "
+               "%.2f s: ",
+               wall_ns / 1e9) +
            verdict(wall_ns < 3e9);
   });
   register_target([](const Figures& figure) {
