@@ -135,9 +135,13 @@ void write_simulation_table(std::ofstream& out, const RecordingReporter& reporte
              "run (steps cut at events included), `rhs/step` the right-hand-side evaluations per "
              "step, `pairs` the loaded pairs of every step of the run (checked on a recorded "
              "run before timing), `runs` the simulations of a sweep; a reproduction row lists "
-             "the wall time of its parts in s.\n\n"
-             "| benchmark | wall time | CPU time (calling thread) | steps | ns/step | rhs/step "
-             "| pairs | runs | parts (s) |\n|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
+             "the wall time of its parts in s. `CPU (s)`: user + system time of every thread "
+             "(and, for the reproduction, of the program and its gnuplot children) per "
+             "iteration; on a machine shared with other work, the wall time on idle cores is at "
+             "least this over the core count.\n\n"
+             "| benchmark | wall time | CPU time (calling thread) | CPU (s) | steps | ns/step | "
+             "rhs/step | pairs | runs | parts (s) |\n"
+             "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
       header = true;
     }
     std::string parts;
@@ -149,10 +153,10 @@ void write_simulation_table(std::ofstream& out, const RecordingReporter& reporte
       parts += text;
     }
     out << "| `" << row.name << "` | " << human_time(row.real_ns_per_iteration) << " | "
-        << human_time(row.ns_per_iteration) << " | " << counter_text(row, "steps", 7) << " | "
-        << counter_text(row, "ns_per_step", 4) << " | " << counter_text(row, "rhs_per_step", 3)
-        << " | " << counter_text(row, "pairs") << " | " << counter_text(row, "runs") << " | "
-        << parts << " |\n";
+        << human_time(row.ns_per_iteration) << " | " << counter_text(row, "cpu_s", 3) << " | "
+        << counter_text(row, "steps", 7) << " | " << counter_text(row, "ns_per_step", 4) << " | "
+        << counter_text(row, "rhs_per_step", 3) << " | " << counter_text(row, "pairs") << " | "
+        << counter_text(row, "runs") << " | " << parts << " |\n";
   }
 }
 

@@ -11,6 +11,8 @@
 // of action: it is placed inside the one-pair zone, or inside a two-pair zone,
 // short of the pitch point so that no friction reversal is crossed. The pair
 // count of every step is checked on a recorded run before timing.
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <cctype>
 #include <chrono>
@@ -38,6 +40,18 @@
 namespace gearimpact::bench {
 
 namespace {
+
+// CPU seconds (user + system) of this process's threads, or of its waited-for
+// children: on a machine shared with other work, the wall time a run would
+// take on idle cores is at least this over the core count.
+double cpu_seconds(int who) {
+  rusage usage{};
+  ::getrusage(who, &usage);
+  const auto seconds = [](const timeval& t) {
+    return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec);
+  };
+  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
 
 constexpr double steady_run_s = 1e-3;
 // Distance kept from the ends of the zone the contact runs in, m.
@@ -146,12 +160,15 @@ void fig7_sweep(benchmark::State& state, int copies) {
     for (int number = 1; number <= 3; ++number) cases.push_back(paper_case(number));
   }
   std::size_t rows = 0;
+  const double cpu_start = cpu_seconds(RUSAGE_SELF);
   for (auto _ : state) {
     const std::vector<SweepRow> sweep = sweep_friction(cases, 0.01, 0.09 + 1e-9, 0.01);
     rows = sweep.size();
     benchmark::DoNotOptimize(sweep.data());
   }
   state.counters["runs"] = static_cast<double>(rows * cases.size());
+  state.counters["cpu_s"] =
+      (cpu_seconds(RUSAGE_SELF) - cpu_start) / static_cast<double>(state.iterations());
 }
 
 // What issue 3 calls the whole reproduction, the computation alone (no files,
@@ -160,6 +177,7 @@ void fig7_sweep(benchmark::State& state, int copies) {
 // energy cycles of 601 positions, all started at once and spread over the
 // cores.
 void issue_reproduction(benchmark::State& state) {
+  const double cpu_start = cpu_seconds(RUSAGE_SELF);
   for (auto _ : state) {
     std::vector<std::future<SimulationResult>> cases;
     for (int number = 1; number <= 3; ++number) {
@@ -186,6 +204,8 @@ void issue_reproduction(benchmark::State& state) {
     benchmark::DoNotOptimize(fig8_flipped.get().data());
   }
   state.counters["runs"] = 30;
+  state.counters["cpu_s"] =
+      (cpu_seconds(RUSAGE_SELF) - cpu_start) / static_cast<double>(state.iterations());
 }
 
 // The whole reproduction as a user runs it: the program as a subprocess,
@@ -194,6 +214,7 @@ void reproduction(benchmark::State& state) {
   const std::filesystem::path out =
       std::filesystem::temp_directory_path() / "gearimpact_bench_reproduce";
   std::map<std::string, double> parts;
+  const double cpu_start = cpu_seconds(RUSAGE_CHILDREN);
   for (auto _ : state) {
     std::filesystem::remove_all(out);
     const std::string command = std::string("\"") + GEARIMPACT_CLI_PATH + "\" reproduce --out \"" +
@@ -227,6 +248,8 @@ void reproduction(benchmark::State& state) {
   }
   std::filesystem::remove_all(out);
   for (const auto& [key, seconds] : parts) state.counters[key] = seconds;
+  state.counters["cpu_s"] =
+      (cpu_seconds(RUSAGE_CHILDREN) - cpu_start) / static_cast<double>(state.iterations());
 }
 
 const bool registered = [] {
