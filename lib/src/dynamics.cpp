@@ -608,8 +608,12 @@ double earliest_event(const Mechanics& mech, const Mode& m, const ContactDamping
       return g[i];
     };
     std::uintmax_t iterations = 200;
+    // Late in a run 4 eps of the step is below the spacing of doubles near t:
+    // once the bracket is two neighbouring doubles it cannot shrink, and
+    // iterating on (up to the limit) would only repeat the same evaluations.
     const auto close_enough = [width](double lo, double hi) {
-      return hi - lo <= 4.0 * std::numeric_limits<double>::epsilon() * width;
+      return hi - lo <= 4.0 * std::numeric_limits<double>::epsilon() * width ||
+             std::nextafter(lo, hi) >= hi;
     };
     const double g_end = value(earliest);
     if (!(g_end < 0.0)) continue;  // this one comes after an earlier event
