@@ -42,8 +42,9 @@ const Accuracy* accuracy_of(std::string_view benchmark_name);
 // Every check's result, in registration order.
 std::vector<std::pair<std::string, Accuracy>> accuracy_results();
 
-// Looks up what one run measured: nanoseconds per iteration of the named
-// benchmark (NaN when it did not run).
+// Looks up what one run measured (NaN when it did not run): "name" gives the
+// CPU nanoseconds per iteration of the named benchmark, "name:real" its wall
+// nanoseconds per iteration, "name:key" its counter `key`.
 using Figures = std::function<double(std::string_view benchmark_name)>;
 // A target of the issue, as a line of the report: returns the line, which
 // says the figures and whether the target is met.

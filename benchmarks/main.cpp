@@ -50,9 +50,17 @@ class RecordingReporter : public benchmark::ConsoleReporter {
 
   const std::vector<Row>& rows() const { return rows_; }
 
-  double ns_of(std::string_view name) const {
+  // The Figures lookup of bench_support.hpp: "name", "name:real", "name:key".
+  double ns_of(std::string_view query) const {
+    const std::size_t colon = query.find(':');
+    const std::string_view name = query.substr(0, colon);
     for (const Row& row : rows_) {
-      if (row.name == name) return row.ns_per_iteration;
+      if (row.name != name) continue;
+      if (colon == std::string_view::npos) return row.ns_per_iteration;
+      const std::string key(query.substr(colon + 1));
+      if (key == "real") return row.real_ns_per_iteration;
+      const auto found = row.counters.find(key);
+      return found == row.counters.end() ? std::nan("") : found->second;
     }
     return std::nan("");
   }
@@ -80,6 +88,8 @@ std::string human_time(double ns) {
     std::snprintf(text, sizeof text, "%.1f ns", ns);
   } else if (ns < 1e6) {
     std::snprintf(text, sizeof text, "%.2f us", ns / 1e3);
+  } else if (ns >= 1e9) {
+    std::snprintf(text, sizeof text, "%.3f s", ns / 1e9);
   } else {
     std::snprintf(text, sizeof text, "%.2f ms", ns / 1e6);
   }
@@ -98,6 +108,58 @@ std::string counter(const RecordingReporter::Row& row, const std::string& key) {
   return found == row.counters.end() ? "" : scientific(found->second);
 }
 
+bool is_simulation(const RecordingReporter::Row& row) {
+  return row.name.starts_with("simulation/");
+}
+
+// A counter's value with `digits` significant digits, or "" when absent.
+std::string counter_text(const RecordingReporter::Row& row, const std::string& key,
+                         int digits = 4) {
+  const auto found = row.counters.find(key);
+  if (found == row.counters.end()) return "";
+  char text[40];
+  std::snprintf(text, sizeof text, "%.*g", digits, found->second);
+  return text;
+}
+
+// The simulation rows: wall time is the measure (the sweeps and the
+// reproduction run on every core), CPU time of the main thread beside it.
+void write_simulation_table(std::ofstream& out, const RecordingReporter& reporter) {
+  bool header = false;
+  for (const RecordingReporter::Row& row : reporter.rows()) {
+    if (!is_simulation(row)) continue;
+    if (!header) {
+      out << "\nSimulation (`simulation/*`): one iteration is one whole run (or sweep, or "
+             "reproduction). Wall time per iteration; CPU time of the calling thread beside it "
+             "(worker threads not included). `ns/step` is wall time over the RK4 steps of the "
+             "run (steps cut at events included), `rhs/step` the right-hand-side evaluations per "
+             "step, `pairs` the loaded pairs of every step of the run (checked on a recorded "
+             "run before timing), `runs` the simulations of a sweep; a reproduction row lists "
+             "the wall time of its parts in s. `CPU (s)`: user + system time of every thread "
+             "(and, for the reproduction, of the program and its gnuplot children) per "
+             "iteration; on a machine shared with other work, the wall time on idle cores is at "
+             "least this over the core count.\n\n"
+             "| benchmark | wall time | CPU time (calling thread) | CPU (s) | steps | ns/step | "
+             "rhs/step | pairs | runs | parts (s) |\n"
+             "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
+      header = true;
+    }
+    std::string parts;
+    for (const auto& [key, value] : row.counters) {
+      if (!key.starts_with("part_")) continue;
+      char text[80];
+      std::snprintf(text, sizeof text, "%s%s %.3g", parts.empty() ? "" : ", ",
+                    key.substr(5).c_str(), value);
+      parts += text;
+    }
+    out << "| `" << row.name << "` | " << human_time(row.real_ns_per_iteration) << " | "
+        << human_time(row.ns_per_iteration) << " | " << counter_text(row, "cpu_s", 3) << " | "
+        << counter_text(row, "steps", 7) << " | " << counter_text(row, "ns_per_step", 4) << " | "
+        << counter_text(row, "rhs_per_step", 3) << " | " << counter_text(row, "pairs") << " | "
+        << counter_text(row, "runs") << " | " << parts << " |\n";
+  }
+}
+
 void write_markdown(const std::string& path, const RecordingReporter& reporter,
                     std::size_t accuracy_positions) {
   std::ofstream out(path);
@@ -114,6 +176,7 @@ void write_markdown(const std::string& path, const RecordingReporter& reporter,
          "error compliances | speed-up vs GSL QAG |\n";
   out << "|---|---:|---:|---:|---:|---:|\n";
   for (const RecordingReporter::Row& row : reporter.rows()) {
+    if (is_simulation(row)) continue;
     char ratio[40] = "";
     if (!std::isnan(baseline)) {
       std::snprintf(ratio, sizeof ratio, "%.3g", baseline / row.ns_per_iteration);
@@ -122,6 +185,7 @@ void write_markdown(const std::string& path, const RecordingReporter& reporter,
         << human_time(row.real_ns_per_iteration) << " | " << counter(row, "ke_rel_err") << " | "
         << counter(row, "compliance_rel_err") << " | " << ratio << " |\n";
   }
+  write_simulation_table(out, reporter);
   out << "\nTargets (issue 3), from this run:\n\n";
   const auto figures = [&](std::string_view name) { return reporter.ns_of(name); };
   for (const std::string& line : gearimpact::bench::evaluate_targets(figures)) {

@@ -6,9 +6,11 @@
 #include <filesystem>
 #include <string>
 
+#include "gearimpact/dynamics.hpp"
 #include "gearimpact/paper_statements.hpp"
 #include "gnuplot.hpp"
 #include "report.hpp"
+#include "simulation_pool.hpp"
 
 namespace gearimpact::cli {
 
@@ -17,7 +19,20 @@ struct ReproduceContext {
   std::filesystem::path paper_data;
   // Short runs and coarse grids, for the end-to-end test.
   bool quick = false;
+  // Every simulation of the reproduction runs here, once.
+  SimulationPool* pool = nullptr;
 };
+
+// What sweep_friction returns (the same friction values, the same ratios),
+// with the runs submitted to the pool. Call get() on the result to wait.
+struct PooledSweep {
+  std::vector<double> frictions;
+  std::size_t cases = 0;
+  std::vector<std::shared_future<SimulationResult>> runs;  // friction-major
+  std::vector<SweepRow> get() const;
+};
+PooledSweep submit_sweep(SimulationPool& pool, const std::vector<SimulationCase>& cases,
+                         double from, double to, double step);
 
 // Writes `text` to `file` through a temporary file and a rename, so an
 // interrupted run never leaves a truncated file.

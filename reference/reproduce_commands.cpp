@@ -5,9 +5,12 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <future>
 #include <iostream>
 #include <memory>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "commands.hpp"
 #include "reproduce.hpp"
@@ -40,11 +43,13 @@ ReportRow statement_row(const PaperStatement& s, const std::string& ours, bool m
   row.id = s.id;
   row.statement = s.quantity + (s.unit == "1" ? "" : " (" + s.unit + ")");
   row.source = "p. " + s.page + ", " + s.source;
-  row.paper = s.paper_low == s.paper_high ? number(s.paper_low, 4)
-                                          : number(s.paper_low, 4) + " to " + number(s.paper_high, 4);
+  row.paper = s.paper_low == s.paper_high
+                  ? number(s.paper_low, 4)
+                  : number(s.paper_low, 4) + " to " + number(s.paper_high, 4);
   row.ours = ours;
-  row.tolerance = (s.relative ? number(100.0 * s.tolerance, 3) + " %" : "± " + number(s.tolerance, 3)) +
-                  ": " + s.why;
+  row.tolerance =
+      (s.relative ? number(100.0 * s.tolerance, 3) + " %" : "± " + number(s.tolerance, 3)) + ": " +
+      s.why;
   row.verdict = matches ? Verdict::pass : Verdict::fail;
   return row;
 }
@@ -78,22 +83,39 @@ std::string software_versions() {
 
 void reproduce(const ReproduceOptions& options) {
   const auto started = std::chrono::steady_clock::now();
-  ReproduceContext context{options.out, options.paper_data, options.quick};
+  SimulationPool pool;
+  ReproduceContext context{options.out, options.paper_data, options.quick, &pool};
   std::filesystem::create_directories(context.out);
-  std::vector<ReportSection> sections;
-  const auto step = [&](const char* what, ReportSection (*run)(const ReproduceContext&)) {
-    std::cerr << "reproduce: " << what << " ..." << std::flush;
-    const auto t0 = std::chrono::steady_clock::now();
-    sections.push_back(run(context));
-    std::cerr << " " << number(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 3)
-              << " s\n";
+  struct Part {
+    const char* what;
+    ReportSection (*run)(const ReproduceContext&);
   };
-  step("Figs. 4-6 time histories of cases 1-3", reproduce_time_histories);
-  step("Fig. 7 friction sweep, 27 runs", reproduce_fig7);
-  step("Fig. 8 energy ratios", reproduce_fig8);
-  step("the open readings side by side", reproduce_readings);
-  step("case 3 ensemble", reproduce_case3_ensemble);
-
+  const std::vector<Part> parts{{"Figs. 4-6 time histories of cases 1-3", reproduce_time_histories},
+                                {"Fig. 7 friction sweep, 27 runs", reproduce_fig7},
+                                {"Fig. 8 energy ratios", reproduce_fig8},
+                                {"the open readings side by side", reproduce_readings},
+                                {"case 3 ensemble", reproduce_case3_ensemble}};
+  // The parts run side by side: each submits its simulations to the one pool
+  // and waits for them, so the cores stay busy until the last run is done.
+  std::vector<std::future<std::pair<ReportSection, double>>> running;
+  for (const Part& part : parts) {
+    running.push_back(std::async(std::launch::async, [&context, &started, part] {
+      ReportSection section = part.run(context);
+      return std::make_pair(
+          std::move(section),
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
+    }));
+  }
+  std::vector<ReportSection> sections;
+  std::cerr << "reproduce: " << pool.threads()
+            << " simulation threads; the parts run side by side, each time is when it was done\n";
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    auto [section, done_s] = running[i].get();
+    sections.push_back(std::move(section));
+    std::cerr << "reproduce: " << parts[i].what << " ... " << number(done_s, 3) << " s\n";
+  }
+  std::cerr << "reproduce: " << pool.computed() << " simulations run for " << pool.requested()
+            << " asked for\n";
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   std::string report = "# gearimpact: reproduction of Yang and Lin (1987)\n\n";
@@ -102,8 +124,9 @@ void reproduce(const ReproduceOptions& options) {
       "Verdict `known difference` marks a statement this implementation misses for a reason "
       "given in the note; `FAIL` one it misses without an explanation.\n\n";
   if (options.quick) {
-    report += "**Quick run** (`--quick`): short simulations and coarse grids, for testing the "
-              "pipeline; the numbers are not the reproduction.\n\n";
+    report +=
+        "**Quick run** (`--quick`): short simulations and coarse grids, for testing the "
+        "pipeline; the numbers are not the reproduction.\n\n";
   }
   int unexplained = 0;
   for (const ReportSection& section : sections) {

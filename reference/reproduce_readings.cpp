@@ -57,16 +57,24 @@ struct Score {
   double mean_tolerances_off = 0.0;
 };
 
-Score score(const PaperReading& reading, const ReproduceContext& context,
-            const std::map<std::string, PaperStatement>& statements) {
+// The runs a reading is scored on, submitted to the pool.
+struct ReadingRuns {
+  PooledSweep sweep;
+  std::shared_future<SimulationResult> case2;
+};
+
+ReadingRuns submit_reading(const PaperReading& reading, const ReproduceContext& context) {
   std::vector<SimulationCase> cases;
   for (int case_number = 1; case_number <= 3; ++case_number) {
     cases.push_back(short_if_quick(paper_case(case_number, reading), context));
   }
-  const std::vector<SweepRow> rows = sweep_friction(cases, 0.01, 0.09 + 1e-9, 0.08);
-  RunControl control;
-  control.keep_series = false;
-  const SimulationResult case2 = simulate(cases[1], control);
+  return {submit_sweep(*context.pool, cases, 0.01, 0.09 + 1e-9, 0.08),
+          context.pool->submit(cases[1], false)};
+}
+
+Score score(const ReadingRuns& runs, const std::map<std::string, PaperStatement>& statements) {
+  const std::vector<SweepRow> rows = runs.sweep.get();
+  const SimulationResult& case2 = runs.case2.get();
   Score s;
   const char* ids[3][2] = {{"fig7_case1_f001", "fig7_case1_f009"},
                            {"fig7_case2_f001", "fig7_case2_f009"},
@@ -104,22 +112,25 @@ ReportSection reproduce_readings(const ReproduceContext& context) {
       "tolerance of `paper_data/dynamics_statements.csv`. The sign of the Fa h moment is scored "
       "in the Fig. 8 section (it changes the stiffness, not the dissipation).\n\n"
       "| reading | case 1: 0.01 / 0.09 | case 2: 0.01 / 0.09 | case 3: 0.01 / 0.09 | last N2 "
-      "impact, case 2 | statements met | mean, worst (tolerances off) |\n|---|---|---|---|---|---|---|\n";
+      "impact, case 2 | statements met | mean, worst (tolerances off) "
+      "|\n|---|---|---|---|---|---|---|\n";
   const std::vector<NamedReading> list = readings();
+  // Every reading's runs first, so that the pool has them all at once.
+  std::vector<ReadingRuns> runs;
+  for (const NamedReading& r : list) runs.push_back(submit_reading(r.reading, context));
   std::vector<Score> scores;
-  for (const NamedReading& r : list) scores.push_back(score(r.reading, context, statements));
+  for (const ReadingRuns& r : runs) scores.push_back(score(r, statements));
   std::size_t best = 0;
   for (std::size_t i = 0; i < list.size(); ++i) {
     const Score& s = scores[i];
-    section.text += "| " + list[i].name + " | " + number(s.damping_over_friction[0], 3) + " / " +
-                    number(s.damping_over_friction[1], 3) + " | " +
-                    number(s.damping_over_friction[2], 3) + " / " +
-                    number(s.damping_over_friction[3], 3) + " | " +
-                    number(s.damping_over_friction[4], 3) + " / " +
-                    number(s.damping_over_friction[5], 3) + " | " + number(s.last_n2_ms, 3) +
-                    " ms | " + std::to_string(s.met) + " of " + std::to_string(s.statements) +
-                    " | " + number(s.mean_tolerances_off, 3) + ", " +
-                    number(s.worst_tolerances_off, 3) + " |\n";
+    section.text +=
+        "| " + list[i].name + " | " + number(s.damping_over_friction[0], 3) + " / " +
+        number(s.damping_over_friction[1], 3) + " | " + number(s.damping_over_friction[2], 3) +
+        " / " + number(s.damping_over_friction[3], 3) + " | " +
+        number(s.damping_over_friction[4], 3) + " / " + number(s.damping_over_friction[5], 3) +
+        " | " + number(s.last_n2_ms, 3) + " ms | " + std::to_string(s.met) + " of " +
+        std::to_string(s.statements) + " | " + number(s.mean_tolerances_off, 3) + ", " +
+        number(s.worst_tolerances_off, 3) + " |\n";
     const Score& b = scores[best];
     if (s.met > b.met || (s.met == b.met && s.mean_tolerances_off < b.mean_tolerances_off)) {
       best = i;
@@ -132,34 +143,45 @@ ReportSection reproduce_readings(const ReproduceContext& context) {
   const Score& d = scores[0];
   const Score& b = scores[best];
   const bool evidence_for_change =
-      b.met > d.met || (b.met == d.met && d.mean_tolerances_off - b.mean_tolerances_off > decisive_margin);
-  section.text += "\nBest (most statements met, then the smallest mean miss): **" + list[best].name +
-                  "**, " + std::to_string(b.met) + " of " + std::to_string(b.statements) +
-                  " statements met, mean " + number(b.mean_tolerances_off, 3) +
-                  " tolerances off; the default: " + std::to_string(d.met) + " of " +
-                  std::to_string(d.statements) + ", mean " + number(d.mean_tolerances_off, 3) +
-                  ". The default changes only for a reading that meets more statements, or as "
-                  "many with a mean miss smaller by more than " + number(decisive_margin, 2) +
-                  " tolerances (the paper's 'about' values cannot tell smaller differences "
-                  "apart). " +
-                  (evidence_for_change
-                       ? "**The evidence favours " + list[best].name +
-                             " over the default**: see the README on why the default stays or goes.\n"
-                       : std::string("Verdict: the default stands.\n"));
+      b.met > d.met ||
+      (b.met == d.met && d.mean_tolerances_off - b.mean_tolerances_off > decisive_margin);
+  section.text +=
+      "\nBest (most statements met, then the smallest mean miss): **" + list[best].name + "**, " +
+      std::to_string(b.met) + " of " + std::to_string(b.statements) + " statements met, mean " +
+      number(b.mean_tolerances_off, 3) + " tolerances off; the default: " + std::to_string(d.met) +
+      " of " + std::to_string(d.statements) + ", mean " + number(d.mean_tolerances_off, 3) +
+      ". The default changes only for a reading that meets more statements, or as "
+      "many with a mean miss smaller by more than " +
+      number(decisive_margin, 2) +
+      " tolerances (the paper's 'about' values cannot tell smaller differences "
+      "apart). " +
+      (evidence_for_change
+           ? "**The evidence favours " + list[best].name +
+                 " over the default**: see the README on why the default stays or goes.\n"
+           : std::string("Verdict: the default stands.\n"));
   return section;
 }
 
 namespace {
 
-double interpolate_s(const std::vector<SeriesRow>& rows, double t) {
-  const auto after = std::lower_bound(rows.begin(), rows.end(), t,
-                                      [](const SeriesRow& r, double time) { return r.t_s < time; });
-  if (after == rows.begin()) return rows.front().s_m;
-  if (after == rows.end()) return rows.back().s_m;
-  const SeriesRow& b = *after;
-  const SeriesRow& a = *(after - 1);
-  return a.s_m + (b.s_m - a.s_m) * (t - a.t_s) / (b.t_s - a.t_s);
-}
+// s of a series at times visited in increasing order: the first row at or
+// after t is found by walking on from the previous one, not by a search.
+class SeriesCursor {
+ public:
+  explicit SeriesCursor(const std::vector<SeriesRow>& rows) : rows_(rows) {}
+  double s_at(double t) {
+    while (next_ < rows_.size() && rows_[next_].t_s < t) ++next_;
+    if (next_ == 0) return rows_.front().s_m;
+    if (next_ == rows_.size()) return rows_.back().s_m;
+    const SeriesRow& b = rows_[next_];
+    const SeriesRow& a = rows_[next_ - 1];
+    return a.s_m + (b.s_m - a.s_m) * (t - a.t_s) / (b.t_s - a.t_s);
+  }
+
+ private:
+  const std::vector<SeriesRow>& rows_;
+  std::size_t next_ = 0;
+};
 
 std::string spread(const std::vector<double>& values, int digits) {
   const auto [low, high] = std::minmax_element(values.begin(), values.end());
@@ -189,21 +211,22 @@ ReportSection reproduce_case3_ensemble(const ReproduceContext& context) {
       "| torques | first impact | first impact speed | peak penetration | impacts | damping loss "
       "(J) | friction loss (J) | friction / damping | runs part at |\n"
       "|---|---|---|---|---|---|---|---|---|\n";
-  for (TorqueUnit unit : {TorqueUnit::kgf_mm, TorqueUnit::n_mm}) {
+  const std::vector<TorqueUnit> units{TorqueUnit::kgf_mm, TorqueUnit::n_mm};
+  // Every member of both ensembles first, so that the pool has them all at once.
+  std::vector<std::vector<std::shared_future<SimulationResult>>> runs(units.size());
+  for (std::size_t u = 0; u < units.size(); ++u) {
     PaperReading reading;
-    reading.torque_unit = unit;
-    std::vector<std::future<SimulationResult>> runs;
-    std::vector<SimulationCase> cases;
+    reading.torque_unit = units[u];
     for (int k = 0; k < members; ++k) {
       SimulationCase c = short_if_quick(paper_case(3, reading), context);
       c.initial.theta1_rad = k * perturbation_rad;
-      cases.push_back(c);
+      runs[u].push_back(context.pool->submit(c, true));
     }
-    for (const SimulationCase& c : cases) {
-      runs.push_back(std::async(std::launch::async, [&c] { return simulate(c); }));
-    }
-    std::vector<SimulationResult> results;
-    for (auto& run : runs) results.push_back(run.get());
+  }
+  for (std::size_t u = 0; u < units.size(); ++u) {
+    const TorqueUnit unit = units[u];
+    std::vector<const SimulationResult*> results;
+    for (const auto& run : runs[u]) results.push_back(&run.get());
     std::vector<double> first_impact;
     std::vector<double> first_speed;
     std::vector<double> peak;
@@ -212,7 +235,8 @@ ReportSection reproduce_case3_ensemble(const ReproduceContext& context) {
     std::vector<double> friction;
     std::vector<double> ratio;
     double parting_s = -1.0;
-    for (const SimulationResult& r : results) {
+    for (const SimulationResult* member : results) {
+      const SimulationResult& r = *member;
       const SimulationSummary& s = r.summary;
       first_impact.push_back(s.first_impact_s.value_or(0.0) * 1e3);
       first_speed.push_back(s.first_impact_speed_m_s.value_or(0.0));
@@ -221,20 +245,21 @@ ReportSection reproduce_case3_ensemble(const ReproduceContext& context) {
       damping.push_back(s.damping_loss_j);
       friction.push_back(s.friction_loss_j);
       ratio.push_back(s.damping_loss_j > 0.0 ? s.friction_loss_j / s.damping_loss_j : 0.0);
-      for (const SeriesRow& row : results.front().series) {
+      SeriesCursor member_s(r.series);
+      for (const SeriesRow& row : results.front()->series) {
         if (parting_s >= 0.0 && row.t_s >= parting_s) break;
-        if (std::abs(interpolate_s(r.series, row.t_s) - row.s_m) > parted_m) {
+        if (std::abs(member_s.s_at(row.t_s) - row.s_m) > parted_m) {
           parting_s = row.t_s;
           break;
         }
       }
     }
-    section.text += std::string("| ") + (unit == TorqueUnit::kgf_mm ? "kgf-mm (default)" : "N-mm") +
-                    " | " + spread(first_impact, 4) + " ms | " + spread(first_speed, 4) +
-                    " m/s | " + spread(peak, 4) + " um | " + spread(impacts, 3) + " | " +
-                    spread(damping, 3) + " | " + spread(friction, 3) + " | " + spread(ratio, 3) +
-                    " | " + (parting_s < 0.0 ? "never within the run" : number(parting_s * 1e3, 3) + " ms") +
-                    " |\n";
+    section.text +=
+        std::string("| ") + (unit == TorqueUnit::kgf_mm ? "kgf-mm (default)" : "N-mm") + " | " +
+        spread(first_impact, 4) + " ms | " + spread(first_speed, 4) + " m/s | " + spread(peak, 4) +
+        " um | " + spread(impacts, 3) + " | " + spread(damping, 3) + " | " + spread(friction, 3) +
+        " | " + spread(ratio, 3) + " | " +
+        (parting_s < 0.0 ? "never within the run" : number(parting_s * 1e3, 3) + " ms") + " |\n";
   }
   return section;
 }

@@ -26,7 +26,9 @@ SimulationCase reproduction_case(int case_number, const PaperReading& reading,
   return c;
 }
 
-std::string ms(double seconds) { return number(seconds * 1e3, 3) + " ms"; }
+std::string ms(double seconds) {
+  return number(seconds * 1e3, 3) + " ms";
+}
 
 Figure time_figure(const std::string& stem, const std::string& data, const std::string& title,
                    const std::string& y_label, std::vector<std::string> series,
@@ -46,28 +48,32 @@ void plot_case(const ReproduceContext& context, int case_number, const std::stri
       "50 with lines dt 2 lc rgb 'gray' title '+B', -50 with lines dt 2 lc rgb 'gray' title '-B'";
   const std::string case_name = "Case " + std::to_string(case_number);
   const std::string figure = case_number == 1 ? "fig4" : case_number == 2 ? "fig5" : "fig6";
-  render(context.out,
-         time_figure(figure + "a_case" + std::to_string(case_number) + "_relative_displacement", data,
-                     (case_number == 1 ? "Fig. 4(a) " : case_number == 2 ? "Fig. 5(a) " : "Fig. 6(a) ") +
-                         case_name + ": relative displacement along the line of action",
-                     "s = Rb1 theta1 - Rb2 theta2 (um)",
-                     {"using ($1*1e3):($6*1e6) with lines lw 1.5 title 's'", backlash_lines}));
+  render(
+      context.out,
+      time_figure(figure + "a_case" + std::to_string(case_number) + "_relative_displacement", data,
+                  (case_number == 1   ? "Fig. 4(a) "
+                   : case_number == 2 ? "Fig. 5(a) "
+                                      : "Fig. 6(a) ") +
+                      case_name + ": relative displacement along the line of action",
+                  "s = Rb1 theta1 - Rb2 theta2 (um)",
+                  {"using ($1*1e3):($6*1e6) with lines lw 1.5 title 's'", backlash_lines}));
   if (case_number == 1) {
-    render(context.out,
-           time_figure("fig4b_case1_angular_displacements", data,
-                       "Fig. 4(b) Case 1: angular displacements", "angle (rad)",
-                       {"using ($1*1e3):2 with lines lw 1.5 title 'theta1'",
-                        "using ($1*1e3):3 with lines lw 1.5 title 'theta2'"}));
+    render(context.out, time_figure("fig4b_case1_angular_displacements", data,
+                                    "Fig. 4(b) Case 1: angular displacements", "angle (rad)",
+                                    {"using ($1*1e3):2 with lines lw 1.5 title 'theta1'",
+                                     "using ($1*1e3):3 with lines lw 1.5 title 'theta2'"}));
   }
-  const std::string velocity_figure =
-      case_number == 1 ? "fig4c_case1" : case_number == 2 ? "fig5b_case2" : "fig6b_case3";
-  render(context.out,
-         time_figure(velocity_figure + "_angular_velocities", data,
-                     (case_number == 1 ? "Fig. 4(c) " : case_number == 2 ? "Fig. 5(b) " : "Fig. 6(b) ") +
-                         case_name + ": angular velocities",
-                     "angular velocity (rad/s)",
-                     {"using ($1*1e3):4 with lines lw 1.5 title 'omega1'",
-                      "using ($1*1e3):5 with lines lw 1.5 title 'omega2'"}));
+  const std::string velocity_figure = case_number == 1   ? "fig4c_case1"
+                                      : case_number == 2 ? "fig5b_case2"
+                                                         : "fig6b_case3";
+  render(context.out, time_figure(velocity_figure + "_angular_velocities", data,
+                                  (case_number == 1   ? "Fig. 4(c) "
+                                   : case_number == 2 ? "Fig. 5(b) "
+                                                      : "Fig. 6(b) ") +
+                                      case_name + ": angular velocities",
+                                  "angular velocity (rad/s)",
+                                  {"using ($1*1e3):4 with lines lw 1.5 title 'omega1'",
+                                   "using ($1*1e3):5 with lines lw 1.5 title 'omega2'"}));
 }
 
 }  // namespace
@@ -82,43 +88,40 @@ ReportSection reproduce_time_histories(const ReproduceContext& context) {
       "`caseN_summary.json`.\n\n| case | impacts N1 | impacts N2 | first impact | last N2 impact | "
       "max penetration | damping loss | friction loss | ledger residual / energy scale |\n"
       "|---|---|---|---|---|---|---|---|---|\n";
-  std::vector<std::future<SimulationResult>> runs;
-  std::vector<SimulationCase> cases;
+  std::vector<std::shared_future<SimulationResult>> runs;
   for (int case_number = 1; case_number <= 3; ++case_number) {
-    cases.push_back(reproduction_case(case_number, PaperReading{}, context));
-  }
-  for (const SimulationCase& c : cases) {
-    runs.push_back(std::async(std::launch::async, [&c] { return simulate(c); }));
+    runs.push_back(
+        context.pool->submit(reproduction_case(case_number, PaperReading{}, context), true));
   }
   for (int case_number = 1; case_number <= 3; ++case_number) {
-    const SimulationResult result = runs[static_cast<std::size_t>(case_number - 1)].get();
+    const SimulationResult& result = runs[static_cast<std::size_t>(case_number - 1)].get();
     const std::string stem = "case" + std::to_string(case_number);
     write_output(context.out / (stem + "_time_series.csv"), series_csv(result.series));
     write_output(context.out / (stem + "_summary.json"), summary_json(result.summary));
     plot_case(context, case_number, stem + "_time_series.csv");
     const SimulationSummary& s = result.summary;
-    section.text += "| " + std::to_string(case_number) + " | " + std::to_string(s.impacts_n1) + " | " +
-                    std::to_string(s.impacts_n2) + " | " +
+    section.text += "| " + std::to_string(case_number) + " | " + std::to_string(s.impacts_n1) +
+                    " | " + std::to_string(s.impacts_n2) + " | " +
                     (s.first_impact_s ? ms(*s.first_impact_s) : "none") + " | " +
                     (s.last_n2_impact_s ? ms(*s.last_n2_impact_s) : "none") + " | " +
-                    number(s.max_penetration_m * 1e6, 3) + " um | " +
-                    number(s.damping_loss_j, 4) + " J | " + number(s.friction_loss_j, 4) + " J | " +
+                    number(s.max_penetration_m * 1e6, 3) + " um | " + number(s.damping_loss_j, 4) +
+                    " J | " + number(s.friction_loss_j, 4) + " J | " +
                     number(s.ledger_residual_max_j / s.ledger_scale_j, 2) + " |\n";
     if (case_number == 2) {
       const PaperStatement& last_n2 = statements.at("case2_last_n2_impact");
       const double last = s.last_n2_impact_s.value_or(0.0);
-      ReportRow row = statement_row(last_n2, ms(last), last_n2.matches(last * 1e3, last_n2.paper_low));
+      ReportRow row =
+          statement_row(last_n2, ms(last), last_n2.matches(last * 1e3, last_n2.paper_low));
       if (row.verdict == Verdict::fail) {
         row.verdict = Verdict::known_difference;
         row.note =
             "MODEL.md, Readings: no reading meets every statement; under the default the "
             "teeth settle on N1 earlier (" +
-            number(last_n2.tolerances_off(last * 1e3, last_n2.paper_low), 2) +
-            " tolerances off)";
+            number(last_n2.tolerances_off(last * 1e3, last_n2.paper_low), 2) + " tolerances off)";
       }
       section.rows.push_back(row);
-      const bool alternate_first = result.impacts.size() >= 2 &&
-                                   result.impacts[0].line != result.impacts[1].line;
+      const bool alternate_first =
+          result.impacts.size() >= 2 && result.impacts[0].line != result.impacts[1].line;
       const PaperStatement& alternate = statements.at("case2_alternate_first");
       section.rows.push_back(statement_row(
           alternate, alternate_first ? "first two impacts on N1 then N2" : "not alternating",
@@ -126,6 +129,41 @@ ReportSection reproduce_time_histories(const ReproduceContext& context) {
     }
   }
   return section;
+}
+
+PooledSweep submit_sweep(SimulationPool& pool, const std::vector<SimulationCase>& cases,
+                         double from, double to, double step) {
+  // The friction values of sweep_friction: from + i step up to `to`.
+  const auto count = static_cast<std::size_t>(std::floor((to - from) / step + 1e-9)) + 1;
+  PooledSweep sweep;
+  sweep.cases = cases.size();
+  for (std::size_t i = 0; i < count; ++i) {
+    const double f = from + static_cast<double>(i) * step;
+    sweep.frictions.push_back(f);
+    for (SimulationCase c : cases) {
+      c.model.friction_coefficient = f;
+      sweep.runs.push_back(pool.submit(c, false));
+    }
+  }
+  return sweep;
+}
+
+std::vector<SweepRow> PooledSweep::get() const {
+  std::vector<SweepRow> rows;
+  for (std::size_t i = 0; i < frictions.size(); ++i) {
+    SweepRow row{frictions[i], {}};
+    for (std::size_t j = 0; j < cases; ++j) {
+      const SimulationSummary& s = runs[i * cases + j].get().summary;
+      if (!(s.damping_loss_j > 0.0)) {
+        throw SimulationError("no damping loss in " + s.case_name +
+                              " at f = " + number(frictions[i], 3) +
+                              ": the ratio friction loss / damping loss is undefined");
+      }
+      row.ratio.push_back(s.friction_loss_j / s.damping_loss_j);
+    }
+    rows.push_back(std::move(row));
+  }
+  return rows;
 }
 
 namespace {
@@ -145,22 +183,24 @@ ReportSection reproduce_fig7(const ReproduceContext& context) {
     cases.push_back(reproduction_case(case_number, PaperReading{}, context));
   }
   const double step = context.quick ? 0.04 : 0.01;
-  const std::vector<SweepRow> rows = sweep_friction(cases, 0.01, 0.09 + 1e-9, step);
+  const std::vector<SweepRow> rows =
+      submit_sweep(*context.pool, cases, 0.01, 0.09 + 1e-9, step).get();
   std::string csv = "f,ratio_case1,ratio_case2,ratio_case3\n";
   for (const SweepRow& row : rows) {
     csv += number(row.friction_coefficient, 17) + "," + number(row.ratio[0], 17) + "," +
            number(row.ratio[1], 17) + "," + number(row.ratio[2], 17) + "\n";
   }
   write_output(context.out / "fig7_friction_sweep.csv", csv);
-  render(context.out,
-         {"fig7_friction_sweep",
-          "Fig. 7: dissipated friction and damping energy ratio",
-          "friction coefficient f",
-          "friction loss / damping loss",
-          {"set key top left", "set xrange [0:0.1]"},
-          {"'fig7_friction_sweep.csv' using 1:2 with linespoints pt 3 ps 1.5 lw 2 title 'case 1'",
-           "'fig7_friction_sweep.csv' using 1:3 with linespoints pt 5 ps 1.2 lw 2 title 'case 2'",
-           "'fig7_friction_sweep.csv' using 1:4 with linespoints pt 9 ps 1.5 lw 2 title 'case 3'"}});
+  render(
+      context.out,
+      {"fig7_friction_sweep",
+       "Fig. 7: dissipated friction and damping energy ratio",
+       "friction coefficient f",
+       "friction loss / damping loss",
+       {"set key top left", "set xrange [0:0.1]"},
+       {"'fig7_friction_sweep.csv' using 1:2 with linespoints pt 3 ps 1.5 lw 2 title 'case 1'",
+        "'fig7_friction_sweep.csv' using 1:3 with linespoints pt 5 ps 1.2 lw 2 title 'case 2'",
+        "'fig7_friction_sweep.csv' using 1:4 with linespoints pt 9 ps 1.5 lw 2 title 'case 3'"}});
 
   ReportSection section;
   section.title = "Fig. 7: friction loss / damping loss against f";
@@ -169,10 +209,12 @@ ReportSection reproduce_fig7(const ReproduceContext& context) {
                                       {2, 0.01, "fig7_case2_f001"}, {2, 0.09, "fig7_case2_f009"},
                                       {3, 0.01, "fig7_case3_f001"}, {3, 0.09, "fig7_case3_f009"}};
   for (const Fig7Point& p : points) {
-    const auto row = std::min_element(rows.begin(), rows.end(), [&](const SweepRow& a, const SweepRow& b) {
-      return std::abs(a.friction_coefficient - p.f) < std::abs(b.friction_coefficient - p.f);
-    });
-    const double damping_over_friction = 1.0 / row->ratio[static_cast<std::size_t>(p.case_number - 1)];
+    const auto row =
+        std::min_element(rows.begin(), rows.end(), [&](const SweepRow& a, const SweepRow& b) {
+          return std::abs(a.friction_coefficient - p.f) < std::abs(b.friction_coefficient - p.f);
+        });
+    const double damping_over_friction =
+        1.0 / row->ratio[static_cast<std::size_t>(p.case_number - 1)];
     const PaperStatement& s = statements.at(p.id);
     section.rows.push_back(statement_row(s, number(damping_over_friction, 3),
                                          s.matches(damping_over_friction, s.paper_low)));
@@ -189,8 +231,9 @@ ReportSection reproduce_fig7(const ReproduceContext& context) {
       high = std::max(high, slope);
     }
     const double spread = (high - low) / (0.5 * (high + low));
-    ReportRow row = statement_row(linear, "case " + std::to_string(k + 1) + ": " + number(spread, 3),
-                                  linear.matches(spread, linear.paper_low));
+    ReportRow row =
+        statement_row(linear, "case " + std::to_string(k + 1) + ": " + number(spread, 3),
+                      linear.matches(spread, linear.paper_low));
     section.rows.push_back(row);
   }
   return section;

@@ -49,7 +49,10 @@ command=("$binary" "--benchmark_min_time=$min_time" "--benchmark_repetitions=$re
 {
   echo "# Benchmark run"
   echo
-  echo "- date: $(date -u '+%Y-%m-%d %H:%M UTC'), commit $(git describe --always --dirty 2>/dev/null || echo unknown)"
+  # The results folder itself does not make the source tree dirty.
+  commit="$(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
+  if [ -n "$(git status --porcelain -- . ':!benchmarks/results' 2>/dev/null)" ]; then commit="$commit-dirty"; fi
+  echo "- date: $(date -u '+%Y-%m-%d %H:%M UTC'), commit $commit"
   echo "- machine: $(nproc) cores, $(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -1)," \
     "shared with other work while measured"
   echo "- compiler: ${compiler:-unknown} ($("${compiler:-c++}" --version 2>/dev/null | head -1)), build type ${build_type:-unknown}"

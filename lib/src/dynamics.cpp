@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <functional>
 #include <limits>
@@ -119,6 +120,18 @@ class Mechanics {
     friction_ = c.model.friction_coefficient;
     kh_ = hertz_stiffness(g);
     constant_k_ = control.constant_mesh_stiffness_n_m;
+    damping_on_current_pair_ = c.model.damping_stiffness == DampingStiffness::current_pair;
+  }
+
+  // T1(t), T2(t). An RK4 step asks for its middle time twice and for its end
+  // time again as the next step's start: the last answer is kept, so a
+  // sinusoid costs two sines a step instead of four (the same values).
+  std::pair<double, double> torques(double t) const {
+    if (t != torque_time_) {
+      torque_time_ = t;
+      torque_values_ = {torque_at(case_.torque1, t), torque_at(case_.torque2, t)};
+    }
+    return torque_values_;
   }
 
   double kinetic_energy(const State& y) const {
@@ -154,17 +167,15 @@ class Mechanics {
   }
 
   double damping_factor(const ContactDamping& d, double ke) const {
-    return case_.model.damping_stiffness == DampingStiffness::current_pair
-               ? d.per_stiffness_s_m * ke
-               : d.per_stiffness_s_m * d.frozen_stiffness_n_m;
+    return damping_on_current_pair_ ? d.per_stiffness_s_m * ke
+                                    : d.per_stiffness_s_m * d.frozen_stiffness_n_m;
   }
 
   // The equations of motion (1)-(3), (43)-(45) in the mode m, and the powers
   // of the ledger.
   void rhs(double t, const State& y, const Mode& m, const ContactDamping& d, State& dydt,
            ContactTotals* totals = nullptr) const {
-    const double t1 = torque_at(case_.torque1, t);
-    const double t2 = torque_at(case_.torque2, t);
+    const auto [t1, t2] = torques(t);
     const double w1 = y[kW1];
     const double w2 = y[kW2];
     double moment1 = t1;
@@ -207,8 +218,13 @@ class Mechanics {
     }
     dydt[kTheta1] = w1;
     dydt[kTheta2] = w2;
-    dydt[kW1] = moment1 / j1_;
-    dydt[kW2] = moment2 / j2_;
+    // Both accelerations in one two-lane division (each lane the same IEEE
+    // division) written by one 16-byte store: the RK4 stage that reads them
+    // back as a pair then gets them forwarded from the store, where two 8-byte
+    // stores would stall it.
+    using Pair = double __attribute__((vector_size(2 * sizeof(double))));
+    const Pair accelerations = Pair{moment1, moment2} / Pair{j1_, j2_};
+    std::memcpy(&dydt[kW1], &accelerations, sizeof accelerations);
     dydt[kTorqueWork] = t1 * w1 + t2 * w2;
     dydt[kDampingLoss] = damping_power;
     dydt[kFrictionLoss] = friction_power;
@@ -248,7 +264,7 @@ class Mechanics {
   // and the positive factor Ke need not be evaluated.
   double push_sign_function(double x, int count, const ContactDamping& d, double dl,
                             double dl_rate) const {
-    if (case_.model.damping_stiffness == DampingStiffness::current_pair) {
+    if (damping_on_current_pair_) {
       return dl * (1.0 + d.per_stiffness_s_m * dl_rate);
     }
     double ke = 0.0;
@@ -349,6 +365,10 @@ class Mechanics {
   double rb1_ = 0.0, rb2_ = 0.0, j1_ = 0.0, j2_ = 0.0, backlash_ = 0.0, lp_ = 0.0;
   double x_pitch_ = 0.0, t0_ = 0.0, xs_ = 0.0, xe_ = 0.0, coast_offset_ = 0.0;
   double friction_ = 0.0, kh_ = 0.0, constant_k_ = 0.0;
+  bool damping_on_current_pair_ = true;
+  // Mechanics belongs to one run, so one thread.
+  mutable double torque_time_ = std::numeric_limits<double>::quiet_NaN();
+  mutable std::pair<double, double> torque_values_{0.0, 0.0};
 };
 
 std::string where(double t_s, long long step) {
@@ -376,7 +396,15 @@ class Run {
     result_.summary.kinetic_energy_initial_j = mech_.kinetic_energy(y_);
     result_.summary.stored_energy_initial_j = energy0_ - mech_.kinetic_energy(y_);
     book_keep();
-    if (control_.keep_series) record(0.0);
+    if (control_.keep_series) {
+      // The rows of the output grid up front, so that a long series is not
+      // copied as it grows; capped, as a guess must not fail a run.
+      constexpr double most_reserved_rows = 4e6;
+      const double rows =
+          c.integrator.end_time_s / (c.integrator.step_s * c.integrator.output_every);
+      result_.series.reserve(static_cast<std::size_t>(std::min(rows + 2.0, most_reserved_rows)));
+      record(0.0);
+    }
   }
 
   const Mechanics& mech() const { return mech_; }
@@ -521,10 +549,12 @@ class Run {
   SimulationResult result_;
 };
 
-void rk4_step(const Mechanics& mech, double t, const State& y, double h, const Mode& m,
-              const ContactDamping& d, State& out) {
-  State k1{}, k2{}, k3{}, k4{}, tmp{};
-  mech.rhs(t, y, m, d, k1);
+// The classical RK4 step from (t, y) with k1 = f(t, y) already evaluated:
+// event location tries many step sizes from the same start.
+void rk4_step_from(const Mechanics& mech, double t, const State& y, const State& k1, double h,
+                   const Mode& m, const ContactDamping& d, State& out) {
+  // Not zeroed: rhs writes every component.
+  State k2, k3, k4, tmp;
   for (std::size_t i = 0; i < kStateSize; ++i) tmp[i] = y[i] + 0.5 * h * k1[i];
   mech.rhs(t + 0.5 * h, tmp, m, d, k2);
   for (std::size_t i = 0; i < kStateSize; ++i) tmp[i] = y[i] + 0.5 * h * k2[i];
@@ -534,6 +564,12 @@ void rk4_step(const Mechanics& mech, double t, const State& y, double h, const M
   for (std::size_t i = 0; i < kStateSize; ++i) {
     out[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
   }
+}
+
+void rk4_step(const Mechanics& mech, double t, const State& y, double h, const Mode& m,
+              const ContactDamping& d, State& out, State& k1) {
+  mech.rhs(t, y, m, d, k1);
+  rk4_step_from(mech, t, y, k1, h, m, d, out);
 }
 
 // The classical RK4 step with the mode re-evaluated at every stage: what a
@@ -578,8 +614,12 @@ double earliest_event(const Mechanics& mech, const Mode& m, const ContactDamping
       return g[i];
     };
     std::uintmax_t iterations = 200;
+    // Late in a run 4 eps of the step is below the spacing of doubles near t:
+    // once the bracket is two neighbouring doubles it cannot shrink, and
+    // iterating on (up to the limit) would only repeat the same evaluations.
     const auto close_enough = [width](double lo, double hi) {
-      return hi - lo <= 4.0 * std::numeric_limits<double>::epsilon() * width;
+      return hi - lo <= 4.0 * std::numeric_limits<double>::epsilon() * width ||
+             std::nextafter(lo, hi) >= hi;
     };
     const double g_end = value(earliest);
     if (!(g_end < 0.0)) continue;  // this one comes after an earlier event
@@ -626,7 +666,8 @@ SimulationResult run_rk4(const SimulationCase& c, const StiffnessTable& table,
       ++run.steps();
       run.set_mode_without_events(t);
     } else {
-      rk4_step(mech, t, y, step, run.mode(), run.damping(), next);
+      State k1;
+      rk4_step(mech, t, y, step, run.mode(), run.damping(), next, k1);
       run.rhs_evaluations() += 4;
       run.check_finite(target, next);
       if (mech.mode_holds(next, run.mode(), run.damping())) {
@@ -644,8 +685,8 @@ SimulationResult run_rk4(const SimulationCase& c, const StiffnessTable& table,
         const ContactDamping damping = run.damping();
         long long evaluations = 0;
         const auto state_at = [&](double tau, State& x) {
-          rk4_step(mech, t, start, tau - t, mode, damping, x);
-          evaluations += 4;
+          rk4_step_from(mech, t, start, k1, tau - t, mode, damping, x);
+          evaluations += 3;
         };
         const double t_event =
             earliest_event(mech, mode, damping, t, target, g_a, g_b, n, state_at);
@@ -790,7 +831,11 @@ void validate_torque(const char* field, const Torque& torque) {
 
 }  // namespace
 
-double largest_resolving_step_s(const SimulationCase& c) {
+namespace {
+
+// The largest resolving step with Ke(X) of one pair given by `ke`.
+template <typename PairStiffness>
+double largest_step(const SimulationCase& c, PairStiffness ke) {
   const GearPair& g = c.gears;
   const double rb1 = base_radius(g, Gear::one);
   const double rb2 = base_radius(g, Gear::two);
@@ -803,15 +848,15 @@ double largest_resolving_step_s(const SimulationCase& c) {
   for (int i = 0; i <= samples; ++i) {
     const double u = segment.start_m + t0 * i / samples;
     double total = 0.0;
-    for (double x = u; x <= segment.end_m; x += t0)
-      total += mesh_stiffness(g, x, c.model.stiffness).ke;
+    for (double x = u; x <= segment.end_m; x += t0) total += ke(x);
     stiffest = std::max(stiffest, total);
   }
   const double period = 2.0 * std::numbers::pi / std::sqrt(stiffest * inverse_mass);
   return period / kStepsPerContactPeriod;
 }
 
-void validate(const SimulationCase& c) {
+// Every check but the step's upper bound, which needs the stiffness.
+void validate_except_step(const SimulationCase& c) {
   validate(c.gears);
   validate_torque("torque1", c.torque1);
   validate_torque("torque2", c.torque2);
@@ -850,7 +895,11 @@ void validate(const SimulationCase& c) {
   if (!std::isfinite(s.step_s) || s.step_s <= 0.0) {
     throw InputError("step", s.step_s, "a finite value > 0 s");
   }
-  const double largest = largest_resolving_step_s(c);
+}
+
+// The step against largest_resolving_step_s, here `largest`.
+void validate_step(const SimulationCase& c, double largest) {
+  const IntegratorSettings& s = c.integrator;
   if (s.step_s > largest) {
     throw InputError("step", s.step_s,
                      "(0, " + format_number(largest) +
@@ -864,15 +913,30 @@ void validate(const SimulationCase& c) {
   }
 }
 
+}  // namespace
+
+double largest_resolving_step_s(const SimulationCase& c) {
+  return largest_step(c,
+                      [&](double x) { return mesh_stiffness(c.gears, x, c.model.stiffness).ke; });
+}
+
+void validate(const SimulationCase& c) {
+  validate_except_step(c);
+  validate_step(c, largest_resolving_step_s(c));
+}
+
 SimulationResult simulate(const SimulationCase& c, const RunControl& control) {
-  validate(c);
+  validate_except_step(c);
   const StiffnessTable table(c.gears, c.model.stiffness);
   return simulate(c, table, control);
 }
 
 SimulationResult simulate(const SimulationCase& c, const StiffnessTable& table,
                           const RunControl& control) {
-  validate(c);
+  // The step bound from the table: the same Ke to round-off, without the
+  // adaptive quadrature that would otherwise cost more than a short run.
+  validate_except_step(c);
+  validate_step(c, largest_step(c, [&](double x) { return table.stiffness(x); }));
   if (!std::isfinite(control.constant_mesh_stiffness_n_m) ||
       control.constant_mesh_stiffness_n_m < 0.0) {
     throw InputError("constant_mesh_stiffness", control.constant_mesh_stiffness_n_m,
@@ -985,7 +1049,13 @@ std::vector<SweepRow> sweep_friction(const std::vector<SimulationCase>& cases, d
   const auto count = static_cast<std::size_t>(std::floor(intervals + 1e-9)) + 1;
   std::vector<double> frictions(count);
   for (std::size_t i = 0; i < count; ++i) frictions[i] = from + static_cast<double>(i) * step;
-  for (const SimulationCase& c : cases) validate(c);
+  // One table a base case, built once (friction does not change it) and
+  // shared read-only by the runs: a build costs as much as 3 ms of simulation.
+  std::vector<StiffnessTable> tables;
+  for (const SimulationCase& c : cases) {
+    validate(c);
+    tables.emplace_back(c.gears, c.model.stiffness);
+  }
 
   const std::size_t runs = count * cases.size();
   std::vector<double> ratio(runs, 0.0);
@@ -998,7 +1068,7 @@ std::vector<SweepRow> sweep_friction(const std::vector<SimulationCase>& cases, d
         c.model.friction_coefficient = frictions[i / cases.size()];
         RunControl control;
         control.keep_series = false;
-        const SimulationSummary s = simulate(c, control).summary;
+        const SimulationSummary s = simulate(c, tables[i % cases.size()], control).summary;
         if (!(s.damping_loss_j > 0.0)) {
           throw SimulationError("no damping loss in " + c.name +
                                 " at f = " + format_number(c.model.friction_coefficient) +
