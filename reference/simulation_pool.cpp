@@ -27,7 +27,7 @@ static_assert(member_count<GearPair>() == 10, "add the new GearPair member to th
 static_assert(member_count<Torque>() == 6, "add the new Torque member to the key");
 static_assert(member_count<InitialState>() == 4, "add the new InitialState member to the key");
 static_assert(member_count<RestitutionLaw>() == 3, "add the new RestitutionLaw member to the key");
-static_assert(member_count<StiffnessModel>() == 4, "add the new StiffnessModel member to the key");
+static_assert(member_count<StiffnessModel>() == 7, "add the new StiffnessModel member to the key");
 static_assert(member_count<ModelOptions>() == 6, "add the new ModelOptions member to the key");
 static_assert(member_count<IntegratorSettings>() == 5,
               "add the new IntegratorSettings member to the key");
@@ -60,7 +60,9 @@ std::string stiffness_key(const GearPair& g, const StiffnessModel& m) {
   key << g.teeth1 << g.teeth2 << g.module_m << g.pressure_angle_rad << g.face_width_m
       << g.addendum_coefficient << g.youngs_modulus_pa << g.poisson_ratio << g.density_kg_m3
       << g.backlash_m;
-  key << m.method << m.moment_sign << m.relative_tolerance << m.xform_rule;
+  key << m.method << m.moment_sign << m.relative_tolerance << m.xform_rule
+      << static_cast<int>(m.hertz_term) << static_cast<int>(m.bending_term)
+      << static_cast<int>(m.axial_term);
   return key.text();
 }
 

@@ -133,11 +133,14 @@ TEST_CASE("bad options are an InputError, a failing quadrature a QuadratureError
   CHECK_THROWS_AS(StiffnessTable(pair, {}, {0, 7}), InputError);
   CHECK_THROWS_AS(StiffnessTable(pair, {}, {64, 1}), InputError);
   CHECK_THROWS_AS(StiffnessTable(pair, {}, {64, 16}), InputError);
-  // GSL QAG refuses a relative tolerance below 50 machine epsilons: the error
-  // arises inside gsl_cheb_init's callback and must reach the caller intact.
+  // GSL QAG refuses a relative tolerance below 50 machine epsilons (1.1e-14):
+  // the error arises inside gsl_cheb_init's callback and must reach the
+  // caller intact. Below 1e-14 the model itself is refused.
   StiffnessModel unreachable;
-  unreachable.relative_tolerance = 1e-20;
+  unreachable.relative_tolerance = 1e-14;
   CHECK_THROWS_AS(StiffnessTable(pair, unreachable), QuadratureError);
+  unreachable.relative_tolerance = 1e-20;
+  CHECK_THROWS_AS(StiffnessTable(pair, unreachable), InputError);
 }
 
 TEST_CASE("orders above 7 (sixteen-coefficient evaluation) are as accurate") {
@@ -150,4 +153,20 @@ TEST_CASE("orders above 7 (sixteen-coefficient evaluation) are as accurate") {
   }
   // The same bound and reason as the default table's.
   CHECK(worst <= 1e-12);
+}
+
+TEST_CASE("a term of (29) switched off is left out of the table as out of mesh_stiffness") {
+  const GearPair pair = paper_gear_pair();
+  StiffnessModel no_axial;
+  no_axial.axial_term = false;
+  const StiffnessTable table(pair, no_axial);
+  const ContactSegment segment = contact_segment(pair);
+  for (int i = 0; i <= 50; ++i) {
+    const double x = segment.start_m + (segment.end_m - segment.start_m) * i / 50.0;
+    CAPTURE(x);
+    CHECK(table.compliance(x).axial_m_per_n == 0.0);
+    // The table's own accuracy bound of the tests above.
+    const double direct = mesh_stiffness(pair, x, no_axial).ke;
+    CHECK(std::abs(table.stiffness(x) - direct) <= 1e-12 * direct);
+  }
 }

@@ -157,8 +157,8 @@ void validate(const StiffnessModel& model) {
   }
 }
 
-IncludedCompliance included_compliance(const StiffnessModel& model, double hertz_m_per_n,
-                                       double bending_m_per_n, double axial_m_per_n) {
+PairCompliance included_compliance(const StiffnessModel& model, double hertz_m_per_n,
+                                   double bending_m_per_n, double axial_m_per_n) {
   return {model.hertz_term ? hertz_m_per_n : 0.0, model.bending_term ? bending_m_per_n : 0.0,
           model.axial_term ? axial_m_per_n : 0.0};
 }

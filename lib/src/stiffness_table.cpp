@@ -35,7 +35,8 @@ class NodeCompliances {
       : pair_(pair),
         model_(model),
         lp_(line_of_action_length(pair)),
-        hertz_compliance_(1.0 / hertz_stiffness(pair)) {}
+        hertz_compliance_(included_compliance(model, 1.0 / hertz_stiffness(pair), 0.0, 0.0)
+                              .hertz_m_per_n) {}
 
   ChebPtr fit(Part part, double a, double b, int order) {
     ChebPtr series(gsl_cheb_alloc(static_cast<std::size_t>(order)));
@@ -88,8 +89,11 @@ class NodeCompliances {
     // (25),(26): gear 2 sees the contact at lp - X1 from C2.
     const ToothCompliance c2 =
         tooth_compliance(tooth_of(pair_, Gear::two), lp_ - x1_m, e, width, model_);
-    nodes_.push_back(
-        {x1_m, c1.bending_m_per_n + c2.bending_m_per_n, c1.axial_m_per_n + c2.axial_m_per_n});
+    // Terms switched off in the model enter (29) as zero compliance.
+    const PairCompliance included =
+        included_compliance(model_, 0.0, c1.bending_m_per_n + c2.bending_m_per_n,
+                            c1.axial_m_per_n + c2.axial_m_per_n);
+    nodes_.push_back({x1_m, included.bending_m_per_n, included.axial_m_per_n});
     return nodes_.back();
   }
 
@@ -151,7 +155,9 @@ StiffnessTable::StiffnessTable(const GearPair& pair, const StiffnessModel& model
   stride_ = order_ <= 7 ? 8 : 16;
   const double piece_width = (end_ - start_) / pieces_;
   pieces_per_m_ = 1.0 / piece_width;
-  hertz_compliance_ = 1.0 / hertz_stiffness(pair);
+  validate(model);
+  hertz_compliance_ =
+      included_compliance(model, 1.0 / hertz_stiffness(pair), 0.0, 0.0).hertz_m_per_n;
 
   ChebPtr derivative(gsl_cheb_alloc(static_cast<std::size_t>(order_)));
   if (!derivative) throw std::bad_alloc();

@@ -83,15 +83,15 @@ MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessM
 // (29) 1/Ke = 1/Kh + 1/Kb1 + 1/Ka1 + 1/Kb2 + 1/Ka2.
 double series_stiffness(double kh, double kb1, double ka1, double kb2, double ka2);
 
-// The compliances of one pair as they enter (29) under `model`: a term that
-// is switched off contributes nothing. m/N.
-struct IncludedCompliance {
-  double hertz_m_per_n;
-  double bending_m_per_n;  // both teeth
-  double axial_m_per_n;    // both teeth
+// The series compliances of one pair as they enter (29), m/N. A term the
+// model switches off is 0.
+struct PairCompliance {
+  double hertz_m_per_n;    // 1/Kh
+  double bending_m_per_n;  // 1/Kb1 + 1/Kb2
+  double axial_m_per_n;    // 1/Ka1 + 1/Ka2
   double total_m_per_n() const { return hertz_m_per_n + bending_m_per_n + axial_m_per_n; }
 };
-IncludedCompliance included_compliance(const StiffnessModel& model, double hertz_m_per_n,
-                                       double bending_m_per_n, double axial_m_per_n);
+PairCompliance included_compliance(const StiffnessModel& model, double hertz_m_per_n,
+                                   double bending_m_per_n, double axial_m_per_n);
 
 }  // namespace gearimpact

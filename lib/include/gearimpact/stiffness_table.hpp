@@ -20,13 +20,6 @@
 
 namespace gearimpact {
 
-// The series compliances of one pair at a contact position, m/N.
-struct PairCompliance {
-  double hertz_m_per_n;    // 1/Kh
-  double bending_m_per_n;  // 1/Kb1 + 1/Kb2
-  double axial_m_per_n;    // 1/Ka1 + 1/Ka2
-  double total_m_per_n() const { return hertz_m_per_n + bending_m_per_n + axial_m_per_n; }
-};
 
 // The default order 7 is the highest that fits the eight-coefficient
 // evaluation; 64 pieces of it keep the worst relative error in Ke, over 10,000
