@@ -34,10 +34,6 @@ struct PooledSweep {
 PooledSweep submit_sweep(SimulationPool& pool, const std::vector<SimulationCase>& cases,
                          double from, double to, double step);
 
-// Writes `text` to `file` through a temporary file and a rename, so an
-// interrupted run never leaves a truncated file.
-void write_output(const std::filesystem::path& file, const std::string& text);
-
 // `value` with `digits` significant digits.
 std::string number(double value, int digits);
 

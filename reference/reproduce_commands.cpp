@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "gearimpact/atomic_file.hpp"
 #include "reproduce.hpp"
 
 #ifndef GEARIMPACT_PAPER_DATA_DIR
@@ -20,17 +21,6 @@
 #endif
 
 namespace gearimpact::cli {
-
-void write_output(const std::filesystem::path& file, const std::string& text) {
-  std::filesystem::path temporary = file;
-  temporary += ".partial";
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    out << text;
-    if (!out) throw std::runtime_error("cannot write " + temporary.string());
-  }
-  std::filesystem::rename(temporary, file);
-}
 
 std::string number(double value, int digits) {
   char buffer[64];
@@ -136,7 +126,7 @@ void reproduce(const ReproduceOptions& options) {
   }
   report += "## Run\n\n" + software_versions() + "- wall time: " + number(wall_s, 3) + " s\n";
   report += "- unexplained failures: " + std::to_string(unexplained) + "\n";
-  write_output(context.out / "REPORT.md", report);
+  write_file_atomically((context.out / "REPORT.md").string(), report);
   std::cerr << "reproduce: wrote " << (context.out / "REPORT.md").string() << " in "
             << number(wall_s, 3) << " s\n";
 }

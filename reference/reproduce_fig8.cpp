@@ -3,6 +3,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "gearimpact/atomic_file.hpp"
 #include "gearimpact/energy.hpp"
 #include "gearimpact/gear_pair.hpp"
 #include "gearimpact/paper_statements.hpp"
@@ -23,7 +24,7 @@ void write_csv(const std::filesystem::path& file, const std::vector<EnergyRatios
                   row.hertz_over_bending_system, row.axial_over_bending_system);
     text += line;
   }
-  write_output(file, text);
+  write_file_atomically(file.string(), text);
 }
 
 std::vector<std::string> one_pair_shading(const std::vector<EnergyRatios>& rows) {

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "gearimpact/atomic_file.hpp"
 #include "gearimpact/dynamics.hpp"
 #include "gearimpact/paper_statements.hpp"
 #include "gearimpact/simulation_case.hpp"
@@ -96,8 +97,8 @@ ReportSection reproduce_time_histories(const ReproduceContext& context) {
   for (int case_number = 1; case_number <= 3; ++case_number) {
     const SimulationResult& result = runs[static_cast<std::size_t>(case_number - 1)].get();
     const std::string stem = "case" + std::to_string(case_number);
-    write_output(context.out / (stem + "_time_series.csv"), series_csv(result.series));
-    write_output(context.out / (stem + "_summary.json"), summary_json(result.summary));
+    write_file_atomically((context.out / (stem + "_time_series.csv")).string(), series_csv(result.series));
+    write_file_atomically((context.out / (stem + "_summary.json")).string(), summary_json(result.summary));
     plot_case(context, case_number, stem + "_time_series.csv");
     const SimulationSummary& s = result.summary;
     section.text += "| " + std::to_string(case_number) + " | " + std::to_string(s.impacts_n1) +
@@ -190,7 +191,7 @@ ReportSection reproduce_fig7(const ReproduceContext& context) {
     csv += number(row.friction_coefficient, 17) + "," + number(row.ratio[0], 17) + "," +
            number(row.ratio[1], 17) + "," + number(row.ratio[2], 17) + "\n";
   }
-  write_output(context.out / "fig7_friction_sweep.csv", csv);
+  write_file_atomically((context.out / "fig7_friction_sweep.csv").string(), csv);
   render(
       context.out,
       {"fig7_friction_sweep",

@@ -48,9 +48,9 @@ TEST_CASE("reproduce: every figure, its data, and REPORT.md with no unexplained 
   CHECK(report.find("unexplained failures: 0") != std::string::npos);
   CHECK(report.find("| FAIL |") == std::string::npos);
   CHECK(report.find("Verdict: the default stands.") != std::string::npos);
-  // No partial files are left behind by the atomic writes.
+  // No temporary files (hidden siblings) are left behind by the atomic writes.
   for (const auto& entry : std::filesystem::directory_iterator(out)) {
-    CHECK(entry.path().extension() != ".partial");
+    CHECK(entry.path().filename().string().front() != '.');
   }
   std::filesystem::remove_all(out);
 }

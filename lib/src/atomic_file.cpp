@@ -1,5 +1,6 @@
 #include "gearimpact/atomic_file.hpp"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -33,6 +34,8 @@ void write_file_atomically(const std::string& path, std::string_view text) {
     std::remove(name.data());
     throw std::runtime_error(std::string(what) + " " + path + ": " + reason);
   };
+  // mkstemp creates the file private; an output is for everyone to read.
+  if (::fchmod(fd, 0644) != 0) fail("cannot set the permissions of");
   std::size_t written = 0;
   while (written < text.size()) {
     const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
