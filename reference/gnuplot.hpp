@@ -10,7 +10,7 @@
 namespace gearimpact::cli {
 
 struct Figure {
-  std::string name;   // file stem: DIR/NAME.png, DIR/NAME.svg, DIR/NAME.gp
+  std::string name;  // file stem: DIR/NAME.png, DIR/NAME.svg, DIR/NAME.gp
   std::string title;
   std::string x_label;
   std::string y_label;

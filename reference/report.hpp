@@ -18,7 +18,7 @@ struct ReportRow {
   std::string ours;       // ours, as text
   std::string tolerance;  // as text, with its kind
   Verdict verdict = Verdict::fail;
-  std::string note;       // for a known difference: why, and by how much
+  std::string note;  // for a known difference: why, and by how much
 };
 
 struct ReportSection {

@@ -31,11 +31,12 @@ std::vector<std::string> one_pair_shading(const std::vector<EnergyRatios>& rows)
   const auto [start, end] = one_pair_zone(rows);
   return {"set object 1 rect from " + number(start, 4) + ", graph 0 to " + number(end, 4) +
               ", graph 1 fc rgb '#e8e8e8' fs solid 1.0 noborder behind",
-          "set label 1 'one pair' at " + number(0.5 * (start + end), 4) +
-              ", graph 0.95 center",
+          "set label 1 'one pair' at " + number(0.5 * (start + end), 4) + ", graph 0.95 center",
           "set label 2 'two pairs' at graph 0.2, graph 0.95 center",
           "set label 3 'two pairs' at graph 0.8, graph 0.95 center",
-          "set xrange [-2:30]", "set xtics 1", "set key outside bottom center horizontal"};
+          "set xrange [-2:30]",
+          "set xtics 1",
+          "set key outside bottom center horizontal"};
 }
 
 Figure fig8_figure(const std::string& stem, const std::string& title,
@@ -64,12 +65,12 @@ ReportSection reproduce_fig8(const ReproduceContext& context) {
       energy_ratio_cycle(paper_gear_pair(), points, flipped_model);
   write_csv(context.out / "fig8_energy_ratios.csv", physical);
   write_csv(context.out / "fig8_energy_ratios_flipped_moment.csv", flipped);
-  render(context.out, fig8_figure("fig8_energy_ratios",
-                                  "Fig. 8: ratios of elastic potential energies (physical moment, default)",
-                                  physical));
   render(context.out,
-         fig8_figure("fig8_energy_ratios_flipped_moment",
-                     "Fig. 8 with the sign of the Fa h moment flipped", flipped));
+         fig8_figure("fig8_energy_ratios",
+                     "Fig. 8: ratios of elastic potential energies (physical moment, default)",
+                     physical));
+  render(context.out, fig8_figure("fig8_energy_ratios_flipped_moment",
+                                  "Fig. 8 with the sign of the Fa h moment flipped", flipped));
 
   ReportSection section;
   section.title = "Fig. 8: elastic energies over one meshing cycle";
@@ -86,11 +87,11 @@ ReportSection reproduce_fig8(const ReproduceContext& context) {
                                   s.matches(low, s.paper_low) && s.matches(high, s.paper_high));
     if (row.verdict == Verdict::fail && !note_if_missed.empty()) {
       row.verdict = Verdict::known_difference;
-      row.note = note_if_missed + " (" +
-                 number(std::max(s.tolerances_off(low, s.paper_low),
-                                 s.tolerances_off(high, s.paper_high)),
-                        2) +
-                 " tolerances off)";
+      row.note =
+          note_if_missed + " (" +
+          number(std::max(s.tolerances_off(low, s.paper_low), s.tolerances_off(high, s.paper_high)),
+                 2) +
+          " tolerances off)";
     }
     return row;
   };
@@ -113,18 +114,16 @@ ReportSection reproduce_fig8(const ReproduceContext& context) {
   const RatioExtremes axial_one_physical = extremes(physical, axial_one);
   const RatioExtremes axial_one_flipped = extremes(flipped, axial_one);
   const std::string flipped_note = "the printed, physical sign of Fa h; with it flipped: ";
-  section.rows.push_back(range_row(
-      "fig8_bending_over_hertz", 1.0 / hertz_physical.max, 1.0 / hertz_physical.min,
-      flipped_note + number(1.0 / hertz_flipped.max, 3) + " to " +
-          number(1.0 / hertz_flipped.min, 3)));
+  section.rows.push_back(range_row("fig8_bending_over_hertz", 1.0 / hertz_physical.max,
+                                   1.0 / hertz_physical.min,
+                                   flipped_note + number(1.0 / hertz_flipped.max, 3) + " to " +
+                                       number(1.0 / hertz_flipped.min, 3)));
   section.rows.push_back(range_row(
       "fig8_axial_over_bending_system", axial_sys_physical.min, axial_sys_physical.max,
-      flipped_note + number(axial_sys_flipped.min, 3) + " to " +
-          number(axial_sys_flipped.max, 3)));
+      flipped_note + number(axial_sys_flipped.min, 3) + " to " + number(axial_sys_flipped.max, 3)));
   section.rows.push_back(range_row(
       "fig8_axial_over_bending_one_pair", axial_one_physical.min, axial_one_physical.max,
-      flipped_note + number(axial_one_flipped.min, 3) + " to " +
-          number(axial_one_flipped.max, 3)));
+      flipped_note + number(axial_one_flipped.min, 3) + " to " + number(axial_one_flipped.max, 3)));
   return section;
 }
 

@@ -97,8 +97,10 @@ ReportSection reproduce_time_histories(const ReproduceContext& context) {
   for (int case_number = 1; case_number <= 3; ++case_number) {
     const SimulationResult& result = runs[static_cast<std::size_t>(case_number - 1)].get();
     const std::string stem = "case" + std::to_string(case_number);
-    write_file_atomically((context.out / (stem + "_time_series.csv")).string(), series_csv(result.series));
-    write_file_atomically((context.out / (stem + "_summary.json")).string(), summary_json(result.summary));
+    write_file_atomically((context.out / (stem + "_time_series.csv")).string(),
+                          series_csv(result.series));
+    write_file_atomically((context.out / (stem + "_summary.json")).string(),
+                          summary_json(result.summary));
     plot_case(context, case_number, stem + "_time_series.csv");
     const SimulationSummary& s = result.summary;
     section.text += "| " + std::to_string(case_number) + " | " + std::to_string(s.impacts_n1) +

@@ -60,8 +60,7 @@ SimulationCase paper_case_with(int number, const ReadingOptions& r) {
       {"pair", DampingStiffness::current_pair},
       {"pitch-pair", DampingStiffness::pitch_pair_at_impact},
       {"hertz", DampingStiffness::hertz}};
-  const std::map<std::string, double> speed_units{
-      {"mm/s", 1.0e-3}, {"in/s", 0.0254}, {"m/s", 1.0}};
+  const std::map<std::string, double> speed_units{{"mm/s", 1.0e-3}, {"in/s", 0.0254}, {"m/s", 1.0}};
   PaperReading reading;
   reading.torque_unit = r.torque_unit == "n-mm" ? TorqueUnit::n_mm : TorqueUnit::kgf_mm;
   reading.case3_angular_frequency_rad_s = r.case3_frequency_rad_s;
@@ -120,8 +119,7 @@ SimulationCase case_to_run(const SimulateOptions& o, const CLI::App& command) {
     c.model.friction_coefficient = o.friction;
     c.integrator.step_s = o.step_s;
     if (o.end_time_s != 0.0) c.integrator.end_time_s = o.end_time_s;
-    c.integrator.kind =
-        o.integrator == "adaptive" ? IntegratorKind::adaptive : IntegratorKind::rk4;
+    c.integrator.kind = o.integrator == "adaptive" ? IntegratorKind::adaptive : IntegratorKind::rk4;
     c.integrator.adaptive_relative_tolerance = o.relative_tolerance;
     c.integrator.output_every = o.every;
     return c;
@@ -131,8 +129,7 @@ SimulationCase case_to_run(const SimulateOptions& o, const CLI::App& command) {
   if (given("--dt")) c.integrator.step_s = o.step_s;
   if (given("--t-end")) c.integrator.end_time_s = o.end_time_s;
   if (given("--integrator")) {
-    c.integrator.kind =
-        o.integrator == "adaptive" ? IntegratorKind::adaptive : IntegratorKind::rk4;
+    c.integrator.kind = o.integrator == "adaptive" ? IntegratorKind::adaptive : IntegratorKind::rk4;
   }
   if (given("--rtol")) c.integrator.adaptive_relative_tolerance = o.relative_tolerance;
   if (given("--every")) c.integrator.output_every = o.every;

@@ -34,7 +34,8 @@ TEST_CASE("stiffness: CSV columns in SI, X_start to X_end inclusive, round-trip 
   REQUIRE(r.exit_code == 0);
   const auto rows = csv_rows(r.out);
   REQUIRE(rows.size() == 6);
-  CHECK(rows[0] == std::vector<std::string>{"x_m", "phi1_rad", "kb1", "ka1", "kb2", "ka2", "kh", "ke"});
+  CHECK(rows[0] ==
+        std::vector<std::string>{"x_m", "phi1_rad", "kb1", "ka1", "kb2", "ka2", "kh", "ke"});
   const GearPair pair = paper_gear_pair();
   const ContactSegment segment = contact_segment(pair);
   // 17 significant digits round-trip a double exactly.
@@ -63,8 +64,8 @@ TEST_CASE("energy-ratios: CSV of Fig. 8 over one cycle") {
   // angle_deg is phi1 of (12) in degrees at X_start.
   const GearPair pair = paper_gear_pair();
   CHECK(std::abs(std::stod(rows[1][0]) -
-                 contact_angle(pair, Gear::one, contact_segment(pair).start_m) * 180.0 / std::numbers::pi) <
-        1e-12);
+                 contact_angle(pair, Gear::one, contact_segment(pair).start_m) * 180.0 /
+                     std::numbers::pi) < 1e-12);
 }
 
 TEST_CASE("bad arguments name the option and exit non-zero") {

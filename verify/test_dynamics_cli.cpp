@@ -107,8 +107,7 @@ TEST_CASE("simulate --case-file runs a case file: the paper's files give the --c
     const std::string file =
         std::string(GEARIMPACT_PAPER_DATA_DIR) + "/case" + std::to_string(n) + ".toml";
     const Output from_file = run_cli("simulate --case-file " + file + " --t-end 0.002");
-    const Output from_table =
-        run_cli("simulate --case " + std::to_string(n) + " --t-end 0.002");
+    const Output from_table = run_cli("simulate --case " + std::to_string(n) + " --t-end 0.002");
     REQUIRE(from_file.status == 0);
     CHECK(from_file.text == from_table.text);
   }

@@ -24,8 +24,8 @@ TEST_CASE("Fig. 7: damping loss / friction loss against the text, and linearity 
   REQUIRE(rows.size() == 3);
   for (std::size_t j = 0; j < cases.size(); ++j) {
     for (const SweepRow* row : {&rows.front(), &rows.back()}) {
-      const std::string key = "fig7_case" + std::to_string(j + 1) +
-                              (row == &rows.front() ? "_f001" : "_f009");
+      const std::string key =
+          "fig7_case" + std::to_string(j + 1) + (row == &rows.front() ? "_f001" : "_f009");
       const PaperStatement& expected = paper.at(key);
       const double measured = 1.0 / row->ratio[j];
       MESSAGE(key << ": paper about " << expected.paper_low << ", measured " << measured << " ("

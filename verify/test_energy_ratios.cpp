@@ -51,14 +51,15 @@ TEST_CASE("Fig. 8 zones: one meshing cycle from about -1 to 29 deg, one pair fro
 
   const PaperStatement& zone = statements.at("fig8_one_pair_zone");
   const auto [one_pair_start, one_pair_end] = one_pair_zone(rows);
-  MESSAGE("one-pair zone: " << one_pair_start << " to " << one_pair_end << " deg (paper: 12 to 17)");
+  MESSAGE("one-pair zone: " << one_pair_start << " to " << one_pair_end
+                            << " deg (paper: 12 to 17)");
   CHECK(zone.matches(one_pair_start, zone.paper_low));
   CHECK(zone.matches(one_pair_end, zone.paper_high));
   // The zone follows from the contact ratio alone: its width in X is
   // (2 - eps) t0, i.e. (2 - eps) t0 / Rb1 in phi1 by (12).
   const GearPair pair = paper_gear_pair();
-  const double width_deg =
-      (2.0 - contact_ratio(pair)) * base_pitch(pair) / base_radius(pair, Gear::one) * 180.0 / std::numbers::pi;
+  const double width_deg = (2.0 - contact_ratio(pair)) * base_pitch(pair) /
+                           base_radius(pair, Gear::one) * 180.0 / std::numbers::pi;
   CHECK(std::abs((one_pair_end - one_pair_start) - width_deg) < 0.1);
 }
 
@@ -73,7 +74,8 @@ TEST_CASE("Fig. 8: the one-pair effective bending stiffness peaks near 22 deg") 
   }
 }
 
-TEST_CASE("Fig. 8 energy ratios: the flipped Fa h moment meets the paper, the physical one misses") {
+TEST_CASE(
+    "Fig. 8 energy ratios: the flipped Fa h moment meets the paper, the physical one misses") {
   const auto statements = verify::read_statements("fig8_energy_ratios.csv");
   const std::vector<EnergyRatios> physical = cycle(AxialMomentSign::physical);
   const std::vector<EnergyRatios> flipped = cycle(AxialMomentSign::flipped);

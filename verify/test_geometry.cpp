@@ -77,9 +77,8 @@ TEST_CASE("contact segment ends are where each tip circle meets the line of acti
 TEST_CASE("(41) base pitch equals the circular pitch of either base circle") {
   for (const GearPair& pair : {paper_gear_pair(), pair_17_43_at_25_deg()}) {
     for (Gear gear : {Gear::one, Gear::two}) {
-      CHECK(relative_difference(base_pitch(pair),
-                                2.0 * std::numbers::pi * base_radius(pair, gear) / teeth(pair, gear)) <
-            geometry_tolerance);
+      CHECK(relative_difference(base_pitch(pair), 2.0 * std::numbers::pi * base_radius(pair, gear) /
+                                                      teeth(pair, gear)) < geometry_tolerance);
     }
   }
 }
@@ -105,8 +104,8 @@ TEST_CASE("contact ratio: the paper's pair and the tip-pressure-angle formula") 
 TEST_CASE("(9),(12): theta1 = 0 puts a drive contact at the pitch point, phi1 = a0 - pi/(2 Z1)") {
   const GearPair pair = paper_gear_pair();
   const double phi1 = contact_angle(pair, Gear::one, pitch_point_position(pair));
-  CHECK(relative_difference(phi1, pair.pressure_angle_rad - std::numbers::pi / (2.0 * pair.teeth1)) <
-        geometry_tolerance);
+  CHECK(relative_difference(phi1, pair.pressure_angle_rad -
+                                      std::numbers::pi / (2.0 * pair.teeth1)) < geometry_tolerance);
   const LoadedPairs on_n1 = loaded_pairs(pair, ContactLine::n1, 0.0);
   bool pitch_point_loaded = false;
   for (std::size_t i = 0; i < on_n1.count; ++i) {
@@ -167,7 +166,8 @@ TEST_CASE("(42) pairs a base pitch apart; two pairs for a fraction eps - 1 of ea
   }
 }
 
-TEST_CASE("coast line N2: half a base pitch from the drive contacts by default, in phase as option") {
+TEST_CASE(
+    "coast line N2: half a base pitch from the drive contacts by default, in phase as option") {
   const GearPair pair = paper_gear_pair();
   const double t0 = base_pitch(pair);
   const double theta1 = 0.004;  // any rotation
@@ -181,7 +181,8 @@ TEST_CASE("coast line N2: half a base pitch from the drive contacts by default, 
     const double offset = phase == CoastPhase::half_base_pitch ? half_pitch_roll : 0.0;
     const LoadedPairs loaded = loaded_pairs(pair, ContactLine::n2, theta1, phase);
     for (std::size_t k = 0; k < loaded.count; ++k) {
-      const double pitches = (loaded.position_m[k] - pitch_point_position(pair) + rolled - offset) / t0;
+      const double pitches =
+          (loaded.position_m[k] - pitch_point_position(pair) + rolled - offset) / t0;
       CHECK(std::abs(pitches - std::round(pitches)) < 1e-12);
     }
   }

@@ -19,7 +19,8 @@ using gearimpact::verify::relative_difference;
 
 namespace {
 
-using Routine = std::function<QuadratureResult(const Integrand&, double, double, QuadratureTolerance)>;
+using Routine =
+    std::function<QuadratureResult(const Integrand&, double, double, QuadratureTolerance)>;
 
 struct NamedRoutine {
   std::string name;
@@ -68,7 +69,8 @@ TEST_CASE("smooth and end-point-singular integrals with closed forms") {
   };
   const std::vector<Case> cases{
       {"sin on [0, pi] = 2", [](double x) { return std::sin(x); }, 0.0, std::numbers::pi, 2.0},
-      {"exp on [0, 1] = e - 1", [](double x) { return std::exp(x); }, 0.0, 1.0, std::numbers::e - 1.0},
+      {"exp on [0, 1] = e - 1", [](double x) { return std::exp(x); }, 0.0, 1.0,
+       std::numbers::e - 1.0},
       {"1/(1+x^2) on [0, 1] = pi/4", [](double x) { return 1.0 / (1.0 + x * x); }, 0.0, 1.0,
        std::numbers::pi / 4.0},
   };

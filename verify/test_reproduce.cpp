@@ -14,18 +14,22 @@
 using namespace gearimpact::verify;
 
 TEST_CASE("reproduce: every figure, its data, and REPORT.md with no unexplained failure") {
-  const std::filesystem::path out =
-      std::filesystem::temp_directory_path() / ("gearimpact-reproduce-" + std::to_string(::getpid()));
+  const std::filesystem::path out = std::filesystem::temp_directory_path() /
+                                    ("gearimpact-reproduce-" + std::to_string(::getpid()));
   std::filesystem::remove_all(out);
   const CommandResult r = run_command(cli("reproduce --out " + out.string()));
   CAPTURE(r.err);
   REQUIRE(r.exit_code == 0);
-  const std::vector<std::string> figures{
-      "fig4a_case1_relative_displacement", "fig4b_case1_angular_displacements",
-      "fig4c_case1_angular_velocities",    "fig5a_case2_relative_displacement",
-      "fig5b_case2_angular_velocities",    "fig6a_case3_relative_displacement",
-      "fig6b_case3_angular_velocities",    "fig7_friction_sweep",
-      "fig8_energy_ratios",                "fig8_energy_ratios_flipped_moment"};
+  const std::vector<std::string> figures{"fig4a_case1_relative_displacement",
+                                         "fig4b_case1_angular_displacements",
+                                         "fig4c_case1_angular_velocities",
+                                         "fig5a_case2_relative_displacement",
+                                         "fig5b_case2_angular_velocities",
+                                         "fig6a_case3_relative_displacement",
+                                         "fig6b_case3_angular_velocities",
+                                         "fig7_friction_sweep",
+                                         "fig8_energy_ratios",
+                                         "fig8_energy_ratios_flipped_moment"};
   for (const std::string& figure : figures) {
     for (const char* extension : {".png", ".svg", ".gp"}) {
       const std::filesystem::path file = out / (figure + extension);
@@ -34,10 +38,10 @@ TEST_CASE("reproduce: every figure, its data, and REPORT.md with no unexplained 
       CHECK(std::filesystem::file_size(file) > 100);
     }
   }
-  for (const char* data : {"case1_time_series.csv", "case2_time_series.csv", "case3_time_series.csv",
-                           "case1_summary.json", "case2_summary.json", "case3_summary.json",
-                           "fig7_friction_sweep.csv", "fig8_energy_ratios.csv",
-                           "fig8_energy_ratios_flipped_moment.csv"}) {
+  for (const char* data :
+       {"case1_time_series.csv", "case2_time_series.csv", "case3_time_series.csv",
+        "case1_summary.json", "case2_summary.json", "case3_summary.json", "fig7_friction_sweep.csv",
+        "fig8_energy_ratios.csv", "fig8_energy_ratios_flipped_moment.csv"}) {
     CAPTURE(data);
     CHECK(std::filesystem::exists(out / data));
   }

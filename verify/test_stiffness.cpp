@@ -168,9 +168,8 @@ TEST_CASE("harness: (20),(21) by four quadratures and (16)-(19) by the x-form ag
       }
     }
     for (std::size_t m = 1; m < all_methods.size(); ++m) {
-      MESSAGE(named.name << ": worst |" << to_string(all_methods[m])
-                         << " - gsl| / max = " << worst_vs_qag[m].difference << " at "
-                         << worst_vs_qag[m].where);
+      MESSAGE(named.name << ": worst |" << to_string(all_methods[m]) << " - gsl| / max = "
+                         << worst_vs_qag[m].difference << " at " << worst_vs_qag[m].where);
     }
   }
   CHECK(compared > 1000);
@@ -209,7 +208,8 @@ TEST_CASE("harness: the flipped Fa h moment, tau-form integrand against the x-fo
   }
 }
 
-TEST_CASE("limit: a contact just above the base circle, 1/Kb -> 3 X^2 sin 2theta_b / (8 E L Rb^2)") {
+TEST_CASE(
+    "limit: a contact just above the base circle, 1/Kb -> 3 X^2 sin 2theta_b / (8 E L Rb^2)") {
   // As X -> 0: l -> X^2 cos theta_b / (2 Rb), phi -> -theta_b, h -> Rb sin theta_b,
   // so the moment tends to F Rb sin^2 theta_b over a section of half thickness
   // Rb sin theta_b: 1/Kb -> M^2 l / (E I) = 3 X^2 sin theta_b cos theta_b / (4 E L Rb^2)
@@ -222,16 +222,15 @@ TEST_CASE("limit: a contact just above the base circle, 1/Kb -> 3 X^2 sin 2theta
     const double x = 1e-7;
     const double axial_limit = x * x * std::sin(theta_b) * std::cos(theta_b) /
                                (4.0 * pair.youngs_modulus_pa * pair.face_width_m * rb * rb);
-    const ToothCompliance c =
-        tooth_compliance(tooth, x, pair.youngs_modulus_pa, pair.face_width_m);
+    const ToothCompliance c = tooth_compliance(tooth, x, pair.youngs_modulus_pa, pair.face_width_m);
     // Leading-order limits; the first correction is of order X / (Rb theta_b),
     // 6e-5 for gear 1, times coefficients of a few.
     CHECK(relative_difference(c.bending_m_per_n, 3.0 * axial_limit) < 1e-3);
     CHECK(relative_difference(c.axial_m_per_n, axial_limit) < 1e-3);
   }
-  CHECK_THROWS_AS(tooth_compliance(tooth_of(pair, Gear::one), 0.0, pair.youngs_modulus_pa,
-                                   pair.face_width_m),
-                  InputError);
+  CHECK_THROWS_AS(
+      tooth_compliance(tooth_of(pair, Gear::one), 0.0, pair.youngs_modulus_pa, pair.face_width_m),
+      InputError);
 }
 
 TEST_CASE("(29) series stiffness and (5),(16),(17),(28) energies: U = F^2 / (2 Ke)") {

@@ -1,5 +1,4 @@
 #include "gearimpact/case_file.hpp"
-#include "gearimpact/dynamics.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -13,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "gearimpact/dynamics.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/units.hpp"
 
@@ -587,12 +587,12 @@ SimulationCase read_case(const Reader& reader, const toml::value& root,
     }
     if (integrator.step_s > largest_step_s) {
       const toml::value* at = section.find("step");
-      reader.out_of_range(section.field("step"), at,
-                          at != nullptr ? written(*at)
-                                        : shortest_decimal(integrator.step_s) + " s (the default)",
-                          "(0, " + shortest_decimal(largest_step_s) +
-                              "] s: a larger step takes fewer than 20 steps per period of the "
-                              "stiffest contact and does not resolve it");
+      reader.out_of_range(
+          section.field("step"), at,
+          at != nullptr ? written(*at) : shortest_decimal(integrator.step_s) + " s (the default)",
+          "(0, " + shortest_decimal(largest_step_s) +
+              "] s: a larger step takes fewer than 20 steps per period of the "
+              "stiffest contact and does not resolve it");
     }
     integrator.end_time_s = section.quantity("end_time", Dimension::time);
     if (integrator.end_time_s <= 0.0) {

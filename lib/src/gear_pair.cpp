@@ -27,7 +27,9 @@ double undercut_teeth_limit(const GearPair& pair) {
 
 }  // namespace
 
-GearPair paper_gear_pair() { return GearPair{}; }
+GearPair paper_gear_pair() {
+  return GearPair{};
+}
 
 int teeth(const GearPair& pair, Gear gear) {
   return gear == Gear::one ? pair.teeth1 : pair.teeth2;
@@ -45,11 +47,12 @@ double base_radius(const GearPair& pair, Gear gear) {
   return pitch_radius(pair, gear) * std::cos(pair.pressure_angle_rad);
 }
 
-double involute_function(double angle_rad) { return std::tan(angle_rad) - angle_rad; }
+double involute_function(double angle_rad) {
+  return std::tan(angle_rad) - angle_rad;
+}
 
 double half_tooth_angle(const GearPair& pair, Gear gear) {
-  return std::numbers::pi / (2.0 * teeth(pair, gear)) +
-         involute_function(pair.pressure_angle_rad);
+  return std::numbers::pi / (2.0 * teeth(pair, gear)) + involute_function(pair.pressure_angle_rad);
 }
 
 double line_of_action_length(const GearPair& pair) {

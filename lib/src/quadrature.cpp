@@ -42,13 +42,15 @@ struct CountedIntegrand {
 
   void require_finite(std::string_view routine) const {
     if (non_finite_seen) {
-      throw QuadratureError(std::string(routine) + ": the integrand is not finite at x = " +
-                            format_number(non_finite_at));
+      throw QuadratureError(std::string(routine) +
+                            ": the integrand is not finite at x = " + format_number(non_finite_at));
     }
   }
 };
 
-double call_counted(double x, void* params) { return (*static_cast<CountedIntegrand*>(params))(x); }
+double call_counted(double x, void* params) {
+  return (*static_cast<CountedIntegrand*>(params))(x);
+}
 
 void require_finite_interval(std::string_view routine, double a, double b) {
   if (!std::isfinite(a) || !std::isfinite(b)) {
@@ -59,8 +61,8 @@ void require_finite_interval(std::string_view routine, double a, double b) {
 
 void throw_gsl(std::string_view routine, int status, double a, double b, double error_estimate) {
   throw QuadratureError(std::string(routine) + " failed on [" + format_number(a) + ", " +
-                        format_number(b) + "]: " + gsl_strerror(status) +
-                        " (error estimate " + format_number(error_estimate) + ")");
+                        format_number(b) + "]: " + gsl_strerror(status) + " (error estimate " +
+                        format_number(error_estimate) + ")");
 }
 
 }  // namespace

@@ -119,8 +119,7 @@ double bending_integrand(double theta_b, double phi, double tau, AxialMomentSign
 double axial_integrand(double theta_b, double phi, double tau) {
   const double sin_phi = std::sin(phi);
   // (21) with (24)
-  return (theta_b - tau) * std::cos(tau) * sin_phi * sin_phi /
-         (2.0 * section_factor(theta_b, tau));
+  return (theta_b - tau) * std::cos(tau) * sin_phi * sin_phi / (2.0 * section_factor(theta_b, tau));
 }
 
 ToothCompliance tooth_compliance(const InvoluteTooth& tooth, double contact_x_m,
@@ -172,9 +171,9 @@ MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessM
   validate(model);
   const double lp = line_of_action_length(pair);
   if (!std::isfinite(x1_m) || x1_m <= 0.0 || x1_m >= lp) {
-    throw InputError("contact position X1", x1_m,
-                     "(0, lp) with lp = " + format_number(lp) +
-                         " m: between the tangent points C1 and C2");
+    throw InputError(
+        "contact position X1", x1_m,
+        "(0, lp) with lp = " + format_number(lp) + " m: between the tangent points C1 and C2");
   }
   const double e = pair.youngs_modulus_pa;
   const double width = pair.face_width_m;

@@ -35,8 +35,8 @@ class NodeCompliances {
       : pair_(pair),
         model_(model),
         lp_(line_of_action_length(pair)),
-        hertz_compliance_(included_compliance(model, 1.0 / hertz_stiffness(pair), 0.0, 0.0)
-                              .hertz_m_per_n) {}
+        hertz_compliance_(
+            included_compliance(model, 1.0 / hertz_stiffness(pair), 0.0, 0.0).hertz_m_per_n) {}
 
   ChebPtr fit(Part part, double a, double b, int order) {
     ChebPtr series(gsl_cheb_alloc(static_cast<std::size_t>(order)));
@@ -90,9 +90,8 @@ class NodeCompliances {
     const ToothCompliance c2 =
         tooth_compliance(tooth_of(pair_, Gear::two), lp_ - x1_m, e, width, model_);
     // Terms switched off in the model enter (29) as zero compliance.
-    const PairCompliance included =
-        included_compliance(model_, 0.0, c1.bending_m_per_n + c2.bending_m_per_n,
-                            c1.axial_m_per_n + c2.axial_m_per_n);
+    const PairCompliance included = included_compliance(
+        model_, 0.0, c1.bending_m_per_n + c2.bending_m_per_n, c1.axial_m_per_n + c2.axial_m_per_n);
     nodes_.push_back({x1_m, included.bending_m_per_n, included.axial_m_per_n});
     return nodes_.back();
   }

@@ -1,7 +1,7 @@
 #include "gearimpact/tooth_profile.hpp"
 
-#include <boost/math/tools/roots.hpp>
 #include <algorithm>
+#include <boost/math/tools/roots.hpp>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -69,9 +69,9 @@ double section_half_thickness(const InvoluteTooth& tooth, double height_m) {
     throw InputError("section height", height_m, "heights below the pointed tip of the tooth");
   }
   std::uintmax_t iterations = 200;
-  const auto bracket = boost::math::tools::toms748_solve(
-      excess_height, rb, upper, -height_m, excess_height(upper),
-      boost::math::tools::eps_tolerance<double>(), iterations);
+  const auto bracket =
+      boost::math::tools::toms748_solve(excess_height, rb, upper, -height_m, excess_height(upper),
+                                        boost::math::tools::eps_tolerance<double>(), iterations);
   const double r = 0.5 * (bracket.first + bracket.second);
   return r * std::sin(flank_half_angle(tooth, r));
 }

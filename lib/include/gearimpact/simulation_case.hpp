@@ -17,8 +17,8 @@ namespace gearimpact {
 struct Torque {
   enum class Kind { constant, sinusoidal, user };
   Kind kind = Kind::constant;
-  double constant_n_m = 0.0;      // Kind::constant: T
-  double amplitude_n_m = 0.0;     // Kind::sinusoidal: A sin(W t + phase)
+  double constant_n_m = 0.0;   // Kind::constant: T
+  double amplitude_n_m = 0.0;  // Kind::sinusoidal: A sin(W t + phase)
   double angular_frequency_rad_s = 0.0;
   double phase_rad = 0.0;
   std::function<double(double)> user;  // Kind::user: T(t_s), through the library API only
@@ -49,8 +49,8 @@ enum class DampingStiffness {
 // (33) e = 1 - c (Vi / speed_unit)^p.
 struct RestitutionLaw {
   double coefficient = 0.022;
-  double exponent = 0.375;           // 3/8; 0.36 is the alternative reading
-  double speed_unit_m_s = 1.0e-3;    // Vi in mm/s (default); 0.0254 for in/s, 1 for m/s
+  double exponent = 0.375;         // 3/8; 0.36 is the alternative reading
+  double speed_unit_m_s = 1.0e-3;  // Vi in mm/s (default); 0.0254 for in/s, 1 for m/s
 };
 
 struct ModelOptions {
@@ -66,10 +66,10 @@ enum class IntegratorKind { rk4, adaptive };
 
 struct IntegratorSettings {
   IntegratorKind kind = IntegratorKind::rk4;
-  double step_s = 1.0e-7;             // fixed RK4 step (the adaptive one's first step)
+  double step_s = 1.0e-7;  // fixed RK4 step (the adaptive one's first step)
   double end_time_s = 0.03;
   double adaptive_relative_tolerance = 1e-10;
-  int output_every = 1;               // keep every n-th row of the time series
+  int output_every = 1;  // keep every n-th row of the time series
 };
 
 struct SimulationCase {

@@ -20,7 +20,6 @@
 
 namespace gearimpact {
 
-
 // The default order 7 is the highest that fits the eight-coefficient
 // evaluation; 64 pieces of it keep the worst relative error in Ke, over 10,000
 // positions against GSL QAG at 1e-13, near 1e-14 for the paper's pair
