@@ -17,8 +17,6 @@ namespace gearimpact::cli {
 struct ReproduceContext {
   std::filesystem::path out;
   std::filesystem::path paper_data;
-  // Short runs and coarse grids, for the end-to-end test.
-  bool quick = false;
   // Every simulation of the reproduction runs here, once.
   SimulationPool* pool = nullptr;
 };

@@ -49,7 +49,6 @@ namespace {
 struct ReproduceOptions {
   std::string out;
   std::string paper_data = GEARIMPACT_PAPER_DATA_DIR;
-  bool quick = false;
 };
 
 std::string software_versions() {
@@ -74,7 +73,7 @@ std::string software_versions() {
 void reproduce(const ReproduceOptions& options) {
   const auto started = std::chrono::steady_clock::now();
   SimulationPool pool;
-  ReproduceContext context{options.out, options.paper_data, options.quick, &pool};
+  ReproduceContext context{options.out, options.paper_data, &pool};
   std::filesystem::create_directories(context.out);
   struct Part {
     const char* what;
@@ -113,11 +112,6 @@ void reproduce(const ReproduceOptions& options) {
       "Each row is a quantitative statement of the paper, kept with its page in `paper_data/`. "
       "Verdict `known difference` marks a statement this implementation misses for a reason "
       "given in the note; `FAIL` one it misses without an explanation.\n\n";
-  if (options.quick) {
-    report +=
-        "**Quick run** (`--quick`): short simulations and coarse grids, for testing the "
-        "pipeline; the numbers are not the reproduction.\n\n";
-  }
   int unexplained = 0;
   for (const ReportSection& section : sections) {
     report += "## " + section.title + "\n\n" + section.text + "\n";
@@ -140,7 +134,6 @@ void register_reproduce_commands(CLI::App& app) {
   command->add_option("--out", options->out, "output folder (created if missing)")->required();
   command->add_option("--paper-data", options->paper_data,
                       "folder of the paper's statements (default: the source tree's paper_data)");
-  command->add_flag("--quick", options->quick, "short runs and coarse grids (for testing)");
   command->callback([options] { reproduce(*options); });
 }
 

@@ -57,7 +57,7 @@ Figure fig8_figure(const std::string& stem, const std::string& title,
 
 ReportSection reproduce_fig8(const ReproduceContext& context) {
   const auto statements = read_statements(context.paper_data / "fig8_energy_ratios.csv");
-  const int points = context.quick ? 121 : 601;
+  constexpr int points = 601;
   StiffnessModel flipped_model;
   flipped_model.moment_sign = AxialMomentSign::flipped;
   const std::vector<EnergyRatios> physical = energy_ratio_cycle(paper_gear_pair(), points);

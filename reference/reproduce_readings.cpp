@@ -43,11 +43,6 @@ std::vector<NamedReading> readings() {
   return list;
 }
 
-SimulationCase short_if_quick(SimulationCase c, const ReproduceContext& context) {
-  if (context.quick) c.integrator.end_time_s = std::min(c.integrator.end_time_s, 3e-3);
-  return c;
-}
-
 struct Score {
   std::vector<double> damping_over_friction;  // case 1, 2, 3 at f = 0.01 and 0.09
   double last_n2_ms = 0.0;
@@ -66,7 +61,7 @@ struct ReadingRuns {
 ReadingRuns submit_reading(const PaperReading& reading, const ReproduceContext& context) {
   std::vector<SimulationCase> cases;
   for (int case_number = 1; case_number <= 3; ++case_number) {
-    cases.push_back(short_if_quick(paper_case(case_number, reading), context));
+    cases.push_back(paper_case(case_number, reading));
   }
   return {submit_sweep(*context.pool, cases, 0.01, 0.09 + 1e-9, 0.08),
           context.pool->submit(cases[1], false)};
@@ -193,7 +188,7 @@ std::string spread(const std::vector<double>& values, int digits) {
 ReportSection reproduce_case3_ensemble(const ReproduceContext& context) {
   ReportSection section;
   section.title = "Case 3 as an ensemble";
-  const int members = context.quick ? 3 : 8;
+  constexpr int members = 8;
   // 2e-8 rad of gear 1 moves s by 0.38 nm, 8e-6 of the backlash and far
   // below any manufacturing tolerance: runs that part over such a change are
   // sensitive to their initial state.
@@ -218,7 +213,7 @@ ReportSection reproduce_case3_ensemble(const ReproduceContext& context) {
     PaperReading reading;
     reading.torque_unit = units[u];
     for (int k = 0; k < members; ++k) {
-      SimulationCase c = short_if_quick(paper_case(3, reading), context);
+      SimulationCase c = paper_case(3, reading);
       c.initial.theta1_rad = k * perturbation_rad;
       runs[u].push_back(context.pool->submit(c, true));
     }

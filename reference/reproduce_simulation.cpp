@@ -18,10 +18,8 @@ namespace {
 // Rows kept per time history: enough for a smooth plot of 40 ms.
 constexpr int plotted_rows = 8000;
 
-SimulationCase reproduction_case(int case_number, const PaperReading& reading,
-                                 const ReproduceContext& context) {
+SimulationCase reproduction_case(int case_number, const PaperReading& reading) {
   SimulationCase c = paper_case(case_number, reading);
-  if (context.quick) c.integrator.end_time_s = std::min(c.integrator.end_time_s, 3e-3);
   const double steps = c.integrator.end_time_s / c.integrator.step_s;
   c.integrator.output_every = std::max(1, static_cast<int>(steps / plotted_rows));
   return c;
@@ -91,8 +89,7 @@ ReportSection reproduce_time_histories(const ReproduceContext& context) {
       "|---|---|---|---|---|---|---|---|---|\n";
   std::vector<std::shared_future<SimulationResult>> runs;
   for (int case_number = 1; case_number <= 3; ++case_number) {
-    runs.push_back(
-        context.pool->submit(reproduction_case(case_number, PaperReading{}, context), true));
+    runs.push_back(context.pool->submit(reproduction_case(case_number, PaperReading{}), true));
   }
   for (int case_number = 1; case_number <= 3; ++case_number) {
     const SimulationResult& result = runs[static_cast<std::size_t>(case_number - 1)].get();
@@ -183,9 +180,9 @@ ReportSection reproduce_fig7(const ReproduceContext& context) {
   const auto statements = read_statements(context.paper_data / "dynamics_statements.csv");
   std::vector<SimulationCase> cases;
   for (int case_number = 1; case_number <= 3; ++case_number) {
-    cases.push_back(reproduction_case(case_number, PaperReading{}, context));
+    cases.push_back(reproduction_case(case_number, PaperReading{}));
   }
-  const double step = context.quick ? 0.04 : 0.01;
+  constexpr double step = 0.01;
   const std::vector<SweepRow> rows =
       submit_sweep(*context.pool, cases, 0.01, 0.09 + 1e-9, step).get();
   std::string csv = "f,ratio_case1,ratio_case2,ratio_case3\n";
