@@ -88,10 +88,10 @@ ReportSection reproduce_fig8(const ReproduceContext& context) {
     if (row.verdict == Verdict::fail && !note_if_missed.empty()) {
       row.verdict = Verdict::known_difference;
       row.note =
-          note_if_missed + " (" +
+          "the printed, physical sign of Fa h misses by " +
           number(std::max(s.tolerances_off(low, s.paper_low), s.tolerances_off(high, s.paper_high)),
                  2) +
-          " tolerances off)";
+          " tolerances; " + note_if_missed;
     }
     return row;
   };
@@ -113,7 +113,7 @@ ReportSection reproduce_fig8(const ReproduceContext& context) {
   const RatioExtremes axial_sys_flipped = extremes(flipped, axial_system);
   const RatioExtremes axial_one_physical = extremes(physical, axial_one);
   const RatioExtremes axial_one_flipped = extremes(flipped, axial_one);
-  const std::string flipped_note = "the printed, physical sign of Fa h; with it flipped: ";
+  const std::string flipped_note = "with Fa h flipped: ";
   section.rows.push_back(range_row("fig8_bending_over_hertz", 1.0 / hertz_physical.max,
                                    1.0 / hertz_physical.min,
                                    flipped_note + number(1.0 / hertz_flipped.max, 3) + " to " +
