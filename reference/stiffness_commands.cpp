@@ -3,6 +3,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "gearimpact/case_file.hpp"
 #include "gearimpact/energy.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/gear_pair.hpp"
@@ -16,20 +17,33 @@ struct StiffnessOptions {
   int points = 201;
   std::string method = "gsl";
   bool flipped_moment = false;
+  std::string case_file;
 };
 
-StiffnessModel model_from(const StiffnessOptions& options) {
+// The gear pair and the stiffness model: the paper's, or a case file's; the
+// command-line options change the model either way.
+struct PairAndModel {
+  GearPair pair;
   StiffnessModel model;
-  model.method = parse_stiffness_method(options.method);
-  if (options.flipped_moment) model.moment_sign = AxialMomentSign::flipped;
-  return model;
+};
+
+PairAndModel pair_and_model(const StiffnessOptions& options, const CLI::App& command) {
+  PairAndModel chosen{paper_gear_pair(), {}};
+  if (!options.case_file.empty()) {
+    const SimulationCase c = read_case_file(options.case_file);
+    chosen = {c.gears, c.model.stiffness};
+  }
+  if (options.case_file.empty() || command.get_option("--method")->count() > 0) {
+    chosen.model.method = parse_stiffness_method(options.method);
+  }
+  if (options.flipped_moment) chosen.model.moment_sign = AxialMomentSign::flipped;
+  validate(chosen.pair);
+  return chosen;
 }
 
-void print_stiffness_table(const StiffnessOptions& options) {
+void print_stiffness_table(const StiffnessOptions& options, const CLI::App& command) {
   if (options.points < 2) throw InputError("--points", std::to_string(options.points), ">= 2");
-  const StiffnessModel model = model_from(options);
-  const GearPair pair = paper_gear_pair();
-  validate(pair);
+  const auto [pair, model] = pair_and_model(options, command);
   const ContactSegment segment = contact_segment(pair);
   const double step = (segment.end_m - segment.start_m) / (options.points - 1);
   std::printf("x_m,phi1_rad,kb1,ka1,kb2,ka2,kh,ke\n");
@@ -41,13 +55,12 @@ void print_stiffness_table(const StiffnessOptions& options) {
   }
 }
 
-void print_energy_ratios(const StiffnessOptions& options) {
-  const GearPair pair = paper_gear_pair();
-  validate(pair);
+void print_energy_ratios(const StiffnessOptions& options, const CLI::App& command) {
+  const auto [pair, model] = pair_and_model(options, command);
   std::printf(
       "angle_deg,pairs,hertz_over_bending_one_pair,axial_over_bending_one_pair,"
       "hertz_over_bending_system,axial_over_bending_system\n");
-  for (const EnergyRatios& row : energy_ratio_cycle(pair, options.points, model_from(options))) {
+  for (const EnergyRatios& row : energy_ratio_cycle(pair, options.points, model)) {
     std::printf("%.17g,%d,%.17g,%.17g,%.17g,%.17g\n", row.phi1_deg, row.pairs,
                 row.hertz_over_bending_one_pair, row.axial_over_bending_one_pair,
                 row.hertz_over_bending_system, row.axial_over_bending_system);
@@ -63,6 +76,9 @@ void add_model_options(CLI::App* command, StiffnessOptions& options) {
       ->check(CLI::IsMember({"gsl", "gsl-cquad", "boost-gk", "boost-ts", "xform"}));
   command->add_flag("--flipped-moment", options.flipped_moment,
                     "add the axial-force moment Fa h instead of subtracting it (not physical)");
+  command->add_option("--case-file", options.case_file,
+                      "take the gear pair and the stiffness model from a case file (default: "
+                      "the paper's pair)");
 }
 
 }  // namespace
@@ -72,14 +88,14 @@ void register_stiffness_commands(CLI::App& app) {
   CLI::App* stiffness = app.add_subcommand(
       "stiffness", "CSV of Kb, Ka of both gears, Kh and Ke (N/m) over the contact segment");
   add_model_options(stiffness, *options);
-  stiffness->callback([options] { print_stiffness_table(*options); });
+  stiffness->callback([options, stiffness] { print_stiffness_table(*options, *stiffness); });
 
   auto ratio_options = std::make_shared<StiffnessOptions>();
   ratio_options->points = 121;
   CLI::App* ratios = app.add_subcommand(
       "energy-ratios", "CSV of the elastic energy ratios of Fig. 8 over one meshing cycle");
   add_model_options(ratios, *ratio_options);
-  ratios->callback([ratio_options] { print_energy_ratios(*ratio_options); });
+  ratios->callback([ratio_options, ratios] { print_energy_ratios(*ratio_options, *ratios); });
 }
 
 }  // namespace gearimpact::cli

@@ -3,6 +3,8 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -76,4 +78,34 @@ TEST_CASE("bad arguments name the option and exit non-zero") {
   CHECK(points.exit_code != 0);
   CHECK(points.err.find("--points") != std::string::npos);
   CHECK(points.out.empty());
+}
+
+TEST_CASE("stiffness --case-file: a researcher's own pair, with the file's stiffness model") {
+  std::ifstream in(std::string(GEARIMPACT_PAPER_DATA_DIR) + "/case1.toml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string toml = text.str();
+  const std::size_t at = toml.find("teeth1 = 20");
+  REQUIRE(at != std::string::npos);
+  toml.replace(at, 11, "teeth1 = 25");
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / "gearimpact_test_own_pair.toml";
+  std::ofstream(file) << toml;
+  const CommandResult r = run_command(cli("stiffness --points 4 --case-file " + file.string()));
+  REQUIRE(r.exit_code == 0);
+  const auto rows = csv_rows(r.out);
+  REQUIRE(rows.size() == 5);
+  GearPair pair = paper_gear_pair();
+  pair.teeth1 = 25;
+  const ContactSegment segment = contact_segment(pair);
+  // 17 significant digits round-trip: the program's numbers are the library's.
+  CHECK(std::stod(rows[1][0]) == segment.start_m);
+  CHECK(std::stod(rows[4][0]) == segment.end_m);
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    CHECK(std::stod(rows[i][7]) == mesh_stiffness(pair, std::stod(rows[i][0])).ke);
+  }
+  const CommandResult bad = run_command(cli("stiffness --case-file /nonexistent.toml"));
+  CHECK(bad.exit_code != 0);
+  CHECK(bad.err.find("/nonexistent.toml") != std::string::npos);
+  std::filesystem::remove(file);
 }
