@@ -3,10 +3,7 @@
 // and every bad input of issue 4 that the reader owns, through the library
 // (the message) and through `gearimpact check-case` (the exit code).
 #include <doctest/doctest.h>
-#include <sys/wait.h>
 
-#include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -20,6 +17,7 @@
 #include "gearimpact/error.hpp"
 #include "gearimpact/gear_pair.hpp"
 #include "gearimpact/simulation_case.hpp"
+#include "run_command.hpp"
 
 using namespace gearimpact;
 
@@ -140,25 +138,15 @@ std::string message_of(const std::string& text) {
   return {};
 }
 
-struct CliResult {
-  int exit_code;
-  std::string out;
-  std::string err;
-};
-
 // Runs `gearimpact check-case` on `text` written to a file named `name`.
-CliResult run_check_case(const std::string& text, const std::string& name) {
+verify::CommandResult run_check_case(const std::string& text, const std::string& name) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() /
                                     ("gearimpact-test-case-files-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const std::filesystem::path file = dir / name;
   std::ofstream(file) << text;
-  const std::string command = std::string("'") + GEARIMPACT_CLI + "' check-case '" + file.string() +
-                              "' >'" + (dir / "out").string() + "' 2>'" + (dir / "err").string() +
-                              "'";
-  const int status = std::system(command.c_str());
-  CliResult result{WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(dir / "out"),
-                   read_text(dir / "err")};
+  verify::CommandResult result =
+      verify::run_command(verify::cli("check-case '" + file.string() + "'"));
   std::filesystem::remove_all(dir);
   return result;
 }
@@ -449,7 +437,7 @@ TEST_CASE("every bad input: the message names file, field, value and range; chec
       CAPTURE(part);
       CHECK(contains(message, part));
     }
-    const CliResult cli = run_check_case(bad.text, "bad.toml");
+    const verify::CommandResult cli = run_check_case(bad.text, "bad.toml");
     CHECK(cli.exit_code == 1);
     CHECK(cli.out.empty());
     CHECK(contains(cli.err, "gearimpact: error: "));
@@ -458,14 +446,11 @@ TEST_CASE("every bad input: the message names file, field, value and range; chec
 }
 
 TEST_CASE("check-case: a missing file fails, a paper case prints its SI values") {
-  const CliResult missing = run_check_case("", "empty.toml");
+  const verify::CommandResult missing = run_check_case("", "empty.toml");
   CHECK(missing.exit_code == 1);
   CHECK(contains(missing.err, "[gears] is missing"));
-  const std::string command =
-      std::string("'") + GEARIMPACT_CLI + "' check-case /nonexistent/case.toml >/dev/null 2>&1";
-  const int status = std::system(command.c_str());
-  CHECK((WIFEXITED(status) && WEXITSTATUS(status) == 1));
-  const CliResult ok = run_check_case(case1_text(), "case1.toml");
+  CHECK(verify::run_command(verify::cli("check-case /nonexistent/case.toml")).exit_code == 1);
+  const verify::CommandResult ok = run_check_case(case1_text(), "case1.toml");
   CHECK(ok.exit_code == 0);
   CHECK(contains(ok.out, "module = \"0.002 m\""));
   CHECK(contains(ok.out, "backlash = \"5e-5 m\""));

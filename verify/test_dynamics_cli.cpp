@@ -1,54 +1,34 @@
 // The `simulate` and `sweep-friction` subcommands of the reference program:
 // their outputs carry the columns and keys issue 5 names, in full precision.
 #include <doctest/doctest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 
-namespace {
+#include "run_command.hpp"
 
-struct Output {
-  int status;
-  std::string text;
-};
-
-// Runs the program with `arguments`, stdout (and stderr, when asked) captured.
-Output run_cli(const std::string& arguments, bool with_stderr = false) {
-  const std::string command =
-      std::string(GEARIMPACT_CLI) + " " + arguments + (with_stderr ? " 2>&1" : "");
-  FILE* pipe = popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  std::string text;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), static_cast<int>(buffer.size()), pipe) != nullptr) {
-    text += buffer.data();
-  }
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text};
-}
-
-}  // namespace
+using gearimpact::verify::cli;
+using gearimpact::verify::CommandResult;
+using gearimpact::verify::run_command;
 
 TEST_CASE("simulate writes the time series and prints the JSON summary") {
   const std::filesystem::path out =
       std::filesystem::temp_directory_path() / "gearimpact_test_simulate.csv";
   std::filesystem::remove(out);
-  const Output r = run_cli("simulate --case 2 --t-end 0.002 --every 100 --out " + out.string());
-  REQUIRE(r.status == 0);
+  const CommandResult r =
+      run_command(cli("simulate --case 2 --t-end 0.002 --every 100 --out " + out.string()));
+  REQUIRE(r.exit_code == 0);
   for (const char* key :
        {"\"impacts_n1\"", "\"impacts_n2\"", "\"last_n2_impact_s\"", "\"damping_loss_J\"",
         "\"friction_loss_J\"", "\"hertz_energy_max_J\"", "\"bending_energy_max_J\"",
         "\"axial_energy_max_J\"", "\"ledger_residual_J\"", "\"steps\""}) {
     CAPTURE(key);
-    CHECK(r.text.find(key) != std::string::npos);
+    CHECK(r.out.find(key) != std::string::npos);
   }
-  CHECK(r.text.find("nan") == std::string::npos);
+  CHECK(r.out.find("nan") == std::string::npos);
   std::ifstream in(out);
   REQUIRE(in.good());
   std::string header;
@@ -78,16 +58,17 @@ TEST_CASE("simulate writes the time series and prints the JSON summary") {
 }
 
 TEST_CASE("simulate refuses a step that does not resolve contact, naming the limit") {
-  const Output r = run_cli("simulate --case 1 --dt 1e-5", true);
-  CHECK(r.status != 0);
-  CHECK(r.text.find("step") != std::string::npos);
-  CHECK(r.text.find("20 steps per period") != std::string::npos);
+  const CommandResult r = run_command(cli("simulate --case 1 --dt 1e-5"));
+  CHECK(r.exit_code != 0);
+  CHECK(r.err.find("step") != std::string::npos);
+  CHECK(r.err.find("20 steps per period") != std::string::npos);
 }
 
 TEST_CASE("sweep-friction prints f and the three ratios") {
-  const Output r = run_cli("sweep-friction --from 0.02 --to 0.04 --step 0.02 --t-end 0.001");
-  REQUIRE(r.status == 0);
-  std::istringstream lines(r.text);
+  const CommandResult r =
+      run_command(cli("sweep-friction --from 0.02 --to 0.04 --step 0.02 --t-end 0.001"));
+  REQUIRE(r.exit_code == 0);
+  std::istringstream lines(r.out);
   std::string line;
   std::getline(lines, line);
   CHECK(line == "f,ratio_case1,ratio_case2,ratio_case3");
@@ -106,16 +87,18 @@ TEST_CASE("simulate --case-file runs a case file: the paper's files give the --c
     CAPTURE(n);
     const std::string file =
         std::string(GEARIMPACT_PAPER_DATA_DIR) + "/case" + std::to_string(n) + ".toml";
-    const Output from_file = run_cli("simulate --case-file " + file + " --t-end 0.002");
-    const Output from_table = run_cli("simulate --case " + std::to_string(n) + " --t-end 0.002");
-    REQUIRE(from_file.status == 0);
-    CHECK(from_file.text == from_table.text);
+    const CommandResult from_file =
+        run_command(cli("simulate --case-file " + file + " --t-end 0.002"));
+    const CommandResult from_table =
+        run_command(cli("simulate --case " + std::to_string(n) + " --t-end 0.002"));
+    REQUIRE(from_file.exit_code == 0);
+    CHECK(from_file.out == from_table.out);
   }
-  const Output both = run_cli("simulate --case 1 --case-file x.toml", true);
-  CHECK(both.status != 0);
-  const Output neither = run_cli("simulate", true);
-  CHECK(neither.status != 0);
-  CHECK(neither.text.find("--case-file") != std::string::npos);
+  const CommandResult both = run_command(cli("simulate --case 1 --case-file x.toml"));
+  CHECK(both.exit_code != 0);
+  const CommandResult neither = run_command(cli("simulate"));
+  CHECK(neither.exit_code != 0);
+  CHECK(neither.err.find("--case-file") != std::string::npos);
 }
 
 TEST_CASE("a case file whose step cannot resolve the contact is refused at its line") {
@@ -129,21 +112,21 @@ TEST_CASE("a case file whose step cannot resolve the contact is refused at its l
   const std::filesystem::path file =
       std::filesystem::temp_directory_path() / "gearimpact_test_big_step.toml";
   std::ofstream(file) << toml;
-  const Output r = run_cli("simulate --case-file " + file.string(), true);
-  CHECK(r.status == 1);
-  CHECK(r.text.find(file.string() + ":") != std::string::npos);
-  CHECK(r.text.find("integrator.step = \"5 us\"") != std::string::npos);
+  const CommandResult r = run_command(cli("simulate --case-file " + file.string()));
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find(file.string() + ":") != std::string::npos);
+  CHECK(r.err.find("integrator.step = \"5 us\"") != std::string::npos);
   // The largest resolving step of the paper's pair is 1/20 of the period of
   // its stiffest contact, about 2.3 us: the message states it.
-  CHECK(r.text.find("(0, 2.28") != std::string::npos);
+  CHECK(r.err.find("(0, 2.28") != std::string::npos);
   std::filesystem::remove(file);
 }
 
 TEST_CASE("the same case gives a bit-identical CSV on repeated runs") {
   const std::filesystem::path a = std::filesystem::temp_directory_path() / "gearimpact_det_a.csv";
   const std::filesystem::path b = std::filesystem::temp_directory_path() / "gearimpact_det_b.csv";
-  REQUIRE(run_cli("simulate --case 3 --t-end 0.003 --out " + a.string()).status == 0);
-  REQUIRE(run_cli("simulate --case 3 --t-end 0.003 --out " + b.string()).status == 0);
+  REQUIRE(run_command(cli("simulate --case 3 --t-end 0.003 --out " + a.string())).exit_code == 0);
+  REQUIRE(run_command(cli("simulate --case 3 --t-end 0.003 --out " + b.string())).exit_code == 0);
   const auto read = [](const std::filesystem::path& p) {
     std::ifstream in(p, std::ios::binary);
     std::stringstream s;
