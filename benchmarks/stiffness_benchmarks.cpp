@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "bench_support.hpp"
-#include "gearimpact/gear_pair.hpp"
-#include "gearimpact/stiffness.hpp"
-#include "gearimpact/stiffness_table.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/stiffness/mesh_stiffness.hpp"
+#include "gearimpact/stiffness/table.hpp"
 
 namespace gearimpact::bench {
 

@@ -3,9 +3,9 @@
 #include <string>
 
 #include "commands.hpp"
-#include "gearimpact/case_file.hpp"
-#include "gearimpact/gear_pair.hpp"
-#include "gearimpact/units.hpp"
+#include "gearimpact/io/case_file.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/io/units.hpp"
 
 namespace gearimpact::cli {
 

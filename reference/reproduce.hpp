@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <string>
 
-#include "gearimpact/dynamics.hpp"
-#include "gearimpact/paper_statements.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/paper/statements.hpp"
 #include "gnuplot.hpp"
 #include "report.hpp"
 #include "simulation_pool.hpp"

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "gearimpact/atomic_file.hpp"
+#include "gearimpact/io/atomic_file.hpp"
 #include "reproduce.hpp"
 
 #ifndef GEARIMPACT_PAPER_DATA_DIR

@@ -3,10 +3,10 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "gearimpact/atomic_file.hpp"
-#include "gearimpact/energy.hpp"
-#include "gearimpact/gear_pair.hpp"
-#include "gearimpact/paper_statements.hpp"
+#include "gearimpact/io/atomic_file.hpp"
+#include "gearimpact/stiffness/energy.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/paper/statements.hpp"
 #include "reproduce.hpp"
 
 namespace gearimpact::cli {

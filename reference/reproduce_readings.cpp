@@ -7,9 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "gearimpact/dynamics.hpp"
-#include "gearimpact/paper_statements.hpp"
-#include "gearimpact/simulation_case.hpp"
+#include "gearimpact/paper/table1.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/paper/statements.hpp"
+#include "gearimpact/dynamics/simulation_case.hpp"
 #include "reproduce.hpp"
 
 namespace gearimpact::cli {

@@ -5,10 +5,11 @@
 #include <string>
 #include <vector>
 
-#include "gearimpact/atomic_file.hpp"
-#include "gearimpact/dynamics.hpp"
-#include "gearimpact/paper_statements.hpp"
-#include "gearimpact/simulation_case.hpp"
+#include "gearimpact/paper/table1.hpp"
+#include "gearimpact/io/atomic_file.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/paper/statements.hpp"
+#include "gearimpact/dynamics/simulation_case.hpp"
 #include "reproduce.hpp"
 
 namespace gearimpact::cli {

@@ -5,11 +5,12 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "gearimpact/atomic_file.hpp"
-#include "gearimpact/case_file.hpp"
-#include "gearimpact/dynamics.hpp"
+#include "gearimpact/paper/table1.hpp"
+#include "gearimpact/io/atomic_file.hpp"
+#include "gearimpact/io/case_file.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/error.hpp"
-#include "gearimpact/simulation_case.hpp"
+#include "gearimpact/dynamics/simulation_case.hpp"
 
 namespace gearimpact::cli {
 

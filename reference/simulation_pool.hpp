@@ -16,9 +16,9 @@
 #include <thread>
 #include <vector>
 
-#include "gearimpact/dynamics.hpp"
-#include "gearimpact/simulation_case.hpp"
-#include "gearimpact/stiffness_table.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/stiffness/table.hpp"
 
 namespace gearimpact::cli {
 

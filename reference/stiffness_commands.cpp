@@ -3,11 +3,11 @@
 #include <string>
 
 #include "commands.hpp"
-#include "gearimpact/case_file.hpp"
-#include "gearimpact/energy.hpp"
+#include "gearimpact/io/case_file.hpp"
+#include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/error.hpp"
-#include "gearimpact/gear_pair.hpp"
-#include "gearimpact/stiffness.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/stiffness/mesh_stiffness.hpp"
 
 namespace gearimpact::cli {
 

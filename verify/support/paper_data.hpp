@@ -4,7 +4,7 @@
 #include <map>
 #include <string>
 
-#include "gearimpact/paper_statements.hpp"
+#include "gearimpact/paper/statements.hpp"
 
 namespace gearimpact::verify {
 

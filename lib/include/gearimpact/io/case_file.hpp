@@ -1,0 +1,51 @@
+// Case files: a SimulationCase written as TOML with units on every quantity.
+// The schema (every key, its unit or range, and its default) is in
+// docs/case-files.md and in paper_data/case1.toml. Everything is read and
+// checked here, before any work starts; the conversion to SI happens once.
+#pragma once
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "gearimpact/dynamics/simulation_case.hpp"
+
+namespace gearimpact {
+
+// A case file that cannot be used. The message names the file (and line when
+// known), the field as section.key, the value as written and what is allowed.
+class CaseFileError : public std::invalid_argument {
+ public:
+  CaseFileError(std::string file, std::string field, const std::string& message);
+
+  const std::string& file() const noexcept { return file_; }
+  // "gears.module"; empty when the file is not valid TOML or cannot be read.
+  const std::string& field() const noexcept { return field_; }
+
+ private:
+  std::string file_;
+  std::string field_;
+};
+
+// Parses and validates `toml_text`; `file_name` is used in messages and, when
+// the file has no `name` key, its stem names the case. Throws CaseFileError.
+// Validates the gear pair by validate(GearPair); the step size against the
+// contact resolution belongs to the dynamics and is not checked here.
+SimulationCase parse_case(std::string_view toml_text, std::string_view file_name);
+
+// Reads and parses a case file (at most 1 MiB). Throws CaseFileError.
+SimulationCase read_case_file(const std::filesystem::path& path);
+
+// How write_case_file writes quantities: in the units a person would choose
+// (mm, deg, GPa, N*mm, us, ms) wherever that text reads back to exactly the
+// same double, or all in SI units (m, rad, Pa, N*m, s).
+enum class CaseUnits { readable, si };
+
+// TOML text that parse_case reads back to the same case, field by field and
+// bit for bit. Throws InputError for a Torque::Kind::user torque, which has
+// no text form.
+std::string write_case_file(const SimulationCase& simulation_case,
+                            CaseUnits units = CaseUnits::readable);
+
+}  // namespace gearimpact

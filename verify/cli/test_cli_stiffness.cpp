@@ -1,0 +1,111 @@
+// End to end: the `stiffness` and `energy-ratios` CSV interfaces of the
+// program, their columns, precision and errors.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "gearimpact/stiffness/energy.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/stiffness/mesh_stiffness.hpp"
+#include "paper_data.hpp"
+#include "run_command.hpp"
+
+using namespace gearimpact;
+using namespace gearimpact::verify;
+
+namespace {
+
+std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) rows.push_back(split_csv_line(line));
+  return rows;
+}
+
+}  // namespace
+
+TEST_CASE("stiffness: CSV columns in SI, X_start to X_end inclusive, round-trip precision") {
+  const CommandResult r = run_command(cli("stiffness --points 5 --method boost-gk"));
+  REQUIRE(r.exit_code == 0);
+  const auto rows = csv_rows(r.out);
+  REQUIRE(rows.size() == 6);
+  CHECK(rows[0] ==
+        std::vector<std::string>{"x_m", "phi1_rad", "kb1", "ka1", "kb2", "ka2", "kh", "ke"});
+  const GearPair pair = paper_gear_pair();
+  const ContactSegment segment = contact_segment(pair);
+  // 17 significant digits round-trip a double exactly.
+  CHECK(std::stod(rows[1][0]) == segment.start_m);
+  CHECK(std::stod(rows[5][0]) == segment.end_m);
+  StiffnessModel model;
+  model.method = StiffnessMethod::boost_gauss_kronrod;
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const double x = std::stod(rows[i][0]);
+    const MeshStiffness k = mesh_stiffness(pair, x, model);
+    CHECK(std::stod(rows[i][1]) == contact_angle(pair, Gear::one, x));
+    CHECK(std::stod(rows[i][2]) == k.kb1);
+    CHECK(std::stod(rows[i][7]) == k.ke);
+  }
+}
+
+TEST_CASE("energy-ratios: CSV of Fig. 8 over one cycle") {
+  const CommandResult r = run_command(cli("energy-ratios --points 7"));
+  REQUIRE(r.exit_code == 0);
+  const auto rows = csv_rows(r.out);
+  REQUIRE(rows.size() == 8);
+  CHECK(rows[0] == std::vector<std::string>{"angle_deg", "pairs", "hertz_over_bending_one_pair",
+                                            "axial_over_bending_one_pair",
+                                            "hertz_over_bending_system",
+                                            "axial_over_bending_system"});
+  // angle_deg is phi1 of (12) in degrees at X_start.
+  const GearPair pair = paper_gear_pair();
+  CHECK(std::abs(std::stod(rows[1][0]) -
+                 contact_angle(pair, Gear::one, contact_segment(pair).start_m) * 180.0 /
+                     std::numbers::pi) < 1e-12);
+}
+
+TEST_CASE("bad arguments name the option and exit non-zero") {
+  const CommandResult method = run_command(cli("stiffness --method simpson"));
+  CHECK(method.exit_code != 0);
+  CHECK(method.err.find("--method") != std::string::npos);
+  const CommandResult points = run_command(cli("energy-ratios --points 1"));
+  CHECK(points.exit_code != 0);
+  CHECK(points.err.find("--points") != std::string::npos);
+  CHECK(points.out.empty());
+}
+
+TEST_CASE("stiffness --case-file: a researcher's own pair, with the file's stiffness model") {
+  std::ifstream in(std::string(GEARIMPACT_PAPER_DATA_DIR) + "/case1.toml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string toml = text.str();
+  const std::size_t at = toml.find("teeth1 = 20");
+  REQUIRE(at != std::string::npos);
+  toml.replace(at, 11, "teeth1 = 25");
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / "gearimpact_test_own_pair.toml";
+  std::ofstream(file) << toml;
+  const CommandResult r = run_command(cli("stiffness --points 4 --case-file " + file.string()));
+  REQUIRE(r.exit_code == 0);
+  const auto rows = csv_rows(r.out);
+  REQUIRE(rows.size() == 5);
+  GearPair pair = paper_gear_pair();
+  pair.teeth1 = 25;
+  const ContactSegment segment = contact_segment(pair);
+  // 17 significant digits round-trip: the program's numbers are the library's.
+  CHECK(std::stod(rows[1][0]) == segment.start_m);
+  CHECK(std::stod(rows[4][0]) == segment.end_m);
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    CHECK(std::stod(rows[i][7]) == mesh_stiffness(pair, std::stod(rows[i][0])).ke);
+  }
+  const CommandResult bad = run_command(cli("stiffness --case-file /nonexistent.toml"));
+  CHECK(bad.exit_code != 0);
+  CHECK(bad.err.find("/nonexistent.toml") != std::string::npos);
+  std::filesystem::remove(file);
+}

@@ -1,0 +1,459 @@
+// Case files: the paper's three cases as written by hand from Table 1 against
+// paper_case() written from the same table in code; write/read round trips;
+// and every bad input of issue 4 that the reader owns, through the library
+// (the message) and through `gearimpact check-case` (the exit code).
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "gearimpact/paper/table1.hpp"
+#include "gearimpact/io/case_file.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/dynamics/simulation_case.hpp"
+#include "run_command.hpp"
+
+using namespace gearimpact;
+
+namespace {
+
+const std::filesystem::path kPaperData = GEARIMPACT_PAPER_DATA_DIR;
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream stream(path);
+  std::stringstream buffer;
+  buffer << stream.rdbuf();
+  return buffer.str();
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+void check_torque(const Torque& a, const Torque& b) {
+  CHECK(a.kind == b.kind);
+  CHECK(a.constant_n_m == b.constant_n_m);
+  CHECK(a.amplitude_n_m == b.amplitude_n_m);
+  CHECK(a.angular_frequency_rad_s == b.angular_frequency_rad_s);
+  CHECK(a.phase_rad == b.phase_rad);
+}
+
+// Field by field and bit for bit: both sides are exact decimal conversions.
+void check_same(const SimulationCase& a, const SimulationCase& b) {
+  CHECK(a.name == b.name);
+  CHECK(a.gears.teeth1 == b.gears.teeth1);
+  CHECK(a.gears.teeth2 == b.gears.teeth2);
+  CHECK(a.gears.module_m == b.gears.module_m);
+  CHECK(a.gears.pressure_angle_rad == b.gears.pressure_angle_rad);
+  CHECK(a.gears.face_width_m == b.gears.face_width_m);
+  CHECK(a.gears.addendum_coefficient == b.gears.addendum_coefficient);
+  CHECK(a.gears.youngs_modulus_pa == b.gears.youngs_modulus_pa);
+  CHECK(a.gears.poisson_ratio == b.gears.poisson_ratio);
+  CHECK(a.gears.density_kg_m3 == b.gears.density_kg_m3);
+  CHECK(a.gears.backlash_m == b.gears.backlash_m);
+  check_torque(a.torque1, b.torque1);
+  check_torque(a.torque2, b.torque2);
+  CHECK(a.initial.theta1_rad == b.initial.theta1_rad);
+  CHECK(a.initial.theta2_rad == b.initial.theta2_rad);
+  CHECK(a.initial.w1_rad_s == b.initial.w1_rad_s);
+  CHECK(a.initial.w2_rad_s == b.initial.w2_rad_s);
+  CHECK(a.model.friction_coefficient == b.model.friction_coefficient);
+  CHECK(a.model.damping_form == b.model.damping_form);
+  CHECK(a.model.damping_stiffness == b.model.damping_stiffness);
+  CHECK(a.model.restitution.coefficient == b.model.restitution.coefficient);
+  CHECK(a.model.restitution.exponent == b.model.restitution.exponent);
+  CHECK(a.model.restitution.speed_unit_m_s == b.model.restitution.speed_unit_m_s);
+  CHECK(a.model.coast_phase == b.model.coast_phase);
+  CHECK(a.model.stiffness.method == b.model.stiffness.method);
+  CHECK(a.model.stiffness.moment_sign == b.model.stiffness.moment_sign);
+  CHECK(a.model.stiffness.relative_tolerance == b.model.stiffness.relative_tolerance);
+  CHECK(a.model.stiffness.xform_rule == b.model.stiffness.xform_rule);
+  CHECK(a.model.stiffness.hertz_term == b.model.stiffness.hertz_term);
+  CHECK(a.model.stiffness.bending_term == b.model.stiffness.bending_term);
+  CHECK(a.model.stiffness.axial_term == b.model.stiffness.axial_term);
+  CHECK(a.integrator.kind == b.integrator.kind);
+  CHECK(a.integrator.step_s == b.integrator.step_s);
+  CHECK(a.integrator.end_time_s == b.integrator.end_time_s);
+  CHECK(a.integrator.adaptive_relative_tolerance == b.integrator.adaptive_relative_tolerance);
+  CHECK(a.integrator.output_every == b.integrator.output_every);
+}
+
+// `text` with the line `key = ...` of [section] ("" for the top level)
+// replaced by `key = value`, removed (value nullopt), or added at the start of
+// the section when it has no such key.
+std::string with_key(const std::string& text, const std::string& section, const std::string& key,
+                     const std::optional<std::string>& value) {
+  const auto edit = [&](bool insert) {
+    std::istringstream lines(text);
+    std::string line;
+    std::string current;
+    std::string out;
+    bool done = false;
+    if (insert && section.empty() && value) {
+      out += key + " = " + *value + "\n";
+      done = true;
+    }
+    while (std::getline(lines, line)) {
+      if (!line.empty() && line.front() == '[') current = line.substr(1, line.find(']') - 1);
+      const bool match =
+          current == section && (line.rfind(key + " ", 0) == 0 || line.rfind(key + "=", 0) == 0);
+      if (match && !insert) {
+        done = true;
+        if (value) out += key + " = " + *value + "\n";
+        continue;
+      }
+      out += line + "\n";
+      if (insert && !done && value && line == "[" + section + "]") {
+        out += key + " = " + *value + "\n";
+        done = true;
+      }
+    }
+    return std::pair(done, out);
+  };
+  const auto [replaced, out] = edit(false);
+  if (replaced) return out;
+  const auto [inserted, added] = edit(true);
+  REQUIRE(inserted);
+  return added;
+}
+
+std::string case1_text() {
+  return read_text(kPaperData / "case1.toml");
+}
+
+std::string message_of(const std::string& text) {
+  try {
+    parse_case(text, "bad.toml");
+  } catch (const CaseFileError& e) {
+    CHECK(e.file() == "bad.toml");
+    return e.what();
+  }
+  FAIL("no error");
+  return {};
+}
+
+// Runs `gearimpact check-case` on `text` written to a file named `name`.
+verify::CommandResult run_check_case(const std::string& text, const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    ("gearimpact-test-case-files-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path file = dir / name;
+  std::ofstream(file) << text;
+  verify::CommandResult result =
+      verify::run_command(verify::cli("check-case '" + file.string() + "'"));
+  std::filesystem::remove_all(dir);
+  return result;
+}
+
+struct BadInput {
+  std::string what;
+  std::string text;
+  std::vector<std::string> expected;  // parts of the message, in any order
+};
+
+std::vector<BadInput> bad_inputs() {
+  const std::string base = case1_text();
+  const auto set = [&](const char* section, const char* key, std::optional<std::string> value) {
+    return with_key(base, section, key, value);
+  };
+  std::string gear_section_renamed = base;
+  gear_section_renamed.replace(gear_section_renamed.find("[gears]"), 7, "[gear]");
+  std::string no_integrator = base.substr(0, base.find("[integrator]"));
+  std::string all_terms_off = base;
+  for (const char* key : {"hertz_term", "bending_term", "axial_term"}) {
+    all_terms_off = with_key(all_terms_off, "model", key, std::string("\"off\""));
+  }
+  return {
+      {"missing key",
+       set("gears", "module", std::nullopt),
+       {"bad.toml", "gears.module is missing", "a length", "m, mm, um, cm, in"}},
+      {"missing section", no_integrator, {"bad.toml", "[integrator] is missing", "end_time"}},
+      {"missing torque kind",
+       set("torque1", "kind", std::nullopt),
+       {"torque1.kind is missing", "\"constant\", \"sinusoidal\""}},
+      {"unknown key",
+       set("gears", "modul", "\"2 mm\""),
+       {"bad.toml:9", "unknown key gears.modul", "teeth1, teeth2, module"}},
+      {"unknown section",
+       gear_section_renamed,
+       {"bad.toml", "unknown key or section \"gear\"", "[gears]"}},
+      {"key of the other torque kind",
+       set("torque1", "amplitude", "\"5 N*mm\""),
+       {"torque1.amplitude = \"5 N*mm\" is not used by kind = \"constant\""}},
+      {"missing unit",
+       set("gears", "module", "2"),
+       {"bad.toml:", "gears.module = 2", "a number without a unit", "m, mm, um, cm, in"}},
+      {"unit of another dimension",
+       set("gears", "module", "\"2 deg\""),
+       {"gears.module = \"2 deg\"", "\"deg\" is a unit of an angle", "m, mm, um, cm, in"}},
+      {"unknown unit",
+       set("gears", "backlash", "\"0.05 furlong\""),
+       {"gears.backlash = \"0.05 furlong\"", "unknown unit \"furlong\"", "m, mm, um, cm, in"}},
+      {"non-finite quantity",
+       set("gears", "face_width", "\"inf mm\""),
+       {"gears.face_width = \"inf mm\"", "no finite decimal number"}},
+      {"overflowing quantity",
+       set("gears", "youngs_modulus", "\"1e999 GPa\""),
+       {"gears.youngs_modulus = \"1e999 GPa\"", "outside the range of a double"}},
+      {"non-finite number",
+       set("gears", "poisson_ratio", "nan"),
+       {"gears.poisson_ratio = nan", "(-1, 0.5)"}},
+      {"infinite number",
+       set("model", "friction_coefficient", "inf"),
+       {"model.friction_coefficient = inf", "[0, inf)"}},
+      {"E = 0",
+       set("gears", "youngs_modulus", "\"0 GPa\""),
+       {"gears.youngs_modulus = 0", "> 0 Pa", "(written \"0 GPa\")"}},
+      {"E < 0",
+       set("gears", "youngs_modulus", "\"-206.8 GPa\""),
+       {"gears.youngs_modulus = -206800000000", "> 0 Pa"}},
+      {"nu = 0.5",
+       set("gears", "poisson_ratio", "0.5"),
+       {"gears.poisson_ratio = 0.5", "(-1, 0.5), both ends excluded"}},
+      {"nu = -1",
+       set("gears", "poisson_ratio", "-1"),
+       {"gears.poisson_ratio = -1", "(-1, 0.5), both ends excluded"}},
+      {"density = 0", set("gears", "density", "\"0 kg/m^3\""), {"gears.density = 0", "> 0 kg/m^3"}},
+      {"density < 0",
+       set("gears", "density", "\"-7.8 g/cm^3\""),
+       {"gears.density = -7800", "> 0 kg/m^3"}},
+      // 2 ha / sin^2(20 deg) = 17.097: the rack-generation undercut limit.
+      {"too few teeth",
+       set("gears", "teeth1", "17"),
+       {"gears.teeth1 = 17", "at least 2 ha/sin^2(a0) = 17.09726", "undercuts"}},
+      {"interference, 14.5 deg",
+       set("gears", "pressure_angle", "\"14.5 deg\""),
+       {"gears.addendum_coefficient = 1", "tip of gear 2 stays before C1", "interference"}},
+      {"teeth below 4",
+       set("gears", "teeth2", "3"),
+       {"gears.teeth2 = 3", "an integer in [4, 100000]"}},
+      {"teeth beyond an int",
+       set("gears", "teeth2", "9223372036854775807"),
+       {"gears.teeth2 = 9223372036854775807", "an integer in [4, 100000]"}},
+      // ha = 0.4: contact segment 0.733 base pitches (MODEL.md Geometry).
+      {"contact ratio below 1",
+       set("gears", "addendum_coefficient", "0.4"),
+       {"gears.contact_ratio = 0.733", "[1, 3): below 1 the gears lose contact"}},
+      {"negative backlash",
+       set("gears", "backlash", "\"-0.01 mm\""),
+       {"gears.backlash = -1.0000000000000001e-05", ">= 0 m", "(written \"-0.01 mm\")"}},
+      {"pressure angle 50 deg",
+       set("gears", "pressure_angle", "\"50 deg\""),
+       {"gears.pressure_angle", "(0, 45] deg"}},
+      {"negative friction",
+       set("model", "friction_coefficient", "-0.01"),
+       {"model.friction_coefficient = -0.01", "[0, inf)"}},
+      {"dt = 0",
+       set("integrator", "step", "\"0 us\""),
+       {"integrator.step = \"0 us\"", "a time > 0 s"}},
+      {"dt < 0",
+       set("integrator", "step", "\"-1e-7 s\""),
+       {"integrator.step = \"-1e-7 s\"", "a time > 0 s"}},
+      {"t_end = 0",
+       set("integrator", "end_time", "\"0 ms\""),
+       {"integrator.end_time = \"0 ms\"", "a time > 0 s"}},
+      {"t_end < 0",
+       set("integrator", "end_time", "\"-30 ms\""),
+       {"integrator.end_time = \"-30 ms\"", "a time > 0 s"}},
+      {"more than 1e9 steps",
+       set("integrator", "end_time", "\"1000 s\""),
+       {"integrator.end_time = \"1000 s\"", "at most 1e9 steps", "end_time <= 100 s"}},
+      {"output_every 0",
+       set("integrator", "output_every", "0"),
+       {"integrator.output_every = 0", "an integer in [1, 2147483647]"}},
+      {"wrong type: float teeth",
+       set("gears", "teeth1", "20.5"),
+       {"gears.teeth1 = 20.5", "a float; expected an integer"}},
+      {"wrong type: string teeth",
+       set("gears", "teeth1", "\"20\""),
+       {"gears.teeth1 = \"20\"", "a string; expected an integer"}},
+      {"every stiffness term off",
+       all_terms_off,
+       {"model.hertz_term, bending_term and axial_term are all \"off\"", "at least one"}},
+      {"a stiffness term neither on nor off",
+       set("model", "axial_term", "\"no\""),
+       {"model.axial_term = \"no\"", "one of \"on\", \"off\""}},
+      {"a quadrature that cannot converge",
+       set("model", "stiffness_tolerance", "1e-14"),
+       {"model.stiffness_tolerance = 1e-14", "cannot be computed", "gsl_qag failed"}},
+      {"unknown option",
+       set("model", "damping_form", "\"hertz\""),
+       {"model.damping_form = \"hertz\"",
+        "one of \"herbert-mcwhannell\", \"hunt-crossley\", \"lee-wang\""}},
+      {"negative restitution exponent",
+       set("model", "restitution_exponent", "-0.375"),
+       {"model.restitution_exponent = -0.375", "(0, inf)"}},
+      {"stiffness tolerance 0",
+       set("model", "stiffness_tolerance", "0.0"),
+       {"model.stiffness_tolerance = 0", "[1e-14, 1e-2]"}},
+      {"name with a slash",
+       with_key(base, "", "name", "\"../case\""),
+       {"name = \"../case\"", "letters, digits"}},
+      {"malformed TOML: no value", set("gears", "teeth1", ""), {"bad.toml", "not valid TOML"}},
+      {"malformed TOML: open string",
+       set("gears", "module", "\"2 mm"),
+       {"bad.toml", "not valid TOML"}},
+      {"malformed TOML: duplicate key",
+       set("gears", "teeth1", "20\nteeth1 = 21"),
+       {"bad.toml", "not valid TOML"}},
+      {"deep nesting",
+       base + "x = " + std::string(40, '[') + std::string(40, ']') + "\n",
+       {"bad.toml", "nested deeper than 32 levels"}},
+      // toml11 3.7.1 reads out of bounds on invalid UTF-8 in a string (found
+      // by fuzz/fuzz_case_file; the input is in its corpus).
+      {"invalid UTF-8 in a literal string",
+       set("gears", "module", "'2 m\xe8m'"),
+       {"bad.toml", "not valid TOML: byte", "(line 11) is not part of well-formed UTF-8"}},
+      {"overlong UTF-8 in a comment",
+       base + "# \xc0\xaf\n",
+       {"bad.toml", "not valid TOML: byte", "is not part of well-formed UTF-8"}},
+      {"UTF-16 surrogate in UTF-8",
+       set("gears", "module", "\"2 \xed\xa0\x80mm\""),
+       {"bad.toml", "not valid TOML: byte", "is not part of well-formed UTF-8"}},
+      {"section as a value", with_key(base, "", "name", "\"c\"\ninitial = 3"), {"not valid TOML"}},
+  };
+}
+
+}  // namespace
+
+TEST_CASE("well-formed UTF-8 is accepted in strings and comments") {
+  const std::string text = with_key(case1_text(), "", "name",
+                                    "\"r\xc3\xa4"
+                                    "der\" # \xe2\x9a\x99\xf0\x9f\x94\xa7");
+  // The name itself must be ASCII (it names files): the error is about it, not UTF-8.
+  CHECK(contains(message_of(text),
+                 "name = \"r\xc3\xa4"
+                 "der\""));
+  const std::string comment = case1_text() +
+                              "# Zahnr\xc3\xa4"
+                              "der \xe2\x9a\x99\xf0\x9f\x94\xa7\n";
+  CHECK(parse_case(comment, "case1.toml").name == "case1");
+}
+
+TEST_CASE("the paper's case files are Table 1 as paper_case() writes it") {
+  for (int n = 1; n <= 3; ++n) {
+    CAPTURE(n);
+    const std::filesystem::path file = kPaperData / ("case" + std::to_string(n) + ".toml");
+    check_same(read_case_file(file), paper_case(n));
+  }
+}
+
+TEST_CASE("the file's stem names a case without a name key") {
+  const std::string text = with_key(case1_text(), "", "name", std::nullopt);
+  CHECK(parse_case(text, "dir.d/my-gears.toml").name == "my-gears");
+}
+
+TEST_CASE("optional keys take the defaults of simulation_case.hpp") {
+  std::string text = case1_text();
+  for (const char* key :
+       {"friction_coefficient", "damping_form", "damping_stiffness", "restitution_coefficient",
+        "restitution_exponent", "restitution_speed_unit", "coast_phase", "moment_sign",
+        "stiffness_method", "xform_rule", "stiffness_tolerance", "hertz_term", "bending_term",
+        "axial_term"}) {
+    text = with_key(text, "model", key, std::nullopt);
+  }
+  for (const char* key : {"kind", "step", "relative_tolerance", "output_every"}) {
+    text = with_key(text, "integrator", key, std::nullopt);
+  }
+  text = with_key(text, "gears", "addendum_coefficient", std::nullopt);
+  text = text.substr(0, text.find("[initial]")) + text.substr(text.find("[model]"));
+  // case1 with w1 = 0: the [initial] section is gone.
+  SimulationCase expected = paper_case(1);
+  expected.initial.w1_rad_s = 0.0;
+  check_same(parse_case(text, "case1.toml"), expected);
+}
+
+TEST_CASE("write_case_file reads back to the same case, in readable and in SI units") {
+  std::vector<SimulationCase> cases{paper_case(1), paper_case(2), paper_case(3),
+                                    paper_case(3, TorqueUnit::n_mm, 1000.0)};
+  SimulationCase other = paper_case(2, TorqueUnit::n_mm);
+  other.name = "every_option.changed";
+  other.gears.teeth1 = 31;
+  other.gears.teeth2 = 47;
+  other.gears.module_m = 3.175e-3;
+  other.gears.pressure_angle_rad = 0.4363323129985824;  // 25 deg
+  other.gears.addendum_coefficient = 0.9;
+  other.gears.youngs_modulus_pa = 113.8e9;
+  other.gears.poisson_ratio = 0.342;
+  other.gears.density_kg_m3 = 4430.0;
+  other.gears.backlash_m = 0.0;
+  other.torque2.kind = Torque::Kind::sinusoidal;
+  other.torque2.constant_n_m = 0.0;  // not written for a sinusoid
+  other.torque2.amplitude_n_m = -1.25;
+  other.torque2.angular_frequency_rad_s = 2.0 * std::numbers::pi * 60.0;
+  other.torque2.phase_rad = 1.0;
+  other.initial = {1e-3, -2e-4, 12.5, -3.0};
+  other.model.friction_coefficient = 0.0;
+  other.model.damping_form = DampingForm::lee_wang;
+  other.model.damping_stiffness = DampingStiffness::pitch_pair_at_impact;
+  other.model.restitution = {0.01, 0.36, 0.0254};
+  other.model.coast_phase = CoastPhase::in_phase;
+  other.model.stiffness.method = StiffnessMethod::xform;
+  other.model.stiffness.moment_sign = AxialMomentSign::flipped;
+  other.model.stiffness.relative_tolerance = 1e-10;
+  other.model.stiffness.xform_rule = StiffnessMethod::boost_tanh_sinh;
+  other.model.stiffness.axial_term = false;
+  other.integrator = {IntegratorKind::adaptive, 3e-8, 0.125, 1e-9, 10};
+  cases.push_back(other);
+  for (const SimulationCase& c : cases) {
+    for (CaseUnits units : {CaseUnits::readable, CaseUnits::si}) {
+      const std::string text = write_case_file(c, units);
+      CAPTURE(text);
+      check_same(parse_case(text, c.name + ".toml"), c);
+    }
+  }
+  CHECK(contains(write_case_file(paper_case(2)), "value = \"490.3325 N*mm\""));
+  CHECK(contains(write_case_file(paper_case(1)), "backlash = \"0.05 mm\""));
+  SimulationCase user = paper_case(1);
+  user.torque1.kind = Torque::Kind::user;
+  CHECK_THROWS_AS(write_case_file(user), InputError);
+}
+
+TEST_CASE("a pair whose wheel tip passes C1 is refused as interference, before the undercut") {
+  // Interference (X_start < 0) needs fewer pinion teeth than the rack limit
+  // 2 ha / sin^2(a0) when both gears have the same addendum: the rack is the
+  // worst mating gear. Such a pair is also undercut; validate() names the
+  // more specific fault.
+  GearPair pair = paper_gear_pair();
+  pair.teeth1 = 12;
+  REQUIRE(contact_segment(pair).start_m < 0.0);
+  const std::string text = with_key(case1_text(), "gears", "teeth1", "12");
+  CHECK(contains(message_of(text), "interference"));
+  CHECK(contains(message_of(text), "X_start = -0.00128"));
+}
+
+TEST_CASE("every bad input: the message names file, field, value and range; check-case exits 1") {
+  for (const BadInput& bad : bad_inputs()) {
+    CAPTURE(bad.what);
+    const std::string message = message_of(bad.text);
+    MESSAGE(bad.what << ": " << message);
+    for (const std::string& part : bad.expected) {
+      CAPTURE(part);
+      CHECK(contains(message, part));
+    }
+    const verify::CommandResult cli = run_check_case(bad.text, "bad.toml");
+    CHECK(cli.exit_code == 1);
+    CHECK(cli.out.empty());
+    CHECK(contains(cli.err, "gearimpact: error: "));
+    CHECK(contains(cli.err, bad.expected.back()));
+  }
+}
+
+TEST_CASE("check-case: a missing file fails, a paper case prints its SI values") {
+  const verify::CommandResult missing = run_check_case("", "empty.toml");
+  CHECK(missing.exit_code == 1);
+  CHECK(contains(missing.err, "[gears] is missing"));
+  CHECK(verify::run_command(verify::cli("check-case /nonexistent/case.toml")).exit_code == 1);
+  const verify::CommandResult ok = run_check_case(case1_text(), "case1.toml");
+  CHECK(ok.exit_code == 0);
+  CHECK(contains(ok.out, "module = \"0.002 m\""));
+  CHECK(contains(ok.out, "backlash = \"5e-5 m\""));
+  CHECK(contains(ok.out, "w1 = \"50 rad/s\""));
+}
