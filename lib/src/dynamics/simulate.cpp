@@ -17,6 +17,7 @@
 #include <utility>
 
 #include "gearimpact/contact/contact.hpp"
+#include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/io/schema.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
@@ -46,12 +47,9 @@ constexpr int kMaxPairs = static_cast<int>(LoadedPairs::capacity);
 constexpr int kMaxEvents = 2 + 4 + 2 * kMaxPairs;
 using EventValues = std::array<double, kMaxEvents>;
 
-// Fewer steps per contact period than this do not resolve the contact.
-constexpr double kStepsPerContactPeriod = 20.0;
 // Grazing contacts can have Vi -> 0, where D of (32) grows without bound while
 // G = D delta d(delta)/dt stays finite; the floor keeps D finite.
 constexpr double kSmallestImpactSpeed_m_s = 1e-9;
-constexpr long long kMostSteps = 2'000'000'000LL;
 
 // Everything that is constant during a step: which side is in contact, which
 // pairs are loaded, the sign of each pair's sliding speed and whether its
@@ -804,53 +802,6 @@ SimulationResult run_adaptive(const SimulationCase& c, const StiffnessTable& tab
 
 }  // namespace
 
-namespace {
-
-// The largest resolving step with Ke(X) of one pair given by `ke`.
-template <typename PairStiffness>
-double largest_step(const SimulationCase& c, PairStiffness ke) {
-  const GearPair& g = c.gears;
-  const double rb1 = base_radius(g, Gear::one);
-  const double rb2 = base_radius(g, Gear::two);
-  const double inverse_mass =
-      rb1 * rb1 / moment_of_inertia(g, Gear::one) + rb2 * rb2 / moment_of_inertia(g, Gear::two);
-  const ContactSegment segment = contact_segment(g);
-  const double t0 = base_pitch(g);
-  constexpr int samples = 16;
-  double stiffest = 0.0;
-  for (int i = 0; i <= samples; ++i) {
-    const double u = segment.start_m + t0 * i / samples;
-    double total = 0.0;
-    for (double x = u; x <= segment.end_m; x += t0) total += ke(x);
-    stiffest = std::max(stiffest, total);
-  }
-  const double period = 2.0 * pi / std::sqrt(stiffest * inverse_mass);
-  return period / kStepsPerContactPeriod;
-}
-
-// The step against largest_resolving_step_s, here `largest`.
-void validate_step(const SimulationCase& c, double largest) {
-  const IntegratorSettings& s = c.integrator;
-  if (s.step_s > largest) {
-    throw InputError("step", s.step_s,
-                     "(0, " + format_number(largest) +
-                         "] s: a larger step takes fewer than 20 steps per period of the "
-                         "stiffest contact and does not resolve it");
-  }
-  if (s.end_time_s / s.step_s > static_cast<double>(kMostSteps)) {
-    throw InputError("step", s.step_s,
-                     "at least end_time / " + std::to_string(kMostSteps) + " = " +
-                         format_number(s.end_time_s / static_cast<double>(kMostSteps)) + " s");
-  }
-}
-
-}  // namespace
-
-double largest_resolving_step_s(const SimulationCase& c) {
-  return largest_step(c,
-                      [&](double x) { return mesh_stiffness(c.gears, x, c.model.stiffness).ke; });
-}
-
 void validate(const SimulationCase& c) {
   validate_fields(c);
   validate_step(c, largest_resolving_step_s(c));
@@ -867,7 +818,7 @@ SimulationResult simulate(const SimulationCase& c, const StiffnessTable& table,
   // The step bound from the table: the same Ke to round-off, without the
   // adaptive quadrature that would otherwise cost more than a short run.
   validate_fields(c);
-  validate_step(c, largest_step(c, [&](double x) { return table.stiffness(x); }));
+  validate_step(c, largest_resolving_step_s(c, table));
   if (!std::isfinite(control.constant_mesh_stiffness_n_m) ||
       control.constant_mesh_stiffness_n_m < 0.0) {
     throw InputError("constant_mesh_stiffness", control.constant_mesh_stiffness_n_m,

@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/io/units.hpp"
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/stiffness/table.hpp"
 
 namespace gearimpact {
@@ -111,11 +112,6 @@ struct RunControl {
   // pairs replaced by this total / n, so the mesh stiffness never changes.
   double constant_mesh_stiffness_n_m = 0.0;
 };
-
-// The largest fixed step that resolves contact: 1/20 of the period of the
-// stiffest contact, sqrt(K (Rb1^2/J1 + Rb2^2/J2)) with K the largest sum of Ke
-// over the loaded pairs (sampled along one base pitch).
-double largest_resolving_step_s(const SimulationCase& c);
 
 // Throws InputError naming the first field outside its range.
 void validate(const SimulationCase& c);

@@ -1,0 +1,21 @@
+// The whole public interface of the library, for projects that use it.
+#pragma once
+
+#include "gearimpact/constants.hpp"
+#include "gearimpact/contact/contact.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/dynamics/step_bound.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/tooth_profile.hpp"
+#include "gearimpact/io/atomic_file.hpp"
+#include "gearimpact/io/case_file.hpp"
+#include "gearimpact/io/schema.hpp"
+#include "gearimpact/io/units.hpp"
+#include "gearimpact/numerics/quadrature.hpp"
+#include "gearimpact/paper/statements.hpp"
+#include "gearimpact/paper/table1.hpp"
+#include "gearimpact/stiffness/energy.hpp"
+#include "gearimpact/stiffness/mesh_stiffness.hpp"
+#include "gearimpact/stiffness/table.hpp"

@@ -1,0 +1,65 @@
+#include "gearimpact/dynamics/step_bound.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <string>
+
+#include "gearimpact/constants.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/stiffness/mesh_stiffness.hpp"
+
+namespace gearimpact {
+
+namespace {
+
+// The largest resolving step with Ke(X) of one pair given by `ke`.
+double largest_step(const SimulationCase& c, const std::function<double(double)>& ke) {
+  const GearPair& g = c.gears;
+  const double rb1 = base_radius(g, Gear::one);
+  const double rb2 = base_radius(g, Gear::two);
+  const double inverse_mass =
+      rb1 * rb1 / moment_of_inertia(g, Gear::one) + rb2 * rb2 / moment_of_inertia(g, Gear::two);
+  const ContactSegment segment = contact_segment(g);
+  const double t0 = base_pitch(g);
+  constexpr int samples = 16;
+  double stiffest = 0.0;
+  for (int i = 0; i <= samples; ++i) {
+    const double u = segment.start_m + t0 * i / samples;
+    double total = 0.0;
+    for (double x = u; x <= segment.end_m; x += t0) total += ke(x);
+    stiffest = std::max(stiffest, total);
+  }
+  const double period = 2.0 * pi / std::sqrt(stiffest * inverse_mass);
+  return period / kStepsPerContactPeriod;
+}
+
+}  // namespace
+
+void validate_step(const SimulationCase& c, double largest) {
+  const IntegratorSettings& s = c.integrator;
+  if (s.step_s > largest) {
+    throw InputError("step", s.step_s,
+                     "(0, " + format_number(largest) +
+                         "] s: a larger step takes fewer than 20 steps per period of the "
+                         "stiffest contact and does not resolve it");
+  }
+  if (s.end_time_s / s.step_s > static_cast<double>(kMostSteps)) {
+    throw InputError("step", s.step_s,
+                     "at least end_time / " + std::to_string(kMostSteps) + " = " +
+                         format_number(s.end_time_s / static_cast<double>(kMostSteps)) + " s");
+  }
+}
+
+
+double largest_resolving_step_s(const SimulationCase& c) {
+  return largest_step(c,
+                      [&](double x) { return mesh_stiffness(c.gears, x, c.model.stiffness).ke; });
+}
+
+double largest_resolving_step_s(const SimulationCase& c, const StiffnessTable& table) {
+  return largest_step(c, [&](double x) { return table.stiffness(x); });
+}
+
+}  // namespace gearimpact
