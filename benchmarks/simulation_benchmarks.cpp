@@ -27,11 +27,12 @@
 #include <vector>
 
 #include "bench_support.hpp"
-#include "gearimpact/paper/table1.hpp"
+#include "gearimpact/batch/sweep_friction.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
-#include "gearimpact/stiffness/energy.hpp"
-#include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/paper/table1.hpp"
+#include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/stiffness/table.hpp"
 
 #ifndef GEARIMPACT_CLI_PATH

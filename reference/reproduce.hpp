@@ -6,11 +6,12 @@
 #include <filesystem>
 #include <string>
 
+#include "gearimpact/batch/pool.hpp"
+#include "gearimpact/batch/sweep_friction.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/paper/statements.hpp"
 #include "gnuplot.hpp"
 #include "report.hpp"
-#include "simulation_pool.hpp"
 
 namespace gearimpact::cli {
 
@@ -18,19 +19,8 @@ struct ReproduceContext {
   std::filesystem::path out;
   std::filesystem::path paper_data;
   // Every simulation of the reproduction runs here, once.
-  SimulationPool* pool = nullptr;
+  RunPool* pool = nullptr;
 };
-
-// What sweep_friction returns (the same friction values, the same ratios),
-// with the runs submitted to the pool. Call get() on the result to wait.
-struct PooledSweep {
-  std::vector<double> frictions;
-  std::size_t cases = 0;
-  std::vector<std::shared_future<SimulationResult>> runs;  // friction-major
-  std::vector<SweepRow> get() const;
-};
-PooledSweep submit_sweep(SimulationPool& pool, const std::vector<SimulationCase>& cases,
-                         double from, double to, double step);
 
 // `value` with `digits` significant digits.
 std::string number(double value, int digits);

@@ -72,7 +72,7 @@ std::string software_versions() {
 
 void reproduce(const ReproduceOptions& options) {
   const auto started = std::chrono::steady_clock::now();
-  SimulationPool pool;
+  RunPool pool;
   ReproduceContext context{options.out, options.paper_data, &pool};
   std::filesystem::create_directories(context.out);
   struct Part {

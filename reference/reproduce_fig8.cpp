@@ -3,29 +3,16 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "gearimpact/io/atomic_file.hpp"
-#include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/io/atomic_file.hpp"
+#include "gearimpact/io/results.hpp"
 #include "gearimpact/paper/statements.hpp"
+#include "gearimpact/stiffness/energy.hpp"
 #include "reproduce.hpp"
 
 namespace gearimpact::cli {
 
 namespace {
-
-void write_csv(const std::filesystem::path& file, const std::vector<EnergyRatios>& rows) {
-  std::string text =
-      "angle_deg,pairs,hertz_over_bending_one_pair,axial_over_bending_one_pair,"
-      "hertz_over_bending_system,axial_over_bending_system\n";
-  char line[256];
-  for (const EnergyRatios& row : rows) {
-    std::snprintf(line, sizeof line, "%.17g,%d,%.17g,%.17g,%.17g,%.17g\n", row.phi1_deg, row.pairs,
-                  row.hertz_over_bending_one_pair, row.axial_over_bending_one_pair,
-                  row.hertz_over_bending_system, row.axial_over_bending_system);
-    text += line;
-  }
-  write_file_atomically(file.string(), text);
-}
 
 std::vector<std::string> one_pair_shading(const std::vector<EnergyRatios>& rows) {
   const auto [start, end] = one_pair_zone(rows);
@@ -63,8 +50,10 @@ ReportSection reproduce_fig8(const ReproduceContext& context) {
   const std::vector<EnergyRatios> physical = energy_ratio_cycle(paper_gear_pair(), points);
   const std::vector<EnergyRatios> flipped =
       energy_ratio_cycle(paper_gear_pair(), points, flipped_model);
-  write_csv(context.out / "fig8_energy_ratios.csv", physical);
-  write_csv(context.out / "fig8_energy_ratios_flipped_moment.csv", flipped);
+  write_file_atomically((context.out / "fig8_energy_ratios.csv").string(),
+                        energy_ratios_csv(physical));
+  write_file_atomically((context.out / "fig8_energy_ratios_flipped_moment.csv").string(),
+                        energy_ratios_csv(flipped));
   render(context.out,
          fig8_figure("fig8_energy_ratios",
                      "Fig. 8: ratios of elastic potential energies (physical moment, default)",

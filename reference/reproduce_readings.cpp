@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "gearimpact/paper/table1.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
-#include "gearimpact/paper/statements.hpp"
 #include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/paper/statements.hpp"
+#include "gearimpact/paper/table1.hpp"
 #include "reproduce.hpp"
 
 namespace gearimpact::cli {
@@ -55,7 +55,7 @@ struct Score {
 
 // The runs a reading is scored on, submitted to the pool.
 struct ReadingRuns {
-  PooledSweep sweep;
+  FrictionSweep sweep;
   std::shared_future<SimulationResult> case2;
 };
 
@@ -64,7 +64,7 @@ ReadingRuns submit_reading(const PaperReading& reading, const ReproduceContext& 
   for (int case_number = 1; case_number <= 3; ++case_number) {
     cases.push_back(paper_case(case_number, reading));
   }
-  return {submit_sweep(*context.pool, cases, 0.01, 0.09 + 1e-9, 0.08),
+  return {FrictionSweep(*context.pool, cases, 0.01, 0.09 + 1e-9, 0.08),
           context.pool->submit(cases[1], false)};
 }
 

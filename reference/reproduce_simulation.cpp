@@ -5,11 +5,12 @@
 #include <string>
 #include <vector>
 
-#include "gearimpact/paper/table1.hpp"
-#include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
-#include "gearimpact/paper/statements.hpp"
 #include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/io/atomic_file.hpp"
+#include "gearimpact/io/results.hpp"
+#include "gearimpact/paper/statements.hpp"
+#include "gearimpact/paper/table1.hpp"
 #include "reproduce.hpp"
 
 namespace gearimpact::cli {
@@ -132,41 +133,6 @@ ReportSection reproduce_time_histories(const ReproduceContext& context) {
   return section;
 }
 
-PooledSweep submit_sweep(SimulationPool& pool, const std::vector<SimulationCase>& cases,
-                         double from, double to, double step) {
-  // The friction values of sweep_friction: from + i step up to `to`.
-  const auto count = static_cast<std::size_t>(std::floor((to - from) / step + 1e-9)) + 1;
-  PooledSweep sweep;
-  sweep.cases = cases.size();
-  for (std::size_t i = 0; i < count; ++i) {
-    const double f = from + static_cast<double>(i) * step;
-    sweep.frictions.push_back(f);
-    for (SimulationCase c : cases) {
-      c.model.friction_coefficient = f;
-      sweep.runs.push_back(pool.submit(c, false));
-    }
-  }
-  return sweep;
-}
-
-std::vector<SweepRow> PooledSweep::get() const {
-  std::vector<SweepRow> rows;
-  for (std::size_t i = 0; i < frictions.size(); ++i) {
-    SweepRow row{frictions[i], {}};
-    for (std::size_t j = 0; j < cases; ++j) {
-      const SimulationSummary& s = runs[i * cases + j].get().summary;
-      if (!(s.damping_loss_j > 0.0)) {
-        throw SimulationError("no damping loss in " + s.case_name +
-                              " at f = " + number(frictions[i], 3) +
-                              ": the ratio friction loss / damping loss is undefined");
-      }
-      row.ratio.push_back(s.friction_loss_j / s.damping_loss_j);
-    }
-    rows.push_back(std::move(row));
-  }
-  return rows;
-}
-
 namespace {
 
 struct Fig7Point {
@@ -185,13 +151,9 @@ ReportSection reproduce_fig7(const ReproduceContext& context) {
   }
   constexpr double step = 0.01;
   const std::vector<SweepRow> rows =
-      submit_sweep(*context.pool, cases, 0.01, 0.09 + 1e-9, step).get();
-  std::string csv = "f,ratio_case1,ratio_case2,ratio_case3\n";
-  for (const SweepRow& row : rows) {
-    csv += number(row.friction_coefficient, 17) + "," + number(row.ratio[0], 17) + "," +
-           number(row.ratio[1], 17) + "," + number(row.ratio[2], 17) + "\n";
-  }
-  write_file_atomically((context.out / "fig7_friction_sweep.csv").string(), csv);
+      FrictionSweep(*context.pool, cases, 0.01, 0.09 + 1e-9, step).get();
+  write_file_atomically((context.out / "fig7_friction_sweep.csv").string(),
+                        friction_sweep_csv(rows));
   render(
       context.out,
       {"fig7_friction_sweep",

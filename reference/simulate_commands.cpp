@@ -5,12 +5,14 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "gearimpact/paper/table1.hpp"
+#include "gearimpact/batch/sweep_friction.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/error.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
-#include "gearimpact/dynamics/simulate.hpp"
-#include "gearimpact/error.hpp"
-#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/io/results.hpp"
+#include "gearimpact/paper/table1.hpp"
 
 namespace gearimpact::cli {
 
@@ -153,12 +155,8 @@ void run_sweep(const SweepOptions& o) {
     cases.back().integrator.step_s = o.step_s;
     if (o.end_time_s != 0.0) cases.back().integrator.end_time_s = o.end_time_s;
   }
-  const std::vector<SweepRow> rows = sweep_friction(cases, o.from, o.to, o.step, o.threads);
-  std::printf("f,ratio_case1,ratio_case2,ratio_case3\n");
-  for (const SweepRow& row : rows) {
-    std::printf("%.17g,%.17g,%.17g,%.17g\n", row.friction_coefficient, row.ratio[0], row.ratio[1],
-                row.ratio[2]);
-  }
+  std::fputs(friction_sweep_csv(sweep_friction(cases, o.from, o.to, o.step, o.threads)).c_str(),
+             stdout);
 }
 
 }  // namespace

@@ -1,12 +1,14 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
-#include "gearimpact/io/case_file.hpp"
-#include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/io/case_file.hpp"
+#include "gearimpact/io/results.hpp"
+#include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 
 namespace gearimpact::cli {
@@ -34,7 +36,7 @@ PairAndModel pair_and_model(const StiffnessOptions& options, const CLI::App& com
     chosen = {c.gears, c.model.stiffness};
   }
   if (options.case_file.empty() || command.get_option("--method")->count() > 0) {
-    chosen.model.method = parse_stiffness_method(options.method);
+    chosen.model = with_method(chosen.model, options.method, "--method");
   }
   if (options.flipped_moment) chosen.model.moment_sign = AxialMomentSign::flipped;
   validate(chosen.pair);
@@ -46,25 +48,16 @@ void print_stiffness_table(const StiffnessOptions& options, const CLI::App& comm
   const auto [pair, model] = pair_and_model(options, command);
   const ContactSegment segment = contact_segment(pair);
   const double step = (segment.end_m - segment.start_m) / (options.points - 1);
-  std::printf("x_m,phi1_rad,kb1,ka1,kb2,ka2,kh,ke\n");
+  std::vector<double> positions;
   for (int i = 0; i < options.points; ++i) {
-    const double x = i + 1 == options.points ? segment.end_m : segment.start_m + i * step;
-    const MeshStiffness k = mesh_stiffness(pair, x, model);
-    std::printf("%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", x,
-                contact_angle(pair, Gear::one, x), k.kb1, k.ka1, k.kb2, k.ka2, k.kh, k.ke);
+    positions.push_back(i + 1 == options.points ? segment.end_m : segment.start_m + i * step);
   }
+  std::fputs(stiffness_csv(pair, model, positions).c_str(), stdout);
 }
 
 void print_energy_ratios(const StiffnessOptions& options, const CLI::App& command) {
   const auto [pair, model] = pair_and_model(options, command);
-  std::printf(
-      "angle_deg,pairs,hertz_over_bending_one_pair,axial_over_bending_one_pair,"
-      "hertz_over_bending_system,axial_over_bending_system\n");
-  for (const EnergyRatios& row : energy_ratio_cycle(pair, options.points, model)) {
-    std::printf("%.17g,%d,%.17g,%.17g,%.17g,%.17g\n", row.phi1_deg, row.pairs,
-                row.hertz_over_bending_one_pair, row.axial_over_bending_one_pair,
-                row.hertz_over_bending_system, row.axial_over_bending_system);
-  }
+  std::fputs(energy_ratios_csv(energy_ratio_cycle(pair, options.points, model)).c_str(), stdout);
 }
 
 void add_model_options(CLI::App* command, StiffnessOptions& options) {

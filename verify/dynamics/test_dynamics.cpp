@@ -7,10 +7,11 @@
 #include <limits>
 #include <string>
 
-#include "gearimpact/paper/table1.hpp"
+#include "gearimpact/batch/sweep_friction.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/paper/table1.hpp"
 
 using namespace gearimpact;
 

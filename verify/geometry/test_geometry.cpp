@@ -106,7 +106,7 @@ TEST_CASE("(9),(12): theta1 = 0 puts a drive contact at the pitch point, phi1 = 
   const double phi1 = contact_angle(pair, Gear::one, pitch_point_position(pair));
   CHECK(relative_difference(phi1, pair.pressure_angle_rad -
                                       std::numbers::pi / (2.0 * pair.teeth1)) < geometry_tolerance);
-  const LoadedPairs on_n1 = loaded_pairs(pair, ContactLine::n1, 0.0);
+  const LoadedPairs on_n1 = loaded_pairs(pair, Region::n1, 0.0);
   bool pitch_point_loaded = false;
   for (std::size_t i = 0; i < on_n1.count; ++i) {
     pitch_point_loaded |= std::abs(on_n1.position_m[i] - pitch_point_position(pair)) < 1e-15;
@@ -148,7 +148,7 @@ TEST_CASE("(42) pairs a base pitch apart; two pairs for a fraction eps - 1 of ea
     int two = 0;
     for (int i = 0; i < samples; ++i) {
       const double theta1 = rotation_per_pitch * (i + 0.5) / samples;
-      for (ContactLine line : {ContactLine::n1, ContactLine::n2}) {
+      for (Region line : {Region::n1, Region::n2}) {
         const LoadedPairs loaded = loaded_pairs(pair, line, theta1);
         REQUIRE(loaded.count >= 1);
         REQUIRE(loaded.count <= 2);
@@ -159,7 +159,7 @@ TEST_CASE("(42) pairs a base pitch apart; two pairs for a fraction eps - 1 of ea
             CHECK(std::abs(loaded.position_m[k] - loaded.position_m[k - 1] - t0) < 1e-15);
           }
         }
-        if (line == ContactLine::n1 && loaded.count == 2) ++two;
+        if (line == Region::n1 && loaded.count == 2) ++two;
       }
     }
     CHECK(std::abs(static_cast<double>(two) / samples - (eps - 1.0)) < 2.0 / samples);
@@ -179,7 +179,7 @@ TEST_CASE(
   CHECK(relative_difference(half_pitch_roll, t0 / 2.0) < geometry_tolerance);
   for (CoastPhase phase : {CoastPhase::half_base_pitch, CoastPhase::in_phase}) {
     const double offset = phase == CoastPhase::half_base_pitch ? half_pitch_roll : 0.0;
-    const LoadedPairs loaded = loaded_pairs(pair, ContactLine::n2, theta1, phase);
+    const LoadedPairs loaded = loaded_pairs(pair, Region::n2, theta1, phase);
     for (std::size_t k = 0; k < loaded.count; ++k) {
       const double pitches =
           (loaded.position_m[k] - pitch_point_position(pair) + rolled - offset) / t0;

@@ -13,11 +13,11 @@
 #include <utility>
 #include <vector>
 
-#include "gearimpact/paper/table1.hpp"
-#include "gearimpact/io/case_file.hpp"
+#include "gearimpact/dynamics/simulation_case.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
-#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/io/case_file.hpp"
+#include "gearimpact/paper/table1.hpp"
 #include "run_command.hpp"
 
 using namespace gearimpact;
@@ -71,13 +71,11 @@ void check_same(const SimulationCase& a, const SimulationCase& b) {
   CHECK(a.model.restitution.exponent == b.model.restitution.exponent);
   CHECK(a.model.restitution.speed_unit_m_s == b.model.restitution.speed_unit_m_s);
   CHECK(a.model.coast_phase == b.model.coast_phase);
-  CHECK(a.model.stiffness.method == b.model.stiffness.method);
+  CHECK(a.model.stiffness.route == b.model.stiffness.route);
+  CHECK(a.model.stiffness.rule == b.model.stiffness.rule);
   CHECK(a.model.stiffness.moment_sign == b.model.stiffness.moment_sign);
   CHECK(a.model.stiffness.relative_tolerance == b.model.stiffness.relative_tolerance);
-  CHECK(a.model.stiffness.xform_rule == b.model.stiffness.xform_rule);
-  CHECK(a.model.stiffness.hertz_term == b.model.stiffness.hertz_term);
-  CHECK(a.model.stiffness.bending_term == b.model.stiffness.bending_term);
-  CHECK(a.model.stiffness.axial_term == b.model.stiffness.axial_term);
+  CHECK(a.model.stiffness.terms == b.model.stiffness.terms);
   CHECK(a.integrator.kind == b.integrator.kind);
   CHECK(a.integrator.step_s == b.integrator.step_s);
   CHECK(a.integrator.end_time_s == b.integrator.end_time_s);
@@ -395,11 +393,11 @@ TEST_CASE("write_case_file reads back to the same case, in readable and in SI un
   other.model.damping_stiffness = DampingStiffness::pitch_pair_at_impact;
   other.model.restitution = {0.01, 0.36, 0.0254};
   other.model.coast_phase = CoastPhase::in_phase;
-  other.model.stiffness.method = StiffnessMethod::xform;
+  other.model.stiffness.route = StiffnessRoute::x_form;
   other.model.stiffness.moment_sign = AxialMomentSign::flipped;
   other.model.stiffness.relative_tolerance = 1e-10;
-  other.model.stiffness.xform_rule = StiffnessMethod::boost_tanh_sinh;
-  other.model.stiffness.axial_term = false;
+  other.model.stiffness.rule = QuadratureRule::boost_tanh_sinh;
+  other.model.stiffness.terms.set(Term::axial, false);
   other.integrator = {IntegratorKind::adaptive, 3e-8, 0.125, 1e-9, 10};
   cases.push_back(other);
   for (const SimulationCase& c : cases) {

@@ -12,8 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "gearimpact/paper/table1.hpp"
+#include "gearimpact/batch/sweep_friction.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/paper/table1.hpp"
 #include "paper_data.hpp"
 
 using namespace gearimpact;

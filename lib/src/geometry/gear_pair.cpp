@@ -1,9 +1,9 @@
 #include "gearimpact/geometry/gear_pair.hpp"
 
 #include <cmath>
-#include "gearimpact/constants.hpp"
 #include <string>
 
+#include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 
 namespace gearimpact {
@@ -26,6 +26,14 @@ double undercut_teeth_limit(const GearPair& pair) {
 }
 
 }  // namespace
+
+bool operator==(const GearPair& a, const GearPair& b) {
+  return a.teeth1 == b.teeth1 && a.teeth2 == b.teeth2 && a.module_m == b.module_m &&
+         a.pressure_angle_rad == b.pressure_angle_rad && a.face_width_m == b.face_width_m &&
+         a.addendum_coefficient == b.addendum_coefficient &&
+         a.youngs_modulus_pa == b.youngs_modulus_pa && a.poisson_ratio == b.poisson_ratio &&
+         a.density_kg_m3 == b.density_kg_m3 && a.backlash_m == b.backlash_m;
+}
 
 GearPair paper_gear_pair() {
   return GearPair{};
@@ -94,24 +102,38 @@ double contact_position_from_phi1(const GearPair& pair, double phi1_rad) {
   return base_radius(pair, Gear::one) * (phi1_rad + half_tooth_angle(pair, Gear::one));
 }
 
-LoadedPairs loaded_pairs(const GearPair& pair, ContactLine line, double theta1_rad,
+MeshLayout::MeshLayout(const GearPair& pair, CoastPhase coast_phase)
+    : x_pitch_(pitch_point_position(pair)),
+      rb1_(base_radius(pair, Gear::one)),
+      t0_(base_pitch(pair)),
+      start_(contact_segment(pair).start_m),
+      end_(contact_segment(pair).end_m),
+      coast_offset_(coast_phase == CoastPhase::half_base_pitch ? 0.5 * t0_ : 0.0) {}
+
+LoadedRange MeshLayout::loaded(double reference_m) const {
+  // The first k whose X reaches X_start, with the same comparisons as the
+  // simulation's event functions (X - X_start >= 0, X_end - X >= 0), so that
+  // a pair counted here is one the event location counts.
+  const double ref = reference_m;
+  int k = static_cast<int>(std::ceil((start_ - ref) / t0_));
+  while (ref + k * t0_ - start_ < 0.0) ++k;
+  while (start_ - (ref + (k - 1) * t0_) < 0.0) --k;
+  LoadedRange range{k, 0};
+  while (range.count < capacity && end_ - (ref + (k + range.count) * t0_) >= 0.0) ++range.count;
+  return range;
+}
+
+LoadedPairs loaded_pairs(const GearPair& pair, Region line, double theta1_rad,
                          CoastPhase coast_phase) {
-  const ContactSegment segment = contact_segment(pair);
-  const double t0 = base_pitch(pair);
-  const double rolled = base_radius(pair, Gear::one) * theta1_rad;
-  double reference = pitch_point_position(pair);
-  if (line == ContactLine::n1) {
-    reference += rolled;
-  } else {
-    reference -= rolled;
-    if (coast_phase == CoastPhase::half_base_pitch) reference += 0.5 * t0;
+  if (line == Region::free) {
+    throw InputError("line", "free", "Region::n1 or Region::n2, a line of action");
   }
-  // The first k whose position reaches X_start; the rest follow a pitch apart.
-  const double k_first = std::ceil((segment.start_m - reference) / t0);
+  const MeshLayout layout(pair, coast_phase);
+  const double reference = layout.reference_m(line, theta1_rad);
+  const LoadedRange range = layout.loaded(reference);
   LoadedPairs result;
-  for (double x = reference + k_first * t0; x <= segment.end_m; x += t0) {
-    if (result.count == LoadedPairs::capacity) break;
-    result.position_m[result.count++] = x;
+  for (int j = 0; j < range.count; ++j) {
+    result.position_m[result.count++] = layout.position_m(reference, range.k_first + j);
   }
   return result;
 }
@@ -173,9 +195,9 @@ void validate(const GearPair& pair) {
   }
 
   const double ratio = contact_ratio(pair);
-  if (ratio < 1.0 || ratio >= static_cast<double>(LoadedPairs::capacity - 1)) {
+  if (ratio < 1.0 || ratio >= static_cast<double>(MeshLayout::capacity - 1)) {
     throw InputError("contact_ratio", ratio,
-                     "[1, " + std::to_string(LoadedPairs::capacity - 1) +
+                     "[1, " + std::to_string(MeshLayout::capacity - 1) +
                          "): below 1 the gears lose contact between pairs");
   }
 }

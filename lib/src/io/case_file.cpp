@@ -53,18 +53,24 @@ constexpr std::array kCoastPhases{
 constexpr std::array kOnOff{Choice<bool>{"on", true}, Choice<bool>{"off", false}};
 constexpr std::array kMomentSigns{Choice<AxialMomentSign>{"physical", AxialMomentSign::physical},
                                   Choice<AxialMomentSign>{"flipped", AxialMomentSign::flipped}};
-constexpr std::array kStiffnessMethods{
-    Choice<StiffnessMethod>{"gsl", StiffnessMethod::gsl_qag},
-    Choice<StiffnessMethod>{"gsl-cquad", StiffnessMethod::gsl_cquad},
-    Choice<StiffnessMethod>{"boost-gk", StiffnessMethod::boost_gauss_kronrod},
-    Choice<StiffnessMethod>{"boost-ts", StiffnessMethod::boost_tanh_sinh},
-    Choice<StiffnessMethod>{"xform", StiffnessMethod::xform}};
-// The x-form route integrates with one of the tau-form rules, not with itself.
+// stiffness_method names the tau-form with a rule, or the x-form route;
+// xform_rule names the rule of the x-form.
+enum class MethodName { gsl, gsl_cquad, boost_gk, boost_ts, xform };
+constexpr std::array kStiffnessMethods{Choice<MethodName>{"gsl", MethodName::gsl},
+                                       Choice<MethodName>{"gsl-cquad", MethodName::gsl_cquad},
+                                       Choice<MethodName>{"boost-gk", MethodName::boost_gk},
+                                       Choice<MethodName>{"boost-ts", MethodName::boost_ts},
+                                       Choice<MethodName>{"xform", MethodName::xform}};
 constexpr std::array kXformRules{
-    Choice<StiffnessMethod>{"gsl", StiffnessMethod::gsl_qag},
-    Choice<StiffnessMethod>{"gsl-cquad", StiffnessMethod::gsl_cquad},
-    Choice<StiffnessMethod>{"boost-gk", StiffnessMethod::boost_gauss_kronrod},
-    Choice<StiffnessMethod>{"boost-ts", StiffnessMethod::boost_tanh_sinh}};
+    Choice<QuadratureRule>{"gsl", QuadratureRule::gsl_qag},
+    Choice<QuadratureRule>{"gsl-cquad", QuadratureRule::gsl_cquad},
+    Choice<QuadratureRule>{"boost-gk", QuadratureRule::boost_gauss_kronrod},
+    Choice<QuadratureRule>{"boost-ts", QuadratureRule::boost_tanh_sinh}};
+
+MethodName method_of(const StiffnessModel& m) {
+  if (m.route == StiffnessRoute::x_form) return MethodName::xform;
+  return static_cast<MethodName>(static_cast<int>(m.rule));
+}
 constexpr std::array kTorqueKinds{Choice<Torque::Kind>{"constant", Torque::Kind::constant},
                                   Choice<Torque::Kind>{"sinusoidal", Torque::Kind::sinusoidal}};
 constexpr std::array kIntegratorKinds{Choice<IntegratorKind>{"rk4", IntegratorKind::rk4},
@@ -540,18 +546,21 @@ SimulationCase read_case(const Reader& reader, const toml::value& root,
         section.choice("coast_phase", kCoastPhases, std::optional(defaults.coast_phase));
     model.stiffness.moment_sign =
         section.choice("moment_sign", kMomentSigns, std::optional(defaults.stiffness.moment_sign));
-    model.stiffness.method = section.choice("stiffness_method", kStiffnessMethods,
-                                            std::optional(defaults.stiffness.method));
-    model.stiffness.xform_rule =
-        section.choice("xform_rule", kXformRules, std::optional(defaults.stiffness.xform_rule));
-    model.stiffness.hertz_term =
-        section.choice("hertz_term", kOnOff, std::optional(defaults.stiffness.hertz_term));
-    model.stiffness.bending_term =
-        section.choice("bending_term", kOnOff, std::optional(defaults.stiffness.bending_term));
-    model.stiffness.axial_term =
-        section.choice("axial_term", kOnOff, std::optional(defaults.stiffness.axial_term));
-    if (!model.stiffness.hertz_term && !model.stiffness.bending_term &&
-        !model.stiffness.axial_term) {
+    const MethodName method = section.choice("stiffness_method", kStiffnessMethods,
+                                             std::optional(method_of(defaults.stiffness)));
+    const QuadratureRule xform_rule =
+        section.choice("xform_rule", kXformRules, std::optional(defaults.stiffness.rule));
+    model.stiffness.route =
+        method == MethodName::xform ? StiffnessRoute::x_form : StiffnessRoute::tau_form;
+    model.stiffness.rule = method == MethodName::xform
+                               ? xform_rule
+                               : static_cast<QuadratureRule>(static_cast<int>(method));
+    for (const TermInfo& t : kTerms) {
+      const std::string key = std::string(t.id) + "_term";
+      model.stiffness.terms.set(
+          t.term, section.choice(key, kOnOff, std::optional(defaults.stiffness.terms.has(t.term))));
+    }
+    if (!model.stiffness.terms.any()) {
       reader.fail("model.hertz_term", section.find("hertz_term"),
                   "model.hertz_term, bending_term and axial_term are all \"off\": at least one "
                   "term of (29) must stay \"on\"");
@@ -581,7 +590,7 @@ SimulationCase read_case(const Reader& reader, const toml::value& root,
       reader.fail("model.stiffness_tolerance", nullptr,
                   "model.stiffness_tolerance = " +
                       shortest_decimal(result.model.stiffness.relative_tolerance) +
-                      " with stiffness_method = " + to_string(result.model.stiffness.method) +
+                      " with stiffness_method = " + method_name(result.model.stiffness) +
                       ": the mesh stiffness cannot be computed to it (" + e.what() +
                       "); 1e-12 is within reach of every method");
     }
@@ -753,12 +762,14 @@ std::string write_case_file(const SimulationCase& c, CaseUnits units) {
   out.quantity("restitution_speed_unit", m.restitution.speed_unit_m_s, Dimension::speed, "mm/s");
   out.word("coast_phase", name_of(kCoastPhases, m.coast_phase));
   out.word("moment_sign", name_of(kMomentSigns, m.stiffness.moment_sign));
-  out.word("stiffness_method", name_of(kStiffnessMethods, m.stiffness.method));
-  out.word("xform_rule", name_of(kXformRules, m.stiffness.xform_rule));
+  out.word("stiffness_method", name_of(kStiffnessMethods, method_of(m.stiffness)));
+  out.word("xform_rule", name_of(kXformRules, m.stiffness.route == StiffnessRoute::x_form
+                                                  ? m.stiffness.rule
+                                                  : QuadratureRule::gsl_qag));
   out.number("stiffness_tolerance", m.stiffness.relative_tolerance);
-  out.word("hertz_term", name_of(kOnOff, m.stiffness.hertz_term));
-  out.word("bending_term", name_of(kOnOff, m.stiffness.bending_term));
-  out.word("axial_term", name_of(kOnOff, m.stiffness.axial_term));
+  for (const TermInfo& t : kTerms) {
+    out.word(std::string(t.id) + "_term", name_of(kOnOff, m.stiffness.terms.has(t.term)));
+  }
 
   const IntegratorSettings& i = c.integrator;
   out.section("integrator");

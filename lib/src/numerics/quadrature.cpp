@@ -172,4 +172,43 @@ QuadratureResult integrate_boost_tanh_sinh(const Integrand& f, double a, double 
   return result;
 }
 
+QuadratureResult integrate(QuadratureRule rule, const Integrand& f, double a, double b,
+                           QuadratureTolerance tolerance) {
+  switch (rule) {
+    case QuadratureRule::gsl_qag:
+      return integrate_gsl_qag(f, a, b, tolerance);
+    case QuadratureRule::gsl_cquad:
+      return integrate_gsl_cquad(f, a, b, tolerance);
+    case QuadratureRule::boost_gauss_kronrod:
+      return integrate_boost_gauss_kronrod(f, a, b, tolerance);
+    case QuadratureRule::boost_tanh_sinh:
+      return integrate_boost_tanh_sinh(f, a, b, tolerance);
+  }
+  throw QuadratureError("unknown quadrature rule " + std::to_string(static_cast<int>(rule)));
+}
+
+std::string to_string(QuadratureRule rule) {
+  switch (rule) {
+    case QuadratureRule::gsl_qag:
+      return "gsl";
+    case QuadratureRule::gsl_cquad:
+      return "gsl-cquad";
+    case QuadratureRule::boost_gauss_kronrod:
+      return "boost-gk";
+    case QuadratureRule::boost_tanh_sinh:
+      return "boost-ts";
+  }
+  return "unknown";
+}
+
+QuadratureRule parse_quadrature_rule(std::string_view name, std::string_view field) {
+  for (QuadratureRule rule :
+       {QuadratureRule::gsl_qag, QuadratureRule::gsl_cquad, QuadratureRule::boost_gauss_kronrod,
+        QuadratureRule::boost_tanh_sinh}) {
+    if (name == to_string(rule)) return rule;
+  }
+  throw InputError(std::string(field), std::string(name),
+                   "one of gsl, gsl-cquad, boost-gk, boost-ts");
+}
+
 }  // namespace gearimpact

@@ -1,17 +1,19 @@
 #include "gearimpact/stiffness/energy.hpp"
 
 #include <algorithm>
-#include "gearimpact/constants.hpp"
 #include <string>
 
+#include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 
 namespace gearimpact {
 
-ElasticEnergy pair_energy(const MeshStiffness& k, double force_n) {
+ElasticEnergy pair_energy(const Compliances& compliance, double force_n) {
+  // (5),(16),(17),(28)
   const double half_f2 = 0.5 * force_n * force_n;
-  return {half_f2 / k.kh, half_f2 * (1.0 / k.kb1 + 1.0 / k.kb2),
-          half_f2 * (1.0 / k.ka1 + 1.0 / k.ka2)};
+  ElasticEnergy u;
+  for (std::size_t i = 0; i < kTermCount; ++i) u.j[i] = half_f2 * compliance.m_per_n[i];
+  return u;
 }
 
 ElasticEnergy shared_load_energy(const std::vector<MeshStiffness>& pairs, double total_force_n) {
@@ -19,10 +21,8 @@ ElasticEnergy shared_load_energy(const std::vector<MeshStiffness>& pairs, double
   for (const MeshStiffness& k : pairs) stiffness_sum += k.ke;
   ElasticEnergy sum;
   for (const MeshStiffness& k : pairs) {
-    const ElasticEnergy u = pair_energy(k, total_force_n * k.ke / stiffness_sum);
-    sum.hertz_j += u.hertz_j;
-    sum.bending_j += u.bending_j;
-    sum.axial_j += u.axial_j;
+    const ElasticEnergy u = pair_energy(k.included, total_force_n * k.ke / stiffness_sum);
+    for (std::size_t i = 0; i < kTermCount; ++i) sum.j[i] += u.j[i];
   }
   return sum;
 }
@@ -32,28 +32,30 @@ std::vector<EnergyRatios> energy_ratio_cycle(const GearPair& pair, int points,
   if (points < 2) {
     throw InputError("points", std::to_string(points), "an integer >= 2");
   }
-  const ContactSegment segment = contact_segment(pair);
-  const double t0 = base_pitch(pair);
-  const double step = (segment.end_m - segment.start_m) / (points - 1);
+  const MeshLayout layout(pair, CoastPhase::half_base_pitch);
+  const double start = layout.start_m();
+  const double end = layout.end_m();
+  const double step = (end - start) / (points - 1);
   std::vector<EnergyRatios> rows;
   rows.reserve(static_cast<std::size_t>(points));
   for (int i = 0; i < points; ++i) {
     // The last point is set exactly so that X_end is not lost to rounding.
-    const double x = i + 1 == points ? segment.end_m : segment.start_m + i * step;
+    const double x = i + 1 == points ? end : start + i * step;
+    // (42) with this tooth as pair 0: the tooth first, then the others.
     const MeshStiffness own = mesh_stiffness(pair, x, model);
     std::vector<MeshStiffness> loaded{own};
-    for (double other = x - t0; other >= segment.start_m; other -= t0) {
-      loaded.push_back(mesh_stiffness(pair, other, model));
+    const LoadedRange range = layout.loaded(x);
+    for (int k = range.k_first; k < range.k_first + range.count; ++k) {
+      if (k != 0) loaded.push_back(mesh_stiffness(pair, layout.position_m(x, k), model));
     }
-    for (double other = x + t0; other <= segment.end_m; other += t0) {
-      loaded.push_back(mesh_stiffness(pair, other, model));
-    }
-    const ElasticEnergy one = pair_energy(own, 1.0);
+    const ElasticEnergy one = pair_energy(own.included, 1.0);
     const ElasticEnergy system = shared_load_energy(loaded, 1.0);
+    const double bending_one = one.of(Term::bending);
+    const double bending_system = system.of(Term::bending);
     rows.push_back({x, contact_angle(pair, Gear::one, x) * 180.0 / pi,
-                    static_cast<int>(loaded.size()), one.hertz_j / one.bending_j,
-                    one.axial_j / one.bending_j, system.hertz_j / system.bending_j,
-                    system.axial_j / system.bending_j});
+                    static_cast<int>(loaded.size()), one.of(Term::hertz) / bending_one,
+                    one.of(Term::axial) / bending_one, system.of(Term::hertz) / bending_system,
+                    system.of(Term::axial) / bending_system});
   }
   return rows;
 }

@@ -8,6 +8,7 @@
 #include <limits>
 #include <memory>
 #include <new>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -22,26 +23,20 @@ struct ChebDeleter {
 };
 using ChebPtr = std::unique_ptr<gsl_cheb_series, ChebDeleter>;
 
-enum class Part { bending, axial, stiffness };
-
-// The compliances of both teeth at the Chebyshev nodes. gsl_cheb_init is C:
-// an exception thrown by the quadrature must not unwind through it, so the
-// callback stores it and returns NaN, and fit() rethrows once GSL has
-// returned. The three fits of a piece use the same nodes, so the quadrature
-// runs once per node and the values are reused.
+// The compliances at the Chebyshev nodes of one piece. gsl_cheb_init is C: an
+// exception thrown by the compliance function must not unwind through it, so
+// the callback stores it and returns NaN, and fit() rethrows once GSL has
+// returned. The fits of a piece use the same nodes, so the function runs once
+// per node and the values are reused.
 class NodeCompliances {
  public:
-  NodeCompliances(const GearPair& pair, const StiffnessModel& model)
-      : pair_(pair),
-        model_(model),
-        lp_(line_of_action_length(pair)),
-        hertz_compliance_(
-            included_compliance(model, 1.0 / hertz_stiffness(pair), 0.0, 0.0).hertz_m_per_n) {}
+  explicit NodeCompliances(const ComplianceFunction& compliance) : compliance_(compliance) {}
 
-  ChebPtr fit(Part part, double a, double b, int order) {
+  // A series of one term's compliance (`term`), or of Ke when `term` is empty.
+  ChebPtr fit(std::optional<Term> term, double a, double b, int order) {
     ChebPtr series(gsl_cheb_alloc(static_cast<std::size_t>(order)));
     if (!series) throw std::bad_alloc();
-    part_ = part;
+    term_ = term;
     gsl_function f{&NodeCompliances::call, this};
     const int status = gsl_cheb_init(series.get(), &f, a, b);
     if (failure_) std::rethrow_exception(std::exchange(failure_, nullptr));
@@ -52,55 +47,37 @@ class NodeCompliances {
     return series;
   }
 
+  // The node evaluated first (after a fit).
+  const Compliances& first() const { return nodes_.front().compliance; }
+
+  const Compliances& at(double x1_m) {
+    for (const Node& node : nodes_) {
+      if (node.x1_m == x1_m) return node.compliance;
+    }
+    nodes_.push_back({x1_m, compliance_(x1_m)});
+    return nodes_.back().compliance;
+  }
+
  private:
   struct Node {
     double x1_m;
-    double bending_m_per_n;
-    double axial_m_per_n;
+    Compliances compliance;
   };
 
   static double call(double x1_m, void* params) {
     auto* self = static_cast<NodeCompliances*>(params);
     try {
-      const Node& node = self->at(x1_m);
-      switch (self->part_) {
-        case Part::bending:
-          return node.bending_m_per_n;
-        case Part::axial:
-          return node.axial_m_per_n;
-        case Part::stiffness:
-          // (29)
-          return 1.0 / (self->hertz_compliance_ + node.bending_m_per_n + node.axial_m_per_n);
-      }
-      return std::numeric_limits<double>::quiet_NaN();
+      const Compliances& c = self->at(x1_m);
+      // (29) for Ke.
+      return self->term_ ? c.of(*self->term_) : 1.0 / c.total_m_per_n();
     } catch (...) {
       if (!self->failure_) self->failure_ = std::current_exception();
       return std::numeric_limits<double>::quiet_NaN();
     }
   }
 
-  const Node& at(double x1_m) {
-    for (const Node& node : nodes_) {
-      if (node.x1_m == x1_m) return node;
-    }
-    const double e = pair_.youngs_modulus_pa;
-    const double width = pair_.face_width_m;
-    const ToothCompliance c1 = tooth_compliance(tooth_of(pair_, Gear::one), x1_m, e, width, model_);
-    // (25),(26): gear 2 sees the contact at lp - X1 from C2.
-    const ToothCompliance c2 =
-        tooth_compliance(tooth_of(pair_, Gear::two), lp_ - x1_m, e, width, model_);
-    // Terms switched off in the model enter (29) as zero compliance.
-    const PairCompliance included = included_compliance(
-        model_, 0.0, c1.bending_m_per_n + c2.bending_m_per_n, c1.axial_m_per_n + c2.axial_m_per_n);
-    nodes_.push_back({x1_m, included.bending_m_per_n, included.axial_m_per_n});
-    return nodes_.back();
-  }
-
-  const GearPair& pair_;
-  const StiffnessModel& model_;
-  double lp_;
-  double hertz_compliance_;
-  Part part_ = Part::bending;
+  const ComplianceFunction& compliance_;
+  std::optional<Term> term_;
   std::vector<Node> nodes_;
   std::exception_ptr failure_;
 };
@@ -134,7 +111,7 @@ void append_polynomial(std::vector<double>& out, const gsl_cheb_series* series,
 
 }  // namespace
 
-StiffnessTable::StiffnessTable(const GearPair& pair, const StiffnessModel& model,
+StiffnessTable::StiffnessTable(double start_m, double end_m, const ComplianceFunction& compliance,
                                StiffnessTableOptions options) {
   constexpr int max_pieces = 4096;
   constexpr int max_order = 15;
@@ -146,33 +123,54 @@ StiffnessTable::StiffnessTable(const GearPair& pair, const StiffnessModel& model
     throw InputError("order", std::to_string(options.order),
                      "an integer in [2, " + std::to_string(max_order) + "]");
   }
-  const ContactSegment segment = contact_segment(pair);
-  start_ = segment.start_m;
-  end_ = segment.end_m;
+  if (!std::isfinite(start_m) || !std::isfinite(end_m) || !(start_m < end_m)) {
+    throw InputError("table domain", format_number(start_m) + " to " + format_number(end_m),
+                     "finite start < end, m");
+  }
+  start_ = start_m;
+  end_ = end_m;
   pieces_ = options.pieces;
   order_ = options.order;
   stride_ = order_ <= 7 ? 8 : 16;
   const double piece_width = (end_ - start_) / pieces_;
   pieces_per_m_ = 1.0 / piece_width;
-  validate(model);
-  hertz_compliance_ =
-      included_compliance(model, 1.0 / hertz_stiffness(pair), 0.0, 0.0).hertz_m_per_n;
 
   ChebPtr derivative(gsl_cheb_alloc(static_cast<std::size_t>(order_)));
   if (!derivative) throw std::bad_alloc();
   for (int i = 0; i < pieces_; ++i) {
     const double a = start_ + i * piece_width;
     const double b = i + 1 == pieces_ ? end_ : start_ + (i + 1) * piece_width;
-    NodeCompliances nodes(pair, model);
-    const ChebPtr bending = nodes.fit(Part::bending, a, b, order_);
-    const ChebPtr axial = nodes.fit(Part::axial, a, b, order_);
-    const ChebPtr stiffness = nodes.fit(Part::stiffness, a, b, order_);
-    append_polynomial(bending_, bending.get(), stride_);
-    append_polynomial(axial_, axial.get(), stride_);
+    NodeCompliances nodes(compliance);
+    for (const TermInfo& t : kTerms) {
+      if (!t.per_tooth) continue;
+      const ChebPtr series = nodes.fit(t.term, a, b, order_);
+      append_polynomial(term_series_[index_of(t.term)], series.get(), stride_);
+    }
+    const ChebPtr stiffness = nodes.fit(std::nullopt, a, b, order_);
     append_polynomial(stiffness_, stiffness.get(), stride_);
     gsl_cheb_calc_deriv(derivative.get(), stiffness.get());
     append_polynomial(stiffness_derivative_, derivative.get(), stride_);
+    if (i == 0) {
+      const Compliances& first = nodes.first();
+      for (const TermInfo& t : kTerms) {
+        if (!t.per_tooth) constant_terms_.of(t.term) = first.of(t.term);
+      }
+    }
   }
+}
+
+StiffnessTable::StiffnessTable(const GearPair& pair, const StiffnessModel& model,
+                               StiffnessTableOptions options)
+    : StiffnessTable(
+          contact_segment(pair).start_m, contact_segment(pair).end_m,
+          [&pair, &model](double x1_m) { return mesh_stiffness(pair, x1_m, model).included; },
+          options) {
+  pair_ = pair;
+  model_ = model;
+}
+
+bool StiffnessTable::built_for(const GearPair& pair, const StiffnessModel& model) const {
+  return pair_ && model_ && *pair_ == pair && *model_ == model;
 }
 
 void StiffnessTable::throw_outside(double x1_m) const {
@@ -181,10 +179,13 @@ void StiffnessTable::throw_outside(double x1_m) const {
                        "] m, the contact segment the table covers");
 }
 
-PairCompliance StiffnessTable::compliance(double x1_m) const {
+Compliances StiffnessTable::compliance(double x1_m) const {
   const Local at = locate(x1_m);
-  return {hertz_compliance_, polynomial(&bending_[at.offset], at.t),
-          polynomial(&axial_[at.offset], at.t)};
+  Compliances c = constant_terms_;
+  for (const TermInfo& t : kTerms) {
+    if (t.per_tooth) c.of(t.term) = polynomial(&term_series_[index_of(t.term)][at.offset], at.t);
+  }
+  return c;
 }
 
 }  // namespace gearimpact

@@ -1,11 +1,34 @@
-// The contact laws of one tooth pair: restitution (33), the damping factor
-// (32) in its three published forms, the Hertzian damping force (34) and the
-// friction sign rule of (35)-(38). MODEL.md, section Contact, damping, friction.
+// The contact laws of one tooth pair: the penetration on each side of the
+// backlash (31), the elastic force (30), restitution (33), the damping factor
+// (32) in its three published forms, the Hertzian damping force (34), the
+// normal force, and friction (35)-(38). MODEL.md, section Contact, damping,
+// friction.
 #pragma once
 
-#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
 
 namespace gearimpact {
+
+// (32): the three published forms of the damping factor D.
+enum class DampingForm {
+  herbert_mcwhannell,  // D = 6 K (1 - e) / {[(2e - 1)^2 + 3] Vi}  (default)
+  hunt_crossley,       // D = 3 K (1 - e) / (2 Vi)
+  lee_wang,            // D = 3 K (1 - e) / (4 Vi)
+};
+
+// Which stiffness K enters (32).
+enum class DampingStiffness {
+  current_pair,          // each loaded pair's current Ke (default)
+  pitch_pair_at_impact,  // Ke of the pair nearest the pitch point, frozen at impact
+  hertz,                 // Kh of (4)
+};
+
+// (33) e = 1 - c (Vi / speed_unit)^p.
+struct RestitutionLaw {
+  double coefficient = 0.022;
+  double exponent = 0.375;         // 3/8; 0.36 is the alternative reading
+  double speed_unit_m_s = 1.0e-3;  // Vi in mm/s (default); 0.0254 for in/s, 1 for m/s
+};
 
 // (33) e = 1 - c (Vi / unit)^p, clipped to [0, 1]: a speed so large that the
 // power law falls below zero still loses at most all of the approach energy.
@@ -24,16 +47,42 @@ inline double hertzian_damping_force(double damping_factor, double delta_m, doub
   return damping_factor * delta_m * delta_rate_m_s;
 }
 
-// Normal force of a pair: N = F + G, clipped at 0 because a tooth can push, not pull.
-inline double normal_force(double elastic_force_n, double damping_force_n) {
-  const double n = elastic_force_n + damping_force_n;
-  return n > 0.0 ? n : 0.0;
+// +1 on N1, -1 on N2: the sign with which a line's forces act.
+inline double line_sign(Region line) {
+  return line == Region::n1 ? 1.0 : -1.0;
 }
 
-// Sliding speed of a pair at X (from C1 on N1, from C1' on N2), (36),(38):
-// Vs = w1 X - w2 (lp - X). Zero at the pitch point when the gears roll.
+// (31) delta = s - B on N1, -s - B on N2, s = Rb1 theta1 - Rb2 theta2.
+inline double penetration(Region line, double s_m, double backlash_m) {
+  return line_sign(line) * s_m - backlash_m;
+}
+
+// (30) F = Ke delta.
+inline double elastic_force(double stiffness_n_m, double delta_m) {
+  return stiffness_n_m * delta_m;
+}
+
+// Normal force of a pair: N = F + G, 0 while it is clipped (a tooth can push,
+// not pull; the clipping is an event of the integration, located where F + G
+// turns negative, so the force is switched, not cut off inside a step).
+inline double normal_force(double elastic_force_n, double damping_force_n, bool clipped) {
+  return clipped ? 0.0 : elastic_force_n + damping_force_n;
+}
+
+// (36)-(38) the sliding speed of a pair at X (from C1 on N1, from C1' on N2):
+// Vs = V_A1 - V_A2 = w1 X - w2 (lp - X), with the contact-point speeds (36)
+// V_A1 = w1 X and (37) V_A2 = w2 (lp - X) along the tooth profiles. Zero at the
+// pitch point when the gears roll.
 inline double sliding_speed(double w1_rad_s, double w2_rad_s, double x_m, double lp_m) {
   return w1_rad_s * x_m - w2_rad_s * (lp_m - x_m);
+}
+
+// (35) Ff = f N against the sliding: Ff = f N sign(Vs) on N1 and
+// -f N sign(Vs') on N2, `slip_sign` the sign of Vs (+1 or -1), held constant
+// between friction-reversal events.
+inline double friction_force(Region line, double friction_coefficient, double normal_force_n,
+                             double slip_sign) {
+  return line_sign(line) * friction_coefficient * normal_force_n * slip_sign;
 }
 
 }  // namespace gearimpact

@@ -1,12 +1,14 @@
-// The gear impact dynamics of (1)-(3), (31)-(45): MODEL.md, sections Contact,
-// damping, friction; Equations of motion; Energies. State [theta1, theta2, w1, w2]
-// plus four ledger integrals (torque work, damping loss, friction loss,
-// parametric work), integrated by fixed-step classical RK4 with every
-// discontinuity of the right-hand side located and stepped onto, or by Boost.Odeint's
-// dense-output Dormand-Prince 5(4) with the same event location.
+// A simulation run of the gear impact dynamics (MODEL.md, sections Contact,
+// damping, friction; Equations of motion; Energies): the system is in
+// system.hpp, the event-cut RK4 and the adaptive integrator in rk4.cpp and
+// adaptive.cpp, the energy ledger in ledger.hpp. This is what a caller needs:
+// the run's inputs beyond the case (RunControl), its outputs (the time series,
+// the impacts, the summary, the final state) and simulate().
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -14,7 +16,9 @@
 
 #include "gearimpact/dynamics/simulation_case.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/stiffness/table.hpp"
+#include "gearimpact/stiffness/terms.hpp"
 
 namespace gearimpact {
 
@@ -23,9 +27,6 @@ class SimulationError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
-
-// Which side of the backlash the teeth are on, (31). Written as 1, 0, -1.
-enum class Region { n2 = -1, free = 0, n1 = 1 };
 
 // One row of the time series. normal_force_n and friction_force_n are summed
 // over the loaded pairs; friction_force_n carries the sign of Ff in (35)-(38).
@@ -80,9 +81,8 @@ struct SimulationSummary {
   // plus the jumps of stored energy when a pair enters or leaves under load.
   double parametric_work_j = 0.0;
   double parametric_jump_work_j = 0.0;
-  double hertz_energy_max_j = 0.0;
-  double bending_energy_max_j = 0.0;
-  double axial_energy_max_j = 0.0;
+  // The largest stored energy of each term of (29) over the run (kTerms order).
+  std::array<double, kTermCount> energy_max_j{};
   // (kinetic + stored)(t) - (kinetic + stored)(0) - torque work + losses -
   // parametric work: zero for the exact solution. Final value and largest |value|.
   double ledger_residual_j = 0.0;
@@ -96,10 +96,32 @@ struct SimulationSummary {
   long long rhs_evaluations = 0;
 };
 
+// What a contact remembers from its onset, (32),(33): with no impact, D keeps
+// the last impact's value.
+struct ContactMemory {
+  double damping_per_stiffness_s_m = 0.0;  // D / K of (32)
+  double frozen_stiffness_n_m = 0.0;       // K for the pitch-pair and Hertz readings
+};
+
+// Where a run ended, to continue from: the time, the state, and the damping of
+// the contact it may be in.
+struct RunState {
+  double time_s = 0.0;
+  InitialState state;
+  ContactMemory contact;
+};
+
 struct SimulationResult {
   std::vector<SeriesRow> series;
   std::vector<ImpactRecord> impacts;
   SimulationSummary summary;
+  RunState final_state;
+};
+
+// Thrown when RunControl::should_stop asks a run to stop.
+class SimulationStopped : public SimulationError {
+ public:
+  using SimulationError::SimulationError;
 };
 
 // Controls that are not part of the physical case.
@@ -111,29 +133,25 @@ struct RunControl {
   // > 0: a constant-stiffness variant of the mesh, Ke of each of the n loaded
   // pairs replaced by this total / n, so the mesh stiffness never changes.
   double constant_mesh_stiffness_n_m = 0.0;
+  // An observer of the output grid: called with every row the series would
+  // keep (every output_every-th step), whether or not keep_series.
+  std::function<void(const SeriesRow&)> on_row;
+  // Asked every 4096 steps; true stops the run by SimulationStopped (an
+  // interactive caller's Ctrl-C).
+  std::function<bool()> should_stop;
+  // Continue a run: start at resume->time_s from its state and contact
+  // memory (a contact in progress is not a new impact), and run for the
+  // case's end_time_s. The case's initial state is not used then.
+  std::optional<RunState> resume;
 };
 
 // Throws InputError naming the first field outside its range.
 void validate(const SimulationCase& c);
 
 SimulationResult simulate(const SimulationCase& c, const RunControl& control = {});
-// Same, with a stiffness table already built for c.gears and c.model.stiffness.
+// Same, with a stiffness table already built for c.gears and c.model.stiffness
+// (checked when the table knows what it was built for: StiffnessTable::built_for).
 SimulationResult simulate(const SimulationCase& c, const StiffnessTable& table,
                           const RunControl& control = {});
-
-// CSV with header t_s,theta1_rad,...,friction_force_N, 17 significant digits.
-std::string series_csv(const std::vector<SeriesRow>& rows);
-// The summary as a JSON object (absent optional values as null).
-std::string summary_json(const SimulationSummary& summary);
-
-// Fig. 7: friction loss / damping loss of each base case for f = from, from +
-// step, ..., to. Runs are independent and spread over `threads` threads (0: all
-// cores); the result does not depend on the thread count.
-struct SweepRow {
-  double friction_coefficient;
-  std::vector<double> ratio;  // one per base case, in order
-};
-std::vector<SweepRow> sweep_friction(const std::vector<SimulationCase>& cases, double from,
-                                     double to, double step, unsigned threads = 0);
 
 }  // namespace gearimpact

@@ -8,8 +8,9 @@
 #include <functional>
 #include <string>
 
+#include "gearimpact/contact/contact.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
-#include "gearimpact/stiffness/mesh_stiffness.hpp"
+#include "gearimpact/stiffness/model.hpp"
 
 namespace gearimpact {
 
@@ -30,27 +31,6 @@ struct InitialState {
   double theta2_rad = 0.0;
   double w1_rad_s = 0.0;
   double w2_rad_s = 0.0;
-};
-
-// (32): the three published forms of the damping factor D.
-enum class DampingForm {
-  herbert_mcwhannell,  // D = 6 K (1 - e) / {[(2e - 1)^2 + 3] Vi}  (default)
-  hunt_crossley,       // D = 3 K (1 - e) / (2 Vi)
-  lee_wang,            // D = 3 K (1 - e) / (4 Vi)
-};
-
-// Which stiffness K enters (32).
-enum class DampingStiffness {
-  current_pair,          // each loaded pair's current Ke (default)
-  pitch_pair_at_impact,  // Ke of the pair nearest the pitch point, frozen at impact
-  hertz,                 // Kh of (4)
-};
-
-// (33) e = 1 - c (Vi / speed_unit)^p.
-struct RestitutionLaw {
-  double coefficient = 0.022;
-  double exponent = 0.375;         // 3/8; 0.36 is the alternative reading
-  double speed_unit_m_s = 1.0e-3;  // Vi in mm/s (default); 0.0254 for in/s, 1 for m/s
 };
 
 struct ModelOptions {

@@ -22,6 +22,8 @@ struct GearPair {
   double backlash_m = 0.05e-3;
 };
 
+bool operator==(const GearPair& a, const GearPair& b);
+
 // Section 7 of the paper with MODEL.md's defaults for what it leaves unstated.
 GearPair paper_gear_pair();
 
@@ -70,8 +72,10 @@ double contact_angle(const GearPair& pair, Gear gear, double x1_m);
 // Inverse of (12): X1 = Rb1 (phi1 + theta_b1).
 double contact_position_from_phi1(const GearPair& pair, double phi1_rad);
 
-// The two lines of action of (1)-(3): N1 (drive flanks, s > B), N2 (coast flanks).
-enum class ContactLine { n1, n2 };
+// (31) Which side of the backlash the teeth are on: N1, the line of action of
+// the drive flanks (s > B); free flight in the backlash (region (2)); N2, the
+// line of action of the coast flanks (s < -B). Written as 1, 0, -1.
+enum class Region { n2 = -1, free = 0, n1 = 1 };
 
 // Where the coast-flank contacts sit relative to the drive-flank ones.
 enum class CoastPhase {
@@ -79,15 +83,57 @@ enum class CoastPhase {
   in_phase,         // literal reading of (9): X' = X_pitch - Rb1 theta1 + k t0
 };
 
-// Positions on `line` of every pair whose contact lies in [X_start, X_end], for
-// gear-1 rotation theta1, by (42): on N1, X = X_pitch + Rb1 theta1 + k t0.
-// Sorted ascending. A pair exactly on an end point counts as loaded.
+// The pairs of one line of action: which are loaded, k_first to k_first + count - 1.
+struct LoadedRange {
+  int k_first = 0;
+  int count = 0;
+};
+
+// (42): the pairs on a line sit at X = reference + k t0 (k integer), the
+// reference moving with the rotation theta1; a pair is loaded while its X lies
+// in [X_start, X_end] (an end point counts as loaded). On N1 X is measured from
+// C1, on N2 X' from C1' (MODEL.md, Geometry). The one place that places and
+// counts the pairs: the simulation, the energy split of Fig. 8 and the step
+// bound all ask here.
+class MeshLayout {
+ public:
+  // At most this many pairs on a line (the contact ratio is validated below capacity - 1).
+  static constexpr int capacity = 4;
+
+  MeshLayout(const GearPair& pair, CoastPhase coast_phase);
+
+  // X of the pair k = 0 on `line` (Region::n1 or Region::n2) at rotation theta1:
+  // X_pitch + Rb1 theta1 on N1, X_pitch - Rb1 theta1 (+ t0/2) on N2.
+  double reference_m(Region line, double theta1_rad) const {
+    return line == Region::n1 ? x_pitch_ + rb1_ * theta1_rad
+                              : x_pitch_ - rb1_ * theta1_rad + coast_offset_;
+  }
+  // X of pair k.
+  double position_m(double reference_m, int k) const { return reference_m + k * t0_; }
+  // The loaded pairs when pair 0 is at `reference_m`.
+  LoadedRange loaded(double reference_m) const;
+
+  double start_m() const { return start_; }
+  double end_m() const { return end_; }
+  double base_pitch_m() const { return t0_; }
+
+ private:
+  double x_pitch_;
+  double rb1_;
+  double t0_;
+  double start_;
+  double end_;
+  double coast_offset_;
+};
+
+// Positions on `line` of every pair loaded at gear-1 rotation theta1, by (42),
+// sorted ascending.
 struct LoadedPairs {
-  static constexpr std::size_t capacity = 4;
+  static constexpr std::size_t capacity = MeshLayout::capacity;
   std::array<double, capacity> position_m{};
   std::size_t count = 0;
 };
-LoadedPairs loaded_pairs(const GearPair& pair, ContactLine line, double theta1_rad,
+LoadedPairs loaded_pairs(const GearPair& pair, Region line, double theta1_rad,
                          CoastPhase coast_phase = CoastPhase::half_base_pitch);
 
 // Solid discs on the pitch radius: J = rho pi r^4 L / 2.

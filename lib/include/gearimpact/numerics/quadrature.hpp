@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <string>
 #include <string_view>
 
 namespace gearimpact {
@@ -46,6 +47,18 @@ QuadratureResult integrate_boost_gauss_kronrod(const Integrand& f, double a, dou
 // Error estimate: Boost's, the difference between the last two levels.
 QuadratureResult integrate_boost_tanh_sinh(const Integrand& f, double a, double b,
                                            QuadratureTolerance tolerance = {});
+
+// The rules above by name, so that a caller can choose one at run time.
+enum class QuadratureRule { gsl_qag, gsl_cquad, boost_gauss_kronrod, boost_tanh_sinh };
+
+// Integrates with `rule`; the same contract as the routine it calls.
+QuadratureResult integrate(QuadratureRule rule, const Integrand& f, double a, double b,
+                           QuadratureTolerance tolerance = {});
+
+// Names used on the command line and in case files: gsl, gsl-cquad, boost-gk,
+// boost-ts. parse_quadrature_rule throws InputError naming `field` otherwise.
+std::string to_string(QuadratureRule rule);
+QuadratureRule parse_quadrature_rule(std::string_view name, std::string_view field);
 
 // Throws QuadratureError if a result's estimate is above the requested bound.
 void check_converged(std::string_view routine, double a, double b, double error_estimate,

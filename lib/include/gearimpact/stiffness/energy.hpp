@@ -2,21 +2,31 @@
 // the paper's Fig. 8.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
+#include "gearimpact/stiffness/terms.hpp"
 
 namespace gearimpact {
 
-// (5),(16),(17),(28): U = F^2 / (2 K) for each term of a pair carrying F.
+// Elastic energy of a pair by term, J.
 struct ElasticEnergy {
-  double hertz_j = 0.0;
-  double bending_j = 0.0;  // both teeth
-  double axial_j = 0.0;    // both teeth
-  double total_j() const { return hertz_j + bending_j + axial_j; }
+  std::array<double, kTermCount> j{};
+  double of(Term term) const { return j[index_of(term)]; }
+  double total_j() const {
+    double sum = 0.0;
+    for (double u : j) sum += u;
+    return sum;
+  }
 };
-ElasticEnergy pair_energy(const MeshStiffness& k, double force_n);
+
+// (5),(16),(17),(28): U = F^2 / (2 K) = F^2 c / 2 for each term of a pair
+// carrying F, c the term's compliance as it enters (29) (a term switched off
+// is 0 and stores nothing). The one place the stored energy is computed: the
+// energy split of Fig. 8 and the simulation's ledger both call it.
+ElasticEnergy pair_energy(const Compliances& compliance, double force_n);
 
 // A total force shared by pairs in parallel with equal deflection: pair j
 // carries W Ke_j / sum Ke. Returns the summed energies.

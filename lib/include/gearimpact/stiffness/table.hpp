@@ -1,22 +1,26 @@
 // The mesh stiffness of one pair as a precomputed function of the contact
 // position, for use in the time integration where adaptive quadrature per call
-// would dominate the cost. Built once from the adaptive quadrature of
-// stiffness.hpp: on each of a number of equal pieces of the contact segment
-// [X_start, X_end], GSL's gsl_cheb_init fits Chebyshev series of Ke itself and
-// of the bending and axial compliances, and gsl_cheb_calc_deriv differentiates
-// the Ke series. Each series is then rewritten as a polynomial in the piece's
-// local variable t in [-1, 1] and evaluated inline by Estrin's scheme, whose
+// would dominate the cost. Built once from any position -> compliances
+// function (by default the adaptive quadrature of mesh_stiffness.hpp): on each
+// of a number of equal pieces of the domain, GSL's gsl_cheb_init fits
+// Chebyshev series of Ke itself and of every per-tooth term's compliance, and
+// gsl_cheb_calc_deriv differentiates the Ke series. Each series is then rewritten as a polynomial
+// in the piece's local variable t in [-1, 1] and evaluated inline by Estrin's scheme, whose
 // dependency chain is log2 of the degree deep instead of the degree (as in
 // Clenshaw's recurrence or Horner's rule): the table sits in the force
 // evaluation of every integration step, where the next step waits for it.
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
+#include <functional>
+#include <optional>
 #include <vector>
 
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
+#include "gearimpact/stiffness/terms.hpp"
 
 namespace gearimpact {
 
@@ -35,20 +39,35 @@ struct StiffnessAndDerivative {
   double derivative_n_per_m2;
 };
 
+// The compliances of a pair in contact at X1, terms switched off at 0.
+using ComplianceFunction = std::function<Compliances(double x1_m)>;
+
 class StiffnessTable {
  public:
-  // Throws InputError for options out of range and QuadratureError when a
-  // compliance at a Chebyshev node cannot be integrated.
+  // Fits `compliance` over [start_m, end_m]. Terms that are not per tooth (the
+  // Hertzian one) are constant along the line of action and kept as the value
+  // at the first node. Throws InputError for options out of range and rethrows
+  // what `compliance` throws (QuadratureError when a node cannot be integrated).
+  StiffnessTable(double start_m, double end_m, const ComplianceFunction& compliance,
+                 StiffnessTableOptions options = {});
+  // mesh_stiffness(pair, X1, model).included over the contact segment
+  // [X_start, X_end]; the table remembers the pair and model it was built for.
   explicit StiffnessTable(const GearPair& pair, const StiffnessModel& model = {},
                           StiffnessTableOptions options = {});
+
+  // Whether the table was built by the second constructor for this pair and
+  // model; a table built from a function says false.
+  bool built_for(const GearPair& pair, const StiffnessModel& model) const;
+  // Whether it was built by the pair constructor, so that built_for can tell.
+  bool knows_origin() const { return pair_.has_value(); }
 
   double domain_start_m() const { return start_; }
   double domain_end_m() const { return end_; }
   int pieces() const { return pieces_; }
   int order() const { return order_; }
 
-  // Each throws InputError for x1 outside [X_start, X_end].
-  PairCompliance compliance(double x1_m) const;
+  // Each throws InputError for x1 outside the domain.
+  Compliances compliance(double x1_m) const;
   // Ke, N/m, from its own series, fitted to (29) 1/Ke = total compliance.
   double stiffness(double x1_m) const {
     const Local at = locate(x1_m);
@@ -106,12 +125,15 @@ class StiffnessTable {
   int pieces_ = 0;
   int order_ = 0;
   std::size_t stride_ = 0;  // 8 or 16 coefficients per piece
-  double hertz_compliance_ = 0.0;
-  // Polynomial coefficients in t, stride_ per piece, piece after piece.
-  std::vector<double> bending_;  // 1/Kb1 + 1/Kb2
-  std::vector<double> axial_;    // 1/Ka1 + 1/Ka2
+  // Polynomial coefficients in t, stride_ per piece, piece after piece: one
+  // series per per-tooth term (empty for the others), of Ke and of dKe/dX1.
+  std::array<std::vector<double>, kTermCount> term_series_;
+  Compliances constant_terms_;  // the terms that are not per tooth
   std::vector<double> stiffness_;
   std::vector<double> stiffness_derivative_;
+  // What the pair constructor was given.
+  std::optional<GearPair> pair_;
+  std::optional<StiffnessModel> model_;
 };
 
 }  // namespace gearimpact

@@ -1,0 +1,128 @@
+// The gear pair as a dynamical system: the state, the mode (which side of the
+// backlash, which pairs are loaded, the friction sign and force clipping of
+// each), the right-hand side of the equations of motion (1)-(3), (43)-(45) in a
+// mode, and the event functions whose sign changes end a mode. The integrators
+// (rk4.cpp, adaptive.cpp) and the energy ledger (ledger.hpp) work on it.
+// MODEL.md, sections Contact, damping, friction and Equations of motion.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <limits>
+#include <utility>
+
+#include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/stiffness/energy.hpp"
+#include "gearimpact/stiffness/table.hpp"
+
+namespace gearimpact {
+
+// theta1, theta2, w1, w2, then the ledger integrals: torque work, damping
+// loss, friction loss, parametric work (its continuous part).
+inline constexpr std::size_t kStateSize = 8;
+using State = std::array<double, kStateSize>;
+enum StateIndex : std::size_t {
+  kTheta1,
+  kTheta2,
+  kW1,
+  kW2,
+  kTorqueWork,
+  kDampingLoss,
+  kFrictionLoss,
+  kParametricWork
+};
+
+inline constexpr int kMaxPairs = MeshLayout::capacity;
+// Region (2) + pair bounds (4) + friction sign and force clipping per pair.
+inline constexpr int kMaxEvents = 2 + 4 + 2 * kMaxPairs;
+using EventValues = std::array<double, kMaxEvents>;
+
+// Everything that is constant during a step: which side is in contact, which
+// pairs are loaded, the sign of each pair's sliding speed and whether its
+// normal force is clipped at zero. The right-hand side is smooth while the mode
+// holds; a change of mode is an event.
+struct Mode {
+  Region region = Region::free;
+  int k_first = 0;
+  int count = 0;
+  std::array<double, kMaxPairs> slip{};  // sign of Vs, +1 or -1
+  std::array<bool, kMaxPairs> clipped{};
+};
+
+// Summed over the loaded pairs, for the time series.
+struct ContactTotals {
+  double normal_force_n = 0.0;
+  double friction_force_n = 0.0;
+};
+
+// T(t) of one torque.
+double torque_at(const Torque& torque, double t_s);
+
+class GearSystem {
+ public:
+  // The table must cover the contact segment of c.gears; both must outlive the system.
+  GearSystem(const SimulationCase& c, const StiffnessTable& table, const RunControl& control);
+
+  double kinetic_energy(const State& y) const {
+    return 0.5 * j1_ * y[kW1] * y[kW1] + 0.5 * j2_ * y[kW2] * y[kW2];
+  }
+  // s = Rb1 theta1 - Rb2 theta2 and its rate.
+  double s(const State& y) const { return rb1_ * y[kTheta1] - rb2_ * y[kTheta2]; }
+  double s_rate(const State& y) const { return rb1_ * y[kW1] - rb2_ * y[kW2]; }
+  // (31)
+  double delta(Region r, const State& y) const { return penetration(r, s(y), backlash_); }
+  double pair_position(const Mode& m, const State& y, int j) const {
+    return layout_.position_m(layout_.reference_m(m.region, y[kTheta1]), m.k_first + j);
+  }
+
+  // The equations of motion in the mode m, and the powers of the ledger.
+  void rhs(double t, const State& y, const Mode& m, const ContactMemory& d, State& dydt,
+           ContactTotals* totals = nullptr) const;
+
+  // The mode holds while every value is >= 0; an event is a value turning
+  // negative. Returns how many values are set.
+  int event_values(const State& y, const Mode& m, const ContactMemory& d, EventValues& g) const;
+  bool mode_holds(const State& y, const Mode& m, const ContactMemory& d) const;
+
+  // Region and loaded pairs of y, (31) and (42), with the same tests as event_values.
+  Mode classify_geometry(const State& y) const;
+  // Friction signs and clipping of the pairs of m at y.
+  void classify_forces(const State& y, const ContactMemory& d, Mode& m) const;
+
+  // (32),(33) at the onset of a contact in mode m: Vi (floored), e(Vi) and D.
+  struct Onset {
+    double impact_speed_m_s;
+    double restitution;
+    ContactMemory damping;
+  };
+  Onset damping_at_onset(const State& y, const Mode& m) const;
+
+  // (5),(16),(17),(28) of the loaded pairs, F = Ke delta each.
+  ElasticEnergy stored_energy(const State& y, const Mode& m) const;
+
+ private:
+  // T1(t), T2(t). An RK4 step asks for its middle time twice and for its end
+  // time again as the next step's start: the last answer is kept, so a
+  // sinusoid costs two sines a step instead of four (the same values).
+  std::pair<double, double> torques(double t) const;
+  // Ke and dKe/dX of one of `count` loaded pairs at X.
+  void pair_stiffness(double x, int count, double& ke, double& dke) const;
+  double damping_factor(const ContactMemory& d, double ke) const;
+  double push_sign_function(double x, int count, const ContactMemory& d, double dl,
+                            double dl_rate) const;
+
+  const StiffnessTable& table_;
+  const SimulationCase& case_;
+  MeshLayout layout_;
+  double rb1_ = 0.0, rb2_ = 0.0, j1_ = 0.0, j2_ = 0.0, backlash_ = 0.0, lp_ = 0.0;
+  double x_pitch_ = 0.0, t0_ = 0.0, xs_ = 0.0, xe_ = 0.0;
+  double friction_ = 0.0, kh_ = 0.0, constant_k_ = 0.0;
+  bool damping_on_current_pair_ = true;
+  // A system belongs to one run, so one thread.
+  mutable double torque_time_ = std::numeric_limits<double>::quiet_NaN();
+  mutable std::pair<double, double> torque_values_{0.0, 0.0};
+};
+
+}  // namespace gearimpact

@@ -1,0 +1,140 @@
+#include "gearimpact/batch/pool.hpp"
+
+#include <algorithm>
+
+#include "gearimpact/io/case_file.hpp"
+
+namespace gearimpact {
+
+namespace {
+
+// Every input of a run but its name, as the case file in SI units: the
+// writer covers every key of the schema, so a key added to the case is in
+// the run's identity without a change here. Empty for a run that has no text
+// form (a user torque function), which is never shared.
+std::string inputs_key(SimulationCase c) {
+  if (c.torque1.kind == Torque::Kind::user || c.torque2.kind == Torque::Kind::user) return {};
+  c.name = "run";
+  return write_case_file(c, CaseUnits::si);
+}
+
+// What the stiffness table depends on: the gear pair and the stiffness model.
+std::string table_key(const SimulationCase& c) {
+  SimulationCase only;
+  only.name = "table";
+  only.gears = c.gears;
+  only.model.stiffness = c.model.stiffness;
+  return write_case_file(only, CaseUnits::si);
+}
+
+}  // namespace
+
+RunPool::RunPool(unsigned threads) {
+  const unsigned n = threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : threads;
+  for (unsigned i = 0; i < n; ++i) workers_.emplace_back([this] { work(); });
+}
+
+RunPool::~RunPool() {
+  {
+    const std::lock_guard lock(mutex_);
+    stopping_ = true;
+  }
+  ready_.notify_all();
+  for (std::thread& worker : workers_) worker.join();
+}
+
+void RunPool::enqueue(std::function<void()> task) {
+  {
+    const std::lock_guard lock(mutex_);
+    queue_.push_back(std::move(task));
+  }
+  ready_.notify_one();
+}
+
+std::shared_ptr<const StiffnessTable> RunPool::table_for(const SimulationCase& c) {
+  const std::string key = table_key(c);
+  {
+    const std::lock_guard lock(mutex_);
+    if (const auto found = tables_.find(key); found != tables_.end()) return found->second;
+  }
+  // Built outside the lock (it takes milliseconds); a race builds it twice
+  // and keeps the first, which is the same table.
+  auto table = std::make_shared<const StiffnessTable>(c.gears, c.model.stiffness);
+  const std::lock_guard lock(mutex_);
+  return tables_.emplace(key, std::move(table)).first->second;
+}
+
+std::shared_future<SimulationResult> RunPool::submit(const SimulationCase& c, bool keep_series) {
+  const std::string inputs = inputs_key(c);
+  // The rows kept matter only with the series.
+  const std::string series =
+      keep_series ? "series every " + std::to_string(c.integrator.output_every) : "summary";
+  const std::string key = inputs.empty() ? std::string() : inputs + "|" + series;
+  auto promise = std::make_shared<std::promise<SimulationResult>>();
+  std::shared_future<SimulationResult> result = promise->get_future().share();
+  {
+    const std::lock_guard lock(mutex_);
+    ++requested_;
+    if (!key.empty()) {
+      if (const auto found = runs_.find(key); found != runs_.end()) return found->second;
+      if (!keep_series) {
+        // Any run with the series and the same inputs has this summary.
+        const std::string with_series = inputs + "|series";
+        const auto found_series = runs_.lower_bound(with_series);
+        if (found_series != runs_.end() &&
+            found_series->first.compare(0, with_series.size(), with_series) == 0) {
+          return found_series->second;
+        }
+      }
+      // Claimed before the lock is released, so that a run asked for by two
+      // threads at once is still computed once.
+      runs_.emplace(key, result);
+    }
+    ++computed_;
+  }
+  std::shared_ptr<const StiffnessTable> table;
+  try {
+    // Validated here, so that a bad case throws InputError to the caller.
+    validate(c);
+    table = table_for(c);
+  } catch (...) {
+    promise->set_exception(std::current_exception());
+    throw;
+  }
+  enqueue([promise, c, table, keep_series] {
+    try {
+      RunControl control;
+      control.keep_series = keep_series;
+      promise->set_value(simulate(c, *table, control));
+    } catch (...) {
+      promise->set_exception(std::current_exception());
+    }
+  });
+  return result;
+}
+
+std::size_t RunPool::requested() const {
+  const std::lock_guard lock(mutex_);
+  return requested_;
+}
+
+std::size_t RunPool::computed() const {
+  const std::lock_guard lock(mutex_);
+  return computed_;
+}
+
+void RunPool::work() {
+  for (;;) {
+    std::function<void()> task;
+    {
+      std::unique_lock lock(mutex_);
+      ready_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+      if (queue_.empty()) return;
+      task = std::move(queue_.front());
+      queue_.pop_front();
+    }
+    task();
+  }
+}
+
+}  // namespace gearimpact

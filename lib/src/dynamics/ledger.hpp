@@ -1,0 +1,64 @@
+// The energy ledger (MODEL.md, Energies), an observer of the accepted steps:
+// kinetic + stored energy against the torque work, the damping and friction
+// losses and the parametric work of the time-varying stiffness. Each is
+// computed on its own (the losses and works as integrals of their powers in
+// the state), so the residual measures the integration, not an identity.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/dynamics/system.hpp"
+
+namespace gearimpact {
+
+class EnergyLedger {
+ public:
+  EnergyLedger(const GearSystem& system, const State& y, const Mode& m, SimulationSummary& s)
+      : system_(system) {
+    const double kinetic = system_.kinetic_energy(y);
+    energy0_ = kinetic + system_.stored_energy(y, m).total_j();
+    s.kinetic_energy_initial_j = kinetic;
+    s.stored_energy_initial_j = energy0_ - kinetic;
+  }
+
+  // Stored energy appears or vanishes with a pair entering or leaving under
+  // load: the jump is work of the time-varying stiffness.
+  void mode_changed(double stored_before_j, double stored_after_j) {
+    jump_work_ += stored_after_j - stored_before_j;
+  }
+
+  // After an accepted step: the largest stored energies, the scale and the residual.
+  void observe(const State& y, const Mode& m, SimulationSummary& s) const {
+    const ElasticEnergy u = system_.stored_energy(y, m);
+    for (std::size_t i = 0; i < kTermCount; ++i) {
+      s.energy_max_j[i] = std::max(s.energy_max_j[i], u.j[i]);
+    }
+    const double energy = system_.kinetic_energy(y) + u.total_j();
+    s.ledger_scale_j = std::max(s.ledger_scale_j, energy);
+    // (kinetic + stored)(t) - (kinetic + stored)(0) - torque work + losses -
+    // parametric work: zero for the exact solution.
+    const double residual = energy - energy0_ - y[kTorqueWork] + y[kDampingLoss] +
+                            y[kFrictionLoss] - y[kParametricWork] - jump_work_;
+    s.ledger_residual_j = residual;
+    s.ledger_residual_max_j = std::max(s.ledger_residual_max_j, std::fabs(residual));
+  }
+
+  void finish(const State& y, const Mode& m, SimulationSummary& s) const {
+    s.kinetic_energy_final_j = system_.kinetic_energy(y);
+    s.stored_energy_final_j = system_.stored_energy(y, m).total_j();
+    s.torque_work_j = y[kTorqueWork];
+    s.damping_loss_j = y[kDampingLoss];
+    s.friction_loss_j = y[kFrictionLoss];
+    s.parametric_jump_work_j = jump_work_;
+    s.parametric_work_j = y[kParametricWork] + jump_work_;
+  }
+
+ private:
+  const GearSystem& system_;
+  double energy0_ = 0.0;
+  double jump_work_ = 0.0;
+};
+
+}  // namespace gearimpact

@@ -1,0 +1,212 @@
+// The bookkeeping shared by both integrators: the state and mode, mode
+// changes, impacts, the energy ledger, the output grid and the summary.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/dynamics/system.hpp"
+#include "gearimpact/error.hpp"
+#include "ledger.hpp"
+
+namespace gearimpact {
+
+inline std::string where(double t_s, long long step) {
+  return "t = " + format_number(t_s) + " s, step " + std::to_string(step);
+}
+
+// Consecutive events that advance time by almost nothing: event location has stalled.
+inline constexpr int kMostStalledEvents = 10000;
+// How often a run asks RunControl::should_stop.
+inline constexpr long long kStopPollSteps = 4096;
+
+class Run {
+ public:
+  Run(const SimulationCase& c, const StiffnessTable& table, const RunControl& control)
+      : c_(c), control_(control), system_(c, table, control), ledger_(make_ledger()) {
+    book_keep();
+    if (records()) {
+      if (control_.keep_series) {
+        // The rows of the output grid up front, so that a long series is not
+        // copied as it grows; capped, as a guess must not fail a run.
+        constexpr double most_reserved_rows = 4e6;
+        const double rows =
+            c.integrator.end_time_s / (c.integrator.step_s * c.integrator.output_every);
+        result_.series.reserve(static_cast<std::size_t>(std::min(rows + 2.0, most_reserved_rows)));
+      }
+      record(start_time_);
+    }
+  }
+
+  const GearSystem& system() const { return system_; }
+  State& y() { return y_; }
+  const Mode& mode() const { return mode_; }
+  const ContactMemory& damping() const { return damping_; }
+  long long& steps() { return result_.summary.steps; }
+  long long& rhs_evaluations() { return result_.summary.rhs_evaluations; }
+  double start_time() const { return start_time_; }
+  // Whether the output grid is wanted: kept as the series or observed.
+  bool records() const { return control_.keep_series || static_cast<bool>(control_.on_row); }
+
+  void check_finite(double t, const State& y) const {
+    if (!std::all_of(y.begin(), y.end(), [](double v) { return std::isfinite(v); })) {
+      throw SimulationError("the run diverged: the state is not finite at " +
+                            where(t, result_.summary.steps) +
+                            "; a smaller step or a tighter tolerance may resolve it");
+    }
+  }
+
+  // Every kStopPollSteps steps, the caller's should_stop.
+  void poll_stop(double t) const {
+    if (control_.should_stop && result_.summary.steps % kStopPollSteps == 0 &&
+        control_.should_stop()) {
+      throw SimulationStopped("the run was stopped at " + where(t, result_.summary.steps));
+    }
+  }
+
+  // The mode changed at (t, y_): classify again, book impacts and jumps.
+  void change_mode(double t) {
+    ++result_.summary.events;
+    const Mode old = mode_;
+    Mode next = system_.classify_geometry(y_);
+    if (old.region != Region::free && next.region != old.region) end_contact(t, old);
+    const double before = system_.stored_energy(y_, old).total_j();
+    mode_ = next;
+    if (old.region != next.region && next.region != Region::free) begin_contact(t);
+    system_.classify_forces(y_, damping_, mode_);
+    if (next.region == old.region) {
+      // Keep the friction sign and clipping of pairs that stay loaded, unless
+      // this event is theirs (then classify_forces has the new value).
+      const int shift = next.k_first - old.k_first;
+      EventValues g{};
+      Mode probe = mode_;
+      for (int j = 0; j < next.count; ++j) {
+        const int i = j + shift;
+        if (i >= 0 && i < old.count) {
+          probe.slip[j] = old.slip[i];
+          probe.clipped[j] = old.clipped[i];
+        }
+      }
+      const int n = system_.event_values(y_, probe, damping_, g);
+      if (std::all_of(g.begin(), g.begin() + n, [](double v) { return v >= 0.0; })) mode_ = probe;
+    }
+    ledger_.mode_changed(before, system_.stored_energy(y_, mode_).total_j());
+  }
+
+  // After an accepted step.
+  void book_keep() {
+    SimulationSummary& s = result_.summary;
+    ledger_.observe(y_, mode_, s);
+    if (mode_.region != Region::free) {
+      s.max_penetration_m = std::max(s.max_penetration_m, system_.delta(mode_.region, y_));
+    }
+  }
+
+  void record(double t) { record(t, y_, mode_); }
+  void record(double t, const State& y, const Mode& m) {
+    ContactTotals totals;
+    State dydt{};
+    system_.rhs(t, y, m, damping_, dydt, &totals);
+    const double delta = m.region == Region::free ? 0.0 : system_.delta(m.region, y);
+    const SeriesRow row{t,
+                        y[kTheta1],
+                        y[kTheta2],
+                        y[kW1],
+                        y[kW2],
+                        system_.s(y),
+                        delta,
+                        static_cast<int>(m.region),
+                        m.count,
+                        totals.normal_force_n,
+                        totals.friction_force_n};
+    if (control_.keep_series) result_.series.push_back(row);
+    if (control_.on_row) control_.on_row(row);
+  }
+
+  SimulationResult finish(double t, const char* integrator) {
+    SimulationSummary& s = result_.summary;
+    s.case_name = c_.name;
+    s.integrator = integrator;
+    s.friction_coefficient = c_.model.friction_coefficient;
+    s.end_time_s = t;
+    s.step_s = c_.integrator.step_s;
+    ledger_.finish(y_, mode_, s);
+    s.final_w1_rad_s = y_[kW1];
+    s.final_w2_rad_s = y_[kW2];
+    result_.impacts = impacts_;
+    result_.final_state = {t, {y_[kTheta1], y_[kTheta2], y_[kW1], y_[kW2]}, damping_};
+    return std::move(result_);
+  }
+
+  // Sets mode_ and damping_ directly (the integrator without event location).
+  void set_mode_without_events(double t) {
+    Mode next = system_.classify_geometry(y_);
+    if (mode_.region != Region::free && next.region != mode_.region) end_contact(t, mode_);
+    const Mode old = mode_;
+    mode_ = next;
+    if (old.region != next.region && next.region != Region::free) begin_contact(t);
+    system_.classify_forces(y_, damping_, mode_);
+  }
+
+ private:
+  // The start: the case's initial state at t = 0 (a contact there counts as an
+  // impact), or where a previous run ended (its contact goes on).
+  EnergyLedger make_ledger() {
+    const InitialState& start = control_.resume ? control_.resume->state : c_.initial;
+    start_time_ = control_.resume ? control_.resume->time_s : 0.0;
+    y_ = State{
+        start.theta1_rad, start.theta2_rad, start.w1_rad_s, start.w2_rad_s, 0.0, 0.0, 0.0, 0.0};
+    mode_ = system_.classify_geometry(y_);
+    if (control_.resume) {
+      damping_ = control_.resume->contact;
+    } else if (mode_.region != Region::free) {
+      begin_contact(start_time_);
+    }
+    system_.classify_forces(y_, damping_, mode_);
+    return EnergyLedger(system_, y_, mode_, result_.summary);
+  }
+
+  void begin_contact(double t) {
+    const GearSystem::Onset onset = system_.damping_at_onset(y_, mode_);
+    damping_ = onset.damping;
+    SimulationSummary& s = result_.summary;
+    if (mode_.region == Region::n1) {
+      ++s.impacts_n1;
+      s.last_n1_impact_s = t;
+    } else {
+      ++s.impacts_n2;
+      s.last_n2_impact_s = t;
+    }
+    if (!s.first_impact_s) {
+      s.first_impact_s = t;
+      s.first_impact_speed_m_s = onset.impact_speed_m_s;
+    }
+    impacts_.push_back(ImpactRecord{mode_.region, t, onset.impact_speed_m_s, onset.restitution,
+                                    std::nullopt, std::nullopt});
+  }
+
+  void end_contact(double t, const Mode& old) {
+    if (impacts_.empty()) return;
+    impacts_.back().end_s = t;
+    impacts_.back().end_speed_m_s = -line_sign(old.region) * system_.s_rate(y_);
+  }
+
+  const SimulationCase& c_;
+  const RunControl& control_;
+  GearSystem system_;
+  State y_{};
+  Mode mode_;
+  ContactMemory damping_;
+  double start_time_ = 0.0;
+  SimulationResult result_;
+  std::vector<ImpactRecord> impacts_;
+  // Last: its construction sets the start state above (make_ledger).
+  EnergyLedger ledger_;
+};
+
+}  // namespace gearimpact

@@ -1,0 +1,256 @@
+#include "gearimpact/dynamics/system.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "gearimpact/contact/contact.hpp"
+#include "gearimpact/stiffness/mesh_stiffness.hpp"
+
+namespace gearimpact {
+
+namespace {
+
+// Grazing contacts can have Vi -> 0, where D of (32) grows without bound while
+// G = D delta d(delta)/dt stays finite; the floor keeps D finite.
+constexpr double kSmallestImpactSpeed_m_s = 1e-9;
+
+}  // namespace
+
+double torque_at(const Torque& torque, double t_s) {
+  switch (torque.kind) {
+    case Torque::Kind::constant:
+      return torque.constant_n_m;
+    case Torque::Kind::sinusoidal:
+      return torque.amplitude_n_m *
+             std::sin(torque.angular_frequency_rad_s * t_s + torque.phase_rad);
+    case Torque::Kind::user:
+      return torque.user(t_s);
+  }
+  return 0.0;
+}
+
+GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table,
+                       const RunControl& control)
+    : table_(table), case_(c), layout_(c.gears, c.model.coast_phase) {
+  const GearPair& g = c.gears;
+  rb1_ = base_radius(g, Gear::one);
+  rb2_ = base_radius(g, Gear::two);
+  j1_ = moment_of_inertia(g, Gear::one);
+  j2_ = moment_of_inertia(g, Gear::two);
+  backlash_ = g.backlash_m;
+  lp_ = line_of_action_length(g);
+  x_pitch_ = pitch_point_position(g);
+  t0_ = layout_.base_pitch_m();
+  xs_ = layout_.start_m();
+  xe_ = layout_.end_m();
+  friction_ = c.model.friction_coefficient;
+  kh_ = hertz_stiffness(g);
+  constant_k_ = control.constant_mesh_stiffness_n_m;
+  damping_on_current_pair_ = c.model.damping_stiffness == DampingStiffness::current_pair;
+}
+
+std::pair<double, double> GearSystem::torques(double t) const {
+  if (t != torque_time_) {
+    torque_time_ = t;
+    torque_values_ = {torque_at(case_.torque1, t), torque_at(case_.torque2, t)};
+  }
+  return torque_values_;
+}
+
+// Stage states of a step that ends on a pair's entry or exit can reach a hair
+// beyond the segment: there Ke continues along its tangent, so the right-hand
+// side stays smooth.
+void GearSystem::pair_stiffness(double x, int count, double& ke, double& dke) const {
+  if (constant_k_ > 0.0) {
+    ke = constant_k_ / count;
+    dke = 0.0;
+    return;
+  }
+  const double xc = std::clamp(x, xs_, xe_);
+  const StiffnessAndDerivative k = table_.stiffness_and_derivative(xc);
+  dke = k.derivative_n_per_m2;
+  ke = k.stiffness_n_per_m + dke * (x - xc);
+}
+
+double GearSystem::damping_factor(const ContactMemory& d, double ke) const {
+  return damping_on_current_pair_ ? d.damping_per_stiffness_s_m * ke
+                                  : d.damping_per_stiffness_s_m * d.frozen_stiffness_n_m;
+}
+
+void GearSystem::rhs(double t, const State& y, const Mode& m, const ContactMemory& d, State& dydt,
+                     ContactTotals* totals) const {
+  const auto [t1, t2] = torques(t);
+  const double w1 = y[kW1];
+  const double w2 = y[kW2];
+  double moment1 = t1;
+  double moment2 = t2;
+  double damping_power = 0.0;
+  double friction_power = 0.0;
+  double parametric_power = 0.0;
+  if (m.region != Region::free) {
+    const double sign = line_sign(m.region);
+    const double dl = delta(m.region, y);
+    const double dl_rate = sign * s_rate(y);
+    const double ref = layout_.reference_m(m.region, y[kTheta1]);
+    const double x_rate = sign * rb1_ * w1;
+    for (int j = 0; j < m.count; ++j) {
+      const double x = layout_.position_m(ref, m.k_first + j);
+      double ke = 0.0;
+      double dke = 0.0;
+      pair_stiffness(x, m.count, ke, dke);
+      const double f_elastic = elastic_force(ke, dl);
+      const double g_damping = hertzian_damping_force(damping_factor(d, ke), dl, dl_rate);
+      const double n = normal_force(f_elastic, g_damping, m.clipped[j]);
+      const double vs = sliding_speed(w1, w2, x, lp_);
+      const double ff = friction_force(m.region, friction_, n, m.slip[j]);
+      // (1),(3) for one pair, (43),(45) summed over the pairs the line carries:
+      // on N1 J1 w1' = T1 - [N Rb1 + Ff X], J2 w2' = T2 + [N Rb2 + Ff (lp - X)];
+      // every sign flips on N2. In free flight, (2),(44): J w' = T.
+      moment1 -= sign * (n * rb1_ + ff * x);
+      moment2 += sign * (n * rb2_ + ff * (lp_ - x));
+      // The damping force is what N adds to F; with N clipped it is -F, so the
+      // stored energy released while the tooth cannot push counts as damping loss.
+      damping_power += (n - f_elastic) * dl_rate;
+      friction_power += friction_ * n * m.slip[j] * vs;
+      parametric_power += 0.5 * dl * dl * dke * x_rate;
+      if (totals != nullptr) {
+        totals->normal_force_n += n;
+        totals->friction_force_n += ff;
+      }
+    }
+  }
+  dydt[kTheta1] = w1;
+  dydt[kTheta2] = w2;
+  dydt[kW1] = moment1 / j1_;
+  dydt[kW2] = moment2 / j2_;
+  dydt[kTorqueWork] = t1 * w1 + t2 * w2;
+  dydt[kDampingLoss] = damping_power;
+  dydt[kFrictionLoss] = friction_power;
+  dydt[kParametricWork] = parametric_power;
+}
+
+int GearSystem::event_values(const State& y, const Mode& m, const ContactMemory& d,
+                             EventValues& g) const {
+  const double sv = s(y);
+  if (m.region == Region::free) {
+    // Region (2) ends where (31) makes delta positive on either line.
+    g[0] = backlash_ - sv;
+    g[1] = sv + backlash_;
+    return 2;
+  }
+  const double dl = delta(m.region, y);
+  g[0] = dl;
+  // (42): the first and last loaded pair stay in [X_start, X_end], the
+  // neighbours outside it.
+  const double ref = layout_.reference_m(m.region, y[kTheta1]);
+  const double first = ref + m.k_first * t0_;
+  const double last = ref + (m.k_first + m.count - 1) * t0_;
+  g[1] = first - xs_;
+  g[2] = xs_ - (first - t0_);
+  g[3] = xe_ - last;
+  g[4] = (last + t0_) - xe_;
+  int n = 5;
+  const double dl_rate = line_sign(m.region) * s_rate(y);
+  for (int j = 0; j < m.count; ++j) {
+    const double x = first + j * t0_;
+    g[n++] = m.slip[j] * sliding_speed(y[kW1], y[kW2], x, lp_);
+    const double push = push_sign_function(x, m.count, d, dl, dl_rate);
+    g[n++] = m.clipped[j] ? -push : push;
+  }
+  return n;
+}
+
+// A function with the sign and the zeros of F + G of one pair. With D
+// proportional to the pair's own Ke, F + G = Ke delta (1 + (D/K) d(delta)/dt)
+// and the positive factor Ke need not be evaluated.
+double GearSystem::push_sign_function(double x, int count, const ContactMemory& d, double dl,
+                                      double dl_rate) const {
+  if (damping_on_current_pair_) {
+    return dl * (1.0 + d.damping_per_stiffness_s_m * dl_rate);
+  }
+  double ke = 0.0;
+  double dke = 0.0;
+  pair_stiffness(x, count, ke, dke);
+  return elastic_force(ke, dl) + hertzian_damping_force(damping_factor(d, ke), dl, dl_rate);
+}
+
+bool GearSystem::mode_holds(const State& y, const Mode& m, const ContactMemory& d) const {
+  EventValues g{};
+  const int n = event_values(y, m, d, g);
+  for (int i = 0; i < n; ++i) {
+    if (g[i] < 0.0) return false;
+  }
+  return true;
+}
+
+Mode GearSystem::classify_geometry(const State& y) const {
+  Mode m;
+  const double sv = s(y);
+  if (sv - backlash_ > 0.0) {
+    m.region = Region::n1;
+  } else if (-sv - backlash_ > 0.0) {
+    m.region = Region::n2;
+  } else {
+    return m;
+  }
+  const LoadedRange range = layout_.loaded(layout_.reference_m(m.region, y[kTheta1]));
+  m.k_first = range.k_first;
+  m.count = range.count;
+  return m;
+}
+
+void GearSystem::classify_forces(const State& y, const ContactMemory& d, Mode& m) const {
+  if (m.region == Region::free) return;
+  const double dl = delta(m.region, y);
+  const double dl_rate = line_sign(m.region) * s_rate(y);
+  for (int j = 0; j < m.count; ++j) {
+    const double x = pair_position(m, y, j);
+    m.slip[j] = sliding_speed(y[kW1], y[kW2], x, lp_) >= 0.0 ? 1.0 : -1.0;
+    m.clipped[j] = push_sign_function(x, m.count, d, dl, dl_rate) < 0.0;
+  }
+}
+
+GearSystem::Onset GearSystem::damping_at_onset(const State& y, const Mode& m) const {
+  Onset onset{};
+  onset.impact_speed_m_s = std::max(line_sign(m.region) * s_rate(y), kSmallestImpactSpeed_m_s);
+  onset.restitution = restitution_coefficient(case_.model.restitution, onset.impact_speed_m_s);
+  ContactMemory& d = onset.damping;
+  d.damping_per_stiffness_s_m = damping_factor_per_stiffness(
+      case_.model.damping_form, onset.restitution, onset.impact_speed_m_s);
+  if (case_.model.damping_stiffness == DampingStiffness::hertz) {
+    d.frozen_stiffness_n_m = kh_;
+  } else if (m.count > 0) {
+    int nearest = 0;
+    for (int j = 1; j < m.count; ++j) {
+      if (std::fabs(pair_position(m, y, j) - x_pitch_) <
+          std::fabs(pair_position(m, y, nearest) - x_pitch_)) {
+        nearest = j;
+      }
+    }
+    double ke = 0.0;
+    double dke = 0.0;
+    pair_stiffness(pair_position(m, y, nearest), m.count, ke, dke);
+    d.frozen_stiffness_n_m = ke;
+  }
+  return onset;
+}
+
+ElasticEnergy GearSystem::stored_energy(const State& y, const Mode& m) const {
+  ElasticEnergy u;
+  if (m.region == Region::free) return u;
+  const double dl = delta(m.region, y);
+  for (int j = 0; j < m.count; ++j) {
+    const double x = pair_position(m, y, j);
+    if (constant_k_ > 0.0) {
+      u.j[index_of(Term::hertz)] += 0.5 * constant_k_ / m.count * dl * dl;
+      continue;
+    }
+    const Compliances c = table_.compliance(std::clamp(x, xs_, xe_));
+    // (30) F = Ke delta with 1/Ke the total compliance of (29).
+    const ElasticEnergy pair = pair_energy(c, dl / c.total_m_per_n());
+    for (std::size_t i = 0; i < kTermCount; ++i) u.j[i] += pair.j[i];
+  }
+  return u;
+}
+
+}  // namespace gearimpact

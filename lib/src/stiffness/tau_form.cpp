@@ -1,0 +1,73 @@
+#include "gearimpact/stiffness/tau_form.hpp"
+
+#include <cmath>
+
+namespace gearimpact {
+
+namespace {
+
+// sin tau + (theta_b - tau) cos tau: the half thickness of the section at
+// tau over Rb, from the involute r(tau) of (23),(24).
+double section_factor(double theta_b, double tau) {
+  return std::sin(tau) + (theta_b - tau) * std::cos(tau);
+}
+
+}  // namespace
+
+double bending_integrand(double theta_b, double phi, double tau, AxialMomentSign sign) {
+  const double cos_phi = std::cos(phi);
+  // (22) over Rb: [(l - x) cos phi -/+ h sin phi] / Rb with l, h from (10),(11)
+  // and x(tau) from the involute. The printed sign simplifies to
+  // 1 + cos phi [(theta_b - tau) sin tau - cos tau]; the flipped one keeps
+  // 2 h sin phi / Rb more.
+  double arm = 1.0 + cos_phi * ((theta_b - tau) * std::sin(tau) - std::cos(tau));
+  if (sign == AxialMomentSign::flipped) {
+    arm += 2.0 * std::sin(phi) * ((theta_b + phi) * cos_phi - std::sin(phi));
+  }
+  const double s = section_factor(theta_b, tau);
+  // (20) with (23)
+  return 3.0 * arm * arm * (theta_b - tau) * std::cos(tau) / (2.0 * s * s * s);
+}
+
+double axial_integrand(double theta_b, double phi, double tau) {
+  const double sin_phi = std::sin(phi);
+  // (21) with (24)
+  return (theta_b - tau) * std::cos(tau) * sin_phi * sin_phi / (2.0 * section_factor(theta_b, tau));
+}
+
+Compliances tau_form_compliances(const InvoluteTooth& tooth, double contact_x_m,
+                                 double youngs_modulus_pa, double face_width_m,
+                                 const StiffnessModel& model) {
+  const double theta_b = tooth.half_tooth_angle_rad;
+  // (12) phi = X / Rb - theta_b; the section angle tau runs from the load
+  // (tau = -phi) down to the base circle (tau = theta_b).
+  const double phi = contact_x_m / tooth.base_radius_m - theta_b;
+  const double scale = 1.0 / (youngs_modulus_pa * face_width_m);
+  const QuadratureTolerance tolerance{model.relative_tolerance, 0.0};
+  Compliances c;
+  for (const TermInfo& t : kTerms) {
+    switch (t.term) {
+      case Term::bending:
+        c.of(t.term) = scale * integrate(
+                                   model.rule,
+                                   [&](double tau) {
+                                     return bending_integrand(theta_b, phi, tau, model.moment_sign);
+                                   },
+                                   -phi, theta_b, tolerance)
+                                   .value;
+        break;
+      case Term::axial:
+        c.of(t.term) =
+            scale * integrate(
+                        model.rule, [&](double tau) { return axial_integrand(theta_b, phi, tau); },
+                        -phi, theta_b, tolerance)
+                        .value;
+        break;
+      case Term::hertz:
+        break;  // per pair: mesh_stiffness adds it
+    }
+  }
+  return c;
+}
+
+}  // namespace gearimpact
