@@ -6,6 +6,7 @@
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/results.hpp"
+#include "gearimpact/paper/scoring.hpp"
 #include "gearimpact/paper/statements.hpp"
 #include "gearimpact/stiffness/energy.hpp"
 #include "reproduce.hpp"
@@ -76,11 +77,8 @@ ReportSection reproduce_fig8(const ReproduceContext& context) {
                                   s.matches(low, s.paper_low) && s.matches(high, s.paper_high));
     if (row.verdict == Verdict::fail && !note_if_missed.empty()) {
       row.verdict = Verdict::known_difference;
-      row.note =
-          "the printed, physical sign of Fa h misses by " +
-          number(std::max(s.tolerances_off(low, s.paper_low), s.tolerances_off(high, s.paper_high)),
-                 2) +
-          " tolerances; " + note_if_missed;
+      row.note = "the printed, physical sign of Fa h misses by " +
+                 number(range_tolerances_off(s, low, high), 2) + " tolerances; " + note_if_missed;
     }
     return row;
   };

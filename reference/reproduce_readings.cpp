@@ -9,6 +9,7 @@
 
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/paper/scoring.hpp"
 #include "gearimpact/paper/statements.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "reproduce.hpp"
@@ -47,10 +48,7 @@ std::vector<NamedReading> readings() {
 struct Score {
   std::vector<double> damping_over_friction;  // case 1, 2, 3 at f = 0.01 and 0.09
   double last_n2_ms = 0.0;
-  int met = 0;
-  int statements = 0;
-  double worst_tolerances_off = 0.0;
-  double mean_tolerances_off = 0.0;
+  StatementTally tally;
 };
 
 // The runs a reading is scored on, submitted to the pool.
@@ -72,26 +70,18 @@ Score score(const ReadingRuns& runs, const std::map<std::string, PaperStatement>
   const std::vector<SweepRow> rows = runs.sweep.get();
   const SimulationResult& case2 = runs.case2.get();
   Score s;
-  const char* ids[3][2] = {{"fig7_case1_f001", "fig7_case1_f009"},
-                           {"fig7_case2_f001", "fig7_case2_f009"},
-                           {"fig7_case3_f001", "fig7_case3_f009"}};
-  const auto count = [&](const PaperStatement& statement, double ours) {
-    const double off = statement.tolerances_off(ours, statement.paper_low);
-    s.worst_tolerances_off = std::max(s.worst_tolerances_off, off);
-    s.mean_tolerances_off += off;
-    s.met += off <= 1.0;
-    ++s.statements;
-  };
   for (std::size_t k = 0; k < 3; ++k) {
-    for (std::size_t j = 0; j < 2; ++j) {
-      const double value = 1.0 / rows[j].ratio[k];
+    for (const bool largest : {false, true}) {
+      const double value = damping_over_friction(rows, k, largest ? 0.09 : 0.01);
       s.damping_over_friction.push_back(value);
-      count(statements.at(ids[k][j]), value);
+      const PaperStatement& statement =
+          statements.at(fig7_statement_id(static_cast<int>(k + 1), largest));
+      s.tally.add(statement, value, statement.paper_low);
     }
   }
   s.last_n2_ms = case2.summary.last_n2_impact_s.value_or(0.0) * 1e3;
-  count(statements.at("case2_last_n2_impact"), s.last_n2_ms);
-  s.mean_tolerances_off /= s.statements;
+  const PaperStatement& last_n2 = statements.at("case2_last_n2_impact");
+  s.tally.add(last_n2, s.last_n2_ms, last_n2.paper_low);
   return s;
 }
 
@@ -124,11 +114,13 @@ ReportSection reproduce_readings(const ReproduceContext& context) {
         number(s.damping_over_friction[1], 3) + " | " + number(s.damping_over_friction[2], 3) +
         " / " + number(s.damping_over_friction[3], 3) + " | " +
         number(s.damping_over_friction[4], 3) + " / " + number(s.damping_over_friction[5], 3) +
-        " | " + number(s.last_n2_ms, 3) + " ms | " + std::to_string(s.met) + " of " +
-        std::to_string(s.statements) + " | " + number(s.mean_tolerances_off, 3) + ", " +
-        number(s.worst_tolerances_off, 3) + " |\n";
+        " | " + number(s.last_n2_ms, 3) + " ms | " + std::to_string(s.tally.met) + " of " +
+        std::to_string(s.tally.count) + " | " + number(s.tally.mean_tolerances_off(), 3) + ", " +
+        number(s.tally.worst_tolerances_off, 3) + " |\n";
     const Score& b = scores[best];
-    if (s.met > b.met || (s.met == b.met && s.mean_tolerances_off < b.mean_tolerances_off)) {
+    if (s.tally.met > b.tally.met ||
+        (s.tally.met == b.tally.met &&
+         s.tally.mean_tolerances_off() < b.tally.mean_tolerances_off())) {
       best = i;
     }
   }
@@ -139,13 +131,15 @@ ReportSection reproduce_readings(const ReproduceContext& context) {
   const Score& d = scores[0];
   const Score& b = scores[best];
   const bool evidence_for_change =
-      b.met > d.met ||
-      (b.met == d.met && d.mean_tolerances_off - b.mean_tolerances_off > decisive_margin);
+      b.tally.met > d.tally.met ||
+      (b.tally.met == d.tally.met &&
+       d.tally.mean_tolerances_off() - b.tally.mean_tolerances_off() > decisive_margin);
   section.text +=
       "\nBest (most statements met, then the smallest mean miss): **" + list[best].name + "**, " +
-      std::to_string(b.met) + " of " + std::to_string(b.statements) + " statements met, mean " +
-      number(b.mean_tolerances_off, 3) + " tolerances off; the default: " + std::to_string(d.met) +
-      " of " + std::to_string(d.statements) + ", mean " + number(d.mean_tolerances_off, 3) +
+      std::to_string(b.tally.met) + " of " + std::to_string(b.tally.count) +
+      " statements met, mean " + number(b.tally.mean_tolerances_off(), 3) +
+      " tolerances off; the default: " + std::to_string(d.tally.met) + " of " +
+      std::to_string(d.tally.count) + ", mean " + number(d.tally.mean_tolerances_off(), 3) +
       ". The default changes only for a reading that meets more statements, or as "
       "many with a mean miss smaller by more than " +
       number(decisive_margin, 2) +

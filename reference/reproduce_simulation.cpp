@@ -9,6 +9,7 @@
 #include "gearimpact/dynamics/simulation_case.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/results.hpp"
+#include "gearimpact/paper/scoring.hpp"
 #include "gearimpact/paper/statements.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "reproduce.hpp"
@@ -122,8 +123,7 @@ ReportSection reproduce_time_histories(const ReproduceContext& context) {
             number(last_n2.tolerances_off(last * 1e3, last_n2.paper_low), 2) + " tolerances off)";
       }
       section.rows.push_back(row);
-      const bool alternate_first =
-          result.impacts.size() >= 2 && result.impacts[0].line != result.impacts[1].line;
+      const bool alternate_first = impacts_alternate_first(result.impacts);
       const PaperStatement& alternate = statements.at("case2_alternate_first");
       section.rows.push_back(statement_row(
           alternate, alternate_first ? "first two impacts on N1 then N2" : "not alternating",
@@ -132,16 +132,6 @@ ReportSection reproduce_time_histories(const ReproduceContext& context) {
   }
   return section;
 }
-
-namespace {
-
-struct Fig7Point {
-  int case_number;
-  double f;
-  const char* id;
-};
-
-}  // namespace
 
 ReportSection reproduce_fig7(const ReproduceContext& context) {
   const auto statements = read_statements(context.paper_data / "dynamics_statements.csv");
@@ -168,36 +158,23 @@ ReportSection reproduce_fig7(const ReproduceContext& context) {
   ReportSection section;
   section.title = "Fig. 7: friction loss / damping loss against f";
   section.text = "Figure: `fig7_friction_sweep.png`; data: `fig7_friction_sweep.csv`.\n";
-  const std::vector<Fig7Point> points{{1, 0.01, "fig7_case1_f001"}, {1, 0.09, "fig7_case1_f009"},
-                                      {2, 0.01, "fig7_case2_f001"}, {2, 0.09, "fig7_case2_f009"},
-                                      {3, 0.01, "fig7_case3_f001"}, {3, 0.09, "fig7_case3_f009"}};
-  for (const Fig7Point& p : points) {
-    const auto row =
-        std::min_element(rows.begin(), rows.end(), [&](const SweepRow& a, const SweepRow& b) {
-          return std::abs(a.friction_coefficient - p.f) < std::abs(b.friction_coefficient - p.f);
-        });
-    const double damping_over_friction =
-        1.0 / row->ratio[static_cast<std::size_t>(p.case_number - 1)];
-    const PaperStatement& s = statements.at(p.id);
-    section.rows.push_back(statement_row(s, number(damping_over_friction, 3),
-                                         s.matches(damping_over_friction, s.paper_low)));
+  for (int case_number = 1; case_number <= 3; ++case_number) {
+    for (const bool largest : {false, true}) {
+      const double f = largest ? 0.09 : 0.01;
+      const double value =
+          damping_over_friction(rows, static_cast<std::size_t>(case_number - 1), f);
+      const PaperStatement& s = statements.at(fig7_statement_id(case_number, largest));
+      section.rows.push_back(statement_row(s, number(value, 3), s.matches(value, s.paper_low)));
+    }
   }
   // "almost linearly related": the ratio over f, constant for an exactly
   // linear law through the origin; its spread relative to its mean.
   const PaperStatement& linear = statements.at("fig7_linear_in_f");
   for (std::size_t k = 0; k < 3; ++k) {
-    double low = 1e300;
-    double high = 0.0;
-    for (const SweepRow& row : rows) {
-      const double slope = row.ratio[k] / row.friction_coefficient;
-      low = std::min(low, slope);
-      high = std::max(high, slope);
-    }
-    const double spread = (high - low) / (0.5 * (high + low));
-    ReportRow row =
-        statement_row(linear, "case " + std::to_string(k + 1) + ": " + number(spread, 3),
-                      linear.matches(spread, linear.paper_low));
-    section.rows.push_back(row);
+    const double spread = linearity_spread(rows, k);
+    section.rows.push_back(statement_row(linear,
+                                         "case " + std::to_string(k + 1) + ": " + number(spread, 3),
+                                         linear.matches(spread, linear.paper_low)));
   }
   return section;
 }

@@ -14,6 +14,7 @@
 
 #include "gearimpact/batch/sweep_friction.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/paper/scoring.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "paper_data.hpp"
 
@@ -26,8 +27,7 @@ TEST_CASE("Fig. 7: damping loss / friction loss against the text, and linearity 
   REQUIRE(rows.size() == 3);
   for (std::size_t j = 0; j < cases.size(); ++j) {
     for (const SweepRow* row : {&rows.front(), &rows.back()}) {
-      const std::string key =
-          "fig7_case" + std::to_string(j + 1) + (row == &rows.front() ? "_f001" : "_f009");
+      const std::string key = fig7_statement_id(static_cast<int>(j + 1), row == &rows.back());
       const PaperStatement& expected = paper.at(key);
       const double measured = 1.0 / row->ratio[j];
       MESSAGE(key << ": paper about " << expected.paper_low << ", measured " << measured << " ("
@@ -35,13 +35,7 @@ TEST_CASE("Fig. 7: damping loss / friction loss against the text, and linearity 
       CHECK(expected.matches(measured, expected.paper_low));
     }
     // "almost linearly related": ratio / f the same at f = 0.01, 0.05, 0.09.
-    double lo = rows[0].ratio[j] / rows[0].friction_coefficient;
-    double hi = lo;
-    for (const SweepRow& row : rows) {
-      lo = std::min(lo, row.ratio[j] / row.friction_coefficient);
-      hi = std::max(hi, row.ratio[j] / row.friction_coefficient);
-    }
-    const double spread = (hi - lo) / (0.5 * (hi + lo));
+    const double spread = linearity_spread(rows, j);
     MESSAGE("case " << j + 1 << ": spread of ratio/f " << spread);
     const PaperStatement& linear = paper.at("fig7_linear_in_f");
     CHECK(linear.matches(spread, linear.paper_low));
@@ -63,7 +57,7 @@ TEST_CASE("case 2: impacts alternate between N1 and N2 at first, then only N1") 
   }
   // "at the beginning impacts alternate between N1 and N2"
   REQUIRE(r.impacts.size() >= 2);
-  CHECK(r.impacts[0].line != r.impacts[1].line);
+  CHECK(impacts_alternate_first(r.impacts));
   CHECK(n2_after == 0);
   CHECK(r.summary.impacts_n1 > n2_before);
   REQUIRE(r.summary.last_n2_impact_s.has_value());

@@ -13,8 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/paper/scoring.hpp"
+#include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "paper_data.hpp"
 
@@ -34,9 +35,9 @@ std::vector<EnergyRatios> cycle(AxialMomentSign sign) {
 }
 
 // How far a computed range is from the paper's, in units of the statement's
-// tolerance at each end.
+// tolerance at its worse end.
 double miss(const PaperStatement& s, double low, double high) {
-  return std::max(s.tolerances_off(low, s.paper_low), s.tolerances_off(high, s.paper_high));
+  return range_tolerances_off(s, low, high);
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 #include "gearimpact/io/schema.hpp"
 #include "gearimpact/io/units.hpp"
 #include "gearimpact/numerics/quadrature.hpp"
+#include "gearimpact/paper/scoring.hpp"
 #include "gearimpact/paper/statements.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "gearimpact/stiffness/energy.hpp"
