@@ -46,7 +46,7 @@ std::vector<std::pair<std::string, Accuracy>> accuracy_results();
 // CPU nanoseconds per iteration of the named benchmark, "name:real" its wall
 // nanoseconds per iteration, "name:key" its counter `key`.
 using Figures = std::function<double(std::string_view benchmark_name)>;
-// A target of the issue, as a line of the report: returns the line, which
+// A performance target, as a line of the report: returns the line, which
 // says the figures and whether the target is met.
 using Target = std::function<std::string(const Figures& ns_per_iteration)>;
 bool register_target(Target target);

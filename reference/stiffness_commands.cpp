@@ -46,13 +46,7 @@ PairAndModel pair_and_model(const StiffnessOptions& options, const CLI::App& com
 void print_stiffness_table(const StiffnessOptions& options, const CLI::App& command) {
   if (options.points < 2) throw InputError("--points", std::to_string(options.points), ">= 2");
   const auto [pair, model] = pair_and_model(options, command);
-  const ContactSegment segment = contact_segment(pair);
-  const double step = (segment.end_m - segment.start_m) / (options.points - 1);
-  std::vector<double> positions;
-  for (int i = 0; i < options.points; ++i) {
-    positions.push_back(i + 1 == options.points ? segment.end_m : segment.start_m + i * step);
-  }
-  std::fputs(stiffness_csv(pair, model, positions).c_str(), stdout);
+  std::fputs(stiffness_csv(pair, model, contact_positions(pair, options.points)).c_str(), stdout);
 }
 
 void print_energy_ratios(const StiffnessOptions& options, const CLI::App& command) {

@@ -1,5 +1,5 @@
 // The dynamics against invariants, closed forms and an independent integrator:
-// issue 5, Verification. Every expected value comes from an equation, a limit
+// the dynamics part of MODEL.md. Every expected value comes from an equation, a limit
 // or the other integrator, never from this code's own earlier output.
 #include <doctest/doctest.h>
 

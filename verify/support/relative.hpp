@@ -1,5 +1,5 @@
 // Relative comparison for SI quantities of any size (doctest's default Approx
-// passes every compliance of order 1e-9 m/N, see the developer guide).
+// passes every compliance of order 1e-9 m/N: its margin is absolute at scale 1).
 #pragma once
 
 #include <algorithm>

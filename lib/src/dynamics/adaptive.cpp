@@ -1,5 +1,6 @@
 // The cross-check of the fixed-step runs: Boost.Odeint's dense-output
-// Dormand-Prince 5(4), with the mode's events located on its dense output.
+// Dormand-Prince method (order 5, with an embedded order-4 error estimate),
+// with the mode's events located on its dense output.
 #include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <exception>

@@ -1,5 +1,6 @@
 // The integrators of a run: fixed-step RK4 with event location (rk4.cpp) and
-// Boost.Odeint's dense-output Dormand-Prince 5(4) with the same event location
+// Boost.Odeint's dense-output Dormand-Prince method (order 5, with an embedded
+// order-4 error estimate) with the same event location
 // (adaptive.cpp).
 #pragma once
 

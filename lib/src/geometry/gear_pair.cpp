@@ -60,6 +60,7 @@ double involute_function(double angle_rad) {
 }
 
 double half_tooth_angle(const GearPair& pair, Gear gear) {
+  // (13),(27)
   return pi / (2.0 * teeth(pair, gear)) + involute_function(pair.pressure_angle_rad);
 }
 
@@ -81,7 +82,20 @@ ContactSegment contact_segment(const GearPair& pair) {
           std::sqrt(ra1 * ra1 - rb1 * rb1)};
 }
 
+std::vector<double> contact_positions(const GearPair& pair, int points) {
+  if (points < 2) throw InputError("points", std::to_string(points), "an integer >= 2");
+  const ContactSegment segment = contact_segment(pair);
+  const double step = (segment.end_m - segment.start_m) / (points - 1);
+  std::vector<double> positions(static_cast<std::size_t>(points));
+  for (int i = 0; i < points; ++i) {
+    positions[static_cast<std::size_t>(i)] =
+        i + 1 == points ? segment.end_m : segment.start_m + i * step;
+  }
+  return positions;
+}
+
 double base_pitch(const GearPair& pair) {
+  // (41)
   return pi * pair.module_m * std::cos(pair.pressure_angle_rad);
 }
 
@@ -91,6 +105,7 @@ double contact_ratio(const GearPair& pair) {
 }
 
 double contact_angle(const GearPair& pair, Gear gear, double x1_m) {
+  // (12) for gear 1; (25),(26) for gear 2, whose contact is lp - X1 from C2.
   if (gear == Gear::one) {
     return x1_m / base_radius(pair, Gear::one) - half_tooth_angle(pair, Gear::one);
   }
@@ -99,6 +114,7 @@ double contact_angle(const GearPair& pair, Gear gear, double x1_m) {
 }
 
 double contact_position_from_phi1(const GearPair& pair, double phi1_rad) {
+  // (12) inverted
   return base_radius(pair, Gear::one) * (phi1_rad + half_tooth_angle(pair, Gear::one));
 }
 

@@ -29,18 +29,10 @@ ElasticEnergy shared_load_energy(const std::vector<MeshStiffness>& pairs, double
 
 std::vector<EnergyRatios> energy_ratio_cycle(const GearPair& pair, int points,
                                              const StiffnessModel& model) {
-  if (points < 2) {
-    throw InputError("points", std::to_string(points), "an integer >= 2");
-  }
   const MeshLayout layout(pair, CoastPhase::half_base_pitch);
-  const double start = layout.start_m();
-  const double end = layout.end_m();
-  const double step = (end - start) / (points - 1);
   std::vector<EnergyRatios> rows;
-  rows.reserve(static_cast<std::size_t>(points));
-  for (int i = 0; i < points; ++i) {
-    // The last point is set exactly so that X_end is not lost to rounding.
-    const double x = i + 1 == points ? end : start + i * step;
+  rows.reserve(static_cast<std::size_t>(std::max(points, 0)));
+  for (const double x : contact_positions(pair, points)) {
     // (42) with this tooth as pair 0: the tooth first, then the others.
     const MeshStiffness own = mesh_stiffness(pair, x, model);
     std::vector<MeshStiffness> loaded{own};

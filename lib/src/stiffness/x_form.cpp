@@ -4,8 +4,9 @@
 
 namespace gearimpact {
 
-// (16)-(19): U = Int M^2/(2 E I) dx + Int Fa^2/(2 E A) dx over the centre line,
-// x from the base-circle section (0) to the load (l), M = Fb (l - x) -/+ Fa h.
+// (16),(17),(18),(19): U = Int M^2/(2 E I) dx + Int Fa^2/(2 E A) dx over the
+// centre line, x from the base-circle section (0) to the load (l), with the
+// moment of (14) M = Fb (l - x) -/+ Fa h.
 Compliances x_form_compliances(const InvoluteTooth& tooth, double contact_x_m, double e,
                                double width, const StiffnessModel& model) {
   const PolarContact contact = polar_contact(tooth, contact_x_m);

@@ -35,7 +35,9 @@ enum StateIndex : std::size_t {
 };
 
 inline constexpr int kMaxPairs = MeshLayout::capacity;
-// Region (2) + pair bounds (4) + friction sign and force clipping per pair.
+// The event values of a mode: two in free flight; in contact the penetration,
+// four bounds of the loaded pairs, and the friction sign and force clipping of
+// each pair.
 inline constexpr int kMaxEvents = 2 + 4 + 2 * kMaxPairs;
 using EventValues = std::array<double, kMaxEvents>;
 

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstddef>
+#include <vector>
 
 namespace gearimpact {
 
@@ -60,6 +61,11 @@ struct ContactSegment {
 };
 ContactSegment contact_segment(const GearPair& pair);
 
+// `points` (>= 2) evenly spaced positions X1 from X_start to X_end inclusive,
+// the last set exactly so that X_end is not lost to rounding: the positions of
+// the stiffness and energy tables.
+std::vector<double> contact_positions(const GearPair& pair, int points);
+
 // (41) t0 = pi m cos a0.
 double base_pitch(const GearPair& pair);
 
@@ -102,8 +108,8 @@ class MeshLayout {
 
   MeshLayout(const GearPair& pair, CoastPhase coast_phase);
 
-  // X of the pair k = 0 on `line` (Region::n1 or Region::n2) at rotation theta1:
-  // X_pitch + Rb1 theta1 on N1, X_pitch - Rb1 theta1 (+ t0/2) on N2.
+  // X of the pair k = 0 on `line` (Region::n1 or Region::n2) at rotation theta1,
+  // (9) with (12): X_pitch + Rb1 theta1 on N1, X_pitch - Rb1 theta1 (+ t0/2) on N2.
   double reference_m(Region line, double theta1_rad) const {
     return line == Region::n1 ? x_pitch_ + rb1_ * theta1_rad
                               : x_pitch_ - rb1_ * theta1_rad + coast_offset_;
