@@ -56,10 +56,51 @@ void rk4_step_unlocated(const GearSystem& system, double t, const State& y, doub
   }
 }
 
+namespace {
+
+// One RK4 step from t towards `target` in the run's mode, cut at the first
+// event inside it. Returns the time reached: `target`, or the event's time
+// (after which the mode has been classified again).
+double event_cut_step(Run& run, double t, double target) {
+  const GearSystem& system = run.system();
+  const State y = run.y();
+  const Mode mode = run.mode();
+  const ContactMemory damping = run.damping();
+  State k1;
+  State next{};
+  rk4_step(system, t, y, target - t, mode, damping, next, k1);
+  run.rhs_evaluations() += 4;
+  run.check_finite(target, next);
+  ++run.steps();
+  if (system.mode_holds(next, mode, damping)) {
+    run.y() = next;
+    return target;
+  }
+  EventValues g_a{}, g_b{};
+  const int n = system.event_values(y, mode, damping, g_a);
+  system.event_values(next, mode, damping, g_b);
+  long long evaluations = 0;
+  const auto state_at = [&](double tau, State& x) {
+    rk4_step_from(system, t, y, k1, tau - t, mode, damping, x);
+    evaluations += 3;
+  };
+  const double t_event = earliest_event(system, mode, damping, t, target, g_a, g_b, n, state_at);
+  run.rhs_evaluations() += evaluations;
+  if (t_event < target) {
+    state_at(t_event, next);
+    run.check_finite(t_event, next);
+  }
+  run.y() = next;
+  const double reached = t_event >= target ? target : t_event;
+  run.change_mode(reached);
+  return reached;
+}
+
+}  // namespace
+
 SimulationResult run_rk4(const SimulationCase& c, const StiffnessTable& table,
                          const RunControl& control) {
   Run run(c, table, control);
-  const GearSystem& system = run.system();
   const double h = c.integrator.step_s;
   const double t0 = run.start_time();
   const double end = t0 + c.integrator.end_time_s;
@@ -68,67 +109,23 @@ SimulationResult run_rk4(const SimulationCase& c, const StiffnessTable& table,
   const long long every = c.integrator.output_every;
   double t = t0;
   long long k = 0;
-  int stalled = 0;
-  State next{};
   while (k < grid_steps) {
     const double target = k + 1 == grid_steps ? end : t0 + static_cast<double>(k + 1) * h;
-    const double step = target - t;
-    const State& y = run.y();
     if (!control.locate_events) {
-      rk4_step_unlocated(system, t, y, step, run.damping(), next);
+      State next{};
+      rk4_step_unlocated(run.system(), t, run.y(), target - t, run.damping(), next);
       run.rhs_evaluations() += 4;
       run.check_finite(target, next);
       run.y() = next;
-      t = target;
-      ++k;
       ++run.steps();
+      t = target;
       run.set_mode_without_events(t);
     } else {
-      State k1;
-      rk4_step(system, t, y, step, run.mode(), run.damping(), next, k1);
-      run.rhs_evaluations() += 4;
-      run.check_finite(target, next);
-      if (system.mode_holds(next, run.mode(), run.damping())) {
-        run.y() = next;
-        t = target;
-        ++k;
-        ++run.steps();
-        stalled = 0;
-      } else {
-        EventValues g_a{}, g_b{};
-        const int n = system.event_values(y, run.mode(), run.damping(), g_a);
-        system.event_values(next, run.mode(), run.damping(), g_b);
-        const State start = y;
-        const Mode mode = run.mode();
-        const ContactMemory damping = run.damping();
-        long long evaluations = 0;
-        const auto state_at = [&](double tau, State& x) {
-          rk4_step_from(system, t, start, k1, tau - t, mode, damping, x);
-          evaluations += 3;
-        };
-        const double t_event =
-            earliest_event(system, mode, damping, t, target, g_a, g_b, n, state_at);
-        run.rhs_evaluations() += evaluations;
-        if (t_event < target) {
-          state_at(t_event, next);
-          run.check_finite(t_event, next);
-        }
-        stalled = t_event - t <= 1e-9 * h ? stalled + 1 : 0;
-        if (stalled > kMostStalledEvents) {
-          throw SimulationError("event location stalled at " + where(t, run.steps()) +
-                                ": the mode changes back and forth without time advancing");
-        }
-        run.y() = next;
-        ++run.steps();
-        if (t_event >= target) {
-          t = target;
-          ++k;
-        } else {
-          t = t_event;
-        }
-        run.change_mode(t);
-      }
+      const double reached = event_cut_step(run, t, target);
+      run.check_progress(t, reached, h);
+      t = reached;
     }
+    if (t == target) ++k;
     run.book_keep();
     if (run.records() && t == target && (k % every == 0 || k == grid_steps)) run.record(t);
     run.poll_stop(t);

@@ -61,6 +61,16 @@ class Run {
     }
   }
 
+  // After a step from t_from to t_to: throws when steps keep ending on events
+  // that advance time by almost nothing (1e-9 of the step h).
+  void check_progress(double t_from, double t_to, double h) {
+    stalled_ = t_to - t_from <= 1e-9 * h ? stalled_ + 1 : 0;
+    if (stalled_ > kMostStalledEvents) {
+      throw SimulationError("event location stalled at " + where(t_from, result_.summary.steps) +
+                            ": the mode changes back and forth without time advancing");
+    }
+  }
+
   // Every kStopPollSteps steps, the caller's should_stop.
   void poll_stop(double t) const {
     if (control_.should_stop && result_.summary.steps % kStopPollSteps == 0 &&
@@ -203,6 +213,7 @@ class Run {
   Mode mode_;
   ContactMemory damping_;
   double start_time_ = 0.0;
+  int stalled_ = 0;
   SimulationResult result_;
   std::vector<ImpactRecord> impacts_;
   // Last: its construction sets the start state above (make_ledger).

@@ -52,7 +52,6 @@ void validate_step(const SimulationCase& c, double largest) {
   }
 }
 
-
 double largest_resolving_step_s(const SimulationCase& c) {
   return largest_step(c,
                       [&](double x) { return mesh_stiffness(c.gears, x, c.model.stiffness).ke; });
