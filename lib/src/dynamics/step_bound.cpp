@@ -21,14 +21,18 @@ double largest_step(const SimulationCase& c, const std::function<double(double)>
   const double rb2 = base_radius(g, Gear::two);
   const double inverse_mass =
       rb1 * rb1 / moment_of_inertia(g, Gear::one) + rb2 * rb2 / moment_of_inertia(g, Gear::two);
-  const ContactSegment segment = contact_segment(g);
-  const double t0 = base_pitch(g);
+  // (42): the pairs loaded when one sits at u, for u along one base pitch.
+  const MeshLayout layout(g, c.model.coast_phase);
+  const double t0 = layout.base_pitch_m();
   constexpr int samples = 16;
   double stiffest = 0.0;
   for (int i = 0; i <= samples; ++i) {
-    const double u = segment.start_m + t0 * i / samples;
+    const double u = layout.start_m() + t0 * i / samples;
+    const LoadedRange range = layout.loaded(u);
     double total = 0.0;
-    for (double x = u; x <= segment.end_m; x += t0) total += ke(x);
+    for (int k = range.k_first; k < range.k_first + range.count; ++k) {
+      total += ke(layout.position_m(u, k));
+    }
     stiffest = std::max(stiffest, total);
   }
   const double period = 2.0 * pi / std::sqrt(stiffest * inverse_mass);
