@@ -92,7 +92,7 @@ write_slurm_conf() {
   # instead of draining the node when its hardware probe (sockets, cores) differs from them.
   # MailProg=/bin/true silences slurmctld's error about a missing mail program. The scheduler
   # parameters start a job at the next event instead of batching submissions for 3 s, which is
-  # what a cluster running a few short jobs wants (a 3-shard array and its merge: 4 s, not 12 s).
+  # what a cluster running a few short jobs wants (the test's jobs: about 4 s instead of 9 s).
   cat >"$dir/slurm.conf" <<EOF
 # Written by scripts/slurm/local-cluster.sh: a one-node test cluster, everything under $dir.
 ClusterName=gearimpact-local
@@ -316,8 +316,8 @@ case "$command" in
   stop | status)
     if [[ ! -d "$2" ]]; then
       echo "local-cluster: no cluster in $2 (no such folder)"
-      [[ "$command" == stop ]]
-      exit
+      # Nothing to stop is a successful stop; nothing running is a failed status.
+      if [[ "$command" == stop ]]; then exit 0; else exit 1; fi
     fi
     dir="$(cd "$2" && pwd -P)"
     "${command}_cluster"

@@ -54,13 +54,20 @@ pass() {
   echo "ok: $*"
 }
 
+# Slurm's clients read SBATCH_*, SLURM_* and the like as defaults (a partition, an account): the
+# caller's, if it runs inside a Slurm job or sets them, do not apply to this cluster.
+while read -r variable; do
+  unset "$variable"
+done < <(compgen -e | grep -E '^(SBATCH|SLURM|SALLOC|SRUN|SQUEUE|SINFO|SCONTROL)_' || true)
+
 started=$SECONDS
 set +e
 "$repo/scripts/slurm/local-cluster.sh" start "$cluster"
 status=$?
 set -e
 if ((status == status_skip)); then
-  echo "SKIP: the local Slurm cluster cannot start on this machine (reason above)"
+  echo "SKIP: the local Slurm cluster cannot start on this machine (reason above; logs in" \
+    "$scratch/cluster-log)"
   exit "$status_skip"
 fi
 ((status == 0)) || fail "local-cluster.sh start exited with status $status"
@@ -97,7 +104,7 @@ done
 echo "all jobs done $((SECONDS - started)) s after the start of the cluster"
 
 # One value of a field per job record (an array job has one record per task).
-field() { scontrol -o show job "$1" | grep -o " $2=[^ ]*" | cut -d= -f2-; }
+field() { scontrol -o show job "$1" | grep -o " $2=[^ ]*" | cut -d= -f2- || true; }
 
 states="$(field "$array_job" JobState | sort | uniq -c | tr -s ' ')"
 [[ "$states" == " $shards COMPLETED" ]] ||
