@@ -9,6 +9,7 @@ packages=(
   libcli11-dev libtoml11-dev
   clang libclang-rt-14-dev
   gnuplot-nox
+  slurm-wlm munge parallel
 )
 missing=()
 for p in "${packages[@]}"; do
