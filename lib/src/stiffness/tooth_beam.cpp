@@ -67,17 +67,19 @@ double density(const EnergyDensity& d, Term term, double x, double y) {
   return 0.0;
 }
 
-// Route 1: Int f(x(p), y(p)) y'(p) dp over the piece's parameter.
+// Route 1: Int f(x(p), y(p)) y'(p) dp over the piece's parameter, with
+// p = p_root + t (p_top - p_root), t in [0, 1]. The unit interval is for
+// Boost 1.74, whose Gauss-Kronrod error estimate is taken on [-1, 1] before
+// scaling to the interval: on a piece a fraction of a millimetre long it
+// would read thousands of times the true error and never converge.
 double integrate_over_parameter(const FlankPiece& piece, const EnergyDensity& d, Term term,
                                 QuadratureTolerance tolerance) {
-  const double lower = std::min(piece.parameter_root, piece.parameter_top);
-  const double upper = std::max(piece.parameter_root, piece.parameter_top);
-  const double orientation = piece.parameter_top > piece.parameter_root ? 1.0 : -1.0;
-  const auto integrand = [&](double p) {
-    const ProfilePoint point = piece.point(p);
-    return density(d, term, point.x_m, point.y_m) * point.dy_m;
+  const double span = piece.parameter_top - piece.parameter_root;
+  const auto integrand = [&](double t) {
+    const ProfilePoint point = piece.point(piece.parameter_root + t * span);
+    return density(d, term, point.x_m, point.y_m) * point.dy_m * span;
   };
-  return orientation * integrate_gsl_qag(integrand, lower, upper, tolerance).value;
+  return integrate_boost_gauss_kronrod(integrand, 0.0, 1.0, tolerance).value;
 }
 
 // The parameter at which the piece reaches height y: y(p) is monotonic on
@@ -111,7 +113,7 @@ double integrate_over_height(const FlankPiece& piece, const EnergyDensity& d, Te
     const double x = piece.point(parameter_at_height(piece, y)).x_m;
     return density(d, term, x, y);
   };
-  return integrate_boost_gauss_kronrod(integrand, y_root, y_top, tolerance).value;
+  return integrate_gsl_qag(integrand, y_root, y_top, tolerance).value;
 }
 
 double integrate_flank(const std::vector<FlankPiece>& flank, const EnergyDensity& d, Term term,

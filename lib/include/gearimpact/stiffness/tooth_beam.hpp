@@ -36,9 +36,11 @@ struct BeamMaterial {
 };
 
 // profile_parameter: each piece integrated over its own parameter,
-//   dy = y'(p) dp, with GSL QAG (61-point Gauss-Kronrod).
+//   dy = y'(p) dp, with Boost's adaptive Gauss-Kronrod (61 points).
 // section_height: each piece integrated over the height y, the section at y
-//   found by solving y(p) = y (TOMS 748), with Boost's adaptive Gauss-Kronrod.
+//   found by solving y(p) = y (TOMS 748), with GSL QAG (61-point
+//   Gauss-Kronrod, globally adaptive: x(y) near the root circle behaves like
+//   a square root of a point just below it, which needs many subintervals).
 // They share the flank's points and nothing else (not y'(p), not the rule,
 // not the library).
 enum class BeamRoute { profile_parameter, section_height };
