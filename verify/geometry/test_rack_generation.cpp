@@ -111,9 +111,8 @@ TEST_CASE("trochoid: meets the involute at the form radius, continuously, with a
       CHECK(trochoid_point(g, gamma).dy_m < 0.0);
     }
   }
-  MESSAGE("trochoid/involute junction: worst gap " << worst_gap
-                                                   << " of r_c, worst sine between tangents "
-                                                   << worst_cross);
+  MESSAGE("trochoid/involute junction: worst gap "
+          << worst_gap << " of r_c, worst sine between tangents " << worst_cross);
 }
 
 TEST_CASE("tooth thickness on the reference circle is pi m / 2 + 2 x m tan a0") {

@@ -30,15 +30,24 @@ double bracketed_root(F f, double lower, double upper) {
   return 0.5 * (bracket.first + bracket.second);
 }
 
+// theta_b = pi / (2 z) + inv a0 + 2 x tan a0 / z: half the tooth's angle on
+// the base circle, from the tooth thickness pi m / 2 + 2 x m tan a0 on the
+// reference circle (the rack's space on its rolling line).
+double base_half_angle(double teeth, double a0, double x) {
+  return pi / (2.0 * teeth) + involute_function(a0) + 2.0 * x * std::tan(a0) / teeth;
+}
+
+// r_a = r_p + (ha + x) m: the shift moves the tip out with the rack.
+double tip_radius(double teeth, double module, double ha, double x) {
+  return 0.5 * teeth * module + (ha + x) * module;
+}
+
 // Half angle of the involute tooth at its tip, theta_b - inv(alpha_a): zero or
 // less is a pointed tooth.
 double tip_half_angle(double teeth, double module, double a0, double ha, double x) {
-  const double rp = 0.5 * teeth * module;
-  const double rb = rp * std::cos(a0);
-  const double ra = rp + (ha + x) * module;
-  const double theta_b =
-      pi / (2.0 * teeth) + involute_function(a0) + 2.0 * x * std::tan(a0) / teeth;
-  return theta_b - involute_function(std::acos(rb / ra));
+  const double rb = 0.5 * teeth * module * std::cos(a0);
+  return base_half_angle(teeth, a0, x) -
+         involute_function(std::acos(rb / tip_radius(teeth, module, ha, x)));
 }
 
 // inv a = target for a in (0, pi/2): inv is increasing there, 0 at 0 and
@@ -87,10 +96,10 @@ RackGearGeometry rack_gear_geometry(const RackGear& gear, const std::string& nam
   // unit depth; at the depth (ha + c) m of its tip it must still be thick.
   const double tip_land_half_width = pi / 4.0 - (ha + c) * tan_a0;  // in modules
   if (tip_land_half_width <= 0.0) {
-    throw InputError(p + "clearance_coefficient", c,
-                     "values with (ha + c) tan a0 < pi/4, below which the rack tooth is not "
-                     "pointed: c < " +
-                         format_number(pi / (4.0 * tan_a0) - ha));
+    throw InputError(
+        p + "clearance_coefficient", c,
+        "values below pi / (4 tan a0) - ha = " + format_number(pi / (4.0 * tan_a0) - ha) +
+            ", so that the rack tooth keeps a tip land");
   }
   // The tip round, tangent to the tip line and the flank, reaches up the
   // flank by rho (1 - sin a0): more than the clearance c m and it cuts into
@@ -131,9 +140,9 @@ RackGearGeometry rack_gear_geometry(const RackGear& gear, const std::string& nam
   g.rack_tip_radius_m = rho;
   g.pitch_radius_m = 0.5 * z * m;
   g.base_radius_m = g.pitch_radius_m * cos_a0;
-  g.tip_radius_m = g.pitch_radius_m + (ha + x) * m;
+  g.tip_radius_m = tip_radius(z, m, ha, x);
   g.root_radius_m = g.pitch_radius_m - (ha + c - x) * m;
-  g.half_tooth_angle_base_rad = pi / (2.0 * z) + involute_function(a0) + 2.0 * x * tan_a0 / z;
+  g.half_tooth_angle_base_rad = base_half_angle(z, a0, x);
 
   // Depth below the rolling line of the point where the rack's straight flank
   // meets its tip round; that point generates the involute's first point, the

@@ -1,12 +1,28 @@
 #include "gearimpact/stiffness/mesh_models.hpp"
 
 #include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <utility>
 
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/stiffness/fillet_foundation.hpp"
 
 namespace gearimpact {
+
+namespace {
+
+// The foundation term's h_f = r_f / r_int needs the bore.
+void require_bore(const RackGearGeometry& gear, const std::string& name) {
+  if (!gear.bore_diameter_m) {
+    throw InputError(name + ".bore_diameter", "absent",
+                     "a diameter in (0, " + format_number(2.0 * gear.root_radius_m) +
+                         ") m: the fillet-foundation term needs the bore (or switch the term off)");
+  }
+}
+
+}  // namespace
 
 MeshModelKind parse_mesh_model(std::string_view name) {
   if (name == "potential-energy") return MeshModelKind::potential_energy;
@@ -72,7 +88,12 @@ ToothCompliances tooth_compliances(const RackGearGeometry& gear, const ToothCont
     throw InputError("stiffness terms", "none of bending, shear, axial, foundation",
                      "at least one tooth term");
   }
-  if (!(contact.tau_rad >= gear.form_tau_rad && contact.tau_rad <= gear.tip_tau_rad)) {
+  // The path's ends put the contact on a tip or a form point up to the
+  // rounding of T1T2 - s: a few ulps of tan alpha are let through.
+  const double slack = 64.0 * std::numeric_limits<double>::epsilon() *
+                       (gear.tip_tau_rad + gear.half_tooth_angle_base_rad);
+  if (!(contact.tau_rad >= gear.form_tau_rad - slack &&
+        contact.tau_rad <= gear.tip_tau_rad + slack)) {
     throw InputError(name + " contact tau", contact.tau_rad,
                      "[" + format_number(gear.form_tau_rad) + ", " +
                          format_number(gear.tip_tau_rad) + "] rad: on the involute");
@@ -89,18 +110,21 @@ ToothCompliances tooth_compliances(const RackGearGeometry& gear, const ToothCont
     if (on.axial) c.axial_m_per_n = beam.axial_m_per_n;
   }
   if (on.foundation) {
-    if (!gear.bore_diameter_m) {
-      throw InputError(name + ".bore_diameter", "absent",
-                       "a diameter in (0, " + format_number(2.0 * gear.root_radius_m) +
-                           ") m: the fillet-foundation term needs the bore (or switch the term "
-                           "off)");
-    }
+    require_bore(gear, name);
     const double theta_f = foundation_root_half_angle(gear, model.kind);
-    const FoundationFit fit =
-        sainsot_coefficients(gear.root_radius_m / (0.5 * *gear.bore_diameter_m), theta_f);
+    const double h_f = gear.root_radius_m / (0.5 * *gear.bore_diameter_m);
+    const FoundationFit fit = sainsot_coefficients(h_f, theta_f);
     c.foundation_m_per_n = fillet_foundation_compliance(
         fit.coefficients, e, contact_width_m, foundation_load_height(gear, contact, model.kind),
         2.0 * gear.root_radius_m * theta_f, contact.tau_rad);
+    // Far outside its range the fit can turn negative; that is no compliance.
+    if (!(c.foundation_m_per_n > 0.0)) {
+      throw InputError(name + ".bore_diameter", *gear.bore_diameter_m,
+                       "values for which the foundation fit of Sainsot et al. gives a positive "
+                       "compliance (here h_f = " +
+                           format_number(h_f) + ", theta_f = " + format_number(theta_f) +
+                           " rad; the fit covers h_f in [1.4, 7], theta_f in [0.01, 0.12] rad)");
+    }
     c.foundation_extrapolated = fit.extrapolated;
   }
   return c;
@@ -117,16 +141,8 @@ void validate(const MeshModel& model, const RackGearPairGeometry& pair) {
     throw InputError("stiffness_tolerance", model.relative_tolerance, "[1e-14, 1e-2]");
   }
   if (on.foundation) {
-    const std::pair<const RackGearGeometry*, const char*> gears[] = {{&pair.gear1, "gear1"},
-                                                                     {&pair.gear2, "gear2"}};
-    for (const auto& [gear, name] : gears) {
-      if (!gear->bore_diameter_m) {
-        throw InputError(std::string(name) + ".bore_diameter", "absent",
-                         "a diameter in (0, " + format_number(2.0 * gear->root_radius_m) +
-                             ") m: the fillet-foundation term needs the bore (or switch the term "
-                             "off)");
-      }
-    }
+    require_bore(pair.gear1, "gear1");
+    require_bore(pair.gear2, "gear2");
   }
 }
 
