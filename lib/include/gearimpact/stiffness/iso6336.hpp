@@ -1,0 +1,64 @@
+// Tooth stiffness by ISO 6336-1 method B, the engineering standard's
+// empirical fit, for comparison with the models (STIFFNESS-MODELS.md,
+// section 4). Spur and helical external gears.
+//
+// ISO states these quantities in N/(mm um) per unit face width; here they
+// are in SI, N/m per metre of face width (N/m^2): 1 N/(mm um) = 1e9 N/m^2.
+// The flexibility q' of the fit is kept in the fit's own unit, mm um/N.
+#pragma once
+
+#include <optional>
+
+namespace gearimpact {
+
+struct Iso6336Gear {
+  int teeth = 20;
+  double profile_shift_coefficient = 0.0;               // x
+  double tip_diameter_m = 0.0;                          // d_a, for the transverse contact ratio
+  double rack_dedendum_coefficient = 1.25;              // h_fP / m_n of the basic rack
+  double rack_pressure_angle_rad = 0.3490658503988659;  // alpha_Pn of the basic rack (20 deg)
+};
+
+struct Iso6336Pair {
+  double normal_module_m = 2.0e-3;                        // m_n
+  double normal_pressure_angle_rad = 0.3490658503988659;  // alpha_n
+  double helix_angle_rad = 0.0;                           // beta (0: spur)
+  double centre_distance_m = 0.0;                         // a_w
+  Iso6336Gear gear1;
+  Iso6336Gear gear2;
+  double mesh_factor = 0.8;   // C_M
+  double blank_factor = 1.0;  // C_R, 1 for solid blanks
+  // F_t K_A / b in N/m. Absent: at least 424 N/mm, no low-load correction.
+  // Below 424 N/mm, c' is multiplied by (F_t K_A / b / 424 N/mm)^0.25, ISO's
+  // correction for lightly loaded teeth (threshold as STIFFNESS-MODELS.md
+  // gives it; not checked against a worked example here).
+  std::optional<double> specific_load_n_per_m;
+};
+
+struct Iso6336Stiffness {
+  double virtual_teeth1;  // zn = z / (cos^2 beta_b cos beta)
+  double virtual_teeth2;
+  double base_helix_angle_rad;                   // tan beta_b = tan beta cos alpha_t
+  double flexibility_mm_um_per_n;                // q'
+  double theoretical_single_stiffness_n_per_m2;  // c'_th = 1 / q'
+  double basic_rack_factor;                      // C_B
+  double low_load_factor;                        // 1 unless specific_load_n_per_m < 424 N/mm
+  double single_stiffness_n_per_m2;              // c' = c'_th C_M C_R C_B cos beta (x low load)
+  double transverse_contact_ratio;               // eps_alpha
+  double mesh_stiffness_n_per_m2;                // c_gamma_alpha = c' (0.75 eps_alpha + 0.25)
+};
+
+// Throws InputError naming the first field out of range (counts, module,
+// angles, face-width-free factors, tip diameters outside the base circles,
+// a centre distance the base circles do not fit).
+Iso6336Stiffness iso6336_method_b(const Iso6336Pair& pair);
+
+// q' = C1 + C2/zn1 + C3/zn2 + C4 x1 + C5 x1/zn1 + C6 x2 + C7 x2/zn2 + C8 x1^2 + C9 x2^2,
+// mm um/N (ISO 6336-1 method B; constants of STIFFNESS-MODELS.md section 4).
+double iso6336_flexibility(double virtual_teeth1, double virtual_teeth2, double x1, double x2);
+
+// eps_alpha = [sqrt(d_a1^2 - d_b1^2) / 2 + sqrt(d_a2^2 - d_b2^2) / 2 - a_w sin alpha_wt] / p_bt,
+// in the transverse plane (ISO 21771), cos alpha_wt = (d_b1 + d_b2) / (2 a_w).
+double iso6336_transverse_contact_ratio(const Iso6336Pair& pair);
+
+}  // namespace gearimpact

@@ -1,0 +1,66 @@
+// The tooth as a beam on its centre line, loaded at a flank point along the
+// normal there: bending, shear and axial compliances by the potential-energy
+// method (STIFFNESS-MODELS.md, section 2), over any flank made of smooth
+// parametric pieces. Two independent routes compute every integral.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "gearimpact/geometry/rack_generation.hpp"
+
+namespace gearimpact {
+
+// One smooth piece of the flank (x half thickness, y height along the centre
+// line), with y strictly increasing from parameter_root to parameter_top
+// (either may be the larger number: the trochoid's gamma falls as y rises).
+struct FlankPiece {
+  std::function<ProfilePoint(double)> point;
+  double parameter_root;
+  double parameter_top;
+};
+
+// The contact point (x_t, y_t) and the angle tau between the load line (the
+// flank normal) and the x axis: the load has the component F cos tau across
+// the tooth and F sin tau along it, towards the root.
+struct BeamLoad {
+  double x_m;
+  double y_m;
+  double tau_rad;
+};
+
+struct BeamMaterial {
+  double youngs_modulus_pa;
+  double shear_modulus_pa;
+  double width_m;
+};
+
+// profile_parameter: each piece integrated over its own parameter,
+//   dy = y'(p) dp, with Boost's adaptive Gauss-Kronrod (61 points).
+// section_height: each piece integrated over the height y, the section at y
+//   found by solving y(p) = y (TOMS 748), with GSL QAG (61-point
+//   Gauss-Kronrod, globally adaptive: x(y) near the root circle behaves like
+//   a square root of a point just below it, which needs many subintervals).
+// They share the flank's points and nothing else (not y'(p), not the rule,
+// not the library).
+enum class BeamRoute { profile_parameter, section_height };
+
+struct BeamCompliance {
+  double bending_m_per_n;
+  double shear_m_per_n;
+  double axial_m_per_n;
+};
+
+// Section at height y: A = 2 x b, I = (2/3) x^3 b. Over the flank, from its
+// root to the load (Tian 2004; STIFFNESS-MODELS.md section 2):
+//   1/kb = Int [cos tau (y_t - y) - x_t sin tau]^2 / (E I) dy   (the physical sign
+//          of the axial force's moment: it unbends the tooth)
+//   1/ks = Int 1.2 cos^2 tau / (G A) dy
+//   1/ka = Int sin^2 tau / (E A) dy
+// Each quadrature is asked for `relative_tolerance` and throws QuadratureError
+// if it misses it.
+BeamCompliance tooth_beam_compliance(const std::vector<FlankPiece>& flank, const BeamLoad& load,
+                                     const BeamMaterial& material, BeamRoute route,
+                                     double relative_tolerance = 1e-12);
+
+}  // namespace gearimpact

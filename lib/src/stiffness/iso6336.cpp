@@ -1,0 +1,149 @@
+#include "gearimpact/stiffness/iso6336.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "gearimpact/constants.hpp"
+#include "gearimpact/error.hpp"
+
+namespace gearimpact {
+
+namespace {
+
+constexpr double degree = pi / 180.0;
+// The reference specific load of the low-load correction, 424 N/mm in N/m.
+constexpr double reference_specific_load_n_per_m = 424.0e3;
+
+void require_finite_positive(const std::string& field, double value, const std::string& unit) {
+  if (!std::isfinite(value) || value <= 0.0) {
+    throw InputError(field, value, "a finite value > 0" + unit);
+  }
+}
+
+// Transverse quantities of ISO 21771 for a helix angle beta.
+struct Transverse {
+  double pressure_angle_rad;  // alpha_t: tan alpha_t = tan alpha_n / cos beta
+  double module_m;            // m_t = m_n / cos beta
+};
+
+Transverse transverse(const Iso6336Pair& pair) {
+  const double cos_beta = std::cos(pair.helix_angle_rad);
+  return {std::atan(std::tan(pair.normal_pressure_angle_rad) / cos_beta),
+          pair.normal_module_m / cos_beta};
+}
+
+void validate(const Iso6336Pair& pair) {
+  require_finite_positive("normal_module", pair.normal_module_m, " m");
+  const double an = pair.normal_pressure_angle_rad;
+  if (!std::isfinite(an) || an <= 0.0 || an > 45.0 * degree) {
+    throw InputError("normal_pressure_angle", an, "(0, 45] deg in rad");
+  }
+  const double beta = pair.helix_angle_rad;
+  if (!std::isfinite(beta) || beta < 0.0 || beta >= 45.0 * degree) {
+    throw InputError("helix_angle", beta, "[0, 45) deg in rad");
+  }
+  require_finite_positive("mesh_factor", pair.mesh_factor, " (C_M)");
+  require_finite_positive("blank_factor", pair.blank_factor, " (C_R)");
+  if (pair.specific_load_n_per_m) {
+    require_finite_positive("specific_load", *pair.specific_load_n_per_m, " N/m (F_t K_A / b)");
+  }
+  const Transverse t = transverse(pair);
+  const Iso6336Gear* gears[] = {&pair.gear1, &pair.gear2};
+  double base_diameter_sum = 0.0;
+  for (int i = 0; i < 2; ++i) {
+    const Iso6336Gear& g = *gears[i];
+    const std::string p = i == 0 ? "gear1." : "gear2.";
+    if (g.teeth < 4) throw InputError(p + "teeth", std::to_string(g.teeth), "an integer >= 4");
+    if (!std::isfinite(g.profile_shift_coefficient)) {
+      throw InputError(p + "profile_shift_coefficient", g.profile_shift_coefficient,
+                       "a finite value");
+    }
+    require_finite_positive(p + "rack_dedendum_coefficient", g.rack_dedendum_coefficient,
+                            " (h_fP / m_n)");
+    const double ap = g.rack_pressure_angle_rad;
+    if (!std::isfinite(ap) || ap <= 0.0 || ap > 45.0 * degree) {
+      throw InputError(p + "rack_pressure_angle", ap, "(0, 45] deg in rad");
+    }
+    const double base_diameter = g.teeth * t.module_m * std::cos(t.pressure_angle_rad);
+    base_diameter_sum += base_diameter;
+    if (!std::isfinite(g.tip_diameter_m) || g.tip_diameter_m <= base_diameter) {
+      throw InputError(p + "tip_diameter", g.tip_diameter_m,
+                       "values above the base diameter " + format_number(base_diameter) + " m");
+    }
+  }
+  if (!std::isfinite(pair.centre_distance_m) || 2.0 * pair.centre_distance_m <= base_diameter_sum) {
+    throw InputError(
+        "centre_distance", pair.centre_distance_m,
+        "values above (d_b1 + d_b2) / 2 = " + format_number(0.5 * base_diameter_sum) + " m");
+  }
+}
+
+// C_B of one basic rack: [1 + 0.5 (1.2 - h_fP/m_n)] [1 - 0.02 (20 deg - alpha_Pn)],
+// the angle in degrees (ISO 6336-1 method B).
+double basic_rack_factor(const Iso6336Gear& gear) {
+  return (1.0 + 0.5 * (1.2 - gear.rack_dedendum_coefficient)) *
+         (1.0 - 0.02 * (20.0 - gear.rack_pressure_angle_rad / degree));
+}
+
+}  // namespace
+
+double iso6336_flexibility(double zn1, double zn2, double x1, double x2) {
+  // ISO 6336-1 method B, C1 .. C9.
+  constexpr double c[9] = {0.04723,  0.15551,  0.25791, -0.00635, -0.11654,
+                           -0.00193, -0.24188, 0.00529, 0.00182};
+  return c[0] + c[1] / zn1 + c[2] / zn2 + c[3] * x1 + c[4] * x1 / zn1 + c[5] * x2 +
+         c[6] * x2 / zn2 + c[7] * x1 * x1 + c[8] * x2 * x2;
+}
+
+double iso6336_transverse_contact_ratio(const Iso6336Pair& pair) {
+  validate(pair);
+  const Transverse t = transverse(pair);
+  const double cos_at = std::cos(t.pressure_angle_rad);
+  const double db1 = pair.gear1.teeth * t.module_m * cos_at;
+  const double db2 = pair.gear2.teeth * t.module_m * cos_at;
+  const double da1 = pair.gear1.tip_diameter_m;
+  const double da2 = pair.gear2.tip_diameter_m;
+  const double awt = std::acos((db1 + db2) / (2.0 * pair.centre_distance_m));
+  // ISO 21771: the path of contact over the transverse base pitch pi m_t cos alpha_t.
+  const double path = 0.5 * std::sqrt(da1 * da1 - db1 * db1) +
+                      0.5 * std::sqrt(da2 * da2 - db2 * db2) -
+                      pair.centre_distance_m * std::sin(awt);
+  return path / (pi * t.module_m * cos_at);
+}
+
+Iso6336Stiffness iso6336_method_b(const Iso6336Pair& pair) {
+  validate(pair);
+  Iso6336Stiffness r{};
+  const Transverse t = transverse(pair);
+  const double cos_beta = std::cos(pair.helix_angle_rad);
+  r.base_helix_angle_rad =
+      std::atan(std::tan(pair.helix_angle_rad) * std::cos(t.pressure_angle_rad));
+  const double cos_bb = std::cos(r.base_helix_angle_rad);
+  // zn = z / (cos^2 beta_b cos beta): the virtual spur gear of the normal section.
+  r.virtual_teeth1 = pair.gear1.teeth / (cos_bb * cos_bb * cos_beta);
+  r.virtual_teeth2 = pair.gear2.teeth / (cos_bb * cos_bb * cos_beta);
+  r.flexibility_mm_um_per_n =
+      iso6336_flexibility(r.virtual_teeth1, r.virtual_teeth2, pair.gear1.profile_shift_coefficient,
+                          pair.gear2.profile_shift_coefficient);
+  // c'_th = 1 / q', converted once from N/(mm um) to N/m^2.
+  constexpr double n_per_mm_um = 1.0e9;
+  r.theoretical_single_stiffness_n_per_m2 = n_per_mm_um / r.flexibility_mm_um_per_n;
+  // The mean of the two racks' factors when they differ.
+  r.basic_rack_factor = 0.5 * (basic_rack_factor(pair.gear1) + basic_rack_factor(pair.gear2));
+  r.low_load_factor = 1.0;
+  if (pair.specific_load_n_per_m && *pair.specific_load_n_per_m < reference_specific_load_n_per_m) {
+    r.low_load_factor =
+        std::pow(*pair.specific_load_n_per_m / reference_specific_load_n_per_m, 0.25);
+  }
+  // c' = c'_th C_M C_R C_B cos beta.
+  r.single_stiffness_n_per_m2 = r.theoretical_single_stiffness_n_per_m2 * pair.mesh_factor *
+                                pair.blank_factor * r.basic_rack_factor * cos_beta *
+                                r.low_load_factor;
+  r.transverse_contact_ratio = iso6336_transverse_contact_ratio(pair);
+  // c_gamma_alpha = c' (0.75 eps_alpha + 0.25).
+  r.mesh_stiffness_n_per_m2 =
+      r.single_stiffness_n_per_m2 * (0.75 * r.transverse_contact_ratio + 0.25);
+  return r;
+}
+
+}  // namespace gearimpact

@@ -1,0 +1,164 @@
+#include "gearimpact/stiffness/time_varying_stiffness.hpp"
+
+#include <algorithm>
+#include <boost/math/tools/minima.hpp>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "gearimpact/constants.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/numerics/quadrature.hpp"
+
+namespace gearimpact {
+
+namespace {
+
+void require_fraction(double fraction) {
+  if (!(fraction >= 0.0 && fraction < 1.0)) {
+    throw InputError("mesh period fraction", fraction, "[0, 1)");
+  }
+}
+
+// A stretch of the period with a constant number of pairs: pair k (k = 0 ..
+// pairs - 1) sits at s_SAP + (f + k) p_b for every f in [from, to].
+struct Piece {
+  double from;
+  double to;
+  int pairs;
+};
+
+std::vector<Piece> pieces_of_period(const RackGearPairGeometry& pair) {
+  const double ratio = pair.contact_ratio;
+  const int whole = static_cast<int>(std::floor(ratio));
+  const double leave = ratio - whole;  // f_e, where the leading pair reaches s_EAP
+  if (leave == 0.0) return {{0.0, 1.0, whole}};
+  return {{0.0, leave, whole + 1}, {leave, 1.0, whole}};
+}
+
+// The stiffness of a piece's pairs at f, continued to the piece's ends (an
+// end of a piece puts its leading pair at s_EAP or its trailing pair at
+// s_SAP, up to rounding, which the clamp absorbs).
+double piece_stiffness(const RackGearPairGeometry& pair, const MeshModel& model, const Piece& piece,
+                       double fraction) {
+  double sum = 0.0;
+  for (int k = 0; k < piece.pairs; ++k) {
+    const double s = std::clamp(pair.start_of_active_profile_m + (fraction + k) * pair.base_pitch_m,
+                                pair.start_of_active_profile_m, pair.end_of_active_profile_m);
+    sum += pair_stiffness(pair, model, s).stiffness_n_per_m;
+  }
+  return sum;
+}
+
+struct Extreme {
+  double value;
+  double at;
+};
+
+// The smallest value of sign * k over the piece: the best of a grid that
+// includes both ends, polished by Brent's method between its neighbours.
+Extreme piece_minimum(const RackGearPairGeometry& pair, const MeshModel& model, const Piece& piece,
+                      double sign) {
+  constexpr int grid = 64;
+  const double step = (piece.to - piece.from) / grid;
+  const auto f = [&](double fraction) {
+    return sign * piece_stiffness(pair, model, piece, fraction);
+  };
+  Extreme best{f(piece.from), piece.from};
+  int best_index = 0;
+  for (int i = 1; i <= grid; ++i) {
+    const double at = i == grid ? piece.to : piece.from + i * step;
+    const double value = f(at);
+    if (value < best.value) {
+      best = {value, at};
+      best_index = i;
+    }
+  }
+  if (best_index > 0 && best_index < grid) {
+    // Half the digits of a double is all a minimum's position can carry; the
+    // value there is then exact to rounding.
+    constexpr int bits = std::numeric_limits<double>::digits / 2;
+    const auto polished = boost::math::tools::brent_find_minima(
+        f, piece.from + (best_index - 1) * step, piece.from + (best_index + 1) * step, bits);
+    if (polished.second < best.value) best = {polished.second, polished.first};
+  }
+  return best;
+}
+
+}  // namespace
+
+std::vector<double> contact_positions(const RackGearPairGeometry& pair, double fraction) {
+  require_fraction(fraction);
+  std::vector<double> positions;
+  for (int k = 0;; ++k) {
+    const double s = pair.start_of_active_profile_m + (fraction + k) * pair.base_pitch_m;
+    if (s > pair.end_of_active_profile_m) break;
+    positions.push_back(s);
+  }
+  return positions;
+}
+
+double mesh_stiffness_at(const RackGearPairGeometry& pair, const MeshModel& model,
+                         double fraction) {
+  double sum = 0.0;
+  for (double s : contact_positions(pair, fraction)) {
+    sum += pair_stiffness(pair, model, s).stiffness_n_per_m;
+  }
+  return sum;
+}
+
+TimeVaryingMeshStiffness time_varying_mesh_stiffness(const RackGearPairGeometry& pair,
+                                                     const MeshModel& model,
+                                                     std::size_t sample_count) {
+  if (sample_count < 2) {
+    throw InputError("samples", std::to_string(sample_count), "an integer >= 2");
+  }
+  validate(model, pair);
+  TimeVaryingMeshStiffness result{};
+  result.samples.reserve(sample_count);
+  for (std::size_t i = 0; i < sample_count; ++i) {
+    const double fraction = static_cast<double>(i) / static_cast<double>(sample_count);
+    const std::vector<double> positions = contact_positions(pair, fraction);
+    double k = 0.0;
+    for (double s : positions) k += pair_stiffness(pair, model, s).stiffness_n_per_m;
+    result.samples.push_back(
+        {fraction, fraction * 2.0 * pi / pair.gear1.teeth, static_cast<int>(positions.size()), k});
+  }
+
+  // The inner compliances carry the model's tolerance; the outer quadrature
+  // asks a hundred times less so that their rounding cannot stall it.
+  const QuadratureTolerance outer{std::max(1e-10, 100.0 * model.relative_tolerance), 0.0};
+  result.min_n_per_m = std::numeric_limits<double>::infinity();
+  result.max_n_per_m = -std::numeric_limits<double>::infinity();
+  result.mean_n_per_m = 0.0;
+  for (const Piece& piece : pieces_of_period(pair)) {
+    const Extreme low = piece_minimum(pair, model, piece, 1.0);
+    if (low.value < result.min_n_per_m) {
+      result.min_n_per_m = low.value;
+      result.min_at_fraction = low.at;
+    }
+    const Extreme high = piece_minimum(pair, model, piece, -1.0);
+    if (-high.value > result.max_n_per_m) {
+      result.max_n_per_m = -high.value;
+      result.max_at_fraction = high.at;
+    }
+    result.mean_n_per_m +=
+        integrate_gsl_qag([&](double f) { return piece_stiffness(pair, model, piece, f); },
+                          piece.from, piece.to, outer)
+            .value;
+  }
+  return result;
+}
+
+double path_mean_mesh_stiffness(const RackGearPairGeometry& pair, const MeshModel& model) {
+  validate(model, pair);
+  const QuadratureTolerance outer{std::max(1e-10, 100.0 * model.relative_tolerance), 0.0};
+  const double integral =
+      integrate_boost_gauss_kronrod(
+          [&](double s) { return pair_stiffness(pair, model, s).stiffness_n_per_m; },
+          pair.start_of_active_profile_m, pair.end_of_active_profile_m, outer)
+          .value;
+  return integral / pair.base_pitch_m;
+}
+
+}  // namespace gearimpact
