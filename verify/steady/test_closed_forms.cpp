@@ -85,6 +85,21 @@ TEST_CASE("dimensionless form against the two-disc SI system") {
     // A 2x2 solve whose conditioning is 1 / |1 - Omega^2| <= 10 here: 1e-12 covers it.
     CHECK(relative_difference(s_amplitude, closed_form) <= 1e-12);
 
+    // The viscous mesh damper c = 2 zeta sqrt(k m_e) on s gives the elastic mode the damping
+    // ratio zeta: in the time w_n t its eigenvalues in the 4-state system (th, th' / w_n) are
+    // -zeta +- i sqrt(1 - zeta^2); the rigid-body pair sits at 0.
+    const double zeta = 0.07;
+    const double c = viscous_mesh_damping_n_s_per_m(zeta, k, d.effective_mass_kg);
+    Eigen::Matrix4d state = Eigen::Matrix4d::Zero();
+    state.topRightCorner<2, 2>() = Eigen::Matrix2d::Identity();
+    state.bottomLeftCorner<2, 2>() = -m.inverse() * stiffness / (w_n * w_n);
+    state.bottomRightCorner<2, 2>() = -m.inverse() * (c * line * line.transpose()) / w_n;
+    const Eigen::Vector4cd lambda = Eigen::EigenSolver<Eigen::Matrix4d>(state).eigenvalues();
+    double real_part = 0.0;
+    for (Eigen::Index i = 0; i < 4; ++i) real_part = std::min(real_part, lambda[i].real());
+    // Eigenvalues of a 4x4 with entries of order 1 (the two inertias differ by 256): 1e-12.
+    CHECK(relative_difference(-real_part, zeta) <= 1e-12);
+
     // The static load: the mesh force that holds gear 1 against T_m is k (s - B) = T_m / Rb1,
     // so x - 1 = (s - B) / B is F_m.
     const double mesh_deflection = (pair.mean_torque1_n_m / rb1) / k;

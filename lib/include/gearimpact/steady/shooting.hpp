@@ -141,7 +141,8 @@ struct Branch {
 // until it leaves [parameter_min, parameter_max], has max_points points, or the step falls below
 // min_step (a corner it cannot turn, or the end of the branch) - the end and its reason are
 // reported, every point returned is converged. Throws ShootingError when the first point cannot
-// be found or a fold cannot be located, InputError for settings out of range.
+// be found, a fold cannot be located, or the tangent is not unique (a branch point, where
+// [DP - I, dP/dparameter] loses rank); InputError for settings out of range.
 Branch continue_periodic_orbits(const ParametrizedPeriodMap& map, const Eigen::VectorXd& guess,
                                 double start_parameter, int direction,
                                 const ContinuationSettings& settings);
