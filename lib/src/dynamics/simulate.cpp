@@ -11,16 +11,16 @@
 #include <exception>
 #include <functional>
 #include <limits>
-#include "gearimpact/constants.hpp"
 #include <string>
 #include <thread>
 #include <utility>
 
+#include "gearimpact/constants.hpp"
 #include "gearimpact/contact/contact.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
-#include "gearimpact/io/schema.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/io/schema.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 
 namespace gearimpact {
@@ -463,6 +463,15 @@ class Run {
     s.ledger_residual_max_j = std::max(s.ledger_residual_max_j, std::fabs(residual));
   }
 
+  // Ends the run when the caller's should_stop asks for it.
+  void check_stop(double t) const {
+    if (control_.should_stop && result_.summary.steps % kStepsBetweenStopChecks == 0 &&
+        control_.should_stop()) {
+      throw SimulationStopped("the run was stopped by its caller at " +
+                              where(t, result_.summary.steps));
+    }
+  }
+
   void record(double t) { record(t, y_, mode_); }
   void record(double t, const State& y, const Mode& m) {
     ContactTotals totals;
@@ -705,6 +714,7 @@ SimulationResult run_rk4(const SimulationCase& c, const StiffnessTable& table,
       }
     }
     run.book_keep();
+    run.check_stop(t);
     if (control.keep_series && t == target && (k % every == 0 || k == grid_steps)) run.record(t);
   }
   return run.finish(t, "rk4");
@@ -795,6 +805,7 @@ SimulationResult run_adaptive(const SimulationCase& c, const StiffnessTable& tab
       stepper.initialize(run.y(), t, std::max(stepper.current_time_step(), 1e-3 * h));
     }
     run.book_keep();
+    run.check_stop(t);
   }
   run.rhs_evaluations() = evaluations;
   return run.finish(t, "adaptive");
@@ -919,7 +930,8 @@ std::string summary_json(const SimulationSummary& s) {
 }
 
 std::vector<SweepRow> sweep_friction(const std::vector<SimulationCase>& cases, double from,
-                                     double to, double step, unsigned threads) {
+                                     double to, double step, unsigned threads,
+                                     const std::function<bool()>& should_stop) {
   if (!std::isfinite(from) || from < 0.0) throw InputError("from", from, "a finite value >= 0");
   if (!std::isfinite(to) || to < from) {
     throw InputError("to", to, "a finite value >= from = " + format_number(from));
@@ -950,6 +962,7 @@ std::vector<SweepRow> sweep_friction(const std::vector<SimulationCase>& cases, d
         c.model.friction_coefficient = frictions[i / cases.size()];
         RunControl control;
         control.keep_series = false;
+        control.should_stop = should_stop;
         const SimulationSummary s = simulate(c, tables[i % cases.size()], control).summary;
         if (!(s.damping_loss_j > 0.0)) {
           throw SimulationError("no damping loss in " + c.name +

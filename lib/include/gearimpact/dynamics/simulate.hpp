@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -20,6 +21,12 @@ namespace gearimpact {
 
 // A run that cannot continue: a non-finite state, or event location that stalls.
 class SimulationError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A run ended early because its RunControl::should_stop asked for it.
+class SimulationStopped : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
@@ -111,7 +118,14 @@ struct RunControl {
   // > 0: a constant-stiffness variant of the mesh, Ke of each of the n loaded
   // pairs replaced by this total / n, so the mesh stiffness never changes.
   double constant_mesh_stiffness_n_m = 0.0;
+  // When set, asked every kStepsBetweenStopChecks steps; true ends the run
+  // with SimulationStopped. Lets a caller cancel a long run (an interactive
+  // session's Ctrl-C, a time limit); it may also throw its own exception.
+  std::function<bool()> should_stop;
 };
+// Often enough to stop within about a millisecond of the paper's cases, rarely
+// enough that the check costs nothing next to the steps.
+inline constexpr long long kStepsBetweenStopChecks = 16384;
 
 // Throws InputError naming the first field outside its range.
 void validate(const SimulationCase& c);
@@ -128,12 +142,14 @@ std::string summary_json(const SimulationSummary& summary);
 
 // Fig. 7: friction loss / damping loss of each base case for f = from, from +
 // step, ..., to. Runs are independent and spread over `threads` threads (0: all
-// cores); the result does not depend on the thread count.
+// cores); the result does not depend on the thread count. `should_stop` goes
+// to every run's RunControl and is then called from several threads at once.
 struct SweepRow {
   double friction_coefficient;
   std::vector<double> ratio;  // one per base case, in order
 };
 std::vector<SweepRow> sweep_friction(const std::vector<SimulationCase>& cases, double from,
-                                     double to, double step, unsigned threads = 0);
+                                     double to, double step, unsigned threads = 0,
+                                     const std::function<bool()>& should_stop = {});
 
 }  // namespace gearimpact
