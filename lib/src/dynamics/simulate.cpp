@@ -11,16 +11,16 @@
 #include <exception>
 #include <functional>
 #include <limits>
+#include "gearimpact/constants.hpp"
 #include <string>
 #include <thread>
 #include <utility>
 
-#include "gearimpact/constants.hpp"
 #include "gearimpact/contact/contact.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
+#include "gearimpact/io/schema.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
-#include "gearimpact/io/schema.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 
 namespace gearimpact {
