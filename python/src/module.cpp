@@ -121,20 +121,31 @@ py::array_t<T> column(const std::vector<Row>& rows, T Row::*member) {
   return array;
 }
 
-// The columns of `gearimpact simulate --out` (series_csv), in its order.
-py::dict series_columns(const std::vector<SeriesRow>& rows) {
+// The columns of `gearimpact simulate --out` (series_csv), in its order: views
+// into the rows themselves (a stride of one row), which the arrays keep alive.
+// A copy would add as much time as the series takes to compute.
+py::dict series_columns(std::vector<SeriesRow>&& rows) {
+  auto* owned = new std::vector<SeriesRow>(std::move(rows));
+  const py::capsule keeper(owned, [](void* p) { delete static_cast<std::vector<SeriesRow>*>(p); });
+  const auto n = static_cast<py::ssize_t>(owned->size());
+  const auto view = [&](auto SeriesRow::*member) {
+    using T = std::remove_reference_t<decltype(std::declval<SeriesRow&>().*member)>;
+    if (n == 0) return py::array_t<T>(0);
+    return py::array_t<T>({n}, {static_cast<py::ssize_t>(sizeof(SeriesRow))},
+                          &((*owned)[0].*member), keeper);
+  };
   py::dict series;
-  series["t_s"] = column(rows, &SeriesRow::t_s);
-  series["theta1_rad"] = column(rows, &SeriesRow::theta1_rad);
-  series["theta2_rad"] = column(rows, &SeriesRow::theta2_rad);
-  series["w1_rad_s"] = column(rows, &SeriesRow::w1_rad_s);
-  series["w2_rad_s"] = column(rows, &SeriesRow::w2_rad_s);
-  series["s_m"] = column(rows, &SeriesRow::s_m);
-  series["delta_m"] = column(rows, &SeriesRow::delta_m);
-  series["region"] = column(rows, &SeriesRow::region);
-  series["pairs"] = column(rows, &SeriesRow::pairs);
-  series["normal_force_N"] = column(rows, &SeriesRow::normal_force_n);
-  series["friction_force_N"] = column(rows, &SeriesRow::friction_force_n);
+  series["t_s"] = view(&SeriesRow::t_s);
+  series["theta1_rad"] = view(&SeriesRow::theta1_rad);
+  series["theta2_rad"] = view(&SeriesRow::theta2_rad);
+  series["w1_rad_s"] = view(&SeriesRow::w1_rad_s);
+  series["w2_rad_s"] = view(&SeriesRow::w2_rad_s);
+  series["s_m"] = view(&SeriesRow::s_m);
+  series["delta_m"] = view(&SeriesRow::delta_m);
+  series["region"] = view(&SeriesRow::region);
+  series["pairs"] = view(&SeriesRow::pairs);
+  series["normal_force_N"] = view(&SeriesRow::normal_force_n);
+  series["friction_force_N"] = view(&SeriesRow::friction_force_n);
   return series;
 }
 
@@ -160,13 +171,13 @@ py::list impact_records(const std::vector<ImpactRecord>& impacts) {
 // summary_json's text (the program's JSON, parsed by the Python layer so that
 // the keys and numbers are the program's), the series and the impacts.
 py::tuple run_simulation(const SimulationCase& c, bool keep_series) {
-  const SimulationResult result = interruptible([&](std::function<bool()> should_stop) {
+  SimulationResult result = interruptible([&](std::function<bool()> should_stop) {
     RunControl control;
     control.keep_series = keep_series;
     control.should_stop = std::move(should_stop);
     return simulate(c, control);
   });
-  return py::make_tuple(summary_json(result.summary), series_columns(result.series),
+  return py::make_tuple(summary_json(result.summary), series_columns(std::move(result.series)),
                         impact_records(result.impacts));
 }
 
