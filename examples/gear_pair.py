@@ -5,12 +5,14 @@
 # `gearimpact`: numpy arrays in and out, the same numbers as the `gearimpact`
 # program, SI units inside (m, kg, s, N, rad).
 #
-# Run it from the build tree (after `scripts/test.sh` or `scripts/build.sh`):
+# Open it in Jupyter (Debian: `jupyter-notebook`) with the package from the
+# build tree, after `scripts/test.sh` or `scripts/build.sh`:
 #
 #     PYTHONPATH=build/python jupyter notebook examples/gear_pair.ipynb
 #
-# or from a virtual environment with the package installed
+# or with the package installed in a virtual environment
 # (`python3 -m venv --system-site-packages .venv && .venv/bin/pip install --no-build-isolation .`).
+# The twin runs as a script too: `PYTHONPATH=build/python /usr/bin/python3 examples/gear_pair.py`.
 # This notebook is written from its twin `examples/gear_pair.py` by
 # `examples/make_notebook.py`; edit the twin.
 

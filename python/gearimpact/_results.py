@@ -77,7 +77,8 @@ def energy_ratios(case_or_pair=None, points=121, method=None, flipped_moment=Non
 class SimulationResult:
     """One run: .case (the Case run), .summary (a dict with the keys of the
     program's JSON summary), .series (a dict of numpy arrays with the columns
-    of its time-series CSV; empty when keep_series was False) and .impacts (a
+    of its time-series CSV, each a view of one column of the rows; zero-length
+    when keep_series was False) and .impacts (a
     list of dicts: line "N1" or "N2", start_s, impact_speed_m_s, restitution,
     end_s, end_speed_m_s, the last two None for a contact still on at the end)."""
 
