@@ -14,6 +14,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 #include <thread>
@@ -92,12 +93,17 @@ class InterruptWatch {
 };
 
 // Runs f with the GIL released and Ctrl-C watched; f takes the stop callback.
+// A Ctrl-C caught as f finished anyway is raised too, not lost.
 template <typename F>
 auto interruptible(F&& f) {
   InterruptWatch watch;
   try {
-    py::gil_scoped_release release;
-    return f(watch.callback());
+    auto result = [&] {
+      py::gil_scoped_release release;
+      return f(watch.callback());
+    }();
+    watch.raise_if_interrupted();
+    return result;
   } catch (const SimulationStopped&) {
     watch.raise_if_interrupted();
     throw;
