@@ -12,8 +12,7 @@ install(TARGETS gearimpact gearimpact_cli EXPORT gearimpactTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/lib/include/gearimpact
-  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILES_MATCHING PATTERN "*.hpp")
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/lib/include/gearimpact DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 # The program looks for its data at <bin>/../share/gearimpact/paper_data
 # (reference/data_location.cpp).
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/paper_data/ DESTINATION ${GEARIMPACT_DATA_DIR}/paper_data)
