@@ -13,12 +13,9 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "data_location.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "reproduce.hpp"
-
-#ifndef GEARIMPACT_PAPER_DATA_DIR
-#error "GEARIMPACT_PAPER_DATA_DIR must name the paper_data folder"
-#endif
 
 namespace gearimpact::cli {
 
@@ -48,7 +45,7 @@ namespace {
 
 struct ReproduceOptions {
   std::string out;
-  std::string paper_data = GEARIMPACT_PAPER_DATA_DIR;
+  std::string paper_data;  // empty: found by paper_data_dir
 };
 
 std::string software_versions() {
@@ -72,8 +69,9 @@ std::string software_versions() {
 
 void reproduce(const ReproduceOptions& options) {
   const auto started = std::chrono::steady_clock::now();
+  const std::filesystem::path paper_data = paper_data_dir(options.paper_data);
   RunPool pool;
-  ReproduceContext context{options.out, options.paper_data, &pool};
+  ReproduceContext context{options.out, paper_data, &pool};
   std::filesystem::create_directories(context.out);
   struct Part {
     const char* what;
@@ -133,7 +131,8 @@ void register_reproduce_commands(CLI::App& app) {
       "reproduce", "Reproduce the paper's figures and statements into a folder, with REPORT.md");
   command->add_option("--out", options->out, "output folder (created if missing)")->required();
   command->add_option("--paper-data", options->paper_data,
-                      "folder of the paper's statements (default: the source tree's paper_data)");
+                      "folder of the paper's statements (default: $GEARIMPACT_PAPER_DATA, else "
+                      "share/gearimpact/paper_data beside the program's folder)");
   command->callback([options] { reproduce(*options); });
 }
 

@@ -10,6 +10,10 @@ packages=(
   clang libclang-rt-14-dev
   gnuplot-nox
   slurm-wlm munge parallel
+  pkg-config
+  python3-dev pybind11-dev python3-pybind11 python3-numpy python3-venv python3-pip
+  python3-setuptools python3-wheel python3-pytest
+  jupyter-nbconvert python3-ipykernel python3-matplotlib python3-nbformat
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -64,7 +64,8 @@ std::shared_ptr<const StiffnessTable> RunPool::table_for(const SimulationCase& c
   return tables_.emplace(key, std::move(table)).first->second;
 }
 
-std::shared_future<SimulationResult> RunPool::submit(const SimulationCase& c, bool keep_series) {
+std::shared_future<SimulationResult> RunPool::submit(const SimulationCase& c, bool keep_series,
+                                                     std::function<bool()> should_stop) {
   const std::string inputs = inputs_key(c);
   // The rows kept matter only with the series.
   const std::string series =
@@ -101,10 +102,11 @@ std::shared_future<SimulationResult> RunPool::submit(const SimulationCase& c, bo
     promise->set_exception(std::current_exception());
     throw;
   }
-  enqueue([promise, c, table, keep_series] {
+  enqueue([promise, c, table, keep_series, should_stop = std::move(should_stop)] {
     try {
       RunControl control;
       control.keep_series = keep_series;
+      control.should_stop = should_stop;
       promise->set_value(simulate(c, *table, control));
     } catch (...) {
       promise->set_exception(std::current_exception());

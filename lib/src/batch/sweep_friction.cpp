@@ -1,5 +1,6 @@
 #include "gearimpact/batch/sweep_friction.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <string>
 
@@ -23,17 +24,24 @@ std::vector<double> friction_values(double from, double to, double step) {
 }
 
 FrictionSweep::FrictionSweep(RunPool& pool, const std::vector<SimulationCase>& cases, double from,
-                             double to, double step)
-    : frictions_(friction_values(from, to, step)), cases_(cases.size()) {
+                             double to, double step, const std::function<bool()>& should_stop)
+    : should_stop_(should_stop), frictions_(friction_values(from, to, step)), cases_(cases.size()) {
   for (double f : frictions_) {
     for (SimulationCase c : cases) {
       c.model.friction_coefficient = f;
-      runs_.push_back(pool.submit(c, false));
+      runs_.push_back(pool.submit(c, false, should_stop));
     }
   }
 }
 
 std::vector<SweepRow> FrictionSweep::get() const {
+  if (should_stop_) {
+    // A stop seen here reaches the runs through their own should_stop.
+    constexpr std::chrono::milliseconds poll{20};
+    for (const auto& run : runs_) {
+      while (run.wait_for(poll) != std::future_status::ready) should_stop_();
+    }
+  }
   std::vector<SweepRow> rows;
   for (std::size_t i = 0; i < frictions_.size(); ++i) {
     SweepRow row{frictions_[i], {}};
@@ -52,9 +60,10 @@ std::vector<SweepRow> FrictionSweep::get() const {
 }
 
 std::vector<SweepRow> sweep_friction(const std::vector<SimulationCase>& cases, double from,
-                                     double to, double step, unsigned threads) {
+                                     double to, double step, unsigned threads,
+                                     const std::function<bool()>& should_stop) {
   RunPool pool(threads);
-  return FrictionSweep(pool, cases, from, to, step).get();
+  return FrictionSweep(pool, cases, from, to, step, should_stop).get();
 }
 
 }  // namespace gearimpact

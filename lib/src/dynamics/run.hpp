@@ -22,8 +22,6 @@ inline std::string where(double t_s, long long step) {
 
 // Consecutive events that advance time by almost nothing: event location has stalled.
 inline constexpr int kMostStalledEvents = 10000;
-// How often a run asks RunControl::should_stop.
-inline constexpr long long kStopPollSteps = 4096;
 
 class Run {
  public:
@@ -71,11 +69,11 @@ class Run {
     }
   }
 
-  // Every kStopPollSteps steps, the caller's should_stop.
+  // Every kStepsBetweenStopChecks steps, the caller's should_stop.
   void poll_stop(double t) const {
-    if (control_.should_stop && result_.summary.steps % kStopPollSteps == 0 &&
+    if (control_.should_stop && result_.summary.steps % kStepsBetweenStopChecks == 0 &&
         control_.should_stop()) {
-      throw SimulationStopped("the run was stopped at " + where(t, result_.summary.steps));
+      throw SimulationStopped("the run was stopped by its caller at " + where(t, result_.summary.steps));
     }
   }
 

@@ -38,6 +38,15 @@ StiffnessModel with_method(StiffnessModel model, std::string_view name, std::str
   return model;
 }
 
+Term term_named(std::string_view id, std::string_view field) {
+  std::string ids;
+  for (const TermInfo& t : kTerms) {
+    if (t.id == id) return t.term;
+    ids += (ids.empty() ? "" : ", ") + std::string(t.id);
+  }
+  throw InputError(std::string(field), std::string(id), "one of " + ids);
+}
+
 std::string method_name(const StiffnessModel& model) {
   return model.route == StiffnessRoute::x_form ? "xform" : to_string(model.rule);
 }

@@ -44,8 +44,10 @@ class RunPool {
   // The run of c, with its time series when keep_series. The same case asked
   // for twice is computed once, and a run without the series is served by an
   // equal run with it, whose summary is the same. A case that fails
-  // validation throws InputError here, to the caller.
-  std::shared_future<SimulationResult> submit(const SimulationCase& c, bool keep_series);
+  // validation throws InputError here, to the caller. `should_stop` goes to
+  // the run's RunControl (it may be called from several threads at once).
+  std::shared_future<SimulationResult> submit(const SimulationCase& c, bool keep_series,
+                                              std::function<bool()> should_stop = {});
 
   // The stiffness table of c's gear pair and stiffness model, built once per
   // pool and shared read-only.

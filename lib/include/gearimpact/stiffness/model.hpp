@@ -43,6 +43,10 @@ void validate(const StiffnessModel& model);
 // gsl-cquad, boost-gk, boost-ts (the tau-form with that rule), or xform (the
 // x-form route with the model's rule). Throws InputError naming `field`.
 StiffnessModel with_method(StiffnessModel model, std::string_view name, std::string_view field);
+// The term of kTerms whose id is `id` (hertz, bending, axial, ...); throws
+// InputError naming `field` and the ids otherwise.
+Term term_named(std::string_view id, std::string_view field = "term");
+
 // "xform" for the x-form route, else the rule's name.
 std::string method_name(const StiffnessModel& model);
 

@@ -1,0 +1,83 @@
+"""Spur gear impact dynamics after Yang and Lin (1987), from Python.
+
+The C++ library gearimpact with numpy arrays in and out. Every function gives
+the same numbers as the program of the same name (``gearimpact stiffness``,
+``simulate``, ``energy-ratios``, ``sweep-friction``), bit for bit.
+
+Cases
+    ``paper_case(n)`` (Table 1), ``read_case(path)`` (a case file, TOML),
+    ``parse_case(text)``; ``case.replace(module="2.5 mm", friction_coefficient=0.06)``
+    changes fields with the units of case files (or SI floats).
+Results
+    ``stiffness``, ``energy_ratios`` (dicts of numpy arrays), ``simulate``
+    (a ``SimulationResult`` with ``.summary`` and ``.series``),
+    ``sweep_friction`` (Fig. 7), ``reproduce`` (every figure and REPORT.md).
+Errors
+    ``CaseError`` (a ``ValueError``) for a value outside its range, naming the
+    key; ``QuadratureError`` and ``SimulationError`` (``RuntimeError``) when a
+    computation cannot finish. Ctrl-C stops a long computation
+    (``KeyboardInterrupt``).
+
+Units are SI inside (m, kg, s, N, rad); unit strings are converted once, where
+they are read.
+"""
+
+from ._core import (
+    CaseError,
+    QuadratureError,
+    SimulationError,
+    Case,
+    GearPair,
+    StiffnessModel,
+    __version__,
+    base_pitch,
+    base_radius,
+    contact_angle,
+    contact_ratio,
+    contact_segment,
+    line_of_action_length,
+    moment_of_inertia,
+    pitch_point_position,
+    pitch_radius,
+    tip_radius,
+)
+from ._cases import gear_pair, paper_case, parse_case, read_case
+from ._results import (
+    SimulationResult,
+    energy_ratios,
+    simulate,
+    stiffness,
+    sweep_friction,
+)
+from ._program import paper_data_dir, program_path, reproduce
+
+__all__ = [
+    "Case",
+    "CaseError",
+    "GearPair",
+    "QuadratureError",
+    "SimulationError",
+    "SimulationResult",
+    "StiffnessModel",
+    "base_pitch",
+    "base_radius",
+    "contact_angle",
+    "contact_ratio",
+    "contact_segment",
+    "energy_ratios",
+    "gear_pair",
+    "line_of_action_length",
+    "moment_of_inertia",
+    "paper_case",
+    "paper_data_dir",
+    "parse_case",
+    "pitch_point_position",
+    "pitch_radius",
+    "program_path",
+    "read_case",
+    "reproduce",
+    "simulate",
+    "stiffness",
+    "sweep_friction",
+    "tip_radius",
+]

@@ -1,0 +1,258 @@
+"""Cases: Table 1's, case files, and changes from keyword arguments.
+
+A change is made through the case-file reader itself: the case is written as
+a case file in SI units, the changed keys are put into that text, and the text
+is read back. So a keyword argument takes exactly what a case file takes (the
+same keys, the same unit strings, the same ranges and messages), and an SI
+float is written in the key's SI unit. The case file writes every key, and
+its text reads back to the same case bit for bit, so the keys left alone do
+not change.
+"""
+
+import json
+import math
+import numbers
+import os
+import re
+
+try:
+    import tomllib
+except ImportError:  # Python < 3.11
+    import tomli as tomllib
+
+from . import _core
+from ._core import Case, CaseError
+
+# The pseudo file name of text built from keyword arguments; stripped from
+# the reader's messages, which then name the keyword instead.
+_KEYWORDS = "<keyword arguments>"
+
+# The keys of a torque section depend on its kind: a new kind starts the
+# section anew from the keys given with it.
+_KIND_SECTIONS = ("torque1", "torque2")
+
+# "<number> <unit>" as the case-file writer writes a quantity in SI.
+_QUANTITY = re.compile(r"^[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*(\S.*)$")
+
+
+def case_error(message, field="", file=""):
+    """A CaseError with its .field and .file, raised from Python."""
+    error = CaseError(message)
+    error.field = field
+    error.file = file
+    return error
+
+
+def paper_case(number, torque_unit="kgf-mm", case3_frequency_rad_s=10000.0, **fields):
+    """Case `number` (1, 2 or 3) of the paper's Table 1 on the gear pair of section 7.
+
+    torque_unit: "kgf-mm" (MODEL.md's reading, the only one that reproduces
+    Fig. 7) or "n-mm" (as the table is labelled). case3_frequency_rad_s: W of
+    case 3's T1 = 200 sin(W t); 1000 is the alternative reading. Any other
+    keyword changes a field of the case as in Case.replace, e.g.
+    paper_case(2, damping_form="hunt-crossley", end_time="10 ms").
+    """
+    case = _core.paper_case(number, torque_unit, case3_frequency_rad_s)
+    return replace(case, **fields) if fields else case
+
+
+def read_case(path):
+    """Reads and checks a case file (TOML, docs/case-files.md). Raises CaseError."""
+    return _core.read_case_file(os.fspath(path))
+
+
+def parse_case(text, name="<text>"):
+    """Reads a case file's text; `name` names it in messages (and the case, without a `name` key)."""
+    return _core.parse_case(text, name)
+
+
+def gear_pair(**fields):
+    """A GearPair from the keys of a case file's [gears], the paper's pair for the rest.
+
+    gear_pair(teeth1=25, module="3 mm", youngs_modulus="210 GPa") or SI floats
+    (module=0.003). Checked as a case file's pair is: a value outside its range
+    raises CaseError naming the key.
+    """
+    dotted = {key if "." in key else "gears." + key: value for key, value in fields.items()}
+    return replace(_core.paper_case(1, "kgf-mm", 10000.0), **dotted).gears
+
+
+def fields(case):
+    """The case's fields as a case file has them in SI units: {"gears.module": "0.002 m", ...}."""
+    document = tomllib.loads(case.to_toml("si"))
+    flat = {}
+    for key, value in document.items():
+        if isinstance(value, dict):
+            flat.update({f"{key}.{inner}": item for inner, item in value.items()})
+        else:
+            flat[key] = value
+    return flat
+
+
+def replace(case, **changes):
+    """A copy of the case with fields changed; the case itself does not change.
+
+    Keys are those of case files: "section.key" (as **{"torque1.value":
+    "50 kgf*mm"}), section_key (torque1_value="50 kgf*mm",
+    integrator_kind="adaptive") or the bare key where only one section has it
+    (module, teeth1, friction_coefficient, step, end_time, w1, ...).
+    Values are what a case file takes: unit strings ("2 mm", "0.1 us"),
+    numbers, option names ("adaptive"); a float for a quantity is taken in SI
+    units (module=0.002). True/False stand for "on"/"off". Setting a torque's
+    kind starts that torque anew from the keys given with it:
+    replace(torque1_kind="sinusoidal", torque1_amplitude="200 kgf*mm",
+    torque1_angular_frequency="1000 rad/s"). Raises CaseError naming the key
+    as given.
+    """
+    if not changes:
+        return case
+    current = fields(case)
+    given = {}
+    for user_key, value in changes.items():
+        given[_resolve(user_key, current)] = (user_key, value)
+    literals = {key: _literal_of(value) for key, value in current.items()}
+    for section in _KIND_SECTIONS:
+        if section + ".kind" in given:
+            literals = {k: v for k, v in literals.items() if not k.startswith(section + ".")}
+    for dotted, (user_key, value) in given.items():
+        literals[dotted] = _literal(user_key, value, current.get(dotted), _si_unit(dotted, current))
+    try:
+        return _core.parse_case(_toml_text(literals), _KEYWORDS)
+    except CaseError as error:
+        raise _explained(error, given) from None
+
+
+def _resolve(user_key, current):
+    """The case file's section.key for a key as given: section.key itself,
+    section_key (a keyword argument cannot hold a dot), or a bare key that
+    only one section has."""
+    if not isinstance(user_key, str) or not user_key:
+        raise case_error(f"{user_key!r}: a key of a case file, as section.key or a bare key")
+    if "." in user_key or user_key == "name":
+        return user_key
+    known = _known_keys(current)
+    sections = {key.partition(".")[0] for key in known if "." in key}
+    section, _, inner = user_key.partition("_")
+    if section in sections and inner:
+        return f"{section}.{inner}"
+    candidates = sorted(key for key in known if key.split(".")[-1] == user_key)
+    if len(candidates) == 1:
+        return candidates[0]
+    if candidates:
+        raise case_error(
+            f"{user_key}: more than one section has this key; write one of "
+            + ", ".join(f"{key} ({key.replace('.', '_')})" for key in candidates),
+            user_key,
+        )
+    raise case_error(
+        f"{user_key}: no such key in a case file; the keys are "
+        + ", ".join(sorted(known)),
+        user_key,
+    )
+
+
+def _known_keys(current):
+    return set(current) | set(_torque_template())
+
+
+_TEMPLATE = {}
+
+
+def _torque_template():
+    """The keys of a torque section of either kind, with their SI values, from
+    Table 1's case 3 (a sinusoidal and a constant torque)."""
+    if not _TEMPLATE:
+        case3 = fields(_core.paper_case(3, "kgf-mm", 10000.0))
+        for key, value in case3.items():
+            section, _, inner = key.partition(".")
+            if section in _KIND_SECTIONS:
+                for name in _KIND_SECTIONS:
+                    _TEMPLATE.setdefault(f"{name}.{inner}", value)
+    return _TEMPLATE
+
+
+def _si_unit(dotted, current):
+    """The SI unit of a quantity key, from how the writer wrote it; None for the others."""
+    value = current.get(dotted, _torque_template().get(dotted))
+    if isinstance(value, str):
+        match = _QUANTITY.match(value)
+        if match:
+            return match.group(1)
+    return None
+
+
+def _literal_of(value):
+    """The TOML text of a value read from a case file."""
+    if isinstance(value, str):
+        return json.dumps(value, ensure_ascii=False)
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    return repr(float(value))
+
+
+def _literal(user_key, value, current, unit):
+    """The TOML text of a value given for a key (whose present value is `current`)."""
+    if isinstance(value, bool):
+        if current in ("on", "off"):
+            return '"on"' if value else '"off"'
+        return "true" if value else "false"
+    if isinstance(value, numbers.Real):
+        if unit is not None:
+            number = float(value)
+            text = _core.shortest_decimal(number) if math.isfinite(number) else repr(number)
+            return json.dumps(f"{text} {unit}")
+        if isinstance(value, numbers.Integral):
+            return str(int(value))
+        return repr(float(value))
+    if isinstance(value, str):
+        return json.dumps(value, ensure_ascii=False)
+    raise case_error(
+        f"{user_key}={value!r}: a number, a string (with its unit where the key has one) "
+        f"or True/False, not {type(value).__name__}",
+        user_key,
+    )
+
+
+def _toml_text(literals):
+    top = [f"{key} = {text}" for key, text in literals.items() if "." not in key]
+    sections = {}
+    for key, text in literals.items():
+        if "." in key:
+            section, _, inner = key.partition(".")
+            sections.setdefault(section, []).append(f"{inner} = {text}")
+    lines = top
+    for section, entries in sections.items():
+        lines += ["", f"[{section}]"] + entries
+    return "\n".join(lines) + "\n"
+
+
+def _explained(error, given):
+    """The reader's CaseError, naming the keyword arguments instead of the text built from them."""
+    message = re.sub(r"^" + re.escape(_KEYWORDS) + r"(:\d+)?: ", "", str(error))
+    field = getattr(error, "field", "")
+    if field in given:
+        user_key, value = given[field]
+        text = f"{user_key}={value!r}: {message}"
+    else:
+        changes = ", ".join(f"{key}={value!r}" for key, value in given.values())
+        text = f"with {changes}: {message}"
+    return case_error(text, field)
+
+
+def _case_repr(case):
+    return f"<gearimpact.Case {case.name!r}: print(case.to_toml()) shows every field>"
+
+
+def _case_eq(case, other):
+    if not isinstance(other, Case):
+        return NotImplemented
+    return case.to_toml("si") == other.to_toml("si")
+
+
+Case.replace = replace
+Case.fields = fields
+Case.__repr__ = _case_repr
+Case.__eq__ = _case_eq
+Case.__hash__ = None

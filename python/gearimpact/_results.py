@@ -1,0 +1,156 @@
+"""Stiffness tables, energy ratios, simulations and the friction sweep, as numpy arrays."""
+
+import json
+import os
+
+from . import _core
+from ._cases import case_error, paper_case, read_case
+from ._core import Case, GearPair, StiffnessModel
+
+
+def _as_case(case):
+    """A Case from a Case, a Table 1 case number or a case file's path."""
+    if isinstance(case, Case):
+        return case
+    if isinstance(case, int) and not isinstance(case, bool):
+        return paper_case(case)
+    if isinstance(case, (str, os.PathLike)):
+        return read_case(case)
+    raise TypeError(
+        f"a Case, a case number of Table 1 (1, 2, 3) or a case file's path, not {type(case).__name__}"
+    )
+
+
+def _pair_and_model(case_or_pair, method, flipped_moment):
+    """The gear pair and stiffness model: the paper's, a GearPair's with the
+    default model, or a case's; `method` and `flipped_moment` change the model
+    when given (as the program's --method and --flipped-moment do)."""
+    if case_or_pair is None:
+        pair, model = GearPair(), StiffnessModel()
+    elif isinstance(case_or_pair, GearPair):
+        pair, model = case_or_pair, StiffnessModel()
+    else:
+        case = _as_case(case_or_pair)
+        pair, model = case.gears, case.stiffness_model
+    if method is not None:
+        model.method = method
+    if flipped_moment is not None:
+        model.moment_sign = "flipped" if flipped_moment else "physical"
+    return pair, model
+
+
+def stiffness(case_or_pair=None, points=None, x=None, method=None, flipped_moment=None):
+    """Kb, Ka of both gears, Kh and Ke (N/m) of one tooth pair along the contact segment.
+
+    case_or_pair: a GearPair (with the default stiffness model), a Case or a
+    case file's path (its pair and stiffness model), a Table 1 case number, or
+    None for the paper's pair. Either `points` positions from X_start to X_end
+    inclusive (201 when neither is given), spaced as ``gearimpact stiffness
+    --points N`` spaces them, or the contact positions `x` (m, from C1, within
+    (0, lp)). method: "gsl", "gsl-cquad", "boost-gk", "boost-ts" or "xform";
+    flipped_moment: True adds the Fa h moment instead of subtracting it.
+
+    Returns a dict of numpy arrays with the program's columns: x_m, phi1_rad
+    (the contact angle (12)), kb1, ka1, kb2, ka2, kh, ke.
+    """
+    pair, model = _pair_and_model(case_or_pair, method, flipped_moment)
+    if x is not None:
+        if points is not None:
+            raise case_error("points and x: give one of them, not both", "points")
+        return _core.stiffness_at(pair, model, x)
+    return _core.stiffness_samples(pair, model, 201 if points is None else points)
+
+
+def energy_ratios(case_or_pair=None, points=121, method=None, flipped_moment=None):
+    """The elastic energy ratios of Fig. 8 over one meshing cycle.
+
+    Arguments as for stiffness(). Returns a dict of numpy arrays with the
+    columns of ``gearimpact energy-ratios``: angle_deg (phi1 of (12)), pairs,
+    hertz_over_bending_one_pair, axial_over_bending_one_pair,
+    hertz_over_bending_system, axial_over_bending_system; and x_m, the
+    contact position of the tooth followed.
+    """
+    pair, model = _pair_and_model(case_or_pair, method, flipped_moment)
+    return _core.energy_ratios(pair, model, points)
+
+
+class SimulationResult:
+    """One run: .case (the Case run), .summary (a dict with the keys of the
+    program's JSON summary), .series (a dict of numpy arrays with the columns
+    of its time-series CSV, each a view of one column of the rows; zero-length
+    when keep_series was False) and .impacts (a
+    list of dicts: line "N1" or "N2", start_s, impact_speed_m_s, restitution,
+    end_s, end_speed_m_s, the last two None for a contact still on at the end)."""
+
+    def __init__(self, case, summary, series, impacts):
+        self.case = case
+        self.summary = summary
+        self.series = series
+        self.impacts = impacts
+
+    def __repr__(self):
+        s = self.summary
+        return (
+            f"<SimulationResult {s['case']}: {s['impacts_n1']} impacts on N1, "
+            f"{s['impacts_n2']} on N2 in {s['end_time_s']} s; damping loss "
+            f"{s['damping_loss_J']:.6g} J, friction loss {s['friction_loss_J']:.6g} J>"
+        )
+
+
+def simulate(case, keep_series=True, **changes):
+    """Runs a case: the same run as ``gearimpact simulate``, bit for bit.
+
+    case: a Case, a Table 1 case number (1, 2, 3) or a case file's path.
+    changes: fields to change first, as Case.replace takes them, e.g.
+    friction_coefficient=0.06, end_time="10 ms", output_every=100,
+    integrator_kind="adaptive". keep_series=False skips the time series (faster, less
+    memory). The computation runs without the GIL; Ctrl-C stops it
+    (KeyboardInterrupt). Raises CaseError for a case outside its ranges (with
+    the step checked against the contact's period) and SimulationError for a
+    run that cannot continue.
+    """
+    run = _as_case(case)
+    if changes:
+        run = run.replace(**changes)
+    summary_json, series, impacts = _core.simulate(run, keep_series)
+    return SimulationResult(run, json.loads(summary_json), series, impacts)
+
+
+def sweep_friction(
+    cases=None,
+    from_=0.01,
+    to=0.09,
+    step=0.01,
+    threads=0,
+    torque_unit="kgf-mm",
+    case3_frequency_rad_s=10000.0,
+    **changes,
+):
+    """Fig. 7: friction loss / damping loss against the friction coefficient f.
+
+    f runs from `from_` to `to` inclusive in steps of `step`, for each case:
+    Table 1's three (read with torque_unit and case3_frequency_rad_s, as
+    paper_case takes them) unless `cases` lists others (Cases, numbers or
+    paths). changes: fields changed in every case first (e.g. step="0.05 us",
+    end_time="10 ms", damping_form="hunt-crossley"). threads: 0 uses every core;
+    the result does not depend on it. Ctrl-C stops it.
+
+    Returns a dict of numpy arrays: "f" and one "ratio_<case name>" a case,
+    the columns of ``gearimpact sweep-friction`` for Table 1's cases.
+    """
+    if cases is None:
+        runs = [paper_case(n, torque_unit, case3_frequency_rad_s) for n in (1, 2, 3)]
+    else:
+        runs = [_as_case(case) for case in cases]
+    if changes:
+        runs = [run.replace(**changes) for run in runs]
+    names = [run.name for run in runs]
+    if len(set(names)) != len(names):
+        raise case_error(
+            "cases: " + ", ".join(names) + ": each case needs its own name (name=...)", "cases"
+        )
+    frictions, ratio = _core.sweep_friction(runs, from_, to, step, threads)
+    table = {"f": frictions}
+    for j, name in enumerate(names):
+        table["ratio_" + name] = ratio[:, j].copy()
+    return table

@@ -1,0 +1,481 @@
+// gearimpact._core: the library's value types and functions for Python, numpy
+// arrays in and out. The Python layer (python/gearimpact/__init__.py) adds the
+// keyword-argument case editing, the coercions (a case number, a file name)
+// and the docstrings users read; this file stays a thin mirror of the library.
+//
+// Long computations run with the GIL released and stop on Ctrl-C: the
+// simulation through RunControl::should_stop, the stiffness samples point by
+// point; either way the KeyboardInterrupt raised by Python's signal handler is
+// what the caller gets.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+#include <thread>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "gearimpact/gearimpact.hpp"
+
+namespace py = pybind11;
+
+namespace gearimpact::python {
+
+namespace {
+
+// The module's exception types, created once at import and kept for the life
+// of the interpreter (never released, as the interpreter may outlive the
+// module's static storage at exit).
+PyObject* case_error = nullptr;
+PyObject* quadrature_error = nullptr;
+PyObject* simulation_error = nullptr;
+
+// CaseError(message) with .field (the key as section.key or the library's
+// parameter name; may be empty) and .file (the case file, when there is one).
+void set_case_error(const char* message, const std::string& field, const std::string& file) {
+  py::object error = py::reinterpret_borrow<py::object>(case_error)(message);
+  error.attr("field") = field;
+  error.attr("file") = file;
+  PyErr_SetObject(case_error, error.ptr());
+}
+
+void translate_exceptions(std::exception_ptr error) {
+  try {
+    if (error) std::rethrow_exception(error);
+  } catch (const CaseFileError& e) {
+    set_case_error(e.what(), e.field(), e.file());
+  } catch (const InputError& e) {
+    set_case_error(e.what(), e.field(), "");
+  } catch (const QuadratureError& e) {
+    PyErr_SetString(quadrature_error, e.what());
+  } catch (const SimulationError& e) {
+    PyErr_SetString(simulation_error, e.what());
+  }
+}
+
+// Watches for Ctrl-C while the GIL is released. Python runs its signal
+// handlers only in the main thread: the thread that made the call (when it is
+// the main thread) takes the GIL and lets them run; a KeyboardInterrupt they
+// raise is kept and raised again once the computation has stopped. Other
+// threads (the friction sweep's workers) only read whether to stop.
+class InterruptWatch {
+ public:
+  bool operator()() {
+    if (stop_.load()) return true;
+    if (std::this_thread::get_id() == caller_) {
+      py::gil_scoped_acquire gil;
+      if (PyErr_CheckSignals() != 0) {
+        error_.emplace();
+        stop_.store(true);
+      }
+    }
+    return stop_.load();
+  }
+  std::function<bool()> callback() {
+    return [this] { return (*this)(); };
+  }
+  // With the GIL held: raises what the signal handler raised, if it did.
+  void raise_if_interrupted() {
+    if (error_) throw std::move(*error_);
+  }
+
+ private:
+  std::thread::id caller_ = std::this_thread::get_id();
+  std::atomic<bool> stop_{false};
+  std::optional<py::error_already_set> error_;
+};
+
+// Runs f with the GIL released and Ctrl-C watched; f takes the stop callback.
+// A Ctrl-C caught as f finished anyway is raised too, not lost.
+template <typename F>
+auto interruptible(F&& f) {
+  InterruptWatch watch;
+  try {
+    auto result = [&] {
+      py::gil_scoped_release release;
+      return f(watch.callback());
+    }();
+    watch.raise_if_interrupted();
+    return result;
+  } catch (const SimulationStopped&) {
+    watch.raise_if_interrupted();
+    throw;
+  }
+}
+
+template <typename T>
+py::array_t<T> to_array(const std::vector<T>& values) {
+  py::array_t<T> array(static_cast<py::ssize_t>(values.size()));
+  T* data = array.mutable_data();
+  for (std::size_t i = 0; i < values.size(); ++i) data[i] = values[i];
+  return array;
+}
+
+// One column of a vector of records, as a numpy array of the member's type.
+template <typename Row, typename T>
+py::array_t<T> column(const std::vector<Row>& rows, T Row::*member) {
+  py::array_t<T> array(static_cast<py::ssize_t>(rows.size()));
+  T* data = array.mutable_data();
+  for (std::size_t i = 0; i < rows.size(); ++i) data[i] = rows[i].*member;
+  return array;
+}
+
+// The columns of `gearimpact simulate --out` (series_csv), in its order: views
+// into the rows themselves (a stride of one row), which the arrays keep alive.
+// A copy would add as much time as the series takes to compute.
+py::dict series_columns(std::vector<SeriesRow>&& rows) {
+  auto* owned = new std::vector<SeriesRow>(std::move(rows));
+  const py::capsule keeper(owned, [](void* p) { delete static_cast<std::vector<SeriesRow>*>(p); });
+  const auto n = static_cast<py::ssize_t>(owned->size());
+  const auto view = [&](auto SeriesRow::*member) {
+    using T = std::remove_reference_t<decltype(std::declval<SeriesRow&>().*member)>;
+    if (n == 0) return py::array_t<T>(0);
+    return py::array_t<T>({n}, {static_cast<py::ssize_t>(sizeof(SeriesRow))},
+                          &((*owned)[0].*member), keeper);
+  };
+  py::dict series;
+  series["t_s"] = view(&SeriesRow::t_s);
+  series["theta1_rad"] = view(&SeriesRow::theta1_rad);
+  series["theta2_rad"] = view(&SeriesRow::theta2_rad);
+  series["w1_rad_s"] = view(&SeriesRow::w1_rad_s);
+  series["w2_rad_s"] = view(&SeriesRow::w2_rad_s);
+  series["s_m"] = view(&SeriesRow::s_m);
+  series["delta_m"] = view(&SeriesRow::delta_m);
+  series["region"] = view(&SeriesRow::region);
+  series["pairs"] = view(&SeriesRow::pairs);
+  series["normal_force_N"] = view(&SeriesRow::normal_force_n);
+  series["friction_force_N"] = view(&SeriesRow::friction_force_n);
+  return series;
+}
+
+py::object optional_number(const std::optional<double>& value) {
+  return value ? py::object(py::float_(*value)) : py::object(py::none());
+}
+
+py::list impact_records(const std::vector<ImpactRecord>& impacts) {
+  py::list records;
+  for (const ImpactRecord& impact : impacts) {
+    py::dict record;
+    record["line"] = impact.line == Region::n1 ? "N1" : "N2";
+    record["start_s"] = impact.start_s;
+    record["impact_speed_m_s"] = impact.impact_speed_m_s;
+    record["restitution"] = impact.restitution;
+    record["end_s"] = optional_number(impact.end_s);
+    record["end_speed_m_s"] = optional_number(impact.end_speed_m_s);
+    records.append(record);
+  }
+  return records;
+}
+
+// summary_json's text (the program's JSON, parsed by the Python layer so that
+// the keys and numbers are the program's), the series and the impacts.
+py::tuple run_simulation(const SimulationCase& c, bool keep_series) {
+  SimulationResult result = interruptible([&](std::function<bool()> should_stop) {
+    RunControl control;
+    control.keep_series = keep_series;
+    control.should_stop = std::move(should_stop);
+    return simulate(c, control);
+  });
+  return py::make_tuple(summary_json(result.summary), series_columns(std::move(result.series)),
+                        impact_records(result.impacts));
+}
+
+// The stiffness columns of `gearimpact stiffness` at the contact positions xs.
+py::dict stiffness_columns(const GearPair& pair, const StiffnessModel& model,
+                           const std::vector<double>& xs) {
+  std::vector<MeshStiffness> k(xs.size());
+  interruptible([&](const std::function<bool()>& should_stop) {
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+      if (should_stop()) throw SimulationStopped("stiffness samples stopped");
+      k[i] = mesh_stiffness(pair, xs[i], model);
+    }
+    return 0;
+  });
+  std::vector<double> phi1(xs.size());
+  for (std::size_t i = 0; i < xs.size(); ++i) phi1[i] = contact_angle(pair, Gear::one, xs[i]);
+  py::dict table;
+  table["x_m"] = to_array(xs);
+  table["phi1_rad"] = to_array(phi1);
+  // Every term of the registry: per tooth with the gear's number, per pair as is.
+  const auto term_column = [&](Term term, Gear gear) {
+    std::vector<double> values(k.size());
+    for (std::size_t i = 0; i < k.size(); ++i) values[i] = k[i].stiffness(term, gear);
+    return to_array(values);
+  };
+  for (Gear gear : {Gear::one, Gear::two}) {
+    for (const TermInfo& t : kTerms) {
+      if (t.per_tooth) {
+        table[(std::string(t.column) + (gear == Gear::one ? "1" : "2")).c_str()] =
+            term_column(t.term, gear);
+      }
+    }
+  }
+  for (const TermInfo& t : kTerms) {
+    if (!t.per_tooth) table[std::string(t.column).c_str()] = term_column(t.term, Gear::one);
+  }
+  table["ke"] = column(k, &MeshStiffness::ke);
+  return table;
+}
+
+// `points` positions from X_start to X_end inclusive, spaced as the program's
+// `stiffness` command spaces them (the last one exactly X_end), so that the
+// two give the same numbers.
+py::dict stiffness_samples(const GearPair& pair, const StiffnessModel& model, int points) {
+  if (points < 2 || points > 1000000) {
+    throw InputError("points", std::to_string(points), "an integer in [2, 1000000]");
+  }
+  validate(pair);
+  return stiffness_columns(pair, model, contact_positions(pair, points));
+}
+
+py::dict stiffness_at(const GearPair& pair, const StiffnessModel& model,
+                      const py::array_t<double, py::array::c_style | py::array::forcecast>& x) {
+  if (x.ndim() != 1) {
+    throw InputError("x", std::to_string(x.ndim()) + "-dimensional array", "a 1-dimensional array");
+  }
+  validate(pair);
+  // mesh_stiffness checks the range too, but names X1; this names the argument.
+  const double lp = line_of_action_length(pair);
+  std::vector<double> xs(x.data(), x.data() + x.size());
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    if (!std::isfinite(xs[i]) || xs[i] <= 0.0 || xs[i] >= lp) {
+      throw InputError("x[" + std::to_string(i) + "]", xs[i],
+                       "(0, lp) m with lp = " + format_number(lp) +
+                           " m: a contact position between the tangent points C1 and C2");
+    }
+  }
+  return stiffness_columns(pair, model, xs);
+}
+
+// The columns of `gearimpact energy-ratios`, and x_m.
+py::dict energy_ratio_columns(const GearPair& pair, const StiffnessModel& model, int points) {
+  if (points > 1000000) {
+    throw InputError("points", std::to_string(points), "an integer in [2, 1000000]");
+  }
+  validate(pair);
+  std::vector<EnergyRatios> rows;
+  {
+    py::gil_scoped_release release;
+    rows = energy_ratio_cycle(pair, points, model);
+  }
+  py::dict table;
+  table["angle_deg"] = column(rows, &EnergyRatios::phi1_deg);
+  table["pairs"] = column(rows, &EnergyRatios::pairs);
+  table["hertz_over_bending_one_pair"] = column(rows, &EnergyRatios::hertz_over_bending_one_pair);
+  table["axial_over_bending_one_pair"] = column(rows, &EnergyRatios::axial_over_bending_one_pair);
+  table["hertz_over_bending_system"] = column(rows, &EnergyRatios::hertz_over_bending_system);
+  table["axial_over_bending_system"] = column(rows, &EnergyRatios::axial_over_bending_system);
+  table["x_m"] = column(rows, &EnergyRatios::x1_m);
+  return table;
+}
+
+// Fig. 7: the friction values and the ratio friction loss / damping loss of
+// each case (one column a case).
+py::tuple run_sweep(const std::vector<SimulationCase>& cases, double from, double to, double step,
+                    unsigned threads) {
+  const std::vector<SweepRow> rows = interruptible([&](const std::function<bool()>& should_stop) {
+    return sweep_friction(cases, from, to, step, threads, should_stop);
+  });
+  py::array_t<double> ratio(
+      {static_cast<py::ssize_t>(rows.size()), static_cast<py::ssize_t>(cases.size())});
+  auto r = ratio.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    for (std::size_t j = 0; j < cases.size(); ++j) {
+      r(static_cast<py::ssize_t>(i), static_cast<py::ssize_t>(j)) = rows[i].ratio[j];
+    }
+  }
+  return py::make_tuple(column(rows, &SweepRow::friction_coefficient), ratio);
+}
+
+TorqueUnit torque_unit_named(const std::string& name) {
+  if (name == "kgf-mm") return TorqueUnit::kgf_mm;
+  if (name == "n-mm") return TorqueUnit::n_mm;
+  throw InputError("torque_unit", name, "\"kgf-mm\" (MODEL.md's reading) or \"n-mm\"");
+}
+
+std::string gear_pair_repr(const GearPair& g) {
+  return "GearPair(teeth1=" + std::to_string(g.teeth1) + ", teeth2=" + std::to_string(g.teeth2) +
+         ", module_m=" + shortest_decimal(g.module_m) +
+         ", pressure_angle_rad=" + shortest_decimal(g.pressure_angle_rad) +
+         ", face_width_m=" + shortest_decimal(g.face_width_m) +
+         ", addendum_coefficient=" + shortest_decimal(g.addendum_coefficient) +
+         ", youngs_modulus_pa=" + shortest_decimal(g.youngs_modulus_pa) +
+         ", poisson_ratio=" + shortest_decimal(g.poisson_ratio) +
+         ", density_kg_m3=" + shortest_decimal(g.density_kg_m3) +
+         ", backlash_m=" + shortest_decimal(g.backlash_m) + ")";
+}
+
+Gear gear_numbered(int gear) {
+  if (gear != 1 && gear != 2) throw InputError("gear", std::to_string(gear), "1 or 2");
+  return gear == 1 ? Gear::one : Gear::two;
+}
+
+}  // namespace
+
+void define_module(py::module_& m) {
+  m.doc() = "gearimpact's C++ library (the Python API is the package gearimpact)";
+  m.attr("__version__") = GEARIMPACT_VERSION;
+
+  case_error = PyErr_NewExceptionWithDoc(
+      "gearimpact.CaseError",
+      "A value outside its allowed range, in a case, a case file or an argument. The message "
+      "names the key as written and what is allowed; .field is that key, .file the case file "
+      "(empty when none).",
+      PyExc_ValueError, nullptr);
+  quadrature_error = PyErr_NewExceptionWithDoc(
+      "gearimpact.QuadratureError", "A stiffness integral that did not reach its tolerance.",
+      PyExc_RuntimeError, nullptr);
+  simulation_error = PyErr_NewExceptionWithDoc(
+      "gearimpact.SimulationError",
+      "A run that cannot continue: a non-finite state, or event location that stalls.",
+      PyExc_RuntimeError, nullptr);
+  m.attr("CaseError") = py::reinterpret_borrow<py::object>(case_error);
+  m.attr("QuadratureError") = py::reinterpret_borrow<py::object>(quadrature_error);
+  m.attr("SimulationError") = py::reinterpret_borrow<py::object>(simulation_error);
+  py::register_exception_translator(&translate_exceptions);
+
+  py::class_<GearPair>(m, "GearPair",
+                       "Two standard involute spur gears on their standard centre distance, in SI "
+                       "units. GearPair() is the paper's pair (section 7).")
+      .def(py::init([] { return paper_gear_pair(); }))
+      .def_readwrite("teeth1", &GearPair::teeth1, "Z1, teeth of gear 1 (the pinion)")
+      .def_readwrite("teeth2", &GearPair::teeth2, "Z2, teeth of gear 2")
+      .def_readwrite("module_m", &GearPair::module_m, "module, m")
+      .def_readwrite("pressure_angle_rad", &GearPair::pressure_angle_rad, "a0, rad")
+      .def_readwrite("face_width_m", &GearPair::face_width_m, "L, m")
+      .def_readwrite("addendum_coefficient", &GearPair::addendum_coefficient, "addendum / module")
+      .def_readwrite("youngs_modulus_pa", &GearPair::youngs_modulus_pa, "E, Pa")
+      .def_readwrite("poisson_ratio", &GearPair::poisson_ratio, "nu")
+      .def_readwrite("density_kg_m3", &GearPair::density_kg_m3, "rho, kg/m^3")
+      .def_readwrite("backlash_m", &GearPair::backlash_m, "B, m")
+      .def(
+          "validate", [](const GearPair& g) { validate(g); },
+          "Raises CaseError naming the first field outside its range.")
+      .def("__repr__", &gear_pair_repr);
+
+  py::class_<StiffnessModel>(m, "StiffnessModel",
+                             "How the bending and axial compliances are integrated.")
+      .def(py::init<>())
+      .def_property(
+          "method", [](const StiffnessModel& s) { return method_name(s); },
+          [](StiffnessModel& s, const std::string& name) { s = with_method(s, name, "method"); },
+          "gsl, gsl-cquad, boost-gk, boost-ts (the tau-form with that rule) or xform")
+      .def_property(
+          "moment_sign",
+          [](const StiffnessModel& s) {
+            return s.moment_sign == AxialMomentSign::flipped ? "flipped" : "physical";
+          },
+          [](StiffnessModel& s, const std::string& sign) {
+            if (sign != "physical" && sign != "flipped") {
+              throw InputError("moment_sign", sign, "\"physical\" or \"flipped\"");
+            }
+            s.moment_sign =
+                sign == "flipped" ? AxialMomentSign::flipped : AxialMomentSign::physical;
+          },
+          "physical (M = Fb (l - x) - Fa h, as printed) or flipped")
+      .def_readwrite("relative_tolerance", &StiffnessModel::relative_tolerance)
+      .def(
+          "term", [](const StiffnessModel& s, const std::string& id) { return s.terms.has(term_named(id)); },
+          "Whether the term (hertz, bending, axial, ...) enters Ke.")
+      .def(
+          "set_term",
+          [](StiffnessModel& s, const std::string& id, bool on) { s.terms.set(term_named(id), on); },
+          "Switches a term of (29) on or off.")
+      .def("__repr__", [](const StiffnessModel& s) {
+        return "StiffnessModel(method='" + method_name(s) + "', moment_sign='" +
+               (s.moment_sign == AxialMomentSign::flipped ? "flipped" : "physical") +
+               "', relative_tolerance=" + shortest_decimal(s.relative_tolerance) + ")";
+      });
+
+  py::class_<SimulationCase>(m, "Case",
+                             "A simulation case: gear pair, torques, initial state, model options "
+                             "and integrator, as a case file describes them.")
+      .def_property_readonly("name", [](const SimulationCase& c) { return c.name; })
+      .def_property_readonly(
+          "gears", [](const SimulationCase& c) { return c.gears; }, "the GearPair (a copy)")
+      .def_property_readonly(
+          "stiffness_model", [](const SimulationCase& c) { return c.model.stiffness; },
+          "the StiffnessModel (a copy)")
+      .def(
+          "to_toml",
+          [](const SimulationCase& c, const std::string& units) {
+            if (units != "readable" && units != "si") {
+              throw InputError("units", units, "\"readable\" or \"si\"");
+            }
+            return write_case_file(c, units == "si" ? CaseUnits::si : CaseUnits::readable);
+          },
+          py::arg("units") = "readable",
+          "The case file's text (TOML), in readable units or all in SI; it reads back to the "
+          "same case bit for bit.");
+
+  m.def(
+      "paper_case",
+      [](int number, const std::string& torque_unit, double case3_frequency_rad_s) {
+        return paper_case(number, torque_unit_named(torque_unit), case3_frequency_rad_s);
+      },
+      py::arg("number"), py::arg("torque_unit") = "kgf-mm",
+      py::arg("case3_frequency_rad_s") = 10000.0);
+  m.def(
+      "read_case_file", [](const std::string& path) { return read_case_file(path); },
+      py::arg("path"));
+  m.def("parse_case", &parse_case, py::arg("text"), py::arg("file_name"));
+  m.def("shortest_decimal", &shortest_decimal, py::arg("value"));
+
+  m.def("simulate", &run_simulation, py::arg("case"), py::arg("keep_series"));
+  m.def("stiffness_samples", &stiffness_samples, py::arg("pair"), py::arg("model"),
+        py::arg("points"));
+  m.def("stiffness_at", &stiffness_at, py::arg("pair"), py::arg("model"), py::arg("x"));
+  m.def("energy_ratios", &energy_ratio_columns, py::arg("pair"), py::arg("model"),
+        py::arg("points"));
+  m.def("sweep_friction", &run_sweep, py::arg("cases"), py::arg("start"), py::arg("stop"),
+        py::arg("step"), py::arg("threads"));
+
+  m.def(
+      "contact_segment",
+      [](const GearPair& g) {
+        const ContactSegment s = contact_segment(g);
+        return py::make_tuple(s.start_m, s.end_m);
+      },
+      py::arg("pair"), "(X_start, X_end), m: the contact segment on the line of action from C1.");
+  m.def("contact_ratio", &contact_ratio, py::arg("pair"), "(X_end - X_start) / t0");
+  m.def("base_pitch", &base_pitch, py::arg("pair"), "(41) t0 = pi m cos a0, m");
+  m.def("line_of_action_length", &line_of_action_length, py::arg("pair"),
+        "lp = (Rb1 + Rb2) tan a0, m: C1C2 along the line of action");
+  m.def("pitch_point_position", &pitch_point_position, py::arg("pair"),
+        "X_pitch = Rb1 tan a0, m, from C1");
+  m.def(
+      "pitch_radius",
+      [](const GearPair& g, int gear) { return pitch_radius(g, gear_numbered(gear)); },
+      py::arg("pair"), py::arg("gear"), "r = m Z / 2 of gear 1 or 2, m");
+  m.def(
+      "base_radius",
+      [](const GearPair& g, int gear) { return base_radius(g, gear_numbered(gear)); },
+      py::arg("pair"), py::arg("gear"), "Rb = r cos a0 of gear 1 or 2, m");
+  m.def(
+      "tip_radius", [](const GearPair& g, int gear) { return tip_radius(g, gear_numbered(gear)); },
+      py::arg("pair"), py::arg("gear"), "r + addendum of gear 1 or 2, m");
+  m.def(
+      "moment_of_inertia",
+      [](const GearPair& g, int gear) { return moment_of_inertia(g, gear_numbered(gear)); },
+      py::arg("pair"), py::arg("gear"), "J = rho pi r^4 L / 2 of gear 1 or 2 (solid disc), kg m^2");
+  m.def(
+      "contact_angle",
+      [](const GearPair& g, int gear, double x1_m) {
+        return contact_angle(g, gear_numbered(gear), x1_m);
+      },
+      py::arg("pair"), py::arg("gear"), py::arg("x1_m"),
+      "(12) phi1 or (25),(26) phi2, rad, of the contact at X1 (from C1)");
+}
+
+}  // namespace gearimpact::python
+
+PYBIND11_MODULE(_core, m) {
+  gearimpact::python::define_module(m);
+}

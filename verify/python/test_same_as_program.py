@@ -1,0 +1,103 @@
+"""Python gives the program's numbers bit for bit: the same function of the
+library behind both, the same sampling, the same case. The program's CSV and
+JSON are parsed at their 17 significant digits, which read back exactly."""
+
+import json
+
+import gearimpact
+import pytest
+
+from conftest import assert_bitwise_equal, parse_csv
+
+STIFFNESS_COLUMNS = ["x_m", "phi1_rad", "kb1", "ka1", "kb2", "ka2", "kh", "ke"]
+SERIES_COLUMNS = [
+    "t_s", "theta1_rad", "theta2_rad", "w1_rad_s", "w2_rad_s", "s_m", "delta_m",
+    "region", "pairs", "normal_force_N", "friction_force_N",
+]
+
+
+def assert_same_table(ours, program_csv, columns, what):
+    theirs = parse_csv(program_csv)
+    assert list(theirs) == columns, f"{what}: the program's columns changed"
+    assert list(ours)[: len(columns)] == columns
+    for name in columns:
+        assert_bitwise_equal(ours[name], theirs[name], f"{what}, {name}")
+
+
+@pytest.mark.parametrize(
+    "options, arguments",
+    [
+        ([], {}),
+        (["--points", "17", "--method", "xform"], {"points": 17, "method": "xform"}),
+        (["--points", "9", "--method", "boost-gk", "--flipped-moment"],
+         {"points": 9, "method": "boost-gk", "flipped_moment": True}),
+    ],
+)
+def test_stiffness_of_the_papers_pair(cli, options, arguments):
+    assert_same_table(gearimpact.stiffness(**arguments), cli("stiffness", *options),
+                      STIFFNESS_COLUMNS, f"stiffness {options}")
+
+
+def test_stiffness_of_a_case_file(cli):
+    path = gearimpact.paper_data_dir() / "case2.toml"
+    assert_same_table(gearimpact.stiffness(path, points=13, method="gsl-cquad"),
+                      cli("stiffness", "--case-file", path, "--points", "13", "--method",
+                          "gsl-cquad"),
+                      STIFFNESS_COLUMNS, "stiffness of case2.toml")
+
+
+def test_energy_ratios(cli):
+    columns = ["angle_deg", "pairs", "hertz_over_bending_one_pair", "axial_over_bending_one_pair",
+               "hertz_over_bending_system", "axial_over_bending_system"]
+    assert_same_table(gearimpact.energy_ratios(), cli("energy-ratios"), columns, "energy ratios")
+    assert_same_table(gearimpact.energy_ratios(points=31, flipped_moment=True),
+                      cli("energy-ratios", "--points", "31", "--flipped-moment"), columns,
+                      "energy ratios, flipped moment")
+
+
+def simulate_both(cli, tmp_path, program_options, case, **changes):
+    out = tmp_path / "series.csv"
+    summary = json.loads(cli("simulate", *program_options, "--out", out))
+    result = gearimpact.simulate(case, **changes)
+    assert result.summary == summary, "the JSON summaries differ"
+    assert_same_table(result.series, out.read_text(), SERIES_COLUMNS, f"simulate {program_options}")
+    return result
+
+
+def test_simulate_case1_whole_run(cli, tmp_path):
+    # Every 10th row of the 300,001 keeps the CSV near 7 MB; the summary
+    # covers every step.
+    result = simulate_both(cli, tmp_path, ["--case", "1", "--every", "10"], 1, output_every=10)
+    assert len(result.series["t_s"]) == 30001
+
+
+def test_simulate_with_the_readings_changed(cli, tmp_path):
+    # The program's reading options against the case-file keys that hold them.
+    simulate_both(
+        cli, tmp_path,
+        ["--case", "3", "--friction", "0.07", "--dt", "5e-8", "--t-end", "0.004",
+         "--damping-form", "hunt-crossley", "--damping-stiffness", "pitch-pair",
+         "--restitution-exponent", "0.36", "--speed-unit", "in/s", "--coast-phase", "in-phase"],
+        3, friction_coefficient=0.07, step=5e-8, end_time="4 ms", damping_form="hunt-crossley",
+        damping_stiffness="pitch-pair-at-impact", restitution_exponent=0.36,
+        restitution_speed_unit="1 in/s", coast_phase="in-phase")
+
+
+def test_simulate_table1_torques_in_newton_millimetres(cli, tmp_path):
+    simulate_both(cli, tmp_path, ["--case", "2", "--torque-unit", "n-mm", "--t-end", "0.003"],
+                  gearimpact.paper_case(2, torque_unit="n-mm"), end_time=0.003)
+
+
+def test_simulate_a_case_file_with_the_adaptive_integrator(cli, tmp_path):
+    path = gearimpact.paper_data_dir() / "case2.toml"
+    simulate_both(cli, tmp_path,
+                  ["--case-file", path, "--integrator", "adaptive", "--t-end", "0.002"],
+                  path, integrator_kind="adaptive", end_time="2 ms")
+
+
+def test_sweep_friction(cli):
+    ours = gearimpact.sweep_friction(from_=0.02, to=0.06, step=0.02, end_time="5 ms")
+    theirs = cli("sweep-friction", "--from", "0.02", "--to", "0.06", "--step", "0.02", "--t-end",
+                 "0.005")
+    assert_same_table(ours, theirs, ["f", "ratio_case1", "ratio_case2", "ratio_case3"],
+                      "sweep-friction")
