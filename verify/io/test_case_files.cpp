@@ -13,11 +13,11 @@
 #include <utility>
 #include <vector>
 
-#include "gearimpact/paper/table1.hpp"
-#include "gearimpact/io/case_file.hpp"
+#include "gearimpact/dynamics/simulation_case.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
-#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/io/case_file.hpp"
+#include "gearimpact/paper/table1.hpp"
 #include "run_command.hpp"
 
 using namespace gearimpact;
@@ -210,20 +210,22 @@ std::vector<BadInput> bad_inputs() {
        {"model.friction_coefficient = inf", "[0, inf)"}},
       {"E = 0",
        set("gears", "youngs_modulus", "\"0 GPa\""),
-       {"gears.youngs_modulus = 0", "> 0 Pa", "(written \"0 GPa\")"}},
+       {"gears.youngs_modulus = \"0 GPa\"", "> 0 Pa"}},
       {"E < 0",
        set("gears", "youngs_modulus", "\"-206.8 GPa\""),
-       {"gears.youngs_modulus = -206800000000", "> 0 Pa"}},
+       {"gears.youngs_modulus = \"-206.8 GPa\"", "> 0 Pa"}},
       {"nu = 0.5",
        set("gears", "poisson_ratio", "0.5"),
        {"gears.poisson_ratio = 0.5", "(-1, 0.5), both ends excluded"}},
       {"nu = -1",
        set("gears", "poisson_ratio", "-1"),
        {"gears.poisson_ratio = -1", "(-1, 0.5), both ends excluded"}},
-      {"density = 0", set("gears", "density", "\"0 kg/m^3\""), {"gears.density = 0", "> 0 kg/m^3"}},
+      {"density = 0",
+       set("gears", "density", "\"0 kg/m^3\""),
+       {"gears.density = \"0 kg/m^3\"", "> 0 kg/m^3"}},
       {"density < 0",
        set("gears", "density", "\"-7.8 g/cm^3\""),
-       {"gears.density = -7800", "> 0 kg/m^3"}},
+       {"gears.density = \"-7.8 g/cm^3\"", "> 0 kg/m^3"}},
       // 2 ha / sin^2(20 deg) = 17.097: the rack-generation undercut limit.
       {"too few teeth",
        set("gears", "teeth1", "17"),
@@ -243,7 +245,7 @@ std::vector<BadInput> bad_inputs() {
        {"gears.contact_ratio = 0.733", "[1, 3): below 1 the gears lose contact"}},
       {"negative backlash",
        set("gears", "backlash", "\"-0.01 mm\""),
-       {"gears.backlash = -1.0000000000000001e-05", ">= 0 m", "(written \"-0.01 mm\")"}},
+       {"gears.backlash = \"-0.01 mm\"", ">= 0 m"}},
       {"pressure angle 50 deg",
        set("gears", "pressure_angle", "\"50 deg\""),
        {"gears.pressure_angle", "(0, 45] deg"}},
@@ -262,9 +264,9 @@ std::vector<BadInput> bad_inputs() {
       {"t_end < 0",
        set("integrator", "end_time", "\"-30 ms\""),
        {"integrator.end_time = \"-30 ms\"", "a time > 0 s"}},
-      {"more than 1e9 steps",
+      {"more than 2e9 steps",
        set("integrator", "end_time", "\"1000 s\""),
-       {"integrator.end_time = \"1000 s\"", "at most 1e9 steps", "end_time <= 100 s"}},
+       {"integrator.end_time = \"1000 s\"", "at most 2e9 steps", "end_time <= 200 s"}},
       {"output_every 0",
        set("integrator", "output_every", "0"),
        {"integrator.output_every = 0", "an integer in [1, 2147483647]"}},
@@ -289,7 +291,7 @@ std::vector<BadInput> bad_inputs() {
         "one of \"herbert-mcwhannell\", \"hunt-crossley\", \"lee-wang\""}},
       {"negative restitution exponent",
        set("model", "restitution_exponent", "-0.375"),
-       {"model.restitution_exponent = -0.375", "(0, inf)"}},
+       {"model.restitution_exponent = -0.375", "(0, 1]"}},
       {"stiffness tolerance 0",
        set("model", "stiffness_tolerance", "0.0"),
        {"model.stiffness_tolerance = 0", "[1e-14, 1e-2]"}},
