@@ -1,9 +1,15 @@
+#include <charconv>
 #include <cstdio>
+#include <iostream>
 #include <map>
 #include <memory>
 #include <string>
+#include <string_view>
+#include <system_error>
+#include <utility>
 #include <vector>
 
+#include "case_flags.hpp"
 #include "commands.hpp"
 #include "gearimpact/batch/sweep_friction.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
@@ -12,151 +18,260 @@
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/results.hpp"
+#include "gearimpact/io/schema.hpp"
 #include "gearimpact/paper/table1.hpp"
 
 namespace gearimpact::cli {
 
 namespace {
 
-// The readings MODEL.md leaves open, as named options; defaults are MODEL.md's.
-struct ReadingOptions {
-  std::string torque_unit = "kgf-mm";
-  double case3_frequency_rad_s = 10000.0;
-  std::string damping_form = "herbert-mcwhannell";
-  std::string damping_stiffness = "pair";
-  double restitution_coefficient = 0.022;
-  double restitution_exponent = 0.375;
-  std::string speed_unit = "mm/s";
-  std::string coast_phase = "half-pitch";
-  bool flipped_moment = false;
+// Fig. 7's default sweep of f, and the most threads worth asking for.
+constexpr const char* kSweepFrom = "0.01";
+constexpr const char* kSweepTo = "0.09";
+constexpr const char* kSweepStep = "0.01";
+constexpr long long kMostThreads = 1024;
+
+std::string help_of(const CaseFlag& flag) {
+  const Field& field = *find_field(flag.key);
+  if (flag.switch_value != nullptr) {
+    for (const ChoiceName& choice : field.choices) {
+      if (choice.name == flag.switch_value) {
+        return field.name() + " = \"" + flag.switch_value + "\": " + std::string(choice.meaning);
+      }
+    }
+  }
+  std::string help = field.help + " [" + field.name() + ": " + allowed_text(field);
+  if (field.kind == FieldKind::quantity) {
+    help += "; a plain number in " + std::string(units_of(field.dimension).front().symbol) +
+            " or with a unit: " + allowed_units(field.dimension);
+  }
+  return help + "]";
+}
+
+long long parse_integer_flag(const std::string& flag, const std::string& text, long long lower,
+                             long long upper, const std::string& meaning) {
+  long long value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc{} || end != text.data() + text.size() || value < lower ||
+      value > upper) {
+    throw InputError(flag, text,
+                     "an integer in [" + std::to_string(lower) + ", " + std::to_string(upper) +
+                         "] (" + meaning + ")");
+  }
+  return value;
+}
+
+// A plain number; its range is checked by the function it is passed to.
+double parse_number_flag(const std::string& flag, const std::string& text,
+                         const std::string& meaning) {
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc{} || end != text.data() + text.size()) {
+    throw InputError(flag, text, "a plain number: " + meaning);
+  }
+  return value;
+}
+
+// The options that set case keys: the flags of kCaseFlags a command has,
+// the paper's reading of Table 1 (--case only) and, on `simulate`, --set.
+class CaseOptions {
+ public:
+  // The flags of kCaseFlags a command has: all on `simulate`, those marked
+  // on_sweep on sweep-friction.
+  void add_flags(CLI::App* command, bool sweep) {
+    for (const CaseFlag& flag : kCaseFlags) {
+      if (sweep && !flag.on_sweep) continue;
+      flags_.push_back(flag);
+      if (flag.switch_value != nullptr) {
+        options_.push_back(command->add_flag(std::string(flag.flag))->description(help_of(flag)));
+      } else {
+        options_.push_back(command->add_option(flag.flag, texts_[flag.flag], help_of(flag)));
+      }
+    }
+  }
+  void add_reading(CLI::App* command) {
+    torque_unit_ =
+        command->add_option("--torque-unit", torque_unit_text_, "unit of Table 1's torques")
+            ->check(CLI::IsMember({"kgf-mm", "n-mm"}));
+    case3_frequency_ = command->add_option(
+        "--case3-frequency", case3_frequency_text_,
+        "case 3 forcing W of T1 = 200 sin(W t), rad/s or with a unit (1000 the alternative "
+        "reading) [as torque1.angular_frequency: " +
+            allowed_text(*find_field("torque1.angular_frequency")) + "]");
+  }
+  void add_set(CLI::App* command) {
+    command->add_option("--set", sets_,
+                        "section.key=value: set any key of the case schema (`gearimpact schema` "
+                        "lists them); repeatable");
+  }
+
+  bool reading_given() const { return torque_unit_->count() > 0 || case3_frequency_->count() > 0; }
+  const char* reading_flag() const {
+    return torque_unit_->count() > 0 ? "--torque-unit" : "--case3-frequency";
+  }
+  const std::string& reading_text() const {
+    return torque_unit_->count() > 0 ? torque_unit_text_ : case3_frequency_text_;
+  }
+
+  // Table 1's case under the reading of --torque-unit and --case3-frequency,
+  // the library's defaults where they are not given.
+  SimulationCase paper(int number) const {
+    PaperReading reading;
+    if (torque_unit_->count() > 0 && torque_unit_text_ == "n-mm") {
+      reading.torque_unit = TorqueUnit::n_mm;
+    }
+    if (case3_frequency_->count() > 0) {
+      reading.case3_angular_frequency_rad_s = parse_value(
+          *find_field("torque1.angular_frequency"), case3_frequency_text_, "--case3-frequency");
+    }
+    return paper_case(number, reading);
+  }
+
+  // Sets the keys of the given options on `c`, flags in table order, then
+  // --set in command-line order; the keys so set are remembered with the
+  // option that set them, to name it in later errors.
+  void apply(SimulationCase& c) {
+    given_.clear();
+    for (std::size_t i = 0; i < flags_.size(); ++i) {
+      if (options_[i]->count() == 0) continue;
+      const CaseFlag& flag = flags_[i];
+      set(c, flag.key, flag.switch_value != nullptr ? flag.switch_value : texts_.at(flag.flag),
+          flag.flag);
+    }
+    for (const std::string& assignment : sets_) {
+      const std::size_t equals = assignment.find('=');
+      if (equals == std::string::npos) {
+        throw InputError("--set", assignment, "section.key=value, e.g. integrator.end_time=20ms");
+      }
+      const std::string key = assignment.substr(0, equals);
+      if (find_field(key) == nullptr) {
+        throw InputError("--set", assignment,
+                         "section.key=value with a key of the case schema (`gearimpact schema` "
+                         "lists them)");
+      }
+      set(c, key, assignment.substr(equals + 1), "--set " + key);
+    }
+  }
+
+  // Runs `work`; an InputError about a key an option set names that option.
+  template <typename Work>
+  void naming_options(Work work) const {
+    try {
+      work();
+    } catch (const InputError& e) {
+      const auto found = given_.find(e.field());
+      if (found == given_.end()) throw;
+      throw InputError(found->second.option, found->second.text, e.allowed());
+    }
+  }
+
+ private:
+  void set(SimulationCase& c, const std::string& key, const std::string& text,
+           const std::string& option) {
+    const auto [previous, fresh] = given_.emplace(key, Given{option, text});
+    if (!fresh) {
+      throw InputError(
+          option, text,
+          "one option per key: " + key + " is already set by " + previous->second.option);
+    }
+    std::string value = text;
+    for (const OldSpelling& old : kOldSpellings) {
+      if (key == old.key && text == old.old_text) {
+        std::cerr << "gearimpact: note: " << option << " " << old.old_text
+                  << " is the old spelling of \"" << old.text
+                  << "\", the name case files use; it still works\n";
+        value = old.text;
+      }
+    }
+    set_field(c, key, value, option);
+  }
+
+  std::vector<CaseFlag> flags_;
+  std::vector<CLI::Option*> options_;
+  std::map<std::string, std::string> texts_;
+  CLI::Option* torque_unit_ = nullptr;
+  std::string torque_unit_text_;
+  CLI::Option* case3_frequency_ = nullptr;
+  std::string case3_frequency_text_;
+  std::vector<std::string> sets_;
+  // section.key -> the option that set it and its text as typed.
+  struct Given {
+    std::string option;
+    std::string text;
+  };
+  std::map<std::string, Given> given_;
 };
 
 struct SimulateOptions {
   int case_number = 1;
   std::string case_file;
-  double friction = 0.04;
-  double step_s = 1.0e-7;
-  double end_time_s = 0.0;  // 0: the case's own
-  std::string integrator = "rk4";
-  double relative_tolerance = 1e-10;
   std::string out;
-  int every = 1;
-  ReadingOptions reading;
+  CaseOptions keys;
 };
 
 struct SweepOptions {
-  double from = 0.01;
-  double to = 0.09;
-  double step = 0.01;
-  double step_s = 1.0e-7;
-  double end_time_s = 0.0;  // 0: each case's own
-  unsigned threads = 0;
-  ReadingOptions reading;
+  std::string from = kSweepFrom;
+  std::string to = kSweepTo;
+  std::string step = kSweepStep;
+  std::string threads = "0";
+  CaseOptions keys;
 };
 
-SimulationCase paper_case_with(int number, const ReadingOptions& r) {
-  const std::map<std::string, DampingForm> forms{
-      {"herbert-mcwhannell", DampingForm::herbert_mcwhannell},
-      {"hunt-crossley", DampingForm::hunt_crossley},
-      {"lee-wang", DampingForm::lee_wang}};
-  const std::map<std::string, DampingStiffness> stiffnesses{
-      {"pair", DampingStiffness::current_pair},
-      {"pitch-pair", DampingStiffness::pitch_pair_at_impact},
-      {"hertz", DampingStiffness::hertz}};
-  const std::map<std::string, double> speed_units{{"mm/s", 1.0e-3}, {"in/s", 0.0254}, {"m/s", 1.0}};
-  PaperReading reading;
-  reading.torque_unit = r.torque_unit == "n-mm" ? TorqueUnit::n_mm : TorqueUnit::kgf_mm;
-  reading.case3_angular_frequency_rad_s = r.case3_frequency_rad_s;
-  reading.damping_form = forms.at(r.damping_form);
-  reading.damping_stiffness = stiffnesses.at(r.damping_stiffness);
-  reading.restitution.coefficient = r.restitution_coefficient;
-  reading.restitution.exponent = r.restitution_exponent;
-  reading.restitution.speed_unit_m_s = speed_units.at(r.speed_unit);
-  reading.coast_phase =
-      r.coast_phase == "in-phase" ? CoastPhase::in_phase : CoastPhase::half_base_pitch;
-  reading.moment_sign = r.flipped_moment ? AxialMomentSign::flipped : AxialMomentSign::physical;
-  return paper_case(number, reading);
-}
-
-void add_reading_options(CLI::App* command, ReadingOptions& r) {
-  command->add_option("--torque-unit", r.torque_unit, "unit of Table 1's torques")
-      ->check(CLI::IsMember({"kgf-mm", "n-mm"}))
-      ->capture_default_str();
-  command
-      ->add_option("--case3-frequency", r.case3_frequency_rad_s,
-                   "case 3 forcing W of T1 = 200 sin(W t), rad/s (1000 the alternative reading)")
-      ->capture_default_str();
-  command->add_option("--damping-form", r.damping_form, "form of (32)")
-      ->check(CLI::IsMember({"herbert-mcwhannell", "hunt-crossley", "lee-wang"}))
-      ->capture_default_str();
-  command
-      ->add_option("--damping-stiffness", r.damping_stiffness,
-                   "K in (32): pair (each pair's Ke), pitch-pair (frozen at impact), hertz (Kh)")
-      ->check(CLI::IsMember({"pair", "pitch-pair", "hertz"}))
-      ->capture_default_str();
-  command->add_option("--restitution-coefficient", r.restitution_coefficient, "c of (33)")
-      ->capture_default_str();
-  command->add_option("--restitution-exponent", r.restitution_exponent, "p of (33)")
-      ->capture_default_str();
-  command->add_option("--speed-unit", r.speed_unit, "unit of Vi in (33)")
-      ->check(CLI::IsMember({"mm/s", "in/s", "m/s"}))
-      ->capture_default_str();
-  command
-      ->add_option("--coast-phase", r.coast_phase,
-                   "coast-line contacts: half-pitch (geometric) or in-phase (literal (9))")
-      ->check(CLI::IsMember({"half-pitch", "in-phase"}))
-      ->capture_default_str();
-  command->add_flag("--flipped-moment", r.flipped_moment,
-                    "add the axial-force moment Fa h in the bending stiffness (not physical)");
-}
-
-// A case file carries every setting; a command-line option overrides the
-// file only when given explicitly.
-SimulationCase case_to_run(const SimulateOptions& o, const CLI::App& command) {
+// A case file carries every setting; an option overrides the file only when
+// given explicitly, as it overrides Table 1's case.
+SimulationCase case_to_run(SimulateOptions& o, const CLI::App& command) {
   const auto given = [&](const char* name) { return command.get_option(name)->count() > 0; };
+  SimulationCase c;
   if (o.case_file.empty()) {
     if (!given("--case")) {
       throw InputError("--case", "none", "1, 2 or 3 (Table 1), or --case-file FILE");
     }
-    SimulationCase c = paper_case_with(o.case_number, o.reading);
-    c.model.friction_coefficient = o.friction;
-    c.integrator.step_s = o.step_s;
-    if (o.end_time_s != 0.0) c.integrator.end_time_s = o.end_time_s;
-    c.integrator.kind = o.integrator == "adaptive" ? IntegratorKind::adaptive : IntegratorKind::rk4;
-    c.integrator.adaptive_relative_tolerance = o.relative_tolerance;
-    c.integrator.output_every = o.every;
-    return c;
+    c = o.keys.paper(o.case_number);
+  } else {
+    if (o.keys.reading_given()) {
+      throw InputError(o.keys.reading_flag(), o.keys.reading_text(),
+                       "only with --case: it chooses a reading of Table 1, and a case file "
+                       "writes its torques out");
+    }
+    c = read_case_file(o.case_file);
   }
-  SimulationCase c = read_case_file(o.case_file);
-  if (given("--friction")) c.model.friction_coefficient = o.friction;
-  if (given("--dt")) c.integrator.step_s = o.step_s;
-  if (given("--t-end")) c.integrator.end_time_s = o.end_time_s;
-  if (given("--integrator")) {
-    c.integrator.kind = o.integrator == "adaptive" ? IntegratorKind::adaptive : IntegratorKind::rk4;
-  }
-  if (given("--rtol")) c.integrator.adaptive_relative_tolerance = o.relative_tolerance;
-  if (given("--every")) c.integrator.output_every = o.every;
+  o.keys.apply(c);
   return c;
 }
 
-void run_simulate(const SimulateOptions& o, const CLI::App& command) {
+void run_simulate(SimulateOptions& o, const CLI::App& command) {
   const SimulationCase c = case_to_run(o, command);
   RunControl control;
   control.keep_series = !o.out.empty();
-  const SimulationResult result = simulate(c, control);
+  SimulationResult result;
+  o.keys.naming_options([&] { result = simulate(c, control); });
   if (!o.out.empty()) write_file_atomically(o.out, series_csv(result.series));
   std::fputs(summary_json(result.summary).c_str(), stdout);
 }
 
-void run_sweep(const SweepOptions& o) {
+void run_sweep(SweepOptions& o) {
+  const Field& friction = *find_field("model.friction_coefficient");
+  const double from = parse_value(friction, o.from, "--from");
+  const double to = parse_value(friction, o.to, "--to");
+  const double step = parse_number_flag("--step", o.step, "the increment of f, > 0");
+  const auto threads = static_cast<unsigned>(
+      parse_integer_flag("--threads", o.threads, 0, kMostThreads, "0: all cores"));
   std::vector<SimulationCase> cases;
   for (int n = 1; n <= 3; ++n) {
-    cases.push_back(paper_case_with(n, o.reading));
-    cases.back().integrator.step_s = o.step_s;
-    if (o.end_time_s != 0.0) cases.back().integrator.end_time_s = o.end_time_s;
+    cases.push_back(o.keys.paper(n));
+    o.keys.apply(cases.back());
   }
-  std::fputs(friction_sweep_csv(sweep_friction(cases, o.from, o.to, o.step, o.threads)).c_str(),
-             stdout);
+  std::vector<SweepRow> rows;
+  try {
+    o.keys.naming_options([&] { rows = sweep_friction(cases, from, to, step, threads); });
+  } catch (const InputError& e) {
+    // sweep_friction names its own arguments from, to, step.
+    for (const char* argument : {"from", "to", "step"}) {
+      if (e.field() == argument) throw InputError("--" + e.field(), e.value(), e.allowed());
+    }
+    throw;
+  }
+  std::fputs(friction_sweep_csv(rows).c_str(), stdout);
 }
 
 }  // namespace
@@ -164,44 +279,35 @@ void run_sweep(const SweepOptions& o) {
 void register_simulate_commands(CLI::App& app) {
   auto options = std::make_shared<SimulateOptions>();
   CLI::App* simulate = app.add_subcommand(
-      "simulate", "run one of Table 1's cases; JSON summary on stdout, time series with --out");
+      "simulate",
+      "run one of Table 1's cases or a case file; JSON summary on stdout, time series with --out");
   CLI::Option* paper = simulate->add_option("--case", options->case_number, "Table 1 case")
                            ->check(CLI::IsMember({1, 2, 3}));
   simulate
       ->add_option("--case-file", options->case_file,
                    "a case file (TOML, see docs/case-files.md); other options override it")
       ->excludes(paper);
-  simulate->add_option("--friction", options->friction, "friction coefficient f of (35)")
-      ->capture_default_str();
-  simulate
-      ->add_option("--dt", options->step_s, "RK4 step, s (adaptive: first step and output grid)")
-      ->capture_default_str();
-  simulate->add_option("--t-end", options->end_time_s,
-                       "end time, s (default: 0.03 for cases 1 and 2, 0.04 for case 3)");
-  simulate->add_option("--integrator", options->integrator, "rk4 (fixed step) or adaptive (dopri5)")
-      ->check(CLI::IsMember({"rk4", "adaptive"}))
-      ->capture_default_str();
-  simulate->add_option("--rtol", options->relative_tolerance, "adaptive relative tolerance")
-      ->capture_default_str();
   simulate->add_option("--out", options->out, "time series CSV file (written atomically)");
-  simulate->add_option("--every", options->every, "keep every n-th row of the time series")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  add_reading_options(simulate, options->reading);
+  options->keys.add_flags(simulate, false);
+  options->keys.add_reading(simulate);
+  options->keys.add_set(simulate);
   simulate->callback([options, simulate] { run_simulate(*options, *simulate); });
 
   auto sweep_options = std::make_shared<SweepOptions>();
   CLI::App* sweep = app.add_subcommand(
       "sweep-friction", "Fig. 7: CSV of friction loss / damping loss of cases 1-3 against f");
-  sweep->add_option("--from", sweep_options->from, "first f")->capture_default_str();
-  sweep->add_option("--to", sweep_options->to, "last f")->capture_default_str();
-  sweep->add_option("--step", sweep_options->step, "increment of f")->capture_default_str();
-  sweep->add_option("--dt", sweep_options->step_s, "RK4 step, s")->capture_default_str();
-  sweep->add_option("--t-end", sweep_options->end_time_s,
-                    "end time, s (default: 0.03 for cases 1 and 2, 0.04 for case 3)");
-  sweep->add_option("--threads", sweep_options->threads, "threads (0: all cores)")
+  const std::string f_range = " in " + allowed_text(*find_field("model.friction_coefficient"));
+  sweep->add_option("--from", sweep_options->from, "first f" + f_range)->capture_default_str();
+  sweep->add_option("--to", sweep_options->to, "last f, at least --from," + f_range)
       ->capture_default_str();
-  add_reading_options(sweep, sweep_options->reading);
+  sweep->add_option("--step", sweep_options->step, "increment of f, > 0")->capture_default_str();
+  sweep
+      ->add_option(
+          "--threads", sweep_options->threads,
+          "threads, an integer in [0, " + std::to_string(kMostThreads) + "] (0: all cores)")
+      ->capture_default_str();
+  sweep_options->keys.add_flags(sweep, true);
+  sweep_options->keys.add_reading(sweep);
   sweep->callback([sweep_options] { run_sweep(*sweep_options); });
 }
 

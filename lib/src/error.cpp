@@ -12,7 +12,9 @@ std::string format_number(double value) {
 
 InputError::InputError(std::string field, const std::string& value, const std::string& allowed)
     : std::invalid_argument(field + " = " + value + " is outside the allowed range: " + allowed),
-      field_(std::move(field)) {}
+      field_(std::move(field)),
+      value_(value),
+      allowed_(allowed) {}
 
 InputError::InputError(std::string field, double value, const std::string& allowed)
     : InputError(std::move(field), format_number(value), allowed) {}

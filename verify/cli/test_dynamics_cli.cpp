@@ -139,3 +139,133 @@ TEST_CASE("the same case gives a bit-identical CSV on repeated runs") {
   std::filesystem::remove(a);
   std::filesystem::remove(b);
 }
+
+namespace {
+
+std::string paper_case_file_with(const std::string& key_line) {
+  std::ifstream in(std::string(GEARIMPACT_PAPER_DATA_DIR) + "/case1.toml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string toml = text.str();
+  const std::string key = key_line.substr(0, key_line.find(' '));
+  const std::size_t at = toml.find("\n" + key + " = ");
+  REQUIRE(at != std::string::npos);
+  toml.replace(at + 1, toml.find('\n', at + 1) - at - 1, key_line);
+  return toml;
+}
+
+int line_count(const std::string& text) {
+  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+}
+
+}  // namespace
+
+TEST_CASE("every out-of-range option value is refused, naming the option and its range") {
+  struct Bad {
+    const char* arguments;
+    const char* named;    // the option as typed
+    const char* allowed;  // part of the allowed range
+  };
+  for (const Bad& bad : {
+           Bad{"simulate --case 1 --t-end 0", "--t-end = 0", "a time > 0 s"},
+           Bad{"simulate --case 1 --t-end -2ms", "--t-end = -2ms", "a time > 0 s"},
+           Bad{"simulate --case 1 --t-end 2furlong", "--t-end", "unknown unit \"furlong\""},
+           Bad{"simulate --case 1 --dt -1", "--dt = -1", "a time > 0 s"},
+           Bad{"simulate --case 1 --dt 1e-5", "--dt = 1e-5", "20 steps per period"},
+           Bad{"simulate --case 1 --t-end 1000", "--t-end", "at most 2e9 steps"},
+           Bad{"simulate --case 1 --friction -0.1", "--friction = -0.1", "[0, inf)"},
+           Bad{"simulate --case 1 --rtol 7", "--rtol = 7", "[1e-14, 1e-3]"},
+           Bad{"simulate --case 1 --rtol 5e-3", "--rtol = 5e-3", "[1e-14, 1e-3]"},
+           Bad{"simulate --case 1 --restitution-exponent 2", "--restitution-exponent = 2",
+               "(0, 1]"},
+           Bad{"simulate --case 3 --case3-frequency nan", "--case3-frequency = nan", ">= 0 rad/s"},
+           Bad{"simulate --case 1 --every 0", "--every = 0", "an integer in [1, 2147483647]"},
+           Bad{"simulate --case 1 --every 2.5", "--every = 2.5", "an integer in [1, 2147483647]"},
+           Bad{"simulate --case 1 --integrator euler", "--integrator = euler", "\"adaptive\""},
+           Bad{"simulate --case 1 --speed-unit 0", "--speed-unit = 0", "a speed > 0 m/s"},
+           Bad{"simulate --case 1 --damping-stiffness pear", "--damping-stiffness = pear",
+               "\"current-pair\""},
+           Bad{"simulate --case 1 --set integrator.end_time=0", "--set integrator.end_time = 0",
+               "a time > 0 s"},
+           Bad{"simulate --case 1 --set no.key=1", "--set = no.key=1", "gearimpact schema"},
+           Bad{"simulate --case 1 --set integrator.end_time", "--set = integrator.end_time",
+               "section.key=value"},
+           Bad{"simulate --case 1 --t-end 1ms --set integrator.end_time=2ms",
+               "--set integrator.end_time = 2ms", "already set by --t-end"},
+           Bad{"simulate --case-file " GEARIMPACT_PAPER_DATA_DIR "/case1.toml --torque-unit n-mm",
+               "--torque-unit = n-mm", "only with --case"},
+           Bad{"sweep-friction --from -0.01", "--from = -0.01", "[0, inf)"},
+           Bad{"sweep-friction --to nan", "--to = nan", "[0, inf)"},
+           Bad{"sweep-friction --from 0.05 --to 0.01", "--to", ">= from"},
+           Bad{"sweep-friction --step 0", "--step", "> 0"},
+           Bad{"sweep-friction --step 1e-9", "--step", "(to - from) / 1e5"},
+           Bad{"sweep-friction --threads -1", "--threads = -1", "an integer in [0, 1024]"},
+           Bad{"sweep-friction --threads 2000", "--threads = 2000", "an integer in [0, 1024]"},
+           Bad{"sweep-friction --t-end 0", "--t-end = 0", "a time > 0 s"},
+       }) {
+    CAPTURE(bad.arguments);
+    const CommandResult r = run_command(cli(bad.arguments));
+    CHECK(r.exit_code == 1);
+    CHECK(r.out.empty());
+    CHECK(r.err.find(std::string("gearimpact: error: ") + bad.named) != std::string::npos);
+    CHECK(r.err.find("is outside the allowed range") != std::string::npos);
+    CHECK(r.err.find(bad.allowed) != std::string::npos);
+  }
+}
+
+TEST_CASE("option values with units, --set and the old spellings give the same run") {
+  const CommandResult plain = run_command(cli("simulate --case 2 --t-end 0.002 --dt 1e-7"));
+  REQUIRE(plain.exit_code == 0);
+  for (const char* same : {"--t-end 2ms --dt \"0.1 us\"", "--set integrator.end_time=2ms",
+                           "--t-end 0.002 --set integrator.step=100ns"}) {
+    CAPTURE(same);
+    const CommandResult r = run_command(cli(std::string("simulate --case 2 ") + same));
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.out == plain.out);
+    CHECK(r.err.empty());
+  }
+  // Old command-line spellings of case-file names: the same run, one line of
+  // notice each on stderr naming the case-file spelling.
+  const std::string now =
+      "simulate --case 2 --t-end 0.002 --damping-stiffness pitch-pair-at-impact "
+      "--coast-phase half-base-pitch --speed-unit \"1 in/s\"";
+  const std::string old =
+      "simulate --case 2 --t-end 0.002 --damping-stiffness pitch-pair --coast-phase half-pitch "
+      "--speed-unit in/s";
+  const CommandResult new_names = run_command(cli(now));
+  const CommandResult old_names = run_command(cli(old));
+  REQUIRE(new_names.exit_code == 0);
+  REQUIRE(old_names.exit_code == 0);
+  CHECK(old_names.out == new_names.out);
+  CHECK(new_names.out != plain.out);
+  CHECK(line_count(old_names.err) == 3);
+  for (const char* notice : {"\"pitch-pair-at-impact\"", "\"half-base-pitch\"", "\"1 in/s\""}) {
+    CHECK(old_names.err.find(notice) != std::string::npos);
+  }
+  // A flag given with a case file overrides the file: a different run.
+  const std::string file = std::string(GEARIMPACT_PAPER_DATA_DIR) + "/case2.toml";
+  const CommandResult file_run = run_command(cli(
+      "simulate --case-file " + file + " " + now.substr(std::string("simulate --case 2").size())));
+  REQUIRE(file_run.exit_code == 0);
+  CHECK(file_run.out == new_names.out);
+}
+
+TEST_CASE("check-case and simulate --case-file refuse the same file with the same message") {
+  // The two ranges the validators used to disagree on: check-case accepted
+  // these and simulate refused them, without the file's line.
+  for (const char* line : {"restitution_exponent = 2.0", "relative_tolerance = 5e-3"}) {
+    CAPTURE(line);
+    const std::filesystem::path file =
+        std::filesystem::temp_directory_path() / "gearimpact_test_one_range.toml";
+    std::ofstream(file) << paper_case_file_with(line);
+    const CommandResult check = run_command(cli("check-case " + file.string()));
+    const CommandResult run = run_command(cli("simulate --case-file " + file.string()));
+    CHECK(check.exit_code == 1);
+    CHECK(run.exit_code == 1);
+    CHECK(check.err == run.err);
+    CHECK(check.err.find(file.string() + ":") != std::string::npos);
+    const std::string key = std::string(line).substr(0, std::string(line).find(' '));
+    CHECK(check.err.find("." + key + " = ") != std::string::npos);
+    std::filesystem::remove(file);
+  }
+}

@@ -16,9 +16,15 @@ class InputError : public std::invalid_argument {
   InputError(std::string field, double value, const std::string& allowed);
 
   const std::string& field() const noexcept { return field_; }
+  // The value and the allowed range as they appear in the message, so that a
+  // caller can name the field as its user wrote it (a flag, a file's key).
+  const std::string& value() const noexcept { return value_; }
+  const std::string& allowed() const noexcept { return allowed_; }
 
  private:
   std::string field_;
+  std::string value_;
+  std::string allowed_;
 };
 
 // A numerical integration that did not converge to the requested tolerance.

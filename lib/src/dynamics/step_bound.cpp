@@ -44,13 +44,13 @@ double largest_step(const SimulationCase& c, const std::function<double(double)>
 void validate_step(const SimulationCase& c, double largest) {
   const IntegratorSettings& s = c.integrator;
   if (s.step_s > largest) {
-    throw InputError("step", s.step_s,
+    throw InputError("integrator.step", s.step_s,
                      "(0, " + format_number(largest) +
                          "] s: a larger step takes fewer than 20 steps per period of the "
                          "stiffest contact and does not resolve it");
   }
   if (s.end_time_s / s.step_s > static_cast<double>(kMostSteps)) {
-    throw InputError("step", s.step_s,
+    throw InputError("integrator.step", s.step_s,
                      "at least end_time / " + std::to_string(kMostSteps) + " = " +
                          format_number(s.end_time_s / static_cast<double>(kMostSteps)) + " s");
   }

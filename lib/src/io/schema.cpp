@@ -1,77 +1,786 @@
 #include "gearimpact/io/schema.hpp"
 
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <climits>
 #include <cmath>
 #include <string>
+#include <system_error>
+#include <type_traits>
+#include <utility>
 
+#include "gearimpact/constants.hpp"
+#include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/error.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
 
 namespace gearimpact {
 
 namespace {
 
-void require_finite(const char* field, double value, const std::string& allowed) {
-  if (!std::isfinite(value)) throw InputError(field, value, allowed);
+// A name is written into output file names: at most this many characters.
+constexpr std::size_t kLongestName = 100;
+// Tooth counts beyond this are not gears but typing slips; the geometry
+// needs at least 4 (validate(GearPair)), the undercut limit more.
+constexpr double kMostTeeth = 100000.0;
+
+constexpr Bound open(double value) {
+  return {value, false};
+}
+constexpr Bound closed(double value) {
+  return {value, true};
 }
 
-void validate_torque(const char* field, const Torque& torque) {
-  const std::string name(field);
-  switch (torque.kind) {
-    case Torque::Kind::constant:
-      require_finite((name + ".constant").c_str(), torque.constant_n_m, "a finite torque in N m");
-      break;
-    case Torque::Kind::sinusoidal:
-      require_finite((name + ".amplitude").c_str(), torque.amplitude_n_m, "a finite torque in N m");
-      require_finite((name + ".angular_frequency").c_str(), torque.angular_frequency_rad_s,
-                     "a finite value in rad/s");
-      require_finite((name + ".phase").c_str(), torque.phase_rad, "a finite value in rad");
-      break;
-    case Torque::Kind::user:
-      if (!torque.user) throw InputError(name + ".user", "empty", "a callable T(t_s) in N m");
-      break;
+bool is_name_character(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+         c == '-' || c == '.';
+}
+
+// One significant digit as 1e-14 or 2e9, the rest as the shortest decimal.
+std::string bound_text(double value) {
+  std::array<char, 64> buffer{};
+  const auto [end, error] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value,
+                                          std::chars_format::scientific);
+  const std::string scientific(buffer.data(), error == std::errc{} ? end : buffer.data());
+  const std::size_t e = scientific.find('e');
+  if (e != std::string::npos && scientific.find('.') == std::string::npos) {
+    const int exponent = std::stoi(scientific.substr(e + 1));
+    if (exponent <= -2 || exponent >= 2) {
+      return scientific.substr(0, e) + "e" + std::to_string(exponent);
+    }
   }
+  return shortest_decimal(value);
+}
+
+// get/set of a field of SimulationCase reached by `slot`, a generic lambda
+// returning a reference to it (const or not), whatever its type: double, int,
+// bool (on/off) or an enumeration (a choice's code).
+template <typename Slot>
+void bind(Field& field, Slot slot) {
+  field.get = [slot](const SimulationCase& c) {
+    using T = std::decay_t<decltype(slot(c))>;
+    if constexpr (std::is_enum_v<T>) {
+      return static_cast<double>(static_cast<int>(slot(c)));
+    } else if constexpr (std::is_same_v<T, bool>) {
+      return slot(c) ? 1.0 : 0.0;
+    } else {
+      return static_cast<double>(slot(c));
+    }
+  };
+  field.set = [slot](SimulationCase& c, double value) {
+    using T = std::decay_t<decltype(slot(c))>;
+    if constexpr (std::is_enum_v<T>) {
+      slot(c) = static_cast<T>(static_cast<int>(value));
+    } else if constexpr (std::is_same_v<T, bool>) {
+      slot(c) = value != 0.0;
+    } else if constexpr (std::is_integral_v<T>) {
+      slot(c) = static_cast<T>(value);
+    } else {
+      slot(c) = value;
+    }
+  };
+}
+
+template <typename E>
+ChoiceName choice(std::string_view name, E value, std::string_view meaning, bool has_text = true) {
+  return {name, static_cast<int>(value), meaning, has_text};
+}
+
+// The rows of one section, added in the order they are written.
+class Rows {
+ public:
+  explicit Rows(std::vector<Field>& rows, std::string_view section)
+      : rows_(rows), section_(section) {}
+
+  template <typename Slot>
+  Field& quantity(std::string_view key, Dimension dimension, std::string_view unit, Range range,
+                  bool required, const std::string& help, Slot slot) {
+    Field& f = add(key, FieldKind::quantity, required, help, slot);
+    f.dimension = dimension;
+    f.unit = unit;
+    f.range = range;
+    return f;
+  }
+  template <typename Slot>
+  Field& number(std::string_view key, Range range, bool required, const std::string& help,
+                Slot slot) {
+    Field& f = add(key, FieldKind::number, required, help, slot);
+    f.range = range;
+    return f;
+  }
+  template <typename Slot>
+  Field& integer(std::string_view key, Range range, bool required, const std::string& help,
+                 Slot slot) {
+    Field& f = add(key, FieldKind::integer, required, help, slot);
+    f.range = range;
+    return f;
+  }
+  template <typename Slot>
+  Field& choice(std::string_view key, std::vector<ChoiceName> choices, bool required,
+                const std::string& help, Slot slot) {
+    Field& f = add(key, FieldKind::choice, required, help, slot);
+    f.choices = std::move(choices);
+    return f;
+  }
+  template <typename Slot>
+  Field& on_off(std::string_view key, const std::string& help, Slot slot) {
+    Field& f = add(key, FieldKind::on_off, false, help, slot);
+    f.choices = {{"on", 1, "included", true}, {"off", 0, "left out", true}};
+    return f;
+  }
+
+ private:
+  template <typename Slot>
+  Field& add(std::string_view key, FieldKind kind, bool required, const std::string& help,
+             Slot slot) {
+    Field f;
+    f.section = section_;
+    f.key = key;
+    f.kind = kind;
+    f.required = required;
+    f.help = help;
+    bind(f, slot);
+    rows_.push_back(std::move(f));
+    return rows_.back();
+  }
+
+  std::vector<Field>& rows_;
+  std::string_view section_;
+};
+
+template <typename TorqueSlot>
+void add_torque(std::vector<Field>& rows, std::string_view section, TorqueSlot torque) {
+  Rows r(rows, section);
+  r.choice(
+      "kind",
+      {choice("constant", Torque::Kind::constant, "T = value"),
+       choice("sinusoidal", Torque::Kind::sinusoidal,
+              "T = amplitude sin(angular_frequency t + phase)"),
+       choice("user", Torque::Kind::user,
+              "T(t) given as a function: through the library only, it has no text form", false)},
+      true, "form of the external torque T(t) on the gear", [torque](auto& c) -> auto& {
+        return torque(c).kind;
+      });
+  r.quantity(
+       "value", Dimension::torque, "N*mm", {}, true,
+       "T of a constant torque", [torque](auto& c) -> auto& { return torque(c).constant_n_m; })
+      .only_when = FieldCondition{"kind", "constant"};
+  r.quantity(
+       "amplitude", Dimension::torque, "N*mm", {}, true, "A of T = A sin(W t + phase)",
+       [torque](auto& c) -> auto& { return torque(c).amplitude_n_m; })
+      .only_when = FieldCondition{"kind", "sinusoidal"};
+  r.quantity(
+       "angular_frequency", Dimension::angular_frequency, "rad/s", {closed(0.0), {}, {}}, true,
+       "W of T = A sin(W t + phase); Hz counts cycles (W = 2 pi f). Not negative: "
+       "-W is the same sinusoid as W with the phase pi - phase",
+       [torque](auto& c) -> auto& { return torque(c).angular_frequency_rad_s; })
+      .only_when = FieldCondition{"kind", "sinusoidal"};
+  r.quantity(
+       "phase", Dimension::angle, "deg", {}, false, "phase of T = A sin(W t + phase)",
+       [torque](auto& c) -> auto& { return torque(c).phase_rad; })
+      .only_when = FieldCondition{"kind", "sinusoidal"};
+}
+
+std::vector<Field> make_schema() {
+  std::vector<Field> rows;
+  {
+    Field name;
+    name.key = "name";
+    name.kind = FieldKind::text;
+    name.help =
+        "names the case in outputs; a case file without it takes the file's stem, a library "
+        "case may stay unnamed";
+    name.get_text = [](const SimulationCase& c) { return c.name; };
+    name.set_text = [](SimulationCase& c, const std::string& value) { c.name = value; };
+    rows.push_back(std::move(name));
+  }
+  {
+    Rows r(rows, "gears");
+    const Range teeth{closed(4.0), closed(kMostTeeth), {}};
+    r.integer(
+        "teeth1", teeth, true,
+        "Z1, teeth of gear 1 (the driver in the paper); at least 2 ha / sin^2(a0), "
+        "below which rack generation undercuts the involute",
+        [](auto& c) -> auto& { return c.gears.teeth1; });
+    r.integer(
+        "teeth2", teeth, true, "Z2, teeth of gear 2; the same limits as teeth1",
+        [](auto& c) -> auto& { return c.gears.teeth2; });
+    r.quantity(
+        "module", Dimension::length, "mm", {open(0.0), {}, {}}, true,
+        "m: pitch radius r_i = m Z_i / 2", [](auto& c) -> auto& { return c.gears.module_m; });
+    r.quantity(
+        "pressure_angle", Dimension::angle, "deg", {open(0.0), closed(pi / 4.0), {}}, true,
+        "a0 of the generating rack and of the mesh (standard centre distance)",
+        [](auto& c) -> auto& { return c.gears.pressure_angle_rad; });
+    r.quantity(
+        "face_width", Dimension::length, "mm", {open(0.0), {}, {}}, true,
+        "L, the face width (\"thickness of gears\" in the paper)",
+        [](auto& c) -> auto& { return c.gears.face_width_m; });
+    r.number(
+        "addendum_coefficient", {open(0.0), {}, {}}, false,
+        "addendum / module, both gears; the pair must also keep its teeth unpointed, "
+        "be free of interference and have a contact ratio in [1, 3)",
+        [](auto& c) -> auto& { return c.gears.addendum_coefficient; });
+    r.quantity(
+        "youngs_modulus", Dimension::pressure, "GPa", {open(0.0), {}, {}}, true, "E of both gears",
+        [](auto& c) -> auto& { return c.gears.youngs_modulus_pa; });
+    r.number(
+        "poisson_ratio", {open(-1.0), open(0.5), "both ends excluded"}, true,
+        "nu of both gears; (-1, 0.5) is the range of a stable isotropic solid",
+        [](auto& c) -> auto& { return c.gears.poisson_ratio; });
+    r.quantity(
+        "density", Dimension::density, "kg/m^3", {open(0.0), {}, {}}, true,
+        "rho of both gears (solid discs on the pitch circle give J1, J2)",
+        [](auto& c) -> auto& { return c.gears.density_kg_m3; });
+    r.quantity(
+        "backlash", Dimension::length, "mm", {closed(0.0), {}, {}}, true,
+        "B of (31), along the line of action", [](auto& c) -> auto& { return c.gears.backlash_m; });
+  }
+  add_torque(
+      rows, "torque1", [](auto& c) -> auto& { return c.torque1; });
+  add_torque(
+      rows, "torque2", [](auto& c) -> auto& { return c.torque2; });
+  {
+    Rows r(rows, "initial");
+    r.quantity(
+        "theta1", Dimension::angle, "deg", {}, false,
+        "theta1(0); theta1 = theta2 = 0 centres the teeth in the backlash",
+        [](auto& c) -> auto& { return c.initial.theta1_rad; });
+    r.quantity(
+        "theta2", Dimension::angle, "deg", {}, false, "theta2(0)",
+        [](auto& c) -> auto& { return c.initial.theta2_rad; });
+    r.quantity(
+        "w1", Dimension::angular_velocity, "rad/s", {}, false, "w1(0)",
+        [](auto& c) -> auto& { return c.initial.w1_rad_s; });
+    r.quantity(
+        "w2", Dimension::angular_velocity, "rad/s", {}, false, "w2(0)",
+        [](auto& c) -> auto& { return c.initial.w2_rad_s; });
+  }
+  {
+    Rows r(rows, "model");
+    r.number(
+        "friction_coefficient", {closed(0.0), {}, {}}, false,
+        "f of (35): Ff = f N against the sliding speed",
+        [](auto& c) -> auto& { return c.model.friction_coefficient; });
+    r.choice(
+        "damping_form",
+        {choice("herbert-mcwhannell", DampingForm::herbert_mcwhannell,
+                "D = 6 K (1 - e) / {[(2e - 1)^2 + 3] Vi}"),
+         choice("hunt-crossley", DampingForm::hunt_crossley, "D = 3 K (1 - e) / (2 Vi)"),
+         choice("lee-wang", DampingForm::lee_wang, "D = 3 K (1 - e) / (4 Vi)")},
+        false, "form of the damping factor D of (32)",
+        [](auto& c) -> auto& { return c.model.damping_form; });
+    r.choice(
+        "damping_stiffness",
+        {choice("current-pair", DampingStiffness::current_pair, "each loaded pair's current Ke"),
+         choice("pitch-pair-at-impact", DampingStiffness::pitch_pair_at_impact,
+                "Ke of the pair nearest the pitch point, frozen at impact"),
+         choice("hertz", DampingStiffness::hertz, "Kh of (4)")},
+        false, "the stiffness K in (32)",
+        [](auto& c) -> auto& { return c.model.damping_stiffness; });
+    r.number(
+        "restitution_coefficient", {closed(0.0), {}, {}}, false,
+        "c of (33) e = 1 - c (Vi / speed unit)^p",
+        [](auto& c) -> auto& { return c.model.restitution.coefficient; });
+    r.number(
+        "restitution_exponent", {open(0.0), closed(1.0), {}}, false,
+        "p of (33): above 0 so that e falls as Vi grows; the published laws lie in "
+        "(0, 1], from 1/5 (Hertzian viscoelastic contact) to 1 (Hunt and Crossley's "
+        "linear e); the paper reads 3/8 or 0.36",
+        [](auto& c) -> auto& { return c.model.restitution.exponent; });
+    r.quantity(
+        "restitution_speed_unit", Dimension::speed, "mm/s", {open(0.0), {}, {}}, false,
+        "the unit Vi is measured in for (33): mm/s, the paper's length unit, or 1 in/s, "
+        "1 m/s",
+        [](auto& c) -> auto& { return c.model.restitution.speed_unit_m_s; });
+    r.choice(
+        "coast_phase",
+        {choice("half-base-pitch", CoastPhase::half_base_pitch,
+                "coast-flank contacts t0/2 from the drive ones (geometric)"),
+         choice("in-phase", CoastPhase::in_phase, "the literal reading of (9)")},
+        false, "where the coast-flank contacts sit",
+        [](auto& c) -> auto& { return c.model.coast_phase; });
+    r.choice(
+        "moment_sign",
+        {choice("physical", AxialMomentSign::physical, "M = Fb (l - x) - Fa h as printed"),
+         choice("flipped", AxialMomentSign::flipped, "M = Fb (l - x) + Fa h (not physical)")},
+        false, "sign of the axial-force moment in the bending stiffness",
+        [](auto& c) -> auto& { return c.model.stiffness.moment_sign; });
+    // stiffness_method names the tau-form with a quadrature rule, or the
+    // x-form route; xform_rule the rule of the x-form route (used only then).
+    constexpr int xform_code = 4;
+    const std::vector<ChoiceName> rules{
+        choice("gsl", QuadratureRule::gsl_qag, "GSL QAG on the tau-form"),
+        choice("gsl-cquad", QuadratureRule::gsl_cquad, "GSL CQUAD on the tau-form"),
+        choice("boost-gk", QuadratureRule::boost_gauss_kronrod,
+               "Boost Gauss-Kronrod on the tau-form"),
+        choice("boost-ts", QuadratureRule::boost_tanh_sinh, "Boost tanh-sinh on the tau-form")};
+    std::vector<ChoiceName> methods = rules;
+    methods.push_back({"xform", xform_code, "the x-form route (16)-(19)", true});
+    Field& method = r.choice(
+        "stiffness_method", methods, false, "how the per-tooth terms are integrated",
+        [](auto& c) -> auto& { return c.model.stiffness.route; });
+    method.get = [](const SimulationCase& c) {
+      const StiffnessModel& k = c.model.stiffness;
+      return static_cast<double>(k.route == StiffnessRoute::x_form ? xform_code
+                                                                   : static_cast<int>(k.rule));
+    };
+    method.set = [](SimulationCase& c, double code) {
+      StiffnessModel& k = c.model.stiffness;
+      if (static_cast<int>(code) == xform_code) {
+        k.route = StiffnessRoute::x_form;
+      } else {
+        k.route = StiffnessRoute::tau_form;
+        k.rule = static_cast<QuadratureRule>(static_cast<int>(code));
+      }
+    };
+    Field& xform_rule = r.choice(
+        "xform_rule", rules, false,
+        "the rule the x-form route integrates with (one of the tau-form rules); used only "
+        "with stiffness_method = \"xform\"",
+        [](auto& c) -> auto& { return c.model.stiffness.rule; });
+    xform_rule.set = [](SimulationCase& c, double code) {
+      StiffnessModel& k = c.model.stiffness;
+      if (k.route == StiffnessRoute::x_form)
+        k.rule = static_cast<QuadratureRule>(static_cast<int>(code));
+    };
+    r.number(
+        "stiffness_tolerance", {closed(1e-14), closed(1e-2), {}}, false,
+        "relative tolerance of every quadrature of Ke: 1e-14 is a few ulps of the "
+        "compliances, 1e-2 a rough run",
+        [](auto& c) -> auto& { return c.model.stiffness.relative_tolerance; });
+    for (const TermInfo& t : kTerms) {
+      r.on_off(
+          t.switch_key, std::string(t.description) + " of (29) in Ke (at least one term stays on)",
+          [index = index_of(t.term)](auto& c) -> auto& {
+            return c.model.stiffness.terms.on[index];
+          });
+    }
+  }
+  {
+    Rows r(rows, "integrator");
+    r.choice(
+        "kind",
+        {choice("rk4", IntegratorKind::rk4, "fixed-step RK4 with event location"),
+         choice("adaptive", IntegratorKind::adaptive,
+                "Dormand-Prince 5(4) with the same event location")},
+        false, "the integrator", [](auto& c) -> auto& { return c.integrator.kind; });
+    r.quantity(
+        "step", Dimension::time, "us", {open(0.0), {}, {}}, false,
+        "the fixed RK4 step (the adaptive integrator's first step); the dynamics also "
+        "requires at least " +
+            shortest_decimal(kStepsPerContactPeriod) + " steps per period of the stiffest contact",
+        [](auto& c) -> auto& { return c.integrator.step_s; });
+    r.quantity(
+        "end_time", Dimension::time, "ms", {open(0.0), {}, {}}, true,
+        "run length; at most " + bound_text(static_cast<double>(kMostSteps)) +
+            " steps of integrator.step: a longer run is a mistake (days of computing)",
+        [](auto& c) -> auto& { return c.integrator.end_time_s; });
+    r.number(
+        "relative_tolerance", {closed(1e-14), closed(1e-3), {}}, false,
+        "of the adaptive integrator, the cross-check of RK4: 1e-14 is a few ulps of the "
+        "state; looser than 1e-3 it no longer sets the step, the largest step that "
+        "resolves the contact does (cases 1-3 over 10 ms: the same steps, impacts and "
+        "losses at 1e-3 and 1e-2)",
+        [](auto& c) -> auto& { return c.integrator.adaptive_relative_tolerance; });
+    r.integer(
+        "output_every", {closed(1.0), closed(static_cast<double>(INT_MAX)), {}}, false,
+        "keep every n-th row of the time series",
+        [](auto& c) -> auto& { return c.integrator.output_every; });
+  }
+  return rows;
+}
+
+// "(0, 45]" with both bounds, "> 0" with one; empty without.
+template <typename Format>
+std::string interval(const Range& range, Format format, bool infinite_bounds) {
+  const auto& lower = range.lower;
+  const auto& upper = range.upper;
+  if (!lower && !upper) return {};
+  if ((lower && upper) || infinite_bounds) {
+    std::string text = lower ? (lower->closed ? "[" : "(") + format(lower->value) : "(-inf";
+    text += ", ";
+    text += upper ? format(upper->value) + (upper->closed ? "]" : ")") : "inf)";
+    return text;
+  }
+  if (lower) return (lower->closed ? ">= " : "> ") + format(lower->value);
+  return (upper->closed ? "<= " : "< ") + format(upper->value);
+}
+
+std::string choice_names(const Field& field) {
+  std::string list;
+  for (const ChoiceName& c : field.choices) {
+    if (!c.has_text) continue;
+    if (!list.empty()) list += ", ";
+    list += "\"" + std::string(c.name) + "\"";
+  }
+  return list;
+}
+
+const ChoiceName* choice_of(const Field& field, double code) {
+  for (const ChoiceName& c : field.choices) {
+    if (c.code == code) return &c;
+  }
+  return nullptr;
+}
+
+bool in_range(const Range& range, double value) {
+  if (!std::isfinite(value)) return false;
+  if (range.lower &&
+      (range.lower->closed ? value < range.lower->value : value <= range.lower->value)) {
+    return false;
+  }
+  if (range.upper &&
+      (range.upper->closed ? value > range.upper->value : value >= range.upper->value)) {
+    return false;
+  }
+  return true;
+}
+
+// The value in SI as a library user set it, for messages.
+std::string si_text(const Field& field, double value) {
+  switch (field.kind) {
+    case FieldKind::quantity:
+      return shortest_decimal(value) + " " + std::string(units_of(field.dimension).front().symbol);
+    case FieldKind::choice:
+    case FieldKind::on_off:
+      if (const ChoiceName* c = choice_of(field, value)) return "\"" + std::string(c->name) + "\"";
+      return "code " + shortest_decimal(value);
+    default:
+      return shortest_decimal(value);
+  }
+}
+
+std::string_view trim(std::string_view text) {
+  while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
+  while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) text.remove_suffix(1);
+  return text;
+}
+
+// A whole-text decimal number, or nothing.
+std::optional<double> plain_number(std::string_view text) {
+  text = trim(text);
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc{} || end != text.data() + text.size()) return std::nullopt;
+  return value;
+}
+
+const Field& field_or_throw(std::string_view key, std::string_view name) {
+  if (const Field* field = find_field(key)) return *field;
+  throw InputError(std::string(name.empty() ? "section.key" : name), std::string(key),
+                   "a key of the case schema, as section.key (`gearimpact schema` lists them)");
 }
 
 }  // namespace
 
-void validate_fields(const SimulationCase& c) {
-  validate(c.gears);
-  validate_torque("torque1", c.torque1);
-  validate_torque("torque2", c.torque2);
-  require_finite("theta1", c.initial.theta1_rad, "a finite angle in rad");
-  require_finite("theta2", c.initial.theta2_rad, "a finite angle in rad");
-  require_finite("w1", c.initial.w1_rad_s, "a finite speed in rad/s");
-  require_finite("w2", c.initial.w2_rad_s, "a finite speed in rad/s");
-  const ModelOptions& m = c.model;
-  if (!std::isfinite(m.friction_coefficient) || m.friction_coefficient < 0.0) {
-    throw InputError("friction", m.friction_coefficient, "a finite value >= 0");
+std::string Field::name() const {
+  if (section.empty()) return std::string(key);
+  return std::string(section) + "." + std::string(key);
+}
+
+const std::vector<Field>& case_schema() {
+  static const std::vector<Field> rows = make_schema();
+  return rows;
+}
+
+const Field* find_field(std::string_view section_dot_key) {
+  const std::size_t dot = section_dot_key.find('.');
+  const std::string_view section =
+      dot == std::string_view::npos ? std::string_view() : section_dot_key.substr(0, dot);
+  const std::string_view key =
+      dot == std::string_view::npos ? section_dot_key : section_dot_key.substr(dot + 1);
+  for (const Field& field : case_schema()) {
+    if (field.section == section && field.key == key) return &field;
   }
-  if (!std::isfinite(m.restitution.coefficient) || m.restitution.coefficient < 0.0) {
-    throw InputError("restitution_coefficient", m.restitution.coefficient,
-                     "a finite value >= 0 (c of (33) e = 1 - c Vi^p)");
+  return nullptr;
+}
+
+std::vector<std::string_view> schema_sections() {
+  std::vector<std::string_view> sections;
+  for (const Field& field : case_schema()) {
+    if (!field.section.empty() &&
+        std::find(sections.begin(), sections.end(), field.section) == sections.end()) {
+      sections.push_back(field.section);
+    }
   }
-  if (!std::isfinite(m.restitution.exponent) || m.restitution.exponent <= 0.0 ||
-      m.restitution.exponent > 1.0) {
-    throw InputError("restitution_exponent", m.restitution.exponent,
-                     "(0, 1] (p of (33) e = 1 - c Vi^p)");
+  return sections;
+}
+
+bool applies(const Field& field, const SimulationCase& c) {
+  if (!field.only_when) return true;
+  for (const Field& selector : case_schema()) {
+    if (selector.section == field.section && selector.key == field.only_when->key) {
+      const ChoiceName* chosen = choice_of(selector, selector.get(c));
+      return chosen != nullptr && chosen->name == field.only_when->choice;
+    }
   }
-  if (!std::isfinite(m.restitution.speed_unit_m_s) || m.restitution.speed_unit_m_s <= 0.0) {
-    throw InputError("restitution_speed_unit", m.restitution.speed_unit_m_s,
-                     "a finite value > 0 in m/s (the unit of Vi in (33))");
+  return false;
+}
+
+std::string allowed_text(const Field& field) {
+  std::string text;
+  switch (field.kind) {
+    case FieldKind::quantity: {
+      const std::string si(units_of(field.dimension).front().symbol);
+      const std::string bounds = interval(
+          field.range, [](double x) { return shortest_decimal(x); }, false);
+      text = std::string(describe(field.dimension));
+      if (bounds.empty()) {
+        text += ", any finite value";
+        break;
+      }
+      text += (field.range.lower && field.range.upper ? " in " : " ") + bounds + " " + si;
+      // The same bounds in the unit files are written in, where that differs
+      // and says more than 0.
+      const bool telling = (field.range.lower && field.range.lower->value != 0.0) ||
+                           (field.range.upper && field.range.upper->value != 0.0);
+      if (field.unit != si && telling) {
+        bool exact = true;
+        const std::string suffix = " " + std::string(field.unit);
+        const std::string readable = interval(
+            field.range,
+            [&](double x) {
+              std::string q = format_quantity(x, field.dimension, field.unit);
+              if (q.size() < suffix.size() ||
+                  q.compare(q.size() - suffix.size(), suffix.size(), suffix) != 0) {
+                exact = false;
+                return q;
+              }
+              return q.substr(0, q.size() - suffix.size());
+            },
+            false);
+        if (exact) text += ", i.e. " + readable + suffix;
+      }
+      break;
+    }
+    case FieldKind::number: {
+      const std::string bounds = interval(field.range, bound_text, true);
+      text = bounds.empty() ? "any finite number" : bounds;
+      break;
+    }
+    case FieldKind::integer:
+      text = "an integer in " +
+             interval(
+                 field.range, [](double x) { return std::to_string(static_cast<long long>(x)); },
+                 true);
+      break;
+    case FieldKind::choice:
+    case FieldKind::on_off:
+      text = "one of " + choice_names(field);
+      break;
+    case FieldKind::text:
+      text = "at most " + std::to_string(kLongestName) +
+             " letters, digits, '_', '-', '.' (it names output files)";
+      break;
+  }
+  if (!field.range.note.empty()) text += ", " + std::string(field.range.note);
+  return text;
+}
+
+std::string value_text(const Field& field, const SimulationCase& c, bool readable_unit) {
+  if (field.kind == FieldKind::text) return "\"" + field.get_text(c) + "\"";
+  const double value = field.get(c);
+  switch (field.kind) {
+    case FieldKind::quantity: {
+      const std::string_view unit =
+          readable_unit ? field.unit : units_of(field.dimension).front().symbol;
+      return "\"" + format_quantity(value, field.dimension, unit) + "\"";
+    }
+    case FieldKind::number: {
+      // TOML needs a point or an exponent to read a float back as one.
+      std::string text = shortest_decimal(value);
+      if (std::isfinite(value) && text.find_first_of(".e") == std::string::npos) text += ".0";
+      return text;
+    }
+    case FieldKind::integer:
+      return std::to_string(static_cast<long long>(value));
+    default: {
+      const ChoiceName* chosen = choice_of(field, value);
+      if (chosen == nullptr || !chosen->has_text) {
+        throw InputError(
+            field.name(), chosen != nullptr ? std::string(chosen->name) : si_text(field, value),
+            "one of " + choice_names(field) + " in a case file" +
+                (chosen != nullptr ? " (" + std::string(chosen->meaning) + ")" : std::string()));
+      }
+      return "\"" + std::string(chosen->name) + "\"";
+    }
+  }
+}
+
+std::string default_text(const Field& field) {
+  if (field.required) return "required";
+  if (field.kind == FieldKind::text) return "the file's stem";
+  return value_text(field, SimulationCase{});
+}
+
+void check_value(const Field& field, double value, std::string_view name,
+                 std::string_view written) {
+  bool ok = false;
+  switch (field.kind) {
+    case FieldKind::quantity:
+    case FieldKind::number:
+      ok = in_range(field.range, value);
+      break;
+    case FieldKind::integer:
+      ok = in_range(field.range, value) && value == std::floor(value);
+      break;
+    case FieldKind::choice:
+    case FieldKind::on_off:
+      ok = choice_of(field, value) != nullptr;
+      break;
+    case FieldKind::text:
+      break;
+  }
+  if (!ok) throw InputError(std::string(name), std::string(written), allowed_text(field));
+}
+
+void check_text(const Field& field, const std::string& value, std::string_view name) {
+  if (value.size() > kLongestName || !std::all_of(value.begin(), value.end(), is_name_character)) {
+    throw InputError(std::string(name), "\"" + value + "\"", allowed_text(field));
+  }
+}
+
+double parse_value(const Field& field, std::string_view value_text, std::string_view name) {
+  const std::string written(value_text);
+  double value = 0.0;
+  switch (field.kind) {
+    case FieldKind::quantity:
+      if (const std::optional<double> si = plain_number(value_text)) {
+        value = *si;
+      } else {
+        value = parse_quantity(value_text, field.dimension, name);
+      }
+      break;
+    case FieldKind::number:
+    case FieldKind::integer: {
+      const std::optional<double> number = plain_number(value_text);
+      if (!number) {
+        throw InputError(std::string(name), written,
+                         "a plain number (no unit) in " + allowed_text(field));
+      }
+      value = *number;
+      break;
+    }
+    case FieldKind::choice:
+    case FieldKind::on_off: {
+      const auto chosen = std::find_if(
+          field.choices.begin(), field.choices.end(),
+          [&](const ChoiceName& c) { return c.has_text && c.name == trim(value_text); });
+      if (chosen == field.choices.end()) {
+        throw InputError(std::string(name), written, allowed_text(field));
+      }
+      value = chosen->code;
+      break;
+    }
+    case FieldKind::text:
+      throw InputError(std::string(name), written, "a name: set it with set_field");
+  }
+  check_value(field, value, name, written);
+  return value;
+}
+
+void set_field(SimulationCase& c, std::string_view section_dot_key, std::string_view value_text,
+               std::string_view name_in_messages) {
+  const Field& field = field_or_throw(section_dot_key, name_in_messages);
+  const std::string name = name_in_messages.empty() ? field.name() : std::string(name_in_messages);
+  if (field.kind == FieldKind::text) {
+    const std::string value(trim(value_text));
+    check_text(field, value, name);
+    field.set_text(c, value);
+    return;
+  }
+  if (!applies(field, c)) {
+    throw InputError(name, std::string(value_text),
+                     "nothing: " + field.name() + " is used only with " +
+                         std::string(field.section) + "." + std::string(field.only_when->key) +
+                         " = \"" + std::string(field.only_when->choice) + "\" (set that first)");
+  }
+  field.set(c, parse_value(field, value_text, name));
+}
+
+double get_numeric_field(const SimulationCase& c, std::string_view section_dot_key) {
+  const Field& field = field_or_throw(section_dot_key, {});
+  if (field.kind != FieldKind::quantity && field.kind != FieldKind::number &&
+      field.kind != FieldKind::integer) {
+    throw InputError(field.name(),
+                     "(a " + std::string(field.kind == FieldKind::text ? "name" : "choice") + ")",
+                     "a quantity, number or integer key for get_numeric_field");
+  }
+  return field.get(c);
+}
+
+void validate_relations(const SimulationCase& c) {
+  try {
+    validate(c.gears);
+  } catch (const InputError& e) {
+    throw InputError("gears." + e.field(), e.value(), e.allowed());
+  }
+  const StiffnessModel& k = c.model.stiffness;
+  if (!k.terms.any()) {
+    throw InputError("model.hertz_term", "\"off\"",
+                     "\"on\" while bending_term and axial_term are \"off\" (model.hertz_term, "
+                     "bending_term and axial_term are all \"off\": at least one term of (29) "
+                     "must stay \"on\")");
+  }
+  const std::array<std::pair<const char*, const Torque*>, 2> torques{
+      {{"torque1", &c.torque1}, {"torque2", &c.torque2}}};
+  for (const auto& [name, torque] : torques) {
+    if (torque->kind == Torque::Kind::user && !torque->user) {
+      throw InputError(std::string(name) + ".user", "empty", "a callable T(t_s) in N m");
+    }
   }
   const IntegratorSettings& s = c.integrator;
-  if (!std::isfinite(s.end_time_s) || s.end_time_s <= 0.0) {
-    throw InputError("end_time", s.end_time_s, "a finite value > 0 s");
+  const double most_steps = static_cast<double>(kMostSteps);
+  if (s.end_time_s / s.step_s > most_steps) {
+    throw InputError("integrator.end_time", shortest_decimal(s.end_time_s) + " s",
+                     "at most " + bound_text(most_steps) +
+                         " steps of integrator.step = " + shortest_decimal(s.step_s) +
+                         " s, i.e. end_time <= " + shortest_decimal(most_steps * s.step_s) + " s");
   }
-  if (s.output_every < 1) {
-    throw InputError("output_every", std::to_string(s.output_every), "an integer >= 1");
+}
+
+void validate_fields(const SimulationCase& c) {
+  for (const Field& field : case_schema()) {
+    if (field.kind == FieldKind::text) {
+      check_text(field, field.get_text(c), field.name());
+    } else if (applies(field, c)) {
+      const double value = field.get(c);
+      check_value(field, value, field.name(), si_text(field, value));
+    }
   }
-  if (!std::isfinite(s.adaptive_relative_tolerance) || s.adaptive_relative_tolerance < 1e-14 ||
-      s.adaptive_relative_tolerance > 1e-3) {
-    throw InputError("adaptive_relative_tolerance", s.adaptive_relative_tolerance, "[1e-14, 1e-3]");
+  validate_relations(c);
+}
+
+std::string schema_markdown() {
+  const auto cell = [](std::string text) {
+    std::string escaped;
+    for (char ch : text) {
+      if (ch == '|') escaped += '\\';
+      escaped += ch;
+    }
+    return escaped;
+  };
+  std::string table = "| key | unit | default | allowed | meaning |\n|---|---|---|---|---|\n";
+  for (const Field& field : case_schema()) {
+    std::string help(field.help);
+    if (field.kind == FieldKind::choice) {
+      for (const ChoiceName& c : field.choices) {
+        if (c.has_text) help += "; \"" + std::string(c.name) + "\": " + std::string(c.meaning);
+      }
+    }
+    if (field.only_when) {
+      help += " (only with " + std::string(field.only_when->key) + " = \"" +
+              std::string(field.only_when->choice) + "\")";
+    }
+    const std::string unit =
+        field.kind == FieldKind::quantity ? std::string(field.unit) : std::string("-");
+    table += "| `" + field.name() + "` | " + cell(unit) + " | " + cell(default_text(field)) +
+             " | " + cell(allowed_text(field)) + " | " + cell(help) + " |\n";
   }
-  if (!std::isfinite(s.step_s) || s.step_s <= 0.0) {
-    throw InputError("step", s.step_s, "a finite value > 0 s");
-  }
+  return table;
 }
 
 }  // namespace gearimpact

@@ -1,6 +1,6 @@
 // Case files: a SimulationCase written as TOML with units on every quantity.
-// The schema (every key, its unit or range, and its default) is in
-// docs/case-files.md and in paper_data/case1.toml. Everything is read and
+// The keys, their units, ranges and defaults are the rows of the case schema
+// (io/schema.hpp; the table in docs/case-files.md). Everything is read and
 // checked here, before any work starts; the conversion to SI happens once.
 #pragma once
 
@@ -30,8 +30,9 @@ class CaseFileError : public std::invalid_argument {
 
 // Parses and validates `toml_text`; `file_name` is used in messages and, when
 // the file has no `name` key, its stem names the case. Throws CaseFileError.
-// Validates the gear pair by validate(GearPair); the step size against the
-// contact resolution belongs to the dynamics and is not checked here.
+// Checks every key by its schema row, then the checks across keys
+// (validate_relations) and the step against the contact resolution
+// (validate_step), each at the line of the key it names.
 SimulationCase parse_case(std::string_view toml_text, std::string_view file_name);
 
 // Reads and parses a case file (at most 1 MiB). Throws CaseFileError.

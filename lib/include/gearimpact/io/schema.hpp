@@ -1,13 +1,142 @@
-// The fields of a simulation case and their allowed ranges.
+// The schema of a simulation case: one row per case-file key, with its kind,
+// the unit it is written in, its allowed range, its help text and the field of
+// SimulationCase it reads and writes. The case-file reader and writer, the
+// library's validate_fields, the command-line flags (`--set section.key=value`
+// among them) and the table in docs/case-files.md (`gearimpact schema`) all
+// walk these rows, so a key, its range and its default live in one place.
+// Defaults are those of a default-constructed SimulationCase.
 #pragma once
 
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
 #include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/io/units.hpp"
 
 namespace gearimpact {
 
-// Throws InputError naming the first field outside its range: every check
-// but the step's upper bound, which needs the mesh stiffness (the dynamics
-// checks it, largest_resolving_step_s).
+enum class FieldKind {
+  quantity,  // a number with a unit of `dimension`: "10 mm"
+  number,    // a plain number, no unit
+  integer,
+  choice,  // one of the names of `choices`
+  on_off,  // "on" or "off"
+  text,    // a name
+};
+
+// One allowed name of a choice and the enumerator it stands for.
+struct ChoiceName {
+  std::string_view name;
+  int code;                  // static_cast<int>(enumerator)
+  std::string_view meaning;  // for the docs and for messages
+  // false: a value only the library can set (a torque given as a function);
+  // it has no text form, is never read and cannot be written.
+  bool has_text = true;
+};
+
+struct Bound {
+  double value;  // SI
+  bool closed;
+};
+
+// Bounds in SI; absent bounds are infinite. Every value must also be finite.
+struct Range {
+  std::optional<Bound> lower;
+  std::optional<Bound> upper;
+  std::string_view note;  // appended to the interval in messages: why these bounds
+};
+
+// A key that exists only when another key of its section has one value:
+// [torque1] value only with kind = "constant".
+struct FieldCondition {
+  std::string_view key;
+  std::string_view choice;
+};
+
+struct Field {
+  std::string_view section;  // "" for a top-level key
+  std::string_view key;
+  FieldKind kind = FieldKind::number;
+  Dimension dimension = Dimension::length;  // quantity
+  std::string_view unit;                    // quantity: the readable unit files are written in
+  Range range;                              // quantity, number, integer
+  std::vector<ChoiceName> choices;          // choice, on_off
+  bool required = false;                    // in a case file
+  std::optional<FieldCondition> only_when;
+  std::string help;
+  // The value as a double: SI for quantities, the number, the integer, the
+  // choice's code, 1/0 for on/off. Not for text rows.
+  std::function<double(const SimulationCase&)> get;
+  std::function<void(SimulationCase&, double)> set;
+  // Text rows.
+  std::function<std::string(const SimulationCase&)> get_text;
+  std::function<void(SimulationCase&, const std::string&)> set_text;
+
+  // "section.key", or "key" at the top level.
+  std::string name() const;
+};
+
+// Every key, in the order case files are written.
+const std::vector<Field>& case_schema();
+
+// The row of "section.key", or nullptr.
+const Field* find_field(std::string_view section_dot_key);
+
+// The sections in the order of case_schema(), without the top level.
+std::vector<std::string_view> schema_sections();
+
+// True when the row's condition (if any) holds for `c`.
+bool applies(const Field& field, const SimulationCase& c);
+
+// What the row allows, for messages and the docs: "a time > 0 s", "[0, inf)",
+// "an integer in [4, 100000]", "one of \"rk4\", \"adaptive\"".
+std::string allowed_text(const Field& field);
+
+// The row's value in `c` as a case file writes it: "2 mm", "0.04", "\"rk4\"".
+std::string value_text(const Field& field, const SimulationCase& c, bool readable_unit = true);
+
+// The value of the row in a default-constructed SimulationCase, as above, or
+// "required" for a key a case file must give.
+std::string default_text(const Field& field);
+
+// Throws InputError(name, written, allowed_text(field)) unless `value` (as
+// get() returns it) is finite and in the row's range or one of its choices.
+void check_value(const Field& field, double value, std::string_view name, std::string_view written);
+// The same for a text row.
+void check_text(const Field& field, const std::string& value, std::string_view name);
+
+// Reads `value_text` as the command line writes it: a quantity as a plain
+// number in SI or with a unit ("0.02", "20 ms"), a number, an integer, a
+// choice's name, on/off. Checks it against the row and returns it as get()
+// would. Errors are InputError naming `name` (the flag as typed, or
+// section.key).
+double parse_value(const Field& field, std::string_view value_text, std::string_view name);
+
+// Sets one key of `c` from text, by its row; errors name `section_dot_key`,
+// or `name_in_messages` when given (the flag a user typed).
+void set_field(SimulationCase& c, std::string_view section_dot_key, std::string_view value_text,
+               std::string_view name_in_messages = {});
+
+// The value of a quantity, number or integer key, in SI. Throws InputError for
+// an unknown key or one that is not numeric.
+double get_numeric_field(const SimulationCase& c, std::string_view section_dot_key);
+
+// The checks that involve more than one key: the gear pair as a whole
+// (validate(GearPair), its errors under gears.* names), at least one term of
+// (29), a callable user torque, at most kMostSteps steps. InputError names the
+// key as section.key.
+void validate_relations(const SimulationCase& c);
+
+// Throws InputError naming (as section.key) the first field outside its
+// range, then validate_relations: every check but the step's upper bound,
+// which needs the mesh stiffness (the dynamics checks it,
+// largest_resolving_step_s).
 void validate_fields(const SimulationCase& c);
+
+// The schema as a Markdown table: key, unit, default, allowed range, help.
+std::string schema_markdown();
 
 }  // namespace gearimpact

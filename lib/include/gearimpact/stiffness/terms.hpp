@@ -18,6 +18,7 @@ struct TermInfo {
   // "bending": names the term in case files (the [model] key bending_term
   // switches it) and in outputs (bending_energy_max_J).
   std::string_view id;
+  std::string_view switch_key;   // the [model] key that switches it: "bending_term"
   std::string_view description;  // for messages and documents
   // Column of its stiffness in tables: per tooth with the gear's number
   // appended (kb1, kb2), else as is (kh).
@@ -29,9 +30,10 @@ struct TermInfo {
 
 // In the order in which (29) sums them.
 inline constexpr std::array<TermInfo, kTermCount> kTerms{{
-    {Term::hertz, "hertz", "Hertzian contact, (4)", "kh", false},
-    {Term::bending, "bending", "tooth bending, (20),(22),(23)", "kb", true},
-    {Term::axial, "axial", "axial compression, (21),(24)", "ka", true},
+    {Term::hertz, "hertz", "hertz_term", "the Hertzian term 1/Kh of (4)", "kh", false},
+    {Term::bending, "bending", "bending_term", "the bending terms 1/Kb1 + 1/Kb2, (20),(22),(23)",
+     "kb", true},
+    {Term::axial, "axial", "axial_term", "the axial terms 1/Ka1 + 1/Ka2, (21),(24)", "ka", true},
 }};
 
 constexpr std::size_t index_of(Term term) {

@@ -1,0 +1,351 @@
+// The case schema: one range per key, whoever asks. The reader (parse_case)
+// and the library's checks (validate_fields, then validate_step as simulate()
+// runs it) must accept and refuse the same values at every bound of every
+// numeric key; the ranges the two validators used to disagree on are pinned to
+// the values chosen (restitution exponent (0, 1], adaptive tolerance
+// [1e-14, 1e-3], at most kMostSteps steps); set_field reads text with and
+// without units to the same doubles as the unit parser; errors name the key
+// as section.key; and the docs' tables are the program's.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/dynamics/step_bound.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/io/case_file.hpp"
+#include "gearimpact/io/schema.hpp"
+#include "gearimpact/io/units.hpp"
+#include "gearimpact/paper/table1.hpp"
+#include "run_command.hpp"
+
+using namespace gearimpact;
+
+namespace {
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+// Case 3 of Table 1: torque1 sinusoidal, torque2 constant, so every key of
+// the schema applies to one of the two torques.
+SimulationCase every_key_case() {
+  SimulationCase c = paper_case(3);
+  c.torque1.phase_rad = 0.25;
+  c.initial = {1e-4, -2e-4, 12.5, -3.0};
+  return c;
+}
+
+// A case the row applies to: every_key_case(), or for the keys of the other
+// torque kinds case 2 with torque2 made sinusoidal.
+SimulationCase case_for(const Field& field) {
+  SimulationCase c = every_key_case();
+  if (applies(field, c)) return c;
+  c = paper_case(2);
+  c.torque2.kind = Torque::Kind::sinusoidal;
+  c.torque2.amplitude_n_m = -0.3;
+  c.torque2.angular_frequency_rad_s = 500.0;
+  c.torque2.phase_rad = -1.5;
+  REQUIRE(applies(field, c));
+  return c;
+}
+
+// The InputError of `check`, or nothing.
+std::optional<InputError> error_of(const std::function<void()>& check) {
+  try {
+    check();
+  } catch (const InputError& e) {
+    return e;
+  }
+  return std::nullopt;
+}
+
+// The library's checks of a case, as simulate() makes them. A mesh
+// stiffness that cannot be computed (QuadratureError) refuses the case too.
+bool library_accepts(const SimulationCase& c) {
+  try {
+    validate_fields(c);
+    validate_step(c, largest_resolving_step_s(c));
+  } catch (const InputError&) {
+    return false;
+  } catch (const QuadratureError&) {
+    return false;
+  }
+  return true;
+}
+
+bool reader_accepts(const SimulationCase& c) {
+  const std::string text = write_case_file(c, CaseUnits::si);
+  try {
+    parse_case(text, "bound.toml");
+  } catch (const CaseFileError&) {
+    return false;
+  }
+  return true;
+}
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream stream(path);
+  std::stringstream buffer;
+  buffer << stream.rdbuf();
+  return buffer.str();
+}
+
+// The text between the line holding `begin` and the line holding `end`.
+std::string between(const std::string& text, const std::string& begin, const std::string& end) {
+  const std::size_t a = text.find(begin);
+  REQUIRE(a != std::string::npos);
+  const std::size_t start = text.find('\n', a) + 1;
+  const std::size_t stop = text.find(end, start);
+  REQUIRE(stop != std::string::npos);
+  return text.substr(start, stop - start);
+}
+
+}  // namespace
+
+TEST_CASE("a default-constructed case and the paper's cases pass every row") {
+  CHECK_FALSE(error_of([] { validate_fields(SimulationCase{}); }).has_value());
+  for (int n = 1; n <= 3; ++n) {
+    CAPTURE(n);
+    CHECK_FALSE(error_of([&] { validate_fields(paper_case(n)); }).has_value());
+  }
+}
+
+TEST_CASE("the reader and the library accept and refuse the same values at every bound") {
+  // Each finite bound, the doubles either side of it, and for a key without
+  // bounds a huge value of either sign: the two paths must agree on each.
+  int compared = 0;
+  int refused = 0;
+  for (const Field& field : case_schema()) {
+    if (field.kind != FieldKind::quantity && field.kind != FieldKind::number &&
+        field.kind != FieldKind::integer) {
+      continue;
+    }
+    std::vector<double> values;
+    for (const std::optional<Bound>& bound : {field.range.lower, field.range.upper}) {
+      if (!bound) continue;
+      values.push_back(bound->value);
+      if (field.kind == FieldKind::integer) {
+        values.push_back(bound->value - 1.0);
+        values.push_back(bound->value + 1.0);
+      } else {
+        values.push_back(std::nextafter(bound->value, -1e300));
+        values.push_back(std::nextafter(bound->value, 1e300));
+      }
+    }
+    if (values.empty()) values = {-1e30, 1e30};
+    for (double value : values) {
+      SimulationCase c = case_for(field);
+      field.set(c, value);
+      CAPTURE(field.name());
+      CAPTURE(value);
+      const bool library = library_accepts(c);
+      CHECK(reader_accepts(c) == library);
+      ++compared;
+      if (!library) ++refused;
+    }
+  }
+  // 2 or 3 values a bound over some 30 numeric keys; about a third are
+  // outside their range (one of the three values at each bound).
+  CHECK(compared > 80);
+  CHECK(refused > 25);
+}
+
+TEST_CASE("the ranges the two validators disagreed on: one range, both paths") {
+  struct Probe {
+    const char* key;
+    double value;
+    bool allowed;
+  };
+  // Restitution exponent: (0, 1] (e falls with Vi; the published laws have
+  // p from 1/5 to 1). Adaptive tolerance: [1e-14, 1e-3]. Steps: the paper's
+  // 1e-7 s step allows end_time up to kMostSteps * 1e-7 s = 200 s.
+  const double longest_s = static_cast<double>(kMostSteps) * 1e-7;
+  for (const Probe& probe : {Probe{"model.restitution_exponent", 2.0, false},
+                             Probe{"model.restitution_exponent", 1.0, true},
+                             Probe{"model.restitution_exponent", std::nextafter(1.0, 2.0), false},
+                             Probe{"model.restitution_exponent", 0.0, false},
+                             Probe{"integrator.relative_tolerance", 5e-3, false},
+                             Probe{"integrator.relative_tolerance", 1e-3, true},
+                             Probe{"integrator.relative_tolerance", 1e-14, true},
+                             Probe{"integrator.end_time", longest_s, true},
+                             Probe{"integrator.end_time", std::nextafter(longest_s, 1e9), false}}) {
+    CAPTURE(probe.key);
+    CAPTURE(probe.value);
+    SimulationCase c = paper_case(1);
+    find_field(probe.key)->set(c, probe.value);
+    CHECK(library_accepts(c) == probe.allowed);
+    CHECK(reader_accepts(c) == probe.allowed);
+    const std::optional<InputError> error = error_of([&] { validate_fields(c); });
+    CHECK(error.has_value() == !probe.allowed);
+    if (error) CHECK(error->field() == probe.key);
+  }
+  CHECK(allowed_text(*find_field("model.restitution_exponent")) == "(0, 1]");
+  CHECK(allowed_text(*find_field("integrator.relative_tolerance")) == "[1e-14, 1e-3]");
+}
+
+TEST_CASE("library errors name the key as section.key, cross-key checks included") {
+  struct Fault {
+    std::function<void(SimulationCase&)> apply;
+    std::string field;
+    std::string part;  // of the allowed range
+  };
+  const std::vector<Fault> faults{
+      {[](SimulationCase& c) { c.gears.teeth1 = 3; }, "gears.teeth1", "[4, 100000]"},
+      // 2 ha / sin^2(20 deg) = 17.097: the undercut limit, a check across keys.
+      {[](SimulationCase& c) { c.gears.teeth1 = 17; }, "gears.teeth1", "17.097"},
+      {[](SimulationCase& c) { c.gears.addendum_coefficient = 0.4; }, "gears.contact_ratio",
+       "[1, 3)"},
+      {[](SimulationCase& c) { c.gears.pressure_angle_rad = 0.26; }, "gears.addendum_coefficient",
+       "interference"},
+      {[](SimulationCase& c) { c.gears.youngs_modulus_pa = 0.0; }, "gears.youngs_modulus",
+       "> 0 Pa"},
+      {[](SimulationCase& c) { c.model.restitution.exponent = 2.0; }, "model.restitution_exponent",
+       "(0, 1]"},
+      {[](SimulationCase& c) { c.integrator.adaptive_relative_tolerance = 5e-3; },
+       "integrator.relative_tolerance", "[1e-14, 1e-3]"},
+      {[](SimulationCase& c) { c.integrator.end_time_s = 1000.0; }, "integrator.end_time",
+       "at most 2e9 steps"},
+      {[](SimulationCase& c) { c.integrator.output_every = 0; }, "integrator.output_every",
+       "[1, 2147483647]"},
+      {[](SimulationCase& c) { c.torque1.constant_n_m = std::nan(""); }, "torque1.value",
+       "any finite value"},
+      {[](SimulationCase& c) {
+         c.model.stiffness.terms.set(Term::hertz, false);
+         c.model.stiffness.terms.set(Term::bending, false);
+         c.model.stiffness.terms.set(Term::axial, false);
+       },
+       "model.hertz_term", "at least one term of (29)"},
+      {[](SimulationCase& c) { c.model.damping_form = static_cast<DampingForm>(7); },
+       "model.damping_form", "\"lee-wang\""},
+      {[](SimulationCase& c) { c.name = "a/b"; }, "name", "letters, digits"},
+  };
+  for (const Fault& fault : faults) {
+    CAPTURE(fault.field);
+    SimulationCase c = paper_case(2);
+    fault.apply(c);
+    const std::optional<InputError> error = error_of([&] { validate_fields(c); });
+    REQUIRE(error.has_value());
+    CHECK(error->field() == fault.field);
+    CHECK(contains(error->allowed(), fault.part));
+    CHECK(contains(error->what(), fault.field + " = "));
+  }
+}
+
+TEST_CASE("set_field reads text as the unit parser does; get_numeric_field reads it back") {
+  SimulationCase c = paper_case(1);
+  // A plain number is SI; a unit converts by the same exact decimal shift.
+  set_field(c, "integrator.end_time", "20 ms");
+  CHECK(c.integrator.end_time_s == 20e-3);
+  set_field(c, "integrator.end_time", "0.02");
+  CHECK(c.integrator.end_time_s == 0.02);
+  set_field(c, "integrator.step", "0.05us");
+  CHECK(c.integrator.step_s == 0.05e-6);
+  set_field(c, "gears.pressure_angle", "25 deg");
+  CHECK(c.gears.pressure_angle_rad == 25.0 * (std::numbers::pi / 180.0));
+  set_field(c, "gears.teeth2", "81");
+  CHECK(c.gears.teeth2 == 81);
+  set_field(c, "model.damping_stiffness", "pitch-pair-at-impact");
+  CHECK(c.model.damping_stiffness == DampingStiffness::pitch_pair_at_impact);
+  set_field(c, "model.axial_term", "off");
+  CHECK_FALSE(c.model.stiffness.terms.has(Term::axial));
+  set_field(c, "name", "run-7");
+  CHECK(c.name == "run-7");
+  CHECK(get_numeric_field(c, "gears.teeth2") == 81.0);
+  CHECK(get_numeric_field(c, "integrator.step") == 0.05e-6);
+
+  // Every numeric key of a case with every field changed: its SI value
+  // written as the shortest decimal sets the same double on another case.
+  int keys = 0;
+  for (const Field& field : case_schema()) {
+    if (field.kind != FieldKind::quantity && field.kind != FieldKind::number &&
+        field.kind != FieldKind::integer) {
+      continue;
+    }
+    CAPTURE(field.name());
+    const SimulationCase from = case_for(field);
+    SimulationCase to = from;
+    field.set(to, 0.0);
+    set_field(to, field.name(), shortest_decimal(field.get(from)));
+    CHECK(get_numeric_field(to, field.name()) == field.get(from));
+    ++keys;
+  }
+  CHECK(keys >= 30);
+}
+
+TEST_CASE("set_field refuses with the key or the name the caller gives, and the allowed range") {
+  SimulationCase c = paper_case(1);
+  const auto refused = [&](const char* key, const char* text, const char* name = "") {
+    const std::optional<InputError> error = error_of([&] { set_field(c, key, text, name); });
+    REQUIRE(error.has_value());
+    return *error;
+  };
+  const InputError zero = refused("integrator.end_time", "0");
+  CHECK(zero.field() == "integrator.end_time");
+  CHECK(zero.allowed() == "a time > 0 s");
+  CHECK(refused("integrator.end_time", "0 ms", "--t-end").field() == "--t-end");
+  CHECK(contains(refused("integrator.end_time", "nan").allowed(), "> 0 s"));
+  CHECK(contains(refused("integrator.end_time", "20 furlong").what(), "unknown unit"));
+  CHECK(contains(refused("model.friction_coefficient", "0.04 mm").allowed(), "no unit"));
+  CHECK(contains(refused("gears.teeth1", "20.5").allowed(), "an integer in [4, 100000]"));
+  CHECK(contains(refused("model.damping_stiffness", "pair").allowed(), "\"current-pair\""));
+  CHECK(contains(refused("torque1.kind", "user").allowed(), "\"sinusoidal\""));
+  CHECK(contains(refused("torque1.amplitude", "1 N*m").allowed(), "kind = \"sinusoidal\""));
+  CHECK(contains(refused("no.such_key", "1").allowed(), "gearimpact schema"));
+  CHECK(contains(refused("name", "a b").allowed(), "letters, digits"));
+  set_field(c, "torque1.kind", "sinusoidal");
+  set_field(c, "torque1.amplitude", "1 N*m");
+  CHECK(c.torque1.amplitude_n_m == 1.0);
+  CHECK_THROWS_AS(get_numeric_field(c, "model.damping_form"), InputError);
+  CHECK_THROWS_AS(get_numeric_field(c, "name"), InputError);
+}
+
+TEST_CASE("the writer writes exactly the keys that apply, each a row of the schema") {
+  const SimulationCase c = every_key_case();
+  std::set<std::string> written;
+  std::string section;
+  std::istringstream lines(write_case_file(c));
+  std::string line;
+  while (std::getline(lines, line)) {
+    if (line.empty() || line.front() == '#') continue;
+    if (line.front() == '[') {
+      section = line.substr(1, line.find(']') - 1) + ".";
+      continue;
+    }
+    written.insert(section + line.substr(0, line.find(' ')));
+  }
+  std::set<std::string> expected;
+  for (const Field& field : case_schema()) {
+    if (applies(field, c)) expected.insert(field.name());
+  }
+  CHECK(written == expected);
+  // Case 3: torque1 sinusoidal (4 keys), torque2 constant (2), 10 [gears],
+  // 4 [initial], 14 [model], 5 [integrator], name.
+  CHECK(written.size() == 40);
+}
+
+TEST_CASE("docs/case-files.md holds the program's schema and flag tables") {
+  const std::string docs =
+      read_text(std::filesystem::path(GEARIMPACT_PAPER_DATA_DIR) / ".." / "docs" / "case-files.md");
+  const verify::CommandResult schema = verify::run_command(verify::cli("schema"));
+  REQUIRE(schema.exit_code == 0);
+  CHECK(schema.out == schema_markdown());
+  CHECK(between(docs, "<!-- schema table:", "<!-- end of schema table -->") == schema.out);
+  const verify::CommandResult flags = verify::run_command(verify::cli("schema --flags"));
+  REQUIRE(flags.exit_code == 0);
+  CHECK(between(docs, "<!-- flag table:", "<!-- end of flag table -->") == flags.out);
+  // One table row per key, after the header and the rule.
+  CHECK(static_cast<std::size_t>(std::count(schema.out.begin(), schema.out.end(), '\n')) ==
+        case_schema().size() + 2);
+}
