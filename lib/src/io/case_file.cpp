@@ -718,10 +718,12 @@ void write_torque(Writer& out, std::string_view name, const Torque& torque) {
                    Dimension::angular_frequency, "rad/s");
       out.quantity("phase", torque.phase_rad, Dimension::angle, "deg");
       return;
+    case Torque::Kind::harmonic:
     case Torque::Kind::user:
       break;
   }
-  throw InputError(std::string(name) + ".kind", "user",
+  throw InputError(std::string(name) + ".kind",
+                   torque.kind == Torque::Kind::user ? "user" : "harmonic",
                    "constant or sinusoidal: a torque given as a function has no case-file form");
 }
 

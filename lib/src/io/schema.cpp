@@ -25,6 +25,8 @@ void validate_torque(const char* field, const Torque& torque) {
                      "a finite value in rad/s");
       require_finite((name + ".phase").c_str(), torque.phase_rad, "a finite value in rad");
       break;
+    case Torque::Kind::harmonic:  // checked with the model options (dynamics/simulate.cpp)
+      break;
     case Torque::Kind::user:
       if (!torque.user) throw InputError(name + ".user", "empty", "a callable T(t_s) in N m");
       break;
