@@ -27,9 +27,4 @@ double mean_mesh_stiffness_n_m(const SimulationCase& c, const StiffnessTable& ta
   return integral.value / base_pitch(c.gears);
 }
 
-double mesh_damping_n_s_m(double damping_ratio, double mean_stiffness_n_m,
-                          double effective_mass_kg) {
-  return 2.0 * damping_ratio * std::sqrt(mean_stiffness_n_m * effective_mass_kg);
-}
-
 }  // namespace gearimpact

@@ -6,6 +6,7 @@
 #include "gearimpact/contact/contact.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/error.hpp"
+#include "gearimpact/steady/closed_forms.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 
 namespace gearimpact {
@@ -75,8 +76,8 @@ GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table, con
                     : 0.0;
   damping_on_current_pair_ = c.model.damping_stiffness == DampingStiffness::current_pair;
   if (c.model.mesh_damping_ratio > 0.0) {
-    mesh_damping_ = mesh_damping_n_s_m(c.model.mesh_damping_ratio,
-                                       mean_mesh_stiffness_n_m(c, table), effective_mass_kg(g));
+    mesh_damping_ = viscous_mesh_damping_n_s_per_m(
+        c.model.mesh_damping_ratio, mean_mesh_stiffness_n_m(c, table), effective_mass_kg(g));
   }
 }
 

@@ -1,6 +1,7 @@
 // The mesh as one spring between the gears along the line of action: the
-// effective mass of the relative mode, the mean mesh stiffness and the linear
-// viscous mesh damper of STEADY-STATE.md sections 1 and 2.
+// effective mass of the relative mode and the mean mesh stiffness of
+// STEADY-STATE.md section 2, which set the viscous mesh damper
+// (viscous_mesh_damping_n_s_per_m, steady/closed_forms.hpp).
 #pragma once
 
 #include "gearimpact/dynamics/simulation_case.hpp"
@@ -17,9 +18,5 @@ double effective_mass_kg(const GearPair& pair);
 // position of the segment is passed by exactly one loaded pair (42). Throws
 // QuadratureError when the integral misses its tolerance.
 double mean_mesh_stiffness_n_m(const SimulationCase& c, const StiffnessTable& table);
-
-// c = 2 zeta sqrt(k_mean m_e), N s/m (STEADY-STATE.md section 1).
-double mesh_damping_n_s_m(double damping_ratio, double mean_stiffness_n_m,
-                          double effective_mass_kg);
 
 }  // namespace gearimpact
