@@ -1,0 +1,67 @@
+// Sweeps of the steady state along a line of one parameter (STEADY-STATE.md section 4): each
+// point starts from the previous point's steady state (continuation), so a line is sequential;
+// lines (a second parameter's values, the two directions) are independent and are the unit of
+// parallel work and of sharding. Rows are keyed (line, direction, index), index the position of
+// the value in the ascending grid, whatever the direction.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/io/units.hpp"
+#include "gearimpact/steady/steady_state.hpp"
+#include "gearimpact/stiffness/table.hpp"
+
+namespace gearimpact {
+
+// A numeric case-file key a sweep can vary, as section.key.
+struct SweepKey {
+  std::string name;
+  bool dimensionless = false;
+  Dimension dimension = Dimension::length;  // unless dimensionless
+};
+
+// The keys: torque1/torque2 .mean .amplitude .angular_frequency .phase, initial .w1 .w2, gears.backlash, model .mesh_damping_ratio .constant_mesh_stiffness
+// .damping_reference_speed. Throws InputError naming the key and listing them.
+const SweepKey& sweep_key(const std::string& name);
+std::vector<std::string> sweep_key_names();
+
+// Sets the key to an SI value. torqueN.mean sets a constant torque's value; amplitude,
+// angular_frequency and phase turn a constant torque into a sinusoid about its value.
+void set_sweep_value(SimulationCase& c, const std::string& key, double si_value);
+
+// points values from `from` to `to`, the last exactly `to`. Throws InputError naming `points_key`
+// unless points >= 1 (and from == to when points == 1), `from_key`/`to_key` unless finite.
+std::vector<double> sweep_grid(double from, double to, int points, const char* from_key,
+                               const char* to_key, const char* points_key);
+
+enum class SweepDirection { up, down };
+std::string to_string(SweepDirection direction);
+
+struct SweepPointResult {
+  int line = 0;
+  SweepDirection direction = SweepDirection::up;
+  int index = 0;
+  double value_si = 0.0;
+  SteadyPoint point;
+  // A run that failed (SimulationError): its message; the point is not converged and the next
+  // starts afresh from the case's initial state.
+  std::string failure;
+};
+
+using TableFor = std::function<std::shared_ptr<const StiffnessTable>(const SimulationCase&)>;
+
+// One line: line_case with `key` set to each grid value in the direction's order, each point
+// started from the previous one's final state (the first from line_case's initial state). When
+// the key is a speed (initial.w1 or initial.w2) the carried speeds are both shifted so that the
+// relative motion carries over: w1 += dw1 and w2 += dw1 Rb1/Rb2 (or w2 += dw2, w1 += dw2
+// Rb2/Rb1). `on_point` (may be empty) is called after each point.
+std::vector<SweepPointResult> sweep_line(
+    const SimulationCase& line_case, const TableFor& table_for, const std::string& key,
+    const std::vector<double>& grid, SweepDirection direction, int line,
+    const SteadySettings& settings, const std::function<void(const SweepPointResult&)>& on_point);
+
+}  // namespace gearimpact
