@@ -14,5 +14,7 @@ void register_reproduce_commands(CLI::App& app);
 void register_simulate_commands(CLI::App& app);
 // `check-case FILE`: reads and validates a case file, prints it in SI units.
 void register_case_commands(CLI::App& app);
+// `sweep` (the steady state along a parameter) and `merge` (its shards).
+void register_sweep_commands(CLI::App& app);
 
 }  // namespace gearimpact::cli

@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   gearimpact::cli::register_reproduce_commands(app);
   gearimpact::cli::register_simulate_commands(app);
   gearimpact::cli::register_case_commands(app);
+  gearimpact::cli::register_sweep_commands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

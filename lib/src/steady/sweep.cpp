@@ -62,6 +62,8 @@ std::vector<KeyEntry> make_keys() {
                   [](SimulationCase& c, double v) { c.initial.w2_rad_s = v; }});
   keys.push_back({quantity("gears.backlash", Dimension::length),
                   [](SimulationCase& c, double v) { c.gears.backlash_m = v; }});
+  keys.push_back({SweepKey{"model.friction_coefficient", true, Dimension::length},
+                  [](SimulationCase& c, double v) { c.model.friction_coefficient = v; }});
   keys.push_back({SweepKey{"model.mesh_damping_ratio", true, Dimension::length},
                   [](SimulationCase& c, double v) { c.model.mesh_damping_ratio = v; }});
   // N/m has no Dimension of its own in io/units: a force per length is a pressure times a
@@ -142,6 +144,13 @@ std::vector<SweepPointResult> sweep_line(
     const double value = grid[static_cast<std::size_t>(index)];
     SimulationCase c = line_case;
     set_sweep_value(c, key, value);
+    // A speed moves the case's other speed with it, so that every point has the relative motion
+    // (and the rolling) of line_case, at its own mean speed.
+    if (key == "initial.w1") {
+      c.initial.w2_rad_s += (value - line_case.initial.w1_rad_s) * rb1 / rb2;
+    } else if (key == "initial.w2") {
+      c.initial.w1_rad_s += (value - line_case.initial.w2_rad_s) * rb2 / rb1;
+    }
     std::optional<RunState> start = carried;
     if (start && (key == "initial.w1" || key == "initial.w2")) {
       // The relative motion s' = Rb1 w1 - Rb2 w2 carries over; the mean speed moves.

@@ -24,7 +24,8 @@ struct SweepKey {
   Dimension dimension = Dimension::length;  // unless dimensionless
 };
 
-// The keys: torque1/torque2 .mean .amplitude .angular_frequency .phase, initial .w1 .w2, gears.backlash, model .mesh_damping_ratio .constant_mesh_stiffness
+// The keys: torque1/torque2 .mean .amplitude .angular_frequency .phase, initial .w1 .w2,
+// gears.backlash, model .friction_coefficient .mesh_damping_ratio .constant_mesh_stiffness
 // .damping_reference_speed. Throws InputError naming the key and listing them.
 const SweepKey& sweep_key(const std::string& name);
 std::vector<std::string> sweep_key_names();
@@ -56,9 +57,10 @@ using TableFor = std::function<std::shared_ptr<const StiffnessTable>(const Simul
 
 // One line: line_case with `key` set to each grid value in the direction's order, each point
 // started from the previous one's final state (the first from line_case's initial state). When
-// the key is a speed (initial.w1 or initial.w2) the carried speeds are both shifted so that the
-// relative motion carries over: w1 += dw1 and w2 += dw1 Rb1/Rb2 (or w2 += dw2, w1 += dw2
-// Rb2/Rb1). `on_point` (may be empty) is called after each point.
+// the key is a speed (initial.w1 or initial.w2) the other speed moves with it, in the case and in
+// the carried state, so that the relative motion carries over: w1 += dw1 and w2 += dw1 Rb1/Rb2
+// (or w2 += dw2, w1 += dw2 Rb2/Rb1); give line_case rolling speeds (Rb1 w1 = Rb2 w2). `on_point`
+// (may be empty) is called after each point.
 std::vector<SweepPointResult> sweep_line(
     const SimulationCase& line_case, const TableFor& table_for, const std::string& key,
     const std::vector<double>& grid, SweepDirection direction, int line,
