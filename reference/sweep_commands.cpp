@@ -332,8 +332,8 @@ void run_sweep(SweepCommandOptions& o) {
   // Refuse a case without a steady state before any work, naming the key.
   {
     SimulationCase probe = base;
-    set_sweep_value(probe, o.vary, grid.front());
-    if (!o.vary2.empty()) set_sweep_value(probe, o.vary2, grid2.front());
+    if (!o.vary2.empty()) apply_sweep_value(probe, base, o.vary2, grid2.front());
+    apply_sweep_value(probe, SimulationCase(probe), o.vary, grid.front());
     validate(probe);
     require_steady_case(probe);
   }
@@ -357,8 +357,9 @@ void run_sweep(SweepCommandOptions& o) {
   for (const Unit& unit : units) {
     futures.push_back(pool.run([&, unit] {
       SimulationCase line_case = base;
-      if (!o.vary2.empty())
-        set_sweep_value(line_case, o.vary2, grid2[static_cast<std::size_t>(unit.line)]);
+      if (!o.vary2.empty()) {
+        apply_sweep_value(line_case, base, o.vary2, grid2[static_cast<std::size_t>(unit.line)]);
+      }
       return sweep_line(
           line_case, [&](const SimulationCase& c) { return pool.table_for(c); }, o.vary, grid,
           unit.direction, unit.line, o.settings,

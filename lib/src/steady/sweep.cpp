@@ -108,6 +108,22 @@ void set_sweep_value(SimulationCase& c, const std::string& key, double si_value)
   entry(key).set(c, si_value);
 }
 
+void apply_sweep_value(SimulationCase& c, const SimulationCase& base, const std::string& key,
+                       double si_value) {
+  set_sweep_value(c, key, si_value);
+  const double rb1 = base_radius(base.gears, Gear::one);
+  const double rb2 = base_radius(base.gears, Gear::two);
+  if (key == "initial.w1") {
+    c.initial.w2_rad_s = base.initial.w2_rad_s + (si_value - base.initial.w1_rad_s) * rb1 / rb2;
+  } else if (key == "initial.w2") {
+    c.initial.w1_rad_s = base.initial.w1_rad_s + (si_value - base.initial.w2_rad_s) * rb2 / rb1;
+  } else if (key == "torque1.mean") {
+    set_sweep_value(c, "torque2.mean", -si_value * rb2 / rb1);
+  } else if (key == "torque2.mean") {
+    set_sweep_value(c, "torque1.mean", -si_value * rb1 / rb2);
+  }
+}
+
 std::vector<double> sweep_grid(double from, double to, int points, const char* from_key,
                                const char* to_key, const char* points_key) {
   if (!std::isfinite(from)) throw InputError(from_key, from, "a finite value");
@@ -143,14 +159,7 @@ std::vector<SweepPointResult> sweep_line(
     const int index = direction == SweepDirection::up ? step : n - 1 - step;
     const double value = grid[static_cast<std::size_t>(index)];
     SimulationCase c = line_case;
-    set_sweep_value(c, key, value);
-    // A speed moves the case's other speed with it, so that every point has the relative motion
-    // (and the rolling) of line_case, at its own mean speed.
-    if (key == "initial.w1") {
-      c.initial.w2_rad_s += (value - line_case.initial.w1_rad_s) * rb1 / rb2;
-    } else if (key == "initial.w2") {
-      c.initial.w1_rad_s += (value - line_case.initial.w2_rad_s) * rb2 / rb1;
-    }
+    apply_sweep_value(c, line_case, key, value);
     std::optional<RunState> start = carried;
     if (start && (key == "initial.w1" || key == "initial.w2")) {
       // The relative motion s' = Rb1 w1 - Rb2 w2 carries over; the mean speed moves.

@@ -34,6 +34,13 @@ std::vector<std::string> sweep_key_names();
 // angular_frequency and phase turn a constant torque into a sinusoid about its value.
 void set_sweep_value(SimulationCase& c, const std::string& key, double si_value);
 
+// set_sweep_value, and what keeps a swept case comparable to `base`: a speed moves the other
+// speed with it (w2 = base w2 + (w1 - base w1) Rb1/Rb2, or the converse), so that the relative
+// motion and the rolling of base carry over at another mean speed; a torque's mean moves the
+// other torque's mean so that they stay balanced, T1/Rb1 + T2/Rb2 = 0 (a load sweep).
+void apply_sweep_value(SimulationCase& c, const SimulationCase& base, const std::string& key,
+                       double si_value);
+
 // points values from `from` to `to`, the last exactly `to`. Throws InputError naming `points_key`
 // unless points >= 1 (and from == to when points == 1), `from_key`/`to_key` unless finite.
 std::vector<double> sweep_grid(double from, double to, int points, const char* from_key,
@@ -55,7 +62,8 @@ struct SweepPointResult {
 
 using TableFor = std::function<std::shared_ptr<const StiffnessTable>(const SimulationCase&)>;
 
-// One line: line_case with `key` set to each grid value in the direction's order, each point
+// One line: line_case with `key` set to each grid value (apply_sweep_value) in the direction's
+// order, each point
 // started from the previous one's final state (the first from line_case's initial state). When
 // the key is a speed (initial.w1 or initial.w2) the other speed moves with it, in the case and in
 // the carried state, so that the relative motion carries over: w1 += dw1 and w2 += dw1 Rb1/Rb2
