@@ -303,7 +303,8 @@ void run_sweep(SweepCommandOptions& o) {
     const std::size_t eq = assignment.find('=');
     if (eq == std::string::npos) throw InputError("--set", assignment, "KEY=VALUE");
     const std::string key = assignment.substr(0, eq);
-    set_sweep_value(base, key, parse_value(key, assignment.substr(eq + 1), "--set"));
+    const SimulationCase before = base;
+    apply_sweep_value(base, before, key, parse_value(key, assignment.substr(eq + 1), "--set"));
   }
   if (!o.mesh_stiffness.empty()) {
     base.model.mesh_stiffness = o.mesh_stiffness == "constant" ? MeshStiffnessMode::constant
@@ -498,7 +499,10 @@ void register_sweep_commands(CLI::App& app) {
   sweep->add_option("--shard", o->shard,
                     "K/N: the lines u with u % N == K (default: SLURM_ARRAY_TASK_ID - "
                     "SLURM_ARRAY_TASK_MIN of SLURM_ARRAY_TASK_COUNT, else all)");
-  sweep->add_option("--set", o->set, "KEY=VALUE for any sweep key, before the sweep (repeatable)");
+  sweep->add_option(
+      "--set", o->set,
+      "KEY=VALUE for any sweep key, before the sweep, in order (repeatable); as a swept value: "
+      "a speed moves the other speed, a mean torque the other mean torque (balance)");
   sweep->add_option("--mesh-stiffness", o->mesh_stiffness, "time-varying or constant")
       ->check(CLI::IsMember({"time-varying", "constant"}));
   sweep->add_option("--damping-update", o->damping_update, "each-impact, frozen or off")
