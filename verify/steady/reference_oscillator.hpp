@@ -16,6 +16,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -40,8 +41,8 @@ struct OscillatorParameters {
 struct OscillatorRecord {
   bool lost_drive_contact = false;  // entered |x| <= 1
   bool reached_coast = false;       // entered x < -1
-  double min_x = INFINITY;
-  double max_x = -INFINITY;
+  double min_x = std::numeric_limits<double>::infinity();
+  double max_x = -std::numeric_limits<double>::infinity();
   void see(double x) {
     min_x = std::min(min_x, x);
     max_x = std::max(max_x, x);
@@ -110,12 +111,12 @@ class ReferenceOscillator {
 
   // The boundary left when a step of the region's branch ends at x, or NaN if it stays inside.
   double crossed_boundary(double x, int region) const {
-    if (p_.restoring == Restoring::linear) return NAN;
-    if (region == 1) return x < 1.0 ? 1.0 : NAN;
-    if (region == -1) return x > -1.0 ? -1.0 : NAN;
+    if (p_.restoring == Restoring::linear) return std::numeric_limits<double>::quiet_NaN();
+    if (region == 1) return x < 1.0 ? 1.0 : std::numeric_limits<double>::quiet_NaN();
+    if (region == -1) return x > -1.0 ? -1.0 : std::numeric_limits<double>::quiet_NaN();
     if (x > 1.0) return 1.0;
     if (x < -1.0) return -1.0;
-    return NAN;
+    return std::numeric_limits<double>::quiet_NaN();
   }
 
   static int region_entered(int region, double boundary) {

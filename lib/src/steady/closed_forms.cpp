@@ -6,28 +6,13 @@
 #include <string>
 
 #include "gearimpact/error.hpp"
+#include "input_checks.hpp"
 
 namespace gearimpact {
 
 namespace {
 
-void require_finite_positive(const char* field, double value, const char* unit) {
-  if (!std::isfinite(value) || value <= 0.0) {
-    throw InputError(field, value, std::string("a finite value > 0 ") + unit);
-  }
-}
-
-void require_finite_non_negative(const char* field, double value, const char* unit) {
-  if (!std::isfinite(value) || value < 0.0) {
-    throw InputError(field, value, std::string("a finite value >= 0 ") + unit);
-  }
-}
-
-void require_finite(const char* field, double value, const char* unit) {
-  if (!std::isfinite(value)) {
-    throw InputError(field, value, std::string("a finite value ") + unit);
-  }
-}
+using namespace steady_checks;
 
 void validate(const ClearanceOscillator& oscillator) {
   require_finite_non_negative("damping_ratio", oscillator.damping_ratio, "(dimensionless)");

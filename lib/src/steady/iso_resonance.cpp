@@ -5,16 +5,13 @@
 
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
+#include "input_checks.hpp"
 
 namespace gearimpact {
 
 namespace {
 
-void require_finite_positive(const char* field, double value, const char* unit) {
-  if (!std::isfinite(value) || value <= 0.0) {
-    throw InputError(field, value, std::string("a finite value > 0 ") + unit);
-  }
-}
+using namespace steady_checks;
 
 // Table 8 for perfect gears: the coefficients that multiply B_k = 1, and C_v7.
 struct PerfectGearCoefficients {

@@ -5,22 +5,13 @@
 
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
+#include "input_checks.hpp"
 
 namespace gearimpact {
 
 namespace {
 
-void require_finite_positive(const char* field, double value, const char* unit) {
-  if (!std::isfinite(value) || value <= 0.0) {
-    throw InputError(field, value, std::string("a finite value > 0 ") + unit);
-  }
-}
-
-void require_finite_non_negative(const char* field, double value, const char* unit) {
-  if (!std::isfinite(value) || value < 0.0) {
-    throw InputError(field, value, std::string("a finite value >= 0 ") + unit);
-  }
-}
+using namespace steady_checks;
 
 void validate(const RectangularStiffness& stiffness) {
   require_finite_positive("two_pair_ratio", stiffness.two_pair_ratio, "(kappa_d = k_d / k)");

@@ -109,30 +109,35 @@ PeriodicityResult classify_poincare_samples(const std::vector<Eigen::VectorXd>& 
   // `span` samples n, oldest first; the window is their last `window`.
   const std::size_t span = std::min(settings.trend_window, count - max_period);
   std::vector<std::vector<double>> residuals(max_period, std::vector<double>(span));
-  double best = std::numeric_limits<double>::infinity();
+  std::vector<double> window_max(max_period, 0.0);
   for (std::size_t p = 1; p <= max_period; ++p) {
-    double window_max = 0.0;
     for (std::size_t j = 0; j < span; ++j) {
       const std::size_t n = count - span + j;
       residuals[p - 1][j] = scaled_distance(samples[n], samples[n - p], scale);
-      if (j + window >= span) window_max = std::max(window_max, residuals[p - 1][j]);
+      if (j + window >= span) window_max[p - 1] = std::max(window_max[p - 1], residuals[p - 1][j]);
     }
-    if (window_max < best) {
-      best = window_max;
-      result.closest_period = static_cast<int>(p);
-      result.residual = window_max;
-    }
-    if (window_max <= settings.tolerance) {
+  }
+  for (std::size_t p = 1; p <= max_period; ++p) {
+    if (window_max[p - 1] <= settings.tolerance) {
       result.verdict = PeriodicityVerdict::periodic;
       result.period = static_cast<int>(p);
       result.closest_period = result.period;
-      result.residual = window_max;
+      result.residual = window_max[p - 1];
       result.explanation = "period " + std::to_string(p) + ": every one of the last " +
                            std::to_string(window) + " samples is within " +
-                           format_number(window_max) + " <= tolerance " +
+                           format_number(result.residual) + " <= tolerance " +
                            format_number(settings.tolerance) + " (scaled) of the sample " +
                            std::to_string(p) + " periods before it";
       return result;
+    }
+  }
+  // The multiples of a period repeat about as well as the period itself, so the closest period
+  // is the smallest whose residual is within a factor 2 of the smallest residual.
+  const double smallest = *std::min_element(window_max.begin(), window_max.end());
+  for (std::size_t p = max_period; p >= 1; --p) {
+    if (window_max[p - 1] <= 2.0 * smallest) {
+      result.closest_period = static_cast<int>(p);
+      result.residual = window_max[p - 1];
     }
   }
 

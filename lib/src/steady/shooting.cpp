@@ -306,15 +306,19 @@ PeriodicOrbit find_periodic_orbit(const PeriodMap& map, const Eigen::VectorXd& g
     // Newton in the scaled unknowns x / scale, so that the pivoting sees comparable columns.
     const Eigen::MatrixXd j = period_map_jacobian(map, x, scale, settings.difference_step);
     orbit.map_evaluations += 2 * static_cast<std::size_t>(n);
-    const Eigen::MatrixXd scaled_j =
-        scale.cwiseInverse().asDiagonal() * (j - identity) * scale.asDiagonal();
-    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(scaled_j);
-    if (qr.rank() < n) {
+    const Eigen::MatrixXd scaled_dp = scale.cwiseInverse().asDiagonal() * j * scale.asDiagonal();
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(scaled_dp - identity,
+                                                Eigen::ComputeThinU | Eigen::ComputeThinV);
+    // Singular to the accuracy of the difference Jacobian (~4e-11 of |DP|, with a margin).
+    const double noise = 1e-8 * std::max(1.0, scaled_dp.norm());
+    if (svd.singularValues()[n - 1] <= noise) {
       throw ShootingError("shooting: DP - I is singular at " + format_vector(x) +
-                          " (a Floquet multiplier at 1: a fold, or a family of orbits)");
+                          " (smallest singular value " +
+                          format_number(svd.singularValues()[n - 1]) +
+                          ": a Floquet multiplier at 1, i.e. a fold or a family of orbits)");
     }
     const Eigen::VectorXd dx =
-        scale.asDiagonal() * qr.solve(Eigen::VectorXd(-(f.array() / scale.array())));
+        scale.asDiagonal() * svd.solve(Eigen::VectorXd(-(f.array() / scale.array())));
     double damping = 1.0;
     for (;;) {
       const Eigen::VectorXd trial = x + damping * dx;

@@ -1,8 +1,10 @@
-// ISO 6336-1:2006 method B for a spur pair of solid gears: the main resonance speed and the
-// dynamic factor K_v of perfect gears, the band a simulated dynamic factor is plotted beside
-// (STEADY-STATE.md section 3.5). ISO's n_E1 is the natural frequency of the two-disc relative
-// mode expressed as a pinion speed, so with the mesh stiffness k = c_gamma_alpha b the simulated
-// main resonance sits at N near 1.
+// ISO 6336-1:2006 method B (equation numbers of that edition) for a spur pair of solid gears:
+// the main resonance speed and the dynamic factor K_v of perfect gears, the band a simulated
+// dynamic factor is plotted beside (STEADY-STATE.md section 3.5). The mean mesh stiffness per
+// face width c_gamma_alpha is an input: ISO's own, c' (0.75 eps_alpha + 0.25), or the model's
+// mean. ISO's n_E1 is the natural frequency of the two-disc relative mode expressed as a pinion
+// speed, so with the mesh stiffness k = c_gamma_alpha b the simulated main resonance sits at N
+// near 1.
 //
 // ISO writes these in mm, kg/mm, N/(mm um) and min^-1; here they are SI, and
 //   n_E1 [min^-1] = 30000 / (pi z1) sqrt(c_gamma_alpha [N/(mm um)] / m_red [kg/mm])
@@ -12,7 +14,7 @@
 
 namespace gearimpact {
 
-// 6.5.9, solid pinion and wheel of one density: the reduced mass per unit face width
+// (30), solid pinion and wheel of one density: the reduced mass per unit face width
 //   m_red = pi rho u^2 d_m1^4 / (8 (u^2 + 1) d_b1^2),
 // u = z2 / z1, d_m1 = (d_a1 + d_f1) / 2 the pinion's mean diameter, d_b1 its base diameter. It is
 // m1* u^2 / (1 + u^2) with m1* = J1 / rb1^2 per face width of a solid disc of diameter d_m1.
@@ -20,13 +22,13 @@ namespace gearimpact {
 double iso_reduced_mass_kg_per_m(double density_kg_per_m3, double gear_ratio,
                                  double mean_diameter1_m, double base_diameter1_m);
 
-// 6.5.3: the pinion speed of the main resonance, w_E1 = sqrt(c_gamma_alpha / m_red) / z1, with
+// (6): the pinion speed of the main resonance, w_E1 = sqrt(c_gamma_alpha / m_red) / z1, with
 // c_gamma_alpha the mean mesh stiffness per face width. Throws InputError unless z1 >= 1 and the
 // others are finite and > 0.
 double iso_resonance_speed_rad_per_s(int pinion_teeth, double mesh_stiffness_per_width_n_per_m2,
                                      double reduced_mass_kg_per_m);
 
-// The resonance ratio N = n1 / n_E1 (= w1 / w_E1). Throws InputError unless w1 >= 0 and
+// (9): the resonance ratio N = n1 / n_E1 (= w1 / w_E1). Throws InputError unless w1 >= 0 and
 // w_E1 > 0, finite.
 double iso_resonance_ratio(double pinion_speed_rad_per_s, double resonance_speed_rad_per_s);
 
@@ -39,12 +41,13 @@ struct IsoDynamicFactor {
 
 // K_v of method B for perfect gears: no effective pitch or profile deviation (B_p = B_f = 0) and
 // no tip relief (C_a = 0, so B_k = 1):
-//   subcritical     N <= N_S:         K_v = 1 + C_v3 N            (6.5.4; 1 + 0.23 N)
-//   main resonance  N_S < N <= 1.15:  K_v = 1 + C_v4              (6.5.5; 1.90)
-//   supercritical   N >= 1.5:         K_v = C_v7                  (6.5.6)
-//   intermediate    1.15 < N < 1.5:   linear in N between K_v(1.15) and K_v(1.5)  (6.5.7)
-// N_S = 0.85 for a line load F_t K_A / b >= 100 N/mm, else 0.5 + 0.35 sqrt(F_t K_A / (100 b))
-// with the load in N/mm. Table 8, eps_gamma the total contact ratio (eps_alpha for spur gears):
+//   subcritical     N <= N_S:         K_v = 1 + C_v3 N     (13),(14); 1 + 0.23 N
+//   main resonance  N_S < N <= 1.15:  K_v = 1 + C_v4       (20); 1.90
+//   supercritical   N >= 1.5:         K_v = C_v7           (21)
+//   intermediate    1.15 < N < 1.5:   linear in N between K_v(1.15) and K_v(1.5)   (22)
+// (11),(12): N_S = 0.85 for a line load F_t K_A / b >= 100 N/mm, else
+// 0.5 + 0.35 sqrt(F_t K_A / (100 b)) with the load in N/mm.
+// Table 8, eps_gamma the total contact ratio (eps_alpha for spur gears):
 //   1 < eps_gamma <= 2:  C_v3 = 0.23, C_v4 = 0.90;
 //   eps_gamma > 2:       C_v3 = 0.096 / (eps_gamma - 1.56),
 //                        C_v4 = (0.57 - 0.05 eps_gamma) / (eps_gamma - 1.44);

@@ -51,8 +51,10 @@ struct PeriodicityResult {
   PeriodicityVerdict verdict = PeriodicityVerdict::not_converged;
   // The minimal period when periodic, else 0.
   int period = 0;
-  // The candidate period with the smallest residual (the period when periodic, 0 when the record
-  // is too short).
+  // The period when periodic; when still settling, the smallest candidate whose residual
+  // decreases; when aperiodic, the smallest candidate whose residual is within a factor 2 of the
+  // smallest (multiples of a period repeat about as well as the period itself); 0 when the
+  // record is too short.
   int closest_period = 0;
   // Its residual: the largest scaled distance over the window between a sample and the one
   // closest_period before it (+infinity when the record is too short).

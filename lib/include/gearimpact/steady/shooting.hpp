@@ -69,8 +69,10 @@ struct PeriodicOrbit {
 
 // Damped Newton on F(x) = P(x) - x from `guess`: solve (DP - I) dx = -F, take the largest of
 // dx, dx/2, dx/4, ... (down to min_damping) that lowers the scaled residual. Throws
-// ShootingError when the residual cannot be lowered, when DP - I is singular (a multiplier at 1:
-// at a fold, or a family of orbits), after max_iterations, or for an unusable map value; throws
+// ShootingError when the residual cannot be lowered, when DP - I is singular to the accuracy of
+// the difference Jacobian (smallest singular value of the scaled DP - I below
+// 1e-8 max(1, |DP|): a multiplier at 1, at a fold or on a family of orbits), after
+// max_iterations, or for an unusable map value; throws
 // InputError for settings out of range or a scale of the wrong size.
 PeriodicOrbit find_periodic_orbit(const PeriodMap& map, const Eigen::VectorXd& guess,
                                   const ShootingSettings& settings = {});
@@ -139,7 +141,8 @@ struct Branch {
 // until it leaves [parameter_min, parameter_max], has max_points points, or the step falls below
 // min_step (a corner it cannot turn, or the end of the branch) - the end and its reason are
 // reported, every point returned is converged. Throws ShootingError when the first point cannot
-// be found or a fold cannot be located, InputError for settings out of range.
+// be found, a fold cannot be located, or the tangent is not unique (a branch point, where
+// [DP - I, dP/dparameter] loses rank); InputError for settings out of range.
 Branch continue_periodic_orbits(const ParametrizedPeriodMap& map, const Eigen::VectorXd& guess,
                                 double start_parameter, int direction,
                                 const ContinuationSettings& settings);

@@ -1,0 +1,113 @@
+// ISO 6336-1 method B for the paper's pair: m_red and n_E1 computed here by hand in ISO's own
+// units (mm, kg/mm, N/(mm um), min^-1) against the library's SI functions; n_E1 as the two-disc
+// natural frequency of the dimensionless form; the perfect-gear K_v band at the values
+// STEADY-STATE.md section 3.5 quotes.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "gearimpact/error.hpp"
+#include "gearimpact/steady/closed_forms.hpp"
+#include "gearimpact/steady/iso_resonance.hpp"
+#include "relative.hpp"
+
+using namespace gearimpact;
+using gearimpact::verify::relative_difference;
+
+namespace {
+
+// The paper's pair (MODEL.md section Paper parameters) with ISO 53 basic rack proportions for
+// what the paper leaves open: addendum m, dedendum 1.25 m.
+constexpr int z1 = 20;
+constexpr int z2 = 80;
+constexpr double module_mm = 2.0;
+const double pressure_angle = 20.0 * std::numbers::pi / 180.0;
+constexpr double density_kg_per_mm3 = 7.8e-6;
+constexpr double face_width_mm = 10.0;
+// ISO's usual mean mesh stiffness of solid steel spur gears, N/(mm um).
+constexpr double c_gamma_alpha = 20.0;
+
+}  // namespace
+
+TEST_CASE("m_red and n_E1 of the paper's pair, by hand in ISO's units") {
+  const double u = static_cast<double>(z2) / z1;
+  const double d1 = module_mm * z1;                  // 40 mm
+  const double da1 = d1 + 2.0 * module_mm;           // 44 mm
+  const double df1 = d1 - 2.0 * 1.25 * module_mm;    // 35 mm
+  const double dm1 = 0.5 * (da1 + df1);              // 39.5 mm
+  const double db1 = d1 * std::cos(pressure_angle);  // 37.59 mm
+  const double m_red_kg_per_mm = std::numbers::pi / 8.0 * dm1 * dm1 * dm1 * dm1 / (db1 * db1) *
+                                 density_kg_per_mm3 * u * u / (1.0 + u * u);
+  const double n_e1_per_min =
+      30000.0 / (std::numbers::pi * z1) * std::sqrt(c_gamma_alpha / m_red_kg_per_mm);
+  MESSAGE("m_red = " << m_red_kg_per_mm << " kg/mm, n_E1 = " << n_e1_per_min << " min^-1");
+
+  const double m_red_si =
+      iso_reduced_mass_kg_per_m(density_kg_per_mm3 * 1e9, u, dm1 * 1e-3, db1 * 1e-3);
+  // Unit conversions and a different order of operations: rounding only.
+  CHECK(relative_difference(m_red_si * 1e-3, m_red_kg_per_mm) <= 1e-14);
+  // 1 N/(mm um) = 1e9 N/m^2.
+  const double w_e1 = iso_resonance_speed_rad_per_s(z1, c_gamma_alpha * 1e9, m_red_si);
+  CHECK(relative_difference(w_e1 * 60.0 / (2.0 * std::numbers::pi), n_e1_per_min) <= 1e-14);
+
+  // STEADY-STATE.md: the paper's runs at w1 = 1000 and 10000 rad/s sit at N of about 0.32 and
+  // 3.2, i.e. within the rounding interval of two significant digits (0.3152 and 3.152 here).
+  CHECK(std::fabs(iso_resonance_ratio(1000.0, w_e1) - 0.32) <= 0.005);
+  CHECK(std::fabs(iso_resonance_ratio(10000.0, w_e1) - 3.2) <= 0.05);
+
+  // ISO's n_E1 is the two-disc relative mode as a pinion speed: discs of diameter d_m on the
+  // base radii with k = c_gamma_alpha b have w_n = z1 w_E1, exactly (m_e = m_red b).
+  LoadedPair discs;
+  const auto disc = [&](double diameter_mm) {
+    const double r = 0.5 * diameter_mm * 1e-3;
+    return density_kg_per_mm3 * 1e9 * std::numbers::pi * r * r * r * r * face_width_mm * 1e-3 / 2.0;
+  };
+  discs.inertia1_kg_m2 = disc(dm1);
+  discs.inertia2_kg_m2 = disc(dm1 * u);
+  discs.base_radius1_m = 0.5 * db1 * 1e-3;
+  discs.base_radius2_m = 0.5 * db1 * u * 1e-3;
+  discs.mesh_stiffness_n_per_m = c_gamma_alpha * 1e9 * face_width_mm * 1e-3;
+  discs.backlash_m = 0.05e-3;
+  discs.excitation_frequency_rad_per_s = 1000.0;
+  const DimensionlessPair d = dimensionless_form(discs);
+  CHECK(relative_difference(d.natural_frequency_rad_per_s, z1 * w_e1) <= 1e-14);
+  CHECK(relative_difference(d.effective_mass_kg, m_red_si * face_width_mm * 1e-3) <= 1e-14);
+}
+
+TEST_CASE("K_v band of perfect gears at the values STEADY-STATE.md quotes") {
+  const double eps_alpha = 1.69;
+  const double heavy = 200e3;  // line load 200 N/mm: N_S = 0.85
+  // Subcritical: 1 + 0.23 N.
+  for (const double n : {0.0, 0.32, 0.6, 0.85}) {
+    const IsoDynamicFactor k = iso_dynamic_factor_perfect_gears(n, eps_alpha, heavy);
+    CHECK(k.range == IsoSpeedRange::subcritical);
+    CHECK(std::fabs(k.value - (1.0 + 0.23 * n)) <= 1e-15);
+  }
+  // Main resonance: 1.90.
+  const IsoDynamicFactor resonance = iso_dynamic_factor_perfect_gears(1.0, eps_alpha, heavy);
+  CHECK(resonance.range == IsoSpeedRange::main_resonance);
+  CHECK(std::fabs(resonance.value - 1.90) <= 1e-15);
+  // Supercritical: C_v7 = 0.125 sin(pi (eps - 2)) + 0.875, "about 0.77" at eps = 1.69.
+  const IsoDynamicFactor super = iso_dynamic_factor_perfect_gears(3.2, eps_alpha, heavy);
+  CHECK(super.range == IsoSpeedRange::supercritical);
+  MESSAGE("supercritical K_v at eps_alpha 1.69: " << super.value);
+  CHECK(std::fabs(super.value - 0.77) <= 0.005);
+  // The intermediate range interpolates linearly: continuous at 1.15 and 1.5, halfway between
+  // at 1.325.
+  const auto kv = [&](double n) {
+    return iso_dynamic_factor_perfect_gears(n, eps_alpha, heavy).value;
+  };
+  CHECK(std::fabs(kv(std::nextafter(1.15, 2.0)) - kv(1.15)) <= 1e-14);
+  CHECK(std::fabs(kv(std::nextafter(1.5, 0.0)) - kv(1.5)) <= 1e-14);
+  CHECK(std::fabs(kv(1.325) - 0.5 * (kv(1.15) + kv(1.5))) <= 1e-14);
+  // A light line load lowers N_S: 25 N/mm gives 0.5 + 0.35 sqrt(0.25) = 0.675.
+  CHECK(iso_dynamic_factor_perfect_gears(0.67, eps_alpha, 25e3).range ==
+        IsoSpeedRange::subcritical);
+  CHECK(iso_dynamic_factor_perfect_gears(0.68, eps_alpha, 25e3).range ==
+        IsoSpeedRange::main_resonance);
+  // Out of range.
+  CHECK_THROWS_AS((void)iso_dynamic_factor_perfect_gears(1.0, 1.0, heavy), InputError);
+  CHECK_THROWS_AS((void)iso_dynamic_factor_perfect_gears(-0.1, eps_alpha, heavy), InputError);
+  CHECK_THROWS_AS((void)iso_resonance_speed_rad_per_s(0, 2e10, 5.0), InputError);
+}
