@@ -425,7 +425,6 @@ void run_merge(const MergeOptions& o) {
     std::istringstream csv(read_text(dir / "sweep.csv"));
     std::string line;
     std::getline(csv, line);
-    std::map<Key, std::string> keys_text;
     while (std::getline(csv, line)) {
       std::istringstream fields(line);
       std::string l, d, i, value, regime, period, converged;
@@ -438,6 +437,12 @@ void run_merge(const MergeOptions& o) {
       std::getline(fields, converged, ',');
       const Key key{std::stoi(l), d == "up" ? 0 : 1, std::stoi(i)};
       Row& row = rows[key];
+      if (!row.sweep.empty()) {
+        throw InputError("merge",
+                         "row (line " + l + ", direction " + d + ", index " + i + ") in " + input +
+                             " and an earlier folder",
+                         "each (line, direction, index) in one shard only");
+      }
       row.sweep = line + "\n";
       row.regime = regime;
       row.converged = converged == "true";

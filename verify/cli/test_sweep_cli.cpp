@@ -81,13 +81,19 @@ TEST_CASE("sweep: 1 shard and 4 shards merge to the same bytes; a missing shard 
   const auto missing = run_command(cli(merge_three));
   CHECK(missing.exit_code != 0);
   CHECK(missing.err.find("line 1, direction down, index 0") != std::string::npos);
+  // A folder given twice: its rows would be doubled, so the merge refuses them.
+  const std::string twice =
+      "merge " + one.string() + " " + one.string() + " --out " + scratch("y").string();
+  const auto doubled = run_command(cli(twice));
+  CHECK(doubled.exit_code != 0);
+  CHECK(doubled.err.find("line 0, direction up, index 0") != std::string::npos);
 }
 
 TEST_CASE("sweep: bad input is refused naming the key") {
   const std::filesystem::path out = scratch("bad");
+  // Table 1's case 2: T1 = 50 kgf mm, T2 = -50 kgf mm, so T1/Rb1 + T2/Rb2 != 0.
   const auto imbalance =
-      run_command(cli("sweep 1 --vary initial.w1 --from '3000 rad/s' --to '6000 rad/s' --points 3 "
-                      "--set 'torque1.mean=3 N*m' --set 'torque2.mean=-10 N*m' "
+      run_command(cli("sweep 2 --vary initial.w1 --from '3000 rad/s' --to '6000 rad/s' --points 3 "
                       "--set model.friction_coefficient=0 --no-plots --out " +
                       out.string()));
   CHECK(imbalance.exit_code != 0);
