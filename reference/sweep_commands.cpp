@@ -297,7 +297,8 @@ void render_plots(const std::filesystem::path& dir, const SpecCounts& spec,
   render(dir, map);
 }
 
-void run_sweep(SweepCommandOptions& o) {
+// The case of CASE with --set, --mesh-stiffness and --damping-update applied.
+SimulationCase base_case(const SweepCommandOptions& o) {
   SimulationCase base = read_case(o.case_source);
   for (const std::string& assignment : o.set) {
     const std::size_t eq = assignment.find('=');
@@ -315,6 +316,24 @@ void run_sweep(SweepCommandOptions& o) {
                                 : o.damping_update == "off"  ? DampingUpdate::off
                                                              : DampingUpdate::each_impact;
   }
+  return base;
+}
+
+// The lines u = line x direction with u % N == K.
+std::vector<Unit> shard_units(std::size_t lines, const std::vector<SweepDirection>& directions,
+                              const Shard& shard) {
+  std::vector<Unit> units;
+  int u = 0;
+  for (int line = 0; line < static_cast<int>(lines); ++line) {
+    for (SweepDirection d : directions) {
+      if (u++ % shard.n == shard.k) units.push_back({line, d});
+    }
+  }
+  return units;
+}
+
+void run_sweep(SweepCommandOptions& o) {
+  const SimulationCase base = base_case(o);
   sweep_key(o.vary);
   const std::vector<double> grid =
       sweep_grid(parse_value(o.vary, o.from, "--from"), parse_value(o.vary, o.to, "--to"), o.points,
@@ -338,18 +357,7 @@ void run_sweep(SweepCommandOptions& o) {
     validate(probe);
     require_steady_case(probe);
   }
-  std::vector<Unit> units;
-  for (int line = 0; line < static_cast<int>(grid2.size()); ++line) {
-    for (SweepDirection d : directions) {
-      const int u = static_cast<int>(units.size());
-      if (u % shard.n == shard.k)
-        units.push_back({line, d});
-      else
-        units.push_back({-1, d});
-    }
-  }
-  units.erase(std::remove_if(units.begin(), units.end(), [](const Unit& u) { return u.line < 0; }),
-              units.end());
+  const std::vector<Unit> units = shard_units(grid2.size(), directions, shard);
   RunPool pool(o.threads);
   std::mutex progress_mutex;
   std::size_t done = 0;
@@ -405,6 +413,46 @@ std::string read_text(const std::filesystem::path& path) {
   return s.str();
 }
 
+// The rows of one shard folder into `rows`; a key already there is refused.
+void read_shard_rows(const std::filesystem::path& dir, const std::string& input,
+                     std::map<Key, Row>& rows) {
+  std::istringstream csv(read_text(dir / "sweep.csv"));
+  std::string line;
+  std::getline(csv, line);
+  while (std::getline(csv, line)) {
+    std::istringstream fields(line);
+    std::string l, d, i, value, regime, period, converged;
+    std::getline(fields, l, ',');
+    std::getline(fields, d, ',');
+    std::getline(fields, i, ',');
+    std::getline(fields, value, ',');
+    std::getline(fields, regime, ',');
+    std::getline(fields, period, ',');
+    std::getline(fields, converged, ',');
+    const Key key{std::stoi(l), d == "up" ? 0 : 1, std::stoi(i)};
+    Row& row = rows[key];
+    if (!row.sweep.empty()) {
+      throw InputError("merge",
+                       "row (line " + l + ", direction " + d + ", index " + i + ") in " + input +
+                           " and an earlier folder",
+                       "each (line, direction, index) in one shard only");
+    }
+    row.sweep = line + "\n";
+    row.regime = regime;
+    row.converged = converged == "true";
+  }
+  std::istringstream poincare(read_text(dir / "poincare.csv"));
+  std::getline(poincare, line);
+  while (std::getline(poincare, line)) {
+    std::istringstream fields(line);
+    std::string l, d, i;
+    std::getline(fields, l, ',');
+    std::getline(fields, d, ',');
+    std::getline(fields, i, ',');
+    rows[{std::stoi(l), d == "up" ? 0 : 1, std::stoi(i)}].poincare += line + "\n";
+  }
+}
+
 void run_merge(const MergeOptions& o) {
   std::string spec;
   std::string vary;
@@ -422,41 +470,7 @@ void run_merge(const MergeOptions& o) {
     if (this_spec != spec) {
       throw InputError("merge", input, "a shard of the same sweep as " + o.inputs.front());
     }
-    std::istringstream csv(read_text(dir / "sweep.csv"));
-    std::string line;
-    std::getline(csv, line);
-    while (std::getline(csv, line)) {
-      std::istringstream fields(line);
-      std::string l, d, i, value, regime, period, converged;
-      std::getline(fields, l, ',');
-      std::getline(fields, d, ',');
-      std::getline(fields, i, ',');
-      std::getline(fields, value, ',');
-      std::getline(fields, regime, ',');
-      std::getline(fields, period, ',');
-      std::getline(fields, converged, ',');
-      const Key key{std::stoi(l), d == "up" ? 0 : 1, std::stoi(i)};
-      Row& row = rows[key];
-      if (!row.sweep.empty()) {
-        throw InputError("merge",
-                         "row (line " + l + ", direction " + d + ", index " + i + ") in " + input +
-                             " and an earlier folder",
-                         "each (line, direction, index) in one shard only");
-      }
-      row.sweep = line + "\n";
-      row.regime = regime;
-      row.converged = converged == "true";
-    }
-    std::istringstream poincare(read_text(dir / "poincare.csv"));
-    std::getline(poincare, line);
-    while (std::getline(poincare, line)) {
-      std::istringstream fields(line);
-      std::string l, d, i;
-      std::getline(fields, l, ',');
-      std::getline(fields, d, ',');
-      std::getline(fields, i, ',');
-      rows[{std::stoi(l), d == "up" ? 0 : 1, std::stoi(i)}].poincare += line + "\n";
-    }
+    read_shard_rows(dir, input, rows);
   }
   if (o.inputs.empty()) throw InputError("merge", "no folder", "one or more sweep output folders");
   const SpecCounts counts = read_spec_counts(spec, o.inputs.front());

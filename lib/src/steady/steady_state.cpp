@@ -85,6 +85,158 @@ void hermite_extremes(double h, double s0, double v0, double s1, double v1, Peri
   if (q != 0.0) consider(c / q);
 }
 
+// The output grid of one excitation period, observed row by row.
+class PeriodRecorder {
+ public:
+  PeriodRecorder(double rb1, double rb2) : rb1_(rb1), rb2_(rb2) {}
+
+  // A new period starts at t_s (its first row, the previous period's last, is not counted).
+  void start(double t_s) {
+    stats_ = PeriodStats{};
+    start_s_ = t_s;
+    have_previous_ = false;
+  }
+
+  void observe(const SeriesRow& row) {
+    const double rate = rb1_ * row.w1_rad_s - rb2_ * row.w2_rad_s;
+    if (have_previous_ && row.t_s > start_s_) {
+      hermite_extremes(row.t_s - previous_.t_s, previous_.s_m, previous_rate_, row.s_m, rate,
+                       stats_);
+      stats_.s_min = std::min(stats_.s_min, row.s_m);
+      stats_.s_max = std::max(stats_.s_max, row.s_m);
+      stats_.s_sum += row.s_m;
+      stats_.s_square_sum += row.s_m * row.s_m;
+      ++stats_.rows;
+      stats_.force_max = std::max(stats_.force_max, row.normal_force_n);
+      const bool n1 = row.region == static_cast<int>(Region::n1);
+      const bool n2 = row.region == static_cast<int>(Region::n2);
+      stats_.in_contact_n1 = stats_.in_contact_n1 && n1;
+      stats_.in_contact_n2 = stats_.in_contact_n2 && n2;
+      stats_.ever_in_contact = stats_.ever_in_contact || n1 || n2;
+    }
+    previous_ = row;
+    previous_rate_ = rate;
+    have_previous_ = true;
+  }
+
+  PeriodStats finish(const SimulationSummary& summary) {
+    stats_.impacts_n1 = summary.impacts_n1;
+    stats_.impacts_n2 = summary.impacts_n2;
+    return stats_;
+  }
+
+ private:
+  double rb1_;
+  double rb2_;
+  PeriodStats stats_;
+  double start_s_ = 0.0;
+  SeriesRow previous_{};
+  double previous_rate_ = 0.0;
+  bool have_previous_ = false;
+};
+
+// When the Poincare samples say the run is steady.
+class SteadyDecision {
+ public:
+  explicit SteadyDecision(const SteadySettings& settings)
+      : settings_(settings),
+        least_for_aperiodic_(settings.trend_window +
+                             static_cast<std::size_t>(settings.max_period)) {
+    periodicity_.tolerance = settings.tolerance;
+    periodicity_.max_period = settings.max_period;
+    periodicity_.window = settings.window;
+    periodicity_.trend_window = settings.trend_window;
+  }
+
+  // After each new sample: true when the verdict is final.
+  bool settled(const std::vector<Eigen::VectorXd>& samples, const Eigen::VectorXd& scale) {
+    if (samples.size() < settings_.window + static_cast<std::size_t>(settings_.max_period)) {
+      return false;
+    }
+    verdict_ = classify_poincare_samples(samples, scale, periodicity_);
+    if (verdict_.verdict == PeriodicityVerdict::aperiodic) {
+      candidate_period_ = 0;
+      return samples.size() >= least_for_aperiodic_;
+    }
+    if (verdict_.verdict != PeriodicityVerdict::periodic) {
+      candidate_period_ = 0;
+      return false;
+    }
+    // A transient whose slowest mode turns by about pi a period (the natural frequency near
+    // half the excitation's) alternates: samples two periods apart agree before those one
+    // apart do. A period above 1 is accepted only after it has held for another window.
+    if (verdict_.period == 1) return true;
+    if (verdict_.period != candidate_period_) {
+      candidate_period_ = verdict_.period;
+      confirmed_at_ = samples.size() + settings_.window;
+      return false;
+    }
+    return samples.size() >= confirmed_at_;
+  }
+
+  // The verdict at the end: aperiodic before enough samples is not converged.
+  PeriodicityResult final_verdict(std::size_t samples) const {
+    PeriodicityResult v = verdict_;
+    if (v.verdict == PeriodicityVerdict::aperiodic && samples < least_for_aperiodic_) {
+      v.verdict = PeriodicityVerdict::not_converged;
+    }
+    return v;
+  }
+
+ private:
+  const SteadySettings& settings_;
+  std::size_t least_for_aperiodic_;
+  PeriodicitySettings periodicity_;
+  PeriodicityResult verdict_;
+  int candidate_period_ = 0;
+  std::size_t confirmed_at_ = 0;
+};
+
+// The figures of the steady window (the last `periods` of history) and its regime.
+void summarize_window(const std::deque<PeriodStats>& history, std::size_t periods,
+                      double mean_torque1_n_m, double rb1, SteadyPoint& point) {
+  PeriodStats w;
+  for (std::size_t i = history.size() - periods; i < history.size(); ++i) {
+    const PeriodStats& p = history[i];
+    w.s_min = std::min(w.s_min, p.s_min);
+    w.s_max = std::max(w.s_max, p.s_max);
+    w.s_sum += p.s_sum;
+    w.s_square_sum += p.s_square_sum;
+    w.rows += p.rows;
+    w.force_max = std::max(w.force_max, p.force_max);
+    w.impacts_n1 += p.impacts_n1;
+    w.impacts_n2 += p.impacts_n2;
+    w.in_contact_n1 = w.in_contact_n1 && p.in_contact_n1;
+    w.in_contact_n2 = w.in_contact_n2 && p.in_contact_n2;
+    w.ever_in_contact = w.ever_in_contact || p.ever_in_contact;
+  }
+  const double rows = static_cast<double>(w.rows);
+  const double mean = w.s_sum / rows;
+  point.dte_mean_m = mean;
+  point.dte_amplitude_m = 0.5 * (w.s_max - w.s_min);
+  point.dte_rms_m = std::sqrt(std::max(0.0, w.s_square_sum / rows - mean * mean));
+  point.s_min_m = w.s_min;
+  point.s_max_m = w.s_max;
+  if (mean_torque1_n_m != 0.0) {
+    point.dynamic_factor = w.force_max / std::fabs(mean_torque1_n_m / rb1);
+  }
+  point.impacts_drive_per_period = w.impacts_n1 / static_cast<double>(periods);
+  point.impacts_coast_per_period = w.impacts_n2 / static_cast<double>(periods);
+  const bool drive_loaded = mean_torque1_n_m >= 0.0;
+  const int loaded_impacts = drive_loaded ? w.impacts_n1 : w.impacts_n2;
+  const int other_impacts = drive_loaded ? w.impacts_n2 : w.impacts_n1;
+  const bool held = drive_loaded ? w.in_contact_n1 : w.in_contact_n2;
+  if (other_impacts > 0) {
+    point.regime = Regime::double_sided;
+  } else if (loaded_impacts > 0) {
+    point.regime = Regime::single_sided;
+  } else if (held) {
+    point.regime = Regime::no_impact;
+  } else {
+    point.regime = Regime::no_contact;
+  }
+}
+
 }  // namespace
 
 std::string to_string(Regime regime) {
@@ -179,163 +331,54 @@ SteadyPoint find_steady_state(const SimulationCase& c, const StiffnessTable& tab
   const GearPair& g = c.gears;
   const double rb1 = base_radius(g, Gear::one);
   const double rb2 = base_radius(g, Gear::two);
-  const double backlash = g.backlash_m;
-  const double mean_torque1 = mean_torque_n_m(c.torque1, "torque1");
-  const Region loaded = mean_torque1 >= 0.0 ? Region::n1 : Region::n2;
   const double w_n = std::sqrt(mean_mesh_stiffness_n_m(c, table) / effective_mass_kg(g));
+  Eigen::VectorXd scale(2);
+  scale << g.backlash_m, g.backlash_m * w_n;
 
   SimulationCase period_case = c;
   period_case.integrator.kind = IntegratorKind::rk4;
   period_case.integrator.step_s = point.timing.step_s;
   period_case.integrator.end_time_s = point.timing.excitation_period_s;
   period_case.integrator.output_every = 1;
-
-  PeriodStats current;
-  SeriesRow previous{};
-  bool have_previous = false;
-  double start_time = 0.0;
+  PeriodRecorder recorder(rb1, rb2);
   RunControl control;
   control.keep_series = false;
-  control.on_row = [&](const SeriesRow& row) {
-    const double rate = rb1 * row.w1_rad_s - rb2 * row.w2_rad_s;
-    if (have_previous && row.t_s > start_time) {
-      const double prev_rate = rb1 * previous.w1_rad_s - rb2 * previous.w2_rad_s;
-      hermite_extremes(row.t_s - previous.t_s, previous.s_m, prev_rate, row.s_m, rate, current);
-      current.s_min = std::min(current.s_min, row.s_m);
-      current.s_max = std::max(current.s_max, row.s_m);
-      current.s_sum += row.s_m;
-      current.s_square_sum += row.s_m * row.s_m;
-      ++current.rows;
-      current.force_max = std::max(current.force_max, row.normal_force_n);
-      const bool n1 = row.region == static_cast<int>(Region::n1);
-      const bool n2 = row.region == static_cast<int>(Region::n2);
-      current.in_contact_n1 = current.in_contact_n1 && n1;
-      current.in_contact_n2 = current.in_contact_n2 && n2;
-      current.ever_in_contact = current.ever_in_contact || n1 || n2;
-    }
-    previous = row;
-    have_previous = true;
-  };
+  control.on_row = [&recorder](const SeriesRow& row) { recorder.observe(row); };
 
-  RunState state;
-  if (start) {
-    state = *start;
-  } else {
-    state.state = c.initial;
-  }
+  RunState state = start ? *start : RunState{0.0, c.initial, ContactMemory{}};
   state.time_s = 0.0;
-  bool first = !start.has_value();
-
-  PeriodicitySettings periodicity;
-  periodicity.tolerance = settings.tolerance;
-  periodicity.max_period = settings.max_period;
-  periodicity.window = settings.window;
-  periodicity.trend_window = settings.trend_window;
-  Eigen::VectorXd scale(2);
-  scale << backlash, backlash * w_n;
   std::vector<Eigen::VectorXd> samples;
   std::deque<PeriodStats> history;
-  PeriodicityResult verdict;
-  int candidate_period = 0;
-  std::size_t confirmed_at = 0;
-  const std::size_t least_for_aperiodic =
-      settings.trend_window + static_cast<std::size_t>(settings.max_period);
+  SteadyDecision decision(settings);
   for (int k = 0; k < settings.max_periods; ++k) {
-    current = PeriodStats{};
-    have_previous = false;
-    start_time = state.time_s;
-    if (!first) control.resume = state;
+    recorder.start(state.time_s);
+    if (start || k > 0) control.resume = state;
     const SimulationResult r = simulate(period_case, table, control);
-    first = false;
-    current.impacts_n1 = r.summary.impacts_n1;
-    current.impacts_n2 = r.summary.impacts_n2;
     state = r.final_state;
-    history.push_back(current);
+    history.push_back(recorder.finish(r.summary));
     if (history.size() > settings.window) history.pop_front();
-    const double s = rb1 * state.state.theta1_rad - rb2 * state.state.theta2_rad;
-    const double rate = rb1 * state.state.w1_rad_s - rb2 * state.state.w2_rad_s;
-    Eigen::VectorXd sample(2);
-    sample << s, rate;
-    samples.push_back(sample);
+    const InitialState& y = state.state;
+    samples.emplace_back(2);
+    samples.back() << rb1 * y.theta1_rad - rb2 * y.theta2_rad, rb1 * y.w1_rad_s - rb2 * y.w2_rad_s;
     point.periods_run = k + 1;
-    if (samples.size() < settings.window + static_cast<std::size_t>(settings.max_period)) continue;
-    verdict = classify_poincare_samples(samples, scale, periodicity);
-    if (verdict.verdict == PeriodicityVerdict::periodic) {
-      // A transient whose slowest mode turns by about pi a period (the natural frequency near
-      // half the excitation's) alternates: samples two periods apart agree before those one
-      // apart do. A period above 1 is accepted only after it has held for another window.
-      if (verdict.period == 1) break;
-      if (verdict.period != candidate_period) {
-        candidate_period = verdict.period;
-        confirmed_at = samples.size() + settings.window;
-      } else if (samples.size() >= confirmed_at) {
-        break;
-      }
-    } else {
-      candidate_period = 0;
-    }
-    if (verdict.verdict == PeriodicityVerdict::aperiodic && samples.size() >= least_for_aperiodic) {
-      break;
-    }
+    if (decision.settled(samples, scale)) break;
   }
-  // The time of the next point's start: a whole number of excitation periods has passed, so
-  // the forcing's phase is that of t = 0.
+  // A whole number of excitation periods has passed: the next point starts at the forcing's
+  // phase of t = 0.
   state.time_s = 0.0;
   point.final_state = state;
+  const PeriodicityResult verdict = decision.final_verdict(samples.size());
   point.verdict = verdict.verdict;
   point.explanation = verdict.explanation;
-  if (point.verdict == PeriodicityVerdict::aperiodic && samples.size() < least_for_aperiodic) {
-    point.verdict = PeriodicityVerdict::not_converged;
-  }
   point.converged = point.verdict != PeriodicityVerdict::not_converged;
   point.period = point.verdict == PeriodicityVerdict::periodic ? verdict.period : 0;
-  const std::size_t steady_periods = point.period > 0 ? static_cast<std::size_t>(point.period)
-                                                      : std::min(settings.window, samples.size());
-  for (std::size_t i = samples.size() - std::min(steady_periods, samples.size());
-       i < samples.size(); ++i) {
+  const std::size_t steady_periods = std::min(
+      point.period > 0 ? static_cast<std::size_t>(point.period) : settings.window, samples.size());
+  for (std::size_t i = samples.size() - steady_periods; i < samples.size(); ++i) {
     point.poincare.push_back({samples[i](0), samples[i](1)});
   }
-  if (!point.converged) return point;
-
-  PeriodStats window;
-  window.in_contact_n1 = true;
-  window.in_contact_n2 = true;
-  for (std::size_t i = history.size() - steady_periods; i < history.size(); ++i) {
-    const PeriodStats& p = history[i];
-    window.s_min = std::min(window.s_min, p.s_min);
-    window.s_max = std::max(window.s_max, p.s_max);
-    window.s_sum += p.s_sum;
-    window.s_square_sum += p.s_square_sum;
-    window.rows += p.rows;
-    window.force_max = std::max(window.force_max, p.force_max);
-    window.impacts_n1 += p.impacts_n1;
-    window.impacts_n2 += p.impacts_n2;
-    window.in_contact_n1 = window.in_contact_n1 && p.in_contact_n1;
-    window.in_contact_n2 = window.in_contact_n2 && p.in_contact_n2;
-    window.ever_in_contact = window.ever_in_contact || p.ever_in_contact;
-  }
-  const double rows = static_cast<double>(window.rows);
-  const double mean = window.s_sum / rows;
-  point.dte_mean_m = mean;
-  point.dte_amplitude_m = 0.5 * (window.s_max - window.s_min);
-  point.dte_rms_m = std::sqrt(std::max(0.0, window.s_square_sum / rows - mean * mean));
-  point.s_min_m = window.s_min;
-  point.s_max_m = window.s_max;
-  if (mean_torque1 != 0.0) point.dynamic_factor = window.force_max / std::fabs(mean_torque1 / rb1);
-  const double periods = static_cast<double>(steady_periods);
-  point.impacts_drive_per_period = window.impacts_n1 / periods;
-  point.impacts_coast_per_period = window.impacts_n2 / periods;
-  const int loaded_impacts = loaded == Region::n1 ? window.impacts_n1 : window.impacts_n2;
-  const int other_impacts = loaded == Region::n1 ? window.impacts_n2 : window.impacts_n1;
-  const bool held = loaded == Region::n1 ? window.in_contact_n1 : window.in_contact_n2;
-  if (other_impacts > 0) {
-    point.regime = Regime::double_sided;
-  } else if (loaded_impacts > 0) {
-    point.regime = Regime::single_sided;
-  } else if (held) {
-    point.regime = Regime::no_impact;
-  } else {
-    point.regime = Regime::no_contact;
+  if (point.converged) {
+    summarize_window(history, steady_periods, mean_torque_n_m(c.torque1, "torque1"), rb1, point);
   }
   return point;
 }
