@@ -68,7 +68,7 @@ const StiffnessTable& paper_table() {
 // The steady rolling contact with `pairs` (1 or 2) loaded pairs throughout.
 SimulationCase steady_contact(int pairs) {
   SimulationCase c = paper_case(2);
-  c.name = "steady contact, " + std::to_string(pairs) + (pairs == 1 ? " pair" : " pairs");
+  c.name = "steady-contact-" + std::to_string(pairs) + (pairs == 1 ? "-pair" : "-pairs");
   const GearPair& g = c.gears;
   const double rb1 = base_radius(g, Gear::one);
   const double rb2 = base_radius(g, Gear::two);

@@ -16,5 +16,7 @@ void register_simulate_commands(CLI::App& app);
 void register_case_commands(CLI::App& app);
 // `schema`: every case-file key with its unit, default and range, as Markdown.
 void register_schema_commands(CLI::App& app);
+// `sweep` (the steady state along a parameter) and `merge` (its shards).
+void register_sweep_commands(CLI::App& app);
 
 }  // namespace gearimpact::cli

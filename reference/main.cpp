@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   gearimpact::cli::register_simulate_commands(app);
   gearimpact::cli::register_case_commands(app);
   gearimpact::cli::register_schema_commands(app);
+  gearimpact::cli::register_sweep_commands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -9,6 +9,7 @@
 
 #include "gearimpact/batch/sweep_friction.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/paper/table1.hpp"
@@ -43,9 +44,10 @@ SimulationResult conservative_run(double step_s, bool locate_events, double end_
   SimulationCase c = short_case(1, end_time_s, step_s);
   c.model.friction_coefficient = 0.0;
   c.model.restitution.coefficient = 0.0;
+  c.model.mesh_stiffness = MeshStiffnessMode::constant;
+  c.model.constant_mesh_stiffness_n_m = kConstantStiffness;
   RunControl control = summary_only();
   control.locate_events = locate_events;
-  control.constant_mesh_stiffness_n_m = kConstantStiffness;
   return simulate(c, control);
 }
 
@@ -155,6 +157,47 @@ TEST_CASE("the energy ledger closes on the three cases") {
   }
 }
 
+TEST_CASE("the energy ledger closes with the viscous mesh damper, whose loss it books") {
+  for (int n = 1; n <= 3; ++n) {
+    CAPTURE(n);
+    SimulationCase c = paper_case(n);
+    c.model.mesh_damping_ratio = 0.05;
+    const SimulationSummary s = simulate(c, summary_only()).summary;
+    const double throughput =
+        s.kinetic_energy_initial_j + s.stored_energy_initial_j + std::fabs(s.torque_work_j);
+    // The bound of the run without the damper: the damper adds a smooth term,
+    // its loss integrated by the same RK4 as the others.
+    const double bound = 1e-7 * throughput;
+    MESSAGE("case " << n << ": residual " << s.ledger_residual_max_j << " J of " << throughput
+                    << " J, mesh damper loss " << s.mesh_damping_loss_j << " J");
+    CHECK(s.ledger_residual_max_j < bound);
+    // A loss the ledger could miss without failing would be below its bound:
+    // the damper's loss must stand well above it to be tested at all.
+    CHECK(s.mesh_damping_loss_j > 100.0 * bound);
+  }
+}
+
+TEST_CASE("the damping update policies set D from Vi, from the reference speed, or not at all") {
+  SimulationCase c = short_case(2, 5e-3);
+  c.model.friction_coefficient = 0.0;
+  RunControl control = summary_only();
+  c.model.damping_update = DampingUpdate::frozen;
+  c.model.damping_reference_speed_m_s = 0.5;
+  const SimulationResult frozen = simulate(c, control);
+  REQUIRE(frozen.impacts.size() >= 2);
+  // (33) at V_ref for every impact, whatever its own Vi.
+  const double e_ref = 1.0 - 0.022 * std::pow(0.5 / 1e-3, 0.375);
+  for (const ImpactRecord& impact : frozen.impacts) {
+    CHECK(std::fabs(impact.restitution - e_ref) <= 1e-15);
+  }
+  CHECK(frozen.impacts[0].impact_speed_m_s != frozen.impacts[1].impact_speed_m_s);
+  c.model.damping_update = DampingUpdate::off;
+  const SimulationSummary off = simulate(c, control).summary;
+  // No Hertzian damping: the only loss left is friction, which is off too.
+  CHECK(off.damping_loss_j == 0.0);
+  CHECK(frozen.summary.damping_loss_j > 0.0);
+}
+
 TEST_CASE("RK4 and the adaptive Dormand-Prince integrator agree on the three cases") {
   for (int n = 1; n <= 3; ++n) {
     CAPTURE(n);
@@ -224,8 +267,9 @@ TEST_CASE("one impact of the damped contact against its closed-form rebound") {
     SimulationCase c = short_case(1, 1.2e-4);
     c.model.friction_coefficient = 0.0;
     c.model.damping_form = form;
+    c.model.mesh_stiffness = MeshStiffnessMode::constant;
+    c.model.constant_mesh_stiffness_n_m = kConstantStiffness;
     RunControl control = summary_only();
-    control.constant_mesh_stiffness_n_m = kConstantStiffness;
     const SimulationResult r = simulate(c, control);
     REQUIRE(!r.impacts.empty());
     const ImpactRecord& impact = r.impacts.front();
@@ -359,4 +403,43 @@ TEST_CASE("a user torque function through the API: the same sine gives the same 
   CHECK(a.damping_loss_j == b.damping_loss_j);
   CHECK(a.torque_work_j == b.torque_work_j);
   CHECK(a.final_w1_rad_s == b.final_w1_rad_s);
+}
+
+TEST_CASE("torques: a mean plus harmonics, T = T_m + sum A_i sin(w_i t + phi_i)") {
+  Torque h;
+  h.kind = Torque::Kind::harmonic;
+  h.mean_n_m = 2.0;
+  h.harmonic_amplitudes_n_m = {0.5, -0.25};
+  h.harmonic_angular_frequencies_rad_s = {1000.0, 3000.0};
+  h.harmonic_phases_rad = {0.1, 0.2};
+  const double t = 1.234e-3;
+  const double expected =
+      2.0 + 0.5 * std::sin(1000.0 * t + 0.1) - 0.25 * std::sin(3000.0 * t + 0.2);
+  // The same sum in another order: a few roundings of terms of size 2.
+  CHECK(std::fabs(torque_at(h, t) - expected) <=
+        4.0 * std::numeric_limits<double>::epsilon() * 2.0);
+  CHECK(mean_torque_n_m(h, "torque1") == 2.0);
+  // One harmonic with its mean is the sinusoid with its mean, the same run.
+  SimulationCase sine = short_case(3, 1e-3);
+  sine.torque1.mean_n_m = 0.3;
+  SimulationCase harmonic = sine;
+  harmonic.torque1.kind = Torque::Kind::harmonic;
+  harmonic.torque1.harmonic_amplitudes_n_m = {sine.torque1.amplitude_n_m};
+  harmonic.torque1.harmonic_angular_frequencies_rad_s = {sine.torque1.angular_frequency_rad_s};
+  harmonic.torque1.harmonic_phases_rad = {sine.torque1.phase_rad};
+  const SimulationSummary a = simulate(sine, summary_only()).summary;
+  const SimulationSummary b = simulate(harmonic, summary_only()).summary;
+  CHECK(a.torque_work_j == b.torque_work_j);
+  CHECK(a.final_w1_rad_s == b.final_w1_rad_s);
+  // Harmonics of unequal length are refused with the key.
+  harmonic.torque1.harmonic_phases_rad.clear();
+  try {
+    validate(harmonic);
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("torque1.harmonics") != std::string::npos);
+  }
+  Torque user;
+  user.kind = Torque::Kind::user;
+  CHECK_THROWS_AS(mean_torque_n_m(user, "torque2"), InputError);
 }

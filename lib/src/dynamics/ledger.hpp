@@ -37,10 +37,12 @@ class EnergyLedger {
     }
     const double energy = system_.kinetic_energy(y) + u.total_j();
     s.ledger_scale_j = std::max(s.ledger_scale_j, energy);
-    // (kinetic + stored)(t) - (kinetic + stored)(0) - torque work + losses -
+    // (kinetic + stored)(t) - (kinetic + stored)(0) - torque work + losses
+    // (Hertzian damping, friction, mesh damper) -
     // parametric work: zero for the exact solution.
     const double residual = energy - energy0_ - y[kTorqueWork] + y[kDampingLoss] +
-                            y[kFrictionLoss] - y[kParametricWork] - jump_work_;
+                            y[kFrictionLoss] + y[kMeshDampingLoss] - y[kParametricWork] -
+                            jump_work_;
     s.ledger_residual_j = residual;
     s.ledger_residual_max_j = std::max(s.ledger_residual_max_j, std::fabs(residual));
   }
@@ -51,6 +53,7 @@ class EnergyLedger {
     s.torque_work_j = y[kTorqueWork];
     s.damping_loss_j = y[kDampingLoss];
     s.friction_loss_j = y[kFrictionLoss];
+    s.mesh_damping_loss_j = y[kMeshDampingLoss];
     s.parametric_jump_work_j = jump_work_;
     s.parametric_work_j = y[kParametricWork] + jump_work_;
   }

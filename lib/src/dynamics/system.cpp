@@ -4,6 +4,9 @@
 #include <cmath>
 
 #include "gearimpact/contact/contact.hpp"
+#include "gearimpact/dynamics/mesh.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/steady/closed_forms.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 
 namespace gearimpact {
@@ -21,16 +24,39 @@ double torque_at(const Torque& torque, double t_s) {
     case Torque::Kind::constant:
       return torque.constant_n_m;
     case Torque::Kind::sinusoidal:
-      return torque.amplitude_n_m *
-             std::sin(torque.angular_frequency_rad_s * t_s + torque.phase_rad);
+      return torque.mean_n_m +
+             torque.amplitude_n_m *
+                 std::sin(torque.angular_frequency_rad_s * t_s + torque.phase_rad);
+    case Torque::Kind::harmonic: {
+      double sum = torque.mean_n_m;
+      for (std::size_t i = 0; i < torque.harmonic_amplitudes_n_m.size(); ++i) {
+        sum += torque.harmonic_amplitudes_n_m[i] *
+               std::sin(torque.harmonic_angular_frequencies_rad_s[i] * t_s +
+                        torque.harmonic_phases_rad[i]);
+      }
+      return sum;
+    }
     case Torque::Kind::user:
       return torque.user(t_s);
   }
   return 0.0;
 }
 
-GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table,
-                       const RunControl& control)
+double mean_torque_n_m(const Torque& torque, const char* field) {
+  switch (torque.kind) {
+    case Torque::Kind::constant:
+      return torque.constant_n_m;
+    case Torque::Kind::sinusoidal:
+    case Torque::Kind::harmonic:
+      return torque.mean_n_m;
+    case Torque::Kind::user:
+      break;
+  }
+  throw InputError(std::string(field) + ".kind", "user",
+                   "constant, sinusoidal or harmonic: the mean of a torque function is not known");
+}
+
+GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table, const RunControl&)
     : table_(table), case_(c), layout_(c.gears, c.model.coast_phase) {
   const GearPair& g = c.gears;
   rb1_ = base_radius(g, Gear::one);
@@ -45,8 +71,14 @@ GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table,
   xe_ = layout_.end_m();
   friction_ = c.model.friction_coefficient;
   kh_ = hertz_stiffness(g);
-  constant_k_ = control.constant_mesh_stiffness_n_m;
+  constant_k_ = c.model.mesh_stiffness == MeshStiffnessMode::constant
+                    ? c.model.constant_mesh_stiffness_n_m
+                    : 0.0;
   damping_on_current_pair_ = c.model.damping_stiffness == DampingStiffness::current_pair;
+  if (c.model.mesh_damping_ratio > 0.0) {
+    mesh_damping_ = viscous_mesh_damping_n_s_per_m(
+        c.model.mesh_damping_ratio, mean_mesh_stiffness_n_m(c, table), effective_mass_kg(g));
+  }
 }
 
 std::pair<double, double> GearSystem::torques(double t) const {
@@ -119,6 +151,17 @@ void GearSystem::rhs(double t, const State& y, const Mode& m, const ContactMemor
       }
     }
   }
+  double mesh_damping_power = 0.0;
+  if (mesh_damping_ > 0.0) {
+    // The viscous mesh damper acts on s' at all times, in contact and in the
+    // backlash alike, as the c x' of STEADY-STATE.md's clearance oscillator:
+    // a force c s' along the line of action in the sense of an N1 contact force.
+    const double rate = s_rate(y);
+    const double force = mesh_damping_ * rate;
+    moment1 -= force * rb1_;
+    moment2 += force * rb2_;
+    mesh_damping_power = force * rate;
+  }
   dydt[kTheta1] = w1;
   dydt[kTheta2] = w2;
   dydt[kW1] = moment1 / j1_;
@@ -127,6 +170,7 @@ void GearSystem::rhs(double t, const State& y, const Mode& m, const ContactMemor
   dydt[kDampingLoss] = damping_power;
   dydt[kFrictionLoss] = friction_power;
   dydt[kParametricWork] = parametric_power;
+  dydt[kMeshDampingLoss] = mesh_damping_power;
 }
 
 int GearSystem::event_values(const State& y, const Mode& m, const ContactMemory& d,
@@ -213,10 +257,17 @@ void GearSystem::classify_forces(const State& y, const ContactMemory& d, Mode& m
 GearSystem::Onset GearSystem::damping_at_onset(const State& y, const Mode& m) const {
   Onset onset{};
   onset.impact_speed_m_s = std::max(line_sign(m.region) * s_rate(y), kSmallestImpactSpeed_m_s);
-  onset.restitution = restitution_coefficient(case_.model.restitution, onset.impact_speed_m_s);
+  // DampingUpdate: e and D of (32),(33) from this impact's Vi, from the
+  // case's reference speed, or none.
+  const DampingUpdate update = case_.model.damping_update;
+  const double speed = update == DampingUpdate::frozen ? case_.model.damping_reference_speed_m_s
+                                                       : onset.impact_speed_m_s;
+  onset.restitution = restitution_coefficient(case_.model.restitution, speed);
   ContactMemory& d = onset.damping;
-  d.damping_per_stiffness_s_m = damping_factor_per_stiffness(
-      case_.model.damping_form, onset.restitution, onset.impact_speed_m_s);
+  d.damping_per_stiffness_s_m =
+      update == DampingUpdate::off
+          ? 0.0
+          : damping_factor_per_stiffness(case_.model.damping_form, onset.restitution, speed);
   if (case_.model.damping_stiffness == DampingStiffness::hertz) {
     d.frozen_stiffness_n_m = kh_;
   } else if (m.count > 0) {

@@ -157,6 +157,10 @@ void add_torque(std::vector<Field>& rows, std::string_view section, TorqueSlot t
       {choice("constant", Torque::Kind::constant, "T = value"),
        choice("sinusoidal", Torque::Kind::sinusoidal,
               "T = amplitude sin(angular_frequency t + phase)"),
+       choice("harmonic", Torque::Kind::harmonic,
+              "T = mean + sum A_i sin(w_i t + phi_i): through the library for now, it has no "
+              "text form yet",
+              false),
        choice("user", Torque::Kind::user,
               "T(t) given as a function: through the library only, it has no text form", false)},
       true, "form of the external torque T(t) on the gear", [torque](auto& c) -> auto& {

@@ -77,6 +77,7 @@ struct SimulationSummary {
   double torque_work_j = 0.0;
   double damping_loss_j = 0.0;
   double friction_loss_j = 0.0;
+  double mesh_damping_loss_j = 0.0;  // Int c s'^2 dt of the viscous mesh damper
   // Work of the time-varying stiffness: the integral of 0.5 delta^2 dKe/dX dX/dt
   // plus the jumps of stored energy when a pair enters or leaves under load.
   double parametric_work_j = 0.0;
@@ -130,9 +131,6 @@ struct RunControl {
   // false: no event location, the mode (region, pairs, friction sign) is
   // re-evaluated at every RK4 stage. Exists only to show what the cut buys.
   bool locate_events = true;
-  // > 0: a constant-stiffness variant of the mesh, Ke of each of the n loaded
-  // pairs replaced by this total / n, so the mesh stiffness never changes.
-  double constant_mesh_stiffness_n_m = 0.0;
   // An observer of the output grid: called with every row the series would
   // keep (every output_every-th step), whether or not keep_series.
   std::function<void(const SeriesRow&)> on_row;

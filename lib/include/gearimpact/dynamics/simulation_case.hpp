@@ -7,6 +7,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "gearimpact/contact/contact.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
@@ -14,14 +15,20 @@
 
 namespace gearimpact {
 
-// One external torque T_i(t), N m.
+// One external torque T_i(t), N m: a mean plus a fluctuation.
 struct Torque {
-  enum class Kind { constant, sinusoidal, user };
+  enum class Kind { constant, sinusoidal, harmonic, user };
   Kind kind = Kind::constant;
-  double constant_n_m = 0.0;   // Kind::constant: T
-  double amplitude_n_m = 0.0;  // Kind::sinusoidal: A sin(W t + phase)
+  double constant_n_m = 0.0;  // Kind::constant: T
+  // Kind::sinusoidal and Kind::harmonic: the mean T_m the fluctuation is added to.
+  double mean_n_m = 0.0;
+  double amplitude_n_m = 0.0;  // Kind::sinusoidal: T_m + A sin(W t + phase)
   double angular_frequency_rad_s = 0.0;
   double phase_rad = 0.0;
+  // Kind::harmonic: T_m + sum_i A_i sin(w_i t + phi_i), the three of one length.
+  std::vector<double> harmonic_amplitudes_n_m;
+  std::vector<double> harmonic_angular_frequencies_rad_s;
+  std::vector<double> harmonic_phases_rad;
   std::function<double(double)> user;  // Kind::user: T(t_s), through the library API only
 };
 
@@ -33,6 +40,23 @@ struct InitialState {
   double w2_rad_s = 0.0;
 };
 
+// The mesh stiffness of the dynamics: each loaded pair's Ke(X) of (29), or a
+// constant total shared equally by the n loaded pairs (Ke = k / n), so that the
+// mesh stiffness never changes: the clearance oscillator of STEADY-STATE.md.
+enum class MeshStiffnessMode { time_varying, constant };
+
+// When the Hertzian damping factor D of (32) is set (STEADY-STATE.md section 1).
+enum class DampingUpdate {
+  // At every impact from e(Vi), carried with the state while no impact comes
+  // (the paper's; a continued run or a sweep carries the last impact's D).
+  each_impact,
+  // From e(V_ref) at the stated reference impact speed, the same at every
+  // impact: D depends on the case alone, not on the history.
+  frozen,
+  // D = 0: no Hertzian damping (the mesh damper can stand in for it).
+  off,
+};
+
 struct ModelOptions {
   double friction_coefficient = 0.04;  // f of (35)
   DampingForm damping_form = DampingForm::herbert_mcwhannell;
@@ -40,6 +64,13 @@ struct ModelOptions {
   RestitutionLaw restitution;
   CoastPhase coast_phase = CoastPhase::half_base_pitch;
   StiffnessModel stiffness;  // quadrature method and the sign of the Fa h moment
+  MeshStiffnessMode mesh_stiffness = MeshStiffnessMode::time_varying;
+  double constant_mesh_stiffness_n_m = 0.0;  // k of MeshStiffnessMode::constant, > 0
+  // zeta of the linear viscous mesh damper c = 2 zeta sqrt(k_mean m_e) on s'
+  // (mesh.hpp); 0 leaves it out.
+  double mesh_damping_ratio = 0.0;
+  DampingUpdate damping_update = DampingUpdate::each_impact;
+  double damping_reference_speed_m_s = 1.0;  // V_ref of DampingUpdate::frozen, > 0
 };
 
 enum class IntegratorKind { rk4, adaptive };

@@ -20,8 +20,9 @@
 namespace gearimpact {
 
 // theta1, theta2, w1, w2, then the ledger integrals: torque work, damping
-// loss, friction loss, parametric work (its continuous part).
-inline constexpr std::size_t kStateSize = 8;
+// loss, friction loss, parametric work (its continuous part), the loss in the
+// viscous mesh damper.
+inline constexpr std::size_t kStateSize = 9;
 using State = std::array<double, kStateSize>;
 enum StateIndex : std::size_t {
   kTheta1,
@@ -31,7 +32,8 @@ enum StateIndex : std::size_t {
   kTorqueWork,
   kDampingLoss,
   kFrictionLoss,
-  kParametricWork
+  kParametricWork,
+  kMeshDampingLoss
 };
 
 inline constexpr int kMaxPairs = MeshLayout::capacity;
@@ -61,6 +63,9 @@ struct ContactTotals {
 
 // T(t) of one torque.
 double torque_at(const Torque& torque, double t_s);
+// Its mean T_m over time: the constant, or the mean its fluctuation is added
+// to. Throws InputError for a user function, whose mean is not known.
+double mean_torque_n_m(const Torque& torque, const char* field);
 
 class GearSystem {
  public:
@@ -121,6 +126,7 @@ class GearSystem {
   double rb1_ = 0.0, rb2_ = 0.0, j1_ = 0.0, j2_ = 0.0, backlash_ = 0.0, lp_ = 0.0;
   double x_pitch_ = 0.0, t0_ = 0.0, xs_ = 0.0, xe_ = 0.0;
   double friction_ = 0.0, kh_ = 0.0, constant_k_ = 0.0;
+  double mesh_damping_ = 0.0;  // c of the viscous mesh damper, N s/m
   bool damping_on_current_pair_ = true;
   // A system belongs to one run, so one thread.
   mutable double torque_time_ = std::numeric_limits<double>::quiet_NaN();

@@ -1,0 +1,105 @@
+// The steady state of the loaded, running pair, found by running it (STEADY-STATE.md sections 1
+// and 4): the gear model is run one excitation period at a time, the state (s, s') is sampled at
+// the end of each period, and the run is steady when those Poincare samples repeat with a period
+// of 1 to max_period excitation periods (periodicity.hpp); aperiodic or not converged within the
+// limit otherwise, never an assumed value.
+//
+// What a point carries to the next (continuation): the whole RunState, i.e. the angles, the speeds
+// and the contact memory (the Hertzian D of the last impact). Under DampingUpdate::each_impact a
+// no-impact point therefore keeps the D of the last impact of an earlier point; frozen or off
+// remove that history, so a sweep whose branches must not depend on it should use one of them.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/steady/periodicity.hpp"
+#include "gearimpact/stiffness/table.hpp"
+
+namespace gearimpact {
+
+// Relative to the loaded flank (N1 when T1's mean is >= 0, else N2): NI the loaded flank never
+// separates, SS impacts on the loaded flank only, DS impacts on the other flank too (rattle),
+// NC no contact at all over the steady window (an unloaded pair drifting in the backlash).
+enum class Regime { no_impact, single_sided, double_sided, no_contact };
+std::string to_string(Regime regime);  // "NI", "SS", "DS", "NC"
+
+struct SteadySettings {
+  // The RK4 step is the contact period 2 pi sqrt(m_e / k_max) over this, rounded down so that an
+  // excitation period is a whole number of steps: the samples fall on the grid.
+  double steps_per_contact_period = 128.0;
+  // Samples repeat when they agree within this fraction of B in s and of B w_n in s'
+  // (w_n = sqrt(k_mean / m_e)), periodicity.hpp.
+  double tolerance = 1e-6;
+  int max_period = 8;
+  std::size_t window = 16;
+  std::size_t trend_window = 64;
+  // The most excitation periods one point may run before it is reported not converged.
+  int max_periods = 3000;
+};
+
+// The sampling period and the step of a case.
+struct SteadyTiming {
+  // The forcing period 2 pi / w when the torques fluctuate (their angular frequencies must be
+  // whole multiples of the lowest), else the mesh period 2 pi / (z1 w1_mean), w1_mean the mean
+  // pinion speed of the rolling pair with the case's momentum J1 w1/Rb1 + J2 w2/Rb2.
+  double excitation_period_s = 0.0;
+  double step_s = 0.0;
+  long long steps_per_period = 0;
+};
+
+// Throws InputError naming the key unless the case can have a steady state: torques constant,
+// sinusoidal or harmonic (a user function's mean and period are not known); mean torques balanced
+// (T1/Rb1 + T2/Rb2 = 0, both along the line of action as in MODEL.md's equations of motion);
+// no friction: friction loss f N |Vs| is drawn from the mean rotation, which balanced torques do
+// not feed, so with f > 0 the pair slows down without end.
+void require_steady_case(const SimulationCase& c);
+
+// Throws InputError as require_steady_case, and when the torques' frequencies have no common
+// period or (without fluctuation) the mean speed is 0.
+SteadyTiming steady_timing(const SimulationCase& c, const StiffnessTable& table,
+                           const SteadySettings& settings);
+
+struct PoincareSample {
+  double s_m = 0.0;
+  double s_rate_m_s = 0.0;
+};
+
+struct SteadyPoint {
+  PeriodicityVerdict verdict = PeriodicityVerdict::not_converged;
+  int period = 0;          // in excitation periods when periodic, else 0
+  bool converged = false;  // periodic or aperiodic; the figures below are empty otherwise
+  Regime regime = Regime::no_contact;
+  int periods_run = 0;
+  SteadyTiming timing;
+  // Over the steady window (the last `period` periods, or the last `window` periods when
+  // aperiodic), from the output grid with the extremes of s between grid points taken from the
+  // cubic Hermite interpolant of s and s': mean of s, half its peak-to-peak, RMS about the mean.
+  std::optional<double> dte_mean_m;
+  std::optional<double> dte_amplitude_m;
+  std::optional<double> dte_rms_m;
+  std::optional<double> s_min_m;
+  std::optional<double> s_max_m;
+  // The largest mesh force (normal forces summed) over the static load |T1_mean| / Rb1; empty
+  // without load.
+  std::optional<double> dynamic_factor;
+  std::optional<double> impacts_drive_per_period;  // N1
+  std::optional<double> impacts_coast_per_period;  // N2
+  // The last `period` samples when periodic, the last `window` ones otherwise.
+  std::vector<PoincareSample> poincare;
+  // Where the point ended, at time 0 of the excitation: the start of the next point.
+  RunState final_state;
+  std::string explanation;
+};
+
+// Runs c (from `start` when given, else from c.initial at t = 0) period by period until its
+// Poincare samples settle. Throws InputError as steady_timing, SimulationError from the run.
+SteadyPoint find_steady_state(const SimulationCase& c, const StiffnessTable& table,
+                              const SteadySettings& settings,
+                              const std::optional<RunState>& start = std::nullopt);
+
+}  // namespace gearimpact

@@ -1,0 +1,77 @@
+// Sweeps of the steady state along a line of one parameter (STEADY-STATE.md section 4): each
+// point starts from the previous point's steady state (continuation), so a line is sequential;
+// lines (a second parameter's values, the two directions) are independent and are the unit of
+// parallel work and of sharding. Rows are keyed (line, direction, index), index the position of
+// the value in the ascending grid, whatever the direction.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/io/units.hpp"
+#include "gearimpact/steady/steady_state.hpp"
+#include "gearimpact/stiffness/table.hpp"
+
+namespace gearimpact {
+
+// A numeric case-file key a sweep can vary, as section.key.
+struct SweepKey {
+  std::string name;
+  bool dimensionless = false;
+  Dimension dimension = Dimension::length;  // unless dimensionless
+};
+
+// The keys: torque1/torque2 .mean .amplitude .angular_frequency .phase, initial .w1 .w2,
+// gears.backlash, model .friction_coefficient .mesh_damping_ratio .constant_mesh_stiffness
+// .damping_reference_speed. Throws InputError naming the key and listing them.
+const SweepKey& sweep_key(const std::string& name);
+std::vector<std::string> sweep_key_names();
+
+// Sets the key to an SI value. torqueN.mean sets a constant torque's value; amplitude,
+// angular_frequency and phase turn a constant torque into a sinusoid about its value.
+void set_sweep_value(SimulationCase& c, const std::string& key, double si_value);
+
+// set_sweep_value, and what keeps a swept case comparable to `base`: a speed moves the other
+// speed with it (w2 = base w2 + (w1 - base w1) Rb1/Rb2, or the converse), so that the relative
+// motion and the rolling of base carry over at another mean speed; a torque's mean moves the
+// other torque's mean so that they stay balanced, T1/Rb1 + T2/Rb2 = 0 (a load sweep).
+void apply_sweep_value(SimulationCase& c, const SimulationCase& base, const std::string& key,
+                       double si_value);
+
+// points values from `from` to `to`, the last exactly `to`. Throws InputError naming `points_key`
+// unless points >= 1 (and from == to when points == 1), `from_key`/`to_key` unless finite.
+std::vector<double> sweep_grid(double from, double to, int points, const char* from_key,
+                               const char* to_key, const char* points_key);
+
+enum class SweepDirection { up, down };
+std::string to_string(SweepDirection direction);
+
+struct SweepPointResult {
+  int line = 0;
+  SweepDirection direction = SweepDirection::up;
+  int index = 0;
+  double value_si = 0.0;
+  SteadyPoint point;
+  // A run that failed (SimulationError): its message; the point is not converged and the next
+  // starts afresh from the case's initial state.
+  std::string failure;
+};
+
+using TableFor = std::function<std::shared_ptr<const StiffnessTable>(const SimulationCase&)>;
+
+// One line: line_case with `key` set to each grid value (apply_sweep_value) in the direction's
+// order, each point
+// started from the previous one's final state (the first from line_case's initial state). When
+// the key is a speed (initial.w1 or initial.w2) the other speed moves with it, in the case and in
+// the carried state, so that the relative motion carries over: w1 += dw1 and w2 += dw1 Rb1/Rb2
+// (or w2 += dw2, w1 += dw2 Rb2/Rb1); give line_case rolling speeds (Rb1 w1 = Rb2 w2). `on_point`
+// (may be empty) is called after each point.
+std::vector<SweepPointResult> sweep_line(
+    const SimulationCase& line_case, const TableFor& table_for, const std::string& key,
+    const std::vector<double>& grid, SweepDirection direction, int line,
+    const SteadySettings& settings, const std::function<void(const SweepPointResult&)>& on_point);
+
+}  // namespace gearimpact

@@ -1,0 +1,386 @@
+#include "gearimpact/steady/steady_state.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <utility>
+
+#include "gearimpact/constants.hpp"
+#include "gearimpact/dynamics/mesh.hpp"
+#include "gearimpact/dynamics/step_bound.hpp"
+#include "gearimpact/dynamics/system.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/steady/closed_forms.hpp"
+
+namespace gearimpact {
+
+namespace {
+
+// The angular frequencies of the torques' fluctuations (amplitude != 0).
+std::vector<double> forcing_frequencies(const SimulationCase& c) {
+  std::vector<double> w;
+  for (const Torque* t : {&c.torque1, &c.torque2}) {
+    if (t->kind == Torque::Kind::sinusoidal && t->amplitude_n_m != 0.0 &&
+        t->angular_frequency_rad_s != 0.0) {
+      w.push_back(std::fabs(t->angular_frequency_rad_s));
+    }
+    if (t->kind == Torque::Kind::harmonic) {
+      for (std::size_t i = 0; i < t->harmonic_amplitudes_n_m.size(); ++i) {
+        if (t->harmonic_amplitudes_n_m[i] != 0.0 &&
+            t->harmonic_angular_frequencies_rad_s[i] != 0.0) {
+          w.push_back(std::fabs(t->harmonic_angular_frequencies_rad_s[i]));
+        }
+      }
+    }
+  }
+  return w;
+}
+
+// What one excitation period of the output grid shows.
+struct PeriodStats {
+  double s_min = std::numeric_limits<double>::infinity();
+  double s_max = -std::numeric_limits<double>::infinity();
+  double s_sum = 0.0;
+  double s_square_sum = 0.0;
+  long long rows = 0;
+  double force_max = 0.0;
+  int impacts_n1 = 0;
+  int impacts_n2 = 0;
+  bool in_contact_n1 = true;  // at every row
+  bool in_contact_n2 = true;
+  bool ever_in_contact = false;
+};
+
+// The extremes of the cubic Hermite interpolant of s on [0, h] with values s0, s1 and slopes v0,
+// v1: where its derivative, a quadratic in u = t / h, vanishes inside (0, 1).
+void hermite_extremes(double h, double s0, double v0, double s1, double v1, PeriodStats& p) {
+  const double a = 6.0 * s0 + 3.0 * h * v0 - 6.0 * s1 + 3.0 * h * v1;
+  const double b = -6.0 * s0 - 4.0 * h * v0 + 6.0 * s1 - 2.0 * h * v1;
+  const double c = h * v0;
+  const auto value = [&](double u) {
+    const double u2 = u * u;
+    const double u3 = u2 * u;
+    return (2.0 * u3 - 3.0 * u2 + 1.0) * s0 + (u3 - 2.0 * u2 + u) * h * v0 +
+           (-2.0 * u3 + 3.0 * u2) * s1 + (u3 - u2) * h * v1;
+  };
+  const auto consider = [&](double u) {
+    if (u > 0.0 && u < 1.0) {
+      const double s = value(u);
+      p.s_min = std::min(p.s_min, s);
+      p.s_max = std::max(p.s_max, s);
+    }
+  };
+  if (std::fabs(a) <= 1e-14 * (std::fabs(b) + std::fabs(c))) {
+    if (b != 0.0) consider(-c / b);
+    return;
+  }
+  const double discriminant = b * b - 4.0 * a * c;
+  if (discriminant < 0.0) return;
+  // The root formula without cancellation.
+  const double q = -0.5 * (b + std::copysign(std::sqrt(discriminant), b));
+  consider(q / a);
+  if (q != 0.0) consider(c / q);
+}
+
+// The output grid of one excitation period, observed row by row.
+class PeriodRecorder {
+ public:
+  PeriodRecorder(double rb1, double rb2) : rb1_(rb1), rb2_(rb2) {}
+
+  // A new period starts at t_s (its first row, the previous period's last, is not counted).
+  void start(double t_s) {
+    stats_ = PeriodStats{};
+    start_s_ = t_s;
+    have_previous_ = false;
+  }
+
+  void observe(const SeriesRow& row) {
+    const double rate = rb1_ * row.w1_rad_s - rb2_ * row.w2_rad_s;
+    if (have_previous_ && row.t_s > start_s_) {
+      hermite_extremes(row.t_s - previous_.t_s, previous_.s_m, previous_rate_, row.s_m, rate,
+                       stats_);
+      stats_.s_min = std::min(stats_.s_min, row.s_m);
+      stats_.s_max = std::max(stats_.s_max, row.s_m);
+      stats_.s_sum += row.s_m;
+      stats_.s_square_sum += row.s_m * row.s_m;
+      ++stats_.rows;
+      stats_.force_max = std::max(stats_.force_max, row.normal_force_n);
+      const bool n1 = row.region == static_cast<int>(Region::n1);
+      const bool n2 = row.region == static_cast<int>(Region::n2);
+      stats_.in_contact_n1 = stats_.in_contact_n1 && n1;
+      stats_.in_contact_n2 = stats_.in_contact_n2 && n2;
+      stats_.ever_in_contact = stats_.ever_in_contact || n1 || n2;
+    }
+    previous_ = row;
+    previous_rate_ = rate;
+    have_previous_ = true;
+  }
+
+  PeriodStats finish(const SimulationSummary& summary) {
+    stats_.impacts_n1 = summary.impacts_n1;
+    stats_.impacts_n2 = summary.impacts_n2;
+    return stats_;
+  }
+
+ private:
+  double rb1_;
+  double rb2_;
+  PeriodStats stats_;
+  double start_s_ = 0.0;
+  SeriesRow previous_{};
+  double previous_rate_ = 0.0;
+  bool have_previous_ = false;
+};
+
+// When the Poincare samples say the run is steady.
+class SteadyDecision {
+ public:
+  explicit SteadyDecision(const SteadySettings& settings)
+      : settings_(settings),
+        least_for_aperiodic_(settings.trend_window +
+                             static_cast<std::size_t>(settings.max_period)) {
+    periodicity_.tolerance = settings.tolerance;
+    periodicity_.max_period = settings.max_period;
+    periodicity_.window = settings.window;
+    periodicity_.trend_window = settings.trend_window;
+  }
+
+  // After each new sample: true when the verdict is final.
+  bool settled(const std::vector<Eigen::VectorXd>& samples, const Eigen::VectorXd& scale) {
+    if (samples.size() < settings_.window + static_cast<std::size_t>(settings_.max_period)) {
+      return false;
+    }
+    verdict_ = classify_poincare_samples(samples, scale, periodicity_);
+    if (verdict_.verdict == PeriodicityVerdict::aperiodic) {
+      candidate_period_ = 0;
+      return samples.size() >= least_for_aperiodic_;
+    }
+    if (verdict_.verdict != PeriodicityVerdict::periodic) {
+      candidate_period_ = 0;
+      return false;
+    }
+    // A transient whose slowest mode turns by about pi a period (the natural frequency near
+    // half the excitation's) alternates: samples two periods apart agree before those one
+    // apart do. A period above 1 is accepted only after it has held for another window.
+    if (verdict_.period == 1) return true;
+    if (verdict_.period != candidate_period_) {
+      candidate_period_ = verdict_.period;
+      confirmed_at_ = samples.size() + settings_.window;
+      return false;
+    }
+    return samples.size() >= confirmed_at_;
+  }
+
+  // The verdict at the end: aperiodic before enough samples is not converged.
+  PeriodicityResult final_verdict(std::size_t samples) const {
+    PeriodicityResult v = verdict_;
+    if (v.verdict == PeriodicityVerdict::aperiodic && samples < least_for_aperiodic_) {
+      v.verdict = PeriodicityVerdict::not_converged;
+    }
+    return v;
+  }
+
+ private:
+  const SteadySettings& settings_;
+  std::size_t least_for_aperiodic_;
+  PeriodicitySettings periodicity_;
+  PeriodicityResult verdict_;
+  int candidate_period_ = 0;
+  std::size_t confirmed_at_ = 0;
+};
+
+// The figures of the steady window (the last `periods` of history) and its regime.
+void summarize_window(const std::deque<PeriodStats>& history, std::size_t periods,
+                      double mean_torque1_n_m, double rb1, SteadyPoint& point) {
+  PeriodStats w;
+  for (std::size_t i = history.size() - periods; i < history.size(); ++i) {
+    const PeriodStats& p = history[i];
+    w.s_min = std::min(w.s_min, p.s_min);
+    w.s_max = std::max(w.s_max, p.s_max);
+    w.s_sum += p.s_sum;
+    w.s_square_sum += p.s_square_sum;
+    w.rows += p.rows;
+    w.force_max = std::max(w.force_max, p.force_max);
+    w.impacts_n1 += p.impacts_n1;
+    w.impacts_n2 += p.impacts_n2;
+    w.in_contact_n1 = w.in_contact_n1 && p.in_contact_n1;
+    w.in_contact_n2 = w.in_contact_n2 && p.in_contact_n2;
+    w.ever_in_contact = w.ever_in_contact || p.ever_in_contact;
+  }
+  const double rows = static_cast<double>(w.rows);
+  const double mean = w.s_sum / rows;
+  point.dte_mean_m = mean;
+  point.dte_amplitude_m = 0.5 * (w.s_max - w.s_min);
+  point.dte_rms_m = std::sqrt(std::max(0.0, w.s_square_sum / rows - mean * mean));
+  point.s_min_m = w.s_min;
+  point.s_max_m = w.s_max;
+  if (mean_torque1_n_m != 0.0) {
+    point.dynamic_factor = w.force_max / std::fabs(mean_torque1_n_m / rb1);
+  }
+  point.impacts_drive_per_period = w.impacts_n1 / static_cast<double>(periods);
+  point.impacts_coast_per_period = w.impacts_n2 / static_cast<double>(periods);
+  const bool drive_loaded = mean_torque1_n_m >= 0.0;
+  const int loaded_impacts = drive_loaded ? w.impacts_n1 : w.impacts_n2;
+  const int other_impacts = drive_loaded ? w.impacts_n2 : w.impacts_n1;
+  const bool held = drive_loaded ? w.in_contact_n1 : w.in_contact_n2;
+  if (other_impacts > 0) {
+    point.regime = Regime::double_sided;
+  } else if (loaded_impacts > 0) {
+    point.regime = Regime::single_sided;
+  } else if (held) {
+    point.regime = Regime::no_impact;
+  } else {
+    point.regime = Regime::no_contact;
+  }
+}
+
+}  // namespace
+
+std::string to_string(Regime regime) {
+  switch (regime) {
+    case Regime::no_impact:
+      return "NI";
+    case Regime::single_sided:
+      return "SS";
+    case Regime::double_sided:
+      return "DS";
+    case Regime::no_contact:
+      return "NC";
+  }
+  return "?";
+}
+
+void require_steady_case(const SimulationCase& c) {
+  const double t1 = mean_torque_n_m(c.torque1, "torque1");
+  const double t2 = mean_torque_n_m(c.torque2, "torque2");
+  require_balanced_mean_torques(t1, t2, base_radius(c.gears, Gear::one),
+                                base_radius(c.gears, Gear::two));
+  if (c.model.friction_coefficient != 0.0) {
+    throw InputError("model.friction_coefficient", c.model.friction_coefficient,
+                     "0 for a steady state: friction loss f N |Vs| is drawn from the mean "
+                     "rotation, which balanced mean torques do not feed, so the pair slows down "
+                     "without end");
+  }
+}
+
+SteadyTiming steady_timing(const SimulationCase& c, const StiffnessTable& table,
+                           const SteadySettings& settings) {
+  require_steady_case(c);
+  if (!(settings.steps_per_contact_period >= kStepsPerContactPeriod) ||
+      !std::isfinite(settings.steps_per_contact_period)) {
+    throw InputError("steps_per_contact_period", settings.steps_per_contact_period,
+                     "a finite value >= " + format_number(kStepsPerContactPeriod));
+  }
+  SteadyTiming timing;
+  const std::vector<double> w = forcing_frequencies(c);
+  if (!w.empty()) {
+    const double fundamental = *std::min_element(w.begin(), w.end());
+    for (double wi : w) {
+      const double ratio = wi / fundamental;
+      // Frequencies typed with 10 significant digits.
+      if (std::fabs(ratio - std::round(ratio)) > 1e-9 * ratio) {
+        throw InputError("torque angular_frequency", format_number(wi) + " rad/s",
+                         "a whole multiple of the lowest, " + format_number(fundamental) +
+                             " rad/s, so that the forcing has one period");
+      }
+    }
+    timing.excitation_period_s = 2.0 * pi / fundamental;
+  } else {
+    const GearPair& g = c.gears;
+    const double rb1 = base_radius(g, Gear::one);
+    const double rb2 = base_radius(g, Gear::two);
+    const double j1 = moment_of_inertia(g, Gear::one);
+    const double j2 = moment_of_inertia(g, Gear::two);
+    // J1 w1/Rb1 + J2 w2/Rb2 is constant without fluctuating torques and friction; the rolling
+    // pair (Rb1 w1 = Rb2 w2 on average over a periodic s) with it turns at this w1.
+    const double momentum = j1 * c.initial.w1_rad_s / rb1 + j2 * c.initial.w2_rad_s / rb2;
+    const double w1_mean = momentum / (j1 / rb1 + j2 * rb1 / (rb2 * rb2));
+    if (!std::isfinite(w1_mean) || w1_mean == 0.0) {
+      throw InputError("initial.w1", c.initial.w1_rad_s,
+                       "a mean pinion speed != 0: without torque fluctuations the mesh period "
+                       "2 pi / (z1 w1) is the sampling period");
+    }
+    timing.excitation_period_s = 2.0 * pi / (g.teeth1 * std::fabs(w1_mean));
+  }
+  // The contact period of the stiffest contact: the table's largest Ke sum (step_bound.hpp is
+  // 1/20 of it), or the constant mesh stiffness when that is stiffer.
+  double contact_period = largest_resolving_step_s(c, table) * kStepsPerContactPeriod;
+  if (c.model.mesh_stiffness == MeshStiffnessMode::constant) {
+    contact_period = std::min(
+        contact_period,
+        2.0 * pi * std::sqrt(effective_mass_kg(c.gears) / c.model.constant_mesh_stiffness_n_m));
+  }
+  const double largest = contact_period / settings.steps_per_contact_period;
+  timing.steps_per_period =
+      static_cast<long long>(std::ceil(timing.excitation_period_s / largest * (1.0 - 1e-12)));
+  timing.step_s = timing.excitation_period_s / static_cast<double>(timing.steps_per_period);
+  return timing;
+}
+
+SteadyPoint find_steady_state(const SimulationCase& c, const StiffnessTable& table,
+                              const SteadySettings& settings,
+                              const std::optional<RunState>& start) {
+  if (settings.max_periods < 1) {
+    throw InputError("max_periods", settings.max_periods, "at least 1");
+  }
+  SteadyPoint point;
+  point.timing = steady_timing(c, table, settings);
+  const GearPair& g = c.gears;
+  const double rb1 = base_radius(g, Gear::one);
+  const double rb2 = base_radius(g, Gear::two);
+  const double w_n = std::sqrt(mean_mesh_stiffness_n_m(c, table) / effective_mass_kg(g));
+  Eigen::VectorXd scale(2);
+  scale << g.backlash_m, g.backlash_m * w_n;
+
+  SimulationCase period_case = c;
+  period_case.integrator.kind = IntegratorKind::rk4;
+  period_case.integrator.step_s = point.timing.step_s;
+  period_case.integrator.end_time_s = point.timing.excitation_period_s;
+  period_case.integrator.output_every = 1;
+  PeriodRecorder recorder(rb1, rb2);
+  RunControl control;
+  control.keep_series = false;
+  control.on_row = [&recorder](const SeriesRow& row) { recorder.observe(row); };
+
+  RunState state = start ? *start : RunState{0.0, c.initial, ContactMemory{}};
+  state.time_s = 0.0;
+  std::vector<Eigen::VectorXd> samples;
+  std::deque<PeriodStats> history;
+  SteadyDecision decision(settings);
+  for (int k = 0; k < settings.max_periods; ++k) {
+    recorder.start(state.time_s);
+    if (start || k > 0) control.resume = state;
+    const SimulationResult r = simulate(period_case, table, control);
+    state = r.final_state;
+    history.push_back(recorder.finish(r.summary));
+    if (history.size() > settings.window) history.pop_front();
+    const InitialState& y = state.state;
+    samples.emplace_back(2);
+    samples.back() << rb1 * y.theta1_rad - rb2 * y.theta2_rad, rb1 * y.w1_rad_s - rb2 * y.w2_rad_s;
+    point.periods_run = k + 1;
+    if (decision.settled(samples, scale)) break;
+  }
+  // A whole number of excitation periods has passed: the next point starts at the forcing's
+  // phase of t = 0.
+  state.time_s = 0.0;
+  point.final_state = state;
+  const PeriodicityResult verdict = decision.final_verdict(samples.size());
+  point.verdict = verdict.verdict;
+  point.explanation = verdict.explanation;
+  point.converged = point.verdict != PeriodicityVerdict::not_converged;
+  point.period = point.verdict == PeriodicityVerdict::periodic ? verdict.period : 0;
+  const std::size_t steady_periods = std::min(
+      point.period > 0 ? static_cast<std::size_t>(point.period) : settings.window, samples.size());
+  for (std::size_t i = samples.size() - steady_periods; i < samples.size(); ++i) {
+    point.poincare.push_back({samples[i](0), samples[i](1)});
+  }
+  if (point.converged) {
+    summarize_window(history, steady_periods, mean_torque_n_m(c.torque1, "torque1"), rb1, point);
+  }
+  return point;
+}
+
+}  // namespace gearimpact
