@@ -61,6 +61,10 @@ constexpr std::array kStiffnessMethods{Choice<MethodName>{"gsl", MethodName::gsl
                                        Choice<MethodName>{"boost-gk", MethodName::boost_gk},
                                        Choice<MethodName>{"boost-ts", MethodName::boost_ts},
                                        Choice<MethodName>{"xform", MethodName::xform}};
+constexpr std::array kStiffnessModels{
+    Choice<StiffnessModelKind>{"yang-lin-1987", StiffnessModelKind::yang_lin_1987},
+    Choice<StiffnessModelKind>{"potential-energy", StiffnessModelKind::potential_energy},
+    Choice<StiffnessModelKind>{"ross-compatible", StiffnessModelKind::ross_compatible}};
 constexpr std::array kXformRules{
     Choice<QuadratureRule>{"gsl", QuadratureRule::gsl_qag},
     Choice<QuadratureRule>{"gsl-cquad", QuadratureRule::gsl_cquad},
@@ -435,7 +439,9 @@ GearPair read_gears(const Reader& reader, const toml::value& root) {
   const Section section(
       reader, root, "gears",
       {"teeth1", "teeth2", "module", "pressure_angle", "face_width", "addendum_coefficient",
-       "youngs_modulus", "poisson_ratio", "density", "backlash"},
+       "youngs_modulus", "poisson_ratio", "density", "backlash", "dedendum_coefficient",
+       "profile_shift1", "profile_shift2", "rack_tip_radius_coefficient", "bore_diameter1",
+       "bore_diameter2", "youngs_modulus2", "poisson_ratio2"},
       true);
   // The range checks of the pair are validate(GearPair)'s; here only types,
   // units and finiteness, and counts small enough to be gears.
@@ -453,6 +459,32 @@ GearPair read_gears(const Reader& reader, const toml::value& root) {
       section.number("poisson_ratio", std::nullopt, any_value, "(-1, 0.5), both ends excluded");
   gears.density_kg_m3 = section.quantity("density", Dimension::density);
   gears.backlash_m = section.quantity("backlash", Dimension::length);
+  const GearPair defaults;
+  gears.dedendum_coefficient = section.number("dedendum_coefficient", defaults.dedendum_coefficient,
+                                              any_value, "(addendum, inf): dedendum / module");
+  gears.profile_shift1 =
+      section.number("profile_shift1", defaults.profile_shift1, any_value, "a finite number");
+  gears.profile_shift2 =
+      section.number("profile_shift2", defaults.profile_shift2, any_value, "a finite number");
+  // Optional keys: absent means derived (rack tip radius, gear 2's material)
+  // or not needed (the bores, for the foundation term only).
+  if (section.find("rack_tip_radius_coefficient") != nullptr) {
+    gears.rack_tip_radius_coefficient = section.number("rack_tip_radius_coefficient", std::nullopt,
+                                                       any_value, "(0, inf): rho / module");
+  }
+  if (section.find("bore_diameter1") != nullptr) {
+    gears.bore_diameter1_m = section.quantity("bore_diameter1", Dimension::length);
+  }
+  if (section.find("bore_diameter2") != nullptr) {
+    gears.bore_diameter2_m = section.quantity("bore_diameter2", Dimension::length);
+  }
+  if (section.find("youngs_modulus2") != nullptr) {
+    gears.youngs_modulus2_pa = section.quantity("youngs_modulus2", Dimension::pressure);
+  }
+  if (section.find("poisson_ratio2") != nullptr) {
+    gears.poisson_ratio2 =
+        section.number("poisson_ratio2", std::nullopt, any_value, "(-1, 0.5), both ends excluded");
+  }
   try {
     validate(gears);
   } catch (const InputError& e) {
@@ -520,7 +552,7 @@ SimulationCase read_case(const Reader& reader, const toml::value& root,
         {"friction_coefficient", "damping_form", "damping_stiffness", "restitution_coefficient",
          "restitution_exponent", "restitution_speed_unit", "coast_phase", "moment_sign",
          "stiffness_method", "xform_rule", "stiffness_tolerance", "hertz_term", "bending_term",
-         "axial_term"},
+         "axial_term", "shear_term", "foundation_term", "stiffness_model"},
         false);
     const ModelOptions defaults;
     ModelOptions& model = result.model;
@@ -546,6 +578,8 @@ SimulationCase read_case(const Reader& reader, const toml::value& root,
         section.choice("coast_phase", kCoastPhases, std::optional(defaults.coast_phase));
     model.stiffness.moment_sign =
         section.choice("moment_sign", kMomentSigns, std::optional(defaults.stiffness.moment_sign));
+    model.stiffness.kind =
+        section.choice("stiffness_model", kStiffnessModels, std::optional(defaults.stiffness.kind));
     const MethodName method = section.choice("stiffness_method", kStiffnessMethods,
                                              std::optional(method_of(defaults.stiffness)));
     const QuadratureRule xform_rule =
@@ -560,10 +594,18 @@ SimulationCase read_case(const Reader& reader, const toml::value& root,
       model.stiffness.terms.set(
           t.term, section.choice(key, kOnOff, std::optional(defaults.stiffness.terms.has(t.term))));
     }
-    if (!model.stiffness.terms.any()) {
+    bool any_term = false;
+    for (const TermInfo& t : kTerms) {
+      any_term =
+          any_term || (provides(model.stiffness.kind, t.term) && model.stiffness.terms.has(t.term));
+    }
+    if (!any_term) {
       reader.fail("model.hertz_term", section.find("hertz_term"),
-                  "model.hertz_term, bending_term and axial_term are all \"off\": at least one "
-                  "term of (29) must stay \"on\"");
+                  "model.hertz_term, bending_term and axial_term" +
+                      std::string(model.stiffness.kind == StiffnessModelKind::yang_lin_1987
+                                      ? ""
+                                      : ", shear_term and foundation_term") +
+                      " are all \"off\": at least one term of (29) must stay \"on\"");
     }
     model.stiffness.relative_tolerance =
         section.number("stiffness_tolerance", defaults.stiffness.relative_tolerance,
@@ -742,6 +784,22 @@ std::string write_case_file(const SimulationCase& c, CaseUnits units) {
   out.number("poisson_ratio", c.gears.poisson_ratio);
   out.quantity("density", c.gears.density_kg_m3, Dimension::density, "kg/m^3");
   out.quantity("backlash", c.gears.backlash_m, Dimension::length, "mm");
+  out.number("dedendum_coefficient", c.gears.dedendum_coefficient);
+  out.number("profile_shift1", c.gears.profile_shift1);
+  out.number("profile_shift2", c.gears.profile_shift2);
+  if (c.gears.rack_tip_radius_coefficient) {
+    out.number("rack_tip_radius_coefficient", *c.gears.rack_tip_radius_coefficient);
+  }
+  if (c.gears.bore_diameter1_m) {
+    out.quantity("bore_diameter1", *c.gears.bore_diameter1_m, Dimension::length, "mm");
+  }
+  if (c.gears.bore_diameter2_m) {
+    out.quantity("bore_diameter2", *c.gears.bore_diameter2_m, Dimension::length, "mm");
+  }
+  if (c.gears.youngs_modulus2_pa) {
+    out.quantity("youngs_modulus2", *c.gears.youngs_modulus2_pa, Dimension::pressure, "GPa");
+  }
+  if (c.gears.poisson_ratio2) out.number("poisson_ratio2", *c.gears.poisson_ratio2);
 
   write_torque(out, "torque1", c.torque1);
   write_torque(out, "torque2", c.torque2);
@@ -762,6 +820,7 @@ std::string write_case_file(const SimulationCase& c, CaseUnits units) {
   out.quantity("restitution_speed_unit", m.restitution.speed_unit_m_s, Dimension::speed, "mm/s");
   out.word("coast_phase", name_of(kCoastPhases, m.coast_phase));
   out.word("moment_sign", name_of(kMomentSigns, m.stiffness.moment_sign));
+  out.word("stiffness_model", to_string(m.stiffness.kind));
   out.word("stiffness_method", name_of(kStiffnessMethods, method_of(m.stiffness)));
   out.word("xform_rule", name_of(kXformRules, m.stiffness.route == StiffnessRoute::x_form
                                                   ? m.stiffness.rule
