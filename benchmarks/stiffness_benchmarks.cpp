@@ -353,6 +353,102 @@ const bool targets_registered = [] {
   return true;
 }();
 
+// --- the potential-energy model ----------------------------------------------
+// The full model (Hertz, bending, shear, axial, foundation; the paper's pair
+// with the ROSS peer run's bores) per mesh position by adaptive quadrature
+// (Boost Gauss-Kronrod over each flank piece's parameter, 1e-12) and by its
+// table, beside the paper model above. Reference: the other beam route (GSL
+// QAG over the section height) at 1e-13, which shares no rule with the first.
+
+const GearPair& pe_pair() {
+  static const GearPair pair = [] {
+    GearPair p = paper_gear_pair();
+    p.bore_diameter1_m = 20e-3;
+    p.bore_diameter2_m = 60e-3;
+    return p;
+  }();
+  return pair;
+}
+
+StiffnessModel pe_model() {
+  StiffnessModel m;
+  m.kind = StiffnessModelKind::potential_energy;
+  return m;
+}
+
+const std::vector<std::pair<double, MeshStiffness>>& pe_reference(std::size_t positions) {
+  static std::vector<std::pair<double, MeshStiffness>> r;
+  if (r.size() != positions) {
+    StiffnessModel model = pe_model();
+    model.route = StiffnessRoute::x_form;
+    model.relative_tolerance = 1e-13;
+    r.clear();
+    for (double x : spread(segment().start_m, segment().end_m, positions)) {
+      r.emplace_back(x, mesh_stiffness(pe_pair(), x, model));
+    }
+  }
+  return r;
+}
+
+template <typename KeOf>
+Accuracy pe_accuracy(std::size_t positions, KeOf ke_of) {
+  Accuracy worst{0.0, 0.0};
+  for (const auto& [x, ref] : pe_reference(positions)) {
+    worst.ke = std::max(worst.ke, relative_error(ke_of(x), ref.ke));
+  }
+  return worst;
+}
+
+const bool potential_energy_registered = [] {
+  register_accuracy("stiffness/potential_energy_adaptive", [](std::size_t positions) {
+    return pe_accuracy(positions,
+                       [](double x) { return mesh_stiffness(pe_pair(), x, pe_model()).ke; });
+  });
+  benchmark::RegisterBenchmark("stiffness/potential_energy_adaptive", [](benchmark::State& state) {
+    const std::vector<double>& xs = timed_positions();
+    const StiffnessModel model = pe_model();
+    std::size_t i = 0;
+    for (auto _ : state) {
+      benchmark::DoNotOptimize(mesh_stiffness(pe_pair(), xs[i], model));
+      i = (i + 1) & (timing_positions - 1);
+    }
+    report_accuracy(state, "stiffness/potential_energy_adaptive");
+  })->Unit(benchmark::kMicrosecond);
+  register_accuracy("stiffness/potential_energy_table", [](std::size_t positions) {
+    const StiffnessTable table(pe_pair(), pe_model());
+    return pe_accuracy(positions, [&](double x) { return table.stiffness(x); });
+  });
+  benchmark::RegisterBenchmark("stiffness/potential_energy_table", [](benchmark::State& state) {
+    const StiffnessTable table(pe_pair(), pe_model());
+    const std::vector<double>& xs = timed_positions();
+    std::size_t i = 0;
+    for (auto _ : state) {
+      benchmark::DoNotOptimize(table.stiffness(xs[i]));
+      i = (i + 1) & (timing_positions - 1);
+    }
+    report_accuracy(state, "stiffness/potential_energy_table");
+  });
+  register_target([](const Figures& ns) {
+    const double pe = ns("stiffness/potential_energy_table");
+    const double paper = ns("stiffness/table");
+    if (std::isnan(pe) || std::isnan(paper)) {
+      return std::string("potential-energy table at most 2x the paper model's: not measured");
+    }
+    return format("potential-energy table at most 2x the paper model's: %.1f ns vs %.1f ns: ", pe,
+                  paper) +
+           verdict(pe <= 2.0 * paper);
+  });
+  register_target([](const Figures& ns) {
+    const double us = ns("stiffness/potential_energy_adaptive") * 1e-3;
+    if (std::isnan(us)) {
+      return std::string("potential-energy adaptive under 50 us per position: not measured");
+    }
+    return format("potential-energy adaptive under 50 us per position: %.1f us: ", us) +
+           verdict(us < 50.0);
+  });
+  return true;
+}();
+
 }  // namespace
 
 }  // namespace gearimpact::bench

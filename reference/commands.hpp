@@ -5,7 +5,8 @@
 
 namespace gearimpact::cli {
 
-// `stiffness` and `energy-ratios`: tables of the mesh stiffness and of Fig. 8.
+// `stiffness`, `energy-ratios`, `mesh-stiffness`, `iso6336`: tables of the
+// mesh stiffness and of Fig. 8, the stiffness over one mesh period, ISO 6336-1.
 void register_stiffness_commands(CLI::App& app);
 
 // `reproduce`: every figure of the paper and REPORT.md into a folder.

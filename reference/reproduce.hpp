@@ -30,6 +30,9 @@ std::string number(double value, int digits);
 ReportRow statement_row(const PaperStatement& s, const std::string& ours, bool matches);
 
 ReportSection reproduce_fig8(const ReproduceContext& context);
+// The three stiffness models and ISO 6336-1 for the paper's pair with the
+// bores of the ROSS peer run (20 mm, 60 mm).
+ReportSection reproduce_stiffness(const ReproduceContext& context);
 ReportSection reproduce_time_histories(const ReproduceContext& context);
 ReportSection reproduce_fig7(const ReproduceContext& context);
 ReportSection reproduce_readings(const ReproduceContext& context);

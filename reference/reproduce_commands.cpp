@@ -80,6 +80,7 @@ void reproduce(const ReproduceOptions& options) {
   const std::vector<Part> parts{{"Figs. 4-6 time histories of cases 1-3", reproduce_time_histories},
                                 {"Fig. 7 friction sweep, 27 runs", reproduce_fig7},
                                 {"Fig. 8 energy ratios", reproduce_fig8},
+                                {"stiffness models and ISO 6336-1", reproduce_stiffness},
                                 {"the open readings side by side", reproduce_readings},
                                 {"case 3 ensemble", reproduce_case3_ensemble}};
   // The parts run side by side: each submits its simulations to the one pool

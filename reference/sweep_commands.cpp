@@ -11,7 +11,6 @@
 #include <map>
 #include <mutex>
 #include <optional>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -97,15 +96,21 @@ Shard parse_shard(const std::string& text) {
     const long k = std::atol(id) - (min != nullptr ? std::atol(min) : 0);
     spec = std::to_string(k) + "/" + count;
   }
-  const std::regex form(R"((\d+)/(\d+))");
-  std::smatch m;
-  if (!std::regex_match(spec, m, form) || std::stoi(m[2]) < 1 ||
-      std::stoi(m[1]) >= std::stoi(m[2])) {
+  // K/N: two runs of at most 9 digits around one slash.
+  const std::size_t slash = spec.find('/');
+  const auto digits = [](const std::string& part) {
+    return !part.empty() && part.size() <= 9 &&
+           std::all_of(part.begin(), part.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+  };
+  const std::string k_text = slash == std::string::npos ? spec : spec.substr(0, slash);
+  const std::string n_text = slash == std::string::npos ? "" : spec.substr(slash + 1);
+  if (!digits(k_text) || !digits(n_text) || std::stoi(n_text) < 1 ||
+      std::stoi(k_text) >= std::stoi(n_text)) {
     throw InputError("--shard", spec,
                      "K/N with 0 <= K < N (or SLURM_ARRAY_TASK_ID, SLURM_ARRAY_TASK_COUNT and "
                      "SLURM_ARRAY_TASK_MIN)");
   }
-  return {std::stoi(m[1]), std::stoi(m[2])};
+  return {std::stoi(k_text), std::stoi(n_text)};
 }
 
 struct Unit {
@@ -227,22 +232,36 @@ struct SpecCounts {
   double from2 = 0.0, to2 = 0.0;
 };
 
+// The value of "name": in the JSON text the sweep writes: a quoted string
+// (without the quotes) or a bare token up to the next comma or line end.
+std::optional<std::string> json_value(const std::string& json, const std::string& name) {
+  const std::string key = "\"" + name + "\": ";
+  const std::size_t at = json.find(key);
+  if (at == std::string::npos) return std::nullopt;
+  std::size_t begin = at + key.size();
+  if (begin < json.size() && json[begin] == '"') {
+    const std::size_t end = json.find('"', begin + 1);
+    if (end == std::string::npos) return std::nullopt;
+    return json.substr(begin + 1, end - begin - 1);
+  }
+  const std::size_t end = json.find_first_of(",\n}", begin);
+  return json.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+}
+
 SpecCounts read_spec_counts(const std::string& spec, const std::string& file) {
   SpecCounts counts;
-  std::smatch m;
   const auto field = [&](const char* name) {
-    const std::regex pattern(std::string("\"") + name + "\": \"?([^\",\\n]*)\"?");
-    if (!std::regex_search(spec, m, pattern)) {
+    const std::optional<std::string> value = json_value(spec, name);
+    if (!value) {
       throw InputError(file, std::string("no ") + name,
                        "a summary.json written by gearimpact sweep");
     }
-    return m[1].str();
+    return *value;
   };
   counts.points = std::stoi(field("points"));
   counts.lines = std::stoi(field("lines"));
-  const std::regex directions("\"directions\": \"([a-z,]*)\"");
-  if (std::regex_search(spec, m, directions)) {
-    std::stringstream list(m[1].str());
+  if (const std::optional<std::string> directions = json_value(spec, "directions")) {
+    std::stringstream list(*directions);
     for (std::string d; std::getline(list, d, ',');) counts.directions.push_back(d);
   }
   counts.vary2 = field("vary2");
@@ -488,8 +507,7 @@ void run_merge(const MergeOptions& o) {
     }
   }
   write_outputs(o.out, spec, rows, "");
-  std::smatch m;
-  if (std::regex_search(spec, m, std::regex("\"vary\": \"([^\"]*)\""))) vary = m[1].str();
+  if (const std::optional<std::string> value = json_value(spec, "vary")) vary = *value;
   if (o.plots) render_plots(o.out, counts, vary);
 }
 

@@ -36,8 +36,8 @@ TEST_CASE("stiffness: CSV columns in SI, X_start to X_end inclusive, round-trip 
   REQUIRE(r.exit_code == 0);
   const auto rows = csv_rows(r.out);
   REQUIRE(rows.size() == 6);
-  CHECK(rows[0] ==
-        std::vector<std::string>{"x_m", "phi1_rad", "kb1", "ka1", "kb2", "ka2", "kh", "ke"});
+  CHECK(rows[0] == std::vector<std::string>{"x_m", "phi1_rad", "kb1", "ka1", "kb2", "ka2", "kh",
+                                            "ke", "ks1", "ks2", "kf1", "kf2"});
   const GearPair pair = paper_gear_pair();
   const ContactSegment segment = contact_segment(pair);
   // 17 significant digits round-trip a double exactly.

@@ -140,6 +140,7 @@ class Run {
     SimulationSummary& s = result_.summary;
     s.case_name = c_.name;
     s.integrator = integrator;
+    s.stiffness_model = c_.model.stiffness.kind;
     s.friction_coefficient = c_.model.friction_coefficient;
     s.end_time_s = t;
     s.step_s = c_.integrator.step_s;

@@ -50,14 +50,6 @@ double tip_half_angle(double teeth, double module, double a0, double ha, double 
          involute_function(std::acos(rb / tip_radius(teeth, module, ha, x)));
 }
 
-// inv a = target for a in (0, pi/2): inv is increasing there, 0 at 0 and
-// unbounded at pi/2.
-double inverse_involute(double target) {
-  double upper = 1.0;
-  while (involute_function(upper) < target) upper = 0.5 * (upper + 0.5 * pi);
-  return bracketed_root([target](double a) { return involute_function(a) - target; }, 0.0, upper);
-}
-
 }  // namespace
 
 RackGearGeometry rack_gear_geometry(const RackGear& gear, const std::string& name) {
@@ -256,20 +248,9 @@ RackGearPairGeometry rack_gear_pair_geometry(const RackGearPair& pair) {
                      "gear1.pressure_angle = " + format_number(pair.gear1.pressure_angle_rad) +
                          " rad: both gears are cut by the same rack");
   }
-  const double a0 = g1.pressure_angle_rad;
-  const double z_sum = static_cast<double>(g1.teeth + g2.teeth);
-  const double x_sum = pair.gear1.profile_shift_coefficient + pair.gear2.profile_shift_coefficient;
-  // Zero backlash: the tooth thicknesses on the operating pitch circles fill
-  // the circular pitch there, inv a_w = inv a0 + 2 tan a0 (x1 + x2) / (z1 + z2).
-  const double inv_aw = involute_function(a0) + 2.0 * std::tan(a0) * x_sum / z_sum;
-  if (!(inv_aw > 0.0)) {
-    throw InputError("gear1.profile_shift_coefficient + gear2.profile_shift_coefficient", x_sum,
-                     "values above -(z1 + z2) inv(a0) / (2 tan a0) = " +
-                         format_number(-z_sum * involute_function(a0) / (2.0 * std::tan(a0))) +
-                         ", for a positive operating pressure angle");
-  }
-  // Unshifted sums keep a0 itself rather than its round trip through inv.
-  g.operating_pressure_angle_rad = x_sum == 0.0 ? a0 : inverse_involute(inv_aw);
+  g.operating_pressure_angle_rad = operating_pressure_angle(
+      g1.pressure_angle_rad, g1.teeth, g2.teeth, pair.gear1.profile_shift_coefficient,
+      pair.gear2.profile_shift_coefficient);
   g.centre_distance_m =
       (g1.base_radius_m + g2.base_radius_m) / std::cos(g.operating_pressure_angle_rad);
   // T1T2 = a_w sin a_w, written with the base radii.

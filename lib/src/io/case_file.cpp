@@ -483,7 +483,7 @@ std::string write_case_file(const SimulationCase& c, CaseUnits units) {
   std::string text = "# gearimpact case file (see docs/case-files.md)\n";
   std::string_view section;
   for (const Field& field : case_schema()) {
-    if (!applies(field, c)) continue;
+    if (!applies(field, c) || absent(field, c)) continue;
     if (field.section != section) {
       section = field.section;
       text += "\n[" + std::string(section) + "]\n";

@@ -1,6 +1,7 @@
 #include "gearimpact/io/results.hpp"
 
 #include <cstdio>
+#include <limits>
 #include <string>
 
 namespace gearimpact {
@@ -81,6 +82,7 @@ std::string summary_json(const SimulationSummary& s) {
   json_number(out, "parametric_work_J", s.parametric_work_j);
   json_number(out, "parametric_jump_work_J", s.parametric_jump_work_j);
   for (const TermInfo& t : kTerms) {
+    if (!provides(s.stiffness_model, t.term)) continue;
     json_number(out, (std::string(t.id) + "_energy_max_J").c_str(),
                 s.energy_max_j[index_of(t.term)]);
   }
@@ -128,22 +130,46 @@ std::string energy_ratios_csv(const std::vector<EnergyRatios>& rows) {
   return out;
 }
 
+namespace {
+
+// The paper's columns first, as they were before the models beyond it:
+// kb1,ka1,kb2,ka2,kh,ke; then ks1,ks2,kf1,kf2.
+bool paper_term(Term term) {
+  return provides(StiffnessModelKind::yang_lin_1987, term);
+}
+
+}  // namespace
+
 std::string stiffness_csv(const GearPair& pair, const StiffnessModel& model,
                           const std::vector<double>& x1_m) {
   std::string out = "x_m,phi1_rad";
   for (int gear = 1; gear <= 2; ++gear) {
     for (const TermInfo& t : kTerms) {
-      if (t.per_tooth) out += "," + std::string(t.column) + std::to_string(gear);
+      if (t.per_tooth && paper_term(t.term)) {
+        out += "," + std::string(t.column) + std::to_string(gear);
+      }
     }
   }
   for (const TermInfo& t : kTerms) {
     if (!t.per_tooth) out += "," + std::string(t.column);
   }
-  out += ",ke\n";
+  out += ",ke";
+  for (const TermInfo& t : kTerms) {
+    if (!paper_term(t.term)) {
+      out += "," + std::string(t.column) + "1," + std::string(t.column) + "2";
+    }
+  }
+  out += "\n";
   char number[32];
   const auto append = [&](double value, bool first = false) {
     std::snprintf(number, sizeof number, first ? "%.17g" : ",%.17g", value);
     out += number;
+  };
+  // A term switched off or absent from the model has no stiffness in Ke.
+  const auto term_stiffness = [&](const MeshStiffness& k, Term term, Gear gear) {
+    return model.terms.has(term) && provides(model.kind, term)
+               ? k.stiffness(term, gear)
+               : std::numeric_limits<double>::infinity();
   };
   for (double x : x1_m) {
     const MeshStiffness k = mesh_stiffness(pair, x, model);
@@ -151,15 +177,64 @@ std::string stiffness_csv(const GearPair& pair, const StiffnessModel& model,
     append(contact_angle(pair, Gear::one, x));
     for (Gear gear : {Gear::one, Gear::two}) {
       for (const TermInfo& t : kTerms) {
-        if (t.per_tooth) append(k.stiffness(t.term, gear));
+        if (t.per_tooth && paper_term(t.term)) append(term_stiffness(k, t.term, gear));
       }
     }
     for (const TermInfo& t : kTerms) {
-      if (!t.per_tooth) append(k.stiffness(t.term));
+      if (!t.per_tooth) append(term_stiffness(k, t.term, Gear::one));
     }
     append(k.ke);
+    for (const TermInfo& t : kTerms) {
+      if (paper_term(t.term)) continue;
+      for (Gear gear : {Gear::one, Gear::two}) append(term_stiffness(k, t.term, gear));
+    }
     out += "\n";
   }
+  return out;
+}
+
+std::string mesh_stiffness_csv(const TimeVaryingMeshStiffness& tvms) {
+  std::string out = "fraction,theta1_rad,pairs,ke_n_m\n";
+  char line[160];
+  for (const MeshStiffnessSample& sample : tvms.samples) {
+    std::snprintf(line, sizeof line, "%.17g,%.17g,%d,%.17g\n", sample.fraction, sample.theta1_rad,
+                  sample.pairs, sample.stiffness_n_per_m);
+    out += line;
+  }
+  return out;
+}
+
+std::string foundation_extrapolation_warning() {
+  return "the fillet-foundation fit of Sainsot et al. (2004) is used outside its range (h_f in "
+         "[1.4, 7], theta_f in [0.01, 0.12] rad): the foundation term is an extrapolation";
+}
+
+std::string mesh_stiffness_summary_json(const TimeVaryingMeshStiffness& tvms, double contact_ratio,
+                                        bool extrapolated) {
+  std::string out = "{\n";
+  json_number(out, "min_n_m", tvms.min_n_per_m);
+  json_number(out, "max_n_m", tvms.max_n_per_m);
+  json_number(out, "mean_n_m", tvms.mean_n_per_m);
+  json_number(out, "contact_ratio", contact_ratio);
+  out += std::string("  \"extrapolated\": ") + (extrapolated ? "true" : "false");
+  if (extrapolated) out += ",\n  \"warning\": " + json_string(foundation_extrapolation_warning());
+  out += "\n}\n";
+  return out;
+}
+
+std::string iso6336_json(const Iso6336Stiffness& iso, double face_width_m) {
+  // ISO's unit N/(mm um) is 1e9 N/m^2.
+  constexpr double n_per_mm_um = 1e9;
+  std::string out = "{\n";
+  json_number(out, "zn1", iso.virtual_teeth1);
+  json_number(out, "zn2", iso.virtual_teeth2);
+  json_number(out, "c_prime_th_n_mm_um", iso.theoretical_single_stiffness_n_per_m2 / n_per_mm_um);
+  json_number(out, "c_prime_n_mm_um", iso.single_stiffness_n_per_m2 / n_per_mm_um);
+  json_number(out, "c_gamma_alpha_n_mm_um", iso.mesh_stiffness_n_per_m2 / n_per_mm_um);
+  json_number(out, "eps_alpha", iso.transverse_contact_ratio);
+  json_number(out, "c_prime_b_n_m", iso.single_stiffness_n_per_m2 * face_width_m);
+  json_number(out, "c_gamma_alpha_b_n_m", iso.mesh_stiffness_n_per_m2 * face_width_m, true);
+  out += "}\n";
   return out;
 }
 

@@ -5,6 +5,8 @@
 #include <charconv>
 #include <climits>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <string>
 #include <system_error>
 #include <type_traits>
@@ -60,7 +62,9 @@ template <typename Slot>
 void bind(Field& field, Slot slot) {
   field.get = [slot](const SimulationCase& c) {
     using T = std::decay_t<decltype(slot(c))>;
-    if constexpr (std::is_enum_v<T>) {
+    if constexpr (std::is_same_v<T, std::optional<double>>) {
+      return slot(c).value_or(std::numeric_limits<double>::quiet_NaN());
+    } else if constexpr (std::is_enum_v<T>) {
       return static_cast<double>(static_cast<int>(slot(c)));
     } else if constexpr (std::is_same_v<T, bool>) {
       return slot(c) ? 1.0 : 0.0;
@@ -70,7 +74,9 @@ void bind(Field& field, Slot slot) {
   };
   field.set = [slot](SimulationCase& c, double value) {
     using T = std::decay_t<decltype(slot(c))>;
-    if constexpr (std::is_enum_v<T>) {
+    if constexpr (std::is_same_v<T, std::optional<double>>) {
+      slot(c) = value;
+    } else if constexpr (std::is_enum_v<T>) {
       slot(c) = static_cast<T>(static_cast<int>(value));
     } else if constexpr (std::is_same_v<T, bool>) {
       slot(c) = value != 0.0;
@@ -240,6 +246,43 @@ std::vector<Field> make_schema() {
     r.quantity(
         "backlash", Dimension::length, "mm", {closed(0.0), {}, {}}, true,
         "B of (31), along the line of action", [](auto& c) -> auto& { return c.gears.backlash_m; });
+    r.number(
+        "dedendum_coefficient", {open(0.0), {}, {}}, false,
+        "the rack's dedendum / module, ha + c: the root radius is r - (ha + c - x) m; only the "
+        "models that start the tooth at the root circle see it; above the addendum coefficient",
+        [](auto& c) -> auto& { return c.gears.dedendum_coefficient; });
+    r.number(
+        "profile_shift1", {}, false,
+        "x1: the rack's datum line moved out by x1 m (the pair then meshes at its operating "
+        "pressure angle); limited by a pointed tip and by undercut, both named when met",
+        [](auto& c) -> auto& { return c.gears.profile_shift1; });
+    r.number(
+        "profile_shift2", {}, false, "x2, as profile_shift1 for gear 2",
+        [](auto& c) -> auto& { return c.gears.profile_shift2; });
+    r.number(
+         "rack_tip_radius_coefficient", {closed(0.0), {}, {}}, false,
+         "rho / m of the rack's tip round; it must fit the clearance and the rack's tip land",
+         [](auto& c) -> auto& { return c.gears.rack_tip_radius_coefficient; })
+        .when_absent = "the full round c / (1 - sin a0), or the largest that fits the tip land";
+    r.quantity(
+         "bore_diameter1", Dimension::length, "mm", {open(0.0), {}, {}}, false,
+         "bore of gear 1, below its root diameter; needed by the fillet-foundation term only",
+         [](auto& c) -> auto& { return c.gears.bore_diameter1_m; })
+        .when_absent = "no bore given (the foundation term then refuses to run)";
+    r.quantity(
+         "bore_diameter2", Dimension::length, "mm", {open(0.0), {}, {}}, false,
+         "bore of gear 2, as bore_diameter1",
+         [](auto& c) -> auto& { return c.gears.bore_diameter2_m; })
+        .when_absent = "no bore given (the foundation term then refuses to run)";
+    r.quantity(
+         "youngs_modulus2", Dimension::pressure, "GPa", {open(0.0), {}, {}}, false,
+         "E of gear 2 (Hertz for two materials)",
+         [](auto& c) -> auto& { return c.gears.youngs_modulus2_pa; })
+        .when_absent = "gear 1's";
+    r.number(
+         "poisson_ratio2", {open(-1.0), open(0.5), "both ends excluded"}, false,
+         "nu of gear 2", [](auto& c) -> auto& { return c.gears.poisson_ratio2; })
+        .when_absent = "gear 1's";
   }
   add_torque(
       rows, "torque1", [](auto& c) -> auto& { return c.torque1; });
@@ -305,6 +348,17 @@ std::vector<Field> make_schema() {
          choice("in-phase", CoastPhase::in_phase, "the literal reading of (9)")},
         false, "where the coast-flank contacts sit",
         [](auto& c) -> auto& { return c.model.coast_phase; });
+    r.choice(
+        "stiffness_model",
+        {choice("yang-lin-1987", StiffnessModelKind::yang_lin_1987,
+                "the paper's: involute from the base circle, Hertz, bending, axial"),
+         choice("potential-energy", StiffnessModelKind::potential_energy,
+                "trochoid + involute from the root circle, Hertz, bending, shear, axial, "
+                "fillet foundation (needs both bores)"),
+         choice("ross-compatible", StiffnessModelKind::ross_compatible,
+                "potential-energy with the ROSS gear element's two conventions")},
+        false, "the mesh-stiffness model (README, Which stiffness model)",
+        [](auto& c) -> auto& { return c.model.stiffness.kind; });
     r.choice(
         "moment_sign",
         {choice("physical", AxialMomentSign::physical, "M = Fb (l - x) - Fa h as printed"),
@@ -513,6 +567,10 @@ std::vector<std::string_view> schema_sections() {
   return sections;
 }
 
+bool absent(const Field& field, const SimulationCase& c) {
+  return !field.when_absent.empty() && field.kind != FieldKind::text && std::isnan(field.get(c));
+}
+
 bool applies(const Field& field, const SimulationCase& c) {
   if (!field.only_when) return true;
   for (const Field& selector : case_schema()) {
@@ -617,6 +675,7 @@ std::string value_text(const Field& field, const SimulationCase& c, bool readabl
 std::string default_text(const Field& field) {
   if (field.required) return "required";
   if (field.kind == FieldKind::text) return "the file's stem";
+  if (absent(field, SimulationCase{})) return "absent: " + std::string(field.when_absent);
   return value_text(field, SimulationCase{});
 }
 
@@ -750,7 +809,7 @@ void validate_fields(const SimulationCase& c) {
   for (const Field& field : case_schema()) {
     if (field.kind == FieldKind::text) {
       check_text(field, field.get_text(c), field.name());
-    } else if (applies(field, c)) {
+    } else if (applies(field, c) && !absent(field, c)) {
       const double value = field.get(c);
       check_value(field, value, field.name(), si_text(field, value));
     }

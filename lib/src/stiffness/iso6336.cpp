@@ -146,4 +146,38 @@ Iso6336Stiffness iso6336_method_b(const Iso6336Pair& pair) {
   return r;
 }
 
+Iso6336Pair iso6336_pair(const GearPair& pair, double helix_angle_rad) {
+  if (!std::isfinite(helix_angle_rad) || helix_angle_rad < 0.0 ||
+      helix_angle_rad >= 45.0 * degree) {
+    throw InputError("helix_angle", helix_angle_rad, "[0, 45) deg in rad");
+  }
+  Iso6336Pair iso;
+  iso.normal_module_m = pair.module_m;
+  iso.normal_pressure_angle_rad = pair.pressure_angle_rad;
+  iso.helix_angle_rad = helix_angle_rad;
+  const double cos_beta = std::cos(helix_angle_rad);
+  const double alpha_t = std::atan(std::tan(pair.pressure_angle_rad) / cos_beta);
+  const double z_sum = static_cast<double>(pair.teeth1) + static_cast<double>(pair.teeth2);
+  const double x_sum = pair.profile_shift1 + pair.profile_shift2;
+  // A spur pair keeps the operating pressure angle of its own geometry.
+  const double alpha_wt =
+      helix_angle_rad == 0.0
+          ? operating_pressure_angle(pair)
+          : inverse_involute(involute_function(alpha_t) +
+                             2.0 * std::tan(pair.pressure_angle_rad) * x_sum / z_sum);
+  iso.centre_distance_m =
+      pair.module_m * z_sum * std::cos(alpha_t) / (2.0 * cos_beta * std::cos(alpha_wt));
+  for (Gear gear : {Gear::one, Gear::two}) {
+    Iso6336Gear& g = gear == Gear::one ? iso.gear1 : iso.gear2;
+    g.teeth = teeth(pair, gear);
+    g.profile_shift_coefficient = profile_shift(pair, gear);
+    g.tip_diameter_m =
+        pair.module_m * g.teeth / cos_beta +
+        2.0 * (pair.addendum_coefficient + g.profile_shift_coefficient) * pair.module_m;
+    g.rack_dedendum_coefficient = pair.dedendum_coefficient;
+    g.rack_pressure_angle_rad = pair.pressure_angle_rad;
+  }
+  return iso;
+}
+
 }  // namespace gearimpact

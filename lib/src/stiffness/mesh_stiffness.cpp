@@ -1,9 +1,12 @@
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
+#include "gearimpact/stiffness/mesh_models.hpp"
 #include "gearimpact/stiffness/tau_form.hpp"
 #include "gearimpact/stiffness/x_form.hpp"
 
@@ -14,6 +17,12 @@ InvoluteTooth tooth_of(const GearPair& pair, Gear gear) {
 }
 
 double hertz_stiffness(const GearPair& pair) {
+  const double e2 = youngs_modulus(pair, Gear::two);
+  const double nu2 = poisson_ratio(pair, Gear::two);
+  if (e2 != pair.youngs_modulus_pa || nu2 != pair.poisson_ratio) {
+    return hertz_stiffness_two_materials(pair.face_width_m, pair.youngs_modulus_pa,
+                                         pair.poisson_ratio, e2, nu2);
+  }
   // (4)
   const double nu = pair.poisson_ratio;
   return pi * pair.youngs_modulus_pa * pair.face_width_m / (4.0 * (1.0 - nu * nu));
@@ -36,27 +45,98 @@ double MeshStiffness::stiffness(Term term, Gear gear) const {
   return 1.0 / (gear == Gear::one ? tooth1 : tooth2).of(term);
 }
 
+namespace {
+
+// The per-pair and included terms and Ke (29) from the two teeth's terms.
+void combine(const GearPair& pair, const StiffnessModel& model, MeshStiffness& k) {
+  for (const TermInfo& t : kTerms) {
+    k.pair.of(t.term) = t.per_tooth ? k.tooth1.of(t.term) + k.tooth2.of(t.term) : 0.0;
+  }
+  k.pair.of(Term::hertz) = 1.0 / hertz_stiffness(pair);
+  k.included = included(k.pair, model.terms);
+  // (29) 1/Ke = 1/Kh + 1/Kb1 + 1/Ka1 + 1/Kb2 + 1/Ka2 over the terms switched
+  // on, and for the models beyond the paper 1/Ks and 1/Kf of both teeth
+  // (STIFFNESS-MODELS.md section 2).
+  k.ke = 1.0 / k.included.total_m_per_n();
+}
+
+Compliances tooth_terms(const ToothCompliances& c) {
+  Compliances result;
+  result.of(Term::bending) = c.bending_m_per_n;
+  result.of(Term::shear) = c.shear_m_per_n;
+  result.of(Term::axial) = c.axial_m_per_n;
+  result.of(Term::foundation) = c.foundation_m_per_n;
+  return result;
+}
+
+// potential_energy and ross_compatible: the rack-cut teeth of mesh_models.hpp.
+MeshStiffness rack_model_stiffness(const GearPair& pair, double x1_m, const StiffnessModel& model) {
+  const ContactSegment segment = contact_segment(pair);
+  if (!(x1_m >= segment.start_m && x1_m <= segment.end_m)) {
+    throw InputError("contact position X1", x1_m,
+                     "[" + format_number(segment.start_m) + ", " + format_number(segment.end_m) +
+                         "] m, the contact segment: the " + to_string(model.kind) +
+                         " model loads the involutes only");
+  }
+  const bool foundation = model.terms.has(Term::foundation);
+  if (foundation) {
+    for (Gear gear : {Gear::one, Gear::two}) {
+      if (!(gear == Gear::one ? pair.bore_diameter1_m : pair.bore_diameter2_m)) {
+        throw InputError(gear == Gear::one ? "bore_diameter1" : "bore_diameter2", "absent",
+                         "a diameter inside the root circle, m: the fillet-foundation term of "
+                         "the " +
+                             to_string(model.kind) +
+                             " model needs both bores (or switch foundation_term off)");
+      }
+    }
+  }
+  const RackGearPairGeometry geometry = rack_gear_pair_geometry(pair);
+  MeshModel rack_model;
+  rack_model.kind = model.kind == StiffnessModelKind::ross_compatible
+                        ? MeshModelKind::ross_compatible
+                        : MeshModelKind::potential_energy;
+  // The beam terms come out of one integration together; the switches act in
+  // combine(). Hertz is (4) here, as for the paper's model.
+  rack_model.terms = {false, true, true, true, foundation};
+  rack_model.route = model.route == StiffnessRoute::x_form ? BeamRoute::section_height
+                                                           : BeamRoute::profile_parameter;
+  rack_model.relative_tolerance = model.relative_tolerance;
+  // The path's ends are computed here and in rack_generation.cpp by
+  // different roundings of the same lengths: an end of the contact segment
+  // may sit an ulp outside the rack pair's path.
+  const double s_m =
+      std::clamp(x1_m, geometry.start_of_active_profile_m, geometry.end_of_active_profile_m);
+  const PairStiffness rack = pair_stiffness(geometry, rack_model, s_m);
+  MeshStiffness k{};
+  k.tooth1 = tooth_terms(rack.gear1);
+  k.tooth2 = tooth_terms(rack.gear2);
+  k.foundation_extrapolated =
+      rack.gear1.foundation_extrapolated || rack.gear2.foundation_extrapolated;
+  combine(pair, model, k);
+  return k;
+}
+
+}  // namespace
+
 MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessModel& model) {
   validate(model);
+  if (model.kind != StiffnessModelKind::yang_lin_1987) {
+    return rack_model_stiffness(pair, x1_m, model);
+  }
   const double lp = line_of_action_length(pair);
   if (!std::isfinite(x1_m) || x1_m <= 0.0 || x1_m >= lp) {
     throw InputError(
         "contact position X1", x1_m,
         "(0, lp) with lp = " + format_number(lp) + " m: between the tangent points C1 and C2");
   }
-  const double e = pair.youngs_modulus_pa;
   const double width = pair.face_width_m;
   MeshStiffness k{};
-  k.tooth1 = tooth_compliance(tooth_of(pair, Gear::one), x1_m, e, width, model);
+  k.tooth1 =
+      tooth_compliance(tooth_of(pair, Gear::one), x1_m, pair.youngs_modulus_pa, width, model);
   // (25),(26): gear 2 sees the contact at lp - X1 from C2.
-  k.tooth2 = tooth_compliance(tooth_of(pair, Gear::two), lp - x1_m, e, width, model);
-  for (const TermInfo& t : kTerms) {
-    k.pair.of(t.term) = t.per_tooth ? k.tooth1.of(t.term) + k.tooth2.of(t.term) : 0.0;
-  }
-  k.pair.of(Term::hertz) = 1.0 / hertz_stiffness(pair);
-  k.included = included(k.pair, model.terms);
-  // (29) 1/Ke = 1/Kh + 1/Kb1 + 1/Ka1 + 1/Kb2 + 1/Ka2 over the terms switched on.
-  k.ke = 1.0 / k.included.total_m_per_n();
+  k.tooth2 = tooth_compliance(tooth_of(pair, Gear::two), lp - x1_m, youngs_modulus(pair, Gear::two),
+                              width, model);
+  combine(pair, model, k);
   return k;
 }
 

@@ -1,6 +1,7 @@
 #include "gearimpact/stiffness/model.hpp"
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 #include "gearimpact/error.hpp"
@@ -8,14 +9,45 @@
 namespace gearimpact {
 
 bool operator==(const StiffnessModel& a, const StiffnessModel& b) {
-  return a.route == b.route && a.rule == b.rule && a.moment_sign == b.moment_sign &&
-         a.relative_tolerance == b.relative_tolerance && a.terms == b.terms;
+  return a.kind == b.kind && a.route == b.route && a.rule == b.rule &&
+         a.moment_sign == b.moment_sign && a.relative_tolerance == b.relative_tolerance &&
+         a.terms == b.terms;
+}
+
+StiffnessModelKind parse_stiffness_model(std::string_view name, std::string_view field) {
+  if (name == "yang-lin-1987") return StiffnessModelKind::yang_lin_1987;
+  if (name == "potential-energy") return StiffnessModelKind::potential_energy;
+  if (name == "ross-compatible") return StiffnessModelKind::ross_compatible;
+  throw InputError(std::string(field), std::string(name),
+                   "one of yang-lin-1987, potential-energy, ross-compatible");
+}
+
+std::string to_string(StiffnessModelKind kind) {
+  switch (kind) {
+    case StiffnessModelKind::yang_lin_1987:
+      return "yang-lin-1987";
+    case StiffnessModelKind::potential_energy:
+      return "potential-energy";
+    case StiffnessModelKind::ross_compatible:
+      return "ross-compatible";
+  }
+  throw std::logic_error("unknown StiffnessModelKind");
+}
+
+bool provides(StiffnessModelKind kind, Term term) {
+  if (kind != StiffnessModelKind::yang_lin_1987) return true;
+  return term == Term::hertz || term == Term::bending || term == Term::axial;
 }
 
 void validate(const StiffnessModel& model) {
-  if (!model.terms.any()) {
+  bool any = false;
+  for (const TermInfo& t : kTerms)
+    any = any || (provides(model.kind, t.term) && model.terms.has(t.term));
+  if (!any) {
     throw InputError("stiffness terms", "none",
-                     "at least one of the Hertzian, bending and axial terms of (29)");
+                     model.kind == StiffnessModelKind::yang_lin_1987
+                         ? "at least one of the Hertzian, bending and axial terms of (29)"
+                         : "at least one of the hertz, bending, shear, axial, foundation terms");
   }
   if (!std::isfinite(model.relative_tolerance) || model.relative_tolerance < 1e-14 ||
       model.relative_tolerance > 1e-2) {

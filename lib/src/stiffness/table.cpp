@@ -3,6 +3,7 @@
 #include <gsl/gsl_chebyshev.h>
 #include <gsl/gsl_errno.h>
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -157,6 +158,14 @@ StiffnessTable::StiffnessTable(double start_m, double end_m, const ComplianceFun
       }
     }
   }
+  // A term that is 0 at every node (one the model does not have, or one
+  // switched off) keeps no series: compliance() then reads 0 without
+  // evaluating it.
+  for (std::vector<double>& series : term_series_) {
+    if (std::all_of(series.begin(), series.end(), [](double a) { return a == 0.0; })) {
+      series.clear();
+    }
+  }
 }
 
 StiffnessTable::StiffnessTable(const GearPair& pair, const StiffnessModel& model,
@@ -183,7 +192,8 @@ Compliances StiffnessTable::compliance(double x1_m) const {
   const Local at = locate(x1_m);
   Compliances c = constant_terms_;
   for (const TermInfo& t : kTerms) {
-    if (t.per_tooth) c.of(t.term) = polynomial(&term_series_[index_of(t.term)][at.offset], at.t);
+    const std::vector<double>& series = term_series_[index_of(t.term)];
+    if (t.per_tooth && !series.empty()) c.of(t.term) = polynomial(&series[at.offset], at.t);
   }
   return c;
 }

@@ -65,6 +65,9 @@ Compliances tau_form_compliances(const InvoluteTooth& tooth, double contact_x_m,
         break;
       case Term::hertz:
         break;  // per pair: mesh_stiffness adds it
+      case Term::shear:
+      case Term::foundation:
+        break;  // not in the paper's tooth (the cantilever from the base circle): 0
     }
   }
   return c;

@@ -17,6 +17,7 @@
 #include "gearimpact/dynamics/simulation_case.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/stiffness/model.hpp"
 #include "gearimpact/stiffness/table.hpp"
 #include "gearimpact/stiffness/terms.hpp"
 
@@ -82,8 +83,10 @@ struct SimulationSummary {
   // plus the jumps of stored energy when a pair enters or leaves under load.
   double parametric_work_j = 0.0;
   double parametric_jump_work_j = 0.0;
-  // The largest stored energy of each term of (29) over the run (kTerms order).
+  // The largest stored energy of each term of (29) over the run (kTerms order;
+  // 0 for a term the stiffness model does not have).
   std::array<double, kTermCount> energy_max_j{};
+  StiffnessModelKind stiffness_model = StiffnessModelKind::yang_lin_1987;
   // (kinetic + stored)(t) - (kinetic + stored)(0) - torque work + losses -
   // parametric work: zero for the exact solution. Final value and largest |value|.
   double ledger_residual_j = 0.0;

@@ -4,12 +4,18 @@
 
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <vector>
+
+#include "gearimpact/geometry/rack_generation.hpp"
 
 namespace gearimpact {
 
-// Two standard involute spur gears on their standard centre distance. Pitch
-// radius r_i = module * Z_i / 2, tip radius r_i + addendum.
+// Two involute spur gears cut by the same basic rack, meshing without
+// backlash on the operating centre distance (STIFFNESS-MODELS.md, section 1).
+// Pitch radius r_i = module * Z_i / 2, tip radius r_i + (ha + x_i) module;
+// unshifted (x1 = x2 = 0, the paper's) the pair sits on its standard centre
+// distance.
 struct GearPair {
   int teeth1 = 20;
   int teeth2 = 80;
@@ -21,6 +27,23 @@ struct GearPair {
   double poisson_ratio = 0.3;
   double density_kg_m3 = 7800.0;
   double backlash_m = 0.05e-3;
+  // The rack's dedendum over the module, ha + c: the root radius is
+  // r - (ha + c - x) module. Only the models that start the tooth at the root
+  // circle see it.
+  double dedendum_coefficient = 1.25;
+  double profile_shift1 = 0.0;  // x1: the rack's datum line moved out by x1 module
+  double profile_shift2 = 0.0;
+  // rho / module of the rack's tip round. Absent: the full round
+  // c / (1 - sin a0), c = dedendum - addendum coefficient, or where that is
+  // wider than the rack's tip land (pressure angles above about 22 deg) the
+  // largest round that fits it.
+  std::optional<double> rack_tip_radius_coefficient;
+  // Needed by the fillet-foundation term only.
+  std::optional<double> bore_diameter1_m;
+  std::optional<double> bore_diameter2_m;
+  // Gear 2's material. Absent: gear 1's.
+  std::optional<double> youngs_modulus2_pa;
+  std::optional<double> poisson_ratio2;
 };
 
 bool operator==(const GearPair& a, const GearPair& b);
@@ -30,27 +53,50 @@ GearPair paper_gear_pair();
 
 // Throws InputError naming the first field outside its range: counts and
 // material, the undercut limit on teeth, pointed teeth, interference (a tip
-// beyond the mating base-circle tangent point), and a contact ratio below 1.
+// beyond the mating base-circle tangent point), and a contact ratio below 1;
+// then what rack generation refuses (rack_gear_pair_geometry), with the
+// field named as in GearPair (profile_shift1, bore_diameter2, ...).
 void validate(const GearPair& pair);
+
+// The pair as the two rack-cut gears of rack_generation.hpp: gear 1's
+// material for gear 2 where gear 2 has none of its own.
+RackGearPair rack_gear_pair(const GearPair& pair);
+// Their geometry (rack_gear_pair_geometry), an InputError naming the field as
+// GearPair does.
+RackGearPairGeometry rack_gear_pair_geometry(const GearPair& pair);
 
 // Which gear of the pair: 1 the pinion (driver in the paper), 2 the wheel.
 enum class Gear { one = 1, two = 2 };
 
 int teeth(const GearPair& pair, Gear gear);
+double profile_shift(const GearPair& pair, Gear gear);
+double youngs_modulus(const GearPair& pair, Gear gear);
+double poisson_ratio(const GearPair& pair, Gear gear);
 double pitch_radius(const GearPair& pair, Gear gear);
 double tip_radius(const GearPair& pair, Gear gear);
 double base_radius(const GearPair& pair, Gear gear);
 
 // inv a = tan a - a.
 double involute_function(double angle_rad);
+// The a in (0, pi/2) with inv a = target > 0 (to full double precision).
+double inverse_involute(double target);
 
-// (13),(27) theta_b_i = pi/(2 Z_i) + inv a0: half the tooth angle on the base circle.
+// a_w of two gears cut by one rack meshing without backlash:
+// inv a_w = inv a0 + 2 tan a0 (x1 + x2) / (z1 + z2). A zero sum of the shifts
+// gives a0 itself, not its round trip through inv. Throws InputError
+// (field "profile_shift1 + profile_shift2") when inv a_w would be <= 0.
+double operating_pressure_angle(double pressure_angle_rad, int teeth1, int teeth2,
+                                double profile_shift1, double profile_shift2);
+double operating_pressure_angle(const GearPair& pair);
+
+// (13),(27) theta_b_i = pi/(2 Z_i) + inv a0, plus 2 x_i tan a0 / Z_i for a
+// shifted gear: half the tooth angle on the base circle.
 double half_tooth_angle(const GearPair& pair, Gear gear);
 
-// lp = (Rb1 + Rb2) tan a0: distance C1C2 along the line of action.
+// lp = (Rb1 + Rb2) tan a_w (a_w = a0 unshifted): distance C1C2 along the line of action.
 double line_of_action_length(const GearPair& pair);
 
-// X_pitch = Rb1 tan a0: the pitch point measured from C1.
+// X_pitch = Rb1 tan a_w: the pitch point measured from C1.
 double pitch_point_position(const GearPair& pair);
 
 // The contact segment on the line of action, measured from C1:

@@ -9,7 +9,9 @@
 #include "gearimpact/batch/sweep_friction.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/stiffness/energy.hpp"
+#include "gearimpact/stiffness/iso6336.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
+#include "gearimpact/stiffness/time_varying_stiffness.hpp"
 
 namespace gearimpact {
 
@@ -21,9 +23,23 @@ std::string summary_json(const SimulationSummary& summary);
 std::string friction_sweep_csv(const std::vector<SweepRow>& rows);
 // Fig. 8: angle_deg,pairs,hertz_over_bending_one_pair,...
 std::string energy_ratios_csv(const std::vector<EnergyRatios>& rows);
-// x_m,phi1_rad, the stiffness of every per-tooth term of gear 1 then gear 2
-// (kb1,ka1,kb2,ka2), of every per-pair term (kh), and ke, N/m, at each X1.
+// x_m,phi1_rad,kb1,ka1,kb2,ka2,kh,ke,ks1,ks2,kf1,kf2: the stiffness of every
+// term, N/m, and Ke at each X1 (17 significant digits); inf for a term that
+// is switched off or that the model does not have.
 std::string stiffness_csv(const GearPair& pair, const StiffnessModel& model,
                           const std::vector<double>& x1_m);
+// One mesh period: fraction,theta1_rad,pairs,ke_n_m.
+std::string mesh_stiffness_csv(const TimeVaryingMeshStiffness& tvms);
+// min_n_m, max_n_m, mean_n_m (the exact time mean), contact_ratio,
+// extrapolated (the foundation fit used outside its range), and a warning
+// when it is.
+std::string mesh_stiffness_summary_json(const TimeVaryingMeshStiffness& tvms, double contact_ratio,
+                                        bool extrapolated);
+// zn1, zn2, c_prime_th_n_mm_um, c_prime_n_mm_um, c_gamma_alpha_n_mm_um,
+// eps_alpha, c_prime_b_n_m, c_gamma_alpha_b_n_m (c' and c_gamma_alpha times
+// the face width b).
+std::string iso6336_json(const Iso6336Stiffness& iso, double face_width_m);
+// The warning every output carries when the foundation fit is extrapolated.
+std::string foundation_extrapolation_warning();
 
 }  // namespace gearimpact

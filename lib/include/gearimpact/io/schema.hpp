@@ -65,6 +65,9 @@ struct Field {
   Range range;                              // quantity, number, integer
   std::vector<ChoiceName> choices;          // choice, on_off
   bool required = false;                    // in a case file
+  // Non-empty: the key may be absent (its value then reads as NaN and is
+  // neither written nor checked); says what absence means.
+  std::string_view when_absent;
   std::optional<FieldCondition> only_when;
   std::string help;
   // The value as a double: SI for quantities, the number, the integer, the
@@ -90,6 +93,8 @@ std::vector<std::string_view> schema_sections();
 
 // True when the row's condition (if any) holds for `c`.
 bool applies(const Field& field, const SimulationCase& c);
+// True when an optional row (when_absent) has no value in `c`.
+bool absent(const Field& field, const SimulationCase& c);
 
 // What the row allows, for messages and the docs: "a time > 0 s", "[0, inf)",
 // "an integer in [4, 100000]", "one of \"rk4\", \"adaptive\"".

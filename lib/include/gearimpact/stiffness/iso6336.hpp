@@ -9,6 +9,8 @@
 
 #include <optional>
 
+#include "gearimpact/geometry/gear_pair.hpp"
+
 namespace gearimpact {
 
 struct Iso6336Gear {
@@ -52,6 +54,14 @@ struct Iso6336Stiffness {
 // angles, face-width-free factors, tip diameters outside the base circles,
 // a centre distance the base circles do not fit).
 Iso6336Stiffness iso6336_method_b(const Iso6336Pair& pair);
+
+// A GearPair's gears as ISO sees them, with the helix angle beta (0: the
+// spur pair itself): its module and pressure angle as the normal ones, its
+// rack's dedendum, the shifts, and in the transverse plane (ISO 21771)
+// tan alpha_t = tan alpha_n / cos beta, inv alpha_wt = inv alpha_t + 2 tan
+// alpha_n (x1 + x2) / (z1 + z2), a_w = m_n (z1 + z2) cos alpha_t / (2 cos beta
+// cos alpha_wt), d_a = m_n z / cos beta + 2 (ha + x) m_n.
+Iso6336Pair iso6336_pair(const GearPair& pair, double helix_angle_rad);
 
 // q' = C1 + C2/zn1 + C3/zn2 + C4 x1 + C5 x1/zn1 + C6 x2 + C7 x2/zn2 + C8 x1^2 + C9 x2^2,
 // mm um/N (ISO 6336-1 method B; constants of STIFFNESS-MODELS.md section 4).

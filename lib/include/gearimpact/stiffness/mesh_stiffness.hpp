@@ -1,6 +1,8 @@
 // The mesh stiffness of one tooth pair by the potential energy method: both
-// teeth by the model's route, the Hertzian contact, and their series sum (29).
-// MODEL.md, section Stiffness. Compliances in m/N, stiffnesses in N/m.
+// teeth by the named model (the paper's routes, or mesh_models.hpp for the
+// models beyond it), the Hertzian contact, and their series sum (29).
+// MODEL.md, section Stiffness; STIFFNESS-MODELS.md. Compliances in m/N,
+// stiffnesses in N/m.
 #pragma once
 
 #include "gearimpact/geometry/gear_pair.hpp"
@@ -12,7 +14,8 @@ namespace gearimpact {
 
 InvoluteTooth tooth_of(const GearPair& pair, Gear gear);
 
-// (4) Kh = pi E L / (4 (1 - nu^2)).
+// (4) Kh = pi E L / (4 (1 - nu^2)) for gears of one material; for two,
+// (pi L / 2) / [(1 - nu1^2)/E1 + (1 - nu2^2)/E2] (hertz_stiffness_two_materials).
 double hertz_stiffness(const GearPair& pair);
 
 // The per-tooth terms of one tooth loaded at distance `contact_x_m` from the
@@ -31,11 +34,19 @@ struct MeshStiffness {
   Compliances pair;      // every term: per-tooth ones summed over both teeth
   Compliances included;  // the terms switched on, the others 0: what (29) sums
   double ke;             // (29)
+  // The fillet-foundation fit was used outside its range for either tooth
+  // (fillet_foundation.hpp): the foundation term is an extrapolation.
+  bool foundation_extrapolated = false;
 
   // 1/compliance of a term: of the tooth of `gear` for a per-tooth term, of
   // the pair for a per-pair one (Kh).
   double stiffness(Term term, Gear gear = Gear::one) const;
 };
+// yang_lin_1987: the paper's route for X1 in (0, lp). potential_energy and
+// ross_compatible: pair_stiffness of mesh_models.hpp at s = X1 (both measured
+// from the base-circle tangent point of gear 1) for X1 on the contact segment;
+// their foundation term needs both bores (InputError naming bore_diameter1 or
+// bore_diameter2 otherwise).
 MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessModel& model = {});
 
 }  // namespace gearimpact

@@ -126,7 +126,8 @@ class StiffnessTable {
   int order_ = 0;
   std::size_t stride_ = 0;  // 8 or 16 coefficients per piece
   // Polynomial coefficients in t, stride_ per piece, piece after piece: one
-  // series per per-tooth term (empty for the others), of Ke and of dKe/dX1.
+  // series per per-tooth term (empty for the others and for a term 0 at every
+  // node), of Ke and of dKe/dX1.
   std::array<std::vector<double>, kTermCount> term_series_;
   Compliances constant_terms_;  // the terms that are not per tooth
   std::vector<double> stiffness_;

@@ -1,7 +1,8 @@
 // The terms of a pair's compliance, as an open set: each term has one entry in
 // kTerms, and every container of compliances is an array over the terms, so a
 // new term is its integrand, its entry here and its case in the routes
-// (tau_form.cpp, x_form.cpp). MODEL.md, section Stiffness.
+// (tau_form.cpp, x_form.cpp, and mesh_models.cpp for the models beyond the
+// paper). MODEL.md, section Stiffness; STIFFNESS-MODELS.md, section 2.
 #pragma once
 
 #include <array>
@@ -10,8 +11,8 @@
 
 namespace gearimpact {
 
-enum class Term { hertz, bending, axial };
-inline constexpr std::size_t kTermCount = 3;
+enum class Term { hertz, bending, axial, shear, foundation };
+inline constexpr std::size_t kTermCount = 5;
 
 struct TermInfo {
   Term term;
@@ -28,12 +29,17 @@ struct TermInfo {
   bool per_tooth;
 };
 
-// In the order in which (29) sums them.
+// In the order in which (29) sums them; the terms beyond the paper's come
+// last, so that for the paper's model (where they are 0) the sum is the
+// paper's to the bit.
 inline constexpr std::array<TermInfo, kTermCount> kTerms{{
     {Term::hertz, "hertz", "hertz_term", "the Hertzian term 1/Kh of (4)", "kh", false},
     {Term::bending, "bending", "bending_term", "the bending terms 1/Kb1 + 1/Kb2, (20),(22),(23)",
      "kb", true},
     {Term::axial, "axial", "axial_term", "the axial terms 1/Ka1 + 1/Ka2, (21),(24)", "ka", true},
+    {Term::shear, "shear", "shear_term", "the shear terms 1/Ks1 + 1/Ks2 (Tian 2004)", "ks", true},
+    {Term::foundation, "foundation", "foundation_term",
+     "the fillet-foundation terms 1/Kf1 + 1/Kf2 (Sainsot et al. 2004)", "kf", true},
 }};
 
 constexpr std::size_t index_of(Term term) {
@@ -46,7 +52,7 @@ constexpr const TermInfo& info(Term term) {
 // Which terms enter the mesh compliance. All by default; switching one off
 // shows what it contributes (the paper's section 8 compares them).
 struct TermSet {
-  std::array<bool, kTermCount> on{true, true, true};
+  std::array<bool, kTermCount> on{true, true, true, true, true};
   bool has(Term term) const { return on[index_of(term)]; }
   void set(Term term, bool value) { on[index_of(term)] = value; }
   bool any() const {

@@ -7,8 +7,10 @@
 #include <cstddef>
 #include <vector>
 
+#include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/rack_generation.hpp"
 #include "gearimpact/stiffness/mesh_models.hpp"
+#include "gearimpact/stiffness/mesh_stiffness.hpp"
 
 namespace gearimpact {
 
@@ -46,6 +48,13 @@ struct TimeVaryingMeshStiffness {
 // integral misses its tolerance.
 TimeVaryingMeshStiffness time_varying_mesh_stiffness(const RackGearPairGeometry& pair,
                                                      const MeshModel& model,
+                                                     std::size_t sample_count = 200);
+
+// The same over a GearPair for any named model: Ke of mesh_stiffness.hpp at
+// X1 = s, the pairs placed on the pair's contact segment (for the unshifted
+// or shifted geometry of gear_pair.hpp) a base pitch apart.
+TimeVaryingMeshStiffness time_varying_mesh_stiffness(const GearPair& pair,
+                                                     const StiffnessModel& model,
                                                      std::size_t sample_count = 200);
 
 // The same mean by another route: every pair crosses the path of contact once
