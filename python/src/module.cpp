@@ -203,24 +203,12 @@ py::dict stiffness_columns(const GearPair& pair, const StiffnessModel& model,
   py::dict table;
   table["x_m"] = to_array(xs);
   table["phi1_rad"] = to_array(phi1);
-  // Every term of the registry: per tooth with the gear's number, per pair as is.
-  const auto term_column = [&](Term term, Gear gear) {
+  // The program's columns, in its order (io/results.hpp).
+  for (const StiffnessColumn& c : gearimpact::stiffness_columns()) {
     std::vector<double> values(k.size());
-    for (std::size_t i = 0; i < k.size(); ++i) values[i] = k[i].stiffness(term, gear);
-    return to_array(values);
-  };
-  for (Gear gear : {Gear::one, Gear::two}) {
-    for (const TermInfo& t : kTerms) {
-      if (t.per_tooth) {
-        table[(std::string(t.column) + (gear == Gear::one ? "1" : "2")).c_str()] =
-            term_column(t.term, gear);
-      }
-    }
+    for (std::size_t i = 0; i < k.size(); ++i) values[i] = stiffness_column_value(c, k[i], model);
+    table[c.name.c_str()] = to_array(values);
   }
-  for (const TermInfo& t : kTerms) {
-    if (!t.per_tooth) table[std::string(t.column).c_str()] = term_column(t.term, Gear::one);
-  }
-  table["ke"] = column(k, &MeshStiffness::ke);
   return table;
 }
 
@@ -382,11 +370,16 @@ void define_module(py::module_& m) {
           "physical (M = Fb (l - x) - Fa h, as printed) or flipped")
       .def_readwrite("relative_tolerance", &StiffnessModel::relative_tolerance)
       .def(
-          "term", [](const StiffnessModel& s, const std::string& id) { return s.terms.has(term_named(id)); },
+          "term",
+          [](const StiffnessModel& s, const std::string& id) {
+            return s.terms.has(term_named(id));
+          },
           "Whether the term (hertz, bending, axial, ...) enters Ke.")
       .def(
           "set_term",
-          [](StiffnessModel& s, const std::string& id, bool on) { s.terms.set(term_named(id), on); },
+          [](StiffnessModel& s, const std::string& id, bool on) {
+            s.terms.set(term_named(id), on);
+          },
           "Switches a term of (29) on or off.")
       .def("__repr__", [](const StiffnessModel& s) {
         return "StiffnessModel(method='" + method_name(s) + "', moment_sign='" +

@@ -9,7 +9,7 @@ import pytest
 
 from conftest import assert_bitwise_equal, parse_csv
 
-STIFFNESS_COLUMNS = ["x_m", "phi1_rad", "kb1", "ka1", "kb2", "ka2", "kh", "ke"]
+STIFFNESS_COLUMNS = ["x_m", "phi1_rad", "kb1", "ka1", "kb2", "ka2", "kh", "ke", "ks1", "ks2", "kf1", "kf2"]
 SERIES_COLUMNS = [
     "t_s", "theta1_rad", "theta2_rad", "w1_rad_s", "w2_rad_s", "s_m", "delta_m",
     "region", "pairs", "normal_force_N", "friction_force_N",

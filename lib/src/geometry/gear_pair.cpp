@@ -153,9 +153,15 @@ double inverse_involute(double target) {
   if (!(target > 0.0) || !std::isfinite(target)) {
     throw InputError("inv(a)", target, "a finite value > 0");
   }
-  // inv is increasing on (0, pi/2), 0 at 0 and unbounded at pi/2.
+  // inv is increasing on (0, pi/2), 0 at 0 and unbounded at pi/2; 60 halvings
+  // of the distance to pi/2 reach the largest inv a double angle resolves.
   double upper = 1.0;
-  while (involute_function(upper) < target) upper = 0.5 * (upper + 0.5 * pi);
+  for (int halving = 0; involute_function(upper) < target; ++halving) {
+    if (halving == 60) {
+      throw InputError("inv(a)", target, "values below inv(pi/2 - 1e-18), about 1e17");
+    }
+    upper = 0.5 * (upper + 0.5 * pi);
+  }
   std::uintmax_t iterations = 200;
   const auto bracket = boost::math::tools::toms748_solve(
       [target](double a) { return involute_function(a) - target; }, 0.0, upper,
@@ -172,6 +178,16 @@ double operating_pressure_angle(double pressure_angle_rad, int teeth1, int teeth
   const double z_sum = static_cast<double>(teeth1) + static_cast<double>(teeth2);
   const double inv_aw =
       involute_function(pressure_angle_rad) + 2.0 * std::tan(pressure_angle_rad) * x_sum / z_sum;
+  // An operating pressure angle above 60 deg leaves no working tooth on any
+  // gear; the bound keeps the inverse involute well inside doubles.
+  const double largest_inv = involute_function(pi / 3.0);
+  if (inv_aw > largest_inv) {
+    throw InputError("profile_shift1 + profile_shift2", x_sum,
+                     "values for which the operating pressure angle stays below 60 deg: at most "
+                     "(z1 + z2) (inv(60 deg) - inv(a0)) / (2 tan a0) = " +
+                         format_number((largest_inv - involute_function(pressure_angle_rad)) *
+                                       z_sum / (2.0 * std::tan(pressure_angle_rad))));
+  }
   if (!(inv_aw > 0.0)) {
     throw InputError("profile_shift1 + profile_shift2", x_sum,
                      "values above -(z1 + z2) inv(a0) / (2 tan a0) = " +

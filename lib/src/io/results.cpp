@@ -140,53 +140,54 @@ bool paper_term(Term term) {
 
 }  // namespace
 
-std::string stiffness_csv(const GearPair& pair, const StiffnessModel& model,
-                          const std::vector<double>& x1_m) {
-  std::string out = "x_m,phi1_rad";
-  for (int gear = 1; gear <= 2; ++gear) {
+std::vector<StiffnessColumn> stiffness_columns() {
+  std::vector<StiffnessColumn> columns;
+  for (Gear gear : {Gear::one, Gear::two}) {
     for (const TermInfo& t : kTerms) {
       if (t.per_tooth && paper_term(t.term)) {
-        out += "," + std::string(t.column) + std::to_string(gear);
+        columns.push_back({std::string(t.column) + (gear == Gear::one ? "1" : "2"), t.term, gear});
       }
     }
   }
   for (const TermInfo& t : kTerms) {
-    if (!t.per_tooth) out += "," + std::string(t.column);
+    if (!t.per_tooth) columns.push_back({std::string(t.column), t.term, Gear::one});
   }
-  out += ",ke";
+  columns.push_back({"ke", std::nullopt, Gear::one});
   for (const TermInfo& t : kTerms) {
-    if (!paper_term(t.term)) {
-      out += "," + std::string(t.column) + "1," + std::string(t.column) + "2";
+    if (paper_term(t.term)) continue;
+    for (Gear gear : {Gear::one, Gear::two}) {
+      columns.push_back({std::string(t.column) + (gear == Gear::one ? "1" : "2"), t.term, gear});
     }
   }
+  return columns;
+}
+
+double stiffness_column_value(const StiffnessColumn& column, const MeshStiffness& k,
+                              const StiffnessModel& model) {
+  if (!column.term) return k.ke;
+  // A term switched off or absent from the model has no stiffness in Ke.
+  return model.terms.has(*column.term) && provides(model.kind, *column.term)
+             ? k.stiffness(*column.term, column.gear)
+             : std::numeric_limits<double>::infinity();
+}
+
+std::string stiffness_csv(const GearPair& pair, const StiffnessModel& model,
+                          const std::vector<double>& x1_m) {
+  const std::vector<StiffnessColumn> columns = stiffness_columns();
+  std::string out = "x_m,phi1_rad";
+  for (const StiffnessColumn& column : columns) out += "," + column.name;
   out += "\n";
   char number[32];
   const auto append = [&](double value, bool first = false) {
     std::snprintf(number, sizeof number, first ? "%.17g" : ",%.17g", value);
     out += number;
   };
-  // A term switched off or absent from the model has no stiffness in Ke.
-  const auto term_stiffness = [&](const MeshStiffness& k, Term term, Gear gear) {
-    return model.terms.has(term) && provides(model.kind, term)
-               ? k.stiffness(term, gear)
-               : std::numeric_limits<double>::infinity();
-  };
   for (double x : x1_m) {
     const MeshStiffness k = mesh_stiffness(pair, x, model);
     append(x, true);
     append(contact_angle(pair, Gear::one, x));
-    for (Gear gear : {Gear::one, Gear::two}) {
-      for (const TermInfo& t : kTerms) {
-        if (t.per_tooth && paper_term(t.term)) append(term_stiffness(k, t.term, gear));
-      }
-    }
-    for (const TermInfo& t : kTerms) {
-      if (!t.per_tooth) append(term_stiffness(k, t.term, Gear::one));
-    }
-    append(k.ke);
-    for (const TermInfo& t : kTerms) {
-      if (paper_term(t.term)) continue;
-      for (Gear gear : {Gear::one, Gear::two}) append(term_stiffness(k, t.term, gear));
+    for (const StiffnessColumn& column : columns) {
+      append(stiffness_column_value(column, k, model));
     }
     out += "\n";
   }

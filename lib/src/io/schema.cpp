@@ -280,8 +280,8 @@ std::vector<Field> make_schema() {
          [](auto& c) -> auto& { return c.gears.youngs_modulus2_pa; })
         .when_absent = "gear 1's";
     r.number(
-         "poisson_ratio2", {open(-1.0), open(0.5), "both ends excluded"}, false,
-         "nu of gear 2", [](auto& c) -> auto& { return c.gears.poisson_ratio2; })
+         "poisson_ratio2", {open(-1.0), open(0.5), "both ends excluded"}, false, "nu of gear 2",
+         [](auto& c) -> auto& { return c.gears.poisson_ratio2; })
         .when_absent = "gear 1's";
   }
   add_torque(
@@ -782,7 +782,10 @@ void validate_relations(const SimulationCase& c) {
     throw InputError("gears." + e.field(), e.value(), e.allowed());
   }
   const StiffnessModel& k = c.model.stiffness;
-  if (!k.terms.any()) {
+  bool any_term = false;
+  for (const TermInfo& t : kTerms)
+    any_term = any_term || (provides(k.kind, t.term) && k.terms.has(t.term));
+  if (!any_term) {
     throw InputError("model.hertz_term", "\"off\"",
                      "\"on\" while bending_term and axial_term are \"off\" (model.hertz_term, "
                      "bending_term and axial_term are all \"off\": at least one term of (29) "

@@ -3,9 +3,9 @@
 #include <array>
 #include <charconv>
 #include <cmath>
-#include "gearimpact/constants.hpp"
 #include <system_error>
 
+#include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 
 namespace gearimpact {
@@ -30,11 +30,9 @@ constexpr std::array kTorque{Unit{"N*m", 0, 1.0}, Unit{"N*mm", -3, 1.0},
                              Unit{"kgf*m", 0, kKilogramForce}};
 constexpr std::array kTime{Unit{"s", 0, 1.0}, Unit{"ms", -3, 1.0}, Unit{"us", -6, 1.0},
                            Unit{"ns", -9, 1.0}};
-constexpr std::array kAngularVelocity{Unit{"rad/s", 0, 1.0},
-                                      Unit{"rpm", 0, 2.0 * pi / 60.0}};
+constexpr std::array kAngularVelocity{Unit{"rad/s", 0, 1.0}, Unit{"rpm", 0, 2.0 * pi / 60.0}};
 // Hz counts cycles: W = 2 pi f.
-constexpr std::array kAngularFrequency{Unit{"rad/s", 0, 1.0},
-                                       Unit{"Hz", 0, 2.0 * pi}};
+constexpr std::array kAngularFrequency{Unit{"rad/s", 0, 1.0}, Unit{"Hz", 0, 2.0 * pi}};
 constexpr std::array kSpeed{Unit{"m/s", 0, 1.0}, Unit{"mm/s", -3, 1.0}, Unit{"in/s", 0, kInch}};
 
 constexpr std::array kDimensions{

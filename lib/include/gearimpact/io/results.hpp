@@ -3,6 +3,7 @@
 // reads back exactly), JSON with absent values as null.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,21 @@ std::string summary_json(const SimulationSummary& summary);
 std::string friction_sweep_csv(const std::vector<SweepRow>& rows);
 // Fig. 8: angle_deg,pairs,hertz_over_bending_one_pair,...
 std::string energy_ratios_csv(const std::vector<EnergyRatios>& rows);
+// The stiffness columns after x_m and phi1_rad, in their order: the paper's
+// per-tooth terms gear by gear, the per-pair terms, ke, then the later
+// per-tooth terms term by term (kb1,ka1,kb2,ka2,kh,ke,ks1,ks2,kf1,kf2). The
+// one list the CSV writer and the Python package both follow.
+struct StiffnessColumn {
+  std::string name;
+  std::optional<Term> term;  // empty: ke
+  Gear gear = Gear::one;
+};
+std::vector<StiffnessColumn> stiffness_columns();
+// A column's value, N/m: the term's stiffness (inf where the model switches it
+// off or does not have it), or Ke.
+double stiffness_column_value(const StiffnessColumn& column, const MeshStiffness& k,
+                              const StiffnessModel& model);
+
 // x_m,phi1_rad,kb1,ka1,kb2,ka2,kh,ke,ks1,ks2,kf1,kf2: the stiffness of every
 // term, N/m, and Ke at each X1 (17 significant digits); inf for a term that
 // is switched off or that the model does not have.
