@@ -58,22 +58,10 @@ std::string optional_number(const std::optional<double>& v) {
   return v ? number(*v) : "";
 }
 
-// A value as the user wrote it for `key`: with a unit as in case files, or a plain number for a
-// dimensionless key.
-double parse_value(const std::string& key, const std::string& text, const std::string& flag) {
-  const SweepKey& k = sweep_key(key);
-  if (!k.dimensionless) return parse_quantity(text, k.dimension, flag + " (" + key + ")");
-  std::size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || !std::isfinite(v)) {
-    throw InputError(flag + " (" + key + ")", text, "a finite plain number");
-  }
-  return v;
+// A value of a numeric key as the user wrote it: with a unit as in case files, or a plain number
+// (SI for a quantity), checked against the key's range.
+double sweep_value(const std::string& key, const std::string& text, const std::string& flag) {
+  return gearimpact::parse_value(sweep_field(key, flag), text, flag + " (" + key + ")");
 }
 
 SimulationCase read_case(const std::string& source) {
@@ -319,13 +307,6 @@ void render_plots(const std::filesystem::path& dir, const SpecCounts& spec,
 // The case of CASE with --set, --mesh-stiffness and --damping-update applied.
 SimulationCase base_case(const SweepCommandOptions& o) {
   SimulationCase base = read_case(o.case_source);
-  for (const std::string& assignment : o.set) {
-    const std::size_t eq = assignment.find('=');
-    if (eq == std::string::npos) throw InputError("--set", assignment, "KEY=VALUE");
-    const std::string key = assignment.substr(0, eq);
-    const SimulationCase before = base;
-    apply_sweep_value(base, before, key, parse_value(key, assignment.substr(eq + 1), "--set"));
-  }
   if (!o.mesh_stiffness.empty()) {
     base.model.mesh_stiffness = o.mesh_stiffness == "constant" ? MeshStiffnessMode::constant
                                                                : MeshStiffnessMode::time_varying;
@@ -334,6 +315,23 @@ SimulationCase base_case(const SweepCommandOptions& o) {
     base.model.damping_update = o.damping_update == "frozen" ? DampingUpdate::frozen
                                 : o.damping_update == "off"  ? DampingUpdate::off
                                                              : DampingUpdate::each_impact;
+  }
+  // After the flags, so that a key used only with their choice (the frozen D's reference speed,
+  // the constant stiffness) can be set.
+  for (const std::string& assignment : o.set) {
+    const std::size_t eq = assignment.find('=');
+    if (eq == std::string::npos) throw InputError("--set", assignment, "KEY=VALUE");
+    const std::string key = assignment.substr(0, eq);
+    const std::string value = assignment.substr(eq + 1);
+    const Field* field = find_field(key);
+    if (field != nullptr &&
+        (field->kind == FieldKind::quantity || field->kind == FieldKind::number ||
+         field->kind == FieldKind::integer)) {
+      const SimulationCase before = base;
+      apply_sweep_value(base, before, key, sweep_value(key, value, "--set"));
+    } else {
+      set_field(base, key, value, "--set " + key);
+    }
   }
   return base;
 }
@@ -353,15 +351,15 @@ std::vector<Unit> shard_units(std::size_t lines, const std::vector<SweepDirectio
 
 void run_sweep(SweepCommandOptions& o) {
   const SimulationCase base = base_case(o);
-  sweep_key(o.vary);
+  sweep_field(o.vary, "--vary");
   const std::vector<double> grid =
-      sweep_grid(parse_value(o.vary, o.from, "--from"), parse_value(o.vary, o.to, "--to"), o.points,
+      sweep_grid(sweep_value(o.vary, o.from, "--from"), sweep_value(o.vary, o.to, "--to"), o.points,
                  "--from", "--to", "--points");
   std::vector<double> grid2{0.0};
   if (!o.vary2.empty()) {
-    sweep_key(o.vary2);
+    sweep_field(o.vary2, "--vary2");
     grid2 =
-        sweep_grid(parse_value(o.vary2, o.from2, "--from2"), parse_value(o.vary2, o.to2, "--to2"),
+        sweep_grid(sweep_value(o.vary2, o.from2, "--from2"), sweep_value(o.vary2, o.to2, "--to2"),
                    o.points2, "--from2", "--to2", "--points2");
   }
   std::vector<SweepDirection> directions;
@@ -520,9 +518,11 @@ void register_sweep_commands(CLI::App& app) {
       "steady state along a parameter, up and down, continued from point to point: DIR/sweep.csv, "
       "poincare.csv, summary.json and plots");
   sweep->add_option("CASE", o->case_source, "case file, or 1, 2, 3 for Table 1")->required();
-  std::string keys;
-  for (const std::string& k : sweep_key_names()) keys += (keys.empty() ? "" : ", ") + k;
-  sweep->add_option("--vary", o->vary, "the key to sweep, section.key: " + keys)->required();
+  sweep
+      ->add_option("--vary", o->vary,
+                   "the key to sweep, section.key: any quantity, number or integer key of the "
+                   "case schema (`gearimpact schema`)")
+      ->required();
   sweep->add_option("--from", o->from, "first value, with its unit as in case files")->required();
   sweep->add_option("--to", o->to, "last value")->required();
   sweep->add_option("--points", o->points, "number of values (>= 1)")->required();
@@ -538,8 +538,9 @@ void register_sweep_commands(CLI::App& app) {
                     "SLURM_ARRAY_TASK_MIN of SLURM_ARRAY_TASK_COUNT, else all)");
   sweep->add_option(
       "--set", o->set,
-      "KEY=VALUE for any sweep key, before the sweep, in order (repeatable); as a swept value: "
-      "a speed moves the other speed, a mean torque the other mean torque (balance)");
+      "KEY=VALUE for any key of the case schema, before the sweep, in order, after "
+      "--mesh-stiffness and --damping-update (repeatable); a numeric key as a swept value: a "
+      "speed moves the other speed, a mean torque the other mean torque (balance)");
   sweep->add_option("--mesh-stiffness", o->mesh_stiffness, "time-varying or constant")
       ->check(CLI::IsMember({"time-varying", "constant"}));
   sweep->add_option("--damping-update", o->damping_update, "each-impact, frozen or off")

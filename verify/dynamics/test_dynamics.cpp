@@ -431,13 +431,13 @@ TEST_CASE("torques: a mean plus harmonics, T = T_m + sum A_i sin(w_i t + phi_i)"
   const SimulationSummary b = simulate(harmonic, summary_only()).summary;
   CHECK(a.torque_work_j == b.torque_work_j);
   CHECK(a.final_w1_rad_s == b.final_w1_rad_s);
-  // Harmonics of unequal length are refused with the key.
+  // Harmonics of unequal length are refused naming the list that differs from the amplitudes.
   harmonic.torque1.harmonic_phases_rad.clear();
   try {
     validate(harmonic);
     FAIL("no error");
   } catch (const InputError& e) {
-    CHECK(std::string(e.what()).find("torque1.harmonics") != std::string::npos);
+    CHECK(std::string(e.what()).find("torque1.phases") != std::string::npos);
   }
   Torque user;
   user.kind = Torque::Kind::user;

@@ -43,6 +43,10 @@ void check_torque(const Torque& a, const Torque& b) {
   CHECK(a.amplitude_n_m == b.amplitude_n_m);
   CHECK(a.angular_frequency_rad_s == b.angular_frequency_rad_s);
   CHECK(a.phase_rad == b.phase_rad);
+  CHECK(a.mean_n_m == b.mean_n_m);
+  CHECK(a.harmonic_amplitudes_n_m == b.harmonic_amplitudes_n_m);
+  CHECK(a.harmonic_angular_frequencies_rad_s == b.harmonic_angular_frequencies_rad_s);
+  CHECK(a.harmonic_phases_rad == b.harmonic_phases_rad);
 }
 
 // Field by field and bit for bit: both sides are exact decimal conversions.
@@ -81,6 +85,11 @@ void check_same(const SimulationCase& a, const SimulationCase& b) {
   CHECK(a.integrator.end_time_s == b.integrator.end_time_s);
   CHECK(a.integrator.adaptive_relative_tolerance == b.integrator.adaptive_relative_tolerance);
   CHECK(a.integrator.output_every == b.integrator.output_every);
+  CHECK(a.model.mesh_stiffness == b.model.mesh_stiffness);
+  CHECK(a.model.constant_mesh_stiffness_n_m == b.model.constant_mesh_stiffness_n_m);
+  CHECK(a.model.mesh_damping_ratio == b.model.mesh_damping_ratio);
+  CHECK(a.model.damping_update == b.model.damping_update);
+  CHECK(a.model.damping_reference_speed_m_s == b.model.damping_reference_speed_m_s);
 }
 
 // `text` with the line `key = ...` of [section] ("" for the top level)
@@ -168,6 +177,15 @@ std::vector<BadInput> bad_inputs() {
   for (const char* key : {"hertz_term", "bending_term", "axial_term"}) {
     all_terms_off = with_key(all_terms_off, "model", key, std::string("\"off\""));
   }
+  const auto harmonic = [&](const std::string& amplitudes, const std::string& frequencies,
+                            const std::optional<std::string>& phases) {
+    std::string text = with_key(base, "torque1", "kind", std::string("\"harmonic\""));
+    text = with_key(text, "torque1", "value", std::nullopt);
+    text = with_key(text, "torque1", "amplitudes", amplitudes);
+    text = with_key(text, "torque1", "angular_frequencies", frequencies);
+    if (phases) text = with_key(text, "torque1", "phases", *phases);
+    return text;
+  };
   return {
       {"missing key",
        set("gears", "module", std::nullopt),
@@ -182,6 +200,34 @@ std::vector<BadInput> bad_inputs() {
       {"unknown section",
        gear_section_renamed,
        {"bad.toml", "unknown key or section \"gear\"", "[gears]"}},
+      {"harmonic lists of different lengths",
+       harmonic("[\"10 N*mm\", \"2 N*mm\"]", "[\"1000 rad/s\"]", "[\"0 deg\", \"0 deg\"]"),
+       {"torque1.angular_frequencies = [\"1000 rad/s\"]",
+        "as many values as torque1.amplitudes (2)"}},
+      {"harmonic list element without a unit",
+       harmonic("[\"10 N*mm\", 2]", "[\"1000 rad/s\", \"1 rad/s\"]", "[\"0 deg\", \"0 deg\"]"),
+       {"torque1.amplitudes[1] = 2", "an integer", "N*m, N*mm"}},
+      {"harmonic list not an array",
+       harmonic("\"10 N*mm\"", "[\"1000 rad/s\"]", "[\"0 deg\"]"),
+       {"torque1.amplitudes = \"10 N*mm\"", "an array of strings"}},
+      {"negative harmonic frequency",
+       harmonic("[\"10 N*mm\"]", "[\"-1000 rad/s\"]", "[\"0 deg\"]"),
+       {"torque1.angular_frequencies[0]", "an angular frequency >= 0 rad/s"}},
+      {"harmonic without its phases",
+       harmonic("[\"10 N*mm\"]", "[\"1000 rad/s\"]", std::nullopt),
+       {"torque1.phases is missing"}},
+      {"constant mesh stiffness without its value",
+       set("model", "mesh_stiffness", "\"constant\""),
+       {"model.constant_mesh_stiffness is missing", "a stiffness", "N/m, N/mm, N/um, kN/mm"}},
+      {"mean of a constant torque",
+       set("torque1", "mean", "\"5 N*mm\""),
+       {"torque1.mean = \"5 N*mm\" is not used by kind = \"constant\""}},
+      {"negative mesh damping ratio",
+       set("model", "mesh_damping_ratio", "-0.1"),
+       {"model.mesh_damping_ratio = -0.1", "[0, inf)"}},
+      {"unknown damping update",
+       set("model", "damping_update", "\"never\""),
+       {"model.damping_update = \"never\"", "\"each-impact\", \"frozen\", \"off\""}},
       {"key of the other torque kind",
        set("torque1", "amplitude", "\"5 N*mm\""),
        {"torque1.amplitude = \"5 N*mm\" is not used by kind = \"constant\""}},
@@ -402,6 +448,31 @@ TEST_CASE("write_case_file reads back to the same case, in readable and in SI un
   other.model.stiffness.terms.set(Term::axial, false);
   other.integrator = {IntegratorKind::adaptive, 3e-8, 0.125, 1e-9, 10};
   cases.push_back(other);
+  // The steady-state options: a harmonic torque with a mean, a sinusoid with a mean, the
+  // constant mesh stiffness, the mesh damper and the frozen D.
+  SimulationCase steady = paper_case(1);
+  steady.name = "steady";
+  steady.torque1.kind = Torque::Kind::harmonic;
+  steady.torque1.mean_n_m = 3.0;
+  steady.torque1.harmonic_amplitudes_n_m = {0.3, -0.05};
+  steady.torque1.harmonic_angular_frequencies_rad_s = {80000.0, 160000.0};
+  steady.torque1.harmonic_phases_rad = {0.0, 0.25};
+  steady.torque2.kind = Torque::Kind::sinusoidal;
+  steady.torque2.mean_n_m = -12.0;
+  steady.torque2.amplitude_n_m = 0.5;
+  steady.torque2.angular_frequency_rad_s = 20000.0;
+  steady.model.mesh_stiffness = MeshStiffnessMode::constant;
+  steady.model.constant_mesh_stiffness_n_m = 3.5e8;
+  steady.model.mesh_damping_ratio = 0.05;
+  steady.model.damping_update = DampingUpdate::frozen;
+  steady.model.damping_reference_speed_m_s = 0.1;
+  cases.push_back(steady);
+  SimulationCase empty_harmonic = steady;
+  empty_harmonic.name = "empty_harmonic";
+  empty_harmonic.torque1.harmonic_amplitudes_n_m.clear();
+  empty_harmonic.torque1.harmonic_angular_frequencies_rad_s.clear();
+  empty_harmonic.torque1.harmonic_phases_rad.clear();
+  cases.push_back(empty_harmonic);
   for (const SimulationCase& c : cases) {
     for (CaseUnits units : {CaseUnits::readable, CaseUnits::si}) {
       const std::string text = write_case_file(c, units);
@@ -411,6 +482,20 @@ TEST_CASE("write_case_file reads back to the same case, in readable and in SI un
   }
   CHECK(contains(write_case_file(paper_case(2)), "value = \"490.3325 N*mm\""));
   CHECK(contains(write_case_file(paper_case(1)), "backlash = \"0.05 mm\""));
+  CHECK(contains(write_case_file(steady),
+                 "amplitudes = [\"300 N*mm\", \"-50 N*mm\"]\nangular_frequencies = "
+                 "[\"80000 rad/s\", \"160000 rad/s\"]\n"));
+  CHECK(contains(write_case_file(steady), "constant_mesh_stiffness = \"350 N/um\""));
+  // A zero mean of a sinusoid and the new model keys at their defaults are left out, so that
+  // the files written before they existed are written the same.
+  for (int n : {1, 2, 3}) {
+    const std::string text = write_case_file(paper_case(n));
+    for (const char* key : {"mean =", "mesh_stiffness", "mesh_damping_ratio", "damping_update",
+                            "damping_reference_speed"}) {
+      CAPTURE(key);
+      CHECK(!contains(text, key));
+    }
+  }
   SimulationCase user = paper_case(1);
   user.torque1.kind = Torque::Kind::user;
   CHECK_THROWS_AS(write_case_file(user), InputError);

@@ -55,8 +55,9 @@ SimulationCase every_key_case() {
   return c;
 }
 
-// A case the row applies to: every_key_case(), or for the keys of the other
-// torque kinds case 2 with torque2 made sinusoidal.
+// A case the row applies to: every_key_case(), for the keys of the other
+// torque kinds case 2 with torque2 made sinusoidal, for the keys of the
+// constant mesh stiffness and the frozen D a case with those.
 SimulationCase case_for(const Field& field) {
   SimulationCase c = every_key_case();
   if (applies(field, c)) return c;
@@ -65,6 +66,11 @@ SimulationCase case_for(const Field& field) {
   c.torque2.amplitude_n_m = -0.3;
   c.torque2.angular_frequency_rad_s = 500.0;
   c.torque2.phase_rad = -1.5;
+  if (applies(field, c)) return c;
+  c.model.mesh_stiffness = MeshStiffnessMode::constant;
+  c.model.constant_mesh_stiffness_n_m = 3.5e8;
+  c.model.damping_update = DampingUpdate::frozen;
+  c.model.damping_reference_speed_m_s = 0.1;
   REQUIRE(applies(field, c));
   return c;
 }
@@ -315,6 +321,36 @@ TEST_CASE("set_field refuses with the key or the name the caller gives, and the 
   set_field(c, "torque1.kind", "sinusoidal");
   set_field(c, "torque1.amplitude", "1 N*m");
   CHECK(c.torque1.amplitude_n_m == 1.0);
+  set_field(c, "torque1.mean", "3 N*m");
+  CHECK(c.torque1.mean_n_m == 3.0);
+  // A list: comma separated, each element with a unit or a plain SI number.
+  CHECK(contains(refused("torque1.amplitudes", "1 N*m").allowed(), "\"harmonic\""));
+  set_field(c, "torque1.kind", "harmonic");
+  set_field(c, "torque1.amplitudes", "10 N*mm, 2 kgf*mm,0.5");
+  CHECK(c.torque1.harmonic_amplitudes_n_m ==
+        std::vector<double>{10e-3, 2.0 * (9.80665 * 1e-3), 0.5});
+  CHECK(c.torque1.mean_n_m == 3.0);
+  const InputError element = refused("torque1.angular_frequencies", "1000 rad/s, -5 Hz");
+  CHECK(element.field() == "torque1.angular_frequencies[1]");
+  CHECK(contains(element.allowed(), ">= 0 rad/s"));
+  set_field(c, "torque1.angular_frequencies", "1000 rad/s");
+  set_field(c, "torque1.phases", "0 deg, 90 deg, 0");
+  // One harmonic is one element of each list: the shorter list is named.
+  const std::optional<InputError> lengths = error_of([&] { validate_fields(c); });
+  REQUIRE(lengths.has_value());
+  CHECK(lengths->field() == "torque1.angular_frequencies");
+  CHECK(contains(lengths->allowed(), "as many values as torque1.amplitudes (3)"));
+  set_field(c, "torque1.angular_frequencies", "1000, 2000, 3000 rad/s");
+  CHECK_FALSE(error_of([&] { validate_fields(c); }).has_value());
+  CHECK_THROWS_AS(get_numeric_field(c, "torque1.amplitudes"), InputError);
+  // The stiffness unit: N/um = kN/mm = 1e6 N/m, by an exact decimal shift.
+  set_field(c, "model.mesh_stiffness", "constant");
+  set_field(c, "model.constant_mesh_stiffness", "350 N/um");
+  CHECK(c.model.constant_mesh_stiffness_n_m == 3.5e8);
+  set_field(c, "model.constant_mesh_stiffness", "0.35 kN/mm");
+  CHECK(c.model.constant_mesh_stiffness_n_m == 3.5e5);
+  CHECK(contains(refused("model.damping_reference_speed", "1 m/s").allowed(),
+                 "damping_update = \"frozen\""));
   CHECK_THROWS_AS(get_numeric_field(c, "model.damping_form"), InputError);
   CHECK_THROWS_AS(get_numeric_field(c, "name"), InputError);
 }
@@ -335,12 +371,19 @@ TEST_CASE("the writer writes exactly the keys that apply, each a row of the sche
   }
   std::set<std::string> expected;
   for (const Field& field : case_schema()) {
-    if (applies(field, c) && !absent(field, c)) expected.insert(field.name());
+    // The keys added after case files were written are left out at their
+    // defaults; a key that may be absent is left out when it is.
+    const bool at_default =
+        !absent(field, c) && value_text(field, c) == value_text(field, SimulationCase{});
+    if (applies(field, c) && !absent(field, c) && (field.written_at_default || !at_default)) {
+      expected.insert(field.name());
+    }
   }
   CHECK(written == expected);
-  // Case 3: torque1 sinusoidal (4 keys), torque2 constant (2), 18 [gears]
-  // (the paper's 10, dedendum, two shifts and the five that may be absent),
-  // 4 [initial], 17 [model] (with stiffness_model and five term switches),
+  // Case 3: torque1 sinusoidal (4 keys, its zero mean left out), torque2
+  // constant (2), 18 [gears] (the paper's 10, dedendum, two shifts and the
+  // five that may be absent), 4 [initial], 17 [model] (with stiffness_model and
+  // five term switches; the steady-state keys at their defaults left out),
   // 5 [integrator], name.
   CHECK(written.size() == 51);
 }

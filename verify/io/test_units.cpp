@@ -62,6 +62,11 @@ TEST_CASE("decimal units are exact: the value is the double nearest the decimal"
   CHECK(q("50 rad/s", Dimension::angular_velocity) == 50.0);
   CHECK(q("1 mm/s", Dimension::speed) == 1e-3);
   CHECK(q("0 mm", Dimension::length) == 0.0);
+  // A mesh stiffness: N/mm = 1e3 N/m, N/um = kN/mm = 1e6 N/m, exact decimal shifts.
+  CHECK(q("350 N/um", Dimension::stiffness) == 3.5e8);
+  CHECK(q("350 kN/mm", Dimension::stiffness) == 3.5e8);
+  CHECK(q("0.35 N/mm", Dimension::stiffness) == 350.0);
+  CHECK(q("3.5e8 N/m", Dimension::stiffness) == 3.5e8);
 }
 
 TEST_CASE("units with a factor multiply the number by their definition") {
@@ -127,7 +132,7 @@ TEST_CASE("format_quantity reads back to the same double, in the requested unit 
     for (Dimension dimension :
          {Dimension::length, Dimension::angle, Dimension::pressure, Dimension::density,
           Dimension::torque, Dimension::time, Dimension::angular_velocity,
-          Dimension::angular_frequency, Dimension::speed}) {
+          Dimension::angular_frequency, Dimension::speed, Dimension::stiffness}) {
       for (const Unit& unit : units_of(dimension)) {
         const std::string text = format_quantity(x, dimension, unit.symbol);
         CAPTURE(text);

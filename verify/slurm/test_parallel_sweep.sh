@@ -4,7 +4,7 @@
 #   test_parallel_sweep.sh SCRATCH PROGRAM CASE [sweep options...]
 #
 # PROGRAM is the program with `sweep CASE ... --shard K/N --out DIR` and `merge DIR... --out DIR`
-# (gearimpact, or a stand-in with the same command line). Checks that 3 shards on 2 job slots
+# (gearimpact, or any program with the same command line). Checks that 3 shards on 2 job slots
 # merge into files byte-identical to a 1-shard sweep and merge run directly, that each shard ran
 # once with exit status 0 (parallel's job log), and that shards that fail make the script fail
 # without merging.

@@ -4,7 +4,7 @@
 #   test_slurm_sweep.sh SCRATCH PROGRAM CASE [sweep options...]
 #
 # PROGRAM is the program with `sweep CASE ... --shard K/N --out DIR` and `merge DIR... --out DIR`
-# (gearimpact, or a stand-in with the same command line). scripts/slurm/submit-sweep.sh submits a
+# (gearimpact, or any program with the same command line). scripts/slurm/submit-sweep.sh submits a
 # job array of 3 shards and the merge job that depends on it; the test waits for both and checks
 # that every task and the merge succeeded, that the merge ran after the last shard, that the
 # shards split the rows between them, and that the merged files are byte-identical to a 1-shard

@@ -9,6 +9,9 @@
 #include <vector>
 
 #include "gearimpact/error.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/io/schema.hpp"
+#include "gearimpact/paper/table1.hpp"
 #include "gearimpact/steady/sweep.hpp"
 #include "steady_cases.hpp"
 
@@ -127,6 +130,31 @@ TEST_CASE("bad sweep input is refused with the key") {
   };
   CHECK(message([] { sweep_grid(1.0, 2.0, 0, "--from", "--to", "--points"); }).find("--points") !=
         std::string::npos);
-  CHECK(message([] { sweep_key("torque1.nonsense"); }).find("torque1.nonsense") !=
+  CHECK(message([] { sweep_field("torque1.nonsense", "--vary"); }).find("torque1.nonsense") !=
         std::string::npos);
+  // A choice is not a value along a line.
+  CHECK(message([] { sweep_field("model.damping_update", "--vary"); }).find("--vary") !=
+        std::string::npos);
+}
+
+TEST_CASE("a sweep sets any numeric schema key, a constant torque's mean its value") {
+  SimulationCase c = paper_case(1);
+  set_sweep_value(c, "gears.face_width", 0.011);
+  CHECK(c.gears.face_width_m == 0.011);
+  set_sweep_value(c, "torque1.mean", 2.5);
+  CHECK(c.torque1.kind == Torque::Kind::constant);
+  CHECK(c.torque1.constant_n_m == 2.5);
+  set_field(c, "torque1.kind", "sinusoidal");
+  set_sweep_value(c, "torque1.mean", 1.5);
+  CHECK(c.torque1.mean_n_m == 1.5);
+  // The balance companion moves the other mean: T1/Rb1 + T2/Rb2 = 0.
+  const SimulationCase base = c;
+  apply_sweep_value(c, base, "torque1.mean", 3.0);
+  const double rb1 = base_radius(c.gears, Gear::one);
+  const double rb2 = base_radius(c.gears, Gear::two);
+  // Two roundings in -T1 Rb2/Rb1 and one in each quotient: a few ulps of T/Rb.
+  CHECK(std::fabs(c.torque1.mean_n_m / rb1 + c.torque2.constant_n_m / rb2) <=
+        1e-15 * std::fabs(c.torque1.mean_n_m / rb1));
+  // The schema's range holds: a negative backlash is refused naming the key.
+  CHECK_THROWS_AS(set_sweep_value(c, "gears.backlash", -1e-6), InputError);
 }

@@ -60,6 +60,13 @@ std::string written(const toml::value& value) {
       return shortest_decimal(value.as_floating());
     case toml::value_t::boolean:
       return value.as_boolean() ? "true" : "false";
+    case toml::value_t::array: {
+      std::string list = "[";
+      for (const toml::value& element : value.as_array()) {
+        list += (list.size() > 1 ? ", " : "") + written(element);
+      }
+      return list + "]";
+    }
     default:
       return "(" + type_name(value) + ")";
   }
@@ -285,6 +292,34 @@ const ChoiceName& selected(const Field& field, const SimulationCase& c) {
   throw std::logic_error("a schema condition without its choice row");
 }
 
+// The SI values of a list row, from a TOML array of quantity strings; each
+// element checked against the row, errors naming section.key[i].
+std::vector<double> read_list(const Reader& reader, const Field& field, const toml::value& value) {
+  const std::string name = field.name();
+  const std::string expected = "an array of strings, " + allowed_text(field) +
+                               " with one of the units " + allowed_units(field.dimension) +
+                               ", e.g. [\"10 " + std::string(field.unit) + "\", \"2 " +
+                               std::string(field.unit) + "\"]";
+  if (!value.is_array()) {
+    reader.out_of_range(name, &value, written(value), type_name(value) + "; expected " + expected);
+  }
+  std::vector<double> values;
+  for (const toml::value& element : value.as_array()) {
+    const std::string element_name = name + "[" + std::to_string(values.size()) + "]";
+    if (!element.is_string()) {
+      reader.out_of_range(element_name, &element, written(element),
+                          type_name(element) + "; expected " + expected);
+    }
+    try {
+      values.push_back(parse_quantity(element.as_string().str, field.dimension, element_name));
+      check_list(field, {values.back()}, element_name);
+    } catch (const InputError& e) {
+      reader.out_of_range(element_name, &element, written(element), e.allowed());
+    }
+  }
+  return values;
+}
+
 // The value of a non-text row as get() returns it; checked against the row.
 double read_value(const Reader& reader, const Field& field, const toml::value& value) {
   const std::string name = field.name();
@@ -334,7 +369,8 @@ double read_value(const Reader& reader, const Field& field, const toml::value& v
       break;
     }
     case FieldKind::text:
-      throw std::logic_error("read_value on a text row");
+    case FieldKind::quantity_list:
+      throw std::logic_error("read_value on a text or list row");
   }
   try {
     check_value(field, x, name, written(value));
@@ -406,6 +442,10 @@ SimulationCase read_case(const Reader& reader, const toml::value& root,
         reader.fail(name, value, e.what());
       }
       field.set_text(result, value->as_string().str);
+      continue;
+    }
+    if (field.kind == FieldKind::quantity_list) {
+      field.set_list(result, read_list(reader, field, *value));
       continue;
     }
     field.set(result, read_value(reader, field, *value));
@@ -484,6 +524,9 @@ std::string write_case_file(const SimulationCase& c, CaseUnits units) {
   std::string_view section;
   for (const Field& field : case_schema()) {
     if (!applies(field, c) || absent(field, c)) continue;
+    if (!field.written_at_default && value_text(field, c) == value_text(field, SimulationCase{})) {
+      continue;
+    }
     if (field.section != section) {
       section = field.section;
       text += "\n[" + std::string(section) + "]\n";

@@ -129,6 +129,24 @@ class Rows {
     f.choices = std::move(choices);
     return f;
   }
+  // A list of quantities, each in `range`; `slot` returns the std::vector<double>.
+  template <typename Slot>
+  Field& quantity_list(std::string_view key, Dimension dimension, std::string_view unit,
+                       Range range, bool required, const std::string& help, Slot slot) {
+    Field f;
+    f.section = section_;
+    f.key = key;
+    f.kind = FieldKind::quantity_list;
+    f.required = required;
+    f.help = help;
+    f.dimension = dimension;
+    f.unit = unit;
+    f.range = range;
+    f.get_list = [slot](const SimulationCase& c) { return slot(c); };
+    f.set_list = [slot](SimulationCase& c, const std::vector<double>& values) { slot(c) = values; };
+    rows_.push_back(std::move(f));
+    return rows_.back();
+  }
   template <typename Slot>
   Field& on_off(std::string_view key, const std::string& help, Slot slot) {
     Field& f = add(key, FieldKind::on_off, false, help, slot);
@@ -164,9 +182,7 @@ void add_torque(std::vector<Field>& rows, std::string_view section, TorqueSlot t
        choice("sinusoidal", Torque::Kind::sinusoidal,
               "T = amplitude sin(angular_frequency t + phase)"),
        choice("harmonic", Torque::Kind::harmonic,
-              "T = mean + sum A_i sin(w_i t + phi_i): through the library for now, it has no "
-              "text form yet",
-              false),
+              "T = mean + sum_i amplitudes[i] sin(angular_frequencies[i] t + phases[i])"),
        choice("user", Torque::Kind::user,
               "T(t) given as a function: through the library only, it has no text form", false)},
       true, "form of the external torque T(t) on the gear", [torque](auto& c) -> auto& {
@@ -175,21 +191,44 @@ void add_torque(std::vector<Field>& rows, std::string_view section, TorqueSlot t
   r.quantity(
        "value", Dimension::torque, "N*mm", {}, true,
        "T of a constant torque", [torque](auto& c) -> auto& { return torque(c).constant_n_m; })
-      .only_when = FieldCondition{"kind", "constant"};
+      .only_when = FieldCondition{"kind", {"constant"}};
+  Field& mean = r.quantity(
+      "mean", Dimension::torque, "N*mm", {}, false,
+      "T_m, the mean the fluctuation is added to: T = mean + A sin(W t + phase) or mean + "
+      "the harmonics; a case file leaves it out while it is 0",
+      [torque](auto& c) -> auto& { return torque(c).mean_n_m; });
+  mean.only_when = FieldCondition{"kind", {"sinusoidal", "harmonic"}};
+  mean.written_at_default = false;
   r.quantity(
        "amplitude", Dimension::torque, "N*mm", {}, true, "A of T = A sin(W t + phase)",
        [torque](auto& c) -> auto& { return torque(c).amplitude_n_m; })
-      .only_when = FieldCondition{"kind", "sinusoidal"};
+      .only_when = FieldCondition{"kind", {"sinusoidal"}};
   r.quantity(
        "angular_frequency", Dimension::angular_frequency, "rad/s", {closed(0.0), {}, {}}, true,
        "W of T = A sin(W t + phase); Hz counts cycles (W = 2 pi f). Not negative: "
        "-W is the same sinusoid as W with the phase pi - phase",
        [torque](auto& c) -> auto& { return torque(c).angular_frequency_rad_s; })
-      .only_when = FieldCondition{"kind", "sinusoidal"};
+      .only_when = FieldCondition{"kind", {"sinusoidal"}};
   r.quantity(
        "phase", Dimension::angle, "deg", {}, false, "phase of T = A sin(W t + phase)",
        [torque](auto& c) -> auto& { return torque(c).phase_rad; })
-      .only_when = FieldCondition{"kind", "sinusoidal"};
+      .only_when = FieldCondition{"kind", {"sinusoidal"}};
+  // The three lists of a harmonic torque, one element per harmonic, of one
+  // length (validate_relations).
+  r.quantity_list(
+       "amplitudes", Dimension::torque, "N*mm", {}, true,
+       "A_i of T = mean + sum_i A_i sin(w_i t + phi_i); as many as angular_frequencies and phases",
+       [torque](auto& c) -> auto& { return torque(c).harmonic_amplitudes_n_m; })
+      .only_when = FieldCondition{"kind", {"harmonic"}};
+  r.quantity_list(
+       "angular_frequencies", Dimension::angular_frequency, "rad/s", {closed(0.0), {}, {}}, true,
+       "w_i of the harmonics; not negative, as angular_frequency",
+       [torque](auto& c) -> auto& { return torque(c).harmonic_angular_frequencies_rad_s; })
+      .only_when = FieldCondition{"kind", {"harmonic"}};
+  r.quantity_list(
+       "phases", Dimension::angle, "deg", {}, true, "phi_i of the harmonics",
+       [torque](auto& c) -> auto& { return torque(c).harmonic_phases_rad; })
+      .only_when = FieldCondition{"kind", {"harmonic"}};
 }
 
 std::vector<Field> make_schema() {
@@ -415,6 +454,44 @@ std::vector<Field> make_schema() {
             return c.model.stiffness.terms.on[index];
           });
     }
+    // The steady-state model's options. Case files written before they
+    // existed hold their defaults, so the writer leaves them out at those.
+    r.choice(
+         "mesh_stiffness",
+         {choice("time-varying", MeshStiffnessMode::time_varying,
+                 "each loaded pair's Ke(X) of (29)"),
+          choice("constant", MeshStiffnessMode::constant,
+                 "constant_mesh_stiffness shared equally by the loaded pairs (the clearance "
+                 "oscillator)")},
+         false, "the mesh stiffness of the dynamics",
+         [](auto& c) -> auto& { return c.model.mesh_stiffness; })
+        .written_at_default = false;
+    r.quantity(
+         "constant_mesh_stiffness", Dimension::stiffness, "N/um", {open(0.0), {}, {}}, true,
+         "k, the total mesh stiffness along the line of action",
+         [](auto& c) -> auto& { return c.model.constant_mesh_stiffness_n_m; })
+        .only_when = FieldCondition{"mesh_stiffness", {"constant"}};
+    r.number(
+         "mesh_damping_ratio", {closed(0.0), {}, {}}, false,
+         "zeta of the viscous mesh damper c = 2 zeta sqrt(k_mean m_e) on s', in contact and in "
+         "the backlash; 0 leaves it out",
+         [](auto& c) -> auto& { return c.model.mesh_damping_ratio; })
+        .written_at_default = false;
+    r.choice(
+         "damping_update",
+         {choice("each-impact", DampingUpdate::each_impact,
+                 "D from e(Vi) at every impact, carried with the state (the paper's)"),
+          choice("frozen", DampingUpdate::frozen,
+                 "D from e(damping_reference_speed), the same at every impact"),
+          choice("off", DampingUpdate::off, "D = 0")},
+         false, "when the Hertzian damping factor D of (32) is set",
+         [](auto& c) -> auto& { return c.model.damping_update; })
+        .written_at_default = false;
+    r.quantity(
+         "damping_reference_speed", Dimension::speed, "m/s", {open(0.0), {}, {}}, false,
+         "V_ref: the impact speed of the frozen D",
+         [](auto& c) -> auto& { return c.model.damping_reference_speed_m_s; })
+        .only_when = FieldCondition{"damping_update", {"frozen"}};
   }
   {
     Rows r(rows, "integrator");
@@ -500,6 +577,7 @@ bool in_range(const Range& range, double value) {
 std::string si_text(const Field& field, double value) {
   switch (field.kind) {
     case FieldKind::quantity:
+    case FieldKind::quantity_list:
       return shortest_decimal(value) + " " + std::string(units_of(field.dimension).front().symbol);
     case FieldKind::choice:
     case FieldKind::on_off:
@@ -533,6 +611,15 @@ const Field& field_or_throw(std::string_view key, std::string_view name) {
 }
 
 }  // namespace
+
+std::string FieldCondition::text() const {
+  std::string list;
+  for (std::size_t i = 0; i < choices.size(); ++i) {
+    if (i > 0) list += i + 1 == choices.size() ? " or " : ", ";
+    list += "\"" + std::string(choices[i]) + "\"";
+  }
+  return std::string(key) + " = " + list;
+}
 
 std::string Field::name() const {
   if (section.empty()) return std::string(key);
@@ -576,7 +663,9 @@ bool applies(const Field& field, const SimulationCase& c) {
   for (const Field& selector : case_schema()) {
     if (selector.section == field.section && selector.key == field.only_when->key) {
       const ChoiceName* chosen = choice_of(selector, selector.get(c));
-      return chosen != nullptr && chosen->name == field.only_when->choice;
+      const auto& choices = field.only_when->choices;
+      return chosen != nullptr &&
+             std::find(choices.begin(), choices.end(), chosen->name) != choices.end();
     }
   }
   return false;
@@ -585,11 +674,13 @@ bool applies(const Field& field, const SimulationCase& c) {
 std::string allowed_text(const Field& field) {
   std::string text;
   switch (field.kind) {
-    case FieldKind::quantity: {
+    case FieldKind::quantity:
+    case FieldKind::quantity_list: {
       const std::string si(units_of(field.dimension).front().symbol);
+      if (field.kind == FieldKind::quantity_list) text = "a list, each ";
       const std::string bounds = interval(
           field.range, [](double x) { return shortest_decimal(x); }, false);
-      text = std::string(describe(field.dimension));
+      text += std::string(describe(field.dimension));
       if (bounds.empty()) {
         text += ", any finite value";
         break;
@@ -644,6 +735,16 @@ std::string allowed_text(const Field& field) {
 
 std::string value_text(const Field& field, const SimulationCase& c, bool readable_unit) {
   if (field.kind == FieldKind::text) return "\"" + field.get_text(c) + "\"";
+  if (field.kind == FieldKind::quantity_list) {
+    const std::string_view unit =
+        readable_unit ? field.unit : units_of(field.dimension).front().symbol;
+    std::string text = "[";
+    for (double value : field.get_list(c)) {
+      if (text.size() > 1) text += ", ";
+      text += "\"" + format_quantity(value, field.dimension, unit) + "\"";
+    }
+    return text + "]";
+  }
   const double value = field.get(c);
   switch (field.kind) {
     case FieldKind::quantity: {
@@ -695,6 +796,7 @@ void check_value(const Field& field, double value, std::string_view name,
       ok = choice_of(field, value) != nullptr;
       break;
     case FieldKind::text:
+    case FieldKind::quantity_list:
       break;
   }
   if (!ok) throw InputError(std::string(name), std::string(written), allowed_text(field));
@@ -740,9 +842,45 @@ double parse_value(const Field& field, std::string_view value_text, std::string_
     }
     case FieldKind::text:
       throw InputError(std::string(name), written, "a name: set it with set_field");
+    case FieldKind::quantity_list:
+      throw InputError(std::string(name), written, "a list: read it with parse_list");
   }
   check_value(field, value, name, written);
   return value;
+}
+
+void check_list(const Field& field, const std::vector<double>& values, std::string_view name) {
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!in_range(field.range, values[i])) {
+      throw InputError(std::string(name) + "[" + std::to_string(i) + "]", si_text(field, values[i]),
+                       allowed_text(field));
+    }
+  }
+}
+
+std::vector<double> parse_list(const Field& field, std::string_view value_text,
+                               std::string_view name) {
+  std::vector<double> values;
+  if (trim(value_text).empty()) return values;
+  std::string_view rest = value_text;
+  for (;;) {
+    const std::size_t comma = rest.find(',');
+    const std::string_view item = trim(rest.substr(0, comma));
+    const std::string item_name = std::string(name) + "[" + std::to_string(values.size()) + "]";
+    double value = 0.0;
+    if (const std::optional<double> si = plain_number(item)) {
+      value = *si;
+    } else {
+      value = parse_quantity(item, field.dimension, item_name);
+    }
+    if (!in_range(field.range, value)) {
+      throw InputError(item_name, std::string(item), allowed_text(field));
+    }
+    values.push_back(value);
+    if (comma == std::string_view::npos) break;
+    rest.remove_prefix(comma + 1);
+  }
+  return values;
 }
 
 void set_field(SimulationCase& c, std::string_view section_dot_key, std::string_view value_text,
@@ -758,8 +896,12 @@ void set_field(SimulationCase& c, std::string_view section_dot_key, std::string_
   if (!applies(field, c)) {
     throw InputError(name, std::string(value_text),
                      "nothing: " + field.name() + " is used only with " +
-                         std::string(field.section) + "." + std::string(field.only_when->key) +
-                         " = \"" + std::string(field.only_when->choice) + "\" (set that first)");
+                         std::string(field.section) + "." + field.only_when->text() +
+                         " (set that first)");
+  }
+  if (field.kind == FieldKind::quantity_list) {
+    field.set_list(c, parse_list(field, value_text, name));
+    return;
   }
   field.set(c, parse_value(field, value_text, name));
 }
@@ -768,8 +910,10 @@ double get_numeric_field(const SimulationCase& c, std::string_view section_dot_k
   const Field& field = field_or_throw(section_dot_key, {});
   if (field.kind != FieldKind::quantity && field.kind != FieldKind::number &&
       field.kind != FieldKind::integer) {
-    throw InputError(field.name(),
-                     "(a " + std::string(field.kind == FieldKind::text ? "name" : "choice") + ")",
+    const char* what = field.kind == FieldKind::text            ? "name"
+                       : field.kind == FieldKind::quantity_list ? "list"
+                                                                : "choice";
+    throw InputError(field.name(), "(a " + std::string(what) + ")",
                      "a quantity, number or integer key for get_numeric_field");
   }
   return field.get(c);
@@ -797,6 +941,20 @@ void validate_relations(const SimulationCase& c) {
     if (torque->kind == Torque::Kind::user && !torque->user) {
       throw InputError(std::string(name) + ".user", "empty", "a callable T(t_s) in N m");
     }
+    if (torque->kind == Torque::Kind::harmonic) {
+      // One harmonic is one element of each list.
+      const std::size_t n = torque->harmonic_amplitudes_n_m.size();
+      const std::array<std::pair<const char*, std::size_t>, 2> others{
+          {{"angular_frequencies", torque->harmonic_angular_frequencies_rad_s.size()},
+           {"phases", torque->harmonic_phases_rad.size()}}};
+      for (const auto& [key, size] : others) {
+        if (size != n) {
+          throw InputError(
+              std::string(name) + "." + key, std::to_string(size) + " values",
+              "as many values as " + std::string(name) + ".amplitudes (" + std::to_string(n) + ")");
+        }
+      }
+    }
   }
   const IntegratorSettings& s = c.integrator;
   const double most_steps = static_cast<double>(kMostSteps);
@@ -812,6 +970,8 @@ void validate_fields(const SimulationCase& c) {
   for (const Field& field : case_schema()) {
     if (field.kind == FieldKind::text) {
       check_text(field, field.get_text(c), field.name());
+    } else if (field.kind == FieldKind::quantity_list) {
+      if (applies(field, c)) check_list(field, field.get_list(c), field.name());
     } else if (applies(field, c) && !absent(field, c)) {
       const double value = field.get(c);
       check_value(field, value, field.name(), si_text(field, value));
@@ -837,12 +997,10 @@ std::string schema_markdown() {
         if (c.has_text) help += "; \"" + std::string(c.name) + "\": " + std::string(c.meaning);
       }
     }
-    if (field.only_when) {
-      help += " (only with " + std::string(field.only_when->key) + " = \"" +
-              std::string(field.only_when->choice) + "\")";
-    }
-    const std::string unit =
-        field.kind == FieldKind::quantity ? std::string(field.unit) : std::string("-");
+    if (field.only_when) help += " (only with " + field.only_when->text() + ")";
+    const bool has_unit =
+        field.kind == FieldKind::quantity || field.kind == FieldKind::quantity_list;
+    const std::string unit = has_unit ? std::string(field.unit) : std::string("-");
     table += "| `" + field.name() + "` | " + cell(unit) + " | " + cell(default_text(field)) +
              " | " + cell(allowed_text(field)) + " | " + cell(help) + " |\n";
   }

@@ -34,11 +34,20 @@ constexpr std::array kAngularVelocity{Unit{"rad/s", 0, 1.0}, Unit{"rpm", 0, 2.0 
 // Hz counts cycles: W = 2 pi f.
 constexpr std::array kAngularFrequency{Unit{"rad/s", 0, 1.0}, Unit{"Hz", 0, 2.0 * pi}};
 constexpr std::array kSpeed{Unit{"m/s", 0, 1.0}, Unit{"mm/s", -3, 1.0}, Unit{"in/s", 0, kInch}};
+// A mesh stiffness, force per length along the line of action: N/um = kN/mm = 1e6 N/m.
+constexpr std::array kStiffness{Unit{"N/m", 0, 1.0}, Unit{"N/mm", 3, 1.0}, Unit{"N/um", 6, 1.0},
+                                Unit{"kN/mm", 6, 1.0}};
 
-constexpr std::array kDimensions{
-    Dimension::length, Dimension::angle, Dimension::pressure,         Dimension::density,
-    Dimension::torque, Dimension::time,  Dimension::angular_velocity, Dimension::angular_frequency,
-    Dimension::speed};
+constexpr std::array kDimensions{Dimension::length,
+                                 Dimension::angle,
+                                 Dimension::pressure,
+                                 Dimension::density,
+                                 Dimension::torque,
+                                 Dimension::time,
+                                 Dimension::angular_velocity,
+                                 Dimension::angular_frequency,
+                                 Dimension::speed,
+                                 Dimension::stiffness};
 
 // Exponents beyond this put any mantissa outside the doubles (with up to a few
 // hundred digits); it keeps the exponent arithmetic far from int overflow.
@@ -144,6 +153,8 @@ UnitList units_of(Dimension dimension) {
       return {kAngularFrequency.data(), kAngularFrequency.size()};
     case Dimension::speed:
       return {kSpeed.data(), kSpeed.size()};
+    case Dimension::stiffness:
+      return {kStiffness.data(), kStiffness.size()};
   }
   return {};
 }
@@ -168,6 +179,8 @@ std::string_view describe(Dimension dimension) {
       return "an angular frequency";
     case Dimension::speed:
       return "a speed";
+    case Dimension::stiffness:
+      return "a stiffness";
   }
   return "a quantity";
 }

@@ -6,106 +6,35 @@
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/io/schema.hpp"
 
 namespace gearimpact {
 
-namespace {
-
-struct KeyEntry {
-  SweepKey key;
-  std::function<void(SimulationCase&, double)> set;
-};
-
-void make_sinusoidal(Torque& t) {
-  if (t.kind == Torque::Kind::constant) {
-    t.kind = Torque::Kind::sinusoidal;
-    t.mean_n_m = t.constant_n_m;
+const Field& sweep_field(const std::string& key, const std::string& flag) {
+  const Field* field = find_field(key);
+  if (field == nullptr || (field->kind != FieldKind::quantity && field->kind != FieldKind::number &&
+                           field->kind != FieldKind::integer)) {
+    throw InputError(flag, key,
+                     "a quantity, number or integer key of the case schema, as section.key "
+                     "(`gearimpact schema` lists them)");
   }
-}
-
-std::vector<KeyEntry> make_keys() {
-  std::vector<KeyEntry> keys;
-  const auto quantity = [](const char* name, Dimension d) { return SweepKey{name, false, d}; };
-  for (int gear = 1; gear <= 2; ++gear) {
-    const std::string prefix = gear == 1 ? "torque1." : "torque2.";
-    const auto torque = [gear](SimulationCase& c) -> Torque& {
-      return gear == 1 ? c.torque1 : c.torque2;
-    };
-    keys.push_back({quantity((prefix + "mean").c_str(), Dimension::torque),
-                    [torque](SimulationCase& c, double v) {
-                      Torque& t = torque(c);
-                      if (t.kind == Torque::Kind::constant) {
-                        t.constant_n_m = v;
-                      } else {
-                        t.mean_n_m = v;
-                      }
-                    }});
-    keys.push_back({quantity((prefix + "amplitude").c_str(), Dimension::torque),
-                    [torque](SimulationCase& c, double v) {
-                      make_sinusoidal(torque(c));
-                      torque(c).amplitude_n_m = v;
-                    }});
-    keys.push_back({quantity((prefix + "angular_frequency").c_str(), Dimension::angular_frequency),
-                    [torque](SimulationCase& c, double v) {
-                      make_sinusoidal(torque(c));
-                      torque(c).angular_frequency_rad_s = v;
-                    }});
-    keys.push_back({quantity((prefix + "phase").c_str(), Dimension::angle),
-                    [torque](SimulationCase& c, double v) {
-                      make_sinusoidal(torque(c));
-                      torque(c).phase_rad = v;
-                    }});
-  }
-  keys.push_back({quantity("initial.w1", Dimension::angular_velocity),
-                  [](SimulationCase& c, double v) { c.initial.w1_rad_s = v; }});
-  keys.push_back({quantity("initial.w2", Dimension::angular_velocity),
-                  [](SimulationCase& c, double v) { c.initial.w2_rad_s = v; }});
-  keys.push_back({quantity("gears.backlash", Dimension::length),
-                  [](SimulationCase& c, double v) { c.gears.backlash_m = v; }});
-  keys.push_back({SweepKey{"model.friction_coefficient", true, Dimension::length},
-                  [](SimulationCase& c, double v) { c.model.friction_coefficient = v; }});
-  keys.push_back({SweepKey{"model.mesh_damping_ratio", true, Dimension::length},
-                  [](SimulationCase& c, double v) { c.model.mesh_damping_ratio = v; }});
-  // N/m has no Dimension of its own in io/units: a force per length is a pressure times a
-  // length, so the key is read as a plain number in N/m.
-  keys.push_back({SweepKey{"model.constant_mesh_stiffness", true, Dimension::length},
-                  [](SimulationCase& c, double v) {
-                    c.model.mesh_stiffness = MeshStiffnessMode::constant;
-                    c.model.constant_mesh_stiffness_n_m = v;
-                  }});
-  keys.push_back({quantity("model.damping_reference_speed", Dimension::speed),
-                  [](SimulationCase& c, double v) { c.model.damping_reference_speed_m_s = v; }});
-  return keys;
-}
-
-const std::vector<KeyEntry>& keys() {
-  static const std::vector<KeyEntry> table = make_keys();
-  return table;
-}
-
-const KeyEntry& entry(const std::string& name) {
-  for (const KeyEntry& e : keys()) {
-    if (e.key.name == name) return e;
-  }
-  std::string list;
-  for (const KeyEntry& e : keys()) list += (list.empty() ? "" : ", ") + e.key.name;
-  throw InputError("--vary", name, "a numeric case-file key as section.key: " + list);
-}
-
-}  // namespace
-
-const SweepKey& sweep_key(const std::string& name) {
-  return entry(name).key;
-}
-
-std::vector<std::string> sweep_key_names() {
-  std::vector<std::string> names;
-  for (const KeyEntry& e : keys()) names.push_back(e.key.name);
-  return names;
+  return *field;
 }
 
 void set_sweep_value(SimulationCase& c, const std::string& key, double si_value) {
-  entry(key).set(c, si_value);
+  // A constant torque's value is its mean: the load sweep's key for every torque kind.
+  for (const char* torque : {"torque1", "torque2"}) {
+    if (key == std::string(torque) + ".mean") {
+      const Torque& t = std::string(torque) == "torque1" ? c.torque1 : c.torque2;
+      if (t.kind == Torque::Kind::constant) {
+        set_field(c, std::string(torque) + ".value", shortest_decimal(si_value), key);
+        return;
+      }
+    }
+  }
+  sweep_field(key, key);
+  // A plain number is read as SI, and shortest_decimal reads back to the same double.
+  set_field(c, key, shortest_decimal(si_value));
 }
 
 void apply_sweep_value(SimulationCase& c, const SimulationCase& base, const std::string& key,
@@ -148,7 +77,7 @@ std::vector<SweepPointResult> sweep_line(
     const SimulationCase& line_case, const TableFor& table_for, const std::string& key,
     const std::vector<double>& grid, SweepDirection direction, int line,
     const SteadySettings& settings, const std::function<void(const SweepPointResult&)>& on_point) {
-  sweep_key(key);
+  sweep_field(key, "--vary");
   const double rb1 = base_radius(line_case.gears, Gear::one);
   const double rb2 = base_radius(line_case.gears, Gear::two);
   std::vector<SweepPointResult> results;

@@ -25,6 +25,10 @@ enum class FieldKind {
   choice,  // one of the names of `choices`
   on_off,  // "on" or "off"
   text,    // a name
+  // A list of numbers with a unit of `dimension`: in a case file a TOML array
+  // of quantity strings, ["10 N*m", "2 N*m"]; on the command line a comma-
+  // separated list, "10 N*m, 2 N*m". Each element must lie in `range`.
+  quantity_list,
 };
 
 // One allowed name of a choice and the enumerator it stands for.
@@ -49,11 +53,15 @@ struct Range {
   std::string_view note;  // appended to the interval in messages: why these bounds
 };
 
-// A key that exists only when another key of its section has one value:
-// [torque1] value only with kind = "constant".
+// A key that exists only when another key of its section has one of some
+// values: [torque1] value only with kind = "constant", mean with kind =
+// "sinusoidal" or "harmonic".
 struct FieldCondition {
   std::string_view key;
-  std::string_view choice;
+  std::vector<std::string_view> choices;
+
+  // "kind = \"sinusoidal\" or \"harmonic\"", for messages and the docs.
+  std::string text() const;
 };
 
 struct Field {
@@ -77,6 +85,12 @@ struct Field {
   // Text rows.
   std::function<std::string(const SimulationCase&)> get_text;
   std::function<void(SimulationCase&, const std::string&)> set_text;
+  // List rows, in SI.
+  std::function<std::vector<double>(const SimulationCase&)> get_list;
+  std::function<void(SimulationCase&, const std::vector<double>&)> set_list;
+  // false: the writer leaves the key out while it holds its default, so that
+  // keys added after case files were written do not change those files.
+  bool written_at_default = true;
 
   // "section.key", or "key" at the top level.
   std::string name() const;
@@ -125,13 +139,23 @@ double parse_value(const Field& field, std::string_view value_text, std::string_
 void set_field(SimulationCase& c, std::string_view section_dot_key, std::string_view value_text,
                std::string_view name_in_messages = {});
 
+// Reads a comma-separated list for a quantity_list row (each element as
+// parse_value reads a quantity) and checks each element; errors name
+// `name`[i].
+std::vector<double> parse_list(const Field& field, std::string_view value_text,
+                               std::string_view name);
+// Throws InputError naming `name`[i] unless every element is finite and in the
+// row's range.
+void check_list(const Field& field, const std::vector<double>& values, std::string_view name);
+
 // The value of a quantity, number or integer key, in SI. Throws InputError for
 // an unknown key or one that is not numeric.
 double get_numeric_field(const SimulationCase& c, std::string_view section_dot_key);
 
 // The checks that involve more than one key: the gear pair as a whole
 // (validate(GearPair), its errors under gears.* names), at least one term of
-// (29), a callable user torque, at most kMostSteps steps. InputError names the
+// (29), a callable user torque, a harmonic torque's lists of one length, at
+// most kMostSteps steps. InputError names the
 // key as section.key.
 void validate_relations(const SimulationCase& c);
 

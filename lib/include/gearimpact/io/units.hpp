@@ -19,6 +19,7 @@ enum class Dimension {
   angular_velocity,   // rad/s
   angular_frequency,  // rad/s, the W of sin(W t)
   speed,              // m/s
+  stiffness,          // N/m, a mesh stiffness along the line of action
 };
 
 // One allowed unit: SI value = (number x 10^decimal_exponent) x factor. A

@@ -11,27 +11,19 @@
 #include <vector>
 
 #include "gearimpact/dynamics/simulation_case.hpp"
-#include "gearimpact/io/units.hpp"
+#include "gearimpact/io/schema.hpp"
 #include "gearimpact/steady/steady_state.hpp"
 #include "gearimpact/stiffness/table.hpp"
 
 namespace gearimpact {
 
-// A numeric case-file key a sweep can vary, as section.key.
-struct SweepKey {
-  std::string name;
-  bool dimensionless = false;
-  Dimension dimension = Dimension::length;  // unless dimensionless
-};
+// The schema row of a key a sweep can vary: any quantity, number or integer key of the case
+// schema (io/schema.hpp). Throws InputError naming `flag` and the key otherwise.
+const Field& sweep_field(const std::string& key, const std::string& flag);
 
-// The keys: torque1/torque2 .mean .amplitude .angular_frequency .phase, initial .w1 .w2,
-// gears.backlash, model .friction_coefficient .mesh_damping_ratio .constant_mesh_stiffness
-// .damping_reference_speed. Throws InputError naming the key and listing them.
-const SweepKey& sweep_key(const std::string& name);
-std::vector<std::string> sweep_key_names();
-
-// Sets the key to an SI value. torqueN.mean sets a constant torque's value; amplitude,
-// angular_frequency and phase turn a constant torque into a sinusoid about its value.
+// Sets the key to an SI value through the schema (set_field: its range, and a key used only with
+// another key's choice, such as torque1.amplitude with kind = "sinusoidal", needs that choice
+// first). torqueN.mean also sets a constant torque's value, its mean.
 void set_sweep_value(SimulationCase& c, const std::string& key, double si_value);
 
 // set_sweep_value, and what keeps a swept case comparable to `base`: a speed moves the other
