@@ -49,7 +49,7 @@ from ._results import (
     stiffness,
     sweep_friction,
 )
-from ._program import paper_data_dir, program_path, reproduce
+from ._program import iso6336, mesh_stiffness, paper_data_dir, program_path, reproduce, sweep
 
 __all__ = [
     "Case",
@@ -66,7 +66,9 @@ __all__ = [
     "contact_segment",
     "energy_ratios",
     "gear_pair",
+    "iso6336",
     "line_of_action_length",
+    "mesh_stiffness",
     "moment_of_inertia",
     "paper_case",
     "paper_data_dir",
@@ -78,6 +80,7 @@ __all__ = [
     "reproduce",
     "simulate",
     "stiffness",
+    "sweep",
     "sweep_friction",
     "tip_radius",
 ]

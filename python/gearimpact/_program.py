@@ -42,3 +42,92 @@ def reproduce(out_dir, paper_data=None):
             f"gearimpact reproduce failed (exit {finished.returncode}): {finished.stderr.strip()}"
         )
     return Path(out_dir) / "REPORT.md"
+
+
+def _run(arguments, what):
+    """Runs the program with `arguments` and returns its standard output."""
+    finished = subprocess.run([str(program_path())] + arguments, stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, text=True)
+    if finished.returncode != 0:
+        raise RuntimeError(f"gearimpact {what} failed (exit {finished.returncode}): "
+                           f"{finished.stderr.strip()}")
+    return finished.stdout
+
+
+def _with_case_file(case, arguments, run):
+    """Calls run(arguments + ['--case-file', path]) with `case` written to a temporary case
+    file (SI units, read back to the same doubles), or run(arguments) for case None."""
+    if case is None:
+        return run(arguments)
+    import tempfile
+    with tempfile.TemporaryDirectory(prefix="gearimpact-") as folder:
+        path = Path(folder) / f"{case.name or 'case'}.toml"
+        path.write_text(case.to_toml("si"))
+        return run(arguments + ["--case-file", str(path)])
+
+
+def _table(csv_text):
+    """A CSV with a header as a dict of numpy arrays, column by column (text columns stay
+    lists of str)."""
+    import csv
+    import io
+
+    import numpy
+    rows = list(csv.reader(io.StringIO(csv_text)))
+    header, body = rows[0], rows[1:]
+    table = {}
+    for i, name in enumerate(header):
+        values = [row[i] for row in body]
+        try:
+            table[name] = numpy.array([float(v) for v in values])
+        except ValueError:
+            table[name] = values
+    return table
+
+
+def iso6336(case=None, helix_angle_deg=0.0):
+    """ISO 6336-1 method B for a case's gear pair (default: the paper's), by running
+    ``gearimpact iso6336``: a dict with zn1, zn2, c_prime_th_n_mm_um, c_prime_n_mm_um,
+    c_gamma_alpha_n_mm_um, eps_alpha, c_prime_b_n_m, c_gamma_alpha_b_n_m."""
+    import json
+    arguments = ["iso6336", "--helix-angle", repr(float(helix_angle_deg))]
+    return json.loads(_with_case_file(case, arguments, lambda a: _run(a, "iso6336")))
+
+
+def mesh_stiffness(case=None, model=None, samples=200):
+    """The mesh stiffness over one mesh period with exact line-of-action kinematics, by
+    running ``gearimpact mesh-stiffness``: (table, summary), the table a dict of numpy arrays
+    fraction, theta1_rad, pairs, ke_n_m, the summary a dict with min_n_m, max_n_m, mean_n_m
+    (the exact time mean), contact_ratio, extrapolated. model: yang-lin-1987,
+    potential-energy or ross-compatible (default: the case's)."""
+    import json
+    arguments = ["mesh-stiffness", "--samples", str(int(samples))]
+    if model is not None:
+        arguments += ["--model", str(model)]
+    table = _with_case_file(case, arguments, lambda a: _run(a, "mesh-stiffness"))
+    summary = _with_case_file(case, arguments + ["--summary"],
+                              lambda a: _run(a, "mesh-stiffness --summary"))
+    return _table(table), json.loads(summary)
+
+
+def sweep(case, vary, start, stop, points, direction="both", options=()):
+    """The steady state of a loaded, running pair along one parameter, by running
+    ``gearimpact sweep`` (docs/sweep.md): `case` a Case, `vary` any numeric case-file key as
+    section.key, `start` and `stop` with units as case files write them ("500 rad/s") or SI
+    floats, `options` more of the command's options as strings (e.g. ["--vary2",
+    "gears.backlash", ...]). Returns a dict: "sweep" and "poincare" (dicts of arrays with the
+    columns of sweep.csv and poincare.csv) and "summary" (summary.json)."""
+    import json
+    import tempfile
+    with tempfile.TemporaryDirectory(prefix="gearimpact-sweep-") as folder:
+        path = Path(folder) / f"{case.name or 'case'}.toml"
+        path.write_text(case.to_toml("si"))
+        out = Path(folder) / "out"
+        _run(["sweep", str(path), "--vary", str(vary), "--from", str(start), "--to", str(stop),
+              "--points", str(int(points)), "--direction", str(direction), "--out", str(out),
+              "--no-plots"] + [str(o) for o in options], "sweep")
+        return {
+            "sweep": _table((out / "sweep.csv").read_text()),
+            "poincare": _table((out / "poincare.csv").read_text()),
+            "summary": json.loads((out / "summary.json").read_text()),
+        }

@@ -3,6 +3,9 @@ library behind both, the same sampling, the same case. The program's CSV and
 JSON are parsed at their 17 significant digits, which read back exactly."""
 
 import json
+from pathlib import Path
+
+import numpy as np
 
 import gearimpact
 import pytest
@@ -101,3 +104,50 @@ def test_sweep_friction(cli):
                  "0.005")
     assert_same_table(ours, theirs, ["f", "ratio_case1", "ratio_case2", "ratio_case3"],
                       "sweep-friction")
+
+
+def test_iso6336_and_mesh_stiffness_equal_the_program(cli):
+    # The paper's pair: ISO's c'b for it is 1.34e8 N/m (README, Which stiffness model).
+    ours = gearimpact.iso6336()
+    assert ours == json.loads(cli("iso6336", "--helix-angle", "0.0"))
+    assert abs(ours["c_prime_b_n_m"] / 1.34e8 - 1.0) < 5e-3
+    table, summary = gearimpact.mesh_stiffness(samples=40)
+    theirs = parse_csv(cli("mesh-stiffness", "--samples", "40"))
+    for name in ("fraction", "theta1_rad", "pairs", "ke_n_m"):
+        assert_bitwise_equal(table[name], theirs[name], f"mesh-stiffness {name}")
+    assert summary == json.loads(cli("mesh-stiffness", "--samples", "40", "--summary"))
+    # The exact time mean lies between the extremes of the samples' range.
+    assert summary["min_n_m"] <= summary["mean_n_m"] <= summary["max_n_m"]
+
+
+def test_sweep_equals_the_program(cli, tmp_path):
+    # The sharded tests' case (verify/slurm/sharded-sweep.toml), a short line.
+    case_file = Path(__file__).resolve().parent.parent / "slurm" / "sharded-sweep.toml"
+    case = gearimpact.read_case(case_file)
+    ours = gearimpact.sweep(case, "initial.w1", "3000 rad/s", "4000 rad/s", 2, direction="up")
+    out = tmp_path / "out"
+    cli("sweep", case_file, "--vary", "initial.w1", "--from", "3000 rad/s", "--to", "4000 rad/s",
+        "--points", "2", "--direction", "up", "--out", out, "--no-plots")
+    theirs = parse_csv_any((out / "sweep.csv").read_text())
+    assert list(ours["sweep"]) == list(theirs)
+    for name, values in theirs.items():
+        if isinstance(values, list):
+            assert ours["sweep"][name] == values, name
+        else:
+            assert_bitwise_equal(ours["sweep"][name], values, f"sweep {name}")
+    assert ours["summary"] == json.loads((out / "summary.json").read_text())
+
+
+def parse_csv_any(text):
+    """A CSV whose columns may hold words (regime): numbers as float64 arrays, words as lists."""
+    lines = text.strip().splitlines()
+    header = lines[0].split(",")
+    rows = [line.split(",") for line in lines[1:]]
+    table = {}
+    for j, name in enumerate(header):
+        values = [row[j] for row in rows]
+        try:
+            table[name] = np.array([float(v) for v in values], dtype=np.float64)
+        except ValueError:
+            table[name] = values
+    return table
