@@ -246,6 +246,9 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
   SimulationResult result;
   o.keys.naming_options([&] { result = simulate(c, control); });
   if (!o.out.empty()) write_file_atomically(o.out, series_csv(result.series));
+  if (result.summary.foundation_extrapolated) {
+    std::fprintf(stderr, "gearimpact: warning: %s\n", foundation_extrapolation_warning().c_str());
+  }
   std::fputs(summary_json(result.summary).c_str(), stdout);
 }
 

@@ -202,3 +202,22 @@ TEST_CASE("bad flag values are refused naming the flag") {
     CHECK(r.out.empty());
   }
 }
+
+TEST_CASE("simulate warns in its JSON and on stderr when the foundation fit is extrapolated") {
+  // The paper's pinion: theta_f = 0.1506 rad, outside the fit's [0.01, 0.12]
+  // (README, Which stiffness model), with the bores of ROSS's run.
+  const std::string model =
+      " --set model.stiffness_model=potential-energy --set \"gears.bore_diameter1=20 mm\""
+      " --set \"gears.bore_diameter2=60 mm\"";
+  const verify::CommandResult pe =
+      verify::run_command(verify::cli("simulate --case 1 --t-end 2e-4" + model));
+  REQUIRE(pe.exit_code == 0);
+  CHECK(pe.out.find("\"foundation_extrapolated\": true") != std::string::npos);
+  CHECK(pe.out.find("\"foundation_energy_max_J\"") != std::string::npos);
+  CHECK(pe.err.find("warning") != std::string::npos);
+  // The paper's model has no foundation term: its summary says nothing of it.
+  const verify::CommandResult paper =
+      verify::run_command(verify::cli("simulate --case 1 --t-end 2e-4"));
+  REQUIRE(paper.exit_code == 0);
+  CHECK(paper.out.find("foundation") == std::string::npos);
+}

@@ -7,6 +7,7 @@
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/io/schema.hpp"
+#include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "rk4.hpp"
 
 namespace gearimpact {
@@ -117,8 +118,16 @@ SimulationResult simulate(const SimulationCase& c, const StiffnessTable& table,
   check_table(c, table);
   validate_step(c, largest_resolving_step_s(c, table));
   validate_control(c, control);
-  return c.integrator.kind == IntegratorKind::rk4 ? run_rk4(c, table, control)
-                                                  : run_adaptive(c, table, control);
+  SimulationResult result = c.integrator.kind == IntegratorKind::rk4
+                                ? run_rk4(c, table, control)
+                                : run_adaptive(c, table, control);
+  const StiffnessModel& k = c.model.stiffness;
+  if (provides(k.kind, Term::foundation) && k.terms.has(Term::foundation)) {
+    // The fit's inputs (h_f, theta_f) are the teeth's, the same at every position.
+    result.summary.foundation_extrapolated =
+        mesh_stiffness(c.gears, contact_segment(c.gears).start_m, k).foundation_extrapolated;
+  }
+  return result;
 }
 
 }  // namespace gearimpact

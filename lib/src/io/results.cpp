@@ -86,6 +86,13 @@ std::string summary_json(const SimulationSummary& s) {
     json_number(out, (std::string(t.id) + "_energy_max_J").c_str(),
                 s.energy_max_j[index_of(t.term)]);
   }
+  if (provides(s.stiffness_model, Term::foundation)) {
+    out += std::string("  \"foundation_extrapolated\": ") +
+           (s.foundation_extrapolated ? "true" : "false") + ",\n";
+    if (s.foundation_extrapolated) {
+      out += "  \"warning\": " + json_string(foundation_extrapolation_warning()) + ",\n";
+    }
+  }
   json_number(out, "ledger_residual_J", s.ledger_residual_j);
   json_number(out, "ledger_residual_max_J", s.ledger_residual_max_j);
   json_number(out, "ledger_scale_J", s.ledger_scale_j);

@@ -87,6 +87,9 @@ struct SimulationSummary {
   // 0 for a term the stiffness model does not have).
   std::array<double, kTermCount> energy_max_j{};
   StiffnessModelKind stiffness_model = StiffnessModelKind::yang_lin_1987;
+  // Whether the model's fillet-foundation term uses the fit of Sainsot et al.
+  // (2004) outside its range (false for a model without that term).
+  bool foundation_extrapolated = false;
   // (kinetic + stored)(t) - (kinetic + stored)(0) - torque work + losses -
   // parametric work: zero for the exact solution. Final value and largest |value|.
   double ledger_residual_j = 0.0;
