@@ -14,53 +14,6 @@ namespace gearimpact {
 
 namespace {
 
-// The options of the steady-state model: the torques' harmonics, the mesh
-// stiffness, the mesh damper and the damping update.
-void validate_model_options(const SimulationCase& c) {
-  for (const auto& [name, torque] : {std::pair<const char*, const Torque&>{"torque1", c.torque1},
-                                     std::pair<const char*, const Torque&>{"torque2", c.torque2}}) {
-    if (torque.kind == Torque::Kind::constant || torque.kind == Torque::Kind::user) continue;
-    if (!std::isfinite(torque.mean_n_m)) {
-      throw InputError(std::string(name) + ".mean", torque.mean_n_m, "a finite torque in N m");
-    }
-    if (torque.kind != Torque::Kind::harmonic) continue;
-    const std::size_t n = torque.harmonic_amplitudes_n_m.size();
-    if (torque.harmonic_angular_frequencies_rad_s.size() != n ||
-        torque.harmonic_phases_rad.size() != n) {
-      throw InputError(std::string(name) + ".harmonics",
-                       std::to_string(n) + " amplitudes, " +
-                           std::to_string(torque.harmonic_angular_frequencies_rad_s.size()) +
-                           " angular frequencies, " +
-                           std::to_string(torque.harmonic_phases_rad.size()) + " phases",
-                       "as many angular frequencies and phases as amplitudes");
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-      if (!std::isfinite(torque.harmonic_amplitudes_n_m[i]) ||
-          !std::isfinite(torque.harmonic_angular_frequencies_rad_s[i]) ||
-          !std::isfinite(torque.harmonic_phases_rad[i])) {
-        throw InputError(std::string(name) + ".harmonics[" + std::to_string(i) + "]",
-                         "a non-finite amplitude, angular frequency or phase",
-                         "finite values in N m, rad/s and rad");
-      }
-    }
-  }
-  const ModelOptions& m = c.model;
-  if (m.mesh_stiffness == MeshStiffnessMode::constant &&
-      (!std::isfinite(m.constant_mesh_stiffness_n_m) || m.constant_mesh_stiffness_n_m <= 0.0)) {
-    throw InputError("model.constant_mesh_stiffness", m.constant_mesh_stiffness_n_m,
-                     "a finite value > 0 N/m when mesh_stiffness = constant");
-  }
-  if (!std::isfinite(m.mesh_damping_ratio) || m.mesh_damping_ratio < 0.0) {
-    throw InputError("model.mesh_damping_ratio", m.mesh_damping_ratio,
-                     "a finite value >= 0 (zeta of c = 2 zeta sqrt(k_mean m_e); 0 is off)");
-  }
-  if (m.damping_update == DampingUpdate::frozen &&
-      (!std::isfinite(m.damping_reference_speed_m_s) || m.damping_reference_speed_m_s <= 0.0)) {
-    throw InputError("model.damping_reference_speed", m.damping_reference_speed_m_s,
-                     "a finite speed > 0 m/s when damping_update = frozen");
-  }
-}
-
 void validate_control(const SimulationCase& c, const RunControl& control) {
   if (control.resume) {
     const RunState& r = *control.resume;
@@ -100,13 +53,11 @@ void check_table(const SimulationCase& c, const StiffnessTable& table) {
 
 void validate(const SimulationCase& c) {
   validate_fields(c);
-  validate_model_options(c);
   validate_step(c, largest_resolving_step_s(c));
 }
 
 SimulationResult simulate(const SimulationCase& c, const RunControl& control) {
   validate_fields(c);
-  validate_model_options(c);
   const StiffnessTable table(c.gears, c.model.stiffness);
   return simulate(c, table, control);
 }
@@ -114,7 +65,6 @@ SimulationResult simulate(const SimulationCase& c, const RunControl& control) {
 SimulationResult simulate(const SimulationCase& c, const StiffnessTable& table,
                           const RunControl& control) {
   validate_fields(c);
-  validate_model_options(c);
   check_table(c, table);
   validate_step(c, largest_resolving_step_s(c, table));
   validate_control(c, control);
