@@ -82,7 +82,8 @@ void reproduce(const ReproduceOptions& options) {
                                 {"Fig. 8 energy ratios", reproduce_fig8},
                                 {"stiffness models and ISO 6336-1", reproduce_stiffness},
                                 {"the open readings side by side", reproduce_readings},
-                                {"case 3 ensemble", reproduce_case3_ensemble}};
+                                {"case 3 ensemble", reproduce_case3_ensemble},
+                                {"steady state of the loaded pair", reproduce_steady_state}};
   // The parts run side by side: each submits its simulations to the one pool
   // and waits for them, so the cores stay busy until the last run is done.
   std::vector<std::future<std::pair<ReportSection, double>>> running;

@@ -24,8 +24,10 @@
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/units.hpp"
 #include "gearimpact/paper/table1.hpp"
+#include "gearimpact/steady/iso_resonance.hpp"
 #include "gearimpact/steady/sweep.hpp"
 #include "gnuplot.hpp"
+#include "iso_plot.hpp"
 
 namespace gearimpact::cli {
 
@@ -109,7 +111,8 @@ struct Unit {
 // The part of summary.json that every shard of one sweep shares; merge checks it and keeps it.
 std::string spec_block(const SweepCommandOptions& o, const SimulationCase& c,
                        const std::vector<double>& grid, const std::vector<double>& grid2,
-                       const std::vector<SweepDirection>& directions) {
+                       const std::vector<SweepDirection>& directions,
+                       const std::optional<IsoScale>& iso) {
   std::ostringstream s;
   s << "  \"spec\": {\n"
     << "    \"case\": \"" << c.name << "\",\n"
@@ -126,8 +129,15 @@ std::string spec_block(const SweepCommandOptions& o, const SimulationCase& c,
     s << (i ? "," : "") << to_string(directions[i]);
   }
   s << "\",\n"
-    << "    \"backlash_m\": " << number(c.gears.backlash_m) << ",\n"
-    << "    \"tolerance\": " << number(o.settings.tolerance) << ",\n"
+    << "    \"backlash_m\": " << number(c.gears.backlash_m) << ",\n";
+  if (iso) {
+    s << "    \"iso_resonance_speed_rad_s\": " << number(iso->resonance_speed_rad_s) << ",\n"
+      << "    \"iso_resonance_speed_iso_stiffness_rad_s\": "
+      << number(iso->resonance_speed_iso_stiffness_rad_s) << ",\n"
+      << "    \"iso_contact_ratio\": " << number(iso->contact_ratio) << ",\n"
+      << "    \"iso_line_load_n_m\": " << number(iso->line_load_n_m) << ",\n";
+  }
+  s << "    \"tolerance\": " << number(o.settings.tolerance) << ",\n"
     << "    \"steps_per_contact_period\": " << number(o.settings.steps_per_contact_period) << ",\n"
     << "    \"max_periods\": " << o.settings.max_periods << ",\n"
     << "    \"damping_update\": \""
@@ -218,6 +228,7 @@ struct SpecCounts {
   std::vector<std::string> directions;
   std::string vary2;
   double from2 = 0.0, to2 = 0.0;
+  std::optional<IsoScale> iso;  // for a sweep of initial.w1
 };
 
 // The value of "name": in the JSON text the sweep writes: a quoted string
@@ -257,7 +268,45 @@ SpecCounts read_spec_counts(const std::string& spec, const std::string& file) {
     counts.from2 = std::stod(field("from2_si"));
     counts.to2 = std::stod(field("to2_si"));
   }
+  if (json_value(spec, "iso_resonance_speed_rad_s")) {
+    IsoScale iso;
+    iso.resonance_speed_rad_s = std::stod(field("iso_resonance_speed_rad_s"));
+    iso.resonance_speed_iso_stiffness_rad_s =
+        std::stod(field("iso_resonance_speed_iso_stiffness_rad_s"));
+    iso.contact_ratio = std::stod(field("iso_contact_ratio"));
+    iso.line_load_n_m = std::stod(field("iso_line_load_n_m"));
+    counts.iso = iso;
+  }
   return counts;
+}
+
+std::string read_text(const std::filesystem::path& path);
+
+// dynamic_factor_vs_iso_n.csv from sweep.csv (the swept value is w1) and its figure.
+void render_iso_plot(const std::filesystem::path& dir, const IsoScale& iso) {
+  std::istringstream csv(read_text(dir / "sweep.csv"));
+  std::string data =
+      "line,direction,index,w1_rad_s,iso_resonance_ratio,iso_resonance_ratio_iso_stiffness,"
+      "dynamic_factor\n";
+  double n_max = 0.0;
+  std::string line;
+  std::getline(csv, line);
+  while (std::getline(csv, line)) {
+    std::vector<std::string> fields;
+    std::istringstream split(line);
+    for (std::string field; std::getline(split, field, ',');) fields.push_back(field);
+    fields.resize(13);
+    const double w1 = std::stod(fields[3]);
+    const double n = iso_resonance_ratio(w1, iso.resonance_speed_rad_s);
+    n_max = std::max(n_max, n);
+    data += fields[0] + "," + fields[1] + "," + fields[2] + "," + fields[3] + "," + number(n) +
+            "," + number(iso_resonance_ratio(w1, iso.resonance_speed_iso_stiffness_rad_s)) + "," +
+            fields[12] + "\n";
+  }
+  write_file_atomically((dir / "dynamic_factor_vs_iso_n.csv").string(), data);
+  write_iso_kv_band(dir / "iso_kv_band.csv", iso, std::max(2.0, 1.1 * n_max));
+  render(dir, dynamic_factor_vs_iso_n("dynamic_factor_vs_iso_n", iso, "dynamic_factor_vs_iso_n.csv",
+                                      2, 5, 7, "iso_kv_band.csv"));
 }
 
 // The plots of a sweep folder: amplitude up and down, the bifurcation diagram, the regime map.
@@ -287,6 +336,7 @@ void render_plots(const std::filesystem::path& dir, const SpecCounts& spec,
       "'poincare.csv' using (strcol(2) eq \"down\" ? $4 : NaN):5 with points pt 6 ps 0.6 title "
       "'down'"};
   render(dir, bifurcation);
+  if (spec.iso) render_iso_plot(dir, *spec.iso);
   if (spec.vary2.empty() || spec.lines < 2) return;
   const std::string step2 = number((spec.to2 - spec.from2) / (spec.lines - 1));
   Figure map;
@@ -376,6 +426,9 @@ void run_sweep(SweepCommandOptions& o) {
   }
   const std::vector<Unit> units = shard_units(grid2.size(), directions, shard);
   RunPool pool(o.threads);
+  // N = w1 / w_E1 of the base case's pair and load (a second key that changes them is not seen).
+  std::optional<IsoScale> iso;
+  if (o.vary == "initial.w1") iso = iso_scale(base, *pool.table_for(base));
   std::mutex progress_mutex;
   std::size_t done = 0;
   const std::size_t total = units.size() * grid.size();
@@ -409,7 +462,7 @@ void run_sweep(SweepCommandOptions& o) {
       rows[{r.line, r.direction == SweepDirection::up ? 0 : 1, r.index}] = make_row(r);
     }
   }
-  const std::string spec = spec_block(o, base, grid, grid2, directions);
+  const std::string spec = spec_block(o, base, grid, grid2, directions, iso);
   std::string extra =
       "  \"shard\": \"" + std::to_string(shard.k) + "/" + std::to_string(shard.n) + "\",\n";
   write_outputs(o.out, spec, rows, extra);

@@ -3,6 +3,7 @@
 // the default reading is the one the evidence supports.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -29,7 +30,9 @@ TEST_CASE("reproduce: every figure, its data, and REPORT.md with no unexplained 
                                          "fig6b_case3_angular_velocities",
                                          "fig7_friction_sweep",
                                          "fig8_energy_ratios",
-                                         "fig8_energy_ratios_flipped_moment"};
+                                         "fig8_energy_ratios_flipped_moment",
+                                         "steady_state_dynamic_factor",
+                                         "steady_state_regimes"};
   for (const std::string& figure : figures) {
     for (const char* extension : {".png", ".svg", ".gp"}) {
       const std::filesystem::path file = out / (figure + extension);
@@ -41,7 +44,8 @@ TEST_CASE("reproduce: every figure, its data, and REPORT.md with no unexplained 
   for (const char* data :
        {"case1_time_series.csv", "case2_time_series.csv", "case3_time_series.csv",
         "case1_summary.json", "case2_summary.json", "case3_summary.json", "fig7_friction_sweep.csv",
-        "fig8_energy_ratios.csv", "fig8_energy_ratios_flipped_moment.csv"}) {
+        "fig8_energy_ratios.csv", "fig8_energy_ratios_flipped_moment.csv", "steady_state.csv",
+        "steady_state_iso_kv_band.csv"}) {
     CAPTURE(data);
     CHECK(std::filesystem::exists(out / data));
   }
@@ -52,6 +56,14 @@ TEST_CASE("reproduce: every figure, its data, and REPORT.md with no unexplained 
   CHECK(report.find("unexplained failures: 0") != std::string::npos);
   CHECK(report.find("| FAIL |") == std::string::npos);
   CHECK(report.find("Verdict: the default stands.") != std::string::npos);
+  // The steady-state section with its table, and its sweep: 41 speeds up and 41 down.
+  CHECK(report.find("## Steady state of the loaded pair") != std::string::npos);
+  CHECK(report.find("| dynamic factor at N = 1 |") != std::string::npos);
+  std::ifstream steady(out / "steady_state.csv");
+  std::stringstream steady_text;
+  steady_text << steady.rdbuf();
+  const std::string csv = steady_text.str();
+  CHECK(std::count(csv.begin(), csv.end(), '\n') == 1 + 2 * 41);
   // No temporary files (hidden siblings) are left behind by the atomic writes.
   for (const auto& entry : std::filesystem::directory_iterator(out)) {
     CHECK(entry.path().filename().string().front() != '.');

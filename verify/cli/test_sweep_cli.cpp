@@ -1,17 +1,23 @@
 // The `sweep` and `merge` commands end to end: sharded runs merge to the same bytes as one run,
-// a missing shard is named by its key, bad input is refused naming the key.
+// a missing shard is named by its key, bad input is refused naming the key; a sweep of w1 plots
+// the dynamic factor against ISO 6336-1's resonance ratio N with N right by ISO's formula.
 #include <doctest/doctest.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <string>
+#include <vector>
 
+#include "relative.hpp"
 #include "run_command.hpp"
 
 using gearimpact::verify::cli;
+using gearimpact::verify::relative_difference;
 using gearimpact::verify::run_command;
 
 namespace {
@@ -30,7 +36,87 @@ std::filesystem::path scratch(const std::string& name) {
   return dir;
 }
 
+// The number after "name": in JSON text.
+double json_number(const std::string& json, const std::string& name) {
+  const std::size_t at = json.find("\"" + name + "\": ");
+  REQUIRE(at != std::string::npos);
+  return std::stod(json.substr(at + name.size() + 4));
+}
+
+std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream lines(text);
+  std::string line;
+  std::getline(lines, line);
+  while (std::getline(lines, line)) {
+    std::vector<std::string> fields;
+    std::istringstream split(line);
+    for (std::string field; std::getline(split, field, ',');) fields.push_back(field);
+    rows.push_back(fields);
+  }
+  return rows;
+}
+
 }  // namespace
+
+TEST_CASE("sweep of w1: the dynamic factor against ISO's N, N by ISO's formula in its units") {
+  const std::filesystem::path out = scratch("iso");
+  const auto r =
+      run_command(cli("sweep 1 --vary initial.w1 --from '3000 rad/s' --to '9000 rad/s' --points 4 "
+                      "--direction up --set 'torque1.mean=18.79385241571817 N*m' "
+                      "--set model.friction_coefficient=0 --set model.mesh_damping_ratio=0.05 "
+                      "--set 'initial.w2=12.5 rad/s' --damping-update off --threads 1 --out " +
+                      out.string()));
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  for (const char* file :
+       {"dynamic_factor_vs_iso_n.png", "dynamic_factor_vs_iso_n.svg", "dynamic_factor_vs_iso_n.gp",
+        "dynamic_factor_vs_iso_n.csv", "iso_kv_band.csv"}) {
+    CAPTURE(file);
+    CHECK(std::filesystem::file_size(out / file) > 100);
+  }
+  // ISO 6336-1 (6), (9), (30) by hand in ISO's units for the paper's pair (z 20/80, m 2 mm,
+  // 20 deg, b 10 mm, ha 1, hf 1.25, rho 7.8e-6 kg/mm^3), c_gamma_alpha in N/(mm um) from the
+  // program's mesh stiffness (its mean) and from its ISO 6336 command.
+  const auto mesh = run_command(cli("mesh-stiffness --samples 40 --summary"));
+  const auto iso = run_command(cli("iso6336"));
+  REQUIRE(mesh.exit_code == 0);
+  REQUIRE(iso.exit_code == 0);
+  const double b_mm = 10.0;
+  const double c_model = json_number(mesh.out, "mean_n_m") * 1e-3 / b_mm * 1e-3;
+  const double c_iso = json_number(iso.out, "c_gamma_alpha_n_mm_um");
+  const double u = 4.0;
+  const double dm1 = 0.5 * ((40.0 + 2.0 * 2.0) + (40.0 - 2.0 * 1.25 * 2.0));
+  const double db1 = 40.0 * std::cos(20.0 * std::numbers::pi / 180.0);
+  const double m_red_kg_mm =
+      std::numbers::pi * 7.8e-6 * u * u * std::pow(dm1, 4) / (8.0 * (u * u + 1.0) * db1 * db1);
+  const auto n_e1_per_min = [&](double c) {
+    return 30000.0 / (std::numbers::pi * 20.0) * std::sqrt(c / m_red_kg_mm);
+  };
+  const std::vector<std::vector<std::string>> plotted =
+      csv_rows(read(out / "dynamic_factor_vs_iso_n.csv"));
+  const std::vector<std::vector<std::string>> swept = csv_rows(read(out / "sweep.csv"));
+  REQUIRE(plotted.size() == 4);
+  REQUIRE(swept.size() == 4);
+  for (std::size_t i = 0; i < plotted.size(); ++i) {
+    CAPTURE(i);
+    const double n1_per_min = std::stod(plotted[i][3]) * 60.0 / (2.0 * std::numbers::pi);
+    // Units and order of operations differ: rounding only.
+    CHECK(relative_difference(std::stod(plotted[i][4]), n1_per_min / n_e1_per_min(c_model)) <=
+          1e-12);
+    CHECK(relative_difference(std::stod(plotted[i][5]), n1_per_min / n_e1_per_min(c_iso)) <= 1e-12);
+    // The same speed and dynamic factor as sweep.csv, copied as text.
+    CHECK(plotted[i][3] == swept[i][3]);
+    CHECK(plotted[i][6] == swept[i][12]);
+  }
+  // merge redraws it from the folder alone.
+  const std::filesystem::path merged = scratch("iso-merged");
+  const auto m = run_command(cli("merge " + out.string() + " --out " + merged.string()));
+  REQUIRE_MESSAGE(m.exit_code == 0, m.err);
+  CHECK(read(merged / "dynamic_factor_vs_iso_n.csv") == read(out / "dynamic_factor_vs_iso_n.csv"));
+  CHECK(std::filesystem::file_size(merged / "dynamic_factor_vs_iso_n.png") > 100);
+  std::filesystem::remove_all(out);
+  std::filesystem::remove_all(merged);
+}
 
 TEST_CASE("sweep: 1 shard and 4 shards merge to the same bytes; a missing shard is named") {
   // The paper's pair loaded with 160 N on the line of action (balanced), rolling, with the
