@@ -249,3 +249,33 @@ TEST_CASE("clearance oscillator: the folds found by shooting are where slow swee
   CHECK(amplitude_at(sweep_down, down_jumps[0].second) <
         amplitude_at(sweep_down, down_jumps[0].first));
 }
+
+TEST_CASE("a predictor beyond the map's domain shortens the step instead of ending the branch") {
+  // The fold map again, now undefined below l = -0.05 (as a period map refuses a negative
+  // frequency). Long steps put predictors there before the fold: from (x, l) = (0.5, 0.25) a
+  // step of 0.5 along the tangent, proportional to (1, 2x), lands near l = -0.1.
+  int refusals = 0;
+  const ParametrizedPeriodMap map = [&refusals](const Eigen::VectorXd& x,
+                                                double l) -> Eigen::VectorXd {
+    if (l < -0.05) {
+      ++refusals;
+      throw InputError("l", l, ">= -0.05");
+    }
+    return x.array() + l - x.array().square();
+  };
+  ContinuationSettings settings;
+  settings.parameter_min = -0.05;
+  settings.parameter_max = 2.0;
+  settings.initial_step = 0.5;
+  settings.max_step = 0.5;
+  const Branch branch =
+      continue_periodic_orbits(map, Eigen::VectorXd::Constant(1, 0.9), 1.0, -1, settings);
+  MESSAGE(refusals << " evaluations refused by the map");
+  // The path this test is about was taken: the map refused some corrector iterates.
+  CHECK(refusals > 0);
+  REQUIRE(branch.folds.size() == 1);
+  // The same fold as with short steps, to the corrector's and the fold rule's tolerances.
+  CHECK(std::fabs(branch.folds[0].parameter) <= 2e-10);
+  CHECK(branch.end == BranchEnd::left_parameter_range);
+  CHECK(branch.points.back().state[0] < 0.0);
+}

@@ -5,6 +5,7 @@
 #include <complex>
 #include <string>
 
+#include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/error.hpp"
 
 namespace gearimpact {
@@ -148,23 +149,24 @@ struct Corrected {
   Eigen::VectorXd z;
   int iterations = 0;
   double residual = 0.0;
+  // Why the period map could not be evaluated at an iterate; empty when it always could.
+  std::string map_failure;
 };
 
-// Newton on {G(z) = 0, t . (z - predicted) = 0}.
-Corrected correct(const ScaledProblem& problem, const Eigen::VectorXd& predicted,
-                  const Eigen::VectorXd& t, int max_iterations, double tolerance) {
+// Newton on {G(z) = 0, t . (z - predicted) = 0} from c.z.
+void newton_iterations(const ScaledProblem& problem, const Eigen::VectorXd& predicted,
+                       const Eigen::VectorXd& t, int max_iterations, double tolerance,
+                       Corrected& c) {
   const Eigen::Index n = problem.size();
-  Corrected c;
-  c.z = predicted;
   for (int k = 0;; ++k) {
     const Eigen::VectorXd g = problem.residual(c.z);
     c.residual = g.cwiseAbs().maxCoeff();
     c.iterations = k;
     if (c.residual <= tolerance) {
       c.converged = true;
-      return c;
+      return;
     }
-    if (k == max_iterations) return c;
+    if (k == max_iterations) return;
     Eigen::MatrixXd h(n + 1, n + 1);
     h.topRows(n) = problem.jacobian(c.z);
     h.row(n) = t.transpose();
@@ -172,11 +174,30 @@ Corrected correct(const ScaledProblem& problem, const Eigen::VectorXd& predicted
     rhs.head(n) = -g;
     rhs[n] = -t.dot(c.z - predicted);
     const Eigen::FullPivLU<Eigen::MatrixXd> lu(h);
-    if (!lu.isInvertible()) return c;
+    if (!lu.isInvertible()) return;
     const Eigen::VectorXd dz = lu.solve(rhs);
-    if (!dz.allFinite()) return c;
+    if (!dz.allFinite()) return;
     c.z += dz;
   }
+}
+
+// The corrector: newton_iterations from the predicted point. A predictor or a Newton iterate can
+// land where the period map is not defined (beyond a fold, a negative frequency; a state the model
+// refuses): that is a corrector that did not converge, answered by a shorter step, not the end of
+// the continuation. Only a stop request passes through.
+Corrected correct(const ScaledProblem& problem, const Eigen::VectorXd& predicted,
+                  const Eigen::VectorXd& t, int max_iterations, double tolerance) {
+  Corrected c;
+  c.z = predicted;
+  try {
+    newton_iterations(problem, predicted, t, max_iterations, tolerance, c);
+  } catch (const SimulationStopped&) {
+    throw;
+  } catch (const std::exception& e) {
+    c.converged = false;
+    c.map_failure = e.what();
+  }
+  return c;
 }
 
 BranchPoint make_point(const ScaledProblem& problem, const Eigen::VectorXd& z,
@@ -209,9 +230,12 @@ Fold locate_fold(const ScaledProblem& problem, const Eigen::VectorXd& z, const E
     const Corrected c = correct(problem, z + sigma * t, t, settings.corrector_max_iterations,
                                 settings.newton.tolerance);
     if (!c.converged) {
-      throw ShootingError("continuation: the corrector failed at " +
-                          format_number(problem.parameter(z + sigma * t)) +
-                          " while locating a fold (residual " + format_number(c.residual) + ")");
+      throw ShootingError(
+          "continuation: the corrector failed at " +
+          format_number(problem.parameter(z + sigma * t)) + " while locating a fold (residual " +
+          format_number(c.residual) +
+          (c.map_failure.empty() ? std::string() : "; the period map failed: " + c.map_failure) +
+          ")");
     }
     z_fold = c.z;
     j_fold = problem.jacobian(c.z);
@@ -404,7 +428,9 @@ Branch continue_periodic_orbits(const ParametrizedPeriodMap& map, const Eigen::V
         branch.end_reason =
             "the corrector fails at every step down to " + format_number(settings.min_step) +
             " beyond parameter " + format_number(problem.parameter(z)) +
-            " (a corner or an end of the branch); last residual " + format_number(c.residual);
+            " (a corner or an end of the branch); last residual " + format_number(c.residual) +
+            (c.map_failure.empty() ? std::string()
+                                   : "; the period map failed there: " + c.map_failure);
         return branch;
       }
       continue;

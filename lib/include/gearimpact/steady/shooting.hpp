@@ -83,8 +83,9 @@ PeriodicOrbit find_periodic_orbit(const PeriodMap& map, const Eigen::VectorXd& g
 //              along the previous one;
 //   corrector  Newton on {P(x) - x = 0, t . (z - z_predicted) = 0};
 //   step       h grows by 1.5 after a corrector that converged in 3 iterations or fewer, and is
-//              halved after one that did not converge or moved farther than 2 h from the
-//              prediction.
+//              halved after one that did not converge, moved farther than 2 h from the
+//              prediction, or reached a point where the map throws (a parameter or state the
+//              map refuses, e.g. beyond a fold); only SimulationStopped ends the continuation.
 // Pseudo-arclength rather than stepping the parameter: at a fold the branch turns back, so a
 // fixed parameter step has no solution beyond it (and DP - I is singular at it), whereas the
 // arclength parametrisation passes through and on to the other side. A fold is where the
