@@ -185,18 +185,21 @@ int GearSystem::event_values(const State& y, const Mode& m, const ContactMemory&
   const double dl = delta(m.region, y);
   g[0] = dl;
   // (42): the first and last loaded pair stay in [X_start, X_end], the
-  // neighbours outside it.
+  // neighbours outside it. Each position is ref + k t0 for its own k, as
+  // MeshLayout::loaded computes it: (ref + k t0) - t0 rounds differently, and
+  // far from theta1 = 0 (|ref| of metres after a long run) the two could
+  // disagree about a pair at the edge, which then enters a step late.
   const double ref = layout_.reference_m(m.region, y[kTheta1]);
-  const double first = ref + m.k_first * t0_;
-  const double last = ref + (m.k_first + m.count - 1) * t0_;
+  const double first = layout_.position_m(ref, m.k_first);
+  const double last = layout_.position_m(ref, m.k_first + m.count - 1);
   g[1] = first - xs_;
-  g[2] = xs_ - (first - t0_);
+  g[2] = xs_ - layout_.position_m(ref, m.k_first - 1);
   g[3] = xe_ - last;
-  g[4] = (last + t0_) - xe_;
+  g[4] = layout_.position_m(ref, m.k_first + m.count) - xe_;
   int n = 5;
   const double dl_rate = line_sign(m.region) * s_rate(y);
   for (int j = 0; j < m.count; ++j) {
-    const double x = first + j * t0_;
+    const double x = layout_.position_m(ref, m.k_first + j);
     g[n++] = m.slip[j] * sliding_speed(y[kW1], y[kW2], x, lp_);
     const double push = push_sign_function(x, m.count, d, dl, dl_rate);
     g[n++] = m.clipped[j] ? -push : push;
