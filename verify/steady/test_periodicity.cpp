@@ -114,6 +114,24 @@ TEST_CASE("a slowly converging sequence is not converged, and its rate is measur
   CHECK(r.explanation.find("not converged") != std::string::npos);
 }
 
+TEST_CASE("a sequence leaving an unstable orbit is not converged, and its growth is measured") {
+  // A period-1 orbit with a multiplier 1.03: a perturbation of 1e-6 scaled units grows as
+  // 1.03^n, so the period-1 residual 1e-6 * 1.03^n * 0.03 starts below the tolerance 1e-6 and is
+  // about 1e-5 after 200 periods: not periodic, and not aperiodic either (it is not stationary
+  // but rising steadily), still moving.
+  const double mu = 1.03;
+  auto samples = periodic_sequence(1, 200, 0.0);
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    samples[k] += 1e-6 * std::pow(mu, static_cast<double>(k)) * scale;
+  }
+  const PeriodicityResult r = classify_poincare_samples(samples, scale);
+  CHECK(r.verdict == PeriodicityVerdict::not_converged);
+  CHECK(r.closest_period == 1);
+  // Exactly geometric again: the fitted factor is mu up to rounding of the logs.
+  CHECK(std::fabs(r.contraction_per_period - mu) <= 1e-9);
+  CHECK(r.explanation.find("grows") != std::string::npos);
+}
+
 TEST_CASE("chaotic and quasi-periodic sequences are aperiodic") {
   SUBCASE("the logistic map at r = 4, as (x_n, x_n+1)") {
     std::vector<Eigen::VectorXd> samples;

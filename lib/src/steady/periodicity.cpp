@@ -150,7 +150,24 @@ PeriodicityResult classify_poincare_samples(const std::vector<Eigen::VectorXd>& 
       log_residual[j] = std::log(std::max(residuals[p - 1][j], floor));
     }
     const Trend trend = fit_line(log_residual);
-    const bool falls_ten_percent = trend.slope * static_cast<double>(span - 1) < std::log(0.9);
+    const double change = trend.slope * static_cast<double>(span - 1);
+    // Rising is not settled either: the samples are leaving an unstable orbit (a multiplier
+    // outside the unit circle), towards whatever attracts them.
+    const bool rises_ten_percent = change > std::log(1.0 / 0.9);
+    if (rises_ten_percent && trend.slope > 5.0 * trend.standard_error) {
+      result.verdict = PeriodicityVerdict::not_converged;
+      result.closest_period = static_cast<int>(p);
+      result.residual = *std::max_element(
+          residuals[p - 1].end() - static_cast<std::ptrdiff_t>(window), residuals[p - 1].end());
+      result.contraction_per_period = std::exp(trend.slope);
+      result.explanation = "not converged: the period-" + std::to_string(p) + " residual " +
+                           format_number(result.residual) + " grows by a factor " +
+                           format_number(result.contraction_per_period) +
+                           " per period over the last " + std::to_string(span) +
+                           " samples (leaving an unstable orbit)";
+      return result;
+    }
+    const bool falls_ten_percent = change < std::log(0.9);
     if (falls_ten_percent && trend.slope < -5.0 * trend.standard_error) {
       result.verdict = PeriodicityVerdict::not_converged;
       result.closest_period = static_cast<int>(p);

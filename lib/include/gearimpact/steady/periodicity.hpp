@@ -41,8 +41,9 @@ enum class PeriodicityVerdict {
   // No period up to max_period repeats, and no residual is still decreasing: chaotic or
   // quasi-periodic, or periodic with a longer period.
   aperiodic,
-  // Still settling (some candidate period's residual decreases steadily over the trend window)
-  // or the record is shorter than window + max_period: run more periods. At the caller's
+  // Still settling (some candidate period's residual decreases steadily over the trend window),
+  // still leaving an unstable orbit (a residual that grows steadily), or the record is shorter
+  // than window + max_period: run more periods. At the caller's
   // limit on periods this is the final answer: not converged within that limit.
   not_converged
 };
@@ -59,8 +60,8 @@ struct PeriodicityResult {
   // Its residual: the largest scaled distance over the window between a sample and the one
   // closest_period before it (+infinity when the record is too short).
   double residual = 0.0;
-  // For not_converged with a decreasing residual: the fitted factor by which that residual
-  // shrinks per period (< 1), else 0.
+  // For not_converged with a residual that still changes: the fitted factor by which it changes
+  // per period (< 1 shrinking, > 1 growing away from an unstable orbit), else 0.
   double contraction_per_period = 0.0;
   // The last `window` samples (all of them when the record is shorter): for periodic records
   // the steady orbit repeated, for aperiodic ones the points of a bifurcation diagram.
@@ -71,7 +72,8 @@ struct PeriodicityResult {
 
 // Decides as described above. A residual counts as still decreasing when the least-squares line
 // through log(residual) over the trend window falls by at least 10 % over that window and its
-// slope is below -5 standard errors; a stationary residual (chaos, a torus) has no such trend.
+// slope is below -5 standard errors, as still growing when it rises by at least 10 % (1/0.9) with
+// a slope above 5 standard errors; a stationary residual (chaos, a torus) has neither trend.
 // Throws InputError for settings out of range (tolerance finite and > 0, max_period >= 1,
 // window >= 2 max_period, trend_window >= window), a scale that is not finite and > 0, or a
 // sample of another dimension or with a non-finite component.
