@@ -156,16 +156,8 @@ class SteadyDecision {
     verdict_ = classify_poincare_samples(samples, scale, periodicity_);
     if (verdict_.verdict == PeriodicityVerdict::aperiodic) {
       candidate_period_ = 0;
-      // A transient can stall or grow for a while before it decays (two modes beating, or a
-      // non-normal growth phase: the loaded paper pair at w1 = 9513 rad/s has its period-1
-      // residual grow from period 40 to 80 and settle by 150). So a stationary residual is
-      // called aperiodic only after it has stayed so, without a decreasing trend in between, for
-      // another trend window.
-      if (aperiodic_since_ == 0) aperiodic_since_ = samples.size();
-      return samples.size() >= least_for_aperiodic_ &&
-             samples.size() >= aperiodic_since_ + settings_.trend_window;
+      return samples.size() >= least_for_aperiodic_;
     }
-    aperiodic_since_ = 0;
     if (verdict_.verdict != PeriodicityVerdict::periodic) {
       candidate_period_ = 0;
       return false;
@@ -182,12 +174,10 @@ class SteadyDecision {
     return samples.size() >= confirmed_at_;
   }
 
-  // The verdict at the end: aperiodic before enough samples, or before it has held for a trend
-  // window, is not converged.
+  // The verdict at the end: aperiodic before enough samples is not converged.
   PeriodicityResult final_verdict(std::size_t samples) const {
     PeriodicityResult v = verdict_;
-    if (v.verdict == PeriodicityVerdict::aperiodic &&
-        (samples < least_for_aperiodic_ || samples < aperiodic_since_ + settings_.trend_window)) {
+    if (v.verdict == PeriodicityVerdict::aperiodic && samples < least_for_aperiodic_) {
       v.verdict = PeriodicityVerdict::not_converged;
     }
     return v;
@@ -200,9 +190,6 @@ class SteadyDecision {
   PeriodicityResult verdict_;
   int candidate_period_ = 0;
   std::size_t confirmed_at_ = 0;
-  // The sample count at which the current unbroken run of aperiodic verdicts began; 0 when the
-  // last verdict was not aperiodic.
-  std::size_t aperiodic_since_ = 0;
 };
 
 // The figures of the steady window (the last `periods` of history) and its regime.
