@@ -438,3 +438,50 @@ TEST_CASE("gear model near the first parametric band: perturbations grow inside,
     }
   }
 }
+
+TEST_CASE(
+    "the paper's pair: a sweep leaves the no-impact orbit where its multiplier leaves the unit "
+    "circle") {
+  // The reproduction's loaded pair (1000 N, its own time-varying stiffness, zeta = 0.05, no
+  // Hertzian damping) near twice the resonance speed, where the no-impact orbit meets its first
+  // parametric band. Shooting on the period map gives the orbit's multipliers; run from that
+  // orbit plus a perturbation of 1e-6 B, the steady-state search must stay on it (NI, period 1)
+  // where the multipliers are inside the unit circle and leave it where one is outside.
+  constexpr double static_force_n = 1000.0;
+  for (const double w1 : {11415.32044, 11732.41268}) {
+    CAPTURE(w1);
+    SimulationCase c = steady_test::loaded_paper_pair(w1);
+    c.model.damping_update = DampingUpdate::off;
+    const StiffnessTable table(c.gears, c.model.stiffness);
+    const SteadySettings settings;
+    const GearPeriodMap map(c, table, settings);
+    ShootingSettings shooting;
+    shooting.scale = map.scale();
+    const PeriodicOrbit orbit = find_periodic_orbit(
+        map, Eigen::Vector2d(c.gears.backlash_m + static_force_n / 8e8, 0.0), shooting);
+    double radius = 0.0;
+    for (Eigen::Index i = 0; i < orbit.floquet_multipliers.size(); ++i) {
+      radius = std::max(radius, std::abs(orbit.floquet_multipliers[i]));
+    }
+    // Well away from 1 on either side (0.87 and 1.03 measured), so the central-difference error
+    // of the multipliers (~1e-8) cannot move them across.
+    REQUIRE(std::fabs(radius - 1.0) > 0.01);
+    c.initial =
+        map.full_state(orbit.fixed_point[0] + 1e-6 * c.gears.backlash_m, orbit.fixed_point[1]);
+    const SteadyPoint point = find_steady_state(c, table, settings);
+    MESSAGE("w1 " << w1 << " rad/s: spectral radius " << radius << "; steady state "
+                  << to_string(point.regime) << " period " << point.period << " after "
+                  << point.periods_run << " periods");
+    REQUIRE(point.converged);
+    if (radius < 1.0) {
+      CHECK(point.regime == Regime::no_impact);
+      CHECK(point.period == 1);
+      // Back on the shot orbit, to the periodicity tolerance (1e-6 of the scales) times the
+      // contraction allowance rho / (1 - rho) < 10 of periodicity.hpp.
+      REQUIRE(point.poincare.size() == 1);
+      CHECK(std::fabs(point.poincare[0].s_m - orbit.fixed_point[0]) <= 1e-5 * map.scale()[0]);
+    } else {
+      CHECK(point.regime != Regime::no_impact);
+    }
+  }
+}

@@ -132,6 +132,23 @@ TEST_CASE("a sequence leaving an unstable orbit is not converged, and its growth
   CHECK(r.explanation.find("grows") != std::string::npos);
 }
 
+TEST_CASE("a growing flip below the tolerance is not called period 2") {
+  // A period-1 orbit with a multiplier -1.03: samples x* + 2e-9 (-1.03)^n. After 200 of them the
+  // period-1 residual 2e-9 * 1.03^n * 2.03 is about 1.5e-6 (> tolerance 1e-6), the period-2
+  // one 2e-9 * 1.03^n * (1.03^2 - 1) only 4.4e-8: within the tolerance, yet the samples are
+  // leaving the orbit, not repeating with period 2.
+  const double mu = -1.03;
+  auto samples = periodic_sequence(1, 200, 0.0);
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    samples[k] += 2e-9 * std::pow(mu, static_cast<double>(k)) * scale;
+  }
+  const PeriodicityResult r = classify_poincare_samples(samples, scale);
+  CHECK(r.verdict == PeriodicityVerdict::not_converged);
+  CHECK(r.closest_period == 2);
+  // The period-2 residual grows as mu^2 every two samples: |mu| per sample.
+  CHECK(std::fabs(r.contraction_per_period - std::fabs(mu)) <= 1e-9);
+}
+
 TEST_CASE("chaotic and quasi-periodic sequences are aperiodic") {
   SUBCASE("the logistic map at r = 4, as (x_n, x_n+1)") {
     std::vector<Eigen::VectorXd> samples;

@@ -117,8 +117,41 @@ PeriodicityResult classify_poincare_samples(const std::vector<Eigen::VectorXd>& 
       if (j + window >= span) window_max[p - 1] = std::max(window_max[p - 1], residuals[p - 1][j]);
     }
   }
+  // The trend of log(residual) of period p over the span. Zero residuals (points that coincide
+  // by chance) are floored far below the tolerance so that the logarithm is finite.
+  const double floor = 1e-6 * settings.tolerance;
+  const auto trend_of = [&](std::size_t p) {
+    std::vector<double> log_residual(span);
+    for (std::size_t j = 0; j < span; ++j) {
+      log_residual[j] = std::log(std::max(residuals[p - 1][j], floor));
+    }
+    return fit_line(log_residual);
+  };
+  // Rising steadily: by at least 10 % (1/0.9) over the span with a slope above 5 standard errors.
+  const auto rises = [&](const Trend& trend) {
+    return trend.slope * static_cast<double>(span - 1) > std::log(1.0 / 0.9) &&
+           trend.slope > 5.0 * trend.standard_error;
+  };
   for (std::size_t p = 1; p <= max_period; ++p) {
     if (window_max[p - 1] <= settings.tolerance) {
+      // Below the tolerance but growing steadily is a perturbation still small that leaves an
+      // unstable orbit (a multiplier near -1.03 makes samples two periods apart agree long
+      // before they part): not periodic yet. Residuals below 1e-3 of the tolerance are left
+      // alone, since rounding there grows with the angles of a long run.
+      const Trend trend = trend_of(p);
+      if (window_max[p - 1] > 1e-3 * settings.tolerance && rises(trend)) {
+        result.verdict = PeriodicityVerdict::not_converged;
+        result.closest_period = static_cast<int>(p);
+        result.residual = window_max[p - 1];
+        result.contraction_per_period = std::exp(trend.slope);
+        result.explanation = "not converged: the period-" + std::to_string(p) + " residual " +
+                             format_number(result.residual) + " is within the tolerance " +
+                             format_number(settings.tolerance) + " but grows by a factor " +
+                             format_number(result.contraction_per_period) +
+                             " per period over the last " + std::to_string(span) +
+                             " samples (leaving an unstable orbit)";
+        return result;
+      }
       result.verdict = PeriodicityVerdict::periodic;
       result.period = static_cast<int>(p);
       result.closest_period = result.period;
@@ -141,20 +174,12 @@ PeriodicityResult classify_poincare_samples(const std::vector<Eigen::VectorXd>& 
     }
   }
 
-  // No period repeats within the tolerance: still settling, or aperiodic? Zero residuals (points
-  // that coincide by chance) are floored far below the tolerance so that the logarithm is finite.
-  const double floor = 1e-6 * settings.tolerance;
+  // No period repeats within the tolerance: still settling, or aperiodic?
   for (std::size_t p = 1; p <= max_period; ++p) {
-    std::vector<double> log_residual(span);
-    for (std::size_t j = 0; j < span; ++j) {
-      log_residual[j] = std::log(std::max(residuals[p - 1][j], floor));
-    }
-    const Trend trend = fit_line(log_residual);
-    const double change = trend.slope * static_cast<double>(span - 1);
+    const Trend trend = trend_of(p);
     // Rising is not settled either: the samples are leaving an unstable orbit (a multiplier
     // outside the unit circle), towards whatever attracts them.
-    const bool rises_ten_percent = change > std::log(1.0 / 0.9);
-    if (rises_ten_percent && trend.slope > 5.0 * trend.standard_error) {
+    if (rises(trend)) {
       result.verdict = PeriodicityVerdict::not_converged;
       result.closest_period = static_cast<int>(p);
       result.residual = *std::max_element(
@@ -167,7 +192,7 @@ PeriodicityResult classify_poincare_samples(const std::vector<Eigen::VectorXd>& 
                            " samples (leaving an unstable orbit)";
       return result;
     }
-    const bool falls_ten_percent = change < std::log(0.9);
+    const bool falls_ten_percent = trend.slope * static_cast<double>(span - 1) < std::log(0.9);
     if (falls_ten_percent && trend.slope < -5.0 * trend.standard_error) {
       result.verdict = PeriodicityVerdict::not_converged;
       result.closest_period = static_cast<int>(p);
