@@ -127,11 +127,31 @@ PeriodicityResult classify_poincare_samples(const std::vector<Eigen::VectorXd>& 
     }
     return fit_line(log_residual);
   };
-  // Rising steadily: by at least 10 % (1/0.9) over the span with a slope above 5 standard errors.
+  // Rising steadily: by at least 10 % (1/0.9) over the span with a slope above 5 standard errors;
+  // falling steadily the same way down.
   const auto rises = [&](const Trend& trend) {
     return trend.slope * static_cast<double>(span - 1) > std::log(1.0 / 0.9) &&
            trend.slope > 5.0 * trend.standard_error;
   };
+  const auto falls = [&](const Trend& trend) {
+    return trend.slope * static_cast<double>(span - 1) < std::log(0.9) &&
+           trend.slope < -5.0 * trend.standard_error;
+  };
+  // Not converged: the period-p residual still changes by exp(slope) a period.
+  const auto still_moving = [&](std::size_t p, const Trend& trend, const std::string& how,
+                                const std::string& why) {
+    result.verdict = PeriodicityVerdict::not_converged;
+    result.closest_period = static_cast<int>(p);
+    result.residual = window_max[p - 1];
+    result.contraction_per_period = std::exp(trend.slope);
+    result.explanation = "not converged: the period-" + std::to_string(p) + " residual " +
+                         format_number(result.residual) + how + " by a factor " +
+                         format_number(result.contraction_per_period) +
+                         " per period over the last " + std::to_string(span) + " samples" + why;
+    return result;
+  };
+  const std::string tolerance = format_number(settings.tolerance);
+  const std::string leaving = " (leaving an unstable orbit)";
   for (std::size_t p = 1; p <= max_period; ++p) {
     if (window_max[p - 1] <= settings.tolerance) {
       // Below the tolerance but growing steadily is a perturbation still small that leaves an
@@ -140,17 +160,8 @@ PeriodicityResult classify_poincare_samples(const std::vector<Eigen::VectorXd>& 
       // alone, since rounding there grows with the angles of a long run.
       const Trend trend = trend_of(p);
       if (window_max[p - 1] > 1e-3 * settings.tolerance && rises(trend)) {
-        result.verdict = PeriodicityVerdict::not_converged;
-        result.closest_period = static_cast<int>(p);
-        result.residual = window_max[p - 1];
-        result.contraction_per_period = std::exp(trend.slope);
-        result.explanation = "not converged: the period-" + std::to_string(p) + " residual " +
-                             format_number(result.residual) + " is within the tolerance " +
-                             format_number(settings.tolerance) + " but grows by a factor " +
-                             format_number(result.contraction_per_period) +
-                             " per period over the last " + std::to_string(span) +
-                             " samples (leaving an unstable orbit)";
-        return result;
+        return still_moving(p, trend, " is within the tolerance " + tolerance + " but grows",
+                            leaving);
       }
       result.verdict = PeriodicityVerdict::periodic;
       result.period = static_cast<int>(p);
@@ -158,9 +169,8 @@ PeriodicityResult classify_poincare_samples(const std::vector<Eigen::VectorXd>& 
       result.residual = window_max[p - 1];
       result.explanation = "period " + std::to_string(p) + ": every one of the last " +
                            std::to_string(window) + " samples is within " +
-                           format_number(result.residual) + " <= tolerance " +
-                           format_number(settings.tolerance) + " (scaled) of the sample " +
-                           std::to_string(p) + " periods before it";
+                           format_number(result.residual) + " <= tolerance " + tolerance +
+                           " (scaled) of the sample " + std::to_string(p) + " periods before it";
       return result;
     }
   }
@@ -179,40 +189,17 @@ PeriodicityResult classify_poincare_samples(const std::vector<Eigen::VectorXd>& 
     const Trend trend = trend_of(p);
     // Rising is not settled either: the samples are leaving an unstable orbit (a multiplier
     // outside the unit circle), towards whatever attracts them.
-    if (rises(trend)) {
-      result.verdict = PeriodicityVerdict::not_converged;
-      result.closest_period = static_cast<int>(p);
-      result.residual = *std::max_element(
-          residuals[p - 1].end() - static_cast<std::ptrdiff_t>(window), residuals[p - 1].end());
-      result.contraction_per_period = std::exp(trend.slope);
-      result.explanation = "not converged: the period-" + std::to_string(p) + " residual " +
-                           format_number(result.residual) + " grows by a factor " +
-                           format_number(result.contraction_per_period) +
-                           " per period over the last " + std::to_string(span) +
-                           " samples (leaving an unstable orbit)";
-      return result;
-    }
-    const bool falls_ten_percent = trend.slope * static_cast<double>(span - 1) < std::log(0.9);
-    if (falls_ten_percent && trend.slope < -5.0 * trend.standard_error) {
-      result.verdict = PeriodicityVerdict::not_converged;
-      result.closest_period = static_cast<int>(p);
-      result.residual = *std::max_element(
-          residuals[p - 1].end() - static_cast<std::ptrdiff_t>(window), residuals[p - 1].end());
-      result.contraction_per_period = std::exp(trend.slope);
-      result.explanation = "not converged: the period-" + std::to_string(p) + " residual " +
-                           format_number(result.residual) + " > tolerance " +
-                           format_number(settings.tolerance) + " still shrinks by a factor " +
-                           format_number(result.contraction_per_period) +
-                           " per period over the last " + std::to_string(span) + " samples";
-      return result;
-    }
+    if (rises(trend)) return still_moving(p, trend, " grows", leaving);
+    if (falls(trend))
+      return still_moving(p, trend, " > tolerance " + tolerance + " still shrinks", "");
   }
   result.verdict = PeriodicityVerdict::aperiodic;
-  result.explanation =
-      "aperiodic: no period up to " + std::to_string(max_period) + " repeats within tolerance " +
-      format_number(settings.tolerance) + " (closest: period " +
-      std::to_string(result.closest_period) + ", residual " + format_number(result.residual) +
-      ") and no residual is still decreasing over the last " + std::to_string(span) + " samples";
+  result.explanation = "aperiodic: no period up to " + std::to_string(max_period) +
+                       " repeats within tolerance " + tolerance + " (closest: period " +
+                       std::to_string(result.closest_period) + ", residual " +
+                       format_number(result.residual) +
+                       ") and no residual is still shrinking or growing over the last " +
+                       std::to_string(span) + " samples";
   return result;
 }
 

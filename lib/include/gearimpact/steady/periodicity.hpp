@@ -38,7 +38,7 @@ struct PeriodicitySettings {
 enum class PeriodicityVerdict {
   // Steady with the period reported.
   periodic,
-  // No period up to max_period repeats, and no residual is still decreasing: chaotic or
+  // No period up to max_period repeats, and no residual still shrinks or grows: chaotic or
   // quasi-periodic, or periodic with a longer period.
   aperiodic,
   // Still settling (some candidate period's residual decreases steadily over the trend window),
