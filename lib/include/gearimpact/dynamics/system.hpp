@@ -110,15 +110,20 @@ class GearSystem {
   ElasticEnergy stored_energy(const State& y, const Mode& m) const;
 
  private:
+  // The helpers of the right-hand side and the event values, used only in
+  // system.cpp and declared inline so that they are inlined there: the
+  // library is position-independent, where GCC does not inline a function
+  // another library could interpose.
+  //
   // T1(t), T2(t). An RK4 step asks for its middle time twice and for its end
   // time again as the next step's start: the last answer is kept, so a
   // sinusoid costs two sines a step instead of four (the same values).
-  std::pair<double, double> torques(double t) const;
+  inline std::pair<double, double> torques(double t) const;
   // Ke and dKe/dX of one of `count` loaded pairs at X.
-  void pair_stiffness(double x, int count, double& ke, double& dke) const;
-  double damping_factor(const ContactMemory& d, double ke) const;
-  double push_sign_function(double x, int count, const ContactMemory& d, double dl,
-                            double dl_rate) const;
+  inline void pair_stiffness(double x, int count, double& ke, double& dke) const;
+  inline double damping_factor(const ContactMemory& d, double ke) const;
+  inline double push_sign_function(double x, int count, const ContactMemory& d, double dl,
+                                   double dl_rate) const;
 
   const StiffnessTable& table_;
   const SimulationCase& case_;
@@ -128,6 +133,8 @@ class GearSystem {
   double friction_ = 0.0, kh_ = 0.0, constant_k_ = 0.0;
   double mesh_damping_ = 0.0;  // c of the viscous mesh damper, N s/m
   bool damping_on_current_pair_ = true;
+  // Both torques constant: torque_values_ holds them from the start.
+  bool constant_torques_ = false;
   // A system belongs to one run, so one thread.
   mutable double torque_time_ = std::numeric_limits<double>::quiet_NaN();
   mutable std::pair<double, double> torque_values_{0.0, 0.0};
