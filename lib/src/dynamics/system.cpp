@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
 #include "gearimpact/contact/contact.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
@@ -168,13 +167,8 @@ void GearSystem::rhs(double t, const State& y, const Mode& m, const ContactMemor
   }
   dydt[kTheta1] = w1;
   dydt[kTheta2] = w2;
-  // Both accelerations in one two-lane division (each lane the same IEEE
-  // division) written by one 16-byte store: the RK4 stage that reads them
-  // back as a pair then gets them forwarded from the store, where two 8-byte
-  // stores would stall it.
-  using Pair = double __attribute__((vector_size(2 * sizeof(double))));
-  const Pair accelerations = Pair{moment1, moment2} / Pair{j1_, j2_};
-  std::memcpy(&dydt[kW1], &accelerations, sizeof accelerations);
+  dydt[kW1] = moment1 / j1_;
+  dydt[kW2] = moment2 / j2_;
   dydt[kTorqueWork] = t1 * w1 + t2 * w2;
   dydt[kDampingLoss] = damping_power;
   dydt[kFrictionLoss] = friction_power;
