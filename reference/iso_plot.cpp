@@ -5,6 +5,7 @@
 #include <string>
 
 #include "gearimpact/dynamics/mesh.hpp"
+#include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/io/atomic_file.hpp"
@@ -21,21 +22,16 @@ std::string number(double v) {
   return buffer;
 }
 
-double mean_torque1_n_m(const SimulationCase& c) {
-  return c.torque1.kind == Torque::Kind::constant ? c.torque1.constant_n_m : c.torque1.mean_n_m;
-}
-
 }  // namespace
 
 std::optional<IsoScale> iso_scale(const SimulationCase& c, const StiffnessTable& table) {
   const GearPair& g = c.gears;
   const double r1 = pitch_radius(g, Gear::one);
-  const double line_load = std::fabs(mean_torque1_n_m(c)) / (r1 * g.face_width_m);
+  const double line_load = std::fabs(mean_torque_n_m(c.torque1, "torque1")) / (r1 * g.face_width_m);
   if (!(line_load > 0.0)) return std::nullopt;
-  // d_a1 = d_1 + 2 (ha + x1) m, d_f1 = d_1 - 2 (ha + c - x1) m.
-  const double mean_diameter1 =
-      2.0 * r1 +
-      (g.addendum_coefficient - g.dedendum_coefficient + 2.0 * g.profile_shift1) * g.module_m;
+  // d_m1 = (d_a1 + d_f1) / 2, the tip and root circles of the rack-cut pinion.
+  const RackGearGeometry pinion = rack_gear_pair_geometry(g).gear1;
+  const double mean_diameter1 = pinion.tip_radius_m + pinion.root_radius_m;
   const double m_red =
       iso_reduced_mass_kg_per_m(g.density_kg_m3, static_cast<double>(g.teeth2) / g.teeth1,
                                 mean_diameter1, 2.0 * base_radius(g, Gear::one));

@@ -288,20 +288,34 @@ void render_iso_plot(const std::filesystem::path& dir, const IsoScale& iso) {
   std::string data =
       "line,direction,index,w1_rad_s,iso_resonance_ratio,iso_resonance_ratio_iso_stiffness,"
       "dynamic_factor\n";
+  const auto split = [](const std::string& line) {
+    std::vector<std::string> fields;
+    std::istringstream in(line);
+    for (std::string field; std::getline(in, field, ',');) fields.push_back(field);
+    return fields;
+  };
+  // The columns by their names in kSweepHeader: the swept w1 and the dynamic factor.
+  std::string header_line = kSweepHeader;
+  header_line.pop_back();  // the newline
+  const std::vector<std::string> header = split(header_line);
+  const auto column = [&header](const char* name) {
+    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+  };
+  const std::size_t w1_column = column("value_si");
+  const std::size_t df_column = column("dynamic_factor");
   double n_max = 0.0;
   std::string line;
   std::getline(csv, line);
   while (std::getline(csv, line)) {
-    std::vector<std::string> fields;
-    std::istringstream split(line);
-    for (std::string field; std::getline(split, field, ',');) fields.push_back(field);
-    fields.resize(13);
-    const double w1 = std::stod(fields[3]);
+    std::vector<std::string> fields = split(line);
+    fields.resize(header.size());
+    const double w1 = std::stod(fields[w1_column]);
     const double n = iso_resonance_ratio(w1, iso.resonance_speed_rad_s);
     n_max = std::max(n_max, n);
-    data += fields[0] + "," + fields[1] + "," + fields[2] + "," + fields[3] + "," + number(n) +
-            "," + number(iso_resonance_ratio(w1, iso.resonance_speed_iso_stiffness_rad_s)) + "," +
-            fields[12] + "\n";
+    data += fields[0] + "," + fields[1] + "," + fields[2] + "," + fields[w1_column] + "," +
+            number(n) + "," +
+            number(iso_resonance_ratio(w1, iso.resonance_speed_iso_stiffness_rad_s)) + "," +
+            fields[df_column] + "\n";
   }
   write_file_atomically((dir / "dynamic_factor_vs_iso_n.csv").string(), data);
   write_iso_kv_band(dir / "iso_kv_band.csv", iso, std::max(2.0, 1.1 * n_max));

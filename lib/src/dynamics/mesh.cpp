@@ -27,4 +27,8 @@ double mean_mesh_stiffness_n_m(const SimulationCase& c, const StiffnessTable& ta
   return integral.value / base_pitch(c.gears);
 }
 
+double natural_frequency_rad_s(const SimulationCase& c, const StiffnessTable& table) {
+  return std::sqrt(mean_mesh_stiffness_n_m(c, table) / effective_mass_kg(c.gears));
+}
+
 }  // namespace gearimpact

@@ -10,24 +10,6 @@
 
 namespace gearimpact {
 
-namespace {
-
-bool fluctuates(const Torque& t) {
-  if (t.kind == Torque::Kind::sinusoidal) {
-    return t.amplitude_n_m != 0.0 && t.angular_frequency_rad_s != 0.0;
-  }
-  if (t.kind == Torque::Kind::harmonic) {
-    for (std::size_t i = 0; i < t.harmonic_amplitudes_n_m.size(); ++i) {
-      if (t.harmonic_amplitudes_n_m[i] != 0.0 && t.harmonic_angular_frequencies_rad_s[i] != 0.0) {
-        return true;
-      }
-    }
-  }
-  return false;
-}
-
-}  // namespace
-
 GearPeriodMap::GearPeriodMap(const SimulationCase& c, const StiffnessTable& table,
                              const SteadySettings& settings, long long steps_per_period)
     : case_(c), table_(&table) {
@@ -44,7 +26,7 @@ GearPeriodMap::GearPeriodMap(const SimulationCase& c, const StiffnessTable& tabl
                      "remembered from the last impact, a state (s, s') does not carry");
   }
   if (c.model.mesh_stiffness == MeshStiffnessMode::time_varying &&
-      (fluctuates(c.torque1) || fluctuates(c.torque2))) {
+      !forcing_frequencies(c).empty()) {
     throw InputError("torque1, torque2", "a fluctuating torque with a time-varying mesh stiffness",
                      "constant torques, or model.mesh_stiffness constant: the map of (s, s') "
                      "starts every period at the same mesh position, which only the mesh "
@@ -68,8 +50,7 @@ GearPeriodMap::GearPeriodMap(const SimulationCase& c, const StiffnessTable& tabl
   const InitialState& y = c.initial;
   centre_m_ = (m1 * rb1_ * y.theta1_rad + m2 * rb2_ * y.theta2_rad) / (m1 + m2);
   centre_speed_m_s_ = (m1 * rb1_ * y.w1_rad_s + m2 * rb2_ * y.w2_rad_s) / (m1 + m2);
-  const double w_n = std::sqrt(mean_mesh_stiffness_n_m(c, table) / effective_mass_kg(g));
-  scale_ = Eigen::Vector2d(g.backlash_m, g.backlash_m * w_n);
+  scale_ = Eigen::Vector2d(g.backlash_m, g.backlash_m * natural_frequency_rad_s(c, table));
 
   case_.integrator.kind = IntegratorKind::rk4;
   case_.integrator.step_s = step_s_;

@@ -19,26 +19,6 @@ namespace gearimpact {
 
 namespace {
 
-// The angular frequencies of the torques' fluctuations (amplitude != 0).
-std::vector<double> forcing_frequencies(const SimulationCase& c) {
-  std::vector<double> w;
-  for (const Torque* t : {&c.torque1, &c.torque2}) {
-    if (t->kind == Torque::Kind::sinusoidal && t->amplitude_n_m != 0.0 &&
-        t->angular_frequency_rad_s != 0.0) {
-      w.push_back(std::fabs(t->angular_frequency_rad_s));
-    }
-    if (t->kind == Torque::Kind::harmonic) {
-      for (std::size_t i = 0; i < t->harmonic_amplitudes_n_m.size(); ++i) {
-        if (t->harmonic_amplitudes_n_m[i] != 0.0 &&
-            t->harmonic_angular_frequencies_rad_s[i] != 0.0) {
-          w.push_back(std::fabs(t->harmonic_angular_frequencies_rad_s[i]));
-        }
-      }
-    }
-  }
-  return w;
-}
-
 // What one excitation period of the output grid shows.
 struct PeriodStats {
   double s_min = std::numeric_limits<double>::infinity();
@@ -239,6 +219,25 @@ void summarize_window(const std::deque<PeriodStats>& history, std::size_t period
 
 }  // namespace
 
+std::vector<double> forcing_frequencies(const SimulationCase& c) {
+  std::vector<double> w;
+  for (const Torque* t : {&c.torque1, &c.torque2}) {
+    if (t->kind == Torque::Kind::sinusoidal && t->amplitude_n_m != 0.0 &&
+        t->angular_frequency_rad_s != 0.0) {
+      w.push_back(std::fabs(t->angular_frequency_rad_s));
+    }
+    if (t->kind == Torque::Kind::harmonic) {
+      for (std::size_t i = 0; i < t->harmonic_amplitudes_n_m.size(); ++i) {
+        if (t->harmonic_amplitudes_n_m[i] != 0.0 &&
+            t->harmonic_angular_frequencies_rad_s[i] != 0.0) {
+          w.push_back(std::fabs(t->harmonic_angular_frequencies_rad_s[i]));
+        }
+      }
+    }
+  }
+  return w;
+}
+
 std::string to_string(Regime regime) {
   switch (regime) {
     case Regime::no_impact:
@@ -331,7 +330,7 @@ SteadyPoint find_steady_state(const SimulationCase& c, const StiffnessTable& tab
   const GearPair& g = c.gears;
   const double rb1 = base_radius(g, Gear::one);
   const double rb2 = base_radius(g, Gear::two);
-  const double w_n = std::sqrt(mean_mesh_stiffness_n_m(c, table) / effective_mass_kg(g));
+  const double w_n = natural_frequency_rad_s(c, table);
   Eigen::VectorXd scale(2);
   scale << g.backlash_m, g.backlash_m * w_n;
 

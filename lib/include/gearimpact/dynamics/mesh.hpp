@@ -19,4 +19,9 @@ double effective_mass_kg(const GearPair& pair);
 // QuadratureError when the integral misses its tolerance.
 double mean_mesh_stiffness_n_m(const SimulationCase& c, const StiffnessTable& table);
 
+// w_n = sqrt(k_mean / m_e), the natural frequency of the relative mode with
+// the mean mesh stiffness (STEADY-STATE.md section 2). Throws as
+// mean_mesh_stiffness_n_m.
+double natural_frequency_rad_s(const SimulationCase& c, const StiffnessTable& table);
+
 }  // namespace gearimpact

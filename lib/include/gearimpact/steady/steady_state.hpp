@@ -52,6 +52,11 @@ struct SteadyTiming {
   long long steps_per_period = 0;
 };
 
+// The angular frequencies of the torques' fluctuations (the harmonics with amplitude != 0 and
+// frequency != 0, in the order of torque1 then torque2); empty for torques that do not
+// fluctuate.
+std::vector<double> forcing_frequencies(const SimulationCase& c);
+
 // Throws InputError naming the key unless the case can have a steady state: torques constant,
 // sinusoidal or harmonic (a user function's mean and period are not known); mean torques balanced
 // (T1/Rb1 + T2/Rb2 = 0, both along the line of action as in MODEL.md's equations of motion);
