@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/paper/table1.hpp"
@@ -111,6 +112,9 @@ ReportSection reproduce_steady_state(const ReproduceContext& context) {
   const SimulationCase base = loaded_pair(1000.0);
   const auto table = context.pool->table_for(base);
   const IsoScale iso = *iso_scale(base, *table);
+  // Where the model's undamped resonance z1 w1 = w_n falls on the N axis.
+  const double resonance_n =
+      natural_frequency_rad_s(base, *table) / (base.gears.teeth1 * iso.resonance_speed_rad_s);
   // N from 0.3 to 2.3 in steps of 0.05: N = 1/2, 1 and 2 are grid points.
   constexpr int points = 41;
   const std::vector<double> grid =
@@ -143,13 +147,9 @@ ReportSection reproduce_steady_state(const ReproduceContext& context) {
       row.r = &r;
       (line == &up ? up_rows : down_rows)[static_cast<std::size_t>(r.index)] = row;
       const SteadyPoint& p = r.point;
-      const std::string period = p.verdict == PeriodicityVerdict::periodic
-                                     ? std::to_string(p.period)
-                                 : p.verdict == PeriodicityVerdict::aperiodic ? "aperiodic"
-                                                                              : "";
       csv += to_string(r.direction) + "," + std::to_string(r.index) + "," + number(r.value_si, 10) +
              "," + number(row.n, 10) + "," + number(row.n_iso, 10) + "," +
-             (p.converged ? to_string(p.regime) : "") + "," + period + "," +
+             (p.converged ? to_string(p.regime) : "") + "," + period_label(p) + "," +
              optional_text(p.dte_amplitude_m) + "," + optional_text(p.dynamic_factor) + "," +
              optional_text(p.impacts_drive_per_period) + "," +
              optional_text(p.impacts_coast_per_period) + "\n";
@@ -197,9 +197,9 @@ ReportSection reproduce_steady_state(const ReproduceContext& context) {
       "`steady_state_regimes.png`). N = w1 / w_E1 of ISO 6336-1 method B with c_gamma_alpha b "
       "= the model's mean mesh stiffness (w_E1 = " +
       number(iso.resonance_speed_rad_s, 5) +
-      " rad/s), so that the model's resonance "
-      "z1 w1 = sqrt(k_mean / m_e) sits at N = (d_m1 / d_1)^2 = 0.975; with ISO's own "
-      "c_gamma_alpha w_E1 = " +
+      " rad/s), so that the model's resonance z1 w1 = sqrt(k_mean / m_e) sits at N = "
+      "(d_m1 / d_1)^2 = " +
+      number(resonance_n, 3) + "; with ISO's own c_gamma_alpha w_E1 = " +
       number(iso.resonance_speed_iso_stiffness_rad_s, 5) +
       " rad/s. Hertzian damping is off because with D frozen at 0.1 m/s it keeps the teeth in "
       "contact at every speed of this range (dynamic factor at most about 2, "

@@ -170,13 +170,11 @@ Row make_row(const SweepPointResult& r) {
   Row row;
   row.converged = p.converged;
   row.regime = p.converged ? to_string(p.regime) : "";
-  const std::string period = p.verdict == PeriodicityVerdict::periodic    ? std::to_string(p.period)
-                             : p.verdict == PeriodicityVerdict::aperiodic ? "aperiodic"
-                                                                          : "";
-  row.sweep = key + "," + row.regime + "," + period + "," + (p.converged ? "true" : "false") + "," +
-              optional_number(p.dte_mean_m) + "," + optional_number(p.dte_amplitude_m) + "," +
-              optional_number(p.dte_rms_m) + "," + optional_number(p.s_min_m) + "," +
-              optional_number(p.s_max_m) + "," + optional_number(p.dynamic_factor) + "," +
+  row.sweep = key + "," + row.regime + "," + period_label(p) + "," +
+              (p.converged ? "true" : "false") + "," + optional_number(p.dte_mean_m) + "," +
+              optional_number(p.dte_amplitude_m) + "," + optional_number(p.dte_rms_m) + "," +
+              optional_number(p.s_min_m) + "," + optional_number(p.s_max_m) + "," +
+              optional_number(p.dynamic_factor) + "," +
               optional_number(p.impacts_drive_per_period) + "," +
               optional_number(p.impacts_coast_per_period) + "\n";
   for (const PoincareSample& s : p.poincare) {

@@ -238,6 +238,18 @@ std::vector<double> forcing_frequencies(const SimulationCase& c) {
   return w;
 }
 
+std::string period_label(const SteadyPoint& point) {
+  switch (point.verdict) {
+    case PeriodicityVerdict::periodic:
+      return std::to_string(point.period);
+    case PeriodicityVerdict::aperiodic:
+      return "aperiodic";
+    case PeriodicityVerdict::not_converged:
+      break;
+  }
+  return "";
+}
+
 std::string to_string(Regime regime) {
   switch (regime) {
     case Regime::no_impact:

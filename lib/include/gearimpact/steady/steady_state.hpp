@@ -101,6 +101,10 @@ struct SteadyPoint {
   std::string explanation;
 };
 
+// The period as the sweep's files write it: "1" to "8" when periodic, "aperiodic", or empty when
+// not converged.
+std::string period_label(const SteadyPoint& point);
+
 // Runs c (from `start` when given, else from c.initial at t = 0) period by period until its
 // Poincare samples settle. Throws InputError as steady_timing, SimulationError from the run.
 SteadyPoint find_steady_state(const SimulationCase& c, const StiffnessTable& table,
