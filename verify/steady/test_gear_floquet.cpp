@@ -187,6 +187,20 @@ Multipliers richardson3(const Multipliers& quarter, const Multipliers& half,
   return r;
 }
 
+// One run of the whole case over two periods from the relative state x, in the map's step: what
+// two applications of the map must reproduce.
+Eigen::Vector2d two_periods_in_one_run(const GearPeriodMap& map, const SimulationCase& c,
+                                       const StiffnessTable& table, const Eigen::Vector2d& x) {
+  SimulationCase run = c;
+  run.integrator.kind = IntegratorKind::rk4;
+  run.integrator.step_s = map.step_s();
+  run.integrator.end_time_s = 2.0 * map.period_s();
+  run.initial = map.full_state(x[0], x[1]);
+  RunControl control;
+  control.keep_series = false;
+  return map.relative_state(simulate(run, table, control).final_state.state);
+}
+
 }  // namespace
 
 TEST_CASE("the gear period map: the relative coordinates, two maps are two periods of one run") {
@@ -205,15 +219,7 @@ TEST_CASE("the gear period map: the relative coordinates, two maps are two perio
 
     const Eigen::Vector2d x(start[0] + 0.3 * h.deflection_m, 0.2 * h.deflection_m * h.w_n);
     const Eigen::VectorXd twice = map(map(x));
-    SimulationCase run = h.c;
-    run.integrator.kind = IntegratorKind::rk4;
-    run.integrator.step_s = map.step_s();
-    run.integrator.end_time_s = 2.0 * map.period_s();
-    run.initial = map.full_state(x[0], x[1]);
-    RunControl control;
-    control.keep_series = false;
-    const Eigen::Vector2d direct =
-        map.relative_state(simulate(run, table, control).final_state.state);
+    const Eigen::Vector2d direct = two_periods_in_one_run(map, h.c, table, x);
     MESSAGE("two maps against one run of two periods: s differs by "
             << std::fabs(twice[0] - direct[0]) / h.deflection_m << " e, s' by "
             << std::fabs(twice[1] - direct[1]) / (h.deflection_m * h.w_n) << " e w_n");
@@ -234,15 +240,7 @@ TEST_CASE("the gear period map: the relative coordinates, two maps are two perio
     CHECK(std::fabs(map.scale()[1] - b * w_n) <= 1e-12 * b * w_n);
     const Eigen::Vector2d x(1.5 * b, 0.3 * b * w_n);
     const Eigen::VectorXd twice = map(map(x));
-    SimulationCase run = cc.c;
-    run.integrator.kind = IntegratorKind::rk4;
-    run.integrator.step_s = map.step_s();
-    run.integrator.end_time_s = 2.0 * map.period_s();
-    run.initial = map.full_state(x[0], x[1]);
-    RunControl control;
-    control.keep_series = false;
-    const Eigen::Vector2d direct =
-        map.relative_state(simulate(run, table, control).final_state.state);
+    const Eigen::Vector2d direct = two_periods_in_one_run(map, cc.c, table, x);
     MESSAGE("two maps against one run of two periods: s differs by "
             << std::fabs(twice[0] - direct[0]) / b << " B, s' by "
             << std::fabs(twice[1] - direct[1]) / (b * w_n) << " B w_n");
