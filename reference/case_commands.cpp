@@ -5,7 +5,7 @@
 #include "commands.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
-#include "gearimpact/io/units.hpp"
+#include "gearimpact/case/units.hpp"
 
 namespace gearimpact::cli {
 

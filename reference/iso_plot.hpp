@@ -11,7 +11,7 @@
 #include <optional>
 #include <string>
 
-#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/stiffness/table.hpp"
 #include "gnuplot.hpp"
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "gearimpact/dynamics/simulate.hpp"
-#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/paper/scoring.hpp"
 #include "gearimpact/paper/statements.hpp"
 #include "gearimpact/paper/table1.hpp"

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "gearimpact/dynamics/simulate.hpp"
-#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/results.hpp"
 #include "gearimpact/paper/scoring.hpp"

@@ -4,7 +4,7 @@
 
 #include "case_flags.hpp"
 #include "commands.hpp"
-#include "gearimpact/io/schema.hpp"
+#include "gearimpact/case/schema.hpp"
 
 namespace gearimpact::cli {
 

@@ -13,12 +13,12 @@
 #include "commands.hpp"
 #include "gearimpact/batch/sweep_friction.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
-#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/results.hpp"
-#include "gearimpact/io/schema.hpp"
+#include "gearimpact/case/schema.hpp"
 #include "gearimpact/paper/table1.hpp"
 
 namespace gearimpact::cli {

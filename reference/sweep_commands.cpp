@@ -22,7 +22,7 @@
 #include "gearimpact/error.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
-#include "gearimpact/io/units.hpp"
+#include "gearimpact/case/units.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "gearimpact/steady/iso_resonance.hpp"
 #include "gearimpact/steady/sweep.hpp"

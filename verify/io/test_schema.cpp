@@ -21,12 +21,12 @@
 #include <string>
 #include <vector>
 
-#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/io/case_file.hpp"
-#include "gearimpact/io/schema.hpp"
-#include "gearimpact/io/units.hpp"
+#include "gearimpact/case/schema.hpp"
+#include "gearimpact/case/units.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "run_command.hpp"
 

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "gearimpact/error.hpp"
-#include "gearimpact/io/units.hpp"
+#include "gearimpact/case/units.hpp"
 
 using namespace gearimpact;
 

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "gearimpact/dynamics/mesh.hpp"
-#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/paper/table1.hpp"
 

@@ -10,7 +10,7 @@
 
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
-#include "gearimpact/io/schema.hpp"
+#include "gearimpact/case/schema.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "gearimpact/steady/sweep.hpp"
 #include "steady_cases.hpp"

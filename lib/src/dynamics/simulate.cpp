@@ -6,7 +6,7 @@
 
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/error.hpp"
-#include "gearimpact/io/schema.hpp"
+#include "gearimpact/case/schema.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "rk4.hpp"
 

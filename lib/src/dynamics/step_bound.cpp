@@ -49,11 +49,6 @@ void validate_step(const SimulationCase& c, double largest) {
                          "] s: a larger step takes fewer than 20 steps per period of the "
                          "stiffest contact and does not resolve it");
   }
-  if (s.end_time_s / s.step_s > static_cast<double>(kMostSteps)) {
-    throw InputError("integrator.step", s.step_s,
-                     "at least end_time / " + std::to_string(kMostSteps) + " = " +
-                         format_number(s.end_time_s / static_cast<double>(kMostSteps)) + " s");
-  }
 }
 
 double largest_resolving_step_s(const SimulationCase& c) {

@@ -10,8 +10,8 @@
 
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/error.hpp"
-#include "gearimpact/io/schema.hpp"
-#include "gearimpact/io/units.hpp"
+#include "gearimpact/case/schema.hpp"
+#include "gearimpact/case/units.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 
 namespace gearimpact {

@@ -6,7 +6,7 @@
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
-#include "gearimpact/io/schema.hpp"
+#include "gearimpact/case/schema.hpp"
 
 namespace gearimpact {
 

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "gearimpact/dynamics/simulate.hpp"
-#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/stiffness/table.hpp"
 
 namespace gearimpact {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "gearimpact/batch/pool.hpp"
-#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/case/simulation_case.hpp"
 
 namespace gearimpact {
 

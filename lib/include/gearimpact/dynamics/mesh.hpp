@@ -4,7 +4,7 @@
 // (viscous_mesh_damping_n_s_per_m, steady/closed_forms.hpp).
 #pragma once
 
-#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/stiffness/table.hpp"
 

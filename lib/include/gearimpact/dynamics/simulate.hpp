@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/stiffness/model.hpp"

@@ -2,15 +2,10 @@
 // step against it.
 #pragma once
 
-#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/stiffness/table.hpp"
 
 namespace gearimpact {
-
-// Fewer steps per contact period than this do not resolve the contact.
-inline constexpr double kStepsPerContactPeriod = 20.0;
-// A run of more steps than this is a mistake (days of computing), not a case.
-inline constexpr long long kMostSteps = 2'000'000'000LL;
 
 // 1/20 of the period of the stiffest contact, sqrt(K (Rb1^2/J1 + Rb2^2/J2))
 // with K the largest sum of Ke over the loaded pairs (sampled along one base
@@ -19,8 +14,8 @@ double largest_resolving_step_s(const SimulationCase& c);
 // The same from a table built for c: Ke to round-off, without the quadrature.
 double largest_resolving_step_s(const SimulationCase& c, const StiffnessTable& table);
 
-// Throws InputError unless 0 < step <= largest_step_s and the run takes at
-// most kMostSteps steps.
+// Throws InputError unless step <= largest_step_s (the schema holds the
+// step's other bounds and the most steps of a run).
 void validate_step(const SimulationCase& c, double largest_step_s);
 
 }  // namespace gearimpact

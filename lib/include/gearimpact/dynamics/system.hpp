@@ -12,7 +12,7 @@
 #include <utility>
 
 #include "gearimpact/dynamics/simulate.hpp"
-#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/stiffness/table.hpp"

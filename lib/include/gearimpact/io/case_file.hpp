@@ -1,6 +1,6 @@
 // Case files: a SimulationCase written as TOML with units on every quantity.
 // The keys, their units, ranges and defaults are the rows of the case schema
-// (io/schema.hpp; the table in docs/case-files.md). Everything is read and
+// (case/schema.hpp; the table in docs/case-files.md). Everything is read and
 // checked here, before any work starts; the conversion to SI happens once.
 #pragma once
 
@@ -9,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/case/simulation_case.hpp"
 
 namespace gearimpact {
 

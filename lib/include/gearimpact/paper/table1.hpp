@@ -2,7 +2,7 @@
 // each reading MODEL.md leaves open (section Readings).
 #pragma once
 
-#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/case/simulation_case.hpp"
 
 namespace gearimpact {
 

@@ -22,7 +22,7 @@
 
 #include <Eigen/Dense>
 
-#include "gearimpact/dynamics/simulation_case.hpp"
+#include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/steady/steady_state.hpp"
 #include "gearimpact/stiffness/table.hpp"
 

@@ -10,15 +10,15 @@
 #include <string>
 #include <vector>
 
-#include "gearimpact/dynamics/simulation_case.hpp"
-#include "gearimpact/io/schema.hpp"
+#include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/case/schema.hpp"
 #include "gearimpact/steady/steady_state.hpp"
 #include "gearimpact/stiffness/table.hpp"
 
 namespace gearimpact {
 
 // The schema row of a key a sweep can vary: any quantity, number or integer key of the case
-// schema (io/schema.hpp). Throws InputError naming `flag` and the key otherwise.
+// schema (case/schema.hpp). Throws InputError naming `flag` and the key otherwise.
 const Field& sweep_field(const std::string& key, const std::string& flag);
 
 // Sets the key to an SI value through the schema (set_field: its range, and a key used only with

@@ -13,8 +13,8 @@
 #include <string_view>
 #include <vector>
 
-#include "gearimpact/dynamics/simulation_case.hpp"
-#include "gearimpact/io/units.hpp"
+#include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/case/units.hpp"
 
 namespace gearimpact {
 

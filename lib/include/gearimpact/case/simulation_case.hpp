@@ -75,6 +75,11 @@ struct ModelOptions {
 
 enum class IntegratorKind { rk4, adaptive };
 
+// Fewer steps per contact period than this do not resolve the contact.
+inline constexpr double kStepsPerContactPeriod = 20.0;
+// A run of more steps than this is a mistake (days of computing), not a case.
+inline constexpr long long kMostSteps = 2'000'000'000LL;
+
 struct IntegratorSettings {
   IntegratorKind kind = IntegratorKind::rk4;
   double step_s = 1.0e-7;  // fixed RK4 step (the adaptive one's first step)

@@ -1,4 +1,4 @@
-#include "gearimpact/io/schema.hpp"
+#include "gearimpact/case/schema.hpp"
 
 #include <algorithm>
 #include <array>
@@ -13,7 +13,6 @@
 #include <utility>
 
 #include "gearimpact/constants.hpp"
-#include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 

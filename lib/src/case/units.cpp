@@ -1,4 +1,4 @@
-#include "gearimpact/io/units.hpp"
+#include "gearimpact/case/units.hpp"
 
 #include <array>
 #include <charconv>
