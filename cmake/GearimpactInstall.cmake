@@ -7,8 +7,12 @@ include(CMakePackageConfigHelpers)
 set(GEARIMPACT_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/gearimpact)
 set(GEARIMPACT_DATA_DIR ${CMAKE_INSTALL_DATADIR}/gearimpact)
 
-set_target_properties(gearimpact_cli PROPERTIES EXPORT_NAME cli)
-install(TARGETS gearimpact gearimpact_cli EXPORT gearimpactTargets
+set(gearimpact_installed_targets gearimpact)
+if(TARGET gearimpact_cli)
+  set_target_properties(gearimpact_cli PROPERTIES EXPORT_NAME cli)
+  list(APPEND gearimpact_installed_targets gearimpact_cli)
+endif()
+install(TARGETS ${gearimpact_installed_targets} EXPORT gearimpactTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})

@@ -11,7 +11,7 @@ std::string format_number(double value) {
 }
 
 InputError::InputError(std::string field, const std::string& value, const std::string& allowed)
-    : std::invalid_argument(field + " = " + value + " is outside the allowed range: " + allowed),
+    : Error(field + " = " + value + " is outside the allowed range: " + allowed),
       field_(std::move(field)),
       value_(value),
       allowed_(allowed) {}

@@ -8,9 +8,19 @@
 
 namespace gearimpact {
 
+// The one base of every exception the library throws, so that a caller can
+// catch the library's failures apart from its own: a bad input (InputError,
+// CaseFileError), a quadrature that misses its tolerance (QuadratureError), a
+// run that cannot go on (SimulationError), a Newton iteration or continuation
+// that does not converge (ShootingError).
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 // A value outside the range the model allows. `field` is the name the user
 // wrote (or the library's parameter name), `allowed` the range in words.
-class InputError : public std::invalid_argument {
+class InputError : public Error {
  public:
   InputError(std::string field, const std::string& value, const std::string& allowed);
   InputError(std::string field, double value, const std::string& allowed);
@@ -28,9 +38,9 @@ class InputError : public std::invalid_argument {
 };
 
 // A numerical integration that did not converge to the requested tolerance.
-class QuadratureError : public std::runtime_error {
+class QuadratureError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  using Error::Error;
 };
 
 // Formats a double with enough digits to round-trip, for messages.

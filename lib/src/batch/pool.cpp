@@ -2,29 +2,21 @@
 
 #include <algorithm>
 
-#include "gearimpact/io/case_file.hpp"
+#include "gearimpact/case/schema.hpp"
+#include "gearimpact/dynamics/step_bound.hpp"
 
 namespace gearimpact {
 
 namespace {
 
-// Every input of a run but its name, as the case file in SI units: the
-// writer covers every key of the schema, so a key added to the case is in
-// the run's identity without a change here. Empty for a run that has no text
-// form (a user torque function), which is never shared.
-std::string inputs_key(SimulationCase c) {
-  if (c.torque1.kind == Torque::Kind::user || c.torque2.kind == Torque::Kind::user) return {};
-  c.name = "run";
-  return write_case_file(c, CaseUnits::si);
-}
-
+// A run's identity is every input but its name (case_key); a run with no
+// text form (a user torque function) has an empty key and is never shared.
 // What the stiffness table depends on: the gear pair and the stiffness model.
 std::string table_key(const SimulationCase& c) {
   SimulationCase only;
-  only.name = "table";
   only.gears = c.gears;
   only.model.stiffness = c.model.stiffness;
-  return write_case_file(only, CaseUnits::si);
+  return case_key(only);
 }
 
 }  // namespace
@@ -66,7 +58,7 @@ std::shared_ptr<const StiffnessTable> RunPool::table_for(const SimulationCase& c
 
 std::shared_future<SimulationResult> RunPool::submit(const SimulationCase& c, bool keep_series,
                                                      std::function<bool()> should_stop) {
-  const std::string inputs = inputs_key(c);
+  const std::string inputs = case_key(c);
   // The rows kept matter only with the series.
   const std::string series =
       keep_series ? "series every " + std::to_string(c.integrator.output_every) : "summary";
@@ -95,9 +87,11 @@ std::shared_future<SimulationResult> RunPool::submit(const SimulationCase& c, bo
   }
   std::shared_ptr<const StiffnessTable> table;
   try {
-    // Validated here, so that a bad case throws InputError to the caller.
-    validate(c);
+    // Validated here, so that a bad case throws InputError to the caller; the
+    // step is checked on the table, without a quadrature of its own.
+    validate_fields(c);
     table = table_for(c);
+    validate_step(c, largest_resolving_step_s(c, *table));
   } catch (...) {
     promise->set_exception(std::current_exception());
     throw;

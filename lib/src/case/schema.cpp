@@ -979,6 +979,17 @@ void validate_fields(const SimulationCase& c) {
   validate_relations(c);
 }
 
+std::string case_key(const SimulationCase& c) {
+  if (c.torque1.kind == Torque::Kind::user || c.torque2.kind == Torque::Kind::user) return {};
+  std::string key;
+  for (const Field& field : case_schema()) {
+    if (field.section.empty() && field.key == "name") continue;
+    if (!applies(field, c) || absent(field, c)) continue;
+    key += field.name() + "=" + value_text(field, c, false) + "\n";
+  }
+  return key;
+}
+
 std::string schema_markdown() {
   const auto cell = [](std::string text) {
     std::string escaped;

@@ -2,15 +2,44 @@
 
 #include <cmath>
 
+#include "gearimpact/error.hpp"
 #include "gearimpact/numerics/quadrature.hpp"
 
 namespace gearimpact {
 
-double effective_mass_kg(const GearPair& pair) {
-  const double rb1 = base_radius(pair, Gear::one);
-  const double rb2 = base_radius(pair, Gear::two);
-  return 1.0 / (rb1 * rb1 / moment_of_inertia(pair, Gear::one) +
-                rb2 * rb2 / moment_of_inertia(pair, Gear::two));
+double inverse_effective_mass_per_kg(double base_radius1_m, double inertia1_kg_m2,
+                                     double base_radius2_m, double inertia2_kg_m2) {
+  return base_radius1_m * base_radius1_m / inertia1_kg_m2 +
+         base_radius2_m * base_radius2_m / inertia2_kg_m2;
+}
+
+double effective_mass_kg(double base_radius1_m, double inertia1_kg_m2, double base_radius2_m,
+                         double inertia2_kg_m2) {
+  return 1.0 / inverse_effective_mass_per_kg(base_radius1_m, inertia1_kg_m2, base_radius2_m,
+                                             inertia2_kg_m2);
+}
+
+double inverse_effective_mass_per_kg(const GearPair& pair) {
+  return inverse_effective_mass_per_kg(base_radius(pair, Gear::one),
+                                       moment_of_inertia(pair, Gear::one),
+                                       base_radius(pair, Gear::two),
+                                       moment_of_inertia(pair, Gear::two));
+}
+
+double effective_mass_kg(const GearPair& pair) { return 1.0 / inverse_effective_mass_per_kg(pair); }
+
+double viscous_mesh_damping_n_s_per_m(double damping_ratio, double mesh_stiffness_n_per_m,
+                                      double effective_mass_kg) {
+  if (!std::isfinite(damping_ratio) || damping_ratio < 0.0) {
+    throw InputError("damping_ratio", damping_ratio, "a finite value >= 0 (dimensionless)");
+  }
+  if (!std::isfinite(mesh_stiffness_n_per_m) || mesh_stiffness_n_per_m <= 0.0) {
+    throw InputError("mesh_stiffness", mesh_stiffness_n_per_m, "a finite value > 0 in N/m");
+  }
+  if (!std::isfinite(effective_mass_kg) || effective_mass_kg <= 0.0) {
+    throw InputError("effective_mass", effective_mass_kg, "a finite value > 0 in kg");
+  }
+  return 2.0 * damping_ratio * std::sqrt(mesh_stiffness_n_per_m * effective_mass_kg);
 }
 
 double mean_mesh_stiffness_n_m(const SimulationCase& c, const StiffnessTable& table) {

@@ -11,14 +11,10 @@
 
 namespace gearimpact {
 
-namespace {
-
-// The bodies of rk4_step_from and rk4_step, for the calls within this file:
-// the library is position-independent, where GCC does not inline a function
-// with external linkage (another library could interpose it), and the step
-// loop below takes one step every grid point.
-void stages_from(const GearSystem& system, double t, const State& y, const State& k1, double h,
-                 const Mode& m, const ContactMemory& d, State& out) {
+// The classical RK4 step from (t, y) with k1 = f(t, y) already evaluated:
+// event location tries many step sizes from the same start.
+void rk4_step_from(const GearSystem& system, double t, const State& y, const State& k1, double h,
+                   const Mode& m, const ContactMemory& d, State& out) {
   // Not zeroed: rhs writes every component.
   State k2, k3, k4, tmp;
   for (std::size_t i = 0; i < kStateSize; ++i) tmp[i] = y[i] + 0.5 * h * k1[i];
@@ -32,24 +28,10 @@ void stages_from(const GearSystem& system, double t, const State& y, const State
   }
 }
 
-void step(const GearSystem& system, double t, const State& y, double h, const Mode& m,
-          const ContactMemory& d, State& out, State& k1) {
-  system.rhs(t, y, m, d, k1);
-  stages_from(system, t, y, k1, h, m, d, out);
-}
-
-}  // namespace
-
-// The classical RK4 step from (t, y) with k1 = f(t, y) already evaluated:
-// event location tries many step sizes from the same start.
-void rk4_step_from(const GearSystem& system, double t, const State& y, const State& k1, double h,
-                   const Mode& m, const ContactMemory& d, State& out) {
-  stages_from(system, t, y, k1, h, m, d, out);
-}
-
 void rk4_step(const GearSystem& system, double t, const State& y, double h, const Mode& m,
               const ContactMemory& d, State& out, State& k1) {
-  step(system, t, y, h, m, d, out, k1);
+  system.rhs(t, y, m, d, k1);
+  rk4_step_from(system, t, y, k1, h, m, d, out);
 }
 
 // The classical RK4 step with the mode re-evaluated at every stage: what a
@@ -86,7 +68,7 @@ double event_cut_step(Run& run, double t, double target) {
   const ContactMemory damping = run.damping();
   State k1;
   State next{};
-  step(system, t, y, target - t, mode, damping, next, k1);
+  rk4_step(system, t, y, target - t, mode, damping, next, k1);
   run.rhs_evaluations() += 4;
   run.check_finite(target, next);
   ++run.steps();
@@ -99,7 +81,7 @@ double event_cut_step(Run& run, double t, double target) {
   system.event_values(next, mode, damping, g_b);
   long long evaluations = 0;
   const auto state_at = [&](double tau, State& x) {
-    stages_from(system, t, y, k1, tau - t, mode, damping, x);
+    rk4_step_from(system, t, y, k1, tau - t, mode, damping, x);
     evaluations += 3;
   };
   const double t_event = earliest_event(system, mode, damping, t, target, g_a, g_b, n, state_at);

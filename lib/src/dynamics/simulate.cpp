@@ -49,22 +49,9 @@ void check_table(const SimulationCase& c, const StiffnessTable& table) {
   }
 }
 
-}  // namespace
-
-void validate(const SimulationCase& c) {
-  validate_fields(c);
-  validate_step(c, largest_resolving_step_s(c));
-}
-
-SimulationResult simulate(const SimulationCase& c, const RunControl& control) {
-  validate_fields(c);
-  const StiffnessTable table(c.gears, c.model.stiffness);
-  return simulate(c, table, control);
-}
-
-SimulationResult simulate(const SimulationCase& c, const StiffnessTable& table,
-                          const RunControl& control) {
-  validate_fields(c);
+// The run of a case whose fields are checked.
+SimulationResult simulate_checked(const SimulationCase& c, const StiffnessTable& table,
+                                  const RunControl& control) {
   check_table(c, table);
   validate_step(c, largest_resolving_step_s(c, table));
   validate_control(c, control);
@@ -78,6 +65,25 @@ SimulationResult simulate(const SimulationCase& c, const StiffnessTable& table,
         mesh_stiffness(c.gears, contact_segment(c.gears).start_m, k).foundation_extrapolated;
   }
   return result;
+}
+
+}  // namespace
+
+void validate(const SimulationCase& c) {
+  validate_fields(c);
+  validate_step(c, largest_resolving_step_s(c));
+}
+
+SimulationResult simulate(const SimulationCase& c, const RunControl& control) {
+  validate_fields(c);
+  const StiffnessTable table(c.gears, c.model.stiffness);
+  return simulate_checked(c, table, control);
+}
+
+SimulationResult simulate(const SimulationCase& c, const StiffnessTable& table,
+                          const RunControl& control) {
+  validate_fields(c);
+  return simulate_checked(c, table, control);
 }
 
 }  // namespace gearimpact

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "gearimpact/constants.hpp"
+#include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
@@ -17,10 +18,6 @@ namespace {
 // The largest resolving step with Ke(X) of one pair given by `ke`.
 double largest_step(const SimulationCase& c, const std::function<double(double)>& ke) {
   const GearPair& g = c.gears;
-  const double rb1 = base_radius(g, Gear::one);
-  const double rb2 = base_radius(g, Gear::two);
-  const double inverse_mass =
-      rb1 * rb1 / moment_of_inertia(g, Gear::one) + rb2 * rb2 / moment_of_inertia(g, Gear::two);
   // (42): the pairs loaded when one sits at u, for u along one base pitch.
   const MeshLayout layout(g, c.model.coast_phase);
   const double t0 = layout.base_pitch_m();
@@ -35,7 +32,7 @@ double largest_step(const SimulationCase& c, const std::function<double(double)>
     }
     stiffest = std::max(stiffest, total);
   }
-  const double period = 2.0 * pi / std::sqrt(stiffest * inverse_mass);
+  const double period = 2.0 * pi / std::sqrt(stiffest * inverse_effective_mass_per_kg(g));
   return period / kStepsPerContactPeriod;
 }
 

@@ -6,7 +6,6 @@
 #include "gearimpact/contact/contact.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/error.hpp"
-#include "gearimpact/steady/closed_forms.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 
 namespace gearimpact {
@@ -84,7 +83,7 @@ GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table, con
   }
 }
 
-inline std::pair<double, double> GearSystem::torques(double t) const {
+std::pair<double, double> GearSystem::torques(double t) const {
   if (!constant_torques_ && t != torque_time_) {
     torque_time_ = t;
     torque_values_ = {torque_at(case_.torque1, t), torque_at(case_.torque2, t)};
@@ -95,7 +94,7 @@ inline std::pair<double, double> GearSystem::torques(double t) const {
 // Stage states of a step that ends on a pair's entry or exit can reach a hair
 // beyond the segment: there Ke continues along its tangent, so the right-hand
 // side stays smooth.
-inline void GearSystem::pair_stiffness(double x, int count, double& ke, double& dke) const {
+void GearSystem::pair_stiffness(double x, int count, double& ke, double& dke) const {
   if (constant_k_ > 0.0) {
     ke = constant_k_ / count;
     dke = 0.0;
@@ -107,7 +106,7 @@ inline void GearSystem::pair_stiffness(double x, int count, double& ke, double& 
   ke = k.stiffness_n_per_m + dke * (x - xc);
 }
 
-inline double GearSystem::damping_factor(const ContactMemory& d, double ke) const {
+double GearSystem::damping_factor(const ContactMemory& d, double ke) const {
   return damping_on_current_pair_ ? d.damping_per_stiffness_s_m * ke
                                   : d.damping_per_stiffness_s_m * d.frozen_stiffness_n_m;
 }
@@ -213,7 +212,7 @@ int GearSystem::event_values(const State& y, const Mode& m, const ContactMemory&
 // A function with the sign and the zeros of F + G of one pair. With D
 // proportional to the pair's own Ke, F + G = Ke delta (1 + (D/K) d(delta)/dt)
 // and the positive factor Ke need not be evaluated.
-inline double GearSystem::push_sign_function(double x, int count, const ContactMemory& d, double dl,
+double GearSystem::push_sign_function(double x, int count, const ContactMemory& d, double dl,
                                              double dl_rate) const {
   if (damping_on_current_pair_) {
     return dl * (1.0 + d.damping_per_stiffness_s_m * dl_rate);

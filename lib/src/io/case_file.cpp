@@ -17,7 +17,7 @@
 namespace gearimpact {
 
 CaseFileError::CaseFileError(std::string file, std::string field, const std::string& message)
-    : std::invalid_argument(message), file_(std::move(file)), field_(std::move(field)) {}
+    : Error(message), file_(std::move(file)), field_(std::move(field)) {}
 
 namespace {
 

@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/error.hpp"
 #include "input_checks.hpp"
 
@@ -59,21 +60,13 @@ DimensionlessPair dimensionless_form(const LoadedPair& pair) {
   const double k = pair.mesh_stiffness_n_per_m;
   const double b = pair.backlash_m;
   DimensionlessPair d;
-  d.effective_mass_kg = 1.0 / (rb1 * rb1 / pair.inertia1_kg_m2 + rb2 * rb2 / pair.inertia2_kg_m2);
+  d.effective_mass_kg = effective_mass_kg(rb1, pair.inertia1_kg_m2, rb2, pair.inertia2_kg_m2);
   d.natural_frequency_rad_per_s = std::sqrt(k / d.effective_mass_kg);
   d.mean_force = (pair.mean_torque1_n_m / rb1) / (k * b);
   d.alternating_force =
       d.effective_mass_kg * rb1 * pair.torque_fluctuation1_n_m / (pair.inertia1_kg_m2 * k * b);
   d.frequency_ratio = pair.excitation_frequency_rad_per_s / d.natural_frequency_rad_per_s;
   return d;
-}
-
-double viscous_mesh_damping_n_s_per_m(double damping_ratio, double mesh_stiffness_n_per_m,
-                                      double effective_mass_kg) {
-  require_finite_non_negative("damping_ratio", damping_ratio, "(dimensionless)");
-  require_finite_positive("mesh_stiffness", mesh_stiffness_n_per_m, "in N/m");
-  require_finite_positive("effective_mass", effective_mass_kg, "in kg");
-  return 2.0 * damping_ratio * std::sqrt(mesh_stiffness_n_per_m * effective_mass_kg);
 }
 
 LinearSteadyResponse linear_steady_response(const ClearanceOscillator& oscillator,

@@ -165,6 +165,13 @@ void validate_relations(const SimulationCase& c);
 // largest_resolving_step_s).
 void validate_fields(const SimulationCase& c);
 
+// Every input of `c` but its name, one "section.key=value" line per row that
+// applies and has a value, values in SI as value_text writes them (exact:
+// they read back to the same doubles). Two cases with equal keys run alike;
+// a row added to the schema enters the key without a change elsewhere.
+// Empty for a case with no text form (a torque given as a function).
+std::string case_key(const SimulationCase& c);
+
 // The schema as a Markdown table: key, unit, default, allowed range, help.
 std::string schema_markdown();
 

@@ -1,7 +1,6 @@
 // The mesh as one spring between the gears along the line of action: the
-// effective mass of the relative mode and the mean mesh stiffness of
-// STEADY-STATE.md section 2, which set the viscous mesh damper
-// (viscous_mesh_damping_n_s_per_m, steady/closed_forms.hpp).
+// effective mass of the relative mode, the mean mesh stiffness of
+// STEADY-STATE.md section 2, and the viscous mesh damper they set.
 #pragma once
 
 #include "gearimpact/case/simulation_case.hpp"
@@ -10,8 +9,21 @@
 
 namespace gearimpact {
 
-// m_e = 1 / (Rb1^2/J1 + Rb2^2/J2), the mass of s = Rb1 theta1 - Rb2 theta2.
+// 1/m_e = Rb1^2/J1 + Rb2^2/J2, where m_e is the mass of s = Rb1 theta1 - Rb2 theta2.
+double inverse_effective_mass_per_kg(double base_radius1_m, double inertia1_kg_m2,
+                                     double base_radius2_m, double inertia2_kg_m2);
+// m_e = 1 / (Rb1^2/J1 + Rb2^2/J2).
+double effective_mass_kg(double base_radius1_m, double inertia1_kg_m2, double base_radius2_m,
+                         double inertia2_kg_m2);
+// The same for the pair's discs (moment_of_inertia).
+double inverse_effective_mass_per_kg(const GearPair& pair);
 double effective_mass_kg(const GearPair& pair);
+
+// STEADY-STATE.md section 1: the optional linear viscous mesh damper
+// c = 2 zeta sqrt(k m_e), in N s/m. Throws InputError unless zeta >= 0 and
+// k, m_e > 0, all finite.
+double viscous_mesh_damping_n_s_per_m(double damping_ratio, double mesh_stiffness_n_per_m,
+                                      double effective_mass_kg);
 
 // The mesh stiffness averaged over one base pitch: k of MeshStiffnessMode::constant,
 // else (1/t0) Int Ke(X) dX over the contact segment, since over one pitch each

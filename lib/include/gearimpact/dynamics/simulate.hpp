@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "gearimpact/error.hpp"
 #include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
@@ -24,9 +25,9 @@
 namespace gearimpact {
 
 // A run that cannot continue: a non-finite state, or event location that stalls.
-class SimulationError : public std::runtime_error {
+class SimulationError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  using Error::Error;
 };
 
 // One row of the time series. normal_force_n and friction_force_n are summed

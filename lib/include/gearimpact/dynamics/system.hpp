@@ -111,18 +111,16 @@ class GearSystem {
 
  private:
   // The helpers of the right-hand side and the event values, used only in
-  // system.cpp and declared inline so that they are inlined there: the
-  // library is position-independent, where GCC does not inline a function
-  // another library could interpose.
+  // system.cpp.
   //
   // T1(t), T2(t). An RK4 step asks for its middle time twice and for its end
   // time again as the next step's start: the last answer is kept, so a
   // sinusoid costs two sines a step instead of four (the same values).
-  inline std::pair<double, double> torques(double t) const;
+  std::pair<double, double> torques(double t) const;
   // Ke and dKe/dX of one of `count` loaded pairs at X.
-  inline void pair_stiffness(double x, int count, double& ke, double& dke) const;
-  inline double damping_factor(const ContactMemory& d, double ke) const;
-  inline double push_sign_function(double x, int count, const ContactMemory& d, double dl,
+  void pair_stiffness(double x, int count, double& ke, double& dke) const;
+  double damping_factor(const ContactMemory& d, double ke) const;
+  double push_sign_function(double x, int count, const ContactMemory& d, double dl,
                                    double dl_rate) const;
 
   const StiffnessTable& table_;

@@ -9,13 +9,14 @@
 #include <string>
 #include <string_view>
 
+#include "gearimpact/error.hpp"
 #include "gearimpact/case/simulation_case.hpp"
 
 namespace gearimpact {
 
 // A case file that cannot be used. The message names the file (and line when
 // known), the field as section.key, the value as written and what is allowed.
-class CaseFileError : public std::invalid_argument {
+class CaseFileError : public Error {
  public:
   CaseFileError(std::string file, std::string field, const std::string& message);
 

@@ -59,11 +59,6 @@ struct DimensionlessPair {
 // fluctuation >= 0).
 DimensionlessPair dimensionless_form(const LoadedPair& pair);
 
-// Section 1: the optional linear viscous mesh damper c = 2 zeta sqrt(k m_e), in N s/m.
-// Throws InputError unless zeta >= 0 and k, m_e > 0, all finite.
-double viscous_mesh_damping_n_s_per_m(double damping_ratio, double mesh_stiffness_n_per_m,
-                                      double effective_mass_kg);
-
 // How the excitation amplitude scales with frequency: W = 1 or W = Omega^2.
 enum class ExcitationForm { torque_fluctuation, transmission_error };
 

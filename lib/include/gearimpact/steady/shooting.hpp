@@ -14,17 +14,18 @@
 #include <Eigen/Dense>
 #include <cstddef>
 #include <functional>
-#include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "gearimpact/error.hpp"
 
 namespace gearimpact {
 
 // A Newton iteration or a continuation that did not reach its tolerance, or a period map that
 // returned something unusable. The message says which, where, and the residual reached.
-class ShootingError : public std::runtime_error {
+class ShootingError : public Error {
  public:
-  using std::runtime_error::runtime_error;
+  using Error::Error;
 };
 
 using PeriodMap = std::function<Eigen::VectorXd(const Eigen::VectorXd& state)>;
