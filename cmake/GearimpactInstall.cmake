@@ -16,7 +16,11 @@ install(TARGETS ${gearimpact_installed_targets} EXPORT gearimpactTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/lib/include/gearimpact DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+# The program's own plumbing (the atomic writer, the scoring of the paper's
+# statements) is not part of the installed interface; the same list is
+# INTERNAL in verify/structure/check_layers.py, which keeps it out of the facade.
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/lib/include/gearimpact DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+  PATTERN "atomic_file.hpp" EXCLUDE PATTERN "scoring.hpp" EXCLUDE)
 # The program looks for its data at <bin>/../share/gearimpact/paper_data
 # (reference/data_location.cpp).
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/paper_data/ DESTINATION ${GEARIMPACT_DATA_DIR}/paper_data)
