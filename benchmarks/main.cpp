@@ -2,7 +2,7 @@
 //   --accuracy-positions=N  positions of the accuracy checks (default 10000,
 //                           0 skips them); they run once, before any timing
 //   --markdown=FILE         also write the run as a markdown table, with the
-//                           ratios to GSL QAG and the issue's targets
+//                           ratios to GSL QAG and the speed targets
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -186,7 +186,7 @@ void write_markdown(const std::string& path, const RecordingReporter& reporter,
         << counter(row, "compliance_rel_err") << " | " << ratio << " |\n";
   }
   write_simulation_table(out, reporter);
-  out << "\nTargets (issue 3), from this run:\n\n";
+  out << "\nTargets, from this run:\n\n";
   const auto figures = [&](std::string_view name) { return reporter.ns_of(name); };
   for (const std::string& line : gearimpact::bench::evaluate_targets(figures)) {
     out << "- " << line << "\n";

@@ -298,7 +298,7 @@ const bool table_registered = [] {
   return true;
 }();
 
-// --- the targets, on the figures of one run ---------------------------
+// --- the speed targets, on the figures of one run ---------------------------
 
 std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0) {
   char line[300];

@@ -43,21 +43,11 @@ double process_cpu_s() {
 }
 
 SimulationCase loaded_pair() {
-  SimulationCase c = paper_case(1);
-  c.name = "loaded-paper-pair";
-  c.model.friction_coefficient = 0.0;
-  c.model.mesh_damping_ratio = 0.05;
-  c.model.damping_update = DampingUpdate::frozen;
-  c.model.damping_reference_speed_m_s = 0.1;
-  const double rb1 = base_radius(c.gears, Gear::one);
-  const double rb2 = base_radius(c.gears, Gear::two);
-  c.torque1 = Torque{};
-  c.torque1.constant_n_m = 3.0;
-  c.torque2 = Torque{};
-  c.torque2.constant_n_m = -3.0 * rb2 / rb1;
-  c.initial.w1_rad_s = 500.0;
-  c.initial.w2_rad_s = 500.0 * rb1 / rb2;
-  return c;
+  PairLoad load;
+  load.static_force_n = 3.0 / base_radius(paper_gear_pair(), Gear::one);
+  load.damping_update = DampingUpdate::frozen;
+  load.damping_reference_speed_m_s = 0.1;
+  return loaded_paper_pair(500.0, load);
 }
 
 struct SweepFigures {

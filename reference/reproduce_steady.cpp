@@ -21,25 +21,14 @@ namespace {
 
 constexpr double static_force_n = 1000.0;
 
-// The paper's pair loaded with a static force on the line of action, balanced, rolling at w1;
-// no friction (a steady state needs none: require_steady_case), the viscous mesh damper at
-// zeta = 0.05 and no Hertzian damping.
+// The paper's pair loaded by static_force_n, with the viscous mesh damper and no Hertzian damping;
+// at the static deflection of the stiffest mesh, so that the first point starts in contact.
 SimulationCase loaded_pair(double w1_rad_s) {
-  SimulationCase c = paper_case(1);
-  c.name = "loaded-paper-pair";
-  c.model.friction_coefficient = 0.0;
-  c.model.mesh_damping_ratio = 0.05;
-  c.model.damping_update = DampingUpdate::off;
-  const double rb1 = base_radius(c.gears, Gear::one);
-  const double rb2 = base_radius(c.gears, Gear::two);
-  c.torque1 = Torque{};
-  c.torque1.constant_n_m = static_force_n * rb1;
-  c.torque2 = Torque{};
-  c.torque2.constant_n_m = -static_force_n * rb2;
-  // At the static deflection of the stiffest mesh, so that the first point starts in contact.
-  c.initial = InitialState{(c.gears.backlash_m + static_force_n / 1e9) / rb1, 0.0, w1_rad_s,
-                           w1_rad_s * rb1 / rb2};
-  return c;
+  PairLoad load;
+  load.static_force_n = static_force_n;
+  load.damping_update = DampingUpdate::off;
+  load.deflection_stiffness_n_per_m = 1e9;
+  return loaded_paper_pair(w1_rad_s, load);
 }
 
 struct Row {

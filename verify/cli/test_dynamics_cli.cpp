@@ -1,5 +1,5 @@
 // The `simulate` and `sweep-friction` subcommands of the reference program:
-// their outputs carry the columns and keys issue 5 names, in full precision.
+// their outputs carry the columns and keys docs/case-files.md names, in full precision.
 #include <doctest/doctest.h>
 
 #include <algorithm>

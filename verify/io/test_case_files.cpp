@@ -1,6 +1,7 @@
 // Case files: the paper's three cases as written by hand from Table 1 against
 // paper_case() written from the same table in code; write/read round trips;
-// and every bad input of issue 4 that the reader owns, through the library
+// and every bad input the reader owns (wrong types, units, ranges, encodings,
+// structure), through the library
 // (the message) and through `gearimpact check-case` (the exit code).
 #include <doctest/doctest.h>
 

@@ -60,23 +60,12 @@ inline ClearanceCase clearance_case(double mean_force, double alternating_force,
 // 1000 N on the line of action, balanced, rolling at w1, zeta = 0.05, D frozen at 0.1 m/s, no
 // friction.
 inline SimulationCase loaded_paper_pair(double w1_rad_s) {
-  SimulationCase c = paper_case(1);
-  c.name = "loaded-paper-pair";
-  c.model.friction_coefficient = 0.0;
-  c.model.mesh_damping_ratio = 0.05;
-  c.model.damping_update = DampingUpdate::frozen;
-  c.model.damping_reference_speed_m_s = 0.1;
-  const GearPair& g = c.gears;
-  const double rb1 = base_radius(g, Gear::one);
-  const double rb2 = base_radius(g, Gear::two);
-  constexpr double static_force_n = 1000.0;
-  c.torque1 = Torque{};
-  c.torque1.constant_n_m = static_force_n * rb1;
-  c.torque2 = Torque{};
-  c.torque2.constant_n_m = -static_force_n * rb2;
-  c.initial = InitialState{(g.backlash_m + static_force_n / 4e8) / rb1, 0.0, w1_rad_s,
-                           w1_rad_s * rb1 / rb2};
-  return c;
+  PairLoad load;
+  load.static_force_n = 1000.0;
+  load.damping_update = DampingUpdate::frozen;
+  load.damping_reference_speed_m_s = 0.1;
+  load.deflection_stiffness_n_per_m = 4e8;
+  return gearimpact::loaded_paper_pair(w1_rad_s, load);
 }
 
 }  // namespace gearimpact::steady_test

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/steady/closed_forms.hpp"
 #include "gearimpact/steady/shooting.hpp"
@@ -177,7 +178,7 @@ TEST_CASE("linear limit: closed form against the shooting fixed point of the osc
                      << ", x'(0) by " << orbit.fixed_point[1] - v0);
     // RK4 with 2000 steps a period: its global error is of order h^4 = (T / 2000)^4 <= 3e-9
     // relative to the motion, further multiplied by the method's small error constant; measured
-    // 4e-13 on these cases. 1e-10 (the brief asks 1e-8) still fails a wrong phase sign or a
+    // 4e-13 on these cases. 1e-10 still fails a wrong phase sign or a
     // wrong W by orders of magnitude.
     CHECK(std::fabs(orbit.fixed_point[0] - x0) <= 1e-10);
     CHECK(std::fabs(orbit.fixed_point[1] - v0) <= 1e-10);

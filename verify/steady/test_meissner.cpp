@@ -96,7 +96,7 @@ TEST_CASE("Meissner monodromy against direct integration of Hill's equation over
       const double difference = max_entry_difference(closed, integrated);
       MESSAGE("zeta " << zeta << ", Omega " << omega << ": max entry difference " << difference);
       // RK4, 4000 steps a piece of at most 9 time units: h^4 < 3e-11, times an error constant
-      // below 1; 1e-8 is the brief's bound and leaves a margin of orders of magnitude.
+      // below 1; 1e-8 leaves a margin of orders of magnitude over that.
       CHECK(difference <= 1e-8);
 
       // Liouville: det M = exp(trace A T) = e^{-2 zeta T}, whatever kappa does.
@@ -204,8 +204,8 @@ TEST_CASE("shooting's Floquet multipliers of Hill's equation against the Meissne
           std::abs(orbit.floquet_multipliers[static_cast<Eigen::Index>(i)] - expected[i]);
       MESSAGE("multiplier " << i << ": " << orbit.floquet_multipliers[static_cast<Eigen::Index>(i)]
                             << " vs " << expected[i] << ", difference " << difference);
-      // RK4's error (~1e-11) plus the central differences' rounding (~1e-10): 1e-8 is the
-      // brief's bound for the linearised model.
+      // RK4's error (~1e-11) plus the central differences' rounding (~1e-10): 1e-8 leaves
+      // two orders of margin.
       CHECK(difference <= 1e-8);
     }
   }

@@ -3,8 +3,28 @@
 #include <string>
 
 #include "gearimpact/error.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
 
 namespace gearimpact {
+
+SimulationCase loaded_paper_pair(double w1_rad_s, const PairLoad& load) {
+  SimulationCase c = paper_case(1);
+  c.name = "loaded-paper-pair";
+  c.model.friction_coefficient = 0.0;
+  c.model.mesh_damping_ratio = 0.05;
+  c.model.damping_update = load.damping_update;
+  c.model.damping_reference_speed_m_s = load.damping_reference_speed_m_s;
+  const double rb1 = base_radius(c.gears, Gear::one);
+  const double rb2 = base_radius(c.gears, Gear::two);
+  const double f = load.static_force_n;
+  c.torque1 = Torque{};
+  c.torque1.constant_n_m = f * rb1;
+  c.torque2 = Torque{};
+  c.torque2.constant_n_m = -f * rb2;
+  c.initial = InitialState{(c.gears.backlash_m + f / load.deflection_stiffness_n_per_m) / rb1, 0.0,
+                           w1_rad_s, w1_rad_s * rb1 / rb2};
+  return c;
+}
 
 double torque_unit_n_m(TorqueUnit unit) {
   // 1 kgf = 9.80665 N (standard gravity), 1 mm = 1e-3 m.

@@ -33,4 +33,21 @@ SimulationCase paper_case(int number, const PaperReading& reading);
 // Newton metres per unit of Table 1.
 double torque_unit_n_m(TorqueUnit unit);
 
+// How the paper's pair is loaded for a steady state (STEADY-STATE.md section 1).
+struct PairLoad {
+  double static_force_n = 1000.0;  // F on the line of action: T1 = F Rb1, T2 = -F Rb2
+  DampingUpdate damping_update = DampingUpdate::off;
+  double damping_reference_speed_m_s = 1.0;  // V_ref of DampingUpdate::frozen
+  // The teeth start on the drive flank at the static deflection F / k of this
+  // stiffness, so that a run starts in contact.
+  double deflection_stiffness_n_per_m = 1.0e9;
+};
+
+// The paper's pair (case 1's) with its time-varying mesh stiffness, loaded by
+// `load` with balanced torques, rolling at w1 (w2 = w1 Rb1 / Rb2), without
+// friction (a steady state needs none) and with the viscous mesh damper at
+// zeta = 0.05: the loaded pair of the steady-state reproduction, suites and
+// benchmark.
+SimulationCase loaded_paper_pair(double w1_rad_s, const PairLoad& load);
+
 }  // namespace gearimpact
