@@ -1,9 +1,12 @@
 #include "gearimpact/batch/pool.hpp"
 
 #include <algorithm>
+#include <string>
+#include <system_error>
 
 #include "gearimpact/case/schema.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
+#include "gearimpact/error.hpp"
 
 namespace gearimpact {
 
@@ -21,9 +24,18 @@ std::string table_key(const SimulationCase& c) {
 
 }  // namespace
 
-RunPool::RunPool(unsigned threads) {
-  const unsigned n = threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : threads;
-  for (unsigned i = 0; i < n; ++i) workers_.emplace_back([this] { work(); });
+RunPool::RunPool(unsigned threads)
+    : threads_asked_(threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : threads) {
+  try {
+    for (unsigned i = 0; i < threads_asked_; ++i) workers_.emplace_back([this] { work(); });
+  } catch (const std::system_error& e) {
+    // A process or thread limit (ulimit -u, a cluster's cgroup) ends the start
+    // here; the pool runs with the workers it got, and without any it cannot run.
+    if (workers_.empty()) {
+      throw Error("cannot start a worker thread (" + std::string(e.what()) + "): " +
+                  std::to_string(threads_asked_) + " asked for");
+    }
+  }
 }
 
 RunPool::~RunPool() {

@@ -24,7 +24,9 @@ namespace gearimpact {
 
 class RunPool {
  public:
-  // threads = 0: one per core.
+  // threads = 0: one per core. Where the system refuses a thread (a process
+  // limit), the pool runs with the workers it started (threads() < threads_asked());
+  // where it refuses the first, the constructor throws Error.
   explicit RunPool(unsigned threads = 0);
   // Finishes the queued tasks, then joins the workers.
   ~RunPool();
@@ -54,6 +56,7 @@ class RunPool {
   std::shared_ptr<const StiffnessTable> table_for(const SimulationCase& c);
 
   unsigned threads() const { return static_cast<unsigned>(workers_.size()); }
+  unsigned threads_asked() const { return threads_asked_; }
   // Simulations asked for and computed, so far.
   std::size_t requested() const;
   std::size_t computed() const;
@@ -62,6 +65,7 @@ class RunPool {
   void enqueue(std::function<void()> task);
   void work();
 
+  unsigned threads_asked_;
   mutable std::mutex mutex_;
   std::condition_variable ready_;
   std::deque<std::function<void()>> queue_;
