@@ -1,8 +1,19 @@
 #include "gnuplot.hpp"
 
-#include <cstdlib>
-#include <fstream>
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 #include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "gearimpact/io/atomic_file.hpp"
+
+extern char** environ;
 
 namespace gearimpact::cli {
 
@@ -12,40 +23,87 @@ std::string quoted(const std::string& text) {
   return "\"" + text + "\"";
 }
 
+std::string script_text(const Figure& figure) {
+  std::string text = "# " + figure.title + "\n" + "# Made by gearimpact; run `gnuplot " +
+                     figure.name + ".gp` in this folder to redraw.\n" +
+                     "set datafile separator ','\n" + "set key autotitle columnhead\n" +
+                     "set title " + quoted(figure.title) + "\n" + "set xlabel " +
+                     quoted(figure.x_label) + "\n" + "set ylabel " + quoted(figure.y_label) + "\n" +
+                     "set grid\n";
+  for (const std::string& line : figure.setup) text += line + "\n";
+  std::string plot = "plot ";
+  for (std::size_t i = 0; i < figure.series.size(); ++i) {
+    plot += (i ? ", \\\n     " : "") + figure.series[i];
+  }
+  text += "set terminal pngcairo size 1000,650 font 'Sans,11'\n";
+  text += "set output " + quoted(figure.name + ".png") + "\n";
+  text += plot + "\n";
+  text += "set terminal svg size 1000,650 font 'Sans,11'\n";
+  text += "set output " + quoted(figure.name + ".svg") + "\n";
+  text += "replot\n";
+  return text;
+}
+
+// Runs `gnuplot SCRIPT` in `dir` from an argument vector: no shell sees the
+// folder's or the script's name. Throws naming the script, with gnuplot's own
+// message, where gnuplot cannot start or fails.
+void run_gnuplot(const std::filesystem::path& dir, const std::string& script,
+                 const std::filesystem::path& shown) {
+  int pipe_fds[2];
+  if (::pipe(pipe_fds) != 0) {
+    throw std::runtime_error("cannot run gnuplot on " + shown.string() + ": " +
+                             std::strerror(errno));
+  }
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addchdir_np(&actions, dir.c_str());
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], STDERR_FILENO);
+  posix_spawn_file_actions_addclose(&actions, pipe_fds[0]);
+  std::string program = "gnuplot";
+  std::vector<char*> argv{program.data(), const_cast<char*>(script.c_str()), nullptr};
+  pid_t child = 0;
+  const int spawned = posix_spawnp(&child, "gnuplot", &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(pipe_fds[1]);
+  if (spawned != 0) {
+    ::close(pipe_fds[0]);
+    throw std::runtime_error("cannot run gnuplot on " + shown.string() + ": " +
+                             std::strerror(spawned) +
+                             (spawned == ENOENT ? " (Debian's gnuplot-nox; scripts/setup.sh "
+                                                  "installs it)"
+                                                : ""));
+  }
+  std::string messages;
+  char buffer[4096];
+  for (;;) {
+    const ssize_t n = ::read(pipe_fds[0], buffer, sizeof buffer);
+    if (n > 0) {
+      messages.append(buffer, static_cast<std::size_t>(n));
+    } else if (n == 0 || errno != EINTR) {
+      break;
+    }
+  }
+  ::close(pipe_fds[0]);
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    while (!messages.empty() && (messages.back() == '\n' || messages.back() == ' ')) {
+      messages.pop_back();
+    }
+    throw std::runtime_error("gnuplot failed on " + shown.string() + ": " +
+                             (messages.empty() ? std::string("no message") : messages));
+  }
+}
+
 }  // namespace
 
 void render(const std::filesystem::path& dir, const Figure& figure) {
   const std::filesystem::path script = dir / (figure.name + ".gp");
-  {
-    std::ofstream out(script);
-    out << "# " << figure.title << "\n"
-        << "# Made by gearimpact reproduce; run `gnuplot " << figure.name
-        << ".gp` in this folder to redraw.\n"
-        << "set datafile separator ','\n"
-        << "set key autotitle columnhead\n"
-        << "set title " << quoted(figure.title) << "\n"
-        << "set xlabel " << quoted(figure.x_label) << "\n"
-        << "set ylabel " << quoted(figure.y_label) << "\n"
-        << "set grid\n";
-    for (const std::string& line : figure.setup) out << line << "\n";
-    std::string plot = "plot ";
-    for (std::size_t i = 0; i < figure.series.size(); ++i) {
-      plot += (i ? ", \\\n     " : "") + figure.series[i];
-    }
-    out << "set terminal pngcairo size 1000,650 font 'Sans,11'\n"
-        << "set output " << quoted(figure.name + ".png") << "\n"
-        << plot << "\n"
-        << "set terminal svg size 1000,650 font 'Sans,11'\n"
-        << "set output " << quoted(figure.name + ".svg") << "\n"
-        << "replot\n";
-    if (!out) throw std::runtime_error("cannot write " + script.string());
-  }
-  const std::string command = "cd " + quoted(dir.string()) + " && gnuplot " +
-                              quoted(figure.name + ".gp") + " > /dev/null 2>&1";
-  if (std::system(command.c_str()) != 0) {
-    throw std::runtime_error("gnuplot failed on " + script.string() +
-                             " (is Debian's gnuplot-nox installed? scripts/setup.sh installs it)");
-  }
+  write_file_atomically(script.string(), script_text(figure));
+  run_gnuplot(dir.empty() ? std::filesystem::path(".") : dir, figure.name + ".gp", script);
 }
 
 }  // namespace gearimpact::cli

@@ -32,8 +32,8 @@ RunPool::RunPool(unsigned threads)
     // A process or thread limit (ulimit -u, a cluster's cgroup) ends the start
     // here; the pool runs with the workers it got, and without any it cannot run.
     if (workers_.empty()) {
-      throw Error("cannot start a worker thread (" + std::string(e.what()) + "): " +
-                  std::to_string(threads_asked_) + " asked for");
+      throw Error("cannot start a worker thread (" + std::string(e.what()) +
+                  "): " + std::to_string(threads_asked_) + " asked for");
     }
   }
 }

@@ -20,13 +20,14 @@ double effective_mass_kg(double base_radius1_m, double inertia1_kg_m2, double ba
 }
 
 double inverse_effective_mass_per_kg(const GearPair& pair) {
-  return inverse_effective_mass_per_kg(base_radius(pair, Gear::one),
-                                       moment_of_inertia(pair, Gear::one),
-                                       base_radius(pair, Gear::two),
-                                       moment_of_inertia(pair, Gear::two));
+  return inverse_effective_mass_per_kg(
+      base_radius(pair, Gear::one), moment_of_inertia(pair, Gear::one),
+      base_radius(pair, Gear::two), moment_of_inertia(pair, Gear::two));
 }
 
-double effective_mass_kg(const GearPair& pair) { return 1.0 / inverse_effective_mass_per_kg(pair); }
+double effective_mass_kg(const GearPair& pair) {
+  return 1.0 / inverse_effective_mass_per_kg(pair);
+}
 
 double viscous_mesh_damping_n_s_per_m(double damping_ratio, double mesh_stiffness_n_per_m,
                                       double effective_mass_kg) {

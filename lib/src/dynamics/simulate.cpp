@@ -4,9 +4,9 @@
 #include <string>
 #include <utility>
 
+#include "gearimpact/case/schema.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/error.hpp"
-#include "gearimpact/case/schema.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "rk4.hpp"
 

@@ -1,18 +1,96 @@
 #include "gearimpact/io/atomic_file.hpp"
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <array>
+#include <atomic>
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <stdexcept>
 #include <vector>
+
+#include "gearimpact/error.hpp"
 
 namespace gearimpact {
 
+namespace {
+
+// The names of the temporary files being written, for the signal handler: a
+// fixed table of fixed buffers, since a handler may neither allocate nor lock.
+// A slot is claimed by compare-and-swap on `used` and its name is complete
+// before `ready` is set.
+constexpr std::size_t kSlots = 64;
+constexpr std::size_t kNameLength = 4096;
+struct Slot {
+  std::atomic<bool> used{false};
+  std::atomic<bool> ready{false};
+  std::array<char, kNameLength> name{};
+};
+std::array<Slot, kSlots> slots;
+
+// Registers `name` for removal on a signal; returns the slot, or kSlots when
+// the table is full or the name too long (the file is then only removed on
+// the error paths).
+std::size_t track(const char* name) {
+  const std::size_t length = std::strlen(name);
+  if (length >= kNameLength) return kSlots;
+  for (std::size_t i = 0; i < kSlots; ++i) {
+    bool expected = false;
+    if (slots[i].used.compare_exchange_strong(expected, true)) {
+      std::memcpy(slots[i].name.data(), name, length + 1);
+      slots[i].ready.store(true);
+      return i;
+    }
+  }
+  return kSlots;
+}
+
+void untrack(std::size_t slot) {
+  if (slot >= kSlots) return;
+  slots[slot].ready.store(false);
+  slots[slot].used.store(false);
+}
+
+extern "C" void remove_temporaries_and_reraise(int signal_number) {
+  for (Slot& slot : slots) {
+    if (slot.ready.load()) ::unlink(slot.name.data());
+  }
+  // The default action (termination by this signal) so that the parent sees
+  // how the process ended.
+  std::signal(signal_number, SIG_DFL);
+  std::raise(signal_number);
+}
+
+std::string reason() {
+  return std::strerror(errno);
+}
+
+}  // namespace
+
+void require_regular_or_absent(const std::string& path) {
+  struct stat status {};
+  if (::stat(path.c_str(), &status) != 0) {
+    if (errno == ENOENT) return;
+    throw Error("cannot use " + path + " as an output: " + reason());
+  }
+  if (!S_ISREG(status.st_mode)) {
+    const char* kind = S_ISDIR(status.st_mode)    ? "a directory"
+                       : S_ISCHR(status.st_mode)  ? "a character device"
+                       : S_ISBLK(status.st_mode)  ? "a block device"
+                       : S_ISFIFO(status.st_mode) ? "a FIFO"
+                       : S_ISSOCK(status.st_mode) ? "a socket"
+                                                  : "not a regular file";
+    throw Error("cannot write " + path + ": it is " + std::string(kind) +
+                ", and an output replaces only a regular file or makes a new one");
+  }
+}
+
 void write_file_atomically(const std::string& path, std::string_view text) {
+  require_regular_or_absent(path);
   const std::filesystem::path target(path);
   const std::filesystem::path dir =
       target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
@@ -25,14 +103,15 @@ void write_file_atomically(const std::string& path, std::string_view text) {
   name.push_back('\0');
   const int fd = mkstemp(name.data());
   if (fd < 0) {
-    throw std::runtime_error("cannot create a temporary file beside " + path + ": " +
-                             std::strerror(errno));
+    throw Error("cannot create a temporary file beside " + path + ": " + reason());
   }
-  const auto fail = [&](const char* what) {
-    const std::string reason = std::strerror(errno);
+  const std::size_t slot = track(name.data());
+  const auto fail = [&](const std::string& what) {
+    const std::string why = reason();
     ::close(fd);
-    std::remove(name.data());
-    throw std::runtime_error(std::string(what) + " " + path + ": " + reason);
+    ::unlink(name.data());
+    untrack(slot);
+    throw Error(what + " " + path + ": " + why);
   };
   // mkstemp creates the file private; an output is for everyone to read.
   if (::fchmod(fd, 0644) != 0) fail("cannot set the permissions of");
@@ -47,15 +126,37 @@ void write_file_atomically(const std::string& path, std::string_view text) {
   }
   if (::fsync(fd) != 0) fail("cannot flush");
   if (::close(fd) != 0) {
-    const std::string reason = std::strerror(errno);
-    std::remove(name.data());
-    throw std::runtime_error("cannot close " + path + ": " + reason);
+    const std::string why = reason();
+    ::unlink(name.data());
+    untrack(slot);
+    throw Error("cannot close " + path + ": " + why);
+  }
+  // Checked again: the target may have been replaced by a device or a folder
+  // while the text was written.
+  try {
+    require_regular_or_absent(path);
+  } catch (const Error&) {
+    ::unlink(name.data());
+    untrack(slot);
+    throw;
   }
   if (std::rename(name.data(), path.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
-    std::remove(name.data());
-    throw std::runtime_error("cannot rename onto " + path + ": " + reason);
+    const std::string why = reason();
+    ::unlink(name.data());
+    untrack(slot);
+    throw Error("cannot rename onto " + path + ": " + why);
   }
+  untrack(slot);
+}
+
+void remove_temporaries_on_signals() {
+  struct sigaction action {};
+  action.sa_handler = remove_temporaries_and_reraise;
+  sigemptyset(&action.sa_mask);
+  for (const int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+    ::sigaction(signal_number, &action, nullptr);
+  }
+  std::signal(SIGXFSZ, SIG_IGN);
 }
 
 }  // namespace gearimpact

@@ -16,8 +16,8 @@
 #include <utility>
 #include <vector>
 
-#include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/stiffness/table.hpp"
 
 namespace gearimpact {

@@ -1,4 +1,5 @@
-// Writing an output file so that a reader never sees half of it.
+// Writing an output file so that a reader never sees half of it, and so that
+// no output replaces what is not a regular file.
 #pragma once
 
 #include <string>
@@ -7,7 +8,22 @@
 namespace gearimpact {
 
 // Writes `text` to a temporary file in the directory of `path`, then renames it
-// onto `path`. Throws std::runtime_error naming the path on any failure.
+// onto `path`. Refuses, before writing, a `path` that exists and is not a
+// regular file (a device such as /dev/null, a FIFO, a directory, a socket):
+// the rename would replace the node itself. Throws Error naming the path on
+// any failure; the temporary file never survives a failure, nor SIGINT, SIGTERM
+// or SIGHUP once remove_temporaries_on_signals() has been called.
 void write_file_atomically(const std::string& path, std::string_view text);
+
+// Throws Error naming `path` unless it is absent or a regular file (a link to
+// one counts as one), so that a command can refuse an output before any work.
+void require_regular_or_absent(const std::string& path);
+
+// Installs handlers of SIGINT, SIGTERM and SIGHUP that remove the temporary
+// files of writes still under way and then end the process by the same signal,
+// and ignores SIGXFSZ so that a file-size limit (ulimit -f) makes a write fail
+// with an error instead of killing the process silently. For programs; a host
+// with handlers of its own (an interpreter) need not call it.
+void remove_temporaries_on_signals();
 
 }  // namespace gearimpact

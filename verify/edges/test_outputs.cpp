@@ -1,0 +1,131 @@
+// Outputs at the edges, through the program: a folder name never reaches a
+// shell, a device or FIFO is never replaced by an output, a failed write to
+// standard output is an error, and every refusal (the option parser's too)
+// exits 1 with one prefix. Devices are made with mknod in a temporary folder,
+// never the machine's own /dev/null or /dev/full.
+#include <doctest/doctest.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <sys/types.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
+#include "run_command.hpp"
+
+namespace fs = std::filesystem;
+using gearimpact::verify::CommandResult;
+using gearimpact::verify::run_command;
+
+namespace {
+
+std::string cli(const std::string& arguments) {
+  return std::string(GEARIMPACT_CLI) + " " + arguments;
+}
+
+// A fresh folder under the temporary directory, removed at the end of the test.
+struct Scratch {
+  fs::path dir;
+  Scratch() {
+    dir = fs::temp_directory_path() / ("gearimpact-edges-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+  }
+  ~Scratch() { fs::remove_all(dir); }
+};
+
+// A character device like /dev/null (1, 3) or /dev/full (1, 7) in `dir`;
+// false where this user may not make one.
+bool make_device(const fs::path& path, unsigned minor) {
+  return ::mknod(path.c_str(), S_IFCHR | 0666, makedev(1, minor)) == 0;
+}
+
+bool is_character_device(const fs::path& path) {
+  struct stat status {};
+  return ::stat(path.c_str(), &status) == 0 && S_ISCHR(status.st_mode);
+}
+
+// Single quotes for the shell that run_command uses to start the program.
+std::string single_quoted(const std::string& text) {
+  std::string quoted = "'";
+  for (char ch : text) quoted += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+  return quoted + "'";
+}
+
+}  // namespace
+
+TEST_CASE("an output folder's name never reaches a shell") {
+  Scratch scratch;
+  const fs::path marker = scratch.dir / "PWNED";
+  // $(...), a double quote and $HOME: each would change the command line of
+  // a shell that saw the name.
+  const fs::path out = scratch.dir / ("x$(touch " + marker.string() + ")\"$HOME");
+  const CommandResult r = run_command(
+      cli("sweep 1 --vary initial.w1 --from 2000 --to 3000 --points 2 --direction up --threads 1 "
+          "--set model.friction_coefficient=0 --set 'torque1.mean=3 N*m' "
+          "--set model.mesh_damping_ratio=0.05 --out " +
+          single_quoted(out.string())));
+  CHECK(r.exit_code == 0);
+  CHECK_FALSE(fs::exists(marker));
+  CHECK(fs::exists(out / "sweep.csv"));
+  // gnuplot ran in that folder and drew there (where it is installed, as on CI).
+  CHECK(fs::exists(out / "amplitude.png"));
+}
+
+TEST_CASE("an output never replaces a device or a FIFO") {
+  Scratch scratch;
+  const fs::path null_device = scratch.dir / "null";
+  if (!make_device(null_device, 3)) {
+    MESSAGE("skipped: this user cannot make a device node");
+    return;
+  }
+  const CommandResult r =
+      run_command(cli("simulate --case 1 --t-end 1ms --out " + null_device.string()));
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("gearimpact: error:") == 0);
+  CHECK(r.err.find(null_device.string()) != std::string::npos);
+  CHECK(r.err.find("character device") != std::string::npos);
+  CHECK(is_character_device(null_device));
+
+  const fs::path fifo = scratch.dir / "fifo";
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  const CommandResult f = run_command(cli("simulate --case 1 --t-end 1ms --out " + fifo.string()));
+  CHECK(f.exit_code == 1);
+  CHECK(f.err.find("FIFO") != std::string::npos);
+  struct stat status {};
+  REQUIRE(::stat(fifo.c_str(), &status) == 0);
+  CHECK(S_ISFIFO(status.st_mode));
+  // Nothing else was left in the folder: no temporary file beside the targets.
+  std::size_t entries = 0;
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(scratch.dir)) ++entries;
+  CHECK(entries == 2);
+}
+
+TEST_CASE("a failed write to standard output is an error") {
+  Scratch scratch;
+  const fs::path full_device = scratch.dir / "full";
+  if (!make_device(full_device, 7)) {
+    MESSAGE("skipped: this user cannot make a device node");
+    return;
+  }
+  for (const char* command : {"schema", "simulate --case 1 --t-end 1ms", "stiffness --points 50"}) {
+    CAPTURE(command);
+    const CommandResult r = run_command(cli(command) + " > " + full_device.string());
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find("gearimpact: error: cannot write standard output") != std::string::npos);
+  }
+}
+
+TEST_CASE("the option parser's refusals exit 1 with the program's prefix") {
+  for (const char* command :
+       {"simulate --bogus", "simulate --case", "sweep 1 --vary initial.w1", "no-such-command"}) {
+    CAPTURE(command);
+    const CommandResult r = run_command(cli(command));
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find("gearimpact: error:") == 0);
+  }
+  // Help is not a refusal.
+  CHECK(run_command(cli("--help")).exit_code == 0);
+  CHECK(run_command(cli("simulate --help")).exit_code == 0);
+}
