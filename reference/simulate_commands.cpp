@@ -12,13 +12,13 @@
 #include "case_flags.hpp"
 #include "commands.hpp"
 #include "gearimpact/batch/sweep_friction.hpp"
-#include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/case/schema.hpp"
 #include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/results.hpp"
-#include "gearimpact/case/schema.hpp"
 #include "gearimpact/paper/table1.hpp"
 
 namespace gearimpact::cli {
@@ -240,6 +240,14 @@ SimulationCase case_to_run(SimulateOptions& o, const CLI::App& command) {
 }
 
 void run_simulate(SimulateOptions& o, const CLI::App& command) {
+  if (command.get_option("--case-file")->count() > 0 && o.case_file.empty()) {
+    throw InputError("--case-file", "\"\"", "the path of a case file");
+  }
+  // Refused before the run, which may take minutes.
+  if (!o.out.empty()) {
+    require_output_file(o.out, o.case_file.empty() ? std::vector<std::string>{}
+                                                   : std::vector<std::string>{o.case_file});
+  }
   const SimulationCase c = case_to_run(o, command);
   RunControl control;
   control.keep_series = !o.out.empty();

@@ -129,3 +129,25 @@ TEST_CASE("the option parser's refusals exit 1 with the program's prefix") {
   CHECK(run_command(cli("--help")).exit_code == 0);
   CHECK(run_command(cli("simulate --help")).exit_code == 0);
 }
+
+TEST_CASE("an output that is the run's input, or in a missing folder, is refused before the run") {
+  Scratch scratch;
+  const fs::path case_file = scratch.dir / "case.toml";
+  fs::copy_file(fs::path(GEARIMPACT_PAPER_DATA_DIR) / "case1.toml", case_file);
+  const auto size_before = fs::file_size(case_file);
+  const CommandResult same = run_command(
+      cli("simulate --case-file " + case_file.string() + " --out " + case_file.string()));
+  CHECK(same.exit_code == 1);
+  CHECK(same.err.find("it is the input") != std::string::npos);
+  CHECK(fs::file_size(case_file) == size_before);
+
+  const fs::path missing = scratch.dir / "no-such-folder" / "series.csv";
+  const CommandResult folder =
+      run_command(cli("simulate --case 1 --t-end 50ms --out " + missing.string()));
+  CHECK(folder.exit_code == 1);
+  CHECK(folder.err.find("does not exist") != std::string::npos);
+
+  const CommandResult empty = run_command(cli("simulate --case-file ''"));
+  CHECK(empty.exit_code == 1);
+  CHECK(empty.err.find("--case-file") != std::string::npos);
+}

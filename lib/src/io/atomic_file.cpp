@@ -89,6 +89,27 @@ void require_regular_or_absent(const std::string& path) {
   }
 }
 
+void require_output_file(const std::string& path, const std::vector<std::string>& inputs) {
+  if (path.empty()) throw Error("an output path is empty");
+  require_regular_or_absent(path);
+  std::error_code error;
+  for (const std::string& input : inputs) {
+    if (std::filesystem::equivalent(path, input, error)) {
+      throw Error("cannot write " + path + ": it is the input " + input + " of this run");
+    }
+  }
+  const std::filesystem::path target(path);
+  const std::filesystem::path dir =
+      target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+  if (!std::filesystem::is_directory(dir, error)) {
+    throw Error("cannot write " + path + ": its folder " + dir.string() + " does not exist");
+  }
+  if (::access(dir.c_str(), W_OK) != 0) {
+    throw Error("cannot write " + path + ": its folder " + dir.string() + " cannot be written (" +
+                reason() + ")");
+  }
+}
+
 void write_file_atomically(const std::string& path, std::string_view text) {
   require_regular_or_absent(path);
   const std::filesystem::path target(path);

@@ -4,6 +4,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace gearimpact {
 
@@ -18,6 +19,13 @@ void write_file_atomically(const std::string& path, std::string_view text);
 // Throws Error naming `path` unless it is absent or a regular file (a link to
 // one counts as one), so that a command can refuse an output before any work.
 void require_regular_or_absent(const std::string& path);
+
+// Throws Error naming `path` unless a file can be written there without harm:
+// absent or a regular file (require_regular_or_absent), not the same file as
+// any of `inputs` (the case file a run reads, a shard a merge reads), and in
+// a folder that exists and may be written. For commands to call before any
+// work, so that a run is not lost to a bad output path.
+void require_output_file(const std::string& path, const std::vector<std::string>& inputs = {});
 
 // Installs handlers of SIGINT, SIGTERM and SIGHUP that remove the temporary
 // files of writes still under way and then end the process by the same signal,
