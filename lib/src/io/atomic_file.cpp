@@ -1,6 +1,8 @@
 #include "gearimpact/io/atomic_file.hpp"
 
 #include <fcntl.h>
+#include <pthread.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -24,6 +26,8 @@ namespace {
 // A slot is claimed by compare-and-swap on `used` and its name is complete
 // before `ready` is set.
 constexpr std::size_t kSlots = 64;
+// The signals whose handler removes the temporary files.
+constexpr std::array<int, 3> kTerminatingSignals{SIGINT, SIGTERM, SIGHUP};
 constexpr std::size_t kNameLength = 4096;
 struct Slot {
   std::atomic<bool> used{false};
@@ -49,7 +53,7 @@ std::size_t track(const char* name) {
   return kSlots;
 }
 
-void untrack(std::size_t slot) {
+void untrack(std::size_t slot) noexcept {
   if (slot >= kSlots) return;
   slots[slot].ready.store(false);
   slots[slot].used.store(false);
@@ -110,9 +114,9 @@ void require_output_file(const std::string& path, const std::vector<std::string>
   }
 }
 
-void write_file_atomically(const std::string& path, std::string_view text) {
-  require_regular_or_absent(path);
-  const std::filesystem::path target(path);
+AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
+  require_regular_or_absent(path_);
+  const std::filesystem::path target(path_);
   const std::filesystem::path dir =
       target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
   // A hidden sibling: same file system, so the rename is atomic.
@@ -122,59 +126,89 @@ void write_file_atomically(const std::string& path, std::string_view text) {
   const std::string pattern = (dir / hidden).string();
   std::vector<char> name(pattern.begin(), pattern.end());
   name.push_back('\0');
-  const int fd = mkstemp(name.data());
-  if (fd < 0) {
-    throw Error("cannot create a temporary file beside " + path + ": " + reason());
+  // The file is registered for the signal handler before a terminating
+  // signal may arrive: one between its creation and its registration would
+  // leave it behind.
+  sigset_t terminating, previous;
+  sigemptyset(&terminating);
+  for (const int signal_number : kTerminatingSignals) sigaddset(&terminating, signal_number);
+  pthread_sigmask(SIG_BLOCK, &terminating, &previous);
+  fd_ = mkstemp(name.data());
+  const int mkstemp_errno = errno;
+  if (fd_ >= 0) slot_ = track(name.data());
+  pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+  if (fd_ < 0) {
+    errno = mkstemp_errno;
+    throw Error("cannot create a temporary file beside " + path_ + ": " + reason());
   }
-  const std::size_t slot = track(name.data());
-  const auto fail = [&](const std::string& what) {
-    const std::string why = reason();
-    ::close(fd);
-    ::unlink(name.data());
-    untrack(slot);
-    throw Error(what + " " + path + ": " + why);
-  };
+  temporary_.assign(name.data());
   // mkstemp creates the file private; an output is for everyone to read.
-  if (::fchmod(fd, 0644) != 0) fail("cannot set the permissions of");
+  if (::fchmod(fd_, 0644) != 0) fail("cannot set the permissions of");
+}
+
+AtomicFile::~AtomicFile() {
+  discard();
+}
+
+void AtomicFile::discard() noexcept {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  if (!temporary_.empty()) ::unlink(temporary_.c_str());
+  temporary_.clear();
+  untrack(slot_);
+  slot_ = AtomicFile::kUntracked;
+}
+
+void AtomicFile::fail(const char* what) {
+  const std::string why = reason();
+  discard();
+  throw Error(std::string(what) + " " + path_ + ": " + why);
+}
+
+void AtomicFile::append(std::string_view text) {
+  if (fd_ < 0) throw Error("cannot write " + path_ + ": the file is already closed");
   std::size_t written = 0;
   while (written < text.size()) {
-    const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
+    const ssize_t n = ::write(fd_, text.data() + written, text.size() - written);
     if (n < 0) {
       if (errno == EINTR) continue;
       fail("cannot write");
     }
     written += static_cast<std::size_t>(n);
   }
-  if (::fsync(fd) != 0) fail("cannot flush");
-  if (::close(fd) != 0) {
-    const std::string why = reason();
-    ::unlink(name.data());
-    untrack(slot);
-    throw Error("cannot close " + path + ": " + why);
-  }
+}
+
+void AtomicFile::commit() {
+  if (fd_ < 0) throw Error("cannot write " + path_ + ": the file is already closed");
+  if (::fsync(fd_) != 0) fail("cannot flush");
+  const int fd = fd_;
+  fd_ = -1;
+  if (::close(fd) != 0) fail("cannot close");
   // Checked again: the target may have been replaced by a device or a folder
   // while the text was written.
   try {
-    require_regular_or_absent(path);
+    require_regular_or_absent(path_);
   } catch (const Error&) {
-    ::unlink(name.data());
-    untrack(slot);
+    discard();
     throw;
   }
-  if (std::rename(name.data(), path.c_str()) != 0) {
-    const std::string why = reason();
-    ::unlink(name.data());
-    untrack(slot);
-    throw Error("cannot rename onto " + path + ": " + why);
-  }
-  untrack(slot);
+  if (std::rename(temporary_.c_str(), path_.c_str()) != 0) fail("cannot rename onto");
+  temporary_.clear();
+  untrack(slot_);
+  slot_ = AtomicFile::kUntracked;
+}
+
+void write_file_atomically(const std::string& path, std::string_view text) {
+  AtomicFile file(path);
+  file.append(text);
+  file.commit();
 }
 
 void remove_temporaries_on_signals() {
   struct sigaction action {};
   action.sa_handler = remove_temporaries_and_reraise;
   sigemptyset(&action.sa_mask);
-  for (const int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+  for (const int signal_number : kTerminatingSignals) {
     ::sigaction(signal_number, &action, nullptr);
   }
   std::signal(SIGXFSZ, SIG_IGN);

@@ -6,19 +6,24 @@
 
 namespace gearimpact {
 
-std::string series_csv(const std::vector<SeriesRow>& rows) {
-  std::string out =
-      "t_s,theta1_rad,theta2_rad,w1_rad_s,w2_rad_s,s_m,delta_m,region,pairs,normal_force_N,"
-      "friction_force_N\n";
-  out.reserve(out.size() + rows.size() * 220);
+std::string series_csv_header() {
+  return "t_s,theta1_rad,theta2_rad,w1_rad_s,w2_rad_s,s_m,delta_m,region,pairs,normal_force_N,"
+         "friction_force_N\n";
+}
+
+void append_series_row(std::string& out, const SeriesRow& r) {
   char line[512];
-  for (const SeriesRow& r : rows) {
-    const int n = std::snprintf(line, sizeof line,
-                                "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d,%d,%.17g,%.17g\n",
-                                r.t_s, r.theta1_rad, r.theta2_rad, r.w1_rad_s, r.w2_rad_s, r.s_m,
-                                r.delta_m, r.region, r.pairs, r.normal_force_n, r.friction_force_n);
-    out.append(line, static_cast<std::size_t>(n));
-  }
+  const int n = std::snprintf(line, sizeof line,
+                              "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d,%d,%.17g,%.17g\n",
+                              r.t_s, r.theta1_rad, r.theta2_rad, r.w1_rad_s, r.w2_rad_s, r.s_m,
+                              r.delta_m, r.region, r.pairs, r.normal_force_n, r.friction_force_n);
+  out.append(line, static_cast<std::size_t>(n));
+}
+
+std::string series_csv(const std::vector<SeriesRow>& rows) {
+  std::string out = series_csv_header();
+  out.reserve(out.size() + rows.size() * 220);
+  for (const SeriesRow& r : rows) append_series_row(out, r);
   return out;
 }
 

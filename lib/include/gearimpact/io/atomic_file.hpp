@@ -2,6 +2,7 @@
 // no output replaces what is not a regular file.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -15,6 +16,36 @@ namespace gearimpact {
 // any failure; the temporary file never survives a failure, nor SIGINT, SIGTERM
 // or SIGHUP once remove_temporaries_on_signals() has been called.
 void write_file_atomically(const std::string& path, std::string_view text);
+
+// An output written in pieces, for one too long to hold in memory (a time
+// series of minutes): the pieces go to a hidden temporary file beside `path`,
+// which commit() renames onto it. The same guarantees as write_file_atomically;
+// a file destroyed before commit() (an exception, an early return) is removed.
+class AtomicFile {
+ public:
+  // Refuses a `path` that exists and is not a regular file; throws Error.
+  explicit AtomicFile(std::string path);
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+
+  // Throws Error naming the path when the write fails or falls short.
+  void append(std::string_view text);
+  // Flushes to disk and renames onto the path; throws Error naming it.
+  void commit();
+
+  // The slot of a file not (or no longer) registered for removal on a signal.
+  static constexpr std::size_t kUntracked = static_cast<std::size_t>(-1);
+
+ private:
+  void discard() noexcept;
+  [[noreturn]] void fail(const char* what);
+
+  std::string path_;
+  std::string temporary_;
+  int fd_ = -1;
+  std::size_t slot_ = kUntracked;
+};
 
 // Throws Error naming `path` unless it is absent or a regular file (a link to
 // one counts as one), so that a command can refuse an output before any work.

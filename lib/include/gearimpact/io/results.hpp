@@ -18,6 +18,10 @@ namespace gearimpact {
 
 // t_s,theta1_rad,theta2_rad,w1_rad_s,w2_rad_s,s_m,delta_m,region,pairs,normal_force_N,friction_force_N
 std::string series_csv(const std::vector<SeriesRow>& rows);
+// The same in pieces, for a series streamed to its file as the run goes: the
+// header line, and one row appended to `out`.
+std::string series_csv_header();
+void append_series_row(std::string& out, const SeriesRow& row);
 // The summary as a JSON object.
 std::string summary_json(const SimulationSummary& summary);
 // Fig. 7: f,ratio_case1,ratio_case2,... (friction loss / damping loss).
