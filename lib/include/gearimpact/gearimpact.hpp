@@ -2,6 +2,7 @@
 #pragma once
 
 #include "gearimpact/batch/pool.hpp"
+#include "gearimpact/batch/steady_sweep.hpp"
 #include "gearimpact/batch/sweep_friction.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/contact/contact.hpp"
@@ -15,6 +16,7 @@
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/results.hpp"
+#include "gearimpact/io/sweep_files.hpp"
 #include "gearimpact/case/schema.hpp"
 #include "gearimpact/case/units.hpp"
 #include "gearimpact/numerics/quadrature.hpp"
