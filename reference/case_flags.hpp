@@ -1,9 +1,31 @@
-// The command-line flags that set keys of the case schema, shared by
-// `simulate`, `sweep-friction` and `schema --flags` (the table in
-// docs/case-files.md).
+// The command-line flags that set keys of the case schema, shared by every
+// command that reads a case and by `schema --flags` (the table in
+// docs/case-files.md), and CaseOptions, which reads them (and --set) through
+// the schema's rows.
 #pragma once
 
+#include <CLI/CLI.hpp>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/error.hpp"
+
 namespace gearimpact::cli {
+
+// The commands a flag of kCaseFlags belongs to, one bit each.
+enum CaseCommand : unsigned {
+  kSimulate = 1u << 0,
+  kSweepFriction = 1u << 1,
+  kSweep = 1u << 2,
+  kStiffness = 1u << 3,
+  kEnergyRatios = 1u << 4,
+  kMeshStiffness = 1u << 5,
+};
+
+// "simulate, sweep-friction": the commands of a mask, in the order above.
+std::string command_names(unsigned commands);
 
 // A flag that sets one key of the case. Its value is read and checked by the
 // key's schema row (a plain number is SI, "20 ms" carries its unit); the
@@ -12,24 +34,32 @@ namespace gearimpact::cli {
 struct CaseFlag {
   const char* flag;
   const char* key;
-  bool on_sweep;  // also a flag of sweep-friction, which sets f itself and runs RK4
+  // CaseCommand bits: sweep-friction sets f itself and runs RK4, the stiffness
+  // commands read only the stiffness model's keys.
+  unsigned commands;
   const char* switch_value = nullptr;
 };
 
+inline constexpr unsigned kBothSimulations = kSimulate | kSweepFriction;
 inline constexpr CaseFlag kCaseFlags[] = {
-    {"--friction", "model.friction_coefficient", false},
-    {"--dt", "integrator.step", true},
-    {"--t-end", "integrator.end_time", true},
-    {"--integrator", "integrator.kind", false},
-    {"--rtol", "integrator.relative_tolerance", false},
-    {"--every", "integrator.output_every", false},
-    {"--damping-form", "model.damping_form", true},
-    {"--damping-stiffness", "model.damping_stiffness", true},
-    {"--restitution-coefficient", "model.restitution_coefficient", true},
-    {"--restitution-exponent", "model.restitution_exponent", true},
-    {"--speed-unit", "model.restitution_speed_unit", true},
-    {"--coast-phase", "model.coast_phase", true},
-    {"--flipped-moment", "model.moment_sign", true, "flipped"},
+    {"--friction", "model.friction_coefficient", kSimulate},
+    {"--dt", "integrator.step", kBothSimulations},
+    {"--t-end", "integrator.end_time", kBothSimulations},
+    {"--integrator", "integrator.kind", kSimulate},
+    {"--rtol", "integrator.relative_tolerance", kSimulate},
+    {"--every", "integrator.output_every", kSimulate},
+    {"--damping-form", "model.damping_form", kBothSimulations},
+    {"--damping-stiffness", "model.damping_stiffness", kBothSimulations},
+    {"--restitution-coefficient", "model.restitution_coefficient", kBothSimulations},
+    {"--restitution-exponent", "model.restitution_exponent", kBothSimulations},
+    {"--speed-unit", "model.restitution_speed_unit", kBothSimulations},
+    {"--coast-phase", "model.coast_phase", kBothSimulations},
+    {"--flipped-moment", "model.moment_sign", kBothSimulations | kStiffness | kEnergyRatios,
+     "flipped"},
+    {"--method", "model.stiffness_method", kStiffness | kEnergyRatios | kMeshStiffness},
+    {"--model", "model.stiffness_model", kStiffness | kMeshStiffness},
+    {"--mesh-stiffness", "model.mesh_stiffness", kSweep},
+    {"--damping-update", "model.damping_update", kSweep},
 };
 
 // Values the command line used to spell otherwise than case files; they are
@@ -47,6 +77,69 @@ inline constexpr OldSpelling kOldSpellings[] = {
     {"model.restitution_speed_unit", "mm/s", "1 mm/s"},
     {"model.restitution_speed_unit", "in/s", "1 in/s"},
     {"model.restitution_speed_unit", "m/s", "1 m/s"},
+};
+
+// How --set gives a numeric key its value: as a case file does (set_field),
+// or as a swept value (apply_sweep_value: a speed moves the other speed, a
+// mean torque the other mean torque).
+enum class SetNumbers { as_case_file, as_swept_value };
+
+// The options that set case keys on one command: its flags of kCaseFlags, the
+// paper's reading of Table 1 (--torque-unit, --case3-frequency) and --set,
+// each read by the key's schema row.
+class CaseOptions {
+ public:
+  // The flags of kCaseFlags whose commands include `command_bit`.
+  void add_flags(CLI::App* command, CaseCommand command_bit);
+  void add_reading(CLI::App* command);
+  void add_set(CLI::App* command, const std::string& help,
+               SetNumbers numbers = SetNumbers::as_case_file);
+
+  bool reading_given() const;
+  const char* reading_flag() const;
+  const std::string& reading_text() const;
+
+  // Table 1's case under the reading of --torque-unit and --case3-frequency,
+  // the library's defaults where they are not given.
+  SimulationCase paper(int number) const;
+
+  // Sets the keys of the given options on `c`, flags in table order, then
+  // --set in command-line order; the keys so set are remembered with the
+  // option that set them, to name it in later errors. A key may be set by
+  // one option only.
+  void apply(SimulationCase& c);
+
+  // Runs `work`; an InputError about a key an option set names that option.
+  template <typename Work>
+  void naming_options(Work work) const {
+    try {
+      work();
+    } catch (const InputError& e) {
+      const auto found = given_.find(e.field());
+      if (found == given_.end()) throw;
+      throw InputError(found->second.option, found->second.text, e.allowed());
+    }
+  }
+
+ private:
+  void set(SimulationCase& c, const std::string& key, const std::string& text,
+           const std::string& option, bool swept_value);
+
+  std::vector<CaseFlag> flags_;
+  std::vector<CLI::Option*> options_;
+  std::map<std::string, std::string> texts_;
+  CLI::Option* torque_unit_ = nullptr;
+  std::string torque_unit_text_;
+  CLI::Option* case3_frequency_ = nullptr;
+  std::string case3_frequency_text_;
+  std::vector<std::string> sets_;
+  SetNumbers set_numbers_ = SetNumbers::as_case_file;
+  // section.key -> the option that set it and its text as typed.
+  struct Given {
+    std::string option;
+    std::string text;
+  };
+  std::map<std::string, Given> given_;
 };
 
 }  // namespace gearimpact::cli

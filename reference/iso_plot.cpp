@@ -1,50 +1,13 @@
 #include "iso_plot.hpp"
 
-#include <cmath>
 #include <cstdio>
 #include <string>
 
-#include "gearimpact/dynamics/mesh.hpp"
-#include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
-#include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/steady/iso_resonance.hpp"
-#include "gearimpact/stiffness/iso6336.hpp"
 
 namespace gearimpact::cli {
-
-namespace {
-
-std::string number(double v) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", v);
-  return buffer;
-}
-
-}  // namespace
-
-std::optional<IsoScale> iso_scale(const SimulationCase& c, const StiffnessTable& table) {
-  const GearPair& g = c.gears;
-  const double r1 = pitch_radius(g, Gear::one);
-  const double line_load = std::fabs(mean_torque_n_m(c.torque1, "torque1")) / (r1 * g.face_width_m);
-  if (!(line_load > 0.0)) return std::nullopt;
-  // d_m1 = (d_a1 + d_f1) / 2, the tip and root circles of the rack-cut pinion.
-  const RackGearGeometry pinion = rack_gear_pair_geometry(g).gear1;
-  const double mean_diameter1 = pinion.tip_radius_m + pinion.root_radius_m;
-  const double m_red =
-      iso_reduced_mass_kg_per_m(g.density_kg_m3, static_cast<double>(g.teeth2) / g.teeth1,
-                                mean_diameter1, 2.0 * base_radius(g, Gear::one));
-  const Iso6336Stiffness iso = iso6336_method_b(iso6336_pair(g, 0.0));
-  IsoScale scale;
-  scale.resonance_speed_rad_s = iso_resonance_speed_rad_per_s(
-      g.teeth1, mean_mesh_stiffness_n_m(c, table) / g.face_width_m, m_red);
-  scale.resonance_speed_iso_stiffness_rad_s =
-      iso_resonance_speed_rad_per_s(g.teeth1, iso.mesh_stiffness_n_per_m2, m_red);
-  scale.contact_ratio = iso.transverse_contact_ratio;
-  scale.line_load_n_m = line_load;
-  return scale;
-}
 
 void write_iso_kv_band(const std::filesystem::path& file, const IsoScale& scale, double n_max) {
   std::string csv = "iso_resonance_ratio,iso_kv_perfect_gears\n";
@@ -52,8 +15,8 @@ void write_iso_kv_band(const std::filesystem::path& file, const IsoScale& scale,
   for (int i = 0; i <= intervals; ++i) {
     const double n = n_max * i / intervals;
     csv +=
-        number(n) + "," +
-        number(
+        format_number(n) + "," +
+        format_number(
             iso_dynamic_factor_perfect_gears(n, scale.contact_ratio, scale.line_load_n_m).value) +
         "\n";
   }
@@ -64,7 +27,7 @@ Figure dynamic_factor_vs_iso_n(const std::string& name, const IsoScale& scale,
                                const std::string& data, int direction_column, int n_column,
                                int df_column, const std::string& band) {
   const std::string to_iso_n =
-      number(scale.resonance_speed_rad_s / scale.resonance_speed_iso_stiffness_rad_s);
+      format_number(scale.resonance_speed_rad_s / scale.resonance_speed_iso_stiffness_rad_s);
   char load[96];
   std::snprintf(load, sizeof load, "{/Symbol e}_{/Symbol a} %.3g, F_t/b %.3g N/mm",
                 scale.contact_ratio, scale.line_load_n_m * 1e-3);

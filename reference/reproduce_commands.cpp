@@ -15,6 +15,7 @@
 #include "commands.hpp"
 #include "data_location.hpp"
 #include "gearimpact/io/atomic_file.hpp"
+#include "program.hpp"
 #include "reproduce.hpp"
 
 namespace gearimpact::cli {
@@ -67,11 +68,14 @@ std::string software_versions() {
   return text;
 }
 
-void reproduce(const ReproduceOptions& options) {
+}  // namespace
+
+std::filesystem::path reproduce(const std::filesystem::path& out,
+                                const std::string& paper_data_option) {
   const auto started = std::chrono::steady_clock::now();
-  const std::filesystem::path paper_data = paper_data_dir(options.paper_data);
+  const std::filesystem::path paper_data = paper_data_dir(paper_data_option);
   RunPool pool;
-  ReproduceContext context{options.out, paper_data, &pool};
+  ReproduceContext context{out, paper_data, &pool};
   std::filesystem::create_directories(context.out);
   struct Part {
     const char* what;
@@ -123,9 +127,8 @@ void reproduce(const ReproduceOptions& options) {
   write_file_atomically((context.out / "REPORT.md").string(), report);
   std::cerr << "reproduce: wrote " << (context.out / "REPORT.md").string() << " in "
             << number(wall_s, 3) << " s\n";
+  return context.out / "REPORT.md";
 }
-
-}  // namespace
 
 void register_reproduce_commands(CLI::App& app) {
   auto options = std::make_shared<ReproduceOptions>();
@@ -135,7 +138,7 @@ void register_reproduce_commands(CLI::App& app) {
   command->add_option("--paper-data", options->paper_data,
                       "folder of the paper's statements (default: $GEARIMPACT_PAPER_DATA, else "
                       "share/gearimpact/paper_data beside the program's folder)");
-  command->callback([options] { reproduce(*options); });
+  command->callback([options] { reproduce(options->out, options->paper_data); });
 }
 
 }  // namespace gearimpact::cli

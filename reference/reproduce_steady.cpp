@@ -1,11 +1,13 @@
 // The steady state of the loaded pair (STEADY-STATE.md sections 3.5 and 4): the paper's pair with
 // its time-varying stiffness, swept in w1 up and down through ISO's N = 1/2, 1 and 2.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "gearimpact/batch/steady_sweep.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/io/atomic_file.hpp"
@@ -105,23 +107,24 @@ ReportSection reproduce_steady_state(const ReproduceContext& context) {
   const double resonance_n =
       natural_frequency_rad_s(base, *table) / (base.gears.teeth1 * iso.resonance_speed_rad_s);
   // N from 0.3 to 2.3 in steps of 0.05: N = 1/2, 1 and 2 are grid points.
-  constexpr int points = 41;
-  const std::vector<double> grid =
-      sweep_grid(0.3 * iso.resonance_speed_rad_s, 2.3 * iso.resonance_speed_rad_s, points, "from",
-                 "to", "points");
-  const SteadySettings settings;
-  std::vector<std::future<std::vector<SweepPointResult>>> lines;
-  for (const SweepDirection d : {SweepDirection::up, SweepDirection::down}) {
-    lines.push_back(context.pool->run([&, d] {
-      return sweep_line(base, [&](const SimulationCase&) { return table; }, "initial.w1", grid, d,
-                        0, settings, {});
-    }));
+  SteadySweepSpec spec;
+  spec.base = base;
+  spec.vary = "initial.w1";
+  spec.from_si = 0.3 * iso.resonance_speed_rad_s;
+  spec.to_si = 2.3 * iso.resonance_speed_rad_s;
+  spec.points = 41;
+  const SteadySweep sweep = run_steady_sweep(spec, *context.pool);
+  // Each direction in the order it ran: up in ascending w1, down in descending.
+  std::vector<SweepPointResult> up;
+  std::vector<SweepPointResult> down;
+  for (const SweepPointResult& r : sweep.rows) {
+    (r.direction == SweepDirection::up ? up : down).push_back(r);
   }
-  const std::vector<SweepPointResult> up = lines[0].get();
-  const std::vector<SweepPointResult> down = lines[1].get();
+  std::reverse(down.begin(), down.end());
+  const std::size_t points = static_cast<std::size_t>(spec.points);
   // Both in ascending w1, as the grid.
-  std::vector<Row> up_rows(grid.size());
-  std::vector<Row> down_rows(grid.size());
+  std::vector<Row> up_rows(points);
+  std::vector<Row> down_rows(points);
   std::string csv =
       "direction,index,w1_rad_s,iso_resonance_ratio,iso_resonance_ratio_iso_stiffness,regime,"
       "period,dte_amplitude_m,dynamic_factor,impacts_drive_per_period,impacts_coast_per_period\n";

@@ -16,8 +16,8 @@ std::string flags_markdown() {
   for (const CaseFlag& flag : kCaseFlags) {
     std::string key = "`" + std::string(flag.key) + "`";
     if (flag.switch_value != nullptr) key += " = \"" + std::string(flag.switch_value) + "\"";
-    table += "| `" + std::string(flag.flag) + "` | " + key + " | " +
-             (flag.on_sweep ? "simulate, sweep-friction" : "simulate") + " |\n";
+    table += "| `" + std::string(flag.flag) + "` | " + key + " | " + command_names(flag.commands) +
+             " |\n";
   }
   return table;
 }

@@ -31,23 +31,6 @@ constexpr const char* kSweepTo = "0.09";
 constexpr const char* kSweepStep = "0.01";
 constexpr long long kMostThreads = 1024;
 
-std::string help_of(const CaseFlag& flag) {
-  const Field& field = *find_field(flag.key);
-  if (flag.switch_value != nullptr) {
-    for (const ChoiceName& choice : field.choices) {
-      if (choice.name == flag.switch_value) {
-        return field.name() + " = \"" + flag.switch_value + "\": " + std::string(choice.meaning);
-      }
-    }
-  }
-  std::string help = field.help + " [" + field.name() + ": " + allowed_text(field);
-  if (field.kind == FieldKind::quantity) {
-    help += "; a plain number in " + std::string(units_of(field.dimension).front().symbol) +
-            " or with a unit: " + allowed_units(field.dimension);
-  }
-  return help + "]";
-}
-
 long long parse_integer_flag(const std::string& flag, const std::string& text, long long lower,
                              long long upper, const std::string& meaning) {
   long long value = 0;
@@ -71,136 +54,6 @@ double parse_number_flag(const std::string& flag, const std::string& text,
   }
   return value;
 }
-
-// The options that set case keys: the flags of kCaseFlags a command has,
-// the paper's reading of Table 1 (--case only) and, on `simulate`, --set.
-class CaseOptions {
- public:
-  // The flags of kCaseFlags a command has: all on `simulate`, those marked
-  // on_sweep on sweep-friction.
-  void add_flags(CLI::App* command, bool sweep) {
-    for (const CaseFlag& flag : kCaseFlags) {
-      if (sweep && !flag.on_sweep) continue;
-      flags_.push_back(flag);
-      if (flag.switch_value != nullptr) {
-        options_.push_back(command->add_flag(std::string(flag.flag))->description(help_of(flag)));
-      } else {
-        options_.push_back(command->add_option(flag.flag, texts_[flag.flag], help_of(flag)));
-      }
-    }
-  }
-  void add_reading(CLI::App* command) {
-    torque_unit_ =
-        command->add_option("--torque-unit", torque_unit_text_, "unit of Table 1's torques")
-            ->check(CLI::IsMember({"kgf-mm", "n-mm"}));
-    case3_frequency_ = command->add_option(
-        "--case3-frequency", case3_frequency_text_,
-        "case 3 forcing W of T1 = 200 sin(W t), rad/s or with a unit (1000 the alternative "
-        "reading) [as torque1.angular_frequency: " +
-            allowed_text(*find_field("torque1.angular_frequency")) + "]");
-  }
-  void add_set(CLI::App* command) {
-    command->add_option("--set", sets_,
-                        "section.key=value: set any key of the case schema (`gearimpact schema` "
-                        "lists them); repeatable");
-  }
-
-  bool reading_given() const { return torque_unit_->count() > 0 || case3_frequency_->count() > 0; }
-  const char* reading_flag() const {
-    return torque_unit_->count() > 0 ? "--torque-unit" : "--case3-frequency";
-  }
-  const std::string& reading_text() const {
-    return torque_unit_->count() > 0 ? torque_unit_text_ : case3_frequency_text_;
-  }
-
-  // Table 1's case under the reading of --torque-unit and --case3-frequency,
-  // the library's defaults where they are not given.
-  SimulationCase paper(int number) const {
-    PaperReading reading;
-    if (torque_unit_->count() > 0 && torque_unit_text_ == "n-mm") {
-      reading.torque_unit = TorqueUnit::n_mm;
-    }
-    if (case3_frequency_->count() > 0) {
-      reading.case3_angular_frequency_rad_s = parse_value(
-          *find_field("torque1.angular_frequency"), case3_frequency_text_, "--case3-frequency");
-    }
-    return paper_case(number, reading);
-  }
-
-  // Sets the keys of the given options on `c`, flags in table order, then
-  // --set in command-line order; the keys so set are remembered with the
-  // option that set them, to name it in later errors.
-  void apply(SimulationCase& c) {
-    given_.clear();
-    for (std::size_t i = 0; i < flags_.size(); ++i) {
-      if (options_[i]->count() == 0) continue;
-      const CaseFlag& flag = flags_[i];
-      set(c, flag.key, flag.switch_value != nullptr ? flag.switch_value : texts_.at(flag.flag),
-          flag.flag);
-    }
-    for (const std::string& assignment : sets_) {
-      const std::size_t equals = assignment.find('=');
-      if (equals == std::string::npos) {
-        throw InputError("--set", assignment, "section.key=value, e.g. integrator.end_time=20ms");
-      }
-      const std::string key = assignment.substr(0, equals);
-      if (find_field(key) == nullptr) {
-        throw InputError("--set", assignment,
-                         "section.key=value with a key of the case schema (`gearimpact schema` "
-                         "lists them)");
-      }
-      set(c, key, assignment.substr(equals + 1), "--set " + key);
-    }
-  }
-
-  // Runs `work`; an InputError about a key an option set names that option.
-  template <typename Work>
-  void naming_options(Work work) const {
-    try {
-      work();
-    } catch (const InputError& e) {
-      const auto found = given_.find(e.field());
-      if (found == given_.end()) throw;
-      throw InputError(found->second.option, found->second.text, e.allowed());
-    }
-  }
-
- private:
-  void set(SimulationCase& c, const std::string& key, const std::string& text,
-           const std::string& option) {
-    const auto [previous, fresh] = given_.emplace(key, Given{option, text});
-    if (!fresh) {
-      throw InputError(
-          option, text,
-          "one option per key: " + key + " is already set by " + previous->second.option);
-    }
-    std::string value = text;
-    for (const OldSpelling& old : kOldSpellings) {
-      if (key == old.key && text == old.old_text) {
-        std::cerr << "gearimpact: note: " << option << " " << old.old_text
-                  << " is the old spelling of \"" << old.text
-                  << "\", the name case files use; it still works\n";
-        value = old.text;
-      }
-    }
-    set_field(c, key, value, option);
-  }
-
-  std::vector<CaseFlag> flags_;
-  std::vector<CLI::Option*> options_;
-  std::map<std::string, std::string> texts_;
-  CLI::Option* torque_unit_ = nullptr;
-  std::string torque_unit_text_;
-  CLI::Option* case3_frequency_ = nullptr;
-  std::string case3_frequency_text_;
-  std::vector<std::string> sets_;
-  // section.key -> the option that set it and its text as typed.
-  struct Given {
-    std::string option;
-    std::string text;
-  };
-  std::map<std::string, Given> given_;
-};
 
 struct SimulateOptions {
   int case_number = 1;
@@ -299,9 +152,11 @@ void register_simulate_commands(CLI::App& app) {
                    "a case file (TOML, see docs/case-files.md); other options override it")
       ->excludes(paper);
   simulate->add_option("--out", options->out, "time series CSV file (written atomically)");
-  options->keys.add_flags(simulate, false);
+  options->keys.add_flags(simulate, kSimulate);
   options->keys.add_reading(simulate);
-  options->keys.add_set(simulate);
+  options->keys.add_set(simulate,
+                        "section.key=value: set any key of the case schema (`gearimpact schema` "
+                        "lists them); repeatable");
   simulate->callback([options, simulate] { run_simulate(*options, *simulate); });
 
   auto sweep_options = std::make_shared<SweepOptions>();
@@ -317,7 +172,7 @@ void register_simulate_commands(CLI::App& app) {
           "--threads", sweep_options->threads,
           "threads, an integer in [0, " + std::to_string(kMostThreads) + "] (0: all cores)")
       ->capture_default_str();
-  sweep_options->keys.add_flags(sweep, true);
+  sweep_options->keys.add_flags(sweep, kSweepFriction);
   sweep_options->keys.add_reading(sweep);
   sweep->callback([sweep_options] { run_sweep(*sweep_options); });
 }

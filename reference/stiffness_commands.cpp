@@ -5,7 +5,9 @@
 #include <string>
 #include <vector>
 
+#include "case_flags.hpp"
 #include "commands.hpp"
+#include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/io/case_file.hpp"
@@ -14,6 +16,7 @@
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "gearimpact/stiffness/time_varying_stiffness.hpp"
+#include "program.hpp"
 
 namespace gearimpact::cli {
 
@@ -21,51 +24,37 @@ namespace {
 
 struct StiffnessOptions {
   int points = 201;
-  std::string method = "gsl";
-  std::string model;  // empty: the case file's, else yang-lin-1987
   std::string x_values;
-  bool flipped_moment = false;
   std::string case_file;
+  // --method, --model, --flipped-moment: keys of the case's stiffness model.
+  CaseOptions keys;
   int samples = 200;
   bool summary = false;
   double helix_angle_deg = 0.0;
 };
 
-// The gear pair and the stiffness model: the paper's, or a case file's; the
-// command-line options change the model either way.
+// The gear pair and the stiffness model: the paper's pair with the default model, or a case
+// file's; the options that set the model's keys change it either way.
 struct PairAndModel {
   GearPair pair;
   StiffnessModel model;
 };
 
-PairAndModel pair_and_model(const StiffnessOptions& options, const CLI::App& command) {
-  PairAndModel chosen{paper_gear_pair(), {}};
-  if (!options.case_file.empty()) {
-    const SimulationCase c = read_case_file(options.case_file);
-    chosen = {c.gears, c.model.stiffness};
-  }
-  const CLI::Option* method = command.get_option_no_throw("--method");
-  if (options.case_file.empty() || (method != nullptr && method->count() > 0)) {
-    chosen.model = with_method(chosen.model, options.method, "--method");
-  }
-  if (!options.model.empty()) chosen.model.kind = parse_stiffness_model(options.model, "--model");
-  if (options.flipped_moment) chosen.model.moment_sign = AxialMomentSign::flipped;
-  validate(chosen.pair);
-  return chosen;
+PairAndModel pair_and_model(StiffnessOptions& options) {
+  SimulationCase c;
+  c.gears = paper_gear_pair();
+  if (!options.case_file.empty()) c = read_case_file(options.case_file);
+  options.keys.apply(c);
+  validate(c.gears);
+  return {c.gears, c.model.stiffness};
 }
 
 // Prints the warning to stderr when the model's foundation fit is
-// extrapolated for this pair, and says whether it is.
-bool warn_if_extrapolated(const GearPair& pair, const StiffnessModel& model) {
-  if (!provides(model.kind, Term::foundation) || !model.terms.has(Term::foundation)) return false;
-  // The fit's inputs h_f and theta_f are the gears' own, the same at every
-  // position.
-  const bool extrapolated =
-      mesh_stiffness(pair, contact_segment(pair).start_m, model).foundation_extrapolated;
+// extrapolated for this pair.
+void warn_if(bool extrapolated) {
   if (extrapolated) {
     std::fprintf(stderr, "gearimpact: warning: %s\n", foundation_extrapolation_warning().c_str());
   }
-  return extrapolated;
 }
 
 // --x-values X1,X2,...: metres on the contact segment.
@@ -93,34 +82,27 @@ std::vector<double> parse_x_values(const std::string& text, const GearPair& pair
   return values;
 }
 
-void print_stiffness_table(const StiffnessOptions& options, const CLI::App& command) {
+void print_stiffness_table(StiffnessOptions& options, const CLI::App& command) {
   if (options.points < 2) throw InputError("--points", std::to_string(options.points), ">= 2");
-  const auto [pair, model] = pair_and_model(options, command);
+  const auto [pair, model] = pair_and_model(options);
   const std::vector<double> x = command.get_option("--x-values")->count() > 0
                                     ? parse_x_values(options.x_values, pair)
                                     : contact_positions(pair, options.points);
   const std::string csv = stiffness_csv(pair, model, x);
-  warn_if_extrapolated(pair, model);
+  warn_if(foundation_extrapolated(pair, model));
   std::fputs(csv.c_str(), stdout);
 }
 
-void print_mesh_stiffness(const StiffnessOptions& options, const CLI::App& command) {
-  const auto [pair, model] = pair_and_model(options, command);
-  const TimeVaryingMeshStiffness tvms =
-      time_varying_mesh_stiffness(pair, model, static_cast<std::size_t>(options.samples));
-  const bool extrapolated = warn_if_extrapolated(pair, model);
-  const std::string text =
-      options.summary ? mesh_stiffness_summary_json(tvms, contact_ratio(pair), extrapolated)
-                      : mesh_stiffness_csv(tvms);
-  std::fputs(text.c_str(), stdout);
+void print_mesh_stiffness(StiffnessOptions& options) {
+  const auto [pair, model] = pair_and_model(options);
+  const MeshStiffnessTexts texts = mesh_stiffness_texts(pair, model, options.samples);
+  warn_if(texts.extrapolated);
+  std::fputs((options.summary ? texts.summary_json : texts.csv).c_str(), stdout);
 }
 
-void print_iso6336(const StiffnessOptions& options, const CLI::App& command) {
-  const auto [pair, model] = pair_and_model(options, command);
-  constexpr double degree = 3.141592653589793238462643383279502884 / 180.0;
-  const Iso6336Stiffness iso =
-      iso6336_method_b(iso6336_pair(pair, options.helix_angle_deg * degree));
-  std::fputs(iso6336_json(iso, pair.face_width_m).c_str(), stdout);
+void print_iso6336(StiffnessOptions& options) {
+  const auto [pair, model] = pair_and_model(options);
+  std::fputs(iso6336_text(pair, options.helix_angle_deg).c_str(), stdout);
 }
 
 void add_pair_options(CLI::App* command, StiffnessOptions& options) {
@@ -129,30 +111,45 @@ void add_pair_options(CLI::App* command, StiffnessOptions& options) {
                       "the paper's pair)");
 }
 
-void add_named_model_option(CLI::App* command, StiffnessOptions& options) {
-  command->add_option("--model", options.model,
-                      "stiffness model: yang-lin-1987 (the paper's; default without a case "
-                      "file), potential-energy, ross-compatible");
-}
-
-void print_energy_ratios(const StiffnessOptions& options, const CLI::App& command) {
-  const auto [pair, model] = pair_and_model(options, command);
+void print_energy_ratios(StiffnessOptions& options) {
+  const auto [pair, model] = pair_and_model(options);
   std::fputs(energy_ratios_csv(energy_ratio_cycle(pair, options.points, model)).c_str(), stdout);
 }
 
-void add_model_options(CLI::App* command, StiffnessOptions& options) {
+// --points, the stiffness model's flags of kCaseFlags for `command_bit`, --case-file.
+void add_model_options(CLI::App* command, StiffnessOptions& options, CaseCommand command_bit) {
   command->add_option("--points", options.points, "number of contact positions, X_start to X_end")
       ->check(CLI::Range(2, 1000000));
-  command
-      ->add_option("--method", options.method,
-                   "quadrature: gsl (QAG), gsl-cquad, boost-gk, boost-ts, xform (x-form route)")
-      ->check(CLI::IsMember({"gsl", "gsl-cquad", "boost-gk", "boost-ts", "xform"}));
-  command->add_flag("--flipped-moment", options.flipped_moment,
-                    "add the axial-force moment Fa h instead of subtracting it (not physical)");
+  options.keys.add_flags(command, command_bit);
   add_pair_options(command, options);
 }
 
 }  // namespace
+
+bool foundation_extrapolated(const GearPair& pair, const StiffnessModel& model) {
+  if (!provides(model.kind, Term::foundation) || !model.terms.has(Term::foundation)) return false;
+  // The fit's inputs h_f and theta_f are the gears' own, the same at every
+  // position.
+  return mesh_stiffness(pair, contact_segment(pair).start_m, model).foundation_extrapolated;
+}
+
+MeshStiffnessTexts mesh_stiffness_texts(const GearPair& pair, const StiffnessModel& model,
+                                        int samples) {
+  if (samples < 2 || samples > 1000000) {
+    throw InputError("samples", std::to_string(samples), "an integer in [2, 1000000]");
+  }
+  const TimeVaryingMeshStiffness tvms =
+      time_varying_mesh_stiffness(pair, model, static_cast<std::size_t>(samples));
+  const bool extrapolated = foundation_extrapolated(pair, model);
+  return {mesh_stiffness_csv(tvms),
+          mesh_stiffness_summary_json(tvms, contact_ratio(pair), extrapolated), extrapolated};
+}
+
+std::string iso6336_text(const GearPair& pair, double helix_angle_deg) {
+  constexpr double degree = pi / 180.0;
+  const Iso6336Stiffness iso = iso6336_method_b(iso6336_pair(pair, helix_angle_deg * degree));
+  return iso6336_json(iso, pair.face_width_m);
+}
 
 void register_stiffness_commands(CLI::App& app) {
   auto options = std::make_shared<StiffnessOptions>();
@@ -160,8 +157,7 @@ void register_stiffness_commands(CLI::App& app) {
       "stiffness",
       "CSV of every term's stiffness (kb, ka, kh, ke, then ks, kf; N/m, inf for a term switched "
       "off or absent) over the contact segment");
-  add_model_options(stiffness, *options);
-  add_named_model_option(stiffness, *options);
+  add_model_options(stiffness, *options, kStiffness);
   CLI::Option* x_values =
       stiffness->add_option("--x-values", options->x_values,
                             "comma-separated contact positions X1, m, instead of --points");
@@ -172,8 +168,8 @@ void register_stiffness_commands(CLI::App& app) {
   ratio_options->points = 121;
   CLI::App* ratios = app.add_subcommand(
       "energy-ratios", "CSV of the elastic energy ratios of Fig. 8 over one meshing cycle");
-  add_model_options(ratios, *ratio_options);
-  ratios->callback([ratio_options, ratios] { print_energy_ratios(*ratio_options, *ratios); });
+  add_model_options(ratios, *ratio_options, kEnergyRatios);
+  ratios->callback([ratio_options] { print_energy_ratios(*ratio_options); });
 
   auto mesh_options = std::make_shared<StiffnessOptions>();
   CLI::App* mesh = app.add_subcommand(
@@ -181,14 +177,11 @@ void register_stiffness_commands(CLI::App& app) {
       "CSV of the mesh stiffness over one mesh period (fraction,theta1_rad,pairs,ke_n_m), or "
       "with --summary its min, max and exact time mean as JSON");
   add_pair_options(mesh, *mesh_options);
-  add_named_model_option(mesh, *mesh_options);
-  mesh->add_option("--method", mesh_options->method,
-                   "quadrature: gsl (QAG), gsl-cquad, boost-gk, boost-ts, xform (x-form route)")
-      ->check(CLI::IsMember({"gsl", "gsl-cquad", "boost-gk", "boost-ts", "xform"}));
+  mesh_options->keys.add_flags(mesh, kMeshStiffness);
   mesh->add_option("--samples", mesh_options->samples, "samples over the period, 2 to 1000000")
       ->check(CLI::Range(2, 1000000));
   mesh->add_flag("--summary", mesh_options->summary, "print min, max, mean as JSON instead");
-  mesh->callback([mesh_options, mesh] { print_mesh_stiffness(*mesh_options, *mesh); });
+  mesh->callback([mesh_options] { print_mesh_stiffness(*mesh_options); });
 
   auto iso_options = std::make_shared<StiffnessOptions>();
   CLI::App* iso = app.add_subcommand(
@@ -197,7 +190,7 @@ void register_stiffness_commands(CLI::App& app) {
   iso->add_option("--helix-angle", iso_options->helix_angle_deg,
                   "helix angle, deg, in [0, 45) (default 0: the spur pair)")
       ->check(CLI::Range(0.0, 44.999999));
-  iso->callback([iso_options, iso] { print_iso6336(*iso_options, *iso); });
+  iso->callback([iso_options] { print_iso6336(*iso_options); });
 }
 
 }  // namespace gearimpact::cli

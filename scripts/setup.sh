@@ -6,7 +6,7 @@ packages=(
   build-essential cmake
   libeigen3-dev libgsl-dev libboost-dev
   doctest-dev libbenchmark-dev
-  libcli11-dev libtoml11-dev
+  libcli11-dev libtoml11-dev nlohmann-json3-dev
   clang libclang-rt-14-dev
   gnuplot-nox
   slurm-wlm munge parallel

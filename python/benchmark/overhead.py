@@ -1,15 +1,17 @@
 """What the Python call adds over the library call: gearimpact.simulate(1)
 against the same simulate() in C++ (simulate_case1.cpp). The least processor
 time of the runs: the machine is shared, and wall time counts the others' work.
+The C++ figures come on standard input, so that the two are timed one after the
+other and never side by side:
 
     cmake --build build --target gearimpact_python_overhead
-    PYTHONPATH=build/python /usr/bin/python3 python/benchmark/overhead.py build/bin/gearimpact_python_overhead
+    build/bin/gearimpact_python_overhead 21 |
+        PYTHONPATH=build/python /usr/bin/python3 python/benchmark/overhead.py 21
 
 Not a test: no timing is asserted anywhere; this prints the figures.
 """
 
 import json
-import subprocess
 import sys
 import time
 
@@ -26,10 +28,8 @@ def fastest_seconds(repeats, keep_series):
 
 
 def main():
-    program = sys.argv[1]
-    repeats = int(sys.argv[2]) if len(sys.argv) > 2 else 21
-    cpp = json.loads(subprocess.run([program, str(repeats)], check=True, capture_output=True,
-                                    text=True).stdout)
+    repeats = int(sys.argv[1]) if len(sys.argv) > 1 else 21
+    cpp = json.load(sys.stdin)
     python = {"series": fastest_seconds(repeats, True), "summary_only": fastest_seconds(repeats, False)}
     print(f"case 1 (300,000 RK4 steps), least processor time of {repeats} runs")
     print(f"{'':<22}{'C++ (s)':>10}{'Python (s)':>12}{'added (ms)':>12}")

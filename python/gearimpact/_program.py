@@ -1,8 +1,11 @@
-"""The gearimpact program and the paper's data that come with the package."""
+"""The program's commands that the package runs in-process (the library behind
+``gearimpact sweep``, ``iso6336``, ``mesh-stiffness`` and ``reproduce``), and
+the program and the paper's data that come with the package."""
 
 import os
-import subprocess
 from pathlib import Path
+
+from . import _core
 
 # Not resolved: in the build tree the package's files are links into the
 # source tree, and the program and the data sit beside the links.
@@ -27,43 +30,19 @@ def paper_data_dir():
 
 def reproduce(out_dir, paper_data=None):
     """Reproduces the paper into `out_dir`: every figure as CSV, PNG and SVG (PNG and
-    SVG need gnuplot) and REPORT.md, by running ``gearimpact reproduce``.
+    SVG need gnuplot) and REPORT.md, as ``gearimpact reproduce`` does (progress on
+    standard error).
 
     paper_data: another folder of statements (default: this package's). Returns
     the path of REPORT.md. Raises RuntimeError with the program's message when
     it fails.
     """
-    command = [str(program_path()), "reproduce", "--out", os.fspath(out_dir)]
-    if paper_data is not None:
-        command += ["--paper-data", os.fspath(paper_data)]
-    finished = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    if finished.returncode != 0:
-        raise RuntimeError(
-            f"gearimpact reproduce failed (exit {finished.returncode}): {finished.stderr.strip()}"
-        )
+    data = paper_data_dir() if paper_data is None else paper_data
+    try:
+        _core.reproduce(os.fspath(out_dir), os.fspath(data))
+    except (ValueError, RuntimeError, OSError) as error:
+        raise RuntimeError(f"gearimpact reproduce failed: {error}") from error
     return Path(out_dir) / "REPORT.md"
-
-
-def _run(arguments, what):
-    """Runs the program with `arguments` and returns its standard output."""
-    finished = subprocess.run([str(program_path())] + arguments, stdout=subprocess.PIPE,
-                              stderr=subprocess.PIPE, text=True)
-    if finished.returncode != 0:
-        raise RuntimeError(f"gearimpact {what} failed (exit {finished.returncode}): "
-                           f"{finished.stderr.strip()}")
-    return finished.stdout
-
-
-def _with_case_file(case, arguments, run):
-    """Calls run(arguments + ['--case-file', path]) with `case` written to a temporary case
-    file (SI units, read back to the same doubles), or run(arguments) for case None."""
-    if case is None:
-        return run(arguments)
-    import tempfile
-    with tempfile.TemporaryDirectory(prefix="gearimpact-") as folder:
-        path = Path(folder) / f"{case.name or 'case'}.toml"
-        path.write_text(case.to_toml("si"))
-        return run(arguments + ["--case-file", str(path)])
 
 
 def _table(csv_text):
@@ -86,48 +65,39 @@ def _table(csv_text):
 
 
 def iso6336(case=None, helix_angle_deg=0.0):
-    """ISO 6336-1 method B for a case's gear pair (default: the paper's), by running
+    """ISO 6336-1 method B for a case's gear pair (default: the paper's), as
     ``gearimpact iso6336``: a dict with zn1, zn2, c_prime_th_n_mm_um, c_prime_n_mm_um,
     c_gamma_alpha_n_mm_um, eps_alpha, c_prime_b_n_m, c_gamma_alpha_b_n_m."""
     import json
-    arguments = ["iso6336", "--helix-angle", repr(float(helix_angle_deg))]
-    return json.loads(_with_case_file(case, arguments, lambda a: _run(a, "iso6336")))
+    return json.loads(_core.iso6336(case, float(helix_angle_deg)))
 
 
 def mesh_stiffness(case=None, model=None, samples=200):
-    """The mesh stiffness over one mesh period with exact line-of-action kinematics, by
-    running ``gearimpact mesh-stiffness``: (table, summary), the table a dict of numpy arrays
+    """The mesh stiffness over one mesh period with exact line-of-action kinematics, as
+    ``gearimpact mesh-stiffness``: (table, summary), the table a dict of numpy arrays
     fraction, theta1_rad, pairs, ke_n_m, the summary a dict with min_n_m, max_n_m, mean_n_m
     (the exact time mean), contact_ratio, extrapolated. model: yang-lin-1987,
     potential-energy or ross-compatible (default: the case's)."""
     import json
-    arguments = ["mesh-stiffness", "--samples", str(int(samples))]
-    if model is not None:
-        arguments += ["--model", str(model)]
-    table = _with_case_file(case, arguments, lambda a: _run(a, "mesh-stiffness"))
-    summary = _with_case_file(case, arguments + ["--summary"],
-                              lambda a: _run(a, "mesh-stiffness --summary"))
+    table, summary = _core.mesh_stiffness(case, None if model is None else str(model),
+                                          int(samples))
     return _table(table), json.loads(summary)
 
 
 def sweep(case, vary, start, stop, points, direction="both", options=()):
-    """The steady state of a loaded, running pair along one parameter, by running
+    """The steady state of a loaded, running pair along one parameter, as
     ``gearimpact sweep`` (docs/sweep.md): `case` a Case, `vary` any numeric case-file key as
     section.key, `start` and `stop` with units as case files write them ("500 rad/s") or SI
     floats, `options` more of the command's options as strings (e.g. ["--vary2",
     "gears.backlash", ...]). Returns a dict: "sweep" and "poincare" (dicts of arrays with the
     columns of sweep.csv and poincare.csv) and "summary" (summary.json)."""
     import json
-    import tempfile
-    with tempfile.TemporaryDirectory(prefix="gearimpact-sweep-") as folder:
-        path = Path(folder) / f"{case.name or 'case'}.toml"
-        path.write_text(case.to_toml("si"))
-        out = Path(folder) / "out"
-        _run(["sweep", str(path), "--vary", str(vary), "--from", str(start), "--to", str(stop),
-              "--points", str(int(points)), "--direction", str(direction), "--out", str(out),
-              "--no-plots"] + [str(o) for o in options], "sweep")
-        return {
-            "sweep": _table((out / "sweep.csv").read_text()),
-            "poincare": _table((out / "poincare.csv").read_text()),
-            "summary": json.loads((out / "summary.json").read_text()),
-        }
+    arguments = ["--vary", str(vary), "--from", str(start), "--to", str(stop),
+                 "--points", str(int(points)), "--direction", str(direction)]
+    sweep_text, poincare_text, summary_text = _core.sweep(
+        case, arguments + [str(o) for o in options])
+    return {
+        "sweep": _table(sweep_text),
+        "poincare": _table(poincare_text),
+        "summary": json.loads(summary_text),
+    }

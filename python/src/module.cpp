@@ -23,6 +23,8 @@
 #include <vector>
 
 #include "gearimpact/gearimpact.hpp"
+#include "gearimpact/io/sweep_files.hpp"
+#include "program.hpp"
 
 namespace py = pybind11;
 
@@ -300,6 +302,41 @@ std::string gear_pair_repr(const GearPair& g) {
          ", backlash_m=" + shortest_decimal(g.backlash_m) + ")";
 }
 
+// The pair and model the stiffness commands read: the case's, or the paper's pair with the
+// default model; `model` (a name of model.stiffness_model) replaces the case's.
+SimulationCase stiffness_case(const std::optional<SimulationCase>& c,
+                              const std::optional<std::string>& model) {
+  SimulationCase chosen;
+  chosen.gears = paper_gear_pair();
+  if (c) chosen = *c;
+  if (model) set_field(chosen, "model.stiffness_model", *model, "model");
+  validate(chosen.gears);
+  return chosen;
+}
+
+// `gearimpact mesh-stiffness` and its --summary: (CSV, JSON), the program's texts.
+py::tuple mesh_stiffness_texts_of(const std::optional<SimulationCase>& c,
+                                  const std::optional<std::string>& model, int samples) {
+  const SimulationCase chosen = stiffness_case(c, model);
+  cli::MeshStiffnessTexts texts;
+  {
+    py::gil_scoped_release release;
+    texts = cli::mesh_stiffness_texts(chosen.gears, chosen.model.stiffness, samples);
+  }
+  return py::make_tuple(texts.csv, texts.summary_json);
+}
+
+// `gearimpact sweep` of a case with the command's options: (sweep.csv, poincare.csv,
+// summary.json) as the program writes them.
+py::tuple sweep_texts(const SimulationCase& c, const std::vector<std::string>& options) {
+  SteadySweep sweep;
+  {
+    py::gil_scoped_release release;
+    sweep = cli::sweep_with_options(c, options);
+  }
+  return py::make_tuple(sweep_csv(sweep.rows), poincare_csv(sweep.rows), sweep_summary_json(sweep));
+}
+
 Gear gear_numbered(int gear) {
   if (gear != 1 && gear != 2) throw InputError("gear", std::to_string(gear), "1 or 2");
   return gear == 1 ? Gear::one : Gear::two;
@@ -429,6 +466,23 @@ void define_module(py::module_& m) {
         py::arg("points"));
   m.def("sweep_friction", &run_sweep, py::arg("cases"), py::arg("start"), py::arg("stop"),
         py::arg("step"), py::arg("threads"));
+
+  m.def(
+      "iso6336",
+      [](const std::optional<SimulationCase>& c, double helix_angle_deg) {
+        return cli::iso6336_text(stiffness_case(c, std::nullopt).gears, helix_angle_deg);
+      },
+      py::arg("case"), py::arg("helix_angle_deg"));
+  m.def("mesh_stiffness", &mesh_stiffness_texts_of, py::arg("case"), py::arg("model"),
+        py::arg("samples"));
+  m.def("sweep", &sweep_texts, py::arg("case"), py::arg("options"));
+  m.def(
+      "reproduce",
+      [](const std::string& out, const std::string& paper_data) {
+        py::gil_scoped_release release;
+        return cli::reproduce(out, paper_data).string();
+      },
+      py::arg("out"), py::arg("paper_data"));
 
   m.def(
       "contact_segment",

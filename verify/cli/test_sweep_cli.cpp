@@ -200,4 +200,12 @@ TEST_CASE("sweep: bad input is refused naming the key") {
                       out.string()));
   CHECK(unit.exit_code != 0);
   CHECK(unit.err.find("--from") != std::string::npos);
+  // A flag that sets a key is read by the key's schema row, and its errors name the flag.
+  const auto update =
+      run_command(cli("sweep 1 --vary initial.w1 --from '3000 rad/s' --to '6000 rad/s' --points 3 "
+                      "--damping-update sometimes --no-plots --out " +
+                      out.string()));
+  CHECK(update.exit_code != 0);
+  CHECK(update.err.find("--damping-update") != std::string::npos);
+  CHECK(update.err.find("each-impact") != std::string::npos);
 }

@@ -4,7 +4,12 @@
 #include <string>
 
 #include "gearimpact/constants.hpp"
+#include "gearimpact/dynamics/mesh.hpp"
+#include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/rack_generation.hpp"
+#include "gearimpact/stiffness/iso6336.hpp"
 #include "input_checks.hpp"
 
 namespace gearimpact {
@@ -89,6 +94,28 @@ IsoDynamicFactor iso_dynamic_factor_perfect_gears(double resonance_ratio,
   if (n <= 1.15) return {resonance_value, IsoSpeedRange::main_resonance};
   if (n >= 1.5) return {c.c_v7, IsoSpeedRange::supercritical};
   return {c.c_v7 + (resonance_value - c.c_v7) * (1.5 - n) / 0.35, IsoSpeedRange::intermediate};
+}
+
+std::optional<IsoScale> iso_scale(const SimulationCase& c, const StiffnessTable& table) {
+  const GearPair& g = c.gears;
+  const double r1 = pitch_radius(g, Gear::one);
+  const double line_load = std::fabs(mean_torque_n_m(c.torque1, "torque1")) / (r1 * g.face_width_m);
+  if (!(line_load > 0.0)) return std::nullopt;
+  // d_m1 = (d_a1 + d_f1) / 2, the tip and root circles of the rack-cut pinion.
+  const RackGearGeometry pinion = rack_gear_pair_geometry(g).gear1;
+  const double mean_diameter1 = pinion.tip_radius_m + pinion.root_radius_m;
+  const double m_red =
+      iso_reduced_mass_kg_per_m(g.density_kg_m3, static_cast<double>(g.teeth2) / g.teeth1,
+                                mean_diameter1, 2.0 * base_radius(g, Gear::one));
+  const Iso6336Stiffness iso = iso6336_method_b(iso6336_pair(g, 0.0));
+  IsoScale scale;
+  scale.resonance_speed_rad_s = iso_resonance_speed_rad_per_s(
+      g.teeth1, mean_mesh_stiffness_n_m(c, table) / g.face_width_m, m_red);
+  scale.resonance_speed_iso_stiffness_rad_s =
+      iso_resonance_speed_rad_per_s(g.teeth1, iso.mesh_stiffness_n_per_m2, m_red);
+  scale.contact_ratio = iso.transverse_contact_ratio;
+  scale.line_load_n_m = line_load;
+  return scale;
 }
 
 }  // namespace gearimpact

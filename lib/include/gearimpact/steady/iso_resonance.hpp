@@ -12,6 +12,11 @@
 // N/m^2 and m_red in kg/m.
 #pragma once
 
+#include <optional>
+
+#include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/stiffness/table.hpp"
+
 namespace gearimpact {
 
 // (30), solid pinion and wheel of one density: the reduced mass per unit face width
@@ -57,5 +62,23 @@ struct IsoDynamicFactor {
 IsoDynamicFactor iso_dynamic_factor_perfect_gears(double resonance_ratio,
                                                   double total_contact_ratio,
                                                   double line_load_n_per_m);
+
+// The N axis of a case, for the dynamic factor against ISO's resonance ratio N = w1 / w_E1. The
+// axis uses the model's own mean mesh stiffness as c_gamma_alpha b, so that the model's main
+// resonance sits near N = 1 (at (d_m1 / d_1)^2 for solid discs, verify/steady/
+// test_iso_main_resonance.cpp); N with ISO's own c_gamma_alpha (stiffness/iso6336.hpp) is a fixed
+// multiple of it.
+struct IsoScale {
+  // w_E1 of ISO's (6) with m_red of (30) on the pinion's mean diameter (d_a1 + d_f1) / 2, and
+  // c_gamma_alpha b = the model's mean mesh stiffness, or ISO's c_gamma_alpha.
+  double resonance_speed_rad_s = 0.0;
+  double resonance_speed_iso_stiffness_rad_s = 0.0;
+  double contact_ratio = 0.0;  // eps_alpha, for ISO's K_v
+  // F_t / b = |T1 mean| / (r1 b): ISO's line load at the reference circle (K_A = 1).
+  double line_load_n_m = 0.0;
+};
+
+// The scale of c's pair, or nothing when ISO's K_v has no meaning for it (no mean load).
+std::optional<IsoScale> iso_scale(const SimulationCase& c, const StiffnessTable& table);
 
 }  // namespace gearimpact

@@ -1,0 +1,92 @@
+// The steady-state sweep of a case (STEADY-STATE.md section 4): one key along a grid, optionally
+// one line per value of a second key, each line up and/or down, the lines run in parallel on a
+// RunPool and split into shards K/N for separate processes. The rows come back keyed (line,
+// direction, index) and sorted by key, so that shards merged by key (io/sweep_files.hpp) give the
+// same rows as one run.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gearimpact/batch/pool.hpp"
+#include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/steady/iso_resonance.hpp"
+#include "gearimpact/steady/steady_state.hpp"
+#include "gearimpact/steady/sweep.hpp"
+
+namespace gearimpact {
+
+// The lines u = line x direction (in that order, directions inner) with u % n == k.
+struct SweepShard {
+  int k = 0;
+  int n = 1;
+};
+
+struct SteadySweepSpec {
+  SimulationCase base;  // the case every point starts from, before the swept keys are set
+  std::string vary;     // section.key (sweep_field): swept along each line
+  double from_si = 0.0;
+  double to_si = 0.0;
+  int points = 0;
+  std::string vary2;  // empty: one line (line 0) of the base case
+  double from2_si = 0.0;
+  double to2_si = 0.0;
+  int points2 = 1;
+  std::vector<SweepDirection> directions{SweepDirection::up, SweepDirection::down};
+  SweepShard shard;
+  SteadySettings settings;
+  unsigned threads = 0;  // for the pool run_steady_sweep makes itself; 0: one per core
+};
+
+// What every shard of one sweep shares (summary.json's "spec"): the merge checks that the shards
+// agree on it and keeps it.
+struct SteadySweepRecord {
+  std::string case_name;
+  std::string vary;
+  double from_si = 0.0;  // the grid's ends
+  double to_si = 0.0;
+  int points = 0;
+  std::string vary2;  // empty: one line, and no from2_si, to2_si
+  std::optional<double> from2_si;
+  std::optional<double> to2_si;
+  int lines = 1;
+  std::vector<SweepDirection> directions;
+  double backlash_m = 0.0;  // of the base case
+  // For a sweep of initial.w1 of a loaded pair: ISO's N axis of the base case's pair and load (a
+  // second key that changes them is not seen).
+  std::optional<IsoScale> iso;
+  double tolerance = 0.0;
+  double steps_per_contact_period = 0.0;
+  int max_periods = 0;
+  DampingUpdate damping_update = DampingUpdate::each_impact;
+};
+
+struct SteadySweep {
+  SteadySweepRecord spec;
+  std::optional<SweepShard> shard;  // the shard a run computed; empty for a merged set
+  std::vector<SweepPointResult> rows;
+};
+
+// (line, direction (up before down), index): the order rows are kept and written in.
+bool sweep_key_less(const SweepPointResult& a, const SweepPointResult& b);
+
+// The points the spec's shard runs: its lines and directions times the points of a line (0 for
+// a grid run_steady_sweep refuses).
+std::size_t shard_point_count(const SteadySweepSpec& spec);
+
+// Runs the spec's shard on `pool`. Before any work, throws InputError naming the key when a grid
+// is empty or outside the key's range, the shard is not 0 <= k < n, there is no direction, or the
+// case (with the first values of both keys) fails validation or has no steady state
+// (require_steady_case). `on_point` (may be empty) is called after each point, from the pool's
+// worker threads, possibly at once.
+SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
+                             const std::function<void(const SweepPointResult&)>& on_point = {});
+
+// The same on a pool of spec.threads workers of its own.
+SteadySweep run_steady_sweep(const SteadySweepSpec& spec,
+                             const std::function<void(const SweepPointResult&)>& on_point = {});
+
+}  // namespace gearimpact

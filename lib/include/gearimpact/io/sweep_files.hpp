@@ -1,0 +1,34 @@
+// The files of a steady-state sweep (batch/steady_sweep.hpp) and the merge of its shards:
+//   sweep.csv     line,direction,index,value_si,regime,period,converged,dte_mean_m,
+//                 dte_amplitude_m,dte_rms_m,s_min_m,s_max_m,dynamic_factor,
+//                 impacts_drive_per_period,impacts_coast_per_period (one row a point)
+//   poincare.csv  line,direction,index,value_si,s_m,ds_m_s (one row a Poincare sample)
+//   summary.json  "spec" (what every shard shares), "shard" (of a run), "points_written",
+//                 "points_converged", "regimes" (converged points by regime)
+// Numbers at 17 significant digits, so that a merge reads back the very doubles it writes; an
+// absent figure (a point not converged) is an empty field. Rows in key order (sweep_key_less).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "gearimpact/batch/steady_sweep.hpp"
+
+namespace gearimpact {
+
+std::string sweep_csv(const std::vector<SweepPointResult>& rows);
+std::string poincare_csv(const std::vector<SweepPointResult>& rows);
+std::string sweep_summary_json(const SteadySweep& sweep);
+
+// Writes the three files into `dir` (made if missing), each atomically.
+void write_sweep_folder(const std::filesystem::path& dir, const SteadySweep& sweep);
+
+// The shards' folders as one sweep: their rows by key, their common spec. Throws InputError
+// (field "merge") naming the folder or file when one is unreadable or not a sweep's, when the
+// specs differ, when a key comes twice (a folder given twice, or overlapping shards), and naming
+// the first missing key (line, direction, index) when a shard is missing. Points read back carry
+// the written figures only (not the run's failure text, timing or final state).
+SteadySweep merge_sweep_folders(const std::vector<std::filesystem::path>& dirs);
+
+}  // namespace gearimpact

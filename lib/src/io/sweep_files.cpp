@@ -1,0 +1,360 @@
+#include "gearimpact/io/sweep_files.hpp"
+
+#include <algorithm>
+#include <cstddef>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "gearimpact/case/schema.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/io/atomic_file.hpp"
+
+namespace gearimpact {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+constexpr const char* kSweepHeader =
+    "line,direction,index,value_si,regime,period,converged,dte_mean_m,dte_amplitude_m,dte_rms_m,"
+    "s_min_m,s_max_m,dynamic_factor,impacts_drive_per_period,impacts_coast_per_period\n";
+constexpr const char* kPoincareHeader = "line,direction,index,value_si,s_m,ds_m_s\n";
+constexpr std::size_t kSweepColumns = 15;
+constexpr const char* kSweepFile = "a summary.json written by gearimpact sweep";
+
+std::string optional_number(const std::optional<double>& v) {
+  return v ? format_number(*v) : "";
+}
+
+// The key and swept value that begin a row of both files.
+std::string key_fields(const SweepPointResult& r) {
+  return std::to_string(r.line) + "," + to_string(r.direction) + "," + std::to_string(r.index) +
+         "," + format_number(r.value_si);
+}
+
+const Field& damping_update_field() {
+  return *find_field("model.damping_update");
+}
+
+std::string damping_update_name(DampingUpdate update) {
+  for (const ChoiceName& choice : damping_update_field().choices) {
+    if (choice.code == static_cast<int>(update)) return std::string(choice.name);
+  }
+  return "";
+}
+
+std::string directions_text(const std::vector<SweepDirection>& directions) {
+  std::string text;
+  for (std::size_t i = 0; i < directions.size(); ++i) {
+    text += (i ? "," : "") + to_string(directions[i]);
+  }
+  return text;
+}
+
+Json spec_json(const SteadySweepRecord& s) {
+  Json j;
+  j["case"] = s.case_name;
+  j["vary"] = s.vary;
+  j["from_si"] = s.from_si;
+  j["to_si"] = s.to_si;
+  j["points"] = s.points;
+  j["vary2"] = s.vary2;
+  j["from2_si"] = s.from2_si ? Json(*s.from2_si) : Json(nullptr);
+  j["to2_si"] = s.to2_si ? Json(*s.to2_si) : Json(nullptr);
+  j["lines"] = s.lines;
+  j["directions"] = directions_text(s.directions);
+  j["backlash_m"] = s.backlash_m;
+  if (s.iso) {
+    j["iso_resonance_speed_rad_s"] = s.iso->resonance_speed_rad_s;
+    j["iso_resonance_speed_iso_stiffness_rad_s"] = s.iso->resonance_speed_iso_stiffness_rad_s;
+    j["iso_contact_ratio"] = s.iso->contact_ratio;
+    j["iso_line_load_n_m"] = s.iso->line_load_n_m;
+  }
+  j["tolerance"] = s.tolerance;
+  j["steps_per_contact_period"] = s.steps_per_contact_period;
+  j["max_periods"] = s.max_periods;
+  j["damping_update"] = damping_update_name(s.damping_update);
+  return j;
+}
+
+SweepDirection direction_named(const std::string& name, const std::string& where) {
+  if (name == to_string(SweepDirection::up)) return SweepDirection::up;
+  if (name == to_string(SweepDirection::down)) return SweepDirection::down;
+  throw InputError("merge", where + ": direction " + name, "up or down");
+}
+
+// The record of a spec block; throws InputError naming `file` when a key is missing or of
+// another type.
+SteadySweepRecord spec_record(const Json& j, const std::string& file) {
+  try {
+    SteadySweepRecord s;
+    s.case_name = j.at("case").get<std::string>();
+    s.vary = j.at("vary").get<std::string>();
+    s.from_si = j.at("from_si").get<double>();
+    s.to_si = j.at("to_si").get<double>();
+    s.points = j.at("points").get<int>();
+    s.vary2 = j.at("vary2").get<std::string>();
+    if (!s.vary2.empty()) {
+      s.from2_si = j.at("from2_si").get<double>();
+      s.to2_si = j.at("to2_si").get<double>();
+    }
+    s.lines = j.at("lines").get<int>();
+    std::stringstream list(j.at("directions").get<std::string>());
+    for (std::string d; std::getline(list, d, ',');) {
+      s.directions.push_back(direction_named(d, file));
+    }
+    s.backlash_m = j.at("backlash_m").get<double>();
+    if (j.contains("iso_resonance_speed_rad_s")) {
+      IsoScale iso;
+      iso.resonance_speed_rad_s = j.at("iso_resonance_speed_rad_s").get<double>();
+      iso.resonance_speed_iso_stiffness_rad_s =
+          j.at("iso_resonance_speed_iso_stiffness_rad_s").get<double>();
+      iso.contact_ratio = j.at("iso_contact_ratio").get<double>();
+      iso.line_load_n_m = j.at("iso_line_load_n_m").get<double>();
+      s.iso = iso;
+    }
+    s.tolerance = j.at("tolerance").get<double>();
+    s.steps_per_contact_period = j.at("steps_per_contact_period").get<double>();
+    s.max_periods = j.at("max_periods").get<int>();
+    const std::string update = j.at("damping_update").get<std::string>();
+    const double code = parse_value(damping_update_field(), update, file + ": damping_update");
+    s.damping_update = static_cast<DampingUpdate>(static_cast<int>(code));
+    return s;
+  } catch (const Json::exception& e) {
+    throw InputError("merge", file + ": " + e.what(), kSweepFile);
+  }
+}
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("merge", path.string(), "a readable file written by gearimpact sweep");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> fields;
+  std::size_t begin = 0;
+  while (true) {
+    const std::size_t comma = line.find(',', begin);
+    fields.push_back(line.substr(begin, comma - begin));
+    if (comma == std::string::npos) return fields;
+    begin = comma + 1;
+  }
+}
+
+// A number as the files write it (format_number), read back to the same double.
+double number_field(const std::string& text, const std::string& where) {
+  std::size_t used = 0;
+  double value = 0.0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (text.empty() || used != text.size()) {
+    throw InputError("merge", where + ": " + text, "a number written by gearimpact sweep");
+  }
+  return value;
+}
+
+std::optional<double> optional_field(const std::string& text, const std::string& where) {
+  if (text.empty()) return std::nullopt;
+  return number_field(text, where);
+}
+
+int integer_field(const std::string& text, const std::string& where) {
+  const double value = number_field(text, where);
+  if (value != static_cast<double>(static_cast<int>(value))) {
+    throw InputError("merge", where + ": " + text, "an integer written by gearimpact sweep");
+  }
+  return static_cast<int>(value);
+}
+
+Regime regime_named(const std::string& name, const std::string& where) {
+  for (Regime r :
+       {Regime::no_impact, Regime::single_sided, Regime::double_sided, Regime::no_contact}) {
+    if (to_string(r) == name) return r;
+  }
+  throw InputError("merge", where + ": regime " + name, "NI, SS, DS or NC");
+}
+
+using Key = std::tuple<int, int, int>;
+
+Key key_of(const SweepPointResult& r) {
+  return {r.line, r.direction == SweepDirection::up ? 0 : 1, r.index};
+}
+
+std::string key_text(int line, const std::string& direction, int index) {
+  return "(line " + std::to_string(line) + ", direction " + direction + ", index " +
+         std::to_string(index) + ")";
+}
+
+// The rows of sweep.csv, as the point they were written from (period_label and the optional
+// figures read back to the same text).
+std::vector<SweepPointResult> read_sweep_rows(const std::filesystem::path& file) {
+  std::istringstream csv(read_text(file));
+  std::string line;
+  std::getline(csv, line);
+  std::vector<SweepPointResult> rows;
+  while (std::getline(csv, line)) {
+    const std::string where = file.string();
+    const std::vector<std::string> f = split(line);
+    if (f.size() != kSweepColumns) {
+      throw InputError("merge", where + ": " + line,
+                       "a row of " + std::to_string(kSweepColumns) + " fields");
+    }
+    SweepPointResult r;
+    r.line = integer_field(f[0], where);
+    r.direction = direction_named(f[1], where);
+    r.index = integer_field(f[2], where);
+    r.value_si = number_field(f[3], where);
+    SteadyPoint& p = r.point;
+    p.converged = f[6] == "true";
+    if (!f[4].empty()) p.regime = regime_named(f[4], where);
+    if (f[5] == "aperiodic") {
+      p.verdict = PeriodicityVerdict::aperiodic;
+    } else if (!f[5].empty()) {
+      p.verdict = PeriodicityVerdict::periodic;
+      p.period = integer_field(f[5], where);
+    }
+    p.dte_mean_m = optional_field(f[7], where);
+    p.dte_amplitude_m = optional_field(f[8], where);
+    p.dte_rms_m = optional_field(f[9], where);
+    p.s_min_m = optional_field(f[10], where);
+    p.s_max_m = optional_field(f[11], where);
+    p.dynamic_factor = optional_field(f[12], where);
+    p.impacts_drive_per_period = optional_field(f[13], where);
+    p.impacts_coast_per_period = optional_field(f[14], where);
+    rows.push_back(std::move(r));
+  }
+  return rows;
+}
+
+}  // namespace
+
+std::string sweep_csv(const std::vector<SweepPointResult>& rows) {
+  std::string csv = kSweepHeader;
+  for (const SweepPointResult& r : rows) {
+    const SteadyPoint& p = r.point;
+    csv += key_fields(r) + "," + (p.converged ? to_string(p.regime) : "") + "," + period_label(p) +
+           "," + (p.converged ? "true" : "false") + "," + optional_number(p.dte_mean_m) + "," +
+           optional_number(p.dte_amplitude_m) + "," + optional_number(p.dte_rms_m) + "," +
+           optional_number(p.s_min_m) + "," + optional_number(p.s_max_m) + "," +
+           optional_number(p.dynamic_factor) + "," + optional_number(p.impacts_drive_per_period) +
+           "," + optional_number(p.impacts_coast_per_period) + "\n";
+  }
+  return csv;
+}
+
+std::string poincare_csv(const std::vector<SweepPointResult>& rows) {
+  std::string csv = kPoincareHeader;
+  for (const SweepPointResult& r : rows) {
+    const std::string key = key_fields(r);
+    for (const PoincareSample& s : r.point.poincare) {
+      csv += key + "," + format_number(s.s_m) + "," + format_number(s.s_rate_m_s) + "\n";
+    }
+  }
+  return csv;
+}
+
+std::string sweep_summary_json(const SteadySweep& sweep) {
+  Json j;
+  j["spec"] = spec_json(sweep.spec);
+  if (sweep.shard) {
+    j["shard"] = std::to_string(sweep.shard->k) + "/" + std::to_string(sweep.shard->n);
+  }
+  std::size_t converged = 0;
+  std::map<std::string, std::size_t> regimes;
+  for (const SweepPointResult& r : sweep.rows) {
+    if (!r.point.converged) continue;
+    ++converged;
+    ++regimes[to_string(r.point.regime)];
+  }
+  j["points_written"] = sweep.rows.size();
+  j["points_converged"] = converged;
+  j["regimes"] = Json::object();
+  for (const auto& [name, n] : regimes) j["regimes"][name] = n;
+  return j.dump(2) + "\n";
+}
+
+void write_sweep_folder(const std::filesystem::path& dir, const SteadySweep& sweep) {
+  std::filesystem::create_directories(dir);
+  write_file_atomically((dir / "sweep.csv").string(), sweep_csv(sweep.rows));
+  write_file_atomically((dir / "poincare.csv").string(), poincare_csv(sweep.rows));
+  write_file_atomically((dir / "summary.json").string(), sweep_summary_json(sweep));
+}
+
+SteadySweep merge_sweep_folders(const std::vector<std::filesystem::path>& dirs) {
+  if (dirs.empty()) throw InputError("merge", "no folder", "one or more sweep output folders");
+  std::optional<Json> spec;
+  std::map<Key, SweepPointResult> rows;
+  for (const std::filesystem::path& dir : dirs) {
+    const std::string input = dir.string();
+    const std::filesystem::path summary_file = dir / "summary.json";
+    Json summary;
+    try {
+      summary = Json::parse(read_text(summary_file));
+    } catch (const Json::exception& e) {
+      throw InputError("merge", summary_file.string() + ": " + e.what(), kSweepFile);
+    }
+    if (!summary.is_object() || !summary.contains("spec") || !summary["spec"].is_object()) {
+      throw InputError("merge", summary_file.string(), "a summary.json with its spec");
+    }
+    if (!spec) spec = summary["spec"];
+    if (summary["spec"] != *spec) {
+      throw InputError("merge", input, "a shard of the same sweep as " + dirs.front().string());
+    }
+    std::set<Key> here;
+    for (SweepPointResult& r : read_sweep_rows(dir / "sweep.csv")) {
+      const Key key = key_of(r);
+      if (rows.count(key) > 0) {
+        throw InputError("merge",
+                         "row " + key_text(r.line, to_string(r.direction), r.index) + " in " +
+                             input + " and an earlier folder",
+                         "each (line, direction, index) in one shard only");
+      }
+      here.insert(key);
+      rows.emplace(key, std::move(r));
+    }
+    std::istringstream poincare(read_text(dir / "poincare.csv"));
+    std::string line;
+    std::getline(poincare, line);
+    const std::string where = (dir / "poincare.csv").string();
+    while (std::getline(poincare, line)) {
+      const std::vector<std::string> f = split(line);
+      if (f.size() != 6) throw InputError("merge", where + ": " + line, "a row of 6 fields");
+      const Key key{integer_field(f[0], where),
+                    direction_named(f[1], where) == SweepDirection::up ? 0 : 1,
+                    integer_field(f[2], where)};
+      if (here.count(key) == 0) {
+        throw InputError("merge", where + ": " + line, "a sample of a point of its sweep.csv");
+      }
+      rows[key].point.poincare.push_back({number_field(f[4], where), number_field(f[5], where)});
+    }
+  }
+  SteadySweep merged;
+  merged.spec = spec_record(*spec, (dirs.front() / "summary.json").string());
+  for (int l = 0; l < merged.spec.lines; ++l) {
+    for (SweepDirection d : merged.spec.directions) {
+      for (int i = 0; i < merged.spec.points; ++i) {
+        if (rows.count({l, d == SweepDirection::up ? 0 : 1, i}) == 0) {
+          throw InputError("merge", "no row " + key_text(l, to_string(d), i),
+                           "every (line, direction, index) of the sweep: a shard is missing");
+        }
+      }
+    }
+  }
+  for (auto& [key, r] : rows) merged.rows.push_back(std::move(r));
+  return merged;
+}
+
+}  // namespace gearimpact
