@@ -3,6 +3,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -103,10 +104,29 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
   }
   const SimulationCase c = case_to_run(o, command);
   RunControl control;
-  control.keep_series = !o.out.empty();
+  // The series goes to its file as the run makes it, a megabyte at a time,
+  // so that a long run's memory does not grow with its length.
+  control.keep_series = false;
+  std::optional<AtomicFile> series_file;
+  std::string pending;
+  constexpr std::size_t kFlushBytes = std::size_t{1} << 20;
+  if (!o.out.empty()) {
+    series_file.emplace(o.out);
+    pending = series_csv_header();
+    control.on_row = [&](const SeriesRow& row) {
+      append_series_row(pending, row);
+      if (pending.size() >= kFlushBytes) {
+        series_file->append(pending);
+        pending.clear();
+      }
+    };
+  }
   SimulationResult result;
   o.keys.naming_options([&] { result = simulate(c, control); });
-  if (!o.out.empty()) write_file_atomically(o.out, series_csv(result.series));
+  if (series_file) {
+    series_file->append(pending);
+    series_file->commit();
+  }
   if (result.summary.foundation_extrapolated) {
     std::fprintf(stderr, "gearimpact: warning: %s\n", foundation_extrapolation_warning().c_str());
   }
