@@ -205,7 +205,7 @@ TEST_CASE("bad flag values are refused naming the flag") {
 
 TEST_CASE("simulate warns in its JSON and on stderr when the foundation fit is extrapolated") {
   // The paper's pinion: theta_f = 0.1506 rad, outside the fit's [0.01, 0.12]
-  // (README, Which stiffness model), with the bores of ROSS's run.
+  // (docs/stiffness-models.md, section 3, Which stiffness model), with the bores of ROSS's run.
   const std::string model =
       " --set model.stiffness_model=potential-energy --set \"gears.bore_diameter1=20 mm\""
       " --set \"gears.bore_diameter2=60 mm\"";

@@ -107,7 +107,7 @@ def test_sweep_friction(cli):
 
 
 def test_iso6336_and_mesh_stiffness_equal_the_program(cli):
-    # The paper's pair: ISO's c'b for it is 1.34e8 N/m (README, Which stiffness model).
+    # The paper's pair: ISO's c'b for it is 1.34e8 N/m (docs/stiffness-models.md, section 3, Which stiffness model).
     ours = gearimpact.iso6336()
     assert ours == json.loads(cli("iso6336", "--helix-angle", "0.0"))
     assert abs(ours["c_prime_b_n_m"] / 1.34e8 - 1.0) < 5e-3
