@@ -8,6 +8,7 @@
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/rack_generation.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/steady/iso_resonance.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
@@ -30,7 +31,7 @@ std::optional<IsoScale> iso_scale(const SimulationCase& c, const StiffnessTable&
   const double line_load = std::fabs(mean_torque_n_m(c.torque1, "torque1")) / (r1 * g.face_width_m);
   if (!(line_load > 0.0)) return std::nullopt;
   // d_m1 = (d_a1 + d_f1) / 2, the tip and root circles of the rack-cut pinion.
-  const RackGearGeometry pinion = rack_gear_pair_geometry(g).gear1;
+  const RackGearGeometry pinion = rack_gear_geometry(g, Gear::one);
   const double mean_diameter1 = pinion.tip_radius_m + pinion.root_radius_m;
   const double m_red =
       iso_reduced_mass_kg_per_m(g.density_kg_m3, static_cast<double>(g.teeth2) / g.teeth1,

@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "gearimpact/case/schema.hpp"
+#include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/io/case_file.hpp"
@@ -117,7 +119,7 @@ void print_mesh_stiffness(const StiffnessOptions& options, const CLI::App& comma
 
 void print_iso6336(const StiffnessOptions& options, const CLI::App& command) {
   const auto [pair, model] = pair_and_model(options, command);
-  constexpr double degree = 3.141592653589793238462643383279502884 / 180.0;
+  constexpr double degree = pi / 180.0;
   const Iso6336Stiffness iso =
       iso6336_method_b(iso6336_pair(pair, options.helix_angle_deg * degree));
   std::fputs(iso6336_json(iso, pair.face_width_m).c_str(), stdout);

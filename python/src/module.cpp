@@ -356,16 +356,9 @@ void define_module(py::module_& m) {
           [](StiffnessModel& s, const std::string& name) { s = with_method(s, name, "method"); },
           "gsl, gsl-cquad, boost-gk, boost-ts (the tau-form with that rule) or xform")
       .def_property(
-          "moment_sign",
-          [](const StiffnessModel& s) {
-            return s.moment_sign == AxialMomentSign::flipped ? "flipped" : "physical";
-          },
+          "moment_sign", [](const StiffnessModel& s) { return to_string(s.moment_sign); },
           [](StiffnessModel& s, const std::string& sign) {
-            if (sign != "physical" && sign != "flipped") {
-              throw InputError("moment_sign", sign, "\"physical\" or \"flipped\"");
-            }
-            s.moment_sign =
-                sign == "flipped" ? AxialMomentSign::flipped : AxialMomentSign::physical;
+            s.moment_sign = parse_moment_sign(sign, "moment_sign");
           },
           "physical (M = Fb (l - x) - Fa h, as printed) or flipped")
       .def_readwrite("relative_tolerance", &StiffnessModel::relative_tolerance)
@@ -383,7 +376,7 @@ void define_module(py::module_& m) {
           "Switches a term of (29) on or off.")
       .def("__repr__", [](const StiffnessModel& s) {
         return "StiffnessModel(method='" + method_name(s) + "', moment_sign='" +
-               (s.moment_sign == AxialMomentSign::flipped ? "flipped" : "physical") +
+               to_string(s.moment_sign) +
                "', relative_tolerance=" + shortest_decimal(s.relative_tolerance) + ")";
       });
 

@@ -9,6 +9,7 @@
 #include <numbers>
 #include <vector>
 
+#include "gearimpact/case/schema.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"

@@ -3,15 +3,15 @@
 #include <cmath>
 #include <string>
 
+#include "../require.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
-#include "input_checks.hpp"
 
 namespace gearimpact {
 
 namespace {
 
-using namespace steady_checks;
+using namespace checks;
 
 // Table 8 for perfect gears: the coefficients that multiply B_k = 1, and C_v7.
 struct PerfectGearCoefficients {
