@@ -53,6 +53,7 @@ PairAndModel pair_and_model(const StiffnessOptions& options, const CLI::App& com
   if (!options.model.empty()) chosen.model.kind = parse_stiffness_model(options.model, "--model");
   if (options.flipped_moment) chosen.model.moment_sign = AxialMomentSign::flipped;
   validate(chosen.pair);
+  validate(chosen.model);
   return chosen;
 }
 

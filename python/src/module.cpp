@@ -220,6 +220,7 @@ py::dict stiffness_samples(const GearPair& pair, const StiffnessModel& model, in
     throw InputError("points", std::to_string(points), "an integer in [2, 1000000]");
   }
   validate(pair);
+  validate(model);
   return stiffness_columns(pair, model, contact_positions(pair, points));
 }
 
@@ -229,6 +230,7 @@ py::dict stiffness_at(const GearPair& pair, const StiffnessModel& model,
     throw InputError("x", std::to_string(x.ndim()) + "-dimensional array", "a 1-dimensional array");
   }
   validate(pair);
+  validate(model);
   // mesh_stiffness checks the range too, but names X1; this names the argument.
   const double lp = line_of_action_length(pair);
   std::vector<double> xs(x.data(), x.data() + x.size());
@@ -248,6 +250,7 @@ py::dict energy_ratio_columns(const GearPair& pair, const StiffnessModel& model,
     throw InputError("points", std::to_string(points), "an integer in [2, 1000000]");
   }
   validate(pair);
+  validate(model);
   std::vector<EnergyRatios> rows;
   {
     py::gil_scoped_release release;

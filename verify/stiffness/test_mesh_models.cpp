@@ -346,7 +346,7 @@ TEST_CASE("bad input: the foundation term without a bore") {
   StiffnessModel none = potential_energy();
   none.terms.on = {false, false, false, false, false};
   check_refused([&] { pair_stiffness(pair, none, pair.start_of_active_profile_m); }, "hertz_term",
-                "at least one of");
+                "at least one term of (29)");
   StiffnessModel no_foundation = potential_energy();
   no_foundation.terms.set(Term::foundation, false);
   check_refused([&] { pair_stiffness(pair, no_foundation, 0.0); }, "contact position s",

@@ -923,16 +923,6 @@ bool is_stiffness_row(const Field& field) {
   return false;
 }
 
-// An InputError of a library type's check, its field named as section.key.
-template <typename Check>
-void in_section(std::string_view section, Check check) {
-  try {
-    check();
-  } catch (const InputError& e) {
-    throw InputError(std::string(section) + "." + e.field(), e.value(), e.allowed());
-  }
-}
-
 }  // namespace
 
 void validate(const GearPair& pair) {
@@ -950,8 +940,12 @@ void validate(const StiffnessModel& model) {
 }
 
 void validate_relations(const SimulationCase& c) {
-  in_section("gears", [&c] { validate_geometry(c.gears); });
-  in_section("model", [&c] { validate_terms(c.model.stiffness); });
+  try {
+    validate_geometry(c.gears);
+  } catch (const InputError& e) {
+    throw InputError("gears." + e.field(), e.value(), e.allowed());
+  }
+  validate_terms(c.model.stiffness, "model");
   const std::array<std::pair<const char*, const Torque*>, 2> torques{
       {{"torque1", &c.torque1}, {"torque2", &c.torque2}}};
   for (const auto& [name, torque] : torques) {

@@ -36,7 +36,7 @@ bool provides(StiffnessModelKind kind, Term term) {
   return term == Term::hertz || term == Term::bending || term == Term::axial;
 }
 
-void validate_terms(const StiffnessModel& model) {
+void validate_terms(const StiffnessModel& model, std::string_view section) {
   std::vector<std::string_view> keys;
   for (const TermInfo& t : kTerms) {
     if (!provides(model.kind, t.term)) continue;
@@ -52,9 +52,10 @@ void validate_terms(const StiffnessModel& model) {
     }
     return text;
   };
-  throw InputError(std::string(keys.front()), "\"off\"",
-                   "\"on\" while " + listed(1) + " are \"off\" (at least one of " + listed(0) +
-                       ": at least one term of (29) must stay \"on\")");
+  const std::string prefix = section.empty() ? "" : std::string(section) + ".";
+  throw InputError(prefix + std::string(keys.front()), "\"off\"",
+                   "\"on\" while " + listed(1) + " are \"off\" (" + prefix + listed(0) +
+                       " are all \"off\": at least one term of (29) must stay \"on\")");
 }
 
 StiffnessModel with_method(StiffnessModel model, std::string_view name, std::string_view field) {

@@ -78,10 +78,11 @@ struct StiffnessModel {
 bool operator==(const StiffnessModel& a, const StiffnessModel& b);
 
 // Throws InputError unless at least one term the model provides is on,
-// naming the switch of the first (hertz_term). The ranges of the other
+// naming the switch of the first (hertz_term, or section.hertz_term for a
+// non-empty `section`). The ranges of the other
 // fields are the case schema's (validate(const StiffnessModel&) of
 // case/schema.hpp checks both).
-void validate_terms(const StiffnessModel& model);
+void validate_terms(const StiffnessModel& model, std::string_view section = {});
 
 // A method of --method and of case files' stiffness_method: a route, and
 // for the tau-form the rule it integrates with.
