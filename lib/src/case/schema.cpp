@@ -26,7 +26,7 @@ namespace {
 // A name is written into output file names: at most this many characters.
 constexpr std::size_t kLongestName = 100;
 // Tooth counts beyond this are not gears but typing slips; the geometry
-// needs at least 4 (validate(GearPair)), the undercut limit more.
+// needs at least 4 (the teeth rows), the undercut limit more (validate_geometry).
 constexpr double kMostTeeth = 100000.0;
 
 constexpr Bound open(double value) {
