@@ -7,6 +7,7 @@
 
 #include "case_flags.hpp"
 #include "commands.hpp"
+#include "gearimpact/case/schema.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
@@ -46,6 +47,7 @@ PairAndModel pair_and_model(StiffnessOptions& options) {
   if (!options.case_file.empty()) c = read_case_file(options.case_file);
   options.keys.apply(c);
   validate(c.gears);
+  validate(c.model.stiffness);
   return {c.gears, c.model.stiffness};
 }
 

@@ -222,6 +222,7 @@ py::dict stiffness_samples(const GearPair& pair, const StiffnessModel& model, in
     throw InputError("points", std::to_string(points), "an integer in [2, 1000000]");
   }
   validate(pair);
+  validate(model);
   return stiffness_columns(pair, model, contact_positions(pair, points));
 }
 
@@ -231,6 +232,7 @@ py::dict stiffness_at(const GearPair& pair, const StiffnessModel& model,
     throw InputError("x", std::to_string(x.ndim()) + "-dimensional array", "a 1-dimensional array");
   }
   validate(pair);
+  validate(model);
   // mesh_stiffness checks the range too, but names X1; this names the argument.
   const double lp = line_of_action_length(pair);
   std::vector<double> xs(x.data(), x.data() + x.size());
@@ -250,6 +252,7 @@ py::dict energy_ratio_columns(const GearPair& pair, const StiffnessModel& model,
     throw InputError("points", std::to_string(points), "an integer in [2, 1000000]");
   }
   validate(pair);
+  validate(model);
   std::vector<EnergyRatios> rows;
   {
     py::gil_scoped_release release;
@@ -393,16 +396,9 @@ void define_module(py::module_& m) {
           [](StiffnessModel& s, const std::string& name) { s = with_method(s, name, "method"); },
           "gsl, gsl-cquad, boost-gk, boost-ts (the tau-form with that rule) or xform")
       .def_property(
-          "moment_sign",
-          [](const StiffnessModel& s) {
-            return s.moment_sign == AxialMomentSign::flipped ? "flipped" : "physical";
-          },
+          "moment_sign", [](const StiffnessModel& s) { return to_string(s.moment_sign); },
           [](StiffnessModel& s, const std::string& sign) {
-            if (sign != "physical" && sign != "flipped") {
-              throw InputError("moment_sign", sign, "\"physical\" or \"flipped\"");
-            }
-            s.moment_sign =
-                sign == "flipped" ? AxialMomentSign::flipped : AxialMomentSign::physical;
+            s.moment_sign = parse_moment_sign(sign, "moment_sign");
           },
           "physical (M = Fb (l - x) - Fa h, as printed) or flipped")
       .def_readwrite("relative_tolerance", &StiffnessModel::relative_tolerance)
@@ -420,7 +416,7 @@ void define_module(py::module_& m) {
           "Switches a term of (29) on or off.")
       .def("__repr__", [](const StiffnessModel& s) {
         return "StiffnessModel(method='" + method_name(s) + "', moment_sign='" +
-               (s.moment_sign == AxialMomentSign::flipped ? "flipped" : "physical") +
+               to_string(s.moment_sign) +
                "', relative_tolerance=" + shortest_decimal(s.relative_tolerance) + ")";
       });
 

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <string>
 
+#include "gearimpact/case/schema.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/tooth_profile.hpp"

@@ -10,6 +10,7 @@
 #include <limits>
 #include <string>
 
+#include "gearimpact/case/schema.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/rack_generation.hpp"
@@ -25,30 +26,34 @@ namespace {
 
 constexpr double eps = std::numeric_limits<double>::epsilon();
 
+// One gear of a pair: the pair's fields and which gear.
 struct NamedGear {
   std::string name;
-  RackGear gear;
+  GearPair pair;
+  Gear gear;
+  RackGearGeometry geometry() const { return rack_gear_geometry(pair, gear); }
+  double shift() const { return profile_shift(pair, gear); }
 };
 
 std::vector<NamedGear> varied_gears() {
   std::vector<NamedGear> gears;
   for (const auto& named : verify::varied_rack_pairs()) {
-    gears.push_back({named.name + ", gear 1", named.pair.gear1});
-    gears.push_back({named.name + ", gear 2", named.pair.gear2});
+    gears.push_back({named.name + ", gear 1", named.pair, Gear::one});
+    gears.push_back({named.name + ", gear 2", named.pair, Gear::two});
   }
-  RackGear g;
-  g.teeth = 12;
-  g.module_m = 3e-3;
-  g.profile_shift_coefficient = 0.6;
-  g.clearance_coefficient = 0.37667;
-  g.rack_tip_radius_coefficient = 0.3;
-  gears.push_back({"12 teeth, x +0.6, c 0.377, rho* 0.3", g});
-  g = RackGear{};
-  g.teeth = 60;
-  g.profile_shift_coefficient = -0.2;
-  g.pressure_angle_rad = 14.5 * degree;
-  g.rack_tip_radius_coefficient = 0.0;
-  gears.push_back({"60 teeth, 14.5 deg, x -0.2, sharp rack corner", g});
+  GearPair p;
+  p.teeth1 = 12;
+  p.module_m = 3e-3;
+  p.profile_shift1 = 0.6;
+  p.dedendum_coefficient = 1.0 + 0.37667;
+  p.rack_tip_radius_coefficient = 0.3;
+  gears.push_back({"12 teeth, x +0.6, c 0.377, rho* 0.3", p, Gear::one});
+  p = GearPair{};
+  p.teeth1 = 60;
+  p.profile_shift1 = -0.2;
+  p.pressure_angle_rad = 14.5 * degree;
+  p.rack_tip_radius_coefficient = 0.0;
+  gears.push_back({"60 teeth, 14.5 deg, x -0.2, sharp rack corner", p, Gear::one});
   return gears;
 }
 
@@ -67,7 +72,7 @@ Direction upward(const ProfilePoint& p) {
 
 TEST_CASE("trochoid: meets the root circle at gamma = pi/2, tangent to it") {
   for (const NamedGear& named : varied_gears()) {
-    const RackGearGeometry g = rack_gear_geometry(named.gear, "gear");
+    const RackGearGeometry g = named.geometry();
     const ProfilePoint p = trochoid_point(g, 0.5 * pi);
     CAPTURE(named.name);
     // A few trig calls on radius-sized numbers: 8 ulps of the radius.
@@ -88,7 +93,7 @@ TEST_CASE("trochoid: meets the involute at the form radius, continuously, with a
   double worst_gap = 0.0;
   double worst_cross = 0.0;
   for (const NamedGear& named : varied_gears()) {
-    const RackGearGeometry g = rack_gear_geometry(named.gear, "gear");
+    const RackGearGeometry g = named.geometry();
     const ProfilePoint t = trochoid_point(g, g.pressure_angle_rad);
     const ProfilePoint i = involute_point(g, g.form_tau_rad);
     CAPTURE(named.name);
@@ -119,10 +124,10 @@ TEST_CASE("tooth thickness on the reference circle is pi m / 2 + 2 x m tan a0") 
   // The rack's space on its rolling line (ISO 21771), against the involute's
   // arc thickness 2 r (theta_b - inv a) at r = r_p.
   for (const NamedGear& named : varied_gears()) {
-    const RackGearGeometry g = rack_gear_geometry(named.gear, "gear");
-    const double m = named.gear.module_m;
-    const double expected = 0.5 * pi * m + 2.0 * named.gear.profile_shift_coefficient * m *
-                                               std::tan(named.gear.pressure_angle_rad);
+    const RackGearGeometry g = named.geometry();
+    const double m = named.pair.module_m;
+    const double expected =
+        0.5 * pi * m + 2.0 * named.shift() * m * std::tan(named.pair.pressure_angle_rad);
     CAPTURE(named.name);
     // A difference of two angles of order 0.1 times the radius: 64 ulps.
     CHECK(std::fabs(involute_arc_thickness(g, g.pitch_radius_m) - expected) <=
@@ -161,17 +166,15 @@ TEST_CASE("textbook: KHK's profile-shifted spur pair (m 3, z 12/24, x 0.6/0.36)"
   // diameters 32.100 / 66.660 mm, contact ratio 1.202. KHK shortens both tips
   // by (x1 + x2 - y) m = 0.38 mm; here that is ha = 1 - 0.12667 with the
   // clearance c = 0.25 + 0.12667 keeping KHK's root.
-  RackGearPair p;
-  for (RackGear* g : {&p.gear1, &p.gear2}) {
-    g->module_m = 3e-3;
-    g->addendum_coefficient = 1.0 - 0.12667;
-    g->clearance_coefficient = 0.25 + 0.12667;
-    g->rack_tip_radius_coefficient = 0.38;
-  }
-  p.gear1.teeth = 12;
-  p.gear2.teeth = 24;
-  p.gear1.profile_shift_coefficient = 0.6;
-  p.gear2.profile_shift_coefficient = 0.36;
+  GearPair p;
+  p.module_m = 3e-3;
+  p.addendum_coefficient = 1.0 - 0.12667;
+  p.dedendum_coefficient = 1.25;  // (ha + c): KHK's root
+  p.rack_tip_radius_coefficient = 0.38;
+  p.teeth1 = 12;
+  p.teeth2 = 24;
+  p.profile_shift1 = 0.6;
+  p.profile_shift2 = 0.36;
   const RackGearPairGeometry g = rack_gear_pair_geometry(p);
   // The example derives x1 + x2 = 0.960 from a = 56.5 mm and prints it to
   // three digits; 0.0005 in the sum moves a_w by 0.0024 deg and 1.2 um.
@@ -192,17 +195,17 @@ TEST_CASE("textbook: KHK's profile-shifted spur pair (m 3, z 12/24, x 0.6/0.36)"
 TEST_CASE("the undercut limit is where the form radius reaches the base circle") {
   // z = 14 at 20 deg with the full round: 2 (ha - x) / sin^2 a0 = 14 at
   // x = 1 - 7 sin^2 a0.
-  RackGear gear;
-  gear.teeth = 14;
-  const double s = std::sin(gear.pressure_angle_rad);
+  GearPair pair;
+  pair.teeth1 = 14;
+  const double s = std::sin(pair.pressure_angle_rad);
   const double x_limit = 1.0 - 7.0 * s * s;
   for (double above : {1e-3, 1e-6, 1e-9}) {
-    gear.profile_shift_coefficient = x_limit + above;
-    const RackGearGeometry g = rack_gear_geometry(gear, "gear1");
+    pair.profile_shift1 = x_limit + above;
+    const RackGearGeometry g = rack_gear_geometry(pair, Gear::one);
     // The form point's distance from the base-circle tangent point is
     // (x - x_limit) m / sin a0: it vanishes at the limit.
     const double tangent_length = g.base_radius_m * (g.form_tau_rad + g.half_tooth_angle_base_rad);
-    const double expected = above * gear.module_m / s;
+    const double expected = above * pair.module_m / s;
     CAPTURE(above);
     // tangent_length is a difference of radius-sized numbers: 64 ulps of r_b.
     CHECK(std::fabs(tangent_length - expected) <= 64.0 * eps * g.base_radius_m);
@@ -211,8 +214,8 @@ TEST_CASE("the undercut limit is where the form radius reaches the base circle")
     CHECK(std::fabs(std::hypot(end.x_m, end.y_m) - std::hypot(g.base_radius_m, expected)) <=
           64.0 * eps * g.base_radius_m);
   }
-  gear.profile_shift_coefficient = x_limit - 1e-9;
-  check_refused([&] { rack_gear_geometry(gear, "gear1"); }, "gear1.teeth",
+  pair.profile_shift1 = x_limit - 1e-9;
+  check_refused([&] { rack_gear_geometry(pair, Gear::one); }, "teeth1",
                 "more than 2 (ha + c - x - rho* (1 - sin a0)) / sin^2 a0 = 14");
 }
 
@@ -254,46 +257,49 @@ TEST_CASE("kinematics: contact points of a pair on the line of action") {
 }
 
 TEST_CASE("bad input is refused naming the field and its allowed range") {
-  RackGear gear;
+  GearPair pair;
   // A pointed tip from a shift: for 10 teeth the limit lies between 0.5 and
   // 0.8 (the tip half angle falls through zero there).
-  gear.teeth = 10;
-  gear.profile_shift_coefficient = 0.8;
-  check_refused([&] { rack_gear_geometry(gear, "gear1"); }, "gear1.profile_shift_coefficient",
+  pair.teeth1 = 10;
+  pair.profile_shift1 = 0.8;
+  check_refused([&] { rack_gear_geometry(pair, Gear::one); }, "profile_shift1",
                 "the shift at which the tooth tip becomes pointed");
   // The limit it names is the root of the tip half angle: a shift just
   // below it passes, just above it fails.
   try {
-    rack_gear_geometry(gear, "gear1");
+    rack_gear_geometry(pair, Gear::one);
   } catch (const InputError& e) {
     const std::string message = e.what();
     const std::size_t at = message.find("values below ") + 13;
     const double x_max = std::stod(message.substr(at));
     CHECK(x_max > 0.5);
     CHECK(x_max < 0.8);
-    gear.profile_shift_coefficient = x_max - 1e-9;
-    CHECK_NOTHROW(rack_gear_geometry(gear, "gear1"));
-    gear.profile_shift_coefficient = x_max + 1e-9;
-    CHECK_THROWS_AS(rack_gear_geometry(gear, "gear1"), InputError);
+    pair.profile_shift1 = x_max - 1e-9;
+    CHECK_NOTHROW(rack_gear_geometry(pair, Gear::one));
+    pair.profile_shift1 = x_max + 1e-9;
+    CHECK_THROWS_AS(rack_gear_geometry(pair, Gear::one), InputError);
   }
 
-  gear = RackGear{};
+  pair = GearPair{};
+  pair.teeth2 = 20;
   // Root diameter 2 r_f = 20 * 2 mm - 2 * 1.25 * 2 mm = 35 mm.
-  gear.bore_diameter_m = 35e-3;
-  check_refused([&] { rack_gear_geometry(gear, "gear2"); }, "gear2.bore_diameter",
+  pair.bore_diameter2_m = 35e-3;
+  check_refused([&] { rack_gear_geometry(pair, Gear::two); }, "bore_diameter2",
                 "(0, " + format_number(35e-3) + ") m");
 
-  gear = RackGear{};
+  pair = GearPair{};
   // The full round of c = 0.25 at 20 deg: 0.25 / (1 - sin 20 deg).
-  gear.rack_tip_radius_coefficient = 0.4;
-  check_refused([&] { rack_gear_geometry(gear, "gear1"); }, "gear1.rack_tip_radius_coefficient",
+  pair.rack_tip_radius_coefficient = 0.4;
+  check_refused([&] { rack_gear_geometry(pair, Gear::one); }, "rack_tip_radius_coefficient",
                 "[0, " + format_number(0.25 / (1.0 - std::sin(20.0 * degree))) + "]");
 
-  RackGearPair pair;
-  pair.gear2.module_m = 2.5e-3;
-  check_refused([&] { rack_gear_pair_geometry(pair); }, "gear2.module", "gear1.module = 0.002");
+  // One module for both gears: the pair has one field, and its range is the
+  // case schema's row.
+  pair = GearPair{};
+  pair.module_m = -2.5e-3;
+  check_refused([&] { validate(pair); }, "module", "> 0");
 
-  gear = RackGear{};
-  gear.poisson_ratio = 0.5;
-  check_refused([&] { rack_gear_geometry(gear, "gear1"); }, "gear1.poisson_ratio", "(-1, 0.5)");
+  pair = GearPair{};
+  pair.poisson_ratio = 0.5;
+  check_refused([&] { validate(pair); }, "poisson_ratio", "(-1, 0.5)");
 }

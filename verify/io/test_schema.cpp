@@ -21,13 +21,16 @@
 #include <string>
 #include <vector>
 
+#include "gearimpact/case/schema.hpp"
 #include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/case/units.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/io/case_file.hpp"
-#include "gearimpact/case/schema.hpp"
-#include "gearimpact/case/units.hpp"
+#include "gearimpact/named_values.hpp"
+#include "gearimpact/numerics/quadrature.hpp"
 #include "gearimpact/paper/table1.hpp"
+#include "gearimpact/stiffness/model.hpp"
 #include "run_command.hpp"
 
 using namespace gearimpact;
@@ -401,4 +404,94 @@ TEST_CASE("docs/case-files.md holds the program's schema and flag tables") {
   // One table row per key, after the header and the rule.
   CHECK(static_cast<std::size_t>(std::count(schema.out.begin(), schema.out.end(), '\n')) ==
         case_schema().size() + 2);
+}
+
+namespace {
+
+// The schema row's choices, in order, as names.
+std::vector<std::string> choice_names(std::string_view key) {
+  const Field* field = find_field(key);
+  REQUIRE(field != nullptr);
+  std::vector<std::string> names;
+  for (const ChoiceName& c : field->choices) names.emplace_back(c.name);
+  return names;
+}
+
+template <typename E, std::size_t N>
+std::vector<std::string> table_names(const std::array<NamedValue<E>, N>& table) {
+  std::vector<std::string> names;
+  for (const NamedValue<E>& entry : table) names.emplace_back(entry.name);
+  return names;
+}
+
+}  // namespace
+
+TEST_CASE("each choice row takes its names from its enumeration's table, and they read back") {
+  CHECK(choice_names("model.stiffness_model") == table_names(kStiffnessModels));
+  CHECK(choice_names("model.moment_sign") == table_names(kMomentSigns));
+  CHECK(choice_names("model.xform_rule") == table_names(kQuadratureRules));
+  CHECK(choice_names("model.coast_phase") == table_names(kCoastPhases));
+  CHECK(choice_names("model.damping_form") == table_names(kDampingForms));
+  CHECK(choice_names("model.damping_stiffness") == table_names(kDampingStiffnesses));
+  CHECK(choice_names("model.mesh_stiffness") == table_names(kMeshStiffnessModes));
+  CHECK(choice_names("model.damping_update") == table_names(kDampingUpdates));
+  CHECK(choice_names("integrator.kind") == table_names(kIntegratorKinds));
+  std::vector<std::string> methods;
+  for (const StiffnessMethod& m : kStiffnessMethods) methods.emplace_back(m.name);
+  CHECK(choice_names("model.stiffness_method") == methods);
+
+  // Every name parses to its enumerator and prints back, through the
+  // functions the program and the Python module call.
+  for (const auto& entry : kStiffnessModels) {
+    CHECK(parse_stiffness_model(entry.name, "m") == entry.value);
+    CHECK(to_string(entry.value) == entry.name);
+  }
+  for (const auto& entry : kQuadratureRules) {
+    CHECK(parse_quadrature_rule(entry.name, "r") == entry.value);
+    CHECK(to_string(entry.value) == entry.name);
+  }
+  for (const auto& entry : kMomentSigns) {
+    CHECK(parse_moment_sign(entry.name, "s") == entry.value);
+    CHECK(to_string(entry.value) == entry.name);
+  }
+  for (const StiffnessMethod& m : kStiffnessMethods) {
+    StiffnessModel model;
+    model.rule = QuadratureRule::boost_tanh_sinh;
+    model = with_method(model, m.name, "method");
+    CHECK(model.route == m.route);
+    CHECK(method_name(model) == m.name);
+  }
+  // An unknown name is refused with every name of the table.
+  try {
+    parse_moment_sign("sideways", "moment_sign");
+    FAIL("accepted");
+  } catch (const InputError& e) {
+    CHECK(e.field() == "moment_sign");
+    CHECK(std::string(e.what()).find("one of physical, flipped") != std::string::npos);
+  }
+}
+
+TEST_CASE("validate(StiffnessModel): the rows' ranges, then at least one term") {
+  StiffnessModel model;
+  CHECK_NOTHROW(validate(model));
+  model.relative_tolerance = 0.1;
+  try {
+    validate(model);
+    FAIL("accepted");
+  } catch (const InputError& e) {
+    CHECK(e.field() == "stiffness_tolerance");
+    CHECK(std::string(e.what()).find("[1e-14, 1e-2]") != std::string::npos);
+  }
+  model = StiffnessModel{};
+  // The paper's model has no shear term: switching off its three leaves none.
+  for (Term t : {Term::hertz, Term::bending, Term::axial}) model.terms.set(t, false);
+  try {
+    validate(model);
+    FAIL("accepted");
+  } catch (const InputError& e) {
+    CHECK(e.field() == "hertz_term");
+    CHECK(std::string(e.what()).find("at least one term of (29)") != std::string::npos);
+  }
+  model.kind = StiffnessModelKind::potential_energy;
+  CHECK_NOTHROW(validate(model));
 }

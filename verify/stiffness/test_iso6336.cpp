@@ -53,18 +53,17 @@ bool to_printed_digits(double value, double printed, double last_digit) {
 }
 
 // ISO's input for a rack-generated spur pair: same rack for both gears.
-Iso6336Pair iso_of(const RackGearPair& rack, const RackGearPairGeometry& g) {
+Iso6336Pair iso_of(const GearPair& rack, const RackGearPairGeometry& g) {
   Iso6336Pair p;
-  p.normal_module_m = rack.gear1.module_m;
-  p.normal_pressure_angle_rad = rack.gear1.pressure_angle_rad;
+  p.normal_module_m = rack.module_m;
+  p.normal_pressure_angle_rad = rack.pressure_angle_rad;
   p.centre_distance_m = g.centre_distance_m;
-  const std::pair<Iso6336Gear*, const RackGear*> gears[] = {{&p.gear1, &rack.gear1},
-                                                            {&p.gear2, &rack.gear2}};
+  const std::pair<Iso6336Gear*, Gear> gears[] = {{&p.gear1, Gear::one}, {&p.gear2, Gear::two}};
   for (const auto& [iso, gear] : gears) {
-    iso->teeth = gear->teeth;
-    iso->profile_shift_coefficient = gear->profile_shift_coefficient;
-    iso->rack_dedendum_coefficient = gear->addendum_coefficient + gear->clearance_coefficient;
-    iso->rack_pressure_angle_rad = gear->pressure_angle_rad;
+    iso->teeth = teeth(rack, gear);
+    iso->profile_shift_coefficient = profile_shift(rack, gear);
+    iso->rack_dedendum_coefficient = rack.dedendum_coefficient;
+    iso->rack_pressure_angle_rad = rack.pressure_angle_rad;
   }
   p.gear1.tip_diameter_m = 2.0 * g.gear1.tip_radius_m;
   p.gear2.tip_diameter_m = 2.0 * g.gear2.tip_radius_m;
@@ -91,7 +90,7 @@ TEST_CASE("ISO/TR 6336-30 Annex A: zn, c'_th, c', c_gamma_alpha to the printed d
 }
 
 TEST_CASE("ISO spur: zn = z, and the paper's pair gives c' b = 1.34e8 N/m") {
-  const RackGearPair rack = verify::ross_pair_a();
+  const GearPair rack = verify::ross_pair_a();
   const RackGearPairGeometry g = rack_gear_pair_geometry(rack);
   const Iso6336Stiffness r = iso6336_method_b(iso_of(rack, g));
   CHECK(r.virtual_teeth1 == 20.0);
@@ -128,7 +127,8 @@ TEST_CASE("potential-energy against ISO 6336-1 method B, as a band") {
     const RackGearPairGeometry g = rack_gear_pair_geometry(named.pair);
     const Iso6336Stiffness iso = iso6336_method_b(iso_of(named.pair, g));
     const double b = g.contact_width_m;
-    const MeshModel model;
+    StiffnessModel model;
+    model.kind = StiffnessModelKind::potential_energy;
     // The single-pair plateau: the highest single-pair stiffness over the
     // single-pair zone [s_EAP - p_b, s_SAP + p_b], on 101 points (ISO's c'
     // is the single pair's maximum).

@@ -20,6 +20,7 @@
 #include "gearimpact/stiffness/fillet_foundation.hpp"
 #include "gearimpact/stiffness/mesh_models.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
+#include "gearimpact/stiffness/model.hpp"
 #include "gearimpact/stiffness/time_varying_stiffness.hpp"
 #include "rack_pairs.hpp"
 #include "relative.hpp"
@@ -92,10 +93,15 @@ double onto_path(const RackGearPairGeometry& pair, double s) {
   return s;
 }
 
-MeshModel model_of(MeshModelKind kind) {
-  MeshModel model;
+StiffnessModel model_of(StiffnessModelKind kind) {
+  StiffnessModel model;
   model.kind = kind;
   return model;
+}
+
+// The model of rack-cut teeth with every term.
+StiffnessModel potential_energy() {
+  return model_of(StiffnessModelKind::potential_energy);
 }
 
 }  // namespace
@@ -107,7 +113,7 @@ TEST_CASE("ross-compatible reproduces ROSS per term, per tooth, at five position
   constexpr double bound = 1e-6;
   const PeerFile peer = read_peer_file();
   const RackGearPairGeometry pair = rack_gear_pair_geometry(verify::ross_pair_a());
-  const MeshModel model = model_of(MeshModelKind::ross_compatible);
+  const StiffnessModel model = model_of(StiffnessModelKind::ross_compatible);
   double worst = 0.0;
   for (const PeerRow& row : peer.rows) {
     const double s = onto_path(pair, row.value.at("s_from_T1_m"));
@@ -137,7 +143,7 @@ TEST_CASE("ross-compatible reproduces ROSS's TVMS min, max and time mean") {
   const PeerFile peer = read_peer_file();
   const RackGearPairGeometry pair = rack_gear_pair_geometry(verify::ross_pair_a());
   const TimeVaryingMeshStiffness t =
-      time_varying_mesh_stiffness(pair, model_of(MeshModelKind::ross_compatible));
+      time_varying_mesh_stiffness(pair, model_of(StiffnessModelKind::ross_compatible));
   // The bound the specification asks for.
   constexpr double bound = 1e-6;
   CHECK(relative_difference(t.min_n_per_m, peer.tvms_min) <= bound);
@@ -161,14 +167,14 @@ TEST_CASE("potential-energy against ross-compatible: the foundation term, and by
   for (const RackGearGeometry* gear : {&pair.gear1, &pair.gear2}) {
     // ROSS's theta_f lacks c m tan a0 in the round centre's offset b1:
     // 2 c tan a0 / z less, analytically.
-    const double gap = foundation_root_half_angle(*gear, MeshModelKind::potential_energy) -
-                       foundation_root_half_angle(*gear, MeshModelKind::ross_compatible);
+    const double gap = foundation_root_half_angle(*gear, StiffnessModelKind::potential_energy) -
+                       foundation_root_half_angle(*gear, StiffnessModelKind::ross_compatible);
     const double expected = 2.0 * 0.25 * std::tan(gear->pressure_angle_rad) / gear->teeth;
     // A difference of two angles near 0.15 rad: 8 ulps of that.
     CHECK(std::fabs(gap - expected) <= 8.0 * eps * 0.15);
   }
-  const MeshModel pe = model_of(MeshModelKind::potential_energy);
-  const MeshModel ross = model_of(MeshModelKind::ross_compatible);
+  const StiffnessModel pe = model_of(StiffnessModelKind::potential_energy);
+  const StiffnessModel ross = model_of(StiffnessModelKind::ross_compatible);
   for (const PeerRow& row : peer.rows) {
     const double s = onto_path(pair, row.value.at("s_from_T1_m"));
     const PairStiffness a = pair_stiffness(pair, pe, s);
@@ -240,46 +246,47 @@ TEST_CASE("fillet foundation: the coefficient table and the fit's range") {
   // The paper's pinion has theta_f = 0.1506 rad (0.1416 by ROSS's formula),
   // above the fit's 0.12: extrapolated, and said so; its wheel is inside.
   const RackGearPairGeometry pair = rack_gear_pair_geometry(verify::ross_pair_a());
-  for (MeshModelKind kind : {MeshModelKind::potential_energy, MeshModelKind::ross_compatible}) {
+  for (StiffnessModelKind kind :
+       {StiffnessModelKind::potential_energy, StiffnessModelKind::ross_compatible}) {
     const PairStiffness k = pair_stiffness(pair, model_of(kind), pair.start_of_active_profile_m);
     CHECK(k.gear1.foundation_extrapolated);
     CHECK_FALSE(k.gear2.foundation_extrapolated);
   }
   MESSAGE("paper pair: theta_f pinion "
           << pair.gear1.root_half_angle_rad << " rad (ROSS "
-          << foundation_root_half_angle(pair.gear1, MeshModelKind::ross_compatible) << "), wheel "
-          << pair.gear2.root_half_angle_rad << " rad; h_f " << pair.gear1.root_radius_m / 10e-3
-          << ", " << pair.gear2.root_radius_m / 30e-3);
+          << foundation_root_half_angle(pair.gear1, StiffnessModelKind::ross_compatible)
+          << "), wheel " << pair.gear2.root_half_angle_rad << " rad; h_f "
+          << pair.gear1.root_radius_m / 10e-3 << ", " << pair.gear2.root_radius_m / 30e-3);
 }
 
 TEST_CASE("every term can be switched off, and the pair's compliance loses exactly it") {
   const RackGearPairGeometry pair = rack_gear_pair_geometry(verify::ross_pair_a());
   const double s = 0.5 * (pair.start_of_active_profile_m + pair.end_of_active_profile_m);
-  const MeshModel all;
+  const StiffnessModel all = potential_energy();
   const PairStiffness k = pair_stiffness(pair, all, s);
   const double total = 1.0 / k.stiffness_n_per_m;
   // The terms in series: the sum of their compliances, to rounding.
   CHECK(relative_difference(total, k.hertz_m_per_n + k.gear1.total_m_per_n() +
                                        k.gear2.total_m_per_n()) <= 4.0 * eps);
-  const std::pair<bool MeshModelTerms::*, double> terms[] = {
-      {&MeshModelTerms::hertz, k.hertz_m_per_n},
-      {&MeshModelTerms::bending, k.gear1.bending_m_per_n + k.gear2.bending_m_per_n},
-      {&MeshModelTerms::shear, k.gear1.shear_m_per_n + k.gear2.shear_m_per_n},
-      {&MeshModelTerms::axial, k.gear1.axial_m_per_n + k.gear2.axial_m_per_n},
-      {&MeshModelTerms::foundation, k.gear1.foundation_m_per_n + k.gear2.foundation_m_per_n}};
+  const std::pair<Term, double> terms[] = {
+      {Term::hertz, k.hertz_m_per_n},
+      {Term::bending, k.gear1.bending_m_per_n + k.gear2.bending_m_per_n},
+      {Term::shear, k.gear1.shear_m_per_n + k.gear2.shear_m_per_n},
+      {Term::axial, k.gear1.axial_m_per_n + k.gear2.axial_m_per_n},
+      {Term::foundation, k.gear1.foundation_m_per_n + k.gear2.foundation_m_per_n}};
   for (const auto& [term, compliance] : terms) {
-    MeshModel without = all;
-    without.terms.*term = false;
+    StiffnessModel without = all;
+    without.terms.set(term, false);
     const double rest = 1.0 / pair_stiffness(pair, without, s).stiffness_n_per_m;
     // A sum of five terms minus one: rounding of the total.
     CHECK(std::fabs((total - compliance) - rest) <= 8.0 * eps * total);
   }
   // The foundation term off needs no bore.
-  RackGearPair no_bores = verify::ross_pair_a();
-  no_bores.gear1.bore_diameter_m.reset();
-  no_bores.gear2.bore_diameter_m.reset();
-  MeshModel no_foundation;
-  no_foundation.terms.foundation = false;
+  GearPair no_bores = verify::ross_pair_a();
+  no_bores.bore_diameter1_m.reset();
+  no_bores.bore_diameter2_m.reset();
+  StiffnessModel no_foundation = potential_energy();
+  no_foundation.terms.set(Term::foundation, false);
   CHECK_NOTHROW(pair_stiffness(rack_gear_pair_geometry(no_bores), no_foundation, s));
 }
 
@@ -288,9 +295,9 @@ TEST_CASE("the model by both beam routes gives the same pair stiffness") {
   // (as the beam integrals do, test_tooth_beam).
   for (const auto& named : verify::varied_rack_pairs()) {
     const RackGearPairGeometry pair = rack_gear_pair_geometry(named.pair);
-    MeshModel a;
-    MeshModel b;
-    b.route = BeamRoute::section_height;
+    const StiffnessModel a = potential_energy();
+    StiffnessModel b = potential_energy();
+    b.route = StiffnessRoute::x_form;
     for (int i = 0; i <= 8; ++i) {
       const double s = pair.start_of_active_profile_m +
                        (pair.end_of_active_profile_m - pair.start_of_active_profile_m) * i / 8.0;
@@ -305,7 +312,7 @@ TEST_CASE("the model by both beam routes gives the same pair stiffness") {
 TEST_CASE("TVMS: the exact mean by two routes, pairs in contact, extremes bound the samples") {
   for (const auto& named : verify::varied_rack_pairs()) {
     const RackGearPairGeometry pair = rack_gear_pair_geometry(named.pair);
-    const MeshModel model;
+    const StiffnessModel model = potential_energy();
     const TimeVaryingMeshStiffness t = time_varying_mesh_stiffness(pair, model, 100);
     const double path_mean = path_mean_mesh_stiffness(pair, model);
     CAPTURE(named.name);
@@ -328,22 +335,25 @@ TEST_CASE("TVMS: the exact mean by two routes, pairs in contact, extremes bound 
 }
 
 TEST_CASE("bad input: the foundation term without a bore") {
-  RackGearPair p = verify::ross_pair_a();
-  p.gear2.bore_diameter_m.reset();
+  GearPair p = verify::ross_pair_a();
+  p.bore_diameter2_m.reset();
   const RackGearPairGeometry pair = rack_gear_pair_geometry(p);
   // Wheel root diameter 2 r_f = 160 mm - 5 mm.
-  check_refused([&] { pair_stiffness(pair, MeshModel{}, pair.start_of_active_profile_m); },
-                "gear2.bore_diameter", "a diameter in (0, " + format_number(0.155) + ") m");
-  check_refused([&] { time_varying_mesh_stiffness(pair, MeshModel{}); }, "gear2.bore_diameter",
+  check_refused([&] { pair_stiffness(pair, potential_energy(), pair.start_of_active_profile_m); },
+                "bore_diameter2", "a diameter in (0, " + format_number(0.155) + ") m");
+  check_refused([&] { time_varying_mesh_stiffness(pair, potential_energy()); }, "bore_diameter2",
                 "the fillet-foundation term needs the bore");
-  MeshModel none;
-  none.terms = {false, false, false, false, false};
-  check_refused([&] { pair_stiffness(pair, none, pair.start_of_active_profile_m); },
-                "stiffness terms", "at least one of");
-  MeshModel no_foundation;
-  no_foundation.terms.foundation = false;
+  StiffnessModel none = potential_energy();
+  none.terms.on = {false, false, false, false, false};
+  check_refused([&] { pair_stiffness(pair, none, pair.start_of_active_profile_m); }, "hertz_term",
+                "at least one term of (29)");
+  StiffnessModel no_foundation = potential_energy();
+  no_foundation.terms.set(Term::foundation, false);
   check_refused([&] { pair_stiffness(pair, no_foundation, 0.0); }, "contact position s",
                 "the path of contact");
-  check_refused([&] { parse_mesh_model("yang-lin"); }, "stiffness_model",
-                "potential-energy or ross-compatible");
+  // The models of this file by name, and the paper's refused here.
+  check_refused([&] { parse_stiffness_model("yang-lin", "stiffness_model"); }, "stiffness_model",
+                "potential-energy, ross-compatible");
+  check_refused([&] { pair_stiffness(pair, StiffnessModel{}, pair.start_of_active_profile_m); },
+                "stiffness_model", "\"potential-energy\" or \"ross-compatible\"");
 }

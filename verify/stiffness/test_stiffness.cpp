@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "gearimpact/case/schema.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/tooth_profile.hpp"

@@ -9,6 +9,7 @@
 #include <numbers>
 #include <vector>
 
+#include "gearimpact/case/schema.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
@@ -139,12 +140,13 @@ TEST_CASE("bad options are an InputError, a failing quadrature a QuadratureError
   CHECK_THROWS_AS(StiffnessTable(pair, {}, {64, 16}), InputError);
   // GSL QAG refuses a relative tolerance below 50 machine epsilons (1.1e-14):
   // the error arises inside gsl_cheb_init's callback and must reach the
-  // caller intact. Below 1e-14 the model itself is refused.
+  // caller intact. Below 1e-14 the model itself is refused where it enters
+  // (the schema's stiffness_tolerance row, which validate checks).
   StiffnessModel unreachable;
   unreachable.relative_tolerance = 1e-14;
   CHECK_THROWS_AS(StiffnessTable(pair, unreachable), QuadratureError);
   unreachable.relative_tolerance = 1e-20;
-  CHECK_THROWS_AS(StiffnessTable(pair, unreachable), InputError);
+  CHECK_THROWS_AS(validate(unreachable), InputError);
 }
 
 TEST_CASE("orders above 7 (sixteen-coefficient evaluation) are as accurate") {

@@ -20,10 +20,10 @@ using gearimpact::verify::relative_difference;
 
 namespace {
 
-constexpr BeamRoute both_routes[] = {BeamRoute::profile_parameter, BeamRoute::section_height};
+constexpr StiffnessRoute both_routes[] = {StiffnessRoute::tau_form, StiffnessRoute::x_form};
 
-std::string name_of(BeamRoute route) {
-  return route == BeamRoute::profile_parameter ? "profile parameter" : "section height";
+std::string name_of(StiffnessRoute route) {
+  return route == StiffnessRoute::tau_form ? "profile parameter" : "section height";
 }
 
 // Steel, 10 mm wide.
@@ -47,7 +47,7 @@ TEST_CASE("closed forms: a uniform rectangular tooth") {
   const double b = steel.width_m;
   const double area = 2.0 * h * b;
   const double second_moment = 2.0 / 3.0 * h * h * h * b;
-  for (BeamRoute route : both_routes) {
+  for (StiffnessRoute route : both_routes) {
     CAPTURE(name_of(route));
     // Load straight across (tau = 0) at the tip: a cantilever,
     // bending l^3 / (3 E I), shear 1.2 l / (G A), no axial part.
@@ -96,7 +96,7 @@ TEST_CASE("closed forms: a tapered tooth in two pieces, one parametrised downwar
   const double log_ratio = std::log(h1 / h0);
   const double bending = 3.0 / (2.0 * e * b * k * k * k) *
                          (1.5 + h1 * h1 / (2.0 * h0 * h0) - 2.0 * h1 / h0 + log_ratio);
-  for (BeamRoute route : both_routes) {
+  for (StiffnessRoute route : both_routes) {
     CAPTURE(name_of(route));
     const BeamCompliance across = tooth_beam_compliance(flank, {h1, l, 0.0}, steel, route);
     CHECK(relative_difference(across.bending_m_per_n, bending) <= closed_form_bound);
@@ -131,9 +131,9 @@ TEST_CASE("two routes: every beam integral of the real teeth agrees to 1e-10") {
                                     pair.contact_width_m};
         const std::vector<FlankPiece> flank = flank_to_contact(gear, c.tau_rad);
         const BeamCompliance a = tooth_beam_compliance(flank, {c.x_m, c.y_m, c.tau_rad}, material,
-                                                       BeamRoute::profile_parameter);
+                                                       StiffnessRoute::tau_form);
         const BeamCompliance b = tooth_beam_compliance(flank, {c.x_m, c.y_m, c.tau_rad}, material,
-                                                       BeamRoute::section_height);
+                                                       StiffnessRoute::x_form);
         const std::string where =
             named.name + ", gear " + std::to_string(gear_index + 1) + ", s = " + format_number(s);
         CAPTURE(where);
@@ -167,11 +167,11 @@ TEST_CASE("the fillet matters: the tooth from the root circle is more compliant 
   const BeamMaterial material{pair.gear1.youngs_modulus_pa, pair.gear1.youngs_modulus_pa / 2.6,
                               pair.contact_width_m};
   std::vector<FlankPiece> flank = flank_to_contact(pair.gear1, c.tau_rad);
-  const BeamCompliance whole = tooth_beam_compliance(flank, {c.x_m, c.y_m, c.tau_rad}, material,
-                                                     BeamRoute::profile_parameter);
+  const BeamCompliance whole =
+      tooth_beam_compliance(flank, {c.x_m, c.y_m, c.tau_rad}, material, StiffnessRoute::tau_form);
   flank.erase(flank.begin());
-  const BeamCompliance involute_only = tooth_beam_compliance(
-      flank, {c.x_m, c.y_m, c.tau_rad}, material, BeamRoute::profile_parameter);
+  const BeamCompliance involute_only =
+      tooth_beam_compliance(flank, {c.x_m, c.y_m, c.tau_rad}, material, StiffnessRoute::tau_form);
   CHECK(whole.bending_m_per_n > involute_only.bending_m_per_n);
   CHECK(whole.shear_m_per_n > involute_only.shear_m_per_n);
   CHECK(whole.axial_m_per_n > involute_only.axial_m_per_n);

@@ -15,6 +15,9 @@
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/named_values.hpp"
+#include "gearimpact/numerics/quadrature.hpp"
+#include "gearimpact/stiffness/model.hpp"
 
 namespace gearimpact {
 
@@ -23,7 +26,7 @@ namespace {
 // A name is written into output file names: at most this many characters.
 constexpr std::size_t kLongestName = 100;
 // Tooth counts beyond this are not gears but typing slips; the geometry
-// needs at least 4 (validate(GearPair)), the undercut limit more.
+// needs at least 4 (the teeth rows), the undercut limit more (validate_geometry).
 constexpr double kMostTeeth = 100000.0;
 
 constexpr Bound open(double value) {
@@ -90,6 +93,16 @@ void bind(Field& field, Slot slot) {
 template <typename E>
 ChoiceName choice(std::string_view name, E value, std::string_view meaning, bool has_text = true) {
   return {name, static_cast<int>(value), meaning, has_text};
+}
+
+// The choices of a row from the table of its enumeration.
+template <typename E, std::size_t N>
+std::vector<ChoiceName> choices_of(const std::array<NamedValue<E>, N>& table) {
+  std::vector<ChoiceName> choices;
+  for (const NamedValue<E>& entry : table) {
+    choices.push_back(choice(entry.name, entry.value, entry.meaning));
+  }
+  return choices;
 }
 
 // The rows of one section, added in the order they are written.
@@ -349,20 +362,10 @@ std::vector<Field> make_schema() {
         "f of (35): Ff = f N against the sliding speed",
         [](auto& c) -> auto& { return c.model.friction_coefficient; });
     r.choice(
-        "damping_form",
-        {choice("herbert-mcwhannell", DampingForm::herbert_mcwhannell,
-                "D = 6 K (1 - e) / {[(2e - 1)^2 + 3] Vi}"),
-         choice("hunt-crossley", DampingForm::hunt_crossley, "D = 3 K (1 - e) / (2 Vi)"),
-         choice("lee-wang", DampingForm::lee_wang, "D = 3 K (1 - e) / (4 Vi)")},
-        false, "form of the damping factor D of (32)",
+        "damping_form", choices_of(kDampingForms), false, "form of the damping factor D of (32)",
         [](auto& c) -> auto& { return c.model.damping_form; });
     r.choice(
-        "damping_stiffness",
-        {choice("current-pair", DampingStiffness::current_pair, "each loaded pair's current Ke"),
-         choice("pitch-pair-at-impact", DampingStiffness::pitch_pair_at_impact,
-                "Ke of the pair nearest the pitch point, frozen at impact"),
-         choice("hertz", DampingStiffness::hertz, "Kh of (4)")},
-        false, "the stiffness K in (32)",
+        "damping_stiffness", choices_of(kDampingStiffnesses), false, "the stiffness K in (32)",
         [](auto& c) -> auto& { return c.model.damping_stiffness; });
     r.number(
         "restitution_coefficient", {closed(0.0), {}, {}}, false,
@@ -380,40 +383,30 @@ std::vector<Field> make_schema() {
         "1 m/s",
         [](auto& c) -> auto& { return c.model.restitution.speed_unit_m_s; });
     r.choice(
-        "coast_phase",
-        {choice("half-base-pitch", CoastPhase::half_base_pitch,
-                "coast-flank contacts t0/2 from the drive ones (geometric)"),
-         choice("in-phase", CoastPhase::in_phase, "the literal reading of (9)")},
-        false, "where the coast-flank contacts sit",
+        "coast_phase", choices_of(kCoastPhases), false, "where the coast-flank contacts sit",
         [](auto& c) -> auto& { return c.model.coast_phase; });
     r.choice(
-        "stiffness_model",
-        {choice("yang-lin-1987", StiffnessModelKind::yang_lin_1987,
-                "the paper's: involute from the base circle, Hertz, bending, axial"),
-         choice("potential-energy", StiffnessModelKind::potential_energy,
-                "trochoid + involute from the root circle, Hertz, bending, shear, axial, "
-                "fillet foundation (needs both bores)"),
-         choice("ross-compatible", StiffnessModelKind::ross_compatible,
-                "potential-energy with the ROSS gear element's two conventions")},
-        false, "the mesh-stiffness model (README, Which stiffness model)",
+        "stiffness_model", choices_of(kStiffnessModels), false,
+        "the mesh-stiffness model (README, Which stiffness model)",
         [](auto& c) -> auto& { return c.model.stiffness.kind; });
     r.choice(
-        "moment_sign",
-        {choice("physical", AxialMomentSign::physical, "M = Fb (l - x) - Fa h as printed"),
-         choice("flipped", AxialMomentSign::flipped, "M = Fb (l - x) + Fa h (not physical)")},
-        false, "sign of the axial-force moment in the bending stiffness",
+        "moment_sign", choices_of(kMomentSigns), false,
+        "sign of the axial-force moment in the bending stiffness",
         [](auto& c) -> auto& { return c.model.stiffness.moment_sign; });
     // stiffness_method names the tau-form with a quadrature rule, or the
     // x-form route; xform_rule the rule of the x-form route (used only then).
-    constexpr int xform_code = 4;
-    const std::vector<ChoiceName> rules{
-        choice("gsl", QuadratureRule::gsl_qag, "GSL QAG on the tau-form"),
-        choice("gsl-cquad", QuadratureRule::gsl_cquad, "GSL CQUAD on the tau-form"),
-        choice("boost-gk", QuadratureRule::boost_gauss_kronrod,
-               "Boost Gauss-Kronrod on the tau-form"),
-        choice("boost-ts", QuadratureRule::boost_tanh_sinh, "Boost tanh-sinh on the tau-form")};
-    std::vector<ChoiceName> methods = rules;
-    methods.push_back({"xform", xform_code, "the x-form route (16)-(19)", true});
+    // The tau-form's methods have their rule's code, the x-form one past them.
+    constexpr int xform_code = static_cast<int>(kQuadratureRules.size());
+    std::vector<ChoiceName> rules;
+    std::vector<ChoiceName> methods;
+    for (const StiffnessMethod& m : kStiffnessMethods) {
+      if (m.route == StiffnessRoute::tau_form) {
+        rules.push_back(choice(m.name, m.rule, m.meaning));
+        methods.push_back(rules.back());
+      } else {
+        methods.push_back({m.name, xform_code, m.meaning, true});
+      }
+    }
     Field& method = r.choice(
         "stiffness_method", methods, false, "how the per-tooth terms are integrated",
         [](auto& c) -> auto& { return c.model.stiffness.route; });
@@ -456,13 +449,8 @@ std::vector<Field> make_schema() {
     // The steady-state model's options. Case files written before they
     // existed hold their defaults, so the writer leaves them out at those.
     r.choice(
-         "mesh_stiffness",
-         {choice("time-varying", MeshStiffnessMode::time_varying,
-                 "each loaded pair's Ke(X) of (29)"),
-          choice("constant", MeshStiffnessMode::constant,
-                 "constant_mesh_stiffness shared equally by the loaded pairs (the clearance "
-                 "oscillator)")},
-         false, "the mesh stiffness of the dynamics",
+         "mesh_stiffness", choices_of(kMeshStiffnessModes), false,
+         "the mesh stiffness of the dynamics",
          [](auto& c) -> auto& { return c.model.mesh_stiffness; })
         .written_at_default = false;
     r.quantity(
@@ -477,13 +465,8 @@ std::vector<Field> make_schema() {
          [](auto& c) -> auto& { return c.model.mesh_damping_ratio; })
         .written_at_default = false;
     r.choice(
-         "damping_update",
-         {choice("each-impact", DampingUpdate::each_impact,
-                 "D from e(Vi) at every impact, carried with the state (the paper's)"),
-          choice("frozen", DampingUpdate::frozen,
-                 "D from e(damping_reference_speed), the same at every impact"),
-          choice("off", DampingUpdate::off, "D = 0")},
-         false, "when the Hertzian damping factor D of (32) is set",
+         "damping_update", choices_of(kDampingUpdates), false,
+         "when the Hertzian damping factor D of (32) is set",
          [](auto& c) -> auto& { return c.model.damping_update; })
         .written_at_default = false;
     r.quantity(
@@ -495,11 +478,8 @@ std::vector<Field> make_schema() {
   {
     Rows r(rows, "integrator");
     r.choice(
-        "kind",
-        {choice("rk4", IntegratorKind::rk4, "fixed-step RK4 with event location"),
-         choice("adaptive", IntegratorKind::adaptive,
-                "Dormand-Prince 5(4) with the same event location")},
-        false, "the integrator", [](auto& c) -> auto& { return c.integrator.kind; });
+        "kind", choices_of(kIntegratorKinds), false, "the integrator",
+        [](auto& c) -> auto& { return c.integrator.kind; });
     r.quantity(
         "step", Dimension::time, "us", {open(0.0), {}, {}}, false,
         "the fixed RK4 step (the adaptive integrator's first step); the dynamics also "
@@ -918,22 +898,54 @@ double get_numeric_field(const SimulationCase& c, std::string_view section_dot_k
   return field.get(c);
 }
 
+namespace {
+
+// The rows of `section` that `holds` accepts, checked in `c`; errors name
+// the key alone, as the library's types name their fields.
+template <typename Holds>
+void check_rows(const SimulationCase& c, std::string_view section, Holds holds) {
+  for (const Field& field : case_schema()) {
+    if (field.section != section || !holds(field) || absent(field, c)) continue;
+    const double value = field.get(c);
+    check_value(field, value, field.key, si_text(field, value));
+  }
+}
+
+// The [model] rows that describe the StiffnessModel.
+bool is_stiffness_row(const Field& field) {
+  for (std::string_view key : {"stiffness_model", "moment_sign", "stiffness_method", "xform_rule",
+                               "stiffness_tolerance"}) {
+    if (field.key == key) return true;
+  }
+  for (const TermInfo& t : kTerms) {
+    if (field.key == t.switch_key) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+void validate(const GearPair& pair) {
+  SimulationCase c;
+  c.gears = pair;
+  check_rows(c, "gears", [](const Field&) { return true; });
+  validate_geometry(pair);
+}
+
+void validate(const StiffnessModel& model) {
+  SimulationCase c;
+  c.model.stiffness = model;
+  check_rows(c, "model", is_stiffness_row);
+  validate_terms(model);
+}
+
 void validate_relations(const SimulationCase& c) {
   try {
-    validate(c.gears);
+    validate_geometry(c.gears);
   } catch (const InputError& e) {
     throw InputError("gears." + e.field(), e.value(), e.allowed());
   }
-  const StiffnessModel& k = c.model.stiffness;
-  bool any_term = false;
-  for (const TermInfo& t : kTerms)
-    any_term = any_term || (provides(k.kind, t.term) && k.terms.has(t.term));
-  if (!any_term) {
-    throw InputError("model.hertz_term", "\"off\"",
-                     "\"on\" while bending_term and axial_term are \"off\" (model.hertz_term, "
-                     "bending_term and axial_term are all \"off\": at least one term of (29) "
-                     "must stay \"on\")");
-  }
+  validate_terms(c.model.stiffness, "model");
   const std::array<std::pair<const char*, const Torque*>, 2> torques{
       {{"torque1", &c.torque1}, {"torque2", &c.torque2}}};
   for (const auto& [name, torque] : torques) {

@@ -4,21 +4,16 @@
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <utility>
 
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
-#include "gearimpact/geometry/gear_pair.hpp"
 
 namespace gearimpact {
 
 namespace {
-
-void require_finite_positive(const std::string& field, double value, const std::string& unit) {
-  if (!std::isfinite(value) || value <= 0.0) {
-    throw InputError(field, value, "a finite value > 0" + unit);
-  }
-}
 
 // Root of a function that changes sign on [lower, upper], to full double
 // precision (TOMS 748). The callers bracket the root themselves.
@@ -50,37 +45,38 @@ double tip_half_angle(double teeth, double module, double a0, double ha, double 
          involute_function(std::acos(rb / tip_radius(teeth, module, ha, x)));
 }
 
+// The rack's tip round when the pair names none: the full round c / (1 -
+// sin a0) of ISO 53 profile A where it fits the rack's tip land (at 20 deg it
+// does), else the largest that fits, rho* (1 - sin a0) / cos a0 = pi/4 -
+// (ha + c) tan a0 (above about 22 deg the full round of c = 0.25 is wider
+// than the tip land).
+double largest_rack_tip_radius_coefficient(const GearPair& pair) {
+  const double a0 = pair.pressure_angle_rad;
+  const double c = pair.dedendum_coefficient - pair.addendum_coefficient;
+  const double full_round = c / (1.0 - std::sin(a0));
+  const double land =
+      (pi / 4.0 - pair.dedendum_coefficient * std::tan(a0)) * std::cos(a0) / (1.0 - std::sin(a0));
+  return std::min(full_round, land);
+}
+
 }  // namespace
 
-RackGearGeometry rack_gear_geometry(const RackGear& gear, const std::string& name) {
-  const std::string p = name + ".";
-  if (gear.teeth < 4) {
-    throw InputError(p + "teeth", std::to_string(gear.teeth), "an integer >= 4");
+RackGearGeometry rack_gear_geometry(const GearPair& pair, Gear gear) {
+  const bool first = gear == Gear::one;
+  const int teeth_count = teeth(pair, gear);
+  const double z = teeth_count;
+  const double a0 = pair.pressure_angle_rad;
+  const double ha = pair.addendum_coefficient;
+  const double c = pair.dedendum_coefficient - pair.addendum_coefficient;
+  if (c < 0.0) {
+    throw InputError("dedendum_coefficient", pair.dedendum_coefficient,
+                     "values >= addendum_coefficient = " + format_number(ha) +
+                         ": the rack's clearance c = dedendum - addendum is not negative");
   }
-  const double z = gear.teeth;
-  require_finite_positive(p + "module", gear.module_m, " m");
-  const double a0 = gear.pressure_angle_rad;
-  if (!std::isfinite(a0) || a0 <= 0.0 || a0 > pi / 4.0) {
-    throw InputError(p + "pressure_angle", a0, "(0, pi/4] rad, i.e. (0, 45] deg");
-  }
-  require_finite_positive(p + "addendum_coefficient", gear.addendum_coefficient, "");
-  const double ha = gear.addendum_coefficient;
-  const double c = gear.clearance_coefficient;
-  if (!std::isfinite(c) || c < 0.0) {
-    throw InputError(p + "clearance_coefficient", c, "a finite value >= 0");
-  }
-  const double x = gear.profile_shift_coefficient;
-  if (!std::isfinite(x)) {
-    throw InputError(p + "profile_shift_coefficient", x, "a finite value");
-  }
-  require_finite_positive(p + "face_width", gear.face_width_m, " m");
-  require_finite_positive(p + "youngs_modulus", gear.youngs_modulus_pa, " Pa");
-  if (!std::isfinite(gear.poisson_ratio) || gear.poisson_ratio <= -1.0 ||
-      gear.poisson_ratio >= 0.5) {
-    throw InputError(p + "poisson_ratio", gear.poisson_ratio, "(-1, 0.5), both ends excluded");
-  }
+  const double x = profile_shift(pair, gear);
+  const char* shift_field = first ? "profile_shift1" : "profile_shift2";
 
-  const double m = gear.module_m;
+  const double m = pair.module_m;
   const double sin_a0 = std::sin(a0);
   const double cos_a0 = std::cos(a0);
   const double tan_a0 = std::tan(a0);
@@ -88,10 +84,9 @@ RackGearGeometry rack_gear_geometry(const RackGear& gear, const std::string& nam
   // unit depth; at the depth (ha + c) m of its tip it must still be thick.
   const double tip_land_half_width = pi / 4.0 - (ha + c) * tan_a0;  // in modules
   if (tip_land_half_width <= 0.0) {
-    throw InputError(
-        p + "clearance_coefficient", c,
-        "values below pi / (4 tan a0) - ha = " + format_number(pi / (4.0 * tan_a0) - ha) +
-            ", so that the rack tooth keeps a tip land");
+    throw InputError("dedendum_coefficient", pair.dedendum_coefficient,
+                     "values below pi / (4 tan a0) = " + format_number(pi / (4.0 * tan_a0)) +
+                         ", so that the rack tooth keeps a tip land");
   }
   // The tip round, tangent to the tip line and the flank, reaches up the
   // flank by rho (1 - sin a0): more than the clearance c m and it cuts into
@@ -99,9 +94,11 @@ RackGearGeometry rack_gear_geometry(const RackGear& gear, const std::string& nam
   // along the tip line it takes rho (1 - sin a0) / cos a0 of the half land.
   const double rho_full_round = c / (1.0 - sin_a0);
   const double rho_limit = std::min(rho_full_round, tip_land_half_width * cos_a0 / (1.0 - sin_a0));
-  const double rho_star = gear.rack_tip_radius_coefficient.value_or(rho_full_round);
+  const double rho_star = pair.rack_tip_radius_coefficient
+                              ? *pair.rack_tip_radius_coefficient
+                              : largest_rack_tip_radius_coefficient(pair);
   if (!std::isfinite(rho_star) || rho_star < 0.0 || rho_star > rho_limit) {
-    throw InputError(p + "rack_tip_radius_coefficient", rho_star,
+    throw InputError("rack_tip_radius_coefficient", rho_star,
                      "[0, " + format_number(rho_limit) +
                          "]: the rack's tip round must fit the clearance, rho* <= c / (1 - sin a0) "
                          "= " +
@@ -117,13 +114,13 @@ RackGearGeometry rack_gear_geometry(const RackGear& gear, const std::string& nam
     // pi/4 holds: the limit lies between.
     const double x_max =
         bracketed_root([&](double shift) { return tip_half_angle(z, m, a0, ha, shift); }, -ha, x);
-    throw InputError(p + "profile_shift_coefficient", x,
+    throw InputError(shift_field, x,
                      "values below " + format_number(x_max) +
                          ", the shift at which the tooth tip becomes pointed");
   }
 
   RackGearGeometry g{};
-  g.teeth = gear.teeth;
+  g.teeth = teeth_count;
   g.module_m = m;
   g.pressure_angle_rad = a0;
   g.addendum_coefficient = ha;
@@ -142,7 +139,7 @@ RackGearGeometry rack_gear_geometry(const RackGear& gear, const std::string& nam
   // of action towards T (for the full round, depth = (ha - x) m).
   const double form_depth = (ha + c - x) * m - rho * (1.0 - sin_a0);
   if (form_depth <= 0.0) {
-    throw InputError(p + "profile_shift_coefficient", x,
+    throw InputError(shift_field, x,
                      "values below ha + c - rho* (1 - sin a0) = " +
                          format_number(ha + c - rho_star * (1.0 - sin_a0)) +
                          ", where the rack's straight flank still crosses the reference circle");
@@ -151,7 +148,7 @@ RackGearGeometry rack_gear_geometry(const RackGear& gear, const std::string& nam
   if (form_tangent_length <= 0.0) {
     const double limit = 2.0 * (ha + c - x - rho_star * (1.0 - sin_a0)) / (sin_a0 * sin_a0);
     throw InputError(
-        p + "teeth", std::to_string(gear.teeth),
+        first ? "teeth1" : "teeth2", std::to_string(teeth_count),
         "more than 2 (ha + c - x - rho* (1 - sin a0)) / sin^2 a0 = " + format_number(limit) +
             " teeth (2 (ha - x) / sin^2 a0 for the full round), below which the rack "
             "undercuts the involute");
@@ -171,7 +168,7 @@ RackGearGeometry rack_gear_geometry(const RackGear& gear, const std::string& nam
   g.root_half_angle_rad = g.trochoid_b1_m / g.pitch_radius_m;
 
   if (g.tip_radius_m <= g.form_radius_m) {
-    throw InputError(p + "profile_shift_coefficient", x,
+    throw InputError(shift_field, x,
                      "values with the tip radius r_p + (ha + x) m above the form radius " +
                          format_number(g.form_radius_m) + " m, so that the tooth has an involute");
   }
@@ -179,18 +176,20 @@ RackGearGeometry rack_gear_geometry(const RackGear& gear, const std::string& nam
       std::sqrt((g.tip_radius_m - g.base_radius_m) * (g.tip_radius_m + g.base_radius_m));
   g.tip_tau_rad = tip_tangent_length / g.base_radius_m - g.half_tooth_angle_base_rad;
 
-  if (gear.bore_diameter_m) {
-    const double bore = *gear.bore_diameter_m;
+  const std::optional<double>& bore_diameter =
+      first ? pair.bore_diameter1_m : pair.bore_diameter2_m;
+  if (bore_diameter) {
+    const double bore = *bore_diameter;
     if (!std::isfinite(bore) || bore <= 0.0 || bore >= 2.0 * g.root_radius_m) {
-      throw InputError(p + "bore_diameter", bore,
+      throw InputError(first ? "bore_diameter1" : "bore_diameter2", bore,
                        "(0, " + format_number(2.0 * g.root_radius_m) +
                            ") m: inside the root circle, diameter 2 r_f");
     }
   }
-  g.bore_diameter_m = gear.bore_diameter_m;
-  g.face_width_m = gear.face_width_m;
-  g.youngs_modulus_pa = gear.youngs_modulus_pa;
-  g.poisson_ratio = gear.poisson_ratio;
+  g.bore_diameter_m = bore_diameter;
+  g.face_width_m = pair.face_width_m;
+  g.youngs_modulus_pa = youngs_modulus(pair, gear);
+  g.poisson_ratio = poisson_ratio(pair, gear);
   return g;
 }
 
@@ -231,26 +230,14 @@ double involute_arc_thickness(const RackGearGeometry& gear, double radius_m) {
   return 2.0 * radius_m * (gear.half_tooth_angle_base_rad - involute_function(alpha));
 }
 
-RackGearPairGeometry rack_gear_pair_geometry(const RackGearPair& pair) {
+RackGearPairGeometry rack_gear_pair_geometry(const GearPair& pair) {
   RackGearPairGeometry g{};
-  g.gear1 = rack_gear_geometry(pair.gear1, "gear1");
-  g.gear2 = rack_gear_geometry(pair.gear2, "gear2");
+  g.gear1 = rack_gear_geometry(pair, Gear::one);
+  g.gear2 = rack_gear_geometry(pair, Gear::two);
   const RackGearGeometry& g1 = g.gear1;
   const RackGearGeometry& g2 = g.gear2;
-  // Gears mesh only with equal base pitches: the same rack cuts both.
-  if (pair.gear2.module_m != pair.gear1.module_m) {
-    throw InputError("gear2.module", pair.gear2.module_m,
-                     "gear1.module = " + format_number(pair.gear1.module_m) +
-                         " m: both gears are cut by the same rack");
-  }
-  if (pair.gear2.pressure_angle_rad != pair.gear1.pressure_angle_rad) {
-    throw InputError("gear2.pressure_angle", pair.gear2.pressure_angle_rad,
-                     "gear1.pressure_angle = " + format_number(pair.gear1.pressure_angle_rad) +
-                         " rad: both gears are cut by the same rack");
-  }
   g.operating_pressure_angle_rad = operating_pressure_angle(
-      g1.pressure_angle_rad, g1.teeth, g2.teeth, pair.gear1.profile_shift_coefficient,
-      pair.gear2.profile_shift_coefficient);
+      g1.pressure_angle_rad, g1.teeth, g2.teeth, pair.profile_shift1, pair.profile_shift2);
   g.centre_distance_m =
       (g1.base_radius_m + g2.base_radius_m) / std::cos(g.operating_pressure_angle_rad);
   // T1T2 = a_w sin a_w, written with the base radii.
@@ -264,8 +251,7 @@ RackGearPairGeometry rack_gear_pair_geometry(const RackGearPair& pair) {
         g.centre_distance_m - tip_gear->tip_radius_m - root_gear->root_radius_m;
     if (clearance <= 0.0) {
       const std::string tip_name = tip_gear == &g1 ? "gear1" : "gear2";
-      throw InputError(tip_name + ".addendum_coefficient",
-                       (tip_gear == &g1 ? pair.gear1 : pair.gear2).addendum_coefficient,
+      throw InputError("addendum_coefficient", pair.addendum_coefficient,
                        "values for which the tip of " + tip_name +
                            " clears the mating root circle on the operating centre distance (a_w "
                            "- r_a - r_f = " +
@@ -285,7 +271,7 @@ RackGearPairGeometry rack_gear_pair_geometry(const RackGearPair& pair) {
   const double wheel_form_s =
       g.line_of_action_length_m - rb2 * (g2.form_tau_rad + g2.half_tooth_angle_base_rad);
   if (g.start_of_active_profile_m < pinion_form_s) {
-    throw InputError("gear2.addendum_coefficient", pair.gear2.addendum_coefficient,
+    throw InputError("addendum_coefficient", pair.addendum_coefficient,
                      "values for which the tip of gear2 meets gear1 on its involute, above its "
                      "form radius " +
                          format_number(g1.form_radius_m) +
@@ -294,7 +280,7 @@ RackGearPairGeometry rack_gear_pair_geometry(const RackGearPair& pair) {
                          " m): interference with the fillet");
   }
   if (g.end_of_active_profile_m > wheel_form_s) {
-    throw InputError("gear1.addendum_coefficient", pair.gear1.addendum_coefficient,
+    throw InputError("addendum_coefficient", pair.addendum_coefficient,
                      "values for which the tip of gear1 meets gear2 on its involute, above its "
                      "form radius " +
                          format_number(g2.form_radius_m) +

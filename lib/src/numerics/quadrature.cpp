@@ -188,27 +188,11 @@ QuadratureResult integrate(QuadratureRule rule, const Integrand& f, double a, do
 }
 
 std::string to_string(QuadratureRule rule) {
-  switch (rule) {
-    case QuadratureRule::gsl_qag:
-      return "gsl";
-    case QuadratureRule::gsl_cquad:
-      return "gsl-cquad";
-    case QuadratureRule::boost_gauss_kronrod:
-      return "boost-gk";
-    case QuadratureRule::boost_tanh_sinh:
-      return "boost-ts";
-  }
-  return "unknown";
+  return name_of(kQuadratureRules, rule);
 }
 
 QuadratureRule parse_quadrature_rule(std::string_view name, std::string_view field) {
-  for (QuadratureRule rule :
-       {QuadratureRule::gsl_qag, QuadratureRule::gsl_cquad, QuadratureRule::boost_gauss_kronrod,
-        QuadratureRule::boost_tanh_sinh}) {
-    if (name == to_string(rule)) return rule;
-  }
-  throw InputError(std::string(field), std::string(name),
-                   "one of gsl, gsl-cquad, boost-gk, boost-ts");
+  return value_named(kQuadratureRules, name, field);
 }
 
 }  // namespace gearimpact

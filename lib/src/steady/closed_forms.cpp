@@ -6,14 +6,14 @@
 #include <string>
 
 #include "gearimpact/dynamics/mesh.hpp"
+#include "../require.hpp"
 #include "gearimpact/error.hpp"
-#include "input_checks.hpp"
 
 namespace gearimpact {
 
 namespace {
 
-using namespace steady_checks;
+using namespace checks;
 
 void validate(const ClearanceOscillator& oscillator) {
   require_finite_non_negative("damping_ratio", oscillator.damping_ratio, "(dimensionless)");

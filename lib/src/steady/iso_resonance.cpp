@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "../require.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/dynamics/system.hpp"
@@ -10,13 +11,12 @@
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/rack_generation.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
-#include "input_checks.hpp"
 
 namespace gearimpact {
 
 namespace {
 
-using namespace steady_checks;
+using namespace checks;
 
 // Table 8 for perfect gears: the coefficients that multiply B_k = 1, and C_v7.
 struct PerfectGearCoefficients {

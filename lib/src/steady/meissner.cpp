@@ -3,15 +3,15 @@
 #include <cmath>
 #include <string>
 
+#include "../require.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
-#include "input_checks.hpp"
 
 namespace gearimpact {
 
 namespace {
 
-using namespace steady_checks;
+using namespace checks;
 
 void validate(const RectangularStiffness& stiffness) {
   require_finite_positive("two_pair_ratio", stiffness.two_pair_ratio, "(kappa_d = k_d / k)");

@@ -3,7 +3,7 @@
 namespace gearimpact {
 
 StiffnessComparison compare_stiffness_models(const GearPair& pair, std::size_t samples) {
-  validate(pair);
+  validate_geometry(pair);
   StiffnessComparison result{};
   for (StiffnessModelKind kind :
        {StiffnessModelKind::yang_lin_1987, StiffnessModelKind::potential_energy,

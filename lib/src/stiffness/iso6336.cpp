@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "../require.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 
@@ -13,12 +14,6 @@ namespace {
 constexpr double degree = pi / 180.0;
 // The reference specific load of the low-load correction, 424 N/mm in N/m.
 constexpr double reference_specific_load_n_per_m = 424.0e3;
-
-void require_finite_positive(const std::string& field, double value, const std::string& unit) {
-  if (!std::isfinite(value) || value <= 0.0) {
-    throw InputError(field, value, "a finite value > 0" + unit);
-  }
-}
 
 // Transverse quantities of ISO 21771 for a helix angle beta.
 struct Transverse {
@@ -33,7 +28,7 @@ Transverse transverse(const Iso6336Pair& pair) {
 }
 
 void validate(const Iso6336Pair& pair) {
-  require_finite_positive("normal_module", pair.normal_module_m, " m");
+  checks::require_finite_positive("normal_module", pair.normal_module_m, "m");
   const double an = pair.normal_pressure_angle_rad;
   if (!std::isfinite(an) || an <= 0.0 || an > 45.0 * degree) {
     throw InputError("normal_pressure_angle", an, "(0, 45] deg in rad");
@@ -42,10 +37,11 @@ void validate(const Iso6336Pair& pair) {
   if (!std::isfinite(beta) || beta < 0.0 || beta >= 45.0 * degree) {
     throw InputError("helix_angle", beta, "[0, 45) deg in rad");
   }
-  require_finite_positive("mesh_factor", pair.mesh_factor, " (C_M)");
-  require_finite_positive("blank_factor", pair.blank_factor, " (C_R)");
+  checks::require_finite_positive("mesh_factor", pair.mesh_factor, "(C_M)");
+  checks::require_finite_positive("blank_factor", pair.blank_factor, "(C_R)");
   if (pair.specific_load_n_per_m) {
-    require_finite_positive("specific_load", *pair.specific_load_n_per_m, " N/m (F_t K_A / b)");
+    checks::require_finite_positive("specific_load", *pair.specific_load_n_per_m,
+                                    "N/m (F_t K_A / b)");
   }
   const Transverse t = transverse(pair);
   const Iso6336Gear* gears[] = {&pair.gear1, &pair.gear2};
@@ -58,8 +54,8 @@ void validate(const Iso6336Pair& pair) {
       throw InputError(p + "profile_shift_coefficient", g.profile_shift_coefficient,
                        "a finite value");
     }
-    require_finite_positive(p + "rack_dedendum_coefficient", g.rack_dedendum_coefficient,
-                            " (h_fP / m_n)");
+    checks::require_finite_positive(p + "rack_dedendum_coefficient", g.rack_dedendum_coefficient,
+                                    "(h_fP / m_n)");
     const double ap = g.rack_pressure_angle_rad;
     if (!std::isfinite(ap) || ap <= 0.0 || ap > 45.0 * degree) {
       throw InputError(p + "rack_pressure_angle", ap, "(0, 45] deg in rad");

@@ -2,7 +2,7 @@
 
 #include <cmath>
 #include <limits>
-#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "gearimpact/constants.hpp"
@@ -14,31 +14,15 @@ namespace gearimpact {
 namespace {
 
 // The foundation term's h_f = r_f / r_int needs the bore.
-void require_bore(const RackGearGeometry& gear, const std::string& name) {
-  if (!gear.bore_diameter_m) {
-    throw InputError(name + ".bore_diameter", "absent",
-                     "a diameter in (0, " + format_number(2.0 * gear.root_radius_m) +
+void require_bore(const RackGearGeometry& geometry, Gear gear) {
+  if (!geometry.bore_diameter_m) {
+    throw InputError(gear == Gear::one ? "bore_diameter1" : "bore_diameter2", "absent",
+                     "a diameter in (0, " + format_number(2.0 * geometry.root_radius_m) +
                          ") m: the fillet-foundation term needs the bore (or switch the term off)");
   }
 }
 
 }  // namespace
-
-MeshModelKind parse_mesh_model(std::string_view name) {
-  if (name == "potential-energy") return MeshModelKind::potential_energy;
-  if (name == "ross-compatible") return MeshModelKind::ross_compatible;
-  throw InputError("stiffness_model", std::string(name), "potential-energy or ross-compatible");
-}
-
-std::string to_string(MeshModelKind kind) {
-  switch (kind) {
-    case MeshModelKind::potential_energy:
-      return "potential-energy";
-    case MeshModelKind::ross_compatible:
-      return "ross-compatible";
-  }
-  throw std::logic_error("unknown MeshModelKind");
-}
 
 double hertz_stiffness_two_materials(double width_m, double youngs_modulus1_pa,
                                      double poisson_ratio1, double youngs_modulus2_pa,
@@ -49,8 +33,8 @@ double hertz_stiffness_two_materials(double width_m, double youngs_modulus1_pa,
   return 0.5 * pi * width_m / (compliance1 + compliance2);
 }
 
-double foundation_root_half_angle(const RackGearGeometry& gear, MeshModelKind kind) {
-  if (kind == MeshModelKind::ross_compatible) {
+double foundation_root_half_angle(const RackGearGeometry& gear, StiffnessModelKind kind) {
+  if (kind == StiffnessModelKind::ross_compatible) {
     // ROSS's theta_f (STIFFNESS-MODELS.md section 3). Written as 2 b / (z m),
     // its b = pi m / 4 + ha m tan a0 + rho (1 - sin a0) / cos a0 is the
     // round centre's b1 without the clearance's run c m tan a0 along the
@@ -66,8 +50,8 @@ double foundation_root_half_angle(const RackGearGeometry& gear, MeshModelKind ki
 }
 
 double foundation_load_height(const RackGearGeometry& gear, const ToothContact& contact,
-                              MeshModelKind kind) {
-  if (kind == MeshModelKind::ross_compatible) return contact.y_m - gear.root_radius_m;
+                              StiffnessModelKind kind) {
+  if (kind == StiffnessModelKind::ross_compatible) return contact.y_m - gear.root_radius_m;
   // Where the load line through (x_t, y_t) at angle tau to the x axis crosses
   // the centre line x = 0, measured from the root circle.
   return contact.y_m - contact.x_m * std::tan(contact.tau_rad) - gear.root_radius_m;
@@ -80,11 +64,16 @@ std::vector<FlankPiece> flank_to_contact(const RackGearGeometry& gear, double co
       {[g](double tau) { return involute_point(*g, tau); }, gear.form_tau_rad, contact_tau_rad}};
 }
 
-ToothCompliances tooth_compliances(const RackGearGeometry& gear, const ToothContact& contact,
-                                   double contact_width_m, const MeshModel& model,
-                                   const std::string& name) {
-  const MeshModelTerms& on = model.terms;
-  if (!(on.bending || on.shear || on.axial || on.foundation)) {
+ToothCompliances tooth_compliances(const RackGearGeometry& gear, Gear which,
+                                   const ToothContact& contact, double contact_width_m,
+                                   const StiffnessModel& model) {
+  const std::string name = which == Gear::one ? "gear1" : "gear2";
+  const TermSet& terms = model.terms;
+  const bool bending = terms.has(Term::bending);
+  const bool shear = terms.has(Term::shear);
+  const bool axial = terms.has(Term::axial);
+  const bool foundation = terms.has(Term::foundation);
+  if (!(bending || shear || axial || foundation)) {
     throw InputError("stiffness terms", "none of bending, shear, axial, foundation",
                      "at least one tooth term");
   }
@@ -100,17 +89,17 @@ ToothCompliances tooth_compliances(const RackGearGeometry& gear, const ToothCont
   }
   ToothCompliances c{};
   const double e = gear.youngs_modulus_pa;
-  if (on.bending || on.shear || on.axial) {
+  if (bending || shear || axial) {
     const double shear_modulus = e / (2.0 * (1.0 + gear.poisson_ratio));
     const BeamCompliance beam = tooth_beam_compliance(
         flank_to_contact(gear, contact.tau_rad), {contact.x_m, contact.y_m, contact.tau_rad},
         {e, shear_modulus, contact_width_m}, model.route, model.relative_tolerance);
-    if (on.bending) c.bending_m_per_n = beam.bending_m_per_n;
-    if (on.shear) c.shear_m_per_n = beam.shear_m_per_n;
-    if (on.axial) c.axial_m_per_n = beam.axial_m_per_n;
+    if (bending) c.bending_m_per_n = beam.bending_m_per_n;
+    if (shear) c.shear_m_per_n = beam.shear_m_per_n;
+    if (axial) c.axial_m_per_n = beam.axial_m_per_n;
   }
-  if (on.foundation) {
-    require_bore(gear, name);
+  if (foundation) {
+    require_bore(gear, which);
     const double theta_f = foundation_root_half_angle(gear, model.kind);
     const double h_f = gear.root_radius_m / (0.5 * *gear.bore_diameter_m);
     const FoundationFit fit = sainsot_coefficients(h_f, theta_f);
@@ -119,7 +108,8 @@ ToothCompliances tooth_compliances(const RackGearGeometry& gear, const ToothCont
         2.0 * gear.root_radius_m * theta_f, contact.tau_rad);
     // Far outside its range the fit can turn negative; that is no compliance.
     if (!(c.foundation_m_per_n > 0.0)) {
-      throw InputError(name + ".bore_diameter", *gear.bore_diameter_m,
+      throw InputError(which == Gear::one ? "bore_diameter1" : "bore_diameter2",
+                       *gear.bore_diameter_m,
                        "values for which the foundation fit of Sainsot et al. gives a positive "
                        "compliance (here h_f = " +
                            format_number(h_f) + ", theta_f = " + format_number(theta_f) +
@@ -130,33 +120,33 @@ ToothCompliances tooth_compliances(const RackGearGeometry& gear, const ToothCont
   return c;
 }
 
-void validate(const MeshModel& model, const RackGearPairGeometry& pair) {
-  const MeshModelTerms& on = model.terms;
-  if (!(on.hertz || on.bending || on.shear || on.axial || on.foundation)) {
-    throw InputError("stiffness terms", "none",
-                     "at least one of hertz, bending, shear, axial, foundation");
+void validate(const StiffnessModel& model, const RackGearPairGeometry& pair) {
+  if (model.kind == StiffnessModelKind::yang_lin_1987) {
+    throw InputError("stiffness_model", "\"" + to_string(model.kind) + "\"",
+                     "a model of the rack-cut tooth from the root circle: \"" +
+                         to_string(StiffnessModelKind::potential_energy) + "\" or \"" +
+                         to_string(StiffnessModelKind::ross_compatible) + "\"");
   }
-  if (!std::isfinite(model.relative_tolerance) || model.relative_tolerance < 1e-14 ||
-      model.relative_tolerance > 1e-2) {
-    throw InputError("stiffness_tolerance", model.relative_tolerance, "[1e-14, 1e-2]");
-  }
-  if (on.foundation) {
-    require_bore(pair.gear1, "gear1");
-    require_bore(pair.gear2, "gear2");
+  validate_terms(model);
+  if (model.terms.has(Term::foundation)) {
+    require_bore(pair.gear1, Gear::one);
+    require_bore(pair.gear2, Gear::two);
   }
 }
 
-PairStiffness pair_stiffness(const RackGearPairGeometry& pair, const MeshModel& model, double s_m) {
+PairStiffness pair_stiffness(const RackGearPairGeometry& pair, const StiffnessModel& model,
+                             double s_m) {
   validate(model, pair);
   const PairContact contact = pair_contact(pair, s_m);
-  const MeshModelTerms& on = model.terms;
-  const bool any_tooth_term = on.bending || on.shear || on.axial || on.foundation;
+  const TermSet& on = model.terms;
+  const bool any_tooth_term = on.has(Term::bending) || on.has(Term::shear) || on.has(Term::axial) ||
+                              on.has(Term::foundation);
   PairStiffness k{};
   if (any_tooth_term) {
-    k.gear1 = tooth_compliances(pair.gear1, contact.gear1, pair.contact_width_m, model, "gear1");
-    k.gear2 = tooth_compliances(pair.gear2, contact.gear2, pair.contact_width_m, model, "gear2");
+    k.gear1 = tooth_compliances(pair.gear1, Gear::one, contact.gear1, pair.contact_width_m, model);
+    k.gear2 = tooth_compliances(pair.gear2, Gear::two, contact.gear2, pair.contact_width_m, model);
   }
-  if (on.hertz) {
+  if (on.has(Term::hertz)) {
     k.hertz_m_per_n =
         1.0 / hertz_stiffness_two_materials(pair.contact_width_m, pair.gear1.youngs_modulus_pa,
                                             pair.gear1.poisson_ratio, pair.gear2.youngs_modulus_pa,

@@ -6,6 +6,7 @@
 
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
+#include "gearimpact/geometry/rack_generation.hpp"
 #include "gearimpact/stiffness/mesh_models.hpp"
 #include "gearimpact/stiffness/tau_form.hpp"
 #include "gearimpact/stiffness/x_form.hpp"
@@ -78,29 +79,12 @@ MeshStiffness rack_model_stiffness(const GearPair& pair, double x1_m, const Stif
                          "] m, the contact segment: the " + to_string(model.kind) +
                          " model loads the involutes only");
   }
-  const bool foundation = model.terms.has(Term::foundation);
-  if (foundation) {
-    for (Gear gear : {Gear::one, Gear::two}) {
-      if (!(gear == Gear::one ? pair.bore_diameter1_m : pair.bore_diameter2_m)) {
-        throw InputError(gear == Gear::one ? "bore_diameter1" : "bore_diameter2", "absent",
-                         "a diameter inside the root circle, m: the fillet-foundation term of "
-                         "the " +
-                             to_string(model.kind) +
-                             " model needs both bores (or switch foundation_term off)");
-      }
-    }
-  }
   const RackGearPairGeometry geometry = rack_gear_pair_geometry(pair);
-  MeshModel rack_model;
-  rack_model.kind = model.kind == StiffnessModelKind::ross_compatible
-                        ? MeshModelKind::ross_compatible
-                        : MeshModelKind::potential_energy;
   // The beam terms come out of one integration together; the switches act in
   // combine(). Hertz is (4) here, as for the paper's model.
-  rack_model.terms = {false, true, true, true, foundation};
-  rack_model.route = model.route == StiffnessRoute::x_form ? BeamRoute::section_height
-                                                           : BeamRoute::profile_parameter;
-  rack_model.relative_tolerance = model.relative_tolerance;
+  StiffnessModel rack_model = model;
+  for (Term term : {Term::bending, Term::shear, Term::axial}) rack_model.terms.set(term, true);
+  rack_model.terms.set(Term::hertz, false);
   // The path's ends are computed here and in rack_generation.cpp by
   // different roundings of the same lengths: an end of the contact segment
   // may sit an ulp outside the rack pair's path.
@@ -119,7 +103,7 @@ MeshStiffness rack_model_stiffness(const GearPair& pair, double x1_m, const Stif
 }  // namespace
 
 MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessModel& model) {
-  validate(model);
+  validate_terms(model);
   if (model.kind != StiffnessModelKind::yang_lin_1987) {
     return rack_model_stiffness(pair, x1_m, model);
   }

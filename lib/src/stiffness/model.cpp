@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "gearimpact/error.hpp"
 
@@ -15,23 +16,19 @@ bool operator==(const StiffnessModel& a, const StiffnessModel& b) {
 }
 
 StiffnessModelKind parse_stiffness_model(std::string_view name, std::string_view field) {
-  if (name == "yang-lin-1987") return StiffnessModelKind::yang_lin_1987;
-  if (name == "potential-energy") return StiffnessModelKind::potential_energy;
-  if (name == "ross-compatible") return StiffnessModelKind::ross_compatible;
-  throw InputError(std::string(field), std::string(name),
-                   "one of yang-lin-1987, potential-energy, ross-compatible");
+  return value_named(kStiffnessModels, name, field);
 }
 
 std::string to_string(StiffnessModelKind kind) {
-  switch (kind) {
-    case StiffnessModelKind::yang_lin_1987:
-      return "yang-lin-1987";
-    case StiffnessModelKind::potential_energy:
-      return "potential-energy";
-    case StiffnessModelKind::ross_compatible:
-      return "ross-compatible";
-  }
-  throw std::logic_error("unknown StiffnessModelKind");
+  return name_of(kStiffnessModels, kind);
+}
+
+AxialMomentSign parse_moment_sign(std::string_view name, std::string_view field) {
+  return value_named(kMomentSigns, name, field);
+}
+
+std::string to_string(AxialMomentSign sign) {
+  return name_of(kMomentSigns, sign);
 }
 
 bool provides(StiffnessModelKind kind, Term term) {
@@ -39,35 +36,39 @@ bool provides(StiffnessModelKind kind, Term term) {
   return term == Term::hertz || term == Term::bending || term == Term::axial;
 }
 
-void validate(const StiffnessModel& model) {
-  bool any = false;
-  for (const TermInfo& t : kTerms)
-    any = any || (provides(model.kind, t.term) && model.terms.has(t.term));
-  if (!any) {
-    throw InputError("stiffness terms", "none",
-                     model.kind == StiffnessModelKind::yang_lin_1987
-                         ? "at least one of the Hertzian, bending and axial terms of (29)"
-                         : "at least one of the hertz, bending, shear, axial, foundation terms");
+void validate_terms(const StiffnessModel& model, std::string_view section) {
+  std::vector<std::string_view> keys;
+  for (const TermInfo& t : kTerms) {
+    if (!provides(model.kind, t.term)) continue;
+    if (model.terms.has(t.term)) return;
+    keys.push_back(t.switch_key);
   }
-  if (!std::isfinite(model.relative_tolerance) || model.relative_tolerance < 1e-14 ||
-      model.relative_tolerance > 1e-2) {
-    throw InputError("stiffness tolerance", model.relative_tolerance, "[1e-14, 1e-2]");
-  }
+  // "a, b and c"
+  const auto listed = [&keys](std::size_t from) {
+    std::string text;
+    for (std::size_t i = from; i < keys.size(); ++i) {
+      if (i > from) text += i + 1 == keys.size() ? " and " : ", ";
+      text += std::string(keys[i]);
+    }
+    return text;
+  };
+  const std::string prefix = section.empty() ? "" : std::string(section) + ".";
+  throw InputError(prefix + std::string(keys.front()), "\"off\"",
+                   "\"on\" while " + listed(1) + " are \"off\" (" + prefix + listed(0) +
+                       " are all \"off\": at least one term of (29) must stay \"on\")");
 }
 
 StiffnessModel with_method(StiffnessModel model, std::string_view name, std::string_view field) {
-  if (name == "xform") {
-    model.route = StiffnessRoute::x_form;
-    return model;
+  std::string names;
+  for (const StiffnessMethod& method : kStiffnessMethods) {
+    if (method.name == name) {
+      model.route = method.route;
+      if (method.route == StiffnessRoute::tau_form) model.rule = method.rule;
+      return model;
+    }
+    names += (names.empty() ? "" : ", ") + std::string(method.name);
   }
-  try {
-    model.rule = parse_quadrature_rule(name, field);
-  } catch (const InputError&) {
-    throw InputError(std::string(field), std::string(name),
-                     "one of gsl, gsl-cquad, boost-gk, boost-ts, xform");
-  }
-  model.route = StiffnessRoute::tau_form;
-  return model;
+  throw InputError(std::string(field), std::string(name), "one of " + names);
 }
 
 Term term_named(std::string_view id, std::string_view field) {
@@ -80,7 +81,13 @@ Term term_named(std::string_view id, std::string_view field) {
 }
 
 std::string method_name(const StiffnessModel& model) {
-  return model.route == StiffnessRoute::x_form ? "xform" : to_string(model.rule);
+  for (const StiffnessMethod& method : kStiffnessMethods) {
+    if (method.route == model.route &&
+        (method.route == StiffnessRoute::x_form || method.rule == model.rule)) {
+      return std::string(method.name);
+    }
+  }
+  throw std::logic_error("a stiffness method without a name in kStiffnessMethods");
 }
 
 }  // namespace gearimpact

@@ -32,7 +32,7 @@ struct Path {
   std::function<double(double)> pair_stiffness_n_per_m;  // of s
 };
 
-Path path_of(const RackGearPairGeometry& pair, const MeshModel& model) {
+Path path_of(const RackGearPairGeometry& pair, const StiffnessModel& model) {
   return {pair.start_of_active_profile_m,
           pair.end_of_active_profile_m,
           pair.base_pitch_m,
@@ -160,11 +160,11 @@ void require_samples(std::size_t sample_count) {
 }  // namespace
 
 std::vector<double> contact_positions(const RackGearPairGeometry& pair, double fraction) {
-  const MeshModel unused;
+  const StiffnessModel unused;
   return path_positions(path_of(pair, unused), fraction);
 }
 
-double mesh_stiffness_at(const RackGearPairGeometry& pair, const MeshModel& model,
+double mesh_stiffness_at(const RackGearPairGeometry& pair, const StiffnessModel& model,
                          double fraction) {
   double sum = 0.0;
   for (double s : contact_positions(pair, fraction)) {
@@ -174,7 +174,7 @@ double mesh_stiffness_at(const RackGearPairGeometry& pair, const MeshModel& mode
 }
 
 TimeVaryingMeshStiffness time_varying_mesh_stiffness(const RackGearPairGeometry& pair,
-                                                     const MeshModel& model,
+                                                     const StiffnessModel& model,
                                                      std::size_t sample_count) {
   require_samples(sample_count);
   validate(model, pair);
@@ -185,7 +185,7 @@ TimeVaryingMeshStiffness time_varying_mesh_stiffness(const GearPair& pair,
                                                      const StiffnessModel& model,
                                                      std::size_t sample_count) {
   require_samples(sample_count);
-  validate(model);
+  validate_terms(model);
   const ContactSegment segment = contact_segment(pair);
   const Path path{segment.start_m,
                   segment.end_m,
@@ -197,7 +197,7 @@ TimeVaryingMeshStiffness time_varying_mesh_stiffness(const GearPair& pair,
   return time_varying(path, model.relative_tolerance, sample_count);
 }
 
-double path_mean_mesh_stiffness(const RackGearPairGeometry& pair, const MeshModel& model) {
+double path_mean_mesh_stiffness(const RackGearPairGeometry& pair, const StiffnessModel& model) {
   validate(model, pair);
   const QuadratureTolerance outer{std::max(1e-10, 100.0 * model.relative_tolerance), 0.0};
   const double integral =

@@ -152,11 +152,21 @@ void check_list(const Field& field, const std::vector<double>& values, std::stri
 // an unknown key or one that is not numeric.
 double get_numeric_field(const SimulationCase& c, std::string_view section_dot_key);
 
+// A gear pair of the library: the [gears] rows' ranges, then the relations
+// between them (validate_geometry of gear_pair.hpp). InputError names the
+// field as GearPair does (module, teeth2, bore_diameter1, ...).
+void validate(const GearPair& pair);
+
+// A stiffness model of the library: the [model] rows that describe it
+// (stiffness_model, moment_sign, stiffness_method, xform_rule,
+// stiffness_tolerance, the term switches), then at least one term on
+// (validate_terms of stiffness/model.hpp). InputError names the key.
+void validate(const StiffnessModel& model);
+
 // The checks that involve more than one key: the gear pair as a whole
-// (validate(GearPair), its errors under gears.* names), at least one term of
-// (29), a callable user torque, a harmonic torque's lists of one length, at
-// most kMostSteps steps. InputError names the
-// key as section.key.
+// (validate_geometry, its errors under gears.* names), at least one term of
+// (29) (validate_terms, under model.*), a callable user torque, a harmonic torque's lists of one
+// length, at most kMostSteps steps. InputError names the key as section.key.
 void validate_relations(const SimulationCase& c);
 
 // Throws InputError naming (as section.key) the first field outside its

@@ -5,12 +5,14 @@
 // produce one of these; the dynamics consumes it.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "gearimpact/contact/contact.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/named_values.hpp"
 #include "gearimpact/stiffness/model.hpp"
 
 namespace gearimpact {
@@ -44,6 +46,11 @@ struct InitialState {
 // constant total shared equally by the n loaded pairs (Ke = k / n), so that the
 // mesh stiffness never changes: the clearance oscillator of STEADY-STATE.md.
 enum class MeshStiffnessMode { time_varying, constant };
+inline constexpr std::array<NamedValue<MeshStiffnessMode>, 2> kMeshStiffnessModes{{
+    {MeshStiffnessMode::time_varying, "time-varying", "each loaded pair's Ke(X) of (29)"},
+    {MeshStiffnessMode::constant, "constant",
+     "constant_mesh_stiffness shared equally by the loaded pairs (the clearance oscillator)"},
+}};
 
 // When the Hertzian damping factor D of (32) is set (STEADY-STATE.md section 1).
 enum class DampingUpdate {
@@ -56,6 +63,13 @@ enum class DampingUpdate {
   // D = 0: no Hertzian damping (the mesh damper can stand in for it).
   off,
 };
+inline constexpr std::array<NamedValue<DampingUpdate>, 3> kDampingUpdates{{
+    {DampingUpdate::each_impact, "each-impact",
+     "D from e(Vi) at every impact, carried with the state (the paper's)"},
+    {DampingUpdate::frozen, "frozen",
+     "D from e(damping_reference_speed), the same at every impact"},
+    {DampingUpdate::off, "off", "D = 0"},
+}};
 
 struct ModelOptions {
   double friction_coefficient = 0.04;  // f of (35)
@@ -74,6 +88,10 @@ struct ModelOptions {
 };
 
 enum class IntegratorKind { rk4, adaptive };
+inline constexpr std::array<NamedValue<IntegratorKind>, 2> kIntegratorKinds{{
+    {IntegratorKind::rk4, "rk4", "fixed-step RK4 with event location"},
+    {IntegratorKind::adaptive, "adaptive", "Dormand-Prince 5(4) with the same event location"},
+}};
 
 // Fewer steps per contact period than this do not resolve the contact.
 inline constexpr double kStepsPerContactPeriod = 20.0;

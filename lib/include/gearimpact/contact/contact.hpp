@@ -5,7 +5,10 @@
 // friction.
 #pragma once
 
+#include <array>
+
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/named_values.hpp"
 
 namespace gearimpact {
 
@@ -15,6 +18,12 @@ enum class DampingForm {
   hunt_crossley,       // D = 3 K (1 - e) / (2 Vi)
   lee_wang,            // D = 3 K (1 - e) / (4 Vi)
 };
+inline constexpr std::array<NamedValue<DampingForm>, 3> kDampingForms{{
+    {DampingForm::herbert_mcwhannell, "herbert-mcwhannell",
+     "D = 6 K (1 - e) / {[(2e - 1)^2 + 3] Vi}"},
+    {DampingForm::hunt_crossley, "hunt-crossley", "D = 3 K (1 - e) / (2 Vi)"},
+    {DampingForm::lee_wang, "lee-wang", "D = 3 K (1 - e) / (4 Vi)"},
+}};
 
 // Which stiffness K enters (32).
 enum class DampingStiffness {
@@ -22,6 +31,12 @@ enum class DampingStiffness {
   pitch_pair_at_impact,  // Ke of the pair nearest the pitch point, frozen at impact
   hertz,                 // Kh of (4)
 };
+inline constexpr std::array<NamedValue<DampingStiffness>, 3> kDampingStiffnesses{{
+    {DampingStiffness::current_pair, "current-pair", "each loaded pair's current Ke"},
+    {DampingStiffness::pitch_pair_at_impact, "pitch-pair-at-impact",
+     "Ke of the pair nearest the pitch point, frozen at impact"},
+    {DampingStiffness::hertz, "hertz", "Kh of (4)"},
+}};
 
 // (33) e = 1 - c (Vi / speed_unit)^p.
 struct RestitutionLaw {

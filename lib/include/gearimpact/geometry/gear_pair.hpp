@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "gearimpact/geometry/rack_generation.hpp"
+#include "gearimpact/named_values.hpp"
 
 namespace gearimpact {
 
@@ -51,19 +51,14 @@ bool operator==(const GearPair& a, const GearPair& b);
 // Section 7 of the paper with MODEL.md's defaults for what it leaves unstated.
 GearPair paper_gear_pair();
 
-// Throws InputError naming the first field outside its range: counts and
-// material, the undercut limit on teeth, pointed teeth, interference (a tip
+// Throws InputError naming the first field that breaks a relation between
+// fields: the undercut limit on teeth, pointed teeth, interference (a tip
 // beyond the mating base-circle tangent point), and a contact ratio below 1;
-// then what rack generation refuses (rack_gear_pair_geometry), with the
-// field named as in GearPair (profile_shift1, bore_diameter2, ...).
-void validate(const GearPair& pair);
-
-// The pair as the two rack-cut gears of rack_generation.hpp: gear 1's
-// material for gear 2 where gear 2 has none of its own.
-RackGearPair rack_gear_pair(const GearPair& pair);
-// Their geometry (rack_gear_pair_geometry), an InputError naming the field as
-// GearPair does.
-RackGearPairGeometry rack_gear_pair_geometry(const GearPair& pair);
+// then what rack generation refuses (rack_gear_pair_geometry of
+// rack_generation.hpp), with the field named as in GearPair (profile_shift1,
+// bore_diameter2, ...). Each field's own range is the case schema's
+// (validate(const GearPair&) of case/schema.hpp checks both).
+void validate_geometry(const GearPair& pair);
 
 // Which gear of the pair: 1 the pinion (driver in the paper), 2 the wheel.
 enum class Gear { one = 1, two = 2 };
@@ -134,6 +129,11 @@ enum class CoastPhase {
   half_base_pitch,  // default: X' = X_pitch - Rb1 theta1 + t0/2 + k t0 (geometric)
   in_phase,         // literal reading of (9): X' = X_pitch - Rb1 theta1 + k t0
 };
+inline constexpr std::array<NamedValue<CoastPhase>, 2> kCoastPhases{{
+    {CoastPhase::half_base_pitch, "half-base-pitch",
+     "coast-flank contacts t0/2 from the drive ones (geometric)"},
+    {CoastPhase::in_phase, "in-phase", "the literal reading of (9)"},
+}};
 
 // The pairs of one line of action: which are loaded, k_first to k_first + count - 1.
 struct LoadedRange {

@@ -9,27 +9,10 @@
 #pragma once
 
 #include <optional>
-#include <string>
+
+#include "gearimpact/geometry/gear_pair.hpp"
 
 namespace gearimpact {
-
-// One gear as the user describes it. Field names are those of its error
-// messages, prefixed by the gear's name ("gear1.", "gear2.").
-struct RackGear {
-  int teeth = 20;
-  double module_m = 2.0e-3;
-  double pressure_angle_rad = 0.3490658503988659;  // a0 = 20 deg, of the rack
-  double addendum_coefficient = 1.0;       // ha: tip at (ha + x) m above the reference circle
-  double clearance_coefficient = 0.25;     // c: dedendum (ha + c) m
-  double profile_shift_coefficient = 0.0;  // x: the rack's datum line moved out by x m
-  // rho* = rho / m. Absent: the full round c / (1 - sin a0) of ISO 53 profile A.
-  std::optional<double> rack_tip_radius_coefficient;
-  // Needed by the fillet-foundation term only (h_f = r_f / (bore / 2)).
-  std::optional<double> bore_diameter_m;
-  double face_width_m = 10.0e-3;
-  double youngs_modulus_pa = 206.8e9;
-  double poisson_ratio = 0.3;
-};
 
 // Every derived length and angle of one generated gear.
 struct RackGearGeometry {
@@ -60,14 +43,20 @@ struct RackGearGeometry {
   double poisson_ratio;
 };
 
-// Validates `gear` and derives its geometry. `name` prefixes the field in
-// errors ("gear1" gives "gear1.profile_shift_coefficient"). Refuses, each with
-// its limit: counts and materials out of range; a rack tip radius that does
-// not fit the clearance; undercut (the straight flank of the rack reaching
-// below the base circle's tangent point: z <= 2 (ha + c - x - rho* (1 - sin
-// a0)) / sin^2 a0, i.e. 2 (ha - x) / sin^2 a0 for the full round); a pointed
-// tip; a bore not inside the root circle.
-RackGearGeometry rack_gear_geometry(const RackGear& gear, const std::string& name);
+// The geometry of `gear` of the pair as the rack cuts it: clearance
+// c = dedendum_coefficient - addendum_coefficient, the pair's rack tip round
+// (absent: the full round c / (1 - sin a0), or the largest that fits the
+// rack's tip land), gear 2's material where the pair gives one. The fields
+// must lie in their ranges (the case schema's rows, validate(const GearPair&)
+// of case/schema.hpp); this checks what follows from several of them, each an
+// InputError naming the field as GearPair does (teeth2, profile_shift1, ...)
+// with its limit: a negative clearance or one that leaves the rack no tip
+// land; a rack tip radius that does not fit the clearance; undercut (the
+// straight flank of the rack reaching below the base circle's tangent point:
+// z <= 2 (ha + c - x - rho* (1 - sin a0)) / sin^2 a0, i.e. 2 (ha - x) /
+// sin^2 a0 for the full round); a pointed tip; a bore not inside the root
+// circle.
+RackGearGeometry rack_gear_geometry(const GearPair& pair, Gear gear);
 
 // A point of a flank curve in the tooth frame with its derivative along the
 // curve's own parameter.
@@ -93,13 +82,9 @@ ProfilePoint trochoid_point(const RackGearGeometry& gear, double gamma_rad);
 // the involute: 2 r (theta_b - inv(acos(r_b / r))).
 double involute_arc_thickness(const RackGearGeometry& gear, double radius_m);
 
-// Two generated gears meshing without backlash. gear1 is the pinion (the
-// paper's driver), whose base-circle tangent point T1 is the origin of s.
-struct RackGearPair {
-  RackGear gear1;
-  RackGear gear2;
-};
-
+// The pair's two generated gears meshing without backlash. gear1 is the
+// pinion (the paper's driver), whose base-circle tangent point T1 is the
+// origin of s.
 struct RackGearPairGeometry {
   RackGearGeometry gear1;
   RackGearGeometry gear2;
@@ -113,11 +98,10 @@ struct RackGearPairGeometry {
   double contact_width_m;               // the smaller face width
 };
 
-// Validates both gears ("gear1.", "gear2.") and the mesh: equal module and
-// pressure angle, a positive operating pressure angle, tip clearance on both
-// sides, contact on the involutes only (no tip reaching into the mating
-// fillet), a contact ratio of at least 1.
-RackGearPairGeometry rack_gear_pair_geometry(const RackGearPair& pair);
+// Both gears (rack_gear_geometry) and the mesh: a positive operating
+// pressure angle, tip clearance on both sides, contact on the involutes only
+// (no tip reaching into the mating fillet), a contact ratio of at least 1.
+RackGearPairGeometry rack_gear_pair_geometry(const GearPair& pair);
 
 // The contact point of one tooth on the line of action.
 struct ToothContact {

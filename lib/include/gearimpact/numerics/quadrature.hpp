@@ -7,10 +7,13 @@
 // requested bound. A result that missed its tolerance is never returned.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <string>
 #include <string_view>
+
+#include "gearimpact/named_values.hpp"
 
 namespace gearimpact {
 
@@ -55,8 +58,16 @@ enum class QuadratureRule { gsl_qag, gsl_cquad, boost_gauss_kronrod, boost_tanh_
 QuadratureResult integrate(QuadratureRule rule, const Integrand& f, double a, double b,
                            QuadratureTolerance tolerance = {});
 
-// Names used on the command line and in case files: gsl, gsl-cquad, boost-gk,
-// boost-ts. parse_quadrature_rule throws InputError naming `field` otherwise.
+// Names used on the command line and in case files.
+inline constexpr std::array<NamedValue<QuadratureRule>, 4> kQuadratureRules{{
+    {QuadratureRule::gsl_qag, "gsl", "GSL QAG"},
+    {QuadratureRule::gsl_cquad, "gsl-cquad", "GSL CQUAD"},
+    {QuadratureRule::boost_gauss_kronrod, "boost-gk", "Boost Gauss-Kronrod"},
+    {QuadratureRule::boost_tanh_sinh, "boost-ts", "Boost tanh-sinh"},
+}};
+
+// By kQuadratureRules; parse_quadrature_rule throws InputError naming `field`
+// for a name it lacks.
 std::string to_string(QuadratureRule rule);
 QuadratureRule parse_quadrature_rule(std::string_view name, std::string_view field);
 

@@ -3,46 +3,26 @@
 // at a position on the line of action, and the pair's stiffness.
 #pragma once
 
-#include <string>
-#include <string_view>
 #include <vector>
 
 #include "gearimpact/geometry/rack_generation.hpp"
+#include "gearimpact/stiffness/model.hpp"
 #include "gearimpact/stiffness/tooth_beam.hpp"
 
 namespace gearimpact {
 
-enum class MeshModelKind {
-  // Hertz, bending, shear, axial, fillet foundation; the tooth from the root
-  // circle (trochoid, then involute); theta_f where the trochoid meets the
-  // root circle, u_f where the load line crosses the centre line.
-  potential_energy,
-  // potential_energy with the two conventions of ROSS (petrobras/ross at
-  // 631a249a, ross/multi_rotor/gear_element.py): theta_f = [pi/2 + 2 tan a0
-  // (ha - rho*) + 2 rho* / cos a0] / z and u_f = y_t - r_f.
-  ross_compatible,
-};
-
-// "potential-energy", "ross-compatible".
-MeshModelKind parse_mesh_model(std::string_view name);
-std::string to_string(MeshModelKind kind);
-
-// Which terms enter the pair's series compliance. A term switched off is
-// neither computed nor added (its compliance reads 0).
-struct MeshModelTerms {
-  bool hertz = true;
-  bool bending = true;
-  bool shear = true;
-  bool axial = true;
-  bool foundation = true;
-};
-
-struct MeshModel {
-  MeshModelKind kind = MeshModelKind::potential_energy;
-  MeshModelTerms terms;
-  BeamRoute route = BeamRoute::profile_parameter;
-  double relative_tolerance = 1e-12;  // of every quadrature
-};
+// The models are StiffnessModelKind::potential_energy and ross_compatible
+// (model.hpp):
+//  potential_energy: Hertz, bending, shear, axial, fillet foundation; the
+//    tooth from the root circle (trochoid, then involute); theta_f where the
+//    trochoid meets the root circle, u_f where the load line crosses the
+//    centre line.
+//  ross_compatible: potential_energy with the two conventions of ROSS
+//    (petrobras/ross at 631a249a, ross/multi_rotor/gear_element.py):
+//    theta_f = [pi/2 + 2 tan a0 (ha - rho*) + 2 rho* / cos a0] / z and
+//    u_f = y_t - r_f.
+// Of a StiffnessModel they read the kind, the terms, the route (the beam
+// integration of tooth_beam.hpp) and the tolerance of every quadrature.
 
 // Kh = (pi b / 2) / [(1 - nu1^2) / E1 + (1 - nu2^2) / E2] (STIFFNESS-MODELS.md
 // section 2): two elastic cylinders in line contact over the width b, which is
@@ -53,12 +33,12 @@ double hertz_stiffness_two_materials(double width_m, double youngs_modulus1_pa,
 
 // theta_f of the model: where the trochoid meets the root circle (b1 / r_p)
 // for potential_energy, ROSS's formula for ross_compatible.
-double foundation_root_half_angle(const RackGearGeometry& gear, MeshModelKind kind);
+double foundation_root_half_angle(const RackGearGeometry& gear, StiffnessModelKind kind);
 
 // u_f of the model for a contact at (x_t, y_t) with load angle tau:
 // y_t - x_t tan tau - r_f (potential_energy), y_t - r_f (ross_compatible).
 double foundation_load_height(const RackGearGeometry& gear, const ToothContact& contact,
-                              MeshModelKind kind);
+                              StiffnessModelKind kind);
 
 // The tooth of `gear` from its root circle to the contact: the trochoid
 // (gamma from pi/2 to a0) and the involute (tau from its form point to the
@@ -78,12 +58,13 @@ struct ToothCompliances {
   }
 };
 
-// One tooth of `gear` loaded at `contact`, over the contact width, with the
-// terms the model switches on. Throws InputError when the foundation term is
-// on and the gear has no bore, or when no term is on.
-ToothCompliances tooth_compliances(const RackGearGeometry& gear, const ToothContact& contact,
-                                   double contact_width_m, const MeshModel& model,
-                                   const std::string& name);
+// One tooth of `gear` (gear `which` of its pair) loaded at `contact`,
+// over the contact width, with the terms the model switches on. Throws
+// InputError when the foundation term is on and the gear has no bore, or
+// when no tooth term is on.
+ToothCompliances tooth_compliances(const RackGearGeometry& gear, Gear which,
+                                   const ToothContact& contact, double contact_width_m,
+                                   const StiffnessModel& model);
 
 // Every term of one pair at s (m from T1) and the pair's stiffness,
 // 1/k = 1/Kh + sum over both teeth of (1/kb + 1/ks + 1/ka + 1/kf).
@@ -93,10 +74,12 @@ struct PairStiffness {
   double hertz_m_per_n = 0.0;
   double stiffness_n_per_m = 0.0;
 };
-PairStiffness pair_stiffness(const RackGearPairGeometry& pair, const MeshModel& model, double s_m);
+PairStiffness pair_stiffness(const RackGearPairGeometry& pair, const StiffnessModel& model,
+                             double s_m);
 
-// Throws InputError unless at least one term is on and the tolerance is in
-// [1e-14, 1e-2]; with the foundation term on, both gears need a bore.
-void validate(const MeshModel& model, const RackGearPairGeometry& pair);
+// Throws InputError unless the model is potential_energy or ross_compatible
+// and at least one of its terms is on (validate_terms); with the foundation
+// term on, both gears need a bore (bore_diameter1, bore_diameter2).
+void validate(const StiffnessModel& model, const RackGearPairGeometry& pair);
 
 }  // namespace gearimpact

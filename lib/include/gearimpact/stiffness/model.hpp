@@ -4,9 +4,11 @@
 // and the sign of the axial moment. MODEL.md, section Stiffness.
 #pragma once
 
+#include <array>
 #include <string>
 #include <string_view>
 
+#include "gearimpact/named_values.hpp"
 #include "gearimpact/numerics/quadrature.hpp"
 #include "gearimpact/stiffness/terms.hpp"
 
@@ -29,8 +31,18 @@ enum class StiffnessRoute { tau_form, x_form };
 // the section height, GSL QAG); rule and moment sign do not apply.
 enum class StiffnessModelKind { yang_lin_1987, potential_energy, ross_compatible };
 
-// "yang-lin-1987", "potential-energy", "ross-compatible"; parse throws
-// InputError naming `field` with the three names.
+// The names of case files' stiffness_model and of --model.
+inline constexpr std::array<NamedValue<StiffnessModelKind>, 3> kStiffnessModels{{
+    {StiffnessModelKind::yang_lin_1987, "yang-lin-1987",
+     "the paper's: involute from the base circle, Hertz, bending, axial"},
+    {StiffnessModelKind::potential_energy, "potential-energy",
+     "trochoid + involute from the root circle, Hertz, bending, shear, axial, fillet foundation "
+     "(needs both bores)"},
+    {StiffnessModelKind::ross_compatible, "ross-compatible",
+     "potential-energy with the ROSS gear element's two conventions"},
+}};
+
+// By kStiffnessModels; parse throws InputError naming `field` with the names.
 StiffnessModelKind parse_stiffness_model(std::string_view name, std::string_view field);
 std::string to_string(StiffnessModelKind kind);
 
@@ -44,6 +56,13 @@ bool provides(StiffnessModelKind kind, Term term);
 // unbends the tooth. `flipped` adds it instead, as a possible slip in the
 // authors' program (see the reproduction report).
 enum class AxialMomentSign { physical, flipped };
+inline constexpr std::array<NamedValue<AxialMomentSign>, 2> kMomentSigns{{
+    {AxialMomentSign::physical, "physical", "M = Fb (l - x) - Fa h as printed"},
+    {AxialMomentSign::flipped, "flipped", "M = Fb (l - x) + Fa h (not physical)"},
+}};
+// By kMomentSigns; parse throws InputError naming `field` with the names.
+AxialMomentSign parse_moment_sign(std::string_view name, std::string_view field);
+std::string to_string(AxialMomentSign sign);
 
 struct StiffnessModel {
   StiffnessModelKind kind = StiffnessModelKind::yang_lin_1987;
@@ -58,19 +77,49 @@ struct StiffnessModel {
 };
 bool operator==(const StiffnessModel& a, const StiffnessModel& b);
 
-// Throws InputError unless at least one term the model provides is on and the
-// tolerance is in [1e-14, 1e-2].
-void validate(const StiffnessModel& model);
+// Throws InputError unless at least one term the model provides is on,
+// naming the switch of the first (hertz_term, or section.hertz_term for a
+// non-empty `section`). The ranges of the other
+// fields are the case schema's (validate(const StiffnessModel&) of
+// case/schema.hpp checks both).
+void validate_terms(const StiffnessModel& model, std::string_view section = {});
 
-// The vocabulary of --method and of case files' stiffness_method: gsl,
-// gsl-cquad, boost-gk, boost-ts (the tau-form with that rule), or xform (the
-// x-form route with the model's rule). Throws InputError naming `field`.
+// A method of --method and of case files' stiffness_method: a route, and
+// for the tau-form the rule it integrates with.
+struct StiffnessMethod {
+  StiffnessRoute route;
+  QuadratureRule rule;  // of the tau-form; the x-form keeps the model's (xform_rule)
+  std::string_view name;
+  std::string_view meaning;
+};
+// The tau-form with each rule, named as the rule (kQuadratureRules, in the
+// order of QuadratureRule), then the x-form route.
+inline constexpr std::array<StiffnessMethod, 5> kStiffnessMethods{{
+    {StiffnessRoute::tau_form, QuadratureRule::gsl_qag, kQuadratureRules[0].name,
+     "GSL QAG on the tau-form"},
+    {StiffnessRoute::tau_form, QuadratureRule::gsl_cquad, kQuadratureRules[1].name,
+     "GSL CQUAD on the tau-form"},
+    {StiffnessRoute::tau_form, QuadratureRule::boost_gauss_kronrod, kQuadratureRules[2].name,
+     "Boost Gauss-Kronrod on the tau-form"},
+    {StiffnessRoute::tau_form, QuadratureRule::boost_tanh_sinh, kQuadratureRules[3].name,
+     "Boost tanh-sinh on the tau-form"},
+    {StiffnessRoute::x_form, QuadratureRule::gsl_qag, "xform", "the x-form route (16)-(19)"},
+}};
+
+static_assert(kQuadratureRules[0].value == QuadratureRule::gsl_qag &&
+                  kQuadratureRules[1].value == QuadratureRule::gsl_cquad &&
+                  kQuadratureRules[2].value == QuadratureRule::boost_gauss_kronrod &&
+                  kQuadratureRules[3].value == QuadratureRule::boost_tanh_sinh,
+              "kStiffnessMethods names the tau-form's methods by kQuadratureRules' order");
+
+// The model with the method named `name` of kStiffnessMethods (the x-form
+// keeps the model's rule). Throws InputError naming `field` with the names.
 StiffnessModel with_method(StiffnessModel model, std::string_view name, std::string_view field);
 // The term of kTerms whose id is `id` (hertz, bending, axial, ...); throws
 // InputError naming `field` and the ids otherwise.
 Term term_named(std::string_view id, std::string_view field = "term");
 
-// "xform" for the x-form route, else the rule's name.
+// The name in kStiffnessMethods of the model's route and rule.
 std::string method_name(const StiffnessModel& model);
 
 }  // namespace gearimpact

@@ -19,7 +19,8 @@ namespace gearimpact {
 std::vector<double> contact_positions(const RackGearPairGeometry& pair, double fraction);
 
 // The mesh stiffness at fraction f: the sum of the pair stiffnesses there.
-double mesh_stiffness_at(const RackGearPairGeometry& pair, const MeshModel& model, double fraction);
+double mesh_stiffness_at(const RackGearPairGeometry& pair, const StiffnessModel& model,
+                         double fraction);
 
 struct MeshStiffnessSample {
   double fraction;
@@ -47,7 +48,7 @@ struct TimeVaryingMeshStiffness {
 // Throws InputError for fewer than 2 samples, QuadratureError when an
 // integral misses its tolerance.
 TimeVaryingMeshStiffness time_varying_mesh_stiffness(const RackGearPairGeometry& pair,
-                                                     const MeshModel& model,
+                                                     const StiffnessModel& model,
                                                      std::size_t sample_count = 200);
 
 // The same over a GearPair for any named model: Ke of mesh_stiffness.hpp at
@@ -60,6 +61,6 @@ TimeVaryingMeshStiffness time_varying_mesh_stiffness(const GearPair& pair,
 // The same mean by another route: every pair crosses the path of contact once
 // per period, so the mean is (1 / p_b) Int k_pair(s) ds over [s_SAP, s_EAP]
 // (Boost's adaptive Gauss-Kronrod).
-double path_mean_mesh_stiffness(const RackGearPairGeometry& pair, const MeshModel& model);
+double path_mean_mesh_stiffness(const RackGearPairGeometry& pair, const StiffnessModel& model);
 
 }  // namespace gearimpact

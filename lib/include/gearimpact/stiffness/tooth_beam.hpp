@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gearimpact/geometry/rack_generation.hpp"
+#include "gearimpact/stiffness/model.hpp"
 
 namespace gearimpact {
 
@@ -35,15 +36,15 @@ struct BeamMaterial {
   double width_m;
 };
 
-// profile_parameter: each piece integrated over its own parameter,
-//   dy = y'(p) dp, with Boost's adaptive Gauss-Kronrod (61 points).
-// section_height: each piece integrated over the height y, the section at y
-//   found by solving y(p) = y (TOMS 748), with GSL QAG (61-point
-//   Gauss-Kronrod, globally adaptive: x(y) near the root circle behaves like
-//   a square root of a point just below it, which needs many subintervals).
+// The two routes of StiffnessRoute (model.hpp), for a flank of pieces:
+// tau_form: each piece integrated over its own parameter, dy = y'(p) dp, with
+//   Boost's adaptive Gauss-Kronrod (61 points).
+// x_form: each piece integrated over the height y, the section at y found by
+//   solving y(p) = y (TOMS 748), with GSL QAG (61-point Gauss-Kronrod,
+//   globally adaptive: x(y) near the root circle behaves like a square root
+//   of a point just below it, which needs many subintervals).
 // They share the flank's points and nothing else (not y'(p), not the rule,
 // not the library).
-enum class BeamRoute { profile_parameter, section_height };
 
 struct BeamCompliance {
   double bending_m_per_n;
@@ -57,10 +58,10 @@ struct BeamCompliance {
 //          of the axial force's moment: it unbends the tooth)
 //   1/ks = Int 1.2 cos^2 tau / (G A) dy
 //   1/ka = Int sin^2 tau / (E A) dy
-// Each quadrature is asked for `relative_tolerance` and throws QuadratureError
-// if it misses it.
+// Each quadrature is asked for `relative_tolerance` (the range of the case
+// schema's stiffness_tolerance) and throws QuadratureError if it misses it.
 BeamCompliance tooth_beam_compliance(const std::vector<FlankPiece>& flank, const BeamLoad& load,
-                                     const BeamMaterial& material, BeamRoute route,
+                                     const BeamMaterial& material, StiffnessRoute route,
                                      double relative_tolerance = 1e-12);
 
 }  // namespace gearimpact
