@@ -7,6 +7,7 @@
 
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
+#include "gearimpact/named_values.hpp"
 #include "gearimpact/batch/pool.hpp"
 #include "gearimpact/batch/steady_sweep.hpp"
 #include "gearimpact/batch/sweep_friction.hpp"
