@@ -3,7 +3,7 @@
 // the whole reproduction, and the growth of the cost with simulated time and
 // with sweep size (each measured at two sizes). One iteration is one whole run.
 //
-// The per-step figures come from a steady rolling contact on N1 (MODEL.md,
+// The per-step figures come from a steady rolling contact on N1 (docs/model.md,
 // equations of motion): case 2's torque on gear 1, gear 2's torque balancing
 // it, the gears rolling at case 2's w1 = 50 rad/s and started at the static
 // deflection with an approach speed of 1 mm/s, so the teeth stay in contact.

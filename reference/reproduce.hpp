@@ -37,7 +37,7 @@ ReportSection reproduce_time_histories(const ReproduceContext& context);
 ReportSection reproduce_fig7(const ReproduceContext& context);
 ReportSection reproduce_readings(const ReproduceContext& context);
 ReportSection reproduce_case3_ensemble(const ReproduceContext& context);
-// The loaded pair swept in w1 through ISO's N = 1/2, 1, 2 (STEADY-STATE.md section 4).
+// The loaded pair swept in w1 through ISO's N = 1/2, 1, 2 (docs/steady-state.md section 4).
 ReportSection reproduce_steady_state(const ReproduceContext& context);
 
 }  // namespace gearimpact::cli

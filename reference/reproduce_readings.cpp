@@ -1,4 +1,4 @@
-// The readings MODEL.md leaves open, run side by side and scored against the
+// The readings docs/model.md leaves open, run side by side and scored against the
 // paper's statements; and case 3 as an ensemble of slightly perturbed runs.
 #include <algorithm>
 #include <cmath>
@@ -24,7 +24,7 @@ struct NamedReading {
 };
 
 std::vector<NamedReading> readings() {
-  std::vector<NamedReading> list{{"default (MODEL.md)", {}}};
+  std::vector<NamedReading> list{{"default (docs/model.md)", {}}};
   const auto with = [&](const std::string& name, auto change) {
     PaperReading r;
     change(r);

@@ -118,7 +118,7 @@ ReportSection reproduce_time_histories(const ReproduceContext& context) {
       if (row.verdict == Verdict::fail) {
         row.verdict = Verdict::known_difference;
         row.note =
-            "MODEL.md, Readings: no reading meets every statement; under the default the "
+            "docs/model.md, Readings: no reading meets every statement; under the default the "
             "teeth settle on N1 earlier (" +
             number(last_n2.tolerances_off(last * 1e3, last_n2.paper_low), 2) + " tolerances off)";
       }

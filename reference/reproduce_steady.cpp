@@ -1,4 +1,4 @@
-// The steady state of the loaded pair (STEADY-STATE.md sections 3.5 and 4): the paper's pair with
+// The steady state of the loaded pair (docs/steady-state.md sections 3.5 and 4): the paper's pair with
 // its time-varying stiffness, swept in w1 up and down through ISO's N = 1/2, 1 and 2.
 #include <algorithm>
 #include <chrono>

@@ -46,7 +46,7 @@ def case_error(message, field="", file=""):
 def paper_case(number, torque_unit="kgf-mm", case3_frequency_rad_s=10000.0, **fields):
     """Case `number` (1, 2 or 3) of the paper's Table 1 on the gear pair of section 7.
 
-    torque_unit: "kgf-mm" (MODEL.md's reading, the only one that reproduces
+    torque_unit: "kgf-mm" (docs/model.md's reading, the only one that reproduces
     Fig. 7) or "n-mm" (as the table is labelled). case3_frequency_rad_s: W of
     case 3's T1 = 200 sin(W t); 1000 is the alternative reading. Any other
     keyword changes a field of the case as in Case.replace, e.g.

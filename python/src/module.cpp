@@ -290,7 +290,7 @@ py::tuple run_sweep(const std::vector<SimulationCase>& cases, double from, doubl
 TorqueUnit torque_unit_named(const std::string& name) {
   if (name == "kgf-mm") return TorqueUnit::kgf_mm;
   if (name == "n-mm") return TorqueUnit::n_mm;
-  throw InputError("torque_unit", name, "\"kgf-mm\" (MODEL.md's reading) or \"n-mm\"");
+  throw InputError("torque_unit", name, "\"kgf-mm\" (docs/model.md's reading) or \"n-mm\"");
 }
 
 std::string gear_pair_repr(const GearPair& g) {

@@ -2,7 +2,7 @@
 // --model`, `mesh-stiffness`, `iso6336`) and the case-file keys they read.
 // References: the series sum of the printed terms, the library's own
 // functions for what the program only formats, the equations of
-// STIFFNESS-MODELS.md section 4, and the rectangle rule for the time mean.
+// docs/stiffness-models.md section 4, and the rectangle rule for the time mean.
 #include <doctest/doctest.h>
 #include <unistd.h>
 
@@ -166,7 +166,7 @@ TEST_CASE("mesh-stiffness: one period, and its summary's min, max and exact mean
 TEST_CASE("iso6336: method B for the paper's pair and for a helical variant") {
   const CommandResult r = run_command(cli("iso6336"));
   REQUIRE(r.exit_code == 0);
-  // STIFFNESS-MODELS.md: c' b = 1.34e8 N/m for the paper's pair, to its digits.
+  // docs/stiffness-models.md: c' b = 1.34e8 N/m for the paper's pair, to its digits.
   CHECK(std::fabs(json_value(r.out, "c_prime_b_n_m") - 1.34e8) <= 0.005e8);
   CHECK(json_value(r.out, "zn1") == 20.0);
   // c_gamma_alpha = c' (0.75 eps_alpha + 0.25), to rounding.

@@ -1,5 +1,5 @@
 // The dynamics against invariants, closed forms and an independent integrator:
-// the dynamics part of MODEL.md. Every expected value comes from an equation, a limit
+// the dynamics part of docs/model.md. Every expected value comes from an equation, a limit
 // or the other integrator, never from this code's own earlier output.
 #include <doctest/doctest.h>
 
@@ -248,7 +248,7 @@ double closed_form_restitution(double u_impact) {
   return -0.5 * (lo + hi) / u_impact;
 }
 
-// (32), written out here from MODEL.md, independent of the library's version.
+// (32), written out here from docs/model.md, independent of the library's version.
 double d_over_k(DampingForm form, double e, double vi) {
   switch (form) {
     case DampingForm::herbert_mcwhannell:

@@ -1,4 +1,4 @@
-// MODEL.md, section Geometry: every function checked against an independent
+// docs/model.md, section Geometry: every function checked against an independent
 // formulation (the polar involute, the tip-pressure-angle form of the contact
 // ratio, the circular pitch) or a closed form.
 #include <doctest/doctest.h>
@@ -86,7 +86,7 @@ TEST_CASE("(41) base pitch equals the circular pitch of either base circle") {
 
 TEST_CASE("contact ratio: the paper's pair and the tip-pressure-angle formula") {
   const GearPair paper = paper_gear_pair();
-  // MODEL.md, Geometry: "contact ratio (X_end - X_start) / t0 (1.69 here)",
+  // docs/model.md, Geometry: "contact ratio (X_end - X_start) / t0 (1.69 here)",
   // given to two decimals.
   CHECK(std::abs(contact_ratio(paper) - 1.69) < 0.005);
   // Textbook form: eps = [Z1 (tan a_a1 - tan a0) + Z2 (tan a_a2 - tan a0)] / (2 pi),

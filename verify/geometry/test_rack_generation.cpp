@@ -1,4 +1,4 @@
-// STIFFNESS-MODELS.md section 1: teeth cut by a rack, shifted or not, and a
+// docs/stiffness-models.md section 1: teeth cut by a rack, shifted or not, and a
 // pair of them on the line of action. The shifted trochoid is derived in
 // rack_generation.cpp; these checks prove it against the involute (whose
 // shift enters only through theta_b), against the root circle and against a

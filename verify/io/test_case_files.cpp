@@ -284,7 +284,7 @@ std::vector<BadInput> bad_inputs() {
       {"teeth beyond an int",
        set("gears", "teeth2", "9223372036854775807"),
        {"gears.teeth2 = 9223372036854775807", "an integer in [4, 100000]"}},
-      // ha = 0.4: contact segment 0.733 base pitches (MODEL.md Geometry).
+      // ha = 0.4: contact segment 0.733 base pitches (docs/model.md Geometry).
       {"contact ratio below 1",
        set("gears", "addendum_coefficient", "0.4"),
        {"gears.contact_ratio = 0.733", "[1, 3): below 1 the gears lose contact"}},

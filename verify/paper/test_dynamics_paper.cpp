@@ -1,5 +1,5 @@
 // The paper's reported behaviour of the dynamics (section 7.2 and Fig. 7,
-// pages 194-195) under MODEL.md's default reading, against the statements kept
+// pages 194-195) under docs/model.md's default reading, against the statements kept
 // in paper_data/dynamics_statements.csv with their tolerances ("about" in the
 // text and numbers rounded to one or two digits leave 20 %). A statement the
 // default reading misses is recorded with WARN and the measured number, and
@@ -65,7 +65,7 @@ TEST_CASE("case 2: impacts alternate between N1 and N2 at first, then only N1") 
   MESSAGE("last N2 impact at " << measured * 1e3 << " ms (paper: about " << last_n2.paper_low
                                << " ms), " << n2_before << " N2 impacts, " << r.summary.impacts_n1
                                << " N1 impacts");
-  // The paper's "about 5 ms": missed by the default reading (MODEL.md,
+  // The paper's "about 5 ms": missed by the default reading (docs/model.md,
   // Readings). Recorded, not asserted.
   WARN(last_n2.matches(measured * 1e3, last_n2.paper_low));
   // What the model does instead: the last N2 impact comes well before, within

@@ -1,5 +1,5 @@
 // A reference integrator for the steady-state suites only: classical RK4 for the dimensionless
-// clearance oscillator of STEADY-STATE.md section 2,
+// clearance oscillator of docs/steady-state.md section 2,
 //   x'' + 2 zeta x' + kappa f(x) = F_m + F_a W cos(Omega tau),
 // with f(x) = x - 1 (x > 1), 0 (|x| <= 1), x + 1 (x < -1) (or f(x) = x, Hill's equation when
 // the forces are 0), W = 1 or Omega^2 and a stiffness ratio kappa held constant over a call.

@@ -1,4 +1,4 @@
-// Cases for the steady-state suites: the clearance oscillator of STEADY-STATE.md section 2 built
+// Cases for the steady-state suites: the clearance oscillator of docs/steady-state.md section 2 built
 // from the paper's pair with a constant mesh stiffness, and the paper's pair loaded and running.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The dimensionless form and the closed forms of STEADY-STATE.md sections 2, 3.1 and 3.2,
+// The dimensionless form and the closed forms of docs/steady-state.md sections 2, 3.1 and 3.2,
 // against independent routes: the two-disc SI system solved by linear algebra, the fixed point
 // of the reference integrator's period map found by shooting, and slow sweeps of that
 // integrator.
@@ -26,7 +26,7 @@ namespace {
 
 constexpr double pressure_angle = 20.0 * std::numbers::pi / 180.0;
 
-// The paper's pair (MODEL.md): pitch radii 20 and 80 mm, solid discs of face width 10 mm on the
+// The paper's pair (docs/model.md): pitch radii 20 and 80 mm, solid discs of face width 10 mm on the
 // pitch radius, steel; the mesh stiffness of ISO's c_gamma_alpha = 20 N/(mm um) times the face
 // width; Table 1's case 2 torque, 50 kgf-mm.
 LoadedPair paper_loaded_pair(double excitation_rad_per_s) {

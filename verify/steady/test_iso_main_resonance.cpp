@@ -1,5 +1,5 @@
 // Where the simulated main resonance of the loaded paper pair sits in ISO 6336-1's resonance ratio
-// N = n1 / n_E1 (STEADY-STATE.md section 3.5), with ISO's c_gamma_alpha b set to the model's mean
+// N = n1 / n_E1 (docs/steady-state.md section 3.5), with ISO's c_gamma_alpha b set to the model's mean
 // mesh stiffness k_mean.
 //
 // ISO's n_E1 is the relative-mode natural frequency sqrt(c_gamma_alpha / m_red) over z1; the
@@ -229,7 +229,7 @@ TEST_CASE("the paper's runs at 1000 and 10000 rad/s in ISO's N") {
             g.module_m * g.teeth1 + (g.addendum_coefficient - g.dedendum_coefficient) * g.module_m,
             2.0 * base_radius(g, Gear::one)));
     CHECK(relative_difference(iso_resonance_ratio(w1, w_e1_library), n_iso) <= 1e-13);
-    // STEADY-STATE.md quotes about 0.32 and 3.2 from ISO's usual c_gamma_alpha = 20 N/(mm um)
+    // docs/steady-state.md quotes about 0.32 and 3.2 from ISO's usual c_gamma_alpha = 20 N/(mm um)
     // and two significant digits: the quote's rounding (0.005 of 0.315) plus the shift of N by
     // sqrt(20 / c_gamma_alpha) for this pair's own c_gamma_alpha.
     const double quoted = 0.32 * w1 / 1000.0;

@@ -1,7 +1,7 @@
 // ISO 6336-1 method B for the paper's pair: m_red and n_E1 computed here by hand in ISO's own
 // units (mm, kg/mm, N/(mm um), min^-1) against the library's SI functions; n_E1 as the two-disc
 // natural frequency of the dimensionless form; the perfect-gear K_v band at the values
-// STEADY-STATE.md section 3.5 quotes.
+// docs/steady-state.md section 3.5 quotes.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -17,7 +17,7 @@ using gearimpact::verify::relative_difference;
 
 namespace {
 
-// The paper's pair (MODEL.md section Paper parameters) with ISO 53 basic rack proportions for
+// The paper's pair (docs/model.md section Paper parameters) with ISO 53 basic rack proportions for
 // what the paper leaves open: addendum m, dedendum 1.25 m.
 constexpr int z1 = 20;
 constexpr int z2 = 80;
@@ -51,7 +51,7 @@ TEST_CASE("m_red and n_E1 of the paper's pair, by hand in ISO's units") {
   const double w_e1 = iso_resonance_speed_rad_per_s(z1, c_gamma_alpha * 1e9, m_red_si);
   CHECK(relative_difference(w_e1 * 60.0 / (2.0 * std::numbers::pi), n_e1_per_min) <= 1e-14);
 
-  // STEADY-STATE.md: the paper's runs at w1 = 1000 and 10000 rad/s sit at N of about 0.32 and
+  // docs/steady-state.md: the paper's runs at w1 = 1000 and 10000 rad/s sit at N of about 0.32 and
   // 3.2, i.e. within the rounding interval of two significant digits (0.3152 and 3.152 here).
   CHECK(std::fabs(iso_resonance_ratio(1000.0, w_e1) - 0.32) <= 0.005);
   CHECK(std::fabs(iso_resonance_ratio(10000.0, w_e1) - 3.2) <= 0.05);
@@ -75,7 +75,7 @@ TEST_CASE("m_red and n_E1 of the paper's pair, by hand in ISO's units") {
   CHECK(relative_difference(d.effective_mass_kg, m_red_si * face_width_mm * 1e-3) <= 1e-14);
 }
 
-TEST_CASE("K_v band of perfect gears at the values STEADY-STATE.md quotes") {
+TEST_CASE("K_v band of perfect gears at the values docs/steady-state.md quotes") {
   const double eps_alpha = 1.69;
   const double heavy = 200e3;  // line load 200 N/mm: N_S = 0.85
   // Subcritical: 1 + 0.23 N.

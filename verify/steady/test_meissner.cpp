@@ -1,4 +1,4 @@
-// Meissner's equation (STEADY-STATE.md section 3.4): the closed-form monodromy against Eigen's
+// Meissner's equation (docs/steady-state.md section 3.4): the closed-form monodromy against Eigen's
 // matrix exponential and against direct RK4 integration of Hill's equation over one period;
 // Liouville's determinant; the first instability band against the perturbation result
 // Omega ~ 2 (1 +- eps/4) and the damped threshold eps > 4 zeta; the multipliers found by shooting

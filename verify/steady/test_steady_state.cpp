@@ -1,4 +1,4 @@
-// The steady-state driver against closed forms of the clearance oscillator (STEADY-STATE.md
+// The steady-state driver against closed forms of the clearance oscillator (docs/steady-state.md
 // sections 2 and 3), derived here from the equations of motion, and against itself at half the
 // step (the accuracy of the step it chooses).
 #include <doctest/doctest.h>

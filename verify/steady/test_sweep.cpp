@@ -1,5 +1,5 @@
 // Sweeps of the steady state: the switch from no impact to single-sided impacts against the
-// closed-form onset of contact loss (STEADY-STATE.md section 3.2, derived here), and the
+// closed-form onset of contact loss (docs/steady-state.md section 3.2, derived here), and the
 // hysteresis of a softening clearance oscillator swept up and down.
 #include <doctest/doctest.h>
 

@@ -1,6 +1,6 @@
 // Fig. 8 and section 8.2: the contact zones of one meshing cycle and the
 // ratios of the elastic energies (5),(16),(17), against the statements kept in
-// paper_data/fig8_energy_ratios.csv. MODEL.md (Readings) says the printed,
+// paper_data/fig8_energy_ratios.csv. docs/model.md (Readings) says the printed,
 // physical bending moment misses the energy ratios while flipping the sign of
 // its Fa h term comes closer; both halves of that are asserted here, and the
 // misses are printed with their size.
@@ -109,7 +109,7 @@ TEST_CASE(
                  << " tolerances off); flipped " << c.flipped_low << " to " << c.flipped_high
                  << " (" << miss_flipped << " tolerances off)");
     CAPTURE(c.id);
-    // MODEL.md, Readings: the physical form misses, the flipped one is closer.
+    // docs/model.md, Readings: the physical form misses, the flipped one is closer.
     CHECK(miss_physical > 1.0);
     CHECK(miss_flipped < miss_physical);
   }

@@ -1,4 +1,4 @@
-// STIFFNESS-MODELS.md section 4: ISO 6336-1 method B, checked against the
+// docs/stiffness-models.md section 4: ISO 6336-1 method B, checked against the
 // worked example of ISO/TR 6336-30 Annex A, and the potential-energy model
 // compared with it as with a band.
 #include <doctest/doctest.h>
@@ -27,7 +27,7 @@ constexpr double eps = std::numeric_limits<double>::epsilon();
 // ISO's N/(mm um) per unit face width in N/m^2.
 constexpr double n_per_mm_um = 1e9;
 
-// ISO/TR 6336-30 Annex A (STIFFNESS-MODELS.md section 4): helical, m_n 8 mm,
+// ISO/TR 6336-30 Annex A (docs/stiffness-models.md section 4): helical, m_n 8 mm,
 // z 17/103, x 0.145/0, beta 15.8 deg, alpha_n 20 deg, h_fP 1.4 m_n, a_w
 // 500 mm, tip diameters 159.66 / 872.35 mm as the example rounds them.
 Iso6336Pair annex_a() {
@@ -98,7 +98,7 @@ TEST_CASE("ISO spur: zn = z, and the paper's pair gives c' b = 1.34e8 N/m") {
   // ISO's contact ratio from the diameters equals the rack pair's from the
   // line of action (two formulations of one length over one pitch).
   CHECK(relative_difference(r.transverse_contact_ratio, g.contact_ratio) <= 16.0 * eps);
-  // STIFFNESS-MODELS.md: "ISO 6336-1 gives a single-tooth stiffness c' b =
+  // docs/stiffness-models.md: "ISO 6336-1 gives a single-tooth stiffness c' b =
   // 1.34e8 N/m" for this pair, to its three digits.
   CHECK(std::fabs(r.single_stiffness_n_per_m2 * g.contact_width_m - 1.34e8) <= 0.005e8);
 }

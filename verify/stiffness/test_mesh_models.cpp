@@ -1,4 +1,4 @@
-// STIFFNESS-MODELS.md sections 2 and 3: the named models `potential-energy`
+// docs/stiffness-models.md sections 2 and 3: the named models `potential-energy`
 // and `ross-compatible`, per term and per pair, and their time-varying mesh
 // stiffness. The peer values are ROSS's own (paper_data/peer-values/
 // ross-pair-a.csv, with its provenance in its header).
@@ -221,7 +221,7 @@ TEST_CASE("Hertz for two materials reduces to the paper's (4) for equal material
 }
 
 TEST_CASE("fillet foundation: the coefficient table and the fit's range") {
-  // The table of STIFFNESS-MODELS.md typed again here, at one (h_f, theta_f):
+  // The table of docs/stiffness-models.md typed again here, at one (h_f, theta_f):
   // a transcription check of fillet_foundation.cpp.
   const double h = 2.5;
   const double t = 0.08;

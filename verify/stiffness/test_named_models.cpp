@@ -1,5 +1,5 @@
 // The named stiffness models wired into the gear pair, the mesh stiffness, the
-// table and the dynamics (STIFFNESS-MODELS.md sections 1-3). References: the
+// table and the dynamics (docs/stiffness-models.md sections 1-3). References: the
 // rack-generation core's own computation of the same lengths (different
 // formulas and roundings), the equations of section 1, and the pair
 // stiffness of mesh_models.hpp, which these functions must reproduce.
@@ -183,7 +183,7 @@ TEST_CASE("potential-energy and ross-compatible through mesh_stiffness are mesh_
 TEST_CASE("the paper's pinion is outside the foundation fit, and a missing bore is named") {
   const GearPair p = paper_pair_with_bores();
   const double x = pitch_point_position(p);
-  // theta_f 0.1506 rad > 0.12 (STIFFNESS-MODELS.md, the fit's range).
+  // theta_f 0.1506 rad > 0.12 (docs/stiffness-models.md, the fit's range).
   CHECK(mesh_stiffness(p, x, named(StiffnessModelKind::potential_energy)).foundation_extrapolated);
   GearPair no_bore = p;
   no_bore.bore_diameter2_m.reset();

@@ -1,4 +1,4 @@
-// MODEL.md, section Stiffness: (4), (10)-(12), (16)-(24), (29) and the energy
+// docs/model.md, section Stiffness: (4), (10)-(12), (16)-(24), (29) and the energy
 // split (5),(16),(17),(28). The heart of it is the tolerance harness: every
 // compliance by five routes (GSL QAG, GSL CQUAD, Boost Gauss-Kronrod, Boost
 // tanh-sinh on the tau-form (20)-(24), and the x-form (16)-(19) integrated

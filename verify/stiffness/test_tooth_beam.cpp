@@ -1,4 +1,4 @@
-// STIFFNESS-MODELS.md section 2: the tooth-beam compliances. Closed forms
+// docs/stiffness-models.md section 2: the tooth-beam compliances. Closed forms
 // for beams whose integrals are known, then every integral of the real teeth
 // (trochoid + involute from the root circle) by the two routes of
 // tooth_beam.hpp, which share only the flank's points.

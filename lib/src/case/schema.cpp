@@ -387,7 +387,7 @@ std::vector<Field> make_schema() {
         [](auto& c) -> auto& { return c.model.coast_phase; });
     r.choice(
         "stiffness_model", choices_of(kStiffnessModels), false,
-        "the mesh-stiffness model (README, Which stiffness model)",
+        "the mesh-stiffness model (docs/stiffness-models.md, section 3)",
         [](auto& c) -> auto& { return c.model.stiffness.kind; });
     r.choice(
         "moment_sign", choices_of(kMomentSigns), false,

@@ -13,7 +13,7 @@ double restitution_coefficient(const RestitutionLaw& law, double impact_speed_m_
 
 double damping_factor_per_stiffness(DampingForm form, double restitution, double impact_speed_m_s) {
   const double e = restitution;
-  // (32) in the three forms MODEL.md lists.
+  // (32) in the three forms docs/model.md lists.
   switch (form) {
     case DampingForm::herbert_mcwhannell:
       return 6.0 * (1.0 - e) / (((2.0 * e - 1.0) * (2.0 * e - 1.0) + 3.0) * impact_speed_m_s);

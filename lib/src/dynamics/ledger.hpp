@@ -1,4 +1,4 @@
-// The energy ledger (MODEL.md, Energies), an observer of the accepted steps:
+// The energy ledger (docs/model.md, Energies), an observer of the accepted steps:
 // kinetic + stored energy against the torque work, the damping and friction
 // losses and the parametric work of the time-varying stiffness. Each is
 // computed on its own (the losses and works as integrals of their powers in

@@ -156,7 +156,7 @@ void GearSystem::rhs(double t, const State& y, const Mode& m, const ContactMemor
   double mesh_damping_power = 0.0;
   if (mesh_damping_ > 0.0) {
     // The viscous mesh damper acts on s' at all times, in contact and in the
-    // backlash alike, as the c x' of STEADY-STATE.md's clearance oscillator:
+    // backlash alike, as the c x' of docs/steady-state.md's clearance oscillator:
     // a force c s' along the line of action in the sense of an N1 contact force.
     const double rate = s_rate(y);
     const double force = mesh_damping_ * rate;

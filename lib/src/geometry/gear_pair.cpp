@@ -132,7 +132,7 @@ double operating_pressure_angle(const GearPair& pair) {
 }
 
 double half_tooth_angle(const GearPair& pair, Gear gear) {
-  // (13),(27), with the shift's 2 x tan a0 / z (STIFFNESS-MODELS.md section 1).
+  // (13),(27), with the shift's 2 x tan a0 / z (docs/stiffness-models.md section 1).
   const double z = teeth(pair, gear);
   return pi / (2.0 * z) + involute_function(pair.pressure_angle_rad) +
          2.0 * profile_shift(pair, gear) * std::tan(pair.pressure_angle_rad) / z;

@@ -160,7 +160,7 @@ RackGearGeometry rack_gear_geometry(const GearPair& pair, Gear gear) {
   // width there, pi m / 4 + x m tan a0, plus the flank's run over a1 and the
   // offset rho / cos a0 of a circle tangent to the flank. The shift cancels:
   // b1 = pi m / 4 + (ha + c) m tan a0 + rho (1 - sin a0) / cos a0, which is
-  // STIFFNESS-MODELS.md's pi m / 4 + ha m tan a0 + rho cos a0 for the full round.
+  // docs/stiffness-models.md's pi m / 4 + ha m tan a0 + rho cos a0 for the full round.
   g.trochoid_a1_m = (ha + c - x) * m - rho;
   g.trochoid_b1_m = pi * m / 4.0 + (ha + c) * m * tan_a0 + rho * (1.0 - sin_a0) / cos_a0;
   // At gamma = pi/2 the trochoid point lies at r_p - a1 - rho = r_f, at the
@@ -198,7 +198,7 @@ ProfilePoint involute_point(const RackGearGeometry& gear, double tau_rad) {
   const double roll = tau_rad + gear.half_tooth_angle_base_rad;
   const double c = std::cos(tau_rad);
   const double s = std::sin(tau_rad);
-  // STIFFNESS-MODELS.md section 1, the involute in the tooth frame, and its
+  // docs/stiffness-models.md section 1, the involute in the tooth frame, and its
   // derivatives: dx/dtau = -r_b roll sin tau, dy/dtau = r_b roll cos tau.
   return {rb * (roll * c - s), rb * (roll * s + c), -rb * roll * s, rb * roll * c};
 }
@@ -208,7 +208,7 @@ ProfilePoint trochoid_point(const RackGearGeometry& gear, double gamma_rad) {
   const double a1 = gear.trochoid_a1_m;
   const double sin_g = std::sin(gamma_rad);
   const double cos_g = std::cos(gamma_rad);
-  // STIFFNESS-MODELS.md section 1, the trochoid, with the shifted a1 and b1
+  // docs/stiffness-models.md section 1, the trochoid, with the shifted a1 and b1
   // of rack_gear_geometry. phi is the gear's rotation from the position in
   // which the rack's rolling line touches the reference circle on the tooth's
   // centre line; the contact normal through the instantaneous pitch point

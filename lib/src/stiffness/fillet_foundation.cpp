@@ -10,7 +10,7 @@ namespace gearimpact {
 namespace {
 
 // One row A..F of the table of Sainsot et al. (2004), as printed in
-// STIFFNESS-MODELS.md.
+// docs/stiffness-models.md.
 struct FitRow {
   double a, b, c, d, e, f;
 };
@@ -47,7 +47,7 @@ double fillet_foundation_compliance(const FoundationCoefficients& k, double youn
   const double ratio = u_f_m / s_f_m;
   const double cos_tau = std::cos(tau_rad);
   const double tan_tau = std::tan(tau_rad);
-  // Sainsot et al. (2004), STIFFNESS-MODELS.md section 2.
+  // Sainsot et al. (2004), docs/stiffness-models.md section 2.
   return cos_tau * cos_tau / (youngs_modulus_pa * width_m) *
          (k.l * ratio * ratio + k.m * ratio + k.p * (1.0 + k.q * tan_tau * tan_tau));
 }

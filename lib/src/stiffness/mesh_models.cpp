@@ -27,7 +27,7 @@ void require_bore(const RackGearGeometry& geometry, Gear gear) {
 double hertz_stiffness_two_materials(double width_m, double youngs_modulus1_pa,
                                      double poisson_ratio1, double youngs_modulus2_pa,
                                      double poisson_ratio2) {
-  // STIFFNESS-MODELS.md section 2, Hertz for materials 1 and 2.
+  // docs/stiffness-models.md section 2, Hertz for materials 1 and 2.
   const double compliance1 = (1.0 - poisson_ratio1 * poisson_ratio1) / youngs_modulus1_pa;
   const double compliance2 = (1.0 - poisson_ratio2 * poisson_ratio2) / youngs_modulus2_pa;
   return 0.5 * pi * width_m / (compliance1 + compliance2);
@@ -35,7 +35,7 @@ double hertz_stiffness_two_materials(double width_m, double youngs_modulus1_pa,
 
 double foundation_root_half_angle(const RackGearGeometry& gear, StiffnessModelKind kind) {
   if (kind == StiffnessModelKind::ross_compatible) {
-    // ROSS's theta_f (STIFFNESS-MODELS.md section 3). Written as 2 b / (z m),
+    // ROSS's theta_f (docs/stiffness-models.md section 3). Written as 2 b / (z m),
     // its b = pi m / 4 + ha m tan a0 + rho (1 - sin a0) / cos a0 is the
     // round centre's b1 without the clearance's run c m tan a0 along the
     // rack flank, so it falls 2 c tan a0 / z short of where its own trochoid
@@ -152,7 +152,7 @@ PairStiffness pair_stiffness(const RackGearPairGeometry& pair, const StiffnessMo
                                             pair.gear1.poisson_ratio, pair.gear2.youngs_modulus_pa,
                                             pair.gear2.poisson_ratio);
   }
-  // STIFFNESS-MODELS.md section 2: one pair, every term in series.
+  // docs/stiffness-models.md section 2: one pair, every term in series.
   k.stiffness_n_per_m = 1.0 / (k.hertz_m_per_n + k.gear1.total_m_per_n() + k.gear2.total_m_per_n());
   return k;
 }

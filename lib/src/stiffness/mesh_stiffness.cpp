@@ -57,7 +57,7 @@ void combine(const GearPair& pair, const StiffnessModel& model, MeshStiffness& k
   k.included = included(k.pair, model.terms);
   // (29) 1/Ke = 1/Kh + 1/Kb1 + 1/Ka1 + 1/Kb2 + 1/Ka2 over the terms switched
   // on, and for the models beyond the paper 1/Ks and 1/Kf of both teeth
-  // (STIFFNESS-MODELS.md section 2).
+  // (docs/stiffness-models.md section 2).
   k.ke = 1.0 / k.included.total_m_per_n();
 }
 

@@ -14,7 +14,7 @@ namespace gearimpact {
 namespace {
 
 // The three energy densities per unit height, as functions of the section's
-// half thickness x at height y (STIFFNESS-MODELS.md section 2).
+// half thickness x at height y (docs/stiffness-models.md section 2).
 struct Densities {
   double bending;
   double shear;

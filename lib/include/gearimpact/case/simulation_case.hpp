@@ -1,6 +1,6 @@
 // Everything a simulation run needs, as plain values in SI: the gear pair, the
 // external torques, the initial state, the model options where the paper is
-// ambiguous (MODEL.md, sections Contact, damping, friction and Readings) and
+// ambiguous (docs/model.md, sections Contact, damping, friction and Readings) and
 // the integrator settings. Case files (TOML) and the paper's Table 1 both
 // produce one of these; the dynamics consumes it.
 #pragma once
@@ -44,7 +44,7 @@ struct InitialState {
 
 // The mesh stiffness of the dynamics: each loaded pair's Ke(X) of (29), or a
 // constant total shared equally by the n loaded pairs (Ke = k / n), so that the
-// mesh stiffness never changes: the clearance oscillator of STEADY-STATE.md.
+// mesh stiffness never changes: the clearance oscillator of docs/steady-state.md.
 enum class MeshStiffnessMode { time_varying, constant };
 inline constexpr std::array<NamedValue<MeshStiffnessMode>, 2> kMeshStiffnessModes{{
     {MeshStiffnessMode::time_varying, "time-varying", "each loaded pair's Ke(X) of (29)"},
@@ -52,7 +52,7 @@ inline constexpr std::array<NamedValue<MeshStiffnessMode>, 2> kMeshStiffnessMode
      "constant_mesh_stiffness shared equally by the loaded pairs (the clearance oscillator)"},
 }};
 
-// When the Hertzian damping factor D of (32) is set (STEADY-STATE.md section 1).
+// When the Hertzian damping factor D of (32) is set (docs/steady-state.md section 1).
 enum class DampingUpdate {
   // At every impact from e(Vi), carried with the state while no impact comes
   // (the paper's; a continued run or a sweep carries the last impact's D).

@@ -1,7 +1,7 @@
 // The contact laws of one tooth pair: the penetration on each side of the
 // backlash (31), the elastic force (30), restitution (33), the damping factor
 // (32) in its three published forms, the Hertzian damping force (34), the
-// normal force, and friction (35)-(38). MODEL.md, section Contact, damping,
+// normal force, and friction (35)-(38). docs/model.md, section Contact, damping,
 // friction.
 #pragma once
 

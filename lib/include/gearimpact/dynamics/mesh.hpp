@@ -1,6 +1,6 @@
 // The mesh as one spring between the gears along the line of action: the
 // effective mass of the relative mode, the mean mesh stiffness of
-// STEADY-STATE.md section 2, and the viscous mesh damper they set.
+// docs/steady-state.md section 2, and the viscous mesh damper they set.
 #pragma once
 
 #include "gearimpact/case/simulation_case.hpp"
@@ -19,7 +19,7 @@ double effective_mass_kg(double base_radius1_m, double inertia1_kg_m2, double ba
 double inverse_effective_mass_per_kg(const GearPair& pair);
 double effective_mass_kg(const GearPair& pair);
 
-// STEADY-STATE.md section 1: the optional linear viscous mesh damper
+// docs/steady-state.md section 1: the optional linear viscous mesh damper
 // c = 2 zeta sqrt(k m_e), in N s/m. Throws InputError unless zeta >= 0 and
 // k, m_e > 0, all finite.
 double viscous_mesh_damping_n_s_per_m(double damping_ratio, double mesh_stiffness_n_per_m,
@@ -32,7 +32,7 @@ double viscous_mesh_damping_n_s_per_m(double damping_ratio, double mesh_stiffnes
 double mean_mesh_stiffness_n_m(const SimulationCase& c, const StiffnessTable& table);
 
 // w_n = sqrt(k_mean / m_e), the natural frequency of the relative mode with
-// the mean mesh stiffness (STEADY-STATE.md section 2). Throws as
+// the mean mesh stiffness (docs/steady-state.md section 2). Throws as
 // mean_mesh_stiffness_n_m.
 double natural_frequency_rad_s(const SimulationCase& c, const StiffnessTable& table);
 

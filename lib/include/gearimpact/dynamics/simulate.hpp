@@ -1,4 +1,4 @@
-// A simulation run of the gear impact dynamics (MODEL.md, sections Contact,
+// A simulation run of the gear impact dynamics (docs/model.md, sections Contact,
 // damping, friction; Equations of motion; Energies): the system is in
 // system.hpp, the event-cut RK4 and the adaptive integrator in rk4.cpp and
 // adaptive.cpp, the energy ledger in ledger.hpp. This is what a caller needs:

@@ -3,7 +3,7 @@
 // each), the right-hand side of the equations of motion (1)-(3), (43)-(45) in a
 // mode, and the event functions whose sign changes end a mode. The integrators
 // (rk4.cpp, adaptive.cpp) and the energy ledger (ledger.hpp) work on it.
-// MODEL.md, sections Contact, damping, friction and Equations of motion.
+// docs/model.md, sections Contact, damping, friction and Equations of motion.
 #pragma once
 
 #include <array>

@@ -1,4 +1,4 @@
-// The gear pair and its involute geometry: MODEL.md, section Geometry.
+// The gear pair and its involute geometry: docs/model.md, section Geometry.
 // All lengths in metres, angles in radians, SI throughout.
 #pragma once
 
@@ -12,7 +12,7 @@
 namespace gearimpact {
 
 // Two involute spur gears cut by the same basic rack, meshing without
-// backlash on the operating centre distance (STIFFNESS-MODELS.md, section 1).
+// backlash on the operating centre distance (docs/stiffness-models.md, section 1).
 // Pitch radius r_i = module * Z_i / 2, tip radius r_i + (ha + x_i) module;
 // unshifted (x1 = x2 = 0, the paper's) the pair sits on its standard centre
 // distance.
@@ -48,7 +48,7 @@ struct GearPair {
 
 bool operator==(const GearPair& a, const GearPair& b);
 
-// Section 7 of the paper with MODEL.md's defaults for what it leaves unstated.
+// Section 7 of the paper with docs/model.md's defaults for what it leaves unstated.
 GearPair paper_gear_pair();
 
 // Throws InputError naming the first field that breaks a relation between
@@ -144,7 +144,7 @@ struct LoadedRange {
 // (42): the pairs on a line sit at X = reference + k t0 (k integer), the
 // reference moving with the rotation theta1; a pair is loaded while its X lies
 // in [X_start, X_end] (an end point counts as loaded). On N1 X is measured from
-// C1, on N2 X' from C1' (MODEL.md, Geometry). The one place that places and
+// C1, on N2 X' from C1' (docs/model.md, Geometry). The one place that places and
 // counts the pairs: the simulation, the energy split of Fig. 8 and the step
 // bound all ask here.
 class MeshLayout {

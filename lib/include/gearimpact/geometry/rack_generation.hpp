@@ -2,7 +2,7 @@
 // circle, a trochoid fillet traced by the rack's tip round and then the
 // involute, for any profile shift; and a pair of such gears on the centre
 // distance at which they mesh without backlash, with the exact kinematics of
-// the line of action. STIFFNESS-MODELS.md, section 1. SI units, angles in rad.
+// the line of action. docs/stiffness-models.md, section 1. SI units, angles in rad.
 //
 // Tooth frame: y along the tooth centre line from the gear centre, x the half
 // thickness (the loaded flank at x > 0).

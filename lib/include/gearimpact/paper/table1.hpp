@@ -1,12 +1,12 @@
 // Table 1 of the paper: its three cases on the gear pair of section 7, under
-// each reading MODEL.md leaves open (section Readings).
+// each reading docs/model.md leaves open (section Readings).
 #pragma once
 
 #include "gearimpact/case/simulation_case.hpp"
 
 namespace gearimpact {
 
-// Units of Table 1's torques. MODEL.md: kgf-mm by default (only they reproduce
+// Units of Table 1's torques. docs/model.md: kgf-mm by default (only they reproduce
 // Fig. 7), N-mm as the table labels them.
 enum class TorqueUnit { kgf_mm, n_mm };
 
@@ -16,7 +16,7 @@ enum class TorqueUnit { kgf_mm, n_mm };
 SimulationCase paper_case(int number, TorqueUnit unit = TorqueUnit::kgf_mm,
                           double case3_angular_frequency_rad_s = 10000.0);
 
-// One choice for each reading MODEL.md leaves open; the defaults are MODEL.md's.
+// One choice for each reading docs/model.md leaves open; the defaults are docs/model.md's.
 struct PaperReading {
   TorqueUnit torque_unit = TorqueUnit::kgf_mm;
   double case3_angular_frequency_rad_s = 10000.0;
@@ -33,7 +33,7 @@ SimulationCase paper_case(int number, const PaperReading& reading);
 // Newton metres per unit of Table 1.
 double torque_unit_n_m(TorqueUnit unit);
 
-// How the paper's pair is loaded for a steady state (STEADY-STATE.md section 1).
+// How the paper's pair is loaded for a steady state (docs/steady-state.md section 1).
 struct PairLoad {
   double static_force_n = 1000.0;  // F on the line of action: T1 = F Rb1, T2 = -F Rb2
   DampingUpdate damping_update = DampingUpdate::off;

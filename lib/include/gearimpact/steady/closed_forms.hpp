@@ -1,4 +1,4 @@
-// The loaded, running pair in the dimensionless form of STEADY-STATE.md section 2, and the closed
+// The loaded, running pair in the dimensionless form of docs/steady-state.md section 2, and the closed
 // forms of its linear limit (section 3.1) and of the onset of contact loss (section 3.2).
 //
 // With s = Rb1 theta1 - Rb2 theta2 (contact on the drive flank for s > B, on the coast flank for
@@ -14,7 +14,7 @@
 namespace gearimpact {
 
 // Section 1, sign convention: T1 and T2 both act along the line of action in the sense of
-// MODEL.md's equations of motion (J1 w1' = T1 - N Rb1, J2 w2' = T2 + N Rb2), so a driving pinion
+// docs/model.md's equations of motion (J1 w1' = T1 - N Rb1, J2 w2' = T2 + N Rb2), so a driving pinion
 // torque T1 > 0 is balanced by a resisting T2 < 0 with T1/Rb1 + T2/Rb2 = 0.
 //
 // Throws InputError naming "mean torques" and the imbalance T1/Rb1 + T2/Rb2 in N when it exceeds
@@ -31,7 +31,7 @@ struct LoadedPair {
   double base_radius2_m = 0.0;
   // k: the constant mesh stiffness, or the mean of a varying one.
   double mesh_stiffness_n_per_m = 0.0;
-  // B of MODEL.md: contact when |s| > B, so the free play is 2B.
+  // B of docs/model.md: contact when |s| > B, so the free play is 2B.
   double backlash_m = 0.0;
   // T_m on gear 1, balanced on gear 2 as in require_balanced_mean_torques.
   double mean_torque1_n_m = 0.0;
@@ -54,7 +54,7 @@ struct DimensionlessPair {
   double frequency_ratio = 0.0;
 };
 
-// STEADY-STATE.md section 2. Throws InputError naming the first field outside its range
+// docs/steady-state.md section 2. Throws InputError naming the first field outside its range
 // (inertias, radii, stiffness, backlash and frequency finite and > 0; torques finite; the
 // fluctuation >= 0).
 DimensionlessPair dimensionless_form(const LoadedPair& pair);

@@ -1,6 +1,6 @@
 // ISO 6336-1:2006 method B (equation numbers of that edition) for a spur pair of solid gears:
 // the main resonance speed and the dynamic factor K_v of perfect gears, the band a simulated
-// dynamic factor is plotted beside (STEADY-STATE.md section 3.5). The mean mesh stiffness per
+// dynamic factor is plotted beside (docs/steady-state.md section 3.5). The mean mesh stiffness per
 // face width c_gamma_alpha is an input: ISO's own, c' (0.75 eps_alpha + 0.25), or the model's
 // mean. ISO's n_E1 is the natural frequency of the two-disc relative mode expressed as a pinion
 // speed, so with the mesh stiffness k = c_gamma_alpha b the simulated main resonance sits at N

@@ -1,6 +1,6 @@
 // Parametric stability of the meshing pair with the clearance out of play: Hill's equation
 //   x'' + 2 zeta x' + kappa(tau) x = 0
-// with the rectangular one-/two-pair stiffness of STEADY-STATE.md section 3.4 (Meissner's
+// with the rectangular one-/two-pair stiffness of docs/steady-state.md section 3.4 (Meissner's
 // equation): kappa = kappa_d for the fraction d = eps_alpha - 1 of each mesh period
 // T = 2 pi / Omega, kappa_s for the rest. kappa = k(t)/k with the k of w_n = sqrt(k / m_e), so
 // kappa's mean d kappa_d + (1 - d) kappa_s is 1 when k is the mean stiffness.

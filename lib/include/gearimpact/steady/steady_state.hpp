@@ -1,4 +1,4 @@
-// The steady state of the loaded, running pair, found by running it (STEADY-STATE.md sections 1
+// The steady state of the loaded, running pair, found by running it (docs/steady-state.md sections 1
 // and 4): the gear model is run one excitation period at a time, the state (s, s') is sampled at
 // the end of each period, and the run is steady when those Poincare samples repeat with a period
 // of 1 to max_period excitation periods (periodicity.hpp); aperiodic or not converged within the
@@ -59,7 +59,7 @@ std::vector<double> forcing_frequencies(const SimulationCase& c);
 
 // Throws InputError naming the key unless the case can have a steady state: torques constant,
 // sinusoidal or harmonic (a user function's mean and period are not known); mean torques balanced
-// (T1/Rb1 + T2/Rb2 = 0, both along the line of action as in MODEL.md's equations of motion);
+// (T1/Rb1 + T2/Rb2 = 0, both along the line of action as in docs/model.md's equations of motion);
 // no friction: friction loss f N |Vs| is drawn from the mean rotation, which balanced torques do
 // not feed, so with f > 0 the pair slows down without end.
 void require_steady_case(const SimulationCase& c);

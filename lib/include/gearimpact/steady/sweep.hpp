@@ -1,4 +1,4 @@
-// Sweeps of the steady state along a line of one parameter (STEADY-STATE.md section 4): each
+// Sweeps of the steady state along a line of one parameter (docs/steady-state.md section 4): each
 // point starts from the previous point's steady state (continuation), so a line is sequential;
 // lines (a second parameter's values, the two directions) are independent and are the unit of
 // parallel work and of sharding. Rows are keyed (line, direction, index), index the position of

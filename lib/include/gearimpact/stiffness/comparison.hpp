@@ -1,6 +1,6 @@
 // The named stiffness models and ISO 6336-1 side by side for one gear pair:
 // the mesh stiffness over one period and every term at the pitch point
-// (STIFFNESS-MODELS.md sections 3 and 4).
+// (docs/stiffness-models.md sections 3 and 4).
 #pragma once
 
 #include <vector>

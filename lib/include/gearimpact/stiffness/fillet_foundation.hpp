@@ -2,7 +2,7 @@
 // the analytical fit of P. Sainsot, P. Velex and O. Duverger, "Contribution of
 // gear body to tooth deflections - a new bidimensional analytical formula",
 // J. Mech. Des. 126(4) (2004) 748-752, doi 10.1115/1.1758252.
-// STIFFNESS-MODELS.md, section 2.
+// docs/stiffness-models.md, section 2.
 #pragma once
 
 namespace gearimpact {
@@ -33,7 +33,7 @@ struct FoundationFit {
 };
 
 // X*(h_f, theta_f) = A / theta_f^2 + B h_f^2 + C h_f / theta_f + D / theta_f + E h_f + F
-// with the table of STIFFNESS-MODELS.md (Sainsot et al. 2004); h_f = r_f / r_int,
+// with the table of docs/stiffness-models.md (Sainsot et al. 2004); h_f = r_f / r_int,
 // theta_f the half angle of the tooth at the root circle. Throws InputError
 // unless h_f > 1 (the bore inside the root circle) and theta_f is in (0, pi/2).
 FoundationFit sainsot_coefficients(double h_f, double theta_f_rad);

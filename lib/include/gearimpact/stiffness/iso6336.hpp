@@ -1,5 +1,5 @@
 // Tooth stiffness by ISO 6336-1 method B, the engineering standard's
-// empirical fit, for comparison with the models (STIFFNESS-MODELS.md,
+// empirical fit, for comparison with the models (docs/stiffness-models.md,
 // section 4). Spur and helical external gears.
 //
 // ISO states these quantities in N/(mm um) per unit face width; here they
@@ -32,7 +32,7 @@ struct Iso6336Pair {
   double blank_factor = 1.0;  // C_R, 1 for solid blanks
   // F_t K_A / b in N/m. Absent: at least 424 N/mm, no low-load correction.
   // Below 424 N/mm, c' is multiplied by (F_t K_A / b / 424 N/mm)^0.25, ISO's
-  // correction for lightly loaded teeth (threshold as STIFFNESS-MODELS.md
+  // correction for lightly loaded teeth (threshold as docs/stiffness-models.md
   // gives it; not checked against a worked example here).
   std::optional<double> specific_load_n_per_m;
 };
@@ -64,7 +64,7 @@ Iso6336Stiffness iso6336_method_b(const Iso6336Pair& pair);
 Iso6336Pair iso6336_pair(const GearPair& pair, double helix_angle_rad);
 
 // q' = C1 + C2/zn1 + C3/zn2 + C4 x1 + C5 x1/zn1 + C6 x2 + C7 x2/zn2 + C8 x1^2 + C9 x2^2,
-// mm um/N (ISO 6336-1 method B; constants of STIFFNESS-MODELS.md section 4).
+// mm um/N (ISO 6336-1 method B; constants of docs/stiffness-models.md section 4).
 double iso6336_flexibility(double virtual_teeth1, double virtual_teeth2, double x1, double x2);
 
 // eps_alpha = [sqrt(d_a1^2 - d_b1^2) / 2 + sqrt(d_a2^2 - d_b2^2) / 2 - a_w sin alpha_wt] / p_bt,

@@ -1,4 +1,4 @@
-// The mesh-stiffness models beyond the 1987 paper (STIFFNESS-MODELS.md,
+// The mesh-stiffness models beyond the 1987 paper (docs/stiffness-models.md,
 // section 3) for gears cut by a rack: every per-tooth compliance of one pair
 // at a position on the line of action, and the pair's stiffness.
 #pragma once
@@ -24,7 +24,7 @@ namespace gearimpact {
 // Of a StiffnessModel they read the kind, the terms, the route (the beam
 // integration of tooth_beam.hpp) and the tolerance of every quadrature.
 
-// Kh = (pi b / 2) / [(1 - nu1^2) / E1 + (1 - nu2^2) / E2] (STIFFNESS-MODELS.md
+// Kh = (pi b / 2) / [(1 - nu1^2) / E1 + (1 - nu2^2) / E2] (docs/stiffness-models.md
 // section 2): two elastic cylinders in line contact over the width b, which is
 // the paper's (4) pi E b / (4 (1 - nu^2)) for equal materials.
 double hertz_stiffness_two_materials(double width_m, double youngs_modulus1_pa,

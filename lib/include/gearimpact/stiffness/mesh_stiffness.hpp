@@ -1,7 +1,7 @@
 // The mesh stiffness of one tooth pair by the potential energy method: both
 // teeth by the named model (the paper's routes, or mesh_models.hpp for the
 // models beyond it), the Hertzian contact, and their series sum (29).
-// MODEL.md, section Stiffness; STIFFNESS-MODELS.md. Compliances in m/N,
+// docs/model.md, section Stiffness; docs/stiffness-models.md. Compliances in m/N,
 // stiffnesses in N/m.
 #pragma once
 

@@ -1,7 +1,7 @@
 // How a mesh stiffness is computed: the named model (the paper's or one of
-// STIFFNESS-MODELS.md section 3), which terms of (29) enter, by which route
+// docs/stiffness-models.md section 3), which terms of (29) enter, by which route
 // (the tau-form (20)-(24) or the x-form (16)-(19)), with which quadrature rule,
-// and the sign of the axial moment. MODEL.md, section Stiffness.
+// and the sign of the axial moment. docs/model.md, section Stiffness.
 #pragma once
 
 #include <array>
@@ -20,7 +20,7 @@ namespace gearimpact {
 // shared with the tau-form).
 enum class StiffnessRoute { tau_form, x_form };
 
-// The named models (STIFFNESS-MODELS.md section 3).
+// The named models (docs/stiffness-models.md section 3).
 //  yang_lin_1987: the paper's: Hertz, bending, axial; the involute tooth from
 //    the base circle, by the route and rule above.
 //  potential_energy: Hertz, bending, shear, axial, fillet foundation; the

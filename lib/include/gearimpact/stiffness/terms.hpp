@@ -2,7 +2,7 @@
 // kTerms, and every container of compliances is an array over the terms, so a
 // new term is its integrand, its entry here and its case in the routes
 // (tau_form.cpp, x_form.cpp, and mesh_models.cpp for the models beyond the
-// paper). MODEL.md, section Stiffness; STIFFNESS-MODELS.md, section 2.
+// paper). docs/model.md, section Stiffness; docs/stiffness-models.md, section 2.
 #pragma once
 
 #include <array>

@@ -1,5 +1,5 @@
 // Time-varying mesh stiffness (TVMS) over one mesh period of a rack-generated
-// pair, with the exact kinematics of the line of action (STIFFNESS-MODELS.md,
+// pair, with the exact kinematics of the line of action (docs/stiffness-models.md,
 // section 1): at the fraction f in [0, 1) of the period the pairs in contact
 // sit at s = s_SAP + (f + k) p_b in [s_SAP, s_EAP] and act in parallel.
 #pragma once

@@ -1,6 +1,6 @@
 // The tooth as a beam on its centre line, loaded at a flank point along the
 // normal there: bending, shear and axial compliances by the potential-energy
-// method (STIFFNESS-MODELS.md, section 2), over any flank made of smooth
+// method (docs/stiffness-models.md, section 2), over any flank made of smooth
 // parametric pieces. Two independent routes compute every integral.
 #pragma once
 
@@ -53,7 +53,7 @@ struct BeamCompliance {
 };
 
 // Section at height y: A = 2 x b, I = (2/3) x^3 b. Over the flank, from its
-// root to the load (Tian 2004; STIFFNESS-MODELS.md section 2):
+// root to the load (Tian 2004; docs/stiffness-models.md section 2):
 //   1/kb = Int [cos tau (y_t - y) - x_t sin tau]^2 / (E I) dy   (the physical sign
 //          of the axial force's moment: it unbends the tooth)
 //   1/ks = Int 1.2 cos^2 tau / (G A) dy
