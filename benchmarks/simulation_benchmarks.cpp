@@ -28,8 +28,8 @@
 
 #include "bench_support.hpp"
 #include "gearimpact/batch/sweep_friction.hpp"
-#include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "gearimpact/stiffness/energy.hpp"
@@ -79,8 +79,8 @@ SimulationCase steady_contact(int pairs) {
   const double x0 = (pairs == 1 ? segment.end_m - t0 : segment.start_m + t0) + zone_margin_m;
   const double torque1 = c.torque1.constant_n_m;
   c.torque2.constant_n_m = -torque1 * rb2 / rb1;
-  c.initial.w1_rad_s = 50.0;
-  c.initial.w2_rad_s = (rb1 * c.initial.w1_rad_s - approach_speed_m_s) / rb2;
+  c.initial.w1_rad_per_s = 50.0;
+  c.initial.w2_rad_per_s = (rb1 * c.initial.w1_rad_per_s - approach_speed_m_s) / rb2;
   // (12),(42): the pair k = 0 at x0; (30): the static deflection under T1.
   c.initial.theta1_rad = (x0 - pitch_point_position(g)) / rb1;
   double stiffness = 0.0;

@@ -98,8 +98,9 @@ void fixed_step_cost(benchmark::State& state) {
   for (auto _ : state) {
     for (double w1 : {500.0, 6000.0, 12000.0}) {
       SimulationCase c = loaded_pair();
-      c.initial.w1_rad_s = w1;
-      c.initial.w2_rad_s = w1 * base_radius(c.gears, Gear::one) / base_radius(c.gears, Gear::two);
+      c.initial.w1_rad_per_s = w1;
+      c.initial.w2_rad_per_s =
+          w1 * base_radius(c.gears, Gear::one) / base_radius(c.gears, Gear::two);
       c.integrator.step_s = 1e-7;
       c.integrator.end_time_s = 2e-3;
       RunControl control;

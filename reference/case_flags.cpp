@@ -96,8 +96,8 @@ SimulationCase CaseOptions::paper(int number) const {
     reading.torque_unit = TorqueUnit::n_mm;
   }
   if (case3_frequency_ != nullptr && case3_frequency_->count() > 0) {
-    reading.case3_angular_frequency_rad_s = parse_value(*find_field("torque1.angular_frequency"),
-                                                        case3_frequency_text_, "--case3-frequency");
+    reading.case3_angular_frequency_rad_per_s = parse_value(
+        *find_field("torque1.angular_frequency"), case3_frequency_text_, "--case3-frequency");
   }
   return paper_case(number, reading);
 }

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/paper/scoring.hpp"
 #include "gearimpact/paper/statements.hpp"
 #include "gearimpact/paper/table1.hpp"
@@ -39,7 +39,8 @@ std::vector<NamedReading> readings() {
   with("(33) Vi in in/s", [](PaperReading& r) { r.restitution.speed_unit_m_s = 0.0254; });
   with("(33) Vi in m/s", [](PaperReading& r) { r.restitution.speed_unit_m_s = 1.0; });
   with("torques in N-mm", [](PaperReading& r) { r.torque_unit = TorqueUnit::n_mm; });
-  with("case 3 W = 1000 rad/s", [](PaperReading& r) { r.case3_angular_frequency_rad_s = 1000.0; });
+  with("case 3 W = 1000 rad/s",
+       [](PaperReading& r) { r.case3_angular_frequency_rad_per_s = 1000.0; });
   with("coast contacts in phase (literal (9))",
        [](PaperReading& r) { r.coast_phase = CoastPhase::in_phase; });
   return list;

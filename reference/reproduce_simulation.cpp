@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/results.hpp"
 #include "gearimpact/paper/scoring.hpp"
@@ -42,8 +42,8 @@ Figure time_figure(const std::string& stem, const std::string& data, const std::
   return {stem, title, "time (ms)", y_label, std::move(setup), std::move(series)};
 }
 
-// CSV columns of series_csv: 1 t_s, 2 theta1_rad, 3 theta2_rad, 4 w1_rad_s,
-// 5 w2_rad_s, 6 s_m, 7 delta_m, 8 region, 9 pairs, 10 normal_force_N,
+// CSV columns of series_csv: 1 t_s, 2 theta1_rad, 3 theta2_rad, 4 w1_rad_per_s,
+// 5 w2_rad_per_s, 6 s_m, 7 delta_m, 8 region, 9 pairs, 10 normal_force_N,
 // 11 friction_force_N.
 void plot_case(const ReproduceContext& context, int case_number, const std::string& data) {
   const std::string backlash_lines =

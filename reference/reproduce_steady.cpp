@@ -1,5 +1,5 @@
-// The steady state of the loaded pair (docs/steady-state.md sections 3.5 and 4): the paper's pair with
-// its time-varying stiffness, swept in w1 up and down through ISO's N = 1/2, 1 and 2.
+// The steady state of the loaded pair (docs/steady-state.md sections 3.5 and 4): the paper's pair
+// with its time-varying stiffness, swept in w1 up and down through ISO's N = 1/2, 1 and 2.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -25,12 +25,12 @@ constexpr double static_force_n = 1000.0;
 
 // The paper's pair loaded by static_force_n, with the viscous mesh damper and no Hertzian damping;
 // at the static deflection of the stiffest mesh, so that the first point starts in contact.
-SimulationCase loaded_pair(double w1_rad_s) {
+SimulationCase loaded_pair(double w1_rad_per_s) {
   PairLoad load;
   load.static_force_n = static_force_n;
   load.damping_update = DampingUpdate::off;
   load.deflection_stiffness_n_per_m = 1e9;
-  return loaded_paper_pair(w1_rad_s, load);
+  return loaded_paper_pair(w1_rad_per_s, load);
 }
 
 struct Row {
@@ -104,14 +104,14 @@ ReportSection reproduce_steady_state(const ReproduceContext& context) {
   const auto table = context.pool->table_for(base);
   const IsoScale iso = *iso_scale(base, *table);
   // Where the model's undamped resonance z1 w1 = w_n falls on the N axis.
-  const double resonance_n =
-      natural_frequency_rad_s(base, *table) / (base.gears.teeth1 * iso.resonance_speed_rad_s);
+  const double resonance_n = natural_frequency_rad_per_s(base, *table) /
+                             (base.gears.teeth1 * iso.resonance_speed_rad_per_s);
   // N from 0.3 to 2.3 in steps of 0.05: N = 1/2, 1 and 2 are grid points.
   SteadySweepSpec spec;
   spec.base = base;
   spec.vary = "initial.w1";
-  spec.from_si = 0.3 * iso.resonance_speed_rad_s;
-  spec.to_si = 2.3 * iso.resonance_speed_rad_s;
+  spec.from_si = 0.3 * iso.resonance_speed_rad_per_s;
+  spec.to_si = 2.3 * iso.resonance_speed_rad_per_s;
   spec.points = 41;
   const SteadySweep sweep = run_steady_sweep(spec, *context.pool);
   // Each direction in the order it ran: up in ascending w1, down in descending.
@@ -134,8 +134,8 @@ ReportSection reproduce_steady_state(const ReproduceContext& context) {
   for (const std::vector<SweepPointResult>* line : {&up, &down}) {
     for (const SweepPointResult& r : *line) {
       Row row;
-      row.n = iso_resonance_ratio(r.value_si, iso.resonance_speed_rad_s);
-      row.n_iso = iso_resonance_ratio(r.value_si, iso.resonance_speed_iso_stiffness_rad_s);
+      row.n = iso_resonance_ratio(r.value_si, iso.resonance_speed_rad_per_s);
+      row.n_iso = iso_resonance_ratio(r.value_si, iso.resonance_speed_iso_stiffness_rad_per_s);
       row.r = &r;
       (line == &up ? up_rows : down_rows)[static_cast<std::size_t>(r.index)] = row;
       const SteadyPoint& p = r.point;
@@ -188,16 +188,16 @@ ReportSection reproduce_steady_state(const ReproduceContext& context) {
       "0.05 (`steady_state.csv`, `steady_state_dynamic_factor.png`, "
       "`steady_state_regimes.png`). N = w1 / w_E1 of ISO 6336-1 method B with c_gamma_alpha b "
       "= the model's mean mesh stiffness (w_E1 = " +
-      number(iso.resonance_speed_rad_s, 5) +
+      number(iso.resonance_speed_rad_per_s, 5) +
       " rad/s), so that the model's resonance z1 w1 = sqrt(k_mean / m_e) sits at N = "
       "(d_m1 / d_1)^2 = " +
       number(resonance_n, 3) + "; with ISO's own c_gamma_alpha w_E1 = " +
-      number(iso.resonance_speed_iso_stiffness_rad_s, 5) +
+      number(iso.resonance_speed_iso_stiffness_rad_per_s, 5) +
       " rad/s. Hertzian damping is off because with D frozen at 0.1 m/s it keeps the teeth in "
       "contact at every speed of this range (dynamic factor at most about 2, "
       "verify/steady/test_iso_main_resonance.cpp), so no regime would change. ISO's K_v "
       "(perfect gears, eps_alpha " +
-      number(iso.contact_ratio, 3) + ", F_t/b " + number(iso.line_load_n_m * 1e-3, 3) +
+      number(iso.contact_ratio, 3) + ", F_t/b " + number(iso.line_load_n_per_m * 1e-3, 3) +
       " N/mm) is a band to compare with, not a tolerance. Computed in " + number(took_s, 2) +
       " s.\n\n";
   text += "| quantity | sweep up | sweep down | ISO 6336-1, perfect gears |\n|---|---|---|---|\n";
@@ -207,7 +207,8 @@ ReportSection reproduce_steady_state(const ReproduceContext& context) {
           first_contact_loss(down_rows, false) + " | - |\n";
   text +=
       "| largest dynamic factor | " + peak(up_rows) + " | " + peak(down_rows) + " | " +
-      number(iso_dynamic_factor_perfect_gears(1.0, iso.contact_ratio, iso.line_load_n_m).value, 3) +
+      number(iso_dynamic_factor_perfect_gears(1.0, iso.contact_ratio, iso.line_load_n_per_m).value,
+             3) +
       " in the main resonance range |\n";
   for (const double n : {0.5, 1.0, 2.0}) {
     const auto at = [&](const std::vector<Row>& rows) {
@@ -219,7 +220,8 @@ ReportSection reproduce_steady_state(const ReproduceContext& context) {
     text +=
         "| dynamic factor at N = " + number(n, 2) + " | " + at(up_rows) + " | " + at(down_rows) +
         " | " +
-        number(iso_dynamic_factor_perfect_gears(n, iso.contact_ratio, iso.line_load_n_m).value, 3) +
+        number(iso_dynamic_factor_perfect_gears(n, iso.contact_ratio, iso.line_load_n_per_m).value,
+               3) +
         " |\n";
   }
   text +=
@@ -227,8 +229,9 @@ ReportSection reproduce_steady_state(const ReproduceContext& context) {
       "stiffness | N, ISO's own c_gamma_alpha |\n|---|---|---|\n";
   for (const double w1 : {1000.0, 10000.0}) {
     text += "| " + number(w1, 5) + " | " +
-            number(iso_resonance_ratio(w1, iso.resonance_speed_rad_s), 3) + " | " +
-            number(iso_resonance_ratio(w1, iso.resonance_speed_iso_stiffness_rad_s), 3) + " |\n";
+            number(iso_resonance_ratio(w1, iso.resonance_speed_rad_per_s), 3) + " | " +
+            number(iso_resonance_ratio(w1, iso.resonance_speed_iso_stiffness_rad_per_s), 3) +
+            " |\n";
   }
   section.text = text;
   return section;

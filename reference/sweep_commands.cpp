@@ -132,14 +132,14 @@ void render_iso_plot(const std::filesystem::path& dir, const IsoScale& iso,
       "dynamic_factor\n";
   double n_max = 0.0;
   for (const SweepPointResult& r : rows) {
-    const double n = iso_resonance_ratio(r.value_si, iso.resonance_speed_rad_s);
+    const double n = iso_resonance_ratio(r.value_si, iso.resonance_speed_rad_per_s);
     n_max = std::max(n_max, n);
     const std::optional<double>& df = r.point.dynamic_factor;
-    data +=
-        std::to_string(r.line) + "," + to_string(r.direction) + "," + std::to_string(r.index) +
-        "," + format_number(r.value_si) + "," + format_number(n) + "," +
-        format_number(iso_resonance_ratio(r.value_si, iso.resonance_speed_iso_stiffness_rad_s)) +
-        "," + (df ? format_number(*df) : "") + "\n";
+    data += std::to_string(r.line) + "," + to_string(r.direction) + "," + std::to_string(r.index) +
+            "," + format_number(r.value_si) + "," + format_number(n) + "," +
+            format_number(
+                iso_resonance_ratio(r.value_si, iso.resonance_speed_iso_stiffness_rad_per_s)) +
+            "," + (df ? format_number(*df) : "") + "\n";
   }
   write_file_atomically((dir / "dynamic_factor_vs_iso_n.csv").string(), data);
   write_iso_kv_band(dir / "iso_kv_band.csv", iso, std::max(2.0, 1.1 * n_max));

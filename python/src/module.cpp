@@ -146,8 +146,8 @@ py::dict series_columns(std::vector<SeriesRow>&& rows) {
   series["t_s"] = view(&SeriesRow::t_s);
   series["theta1_rad"] = view(&SeriesRow::theta1_rad);
   series["theta2_rad"] = view(&SeriesRow::theta2_rad);
-  series["w1_rad_s"] = view(&SeriesRow::w1_rad_s);
-  series["w2_rad_s"] = view(&SeriesRow::w2_rad_s);
+  series["w1_rad_s"] = view(&SeriesRow::w1_rad_per_s);
+  series["w2_rad_s"] = view(&SeriesRow::w2_rad_per_s);
   series["s_m"] = view(&SeriesRow::s_m);
   series["delta_m"] = view(&SeriesRow::delta_m);
   series["region"] = view(&SeriesRow::region);
@@ -443,8 +443,8 @@ void define_module(py::module_& m) {
 
   m.def(
       "paper_case",
-      [](int number, const std::string& torque_unit, double case3_frequency_rad_s) {
-        return paper_case(number, torque_unit_named(torque_unit), case3_frequency_rad_s);
+      [](int number, const std::string& torque_unit, double case3_frequency_rad_per_s) {
+        return paper_case(number, torque_unit_named(torque_unit), case3_frequency_rad_per_s);
       },
       py::arg("number"), py::arg("torque_unit") = "kgf-mm",
       py::arg("case3_frequency_rad_s") = 10000.0);

@@ -56,8 +56,8 @@ TEST_CASE("a run continued from the final state of its first half is the whole r
     // The same steps from the same state: the mechanical state to the bit.
     CHECK(second.final_state.state.theta1_rad == whole.final_state.state.theta1_rad);
     CHECK(second.final_state.state.theta2_rad == whole.final_state.state.theta2_rad);
-    CHECK(second.final_state.state.w1_rad_s == whole.final_state.state.w1_rad_s);
-    CHECK(second.final_state.state.w2_rad_s == whole.final_state.state.w2_rad_s);
+    CHECK(second.final_state.state.w1_rad_per_s == whole.final_state.state.w1_rad_per_s);
+    CHECK(second.final_state.state.w2_rad_per_s == whole.final_state.state.w2_rad_per_s);
     CHECK(second.final_state.contact.damping_per_stiffness_s_m ==
           whole.final_state.contact.damping_per_stiffness_s_m);
     // A contact in progress at the split is not a new impact.
@@ -130,7 +130,7 @@ TEST_CASE("a stiffness table is checked against the case it is used for") {
   CHECK_FALSE(from_function.knows_origin());
   const SimulationResult a = simulate(short_run, from_function);
   const SimulationResult b = simulate(short_run);
-  CHECK(a.summary.final_w1_rad_s == b.summary.final_w1_rad_s);
+  CHECK(a.summary.final_w1_rad_per_s == b.summary.final_w1_rad_per_s);
   CHECK(a.summary.damping_loss_j == b.summary.damping_loss_j);
   // One that does not cover the contact segment is refused.
   const StiffnessTable too_short(

@@ -47,7 +47,7 @@ SimulationResult conservative_run(double step_s, bool locate_events, double end_
   c.model.friction_coefficient = 0.0;
   c.model.restitution.coefficient = 0.0;
   c.model.mesh_stiffness = MeshStiffnessMode::constant;
-  c.model.constant_mesh_stiffness_n_m = kConstantStiffness;
+  c.model.constant_mesh_stiffness_n_per_m = kConstantStiffness;
   RunControl control = summary_only();
   control.locate_events = locate_events;
   return simulate(c, control);
@@ -65,10 +65,11 @@ TEST_CASE("with f = 0 and no torques J1 w1/Rb1 + J2 w2/Rb2 is conserved to round
   const GearPair& g = c.gears;
   const double a1 = moment_of_inertia(g, Gear::one) / base_radius(g, Gear::one);
   const double a2 = moment_of_inertia(g, Gear::two) / base_radius(g, Gear::two);
-  const double p0 = a1 * c.initial.w1_rad_s + a2 * c.initial.w2_rad_s;
+  const double p0 = a1 * c.initial.w1_rad_per_s + a2 * c.initial.w2_rad_per_s;
   double worst = 0.0;
   for (const SeriesRow& row : r.series) {
-    worst = std::max(worst, std::fabs(a1 * row.w1_rad_s + a2 * row.w2_rad_s - p0) / std::fabs(p0));
+    worst = std::max(worst,
+                     std::fabs(a1 * row.w1_rad_per_s + a2 * row.w2_rad_per_s - p0) / std::fabs(p0));
   }
   // RK4 keeps linear invariants exactly in exact arithmetic; what is left is the
   // rounding of each step's update, at most a few eps per step: 4 eps x steps.
@@ -83,14 +84,14 @@ TEST_CASE("conservative variant: energy conserved to RK4 accuracy, observed orde
   // 64^4 ~ 1.7e7 times smaller than that of the coarsest step compared.
   const double end = 1e-3;
   const SimulationResult reference = conservative_run(end / 64000.0, true, end);
-  const double w_ref = reference.summary.final_w1_rad_s;
+  const double w_ref = reference.summary.final_w1_rad_per_s;
   const double e0 = reference.summary.kinetic_energy_initial_j;
   double previous_error = 0.0;
   for (double h : {1e-6, 5e-7, 2.5e-7}) {
     const SimulationResult r = conservative_run(h, true, end);
     CHECK(r.summary.impacts_n1 + r.summary.impacts_n2 ==
           reference.summary.impacts_n1 + reference.summary.impacts_n2);
-    const double error = std::fabs(r.summary.final_w1_rad_s - w_ref);
+    const double error = std::fabs(r.summary.final_w1_rad_per_s - w_ref);
     const double energy_error =
         std::fabs(r.summary.kinetic_energy_final_j + r.summary.stored_energy_final_j - e0) / e0;
     // RK4 on an oscillator loses energy as (w h)^6/72 per step, w ~ 6e4 rad/s
@@ -114,9 +115,9 @@ TEST_CASE("without cutting steps at events the error is orders of magnitude larg
   const double h = 2.5e-7;
   const SimulationResult cut = conservative_run(h, true, end);
   const SimulationResult straddled = conservative_run(h, false, end);
-  const double w_ref = reference.summary.final_w1_rad_s;
-  const double cut_error = std::fabs(cut.summary.final_w1_rad_s - w_ref);
-  const double straddled_error = std::fabs(straddled.summary.final_w1_rad_s - w_ref);
+  const double w_ref = reference.summary.final_w1_rad_per_s;
+  const double cut_error = std::fabs(cut.summary.final_w1_rad_per_s - w_ref);
+  const double straddled_error = std::fabs(straddled.summary.final_w1_rad_per_s - w_ref);
   MESSAGE("error with the cut " << cut_error << ", without " << straddled_error);
   // A step straddling a kink of the right-hand side makes an O(h^2) local
   // error instead of O(h^5): at h w ~ 0.015 that is two orders or more.
@@ -214,8 +215,8 @@ TEST_CASE("RK4 and the adaptive Dormand-Prince integrator agree on the three cas
     const double bound = 1e-6;
     const double d_damping = relative_difference(rk4.damping_loss_j, adaptive.damping_loss_j);
     const double d_friction = relative_difference(rk4.friction_loss_j, adaptive.friction_loss_j);
-    const double d_w1 = relative_difference(rk4.final_w1_rad_s, adaptive.final_w1_rad_s);
-    const double d_w2 = relative_difference(rk4.final_w2_rad_s, adaptive.final_w2_rad_s);
+    const double d_w1 = relative_difference(rk4.final_w1_rad_per_s, adaptive.final_w1_rad_per_s);
+    const double d_w2 = relative_difference(rk4.final_w2_rad_per_s, adaptive.final_w2_rad_per_s);
     MESSAGE("case " << n << ": relative differences damping " << d_damping << ", friction "
                     << d_friction << ", w1 " << d_w1 << ", w2 " << d_w2);
     CHECK(d_damping < bound);
@@ -270,14 +271,14 @@ TEST_CASE("one impact of the damped contact against its closed-form rebound") {
     c.model.friction_coefficient = 0.0;
     c.model.damping_form = form;
     c.model.mesh_stiffness = MeshStiffnessMode::constant;
-    c.model.constant_mesh_stiffness_n_m = kConstantStiffness;
+    c.model.constant_mesh_stiffness_n_per_m = kConstantStiffness;
     RunControl control = summary_only();
     const SimulationResult r = simulate(c, control);
     REQUIRE(!r.impacts.empty());
     const ImpactRecord& impact = r.impacts.front();
     REQUIRE(impact.end_speed_m_s.has_value());
     // Case 1 approaches at Rb1 w1(0) (gear 2 at rest, no torques).
-    const double vi = base_radius(c.gears, Gear::one) * c.initial.w1_rad_s;
+    const double vi = base_radius(c.gears, Gear::one) * c.initial.w1_rad_per_s;
     CHECK(relative_difference(impact.impact_speed_m_s, vi) < 1e-12);
     // (33) with Vi in mm/s, p = 3/8, c = 0.022.
     const double target = 1.0 - 0.022 * std::pow(vi / 1e-3, 0.375);
@@ -339,7 +340,7 @@ TEST_CASE("bad input is refused with the field and its range") {
   c.integrator.output_every = 0;
   CHECK(message_of(c).find("output_every") != std::string::npos);
   c = paper_case(1);
-  c.initial.w1_rad_s = std::numeric_limits<double>::quiet_NaN();
+  c.initial.w1_rad_per_s = std::numeric_limits<double>::quiet_NaN();
   CHECK(message_of(c).find("w1") != std::string::npos);
   c = paper_case(1);
   c.model.restitution.exponent = 0.0;
@@ -393,7 +394,7 @@ TEST_CASE("a user torque function through the API: the same sine gives the same 
   user.torque1 = Torque{};
   user.torque1.kind = Torque::Kind::user;
   user.torque1.user = [sine](double t) {
-    return sine.amplitude_n_m * std::sin(sine.angular_frequency_rad_s * t + sine.phase_rad);
+    return sine.amplitude_n_m * std::sin(sine.angular_frequency_rad_per_s * t + sine.phase_rad);
   };
   RunControl control;
   control.keep_series = false;
@@ -404,7 +405,7 @@ TEST_CASE("a user torque function through the API: the same sine gives the same 
   CHECK(a.impacts_n2 == b.impacts_n2);
   CHECK(a.damping_loss_j == b.damping_loss_j);
   CHECK(a.torque_work_j == b.torque_work_j);
-  CHECK(a.final_w1_rad_s == b.final_w1_rad_s);
+  CHECK(a.final_w1_rad_per_s == b.final_w1_rad_per_s);
 }
 
 TEST_CASE("torques: a mean plus harmonics, T = T_m + sum A_i sin(w_i t + phi_i)") {
@@ -412,7 +413,7 @@ TEST_CASE("torques: a mean plus harmonics, T = T_m + sum A_i sin(w_i t + phi_i)"
   h.kind = Torque::Kind::harmonic;
   h.mean_n_m = 2.0;
   h.harmonic_amplitudes_n_m = {0.5, -0.25};
-  h.harmonic_angular_frequencies_rad_s = {1000.0, 3000.0};
+  h.harmonic_angular_frequencies_rad_per_s = {1000.0, 3000.0};
   h.harmonic_phases_rad = {0.1, 0.2};
   const double t = 1.234e-3;
   const double expected =
@@ -427,12 +428,13 @@ TEST_CASE("torques: a mean plus harmonics, T = T_m + sum A_i sin(w_i t + phi_i)"
   SimulationCase harmonic = sine;
   harmonic.torque1.kind = Torque::Kind::harmonic;
   harmonic.torque1.harmonic_amplitudes_n_m = {sine.torque1.amplitude_n_m};
-  harmonic.torque1.harmonic_angular_frequencies_rad_s = {sine.torque1.angular_frequency_rad_s};
+  harmonic.torque1.harmonic_angular_frequencies_rad_per_s = {
+      sine.torque1.angular_frequency_rad_per_s};
   harmonic.torque1.harmonic_phases_rad = {sine.torque1.phase_rad};
   const SimulationSummary a = simulate(sine, summary_only()).summary;
   const SimulationSummary b = simulate(harmonic, summary_only()).summary;
   CHECK(a.torque_work_j == b.torque_work_j);
-  CHECK(a.final_w1_rad_s == b.final_w1_rad_s);
+  CHECK(a.final_w1_rad_per_s == b.final_w1_rad_per_s);
   // Harmonics of unequal length are refused naming the list that differs from the amplitudes.
   harmonic.torque1.harmonic_phases_rad.clear();
   try {

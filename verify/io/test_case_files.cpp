@@ -42,11 +42,11 @@ void check_torque(const Torque& a, const Torque& b) {
   CHECK(a.kind == b.kind);
   CHECK(a.constant_n_m == b.constant_n_m);
   CHECK(a.amplitude_n_m == b.amplitude_n_m);
-  CHECK(a.angular_frequency_rad_s == b.angular_frequency_rad_s);
+  CHECK(a.angular_frequency_rad_per_s == b.angular_frequency_rad_per_s);
   CHECK(a.phase_rad == b.phase_rad);
   CHECK(a.mean_n_m == b.mean_n_m);
   CHECK(a.harmonic_amplitudes_n_m == b.harmonic_amplitudes_n_m);
-  CHECK(a.harmonic_angular_frequencies_rad_s == b.harmonic_angular_frequencies_rad_s);
+  CHECK(a.harmonic_angular_frequencies_rad_per_s == b.harmonic_angular_frequencies_rad_per_s);
   CHECK(a.harmonic_phases_rad == b.harmonic_phases_rad);
 }
 
@@ -67,8 +67,8 @@ void check_same(const SimulationCase& a, const SimulationCase& b) {
   check_torque(a.torque2, b.torque2);
   CHECK(a.initial.theta1_rad == b.initial.theta1_rad);
   CHECK(a.initial.theta2_rad == b.initial.theta2_rad);
-  CHECK(a.initial.w1_rad_s == b.initial.w1_rad_s);
-  CHECK(a.initial.w2_rad_s == b.initial.w2_rad_s);
+  CHECK(a.initial.w1_rad_per_s == b.initial.w1_rad_per_s);
+  CHECK(a.initial.w2_rad_per_s == b.initial.w2_rad_per_s);
   CHECK(a.model.friction_coefficient == b.model.friction_coefficient);
   CHECK(a.model.damping_form == b.model.damping_form);
   CHECK(a.model.damping_stiffness == b.model.damping_stiffness);
@@ -87,7 +87,7 @@ void check_same(const SimulationCase& a, const SimulationCase& b) {
   CHECK(a.integrator.adaptive_relative_tolerance == b.integrator.adaptive_relative_tolerance);
   CHECK(a.integrator.output_every == b.integrator.output_every);
   CHECK(a.model.mesh_stiffness == b.model.mesh_stiffness);
-  CHECK(a.model.constant_mesh_stiffness_n_m == b.model.constant_mesh_stiffness_n_m);
+  CHECK(a.model.constant_mesh_stiffness_n_per_m == b.model.constant_mesh_stiffness_n_per_m);
   CHECK(a.model.mesh_damping_ratio == b.model.mesh_damping_ratio);
   CHECK(a.model.damping_update == b.model.damping_update);
   CHECK(a.model.damping_reference_speed_m_s == b.model.damping_reference_speed_m_s);
@@ -413,7 +413,7 @@ TEST_CASE("optional keys take the defaults of simulation_case.hpp") {
   text = text.substr(0, text.find("[initial]")) + text.substr(text.find("[model]"));
   // case1 with w1 = 0: the [initial] section is gone.
   SimulationCase expected = paper_case(1);
-  expected.initial.w1_rad_s = 0.0;
+  expected.initial.w1_rad_per_s = 0.0;
   check_same(parse_case(text, "case1.toml"), expected);
 }
 
@@ -434,7 +434,7 @@ TEST_CASE("write_case_file reads back to the same case, in readable and in SI un
   other.torque2.kind = Torque::Kind::sinusoidal;
   other.torque2.constant_n_m = 0.0;  // not written for a sinusoid
   other.torque2.amplitude_n_m = -1.25;
-  other.torque2.angular_frequency_rad_s = 2.0 * std::numbers::pi * 60.0;
+  other.torque2.angular_frequency_rad_per_s = 2.0 * std::numbers::pi * 60.0;
   other.torque2.phase_rad = 1.0;
   other.initial = {1e-3, -2e-4, 12.5, -3.0};
   other.model.friction_coefficient = 0.0;
@@ -456,14 +456,14 @@ TEST_CASE("write_case_file reads back to the same case, in readable and in SI un
   steady.torque1.kind = Torque::Kind::harmonic;
   steady.torque1.mean_n_m = 3.0;
   steady.torque1.harmonic_amplitudes_n_m = {0.3, -0.05};
-  steady.torque1.harmonic_angular_frequencies_rad_s = {80000.0, 160000.0};
+  steady.torque1.harmonic_angular_frequencies_rad_per_s = {80000.0, 160000.0};
   steady.torque1.harmonic_phases_rad = {0.0, 0.25};
   steady.torque2.kind = Torque::Kind::sinusoidal;
   steady.torque2.mean_n_m = -12.0;
   steady.torque2.amplitude_n_m = 0.5;
-  steady.torque2.angular_frequency_rad_s = 20000.0;
+  steady.torque2.angular_frequency_rad_per_s = 20000.0;
   steady.model.mesh_stiffness = MeshStiffnessMode::constant;
-  steady.model.constant_mesh_stiffness_n_m = 3.5e8;
+  steady.model.constant_mesh_stiffness_n_per_m = 3.5e8;
   steady.model.mesh_damping_ratio = 0.05;
   steady.model.damping_update = DampingUpdate::frozen;
   steady.model.damping_reference_speed_m_s = 0.1;
@@ -471,7 +471,7 @@ TEST_CASE("write_case_file reads back to the same case, in readable and in SI un
   SimulationCase empty_harmonic = steady;
   empty_harmonic.name = "empty_harmonic";
   empty_harmonic.torque1.harmonic_amplitudes_n_m.clear();
-  empty_harmonic.torque1.harmonic_angular_frequencies_rad_s.clear();
+  empty_harmonic.torque1.harmonic_angular_frequencies_rad_per_s.clear();
   empty_harmonic.torque1.harmonic_phases_rad.clear();
   cases.push_back(empty_harmonic);
   for (const SimulationCase& c : cases) {

@@ -67,11 +67,11 @@ SimulationCase case_for(const Field& field) {
   c = paper_case(2);
   c.torque2.kind = Torque::Kind::sinusoidal;
   c.torque2.amplitude_n_m = -0.3;
-  c.torque2.angular_frequency_rad_s = 500.0;
+  c.torque2.angular_frequency_rad_per_s = 500.0;
   c.torque2.phase_rad = -1.5;
   if (applies(field, c)) return c;
   c.model.mesh_stiffness = MeshStiffnessMode::constant;
-  c.model.constant_mesh_stiffness_n_m = 3.5e8;
+  c.model.constant_mesh_stiffness_n_per_m = 3.5e8;
   c.model.damping_update = DampingUpdate::frozen;
   c.model.damping_reference_speed_m_s = 0.1;
   REQUIRE(applies(field, c));
@@ -349,9 +349,9 @@ TEST_CASE("set_field refuses with the key or the name the caller gives, and the 
   // The stiffness unit: N/um = kN/mm = 1e6 N/m, by an exact decimal shift.
   set_field(c, "model.mesh_stiffness", "constant");
   set_field(c, "model.constant_mesh_stiffness", "350 N/um");
-  CHECK(c.model.constant_mesh_stiffness_n_m == 3.5e8);
+  CHECK(c.model.constant_mesh_stiffness_n_per_m == 3.5e8);
   set_field(c, "model.constant_mesh_stiffness", "0.35 kN/mm");
-  CHECK(c.model.constant_mesh_stiffness_n_m == 3.5e5);
+  CHECK(c.model.constant_mesh_stiffness_n_per_m == 3.5e5);
   CHECK(contains(refused("model.damping_reference_speed", "1 m/s").allowed(),
                  "damping_update = \"frozen\""));
   CHECK_THROWS_AS(get_numeric_field(c, "model.damping_form"), InputError);

@@ -52,13 +52,13 @@ namespace {
 
 using Multipliers = std::vector<std::complex<double>>;
 
-constexpr double kPairStiffness_n_m = 2.0e8;
+constexpr double kPairStiffness_n_per_m = 2.0e8;
 
 StiffnessTable constant_pair_table(const GearPair& g) {
   const ContactSegment segment = contact_segment(g);
   return StiffnessTable(segment.start_m, segment.end_m, [](double) {
     Compliances c;
-    c.of(Term::hertz) = 1.0 / kPairStiffness_n_m;
+    c.of(Term::hertz) = 1.0 / kPairStiffness_n_per_m;
     return c;
   });
 }
@@ -91,7 +91,7 @@ HillCase hill_case(double static_force_n, double zeta, double omega) {
   const GearPair& g = c.gears;
   const double rb1 = base_radius(g, Gear::one);
   const double rb2 = base_radius(g, Gear::two);
-  const double k_mean = kPairStiffness_n_m * contact_ratio_of(g);
+  const double k_mean = kPairStiffness_n_per_m * contact_ratio_of(g);
   h.w_n = std::sqrt(k_mean / effective_mass_kg(g));
   h.deflection_m = static_force_n / k_mean;
   c.torque1 = Torque{};
@@ -214,8 +214,10 @@ TEST_CASE("the gear period map: the relative coordinates, two maps are two perio
     const InitialState back = map.full_state(start[0], start[1]);
     CHECK(std::fabs(back.theta1_rad - h.c.initial.theta1_rad) <= 1e-15);
     CHECK(std::fabs(back.theta2_rad - h.c.initial.theta2_rad) <= 1e-15);
-    CHECK(std::fabs(back.w1_rad_s - h.c.initial.w1_rad_s) <= 1e-12 * h.c.initial.w1_rad_s);
-    CHECK(std::fabs(back.w2_rad_s - h.c.initial.w2_rad_s) <= 1e-12 * h.c.initial.w1_rad_s);
+    CHECK(std::fabs(back.w1_rad_per_s - h.c.initial.w1_rad_per_s) <=
+          1e-12 * h.c.initial.w1_rad_per_s);
+    CHECK(std::fabs(back.w2_rad_per_s - h.c.initial.w2_rad_per_s) <=
+          1e-12 * h.c.initial.w1_rad_per_s);
 
     const Eigen::Vector2d x(start[0] + 0.3 * h.deflection_m, 0.2 * h.deflection_m * h.w_n);
     const Eigen::VectorXd twice = map(map(x));
@@ -235,7 +237,7 @@ TEST_CASE("the gear period map: the relative coordinates, two maps are two perio
     const StiffnessTable table(cc.c.gears, cc.c.model.stiffness);
     const GearPeriodMap map(cc.c, table);
     const double b = cc.c.gears.backlash_m;
-    const double w_n = cc.w_rad_s / 0.9;
+    const double w_n = cc.w_rad_per_s / 0.9;
     CHECK(map.scale()[0] == b);
     CHECK(std::fabs(map.scale()[1] - b * w_n) <= 1e-12 * b * w_n);
     const Eigen::Vector2d x(1.5 * b, 0.3 * b * w_n);
@@ -272,7 +274,7 @@ TEST_CASE("the gear period map refuses what it cannot map, naming the key") {
   c.torque1.kind = Torque::Kind::sinusoidal;
   c.torque1.mean_n_m = c.torque1.constant_n_m;
   c.torque1.amplitude_n_m = 0.1;
-  c.torque1.angular_frequency_rad_s = 5000.0;
+  c.torque1.angular_frequency_rad_per_s = 5000.0;
   CHECK(field_of(c) == "torque1, torque2");
   c = h.c;
   c.model.friction_coefficient = 0.04;
@@ -317,7 +319,7 @@ TEST_CASE(
     }
     const Multipliers zero_load = richardson3(fine[2], fine[1], fine[0]);
     const Multipliers zero_load_coarse = richardson3(coarse[2], coarse[1], coarse[0]);
-    const double e_over_t0 = force / (kPairStiffness_n_m * contact_ratio_of(g)) / base_pitch(g);
+    const double e_over_t0 = force / (kPairStiffness_n_per_m * contact_ratio_of(g)) / base_pitch(g);
     const double q =
         (1.0 / contact_ratio_of(g)) * (m_e / m1) * e_over_t0 * (2.0 * std::numbers::pi / omega);
     MESSAGE("Omega " << omega << std::string(inside ? " (first band)" : " (between bands)")

@@ -57,10 +57,10 @@ ContinuationSettings omega_range() {
 // The branch of the gear model from the large-amplitude orbit at Omega = 1 (the only one
 // there) down in Omega: unknowns (s, s') in SI, scaled by (B, B w_n); parameter Omega.
 Branch gear_branch(const steady_test::ClearanceCase& cc, const StiffnessTable& table) {
-  const double w_n = cc.w_rad_s;  // clearance_case(..., omega = 1) puts w at w_n
+  const double w_n = cc.w_rad_per_s;  // clearance_case(..., omega = 1) puts w at w_n
   const ParametrizedPeriodMap map = [&](const Eigen::VectorXd& y, double omega) -> Eigen::VectorXd {
     SimulationCase c = cc.c;
-    c.torque1.angular_frequency_rad_s = omega * w_n;
+    c.torque1.angular_frequency_rad_per_s = omega * w_n;
     return GearPeriodMap(c, table, SteadySettings{}, kStepsPerPeriod)(y);
   };
   ContinuationSettings settings = omega_range();
@@ -110,7 +110,7 @@ TEST_CASE(
   // share their Poincare section and their fixed points are the same x = s / B.
   cc.c.torque1.phase_rad = 0.5 * std::numbers::pi;
   const auto table = std::make_shared<const StiffnessTable>(cc.c.gears, cc.c.model.stiffness);
-  const double w_n = cc.w_rad_s;
+  const double w_n = cc.w_rad_per_s;
   const double b = cc.c.gears.backlash_m;
 
   const Branch branch = gear_branch(cc, *table);

@@ -1,6 +1,6 @@
 // Where the simulated main resonance of the loaded paper pair sits in ISO 6336-1's resonance ratio
-// N = n1 / n_E1 (docs/steady-state.md section 3.5), with ISO's c_gamma_alpha b set to the model's mean
-// mesh stiffness k_mean.
+// N = n1 / n_E1 (docs/steady-state.md section 3.5), with ISO's c_gamma_alpha b set to the model's
+// mean mesh stiffness k_mean.
 //
 // ISO's n_E1 is the relative-mode natural frequency sqrt(c_gamma_alpha / m_red) over z1; the
 // model's is w_n = sqrt(k_mean / m_e). Both reduce the gears to solid discs, scaled with the gear
@@ -86,7 +86,7 @@ TEST_CASE("constant k_mean and a torque harmonic at the mesh frequency: resonanc
   const SimulationCase loaded = loaded_paper_pair(6000.0);
   const GearPair& g = loaded.gears;
   auto table = std::make_shared<const StiffnessTable>(g, loaded.model.stiffness);
-  const double k_mean = mean_mesh_stiffness_n_m(loaded, *table);
+  const double k_mean = mean_mesh_stiffness_n_per_m(loaded, *table);
   const double me = effective_mass_kg(g);
   const double w_n = std::sqrt(k_mean / me);
   const double rb1 = base_radius(g, Gear::one);
@@ -112,14 +112,14 @@ TEST_CASE("constant k_mean and a torque harmonic at the mesh frequency: resonanc
   const auto point = [&](double w1) {
     SimulationCase c = loaded_paper_pair(w1);
     c.model.mesh_stiffness = MeshStiffnessMode::constant;
-    c.model.constant_mesh_stiffness_n_m = k_mean;
+    c.model.constant_mesh_stiffness_n_per_m = k_mean;
     c.model.damping_update = DampingUpdate::off;
     c.initial.theta1_rad = (g.backlash_m + static_force_n / k_mean) / rb1;
     c.torque1 = Torque{};
     c.torque1.kind = Torque::Kind::sinusoidal;
     c.torque1.mean_n_m = static_force_n * rb1;
     c.torque1.amplitude_n_m = force_amplitude_n * j1 / (me * rb1);  // F_a = m_e Rb1 dT1 / J1
-    c.torque1.angular_frequency_rad_s = g.teeth1 * w1;
+    c.torque1.angular_frequency_rad_per_s = g.teeth1 * w1;
     const SteadyPoint p = find_steady_state(c, *table, SteadySettings{});
     REQUIRE(p.converged);
     REQUIRE(p.regime == Regime::no_impact);
@@ -151,7 +151,7 @@ TEST_CASE("time-varying stiffness: the dynamic factor's peak, in ISO's N, within
   const SimulationCase loaded = loaded_paper_pair(6000.0);
   const GearPair& g = loaded.gears;
   auto table = std::make_shared<const StiffnessTable>(g, loaded.model.stiffness);
-  const double k_mean = mean_mesh_stiffness_n_m(loaded, *table);
+  const double k_mean = mean_mesh_stiffness_n_per_m(loaded, *table);
   const double me = effective_mass_kg(g);
   const double w_n = std::sqrt(k_mean / me);
   const double w_e1 = iso_w_e1_by_hand(g, k_mean / g.face_width_m * 1e-9);
@@ -209,7 +209,7 @@ TEST_CASE("the paper's runs at 1000 and 10000 rad/s in ISO's N") {
   const SimulationCase loaded = loaded_paper_pair(1000.0);
   const GearPair& g = loaded.gears;
   const StiffnessTable table(g, loaded.model.stiffness);
-  const double k_mean = mean_mesh_stiffness_n_m(loaded, table);
+  const double k_mean = mean_mesh_stiffness_n_per_m(loaded, table);
   const Iso6336Stiffness iso = iso6336_method_b(iso6336_pair(g, 0.0));
   const double c_iso = iso.mesh_stiffness_n_per_m2 * 1e-9;  // N/(mm um)
   const double c_model = k_mean / g.face_width_m * 1e-9;

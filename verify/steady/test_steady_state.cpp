@@ -36,15 +36,15 @@ TEST_CASE("linear limit: amplitude and phase of the steady response against the 
     //   a = (m_e Rb1 dT1 / (J1 k)) / sqrt((1 - Omega^2)^2 + (2 zeta Omega)^2),
     //   phi = atan2(2 zeta Omega, 1 - Omega^2).
     const double zeta = 0.05;
-    const double a = cc.force_amplitude_n / cc.stiffness_n_m /
+    const double a = cc.force_amplitude_n / cc.stiffness_n_per_m /
                      std::sqrt(std::pow(1.0 - omega * omega, 2) + std::pow(2.0 * zeta * omega, 2));
     const double phi = std::atan2(2.0 * zeta * omega, 1.0 - omega * omega);
-    const double s_static = cc.c.gears.backlash_m + cc.static_force_n / cc.stiffness_n_m;
+    const double s_static = cc.c.gears.backlash_m + cc.static_force_n / cc.stiffness_n_per_m;
     // At t = 0 of the forcing (a Poincare sample): s - s_static = -a sin(phi), s' = a w cos(phi).
     const PoincareSample& sample = p.poincare.back();
-    const double measured_a = std::hypot(sample.s_m - s_static, sample.s_rate_m_s / cc.w_rad_s);
+    const double measured_a = std::hypot(sample.s_m - s_static, sample.s_rate_m_s / cc.w_rad_per_s);
     const double measured_phi =
-        std::atan2(-(sample.s_m - s_static), sample.s_rate_m_s / cc.w_rad_s);
+        std::atan2(-(sample.s_m - s_static), sample.s_rate_m_s / cc.w_rad_per_s);
     MESSAGE("Omega " << omega << ": a = " << a << " m, relative error of the sampled amplitude "
                      << (measured_a - a) / a << ", of half the peak-to-peak "
                      << (*p.dte_amplitude_m - a) / a << "; phase error " << measured_phi - phi

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "gearimpact/case/schema.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
-#include "gearimpact/case/schema.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "gearimpact/steady/sweep.hpp"
 #include "steady_cases.hpp"
@@ -23,7 +23,7 @@ namespace {
 std::vector<SweepPointResult> sweep_frequency(const ClearanceCase& cc, double omega_from,
                                               double omega_to, int points,
                                               SweepDirection direction) {
-  const double w_n = cc.w_rad_s;  // clearance_case(..., omega = 1) puts w at w_n
+  const double w_n = cc.w_rad_per_s;  // clearance_case(..., omega = 1) puts w at w_n
   const std::vector<double> grid =
       sweep_grid(omega_from * w_n, omega_to * w_n, points, "from", "to", "points");
   auto table = std::make_shared<const StiffnessTable>(cc.c.gears, cc.c.model.stiffness);
@@ -57,7 +57,7 @@ TEST_CASE("a sweep switches from NI to SS within one grid step of the closed-for
       if (p.point.regime != Regime::no_impact && first_impacting < 0) first_impacting = p.index;
     }
     REQUIRE(first_impacting > 0);
-    const double w_n = cc.w_rad_s;
+    const double w_n = cc.w_rad_per_s;
     const double switch_at = up[static_cast<std::size_t>(first_impacting)].value_si / w_n;
     const double last_ni = up[static_cast<std::size_t>(first_impacting - 1)].value_si / w_n;
     MESSAGE("r = " << r << ": onset Omega " << onset << ", last NI " << last_ni << ", first "
@@ -100,7 +100,7 @@ TEST_CASE("up and down sweeps of a softening case jump at different frequencies"
   };
   const auto [up_at, up_size] = jump(up);
   const auto [down_at, down_size] = jump(down);
-  const double w_n = cc.w_rad_s;
+  const double w_n = cc.w_rad_per_s;
   const double b = cc.c.gears.backlash_m;
   const double up_from = up[up_at - 1].value_si / w_n;
   const double up_to = up[up_at].value_si / w_n;

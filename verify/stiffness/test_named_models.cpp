@@ -281,8 +281,8 @@ TEST_CASE("case 1 runs on potential-energy: the ledger closes, RK4 and adaptive 
   // near 1e-9; a missed or extra impact changes the losses by percents.
   const double agree = 1e-6;
   const double d_damping = relative_difference(rk4.damping_loss_j, adaptive.damping_loss_j);
-  const double d_w1 = relative_difference(rk4.final_w1_rad_s, adaptive.final_w1_rad_s);
-  const double d_w2 = relative_difference(rk4.final_w2_rad_s, adaptive.final_w2_rad_s);
+  const double d_w1 = relative_difference(rk4.final_w1_rad_per_s, adaptive.final_w1_rad_per_s);
+  const double d_w2 = relative_difference(rk4.final_w2_rad_per_s, adaptive.final_w2_rad_per_s);
   MESSAGE("RK4 vs adaptive: damping " << d_damping << ", w1 " << d_w1 << ", w2 " << d_w2);
   CHECK(d_damping < agree);
   CHECK(d_w1 < agree);

@@ -219,7 +219,7 @@ void add_torque(std::vector<Field>& rows, std::string_view section, TorqueSlot t
        "angular_frequency", Dimension::angular_frequency, "rad/s", {closed(0.0), {}, {}}, true,
        "W of T = A sin(W t + phase); Hz counts cycles (W = 2 pi f). Not negative: "
        "-W is the same sinusoid as W with the phase pi - phase",
-       [torque](auto& c) -> auto& { return torque(c).angular_frequency_rad_s; })
+       [torque](auto& c) -> auto& { return torque(c).angular_frequency_rad_per_s; })
       .only_when = FieldCondition{"kind", {"sinusoidal"}};
   r.quantity(
        "phase", Dimension::angle, "deg", {}, false, "phase of T = A sin(W t + phase)",
@@ -235,7 +235,7 @@ void add_torque(std::vector<Field>& rows, std::string_view section, TorqueSlot t
   r.quantity_list(
        "angular_frequencies", Dimension::angular_frequency, "rad/s", {closed(0.0), {}, {}}, true,
        "w_i of the harmonics; not negative, as angular_frequency",
-       [torque](auto& c) -> auto& { return torque(c).harmonic_angular_frequencies_rad_s; })
+       [torque](auto& c) -> auto& { return torque(c).harmonic_angular_frequencies_rad_per_s; })
       .only_when = FieldCondition{"kind", {"harmonic"}};
   r.quantity_list(
        "phases", Dimension::angle, "deg", {}, true, "phi_i of the harmonics",
@@ -350,10 +350,10 @@ std::vector<Field> make_schema() {
         [](auto& c) -> auto& { return c.initial.theta2_rad; });
     r.quantity(
         "w1", Dimension::angular_velocity, "rad/s", {}, false, "w1(0)",
-        [](auto& c) -> auto& { return c.initial.w1_rad_s; });
+        [](auto& c) -> auto& { return c.initial.w1_rad_per_s; });
     r.quantity(
         "w2", Dimension::angular_velocity, "rad/s", {}, false, "w2(0)",
-        [](auto& c) -> auto& { return c.initial.w2_rad_s; });
+        [](auto& c) -> auto& { return c.initial.w2_rad_per_s; });
   }
   {
     Rows r(rows, "model");
@@ -456,7 +456,7 @@ std::vector<Field> make_schema() {
     r.quantity(
          "constant_mesh_stiffness", Dimension::stiffness, "N/um", {open(0.0), {}, {}}, true,
          "k, the total mesh stiffness along the line of action",
-         [](auto& c) -> auto& { return c.model.constant_mesh_stiffness_n_m; })
+         [](auto& c) -> auto& { return c.model.constant_mesh_stiffness_n_per_m; })
         .only_when = FieldCondition{"mesh_stiffness", {"constant"}};
     r.number(
          "mesh_damping_ratio", {closed(0.0), {}, {}}, false,
@@ -956,7 +956,7 @@ void validate_relations(const SimulationCase& c) {
       // One harmonic is one element of each list.
       const std::size_t n = torque->harmonic_amplitudes_n_m.size();
       const std::array<std::pair<const char*, std::size_t>, 2> others{
-          {{"angular_frequencies", torque->harmonic_angular_frequencies_rad_s.size()},
+          {{"angular_frequencies", torque->harmonic_angular_frequencies_rad_per_s.size()},
            {"phases", torque->harmonic_phases_rad.size()}}};
       for (const auto& [key, size] : others) {
         if (size != n) {

@@ -43,9 +43,9 @@ double viscous_mesh_damping_n_s_per_m(double damping_ratio, double mesh_stiffnes
   return 2.0 * damping_ratio * std::sqrt(mesh_stiffness_n_per_m * effective_mass_kg);
 }
 
-double mean_mesh_stiffness_n_m(const SimulationCase& c, const StiffnessTable& table) {
+double mean_mesh_stiffness_n_per_m(const SimulationCase& c, const StiffnessTable& table) {
   if (c.model.mesh_stiffness == MeshStiffnessMode::constant) {
-    return c.model.constant_mesh_stiffness_n_m;
+    return c.model.constant_mesh_stiffness_n_per_m;
   }
   const ContactSegment segment = contact_segment(c.gears);
   // Ke is smooth on the segment (its table is a piecewise Chebyshev fit): the
@@ -57,8 +57,8 @@ double mean_mesh_stiffness_n_m(const SimulationCase& c, const StiffnessTable& ta
   return integral.value / base_pitch(c.gears);
 }
 
-double natural_frequency_rad_s(const SimulationCase& c, const StiffnessTable& table) {
-  return std::sqrt(mean_mesh_stiffness_n_m(c, table) / effective_mass_kg(c.gears));
+double natural_frequency_rad_per_s(const SimulationCase& c, const StiffnessTable& table) {
+  return std::sqrt(mean_mesh_stiffness_n_per_m(c, table) / effective_mass_kg(c.gears));
 }
 
 }  // namespace gearimpact

@@ -73,7 +73,8 @@ class Run {
   void poll_stop(double t) const {
     if (control_.should_stop && result_.summary.steps % kStepsBetweenStopChecks == 0 &&
         control_.should_stop()) {
-      throw SimulationStopped("the run was stopped by its caller at " + where(t, result_.summary.steps));
+      throw SimulationStopped("the run was stopped by its caller at " +
+                              where(t, result_.summary.steps));
     }
   }
 
@@ -145,8 +146,8 @@ class Run {
     s.end_time_s = t;
     s.step_s = c_.integrator.step_s;
     ledger_.finish(y_, mode_, s);
-    s.final_w1_rad_s = y_[kW1];
-    s.final_w2_rad_s = y_[kW2];
+    s.final_w1_rad_per_s = y_[kW1];
+    s.final_w2_rad_per_s = y_[kW2];
     result_.impacts = impacts_;
     result_.final_state = {t, {y_[kTheta1], y_[kTheta2], y_[kW1], y_[kW2]}, damping_};
     return std::move(result_);
@@ -168,8 +169,14 @@ class Run {
   EnergyLedger make_ledger() {
     const InitialState& start = control_.resume ? control_.resume->state : c_.initial;
     start_time_ = control_.resume ? control_.resume->time_s : 0.0;
-    y_ = State{
-        start.theta1_rad, start.theta2_rad, start.w1_rad_s, start.w2_rad_s, 0.0, 0.0, 0.0, 0.0};
+    y_ = State{start.theta1_rad,
+               start.theta2_rad,
+               start.w1_rad_per_s,
+               start.w2_rad_per_s,
+               0.0,
+               0.0,
+               0.0,
+               0.0};
     mode_ = system_.classify_geometry(y_);
     if (control_.resume) {
       damping_ = control_.resume->contact;

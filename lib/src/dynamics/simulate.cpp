@@ -19,9 +19,9 @@ void validate_control(const SimulationCase& c, const RunControl& control) {
     const RunState& r = *control.resume;
     const InitialState& y = r.state;
     if (!std::isfinite(r.time_s) || !std::isfinite(y.theta1_rad) || !std::isfinite(y.theta2_rad) ||
-        !std::isfinite(y.w1_rad_s) || !std::isfinite(y.w2_rad_s) ||
+        !std::isfinite(y.w1_rad_per_s) || !std::isfinite(y.w2_rad_per_s) ||
         !std::isfinite(r.contact.damping_per_stiffness_s_m) ||
-        !std::isfinite(r.contact.frozen_stiffness_n_m) ||
+        !std::isfinite(r.contact.frozen_stiffness_n_per_m) ||
         r.contact.damping_per_stiffness_s_m < 0.0) {
       throw InputError("resume", "a state with a non-finite or negative value",
                        "the final_state of a run of " + c.name + ", finite");

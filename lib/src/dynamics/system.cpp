@@ -25,12 +25,12 @@ double torque_at(const Torque& torque, double t_s) {
     case Torque::Kind::sinusoidal:
       return torque.mean_n_m +
              torque.amplitude_n_m *
-                 std::sin(torque.angular_frequency_rad_s * t_s + torque.phase_rad);
+                 std::sin(torque.angular_frequency_rad_per_s * t_s + torque.phase_rad);
     case Torque::Kind::harmonic: {
       double sum = torque.mean_n_m;
       for (std::size_t i = 0; i < torque.harmonic_amplitudes_n_m.size(); ++i) {
         sum += torque.harmonic_amplitudes_n_m[i] *
-               std::sin(torque.harmonic_angular_frequencies_rad_s[i] * t_s +
+               std::sin(torque.harmonic_angular_frequencies_rad_per_s[i] * t_s +
                         torque.harmonic_phases_rad[i]);
       }
       return sum;
@@ -71,7 +71,7 @@ GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table, con
   friction_ = c.model.friction_coefficient;
   kh_ = hertz_stiffness(g);
   constant_k_ = c.model.mesh_stiffness == MeshStiffnessMode::constant
-                    ? c.model.constant_mesh_stiffness_n_m
+                    ? c.model.constant_mesh_stiffness_n_per_m
                     : 0.0;
   damping_on_current_pair_ = c.model.damping_stiffness == DampingStiffness::current_pair;
   constant_torques_ =
@@ -79,7 +79,7 @@ GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table, con
   if (constant_torques_) torque_values_ = {c.torque1.constant_n_m, c.torque2.constant_n_m};
   if (c.model.mesh_damping_ratio > 0.0) {
     mesh_damping_ = viscous_mesh_damping_n_s_per_m(
-        c.model.mesh_damping_ratio, mean_mesh_stiffness_n_m(c, table), effective_mass_kg(g));
+        c.model.mesh_damping_ratio, mean_mesh_stiffness_n_per_m(c, table), effective_mass_kg(g));
   }
 }
 
@@ -108,7 +108,7 @@ void GearSystem::pair_stiffness(double x, int count, double& ke, double& dke) co
 
 double GearSystem::damping_factor(const ContactMemory& d, double ke) const {
   return damping_on_current_pair_ ? d.damping_per_stiffness_s_m * ke
-                                  : d.damping_per_stiffness_s_m * d.frozen_stiffness_n_m;
+                                  : d.damping_per_stiffness_s_m * d.frozen_stiffness_n_per_m;
 }
 
 void GearSystem::rhs(double t, const State& y, const Mode& m, const ContactMemory& d, State& dydt,
@@ -213,7 +213,7 @@ int GearSystem::event_values(const State& y, const Mode& m, const ContactMemory&
 // proportional to the pair's own Ke, F + G = Ke delta (1 + (D/K) d(delta)/dt)
 // and the positive factor Ke need not be evaluated.
 double GearSystem::push_sign_function(double x, int count, const ContactMemory& d, double dl,
-                                             double dl_rate) const {
+                                      double dl_rate) const {
   if (damping_on_current_pair_) {
     return dl * (1.0 + d.damping_per_stiffness_s_m * dl_rate);
   }
@@ -275,7 +275,7 @@ GearSystem::Onset GearSystem::damping_at_onset(const State& y, const Mode& m) co
           ? 0.0
           : damping_factor_per_stiffness(case_.model.damping_form, onset.restitution, speed);
   if (case_.model.damping_stiffness == DampingStiffness::hertz) {
-    d.frozen_stiffness_n_m = kh_;
+    d.frozen_stiffness_n_per_m = kh_;
   } else if (m.count > 0) {
     int nearest = 0;
     for (int j = 1; j < m.count; ++j) {
@@ -287,7 +287,7 @@ GearSystem::Onset GearSystem::damping_at_onset(const State& y, const Mode& m) co
     double ke = 0.0;
     double dke = 0.0;
     pair_stiffness(pair_position(m, y, nearest), m.count, ke, dke);
-    d.frozen_stiffness_n_m = ke;
+    d.frozen_stiffness_n_per_m = ke;
   }
   return onset;
 }

@@ -13,10 +13,10 @@ std::string series_csv_header() {
 
 void append_series_row(std::string& out, const SeriesRow& r) {
   char line[512];
-  const int n = std::snprintf(line, sizeof line,
-                              "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d,%d,%.17g,%.17g\n",
-                              r.t_s, r.theta1_rad, r.theta2_rad, r.w1_rad_s, r.w2_rad_s, r.s_m,
-                              r.delta_m, r.region, r.pairs, r.normal_force_n, r.friction_force_n);
+  const int n = std::snprintf(
+      line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d,%d,%.17g,%.17g\n", r.t_s,
+      r.theta1_rad, r.theta2_rad, r.w1_rad_per_s, r.w2_rad_per_s, r.s_m, r.delta_m, r.region,
+      r.pairs, r.normal_force_n, r.friction_force_n);
   out.append(line, static_cast<std::size_t>(n));
 }
 
@@ -101,8 +101,8 @@ std::string summary_json(const SimulationSummary& s) {
   json_number(out, "ledger_residual_J", s.ledger_residual_j);
   json_number(out, "ledger_residual_max_J", s.ledger_residual_max_j);
   json_number(out, "ledger_scale_J", s.ledger_scale_j);
-  json_number(out, "final_w1_rad_s", s.final_w1_rad_s);
-  json_number(out, "final_w2_rad_s", s.final_w2_rad_s);
+  json_number(out, "final_w1_rad_s", s.final_w1_rad_per_s);
+  json_number(out, "final_w2_rad_s", s.final_w2_rad_per_s);
   out += "  \"steps\": " + std::to_string(s.steps) + ",\n";
   out += "  \"events\": " + std::to_string(s.events) + ",\n";
   out += "  \"rhs_evaluations\": " + std::to_string(s.rhs_evaluations) + "\n";

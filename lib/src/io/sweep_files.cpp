@@ -72,10 +72,10 @@ Json spec_json(const SteadySweepRecord& s) {
   j["directions"] = directions_text(s.directions);
   j["backlash_m"] = s.backlash_m;
   if (s.iso) {
-    j["iso_resonance_speed_rad_s"] = s.iso->resonance_speed_rad_s;
-    j["iso_resonance_speed_iso_stiffness_rad_s"] = s.iso->resonance_speed_iso_stiffness_rad_s;
+    j["iso_resonance_speed_rad_s"] = s.iso->resonance_speed_rad_per_s;
+    j["iso_resonance_speed_iso_stiffness_rad_s"] = s.iso->resonance_speed_iso_stiffness_rad_per_s;
     j["iso_contact_ratio"] = s.iso->contact_ratio;
-    j["iso_line_load_n_m"] = s.iso->line_load_n_m;
+    j["iso_line_load_n_m"] = s.iso->line_load_n_per_m;
   }
   j["tolerance"] = s.tolerance;
   j["steps_per_contact_period"] = s.steps_per_contact_period;
@@ -113,11 +113,11 @@ SteadySweepRecord spec_record(const Json& j, const std::string& file) {
     s.backlash_m = j.at("backlash_m").get<double>();
     if (j.contains("iso_resonance_speed_rad_s")) {
       IsoScale iso;
-      iso.resonance_speed_rad_s = j.at("iso_resonance_speed_rad_s").get<double>();
-      iso.resonance_speed_iso_stiffness_rad_s =
+      iso.resonance_speed_rad_per_s = j.at("iso_resonance_speed_rad_s").get<double>();
+      iso.resonance_speed_iso_stiffness_rad_per_s =
           j.at("iso_resonance_speed_iso_stiffness_rad_s").get<double>();
       iso.contact_ratio = j.at("iso_contact_ratio").get<double>();
-      iso.line_load_n_m = j.at("iso_line_load_n_m").get<double>();
+      iso.line_load_n_per_m = j.at("iso_line_load_n_m").get<double>();
       s.iso = iso;
     }
     s.tolerance = j.at("tolerance").get<double>();

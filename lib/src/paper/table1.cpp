@@ -7,7 +7,7 @@
 
 namespace gearimpact {
 
-SimulationCase loaded_paper_pair(double w1_rad_s, const PairLoad& load) {
+SimulationCase loaded_paper_pair(double w1_rad_per_s, const PairLoad& load) {
   SimulationCase c = paper_case(1);
   c.name = "loaded-paper-pair";
   c.model.friction_coefficient = 0.0;
@@ -22,7 +22,7 @@ SimulationCase loaded_paper_pair(double w1_rad_s, const PairLoad& load) {
   c.torque2 = Torque{};
   c.torque2.constant_n_m = -f * rb2;
   c.initial = InitialState{(c.gears.backlash_m + f / load.deflection_stiffness_n_per_m) / rb1, 0.0,
-                           w1_rad_s, w1_rad_s * rb1 / rb2};
+                           w1_rad_per_s, w1_rad_per_s * rb1 / rb2};
   return c;
 }
 
@@ -31,24 +31,24 @@ double torque_unit_n_m(TorqueUnit unit) {
   return unit == TorqueUnit::kgf_mm ? 9.80665e-3 : 1.0e-3;
 }
 
-SimulationCase paper_case(int number, TorqueUnit unit, double case3_angular_frequency_rad_s) {
+SimulationCase paper_case(int number, TorqueUnit unit, double case3_angular_frequency_rad_per_s) {
   SimulationCase c;
   c.name = "case" + std::to_string(number);
   c.gears = paper_gear_pair();
   const double table_unit = torque_unit_n_m(unit);
   switch (number) {
     case 1:  // Table 1: no torques, w1(0) = 50 rad/s.
-      c.initial.w1_rad_s = 50.0;
+      c.initial.w1_rad_per_s = 50.0;
       break;
     case 2:  // Table 1: T1 = 50, T2 = -50, w1(0) = 50 rad/s.
       c.torque1.constant_n_m = 50.0 * table_unit;
       c.torque2.constant_n_m = -50.0 * table_unit;
-      c.initial.w1_rad_s = 50.0;
+      c.initial.w1_rad_per_s = 50.0;
       break;
     case 3:  // Table 1: T1 = 200 sin(W t), at rest.
       c.torque1.kind = Torque::Kind::sinusoidal;
       c.torque1.amplitude_n_m = 200.0 * table_unit;
-      c.torque1.angular_frequency_rad_s = case3_angular_frequency_rad_s;
+      c.torque1.angular_frequency_rad_per_s = case3_angular_frequency_rad_per_s;
       c.integrator.end_time_s = 0.04;
       break;
     default:
@@ -58,7 +58,8 @@ SimulationCase paper_case(int number, TorqueUnit unit, double case3_angular_freq
 }
 
 SimulationCase paper_case(int number, const PaperReading& reading) {
-  SimulationCase c = paper_case(number, reading.torque_unit, reading.case3_angular_frequency_rad_s);
+  SimulationCase c =
+      paper_case(number, reading.torque_unit, reading.case3_angular_frequency_rad_per_s);
   c.model.damping_form = reading.damping_form;
   c.model.damping_stiffness = reading.damping_stiffness;
   c.model.restitution = reading.restitution;

@@ -109,12 +109,12 @@ std::optional<IsoScale> iso_scale(const SimulationCase& c, const StiffnessTable&
                                 mean_diameter1, 2.0 * base_radius(g, Gear::one));
   const Iso6336Stiffness iso = iso6336_method_b(iso6336_pair(g, 0.0));
   IsoScale scale;
-  scale.resonance_speed_rad_s = iso_resonance_speed_rad_per_s(
-      g.teeth1, mean_mesh_stiffness_n_m(c, table) / g.face_width_m, m_red);
-  scale.resonance_speed_iso_stiffness_rad_s =
+  scale.resonance_speed_rad_per_s = iso_resonance_speed_rad_per_s(
+      g.teeth1, mean_mesh_stiffness_n_per_m(c, table) / g.face_width_m, m_red);
+  scale.resonance_speed_iso_stiffness_rad_per_s =
       iso_resonance_speed_rad_per_s(g.teeth1, iso.mesh_stiffness_n_per_m2, m_red);
   scale.contact_ratio = iso.transverse_contact_ratio;
-  scale.line_load_n_m = line_load;
+  scale.line_load_n_per_m = line_load;
   return scale;
 }
 

@@ -49,8 +49,8 @@ GearPeriodMap::GearPeriodMap(const SimulationCase& c, const StiffnessTable& tabl
   relative_share2_ = m1 / (m1 + m2);
   const InitialState& y = c.initial;
   centre_m_ = (m1 * rb1_ * y.theta1_rad + m2 * rb2_ * y.theta2_rad) / (m1 + m2);
-  centre_speed_m_s_ = (m1 * rb1_ * y.w1_rad_s + m2 * rb2_ * y.w2_rad_s) / (m1 + m2);
-  scale_ = Eigen::Vector2d(g.backlash_m, g.backlash_m * natural_frequency_rad_s(c, table));
+  centre_speed_m_s_ = (m1 * rb1_ * y.w1_rad_per_s + m2 * rb2_ * y.w2_rad_per_s) / (m1 + m2);
+  scale_ = Eigen::Vector2d(g.backlash_m, g.backlash_m * natural_frequency_rad_per_s(c, table));
 
   case_.integrator.kind = IntegratorKind::rk4;
   case_.integrator.step_s = step_s_;
@@ -68,7 +68,7 @@ InitialState GearPeriodMap::full_state(double s_m, double s_rate_m_s) const {
 
 Eigen::Vector2d GearPeriodMap::relative_state(const InitialState& state) const {
   return Eigen::Vector2d(rb1_ * state.theta1_rad - rb2_ * state.theta2_rad,
-                         rb1_ * state.w1_rad_s - rb2_ * state.w2_rad_s);
+                         rb1_ * state.w1_rad_per_s - rb2_ * state.w2_rad_per_s);
 }
 
 Eigen::VectorXd GearPeriodMap::operator()(const Eigen::VectorXd& relative) const {

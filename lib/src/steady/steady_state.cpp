@@ -78,7 +78,7 @@ class PeriodRecorder {
   }
 
   void observe(const SeriesRow& row) {
-    const double rate = rb1_ * row.w1_rad_s - rb2_ * row.w2_rad_s;
+    const double rate = rb1_ * row.w1_rad_per_s - rb2_ * row.w2_rad_per_s;
     if (have_previous_ && row.t_s > start_s_) {
       hermite_extremes(row.t_s - previous_.t_s, previous_.s_m, previous_rate_, row.s_m, rate,
                        stats_);
@@ -223,14 +223,14 @@ std::vector<double> forcing_frequencies(const SimulationCase& c) {
   std::vector<double> w;
   for (const Torque* t : {&c.torque1, &c.torque2}) {
     if (t->kind == Torque::Kind::sinusoidal && t->amplitude_n_m != 0.0 &&
-        t->angular_frequency_rad_s != 0.0) {
-      w.push_back(std::fabs(t->angular_frequency_rad_s));
+        t->angular_frequency_rad_per_s != 0.0) {
+      w.push_back(std::fabs(t->angular_frequency_rad_per_s));
     }
     if (t->kind == Torque::Kind::harmonic) {
       for (std::size_t i = 0; i < t->harmonic_amplitudes_n_m.size(); ++i) {
         if (t->harmonic_amplitudes_n_m[i] != 0.0 &&
-            t->harmonic_angular_frequencies_rad_s[i] != 0.0) {
-          w.push_back(std::fabs(t->harmonic_angular_frequencies_rad_s[i]));
+            t->harmonic_angular_frequencies_rad_per_s[i] != 0.0) {
+          w.push_back(std::fabs(t->harmonic_angular_frequencies_rad_per_s[i]));
         }
       }
     }
@@ -307,10 +307,10 @@ SteadyTiming steady_timing(const SimulationCase& c, const StiffnessTable& table,
     const double j2 = moment_of_inertia(g, Gear::two);
     // J1 w1/Rb1 + J2 w2/Rb2 is constant without fluctuating torques and friction; the rolling
     // pair (Rb1 w1 = Rb2 w2 on average over a periodic s) with it turns at this w1.
-    const double momentum = j1 * c.initial.w1_rad_s / rb1 + j2 * c.initial.w2_rad_s / rb2;
+    const double momentum = j1 * c.initial.w1_rad_per_s / rb1 + j2 * c.initial.w2_rad_per_s / rb2;
     const double w1_mean = momentum / (j1 / rb1 + j2 * rb1 / (rb2 * rb2));
     if (!std::isfinite(w1_mean) || w1_mean == 0.0) {
-      throw InputError("initial.w1", c.initial.w1_rad_s,
+      throw InputError("initial.w1", c.initial.w1_rad_per_s,
                        "a mean pinion speed != 0: without torque fluctuations the mesh period "
                        "2 pi / (z1 w1) is the sampling period");
     }
@@ -322,7 +322,7 @@ SteadyTiming steady_timing(const SimulationCase& c, const StiffnessTable& table,
   if (c.model.mesh_stiffness == MeshStiffnessMode::constant) {
     contact_period = std::min(
         contact_period,
-        2.0 * pi * std::sqrt(effective_mass_kg(c.gears) / c.model.constant_mesh_stiffness_n_m));
+        2.0 * pi * std::sqrt(effective_mass_kg(c.gears) / c.model.constant_mesh_stiffness_n_per_m));
   }
   const double largest = contact_period / settings.steps_per_contact_period;
   timing.steps_per_period =
@@ -342,7 +342,7 @@ SteadyPoint find_steady_state(const SimulationCase& c, const StiffnessTable& tab
   const GearPair& g = c.gears;
   const double rb1 = base_radius(g, Gear::one);
   const double rb2 = base_radius(g, Gear::two);
-  const double w_n = natural_frequency_rad_s(c, table);
+  const double w_n = natural_frequency_rad_per_s(c, table);
   Eigen::VectorXd scale(2);
   scale << g.backlash_m, g.backlash_m * w_n;
 
@@ -370,7 +370,8 @@ SteadyPoint find_steady_state(const SimulationCase& c, const StiffnessTable& tab
     if (history.size() > settings.window) history.pop_front();
     const InitialState& y = state.state;
     samples.emplace_back(2);
-    samples.back() << rb1 * y.theta1_rad - rb2 * y.theta2_rad, rb1 * y.w1_rad_s - rb2 * y.w2_rad_s;
+    samples.back() << rb1 * y.theta1_rad - rb2 * y.theta2_rad,
+        rb1 * y.w1_rad_per_s - rb2 * y.w2_rad_per_s;
     point.periods_run = k + 1;
     if (decision.settled(samples, scale)) break;
   }

@@ -3,10 +3,10 @@
 #include <cmath>
 #include <optional>
 
+#include "gearimpact/case/schema.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
-#include "gearimpact/case/schema.hpp"
 
 namespace gearimpact {
 
@@ -43,9 +43,11 @@ void apply_sweep_value(SimulationCase& c, const SimulationCase& base, const std:
   const double rb1 = base_radius(base.gears, Gear::one);
   const double rb2 = base_radius(base.gears, Gear::two);
   if (key == "initial.w1") {
-    c.initial.w2_rad_s = base.initial.w2_rad_s + (si_value - base.initial.w1_rad_s) * rb1 / rb2;
+    c.initial.w2_rad_per_s =
+        base.initial.w2_rad_per_s + (si_value - base.initial.w1_rad_per_s) * rb1 / rb2;
   } else if (key == "initial.w2") {
-    c.initial.w1_rad_s = base.initial.w1_rad_s + (si_value - base.initial.w2_rad_s) * rb2 / rb1;
+    c.initial.w1_rad_per_s =
+        base.initial.w1_rad_per_s + (si_value - base.initial.w2_rad_per_s) * rb2 / rb1;
   } else if (key == "torque1.mean") {
     set_sweep_value(c, "torque2.mean", -si_value * rb2 / rb1);
   } else if (key == "torque2.mean") {
@@ -94,11 +96,11 @@ std::vector<SweepPointResult> sweep_line(
       // The relative motion s' = Rb1 w1 - Rb2 w2 carries over; the mean speed moves.
       const double dw = value - carried_value;
       if (key == "initial.w1") {
-        start->state.w1_rad_s += dw;
-        start->state.w2_rad_s += dw * rb1 / rb2;
+        start->state.w1_rad_per_s += dw;
+        start->state.w2_rad_per_s += dw * rb1 / rb2;
       } else {
-        start->state.w2_rad_s += dw;
-        start->state.w1_rad_s += dw * rb2 / rb1;
+        start->state.w2_rad_per_s += dw;
+        start->state.w1_rad_per_s += dw * rb2 / rb1;
       }
     }
     SweepPointResult r;

@@ -25,11 +25,11 @@ struct Torque {
   // Kind::sinusoidal and Kind::harmonic: the mean T_m the fluctuation is added to.
   double mean_n_m = 0.0;
   double amplitude_n_m = 0.0;  // Kind::sinusoidal: T_m + A sin(W t + phase)
-  double angular_frequency_rad_s = 0.0;
+  double angular_frequency_rad_per_s = 0.0;
   double phase_rad = 0.0;
   // Kind::harmonic: T_m + sum_i A_i sin(w_i t + phi_i), the three of one length.
   std::vector<double> harmonic_amplitudes_n_m;
-  std::vector<double> harmonic_angular_frequencies_rad_s;
+  std::vector<double> harmonic_angular_frequencies_rad_per_s;
   std::vector<double> harmonic_phases_rad;
   std::function<double(double)> user;  // Kind::user: T(t_s), through the library API only
 };
@@ -38,8 +38,8 @@ struct Torque {
 struct InitialState {
   double theta1_rad = 0.0;
   double theta2_rad = 0.0;
-  double w1_rad_s = 0.0;
-  double w2_rad_s = 0.0;
+  double w1_rad_per_s = 0.0;
+  double w2_rad_per_s = 0.0;
 };
 
 // The mesh stiffness of the dynamics: each loaded pair's Ke(X) of (29), or a
@@ -79,7 +79,7 @@ struct ModelOptions {
   CoastPhase coast_phase = CoastPhase::half_base_pitch;
   StiffnessModel stiffness;  // quadrature method and the sign of the Fa h moment
   MeshStiffnessMode mesh_stiffness = MeshStiffnessMode::time_varying;
-  double constant_mesh_stiffness_n_m = 0.0;  // k of MeshStiffnessMode::constant, > 0
+  double constant_mesh_stiffness_n_per_m = 0.0;  // k of MeshStiffnessMode::constant, > 0
   // zeta of the linear viscous mesh damper c = 2 zeta sqrt(k_mean m_e) on s'
   // (mesh.hpp); 0 leaves it out.
   double mesh_damping_ratio = 0.0;

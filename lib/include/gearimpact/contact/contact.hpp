@@ -73,8 +73,8 @@ inline double penetration(Region line, double s_m, double backlash_m) {
 }
 
 // (30) F = Ke delta.
-inline double elastic_force(double stiffness_n_m, double delta_m) {
-  return stiffness_n_m * delta_m;
+inline double elastic_force(double stiffness_n_per_m, double delta_m) {
+  return stiffness_n_per_m * delta_m;
 }
 
 // Normal force of a pair: N = F + G, 0 while it is clipped (a tooth can push,
@@ -88,8 +88,8 @@ inline double normal_force(double elastic_force_n, double damping_force_n, bool 
 // Vs = V_A1 - V_A2 = w1 X - w2 (lp - X), with the contact-point speeds (36)
 // V_A1 = w1 X and (37) V_A2 = w2 (lp - X) along the tooth profiles. Zero at the
 // pitch point when the gears roll.
-inline double sliding_speed(double w1_rad_s, double w2_rad_s, double x_m, double lp_m) {
-  return w1_rad_s * x_m - w2_rad_s * (lp_m - x_m);
+inline double sliding_speed(double w1_rad_per_s, double w2_rad_per_s, double x_m, double lp_m) {
+  return w1_rad_per_s * x_m - w2_rad_per_s * (lp_m - x_m);
 }
 
 // (35) Ff = f N against the sliding: Ff = f N sign(Vs) on N1 and

@@ -29,11 +29,11 @@ double viscous_mesh_damping_n_s_per_m(double damping_ratio, double mesh_stiffnes
 // else (1/t0) Int Ke(X) dX over the contact segment, since over one pitch each
 // position of the segment is passed by exactly one loaded pair (42). Throws
 // QuadratureError when the integral misses its tolerance.
-double mean_mesh_stiffness_n_m(const SimulationCase& c, const StiffnessTable& table);
+double mean_mesh_stiffness_n_per_m(const SimulationCase& c, const StiffnessTable& table);
 
 // w_n = sqrt(k_mean / m_e), the natural frequency of the relative mode with
 // the mean mesh stiffness (docs/steady-state.md section 2). Throws as
-// mean_mesh_stiffness_n_m.
-double natural_frequency_rad_s(const SimulationCase& c, const StiffnessTable& table);
+// mean_mesh_stiffness_n_per_m.
+double natural_frequency_rad_per_s(const SimulationCase& c, const StiffnessTable& table);
 
 }  // namespace gearimpact

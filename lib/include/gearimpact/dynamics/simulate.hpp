@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "gearimpact/error.hpp"
 #include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
+#include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/stiffness/model.hpp"
 #include "gearimpact/stiffness/table.hpp"
@@ -36,8 +36,8 @@ struct SeriesRow {
   double t_s;
   double theta1_rad;
   double theta2_rad;
-  double w1_rad_s;
-  double w2_rad_s;
+  double w1_rad_per_s;
+  double w2_rad_per_s;
   double s_m;
   double delta_m;
   int region;
@@ -97,8 +97,8 @@ struct SimulationSummary {
   double ledger_residual_max_j = 0.0;
   // The largest kinetic + stored energy of the run, the scale of the residual.
   double ledger_scale_j = 0.0;
-  double final_w1_rad_s = 0.0;
-  double final_w2_rad_s = 0.0;
+  double final_w1_rad_per_s = 0.0;
+  double final_w2_rad_per_s = 0.0;
   long long steps = 0;   // accepted steps, including those cut at events
   long long events = 0;  // mode changes located
   long long rhs_evaluations = 0;
@@ -108,7 +108,7 @@ struct SimulationSummary {
 // the last impact's value.
 struct ContactMemory {
   double damping_per_stiffness_s_m = 0.0;  // D / K of (32)
-  double frozen_stiffness_n_m = 0.0;       // K for the pitch-pair and Hertz readings
+  double frozen_stiffness_n_per_m = 0.0;   // K for the pitch-pair and Hertz readings
 };
 
 // Where a run ended, to continue from: the time, the state, and the damping of

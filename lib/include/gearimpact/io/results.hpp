@@ -16,7 +16,7 @@
 
 namespace gearimpact {
 
-// t_s,theta1_rad,theta2_rad,w1_rad_s,w2_rad_s,s_m,delta_m,region,pairs,normal_force_N,friction_force_N
+// t_s,theta1_rad,theta2_rad,w1_rad_per_s,w2_rad_per_s,s_m,delta_m,region,pairs,normal_force_N,friction_force_N
 std::string series_csv(const std::vector<SeriesRow>& rows);
 // The same in pieces, for a series streamed to its file as the run goes: the
 // header line, and one row appended to `out`.
@@ -48,7 +48,7 @@ double stiffness_column_value(const StiffnessColumn& column, const MeshStiffness
 // is switched off or that the model does not have.
 std::string stiffness_csv(const GearPair& pair, const StiffnessModel& model,
                           const std::vector<double>& x1_m);
-// One mesh period: fraction,theta1_rad,pairs,ke_n_m.
+// One mesh period: fraction,theta1_rad,pairs,ke_n_per_m.
 std::string mesh_stiffness_csv(const TimeVaryingMeshStiffness& tvms);
 // min_n_m, max_n_m, mean_n_m (the exact time mean), contact_ratio,
 // extrapolated (the foundation fit used outside its range), and a warning
@@ -56,7 +56,7 @@ std::string mesh_stiffness_csv(const TimeVaryingMeshStiffness& tvms);
 std::string mesh_stiffness_summary_json(const TimeVaryingMeshStiffness& tvms, double contact_ratio,
                                         bool extrapolated);
 // zn1, zn2, c_prime_th_n_mm_um, c_prime_n_mm_um, c_gamma_alpha_n_mm_um,
-// eps_alpha, c_prime_b_n_m, c_gamma_alpha_b_n_m (c' and c_gamma_alpha times
+// eps_alpha, c_prime_b_n_per_m, c_gamma_alpha_b_n_per_m (c' and c_gamma_alpha times
 // the face width b).
 std::string iso6336_json(const Iso6336Stiffness& iso, double face_width_m);
 // The warning every output carries when the foundation fit is extrapolated.

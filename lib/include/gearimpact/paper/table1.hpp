@@ -14,12 +14,12 @@ enum class TorqueUnit { kgf_mm, n_mm };
 // frequency: 10000 rad/s by default (the OCR's literal "10000"), 1000 the
 // alternative. Throws InputError for another case number.
 SimulationCase paper_case(int number, TorqueUnit unit = TorqueUnit::kgf_mm,
-                          double case3_angular_frequency_rad_s = 10000.0);
+                          double case3_angular_frequency_rad_per_s = 10000.0);
 
 // One choice for each reading docs/model.md leaves open; the defaults are docs/model.md's.
 struct PaperReading {
   TorqueUnit torque_unit = TorqueUnit::kgf_mm;
-  double case3_angular_frequency_rad_s = 10000.0;
+  double case3_angular_frequency_rad_per_s = 10000.0;
   DampingForm damping_form = DampingForm::herbert_mcwhannell;
   DampingStiffness damping_stiffness = DampingStiffness::current_pair;
   RestitutionLaw restitution;
@@ -48,6 +48,6 @@ struct PairLoad {
 // friction (a steady state needs none) and with the viscous mesh damper at
 // zeta = 0.05: the loaded pair of the steady-state reproduction, suites and
 // benchmark.
-SimulationCase loaded_paper_pair(double w1_rad_s, const PairLoad& load);
+SimulationCase loaded_paper_pair(double w1_rad_per_s, const PairLoad& load);
 
 }  // namespace gearimpact

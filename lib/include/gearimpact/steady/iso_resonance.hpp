@@ -71,11 +71,11 @@ IsoDynamicFactor iso_dynamic_factor_perfect_gears(double resonance_ratio,
 struct IsoScale {
   // w_E1 of ISO's (6) with m_red of (30) on the pinion's mean diameter (d_a1 + d_f1) / 2, and
   // c_gamma_alpha b = the model's mean mesh stiffness, or ISO's c_gamma_alpha.
-  double resonance_speed_rad_s = 0.0;
-  double resonance_speed_iso_stiffness_rad_s = 0.0;
+  double resonance_speed_rad_per_s = 0.0;
+  double resonance_speed_iso_stiffness_rad_per_s = 0.0;
   double contact_ratio = 0.0;  // eps_alpha, for ISO's K_v
   // F_t / b = |T1 mean| / (r1 b): ISO's line load at the reference circle (K_A = 1).
-  double line_load_n_m = 0.0;
+  double line_load_n_per_m = 0.0;
 };
 
 // The scale of c's pair, or nothing when ISO's K_v has no meaning for it (no mean load).
