@@ -2,7 +2,8 @@
 
 #include <cmath>
 #include <fstream>
-#include <stdexcept>
+
+#include "gearimpact/error.hpp"
 
 namespace gearimpact {
 
@@ -32,7 +33,7 @@ std::vector<std::string> split_csv_line(const std::string& line) {
 
 std::map<std::string, PaperStatement> read_statements(const std::filesystem::path& file) {
   std::ifstream in(file);
-  if (!in) throw std::runtime_error("cannot open " + file.string());
+  if (!in) throw Error("cannot open " + file.string());
   std::string line;
   std::getline(in, line);
   const std::vector<std::string> header = split_csv_line(line);
@@ -47,7 +48,7 @@ std::map<std::string, PaperStatement> read_statements(const std::filesystem::pat
     const auto field = [&](const char* name) -> const std::string& {
       const auto it = column.find(name);
       if (it == column.end() || it->second >= f.size()) {
-        throw std::runtime_error(file.string() + ":" + std::to_string(line_number) +
+        throw Error(file.string() + ":" + std::to_string(line_number) +
                                  ": no column '" + name + "'");
       }
       return f[it->second];
@@ -56,7 +57,7 @@ std::map<std::string, PaperStatement> read_statements(const std::filesystem::pat
       try {
         return std::stod(field(name));
       } catch (const std::logic_error&) {
-        throw std::runtime_error(file.string() + ":" + std::to_string(line_number) + ": column '" +
+        throw Error(file.string() + ":" + std::to_string(line_number) + ": column '" +
                                  name + "' is not a number: '" + field(name) + "'");
       }
     };

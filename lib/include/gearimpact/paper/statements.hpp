@@ -31,7 +31,7 @@ struct PaperStatement {
 // Splits one CSV line; fields may be double-quoted (with commas inside).
 std::vector<std::string> split_csv_line(const std::string& line);
 
-// Reads a statement file, keyed by id. Throws std::runtime_error naming the
+// Reads a statement file, keyed by id. Throws Error naming the
 // file and line for a missing column or a malformed number.
 std::map<std::string, PaperStatement> read_statements(const std::filesystem::path& file);
 
