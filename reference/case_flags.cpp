@@ -65,7 +65,9 @@ void CaseOptions::add_flags(CLI::App* command, CaseCommand command_bit) {
 void CaseOptions::add_reading(CLI::App* command) {
   torque_unit_ =
       command->add_option("--torque-unit", torque_unit_text_, "unit of Table 1's torques")
-          ->check(CLI::IsMember({"kgf-mm", "n-mm"}));
+          ->transform([](const std::string& text) {
+            return name_of(kTorqueUnits, value_named(kTorqueUnits, text, "--torque-unit"));
+          });
   case3_frequency_ = command->add_option(
       "--case3-frequency", case3_frequency_text_,
       "case 3 forcing W of T1 = 200 sin(W t), rad/s or with a unit (1000 the alternative "
@@ -92,8 +94,8 @@ const std::string& CaseOptions::reading_text() const {
 
 SimulationCase CaseOptions::paper(int number) const {
   PaperReading reading;
-  if (torque_unit_ != nullptr && torque_unit_->count() > 0 && torque_unit_text_ == "n-mm") {
-    reading.torque_unit = TorqueUnit::n_mm;
+  if (torque_unit_ != nullptr && torque_unit_->count() > 0) {
+    reading.torque_unit = value_named(kTorqueUnits, torque_unit_text_, "--torque-unit");
   }
   if (case3_frequency_ != nullptr && case3_frequency_->count() > 0) {
     reading.case3_angular_frequency_rad_per_s = parse_value(

@@ -288,9 +288,7 @@ py::tuple run_sweep(const std::vector<SimulationCase>& cases, double from, doubl
 }
 
 TorqueUnit torque_unit_named(const std::string& name) {
-  if (name == "kgf-mm") return TorqueUnit::kgf_mm;
-  if (name == "n-mm") return TorqueUnit::n_mm;
-  throw InputError("torque_unit", name, "\"kgf-mm\" (docs/model.md's reading) or \"n-mm\"");
+  return value_named(kTorqueUnits, name, "torque_unit");
 }
 
 std::string gear_pair_repr(const GearPair& g) {

@@ -2,13 +2,20 @@
 // each reading docs/model.md leaves open (section Readings).
 #pragma once
 
+#include <array>
+
 #include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/named_values.hpp"
 
 namespace gearimpact {
 
 // Units of Table 1's torques. docs/model.md: kgf-mm by default (only they reproduce
 // Fig. 7), N-mm as the table labels them.
 enum class TorqueUnit { kgf_mm, n_mm };
+inline constexpr std::array<NamedValue<TorqueUnit>, 2> kTorqueUnits{{
+    {TorqueUnit::kgf_mm, "kgf-mm", "docs/model.md's reading, the only one that reproduces Fig. 7"},
+    {TorqueUnit::n_mm, "n-mm", "as Table 1 labels its torques"},
+}};
 
 // The paper's cases 1, 2, 3 (Table 1) on paper_gear_pair(). Case 3's forcing
 // frequency: 10000 rad/s by default (the OCR's literal "10000"), 1000 the
