@@ -169,8 +169,8 @@ std::size_t distinct(std::vector<double> xs) {
 // that a valid run (one point, one shard of a few lines) never fails in its plots.
 bool worth_plotting(const char* figure, std::size_t values) {
   if (values >= 2) return true;
-  std::cerr << "gearimpact: note: no " << figure << " plot: "
-            << (values == 0 ? "nothing" : "a single value") << " to draw\n";
+  std::cerr << "gearimpact: note: no " << figure
+            << " plot: " << (values == 0 ? "nothing" : "a single value") << " to draw\n";
   return false;
 }
 
@@ -285,9 +285,10 @@ void add_sweep_options(CLI::App* sweep, SweepCommandOptions& o) {
                     "output folder: new or empty (else --overwrite), in a folder that exists; "
                     "written beside it and renamed into place when complete");
   sweep->add_flag("--overwrite", o.overwrite, "replace a non-empty --out folder whole");
-  o.shard_flag = sweep->add_option("--shard", o.shard,
-                    "K/N: the lines u with u % N == K (default: SLURM_ARRAY_TASK_ID - "
-                    "SLURM_ARRAY_TASK_MIN of SLURM_ARRAY_TASK_COUNT, else all)");
+  o.shard_flag =
+      sweep->add_option("--shard", o.shard,
+                        "K/N: the lines u with u % N == K (default: SLURM_ARRAY_TASK_ID - "
+                        "SLURM_ARRAY_TASK_MIN of SLURM_ARRAY_TASK_COUNT, else all)");
   o.keys.add_flags(sweep, kSweep);
   o.keys.add_set(sweep,
                  "KEY=VALUE for any key of the case schema, before the sweep, in order, after "
@@ -312,9 +313,9 @@ void add_sweep_options(CLI::App* sweep, SweepCommandOptions& o) {
 }
 
 void run_sweep(SweepCommandOptions& o) {
-  const std::vector<std::string> inputs =
-      is_paper_case(o.case_source) ? std::vector<std::string>{}
-                                   : std::vector<std::string>{o.case_source};
+  const std::vector<std::string> inputs = is_paper_case(o.case_source)
+                                              ? std::vector<std::string>{}
+                                              : std::vector<std::string>{o.case_source};
   require_output_folder(o.out, o.overwrite, inputs);
   const SteadySweepSpec spec = sweep_spec(o, read_case(o.case_source));
   AtomicFolder folder(o.out, o.overwrite, inputs);

@@ -1,8 +1,8 @@
 #include "gearimpact/batch/steady_sweep.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <cinttypes>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
@@ -47,9 +47,9 @@ void require_read_key(const std::string& key, const SimulationCase& c, const cha
                      "from the steps per contact period, a run per excitation period)");
   }
   if (!applies(field, c)) {
-    throw InputError(flag, key,
-                     "a key this case reads: " + key + " applies only when " +
-                         field.only_when->text());
+    throw InputError(
+        flag, key,
+        "a key this case reads: " + key + " applies only when " + field.only_when->text());
   }
 }
 
@@ -163,11 +163,31 @@ SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
   if (!spec.vary2.empty()) require_read_key(spec.vary2, base, "vary2");
   for (const double value2 : {grid2.front(), grid2.back()}) {
     for (const double value : {grid.front(), grid.back()}) {
-      SimulationCase probe = base;
-      if (!spec.vary2.empty()) apply_sweep_value(probe, base, spec.vary2, value2);
-      apply_sweep_value(probe, SimulationCase(probe), spec.vary, value);
-      validate(probe);
-      require_steady_case(probe);
+      // The end named in the message: a key derived from the swept one (the step) is not a
+      // key the user wrote.
+      const std::string end =
+          spec.vary + " = " + shortest_decimal(value) +
+          (spec.vary2.empty() ? std::string()
+                              : ", " + spec.vary2 + " = " + shortest_decimal(value2));
+      try {
+        SimulationCase probe = base;
+        if (!spec.vary2.empty()) apply_sweep_value(probe, base, spec.vary2, value2);
+        apply_sweep_value(probe, SimulationCase(probe), spec.vary, value);
+        validate(probe);
+        require_steady_case(probe);
+        // The step the run would take there: a value far out (a speed of 1e308 rad/s) leaves
+        // no finite step, which validate cannot see without the mesh stiffness.
+        const SteadyTiming timing = steady_timing(probe, *pool.table_for(probe), spec.settings);
+        if (!(std::isfinite(timing.step_s) && timing.step_s > 0.0 &&
+              timing.steps_per_period >= 1)) {
+          throw InputError(spec.vary2.empty() ? spec.vary : spec.vary + ", " + spec.vary2,
+                           "the step " + shortest_decimal(timing.step_s) + " s",
+                           "values at which the steady state's RK4 step is a positive time");
+        }
+      } catch (const InputError& e) {
+        throw InputError(e.field(), e.value() + " (at " + end + ", an end of the sweep)",
+                         e.allowed());
+      }
     }
   }
   SteadySweep sweep;

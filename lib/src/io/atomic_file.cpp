@@ -286,6 +286,12 @@ void require_output_folder(const std::string& path, bool overwrite,
   if (path.empty()) throw Error("an output folder is empty");
   const std::filesystem::path target = without_trailing_slash(path);
   std::error_code error;
+  for (const std::string& input : inputs) {
+    if (is_within(input, target)) {
+      throw Error("cannot write the folder " + path + ": it is or holds the input " + input +
+                  " of this run");
+    }
+  }
   const std::filesystem::file_status status = std::filesystem::status(target, error);
   if (std::filesystem::exists(status)) {
     if (!std::filesystem::is_directory(status)) {
@@ -296,12 +302,6 @@ void require_output_folder(const std::string& path, bool overwrite,
       throw Error("cannot write the folder " + path +
                   ": it is not empty (files of an earlier run would mix with the new ones); "
                   "choose a new folder, or replace it whole with --overwrite");
-    }
-  }
-  for (const std::string& input : inputs) {
-    if (is_within(input, target)) {
-      throw Error("cannot write the folder " + path + ": it is or holds the input " + input +
-                  " of this run");
     }
   }
   const std::filesystem::path dir = folder_of(target);

@@ -4,8 +4,8 @@
 #include <cctype>
 #include <cmath>
 #include <cstddef>
-#include <limits>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -113,9 +113,10 @@ SteadySweepRecord spec_record(const Json& j, const std::string& file) {
     }
     s.lines = j.at("lines").get<int>();
     if (s.points < 1 || s.lines < 1) {
-      throw InputError("merge", file + ": points " + std::to_string(s.points) + ", lines " +
-                                    std::to_string(s.lines),
-                       "a spec of at least one point and one line");
+      throw InputError(
+          "merge",
+          file + ": points " + std::to_string(s.points) + ", lines " + std::to_string(s.lines),
+          "a spec of at least one point and one line");
     }
     std::stringstream list(j.at("directions").get<std::string>());
     for (std::string d; std::getline(list, d, ',');) {
@@ -190,14 +191,14 @@ std::optional<double> optional_field(const std::string& text, const std::string&
 
 // A whole number in [0, below): a key field of a row, or a period.
 int integer_field(const std::string& text, const std::string& where, int below) {
-  const bool digits = !text.empty() && text.size() <= 10 &&
-                      std::all_of(text.begin(), text.end(), [](char ch) {
-                        return ch >= '0' && ch <= '9';
-                      });
+  const bool digits =
+      !text.empty() && text.size() <= 10 &&
+      std::all_of(text.begin(), text.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
   const long long value = digits ? std::stoll(text) : -1;
   if (value < 0 || value >= below) {
-    throw InputError("merge", where + ": " + text,
-                     "an integer in [0, " + std::to_string(below) + ") written by gearimpact sweep");
+    throw InputError(
+        "merge", where + ": " + text,
+        "an integer in [0, " + std::to_string(below) + ") written by gearimpact sweep");
   }
   return static_cast<int>(value);
 }
@@ -224,10 +225,9 @@ std::string key_text(int line, const std::string& direction, int index) {
 // The lines of a file after its header, each with its place ("FILE:LINE") for messages. Throws
 // InputError naming the file and line when the header is not `header`, a line ends in CR (a
 // file passed through a Windows tool), or the last line has no end (a file cut short).
-std::vector<std::pair<std::string, std::string>> data_lines(const std::filesystem::path& file,
+std::vector<std::pair<std::string, std::string>> data_lines(const std::string& text,
+                                                            const std::string& name,
                                                             const char* header) {
-  const std::string text = read_text(file);
-  const std::string name = file.string();
   std::vector<std::pair<std::string, std::string>> lines;
   std::size_t begin = 0;
   for (std::size_t number = 1; begin < text.size(); ++number) {
@@ -239,7 +239,8 @@ std::vector<std::pair<std::string, std::string>> data_lines(const std::filesyste
     }
     std::string line = text.substr(begin, end - begin);
     if (!line.empty() && line.back() == '\r') {
-      throw InputError("merge", where, "a line ended by LF alone, as gearimpact writes it (not CRLF)");
+      throw InputError("merge", where,
+                       "a line ended by LF alone, as gearimpact writes it (not CRLF)");
     }
     if (number == 1) {
       if (line + "\n" != header) throw InputError("merge", where + ": " + line, header);
@@ -271,48 +272,11 @@ SweepPointResult row_key(const std::vector<std::string>& f, const SteadySweepRec
   const double high = std::max(spec.from_si, spec.to_si);
   const double slack = 1e-9 * std::max(std::abs(low), std::abs(high));
   if (r.value_si < low - slack || r.value_si > high + slack) {
-    throw InputError("merge", where + ": value " + f[3],
-                     "a value of its spec's grid [" + format_number(low) + ", " +
-                         format_number(high) + "]");
+    throw InputError(
+        "merge", where + ": value " + f[3],
+        "a value of its spec's grid [" + format_number(low) + ", " + format_number(high) + "]");
   }
   return r;
-}
-
-// The rows of sweep.csv, as the point they were written from (period_label and the optional
-// figures read back to the same text).
-std::vector<SweepPointResult> read_sweep_rows(const std::filesystem::path& file,
-                                              const SteadySweepRecord& spec) {
-  std::vector<SweepPointResult> rows;
-  for (const auto& [where, line] : data_lines(file, kSweepHeader)) {
-    const std::vector<std::string> f = split(line);
-    if (f.size() != kSweepColumns) {
-      throw InputError("merge", where + ": " + line,
-                       "a row of " + std::to_string(kSweepColumns) + " fields");
-    }
-    SweepPointResult r = row_key(f, spec, where);
-    SteadyPoint& p = r.point;
-    if (f[6] != "true" && f[6] != "false") {
-      throw InputError("merge", where + ": converged " + f[6], "true or false");
-    }
-    p.converged = f[6] == "true";
-    if (!f[4].empty()) p.regime = regime_named(f[4], where);
-    if (f[5] == "aperiodic") {
-      p.verdict = PeriodicityVerdict::aperiodic;
-    } else if (!f[5].empty()) {
-      p.verdict = PeriodicityVerdict::periodic;
-      p.period = integer_field(f[5], where, std::numeric_limits<int>::max());
-    }
-    p.dte_mean_m = optional_field(f[7], where);
-    p.dte_amplitude_m = optional_field(f[8], where);
-    p.dte_rms_m = optional_field(f[9], where);
-    p.s_min_m = optional_field(f[10], where);
-    p.s_max_m = optional_field(f[11], where);
-    p.dynamic_factor = optional_field(f[12], where);
-    p.impacts_drive_per_period = optional_field(f[13], where);
-    p.impacts_coast_per_period = optional_field(f[14], where);
-    rows.push_back(std::move(r));
-  }
-  return rows;
 }
 
 struct PoincareRow {
@@ -392,16 +356,52 @@ namespace {
 std::vector<PoincareRow> read_poincare_rows(const std::filesystem::path& file,
                                             const SteadySweepRecord& spec) {
   std::vector<PoincareRow> rows;
-  for (const auto& [where, line] : data_lines(file, kPoincareHeader)) {
+  for (const auto& [where, line] : data_lines(read_text(file), file.string(), kPoincareHeader)) {
     const std::vector<std::string> f = split(line);
     if (f.size() != 6) throw InputError("merge", where + ": " + line, "a row of 6 fields");
     const SweepPointResult r = row_key(f, spec, where);
-    rows.push_back({key_of(r), where, line, {number_field(f[4], where), number_field(f[5], where)}});
+    rows.push_back(
+        {key_of(r), where, line, {number_field(f[4], where), number_field(f[5], where)}});
   }
   return rows;
 }
 
 }  // namespace
+
+std::vector<SweepPointResult> parse_sweep_csv(const std::string& text, const std::string& file,
+                                              const SteadySweepRecord& spec) {
+  std::vector<SweepPointResult> rows;
+  for (const auto& [where, line] : data_lines(text, file, kSweepHeader)) {
+    const std::vector<std::string> f = split(line);
+    if (f.size() != kSweepColumns) {
+      throw InputError("merge", where + ": " + line,
+                       "a row of " + std::to_string(kSweepColumns) + " fields");
+    }
+    SweepPointResult r = row_key(f, spec, where);
+    SteadyPoint& p = r.point;
+    if (f[6] != "true" && f[6] != "false") {
+      throw InputError("merge", where + ": converged " + f[6], "true or false");
+    }
+    p.converged = f[6] == "true";
+    if (!f[4].empty()) p.regime = regime_named(f[4], where);
+    if (f[5] == "aperiodic") {
+      p.verdict = PeriodicityVerdict::aperiodic;
+    } else if (!f[5].empty()) {
+      p.verdict = PeriodicityVerdict::periodic;
+      p.period = integer_field(f[5], where, std::numeric_limits<int>::max());
+    }
+    p.dte_mean_m = optional_field(f[7], where);
+    p.dte_amplitude_m = optional_field(f[8], where);
+    p.dte_rms_m = optional_field(f[9], where);
+    p.s_min_m = optional_field(f[10], where);
+    p.s_max_m = optional_field(f[11], where);
+    p.dynamic_factor = optional_field(f[12], where);
+    p.impacts_drive_per_period = optional_field(f[13], where);
+    p.impacts_coast_per_period = optional_field(f[14], where);
+    rows.push_back(std::move(r));
+  }
+  return rows;
+}
 
 SteadySweep merge_sweep_folders(const std::vector<std::filesystem::path>& dirs) {
   if (dirs.empty()) throw InputError("merge", "no folder", "one or more sweep output folders");
@@ -430,7 +430,9 @@ SteadySweep merge_sweep_folders(const std::vector<std::filesystem::path>& dirs) 
                            first_difference(*spec, summary["spec"]) + "\" differs)");
     }
     std::set<Key> here;
-    for (SweepPointResult& r : read_sweep_rows(dir / "sweep.csv", record)) {
+    const std::filesystem::path sweep_file = dir / "sweep.csv";
+    for (SweepPointResult& r :
+         parse_sweep_csv(read_text(sweep_file), sweep_file.string(), record)) {
       const Key key = key_of(r);
       if (rows.count(key) > 0) {
         throw InputError("merge",
