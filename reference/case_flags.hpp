@@ -14,6 +14,10 @@
 
 namespace gearimpact::cli {
 
+// The most worker threads a command's --threads accepts: more only cost memory
+// and, under a cluster's process limit, threads that cannot start.
+inline constexpr long long kMostThreads = 1024;
+
 // The commands a flag of kCaseFlags belongs to, one bit each.
 enum CaseCommand : unsigned {
   kSimulate = 1u << 0,

@@ -26,11 +26,10 @@ namespace gearimpact::cli {
 
 namespace {
 
-// Fig. 7's default sweep of f, and the most threads worth asking for.
+// Fig. 7's default sweep of f.
 constexpr const char* kSweepFrom = "0.01";
 constexpr const char* kSweepTo = "0.09";
 constexpr const char* kSweepStep = "0.01";
-constexpr long long kMostThreads = 1024;
 
 long long parse_integer_flag(const std::string& flag, const std::string& text, long long lower,
                              long long upper, const std::string& meaning) {

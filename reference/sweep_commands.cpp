@@ -16,6 +16,7 @@
 #include "commands.hpp"
 #include "gearimpact/batch/steady_sweep.hpp"
 #include "gearimpact/case/schema.hpp"
+#include "gearimpact/case/units.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
@@ -40,8 +41,11 @@ struct SweepCommandOptions {
   int points2 = 1;
   std::string out = "sweep-out";
   std::string shard;
+  CLI::Option* shard_flag = nullptr;  // to tell --shard "" from no --shard
   unsigned threads = 0;
   bool plots = true;
+  bool overwrite = false;
+  double max_points = kMostSweepPoints;
   SteadySettings settings;
   CaseOptions keys;
 };
@@ -52,27 +56,48 @@ double sweep_value(const std::string& key, const std::string& text, const std::s
   return gearimpact::parse_value(sweep_field(key, flag), text, flag + " (" + key + ")");
 }
 
+bool is_paper_case(const std::string& source) {
+  return source == "1" || source == "2" || source == "3";
+}
+
 SimulationCase read_case(const std::string& source) {
-  if (source == "1" || source == "2" || source == "3") return paper_case(std::stoi(source));
+  if (is_paper_case(source)) return paper_case(std::stoi(source));
   return read_case_file(source);
 }
 
-SweepShard parse_shard(const std::string& text) {
+// A whole number of at most 9 digits, for the shard's parts.
+bool is_digits(const std::string& part) {
+  return !part.empty() && part.size() <= 9 &&
+         std::all_of(part.begin(), part.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+}
+
+// SLURM's variable `name` as a whole number, or none when unset; throws InputError naming it
+// when it is set but not one.
+std::optional<long> slurm_number(const char* name) {
+  const char* text = std::getenv(name);
+  if (text == nullptr) return std::nullopt;
+  if (!is_digits(text)) {
+    throw InputError(name, std::string("\"") + text + "\"",
+                     "a whole number, as SLURM sets it for an array job");
+  }
+  return std::stol(text);
+}
+
+SweepShard parse_shard(const std::string& text, bool given) {
+  if (given && text.empty()) {
+    throw InputError("--shard", "\"\"", "K/N with 0 <= K < N (leave --shard out to run all)");
+  }
   std::string spec = text;
   if (spec.empty()) {
-    const char* id = std::getenv("SLURM_ARRAY_TASK_ID");
-    const char* count = std::getenv("SLURM_ARRAY_TASK_COUNT");
-    if (id == nullptr || count == nullptr) return {};
-    const char* min = std::getenv("SLURM_ARRAY_TASK_MIN");
-    const long k = std::atol(id) - (min != nullptr ? std::atol(min) : 0);
-    spec = std::to_string(k) + "/" + count;
+    const std::optional<long> id = slurm_number("SLURM_ARRAY_TASK_ID");
+    const std::optional<long> count = slurm_number("SLURM_ARRAY_TASK_COUNT");
+    const std::optional<long> min = slurm_number("SLURM_ARRAY_TASK_MIN");
+    if (!id || !count) return {};
+    spec = std::to_string(*id - min.value_or(0)) + "/" + std::to_string(*count);
   }
   // K/N: two runs of at most 9 digits around one slash.
   const std::size_t slash = spec.find('/');
-  const auto digits = [](const std::string& part) {
-    return !part.empty() && part.size() <= 9 &&
-           std::all_of(part.begin(), part.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
-  };
+  const auto digits = is_digits;
   const std::string k_text = slash == std::string::npos ? spec : spec.substr(0, slash);
   const std::string n_text = slash == std::string::npos ? "" : spec.substr(slash + 1);
   if (!digits(k_text) || !digits(n_text) || std::stoi(n_text) < 1 ||
@@ -104,9 +129,10 @@ SteadySweepSpec sweep_spec(SweepCommandOptions& o, SimulationCase base) {
   spec.directions.clear();
   if (o.direction != "down") spec.directions.push_back(SweepDirection::up);
   if (o.direction != "up") spec.directions.push_back(SweepDirection::down);
-  spec.shard = parse_shard(o.shard);
+  spec.shard = parse_shard(o.shard, o.shard_flag != nullptr && o.shard_flag->count() > 0);
   spec.settings = o.settings;
   spec.threads = o.threads;
+  spec.max_points = o.max_points;
   return spec;
 }
 
@@ -116,12 +142,36 @@ SteadySweep run_naming_flags(const SteadySweepSpec& spec,
   try {
     return run_steady_sweep(spec, on_point);
   } catch (const InputError& e) {
-    for (const char* argument : {"vary", "from", "to", "points", "vary2", "from2", "to2", "points2",
-                                 "shard", "directions"}) {
-      if (e.field() == argument) throw InputError("--" + e.field(), e.value(), e.allowed());
+    if (e.field() == "max_points") {
+      throw InputError("--points", e.value(), e.allowed() + " (--max-points lifts the bound)");
+    }
+    for (const char* argument :
+         {"vary", "from", "to", "points", "vary2", "from2", "to2", "points2", "shard", "directions",
+          "steps_per_contact_period", "max_periods", "tolerance"}) {
+      if (e.field() == argument) {
+        std::string flag = "--" + e.field();
+        std::replace(flag.begin(), flag.end(), '_', '-');
+        throw InputError(flag, e.value(), e.allowed());
+      }
     }
     throw;
   }
+}
+
+// How many different values `xs` holds: gnuplot refuses a plot with no point ("x range is
+// invalid"), and a plot of one value says nothing.
+std::size_t distinct(std::vector<double> xs) {
+  std::sort(xs.begin(), xs.end());
+  return static_cast<std::size_t>(std::unique(xs.begin(), xs.end()) - xs.begin());
+}
+
+// True when the figure has two values or more to draw; else says on stderr why it is skipped, so
+// that a valid run (one point, one shard of a few lines) never fails in its plots.
+bool worth_plotting(const char* figure, std::size_t values) {
+  if (values >= 2) return true;
+  std::cerr << "gearimpact: note: no " << figure
+            << " plot: " << (values == 0 ? "nothing" : "a single value") << " to draw\n";
+  return false;
 }
 
 // dynamic_factor_vs_iso_n.csv from the rows (the swept value is w1) and its figure.
@@ -151,6 +201,16 @@ void render_iso_plot(const std::filesystem::path& dir, const IsoScale& iso,
 void render_plots(const std::filesystem::path& dir, const SteadySweep& sweep) {
   const SteadySweepRecord& spec = sweep.spec;
   const std::string& vary = spec.vary;
+  std::vector<double> amplitude_x, poincare_x, iso_x, map_x, map_lines;
+  for (const SweepPointResult& r : sweep.rows) {
+    if (r.point.dte_amplitude_m) amplitude_x.push_back(r.value_si);
+    if (!r.point.poincare.empty()) poincare_x.push_back(r.value_si);
+    if (r.point.dynamic_factor) iso_x.push_back(r.value_si);
+    if (r.direction == SweepDirection::up) {
+      map_x.push_back(r.value_si);
+      map_lines.push_back(r.line);
+    }
+  }
   Figure amplitude;
   amplitude.name = "amplitude";
   amplitude.title = "Steady DTE amplitude, sweeps up and down";
@@ -163,7 +223,7 @@ void render_plots(const std::filesystem::path& dir, const SteadySweep& sweep) {
                                "\") ? $4 : NaN):9 with linespoints title sprintf('line %d " + d +
                                "', l)");
   }
-  render(dir, amplitude);
+  if (worth_plotting("amplitude", distinct(amplitude_x))) render(dir, amplitude);
   Figure bifurcation;
   bifurcation.name = "bifurcation";
   bifurcation.title = "Bifurcation diagram: Poincare samples of s";
@@ -173,9 +233,13 @@ void render_plots(const std::filesystem::path& dir, const SteadySweep& sweep) {
       "'poincare.csv' using (strcol(2) eq \"up\" ? $4 : NaN):5 with points pt 7 ps 0.4 title 'up'",
       "'poincare.csv' using (strcol(2) eq \"down\" ? $4 : NaN):5 with points pt 6 ps 0.6 title "
       "'down'"};
-  render(dir, bifurcation);
-  if (spec.iso) render_iso_plot(dir, *spec.iso, sweep.rows);
+  if (worth_plotting("bifurcation", distinct(poincare_x))) render(dir, bifurcation);
+  if (spec.iso && worth_plotting("dynamic_factor_vs_iso_n", distinct(iso_x))) {
+    render_iso_plot(dir, *spec.iso, sweep.rows);
+  }
   if (spec.vary2.empty() || spec.lines < 2) return;
+  // The map needs up rows spread over two values of each key.
+  if (!worth_plotting("regime-map", std::min(distinct(map_x), distinct(map_lines)))) return;
   const double from2 = spec.from2_si.value_or(0.0);
   const double to2 = spec.to2_si.value_or(0.0);
   const std::string step2 = format_number((to2 - from2) / (spec.lines - 1));
@@ -203,17 +267,28 @@ void add_sweep_options(CLI::App* sweep, SweepCommandOptions& o) {
       ->required();
   sweep->add_option("--from", o.from, "first value, with its unit as in case files")->required();
   sweep->add_option("--to", o.to, "last value")->required();
-  sweep->add_option("--points", o.points, "number of values (>= 1)")->required();
+  sweep
+      ->add_option("--points", o.points,
+                   "number of values (>= 1); points x points2 x directions at most --max-points")
+      ->required();
   sweep->add_option("--direction", o.direction, "up, down or both")
       ->check(CLI::IsMember({"up", "down", "both"}));
   sweep->add_option("--vary2", o.vary2, "a second key: one line per value");
   sweep->add_option("--from2", o.from2, "first value of the second key");
   sweep->add_option("--to2", o.to2, "last value of the second key");
   sweep->add_option("--points2", o.points2, "number of values of the second key");
-  sweep->add_option("--out", o.out, "output folder");
-  sweep->add_option("--shard", o.shard,
-                    "K/N: the lines u with u % N == K (default: SLURM_ARRAY_TASK_ID - "
-                    "SLURM_ARRAY_TASK_MIN of SLURM_ARRAY_TASK_COUNT, else all)");
+  sweep->add_option("--max-points", o.max_points,
+                    "the most points (points x points2 x directions) the sweep may run, so that a "
+                    "slip of --points does not start a run of days (default " +
+                        shortest_decimal(kMostSweepPoints) + ")");
+  sweep->add_option("--out", o.out,
+                    "output folder: new or empty (else --overwrite), in a folder that exists; "
+                    "written beside it and renamed into place when complete");
+  sweep->add_flag("--overwrite", o.overwrite, "replace a non-empty --out folder whole");
+  o.shard_flag =
+      sweep->add_option("--shard", o.shard,
+                        "K/N: the lines u with u % N == K (default: SLURM_ARRAY_TASK_ID - "
+                        "SLURM_ARRAY_TASK_MIN of SLURM_ARRAY_TASK_COUNT, else all)");
   o.keys.add_flags(sweep, kSweep);
   o.keys.add_set(sweep,
                  "KEY=VALUE for any key of the case schema, before the sweep, in order, after "
@@ -221,17 +296,29 @@ void add_sweep_options(CLI::App* sweep, SweepCommandOptions& o) {
                  "speed moves the other speed, a mean torque the other mean torque (balance)",
                  SetNumbers::as_swept_value);
   sweep->add_option("--tolerance", o.settings.tolerance,
-                    "samples repeat within this fraction of B and B w_n");
+                    "samples repeat within this fraction of B and B w_n, in (0, " +
+                        shortest_decimal(kMostTolerance) + "]");
   sweep->add_option("--steps-per-contact-period", o.settings.steps_per_contact_period,
-                    "RK4 steps per period of the stiffest contact");
+                    "RK4 steps per period of the stiffest contact, in [" +
+                        shortest_decimal(kLeastStepsPerContactPeriod) + ", " +
+                        shortest_decimal(kMostStepsPerContactPeriod) + "]");
   sweep->add_option("--max-periods", o.settings.max_periods,
-                    "excitation periods a point may run before it is not converged");
-  sweep->add_option("--threads", o.threads, "worker threads (0: one per core)");
+                    "excitation periods a point may run before it is not converged, in [1, " +
+                        std::to_string(kMostMaxPeriods) + "]");
+  sweep
+      ->add_option("--threads", o.threads,
+                   "worker threads, in [0, " + std::to_string(kMostThreads) + "] (0: one per core)")
+      ->check(CLI::Range(0u, static_cast<unsigned>(kMostThreads)));
   sweep->add_flag("!--no-plots", o.plots, "skip the gnuplot figures");
 }
 
 void run_sweep(SweepCommandOptions& o) {
+  const std::vector<std::string> inputs = is_paper_case(o.case_source)
+                                              ? std::vector<std::string>{}
+                                              : std::vector<std::string>{o.case_source};
+  require_output_folder(o.out, o.overwrite, inputs);
   const SteadySweepSpec spec = sweep_spec(o, read_case(o.case_source));
+  AtomicFolder folder(o.out, o.overwrite, inputs);
   std::mutex progress_mutex;
   std::size_t done = 0;
   const std::size_t total = shard_point_count(spec);
@@ -247,21 +334,25 @@ void run_sweep(SweepCommandOptions& o) {
               << " after " << r.point.periods_run << " periods"
               << (r.failure.empty() ? "" : " (" + r.failure + ")") << '\n';
   });
-  write_sweep_folder(o.out, sweep);
-  if (o.plots) render_plots(o.out, sweep);
+  write_sweep_folder(folder.temporary(), sweep);
+  if (o.plots) render_plots(folder.temporary(), sweep);
+  folder.commit();
 }
 
 struct MergeOptions {
   std::vector<std::string> inputs;
   std::string out;
   bool plots = true;
+  bool overwrite = false;
 };
 
 void run_merge(const MergeOptions& o) {
+  AtomicFolder folder(o.out, o.overwrite, o.inputs);
   const SteadySweep merged =
       merge_sweep_folders(std::vector<std::filesystem::path>(o.inputs.begin(), o.inputs.end()));
-  write_sweep_folder(o.out, merged);
-  if (o.plots) render_plots(o.out, merged);
+  write_sweep_folder(folder.temporary(), merged);
+  if (o.plots) render_plots(folder.temporary(), merged);
+  folder.commit();
 }
 
 }  // namespace
@@ -293,7 +384,12 @@ void register_sweep_commands(CLI::App& app) {
   CLI::App* merge = app.add_subcommand(
       "merge", "merge sweep shards by (line, direction, index); fails naming a missing key");
   merge->add_option("DIR", m->inputs, "shard output folders")->required();
-  merge->add_option("--out", m->out, "merged output folder")->required();
+  merge
+      ->add_option("--out", m->out,
+                   "merged output folder: new or empty (else --overwrite), not a shard's, in a "
+                   "folder that exists; written beside it and renamed into place when complete")
+      ->required();
+  merge->add_flag("--overwrite", m->overwrite, "replace a non-empty --out folder whole");
   merge->add_flag("!--no-plots", m->plots, "skip the gnuplot figures");
   merge->callback([m] { run_merge(*m); });
 }

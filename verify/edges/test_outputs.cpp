@@ -65,6 +65,8 @@ TEST_CASE("an output folder's name never reaches a shell") {
   // $(...), a double quote and $HOME: each would change the command line of
   // a shell that saw the name.
   const fs::path out = scratch.dir / ("x$(touch " + marker.string() + ")\"$HOME");
+  // The name holds slashes; an output folder's own folder must exist.
+  fs::create_directories(out.parent_path());
   const CommandResult r = run_command(
       cli("sweep 1 --vary initial.w1 --from 2000 --to 3000 --points 2 --direction up --threads 1 "
           "--set model.friction_coefficient=0 --set 'torque1.mean=3 N*m' "

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <thread>
 
@@ -107,4 +108,96 @@ TEST_CASE("SIGTERM and SIGINT during a write leave no temporary file") {
     }
     fs::remove_all(dir);
   }
+}
+
+namespace {
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+TEST_CASE("a folder of outputs appears whole: absent until commit, refused when filled") {
+  const fs::path dir = scratch_dir("folder");
+  const fs::path set = dir / "set";
+  {
+    AtomicFolder folder(set.string(), false);
+    write_file_atomically((fs::path(folder.temporary()) / "a.csv").string(), "new\n");
+    CHECK_FALSE(fs::exists(set));
+    folder.commit();
+  }
+  CHECK(read_text(set / "a.csv") == "new\n");
+  CHECK(entries(dir) == 1u);  // no temporary folder left beside it
+
+  // Filled: refused before anything is made, unless replaced whole.
+  CHECK_THROWS_AS(AtomicFolder(set.string(), false), Error);
+  CHECK(entries(dir) == 1u);
+  {
+    AtomicFolder folder(set.string(), true);
+    write_file_atomically((fs::path(folder.temporary()) / "b.csv").string(), "newer\n");
+    folder.commit();
+  }
+  CHECK_FALSE(fs::exists(set / "a.csv"));
+  CHECK(read_text(set / "b.csv") == "newer\n");
+  CHECK(entries(dir) == 1u);
+
+  // Another run filled the path while this one wrote: this run's set is discarded, the other's
+  // stays whole.
+  const fs::path raced = dir / "raced";
+  {
+    AtomicFolder folder(raced.string(), false);
+    write_file_atomically((fs::path(folder.temporary()) / "mine.csv").string(), "mine\n");
+    fs::create_directories(raced);
+    write_file_atomically((raced / "theirs.csv").string(), "theirs\n");
+    CHECK_THROWS_AS(folder.commit(), Error);
+  }
+  CHECK_FALSE(fs::exists(raced / "mine.csv"));
+  CHECK(read_text(raced / "theirs.csv") == "theirs\n");
+  CHECK(entries(dir) == 2u);
+
+  // Destroyed before commit (an error in the run): nothing left.
+  { AtomicFolder folder((dir / "abandoned").string(), false); }
+  CHECK(entries(dir) == 2u);
+
+  // A missing folder above it, a file in its place, or an input inside it: refused.
+  CHECK_THROWS_AS(require_output_folder((dir / "missing" / "set").string(), false), Error);
+  CHECK_THROWS_AS(require_output_folder((set / "b.csv").string(), true), Error);
+  CHECK_THROWS_AS(require_output_folder(dir.string(), true, {(set / "b.csv").string()}), Error);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("SIGTERM while a folder of outputs is written leaves no temporary folder") {
+  const fs::path dir = scratch_dir("folder-signal");
+  const pid_t child = fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {
+    remove_temporaries_on_signals();
+    AtomicFolder folder((dir / "set").string(), false);
+    for (int i = 0; i < 50; ++i) {
+      std::string name = "f";
+      name += std::to_string(i);
+      write_file_atomically((fs::path(folder.temporary()) / name).string(), "x");
+    }
+    const std::string text(512u << 20, 'x');
+    for (;;) write_file_atomically((fs::path(folder.temporary()) / "big").string(), text);
+  }
+  // Wait for the temporary folder's files to appear.
+  bool seen = false;
+  for (int i = 0; i < 20000 && !seen; ++i) {
+    for (const auto& entry : fs::directory_iterator(dir)) {
+      seen = seen || (entry.path().filename().string().rfind(".set.", 0) == 0 &&
+                      fs::exists(entry.path() / "f49"));
+    }
+    if (!seen) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  REQUIRE(seen);
+  REQUIRE(::kill(child, SIGTERM) == 0);
+  int status = 0;
+  REQUIRE(waitpid(child, &status, 0) == child);
+  REQUIRE(WIFSIGNALED(status));
+  CHECK(WTERMSIG(status) == SIGTERM);
+  CHECK(entries(dir) == 0u);
+  fs::remove_all(dir);
 }

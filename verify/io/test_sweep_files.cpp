@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gearimpact/batch/steady_sweep.hpp"
@@ -163,4 +164,76 @@ TEST_CASE("run_steady_sweep refuses a bad grid or shard before any work, naming 
   spec = small_sweep();
   spec.directions.clear();
   refused(spec, "directions");
+}
+
+TEST_CASE("run_steady_sweep refuses unbounded or meaningless work before any point, naming it") {
+  const auto refused = [](const SteadySweepSpec& spec, const char* argument) {
+    CAPTURE(argument);
+    try {
+      run_steady_sweep(spec, [](const SweepPointResult&) { FAIL("a point ran"); });
+      FAIL("accepted");
+    } catch (const InputError& e) {
+      CHECK(e.field() == argument);
+    }
+  };
+  SteadySweepSpec spec = small_sweep();
+  spec.max_points = 11;  // the spec's 3 points x 2 lines x 2 directions = 12
+  refused(spec, "max_points");
+  spec = small_sweep();
+  spec.points = 1000000000;  // refused before a grid of gigabytes is made
+  refused(spec, "max_points");
+  spec = small_sweep();
+  std::swap(spec.from_si, spec.to_si);
+  refused(spec, "from");
+  spec = small_sweep();
+  spec.vary2 = spec.vary;
+  refused(spec, "vary2");
+  spec = small_sweep();
+  spec.vary = "integrator.step";
+  spec.from_si = 1e-7;
+  spec.to_si = 2e-7;
+  refused(spec, "vary");
+  for (const double steps : {kLeastStepsPerContactPeriod - 1, kMostStepsPerContactPeriod + 1}) {
+    spec = small_sweep();
+    spec.settings.steps_per_contact_period = steps;
+    refused(spec, "steps_per_contact_period");
+  }
+  spec = small_sweep();
+  spec.settings.max_periods = 0;
+  refused(spec, "max_periods");
+  spec = small_sweep();
+  spec.settings.tolerance = 2 * kMostTolerance;
+  refused(spec, "tolerance");
+}
+
+TEST_CASE("the merge's reader names the file and line of the first bad row") {
+  SteadySweepRecord spec;
+  spec.from_si = 0.0;
+  spec.to_si = 1.0;
+  spec.points = 2;
+  spec.lines = 1;
+  spec.directions = {SweepDirection::up};
+  const std::string header =
+      "line,direction,index,value_si,regime,period,converged,dte_mean_m,dte_amplitude_m,"
+      "dte_rms_m,s_min_m,s_max_m,dynamic_factor,impacts_drive_per_period,"
+      "impacts_coast_per_period\n";
+  const std::string good = "0,up,0,0,SS,1,true,1e-06,2e-06,3e-06,-1e-05,1e-05,1.5,1,0\n";
+  CHECK(parse_sweep_csv(header + good, "s/sweep.csv", spec).size() == 1u);
+  const auto message = [&](const std::string& text) {
+    try {
+      parse_sweep_csv(text, "s/sweep.csv", spec);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  CHECK(message(header + good + "0,up,1,1,SS,1,true,nan,2e-06,3e-06,-1e-05,1e-05,1.5,1,0\n")
+            .find("s/sweep.csv:3: nan") != std::string::npos);
+  CHECK(message(header + good + "0,down,1,1,SS,1,true,1,1,1,1,1,1,1,0\n")
+            .find("s/sweep.csv:3: direction down") != std::string::npos);
+  CHECK(message(header + "0,up,0,1.5,SS,1,true,1,1,1,1,1,1,1,0\n").find("s/sweep.csv:2") !=
+        std::string::npos);
+  CHECK(message(header + good.substr(0, good.size() - 3)).find("cut short") != std::string::npos);
+  CHECK(message(header + "0,up,4294967296,0,SS,1,true,1,1,1,1,1,1,1,0\n").find("4294967296") !=
+        std::string::npos);
 }

@@ -33,6 +33,7 @@ pass() {
   echo "ok: $*"
 }
 
+mkdir -p reference
 "$program" sweep "$@" --shard 0/1 --out reference/shard-0
 "$program" merge reference/shard-0 --out reference/merged
 

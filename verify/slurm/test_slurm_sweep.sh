@@ -75,6 +75,7 @@ export SLURM_CONF="$cluster/slurm.conf"
 echo "cluster up after $((SECONDS - started)) s"
 
 # The reference: the whole sweep as one shard, without Slurm.
+mkdir -p "$scratch/reference"
 "$program" sweep "$@" --shard 0/1 --out "$scratch/reference/shard-0"
 "$program" merge "$scratch/reference/shard-0" --out "$scratch/reference/merged"
 

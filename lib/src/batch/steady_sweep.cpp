@@ -1,6 +1,10 @@
 #include "gearimpact/batch/steady_sweep.hpp"
 
 #include <algorithm>
+#include <cinttypes>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <exception>
 #include <future>
 #include <string>
@@ -9,6 +13,7 @@
 #include <vector>
 
 #include "gearimpact/case/schema.hpp"
+#include "gearimpact/case/units.hpp"
 #include "gearimpact/error.hpp"
 
 namespace gearimpact {
@@ -33,6 +38,65 @@ std::vector<LineOfWork> shard_units(std::size_t lines,
   return units;
 }
 
+// Refuses, naming `flag`, a swept key that no point of the run reads.
+void require_read_key(const std::string& key, const SimulationCase& c, const char* flag) {
+  const Field& field = sweep_field(key, flag);
+  if (field.section == "integrator") {
+    throw InputError(flag, key,
+                     "a key the steady state reads: it sets the integrator itself (RK4, the step "
+                     "from the steps per contact period, a run per excitation period)");
+  }
+  if (!applies(field, c)) {
+    throw InputError(
+        flag, key,
+        "a key this case reads: " + key + " applies only when " + field.only_when->text());
+  }
+}
+
+// Refuses, naming `points_key`, a grid of an integer key with a value that is not whole: the
+// point there would fail after the points before it ran.
+void require_whole_grid(const std::string& key, const std::vector<double>& grid,
+                        const char* points_key) {
+  if (find_field(key)->kind != FieldKind::integer) return;
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    if (grid[i] != std::round(grid[i])) {
+      throw InputError(points_key,
+                       std::to_string(grid.size()) + " (" + key + " = " +
+                           shortest_decimal(grid[i]) + " at index " + std::to_string(i) + ")",
+                       "a count that puts every value of the integer key " + key +
+                           " on a whole number: (to - from) / (points - 1) whole");
+    }
+  }
+}
+
+// The settings' bounds (steady_sweep.hpp), before any work.
+void require_settings(const SteadySettings& s) {
+  if (!(s.steps_per_contact_period >= kLeastStepsPerContactPeriod &&
+        s.steps_per_contact_period <= kMostStepsPerContactPeriod)) {
+    throw InputError("steps_per_contact_period", s.steps_per_contact_period,
+                     "[" + shortest_decimal(kLeastStepsPerContactPeriod) + ", " +
+                         shortest_decimal(kMostStepsPerContactPeriod) + "]");
+  }
+  if (s.max_periods < 1 || s.max_periods > kMostMaxPeriods) {
+    throw InputError("max_periods", std::to_string(s.max_periods),
+                     "an integer in [1, " + std::to_string(kMostMaxPeriods) + "]");
+  }
+  if (!(s.tolerance > 0.0 && s.tolerance <= kMostTolerance)) {
+    throw InputError("tolerance", s.tolerance, "(0, " + shortest_decimal(kMostTolerance) + "]");
+  }
+}
+
+std::string fnv1a_hex(const std::string& text) {
+  std::uint64_t hash = 14695981039346656037ull;
+  for (unsigned char ch : text) {
+    hash ^= ch;
+    hash *= 1099511628211ull;
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016" PRIx64, hash);
+  return hex;
+}
+
 }  // namespace
 
 bool sweep_key_less(const SweepPointResult& a, const SweepPointResult& b) {
@@ -54,30 +118,82 @@ std::size_t shard_point_count(const SteadySweepSpec& spec) {
 SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
                              const std::function<void(const SweepPointResult&)>& on_point) {
   sweep_field(spec.vary, "vary");
+  if (!spec.vary2.empty()) {
+    sweep_field(spec.vary2, "vary2");
+    if (spec.vary2 == spec.vary) {
+      throw InputError("vary2", spec.vary2, "a key other than the first swept key " + spec.vary);
+    }
+  }
+  // The bound on the work before the grids are made: a grid of a billion values is gigabytes.
+  if (spec.points >= 1 && (spec.vary2.empty() || spec.points2 >= 1)) {
+    const double lines = spec.vary2.empty() ? 1.0 : static_cast<double>(spec.points2);
+    const double total = static_cast<double>(spec.points) * lines *
+                         static_cast<double>(std::max<std::size_t>(1, spec.directions.size()));
+    if (total > spec.max_points) {
+      throw InputError("max_points",
+                       shortest_decimal(total) + " points (" + std::to_string(spec.points) +
+                           " points x " + shortest_decimal(lines) + " lines x " +
+                           std::to_string(spec.directions.size()) + " directions)",
+                       "at most " + shortest_decimal(spec.max_points) + " points a sweep");
+    }
+  }
+  if (spec.points > 1 && spec.from_si > spec.to_si) {
+    throw InputError("from", spec.from_si,
+                     "at most the last value (to, " + format_number(spec.to_si) +
+                         "): a sweep runs up from the lower end, and its down direction back");
+  }
+  require_settings(spec.settings);
   const std::vector<double> grid =
       sweep_grid(spec.from_si, spec.to_si, spec.points, "from", "to", "points");
   std::vector<double> grid2{0.0};
   if (!spec.vary2.empty()) {
-    sweep_field(spec.vary2, "vary2");
     grid2 = sweep_grid(spec.from2_si, spec.to2_si, spec.points2, "from2", "to2", "points2");
   }
+  require_whole_grid(spec.vary, grid, "points");
+  if (!spec.vary2.empty()) require_whole_grid(spec.vary2, grid2, "points2");
   if (spec.shard.n < 1 || spec.shard.k < 0 || spec.shard.k >= spec.shard.n) {
     throw InputError("shard", std::to_string(spec.shard.k) + "/" + std::to_string(spec.shard.n),
                      "K/N with 0 <= K < N");
   }
   if (spec.directions.empty()) throw InputError("directions", "none", "up, down or both");
   const SimulationCase& base = spec.base;
-  // Refuse a case without a steady state before any work, naming the key.
-  {
-    SimulationCase probe = base;
-    if (!spec.vary2.empty()) apply_sweep_value(probe, base, spec.vary2, grid2.front());
-    apply_sweep_value(probe, SimulationCase(probe), spec.vary, grid.front());
-    validate(probe);
-    require_steady_case(probe);
+  // Refuse, before any work and naming the key, a swept key the run does not read and a case
+  // without a steady state at either end of each grid (a key's range may hold at one end only).
+  require_read_key(spec.vary, base, "vary");
+  if (!spec.vary2.empty()) require_read_key(spec.vary2, base, "vary2");
+  for (const double value2 : {grid2.front(), grid2.back()}) {
+    for (const double value : {grid.front(), grid.back()}) {
+      // The end named in the message: a key derived from the swept one (the step) is not a
+      // key the user wrote.
+      const std::string end =
+          spec.vary + " = " + shortest_decimal(value) +
+          (spec.vary2.empty() ? std::string()
+                              : ", " + spec.vary2 + " = " + shortest_decimal(value2));
+      try {
+        SimulationCase probe = base;
+        if (!spec.vary2.empty()) apply_sweep_value(probe, base, spec.vary2, value2);
+        apply_sweep_value(probe, SimulationCase(probe), spec.vary, value);
+        validate(probe);
+        require_steady_case(probe);
+        // The step the run would take there: a value far out (a speed of 1e308 rad/s) leaves
+        // no finite step, which validate cannot see without the mesh stiffness.
+        const SteadyTiming timing = steady_timing(probe, *pool.table_for(probe), spec.settings);
+        if (!(std::isfinite(timing.step_s) && timing.step_s > 0.0 &&
+              timing.steps_per_period >= 1)) {
+          throw InputError(spec.vary2.empty() ? spec.vary : spec.vary + ", " + spec.vary2,
+                           "the step " + shortest_decimal(timing.step_s) + " s",
+                           "values at which the steady state's RK4 step is a positive time");
+        }
+      } catch (const InputError& e) {
+        throw InputError(e.field(), e.value() + " (at " + end + ", an end of the sweep)",
+                         e.allowed());
+      }
+    }
   }
   SteadySweep sweep;
   SteadySweepRecord& record = sweep.spec;
   record.case_name = base.name;
+  record.case_key_hash = fnv1a_hex(case_key(base));
   record.vary = spec.vary;
   record.from_si = grid.front();
   record.to_si = grid.back();

@@ -4,6 +4,7 @@
 #include <pthread.h>
 #include <signal.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <unistd.h>
 
 #include <array>
@@ -32,6 +33,7 @@ constexpr std::size_t kNameLength = 4096;
 struct Slot {
   std::atomic<bool> used{false};
   std::atomic<bool> ready{false};
+  std::atomic<bool> folder{false};
   std::array<char, kNameLength> name{};
 };
 std::array<Slot, kSlots> slots;
@@ -39,13 +41,14 @@ std::array<Slot, kSlots> slots;
 // Registers `name` for removal on a signal; returns the slot, or kSlots when
 // the table is full or the name too long (the file is then only removed on
 // the error paths).
-std::size_t track(const char* name) {
+std::size_t track(const char* name, bool folder = false) {
   const std::size_t length = std::strlen(name);
   if (length >= kNameLength) return kSlots;
   for (std::size_t i = 0; i < kSlots; ++i) {
     bool expected = false;
     if (slots[i].used.compare_exchange_strong(expected, true)) {
       std::memcpy(slots[i].name.data(), name, length + 1);
+      slots[i].folder.store(folder);
       slots[i].ready.store(true);
       return i;
     }
@@ -59,9 +62,37 @@ void untrack(std::size_t slot) noexcept {
   slots[slot].used.store(false);
 }
 
+// The files of a temporary folder (it holds no folders) and the folder, by
+// system calls only: a handler may not use opendir, which allocates.
+void remove_folder_in_handler(const char* name) noexcept {
+  const int fd = ::open(name, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  alignas(8) static char entries[8192];
+  while (true) {
+    const long n = ::syscall(SYS_getdents64, fd, entries, sizeof entries);
+    if (n <= 0) break;
+    for (long at = 0; at < n;) {
+      // struct linux_dirent64: d_ino (8), d_off (8), d_reclen (2), d_type (1), d_name.
+      unsigned short length = 0;
+      std::memcpy(&length, entries + at + 16, sizeof length);
+      const char* entry = entries + at + 19;
+      if (std::strcmp(entry, ".") != 0 && std::strcmp(entry, "..") != 0) {
+        ::unlinkat(fd, entry, 0);
+      }
+      at += length;
+    }
+  }
+  ::close(fd);
+  ::rmdir(name);
+}
+
 extern "C" void remove_temporaries_and_reraise(int signal_number) {
+  // Files first: a temporary file may lie in a temporary folder.
   for (Slot& slot : slots) {
-    if (slot.ready.load()) ::unlink(slot.name.data());
+    if (slot.ready.load() && !slot.folder.load()) ::unlink(slot.name.data());
+  }
+  for (Slot& slot : slots) {
+    if (slot.ready.load() && slot.folder.load()) remove_folder_in_handler(slot.name.data());
   }
   // The default action (termination by this signal) so that the parent sees
   // how the process ended.
@@ -196,6 +227,171 @@ void AtomicFile::commit() {
   temporary_.clear();
   untrack(slot_);
   slot_ = AtomicFile::kUntracked;
+}
+
+namespace {
+
+std::filesystem::path folder_of(const std::filesystem::path& target) {
+  return target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+}
+
+// A target named with a trailing slash ("out/") has an empty file name.
+std::filesystem::path without_trailing_slash(const std::string& path) {
+  std::filesystem::path target(path);
+  if (!target.has_filename() && target.has_parent_path()) target = target.parent_path();
+  return target;
+}
+
+bool is_within(const std::filesystem::path& inner, const std::filesystem::path& outer) {
+  std::error_code error;
+  const std::filesystem::path a = std::filesystem::weakly_canonical(inner, error);
+  if (error) return false;
+  const std::filesystem::path b = std::filesystem::weakly_canonical(outer, error);
+  if (error) return false;
+  auto i = a.begin();
+  for (auto o = b.begin(); o != b.end(); ++o, ++i) {
+    if (o->empty()) continue;
+    if (i == a.end() || *i != *o) return false;
+  }
+  return true;
+}
+
+// A fresh hidden folder beside `target`, from mkdtemp, registered for the
+// signal handler as AtomicFile registers its file; throws Error.
+std::string make_temporary_folder(const std::filesystem::path& target, const char* tag,
+                                  std::size_t& slot) {
+  const std::string pattern =
+      (folder_of(target) / ("." + target.filename().string() + tag + ".XXXXXX")).string();
+  std::vector<char> name(pattern.begin(), pattern.end());
+  name.push_back('\0');
+  sigset_t terminating, previous;
+  sigemptyset(&terminating);
+  for (const int signal_number : kTerminatingSignals) sigaddset(&terminating, signal_number);
+  pthread_sigmask(SIG_BLOCK, &terminating, &previous);
+  const char* made = ::mkdtemp(name.data());
+  const int mkdtemp_errno = errno;
+  if (made != nullptr) slot = track(name.data(), true);
+  pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+  if (made == nullptr) {
+    errno = mkdtemp_errno;
+    throw Error("cannot make a temporary folder beside " + target.string() + ": " + reason());
+  }
+  return std::string(name.data());
+}
+
+}  // namespace
+
+void require_output_folder(const std::string& path, bool overwrite,
+                           const std::vector<std::string>& inputs) {
+  if (path.empty()) throw Error("an output folder is empty");
+  const std::filesystem::path target = without_trailing_slash(path);
+  std::error_code error;
+  for (const std::string& input : inputs) {
+    if (is_within(input, target)) {
+      throw Error("cannot write the folder " + path + ": it is or holds the input " + input +
+                  " of this run");
+    }
+  }
+  const std::filesystem::file_status status = std::filesystem::status(target, error);
+  if (std::filesystem::exists(status)) {
+    if (!std::filesystem::is_directory(status)) {
+      throw Error("cannot write the folder " + path +
+                  ": it exists and is not a folder, and an output folder replaces only a folder");
+    }
+    if (!overwrite && !std::filesystem::is_empty(target, error)) {
+      throw Error("cannot write the folder " + path +
+                  ": it is not empty (files of an earlier run would mix with the new ones); "
+                  "choose a new folder, or replace it whole with --overwrite");
+    }
+  }
+  const std::filesystem::path dir = folder_of(target);
+  if (!std::filesystem::is_directory(dir, error)) {
+    throw Error("cannot write the folder " + path + ": its folder " + dir.string() +
+                " does not exist");
+  }
+  if (::access(dir.c_str(), W_OK) != 0) {
+    throw Error("cannot write the folder " + path + ": its folder " + dir.string() +
+                " cannot be written (" + reason() + ")");
+  }
+}
+
+AtomicFolder::AtomicFolder(std::string path, bool overwrite, const std::vector<std::string>& inputs)
+    : path_(without_trailing_slash(path).string()), overwrite_(overwrite) {
+  require_output_folder(path, overwrite, inputs);
+  temporary_ = make_temporary_folder(path_, "", slot_);
+  // mkdtemp makes the folder private; outputs are for everyone to read.
+  if (::chmod(temporary_.c_str(), 0755) != 0) {
+    const std::string why = reason();
+    discard();
+    throw Error("cannot set the permissions of a temporary folder beside " + path_ + ": " + why);
+  }
+}
+
+AtomicFolder::~AtomicFolder() {
+  discard();
+}
+
+void AtomicFolder::discard() noexcept {
+  if (!temporary_.empty()) {
+    std::error_code ignored;
+    std::filesystem::remove_all(temporary_, ignored);
+  }
+  temporary_.clear();
+  untrack(slot_);
+  slot_ = AtomicFile::kUntracked;
+}
+
+void AtomicFolder::commit() {
+  if (temporary_.empty()) throw Error("cannot write the folder " + path_ + ": already committed");
+  // Onto an absent path or an empty folder, the rename is the whole commit.
+  if (std::rename(temporary_.c_str(), path_.c_str()) == 0) {
+    temporary_.clear();
+    untrack(slot_);
+    slot_ = AtomicFile::kUntracked;
+    return;
+  }
+  const int rename_errno = errno;
+  if ((rename_errno != ENOTEMPTY && rename_errno != EEXIST) || !overwrite_) {
+    errno = rename_errno;
+    const std::string why = rename_errno == ENOTEMPTY || rename_errno == EEXIST
+                                ? "another run filled it while this one ran; this run's "
+                                  "outputs are discarded (--overwrite replaces it whole)"
+                                : reason();
+    discard();
+    throw Error("cannot write the folder " + path_ + ": " + why);
+  }
+  // Replaced whole: the old folder aside (onto an empty folder of our own),
+  // the new one in, the old one removed.
+  std::size_t aside_slot = AtomicFile::kUntracked;
+  std::string aside;
+  try {
+    aside = make_temporary_folder(path_, ".old", aside_slot);
+  } catch (const Error&) {
+    discard();
+    throw;
+  }
+  untrack(aside_slot);
+  if (std::rename(path_.c_str(), aside.c_str()) != 0) {
+    const std::string why = reason();
+    ::rmdir(aside.c_str());
+    discard();
+    throw Error("cannot move the earlier folder " + path_ + " aside: " + why);
+  }
+  if (std::rename(temporary_.c_str(), path_.c_str()) != 0) {
+    const std::string why = reason();
+    // The earlier folder back, unless another run took its place meanwhile.
+    if (std::rename(aside.c_str(), path_.c_str()) != 0) {
+      std::error_code ignored;
+      std::filesystem::remove_all(aside, ignored);
+    }
+    discard();
+    throw Error("cannot write the folder " + path_ + ": " + why);
+  }
+  temporary_.clear();
+  untrack(slot_);
+  slot_ = AtomicFile::kUntracked;
+  std::error_code ignored;
+  std::filesystem::remove_all(aside, ignored);
 }
 
 void write_file_atomically(const std::string& path, std::string_view text) {

@@ -1,8 +1,11 @@
 #include "gearimpact/io/sweep_files.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <cstddef>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -10,6 +13,7 @@
 #include <sstream>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "gearimpact/case/schema.hpp"
@@ -61,6 +65,7 @@ std::string directions_text(const std::vector<SweepDirection>& directions) {
 Json spec_json(const SteadySweepRecord& s) {
   Json j;
   j["case"] = s.case_name;
+  j["case_key_fnv1a64"] = s.case_key_hash;
   j["vary"] = s.vary;
   j["from_si"] = s.from_si;
   j["to_si"] = s.to_si;
@@ -96,6 +101,7 @@ SteadySweepRecord spec_record(const Json& j, const std::string& file) {
   try {
     SteadySweepRecord s;
     s.case_name = j.at("case").get<std::string>();
+    s.case_key_hash = j.at("case_key_fnv1a64").get<std::string>();
     s.vary = j.at("vary").get<std::string>();
     s.from_si = j.at("from_si").get<double>();
     s.to_si = j.at("to_si").get<double>();
@@ -106,6 +112,12 @@ SteadySweepRecord spec_record(const Json& j, const std::string& file) {
       s.to2_si = j.at("to2_si").get<double>();
     }
     s.lines = j.at("lines").get<int>();
+    if (s.points < 1 || s.lines < 1) {
+      throw InputError(
+          "merge",
+          file + ": points " + std::to_string(s.points) + ", lines " + std::to_string(s.lines),
+          "a spec of at least one point and one line");
+    }
     std::stringstream list(j.at("directions").get<std::string>());
     for (std::string d; std::getline(list, d, ',');) {
       s.directions.push_back(direction_named(d, file));
@@ -151,17 +163,23 @@ std::vector<std::string> split(const std::string& line) {
   }
 }
 
-// A number as the files write it (format_number), read back to the same double.
+// A number as the files write it (format_number): finite, read back to the same double, nothing
+// before or after it.
 double number_field(const std::string& text, const std::string& where) {
   std::size_t used = 0;
   double value = 0.0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
+  const bool starts_well =
+      !text.empty() && (std::isdigit(static_cast<unsigned char>(text.front())) != 0 ||
+                        text.front() == '-' || text.front() == '.');
+  if (starts_well) {
+    try {
+      value = std::stod(text, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
   }
-  if (text.empty() || used != text.size()) {
-    throw InputError("merge", where + ": " + text, "a number written by gearimpact sweep");
+  if (!starts_well || used != text.size() || !std::isfinite(value)) {
+    throw InputError("merge", where + ": " + text, "a finite number written by gearimpact sweep");
   }
   return value;
 }
@@ -171,10 +189,16 @@ std::optional<double> optional_field(const std::string& text, const std::string&
   return number_field(text, where);
 }
 
-int integer_field(const std::string& text, const std::string& where) {
-  const double value = number_field(text, where);
-  if (value != static_cast<double>(static_cast<int>(value))) {
-    throw InputError("merge", where + ": " + text, "an integer written by gearimpact sweep");
+// A whole number in [0, below): a key field of a row, or a period.
+int integer_field(const std::string& text, const std::string& where, int below) {
+  const bool digits =
+      !text.empty() && text.size() <= 10 &&
+      std::all_of(text.begin(), text.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+  const long long value = digits ? std::stoll(text) : -1;
+  if (value < 0 || value >= below) {
+    throw InputError(
+        "merge", where + ": " + text,
+        "an integer in [0, " + std::to_string(below) + ") written by gearimpact sweep");
   }
   return static_cast<int>(value);
 }
@@ -198,45 +222,79 @@ std::string key_text(int line, const std::string& direction, int index) {
          std::to_string(index) + ")";
 }
 
-// The rows of sweep.csv, as the point they were written from (period_label and the optional
-// figures read back to the same text).
-std::vector<SweepPointResult> read_sweep_rows(const std::filesystem::path& file) {
-  std::istringstream csv(read_text(file));
-  std::string line;
-  std::getline(csv, line);
-  std::vector<SweepPointResult> rows;
-  while (std::getline(csv, line)) {
-    const std::string where = file.string();
-    const std::vector<std::string> f = split(line);
-    if (f.size() != kSweepColumns) {
-      throw InputError("merge", where + ": " + line,
-                       "a row of " + std::to_string(kSweepColumns) + " fields");
+// The lines of a file after its header, each with its place ("FILE:LINE") for messages. Throws
+// InputError naming the file and line when the header is not `header`, a line ends in CR (a
+// file passed through a Windows tool), or the last line has no end (a file cut short).
+std::vector<std::pair<std::string, std::string>> data_lines(const std::string& text,
+                                                            const std::string& name,
+                                                            const char* header) {
+  std::vector<std::pair<std::string, std::string>> lines;
+  std::size_t begin = 0;
+  for (std::size_t number = 1; begin < text.size(); ++number) {
+    const std::size_t end = text.find('\n', begin);
+    const std::string where = name + ":" + std::to_string(number);
+    if (end == std::string::npos) {
+      throw InputError("merge", where + ": " + text.substr(begin),
+                       "a line ended by a newline: the file is cut short");
     }
-    SweepPointResult r;
-    r.line = integer_field(f[0], where);
-    r.direction = direction_named(f[1], where);
-    r.index = integer_field(f[2], where);
-    r.value_si = number_field(f[3], where);
-    SteadyPoint& p = r.point;
-    p.converged = f[6] == "true";
-    if (!f[4].empty()) p.regime = regime_named(f[4], where);
-    if (f[5] == "aperiodic") {
-      p.verdict = PeriodicityVerdict::aperiodic;
-    } else if (!f[5].empty()) {
-      p.verdict = PeriodicityVerdict::periodic;
-      p.period = integer_field(f[5], where);
+    std::string line = text.substr(begin, end - begin);
+    if (!line.empty() && line.back() == '\r') {
+      throw InputError("merge", where,
+                       "a line ended by LF alone, as gearimpact writes it (not CRLF)");
     }
-    p.dte_mean_m = optional_field(f[7], where);
-    p.dte_amplitude_m = optional_field(f[8], where);
-    p.dte_rms_m = optional_field(f[9], where);
-    p.s_min_m = optional_field(f[10], where);
-    p.s_max_m = optional_field(f[11], where);
-    p.dynamic_factor = optional_field(f[12], where);
-    p.impacts_drive_per_period = optional_field(f[13], where);
-    p.impacts_coast_per_period = optional_field(f[14], where);
-    rows.push_back(std::move(r));
+    if (number == 1) {
+      if (line + "\n" != header) throw InputError("merge", where + ": " + line, header);
+    } else {
+      lines.emplace_back(where, std::move(line));
+    }
+    begin = end + 1;
   }
-  return rows;
+  if (begin == 0) throw InputError("merge", name + ": empty", header);
+  return lines;
+}
+
+// The key fields of a row of either file, checked against the spec: a line and index of its
+// grids, one of its directions, and the value of the grid at that index (to within the rounding
+// of the grid's arithmetic).
+SweepPointResult row_key(const std::vector<std::string>& f, const SteadySweepRecord& spec,
+                         const std::string& where) {
+  SweepPointResult r;
+  r.line = integer_field(f[0], where, spec.lines);
+  r.direction = direction_named(f[1], where);
+  if (std::find(spec.directions.begin(), spec.directions.end(), r.direction) ==
+      spec.directions.end()) {
+    throw InputError("merge", where + ": direction " + f[1],
+                     "a direction of its spec (" + directions_text(spec.directions) + ")");
+  }
+  r.index = integer_field(f[2], where, spec.points);
+  r.value_si = number_field(f[3], where);
+  const double low = std::min(spec.from_si, spec.to_si);
+  const double high = std::max(spec.from_si, spec.to_si);
+  const double slack = 1e-9 * std::max(std::abs(low), std::abs(high));
+  if (r.value_si < low - slack || r.value_si > high + slack) {
+    throw InputError(
+        "merge", where + ": value " + f[3],
+        "a value of its spec's grid [" + format_number(low) + ", " + format_number(high) + "]");
+  }
+  return r;
+}
+
+struct PoincareRow {
+  Key key;
+  std::string where;
+  std::string line;
+  PoincareSample sample;
+};
+
+// The first key of the spec blocks that differs, for the merge's message.
+std::string first_difference(const Json& a, const Json& b) {
+  for (const auto& [key, value] : a.items()) {
+    if (!b.contains(key) || b.at(key) != value) return key;
+  }
+  for (const auto& [key, value] : b.items()) {
+    if (!a.contains(key)) return key;
+  }
+  return "";
 }
 
 }  // namespace
@@ -293,9 +351,62 @@ void write_sweep_folder(const std::filesystem::path& dir, const SteadySweep& swe
   write_file_atomically((dir / "summary.json").string(), sweep_summary_json(sweep));
 }
 
+namespace {
+
+std::vector<PoincareRow> read_poincare_rows(const std::filesystem::path& file,
+                                            const SteadySweepRecord& spec) {
+  std::vector<PoincareRow> rows;
+  for (const auto& [where, line] : data_lines(read_text(file), file.string(), kPoincareHeader)) {
+    const std::vector<std::string> f = split(line);
+    if (f.size() != 6) throw InputError("merge", where + ": " + line, "a row of 6 fields");
+    const SweepPointResult r = row_key(f, spec, where);
+    rows.push_back(
+        {key_of(r), where, line, {number_field(f[4], where), number_field(f[5], where)}});
+  }
+  return rows;
+}
+
+}  // namespace
+
+std::vector<SweepPointResult> parse_sweep_csv(const std::string& text, const std::string& file,
+                                              const SteadySweepRecord& spec) {
+  std::vector<SweepPointResult> rows;
+  for (const auto& [where, line] : data_lines(text, file, kSweepHeader)) {
+    const std::vector<std::string> f = split(line);
+    if (f.size() != kSweepColumns) {
+      throw InputError("merge", where + ": " + line,
+                       "a row of " + std::to_string(kSweepColumns) + " fields");
+    }
+    SweepPointResult r = row_key(f, spec, where);
+    SteadyPoint& p = r.point;
+    if (f[6] != "true" && f[6] != "false") {
+      throw InputError("merge", where + ": converged " + f[6], "true or false");
+    }
+    p.converged = f[6] == "true";
+    if (!f[4].empty()) p.regime = regime_named(f[4], where);
+    if (f[5] == "aperiodic") {
+      p.verdict = PeriodicityVerdict::aperiodic;
+    } else if (!f[5].empty()) {
+      p.verdict = PeriodicityVerdict::periodic;
+      p.period = integer_field(f[5], where, std::numeric_limits<int>::max());
+    }
+    p.dte_mean_m = optional_field(f[7], where);
+    p.dte_amplitude_m = optional_field(f[8], where);
+    p.dte_rms_m = optional_field(f[9], where);
+    p.s_min_m = optional_field(f[10], where);
+    p.s_max_m = optional_field(f[11], where);
+    p.dynamic_factor = optional_field(f[12], where);
+    p.impacts_drive_per_period = optional_field(f[13], where);
+    p.impacts_coast_per_period = optional_field(f[14], where);
+    rows.push_back(std::move(r));
+  }
+  return rows;
+}
+
 SteadySweep merge_sweep_folders(const std::vector<std::filesystem::path>& dirs) {
   if (dirs.empty()) throw InputError("merge", "no folder", "one or more sweep output folders");
   std::optional<Json> spec;
+  SteadySweepRecord record;
   std::map<Key, SweepPointResult> rows;
   for (const std::filesystem::path& dir : dirs) {
     const std::string input = dir.string();
@@ -309,12 +420,19 @@ SteadySweep merge_sweep_folders(const std::vector<std::filesystem::path>& dirs) 
     if (!summary.is_object() || !summary.contains("spec") || !summary["spec"].is_object()) {
       throw InputError("merge", summary_file.string(), "a summary.json with its spec");
     }
-    if (!spec) spec = summary["spec"];
+    if (!spec) {
+      spec = summary["spec"];
+      record = spec_record(*spec, summary_file.string());
+    }
     if (summary["spec"] != *spec) {
-      throw InputError("merge", input, "a shard of the same sweep as " + dirs.front().string());
+      throw InputError("merge", input,
+                       "a shard of the same sweep as " + dirs.front().string() + " (its spec's \"" +
+                           first_difference(*spec, summary["spec"]) + "\" differs)");
     }
     std::set<Key> here;
-    for (SweepPointResult& r : read_sweep_rows(dir / "sweep.csv")) {
+    const std::filesystem::path sweep_file = dir / "sweep.csv";
+    for (SweepPointResult& r :
+         parse_sweep_csv(read_text(sweep_file), sweep_file.string(), record)) {
       const Key key = key_of(r);
       if (rows.count(key) > 0) {
         throw InputError("merge",
@@ -325,24 +443,15 @@ SteadySweep merge_sweep_folders(const std::vector<std::filesystem::path>& dirs) 
       here.insert(key);
       rows.emplace(key, std::move(r));
     }
-    std::istringstream poincare(read_text(dir / "poincare.csv"));
-    std::string line;
-    std::getline(poincare, line);
-    const std::string where = (dir / "poincare.csv").string();
-    while (std::getline(poincare, line)) {
-      const std::vector<std::string> f = split(line);
-      if (f.size() != 6) throw InputError("merge", where + ": " + line, "a row of 6 fields");
-      const Key key{integer_field(f[0], where),
-                    direction_named(f[1], where) == SweepDirection::up ? 0 : 1,
-                    integer_field(f[2], where)};
-      if (here.count(key) == 0) {
-        throw InputError("merge", where + ": " + line, "a sample of a point of its sweep.csv");
+    for (PoincareRow& p : read_poincare_rows(dir / "poincare.csv", record)) {
+      if (here.count(p.key) == 0) {
+        throw InputError("merge", p.where + ": " + p.line, "a sample of a point of its sweep.csv");
       }
-      rows[key].point.poincare.push_back({number_field(f[4], where), number_field(f[5], where)});
+      rows[p.key].point.poincare.push_back(p.sample);
     }
   }
   SteadySweep merged;
-  merged.spec = spec_record(*spec, (dirs.front() / "summary.json").string());
+  merged.spec = record;
   for (int l = 0; l < merged.spec.lines; ++l) {
     for (SweepDirection d : merged.spec.directions) {
       for (int i = 0; i < merged.spec.points; ++i) {

@@ -25,6 +25,17 @@ struct SweepShard {
   int n = 1;
 };
 
+// The most points (grid points x lines x directions) a sweep runs unless its spec lifts the
+// bound (SteadySweepSpec::max_points): a typing slip of --points must not start a run of days.
+inline constexpr double kMostSweepPoints = 100000;
+// The bounds of SteadySettings a sweep accepts: fewer steps than kLeastStepsPerContactPeriod do
+// not resolve an impact (RK4 is then not stable on the stiffest contact), more than
+// kMostStepsPerContactPeriod only cost time; a tolerance is a fraction of the backlash.
+inline constexpr double kLeastStepsPerContactPeriod = 20;
+inline constexpr double kMostStepsPerContactPeriod = 1e4;
+inline constexpr int kMostMaxPeriods = 1000000;
+inline constexpr double kMostTolerance = 0.1;
+
 struct SteadySweepSpec {
   SimulationCase base;  // the case every point starts from, before the swept keys are set
   std::string vary;     // section.key (sweep_field): swept along each line
@@ -39,12 +50,16 @@ struct SteadySweepSpec {
   SweepShard shard;
   SteadySettings settings;
   unsigned threads = 0;  // for the pool run_steady_sweep makes itself; 0: one per core
+  double max_points = kMostSweepPoints;  // the most points of the whole sweep (all shards)
 };
 
 // What every shard of one sweep shares (summary.json's "spec"): the merge checks that the shards
 // agree on it and keeps it.
 struct SteadySweepRecord {
   std::string case_name;
+  // FNV-1a (64 bits, hex) of case_key(base): every input of the base case (the damping ratio and
+  // reference speed among them), so that shards of differently set cases do not merge.
+  std::string case_key_hash;
   std::string vary;
   double from_si = 0.0;  // the grid's ends
   double to_si = 0.0;
@@ -78,10 +93,13 @@ bool sweep_key_less(const SweepPointResult& a, const SweepPointResult& b);
 std::size_t shard_point_count(const SteadySweepSpec& spec);
 
 // Runs the spec's shard on `pool`. Before any work, throws InputError naming the key when a grid
-// is empty or outside the key's range, the shard is not 0 <= k < n, there is no direction, or the
-// case (with the first values of both keys) fails validation or has no steady state
-// (require_steady_case). `on_point` (may be empty) is called after each point, from the pool's
-// worker threads, possibly at once.
+// is empty or outside the key's range, from_si > to_si (a downward sweep is a direction), the
+// whole sweep has more than max_points points, a setting is outside its bounds above, vary2 is
+// vary, the run does not read a swept key (integrator.*: the steady state sets its own step and
+// duration; a key whose condition does not hold), the shard is not 0 <= k < n, there is no
+// direction, or the case (with the first and with the last values of both keys) fails
+// validation or has no steady state (require_steady_case). `on_point` (may be empty) is called
+// after each point, from the pool's worker threads, possibly at once.
 SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
                              const std::function<void(const SweepPointResult&)>& on_point = {});
 

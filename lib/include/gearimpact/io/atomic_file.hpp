@@ -58,8 +58,48 @@ void require_regular_or_absent(const std::string& path);
 // work, so that a run is not lost to a bad output path.
 void require_output_file(const std::string& path, const std::vector<std::string>& inputs = {});
 
+// Throws Error naming `path` unless a folder of outputs can be written there
+// as a set (AtomicFolder) without harm: absent, an empty folder, or (with
+// `overwrite`) a folder to be replaced whole; not one of `inputs`, nor a
+// folder holding one (a replaced folder would take the input with it); in a
+// folder that exists and may be written. For commands to call before any work.
+void require_output_folder(const std::string& path, bool overwrite,
+                           const std::vector<std::string>& inputs = {});
+
+// A folder of outputs written as a set, so that a reader never sees some
+// files of one run beside files of another: the files go to a fresh hidden
+// folder beside `path` (same file system), which commit() renames onto it.
+// An existing `path` is replaced whole when `overwrite` is set (renamed
+// aside, the new folder renamed in, the old one removed); otherwise only an
+// empty folder is replaced, and a run that finds `path` filled by another run
+// meanwhile fails naming it, its own outputs discarded. The temporary folder
+// never survives a failure, nor SIGINT, SIGTERM or SIGHUP once
+// remove_temporaries_on_signals() has been called. It holds files only.
+class AtomicFolder {
+ public:
+  // Checks `path` (require_output_folder) and makes the temporary folder;
+  // throws Error naming the path.
+  AtomicFolder(std::string path, bool overwrite, const std::vector<std::string>& inputs = {});
+  ~AtomicFolder();
+  AtomicFolder(const AtomicFolder&) = delete;
+  AtomicFolder& operator=(const AtomicFolder&) = delete;
+
+  // Where the files of the set are written until commit().
+  const std::string& temporary() const { return temporary_; }
+  // Renames the temporary folder onto the path; throws Error naming it.
+  void commit();
+
+ private:
+  void discard() noexcept;
+
+  std::string path_;
+  bool overwrite_ = false;
+  std::string temporary_;
+  std::size_t slot_ = AtomicFile::kUntracked;
+};
+
 // Installs handlers of SIGINT, SIGTERM and SIGHUP that remove the temporary
-// files of writes still under way and then end the process by the same signal,
+// files and folders of writes still under way and then end the process by the same signal,
 // and ignores SIGXFSZ so that a file-size limit (ulimit -f) makes a write fail
 // with an error instead of killing the process silently. For programs; a host
 // with handlers of its own (an interpreter) need not call it.

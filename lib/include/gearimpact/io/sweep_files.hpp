@@ -21,14 +21,26 @@ std::string sweep_csv(const std::vector<SweepPointResult>& rows);
 std::string poincare_csv(const std::vector<SweepPointResult>& rows);
 std::string sweep_summary_json(const SteadySweep& sweep);
 
-// Writes the three files into `dir` (made if missing), each atomically.
+// Writes the three files into `dir` (made if missing), each atomically. A command writes them
+// into an AtomicFolder (io/atomic_file.hpp), so that the folder appears as a set.
 void write_sweep_folder(const std::filesystem::path& dir, const SteadySweep& sweep);
+
+// The rows of the text of a sweep.csv (named `file` in messages) as the points they were
+// written from (period_label and the optional figures read back to the same text), checked as
+// merge_sweep_folders checks them against the shard's `spec`; throws InputError naming file:line
+// of the first bad row.
+std::vector<SweepPointResult> parse_sweep_csv(const std::string& text, const std::string& file,
+                                              const SteadySweepRecord& spec);
 
 // The shards' folders as one sweep: their rows by key, their common spec. Throws InputError
 // (field "merge") naming the folder or file when one is unreadable or not a sweep's, when the
-// specs differ, when a key comes twice (a folder given twice, or overlapping shards), and naming
-// the first missing key (line, direction, index) when a shard is missing. Points read back carry
-// the written figures only (not the run's failure text, timing or final state).
+// specs differ (the key that differs; the spec holds a hash of every input of the base case),
+// naming the file and line of the first bad row (a header not the writer's, a line ending in CR
+// or cut short, a field count, a number not finite or not read whole, a line, direction, index
+// or value outside the spec's grids), when a key comes twice (a folder given twice, or overlapping
+// shards), and naming the first missing key (line, direction, index) when a shard is missing.
+// Points read back carry the written figures only (not the run's failure text, timing or final
+// state).
 SteadySweep merge_sweep_folders(const std::vector<std::filesystem::path>& dirs);
 
 }  // namespace gearimpact
