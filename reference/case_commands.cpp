@@ -3,9 +3,9 @@
 #include <string>
 
 #include "commands.hpp"
-#include "gearimpact/io/case_file.hpp"
-#include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/case/units.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/io/case_file.hpp"
 
 namespace gearimpact::cli {
 

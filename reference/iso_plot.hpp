@@ -1,6 +1,6 @@
 // The dynamic factor against ISO 6336-1's resonance ratio N = w1 / w_E1 with ISO's K_v of perfect
-// gears beside it (docs/steady-state.md sections 3.5 and 4), for `sweep`, `merge` and `reproduce`; the
-// axes are those of IsoScale (steady/iso_resonance.hpp).
+// gears beside it (docs/steady-state.md sections 3.5 and 4), for `sweep`, `merge` and `reproduce`;
+// the axes are those of IsoScale (steady/iso_resonance.hpp).
 #pragma once
 
 #include <filesystem>

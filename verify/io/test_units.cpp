@@ -11,8 +11,8 @@
 #include <numbers>
 #include <string>
 
-#include "gearimpact/error.hpp"
 #include "gearimpact/case/units.hpp"
+#include "gearimpact/error.hpp"
 
 using namespace gearimpact;
 

@@ -26,8 +26,8 @@ namespace {
 
 constexpr double pressure_angle = 20.0 * std::numbers::pi / 180.0;
 
-// The paper's pair (docs/model.md): pitch radii 20 and 80 mm, solid discs of face width 10 mm on the
-// pitch radius, steel; the mesh stiffness of ISO's c_gamma_alpha = 20 N/(mm um) times the face
+// The paper's pair (docs/model.md): pitch radii 20 and 80 mm, solid discs of face width 10 mm on
+// the pitch radius, steel; the mesh stiffness of ISO's c_gamma_alpha = 20 N/(mm um) times the face
 // width; Table 1's case 2 torque, 50 kgf-mm.
 LoadedPair paper_loaded_pair(double excitation_rad_per_s) {
   const double density = 7800.0;

@@ -8,10 +8,10 @@
 #include <utility>
 #include <vector>
 
-#include "gearimpact/dynamics/step_bound.hpp"
-#include "gearimpact/error.hpp"
 #include "gearimpact/case/schema.hpp"
 #include "gearimpact/case/units.hpp"
+#include "gearimpact/dynamics/step_bound.hpp"
+#include "gearimpact/error.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 
 namespace gearimpact {

@@ -48,8 +48,8 @@ std::map<std::string, PaperStatement> read_statements(const std::filesystem::pat
     const auto field = [&](const char* name) -> const std::string& {
       const auto it = column.find(name);
       if (it == column.end() || it->second >= f.size()) {
-        throw Error(file.string() + ":" + std::to_string(line_number) +
-                                 ": no column '" + name + "'");
+        throw Error(file.string() + ":" + std::to_string(line_number) + ": no column '" + name +
+                    "'");
       }
       return f[it->second];
     };
@@ -57,8 +57,8 @@ std::map<std::string, PaperStatement> read_statements(const std::filesystem::pat
       try {
         return std::stod(field(name));
       } catch (const std::logic_error&) {
-        throw Error(file.string() + ":" + std::to_string(line_number) + ": column '" +
-                                 name + "' is not a number: '" + field(name) + "'");
+        throw Error(file.string() + ":" + std::to_string(line_number) + ": column '" + name +
+                    "' is not a number: '" + field(name) + "'");
       }
     };
     PaperStatement s;

@@ -5,8 +5,8 @@
 #include <limits>
 #include <string>
 
-#include "gearimpact/dynamics/mesh.hpp"
 #include "../require.hpp"
+#include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/error.hpp"
 
 namespace gearimpact {

@@ -1,8 +1,8 @@
-// The steady-state sweep of a case (docs/steady-state.md section 4): one key along a grid, optionally
-// one line per value of a second key, each line up and/or down, the lines run in parallel on a
-// RunPool and split into shards K/N for separate processes. The rows come back keyed (line,
-// direction, index) and sorted by key, so that shards merged by key (io/sweep_files.hpp) give the
-// same rows as one run.
+// The steady-state sweep of a case (docs/steady-state.md section 4): one key along a grid,
+// optionally one line per value of a second key, each line up and/or down, the lines run in
+// parallel on a RunPool and split into shards K/N for separate processes. The rows come back keyed
+// (line, direction, index) and sorted by key, so that shards merged by key (io/sweep_files.hpp)
+// give the same rows as one run.
 #pragma once
 
 #include <cstddef>

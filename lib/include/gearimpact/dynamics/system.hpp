@@ -11,8 +11,8 @@
 #include <limits>
 #include <utility>
 
-#include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/stiffness/table.hpp"
@@ -121,7 +121,7 @@ class GearSystem {
   void pair_stiffness(double x, int count, double& ke, double& dke) const;
   double damping_factor(const ContactMemory& d, double ke) const;
   double push_sign_function(double x, int count, const ContactMemory& d, double dl,
-                                   double dl_rate) const;
+                            double dl_rate) const;
 
   const StiffnessTable& table_;
   const SimulationCase& case_;

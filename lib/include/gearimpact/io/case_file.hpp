@@ -9,8 +9,8 @@
 #include <string>
 #include <string_view>
 
-#include "gearimpact/error.hpp"
 #include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/error.hpp"
 
 namespace gearimpact {
 

@@ -1,5 +1,5 @@
-// The loaded, running pair in the dimensionless form of docs/steady-state.md section 2, and the closed
-// forms of its linear limit (section 3.1) and of the onset of contact loss (section 3.2).
+// The loaded, running pair in the dimensionless form of docs/steady-state.md section 2, and the
+// closed forms of its linear limit (section 3.1) and of the onset of contact loss (section 3.2).
 //
 // With s = Rb1 theta1 - Rb2 theta2 (contact on the drive flank for s > B, on the coast flank for
 // s < -B, free play 2B), tau = w_n t and x = s / B the pair obeys
@@ -14,8 +14,8 @@
 namespace gearimpact {
 
 // Section 1, sign convention: T1 and T2 both act along the line of action in the sense of
-// docs/model.md's equations of motion (J1 w1' = T1 - N Rb1, J2 w2' = T2 + N Rb2), so a driving pinion
-// torque T1 > 0 is balanced by a resisting T2 < 0 with T1/Rb1 + T2/Rb2 = 0.
+// docs/model.md's equations of motion (J1 w1' = T1 - N Rb1, J2 w2' = T2 + N Rb2), so a driving
+// pinion torque T1 > 0 is balanced by a resisting T2 < 0 with T1/Rb1 + T2/Rb2 = 0.
 //
 // Throws InputError naming "mean torques" and the imbalance T1/Rb1 + T2/Rb2 in N when it exceeds
 // 1e-9 of max(|T1/Rb1|, |T2/Rb2|): an unbalanced mean torque accelerates the pair without bound,

@@ -1,5 +1,5 @@
-// The steady state of the loaded, running pair, found by running it (docs/steady-state.md sections 1
-// and 4): the gear model is run one excitation period at a time, the state (s, s') is sampled at
+// The steady state of the loaded, running pair, found by running it (docs/steady-state.md sections
+// 1 and 4): the gear model is run one excitation period at a time, the state (s, s') is sampled at
 // the end of each period, and the run is steady when those Poincare samples repeat with a period
 // of 1 to max_period excitation periods (periodicity.hpp); aperiodic or not converged within the
 // limit otherwise, never an assumed value.
@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/steady/periodicity.hpp"
 #include "gearimpact/stiffness/table.hpp"
 

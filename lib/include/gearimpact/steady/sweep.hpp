@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/case/schema.hpp"
+#include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/steady/steady_state.hpp"
 #include "gearimpact/stiffness/table.hpp"
 
