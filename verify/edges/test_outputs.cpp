@@ -17,27 +17,15 @@
 #include "gearimpact/io/results.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "run_command.hpp"
+#include "scratch.hpp"
 
 namespace fs = std::filesystem;
+using gearimpact::verify::cli;
 using gearimpact::verify::CommandResult;
 using gearimpact::verify::run_command;
+using gearimpact::verify::Scratch;
 
 namespace {
-
-std::string cli(const std::string& arguments) {
-  return std::string(GEARIMPACT_CLI) + " " + arguments;
-}
-
-// A fresh folder under the temporary directory, removed at the end of the test.
-struct Scratch {
-  fs::path dir;
-  Scratch() {
-    dir = fs::temp_directory_path() / ("gearimpact-edges-" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  ~Scratch() { fs::remove_all(dir); }
-};
 
 // A character device like /dev/null (1, 3) or /dev/full (1, 7) in `dir`;
 // false where this user may not make one.
@@ -60,7 +48,7 @@ std::string single_quoted(const std::string& text) {
 }  // namespace
 
 TEST_CASE("an output folder's name never reaches a shell") {
-  Scratch scratch;
+  Scratch scratch("edges");
   const fs::path marker = scratch.dir / "PWNED";
   // $(...), a double quote and $HOME: each would change the command line of
   // a shell that saw the name.
@@ -80,7 +68,7 @@ TEST_CASE("an output folder's name never reaches a shell") {
 }
 
 TEST_CASE("an output never replaces a device or a FIFO") {
-  Scratch scratch;
+  Scratch scratch("edges");
   const fs::path null_device = scratch.dir / "null";
   if (!make_device(null_device, 3)) {
     MESSAGE("skipped: this user cannot make a device node");
@@ -109,7 +97,7 @@ TEST_CASE("an output never replaces a device or a FIFO") {
 }
 
 TEST_CASE("a failed write to standard output is an error") {
-  Scratch scratch;
+  Scratch scratch("edges");
   const fs::path full_device = scratch.dir / "full";
   if (!make_device(full_device, 7)) {
     MESSAGE("skipped: this user cannot make a device node");
@@ -137,7 +125,7 @@ TEST_CASE("the option parser's refusals exit 1 with the program's prefix") {
 }
 
 TEST_CASE("an output that is the run's input, or in a missing folder, is refused before the run") {
-  Scratch scratch;
+  Scratch scratch("edges");
   const fs::path case_file = scratch.dir / "case.toml";
   fs::copy_file(fs::path(GEARIMPACT_PAPER_DATA_DIR) / "case1.toml", case_file);
   const auto size_before = fs::file_size(case_file);
@@ -162,7 +150,7 @@ TEST_CASE("a long series streams to its file instead of growing in memory") {
 #if defined(__SANITIZE_ADDRESS__)
   MESSAGE("skipped under AddressSanitizer, which cannot run under an address-space limit");
 #else
-  Scratch scratch;
+  Scratch scratch("edges");
   const fs::path series = scratch.dir / "series.csv";
   // 60 ms of case 1 at the 0.1 us step is 600,000 rows, 80 MB of CSV. Held in
   // memory (rows and text) it needs about 200 MB; streamed, the program stays

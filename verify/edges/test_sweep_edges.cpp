@@ -15,28 +15,15 @@
 #include <vector>
 
 #include "run_command.hpp"
+#include "scratch.hpp"
 
 namespace fs = std::filesystem;
+using gearimpact::verify::cli;
 using gearimpact::verify::CommandResult;
 using gearimpact::verify::run_command;
+using gearimpact::verify::Scratch;
 
 namespace {
-
-std::string cli(const std::string& arguments) {
-  return std::string(GEARIMPACT_CLI) + " " + arguments;
-}
-
-// A fresh folder under the temporary directory, removed at the end of the test.
-struct Scratch {
-  fs::path dir;
-  explicit Scratch(const std::string& tag) {
-    dir = fs::temp_directory_path() /
-          ("gearimpact-sweep-edges-" + tag + "-" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  ~Scratch() { fs::remove_all(dir); }
-};
 
 // A loaded pair of Table 1's case 1 with a steady state: two points a direction, one thread.
 const std::string kUndamped =
@@ -107,7 +94,7 @@ std::vector<std::string> lines_of(const std::string& text) {
 }  // namespace
 
 TEST_CASE("a non-empty output folder is refused before any work; --overwrite replaces it whole") {
-  Scratch scratch("overwrite");
+  Scratch scratch("sweep-edges-overwrite");
   const fs::path out = scratch.dir / "out";
   fs::create_directories(out);
   // What an earlier run with a second key left: it must not stay beside new results.
@@ -135,7 +122,7 @@ TEST_CASE("a non-empty output folder is refused before any work; --overwrite rep
 }
 
 TEST_CASE("an output folder in a missing or read-only folder, or a file, is refused before work") {
-  Scratch scratch("out-path");
+  Scratch scratch("sweep-edges-out-path");
   refused(scratch, cli(kSweep + " --no-plots --out " + (scratch.dir / "missing" / "out").string()),
           {(scratch.dir / "missing").string(), "does not exist"});
   write(scratch.dir / "a-file", "mine");
@@ -154,7 +141,7 @@ TEST_CASE("an output folder in a missing or read-only folder, or a file, is refu
 }
 
 TEST_CASE("bounds and meaningless sweeps are refused before any point runs, naming the flag") {
-  Scratch scratch("bounds");
+  Scratch scratch("sweep-edges-bounds");
   const std::string out = " --no-plots --out " + (scratch.dir / "out").string();
   const std::string base =
       "sweep 1 --vary initial.w1 --from 2000 --to 3000 --threads 1 "
@@ -215,7 +202,7 @@ TEST_CASE("bounds and meaningless sweeps are refused before any point runs, nami
 }
 
 TEST_CASE("a valid run never fails in its plots: an empty or one-value figure is skipped") {
-  Scratch scratch("plots");
+  Scratch scratch("sweep-edges-plots");
   // The regime map draws the up sweeps: none here.
   const fs::path down = scratch.dir / "down";
   const CommandResult r = run_command(
@@ -252,7 +239,7 @@ TEST_CASE("a valid run never fails in its plots: an empty or one-value figure is
 }
 
 TEST_CASE("two sweeps into one folder: one complete set results, never a mix") {
-  Scratch scratch("race");
+  Scratch scratch("sweep-edges-race");
   // Two sweeps that differ in their last value, so that each file tells which run wrote it.
   const auto sweep_to = [&](const char* to, const fs::path& out, const char* extra) {
     return cli(std::string("sweep 1 --vary initial.w1 --from 2000 --to ") + to +
@@ -303,7 +290,7 @@ TEST_CASE("two sweeps into one folder: one complete set results, never a mix") {
 }
 
 TEST_CASE("merge reads every row of every shard and names the shard, file and line of a bad one") {
-  Scratch scratch("merge");
+  Scratch scratch("sweep-edges-merge");
   const fs::path s0 = scratch.dir / "shard-0";
   const fs::path s1 = scratch.dir / "shard-1";
   for (const auto& [shard, dir] : {std::pair{"0/2", s0}, std::pair{"1/2", s1}}) {
@@ -413,7 +400,7 @@ TEST_CASE("merge reads every row of every shard and names the shard, file and li
 }
 
 TEST_CASE("a sweep ended by SIGINT or SIGTERM leaves no temporary folder and no output") {
-  Scratch scratch("signal");
+  Scratch scratch("sweep-edges-signal");
   for (const char* signal_name : {"INT", "TERM"}) {
     CAPTURE(signal_name);
     const fs::path out = scratch.dir / "out";

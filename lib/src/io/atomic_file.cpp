@@ -29,6 +29,19 @@ namespace {
 constexpr std::size_t kSlots = 64;
 // The signals whose handler removes the temporary files.
 constexpr std::array<int, 3> kTerminatingSignals{SIGINT, SIGTERM, SIGHUP};
+
+// Runs `create_and_track` with the terminating signals blocked, so that a
+// temporary file or folder is registered for the handler before one of them
+// can end the process.
+template <typename Work>
+void with_terminating_signals_blocked(Work create_and_track) {
+  sigset_t terminating, previous;
+  sigemptyset(&terminating);
+  for (const int signal_number : kTerminatingSignals) sigaddset(&terminating, signal_number);
+  pthread_sigmask(SIG_BLOCK, &terminating, &previous);
+  create_and_track();
+  pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+}
 constexpr std::size_t kNameLength = 4096;
 struct Slot {
   std::atomic<bool> used{false};
@@ -160,14 +173,12 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   // The file is registered for the signal handler before a terminating
   // signal may arrive: one between its creation and its registration would
   // leave it behind.
-  sigset_t terminating, previous;
-  sigemptyset(&terminating);
-  for (const int signal_number : kTerminatingSignals) sigaddset(&terminating, signal_number);
-  pthread_sigmask(SIG_BLOCK, &terminating, &previous);
-  fd_ = mkstemp(name.data());
-  const int mkstemp_errno = errno;
-  if (fd_ >= 0) slot_ = track(name.data());
-  pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+  int mkstemp_errno = 0;
+  with_terminating_signals_blocked([&] {
+    fd_ = mkstemp(name.data());
+    mkstemp_errno = errno;
+    if (fd_ >= 0) slot_ = track(name.data());
+  });
   if (fd_ < 0) {
     errno = mkstemp_errno;
     throw Error("cannot create a temporary file beside " + path_ + ": " + reason());
@@ -264,14 +275,13 @@ std::string make_temporary_folder(const std::filesystem::path& target, const cha
       (folder_of(target) / ("." + target.filename().string() + tag + ".XXXXXX")).string();
   std::vector<char> name(pattern.begin(), pattern.end());
   name.push_back('\0');
-  sigset_t terminating, previous;
-  sigemptyset(&terminating);
-  for (const int signal_number : kTerminatingSignals) sigaddset(&terminating, signal_number);
-  pthread_sigmask(SIG_BLOCK, &terminating, &previous);
-  const char* made = ::mkdtemp(name.data());
-  const int mkdtemp_errno = errno;
-  if (made != nullptr) slot = track(name.data(), true);
-  pthread_sigmask(SIG_SETMASK, &previous, nullptr);
+  const char* made = nullptr;
+  int mkdtemp_errno = 0;
+  with_terminating_signals_blocked([&] {
+    made = ::mkdtemp(name.data());
+    mkdtemp_errno = errno;
+    if (made != nullptr) slot = track(name.data(), true);
+  });
   if (made == nullptr) {
     errno = mkdtemp_errno;
     throw Error("cannot make a temporary folder beside " + target.string() + ": " + reason());
