@@ -12,9 +12,10 @@ namespace gearimpact {
 
 namespace {
 
-// A run's identity is every input but its name (case_key); a run with no
-// text form (a user torque function) has an empty key and is never shared.
 // What the stiffness table depends on: the gear pair and the stiffness model.
+// (A run's own identity is case_key of the whole case: every input but its
+// name; a run with no text form, a user torque function, has an empty key
+// and is never shared.)
 std::string table_key(const SimulationCase& c) {
   SimulationCase only;
   only.gears = c.gears;

@@ -117,6 +117,24 @@ std::string reason() {
   return std::strerror(errno);
 }
 
+// The folder a file or folder `target` is made in.
+std::filesystem::path folder_of(const std::filesystem::path& target) {
+  return target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+}
+
+// Throws Error, its message starting with `what` ("cannot write PATH"),
+// unless the folder `target` is made in exists and may be written.
+void require_writable_folder_of(const std::filesystem::path& target, const std::string& what) {
+  const std::filesystem::path dir = folder_of(target);
+  std::error_code error;
+  if (!std::filesystem::is_directory(dir, error)) {
+    throw Error(what + ": its folder " + dir.string() + " does not exist");
+  }
+  if (::access(dir.c_str(), W_OK) != 0) {
+    throw Error(what + ": its folder " + dir.string() + " cannot be written (" + reason() + ")");
+  }
+}
+
 }  // namespace
 
 void require_regular_or_absent(const std::string& path) {
@@ -146,23 +164,13 @@ void require_output_file(const std::string& path, const std::vector<std::string>
       throw Error("cannot write " + path + ": it is the input " + input + " of this run");
     }
   }
-  const std::filesystem::path target(path);
-  const std::filesystem::path dir =
-      target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
-  if (!std::filesystem::is_directory(dir, error)) {
-    throw Error("cannot write " + path + ": its folder " + dir.string() + " does not exist");
-  }
-  if (::access(dir.c_str(), W_OK) != 0) {
-    throw Error("cannot write " + path + ": its folder " + dir.string() + " cannot be written (" +
-                reason() + ")");
-  }
+  require_writable_folder_of(path, "cannot write " + path);
 }
 
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   require_regular_or_absent(path_);
   const std::filesystem::path target(path_);
-  const std::filesystem::path dir =
-      target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+  const std::filesystem::path dir = folder_of(target);
   // A hidden sibling: same file system, so the rename is atomic.
   std::string hidden(".");
   hidden.append(target.filename().string());
@@ -242,10 +250,6 @@ void AtomicFile::commit() {
 
 namespace {
 
-std::filesystem::path folder_of(const std::filesystem::path& target) {
-  return target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
-}
-
 // A target named with a trailing slash ("out/") has an empty file name.
 std::filesystem::path without_trailing_slash(const std::string& path) {
   std::filesystem::path target(path);
@@ -314,15 +318,7 @@ void require_output_folder(const std::string& path, bool overwrite,
                   "choose a new folder, or replace it whole with --overwrite");
     }
   }
-  const std::filesystem::path dir = folder_of(target);
-  if (!std::filesystem::is_directory(dir, error)) {
-    throw Error("cannot write the folder " + path + ": its folder " + dir.string() +
-                " does not exist");
-  }
-  if (::access(dir.c_str(), W_OK) != 0) {
-    throw Error("cannot write the folder " + path + ": its folder " + dir.string() +
-                " cannot be written (" + reason() + ")");
-  }
+  require_writable_folder_of(target, "cannot write the folder " + path);
 }
 
 AtomicFolder::AtomicFolder(std::string path, bool overwrite, const std::vector<std::string>& inputs)
