@@ -5,6 +5,7 @@
 // (the message) and through `gearimpact check-case` (the exit code).
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -14,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "gearimpact/case/schema.hpp"
 #include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
@@ -542,4 +544,90 @@ TEST_CASE("check-case: a missing file fails, a paper case prints its SI values")
   CHECK(contains(ok.out, "module = \"0.002 m\""));
   CHECK(contains(ok.out, "backlash = \"5e-5 m\""));
   CHECK(contains(ok.out, "w1 = \"50 rad/s\""));
+}
+
+// The reader's work is bounded before the TOML parser runs: toml11 scans a
+// value's whole line for each value on it, so one line of n values cost n^2
+// (10,000 harmonics on one line took 7 s, an inline table of 60,000 keys 9
+// minutes). A line is at most 4096 bytes and the arrays hold at most the
+// schema's lists at their longest; the longest lists the schema allows still
+// write and read back.
+TEST_CASE("the reader's bounds: line length, listed values, list length, text size") {
+  SimulationCase c = paper_case(1);
+  c.name = "most_harmonics";
+  c.torque1.kind = Torque::Kind::harmonic;
+  c.torque1.mean_n_m = 0.5;
+  for (int i = 0; i < 1000; ++i) {
+    c.torque1.harmonic_amplitudes_n_m.push_back(1e-3 * (i + 1) + 1.0 / 3.0);
+    c.torque1.harmonic_angular_frequencies_rad_per_s.push_back(1000.0 * (i + 1) + 0.1);
+    c.torque1.harmonic_phases_rad.push_back(1e-3 * i);
+  }
+  c.torque2 = c.torque1;
+  c.torque2.mean_n_m = -2.0;
+  for (CaseUnits units : {CaseUnits::readable, CaseUnits::si}) {
+    const std::string text = write_case_file(c, units);
+    std::istringstream lines(text);
+    std::size_t longest = 0;
+    for (std::string line; std::getline(lines, line);) longest = std::max(longest, line.size());
+    CHECK(longest <= 4096);
+    check_same(parse_case(text, "most_harmonics.toml"), c);
+  }
+
+  const std::string base = read_text(kPaperData / "case1.toml");
+  const auto torque1_as = [&](const std::string& section) {
+    const std::size_t start = base.find("[torque1]");
+    const std::size_t end = base.find('[', start + 1);
+    return base.substr(0, start) + section + base.substr(end);
+  };
+  const auto list = [](int n, const std::string& element, int per_line) {
+    std::string text = "[";
+    for (int i = 0; i < n; ++i) {
+      text.append(i == 0 ? "" : ",")
+          .append(i > 0 && i % per_line == 0 ? "\n" : " ")
+          .append(element);
+    }
+    return text + "]";
+  };
+  const auto harmonics = [&](int n, int per_line) {
+    return torque1_as(
+        "[torque1]\nkind = \"harmonic\"\namplitudes = " + list(n, "\"1 N*mm\"", per_line) +
+        "\nangular_frequencies = " + list(n, "\"100 rad/s\"", per_line) +
+        "\nphases = " + list(n, "\"0 deg\"", per_line) + "\n");
+  };
+  const auto refused = [](const std::string& text, std::initializer_list<const char*> parts) {
+    try {
+      parse_case(text, "bad.toml");
+      FAIL("accepted");
+    } catch (const CaseFileError& e) {
+      const std::string message = e.what();
+      CAPTURE(message);
+      for (const char* part : parts) CHECK(contains(message, part));
+    }
+  };
+  CHECK_NOTHROW(parse_case(harmonics(1000, 10), "ok.toml"));
+  // The line of [torque1]; angular_frequencies, its third line, is the longest.
+  const std::size_t torque_line = static_cast<std::size_t>(std::count(
+                                      base.begin(), base.begin() + base.find("[torque1]"), '\n')) +
+                                  1;
+  refused(harmonics(500, 1000),
+          {("bad.toml:" + std::to_string(torque_line + 3) + ": the line is").c_str(),
+           "a line is at most 4096 bytes", "several lines"});
+  refused(harmonics(1001, 10),
+          {"torque1.amplitudes = 1001 values", "a list of at most 1000 values"});
+  refused(torque1_as("[torque1]\nx = " + list(7000, "1", 100) + "\n"),
+          {"bad.toml: its arrays and inline tables hold more than 6000 values",
+           "torque1.amplitudes: 1000"});
+  std::string inline_table = "{";
+  for (int i = 0; i < 2000; ++i) {
+    inline_table.append(i == 0 ? "k" : ", k").append(std::to_string(i)).append(" = 1");
+  }
+  refused(torque1_as("[torque1]\nx = " + inline_table + "}\n"), {"the line is", "4096 bytes"});
+  // The size cap of files holds for text too (Python's parse_case reads text).
+  refused(base + "# " + std::string(1u << 20, 'x') + "\n", {"bytes; a case file is at most 1 MiB"});
+  SimulationCase too_long = c;
+  too_long.torque1.harmonic_amplitudes_n_m.push_back(1.0);
+  too_long.torque1.harmonic_angular_frequencies_rad_per_s.push_back(1.0);
+  too_long.torque1.harmonic_phases_rad.push_back(0.0);
+  CHECK_THROWS_WITH_AS(validate_fields(too_long),
+                       doctest::Contains("torque1.amplitudes = 1001 values"), InputError);
 }

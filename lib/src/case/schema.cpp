@@ -144,7 +144,8 @@ class Rows {
   // A list of quantities, each in `range`; `slot` returns the std::vector<double>.
   template <typename Slot>
   Field& quantity_list(std::string_view key, Dimension dimension, std::string_view unit,
-                       Range range, bool required, const std::string& help, Slot slot) {
+                       Range range, std::size_t most_values, bool required, const std::string& help,
+                       Slot slot) {
     Field f;
     f.section = section_;
     f.key = key;
@@ -154,6 +155,7 @@ class Rows {
     f.dimension = dimension;
     f.unit = unit;
     f.range = range;
+    f.most_values = most_values;
     f.get_list = [slot](const SimulationCase& c) { return slot(c); };
     f.set_list = [slot](SimulationCase& c, const std::vector<double>& values) { slot(c) = values; };
     rows_.push_back(std::move(f));
@@ -226,19 +228,22 @@ void add_torque(std::vector<Field>& rows, std::string_view section, TorqueSlot t
        [torque](auto& c) -> auto& { return torque(c).phase_rad; })
       .only_when = FieldCondition{"kind", {"sinusoidal"}};
   // The three lists of a harmonic torque, one element per harmonic, of one
-  // length (validate_relations).
+  // length (validate_relations). Each harmonic costs a sine per right-hand
+  // side evaluation; a thousand is more than an engine's orders or a
+  // measured spectrum needs.
+  constexpr std::size_t kMostHarmonics = 1000;
   r.quantity_list(
-       "amplitudes", Dimension::torque, "N*mm", {}, true,
+       "amplitudes", Dimension::torque, "N*mm", {}, kMostHarmonics, true,
        "A_i of T = mean + sum_i A_i sin(w_i t + phi_i); as many as angular_frequencies and phases",
        [torque](auto& c) -> auto& { return torque(c).harmonic_amplitudes_n_m; })
       .only_when = FieldCondition{"kind", {"harmonic"}};
   r.quantity_list(
-       "angular_frequencies", Dimension::angular_frequency, "rad/s", {closed(0.0), {}, {}}, true,
-       "w_i of the harmonics; not negative, as angular_frequency",
+       "angular_frequencies", Dimension::angular_frequency, "rad/s", {closed(0.0), {}, {}},
+       kMostHarmonics, true, "w_i of the harmonics; not negative, as angular_frequency",
        [torque](auto& c) -> auto& { return torque(c).harmonic_angular_frequencies_rad_per_s; })
       .only_when = FieldCondition{"kind", {"harmonic"}};
   r.quantity_list(
-       "phases", Dimension::angle, "deg", {}, true, "phi_i of the harmonics",
+       "phases", Dimension::angle, "deg", {}, kMostHarmonics, true, "phi_i of the harmonics",
        [torque](auto& c) -> auto& { return torque(c).harmonic_phases_rad; })
       .only_when = FieldCondition{"kind", {"harmonic"}};
 }
@@ -656,7 +661,9 @@ std::string allowed_text(const Field& field) {
     case FieldKind::quantity:
     case FieldKind::quantity_list: {
       const std::string si(units_of(field.dimension).front().symbol);
-      if (field.kind == FieldKind::quantity_list) text = "a list, each ";
+      if (field.kind == FieldKind::quantity_list) {
+        text = "a list of at most " + std::to_string(field.most_values) + " values, each ";
+      }
       const std::string bounds = interval(
           field.range, [](double x) { return shortest_decimal(x); }, false);
       text += std::string(describe(field.dimension));
@@ -829,6 +836,10 @@ double parse_value(const Field& field, std::string_view value_text, std::string_
 }
 
 void check_list(const Field& field, const std::vector<double>& values, std::string_view name) {
+  if (values.size() > field.most_values) {
+    throw InputError(std::string(name), std::to_string(values.size()) + " values",
+                     allowed_text(field));
+  }
   for (std::size_t i = 0; i < values.size(); ++i) {
     if (!in_range(field.range, values[i])) {
       throw InputError(std::string(name) + "[" + std::to_string(i) + "]", si_text(field, values[i]),
@@ -856,6 +867,11 @@ std::vector<double> parse_list(const Field& field, std::string_view value_text,
       throw InputError(item_name, std::string(item), allowed_text(field));
     }
     values.push_back(value);
+    if (values.size() > field.most_values) {
+      throw InputError(std::string(name),
+                       "more than " + std::to_string(field.most_values) + " values",
+                       allowed_text(field));
+    }
     if (comma == std::string_view::npos) break;
     rest.remove_prefix(comma + 1);
   }

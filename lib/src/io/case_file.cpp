@@ -27,6 +27,9 @@ constexpr std::uintmax_t kLargestFileBytes = 1u << 20;
 // Nesting of arrays and inline tables deeper than this is never a case file;
 // the TOML parser recurses on it, so it is refused before parsing.
 constexpr int kDeepestNesting = 32;
+// The longest line of a case file; with the cap on listed values it bounds the
+// parser's work (see TextShape).
+constexpr std::size_t kLongestLineBytes = 4096;
 
 std::string type_name(const toml::value& value) {
   switch (value.type()) {
@@ -81,18 +84,40 @@ std::string stem_of(std::string_view file_name) {
   return std::string(file_name);
 }
 
-// The deepest nesting of [ and { outside strings and comments; table headers
-// ([gears], [[x]]) count too, which only overestimates.
-int nesting_depth(std::string_view text) {
+// What the parser's cost depends on, from one pass over the text: toml11
+// 3.7.1 scans a value's whole line for each value on it (its comments), so a
+// long line of many values costs their product, and nesting makes it recurse.
+struct TextShape {
+  int deepest_nesting = 0;  // of [ and { outside strings and comments; headers count too
+  std::size_t longest_line_bytes = 0;
+  std::size_t longest_line = 0;      // 1-based
+  std::size_t bracketed_values = 0;  // commas inside [ ] and { }: values after the first
+};
+
+TextShape shape_of(std::string_view text) {
+  TextShape shape;
   int depth = 0;
-  int deepest = 0;
   char quote = 0;
   bool comment = false;
+  std::size_t line = 1;
+  std::size_t line_start = 0;
+  const auto end_line = [&](std::size_t end) {
+    if (end - line_start > shape.longest_line_bytes) {
+      shape.longest_line_bytes = end - line_start;
+      shape.longest_line = line;
+    }
+  };
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
-    if (comment) {
-      if (c == '\n') comment = false;
-    } else if (quote != 0) {
+    if (c == '\n') {
+      end_line(i);
+      ++line;
+      line_start = i + 1;
+      comment = false;
+      continue;
+    }
+    if (comment) continue;
+    if (quote != 0) {
       if (c == '\\' && quote == '"') {
         ++i;
       } else if (c == quote) {
@@ -103,12 +128,33 @@ int nesting_depth(std::string_view text) {
     } else if (c == '#') {
       comment = true;
     } else if (c == '[' || c == '{') {
-      deepest = std::max(deepest, ++depth);
+      shape.deepest_nesting = std::max(shape.deepest_nesting, ++depth);
     } else if (c == ']' || c == '}') {
       depth = std::max(0, depth - 1);
+    } else if (c == ',' && depth > 0) {
+      ++shape.bracketed_values;
     }
   }
-  return deepest;
+  end_line(text.size());
+  return shape;
+}
+
+// The most values a case file's arrays can hold: the schema's lists at their
+// longest.
+std::size_t most_listed_values() {
+  std::size_t most = 0;
+  for (const Field& field : case_schema()) most += field.most_values;
+  return most;
+}
+
+// "torque1.amplitudes: at most 1000, ..." for the message of too many values.
+std::string names_of_lists() {
+  std::string names;
+  for (const Field& field : case_schema()) {
+    if (field.most_values == 0) continue;
+    names += (names.empty() ? "" : ", ") + field.name() + ": " + std::to_string(field.most_values);
+  }
+  return names;
 }
 
 // The offset of the first byte that is not part of well-formed UTF-8 (RFC
@@ -164,6 +210,10 @@ class Reader {
       if (!location.line_str().empty()) where += ":" + std::to_string(location.line());
     }
     throw CaseFileError(file_, field, where + ": " + message);
+  }
+
+  [[noreturn]] void fail_at_line(std::size_t line, const std::string& message) const {
+    throw CaseFileError(file_, "", file_ + ":" + std::to_string(line) + ": " + message);
   }
 
   [[noreturn]] void out_of_range(const std::string& field, const toml::value* at,
@@ -302,6 +352,10 @@ std::vector<double> read_list(const Reader& reader, const Field& field, const to
                                std::string(field.unit) + "\"]";
   if (!value.is_array()) {
     reader.out_of_range(name, &value, written(value), type_name(value) + "; expected " + expected);
+  }
+  if (value.as_array().size() > field.most_values) {
+    reader.out_of_range(name, &value, std::to_string(value.as_array().size()) + " values",
+                        allowed_text(field));
   }
   std::vector<double> values;
   for (const toml::value& element : value.as_array()) {
@@ -477,14 +531,57 @@ SimulationCase read_case(const Reader& reader, const toml::value& root,
   return result;
 }
 
+// A list's "[a, b, ...]" over lines of kValuesPerLine values: the reader
+// refuses lines longer than kLongestLineBytes, and the longest list must read
+// back. The elements are quoted quantities, which hold no ", ".
+std::string wrapped_list(const std::string& one_line) {
+  constexpr int kValuesPerLine = 8;
+  const std::string_view inner = std::string_view(one_line).substr(1, one_line.size() - 2);
+  if (static_cast<std::size_t>(std::count(one_line.begin(), one_line.end(), ',')) <
+      kValuesPerLine) {
+    return one_line;
+  }
+  std::string text = "[";
+  std::size_t start = 0;
+  for (int count = 0;; ++count) {
+    const std::size_t comma = inner.find(", ", start);
+    text += (count % kValuesPerLine == 0 ? "\n  " : " ");
+    text += inner.substr(start, comma == std::string_view::npos ? comma : comma - start);
+    if (comma == std::string_view::npos) break;
+    text += ",";
+    start = comma + 2;
+  }
+  return text + "\n]";
+}
+
 }  // namespace
 
 SimulationCase parse_case(std::string_view toml_text, std::string_view file_name) {
   const Reader reader{std::string(file_name)};
-  if (nesting_depth(toml_text) > kDeepestNesting) {
+  if (toml_text.size() > kLargestFileBytes) {
+    reader.fail(
+        "", nullptr,
+        "is " + std::to_string(toml_text.size()) + " bytes; a case file is at most 1 MiB of TOML");
+  }
+  const TextShape shape = shape_of(toml_text);
+  if (shape.deepest_nesting > kDeepestNesting) {
     reader.fail("", nullptr,
                 "not a case file: arrays or tables nested deeper than " +
                     std::to_string(kDeepestNesting) + " levels");
+  }
+  if (shape.longest_line_bytes > kLongestLineBytes) {
+    reader.fail_at_line(
+        shape.longest_line,
+        "the line is " + std::to_string(shape.longest_line_bytes) + " bytes; a line is at most " +
+            std::to_string(kLongestLineBytes) +
+            " bytes (an array may go over several lines: a line break may follow any "
+            "comma)");
+  }
+  if (const std::size_t most = most_listed_values(); shape.bracketed_values > most) {
+    reader.fail("", nullptr,
+                "its arrays and inline tables hold more than " + std::to_string(most) +
+                    " values; a case file's lists hold at most that many together (" +
+                    names_of_lists() + ")");
   }
   if (const std::size_t bad = first_invalid_utf8(toml_text); bad != std::string_view::npos) {
     const auto line =
@@ -531,8 +628,9 @@ std::string write_case_file(const SimulationCase& c, CaseUnits units) {
       section = field.section;
       text += "\n[" + std::string(section) + "]\n";
     }
-    text +=
-        std::string(field.key) + " = " + value_text(field, c, units == CaseUnits::readable) + "\n";
+    std::string value = value_text(field, c, units == CaseUnits::readable);
+    if (field.kind == FieldKind::quantity_list) value = wrapped_list(value);
+    text += std::string(field.key) + " = " + value + "\n";
   }
   return text;
 }

@@ -88,6 +88,8 @@ struct Field {
   // List rows, in SI.
   std::function<std::vector<double>(const SimulationCase&)> get_list;
   std::function<void(SimulationCase&, const std::vector<double>&)> set_list;
+  // List rows: the most elements a list may hold.
+  std::size_t most_values = 0;
   // false: the writer leaves the key out while it holds its default, so that
   // keys added after case files were written do not change those files.
   bool written_at_default = true;
@@ -144,8 +146,8 @@ void set_field(SimulationCase& c, std::string_view section_dot_key, std::string_
 // `name`[i].
 std::vector<double> parse_list(const Field& field, std::string_view value_text,
                                std::string_view name);
-// Throws InputError naming `name`[i] unless every element is finite and in the
-// row's range.
+// Throws InputError naming `name` if the list is longer than the row allows,
+// and `name`[i] unless every element is finite and in the row's range.
 void check_list(const Field& field, const std::vector<double>& values, std::string_view name);
 
 // The value of a quantity, number or integer key, in SI. Throws InputError for
