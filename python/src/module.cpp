@@ -362,6 +362,20 @@ py::tuple sweep_texts(const SimulationCase& c, const std::vector<std::string>& o
   return py::make_tuple(sweep_csv(sweep.rows), poincare_csv(sweep.rows), sweep_summary_json(sweep));
 }
 
+bool is_boolean(const py::handle& value) {
+  return PyBool_Check(value.ptr()) ||
+         py::isinstance(value, py::module_::import("numpy").attr("bool_"));
+}
+
+// True or False (numpy's too), nothing else: Python would take any object's
+// truth, "no" among them.
+bool boolean(const char* name, const py::handle& value) {
+  if (!is_boolean(value)) {
+    throw InputError(name, py::repr(value).cast<std::string>(), "True or False");
+  }
+  return value.cast<bool>();
+}
+
 // Gear 1 or 2 of a pair, the pair checked first: the geometry of a pair
 // outside its ranges (a field set to NaN through GearPair's attributes) is no
 // number at all. True and False (numpy's too) are not gear numbers, though
@@ -369,9 +383,7 @@ py::tuple sweep_texts(const SimulationCase& c, const std::vector<std::string>& o
 Gear gear_numbered(const GearPair& pair, const py::handle& gear) {
   validate(pair);
   const std::string written = py::repr(gear).cast<std::string>();
-  const bool boolean =
-      PyBool_Check(gear.ptr()) || py::isinstance(gear, py::module_::import("numpy").attr("bool_"));
-  if (boolean || !PyIndex_Check(gear.ptr())) {
+  if (is_boolean(gear) || !PyIndex_Check(gear.ptr())) {
     throw InputError("gear", written, "1 or 2");
   }
   const auto index = py::reinterpret_steal<py::object>(PyNumber_Index(gear.ptr()));
@@ -475,10 +487,10 @@ void define_module(py::module_& m) {
           "Whether the term (hertz, bending, axial, ...) enters Ke.")
       .def(
           "set_term",
-          [](StiffnessModel& s, const std::string& id, bool on) {
-            s.terms.set(term_named(id), on);
+          [](StiffnessModel& s, const std::string& id, const py::handle& on) {
+            s.terms.set(term_named(id), boolean("on", on));
           },
-          "Switches a term of (29) on or off.")
+          py::arg("term"), py::arg("on"), "Switches a term of (29) on (True) or off (False).")
       .def("__repr__", [](const StiffnessModel& s) {
         return "StiffnessModel(method='" + method_name(s) + "', moment_sign='" +
                to_string(s.moment_sign) +

@@ -90,6 +90,10 @@ REFUSED = [
     ("bool for a gear", lambda: gearimpact.base_radius(gearimpact.GearPair(), True), "gear",
      ["1 or 2"]),
     ("bool for a case number", lambda: gearimpact.paper_case(True), "number", ["integer"]),
+    ("int for set_term's on", lambda: gearimpact.StiffnessModel().set_term("axial", 1), "on",
+     ["True or False"]),
+    ("str for set_term's on", lambda: gearimpact.StiffnessModel().set_term("axial", "off"), "on",
+     ["True or False"]),
     ("'no' for an on/off key", lambda: CASE1.replace(axial_term="no"), "axial_term",
      ['"on", "off"']),
     # Lists.
@@ -272,6 +276,11 @@ def test_lists_tuples_and_arrays_give_the_same_harmonic_torque():
 def test_numpy_scalars_are_numbers_and_numpy_bools_are_bools():
     assert CASE1.replace(teeth1=np.int64(25), module=np.float32(0.0025)).gears.teeth1 == 25
     assert CASE1.replace(axial_term=np.bool_(False)).fields()["model.axial_term"] == "off"
+    model = gearimpact.StiffnessModel()
+    model.set_term("axial", np.bool_(False))
+    assert model.term("axial") is False
+    model.set_term("axial", True)
+    assert model.term("axial") is True
     flipped = gearimpact.stiffness(points=3, flipped_moment=np.bool_(True))
     assert np.array_equal(flipped["ke"], gearimpact.stiffness(points=3, flipped_moment=True)["ke"])
 
