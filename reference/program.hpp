@@ -17,8 +17,12 @@ namespace gearimpact::cli {
 // gears' own, the same at every position); false for a model without the foundation term.
 bool foundation_extrapolated(const GearPair& pair, const StiffnessModel& model);
 
+// The most contact positions the stiffness commands sample (--points, --samples, and the Python
+// package's points and samples): more only cost time, the curves are smooth long before.
+inline constexpr int kMostSamples = 1000000;
+
 // `gearimpact mesh-stiffness`: the CSV of one mesh period and (--summary) its JSON. Throws
-// InputError naming "samples" unless 2 <= samples <= 1000000.
+// InputError naming "samples" unless 2 <= samples <= kMostSamples.
 struct MeshStiffnessTexts {
   std::string csv;
   std::string summary_json;

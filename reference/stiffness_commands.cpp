@@ -121,7 +121,7 @@ void print_energy_ratios(StiffnessOptions& options) {
 // --points, the stiffness model's flags of kCaseFlags for `command_bit`, --case-file.
 void add_model_options(CLI::App* command, StiffnessOptions& options, CaseCommand command_bit) {
   command->add_option("--points", options.points, "number of contact positions, X_start to X_end")
-      ->check(CLI::Range(2, 1000000));
+      ->check(CLI::Range(2, kMostSamples));
   options.keys.add_flags(command, command_bit);
   add_pair_options(command, options);
 }
@@ -137,8 +137,9 @@ bool foundation_extrapolated(const GearPair& pair, const StiffnessModel& model) 
 
 MeshStiffnessTexts mesh_stiffness_texts(const GearPair& pair, const StiffnessModel& model,
                                         int samples) {
-  if (samples < 2 || samples > 1000000) {
-    throw InputError("samples", std::to_string(samples), "an integer in [2, 1000000]");
+  if (samples < 2 || samples > kMostSamples) {
+    throw InputError("samples", std::to_string(samples),
+                     "an integer in [2, " + std::to_string(kMostSamples) + "]");
   }
   const TimeVaryingMeshStiffness tvms =
       time_varying_mesh_stiffness(pair, model, static_cast<std::size_t>(samples));
@@ -180,8 +181,9 @@ void register_stiffness_commands(CLI::App& app) {
       "with --summary its min, max and exact time mean as JSON");
   add_pair_options(mesh, *mesh_options);
   mesh_options->keys.add_flags(mesh, kMeshStiffness);
-  mesh->add_option("--samples", mesh_options->samples, "samples over the period, 2 to 1000000")
-      ->check(CLI::Range(2, 1000000));
+  mesh->add_option("--samples", mesh_options->samples,
+                   "samples over the period, 2 to " + std::to_string(kMostSamples))
+      ->check(CLI::Range(2, kMostSamples));
   mesh->add_flag("--summary", mesh_options->summary, "print min, max, mean as JSON instead");
   mesh->callback([mesh_options] { print_mesh_stiffness(*mesh_options); });
 

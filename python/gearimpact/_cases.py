@@ -10,9 +10,7 @@ not change.
 """
 
 import json
-import math
 import numbers
-import os
 import re
 
 try:
@@ -20,7 +18,10 @@ try:
 except ImportError:  # Python < 3.11
     import tomli as tomllib
 
-from . import _core
+import numpy
+
+from . import _arguments, _core
+from ._arguments import case_error, is_bool
 from ._core import Case, CaseError
 
 # The pseudo file name of text built from keyword arguments; stripped from
@@ -31,39 +32,36 @@ _KEYWORDS = "<keyword arguments>"
 # section anew from the keys given with it.
 _KIND_SECTIONS = ("torque1", "torque2")
 
-# "<number> <unit>" as the case-file writer writes a quantity in SI.
-_QUANTITY = re.compile(r"^[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*(\S.*)$")
-
-
-def case_error(message, field="", file=""):
-    """A CaseError with its .field and .file, raised from Python."""
-    error = CaseError(message)
-    error.field = field
-    error.file = file
-    return error
-
 
 def paper_case(number, torque_unit="kgf-mm", case3_frequency_rad_s=10000.0, **fields):
     """Case `number` (1, 2 or 3) of the paper's Table 1 on the gear pair of section 7.
 
     torque_unit: "kgf-mm" (docs/model.md's reading, the only one that reproduces
     Fig. 7) or "n-mm" (as the table is labelled). case3_frequency_rad_s: W of
-    case 3's T1 = 200 sin(W t); 1000 is the alternative reading. Any other
+    case 3's T1 = 200 sin(W t), a finite number in rad/s within
+    torque1.angular_frequency's range; 1000 is the alternative reading.
+    number: an int. Any other
     keyword changes a field of the case as in Case.replace, e.g.
     paper_case(2, damping_form="hunt-crossley", end_time="10 ms").
     """
-    case = _core.paper_case(number, torque_unit, case3_frequency_rad_s)
+    case = _core.paper_case(
+        _arguments.integer("number", number),
+        _arguments.text("torque_unit", torque_unit),
+        _arguments.real("case3_frequency_rad_s", case3_frequency_rad_s),
+    )
     return replace(case, **fields) if fields else case
 
 
 def read_case(path):
-    """Reads and checks a case file (TOML, docs/case-files.md). Raises CaseError."""
-    return _core.read_case_file(os.fspath(path))
+    """Reads and checks a case file (TOML, docs/case-files.md); path: a str or a pathlib.Path.
+    Raises CaseError."""
+    return _core.read_case_file(_arguments.path("path", path))
 
 
 def parse_case(text, name="<text>"):
-    """Reads a case file's text; `name` names it in messages (and the case, without a `name` key)."""
-    return _core.parse_case(text, name)
+    """Reads a case file's text (a str); `name` (a str) names it in messages (and the case,
+    without a `name` key). Raises CaseError."""
+    return _core.parse_case(_arguments.text("text", text), _arguments.text("name", name))
 
 
 def gear_pair(**fields):
@@ -73,11 +71,22 @@ def gear_pair(**fields):
     (module=0.003). Checked as a case file's pair is: a value outside its range
     raises CaseError naming the key.
     """
-    dotted = {key if "." in key else "gears." + key: value for key, value in fields.items()}
-    return replace(_core.paper_case(1, "kgf-mm", 10000.0), **dotted).gears
+    paper = _core.paper_case(1, "kgf-mm", 10000.0)
+    keys = sorted(key for key in fields_of(paper) if key.startswith("gears."))
+    dotted = {}
+    for key, value in fields.items():
+        full = key if "." in key else "gears." + key
+        if full not in keys:
+            raise case_error(
+                f"{key}: no such key of [gears]; the keys are "
+                + ", ".join(k.partition(".")[2] for k in keys),
+                key,
+            )
+        dotted[full] = value
+    return replace(paper, **dotted).gears
 
 
-def fields(case):
+def fields_of(case):
     """The case's fields as a case file has them in SI units: {"gears.module": "0.002 m", ...}."""
     document = tomllib.loads(case.to_toml("si"))
     flat = {}
@@ -97,8 +106,12 @@ def replace(case, **changes):
     integrator_kind="adaptive") or the bare key where only one section has it
     (module, teeth1, friction_coefficient, step, end_time, w1, ...).
     Values are what a case file takes: unit strings ("2 mm", "0.1 us"),
-    numbers, option names ("adaptive"); a float for a quantity is taken in SI
-    units (module=0.002). True/False stand for "on"/"off". Setting a torque's
+    numbers, option names ("adaptive"); a number for a quantity is taken in SI
+    units (module=0.002). Numbers are finite; integers at most 2**53 in
+    magnitude. True/False stand for "on"/"off". A list key (the harmonic
+    torque's amplitudes, angular_frequencies, phases) takes a non-empty list,
+    tuple or 1-dimensional numpy array of numbers (SI) or unit strings:
+    torque1_amplitudes=["10 N*m", 2.0]. Setting a torque's
     kind starts that torque anew from the keys given with it:
     replace(torque1_kind="sinusoidal", torque1_amplitude="200 kgf*mm",
     torque1_angular_frequency="1000 rad/s"). Raises CaseError naming the key
@@ -106,7 +119,7 @@ def replace(case, **changes):
     """
     if not changes:
         return case
-    current = fields(case)
+    current = fields_of(case)
     given = {}
     for user_key, value in changes.items():
         given[_resolve(user_key, current)] = (user_key, value)
@@ -115,7 +128,7 @@ def replace(case, **changes):
         if section + ".kind" in given:
             literals = {k: v for k, v in literals.items() if not k.startswith(section + ".")}
     for dotted, (user_key, value) in given.items():
-        literals[dotted] = _literal(user_key, value, current.get(dotted), _si_unit(dotted, current))
+        literals[dotted] = _literal(user_key, value, current.get(dotted), _core.key_form(dotted))
     try:
         return _core.parse_case(_toml_text(literals), _KEYWORDS)
     except CaseError as error:
@@ -128,13 +141,13 @@ def _resolve(user_key, current):
     only one section has."""
     if not isinstance(user_key, str) or not user_key:
         raise case_error(f"{user_key!r}: a key of a case file, as section.key or a bare key")
-    if "." in user_key or user_key == "name":
-        return user_key
     known = _known_keys(current)
+    if "." in user_key or user_key == "name":
+        return _known(user_key, user_key, known)
     sections = {key.partition(".")[0] for key in known if "." in key}
     section, _, inner = user_key.partition("_")
     if section in sections and inner:
-        return f"{section}.{inner}"
+        return _known(f"{section}.{inner}", user_key, known)
     candidates = sorted(key for key in known if key.split(".")[-1] == user_key)
     if len(candidates) == 1:
         return candidates[0]
@@ -155,6 +168,17 @@ def _known_keys(current):
     return set(current) | set(_torque_template())
 
 
+def _known(dotted, user_key, known):
+    """`dotted` when the schema has it; the text built from the keys then
+    holds only keys of the schema."""
+    if dotted in known or _core.key_form(dotted) is not None:
+        return dotted
+    raise case_error(
+        f"{user_key}: no such key in a case file; the keys are " + ", ".join(sorted(known)),
+        user_key,
+    )
+
+
 _TEMPLATE = {}
 
 
@@ -162,23 +186,13 @@ def _torque_template():
     """The keys of a torque section of either kind, with their SI values, from
     Table 1's case 3 (a sinusoidal and a constant torque)."""
     if not _TEMPLATE:
-        case3 = fields(_core.paper_case(3, "kgf-mm", 10000.0))
+        case3 = fields_of(_core.paper_case(3, "kgf-mm", 10000.0))
         for key, value in case3.items():
             section, _, inner = key.partition(".")
             if section in _KIND_SECTIONS:
                 for name in _KIND_SECTIONS:
                     _TEMPLATE.setdefault(f"{name}.{inner}", value)
     return _TEMPLATE
-
-
-def _si_unit(dotted, current):
-    """The SI unit of a quantity key, from how the writer wrote it; None for the others."""
-    value = current.get(dotted, _torque_template().get(dotted))
-    if isinstance(value, str):
-        match = _QUANTITY.match(value)
-        if match:
-            return match.group(1)
-    return None
 
 
 def _literal_of(value):
@@ -189,23 +203,28 @@ def _literal_of(value):
         return "true" if value else "false"
     if isinstance(value, int):
         return str(value)
+    if isinstance(value, list):
+        return "[" + ", ".join(_literal_of(item) for item in value) + "]"
     return repr(float(value))
 
 
-def _literal(user_key, value, current, unit):
-    """The TOML text of a value given for a key (whose present value is `current`)."""
-    if isinstance(value, bool):
+def _literal(user_key, value, current, form):
+    """The TOML text of a value given for a key (whose present value is `current`;
+    `form` is the key's (kind, SI unit) from the schema, None for an unknown key)."""
+    kind, unit = form if form is not None else (None, None)
+    if kind == "list":
+        return _list_literal(user_key, value, unit)
+    if is_bool(value):
         if current in ("on", "off"):
             return '"on"' if value else '"off"'
         return "true" if value else "false"
     if isinstance(value, numbers.Real):
+        number = _arguments.real(user_key, value)
         if unit is not None:
-            number = float(value)
-            text = _core.shortest_decimal(number) if math.isfinite(number) else repr(number)
-            return json.dumps(f"{text} {unit}")
+            return json.dumps(f"{_core.shortest_decimal(number)} {unit}")
         if isinstance(value, numbers.Integral):
             return str(int(value))
-        return repr(float(value))
+        return repr(number)
     if isinstance(value, str):
         return json.dumps(value, ensure_ascii=False)
     raise case_error(
@@ -213,6 +232,42 @@ def _literal(user_key, value, current, unit):
         f"or True/False, not {type(value).__name__}",
         user_key,
     )
+
+
+def _list_literal(user_key, value, unit):
+    """The TOML array of a list key: each element a unit string as given, or a
+    number in SI written in the key's SI unit."""
+    if isinstance(value, numpy.ndarray):
+        if value.ndim != 1:
+            raise case_error(
+                f"{user_key}: a 1-dimensional list of numbers or unit strings, "
+                f"not an array of shape {value.shape}",
+                user_key,
+            )
+        value = value.tolist()
+    if not isinstance(value, (list, tuple)):
+        raise case_error(
+            f"{user_key}={value!r}: a list of numbers (SI) or unit strings, e.g. "
+            f"[\"10 N*m\", \"2 N*m\"], not {type(value).__name__}",
+            user_key,
+        )
+    if not value:
+        raise case_error(f"{user_key}=[]: a list of at least one number or unit string", user_key)
+    items = []
+    for i, item in enumerate(value):
+        name = f"{user_key}[{i}]"
+        if isinstance(item, str):
+            items.append(json.dumps(item, ensure_ascii=False))
+        elif not is_bool(item) and isinstance(item, numbers.Real):
+            number = _arguments.real(name, item)
+            items.append(json.dumps(f"{_core.shortest_decimal(number)} {unit}"))
+        else:
+            raise case_error(
+                f"{name}={item!r}: a number in SI ({unit}) or a unit string, "
+                f"not {type(item).__name__}",
+                name,
+            )
+    return "[" + ", ".join(items) + "]"
 
 
 def _toml_text(literals):
@@ -232,9 +287,15 @@ def _explained(error, given):
     """The reader's CaseError, naming the keyword arguments instead of the text built from them."""
     message = re.sub(r"^" + re.escape(_KEYWORDS) + r"(:\d+)?: ", "", str(error))
     field = getattr(error, "field", "")
+    # An element of a list key: torque1.amplitudes[1].
+    key, bracket, index = field.partition("[")
     if field in given:
         user_key, value = given[field]
         text = f"{user_key}={value!r}: {message}"
+    elif bracket and key in given:
+        user_key, _ = given[key]
+        field = f"{user_key}[{index}"
+        text = f"{field}: {message}"
     else:
         changes = ", ".join(f"{key}={value!r}" for key, value in given.values())
         text = f"with {changes}: {message}"
@@ -252,7 +313,7 @@ def _case_eq(case, other):
 
 
 Case.replace = replace
-Case.fields = fields
+Case.fields = fields_of
 Case.__repr__ = _case_repr
 Case.__eq__ = _case_eq
 Case.__hash__ = None

@@ -5,7 +5,7 @@ the program and the paper's data that come with the package."""
 import os
 from pathlib import Path
 
-from . import _core
+from . import _arguments, _core
 
 # Not resolved: in the build tree the package's files are links into the
 # source tree, and the program and the data sit beside the links.
@@ -33,13 +33,16 @@ def reproduce(out_dir, paper_data=None):
     SVG need gnuplot) and REPORT.md, as ``gearimpact reproduce`` does (progress on
     standard error).
 
-    paper_data: another folder of statements (default: this package's). Returns
+    out_dir, paper_data: a str or a pathlib.Path; paper_data is another folder of
+    statements (default: this package's). Returns
     the path of REPORT.md. Raises RuntimeError with the program's message when
     it fails.
     """
+    out = _arguments.path("out_dir", out_dir)
     data = paper_data_dir() if paper_data is None else paper_data
+    data = _arguments.path("paper_data", data)
     try:
-        _core.reproduce(os.fspath(out_dir), os.fspath(data))
+        _core.reproduce(out, data)
     except (ValueError, RuntimeError, OSError) as error:
         raise RuntimeError(f"gearimpact reproduce failed: {error}") from error
     return Path(out_dir) / "REPORT.md"
@@ -64,40 +67,87 @@ def _table(csv_text):
     return table
 
 
+def _case_or_none(case):
+    if case is not None and not isinstance(case, _core.Case):
+        raise _arguments.case_error(
+            f"case={case!r}: a Case (gearimpact.paper_case, read_case) or None for the paper's "
+            f"pair, not {type(case).__name__}",
+            "case",
+        )
+    return case
+
+
 def iso6336(case=None, helix_angle_deg=0.0):
-    """ISO 6336-1 method B for a case's gear pair (default: the paper's), as
-    ``gearimpact iso6336``: a dict with zn1, zn2, c_prime_th_n_mm_um, c_prime_n_mm_um,
+    """ISO 6336-1 method B for a case's gear pair (a Case; None: the paper's), as
+    ``gearimpact iso6336``, at the helix angle helix_angle_deg (a number of degrees in
+    [0, 45)): a dict with zn1, zn2, c_prime_th_n_mm_um, c_prime_n_mm_um,
     c_gamma_alpha_n_mm_um, eps_alpha, c_prime_b_n_m, c_gamma_alpha_b_n_m."""
     import json
-    return json.loads(_core.iso6336(case, float(helix_angle_deg)))
+    return json.loads(_core.iso6336(_case_or_none(case),
+                                    _arguments.real("helix_angle_deg", helix_angle_deg)))
 
 
 def mesh_stiffness(case=None, model=None, samples=200):
     """The mesh stiffness over one mesh period with exact line-of-action kinematics, as
     ``gearimpact mesh-stiffness``: (table, summary), the table a dict of numpy arrays
     fraction, theta1_rad, pairs, ke_n_m, the summary a dict with min_n_m, max_n_m, mean_n_m
-    (the exact time mean), contact_ratio, extrapolated. model: yang-lin-1987,
-    potential-energy or ross-compatible (default: the case's)."""
+    (the exact time mean), contact_ratio, extrapolated. case: a Case or None (the paper's
+    pair); model: yang-lin-1987, potential-energy or ross-compatible (default: the case's);
+    samples: an int, 2 up to the program's --samples bound."""
     import json
-    table, summary = _core.mesh_stiffness(case, None if model is None else str(model),
-                                          int(samples))
+    table, summary = _core.mesh_stiffness(
+        _case_or_none(case), None if model is None else _arguments.text("model", model),
+        _arguments.integer("samples", samples))
     return _table(table), json.loads(summary)
 
 
 def sweep(case, vary, start, stop, points, direction="both", options=()):
     """The steady state of a loaded, running pair along one parameter, as
     ``gearimpact sweep`` (docs/sweep.md): `case` a Case, `vary` any numeric case-file key as
-    section.key, `start` and `stop` with units as case files write them ("500 rad/s") or SI
-    floats, `options` more of the command's options as strings (e.g. ["--vary2",
-    "gears.backlash", ...]). Returns a dict: "sweep" and "poincare" (dicts of arrays with the
+    section.key (a str), `start` and `stop` with units as case files write them ("500 rad/s")
+    or finite SI numbers, `points` an int, `direction` "up", "down" or "both", `options` more of
+    the command's options as a list of str, one a word (e.g. ["--vary2", "gears.backlash",
+    ..., "--threads", "2"]). Returns a dict: "sweep" and "poincare" (dicts of arrays with the
     columns of sweep.csv and poincare.csv) and "summary" (summary.json)."""
     import json
-    arguments = ["--vary", str(vary), "--from", str(start), "--to", str(stop),
-                 "--points", str(int(points)), "--direction", str(direction)]
-    sweep_text, poincare_text, summary_text = _core.sweep(
-        case, arguments + [str(o) for o in options])
+    if not isinstance(case, _core.Case):
+        raise _arguments.case_error(
+            f"case={case!r}: a Case (gearimpact.paper_case, read_case), not {type(case).__name__}",
+            "case",
+        )
+    arguments = ["--vary", _arguments.text("vary", vary),
+                 "--from", _arguments.quantity("start", start),
+                 "--to", _arguments.quantity("stop", stop),
+                 "--points", str(_arguments.integer("points", points)),
+                 "--direction", _arguments.text("direction", direction)]
+    more = _arguments.strings("options", options, ["--threads", "2"])
+    try:
+        sweep_text, poincare_text, summary_text = _core.sweep(case, arguments + more)
+    except _core.CaseError as error:
+        raise _sweep_error(error, dict(vary=vary, start=start, stop=stop, points=points,
+                                       direction=direction)) from None
     return {
         "sweep": _table(sweep_text),
         "poincare": _table(poincare_text),
         "summary": json.loads(summary_text),
     }
+
+
+# The command's options that sweep() sets from its own arguments.
+_SWEEP_ARGUMENTS = {"--vary": "vary", "--from": "start", "--to": "stop", "--points": "points",
+                    "--direction": "direction"}
+
+
+def _sweep_error(error, given):
+    """The command's CaseError about an option that an argument of sweep() set,
+    naming that argument as the caller wrote it; others (options) as they are."""
+    field = getattr(error, "field", "")
+    message = str(error)
+    flag = field.split(" ")[0]
+    if flag not in _SWEEP_ARGUMENTS and field == "options":
+        # A parse error of the command line names its option in the message.
+        flag = next((f for f in _SWEEP_ARGUMENTS if f"= {f}:" in message), flag)
+    keyword = _SWEEP_ARGUMENTS.get(flag)
+    if keyword is None:
+        return error
+    return _arguments.case_error(f"{keyword}={given[keyword]!r}: {message}", keyword)

@@ -1,23 +1,27 @@
 """Stiffness tables, energy ratios, simulations and the friction sweep, as numpy arrays."""
 
 import json
+import numbers
 import os
 
-from . import _core
-from ._cases import case_error, paper_case, read_case
+from . import _arguments, _core
+from ._arguments import case_error
+from ._cases import paper_case, read_case
 from ._core import Case, GearPair, StiffnessModel
 
 
-def _as_case(case):
+def _as_case(case, name="case"):
     """A Case from a Case, a Table 1 case number or a case file's path."""
     if isinstance(case, Case):
         return case
-    if isinstance(case, int) and not isinstance(case, bool):
+    if isinstance(case, numbers.Integral) and not _arguments.is_bool(case):
         return paper_case(case)
     if isinstance(case, (str, os.PathLike)):
         return read_case(case)
-    raise TypeError(
-        f"a Case, a case number of Table 1 (1, 2, 3) or a case file's path, not {type(case).__name__}"
+    raise case_error(
+        f"{name}={case!r}: a Case, a case number of Table 1 (1, 2, 3) or a case file's path, "
+        f"not {type(case).__name__}",
+        name,
     )
 
 
@@ -30,12 +34,13 @@ def _pair_and_model(case_or_pair, method, flipped_moment):
     elif isinstance(case_or_pair, GearPair):
         pair, model = case_or_pair, StiffnessModel()
     else:
-        case = _as_case(case_or_pair)
+        case = _as_case(case_or_pair, "case_or_pair")
         pair, model = case.gears, case.stiffness_model
     if method is not None:
-        model.method = method
+        model.method = _arguments.text("method", method)
     if flipped_moment is not None:
-        model.moment_sign = "flipped" if flipped_moment else "physical"
+        flipped = _arguments.flag("flipped_moment", flipped_moment)
+        model.moment_sign = "flipped" if flipped else "physical"
     return pair, model
 
 
@@ -45,33 +50,61 @@ def stiffness(case_or_pair=None, points=None, x=None, method=None, flipped_momen
     case_or_pair: a GearPair (with the default stiffness model), a Case or a
     case file's path (its pair and stiffness model), a Table 1 case number, or
     None for the paper's pair. Either `points` positions from X_start to X_end
-    inclusive (201 when neither is given), spaced as ``gearimpact stiffness
-    --points N`` spaces them, or the contact positions `x` (m, from C1, within
-    (0, lp)). method: "gsl", "gsl-cquad", "boost-gk", "boost-ts" or "xform";
-    flipped_moment: True adds the Fa h moment instead of subtracting it.
+    inclusive (an int, 2 up to the program's --points bound; 201 when neither
+    is given), spaced as
+    ``gearimpact stiffness --points N`` spaces them, or the contact positions
+    `x` (a 1-dimensional sequence or numpy array of finite numbers, m, from C1,
+    within (0, lp)). method: "gsl", "gsl-cquad", "boost-gk", "boost-ts" or
+    "xform"; flipped_moment: True adds the Fa h moment instead of subtracting
+    it, False subtracts it (as printed), None keeps the case's.
 
     Returns a dict of numpy arrays with the program's columns: x_m, phi1_rad
     (the contact angle (12)), kb1, ka1, kb2, ka2, kh, ke.
     """
+    if x is not None and points is not None:
+        raise case_error("points and x: give one of them, not both", "points")
+    count = 201 if points is None else _arguments.integer("points", points)
     pair, model = _pair_and_model(case_or_pair, method, flipped_moment)
     if x is not None:
-        if points is not None:
-            raise case_error("points and x: give one of them, not both", "points")
-        return _core.stiffness_at(pair, model, x)
-    return _core.stiffness_samples(pair, model, 201 if points is None else points)
+        return _core.stiffness_at(pair, model, _positions(x))
+    return _core.stiffness_samples(pair, model, count)
+
+
+def _positions(x):
+    """x as a 1-dimensional float64 array, each element a real number (the
+    library checks that each is finite and within (0, lp))."""
+    import numpy
+
+    if isinstance(x, (str, bytes)) or _arguments.is_bool(x):
+        raise case_error(f"x={x!r}: a sequence of contact positions, m", "x")
+    if isinstance(x, numbers.Real):
+        x = [x]
+    array = numpy.asarray(x, dtype=object) if not isinstance(x, numpy.ndarray) else x
+    if array.dtype == object:
+        if array.ndim != 1:
+            raise case_error(
+                f"x: a 1-dimensional sequence of numbers, not shape {array.shape}", "x"
+            )
+        return numpy.array([_arguments.real(f"x[{i}]", v) for i, v in enumerate(array)],
+                           dtype=numpy.float64)
+    if array.dtype.kind not in "iuf":
+        raise case_error(f"x: numbers, m, not an array of {array.dtype}", "x")
+    return array.astype(numpy.float64)
 
 
 def energy_ratios(case_or_pair=None, points=121, method=None, flipped_moment=None):
     """The elastic energy ratios of Fig. 8 over one meshing cycle.
 
-    Arguments as for stiffness(). Returns a dict of numpy arrays with the
+    Arguments as for stiffness() (points: an int, 2 up to the program's
+    --points bound). Returns a dict of numpy arrays with the
     columns of ``gearimpact energy-ratios``: angle_deg (phi1 of (12)), pairs,
     hertz_over_bending_one_pair, axial_over_bending_one_pair,
     hertz_over_bending_system, axial_over_bending_system; and x_m, the
     contact position of the tooth followed.
     """
+    count = _arguments.integer("points", points)
     pair, model = _pair_and_model(case_or_pair, method, flipped_moment)
-    return _core.energy_ratios(pair, model, points)
+    return _core.energy_ratios(pair, model, count)
 
 
 class SimulationResult:
@@ -103,16 +136,17 @@ def simulate(case, keep_series=True, **changes):
     case: a Case, a Table 1 case number (1, 2, 3) or a case file's path.
     changes: fields to change first, as Case.replace takes them, e.g.
     friction_coefficient=0.06, end_time="10 ms", output_every=100,
-    integrator_kind="adaptive". keep_series=False skips the time series (faster, less
-    memory). The computation runs without the GIL; Ctrl-C stops it
+    integrator_kind="adaptive". keep_series: True or False; False skips the time series
+    (faster, less memory). The computation runs without the GIL; Ctrl-C stops it
     (KeyboardInterrupt). Raises CaseError for a case outside its ranges (with
     the step checked against the contact's period) and SimulationError for a
     run that cannot continue.
     """
+    keep = _arguments.flag("keep_series", keep_series)
     run = _as_case(case)
     if changes:
         run = run.replace(**changes)
-    summary_json, series, impacts = _core.simulate(run, keep_series)
+    summary_json, series, impacts = _core.simulate(run, keep)
     return SimulationResult(run, json.loads(summary_json), series, impacts)
 
 
@@ -128,20 +162,31 @@ def sweep_friction(
 ):
     """Fig. 7: friction loss / damping loss against the friction coefficient f.
 
-    f runs from `from_` to `to` inclusive in steps of `step`, for each case:
-    Table 1's three (read with torque_unit and case3_frequency_rad_s, as
-    paper_case takes them) unless `cases` lists others (Cases, numbers or
-    paths). changes: fields changed in every case first (e.g. step="0.05 us",
-    end_time="10 ms", damping_form="hunt-crossley"). threads: 0 uses every core;
-    the result does not depend on it. Ctrl-C stops it.
+    f runs from `from_` to `to` inclusive in steps of `step` (finite numbers;
+    0 <= from_ <= to, step > 0), for each case: Table 1's three (read with
+    torque_unit and case3_frequency_rad_s, as paper_case takes them) unless
+    `cases` lists others (a list or tuple of Cases, numbers or paths).
+    changes: fields changed in every case first (e.g. step="0.05 us",
+    end_time="10 ms", damping_form="hunt-crossley"). threads: an int, 0 uses
+    every core, at most the program's --threads bound; the result does not
+    depend on it. Ctrl-C stops it.
 
     Returns a dict of numpy arrays: "f" and one "ratio_<case name>" a case,
     the columns of ``gearimpact sweep-friction`` for Table 1's cases.
     """
+    start = _arguments.real("from_", from_)
+    stop = _arguments.real("to", to)
+    interval = _arguments.real("step", step)
+    workers = _arguments.integer("threads", threads)
     if cases is None:
         runs = [paper_case(n, torque_unit, case3_frequency_rad_s) for n in (1, 2, 3)]
     else:
-        runs = [_as_case(case) for case in cases]
+        if not isinstance(cases, (list, tuple)) or not cases:
+            raise case_error(
+                f"cases={cases!r}: a non-empty list of Cases, Table 1 numbers or case file paths",
+                "cases",
+            )
+        runs = [_as_case(case, f"cases[{i}]") for i, case in enumerate(cases)]
     if changes:
         runs = [run.replace(**changes) for run in runs]
     names = [run.name for run in runs]
@@ -149,7 +194,7 @@ def sweep_friction(
         raise case_error(
             "cases: " + ", ".join(names) + ": each case needs its own name (name=...)", "cases"
         )
-    frictions, ratio = _core.sweep_friction(runs, from_, to, step, threads)
+    frictions, ratio = _core.sweep_friction(runs, start, stop, interval, workers)
     table = {"f": frictions}
     for j, name in enumerate(names):
         table["ratio_" + name] = ratio[:, j].copy()

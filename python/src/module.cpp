@@ -22,6 +22,7 @@
 #include <utility>
 #include <vector>
 
+#include "case_flags.hpp"
 #include "gearimpact/gearimpact.hpp"
 #include "gearimpact/io/sweep_files.hpp"
 #include "program.hpp"
@@ -214,16 +215,24 @@ py::dict stiffness_columns(const GearPair& pair, const StiffnessModel& model,
   return table;
 }
 
+// A count of contact positions (the Python layer has checked that it is an
+// integer, exact as a double): `name` = value unless in [2, kMostSamples].
+int sample_count(const char* name, long long value) {
+  if (value < 2 || value > cli::kMostSamples) {
+    throw InputError(name, std::to_string(value),
+                     "an integer in [2, " + std::to_string(cli::kMostSamples) + "]");
+  }
+  return static_cast<int>(value);
+}
+
 // `points` positions from X_start to X_end inclusive, spaced as the program's
 // `stiffness` command spaces them (the last one exactly X_end), so that the
 // two give the same numbers.
-py::dict stiffness_samples(const GearPair& pair, const StiffnessModel& model, int points) {
-  if (points < 2 || points > 1000000) {
-    throw InputError("points", std::to_string(points), "an integer in [2, 1000000]");
-  }
+py::dict stiffness_samples(const GearPair& pair, const StiffnessModel& model, long long points) {
+  const int n = sample_count("points", points);
   validate(pair);
   validate(model);
-  return stiffness_columns(pair, model, contact_positions(pair, points));
+  return stiffness_columns(pair, model, contact_positions(pair, n));
 }
 
 py::dict stiffness_at(const GearPair& pair, const StiffnessModel& model,
@@ -247,16 +256,14 @@ py::dict stiffness_at(const GearPair& pair, const StiffnessModel& model,
 }
 
 // The columns of `gearimpact energy-ratios`, and x_m.
-py::dict energy_ratio_columns(const GearPair& pair, const StiffnessModel& model, int points) {
-  if (points > 1000000) {
-    throw InputError("points", std::to_string(points), "an integer in [2, 1000000]");
-  }
+py::dict energy_ratio_columns(const GearPair& pair, const StiffnessModel& model, long long points) {
+  const int n = sample_count("points", points);
   validate(pair);
   validate(model);
   std::vector<EnergyRatios> rows;
   {
     py::gil_scoped_release release;
-    rows = energy_ratio_cycle(pair, points, model);
+    rows = energy_ratio_cycle(pair, n, model);
   }
   py::dict table;
   table["angle_deg"] = column(rows, &EnergyRatios::phi1_deg);
@@ -269,12 +276,28 @@ py::dict energy_ratio_columns(const GearPair& pair, const StiffnessModel& model,
   return table;
 }
 
+// The worker threads asked for: 0 (one per core) to the program's --threads bound.
+unsigned thread_count(long long threads) {
+  if (threads < 0 || threads > cli::kMostThreads) {
+    throw InputError("threads", std::to_string(threads),
+                     "an integer in [0, " + std::to_string(cli::kMostThreads) + "] (0: all cores)");
+  }
+  return static_cast<unsigned>(threads);
+}
+
 // Fig. 7: the friction values and the ratio friction loss / damping loss of
-// each case (one column a case).
+// each case (one column a case). The library names the first friction "from",
+// which Python spells from_.
 py::tuple run_sweep(const std::vector<SimulationCase>& cases, double from, double to, double step,
-                    unsigned threads) {
+                    long long threads) {
+  const unsigned workers = thread_count(threads);
   const std::vector<SweepRow> rows = interruptible([&](const std::function<bool()>& should_stop) {
-    return sweep_friction(cases, from, to, step, threads, should_stop);
+    try {
+      return sweep_friction(cases, from, to, step, workers, should_stop);
+    } catch (const InputError& e) {
+      if (e.field() != "from") throw;
+      throw InputError("from_", e.value(), e.allowed());
+    }
   });
   py::array_t<double> ratio(
       {static_cast<py::ssize_t>(rows.size()), static_cast<py::ssize_t>(cases.size())});
@@ -317,12 +340,13 @@ SimulationCase stiffness_case(const std::optional<SimulationCase>& c,
 
 // `gearimpact mesh-stiffness` and its --summary: (CSV, JSON), the program's texts.
 py::tuple mesh_stiffness_texts_of(const std::optional<SimulationCase>& c,
-                                  const std::optional<std::string>& model, int samples) {
+                                  const std::optional<std::string>& model, long long samples) {
+  const int n = sample_count("samples", samples);
   const SimulationCase chosen = stiffness_case(c, model);
   cli::MeshStiffnessTexts texts;
   {
     py::gil_scoped_release release;
-    texts = cli::mesh_stiffness_texts(chosen.gears, chosen.model.stiffness, samples);
+    texts = cli::mesh_stiffness_texts(chosen.gears, chosen.model.stiffness, n);
   }
   return py::make_tuple(texts.csv, texts.summary_json);
 }
@@ -338,9 +362,64 @@ py::tuple sweep_texts(const SimulationCase& c, const std::vector<std::string>& o
   return py::make_tuple(sweep_csv(sweep.rows), poincare_csv(sweep.rows), sweep_summary_json(sweep));
 }
 
-Gear gear_numbered(int gear) {
-  if (gear != 1 && gear != 2) throw InputError("gear", std::to_string(gear), "1 or 2");
-  return gear == 1 ? Gear::one : Gear::two;
+bool is_boolean(const py::handle& value) {
+  return PyBool_Check(value.ptr()) ||
+         py::isinstance(value, py::module_::import("numpy").attr("bool_"));
+}
+
+// True or False (numpy's too), nothing else: Python would take any object's
+// truth, "no" among them.
+bool boolean(const char* name, const py::handle& value) {
+  if (!is_boolean(value)) {
+    throw InputError(name, py::repr(value).cast<std::string>(), "True or False");
+  }
+  return value.cast<bool>();
+}
+
+// Gear 1 or 2 of a pair, the pair checked first: the geometry of a pair
+// outside its ranges (a field set to NaN through GearPair's attributes) is no
+// number at all. True and False (numpy's too) are not gear numbers, though
+// Python counts them as integers.
+Gear gear_numbered(const GearPair& pair, const py::handle& gear) {
+  validate(pair);
+  const std::string written = py::repr(gear).cast<std::string>();
+  if (is_boolean(gear) || !PyIndex_Check(gear.ptr())) {
+    throw InputError("gear", written, "1 or 2");
+  }
+  const auto index = py::reinterpret_steal<py::object>(PyNumber_Index(gear.ptr()));
+  if (!index) throw py::error_already_set();
+  int overflow = 0;
+  const long long number = PyLong_AsLongLongAndOverflow(index.ptr(), &overflow);
+  if (overflow != 0 || (number != 1 && number != 2)) throw InputError("gear", written, "1 or 2");
+  return number == 1 ? Gear::one : Gear::two;
+}
+
+// The pair after validate(): its geometry is finite.
+const GearPair& checked(const GearPair& pair) {
+  validate(pair);
+  return pair;
+}
+
+// paper_case's W of case 3, read by the schema row that holds its range, as
+// the program's --case3-frequency is.
+double case3_frequency(double value) {
+  check_value(*find_field("torque1.angular_frequency"), value, "case3_frequency_rad_s",
+              format_number(value));
+  return value;
+}
+
+// The schema row of a key, for the Python layer: (kind, SI unit or None), or
+// None for an unknown key; replace() writes an SI number in that unit and a
+// list as a TOML array.
+py::object key_form(const std::string& key) {
+  const Field* field = find_field(key);
+  if (field == nullptr) return py::none();
+  const bool list = field->kind == FieldKind::quantity_list;
+  if (field->kind != FieldKind::quantity && !list) {
+    return py::make_tuple("scalar", py::none());
+  }
+  return py::make_tuple(list ? "list" : "quantity",
+                        std::string(units_of(field->dimension).front().symbol));
 }
 
 }  // namespace
@@ -408,10 +487,10 @@ void define_module(py::module_& m) {
           "Whether the term (hertz, bending, axial, ...) enters Ke.")
       .def(
           "set_term",
-          [](StiffnessModel& s, const std::string& id, bool on) {
-            s.terms.set(term_named(id), on);
+          [](StiffnessModel& s, const std::string& id, const py::handle& on) {
+            s.terms.set(term_named(id), boolean("on", on));
           },
-          "Switches a term of (29) on or off.")
+          py::arg("term"), py::arg("on"), "Switches a term of (29) on (True) or off (False).")
       .def("__repr__", [](const StiffnessModel& s) {
         return "StiffnessModel(method='" + method_name(s) + "', moment_sign='" +
                to_string(s.moment_sign) +
@@ -442,7 +521,13 @@ void define_module(py::module_& m) {
   m.def(
       "paper_case",
       [](int number, const std::string& torque_unit, double case3_frequency_rad_per_s) {
-        return paper_case(number, torque_unit_named(torque_unit), case3_frequency_rad_per_s);
+        const TorqueUnit unit = torque_unit_named(torque_unit);
+        const double frequency = case3_frequency(case3_frequency_rad_per_s);
+        try {
+          return paper_case(number, unit, frequency);
+        } catch (const InputError& e) {
+          throw InputError("number", e.value(), e.allowed());
+        }
       },
       py::arg("number"), py::arg("torque_unit") = "kgf-mm",
       py::arg("case3_frequency_rad_s") = 10000.0);
@@ -451,6 +536,7 @@ void define_module(py::module_& m) {
       py::arg("path"));
   m.def("parse_case", &parse_case, py::arg("text"), py::arg("file_name"));
   m.def("shortest_decimal", &shortest_decimal, py::arg("value"));
+  m.def("key_form", &key_form, py::arg("key"));
 
   m.def("simulate", &run_simulation, py::arg("case"), py::arg("keep_series"));
   m.def("stiffness_samples", &stiffness_samples, py::arg("pair"), py::arg("model"),
@@ -464,7 +550,14 @@ void define_module(py::module_& m) {
   m.def(
       "iso6336",
       [](const std::optional<SimulationCase>& c, double helix_angle_deg) {
-        return cli::iso6336_text(stiffness_case(c, std::nullopt).gears, helix_angle_deg);
+        const GearPair pair = stiffness_case(c, std::nullopt).gears;
+        try {
+          return cli::iso6336_text(pair, helix_angle_deg);
+        } catch (const InputError& e) {
+          // The library checks the angle in rad under its own name.
+          if (e.field() != "helix_angle") throw;
+          throw InputError("helix_angle_deg", format_number(helix_angle_deg), e.allowed());
+        }
       },
       py::arg("case"), py::arg("helix_angle_deg"));
   m.def("mesh_stiffness", &mesh_stiffness_texts_of, py::arg("case"), py::arg("model"),
@@ -481,38 +574,55 @@ void define_module(py::module_& m) {
   m.def(
       "contact_segment",
       [](const GearPair& g) {
-        const ContactSegment s = contact_segment(g);
+        const ContactSegment s = contact_segment(checked(g));
         return py::make_tuple(s.start_m, s.end_m);
       },
       py::arg("pair"), "(X_start, X_end), m: the contact segment on the line of action from C1.");
-  m.def("contact_ratio", &contact_ratio, py::arg("pair"), "(X_end - X_start) / t0");
-  m.def("base_pitch", &base_pitch, py::arg("pair"), "(41) t0 = pi m cos a0, m");
-  m.def("line_of_action_length", &line_of_action_length, py::arg("pair"),
-        "lp = (Rb1 + Rb2) tan a0, m: C1C2 along the line of action");
-  m.def("pitch_point_position", &pitch_point_position, py::arg("pair"),
-        "X_pitch = Rb1 tan a0, m, from C1");
+  m.def(
+      "contact_ratio", [](const GearPair& g) { return contact_ratio(checked(g)); }, py::arg("pair"),
+      "(X_end - X_start) / t0");
+  m.def(
+      "base_pitch", [](const GearPair& g) { return base_pitch(checked(g)); }, py::arg("pair"),
+      "(41) t0 = pi m cos a0, m");
+  m.def(
+      "line_of_action_length", [](const GearPair& g) { return line_of_action_length(checked(g)); },
+      py::arg("pair"), "lp = (Rb1 + Rb2) tan a0, m: C1C2 along the line of action");
+  m.def(
+      "pitch_point_position", [](const GearPair& g) { return pitch_point_position(checked(g)); },
+      py::arg("pair"), "X_pitch = Rb1 tan a0, m, from C1");
   m.def(
       "pitch_radius",
-      [](const GearPair& g, int gear) { return pitch_radius(g, gear_numbered(gear)); },
+      [](const GearPair& g, const py::handle& gear) {
+        return pitch_radius(g, gear_numbered(g, gear));
+      },
       py::arg("pair"), py::arg("gear"), "r = m Z / 2 of gear 1 or 2, m");
   m.def(
       "base_radius",
-      [](const GearPair& g, int gear) { return base_radius(g, gear_numbered(gear)); },
+      [](const GearPair& g, const py::handle& gear) {
+        return base_radius(g, gear_numbered(g, gear));
+      },
       py::arg("pair"), py::arg("gear"), "Rb = r cos a0 of gear 1 or 2, m");
   m.def(
-      "tip_radius", [](const GearPair& g, int gear) { return tip_radius(g, gear_numbered(gear)); },
+      "tip_radius",
+      [](const GearPair& g, const py::handle& gear) {
+        return tip_radius(g, gear_numbered(g, gear));
+      },
       py::arg("pair"), py::arg("gear"), "r + addendum of gear 1 or 2, m");
   m.def(
       "moment_of_inertia",
-      [](const GearPair& g, int gear) { return moment_of_inertia(g, gear_numbered(gear)); },
+      [](const GearPair& g, const py::handle& gear) {
+        return moment_of_inertia(g, gear_numbered(g, gear));
+      },
       py::arg("pair"), py::arg("gear"), "J = rho pi r^4 L / 2 of gear 1 or 2 (solid disc), kg m^2");
   m.def(
       "contact_angle",
-      [](const GearPair& g, int gear, double x1_m) {
-        return contact_angle(g, gear_numbered(gear), x1_m);
+      [](const GearPair& g, const py::handle& gear, double x1_m) {
+        const Gear which = gear_numbered(g, gear);
+        if (!std::isfinite(x1_m)) throw InputError("x1_m", x1_m, "a finite position, m, from C1");
+        return contact_angle(g, which, x1_m);
       },
       py::arg("pair"), py::arg("gear"), py::arg("x1_m"),
-      "(12) phi1 or (25),(26) phi2, rad, of the contact at X1 (from C1)");
+      "(12) phi1 or (25),(26) phi2, rad, of the contact at X1 (from C1, finite)");
 }
 
 }  // namespace gearimpact::python
