@@ -175,3 +175,16 @@ TEST_CASE("a long series streams to its file instead of growing in memory") {
   CHECK(streamed == kept);
 #endif
 }
+
+TEST_CASE("a series run ended by SIGINT, SIGTERM or SIGKILL leaves nothing beside its output") {
+  Scratch scratch("edges-signal");
+  const fs::path series = scratch.dir / "series.csv";
+  for (const char* signal_name : {"INT", "TERM", "KILL"}) {
+    CAPTURE(signal_name);
+    // Some seconds of streaming (2 million rows); the signal comes after 0.5 s.
+    run_command(cli("simulate --case 1 --t-end 200ms --out " + series.string()) +
+                " >/dev/null 2>&1 & sleep 0.5; kill -" + signal_name + " $!; wait");
+    // The streamed rows went to an anonymous file, which ends with the process.
+    CHECK(fs::is_empty(scratch.dir));
+  }
+}

@@ -399,9 +399,9 @@ TEST_CASE("merge reads every row of every shard and names the shard, file and li
   }
 }
 
-TEST_CASE("a sweep ended by SIGINT or SIGTERM leaves no temporary folder and no output") {
+TEST_CASE("a sweep ended by a signal leaves no output; a rerun is not hindered by what it left") {
   Scratch scratch("sweep-edges-signal");
-  for (const char* signal_name : {"INT", "TERM"}) {
+  for (const char* signal_name : {"INT", "TERM", "KILL"}) {
     CAPTURE(signal_name);
     const fs::path out = scratch.dir / "out";
     // Long enough to be under way when the signal comes (some seconds).
@@ -412,10 +412,16 @@ TEST_CASE("a sweep ended by SIGINT or SIGTERM leaves no temporary folder and no 
                     out.string()) +
                 " 2>/dev/null & sleep 0.5; kill -" + signal_name + " $!; wait");
     CHECK_FALSE(fs::exists(out));
-    CHECK(fs::is_empty(scratch.dir));
-    // A rerun is not hindered by anything the first left.
+    // SIGKILL cannot be caught: its hidden temporary folder stays until the
+    // next run into the same folder removes it.
+    if (std::string(signal_name) != "KILL") CHECK(fs::is_empty(scratch.dir));
     const CommandResult r = run_command(cli(kSweep + " --no-plots --out " + out.string()));
     CHECK_MESSAGE(r.exit_code == 0, r.err);
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(scratch.dir)) {
+      names.push_back(entry.path().filename().string());
+    }
+    CHECK(names == std::vector<std::string>{"out"});
     fs::remove_all(out);
   }
 }

@@ -30,6 +30,26 @@ fs::path scratch_dir(const char* name) {
   return dir;
 }
 
+// True once `child` holds a file open in `dir`: the anonymous temporary file
+// shows in /proc as "DIR/#INODE (deleted)", a named one by its name.
+bool writing_into(pid_t child, const fs::path& dir) {
+  std::error_code error;
+  const fs::path fds = fs::path("/proc") / std::to_string(child) / "fd";
+  for (const auto& fd : fs::directory_iterator(fds, error)) {
+    const fs::path target = fs::read_symlink(fd.path(), error);
+    if (!error && target.string().rfind(dir.string() + "/", 0) == 0) return true;
+  }
+  return false;
+}
+
+bool wait_for_write(pid_t child, const fs::path& dir) {
+  for (int i = 0; i < 20000; ++i) {
+    if (writing_into(child, dir)) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return false;
+}
+
 std::size_t entries(const fs::path& dir) {
   std::size_t n = 0;
   for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir)) ++n;
@@ -76,8 +96,8 @@ TEST_CASE("a file-size limit is an error, and the temporary file is removed") {
   fs::remove_all(dir);
 }
 
-TEST_CASE("SIGTERM and SIGINT during a write leave no temporary file") {
-  for (const int signal_number : {SIGTERM, SIGINT}) {
+TEST_CASE("SIGTERM, SIGINT and SIGKILL during a write leave no temporary file") {
+  for (const int signal_number : {SIGTERM, SIGINT, SIGKILL}) {
     CAPTURE(signal_number);
     const fs::path dir = scratch_dir("signal");
     const pid_t child = fork();
@@ -88,23 +108,20 @@ TEST_CASE("SIGTERM and SIGINT during a write leave no temporary file") {
       const std::string text(512u << 20, 'x');
       for (;;) write_file_atomically((dir / "series.csv").string(), text);
     }
-    // Wait for the temporary file (a hidden sibling of series.csv) to appear.
-    bool seen = false;
-    for (int i = 0; i < 20000 && !seen; ++i) {
-      for (const auto& entry : fs::directory_iterator(dir)) {
-        seen = seen || entry.path().filename().string().rfind(".series.csv.", 0) == 0;
-      }
-      if (!seen) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
-    REQUIRE(seen);
+    // The child is ended whatever the wait found, so that a failure here
+    // leaves no writer behind.
+    const bool writing = wait_for_write(child, dir);
     REQUIRE(::kill(child, signal_number) == 0);
     int status = 0;
     REQUIRE(waitpid(child, &status, 0) == child);
+    REQUIRE(writing);
     // Ended by the signal itself, as a parent expects.
     REQUIRE(WIFSIGNALED(status));
     CHECK(WTERMSIG(status) == signal_number);
+    // Nothing but a whole series.csv, if a write had completed.
     for (const auto& entry : fs::directory_iterator(dir)) {
-      CHECK(entry.path().filename().string().rfind(".series.csv.", 0) != 0);
+      CHECK(entry.path().filename() == "series.csv");
+      CHECK(fs::file_size(entry.path()) == (512u << 20));
     }
     fs::remove_all(dir);
   }
@@ -192,12 +209,55 @@ TEST_CASE("SIGTERM while a folder of outputs is written leaves no temporary fold
     }
     if (!seen) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
-  REQUIRE(seen);
   REQUIRE(::kill(child, SIGTERM) == 0);
   int status = 0;
   REQUIRE(waitpid(child, &status, 0) == child);
+  REQUIRE(seen);
   REQUIRE(WIFSIGNALED(status));
   CHECK(WTERMSIG(status) == SIGTERM);
   CHECK(entries(dir) == 0u);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a temporary folder left by SIGKILL is removed by the next run into the same path") {
+  const fs::path dir = scratch_dir("folder-kill");
+  const pid_t child = fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {
+    AtomicFolder folder((dir / "set").string(), false);
+    write_file_atomically((fs::path(folder.temporary()) / "done").string(), "x");
+    const std::string text(512u << 20, 'x');
+    for (;;) write_file_atomically((fs::path(folder.temporary()) / "big").string(), text);
+  }
+  fs::path left;
+  for (int i = 0; i < 20000 && left.empty(); ++i) {
+    for (const auto& entry : fs::directory_iterator(dir)) {
+      if (fs::exists(entry.path() / "done")) left = entry.path();
+    }
+    if (left.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  const bool writing = !left.empty() && wait_for_write(child, left);
+  REQUIRE(::kill(child, SIGKILL) == 0);
+  int status = 0;
+  REQUIRE(waitpid(child, &status, 0) == child);
+  REQUIRE(writing);
+  // A process killed outright cannot clean up: its folder stays, named by
+  // its host and process id, and only its committed file is in it.
+  REQUIRE(fs::exists(left));
+  CHECK(entries(left) == 1u);
+  const std::string name = left.filename().string();
+  std::string own_pid = ".";
+  own_pid.append(std::to_string(child)).append(".");
+  CHECK(name.find(own_pid) != std::string::npos);
+  // A folder of the same pattern whose process lives (this one) stays.
+  std::string alive_name = name.substr(0, name.find(own_pid));
+  alive_name.append(".").append(std::to_string(::getpid())).append(".abcdef");
+  const fs::path alive = dir / alive_name;
+  fs::create_directory(alive);
+  AtomicFolder next((dir / "set").string(), false);
+  next.commit();
+  CHECK_FALSE(fs::exists(left));
+  CHECK(fs::exists(alive));
+  CHECK(entries(dir) == 2u);
   fs::remove_all(dir);
 }

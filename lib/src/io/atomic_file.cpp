@@ -12,8 +12,10 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <random>
 #include <vector>
 
 #include "gearimpact/error.hpp"
@@ -135,6 +137,53 @@ void require_writable_folder_of(const std::filesystem::path& target, const std::
   }
 }
 
+// A temporary's name says who made it: ".NAME<tag>.HOST.PID.XXXXXX" beside
+// NAME. A run killed by SIGKILL cannot remove its temporary folder (its files
+// are anonymous until committed, see AtomicFile); the next run into the same
+// target removes what a dead process of this host left (kill(pid, 0) says
+// ESRCH). A live process's, or another host's on a shared file system, stays.
+std::string this_host() {
+  std::array<char, 256> name{};
+  if (::gethostname(name.data(), name.size() - 1) != 0) return "host";
+  std::string host(name.data());
+  for (char& c : host) {
+    if (c == '/' || c == '.') c = '_';
+  }
+  return host.empty() ? "host" : host;
+}
+
+std::string temporary_prefix(const std::filesystem::path& target, const char* tag) {
+  return "." + target.filename().string() + tag + "." + this_host() + ".";
+}
+
+std::string temporary_pattern(const std::filesystem::path& target, const char* tag) {
+  return (folder_of(target) /
+          (temporary_prefix(target, tag) + std::to_string(::getpid()) + ".XXXXXX"))
+      .string();
+}
+
+void remove_stale_temporaries(const std::filesystem::path& target) {
+  std::error_code error;
+  for (const char* tag : {"", ".old"}) {
+    const std::string prefix = temporary_prefix(target, tag);
+    for (const auto& entry : std::filesystem::directory_iterator(folder_of(target), error)) {
+      const std::string name = entry.path().filename().string();
+      if (name.compare(0, prefix.size(), prefix) != 0) continue;
+      // The rest is "PID.XXXXXX".
+      const std::string rest = name.substr(prefix.size());
+      const std::size_t dot = rest.find('.');
+      if (dot == std::string::npos || dot == 0 || rest.size() != dot + 7 ||
+          rest.find_first_not_of("0123456789") != dot) {
+        continue;
+      }
+      const long pid = std::strtol(rest.c_str(), nullptr, 10);
+      if (pid <= 0 || ::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;
+      std::error_code ignored;
+      std::filesystem::remove_all(entry.path(), ignored);
+    }
+  }
+}
+
 }  // namespace
 
 void require_regular_or_absent(const std::string& path) {
@@ -171,28 +220,37 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   require_regular_or_absent(path_);
   const std::filesystem::path target(path_);
   const std::filesystem::path dir = folder_of(target);
-  // A hidden sibling: same file system, so the rename is atomic.
-  std::string hidden(".");
-  hidden.append(target.filename().string());
-  hidden.append(".XXXXXX");
-  const std::string pattern = (dir / hidden).string();
-  std::vector<char> name(pattern.begin(), pattern.end());
-  name.push_back('\0');
-  // The file is registered for the signal handler before a terminating
-  // signal may arrive: one between its creation and its registration would
-  // leave it behind.
-  int mkstemp_errno = 0;
-  with_terminating_signals_blocked([&] {
-    fd_ = mkstemp(name.data());
-    mkstemp_errno = errno;
-    if (fd_ >= 0) slot_ = track(name.data());
-  });
-  if (fd_ < 0) {
-    errno = mkstemp_errno;
-    throw Error("cannot create a temporary file beside " + path_ + ": " + reason());
+  remove_stale_temporaries(target);
+  // An anonymous file in the target's folder (same file system, so the final
+  // rename is atomic): nothing of it survives the process, SIGKILL included,
+  // until commit() gives it a name. Where the file system or a missing /proc
+  // rules that out, a hidden named sibling, removed on the error paths and
+  // the terminating signals.
+  if (::access("/proc/self/fd", X_OK) == 0) {
+    fd_ = ::open(dir.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0644);
   }
-  temporary_.assign(name.data());
-  // mkstemp creates the file private; an output is for everyone to read.
+  if (fd_ < 0) {
+    std::vector<char> name;
+    const std::string pattern = temporary_pattern(target, "");
+    name.assign(pattern.begin(), pattern.end());
+    name.push_back('\0');
+    // The file is registered for the signal handler before a terminating
+    // signal may arrive: one between its creation and its registration would
+    // leave it behind.
+    int mkstemp_errno = 0;
+    with_terminating_signals_blocked([&] {
+      fd_ = mkstemp(name.data());
+      mkstemp_errno = errno;
+      if (fd_ >= 0) slot_ = track(name.data());
+    });
+    if (fd_ < 0) {
+      errno = mkstemp_errno;
+      throw Error("cannot create a temporary file beside " + path_ + ": " + reason());
+    }
+    temporary_.assign(name.data());
+  }
+  // mkstemp creates the file private, O_TMPFILE applies the umask; an output
+  // is for everyone to read.
   if (::fchmod(fd_, 0644) != 0) fail("cannot set the permissions of");
 }
 
@@ -231,6 +289,7 @@ void AtomicFile::append(std::string_view text) {
 void AtomicFile::commit() {
   if (fd_ < 0) throw Error("cannot write " + path_ + ": the file is already closed");
   if (::fsync(fd_) != 0) fail("cannot flush");
+  if (temporary_.empty()) link_anonymous_file();
   const int fd = fd_;
   fd_ = -1;
   if (::close(fd) != 0) fail("cannot close");
@@ -246,6 +305,34 @@ void AtomicFile::commit() {
   temporary_.clear();
   untrack(slot_);
   slot_ = AtomicFile::kUntracked;
+}
+
+void AtomicFile::link_anonymous_file() {
+  // linkat through /proc/self/fd names an O_TMPFILE file without privileges
+  // (open(2)); the name is a fresh hidden sibling, registered for the signal
+  // handler for the moment until the rename.
+  const std::string proc_path = "/proc/self/fd/" + std::to_string(fd_);
+  const std::string pattern = temporary_pattern(std::filesystem::path(path_), "");
+  for (unsigned attempt = 0;; ++attempt) {
+    std::string name = pattern.substr(0, pattern.size() - 6);
+    unsigned value = static_cast<unsigned>(std::random_device{}()) + attempt;
+    for (int i = 0; i < 6; ++i, value /= 36)
+      name += "0123456789abcdefghijklmnopqrstuvwxyz"[value % 36];
+    int link_errno = 0;
+    with_terminating_signals_blocked([&] {
+      if (::linkat(AT_FDCWD, proc_path.c_str(), AT_FDCWD, name.c_str(), AT_SYMLINK_FOLLOW) == 0) {
+        slot_ = track(name.c_str());
+        temporary_ = name;
+      } else {
+        link_errno = errno;
+      }
+    });
+    if (!temporary_.empty()) return;
+    if (link_errno != EEXIST || attempt == 100) {
+      errno = link_errno;
+      fail("cannot name the temporary file of");
+    }
+  }
 }
 
 namespace {
@@ -275,8 +362,8 @@ bool is_within(const std::filesystem::path& inner, const std::filesystem::path& 
 // signal handler as AtomicFile registers its file; throws Error.
 std::string make_temporary_folder(const std::filesystem::path& target, const char* tag,
                                   std::size_t& slot) {
-  const std::string pattern =
-      (folder_of(target) / ("." + target.filename().string() + tag + ".XXXXXX")).string();
+  remove_stale_temporaries(target);
+  const std::string pattern = temporary_pattern(target, tag);
   std::vector<char> name(pattern.begin(), pattern.end());
   name.push_back('\0');
   const char* made = nullptr;

@@ -13,8 +13,12 @@ namespace gearimpact {
 // onto `path`. Refuses, before writing, a `path` that exists and is not a
 // regular file (a device such as /dev/null, a FIFO, a directory, a socket):
 // the rename would replace the node itself. Throws Error naming the path on
-// any failure; the temporary file never survives a failure, nor SIGINT, SIGTERM
-// or SIGHUP once remove_temporaries_on_signals() has been called.
+// any failure. The temporary file is anonymous (O_TMPFILE) until the moment
+// of the rename, so nothing of it survives a failure or the process's end,
+// SIGKILL included; where the file system cannot make anonymous files it is a
+// hidden sibling, removed on failure and, once remove_temporaries_on_signals()
+// has been called, on SIGINT, SIGTERM or SIGHUP, and by the next write of the
+// same path after a SIGKILL.
 void write_file_atomically(const std::string& path, std::string_view text);
 
 // An output written in pieces, for one too long to hold in memory (a time
@@ -40,8 +44,10 @@ class AtomicFile {
  private:
   void discard() noexcept;
   [[noreturn]] void fail(const char* what);
+  void link_anonymous_file();
 
   std::string path_;
+  // The temporary file's name once it has one (empty while it is anonymous).
   std::string temporary_;
   int fd_ = -1;
   std::size_t slot_ = kUntracked;
@@ -74,7 +80,9 @@ void require_output_folder(const std::string& path, bool overwrite,
 // empty folder is replaced, and a run that finds `path` filled by another run
 // meanwhile fails naming it, its own outputs discarded. The temporary folder
 // never survives a failure, nor SIGINT, SIGTERM or SIGHUP once
-// remove_temporaries_on_signals() has been called. It holds files only.
+// remove_temporaries_on_signals() has been called; one left by a process
+// killed outright (SIGKILL, a crash) is removed by the next AtomicFolder of
+// the same path on the same host. It holds files only.
 class AtomicFolder {
  public:
   // Checks `path` (require_output_folder) and makes the temporary folder;
