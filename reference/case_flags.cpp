@@ -106,6 +106,7 @@ SimulationCase CaseOptions::paper(int number) const {
 
 void CaseOptions::apply(SimulationCase& c) {
   given_.clear();
+  const SimulationCase before = c;
   for (std::size_t i = 0; i < flags_.size(); ++i) {
     if (options_[i]->count() == 0) continue;
     const CaseFlag& flag = flags_[i];
@@ -125,6 +126,31 @@ void CaseOptions::apply(SimulationCase& c) {
     }
     set(c, key, assignment.substr(equals + 1), "--set " + key,
         set_numbers_ == SetNumbers::as_swept_value);
+  }
+  require_chosen_keys(before, c);
+}
+
+void CaseOptions::require_chosen_keys(const SimulationCase& before, const SimulationCase& c) const {
+  for (const auto& [key, given] : given_) {
+    const Field& selector = *find_field(key);
+    if (selector.kind != FieldKind::choice || selector.get(before) == selector.get(c)) continue;
+    std::string missing;
+    std::string syntax;
+    for (const Field& field : case_schema()) {
+      if (field.section != selector.section || !field.only_when ||
+          field.only_when->key != selector.key || !field.required || !applies(field, c) ||
+          given_.count(field.name()) > 0) {
+        continue;
+      }
+      missing += (missing.empty() ? "" : ", ") + field.name();
+      syntax += " --set '" + field.name() + "=...'";
+    }
+    if (missing.empty()) continue;
+    throw InputError(given.option, given.text,
+                     "a choice given with the keys it needs: " + missing +
+                         " (the case's values for its former choice do not carry over); give "
+                         "them as" +
+                         syntax);
   }
 }
 

@@ -128,6 +128,11 @@ class CaseOptions {
  private:
   void set(SimulationCase& c, const std::string& key, const std::string& text,
            const std::string& option, bool swept_value);
+  // A choice changed by an option (torque1.kind = "sinusoidal") must come with
+  // the required keys of its new choice (torque1.amplitude, ...): the case
+  // holds their defaults, not values the user meant. Throws InputError naming
+  // the option and the keys otherwise.
+  void require_chosen_keys(const SimulationCase& before, const SimulationCase& c) const;
 
   std::vector<CaseFlag> flags_;
   std::vector<CLI::Option*> options_;

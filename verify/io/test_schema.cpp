@@ -1,5 +1,5 @@
 // The case schema: one range per key, whoever asks. The reader (parse_case)
-// and the library's checks (validate_fields, then validate_step as simulate()
+// and the library's checks (validate_fields, then validate_implied as simulate()
 // runs it) must accept and refuse the same values at every bound of every
 // numeric key; the ranges the two validators used to disagree on are pinned to
 // the values chosen (restitution exponent (0, 1], adaptive tolerance
@@ -93,7 +93,7 @@ std::optional<InputError> error_of(const std::function<void()>& check) {
 bool library_accepts(const SimulationCase& c) {
   try {
     validate_fields(c);
-    validate_step(c, largest_resolving_step_s(c));
+    validate_implied(c);
   } catch (const InputError&) {
     return false;
   } catch (const QuadratureError&) {

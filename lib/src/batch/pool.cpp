@@ -101,10 +101,11 @@ std::shared_future<SimulationResult> RunPool::submit(const SimulationCase& c, bo
   std::shared_ptr<const StiffnessTable> table;
   try {
     // Validated here, so that a bad case throws InputError to the caller; the
-    // step is checked on the table, without a quadrature of its own.
+    // checks that need the mesh stiffness use the table, without a quadrature
+    // of their own.
     validate_fields(c);
     table = table_for(c);
-    validate_step(c, largest_resolving_step_s(c, *table));
+    validate_implied(c, *table);
   } catch (...) {
     promise->set_exception(std::current_exception());
     throw;

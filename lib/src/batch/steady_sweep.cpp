@@ -181,7 +181,9 @@ SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
         if (!(std::isfinite(timing.step_s) && timing.step_s > 0.0 &&
               timing.steps_per_period >= 1)) {
           throw InputError(spec.vary2.empty() ? spec.vary : spec.vary + ", " + spec.vary2,
-                           "the step " + shortest_decimal(timing.step_s) + " s",
+                           std::isfinite(timing.step_s)
+                               ? "the step " + shortest_decimal(timing.step_s) + " s"
+                               : std::string("no finite step"),
                            "values at which the steady state's RK4 step is a positive time");
         }
       } catch (const InputError& e) {

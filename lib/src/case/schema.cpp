@@ -363,8 +363,9 @@ std::vector<Field> make_schema() {
   {
     Rows r(rows, "model");
     r.number(
-        "friction_coefficient", {closed(0.0), {}, {}}, false,
-        "f of (35): Ff = f N against the sliding speed",
+        "friction_coefficient", {closed(0.0), closed(1.0), {}}, false,
+        "f of (35): Ff = f N against the sliding speed; at most 1: dry steel on steel stays "
+        "below about 0.8, lubricated teeth below 0.1, and a larger f is no tooth contact",
         [](auto& c) -> auto& { return c.model.friction_coefficient; });
     r.choice(
         "damping_form", choices_of(kDampingForms), false, "form of the damping factor D of (32)",
@@ -373,8 +374,10 @@ std::vector<Field> make_schema() {
         "damping_stiffness", choices_of(kDampingStiffnesses), false, "the stiffness K in (32)",
         [](auto& c) -> auto& { return c.model.damping_stiffness; });
     r.number(
-        "restitution_coefficient", {closed(0.0), {}, {}}, false,
-        "c of (33) e = 1 - c (Vi / speed unit)^p",
+        "restitution_coefficient", {closed(0.0), closed(1.0), {}}, false,
+        "c of (33) e = 1 - c (Vi / speed unit)^p; at most 1: above it e < 0 at every impact "
+        "faster than the speed unit. e is held at 0 (a fully plastic impact) for Vi above "
+        "speed unit c^(-1/p), where (33) would give e < 0",
         [](auto& c) -> auto& { return c.model.restitution.coefficient; });
     r.number(
         "restitution_exponent", {open(0.0), closed(1.0), {}}, false,

@@ -53,7 +53,7 @@ void check_table(const SimulationCase& c, const StiffnessTable& table) {
 SimulationResult simulate_checked(const SimulationCase& c, const StiffnessTable& table,
                                   const RunControl& control) {
   check_table(c, table);
-  validate_step(c, largest_resolving_step_s(c, table));
+  validate_implied(c, table);
   validate_control(c, control);
   SimulationResult result = c.integrator.kind == IntegratorKind::rk4
                                 ? run_rk4(c, table, control)
@@ -71,7 +71,7 @@ SimulationResult simulate_checked(const SimulationCase& c, const StiffnessTable&
 
 void validate(const SimulationCase& c) {
   validate_fields(c);
-  validate_step(c, largest_resolving_step_s(c));
+  validate_implied(c);
 }
 
 SimulationResult simulate(const SimulationCase& c, const RunControl& control) {

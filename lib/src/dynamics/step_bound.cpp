@@ -1,9 +1,13 @@
 #include "gearimpact/dynamics/step_bound.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <functional>
+#include <limits>
 #include <string>
+#include <utility>
 
 #include "gearimpact/constants.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
@@ -15,13 +19,22 @@ namespace gearimpact {
 
 namespace {
 
-// The largest resolving step with Ke(X) of one pair given by `ke`.
-double largest_step(const SimulationCase& c, const std::function<double(double)>& ke) {
+// Four significant digits: the numbers a message explains a bound with.
+std::string digits(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g", value);
+  return buffer;
+}
+
+// The smallest and largest sum of Ke over the loaded pairs (42), sampled at 17
+// positions along one base pitch, Ke(X) of one pair given by `ke`.
+std::pair<double, double> total_stiffness_extremes(const SimulationCase& c,
+                                                   const std::function<double(double)>& ke) {
   const GearPair& g = c.gears;
-  // (42): the pairs loaded when one sits at u, for u along one base pitch.
   const MeshLayout layout(g, c.model.coast_phase);
   const double t0 = layout.base_pitch_m();
   constexpr int samples = 16;
+  double softest = std::numeric_limits<double>::infinity();
   double stiffest = 0.0;
   for (int i = 0; i <= samples; ++i) {
     const double u = layout.start_m() + t0 * i / samples;
@@ -30,31 +43,142 @@ double largest_step(const SimulationCase& c, const std::function<double(double)>
     for (int k = range.k_first; k < range.k_first + range.count; ++k) {
       total += ke(layout.position_m(u, k));
     }
+    softest = std::min(softest, total);
     stiffest = std::max(stiffest, total);
   }
-  const double period = 2.0 * pi / std::sqrt(stiffest * inverse_effective_mass_per_kg(g));
+  return {softest, stiffest};
+}
+
+double largest_step(const SimulationCase& c, double stiffest) {
+  const double period = 2.0 * pi / std::sqrt(stiffest * inverse_effective_mass_per_kg(c.gears));
   return period / kStepsPerContactPeriod;
+}
+
+// The peak |T(t)| of a torque and the key that sets most of it; a torque
+// given as a function has no known peak (0, no key).
+std::pair<double, std::string> torque_peak(const Torque& t, const std::string& section) {
+  switch (t.kind) {
+    case Torque::Kind::constant:
+      return {std::fabs(t.constant_n_m), section + ".value"};
+    case Torque::Kind::sinusoidal: {
+      const double mean = std::fabs(t.mean_n_m);
+      const double amplitude = std::fabs(t.amplitude_n_m);
+      return {mean + amplitude, section + (amplitude >= mean ? ".amplitude" : ".mean")};
+    }
+    case Torque::Kind::harmonic: {
+      const double mean = std::fabs(t.mean_n_m);
+      double amplitudes = 0.0;
+      for (double a : t.harmonic_amplitudes_n_m) amplitudes += std::fabs(a);
+      return {mean + amplitudes, section + (amplitudes >= mean ? ".amplitudes" : ".mean")};
+    }
+    case Torque::Kind::user:
+      break;
+  }
+  return {0.0, std::string()};
+}
+
+// The static deflection the torques imply: each torque's peak tooth load
+// |T|/Rb over the smallest total mesh stiffness.
+void validate_static_deflection(const SimulationCase& c, double softest) {
+  const GearPair& g = c.gears;
+  const double most = kMostStaticDeflectionPerModule * g.module_m;
+  const std::array<std::pair<const Torque*, Gear>, 2> torques{
+      {{&c.torque1, Gear::one}, {&c.torque2, Gear::two}}};
+  for (std::size_t i = 0; i < torques.size(); ++i) {
+    const auto [torque, gear] = torques[i];
+    const std::string section = "torque" + std::to_string(i + 1);
+    const auto [peak, key] = torque_peak(*torque, section);
+    const double rb = base_radius(g, gear);
+    const double load = peak / rb;
+    if (load <= most * softest) continue;
+    const double deflection = load / softest;
+    const std::string n = std::to_string(i + 1);
+    throw InputError(
+        key, digits(peak) + " N*m",
+        "a peak |T" + n + "| <= " + digits(most * softest * rb) + " N*m: its tooth load |T" + n +
+            "|/Rb" + n + " = " + digits(load) + " N over the smallest mesh stiffness " +
+            digits(softest) + " N/m is a static deflection of " +
+            (std::isfinite(deflection) ? digits(deflection) + " m" : "more than any double") +
+            ", above " + digits(kMostStaticDeflectionPerModule) + " module = " + digits(most) +
+            " m, where the linear-elastic tooth model no longer holds; lower the torque, or "
+            "stiffen the pair (gears.youngs_modulus = " +
+            digits(g.youngs_modulus_pa) + " Pa, gears.face_width = " + digits(g.face_width_m) +
+            " m)");
+  }
+}
+
+// Each gear's initial speed against the step: at least kStepsPerMeshPeriod
+// steps per mesh period 2 pi / (z |w|).
+void validate_speeds(const SimulationCase& c) {
+  const double step = c.integrator.step_s;
+  const std::array<std::pair<int, double>, 2> gears{
+      {{c.gears.teeth1, c.initial.w1_rad_per_s}, {c.gears.teeth2, c.initial.w2_rad_per_s}}};
+  for (std::size_t i = 0; i < gears.size(); ++i) {
+    const auto [teeth, w] = gears[i];
+    const double fastest = 2.0 * pi / (kStepsPerMeshPeriod * teeth * step);
+    if (std::fabs(w) <= fastest) continue;
+    const std::string n = std::to_string(i + 1);
+    throw InputError(
+        "initial.w" + n, digits(w) + " rad/s",
+        "|w" + n + "| <= " + digits(fastest) + " rad/s: at least " + digits(kStepsPerMeshPeriod) +
+            " steps of integrator.step = " + digits(step) + " s per mesh period 2 pi / (z" + n +
+            " |w" + n + "|), z" + n + " = " + std::to_string(teeth) +
+            ", so that the changes of the loaded pairs are resolved; a faster gear "
+            "needs a smaller integrator.step");
+  }
+}
+
+void validate_implied(const SimulationCase& c, const std::pair<double, double>& extremes) {
+  const double softest = c.model.mesh_stiffness == MeshStiffnessMode::constant
+                             ? c.model.constant_mesh_stiffness_n_per_m
+                             : extremes.first;
+  validate_static_deflection(c, softest);
+  validate_step(c, largest_step(c, extremes.second));
+  validate_speeds(c);
 }
 
 }  // namespace
 
 void validate_step(const SimulationCase& c, double largest) {
   const IntegratorSettings& s = c.integrator;
-  if (s.step_s > largest) {
-    throw InputError("integrator.step", s.step_s,
-                     "(0, " + format_number(largest) +
-                         "] s: a larger step takes fewer than 20 steps per period of the "
-                         "stiffest contact and does not resolve it");
+  if (s.step_s <= largest) return;
+  const double period = largest * kStepsPerContactPeriod;
+  const std::string why =
+      "at least " + digits(kStepsPerContactPeriod) +
+      " steps per period of the stiffest contact, 2 pi sqrt(m_e / K) with K its mesh stiffness "
+      "(gears.youngs_modulus, gears.face_width) and m_e = " +
+      digits(effective_mass_kg(c.gears)) +
+      " kg the effective mass of the gears' discs (gears.density, gears.module, gears.face_width)";
+  if (!(largest > 0.0) || !std::isnormal(largest)) {
+    throw InputError("integrator.step", digits(s.step_s) + " s",
+                     "no step: " + why + "; that period is " +
+                         (period > 0.0 ? digits(period) + " s" : "0 s to double precision") +
+                         ", too short to resolve; check those keys' values and units");
   }
+  throw InputError(
+      "integrator.step", digits(s.step_s) + " s",
+      "<= " + format_number(largest) + " s: " + why + "; that period is " + digits(period) + " s");
 }
 
 double largest_resolving_step_s(const SimulationCase& c) {
-  return largest_step(c,
-                      [&](double x) { return mesh_stiffness(c.gears, x, c.model.stiffness).ke; });
+  return largest_step(c, total_stiffness_extremes(c, [&](double x) {
+                           return mesh_stiffness(c.gears, x, c.model.stiffness).ke;
+                         }).second);
 }
 
 double largest_resolving_step_s(const SimulationCase& c, const StiffnessTable& table) {
-  return largest_step(c, [&](double x) { return table.stiffness(x); });
+  return largest_step(
+      c, total_stiffness_extremes(c, [&](double x) { return table.stiffness(x); }).second);
+}
+
+void validate_implied(const SimulationCase& c) {
+  validate_implied(c, total_stiffness_extremes(c, [&](double x) {
+                     return mesh_stiffness(c.gears, x, c.model.stiffness).ke;
+                   }));
+}
+
+void validate_implied(const SimulationCase& c, const StiffnessTable& table) {
+  validate_implied(c, total_stiffness_extremes(c, [&](double x) { return table.stiffness(x); }));
 }
 
 }  // namespace gearimpact

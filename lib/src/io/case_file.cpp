@@ -510,11 +510,11 @@ SimulationCase read_case(const Reader& reader, const toml::value& root,
   } catch (const InputError& e) {
     fail_at_key(reader, document, result, e);
   }
-  // The dynamics refuses a step that cannot resolve the contact; the file
-  // says so here, at the step's line, before any work starts.
-  double largest_step_s = 0.0;
+  // The dynamics refuses a step that cannot resolve the contact or the mesh
+  // period, and torques that imply a deflection past the tooth model; the
+  // file says so here, at the key's line, before any work starts.
   try {
-    largest_step_s = largest_resolving_step_s(result);
+    validate_implied(result);
   } catch (const QuadratureError& e) {
     const Field& tolerance = *find_field("model.stiffness_tolerance");
     reader.fail(tolerance.name(), document.find(tolerance),
@@ -522,9 +522,6 @@ SimulationCase read_case(const Reader& reader, const toml::value& root,
                     " with stiffness_method = " + method_name(result.model.stiffness) +
                     ": the mesh stiffness cannot be computed to it (" + e.what() +
                     "); 1e-12 is within reach of every method");
-  }
-  try {
-    validate_step(result, largest_step_s);
   } catch (const InputError& e) {
     fail_at_key(reader, document, result, e);
   }

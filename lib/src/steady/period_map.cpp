@@ -50,7 +50,7 @@ GearPeriodMap::GearPeriodMap(const SimulationCase& c, const StiffnessTable& tabl
   const InitialState& y = c.initial;
   centre_m_ = (m1 * rb1_ * y.theta1_rad + m2 * rb2_ * y.theta2_rad) / (m1 + m2);
   centre_speed_m_s_ = (m1 * rb1_ * y.w1_rad_per_s + m2 * rb2_ * y.w2_rad_per_s) / (m1 + m2);
-  scale_ = Eigen::Vector2d(g.backlash_m, g.backlash_m * natural_frequency_rad_per_s(c, table));
+  scale_ = state_scale(c, table);
 
   case_.integrator.kind = IntegratorKind::rk4;
   case_.integrator.step_s = step_s_;

@@ -286,6 +286,10 @@ SteadyTiming steady_timing(const SimulationCase& c, const StiffnessTable& table,
                      "a finite value >= " + format_number(kStepsPerContactPeriod));
   }
   SteadyTiming timing;
+  // z |w| of the faster gear at the start (and of the mean speed below): the
+  // step resolves its mesh period as simulate() requires (validate_implied).
+  double fastest_mesh = std::max(c.gears.teeth1 * std::fabs(c.initial.w1_rad_per_s),
+                                 c.gears.teeth2 * std::fabs(c.initial.w2_rad_per_s));
   const std::vector<double> w = forcing_frequencies(c);
   if (!w.empty()) {
     const double fundamental = *std::min_element(w.begin(), w.end());
@@ -315,6 +319,7 @@ SteadyTiming steady_timing(const SimulationCase& c, const StiffnessTable& table,
                        "2 pi / (z1 w1) is the sampling period");
     }
     timing.excitation_period_s = 2.0 * pi / (g.teeth1 * std::fabs(w1_mean));
+    fastest_mesh = std::max(fastest_mesh, g.teeth1 * std::fabs(w1_mean));
   }
   // The contact period of the stiffest contact: the table's largest Ke sum (step_bound.hpp is
   // 1/20 of it), or the constant mesh stiffness when that is stiffer.
@@ -324,11 +329,22 @@ SteadyTiming steady_timing(const SimulationCase& c, const StiffnessTable& table,
         contact_period,
         2.0 * pi * std::sqrt(effective_mass_kg(c.gears) / c.model.constant_mesh_stiffness_n_per_m));
   }
-  const double largest = contact_period / settings.steps_per_contact_period;
+  double largest = contact_period / settings.steps_per_contact_period;
+  if (fastest_mesh > 0.0) {
+    // A hair under the bound, so that the step rounded to a whole number per
+    // period below stays within it.
+    largest = std::min(largest, 2.0 * pi / (kStepsPerMeshPeriod * fastest_mesh) * (1.0 - 1e-9));
+  }
   timing.steps_per_period =
       static_cast<long long>(std::ceil(timing.excitation_period_s / largest * (1.0 - 1e-12)));
   timing.step_s = timing.excitation_period_s / static_cast<double>(timing.steps_per_period);
   return timing;
+}
+
+Eigen::Vector2d state_scale(const SimulationCase& c, const StiffnessTable& table) {
+  const GearPair& g = c.gears;
+  const double length = std::max(g.backlash_m, kLeastStateScalePerModule * g.module_m);
+  return Eigen::Vector2d(length, length * natural_frequency_rad_per_s(c, table));
 }
 
 SteadyPoint find_steady_state(const SimulationCase& c, const StiffnessTable& table,
@@ -342,9 +358,7 @@ SteadyPoint find_steady_state(const SimulationCase& c, const StiffnessTable& tab
   const GearPair& g = c.gears;
   const double rb1 = base_radius(g, Gear::one);
   const double rb2 = base_radius(g, Gear::two);
-  const double w_n = natural_frequency_rad_per_s(c, table);
-  Eigen::VectorXd scale(2);
-  scale << g.backlash_m, g.backlash_m * w_n;
+  const Eigen::VectorXd scale = state_scale(c, table);
 
   SimulationCase period_case = c;
   period_case.integrator.kind = IntegratorKind::rk4;

@@ -29,6 +29,13 @@ ElasticEnergy shared_load_energy(const std::vector<MeshStiffness>& pairs, double
 
 std::vector<EnergyRatios> energy_ratio_cycle(const GearPair& pair, int points,
                                              const StiffnessModel& model) {
+  // Every ratio is a term's energy over the bending energy: undefined without
+  // it. A term that is off has no energy, and its ratio is 0.
+  if (!model.terms.has(Term::bending)) {
+    throw InputError("model.bending_term", "\"off\"",
+                     "\"on\" for the energy ratios of Fig. 8: each is a term's energy over the "
+                     "bending energy, which is 0 without the bending term");
+  }
   const MeshLayout layout(pair, CoastPhase::half_base_pitch);
   std::vector<EnergyRatios> rows;
   rows.reserve(static_cast<std::size_t>(std::max(points, 0)));

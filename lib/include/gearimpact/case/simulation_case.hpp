@@ -95,6 +95,17 @@ inline constexpr std::array<NamedValue<IntegratorKind>, 2> kIntegratorKinds{{
 
 // Fewer steps per contact period than this do not resolve the contact.
 inline constexpr double kStepsPerContactPeriod = 20.0;
+// Fewer steps per mesh period 2 pi / (z |w|) than this do not resolve the
+// changes of the loaded pairs (two or more a mesh period): the same count as
+// for the contact, whose stiffness they change.
+inline constexpr double kStepsPerMeshPeriod = kStepsPerContactPeriod;
+// The largest static deflection the torques may imply (the largest tooth load
+// over the smallest mesh stiffness), as a fraction of the module: the
+// linear-elastic tooth model of (4)-(29) is a small-deflection model of a
+// tooth about 1.57 module thick at the pitch line; a tenth of a module is
+// several times the deflection of a fully loaded steel pair (a few um at
+// m = 2 mm) and far past yield.
+inline constexpr double kMostStaticDeflectionPerModule = 0.1;
 // A run of more steps than this is a mistake (days of computing), not a case.
 inline constexpr long long kMostSteps = 2'000'000'000LL;
 

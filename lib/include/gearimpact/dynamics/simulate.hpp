@@ -155,7 +155,8 @@ struct RunControl {
 // enough that the check costs nothing next to the steps.
 inline constexpr long long kStepsBetweenStopChecks = 16384;
 
-// Throws InputError naming the first field outside its range.
+// Throws InputError naming the first field outside its range (validate_fields),
+// then what the fields imply together (validate_implied of step_bound.hpp).
 void validate(const SimulationCase& c);
 
 SimulationResult simulate(const SimulationCase& c, const RunControl& control = {});

@@ -15,7 +15,25 @@ double largest_resolving_step_s(const SimulationCase& c);
 double largest_resolving_step_s(const SimulationCase& c, const StiffnessTable& table);
 
 // Throws InputError unless step <= largest_step_s (the schema holds the
-// step's other bounds and the most steps of a run).
+// step's other bounds and the most steps of a run). The message names the
+// contact period and the keys that set it; a period too short for any step
+// (a density or module far too small) is said so, never as an empty range.
 void validate_step(const SimulationCase& c, double largest_step_s);
+
+// The checks of what the inputs imply together, before a run; each throws
+// InputError naming the key as section.key, its value and the bound with its
+// reason:
+// - the static deflection: each torque's peak |T| (constant, or mean plus the
+//   amplitudes) over its base radius, over the smallest total mesh stiffness
+//   (the constant one of MeshStiffnessMode::constant), at most
+//   kMostStaticDeflectionPerModule module; names torqueN.value, .amplitude(s)
+//   or .mean, whichever sets most of the peak (a user function is not checked);
+// - the step against the stiffest contact (validate_step);
+// - initial.w1, initial.w2: at least kStepsPerMeshPeriod steps of
+//   integrator.step per mesh period 2 pi / (z |w|).
+// The mesh stiffness is sampled as largest_resolving_step_s samples it, by
+// quadrature or from the table.
+void validate_implied(const SimulationCase& c);
+void validate_implied(const SimulationCase& c, const StiffnessTable& table);
 
 }  // namespace gearimpact

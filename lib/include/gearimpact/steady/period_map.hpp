@@ -53,7 +53,8 @@ class GearPeriodMap {
   // (s, s') of a full state.
   Eigen::Vector2d relative_state(const InitialState& state) const;
 
-  // (B, B w_n), w_n = sqrt(k_mean / m_e): the scales of s and s' in docs/steady-state.md section 2.
+  // state_scale of steady_state.hpp: (B, B w_n) for a pair with backlash, w_n = sqrt(k_mean /
+  // m_e), the scales of s and s' in docs/steady-state.md section 2.
   Eigen::Vector2d scale() const { return scale_; }
   double period_s() const { return period_s_; }
   double step_s() const { return step_s_; }

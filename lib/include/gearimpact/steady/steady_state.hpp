@@ -10,6 +10,7 @@
 // remove that history, so a sweep whose branches must not depend on it should use one of them.
 #pragma once
 
+#include <Eigen/Dense>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -63,6 +64,18 @@ std::vector<double> forcing_frequencies(const SimulationCase& c);
 // no friction: friction loss f N |Vs| is drawn from the mean rotation, which balanced torques do
 // not feed, so with f > 0 the pair slows down without end.
 void require_steady_case(const SimulationCase& c);
+
+// A pair with less backlash than this many modules (none at all, B = 0) measures
+// its relative positions on this length instead: the size of a precision
+// gear's profile error (about 2 um at m = 2 mm), below which two states of a
+// real pair are not told apart.
+inline constexpr double kLeastStateScalePerModule = 1e-3;
+
+// The scales (L, L w_n) of s and s' in the periodicity test and the shooting,
+// L = max(B, kLeastStateScalePerModule module), w_n = sqrt(k_mean / m_e):
+// positive for every pair, the backlash itself for every pair with some.
+// Throws as natural_frequency_rad_per_s.
+Eigen::Vector2d state_scale(const SimulationCase& c, const StiffnessTable& table);
 
 // Throws InputError as require_steady_case, and when the torques' frequencies have no common
 // period or (without fluctuation) the mean speed is 0.

@@ -44,7 +44,9 @@ struct EnergyRatios {
 };
 
 // `points` evenly spaced contact positions of one tooth from X_start to X_end
-// inclusive; the other loaded pairs sit a base pitch away (42).
+// inclusive; the other loaded pairs sit a base pitch away (42). A term that is
+// off has no energy: its ratio is 0. Throws InputError naming
+// model.bending_term when the bending term, every ratio's denominator, is off.
 std::vector<EnergyRatios> energy_ratio_cycle(const GearPair& pair, int points,
                                              const StiffnessModel& model = {});
 
