@@ -59,6 +59,7 @@ struct SimulateOptions {
   int case_number = 1;
   std::string case_file;
   std::string out;
+  double max_rows = static_cast<double>(kMostSeriesRows);
   CaseOptions keys;
 };
 
@@ -109,6 +110,14 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
   std::optional<AtomicFile> series_file;
   std::string pending;
   constexpr std::size_t kFlushBytes = std::size_t{1} << 20;
+  if (!(o.max_rows >= 1.0 && o.max_rows <= 9e18)) {
+    throw InputError("--max-rows", format_number(o.max_rows), "a count in [1, 9e18]");
+  }
+  control.most_series_rows = static_cast<long long>(o.max_rows);
+  // A long run says how far it is, a line per tenth, on standard error.
+  constexpr double kRowsWorthProgress = 1e7;
+  const bool progress = series_rows(c) >= kRowsWorthProgress;
+  int tenths_done = 0;
   if (!o.out.empty()) {
     series_file.emplace(o.out);
     pending = series_csv_header();
@@ -117,11 +126,28 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
       if (pending.size() >= kFlushBytes) {
         series_file->append(pending);
         pending.clear();
+        const int tenths = static_cast<int>(10.0 * row.t_s / c.integrator.end_time_s);
+        if (progress && tenths > tenths_done) {
+          tenths_done = tenths;
+          std::fprintf(stderr, "simulate: %d%% (t = %s of %s s)\n", 10 * tenths,
+                       format_number(row.t_s).c_str(),
+                       format_number(c.integrator.end_time_s).c_str());
+        }
       }
     };
   }
   SimulationResult result;
-  o.keys.naming_options([&] { result = simulate(c, control); });
+  try {
+    o.keys.naming_options([&] { result = simulate(c, control); });
+  } catch (const InputError& e) {
+    // The key is named as the user gave it (naming_options); the flags that
+    // thin the series or lift the bound are the program's.
+    if (e.allowed().find("rows of time series") != std::string::npos) {
+      throw InputError(e.field(), e.value(),
+                       e.allowed() + " (--every keeps fewer rows, --max-rows lifts the bound)");
+    }
+    throw;
+  }
   if (series_file) {
     series_file->append(pending);
     series_file->commit();
@@ -171,6 +197,10 @@ void register_simulate_commands(CLI::App& app) {
                    "a case file (TOML, see docs/case-files.md); other options override it")
       ->excludes(paper);
   simulate->add_option("--out", options->out, "time series CSV file (written atomically)");
+  simulate->add_option("--max-rows", options->max_rows,
+                       "the most rows the time series may have, so that a slip of --t-end does "
+                       "not fill a disk (default " +
+                           format_number(static_cast<double>(kMostSeriesRows)) + ")");
   options->keys.add_flags(simulate, kSimulate);
   options->keys.add_reading(simulate);
   options->keys.add_set(simulate,

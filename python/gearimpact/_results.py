@@ -130,23 +130,28 @@ class SimulationResult:
         )
 
 
-def simulate(case, keep_series=True, **changes):
+def simulate(case, keep_series=True, max_rows=None, **changes):
     """Runs a case: the same run as ``gearimpact simulate``, bit for bit.
 
     case: a Case, a Table 1 case number (1, 2, 3) or a case file's path.
     changes: fields to change first, as Case.replace takes them, e.g.
     friction_coefficient=0.06, end_time="10 ms", output_every=100,
     integrator_kind="adaptive". keep_series: True or False; False skips the time series
-    (faster, less memory). The computation runs without the GIL; Ctrl-C stops it
+    (faster, less memory). max_rows: the most rows the kept series may have
+    (None: the library's bound, 5e7 rows, 4.4 GB; a longer run is refused
+    before it starts, naming end_time). The computation runs without the GIL; Ctrl-C stops it
     (KeyboardInterrupt). Raises CaseError for a case outside its ranges (with
     the step checked against the contact's period) and SimulationError for a
     run that cannot continue.
     """
     keep = _arguments.flag("keep_series", keep_series)
+    rows = _core.most_series_rows if max_rows is None else _arguments.integer("max_rows", max_rows)
+    if rows < 1:
+        raise _arguments.case_error(f"max_rows={max_rows!r}: a count >= 1, or None", "max_rows")
     run = _as_case(case)
     if changes:
         run = run.replace(**changes)
-    summary_json, series, impacts = _core.simulate(run, keep)
+    summary_json, series, impacts = _core.simulate(run, keep, rows)
     return SimulationResult(run, json.loads(summary_json), series, impacts)
 
 

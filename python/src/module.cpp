@@ -179,10 +179,11 @@ py::list impact_records(const std::vector<ImpactRecord>& impacts) {
 
 // summary_json's text (the program's JSON, parsed by the Python layer so that
 // the keys and numbers are the program's), the series and the impacts.
-py::tuple run_simulation(const SimulationCase& c, bool keep_series) {
+py::tuple run_simulation(const SimulationCase& c, bool keep_series, long long max_rows) {
   SimulationResult result = interruptible([&](std::function<bool()> should_stop) {
     RunControl control;
     control.keep_series = keep_series;
+    control.most_series_rows = max_rows;
     control.should_stop = std::move(should_stop);
     return simulate(c, control);
   });
@@ -538,7 +539,8 @@ void define_module(py::module_& m) {
   m.def("shortest_decimal", &shortest_decimal, py::arg("value"));
   m.def("key_form", &key_form, py::arg("key"));
 
-  m.def("simulate", &run_simulation, py::arg("case"), py::arg("keep_series"));
+  m.def("simulate", &run_simulation, py::arg("case"), py::arg("keep_series"), py::arg("max_rows"));
+  m.attr("most_series_rows") = kMostSeriesRows;
   m.def("stiffness_samples", &stiffness_samples, py::arg("pair"), py::arg("model"),
         py::arg("points"));
   m.def("stiffness_at", &stiffness_at, py::arg("pair"), py::arg("model"), py::arg("x"));

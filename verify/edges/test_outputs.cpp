@@ -188,3 +188,28 @@ TEST_CASE("a series run ended by SIGINT, SIGTERM or SIGKILL leaves nothing besid
     CHECK(fs::is_empty(scratch.dir));
   }
 }
+
+TEST_CASE("a series longer than the row budget is refused before the run, with the estimate") {
+  Scratch scratch("edges-rows");
+  const fs::path series = scratch.dir / "series.csv";
+  // 10 s at the 0.1 us step: 1e8 + 1 rows, twice the default budget of 5e7.
+  const CommandResult r = run_command(cli("simulate --case 1 --t-end 10 --out " + series.string()));
+  CHECK(r.exit_code == 1);
+  for (const char* part : {"--t-end = 10 ", "at most 50000000 rows", "about 100000001 rows",
+                           "about 14 GB", "--every", "--max-rows"}) {
+    CAPTURE(part);
+    CHECK(r.err.find(part) != std::string::npos);
+  }
+  CHECK(fs::is_empty(scratch.dir));
+  // --every thins the series below the bound; --max-rows sets the bound.
+  const CommandResult thin = run_command(
+      cli("simulate --case 1 --t-end 1ms --every 10 --max-rows 1001 --out " + series.string()));
+  CHECK_MESSAGE(thin.exit_code == 0, thin.err);
+  const CommandResult tight = run_command(
+      cli("simulate --case 1 --t-end 1ms --every 10 --max-rows 1000 --out " + series.string()));
+  CHECK(tight.exit_code == 1);
+  CHECK(tight.err.find("about 1001 rows") != std::string::npos);
+  const CommandResult bad = run_command(cli("simulate --case 1 --max-rows 0"));
+  CHECK(bad.exit_code == 1);
+  CHECK(bad.err.find("--max-rows = 0") != std::string::npos);
+}

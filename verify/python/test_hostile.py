@@ -208,6 +208,13 @@ REFUSED = [
      "gear", ["1 or 2"]),
     ("float for a gear", lambda: gearimpact.moment_of_inertia(gearimpact.GearPair(), 1.0),
      "gear", ["1 or 2"]),
+    # The kept series is bounded like the program's: 10 s at 0.1 us are 1e8 rows.
+    ("a series over the row budget", lambda: gearimpact.simulate(1, end_time="10 s"),
+     "end_time", ["at most 50000000 rows", "about 100000001 rows"]),
+    ("max_rows below the series", lambda: gearimpact.simulate(1, end_time="1 ms", max_rows=100),
+     "end_time", ["at most 100 rows", "about 10001 rows"]),
+    ("max_rows 0", lambda: gearimpact.simulate(1, max_rows=0), "max_rows", [">= 1"]),
+    ("max_rows True", lambda: gearimpact.simulate(1, max_rows=True), "max_rows", ["integer"]),
 ]
 
 
@@ -287,7 +294,7 @@ def test_numpy_scalars_are_numbers_and_numpy_bools_are_bools():
 
 def test_the_exact_integers_are_accepted_up_to_2_53():
     # 2**53 itself is a double exactly; only beyond it do integers collapse.
-    assert CASE1.replace(w1=2**53).fields()["initial.w1"] == "9007199254740992 rad/s"
+    assert CASE1.replace(theta1=2**53).fields()["initial.theta1"] == "9007199254740992 rad"
 
 
 def _numbers_in(value):

@@ -108,6 +108,10 @@ inline constexpr double kStepsPerMeshPeriod = kStepsPerContactPeriod;
 inline constexpr double kMostStaticDeflectionPerModule = 0.1;
 // A run of more steps than this is a mistake (days of computing), not a case.
 inline constexpr long long kMostSteps = 2'000'000'000LL;
+// The most rows of a time series a run keeps or writes unless its caller
+// lifts the bound (RunControl::most_series_rows): 5e7 rows are 7 GB of CSV or
+// 4.4 GB of memory, 5 s of the paper's cases at the 0.1 us step.
+inline constexpr long long kMostSeriesRows = 50'000'000LL;
 
 struct IntegratorSettings {
   IntegratorKind kind = IntegratorKind::rk4;

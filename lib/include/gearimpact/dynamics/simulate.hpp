@@ -141,6 +141,10 @@ struct RunControl {
   // An observer of the output grid: called with every row the series would
   // keep (every output_every-th step), whether or not keep_series.
   std::function<void(const SeriesRow&)> on_row;
+  // The most rows the series (kept or observed) may have, checked before the
+  // run against series_rows(); refused with the estimate, naming
+  // integrator.end_time.
+  long long most_series_rows = kMostSeriesRows;
   // When set, asked every kStepsBetweenStopChecks steps; true ends the run
   // with SimulationStopped. Lets a caller cancel a long run (an interactive
   // session's Ctrl-C, a time limit); it may also throw its own exception.
@@ -154,6 +158,11 @@ struct RunControl {
 // Often enough to stop within about a millisecond of the paper's cases, rarely
 // enough that the check costs nothing next to the steps.
 inline constexpr long long kStepsBetweenStopChecks = 16384;
+
+// The rows of a run's time series: the start and every output_every-th step
+// of end_time / step. The adaptive integrator's steps vary; its first step
+// stands in for them, so its count is an estimate.
+double series_rows(const SimulationCase& c);
 
 // Throws InputError naming the first field outside its range (validate_fields),
 // then what the fields imply together (validate_implied of step_bound.hpp).
