@@ -10,7 +10,8 @@ cd "$(dirname "$0")/.."
 seconds="${1:-20}"
 jobs="${JOBS:-$(nproc)}"
 CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ \
-  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGEARIMPACT_FUZZ=ON -DGEARIMPACT_BUILD_BENCHMARKS=OFF \
+  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
+  -DGEARIMPACT_FUZZ=ON -DGEARIMPACT_BUILD_BENCHMARKS=OFF \
   -DGEARIMPACT_FUZZ_SECONDS="$seconds"
 cmake --build build-fuzz -j "$jobs" --target fuzz_case_file fuzz_sweep_rows
 if [ "$seconds" != 0 ]; then

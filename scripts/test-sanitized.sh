@@ -5,7 +5,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs="${JOBS:-$(nproc)}"
+# -O1 -g1 (line tables): the instrumented build compiles in about a third of
+# the time of -O2 -g (toml11's reader: 39 s against 113 s), and the reports
+# still name file and line.
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGEARIMPACT_SANITIZE=ON \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
   -DGEARIMPACT_BUILD_BENCHMARKS=OFF -DGEARIMPACT_WARNINGS_AS_ERRORS=ON
 cmake --build build-asan -j "$jobs"
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1}"
