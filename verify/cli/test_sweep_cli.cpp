@@ -15,6 +15,7 @@
 
 #include "relative.hpp"
 #include "run_command.hpp"
+#include "scratch.hpp"
 
 using gearimpact::verify::cli;
 using gearimpact::verify::relative_difference;
@@ -29,9 +30,11 @@ std::string read(const std::filesystem::path& p) {
   return s.str();
 }
 
+// A folder `name` inside one scratch folder of this process, which is removed
+// when the suite ends.
 std::filesystem::path scratch(const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                    ("gearimpact-sweep-" + std::to_string(::getpid()) + "-" + name);
+  static const gearimpact::verify::Scratch root("sweep-cli");
+  const std::filesystem::path dir = root.dir / name;
   std::filesystem::remove_all(dir);
   return dir;
 }

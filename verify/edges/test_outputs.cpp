@@ -4,6 +4,7 @@
 // exits 1 with one prefix. Devices are made with mknod in a temporary folder,
 // never the machine's own /dev/null or /dev/full.
 #include <doctest/doctest.h>
+#include <sys/mount.h>
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
 #include <sys/types.h>
@@ -12,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/io/results.hpp"
@@ -44,6 +46,22 @@ std::string single_quoted(const std::string& text) {
   for (char ch : text) quoted += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
   return quoted + "'";
 }
+
+// A 1 MiB tmpfs mounted at `dir` for a full-disk test, unmounted at the end;
+// not mounted where this user may not mount (then the test says so and skips).
+struct SmallDisk {
+  fs::path dir;
+  bool mounted = false;
+  explicit SmallDisk(fs::path at) : dir(std::move(at)) {
+    fs::create_directories(dir);
+    mounted = ::mount("tmpfs", dir.c_str(), "tmpfs", 0, "size=1m") == 0;
+  }
+  ~SmallDisk() {
+    if (mounted) ::umount(dir.c_str());
+  }
+  SmallDisk(const SmallDisk&) = delete;
+  SmallDisk& operator=(const SmallDisk&) = delete;
+};
 
 }  // namespace
 
@@ -212,4 +230,48 @@ TEST_CASE("a series longer than the row budget is refused before the run, with t
   const CommandResult bad = run_command(cli("simulate --case 1 --max-rows 0"));
   CHECK(bad.exit_code == 1);
   CHECK(bad.err.find("--max-rows = 0") != std::string::npos);
+}
+
+TEST_CASE("a full disk fails the run naming the output, and leaves nothing on the disk") {
+  Scratch scratch("edges-disk");
+  const SmallDisk disk(scratch.dir / "disk");
+  if (!disk.mounted) {
+    MESSAGE("skipped: this user may not mount a tmpfs to fill");
+    return;
+  }
+  // 10 ms of case 1 is 14 MB of series against 1 MiB of disk.
+  const fs::path series = disk.dir / "series.csv";
+  const CommandResult r =
+      run_command(cli("simulate --case 1 --t-end 10ms --out " + series.string()));
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("gearimpact: error: cannot write " + series.string()) != std::string::npos);
+  CHECK(r.err.find("No space left on device") != std::string::npos);
+  CHECK(fs::is_empty(disk.dir));
+  // Standard output on the full disk: 20,000 stiffness rows are 2.5 MB.
+  const CommandResult out =
+      run_command(cli("stiffness --points 20000") + " > " + (disk.dir / "k.csv").string());
+  CHECK(out.exit_code == 1);
+  CHECK(out.err.find("standard output") != std::string::npos);
+  fs::remove(disk.dir / "k.csv");
+  // A sweep's folder on a disk filled to the last page: the run fails naming
+  // it, and nothing of it stays beside the filler.
+  {
+    std::ofstream filler(disk.dir / "filler", std::ios::binary);
+    const std::string page(4096, 'x');
+    while (filler.write(page.data(), static_cast<std::streamsize>(page.size()))) {
+    }
+  }
+  const fs::path folder = disk.dir / "sweep";
+  const CommandResult sweep =
+      run_command(cli("sweep 1 --vary initial.w1 --from 2000 --to 3000 --points 3 --set "
+                      "model.friction_coefficient=0 --set 'torque1.mean=3 N*m' --set "
+                      "model.mesh_damping_ratio=0.05 --no-plots --out " +
+                      folder.string()));
+  CHECK(sweep.exit_code == 1);
+  CHECK(sweep.err.find("No space left on device") != std::string::npos);
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(disk.dir)) {
+    names.push_back(entry.path().filename().string());
+  }
+  CHECK(names == std::vector<std::string>{"filler"});
 }
