@@ -132,6 +132,10 @@ SteadySweepSpec sweep_spec(SweepCommandOptions& o, SimulationCase base) {
   spec.shard = parse_shard(o.shard, o.shard_flag != nullptr && o.shard_flag->count() > 0);
   spec.settings = o.settings;
   spec.threads = o.threads;
+  if (!(o.max_points >= 1.0 && o.max_points <= 9e18)) {
+    throw InputError("--max-points", shortest_decimal(o.max_points),
+                     "a count in [1, 9e18]: the most points of the whole sweep");
+  }
   spec.max_points = o.max_points;
   return spec;
 }

@@ -72,9 +72,17 @@ def flag(name, value):
 
 
 def text(name, value, what="a str"):
-    """A str."""
+    """A str that UTF-8 can hold (no lone surrogates, which a file cannot hold either)."""
     if not isinstance(value, str):
         raise case_error(f"{name}={value!r}: {what}, not {type(value).__name__}", name)
+    try:
+        value.encode("utf-8")
+    except UnicodeEncodeError as error:
+        raise case_error(
+            f"{name}: character {error.start + 1} is a lone surrogate, which UTF-8 (and a case "
+            "file) cannot hold",
+            name,
+        ) from None
     return value
 
 

@@ -128,7 +128,8 @@ def replace(case, **changes):
         if section + ".kind" in given:
             literals = {k: v for k, v in literals.items() if not k.startswith(section + ".")}
     for dotted, (user_key, value) in given.items():
-        literals[dotted] = _literal(user_key, value, current.get(dotted), _core.key_form(dotted))
+        literals[dotted] = _literal(user_key, dotted, value, current.get(dotted),
+                                    _core.key_form(dotted))
     try:
         return _core.parse_case(_toml_text(literals), _KEYWORDS)
     except CaseError as error:
@@ -204,16 +205,23 @@ def _literal_of(value):
     if isinstance(value, int):
         return str(value)
     if isinstance(value, list):
-        return "[" + ", ".join(_literal_of(item) for item in value) + "]"
+        return _toml_array([_literal_of(item) for item in value])
     return repr(float(value))
 
 
-def _literal(user_key, value, current, form):
+def _toml_array(items):
+    """A TOML array over lines of 8 values, as the case-file writer writes
+    one: the reader refuses lines over 4096 bytes."""
+    lines = [", ".join(items[i:i + 8]) for i in range(0, len(items), 8)]
+    return "[\n  " + ",\n  ".join(lines) + "\n]" if len(items) > 8 else "[" + ", ".join(items) + "]"
+
+
+def _literal(user_key, dotted, value, current, form):
     """The TOML text of a value given for a key (whose present value is `current`;
     `form` is the key's (kind, SI unit) from the schema, None for an unknown key)."""
     kind, unit = form if form is not None else (None, None)
     if kind == "list":
-        return _list_literal(user_key, value, unit)
+        return _list_literal(user_key, dotted, value, unit)
     if is_bool(value):
         if current in ("on", "off"):
             return '"on"' if value else '"off"'
@@ -234,7 +242,7 @@ def _literal(user_key, value, current, form):
     )
 
 
-def _list_literal(user_key, value, unit):
+def _list_literal(user_key, dotted, value, unit):
     """The TOML array of a list key: each element a unit string as given, or a
     number in SI written in the key's SI unit."""
     if isinstance(value, numpy.ndarray):
@@ -253,6 +261,10 @@ def _list_literal(user_key, value, unit):
         )
     if not value:
         raise case_error(f"{user_key}=[]: a list of at least one number or unit string", user_key)
+    most = _core.most_values(dotted)
+    if len(value) > most:
+        raise case_error(f"{user_key}: {len(value)} values; a list of at most {most} values",
+                         user_key)
     items = []
     for i, item in enumerate(value):
         name = f"{user_key}[{i}]"
@@ -267,7 +279,7 @@ def _list_literal(user_key, value, unit):
                 f"not {type(item).__name__}",
                 name,
             )
-    return "[" + ", ".join(items) + "]"
+    return _toml_array(items)
 
 
 def _toml_text(literals):

@@ -538,6 +538,13 @@ void define_module(py::module_& m) {
   m.def("parse_case", &parse_case, py::arg("text"), py::arg("file_name"));
   m.def("shortest_decimal", &shortest_decimal, py::arg("value"));
   m.def("key_form", &key_form, py::arg("key"));
+  m.def(
+      "most_values",
+      [](const std::string& key) {
+        const Field* field = find_field(key);
+        return field == nullptr ? std::size_t{0} : field->most_values;
+      },
+      py::arg("key"));
 
   m.def("simulate", &run_simulation, py::arg("case"), py::arg("keep_series"), py::arg("max_rows"));
   m.attr("most_series_rows") = kMostSeriesRows;

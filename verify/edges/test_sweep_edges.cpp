@@ -157,6 +157,19 @@ TEST_CASE("bounds and meaningless sweeps are refused before any point runs, nami
       {base + " --points 1000" + second + " --points2 1000",
        {"--points", "2000000 points", "1000 lines", "--max-points"}},
       {base + " --points 3 --max-points 5", {"--points", "6 points", "at most 5"}},
+      // A bound that is no bound: NaN compared false and let every size through.
+      {base + " --points 3 --max-points nan", {"--max-points = nan", "[1, 9e18]"}},
+      {base + " --points 3 --max-points 0", {"--max-points = 0", "[1, 9e18]"}},
+      {base + " --points 3 --points2 2000000000 --vary2 initial.theta1 --from2 0 --to2 1",
+       {"--points", "2000000000 lines", "--max-points"}},
+      // Finite ends whose distance is not: the grid's step would be NaN.
+      {"sweep 1 --vary initial.w1 --from -1e308 --to 1e308 --points 3 "
+       "--set model.friction_coefficient=0 --set 'torque1.mean=3 N*m'",
+       {"--to = 1e308", "a finite number"}},
+      // A backlash beyond the tooth space, at an end of the sweep.
+      {"sweep 1 --vary gears.backlash --from 0 --to 1e308 --points 3 "
+       "--set model.friction_coefficient=0 --set 'torque1.mean=3 N*m'",
+       {"gears.backlash", "an end of the sweep", "pi m / 4"}},
       {base + " --points 2 --steps-per-contact-period 1e7",
        {"--steps-per-contact-period", "[20, 10000]"}},
       {base + " --points 2 --steps-per-contact-period 5", {"--steps-per-contact-period"}},
@@ -423,5 +436,16 @@ TEST_CASE("a sweep ended by a signal leaves no output; a rerun is not hindered b
     }
     CHECK(names == std::vector<std::string>{"out"});
     fs::remove_all(out);
+  }
+}
+
+TEST_CASE("a sweep whose reader goes away (SIGPIPE) leaves no temporary folder") {
+  Scratch scratch("sweep-edges-pipe");
+  const fs::path out = scratch.dir / "out";
+  // `head -1` reads the first progress line and exits; the next write to the
+  // closed pipe raises SIGPIPE.
+  run_command(cli(kSweep + " --no-plots --out " + out.string()) + " 2>&1 | head -1 >/dev/null");
+  for (const auto& entry : fs::directory_iterator(scratch.dir)) {
+    CHECK(entry.path().filename() == "out");
   }
 }

@@ -261,3 +261,17 @@ TEST_CASE("a temporary folder left by SIGKILL is removed by the next run into th
   CHECK(entries(dir) == 2u);
   fs::remove_all(dir);
 }
+
+TEST_CASE("a replaced file keeps its permissions; a new one is readable by everyone") {
+  const fs::path dir = scratch_dir("mode");
+  const fs::path kept = dir / "private.csv";
+  write_file_atomically(kept.string(), "old");
+  fs::permissions(kept, fs::perms::owner_read | fs::perms::owner_write);
+  write_file_atomically(kept.string(), "new");
+  CHECK(read_text(kept) == "new");
+  CHECK(fs::status(kept).permissions() == (fs::perms::owner_read | fs::perms::owner_write));
+  const fs::path fresh = dir / "fresh.csv";
+  write_file_atomically(fresh.string(), "x");
+  CHECK((fs::status(fresh).permissions() & fs::perms::others_read) == fs::perms::others_read);
+  fs::remove_all(dir);
+}

@@ -215,6 +215,14 @@ REFUSED = [
      "end_time", ["at most 100 rows", "about 10001 rows"]),
     ("max_rows 0", lambda: gearimpact.simulate(1, max_rows=0), "max_rows", [">= 1"]),
     ("max_rows True", lambda: gearimpact.simulate(1, max_rows=True), "max_rows", ["integer"]),
+    # A list over the schema's length is refused before a text of it is built.
+    ("1001 harmonics", lambda: CASE1.replace(torque1_kind="harmonic",
+                                             torque1_amplitudes=[0.0] * 1001,
+                                             torque1_angular_frequencies=[1.0] * 1001,
+                                             torque1_phases=[0.0] * 1001),
+     "torque1_amplitudes", ["1001 values", "at most 1000"]),
+    ("a lone surrogate in parse_case", lambda: gearimpact.parse_case('name = "a\udcff"'), "text",
+     ["surrogate"]),
 ]
 
 
@@ -294,7 +302,8 @@ def test_numpy_scalars_are_numbers_and_numpy_bools_are_bools():
 
 def test_the_exact_integers_are_accepted_up_to_2_53():
     # 2**53 itself is a double exactly; only beyond it do integers collapse.
-    assert CASE1.replace(theta1=2**53).fields()["initial.theta1"] == "9007199254740992 rad"
+    case3 = gearimpact.paper_case(3)
+    assert case3.replace(torque1_phase=2**53).fields()["torque1.phase"] == "9007199254740992 rad"
 
 
 def _numbers_in(value):
@@ -335,3 +344,16 @@ def test_a_valid_call_returns_no_nan_and_writes_no_file(call, tmp_path, monkeypa
     assert values, "the call returned no numbers to check"
     assert not any(math.isnan(v) for v in values)
     assert list(tmp_path.iterdir()) == []
+
+
+def test_the_longest_lists_go_through_replace():
+    # 1000 harmonics: the text replace() builds keeps its lines under the
+    # reader's 4096 bytes, as the case-file writer does.
+    n = 1000
+    case = CASE1.replace(torque1_kind="harmonic", torque1_mean="0.5 N*m",
+                         torque1_amplitudes=[1e-3 * (i + 1) for i in range(n)],
+                         torque1_angular_frequencies=[1000.0 * (i + 1) for i in range(n)],
+                         torque1_phases=[0.0] * n)
+    assert len(case.fields()["torque1.amplitudes"]) == n
+    again = case.replace(friction_coefficient=0.05)
+    assert again.fields()["torque1.amplitudes"] == case.fields()["torque1.amplitudes"]

@@ -111,6 +111,13 @@ std::size_t shard_point_count(const SteadySweepSpec& spec) {
     return 0;
   }
   const std::size_t lines = spec.vary2.empty() ? 1 : static_cast<std::size_t>(spec.points2);
+  // A sweep over its bound is refused by run_steady_sweep; its units are not
+  // listed here (a billion lines are gigabytes).
+  if (!(static_cast<double>(lines) * static_cast<double>(spec.points) *
+            static_cast<double>(std::max<std::size_t>(1, spec.directions.size())) <=
+        spec.max_points)) {
+    return 0;
+  }
   return shard_units(lines, spec.directions, spec.shard).size() *
          static_cast<std::size_t>(spec.points);
 }
@@ -123,6 +130,16 @@ SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
     if (spec.vary2 == spec.vary) {
       throw InputError("vary2", spec.vary2, "a key other than the first swept key " + spec.vary);
     }
+  }
+  if (!(spec.max_points >= 1.0)) {
+    throw InputError("max_points", shortest_decimal(spec.max_points),
+                     "a count >= 1 (a finite bound on the points of the whole sweep)");
+  }
+  if (std::isfinite(spec.from_si) && std::isfinite(spec.to_si) &&
+      !std::isfinite(spec.to_si - spec.from_si)) {
+    throw InputError("to", shortest_decimal(spec.to_si),
+                     "a value whose distance from the first value (from, " +
+                         shortest_decimal(spec.from_si) + ") is a finite number");
   }
   // The bound on the work before the grids are made: a grid of a billion values is gigabytes.
   if (spec.points >= 1 && (spec.vary2.empty() || spec.points2 >= 1)) {

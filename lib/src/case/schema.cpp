@@ -346,12 +346,18 @@ std::vector<Field> make_schema() {
       rows, "torque2", [](auto& c) -> auto& { return c.torque2; });
   {
     Rows r(rows, "initial");
+    // s = Rb1 theta1 - Rb2 theta2 is a difference of angles times radii: at
+    // 1e6 rad a double holds Rb theta to about 1e-11 m, a millionth of a
+    // micrometre deflection; far beyond it the contact is lost in rounding
+    // (at 1e17 rad one ulp is 16 rad) and event location cannot converge.
+    const Range kInitialAngles{closed(-1e6), closed(1e6),
+                               "|theta| <= 1e6 rad keeps s resolved to 1e-11 m"};
     r.quantity(
-        "theta1", Dimension::angle, "deg", {}, false,
+        "theta1", Dimension::angle, "deg", kInitialAngles, false,
         "theta1(0); theta1 = theta2 = 0 centres the teeth in the backlash",
         [](auto& c) -> auto& { return c.initial.theta1_rad; });
     r.quantity(
-        "theta2", Dimension::angle, "deg", {}, false, "theta2(0)",
+        "theta2", Dimension::angle, "deg", kInitialAngles, false, "theta2(0)",
         [](auto& c) -> auto& { return c.initial.theta2_rad; });
     r.quantity(
         "w1", Dimension::angular_velocity, "rad/s", {}, false, "w1(0)",
@@ -467,9 +473,10 @@ std::vector<Field> make_schema() {
          [](auto& c) -> auto& { return c.model.constant_mesh_stiffness_n_per_m; })
         .only_when = FieldCondition{"mesh_stiffness", {"constant"}};
     r.number(
-         "mesh_damping_ratio", {closed(0.0), {}, {}}, false,
+         "mesh_damping_ratio", {closed(0.0), closed(1.0), {}}, false,
          "zeta of the viscous mesh damper c = 2 zeta sqrt(k_mean m_e) on s', in contact and in "
-         "the backlash; 0 leaves it out",
+         "the backlash; 0 leaves it out. At most 1 (critical damping): the RK4 step, set by the "
+         "stiffness alone, resolves the damper's time constant only up to a few times critical",
          [](auto& c) -> auto& { return c.model.mesh_damping_ratio; })
         .written_at_default = false;
     r.choice(
@@ -963,6 +970,14 @@ void validate_relations(const SimulationCase& c) {
     validate_geometry(c.gears);
   } catch (const InputError& e) {
     throw InputError("gears." + e.field(), e.value(), e.allowed());
+  }
+  // B is half the total play, and the play 2B fits in a tooth space: half
+  // the circular pitch, pi m / 2, for teeth of standard thickness.
+  if (const double most = pi * c.gears.module_m / 4.0; c.gears.backlash_m > most) {
+    throw InputError("gears.backlash", shortest_decimal(c.gears.backlash_m) + " m",
+                     "at most pi m / 4 = " + shortest_decimal(most) +
+                         " m: B is half the play, and the play fits in a tooth space of half "
+                         "the circular pitch");
   }
   validate_terms(c.model.stiffness, "model");
   const std::array<std::pair<const char*, const Torque*>, 2> torques{

@@ -18,6 +18,12 @@ namespace {
 // estimate a message gives.
 constexpr double kSeriesRowBytes = 140.0;
 
+// "14 GB", "140 MB": the size a message gives, rounded.
+std::string csv_size_text(double bytes) {
+  return bytes >= 1e9 ? shortest_decimal(std::round(bytes * 1e-9)) + " GB"
+                      : shortest_decimal(std::round(bytes * 1e-6)) + " MB";
+}
+
 void validate_control(const SimulationCase& c, const RunControl& control) {
   if (control.keep_series || control.on_row) {
     const double rows = series_rows(c);
@@ -28,8 +34,8 @@ void validate_control(const SimulationCase& c, const RunControl& control) {
               " rows of time series; this run's series has about " + shortest_decimal(rows) +
               " rows (integrator.step = " + shortest_decimal(c.integrator.step_s) +
               " s, integrator.output_every = " + std::to_string(c.integrator.output_every) +
-              "), about " + shortest_decimal(std::round(rows * kSeriesRowBytes * 1e-9)) +
-              " GB as CSV: shorten the run, keep fewer rows (integrator.output_every), or lift "
+              "), about " + csv_size_text(rows * kSeriesRowBytes) +
+              " as CSV: shorten the run, keep fewer rows (integrator.output_every), or lift "
               "the bound");
     }
   }

@@ -30,7 +30,9 @@ namespace {
 // before `ready` is set.
 constexpr std::size_t kSlots = 64;
 // The signals whose handler removes the temporary files.
-constexpr std::array<int, 3> kTerminatingSignals{SIGINT, SIGTERM, SIGHUP};
+// SIGPIPE too: a reader of standard output that goes away (`| head`) ends
+// the run, which must not leave its temporaries behind.
+constexpr std::array<int, 4> kTerminatingSignals{SIGINT, SIGTERM, SIGHUP, SIGPIPE};
 
 // Runs `create_and_track` with the terminating signals blocked, so that a
 // temporary file or folder is registered for the handler before one of them
@@ -202,6 +204,12 @@ void require_regular_or_absent(const std::string& path) {
     throw Error("cannot write " + path + ": it is " + std::string(kind) +
                 ", and an output replaces only a regular file or makes a new one");
   }
+  // The rename would replace a file this user may not write (its folder
+  // allows it): refused, as writing into it would be.
+  if (::access(path.c_str(), W_OK) != 0) {
+    throw Error("cannot write " + path + ": " + reason() +
+                " (an output replaces only a file this user may write)");
+  }
 }
 
 void require_output_file(const std::string& path, const std::vector<std::string>& inputs) {
@@ -249,9 +257,11 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
     }
     temporary_.assign(name.data());
   }
-  // mkstemp creates the file private, O_TMPFILE applies the umask; an output
-  // is for everyone to read.
-  if (::fchmod(fd_, 0644) != 0) fail("cannot set the permissions of");
+  // mkstemp creates the file private, O_TMPFILE applies the umask: a new
+  // output is for everyone to read, a replaced one keeps its permissions.
+  struct stat existing {};
+  const mode_t mode = ::stat(path_.c_str(), &existing) == 0 ? (existing.st_mode & 07777) : 0644;
+  if (::fchmod(fd_, mode) != 0) fail("cannot set the permissions of");
 }
 
 AtomicFile::~AtomicFile() {

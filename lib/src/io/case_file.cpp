@@ -102,6 +102,8 @@ TextShape shape_of(std::string_view text) {
   std::size_t line = 1;
   std::size_t line_start = 0;
   const auto end_line = [&](std::size_t end) {
+    // A CRLF line's CR is part of its end, not of its length.
+    if (end > line_start && text[end - 1] == '\r') --end;
     if (end - line_start > shape.longest_line_bytes) {
       shape.longest_line_bytes = end - line_start;
       shape.longest_line = line;
@@ -571,8 +573,8 @@ SimulationCase parse_case(std::string_view toml_text, std::string_view file_name
         shape.longest_line,
         "the line is " + std::to_string(shape.longest_line_bytes) + " bytes; a line is at most " +
             std::to_string(kLongestLineBytes) +
-            " bytes (an array may go over several lines: a line break may follow any "
-            "comma)");
+            " bytes (a long array may go over several lines, a line break after any comma; a "
+            "long comment over several comment lines)");
   }
   if (const std::size_t most = most_listed_values(); shape.bracketed_values > most) {
     reader.fail("", nullptr,

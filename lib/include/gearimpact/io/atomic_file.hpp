@@ -106,7 +106,7 @@ class AtomicFolder {
   std::size_t slot_ = AtomicFile::kUntracked;
 };
 
-// Installs handlers of SIGINT, SIGTERM and SIGHUP that remove the temporary
+// Installs handlers of SIGINT, SIGTERM, SIGHUP and SIGPIPE that remove the temporary
 // files and folders of writes still under way and then end the process by the same signal,
 // and ignores SIGXFSZ so that a file-size limit (ulimit -f) makes a write fail
 // with an error instead of killing the process silently. For programs; a host
