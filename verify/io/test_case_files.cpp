@@ -637,3 +637,30 @@ TEST_CASE("the reader's bounds: line length, listed values, list length, text si
   CHECK_THROWS_WITH_AS(validate_fields(too_long),
                        doctest::Contains("torque1.amplitudes = 1001 values"), InputError);
 }
+
+// toml11 reports a syntax error over several lines (excerpt, carets, hints);
+// the reader gives one line: the file and line of the first excerpt, the
+// reason and its note, printable.
+TEST_CASE("a TOML syntax error is one line naming file and line") {
+  const std::string base = read_text(kPaperData / "case1.toml");
+  const std::vector<std::pair<std::string, std::string>> bad{
+      {"name = \"x\"\n[gears\nteeth1 = 3\n", "bad.toml:2: not valid TOML: "},
+      {"name = \"x\"\nname = \"y\"\n", "bad.toml:1: not valid TOML: "},
+      {"name = \"x\"\r[gears]\rteeth1 = 3\r", "bad.toml:1: not valid TOML: "},
+      {base + "x = \"open\n", "bad.toml:"},
+  };
+  for (const auto& [text, start] : bad) {
+    CAPTURE(text);
+    try {
+      parse_case(text, "bad.toml");
+      FAIL("accepted");
+    } catch (const CaseFileError& e) {
+      const std::string message = e.what();
+      CAPTURE(message);
+      CHECK(message.rfind(start, 0) == 0);
+      CHECK(message.find('\n') == std::string::npos);
+      CHECK(message.find('\r') == std::string::npos);
+      CHECK(message.size() < 300);
+    }
+  }
+}

@@ -553,6 +553,53 @@ std::string wrapped_list(const std::string& one_line) {
   return text + "\n]";
 }
 
+// toml11's report, "[error] toml::parse_key: an invalid key appeared.\n
+// --> file\n | \n 2 | [gears\n   | ^--- is not a valid key\n Hint: ...", as
+// one line: the line number of its first excerpt, its reason and its first
+// note ("an invalid key appeared: is not a valid key").
+struct TomlError {
+  std::size_t line = 0;
+  std::string message;
+};
+
+TomlError toml_error(const std::string& report) {
+  TomlError error;
+  std::istringstream lines(report);
+  std::string line;
+  std::getline(lines, line);
+  const std::size_t tag = line.find("] ");
+  std::string reason = tag == std::string::npos ? line : line.substr(tag + 2);
+  if (reason.rfind("toml::", 0) == 0) {
+    const std::size_t colon = reason.find(": ");
+    if (colon != std::string::npos) reason = reason.substr(colon + 2);
+  }
+  while (!reason.empty() && (reason.back() == '.' || reason.back() == ' ')) reason.pop_back();
+  std::string note;
+  while (std::getline(lines, line)) {
+    const std::size_t bar = line.find(" | ");
+    if (bar == std::string::npos) continue;
+    const std::string left = line.substr(0, bar);
+    const std::size_t digit = left.find_first_of("0123456789");
+    if (error.line == 0 && digit != std::string::npos &&
+        left.find_first_not_of(" 0123456789") == std::string::npos) {
+      error.line = std::stoul(left.substr(digit));
+    } else if (note.empty() && left.find_first_not_of(' ') == std::string::npos) {
+      const std::string right = line.substr(bar + 3);
+      const std::size_t text = right.find_first_not_of(" ^~-");
+      if (text != std::string::npos && text > 0) note = right.substr(text);
+    }
+  }
+  error.message = note.empty() ? reason : reason + ": " + note;
+  if (error.message.empty()) error.message = report.substr(0, report.find('\n'));
+  // One line of printable text: a CR-only file would otherwise echo itself.
+  constexpr std::size_t kLongestMessage = 200;
+  if (error.message.size() > kLongestMessage) error.message.resize(kLongestMessage);
+  for (char& c : error.message) {
+    if (static_cast<unsigned char>(c) < 0x20) c = ' ';
+  }
+  return error;
+}
+
 }  // namespace
 
 SimulationCase parse_case(std::string_view toml_text, std::string_view file_name) {
@@ -594,7 +641,9 @@ SimulationCase parse_case(std::string_view toml_text, std::string_view file_name
     std::istringstream stream{std::string(toml_text)};
     root = toml::parse(stream, std::string(file_name));
   } catch (const std::exception& e) {
-    reader.fail("", nullptr, std::string("not valid TOML: ") + e.what());
+    const TomlError error = toml_error(e.what());
+    if (error.line > 0) reader.fail_at_line(error.line, "not valid TOML: " + error.message);
+    reader.fail("", nullptr, "not valid TOML: " + error.message);
   }
   return read_case(reader, root, file_name);
 }
