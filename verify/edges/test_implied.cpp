@@ -130,6 +130,25 @@ TEST_CASE("a speed the step cannot resolve is refused with the largest allowed s
   CHECK(error_of(c).empty());
 }
 
+TEST_CASE("a forcing the step cannot resolve is refused with the largest allowed frequency") {
+  const CommandResult r = run_command(
+      cli("simulate --case 3 --t-end 1ms --set 'torque1.angular_frequency=1e300 rad/s'"));
+  check_refusal(r, "--set torque1.angular_frequency = 1e300 rad/s");
+  // 20 steps of 0.1 us per forcing period 2 pi / W.
+  CHECK(relative_difference(number_after(r.err, "at most "), 2 * kPi / (20 * 1e-7)) <= kPrinted);
+
+  SimulationCase c = paper_case(3);
+  c.torque1.angular_frequency_rad_per_s = 3.2e6;
+  CHECK(error_of(c) == "torque1.angular_frequency");
+  c.torque1.angular_frequency_rad_per_s = 3.1e6;
+  CHECK(error_of(c).empty());
+  c.torque1.kind = Torque::Kind::harmonic;
+  c.torque1.harmonic_amplitudes_n_m = {1.0, 1.0};
+  c.torque1.harmonic_angular_frequencies_rad_per_s = {1e3, 3.2e6};
+  c.torque1.harmonic_phases_rad = {0.0, 0.0};
+  CHECK(error_of(c) == "torque1.angular_frequencies[1]");
+}
+
 TEST_CASE("a friction or restitution coefficient beyond physics is refused by its row") {
   const CommandResult f =
       run_command(cli("simulate --case 1 --t-end 1ms --set model.friction_coefficient=1e300"));

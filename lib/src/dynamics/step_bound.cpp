@@ -128,6 +128,34 @@ void validate_speeds(const SimulationCase& c) {
   }
 }
 
+// Each torque's forcing frequencies against the step, as the speeds: at least
+// kStepsPerMeshPeriod steps per period 2 pi / W of a sinusoid or a harmonic.
+void validate_forcing(const SimulationCase& c) {
+  const double step = c.integrator.step_s;
+  const double fastest = 2.0 * pi / (kStepsPerMeshPeriod * step);
+  const std::array<std::pair<const char*, const Torque*>, 2> torques{
+      {{"torque1", &c.torque1}, {"torque2", &c.torque2}}};
+  for (const auto& [name, torque] : torques) {
+    const auto check = [&](const std::string& key, double w) {
+      if (std::fabs(w) <= fastest) return;
+      throw InputError(key, digits(w) + " rad/s",
+                       "at most " + digits(fastest) + " rad/s: at least " +
+                           digits(kStepsPerMeshPeriod) +
+                           " steps of integrator.step = " + digits(step) +
+                           " s per forcing period 2 pi / W, so that the torque is resolved; "
+                           "a faster forcing needs a smaller integrator.step");
+    };
+    if (torque->kind == Torque::Kind::sinusoidal) {
+      check(std::string(name) + ".angular_frequency", torque->angular_frequency_rad_per_s);
+    } else if (torque->kind == Torque::Kind::harmonic) {
+      const std::vector<double>& w = torque->harmonic_angular_frequencies_rad_per_s;
+      for (std::size_t i = 0; i < w.size(); ++i) {
+        check(std::string(name) + ".angular_frequencies[" + std::to_string(i) + "]", w[i]);
+      }
+    }
+  }
+}
+
 void validate_implied(const SimulationCase& c, const std::pair<double, double>& extremes) {
   const double softest = c.model.mesh_stiffness == MeshStiffnessMode::constant
                              ? c.model.constant_mesh_stiffness_n_per_m
@@ -135,6 +163,7 @@ void validate_implied(const SimulationCase& c, const std::pair<double, double>& 
   validate_static_deflection(c, softest);
   validate_step(c, largest_step(c, extremes.second));
   validate_speeds(c);
+  validate_forcing(c);
 }
 
 }  // namespace

@@ -30,7 +30,8 @@ void validate_step(const SimulationCase& c, double largest_step_s);
 //   or .mean, whichever sets most of the peak (a user function is not checked);
 // - the step against the stiffest contact (validate_step);
 // - initial.w1, initial.w2: at least kStepsPerMeshPeriod steps of
-//   integrator.step per mesh period 2 pi / (z |w|).
+//   integrator.step per mesh period 2 pi / (z |w|);
+// - the torques' angular frequencies: as many steps per forcing period 2 pi / W.
 // The mesh stiffness is sampled as largest_resolving_step_s samples it, by
 // quadrature or from the table.
 void validate_implied(const SimulationCase& c);
