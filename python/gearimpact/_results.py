@@ -7,7 +7,7 @@ import os
 from . import _arguments, _core
 from ._arguments import case_error
 from ._cases import paper_case, read_case
-from ._core import Case, GearPair, StiffnessModel
+from ._core import Case, CaseError, GearPair, StiffnessModel
 
 
 def _as_case(case, name="case"):
@@ -151,7 +151,16 @@ def simulate(case, keep_series=True, max_rows=None, **changes):
     run = _as_case(case)
     if changes:
         run = run.replace(**changes)
-    summary_json, series, impacts = _core.simulate(run, keep, rows)
+    try:
+        summary_json, series, impacts = _core.simulate(run, keep, rows)
+    except CaseError as error:
+        if "rows of time series" not in str(error):
+            raise
+        raise _arguments.case_error(
+            f"{error} (end_time shortens the run, output_every keeps fewer rows, "
+            "keep_series=False keeps none, max_rows lifts the bound)",
+            getattr(error, "field", ""),
+        ) from None
     return SimulationResult(run, json.loads(summary_json), series, impacts)
 
 

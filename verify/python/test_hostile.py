@@ -210,7 +210,7 @@ REFUSED = [
      "gear", ["1 or 2"]),
     # The kept series is bounded like the program's: 10 s at 0.1 us are 1e8 rows.
     ("a series over the row budget", lambda: gearimpact.simulate(1, end_time="10 s"),
-     "end_time", ["at most 50000000 rows", "about 100000001 rows"]),
+     "end_time", ["at most 50000000 rows", "about 100000001 rows", "max_rows lifts"]),
     ("max_rows below the series", lambda: gearimpact.simulate(1, end_time="1 ms", max_rows=100),
      "end_time", ["at most 100 rows", "about 10001 rows"]),
     ("max_rows 0", lambda: gearimpact.simulate(1, max_rows=0), "max_rows", [">= 1"]),
