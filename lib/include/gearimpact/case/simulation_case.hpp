@@ -72,7 +72,9 @@ inline constexpr std::array<NamedValue<DampingUpdate>, 3> kDampingUpdates{{
 }};
 
 struct ModelOptions {
-  double friction_coefficient = 0.04;  // f of (35)
+  double friction_coefficient = 0.04;  // f of (35) under FrictionLaw::constant
+  FrictionLaw friction_law = FrictionLaw::constant;
+  BenedictKelleyLaw benedict_kelley;  // the lubricated contact of FrictionLaw::benedict_kelley
   DampingForm damping_form = DampingForm::herbert_mcwhannell;
   DampingStiffness damping_stiffness = DampingStiffness::current_pair;
   RestitutionLaw restitution;
