@@ -1,7 +1,8 @@
 // The friction laws of docs/model.md (section Contact, damping, friction): Benedict and
 // Kelley's coefficient against a hand computation, its clip, the constant law unchanged, the
-// ledger under the varying f, and the keys' refusals. Every expected value comes from the
-// formula worked by hand or from the run without the key, never from this code's earlier output.
+// ledger under the varying f, the smoothed sign converging to the exact switch, and the keys'
+// refusals. Every expected value comes from the formula worked by hand or from the exact-switch
+// run, never from this code's earlier output.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -135,11 +136,13 @@ TEST_CASE("the constant law written out is the run without the key, every column
   SimulationCase c = case2();
   const std::string text = write_case_file(c);
   REQUIRE(text.find("friction_law") == std::string::npos);
+  REQUIRE(text.find("friction_smoothing_speed") == std::string::npos);
   std::string with_keys = text;
   const std::string anchor = "[model]\n";
   const std::size_t at = with_keys.find(anchor);
   REQUIRE(at != std::string::npos);
-  with_keys.insert(at + anchor.size(), "friction_law = \"constant\"\n");
+  with_keys.insert(at + anchor.size(),
+                   "friction_law = \"constant\"\nfriction_smoothing_speed = \"0 m/s\"\n");
   const SimulationCase explicit_constant = parse_case(with_keys, "case2.toml");
   const SimulationResult a = simulate(c);
   const SimulationResult b = simulate(explicit_constant);
@@ -182,6 +185,29 @@ TEST_CASE("the ledger closes under Benedict and Kelley's f as under the constant
   CHECK(bk.friction_loss_j > 1.1 * clipped.friction_loss_j);
 }
 
+TEST_CASE("the smoothed sign converges to the exact switch as v_s shrinks") {
+  const double exact = run_summary(case2()).friction_loss_j;
+  double previous = 0.0;
+  for (double vs : {1e-2, 1e-3, 1e-4}) {
+    SimulationCase c = case2();
+    c.model.friction_smoothing_speed_m_s = vs;
+    const SimulationSummary s = run_summary(c);
+    // The ledger books the smoothed friction as the moments feel it (the bound of the
+    // dynamics suite's ledger tests).
+    const double throughput =
+        s.kinetic_energy_initial_j + s.stored_energy_initial_j + std::fabs(s.torque_work_j);
+    CHECK(s.ledger_residual_max_j < 1e-7 * throughput);
+    const double difference = std::fabs(s.friction_loss_j - exact);
+    MESSAGE("v_s = " << vs << " m/s: friction loss " << s.friction_loss_j << " J, exact " << exact
+                     << " J, difference " << difference << " J");
+    // tanh(Vs / v_s) < 1 in magnitude: the smoothed friction takes less.
+    if (previous > 0.0) CHECK(difference < previous);
+    previous = difference;
+  }
+  // At v_s = 1e-4 m/s the smoothed band is a few steps wide: within 1 % of the exact loss.
+  CHECK(previous < 1e-2 * exact);
+}
+
 TEST_CASE("bad friction-law inputs are refused, naming the key and its range") {
   const std::string base = write_case_file(case2());
   const auto with = [&](const std::string& lines) {
@@ -208,6 +234,8 @@ TEST_CASE("bad friction-law inputs are refused, naming the key and its range") {
       "friction_law = \"benedict-kelley\"\nlubricant_viscosity = \"10 cP\"\n"
       "surface_roughness = \"0.4 um\"\nfriction_coefficient_max = 0\n");
   CHECK(most.find("friction_coefficient_max") != std::string::npos);
+  const std::string smoothing = with("friction_smoothing_speed = \"-1 mm/s\"\n");
+  CHECK(smoothing.find("friction_smoothing_speed") != std::string::npos);
   // A key of the other law is refused, not ignored.
   const std::string stray = with("lubricant_viscosity = \"10 cP\"\n");
   CHECK(stray.find("lubricant_viscosity") != std::string::npos);

@@ -400,6 +400,12 @@ std::vector<Field> make_schema() {
          "default 0.1, the top of lubricated teeth",
          [](auto& c) -> auto& { return c.model.benedict_kelley.most_coefficient; })
         .only_when = FieldCondition{"friction_law", {"benedict-kelley"}};
+    r.quantity(
+         "friction_smoothing_speed", Dimension::speed, "m/s", {closed(0.0), {}, {}}, false,
+         "v_s of Ff = f N tanh(Vs / v_s), which replaces sign(Vs) of (35) and so the "
+         "friction-reversal event; 0 keeps the exact switch (the paper's)",
+         [](auto& c) -> auto& { return c.model.friction_smoothing_speed_m_s; })
+        .written_at_default = false;
     r.choice(
         "damping_form", choices_of(kDampingForms), false, "form of the damping factor D of (32)",
         [](auto& c) -> auto& { return c.model.damping_form; });

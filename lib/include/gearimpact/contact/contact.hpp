@@ -131,7 +131,8 @@ double benedict_kelley_coefficient(const BenedictKelleyLaw& law, double load_per
 
 // (35) Ff = f N against the sliding: Ff = f N sign(Vs) on N1 and
 // -f N sign(Vs') on N2, `slip_sign` the sign of Vs (+1 or -1), held constant
-// between friction-reversal events.
+// between friction-reversal events, or its smoothed form tanh(Vs / v_s) in
+// (-1, 1).
 inline double friction_force(Region line, double friction_coefficient, double normal_force_n,
                              double slip_sign) {
   return line_sign(line) * friction_coefficient * normal_force_n * slip_sign;
