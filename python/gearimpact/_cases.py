@@ -150,6 +150,14 @@ def _resolve(user_key, current):
     if section in sections and inner:
         return _known(f"{section}.{inner}", user_key, known)
     candidates = sorted(key for key in known if key.split(".")[-1] == user_key)
+    if not candidates:
+        # A key the writer leaves out at its default (friction_law,
+        # mesh_damping_ratio, ...) is absent from the case's fields.
+        candidates = sorted(
+            f"{name}.{user_key}"
+            for name in sections
+            if _core.key_form(f"{name}.{user_key}") is not None
+        )
     if len(candidates) == 1:
         return candidates[0]
     if candidates:

@@ -60,7 +60,8 @@ SimulationCase every_key_case() {
 
 // A case the row applies to: every_key_case(), for the keys of the other
 // torque kinds case 2 with torque2 made sinusoidal, for the keys of the
-// constant mesh stiffness and the frozen D a case with those.
+// constant mesh stiffness, the frozen D and Benedict and Kelley's friction a
+// case with those.
 SimulationCase case_for(const Field& field) {
   SimulationCase c = every_key_case();
   if (applies(field, c)) return c;
@@ -74,6 +75,9 @@ SimulationCase case_for(const Field& field) {
   c.model.constant_mesh_stiffness_n_per_m = 3.5e8;
   c.model.damping_update = DampingUpdate::frozen;
   c.model.damping_reference_speed_m_s = 0.1;
+  c.model.friction_law = FrictionLaw::benedict_kelley;
+  c.model.benedict_kelley.viscosity_pa_s = 0.1;
+  c.model.benedict_kelley.roughness_m = 0.4e-6;
   REQUIRE(applies(field, c));
   return c;
 }

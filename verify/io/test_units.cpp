@@ -67,6 +67,8 @@ TEST_CASE("decimal units are exact: the value is the double nearest the decimal"
   CHECK(q("350 kN/mm", Dimension::stiffness) == 3.5e8);
   CHECK(q("0.35 N/mm", Dimension::stiffness) == 350.0);
   CHECK(q("3.5e8 N/m", Dimension::stiffness) == 3.5e8);
+  CHECK(q("10 cP", Dimension::viscosity) == 0.01);
+  CHECK(q("0.01 Pa*s", Dimension::viscosity) == 0.01);
 }
 
 TEST_CASE("units with a factor multiply the number by their definition") {
@@ -129,10 +131,10 @@ TEST_CASE("format_quantity reads back to the same double, in the requested unit 
     const std::uint64_t bits =
         (state & 0x800FFFFFFFFFFFFFull) | ((1023ull - 40 + state % 80) << 52);
     std::memcpy(&x, &bits, sizeof x);
-    for (Dimension dimension :
-         {Dimension::length, Dimension::angle, Dimension::pressure, Dimension::density,
-          Dimension::torque, Dimension::time, Dimension::angular_velocity,
-          Dimension::angular_frequency, Dimension::speed, Dimension::stiffness}) {
+    for (Dimension dimension : {Dimension::length, Dimension::angle, Dimension::pressure,
+                                Dimension::density, Dimension::torque, Dimension::time,
+                                Dimension::angular_velocity, Dimension::angular_frequency,
+                                Dimension::speed, Dimension::stiffness, Dimension::viscosity}) {
       for (const Unit& unit : units_of(dimension)) {
         const std::string text = format_quantity(x, dimension, unit.symbol);
         CAPTURE(text);

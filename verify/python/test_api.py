@@ -293,3 +293,17 @@ def test_reproduce_with_the_bundled_program(tmp_path):
 def test_reproduce_names_a_missing_data_folder(tmp_path):
     with pytest.raises(RuntimeError, match=str(tmp_path / "nowhere")):
         gearimpact.reproduce(tmp_path / "out", paper_data=tmp_path / "nowhere")
+
+
+def test_replace_reaches_keys_the_writer_leaves_out_at_their_defaults():
+    # friction_law is not among paper_case(2)'s fields (the constant law is left out); the bare
+    # key still names it, and the new law's keys come with it.
+    case = gearimpact.paper_case(2)
+    assert "model.friction_law" not in case.fields()
+    bk = case.replace(friction_law="benedict-kelley", lubricant_viscosity="100 cP",
+                      surface_roughness="0.4 um")
+    fields = bk.fields()
+    assert fields["model.friction_law"] == "benedict-kelley"
+    assert fields["model.lubricant_viscosity"] == "0.1 Pa*s"  # the fields are in SI
+    with pytest.raises(gearimpact.CaseError, match="model.lubricant_viscosity"):
+        case.replace(friction_law="benedict-kelley")

@@ -371,8 +371,47 @@ std::vector<Field> make_schema() {
     r.number(
         "friction_coefficient", {closed(0.0), closed(1.0), {}}, false,
         "f of (35): Ff = f N against the sliding speed; at most 1: dry steel on steel stays "
-        "below about 0.8, lubricated teeth below 0.1, and a larger f is no tooth contact",
+        "below about 0.8, lubricated teeth below 0.1, and a larger f is no tooth contact; the f of "
+        "friction_law = \"constant\"",
         [](auto& c) -> auto& { return c.model.friction_coefficient; });
+    // The friction laws. Case files written before they existed hold the
+    // constant law, so the writer leaves the keys out at their defaults.
+    r.choice(
+         "friction_law", choices_of(kFrictionLaws), false,
+         "where f of (35) comes from: friction_coefficient, or the Benedict and Kelley (1961) "
+         "coefficient at each pair's load and speeds (docs/model.md, section Contact, damping, "
+         "friction)",
+         [](auto& c) -> auto& { return c.model.friction_law; })
+        .written_at_default = false;
+    r.quantity(
+         "lubricant_viscosity", Dimension::viscosity, "cP", {open(0.0), {}, {}}, true,
+         "nu0, the lubricant's dynamic viscosity at the teeth, in Benedict and Kelley's (1961) "
+         "f = 0.0127 C_R log10(3.17e8 (W/F) / (nu0 Vs Ve^2)) (He, Gunda and Singh, J. Sound "
+         "Vib. 2007)",
+         [](auto& c) -> auto& { return c.model.benedict_kelley.viscosity_pa_s; })
+        .only_when = FieldCondition{"friction_law", {"benedict-kelley"}};
+    r.quantity(
+         "surface_roughness", Dimension::length, "um",
+         {closed(0.0), open(1.27e-6),
+          "C_R = 50 / (50 - S) of Benedict and Kelley diverges at S = 50 micro-inches"},
+         true,
+         "S, the mean surface roughness of the flanks, in C_R = 50 / (50 - S) of Benedict "
+         "and Kelley (1961)",
+         [](auto& c) -> auto& { return c.model.benedict_kelley.roughness_m; })
+        .only_when = FieldCondition{"friction_law", {"benedict-kelley"}};
+    r.number(
+         "friction_coefficient_max", {open(0.0), closed(1.0), {}}, false,
+         "f_max: Benedict and Kelley's f is clipped to [0, f_max], since it diverges at the "
+         "pitch point (Vs -> 0) and is negative where its log argument falls below 1; "
+         "default 0.1, the top of lubricated teeth",
+         [](auto& c) -> auto& { return c.model.benedict_kelley.most_coefficient; })
+        .only_when = FieldCondition{"friction_law", {"benedict-kelley"}};
+    r.quantity(
+         "friction_smoothing_speed", Dimension::speed, "m/s", {closed(0.0), {}, {}}, false,
+         "v_s of Ff = f N tanh(Vs / v_s), which replaces sign(Vs) of (35) and so the "
+         "friction-reversal event; 0 keeps the exact switch (the paper's)",
+         [](auto& c) -> auto& { return c.model.friction_smoothing_speed_m_s; })
+        .written_at_default = false;
     r.choice(
         "damping_form", choices_of(kDampingForms), false, "form of the damping factor D of (32)",
         [](auto& c) -> auto& { return c.model.damping_form; });

@@ -37,6 +37,8 @@ constexpr std::array kSpeed{Unit{"m/s", 0, 1.0}, Unit{"mm/s", -3, 1.0}, Unit{"in
 // A mesh stiffness, force per length along the line of action: N/um = kN/mm = 1e6 N/m.
 constexpr std::array kStiffness{Unit{"N/m", 0, 1.0}, Unit{"N/mm", 3, 1.0}, Unit{"N/um", 6, 1.0},
                                 Unit{"kN/mm", 6, 1.0}};
+// A dynamic viscosity: 1 cP = 1 mPa*s = 1e-3 Pa*s.
+constexpr std::array kViscosity{Unit{"Pa*s", 0, 1.0}, Unit{"mPa*s", -3, 1.0}, Unit{"cP", -3, 1.0}};
 
 constexpr std::array kDimensions{Dimension::length,
                                  Dimension::angle,
@@ -47,7 +49,8 @@ constexpr std::array kDimensions{Dimension::length,
                                  Dimension::angular_velocity,
                                  Dimension::angular_frequency,
                                  Dimension::speed,
-                                 Dimension::stiffness};
+                                 Dimension::stiffness,
+                                 Dimension::viscosity};
 
 // Exponents beyond this put any mantissa outside the doubles (with up to a few
 // hundred digits); it keeps the exponent arithmetic far from int overflow.
@@ -155,6 +158,8 @@ UnitList units_of(Dimension dimension) {
       return {kSpeed.data(), kSpeed.size()};
     case Dimension::stiffness:
       return {kStiffness.data(), kStiffness.size()};
+    case Dimension::viscosity:
+      return {kViscosity.data(), kViscosity.size()};
   }
   return {};
 }
@@ -181,6 +186,8 @@ std::string_view describe(Dimension dimension) {
       return "a speed";
     case Dimension::stiffness:
       return "a stiffness";
+    case Dimension::viscosity:
+      return "a dynamic viscosity";
   }
   return "a quantity";
 }

@@ -69,6 +69,8 @@ GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table, con
   xs_ = layout_.start_m();
   xe_ = layout_.end_m();
   friction_ = c.model.friction_coefficient;
+  smoothing_speed_ = c.model.friction_smoothing_speed_m_s;
+  face_width_ = g.face_width_m;
   kh_ = hertz_stiffness(g);
   constant_k_ = c.model.mesh_stiffness == MeshStiffnessMode::constant
                     ? c.model.constant_mesh_stiffness_n_per_m
@@ -106,6 +108,12 @@ void GearSystem::pair_stiffness(double x, int count, double& ke, double& dke) co
   ke = k.stiffness_n_per_m + dke * (x - xc);
 }
 
+double GearSystem::friction_coefficient(double normal_force_n, double vs, double ve) const {
+  if (case_.model.friction_law == FrictionLaw::constant) return friction_;
+  return benedict_kelley_coefficient(case_.model.benedict_kelley, normal_force_n / face_width_, vs,
+                                     ve);
+}
+
 double GearSystem::damping_factor(const ContactMemory& d, double ke) const {
   return damping_on_current_pair_ ? d.damping_per_stiffness_s_m * ke
                                   : d.damping_per_stiffness_s_m * d.frozen_stiffness_n_per_m;
@@ -136,7 +144,9 @@ void GearSystem::rhs(double t, const State& y, const Mode& m, const ContactMemor
       const double g_damping = hertzian_damping_force(damping_factor(d, ke), dl, dl_rate);
       const double n = normal_force(f_elastic, g_damping, m.clipped[j]);
       const double vs = sliding_speed(w1, w2, x, lp_);
-      const double ff = friction_force(m.region, friction_, n, m.slip[j]);
+      const double f = friction_coefficient(n, vs, entrainment_speed(w1, w2, x, lp_));
+      const double slip = smoothing_speed_ > 0.0 ? std::tanh(vs / smoothing_speed_) : m.slip[j];
+      const double ff = friction_force(m.region, f, n, slip);
       // (1),(3) for one pair, (43),(45) summed over the pairs the line carries:
       // on N1 J1 w1' = T1 - [N Rb1 + Ff X], J2 w2' = T2 + [N Rb2 + Ff (lp - X)];
       // every sign flips on N2. In free flight, (2),(44): J w' = T.
@@ -145,7 +155,7 @@ void GearSystem::rhs(double t, const State& y, const Mode& m, const ContactMemor
       // The damping force is what N adds to F; with N clipped it is -F, so the
       // stored energy released while the tooth cannot push counts as damping loss.
       damping_power += (n - f_elastic) * dl_rate;
-      friction_power += friction_ * n * m.slip[j] * vs;
+      friction_power += f * n * slip * vs;
       parametric_power += 0.5 * dl * dl * dke * x_rate;
       if (totals != nullptr) {
         totals->normal_force_n += n;
@@ -202,7 +212,8 @@ int GearSystem::event_values(const State& y, const Mode& m, const ContactMemory&
   const double dl_rate = line_sign(m.region) * s_rate(y);
   for (int j = 0; j < m.count; ++j) {
     const double x = layout_.position_m(ref, m.k_first + j);
-    g[n++] = m.slip[j] * sliding_speed(y[kW1], y[kW2], x, lp_);
+    // A smoothed sign has no switch to locate: the value stays positive.
+    g[n++] = smoothing_speed_ > 0.0 ? 1.0 : m.slip[j] * sliding_speed(y[kW1], y[kW2], x, lp_);
     const double push = push_sign_function(x, m.count, d, dl, dl_rate);
     g[n++] = m.clipped[j] ? -push : push;
   }

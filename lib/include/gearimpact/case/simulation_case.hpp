@@ -72,7 +72,12 @@ inline constexpr std::array<NamedValue<DampingUpdate>, 3> kDampingUpdates{{
 }};
 
 struct ModelOptions {
-  double friction_coefficient = 0.04;  // f of (35)
+  double friction_coefficient = 0.04;  // f of (35) under FrictionLaw::constant
+  FrictionLaw friction_law = FrictionLaw::constant;
+  BenedictKelleyLaw benedict_kelley;  // the lubricated contact of FrictionLaw::benedict_kelley
+  // v_s of Ff = f N tanh(Vs / v_s), which replaces sign(Vs) of (35) when > 0;
+  // 0 keeps the exact switch, located as an event.
+  double friction_smoothing_speed_m_s = 0.0;
   DampingForm damping_form = DampingForm::herbert_mcwhannell;
   DampingStiffness damping_stiffness = DampingStiffness::current_pair;
   RestitutionLaw restitution;

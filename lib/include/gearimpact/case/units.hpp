@@ -20,6 +20,7 @@ enum class Dimension {
   angular_frequency,  // rad/s, the W of sin(W t)
   speed,              // m/s
   stiffness,          // N/m, a mesh stiffness along the line of action
+  viscosity,          // Pa s, a lubricant's dynamic viscosity
 };
 
 // One allowed unit: SI value = (number x 10^decimal_exponent) x factor. A

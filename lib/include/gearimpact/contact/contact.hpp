@@ -92,9 +92,47 @@ inline double sliding_speed(double w1_rad_per_s, double w2_rad_per_s, double x_m
   return w1_rad_per_s * x_m - w2_rad_per_s * (lp_m - x_m);
 }
 
+// The entrainment speed of a pair at X: the sum of the rolling speeds (36),
+// (37) of the two flanks at the contact, Ve = V_A1 + V_A2 = w1 X + w2 (lp - X).
+inline double entrainment_speed(double w1_rad_per_s, double w2_rad_per_s, double x_m, double lp_m) {
+  return w1_rad_per_s * x_m + w2_rad_per_s * (lp_m - x_m);
+}
+
+// Where the friction coefficient f of (35) comes from.
+enum class FrictionLaw {
+  constant,         // f = friction_coefficient over the whole mesh (the paper's)
+  benedict_kelley,  // f of Benedict and Kelley (1961) at each pair's load and speeds
+};
+inline constexpr std::array<NamedValue<FrictionLaw>, 2> kFrictionLaws{{
+    {FrictionLaw::constant, "constant", "f = friction_coefficient everywhere (the paper's (35))"},
+    {FrictionLaw::benedict_kelley, "benedict-kelley",
+     "f = 0.0127 C_R log10(3.17e8 (W/F) / (nu0 Vs Ve^2)) of Benedict and Kelley (1961), "
+     "clipped to [0, friction_coefficient_max]"},
+}};
+
+// The lubricated contact of Benedict and Kelley's law, in SI.
+struct BenedictKelleyLaw {
+  double viscosity_pa_s = 0.0;    // nu0, the lubricant's dynamic viscosity, > 0
+  double roughness_m = 0.0;       // S, the mean surface roughness, below 50 micro-inches
+  double most_coefficient = 0.1;  // f_max, the clip of f where the formula diverges
+};
+
+// Benedict and Kelley (1961), as He, Gunda and Singh (J. Sound Vib. 2007) and
+// Xu et al. (J. Tribol. 2007) restate it, in its imperial units:
+//   f = 0.0127 C_R log10( 3.17e8 (W/F) / (nu0 Vs Ve^2) ),  C_R = 50 / (50 - S)
+// W/F in lbf/in, nu0 in cP, |Vs| and |Ve| in in/s, S in micro-inches. The SI
+// arguments are converted here and nowhere else (1 lbf/in = 175.126835 N/m,
+// 1 cP = 1e-3 Pa s, 1 in/s = 0.0254 m/s, 1 micro-inch = 0.0254 um). The
+// formula diverges at the pitch point (Vs -> 0) and is negative for a log
+// argument below 1 (light load, fast sliding), so f is clipped to
+// [0, law.most_coefficient]; without load (W = 0) f is 0.
+double benedict_kelley_coefficient(const BenedictKelleyLaw& law, double load_per_width_n_per_m,
+                                   double sliding_speed_m_s, double entrainment_speed_m_s);
+
 // (35) Ff = f N against the sliding: Ff = f N sign(Vs) on N1 and
 // -f N sign(Vs') on N2, `slip_sign` the sign of Vs (+1 or -1), held constant
-// between friction-reversal events.
+// between friction-reversal events, or its smoothed form tanh(Vs / v_s) in
+// (-1, 1).
 inline double friction_force(Region line, double friction_coefficient, double normal_force_n,
                              double slip_sign) {
   return line_sign(line) * friction_coefficient * normal_force_n * slip_sign;

@@ -120,6 +120,9 @@ class GearSystem {
   // Ke and dKe/dX of one of `count` loaded pairs at X.
   void pair_stiffness(double x, int count, double& ke, double& dke) const;
   double damping_factor(const ContactMemory& d, double ke) const;
+  // f of (35) of a pair with normal force N, sliding speed Vs and entrainment
+  // speed Ve, under the case's friction law.
+  double friction_coefficient(double normal_force_n, double vs, double ve) const;
   double push_sign_function(double x, int count, const ContactMemory& d, double dl,
                             double dl_rate) const;
 
@@ -129,6 +132,8 @@ class GearSystem {
   double rb1_ = 0.0, rb2_ = 0.0, j1_ = 0.0, j2_ = 0.0, backlash_ = 0.0, lp_ = 0.0;
   double x_pitch_ = 0.0, t0_ = 0.0, xs_ = 0.0, xe_ = 0.0;
   double friction_ = 0.0, kh_ = 0.0, constant_k_ = 0.0;
+  double smoothing_speed_ = 0.0;  // v_s of tanh(Vs / v_s); 0: the exact sign
+  double face_width_ = 0.0;
   double mesh_damping_ = 0.0;  // c of the viscous mesh damper, N s/m
   bool damping_on_current_pair_ = true;
   // Both torques constant: torque_values_ holds them from the start.

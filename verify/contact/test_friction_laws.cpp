@@ -1,0 +1,251 @@
+// The friction laws of docs/model.md (section Contact, damping, friction): Benedict and
+// Kelley's coefficient against a hand computation, its clip, the constant law unchanged, the
+// ledger under the varying f, the smoothed sign converging to the exact switch, and the keys'
+// refusals. Every expected value comes from the formula worked by hand or from the exact-switch
+// run, never from this code's earlier output.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "gearimpact/case/schema.hpp"
+#include "gearimpact/case/units.hpp"
+#include "gearimpact/contact/contact.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/io/case_file.hpp"
+#include "gearimpact/paper/table1.hpp"
+
+using namespace gearimpact;
+
+namespace {
+
+// The imperial units of the formula, written out here independently of the library.
+constexpr double kInch = 0.0254;              // m
+constexpr double kPoundPerInch = 175.126835;  // N/m, 4.4482216 N / 0.0254 m to 9 digits
+constexpr double kCentipoise = 1e-3;          // Pa s
+constexpr double kMicroinch = 0.0254e-6;      // m
+
+double relative_difference(double a, double b) {
+  const double scale = std::max(std::fabs(a), std::fabs(b));
+  return scale == 0.0 ? 0.0 : std::fabs(a - b) / scale;
+}
+
+BenedictKelleyLaw law_at(double roughness_uin, double viscosity_cp, double f_max = 0.1) {
+  BenedictKelleyLaw law;
+  law.viscosity_pa_s = viscosity_cp * kCentipoise;
+  law.roughness_m = roughness_uin * kMicroinch;
+  law.most_coefficient = f_max;
+  return law;
+}
+
+// Paper case 2 for 10 ms, the summary only.
+SimulationCase case2() {
+  SimulationCase c = paper_case(2);
+  c.integrator.end_time_s = 10e-3;
+  return c;
+}
+
+SimulationSummary run_summary(const SimulationCase& c) {
+  RunControl control;
+  control.keep_series = false;
+  return simulate(c, control).summary;
+}
+
+// A lubricant of 100 cP (an ISO VG 100 oil near 40 C) and flanks of 0.4 um (15.7 micro-inches).
+SimulationCase case2_benedict_kelley() {
+  SimulationCase c = case2();
+  c.model.friction_law = FrictionLaw::benedict_kelley;
+  c.model.benedict_kelley.viscosity_pa_s = 100.0 * kCentipoise;
+  c.model.benedict_kelley.roughness_m = 0.4e-6;
+  return c;
+}
+
+std::string error_of(const std::string& toml) {
+  try {
+    parse_case(toml, "friction.toml");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+}  // namespace
+
+TEST_CASE("Benedict and Kelley's f at a hand-computed point") {
+  // W/F = 1000 lbf/in, nu0 = 10 cP, Vs = 50 in/s, Ve = 400 in/s, S = 16 micro-inches:
+  // C_R = 50 / (50 - 16) = 1.470588235; the log argument 3.17e8 x 1000 / (10 x 50 x 400^2)
+  // = 3.17e11 / 8e7 = 3962.5, log10(3962.5) = 3 + log10(3.9625) = 3.597969275;
+  // f = 0.0127 x 1.470588235 x 3.597969275 = 0.0671973673.
+  const BenedictKelleyLaw law = law_at(16.0, 10.0);
+  const double f =
+      benedict_kelley_coefficient(law, 1000.0 * kPoundPerInch, 50.0 * kInch, 400.0 * kInch);
+  // kPoundPerInch has 9 digits: a relative error of 3e-10 in W moves f by
+  // 3e-10 / (ln 10 x 3.6) ~ 4e-11 of itself.
+  CHECK(relative_difference(f, 0.0671973673) < 1e-9);
+  // The sign of the speeds does not matter: |Vs| and |Ve| enter.
+  CHECK(benedict_kelley_coefficient(law, 1000.0 * kPoundPerInch, -50.0 * kInch, -400.0 * kInch) ==
+        f);
+}
+
+TEST_CASE("Benedict and Kelley's units: lbf/in, cP, in/s and micro-inches each enter once") {
+  const BenedictKelleyLaw law = law_at(16.0, 10.0);
+  const double w = 1000.0 * kPoundPerInch;
+  const double vs = 50.0 * kInch;
+  const double ve = 400.0 * kInch;
+  const double f = benedict_kelley_coefficient(law, w, vs, ve);
+  const double decade = 0.0127 * 50.0 / 34.0;  // f per factor 10 in the log argument
+  // W/F = 1 lbf/in: the argument is 1000 times smaller, f three decades lower:
+  // 0.0127 x 1.470588235 x log10(3.9625) = 0.018676471 x 0.597969275 = 0.0111679556.
+  CHECK(relative_difference(benedict_kelley_coefficient(law, kPoundPerInch, vs, ve), 0.0111679556) <
+        1e-8);
+  // 1 cP = 1e-3 Pa s: 100 cP puts f one decade lower.
+  CHECK(std::fabs(benedict_kelley_coefficient(law_at(16.0, 100.0), w, vs, ve) - (f - decade)) <
+        1e-12);
+  // 1 in/s = 0.0254 m/s: Vs 10 times and Ve sqrt(10) times faster, one decade each.
+  CHECK(std::fabs(benedict_kelley_coefficient(law, w, 10.0 * vs, ve) - (f - decade)) < 1e-12);
+  CHECK(std::fabs(benedict_kelley_coefficient(law, w, vs, std::sqrt(10.0) * ve) - (f - decade)) <
+        1e-12);
+  // S = 0: C_R = 1, f = 0.0127 x 3.597969275 = 0.0456942098.
+  CHECK(relative_difference(benedict_kelley_coefficient(law_at(0.0, 10.0), w, vs, ve),
+                            0.0456942098) < 1e-9);
+  // The case file reads viscosities in Pa*s, mPa*s and cP.
+  CHECK(parse_quantity("10 cP", Dimension::viscosity, "x") == 0.01);
+  CHECK(parse_quantity("10 mPa*s", Dimension::viscosity, "x") == 0.01);
+  CHECK(parse_quantity("0.01 Pa*s", Dimension::viscosity, "x") == 0.01);
+}
+
+TEST_CASE("Benedict and Kelley's f is clipped to [0, f_max]") {
+  const BenedictKelleyLaw law = law_at(16.0, 10.0, 0.1);
+  const double w = 1000.0 * kPoundPerInch;
+  // At the pitch point the formula diverges: f = f_max.
+  CHECK(benedict_kelley_coefficient(law, w, 0.0, 400.0 * kInch) == 0.1);
+  CHECK(benedict_kelley_coefficient(law, w, 50.0 * kInch, 0.0) == 0.1);
+  // Vs = 1e-6 in/s: 0.0127 x 1.470588 x log10(3.17e11 / (10 x 1e-6 x 400^2)) = 0.211 > f_max.
+  CHECK(benedict_kelley_coefficient(law, w, 1e-6 * kInch, 400.0 * kInch) == 0.1);
+  // 1 lbf/in, 100 cP, 1000 in/s each: argument 3.17e8 / 1e11 = 3.2e-3 < 1, the formula < 0.
+  CHECK(benedict_kelley_coefficient(law_at(16.0, 100.0), kPoundPerInch, 1000.0 * kInch,
+                                    1000.0 * kInch) == 0.0);
+  // No load: no friction, even at the pitch point (the argument would be 0 / 0).
+  CHECK(benedict_kelley_coefficient(law, 0.0, 0.0, 400.0 * kInch) == 0.0);
+  CHECK(benedict_kelley_coefficient(law, 0.0, 50.0 * kInch, 400.0 * kInch) == 0.0);
+}
+
+TEST_CASE("the constant law written out is the run without the key, every column bit for bit") {
+  SimulationCase c = case2();
+  const std::string text = write_case_file(c);
+  REQUIRE(text.find("friction_law") == std::string::npos);
+  REQUIRE(text.find("friction_smoothing_speed") == std::string::npos);
+  std::string with_keys = text;
+  const std::string anchor = "[model]\n";
+  const std::size_t at = with_keys.find(anchor);
+  REQUIRE(at != std::string::npos);
+  with_keys.insert(at + anchor.size(),
+                   "friction_law = \"constant\"\nfriction_smoothing_speed = \"0 m/s\"\n");
+  const SimulationCase explicit_constant = parse_case(with_keys, "case2.toml");
+  const SimulationResult a = simulate(c);
+  const SimulationResult b = simulate(explicit_constant);
+  REQUIRE(a.series.size() == b.series.size());
+  REQUIRE(a.series.size() > 1000);
+  bool same = true;
+  for (std::size_t i = 0; i < a.series.size() && same; ++i) {
+    const SeriesRow& p = a.series[i];
+    const SeriesRow& q = b.series[i];
+    same = p.t_s == q.t_s && p.theta1_rad == q.theta1_rad && p.theta2_rad == q.theta2_rad &&
+           p.w1_rad_per_s == q.w1_rad_per_s && p.w2_rad_per_s == q.w2_rad_per_s && p.s_m == q.s_m &&
+           p.delta_m == q.delta_m && p.region == q.region && p.pairs == q.pairs &&
+           p.normal_force_n == q.normal_force_n && p.friction_force_n == q.friction_force_n;
+    if (!same) CAPTURE(i);
+  }
+  CHECK(same);
+  CHECK(a.summary.friction_loss_j == b.summary.friction_loss_j);
+}
+
+TEST_CASE("the ledger closes under Benedict and Kelley's f as under the constant f") {
+  // At case 2's slow sliding (w1 = 50 rad/s) the formula gives f of 0.1 to 0.3 over most of the
+  // mesh: f_max = 0.1 (the default) clips it nearly everywhere, 0.3 leaves the formula acting.
+  SimulationCase wide = case2_benedict_kelley();
+  wide.model.benedict_kelley.most_coefficient = 0.3;
+  const SimulationSummary constant = run_summary(case2());
+  const SimulationSummary clipped = run_summary(case2_benedict_kelley());
+  const SimulationSummary bk = run_summary(wide);
+  for (const SimulationSummary* s : {&constant, &clipped, &bk}) {
+    const double throughput =
+        s->kinetic_energy_initial_j + s->stored_energy_initial_j + std::fabs(s->torque_work_j);
+    // The bound of the ledger tests of the dynamics suite: 1e-7 of the energy through the run.
+    const double bound = 1e-7 * throughput;
+    MESSAGE("residual " << s->ledger_residual_max_j << " J of " << throughput
+                        << " J, friction loss " << s->friction_loss_j << " J");
+    CHECK(s->ledger_residual_max_j < bound);
+    // A friction loss the ledger could miss would be below its bound.
+    CHECK(s->friction_loss_j > 100.0 * bound);
+  }
+  // The clip acts: a wider f_max lets f, and the loss, grow.
+  CHECK(bk.friction_loss_j > 1.1 * clipped.friction_loss_j);
+}
+
+TEST_CASE("the smoothed sign converges to the exact switch as v_s shrinks") {
+  const double exact = run_summary(case2()).friction_loss_j;
+  double previous = 0.0;
+  for (double vs : {1e-2, 1e-3, 1e-4}) {
+    SimulationCase c = case2();
+    c.model.friction_smoothing_speed_m_s = vs;
+    const SimulationSummary s = run_summary(c);
+    // The ledger books the smoothed friction as the moments feel it (the bound of the
+    // dynamics suite's ledger tests).
+    const double throughput =
+        s.kinetic_energy_initial_j + s.stored_energy_initial_j + std::fabs(s.torque_work_j);
+    CHECK(s.ledger_residual_max_j < 1e-7 * throughput);
+    const double difference = std::fabs(s.friction_loss_j - exact);
+    MESSAGE("v_s = " << vs << " m/s: friction loss " << s.friction_loss_j << " J, exact " << exact
+                     << " J, difference " << difference << " J");
+    // tanh(Vs / v_s) < 1 in magnitude: the smoothed friction takes less.
+    if (previous > 0.0) CHECK(difference < previous);
+    previous = difference;
+  }
+  // At v_s = 1e-4 m/s the smoothed band is a few steps wide: within 1 % of the exact loss.
+  CHECK(previous < 1e-2 * exact);
+}
+
+TEST_CASE("bad friction-law inputs are refused, naming the key and its range") {
+  const std::string base = write_case_file(case2());
+  const auto with = [&](const std::string& lines) {
+    std::string text = base;
+    text.insert(text.find("[model]\n") + 8, lines);
+    return error_of(text);
+  };
+  const std::string unknown = with("friction_law = \"coulomb\"\n");
+  CHECK(unknown.find("friction_law") != std::string::npos);
+  CHECK(unknown.find("benedict-kelley") != std::string::npos);
+  const std::string missing =
+      with("friction_law = \"benedict-kelley\"\nsurface_roughness = \"0.4 um\"\n");
+  CHECK(missing.find("lubricant_viscosity") != std::string::npos);
+  const std::string rough = with(
+      "friction_law = \"benedict-kelley\"\nlubricant_viscosity = \"10 cP\"\n"
+      "surface_roughness = \"1.27 um\"\n");
+  CHECK(rough.find("surface_roughness") != std::string::npos);
+  CHECK(rough.find("50 micro-inches") != std::string::npos);
+  const std::string viscosity = with(
+      "friction_law = \"benedict-kelley\"\nlubricant_viscosity = \"0 cP\"\n"
+      "surface_roughness = \"0.4 um\"\n");
+  CHECK(viscosity.find("lubricant_viscosity") != std::string::npos);
+  const std::string most = with(
+      "friction_law = \"benedict-kelley\"\nlubricant_viscosity = \"10 cP\"\n"
+      "surface_roughness = \"0.4 um\"\nfriction_coefficient_max = 0\n");
+  CHECK(most.find("friction_coefficient_max") != std::string::npos);
+  const std::string smoothing = with("friction_smoothing_speed = \"-1 mm/s\"\n");
+  CHECK(smoothing.find("friction_smoothing_speed") != std::string::npos);
+  // A key of the other law is refused, not ignored.
+  const std::string stray = with("lubricant_viscosity = \"10 cP\"\n");
+  CHECK(stray.find("lubricant_viscosity") != std::string::npos);
+  // A library call goes through the same rows.
+  SimulationCase c = case2();
+  c.model.friction_law = FrictionLaw::benedict_kelley;
+  try {
+    validate_fields(c);
+    FAIL("a zero viscosity was accepted");
+  } catch (const InputError& e) {
+    CHECK(e.field() == "model.lubricant_viscosity");
+  }
+}
