@@ -166,6 +166,10 @@ TEST_CASE("bounds and meaningless sweeps are refused before any point runs, nami
       {"sweep 1 --vary initial.w1 --from -1e308 --to 1e308 --points 3 "
        "--set model.friction_coefficient=0 --set 'torque1.mean=3 N*m'",
        {"--to = 1e308", "a finite number"}},
+      // A friction law has friction whatever friction_coefficient says.
+      {base + " --points 2 --set model.friction_law=benedict-kelley "
+              "--set 'model.lubricant_viscosity=100 cP' --set 'model.surface_roughness=0.4 um'",
+       {"model.friction_law", "constant"}},
       // A backlash beyond the tooth space, at an end of the sweep.
       {"sweep 1 --vary gears.backlash --from 0 --to 1e308 --points 3 "
        "--set model.friction_coefficient=0 --set 'torque1.mean=3 N*m'",

@@ -275,6 +275,14 @@ void require_steady_case(const SimulationCase& c) {
                      "rotation, which balanced mean torques do not feed, so the pair slows down "
                      "without end");
   }
+  // Any law other than the constant one has friction whatever friction_coefficient says.
+  if (c.model.friction_law != FrictionLaw::constant) {
+    throw InputError("model.friction_law",
+                     std::string(name_of(kFrictionLaws, c.model.friction_law)),
+                     "\"constant\" (with friction_coefficient = 0) for a steady state: friction "
+                     "loss is drawn from the mean rotation, which balanced mean torques do not "
+                     "feed");
+  }
 }
 
 SteadyTiming steady_timing(const SimulationCase& c, const StiffnessTable& table,
