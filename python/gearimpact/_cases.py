@@ -280,7 +280,10 @@ def _list_literal(user_key, dotted, value, unit):
             items.append(json.dumps(item, ensure_ascii=False))
         elif not is_bool(item) and isinstance(item, numbers.Real):
             number = _arguments.real(name, item)
-            items.append(json.dumps(f"{_core.shortest_decimal(number)} {unit}"))
+            if unit is None:  # a list of plain numbers
+                items.append(repr(float(number)))
+            else:
+                items.append(json.dumps(f"{_core.shortest_decimal(number)} {unit}"))
         else:
             raise case_error(
                 f"{name}={item!r}: a number in SI ({unit}) or a unit string, "

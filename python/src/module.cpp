@@ -415,6 +415,8 @@ double case3_frequency(double value) {
 py::object key_form(const std::string& key) {
   const Field* field = find_field(key);
   if (field == nullptr) return py::none();
+  // A list of plain numbers has no unit.
+  if (field->kind == FieldKind::number_list) return py::make_tuple("list", py::none());
   const bool list = field->kind == FieldKind::quantity_list;
   if (field->kind != FieldKind::quantity && !list) {
     return py::make_tuple("scalar", py::none());

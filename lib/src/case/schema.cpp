@@ -161,6 +161,14 @@ class Rows {
     rows_.push_back(std::move(f));
     return rows_.back();
   }
+  // A list of plain numbers, each in `range`; `slot` returns the std::vector<double>.
+  template <typename Slot>
+  Field& number_list(std::string_view key, Range range, std::size_t most_values, bool required,
+                     const std::string& help, Slot slot) {
+    Field& f = quantity_list(key, Dimension::length, "", range, most_values, required, help, slot);
+    f.kind = FieldKind::number_list;
+    return f;
+  }
   template <typename Slot>
   Field& on_off(std::string_view key, const std::string& help, Slot slot) {
     Field& f = add(key, FieldKind::on_off, false, help, slot);
@@ -406,6 +414,23 @@ std::vector<Field> make_schema() {
          "default 0.1, the top of lubricated teeth",
          [](auto& c) -> auto& { return c.model.benedict_kelley.most_coefficient; })
         .only_when = FieldCondition{"friction_law", {"benedict-kelley"}};
+    // The table law's two lists, one entry per point, of one length
+    // (validate_relations). A lookup is a binary search, so the bound is on
+    // the case file's size, not on the run's cost.
+    constexpr std::size_t kMostFrictionTableEntries = 10000;
+    r.number_list(
+         "friction_table_slide_to_roll", {}, kMostFrictionTableEntries, true,
+         "the slide-to-roll ratios 2 Vs / Ve of the friction table, strictly increasing (0 at the "
+         "pitch point when the gears roll, negative where the pinion's flank slides slower); f "
+         "is linear between them and constant beyond the first and the last",
+         [](auto& c) -> auto& { return c.model.friction_table.slide_to_roll; })
+        .only_when = FieldCondition{"friction_law", {"table"}};
+    r.number_list(
+         "friction_table_coefficients", {closed(0.0), closed(1.0), {}}, kMostFrictionTableEntries,
+         true,
+         "f at each of friction_table_slide_to_roll, as many; at most 1, as friction_coefficient",
+         [](auto& c) -> auto& { return c.model.friction_table.coefficient; })
+        .only_when = FieldCondition{"friction_law", {"table"}};
     r.quantity(
          "friction_smoothing_speed", Dimension::speed, "m/s", {closed(0.0), {}, {}}, false,
          "v_s of Ff = f N tanh(Vs / v_s), which replaces sign(Vs) of (35) and so the "
@@ -511,6 +536,12 @@ std::vector<Field> make_schema() {
          "k, the total mesh stiffness along the line of action",
          [](auto& c) -> auto& { return c.model.constant_mesh_stiffness_n_per_m; })
         .only_when = FieldCondition{"mesh_stiffness", {"constant"}};
+    r.choice(
+         "mesh_force", choices_of(kMeshForces), false,
+         "how the mesh force follows from the time-varying stiffness (docs/model.md, section "
+         "Energies)",
+         [](auto& c) -> auto& { return c.model.mesh_force; })
+        .written_at_default = false;
     r.number(
          "mesh_damping_ratio", {closed(0.0), closed(1.0), {}}, false,
          "zeta of the viscous mesh damper c = 2 zeta sqrt(k_mean m_e) on s', in contact and in "
@@ -749,6 +780,12 @@ std::string allowed_text(const Field& field) {
       text = bounds.empty() ? "any finite number" : bounds;
       break;
     }
+    case FieldKind::number_list: {
+      const std::string bounds = interval(field.range, bound_text, true);
+      text = "a list of at most " + std::to_string(field.most_values) + " plain numbers, each " +
+             (bounds.empty() ? "finite" : "in " + bounds);
+      break;
+    }
     case FieldKind::integer:
       text = "an integer in " +
              interval(
@@ -777,6 +814,17 @@ std::string value_text(const Field& field, const SimulationCase& c, bool readabl
     for (double value : field.get_list(c)) {
       if (text.size() > 1) text += ", ";
       text += "\"" + format_quantity(value, field.dimension, unit) + "\"";
+    }
+    return text + "]";
+  }
+  if (field.kind == FieldKind::number_list) {
+    std::string text = "[";
+    for (double value : field.get_list(c)) {
+      if (text.size() > 1) text += ", ";
+      // TOML needs a point or an exponent to read a float back as one.
+      std::string number = shortest_decimal(value);
+      if (number.find_first_of(".e") == std::string::npos) number += ".0";
+      text += number;
     }
     return text + "]";
   }
@@ -832,6 +880,7 @@ void check_value(const Field& field, double value, std::string_view name,
       break;
     case FieldKind::text:
     case FieldKind::quantity_list:
+    case FieldKind::number_list:
       break;
   }
   if (!ok) throw InputError(std::string(name), std::string(written), allowed_text(field));
@@ -878,6 +927,7 @@ double parse_value(const Field& field, std::string_view value_text, std::string_
     case FieldKind::text:
       throw InputError(std::string(name), written, "a name: set it with set_field");
     case FieldKind::quantity_list:
+    case FieldKind::number_list:
       throw InputError(std::string(name), written, "a list: read it with parse_list");
   }
   check_value(field, value, name, written);
@@ -909,6 +959,9 @@ std::vector<double> parse_list(const Field& field, std::string_view value_text,
     double value = 0.0;
     if (const std::optional<double> si = plain_number(item)) {
       value = *si;
+    } else if (field.kind == FieldKind::number_list) {
+      throw InputError(item_name, std::string(item),
+                       "a plain number (no unit): " + allowed_text(field));
     } else {
       value = parse_quantity(item, field.dimension, item_name);
     }
@@ -943,7 +996,7 @@ void set_field(SimulationCase& c, std::string_view section_dot_key, std::string_
                          std::string(field.section) + "." + field.only_when->text() +
                          " (set that first)");
   }
-  if (field.kind == FieldKind::quantity_list) {
+  if (is_list(field.kind)) {
     field.set_list(c, parse_list(field, value_text, name));
     return;
   }
@@ -954,9 +1007,9 @@ double get_numeric_field(const SimulationCase& c, std::string_view section_dot_k
   const Field& field = field_or_throw(section_dot_key, {});
   if (field.kind != FieldKind::quantity && field.kind != FieldKind::number &&
       field.kind != FieldKind::integer) {
-    const char* what = field.kind == FieldKind::text            ? "name"
-                       : field.kind == FieldKind::quantity_list ? "list"
-                                                                : "choice";
+    const char* what = field.kind == FieldKind::text ? "name"
+                       : is_list(field.kind)         ? "list"
+                                                     : "choice";
     throw InputError(field.name(), "(a " + std::string(what) + ")",
                      "a quantity, number or integer key for get_numeric_field");
   }
@@ -1040,6 +1093,28 @@ void validate_relations(const SimulationCase& c) {
       }
     }
   }
+  if (c.model.friction_law == FrictionLaw::table) {
+    const FrictionTable& table = c.model.friction_table;
+    if (table.slide_to_roll.empty()) {
+      throw InputError("model.friction_table_slide_to_roll", "0 values",
+                       "at least one slide-to-roll ratio (one entry is a constant f)");
+    }
+    if (table.coefficient.size() != table.slide_to_roll.size()) {
+      throw InputError("model.friction_table_coefficients",
+                       std::to_string(table.coefficient.size()) + " values",
+                       "as many values as model.friction_table_slide_to_roll (" +
+                           std::to_string(table.slide_to_roll.size()) + ")");
+    }
+    for (std::size_t i = 1; i < table.slide_to_roll.size(); ++i) {
+      if (!(table.slide_to_roll[i] > table.slide_to_roll[i - 1])) {
+        throw InputError("model.friction_table_slide_to_roll[" + std::to_string(i) + "]",
+                         shortest_decimal(table.slide_to_roll[i]),
+                         "a value above the one before it, " +
+                             shortest_decimal(table.slide_to_roll[i - 1]) +
+                             ": the ratios are strictly increasing");
+      }
+    }
+  }
   const IntegratorSettings& s = c.integrator;
   const double most_steps = static_cast<double>(kMostSteps);
   if (s.end_time_s / s.step_s > most_steps) {
@@ -1054,7 +1129,7 @@ void validate_fields(const SimulationCase& c) {
   for (const Field& field : case_schema()) {
     if (field.kind == FieldKind::text) {
       check_text(field, field.get_text(c), field.name());
-    } else if (field.kind == FieldKind::quantity_list) {
+    } else if (is_list(field.kind)) {
       if (applies(field, c)) check_list(field, field.get_list(c), field.name());
     } else if (applies(field, c) && !absent(field, c)) {
       const double value = field.get(c);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace gearimpact {
 
@@ -51,6 +52,26 @@ double benedict_kelley_coefficient(const BenedictKelleyLaw& law, double load_per
   const double c_r = 50.0 / (50.0 - s);
   const double f = 0.0127 * c_r * std::log10(3.17e8 * w / denominator);
   return std::clamp(f, 0.0, law.most_coefficient);
+}
+
+double slide_to_roll_ratio(double sliding_speed_m_s, double entrainment_speed_m_s) {
+  if (entrainment_speed_m_s == 0.0) {
+    if (sliding_speed_m_s == 0.0) return 0.0;
+    return std::copysign(std::numeric_limits<double>::infinity(), sliding_speed_m_s);
+  }
+  return 2.0 * sliding_speed_m_s / entrainment_speed_m_s;
+}
+
+double table_friction_coefficient(const FrictionTable& table, double slide_to_roll) {
+  const std::vector<double>& r = table.slide_to_roll;
+  const std::vector<double>& f = table.coefficient;
+  if (!(slide_to_roll > r.front())) return f.front();
+  if (slide_to_roll >= r.back()) return f.back();
+  // r.front() < slide_to_roll < r.back(): an interval [r[i-1], r[i]) holds it.
+  const std::size_t i =
+      static_cast<std::size_t>(std::upper_bound(r.begin(), r.end(), slide_to_roll) - r.begin());
+  const double weight = (slide_to_roll - r[i - 1]) / (r[i] - r[i - 1]);
+  return f[i - 1] + weight * (f[i] - f[i - 1]);
 }
 
 }  // namespace gearimpact

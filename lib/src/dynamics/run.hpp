@@ -86,6 +86,8 @@ class Run {
     if (old.region != Region::free && next.region != old.region) end_contact(t, old);
     const double before = system_.stored_energy(y_, old).total_j();
     mode_ = next;
+    const double after = system_.stored_energy(y_, mode_).total_j();
+    if (system_.lagrangian()) pay_stored_energy_jump(t, old, before, after);
     if (old.region != next.region && next.region != Region::free) begin_contact(t);
     system_.classify_forces(y_, damping_, mode_);
     if (next.region == old.region) {
@@ -104,7 +106,7 @@ class Run {
       const int n = system_.event_values(y_, probe, damping_, g);
       if (std::all_of(g.begin(), g.begin() + n, [](double v) { return v >= 0.0; })) mode_ = probe;
     }
-    ledger_.mode_changed(before, system_.stored_energy(y_, mode_).total_j());
+    if (!system_.lagrangian()) ledger_.mode_changed(before, after);
   }
 
   // After an accepted step.
@@ -159,6 +161,10 @@ class Run {
     if (mode_.region != Region::free && next.region != mode_.region) end_contact(t, mode_);
     const Mode old = mode_;
     mode_ = next;
+    if (system_.lagrangian()) {
+      pay_stored_energy_jump(t, old, system_.stored_energy(y_, old).total_j(),
+                             system_.stored_energy(y_, mode_).total_j());
+    }
     if (old.region != next.region && next.region != Region::free) begin_contact(t);
     system_.classify_forces(y_, damping_, mode_);
   }
@@ -204,6 +210,54 @@ class Run {
     }
     impacts_.push_back(ImpactRecord{mode_.region, t, onset.impact_speed_m_s, onset.restitution,
                                     std::nullopt, std::nullopt});
+  }
+
+  // The Lagrangian mesh force: V = 1/2 Ke(theta1) delta^2 jumps from `before`
+  // to `after` where a pair enters or leaves, at fixed theta1, theta2. The
+  // pinion's kinetic energy pays the jump, J1 (w1+^2 - w1-^2) / 2 = -(after -
+  // before), w1 keeping its sign (Ke depends on theta1 alone, so the impulse
+  // is on the pinion); where it cannot, the run stops.
+  void pay_stored_energy_jump(double t, const Mode& old, double before, double after) {
+    const double jump = after - before;
+    if (jump == 0.0) return;
+    const double j1 = system_.pinion_inertia();
+    const double w1 = y_[kW1];
+    const double kinetic1 = 0.5 * j1 * w1 * w1;
+    if (jump > kinetic1) {
+      throw SimulationError(
+          "mesh_force = \"lagrangian\": at " + where(t, result_.summary.steps) + ", " +
+          pair_change(old) + ": the stored energy jumps by " + format_number(jump) +
+          " J, more than the pinion's kinetic energy J1 w1^2 / 2 = " + format_number(kinetic1) +
+          " J (w1 = " + format_number(w1) +
+          " rad/s) can pay; the gears would have to turn back there. "
+          "mesh_force = \"newtonian\" books the jump as parametric work");
+    }
+    y_[kW1] = std::copysign(std::sqrt(w1 * w1 - 2.0 * jump / j1), w1);
+  }
+
+  // Which pairs entered or left between `old` and mode_, for messages: pair k
+  // is the one at X = X_pitch + k t0 (+ Rb1 theta1) of its line.
+  std::string pair_change(const Mode& old) const {
+    const Mode& now = mode_;
+    if (old.region != now.region) {
+      return now.region == Region::free ? "the contact ends" : "a contact begins";
+    }
+    std::string text;
+    const auto describe = [&](const Mode& m, int j, const char* what) {
+      if (!text.empty()) text += " and ";
+      text += "pair k = " + std::to_string(m.k_first + j) + " of " +
+              (m.region == Region::n1 ? "N1" : "N2") + " " + what +
+              " at X = " + format_number(system_.pair_position(m, y_, j)) + " m";
+    };
+    for (int j = 0; j < old.count; ++j) {
+      const int k = old.k_first + j;
+      if (k < now.k_first || k >= now.k_first + now.count) describe(old, j, "leaves");
+    }
+    for (int j = 0; j < now.count; ++j) {
+      const int k = now.k_first + j;
+      if (k < old.k_first || k >= old.k_first + old.count) describe(now, j, "enters");
+    }
+    return text.empty() ? "the loaded pairs change" : text;
   }
 
   void end_contact(double t, const Mode& old) {

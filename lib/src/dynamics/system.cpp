@@ -76,6 +76,9 @@ GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table, con
                     ? c.model.constant_mesh_stiffness_n_per_m
                     : 0.0;
   damping_on_current_pair_ = c.model.damping_stiffness == DampingStiffness::current_pair;
+  // A constant stiffness has neither the extra torque nor jumps: both forms
+  // are then one, bit for bit.
+  lagrangian_ = c.model.mesh_force == MeshForce::lagrangian && constant_k_ == 0.0;
   constant_torques_ =
       c.torque1.kind == Torque::Kind::constant && c.torque2.kind == Torque::Kind::constant;
   if (constant_torques_) torque_values_ = {c.torque1.constant_n_m, c.torque2.constant_n_m};
@@ -109,9 +112,16 @@ void GearSystem::pair_stiffness(double x, int count, double& ke, double& dke) co
 }
 
 double GearSystem::friction_coefficient(double normal_force_n, double vs, double ve) const {
-  if (case_.model.friction_law == FrictionLaw::constant) return friction_;
-  return benedict_kelley_coefficient(case_.model.benedict_kelley, normal_force_n / face_width_, vs,
-                                     ve);
+  switch (case_.model.friction_law) {
+    case FrictionLaw::constant:
+      break;
+    case FrictionLaw::benedict_kelley:
+      return benedict_kelley_coefficient(case_.model.benedict_kelley, normal_force_n / face_width_,
+                                         vs, ve);
+    case FrictionLaw::table:
+      return table_friction_coefficient(case_.model.friction_table, slide_to_roll_ratio(vs, ve));
+  }
+  return friction_;
 }
 
 double GearSystem::damping_factor(const ContactMemory& d, double ke) const {
@@ -156,7 +166,19 @@ void GearSystem::rhs(double t, const State& y, const Mode& m, const ContactMemor
       // stored energy released while the tooth cannot push counts as damping loss.
       damping_power += (n - f_elastic) * dl_rate;
       friction_power += f * n * slip * vs;
-      parametric_power += 0.5 * dl * dl * dke * x_rate;
+      // d/dt of 1/2 Ke(X) delta^2 at fixed delta. Newtonian: work of the
+      // varying stiffness. Lagrangian: -dV/dtheta1 adds the torque
+      // -1/2 dKe/dX (dX/dtheta1) delta^2, dX/dtheta1 = sign Rb1, whose power is
+      // minus this; a clipped pair exerts no force, so the stored energy it
+      // gains or loses counts with its damping loss, as above.
+      const double stiffness_power = 0.5 * dl * dl * dke * x_rate;
+      if (!lagrangian_) {
+        parametric_power += stiffness_power;
+      } else if (m.clipped[j]) {
+        damping_power -= stiffness_power;
+      } else {
+        moment1 -= 0.5 * dl * dl * dke * sign * rb1_;
+      }
       if (totals != nullptr) {
         totals->normal_force_n += n;
         totals->friction_force_n += ff;

@@ -348,10 +348,12 @@ const ChoiceName& selected(const Field& field, const SimulationCase& c) {
 // element checked against the row, errors naming section.key[i].
 std::vector<double> read_list(const Reader& reader, const Field& field, const toml::value& value) {
   const std::string name = field.name();
-  const std::string expected = "an array of strings, " + allowed_text(field) +
-                               " with one of the units " + allowed_units(field.dimension) +
-                               ", e.g. [\"10 " + std::string(field.unit) + "\", \"2 " +
-                               std::string(field.unit) + "\"]";
+  const bool numbers = field.kind == FieldKind::number_list;
+  const std::string expected =
+      numbers ? "an array of numbers, " + allowed_text(field) + ", e.g. [0.0, 0.05]"
+              : "an array of strings, " + allowed_text(field) + " with one of the units " +
+                    allowed_units(field.dimension) + ", e.g. [\"10 " + std::string(field.unit) +
+                    "\", \"2 " + std::string(field.unit) + "\"]";
   if (!value.is_array()) {
     reader.out_of_range(name, &value, written(value), type_name(value) + "; expected " + expected);
   }
@@ -362,6 +364,20 @@ std::vector<double> read_list(const Reader& reader, const Field& field, const to
   std::vector<double> values;
   for (const toml::value& element : value.as_array()) {
     const std::string element_name = name + "[" + std::to_string(values.size()) + "]";
+    if (numbers) {
+      if (!element.is_floating() && !element.is_integer()) {
+        reader.out_of_range(element_name, &element, written(element),
+                            type_name(element) + "; expected " + expected);
+      }
+      values.push_back(element.is_floating() ? element.as_floating()
+                                             : static_cast<double>(element.as_integer()));
+      try {
+        check_list(field, {values.back()}, element_name);
+      } catch (const InputError& e) {
+        reader.out_of_range(element_name, &element, written(element), e.allowed());
+      }
+      continue;
+    }
     if (!element.is_string()) {
       reader.out_of_range(element_name, &element, written(element),
                           type_name(element) + "; expected " + expected);
@@ -426,6 +442,7 @@ double read_value(const Reader& reader, const Field& field, const toml::value& v
     }
     case FieldKind::text:
     case FieldKind::quantity_list:
+    case FieldKind::number_list:
       throw std::logic_error("read_value on a text or list row");
   }
   try {
@@ -500,7 +517,7 @@ SimulationCase read_case(const Reader& reader, const toml::value& root,
       field.set_text(result, value->as_string().str);
       continue;
     }
-    if (field.kind == FieldKind::quantity_list) {
+    if (is_list(field.kind)) {
       field.set_list(result, read_list(reader, field, *value));
       continue;
     }
@@ -532,7 +549,7 @@ SimulationCase read_case(const Reader& reader, const toml::value& root,
 
 // A list's "[a, b, ...]" over lines of kValuesPerLine values: the reader
 // refuses lines longer than kLongestLineBytes, and the longest list must read
-// back. The elements are quoted quantities, which hold no ", ".
+// back. The elements are quoted quantities or plain numbers, which hold no ", ".
 std::string wrapped_list(const std::string& one_line) {
   constexpr int kValuesPerLine = 8;
   const std::string_view inner = std::string_view(one_line).substr(1, one_line.size() - 2);
@@ -677,7 +694,7 @@ std::string write_case_file(const SimulationCase& c, CaseUnits units) {
       text += "\n[" + std::string(section) + "]\n";
     }
     std::string value = value_text(field, c, units == CaseUnits::readable);
-    if (field.kind == FieldKind::quantity_list) value = wrapped_list(value);
+    if (is_list(field.kind)) value = wrapped_list(value);
     text += std::string(field.key) + " = " + value + "\n";
   }
   return text;

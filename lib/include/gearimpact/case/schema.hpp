@@ -29,7 +29,16 @@ enum class FieldKind {
   // of quantity strings, ["10 N*m", "2 N*m"]; on the command line a comma-
   // separated list, "10 N*m, 2 N*m". Each element must lie in `range`.
   quantity_list,
+  // A list of plain numbers (no unit): in a case file a TOML array of
+  // numbers, [0.0, 0.05]; on the command line "0, 0.05". Each element must
+  // lie in `range`.
+  number_list,
 };
+
+// quantity_list or number_list.
+inline bool is_list(FieldKind kind) {
+  return kind == FieldKind::quantity_list || kind == FieldKind::number_list;
+}
 
 // One allowed name of a choice and the enumerator it stands for.
 struct ChoiceName {
@@ -141,8 +150,8 @@ double parse_value(const Field& field, std::string_view value_text, std::string_
 void set_field(SimulationCase& c, std::string_view section_dot_key, std::string_view value_text,
                std::string_view name_in_messages = {});
 
-// Reads a comma-separated list for a quantity_list row (each element as
-// parse_value reads a quantity) and checks each element; errors name
+// Reads a comma-separated list for a list row (each element as parse_value
+// reads a quantity, or a plain number) and checks each element; errors name
 // `name`[i].
 std::vector<double> parse_list(const Field& field, std::string_view value_text,
                                std::string_view name);

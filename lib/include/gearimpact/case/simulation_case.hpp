@@ -52,6 +52,21 @@ inline constexpr std::array<NamedValue<MeshStiffnessMode>, 2> kMeshStiffnessMode
      "constant_mesh_stiffness shared equally by the loaded pairs (the clearance oscillator)"},
 }};
 
+// How the mesh force follows from the time-varying stiffness (docs/model.md,
+// section Energies). The Newtonian reading is the paper's F = Ke delta, under
+// which the varying stiffness does work on the system (the ledger's parametric
+// work); the Lagrangian one derives the forces from V = 1/2 Ke(theta1) delta^2,
+// so the pinion also feels -1/2 dKe/dtheta1 delta^2 and every jump of V at a
+// pair's entry or exit is paid by the pinion's kinetic energy.
+enum class MeshForce { newtonian, lagrangian };
+inline constexpr std::array<NamedValue<MeshForce>, 2> kMeshForces{{
+    {MeshForce::newtonian, "newtonian",
+     "F = Ke delta on each pair (the paper's); the varying stiffness does parametric work"},
+    {MeshForce::lagrangian, "lagrangian",
+     "from V = 1/2 Ke(theta1) delta^2: the pinion also feels -1/2 dKe/dtheta1 delta^2, and a "
+     "jump of V at a pair's entry or exit is an impulse on the pinion's speed"},
+}};
+
 // When the Hertzian damping factor D of (32) is set (docs/steady-state.md section 1).
 enum class DampingUpdate {
   // At every impact from e(Vi), carried with the state while no impact comes
@@ -75,6 +90,7 @@ struct ModelOptions {
   double friction_coefficient = 0.04;  // f of (35) under FrictionLaw::constant
   FrictionLaw friction_law = FrictionLaw::constant;
   BenedictKelleyLaw benedict_kelley;  // the lubricated contact of FrictionLaw::benedict_kelley
+  FrictionTable friction_table;       // f against the slide-to-roll ratio of FrictionLaw::table
   // v_s of Ff = f N tanh(Vs / v_s), which replaces sign(Vs) of (35) when > 0;
   // 0 keeps the exact switch, located as an event.
   double friction_smoothing_speed_m_s = 0.0;
@@ -85,6 +101,7 @@ struct ModelOptions {
   StiffnessModel stiffness;  // quadrature method and the sign of the Fa h moment
   MeshStiffnessMode mesh_stiffness = MeshStiffnessMode::time_varying;
   double constant_mesh_stiffness_n_per_m = 0.0;  // k of MeshStiffnessMode::constant, > 0
+  MeshForce mesh_force = MeshForce::newtonian;
   // zeta of the linear viscous mesh damper c = 2 zeta sqrt(k_mean m_e) on s'
   // (mesh.hpp); 0 leaves it out.
   double mesh_damping_ratio = 0.0;

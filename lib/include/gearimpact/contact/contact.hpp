@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/named_values.hpp"
@@ -102,13 +103,34 @@ inline double entrainment_speed(double w1_rad_per_s, double w2_rad_per_s, double
 enum class FrictionLaw {
   constant,         // f = friction_coefficient over the whole mesh (the paper's)
   benedict_kelley,  // f of Benedict and Kelley (1961) at each pair's load and speeds
+  table,            // f of a user table against the slide-to-roll ratio of each pair
 };
-inline constexpr std::array<NamedValue<FrictionLaw>, 2> kFrictionLaws{{
+inline constexpr std::array<NamedValue<FrictionLaw>, 3> kFrictionLaws{{
     {FrictionLaw::constant, "constant", "f = friction_coefficient everywhere (the paper's (35))"},
     {FrictionLaw::benedict_kelley, "benedict-kelley",
      "f = 0.0127 C_R log10(3.17e8 (W/F) / (nu0 Vs Ve^2)) of Benedict and Kelley (1961), "
      "clipped to [0, friction_coefficient_max]"},
+    {FrictionLaw::table, "table",
+     "f interpolated linearly in a table against the slide-to-roll ratio 2 Vs / Ve, constant "
+     "beyond its ends"},
 }};
+
+// The table of FrictionLaw::table: f_i at the slide-to-roll ratios r_i,
+// strictly increasing, of one length (at least 1), each f_i in [0, 1].
+struct FrictionTable {
+  std::vector<double> slide_to_roll;
+  std::vector<double> coefficient;
+};
+
+// The slide-to-roll ratio of a pair, 2 Vs / Ve: the sliding speed over the
+// mean rolling speed Ve / 2 of the two flanks (Vs = 0 at the pitch point when
+// the gears roll; -2 or 2 where one flank does not roll). Where the flanks do
+// not roll at all (Ve = 0) it is infinite with the sign of Vs, 0 if Vs = 0 too.
+double slide_to_roll_ratio(double sliding_speed_m_s, double entrainment_speed_m_s);
+
+// f of the table at the slide-to-roll ratio r: linear between the entries,
+// the first (last) coefficient below (above) the table's ends.
+double table_friction_coefficient(const FrictionTable& table, double slide_to_roll);
 
 // The lubricated contact of Benedict and Kelley's law, in SI.
 struct BenedictKelleyLaw {

@@ -82,6 +82,8 @@ struct SimulationSummary {
   double mesh_damping_loss_j = 0.0;  // Int c s'^2 dt of the viscous mesh damper
   // Work of the time-varying stiffness: the integral of 0.5 delta^2 dKe/dX dX/dt
   // plus the jumps of stored energy when a pair enters or leaves under load.
+  // Both 0 with mesh_force = "lagrangian", whose forces do that work on the
+  // pinion instead (its kinetic energy pays it).
   double parametric_work_j = 0.0;
   double parametric_jump_work_j = 0.0;
   // The largest stored energy of each term of (29) over the run (kTerms order;

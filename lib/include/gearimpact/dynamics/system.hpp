@@ -72,6 +72,13 @@ class GearSystem {
   // The table must cover the contact segment of c.gears; both must outlive the system.
   GearSystem(const SimulationCase& c, const StiffnessTable& table, const RunControl& control);
 
+  // J1, for the impulse that pays a jump of the stored energy under the
+  // Lagrangian mesh force.
+  double pinion_inertia() const { return j1_; }
+  // mesh_force = "lagrangian" with a stiffness that varies: the pinion feels
+  // -1/2 dKe/dtheta1 delta^2 and pays the stored energy's jumps.
+  bool lagrangian() const { return lagrangian_; }
+
   double kinetic_energy(const State& y) const {
     return 0.5 * j1_ * y[kW1] * y[kW1] + 0.5 * j2_ * y[kW2] * y[kW2];
   }
@@ -136,6 +143,7 @@ class GearSystem {
   double face_width_ = 0.0;
   double mesh_damping_ = 0.0;  // c of the viscous mesh damper, N s/m
   bool damping_on_current_pair_ = true;
+  bool lagrangian_ = false;
   // Both torques constant: torque_values_ holds them from the start.
   bool constant_torques_ = false;
   // A system belongs to one run, so one thread.
