@@ -249,3 +249,109 @@ TEST_CASE("bad friction-law inputs are refused, naming the key and its range") {
     CHECK(e.field() == "model.lubricant_viscosity");
   }
 }
+
+TEST_CASE("the table law: f interpolated by hand, constant beyond the ends") {
+  FrictionTable table;
+  table.slide_to_roll = {-1.0, 0.0, 0.5};
+  table.coefficient = {0.08, 0.02, 0.06};
+  // Between the entries: f_i + (r - r_i) / (r_{i+1} - r_i) (f_{i+1} - f_i).
+  CHECK(table_friction_coefficient(table, -0.5) == doctest::Approx(0.05).epsilon(1e-15));
+  CHECK(table_friction_coefficient(table, 0.25) == doctest::Approx(0.04).epsilon(1e-15));
+  CHECK(table_friction_coefficient(table, 0.1) == doctest::Approx(0.028).epsilon(1e-15));
+  // At the entries, the entries.
+  CHECK(table_friction_coefficient(table, -1.0) == 0.08);
+  CHECK(table_friction_coefficient(table, 0.0) == 0.02);
+  CHECK(table_friction_coefficient(table, 0.5) == 0.06);
+  // Beyond the ends, the end values.
+  CHECK(table_friction_coefficient(table, -1.5) == 0.08);
+  CHECK(table_friction_coefficient(table, 2.0) == 0.06);
+  // The slide-to-roll ratio 2 Vs / Ve: Vs = 1, Ve = 4 m/s give 0.5; flanks
+  // that do not roll give +-infinity, i.e. the end values.
+  CHECK(slide_to_roll_ratio(1.0, 4.0) == 0.5);
+  CHECK(slide_to_roll_ratio(-1.0, 4.0) == -0.5);
+  CHECK(slide_to_roll_ratio(0.0, 0.0) == 0.0);
+  CHECK(table_friction_coefficient(table, slide_to_roll_ratio(1.0, 0.0)) == 0.06);
+  CHECK(table_friction_coefficient(table, slide_to_roll_ratio(-1.0, 0.0)) == 0.08);
+}
+
+TEST_CASE("a table of one entry, or of two equal ones, is the constant law to rounding") {
+  const SimulationSummary constant = run_summary(case2());
+  for (const FrictionTable& table :
+       {FrictionTable{{0.0}, {0.04}}, FrictionTable{{-1.0, 1.0}, {0.04, 0.04}}}) {
+    SimulationCase c = case2();
+    c.model.friction_law = FrictionLaw::table;
+    c.model.friction_table = table;
+    const SimulationSummary s = run_summary(c);
+    // f is the same double at every point, so the run is the same run.
+    CHECK(s.friction_loss_j == constant.friction_loss_j);
+    CHECK(s.damping_loss_j == constant.damping_loss_j);
+    CHECK(s.final_w1_rad_per_s == constant.final_w1_rad_per_s);
+  }
+}
+
+TEST_CASE("the ledger closes under the table law") {
+  // f from 0.09 where the pinion's flank slides back (r = -1) through 0.01 at
+  // the pitch point to 0.06 (r = 1): f varies along every mesh cycle.
+  SimulationCase c = case2();
+  c.model.friction_law = FrictionLaw::table;
+  c.model.friction_table = {{-1.0, 0.0, 1.0}, {0.09, 0.01, 0.06}};
+  const SimulationSummary s = run_summary(c);
+  const SimulationSummary constant = run_summary(case2());
+  const double throughput =
+      s.kinetic_energy_initial_j + s.stored_energy_initial_j + std::fabs(s.torque_work_j);
+  const double bound = 1e-7 * throughput;
+  MESSAGE("residual " << s.ledger_residual_max_j << " J of " << throughput << " J, friction loss "
+                      << s.friction_loss_j << " J (constant f = 0.04: " << constant.friction_loss_j
+                      << " J)");
+  CHECK(s.ledger_residual_max_j < bound);
+  CHECK(s.friction_loss_j > 100.0 * bound);
+  // The table acts: another loss than the constant law's.
+  CHECK(relative_difference(s.friction_loss_j, constant.friction_loss_j) > 1e-3);
+}
+
+TEST_CASE("bad friction tables are refused, naming the key, the index and the value") {
+  const std::string base = write_case_file(case2());
+  const auto with = [&](const std::string& lines) {
+    std::string text = base;
+    text.insert(text.find("[model]\n") + 8, lines);
+    return error_of(text);
+  };
+  const std::string order = with(
+      "friction_law = \"table\"\nfriction_table_slide_to_roll = [0.0, 0.5, 0.5]\n"
+      "friction_table_coefficients = [0.01, 0.02, 0.03]\n");
+  CHECK(order.find("friction_table_slide_to_roll[2]") != std::string::npos);
+  CHECK(order.find("0.5") != std::string::npos);
+  CHECK(order.find("strictly increasing") != std::string::npos);
+  const std::string large = with(
+      "friction_law = \"table\"\nfriction_table_slide_to_roll = [0.0, 0.5]\n"
+      "friction_table_coefficients = [0.01, 1.5]\n");
+  CHECK(large.find("friction_table_coefficients[1]") != std::string::npos);
+  CHECK(large.find("1.5") != std::string::npos);
+  CHECK(large.find("[0, 1]") != std::string::npos);
+  const std::string lengths = with(
+      "friction_law = \"table\"\nfriction_table_slide_to_roll = [0.0, 0.5]\n"
+      "friction_table_coefficients = [0.01]\n");
+  CHECK(lengths.find("friction_table_coefficients") != std::string::npos);
+  CHECK(lengths.find("as many values") != std::string::npos);
+  const std::string empty = with(
+      "friction_law = \"table\"\nfriction_table_slide_to_roll = []\n"
+      "friction_table_coefficients = []\n");
+  CHECK(empty.find("friction_table_slide_to_roll") != std::string::npos);
+  const std::string unit = with(
+      "friction_law = \"table\"\nfriction_table_slide_to_roll = [\"0.5 mm\"]\n"
+      "friction_table_coefficients = [0.01]\n");
+  CHECK(unit.find("friction_table_slide_to_roll[0]") != std::string::npos);
+  const std::string missing = with("friction_law = \"table\"\n");
+  CHECK(missing.find("friction_table_slide_to_roll") != std::string::npos);
+  // The command line's --set goes through the same rows.
+  SimulationCase c = case2();
+  set_field(c, "model.friction_law", "table");
+  set_field(c, "model.friction_table_slide_to_roll", "-1, 0, 1");
+  set_field(c, "model.friction_table_coefficients", "0.09, 0.01, 0.06");
+  CHECK(c.model.friction_table.coefficient[2] == 0.06);
+  CHECK_THROWS_AS(set_field(c, "model.friction_table_coefficients", "0.1, -0.2"), InputError);
+  // A table written out reads back to the same doubles.
+  const SimulationCase back = parse_case(write_case_file(c), "back.toml");
+  CHECK(back.model.friction_table.slide_to_roll == c.model.friction_table.slide_to_roll);
+  CHECK(back.model.friction_table.coefficient == c.model.friction_table.coefficient);
+}
