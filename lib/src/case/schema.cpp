@@ -416,8 +416,9 @@ std::vector<Field> make_schema() {
         .only_when = FieldCondition{"friction_law", {"benedict-kelley"}};
     // The table law's two lists, one entry per point, of one length
     // (validate_relations). A lookup is a binary search, so the bound is on
-    // the case file's size, not on the run's cost.
-    constexpr std::size_t kMostFrictionTableEntries = 10000;
+    // the case file's size (its lists together bound the values a case file
+    // holds), not on the run's cost: a measured friction curve has tens of points.
+    constexpr std::size_t kMostFrictionTableEntries = 1000;
     r.number_list(
          "friction_table_slide_to_roll", {}, kMostFrictionTableEntries, true,
          "the slide-to-roll ratios 2 Vs / Ve of the friction table, strictly increasing (0 at the "
