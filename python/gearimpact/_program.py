@@ -41,16 +41,17 @@ def reproduce(out_dir, paper_data=None):
 
     out_dir, paper_data: a str or a pathlib.Path; paper_data is another folder of
     statements (default: this package's). Returns
-    the path of REPORT.md. Raises RuntimeError with the program's message when
-    it fails.
+    the path of REPORT.md. Raises CaseError for a folder that cannot be used (no
+    statements in paper_data, an output that cannot be written).
     """
     out = _arguments.path("out_dir", out_dir)
     data = paper_data_dir() if paper_data is None else paper_data
     data = _arguments.path("paper_data", data)
-    try:
-        _core.reproduce(out, data)
-    except (ValueError, RuntimeError, OSError) as error:
-        raise RuntimeError(f"gearimpact reproduce failed: {error}") from error
+    if not (Path(data) / "dynamics_statements.csv").is_file():
+        raise _arguments.case_error(
+            f"paper_data={str(data)!r}: a folder of the paper's statements, and "
+            "dynamics_statements.csv is not in it (None: this package's)", "paper_data")
+    _core.reproduce(out, data)
     return Path(out_dir) / "REPORT.md"
 
 

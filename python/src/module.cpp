@@ -64,6 +64,10 @@ void translate_exceptions(std::exception_ptr error) {
     PyErr_SetString(convergence_error, e.what());
   } catch (const SimulationError& e) {
     PyErr_SetString(simulation_error, e.what());
+  } catch (const Error& e) {
+    // The rest of the library's errors are about what it was given: a file or
+    // folder it cannot read or write.
+    set_case_error(e.what(), "", "");
   }
 }
 
