@@ -183,18 +183,14 @@ def gear_pair(**fields):
     raises CaseError naming the key.
     """
     paper = _core.paper_case(1, "kgf-mm", 10000.0)
-    keys = sorted(key for key in fields_of(paper) if key.startswith("gears."))
-    dotted = {}
-    for key, value in fields.items():
-        full = key if "." in key else "gears." + key
-        if full not in keys:
+    for key in fields:
+        if not resolve(key).startswith("gears."):
             raise case_error(
-                f"{key}: no such key of [gears]; the keys are "
-                + ", ".join(k.partition(".")[2] for k in keys),
+                f"{key}: not a key of [gears]; the keys are "
+                + ", ".join(row["bare"] for row in _schema().values() if row["section"] == "gears"),
                 key,
             )
-        dotted[full] = value
-    return replace(paper, **dotted).gears
+    return replace(paper, **fields).gears
 
 
 def fields_of(case):
@@ -342,7 +338,7 @@ def _literal(user_key, dotted, value):
     if isinstance(value, numbers.Real):
         number = _arguments.real(user_key, value)
         if unit is not None:
-            _check_plausible(user_key, dotted, number)
+            check_plausible(user_key, dotted, number)
             return json.dumps(f"{_core.shortest_decimal(number)} {unit}")
         if isinstance(value, numbers.Integral):
             return str(int(value))
@@ -356,7 +352,7 @@ def _literal(user_key, dotted, value):
     )
 
 
-def _check_plausible(user_key, dotted, metres):
+def check_plausible(user_key, dotted, metres):
     """Warns when a plain number for a length is implausible in metres."""
     if dotted not in _PLAUSIBLE_LENGTHS_M:
         return

@@ -6,6 +6,7 @@ import csv
 import io
 import json
 import math
+import numbers
 import os
 from pathlib import Path
 
@@ -150,6 +151,9 @@ def sweep(case, vary, start, stop, points, direction="both", options=()):
         raise _arguments.case_error(
             f"vary={vary!r}: {error} (a numeric key as section.key, section_key or bare)",
             "vary") from None
+    for name, value in (("start", start), ("stop", stop)):
+        if isinstance(value, numbers.Real) and not _arguments.is_bool(value):
+            _cases.check_plausible(name, key, _arguments.real(name, value))
     arguments = ["--vary", key,
                  "--from", _arguments.quantity("start", start),
                  "--to", _arguments.quantity("stop", stop),

@@ -341,3 +341,16 @@ def test_an_implausible_plain_length_warns(key, value, words):
 def test_plausible_lengths_and_unit_strings_do_not_warn():
     quiet(lambda: my_pair(module=0.003, face_width=0.025, bore_diameter1=0.03, backlash=0.0))
     quiet(lambda: my_pair(module="3 mm", backlash="0 mm"))
+
+
+def test_gear_pair_takes_optional_keys_and_only_keys_of_the_pair():
+    pair = gearimpact.gear_pair(teeth1=23, teeth2=67, module="3 mm", bore_diameter1="30 mm")
+    assert (pair.teeth1, pair.teeth2) == (23, 67)
+    with pytest.raises(gearimpact.CaseError, match="not a key of .gears."):
+        gearimpact.gear_pair(w1="100 rad/s")
+
+
+def test_a_swept_length_given_as_a_plain_number_warns():
+    with pytest.warns(gearimpact.GearimpactWarning, match='start = 10 m.*did you mean "10 mm"'):
+        with pytest.raises(gearimpact.CaseError):
+            gearimpact.sweep(my_pair(), "backlash", 10, 0.05e-3, 2)
