@@ -131,7 +131,7 @@ def _implied_kind(section, given):
 
 def _missing_keys(given):
     """The required keys that apply and are not given, each as
-    "keyword (section.key: what it takes)"."""
+    "keyword (section.key, in its unit: what it takes)"."""
     missing = []
     for key, row in _schema().items():
         if row["required"] and key not in given and _condition_holds(row, given):

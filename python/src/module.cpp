@@ -417,6 +417,8 @@ double case3_frequency(double value) {
   return value;
 }
 
+// A row's kind by name: the Python layer writes a bool as "on"/"off" for an
+// on_off row and a number in the SI unit for a quantity.
 const char* field_kind_name(FieldKind kind) {
   switch (kind) {
     case FieldKind::quantity:
@@ -456,7 +458,6 @@ py::list schema_rows() {
                  : py::object(py::none());
     row["unit"] = has_unit ? py::object(py::str(std::string(field.unit))) : py::object(py::none());
     row["required"] = field.required;
-    row["optional"] = !field.when_absent.empty();
     if (field.only_when) {
       py::list choices;
       for (const std::string_view choice : field.only_when->choices) {
