@@ -5,18 +5,30 @@ the same numbers as the program of the same name (``gearimpact stiffness``,
 ``simulate``, ``energy-ratios``, ``sweep-friction``), bit for bit.
 
 Cases
-    ``paper_case(n)`` (Table 1), ``read_case(path)`` (a case file, TOML),
-    ``parse_case(text)``; ``case.replace(module="2.5 mm", friction_coefficient=0.06)``
-    changes fields with the units of case files (or SI floats).
+    ``case(name="my-pair", teeth1=23, module="3 mm", ...)`` (keys alone, the
+    schema's defaults for the rest), ``paper_case(n)`` (Table 1),
+    ``read_case(path)`` (a case file, TOML), ``parse_case(text)``;
+    ``case.replace(module="2.5 mm", friction_coefficient=0.06)`` changes fields
+    with the units of case files (or SI floats). A key is its bare name where
+    one section has it (``bore_diameter1``), else ``section_key``
+    (``torque1_value``).
 Results
     ``stiffness``, ``energy_ratios`` (dicts of numpy arrays), ``simulate``
     (a ``SimulationResult`` with ``.summary`` and ``.series``),
     ``sweep_friction`` (Fig. 7), ``reproduce`` (every figure and REPORT.md).
-Errors
-    ``CaseError`` (a ``ValueError``) for a value outside its range, naming the
-    key; ``QuadratureError`` and ``SimulationError`` (``RuntimeError``) when a
-    computation cannot finish. Ctrl-C stops a long computation
-    (``KeyboardInterrupt``).
+Tables
+    dicts of numpy arrays: text columns as str arrays, ``converged`` as bool,
+    keys and counts (``line``, ``index``, ``period``, ``pairs``) as int64, the
+    rest float64 (NaN where the program leaves a field empty).
+Errors and warnings
+    ``CaseError`` (a ``ValueError``) for any bad input, naming the key or
+    argument as written; ``ConvergenceError`` (``RuntimeError``; its subclass
+    ``QuadratureError``) for a computation that did not converge, and
+    ``SimulationError`` (``RuntimeError``) for a run that cannot continue.
+    ``GearimpactWarning`` (a ``UserWarning``) for a fillet-foundation fit used
+    outside its range, unbalanced mean torques, initial speeds that do not
+    roll and a plain number implausible as a length in metres. Ctrl-C stops a
+    long computation (``KeyboardInterrupt``).
 
 Units are SI inside (m, kg, s, N, rad); unit strings are converted once, where
 they are read.
@@ -24,6 +36,7 @@ they are read.
 
 from ._core import (
     CaseError,
+    ConvergenceError,
     QuadratureError,
     SimulationError,
     Case,
@@ -41,7 +54,8 @@ from ._core import (
     pitch_radius,
     tip_radius,
 )
-from ._cases import gear_pair, paper_case, parse_case, read_case
+from ._cases import case, gear_pair, paper_case, parse_case, read_case
+from ._warnings import GearimpactWarning
 from ._results import (
     SimulationResult,
     energy_ratios,
@@ -54,13 +68,16 @@ from ._program import iso6336, mesh_stiffness, paper_data_dir, program_path, rep
 __all__ = [
     "Case",
     "CaseError",
+    "ConvergenceError",
     "GearPair",
+    "GearimpactWarning",
     "QuadratureError",
     "SimulationError",
     "SimulationResult",
     "StiffnessModel",
     "base_pitch",
     "base_radius",
+    "case",
     "contact_angle",
     "contact_ratio",
     "contact_segment",

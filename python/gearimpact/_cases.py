@@ -9,7 +9,9 @@ its text reads back to the same case bit for bit, so the keys left alone do
 not change.
 """
 
+import difflib
 import json
+import math
 import numbers
 import re
 
@@ -20,7 +22,7 @@ except ImportError:  # Python < 3.11
 
 import numpy
 
-from . import _arguments, _core
+from . import _arguments, _core, _warnings
 from ._arguments import case_error, is_bool
 from ._core import Case, CaseError
 
@@ -31,6 +33,111 @@ _KEYWORDS = "<keyword arguments>"
 # The keys of a torque section depend on its kind: a new kind starts the
 # section anew from the keys given with it.
 _KIND_SECTIONS = ("torque1", "torque2")
+
+# Plausible values, m, of the lengths that a plain number (taken in SI metres)
+# most often gives in millimetres by mistake; outside them a plain number warns
+# (GearimpactWarning). They are no ranges (the schema's rows hold those): a
+# module of 3 m is a valid input, and more likely a slip for "3 mm".
+_PLAUSIBLE_LENGTHS_M = {
+    # From watch gears to mill drives.
+    "gears.module": ("a module", 0.05e-3, 100e-3),
+    "gears.face_width": ("a face width", 0.1e-3, 2.0),
+    "gears.bore_diameter1": ("a bore diameter", 0.5e-3, 5.0),
+    "gears.bore_diameter2": ("a bore diameter", 0.5e-3, 5.0),
+    # B, half the total play; 0 is a pair without play.
+    "gears.backlash": ("a backlash", 0.0, 5e-3),
+}
+
+
+def case(name=None, **keys):
+    """A case from keyword arguments alone: gearimpact.case(name="my-pair",
+    teeth1=23, teeth2=67, module="3 mm", ...).
+
+    name: the case's name (letters, digits, '_', '-', '.'; it names output
+    files). keys: the keys of case files, as Case.replace takes them (the bare
+    key where one section has it, section_key otherwise, e.g. torque1_value);
+    values with units ("3 mm", "1000 rpm") or plain numbers in SI. A key left
+    out takes the schema's default (``gearimpact schema``, docs/case-files.md);
+    the keys without one (the pair's teeth, module, pressure angle, face width,
+    material and backlash, the torques, end_time) must be given, and are listed
+    together when missing. A torque's kind follows from its keys when left out
+    (torque1_value: "constant"). Raises CaseError naming the key as given, with
+    a suggestion for a misspelt one; warns (GearimpactWarning) of a foundation
+    fit used outside its range, unbalanced mean torques and speeds that do not
+    roll.
+    """
+    if name is None:
+        raise case_error(
+            'name: a case needs a name (it names output files), e.g. case(name="my-pair", ...)',
+            "name")
+    given = {"name": ("name", _arguments.text("name", name))}
+    for user_key, value in keys.items():
+        _add_given(given, resolve(user_key), user_key, value)
+    for section in _KIND_SECTIONS:
+        kind = _implied_kind(section, given)
+        if kind is not None:
+            given[section + ".kind"] = (None, kind)
+    missing = _missing_keys(given)
+    if missing:
+        raise case_error(
+            f"case {name!r}: keys without a default are missing: " + "; ".join(missing),
+            missing[0].split(" ")[0])
+    literals = {dotted: _literal(user_key or dotted, dotted, value)
+                for dotted, (user_key, value) in given.items()}
+    try:
+        made = _core.parse_case(_toml_text(literals), _KEYWORDS)
+    except CaseError as error:
+        raise _explained(error, given) from None
+    _warnings.warn_conditions(made)
+    return made
+
+
+def _add_given(given, dotted, user_key, value):
+    if dotted in given:
+        raise case_error(
+            f"{user_key}: given twice, as {given[dotted][0]} and {user_key} ({dotted})", user_key)
+    given[dotted] = (user_key, value)
+
+
+def _condition_holds(row, given):
+    """Whether the row's condition (only_when) holds with the given values or,
+    for a condition key not given, the schema's default."""
+    if row["only_when"] is None:
+        return True
+    key, choices = row["only_when"]
+    if key in given:
+        value = given[key][1]
+    else:
+        default = _schema()[key]["default"]
+        value = json.loads(default) if default.startswith('"') else default
+    return isinstance(value, str) and value in choices
+
+
+def _implied_kind(section, given):
+    """The one kind of a torque under which every key given for it applies,
+    when the kind itself is not given; else None."""
+    if section + ".kind" in given:
+        return None
+    rows = [row for key, row in _schema().items()
+            if key.startswith(section + ".") and key in given]
+    if not rows:
+        return None
+    kinds = {choice for row in _schema().values()
+             if row["section"] == section and row["only_when"] for choice in row["only_when"][1]}
+    fitting = [kind for kind in sorted(kinds)
+               if all(row["only_when"] is None or kind in row["only_when"][1] for row in rows)]
+    return fitting[0] if len(fitting) == 1 else None
+
+
+def _missing_keys(given):
+    """The required keys that apply and are not given, each as
+    "keyword (section.key, in its unit: what it takes)"."""
+    missing = []
+    for key, row in _schema().items():
+        if row["required"] and key not in given and _condition_holds(row, given):
+            unit = f', in {row["unit"]}' if row["unit"] else ""
+            missing.append(f"{_spelling(key)} ({key}{unit}: {row['allowed']})")
+    return missing
 
 
 def paper_case(number, torque_unit="kgf-mm", case3_frequency_rad_s=10000.0, **fields):
@@ -54,14 +161,18 @@ def paper_case(number, torque_unit="kgf-mm", case3_frequency_rad_s=10000.0, **fi
 
 def read_case(path):
     """Reads and checks a case file (TOML, docs/case-files.md); path: a str or a pathlib.Path.
-    Raises CaseError."""
-    return _core.read_case_file(_arguments.path("path", path))
+    Raises CaseError; warns (GearimpactWarning) as case() does."""
+    made = _core.read_case_file(_arguments.path("path", path))
+    _warnings.warn_conditions(made)
+    return made
 
 
 def parse_case(text, name="<text>"):
     """Reads a case file's text (a str); `name` (a str) names it in messages (and the case,
-    without a `name` key). Raises CaseError."""
-    return _core.parse_case(_arguments.text("text", text), _arguments.text("name", name))
+    without a `name` key). Raises CaseError; warns (GearimpactWarning) as case() does."""
+    made = _core.parse_case(_arguments.text("text", text), _arguments.text("name", name))
+    _warnings.warn_conditions(made)
+    return made
 
 
 def gear_pair(**fields):
@@ -72,18 +183,14 @@ def gear_pair(**fields):
     raises CaseError naming the key.
     """
     paper = _core.paper_case(1, "kgf-mm", 10000.0)
-    keys = sorted(key for key in fields_of(paper) if key.startswith("gears."))
-    dotted = {}
-    for key, value in fields.items():
-        full = key if "." in key else "gears." + key
-        if full not in keys:
+    for key in fields:
+        if not resolve(key).startswith("gears."):
             raise case_error(
-                f"{key}: no such key of [gears]; the keys are "
-                + ", ".join(k.partition(".")[2] for k in keys),
+                f"{key}: not a key of [gears]; the keys are "
+                + ", ".join(row["bare"] for row in _schema().values() if row["section"] == "gears"),
                 key,
             )
-        dotted[full] = value
-    return replace(paper, **dotted).gears
+    return replace(paper, **fields).gears
 
 
 def fields_of(case):
@@ -122,86 +229,79 @@ def replace(case, **changes):
     current = fields_of(case)
     given = {}
     for user_key, value in changes.items():
-        given[_resolve(user_key, current)] = (user_key, value)
+        _add_given(given, resolve(user_key), user_key, value)
     literals = {key: _literal_of(value) for key, value in current.items()}
     for section in _KIND_SECTIONS:
         if section + ".kind" in given:
             literals = {k: v for k, v in literals.items() if not k.startswith(section + ".")}
     for dotted, (user_key, value) in given.items():
-        literals[dotted] = _literal(user_key, dotted, value, current.get(dotted),
-                                    _core.key_form(dotted))
+        literals[dotted] = _literal(user_key, dotted, value)
     try:
-        return _core.parse_case(_toml_text(literals), _KEYWORDS)
+        changed = _core.parse_case(_toml_text(literals), _KEYWORDS)
     except CaseError as error:
         raise _explained(error, given) from None
+    _warnings.warn_conditions(changed, before=case)
+    return changed
 
 
-def _resolve(user_key, current):
+_SCHEMA = {}
+
+
+def _schema():
+    """The schema's rows by section.key, in case-file order."""
+    if not _SCHEMA:
+        _SCHEMA.update((row["key"], row) for row in _core.schema_rows())
+    return _SCHEMA
+
+
+_SPELLINGS = {}
+
+
+def _spellings():
+    """{spelling: section.key} of every way a keyword argument may name a key:
+    section.key, section_key (a keyword argument cannot hold a dot), and the
+    bare key where only one section has it."""
+    if not _SPELLINGS:
+        rows = _schema()
+        sections = {}
+        for key, row in rows.items():
+            sections.setdefault(row["bare"], []).append(key)
+        for key, row in rows.items():
+            _SPELLINGS[key] = key
+            if row["section"]:
+                _SPELLINGS[f"{row['section']}_{row['bare']}"] = key
+            if len(sections[row["bare"]]) == 1:
+                _SPELLINGS[row["bare"]] = key
+    return _SPELLINGS
+
+
+def _spelling(key):
+    """The shortest keyword argument that names section.key."""
+    return min((s for s, k in _spellings().items() if k == key and "." not in s), key=len)
+
+
+def resolve(user_key):
     """The case file's section.key for a key as given: section.key itself,
-    section_key (a keyword argument cannot hold a dot), or a bare key that
-    only one section has."""
+    section_key, or a bare key that only one section has."""
     if not isinstance(user_key, str) or not user_key:
         raise case_error(f"{user_key!r}: a key of a case file, as section.key or a bare key")
-    known = _known_keys(current)
-    if "." in user_key or user_key == "name":
-        return _known(user_key, user_key, known)
-    sections = {key.partition(".")[0] for key in known if "." in key}
-    section, _, inner = user_key.partition("_")
-    if section in sections and inner:
-        return _known(f"{section}.{inner}", user_key, known)
-    candidates = sorted(key for key in known if key.split(".")[-1] == user_key)
-    if not candidates:
-        # A key the writer leaves out at its default (friction_law,
-        # mesh_damping_ratio, ...) is absent from the case's fields.
-        candidates = sorted(
-            f"{name}.{user_key}"
-            for name in sections
-            if _core.key_form(f"{name}.{user_key}") is not None
-        )
-    if len(candidates) == 1:
-        return candidates[0]
+    spellings = _spellings()
+    if user_key in spellings:
+        return spellings[user_key]
+    candidates = sorted(key for key, row in _schema().items() if row["bare"] == user_key)
     if candidates:
         raise case_error(
             f"{user_key}: more than one section has this key; write one of "
             + ", ".join(f"{key} ({key.replace('.', '_')})" for key in candidates),
             user_key,
         )
-    raise case_error(
-        f"{user_key}: no such key in a case file; the keys are "
-        + ", ".join(sorted(known)),
-        user_key,
-    )
-
-
-def _known_keys(current):
-    return set(current) | set(_torque_template())
-
-
-def _known(dotted, user_key, known):
-    """`dotted` when the schema has it; the text built from the keys then
-    holds only keys of the schema."""
-    if dotted in known or _core.key_form(dotted) is not None:
-        return dotted
-    raise case_error(
-        f"{user_key}: no such key in a case file; the keys are " + ", ".join(sorted(known)),
-        user_key,
-    )
-
-
-_TEMPLATE = {}
-
-
-def _torque_template():
-    """The keys of a torque section of either kind, with their SI values, from
-    Table 1's case 3 (a sinusoidal and a constant torque)."""
-    if not _TEMPLATE:
-        case3 = fields_of(_core.paper_case(3, "kgf-mm", 10000.0))
-        for key, value in case3.items():
-            section, _, inner = key.partition(".")
-            if section in _KIND_SECTIONS:
-                for name in _KIND_SECTIONS:
-                    _TEMPLATE.setdefault(f"{name}.{inner}", value)
-    return _TEMPLATE
+    close = difflib.get_close_matches(user_key, list(spellings), n=6, cutoff=0.6)
+    suggested = list(dict.fromkeys(spellings[name] for name in close))[:3]
+    if suggested:
+        hint = "did you mean " + " or ".join(f"{_spelling(key)} ({key})" for key in suggested) + "?"
+    else:
+        hint = "the keys are " + ", ".join(_schema())
+    raise case_error(f"{user_key}: no such key in a case file; {hint}", user_key)
 
 
 def _literal_of(value):
@@ -224,19 +324,21 @@ def _toml_array(items):
     return "[\n  " + ",\n  ".join(lines) + "\n]" if len(items) > 8 else "[" + ", ".join(items) + "]"
 
 
-def _literal(user_key, dotted, value, current, form):
-    """The TOML text of a value given for a key (whose present value is `current`;
-    `form` is the key's (kind, SI unit) from the schema, None for an unknown key)."""
-    kind, unit = form if form is not None else (None, None)
-    if kind == "list":
+def _literal(user_key, dotted, value):
+    """The TOML text of a value given for a key (section.key `dotted`, a key of
+    the schema): a number for a quantity is written in the key's SI unit."""
+    row = _schema()[dotted]
+    unit = row["si_unit"]
+    if row["kind"] in ("quantity_list", "number_list"):
         return _list_literal(user_key, dotted, value, unit)
     if is_bool(value):
-        if current in ("on", "off"):
+        if row["kind"] == "on_off":
             return '"on"' if value else '"off"'
         return "true" if value else "false"
     if isinstance(value, numbers.Real):
         number = _arguments.real(user_key, value)
         if unit is not None:
+            check_plausible(user_key, dotted, number)
             return json.dumps(f"{_core.shortest_decimal(number)} {unit}")
         if isinstance(value, numbers.Integral):
             return str(int(value))
@@ -248,6 +350,21 @@ def _literal(user_key, dotted, value, current, form):
         f"or True/False, not {type(value).__name__}",
         user_key,
     )
+
+
+def check_plausible(user_key, dotted, metres):
+    """Warns when a plain number for a length is implausible in metres."""
+    if dotted not in _PLAUSIBLE_LENGTHS_M:
+        return
+    what, low, high = _PLAUSIBLE_LENGTHS_M[dotted]
+    if low <= metres <= high:
+        return
+    written = _core.shortest_decimal(metres)
+    message = (f"{user_key} = {written} m: SI metres assumed for a plain number; {what} is "
+               f"plausibly {low * 1e3:g} mm to {high * 1e3:g} mm")
+    if metres > high:
+        message += f'; did you mean "{written} mm"?'
+    _warnings.warn(message)
 
 
 def _list_literal(user_key, dotted, value, unit):
@@ -314,19 +431,54 @@ def _explained(error, given):
     key, bracket, index = field.partition("[")
     if field in given:
         user_key, value = given[field]
-        text = f"{user_key}={value!r}: {message}"
+        text = f"{user_key or field}={value!r}: {message}"
     elif bracket and key in given:
         user_key, _ = given[key]
-        field = f"{user_key}[{index}"
+        field = f"{user_key or key}[{index}"
         text = f"{field}: {message}"
     else:
-        changes = ", ".join(f"{key}={value!r}" for key, value in given.values())
+        changes = ", ".join(f"{key}={value!r}" for key, value in given.values() if key)
         text = f"with {changes}: {message}"
     return case_error(text, field)
 
 
+def _short(number):
+    return f"{number:.6g}"
+
+
+def _si(fields, key):
+    """A quantity of the case's SI fields ("0.003 m") as a float; 0 for one left out."""
+    return float(str(fields.get(key, "0")).split()[0])
+
+
+def _torque_text(fields, section, symbol):
+    kind = fields[section + ".kind"]
+    mean = _si(fields, section + ".mean")
+    if kind == "constant":
+        return f"{symbol} = {_short(_si(fields, section + '.value'))} N*m"
+    if kind == "sinusoidal":
+        amplitude = _short(_si(fields, section + ".amplitude"))
+        frequency = _short(_si(fields, section + ".angular_frequency"))
+        return f"{symbol} = {_short(mean)} + {amplitude} sin({frequency} rad/s t) N*m"
+    harmonics = len(fields.get(section + ".amplitudes", []))
+    return f"{symbol} = {_short(mean)} N*m + {harmonics} harmonics"
+
+
+def _speed_text(fields, key, symbol):
+    w = _si(fields, key)
+    return f"{symbol} = {_short(w)} rad/s ({_short(w * 30 / math.pi)} rpm)"
+
+
 def _case_repr(case):
-    return f"<gearimpact.Case {case.name!r}: print(case.to_toml()) shows every field>"
+    """The pair, the torques and the speeds, short; case.to_toml() shows every field."""
+    f = fields_of(case)
+    return (
+        f"<gearimpact.Case {case.name!r}: {f['gears.teeth1']}/{f['gears.teeth2']} teeth, "
+        f"module {_short(_si(f, 'gears.module') * 1e3)} mm, "
+        f"face width {_short(_si(f, 'gears.face_width') * 1e3)} mm; "
+        f"{_torque_text(f, 'torque1', 'T1')}, {_torque_text(f, 'torque2', 'T2')}; "
+        f"{_speed_text(f, 'initial.w1', 'w1')}, {_speed_text(f, 'initial.w2', 'w2')}>"
+    )
 
 
 def _case_eq(case, other):

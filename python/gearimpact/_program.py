@@ -2,10 +2,17 @@
 ``gearimpact sweep``, ``iso6336``, ``mesh-stiffness`` and ``reproduce``), and
 the program and the paper's data that come with the package."""
 
+import csv
+import io
+import json
+import math
+import numbers
 import os
 from pathlib import Path
 
-from . import _arguments, _core
+import numpy
+
+from . import _arguments, _cases, _core, _warnings
 
 # Not resolved: in the build tree the package's files are links into the
 # source tree, and the program and the data sit beside the links.
@@ -35,36 +42,52 @@ def reproduce(out_dir, paper_data=None):
 
     out_dir, paper_data: a str or a pathlib.Path; paper_data is another folder of
     statements (default: this package's). Returns
-    the path of REPORT.md. Raises RuntimeError with the program's message when
-    it fails.
+    the path of REPORT.md. Raises CaseError for a folder that cannot be used (no
+    statements in paper_data, an output that cannot be written).
     """
     out = _arguments.path("out_dir", out_dir)
     data = paper_data_dir() if paper_data is None else paper_data
     data = _arguments.path("paper_data", data)
-    try:
-        _core.reproduce(out, data)
-    except (ValueError, RuntimeError, OSError) as error:
-        raise RuntimeError(f"gearimpact reproduce failed: {error}") from error
+    if not (Path(data) / "dynamics_statements.csv").is_file():
+        raise _arguments.case_error(
+            f"paper_data={str(data)!r}: a folder of the paper's statements, and "
+            "dynamics_statements.csv is not in it (None: this package's)", "paper_data")
+    _core.reproduce(out, data)
     return Path(out_dir) / "REPORT.md"
 
 
-def _table(csv_text):
-    """A CSV with a header as a dict of numpy arrays, column by column (text columns stay
-    lists of str)."""
-    import csv
-    import io
+# The columns of the program's CSV files whose type their values alone do not
+# tell: the program prints an integral double without a decimal point, and a
+# column may be empty throughout (every point of a sweep unconverged). Keys and
+# counts are int64 (0 where a row has none: the period of an aperiodic or
+# unconverged point), `converged` bool, names str. Any other column is bool
+# when it holds only true/false, float64 when it holds only numbers (NaN for
+# an empty field), str otherwise, so that a column the program adds arrives
+# with its type.
+_INTEGER_COLUMNS = frozenset({"line", "index", "period", "pairs"})
+_BOOL_COLUMNS = frozenset({"converged"})
+_TEXT_COLUMNS = frozenset({"direction", "regime"})
 
-    import numpy
+
+def _column(name, values):
+    if name in _INTEGER_COLUMNS:
+        return numpy.array([int(v) if v.isdigit() else 0 for v in values], dtype=numpy.int64)
+    if name in _BOOL_COLUMNS or (values and set(values) <= {"true", "false"}):
+        return numpy.array([v == "true" for v in values], dtype=bool)
+    if name not in _TEXT_COLUMNS:
+        try:
+            return numpy.array([float(v) if v else math.nan for v in values],
+                               dtype=numpy.float64)
+        except ValueError:
+            pass
+    return numpy.array(values, dtype=str)
+
+
+def _table(csv_text):
+    """A CSV with a header as a dict of numpy arrays, column by column, each of its type."""
     rows = list(csv.reader(io.StringIO(csv_text)))
     header, body = rows[0], rows[1:]
-    table = {}
-    for i, name in enumerate(header):
-        values = [row[i] for row in body]
-        try:
-            table[name] = numpy.array([float(v) for v in values])
-        except ValueError:
-            table[name] = values
-    return table
+    return {name: _column(name, [row[i] for row in body]) for i, name in enumerate(header)}
 
 
 def _case_or_none(case):
@@ -82,7 +105,6 @@ def iso6336(case=None, helix_angle_deg=0.0):
     ``gearimpact iso6336``, at the helix angle helix_angle_deg (a number of degrees in
     [0, 45)): a dict with zn1, zn2, c_prime_th_n_mm_um, c_prime_n_mm_um,
     c_gamma_alpha_n_mm_um, eps_alpha, c_prime_b_n_m, c_gamma_alpha_b_n_m."""
-    import json
     return json.loads(_core.iso6336(_case_or_none(case),
                                     _arguments.real("helix_angle_deg", helix_angle_deg)))
 
@@ -94,11 +116,14 @@ def mesh_stiffness(case=None, model=None, samples=200):
     (the exact time mean), contact_ratio, extrapolated. case: a Case or None (the paper's
     pair); model: yang-lin-1987, potential-energy or ross-compatible (default: the case's);
     samples: an int, 2 up to the program's --samples bound."""
-    import json
+    chosen = _case_or_none(case)
     table, summary = _core.mesh_stiffness(
-        _case_or_none(case), None if model is None else _arguments.text("model", model),
+        chosen, None if model is None else _arguments.text("model", model),
         _arguments.integer("samples", samples))
-    return _table(table), json.loads(summary)
+    summary = json.loads(summary)
+    if summary["extrapolated"]:
+        _warnings.warn(f"{chosen.name if chosen else 'the paper pair'}: {summary['warning']}")
+    return _table(table), summary
 
 
 def sweep(case, vary, start, stop, points, direction="both", options=()):
@@ -107,15 +132,29 @@ def sweep(case, vary, start, stop, points, direction="both", options=()):
     section.key (a str), `start` and `stop` with units as case files write them ("500 rad/s")
     or finite SI numbers, `points` an int, `direction` "up", "down" or "both", `options` more of
     the command's options as a list of str, one a word (e.g. ["--vary2", "gears.backlash",
-    ..., "--threads", "2"]). Returns a dict: "sweep" and "poincare" (dicts of arrays with the
-    columns of sweep.csv and poincare.csv) and "summary" (summary.json)."""
-    import json
+    ..., "--threads", "2"]); `vary` may also be a bare key or section_key, as Case.replace
+    takes them ("w1"). Returns a dict: "sweep" and "poincare" (dicts of numpy arrays with the
+    columns of sweep.csv and poincare.csv: direction and regime str, converged bool, line,
+    index and period int64 (period 0 for a point not periodic), the figures float64 with NaN
+    where a point has none) and "summary" (summary.json), so that
+    ``sw["value_si"][sw["direction"] == "up"]`` selects. Warns (GearimpactWarning) of a
+    foundation fit used outside its range."""
     if not isinstance(case, _core.Case):
         raise _arguments.case_error(
-            f"case={case!r}: a Case (gearimpact.paper_case, read_case), not {type(case).__name__}",
+            f"case={case!r}: a Case (gearimpact.case, paper_case, read_case), "
+            f"not {type(case).__name__}",
             "case",
         )
-    arguments = ["--vary", _arguments.text("vary", vary),
+    try:
+        key = _cases.resolve(_arguments.text("vary", vary))
+    except _core.CaseError as error:
+        raise _arguments.case_error(
+            f"vary={vary!r}: {error} (a numeric key as section.key, section_key or bare)",
+            "vary") from None
+    for name, value in (("start", start), ("stop", stop)):
+        if isinstance(value, numbers.Real) and not _arguments.is_bool(value):
+            _cases.check_plausible(name, key, _arguments.real(name, value))
+    arguments = ["--vary", key,
                  "--from", _arguments.quantity("start", start),
                  "--to", _arguments.quantity("stop", stop),
                  "--points", str(_arguments.integer("points", points)),
@@ -126,6 +165,9 @@ def sweep(case, vary, start, stop, points, direction="both", options=()):
     except _core.CaseError as error:
         raise _sweep_error(error, dict(vary=vary, start=start, stop=stop, points=points,
                                        direction=direction)) from None
+    extrapolated = _warnings.conditions(case).get("extrapolated")
+    if extrapolated:
+        _warnings.warn(extrapolated)
     return {
         "sweep": _table(sweep_text),
         "poincare": _table(poincare_text),

@@ -4,7 +4,9 @@ import json
 import numbers
 import os
 
-from . import _arguments, _core
+import numpy
+
+from . import _arguments, _core, _warnings
 from ._arguments import case_error
 from ._cases import paper_case, read_case
 from ._core import Case, CaseError, GearPair, StiffnessModel
@@ -73,7 +75,6 @@ def stiffness(case_or_pair=None, points=None, x=None, method=None, flipped_momen
 def _positions(x):
     """x as a 1-dimensional float64 array, each element a real number (the
     library checks that each is finite and within (0, lp))."""
-    import numpy
 
     if isinstance(x, (str, bytes)) or _arguments.is_bool(x):
         raise case_error(f"x={x!r}: a sequence of contact positions, m", "x")
@@ -104,7 +105,9 @@ def energy_ratios(case_or_pair=None, points=121, method=None, flipped_moment=Non
     """
     count = _arguments.integer("points", points)
     pair, model = _pair_and_model(case_or_pair, method, flipped_moment)
-    return _core.energy_ratios(pair, model, count)
+    table = _core.energy_ratios(pair, model, count)
+    table["pairs"] = table["pairs"].astype(numpy.int64)
+    return table
 
 
 class SimulationResult:
@@ -161,7 +164,10 @@ def simulate(case, keep_series=True, max_rows=None, **changes):
             "keep_series=False keeps none, max_rows lifts the bound)",
             getattr(error, "field", ""),
         ) from None
-    return SimulationResult(run, json.loads(summary_json), series, impacts)
+    summary = json.loads(summary_json)
+    if summary.get("foundation_extrapolated"):
+        _warnings.warn(f"{run.name or 'the case'}: {summary['warning']}")
+    return SimulationResult(run, summary, series, impacts)
 
 
 def sweep_friction(

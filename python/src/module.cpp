@@ -11,6 +11,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstddef>
@@ -37,6 +38,7 @@ namespace {
 // of the interpreter (never released, as the interpreter may outlive the
 // module's static storage at exit).
 PyObject* case_error = nullptr;
+PyObject* convergence_error = nullptr;
 PyObject* quadrature_error = nullptr;
 PyObject* simulation_error = nullptr;
 
@@ -58,8 +60,14 @@ void translate_exceptions(std::exception_ptr error) {
     set_case_error(e.what(), e.field(), "");
   } catch (const QuadratureError& e) {
     PyErr_SetString(quadrature_error, e.what());
+  } catch (const ShootingError& e) {
+    PyErr_SetString(convergence_error, e.what());
   } catch (const SimulationError& e) {
     PyErr_SetString(simulation_error, e.what());
+  } catch (const Error& e) {
+    // The rest of the library's errors are about what it was given: a file or
+    // folder it cannot read or write.
+    set_case_error(e.what(), "", "");
   }
 }
 
@@ -409,20 +417,111 @@ double case3_frequency(double value) {
   return value;
 }
 
-// The schema row of a key, for the Python layer: (kind, SI unit or None), or
-// None for an unknown key; replace() writes an SI number in that unit and a
-// list as a TOML array.
-py::object key_form(const std::string& key) {
-  const Field* field = find_field(key);
-  if (field == nullptr) return py::none();
-  // A list of plain numbers has no unit.
-  if (field->kind == FieldKind::number_list) return py::make_tuple("list", py::none());
-  const bool list = field->kind == FieldKind::quantity_list;
-  if (field->kind != FieldKind::quantity && !list) {
-    return py::make_tuple("scalar", py::none());
+// A row's kind by name: the Python layer writes a bool as "on"/"off" for an
+// on_off row and a number in the SI unit for a quantity.
+const char* field_kind_name(FieldKind kind) {
+  switch (kind) {
+    case FieldKind::quantity:
+      return "quantity";
+    case FieldKind::number:
+      return "number";
+    case FieldKind::integer:
+      return "integer";
+    case FieldKind::choice:
+      return "choice";
+    case FieldKind::on_off:
+      return "on_off";
+    case FieldKind::text:
+      return "text";
+    case FieldKind::quantity_list:
+      return "quantity_list";
+    case FieldKind::number_list:
+      return "number_list";
   }
-  return py::make_tuple(list ? "list" : "quantity",
-                        std::string(units_of(field->dimension).front().symbol));
+  return "";
+}
+
+// The schema's rows for the Python layer, which resolves bare keys, lists the
+// keys a case needs and reads units from them: one dict a row, in case-file
+// order. "si_unit" is the unit an SI number is written in (None for a key
+// without a unit), "unit" the readable one.
+py::list schema_rows() {
+  py::list rows;
+  for (const Field& field : case_schema()) {
+    py::dict row;
+    row["key"] = field.name();
+    row["section"] = std::string(field.section);
+    row["bare"] = std::string(field.key);
+    row["kind"] = field_kind_name(field.kind);
+    const bool has_unit =
+        field.kind == FieldKind::quantity || field.kind == FieldKind::quantity_list;
+    row["si_unit"] =
+        has_unit ? py::object(py::str(std::string(units_of(field.dimension).front().symbol)))
+                 : py::object(py::none());
+    row["unit"] = has_unit ? py::object(py::str(std::string(field.unit))) : py::object(py::none());
+    row["required"] = field.required;
+    if (field.only_when) {
+      py::list choices;
+      for (const std::string_view choice : field.only_when->choices) {
+        choices.append(std::string(choice));
+      }
+      row["only_when"] = py::make_tuple(
+          std::string(field.section) + "." + std::string(field.only_when->key), choices);
+    } else {
+      row["only_when"] = py::none();
+    }
+    row["default"] = default_text(field);
+    row["allowed"] = allowed_text(field);
+    rows.append(row);
+  }
+  return rows;
+}
+
+// Whether speeds Rb1 w1 and Rb2 w2 differ beyond the rounding of typed values:
+// the relative bound of require_balanced_mean_torques, applied to the pitch-line
+// speeds.
+bool rolling(double speed1_m_s, double speed2_m_s) {
+  return std::fabs(speed1_m_s - speed2_m_s) <=
+         1e-9 * std::max(std::fabs(speed1_m_s), std::fabs(speed2_m_s));
+}
+
+// What a case's user should hear about before running it, with the library's
+// numbers: the foundation fit used outside its range, mean torques that do not
+// balance (T1/Rb1 + T2/Rb2 != 0, by require_balanced_mean_torques' bound) and
+// speeds that do not roll (Rb1 w1 != Rb2 w2).
+py::dict case_conditions(const SimulationCase& c) {
+  py::dict out;
+  const GearPair& pair = c.gears;
+  out["foundation_extrapolated"] = cli::foundation_extrapolated(pair, c.model.stiffness);
+  const double rb1 = base_radius(pair, Gear::one);
+  const double rb2 = base_radius(pair, Gear::two);
+  out["rb1_m"] = rb1;
+  out["rb2_m"] = rb2;
+  const bool known_means =
+      c.torque1.kind != Torque::Kind::user && c.torque2.kind != Torque::Kind::user;
+  if (known_means) {
+    const double t1 = mean_torque_n_m(c.torque1, "torque1");
+    const double t2 = mean_torque_n_m(c.torque2, "torque2");
+    out["mean_torque1_n_m"] = t1;
+    out["mean_torque2_n_m"] = t2;
+    bool balanced = true;
+    try {
+      require_balanced_mean_torques(t1, t2, rb1, rb2);
+    } catch (const InputError&) {
+      balanced = false;
+    }
+    out["balanced"] = balanced;
+    out["balancing_torque2_n_m"] = -t1 * rb2 / rb1;
+  } else {
+    out["balanced"] = py::none();
+  }
+  const double w1 = c.initial.w1_rad_per_s;
+  const double w2 = c.initial.w2_rad_per_s;
+  out["w1_rad_s"] = w1;
+  out["w2_rad_s"] = w2;
+  out["rolling"] = rolling(rb1 * w1, rb2 * w2);
+  out["rolling_w2_rad_s"] = w1 * rb1 / rb2;
+  return out;
 }
 
 }  // namespace
@@ -437,14 +536,21 @@ void define_module(py::module_& m) {
       "names the key as written and what is allowed; .field is that key, .file the case file "
       "(empty when none).",
       PyExc_ValueError, nullptr);
-  quadrature_error = PyErr_NewExceptionWithDoc(
-      "gearimpact.QuadratureError", "A stiffness integral that did not reach its tolerance.",
+  convergence_error = PyErr_NewExceptionWithDoc(
+      "gearimpact.ConvergenceError",
+      "A computation that did not converge (a valid input): an iteration or integral that did "
+      "not reach its tolerance. A RuntimeError, never a CaseError.",
       PyExc_RuntimeError, nullptr);
+  quadrature_error = PyErr_NewExceptionWithDoc(
+      "gearimpact.QuadratureError",
+      "A stiffness integral that did not reach its tolerance (a ConvergenceError).",
+      convergence_error, nullptr);
   simulation_error = PyErr_NewExceptionWithDoc(
       "gearimpact.SimulationError",
       "A run that cannot continue: a non-finite state, or event location that stalls.",
       PyExc_RuntimeError, nullptr);
   m.attr("CaseError") = py::reinterpret_borrow<py::object>(case_error);
+  m.attr("ConvergenceError") = py::reinterpret_borrow<py::object>(convergence_error);
   m.attr("QuadratureError") = py::reinterpret_borrow<py::object>(quadrature_error);
   m.attr("SimulationError") = py::reinterpret_borrow<py::object>(simulation_error);
   py::register_exception_translator(&translate_exceptions);
@@ -539,7 +645,9 @@ void define_module(py::module_& m) {
       py::arg("path"));
   m.def("parse_case", &parse_case, py::arg("text"), py::arg("file_name"));
   m.def("shortest_decimal", &shortest_decimal, py::arg("value"));
-  m.def("key_form", &key_form, py::arg("key"));
+  m.def("schema_rows", &schema_rows);
+  m.def("case_conditions", &case_conditions, py::arg("case"));
+  m.def("foundation_extrapolation_warning", &foundation_extrapolation_warning);
   m.def(
       "most_values",
       [](const std::string& key) {

@@ -291,7 +291,7 @@ def test_reproduce_with_the_bundled_program(tmp_path):
 
 
 def test_reproduce_names_a_missing_data_folder(tmp_path):
-    with pytest.raises(RuntimeError, match=str(tmp_path / "nowhere")):
+    with pytest.raises(gearimpact.CaseError, match=str(tmp_path / "nowhere")):
         gearimpact.reproduce(tmp_path / "out", paper_data=tmp_path / "nowhere")
 
 

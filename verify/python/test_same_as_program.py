@@ -128,26 +128,22 @@ def test_sweep_equals_the_program(cli, tmp_path):
     out = tmp_path / "out"
     cli("sweep", case_file, "--vary", "initial.w1", "--from", "3000 rad/s", "--to", "4000 rad/s",
         "--points", "2", "--direction", "up", "--out", out, "--no-plots")
-    theirs = parse_csv_any((out / "sweep.csv").read_text())
-    assert list(ours["sweep"]) == list(theirs)
-    for name, values in theirs.items():
-        if isinstance(values, list):
-            assert ours["sweep"][name] == values, name
+    lines = (out / "sweep.csv").read_text().strip().splitlines()
+    header = lines[0].split(",")
+    assert list(ours["sweep"]) == header
+    for j, name in enumerate(header):
+        written = [line.split(",")[j] for line in lines[1:]]
+        column = ours["sweep"][name]
+        if column.dtype == np.float64:
+            assert_bitwise_equal(column, [float(v) if v else np.nan for v in written],
+                                 f"sweep {name}")
         else:
-            assert_bitwise_equal(ours["sweep"][name], values, f"sweep {name}")
+            assert [as_written(v) for v in column.tolist()] == written, name
     assert ours["summary"] == json.loads((out / "summary.json").read_text())
 
 
-def parse_csv_any(text):
-    """A CSV whose columns may hold words (regime): numbers as float64 arrays, words as lists."""
-    lines = text.strip().splitlines()
-    header = lines[0].split(",")
-    rows = [line.split(",") for line in lines[1:]]
-    table = {}
-    for j, name in enumerate(header):
-        values = [row[j] for row in rows]
-        try:
-            table[name] = np.array([float(v) for v in values], dtype=np.float64)
-        except ValueError:
-            table[name] = values
-    return table
+def as_written(value):
+    """A value of a typed column as the program writes it: a bool as true/false."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return str(value)
