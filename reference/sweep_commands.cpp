@@ -338,6 +338,9 @@ void run_sweep(SweepCommandOptions& o) {
               << " after " << r.point.periods_run << " periods"
               << (r.failure.empty() ? "" : " (" + r.failure + ")") << '\n';
   });
+  for (const std::string& warning : sweep.warnings) {
+    std::cerr << "gearimpact: warning: " << warning << '\n';
+  }
   write_sweep_folder(folder.temporary(), sweep);
   if (o.plots) render_plots(folder.temporary(), sweep);
   folder.commit();

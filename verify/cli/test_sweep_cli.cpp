@@ -109,7 +109,7 @@ TEST_CASE("sweep of w1: the dynamic factor against ISO's N, N by ISO's formula i
     CHECK(relative_difference(std::stod(plotted[i][5]), n1_per_min / n_e1_per_min(c_iso)) <= 1e-12);
     // The same speed and dynamic factor as sweep.csv, copied as text.
     CHECK(plotted[i][3] == swept[i][3]);
-    CHECK(plotted[i][6] == swept[i][12]);
+    CHECK(plotted[i][6] == swept[i][15]);  // dynamic_factor
   }
   // merge redraws it from the folder alone.
   const std::filesystem::path merged = scratch("iso-merged");

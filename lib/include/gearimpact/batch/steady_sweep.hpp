@@ -83,7 +83,15 @@ struct SteadySweep {
   SteadySweepRecord spec;
   std::optional<SweepShard> shard;  // the shard a run computed; empty for a merged set
   std::vector<SweepPointResult> rows;
+  // What the user should know of the results (sweep_warnings), shared by every shard.
+  std::vector<std::string> warnings;
 };
+
+// The warnings of a sweep, from its spec alone: a damper-free sweep (zeta = 0) whose Hertzian D
+// is updated at every impact (its no-impact points carry the D of an earlier point's last impact,
+// so up and down differ where they should not); a sweep of a key other than a speed on a case
+// whose speeds do not roll (the points run at the momentum's mean speed, named).
+std::vector<std::string> sweep_warnings(const SteadySweepSpec& spec);
 
 // (line, direction (up before down), index): the order rows are kept and written in.
 bool sweep_key_less(const SweepPointResult& a, const SweepPointResult& b);
