@@ -266,6 +266,10 @@ SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
   record.lines = static_cast<int>(grid2.size());
   record.directions = spec.directions;
   record.backlash_m = base.gears.backlash_m;
+  record.unit = spec.unit;
+  record.unit2 = spec.unit2;
+  if (spec.vary == "initial.w1") record.mesh_teeth = base.gears.teeth1;
+  if (spec.vary == "initial.w2") record.mesh_teeth = base.gears.teeth2;
   if (spec.vary == "initial.w1") record.iso = iso_scale(base, *pool.table_for(base));
   record.tolerance = spec.settings.tolerance;
   record.steps_per_contact_period = spec.settings.steps_per_contact_period;

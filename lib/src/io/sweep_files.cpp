@@ -78,6 +78,9 @@ Json spec_json(const SteadySweepRecord& s) {
   j["lines"] = s.lines;
   j["directions"] = directions_text(s.directions);
   j["backlash_m"] = s.backlash_m;
+  j["unit"] = s.unit;
+  j["unit2"] = s.unit2;
+  j["mesh_teeth"] = s.mesh_teeth;
   if (s.iso) {
     j["iso_resonance_speed_rad_s"] = s.iso->resonance_speed_rad_per_s;
     j["iso_resonance_speed_iso_stiffness_rad_s"] = s.iso->resonance_speed_iso_stiffness_rad_per_s;
@@ -125,6 +128,9 @@ SteadySweepRecord spec_record(const Json& j, const std::string& file) {
       s.directions.push_back(direction_named(d, file));
     }
     s.backlash_m = j.at("backlash_m").get<double>();
+    s.unit = j.at("unit").get<std::string>();
+    s.unit2 = j.at("unit2").get<std::string>();
+    s.mesh_teeth = j.at("mesh_teeth").get<int>();
     if (j.contains("iso_resonance_speed_rad_s")) {
       IsoScale iso;
       iso.resonance_speed_rad_per_s = j.at("iso_resonance_speed_rad_s").get<double>();

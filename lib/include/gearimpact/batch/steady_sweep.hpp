@@ -43,6 +43,10 @@ struct SteadySweepSpec {
   double to_si = 0.0;
   int points = 0;
   std::string vary2;  // empty: one line (line 0) of the base case
+  // The units the user gave the grids in (a symbol of the key's dimension, as in case files), for
+  // the figures; empty: none given.
+  std::string unit;
+  std::string unit2;
   double from2_si = 0.0;
   double to2_si = 0.0;
   int points2 = 1;
@@ -70,6 +74,10 @@ struct SteadySweepRecord {
   int lines = 1;
   std::vector<SweepDirection> directions;
   double backlash_m = 0.0;  // of the base case
+  std::string unit;         // SteadySweepSpec's, for the figures
+  std::string unit2;
+  // For a sweep of a speed: the teeth of that gear, whose mesh frequency is z w / (2 pi); else 0.
+  int mesh_teeth = 0;
   // For a sweep of initial.w1 of a loaded pair: ISO's N axis of the base case's pair and load (a
   // second key that changes them is not seen).
   std::optional<IsoScale> iso;
