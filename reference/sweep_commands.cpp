@@ -213,6 +213,7 @@ bool worth_plotting(const char* figure, std::size_t values) {
 struct ShownUnit {
   std::string label;
   double si_per_unit = 1.0;
+  std::string symbol;  // empty for a key without units
 };
 
 ShownUnit shown_unit(const std::string& key, const std::string& unit) {
@@ -220,7 +221,7 @@ ShownUnit shown_unit(const std::string& key, const std::string& unit) {
   std::string name = key;
   if (key == "initial.w1") name = "pinion speed w_1";
   if (key == "initial.w2") name = "gear speed w_2";
-  if (field.kind != FieldKind::quantity) return {name, 1.0};
+  if (field.kind != FieldKind::quantity) return {name, 1.0, ""};
   std::string symbol = unit;
   if (symbol.empty()) {
     symbol = field.dimension == Dimension::length
@@ -229,10 +230,11 @@ ShownUnit shown_unit(const std::string& key, const std::string& unit) {
   }
   for (const Unit& u : units_of(field.dimension)) {
     if (u.symbol == symbol) {
-      return {name + " (" + symbol + ")", u.factor * std::pow(10.0, u.decimal_exponent)};
+      return {name + " (" + symbol + ")", u.factor * std::pow(10.0, u.decimal_exponent), symbol};
     }
   }
-  return {name + " (" + std::string(units_of(field.dimension).front().symbol) + ")", 1.0};
+  const std::string si(units_of(field.dimension).front().symbol);
+  return {name + " (" + si + ")", 1.0, si};
 }
 
 constexpr double kMicrometresPerMetre = 1e6;
@@ -402,7 +404,8 @@ std::string line_title(const SteadySweepRecord& spec, int line, const char* dire
                            : from2 + (to2 - from2) * line / static_cast<double>(spec.lines - 1);
   char number[64];
   std::snprintf(number, sizeof number, "%.6g", value / unit2.si_per_unit);
-  return unit2.label + " = " + number + ", " + direction;
+  return spec.vary2 + " = " + number + (unit2.symbol.empty() ? "" : " " + unit2.symbol) + ", " +
+         direction;
 }
 
 // The plots of a sweep folder: amplitude up and down, the bifurcation diagram, the regime map.
@@ -461,8 +464,9 @@ void render_plots(const std::filesystem::path& dir, const SteadySweep& sweep) {
         amplitude.series.push_back(
             "'sweep.csv' using (($1 == " + std::to_string(line) + " && strcol(2) eq \"" +
             direction + "\") ? " + x_of + " : NaN):($9 * 1e6) with linespoints " +
-            (one_line ? styles[d] : std::string(d == 0 ? "pt 7" : "pt 6 dt 2")) + " title '" +
-            line_title(spec, line, direction) + "'");
+            (one_line ? std::string(styles[d])
+                      : "lc " + std::to_string(line + 1) + (d == 0 ? " pt 7" : " pt 6 dt 2")) +
+            " title '" + line_title(spec, line, direction) + "'");
       }
     }
     if (!jumps.empty()) {
@@ -531,7 +535,18 @@ void render_plots(const std::filesystem::path& dir, const SteadySweep& sweep) {
   add(map, tick_commands("x", nice_ticks(x_low - 0.5 * dx, x_high + 0.5 * dx)));
   add(map, tick_commands("y", nice_ticks(from2 - 0.5 * dy, to2 + 0.5 * dy)));
   mesh_frequency_axis(map, spec, unit.si_per_unit, nice_ticks(x_low - 0.5 * dx, x_high + 0.5 * dx));
+  std::set<Regime> present;
+  bool unconverged = false;
+  for (const SweepPointResult& r : sweep.rows) {
+    if (r.direction != SweepDirection::up) continue;
+    if (r.point.converged) {
+      present.insert(r.point.regime);
+    } else {
+      unconverged = true;
+    }
+  }
   for (const RegimeShade& shade : kRegimeShades) {
+    if (present.count(shade.regime) == 0) continue;
     map.series.push_back("'sweep.csv' using (strcol(2) eq \"up\" && strcol(5) eq \"" +
                          to_string(shade.regime) + "\" ? " + x_of + " : NaN):(" +
                          format_number(from2) + " + $1 * " + step2 + "):(" +
@@ -539,9 +554,11 @@ void render_plots(const std::filesystem::path& dir, const SteadySweep& sweep) {
                          ") with boxxyerror fs solid 1.0 noborder fc rgb '" + shade.colour +
                          "' title '" + to_string(shade.regime) + "'");
   }
-  map.series.push_back("'sweep.csv' using (strcol(2) eq \"up\" && strcol(7) eq \"false\" ? " +
-                       x_of + " : NaN):(" + format_number(from2) + " + $1 * " + step2 +
-                       ") with points pt 2 ps 1.2 lc rgb 'black' title 'not converged'");
+  if (unconverged) {
+    map.series.push_back("'sweep.csv' using (strcol(2) eq \"up\" && strcol(7) eq \"false\" ? " +
+                         x_of + " : NaN):(" + format_number(from2) + " + $1 * " + step2 +
+                         ") with points pt 2 ps 1.2 lc rgb 'black' title 'not converged'");
+  }
   render(dir, map);
 }
 
