@@ -32,7 +32,7 @@ struct Ticks {
   double step = 0.1;
   int decimals = 1;
 };
-Ticks nice_ticks(double low, double high, int count = 6, double margin = 0.0);
+Ticks nice_ticks(double low, double high, int count = 8, double margin = 0.0);
 
 // The gnuplot commands that set `axis` ("x", "y", "x2", ...) to `ticks`: its range (unless
 // `with_range` is false, for an axis linked to another), tick step and label format.

@@ -386,7 +386,7 @@ void render_iso_plot(const std::filesystem::path& dir, const IsoScale& iso,
   const double to_iso_n =
       iso.resonance_speed_rad_per_s / iso.resonance_speed_iso_stiffness_rad_per_s;
   add(f, tick_commands("x2", nice_ticks(x.from * to_iso_n, x.to * to_iso_n), false));
-  Ticks y = nice_ticks(0.0, *std::max_element(dfs.begin(), dfs.end()), 6, 0.05);
+  Ticks y = nice_ticks(0.0, *std::max_element(dfs.begin(), dfs.end()), 8, 0.05);
   y.from = 0.0;
   add(f, tick_commands("y", y));
   render(dir, f);
@@ -444,9 +444,9 @@ void render_plots(const std::filesystem::path& dir, const SteadySweep& sweep) {
     amplitude.setup = {"set key outside right top"};
     const auto [x_low, x_high] = extremes(amplitude_x);
     const auto [y_low, y_high] = extremes(amplitude_y);
-    const Ticks x = nice_ticks(x_low, x_high);
+    const Ticks x = nice_ticks(x_low, x_high, 8, 0.02);
     add(amplitude, tick_commands("x", x));
-    add(amplitude, tick_commands("y", nice_ticks(y_low, y_high, 6, 0.05)));
+    add(amplitude, tick_commands("y", nice_ticks(y_low, y_high, 8, 0.05)));
     mesh_frequency_axis(amplitude, spec, unit.si_per_unit, x);
     for (const SweepJump& j : jumps) {
       char arrow[256];
@@ -485,9 +485,9 @@ void render_plots(const std::filesystem::path& dir, const SteadySweep& sweep) {
     bifurcation.setup = {"set key outside right top"};
     const auto [x_low, x_high] = extremes(poincare_x);
     const auto [y_low, y_high] = extremes(poincare_y);
-    const Ticks x = nice_ticks(x_low, x_high);
+    const Ticks x = nice_ticks(x_low, x_high, 8, 0.02);
     add(bifurcation, tick_commands("x", x));
-    add(bifurcation, tick_commands("y", nice_ticks(y_low, y_high, 6, 0.05)));
+    add(bifurcation, tick_commands("y", nice_ticks(y_low, y_high, 8, 0.05)));
     mesh_frequency_axis(bifurcation, spec, unit.si_per_unit, x);
     // A jump: a dotted line half-way between the points it falls between.
     for (const SweepJump& j : jumps) {
