@@ -391,3 +391,21 @@ TEST_CASE("summary.json's jumps and contact changes are those of sweep.csv's row
   CHECK(summary.at("contact_loss") == changes);
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("a sweep of another key on a case whose speeds do not roll names the speed that runs") {
+  SteadySweepSpec spec = small_sweep();
+  spec.vary2.clear();
+  CHECK(sweep_warnings(spec).empty());  // rolling, damped, D frozen
+  spec.vary = "torque1.mean";
+  spec.from_si = 2.0;
+  spec.to_si = 3.0;
+  CHECK(sweep_warnings(spec).empty());
+  spec.base.initial.w2_rad_per_s = 0.0;
+  const std::vector<std::string> warnings = sweep_warnings(spec);
+  REQUIRE(warnings.size() == 1u);
+  CHECK(warnings[0].find("do not roll") != std::string::npos);
+  // The momentum's mean speed, (J1 w1/Rb1 + J2 w2/Rb2) / (J1/Rb1 + J2 Rb1/Rb2^2), with w2 = 0:
+  // w1 J1/Rb1 / (J1/Rb1 + J2 Rb1/Rb2^2); for solid discs J ~ r^4 and Rb2/Rb1 = 4 it is
+  // w1 / (1 + 4^4 / 4^2) = w1 / 17.
+  CHECK(warnings[0].find("w1 = " + format_number(3000.0 / 17.0).substr(0, 6)) != std::string::npos);
+}
