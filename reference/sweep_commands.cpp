@@ -146,6 +146,10 @@ SteadySweepSpec sweep_spec(SweepCommandOptions& o, SimulationCase base) {
   spec.to_si = sweep_value(o.vary, o.to, "--to");
   spec.unit = unit_written(o.vary, o.from);
   if (spec.unit.empty()) spec.unit = unit_written(o.vary, o.to);
+  // Plain numbers: the unit the case file gives the key in, if any.
+  if (spec.unit.empty() && !is_paper_case(o.case_source)) {
+    spec.unit = unit_written(o.vary, case_file_text(o.case_source, o.vary));
+  }
   spec.points = o.points;
   if (!o.vary2.empty()) {
     spec.vary2 = o.vary2;
@@ -154,6 +158,9 @@ SteadySweepSpec sweep_spec(SweepCommandOptions& o, SimulationCase base) {
     spec.to2_si = sweep_value(o.vary2, o.to2, "--to2");
     spec.unit2 = unit_written(o.vary2, o.from2);
     if (spec.unit2.empty()) spec.unit2 = unit_written(o.vary2, o.to2);
+    if (spec.unit2.empty() && !is_paper_case(o.case_source)) {
+      spec.unit2 = unit_written(o.vary2, case_file_text(o.case_source, o.vary2));
+    }
     spec.points2 = o.points2;
   }
   spec.directions.clear();

@@ -13,6 +13,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "run_command.hpp"
@@ -228,5 +229,28 @@ TEST_CASE("every sweep figure has distinct tick labels at a narrow and a wide ra
       CHECK(amplitude.find("(rpm)") != std::string::npos);
       CHECK(read(out / "amplitude.gp").find("($9 * 1e6)") != std::string::npos);
     }
+  }
+}
+
+TEST_CASE("plain numbers are drawn in the unit the case file gives the swept key, else in SI") {
+  const Scratch scratch("sweep-figures-unit");
+  const std::string sweep_case = std::string(GEARIMPACT_PAPER_DATA_DIR) +
+                                 "/../verify/slurm/sharded-sweep.toml";  // w1 = "3000 rad/s"
+  std::string text = read(sweep_case);
+  const std::string rad_s = "w1 = \"3000 rad/s\"";
+  REQUIRE(text.find(rad_s) != std::string::npos);
+  write(scratch.dir / "rpm.toml",
+        text.replace(text.find(rad_s), rad_s.size(), "w1 = \"1000 rpm\""));
+  for (const auto& [file, unit] : {std::pair<std::string, std::string>{sweep_case, "(rad/s)"},
+                                   {(scratch.dir / "rpm.toml").string(), "(rpm)"}}) {
+    CAPTURE(file);
+    const fs::path out = scratch.dir / ("out-" + unit.substr(1, 3));
+    const CommandResult r = run_command(
+        std::string(GEARIMPACT_CLI) + " sweep " + file +
+        " --vary initial.w1 --from 300 --to 400 --points 2 --direction up --out " + out.string());
+    CAPTURE(r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(read(out / "amplitude.gp").find("set xlabel \"pinion speed w_1 " + unit + "\"") !=
+          std::string::npos);
   }
 }
