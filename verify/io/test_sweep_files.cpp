@@ -203,6 +203,12 @@ TEST_CASE("run_steady_sweep refuses unbounded or meaningless work before any poi
   spec.from_si = 1e-7;
   spec.to_si = 2e-7;
   refused(spec, "vary");
+  // Both speeds: the pair rolls, so one sets the other.
+  spec = small_sweep();
+  spec.vary2 = "initial.w2";
+  spec.from2_si = 700.0;
+  spec.to2_si = 800.0;
+  refused(spec, "vary2");
   for (const double steps : {kLeastStepsPerContactPeriod - 1, kMostStepsPerContactPeriod + 1}) {
     spec = small_sweep();
     spec.settings.steps_per_contact_period = steps;

@@ -171,6 +171,16 @@ SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
     if (spec.vary2 == spec.vary) {
       throw InputError("vary2", spec.vary2, "a key other than the first swept key " + spec.vary);
     }
+    // A swept speed sets the other so that the pair rolls: the two cannot vary apart.
+    const auto speed = [](const std::string& key) {
+      return key == "initial.w1" || key == "initial.w2";
+    };
+    if (speed(spec.vary) && speed(spec.vary2)) {
+      throw InputError("vary2", spec.vary2,
+                       "a key other than the other speed: a sweep of " + spec.vary +
+                           " sets the other speed so that the pair rolls (Rb1 w1 = Rb2 w2); "
+                           "sweep one speed, or the relative motion through another key");
+    }
   }
   if (!(spec.max_points >= 1.0)) {
     throw InputError("max_points", shortest_decimal(spec.max_points),

@@ -111,11 +111,12 @@ std::size_t shard_point_count(const SteadySweepSpec& spec);
 // Runs the spec's shard on `pool`. Before any work, throws InputError naming the key when a grid
 // is empty or outside the key's range, from_si > to_si (a downward sweep is a direction), the
 // whole sweep has more than max_points points, a setting is outside its bounds above, vary2 is
-// vary, the run does not read a swept key (integrator.*: the steady state sets its own step and
-// duration; a key whose condition does not hold), the shard is not 0 <= k < n, there is no
-// direction, or the case (with the first and with the last values of both keys) fails
-// validation or has no steady state (require_steady_case). `on_point` (may be empty) is called
-// after each point, from the pool's worker threads, possibly at once.
+// vary, vary and vary2 are both speeds (each sets the other: the pair rolls), the run does not read
+// a swept key (integrator.*: the steady state sets its own step and duration; a key whose condition
+// does not hold), the shard is not 0 <= k < n, there is no direction, or the case (with the first
+// and with the last values of both keys) fails validation or has no steady state
+// (require_steady_case). `on_point` (may be empty) is called after each point, from the pool's
+// worker threads, possibly at once.
 SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
                              const std::function<void(const SweepPointResult&)>& on_point = {});
 
