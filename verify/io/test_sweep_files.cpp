@@ -121,6 +121,11 @@ TEST_CASE("three shards merge to the rows of one run, and summary.json holds spe
     by_regime += n.get<std::size_t>();
   }
   CHECK(by_regime == converged);
+  // The merge recomputes the jumps and contact changes from the merged rows: those of one run.
+  const nlohmann::json whole_summary = nlohmann::json::parse(sweep_summary_json(whole));
+  CHECK(merged_summary.at("jumps") == whole_summary.at("jumps"));
+  CHECK(merged_summary.at("contact_loss") == whole_summary.at("contact_loss"));
+  CHECK(merged_summary.at("warnings") == whole_summary.at("warnings"));
   for (const std::filesystem::path& dir : shards) std::filesystem::remove_all(dir);
 }
 
