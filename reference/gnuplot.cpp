@@ -5,7 +5,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -99,6 +102,51 @@ void run_gnuplot(const std::filesystem::path& dir, const std::string& script,
 }
 
 }  // namespace
+
+Ticks nice_ticks(double low, double high, int count, double margin) {
+  if (low > high) std::swap(low, high);
+  const double size = std::max(std::fabs(low), std::fabs(high));
+  const double least_span = size > 0.0 ? 1e-9 * size : 0.0;
+  if (high - low <= least_span) {
+    const double half = high == low ? (size > 0.0 ? 1e-3 * size : 1.0) : 0.5 * least_span;
+    const double middle = 0.5 * (low + high);
+    low = middle - half;
+    high = middle + half;
+  }
+  const double pad = margin * (high - low);
+  low -= pad;
+  high += pad;
+  const double raw = (high - low) / std::max(1, count);
+  const double power = std::pow(10.0, std::floor(std::log10(raw)));
+  double step = 10.0 * power;
+  for (const double m : {1.0, 2.0, 5.0}) {
+    if (m * power >= raw) {
+      step = m * power;
+      break;
+    }
+  }
+  Ticks t;
+  t.step = step;
+  t.from = low;
+  t.to = high;
+  // The decimals of the step (2e-4: 4), none for a step of 1 or more.
+  t.decimals = std::max(0, static_cast<int>(-std::floor(std::log10(step) + 1e-9)));
+  return t;
+}
+
+std::vector<std::string> tick_commands(const std::string& axis, const Ticks& ticks,
+                                       bool with_range) {
+  char range[160];
+  std::snprintf(range, sizeof range, "set %srange [%.15g:%.15g]", axis.c_str(), ticks.from,
+                ticks.to);
+  char tics[96];
+  std::snprintf(tics, sizeof tics, "set %stics %.15g", axis.c_str(), ticks.step);
+  std::vector<std::string> commands;
+  if (with_range) commands.emplace_back(range);
+  commands.emplace_back(tics);
+  commands.push_back("set format " + axis + " \"%." + std::to_string(ticks.decimals) + "f\"");
+  return commands;
+}
 
 void render(const std::filesystem::path& dir, const Figure& figure) {
   const std::filesystem::path script = dir / (figure.name + ".gp");

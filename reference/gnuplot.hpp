@@ -20,6 +20,25 @@ struct Figure {
   std::vector<std::string> series;
 };
 
+// An axis that shows the values from `low` to `high`, widened by `margin` of the span each way,
+// with ticks at the multiples of a step of 1, 2 or 5 times a power of ten (about `count` of
+// them, at least 2), each label printed with as many decimals as the step needs: the labels
+// differ at any range (gnuplot's own "%g" repeats one label over a range narrow against the
+// values). A range of one value is widened to 1e-3 of it (or 1 around 0), a range narrower than
+// 1e-9 of the values to that, so that the step stays above the doubles' resolution.
+struct Ticks {
+  double from = 0.0;  // the axis' ends
+  double to = 1.0;
+  double step = 0.1;
+  int decimals = 1;
+};
+Ticks nice_ticks(double low, double high, int count = 8, double margin = 0.0);
+
+// The gnuplot commands that set `axis` ("x", "y", "x2", ...) to `ticks`: its range (unless
+// `with_range` is false, for an axis linked to another), tick step and label format.
+std::vector<std::string> tick_commands(const std::string& axis, const Ticks& ticks,
+                                       bool with_range = true);
+
 // Writes DIR/NAME.gp and runs gnuplot to make DIR/NAME.png and DIR/NAME.svg.
 // Throws std::runtime_error naming the script if gnuplot is missing or fails.
 void render(const std::filesystem::path& dir, const Figure& figure);

@@ -109,7 +109,7 @@ TEST_CASE("sweep of w1: the dynamic factor against ISO's N, N by ISO's formula i
     CHECK(relative_difference(std::stod(plotted[i][5]), n1_per_min / n_e1_per_min(c_iso)) <= 1e-12);
     // The same speed and dynamic factor as sweep.csv, copied as text.
     CHECK(plotted[i][3] == swept[i][3]);
-    CHECK(plotted[i][6] == swept[i][12]);
+    CHECK(plotted[i][6] == swept[i][15]);  // dynamic_factor
   }
   // merge redraws it from the folder alone.
   const std::filesystem::path merged = scratch("iso-merged");
@@ -211,4 +211,32 @@ TEST_CASE("sweep: bad input is refused naming the key") {
   CHECK(update.exit_code != 0);
   CHECK(update.err.find("--damping-update") != std::string::npos);
   CHECK(update.err.find("each-impact") != std::string::npos);
+}
+
+TEST_CASE("a sweep with zeta = 0 and per-impact D warns on stderr and in summary.json") {
+  // Case 1 of Table 1 loaded as the w1 sweep above, without the mesh damper and with the paper's
+  // D updated at every impact: up and down sweeps then differ by the history of D alone.
+  const std::string base =
+      "sweep 1 --vary initial.w1 --from '3000 rad/s' --to '3000 rad/s' --points 1 "
+      "--direction up --set 'torque1.mean=3 N*m' --set model.friction_coefficient=0 "
+      "--set 'initial.w2=750 rad/s' --max-periods 50 --no-plots";
+  const std::filesystem::path bare = scratch("zeta0");
+  const auto r = run_command(cli(base +
+                                 " --set model.mesh_damping_ratio=0 --damping-update "
+                                 "each-impact --out " +
+                                 bare.string()));
+  CAPTURE(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.err.find("gearimpact: warning: model.mesh_damping_ratio = 0 with "
+                   "model.damping_update = \"each-impact\"") != std::string::npos);
+  const std::string summary = read(bare / "summary.json");
+  CHECK(summary.find("\"warnings\": [\n    \"model.mesh_damping_ratio = 0") != std::string::npos);
+  // With the damper of docs/sweep.md there is nothing to warn of.
+  const std::filesystem::path damped = scratch("zeta005");
+  const auto d =
+      run_command(cli(base + " --set model.mesh_damping_ratio=0.05 --out " + damped.string()));
+  CAPTURE(d.err);
+  REQUIRE(d.exit_code == 0);
+  CHECK(d.err.find("warning") == std::string::npos);
+  CHECK(read(damped / "summary.json").find("\"warnings\": []") != std::string::npos);
 }

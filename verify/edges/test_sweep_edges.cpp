@@ -368,7 +368,7 @@ TEST_CASE("merge reads every row of every shard and names the shard, file and li
   const std::vector<Corruption> corruptions{
       {"nan", "sweep.csv", field_replaced(2, 8, "nan"), ":3", "nan"},
       {"inf", "sweep.csv", field_replaced(1, 3, "inf"), ":2", "finite"},
-      {"extra-column", "sweep.csv", replace_line(1, sweep_rows[1] + ",1"), ":2", "15 fields"},
+      {"extra-column", "sweep.csv", replace_line(1, sweep_rows[1] + ",1"), ":2", "22 fields"},
       {"crlf", "sweep.csv", crlf, ":1", "CRLF"},
       {"huge-index", "sweep.csv", field_replaced(2, 2, "99999999999"), ":3", "99999999999"},
       {"index-out-of-grid", "sweep.csv", field_replaced(2, 2, "2"), ":3", "[0, 2)"},

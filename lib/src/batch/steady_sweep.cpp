@@ -14,7 +14,9 @@
 
 #include "gearimpact/case/schema.hpp"
 #include "gearimpact/case/units.hpp"
+#include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
 
 namespace gearimpact {
 
@@ -122,6 +124,45 @@ std::size_t shard_point_count(const SteadySweepSpec& spec) {
          static_cast<std::size_t>(spec.points);
 }
 
+std::vector<std::string> sweep_warnings(const SteadySweepSpec& spec) {
+  std::vector<std::string> warnings;
+  const SimulationCase& c = spec.base;
+  const auto swept = [&](const char* key) { return spec.vary == key || spec.vary2 == key; };
+  if (c.model.mesh_damping_ratio == 0.0 && c.model.damping_update == DampingUpdate::each_impact &&
+      !swept("model.mesh_damping_ratio")) {
+    warnings.push_back(
+        "model.mesh_damping_ratio = 0 with model.damping_update = \"each-impact\": nothing damps "
+        "a no-impact point but the Hertzian D, which it carries from an earlier point's last "
+        "impact, so up and down sweeps differ there (by percents) as an artefact of the history; "
+        "set a mesh damper and a D without history, e.g. --set model.mesh_damping_ratio=0.05 "
+        "--damping-update frozen --set 'model.damping_reference_speed=0.1 m/s' (docs/sweep.md)");
+  }
+  if (!swept("initial.w1") && !swept("initial.w2")) {
+    const double rb1 = base_radius(c.gears, Gear::one);
+    const double rb2 = base_radius(c.gears, Gear::two);
+    const double v1 = rb1 * c.initial.w1_rad_per_s;
+    const double v2 = rb2 * c.initial.w2_rad_per_s;
+    // The speeds as typed round a rolling pair by a few ulps.
+    if (std::fabs(v1 - v2) > 1e-12 * std::max(std::fabs(v1), std::fabs(v2))) {
+      const double j1 = moment_of_inertia(c.gears, Gear::one);
+      const double j2 = moment_of_inertia(c.gears, Gear::two);
+      const double w1_mean =
+          (j1 * c.initial.w1_rad_per_s / rb1 + j2 * c.initial.w2_rad_per_s / rb2) /
+          (j1 / rb1 + j2 * rb1 / (rb2 * rb2));
+      warnings.push_back(
+          "initial.w1 = " + shortest_decimal(c.initial.w1_rad_per_s) +
+          " rad/s and initial.w2 = " + shortest_decimal(c.initial.w2_rad_per_s) +
+          " rad/s do not roll (Rb1 w1 != Rb2 w2): the points run at the momentum's mean speed, "
+          "w1 = " +
+          format_number(w1_mean) + " rad/s (" + format_number(w1_mean * 60.0 / (2.0 * pi)) +
+          " rpm); set initial.w2 = initial.w1 Rb1/Rb2 = " +
+          format_number(c.initial.w1_rad_per_s * rb1 / rb2) +
+          " rad/s for the pinion speed the case gives (w1_mean_rad_s in sweep.csv is what ran)");
+    }
+  }
+  return warnings;
+}
+
 SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
                              const std::function<void(const SweepPointResult&)>& on_point) {
   sweep_field(spec.vary, "vary");
@@ -129,6 +170,16 @@ SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
     sweep_field(spec.vary2, "vary2");
     if (spec.vary2 == spec.vary) {
       throw InputError("vary2", spec.vary2, "a key other than the first swept key " + spec.vary);
+    }
+    // A swept speed sets the other so that the pair rolls: the two cannot vary apart.
+    const auto speed = [](const std::string& key) {
+      return key == "initial.w1" || key == "initial.w2";
+    };
+    if (speed(spec.vary) && speed(spec.vary2)) {
+      throw InputError("vary2", spec.vary2,
+                       "a key other than the other speed: a sweep of " + spec.vary +
+                           " sets the other speed so that the pair rolls (Rb1 w1 = Rb2 w2); "
+                           "sweep one speed, or the relative motion through another key");
     }
   }
   if (!(spec.max_points >= 1.0)) {
@@ -225,12 +276,17 @@ SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
   record.lines = static_cast<int>(grid2.size());
   record.directions = spec.directions;
   record.backlash_m = base.gears.backlash_m;
+  record.unit = spec.unit;
+  record.unit2 = spec.unit2;
+  if (spec.vary == "initial.w1") record.mesh_teeth = base.gears.teeth1;
+  if (spec.vary == "initial.w2") record.mesh_teeth = base.gears.teeth2;
   if (spec.vary == "initial.w1") record.iso = iso_scale(base, *pool.table_for(base));
   record.tolerance = spec.settings.tolerance;
   record.steps_per_contact_period = spec.settings.steps_per_contact_period;
   record.max_periods = spec.settings.max_periods;
   record.damping_update = base.model.damping_update;
   sweep.shard = spec.shard;
+  sweep.warnings = sweep_warnings(spec);
 
   std::vector<std::future<std::vector<SweepPointResult>>> futures;
   for (const LineOfWork& unit : shard_units(grid2.size(), spec.directions, spec.shard)) {

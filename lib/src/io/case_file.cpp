@@ -700,4 +700,21 @@ std::string write_case_file(const SimulationCase& c, CaseUnits units) {
   return text;
 }
 
+std::string case_file_text(const std::filesystem::path& path, const std::string& key) {
+  const std::size_t dot = key.find('.');
+  if (dot == std::string::npos) return "";
+  try {
+    std::ifstream stream(path, std::ios::binary);
+    if (!stream) return "";
+    const toml::value root = toml::parse(stream, path.string());
+    if (!root.is_table() || !root.contains(key.substr(0, dot))) return "";
+    const toml::value& section = root.at(key.substr(0, dot));
+    if (!section.is_table() || !section.contains(key.substr(dot + 1))) return "";
+    const toml::value& value = section.at(key.substr(dot + 1));
+    return value.is_string() ? value.as_string().str : "";
+  } catch (const std::exception&) {
+    return "";
+  }
+}
+
 }  // namespace gearimpact

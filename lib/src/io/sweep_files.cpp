@@ -28,9 +28,11 @@ using Json = nlohmann::ordered_json;
 
 constexpr const char* kSweepHeader =
     "line,direction,index,value_si,regime,period,converged,dte_mean_m,dte_amplitude_m,dte_rms_m,"
-    "s_min_m,s_max_m,dynamic_factor,impacts_drive_per_period,impacts_coast_per_period\n";
+    "s_min_m,s_max_m,dte_contact_mean_m,dte_contact_min_m,dte_contact_max_m,dynamic_factor,"
+    "impacts_drive_per_period,impacts_coast_per_period,w1_mean_rad_s,w2_mean_rad_s,pinion_rpm,"
+    "mesh_frequency_hz\n";
 constexpr const char* kPoincareHeader = "line,direction,index,value_si,s_m,ds_m_s\n";
-constexpr std::size_t kSweepColumns = 15;
+constexpr std::size_t kSweepColumns = 22;
 constexpr const char* kSweepFile = "a summary.json written by gearimpact sweep";
 
 std::string optional_number(const std::optional<double>& v) {
@@ -76,6 +78,9 @@ Json spec_json(const SteadySweepRecord& s) {
   j["lines"] = s.lines;
   j["directions"] = directions_text(s.directions);
   j["backlash_m"] = s.backlash_m;
+  j["unit"] = s.unit;
+  j["unit2"] = s.unit2;
+  j["mesh_teeth"] = s.mesh_teeth;
   if (s.iso) {
     j["iso_resonance_speed_rad_s"] = s.iso->resonance_speed_rad_per_s;
     j["iso_resonance_speed_iso_stiffness_rad_s"] = s.iso->resonance_speed_iso_stiffness_rad_per_s;
@@ -123,6 +128,9 @@ SteadySweepRecord spec_record(const Json& j, const std::string& file) {
       s.directions.push_back(direction_named(d, file));
     }
     s.backlash_m = j.at("backlash_m").get<double>();
+    s.unit = j.at("unit").get<std::string>();
+    s.unit2 = j.at("unit2").get<std::string>();
+    s.mesh_teeth = j.at("mesh_teeth").get<int>();
     if (j.contains("iso_resonance_speed_rad_s")) {
       IsoScale iso;
       iso.resonance_speed_rad_per_s = j.at("iso_resonance_speed_rad_s").get<double>();
@@ -307,8 +315,12 @@ std::string sweep_csv(const std::vector<SweepPointResult>& rows) {
            "," + (p.converged ? "true" : "false") + "," + optional_number(p.dte_mean_m) + "," +
            optional_number(p.dte_amplitude_m) + "," + optional_number(p.dte_rms_m) + "," +
            optional_number(p.s_min_m) + "," + optional_number(p.s_max_m) + "," +
-           optional_number(p.dynamic_factor) + "," + optional_number(p.impacts_drive_per_period) +
-           "," + optional_number(p.impacts_coast_per_period) + "\n";
+           optional_number(p.dte_contact_mean_m) + "," + optional_number(p.dte_contact_min_m) +
+           "," + optional_number(p.dte_contact_max_m) + "," + optional_number(p.dynamic_factor) +
+           "," + optional_number(p.impacts_drive_per_period) + "," +
+           optional_number(p.impacts_coast_per_period) + "," + optional_number(p.w1_mean_rad_s) +
+           "," + optional_number(p.w2_mean_rad_s) + "," + optional_number(p.pinion_rpm) + "," +
+           optional_number(p.mesh_frequency_hz) + "\n";
   }
   return csv;
 }
@@ -341,6 +353,32 @@ std::string sweep_summary_json(const SteadySweep& sweep) {
   j["points_converged"] = converged;
   j["regimes"] = Json::object();
   for (const auto& [name, n] : regimes) j["regimes"][name] = n;
+  j["jumps"] = Json::array();
+  for (const SweepJump& jump : sweep_jumps(sweep.rows)) {
+    Json one;
+    one["line"] = jump.line;
+    one["direction"] = to_string(jump.direction);
+    one["from_si"] = jump.from_si;
+    one["to_si"] = jump.to_si;
+    one["amplitude_before_m"] = jump.amplitude_before_m;
+    one["amplitude_after_m"] = jump.amplitude_after_m;
+    one["regime_before"] = to_string(jump.regime_before);
+    one["regime_after"] = to_string(jump.regime_after);
+    j["jumps"].push_back(one);
+  }
+  j["contact_loss"] = Json::array();
+  for (const ContactChange& change : contact_changes(sweep.rows)) {
+    Json one;
+    one["line"] = change.line;
+    one["direction"] = to_string(change.direction);
+    one["change"] = change.lost ? "lost" : "regained";
+    one["from_si"] = change.from_si;
+    one["to_si"] = change.to_si;
+    one["regime_before"] = to_string(change.regime_before);
+    one["regime_after"] = to_string(change.regime_after);
+    j["contact_loss"].push_back(one);
+  }
+  j["warnings"] = sweep.warnings;
   return j.dump(2) + "\n";
 }
 
@@ -395,9 +433,16 @@ std::vector<SweepPointResult> parse_sweep_csv(const std::string& text, const std
     p.dte_rms_m = optional_field(f[9], where);
     p.s_min_m = optional_field(f[10], where);
     p.s_max_m = optional_field(f[11], where);
-    p.dynamic_factor = optional_field(f[12], where);
-    p.impacts_drive_per_period = optional_field(f[13], where);
-    p.impacts_coast_per_period = optional_field(f[14], where);
+    p.dte_contact_mean_m = optional_field(f[12], where);
+    p.dte_contact_min_m = optional_field(f[13], where);
+    p.dte_contact_max_m = optional_field(f[14], where);
+    p.dynamic_factor = optional_field(f[15], where);
+    p.impacts_drive_per_period = optional_field(f[16], where);
+    p.impacts_coast_per_period = optional_field(f[17], where);
+    p.w1_mean_rad_s = optional_field(f[18], where);
+    p.w2_mean_rad_s = optional_field(f[19], where);
+    p.pinion_rpm = optional_field(f[20], where);
+    p.mesh_frequency_hz = optional_field(f[21], where);
     rows.push_back(std::move(r));
   }
   return rows;
@@ -408,6 +453,7 @@ SteadySweep merge_sweep_folders(const std::vector<std::filesystem::path>& dirs) 
   std::optional<Json> spec;
   SteadySweepRecord record;
   std::map<Key, SweepPointResult> rows;
+  std::vector<std::string> warnings;
   for (const std::filesystem::path& dir : dirs) {
     const std::string input = dir.string();
     const std::filesystem::path summary_file = dir / "summary.json";
@@ -423,6 +469,12 @@ SteadySweep merge_sweep_folders(const std::vector<std::filesystem::path>& dirs) 
     if (!spec) {
       spec = summary["spec"];
       record = spec_record(*spec, summary_file.string());
+      // The warnings are of the base case and the spec, which every shard shares.
+      if (summary.contains("warnings") && summary["warnings"].is_array()) {
+        for (const Json& w : summary["warnings"]) {
+          if (w.is_string()) warnings.push_back(w.get<std::string>());
+        }
+      }
     }
     if (summary["spec"] != *spec) {
       throw InputError("merge", input,
@@ -452,6 +504,7 @@ SteadySweep merge_sweep_folders(const std::vector<std::filesystem::path>& dirs) 
   }
   SteadySweep merged;
   merged.spec = record;
+  merged.warnings = warnings;
   for (int l = 0; l < merged.spec.lines; ++l) {
     for (SweepDirection d : merged.spec.directions) {
       for (int i = 0; i < merged.spec.points; ++i) {

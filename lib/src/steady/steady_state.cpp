@@ -25,6 +25,8 @@ struct PeriodStats {
   double s_max = -std::numeric_limits<double>::infinity();
   double s_sum = 0.0;
   double s_square_sum = 0.0;
+  double w1_sum = 0.0;
+  double w2_sum = 0.0;
   long long rows = 0;
   double force_max = 0.0;
   int impacts_n1 = 0;
@@ -86,6 +88,8 @@ class PeriodRecorder {
       stats_.s_max = std::max(stats_.s_max, row.s_m);
       stats_.s_sum += row.s_m;
       stats_.s_square_sum += row.s_m * row.s_m;
+      stats_.w1_sum += row.w1_rad_per_s;
+      stats_.w2_sum += row.w2_rad_per_s;
       ++stats_.rows;
       stats_.force_max = std::max(stats_.force_max, row.normal_force_n);
       const bool n1 = row.region == static_cast<int>(Region::n1);
@@ -174,7 +178,8 @@ class SteadyDecision {
 
 // The figures of the steady window (the last `periods` of history) and its regime.
 void summarize_window(const std::deque<PeriodStats>& history, std::size_t periods,
-                      double mean_torque1_n_m, double rb1, SteadyPoint& point) {
+                      const SimulationCase& c, double rb1, SteadyPoint& point) {
+  const double mean_torque1_n_m = mean_torque_n_m(c.torque1, "torque1");
   PeriodStats w;
   for (std::size_t i = history.size() - periods; i < history.size(); ++i) {
     const PeriodStats& p = history[i];
@@ -182,6 +187,8 @@ void summarize_window(const std::deque<PeriodStats>& history, std::size_t period
     w.s_max = std::max(w.s_max, p.s_max);
     w.s_sum += p.s_sum;
     w.s_square_sum += p.s_square_sum;
+    w.w1_sum += p.w1_sum;
+    w.w2_sum += p.w2_sum;
     w.rows += p.rows;
     w.force_max = std::max(w.force_max, p.force_max);
     w.impacts_n1 += p.impacts_n1;
@@ -197,12 +204,27 @@ void summarize_window(const std::deque<PeriodStats>& history, std::size_t period
   point.dte_rms_m = std::sqrt(std::max(0.0, w.s_square_sum / rows - mean * mean));
   point.s_min_m = w.s_min;
   point.s_max_m = w.s_max;
+  const double backlash = c.gears.backlash_m;
+  // The loaded flank, as the regime below reads it.
+  const bool drive_loaded = mean_torque1_n_m >= 0.0;
+  if (drive_loaded) {
+    point.dte_contact_mean_m = mean - backlash;
+    point.dte_contact_min_m = w.s_min - backlash;
+    point.dte_contact_max_m = w.s_max - backlash;
+  } else {
+    point.dte_contact_mean_m = -mean - backlash;
+    point.dte_contact_min_m = -w.s_max - backlash;
+    point.dte_contact_max_m = -w.s_min - backlash;
+  }
+  point.w1_mean_rad_s = w.w1_sum / rows;
+  point.w2_mean_rad_s = w.w2_sum / rows;
+  point.pinion_rpm = *point.w1_mean_rad_s * 60.0 / (2.0 * pi);
+  point.mesh_frequency_hz = c.gears.teeth1 * std::fabs(*point.w1_mean_rad_s) / (2.0 * pi);
   if (mean_torque1_n_m != 0.0) {
     point.dynamic_factor = w.force_max / std::fabs(mean_torque1_n_m / rb1);
   }
   point.impacts_drive_per_period = w.impacts_n1 / static_cast<double>(periods);
   point.impacts_coast_per_period = w.impacts_n2 / static_cast<double>(periods);
-  const bool drive_loaded = mean_torque1_n_m >= 0.0;
   const int loaded_impacts = drive_loaded ? w.impacts_n1 : w.impacts_n2;
   const int other_impacts = drive_loaded ? w.impacts_n2 : w.impacts_n1;
   const bool held = drive_loaded ? w.in_contact_n1 : w.in_contact_n2;
@@ -412,7 +434,7 @@ SteadyPoint find_steady_state(const SimulationCase& c, const StiffnessTable& tab
     point.poincare.push_back({samples[i](0), samples[i](1)});
   }
   if (point.converged) {
-    summarize_window(history, steady_periods, mean_torque_n_m(c.torque1, "torque1"), rb1, point);
+    summarize_window(history, steady_periods, c, rb1, point);
   }
   return point;
 }

@@ -1,7 +1,9 @@
 #include "gearimpact/steady/sweep.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
+#include <tuple>
 
 #include "gearimpact/case/schema.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
@@ -42,12 +44,17 @@ void apply_sweep_value(SimulationCase& c, const SimulationCase& base, const std:
   set_sweep_value(c, key, si_value);
   const double rb1 = base_radius(base.gears, Gear::one);
   const double rb2 = base_radius(base.gears, Gear::two);
+  // A speed sets the pair rolling at it (Rb1 w1 = Rb2 w2), whatever base's other speed: without
+  // fluctuating torques the mean speed follows from the momentum J1 w1/Rb1 + J2 w2/Rb2, so a
+  // pair that does not roll would run at another speed than the one set. The other speed is
+  // written as base's rolling speed moved by the change, equal to si_value Rb1/Rb2 to rounding
+  // and exactly base's own speed for a base that rolls.
   if (key == "initial.w1") {
-    c.initial.w2_rad_per_s =
-        base.initial.w2_rad_per_s + (si_value - base.initial.w1_rad_per_s) * rb1 / rb2;
+    const double rolling_w2 = base.initial.w1_rad_per_s * rb1 / rb2;
+    c.initial.w2_rad_per_s = rolling_w2 + (si_value - base.initial.w1_rad_per_s) * rb1 / rb2;
   } else if (key == "initial.w2") {
-    c.initial.w1_rad_per_s =
-        base.initial.w1_rad_per_s + (si_value - base.initial.w2_rad_per_s) * rb2 / rb1;
+    const double rolling_w1 = base.initial.w2_rad_per_s * rb2 / rb1;
+    c.initial.w1_rad_per_s = rolling_w1 + (si_value - base.initial.w2_rad_per_s) * rb2 / rb1;
   } else if (key == "torque1.mean") {
     set_sweep_value(c, "torque2.mean", -si_value * rb2 / rb1);
   } else if (key == "torque2.mean") {
@@ -73,6 +80,74 @@ std::vector<double> sweep_grid(double from, double to, int points, const char* f
 
 std::string to_string(SweepDirection direction) {
   return direction == SweepDirection::up ? "up" : "down";
+}
+
+namespace {
+
+// The converged points of each line and direction, in the order the line ran.
+std::vector<std::vector<const SweepPointResult*>> runs_of(
+    const std::vector<SweepPointResult>& rows) {
+  std::vector<const SweepPointResult*> sorted;
+  for (const SweepPointResult& r : rows) {
+    if (r.point.converged) sorted.push_back(&r);
+  }
+  const auto key = [](const SweepPointResult* r) {
+    const bool up = r->direction == SweepDirection::up;
+    return std::make_tuple(r->line, up ? 0 : 1, up ? r->index : -r->index);
+  };
+  std::sort(sorted.begin(), sorted.end(),
+            [&](const SweepPointResult* a, const SweepPointResult* b) { return key(a) < key(b); });
+  std::vector<std::vector<const SweepPointResult*>> runs;
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    if (i == 0 || sorted[i]->line != sorted[i - 1]->line ||
+        sorted[i]->direction != sorted[i - 1]->direction) {
+      runs.emplace_back();
+    }
+    runs.back().push_back(sorted[i]);
+  }
+  return runs;
+}
+
+}  // namespace
+
+std::vector<SweepJump> sweep_jumps(const std::vector<SweepPointResult>& rows) {
+  std::vector<SweepJump> jumps;
+  for (const auto& run : runs_of(rows)) {
+    for (std::size_t i = 1; i < run.size(); ++i) {
+      const SweepPointResult& a = *run[i - 1];
+      const SweepPointResult& b = *run[i];
+      const double before = a.point.dte_amplitude_m.value_or(0.0);
+      const double after = b.point.dte_amplitude_m.value_or(0.0);
+      if (!(before > 0.0 && after > 0.0) ||
+          std::max(before / after, after / before) <= kJumpRatio) {
+        continue;
+      }
+      jumps.push_back({a.line, a.direction, a.value_si, b.value_si, before, after, a.point.regime,
+                       b.point.regime});
+    }
+  }
+  return jumps;
+}
+
+std::vector<ContactChange> contact_changes(const std::vector<SweepPointResult>& rows) {
+  const auto impacting = [](Regime r) {
+    return r == Regime::single_sided || r == Regime::double_sided;
+  };
+  std::vector<ContactChange> changes;
+  for (const auto& run : runs_of(rows)) {
+    for (std::size_t i = 1; i < run.size(); ++i) {
+      const SweepPointResult& a = *run[i - 1];
+      const SweepPointResult& b = *run[i];
+      const Regime before = a.point.regime;
+      const Regime after = b.point.regime;
+      const bool lost = before == Regime::no_impact && impacting(after);
+      const bool regained = impacting(before) && after == Regime::no_impact;
+      if (lost || regained) {
+        changes.push_back({a.line, a.direction, lost, a.value_si, b.value_si, before, after});
+      }
+    }
+  }
+  return changes;
 }
 
 std::vector<SweepPointResult> sweep_line(

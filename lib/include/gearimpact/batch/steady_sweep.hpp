@@ -43,6 +43,10 @@ struct SteadySweepSpec {
   double to_si = 0.0;
   int points = 0;
   std::string vary2;  // empty: one line (line 0) of the base case
+  // The units the user gave the grids in (a symbol of the key's dimension, as in case files), for
+  // the figures; empty: none given.
+  std::string unit;
+  std::string unit2;
   double from2_si = 0.0;
   double to2_si = 0.0;
   int points2 = 1;
@@ -70,6 +74,10 @@ struct SteadySweepRecord {
   int lines = 1;
   std::vector<SweepDirection> directions;
   double backlash_m = 0.0;  // of the base case
+  std::string unit;         // SteadySweepSpec's, for the figures
+  std::string unit2;
+  // For a sweep of a speed: the teeth of that gear, whose mesh frequency is z w / (2 pi); else 0.
+  int mesh_teeth = 0;
   // For a sweep of initial.w1 of a loaded pair: ISO's N axis of the base case's pair and load (a
   // second key that changes them is not seen).
   std::optional<IsoScale> iso;
@@ -83,7 +91,15 @@ struct SteadySweep {
   SteadySweepRecord spec;
   std::optional<SweepShard> shard;  // the shard a run computed; empty for a merged set
   std::vector<SweepPointResult> rows;
+  // What the user should know of the results (sweep_warnings), shared by every shard.
+  std::vector<std::string> warnings;
 };
+
+// The warnings of a sweep, from its spec alone: a damper-free sweep (zeta = 0) whose Hertzian D
+// is updated at every impact (its no-impact points carry the D of an earlier point's last impact,
+// so up and down differ where they should not); a sweep of a key other than a speed on a case
+// whose speeds do not roll (the points run at the momentum's mean speed, named).
+std::vector<std::string> sweep_warnings(const SteadySweepSpec& spec);
 
 // (line, direction (up before down), index): the order rows are kept and written in.
 bool sweep_key_less(const SweepPointResult& a, const SweepPointResult& b);
@@ -95,11 +111,12 @@ std::size_t shard_point_count(const SteadySweepSpec& spec);
 // Runs the spec's shard on `pool`. Before any work, throws InputError naming the key when a grid
 // is empty or outside the key's range, from_si > to_si (a downward sweep is a direction), the
 // whole sweep has more than max_points points, a setting is outside its bounds above, vary2 is
-// vary, the run does not read a swept key (integrator.*: the steady state sets its own step and
-// duration; a key whose condition does not hold), the shard is not 0 <= k < n, there is no
-// direction, or the case (with the first and with the last values of both keys) fails
-// validation or has no steady state (require_steady_case). `on_point` (may be empty) is called
-// after each point, from the pool's worker threads, possibly at once.
+// vary, vary and vary2 are both speeds (each sets the other: the pair rolls), the run does not read
+// a swept key (integrator.*: the steady state sets its own step and duration; a key whose condition
+// does not hold), the shard is not 0 <= k < n, there is no direction, or the case (with the first
+// and with the last values of both keys) fails validation or has no steady state
+// (require_steady_case). `on_point` (may be empty) is called after each point, from the pool's
+// worker threads, possibly at once.
 SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
                              const std::function<void(const SweepPointResult&)>& on_point = {});
 

@@ -39,6 +39,11 @@ SimulationCase parse_case(std::string_view toml_text, std::string_view file_name
 // Reads and parses a case file (at most 1 MiB). Throws CaseFileError.
 SimulationCase read_case_file(const std::filesystem::path& path);
 
+// The text a case file gives `key` (section.key) when it is a string, "1000 rpm" say, so that a
+// program can show a value in the unit its user chose; empty when the file cannot be read as
+// TOML, lacks the key or gives it another type (read_case_file says what is wrong with it).
+std::string case_file_text(const std::filesystem::path& path, const std::string& key);
+
 // How write_case_file writes quantities: in the units a person would choose
 // (mm, deg, GPa, N*mm, us, ms) wherever that text reads back to exactly the
 // same double, or all in SI units (m, rad, Pa, N*m, s).

@@ -1,10 +1,14 @@
 // The files of a steady-state sweep (batch/steady_sweep.hpp) and the merge of its shards:
 //   sweep.csv     line,direction,index,value_si,regime,period,converged,dte_mean_m,
-//                 dte_amplitude_m,dte_rms_m,s_min_m,s_max_m,dynamic_factor,
-//                 impacts_drive_per_period,impacts_coast_per_period (one row a point)
+//                 dte_amplitude_m,dte_rms_m,s_min_m,s_max_m,dte_contact_mean_m,
+//                 dte_contact_min_m,dte_contact_max_m,dynamic_factor,impacts_drive_per_period,
+//                 impacts_coast_per_period,w1_mean_rad_s,w2_mean_rad_s,pinion_rpm,
+//                 mesh_frequency_hz (one row a point; steady_state.hpp says what each is)
 //   poincare.csv  line,direction,index,value_si,s_m,ds_m_s (one row a Poincare sample)
 //   summary.json  "spec" (what every shard shares), "shard" (of a run), "points_written",
-//                 "points_converged", "regimes" (converged points by regime)
+//                 "points_converged", "regimes" (converged points by regime), "jumps" and
+//                 "contact_loss" (steady/sweep.hpp: sweep_jumps, contact_changes, of the rows
+//                 written), "warnings" (of the run, kept by a merge)
 // Numbers at 17 significant digits, so that a merge reads back the very doubles it writes; an
 // absent figure (a point not converged) is an empty field. Rows in key order (sweep_key_less).
 #pragma once

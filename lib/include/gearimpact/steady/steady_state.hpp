@@ -102,6 +102,18 @@ struct SteadyPoint {
   std::optional<double> dte_rms_m;
   std::optional<double> s_min_m;
   std::optional<double> s_max_m;
+  // The same window's deflection into the loaded flank, measured from the contact: s - B when
+  // the drive flank N1 is loaded, -s - B when the coast flank N2 is (B half the total play, so
+  // that contact is at s = +-B): positive in contact, negative when the flanks have separated.
+  std::optional<double> dte_contact_mean_m;
+  std::optional<double> dte_contact_min_m;
+  std::optional<double> dte_contact_max_m;
+  // The speeds that ran: the means of w1 and w2 over the window's rows, the pinion's in rpm, and
+  // the mesh frequency z1 |w1| / (2 pi) in Hz.
+  std::optional<double> w1_mean_rad_s;
+  std::optional<double> w2_mean_rad_s;
+  std::optional<double> pinion_rpm;
+  std::optional<double> mesh_frequency_hz;
   // The largest mesh force (normal forces summed) over the static load |T1_mean| / Rb1; empty
   // without load.
   std::optional<double> dynamic_factor;
