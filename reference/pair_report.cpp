@@ -121,6 +121,12 @@ std::string geometry_section(const GearPair& pair, const std::filesystem::path& 
   lines.both("undercut_margin_shift", a.profile_shift_coefficient - least_shift(a),
              b.profile_shift_coefficient - least_shift(b), "1");
   lines.both("root_half_angle_theta_f", a.root_half_angle_rad, b.root_half_angle_rad, "rad");
+  lines.csv += "contact_ratio,pair," + format_number(contact_ratio(pair)) + ",1\n";
+  lines.csv +=
+      "operating_pressure_angle,pair," + format_number(g.operating_pressure_angle_rad) + ",rad\n";
+  lines.csv += "centre_distance,pair," + format_number(g.centre_distance_m) + ",m\n";
+  lines.csv += "contact_segment_start_x1,pair," + format_number(segment.start_m) + ",m\n";
+  lines.csv += "contact_segment_end_x1,pair," + format_number(segment.end_m) + ",m\n";
   write_file_atomically((dir / "geometry.csv").string(), lines.csv);
   text += lines.md;
   text +=
@@ -189,7 +195,10 @@ std::string stiffness_section(const GearPair& pair, const StiffnessComparison& c
           {"set key outside bottom center horizontal", "set xrange [0:1]", "set yrange [0:*]"},
           series});
   std::string text =
-      "Mesh stiffness of each model (all its terms on) over one mesh period, per mm of face "
+      "yang-lin-1987 is the paper's tooth, an involute beam from the base circle without fillet "
+      "or gear body, and so much stiffer than the rack-cut teeth of the other two "
+      "(docs/stiffness-models.md). Mesh stiffness of each model (all its terms on) over one mesh "
+      "period, per mm of face "
       "width as ISO 6336-1 states c' and c_gamma_alpha (`stiffness_tvms.png`, `.svg`; data "
       "`stiffness_tvms_<model>.csv`). ISO is an empirical fit with a scatter of its own: a "
       "band, not an identity. ISO 6336-1 method B (spur, C_M 0.8, C_R 1, no low-load "
