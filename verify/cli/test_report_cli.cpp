@@ -198,3 +198,34 @@ TEST_CASE("report on a 17-tooth pinion with x = +0.5 (a pair file): no time hist
                       " --samples 40 --out " + out.string()));
   CHECK(again.exit_code != 0);
 }
+
+TEST_CASE("iso6336 --load: the low-load factor (F_t K_A / b / 100 N/mm)^0.25 below 100 N/mm") {
+  const std::string pair = " --case-file " + (examples / "pinion_17_x05.toml").string();
+  const auto number_after = [](const std::string& json, const std::string& key) {
+    const std::size_t at = json.find("\"" + key + "\": ");
+    REQUIRE(at != std::string::npos);
+    return std::stod(json.substr(at + key.size() + 4));
+  };
+  const CommandResult half = run_command(cli("iso6336 --load '50 N/mm'" + pair));
+  REQUIRE_MESSAGE(half.exit_code == 0, half.err);
+  CHECK(relative_difference(number_after(half.out, "low_load_factor"), std::pow(0.5, 0.25)) <=
+        1e-15);
+  // At the threshold and above c' holds as stated: the same c' as without a load.
+  const CommandResult none = run_command(cli("iso6336" + pair));
+  const CommandResult at = run_command(cli("iso6336 --load '100 N/mm'" + pair));
+  CHECK(number_after(at.out, "low_load_factor") == 1.0);
+  CHECK(number_after(at.out, "c_prime_n_mm_um") == number_after(none.out, "c_prime_n_mm_um"));
+  CHECK(none.out.find("low_load_factor") == std::string::npos);
+  // A torque: F_t / b = T1 / (r1 b), r1 = m z1 / 2 = 17 mm, b = 20 mm: 20 N*m is 58.8 N/mm.
+  const CommandResult torque = run_command(cli("iso6336 --load '20 N*m'" + pair));
+  REQUIRE_MESSAGE(torque.exit_code == 0, torque.err);
+  const double line_load_n_mm = 20.0 / (17e-3 * 20e-3) * 1e-3;
+  CHECK(relative_difference(number_after(torque.out, "specific_load_n_mm"), line_load_n_mm) <=
+        1e-15);
+  CHECK(relative_difference(number_after(torque.out, "low_load_factor"),
+                            std::pow(line_load_n_mm / 100.0, 0.25)) <= 1e-15);
+  const CommandResult bad = run_command(cli("iso6336 --load '50 kg'" + pair));
+  CHECK(bad.exit_code == 1);
+  CHECK(has(bad.err, "--load"));
+  CHECK(has(bad.err, "N/mm"));
+}
