@@ -25,7 +25,7 @@ void write_iso_kv_band(const std::filesystem::path& file, const IsoScale& scale,
 
 Figure dynamic_factor_vs_iso_n(const std::string& name, const IsoScale& scale,
                                const std::string& data, int direction_column, int n_column,
-                               int df_column, const std::string& band, int quasi_static_column) {
+                               int df_column, const std::string& band, bool quasi_static) {
   const std::string to_iso_n = format_number(scale.resonance_speed_rad_per_s /
                                              scale.resonance_speed_iso_stiffness_rad_per_s);
   char load[96];
@@ -54,8 +54,9 @@ Figure dynamic_factor_vs_iso_n(const std::string& name, const IsoScale& scale,
                   "' using 1:2 with lines lw 2 lc rgb 'dark-red' title 'ISO K_v, perfect "
                   "gears (" +
                   std::string(load) + ")'"};
-  if (quasi_static_column > 0) {
-    const std::string qs = std::to_string(quasi_static_column);
+  if (quasi_static) {
+    // The ratio to 17 digits, so that the curve is the CSV's column over it exactly as drawn.
+    const std::string qs = "($" + df + " / " + format_number(scale.quasi_static_force_ratio) + ")";
     char ratio[64];
     std::snprintf(ratio, sizeof ratio, "%.4g", scale.quasi_static_force_ratio);
     f.y_label = "dynamic factor: max mesh force / static load (grey), / quasi-static peak (colour)";

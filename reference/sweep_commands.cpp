@@ -199,7 +199,7 @@ void render_iso_plot(const std::filesystem::path& dir, const IsoScale& iso,
   write_file_atomically((dir / "dynamic_factor_vs_iso_n.csv").string(), data);
   write_iso_kv_band(dir / "iso_kv_band.csv", iso, std::max(2.0, 1.1 * n_max));
   render(dir, dynamic_factor_vs_iso_n("dynamic_factor_vs_iso_n", iso, "dynamic_factor_vs_iso_n.csv",
-                                      2, 5, 7, "iso_kv_band.csv", 8));
+                                      2, 5, 7, "iso_kv_band.csv", true));
 }
 
 // The plots of a sweep folder: amplitude up and down, the bifurcation diagram, the regime map.
