@@ -300,6 +300,9 @@ std::string time_history_section(const SimulationCase& run, const std::filesyste
   const double steps = c.integrator.end_time_s / c.integrator.step_s;
   c.integrator.output_every =
       std::max(c.integrator.output_every, static_cast<int>(std::ceil(steps / kMostHistoryRows)));
+  // A long run says what it is doing before it starts.
+  std::cerr << "report: time history, " << number(steps, 3) << " steps of "
+            << number(c.integrator.step_s * 1e6, 3) << " us ...\n";
   const SimulationResult r = simulate(c);
   // DTE relative to the contact: s - B on the drive flanks (T1 >= 0), s + B on the coast ones.
   const double side = mean_torque(c.torque1) >= 0.0 ? 1.0 : -1.0;
@@ -358,7 +361,19 @@ void write_report(const ReportOptions& o) {
   std::string note;
   const StiffnessComparison comparison =
       models_of(c.gears, static_cast<std::size_t>(o.samples), note);
-  const std::string stiffness = note + stiffness_section(c.gears, comparison, dir, warnings);
+  std::string stiffness = note + stiffness_section(c.gears, comparison, dir, warnings);
+  if (run) {
+    // ISO's line load at the reference circle, K_A = 1: below 100 N/mm c' takes the low-load
+    // factor (iso6336 --load).
+    const double line_load = std::fabs(mean_torque(c.torque1)) /
+                             (pitch_radius(c.gears, Gear::one) * c.gears.face_width_m);
+    Iso6336Pair loaded = iso6336_pair(c.gears, 0.0);
+    loaded.specific_load_n_per_m = line_load;
+    stiffness += "\nAt the case's mean pinion torque F_t / b = " + number(line_load * 1e-3, 4) +
+                 " N/mm (K_A = 1): ISO's low-load factor (F_t K_A / b / 100 N/mm)^0.25 below 100 "
+                 "N/mm is " +
+                 number(iso6336_method_b(loaded).low_load_factor, 4) + ".\n";
+  }
   progress.done("stiffness models and ISO 6336-1");
   const std::string sharing = load_sharing_section(c.gears, c.model.stiffness, o.samples, dir);
   progress.done("load sharing");
