@@ -11,6 +11,8 @@ void register_stiffness_commands(CLI::App& app);
 
 // `reproduce`: every figure of the paper and REPORT.md into a folder.
 void register_reproduce_commands(CLI::App& app);
+// `report CASE --out DIR`: everything that applies to one pair (pair_report.cpp).
+void register_report_commands(CLI::App& app);
 // `simulate` (one case of Table 1 or a case file) and `sweep-friction` (Fig. 7).
 void register_simulate_commands(CLI::App& app);
 // `check-case FILE`: reads and validates a case file, prints it in SI units.

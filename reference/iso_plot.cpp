@@ -25,7 +25,7 @@ void write_iso_kv_band(const std::filesystem::path& file, const IsoScale& scale,
 
 Figure dynamic_factor_vs_iso_n(const std::string& name, const IsoScale& scale,
                                const std::string& data, int direction_column, int n_column,
-                               int df_column, const std::string& band) {
+                               int df_column, const std::string& band, bool quasi_static) {
   const std::string to_iso_n = format_number(scale.resonance_speed_rad_per_s /
                                              scale.resonance_speed_iso_stiffness_rad_per_s);
   char load[96];
@@ -54,6 +54,28 @@ Figure dynamic_factor_vs_iso_n(const std::string& name, const IsoScale& scale,
                   "' using 1:2 with lines lw 2 lc rgb 'dark-red' title 'ISO K_v, perfect "
                   "gears (" +
                   std::string(load) + ")'"};
+  if (quasi_static) {
+    // The ratio to 17 digits, so that the curve is the CSV's column over it exactly as drawn.
+    const std::string qs = "($" + df + " / " + format_number(scale.quasi_static_force_ratio) + ")";
+    char ratio[64];
+    std::snprintf(ratio, sizeof ratio, "%.4g", scale.quasi_static_force_ratio);
+    f.y_label = "dynamic factor: max mesh force / static load (grey), / quasi-static peak (colour)";
+    f.title = "Dynamic factor against ISO 6336-1's resonance ratio N (quasi-static peak = " +
+              std::string(ratio) + " x static load)";
+    f.series[0] = "'" + data + "' using (strcol(" + d + ") eq \"up\" ? $" + n + " : NaN):" + df +
+                  " with linespoints pt 7 ps 0.4 lc rgb 'gray60' title 'over static load, up'";
+    f.series[1] =
+        "'" + data + "' using (strcol(" + d + ") eq \"down\" ? $" + n + " : NaN):" + df +
+        " with linespoints pt 6 ps 0.6 dt 2 lc rgb 'gray60' title 'over static load, down'";
+    f.series.insert(
+        f.series.begin() + 2,
+        {"'" + data + "' using (strcol(" + d + ") eq \"up\" ? $" + n + " : NaN):" + qs +
+             " with linespoints pt 7 ps 0.6 lw 1.5 lc rgb 'blue' title 'over "
+             "quasi-static peak, up'",
+         "'" + data + "' using (strcol(" + d + ") eq \"down\" ? $" + n + " : NaN):" + qs +
+             " with linespoints pt 6 ps 0.9 dt 2 lc rgb 'blue' title 'over "
+             "quasi-static peak, down'"});
+  }
   return f;
 }
 

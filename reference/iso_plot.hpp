@@ -17,8 +17,11 @@ void write_iso_kv_band(const std::filesystem::path& file, const IsoScale& scale,
 // The figure `name`: from `data` (CSV with a header) the dynamic factor in column df_column
 // against N in n_column, up and down told apart by the word in direction_column; ISO's K_v from
 // `band` (write_iso_kv_band), N = 1 marked, and N with ISO's own c_gamma_alpha on the top axis.
+// With `quasi_static` the figure also draws the dynamic factor over the quasi-static peak, the
+// column over IsoScale::quasi_static_force_ratio (the run's zero-speed limit), which tends to 1
+// where ISO's K_v does, and its labels say which curve is which.
 Figure dynamic_factor_vs_iso_n(const std::string& name, const IsoScale& scale,
                                const std::string& data, int direction_column, int n_column,
-                               int df_column, const std::string& band);
+                               int df_column, const std::string& band, bool quasi_static = false);
 
 }  // namespace gearimpact::cli

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   gearimpact::cli::register_stiffness_commands(app);
   gearimpact::cli::register_reproduce_commands(app);
+  gearimpact::cli::register_report_commands(app);
   gearimpact::cli::register_simulate_commands(app);
   gearimpact::cli::register_case_commands(app);
   gearimpact::cli::register_schema_commands(app);

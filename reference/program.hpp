@@ -3,19 +3,17 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "gearimpact/batch/steady_sweep.hpp"
 #include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/stiffness/fillet_foundation.hpp"
 #include "gearimpact/stiffness/model.hpp"
 
 namespace gearimpact::cli {
-
-// Whether the model's foundation fit is used outside its range for this pair (its inputs are the
-// gears' own, the same at every position); false for a model without the foundation term.
-bool foundation_extrapolated(const GearPair& pair, const StiffnessModel& model);
 
 // The most contact positions the stiffness commands sample (--points, --samples, and the Python
 // package's points and samples): more only cost time, the curves are smooth long before.
@@ -27,12 +25,20 @@ struct MeshStiffnessTexts {
   std::string csv;
   std::string summary_json;
   bool extrapolated = false;
+  std::vector<FoundationExtrapolation> extrapolations;  // which gears, inputs and ranges
 };
 MeshStiffnessTexts mesh_stiffness_texts(const GearPair& pair, const StiffnessModel& model,
                                         int samples);
 
-// `gearimpact iso6336`: the JSON of ISO 6336-1 method B for the pair at this helix angle.
-std::string iso6336_text(const GearPair& pair, double helix_angle_deg);
+// `gearimpact iso6336`: the JSON of ISO 6336-1 method B for the pair at this helix angle, with
+// the low-load correction at a specific load F_t K_A / b (N/m) when one is given.
+std::string iso6336_text(const GearPair& pair, double helix_angle_deg,
+                         std::optional<double> specific_load_n_per_m = std::nullopt);
+
+// `iso6336 --load TEXT`: a load per face width F_t K_A / b ("50 N/mm") or the pinion's torque
+// ("150 N*m", F_t = |T1| / r1 at the reference circle, K_A = 1), as F_t K_A / b in N/m. Throws
+// InputError naming --load, with the units of both, for anything else or a load <= 0.
+double specific_load_of(const std::string& text, const GearPair& pair);
 
 // `gearimpact sweep CASE OPTIONS...` on the case `c`: the rows and the spec, nothing written and
 // no progress printed (--out and --no-plots are read and not used). Throws InputError naming the

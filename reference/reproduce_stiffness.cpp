@@ -58,9 +58,9 @@ ReportSection reproduce_stiffness(const ReproduceContext& context) {
       "mm) under the three named models and ISO 6336-1 method B (`stiffness_models.png`, data "
       "`stiffness_tvms_<model>.csv`). ISO is an empirical fit with a scatter of its own: a band, "
       "not an identity.";
-  if (pe.at_pitch_point.foundation_extrapolated) {
-    text += " Warning: " + foundation_extrapolation_warning() +
-            " (the pinion's theta_f is above the fit's 0.12 rad).";
+  if (!pe.tvms.foundation_extrapolations.empty()) {
+    text +=
+        " Warning: " + foundation_extrapolation_warning(pe.tvms.foundation_extrapolations) + ".";
   }
   text += "\n\nOver one mesh period (N/m; per cent against ISO's c_gamma_alpha b = " +
           number(comparison.iso_mesh_n_per_m, 4) +

@@ -153,7 +153,9 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
     series_file->commit();
   }
   if (result.summary.foundation_extrapolated) {
-    std::fprintf(stderr, "gearimpact: warning: %s\n", foundation_extrapolation_warning().c_str());
+    std::fprintf(
+        stderr, "gearimpact: warning: %s\n",
+        foundation_extrapolation_warning(result.summary.foundation_extrapolations).c_str());
   }
   std::fputs(summary_json(result.summary).c_str(), stdout);
 }

@@ -1,6 +1,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -8,6 +9,7 @@
 #include "case_flags.hpp"
 #include "commands.hpp"
 #include "gearimpact/case/schema.hpp"
+#include "gearimpact/case/units.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
@@ -32,6 +34,7 @@ struct StiffnessOptions {
   int samples = 200;
   bool summary = false;
   double helix_angle_deg = 0.0;
+  std::string load;  // iso6336 --load, empty: none
 };
 
 // The gear pair and the stiffness model: the paper's pair with the default model, or a case
@@ -44,7 +47,8 @@ struct PairAndModel {
 PairAndModel pair_and_model(StiffnessOptions& options) {
   SimulationCase c;
   c.gears = paper_gear_pair();
-  if (!options.case_file.empty()) c = read_case_file(options.case_file);
+  // The pair and its model are all these commands read: a pair file ([gears], [model]) will do.
+  if (!options.case_file.empty()) c = read_pair_or_run_file(options.case_file).simulation_case;
   options.keys.apply(c);
   validate(c.gears);
   validate(c.model.stiffness);
@@ -52,10 +56,11 @@ PairAndModel pair_and_model(StiffnessOptions& options) {
 }
 
 // Prints the warning to stderr when the model's foundation fit is
-// extrapolated for this pair.
-void warn_if(bool extrapolated) {
-  if (extrapolated) {
-    std::fprintf(stderr, "gearimpact: warning: %s\n", foundation_extrapolation_warning().c_str());
+// extrapolated for this pair, naming each gear, parameter, value and range.
+void warn_if(const std::vector<FoundationExtrapolation>& extrapolations) {
+  if (!extrapolations.empty()) {
+    std::fprintf(stderr, "gearimpact: warning: %s\n",
+                 foundation_extrapolation_warning(extrapolations).c_str());
   }
 }
 
@@ -91,20 +96,22 @@ void print_stiffness_table(StiffnessOptions& options, const CLI::App& command) {
                                     ? parse_x_values(options.x_values, pair)
                                     : contact_positions(pair, options.points);
   const std::string csv = stiffness_csv(pair, model, x);
-  warn_if(foundation_extrapolated(pair, model));
+  warn_if(foundation_extrapolations(pair, model));
   std::fputs(csv.c_str(), stdout);
 }
 
 void print_mesh_stiffness(StiffnessOptions& options) {
   const auto [pair, model] = pair_and_model(options);
   const MeshStiffnessTexts texts = mesh_stiffness_texts(pair, model, options.samples);
-  warn_if(texts.extrapolated);
+  warn_if(texts.extrapolations);
   std::fputs((options.summary ? texts.summary_json : texts.csv).c_str(), stdout);
 }
 
 void print_iso6336(StiffnessOptions& options) {
   const auto [pair, model] = pair_and_model(options);
-  std::fputs(iso6336_text(pair, options.helix_angle_deg).c_str(), stdout);
+  std::optional<double> load;
+  if (!options.load.empty()) load = specific_load_of(options.load, pair);
+  std::fputs(iso6336_text(pair, options.helix_angle_deg, load).c_str(), stdout);
 }
 
 void add_pair_options(CLI::App* command, StiffnessOptions& options) {
@@ -128,13 +135,6 @@ void add_model_options(CLI::App* command, StiffnessOptions& options, CaseCommand
 
 }  // namespace
 
-bool foundation_extrapolated(const GearPair& pair, const StiffnessModel& model) {
-  if (!provides(model.kind, Term::foundation) || !model.terms.has(Term::foundation)) return false;
-  // The fit's inputs h_f and theta_f are the gears' own, the same at every
-  // position.
-  return mesh_stiffness(pair, contact_segment(pair).start_m, model).foundation_extrapolated;
-}
-
 MeshStiffnessTexts mesh_stiffness_texts(const GearPair& pair, const StiffnessModel& model,
                                         int samples) {
   if (samples < 2 || samples > kMostSamples) {
@@ -143,15 +143,37 @@ MeshStiffnessTexts mesh_stiffness_texts(const GearPair& pair, const StiffnessMod
   }
   const TimeVaryingMeshStiffness tvms =
       time_varying_mesh_stiffness(pair, model, static_cast<std::size_t>(samples));
-  const bool extrapolated = foundation_extrapolated(pair, model);
-  return {mesh_stiffness_csv(tvms),
-          mesh_stiffness_summary_json(tvms, contact_ratio(pair), extrapolated), extrapolated};
+  return {mesh_stiffness_csv(tvms), mesh_stiffness_summary_json(tvms, contact_ratio(pair)),
+          !tvms.foundation_extrapolations.empty(), tvms.foundation_extrapolations};
 }
 
-std::string iso6336_text(const GearPair& pair, double helix_angle_deg) {
+std::string iso6336_text(const GearPair& pair, double helix_angle_deg,
+                         std::optional<double> specific_load_n_per_m) {
   constexpr double degree = pi / 180.0;
-  const Iso6336Stiffness iso = iso6336_method_b(iso6336_pair(pair, helix_angle_deg * degree));
-  return iso6336_json(iso, pair.face_width_m);
+  Iso6336Pair iso_pair = iso6336_pair(pair, helix_angle_deg * degree);
+  iso_pair.specific_load_n_per_m = specific_load_n_per_m;
+  return iso6336_json(iso6336_method_b(iso_pair), pair.face_width_m, specific_load_n_per_m);
+}
+
+double specific_load_of(const std::string& text, const GearPair& pair) {
+  const std::string allowed = "a load per face width F_t K_A / b > 0 (" +
+                              allowed_units(Dimension::stiffness) + ") or the pinion's torque (" +
+                              allowed_units(Dimension::torque) + "), not 0";
+  try {
+    // A torque acts at the pinion's reference circle, K_A = 1.
+    const double torque = parse_quantity(text, Dimension::torque, "--load");
+    if (torque == 0.0) throw InputError("--load", text, allowed);
+    return std::fabs(torque) / pitch_radius(pair, Gear::one) / pair.face_width_m;
+  } catch (const InputError&) {
+  }
+  double load = 0.0;
+  try {
+    load = parse_quantity(text, Dimension::stiffness, "--load");
+  } catch (const InputError&) {
+    throw InputError("--load", text, allowed);
+  }
+  if (!(load > 0.0)) throw InputError("--load", text, allowed);
+  return load;
 }
 
 void register_stiffness_commands(CLI::App& app) {
@@ -194,6 +216,9 @@ void register_stiffness_commands(CLI::App& app) {
   iso->add_option("--helix-angle", iso_options->helix_angle_deg,
                   "helix angle, deg, in [0, 45) (default 0: the spur pair)")
       ->check(CLI::Range(0.0, 44.999999));
+  iso->add_option("--load", iso_options->load,
+                  "F_t K_A / b (\"50 N/mm\") or the pinion's torque (\"150 N*m\", K_A = 1): "
+                  "below 100 N/mm c' takes ISO 6336-1's low-load factor (F_t K_A / b / 100)^0.25");
   iso->callback([iso_options] { print_iso6336(*iso_options); });
 }
 

@@ -365,7 +365,7 @@ void render_iso_plot(const std::filesystem::path& dir, const IsoScale& iso,
                      const std::vector<SweepPointResult>& rows) {
   std::string data =
       "line,direction,index,w1_rad_s,iso_resonance_ratio,iso_resonance_ratio_iso_stiffness,"
-      "dynamic_factor\n";
+      "dynamic_factor,dynamic_factor_quasi_static\n";
   double n_max = 0.0;
   std::vector<double> ns, dfs;
   for (const SweepPointResult& r : rows) {
@@ -380,12 +380,13 @@ void render_iso_plot(const std::filesystem::path& dir, const IsoScale& iso,
             "," + format_number(r.value_si) + "," + format_number(n) + "," +
             format_number(
                 iso_resonance_ratio(r.value_si, iso.resonance_speed_iso_stiffness_rad_per_s)) +
-            "," + (df ? format_number(*df) : "") + "\n";
+            "," + (df ? format_number(*df) : "") + "," +
+            (df ? format_number(*df / iso.quasi_static_force_ratio) : "") + "\n";
   }
   write_file_atomically((dir / "dynamic_factor_vs_iso_n.csv").string(), data);
   write_iso_kv_band(dir / "iso_kv_band.csv", iso, std::max(2.0, 1.1 * n_max));
   Figure f = dynamic_factor_vs_iso_n("dynamic_factor_vs_iso_n", iso, "dynamic_factor_vs_iso_n.csv",
-                                     2, 5, 7, "iso_kv_band.csv");
+                                     2, 5, 7, "iso_kv_band.csv", true);
   // The ticks of the swept range, readable at any width; the dynamic factor from 0 up.
   const auto [n_low, n_high] = extremes(ns);
   const Ticks x = nice_ticks(n_low, n_high);

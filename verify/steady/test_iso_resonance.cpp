@@ -7,10 +7,13 @@
 #include <cmath>
 #include <numbers>
 
+#include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/steady/closed_forms.hpp"
 #include "gearimpact/steady/iso_resonance.hpp"
+#include "gearimpact/steady/steady_state.hpp"
 #include "relative.hpp"
+#include "steady_cases.hpp"
 
 using namespace gearimpact;
 using gearimpact::verify::relative_difference;
@@ -110,4 +113,57 @@ TEST_CASE("K_v band of perfect gears at the values docs/steady-state.md quotes")
   CHECK_THROWS_AS((void)iso_dynamic_factor_perfect_gears(1.0, 1.0, heavy), InputError);
   CHECK_THROWS_AS((void)iso_dynamic_factor_perfect_gears(-0.1, eps_alpha, heavy), InputError);
   CHECK_THROWS_AS((void)iso_resonance_speed_rad_per_s(0, 2e10, 5.0), InputError);
+}
+
+// The dynamic factor against the static load and against the quasi-static peak: at N -> 0 the
+// first tends to the force jump where a pair enters (K_after / K_before), the second to 1, where
+// ISO's K_v is 1.
+TEST_CASE(
+    "dynamic factor at N -> 0: the entry jump over the static load, 1 over the quasi-static") {
+  SimulationCase c = steady_test::loaded_paper_pair(100.0);
+  const StiffnessTable table(c.gears, c.model.stiffness);
+  // The jump by another route: the loaded pairs' summed Ke at 4000 rotations across one pitch,
+  // the largest rise from one to the next. Between samples the smooth change is about 1/4000 of
+  // the stiffness's variation over a pitch, so 1e-3 bounds the difference.
+  double jump = 1.0;
+  double previous = 0.0;
+  const double pitch_rad = 2.0 * std::numbers::pi / c.gears.teeth1;
+  for (int i = 0; i <= 4000; ++i) {
+    const LoadedPairs pairs = loaded_pairs(c.gears, Region::n1, pitch_rad * i / 4000.0);
+    double k = 0.0;
+    for (std::size_t j = 0; j < pairs.count; ++j) k += table.stiffness(pairs.position_m[j]);
+    if (i > 0) jump = std::max(jump, k / previous);
+    previous = k;
+  }
+  const double ratio = quasi_static_force_ratio(c, table);
+  CHECK(relative_difference(ratio, jump) <= 1e-3);
+  REQUIRE(ratio > 1.2);  // the paper's pair: one pair to two is a large step
+
+  // N = 0.02: a mesh period of 50 natural periods, the single-pair zone about 15 of them, over
+  // which zeta = 0.05 damps the exit's vibration by exp(-2 pi 0.05 15) < 1 %. The entry then
+  // meets the pairs at their static deflection: the peak is the jump within a few per cent.
+  const IsoScale scale = *iso_scale(c, table);
+  CHECK(scale.quasi_static_force_ratio == ratio);
+  c = steady_test::loaded_paper_pair(0.02 * scale.resonance_speed_rad_per_s);
+  const SteadyPoint slow = find_steady_state(c, table, SteadySettings{});
+  REQUIRE(slow.converged);
+  REQUIRE(slow.dynamic_factor);
+  const double over_static = *slow.dynamic_factor;
+  const double over_quasi_static = over_static / scale.quasi_static_force_ratio;
+  MESSAGE("entry jump " << ratio << ", dynamic factor at N = 0.02: " << over_static
+                        << " over the static load, " << over_quasi_static
+                        << " over the quasi-static peak");
+  CHECK(std::fabs(over_static - ratio) <= 0.03 * ratio);
+  CHECK(std::fabs(over_quasi_static - 1.0) <= 0.03);
+
+  // A constant mesh stiffness has no jump: both factors tend to 1 (the mean force is the static
+  // load, no excitation is left).
+  SimulationCase constant = c;
+  constant.model.mesh_stiffness = MeshStiffnessMode::constant;
+  constant.model.constant_mesh_stiffness_n_per_m = mean_mesh_stiffness_n_per_m(c, table);
+  const StiffnessTable constant_table(constant.gears, constant.model.stiffness);
+  CHECK(quasi_static_force_ratio(constant, constant_table) == 1.0);
+  const SteadyPoint flat = find_steady_state(constant, constant_table, SteadySettings{});
+  REQUIRE(flat.converged);
+  CHECK(std::fabs(*flat.dynamic_factor - 1.0) <= 0.01);
 }

@@ -103,15 +103,24 @@ TEST_CASE("ISO spur: zn = z, and the paper's pair gives c' b = 1.34e8 N/m") {
   CHECK(std::fabs(r.single_stiffness_n_per_m2 * g.contact_width_m - 1.34e8) <= 0.005e8);
 }
 
-TEST_CASE("ISO low-load correction: (F_t K_A / b / 424 N/mm)^0.25 below 424 N/mm only") {
+TEST_CASE("ISO low-load correction: (F_t K_A / b / 100 N/mm)^0.25 below 100 N/mm only") {
   Iso6336Pair p = annex_a();
   const double full = iso6336_method_b(p).single_stiffness_n_per_m2;
-  p.specific_load_n_per_m = 106e3;  // a quarter of 424 N/mm
+  p.specific_load_n_per_m = 25e3;  // a quarter of 100 N/mm
   const Iso6336Stiffness low = iso6336_method_b(p);
   CHECK(relative_difference(low.low_load_factor, std::sqrt(std::sqrt(0.25))) <= 4.0 * eps);
   CHECK(relative_difference(low.single_stiffness_n_per_m2, full * low.low_load_factor) <=
         4.0 * eps);
-  p.specific_load_n_per_m = 500e3;
+  // The threshold: at 100 N/mm c' holds as stated; just below, the factor (1 - 1e-6)^0.25.
+  p.specific_load_n_per_m = 100e3;
+  CHECK(iso6336_method_b(p).single_stiffness_n_per_m2 == full);
+  CHECK(iso6336_method_b(p).low_load_factor == 1.0);
+  p.specific_load_n_per_m = 100e3 * (1.0 - 1e-6);
+  CHECK(relative_difference(iso6336_method_b(p).low_load_factor, std::pow(1.0 - 1e-6, 0.25)) <=
+        4.0 * eps);
+  CHECK(iso6336_method_b(p).low_load_factor < 1.0);
+  // 424 N/mm (an earlier, unfounded threshold) and above: no correction.
+  p.specific_load_n_per_m = 300e3;
   CHECK(iso6336_method_b(p).single_stiffness_n_per_m2 == full);
 }
 

@@ -251,7 +251,26 @@ TEST_CASE("fillet foundation: the coefficient table and the fit's range") {
     const PairStiffness k = pair_stiffness(pair, model_of(kind), pair.start_of_active_profile_m);
     CHECK(k.gear1.foundation_extrapolated);
     CHECK_FALSE(k.gear2.foundation_extrapolated);
+    // The flag the stiffness carries names that gear and its inputs.
+    const std::vector<FoundationExtrapolation> found =
+        foundation_extrapolations(pair, model_of(kind));
+    REQUIRE(found.size() == 1);
+    CHECK(found[0].gear == Gear::one);
+    CHECK(found[0].theta_f_rad == foundation_root_half_angle(pair.gear1, kind));
+    CHECK(found[0].h_f == pair.gear1.root_radius_m / (0.5 * *pair.gear1.bore_diameter_m));
+    CHECK(found[0].theta_f_outside());
+    CHECK_FALSE(found[0].h_f_outside());
   }
+  // The words: gear, parameter, value to three digits, the fit's range; h_f when it is outside.
+  CHECK(describe({Gear::one, 2.0, 0.1506}) ==
+        "pinion (gear 1): theta_f = 0.151 rad, outside the fit's [0.01, 0.12] rad");
+  CHECK(describe({Gear::two, 1.2, 0.05}) ==
+        "wheel (gear 2): h_f = r_f / r_int = 1.2, outside the fit's [1.4, 7]");
+  CHECK(foundation_extrapolation_warning({}).empty());
+  CHECK(foundation_extrapolation_warning({{Gear::two, 7.5, 0.13}}) ==
+        "the fillet-foundation fit of Sainsot et al. (2004) is used outside its range (wheel "
+        "(gear 2): theta_f = 0.13 rad, outside the fit's [0.01, 0.12] rad; h_f = r_f / r_int = "
+        "7.5, outside the fit's [1.4, 7]): the foundation term is an extrapolation");
   MESSAGE("paper pair: theta_f pinion "
           << pair.gear1.root_half_angle_rad << " rad (ROSS "
           << foundation_root_half_angle(pair.gear1, StiffnessModelKind::ross_compatible)

@@ -8,6 +8,9 @@ check_layers.py SOURCE_DIR
    The order is the one docs/architecture.md states; a folder missing from it fails too.
 2. The facade gearimpact/gearimpact.hpp includes every public header of the folders
    and nothing of INTERNAL.
+3. What the program (reference/) and the Python module (python/src/) use of the library is
+   the facade's: each of their includes of the library names the facade, a header it includes,
+   or INTERNAL plumbing, and none reaches into lib/src.
 Prints each violation as FILE:LINE and exits 1 when there is one.
 """
 import re
@@ -66,6 +69,21 @@ def main() -> int:
         failures.append(f"{include_root / 'gearimpact.hpp'}: includes internal {header}")
     for header in sorted(facade - public):
         failures.append(f"{include_root / 'gearimpact.hpp'}: includes missing {header}")
+
+    root = lib.parent
+    for folder in ("reference", "python/src"):
+        for path in sorted((root / folder).rglob("*.[ch]pp")):
+            for number, line in enumerate(path.read_text().splitlines(), 1):
+                match = re.match(r'^\s*#\s*include\s+"([^"]+)"', line)
+                if not match:
+                    continue
+                name = match.group(1)
+                if "lib/src" in name or name.startswith("../"):
+                    failures.append(f"{path}:{number}: includes {name}, inside the library")
+                elif name.startswith("gearimpact/"):
+                    header = name[len("gearimpact/"):]
+                    if header != "gearimpact.hpp" and header not in facade | INTERNAL:
+                        failures.append(f"{path}:{number}: includes {name}, not in the facade")
 
     for failure in failures:
         print(failure)

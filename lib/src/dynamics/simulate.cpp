@@ -83,11 +83,8 @@ SimulationResult simulate_checked(const SimulationCase& c, const StiffnessTable&
                                 ? run_rk4(c, table, control)
                                 : run_adaptive(c, table, control);
   const StiffnessModel& k = c.model.stiffness;
-  if (provides(k.kind, Term::foundation) && k.terms.has(Term::foundation)) {
-    // The fit's inputs (h_f, theta_f) are the teeth's, the same at every position.
-    result.summary.foundation_extrapolated =
-        mesh_stiffness(c.gears, contact_segment(c.gears).start_m, k).foundation_extrapolated;
-  }
+  result.summary.foundation_extrapolations = foundation_extrapolations(c.gears, k);
+  result.summary.foundation_extrapolated = !result.summary.foundation_extrapolations.empty();
   return result;
 }
 

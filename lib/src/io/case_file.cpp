@@ -235,11 +235,29 @@ std::string key_list(std::string_view section) {
   return names;
 }
 
+// A pair file needs the required keys of its own sections only.
+bool required_in(const Field& field, CaseFileKind kind) {
+  return field.required &&
+         (kind == CaseFileKind::run || field.section.empty() || is_pair_section(field.section));
+}
+
+// A file whose every section is a pair section is a pair file.
+CaseFileKind kind_of(const toml::value& root) {
+  if (!root.is_table()) return CaseFileKind::run;
+  for (const auto& [key, value] : root.as_table()) {
+    const Field* field = find_field(key);
+    const bool top_level_key = field != nullptr && field->section.empty();
+    if (!top_level_key && !is_pair_section(key)) return CaseFileKind::run;
+  }
+  return CaseFileKind::pair;
+}
+
 // The tables of a parsed file, each checked against the schema's keys of its
 // section: unknown sections and keys are refused (typos do not pass silently).
 class Document {
  public:
-  Document(const Reader& reader, const toml::value& root) : reader_(reader), root_(root) {
+  Document(const Reader& reader, const toml::value& root, CaseFileKind kind)
+      : reader_(reader), root_(root), kind_(kind) {
     const std::vector<std::string_view> sections = schema_sections();
     std::vector<std::string> unknown;
     for (const auto& [key, value] : root.as_table()) {
@@ -283,9 +301,10 @@ class Document {
     const std::string section_name(name);
     const toml::value* table = section(name);
     if (table == nullptr) {
-      const bool required = std::any_of(
-          case_schema().begin(), case_schema().end(),
-          [&](const Field& f) { return f.section == name && f.required && !f.only_when; });
+      const bool required =
+          std::any_of(case_schema().begin(), case_schema().end(), [&](const Field& f) {
+            return required_in(f, kind_) && f.section == name && !f.only_when;
+          });
       if (required) {
         reader_.fail(
             section_name, nullptr,
@@ -317,6 +336,7 @@ class Document {
 
   const Reader& reader_;
   const toml::value& root_;
+  CaseFileKind kind_;
 };
 
 // What a missing required key needs, for the message.
@@ -472,9 +492,9 @@ double read_value(const Reader& reader, const Field& field, const toml::value& v
   reader.out_of_range(e.field(), at, value, e.allowed());
 }
 
-SimulationCase read_case(const Reader& reader, const toml::value& root,
-                         std::string_view file_name) {
-  const Document document(reader, root);
+SimulationCase read_case(const Reader& reader, const toml::value& root, std::string_view file_name,
+                         CaseFileKind kind) {
+  const Document document(reader, root, kind);
   SimulationCase result;
   result.name = stem_of(file_name);
   for (const Field& field : case_schema()) {
@@ -491,7 +511,7 @@ SimulationCase read_case(const Reader& reader, const toml::value& root,
       continue;
     }
     if (value == nullptr) {
-      if (field.required) {
+      if (required_in(field, kind)) {
         reader.fail(name, document.section(field.section),
                     name + " is missing (required: " + expected_of(field) + ")");
       }
@@ -531,7 +551,9 @@ SimulationCase read_case(const Reader& reader, const toml::value& root,
   }
   // The dynamics refuses a step that cannot resolve the contact or the mesh
   // period, and torques that imply a deflection past the tooth model; the
-  // file says so here, at the key's line, before any work starts.
+  // file says so here, at the key's line, before any work starts. A pair
+  // file describes no run.
+  if (kind == CaseFileKind::pair) return result;
   try {
     validate_implied(result);
   } catch (const QuadratureError& e) {
@@ -617,10 +639,9 @@ TomlError toml_error(const std::string& report) {
   return error;
 }
 
-}  // namespace
-
-SimulationCase parse_case(std::string_view toml_text, std::string_view file_name) {
-  const Reader reader{std::string(file_name)};
+// Parses the text to TOML, refusing what no case file can be. Throws CaseFileError.
+toml::value parse_toml(const Reader& reader, std::string_view toml_text,
+                       std::string_view file_name) {
   if (toml_text.size() > kLargestFileBytes) {
     reader.fail(
         "", nullptr,
@@ -662,10 +683,10 @@ SimulationCase parse_case(std::string_view toml_text, std::string_view file_name
     if (error.line > 0) reader.fail_at_line(error.line, "not valid TOML: " + error.message);
     reader.fail("", nullptr, "not valid TOML: " + error.message);
   }
-  return read_case(reader, root, file_name);
+  return root;
 }
 
-SimulationCase read_case_file(const std::filesystem::path& path) {
+std::string read_text(const std::filesystem::path& path) {
   const std::string file = path.string();
   std::error_code error;
   const std::uintmax_t size = std::filesystem::file_size(path, error);
@@ -677,8 +698,34 @@ SimulationCase read_case_file(const std::filesystem::path& path) {
   }
   std::ifstream stream(path, std::ios::binary);
   if (!stream) throw CaseFileError(file, "", file + ": cannot be opened");
-  const std::string text{std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>()};
-  return parse_case(text, file);
+  return {std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>()};
+}
+
+}  // namespace
+
+bool is_pair_section(std::string_view section) {
+  return section == "gears" || section == "model";
+}
+
+SimulationCase parse_case(std::string_view toml_text, std::string_view file_name) {
+  const Reader reader{std::string(file_name)};
+  const toml::value root = parse_toml(reader, toml_text, file_name);
+  return read_case(reader, root, file_name, CaseFileKind::run);
+}
+
+PairOrRunCase parse_pair_or_run(std::string_view toml_text, std::string_view file_name) {
+  const Reader reader{std::string(file_name)};
+  const toml::value root = parse_toml(reader, toml_text, file_name);
+  const CaseFileKind kind = kind_of(root);
+  return {read_case(reader, root, file_name, kind), kind};
+}
+
+PairOrRunCase read_pair_or_run_file(const std::filesystem::path& path) {
+  return parse_pair_or_run(read_text(path), path.string());
+}
+
+SimulationCase read_case_file(const std::filesystem::path& path) {
+  return parse_case(read_text(path), path.string());
 }
 
 std::string write_case_file(const SimulationCase& c, CaseUnits units) {

@@ -95,7 +95,8 @@ std::string summary_json(const SimulationSummary& s) {
     out += std::string("  \"foundation_extrapolated\": ") +
            (s.foundation_extrapolated ? "true" : "false") + ",\n";
     if (s.foundation_extrapolated) {
-      out += "  \"warning\": " + json_string(foundation_extrapolation_warning()) + ",\n";
+      out += "  \"warning\": " +
+             json_string(foundation_extrapolation_warning(s.foundation_extrapolations)) + ",\n";
     }
   }
   json_number(out, "ledger_residual_J", s.ledger_residual_j);
@@ -217,25 +218,25 @@ std::string mesh_stiffness_csv(const TimeVaryingMeshStiffness& tvms) {
   return out;
 }
 
-std::string foundation_extrapolation_warning() {
-  return "the fillet-foundation fit of Sainsot et al. (2004) is used outside its range (h_f in "
-         "[1.4, 7], theta_f in [0.01, 0.12] rad): the foundation term is an extrapolation";
-}
-
-std::string mesh_stiffness_summary_json(const TimeVaryingMeshStiffness& tvms, double contact_ratio,
-                                        bool extrapolated) {
+std::string mesh_stiffness_summary_json(const TimeVaryingMeshStiffness& tvms,
+                                        double contact_ratio) {
+  const bool extrapolated = !tvms.foundation_extrapolations.empty();
   std::string out = "{\n";
   json_number(out, "min_n_m", tvms.min_n_per_m);
   json_number(out, "max_n_m", tvms.max_n_per_m);
   json_number(out, "mean_n_m", tvms.mean_n_per_m);
   json_number(out, "contact_ratio", contact_ratio);
   out += std::string("  \"extrapolated\": ") + (extrapolated ? "true" : "false");
-  if (extrapolated) out += ",\n  \"warning\": " + json_string(foundation_extrapolation_warning());
+  if (extrapolated) {
+    out += ",\n  \"warning\": " +
+           json_string(foundation_extrapolation_warning(tvms.foundation_extrapolations));
+  }
   out += "\n}\n";
   return out;
 }
 
-std::string iso6336_json(const Iso6336Stiffness& iso, double face_width_m) {
+std::string iso6336_json(const Iso6336Stiffness& iso, double face_width_m,
+                         std::optional<double> specific_load_n_per_m) {
   // ISO's unit N/(mm um) is 1e9 N/m^2.
   constexpr double n_per_mm_um = 1e9;
   std::string out = "{\n";
@@ -246,7 +247,12 @@ std::string iso6336_json(const Iso6336Stiffness& iso, double face_width_m) {
   json_number(out, "c_gamma_alpha_n_mm_um", iso.mesh_stiffness_n_per_m2 / n_per_mm_um);
   json_number(out, "eps_alpha", iso.transverse_contact_ratio);
   json_number(out, "c_prime_b_n_m", iso.single_stiffness_n_per_m2 * face_width_m);
-  json_number(out, "c_gamma_alpha_b_n_m", iso.mesh_stiffness_n_per_m2 * face_width_m, true);
+  json_number(out, "c_gamma_alpha_b_n_m", iso.mesh_stiffness_n_per_m2 * face_width_m,
+              !specific_load_n_per_m);
+  if (specific_load_n_per_m) {
+    json_number(out, "specific_load_n_mm", *specific_load_n_per_m * 1e-3);
+    json_number(out, "low_load_factor", iso.low_load_factor, true);
+  }
   out += "}\n";
   return out;
 }

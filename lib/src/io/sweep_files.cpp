@@ -86,6 +86,7 @@ Json spec_json(const SteadySweepRecord& s) {
     j["iso_resonance_speed_iso_stiffness_rad_s"] = s.iso->resonance_speed_iso_stiffness_rad_per_s;
     j["iso_contact_ratio"] = s.iso->contact_ratio;
     j["iso_line_load_n_m"] = s.iso->line_load_n_per_m;
+    j["quasi_static_force_ratio"] = s.iso->quasi_static_force_ratio;
   }
   j["tolerance"] = s.tolerance;
   j["steps_per_contact_period"] = s.steps_per_contact_period;
@@ -138,6 +139,7 @@ SteadySweepRecord spec_record(const Json& j, const std::string& file) {
           j.at("iso_resonance_speed_iso_stiffness_rad_s").get<double>();
       iso.contact_ratio = j.at("iso_contact_ratio").get<double>();
       iso.line_load_n_per_m = j.at("iso_line_load_n_m").get<double>();
+      iso.quasi_static_force_ratio = j.at("quasi_static_force_ratio").get<double>();
       s.iso = iso;
     }
     s.tolerance = j.at("tolerance").get<double>();

@@ -96,6 +96,17 @@ IsoDynamicFactor iso_dynamic_factor_perfect_gears(double resonance_ratio,
   return {c.c_v7 + (resonance_value - c.c_v7) * (1.5 - n) / 0.35, IsoSpeedRange::intermediate};
 }
 
+double quasi_static_force_ratio(const SimulationCase& c, const StiffnessTable& table) {
+  if (c.model.mesh_stiffness == MeshStiffnessMode::constant) return 1.0;
+  const ContactSegment segment = contact_segment(c.gears);
+  const double t0 = base_pitch(c.gears);
+  double before = 0.0;
+  for (int k = 1; segment.start_m + k * t0 <= segment.end_m; ++k) {
+    before += table.stiffness(segment.start_m + k * t0);
+  }
+  return (before + table.stiffness(segment.start_m)) / before;
+}
+
 std::optional<IsoScale> iso_scale(const SimulationCase& c, const StiffnessTable& table) {
   const GearPair& g = c.gears;
   const double r1 = pitch_radius(g, Gear::one);
@@ -115,6 +126,7 @@ std::optional<IsoScale> iso_scale(const SimulationCase& c, const StiffnessTable&
       iso_resonance_speed_rad_per_s(g.teeth1, iso.mesh_stiffness_n_per_m2, m_red);
   scale.contact_ratio = iso.transverse_contact_ratio;
   scale.line_load_n_per_m = line_load;
+  scale.quasi_static_force_ratio = quasi_static_force_ratio(c, table);
   return scale;
 }
 

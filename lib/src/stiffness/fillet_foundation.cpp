@@ -1,6 +1,7 @@
 #include "gearimpact/stiffness/fillet_foundation.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
@@ -40,6 +41,46 @@ FoundationFit sainsot_coefficients(double h_f, double theta_f_rad) {
                      theta_f_rad < sainsot_fit_min_theta_f_rad ||
                      theta_f_rad > sainsot_fit_max_theta_f_rad;
   return fit;
+}
+
+bool FoundationExtrapolation::h_f_outside() const {
+  return h_f < sainsot_fit_min_h_f || h_f > sainsot_fit_max_h_f;
+}
+
+bool FoundationExtrapolation::theta_f_outside() const {
+  return theta_f_rad < sainsot_fit_min_theta_f_rad || theta_f_rad > sainsot_fit_max_theta_f_rad;
+}
+
+std::vector<FoundationExtrapolation> foundation_extrapolation(Gear gear, double h_f,
+                                                              double theta_f_rad) {
+  const FoundationExtrapolation e{gear, h_f, theta_f_rad};
+  if (!e.h_f_outside() && !e.theta_f_outside()) return {};
+  return {e};
+}
+
+std::string describe(const FoundationExtrapolation& e) {
+  // Three digits tell a value from a bound of two; the bounds print as the fit states them.
+  char text[256];
+  std::string out = e.gear == Gear::one ? "pinion (gear 1): " : "wheel (gear 2): ";
+  if (e.theta_f_outside()) {
+    std::snprintf(text, sizeof text, "theta_f = %.3g rad, outside the fit's [%g, %g] rad",
+                  e.theta_f_rad, sainsot_fit_min_theta_f_rad, sainsot_fit_max_theta_f_rad);
+    out += text;
+  }
+  if (e.h_f_outside()) {
+    std::snprintf(text, sizeof text, "%sh_f = r_f / r_int = %.3g, outside the fit's [%g, %g]",
+                  e.theta_f_outside() ? "; " : "", e.h_f, sainsot_fit_min_h_f, sainsot_fit_max_h_f);
+    out += text;
+  }
+  return out;
+}
+
+std::string foundation_extrapolation_warning(const std::vector<FoundationExtrapolation>& gears) {
+  if (gears.empty()) return "";
+  std::string list;
+  for (const FoundationExtrapolation& e : gears) list += (list.empty() ? "" : "; ") + describe(e);
+  return "the fillet-foundation fit of Sainsot et al. (2004) is used outside its range (" + list +
+         "): the foundation term is an extrapolation";
 }
 
 double fillet_foundation_compliance(const FoundationCoefficients& k, double youngs_modulus_pa,

@@ -12,8 +12,9 @@ namespace gearimpact {
 namespace {
 
 constexpr double degree = pi / 180.0;
-// The reference specific load of the low-load correction, 424 N/mm in N/m.
-constexpr double reference_specific_load_n_per_m = 424.0e3;
+// ISO 6336-1 method B: c' holds for F_t K_A / b >= 100 N/mm; below, it is multiplied by
+// (F_t K_A / b / 100 N/mm)^0.25. The load in N/m.
+constexpr double reference_specific_load_n_per_m = 100.0e3;
 
 // Transverse quantities of ISO 21771 for a helix angle beta.
 struct Transverse {

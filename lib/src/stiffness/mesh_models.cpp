@@ -22,7 +22,25 @@ void require_bore(const RackGearGeometry& geometry, Gear gear) {
   }
 }
 
+double foundation_h_f(const RackGearGeometry& gear) {
+  return gear.root_radius_m / (0.5 * *gear.bore_diameter_m);
+}
+
 }  // namespace
+
+std::vector<FoundationExtrapolation> foundation_extrapolations(const RackGearPairGeometry& pair,
+                                                               const StiffnessModel& model) {
+  if (!model.terms.has(Term::foundation)) return {};
+  std::vector<FoundationExtrapolation> found;
+  for (const auto& [gear, which] : {std::pair{&pair.gear1, Gear::one}, {&pair.gear2, Gear::two}}) {
+    require_bore(*gear, which);
+    for (const FoundationExtrapolation& e : foundation_extrapolation(
+             which, foundation_h_f(*gear), foundation_root_half_angle(*gear, model.kind))) {
+      found.push_back(e);
+    }
+  }
+  return found;
+}
 
 double hertz_stiffness_two_materials(double width_m, double youngs_modulus1_pa,
                                      double poisson_ratio1, double youngs_modulus2_pa,
@@ -101,7 +119,7 @@ ToothCompliances tooth_compliances(const RackGearGeometry& gear, Gear which,
   if (foundation) {
     require_bore(gear, which);
     const double theta_f = foundation_root_half_angle(gear, model.kind);
-    const double h_f = gear.root_radius_m / (0.5 * *gear.bore_diameter_m);
+    const double h_f = foundation_h_f(gear);
     const FoundationFit fit = sainsot_coefficients(h_f, theta_f);
     c.foundation_m_per_n = fillet_foundation_compliance(
         fit.coefficients, e, contact_width_m, foundation_load_height(gear, contact, model.kind),

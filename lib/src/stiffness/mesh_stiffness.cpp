@@ -102,6 +102,12 @@ MeshStiffness rack_model_stiffness(const GearPair& pair, double x1_m, const Stif
 
 }  // namespace
 
+std::vector<FoundationExtrapolation> foundation_extrapolations(const GearPair& pair,
+                                                               const StiffnessModel& model) {
+  if (!provides(model.kind, Term::foundation) || !model.terms.has(Term::foundation)) return {};
+  return foundation_extrapolations(rack_gear_pair_geometry(pair), model);
+}
+
 MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessModel& model) {
   validate_terms(model);
   if (model.kind != StiffnessModelKind::yang_lin_1987) {

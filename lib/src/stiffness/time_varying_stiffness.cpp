@@ -178,7 +178,10 @@ TimeVaryingMeshStiffness time_varying_mesh_stiffness(const RackGearPairGeometry&
                                                      std::size_t sample_count) {
   require_samples(sample_count);
   validate(model, pair);
-  return time_varying(path_of(pair, model), model.relative_tolerance, sample_count);
+  TimeVaryingMeshStiffness result =
+      time_varying(path_of(pair, model), model.relative_tolerance, sample_count);
+  result.foundation_extrapolations = foundation_extrapolations(pair, model);
+  return result;
 }
 
 TimeVaryingMeshStiffness time_varying_mesh_stiffness(const GearPair& pair,
@@ -194,7 +197,34 @@ TimeVaryingMeshStiffness time_varying_mesh_stiffness(const GearPair& pair,
                   pair.teeth1,
                   [&pair, &model](double x1_m) {
                     return mesh_stiffness(pair, x1_m, model).ke; }};
-  return time_varying(path, model.relative_tolerance, sample_count);
+  TimeVaryingMeshStiffness result = time_varying(path, model.relative_tolerance, sample_count);
+  result.foundation_extrapolations = foundation_extrapolations(pair, model);
+  return result;
+}
+
+std::vector<LoadShareSample> load_sharing(const GearPair& pair, const StiffnessModel& model,
+                                          int points) {
+  if (points < 2) throw InputError("points", std::to_string(points), "an integer >= 2");
+  validate_terms(model);
+  const ContactSegment segment = contact_segment(pair);
+  const double t0 = base_pitch(pair);
+  std::vector<LoadShareSample> shares;
+  for (double x : contact_positions(pair, points)) {
+    const double own = mesh_stiffness(pair, x, model).ke;
+    double sum = own;
+    int pairs = 1;
+    // The other pairs, a whole number of base pitches either side, while on the segment.
+    for (int side : {-1, 1}) {
+      for (int k = 1;; ++k) {
+        const double other = x + side * k * t0;
+        if (other < segment.start_m || other > segment.end_m) break;
+        sum += mesh_stiffness(pair, other, model).ke;
+        ++pairs;
+      }
+    }
+    shares.push_back({x, pairs, own / sum});
+  }
+  return shares;
 }
 
 double path_mean_mesh_stiffness(const RackGearPairGeometry& pair, const StiffnessModel& model) {

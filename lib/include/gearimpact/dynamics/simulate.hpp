@@ -18,6 +18,7 @@
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/stiffness/fillet_foundation.hpp"
 #include "gearimpact/stiffness/model.hpp"
 #include "gearimpact/stiffness/table.hpp"
 #include "gearimpact/stiffness/terms.hpp"
@@ -93,6 +94,8 @@ struct SimulationSummary {
   // Whether the model's fillet-foundation term uses the fit of Sainsot et al.
   // (2004) outside its range (false for a model without that term).
   bool foundation_extrapolated = false;
+  // Which gears, with the fit's inputs (empty unless foundation_extrapolated).
+  std::vector<FoundationExtrapolation> foundation_extrapolations;
   // (kinetic + stored)(t) - (kinetic + stored)(0) - torque work + losses -
   // parametric work: zero for the exact solution. Final value and largest |value|.
   double ledger_residual_j = 0.0;

@@ -44,6 +44,27 @@ SimulationCase read_case_file(const std::filesystem::path& path);
 // TOML, lacks the key or gives it another type (read_case_file says what is wrong with it).
 std::string case_file_text(const std::filesystem::path& path, const std::string& key);
 
+// What a case file describes. A pair file has the sections [gears] and [model] only (and the
+// top-level `name`): a gear pair and its models, enough for the stiffness commands and `report`;
+// the torques, initial conditions and integrator keep their defaults and the file is no run. A run
+// file is anything else, read as read_case_file reads it: a file with [initial] but no [torque1]
+// is a run file missing a section, and is told so.
+enum class CaseFileKind { pair, run };
+
+struct PairOrRunCase {
+  SimulationCase simulation_case;
+  CaseFileKind kind = CaseFileKind::run;
+};
+
+// The sections of a pair file.
+bool is_pair_section(std::string_view section);
+
+// parse_case for a pair file or a run file: a pair file's keys are checked by their schema rows,
+// then the relations of the pair (validate_relations); what a run implies (validate_implied) is
+// checked for a run file only. Throws CaseFileError.
+PairOrRunCase parse_pair_or_run(std::string_view toml_text, std::string_view file_name);
+PairOrRunCase read_pair_or_run_file(const std::filesystem::path& path);
+
 // How write_case_file writes quantities: in the units a person would choose
 // (mm, deg, GPa, N*mm, us, ms) wherever that text reads back to exactly the
 // same double, or all in SI units (m, rad, Pa, N*m, s).

@@ -51,15 +51,14 @@ std::string stiffness_csv(const GearPair& pair, const StiffnessModel& model,
 // One mesh period: fraction,theta1_rad,pairs,ke_n_per_m.
 std::string mesh_stiffness_csv(const TimeVaryingMeshStiffness& tvms);
 // min_n_m, max_n_m, mean_n_m (the exact time mean), contact_ratio,
-// extrapolated (the foundation fit used outside its range), and a warning
-// when it is.
-std::string mesh_stiffness_summary_json(const TimeVaryingMeshStiffness& tvms, double contact_ratio,
-                                        bool extrapolated);
+// extrapolated (the foundation fit used outside its range: tvms's foundation_extrapolations),
+// and when it is a warning naming each gear, parameter, value and the fit's range.
+std::string mesh_stiffness_summary_json(const TimeVaryingMeshStiffness& tvms, double contact_ratio);
 // zn1, zn2, c_prime_th_n_mm_um, c_prime_n_mm_um, c_gamma_alpha_n_mm_um,
 // eps_alpha, c_prime_b_n_per_m, c_gamma_alpha_b_n_per_m (c' and c_gamma_alpha times
-// the face width b).
-std::string iso6336_json(const Iso6336Stiffness& iso, double face_width_m);
-// The warning every output carries when the foundation fit is extrapolated.
-std::string foundation_extrapolation_warning();
+// the face width b); with a specific load F_t K_A / b (N/m), also specific_load_n_mm and
+// low_load_factor (1 from 100 N/mm up), which c_prime and c_gamma_alpha then include.
+std::string iso6336_json(const Iso6336Stiffness& iso, double face_width_m,
+                         std::optional<double> specific_load_n_per_m = std::nullopt);
 
 }  // namespace gearimpact

@@ -76,7 +76,18 @@ struct IsoScale {
   double contact_ratio = 0.0;  // eps_alpha, for ISO's K_v
   // F_t / b = |T1 mean| / (r1 b): ISO's line load at the reference circle (K_A = 1).
   double line_load_n_per_m = 0.0;
+  // The zero-speed limit of the simulated dynamic factor (quasi_static_force_ratio): the
+  // dynamic factor over it is 1 at N -> 0, where ISO's K_v is 1.
+  double quasi_static_force_ratio = 1.0;
 };
+
+// The zero-speed limit of the largest mesh force over the static load |T1| / Rb1, for the
+// model's mesh stiffness: where a pair enters at X_start the loaded pairs keep their deflection
+// for an instant, so the mesh force jumps by K_after / K_before, the mesh stiffness with the
+// entering pair over that without it (the pairs a whole base pitch on, on the contact segment).
+// The largest force of a slow run is that jump (the deflection relaxes from it; where a pair
+// leaves, the force drops). 1 for a constant mesh stiffness.
+double quasi_static_force_ratio(const SimulationCase& c, const StiffnessTable& table);
 
 // The scale of c's pair, or nothing when ISO's K_v has no meaning for it (no mean load).
 std::optional<IsoScale> iso_scale(const SimulationCase& c, const StiffnessTable& table);

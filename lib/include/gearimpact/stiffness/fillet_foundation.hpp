@@ -5,6 +5,11 @@
 // docs/stiffness-models.md, section 2.
 #pragma once
 
+#include <string>
+#include <vector>
+
+#include "gearimpact/geometry/gear_pair.hpp"
+
 namespace gearimpact {
 
 // L*, M*, P*, Q* of the fit at one (h_f, theta_f).
@@ -25,6 +30,30 @@ inline constexpr double sainsot_fit_min_h_f = 1.4;
 inline constexpr double sainsot_fit_max_h_f = 7.0;
 inline constexpr double sainsot_fit_min_theta_f_rad = 0.01;
 inline constexpr double sainsot_fit_max_theta_f_rad = 0.12;
+
+// One gear whose fit inputs lie outside the range above: which gear, both inputs, and which of
+// them are outside. A model carries these (TimeVaryingMeshStiffness, the run's summary) so that
+// every warning can name the gear, the parameter, its value and the range.
+struct FoundationExtrapolation {
+  Gear gear = Gear::one;
+  double h_f = 0.0;          // r_f / r_int
+  double theta_f_rad = 0.0;  // the half angle of the tooth at the root circle
+  bool h_f_outside() const;
+  bool theta_f_outside() const;
+};
+
+// The gear's extrapolation, or nothing when (h_f, theta_f) lies inside the fit's range.
+std::vector<FoundationExtrapolation> foundation_extrapolation(Gear gear, double h_f,
+                                                              double theta_f_rad);
+
+// "pinion (gear 1): theta_f = 0.131 rad, outside the fit's [0.01, 0.12] rad", each input outside
+// named with its value and range.
+std::string describe(const FoundationExtrapolation& extrapolation);
+
+// The one warning for every extrapolated gear: "the fillet-foundation fit of Sainsot et al.
+// (2004) is used outside its range (pinion (gear 1): theta_f = 0.131 rad, outside ...): the
+// foundation term is an extrapolation". Empty for an empty list.
+std::string foundation_extrapolation_warning(const std::vector<FoundationExtrapolation>& gears);
 
 struct FoundationFit {
   FoundationCoefficients coefficients;

@@ -30,10 +30,11 @@ struct Iso6336Pair {
   Iso6336Gear gear2;
   double mesh_factor = 0.8;   // C_M
   double blank_factor = 1.0;  // C_R, 1 for solid blanks
-  // F_t K_A / b in N/m. Absent: at least 424 N/mm, no low-load correction.
-  // Below 424 N/mm, c' is multiplied by (F_t K_A / b / 424 N/mm)^0.25, ISO's
-  // correction for lightly loaded teeth (threshold as docs/stiffness-models.md
-  // gives it; not checked against a worked example here).
+  // F_t K_A / b in N/m. Absent: at least 100 N/mm, no low-load correction.
+  // Below 100 N/mm, c' is multiplied by (F_t K_A / b / 100 N/mm)^0.25, ISO
+  // 6336-1 method B's correction for lightly loaded teeth; c' as stated holds
+  // from 100 N/mm up (the bound of the standard's own validity statement for
+  // c', the same 100 N/mm as its N_S of the resonance range).
   std::optional<double> specific_load_n_per_m;
 };
 
@@ -44,7 +45,7 @@ struct Iso6336Stiffness {
   double flexibility_mm_um_per_n;                // q'
   double theoretical_single_stiffness_n_per_m2;  // c'_th = 1 / q'
   double basic_rack_factor;                      // C_B
-  double low_load_factor;                        // 1 unless specific_load_n_per_m < 424 N/mm
+  double low_load_factor;                        // 1 unless specific_load_n_per_m < 100 N/mm
   double single_stiffness_n_per_m2;              // c' = c'_th C_M C_R C_B cos beta (x low load)
   double transverse_contact_ratio;               // eps_alpha
   double mesh_stiffness_n_per_m2;                // c_gamma_alpha = c' (0.75 eps_alpha + 0.25)

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "gearimpact/geometry/rack_generation.hpp"
+#include "gearimpact/stiffness/fillet_foundation.hpp"
 #include "gearimpact/stiffness/model.hpp"
 #include "gearimpact/stiffness/tooth_beam.hpp"
 
@@ -44,6 +45,13 @@ double foundation_load_height(const RackGearGeometry& gear, const ToothContact& 
 // (gamma from pi/2 to a0) and the involute (tau from its form point to the
 // contact's tau).
 std::vector<FlankPiece> flank_to_contact(const RackGearGeometry& gear, double contact_tau_rad);
+
+// The gears whose foundation fit is used outside its range (fillet_foundation.hpp), pinion first;
+// empty when the model's foundation term is off. The fit's inputs h_f and theta_f are the gears'
+// own, the same at every contact position. Throws InputError as tooth_compliances for a missing
+// bore.
+std::vector<FoundationExtrapolation> foundation_extrapolations(const RackGearPairGeometry& pair,
+                                                               const StiffnessModel& model);
 
 // Compliances of one tooth, m/N.
 struct ToothCompliances {

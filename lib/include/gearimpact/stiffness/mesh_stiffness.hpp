@@ -7,6 +7,7 @@
 
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/tooth_profile.hpp"
+#include "gearimpact/stiffness/fillet_foundation.hpp"
 #include "gearimpact/stiffness/model.hpp"
 #include "gearimpact/stiffness/terms.hpp"
 
@@ -48,5 +49,11 @@ struct MeshStiffness {
 // their foundation term needs both bores (InputError naming bore_diameter1 or
 // bore_diameter2 otherwise).
 MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessModel& model = {});
+
+// The gears whose foundation fit the model uses outside its range, pinion first: empty for a
+// model without the foundation term (yang_lin_1987) or with it off. InputError naming
+// bore_diameter1 or bore_diameter2 when the term is on and a bore is missing.
+std::vector<FoundationExtrapolation> foundation_extrapolations(const GearPair& pair,
+                                                               const StiffnessModel& model);
 
 }  // namespace gearimpact

@@ -43,6 +43,9 @@ struct TimeVaryingMeshStiffness {
   // The exact time mean at constant speed: the integral over f in [0, 1),
   // by adaptive quadrature on each smooth piece (GSL QAG).
   double mean_n_per_m;
+  // The gears whose fillet-foundation fit the model uses outside its range (empty: none, or no
+  // foundation term): the stiffness above is partly an extrapolation (fillet_foundation.hpp).
+  std::vector<FoundationExtrapolation> foundation_extrapolations;
 };
 
 // Throws InputError for fewer than 2 samples, QuadratureError when an
@@ -57,6 +60,19 @@ TimeVaryingMeshStiffness time_varying_mesh_stiffness(const RackGearPairGeometry&
 TimeVaryingMeshStiffness time_varying_mesh_stiffness(const GearPair& pair,
                                                      const StiffnessModel& model,
                                                      std::size_t sample_count = 200);
+
+// Load sharing along the path of contact: one pair at X1 (m from C1) on the pair's contact
+// segment carries k(X1) / sum_j k(X1 + j t0) of the mesh force, the sum over the pairs then in
+// contact a base pitch t0 apart, since the loaded pairs deflect alike (docs/model.md).
+struct LoadShareSample {
+  double x1_m;
+  int pairs;     // pairs in contact with this one
+  double share;  // in (0, 1]
+};
+// `points` (>= 2) positions from X_start to X_end inclusive (contact_positions of gear_pair.hpp).
+// Throws InputError for fewer than 2 points.
+std::vector<LoadShareSample> load_sharing(const GearPair& pair, const StiffnessModel& model,
+                                          int points);
 
 // The same mean by another route: every pair crosses the path of contact once
 // per period, so the mean is (1 / p_b) Int k_pair(s) ds over [s_SAP, s_EAP]

@@ -1,0 +1,431 @@
+// `gearimpact report CASE --out DIR`: what applies to one user's pair, in one folder, as
+// `reproduce` does for the paper's: the geometry, the three stiffness models against ISO 6336-1,
+// the terms at the pitch point, load sharing, and (for a run file) a short time history, with
+// REPORT.md stating every warning with its numbers.
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "gearimpact/case/schema.hpp"
+#include "gearimpact/constants.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/rack_generation.hpp"
+#include "gearimpact/io/atomic_file.hpp"
+#include "gearimpact/io/case_file.hpp"
+#include "gearimpact/stiffness/comparison.hpp"
+#include "gearimpact/stiffness/iso6336.hpp"
+#include "gearimpact/stiffness/mesh_stiffness.hpp"
+#include "gearimpact/stiffness/time_varying_stiffness.hpp"
+#include "program.hpp"
+#include "reproduce.hpp"
+
+namespace gearimpact::cli {
+
+namespace {
+
+// ISO's unit of stiffness per face width, N/(mm um), in N/m^2; and N/um in N/m.
+constexpr double kNPerMmUm = 1e9;
+constexpr double kNPerUm = 1e6;
+// The most rows the time history keeps: a figure's worth, a CSV of about a megabyte.
+constexpr double kMostHistoryRows = 20000.0;
+
+struct ReportOptions {
+  std::string case_file;
+  std::string out;
+  bool overwrite = false;
+  int samples = 400;
+};
+
+// Writes the report's files into `dir` and prints a line per part on stderr.
+class Progress {
+ public:
+  void done(const std::string& part) const {
+    const double s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+    std::cerr << "report: " << part << " ... " << number(s, 3) << " s\n";
+  }
+
+ private:
+  std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
+};
+
+double mean_torque(const Torque& t) {
+  return t.kind == Torque::Kind::constant ? t.constant_n_m : t.mean_n_m;
+}
+
+struct Lines {
+  std::string csv = "quantity,gear,value,unit\n";
+  std::string md = "| quantity | pinion | wheel | unit |\n|---|---|---|---|\n";
+  // The CSV in SI `unit`; the table in mm for a length.
+  void both(const std::string& what, double one, double two, const std::string& unit) {
+    csv += what + ",pinion," + format_number(one) + "," + unit + "\n";
+    csv += what + ",wheel," + format_number(two) + "," + unit + "\n";
+    const double scale = unit == "m" ? 1e3 : 1.0;
+    md += "| " + what + " | " + number(one * scale, 6) + " | " + number(two * scale, 6) + " | " +
+          (unit == "m" ? "mm" : unit) + " |\n";
+  }
+};
+
+// The geometry section and geometry.csv (lengths in mm).
+std::string geometry_section(const GearPair& pair, const std::filesystem::path& dir) {
+  const RackGearPairGeometry g = rack_gear_pair_geometry(pair);
+  const ContactSegment segment = contact_segment(pair);
+  const double t0 = base_pitch(pair);
+  const double mm = 1e3;
+  std::string text;
+  text += "Contact ratio eps_alpha = " + number(contact_ratio(pair), 6) +
+          "; operating pressure angle " + number(g.operating_pressure_angle_rad * 180.0 / pi, 6) +
+          " deg; centre distance " + number(g.centre_distance_m * mm, 6) + " mm; base pitch t0 " +
+          number(t0 * mm, 6) + " mm.\n\n";
+  text +=
+      "Path of contact on the line of action, from the pinion's base-circle tangent point: X1 "
+      "from " +
+      number(segment.start_m * mm, 6) + " to " + number(segment.end_m * mm, 6) + " mm (length " +
+      number((segment.end_m - segment.start_m) * mm, 6) + " mm; pitch point at " +
+      number(pitch_point_position(pair) * mm, 6) + " mm); two pairs carry the load over " +
+      number(
+          100.0 * 2.0 * (segment.end_m - segment.start_m - t0) / (segment.end_m - segment.start_m),
+          4) +
+      " % of it, " + number(100.0 * (contact_ratio(pair) - 1.0), 4) + " % of the mesh period.\n\n";
+  Lines lines;
+  const RackGearGeometry& a = g.gear1;
+  const RackGearGeometry& b = g.gear2;
+  lines.both("teeth", a.teeth, b.teeth, "1");
+  lines.both("profile_shift", a.profile_shift_coefficient, b.profile_shift_coefficient, "1");
+  lines.both("pitch_radius", a.pitch_radius_m, b.pitch_radius_m, "m");
+  lines.both("base_radius", a.base_radius_m, b.base_radius_m, "m");
+  lines.both("tip_radius", a.tip_radius_m, b.tip_radius_m, "m");
+  lines.both("root_radius", a.root_radius_m, b.root_radius_m, "m");
+  lines.both("form_radius", a.form_radius_m, b.form_radius_m, "m");
+  // Where the active profile starts on each gear: the mate's tip acting on the line of action.
+  const double sap1 = std::hypot(a.base_radius_m, g.start_of_active_profile_m);
+  const double sap2 =
+      std::hypot(b.base_radius_m, g.line_of_action_length_m - g.end_of_active_profile_m);
+  lines.both("start_of_active_profile_radius", sap1, sap2, "m");
+  lines.both("active_profile_above_form_circle", sap1 - a.form_radius_m, sap2 - b.form_radius_m,
+             "m");
+  // Rack generation undercuts the involute below z = 2 (ha - x) / sin^2 a0.
+  const double sin_a0 = std::sin(pair.pressure_angle_rad);
+  const auto least_teeth = [&](const RackGearGeometry& r) {
+    return 2.0 * (r.addendum_coefficient - r.profile_shift_coefficient) / (sin_a0 * sin_a0);
+  };
+  const auto least_shift = [&](const RackGearGeometry& r) {
+    return r.addendum_coefficient - 0.5 * r.teeth * sin_a0 * sin_a0;
+  };
+  lines.both("undercut_limit_teeth", least_teeth(a), least_teeth(b), "1");
+  lines.both("undercut_margin_shift", a.profile_shift_coefficient - least_shift(a),
+             b.profile_shift_coefficient - least_shift(b), "1");
+  lines.both("root_half_angle_theta_f", a.root_half_angle_rad, b.root_half_angle_rad, "rad");
+  lines.csv += "contact_ratio,pair," + format_number(contact_ratio(pair)) + ",1\n";
+  lines.csv +=
+      "operating_pressure_angle,pair," + format_number(g.operating_pressure_angle_rad) + ",rad\n";
+  lines.csv += "centre_distance,pair," + format_number(g.centre_distance_m) + ",m\n";
+  lines.csv += "contact_segment_start_x1,pair," + format_number(segment.start_m) + ",m\n";
+  lines.csv += "contact_segment_end_x1,pair," + format_number(segment.end_m) + ",m\n";
+  write_file_atomically((dir / "geometry.csv").string(), lines.csv);
+  text += lines.md;
+  text +=
+      "\n(`geometry.csv`, SI units. `active_profile_above_form_circle`: the margin by which "
+      "the contact stays on the involute, > 0 on a sound pair. `undercut_margin_shift`: x "
+      "minus the least shift free of undercut, ha - z sin^2(a0) / 2.)\n";
+  return text;
+}
+
+// The models compared: all three when both bores are given (the foundation term needs them).
+StiffnessComparison models_of(const GearPair& pair, std::size_t samples, std::string& note) {
+  if (pair.bore_diameter1_m && pair.bore_diameter2_m) {
+    return compare_stiffness_models(pair, samples);
+  }
+  note =
+      "Only yang-lin-1987: potential-energy and ross-compatible need both bores for their "
+      "fillet-foundation term (gears.bore_diameter1, gears.bore_diameter2).\n\n";
+  StiffnessComparison c{};
+  StiffnessModel model;
+  c.models.push_back({model.kind, time_varying_mesh_stiffness(pair, model, samples),
+                      mesh_stiffness(pair, pitch_point_position(pair), model)});
+  c.iso = iso6336_method_b(iso6336_pair(pair, 0.0));
+  c.iso_single_n_per_m = c.iso.single_stiffness_n_per_m2 * pair.face_width_m;
+  c.iso_mesh_n_per_m = c.iso.mesh_stiffness_n_per_m2 * pair.face_width_m;
+  return c;
+}
+
+std::string term_cell(const MeshStiffness& k, Term term, StiffnessModelKind kind) {
+  if (!provides(kind, term)) return "-";
+  return number(1.0 / k.pair.of(term) / kNPerUm, 4);
+}
+
+std::string stiffness_section(const GearPair& pair, const StiffnessComparison& comparison,
+                              const std::filesystem::path& dir,
+                              std::vector<std::string>& warnings) {
+  const double b_mm = pair.face_width_m * 1e3;
+  std::vector<std::string> series;
+  for (const ModelComparison& m : comparison.models) {
+    const std::string stem = "stiffness_tvms_" + to_string(m.kind);
+    std::string csv = "fraction,theta1_deg,pairs,ke_n_per_um,ke_per_face_width_n_per_mm_um\n";
+    for (const MeshStiffnessSample& s : m.tvms.samples) {
+      csv += format_number(s.fraction) + "," + format_number(s.theta1_rad * 180.0 / pi) + "," +
+             std::to_string(s.pairs) + "," + format_number(s.stiffness_n_per_m / kNPerUm) + "," +
+             format_number(s.stiffness_n_per_m / pair.face_width_m / kNPerMmUm) + "\n";
+    }
+    write_file_atomically((dir / (stem + ".csv")).string(), csv);
+    series.push_back("'" + stem + ".csv' using 1:5 with lines lw 2 title '" + to_string(m.kind) +
+                     "'");
+    if (!m.tvms.foundation_extrapolations.empty()) {
+      warnings.push_back(to_string(m.kind) + ": " +
+                         foundation_extrapolation_warning(m.tvms.foundation_extrapolations) + ".");
+    }
+  }
+  const double c_prime = comparison.iso.single_stiffness_n_per_m2 / kNPerMmUm;
+  const double c_gamma = comparison.iso.mesh_stiffness_n_per_m2 / kNPerMmUm;
+  series.push_back(number(c_prime, 6) +
+                   " with lines dt 2 lw 2 lc rgb 'black' title \"ISO 6336-1 c'\"");
+  series.push_back(
+      number(c_gamma, 6) +
+      " with lines dt 3 lw 2 lc rgb 'dark-red' title 'ISO 6336-1 c_{/Symbol g}{/Symbol a}'");
+  render(dir,
+         {"stiffness_tvms",
+          "Mesh stiffness over one mesh period against ISO 6336-1 (b = " + number(b_mm, 4) + " mm)",
+          "fraction of the mesh period",
+          "mesh stiffness per face width, N/(mm {/Symbol m}m)",
+          {"set key outside bottom center horizontal", "set xrange [0:1]", "set yrange [0:*]"},
+          series});
+  std::string text =
+      "yang-lin-1987 is the paper's tooth, an involute beam from the base circle without fillet "
+      "or gear body, and so much stiffer than the rack-cut teeth of the other two "
+      "(docs/stiffness-models.md). Mesh stiffness of each model (all its terms on) over one mesh "
+      "period, per mm of face "
+      "width as ISO 6336-1 states c' and c_gamma_alpha (`stiffness_tvms.png`, `.svg`; data "
+      "`stiffness_tvms_<model>.csv`). ISO is an empirical fit with a scatter of its own: a "
+      "band, not an identity. ISO 6336-1 method B (spur, C_M 0.8, C_R 1, no low-load "
+      "correction): c' = " +
+      number(c_prime, 5) +
+      " N/(mm um) (c' b = " + number(comparison.iso_single_n_per_m / kNPerUm, 5) +
+      " N/um), c_gamma_alpha = " + number(c_gamma, 5) +
+      " N/(mm um) (c_gamma_alpha b = " + number(comparison.iso_mesh_n_per_m / kNPerUm, 5) +
+      " N/um).\n\n";
+  text += "| model | min | max | mean | min vs c' | mean vs c_gamma_alpha |\n";
+  text += "|---|---|---|---|---|---|\n";
+  const auto percent = [](double value, double reference) {
+    const double p = 100.0 * (value / reference - 1.0);
+    return (p >= 0.0 ? "+" : "") + number(p, 3) + " %";
+  };
+  for (const ModelComparison& m : comparison.models) {
+    const double per_b = 1.0 / pair.face_width_m / kNPerMmUm;
+    text += "| " + to_string(m.kind) + " | " + number(m.tvms.min_n_per_m * per_b, 4) + " | " +
+            number(m.tvms.max_n_per_m * per_b, 4) + " | " + number(m.tvms.mean_n_per_m * per_b, 4) +
+            " | " + percent(m.tvms.min_n_per_m, comparison.iso_single_n_per_m) + " | " +
+            percent(m.tvms.mean_n_per_m, comparison.iso_mesh_n_per_m) + " |\n";
+  }
+  text += "\n(N/(mm um) per mm of face width.)\n\n### Terms at the pitch point\n\n";
+  text +=
+      "One pair in contact at the pitch point, stiffness of each term, N/um (both teeth in "
+      "series; \"-\": not in the model):\n\n";
+  text += "| model | hertz | bending | axial | shear | foundation | pair |\n";
+  text += "|---|---|---|---|---|---|---|\n";
+  for (const ModelComparison& m : comparison.models) {
+    const MeshStiffness& k = m.at_pitch_point;
+    text += "| " + to_string(m.kind) + " | " + term_cell(k, Term::hertz, m.kind) + " | " +
+            term_cell(k, Term::bending, m.kind) + " | " + term_cell(k, Term::axial, m.kind) +
+            " | " + term_cell(k, Term::shear, m.kind) + " | " +
+            term_cell(k, Term::foundation, m.kind) + " | " + number(k.ke / kNPerUm, 4) + " |\n";
+  }
+  return text;
+}
+
+std::string load_sharing_section(const GearPair& pair, const StiffnessModel& model, int points,
+                                 const std::filesystem::path& dir) {
+  const std::vector<LoadShareSample> shares = load_sharing(pair, model, points);
+  const ContactSegment segment = contact_segment(pair);
+  std::string csv = "x1_mm,path_fraction,pairs,share\n";
+  double least = 1.0;
+  for (const LoadShareSample& s : shares) {
+    csv += format_number(s.x1_m * 1e3) + "," +
+           format_number((s.x1_m - segment.start_m) / (segment.end_m - segment.start_m)) + "," +
+           std::to_string(s.pairs) + "," + format_number(s.share) + "\n";
+    least = std::min(least, s.share);
+  }
+  write_file_atomically((dir / "load_sharing.csv").string(), csv);
+  render(dir, {"load_sharing",
+               "Load sharing: one tooth pair's share of the mesh force along its path (" +
+                   to_string(model.kind) + ")",
+               "position on the path of contact X_1, mm (pitch point dashed)",
+               "share of the mesh force",
+               {"set key off", "set yrange [0:1.05]",
+                "set arrow from " + number(pitch_point_position(pair) * 1e3, 8) + ", graph 0 to " +
+                    number(pitch_point_position(pair) * 1e3, 8) +
+                    ", graph 1 nohead dt 2 lc rgb 'gray30'"},
+               {"'load_sharing.csv' using 1:4 with lines lw 2"}});
+  return "One tooth pair's share of the mesh force as it crosses the path of contact, the "
+         "loaded pairs deflecting alike, k(X1) / sum of k over the pairs in contact (model " +
+         to_string(model.kind) +
+         " of the case file; `load_sharing.png`, data "
+         "`load_sharing.csv`). Its least share, at the path's ends, is " +
+         number(least, 4) + ".\n";
+}
+
+// The warnings of a run file's torques and speeds; `rolling` says whether Rb1 w1 = Rb2 w2.
+void run_warnings(const SimulationCase& c, std::vector<std::string>& warnings) {
+  const double rb1 = base_radius(c.gears, Gear::one);
+  const double rb2 = base_radius(c.gears, Gear::two);
+  const double t1 = mean_torque(c.torque1);
+  const double t2 = mean_torque(c.torque2);
+  const double imbalance = t1 / rb1 + t2 / rb2;
+  // As require_balanced_mean_torques: torques typed with 10 significant digits pass.
+  if (std::fabs(imbalance) > 1e-9 * std::max(std::fabs(t1 / rb1), std::fabs(t2 / rb2))) {
+    warnings.push_back("Unbalanced mean torques: T1/Rb1 + T2/Rb2 = " + number(imbalance, 6) +
+                       " N (T1 = " + number(t1, 6) + " N*m, T2 = " + number(t2, 6) +
+                       " N*m); the pair accelerates without bound and has no steady state. "
+                       "T2 = " +
+                       number(-t1 * rb2 / rb1, 8) + " N*m balances T1.");
+  }
+  const double v1 = rb1 * c.initial.w1_rad_per_s;
+  const double v2 = rb2 * c.initial.w2_rad_per_s;
+  if (std::fabs(v1 - v2) > 1e-9 * std::max(std::fabs(v1), std::fabs(v2))) {
+    constexpr double rpm = 60.0 / (2.0 * pi);
+    warnings.push_back("Initial speeds not rolling: Rb1 w1 = " + number(v1, 6) + " m/s, Rb2 w2 = " +
+                       number(v2, 6) + " m/s (w1 = " + number(c.initial.w1_rad_per_s * rpm, 6) +
+                       " rpm, w2 = " + number(c.initial.w2_rad_per_s * rpm, 6) +
+                       " rpm); the teeth start with a relative speed of " + number(v1 - v2, 6) +
+                       " m/s. w2 = " + number(v1 / rb2 * rpm, 8) + " rpm rolls with w1.");
+  }
+}
+
+std::string time_history_section(const SimulationCase& run, const std::filesystem::path& dir) {
+  SimulationCase c = run;
+  const double steps = c.integrator.end_time_s / c.integrator.step_s;
+  c.integrator.output_every =
+      std::max(c.integrator.output_every, static_cast<int>(std::ceil(steps / kMostHistoryRows)));
+  // A long run says what it is doing before it starts.
+  std::cerr << "report: time history, " << number(steps, 3) << " steps of "
+            << number(c.integrator.step_s * 1e6, 3) << " us ...\n";
+  const SimulationResult r = simulate(c);
+  // DTE relative to the contact: s - B on the drive flanks (T1 >= 0), s + B on the coast ones.
+  const double side = mean_torque(c.torque1) >= 0.0 ? 1.0 : -1.0;
+  const double contact = side * c.gears.backlash_m;
+  std::string csv = "t_ms,dte_um,s_um,pairs,normal_force_n\n";
+  double least = INFINITY;
+  double most = -INFINITY;
+  double force_max = 0.0;
+  for (const SeriesRow& row : r.series) {
+    const double dte = row.s_m - contact;
+    csv += format_number(row.t_s * 1e3) + "," + format_number(dte * 1e6) + "," +
+           format_number(row.s_m * 1e6) + "," + std::to_string(row.pairs) + "," +
+           format_number(row.normal_force_n) + "\n";
+    least = std::min(least, dte);
+    most = std::max(most, dte);
+    force_max = std::max(force_max, row.normal_force_n);
+  }
+  write_file_atomically((dir / "time_history.csv").string(), csv);
+  render(dir, {"time_history_dte",
+               "Dynamic transmission error against time (s " + std::string(side > 0 ? "-" : "+") +
+                   " B, " + number(c.integrator.end_time_s * 1e3, 4) +
+                   " ms from the case's "
+                   "initial state)",
+               "time t, ms",
+               "DTE, {/Symbol m}m (0: the teeth just touch)",
+               {"set key off"},
+               {"'time_history.csv' using 1:2 with lines lw 1.5"}});
+  const double rb1 = base_radius(c.gears, Gear::one);
+  const double static_load = std::fabs(mean_torque(c.torque1)) / rb1;
+  std::string text = "The case run as its file says (" + number(c.integrator.end_time_s * 1e3, 4) +
+                     " ms, every " + std::to_string(c.integrator.output_every) +
+                     "th step kept; `time_history_dte.png`, data `time_history.csv`): DTE = s " +
+                     (side > 0 ? "-" : "+") + " B from " + number(least * 1e6, 5) + " to " +
+                     number(most * 1e6, 5) + " um, " + std::to_string(r.summary.impacts_n1) +
+                     " impacts on the drive flanks and " + std::to_string(r.summary.impacts_n2) +
+                     " on the coast flanks, largest mesh force " + number(force_max, 5) + " N";
+  if (static_load > 0.0) {
+    text += " (" + number(force_max / static_load, 4) +
+            " times the static load |T1| / Rb1 = " + number(static_load, 5) + " N)";
+  }
+  return text + ".\n";
+}
+
+void write_report(const ReportOptions& o) {
+  require_output_folder(o.out, o.overwrite, {o.case_file});
+  const PairOrRunCase read = read_pair_or_run_file(o.case_file);
+  const SimulationCase& c = read.simulation_case;
+  const bool run = read.kind == CaseFileKind::run;
+  AtomicFolder folder(o.out, o.overwrite, {o.case_file});
+  const std::filesystem::path dir = folder.temporary();
+  const Progress progress;
+  std::vector<std::string> warnings;
+
+  const std::string geometry = geometry_section(c.gears, dir);
+  progress.done("geometry");
+  std::string note;
+  const StiffnessComparison comparison =
+      models_of(c.gears, static_cast<std::size_t>(o.samples), note);
+  std::string stiffness = note + stiffness_section(c.gears, comparison, dir, warnings);
+  if (run) {
+    // ISO's line load at the reference circle, K_A = 1: below 100 N/mm c' takes the low-load
+    // factor (iso6336 --load).
+    const double line_load = std::fabs(mean_torque(c.torque1)) /
+                             (pitch_radius(c.gears, Gear::one) * c.gears.face_width_m);
+    Iso6336Pair loaded = iso6336_pair(c.gears, 0.0);
+    loaded.specific_load_n_per_m = line_load;
+    stiffness += "\nAt the case's mean pinion torque F_t / b = " + number(line_load * 1e-3, 4) +
+                 " N/mm (K_A = 1): ISO's low-load factor (F_t K_A / b / 100 N/mm)^0.25 below 100 "
+                 "N/mm is " +
+                 number(iso6336_method_b(loaded).low_load_factor, 4) + ".\n";
+  }
+  progress.done("stiffness models and ISO 6336-1");
+  const std::string sharing = load_sharing_section(c.gears, c.model.stiffness, o.samples, dir);
+  progress.done("load sharing");
+  std::string history =
+      "The case file is a pair file ([gears] and [model] only): no torques or speeds, no time "
+      "history.\n";
+  if (run) {
+    run_warnings(c, warnings);
+    history = time_history_section(c, dir);
+    progress.done("time history");
+  }
+
+  std::string md = "# gearimpact report: " + c.name + "\n\n";
+  md += "Case file `" + o.case_file + "` (" + (run ? "a run file" : "a pair file") +
+        "): " + std::to_string(c.gears.teeth1) + "/" + std::to_string(c.gears.teeth2) +
+        " teeth, m " + number(c.gears.module_m * 1e3, 6) + " mm, b " +
+        number(c.gears.face_width_m * 1e3, 6) + " mm, x " + number(c.gears.profile_shift1, 4) +
+        "/" + number(c.gears.profile_shift2, 4) + ", a0 " +
+        number(c.gears.pressure_angle_rad * 180.0 / pi, 6) + " deg.\n\n";
+  md += "## Warnings\n\n";
+  if (warnings.empty()) md += "None.\n";
+  for (const std::string& w : warnings) md += "- " + w + "\n";
+  md += "\n## Geometry\n\n" + geometry + "\n## Mesh stiffness and ISO 6336-1\n\n" + stiffness +
+        "\n## Load sharing\n\n" + sharing + "\n## Time history\n\n" + history;
+  write_file_atomically((dir / "REPORT.md").string(), md);
+  folder.commit();
+  for (const std::string& w : warnings) std::cerr << "gearimpact: warning: " << w << "\n";
+  std::cerr << "report: wrote " << (std::filesystem::path(o.out) / "REPORT.md").string() << "\n";
+}
+
+}  // namespace
+
+void register_report_commands(CLI::App& app) {
+  auto o = std::make_shared<ReportOptions>();
+  CLI::App* report = app.add_subcommand(
+      "report",
+      "Everything that applies to your pair in one folder: geometry, the stiffness models against "
+      "ISO 6336-1, terms at the pitch point, load sharing, a time history for a run file, and "
+      "REPORT.md with every warning");
+  report
+      ->add_option("case", o->case_file, "case file: a pair file ([gears], [model]) or a run file")
+      ->required();
+  report
+      ->add_option("--out", o->out,
+                   "output folder: new or empty (else --overwrite), in a folder that exists")
+      ->required();
+  report->add_flag("--overwrite", o->overwrite, "replace a non-empty --out folder whole");
+  report
+      ->add_option("--samples", o->samples,
+                   "samples over the mesh period and the path, 2 to 100000")
+      ->check(CLI::Range(2, 100000));
+  report->callback([o] { write_report(*o); });
+}
+
+}  // namespace gearimpact::cli

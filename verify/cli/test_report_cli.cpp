@@ -1,0 +1,231 @@
+// End to end: `gearimpact report` on two user pairs (examples/), and the stiffness commands on a
+// pair file ([gears] and [model] only). Reference values by closed forms written here, not by
+// the library: the contact ratio of two rack-cut gears, ROSS's root half angle, the warnings'
+// numbers.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "relative.hpp"
+#include "run_command.hpp"
+#include "scratch.hpp"
+
+using namespace gearimpact::verify;
+
+namespace {
+
+const std::filesystem::path examples =
+    std::filesystem::path(GEARIMPACT_PAPER_DATA_DIR) / ".." / "examples";
+
+constexpr double pi = 3.14159265358979323846;
+
+std::string read(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream(path) << text;
+}
+
+// The value of `quantity` (gear "pair") in geometry.csv.
+double geometry_value(const std::string& csv, const std::string& quantity) {
+  std::istringstream in(csv);
+  std::string line;
+  const std::string key = quantity + ",pair,";
+  while (std::getline(in, line)) {
+    if (line.rfind(key, 0) == 0) return std::stod(line.substr(key.size()));
+  }
+  FAIL("no " << quantity << " in geometry.csv");
+  return 0.0;
+}
+
+double involute(double a) {
+  return std::tan(a) - a;
+}
+
+// Rack-cut spur gears (ha = 1) at the centre distance without backlash: inv a_w = inv a0 + 2 tan
+// a0 (x1 + x2) / (z1 + z2), a_w (r_b1 + r_b2) / cos a_w, r_a = m z / 2 + (1 + x) m, eps =
+// [sqrt(r_a1^2 - r_b1^2) + sqrt(r_a2^2 - r_b2^2) - a_w sin a_w] / (pi m cos a0).
+double contact_ratio(int z1, int z2, double m, double a0, double x1, double x2) {
+  const double target = involute(a0) + 2.0 * std::tan(a0) * (x1 + x2) / (z1 + z2);
+  double aw = a0;
+  for (int i = 0; i < 60; ++i) aw -= (involute(aw) - target) / (std::tan(aw) * std::tan(aw));
+  const double rb1 = 0.5 * m * z1 * std::cos(a0);
+  const double rb2 = 0.5 * m * z2 * std::cos(a0);
+  const double ra1 = 0.5 * m * z1 + (1.0 + x1) * m;
+  const double ra2 = 0.5 * m * z2 + (1.0 + x2) * m;
+  const double centre = (rb1 + rb2) / std::cos(aw);
+  return (std::sqrt(ra1 * ra1 - rb1 * rb1) + std::sqrt(ra2 * ra2 - rb2 * rb2) -
+          centre * std::sin(aw)) /
+         (pi * m * std::cos(a0));
+}
+
+// ROSS's theta_f = [pi/2 + 2 tan a0 (ha - rho*) + 2 rho* / cos a0] / z with the full round
+// rho* = c / (1 - sin a0), ha = 1, c = 0.25 (docs/stiffness-models.md section 3).
+double ross_theta_f(int z) {
+  const double a0 = 20.0 * pi / 180.0;
+  const double rho = 0.25 / (1.0 - std::sin(a0));
+  return (0.5 * pi + 2.0 * std::tan(a0) * (1.0 - rho) + 2.0 * rho / std::cos(a0)) / z;
+}
+
+std::string printed(const char* format, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
+bool has(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+}  // namespace
+
+TEST_CASE("stiffness commands read a pair file; a run file missing a section is still refused") {
+  const Scratch scratch("report-pair");
+  const std::filesystem::path pair = examples / "pinion_17_x05.toml";
+  for (const char* command : {"mesh-stiffness --samples 8 --summary", "stiffness --points 3",
+                              "iso6336", "energy-ratios --points 3"}) {
+    CAPTURE(command);
+    const CommandResult r =
+        run_command(cli(std::string(command) + " --case-file " + pair.string()));
+    CHECK_MESSAGE(r.exit_code == 0, r.err);
+  }
+  // The pinion's theta_f names the gear, the parameter, its value and the fit's range.
+  const CommandResult mesh = run_command(cli(
+      "mesh-stiffness --samples 8 --summary --model ross-compatible --case-file " + pair.string()));
+  REQUIRE_MESSAGE(mesh.exit_code == 0, mesh.err);
+  const std::string expected = "pinion (gear 1): theta_f = " + printed("%.3g", ross_theta_f(17)) +
+                               " rad, outside the fit's [0.01, 0.12] rad";
+  CHECK_MESSAGE(has(mesh.err, expected), mesh.err);
+  CHECK(has(mesh.out, expected));
+  // [initial] makes it a run file, which needs its torques.
+  const std::filesystem::path partial = scratch.dir / "partial.toml";
+  write(partial, read(pair) + "\n[initial]\nw1 = \"100 rad/s\"\n");
+  const CommandResult refused =
+      run_command(cli("mesh-stiffness --samples 8 --case-file " + partial.string()));
+  CHECK(refused.exit_code == 1);
+  CHECK(has(refused.err, "section [torque1] is missing"));
+}
+
+TEST_CASE("report on the 23/67 run file: files, contact ratio, warnings with their numbers") {
+  const Scratch scratch("report-2367");
+  const std::filesystem::path out = scratch.dir / "out";
+  const std::filesystem::path file = examples / "pair_23_67.toml";
+  const CommandResult r =
+      run_command(cli("report " + file.string() + " --samples 60 --out " + out.string()));
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  for (const char* name :
+       {"REPORT.md", "geometry.csv", "stiffness_tvms.png", "stiffness_tvms.svg",
+        "stiffness_tvms.gp", "stiffness_tvms_yang-lin-1987.csv",
+        "stiffness_tvms_potential-energy.csv", "stiffness_tvms_ross-compatible.csv",
+        "load_sharing.csv", "load_sharing.png", "time_history.csv", "time_history_dte.png",
+        "time_history_dte.svg"}) {
+    CAPTURE(name);
+    CHECK(std::filesystem::file_size(out / name) > 100);
+  }
+  // The shifts +0.2/-0.2 sum to 0: a_w = a0, eps by the closed form to round-off (a few ulps of
+  // lengths of about 30 mm over a pitch).
+  const double eps = contact_ratio(23, 67, 3e-3, 20.0 * pi / 180.0, 0.2, -0.2);
+  CHECK(relative_difference(geometry_value(read(out / "geometry.csv"), "contact_ratio"), eps) <=
+        1e-12);
+  const std::string report = read(out / "REPORT.md");
+  // Both rack-cut models extrapolate the pinion's foundation: ROSS's theta_f by its formula.
+  CHECK_MESSAGE(has(report,
+                    "ross-compatible: the fillet-foundation fit of Sainsot et al. (2004) "
+                    "is used outside its range (pinion (gear 1): theta_f = " +
+                        printed("%.3g", ross_theta_f(23)) + " rad"),
+                report);
+  // Balanced and rolling as written: no such warnings.
+  CHECK_FALSE(has(report, "Unbalanced"));
+  CHECK_FALSE(has(report, "not rolling"));
+  CHECK(has(report, "## Time history\n\nThe case run as its file says"));
+
+  // The same pair with w2 = 0 and T2 = -400 N*m: both warnings, with their numbers.
+  std::string text = read(file);
+  text.replace(text.find("-436.9565217391304 N*m"), 22, "-400 N*m");
+  text.replace(text.find("343.2835820895522 rpm"), 21, "0 rpm");
+  const std::filesystem::path changed = scratch.dir / "changed.toml";
+  write(changed, text);
+  const std::filesystem::path out2 = scratch.dir / "out2";
+  const CommandResult r2 =
+      run_command(cli("report " + changed.string() + " --samples 20 --out " + out2.string()));
+  REQUIRE_MESSAGE(r2.exit_code == 0, r2.err);
+  const std::string report2 = read(out2 / "REPORT.md");
+  const double rb1 = 0.5 * 3e-3 * 23 * std::cos(20.0 * pi / 180.0);
+  const double rb2 = 0.5 * 3e-3 * 67 * std::cos(20.0 * pi / 180.0);
+  CHECK_MESSAGE(has(report2, "T2 = " + printed("%.8g", -150.0 * rb2 / rb1) + " N*m balances T1"),
+                report2);
+  CHECK(has(report2, "T1/Rb1 + T2/Rb2 = " + printed("%.6g", 150.0 / rb1 - 400.0 / rb2) + " N"));
+  CHECK(has(report2, "Rb1 w1 = " + printed("%.6g", rb1 * 1000.0 * 2.0 * pi / 60.0) +
+                         " m/s, Rb2 w2 = 0 m/s"));
+  CHECK(has(r2.err, "warning: Unbalanced mean torques"));
+}
+
+TEST_CASE("report on a 17-tooth pinion with x = +0.5 (a pair file): no time history") {
+  const Scratch scratch("report-17");
+  const std::filesystem::path out = scratch.dir / "out";
+  const CommandResult r = run_command(cli("report " + (examples / "pinion_17_x05.toml").string() +
+                                          " --samples 40 --out " + out.string()));
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  for (const char* name : {"REPORT.md", "geometry.csv", "stiffness_tvms.png", "load_sharing.png"}) {
+    CAPTURE(name);
+    CHECK(std::filesystem::file_size(out / name) > 100);
+  }
+  CHECK_FALSE(std::filesystem::exists(out / "time_history.csv"));
+  // x1 + x2 = 0.5: the operating pressure angle by Newton on inv a in the test; the inverse
+  // converges to round-off, so eps agrees to about 1e-12.
+  const std::string geometry = read(out / "geometry.csv");
+  const double eps = contact_ratio(17, 40, 2e-3, 20.0 * pi / 180.0, 0.5, 0.0);
+  CHECK(relative_difference(geometry_value(geometry, "contact_ratio"), eps) <= 1e-12);
+  // The centre distance a = m (z1 + z2) cos a0 / (2 cos a_w) grows with the shift: above 57 mm.
+  CHECK(geometry_value(geometry, "centre_distance") > 57e-3);
+  const std::string report = read(out / "REPORT.md");
+  CHECK(has(report, "(a pair file)"));
+  CHECK(has(report, "no time history"));
+  CHECK(has(report, "pinion (gear 1): theta_f = " + printed("%.3g", ross_theta_f(17)) + " rad"));
+  // A second run into the filled folder is refused without --overwrite.
+  const CommandResult again =
+      run_command(cli("report " + (examples / "pinion_17_x05.toml").string() +
+                      " --samples 40 --out " + out.string()));
+  CHECK(again.exit_code != 0);
+}
+
+TEST_CASE("iso6336 --load: the low-load factor (F_t K_A / b / 100 N/mm)^0.25 below 100 N/mm") {
+  const std::string pair = " --case-file " + (examples / "pinion_17_x05.toml").string();
+  const auto number_after = [](const std::string& json, const std::string& key) {
+    const std::size_t at = json.find("\"" + key + "\": ");
+    REQUIRE(at != std::string::npos);
+    return std::stod(json.substr(at + key.size() + 4));
+  };
+  const CommandResult half = run_command(cli("iso6336 --load '50 N/mm'" + pair));
+  REQUIRE_MESSAGE(half.exit_code == 0, half.err);
+  CHECK(relative_difference(number_after(half.out, "low_load_factor"), std::pow(0.5, 0.25)) <=
+        1e-15);
+  // At the threshold and above c' holds as stated: the same c' as without a load.
+  const CommandResult none = run_command(cli("iso6336" + pair));
+  const CommandResult at = run_command(cli("iso6336 --load '100 N/mm'" + pair));
+  CHECK(number_after(at.out, "low_load_factor") == 1.0);
+  CHECK(number_after(at.out, "c_prime_n_mm_um") == number_after(none.out, "c_prime_n_mm_um"));
+  CHECK(none.out.find("low_load_factor") == std::string::npos);
+  // A torque: F_t / b = T1 / (r1 b), r1 = m z1 / 2 = 17 mm, b = 20 mm: 20 N*m is 58.8 N/mm.
+  const CommandResult torque = run_command(cli("iso6336 --load '20 N*m'" + pair));
+  REQUIRE_MESSAGE(torque.exit_code == 0, torque.err);
+  const double line_load_n_mm = 20.0 / (17e-3 * 20e-3) * 1e-3;
+  CHECK(relative_difference(number_after(torque.out, "specific_load_n_mm"), line_load_n_mm) <=
+        1e-15);
+  CHECK(relative_difference(number_after(torque.out, "low_load_factor"),
+                            std::pow(line_load_n_mm / 100.0, 0.25)) <= 1e-15);
+  const CommandResult bad = run_command(cli("iso6336 --load '50 kg'" + pair));
+  CHECK(bad.exit_code == 1);
+  CHECK(has(bad.err, "--load"));
+  CHECK(has(bad.err, "N/mm"));
+}
