@@ -36,9 +36,10 @@ def _g(value):
     return f"{value:.6g}"
 
 
-def extrapolation_text(case_name):
-    """The library's warning of the foundation fit, for the case named."""
-    return f"{case_name}: {_core.foundation_extrapolation_warning()}"
+def extrapolation_text(case_name, warning):
+    """The library's warning of the foundation fit (naming the gear, the
+    parameter, its value and the fit's range), for the case named."""
+    return f"{case_name}: {warning}"
 
 
 def conditions(case):
@@ -48,7 +49,7 @@ def conditions(case):
     name = case.name or "the case"
     found = {}
     if c["foundation_extrapolated"]:
-        found["extrapolated"] = extrapolation_text(name)
+        found["extrapolated"] = extrapolation_text(name, c["foundation_warning"])
     if c["balanced"] is False:
         t1, t2, balancing = c["mean_torque1_n_m"], c["mean_torque2_n_m"], c["balancing_torque2_n_m"]
         key = "torque2_value" if case.fields()["torque2.kind"] == "constant" else "torque2_mean"

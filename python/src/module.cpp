@@ -492,7 +492,10 @@ bool rolling(double speed1_m_s, double speed2_m_s) {
 py::dict case_conditions(const SimulationCase& c) {
   py::dict out;
   const GearPair& pair = c.gears;
-  out["foundation_extrapolated"] = cli::foundation_extrapolated(pair, c.model.stiffness);
+  const std::vector<FoundationExtrapolation> extrapolations =
+      foundation_extrapolations(pair, c.model.stiffness);
+  out["foundation_extrapolated"] = !extrapolations.empty();
+  out["foundation_warning"] = foundation_extrapolation_warning(extrapolations);
   const double rb1 = base_radius(pair, Gear::one);
   const double rb2 = base_radius(pair, Gear::two);
   out["rb1_m"] = rb1;
@@ -647,7 +650,6 @@ void define_module(py::module_& m) {
   m.def("shortest_decimal", &shortest_decimal, py::arg("value"));
   m.def("schema_rows", &schema_rows);
   m.def("case_conditions", &case_conditions, py::arg("case"));
-  m.def("foundation_extrapolation_warning", &foundation_extrapolation_warning);
   m.def(
       "most_values",
       [](const std::string& key) {

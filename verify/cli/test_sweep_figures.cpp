@@ -77,7 +77,8 @@ void write_sweep_folder(const fs::path& dir, const Data& d) {
       (d.lines > 1 ? "mm" : "") +
       "\", \"mesh_teeth\": 20, \"iso_resonance_speed_rad_s\": 6341.8, "
       "\"iso_resonance_speed_iso_stiffness_rad_s\": 3199.5, \"iso_contact_ratio\": "
-      "1.69, \"iso_line_load_n_m\": 15000.0, \"tolerance\": 1e-06, "
+      "1.69, \"iso_line_load_n_m\": 15000.0, \"quasi_static_force_ratio\": 1.3, \"tolerance\": "
+      "1e-06, "
       "\"steps_per_contact_period\": 128.0, \"max_periods\": 3000, "
       "\"damping_update\": \"frozen\"}, \"warnings\": []}\n";
   write(dir / "summary.json", spec);
