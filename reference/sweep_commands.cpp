@@ -20,6 +20,7 @@
 #include "gearimpact/error.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
+#include "gearimpact/io/results.hpp"
 #include "gearimpact/io/sweep_files.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "gearimpact/steady/iso_resonance.hpp"
@@ -190,10 +191,10 @@ void render_iso_plot(const std::filesystem::path& dir, const IsoScale& iso,
     n_max = std::max(n_max, n);
     const std::optional<double>& df = r.point.dynamic_factor;
     data += std::to_string(r.line) + "," + to_string(r.direction) + "," + std::to_string(r.index) +
-            "," + format_number(r.value_si) + "," + format_number(n) + "," +
-            format_number(
+            "," + format_data_number(r.value_si) + "," + format_data_number(n) + "," +
+            format_data_number(
                 iso_resonance_ratio(r.value_si, iso.resonance_speed_iso_stiffness_rad_per_s)) +
-            "," + (df ? format_number(*df) : "") + "\n";
+            "," + (df ? format_data_number(*df) : "") + "\n";
   }
   write_file_atomically((dir / "dynamic_factor_vs_iso_n.csv").string(), data);
   write_iso_kv_band(dir / "iso_kv_band.csv", iso, std::max(2.0, 1.1 * n_max));
@@ -246,7 +247,7 @@ void render_plots(const std::filesystem::path& dir, const SteadySweep& sweep) {
   if (!worth_plotting("regime-map", std::min(distinct(map_x), distinct(map_lines)))) return;
   const double from2 = spec.from2_si.value_or(0.0);
   const double to2 = spec.to2_si.value_or(0.0);
-  const std::string step2 = format_number((to2 - from2) / (spec.lines - 1));
+  const std::string step2 = format_data_number((to2 - from2) / (spec.lines - 1));
   Figure map;
   map.name = "regime-map";
   map.title = "Regimes (up sweeps): NI 0, SS 1, DS 2, NC 3";
@@ -255,7 +256,7 @@ void render_plots(const std::filesystem::path& dir, const SteadySweep& sweep) {
   map.setup = {"set cbrange [0:3]", "set palette maxcolors 4",
                "set cbtics ('NI' 0, 'SS' 1, 'DS' 2, 'NC' 3)"};
   map.series = {
-      "'sweep.csv' using (strcol(2) eq \"up\" ? $4 : NaN):(" + format_number(from2) + " + $1 * " +
+      "'sweep.csv' using (strcol(2) eq \"up\" ? $4 : NaN):(" + format_data_number(from2) + " + $1 * " +
       step2 +
       "):(strcol(5) eq \"NI\" ? 0 : strcol(5) eq \"SS\" ? 1 : strcol(5) eq \"DS\" ? 2 : 3) "
       "with points pt 5 ps 1.5 palette notitle"};
