@@ -256,8 +256,8 @@ void render_plots(const std::filesystem::path& dir, const SteadySweep& sweep) {
   map.setup = {"set cbrange [0:3]", "set palette maxcolors 4",
                "set cbtics ('NI' 0, 'SS' 1, 'DS' 2, 'NC' 3)"};
   map.series = {
-      "'sweep.csv' using (strcol(2) eq \"up\" ? $4 : NaN):(" + format_data_number(from2) + " + $1 * " +
-      step2 +
+      "'sweep.csv' using (strcol(2) eq \"up\" ? $4 : NaN):(" + format_data_number(from2) +
+      " + $1 * " + step2 +
       "):(strcol(5) eq \"NI\" ? 0 : strcol(5) eq \"SS\" ? 1 : strcol(5) eq \"DS\" ? 2 : 3) "
       "with points pt 5 ps 1.5 palette notitle"};
   render(dir, map);

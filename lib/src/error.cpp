@@ -35,9 +35,10 @@ std::string Problem::line() const {
 }
 
 Problem Problem::renamed(std::string new_field, std::string new_value) const {
-  Problem p = reason.empty() ? range_problem(std::move(new_field), std::move(new_value), allowed, fix)
-                             : refused_problem(std::move(new_field), std::move(new_value), reason,
-                                               allowed, fix);
+  Problem p =
+      reason.empty()
+          ? range_problem(std::move(new_field), std::move(new_value), allowed, fix)
+          : refused_problem(std::move(new_field), std::move(new_value), reason, allowed, fix);
   p.where = where;
   return p;
 }

@@ -169,7 +169,8 @@ TEST_CASE("every out-of-range option value is refused, naming the option and its
   for (const Bad& bad : {
            Bad{"simulate --case 1 --t-end 0", "--t-end = 0", "a time > 0 s"},
            Bad{"simulate --case 1 --t-end -2ms", "--t-end = -2ms", "a time > 0 s"},
-           Bad{"simulate --case 1 --t-end 2furlong", "--t-end", "unknown unit 'furlong' for a time"},
+           Bad{"simulate --case 1 --t-end 2furlong", "--t-end",
+               "unknown unit 'furlong' for a time"},
            Bad{"simulate --case 1 --dt -1", "--dt = -1", "a time > 0 s"},
            Bad{"simulate --case 1 --dt 1e-5", "--dt = 1e-5", "20 steps per period"},
            Bad{"simulate --case 1 --t-end 1000", "--t-end", "at most 2e9 steps"},

@@ -188,10 +188,10 @@ TEST_CASE("sweep: bad input is refused naming the key") {
   CHECK(imbalance.exit_code != 0);
   CHECK(imbalance.err.find("mean torques") != std::string::npos);
   // With friction left in, both refusals at once, each with the key or flag that cures it.
-  const auto both = run_command(
-      cli("sweep 2 --vary initial.w1 --from '3000 rad/s' --to '6000 rad/s' --points 3 "
-          "--no-plots --out " +
-          out.string()));
+  const auto both =
+      run_command(cli("sweep 2 --vary initial.w1 --from '3000 rad/s' --to '6000 rad/s' --points 3 "
+                      "--no-plots --out " +
+                      out.string()));
   CHECK(both.exit_code != 0);
   CAPTURE(both.err);
   CHECK(both.err.find("(1 of 2 problems, one per line)") != std::string::npos);

@@ -272,8 +272,8 @@ TEST_CASE("the fixes of a small pinion: the fewest teeth and the smallest shift,
     // and at z, x = 1 - z sin^2(a0) / 2 rounded up to 0.001 (interference at the root binds
     // later for these pairs).
     CHECK(*fewest == 18);
-    CHECK(*shift == doctest::Approx(std::ceil((1.0 - z * sin2 / 2.0) * 1000.0) / 1000.0)
-                        .epsilon(1e-12));
+    CHECK(*shift ==
+          doctest::Approx(std::ceil((1.0 - z * sin2 / 2.0) * 1000.0) / 1000.0).epsilon(1e-12));
     // The relation just holds at the fix and just fails either side: one tooth fewer, or
     // 0.001 less shift, and validate names teeth1 again.
     const auto blames_teeth1 = [](const GearPair& p) {

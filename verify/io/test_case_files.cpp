@@ -239,10 +239,12 @@ std::vector<BadInput> bad_inputs() {
        {"bad.toml:", "gears.module = 2", "a number without a unit", "m, mm, um, cm, in"}},
       {"unit of another dimension",
        set("gears", "module", "\"2 deg\""),
-       {"gears.module = \"2 deg\"", "'deg' is a unit of an angle, not of a length", "m, mm, um, cm, in"}},
+       {"gears.module = \"2 deg\"", "'deg' is a unit of an angle, not of a length",
+        "m, mm, um, cm, in"}},
       {"unknown unit",
        set("gears", "backlash", "\"0.05 furlong\""),
-       {"gears.backlash = \"0.05 furlong\"", "unknown unit 'furlong' for a length", "m, mm, um, cm, in"}},
+       {"gears.backlash = \"0.05 furlong\"", "unknown unit 'furlong' for a length",
+        "m, mm, um, cm, in"}},
       {"non-finite quantity",
        set("gears", "face_width", "\"inf mm\""),
        {"gears.face_width = \"inf mm\"", "no finite decimal number"}},
@@ -506,7 +508,9 @@ TEST_CASE("write_case_file reads back to the same case, in readable and in SI un
   CHECK_THROWS_AS(write_case_file(user), InputError);
 }
 
-TEST_CASE("a pinion too small for its shift blames teeth1, with the fewest teeth and the smallest shift") {
+TEST_CASE(
+    "a pinion too small for its shift blames teeth1, with the fewest teeth and the smallest "
+    "shift") {
   // 12 teeth against 80: the wheel's tip passes C1 (X_start < 0), and the pinion is undercut:
   // interference needs fewer teeth than the rack limit 2 ha / sin^2(a0) when both gears have
   // the same addendum (the rack is the worst mating gear), so the undercut is named, under the

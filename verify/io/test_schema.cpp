@@ -229,8 +229,7 @@ TEST_CASE("library errors name the key as section.key, cross-key checks included
       {[](SimulationCase& c) { c.gears.addendum_coefficient = 0.4; }, "gears.contact_ratio",
        "[1, 3)"},
       // At 0.26 rad the 20-tooth pinion is undercut before its root interferes.
-      {[](SimulationCase& c) { c.gears.pressure_angle_rad = 0.26; }, "gears.teeth1",
-       "undercuts"},
+      {[](SimulationCase& c) { c.gears.pressure_angle_rad = 0.26; }, "gears.teeth1", "undercuts"},
       {[](SimulationCase& c) { c.gears.youngs_modulus_pa = 0.0; }, "gears.youngs_modulus",
        "> 0 Pa"},
       {[](SimulationCase& c) { c.model.restitution.exponent = 2.0; }, "model.restitution_exponent",

@@ -89,16 +89,18 @@ TEST_CASE("errors name the field, the text as written and the allowed units") {
   };
   for (const Bad& bad :
        {Bad{"2", "no unit"}, Bad{"mm", "no finite decimal number"},
-        Bad{"", "no finite decimal number"}, Bad{"2 furlong", "unknown unit 'furlong' for a length"},
+        Bad{"", "no finite decimal number"},
+        Bad{"2 furlong", "unknown unit 'furlong' for a length"},
         Bad{"2 deg", "'deg' is a unit of an angle, not of a length"},
-        Bad{"2 GPa", "'GPa' is a unit of a pressure, not of a length"}, Bad{"2 MM", "unknown unit 'MM' for a length"},
-        Bad{"inf mm", "no finite decimal number"}, Bad{"nan mm", "no finite decimal number"},
-        Bad{"-inf mm", "no finite decimal number"},
+        Bad{"2 GPa", "'GPa' is a unit of a pressure, not of a length"},
+        Bad{"2 MM", "unknown unit 'MM' for a length"}, Bad{"inf mm", "no finite decimal number"},
+        Bad{"nan mm", "no finite decimal number"}, Bad{"-inf mm", "no finite decimal number"},
         Bad{"1e400 mm", "outside the range of a double"},
         Bad{"1e999999999999 mm", "outside the range of a double"},
         Bad{"1e-400 mm", "outside the range of a double"},
-        Bad{"1e mm", "an exponent without digits"}, Bad{"1.2.3 mm", "unknown unit '.3 mm' for a length"},
-        Bad{"0x10 mm", "unknown unit"}, Bad{". mm", "no finite decimal number"}}) {
+        Bad{"1e mm", "an exponent without digits"},
+        Bad{"1.2.3 mm", "unknown unit '.3 mm' for a length"}, Bad{"0x10 mm", "unknown unit"},
+        Bad{". mm", "no finite decimal number"}}) {
     CAPTURE(bad.text);
     const std::string message = error_of(bad.text, Dimension::length);
     CHECK(contains(message, "gears.module = \"" + std::string(bad.text) + "\""));
@@ -130,7 +132,8 @@ TEST_CASE("numbers in messages are the shortest text that reads back to the same
     state ^= state >> 7;
     state ^= state << 17;
     double x = 0.0;
-    const std::uint64_t bits = (state & 0x800FFFFFFFFFFFFFull) | ((1023ull - 60 + state % 120) << 52);
+    const std::uint64_t bits =
+        (state & 0x800FFFFFFFFFFFFFull) | ((1023ull - 60 + state % 120) << 52);
     std::memcpy(&x, &bits, sizeof x);
     const std::string text = format_number(x);
     CAPTURE(text);

@@ -710,7 +710,8 @@ std::optional<std::string> nearest_key(std::string_view written) {
   for (const Field& field : case_schema()) {
     const std::string name = field.name();
     // A key under the wrong section costs one edit more than its own typos.
-    const std::size_t d = std::min(edit_distance(written, name), edit_distance(bare, field.key) + 1);
+    const std::size_t d =
+        std::min(edit_distance(written, name), edit_distance(bare, field.key) + 1);
     if (d < fewest) {
       fewest = d;
       best = name;
@@ -1039,7 +1040,8 @@ void validate(const GearPair& pair) {
   SimulationCase c;
   c.gears = pair;
   Problems problems;
-  check_rows(c, "gears", [](const Field&) { return true; }, problems);
+  check_rows(
+      c, "gears", [](const Field&) { return true; }, problems);
   // The relations only between values in their ranges.
   if (problems.empty()) problems.collect([&] { validate_geometry(pair); });
   problems.throw_if_any();
@@ -1100,7 +1102,8 @@ void relation_problems(const SimulationCase& c, const std::vector<std::string>& 
            {"phases", torque->harmonic_phases_rad.size()}}};
       for (const auto& [key, size] : others) {
         if (size != n) {
-          problems.add(range_problem(std::string(name) + "." + key, std::to_string(size) + " values",
+          problems.add(range_problem(std::string(name) + "." + key,
+                                     std::to_string(size) + " values",
                                      "as many values as " + std::string(name) + ".amplitudes (" +
                                          std::to_string(n) + ")"));
         }
@@ -1111,11 +1114,11 @@ void relation_problems(const SimulationCase& c, const std::vector<std::string>& 
   const double most_steps = static_cast<double>(kMostSteps);
   if (!any_failed(failed, "integrator.end_time") && !any_failed(failed, "integrator.step") &&
       s.end_time_s / s.step_s > most_steps) {
-    problems.add(range_problem(
-        "integrator.end_time", format_number(s.end_time_s) + " s",
-        "at most " + bound_text(most_steps) + " steps of integrator.step = " +
-            format_number(s.step_s) + " s, i.e. end_time <= " + format_number(most_steps * s.step_s) +
-            " s"));
+    problems.add(range_problem("integrator.end_time", format_number(s.end_time_s) + " s",
+                               "at most " + bound_text(most_steps) +
+                                   " steps of integrator.step = " + format_number(s.step_s) +
+                                   " s, i.e. end_time <= " + format_number(most_steps * s.step_s) +
+                                   " s"));
   }
 }
 

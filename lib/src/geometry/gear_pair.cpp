@@ -262,8 +262,8 @@ std::string flank_failure(const GearPair& pair, Gear gear) {
   if (!first && segment.end_m >= line_of_action_length(pair)) {
     return "values for which the tip of gear 1 stays before C2, the tangent point on base "
            "circle 2 (X_end = " +
-           format_number(segment.end_m) + " m < lp = " +
-           format_number(line_of_action_length(pair)) + " m): interference";
+           format_number(segment.end_m) +
+           " m < lp = " + format_number(line_of_action_length(pair)) + " m): interference";
   }
   return {};
 }
@@ -340,8 +340,8 @@ void validate_geometry(const GearPair& pair) {
     const bool pointed = failure.find("pointed") != std::string::npos;
     std::string fix;
     if (const std::optional<int> z = smallest_teeth_for_shift(pair, gear)) {
-      fix = "teeth" + n + " = " + std::to_string(*z) + " (the fewest at profile_shift" + n +
-            " = " + format_number(x) + ")";
+      fix = "teeth" + n + " = " + std::to_string(*z) + " (the fewest at profile_shift" + n + " = " +
+            format_number(x) + ")";
     }
     if (!pointed) {
       if (const std::optional<double> shift = smallest_shift_for_teeth(pair, gear)) {

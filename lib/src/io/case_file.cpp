@@ -302,8 +302,8 @@ class Document {
     for (const std::string& key : unknown) {
       problems_.push_back(reader.problem(key, &root.as_table().at(key),
                                          "unknown key or section \"" + key + "\"" +
-                                             suggestion(key) + "; a case file has " +
-                                             key_list("") + " and the sections " + list));
+                                             suggestion(key) + "; a case file has " + key_list("") +
+                                             " and the sections " + list));
     }
     for (std::string_view section : sections) open(section);
   }
@@ -348,10 +348,10 @@ class Document {
     }
     if (!table->is_table()) {
       broken_.push_back(section_name);
-      problems_.push_back(reader_.problem(
-          section_name, table,
-          section_name + " = " + written(*table) + " is " + type_name(*table) +
-              ", not a section: write [" + section_name + "] with keys " + key_list(name)));
+      problems_.push_back(reader_.problem(section_name, table,
+                                          section_name + " = " + written(*table) + " is " +
+                                              type_name(*table) + ", not a section: write [" +
+                                              section_name + "] with keys " + key_list(name)));
       return;
     }
     std::vector<std::string> unknown;
@@ -598,12 +598,12 @@ SimulationCase read_case(const Reader& reader, const toml::value& root,
       validate_implied(result);
     } catch (const QuadratureError& e) {
       const Field& tolerance = *find_field("model.stiffness_tolerance");
-      problems.push_back(reader.problem(
-          tolerance.name(), document.find(tolerance),
-          tolerance.name() + " = " + value_text(tolerance, result) +
-              " with stiffness_method = " + method_name(result.model.stiffness) +
-              ": the mesh stiffness cannot be computed to it (" + e.what() +
-              "); 1e-12 is within reach of every method"));
+      problems.push_back(
+          reader.problem(tolerance.name(), document.find(tolerance),
+                         tolerance.name() + " = " + value_text(tolerance, result) +
+                             " with stiffness_method = " + method_name(result.model.stiffness) +
+                             ": the mesh stiffness cannot be computed to it (" + e.what() +
+                             "); 1e-12 is within reach of every method"));
     } catch (const InputError& e) {
       for (const Problem& p : e.problems()) {
         problems.push_back(at_key(reader, document, result, p));

@@ -164,8 +164,8 @@ std::vector<std::string> split(const std::string& line) {
   }
 }
 
-// A number as the files write it (format_data_number): finite, read back to the same double, nothing
-// before or after it.
+// A number as the files write it (format_data_number): finite, read back to the same double,
+// nothing before or after it.
 double number_field(const std::string& text, const std::string& where) {
   std::size_t used = 0;
   double value = 0.0;

@@ -288,13 +288,13 @@ void require_steady_case(const SimulationCase& c) {
       const double balancing =
           -t1 * base_radius(c.gears, Gear::two) / base_radius(c.gears, Gear::one);
       const std::string value = format_number(balancing) + " N*m";
-      problems.add(range_problem(
-          key2, format_number(t2) + " N*m",
-          "mean torques with T1/Rb1 + T2/Rb2 = 0 for a steady state, here " + e.value() +
-              " with " + key1 + " = " + format_number(t1) +
-              " N*m (an unbalanced mean torque accelerates the pair without bound)",
-          key2 + " = \"" + value + "\" balances it (in the case file, or --set '" + key2 + "=" +
-              value + "')"));
+      problems.add(
+          range_problem(key2, format_number(t2) + " N*m",
+                        "mean torques with T1/Rb1 + T2/Rb2 = 0 for a steady state, here " +
+                            e.value() + " with " + key1 + " = " + format_number(t1) +
+                            " N*m (an unbalanced mean torque accelerates the pair without bound)",
+                        key2 + " = \"" + value + "\" balances it (in the case file, or --set '" +
+                            key2 + "=" + value + "')"));
     }
   }
   if (c.model.friction_coefficient != 0.0) {

@@ -188,10 +188,10 @@ void relation_problems(const SimulationCase& c, const std::vector<std::string>& 
 // length, at most kMostSteps steps. InputError names the key as section.key.
 void validate_relations(const SimulationCase& c);
 
-// Throws InputError naming (as section.key) every field outside its range,
-// with the relations among the fields that passed (relation_problems): every check but the step's upper bound,
-// which needs the mesh stiffness (the dynamics checks it,
-// largest_resolving_step_s).
+// Throws one InputError naming (as section.key) every field outside its
+// range, with the relations among the fields that passed (relation_problems):
+// every check but the step's upper bound, which needs the mesh stiffness (the
+// dynamics checks it, largest_resolving_step_s).
 void validate_fields(const SimulationCase& c);
 
 // Every input of `c` but its name, one "section.key=value" line per row that

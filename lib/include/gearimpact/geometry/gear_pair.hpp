@@ -61,7 +61,6 @@ GearPair paper_gear_pair();
 // (validate(const GearPair&) of case/schema.hpp checks both).
 void validate_geometry(const GearPair& pair);
 
-
 // Which gear of the pair: 1 the pinion (driver in the paper), 2 the wheel.
 enum class Gear { one = 1, two = 2 };
 
