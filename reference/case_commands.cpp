@@ -42,8 +42,8 @@ void register_case_commands(CLI::App& app) {
   auto file = std::make_shared<std::string>();
   CLI::App* check = app.add_subcommand(
       "check-case",
-      "read and validate a case file (TOML); print its values in SI units, or the first error "
-      "(file, field, value, allowed range) and exit non-zero");
+      "read and validate a case file (TOML); print its values in SI units, or every error "
+      "(file:line, field, value, allowed range, fix), one per line, and exit non-zero");
   check->add_option("file", *file, "the case file, e.g. paper_data/case1.toml")->required();
   check->callback([file] { check_case(*file); });
 }

@@ -120,9 +120,13 @@ void CaseOptions::apply(SimulationCase& c) {
     }
     const std::string key = assignment.substr(0, equals);
     if (find_field(key) == nullptr) {
-      throw InputError("--set", assignment,
-                       "section.key=value with a key of the case schema (`gearimpact schema` "
-                       "lists them)");
+      const std::optional<std::string> nearest = nearest_key(key);
+      throw InputError(
+          "--set", assignment,
+          "section.key=value with a key of the case schema (`gearimpact schema` "
+          "lists them)",
+          nearest ? "did you mean --set " + *nearest + "=" + assignment.substr(equals + 1) + "?"
+                  : std::string());
     }
     set(c, key, assignment.substr(equals + 1), "--set " + key,
         set_numbers_ == SetNumbers::as_swept_value);

@@ -119,9 +119,16 @@ class CaseOptions {
     try {
       work();
     } catch (const InputError& e) {
-      const auto found = given_.find(e.field());
-      if (found == given_.end()) throw;
-      throw InputError(found->second.option, found->second.text, e.allowed());
+      std::vector<Problem> problems = e.problems();
+      bool renamed = false;
+      for (Problem& p : problems) {
+        const auto found = given_.find(p.field);
+        if (found == given_.end()) continue;
+        p = p.renamed(found->second.option, found->second.text);
+        renamed = true;
+      }
+      if (!renamed) throw;
+      throw InputError(std::move(problems));
     }
   }
 

@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <string>
 
-#include "gearimpact/error.hpp"
 #include "gearimpact/io/atomic_file.hpp"
+#include "gearimpact/io/results.hpp"
 #include "gearimpact/steady/iso_resonance.hpp"
 
 namespace gearimpact::cli {
@@ -14,8 +14,8 @@ void write_iso_kv_band(const std::filesystem::path& file, const IsoScale& scale,
   constexpr int intervals = 400;
   for (int i = 0; i <= intervals; ++i) {
     const double n = n_max * i / intervals;
-    csv += format_number(n) + "," +
-           format_number(
+    csv += format_data_number(n) + "," +
+           format_data_number(
                iso_dynamic_factor_perfect_gears(n, scale.contact_ratio, scale.line_load_n_per_m)
                    .value) +
            "\n";
@@ -26,7 +26,7 @@ void write_iso_kv_band(const std::filesystem::path& file, const IsoScale& scale,
 Figure dynamic_factor_vs_iso_n(const std::string& name, const IsoScale& scale,
                                const std::string& data, int direction_column, int n_column,
                                int df_column, const std::string& band, bool quasi_static) {
-  const std::string to_iso_n = format_number(scale.resonance_speed_rad_per_s /
+  const std::string to_iso_n = format_data_number(scale.resonance_speed_rad_per_s /
                                              scale.resonance_speed_iso_stiffness_rad_per_s);
   char load[96];
   std::snprintf(load, sizeof load, "{/Symbol e}_{/Symbol a} %.3g, F_t/b %.3g N/mm",

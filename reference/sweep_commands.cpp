@@ -26,6 +26,7 @@
 #include "gearimpact/error.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
+#include "gearimpact/io/results.hpp"
 #include "gearimpact/io/sweep_files.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "gearimpact/steady/iso_resonance.hpp"
@@ -377,11 +378,11 @@ void render_iso_plot(const std::filesystem::path& dir, const IsoScale& iso,
       dfs.push_back(*df);
     }
     data += std::to_string(r.line) + "," + to_string(r.direction) + "," + std::to_string(r.index) +
-            "," + format_number(r.value_si) + "," + format_number(n) + "," +
-            format_number(
+            "," + format_data_number(r.value_si) + "," + format_data_number(n) + "," +
+            format_data_number(
                 iso_resonance_ratio(r.value_si, iso.resonance_speed_iso_stiffness_rad_per_s)) +
-            "," + (df ? format_number(*df) : "") + "," +
-            (df ? format_number(*df / iso.quasi_static_force_ratio) : "") + "\n";
+            "," + (df ? format_data_number(*df) : "") + "," +
+            (df ? format_data_number(*df / iso.quasi_static_force_ratio) : "") + "\n";
   }
   write_file_atomically((dir / "dynamic_factor_vs_iso_n.csv").string(), data);
   write_iso_kv_band(dir / "iso_kv_band.csv", iso, std::max(2.0, 1.1 * n_max));

@@ -425,7 +425,8 @@ def _toml_text(literals):
 
 def _explained(error, given):
     """The reader's CaseError, naming the keyword arguments instead of the text built from them."""
-    message = re.sub(r"^" + re.escape(_KEYWORDS) + r"(:\d+)?: ", "", str(error))
+    # Every line: the reader reports each problem on its own line.
+    message = re.sub(r"^" + re.escape(_KEYWORDS) + r"(:\d+)?: ", "", str(error), flags=re.M)
     field = getattr(error, "field", "")
     # An element of a list key: torque1.amplitudes[1].
     key, bracket, index = field.partition("[")

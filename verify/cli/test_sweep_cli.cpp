@@ -187,6 +187,25 @@ TEST_CASE("sweep: bad input is refused naming the key") {
                       out.string()));
   CHECK(imbalance.exit_code != 0);
   CHECK(imbalance.err.find("mean torques") != std::string::npos);
+  // With friction left in, both refusals at once, each with the key or flag that cures it.
+  const auto both =
+      run_command(cli("sweep 2 --vary initial.w1 --from '3000 rad/s' --to '6000 rad/s' --points 3 "
+                      "--no-plots --out " +
+                      out.string()));
+  CHECK(both.exit_code != 0);
+  CAPTURE(both.err);
+  CHECK(both.err.find("(1 of 2 problems, one per line)") != std::string::npos);
+  CHECK(both.err.find("gearimpact: error: torque2.value = -0.49033") != std::string::npos);
+  // T2 = -T1 Rb2 / Rb1 = -50 kgf*mm x 80 / 20.
+  CHECK(both.err.find("fix: torque2.value = \"-1.96133") != std::string::npos);
+  CHECK(both.err.find("--set 'torque2.value=-1.96133") != std::string::npos);
+  CHECK(both.err.find("\nmodel.friction_coefficient = 0.04 ") != std::string::npos);
+  CHECK(both.err.find("--set model.friction_coefficient=0") != std::string::npos);
+  const auto typo = run_command(cli(
+      "sweep 1 --vary initial.ww1 --from 1 --to 2 --points 3 --no-plots --out " + out.string()));
+  CHECK(typo.exit_code != 0);
+  CHECK(typo.err.find("--vary = initial.ww1") != std::string::npos);
+  CHECK(typo.err.find("did you mean initial.w1?") != std::string::npos);
   const auto key = run_command(cli(
       "sweep 1 --vary gears.nonsense --from 1 --to 2 --points 3 --no-plots --out " + out.string()));
   CHECK(key.exit_code != 0);

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include "gearimpact/case/schema.hpp"
@@ -245,11 +246,73 @@ TEST_CASE("bad gear pairs are refused with the field and its allowed range") {
   CHECK(error_of(pair).find("contact_ratio |") == 0);
 
   // 12 teeth against 80: the wheel's tip passes C1, the tangent point on
-  // base circle 1 (X_start < 0), and that is reported before the undercut.
+  // base circle 1 (X_start < 0), and the pinion is undercut; the tooth count
+  // is blamed, not the addendum.
   pair = paper_gear_pair();
   pair.teeth1 = 12;
   const std::string interference = error_of(pair);
   CAPTURE(interference);
-  CHECK(interference.find("addendum_coefficient |") == 0);
-  CHECK(interference.find("interference") != std::string::npos);
+  CHECK(interference.find("teeth1 |") == 0);
+  CHECK(interference.find("undercuts") != std::string::npos);
+}
+
+TEST_CASE("the fixes of a small pinion: the fewest teeth and the smallest shift, by the relation") {
+  // teeth1 = 15 at x1 = 0 (the case of a user who thought it fine): undercut below
+  // 2 (ha - x) / sin^2(a0), with X_start < 0 too.
+  const double sin2 = std::pow(std::sin(20.0 * std::numbers::pi / 180.0), 2);
+  for (const int z : {12, 15, 17}) {
+    CAPTURE(z);
+    GearPair pair = paper_gear_pair();
+    pair.teeth1 = z;
+    const std::optional<int> fewest = smallest_teeth_for_shift(pair, Gear::one);
+    const std::optional<double> shift = smallest_shift_for_teeth(pair, Gear::one);
+    REQUIRE(fewest);
+    REQUIRE(shift);
+    // The independent route: the undercut limit of the rack at x = 0, ceil(2 / sin^2 a0) = 18,
+    // and at z, x = 1 - z sin^2(a0) / 2 rounded up to 0.001 (interference at the root binds
+    // later for these pairs).
+    CHECK(*fewest == 18);
+    CHECK(*shift ==
+          doctest::Approx(std::ceil((1.0 - z * sin2 / 2.0) * 1000.0) / 1000.0).epsilon(1e-12));
+    // The relation just holds at the fix and just fails either side: one tooth fewer, or
+    // 0.001 less shift, and validate names teeth1 again.
+    const auto blames_teeth1 = [](const GearPair& p) {
+      try {
+        validate(p);
+      } catch (const InputError& e) {
+        return e.field() == "teeth1";
+      }
+      return false;
+    };
+    GearPair at = pair;
+    at.teeth1 = *fewest;
+    CHECK(error_of(at) == "no error");
+    at.teeth1 = *fewest - 1;
+    CHECK(blames_teeth1(at));
+    at = pair;
+    at.profile_shift1 = *shift;
+    CHECK(!blames_teeth1(at));
+    at.profile_shift1 = *shift - 0.001;
+    CHECK(blames_teeth1(at));
+    // The message names both.
+    const std::string message = error_of(pair);
+    CHECK(message.find("fix: teeth1 = 18 (the fewest at profile_shift1 = 0), or profile_shift1 = " +
+                       format_number(*shift)) != std::string::npos);
+  }
+}
+
+TEST_CASE("both gears' refusals at once") {
+  GearPair pair = paper_gear_pair();
+  pair.teeth1 = 12;
+  pair.teeth2 = 12;
+  try {
+    validate_geometry(pair);
+    FAIL("no error");
+  } catch (const InputError& e) {
+    REQUIRE(e.problems().size() == 2);
+    CHECK(e.problems()[0].field == "teeth1");
+    CHECK(e.problems()[1].field == "teeth2");
+    CHECK(std::string(e.what()).find("(1 of 2 problems, one per line)\nteeth2 = 12") !=
+          std::string::npos);
+  }
 }

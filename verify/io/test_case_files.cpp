@@ -239,10 +239,12 @@ std::vector<BadInput> bad_inputs() {
        {"bad.toml:", "gears.module = 2", "a number without a unit", "m, mm, um, cm, in"}},
       {"unit of another dimension",
        set("gears", "module", "\"2 deg\""),
-       {"gears.module = \"2 deg\"", "\"deg\" is a unit of an angle", "m, mm, um, cm, in"}},
+       {"gears.module = \"2 deg\"", "'deg' is a unit of an angle, not of a length",
+        "m, mm, um, cm, in"}},
       {"unknown unit",
        set("gears", "backlash", "\"0.05 furlong\""),
-       {"gears.backlash = \"0.05 furlong\"", "unknown unit \"furlong\"", "m, mm, um, cm, in"}},
+       {"gears.backlash = \"0.05 furlong\"", "unknown unit 'furlong' for a length",
+        "m, mm, um, cm, in"}},
       {"non-finite quantity",
        set("gears", "face_width", "\"inf mm\""),
        {"gears.face_width = \"inf mm\"", "no finite decimal number"}},
@@ -277,9 +279,11 @@ std::vector<BadInput> bad_inputs() {
       {"too few teeth",
        set("gears", "teeth1", "17"),
        {"gears.teeth1 = 17", "at least 2 ha/sin^2(a0) = 17.09726", "undercuts"}},
-      {"interference, 14.5 deg",
+      // 2 ha / sin^2(14.5 deg) = 31.9: the paper's 20-tooth pinion is undercut (and its root
+      // interferes); the tooth count is blamed, with 32 teeth as the fix.
+      {"undercut at 14.5 deg",
        set("gears", "pressure_angle", "\"14.5 deg\""),
-       {"gears.addendum_coefficient = 1", "tip of gear 2 stays before C1", "interference"}},
+       {"gears.teeth1 = 20", "undercuts the involute", "fix: teeth1 = 32"}},
       {"teeth below 4",
        set("gears", "teeth2", "3"),
        {"gears.teeth2 = 3", "an integer in [4, 100000]"}},
@@ -504,17 +508,68 @@ TEST_CASE("write_case_file reads back to the same case, in readable and in SI un
   CHECK_THROWS_AS(write_case_file(user), InputError);
 }
 
-TEST_CASE("a pair whose wheel tip passes C1 is refused as interference, before the undercut") {
-  // Interference (X_start < 0) needs fewer pinion teeth than the rack limit
-  // 2 ha / sin^2(a0) when both gears have the same addendum: the rack is the
-  // worst mating gear. Such a pair is also undercut; validate() names the
-  // more specific fault.
+TEST_CASE(
+    "a pinion too small for its shift blames teeth1, with the fewest teeth and the smallest "
+    "shift") {
+  // 12 teeth against 80: the wheel's tip passes C1 (X_start < 0), and the pinion is undercut:
+  // interference needs fewer teeth than the rack limit 2 ha / sin^2(a0) when both gears have
+  // the same addendum (the rack is the worst mating gear), so the undercut is named, under the
+  // key a user changes, at its line.
   GearPair pair = paper_gear_pair();
   pair.teeth1 = 12;
   REQUIRE(contact_segment(pair).start_m < 0.0);
   const std::string text = with_key(case1_text(), "gears", "teeth1", "12");
-  CHECK(contains(message_of(text), "interference"));
-  CHECK(contains(message_of(text), "X_start = -0.00128"));
+  const std::string message = message_of(text);
+  CAPTURE(message);
+  CHECK(contains(message, "bad.toml:9: gears.teeth1 = 12 is outside the allowed range"));
+  CHECK(contains(message, "17.09726434082606 teeth"));
+  // ceil(2 / sin^2(20 deg)) = 18; x >= 1 - 12 sin^2(20 deg) / 2 = 0.2981, to 0.001 up.
+  CHECK(contains(message, "fix: teeth1 = 18 (the fewest at profile_shift1 = 0)"));
+  CHECK(contains(message, "profile_shift1 = 0.299 (the smallest to 0.001 at teeth1 = 12)"));
+  CHECK(!contains(message, "addendum_coefficient"));
+}
+
+TEST_CASE("every problem of a file at once, one line each, each at its line; no cascades") {
+  std::string text = case1_text();
+  text = with_key(text, "gears", "module", "\"2 mmm\"");
+  text = with_key(text, "gears", "face_width", "\"10 s\"");
+  text = with_key(text, "gears", "density", "\"-7800 kg/m^3\"");
+  text = with_key(text, "model", "friction_coeficient", "0.04");
+  text = with_key(text, "integrator", "end_time", "\"0 ms\"");
+  CaseFileError error("", "", "");
+  try {
+    parse_case(text, "bad.toml");
+    FAIL("no error");
+  } catch (const CaseFileError& e) {
+    error = e;
+  }
+  const std::string message = error.what();
+  CAPTURE(message);
+  // Five problems, no more: the refused module leaves the pair's relations (contact ratio,
+  // interference) and the step's checks unasked.
+  REQUIRE(error.problems().size() == 5);
+  CHECK(std::count(message.begin(), message.end(), '\n') == 4);
+  const std::string first_line = message.substr(0, message.find('\n'));
+  CHECK(contains(first_line, "(1 of 5 problems, one per line)"));
+  for (const char* part :
+       {"unknown key model.friction_coeficient (did you mean model.friction_coefficient?)",
+        "gears.module = \"2 mmm\": unknown unit 'mmm' for a length; units of a length: m, mm, "
+        "um, cm, in",
+        "gears.face_width = \"10 s\": 's' is a unit of a time, not of a length; units of a "
+        "length: m, mm, um, cm, in",
+        "gears.density = \"-7800 kg/m^3\" is outside the allowed range: a density > 0 kg/m^3",
+        "integrator.end_time = \"0 ms\" is outside the allowed range: a time > 0 s"}) {
+    CAPTURE(part);
+    CHECK(contains(message, part));
+  }
+  for (const Problem& p : error.problems()) {
+    CAPTURE(p.message);
+    CHECK(p.where.rfind("bad.toml:", 0) == 0);
+    CHECK(contains(message, p.line()));
+  }
+  CHECK(error.field() == error.problems().front().field);
+  CHECK(!contains(message, "contact_ratio"));
+  CHECK(!contains(message, "integrator.step"));
 }
 
 TEST_CASE("every bad input: the message names file, field, value and range; check-case exits 1") {

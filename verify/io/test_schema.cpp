@@ -228,8 +228,8 @@ TEST_CASE("library errors name the key as section.key, cross-key checks included
       {[](SimulationCase& c) { c.gears.teeth1 = 17; }, "gears.teeth1", "17.097"},
       {[](SimulationCase& c) { c.gears.addendum_coefficient = 0.4; }, "gears.contact_ratio",
        "[1, 3)"},
-      {[](SimulationCase& c) { c.gears.pressure_angle_rad = 0.26; }, "gears.addendum_coefficient",
-       "interference"},
+      // At 0.26 rad the 20-tooth pinion is undercut before its root interferes.
+      {[](SimulationCase& c) { c.gears.pressure_angle_rad = 0.26; }, "gears.teeth1", "undercuts"},
       {[](SimulationCase& c) { c.gears.youngs_modulus_pa = 0.0; }, "gears.youngs_modulus",
        "> 0 Pa"},
       {[](SimulationCase& c) { c.model.restitution.exponent = 2.0; }, "model.restitution_exponent",
@@ -393,6 +393,51 @@ TEST_CASE("the writer writes exactly the keys that apply, each a row of the sche
   // five term switches; the steady-state keys at their defaults left out),
   // 5 [integrator], name.
   CHECK(written.size() == 51);
+}
+
+TEST_CASE("an unknown key's nearest key: edit distance over the schema's names") {
+  CHECK(edit_distance("kitten", "sitting") == 3);
+  CHECK(edit_distance("", "abc") == 3);
+  CHECK(edit_distance("ab", "ba") == 1);  // a swap of neighbours is one edit
+  CHECK(edit_distance("poisson_ratio", "poisson_ratio") == 0);
+  CHECK(nearest_key("gears.poison_ratio") == std::optional<std::string>("gears.poisson_ratio"));
+  CHECK(nearest_key("gears.modul") == std::optional<std::string>("gears.module"));
+  CHECK(nearest_key("integrator.end_tiem") == std::optional<std::string>("integrator.end_time"));
+  // A key under the wrong section, and a bare key.
+  CHECK(nearest_key("gears.friction_coefficient") ==
+        std::optional<std::string>("model.friction_coefficient"));
+  CHECK(nearest_key("backlash") == std::optional<std::string>("gears.backlash"));
+  // Nothing near: no suggestion rather than a wild one.
+  CHECK(!nearest_key("zebra.stripes"));
+  CHECK(!nearest_key("x"));
+  // set_field and get_numeric_field suggest it as the fix.
+  SimulationCase c;
+  try {
+    set_field(c, "gears.modul", "3 mm");
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK(e.fix() == "did you mean gears.module?");
+    CHECK(std::string(e.what()).find("; fix: did you mean gears.module?") != std::string::npos);
+  }
+}
+
+TEST_CASE("validate_fields reports every refused row at once, and no relation of a refused row") {
+  SimulationCase c = paper_case(1);
+  c.gears.module_m = -2e-3;
+  c.model.friction_coefficient = 2.0;
+  c.integrator.step_s = 0.0;
+  try {
+    validate_fields(c);
+    FAIL("no error");
+  } catch (const InputError& e) {
+    std::string fields;
+    for (const Problem& p : e.problems()) fields += p.field + ";";
+    // No geometry of a negative module, no step count of a zero step.
+    CHECK(fields == "gears.module;model.friction_coefficient;integrator.step;");
+    CHECK(e.field() == "gears.module");
+    CHECK(std::string(e.what()).find("model.friction_coefficient = 2 is outside") !=
+          std::string::npos);
+  }
 }
 
 TEST_CASE("docs/case-files.md holds the program's schema and flag tables") {

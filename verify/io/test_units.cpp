@@ -89,16 +89,18 @@ TEST_CASE("errors name the field, the text as written and the allowed units") {
   };
   for (const Bad& bad :
        {Bad{"2", "no unit"}, Bad{"mm", "no finite decimal number"},
-        Bad{"", "no finite decimal number"}, Bad{"2 furlong", "unknown unit \"furlong\""},
-        Bad{"2 deg", "\"deg\" is a unit of an angle"},
-        Bad{"2 GPa", "\"GPa\" is a unit of a pressure"}, Bad{"2 MM", "unknown unit \"MM\""},
-        Bad{"inf mm", "no finite decimal number"}, Bad{"nan mm", "no finite decimal number"},
-        Bad{"-inf mm", "no finite decimal number"},
+        Bad{"", "no finite decimal number"},
+        Bad{"2 furlong", "unknown unit 'furlong' for a length"},
+        Bad{"2 deg", "'deg' is a unit of an angle, not of a length"},
+        Bad{"2 GPa", "'GPa' is a unit of a pressure, not of a length"},
+        Bad{"2 MM", "unknown unit 'MM' for a length"}, Bad{"inf mm", "no finite decimal number"},
+        Bad{"nan mm", "no finite decimal number"}, Bad{"-inf mm", "no finite decimal number"},
         Bad{"1e400 mm", "outside the range of a double"},
         Bad{"1e999999999999 mm", "outside the range of a double"},
         Bad{"1e-400 mm", "outside the range of a double"},
-        Bad{"1e mm", "an exponent without digits"}, Bad{"1.2.3 mm", "unknown unit \".3 mm\""},
-        Bad{"0x10 mm", "unknown unit"}, Bad{". mm", "no finite decimal number"}}) {
+        Bad{"1e mm", "an exponent without digits"},
+        Bad{"1.2.3 mm", "unknown unit '.3 mm' for a length"}, Bad{"0x10 mm", "unknown unit"},
+        Bad{". mm", "no finite decimal number"}}) {
     CAPTURE(bad.text);
     const std::string message = error_of(bad.text, Dimension::length);
     CHECK(contains(message, "gears.module = \"" + std::string(bad.text) + "\""));
@@ -109,6 +111,35 @@ TEST_CASE("errors name the field, the text as written and the allowed units") {
   // A value that overflows only after the unit's factor is applied.
   CHECK(contains(error_of("1e308 kgf*m", Dimension::torque, "torque1.value"),
                  "outside the range of a double"));
+}
+
+TEST_CASE("numbers in messages are the shortest text that reads back to the same double") {
+  // 0.04 is stored as 0.040000000000000000832...: 17 significant digits
+  // print that tail, the shortest round trip does not.
+  CHECK(format_number(0.04) == "0.04");
+  CHECK(format_number(0.1 + 0.2) == "0.30000000000000004");
+  CHECK(format_number(1e-7) == "1e-7");
+  CHECK(format_number(206.8e9) == "206800000000");
+  CHECK(format_number(1e300) == "1e300");
+  CHECK(format_number(0.0) == "0");
+  CHECK(format_number(std::numeric_limits<double>::infinity()) == "inf");
+  CHECK(InputError("model.friction_coefficient", 0.04, "0").value() == "0.04");
+  // The same text as the case files' numbers (shortest_decimal) and a round
+  // trip, over a fixed xorshift sequence of doubles of every magnitude.
+  std::uint64_t state = 0x2545F4914F6CDD1Dull;
+  for (int i = 0; i < 5000; ++i) {
+    state ^= state << 13;
+    state ^= state >> 7;
+    state ^= state << 17;
+    double x = 0.0;
+    const std::uint64_t bits =
+        (state & 0x800FFFFFFFFFFFFFull) | ((1023ull - 60 + state % 120) << 52);
+    std::memcpy(&x, &bits, sizeof x);
+    const std::string text = format_number(x);
+    CAPTURE(text);
+    CHECK(text == shortest_decimal(x));
+    CHECK(std::stod(text) == x);
+  }
 }
 
 TEST_CASE("format_quantity reads back to the same double, in the requested unit when it can") {

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "gearimpact/constants.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
@@ -120,6 +121,41 @@ TEST_CASE("no steady state: unbalanced mean torques, friction, a user torque are
   c.torque2.kind = Torque::Kind::user;
   c.torque2.user = [](double) { return 0.0; };
   CHECK(message(c).find("torque2") != std::string::npos);
+}
+
+TEST_CASE("an unbalanced, rubbing steady case: both refusals at once, each with its fix") {
+  ClearanceCase cc = clearance_case(2.0, 0.5, 0.05, 0.8);
+  SimulationCase c = cc.c;
+  c.torque2.constant_n_m = -150.0;
+  c.model.friction_coefficient = 0.04;
+  std::vector<Problem> problems;
+  try {
+    require_steady_case(c);
+    FAIL("no error");
+  } catch (const InputError& e) {
+    problems = e.problems();
+  }
+  REQUIRE(problems.size() == 2);
+  CHECK(problems[0].field == "torque2.value");
+  CHECK(problems[1].field == "model.friction_coefficient");
+  CHECK(problems[1].fix.find("--set model.friction_coefficient=0") != std::string::npos);
+  // The balancing torque as the fix prints it: T2 = -T1 Rb2 / Rb1, read back from the text.
+  const std::string& fix = problems[0].fix;
+  CAPTURE(fix);
+  const std::string prefix = "torque2.value = \"";
+  REQUIRE(fix.rfind(prefix, 0) == 0);
+  CHECK(fix.find("--set 'torque2.value=") != std::string::npos);
+  const double balancing = std::stod(fix.substr(prefix.size()));
+  const double rb1 = base_radius(c.gears, Gear::one);
+  const double rb2 = base_radius(c.gears, Gear::two);
+  // torque1 is sinusoidal about its mean; the message prints the shortest round trip.
+  CHECK(balancing == -c.torque1.mean_n_m * rb2 / rb1);
+  // It cures the imbalance, and a torque 1e-6 off it does not (the check allows 1e-9).
+  c.model.friction_coefficient = 0.0;
+  c.torque2.constant_n_m = balancing;
+  CHECK_NOTHROW(require_steady_case(c));
+  c.torque2.constant_n_m = balancing * (1.0 + 1e-6);
+  CHECK_THROWS_AS(require_steady_case(c), InputError);
 }
 
 TEST_CASE("the steady state of the loaded pair is the fixed point of its period map") {

@@ -237,26 +237,38 @@ SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
           spec.vary + " = " + shortest_decimal(value) +
           (spec.vary2.empty() ? std::string()
                               : ", " + spec.vary2 + " = " + shortest_decimal(value2));
-      try {
-        SimulationCase probe = base;
-        if (!spec.vary2.empty()) apply_sweep_value(probe, base, spec.vary2, value2);
-        apply_sweep_value(probe, SimulationCase(probe), spec.vary, value);
-        validate(probe);
-        require_steady_case(probe);
-        // The step the run would take there: a value far out (a speed of 1e308 rad/s) leaves
-        // no finite step, which validate cannot see without the mesh stiffness.
-        const SteadyTiming timing = steady_timing(probe, *pool.table_for(probe), spec.settings);
-        if (!(std::isfinite(timing.step_s) && timing.step_s > 0.0 &&
-              timing.steps_per_period >= 1)) {
-          throw InputError(spec.vary2.empty() ? spec.vary : spec.vary + ", " + spec.vary2,
-                           std::isfinite(timing.step_s)
-                               ? "the step " + shortest_decimal(timing.step_s) + " s"
-                               : std::string("no finite step"),
-                           "values at which the steady state's RK4 step is a positive time");
+      // Every problem at this end at once; the steady-state checks only on a valid case,
+      // the step only when both passed.
+      Problems problems;
+      SimulationCase probe = base;
+      if (problems.collect([&] {
+            if (!spec.vary2.empty()) apply_sweep_value(probe, base, spec.vary2, value2);
+            apply_sweep_value(probe, SimulationCase(probe), spec.vary, value);
+            validate(probe);
+          })) {
+        problems.collect([&] { require_steady_case(probe); });
+      }
+      if (problems.empty()) {
+        problems.collect([&] {
+          // The step the run would take there: a value far out (a speed of 1e308 rad/s)
+          // leaves no finite step, which validate cannot see without the mesh stiffness.
+          const SteadyTiming timing = steady_timing(probe, *pool.table_for(probe), spec.settings);
+          if (!(std::isfinite(timing.step_s) && timing.step_s > 0.0 &&
+                timing.steps_per_period >= 1)) {
+            throw InputError(spec.vary2.empty() ? spec.vary : spec.vary + ", " + spec.vary2,
+                             std::isfinite(timing.step_s)
+                                 ? "the step " + shortest_decimal(timing.step_s) + " s"
+                                 : std::string("no finite step"),
+                             "values at which the steady state's RK4 step is a positive time");
+          }
+        });
+      }
+      if (!problems.empty()) {
+        std::vector<Problem> at_end;
+        for (const Problem& p : problems.list()) {
+          at_end.push_back(p.renamed(p.field, p.value + " (at " + end + ", an end of the sweep)"));
         }
-      } catch (const InputError& e) {
-        throw InputError(e.field(), e.value() + " (at " + end + ", an end of the sweep)",
-                         e.allowed());
+        throw InputError(std::move(at_end));
       }
     }
   }

@@ -309,7 +309,10 @@ std::vector<Field> make_schema() {
         [](auto& c) -> auto& { return c.gears.density_kg_m3; });
     r.quantity(
         "backlash", Dimension::length, "mm", {closed(0.0), {}, {}}, true,
-        "B of (31), along the line of action", [](auto& c) -> auto& { return c.gears.backlash_m; });
+        "B of (31), along the line of action: half the total play 2B, the teeth touching at "
+        "s = +B (drive flank, N1) and s = -B (coast flank, N2); s and the DTE columns of a "
+        "sweep (dte_mean_m, s_min_m, s_max_m) include it, the deflection is s - B on N1",
+        [](auto& c) -> auto& { return c.gears.backlash_m; });
     r.number(
         "dedendum_coefficient", {open(0.0), {}, {}}, false,
         "the rack's dedendum / module, ha + c: the root radius is r - (ha + c - x) m; only the "
@@ -671,8 +674,10 @@ std::optional<double> plain_number(std::string_view text) {
 
 const Field& field_or_throw(std::string_view key, std::string_view name) {
   if (const Field* field = find_field(key)) return *field;
+  const std::optional<std::string> nearest = nearest_key(key);
   throw InputError(std::string(name.empty() ? "section.key" : name), std::string(key),
-                   "a key of the case schema, as section.key (`gearimpact schema` lists them)");
+                   "a key of the case schema, as section.key (`gearimpact schema` lists them)",
+                   nearest ? "did you mean " + *nearest + "?" : std::string());
 }
 
 }  // namespace
@@ -706,6 +711,46 @@ const Field* find_field(std::string_view section_dot_key) {
     if (field.section == section && field.key == key) return &field;
   }
   return nullptr;
+}
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  // Rows of the dynamic programme: the previous two and the current.
+  std::vector<std::size_t> before(b.size() + 1);
+  std::vector<std::size_t> previous(b.size() + 1);
+  std::vector<std::size_t> current(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) previous[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    current[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t substitution = previous[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1);
+      current[j] = std::min({previous[j] + 1, current[j - 1] + 1, substitution});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) {
+        current[j] = std::min(current[j], before[j - 2] + 1);
+      }
+    }
+    std::swap(before, previous);
+    std::swap(previous, current);
+  }
+  return previous[b.size()];
+}
+
+std::optional<std::string> nearest_key(std::string_view written) {
+  const std::size_t dot = written.find('.');
+  const std::string_view bare = dot == std::string_view::npos ? written : written.substr(dot + 1);
+  std::optional<std::string> best;
+  std::size_t fewest = std::numeric_limits<std::size_t>::max();
+  for (const Field& field : case_schema()) {
+    const std::string name = field.name();
+    // A key under the wrong section costs one edit more than its own typos.
+    const std::size_t d =
+        std::min(edit_distance(written, name), edit_distance(bare, field.key) + 1);
+    if (d < fewest) {
+      fewest = d;
+      best = name;
+    }
+  }
+  if (!best || fewest == 0 || 3 * fewest > std::max<std::size_t>(written.size(), 3)) return {};
+  return best;
 }
 
 std::vector<std::string_view> schema_sections() {
@@ -1022,11 +1067,12 @@ namespace {
 // The rows of `section` that `holds` accepts, checked in `c`; errors name
 // the key alone, as the library's types name their fields.
 template <typename Holds>
-void check_rows(const SimulationCase& c, std::string_view section, Holds holds) {
+void check_rows(const SimulationCase& c, std::string_view section, Holds holds,
+                Problems& problems) {
   for (const Field& field : case_schema()) {
     if (field.section != section || !holds(field) || absent(field, c)) continue;
     const double value = field.get(c);
-    check_value(field, value, field.key, si_text(field, value));
+    problems.collect([&] { check_value(field, value, field.key, si_text(field, value)); });
   }
 }
 
@@ -1047,37 +1093,60 @@ bool is_stiffness_row(const Field& field) {
 void validate(const GearPair& pair) {
   SimulationCase c;
   c.gears = pair;
-  check_rows(c, "gears", [](const Field&) { return true; });
-  validate_geometry(pair);
+  Problems problems;
+  check_rows(
+      c, "gears", [](const Field&) { return true; }, problems);
+  // The relations only between values in their ranges.
+  if (problems.empty()) problems.collect([&] { validate_geometry(pair); });
+  problems.throw_if_any();
 }
 
 void validate(const StiffnessModel& model) {
   SimulationCase c;
   c.model.stiffness = model;
-  check_rows(c, "model", is_stiffness_row);
-  validate_terms(model);
+  Problems problems;
+  check_rows(c, "model", is_stiffness_row, problems);
+  if (problems.empty()) problems.collect([&] { validate_terms(model); });
+  problems.throw_if_any();
 }
 
-void validate_relations(const SimulationCase& c) {
-  try {
-    validate_geometry(c.gears);
-  } catch (const InputError& e) {
-    throw InputError("gears." + e.field(), e.value(), e.allowed());
+namespace {
+
+// True when a key of `failed` starts with `prefix` ("gears." or "gears.module").
+bool any_failed(const std::vector<std::string>& failed, std::string_view prefix) {
+  return std::any_of(failed.begin(), failed.end(), [&](const std::string& key) {
+    return key.compare(0, prefix.size(), prefix) == 0;
+  });
+}
+
+}  // namespace
+
+void relation_problems(const SimulationCase& c, const std::vector<std::string>& failed,
+                       Problems& problems) {
+  if (!any_failed(failed, "gears.")) {
+    try {
+      validate_geometry(c.gears);
+    } catch (const InputError& e) {
+      for (const Problem& p : e.problems()) problems.add(p.renamed("gears." + p.field, p.value));
+    }
+    // B is half the total play, and the play 2B fits in a tooth space: half
+    // the circular pitch, pi m / 2, for teeth of standard thickness.
+    if (const double most = pi * c.gears.module_m / 4.0; c.gears.backlash_m > most) {
+      problems.add(range_problem("gears.backlash", format_number(c.gears.backlash_m) + " m",
+                                 "at most pi m / 4 = " + format_number(most) +
+                                     " m: B is half the play, and the play fits in a tooth space "
+                                     "of half the circular pitch"));
+    }
   }
-  // B is half the total play, and the play 2B fits in a tooth space: half
-  // the circular pitch, pi m / 2, for teeth of standard thickness.
-  if (const double most = pi * c.gears.module_m / 4.0; c.gears.backlash_m > most) {
-    throw InputError("gears.backlash", shortest_decimal(c.gears.backlash_m) + " m",
-                     "at most pi m / 4 = " + shortest_decimal(most) +
-                         " m: B is half the play, and the play fits in a tooth space of half "
-                         "the circular pitch");
+  if (!any_failed(failed, "model.")) {
+    problems.collect([&] { validate_terms(c.model.stiffness, "model"); });
   }
-  validate_terms(c.model.stiffness, "model");
   const std::array<std::pair<const char*, const Torque*>, 2> torques{
       {{"torque1", &c.torque1}, {"torque2", &c.torque2}}};
   for (const auto& [name, torque] : torques) {
+    if (any_failed(failed, std::string(name) + ".")) continue;
     if (torque->kind == Torque::Kind::user && !torque->user) {
-      throw InputError(std::string(name) + ".user", "empty", "a callable T(t_s) in N m");
+      problems.add(range_problem(std::string(name) + ".user", "empty", "a callable T(t_s) in N m"));
     }
     if (torque->kind == Torque::Kind::harmonic) {
       // One harmonic is one element of each list.
@@ -1087,57 +1156,76 @@ void validate_relations(const SimulationCase& c) {
            {"phases", torque->harmonic_phases_rad.size()}}};
       for (const auto& [key, size] : others) {
         if (size != n) {
-          throw InputError(
-              std::string(name) + "." + key, std::to_string(size) + " values",
-              "as many values as " + std::string(name) + ".amplitudes (" + std::to_string(n) + ")");
+          problems.add(range_problem(std::string(name) + "." + key,
+                                     std::to_string(size) + " values",
+                                     "as many values as " + std::string(name) + ".amplitudes (" +
+                                         std::to_string(n) + ")"));
         }
       }
     }
   }
-  if (c.model.friction_law == FrictionLaw::table) {
-    const FrictionTable& table = c.model.friction_table;
-    if (table.slide_to_roll.empty()) {
-      throw InputError("model.friction_table_slide_to_roll", "0 values",
-                       "at least one slide-to-roll ratio (one entry is a constant f)");
-    }
-    if (table.coefficient.size() != table.slide_to_roll.size()) {
-      throw InputError("model.friction_table_coefficients",
-                       std::to_string(table.coefficient.size()) + " values",
-                       "as many values as model.friction_table_slide_to_roll (" +
-                           std::to_string(table.slide_to_roll.size()) + ")");
-    }
-    for (std::size_t i = 1; i < table.slide_to_roll.size(); ++i) {
-      if (!(table.slide_to_roll[i] > table.slide_to_roll[i - 1])) {
-        throw InputError("model.friction_table_slide_to_roll[" + std::to_string(i) + "]",
-                         shortest_decimal(table.slide_to_roll[i]),
-                         "a value above the one before it, " +
-                             shortest_decimal(table.slide_to_roll[i - 1]) +
-                             ": the ratios are strictly increasing");
+  if (c.model.friction_law == FrictionLaw::table &&
+      !any_failed(failed, "model.friction_table_slide_to_roll") &&
+      !any_failed(failed, "model.friction_table_coefficients")) {
+    problems.collect([&] {
+      const FrictionTable& table = c.model.friction_table;
+      if (table.slide_to_roll.empty()) {
+        throw InputError("model.friction_table_slide_to_roll", "0 values",
+                         "at least one slide-to-roll ratio (one entry is a constant f)");
       }
-    }
+      if (table.coefficient.size() != table.slide_to_roll.size()) {
+        throw InputError("model.friction_table_coefficients",
+                         std::to_string(table.coefficient.size()) + " values",
+                         "as many values as model.friction_table_slide_to_roll (" +
+                             std::to_string(table.slide_to_roll.size()) + ")");
+      }
+      for (std::size_t i = 1; i < table.slide_to_roll.size(); ++i) {
+        if (!(table.slide_to_roll[i] > table.slide_to_roll[i - 1])) {
+          throw InputError("model.friction_table_slide_to_roll[" + std::to_string(i) + "]",
+                           shortest_decimal(table.slide_to_roll[i]),
+                           "a value above the one before it, " +
+                               shortest_decimal(table.slide_to_roll[i - 1]) +
+                               ": the ratios are strictly increasing");
+        }
+      }
+    });
   }
   const IntegratorSettings& s = c.integrator;
   const double most_steps = static_cast<double>(kMostSteps);
-  if (s.end_time_s / s.step_s > most_steps) {
-    throw InputError("integrator.end_time", shortest_decimal(s.end_time_s) + " s",
-                     "at most " + bound_text(most_steps) +
-                         " steps of integrator.step = " + shortest_decimal(s.step_s) +
-                         " s, i.e. end_time <= " + shortest_decimal(most_steps * s.step_s) + " s");
+  if (!any_failed(failed, "integrator.end_time") && !any_failed(failed, "integrator.step") &&
+      s.end_time_s / s.step_s > most_steps) {
+    problems.add(range_problem("integrator.end_time", format_number(s.end_time_s) + " s",
+                               "at most " + bound_text(most_steps) +
+                                   " steps of integrator.step = " + format_number(s.step_s) +
+                                   " s, i.e. end_time <= " + format_number(most_steps * s.step_s) +
+                                   " s"));
   }
 }
 
+void validate_relations(const SimulationCase& c) {
+  Problems problems;
+  relation_problems(c, {}, problems);
+  problems.throw_if_any();
+}
+
 void validate_fields(const SimulationCase& c) {
+  Problems problems;
+  std::vector<std::string> failed;
   for (const Field& field : case_schema()) {
-    if (field.kind == FieldKind::text) {
-      check_text(field, field.get_text(c), field.name());
-    } else if (is_list(field.kind)) {
-      if (applies(field, c)) check_list(field, field.get_list(c), field.name());
-    } else if (applies(field, c) && !absent(field, c)) {
-      const double value = field.get(c);
-      check_value(field, value, field.name(), si_text(field, value));
-    }
+    const bool ok = problems.collect([&] {
+      if (field.kind == FieldKind::text) {
+        check_text(field, field.get_text(c), field.name());
+      } else if (is_list(field.kind)) {
+        if (applies(field, c)) check_list(field, field.get_list(c), field.name());
+      } else if (applies(field, c) && !absent(field, c)) {
+        const double value = field.get(c);
+        check_value(field, value, field.name(), si_text(field, value));
+      }
+    });
+    if (!ok) failed.push_back(field.name());
   }
-  validate_relations(c);
+  relation_problems(c, failed, problems);
+  problems.throw_if_any();
 }
 
 std::string case_key(const SimulationCase& c) {

@@ -202,11 +202,19 @@ std::string allowed_units(Dimension dimension) {
 }
 
 double parse_quantity(std::string_view text, Dimension dimension, std::string_view field) {
+  const std::string written = "\"" + std::string(text) + "\"";
   const auto fail = [&](const std::string& why) {
-    throw InputError(std::string(field), "\"" + std::string(text) + "\"",
-                     why + "; expected " + std::string(describe(dimension)) +
-                         ": a finite decimal number followed by one of the units " +
-                         allowed_units(dimension));
+    throw InputError({refused_problem(std::string(field), written, why,
+                                      "expected " + std::string(describe(dimension)) +
+                                          ": a finite decimal number followed by one of the "
+                                          "units " +
+                                          allowed_units(dimension))});
+  };
+  // The unit, not the number, is wrong: the message lists the units.
+  const auto fail_unit = [&](const std::string& why) {
+    throw InputError({refused_problem(
+        std::string(field), written, why,
+        "units of " + std::string(describe(dimension)) + ": " + allowed_units(dimension))});
   };
   const std::string_view body = trim(text);
 
@@ -249,12 +257,11 @@ double parse_quantity(std::string_view text, Dimension dimension, std::string_vi
   if (unit == nullptr) {
     for (Dimension other : kDimensions) {
       if (other != dimension && find_unit(other, symbol) != nullptr) {
-        std::string why(1, '"');
-        why.append(symbol).append("\" is a unit of ").append(describe(other));
-        fail(why);
+        fail_unit("'" + std::string(symbol) + "' is a unit of " + std::string(describe(other)) +
+                  ", not of " + std::string(describe(dimension)));
       }
     }
-    fail("unknown unit \"" + std::string(symbol) + "\"");
+    fail_unit("unknown unit '" + std::string(symbol) + "' for " + std::string(describe(dimension)));
   }
 
   const std::string shifted =

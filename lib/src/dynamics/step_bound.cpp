@@ -160,10 +160,13 @@ void validate_implied(const SimulationCase& c, const std::pair<double, double>& 
   const double softest = c.model.mesh_stiffness == MeshStiffnessMode::constant
                              ? c.model.constant_mesh_stiffness_n_per_m
                              : extremes.first;
-  validate_static_deflection(c, softest);
-  validate_step(c, largest_step(c, extremes.second));
-  validate_speeds(c);
-  validate_forcing(c);
+  // Independent checks, every refusal reported at once.
+  Problems problems;
+  problems.collect([&] { validate_static_deflection(c, softest); });
+  problems.collect([&] { validate_step(c, largest_step(c, extremes.second)); });
+  problems.collect([&] { validate_speeds(c); });
+  problems.collect([&] { validate_forcing(c); });
+  problems.throw_if_any();
 }
 
 }  // namespace

@@ -234,39 +234,131 @@ double moment_of_inertia(const GearPair& pair, Gear gear) {
   return pair.density_kg_m3 * pi * r * r * r * r * pair.face_width_m / 2.0;
 }
 
-void validate_geometry(const GearPair& pair) {
+namespace {
+
+// The relations of one gear's teeth with the rack that cuts them and the gear
+// they mesh with: no undercut (z >= 2 (ha - x) / sin^2 a0), no pointed tip,
+// and the mating tip staying before this gear's tangent point (no
+// interference at its root). Empty when they hold, else the first that fails.
+std::string flank_failure(const GearPair& pair, Gear gear) {
+  const bool first = gear == Gear::one;
+  const double z_min = undercut_teeth_limit(pair, gear);
+  if (teeth(pair, gear) < z_min) {
+    return std::string(profile_shift(pair, gear) == 0.0 ? "at least 2 ha/sin^2(a0) = "
+                                                        : "at least 2 (ha - x)/sin^2(a0) = ") +
+           format_number(z_min) + " teeth, below which rack generation undercuts the involute";
+  }
+  const double tip_pressure_angle = std::acos(base_radius(pair, gear) / tip_radius(pair, gear));
+  if (involute_function(tip_pressure_angle) >= half_tooth_angle(pair, gear)) {
+    return std::string("a tooth count and shift for which the teeth of gear ") +
+           (first ? "1" : "2") + " are not pointed: inv(tip pressure angle) < theta_b";
+  }
   const ContactSegment segment = contact_segment(pair);
-  if (segment.start_m <= 0.0) {
-    throw InputError("addendum_coefficient", pair.addendum_coefficient,
-                     "values for which the tip of gear 2 stays before C1, the tangent point "
-                     "on base circle 1 (X_start = " +
-                         format_number(segment.start_m) + " m > 0 required): interference");
+  if (first && segment.start_m <= 0.0) {
+    return "values for which the tip of gear 2 stays before C1, the tangent point on base "
+           "circle 1 (X_start = " +
+           format_number(segment.start_m) + " m > 0 required): interference";
   }
-  if (segment.end_m >= line_of_action_length(pair)) {
-    throw InputError("addendum_coefficient", pair.addendum_coefficient,
-                     "values for which the tip of gear 1 stays before C2, the tangent point "
-                     "on base circle 2 (X_end = " +
-                         format_number(segment.end_m) + " m < lp = " +
-                         format_number(line_of_action_length(pair)) + " m): interference");
+  if (!first && segment.end_m >= line_of_action_length(pair)) {
+    return "values for which the tip of gear 1 stays before C2, the tangent point on base "
+           "circle 2 (X_end = " +
+           format_number(segment.end_m) +
+           " m < lp = " + format_number(line_of_action_length(pair)) + " m): interference";
   }
+  return {};
+}
+
+bool flank_holds(const GearPair& pair, Gear gear) {
+  try {
+    return flank_failure(pair, gear).empty();
+  } catch (const InputError&) {
+    return false;  // no operating pressure angle: the shift is out of reach
+  }
+}
+
+// The most teeth a fix names: the schema's bound of the teeth rows.
+constexpr int kMostTeethForFix = 100000;
+
+}  // namespace
+
+std::optional<int> smallest_teeth_for_shift(const GearPair& pair, Gear gear) {
+  GearPair trial = pair;
+  int& z = gear == Gear::one ? trial.teeth1 : trial.teeth2;
+  int low = z;  // fails (or is the answer)
+  z = low;
+  if (flank_holds(trial, gear)) return low;
+  int high = kMostTeethForFix;
+  z = high;
+  if (!flank_holds(trial, gear)) return std::nullopt;
+  // Bisection over the integers: the relations improve with the tooth count.
+  while (high - low > 1) {
+    z = low + (high - low) / 2;
+    (flank_holds(trial, gear) ? high : low) = z;
+  }
+  return high;
+}
+
+std::optional<double> smallest_shift_for_teeth(const GearPair& pair, Gear gear) {
+  GearPair trial = pair;
+  double& x = gear == Gear::one ? trial.profile_shift1 : trial.profile_shift2;
+  const double start = x;
+  if (flank_holds(trial, gear)) return start;
+  // A first shift that holds, in steps of 0.05 up to 3 modules: a larger shift
+  // points the tip of any gear with teeth worth cutting.
+  constexpr double kStep = 0.05;
+  double low = start;
+  double high = start;
+  bool found = false;
+  for (int i = 1; i <= 60 && !found; ++i) {
+    low = high;
+    high = start + kStep * i;
+    x = high;
+    found = flank_holds(trial, gear);
+  }
+  if (!found) return std::nullopt;
+  for (int i = 0; i < 60; ++i) {
+    x = 0.5 * (low + high);
+    (flank_holds(trial, gear) ? high : low) = x;
+  }
+  // Rounded up to 0.001, the precision shifts are given in, where it still holds.
+  x = std::ceil(high * 1000.0 - 1e-9) / 1000.0;
+  if (!flank_holds(trial, gear)) x = high;
+  return x;
+}
+
+void validate_geometry(const GearPair& pair) {
+  // Each gear's relations, both reported at once; the blame goes to its tooth
+  // count, which a user most likely has to change, with the fixes: the
+  // smallest count at this shift and the smallest shift at this count.
+  std::vector<Problem> problems;
   for (Gear gear : {Gear::one, Gear::two}) {
+    const std::string failure = flank_failure(pair, gear);
+    if (failure.empty()) continue;
     const bool first = gear == Gear::one;
-    const int z = teeth(pair, gear);
-    const double z_min = undercut_teeth_limit(pair, gear);
-    if (z < z_min) {
-      throw InputError(
-          first ? "teeth1" : "teeth2", std::to_string(z),
-          std::string(profile_shift(pair, gear) == 0.0 ? "at least 2 ha/sin^2(a0) = "
-                                                       : "at least 2 (ha - x)/sin^2(a0) = ") +
-              format_number(z_min) + " teeth, below which rack generation undercuts the involute");
+    const std::string n = first ? "1" : "2";
+    const double x = profile_shift(pair, gear);
+    const bool pointed = failure.find("pointed") != std::string::npos;
+    std::string fix;
+    if (const std::optional<int> z = smallest_teeth_for_shift(pair, gear)) {
+      fix = "teeth" + n + " = " + std::to_string(*z) + " (the fewest at profile_shift" + n + " = " +
+            format_number(x) + ")";
     }
-    const double tip_pressure_angle = std::acos(base_radius(pair, gear) / tip_radius(pair, gear));
-    if (involute_function(tip_pressure_angle) >= half_tooth_angle(pair, gear)) {
-      throw InputError("addendum_coefficient", pair.addendum_coefficient,
-                       std::string("values for which the teeth of gear ") + (first ? "1" : "2") +
-                           " are not pointed: inv(tip pressure angle) < theta_b");
+    if (!pointed) {
+      if (const std::optional<double> shift = smallest_shift_for_teeth(pair, gear)) {
+        fix += (fix.empty() ? "" : ", or ") + std::string("profile_shift") + n + " = " +
+               format_number(*shift) + " (the smallest to 0.001 at teeth" + n + " = " +
+               std::to_string(teeth(pair, gear)) + ")";
+      }
+    }
+    // A pointed tip of a shifted gear comes from its shift.
+    if (pointed && x > 0.0) {
+      problems.push_back(range_problem("profile_shift" + n, format_number(x), failure, fix));
+    } else {
+      problems.push_back(
+          range_problem("teeth" + n, std::to_string(teeth(pair, gear)), failure, fix));
     }
   }
+  if (!problems.empty()) throw InputError(std::move(problems));
 
   const double ratio = contact_ratio(pair);
   if (ratio < 1.0 || ratio >= static_cast<double>(MeshLayout::capacity - 1)) {

@@ -17,7 +17,18 @@
 namespace gearimpact {
 
 CaseFileError::CaseFileError(std::string file, std::string field, const std::string& message)
-    : Error(message), file_(std::move(file)), field_(std::move(field)) {}
+    : Error(message), file_(std::move(file)), field_(std::move(field)) {
+  Problem p;
+  p.field = field_;
+  p.message = message;
+  problems_.push_back(std::move(p));
+}
+
+CaseFileError::CaseFileError(std::string file, std::vector<Problem> problems)
+    : Error(problems_text(problems)),
+      file_(std::move(file)),
+      field_(problems.empty() ? std::string() : problems.front().field),
+      problems_(std::move(problems)) {}
 
 namespace {
 
@@ -203,24 +214,50 @@ class Reader {
  public:
   explicit Reader(std::string file) : file_(std::move(file)) {}
 
-  // "file:line: message", the line when the value came from the text.
-  [[noreturn]] void fail(const std::string& field, const toml::value* at,
-                         const std::string& message) const {
+  // "file:line", the line when the value came from the text.
+  std::string where(const toml::value* at) const {
     std::string where = file_;
     if (at != nullptr) {
       const toml::source_location location = at->location();
       if (!location.line_str().empty()) where += ":" + std::to_string(location.line());
     }
-    throw CaseFileError(file_, field, where + ": " + message);
+    return where;
   }
+
+  // The problem at `at` (an InputError's problems keep their own wording).
+  Problem problem(const std::string& field, const toml::value* at,
+                  const std::string& message) const {
+    Problem p;
+    p.field = field;
+    p.message = message;
+    p.where = where(at);
+    return p;
+  }
+
+  [[noreturn]] void fail(const std::string& field, const toml::value* at,
+                         const std::string& message) const {
+    throw CaseFileError(file_, {problem(field, at, message)});
+  }
+
+  // The problems of `e` at `at`.
+  [[noreturn]] void fail(const toml::value* at, const InputError& e) const {
+    std::vector<Problem> problems = e.problems();
+    for (Problem& p : problems) p.where = where(at);
+    throw CaseFileError(file_, std::move(problems));
+  }
+
+  const std::string& file() const { return file_; }
 
   [[noreturn]] void fail_at_line(std::size_t line, const std::string& message) const {
     throw CaseFileError(file_, "", file_ + ":" + std::to_string(line) + ": " + message);
   }
 
   [[noreturn]] void out_of_range(const std::string& field, const toml::value* at,
-                                 const std::string& value, const std::string& allowed) const {
-    fail(field, at, field + " = " + value + " is outside the allowed range: " + allowed);
+                                 const std::string& value, const std::string& allowed,
+                                 const std::string& fix = {}) const {
+    Problem p = range_problem(field, value, allowed, fix);
+    p.where = where(at);
+    throw CaseFileError(file_, {std::move(p)});
   }
 
  private:
@@ -252,13 +289,25 @@ CaseFileKind kind_of(const toml::value& root) {
   return CaseFileKind::pair;
 }
 
+// " (did you mean model.friction_coefficient?)", or nothing.
+std::string suggestion(const std::string& written) {
+  const std::optional<std::string> nearest = nearest_key(written);
+  return nearest ? " (did you mean " + *nearest + "?)" : std::string();
+}
+
 // The tables of a parsed file, each checked against the schema's keys of its
-// section: unknown sections and keys are refused (typos do not pass silently).
+// section: unknown sections and keys are refused (typos do not pass silently),
+// each with the nearest key of the schema, all of them at once.
 class Document {
  public:
-  Document(const Reader& reader, const toml::value& root, CaseFileKind kind)
-      : reader_(reader), root_(root), kind_(kind) {
+  Document(const Reader& reader, const toml::value& root, CaseFileKind kind,
+           std::vector<Problem>& problems)
+      : reader_(reader), root_(root), kind_(kind), problems_(problems) {
     const std::vector<std::string_view> sections = schema_sections();
+    std::string list;
+    for (std::string_view section : sections) {
+      list += (list.empty() ? "" : ", ") + ("[" + std::string(section) + "]");
+    }
     std::vector<std::string> unknown;
     for (const auto& [key, value] : root.as_table()) {
       const Field* field = find_field(key);
@@ -267,15 +316,12 @@ class Document {
         unknown.push_back(key);
       }
     }
-    if (!unknown.empty()) {
-      std::sort(unknown.begin(), unknown.end());
-      std::string list;
-      for (std::string_view section : sections) {
-        list += (list.empty() ? "" : ", ") + ("[" + std::string(section) + "]");
-      }
-      reader.fail(unknown.front(), &root.as_table().at(unknown.front()),
-                  "unknown key or section \"" + unknown.front() + "\"; a case file has " +
-                      key_list("") + " and the sections " + list);
+    std::sort(unknown.begin(), unknown.end());
+    for (const std::string& key : unknown) {
+      problems_.push_back(reader.problem(key, &root.as_table().at(key),
+                                         "unknown key or section \"" + key + "\"" +
+                                             suggestion(key) + "; a case file has " + key_list("") +
+                                             " and the sections " + list));
     }
     for (std::string_view section : sections) open(section);
   }
@@ -283,7 +329,7 @@ class Document {
   // The value of the row's key in the file, or nullptr.
   const toml::value* find(const Field& field) const {
     const toml::value* table = field.section.empty() ? &root_ : section(field.section);
-    if (table == nullptr) return nullptr;
+    if (table == nullptr || !table->is_table()) return nullptr;
     const auto& entries = table->as_table();
     const auto found = entries.find(std::string(field.key));
     return found == entries.end() ? nullptr : &found->second;
@@ -296,8 +342,14 @@ class Document {
     return found == top.end() ? nullptr : &found->second;
   }
 
+  // True when the section is missing or not a table: its keys are not
+  // reported one by one.
+  bool broken(std::string_view section) const {
+    return std::find(broken_.begin(), broken_.end(), section) != broken_.end();
+  }
+
  private:
-  void open(std::string_view name) const {
+  void open(std::string_view name) {
     const std::string section_name(name);
     const toml::value* table = section(name);
     if (table == nullptr) {
@@ -306,37 +358,41 @@ class Document {
             return required_in(f, kind_) && f.section == name && !f.only_when;
           });
       if (required) {
-        reader_.fail(
+        broken_.push_back(section_name);
+        problems_.push_back(reader_.problem(
             section_name, nullptr,
-            "section [" + section_name + "] is missing (required; keys " + key_list(name) + ")");
+            "section [" + section_name + "] is missing (required; keys " + key_list(name) + ")"));
       }
       return;
     }
     if (!table->is_table()) {
-      reader_.fail(section_name, table,
-                   section_name + " = " + written(*table) + " is " + type_name(*table) +
-                       ", not a section: write [" + section_name + "] with keys " + key_list(name));
+      broken_.push_back(section_name);
+      problems_.push_back(reader_.problem(section_name, table,
+                                          section_name + " = " + written(*table) + " is " +
+                                              type_name(*table) + ", not a section: write [" +
+                                              section_name + "] with keys " + key_list(name)));
+      return;
     }
     std::vector<std::string> unknown;
     for (const auto& [key, value] : table->as_table()) {
       const Field* field = find_field(section_name + "." + key);
       if (field == nullptr || field->section != name) unknown.push_back(key);
     }
-    if (!unknown.empty()) {
-      std::sort(unknown.begin(), unknown.end());
-      std::string names;
-      for (const std::string& key : unknown) {
-        names += (names.empty() ? "" : ", ") + section_name + "." + key;
-      }
-      reader_.fail(
-          section_name + "." + unknown.front(), &table->as_table().at(unknown.front()),
-          "unknown key " + names + "; the keys of [" + section_name + "] are " + key_list(name));
+    std::sort(unknown.begin(), unknown.end());
+    for (const std::string& key : unknown) {
+      const std::string full = section_name + "." + key;
+      problems_.push_back(reader_.problem(full, &table->as_table().at(key),
+                                          "unknown key " + full + suggestion(full) +
+                                              "; the keys of [" + section_name + "] are " +
+                                              key_list(name)));
     }
   }
 
   const Reader& reader_;
   const toml::value& root_;
   CaseFileKind kind_;
+  std::vector<Problem>& problems_;
+  std::vector<std::string> broken_;
 };
 
 // What a missing required key needs, for the message.
@@ -406,7 +462,8 @@ std::vector<double> read_list(const Reader& reader, const Field& field, const to
       values.push_back(parse_quantity(element.as_string().str, field.dimension, element_name));
       check_list(field, {values.back()}, element_name);
     } catch (const InputError& e) {
-      reader.out_of_range(element_name, &element, written(element), e.allowed());
+      reader.fail(&element,
+                  InputError({e.problems().front().renamed(element_name, written(element))}));
     }
   }
   return values;
@@ -427,7 +484,7 @@ double read_value(const Reader& reader, const Field& field, const toml::value& v
       try {
         x = parse_quantity(value.as_string().str, field.dimension, name);
       } catch (const InputError& e) {
-        reader.fail(name, &value, e.what());
+        reader.fail(&value, e);
       }
       break;
     case FieldKind::number:
@@ -468,104 +525,129 @@ double read_value(const Reader& reader, const Field& field, const toml::value& v
   try {
     check_value(field, x, name, written(value));
   } catch (const InputError& e) {
-    reader.fail(name, &value, e.what());
+    reader.fail(&value, e);
   }
   return x;
 }
 
-// An InputError of a check across keys, at the line of the key it names and
-// with that key's value as the file wrote it.
-[[noreturn]] void fail_at_key(const Reader& reader, const Document& document,
-                              const SimulationCase& c, const InputError& e) {
-  const Field* field = find_field(e.field());
+// A problem of a check across keys, at the line of the key it names and with
+// that key's value as the file wrote it.
+Problem at_key(const Reader& reader, const Document& document, const SimulationCase& c,
+               const Problem& problem) {
+  const Field* field = find_field(problem.field);
   const toml::value* at = field != nullptr ? document.find(*field) : nullptr;
-  std::string value = e.value();
+  std::string value = problem.value;
   if (at != nullptr) {
     value = written(*at);
   } else if (field != nullptr) {
     value = value_text(*field, c) + " (the default)";
   }
   if (at == nullptr) {
-    const std::size_t dot = e.field().find('.');
-    if (dot != std::string::npos) at = document.section(std::string_view(e.field()).substr(0, dot));
+    const std::size_t dot = problem.field.find('.');
+    if (dot != std::string::npos) {
+      at = document.section(std::string_view(problem.field).substr(0, dot));
+    }
   }
-  reader.out_of_range(e.field(), at, value, e.allowed());
+  Problem p = problem.renamed(problem.field, value);
+  p.where = reader.where(at);
+  return p;
+}
+
+// Reads one row's key into `result`; throws CaseFileError for its problems.
+void read_row(const Reader& reader, const Document& document, const Field& field,
+              CaseFileKind kind, SimulationCase& result) {
+  const std::string name = field.name();
+  const toml::value* value = document.find(field);
+  if (!applies(field, result)) {
+    if (value != nullptr) {
+      const ChoiceName& choice = selected(field, result);
+      reader.fail(name, value,
+                  name + " = " + written(*value) + " is not used by " +
+                      std::string(field.only_when->key) + " = \"" + std::string(choice.name) +
+                      "\" (" + std::string(choice.meaning) + ")");
+    }
+    return;
+  }
+  if (value == nullptr) {
+    if (required_in(field, kind)) {
+      reader.fail(name, document.section(field.section),
+                  name + " is missing (required: " + expected_of(field) + ")");
+    }
+    if (field.kind == FieldKind::text) {
+      try {
+        check_text(field, field.get_text(result), name);
+      } catch (const InputError& e) {
+        reader.out_of_range(name, nullptr, e.value(), e.allowed());
+      }
+    }
+    return;
+  }
+  if (field.kind == FieldKind::text) {
+    if (!value->is_string()) {
+      reader.out_of_range(name, value, written(*value),
+                          type_name(*value) + "; expected a string of " + allowed_text(field));
+    }
+    try {
+      check_text(field, value->as_string().str, name);
+    } catch (const InputError& e) {
+      reader.fail(value, e);
+    }
+    field.set_text(result, value->as_string().str);
+    return;
+  }
+  if (is_list(field.kind)) {
+    field.set_list(result, read_list(reader, field, *value));
+    return;
+  }
+  field.set(result, read_value(reader, field, *value));
 }
 
 SimulationCase read_case(const Reader& reader, const toml::value& root, std::string_view file_name,
                          CaseFileKind kind) {
-  const Document document(reader, root, kind);
+  // Every problem of the file is gathered and reported at once; the checks
+  // across keys run only on keys that were read without one.
+  std::vector<Problem> problems;
+  const Document document(reader, root, kind, problems);
   SimulationCase result;
   result.name = stem_of(file_name);
+  std::vector<std::string> failed;
   for (const Field& field : case_schema()) {
-    const std::string name = field.name();
-    const toml::value* value = document.find(field);
-    if (!applies(field, result)) {
-      if (value != nullptr) {
-        const ChoiceName& choice = selected(field, result);
-        reader.fail(name, value,
-                    name + " = " + written(*value) + " is not used by " +
-                        std::string(field.only_when->key) + " = \"" + std::string(choice.name) +
-                        "\" (" + std::string(choice.meaning) + ")");
-      }
+    if (document.broken(field.section)) {
+      failed.push_back(field.name());
       continue;
     }
-    if (value == nullptr) {
-      if (required_in(field, kind)) {
-        reader.fail(name, document.section(field.section),
-                    name + " is missing (required: " + expected_of(field) + ")");
-      }
-      if (field.kind == FieldKind::text) {
-        try {
-          check_text(field, field.get_text(result), name);
-        } catch (const InputError& e) {
-          reader.out_of_range(name, nullptr, e.value(), e.allowed());
-        }
-      }
-      continue;
+    try {
+      read_row(reader, document, field, kind, result);
+    } catch (const CaseFileError& e) {
+      failed.push_back(field.name());
+      problems.insert(problems.end(), e.problems().begin(), e.problems().end());
     }
-    if (field.kind == FieldKind::text) {
-      if (!value->is_string()) {
-        reader.out_of_range(name, value, written(*value),
-                            type_name(*value) + "; expected a string of " + allowed_text(field));
-      }
-      try {
-        check_text(field, value->as_string().str, name);
-      } catch (const InputError& e) {
-        reader.fail(name, value, e.what());
-      }
-      field.set_text(result, value->as_string().str);
-      continue;
-    }
-    if (is_list(field.kind)) {
-      field.set_list(result, read_list(reader, field, *value));
-      continue;
-    }
-    field.set(result, read_value(reader, field, *value));
   }
-
-  try {
-    validate_relations(result);
-  } catch (const InputError& e) {
-    fail_at_key(reader, document, result, e);
-  }
+  Problems relations;
+  relation_problems(result, failed, relations);
+  for (const Problem& p : relations.list()) problems.push_back(at_key(reader, document, result, p));
   // The dynamics refuses a step that cannot resolve the contact or the mesh
   // period, and torques that imply a deflection past the tooth model; the
-  // file says so here, at the key's line, before any work starts. A pair
-  // file describes no run.
-  if (kind == CaseFileKind::pair) return result;
-  try {
-    validate_implied(result);
-  } catch (const QuadratureError& e) {
-    const Field& tolerance = *find_field("model.stiffness_tolerance");
-    reader.fail(tolerance.name(), document.find(tolerance),
-                tolerance.name() + " = " + value_text(tolerance, result) +
-                    " with stiffness_method = " + method_name(result.model.stiffness) +
-                    ": the mesh stiffness cannot be computed to it (" + e.what() +
-                    "); 1e-12 is within reach of every method");
-  } catch (const InputError& e) {
-    fail_at_key(reader, document, result, e);
+  // file says so here, at the key's line, before any work starts. These need
+  // the mesh stiffness of a valid case. A pair file describes no run.
+  if (problems.empty() && kind == CaseFileKind::run) {
+    try {
+      validate_implied(result);
+    } catch (const QuadratureError& e) {
+      const Field& tolerance = *find_field("model.stiffness_tolerance");
+      problems.push_back(
+          reader.problem(tolerance.name(), document.find(tolerance),
+                         tolerance.name() + " = " + value_text(tolerance, result) +
+                             " with stiffness_method = " + method_name(result.model.stiffness) +
+                             ": the mesh stiffness cannot be computed to it (" + e.what() +
+                             "); 1e-12 is within reach of every method"));
+    } catch (const InputError& e) {
+      for (const Problem& p : e.problems()) {
+        problems.push_back(at_key(reader, document, result, p));
+      }
+    }
   }
+  if (!problems.empty()) throw CaseFileError(reader.file(), std::move(problems));
   return result;
 }
 

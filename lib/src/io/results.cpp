@@ -6,6 +6,12 @@
 
 namespace gearimpact {
 
+std::string format_data_number(double value) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.17g", value);
+  return buffer;
+}
+
 std::string series_csv_header() {
   return "t_s,theta1_rad,theta2_rad,w1_rad_s,w2_rad_s,s_m,delta_m,region,pairs,normal_force_N,"
          "friction_force_N\n";

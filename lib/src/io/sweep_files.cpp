@@ -19,6 +19,7 @@
 #include "gearimpact/case/schema.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/io/atomic_file.hpp"
+#include "gearimpact/io/results.hpp"
 
 namespace gearimpact {
 
@@ -36,13 +37,13 @@ constexpr std::size_t kSweepColumns = 22;
 constexpr const char* kSweepFile = "a summary.json written by gearimpact sweep";
 
 std::string optional_number(const std::optional<double>& v) {
-  return v ? format_number(*v) : "";
+  return v ? format_data_number(*v) : "";
 }
 
 // The key and swept value that begin a row of both files.
 std::string key_fields(const SweepPointResult& r) {
   return std::to_string(r.line) + "," + to_string(r.direction) + "," + std::to_string(r.index) +
-         "," + format_number(r.value_si);
+         "," + format_data_number(r.value_si);
 }
 
 const Field& damping_update_field() {
@@ -173,8 +174,8 @@ std::vector<std::string> split(const std::string& line) {
   }
 }
 
-// A number as the files write it (format_number): finite, read back to the same double, nothing
-// before or after it.
+// A number as the files write it (format_data_number): finite, read back to the same double,
+// nothing before or after it.
 double number_field(const std::string& text, const std::string& where) {
   std::size_t used = 0;
   double value = 0.0;
@@ -332,7 +333,7 @@ std::string poincare_csv(const std::vector<SweepPointResult>& rows) {
   for (const SweepPointResult& r : rows) {
     const std::string key = key_fields(r);
     for (const PoincareSample& s : r.point.poincare) {
-      csv += key + "," + format_number(s.s_m) + "," + format_number(s.s_rate_m_s) + "\n";
+      csv += key + "," + format_data_number(s.s_m) + "," + format_data_number(s.s_rate_m_s) + "\n";
     }
   }
   return csv;

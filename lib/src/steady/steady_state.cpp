@@ -287,24 +287,56 @@ std::string to_string(Regime regime) {
 }
 
 void require_steady_case(const SimulationCase& c) {
-  const double t1 = mean_torque_n_m(c.torque1, "torque1");
-  const double t2 = mean_torque_n_m(c.torque2, "torque2");
-  require_balanced_mean_torques(t1, t2, base_radius(c.gears, Gear::one),
-                                base_radius(c.gears, Gear::two));
+  // Every refusal at once, each with the value that cures it.
+  Problems problems;
+  double t1 = 0.0;
+  double t2 = 0.0;
+  const bool known = problems.collect([&] {
+    t1 = mean_torque_n_m(c.torque1, "torque1");
+    t2 = mean_torque_n_m(c.torque2, "torque2");
+  });
+  if (known) {
+    try {
+      require_balanced_mean_torques(t1, t2, base_radius(c.gears, Gear::one),
+                                    base_radius(c.gears, Gear::two));
+    } catch (const InputError& e) {
+      // The key of each mean torque; gear 2's (the load) is the one to set.
+      const auto key = [](const Torque& t, const char* name) {
+        return std::string(name) + (t.kind == Torque::Kind::constant ? ".value" : ".mean");
+      };
+      const std::string key1 = key(c.torque1, "torque1");
+      const std::string key2 = key(c.torque2, "torque2");
+      // T1/Rb1 + T2/Rb2 = 0.
+      const double balancing =
+          -t1 * base_radius(c.gears, Gear::two) / base_radius(c.gears, Gear::one);
+      const std::string value = format_number(balancing) + " N*m";
+      problems.add(
+          range_problem(key2, format_number(t2) + " N*m",
+                        "mean torques with T1/Rb1 + T2/Rb2 = 0 for a steady state, here " +
+                            e.value() + " with " + key1 + " = " + format_number(t1) +
+                            " N*m (an unbalanced mean torque accelerates the pair without bound)",
+                        key2 + " = \"" + value + "\" balances it (in the case file, or --set '" +
+                            key2 + "=" + value + "')"));
+    }
+  }
   if (c.model.friction_coefficient != 0.0) {
-    throw InputError("model.friction_coefficient", c.model.friction_coefficient,
-                     "0 for a steady state: friction loss f N |Vs| is drawn from the mean "
-                     "rotation, which balanced mean torques do not feed, so the pair slows down "
-                     "without end");
+    problems.add(range_problem(
+        "model.friction_coefficient", format_number(c.model.friction_coefficient),
+        "0 for a steady state: friction loss f N |Vs| is drawn from the mean rotation, which "
+        "balanced mean torques do not feed, so the pair slows down without end",
+        "model.friction_coefficient = 0 (in the case file, or --set "
+        "model.friction_coefficient=0)"));
   }
   // Any law other than the constant one has friction whatever friction_coefficient says.
   if (c.model.friction_law != FrictionLaw::constant) {
-    throw InputError("model.friction_law",
-                     std::string(name_of(kFrictionLaws, c.model.friction_law)),
-                     "\"constant\" (with friction_coefficient = 0) for a steady state: friction "
-                     "loss is drawn from the mean rotation, which balanced mean torques do not "
-                     "feed");
+    problems.add(range_problem(
+        "model.friction_law", std::string(name_of(kFrictionLaws, c.model.friction_law)),
+        "\"constant\" (with friction_coefficient = 0) for a steady state: friction loss is "
+        "drawn from the mean rotation, which balanced mean torques do not feed",
+        "model.friction_law = \"constant\" and model.friction_coefficient = 0 (--set "
+        "model.friction_law=constant --set model.friction_coefficient=0)"));
   }
+  problems.throw_if_any();
 }
 
 SteadyTiming steady_timing(const SimulationCase& c, const StiffnessTable& table,

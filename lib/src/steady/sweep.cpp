@@ -16,9 +16,12 @@ const Field& sweep_field(const std::string& key, const std::string& flag) {
   const Field* field = find_field(key);
   if (field == nullptr || (field->kind != FieldKind::quantity && field->kind != FieldKind::number &&
                            field->kind != FieldKind::integer)) {
+    // The nearest key, when the key is a typo rather than a key of another kind.
+    const std::optional<std::string> nearest = field == nullptr ? nearest_key(key) : std::nullopt;
     throw InputError(flag, key,
                      "a quantity, number or integer key of the case schema, as section.key "
-                     "(`gearimpact schema` lists them)");
+                     "(`gearimpact schema` lists them)",
+                     nearest ? "did you mean " + *nearest + "?" : std::string());
   }
   return *field;
 }

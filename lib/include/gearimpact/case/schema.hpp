@@ -15,6 +15,7 @@
 
 #include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/case/units.hpp"
+#include "gearimpact/error.hpp"
 
 namespace gearimpact {
 
@@ -113,6 +114,16 @@ const std::vector<Field>& case_schema();
 // The row of "section.key", or nullptr.
 const Field* find_field(std::string_view section_dot_key);
 
+// The number of single-character insertions, deletions, substitutions and
+// swaps of neighbours that turn `a` into `b` (optimal string alignment).
+std::size_t edit_distance(std::string_view a, std::string_view b);
+
+// The key of the schema nearest to `written` ("section.key", or a bare key),
+// for a did-you-mean: the fewest edits of the whole name, or of the key alone
+// in another section (a key put under the wrong section); nothing when even
+// the nearest needs more than a third of the name's characters changed.
+std::optional<std::string> nearest_key(std::string_view written);
+
 // The sections in the order of case_schema(), without the top level.
 std::vector<std::string_view> schema_sections();
 
@@ -174,16 +185,22 @@ void validate(const GearPair& pair);
 // (validate_terms of stiffness/model.hpp). InputError names the key.
 void validate(const StiffnessModel& model);
 
+// The problems of validate_relations added to `problems`, each check left out
+// when a key it reads is in `failed` (rows already refused): a pair whose
+// module is refused has no contact ratio worth reporting.
+void relation_problems(const SimulationCase& c, const std::vector<std::string>& failed,
+                       Problems& problems);
+
 // The checks that involve more than one key: the gear pair as a whole
 // (validate_geometry, its errors under gears.* names), at least one term of
 // (29) (validate_terms, under model.*), a callable user torque, a harmonic torque's lists of one
 // length, at most kMostSteps steps. InputError names the key as section.key.
 void validate_relations(const SimulationCase& c);
 
-// Throws InputError naming (as section.key) the first field outside its
-// range, then validate_relations: every check but the step's upper bound,
-// which needs the mesh stiffness (the dynamics checks it,
-// largest_resolving_step_s).
+// Throws one InputError naming (as section.key) every field outside its
+// range, with the relations among the fields that passed (relation_problems):
+// every check but the step's upper bound, which needs the mesh stiffness (the
+// dynamics checks it, largest_resolving_step_s).
 void validate_fields(const SimulationCase& c);
 
 // Every input of `c` but its name, one "section.key=value" line per row that

@@ -51,9 +51,10 @@ bool operator==(const GearPair& a, const GearPair& b);
 // Section 7 of the paper with docs/model.md's defaults for what it leaves unstated.
 GearPair paper_gear_pair();
 
-// Throws InputError naming the first field that breaks a relation between
-// fields: the undercut limit on teeth, pointed teeth, interference (a tip
-// beyond the mating base-circle tangent point), and a contact ratio below 1;
+// Throws InputError naming the fields that break a relation between fields:
+// the undercut limit on teeth, pointed teeth, interference (a tip beyond the
+// mating base-circle tangent point), for both gears at once under the tooth
+// count with its fixes, then a contact ratio below 1;
 // then what rack generation refuses (rack_gear_pair_geometry of
 // rack_generation.hpp), with the field named as in GearPair (profile_shift1,
 // bore_diameter2, ...). Each field's own range is the case schema's
@@ -190,5 +191,12 @@ LoadedPairs loaded_pairs(const GearPair& pair, Region line, double theta1_rad,
 
 // Solid discs on the pitch radius: J = rho pi r^4 L / 2.
 double moment_of_inertia(const GearPair& pair, Gear gear);
+
+// The fixes validate_geometry names for a gear whose teeth are undercut,
+// pointed or interfere at the root: the fewest teeth at its shift, and the
+// smallest shift (rounded up to 0.001) at its tooth count, for which those
+// relations hold; nothing when none up to 100000 teeth or a shift of 3 does.
+std::optional<int> smallest_teeth_for_shift(const GearPair& pair, Gear gear);
+std::optional<double> smallest_shift_for_teeth(const GearPair& pair, Gear gear);
 
 }  // namespace gearimpact

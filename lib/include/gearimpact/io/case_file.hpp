@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/error.hpp"
@@ -19,14 +20,19 @@ namespace gearimpact {
 class CaseFileError : public Error {
  public:
   CaseFileError(std::string file, std::string field, const std::string& message);
+  // Every problem of the file at once (at least one), each with its "file:line".
+  CaseFileError(std::string file, std::vector<Problem> problems);
 
   const std::string& file() const noexcept { return file_; }
   // "gears.module"; empty when the file is not valid TOML or cannot be read.
   const std::string& field() const noexcept { return field_; }
+  // One per problem, the first's field is field().
+  const std::vector<Problem>& problems() const noexcept { return problems_; }
 
  private:
   std::string file_;
   std::string field_;
+  std::vector<Problem> problems_;
 };
 
 // Parses and validates `toml_text`; `file_name` is used in messages and, when

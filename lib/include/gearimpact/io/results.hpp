@@ -16,6 +16,11 @@
 
 namespace gearimpact {
 
+// A number of a CSV file or a gnuplot script: 17 significant digits ("%.17g"),
+// the form the files have always had, so that their bytes do not change with the
+// shorter form of messages (format_number).
+std::string format_data_number(double value);
+
 // t_s,theta1_rad,theta2_rad,w1_rad_per_s,w2_rad_per_s,s_m,delta_m,region,pairs,normal_force_N,friction_force_N
 std::string series_csv(const std::vector<SeriesRow>& rows);
 // The same in pieces, for a series streamed to its file as the run goes: the
