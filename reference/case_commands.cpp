@@ -1,6 +1,8 @@
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "commands.hpp"
 #include "gearimpact/case/units.hpp"
@@ -11,13 +13,42 @@ namespace gearimpact::cli {
 
 namespace {
 
+// The text of a written case file without the sections a pair file leaves
+// out: what a pair file states, read back by read_pair_or_run_file alike.
+std::string pair_sections(const std::string& text) {
+  std::string out;
+  bool keep = true;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    const std::size_t end = std::min(text.find('\n', at), text.size());
+    const std::string line = text.substr(at, end - at);
+    if (line.size() > 2 && line.front() == '[' && line.back() == ']') {
+      keep = is_pair_section(std::string_view(line).substr(1, line.size() - 2));
+    }
+    if (keep) out += line + "\n";
+    at = end + 1;
+  }
+  return out;
+}
+
 // Prints the case as a case file in SI units, which reads back to the same
-// values, and the derived quantities the checks used.
+// values, and the derived quantities the checks used. A pair file (only
+// [gears] and [model]) is valid for the stiffness commands and `report`.
 void check_case(const std::string& file) {
-  const SimulationCase c = read_case_file(file);
+  const PairOrRunCase read = read_pair_or_run_file(file);
+  const SimulationCase& c = read.simulation_case;
   const GearPair& g = c.gears;
-  std::printf("# %s: valid. The case in SI units (itself a case file):\n", file.c_str());
-  std::fputs(write_case_file(c, CaseUnits::si).c_str(), stdout);
+  if (read.kind == CaseFileKind::pair) {
+    std::printf(
+        "# %s: a valid pair file ([gears] and [model]: the stiffness commands and report read "
+        "it; a run also needs [torque1], [torque2], [initial] and [integrator]). The pair in SI "
+        "units (itself a pair file):\n",
+        file.c_str());
+    std::fputs(pair_sections(write_case_file(c, CaseUnits::si)).c_str(), stdout);
+  } else {
+    std::printf("# %s: valid. The case in SI units (itself a case file):\n", file.c_str());
+    std::fputs(write_case_file(c, CaseUnits::si).c_str(), stdout);
+  }
   const ContactSegment segment = contact_segment(g);
   std::printf("\n# Derived (SI):\n");
   std::printf("#   pitch radii r1, r2 = %s m, %s m\n",

@@ -107,6 +107,20 @@ TEST_CASE("stiffness commands read a pair file; a run file missing a section is 
                                " rad, outside the fit's [0.01, 0.12] rad";
   CHECK_MESSAGE(has(mesh.err, expected), mesh.err);
   CHECK(has(mesh.out, expected));
+  // check-case says it is a pair file and prints its pair, itself a pair file that reads back.
+  const CommandResult checked = run_command(cli("check-case " + pair.string()));
+  REQUIRE_MESSAGE(checked.exit_code == 0, checked.err);
+  CHECK(has(checked.out, "a valid pair file"));
+  const std::string body = checked.out.substr(checked.out.find('\n') + 1);
+  CHECK(has(body, "\n[gears]\n"));
+  CHECK(has(body, "\n[model]\n"));
+  CHECK_FALSE(has(body, "[torque1]"));
+  CHECK_FALSE(has(body, "[integrator]"));
+  const std::filesystem::path echoed = scratch.dir / "echoed.toml";
+  write(echoed, body);
+  const CommandResult again = run_command(cli("check-case " + echoed.string()));
+  CHECK_MESSAGE(again.exit_code == 0, again.err);
+  CHECK(checked.out.substr(checked.out.find('\n')) == again.out.substr(again.out.find('\n')));
   // [initial] makes it a run file, which needs its torques.
   const std::filesystem::path partial = scratch.dir / "partial.toml";
   write(partial, read(pair) + "\n[initial]\nw1 = \"100 rad/s\"\n");
