@@ -635,11 +635,25 @@ void run_sweep(SweepCommandOptions& o) {
   std::mutex progress_mutex;
   std::size_t done = 0;
   const std::size_t total = shard_point_count(spec);
+  // The swept value in the unit the user gave it in, SI beside it.
+  const ShownUnit shown = shown_unit(spec.vary, spec.unit);
+  const auto value_text = [&](double si) {
+    if (shown.symbol.empty()) return format_number(si);
+    // Ten digits: the conversion's last-digit rounding (12000.000000000002 rpm) is not the user's.
+    char in_unit[32];
+    std::snprintf(in_unit, sizeof in_unit, "%.10g", si / shown.si_per_unit);
+    std::string text = in_unit;
+    text += " " + shown.symbol;
+    const std::string si_symbol(
+        units_of(sweep_field(spec.vary, spec.vary).dimension).front().symbol);
+    if (shown.symbol != si_symbol) text += " (" + format_number(si) + " " + si_symbol + ")";
+    return text;
+  };
   const SteadySweep sweep = run_naming_flags(spec, [&](const SweepPointResult& r) {
     const std::lock_guard lock(progress_mutex);
     ++done;
     std::cerr << "sweep: " << done << "/" << total << "  line " << r.line << " "
-              << to_string(r.direction) << " " << spec.vary << " = " << format_number(r.value_si)
+              << to_string(r.direction) << " " << spec.vary << " = " << value_text(r.value_si)
               << ": "
               << (r.point.converged
                       ? to_string(r.point.regime) + " period " + std::to_string(r.point.period)

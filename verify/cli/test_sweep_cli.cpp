@@ -178,6 +178,24 @@ TEST_CASE("sweep: 1 shard and 4 shards merge to the same bytes; a missing shard 
   CHECK(doubled.err.find("line 0, direction up, index 0") != std::string::npos);
 }
 
+TEST_CASE("sweep: the progress lines give the swept value in the unit it was given in") {
+  const std::string base =
+      "sweep 1 --vary initial.w1 --points 2 --set 'torque1.mean=3 N*m' "
+      "--set 'torque2.mean=-12 N*m' --set model.friction_coefficient=0 "
+      "--set model.mesh_damping_ratio=0.05 --damping-update frozen "
+      "--set 'model.damping_reference_speed=0.1 m/s' --no-plots";
+  const auto rpm = run_command(
+      cli(base + " --from '30000 rpm' --to '40000 rpm' --out " + scratch("rpm").string()));
+  REQUIRE_MESSAGE(rpm.exit_code == 0, rpm.err);
+  // 30000 rpm = 1000 pi rad/s: the user's unit first, SI beside it.
+  CHECK_MESSAGE(rpm.err.find("initial.w1 = 30000 rpm (3141.59") != std::string::npos, rpm.err);
+  CHECK(rpm.err.find("initial.w1 = 40000 rpm (4188.79") != std::string::npos);
+  const auto si = run_command(
+      cli(base + " --from '3000 rad/s' --to '4000 rad/s' --out " + scratch("si").string()));
+  REQUIRE_MESSAGE(si.exit_code == 0, si.err);
+  CHECK_MESSAGE(si.err.find("initial.w1 = 3000 rad/s: ") != std::string::npos, si.err);
+}
+
 TEST_CASE("sweep: bad input is refused naming the key") {
   const std::filesystem::path out = scratch("bad");
   // Table 1's case 2: T1 = 50 kgf mm, T2 = -50 kgf mm, so T1/Rb1 + T2/Rb2 != 0.
