@@ -138,7 +138,7 @@ def sweep(case, vary, start, stop, points, direction="both", options=()):
     index and period int64 (period 0 for a point not periodic), the figures float64 with NaN
     where a point has none) and "summary" (summary.json), so that
     ``sw["value_si"][sw["direction"] == "up"]`` selects. Warns (GearimpactWarning) of a
-    foundation fit used outside its range."""
+    foundation fit used outside its range and of the sweep's own warnings (summary["warnings"])."""
     if not isinstance(case, _core.Case):
         raise _arguments.case_error(
             f"case={case!r}: a Case (gearimpact.case, paper_case, read_case), "
@@ -168,10 +168,14 @@ def sweep(case, vary, start, stop, points, direction="both", options=()):
     extrapolated = _warnings.conditions(case).get("extrapolated")
     if extrapolated:
         _warnings.warn(extrapolated)
+    summary = json.loads(summary_text)
+    # The sweep's own warnings (hysteresis of an undamped sweep, speeds that do not roll).
+    for warning in summary.get("warnings", []):
+        _warnings.warn(f"{case.name or 'the case'}: {warning}")
     return {
         "sweep": _table(sweep_text),
         "poincare": _table(poincare_text),
-        "summary": json.loads(summary_text),
+        "summary": summary,
     }
 
 
