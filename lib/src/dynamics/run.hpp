@@ -183,6 +183,7 @@ class Run {
                0.0,
                0.0,
                0.0};
+    system_.impose_driver(start_time_, y_);
     mode_ = system_.classify_geometry(y_);
     if (control_.resume) {
       damping_ = control_.resume->contact;
@@ -220,6 +221,11 @@ class Run {
   void pay_stored_energy_jump(double t, const Mode& old, double before, double after) {
     const double jump = after - before;
     if (jump == 0.0) return;
+    if (system_.driven()) {
+      // A kinematic driver keeps w1: it pays the jump, as work of its torque.
+      y_[kTorqueWork] += jump;
+      return;
+    }
     const double j1 = system_.pinion_inertia();
     const double w1 = y_[kW1];
     const double kinetic1 = 0.5 * j1 * w1 * w1;
