@@ -14,6 +14,7 @@
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/io/case_file.hpp"
+#include "gearimpact/io/results.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "gearimpact/stiffness/table.hpp"
 
@@ -262,4 +263,86 @@ TEST_CASE("rattle: refusals name the key and its range") {
   const std::string swapped = message(base + drag1 + driver2 + initial);
   CHECK(swapped.find("kind") != std::string::npos);
   CHECK(swapped != "accepted");
+}
+
+TEST_CASE("rattle outputs: a run that never separates is no impact, index 1") {
+  // Half the onset: the loose gear stays on its forced solution, with
+  // theta2'' = -(Rb1 / Rb2) a w sin(w t) / (1 - r^2), whose RMS over whole
+  // periods is (Rb1 / Rb2) a w / ((1 - r^2) sqrt 2). The twin without
+  // backlash starts at the same penetration and moves the same way.
+  const double k = stiffness_for(0.01);
+  const double a = 0.5 * rigid_onset(driven_case(k, 1.0));
+  const SimulationCase c = driven_case(k, a);
+  RunControl control;
+  control.keep_series = false;
+  const SimulationResult r = simulate(c, control);
+  REQUIRE(r.summary.rattle.has_value());
+  const RattleSummary& rattle = *r.summary.rattle;
+  CHECK(rattle.regime == RattleRegime::no_impact);
+  CHECK(rattle.impacts_per_s_n1 == 0.0);
+  CHECK(rattle.impacts_per_s_n2 == 0.0);
+  CHECK(rattle.impact_speed_max_m_s == 0.0);
+  const double rb1 = base_radius(c.gears, Gear::one);
+  const double rb2 = base_radius(c.gears, Gear::two);
+  const double w = kOrder * kMeanSpeed;
+  const double expected = rb1 / rb2 * a * w / ((1.0 - 0.01) * std::sqrt(2.0));
+  // Each step's mean w2' stands for w2' over it: the RMS of step means of a
+  // sinusoid is low by (w h)^2 / 24 = 7e-7 at w h = 4e-3.
+  CHECK(std::fabs(rattle.rms_acceleration2_rad_s2 / expected - 1.0) <= 1e-5);
+  REQUIRE(rattle.rattle_index.has_value());
+  // The same motion twice, apart from the rounding of B in s - B.
+  CHECK(std::fabs(*rattle.rattle_index - 1.0) <= 1e-6);
+  const std::string json = summary_json(r.summary);
+  CHECK(json.find("\"rattle_regime\": \"no-impact\"") != std::string::npos);
+  CHECK(json.find("\"rattle_index\": ") != std::string::npos);
+}
+
+TEST_CASE("rattle outputs: a strongly rattling run strikes both flanks") {
+  const double k = stiffness_for(0.01);
+  SimulationCase c = driven_case(k, 3.0 * rigid_onset(driven_case(k, 1.0)));
+  c.model.damping_update = DampingUpdate::frozen;
+  c.integrator.end_time_s *= 10.0;
+  RunControl control;
+  control.keep_series = false;
+  const SimulationResult r = simulate(c, control);
+  REQUIRE(r.summary.rattle.has_value());
+  const RattleSummary& rattle = *r.summary.rattle;
+  const SimulationSummary& s = r.summary;
+  const double duration = c.integrator.end_time_s;
+  MESSAGE("impacts/s N1 " << rattle.impacts_per_s_n1 << ", N2 " << rattle.impacts_per_s_n2
+                          << "; Vi mean " << rattle.impact_speed_mean_m_s << " max "
+                          << rattle.impact_speed_max_m_s << " m/s; power " << rattle.impact_power_w
+                          << " W; rattle index " << rattle.rattle_index.value_or(-1.0));
+  CHECK(rattle.regime == RattleRegime::double_sided);
+  // The contact the run starts in is not counted.
+  CHECK(std::fabs(rattle.impacts_per_s_n1 * duration - (s.impacts_n1 - 1)) <= 1e-9);
+  CHECK(std::fabs(rattle.impacts_per_s_n2 * duration - s.impacts_n2) <= 1e-9);
+  CHECK(rattle.impacts_per_s_n2 > 0.0);
+  // Mean and max of the impacts' own Vi, from the impact records.
+  double most = 0.0;
+  double sum = 0.0;
+  int n = 0;
+  for (const ImpactRecord& impact : r.impacts) {
+    if (impact.start_s == 0.0) continue;
+    most = std::max(most, impact.impact_speed_m_s);
+    sum += impact.impact_speed_m_s;
+    ++n;
+  }
+  CHECK(rattle.impact_speed_max_m_s == most);
+  CHECK(std::fabs(rattle.impact_speed_mean_m_s - sum / n) <= 1e-15 * most);
+  CHECK(rattle.impact_speed_mean_m_s < rattle.impact_speed_max_m_s);
+  CHECK(std::fabs(rattle.impact_power_w * duration / s.damping_loss_j - 1.0) <= 1e-12);
+  // Impacts add acceleration peaks the backlash-free twin does not have.
+  REQUIRE(rattle.rattle_index.has_value());
+  CHECK(*rattle.rattle_index > 1.5);
+}
+
+TEST_CASE("rattle outputs: only a driven run's summary has them") {
+  SimulationCase c = paper_case(1);
+  c.integrator.end_time_s = 1e-4;
+  RunControl control;
+  control.keep_series = false;
+  const SimulationResult r = simulate(c, control);
+  CHECK(!r.summary.rattle.has_value());
+  CHECK(summary_json(r.summary).find("rattle") == std::string::npos);
 }

@@ -90,7 +90,7 @@ SimulationResult run_adaptive(const SimulationCase& c, const StiffnessTable& tab
       run.y() = yb;
       ++run.steps();
       t = end;
-      run.book_keep();
+      run.book_keep(t);
       break;
     }
     emit_until(t_next);
@@ -107,7 +107,7 @@ SimulationResult run_adaptive(const SimulationCase& c, const StiffnessTable& tab
       damping = run.damping();
       stepper.initialize(run.y(), t, std::max(stepper.current_time_step(), 1e-3 * h));
     }
-    run.book_keep();
+    run.book_keep(t);
     run.poll_stop(t);
   }
   run.rhs_evaluations() = evaluations;

@@ -129,7 +129,7 @@ SimulationResult run_rk4(const SimulationCase& c, const StiffnessTable& table,
       t = reached;
     }
     if (t == target) ++k;
-    run.book_keep();
+    run.book_keep(t);
     if (run.records() && t == target && (k % every == 0 || k == grid_steps)) run.record(t);
     run.poll_stop(t);
   }
