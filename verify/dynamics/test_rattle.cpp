@@ -346,3 +346,36 @@ TEST_CASE("rattle outputs: only a driven run's summary has them") {
   CHECK(!r.summary.rattle.has_value());
   CHECK(summary_json(r.summary).find("rattle") == std::string::npos);
 }
+
+TEST_CASE("rattle: a continued driven run goes on as one run, restarted at t = 0 or not") {
+  const double k = stiffness_for(0.01);
+  SimulationCase c = driven_case(k, 3.0 * rigid_onset(driven_case(k, 1.0)));
+  c.model.damping_update = DampingUpdate::frozen;
+  const double period = 2.0 * pi / (kOrder * kMeanSpeed);
+  // Whole steps per period, so that the two halves' grids are the whole run's.
+  c.integrator.step_s = period / 1600.0;
+  c.integrator.end_time_s = 2.0 * period;
+  RunControl control;
+  control.keep_series = false;
+  const SimulationResult whole = simulate(c, control);
+  SimulationCase half = c;
+  half.integrator.end_time_s = period;
+  const SimulationResult first = simulate(half, control);
+  RunControl go_on = control;
+  go_on.resume = first.final_state;
+  const SimulationResult second = simulate(half, go_on);
+  // The driver's phase at t = 0 is its phase after a whole period.
+  go_on.resume->time_s = 0.0;
+  const SimulationResult restarted = simulate(half, go_on);
+  const InitialState& a = whole.final_state.state;
+  for (const SimulationResult* r : {&second, &restarted}) {
+    const InitialState& b = r->final_state.state;
+    // The same steps but for the rounding of t (t0 + k h against k h) and of
+    // theta1 (its closed form at 2 periods against 1 period plus 1 period):
+    // 1e-9 rad on 2 rad of theta1, 1e-9 relative on the speeds.
+    CHECK(std::fabs(b.theta1_rad - a.theta1_rad) <= 1e-9);
+    CHECK(std::fabs(b.theta2_rad - a.theta2_rad) <= 1e-9);
+    CHECK(std::fabs(b.w1_rad_per_s - a.w1_rad_per_s) <= 1e-9 * kMeanSpeed);
+    CHECK(std::fabs(b.w2_rad_per_s - a.w2_rad_per_s) <= 1e-9 * kMeanSpeed);
+  }
+}

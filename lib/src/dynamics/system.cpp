@@ -68,7 +68,8 @@ double mean_torque_n_m(const Torque& torque, const char* field) {
                    "motion, so their mean is not known before the run");
 }
 
-GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table, const RunControl&)
+GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table,
+                       const RunControl& control)
     : table_(table), case_(c), layout_(c.gears, c.model.coast_phase) {
   const GearPair& g = c.gears;
   rb1_ = base_radius(g, Gear::one);
@@ -93,6 +94,14 @@ GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table, con
   // are then one, bit for bit.
   lagrangian_ = c.model.mesh_force == MeshForce::lagrangian && constant_k_ == 0.0;
   driven_ = c.torque1.kind == Torque::Kind::prescribed_speed;
+  if (driven_ && control.resume) {
+    // A continued run carries theta1 on from where it stopped, whatever time
+    // it restarts at (the steady state's runs restart theirs at 0).
+    driver_theta0_ = control.resume->state.theta1_rad -
+                     driver_motion(c.torque1, 0.0, control.resume->time_s).theta_rad;
+  } else {
+    driver_theta0_ = c.initial.theta1_rad;
+  }
   drag_ = c.torque2.kind == Torque::Kind::drag;
   constant_torques_ =
       c.torque1.kind == Torque::Kind::constant && c.torque2.kind == Torque::Kind::constant;
@@ -115,7 +124,7 @@ std::pair<double, double> GearSystem::torques(double t) const {
 
 void GearSystem::impose_driver(double t, State& y) const {
   if (!driven_) return;
-  const DriverMotion m = driver_motion(case_.torque1, case_.initial.theta1_rad, t);
+  const DriverMotion m = driver_motion(case_.torque1, driver_theta0_, t);
   y[kTheta1] = m.theta_rad;
   y[kW1] = m.speed_rad_per_s;
 }
@@ -161,7 +170,7 @@ void GearSystem::rhs(double t, const State& y_in, const Mode& m, const ContactMe
   State driven_state;
   DriverMotion driver;
   if (driven_) {
-    driver = driver_motion(case_.torque1, case_.initial.theta1_rad, t);
+    driver = driver_motion(case_.torque1, driver_theta0_, t);
     driven_state = y_in;
     driven_state[kTheta1] = driver.theta_rad;
     driven_state[kW1] = driver.speed_rad_per_s;

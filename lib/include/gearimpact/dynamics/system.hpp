@@ -150,7 +150,9 @@ class GearSystem {
   bool damping_on_current_pair_ = true;
   bool lagrangian_ = false;
   bool driven_ = false;  // torque1 a kinematic driver
-  bool drag_ = false;    // torque2 a drag, from w2
+  // theta1(t) = driver_theta0_ + the driver's closed form from 0 to t.
+  double driver_theta0_ = 0.0;
+  bool drag_ = false;  // torque2 a drag, from w2
   // Both torques constant: torque_values_ holds them from the start.
   bool constant_torques_ = false;
   // A system belongs to one run, so one thread.
