@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "gearimpact/constants.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
@@ -16,6 +18,8 @@
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/results.hpp"
 #include "gearimpact/paper/table1.hpp"
+#include "gearimpact/steady/steady_state.hpp"
+#include "gearimpact/steady/sweep.hpp"
 #include "gearimpact/stiffness/table.hpp"
 
 using namespace gearimpact;
@@ -377,5 +381,67 @@ TEST_CASE("rattle: a continued driven run goes on as one run, restarted at t = 0
     CHECK(std::fabs(b.theta2_rad - a.theta2_rad) <= 1e-9);
     CHECK(std::fabs(b.w1_rad_per_s - a.w1_rad_per_s) <= 1e-9 * kMeanSpeed);
     CHECK(std::fabs(b.w2_rad_per_s - a.w2_rad_per_s) <= 1e-9 * kMeanSpeed);
+  }
+}
+
+TEST_CASE("rattle sweep: the regime map over the drag brackets the closed-form onset") {
+  // Fixed amplitude a; the loose gear stays in contact when
+  // T_d (1 - r^2) > J2 (Rb1 / Rb2) a w (the forced solution's onset, read for
+  // the drag), and leaves its drive flank below. Hertzian damping (frozen D)
+  // takes each point to its steady state.
+  const double k = stiffness_for(0.01);
+  const double a = 0.5;
+  SimulationCase c = driven_case(k, a);
+  c.model.damping_update = DampingUpdate::frozen;
+  const double rb1 = base_radius(c.gears, Gear::one);
+  const double rb2 = base_radius(c.gears, Gear::two);
+  const double w = kOrder * kMeanSpeed;
+  const double onset = moment_of_inertia(c.gears, Gear::two) * rb1 / rb2 * a * w / (1.0 - 0.01);
+  // Seven drags from 0.42 to 1.62 times the onset, a grid step of 0.2 times
+  // it: none within 2 % of it.
+  const double grid_step = 0.2 * onset;
+  std::vector<double> grid;
+  for (int i = 0; i < 7; ++i) grid.push_back(onset * 0.42 + grid_step * i);
+  SteadySettings settings;
+  settings.max_periods = 400;
+  const TableFor table_for = [](const SimulationCase& x) {
+    return std::make_shared<const StiffnessTable>(x.gears, x.model.stiffness);
+  };
+  // Downwards, from the held loose gear: each point starts from the last
+  // one's steady state. Upwards, the rattling orbit of the low drags goes on
+  // past the onset (a rattling orbit coexists with the held one there), so
+  // the map of an up sweep shows the hysteresis, not the onset.
+  for (SweepDirection direction : {SweepDirection::down, SweepDirection::up}) {
+    const std::vector<SweepPointResult> points =
+        sweep_line(c, table_for, "torque2.drag_constant", grid, direction, 0, settings, nullptr);
+    REQUIRE(points.size() == grid.size());
+    double lowest_held = grid.back() + grid_step;
+    double highest_struck = 0.0;
+    for (const SweepPointResult& p : points) {
+      MESSAGE(to_string(direction)
+              << ": T_d / onset = " << p.value_si / onset << ": " << to_string(p.point.regime)
+              << ", period " << period_label(p.point) << ", " << p.point.periods_run << " periods"
+              << (p.failure.empty() ? "" : ", " + p.failure));
+      REQUIRE(p.failure.empty());
+      REQUIRE(p.point.converged);
+      // Below the onset the loose gear cannot stay held, in either direction.
+      if (p.value_si < onset) CHECK(p.point.regime != Regime::no_impact);
+      if (p.point.regime == Regime::no_impact) {
+        lowest_held = std::min(lowest_held, p.value_si);
+      } else {
+        highest_struck = std::max(highest_struck, p.value_si);
+      }
+    }
+    if (direction == SweepDirection::down) {
+      // One boundary, half way between the highest drag that rattles and the
+      // lowest that holds, within one grid step of the onset. (The point 2 %
+      // above the onset rattles: the step of the drag from the point before
+      // starts a transient that knocks the loose gear off its flank, and the
+      // rattling orbit coexists there.)
+      CHECK(highest_struck < lowest_held);
+      const double boundary = 0.5 * (highest_struck + lowest_held);
+      MESSAGE("map boundary " << boundary / onset << " x the onset");
+      CHECK(std::fabs(boundary - onset) <= grid_step);
+    }
   }
 }
