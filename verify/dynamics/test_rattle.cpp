@@ -445,3 +445,25 @@ TEST_CASE("rattle sweep: the regime map over the drag brackets the closed-form o
     }
   }
 }
+
+TEST_CASE("rattle: the step must resolve the driver and the drag") {
+  const double k = stiffness_for(0.01);
+  const auto refused_key = [](const SimulationCase& c) {
+    try {
+      simulate(c);
+    } catch (const InputError& e) {
+      return e.field();
+    }
+    return std::string("accepted");
+  };
+  // The drag's relaxation time J2 / (T_c / w_s): 2 N m over 1e-6 rad/s is
+  // far below 20 steps of 2 us per 2 pi of it.
+  SimulationCase sharp = driven_case(k, 0.1);
+  sharp.torque2.drag_speed_scale_rad_per_s = 1e-6;
+  CHECK(refused_key(sharp) == "torque2.drag_speed_scale");
+  // An order whose harmonic turns faster than 20 steps a period: 2 pi /
+  // (20 x 2 us) = 1.6e5 rad/s, here 1000 W = 2e5 rad/s.
+  SimulationCase fast = driven_case(k, 0.1);
+  fast.torque1.driver_orders = {1000.0};
+  CHECK(refused_key(fast) == "torque1.orders[0]");
+}
