@@ -39,5 +39,9 @@ ReportSection reproduce_readings(const ReproduceContext& context);
 ReportSection reproduce_case3_ensemble(const ReproduceContext& context);
 // The loaded pair swept in w1 through ISO's N = 1/2, 1, 2 (docs/steady-state.md section 4).
 ReportSection reproduce_steady_state(const ReproduceContext& context);
+// A loose gear against a driver of fluctuating speed, mapped over the
+// driver's speed amplitude and frequency, with the closed-form separation
+// boundary (docs/model.md, section Rattle of a loose gear).
+ReportSection reproduce_rattle(const ReproduceContext& context);
 
 }  // namespace gearimpact::cli

@@ -87,7 +87,8 @@ std::filesystem::path reproduce(const std::filesystem::path& out,
                                 {"stiffness models and ISO 6336-1", reproduce_stiffness},
                                 {"the open readings side by side", reproduce_readings},
                                 {"case 3 ensemble", reproduce_case3_ensemble},
-                                {"steady state of the loaded pair", reproduce_steady_state}};
+                                {"steady state of the loaded pair", reproduce_steady_state},
+                                {"rattle map of a loose gear, 512 runs", reproduce_rattle}};
   // The parts run side by side: each submits its simulations to the one pool
   // and waits for them, so the cores stay busy until the last run is done.
   std::vector<std::future<std::pair<ReportSection, double>>> running;

@@ -32,7 +32,8 @@ TEST_CASE("reproduce: every figure, its data, and REPORT.md with no unexplained 
                                          "fig8_energy_ratios",
                                          "fig8_energy_ratios_flipped_moment",
                                          "steady_state_dynamic_factor",
-                                         "steady_state_regimes"};
+                                         "steady_state_regimes",
+                                         "rattle_map"};
   for (const std::string& figure : figures) {
     for (const char* extension : {".png", ".svg", ".gp"}) {
       const std::filesystem::path file = out / (figure + extension);
@@ -45,7 +46,7 @@ TEST_CASE("reproduce: every figure, its data, and REPORT.md with no unexplained 
        {"case1_time_series.csv", "case2_time_series.csv", "case3_time_series.csv",
         "case1_summary.json", "case2_summary.json", "case3_summary.json", "fig7_friction_sweep.csv",
         "fig8_energy_ratios.csv", "fig8_energy_ratios_flipped_moment.csv", "steady_state.csv",
-        "steady_state_iso_kv_band.csv"}) {
+        "steady_state_iso_kv_band.csv", "rattle_map.csv", "rattle_boundary.csv"}) {
     CAPTURE(data);
     CHECK(std::filesystem::exists(out / data));
   }
@@ -59,6 +60,7 @@ TEST_CASE("reproduce: every figure, its data, and REPORT.md with no unexplained 
   // The steady-state section with its table, and its sweep: 41 speeds up and 41 down.
   CHECK(report.find("## Steady state of the loaded pair") != std::string::npos);
   CHECK(report.find("| dynamic factor at N = 1 |") != std::string::npos);
+  CHECK(report.find("## Rattle of a loose gear (an extension)") != std::string::npos);
   std::ifstream steady(out / "steady_state.csv");
   std::stringstream steady_text;
   steady_text << steady.rdbuf();

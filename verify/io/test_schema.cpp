@@ -59,7 +59,8 @@ SimulationCase every_key_case() {
 }
 
 // A case the row applies to: every_key_case(), for the keys of the other
-// torque kinds case 2 with torque2 made sinusoidal, for the keys of the
+// torque kinds case 2 with torque2 made sinusoidal or with a driver and a
+// drag, for the keys of the
 // constant mesh stiffness, the frozen D and Benedict and Kelley's friction a
 // case with those.
 SimulationCase case_for(const Field& field) {
@@ -71,6 +72,22 @@ SimulationCase case_for(const Field& field) {
   c.torque2.angular_frequency_rad_per_s = 500.0;
   c.torque2.phase_rad = -1.5;
   if (applies(field, c)) return c;
+  {
+    // The loose gear's keys: a kinematic driver on gear 1, a drag on gear 2.
+    SimulationCase d = paper_case(2);
+    d.torque1 = Torque{};
+    d.torque1.kind = Torque::Kind::prescribed_speed;
+    d.torque1.mean_speed_rad_per_s = 100.0;
+    d.torque1.driver_orders = {2.0};
+    d.torque1.driver_speed_amplitudes_rad_per_s = {5.0};
+    d.torque1.harmonic_phases_rad = {0.0};
+    d.initial.w1_rad_per_s = 100.0;
+    d.torque2 = Torque{};
+    d.torque2.kind = Torque::Kind::drag;
+    d.torque2.drag_constant_n_m = 0.5;
+    d.torque2.drag_viscous_n_m_s = 1e-4;
+    if (applies(field, d)) return d;
+  }
   c.model.mesh_stiffness = MeshStiffnessMode::constant;
   c.model.constant_mesh_stiffness_n_per_m = 3.5e8;
   c.model.damping_update = DampingUpdate::frozen;

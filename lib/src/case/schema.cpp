@@ -195,19 +195,32 @@ class Rows {
   std::string_view section_;
 };
 
+// The rows of [torque1] (gear = 1, which may be a kinematic driver) or
+// [torque2] (gear = 2, which may be a drag on a loose gear).
 template <typename TorqueSlot>
-void add_torque(std::vector<Field>& rows, std::string_view section, TorqueSlot torque) {
+void add_torque(std::vector<Field>& rows, std::string_view section, int gear, TorqueSlot torque) {
   Rows r(rows, section);
+  std::vector<ChoiceName> kinds{
+      choice("constant", Torque::Kind::constant, "T = value"),
+      choice("sinusoidal", Torque::Kind::sinusoidal,
+             "T = amplitude sin(angular_frequency t + phase)"),
+      choice("harmonic", Torque::Kind::harmonic,
+             "T = mean + sum_i amplitudes[i] sin(angular_frequencies[i] t + phases[i])"),
+      choice("user", Torque::Kind::user,
+             "T(t) given as a function: through the library only, it has no text form", false)};
+  if (gear == 1) {
+    kinds.push_back(choice("prescribed-speed", Torque::Kind::prescribed_speed,
+                           "a kinematic driver: w1 = mean_speed + sum_i speed_amplitudes[i] "
+                           "sin(orders[i] mean_speed t + phases[i]), theta1(0) = initial.theta1; "
+                           "the torque it needs is computed and its work booked"));
+  } else {
+    kinds.push_back(choice("drag", Torque::Kind::drag,
+                           "T = -(drag_constant tanh(w2 / drag_speed_scale) + drag_viscous w2), "
+                           "opposing the rotation of a loose gear"));
+  }
   r.choice(
-      "kind",
-      {choice("constant", Torque::Kind::constant, "T = value"),
-       choice("sinusoidal", Torque::Kind::sinusoidal,
-              "T = amplitude sin(angular_frequency t + phase)"),
-       choice("harmonic", Torque::Kind::harmonic,
-              "T = mean + sum_i amplitudes[i] sin(angular_frequencies[i] t + phases[i])"),
-       choice("user", Torque::Kind::user,
-              "T(t) given as a function: through the library only, it has no text form", false)},
-      true, "form of the external torque T(t) on the gear", [torque](auto& c) -> auto& {
+      "kind", std::move(kinds), true,
+      "form of the external torque T(t) on the gear", [torque](auto& c) -> auto& {
         return torque(c).kind;
       });
   r.quantity(
@@ -250,10 +263,54 @@ void add_torque(std::vector<Field>& rows, std::string_view section, TorqueSlot t
        kMostHarmonics, true, "w_i of the harmonics; not negative, as angular_frequency",
        [torque](auto& c) -> auto& { return torque(c).harmonic_angular_frequencies_rad_per_s; })
       .only_when = FieldCondition{"kind", {"harmonic"}};
+  std::vector<std::string_view> with_phases{"harmonic"};
+  if (gear == 1) with_phases.push_back("prescribed-speed");
   r.quantity_list(
-       "phases", Dimension::angle, "deg", {}, kMostHarmonics, true, "phi_i of the harmonics",
+       "phases", Dimension::angle, "deg", {}, kMostHarmonics, true,
+       "phi_i of the harmonics (of the torque, or of the driver's speed)",
        [torque](auto& c) -> auto& { return torque(c).harmonic_phases_rad; })
-      .only_when = FieldCondition{"kind", {"harmonic"}};
+      .only_when = FieldCondition{"kind", std::move(with_phases)};
+  if (gear == 1) {
+    // The engine orders count harmonics of the mean speed: the driver's
+    // period is 2 pi / (W times the orders' greatest common divisor).
+    r.quantity(
+         "mean_speed", Dimension::angular_velocity, "rpm", {open(0.0), {}, {}}, true,
+         "W, the driver's mean speed; positive (the loose gear's drag opposes the rotation it "
+         "takes from it)",
+         [torque](auto& c) -> auto& { return torque(c).mean_speed_rad_per_s; })
+        .only_when = FieldCondition{"kind", {"prescribed-speed"}};
+    r.number_list(
+         "orders", {open(0.0), {}, {}}, kMostHarmonics, true,
+         "n_i, the orders of the speed harmonics: the i-th turns at n_i W (2 for a four-stroke "
+         "four-cylinder engine's firing order on the crankshaft); as many as speed_amplitudes "
+         "and phases",
+         [torque](auto& c) -> auto& { return torque(c).driver_orders; })
+        .only_when = FieldCondition{"kind", {"prescribed-speed"}};
+    r.quantity_list(
+         "speed_amplitudes", Dimension::angular_velocity, "rad/s", {closed(0.0), {}, {}},
+         kMostHarmonics, true,
+         "a_i, the speed fluctuation of each order: w1 = W + sum_i a_i sin(n_i W t + phi_i); "
+         "an angle amplitude A_i is a_i = A_i n_i W",
+         [torque](auto& c) -> auto& { return torque(c).driver_speed_amplitudes_rad_per_s; })
+        .only_when = FieldCondition{"kind", {"prescribed-speed"}};
+  } else {
+    r.quantity(
+         "drag_constant", Dimension::torque, "N*m", {closed(0.0), {}, {}}, true,
+         "T_c, the constant part of the drag (churning, seals), against the rotation",
+         [torque](auto& c) -> auto& { return torque(c).drag_constant_n_m; })
+        .only_when = FieldCondition{"kind", {"drag"}};
+    r.quantity(
+         "drag_viscous", Dimension::rotational_damping, "N*m*s/rad", {closed(0.0), {}, {}}, true,
+         "c, the viscous part of the drag, c w2 against the rotation",
+         [torque](auto& c) -> auto& { return torque(c).drag_viscous_n_m_s; })
+        .only_when = FieldCondition{"kind", {"drag"}};
+    r.quantity(
+         "drag_speed_scale", Dimension::angular_velocity, "rad/s", {open(0.0), {}, {}}, false,
+         "w_s of tanh(w2 / w_s), the smoothed sign of the constant drag: within a few w_s of "
+         "w2 = 0 the drag fades to 0 (a loose gear that stops is not held by it)",
+         [torque](auto& c) -> auto& { return torque(c).drag_speed_scale_rad_per_s; })
+        .only_when = FieldCondition{"kind", {"drag"}};
+  }
 }
 
 std::vector<Field> make_schema() {
@@ -352,9 +409,9 @@ std::vector<Field> make_schema() {
         .when_absent = "gear 1's";
   }
   add_torque(
-      rows, "torque1", [](auto& c) -> auto& { return c.torque1; });
+      rows, "torque1", 1, [](auto& c) -> auto& { return c.torque1; });
   add_torque(
-      rows, "torque2", [](auto& c) -> auto& { return c.torque2; });
+      rows, "torque2", 2, [](auto& c) -> auto& { return c.torque2; });
   {
     Rows r(rows, "initial");
     // s = Rb1 theta1 - Rb2 theta2 is a difference of angles times radii: at
@@ -1161,6 +1218,31 @@ void relation_problems(const SimulationCase& c, const std::vector<std::string>& 
                                      "as many values as " + std::string(name) + ".amplitudes (" +
                                          std::to_string(n) + ")"));
         }
+      }
+    }
+    if (torque->kind == Torque::Kind::prescribed_speed) {
+      // One order is one element of each list.
+      const std::size_t n = torque->driver_speed_amplitudes_rad_per_s.size();
+      const std::array<std::pair<const char*, std::size_t>, 2> others{
+          {{"orders", torque->driver_orders.size()},
+           {"phases", torque->harmonic_phases_rad.size()}}};
+      for (const auto& [key, size] : others) {
+        if (size != n) {
+          throw InputError(std::string(name) + "." + key, std::to_string(size) + " values",
+                           "as many values as " + std::string(name) + ".speed_amplitudes (" +
+                               std::to_string(n) + ")");
+        }
+      }
+      // The driver sets w1(0); a different initial.w1 would be ignored.
+      const double w0 = driver_speed_at(*torque, 0.0);
+      const double written = c.initial.w1_rad_per_s;
+      if (std::fabs(written - w0) > 1e-9 * std::fabs(w0)) {
+        throw InputError("initial.w1", shortest_decimal(written) + " rad/s",
+                         "the driver's w1(0) = mean_speed + sum_i speed_amplitudes[i] "
+                         "sin(phases[i]) = " +
+                             shortest_decimal(w0) +
+                             " rad/s (to 1e-9 of it), as [torque1] kind = "
+                             "\"prescribed-speed\" prescribes w1");
       }
     }
   }

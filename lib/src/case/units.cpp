@@ -40,6 +40,9 @@ constexpr std::array kStiffness{Unit{"N/m", 0, 1.0}, Unit{"N/mm", 3, 1.0}, Unit{
 // A dynamic viscosity: 1 cP = 1 mPa*s = 1e-3 Pa*s.
 constexpr std::array kViscosity{Unit{"Pa*s", 0, 1.0}, Unit{"mPa*s", -3, 1.0}, Unit{"cP", -3, 1.0}};
 
+// A viscous torque per angular velocity.
+constexpr std::array kRotationalDamping{Unit{"N*m*s/rad", 0, 1.0}, Unit{"N*mm*s/rad", -3, 1.0}};
+
 constexpr std::array kDimensions{Dimension::length,
                                  Dimension::angle,
                                  Dimension::pressure,
@@ -50,7 +53,8 @@ constexpr std::array kDimensions{Dimension::length,
                                  Dimension::angular_frequency,
                                  Dimension::speed,
                                  Dimension::stiffness,
-                                 Dimension::viscosity};
+                                 Dimension::viscosity,
+                                 Dimension::rotational_damping};
 
 // Exponents beyond this put any mantissa outside the doubles (with up to a few
 // hundred digits); it keeps the exponent arithmetic far from int overflow.
@@ -160,6 +164,8 @@ UnitList units_of(Dimension dimension) {
       return {kStiffness.data(), kStiffness.size()};
     case Dimension::viscosity:
       return {kViscosity.data(), kViscosity.size()};
+    case Dimension::rotational_damping:
+      return {kRotationalDamping.data(), kRotationalDamping.size()};
   }
   return {};
 }
@@ -188,6 +194,8 @@ std::string_view describe(Dimension dimension) {
       return "a stiffness";
     case Dimension::viscosity:
       return "a dynamic viscosity";
+    case Dimension::rotational_damping:
+      return "a rotational damping";
   }
   return "a quantity";
 }

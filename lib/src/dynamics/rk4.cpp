@@ -69,6 +69,7 @@ double event_cut_step(Run& run, double t, double target) {
   State k1;
   State next{};
   rk4_step(system, t, y, target - t, mode, damping, next, k1);
+  system.impose_driver(target, next);
   run.rhs_evaluations() += 4;
   run.check_finite(target, next);
   ++run.steps();
@@ -82,6 +83,7 @@ double event_cut_step(Run& run, double t, double target) {
   long long evaluations = 0;
   const auto state_at = [&](double tau, State& x) {
     rk4_step_from(system, t, y, k1, tau - t, mode, damping, x);
+    system.impose_driver(tau, x);
     evaluations += 3;
   };
   const double t_event = earliest_event(system, mode, damping, t, target, g_a, g_b, n, state_at);
@@ -114,6 +116,7 @@ SimulationResult run_rk4(const SimulationCase& c, const StiffnessTable& table,
     if (!control.locate_events) {
       State next{};
       rk4_step_unlocated(run.system(), t, run.y(), target - t, run.damping(), next);
+      run.system().impose_driver(target, next);
       run.rhs_evaluations() += 4;
       run.check_finite(target, next);
       run.y() = next;
@@ -126,7 +129,7 @@ SimulationResult run_rk4(const SimulationCase& c, const StiffnessTable& table,
       t = reached;
     }
     if (t == target) ++k;
-    run.book_keep();
+    run.book_keep(t);
     if (run.records() && t == target && (k % every == 0 || k == grid_steps)) run.record(t);
     run.poll_stop(t);
   }

@@ -27,7 +27,9 @@ class Run {
  public:
   Run(const SimulationCase& c, const StiffnessTable& table, const RunControl& control)
       : c_(c), control_(control), system_(c, table, control), ledger_(make_ledger()) {
-    book_keep();
+    last_t_ = start_time_;
+    last_w2_ = y_[kW2];
+    book_keep(start_time_);
     if (records()) {
       if (control_.keep_series) {
         // The rows of the output grid up front, so that a long series is not
@@ -109,9 +111,17 @@ class Run {
     if (!system_.lagrangian()) ledger_.mode_changed(before, after);
   }
 
-  // After an accepted step.
-  void book_keep() {
+  // After an accepted step, which ends at t.
+  void book_keep(double t) {
     SimulationSummary& s = result_.summary;
+    if (system_.driven() && t > last_t_) {
+      // The step's mean w2' is its change of w2 over its length: exact at
+      // impacts, which end steps, where w2' jumps.
+      const double dw2 = y_[kW2] - last_w2_;
+      acceleration2_squared_integral_ += dw2 * dw2 / (t - last_t_);
+      last_t_ = t;
+      last_w2_ = y_[kW2];
+    }
     ledger_.observe(y_, mode_, s);
     if (mode_.region != Region::free) {
       s.max_penetration_m = std::max(s.max_penetration_m, system_.delta(mode_.region, y_));
@@ -150,6 +160,7 @@ class Run {
     ledger_.finish(y_, mode_, s);
     s.final_w1_rad_per_s = y_[kW1];
     s.final_w2_rad_per_s = y_[kW2];
+    if (system_.driven()) s.rattle = rattle_summary(t);
     result_.impacts = impacts_;
     result_.final_state = {t, {y_[kTheta1], y_[kTheta2], y_[kW1], y_[kW2]}, damping_};
     return std::move(result_);
@@ -170,6 +181,31 @@ class Run {
   }
 
  private:
+  RattleSummary rattle_summary(double t) const {
+    RattleSummary r;
+    const double duration = t - start_time_;
+    if (!(duration > 0.0)) return r;
+    int n1 = 0;
+    int n2 = 0;
+    double speeds = 0.0;
+    for (const ImpactRecord& impact : impacts_) {
+      // A contact the run starts in was not struck.
+      if (impact.start_s == start_time_) continue;
+      (impact.line == Region::n1 ? n1 : n2) += 1;
+      speeds += impact.impact_speed_m_s;
+      r.impact_speed_max_m_s = std::max(r.impact_speed_max_m_s, impact.impact_speed_m_s);
+    }
+    r.impacts_per_s_n1 = n1 / duration;
+    r.impacts_per_s_n2 = n2 / duration;
+    if (n1 + n2 > 0) r.impact_speed_mean_m_s = speeds / (n1 + n2);
+    r.impact_power_w = y_[kDampingLoss] / duration;
+    r.rms_acceleration2_rad_s2 = std::sqrt(acceleration2_squared_integral_ / duration);
+    r.regime = n1 > 0 && n2 > 0   ? RattleRegime::double_sided
+               : n1 > 0 || n2 > 0 ? RattleRegime::single_sided
+                                  : RattleRegime::no_impact;
+    return r;
+  }
+
   // The start: the case's initial state at t = 0 (a contact there counts as an
   // impact), or where a previous run ended (its contact goes on).
   EnergyLedger make_ledger() {
@@ -183,6 +219,7 @@ class Run {
                0.0,
                0.0,
                0.0};
+    system_.impose_driver(start_time_, y_);
     mode_ = system_.classify_geometry(y_);
     if (control_.resume) {
       damping_ = control_.resume->contact;
@@ -220,6 +257,11 @@ class Run {
   void pay_stored_energy_jump(double t, const Mode& old, double before, double after) {
     const double jump = after - before;
     if (jump == 0.0) return;
+    if (system_.driven()) {
+      // A kinematic driver keeps w1: it pays the jump, as work of its torque.
+      y_[kTorqueWork] += jump;
+      return;
+    }
     const double j1 = system_.pinion_inertia();
     const double w1 = y_[kW1];
     const double kinetic1 = 0.5 * j1 * w1 * w1;
@@ -276,6 +318,10 @@ class Run {
   int stalled_ = 0;
   SimulationResult result_;
   std::vector<ImpactRecord> impacts_;
+  // Under a kinematic driver: Int w2'^2 dt, and the end of the last step.
+  double acceleration2_squared_integral_ = 0.0;
+  double last_t_ = 0.0;
+  double last_w2_ = 0.0;
   // Last: its construction sets the start state above (make_ledger).
   EnergyLedger ledger_;
 };

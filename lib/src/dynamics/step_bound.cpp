@@ -54,9 +54,10 @@ double largest_step(const SimulationCase& c, double stiffest) {
   return period / kStepsPerContactPeriod;
 }
 
-// The peak |T(t)| of a torque and the key that sets most of it; a torque
-// given as a function has no known peak (0, no key).
-std::pair<double, std::string> torque_peak(const Torque& t, const std::string& section) {
+// The peak |T(t)| of a torque and the key that sets most of it, w_s the
+// gear's initial speed; a torque given as a function has no known peak (0, no key).
+std::pair<double, std::string> torque_peak(const Torque& t, const std::string& section,
+                                           double w_s) {
   switch (t.kind) {
     case Torque::Kind::constant:
       return {std::fabs(t.constant_n_m), section + ".value"};
@@ -71,7 +72,16 @@ std::pair<double, std::string> torque_peak(const Torque& t, const std::string& s
       for (double a : t.harmonic_amplitudes_n_m) amplitudes += std::fabs(a);
       return {mean + amplitudes, section + (amplitudes >= mean ? ".amplitudes" : ".mean")};
     }
+    case Torque::Kind::drag:
+      // Its viscous part at the speed it starts from; the constant part is
+      // at most drag_constant.
+      return {std::fabs(t.drag_constant_n_m) + std::fabs(t.drag_viscous_n_m_s * w_s),
+              section + (std::fabs(t.drag_constant_n_m) >= std::fabs(t.drag_viscous_n_m_s * w_s)
+                             ? ".drag_constant"
+                             : ".drag_viscous")};
     case Torque::Kind::user:
+    case Torque::Kind::prescribed_speed:
+      // A driver's torque is whatever the mesh needs: it has no peak of its own.
       break;
   }
   return {0.0, std::string()};
@@ -87,7 +97,8 @@ void validate_static_deflection(const SimulationCase& c, double softest) {
   for (std::size_t i = 0; i < torques.size(); ++i) {
     const auto [torque, gear] = torques[i];
     const std::string section = "torque" + std::to_string(i + 1);
-    const auto [peak, key] = torque_peak(*torque, section);
+    const double w = i == 0 ? c.initial.w1_rad_per_s : c.initial.w2_rad_per_s;
+    const auto [peak, key] = torque_peak(*torque, section, w);
     const double rb = base_radius(g, gear);
     const double load = peak / rb;
     if (load <= most * softest) continue;
@@ -116,6 +127,20 @@ void validate_speeds(const SimulationCase& c) {
   for (std::size_t i = 0; i < gears.size(); ++i) {
     const auto [teeth, w] = gears[i];
     const double fastest = 2.0 * pi / (kStepsPerMeshPeriod * teeth * step);
+    if (i == 0 && c.torque1.kind == Torque::Kind::prescribed_speed) {
+      // The driver's fastest speed, W + sum_i |a_i|.
+      const Torque& d = c.torque1;
+      double peak = std::fabs(d.mean_speed_rad_per_s);
+      for (double a : d.driver_speed_amplitudes_rad_per_s) peak += std::fabs(a);
+      if (peak <= fastest) continue;
+      throw InputError("torque1.mean_speed", digits(d.mean_speed_rad_per_s) + " rad/s",
+                       "a driver whose fastest speed mean_speed + sum_i |speed_amplitudes[i]| = " +
+                           digits(peak) + " rad/s is at most " + digits(fastest) +
+                           " rad/s: at least " + digits(kStepsPerMeshPeriod) +
+                           " steps of integrator.step = " + digits(step) +
+                           " s per mesh period 2 pi / (z1 |w1|), z1 = " + std::to_string(teeth) +
+                           "; a faster driver needs a smaller integrator.step");
+    }
     if (std::fabs(w) <= fastest) continue;
     const std::string n = std::to_string(i + 1);
     throw InputError(
@@ -145,7 +170,13 @@ void validate_forcing(const SimulationCase& c) {
                            " s per forcing period 2 pi / W, so that the torque is resolved; "
                            "a faster forcing needs a smaller integrator.step");
     };
-    if (torque->kind == Torque::Kind::sinusoidal) {
+    if (torque->kind == Torque::Kind::prescribed_speed) {
+      // The driver's harmonics turn at n_i W.
+      for (std::size_t i = 0; i < torque->driver_orders.size(); ++i) {
+        check(std::string(name) + ".orders[" + std::to_string(i) + "]",
+              torque->driver_orders[i] * torque->mean_speed_rad_per_s);
+      }
+    } else if (torque->kind == Torque::Kind::sinusoidal) {
       check(std::string(name) + ".angular_frequency", torque->angular_frequency_rad_per_s);
     } else if (torque->kind == Torque::Kind::harmonic) {
       const std::vector<double>& w = torque->harmonic_angular_frequencies_rad_per_s;
@@ -154,6 +185,27 @@ void validate_forcing(const SimulationCase& c) {
       }
     }
   }
+}
+
+// The drag's smoothed constant part and its viscous part relax w2 with the
+// time constant tau = J2 / (drag_constant / drag_speed_scale + drag_viscous)
+// near w2 = 0: at least kStepsPerContactPeriod steps per 2 pi tau, as for a
+// contact period, so that explicit steps resolve it.
+void validate_drag(const SimulationCase& c) {
+  const Torque& d = c.torque2;
+  if (d.kind != Torque::Kind::drag) return;
+  const double rate = d.drag_constant_n_m / d.drag_speed_scale_rad_per_s + d.drag_viscous_n_m_s;
+  if (!(rate > 0.0)) return;
+  const double tau = moment_of_inertia(c.gears, Gear::two) / rate;
+  const double step = c.integrator.step_s;
+  if (step <= 2.0 * pi * tau / kStepsPerContactPeriod) return;
+  throw InputError(
+      "torque2.drag_speed_scale", digits(d.drag_speed_scale_rad_per_s) + " rad/s",
+      "a scale at which the drag's relaxation time J2 / (drag_constant / drag_speed_scale + "
+      "drag_viscous) = " +
+          digits(tau) + " s spans at least " + digits(kStepsPerContactPeriod) +
+          " steps of integrator.step = " + digits(step) +
+          " s per 2 pi of it; raise drag_speed_scale (or lower drag_viscous, or the step)");
 }
 
 void validate_implied(const SimulationCase& c, const std::pair<double, double>& extremes) {
@@ -166,6 +218,7 @@ void validate_implied(const SimulationCase& c, const std::pair<double, double>& 
   problems.collect([&] { validate_step(c, largest_step(c, extremes.second)); });
   problems.collect([&] { validate_speeds(c); });
   problems.collect([&] { validate_forcing(c); });
+  problems.collect([&] { validate_drag(c); });
   problems.throw_if_any();
 }
 

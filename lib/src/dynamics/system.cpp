@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "gearimpact/contact/contact.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
@@ -37,8 +38,13 @@ double torque_at(const Torque& torque, double t_s) {
     }
     case Torque::Kind::user:
       return torque.user(t_s);
+    case Torque::Kind::prescribed_speed:
+    case Torque::Kind::drag:
+      // The driver's torque depends on the mesh force and the drag on w2:
+      // GearSystem::rhs computes both from the state.
+      break;
   }
-  return 0.0;
+  throw std::logic_error("torque_at of a torque that depends on the state");
 }
 
 double mean_torque_n_m(const Torque& torque, const char* field) {
@@ -49,13 +55,21 @@ double mean_torque_n_m(const Torque& torque, const char* field) {
     case Torque::Kind::harmonic:
       return torque.mean_n_m;
     case Torque::Kind::user:
+      throw InputError(
+          std::string(field) + ".kind", "user",
+          "constant, sinusoidal or harmonic: the mean of a torque function is not known");
+    case Torque::Kind::prescribed_speed:
+    case Torque::Kind::drag:
       break;
   }
-  throw InputError(std::string(field) + ".kind", "user",
-                   "constant, sinusoidal or harmonic: the mean of a torque function is not known");
+  throw InputError(std::string(field) + ".kind",
+                   torque.kind == Torque::Kind::drag ? "drag" : "prescribed-speed",
+                   "constant, sinusoidal or harmonic: a driver's torque and a drag follow the "
+                   "motion, so their mean is not known before the run");
 }
 
-GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table, const RunControl&)
+GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table,
+                       const RunControl& control)
     : table_(table), case_(c), layout_(c.gears, c.model.coast_phase) {
   const GearPair& g = c.gears;
   rb1_ = base_radius(g, Gear::one);
@@ -79,6 +93,16 @@ GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table, con
   // A constant stiffness has neither the extra torque nor jumps: both forms
   // are then one, bit for bit.
   lagrangian_ = c.model.mesh_force == MeshForce::lagrangian && constant_k_ == 0.0;
+  driven_ = c.torque1.kind == Torque::Kind::prescribed_speed;
+  if (driven_ && control.resume) {
+    // A continued run carries theta1 on from where it stopped, whatever time
+    // it restarts at (the steady state's runs restart theirs at 0).
+    driver_theta0_ = control.resume->state.theta1_rad -
+                     driver_motion(c.torque1, 0.0, control.resume->time_s).theta_rad;
+  } else {
+    driver_theta0_ = c.initial.theta1_rad;
+  }
+  drag_ = c.torque2.kind == Torque::Kind::drag;
   constant_torques_ =
       c.torque1.kind == Torque::Kind::constant && c.torque2.kind == Torque::Kind::constant;
   if (constant_torques_) torque_values_ = {c.torque1.constant_n_m, c.torque2.constant_n_m};
@@ -91,9 +115,18 @@ GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table, con
 std::pair<double, double> GearSystem::torques(double t) const {
   if (!constant_torques_ && t != torque_time_) {
     torque_time_ = t;
-    torque_values_ = {torque_at(case_.torque1, t), torque_at(case_.torque2, t)};
+    // The driver's torque and the drag are set by rhs from the state.
+    torque_values_ = {driven_ ? 0.0 : torque_at(case_.torque1, t),
+                      drag_ ? 0.0 : torque_at(case_.torque2, t)};
   }
   return torque_values_;
+}
+
+void GearSystem::impose_driver(double t, State& y) const {
+  if (!driven_) return;
+  const DriverMotion m = driver_motion(case_.torque1, driver_theta0_, t);
+  y[kTheta1] = m.theta_rad;
+  y[kW1] = m.speed_rad_per_s;
 }
 
 // Stage states of a step that ends on a pair's entry or exit can reach a hair
@@ -129,9 +162,26 @@ double GearSystem::damping_factor(const ContactMemory& d, double ke) const {
                                   : d.damping_per_stiffness_s_m * d.frozen_stiffness_n_per_m;
 }
 
-void GearSystem::rhs(double t, const State& y, const Mode& m, const ContactMemory& d, State& dydt,
-                     ContactTotals* totals) const {
-  const auto [t1, t2] = torques(t);
+void GearSystem::rhs(double t, const State& y_in, const Mode& m, const ContactMemory& d,
+                     State& dydt, ContactTotals* totals) const {
+  auto [t1, t2] = torques(t);
+  // A driven pinion is where its closed form puts it, whatever the stage
+  // state an integrator passes.
+  State driven_state;
+  DriverMotion driver;
+  if (driven_) {
+    driver = driver_motion(case_.torque1, driver_theta0_, t);
+    driven_state = y_in;
+    driven_state[kTheta1] = driver.theta_rad;
+    driven_state[kW1] = driver.speed_rad_per_s;
+  }
+  const State& y = driven_ ? driven_state : y_in;
+  if (drag_) {
+    const Torque& drag = case_.torque2;
+    const double w = y[kW2];
+    t2 = -(drag.drag_constant_n_m * std::tanh(w / drag.drag_speed_scale_rad_per_s) +
+           drag.drag_viscous_n_m_s * w);
+  }
   const double w1 = y[kW1];
   const double w2 = y[kW2];
   double moment1 = t1;
@@ -195,6 +245,13 @@ void GearSystem::rhs(double t, const State& y, const Mode& m, const ContactMemor
     moment1 -= force * rb1_;
     moment2 += force * rb2_;
     mesh_damping_power = force * rate;
+  }
+  if (driven_) {
+    // The driver applies the torque that gives the pinion its prescribed
+    // acceleration against the mesh (moment1 holds the mesh's moments, t1 = 0):
+    // J1 w1' = T_driver + moment1. Its work is the ledger's torque work.
+    t1 = j1_ * driver.acceleration_rad_per_s2 - moment1;
+    moment1 += t1;
   }
   dydt[kTheta1] = w1;
   dydt[kTheta2] = w2;

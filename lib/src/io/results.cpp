@@ -110,6 +110,20 @@ std::string summary_json(const SimulationSummary& s) {
   json_number(out, "ledger_scale_J", s.ledger_scale_j);
   json_number(out, "final_w1_rad_s", s.final_w1_rad_per_s);
   json_number(out, "final_w2_rad_s", s.final_w2_rad_per_s);
+  if (s.rattle) {
+    // Under a kinematic driver only, so that other runs' summaries keep their bytes.
+    const RattleSummary& r = *s.rattle;
+    json_number(out, "rattle_impacts_per_s_n1", r.impacts_per_s_n1);
+    json_number(out, "rattle_impacts_per_s_n2", r.impacts_per_s_n2);
+    json_number(out, "rattle_impact_speed_mean_m_s", r.impact_speed_mean_m_s);
+    json_number(out, "rattle_impact_speed_max_m_s", r.impact_speed_max_m_s);
+    json_number(out, "rattle_impact_power_W", r.impact_power_w);
+    json_number(out, "rattle_rms_acceleration2_rad_s2", r.rms_acceleration2_rad_s2);
+    json_optional(out, "rattle_rms_acceleration2_no_backlash_rad_s2",
+                  r.rms_acceleration2_no_backlash_rad_s2);
+    json_optional(out, "rattle_index", r.rattle_index);
+    out += "  \"rattle_regime\": " + json_string(name_of(kRattleRegimes, r.regime)) + ",\n";
+  }
   out += "  \"steps\": " + std::to_string(s.steps) + ",\n";
   out += "  \"events\": " + std::to_string(s.events) + ",\n";
   out += "  \"rhs_evaluations\": " + std::to_string(s.rhs_evaluations) + "\n";

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <numeric>
+#include <string>
 #include <utility>
 
 #include "gearimpact/constants.hpp"
@@ -179,7 +181,11 @@ class SteadyDecision {
 // The figures of the steady window (the last `periods` of history) and its regime.
 void summarize_window(const std::deque<PeriodStats>& history, std::size_t periods,
                       const SimulationCase& c, double rb1, SteadyPoint& point) {
-  const double mean_torque1_n_m = mean_torque_n_m(c.torque1, "torque1");
+  // A driver's mean torque is not known before the run; its loose gear is
+  // held on the drive flank (N1) by the drag.
+  const double mean_torque1_n_m = c.torque1.kind == Torque::Kind::prescribed_speed
+                                      ? 0.0
+                                      : mean_torque_n_m(c.torque1, "torque1");
   PeriodStats w;
   for (std::size_t i = history.size() - periods; i < history.size(); ++i) {
     const PeriodStats& p = history[i];
@@ -287,6 +293,9 @@ std::string to_string(Regime regime) {
 }
 
 void require_steady_case(const SimulationCase& c) {
+  // A kinematic driver holds the mean speed whatever the load, the drag and
+  // friction draw from it: nothing need balance.
+  if (c.torque1.kind == Torque::Kind::prescribed_speed) return;
   // Every refusal at once, each with the value that cures it.
   Problems problems;
   double t1 = 0.0;
@@ -353,7 +362,27 @@ SteadyTiming steady_timing(const SimulationCase& c, const StiffnessTable& table,
   double fastest_mesh = std::max(c.gears.teeth1 * std::fabs(c.initial.w1_rad_per_s),
                                  c.gears.teeth2 * std::fabs(c.initial.w2_rad_per_s));
   const std::vector<double> w = forcing_frequencies(c);
-  if (!w.empty()) {
+  if (c.torque1.kind == Torque::Kind::prescribed_speed) {
+    // The driver's period: its orders are harmonics of W, and a time-varying
+    // mesh stiffness repeats with the mesh, z1 W; the motion repeats at W
+    // times their greatest common divisor, so the orders must be whole.
+    const Torque& d = c.torque1;
+    long long divisor =
+        c.model.mesh_stiffness == MeshStiffnessMode::time_varying ? c.gears.teeth1 : 0;
+    double fastest = d.mean_speed_rad_per_s;
+    for (std::size_t i = 0; i < d.driver_orders.size(); ++i) {
+      const double order = d.driver_orders[i];
+      if (order != std::round(order)) {
+        throw InputError("torque1.orders[" + std::to_string(i) + "]", format_number(order),
+                         "a whole number for a steady state, so that the driver has one period");
+      }
+      divisor = std::gcd(divisor, static_cast<long long>(order));
+      fastest += std::fabs(d.driver_speed_amplitudes_rad_per_s[i]);
+    }
+    if (divisor == 0) divisor = 1;
+    timing.excitation_period_s = 2.0 * pi / (d.mean_speed_rad_per_s * static_cast<double>(divisor));
+    fastest_mesh = std::max(fastest_mesh, c.gears.teeth1 * fastest);
+  } else if (!w.empty()) {
     const double fundamental = *std::min_element(w.begin(), w.end());
     for (double wi : w) {
       const double ratio = wi / fundamental;

@@ -63,6 +63,10 @@ void apply_sweep_value(SimulationCase& c, const SimulationCase& base, const std:
   } else if (key == "torque2.mean") {
     set_sweep_value(c, "torque1.mean", -si_value * rb1 / rb2);
   }
+  if (c.torque1.kind == Torque::Kind::prescribed_speed) {
+    // The driver prescribes w1(0), which a swept mean speed moves.
+    c.initial.w1_rad_per_s = driver_speed_at(c.torque1, 0.0);
+  }
 }
 
 std::vector<double> sweep_grid(double from, double to, int points, const char* from_key,

@@ -6,6 +6,8 @@
 #pragma once
 
 #include <array>
+#include <cmath>
+#include <cstddef>
 #include <functional>
 #include <string>
 #include <vector>
@@ -17,9 +19,11 @@
 
 namespace gearimpact {
 
-// One external torque T_i(t), N m: a mean plus a fluctuation.
+// One external torque T_i(t), N m: a mean plus a fluctuation; or, on gear 1,
+// a kinematic driver that prescribes its motion; or, on gear 2, a drag that
+// opposes its rotation (docs/model.md, section Rattle of a loose gear).
 struct Torque {
-  enum class Kind { constant, sinusoidal, harmonic, user };
+  enum class Kind { constant, sinusoidal, harmonic, user, prescribed_speed, drag };
   Kind kind = Kind::constant;
   double constant_n_m = 0.0;  // Kind::constant: T
   // Kind::sinusoidal and Kind::harmonic: the mean T_m the fluctuation is added to.
@@ -32,7 +36,47 @@ struct Torque {
   std::vector<double> harmonic_angular_frequencies_rad_per_s;
   std::vector<double> harmonic_phases_rad;
   std::function<double(double)> user;  // Kind::user: T(t_s), through the library API only
+  // Kind::prescribed_speed (gear 1 only): w1(t) = W + sum_i a_i sin(n_i W t +
+  // phi_i), with W the mean speed, n_i the orders, a_i the speed amplitudes
+  // and phi_i in harmonic_phases_rad; theta1(0) is initial.theta1.
+  double mean_speed_rad_per_s = 0.0;
+  std::vector<double> driver_orders;
+  std::vector<double> driver_speed_amplitudes_rad_per_s;
+  // Kind::drag (gear 2 only): T = -(T_c tanh(w / w_s) + c w), a constant
+  // part whose sign switch is smoothed over the speed scale w_s, plus a
+  // viscous part.
+  double drag_constant_n_m = 0.0;
+  double drag_viscous_n_m_s = 0.0;
+  double drag_speed_scale_rad_per_s = 0.1;
 };
+
+// The motion a Kind::prescribed_speed driver gives gear 1 at time t (absolute,
+// so that a continued run keeps the same driver), in closed form:
+//   w1 = W + sum_i a_i sin(W_i t + phi_i),  W_i = n_i W,
+//   theta1 = theta1(0) + W t + sum_i (a_i / W_i) (cos(phi_i) - cos(W_i t + phi_i)),
+//   w1' = sum_i a_i W_i cos(W_i t + phi_i).
+struct DriverMotion {
+  double theta_rad = 0.0;
+  double speed_rad_per_s = 0.0;
+  double acceleration_rad_per_s2 = 0.0;
+};
+inline DriverMotion driver_motion(const Torque& driver, double theta0_rad, double t_s) {
+  const double w = driver.mean_speed_rad_per_s;
+  DriverMotion m{theta0_rad + w * t_s, w, 0.0};
+  for (std::size_t i = 0; i < driver.driver_speed_amplitudes_rad_per_s.size(); ++i) {
+    const double a = driver.driver_speed_amplitudes_rad_per_s[i];
+    const double wi = driver.driver_orders[i] * w;
+    const double phi = driver.harmonic_phases_rad[i];
+    const double arg = wi * t_s + phi;
+    m.theta_rad += a / wi * (std::cos(phi) - std::cos(arg));
+    m.speed_rad_per_s += a * std::sin(arg);
+    m.acceleration_rad_per_s2 += a * wi * std::cos(arg);
+  }
+  return m;
+}
+inline double driver_speed_at(const Torque& driver, double t_s) {
+  return driver_motion(driver, 0.0, t_s).speed_rad_per_s;
+}
 
 // theta in rad, w in rad/s. theta1 = theta2 = 0 centres the teeth in the backlash.
 struct InitialState {

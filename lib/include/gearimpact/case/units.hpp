@@ -10,17 +10,18 @@
 namespace gearimpact {
 
 enum class Dimension {
-  length,             // m
-  angle,              // rad
-  pressure,           // Pa (Young's modulus)
-  density,            // kg/m^3
-  torque,             // N m
-  time,               // s
-  angular_velocity,   // rad/s
-  angular_frequency,  // rad/s, the W of sin(W t)
-  speed,              // m/s
-  stiffness,          // N/m, a mesh stiffness along the line of action
-  viscosity,          // Pa s, a lubricant's dynamic viscosity
+  length,              // m
+  angle,               // rad
+  pressure,            // Pa (Young's modulus)
+  density,             // kg/m^3
+  torque,              // N m
+  time,                // s
+  angular_velocity,    // rad/s
+  angular_frequency,   // rad/s, the W of sin(W t)
+  speed,               // m/s
+  stiffness,           // N/m, a mesh stiffness along the line of action
+  viscosity,           // Pa s, a lubricant's dynamic viscosity
+  rotational_damping,  // N m s/rad, a viscous drag torque per angular velocity
 };
 
 // One allowed unit: SI value = (number x 10^decimal_exponent) x factor. A

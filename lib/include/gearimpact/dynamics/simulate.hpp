@@ -19,6 +19,7 @@
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/stiffness/fillet_foundation.hpp"
+#include "gearimpact/named_values.hpp"
 #include "gearimpact/stiffness/model.hpp"
 #include "gearimpact/stiffness/table.hpp"
 #include "gearimpact/stiffness/terms.hpp"
@@ -57,6 +58,37 @@ struct ImpactRecord {
   double restitution;       // e(Vi) of (33)
   std::optional<double> end_s;
   std::optional<double> end_speed_m_s;  // -d(delta)/dt when the contact ends
+};
+
+// How a loose gear moves against its driver over a run: no impact after the
+// start, impacts on one flank only, or on both (rattle).
+enum class RattleRegime { no_impact, single_sided, double_sided };
+inline constexpr std::array<NamedValue<RattleRegime>, 3> kRattleRegimes{{
+    {RattleRegime::no_impact, "no-impact", "no impact after the start"},
+    {RattleRegime::single_sided, "single-sided", "impacts on one flank only"},
+    {RattleRegime::double_sided, "double-sided", "impacts on both flanks: rattle"},
+}};
+
+// The rattle outputs of a run under a kinematic driver ([torque1] kind =
+// "prescribed-speed"), docs/model.md section Rattle of a loose gear. A contact
+// the run starts in is no impact here.
+struct RattleSummary {
+  double impacts_per_s_n1 = 0.0;  // drive flank
+  double impacts_per_s_n2 = 0.0;  // back flank
+  // Vi of the impacts along the line of action (0 without impacts).
+  double impact_speed_mean_m_s = 0.0;
+  double impact_speed_max_m_s = 0.0;
+  // The Hertzian damping loss per second of the run: what the impacts
+  // dissipate (the viscous mesh damper's loss is not counted).
+  double impact_power_w = 0.0;
+  // sqrt(Int w2'^2 dt / duration), each step's w2' its mean change of w2.
+  double rms_acceleration2_rad_s2 = 0.0;
+  // The same of the run with backlash 0 (started at the same penetration),
+  // and the ratio: the rattle index. Absent for a continued run, or with
+  // backlash 0 already (then the index is 1).
+  std::optional<double> rms_acceleration2_no_backlash_rad_s2;
+  std::optional<double> rattle_index;
+  RattleRegime regime = RattleRegime::no_impact;
 };
 
 struct SimulationSummary {
@@ -107,6 +139,7 @@ struct SimulationSummary {
   long long steps = 0;   // accepted steps, including those cut at events
   long long events = 0;  // mode changes located
   long long rhs_evaluations = 0;
+  std::optional<RattleSummary> rattle;  // only under a kinematic driver
 };
 
 // What a contact remembers from its onset, (32),(33): with no impact, D keeps

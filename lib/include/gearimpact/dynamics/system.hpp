@@ -78,6 +78,11 @@ class GearSystem {
   // mesh_force = "lagrangian" with a stiffness that varies: the pinion feels
   // -1/2 dKe/dtheta1 delta^2 and pays the stored energy's jumps.
   bool lagrangian() const { return lagrangian_; }
+  // [torque1] kind = "prescribed-speed": theta1 and w1 are the driver's
+  // closed form, which impose_driver writes into y at time t (nothing
+  // otherwise); the integrators call it on every state they accept.
+  bool driven() const { return driven_; }
+  void impose_driver(double t, State& y) const;
 
   double kinetic_energy(const State& y) const {
     return 0.5 * j1_ * y[kW1] * y[kW1] + 0.5 * j2_ * y[kW2] * y[kW2];
@@ -144,6 +149,10 @@ class GearSystem {
   double mesh_damping_ = 0.0;  // c of the viscous mesh damper, N s/m
   bool damping_on_current_pair_ = true;
   bool lagrangian_ = false;
+  bool driven_ = false;  // torque1 a kinematic driver
+  // theta1(t) = driver_theta0_ + the driver's closed form from 0 to t.
+  double driver_theta0_ = 0.0;
+  bool drag_ = false;  // torque2 a drag, from w2
   // Both torques constant: torque_values_ holds them from the start.
   bool constant_torques_ = false;
   // A system belongs to one run, so one thread.
