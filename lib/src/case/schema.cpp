@@ -1226,23 +1226,29 @@ void relation_problems(const SimulationCase& c, const std::vector<std::string>& 
       const std::array<std::pair<const char*, std::size_t>, 2> others{
           {{"orders", torque->driver_orders.size()},
            {"phases", torque->harmonic_phases_rad.size()}}};
+      bool lists_agree = true;
       for (const auto& [key, size] : others) {
         if (size != n) {
-          throw InputError(std::string(name) + "." + key, std::to_string(size) + " values",
-                           "as many values as " + std::string(name) + ".speed_amplitudes (" +
-                               std::to_string(n) + ")");
+          lists_agree = false;
+          problems.add(range_problem(std::string(name) + "." + key,
+                                     std::to_string(size) + " values",
+                                     "as many values as " + std::string(name) +
+                                         ".speed_amplitudes (" + std::to_string(n) + ")"));
         }
       }
       // The driver sets w1(0); a different initial.w1 would be ignored.
-      const double w0 = driver_speed_at(*torque, 0.0);
-      const double written = c.initial.w1_rad_per_s;
-      if (std::fabs(written - w0) > 1e-9 * std::fabs(w0)) {
-        throw InputError("initial.w1", shortest_decimal(written) + " rad/s",
-                         "the driver's w1(0) = mean_speed + sum_i speed_amplitudes[i] "
-                         "sin(phases[i]) = " +
-                             shortest_decimal(w0) +
-                             " rad/s (to 1e-9 of it), as [torque1] kind = "
-                             "\"prescribed-speed\" prescribes w1");
+      if (lists_agree && !any_failed(failed, "initial.w1")) {
+        const double w0 = driver_speed_at(*torque, 0.0);
+        const double written = c.initial.w1_rad_per_s;
+        if (std::fabs(written - w0) > 1e-9 * std::fabs(w0)) {
+          problems.add(range_problem(
+              "initial.w1", format_number(written) + " rad/s",
+              "the driver's w1(0) = mean_speed + sum_i speed_amplitudes[i] sin(phases[i]) = " +
+                  format_number(w0) +
+                  " rad/s (to 1e-9 of it), as [torque1] kind = \"prescribed-speed\" prescribes "
+                  "w1",
+              "initial.w1 = \"" + format_number(w0) + " rad/s\""));
+        }
       }
     }
   }
