@@ -192,7 +192,7 @@ std::string stiffness_section(const GearPair& pair, const StiffnessComparison& c
           "Mesh stiffness over one mesh period against ISO 6336-1 (b = " + number(b_mm, 4) + " mm)",
           "fraction of the mesh period",
           "mesh stiffness per face width, N/(mm {/Symbol m}m)",
-          {"set key outside bottom center horizontal", "set xrange [0:1]", "set yrange [0:*]"},
+          {"set key outside right top vertical", "set xrange [0:1]", "set yrange [0:*]"},
           series});
   std::string text =
       "yang-lin-1987 is the paper's tooth, an involute beam from the base circle without fillet "

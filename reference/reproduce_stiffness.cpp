@@ -47,7 +47,7 @@ ReportSection reproduce_stiffness(const ReproduceContext& context) {
                        "Mesh stiffness over one mesh period, paper's pair (bores 20/60 mm)",
                        "fraction of the mesh period",
                        "mesh stiffness (N/m)",
-                       {"set key outside bottom center horizontal", "set xrange [0:1]"},
+                       {"set key outside right top vertical", "set xrange [0:1]"},
                        series});
 
   ReportSection section;
