@@ -11,8 +11,10 @@
 #include <vector>
 
 #include "gearimpact/constants.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/rack_generation.hpp"
 #include "gearimpact/stiffness/mesh_models.hpp"
+#include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "gearimpact/stiffness/root_crack.hpp"
 #include "rack_pairs.hpp"
 #include "relative.hpp"
@@ -378,4 +380,66 @@ TEST_CASE("record: single-tooth stiffness loss of the paper's pinion, nu = 45 de
     CHECK(loss_max < 1.0);
     previous_mean = mean;
   }
+}
+
+TEST_CASE("the paper's tooth: depth 0 is healthy to the bit, the two routes agree when cracked") {
+  // The paper's pair, both teeth along the path of contact. The tau-form
+  // (over the involute parameter) and the x-form (over the centre line, each
+  // section root-found from the polar involute) share only cracked_section;
+  // each meets 1e-12 on pieces between the cut's kinks, so 1e-10 is the
+  // bound of the healthy harness (test_stiffness) with the same reasoning.
+  constexpr double bound = 1e-10;
+  const GearPair pair = paper_gear_pair();
+  const ContactSegment segment = contact_segment(pair);
+  const double lp = line_of_action_length(pair);
+  const double e = pair.youngs_modulus_pa;
+  const double b = pair.face_width_m;
+  double worst = 0.0;
+  for (Gear gear : {Gear::one, Gear::two}) {
+    const InvoluteTooth tooth = tooth_of(pair, gear);
+    const double h_c = tooth.base_radius_m * std::sin(tooth.half_tooth_angle_rad);
+    const double nu = 45.0 * degree;
+    RootCrack partial;
+    partial.profile = CrackProfile::partial_width;
+    partial.depth_m = 0.6 * h_c / std::sin(nu);
+    partial.width_m = 0.5 * b;
+    partial.angle_rad = nu;
+    for (int i = 0; i <= 8; ++i) {
+      const double x1 = segment.start_m + (segment.end_m - segment.start_m) * i / 8.0;
+      const double x = gear == Gear::one ? x1 : lp - x1;
+      for (StiffnessRoute route : {StiffnessRoute::tau_form, StiffnessRoute::x_form}) {
+        StiffnessModel m;
+        m.route = route;
+        const Compliances healthy = tooth_compliance(tooth, x, e, b, m);
+        const Compliances zero =
+            cracked_paper_tooth_compliances(tooth, x, e, b, m, uniform_crack(0.0, nu));
+        CHECK(zero.of(Term::bending) == healthy.of(Term::bending));
+        CHECK(zero.of(Term::axial) == healthy.of(Term::axial));
+        const Compliances cracked =
+            cracked_paper_tooth_compliances(tooth, x, e, b, m, uniform_crack(0.5 * h_c, nu));
+        CHECK(cracked.of(Term::bending) > healthy.of(Term::bending));
+      }
+      StiffnessModel tau;
+      StiffnessModel xf;
+      xf.route = StiffnessRoute::x_form;
+      for (const RootCrack& crack : {uniform_crack(0.5 * h_c, nu), partial}) {
+        const Compliances a = cracked_paper_tooth_compliances(tooth, x, e, b, tau, crack);
+        const Compliances c = cracked_paper_tooth_compliances(tooth, x, e, b, xf, crack);
+        CAPTURE(x1);
+        for (double d : {relative_difference(a.of(Term::bending), c.of(Term::bending)),
+                         relative_difference(a.of(Term::axial), c.of(Term::axial))}) {
+          CHECK(d <= bound);
+          worst = std::max(worst, d);
+        }
+      }
+    }
+    verify::check_refused(
+        [&] {
+          StiffnessModel m;
+          cracked_paper_tooth_compliances(tooth, 0.5 * (segment.start_m + segment.end_m), e, b, m,
+                                          uniform_crack(h_c / std::sin(nu), nu));
+        },
+        "crack depth q", "q sin nu < h_c");
+  }
+  MESSAGE("paper's tooth, two routes on cracked teeth: worst relative difference " << worst);
 }

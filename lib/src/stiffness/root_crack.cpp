@@ -9,6 +9,8 @@
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/numerics/quadrature.hpp"
+#include "gearimpact/stiffness/tau_form.hpp"
+#include "gearimpact/stiffness/x_form.hpp"
 
 namespace gearimpact {
 
@@ -234,9 +236,10 @@ double default_crack_start_radius(const RackGearGeometry& gear, StiffnessModelKi
   return trochoid_point(gear, solve_on(f, gear.pressure_angle_rad, top)).y_m;
 }
 
-PlacedCrack place_crack(const RootCrack& crack, const RackGearGeometry& gear,
-                        StiffnessModelKind kind, double b) {
-  const double q_top = largest_crack_depth(crack);
+namespace {
+
+// The checks that need no tooth: depths, width, angle.
+void check_crack_shape(const RootCrack& crack, double b) {
   if (!(crack.depth_m >= 0.0)) throw InputError("crack depth q", crack.depth_m, ">= 0 m");
   if (crack.profile == CrackProfile::full_width && !(crack.end_depth_m >= 0.0)) {
     throw InputError("crack end depth q2", crack.end_depth_m, ">= 0 m");
@@ -249,6 +252,31 @@ PlacedCrack place_crack(const RootCrack& crack, const RackGearGeometry& gear,
   if (!(crack.angle_rad > 0.0 && crack.angle_rad <= 0.5 * pi)) {
     throw InputError("crack angle nu", crack.angle_rad, "(0, pi/2] rad");
   }
+}
+
+// FAULTS.md's limit: the crack tip may not reach the centre line.
+void check_crack_reach(const RootCrack& crack, double h_c, double r_s) {
+  const double q_top = largest_crack_depth(crack);
+  const double reach = q_top * std::sin(crack.angle_rad);
+  if (!(reach < h_c)) {
+    throw InputError(
+        crack.profile == CrackProfile::full_width && crack.end_depth_m > crack.depth_m
+            ? "crack end depth q2"
+            : "crack depth q",
+        q_top,
+        "q sin nu < h_c: the crack may not pass the tooth centre line; here q sin nu "
+        "= " +
+            format_number(reach) + " m with nu = " + format_number(crack.angle_rad * 180.0 / pi) +
+            " deg and h_c = " + format_number(h_c) + " m at r_s = " + format_number(r_s) +
+            " m, so q < " + format_number(h_c / std::sin(crack.angle_rad)) + " m");
+  }
+}
+
+}  // namespace
+
+PlacedCrack place_crack(const RootCrack& crack, const RackGearGeometry& gear,
+                        StiffnessModelKind kind, double b) {
+  check_crack_shape(crack, b);
   const double r_s =
       crack.start_radius_m ? *crack.start_radius_m : default_crack_start_radius(gear, kind);
   const double r_low =
@@ -272,19 +300,7 @@ PlacedCrack place_crack(const RootCrack& crack, const RackGearGeometry& gear,
       break;
     }
   }
-  const double reach = q_top * std::sin(crack.angle_rad);
-  if (!(reach < h_c)) {
-    throw InputError(
-        crack.profile == CrackProfile::full_width && crack.end_depth_m > crack.depth_m
-            ? "crack end depth q2"
-            : "crack depth q",
-        q_top,
-        "q sin nu < h_c: the crack may not pass the tooth centre line; here q sin nu "
-        "= " +
-            format_number(reach) + " m with nu = " + format_number(crack.angle_rad * 180.0 / pi) +
-            " deg and h_c = " + format_number(h_c) + " m at r_s = " + format_number(r_s) +
-            " m, so q < " + format_number(h_c / std::sin(crack.angle_rad)) + " m");
-  }
+  check_crack_reach(crack, h_c, r_s);
   return {crack, r_s, h_c};
 }
 
@@ -342,6 +358,136 @@ ToothCompliances cracked_tooth_compliances(const RackGearGeometry& gear, Gear wh
   if (model.terms.has(Term::bending)) c.bending_m_per_n = beam.bending_m_per_n;
   if (model.terms.has(Term::shear)) c.shear_m_per_n = beam.shear_m_per_n;
   if (model.terms.has(Term::axial)) c.axial_m_per_n = beam.axial_m_per_n;
+  return c;
+}
+
+namespace {
+
+// The points of [a, b] where f(p) - level changes sign, for each level, with
+// a and b: the ends of pieces on which a section's cut is smooth. f sampled
+// at 64 points, each sign change solved for.
+std::vector<double> pieces_between(const std::function<double(double)>& f,
+                                   const std::vector<double>& levels, double a, double b) {
+  std::vector<double> ends{a, b};
+  constexpr int samples = 64;
+  for (double level : levels) {
+    const auto g = [&](double p) { return f(p) - level; };
+    double p_prev = a;
+    double g_prev = g(a);
+    for (int i = 1; i <= samples; ++i) {
+      const double p = a + (b - a) * i / static_cast<double>(samples);
+      const double g_here = g(p);
+      if ((g_prev < 0.0 && g_here > 0.0) || (g_prev > 0.0 && g_here < 0.0)) {
+        ends.push_back(solve_on(g, p_prev, p));
+      }
+      p_prev = p;
+      g_prev = g_here;
+    }
+  }
+  std::sort(ends.begin(), ends.end());
+  ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+  return ends;
+}
+
+double integrate_pieces(QuadratureRule rule, const Integrand& f, const std::vector<double>& ends,
+                        QuadratureTolerance tolerance) {
+  double sum = 0.0;
+  for (std::size_t i = 1; i < ends.size(); ++i) {
+    sum += integrate(rule, f, ends[i - 1], ends[i], tolerance).value;
+  }
+  return sum;
+}
+
+}  // namespace
+
+Compliances cracked_paper_tooth_compliances(const InvoluteTooth& tooth, double contact_x_m,
+                                            double e, double b, const StiffnessModel& model,
+                                            const RootCrack& crack) {
+  check_crack_shape(crack, b);
+  const double rb = tooth.base_radius_m;
+  const double theta_b = tooth.half_tooth_angle_rad;
+  if (crack.start_radius_m) {
+    throw InputError("crack start radius r_s", *crack.start_radius_m,
+                     "absent for yang-lin-1987: the paper's tooth, and its crack, start at the "
+                     "base-circle section (r_s = " +
+                         format_number(rb) + " m)");
+  }
+  // The base-circle section's half thickness, Rb sin theta_b.
+  const double h_c = rb * std::sin(theta_b);
+  check_crack_reach(crack, h_c, rb);
+  const double s = std::sin(crack.angle_rad);
+  if (!(s * largest_crack_depth(crack) > 0.0)) {
+    return model.route == StiffnessRoute::tau_form
+               ? tau_form_compliances(tooth, contact_x_m, e, b, model)
+               : x_form_compliances(tooth, contact_x_m, e, b, model);
+  }
+  // Kinks of the cut (as in cracked_beam_compliance); every section of the
+  // paper's tooth is at or above the start.
+  const std::vector<double> levels{h_c, h_c - s * largest_crack_depth(crack),
+                                   h_c - s * smallest_crack_depth(crack)};
+  // The healthy section over the cracked one: the factor by which each
+  // integrand of the healthy tooth grows.
+  const auto bending_factor = [&](double x) {
+    return healthy_section(x, b).second_moment_m4 /
+           cracked_section(crack, x, h_c, b).second_moment_m4;
+  };
+  const auto axial_factor = [&](double x) {
+    return healthy_section(x, b).area_m2 / cracked_section(crack, x, h_c, b).area_m2;
+  };
+  const QuadratureTolerance tolerance{model.relative_tolerance, 0.0};
+  Compliances c;
+  if (model.route == StiffnessRoute::tau_form) {
+    // (20)-(24) as tau_form_compliances, the section at tau of half
+    // thickness Rb [sin tau + (theta_b - tau) cos tau].
+    const double phi = contact_x_m / rb - theta_b;
+    const auto half_thickness = [&](double tau) {
+      return rb * (std::sin(tau) + (theta_b - tau) * std::cos(tau));
+    };
+    const std::vector<double> ends = pieces_between(half_thickness, levels, -phi, theta_b);
+    const double scale = 1.0 / (e * b);
+    c.of(Term::bending) =
+        scale * integrate_pieces(
+                    model.rule,
+                    [&](double tau) {
+                      return bending_integrand(theta_b, phi, tau, model.moment_sign) *
+                             bending_factor(half_thickness(tau));
+                    },
+                    ends, tolerance);
+    c.of(Term::axial) =
+        scale * integrate_pieces(
+                    model.rule,
+                    [&](double tau) {
+                      return axial_integrand(theta_b, phi, tau) * axial_factor(half_thickness(tau));
+                    },
+                    ends, tolerance);
+    return c;
+  }
+  // (16)-(19) as x_form_compliances: x = l u^2 along the centre line.
+  const PolarContact contact = polar_contact(tooth, contact_x_m);
+  const double l = contact.arm.height_l_m;
+  const double h = contact.arm.offset_h_m;
+  const double fb = std::cos(contact.phi_rad);
+  const double fa = std::sin(contact.phi_rad);
+  const double axial_arm = model.moment_sign == AxialMomentSign::physical ? -fa * h : fa * h;
+  const auto half_thickness = [&](double u) { return section_half_thickness(tooth, l * u * u); };
+  const std::vector<double> ends = pieces_between(half_thickness, levels, 0.0, 1.0);
+  c.of(Term::bending) = integrate_pieces(
+      model.rule,
+      [&](double u) {
+        const double x = l * u * u;
+        const double y = section_half_thickness(tooth, x);
+        const double moment = fb * (l - x) + axial_arm;
+        return moment * moment / (e * cracked_section(crack, y, h_c, b).second_moment_m4) * 2.0 *
+               l * u;
+      },
+      ends, tolerance);
+  c.of(Term::axial) = integrate_pieces(
+      model.rule,
+      [&](double u) {
+        const double y = half_thickness(u);
+        return fa * fa / (e * cracked_section(crack, y, h_c, b).area_m2) * 2.0 * l * u;
+      },
+      ends, tolerance);
   return c;
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "gearimpact/geometry/rack_generation.hpp"
+#include "gearimpact/geometry/tooth_profile.hpp"
 #include "gearimpact/stiffness/mesh_models.hpp"
 #include "gearimpact/stiffness/model.hpp"
 #include "gearimpact/stiffness/tooth_beam.hpp"
@@ -100,5 +101,14 @@ BeamCompliance cracked_beam_compliance(const std::vector<FlankPiece>& flank, con
 ToothCompliances cracked_tooth_compliances(const RackGearGeometry& gear, Gear which,
                                            const ToothContact& contact, double contact_width_m,
                                            const StiffnessModel& model, const RootCrack& crack);
+
+// tau_form_compliances or x_form_compliances (by model.route) of the
+// paper's tooth (yang_lin_1987) with a root crack from its base-circle
+// section (Tian's tooth, h_c = Rb sin theta_b): each section's integrand
+// times (2/3) x^3 b / I(y), resp. 2 x b / A(y). The start is that section; a
+// given r_s is refused. Throws InputError as place_crack.
+Compliances cracked_paper_tooth_compliances(const InvoluteTooth& tooth, double contact_x_m,
+                                            double youngs_modulus_pa, double face_width_m,
+                                            const StiffnessModel& model, const RootCrack& crack);
 
 }  // namespace gearimpact
