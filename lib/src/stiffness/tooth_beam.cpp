@@ -23,24 +23,34 @@ struct Densities {
 
 class EnergyDensity {
  public:
-  EnergyDensity(const BeamLoad& load, const BeamMaterial& material)
+  EnergyDensity(const BeamLoad& load, const BeamMaterial& material, const BeamSections* sections)
       : load_(load),
         material_(material),
+        sections_(sections),
         cos_tau_(std::cos(load.tau_rad)),
         sin_tau_(std::sin(load.tau_rad)) {}
 
   // 1/kb integrand: M^2 / (E I) with M = F [cos tau (y_t - y) - x_t sin tau].
   double bending(double x, double y) const {
     const double arm = cos_tau_ * (load_.y_m - y) - load_.x_m * sin_tau_;
+    if (sections_) {
+      return arm * arm / (material_.youngs_modulus_pa * (*sections_)(x, y).second_moment_m4);
+    }
     const double second_moment = 2.0 / 3.0 * x * x * x * material_.width_m;
     return arm * arm / (material_.youngs_modulus_pa * second_moment);
   }
   // 1/ks integrand, Tian 2004: 1.2 (F cos tau)^2 / (G A).
-  double shear(double x) const {
+  double shear(double x, double y) const {
+    if (sections_) {
+      return 1.2 * cos_tau_ * cos_tau_ / (material_.shear_modulus_pa * (*sections_)(x, y).area_m2);
+    }
     return 1.2 * cos_tau_ * cos_tau_ / (material_.shear_modulus_pa * 2.0 * x * material_.width_m);
   }
   // 1/ka integrand: (F sin tau)^2 / (E A).
-  double axial(double x) const {
+  double axial(double x, double y) const {
+    if (sections_) {
+      return sin_tau_ * sin_tau_ / (material_.youngs_modulus_pa * (*sections_)(x, y).area_m2);
+    }
     return sin_tau_ * sin_tau_ / (material_.youngs_modulus_pa * 2.0 * x * material_.width_m);
   }
   bool has_shear() const { return cos_tau_ != 0.0; }
@@ -49,6 +59,7 @@ class EnergyDensity {
  private:
   BeamLoad load_;
   BeamMaterial material_;
+  const BeamSections* sections_;  // null: A = 2 x b, I = (2/3) x^3 b
   double cos_tau_;
   double sin_tau_;
 };
@@ -60,9 +71,9 @@ double density(const EnergyDensity& d, Term term, double x, double y) {
     case Term::bending:
       return d.bending(x, y);
     case Term::shear:
-      return d.shear(x);
+      return d.shear(x, y);
     case Term::axial:
-      return d.axial(x);
+      return d.axial(x, y);
     case Term::hertz:
     case Term::foundation:
       break;
@@ -129,13 +140,11 @@ double integrate_flank(const std::vector<FlankPiece>& flank, const EnergyDensity
   return sum;
 }
 
-}  // namespace
-
-BeamCompliance tooth_beam_compliance(const std::vector<FlankPiece>& flank, const BeamLoad& load,
-                                     const BeamMaterial& material, StiffnessRoute route,
-                                     double relative_tolerance) {
+BeamCompliance beam_compliance(const std::vector<FlankPiece>& flank, const BeamLoad& load,
+                               const BeamMaterial& material, StiffnessRoute route,
+                               double relative_tolerance, const BeamSections* sections) {
   if (flank.empty()) throw InputError("flank", "empty", "at least one piece");
-  const EnergyDensity d(load, material);
+  const EnergyDensity d(load, material, sections);
   const QuadratureTolerance tolerance{relative_tolerance, 0.0};
   BeamCompliance c{};
   c.bending_m_per_n = integrate_flank(flank, d, Term::bending, route, tolerance);
@@ -144,6 +153,20 @@ BeamCompliance tooth_beam_compliance(const std::vector<FlankPiece>& flank, const
   c.shear_m_per_n = d.has_shear() ? integrate_flank(flank, d, Term::shear, route, tolerance) : 0.0;
   c.axial_m_per_n = d.has_axial() ? integrate_flank(flank, d, Term::axial, route, tolerance) : 0.0;
   return c;
+}
+
+}  // namespace
+
+BeamCompliance tooth_beam_compliance(const std::vector<FlankPiece>& flank, const BeamLoad& load,
+                                     const BeamMaterial& material, StiffnessRoute route,
+                                     double relative_tolerance) {
+  return beam_compliance(flank, load, material, route, relative_tolerance, nullptr);
+}
+
+BeamCompliance tooth_beam_compliance(const std::vector<FlankPiece>& flank, const BeamLoad& load,
+                                     const BeamMaterial& material, StiffnessRoute route,
+                                     double relative_tolerance, const BeamSections& sections) {
+  return beam_compliance(flank, load, material, route, relative_tolerance, &sections);
 }
 
 }  // namespace gearimpact

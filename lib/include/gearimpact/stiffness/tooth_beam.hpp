@@ -64,4 +64,19 @@ BeamCompliance tooth_beam_compliance(const std::vector<FlankPiece>& flank, const
                                      const BeamMaterial& material, StiffnessRoute route,
                                      double relative_tolerance = 1e-12);
 
+// A section's area A and second moment I.
+struct BeamSection {
+  double area_m2;
+  double second_moment_m4;
+};
+// The section at height y of half thickness x, for a tooth whose sections are
+// not 2 x b and (2/3) x^3 b (a cracked tooth, root_crack.hpp).
+using BeamSections = std::function<BeamSection(double half_thickness_m, double height_m)>;
+
+// As above with the sections `sections` gives in place of A = 2 x b and
+// I = (2/3) x^3 b; the flank's pieces must be smooth in them.
+BeamCompliance tooth_beam_compliance(const std::vector<FlankPiece>& flank, const BeamLoad& load,
+                                     const BeamMaterial& material, StiffnessRoute route,
+                                     double relative_tolerance, const BeamSections& sections);
+
 }  // namespace gearimpact
