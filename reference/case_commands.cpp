@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "gearimpact/case/units.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/io/case_file.hpp"
 
@@ -65,6 +66,14 @@ void check_case(const std::string& file) {
   std::printf("#   moments of inertia J1, J2 = %s kg m^2, %s kg m^2\n",
               shortest_decimal(moment_of_inertia(g, Gear::one)).c_str(),
               shortest_decimal(moment_of_inertia(g, Gear::two)).c_str());
+  // A valid run can still surprise: said on stderr, as every command warns, and kept as
+  // comments of the printed case.
+  if (read.kind == CaseFileKind::run) {
+    for (const std::string& w : run_warnings(c)) {
+      std::printf("# warning: %s\n", w.c_str());
+      std::fprintf(stderr, "gearimpact: warning: %s\n", w.c_str());
+    }
+  }
 }
 
 }  // namespace

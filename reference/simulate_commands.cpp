@@ -136,6 +136,20 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
       }
     };
   }
+  // Unbalanced torques and non-rolling speeds of a case file are said before a run that may
+  // take minutes (the fields checked first, so that an invalid case gets its refusal alone);
+  // Table 1's cases are transients by design and run quietly.
+  bool fields_valid = !o.case_file.empty();
+  try {
+    if (fields_valid) validate_fields(c);
+  } catch (const InputError&) {
+    fields_valid = false;
+  }
+  if (fields_valid) {
+    for (const std::string& w : run_warnings(c)) {
+      std::fprintf(stderr, "gearimpact: warning: %s\n", w.c_str());
+    }
+  }
   SimulationResult result;
   try {
     o.keys.naming_options([&] { result = simulate(c, control); });

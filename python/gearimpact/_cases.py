@@ -461,6 +461,14 @@ def _torque_text(fields, section, symbol):
         amplitude = _short(_si(fields, section + ".amplitude"))
         frequency = _short(_si(fields, section + ".angular_frequency"))
         return f"{symbol} = {_short(mean)} + {amplitude} sin({frequency} rad/s t) N*m"
+    if kind == "prescribed-speed":
+        orders = len(fields.get(section + ".orders", []))
+        speed = _si(fields, section + ".mean_speed")
+        return (f"{symbol}: a driver at {_short(speed)} rad/s ({_short(speed * 30 / math.pi)} rpm)"
+                f" + {orders} orders")
+    if kind == "drag":
+        return (f"{symbol}: a drag of {_short(_si(fields, section + '.drag_constant'))} N*m"
+                f" + {_short(_si(fields, section + '.drag_viscous'))} N*m*s/rad w2")
     harmonics = len(fields.get(section + ".amplitudes", []))
     return f"{symbol} = {_short(mean)} N*m + {harmonics} harmonics"
 

@@ -500,8 +500,12 @@ py::dict case_conditions(const SimulationCase& c) {
   const double rb2 = base_radius(pair, Gear::two);
   out["rb1_m"] = rb1;
   out["rb2_m"] = rb2;
-  const bool known_means =
-      c.torque1.kind != Torque::Kind::user && c.torque2.kind != Torque::Kind::user;
+  // A user's callable, a kinematic driver and a drag have no mean known before the run.
+  const auto known_mean = [](const Torque& t) {
+    return t.kind == Torque::Kind::constant || t.kind == Torque::Kind::sinusoidal ||
+           t.kind == Torque::Kind::harmonic;
+  };
+  const bool known_means = known_mean(c.torque1) && known_mean(c.torque2);
   if (known_means) {
     const double t1 = mean_torque_n_m(c.torque1, "torque1");
     const double t2 = mean_torque_n_m(c.torque2, "torque2");

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "gearimpact/batch/steady_sweep.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/error.hpp"
@@ -444,6 +445,25 @@ TEST_CASE("rattle sweep: the regime map over the drag brackets the closed-form o
       CHECK(std::fabs(boundary - onset) <= grid_step);
     }
   }
+}
+
+TEST_CASE("rattle sweep: a driven case with w2 at rest is not warned of a momentum speed") {
+  // The driver holds w1 whatever w2 starts at, so no point runs at the momentum's mean speed;
+  // the same speeds under torques (no driver) are warned of.
+  SimulationCase c = driven_case(stiffness_for(0.01), 0.5);
+  c.model.damping_update = DampingUpdate::frozen;
+  c.model.mesh_damping_ratio = 0.05;
+  c.initial.w2_rad_per_s = 0.0;
+  SteadySweepSpec spec;
+  spec.base = c;
+  spec.vary = "torque2.drag_constant";
+  for (const std::string& w : sweep_warnings(spec))
+    CHECK_MESSAGE(w.find("momentum") == std::string::npos, w);
+  spec.base.torque1 = Torque{};
+  spec.base.torque2 = Torque{};
+  const std::vector<std::string> warned = sweep_warnings(spec);
+  CHECK(std::any_of(warned.begin(), warned.end(),
+                    [](const std::string& w) { return w.find("momentum") != std::string::npos; }));
 }
 
 TEST_CASE("rattle: the step must resolve the driver and the drag") {

@@ -572,6 +572,29 @@ TEST_CASE("every problem of a file at once, one line each, each at its line; no 
   CHECK(!contains(message, "integrator.step"));
 }
 
+TEST_CASE("a misspelt choice: the nearest choice suggested, the keys that depend on it left out") {
+  // case1's torque2 is constant; "constnt" is one edit from "constant". Which of torque2's keys
+  // apply depends on the kind, so none of them is reported: one problem, not one per key.
+  std::string text = with_key(case1_text(), "torque2", "kind", "\"constnt\"");
+  CaseFileError error("", "", "");
+  try {
+    parse_case(text, "bad.toml");
+    FAIL("no error");
+  } catch (const CaseFileError& e) {
+    error = e;
+  }
+  const std::string message = error.what();
+  CAPTURE(message);
+  CHECK(error.problems().size() == 1);
+  CHECK(contains(message, "torque2.kind = \"constnt\""));
+  CHECK(contains(message, "did you mean \"constant\"?"));
+  CHECK(!contains(message, "torque2.value"));
+  // A word far from every choice gets the list without a guess.
+  const std::string far = message_of(with_key(case1_text(), "torque2", "kind", "\"ramp-up\""));
+  CHECK(contains(far, "one of \"constant\""));
+  CHECK(!contains(far, "did you mean"));
+}
+
 TEST_CASE("every bad input: the message names file, field, value and range; check-case exits 1") {
   for (const BadInput& bad : bad_inputs()) {
     CAPTURE(bad.what);

@@ -374,3 +374,20 @@ def test_a_sweeps_own_warnings_arrive_as_warnings():
                                   options=["--threads", "2"])
     assert not result["summary"]["warnings"]
     assert not any("mesh_damping_ratio = 0" in str(w.message) for w in caught)
+
+
+def test_a_loose_gear_case_reads_builds_and_runs_from_python():
+    # A kinematic driver and a drag have no mean torque before the run: no
+    # balance to warn about, and the case builds, prints and runs.
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        driven = gearimpact.paper_case(1).replace(
+            torque1_kind="prescribed-speed", mean_speed="800 rpm", orders=[2],
+            speed_amplitudes=["8 rad/s"], torque1_phases=["0 deg"], torque2_kind="drag",
+            drag_constant="0.05 N*m", drag_viscous="1e-4 N*m*s/rad", w1="800 rpm",
+            w2="200 rpm", end_time="5 ms")
+        text = repr(driven)
+        assert "a driver at 83.7758 rad/s (800 rpm) + 1 orders" in text, text
+        assert "a drag of 0.05 N*m" in text, text
+        result = gearimpact.simulate(driven)
+    assert result.summary["rattle_regime"] in ("no-impact", "single-sided", "double-sided")

@@ -137,7 +137,9 @@ std::vector<std::string> sweep_warnings(const SteadySweepSpec& spec) {
         "set a mesh damper and a D without history, e.g. --set model.mesh_damping_ratio=0.05 "
         "--damping-update frozen --set 'model.damping_reference_speed=0.1 m/s' (docs/sweep.md)");
   }
-  if (!swept("initial.w1") && !swept("initial.w2")) {
+  // A kinematic driver holds w1 whatever w2 starts at: no momentum mean speed to warn of.
+  if (!swept("initial.w1") && !swept("initial.w2") &&
+      c.torque1.kind != Torque::Kind::prescribed_speed) {
     const double rb1 = base_radius(c.gears, Gear::one);
     const double rb2 = base_radius(c.gears, Gear::two);
     const double v1 = rb1 * c.initial.w1_rad_per_s;

@@ -2,11 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "gearimpact/case/schema.hpp"
+#include "gearimpact/constants.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
+#include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "rk4.hpp"
@@ -131,6 +135,53 @@ double series_rows(const SimulationCase& c) {
 void validate(const SimulationCase& c) {
   validate_fields(c);
   validate_implied(c);
+}
+
+namespace {
+
+std::string six_digits(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+
+bool known_mean(const Torque& t) {
+  return t.kind == Torque::Kind::constant || t.kind == Torque::Kind::sinusoidal ||
+         t.kind == Torque::Kind::harmonic;
+}
+
+}  // namespace
+
+std::vector<std::string> run_warnings(const SimulationCase& c) {
+  std::vector<std::string> warnings;
+  const double rb1 = base_radius(c.gears, Gear::one);
+  const double rb2 = base_radius(c.gears, Gear::two);
+  if (known_mean(c.torque1) && known_mean(c.torque2)) {
+    const double t1 = mean_torque_n_m(c.torque1, "torque1");
+    const double t2 = mean_torque_n_m(c.torque2, "torque2");
+    const double imbalance = t1 / rb1 + t2 / rb2;
+    if (std::fabs(imbalance) > 1e-9 * std::max(std::fabs(t1 / rb1), std::fabs(t2 / rb2))) {
+      const std::string key =
+          c.torque2.kind == Torque::Kind::constant ? "torque2.value" : "torque2.mean";
+      warnings.push_back("unbalanced mean torques: T1/Rb1 + T2/Rb2 = " + six_digits(imbalance) +
+                         " N (T1 = " + six_digits(t1) + " N*m, T2 = " + six_digits(t2) +
+                         " N*m); the pair accelerates without bound and has no steady state; " +
+                         key + " = \"" + format_number(-t1 * rb2 / rb1) + " N*m\" balances T1");
+    }
+  }
+  const double v1 = rb1 * c.initial.w1_rad_per_s;
+  const double v2 = rb2 * c.initial.w2_rad_per_s;
+  if (std::fabs(v1 - v2) > 1e-9 * std::max(std::fabs(v1), std::fabs(v2))) {
+    constexpr double rpm = 60.0 / (2.0 * pi);
+    warnings.push_back("initial speeds not rolling: Rb1 w1 = " + six_digits(v1) +
+                       " m/s, Rb2 w2 = " + six_digits(v2) +
+                       " m/s (w1 = " + six_digits(c.initial.w1_rad_per_s * rpm) +
+                       " rpm, w2 = " + six_digits(c.initial.w2_rad_per_s * rpm) +
+                       " rpm); the teeth start with a relative speed of " + six_digits(v1 - v2) +
+                       " m/s; initial.w2 = \"" + format_number(v1 / rb2) +
+                       " rad/s\" rolls with w1");
+  }
+  return warnings;
 }
 
 SimulationResult simulate(const SimulationCase& c, const RunControl& control) {

@@ -289,6 +289,23 @@ CaseFileKind kind_of(const toml::value& root) {
   return CaseFileKind::pair;
 }
 
+// "; did you mean \"table\"?" for a misspelt choice within two edits, or nothing.
+std::string nearest_choice(const Field& field, const toml::value& value) {
+  if (!value.is_string()) return {};
+  const std::string& text = value.as_string().str;
+  std::size_t best = 3;
+  std::string_view nearest;
+  for (const ChoiceName& c : field.choices) {
+    if (!c.has_text) continue;
+    const std::size_t d = edit_distance(text, c.name);
+    if (d < best) {
+      best = d;
+      nearest = c.name;
+    }
+  }
+  return nearest.empty() ? std::string() : "; did you mean \"" + std::string(nearest) + "\"?";
+}
+
 // " (did you mean model.friction_coefficient?)", or nothing.
 std::string suggestion(const std::string& written) {
   const std::optional<std::string> nearest = nearest_key(written);
@@ -512,7 +529,8 @@ double read_value(const Reader& reader, const Field& field, const toml::value& v
             return c.has_text && value.is_string() && value.as_string().str == c.name;
           });
       if (chosen == field.choices.end()) {
-        reader.out_of_range(name, &value, written(value), allowed_text(field));
+        reader.out_of_range(name, &value, written(value),
+                            allowed_text(field) + nearest_choice(field, value));
       }
       x = chosen->code;
       break;
@@ -554,8 +572,8 @@ Problem at_key(const Reader& reader, const Document& document, const SimulationC
 }
 
 // Reads one row's key into `result`; throws CaseFileError for its problems.
-void read_row(const Reader& reader, const Document& document, const Field& field,
-              CaseFileKind kind, SimulationCase& result) {
+void read_row(const Reader& reader, const Document& document, const Field& field, CaseFileKind kind,
+              SimulationCase& result) {
   const std::string name = field.name();
   const toml::value* value = document.find(field);
   if (!applies(field, result)) {
@@ -615,6 +633,16 @@ SimulationCase read_case(const Reader& reader, const toml::value& root, std::str
     if (document.broken(field.section)) {
       failed.push_back(field.name());
       continue;
+    }
+    // A key that depends on a choice refused above is left out: which keys apply is unknown,
+    // and reporting them would only echo that one problem.
+    if (field.only_when) {
+      const std::string chooser =
+          std::string(field.section) + "." + std::string(field.only_when->key);
+      if (std::find(failed.begin(), failed.end(), chooser) != failed.end()) {
+        failed.push_back(field.name());
+        continue;
+      }
     }
     try {
       read_row(reader, document, field, kind, result);

@@ -18,8 +18,8 @@
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
-#include "gearimpact/stiffness/fillet_foundation.hpp"
 #include "gearimpact/named_values.hpp"
+#include "gearimpact/stiffness/fillet_foundation.hpp"
 #include "gearimpact/stiffness/model.hpp"
 #include "gearimpact/stiffness/table.hpp"
 #include "gearimpact/stiffness/terms.hpp"
@@ -205,6 +205,13 @@ double series_rows(const SimulationCase& c);
 // Throws InputError naming the first field outside its range (validate_fields),
 // then what the fields imply together (validate_implied of step_bound.hpp).
 void validate(const SimulationCase& c);
+
+// What a user should hear before running a valid case, each a sentence with its numbers and the
+// value that cures it: mean torques that do not balance (T1/Rb1 + T2/Rb2 != 0: the pair
+// accelerates without bound) and initial speeds that do not roll (Rb1 w1 != Rb2 w2: the teeth
+// start with a relative speed). A driver's and a drag's means are not known before the run, so a
+// driven case is checked for its speeds only. Bounds as require_balanced_mean_torques: 1e-9.
+std::vector<std::string> run_warnings(const SimulationCase& c);
 
 SimulationResult simulate(const SimulationCase& c, const RunControl& control = {});
 // Same, with a stiffness table already built for c.gears and c.model.stiffness
