@@ -224,9 +224,22 @@ struct ShownUnit {
   std::string symbol;  // empty for a key without units
 };
 
+// A key as literal text in gnuplot's enhanced mode, where "_" makes a subscript: "\_" in a
+// single-quoted string, "\\_" in a double-quoted one (which reads its own backslashes first).
+std::string literal_key(const std::string& key, bool double_quoted) {
+  std::string out;
+  for (const char c : key) {
+    if (c == '_')
+      out += double_quoted ? "\\\\_" : "\\_";
+    else
+      out += c;
+  }
+  return out;
+}
+
 ShownUnit shown_unit(const std::string& key, const std::string& unit) {
   const Field& field = sweep_field(key, key);
-  std::string name = key;
+  std::string name = literal_key(key, true);
   if (key == "initial.w1") name = "pinion speed w_1";
   if (key == "initial.w2") name = "gear speed w_2";
   if (field.kind != FieldKind::quantity) return {name, 1.0, ""};
@@ -413,8 +426,8 @@ std::string line_title(const SteadySweepRecord& spec, int line, const char* dire
                            : from2 + (to2 - from2) * line / static_cast<double>(spec.lines - 1);
   char number[64];
   std::snprintf(number, sizeof number, "%.6g", value / unit2.si_per_unit);
-  return spec.vary2 + " = " + number + (unit2.symbol.empty() ? "" : " " + unit2.symbol) + ", " +
-         direction;
+  return literal_key(spec.vary2, false) + " = " + number +
+         (unit2.symbol.empty() ? "" : " " + unit2.symbol) + ", " + direction;
 }
 
 // The plots of a sweep folder: amplitude up and down, the bifurcation diagram, the regime map.

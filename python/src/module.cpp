@@ -674,17 +674,26 @@ void define_module(py::module_& m) {
 
   m.def(
       "iso6336",
-      [](const std::optional<SimulationCase>& c, double helix_angle_deg) {
+      [](const std::optional<SimulationCase>& c, double helix_angle_deg,
+         const std::optional<std::string>& load) {
         const GearPair pair = stiffness_case(c, std::nullopt).gears;
+        std::optional<double> specific_load;
+        if (load) {
+          try {
+            specific_load = cli::specific_load_of(*load, pair);
+          } catch (const InputError& e) {
+            throw InputError("load", "\"" + *load + "\"", e.allowed());
+          }
+        }
         try {
-          return cli::iso6336_text(pair, helix_angle_deg);
+          return cli::iso6336_text(pair, helix_angle_deg, specific_load);
         } catch (const InputError& e) {
           // The library checks the angle in rad under its own name.
           if (e.field() != "helix_angle") throw;
           throw InputError("helix_angle_deg", format_number(helix_angle_deg), e.allowed());
         }
       },
-      py::arg("case"), py::arg("helix_angle_deg"));
+      py::arg("case"), py::arg("helix_angle_deg"), py::arg("load") = std::nullopt);
   m.def("mesh_stiffness", &mesh_stiffness_texts_of, py::arg("case"), py::arg("model"),
         py::arg("samples"));
   m.def("sweep", &sweep_texts, py::arg("case"), py::arg("options"));

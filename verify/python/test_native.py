@@ -391,3 +391,13 @@ def test_a_loose_gear_case_reads_builds_and_runs_from_python():
         assert "a drag of 0.05 N*m" in text, text
         result = gearimpact.simulate(driven)
     assert result.summary["rattle_regime"] in ("no-impact", "single-sided", "double-sided")
+
+
+def test_iso6336_takes_a_load_as_the_program_does():
+    # 50 N/mm is half ISO's 100 N/mm: c' takes (1/2)^0.25.
+    plain = gearimpact.iso6336(my_pair())
+    loaded = gearimpact.iso6336(my_pair(), load="50 N/mm")
+    assert abs(loaded["low_load_factor"] - 0.5 ** 0.25) < FEW_ULPS
+    assert abs(loaded["c_prime_n_mm_um"] / plain["c_prime_n_mm_um"] - 0.5 ** 0.25) < 1e-12
+    with pytest.raises(gearimpact.CaseError, match="load"):
+        gearimpact.iso6336(my_pair(), load="50 N/mmm")
