@@ -20,6 +20,7 @@
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/rack_generation.hpp"
+#include "gearimpact/geometry/tooth_identity.hpp"
 #include "gearimpact/geometry/tooth_profile.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/results.hpp"

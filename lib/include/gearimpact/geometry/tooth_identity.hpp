@@ -1,0 +1,47 @@
+// Which pinion tooth meets which wheel tooth in each pair of the mesh, and
+// after how many mesh periods the mesh repeats once teeth differ
+// (docs/faults.md, "Tooth identity").
+//
+// Teeth are numbered in mesh order, i = 0 ... z1-1 on the pinion and
+// j = 0 ... z2-1 on the wheel. On the drive line N1 the pairs sit at
+// X = reference + k t0 (MeshLayout); the reference grows with theta1, so pairs
+// of lower k enter later: the n-th pair to enter, counted from the pair k = 0
+// that holds the reference contact at theta1 = 0, is k = -n, and it is pinion
+// tooth n mod z1 against wheel tooth n mod z2.
+//
+// On the coast line N2 the positions X' = reference' + k t0 fall as theta1
+// grows; a pinion tooth that lags tooth 0 by i pitches sits i base pitches
+// further along N2, so coast pair k is the coast flank of pinion tooth k.
+// With the geometric half-base-pitch phase, coast pair 0 at theta1 = 0 is
+// t0/2 past the pitch point, which is tooth 0's coast flank when the tooth
+// is centred in the wheel's space (the drive flank at the pitch point, the
+// tooth half a pitch thickness behind it). The trailing (coast) flank of
+// pinion tooth i faces the wheel tooth between pinion teeth i and i+1, which
+// is wheel tooth i+1 (pinion tooth i+1 drives it). The in-phase reading of
+// (9) keeps the same numbering.
+#pragma once
+
+#include "gearimpact/geometry/gear_pair.hpp"
+
+namespace gearimpact {
+
+struct TeethInContact {
+  int pinion_tooth = 0;  // 0 ... z1-1
+  int wheel_tooth = 0;   // 0 ... z2-1
+};
+
+// The teeth of pair k on `line` (Region::n1 or Region::n2).
+TeethInContact teeth_of_pair(const GearPair& pair, Region line, int k);
+
+// Which gears have teeth that differ from the others.
+struct DistinctTeeth {
+  bool pinion = false;
+  bool wheel = false;
+};
+
+// The number of mesh periods after which the mesh repeats: 1 when every tooth
+// is alike, z1 when only pinion teeth differ, z2 when only wheel teeth differ,
+// lcm(z1, z2) (the hunting period) when both do.
+long long true_period_mesh_periods(const GearPair& pair, DistinctTeeth distinct);
+
+}  // namespace gearimpact
