@@ -161,7 +161,7 @@ TEST_CASE("a fault that removes nothing is the healthy tooth to the bit, on ever
             CHECK(f.axial_m_per_n == healthy.axial_m_per_n);
             CHECK(f.foundation_m_per_n == healthy.foundation_m_per_n);
           }
-          CHECK(spall_contact_length(no_pit, c.radius_m, b) == b);
+          CHECK(spall_contact_length(no_pit, CrackFlank::loaded, c.radius_m, b) == b);
           CHECK(chip_contact_length(at_tip, c.radius_m, b) == b);
           // A shallow pit, 1 nm, by the faulted path: more compliant, and by
           // no more than the largest relative loss of I in the band,
@@ -343,7 +343,7 @@ TEST_CASE("stiffness falls monotonically with d_s, with b_s, and as r_k falls") 
   for (int i = 1; i <= 5; ++i) {
     Spall w = mid;
     w.width_m = 0.2 * i * b;
-    const double length = spall_contact_length(w, r_in, b);
+    const double length = spall_contact_length(w, CrackFlank::loaded, r_in, b);
     CHECK(length < previous_length);
     previous_length = length;
   }
@@ -371,19 +371,23 @@ TEST_CASE("a full-width spall: no Hertzian length inside its band, on its flank 
   const double r2 = spall.end_radius_m;
   // Inside: L = 0, so Kh = 0 and the pair carries nothing; outside: the face.
   for (double r : {r1, 0.5 * (r1 + r2), r2}) {
-    CHECK(spall_contact_length(spall, r, b) == 0.0);
-    CHECK(hertz_stiffness(paper, spall_contact_length(spall, r, b)) == 0.0);
+    CHECK(spall_contact_length(spall, CrackFlank::loaded, r, b) == 0.0);
+    CHECK(hertz_stiffness(paper, spall_contact_length(spall, CrackFlank::loaded, r, b)) == 0.0);
   }
-  for (double r : {0.999 * r1, 1.001 * r2}) CHECK(spall_contact_length(spall, r, b) == b);
+  for (double r : {0.999 * r1, 1.001 * r2})
+    CHECK(spall_contact_length(spall, CrackFlank::loaded, r, b) == b);
   // Half the face: half of (4).
   Spall half = spall;
   half.width_m = 0.5 * b;
-  CHECK(relative_difference(hertz_stiffness(paper, spall_contact_length(half, r1, b)),
-                            0.5 * hertz_stiffness(paper)) <= 1e-15);
+  CHECK(relative_difference(
+            hertz_stiffness(paper, spall_contact_length(half, CrackFlank::loaded, r1, b)),
+            0.5 * hertz_stiffness(paper)) <= 1e-15);
   // A contact on the other flank meets no pit; the beam still loses it.
   Spall other = spall;
   other.flank = CrackFlank::unloaded;
-  CHECK(spall_contact_length(other, 0.5 * (r1 + r2), b) == b);
+  CHECK(spall_contact_length(other, CrackFlank::loaded, 0.5 * (r1 + r2), b) == b);
+  CHECK(spall_contact_length(other, CrackFlank::unloaded, 0.5 * (r1 + r2), b) == 0.0);
+  CHECK(spall_contact_length(spall, CrackFlank::unloaded, 0.5 * (r1 + r2), b) == b);
   const ToothContact c = pair_contact(pair, pair.end_of_active_profile_m).gear1;
   const StiffnessModel model = model_of(StiffnessModelKind::potential_energy);
   CHECK(spalled_tooth_compliances(pair.gear1, Gear::one, c, b, model, other).total_m_per_n() ==
@@ -546,11 +550,10 @@ TEST_CASE("record: single-tooth stiffness loss of the paper's pinion, spall and 
     const double loss_pitch = 1.0 - healthy_tooth(s_pitch) / tooth(s_pitch);
     const double loss_tip = 1.0 - healthy_tooth(s_tip) / tooth(s_tip);
     const double pair_h = 1.0 / (1.0 / kh + healthy_tooth(s_pitch) + wheel(s_pitch));
+    const double length = spall_contact_length(spall, CrackFlank::loaded,
+                                               pair_contact(pair, s_pitch).gear1.radius_m, b);
     const double pair_f =
-        1.0 /
-        (1.0 / hertz_stiffness(paper, spall_contact_length(
-                                          spall, pair_contact(pair, s_pitch).gear1.radius_m, b)) +
-         tooth(s_pitch) + wheel(s_pitch));
+        1.0 / (1.0 / hertz_stiffness(paper, length) + tooth(s_pitch) + wheel(s_pitch));
     MESSAGE("spall d_s = " << d * 1e3 << " mm: tooth loss at the pitch point " << 100.0 * loss_pitch
                            << " %, at the tip " << 100.0 * loss_tip
                            << " %; pair loss at the pitch point " << 100.0 * (1.0 - pair_f / pair_h)

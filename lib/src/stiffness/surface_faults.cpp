@@ -235,12 +235,10 @@ Compliances banded_paper_tooth_compliances(const InvoluteTooth& tooth, double co
     const auto radius = [&](double tau) {
       return radius_at_roll_distance(rb, rb * (theta_b - tau));
     };
-    std::vector<double> ends{-phi};
-    std::vector<double> inner = band_ends_between(band, rb, contact_radius);
-    // Rising radius is falling tau.
-    std::sort(inner.rbegin(), inner.rend());
-    for (double r : inner) ends.push_back(theta_b - roll_distance_at_radius(rb, r) / rb);
-    ends.push_back(theta_b);
+    std::vector<double> ends{-phi, theta_b};
+    for (double r : band_ends_between(band, rb, contact_radius)) {
+      ends.push_back(theta_b - roll_distance_at_radius(rb, r) / rb);
+    }
     std::sort(ends.begin(), ends.end());
     // The healthy section over the faulted one: the factor by which each
     // integrand of the healthy tooth grows.
@@ -325,8 +323,9 @@ SectionProperties chipped_section(const TipChip& chip, double x, double b) {
   return healthy_section(x, b - chip.width_m);
 }
 
-double spall_contact_length(const Spall& spall, double contact_radius_m, double b) {
-  const bool met = spall.flank == CrackFlank::loaded && spall.depth_m > 0.0 &&
+double spall_contact_length(const Spall& spall, CrackFlank contact_flank, double contact_radius_m,
+                            double b) {
+  const bool met = spall.flank == contact_flank && spall.depth_m > 0.0 &&
                    contact_radius_m >= spall.start_radius_m &&
                    contact_radius_m <= spall.end_radius_m;
   return met ? b - spall.width_m : b;

@@ -59,11 +59,14 @@ SectionProperties chipped_section(const TipChip& chip, double half_thickness_m,
 
 // The length of the Hertzian line contact (L of (4)) of a contact at radius
 // contact_radius_m on this tooth: b - b_s while it lies in the spall's band
-// on the spall's flank (loaded), b - b_k above r_k; else b. A length of 0 (a
-// full-width spall or chip) means that the pair carries nothing there:
-// hertz_stiffness(pair, 0) is 0, and a mesh should set the pair's force to
-// zero rather than add a compliance 1/0.
-double spall_contact_length(const Spall& spall, double contact_radius_m, double face_width_m);
+// on the spall's flank (contact_flank: the flank the contact is on, loaded
+// for the drive side when the spall's flank is named for the drive side),
+// b - b_k above r_k; else b. A length of 0 (a full-width spall or chip)
+// means that the pair carries nothing there: hertz_stiffness(pair, 0) is 0,
+// and a mesh should set the pair's force to zero rather than add a
+// compliance 1/0.
+double spall_contact_length(const Spall& spall, CrackFlank contact_flank, double contact_radius_m,
+                            double face_width_m);
 double chip_contact_length(const TipChip& chip, double contact_radius_m, double face_width_m);
 
 // The spall on a tooth: its band as roll distances on that tooth (contact
