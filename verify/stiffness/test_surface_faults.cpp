@@ -231,11 +231,15 @@ TEST_CASE("two routes: spalled and chipped rack-cut teeth agree to 1e-10 as heal
       const Spall spall = middle_spall(g, b, 0.5);
       const TipChip chip = upper_chip(g, b, 0.5);
       const TipChip fillet_chip{0.5 * (g.root_radius_m + g.form_radius_m), 0.3 * b};
-      for (double s : positions(pair, 6)) {
+      const std::vector<double> s_all = positions(pair, 6);
+      for (std::size_t i = 0; i < s_all.size(); ++i) {
+        const double s = s_all[i];
         const ToothContact c = contact_of(pair_contact(pair, s), gi);
-        const StiffnessModel tau = model_of(StiffnessModelKind::potential_energy);
-        const StiffnessModel xf =
-            model_of(StiffnessModelKind::potential_energy, StiffnessRoute::x_form);
+        // The two models share the beam: each on every other position.
+        const StiffnessModelKind kind =
+            i % 2 == 0 ? StiffnessModelKind::potential_energy : StiffnessModelKind::ross_compatible;
+        const StiffnessModel tau = model_of(kind);
+        const StiffnessModel xf = model_of(kind, StiffnessRoute::x_form);
         const ToothCompliances a[3] = {spalled_tooth_compliances(g, which, c, b, tau, spall),
                                        chipped_tooth_compliances(g, which, c, b, tau, chip),
                                        chipped_tooth_compliances(g, which, c, b, tau, fillet_chip)};
@@ -302,6 +306,43 @@ TEST_CASE("two routes: the paper's spalled and chipped tooth agree to 1e-10") {
   }
   MESSAGE("paper's tooth, two routes on spalled and chipped teeth: worst relative difference "
           << worst);
+}
+
+TEST_CASE("the paper's tooth: deeper pits and lower chips weaken it; a full chip ends it") {
+  const GearPair pair = paper_gear_pair();
+  const InvoluteTooth tooth = tooth_of(pair, Gear::one);
+  const double rb = tooth.base_radius_m;
+  const double ra = tip_radius(pair, Gear::one);
+  const double b = pair.face_width_m;
+  const double x_tip = contact_segment(pair).end_m;
+  StiffnessModel m;
+  Spall spall{CrackFlank::loaded, rb + 0.3 * (ra - rb), rb + 0.6 * (ra - rb), 0.5 * b, 0.0};
+  const double x_end = spall.end_radius_m * std::sin(flank_half_angle(tooth, spall.end_radius_m));
+  double previous = tooth_compliance(tooth, x_tip, pair.youngs_modulus_pa, b, m).total_m_per_n();
+  for (int i = 1; i <= 4; ++i) {
+    spall.depth_m = 0.2 * i * x_end;
+    const double c =
+        spalled_paper_tooth_compliances(pair, Gear::one, x_tip, m, spall).total_m_per_n();
+    CAPTURE(i);
+    CHECK(c > previous);
+    previous = c;
+  }
+  previous = tooth_compliance(tooth, x_tip, pair.youngs_modulus_pa, b, m).total_m_per_n();
+  for (int i = 9; i >= 1; --i) {
+    const TipChip chip{rb + 0.1 * i * (ra - rb), 0.5 * b};
+    const double c =
+        chipped_paper_tooth_compliances(pair, Gear::one, x_tip, m, chip).total_m_per_n();
+    CAPTURE(i);
+    CHECK(c > previous);
+    previous = c;
+  }
+  const TipChip full{rb + 0.5 * (ra - rb), b};
+  const std::optional<ContactSegment> seg = chipped_contact_segment(pair, Gear::one, full);
+  REQUIRE(seg);
+  CHECK(std::isfinite(
+      chipped_paper_tooth_compliances(pair, Gear::one, seg->end_m, m, full).total_m_per_n()));
+  verify::check_refused([&] { chipped_paper_tooth_compliances(pair, Gear::one, x_tip, m, full); },
+                        "contact radius", std::string("<= r_k = ") + format_number(full.radius_m));
 }
 
 TEST_CASE("stiffness falls monotonically with d_s, with b_s, and as r_k falls") {
