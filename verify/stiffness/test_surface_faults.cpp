@@ -1,7 +1,7 @@
 // A spall or a chipped tip in one tooth (surface_faults.hpp;
 // docs/stiffness-models.md, "A spall or a chipped tip in one tooth"): the
 // sections against closed forms written here, the parallel-axis theorem
-// against FAULTS.md's expression, a fault that removes nothing as the
+// against the expression first stated for I, a fault that removes nothing as the
 // healthy tooth to the bit, the two routes on faulted teeth, monotonic loss of
 // stiffness, the Hertzian length of a full-width spall and the end of contact
 // of a full-width chip, and the refusals.
@@ -102,15 +102,17 @@ TEST_CASE("sections: the spall's and the chip's against their closed forms") {
         const double inertia = 2.0 / 3.0 * x * x * x * (b - b_s) + b_s * t * t * t / 12.0;
         CHECK(relative_difference(s.area_m2, area) <= bound);
         CHECK(relative_difference(s.second_moment_m4, inertia) <= bound);
-        // FAULTS.md writes I -= b_s (x^3 - (x - d_s)^3) / 3: the pit's moment
-        // about the healthy centre line, which leaves the cut slices their
-        // moment about that line, b_s (x^3 + (x - d_s)^3) / 3. By the
-        // parallel-axis theorem that is the moment about their centroid plus
-        // t (d_s/2)^2 each: the expression overstates I by b_s t d_s^2 / 4.
-        const double faults_md =
+        // I -= b_s (x^3 - (x - d_s)^3) / 3, as the reading was first stated,
+        // removes the pit's moment about the healthy centre line and leaves
+        // the cut slices their moment about that line, b_s (x^3 + (x -
+        // d_s)^3) / 3. By the parallel-axis theorem that is their moment about
+        // their centroid plus t (d_s/2)^2 each: the expression overstates I by
+        // b_s t d_s^2 / 4. (1e-12: x^3 - (x - d_s)^3 cancels up to x / d_s,
+        // 40 here, of the last digits.)
+        const double about_centre_line =
             2.0 / 3.0 * x * x * x * b - b_s * (x * x * x - (x - d) * (x - d) * (x - d)) / 3.0;
-        CHECK(relative_difference(faults_md - b_s * t * d * d / 4.0, inertia) <= 1e-12);
-        CHECK(faults_md > s.second_moment_m4);
+        CHECK(relative_difference(about_centre_line - b_s * t * d * d / 4.0, inertia) <= 1e-12);
+        CHECK(about_centre_line > s.second_moment_m4);
       }
     }
   }

@@ -49,7 +49,7 @@ double radius_at_roll_distance(double base_radius_m, double roll_distance_m);
 // the pit lose d_s of their height 2x on the flank, t = 2x - d_s, and bend
 // about their own centroid as the crack layer's slices do (I = Int t^3/12 dz):
 //   A = 2 x b - b_s d_s,   I = (2/3) x^3 (b - b_s) + b_s (2x - d_s)^3 / 12.
-// (FAULTS.md's I -= b_s (x^3 - (x - d_s)^3)/3 is the pit's moment about the
+// (I -= b_s (x^3 - (x - d_s)^3)/3 would remove the pit's moment about the
 // healthy centre line; about the slice's centroid the parallel-axis theorem
 // takes b_s t d_s^2 / 4 more.)
 SectionProperties spalled_section(const Spall& spall, double half_thickness_m, double face_width_m);
