@@ -45,6 +45,7 @@
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "gearimpact/stiffness/model.hpp"
 #include "gearimpact/stiffness/root_crack.hpp"
+#include "gearimpact/stiffness/surface_faults.hpp"
 #include "gearimpact/stiffness/table.hpp"
 #include "gearimpact/stiffness/tau_form.hpp"
 #include "gearimpact/stiffness/terms.hpp"

@@ -18,15 +18,23 @@ InvoluteTooth tooth_of(const GearPair& pair, Gear gear) {
 }
 
 double hertz_stiffness(const GearPair& pair) {
+  return hertz_stiffness(pair, pair.face_width_m);
+}
+
+double hertz_stiffness(const GearPair& pair, double contact_length_m) {
+  if (!(contact_length_m >= 0.0 && contact_length_m <= pair.face_width_m)) {
+    throw InputError("contact length", contact_length_m,
+                     "[0, " + format_number(pair.face_width_m) + "] m: within the face width");
+  }
   const double e2 = youngs_modulus(pair, Gear::two);
   const double nu2 = poisson_ratio(pair, Gear::two);
   if (e2 != pair.youngs_modulus_pa || nu2 != pair.poisson_ratio) {
-    return hertz_stiffness_two_materials(pair.face_width_m, pair.youngs_modulus_pa,
+    return hertz_stiffness_two_materials(contact_length_m, pair.youngs_modulus_pa,
                                          pair.poisson_ratio, e2, nu2);
   }
-  // (4)
+  // (4) with L in place of b
   const double nu = pair.poisson_ratio;
-  return pi * pair.youngs_modulus_pa * pair.face_width_m / (4.0 * (1.0 - nu * nu));
+  return pi * pair.youngs_modulus_pa * contact_length_m / (4.0 * (1.0 - nu * nu));
 }
 
 Compliances tooth_compliance(const InvoluteTooth& tooth, double contact_x_m,

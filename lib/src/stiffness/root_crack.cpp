@@ -1,9 +1,7 @@
 #include "gearimpact/stiffness/root_crack.hpp"
 
 #include <algorithm>
-#include <boost/math/tools/roots.hpp>
 #include <cmath>
-#include <cstdint>
 #include <string>
 
 #include "gearimpact/constants.hpp"
@@ -11,6 +9,7 @@
 #include "gearimpact/numerics/quadrature.hpp"
 #include "gearimpact/stiffness/tau_form.hpp"
 #include "gearimpact/stiffness/x_form.hpp"
+#include "solve_on.hpp"
 
 namespace gearimpact {
 
@@ -49,17 +48,6 @@ SectionProperties integrate_slices(double x, double intact_m,
                               .value;
   }
   return s;
-}
-
-// The parameter of `piece` where f changes sign between p0 and p1 (f(p0) and
-// f(p1) of opposite signs).
-double solve_on(const std::function<double(double)>& f, double p0, double p1) {
-  double a = std::min(p0, p1);
-  double b = std::max(p0, p1);
-  std::uintmax_t iterations = 200;
-  const auto bracket = boost::math::tools::toms748_solve(
-      f, a, b, f(a), f(b), boost::math::tools::eps_tolerance<double>(), iterations);
-  return 0.5 * (bracket.first + bracket.second);
 }
 
 // The heights at which x(y) - level changes sign on the flank, above y_min:

@@ -18,6 +18,10 @@ InvoluteTooth tooth_of(const GearPair& pair, Gear gear);
 // (4) Kh = pi E L / (4 (1 - nu^2)) for gears of one material; for two,
 // (pi L / 2) / [(1 - nu1^2)/E1 + (1 - nu2^2)/E2] (hertz_stiffness_two_materials).
 double hertz_stiffness(const GearPair& pair);
+// The same over a contact length L in [0, b] in place of the face width b (a
+// tooth with a spall or a chip, surface_faults.hpp): 0 for L = 0, where the
+// pair carries nothing. hertz_stiffness(pair) is this with L = b, to the bit.
+double hertz_stiffness(const GearPair& pair, double contact_length_m);
 
 // The per-tooth terms of one tooth loaded at distance `contact_x_m` from the
 // tangent point of its own base circle along the line of action (X1 for gear
