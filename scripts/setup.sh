@@ -4,7 +4,7 @@
 set -euo pipefail
 packages=(
   build-essential cmake
-  libeigen3-dev libgsl-dev libboost-dev
+  libeigen3-dev libgsl-dev libboost-dev libfftw3-dev
   doctest-dev libbenchmark-dev
   libcli11-dev libtoml11-dev nlohmann-json3-dev
   clang libclang-rt-14-dev

@@ -1,0 +1,55 @@
+// The time-synchronous average of a shaft's signal and the signals derived
+// from it (docs/signals.md gives the definitions and their sources).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "gearimpact/signals/resample.hpp"
+
+namespace gearimpact::signals {
+
+// The mean over the revolutions of a signal sampled in the shaft's angle:
+// tsa_j = (1/R) sum_r values[r P + j], j = 0..P-1. A part periodic in one
+// revolution passes unchanged; noise uncorrelated between revolutions falls as
+// 1/sqrt(R). Throws InputError for no whole revolution.
+std::vector<double> time_synchronous_average(const AngleSignal& signal);
+
+// Which orders of the TSA (harmonics of the shaft, cycles per revolution)
+// make its parts, for a gear of `teeth` teeth:
+// shaft orders 0..shaft_orders, the mesh harmonics h * teeth (h >= 1, up to
+// the Nyquist order P/2) and their sidebands h * teeth +- 1..sidebands.
+struct OrderSets {
+  std::size_t teeth = 0;
+  std::size_t shaft_orders = 1;
+  std::size_t sidebands = 1;
+};
+
+// Throws InputError naming `teeth` (>= 3, with 2 (teeth + sidebands) < P,
+// so that the first mesh order and its sidebands lie below the Nyquist
+// order) and `sidebands` (< teeth / 2, so that the sidebands of neighbouring
+// harmonics stay apart).
+void check_order_sets(const OrderSets& sets, std::size_t samples_per_revolution);
+
+struct TsaParts {
+  std::vector<double> tsa;
+  // Regular: shaft orders, mesh harmonics and their sidebands (Lebold et al.
+  // 2000's regular meshing components, with 1..m sidebands).
+  std::vector<double> regular;
+  // Residual: the TSA without the shaft orders and the mesh harmonics.
+  std::vector<double> residual;
+  // Difference: the TSA without the regular signal (the residual without
+  // the sidebands).
+  std::vector<double> difference;
+  // Band about the first mesh harmonic, teeth - sidebands .. teeth + sidebands,
+  // and its envelope (the modulus of its analytic signal), for NB4.
+  std::vector<double> mesh_band;
+  std::vector<double> mesh_band_envelope;
+  // Amplitude of each order 0..P/2 of the TSA (order 0: its mean).
+  std::vector<double> order_amplitude;
+};
+
+// Splits a TSA of P samples (one revolution) by zeroing orders of its DFT.
+TsaParts tsa_parts(const std::vector<double>& tsa, const OrderSets& sets);
+
+}  // namespace gearimpact::signals
