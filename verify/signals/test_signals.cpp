@@ -313,7 +313,9 @@ TEST_CASE("bad inputs are refused naming the input and its range") {
     CHECK(e.field() == "teeth");
     CHECK(e.allowed().find("3 to 30") != std::string::npos);
   }
-  CHECK_THROWS_AS(tsa_parts(tsa, OrderSets{10, 5, 5}), InputError);
+  CHECK_THROWS_AS(
+      tsa_parts(revolution(64, [](double u) { return std::cos(u); }), OrderSets{10, 5, 5}),
+      InputError);
   try {
     resample_on_angle({0.0, 1.0, 1.0, 2.0, 8.0}, {1, 2, 3, 4, 5}, 16, "theta1_rad");
     FAIL("a non-increasing angle accepted");
@@ -329,4 +331,22 @@ TEST_CASE("bad inputs are refused naming the input and its range") {
   CHECK_THROWS_AS(amplitude_spectrum({1.0, 2.0}, 0.0), InputError);
   CHECK_THROWS_AS(amplitude_spectrum({1.0, std::nan("")}, 1.0), InputError);
   CHECK_THROWS_AS(parse_window("hamming", "--window"), InputError);
+}
+
+TEST_CASE("decimating a revolution keeps the orders below the new Nyquist order and no alias") {
+  // cos(3u) + cos(300u) on 1024 samples, reduced to 256: order 300 lies
+  // above 128 and would fold onto 300 - 256 = 44 if the samples were simply
+  // taken one in four; the filter removes it and keeps cos(3u) exactly.
+  const auto fine =
+      revolution(1024, [](double u) { return std::cos(3.0 * u) + std::cos(300.0 * u); });
+  const std::vector<double> coarse = decimate_periodic(fine, 256);
+  const auto expected = revolution(256, [](double u) { return std::cos(3.0 * u); });
+  REQUIRE(coarse.size() == 256);
+  for (std::size_t j = 0; j < 256; ++j) CHECK(std::abs(coarse[j] - expected[j]) < kRounding);
+  // What plain one-in-four sampling gives instead: the alias at order 44.
+  std::vector<double> naive;
+  for (std::size_t j = 0; j < 1024; j += 4) naive.push_back(fine[j]);
+  const Spectrum s = amplitude_spectrum(naive, 256.0, Window::rectangular);
+  CHECK(relative_difference(s.amplitude[44], 1.0) < kRounding);
+  CHECK_THROWS_AS(decimate_periodic(fine, 2048), InputError);
 }

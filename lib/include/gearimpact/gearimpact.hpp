@@ -24,6 +24,7 @@
 #include "gearimpact/geometry/tooth_profile.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/results.hpp"
+#include "gearimpact/io/signal_files.hpp"
 #include "gearimpact/io/sweep_files.hpp"
 #include "gearimpact/named_values.hpp"
 #include "gearimpact/numerics/quadrature.hpp"

@@ -66,6 +66,17 @@ std::size_t stencil(const std::vector<double>& a, double u) {
 
 }  // namespace
 
+void check_sample_rate(double rate) {
+  checks::require_finite_positive("sample rate", rate, "Hz (or samples per unit of the abscissa)");
+}
+
+void check_samples_per_revolution(std::size_t samples_per_revolution) {
+  if (samples_per_revolution < 16 || samples_per_revolution > (1u << 24)) {
+    throw InputError("samples per revolution", std::to_string(samples_per_revolution),
+                     "16 to 16777216");
+  }
+}
+
 double interpolate_cubic(const std::vector<double>& abscissa, const std::vector<double>& value,
                          double at) {
   check_abscissa(abscissa, "abscissa");
@@ -83,7 +94,7 @@ std::vector<double> resample_uniform(const std::vector<double>& time,
                                      const char* time_name, const char* signal_name) {
   check_abscissa(time, time_name);
   check_values(signal, time.size(), signal_name);
-  checks::require_finite_positive("sample rate", rate, "Hz");
+  check_sample_rate(rate);
   const double span = time.back() - time.front();
   // Whole samples inside the span; the tiny allowance keeps the last one
   // when span * rate is an integer spoiled by rounding.
@@ -107,10 +118,7 @@ AngleSignal resample_on_angle(const std::vector<double>& angle, const std::vecto
                               const char* signal_name) {
   check_abscissa(angle, angle_name);
   check_values(signal, angle.size(), signal_name);
-  if (samples_per_revolution < 4 || samples_per_revolution > (1u << 24)) {
-    throw InputError("samples per revolution", std::to_string(samples_per_revolution),
-                     "4 to 16777216");
-  }
+  check_samples_per_revolution(samples_per_revolution);
   const double turn = 2.0 * pi;
   AngleSignal out;
   out.samples_per_revolution = samples_per_revolution;

@@ -4,10 +4,10 @@
 #include <complex>
 #include <string>
 
-#include "../require.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/signals/fft.hpp"
+#include "gearimpact/signals/resample.hpp"
 
 namespace gearimpact::signals {
 
@@ -22,7 +22,7 @@ Window parse_window(std::string_view text, std::string_view field) {
 }
 
 Spectrum amplitude_spectrum(const std::vector<double>& signal, double rate, Window window) {
-  checks::require_finite_positive("sample rate", rate, "per unit of the abscissa");
+  check_sample_rate(rate);
   const std::size_t n = signal.size();
   if (n < 2) {
     throw InputError("signal length", std::to_string(n), "at least 2 samples");

@@ -49,7 +49,22 @@ std::vector<double> time_synchronous_average(const AngleSignal& signal) {
   return tsa;
 }
 
+std::vector<double> decimate_periodic(const std::vector<double>& period, std::size_t p) {
+  const std::size_t q = period.size();
+  if (p < 4 || p > q) {
+    throw InputError("samples per revolution", std::to_string(p),
+                     "4 to the record's " + std::to_string(q) + " samples a revolution");
+  }
+  const std::vector<std::complex<double>> x = real_dft(period);
+  std::vector<std::complex<double>> y(p / 2 + 1, 0.0);
+  // The p-point DFT of the same continuous signal is the Q-point one times p/Q.
+  const double scale = static_cast<double>(p) / static_cast<double>(q);
+  for (std::size_t k = 0; 2 * k < p; ++k) y[k] = x[k] * scale;
+  return inverse_real_dft(y, p);
+}
+
 void check_order_sets(const OrderSets& s, std::size_t p) {
+  check_samples_per_revolution(p);
   if (s.teeth < 3 || 2 * (s.teeth + s.sidebands) >= p) {
     throw InputError("teeth", std::to_string(s.teeth),
                      "3 to " + std::to_string((p - 1) / 2 - std::min(s.sidebands, (p - 1) / 2)) +
@@ -62,6 +77,12 @@ void check_order_sets(const OrderSets& s, std::size_t p) {
                      "0 to " + std::to_string((s.teeth - 1) / 2) + " for " +
                          std::to_string(s.teeth) +
                          " teeth (sidebands of neighbouring mesh harmonics apart)");
+  }
+  if (s.shaft_orders + s.sidebands >= s.teeth) {
+    throw InputError("shaft orders", std::to_string(s.shaft_orders),
+                     "0 to " + std::to_string(s.teeth - s.sidebands - 1) + " for " +
+                         std::to_string(s.teeth) + " teeth and " + std::to_string(s.sidebands) +
+                         " sidebands (below the first lower sideband)");
   }
 }
 

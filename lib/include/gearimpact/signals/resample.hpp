@@ -14,6 +14,11 @@
 
 namespace gearimpact::signals {
 
+// Throws InputError naming "sample rate" unless `rate` is finite and > 0.
+void check_sample_rate(double rate);
+// Throws InputError naming "samples per revolution" unless it is 16 to 2^24.
+void check_samples_per_revolution(std::size_t samples_per_revolution);
+
 // x at `at` from samples (abscissa[i], value[i]), abscissa strictly
 // increasing, `at` inside [abscissa.front(), abscissa.back()].
 double interpolate_cubic(const std::vector<double>& abscissa, const std::vector<double>& value,
@@ -43,7 +48,7 @@ struct AngleSignal {
 // Resamples (angle[i], signal[i]) at start + 2 pi j / samples_per_revolution.
 // The angle must be finite and strictly increasing (InputError naming
 // `angle_name`), cover at least one whole revolution after its first multiple
-// of 2 pi, and samples_per_revolution must be >= 4.
+// of 2 pi, and samples_per_revolution 16 to 2^24.
 AngleSignal resample_on_angle(const std::vector<double>& angle, const std::vector<double>& signal,
                               std::size_t samples_per_revolution, const char* angle_name = "angle",
                               const char* signal_name = "signal");

@@ -15,6 +15,14 @@ namespace gearimpact::signals {
 // 1/sqrt(R). Throws InputError for no whole revolution.
 std::vector<double> time_synchronous_average(const AngleSignal& signal);
 
+// A record of one period (one revolution) of Q samples reduced to p samples
+// of the same period, p <= Q: its orders below p/2 kept exactly, order p/2
+// and above removed (an ideal anti-alias filter by the DFT, exact for a
+// periodic record such as a TSA). Resampling on the angle at fewer samples a
+// revolution than the record holds would otherwise fold the orders above
+// p/2 onto lower ones. Throws InputError unless 4 <= p <= Q.
+std::vector<double> decimate_periodic(const std::vector<double>& period, std::size_t p);
+
 // Which orders of the TSA (harmonics of the shaft, cycles per revolution)
 // make its parts, for a gear of `teeth` teeth:
 // shaft orders 0..shaft_orders, the mesh harmonics h * teeth (h >= 1, up to
@@ -27,8 +35,9 @@ struct OrderSets {
 
 // Throws InputError naming `teeth` (>= 3, with 2 (teeth + sidebands) < P,
 // so that the first mesh order and its sidebands lie below the Nyquist
-// order) and `sidebands` (< teeth / 2, so that the sidebands of neighbouring
-// harmonics stay apart).
+// order), `sidebands` (< teeth / 2, so that the sidebands of neighbouring
+// harmonics stay apart), `shaft orders` (< teeth - sidebands, below the first
+// lower sideband) and `samples per revolution` (16 to 2^24).
 void check_order_sets(const OrderSets& sets, std::size_t samples_per_revolution);
 
 struct TsaParts {
