@@ -89,6 +89,13 @@ double number(const std::string& text, const std::string& flag) {
   return value;
 }
 
+// Ten digits: the last digits of 1 / spacing are the spacing's rounding.
+std::string ten_digits(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", value);
+  return text;
+}
+
 void add(Figure& f, const std::vector<std::string>& commands) {
   f.setup.insert(f.setup.end(), commands.begin(), commands.end());
 }
@@ -150,8 +157,9 @@ void run_signals(const SignalsOptions& o) {
   const signals::Window window = signals::parse_window(o.window, "--window");
   const bool has_angle = !o.angle_column.empty();
   if (!has_angle && !o.teeth.empty()) {
-    throw InputError("--teeth", o.teeth,
-                     "given with --angle-column (the angle of the gear's shaft)");
+    throw InputError(std::vector<Problem>{
+        refused_problem("--teeth", o.teeth, "needs --angle-column (the angle of the gear's shaft)",
+                        "a tooth count with --angle-column")});
   }
   std::size_t per_revolution = 0;
   std::optional<signals::OrderSets> sets;
@@ -168,8 +176,12 @@ void run_signals(const SignalsOptions& o) {
   require_output_folder(o.out, o.overwrite, {o.input});
 
   std::vector<std::string> names{o.time_column, o.column};
-  if (has_angle) names.push_back(o.angle_column);
-  const std::vector<std::vector<double>> columns = read_csv_columns(o.input, names);
+  std::vector<std::string> flags{"--time-column", "--column"};
+  if (has_angle) {
+    names.push_back(o.angle_column);
+    flags.emplace_back("--angle-column");
+  }
+  const std::vector<std::vector<double>> columns = read_csv_columns(o.input, names, flags);
   const std::vector<double>& time = columns[0];
   const std::vector<double>& signal = columns[1];
   if (time.size() < 4) {
@@ -186,7 +198,7 @@ void run_signals(const SignalsOptions& o) {
   const double record_rate = 1.0 / spacing[spacing.size() / 2];
   if (rate && *rate < record_rate * (1.0 - 1e-9)) {
     throw InputError("--sample-rate", o.sample_rate,
-                     "at least the record's rate " + format_number(record_rate) +
+                     "at least the record's rate " + ten_digits(record_rate) +
                          " Hz (1 / its median spacing): a coarser grid would alias");
   }
   SignalsRun run;

@@ -31,7 +31,8 @@ Json optional_number(const std::optional<double>& v) {
 }  // namespace
 
 std::vector<std::vector<double>> read_csv_columns(const std::string& path,
-                                                  const std::vector<std::string>& names) {
+                                                  const std::vector<std::string>& names,
+                                                  const std::vector<std::string>& chosen_by) {
   std::ifstream in(path);
   if (!in) throw InputError("input file", path, "a readable CSV file");
   std::string line;
@@ -39,13 +40,16 @@ std::vector<std::vector<double>> read_csv_columns(const std::string& path,
   if (!line.empty() && line.back() == '\r') line.pop_back();
   const std::vector<std::string> header = split(line);
   std::vector<std::size_t> index;
-  for (const std::string& name : names) {
+  for (std::size_t c = 0; c < names.size(); ++c) {
+    const std::string& name = names[c];
     std::size_t i = 0;
     while (i < header.size() && header[i] != name) ++i;
     if (i == header.size()) {
       std::string known;
       for (const std::string& h : header) known += (known.empty() ? "" : ", ") + h;
-      throw InputError("column", name, "a column of " + path + ": " + known);
+      throw InputError(
+          std::vector<Problem>{refused_problem(c < chosen_by.size() ? chosen_by[c] : "column", name,
+                                               "no such column in " + path, "one of " + known)});
     }
     index.push_back(i);
   }

@@ -13,11 +13,13 @@
 namespace gearimpact {
 
 // The columns `names` of the CSV file `path` (a header line of names, then
-// rows of numbers), in that order. Throws InputError naming the file and the
-// column (with the header's names) for a missing column, and file:line for a
-// short row or a field that is not a finite number.
+// rows of numbers), in that order. Throws InputError naming, for a missing
+// column, what chose it (`chosen_by`, e.g. the flag "--column"; "column" when
+// empty) with the header's names, and file:line for a short row or a field
+// that is not a finite number.
 std::vector<std::vector<double>> read_csv_columns(const std::string& path,
-                                                  const std::vector<std::string>& names);
+                                                  const std::vector<std::string>& names,
+                                                  const std::vector<std::string>& chosen_by = {});
 
 // "ABSCISSA,amplitude" rows of a spectrum (ABSCISSA: frequency_hz or order).
 std::string spectrum_csv(const signals::Spectrum& spectrum, const std::string& abscissa);
