@@ -226,32 +226,18 @@ void run_signals(const SignalsOptions& o) {
     run.angle_column = o.angle_column;
     run.samples_per_revolution = per_revolution;
     run.sets = sets;
-    // The angle grid is at least as fine as the record (the next power of
-    // two times P above its rows a revolution), so that interpolation does not
-    // alias; the TSA is then reduced to P samples by an ideal low-pass.
-    const double rows_per_revolution =
-        static_cast<double>(angle.size() - 1) * 2.0 * pi / (angle.back() - angle.front());
-    std::size_t grid = per_revolution;
-    while (static_cast<double>(grid) < rows_per_revolution && grid < (std::size_t{1} << 23)) {
-      grid *= 2;
-    }
-    const signals::AngleSignal on_angle =
-        signals::resample_on_angle(angle, signal, grid, o.angle_column.c_str(), o.column.c_str());
-    run.angle_grid = grid;
-    run.revolutions = on_angle.revolutions;
+    const signals::OrderAnalysis a = signals::analyse_orders(
+        angle, signal, per_revolution, window, sets, o.angle_column.c_str(), o.column.c_str());
+    run.angle_grid = a.grid;
+    run.revolutions = a.revolutions;
     run.shaft_frequency_hz = (angle.back() - angle.front()) / (2.0 * pi * span);
-    const signals::Spectrum orders =
-        signals::amplitude_spectrum(on_angle.values, static_cast<double>(grid), window);
-    write_file_atomically((dir / "order_spectrum.csv").string(), spectrum_csv(orders, "order"));
-    const std::vector<double> tsa =
-        signals::decimate_periodic(signals::time_synchronous_average(on_angle), per_revolution);
+    write_file_atomically((dir / "order_spectrum.csv").string(), spectrum_csv(a.orders, "order"));
+    write_file_atomically((dir / "tsa.csv").string(),
+                          tsa_csv(a.tsa, a.parts ? &*a.parts : nullptr));
     if (sets) {
-      const signals::TsaParts parts = signals::tsa_parts(tsa, *sets);
-      write_file_atomically((dir / "tsa.csv").string(), tsa_csv(tsa, &parts));
-      indicators = signals::gear_indicators(uniform, parts, *sets);
+      indicators = signals::gear_indicators(uniform, *a.parts, *sets);
       mesh_hz = run.shaft_frequency_hz * static_cast<double>(sets->teeth);
     } else {
-      write_file_atomically((dir / "tsa.csv").string(), tsa_csv(tsa, nullptr));
       indicators = signals::record_indicators(uniform);
     }
   } else {

@@ -4,6 +4,7 @@
 #include <complex>
 #include <string>
 
+#include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/signals/fft.hpp"
 
@@ -123,6 +124,30 @@ TsaParts tsa_parts(const std::vector<double>& tsa, const OrderSets& sets) {
   parts.mesh_band_envelope.resize(p);
   for (std::size_t i = 0; i < p; ++i) parts.mesh_band_envelope[i] = std::abs(z[i]);
   return parts;
+}
+
+OrderAnalysis analyse_orders(const std::vector<double>& angle, const std::vector<double>& signal,
+                             std::size_t samples_per_revolution, Window window,
+                             const std::optional<OrderSets>& sets, const char* angle_name,
+                             const char* signal_name) {
+  check_samples_per_revolution(samples_per_revolution);
+  if (sets) check_order_sets(*sets, samples_per_revolution);
+  OrderAnalysis a;
+  a.grid = samples_per_revolution;
+  if (angle.size() >= 2 && angle.back() > angle.front()) {
+    const double rows_per_revolution =
+        static_cast<double>(angle.size() - 1) * 2.0 * pi / (angle.back() - angle.front());
+    while (static_cast<double>(a.grid) < rows_per_revolution && a.grid < (std::size_t{1} << 23)) {
+      a.grid *= 2;
+    }
+  }
+  const AngleSignal on_angle = resample_on_angle(angle, signal, a.grid, angle_name, signal_name);
+  a.revolutions = on_angle.revolutions;
+  a.start_angle = on_angle.start_angle;
+  a.orders = amplitude_spectrum(on_angle.values, static_cast<double>(a.grid), window);
+  a.tsa = decimate_periodic(time_synchronous_average(on_angle), samples_per_revolution);
+  if (sets) a.parts = tsa_parts(a.tsa, *sets);
+  return a;
 }
 
 }  // namespace gearimpact::signals

@@ -3,9 +3,11 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "gearimpact/signals/resample.hpp"
+#include "gearimpact/signals/spectrum.hpp"
 
 namespace gearimpact::signals {
 
@@ -60,5 +62,27 @@ struct TsaParts {
 
 // Splits a TSA of P samples (one revolution) by zeroing orders of its DFT.
 TsaParts tsa_parts(const std::vector<double>& tsa, const OrderSets& sets);
+
+// Order tracking of a record sampled at irregular instants with its shaft's
+// angle: the record resampled on the angle at `grid` steps a revolution, the
+// smallest samples_per_revolution times a power of two at or above the
+// record's rows a revolution (so that the interpolation does not alias), up
+// to 2^23; its order spectrum; its TSA reduced to samples_per_revolution
+// (decimate_periodic); and with `sets` the TSA's parts.
+struct OrderAnalysis {
+  std::size_t grid = 0;
+  std::size_t revolutions = 0;
+  double start_angle = 0.0;
+  Spectrum orders;
+  std::vector<double> tsa;
+  std::optional<TsaParts> parts;
+};
+
+// Throws InputError as resample_on_angle, check_samples_per_revolution and
+// check_order_sets do.
+OrderAnalysis analyse_orders(const std::vector<double>& angle, const std::vector<double>& signal,
+                             std::size_t samples_per_revolution, Window window,
+                             const std::optional<OrderSets>& sets, const char* angle_name = "angle",
+                             const char* signal_name = "signal");
 
 }  // namespace gearimpact::signals
