@@ -129,7 +129,13 @@ void spectrum_figure(const std::filesystem::path& dir, const std::string& name,
   render(dir, f);
 }
 
-void tsa_figure(const std::filesystem::path& dir, bool with_parts) {
+// The TSA less its mean (which would otherwise set the scale), with the
+// difference and residual signals, which have none.
+void tsa_figure(const std::filesystem::path& dir, const std::vector<double>& tsa, bool with_parts) {
+  double mean = 0.0;
+  for (double v : tsa) mean += v / static_cast<double>(tsa.size());
+  char shift[40];
+  std::snprintf(shift, sizeof shift, "%.17g", mean);
   Figure f;
   f.name = "tsa";
   f.title = "Time-synchronous average over one revolution";
@@ -137,7 +143,9 @@ void tsa_figure(const std::filesystem::path& dir, bool with_parts) {
   f.y_label = "signal";
   f.setup = {"set key outside right top"};
   add(f, tick_commands("x", Ticks{0.0, 360.0, 45.0, 0}));
-  f.series = {"'tsa.csv' using ($1*180/pi):2 with lines lw 1.5 lc rgb '#1f4e99' title 'TSA'"};
+  f.series = {"'tsa.csv' using ($1*180/pi):($2-(" + std::string(shift) +
+              ")) with lines lw 1.5 lc rgb '#1f4e99' title 'TSA - mean (" + ten_digits(mean) +
+              ")'"};
   if (with_parts) {
     f.series.push_back(
         "'tsa.csv' using ($1*180/pi):5 with lines lw 1.2 lc rgb '#c0392b' title 'difference'");
@@ -220,6 +228,7 @@ void run_signals(const SignalsOptions& o) {
   const std::filesystem::path dir = folder.temporary();
   write_file_atomically((dir / "spectrum.csv").string(), spectrum_csv(spectrum, "frequency_hz"));
   signals::Indicators indicators;
+  std::vector<double> tsa_values;
   double mesh_hz = 0.0;
   if (has_angle) {
     const std::vector<double>& angle = columns[2];
@@ -234,6 +243,7 @@ void run_signals(const SignalsOptions& o) {
     write_file_atomically((dir / "order_spectrum.csv").string(), spectrum_csv(a.orders, "order"));
     write_file_atomically((dir / "tsa.csv").string(),
                           tsa_csv(a.tsa, a.parts ? &*a.parts : nullptr));
+    tsa_values = a.tsa;
     if (sets) {
       indicators = signals::gear_indicators(uniform, *a.parts, *sets);
       mesh_hz = run.shaft_frequency_hz * static_cast<double>(sets->teeth);
@@ -260,7 +270,7 @@ void run_signals(const SignalsOptions& o) {
                           literal_key(o.angle_column, true),
                       "order (cycles per revolution)", sets ? std::min(half, 3.5 * z) : half, z,
                       "z");
-      tsa_figure(dir, sets.has_value());
+      tsa_figure(dir, tsa_values, sets.has_value());
     }
   }
   folder.commit();
