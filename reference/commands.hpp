@@ -21,5 +21,7 @@ void register_case_commands(CLI::App& app);
 void register_schema_commands(CLI::App& app);
 // `sweep` (the steady state along a parameter) and `merge` (its shards).
 void register_sweep_commands(CLI::App& app);
+// `signals IN.csv --column NAME --out DIR`: spectrum, order spectrum, TSA, indicators.
+void register_signals_commands(CLI::App& app);
 
 }  // namespace gearimpact::cli

@@ -103,6 +103,17 @@ void run_gnuplot(const std::filesystem::path& dir, const std::string& script,
 
 }  // namespace
 
+std::string literal_key(const std::string& key, bool double_quoted) {
+  std::string out;
+  for (const char c : key) {
+    if (c == '_')
+      out += double_quoted ? "\\\\_" : "\\_";
+    else
+      out += c;
+  }
+  return out;
+}
+
 Ticks nice_ticks(double low, double high, int count, double margin) {
   if (low > high) std::swap(low, high);
   const double size = std::max(std::fabs(low), std::fabs(high));

@@ -63,6 +63,7 @@ from ._results import (
     stiffness,
     sweep_friction,
 )
+from ._signals import indicators, order_analysis, spectrum
 from ._program import iso6336, mesh_stiffness, paper_data_dir, program_path, reproduce, sweep
 
 __all__ = [
@@ -83,10 +84,12 @@ __all__ = [
     "contact_segment",
     "energy_ratios",
     "gear_pair",
+    "indicators",
     "iso6336",
     "line_of_action_length",
     "mesh_stiffness",
     "moment_of_inertia",
+    "order_analysis",
     "paper_case",
     "paper_data_dir",
     "parse_case",
@@ -96,6 +99,7 @@ __all__ = [
     "read_case",
     "reproduce",
     "simulate",
+    "spectrum",
     "stiffness",
     "sweep",
     "sweep_friction",

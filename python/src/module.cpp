@@ -129,6 +129,66 @@ py::array_t<T> to_array(const std::vector<T>& values) {
   return array;
 }
 
+// The signal layer's inputs as the keywords that give them.
+std::vector<double> vector_of(
+    const py::array_t<double, py::array::c_style | py::array::forcecast>& a, const char* name) {
+  if (a.ndim() != 1) {
+    throw InputError(name, std::to_string(a.ndim()) + "-dimensional array",
+                     "a 1-dimensional array");
+  }
+  return std::vector<double>(a.data(), a.data() + a.size());
+}
+
+std::size_t count_of(long long value, const char* name) {
+  if (value < 0) throw InputError(name, std::to_string(value), "a whole number >= 0");
+  return static_cast<std::size_t>(value);
+}
+
+template <typename Run>
+auto naming_keywords(Run run) {
+  try {
+    return run();
+  } catch (const InputError& e) {
+    static const std::vector<std::pair<std::string, std::string>> keywords{
+        {"sample rate", "rate"},
+        {"samples per revolution", "samples_per_revolution"},
+        {"shaft orders", "shaft_orders"}};
+    std::vector<Problem> problems;
+    for (const Problem& p : e.problems()) {
+      std::string field = p.field;
+      for (const auto& [name, keyword] : keywords) {
+        if (field == name) field = keyword;
+      }
+      problems.push_back(p.renamed(field, p.value));
+    }
+    throw InputError(problems);
+  }
+}
+
+py::object optional_value(const std::optional<double>& v) {
+  return v ? py::object(py::float_(*v)) : py::object(py::none());
+}
+
+py::dict indicators_dict(const signals::Indicators& i) {
+  py::dict d;
+  d["rms"] = i.rms;
+  d["peak"] = i.peak;
+  d["crest_factor"] = optional_value(i.crest_factor);
+  d["kurtosis"] = optional_value(i.kurtosis);
+  d["tsa_rms"] = optional_value(i.tsa_rms);
+  d["tsa_crest_factor"] = optional_value(i.tsa_crest_factor);
+  d["tsa_kurtosis"] = optional_value(i.tsa_kurtosis);
+  d["fm0"] = optional_value(i.fm0);
+  d["fm4"] = optional_value(i.fm4);
+  d["na4"] = optional_value(i.na4);
+  d["nb4"] = optional_value(i.nb4);
+  d["m6a"] = optional_value(i.m6a);
+  d["m8a"] = optional_value(i.m8a);
+  d["energy_ratio"] = optional_value(i.energy_ratio);
+  d["sideband_level"] = optional_value(i.sideband_level);
+  return d;
+}
+
 // One column of a vector of records, as a numpy array of the member's type.
 template <typename Row, typename T>
 py::array_t<T> column(const std::vector<Row>& rows, T Row::*member) {
@@ -757,6 +817,65 @@ void define_module(py::module_& m) {
       },
       py::arg("pair"), py::arg("gear"), py::arg("x1_m"),
       "(12) phi1 or (25),(26) phi2, rad, of the contact at X1 (from C1, finite)");
+
+  using ArrayIn = py::array_t<double, py::array::c_style | py::array::forcecast>;
+  m.def(
+      "amplitude_spectrum",
+      [](const ArrayIn& x, double rate, const std::string& window) {
+        const std::vector<double> values = vector_of(x, "signal");
+        const signals::Window w = signals::parse_window(window, "window");
+        const signals::Spectrum s =
+            naming_keywords([&] { return signals::amplitude_spectrum(values, rate, w); });
+        py::dict d;
+        d["frequency"] = to_array(s.frequency);
+        d["amplitude"] = to_array(s.amplitude);
+        d["resolution"] = s.resolution;
+        d["coherent_gain"] = s.coherent_gain;
+        return d;
+      },
+      py::arg("signal"), py::arg("rate"), py::arg("window"));
+  m.def(
+      "order_analysis",
+      [](const ArrayIn& angle, const ArrayIn& x, long long per_revolution, long long teeth,
+         long long shaft_orders, long long sidebands, const std::string& window) {
+        const std::vector<double> a = vector_of(angle, "angle");
+        const std::vector<double> values = vector_of(x, "signal");
+        const signals::Window w = signals::parse_window(window, "window");
+        std::optional<signals::OrderSets> sets;
+        if (teeth != 0) {
+          sets =
+              signals::OrderSets{count_of(teeth, "teeth"), count_of(shaft_orders, "shaft_orders"),
+                                 count_of(sidebands, "sidebands")};
+        }
+        const std::size_t p = count_of(per_revolution, "samples_per_revolution");
+        const signals::OrderAnalysis r = naming_keywords(
+            [&] { return signals::analyse_orders(a, values, p, w, sets, "angle", "signal"); });
+        py::dict d;
+        d["grid"] = r.grid;
+        d["revolutions"] = r.revolutions;
+        d["start_angle"] = r.start_angle;
+        d["order"] = to_array(r.orders.frequency);
+        d["amplitude"] = to_array(r.orders.amplitude);
+        d["tsa"] = to_array(r.tsa);
+        if (r.parts) {
+          d["regular"] = to_array(r.parts->regular);
+          d["residual"] = to_array(r.parts->residual);
+          d["difference"] = to_array(r.parts->difference);
+          d["mesh_band"] = to_array(r.parts->mesh_band);
+          d["mesh_band_envelope"] = to_array(r.parts->mesh_band_envelope);
+          d["tsa_order_amplitude"] = to_array(r.parts->order_amplitude);
+          d["indicators"] = indicators_dict(signals::gear_indicators(r.tsa, *r.parts, *sets));
+        }
+        return d;
+      },
+      py::arg("angle"), py::arg("signal"), py::arg("samples_per_revolution"), py::arg("teeth"),
+      py::arg("shaft_orders"), py::arg("sidebands"), py::arg("window"));
+  m.def(
+      "condition_indicators",
+      [](const ArrayIn& x) {
+        return indicators_dict(signals::record_indicators(vector_of(x, "record")));
+      },
+      py::arg("record"));
 }
 
 }  // namespace gearimpact::python

@@ -1,0 +1,51 @@
+// The files of `gearimpact signals`: columns read from a CSV file the program
+// wrote, the spectra, the TSA and its parts, the indicators.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gearimpact/signals/indicators.hpp"
+#include "gearimpact/signals/spectrum.hpp"
+#include "gearimpact/signals/tsa.hpp"
+
+namespace gearimpact {
+
+// The columns `names` of the CSV file `path` (a header line of names, then
+// rows of numbers), in that order. Throws InputError naming, for a missing
+// column, what chose it (`chosen_by`, e.g. the flag "--column"; "column" when
+// empty) with the header's names, and file:line for a short row or a field
+// that is not a finite number.
+std::vector<std::vector<double>> read_csv_columns(const std::string& path,
+                                                  const std::vector<std::string>& names,
+                                                  const std::vector<std::string>& chosen_by = {});
+
+// "ABSCISSA,amplitude" rows of a spectrum (ABSCISSA: frequency_hz or order).
+std::string spectrum_csv(const signals::Spectrum& spectrum, const std::string& abscissa);
+
+// One row per angle step of one revolution: angle_rad (from the shaft's
+// first multiple of 2 pi), tsa, and with `parts` regular, residual,
+// difference, mesh_band, mesh_band_envelope.
+std::string tsa_csv(const std::vector<double>& tsa, const signals::TsaParts* parts);
+
+// What the analysis read and chose, for indicators.json.
+struct SignalsRun {
+  std::string input;
+  std::string column;
+  std::string time_column;
+  std::string angle_column;  // empty without an angle
+  double sample_rate_hz = 0.0;
+  std::size_t samples = 0;
+  std::string window;
+  std::size_t samples_per_revolution = 0;  // of the TSA
+  std::size_t angle_grid = 0;  // of the resampling on the angle (and the order spectrum)
+  std::size_t revolutions = 0;
+  std::optional<signals::OrderSets> sets;
+  double shaft_frequency_hz = 0.0;  // mean, from the angle; 0 without one
+};
+
+// The run and every indicator (null where it is absent: no gear given, or 0/0).
+std::string indicators_json(const SignalsRun& run, const signals::Indicators& indicators);
+
+}  // namespace gearimpact

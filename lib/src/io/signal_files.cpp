@@ -1,0 +1,155 @@
+#include "gearimpact/io/signal_files.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "gearimpact/constants.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/io/results.hpp"
+
+namespace gearimpact {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> fields;
+  std::string field;
+  std::istringstream in(line);
+  while (std::getline(in, field, ',')) fields.push_back(field);
+  if (!line.empty() && line.back() == ',') fields.emplace_back();
+  return fields;
+}
+
+Json optional_number(const std::optional<double>& v) {
+  return v ? Json(*v) : Json(nullptr);
+}
+
+}  // namespace
+
+std::vector<std::vector<double>> read_csv_columns(const std::string& path,
+                                                  const std::vector<std::string>& names,
+                                                  const std::vector<std::string>& chosen_by) {
+  std::ifstream in(path);
+  if (!in) throw InputError("input file", path, "a readable CSV file");
+  std::string line;
+  if (!std::getline(in, line)) throw InputError("input file", path, "a CSV file with a header");
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  const std::vector<std::string> header = split(line);
+  std::vector<std::size_t> index;
+  for (std::size_t c = 0; c < names.size(); ++c) {
+    const std::string& name = names[c];
+    std::size_t i = 0;
+    while (i < header.size() && header[i] != name) ++i;
+    if (i == header.size()) {
+      std::string known;
+      for (const std::string& h : header) known += (known.empty() ? "" : ", ") + h;
+      throw InputError(
+          std::vector<Problem>{refused_problem(c < chosen_by.size() ? chosen_by[c] : "column", name,
+                                               "no such column in " + path, "one of " + known)});
+    }
+    index.push_back(i);
+  }
+  std::vector<std::vector<double>> columns(names.size());
+  std::size_t number = 1;
+  while (std::getline(in, line)) {
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    const std::vector<std::string> fields = split(line);
+    for (std::size_t c = 0; c < names.size(); ++c) {
+      const std::string where = path + ":" + std::to_string(number);
+      if (index[c] >= fields.size()) {
+        throw InputError(names[c] + " (" + where + ")", "missing",
+                         std::to_string(header.size()) + " fields a row");
+      }
+      const std::string& text = fields[index[c]];
+      char* end = nullptr;
+      const double value = std::strtod(text.c_str(), &end);
+      if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value)) {
+        throw InputError(names[c] + " (" + where + ")", text, "a finite number");
+      }
+      columns[c].push_back(value);
+    }
+  }
+  return columns;
+}
+
+std::string spectrum_csv(const signals::Spectrum& spectrum, const std::string& abscissa) {
+  std::string out = abscissa + ",amplitude\n";
+  for (std::size_t k = 0; k < spectrum.frequency.size(); ++k) {
+    out += format_data_number(spectrum.frequency[k]) + "," +
+           format_data_number(spectrum.amplitude[k]) + "\n";
+  }
+  return out;
+}
+
+std::string tsa_csv(const std::vector<double>& tsa, const signals::TsaParts* parts) {
+  std::string out = "angle_rad,tsa";
+  if (parts != nullptr) out += ",regular,residual,difference,mesh_band,mesh_band_envelope";
+  out += "\n";
+  const double step = 2.0 * pi / static_cast<double>(tsa.size());
+  for (std::size_t j = 0; j < tsa.size(); ++j) {
+    out += format_data_number(static_cast<double>(j) * step) + "," + format_data_number(tsa[j]);
+    if (parts != nullptr) {
+      for (const std::vector<double>* v : {&parts->regular, &parts->residual, &parts->difference,
+                                           &parts->mesh_band, &parts->mesh_band_envelope}) {
+        out += "," + format_data_number((*v)[j]);
+      }
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+std::string indicators_json(const SignalsRun& run, const signals::Indicators& i) {
+  Json j;
+  j["input"] = run.input;
+  j["column"] = run.column;
+  j["time_column"] = run.time_column;
+  j["resampling"] = "cubic Lagrange through the four nearest samples (fourth order)";
+  j["sample_rate_hz"] = run.sample_rate_hz;
+  j["samples"] = run.samples;
+  j["window"] = run.window;
+  j["amplitude_scaling"] = "a sinusoid of amplitude A at a bin reads A (coherent gain corrected)";
+  if (!run.angle_column.empty()) {
+    j["angle_column"] = run.angle_column;
+    j["angle_grid_per_revolution"] = run.angle_grid;
+    j["samples_per_revolution"] = run.samples_per_revolution;
+    j["tsa_anti_alias"] = "orders below samples_per_revolution / 2 kept, the rest removed (DFT)";
+    j["revolutions"] = run.revolutions;
+    j["shaft_frequency_hz"] = run.shaft_frequency_hz;
+  }
+  if (run.sets) {
+    j["teeth"] = run.sets->teeth;
+    j["shaft_orders"] = run.sets->shaft_orders;
+    j["sidebands"] = run.sets->sidebands;
+    j["mesh_frequency_hz"] = run.shaft_frequency_hz * static_cast<double>(run.sets->teeth);
+  }
+  Json record;
+  record["rms"] = i.rms;
+  record["peak"] = i.peak;
+  record["crest_factor"] = optional_number(i.crest_factor);
+  record["kurtosis"] = optional_number(i.kurtosis);
+  j["record"] = record;
+  Json gear;
+  gear["tsa_rms"] = optional_number(i.tsa_rms);
+  gear["tsa_crest_factor"] = optional_number(i.tsa_crest_factor);
+  gear["tsa_kurtosis"] = optional_number(i.tsa_kurtosis);
+  gear["fm0"] = optional_number(i.fm0);
+  gear["fm4"] = optional_number(i.fm4);
+  gear["na4"] = optional_number(i.na4);
+  gear["nb4"] = optional_number(i.nb4);
+  gear["m6a"] = optional_number(i.m6a);
+  gear["m8a"] = optional_number(i.m8a);
+  gear["energy_ratio"] = optional_number(i.energy_ratio);
+  gear["sideband_level"] = optional_number(i.sideband_level);
+  j["gear"] = gear;
+  j["definitions"] = "docs/signals.md";
+  return j.dump(2) + "\n";
+}
+
+}  // namespace gearimpact

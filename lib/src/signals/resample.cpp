@@ -1,0 +1,145 @@
+#include "gearimpact/signals/resample.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "../require.hpp"
+#include "gearimpact/constants.hpp"
+#include "gearimpact/error.hpp"
+
+namespace gearimpact::signals {
+namespace {
+
+// Finite, strictly increasing, at least 4 values (the cubic's nodes).
+void check_abscissa(const std::vector<double>& a, const char* name) {
+  if (a.size() < 4) {
+    throw InputError(name, std::to_string(a.size()) + " samples", "at least 4 samples");
+  }
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (!std::isfinite(a[i])) {
+      throw InputError(std::string(name) + " (sample " + std::to_string(i + 1) + ")", a[i],
+                       "a finite value");
+    }
+    if (i > 0 && !(a[i] > a[i - 1])) {
+      throw InputError(std::string(name) + " (sample " + std::to_string(i + 1) + ")",
+                       format_number(a[i]) + " after " + format_number(a[i - 1]),
+                       "strictly increasing values");
+    }
+  }
+}
+
+void check_values(const std::vector<double>& v, std::size_t size, const char* name) {
+  if (v.size() != size) {
+    throw InputError(name, std::to_string(v.size()) + " samples",
+                     "as many samples as the abscissa (" + std::to_string(size) + ")");
+  }
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (!std::isfinite(v[i])) {
+      throw InputError(std::string(name) + " (sample " + std::to_string(i + 1) + ")", v[i],
+                       "a finite value");
+    }
+  }
+}
+
+// Cubic Lagrange through nodes i0..i0+3, at u.
+double lagrange4(const std::vector<double>& a, const std::vector<double>& v, std::size_t i0,
+                 double u) {
+  double sum = 0.0;
+  for (std::size_t j = i0; j < i0 + 4; ++j) {
+    double basis = 1.0;
+    for (std::size_t m = i0; m < i0 + 4; ++m) {
+      if (m != j) basis *= (u - a[m]) / (a[j] - a[m]);
+    }
+    sum += basis * v[j];
+  }
+  return sum;
+}
+
+// First node of the four about the interval [a[i], a[i+1]] holding u.
+std::size_t stencil(const std::vector<double>& a, double u) {
+  const auto upper = std::upper_bound(a.begin(), a.end(), u);
+  const std::size_t i = upper == a.begin() ? 0 : static_cast<std::size_t>(upper - a.begin()) - 1;
+  const std::size_t first = i == 0 ? 0 : i - 1;
+  return std::min(first, a.size() - 4);
+}
+
+}  // namespace
+
+void check_sample_rate(double rate) {
+  checks::require_finite_positive("sample rate", rate, "Hz (or samples per unit of the abscissa)");
+}
+
+void check_samples_per_revolution(std::size_t samples_per_revolution) {
+  if (samples_per_revolution < 16 || samples_per_revolution > (1u << 24)) {
+    throw InputError("samples per revolution", std::to_string(samples_per_revolution),
+                     "16 to 16777216");
+  }
+}
+
+double interpolate_cubic(const std::vector<double>& abscissa, const std::vector<double>& value,
+                         double at) {
+  check_abscissa(abscissa, "abscissa");
+  check_values(value, abscissa.size(), "value");
+  if (!(at >= abscissa.front() && at <= abscissa.back())) {
+    throw InputError(
+        "interpolation point", at,
+        "inside [" + format_number(abscissa.front()) + ", " + format_number(abscissa.back()) + "]");
+  }
+  return lagrange4(abscissa, value, stencil(abscissa, at), at);
+}
+
+std::vector<double> resample_uniform(const std::vector<double>& time,
+                                     const std::vector<double>& signal, double rate,
+                                     const char* time_name, const char* signal_name) {
+  check_abscissa(time, time_name);
+  check_values(signal, time.size(), signal_name);
+  check_sample_rate(rate);
+  const double span = time.back() - time.front();
+  // Whole samples inside the span; the tiny allowance keeps the last one
+  // when span * rate is an integer spoiled by rounding.
+  const double count = std::floor(span * rate * (1.0 + 1e-12)) + 1.0;
+  if (count < 2.0 || count > 1e9) {
+    throw InputError(
+        "sample rate", rate,
+        "a rate giving 2 to 1e9 samples over the record of " + format_number(span) + " s");
+  }
+  const auto n = static_cast<std::size_t>(count);
+  std::vector<double> out(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double t = std::min(time.front() + static_cast<double>(k) / rate, time.back());
+    out[k] = lagrange4(time, signal, stencil(time, t), t);
+  }
+  return out;
+}
+
+AngleSignal resample_on_angle(const std::vector<double>& angle, const std::vector<double>& signal,
+                              std::size_t samples_per_revolution, const char* angle_name,
+                              const char* signal_name) {
+  check_abscissa(angle, angle_name);
+  check_values(signal, angle.size(), signal_name);
+  check_samples_per_revolution(samples_per_revolution);
+  const double turn = 2.0 * pi;
+  AngleSignal out;
+  out.samples_per_revolution = samples_per_revolution;
+  out.start_angle = std::ceil(angle.front() / turn) * turn;
+  const double whole = std::floor((angle.back() - out.start_angle) / turn * (1.0 + 1e-12));
+  if (!(whole >= 1.0)) {
+    throw InputError(
+        angle_name,
+        "from " + format_number(angle.front()) + " to " + format_number(angle.back()) + " rad",
+        "at least one whole revolution after the first multiple of 2 pi (" +
+            format_number(out.start_angle) + " rad)");
+  }
+  out.revolutions = static_cast<std::size_t>(whole);
+  const std::size_t n = out.revolutions * samples_per_revolution;
+  out.values.resize(n);
+  const double step = turn / static_cast<double>(samples_per_revolution);
+  for (std::size_t j = 0; j < n; ++j) {
+    const double u = std::min(out.start_angle + static_cast<double>(j) * step, angle.back());
+    out.values[j] = lagrange4(angle, signal, stencil(angle, u), u);
+  }
+  return out;
+}
+
+}  // namespace gearimpact::signals

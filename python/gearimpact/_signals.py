@@ -1,0 +1,37 @@
+"""Spectra, order analysis, time-synchronous average and condition indicators of
+sampled signals, as numpy arrays (docs/signals.md gives every definition)."""
+
+from . import _core
+
+
+def spectrum(signal, rate, window="hann"):
+    """The single-sided amplitude spectrum of a uniformly sampled real signal.
+
+    ``rate``: samples per second (or per revolution: the bins are then orders).
+    ``window``: "hann" (periodic) or "rectangular". A sinusoid of amplitude A
+    on a bin reads A with either window. Returns a dict: ``frequency``,
+    ``amplitude`` (numpy arrays, bins 0..N/2), ``resolution``, ``coherent_gain``.
+    """
+    return _core.amplitude_spectrum(signal, float(rate), str(window))
+
+
+def order_analysis(angle, signal, samples_per_revolution=512, teeth=None, shaft_orders=1,
+                   sidebands=1, window="hann"):
+    """Order spectrum and time-synchronous average of ``signal`` sampled with its
+    shaft's strictly increasing ``angle`` (rad), at any instants.
+
+    The samples are interpolated (cubic, fourth order) onto equal angle steps at
+    least as fine as the record; the TSA over the whole revolutions is reduced to
+    ``samples_per_revolution`` by an ideal low-pass. With ``teeth`` (the gear on
+    that shaft) the dict also holds the regular, residual and difference signals,
+    the mesh band and its envelope, and ``indicators`` (FM0, FM4, NA4, NB4, M6A,
+    M8A, energy ratio, sideband level, of the TSA; None where 0/0).
+    """
+    return _core.order_analysis(angle, signal, samples_per_revolution,
+                                0 if teeth is None else teeth, shaft_orders, sidebands,
+                                str(window))
+
+
+def indicators(record):
+    """RMS, peak, crest factor and kurtosis of a record (a dict; None where 0/0)."""
+    return _core.condition_indicators(record)

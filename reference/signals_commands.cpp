@@ -1,0 +1,321 @@
+// `gearimpact signals IN.csv --column NAME --out DIR`: the spectrum of one
+// column of a CSV file the program wrote, and with the shaft's angle its order
+// spectrum, time-synchronous average and condition indicators
+// (docs/signals.md).
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "gearimpact/constants.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/io/atomic_file.hpp"
+#include "gearimpact/io/signal_files.hpp"
+#include "gearimpact/signals/indicators.hpp"
+#include "gearimpact/signals/resample.hpp"
+#include "gearimpact/signals/spectrum.hpp"
+#include "gearimpact/signals/tsa.hpp"
+#include "gnuplot.hpp"
+
+namespace gearimpact::cli {
+namespace {
+
+struct SignalsOptions {
+  std::string input;
+  std::string column;
+  std::string time_column = "t_s";
+  std::string angle_column;
+  std::string sample_rate;
+  std::string window = "hann";
+  std::string samples_per_revolution = "512";
+  std::string teeth;
+  std::string shaft_orders = "1";
+  std::string sidebands = "1";
+  std::string out;
+  bool overwrite = false;
+  bool plots = true;
+};
+
+// The library's names of the settings, as the flags that set them.
+InputError as_flags(const InputError& e) {
+  static const std::vector<std::pair<std::string, std::string>> flags{
+      {"sample rate", "--sample-rate"},
+      {"samples per revolution", "--samples-per-revolution"},
+      {"teeth", "--teeth"},
+      {"sidebands", "--sidebands"},
+      {"shaft orders", "--shaft-orders"}};
+  std::vector<Problem> problems;
+  for (const Problem& p : e.problems()) {
+    std::string field = p.field;
+    for (const auto& [name, flag] : flags) {
+      if (field == name) field = flag;
+    }
+    problems.push_back(p.renamed(field, p.value));
+  }
+  return InputError(problems);
+}
+
+template <typename Check>
+void naming_flags(Check check) {
+  try {
+    check();
+  } catch (const InputError& e) {
+    throw as_flags(e);
+  }
+}
+
+std::size_t whole_number(const std::string& text, const std::string& flag) {
+  std::size_t value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || error != std::errc{} || end != text.data() + text.size()) {
+    throw InputError(flag, text, "a whole number (see gearimpact signals --help)");
+  }
+  return value;
+}
+
+double number(const std::string& text, const std::string& flag) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size()) {
+    throw InputError(flag, text, "a number (see gearimpact signals --help)");
+  }
+  return value;
+}
+
+// Ten digits: the last digits of 1 / spacing are the spacing's rounding.
+std::string ten_digits(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", value);
+  return text;
+}
+
+void add(Figure& f, const std::vector<std::string>& commands) {
+  f.setup.insert(f.setup.end(), commands.begin(), commands.end());
+}
+
+// Dashed verticals at the mesh harmonics h * mesh (h >= 1) up to `highest`,
+// each labelled; `unit` follows the multiple ("f_m", "z").
+void mark_mesh_harmonics(Figure& f, double mesh, double highest, const std::string& name) {
+  for (int h = 1; h * mesh <= highest && h <= 20; ++h) {
+    char at[64];
+    std::snprintf(at, sizeof at, "%.10g", h * mesh);
+    f.setup.push_back(std::string("set arrow from ") + at + ", graph 0 to " + at +
+                      ", graph 1 nohead dt 2 lc rgb 'grey40'");
+    const std::string label = (h == 1 ? "" : std::to_string(h) + " ") + name;
+    f.setup.push_back("set label \"" + label + "\" at " + at +
+                      ", graph 0.97 center front tc rgb 'grey20'");
+  }
+}
+
+void spectrum_figure(const std::filesystem::path& dir, const std::string& name,
+                     const std::string& title, const std::string& x_label, double top, double mesh,
+                     const std::string& mesh_name) {
+  Figure f;
+  f.name = name;
+  f.title = title;
+  f.x_label = x_label;
+  f.y_label = "amplitude (log scale)";
+  f.setup = {"set logscale y", "set format y '10^{%L}'", "set key off"};
+  add(f, tick_commands("x", nice_ticks(0.0, top)));
+  if (mesh > 0.0) mark_mesh_harmonics(f, mesh, top, mesh_name);
+  f.series = {"'" + name + ".csv' using 1:($2 > 0 ? $2 : NaN) with lines lw 1.2 lc rgb '#1f4e99'"};
+  render(dir, f);
+}
+
+// The TSA less its mean (which would otherwise set the scale), with the
+// difference and residual signals, which have none.
+void tsa_figure(const std::filesystem::path& dir, const std::vector<double>& tsa, bool with_parts) {
+  double mean = 0.0;
+  for (double v : tsa) mean += v / static_cast<double>(tsa.size());
+  char shift[40];
+  std::snprintf(shift, sizeof shift, "%.17g", mean);
+  Figure f;
+  f.name = "tsa";
+  f.title = "Time-synchronous average over one revolution";
+  f.x_label = "shaft angle (deg)";
+  f.y_label = "signal";
+  f.setup = {"set key outside right top"};
+  add(f, tick_commands("x", Ticks{0.0, 360.0, 45.0, 0}));
+  f.series = {"'tsa.csv' using ($1*180/pi):($2-(" + std::string(shift) +
+              ")) with lines lw 1.5 lc rgb '#1f4e99' title 'TSA - mean (" + ten_digits(mean) +
+              ")'"};
+  if (with_parts) {
+    f.series.push_back(
+        "'tsa.csv' using ($1*180/pi):5 with lines lw 1.2 lc rgb '#c0392b' title 'difference'");
+    f.series.push_back(
+        "'tsa.csv' using ($1*180/pi):4 with lines lw 1 dt 2 lc rgb '#27ae60' title 'residual'");
+  }
+  render(dir, f);
+}
+
+void run_signals(const SignalsOptions& o) {
+  // Every flag first, before the file is read.
+  std::optional<double> rate;
+  if (!o.sample_rate.empty()) {
+    rate = number(o.sample_rate, "--sample-rate");
+    naming_flags([&] { signals::check_sample_rate(*rate); });
+  }
+  const signals::Window window = signals::parse_window(o.window, "--window");
+  const bool has_angle = !o.angle_column.empty();
+  if (!has_angle && !o.teeth.empty()) {
+    throw InputError(std::vector<Problem>{
+        refused_problem("--teeth", o.teeth, "needs --angle-column (the angle of the gear's shaft)",
+                        "a tooth count with --angle-column")});
+  }
+  std::size_t per_revolution = 0;
+  std::optional<signals::OrderSets> sets;
+  if (has_angle) {
+    per_revolution = whole_number(o.samples_per_revolution, "--samples-per-revolution");
+    naming_flags([&] { signals::check_samples_per_revolution(per_revolution); });
+    if (!o.teeth.empty()) {
+      sets = signals::OrderSets{whole_number(o.teeth, "--teeth"),
+                                whole_number(o.shaft_orders, "--shaft-orders"),
+                                whole_number(o.sidebands, "--sidebands")};
+      naming_flags([&] { signals::check_order_sets(*sets, per_revolution); });
+    }
+  }
+  require_output_folder(o.out, o.overwrite, {o.input});
+
+  std::vector<std::string> names{o.time_column, o.column};
+  std::vector<std::string> flags{"--time-column", "--column"};
+  if (has_angle) {
+    names.push_back(o.angle_column);
+    flags.emplace_back("--angle-column");
+  }
+  const std::vector<std::vector<double>> columns = read_csv_columns(o.input, names, flags);
+  const std::vector<double>& time = columns[0];
+  const std::vector<double>& signal = columns[1];
+  if (time.size() < 4) {
+    throw InputError(o.input, std::to_string(time.size()) + " rows", "at least 4 rows");
+  }
+  const double span = time.back() - time.front();
+  // The record's own rate, 1 / its median spacing (a run's event rows add a
+  // few shorter steps). A grid coarser than the record would fold what lies
+  // above its Nyquist frequency onto the spectrum, so it is refused;
+  // without --sample-rate the grid is the record's.
+  std::vector<double> spacing(time.size() - 1);
+  for (std::size_t i = 1; i < time.size(); ++i) spacing[i - 1] = time[i] - time[i - 1];
+  std::nth_element(spacing.begin(), spacing.begin() + spacing.size() / 2, spacing.end());
+  const double record_rate = 1.0 / spacing[spacing.size() / 2];
+  if (rate && *rate < record_rate * (1.0 - 1e-9)) {
+    throw InputError("--sample-rate", o.sample_rate,
+                     "at least the record's rate " + ten_digits(record_rate) +
+                         " Hz (1 / its median spacing): a coarser grid would alias");
+  }
+  SignalsRun run;
+  run.input = o.input;
+  run.column = o.column;
+  run.time_column = o.time_column;
+  run.sample_rate_hz = rate ? *rate : record_rate;
+  run.window = std::string(signals::to_string(window));
+  std::vector<double> uniform;
+  naming_flags([&] {
+    uniform = signals::resample_uniform(time, signal, run.sample_rate_hz, o.time_column.c_str(),
+                                        o.column.c_str());
+  });
+  run.samples = uniform.size();
+  const signals::Spectrum spectrum =
+      signals::amplitude_spectrum(uniform, run.sample_rate_hz, window);
+
+  AtomicFolder folder(o.out, o.overwrite, {o.input});
+  const std::filesystem::path dir = folder.temporary();
+  write_file_atomically((dir / "spectrum.csv").string(), spectrum_csv(spectrum, "frequency_hz"));
+  signals::Indicators indicators;
+  std::vector<double> tsa_values;
+  double mesh_hz = 0.0;
+  if (has_angle) {
+    const std::vector<double>& angle = columns[2];
+    run.angle_column = o.angle_column;
+    run.samples_per_revolution = per_revolution;
+    run.sets = sets;
+    const signals::OrderAnalysis a = signals::analyse_orders(
+        angle, signal, per_revolution, window, sets, o.angle_column.c_str(), o.column.c_str());
+    run.angle_grid = a.grid;
+    run.revolutions = a.revolutions;
+    run.shaft_frequency_hz = (angle.back() - angle.front()) / (2.0 * pi * span);
+    write_file_atomically((dir / "order_spectrum.csv").string(), spectrum_csv(a.orders, "order"));
+    write_file_atomically((dir / "tsa.csv").string(),
+                          tsa_csv(a.tsa, a.parts ? &*a.parts : nullptr));
+    tsa_values = a.tsa;
+    if (sets) {
+      indicators = signals::gear_indicators(uniform, *a.parts, *sets);
+      mesh_hz = run.shaft_frequency_hz * static_cast<double>(sets->teeth);
+    } else {
+      indicators = signals::record_indicators(uniform);
+    }
+  } else {
+    indicators = signals::record_indicators(uniform);
+  }
+  const std::string json = indicators_json(run, indicators);
+  write_file_atomically((dir / "indicators.json").string(), json);
+  if (o.plots) {
+    const double nyquist = run.sample_rate_hz / 2.0;
+    spectrum_figure(
+        dir, "spectrum",
+        "Amplitude spectrum of " + literal_key(o.column, true) + " (" + run.window + " window)",
+        "frequency (Hz)", mesh_hz > 0.0 ? std::min(nyquist, 6.5 * mesh_hz) : nyquist, mesh_hz,
+        "f_m");
+    if (has_angle) {
+      const double half = static_cast<double>(run.angle_grid) / 2.0;
+      const double z = sets ? static_cast<double>(sets->teeth) : 0.0;
+      spectrum_figure(dir, "order_spectrum",
+                      "Order spectrum of " + literal_key(o.column, true) + " on " +
+                          literal_key(o.angle_column, true),
+                      "order (cycles per revolution)", sets ? std::min(half, 3.5 * z) : half, z,
+                      "z");
+      tsa_figure(dir, tsa_values, sets.has_value());
+    }
+  }
+  folder.commit();
+  std::cout << json;
+}
+
+}  // namespace
+
+void register_signals_commands(CLI::App& app) {
+  auto o = std::make_shared<SignalsOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "signals",
+      "spectrum of a column of a CSV file (a time series of simulate); with --angle-column its "
+      "order spectrum and time-synchronous average, with --teeth the condition indicators: "
+      "DIR/spectrum.csv, order_spectrum.csv, tsa.csv, indicators.json and figures "
+      "(docs/signals.md)");
+  cmd->add_option("IN", o->input, "CSV file with a header line (e.g. of gearimpact simulate)")
+      ->required();
+  cmd->add_option("--column", o->column, "the signal's column (e.g. s_m, normal_force_N)")
+      ->required();
+  cmd->add_option("--time-column", o->time_column, "the time column, s (default t_s)");
+  cmd->add_option("--sample-rate", o->sample_rate,
+                  "Hz of the uniform grid the samples are interpolated onto (cubic, fourth "
+                  "order); default: the record's mean rate, (rows - 1) / duration");
+  cmd->add_option("--window", o->window, "rectangular or hann (default hann)");
+  cmd->add_option("--angle-column", o->angle_column,
+                  "the shaft's angle, rad, strictly increasing (e.g. theta1_rad): order "
+                  "spectrum and TSA over its whole revolutions");
+  cmd->add_option("--samples-per-revolution", o->samples_per_revolution,
+                  "angle steps a revolution, 16 to 16777216, above 2 (teeth + sidebands) "
+                  "(default 512)");
+  cmd->add_option("--teeth", o->teeth,
+                  "teeth of the gear on that shaft: regular, residual and difference signals, "
+                  "FM0 ... sideband level, mesh harmonics marked");
+  cmd->add_option("--shaft-orders", o->shaft_orders,
+                  "shaft orders 0..k counted regular (default 1)");
+  cmd->add_option("--sidebands", o->sidebands,
+                  "sidebands +-1..m of each mesh harmonic counted regular (default 1)");
+  cmd->add_option("--out", o->out,
+                  "output folder: new or empty (else --overwrite), written beside it and renamed "
+                  "into place when complete")
+      ->required();
+  cmd->add_flag("--overwrite", o->overwrite, "replace a non-empty --out folder whole");
+  cmd->add_flag("!--no-plots", o->plots, "skip the gnuplot figures");
+  cmd->callback([o] { run_signals(*o); });
+}
+
+}  // namespace gearimpact::cli

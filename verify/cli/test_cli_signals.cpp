@@ -1,0 +1,152 @@
+// `gearimpact signals` end to end: a CSV of a signal periodic in an unevenly
+// advancing angle, whose order spectrum and FM0 are known in closed form, the
+// outputs it writes, and every refusal of a flag before any work.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <sstream>
+#include <string>
+
+#include "relative.hpp"
+#include "run_command.hpp"
+#include "scratch.hpp"
+
+using gearimpact::verify::relative_difference;
+using gearimpact::verify::run_command;
+using gearimpact::verify::Scratch;
+using std::numbers::pi;
+
+namespace {
+
+const std::string kCli = GEARIMPACT_CLI;
+
+// theta(t) = W t + e sin(v t) (advancing: W > e v), sampled every 20 us for
+// 1 s: W = 2 pi 5 rad/s gives 5 revolutions of 10000 rows.
+// x = 1 + cos(20 theta) + 0.25 cos(40 theta): a 20-tooth gear's mesh
+// harmonics and nothing else. f = cos(zu) + 0.25 cos(2zu) has extremes
+// 1.25 at zu = 0 and -0.75 at zu = pi, so FM0 = 2 / (1 + 0.25) = 1.6;
+// with 640 samples a revolution (a multiple of 2 z = 40) both are samples.
+void write_signal(const std::filesystem::path& path) {
+  std::ofstream out(path);
+  out << "t_s,theta_rad,x\n";
+  const double w = 2.0 * pi * 5.0;
+  for (int i = 0; i <= 50000; ++i) {
+    const double t = 2e-5 * i;
+    const double theta = w * t + 0.3 * std::sin(2.0 * pi * 3.0 * t);
+    char line[160];
+    std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g\n", t, theta,
+                  1.0 + std::cos(20.0 * theta) + 0.25 * std::cos(40.0 * theta));
+    out << line;
+  }
+}
+
+std::string read(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The amplitude of the row whose order is `order` in order_spectrum.csv.
+double amplitude_at(const std::string& csv, double order) {
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  double best = -1.0;
+  double best_distance = 1e300;
+  while (std::getline(in, line)) {
+    const auto comma = line.find(',');
+    const double o = std::stod(line.substr(0, comma));
+    if (std::abs(o - order) < best_distance) {
+      best_distance = std::abs(o - order);
+      best = std::stod(line.substr(comma + 1));
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+TEST_CASE("signals: order spectrum, TSA and FM0 of mesh harmonics in an uneven angle") {
+  Scratch scratch("signals");
+  const auto csv = scratch.dir / "signal.csv";
+  write_signal(csv);
+  const auto out = scratch.dir / "out";
+  const auto r = run_command(kCli + " signals " + csv.string() +
+                             " --column x --angle-column theta_rad --teeth 20"
+                             " --samples-per-revolution 640 --no-plots --out " +
+                             out.string());
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  for (const char* name : {"spectrum.csv", "order_spectrum.csv", "tsa.csv", "indicators.json"}) {
+    CHECK(std::filesystem::exists(out / name));
+  }
+  // The error left is the cubic interpolation's on a grid of about 2000
+  // rows a radian: 4 h^4 max|x''''| / 24 with h = 5e-4 rad and
+  // max|x''''| = 20^4 + 0.25 40^4 = 8e5, below 1e-7; the amplitudes and
+  // FM0 (a ratio of sums of a few such values) to 1e-6 relative.
+  const std::string orders = read(out / "order_spectrum.csv");
+  CHECK(relative_difference(amplitude_at(orders, 20.0), 1.0) < 1e-6);
+  CHECK(relative_difference(amplitude_at(orders, 40.0), 0.25) < 1e-6);
+  CHECK(amplitude_at(orders, 7.0) < 1e-6);
+  const auto json = nlohmann::json::parse(read(out / "indicators.json"));
+  CHECK(json["revolutions"] == 5);
+  CHECK(json["samples_per_revolution"] == 640);
+  CHECK(relative_difference(json["gear"]["fm0"].get<double>(), 1.6) < 1e-6);
+  CHECK(relative_difference(json["shaft_frequency_hz"].get<double>(),
+                            (2.0 * pi * 5.0 + 0.3 * std::sin(2.0 * pi * 3.0)) / (2.0 * pi)) <
+        1e-12);
+  // The TSA file: one revolution of 640 angles, its columns named.
+  const std::string tsa = read(out / "tsa.csv");
+  CHECK(tsa.rfind("angle_rad,tsa,regular,residual,difference,mesh_band,mesh_band_envelope\n", 0) ==
+        0);
+  CHECK(std::count(tsa.begin(), tsa.end(), '\n') == 641);
+}
+
+TEST_CASE("signals refuses a bad flag before any work, naming it and its range") {
+  Scratch scratch("signals-flags");
+  const auto csv = scratch.dir / "signal.csv";
+  write_signal(csv);
+  const std::string head = kCli + " signals " + csv.string() + " ";
+  const std::string out = " --out " + (scratch.dir / "out").string();
+  const struct {
+    std::string flags;
+    std::string message;
+  } cases[] = {
+      {"--column y", "--column = y: no such column in"},
+      {"--column x --time-column s", "--time-column = s: no such column in"},
+      {"--column x --window hamming",
+       "--window = hamming is outside the allowed range: rectangular or hann"},
+      {"--column x --sample-rate -5",
+       "--sample-rate = -5 is outside the allowed range: a finite value > 0"},
+      {"--column x --sample-rate 1000",
+       "--sample-rate = 1000 is outside the allowed range: at least the "
+       "record's rate 50000 Hz"},
+      {"--column x --teeth 20", "--teeth = 20: needs --angle-column"},
+      {"--column x --angle-column theta_rad --teeth 300",
+       "--teeth = 300 is outside the allowed range: 3 to 254"},
+      {"--column x --angle-column theta_rad --teeth 20 --sidebands 10",
+       "--sidebands = 10 is outside the allowed range: 0 to 9"},
+      {"--column x --angle-column theta_rad --teeth 20 --shaft-orders 19",
+       "--shaft-orders = 19 is outside the allowed range: 0 to 18"},
+      {"--column x --angle-column theta_rad --samples-per-revolution 8",
+       "--samples-per-revolution = 8 is outside the allowed range: 16 to 16777216"},
+      {"--column x --angle-column theta_rad --teeth two",
+       "--teeth = two is outside the allowed range: a whole number"},
+      {"--column x --angle-column x", "x (sample 2)"},  // not increasing
+  };
+  for (const auto& c : cases) {
+    CAPTURE(c.flags);
+    const auto r = run_command(head + c.flags + out);
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find(c.message) != std::string::npos);
+    CHECK(r.err.find('\n') == r.err.size() - 1);  // one line
+    CHECK_FALSE(std::filesystem::exists(scratch.dir / "out"));
+  }
+}

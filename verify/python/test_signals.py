@@ -1,0 +1,73 @@
+"""The signal layer from Python: numpy arrays in and out, the same closed forms
+as verify/signals/test_signals.cpp, and the library's refusals naming keywords."""
+
+import math
+
+import numpy
+import pytest
+
+import gearimpact
+
+
+def test_spectrum_reads_a_sine_on_a_bin():
+    # 1024 samples at 2048 Hz: bin k at 2k Hz; 200 Hz is bin 100. The mean reads itself.
+    t = numpy.arange(1024) / 2048.0
+    x = 0.7 + 2.5 * numpy.cos(2 * math.pi * 200.0 * t + 0.3)
+    for window in ("hann", "rectangular"):
+        s = gearimpact.spectrum(x, 2048.0, window)
+        assert isinstance(s["amplitude"], numpy.ndarray)
+        assert s["frequency"][100] == 200.0
+        assert abs(s["amplitude"][100] - 2.5) / 2.5 < 1e-11
+        assert abs(s["amplitude"][0] - 0.7) / 0.7 < 1e-11
+
+
+def test_order_analysis_of_mesh_harmonics_in_an_uneven_angle():
+    # x = 1 + cos(20 theta) + 0.25 cos(40 theta), theta advancing unevenly:
+    # FM0 = (2.25 - 0.25) / (1 + 0.25) = 1.6 (640 samples a revolution hit
+    # both extremes); orders 20 and 40 read 1 and 0.25; the interpolation's
+    # error is below 1e-7 (docs/signals.md), 1e-6 leaves a margin.
+    t = numpy.arange(50001) * 2e-5
+    theta = 2 * math.pi * 5.0 * t + 0.3 * numpy.sin(2 * math.pi * 3.0 * t)
+    x = 1.0 + numpy.cos(20 * theta) + 0.25 * numpy.cos(40 * theta)
+    r = gearimpact.order_analysis(theta, x, samples_per_revolution=640, teeth=20)
+    assert r["revolutions"] == 5
+    assert r["grid"] >= 640
+    per_order = r["revolutions"]  # bins per order
+    assert abs(r["amplitude"][20 * per_order] - 1.0) < 1e-6
+    assert abs(r["amplitude"][40 * per_order] - 0.25) / 0.25 < 1e-6
+    assert r["tsa"].shape == (640,)
+    assert abs(r["indicators"]["fm0"] - 1.6) / 1.6 < 1e-6
+    # Nothing but interpolation error outside the regular orders.
+    assert numpy.max(numpy.abs(r["difference"])) < 1e-6
+
+
+def test_indicators_of_a_sine():
+    x = 3.0 * numpy.cos(5 * 2 * math.pi * numpy.arange(1024) / 1024)
+    i = gearimpact.indicators(x)
+    assert abs(i["kurtosis"] - 1.5) / 1.5 < 1e-11
+    assert abs(i["crest_factor"] - math.sqrt(2)) / math.sqrt(2) < 1e-11
+    assert gearimpact.indicators(numpy.full(8, 2.0))["kurtosis"] is None
+
+
+@pytest.mark.parametrize(
+    "call, field",
+    [
+        (lambda: gearimpact.spectrum([1.0, 2.0, 3.0], 0.0), "rate"),
+        (lambda: gearimpact.spectrum([1.0, 2.0, 3.0], 1.0, "hamming"), "window"),
+        (lambda: gearimpact.spectrum([[1.0, 2.0]], 1.0), "signal"),
+        (lambda: gearimpact.order_analysis(numpy.linspace(0, 20, 100), numpy.zeros(100),
+                                           samples_per_revolution=8), "samples_per_revolution"),
+        (lambda: gearimpact.order_analysis(numpy.linspace(0, 20, 100), numpy.zeros(100),
+                                           teeth=300), "teeth"),
+        (lambda: gearimpact.order_analysis(numpy.linspace(0, 20, 100), numpy.zeros(100),
+                                           teeth=20, shaft_orders=19), "shaft_orders"),
+        (lambda: gearimpact.order_analysis(numpy.linspace(0, 20, 100), numpy.zeros(100),
+                                           teeth=-3), "teeth"),
+        (lambda: gearimpact.order_analysis(numpy.linspace(20, 0, 100), numpy.zeros(100)),
+         "angle (sample 2)"),
+    ],
+)
+def test_bad_arguments_are_named(call, field):
+    with pytest.raises(gearimpact.CaseError) as error:
+        call()
+    assert error.value.field == field
