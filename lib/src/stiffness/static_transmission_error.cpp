@@ -70,7 +70,9 @@ double solve_deflection_bracketed(const std::vector<PairSpring>& springs, double
       std::min_element(springs.begin(), springs.end(),
                        [](const PairSpring& a, const PairSpring& b) { return a.gap_m < b.gap_m; });
   const double low = least->gap_m;
-  const double high = low + force_n / least->stiffness_n_per_m;
+  // Twice the deflection at which the pair of the least gap alone carries F,
+  // so that rounding cannot leave the residual below 0 there.
+  const double high = low + 2.0 * force_n / least->stiffness_n_per_m;
   const double f_high = residual(high);
   if (f_high == 0.0) return high;
   const auto close_enough = [relative_tolerance](double a, double b) {

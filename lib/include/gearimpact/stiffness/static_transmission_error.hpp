@@ -40,8 +40,9 @@ struct PairSpring {
 // Throws InputError for an empty list, force <= 0 or a stiffness <= 0.
 double solve_deflection(const std::vector<PairSpring>& springs, double force_n);
 
-// The same by Boost.Math's TOMS 748 on [min e, min e + F / k_min] (the
-// residual is -F at the lower end, >= 0 at the upper), to a bracket of
+// The same by Boost.Math's TOMS 748 on [e_0, e_0 + 2 F / k_0], pair 0 the
+// one of the least gap (the residual is -F at the lower end, >= F at the
+// upper), to a bracket of
 // `relative_tolerance` of delta's size.
 double solve_deflection_bracketed(const std::vector<PairSpring>& springs, double force_n,
                                   double relative_tolerance = 1e-15);
