@@ -148,6 +148,17 @@ std::vector<std::string> tick_commands(const std::string& axis, const Ticks& tic
   return commands;
 }
 
+std::string literal_key(const std::string& key, bool double_quoted) {
+  std::string out;
+  for (const char c : key) {
+    if (c == '_')
+      out += double_quoted ? "\\\\_" : "\\_";
+    else
+      out += c;
+  }
+  return out;
+}
+
 void render(const std::filesystem::path& dir, const Figure& figure) {
   const std::filesystem::path script = dir / (figure.name + ".gp");
   write_file_atomically(script.string(), script_text(figure));

@@ -39,6 +39,11 @@ Ticks nice_ticks(double low, double high, int count = 8, double margin = 0.0);
 std::vector<std::string> tick_commands(const std::string& axis, const Ticks& ticks,
                                        bool with_range = true);
 
+// Text (a key, a case's name) as literal text in gnuplot's enhanced mode, where "_" makes a
+// subscript: "\_" in a single-quoted string, "\\_" in a double-quoted one (which reads its own
+// backslashes first).
+std::string literal_key(const std::string& key, bool double_quoted);
+
 // Writes DIR/NAME.gp and runs gnuplot to make DIR/NAME.png and DIR/NAME.svg.
 // Throws std::runtime_error naming the script if gnuplot is missing or fails.
 void render(const std::filesystem::path& dir, const Figure& figure);

@@ -224,19 +224,6 @@ struct ShownUnit {
   std::string symbol;  // empty for a key without units
 };
 
-// A key as literal text in gnuplot's enhanced mode, where "_" makes a subscript: "\_" in a
-// single-quoted string, "\\_" in a double-quoted one (which reads its own backslashes first).
-std::string literal_key(const std::string& key, bool double_quoted) {
-  std::string out;
-  for (const char c : key) {
-    if (c == '_')
-      out += double_quoted ? "\\\\_" : "\\_";
-    else
-      out += c;
-  }
-  return out;
-}
-
 ShownUnit shown_unit(const std::string& key, const std::string& unit) {
   const Field& field = sweep_field(key, key);
   std::string name = literal_key(key, true);

@@ -145,10 +145,10 @@ void refuse_gaps(const SimulationCase& c) {
                           ? std::all_of(field.get_list(c).begin(), field.get_list(c).end(),
                                         [](double v) { return v == 0.0; })
                           : field.get(c) == 0.0;
-    if (!zero) keys += (keys.empty() ? "" : ", ") + field.name();
+    if (!zero) keys += (keys.empty() ? "" : ", ") + std::string(field.key);
   }
   throw InputError(std::vector<Problem>{refused_problem(
-      "modifications", keys,
+      "[modifications]", keys,
       "the dynamics (simulate, sweep, sweep-friction) do not use the gaps yet",
       "no relief and no tooth error: set them to 0, or compute their static transmission error "
       "with `gearimpact ste`")});

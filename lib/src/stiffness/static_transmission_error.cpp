@@ -84,10 +84,9 @@ double solve_deflection_bracketed(const std::vector<PairSpring>& springs, double
   return 0.5 * (bracket.first + bracket.second);
 }
 
-StaticTransmissionError static_transmission_error(const GearPair& pair, const Modifications& m,
-                                                  double torque1_n_m,
-                                                  const PairStiffnessFunction& stiffness,
-                                                  StaticTransmissionErrorOptions options) {
+void validate_static_transmission_error(const GearPair& pair, const Modifications& m,
+                                        double torque1_n_m,
+                                        StaticTransmissionErrorOptions options) {
   if (!(torque1_n_m > 0.0) || !std::isfinite(torque1_n_m)) {
     throw InputError("torque", format_number(torque1_n_m) + " N*m",
                      "a finite pinion torque > 0 N*m: it loads the drive flanks (line N1)");
@@ -98,18 +97,34 @@ StaticTransmissionError static_transmission_error(const GearPair& pair, const Mo
         "points", std::to_string(options.points_per_mesh_period),
         "an integer in [2, " + std::to_string(kMostPointsPerMeshPeriod) + "] per mesh period");
   }
+  if (options.mesh_periods < 0) {
+    throw InputError("mesh_periods", std::to_string(options.mesh_periods),
+                     "0 (the true period of the teeth) or a number of mesh periods >= 1");
+  }
+  const long long periods = options.mesh_periods > 0
+                                ? options.mesh_periods
+                                : true_period_mesh_periods(pair, distinct_teeth(m));
+  if (periods > kMostAngles / options.points_per_mesh_period) {
+    throw InputError("points", std::to_string(options.points_per_mesh_period),
+                     "at most " + std::to_string(kMostAngles / periods) +
+                         " per mesh period: the true period of the teeth is " +
+                         std::to_string(periods) + " mesh periods and at most " +
+                         std::to_string(kMostAngles) + " angles are computed");
+  }
+}
+
+StaticTransmissionError static_transmission_error(const GearPair& pair, const Modifications& m,
+                                                  double torque1_n_m,
+                                                  const PairStiffnessFunction& stiffness,
+                                                  StaticTransmissionErrorOptions options) {
+  validate_static_transmission_error(pair, m, torque1_n_m, options);
   StaticTransmissionError result;
   result.torque1_n_m = torque1_n_m;
   result.force_n = torque1_n_m / base_radius(pair, Gear::one);
-  result.mesh_periods = true_period_mesh_periods(pair, distinct_teeth(m));
+  result.mesh_periods = options.mesh_periods > 0
+                            ? options.mesh_periods
+                            : true_period_mesh_periods(pair, distinct_teeth(m));
   const long long angles = result.mesh_periods * options.points_per_mesh_period;
-  if (result.mesh_periods > kMostAngles / options.points_per_mesh_period) {
-    throw InputError("points", std::to_string(options.points_per_mesh_period),
-                     "at most " + std::to_string(kMostAngles / result.mesh_periods) +
-                         " per mesh period: the true period of the teeth is " +
-                         std::to_string(result.mesh_periods) + " mesh periods and at most " +
-                         std::to_string(kMostAngles) + " angles are computed");
-  }
   const double mesh_period_rad = 2.0 * pi / teeth(pair, Gear::one);
   result.period_rad = static_cast<double>(result.mesh_periods) * mesh_period_rad;
   const MeshLayout layout(pair, CoastPhase::half_base_pitch);

@@ -49,6 +49,9 @@ double solve_deflection_bracketed(const std::vector<PairSpring>& springs, double
 
 struct StaticTransmissionErrorOptions {
   int points_per_mesh_period = 200;  // 2 to 100000
+  // The mesh periods computed: 0 the true period of the teeth; more (a
+  // multiple of it) to set an unmodified pair beside a modified one.
+  long long mesh_periods = 0;
 };
 
 // One pinion angle.
@@ -77,10 +80,18 @@ struct StaticTransmissionError {
   double ste_peak_to_peak_m = 0.0;  // max - min over the points
 };
 
+// Throws InputError naming "torque" for T1 = 0, negative or not finite, and
+// "points" outside [2, 100000] or beyond 1e7 angles over the period, and
+// "mesh_periods" below 0: the
+// checks of static_transmission_error, for a caller to make before building
+// its stiffness table.
+void validate_static_transmission_error(const GearPair& pair, const Modifications& m,
+                                        double torque1_n_m, StaticTransmissionErrorOptions options);
+
 // The STE of a validated pair with its modifications under the pinion torque
 // T1 (the load |T1| / Rb1 on the drive flanks), over the true period of the
-// teeth (true_period_mesh_periods with distinct_teeth(m)). Throws InputError
-// naming "torque" for T1 = 0 or not finite and "points" out of range.
+// teeth (true_period_mesh_periods with distinct_teeth(m)). Throws as
+// validate_static_transmission_error.
 StaticTransmissionError static_transmission_error(const GearPair& pair, const Modifications& m,
                                                   double torque1_n_m,
                                                   const PairStiffnessFunction& stiffness,
