@@ -141,10 +141,13 @@ void refuse_gaps(const SimulationCase& c) {
     if (field.kind == FieldKind::quantity && field.key.find("relief_") != std::string_view::npos) {
       continue;
     }
-    const bool zero = is_list(field.kind)
-                          ? std::all_of(field.get_list(c).begin(), field.get_list(c).end(),
-                                        [](double v) { return v == 0.0; })
-                          : field.get(c) == 0.0;
+    bool zero = true;
+    if (is_list(field.kind)) {
+      const std::vector<double> values = field.get_list(c);
+      zero = std::all_of(values.begin(), values.end(), [](double v) { return v == 0.0; });
+    } else {
+      zero = field.get(c) == 0.0;
+    }
     if (!zero) keys += (keys.empty() ? "" : ", ") + std::string(field.key);
   }
   throw InputError(std::vector<Problem>{refused_problem(
