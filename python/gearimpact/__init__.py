@@ -63,7 +63,15 @@ from ._results import (
     stiffness,
     sweep_friction,
 )
-from ._program import iso6336, mesh_stiffness, paper_data_dir, program_path, reproduce, sweep
+from ._program import (
+    iso6336,
+    mesh_stiffness,
+    paper_data_dir,
+    program_path,
+    reproduce,
+    ste,
+    sweep,
+)
 
 __all__ = [
     "Case",
@@ -96,6 +104,7 @@ __all__ = [
     "read_case",
     "reproduce",
     "simulate",
+    "ste",
     "stiffness",
     "sweep",
     "sweep_friction",
