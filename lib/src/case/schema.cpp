@@ -363,8 +363,9 @@ void add_modifications(std::vector<Field>& rows, int gear, GearSlot of) {
        "the shape of the root relief of gear " + n + ": C_f u^p, u from 0 at d_Cf to 1 at d_SAP",
        [of](auto& c) -> auto& { return of(c).root.shape; })
       .written_at_default = false;
-  // One value per tooth: no more than the most teeth a gear may have.
-  const auto most = static_cast<std::size_t>(kMostTeeth);
+  // One value per tooth. A case file's lists together bound the TOML parser's work, so the
+  // lists of one tooth each stop at 1000 teeth, more than a gear measured tooth by tooth has.
+  constexpr std::size_t most = 1000;
   r.quantity_list(
        one ? "pitch_deviations1" : "pitch_deviations2", Dimension::length, "um", deviation, most,
        false,
