@@ -19,6 +19,8 @@ void register_simulate_commands(CLI::App& app);
 void register_case_commands(CLI::App& app);
 // `schema`: every case-file key with its unit, default and range, as Markdown.
 void register_schema_commands(CLI::App& app);
+// `ste CASE --torque T --out DIR`: the loaded static transmission error (ste_commands.cpp).
+void register_ste_commands(CLI::App& app);
 // `sweep` (the steady state along a parameter) and `merge` (its shards).
 void register_sweep_commands(CLI::App& app);
 // `signals IN.csv --column NAME --out DIR`: spectrum, order spectrum, TSA, indicators.

@@ -39,9 +39,9 @@ Ticks nice_ticks(double low, double high, int count = 8, double margin = 0.0);
 std::vector<std::string> tick_commands(const std::string& axis, const Ticks& ticks,
                                        bool with_range = true);
 
-// A key or column name as literal text in gnuplot's enhanced mode, where "_" makes a
-// subscript: "\_" in a single-quoted string, "\\_" in a double-quoted one (which reads its
-// own backslashes first).
+// Text (a key, a case's name) as literal text in gnuplot's enhanced mode, where "_" makes a
+// subscript: "\_" in a single-quoted string, "\\_" in a double-quoted one (which reads its own
+// backslashes first).
 std::string literal_key(const std::string& key, bool double_quoted);
 
 // Writes DIR/NAME.gp and runs gnuplot to make DIR/NAME.png and DIR/NAME.svg.

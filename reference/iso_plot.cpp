@@ -27,7 +27,7 @@ Figure dynamic_factor_vs_iso_n(const std::string& name, const IsoScale& scale,
                                const std::string& data, int direction_column, int n_column,
                                int df_column, const std::string& band, bool quasi_static) {
   const std::string to_iso_n = format_data_number(scale.resonance_speed_rad_per_s /
-                                             scale.resonance_speed_iso_stiffness_rad_per_s);
+                                                  scale.resonance_speed_iso_stiffness_rad_per_s);
   char load[96];
   std::snprintf(load, sizeof load, "{/Symbol e}_{/Symbol a} %.3g, F_t/b %.3g N/mm",
                 scale.contact_ratio, scale.line_load_n_per_m * 1e-3);

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   gearimpact::cli::register_schema_commands(app);
   gearimpact::cli::register_sweep_commands(app);
   gearimpact::cli::register_signals_commands(app);
+  gearimpact::cli::register_ste_commands(app);
   int status = 0;
   try {
     app.parse(argc, argv);

@@ -12,6 +12,7 @@
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/stiffness/fillet_foundation.hpp"
 #include "gearimpact/stiffness/model.hpp"
+#include "gearimpact/stiffness/static_transmission_error.hpp"
 
 namespace gearimpact::cli {
 
@@ -29,6 +30,18 @@ struct MeshStiffnessTexts {
 };
 MeshStiffnessTexts mesh_stiffness_texts(const GearPair& pair, const StiffnessModel& model,
                                         int samples);
+
+// `gearimpact ste`: the static transmission error of the case's pair with its modifications
+// (ste.csv), of the same pair unmodified over the same angles (ste_unmodified.csv) and the
+// summary.json of both, at pinion torque T1 > 0 and `points_per_mesh_period` angles per mesh
+// period. Throws InputError naming "torque" or "points" before the stiffness table is built.
+struct SteTexts {
+  StaticTransmissionError modified;
+  std::string csv;
+  std::string unmodified_csv;
+  std::string summary_json;
+};
+SteTexts ste_texts(const SimulationCase& c, double torque1_n_m, int points_per_mesh_period);
 
 // `gearimpact iso6336`: the JSON of ISO 6336-1 method B for the pair at this helix angle, with
 // the low-load correction at a specific load F_t K_A / b (N/m) when one is given.

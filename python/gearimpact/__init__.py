@@ -64,7 +64,15 @@ from ._results import (
     sweep_friction,
 )
 from ._signals import indicators, order_analysis, spectrum
-from ._program import iso6336, mesh_stiffness, paper_data_dir, program_path, reproduce, sweep
+from ._program import (
+    iso6336,
+    mesh_stiffness,
+    paper_data_dir,
+    program_path,
+    reproduce,
+    ste,
+    sweep,
+)
 
 __all__ = [
     "Case",
@@ -100,6 +108,7 @@ __all__ = [
     "reproduce",
     "simulate",
     "spectrum",
+    "ste",
     "stiffness",
     "sweep",
     "sweep_friction",

@@ -64,9 +64,9 @@ def reproduce(out_dir, paper_data=None):
 # when it holds only true/false, float64 when it holds only numbers (NaN for
 # an empty field), str otherwise, so that a column the program adds arrives
 # with its type.
-_INTEGER_COLUMNS = frozenset({"line", "index", "period", "pairs"})
+_INTEGER_COLUMNS = frozenset({"line", "index", "period", "pairs", "loaded_pairs"})
 _BOOL_COLUMNS = frozenset({"converged"})
-_TEXT_COLUMNS = frozenset({"direction", "regime"})
+_TEXT_COLUMNS = frozenset({"direction", "regime", "teeth"})
 
 
 def _column(name, values):
@@ -127,6 +127,29 @@ def mesh_stiffness(case=None, model=None, samples=200):
     if summary["extrapolated"]:
         _warnings.warn(f"{chosen.name if chosen else 'the paper pair'}: {summary['warning']}")
     return _table(table), summary
+
+
+def ste(case, torque, points=200):
+    """The loaded static transmission error of a case's pair with its [modifications], as
+    ``gearimpact ste`` (docs/faults.md): `case` a Case, `torque` the pinion's torque T1 > 0 as
+    case files write it ("100 N*m") or a finite number of N m, `points` pinion angles per mesh
+    period (an int, 2 to 100000). Returns a dict: "ste" and "unmodified" (dicts of numpy arrays
+    with the columns of ste.csv and ste_unmodified.csv: theta1_rad, theta1_deg, ste_m, kte_m,
+    effective_stiffness_n_per_m, pairs and loaded_pairs int64, share_1..share_4 and
+    gap_1..gap_4 float64 with NaN beyond the pairs in contact, teeth str) and "summary"
+    (summary.json)."""
+    if not isinstance(case, _core.Case):
+        raise _arguments.case_error(
+            f"case={case!r}: a Case (gearimpact.case, paper_case, read_case), "
+            f"not {type(case).__name__}",
+            "case",
+        )
+    if isinstance(torque, numbers.Real) and not _arguments.is_bool(torque):
+        torque = repr(_arguments.real("torque", torque)) + " N*m"
+    modified, unmodified, summary = _core.ste(case, _arguments.text("torque", torque),
+                                              _arguments.integer("points", points))
+    return {"ste": _table(modified), "unmodified": _table(unmodified),
+            "summary": json.loads(summary)}
 
 
 def sweep(case, vary, start, stop, points, direction="both", options=()):

@@ -420,6 +420,24 @@ py::tuple mesh_stiffness_texts_of(const std::optional<SimulationCase>& c,
   return py::make_tuple(texts.csv, texts.summary_json);
 }
 
+// `gearimpact ste`: (ste.csv, ste_unmodified.csv, summary.json) as the program writes them;
+// `torque` a quantity with its unit ("100 N*m").
+py::tuple ste_texts_of(const SimulationCase& c, const std::string& torque, long long points) {
+  const double t = parse_quantity(torque, Dimension::torque, "torque");
+  if (points < 2 || points > 100000) {
+    throw InputError("points", std::to_string(points), "an integer in [2, 100000] per mesh period");
+  }
+  validate(c.gears);
+  validate(c.model.stiffness);
+  validate_modifications(c.gears, c.modifications);
+  cli::SteTexts texts;
+  {
+    py::gil_scoped_release release;
+    texts = cli::ste_texts(c, t, static_cast<int>(points));
+  }
+  return py::make_tuple(texts.csv, texts.unmodified_csv, texts.summary_json);
+}
+
 // `gearimpact sweep` of a case with the command's options: (sweep.csv, poincare.csv,
 // summary.json) as the program writes them.
 py::tuple sweep_texts(const SimulationCase& c, const std::vector<std::string>& options) {
@@ -757,6 +775,7 @@ void define_module(py::module_& m) {
   m.def("mesh_stiffness", &mesh_stiffness_texts_of, py::arg("case"), py::arg("model"),
         py::arg("samples"));
   m.def("sweep", &sweep_texts, py::arg("case"), py::arg("options"));
+  m.def("ste", &ste_texts_of, py::arg("case"), py::arg("torque"), py::arg("points"));
   m.def(
       "reproduce",
       [](const std::string& out, const std::string& paper_data) {

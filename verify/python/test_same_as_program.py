@@ -147,3 +147,34 @@ def as_written(value):
     if isinstance(value, bool):
         return "true" if value else "false"
     return str(value)
+
+
+def test_ste_equals_the_program(cli, tmp_path):
+    # Case 2 with tip relief on the pinion and one pinion tooth out of position.
+    case_file = tmp_path / "relieved.toml"
+    pitch = ", ".join('"5 um"' if i == 0 else '"0 um"' for i in range(20))
+    case_file.write_text((gearimpact.paper_data_dir() / "case2.toml").read_text()
+                         + '\n[modifications]\ntip_relief1 = "10 um"\n'
+                         + 'tip_relief_start1 = "43.2 mm"\n'
+                         + f"pitch_deviations1 = [{pitch}]\n")
+    case = gearimpact.read_case(case_file)
+    ours = gearimpact.ste(case, torque="100 N*m", points=20)
+    out = tmp_path / "out"
+    cli("ste", case_file, "--torque", "100 N*m", "--points", "20", "--out", out, "--no-plots")
+    for key, name in (("ste", "ste.csv"), ("unmodified", "ste_unmodified.csv")):
+        lines = (out / name).read_text().strip().splitlines()
+        header = lines[0].split(",")
+        assert list(ours[key]) == header
+        for j, column_name in enumerate(header):
+            written = [line.split(",")[j] for line in lines[1:]]
+            column = ours[key][column_name]
+            if column.dtype == np.float64:
+                assert_bitwise_equal(column, [float(v) if v else np.nan for v in written],
+                                     f"ste {name} {column_name}")
+            else:
+                assert [as_written(v) for v in column.tolist()] == written, column_name
+    assert ours["summary"] == json.loads((out / "summary.json").read_text())
+    # A number is N m.
+    assert gearimpact.ste(case, torque=100.0, points=20)["summary"] == ours["summary"]
+    with pytest.raises(gearimpact.CaseError, match="torque"):
+        gearimpact.ste(case, torque="0 N*m", points=20)

@@ -5,6 +5,7 @@
 #include <system_error>
 
 #include "gearimpact/case/schema.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/error.hpp"
 
@@ -104,6 +105,7 @@ std::shared_future<SimulationResult> RunPool::submit(const SimulationCase& c, bo
     // checks that need the mesh stiffness use the table, without a quadrature
     // of their own.
     validate_fields(c);
+    refuse_gaps(c);
     table = table_for(c);
     validate_implied(c, *table);
   } catch (...) {

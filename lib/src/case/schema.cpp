@@ -15,6 +15,7 @@
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/named_values.hpp"
 #include "gearimpact/numerics/quadrature.hpp"
 #include "gearimpact/stiffness/model.hpp"
@@ -311,6 +312,85 @@ void add_torque(std::vector<Field>& rows, std::string_view section, int gear, To
          [torque](auto& c) -> auto& { return torque(c).drag_speed_scale_rad_per_s; })
         .only_when = FieldCondition{"kind", {"drag"}};
   }
+}
+
+// The keys of one gear's modifications in [modifications] (their names end in
+// the gear's number). Every row is left out of a case file at its default, so
+// that files written before these keys existed keep their bytes.
+template <typename GearSlot>
+void add_modifications(std::vector<Field>& rows, int gear, GearSlot of) {
+  Rows r(rows, "modifications");
+  const bool one = gear == 1;
+  const std::string n = one ? "1" : "2";
+  // A relief or an error is micrometres; a millimetre is a typing slip.
+  const Range amount{closed(0.0), closed(1e-3), "at most 1 mm: reliefs are micrometres"};
+  const Range deviation{closed(-1e-3), closed(1e-3), "within 1 mm: tooth errors are micrometres"};
+  const Range diameter{closed(0.0), {}, {}};
+  r.quantity(
+       one ? "tip_relief1" : "tip_relief2", Dimension::length, "um", amount, false,
+       "C_a, the tip relief of gear " + n +
+           ": material removed at the tip of both flanks of every tooth, along the line of "
+           "action; 0: none",
+       [of](auto& c) -> auto& { return of(c).tip.amount_m; })
+      .written_at_default = false;
+  r.quantity(
+       one ? "tip_relief_start1" : "tip_relief_start2", Dimension::length, "mm", diameter, false,
+       "d_Ca, the diameter where the tip relief of gear " + n + " starts; with tip_relief" + n +
+           " > 0 it lies in the active profile, [d_SAP, d_a) (check-case names the limits)",
+       [of](auto& c) -> auto& { return of(c).tip.diameter_m; })
+      .written_at_default = false;
+  r.choice(
+       one ? "tip_relief_shape1" : "tip_relief_shape2", choices_of(kReliefShapes), false,
+       "the shape of the tip relief of gear " + n +
+           " over its roll length: C_a u^p, u from 0 at d_Ca to 1 at the tip",
+       [of](auto& c) -> auto& { return of(c).tip.shape; })
+      .written_at_default = false;
+  r.quantity(
+       one ? "root_relief1" : "root_relief2", Dimension::length, "um", amount, false,
+       "C_f, the root relief of gear " + n +
+           ": material removed at the start of its active profile (where the mating tip "
+           "meets it), both flanks; 0: none",
+       [of](auto& c) -> auto& { return of(c).root.amount_m; })
+      .written_at_default = false;
+  r.quantity(
+       one ? "root_relief_end1" : "root_relief_end2", Dimension::length, "mm", diameter, false,
+       "d_Cf, the diameter where the root relief of gear " + n + " ends; with root_relief" + n +
+           " > 0 it lies in (d_SAP, d_a], at most d_Ca",
+       [of](auto& c) -> auto& { return of(c).root.diameter_m; })
+      .written_at_default = false;
+  r.choice(
+       one ? "root_relief_shape1" : "root_relief_shape2", choices_of(kReliefShapes), false,
+       "the shape of the root relief of gear " + n + ": C_f u^p, u from 0 at d_Cf to 1 at d_SAP",
+       [of](auto& c) -> auto& { return of(c).root.shape; })
+      .written_at_default = false;
+  // One value per tooth. A case file's lists together bound the TOML parser's work, so the
+  // lists of one tooth each stop at 1000 teeth, more than a gear measured tooth by tooth has.
+  constexpr std::size_t most = 1000;
+  r.quantity_list(
+       one ? "pitch_deviations1" : "pitch_deviations2", Dimension::length, "um", deviation, most,
+       false,
+       "f_p of each tooth of gear " + n +
+           ", tooth 0 first (none, or one per tooth): a positive f makes the tooth "
+           "meet later on the drive flanks (gap +f) and earlier on the coast flanks "
+           "(gap -f)",
+       [of](auto& c) -> auto& { return of(c).pitch_m; })
+      .written_at_default = false;
+  r.quantity_list(
+       one ? "thickness_deviations1" : "thickness_deviations2", Dimension::length, "um", deviation,
+       most, false,
+       "material removed from each flank of each tooth of gear " + n +
+           " (the tooth 2 f thinner along the base tangent; negative: thicker), "
+           "tooth 0 first",
+       [of](auto& c) -> auto& { return of(c).thickness_m; })
+      .written_at_default = false;
+  r.quantity_list(
+       one ? "profile_slope_deviations1" : "profile_slope_deviations2", Dimension::length, "um",
+       deviation, most, false,
+       "f_Ha of each tooth of gear " + n +
+           ", tooth 0 first: a gap rising linearly along the active profile from "
+           "-f_Ha/2 at d_SAP to +f_Ha/2 at the tip (0 at the middle of its roll length)",
+       [of](auto& c) -> auto& { return of(c).profile_slope_m; })
+      .written_at_default = false;
 }
 
 std::vector<Field> make_schema() {
@@ -649,6 +729,10 @@ std::vector<Field> make_schema() {
         "keep every n-th row of the time series",
         [](auto& c) -> auto& { return c.integrator.output_every; });
   }
+  add_modifications(
+      rows, 1, [](auto& c) -> auto& { return c.modifications.gear1; });
+  add_modifications(
+      rows, 2, [](auto& c) -> auto& { return c.modifications.gear2; });
   return rows;
 }
 
@@ -1180,9 +1264,11 @@ bool any_failed(const std::vector<std::string>& failed, std::string_view prefix)
 
 void relation_problems(const SimulationCase& c, const std::vector<std::string>& failed,
                        Problems& problems) {
+  bool geometry_valid = false;
   if (!any_failed(failed, "gears.")) {
     try {
       validate_geometry(c.gears);
+      geometry_valid = true;
     } catch (const InputError& e) {
       for (const Problem& p : e.problems()) problems.add(p.renamed("gears." + p.field, p.value));
     }
@@ -1197,6 +1283,10 @@ void relation_problems(const SimulationCase& c, const std::vector<std::string>& 
   }
   if (!any_failed(failed, "model.")) {
     problems.collect([&] { validate_terms(c.model.stiffness, "model"); });
+  }
+  // The diameters of a relief against the active profile need a valid pair.
+  if (geometry_valid && !any_failed(failed, "modifications.")) {
+    problems.collect([&] { validate_modifications(c.gears, c.modifications); });
   }
   const std::array<std::pair<const char*, const Torque*>, 2> torques{
       {{"torque1", &c.torque1}, {"torque2", &c.torque2}}};

@@ -132,8 +132,34 @@ double series_rows(const SimulationCase& c) {
   return std::floor(s.end_time_s / s.step_s / static_cast<double>(s.output_every)) + 1.0;
 }
 
+void refuse_gaps(const SimulationCase& c) {
+  if (is_unmodified(c.modifications)) return;
+  std::string keys;
+  for (const Field& field : case_schema()) {
+    if (field.section != "modifications" || field.kind == FieldKind::choice) continue;
+    // A relief's diameter without its amount puts no gap between the flanks.
+    if (field.kind == FieldKind::quantity && field.key.find("relief_") != std::string_view::npos) {
+      continue;
+    }
+    bool zero = true;
+    if (is_list(field.kind)) {
+      const std::vector<double> values = field.get_list(c);
+      zero = std::all_of(values.begin(), values.end(), [](double v) { return v == 0.0; });
+    } else {
+      zero = field.get(c) == 0.0;
+    }
+    if (!zero) keys += (keys.empty() ? "" : ", ") + std::string(field.key);
+  }
+  throw InputError(std::vector<Problem>{refused_problem(
+      "[modifications]", keys,
+      "the dynamics (simulate, sweep, sweep-friction) do not use the gaps yet",
+      "no relief and no tooth error: set them to 0, or compute their static transmission error "
+      "with `gearimpact ste`")});
+}
+
 void validate(const SimulationCase& c) {
   validate_fields(c);
+  refuse_gaps(c);
   validate_implied(c);
 }
 
@@ -186,6 +212,7 @@ std::vector<std::string> run_warnings(const SimulationCase& c) {
 
 SimulationResult simulate(const SimulationCase& c, const RunControl& control) {
   validate_fields(c);
+  refuse_gaps(c);
   const StiffnessTable table(c.gears, c.model.stiffness);
   return simulate_checked(c, table, control);
 }
@@ -193,6 +220,7 @@ SimulationResult simulate(const SimulationCase& c, const RunControl& control) {
 SimulationResult simulate(const SimulationCase& c, const StiffnessTable& table,
                           const RunControl& control) {
   validate_fields(c);
+  refuse_gaps(c);
   return simulate_checked(c, table, control);
 }
 

@@ -814,7 +814,7 @@ std::string read_text(const std::filesystem::path& path) {
 }  // namespace
 
 bool is_pair_section(std::string_view section) {
-  return section == "gears" || section == "model";
+  return section == "gears" || section == "model" || section == "modifications";
 }
 
 SimulationCase parse_case(std::string_view toml_text, std::string_view file_name) {

@@ -1,8 +1,11 @@
 #include "gearimpact/io/results.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <limits>
 #include <string>
+
+#include "gearimpact/constants.hpp"
 
 namespace gearimpact {
 
@@ -273,6 +276,78 @@ std::string iso6336_json(const Iso6336Stiffness& iso, double face_width_m,
     json_number(out, "specific_load_n_mm", *specific_load_n_per_m * 1e-3);
     json_number(out, "low_load_factor", iso.low_load_factor, true);
   }
+  out += "}\n";
+  return out;
+}
+
+namespace {
+
+void ste_figures(std::string& out, const char* prefix, const StaticTransmissionError& ste,
+                 bool last) {
+  double least = std::numeric_limits<double>::infinity();
+  double most = -least;
+  double kte_least = least;
+  double kte_most = -least;
+  double stiffness = least;
+  for (const StePoint& p : ste.points) {
+    least = std::min(least, p.ste_m);
+    most = std::max(most, p.ste_m);
+    kte_least = std::min(kte_least, p.kte_m);
+    kte_most = std::max(kte_most, p.kte_m);
+    stiffness = std::min(stiffness, p.effective_stiffness_n_per_m);
+  }
+  const std::string p(prefix);
+  json_number(out, (p + "ste_mean_m").c_str(), ste.ste_mean_m);
+  json_number(out, (p + "ste_min_m").c_str(), least);
+  json_number(out, (p + "ste_max_m").c_str(), most);
+  json_number(out, (p + "ste_peak_to_peak_m").c_str(), ste.ste_peak_to_peak_m);
+  json_number(out, (p + "kte_peak_to_peak_m").c_str(), kte_most - kte_least);
+  json_number(out, (p + "least_effective_stiffness_n_per_m").c_str(), stiffness, last);
+}
+
+}  // namespace
+
+std::string ste_csv(const StaticTransmissionError& ste) {
+  constexpr std::size_t slots = MeshLayout::capacity;
+  std::string out =
+      "theta1_rad,theta1_deg,ste_m,kte_m,effective_stiffness_n_per_m,pairs,loaded_pairs";
+  for (const char* column : {"share_", "gap_"}) {
+    for (std::size_t j = 1; j <= slots; ++j) out += "," + std::string(column) + std::to_string(j);
+  }
+  out += ",teeth\n";
+  for (const StePoint& p : ste.points) {
+    std::size_t loaded = 0;
+    for (std::size_t j = 0; j < p.pairs; ++j) loaded += p.share[j] > 0.0;
+    out += format_data_number(p.theta1_rad) + "," + format_data_number(p.theta1_rad * 180.0 / pi) +
+           "," + format_data_number(p.ste_m) + "," + format_data_number(p.kte_m) + "," +
+           format_data_number(p.effective_stiffness_n_per_m) + "," + std::to_string(p.pairs) + "," +
+           std::to_string(loaded);
+    for (const auto* values : {&p.share, &p.gap_m}) {
+      for (std::size_t j = 0; j < slots; ++j) {
+        out += ",";
+        if (j < p.pairs) out += format_data_number((*values)[j]);
+      }
+    }
+    out += ",";
+    for (std::size_t j = 0; j < p.pairs; ++j) {
+      out += (j ? " " : "") + std::to_string(p.teeth[j].pinion_tooth) + "/" +
+             std::to_string(p.teeth[j].wheel_tooth);
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+std::string ste_summary_json(const StaticTransmissionError& modified,
+                             const StaticTransmissionError& unmodified) {
+  std::string out = "{\n";
+  json_number(out, "torque1_n_m", modified.torque1_n_m);
+  json_number(out, "force_n", modified.force_n);
+  json_number(out, "mesh_periods", static_cast<double>(modified.mesh_periods));
+  json_number(out, "period_rad", modified.period_rad);
+  json_number(out, "points", static_cast<double>(modified.points.size()));
+  ste_figures(out, "", modified, false);
+  ste_figures(out, "unmodified_", unmodified, true);
   out += "}\n";
   return out;
 }

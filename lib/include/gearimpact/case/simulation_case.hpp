@@ -14,6 +14,7 @@
 
 #include "gearimpact/contact/contact.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/named_values.hpp"
 #include "gearimpact/stiffness/model.hpp"
 
@@ -195,6 +196,10 @@ struct SimulationCase {
   InitialState initial;
   ModelOptions model;
   IntegratorSettings integrator;
+  // Tip and root relief and tooth errors, as gaps between the flanks
+  // (modifications.hpp): the static transmission error reads them; the
+  // dynamics refuses a case with any (refuse_gaps of dynamics/simulate.hpp).
+  Modifications modifications;
 };
 
 }  // namespace gearimpact

@@ -202,8 +202,15 @@ inline constexpr long long kStepsBetweenStopChecks = 16384;
 // stands in for them, so its count is an estimate.
 double series_rows(const SimulationCase& c);
 
+// Throws InputError naming the keys of [modifications] that put a gap between
+// the flanks (a relief amount or a tooth error not 0): the dynamics do not
+// read the gaps yet, and a run that ignored them would answer another
+// question than its case asks. simulate(), validate() and the run pool call it.
+void refuse_gaps(const SimulationCase& c);
+
 // Throws InputError naming the first field outside its range (validate_fields),
-// then what the fields imply together (validate_implied of step_bound.hpp).
+// then a case with gaps (refuse_gaps), then what the fields imply together
+// (validate_implied of step_bound.hpp).
 void validate(const SimulationCase& c);
 
 // What a user should hear before running a valid case, each a sentence with its numbers and the

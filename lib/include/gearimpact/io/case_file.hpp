@@ -62,7 +62,7 @@ struct PairOrRunCase {
   CaseFileKind kind = CaseFileKind::run;
 };
 
-// The sections of a pair file.
+// The sections of a pair file: [gears], [model] and [modifications].
 bool is_pair_section(std::string_view section);
 
 // parse_case for a pair file or a run file: a pair file's keys are checked by their schema rows,

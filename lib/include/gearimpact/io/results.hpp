@@ -12,6 +12,7 @@
 #include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
+#include "gearimpact/stiffness/static_transmission_error.hpp"
 #include "gearimpact/stiffness/time_varying_stiffness.hpp"
 
 namespace gearimpact {
@@ -65,5 +66,17 @@ std::string mesh_stiffness_summary_json(const TimeVaryingMeshStiffness& tvms, do
 // low_load_factor (1 from 100 N/mm up), which c_prime and c_gamma_alpha then include.
 std::string iso6336_json(const Iso6336Stiffness& iso, double face_width_m,
                          std::optional<double> specific_load_n_per_m = std::nullopt);
+
+// The static transmission error, one row per pinion angle:
+// theta1_rad,theta1_deg,ste_m,kte_m,effective_stiffness_n_per_m,pairs,loaded_pairs,
+// share_1..share_4,gap_1..gap_4 (the pairs within the contact segment in ascending X, the
+// newest first; empty beyond `pairs`), teeth ("pinion/wheel" of each, space-separated, in the
+// same order).
+std::string ste_csv(const StaticTransmissionError& ste);
+// torque1_n_m, force_n, mesh_periods, period_rad, points, then for the modified pair and the
+// same pair unmodified (unmodified_ prefix): ste_mean_m, ste_min_m, ste_max_m,
+// ste_peak_to_peak_m, kte_peak_to_peak_m, least_effective_stiffness_n_per_m.
+std::string ste_summary_json(const StaticTransmissionError& modified,
+                             const StaticTransmissionError& unmodified);
 
 }  // namespace gearimpact

@@ -1,0 +1,124 @@
+// Profile modifications and tooth errors as a gap per pair of teeth
+// (docs/faults.md, "Modifications and errors").
+//
+// Every pair k on a line of action has a gap e_k(X): the sum of its two teeth's
+// deviations at the contact, measured along the line of action, positive where
+// material is removed (the pair touches later). X is the contact position from
+// C1 on N1 (from C1' on N2), as MeshLayout places the pairs: the pinion's roll
+// distance is X, the wheel's is lp - X. The pinion's tip is at X_end =
+// sqrt(ra1^2 - Rb1^2), the wheel's at X_start = lp - sqrt(ra2^2 - Rb2^2)
+// (contact_segment), on either line.
+//
+// Tip and root relief act on both flanks of every tooth of their gear; the
+// errors of one tooth are given per tooth, numbered as teeth_of_pair numbers
+// them.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/tooth_identity.hpp"
+#include "gearimpact/named_values.hpp"
+
+namespace gearimpact {
+
+// The shape of a relief: linear (p = 1) or parabolic (p = 2) in the roll
+// distance, C ((s - s_r) / (s_a - s_r))^p.
+enum class ReliefShape { linear = 1, parabolic = 2 };
+inline constexpr std::array<NamedValue<ReliefShape>, 2> kReliefShapes{{
+    {ReliefShape::linear, "linear", "C (u)^1, u the fraction of the relieved roll length"},
+    {ReliefShape::parabolic, "parabolic", "C (u)^2, tangent to the unmodified involute"},
+}};
+
+// One relief of one gear. A tip relief removes `amount` at the tip circle,
+// falling to 0 at the diameter `diameter_m` (d_Ca, its start); a root relief
+// removes `amount` at the start of the active profile (the mating tip's
+// contact), falling to 0 at `diameter_m` (d_Cf, its end). amount 0: none,
+// and diameter_m is not read.
+struct Relief {
+  double amount_m = 0.0;
+  double diameter_m = 0.0;
+  ReliefShape shape = ReliefShape::linear;
+};
+
+// The modifications and errors of one gear. Each error list is empty (no
+// error on any tooth) or holds one value per tooth, tooth 0 first, in m along
+// the line of action:
+// - pitch: the tooth's position deviation f; a positive f makes it meet later
+//   on N1 and earlier on N2 (gap +f on the drive flank, -f on the coast flank);
+// - thickness: material removed from each of its two flanks (the tooth is 2 f
+//   thinner along the base tangent), gap +f on both flanks;
+// - profile_slope: f_Ha, a gap rising linearly along the active profile from
+//   -f_Ha/2 at its start to +f_Ha/2 at the tip, 0 at the middle of its roll
+//   length (both flanks alike): a positive f_Ha leaves the tip thinner.
+struct GearModifications {
+  Relief tip;
+  Relief root;
+  std::vector<double> pitch_m;
+  std::vector<double> thickness_m;
+  std::vector<double> profile_slope_m;
+};
+
+struct Modifications {
+  GearModifications gear1;
+  GearModifications gear2;
+};
+
+bool operator==(const Relief& a, const Relief& b);
+bool operator==(const GearModifications& a, const GearModifications& b);
+bool operator==(const Modifications& a, const Modifications& b);
+
+// True when every relief amount is 0 and every error list is empty or all 0:
+// the gaps are 0 everywhere.
+bool is_unmodified(const Modifications& m);
+
+// Which gears have teeth that differ from each other (an error list whose
+// values are not all equal), for true_period_mesh_periods.
+DistinctTeeth distinct_teeth(const Modifications& m);
+
+// The active profile of one gear as radii: from the contact with the mating
+// tip (the start of the active profile, SAP) to its own tip.
+struct ActiveProfile {
+  double start_diameter_m;
+  double tip_diameter_m;
+};
+ActiveProfile active_profile(const GearPair& pair, Gear gear);
+
+// The checks across fields: each relief with an amount > 0 has its diameter
+// in the active profile (a tip relief's start in [d_SAP, d_a), a root
+// relief's end in (d_SAP, d_a]), and the tip and root relief of one gear do
+// not overlap; each error list is empty or has one value per tooth. Throws
+// InputError naming the field as `prefix` + "." + the case-file key
+// ("modifications.tip_relief_start1"), with the limit in its allowed text.
+void validate_modifications(const GearPair& pair, const Modifications& m,
+                            const std::string& prefix = "modifications");
+
+// The gaps of a validated pair and its modifications, with the roll lengths
+// precomputed.
+class ToothGaps {
+ public:
+  ToothGaps(const GearPair& pair, const Modifications& m);
+
+  // The deviation of one gear's relief (tip and root) at the contact X on
+  // either line, m, material removed positive.
+  double relief_m(Gear gear, double x_m) const;
+  // The deviation of tooth `tooth` of `gear` at X on `line` (Region::n1 or
+  // Region::n2): relief, pitch, thickness and profile slope.
+  double tooth_m(Gear gear, int tooth, Region line, double x_m) const;
+  // e_k(X): the sum of the two teeth of pair k on `line` (teeth_of_pair).
+  double gap_m(Region line, int k, double x_m) const;
+
+ private:
+  GearPair pair_;
+  Modifications m_;
+  double lp_;
+  double start_;  // X_start: the wheel's tip, the pinion's SAP
+  double end_;    // X_end: the pinion's tip, the wheel's SAP
+  // Roll distances on each gear's own base circle: where each relief begins.
+  std::array<double, 2> tip_start_roll_{};
+  std::array<double, 2> root_end_roll_{};
+};
+
+}  // namespace gearimpact

@@ -1,0 +1,104 @@
+// The loaded static transmission error (docs/faults.md, "Static transmission
+// error"): at each pinion angle, quasi-statically, the drive-side deflection
+// delta that carries F = T1 / Rb1 on the pairs in contact,
+//
+//     sum_k k_k(X_k) max(0, delta - e_k(X_k)) = F,
+//
+// with e_k the gap of pair k (modifications.hpp). The left side is piecewise
+// linear, continuous and increasing in delta (strictly above min_k e_k), so
+// delta is unique; it is found exactly by taking the pairs in order of their
+// gaps (solve_deflection), and the bracketing root finder of Boost.Math
+// (solve_deflection_bracketed) is the independent route the tests compare.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/modifications.hpp"
+#include "gearimpact/geometry/tooth_identity.hpp"
+#include "gearimpact/stiffness/model.hpp"
+#include "gearimpact/stiffness/table.hpp"
+
+namespace gearimpact {
+
+// The stiffness of drive pair k in contact at X (N/m): the healthy table's
+// Ke(X) by default, a per-tooth table where teeth differ.
+using PairStiffnessFunction = std::function<double(int k, double x_m)>;
+
+// One pair's part in the balance: its stiffness and its gap.
+struct PairSpring {
+  double stiffness_n_per_m;
+  double gap_m;
+};
+
+// The delta of sum k_i max(0, delta - e_i) = force for force > 0 and every
+// k_i > 0: the pairs sorted by gap, the first m of them carrying the load
+// where delta_m = (F + sum k_i e_i) / (sum k_i) does not pass the next gap.
+// Throws InputError for an empty list, force <= 0 or a stiffness <= 0.
+double solve_deflection(const std::vector<PairSpring>& springs, double force_n);
+
+// The same by Boost.Math's TOMS 748 on [e_0, e_0 + 2 F / k_0], pair 0 the
+// one of the least gap (the residual is -F at the lower end, >= F at the
+// upper), to a bracket of
+// `relative_tolerance` of delta's size.
+double solve_deflection_bracketed(const std::vector<PairSpring>& springs, double force_n,
+                                  double relative_tolerance = 1e-15);
+
+struct StaticTransmissionErrorOptions {
+  int points_per_mesh_period = 200;  // 2 to 100000
+  // The mesh periods computed: 0 the true period of the teeth; more (a
+  // multiple of it) to set an unmodified pair beside a modified one.
+  long long mesh_periods = 0;
+};
+
+// One pinion angle.
+struct StePoint {
+  double theta1_rad = 0.0;
+  double ste_m = 0.0;  // delta: the wheel's lag behind rigid perfect gears, on the line of action
+  double kte_m = 0.0;  // min_k e_k: the unloaded (kinematic) transmission error
+  double effective_stiffness_n_per_m = 0.0;  // sum of k_k over the loaded pairs
+  // Every pair within the contact segment, in ascending X (the newest first).
+  std::size_t pairs = 0;
+  std::array<int, MeshLayout::capacity> k{};
+  std::array<double, MeshLayout::capacity> x_m{};
+  std::array<double, MeshLayout::capacity> gap_m{};
+  std::array<double, MeshLayout::capacity> stiffness_n_per_m{};
+  std::array<double, MeshLayout::capacity> share{};  // F_k / F, 0 for a pair not touching
+  std::array<TeethInContact, MeshLayout::capacity> teeth{};
+};
+
+struct StaticTransmissionError {
+  double torque1_n_m = 0.0;
+  double force_n = 0.0;             // |T1| / Rb1
+  long long mesh_periods = 1;       // the true period in mesh periods
+  double period_rad = 0.0;          // the true period as a pinion angle
+  std::vector<StePoint> points;     // theta1 = i period / n, i = 0 ... n-1
+  double ste_mean_m = 0.0;          // the mean over the points
+  double ste_peak_to_peak_m = 0.0;  // max - min over the points
+};
+
+// Throws InputError naming "torque" for T1 = 0, negative or not finite, and
+// "points" outside [2, 100000] or beyond 1e7 angles over the period, and
+// "mesh_periods" below 0: the
+// checks of static_transmission_error, for a caller to make before building
+// its stiffness table.
+void validate_static_transmission_error(const GearPair& pair, const Modifications& m,
+                                        double torque1_n_m, StaticTransmissionErrorOptions options);
+
+// The STE of a validated pair with its modifications under the pinion torque
+// T1 (the load |T1| / Rb1 on the drive flanks), over the true period of the
+// teeth (true_period_mesh_periods with distinct_teeth(m)). Throws as
+// validate_static_transmission_error.
+StaticTransmissionError static_transmission_error(const GearPair& pair, const Modifications& m,
+                                                  double torque1_n_m,
+                                                  const PairStiffnessFunction& stiffness,
+                                                  StaticTransmissionErrorOptions options = {});
+// The same with the healthy table's Ke(X) for every pair.
+StaticTransmissionError static_transmission_error(const GearPair& pair, const Modifications& m,
+                                                  double torque1_n_m, const StiffnessTable& table,
+                                                  StaticTransmissionErrorOptions options = {});
+
+}  // namespace gearimpact

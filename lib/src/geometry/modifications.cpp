@@ -1,0 +1,187 @@
+#include "gearimpact/geometry/modifications.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "gearimpact/error.hpp"
+
+namespace gearimpact {
+
+namespace {
+
+bool all_zero(const std::vector<double>& values) {
+  return std::all_of(values.begin(), values.end(), [](double v) { return v == 0.0; });
+}
+
+bool all_equal(const std::vector<double>& values) {
+  return std::all_of(values.begin(), values.end(), [&](double v) { return v == values.front(); });
+}
+
+bool differ(const GearModifications& g) {
+  return !all_equal(g.pitch_m) || !all_equal(g.thickness_m) || !all_equal(g.profile_slope_m);
+}
+
+// The roll distance on `gear`'s base circle of a point at `diameter`.
+double roll_of_diameter(const GearPair& pair, Gear gear, double diameter_m) {
+  const double rb = base_radius(pair, gear);
+  const double r = 0.5 * diameter_m;
+  return std::sqrt(std::max(0.0, (r - rb) * (r + rb)));
+}
+
+// The roll distances of the start of the active profile and of the tip.
+struct RollRange {
+  double sap;
+  double tip;
+};
+RollRange active_roll(const GearPair& pair, Gear gear) {
+  const ContactSegment segment = contact_segment(pair);
+  if (gear == Gear::one) return {segment.start_m, segment.end_m};
+  const double lp = line_of_action_length(pair);
+  return {lp - segment.end_m, lp - segment.start_m};
+}
+
+double diameter_of_roll(const GearPair& pair, Gear gear, double roll_m) {
+  const double rb = base_radius(pair, gear);
+  return 2.0 * std::sqrt(rb * rb + roll_m * roll_m);
+}
+
+// C u^p for u in [0, 1].
+double relief_curve(double amount_m, ReliefShape shape, double u) {
+  return shape == ReliefShape::parabolic ? amount_m * u * u : amount_m * u;
+}
+
+std::string mm(double metres) {
+  return format_number(metres * 1e3) + " mm";
+}
+
+}  // namespace
+
+bool operator==(const Relief& a, const Relief& b) {
+  return a.amount_m == b.amount_m && a.diameter_m == b.diameter_m && a.shape == b.shape;
+}
+bool operator==(const GearModifications& a, const GearModifications& b) {
+  return a.tip == b.tip && a.root == b.root && a.pitch_m == b.pitch_m &&
+         a.thickness_m == b.thickness_m && a.profile_slope_m == b.profile_slope_m;
+}
+bool operator==(const Modifications& a, const Modifications& b) {
+  return a.gear1 == b.gear1 && a.gear2 == b.gear2;
+}
+
+bool is_unmodified(const Modifications& m) {
+  for (const GearModifications* g : {&m.gear1, &m.gear2}) {
+    if (g->tip.amount_m != 0.0 || g->root.amount_m != 0.0 || !all_zero(g->pitch_m) ||
+        !all_zero(g->thickness_m) || !all_zero(g->profile_slope_m)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+DistinctTeeth distinct_teeth(const Modifications& m) {
+  return {differ(m.gear1), differ(m.gear2)};
+}
+
+ActiveProfile active_profile(const GearPair& pair, Gear gear) {
+  const RollRange roll = active_roll(pair, gear);
+  return {diameter_of_roll(pair, gear, roll.sap), 2.0 * tip_radius(pair, gear)};
+}
+
+void validate_modifications(const GearPair& pair, const Modifications& m,
+                            const std::string& prefix) {
+  Problems problems;
+  for (const Gear gear : {Gear::one, Gear::two}) {
+    const GearModifications& g = gear == Gear::one ? m.gear1 : m.gear2;
+    const std::string n = gear == Gear::one ? "1" : "2";
+    const ActiveProfile active = active_profile(pair, gear);
+    const std::string profile =
+        "the active profile of gear " + n + ", from d_SAP = " + mm(active.start_diameter_m) +
+        " (where the mating tip meets it) " + "to the tip d_a = " + mm(active.tip_diameter_m);
+    const bool tip = g.tip.amount_m > 0.0;
+    const bool root = g.root.amount_m > 0.0;
+    if (tip && !(g.tip.diameter_m >= active.start_diameter_m &&
+                 g.tip.diameter_m < active.tip_diameter_m)) {
+      problems.add(range_problem(prefix + ".tip_relief_start" + n, mm(g.tip.diameter_m),
+                                 "a diameter in [" + mm(active.start_diameter_m) + ", " +
+                                     mm(active.tip_diameter_m) + "): " + profile));
+    }
+    if (root && !(g.root.diameter_m > active.start_diameter_m &&
+                  g.root.diameter_m <= active.tip_diameter_m)) {
+      problems.add(range_problem(prefix + ".root_relief_end" + n, mm(g.root.diameter_m),
+                                 "a diameter in (" + mm(active.start_diameter_m) + ", " +
+                                     mm(active.tip_diameter_m) + "]: " + profile));
+    }
+    if (tip && root && g.root.diameter_m > g.tip.diameter_m) {
+      problems.add(range_problem(prefix + ".root_relief_end" + n, mm(g.root.diameter_m),
+                                 "at most tip_relief_start" + n + " = " + mm(g.tip.diameter_m) +
+                                     ": the root and tip relief of one flank do not overlap"));
+    }
+    const auto per_tooth = [&](const std::vector<double>& list, const char* key) {
+      const auto z = static_cast<std::size_t>(teeth(pair, gear));
+      if (!list.empty() && list.size() != z) {
+        problems.add(range_problem(prefix + "." + key + n, std::to_string(list.size()) + " values",
+                                   "none, or one per tooth of gear " + n + " (teeth" + n + " = " +
+                                       std::to_string(z) + "), tooth 0 first"));
+      }
+    };
+    per_tooth(g.pitch_m, "pitch_deviations");
+    per_tooth(g.thickness_m, "thickness_deviations");
+    per_tooth(g.profile_slope_m, "profile_slope_deviations");
+  }
+  problems.throw_if_any();
+}
+
+ToothGaps::ToothGaps(const GearPair& pair, const Modifications& m)
+    : pair_(pair), m_(m), lp_(line_of_action_length(pair)) {
+  const ContactSegment segment = contact_segment(pair);
+  start_ = segment.start_m;
+  end_ = segment.end_m;
+  for (const Gear gear : {Gear::one, Gear::two}) {
+    const GearModifications& g = gear == Gear::one ? m.gear1 : m.gear2;
+    const auto i = static_cast<std::size_t>(gear == Gear::one ? 0 : 1);
+    tip_start_roll_[i] = roll_of_diameter(pair, gear, g.tip.diameter_m);
+    root_end_roll_[i] = roll_of_diameter(pair, gear, g.root.diameter_m);
+  }
+}
+
+double ToothGaps::relief_m(Gear gear, double x_m) const {
+  const GearModifications& g = gear == Gear::one ? m_.gear1 : m_.gear2;
+  const auto i = static_cast<std::size_t>(gear == Gear::one ? 0 : 1);
+  // The gear's own roll distance and the ends of its active profile.
+  const double s = gear == Gear::one ? x_m : lp_ - x_m;
+  const double sap = gear == Gear::one ? start_ : lp_ - end_;
+  const double tip = gear == Gear::one ? end_ : lp_ - start_;
+  double e = 0.0;
+  if (g.tip.amount_m > 0.0 && s > tip_start_roll_[i]) {
+    const double u = std::min(1.0, (s - tip_start_roll_[i]) / (tip - tip_start_roll_[i]));
+    e += relief_curve(g.tip.amount_m, g.tip.shape, u);
+  }
+  if (g.root.amount_m > 0.0 && s < root_end_roll_[i]) {
+    const double u = std::min(1.0, (root_end_roll_[i] - s) / (root_end_roll_[i] - sap));
+    e += relief_curve(g.root.amount_m, g.root.shape, u);
+  }
+  return e;
+}
+
+double ToothGaps::tooth_m(Gear gear, int tooth, Region line, double x_m) const {
+  const GearModifications& g = gear == Gear::one ? m_.gear1 : m_.gear2;
+  const auto t = static_cast<std::size_t>(tooth);
+  double e = relief_m(gear, x_m);
+  if (!g.pitch_m.empty()) e += line == Region::n1 ? g.pitch_m[t] : -g.pitch_m[t];
+  if (!g.thickness_m.empty()) e += g.thickness_m[t];
+  if (!g.profile_slope_m.empty()) {
+    const double s = gear == Gear::one ? x_m : lp_ - x_m;
+    const double sap = gear == Gear::one ? start_ : lp_ - end_;
+    const double tip = gear == Gear::one ? end_ : lp_ - start_;
+    e += g.profile_slope_m[t] * ((s - sap) / (tip - sap) - 0.5);
+  }
+  return e;
+}
+
+double ToothGaps::gap_m(Region line, int k, double x_m) const {
+  const TeethInContact teeth = teeth_of_pair(pair_, line, k);
+  return tooth_m(Gear::one, teeth.pinion_tooth, line, x_m) +
+         tooth_m(Gear::two, teeth.wheel_tooth, line, x_m);
+}
+
+}  // namespace gearimpact

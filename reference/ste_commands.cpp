@@ -1,0 +1,161 @@
+// `gearimpact ste CASE --torque T --out DIR`: the loaded static transmission
+// error of a case's pair with its [modifications], beside the same pair
+// unmodified (docs/faults.md, "Static transmission error").
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "commands.hpp"
+#include "gearimpact/case/units.hpp"
+#include "gearimpact/constants.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/io/atomic_file.hpp"
+#include "gearimpact/io/case_file.hpp"
+#include "gearimpact/io/results.hpp"
+#include "gearimpact/stiffness/static_transmission_error.hpp"
+#include "gearimpact/stiffness/table.hpp"
+#include "gnuplot.hpp"
+#include "program.hpp"
+
+namespace gearimpact::cli {
+
+SteTexts ste_texts(const SimulationCase& c, double torque1_n_m, int points_per_mesh_period) {
+  StaticTransmissionErrorOptions options;
+  options.points_per_mesh_period = points_per_mesh_period;
+  // Every refusal before the table's quadrature.
+  validate_static_transmission_error(c.gears, c.modifications, torque1_n_m, options);
+  const StiffnessTable table(c.gears, c.model.stiffness);
+  SteTexts texts;
+  texts.modified = static_transmission_error(c.gears, c.modifications, torque1_n_m, table, options);
+  // The unmodified pair over the same angles, so that the two curves share one axis.
+  StaticTransmissionErrorOptions same = options;
+  same.mesh_periods = texts.modified.mesh_periods;
+  const StaticTransmissionError unmodified =
+      static_transmission_error(c.gears, Modifications{}, torque1_n_m, table, same);
+  texts.csv = ste_csv(texts.modified);
+  texts.unmodified_csv = ste_csv(unmodified);
+  texts.summary_json = ste_summary_json(texts.modified, unmodified);
+  return texts;
+}
+
+namespace {
+
+struct SteOptions {
+  std::string case_file;
+  std::string torque;
+  int points = 200;
+  std::string out;
+  bool overwrite = false;
+  bool no_plots = false;
+};
+
+// STE of both pairs over the modified pair's true period, and its KTE.
+Figure ste_figure(const SimulationCase& c, const SteTexts& texts) {
+  const double period_deg = texts.modified.period_rad * 180.0 / pi;
+  Figure f;
+  f.name = "ste";
+  f.title = "Loaded static transmission error, T_1 = " + format_number(texts.modified.torque1_n_m) +
+            " N m (" + literal_key(c.name, true) + ")";
+  f.x_label = "pinion angle {/Symbol q}_1, deg";
+  f.y_label = "transmission error on the line of action, {/Symbol m}m";
+  f.setup = {"set key outside right top vertical",
+             "set xrange [0:" + format_data_number(period_deg) + "]"};
+  f.series = {
+      "'ste_unmodified.csv' using 2:($3 * 1e6) with lines lw 2 lc rgb 'gray50' title 'STE "
+      "unmodified'",
+      "'ste.csv' using 2:($3 * 1e6) with lines lw 2 lc rgb '#1f77b4' title 'STE modified'",
+      "'ste.csv' using 2:($4 * 1e6) with lines lw 1 dt 2 lc rgb '#d62728' title 'KTE modified "
+      "(min gap)'"};
+  return f;
+}
+
+Figure sharing_figure(const SimulationCase& c, const SteTexts& texts) {
+  const double period_deg = texts.modified.period_rad * 180.0 / pi;
+  Figure f;
+  f.name = "ste_load_sharing";
+  f.title = "Load share F_k / F of each pair in contact, T_1 = " +
+            format_number(texts.modified.torque1_n_m) + " N m (" + literal_key(c.name, true) + ")";
+  f.x_label = "pinion angle {/Symbol q}_1, deg";
+  f.y_label = "share of the mesh force";
+  f.setup = {"set key outside right top vertical", "set yrange [-0.02:1.05]",
+             "set xrange [0:" + format_data_number(period_deg) + "]"};
+  // Every pair slot as points: together they trace each pair's share as it crosses the
+  // segment (a slot changes pairs where one enters).
+  for (int slot = 1; slot <= 3; ++slot) {
+    const std::string column = std::to_string(7 + slot);
+    f.series.push_back("'ste_unmodified.csv' using 2:" + column +
+                       " with points pt 7 ps 0.35 lc rgb 'gray60' " +
+                       (slot == 1 ? "title 'unmodified'" : "notitle"));
+  }
+  for (int slot = 1; slot <= 3; ++slot) {
+    const std::string column = std::to_string(7 + slot);
+    f.series.push_back("'ste.csv' using 2:" + column +
+                       " with points pt 7 ps 0.35 lc rgb '#1f77b4' " +
+                       (slot == 1 ? "title 'modified'" : "notitle"));
+  }
+  return f;
+}
+
+void write_ste(const SteOptions& o) {
+  // Every refusal before any work: the folder, the torque, the points, the case.
+  require_output_folder(o.out, o.overwrite, {o.case_file});
+  const double torque = parse_quantity(o.torque, Dimension::torque, "--torque");
+  if (!(torque > 0.0)) {
+    throw InputError("--torque", o.torque,
+                     "a pinion torque > 0 (" + allowed_units(Dimension::torque) +
+                         "): it loads the drive flanks");
+  }
+  const SimulationCase c = read_pair_or_run_file(o.case_file).simulation_case;
+  StaticTransmissionErrorOptions options;
+  options.points_per_mesh_period = o.points;
+  try {
+    validate_static_transmission_error(c.gears, c.modifications, torque, options);
+  } catch (const InputError& e) {
+    throw InputError(e.field() == "points" ? "--points" : "--torque", e.value(), e.allowed());
+  }
+  AtomicFolder folder(o.out, o.overwrite, {o.case_file});
+  const std::filesystem::path dir = folder.temporary();
+  const SteTexts texts = ste_texts(c, torque, o.points);
+  write_file_atomically((dir / "ste.csv").string(), texts.csv);
+  write_file_atomically((dir / "ste_unmodified.csv").string(), texts.unmodified_csv);
+  write_file_atomically((dir / "summary.json").string(), texts.summary_json);
+  if (!o.no_plots) {
+    render(dir, ste_figure(c, texts));
+    render(dir, sharing_figure(c, texts));
+  }
+  folder.commit();
+  std::fputs(texts.summary_json.c_str(), stdout);
+  std::cerr << "ste: wrote " << (std::filesystem::path(o.out) / "ste.csv").string() << "\n";
+}
+
+}  // namespace
+
+void register_ste_commands(CLI::App& app) {
+  auto o = std::make_shared<SteOptions>();
+  CLI::App* ste = app.add_subcommand(
+      "ste",
+      "The loaded static transmission error of a case's pair with its [modifications] over the "
+      "true period of its teeth, beside the same pair unmodified: ste.csv, ste_unmodified.csv, "
+      "summary.json, and the figures ste.png and ste_load_sharing.png");
+  ste->add_option("case", o->case_file,
+                  "case file: a pair file ([gears], [model], "
+                  "[modifications]) or a run file")
+      ->required();
+  ste->add_option("--torque", o->torque,
+                  "the pinion's torque T1 > 0 with its unit (\"100 N*m\"): F = T1 / Rb1 "
+                  "on the drive flanks")
+      ->required();
+  ste->add_option("--points", o->points, "pinion angles per mesh period, 2 to 100000")
+      ->check(CLI::Range(2, 100000));
+  ste->add_option("--out", o->out,
+                  "output folder: new or empty (else --overwrite), in a folder that exists")
+      ->required();
+  ste->add_flag("--overwrite", o->overwrite, "replace a non-empty --out folder whole");
+  ste->add_flag("--no-plots", o->no_plots, "write the CSV and JSON files only");
+  ste->callback([o] { write_ste(*o); });
+}
+
+}  // namespace gearimpact::cli

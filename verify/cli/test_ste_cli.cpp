@@ -1,0 +1,191 @@
+// End to end: `gearimpact ste` on the example pair with tip relief and a pitch error, its
+// refusals before any work, the case-file keys of [modifications] and their refusals, and
+// simulate refusing a case with gaps.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "relative.hpp"
+#include "run_command.hpp"
+#include "scratch.hpp"
+
+using namespace gearimpact::verify;
+
+namespace {
+
+const std::filesystem::path examples =
+    std::filesystem::path(GEARIMPACT_PAPER_DATA_DIR) / ".." / "examples";
+const std::filesystem::path paper_data(GEARIMPACT_PAPER_DATA_DIR);
+
+std::string read(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream(path) << text;
+}
+
+// The number after "key": in a flat JSON object.
+double json_value(const std::string& json, const std::string& key) {
+  const std::size_t at = json.find("\"" + key + "\":");
+  REQUIRE(at != std::string::npos);
+  return std::stod(json.substr(at + key.size() + 3));
+}
+
+// A column of a CSV by its header name, as numbers.
+std::vector<double> csv_column(const std::string& csv, const std::string& name) {
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  std::istringstream header(line);
+  std::string cell;
+  int index = -1;
+  for (int i = 0; std::getline(header, cell, ','); ++i) {
+    if (cell == name) index = i;
+  }
+  REQUIRE(index >= 0);
+  std::vector<double> values;
+  while (std::getline(in, line)) {
+    std::istringstream row(line);
+    for (int i = 0; std::getline(row, cell, ','); ++i) {
+      if (i == index) values.push_back(std::stod(cell));
+    }
+  }
+  return values;
+}
+
+std::string pair_file(const std::string& modifications) {
+  return "[gears]\nteeth1 = 20\nteeth2 = 80\nmodule = \"2 mm\"\npressure_angle = \"20 deg\"\n"
+         "face_width = \"10 mm\"\nyoungs_modulus = \"206.8 GPa\"\npoisson_ratio = 0.3\n"
+         "density = \"7800 kg/m^3\"\nbacklash = \"0.05 mm\"\n\n[modifications]\n" +
+         modifications;
+}
+
+}  // namespace
+
+TEST_CASE("ste writes its files, and the summary's figures are those of ste.csv") {
+  Scratch scratch("ste-cli");
+  const std::filesystem::path out = scratch.dir / "out";
+  const CommandResult r =
+      run_command(cli("ste " + (examples / "tip_relief_20_80.toml").string() +
+                      " --torque \"100 N*m\" --points 50 --out " + out.string()));
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  for (const char* file : {"ste.csv", "ste_unmodified.csv", "summary.json", "ste.png",
+                           "ste_load_sharing.png", "ste.gp", "ste_load_sharing.gp"}) {
+    CHECK_MESSAGE(std::filesystem::is_regular_file(out / file), file);
+  }
+  const std::string csv = read(out / "ste.csv");
+  const std::vector<double> ste = csv_column(csv, "ste_m");
+  // One pinion tooth has a pitch error: the true period is z1 = 20 mesh periods.
+  CHECK(ste.size() == 20u * 50u);
+  CHECK(csv_column(read(out / "ste_unmodified.csv"), "ste_m").size() == ste.size());
+  const std::string summary = read(out / "summary.json");
+  CHECK(summary == r.out);
+  const auto [least, most] = std::minmax_element(ste.begin(), ste.end());
+  // 17 significant digits in both files: the same doubles.
+  CHECK(relative_difference(json_value(summary, "ste_peak_to_peak_m"), *most - *least) < 1e-15);
+  double sum = 0.0;
+  for (double v : ste) sum += v;
+  CHECK(relative_difference(json_value(summary, "ste_mean_m"),
+                            sum / static_cast<double>(ste.size())) < 1e-13);
+  CHECK(json_value(summary, "mesh_periods") == 20.0);
+  // The pitch error of 5 um: the kinematic error runs from 0 to 5 um.
+  CHECK(relative_difference(json_value(summary, "kte_peak_to_peak_m"), 5e-6) < 1e-12);
+  CHECK(json_value(summary, "unmodified_kte_peak_to_peak_m") == 0.0);
+  // Relief and error only add to the deflection.
+  CHECK(json_value(summary, "ste_peak_to_peak_m") >
+        json_value(summary, "unmodified_ste_peak_to_peak_m"));
+}
+
+TEST_CASE("ste refuses bad flags before any work, naming the flag and its range") {
+  Scratch scratch("ste-refusals");
+  const std::string input = (examples / "tip_relief_20_80.toml").string();
+  const std::filesystem::path out = scratch.dir / "out";
+  struct Case {
+    std::string arguments;
+    std::string names;
+    std::string allowed;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"--torque \"0 N*m\"", "--torque", "> 0"},
+           {"--torque \"-3 N*m\"", "--torque", "> 0"},
+           {"--torque 5", "--torque", "N*m"},
+           {"--torque \"1 N*m\" --points 1", "--points", "2 to 100000"},
+           {"--torque \"1 N*m\" --points 100001", "--points", "2 to 100000"},
+       }) {
+    const CommandResult r =
+        run_command(cli("ste " + input + " " + c.arguments + " --out " + out.string()));
+    CHECK_MESSAGE(r.exit_code == 1, c.arguments);
+    CHECK_MESSAGE(r.err.find(c.names) != std::string::npos, r.err);
+    CHECK_MESSAGE(r.err.find(c.allowed) != std::string::npos, r.err);
+    CHECK(r.err.rfind("gearimpact: error: ", 0) == 0);
+    CHECK(!std::filesystem::exists(out));
+  }
+  const CommandResult missing = run_command(cli("ste " + input + " --out " + out.string()));
+  CHECK(missing.exit_code == 1);
+  CHECK(missing.err.find("--torque") != std::string::npos);
+}
+
+TEST_CASE("[modifications] keys: units read, and refusals name file, line, key and range") {
+  Scratch scratch("ste-keys");
+  const std::filesystem::path file = scratch.dir / "pair.toml";
+  struct Case {
+    std::string modifications;
+    std::string names;
+    std::string allowed;
+  };
+  for (const Case& c : std::vector<Case>{
+           // Outside the active profile of the pinion (tip 44 mm).
+           {"tip_relief1 = \"10 um\"\ntip_relief_start1 = \"45 mm\"\n",
+            "pair.toml:14: modifications.tip_relief_start1", "44 mm): the active profile"},
+           // A relief without its start diameter.
+           {"tip_relief2 = \"10 um\"\n", "modifications.tip_relief_start2", "a diameter in ["},
+           {"root_relief1 = \"2 mm\"\n", "pair.toml:13: modifications.root_relief1", "1 mm"},
+           {"pitch_deviations1 = [\"1 um\", \"2 um\"]\n", "modifications.pitch_deviations1",
+            "teeth1 = 20"},
+           {"thickness_deviations2 = [\"3 mm\"]\n", "modifications.thickness_deviations2[0]",
+            "within 1 mm"},
+           {"tip_relief_shape1 = \"cubic\"\n", "modifications.tip_relief_shape1", "\"parabolic\""},
+       }) {
+    write(file, pair_file(c.modifications));
+    const CommandResult r = run_command(cli("check-case " + file.string()));
+    CHECK_MESSAGE(r.exit_code == 1, c.modifications);
+    CHECK_MESSAGE(r.err.find(c.names) != std::string::npos, r.err);
+    CHECK_MESSAGE(r.err.find(c.allowed) != std::string::npos, r.err);
+  }
+  // A valid file reads back with its values in SI.
+  write(file, pair_file("tip_relief1 = \"10 um\"\ntip_relief_start1 = \"43.2 mm\"\n"
+                        "tip_relief_shape1 = \"parabolic\"\n"));
+  const CommandResult ok = run_command(cli("check-case " + file.string()));
+  REQUIRE_MESSAGE(ok.exit_code == 0, ok.err);
+  CHECK(ok.out.find("tip_relief1 = \"1e-5 m\"") != std::string::npos);
+  CHECK(ok.out.find("tip_relief_shape1 = \"parabolic\"") != std::string::npos);
+}
+
+TEST_CASE("simulate refuses a case with gaps in one message, before any warning") {
+  Scratch scratch("ste-simulate");
+  const std::filesystem::path file = scratch.dir / "run.toml";
+  const std::string base = read(paper_data / "case1.toml");
+  write(
+      file, base + "\n[modifications]\npitch_deviations2 = [" + [] {
+        std::string list;
+        for (int i = 0; i < 80; ++i)
+          list += std::string(i ? ", " : "") + (i == 3 ? "\"2 um\"" : "\"0 um\"");
+        return list;
+      }() + "]\n");
+  const CommandResult r = run_command(cli("simulate --case-file " + file.string()));
+  CHECK_MESSAGE(r.exit_code == 1, r.err);
+  CHECK(r.err.rfind("gearimpact: error: [modifications] = pitch_deviations2: the dynamics", 0) ==
+        0);
+  CHECK(r.err.find("gearimpact ste") != std::string::npos);
+  // One line: no warning before it.
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+}
