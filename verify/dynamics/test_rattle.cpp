@@ -487,3 +487,51 @@ TEST_CASE("rattle: the step must resolve the driver and the drag") {
   fast.torque1.driver_orders = {1000.0};
   CHECK(refused_key(fast) == "torque1.orders[0]");
 }
+
+TEST_CASE("rattle outputs: the impacts' table and histogram hold the summary's impacts") {
+  const double k = stiffness_for(0.01);
+  SimulationCase c = driven_case(k, 3.0 * rigid_onset(driven_case(k, 1.0)));
+  c.model.damping_update = DampingUpdate::frozen;
+  c.integrator.end_time_s *= 10.0;
+  RunControl control;
+  control.keep_series = false;
+  const SimulationResult r = simulate(c, control);
+  REQUIRE(r.summary.rattle.has_value());
+  const RattleSummary& rattle = *r.summary.rattle;
+  const double duration = c.integrator.end_time_s;
+  const std::vector<ImpactRecord> struck = struck_impacts(r);
+  // The run starts in contact on N1, which is not struck.
+  CHECK(struck.size() + 1 == r.impacts.size());
+  const double counted = (rattle.impacts_per_s_n1 + rattle.impacts_per_s_n2) * duration;
+  CHECK(std::fabs(static_cast<double>(struck.size()) - counted) <= 1e-9 * counted);
+  // One row per impact after the header, each naming its flank.
+  const std::string csv = rattle_impacts_csv(struck);
+  CHECK(csv.rfind("t_s,flank,impact_speed_m_s\n", 0) == 0);
+  CHECK(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')) == struck.size() + 1);
+  std::size_t n2_rows = 0;
+  for (std::size_t at = csv.find(",N2,"); at != std::string::npos; at = csv.find(",N2,", at + 1))
+    ++n2_rows;
+  // Counts from rates: n / duration * duration is n to rounding.
+  CHECK(std::fabs(static_cast<double>(n2_rows) - rattle.impacts_per_s_n2 * duration) <= 1e-9);
+  // The bins cover [0, max Vi] edge to edge, and their counts add up to the impacts.
+  const ImpactSpeedHistogram h = impact_speed_histogram(struck);
+  REQUIRE(h.lower_m_s.size() == static_cast<std::size_t>(kImpactSpeedBins));
+  CHECK(h.lower_m_s.front() == 0.0);
+  CHECK(h.upper_m_s.back() == rattle.impact_speed_max_m_s);
+  long long n1 = 0;
+  long long n2 = 0;
+  for (std::size_t i = 0; i < h.lower_m_s.size(); ++i) {
+    if (i > 0) CHECK(h.lower_m_s[i] == h.upper_m_s[i - 1]);
+    n1 += h.count_n1[i];
+    n2 += h.count_n2[i];
+  }
+  CHECK(std::fabs(static_cast<double>(n1) - rattle.impacts_per_s_n1 * duration) <= 1e-9);
+  CHECK(std::fabs(static_cast<double>(n2) - rattle.impacts_per_s_n2 * duration) <= 1e-9);
+  CHECK(n2 > 0);
+  // The fastest impact is in the last bin, which holds its upper edge.
+  CHECK(h.count_n1.back() + h.count_n2.back() >= 1);
+  const std::string table = impact_speed_histogram_csv(h);
+  CHECK(table.rfind("lower_m_s,upper_m_s,count_n1,count_n2,count\n", 0) == 0);
+  // No impacts, no bins.
+  CHECK(impact_speed_histogram({}).lower_m_s.empty());
+}

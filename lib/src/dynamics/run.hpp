@@ -162,6 +162,7 @@ class Run {
     s.final_w2_rad_per_s = y_[kW2];
     if (system_.driven()) s.rattle = rattle_summary(t);
     result_.impacts = impacts_;
+    result_.start_time_s = start_time_;
     result_.final_state = {t, {y_[kTheta1], y_[kTheta2], y_[kW1], y_[kW2]}, damping_};
     return std::move(result_);
   }

@@ -131,6 +131,26 @@ std::string summary_json(const SimulationSummary& s) {
   return out;
 }
 
+std::string rattle_impacts_csv(const std::vector<ImpactRecord>& struck) {
+  std::string out = "t_s,flank,impact_speed_m_s\n";
+  for (const ImpactRecord& impact : struck) {
+    out += format_data_number(impact.start_s);
+    out += impact.line == Region::n1 ? ",N1," : ",N2,";
+    out += format_data_number(impact.impact_speed_m_s) + "\n";
+  }
+  return out;
+}
+
+std::string impact_speed_histogram_csv(const ImpactSpeedHistogram& h) {
+  std::string out = "lower_m_s,upper_m_s,count_n1,count_n2,count\n";
+  for (std::size_t i = 0; i < h.lower_m_s.size(); ++i) {
+    out += format_data_number(h.lower_m_s[i]) + "," + format_data_number(h.upper_m_s[i]) + "," +
+           std::to_string(h.count_n1[i]) + "," + std::to_string(h.count_n2[i]) + "," +
+           std::to_string(h.count_n1[i] + h.count_n2[i]) + "\n";
+  }
+  return out;
+}
+
 std::string friction_sweep_csv(const std::vector<SweepRow>& rows) {
   std::string out = "f";
   const std::size_t cases = rows.empty() ? 0 : rows.front().ratio.size();

@@ -162,7 +162,25 @@ struct SimulationResult {
   std::vector<ImpactRecord> impacts;
   SimulationSummary summary;
   RunState final_state;
+  double start_time_s = 0.0;  // 0, or the time a continued run resumed at
 };
+
+// The impacts a run struck: its impact records but a contact it started in
+// (the ones the rattle summary counts), in time order.
+std::vector<ImpactRecord> struck_impacts(const SimulationResult& result);
+
+// The distribution of the struck impacts' Vi: `bins` bins of equal width from
+// 0 to the largest Vi, bin i holding lower_m_s[i] <= Vi < upper_m_s[i] and the
+// last bin its upper edge too. No bins without impacts.
+struct ImpactSpeedHistogram {
+  std::vector<double> lower_m_s;
+  std::vector<double> upper_m_s;
+  std::vector<long long> count_n1;
+  std::vector<long long> count_n2;
+};
+inline constexpr int kImpactSpeedBins = 20;
+ImpactSpeedHistogram impact_speed_histogram(const std::vector<ImpactRecord>& struck,
+                                            int bins = kImpactSpeedBins);
 
 // Thrown when RunControl::should_stop asks a run to stop.
 class SimulationStopped : public SimulationError {
