@@ -73,7 +73,15 @@ std::string summary_json(const SimulationSummary& s) {
   std::string out = "{\n";
   out += "  \"case\": " + json_string(s.case_name) + ",\n";
   out += "  \"integrator\": " + json_string(s.integrator) + ",\n";
-  json_number(out, "friction_coefficient", s.friction_coefficient);
+  if (s.friction_law == FrictionLaw::constant) {
+    json_number(out, "friction_coefficient", s.friction_coefficient);
+  } else {
+    // The constant f is not the coefficient of a law whose f varies.
+    out += "  \"friction_coefficient\": null,\n";
+    out += "  \"friction_law\": " + json_string(name_of(kFrictionLaws, s.friction_law)) + ",\n";
+    json_optional(out, "friction_coefficient_mean", s.friction_coefficient_mean);
+    json_optional(out, "friction_coefficient_max", s.friction_coefficient_max);
+  }
   json_number(out, "end_time_s", s.end_time_s);
   json_number(out, "step_s", s.step_s);
   out += "  \"impacts_n1\": " + std::to_string(s.impacts_n1) + ",\n";

@@ -94,7 +94,16 @@ struct RattleSummary {
 struct SimulationSummary {
   std::string case_name;
   std::string integrator;
+  // model.friction_coefficient, f of the constant law: the coefficient of every
+  // pair under friction_law = "constant" only.
   double friction_coefficient = 0.0;
+  FrictionLaw friction_law = FrictionLaw::constant;
+  // Under the other laws, the line's coefficient sum(f N) / sum(N) over its
+  // loaded pairs at the end of each accepted step: its mean over the loaded
+  // time (each value weighted by its step's length) and its largest value.
+  // Absent under the constant law, or without loaded time.
+  std::optional<double> friction_coefficient_mean;
+  std::optional<double> friction_coefficient_max;
   double end_time_s = 0.0;
   double step_s = 0.0;
   int impacts_n1 = 0;
