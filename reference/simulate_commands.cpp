@@ -1,5 +1,6 @@
 #include <charconv>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -55,6 +56,10 @@ double parse_number_flag(const std::string& flag, const std::string& text,
   return value;
 }
 
+// A driven run's impacts and their Vi histogram, beside the --out series.
+constexpr const char* kRattleImpactsFile = "rattle_impacts.csv";
+constexpr const char* kRattleHistogramFile = "rattle_impacts_histogram.csv";
+
 struct SimulateOptions {
   int case_number = 1;
   std::string case_file;
@@ -103,6 +108,24 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
                                                    : std::vector<std::string>{o.case_file});
   }
   const SimulationCase c = case_to_run(o, command);
+  // A driven run's impacts go beside the series, refused here too.
+  const bool rattle_files = !o.out.empty() && c.torque1.kind == Torque::Kind::prescribed_speed;
+  const std::filesystem::path out_folder = std::filesystem::path(o.out).parent_path();
+  const std::string impacts_path = (out_folder / kRattleImpactsFile).string();
+  const std::string histogram_path = (out_folder / kRattleHistogramFile).string();
+  if (rattle_files) {
+    const std::string name = std::filesystem::path(o.out).filename().string();
+    if (name == kRattleImpactsFile || name == kRattleHistogramFile) {
+      throw InputError("--out", o.out,
+                       std::string("a file not named ") + kRattleImpactsFile + " or " +
+                           kRattleHistogramFile +
+                           ": a driven run writes its impacts there, beside the series");
+    }
+    std::vector<std::string> inputs{o.out};
+    if (!o.case_file.empty()) inputs.push_back(o.case_file);
+    require_output_file(impacts_path, inputs);
+    require_output_file(histogram_path, inputs);
+  }
   RunControl control;
   // The series goes to its file as the run makes it, a megabyte at a time,
   // so that a long run's memory does not grow with its length.
@@ -168,6 +191,12 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
     series_file->append(pending);
     series_file->commit();
   }
+  if (rattle_files) {
+    const std::vector<ImpactRecord> struck = struck_impacts(result);
+    write_file_atomically(impacts_path, rattle_impacts_csv(struck));
+    write_file_atomically(histogram_path,
+                          impact_speed_histogram_csv(impact_speed_histogram(struck)));
+  }
   if (result.summary.foundation_extrapolated) {
     std::fprintf(
         stderr, "gearimpact: warning: %s\n",
@@ -214,7 +243,9 @@ void register_simulate_commands(CLI::App& app) {
       ->add_option("--case-file", options->case_file,
                    "a case file (TOML, see docs/case-files.md); other options override it")
       ->excludes(paper);
-  simulate->add_option("--out", options->out, "time series CSV file (written atomically)");
+  simulate->add_option("--out", options->out,
+                       "time series CSV file (written atomically); a driven run also writes "
+                       "rattle_impacts.csv and rattle_impacts_histogram.csv beside it");
   simulate->add_option("--max-rows", options->max_rows,
                        "the most rows the time series may have, so that a slip of --t-end does "
                        "not fill a disk (default " +

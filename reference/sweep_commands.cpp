@@ -576,7 +576,7 @@ void add_sweep_options(CLI::App* sweep, SweepCommandOptions& o) {
   sweep
       ->add_option("--vary", o.vary,
                    "the key to sweep, section.key: any quantity, number or integer key of the "
-                   "case schema (`gearimpact schema`)")
+                   "case schema (`gearimpact schema`), or an element of a list key, section.key[i]")
       ->required();
   sweep->add_option("--from", o.from, "first value, with its unit as in case files")->required();
   sweep->add_option("--to", o.to, "last value")->required();

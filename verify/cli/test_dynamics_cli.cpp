@@ -3,10 +3,12 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "run_command.hpp"
 
@@ -274,4 +276,57 @@ TEST_CASE("check-case and simulate --case-file refuse the same file with the sam
     CHECK(check.err.find("." + key + " = ") != std::string::npos);
     std::filesystem::remove(file);
   }
+}
+
+TEST_CASE("simulate of a driven case writes its impacts and their histogram beside --out") {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "gearimpact_test_rattle_files";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path case_file = dir / "rattle.toml";
+  std::ofstream(case_file)
+      << "[gears]\nteeth1 = 20\nteeth2 = 40\nmodule = \"2 mm\"\npressure_angle = \"20 deg\"\n"
+         "face_width = \"10 mm\"\nyoungs_modulus = \"206 GPa\"\npoisson_ratio = 0.3\n"
+         "density = \"7800 kg/m^3\"\nbacklash = \"0.05 mm\"\n[torque1]\nkind = "
+         "\"prescribed-speed\"\nmean_speed = \"1000 rpm\"\norders = [2]\nspeed_amplitudes = "
+         "[\"20 rad/s\"]\nphases = [\"0 deg\"]\n[torque2]\nkind = \"drag\"\ndrag_constant = "
+         "\"0.05 N*m\"\ndrag_viscous = \"0 N*m*s/rad\"\n[initial]\nw1 = \"1000 rpm\"\nw2 = \"500 "
+         "rpm\"\n[integrator]\nstep = "
+         "\"1 us\"\nend_time = \"20 ms\"\n";
+  const std::string base = "simulate --case-file " + case_file.string() + " --out ";
+  const CommandResult r = run_command(cli(base + (dir / "series.csv").string()));
+  REQUIRE(r.exit_code == 0);
+  const auto number = [&](const std::string& key) {
+    const std::size_t at = r.out.find("\"" + key + "\": ");
+    REQUIRE(at != std::string::npos);
+    return std::stod(r.out.substr(at + key.size() + 4));
+  };
+  const double impacts =
+      (number("rattle_impacts_per_s_n1") + number("rattle_impacts_per_s_n2")) * 0.02;
+  const auto lines = [](const std::filesystem::path& path) {
+    std::ifstream in(path);
+    std::vector<std::string> rows;
+    for (std::string line; std::getline(in, line);) rows.push_back(line);
+    return rows;
+  };
+  const std::vector<std::string> rows = lines(dir / "rattle_impacts.csv");
+  REQUIRE(!rows.empty());
+  CHECK(rows.front() == "t_s,flank,impact_speed_m_s");
+  // The summary's rates times the duration: whole impacts, to rounding.
+  CHECK(impacts > 2.0);
+  CHECK(std::fabs(static_cast<double>(rows.size() - 1) - impacts) <= 1e-9 * impacts);
+  const std::vector<std::string> bins = lines(dir / "rattle_impacts_histogram.csv");
+  REQUIRE(!bins.empty());
+  CHECK(bins.front() == "lower_m_s,upper_m_s,count_n1,count_n2,count");
+  long long counted = 0;
+  for (std::size_t i = 1; i < bins.size(); ++i) {
+    counted += std::stoll(bins[i].substr(bins[i].rfind(',') + 1));
+  }
+  CHECK(counted == static_cast<long long>(rows.size() - 1));
+  // The series may not take a name the impacts take.
+  const CommandResult clash = run_command(cli(base + (dir / "rattle_impacts.csv").string()));
+  CHECK(clash.exit_code != 0);
+  CHECK(clash.err.find("--out") != std::string::npos);
+  CHECK(clash.err.find("rattle_impacts_histogram.csv") != std::string::npos);
+  std::filesystem::remove_all(dir);
 }

@@ -15,6 +15,7 @@
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/io/case_file.hpp"
+#include "gearimpact/io/results.hpp"
 #include "gearimpact/paper/table1.hpp"
 
 using namespace gearimpact;
@@ -354,4 +355,49 @@ TEST_CASE("bad friction tables are refused, naming the key, the index and the va
   const SimulationCase back = parse_case(write_case_file(c), "back.toml");
   CHECK(back.model.friction_table.slide_to_roll == c.model.friction_table.slide_to_roll);
   CHECK(back.model.friction_table.coefficient == c.model.friction_table.coefficient);
+}
+
+TEST_CASE("the summary's coefficient: the constant f, or the law's mean and max over loaded time") {
+  // Under the constant law the summary's f is the case's, and nothing else is said.
+  const SimulationSummary constant = run_summary(case2());
+  CHECK(constant.friction_law == FrictionLaw::constant);
+  CHECK(constant.friction_coefficient == case2().model.friction_coefficient);
+  CHECK(!constant.friction_coefficient_mean.has_value());
+  const std::string constant_json = summary_json(constant);
+  CHECK(constant_json.find("\"friction_law\"") == std::string::npos);
+  CHECK(constant_json.find("\"friction_coefficient\": 0.04") != std::string::npos);
+  // A constant table: every pair's f is 0.04, so the line's sum(f N) / sum(N) is 0.04 to the
+  // rounding of one product and quotient per step (a few ulp, the max), and the mean sums about
+  // 1e5 steps' f dt (their rounding, 1e5 x 1.1e-16 = 1e-11 at most).
+  SimulationCase flat = case2();
+  flat.model.friction_law = FrictionLaw::table;
+  flat.model.friction_table = {{-1.0, 1.0}, {0.04, 0.04}};
+  const SimulationSummary table = run_summary(flat);
+  REQUIRE(table.friction_coefficient_mean.has_value());
+  REQUIRE(table.friction_coefficient_max.has_value());
+  CHECK(std::fabs(*table.friction_coefficient_mean / 0.04 - 1.0) <= 1e-11);
+  CHECK(std::fabs(*table.friction_coefficient_max / 0.04 - 1.0) <= 1e-15);
+  const std::string table_json = summary_json(table);
+  CHECK(table_json.find("\"friction_coefficient\": null") != std::string::npos);
+  CHECK(table_json.find("\"friction_law\": \"table\"") != std::string::npos);
+  CHECK(table_json.find("\"friction_coefficient_mean\": 0.0") != std::string::npos);
+  // The same run as the constant law: observing f does not touch the state.
+  CHECK(table.friction_loss_j == constant.friction_loss_j);
+  CHECK(table.final_w1_rad_per_s == constant.final_w1_rad_per_s);
+  // Benedict and Kelley: f in [0, f_max] at every pair, so its load-weighted mean over the line
+  // is too; at case 2's slow sliding the clip acts over most of the mesh (docs/model.md), so
+  // the largest value is f_max itself and the mean is near it but below (f falls off near the
+  // ends of the path, where the sliding is fastest).
+  const SimulationSummary bk = run_summary(case2_benedict_kelley());
+  REQUIRE(bk.friction_coefficient_mean.has_value());
+  REQUIRE(bk.friction_coefficient_max.has_value());
+  const double most = case2_benedict_kelley().model.benedict_kelley.most_coefficient;
+  MESSAGE("Benedict-Kelley: mean f " << *bk.friction_coefficient_mean << ", max "
+                                     << *bk.friction_coefficient_max << ", f_max " << most);
+  // f_max to the few ulp of sum(f N) / sum(N) where every pair is clipped.
+  CHECK(*bk.friction_coefficient_max <= most * (1.0 + 4e-16));
+  CHECK(*bk.friction_coefficient_max >= most * (1.0 - 4e-16));
+  CHECK(*bk.friction_coefficient_mean > 0.0);
+  CHECK(*bk.friction_coefficient_mean <= *bk.friction_coefficient_max);
+  CHECK(summary_json(bk).find("\"friction_law\": \"benedict-kelley\"") != std::string::npos);
 }

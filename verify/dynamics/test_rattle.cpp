@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "gearimpact/batch/steady_sweep.hpp"
+#include "gearimpact/case/schema.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/error.hpp"
@@ -486,4 +487,123 @@ TEST_CASE("rattle: the step must resolve the driver and the drag") {
   SimulationCase fast = driven_case(k, 0.1);
   fast.torque1.driver_orders = {1000.0};
   CHECK(refused_key(fast) == "torque1.orders[0]");
+}
+
+TEST_CASE("rattle outputs: the impacts' table and histogram hold the summary's impacts") {
+  const double k = stiffness_for(0.01);
+  SimulationCase c = driven_case(k, 3.0 * rigid_onset(driven_case(k, 1.0)));
+  c.model.damping_update = DampingUpdate::frozen;
+  c.integrator.end_time_s *= 10.0;
+  RunControl control;
+  control.keep_series = false;
+  const SimulationResult r = simulate(c, control);
+  REQUIRE(r.summary.rattle.has_value());
+  const RattleSummary& rattle = *r.summary.rattle;
+  const double duration = c.integrator.end_time_s;
+  const std::vector<ImpactRecord> struck = struck_impacts(r);
+  // The run starts in contact on N1, which is not struck.
+  CHECK(struck.size() + 1 == r.impacts.size());
+  const double counted = (rattle.impacts_per_s_n1 + rattle.impacts_per_s_n2) * duration;
+  CHECK(std::fabs(static_cast<double>(struck.size()) - counted) <= 1e-9 * counted);
+  // One row per impact after the header, each naming its flank.
+  const std::string csv = rattle_impacts_csv(struck);
+  CHECK(csv.rfind("t_s,flank,impact_speed_m_s\n", 0) == 0);
+  CHECK(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')) == struck.size() + 1);
+  std::size_t n2_rows = 0;
+  for (std::size_t at = csv.find(",N2,"); at != std::string::npos; at = csv.find(",N2,", at + 1))
+    ++n2_rows;
+  // Counts from rates: n / duration * duration is n to rounding.
+  CHECK(std::fabs(static_cast<double>(n2_rows) - rattle.impacts_per_s_n2 * duration) <= 1e-9);
+  // The bins cover [0, max Vi] edge to edge, and their counts add up to the impacts.
+  const ImpactSpeedHistogram h = impact_speed_histogram(struck);
+  REQUIRE(h.lower_m_s.size() == static_cast<std::size_t>(kImpactSpeedBins));
+  CHECK(h.lower_m_s.front() == 0.0);
+  CHECK(h.upper_m_s.back() == rattle.impact_speed_max_m_s);
+  long long n1 = 0;
+  long long n2 = 0;
+  for (std::size_t i = 0; i < h.lower_m_s.size(); ++i) {
+    if (i > 0) CHECK(h.lower_m_s[i] == h.upper_m_s[i - 1]);
+    n1 += h.count_n1[i];
+    n2 += h.count_n2[i];
+  }
+  CHECK(std::fabs(static_cast<double>(n1) - rattle.impacts_per_s_n1 * duration) <= 1e-9);
+  CHECK(std::fabs(static_cast<double>(n2) - rattle.impacts_per_s_n2 * duration) <= 1e-9);
+  CHECK(n2 > 0);
+  // The fastest impact is in the last bin, which holds its upper edge.
+  CHECK(h.count_n1.back() + h.count_n2.back() >= 1);
+  const std::string table = impact_speed_histogram_csv(h);
+  CHECK(table.rfind("lower_m_s,upper_m_s,count_n1,count_n2,count\n", 0) == 0);
+  // No impacts, no bins.
+  CHECK(impact_speed_histogram({}).lower_m_s.empty());
+}
+
+TEST_CASE("rattle sweep: the driver's speed amplitude is a swept key, across the onset") {
+  // The forced solution's onset a_rigid (1 - r^2) (the closed form above);
+  // two amplitudes 10 % either side of it, swept upwards.
+  const double k = stiffness_for(0.01);
+  const double onset = rigid_onset(driven_case(k, 1.0)) * (1.0 - 0.01);
+  // The base starts on the lower amplitude's forced solution (no free
+  // vibration), the point above from the held state it carries.
+  SimulationCase c = driven_case(k, 0.9 * onset);
+  c.model.damping_update = DampingUpdate::frozen;
+  const std::string key = "torque1.speed_amplitudes[0]";
+  const Field& field = sweep_field(key, "--vary");
+  CHECK(field.name() == key);
+  CHECK(field.kind == FieldKind::quantity);
+  SimulationCase moved = c;
+  apply_sweep_value(moved, c, key, 0.7);
+  CHECK(moved.torque1.driver_speed_amplitudes_rad_per_s == std::vector<double>{0.7});
+  // The driver's w1(0) = W + a sin(90 deg) moves with the amplitude.
+  CHECK(std::fabs(moved.initial.w1_rad_per_s - (kMeanSpeed + 0.7)) <= 1e-12);
+  const TableFor table_for = [](const SimulationCase& x) {
+    return std::make_shared<const StiffnessTable>(x.gears, x.model.stiffness);
+  };
+  SteadySettings settings;
+  settings.max_periods = 400;
+  const std::vector<SweepPointResult> points = sweep_line(
+      c, table_for, key, {0.9 * onset, 1.1 * onset}, SweepDirection::up, 0, settings, nullptr);
+  REQUIRE(points.size() == 2);
+  for (const SweepPointResult& p : points) {
+    MESSAGE("a / onset = " << p.value_si / onset << ": " << to_string(p.point.regime) << ", "
+                           << p.point.periods_run << " periods"
+                           << (p.failure.empty() ? "" : ", " + p.failure));
+    REQUIRE(p.failure.empty());
+  }
+  CHECK(points[0].point.regime == Regime::no_impact);
+  CHECK(points[1].point.regime != Regime::no_impact);
+}
+
+TEST_CASE("rattle sweep: an element key past the list is refused with the index range") {
+  const SimulationCase c = driven_case(stiffness_for(0.01), 0.5);
+  const auto refusal = [&](const std::string& key) {
+    try {
+      SimulationCase moved = c;
+      apply_sweep_value(moved, c, key, 0.7);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  // The case's list has one element.
+  const std::string past = refusal("torque1.speed_amplitudes[1]");
+  CHECK(past.find("torque1.speed_amplitudes[1]") != std::string::npos);
+  CHECK(past.find("[0, 0]") != std::string::npos);
+  // Beyond what any list of the row may hold.
+  const std::string far = refusal("torque1.speed_amplitudes[999]");
+  CHECK(far.find("torque1.speed_amplitudes[999]") != std::string::npos);
+  CHECK(far.find("an index in [0, ") != std::string::npos);
+  // An element's range is its list's.
+  const std::string negative = [&] {
+    try {
+      SimulationCase moved = c;
+      apply_sweep_value(moved, c, "torque1.speed_amplitudes[0]", -1.0);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  }();
+  CHECK(negative.find("torque1.speed_amplitudes[0]") != std::string::npos);
+  // A scalar key takes no index.
+  CHECK(refusal("torque2.drag_constant[0]").find("--vary") == std::string::npos);
+  CHECK(refusal("torque2.drag_constant[0]") != "accepted");
 }

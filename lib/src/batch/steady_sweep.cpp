@@ -59,7 +59,7 @@ void require_read_key(const std::string& key, const SimulationCase& c, const cha
 // point there would fail after the points before it ran.
 void require_whole_grid(const std::string& key, const std::vector<double>& grid,
                         const char* points_key) {
-  if (find_field(key)->kind != FieldKind::integer) return;
+  if (sweep_field(key, points_key).kind != FieldKind::integer) return;
   for (std::size_t i = 0; i < grid.size(); ++i) {
     if (grid[i] != std::round(grid[i])) {
       throw InputError(points_key,

@@ -122,10 +122,28 @@ class Run {
       last_t_ = t;
       last_w2_ = y_[kW2];
     }
+    if (c_.model.friction_law != FrictionLaw::constant) observe_friction(t);
     ledger_.observe(y_, mode_, s);
     if (mode_.region != Region::free) {
       s.max_penetration_m = std::max(s.max_penetration_m, system_.delta(mode_.region, y_));
     }
+  }
+
+  // The line's coefficient sum(f N) / sum(N) at the end of a step under a law
+  // whose f varies, weighted by the step's length: an extra evaluation of the
+  // forces per loaded step, only under those laws.
+  void observe_friction(double t) {
+    const double step = t - friction_last_t_;
+    friction_last_t_ = t;
+    if (mode_.region == Region::free || !(step > 0.0)) return;
+    ContactTotals totals;
+    State dydt{};
+    system_.rhs(t, y_, mode_, damping_, dydt, &totals);
+    if (!(totals.normal_force_n > 0.0)) return;
+    const double f = totals.friction_load_n / totals.normal_force_n;
+    friction_time_integral_ += f * step;
+    friction_loaded_time_ += step;
+    friction_max_ = std::max(friction_max_, f);
   }
 
   void record(double t) { record(t, y_, mode_); }
@@ -155,6 +173,11 @@ class Run {
     s.integrator = integrator;
     s.stiffness_model = c_.model.stiffness.kind;
     s.friction_coefficient = c_.model.friction_coefficient;
+    s.friction_law = c_.model.friction_law;
+    if (friction_loaded_time_ > 0.0) {
+      s.friction_coefficient_mean = friction_time_integral_ / friction_loaded_time_;
+      s.friction_coefficient_max = friction_max_;
+    }
     s.end_time_s = t;
     s.step_s = c_.integrator.step_s;
     ledger_.finish(y_, mode_, s);
@@ -162,6 +185,7 @@ class Run {
     s.final_w2_rad_per_s = y_[kW2];
     if (system_.driven()) s.rattle = rattle_summary(t);
     result_.impacts = impacts_;
+    result_.start_time_s = start_time_;
     result_.final_state = {t, {y_[kTheta1], y_[kTheta2], y_[kW1], y_[kW2]}, damping_};
     return std::move(result_);
   }
@@ -211,6 +235,7 @@ class Run {
   EnergyLedger make_ledger() {
     const InitialState& start = control_.resume ? control_.resume->state : c_.initial;
     start_time_ = control_.resume ? control_.resume->time_s : 0.0;
+    friction_last_t_ = start_time_;
     y_ = State{start.theta1_rad,
                start.theta2_rad,
                start.w1_rad_per_s,
@@ -322,6 +347,12 @@ class Run {
   double acceleration2_squared_integral_ = 0.0;
   double last_t_ = 0.0;
   double last_w2_ = 0.0;
+  // Under a friction law whose f varies: Int f dt and the time over loaded
+  // steps, the largest f, and the end of the last step.
+  double friction_time_integral_ = 0.0;
+  double friction_loaded_time_ = 0.0;
+  double friction_max_ = 0.0;
+  double friction_last_t_ = 0.0;
   // Last: its construction sets the start state above (make_ledger).
   EnergyLedger ledger_;
 };

@@ -224,4 +224,39 @@ SimulationResult simulate(const SimulationCase& c, const StiffnessTable& table,
   return simulate_checked(c, table, control);
 }
 
+std::vector<ImpactRecord> struck_impacts(const SimulationResult& result) {
+  std::vector<ImpactRecord> struck;
+  for (const ImpactRecord& impact : result.impacts) {
+    if (impact.start_s != result.start_time_s) struck.push_back(impact);
+  }
+  return struck;
+}
+
+ImpactSpeedHistogram impact_speed_histogram(const std::vector<ImpactRecord>& struck, int bins) {
+  if (bins < 1) throw InputError("bins", std::to_string(bins), "a count >= 1");
+  ImpactSpeedHistogram h;
+  if (struck.empty()) return h;
+  double most = 0.0;
+  for (const ImpactRecord& impact : struck) most = std::max(most, impact.impact_speed_m_s);
+  const double width = most / bins;
+  for (int i = 0; i < bins; ++i) {
+    h.lower_m_s.push_back(width * i);
+    // The last edge is the largest Vi itself, not a rounded multiple of the width.
+    h.upper_m_s.push_back(i + 1 == bins ? most : width * (i + 1));
+  }
+  h.count_n1.assign(static_cast<std::size_t>(bins), 0);
+  h.count_n2.assign(static_cast<std::size_t>(bins), 0);
+  for (const ImpactRecord& impact : struck) {
+    // The bin whose edges hold Vi; the rounding of Vi / width can put it one
+    // bin off, which the edges correct.
+    int i = width > 0.0 ? static_cast<int>(impact.impact_speed_m_s / width) : 0;
+    i = std::clamp(i, 0, bins - 1);
+    while (i > 0 && impact.impact_speed_m_s < h.lower_m_s[static_cast<std::size_t>(i)]) --i;
+    while (i + 1 < bins && impact.impact_speed_m_s >= h.upper_m_s[static_cast<std::size_t>(i)]) ++i;
+    auto& counts = impact.line == Region::n1 ? h.count_n1 : h.count_n2;
+    ++counts[static_cast<std::size_t>(i)];
+  }
+  return h;
+}
+
 }  // namespace gearimpact

@@ -232,6 +232,7 @@ void GearSystem::rhs(double t, const State& y_in, const Mode& m, const ContactMe
       if (totals != nullptr) {
         totals->normal_force_n += n;
         totals->friction_force_n += ff;
+        totals->friction_load_n += f * n;
       }
     }
   }

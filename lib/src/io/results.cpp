@@ -76,7 +76,15 @@ std::string summary_json(const SimulationSummary& s) {
   std::string out = "{\n";
   out += "  \"case\": " + json_string(s.case_name) + ",\n";
   out += "  \"integrator\": " + json_string(s.integrator) + ",\n";
-  json_number(out, "friction_coefficient", s.friction_coefficient);
+  if (s.friction_law == FrictionLaw::constant) {
+    json_number(out, "friction_coefficient", s.friction_coefficient);
+  } else {
+    // The constant f is not the coefficient of a law whose f varies.
+    out += "  \"friction_coefficient\": null,\n";
+    out += "  \"friction_law\": " + json_string(name_of(kFrictionLaws, s.friction_law)) + ",\n";
+    json_optional(out, "friction_coefficient_mean", s.friction_coefficient_mean);
+    json_optional(out, "friction_coefficient_max", s.friction_coefficient_max);
+  }
   json_number(out, "end_time_s", s.end_time_s);
   json_number(out, "step_s", s.step_s);
   out += "  \"impacts_n1\": " + std::to_string(s.impacts_n1) + ",\n";
@@ -131,6 +139,26 @@ std::string summary_json(const SimulationSummary& s) {
   out += "  \"events\": " + std::to_string(s.events) + ",\n";
   out += "  \"rhs_evaluations\": " + std::to_string(s.rhs_evaluations) + "\n";
   out += "}\n";
+  return out;
+}
+
+std::string rattle_impacts_csv(const std::vector<ImpactRecord>& struck) {
+  std::string out = "t_s,flank,impact_speed_m_s\n";
+  for (const ImpactRecord& impact : struck) {
+    out += format_data_number(impact.start_s);
+    out += impact.line == Region::n1 ? ",N1," : ",N2,";
+    out += format_data_number(impact.impact_speed_m_s) + "\n";
+  }
+  return out;
+}
+
+std::string impact_speed_histogram_csv(const ImpactSpeedHistogram& h) {
+  std::string out = "lower_m_s,upper_m_s,count_n1,count_n2,count\n";
+  for (std::size_t i = 0; i < h.lower_m_s.size(); ++i) {
+    out += format_data_number(h.lower_m_s[i]) + "," + format_data_number(h.upper_m_s[i]) + "," +
+           std::to_string(h.count_n1[i]) + "," + std::to_string(h.count_n2[i]) + "," +
+           std::to_string(h.count_n1[i] + h.count_n2[i]) + "\n";
+  }
   return out;
 }
 

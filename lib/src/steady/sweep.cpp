@@ -2,8 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
+#include <string>
 #include <tuple>
+#include <vector>
 
 #include "gearimpact/case/schema.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
@@ -12,16 +17,107 @@
 
 namespace gearimpact {
 
+namespace {
+
+// "section.key[i]": an element of a list key.
+struct ListElement {
+  std::string list;
+  std::size_t index;
+};
+
+std::optional<ListElement> list_element(const std::string& key) {
+  const std::size_t open = key.rfind('[');
+  if (open == std::string::npos || key.back() != ']') return std::nullopt;
+  const std::string digits = key.substr(open + 1, key.size() - open - 2);
+  // Six digits are far beyond any list's length and cannot overflow.
+  if (digits.empty() || digits.size() > 6 ||
+      !std::all_of(digits.begin(), digits.end(), [](char d) { return d >= '0' && d <= '9'; })) {
+    return std::nullopt;
+  }
+  return ListElement{key.substr(0, open), static_cast<std::size_t>(std::stoul(digits))};
+}
+
+// The list a case holds at an element key, refused when the index is past its end.
+std::vector<double> list_holding(const SimulationCase& c, const Field& list, const std::string& key,
+                                 std::size_t index) {
+  std::vector<double> values = list.get_list(c);
+  if (index >= values.size()) {
+    throw InputError(key, "element " + std::to_string(index),
+                     values.empty() ? "no index: the case's " + list.name() + " is empty"
+                                    : "an index in [0, " + std::to_string(values.size() - 1) +
+                                          "]: the case's " + list.name() + " has " +
+                                          std::to_string(values.size()) + " element" +
+                                          (values.size() == 1 ? "" : "s"));
+  }
+  return values;
+}
+
+// A schema row for one element of a list row, made once per key and kept (sweep_field hands out
+// references), its section and key held beside it.
+struct ElementRow {
+  std::string section;
+  std::string key;
+  Field field;
+};
+
+const Field& element_field(const std::string& key, const Field& list, std::size_t index) {
+  static std::mutex mutex;
+  static std::map<std::string, std::unique_ptr<ElementRow>> rows;
+  const std::lock_guard<std::mutex> lock(mutex);
+  std::unique_ptr<ElementRow>& row = rows[key];
+  if (!row) {
+    row = std::make_unique<ElementRow>();
+    row->section = std::string(list.section);
+    row->key = std::string(list.key) + "[" + std::to_string(index) + "]";
+    Field& f = row->field;
+    f = list;
+    f.section = row->section;
+    f.key = row->key;
+    f.kind = list.kind == FieldKind::quantity_list ? FieldKind::quantity : FieldKind::number;
+    f.help = "element " + std::to_string(index) + " of " + list.name() + ": " + list.help;
+    const Field* whole = &list;
+    f.get = [whole, key, index](const SimulationCase& c) {
+      return list_holding(c, *whole, key, index)[index];
+    };
+    f.set = [whole, key, index](SimulationCase& c, double value) {
+      std::vector<double> values = list_holding(c, *whole, key, index);
+      values[index] = value;
+      whole->set_list(c, values);
+    };
+    f.get_list = nullptr;
+    f.set_list = nullptr;
+    f.most_values = 0;
+  }
+  return row->field;
+}
+
+}  // namespace
+
 const Field& sweep_field(const std::string& key, const std::string& flag) {
+  if (const std::optional<ListElement> element = list_element(key)) {
+    const Field* list = find_field(element->list);
+    if (list != nullptr &&
+        (list->kind == FieldKind::quantity_list || list->kind == FieldKind::number_list)) {
+      if (element->index >= list->most_values) {
+        throw InputError(flag, key,
+                         "an index in [0, " + std::to_string(list->most_values - 1) +
+                             "]: " + list->name() + " holds at most " +
+                             std::to_string(list->most_values) + " elements");
+      }
+      return element_field(key, *list, element->index);
+    }
+  }
   const Field* field = find_field(key);
   if (field == nullptr || (field->kind != FieldKind::quantity && field->kind != FieldKind::number &&
                            field->kind != FieldKind::integer)) {
     // The nearest key, when the key is a typo rather than a key of another kind.
     const std::optional<std::string> nearest = field == nullptr ? nearest_key(key) : std::nullopt;
-    throw InputError(flag, key,
-                     "a quantity, number or integer key of the case schema, as section.key "
-                     "(`gearimpact schema` lists them)",
-                     nearest ? "did you mean " + *nearest + "?" : std::string());
+    throw InputError(
+        flag, key,
+        "a quantity, number or integer key of the case schema, as section.key, or an element "
+        "of a list key, as section.key[i] "
+        "(`gearimpact schema` lists them)",
+        nearest ? "did you mean " + *nearest + "?" : std::string());
   }
   return *field;
 }
@@ -38,6 +134,16 @@ void set_sweep_value(SimulationCase& c, const std::string& key, double si_value)
     }
   }
   sweep_field(key, key);
+  if (const std::optional<ListElement> element = list_element(key)) {
+    // The whole list through the schema, so that its row checks the element's range.
+    std::vector<double> values = list_holding(c, *find_field(element->list), key, element->index);
+    values[element->index] = si_value;
+    std::string text;
+    for (double v : values) text += (text.empty() ? "" : ", ") + shortest_decimal(v);
+    // Named as the list's element, which is the key as swept.
+    set_field(c, element->list, text, element->list);
+    return;
+  }
   // A plain number is read as SI, and shortest_decimal reads back to the same double.
   set_field(c, key, shortest_decimal(si_value));
 }

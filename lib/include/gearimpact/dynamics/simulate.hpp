@@ -94,7 +94,16 @@ struct RattleSummary {
 struct SimulationSummary {
   std::string case_name;
   std::string integrator;
+  // model.friction_coefficient, f of the constant law: the coefficient of every
+  // pair under friction_law = "constant" only.
   double friction_coefficient = 0.0;
+  FrictionLaw friction_law = FrictionLaw::constant;
+  // Under the other laws, the line's coefficient sum(f N) / sum(N) over its
+  // loaded pairs at the end of each accepted step: its mean over the loaded
+  // time (each value weighted by its step's length) and its largest value.
+  // Absent under the constant law, or without loaded time.
+  std::optional<double> friction_coefficient_mean;
+  std::optional<double> friction_coefficient_max;
   double end_time_s = 0.0;
   double step_s = 0.0;
   int impacts_n1 = 0;
@@ -162,7 +171,25 @@ struct SimulationResult {
   std::vector<ImpactRecord> impacts;
   SimulationSummary summary;
   RunState final_state;
+  double start_time_s = 0.0;  // 0, or the time a continued run resumed at
 };
+
+// The impacts a run struck: its impact records but a contact it started in
+// (the ones the rattle summary counts), in time order.
+std::vector<ImpactRecord> struck_impacts(const SimulationResult& result);
+
+// The distribution of the struck impacts' Vi: `bins` bins of equal width from
+// 0 to the largest Vi, bin i holding lower_m_s[i] <= Vi < upper_m_s[i] and the
+// last bin its upper edge too. No bins without impacts.
+struct ImpactSpeedHistogram {
+  std::vector<double> lower_m_s;
+  std::vector<double> upper_m_s;
+  std::vector<long long> count_n1;
+  std::vector<long long> count_n2;
+};
+inline constexpr int kImpactSpeedBins = 20;
+ImpactSpeedHistogram impact_speed_histogram(const std::vector<ImpactRecord>& struck,
+                                            int bins = kImpactSpeedBins);
 
 // Thrown when RunControl::should_stop asks a run to stop.
 class SimulationStopped : public SimulationError {

@@ -59,6 +59,9 @@ struct Mode {
 struct ContactTotals {
   double normal_force_n = 0.0;
   double friction_force_n = 0.0;
+  // Sum of f N over the pairs: over normal_force_n, the line's load-weighted
+  // coefficient of friction.
+  double friction_load_n = 0.0;
 };
 
 // T(t) of one torque.

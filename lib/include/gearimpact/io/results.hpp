@@ -30,6 +30,12 @@ std::string series_csv_header();
 void append_series_row(std::string& out, const SeriesRow& row);
 // The summary as a JSON object.
 std::string summary_json(const SimulationSummary& summary);
+// A driven run's struck impacts (struck_impacts), one row each:
+// t_s,flank,impact_speed_m_s with flank N1 (drive) or N2 (back).
+std::string rattle_impacts_csv(const std::vector<ImpactRecord>& struck);
+// lower_m_s,upper_m_s,count_n1,count_n2,count: one row per bin of
+// impact_speed_histogram, its edges and its impacts on each flank and both.
+std::string impact_speed_histogram_csv(const ImpactSpeedHistogram& histogram);
 // Fig. 7: f,ratio_case1,ratio_case2,... (friction loss / damping loss).
 std::string friction_sweep_csv(const std::vector<SweepRow>& rows);
 // Fig. 8: angle_deg,pairs,hertz_over_bending_one_pair,...

@@ -18,7 +18,9 @@
 namespace gearimpact {
 
 // The schema row of a key a sweep can vary: any quantity, number or integer key of the case
-// schema (case/schema.hpp). Throws InputError naming `flag` and the key otherwise.
+// schema (case/schema.hpp), or one element of a list key as "section.key[i]" (a row of its own,
+// with the list's unit and range; set_sweep_value refuses an index past the case's list, naming
+// the index range). Throws InputError naming `flag` and the key otherwise.
 const Field& sweep_field(const std::string& key, const std::string& flag);
 
 // Sets the key to an SI value through the schema (set_field: its range, and a key used only with
