@@ -16,6 +16,7 @@
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/named_values.hpp"
 #include "gearimpact/stiffness/model.hpp"
+#include "gearimpact/stiffness/tooth_state.hpp"
 
 namespace gearimpact {
 
@@ -195,6 +196,9 @@ struct SimulationCase {
   InitialState initial;
   ModelOptions model;
   IntegratorSettings integrator;
+  // Teeth that differ from the others ([[faults]], docs/faults.md); empty:
+  // every tooth healthy.
+  std::vector<ToothFault> faults;
 };
 
 }  // namespace gearimpact
