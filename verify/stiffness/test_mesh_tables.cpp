@@ -245,3 +245,30 @@ TEST_CASE("faults that do not fit are refused before any table is built") {
   CHECK(deep_rack.find("q sin nu < h_c") != std::string::npos);
   CHECK_THROWS_AS(MeshTables(g, {}, {fault(Gear::one, 20, missing())}), InputError);
 }
+
+TEST_CASE("the TVMS over the true period names the teeth and differs only where the crack meshes") {
+  const GearPair g = paper_gear_pair();
+  const MeshTables tables(g, {}, {fault(Gear::one, 3, crack_state(0.8e-3, pi / 4))});
+  const std::vector<TruePeriodSample> samples = true_period_mesh_stiffness(tables, g, 50);
+  // A crack on the pinion only: the true period is one pinion revolution.
+  REQUIRE(samples.size() == 50u * 20u);
+  CHECK(std::fabs(samples.back().theta1_rad + 2.0 * pi / 1000.0 - 2.0 * pi) < 1e-12);
+  int with_crack = 0;
+  for (const TruePeriodSample& s : samples) {
+    bool cracked = false;
+    for (const TeethInContact& t : s.teeth) {
+      // On N1 the n-th pair holds pinion tooth n mod 20 and wheel tooth n mod 80.
+      CHECK(t.pinion_tooth == t.wheel_tooth % 20);
+      cracked = cracked || t.pinion_tooth == 3;
+    }
+    if (cracked) {
+      ++with_crack;
+      CHECK(s.ke_n_per_m < s.healthy_ke_n_per_m);
+    } else {
+      CHECK(s.ke_n_per_m == s.healthy_ke_n_per_m);
+    }
+  }
+  // Tooth 3 meshes eps_alpha of the 20 pitches of a revolution.
+  const double eps_alpha = contact_ratio(g);
+  CHECK(std::fabs(with_crack / 1000.0 - eps_alpha / 20.0) < 2.0 / 1000.0);
+}
