@@ -256,6 +256,9 @@ def replace(case, **changes):
     if not changes:
         return case
     current = fields_of(case)
+    # The [[faults]] tables are kept as they are, or replaced by faults=[...].
+    kept = current.pop("faults", None)
+    faults_text = _faults_text(changes.pop("faults", kept))
     given = {}
     for user_key, value in changes.items():
         _add_given(given, resolve(user_key), user_key, value)
@@ -266,7 +269,7 @@ def replace(case, **changes):
     for dotted, (user_key, value) in given.items():
         literals[dotted] = _literal(user_key, dotted, value)
     try:
-        changed = _core.parse_case(_toml_text(literals), _KEYWORDS)
+        changed = _core.parse_case(_toml_text(literals) + faults_text, _KEYWORDS)
     except CaseError as error:
         raise _explained(error, given) from None
     _warnings.warn_conditions(changed, before=case)
