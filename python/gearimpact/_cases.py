@@ -61,7 +61,10 @@ def case(name=None, **keys):
     the keys without one (the pair's teeth, module, pressure angle, face width,
     material and backlash, the torques, end_time) must be given, and are listed
     together when missing. A torque's kind follows from its keys when left out
-    (torque1_value: "constant"). Raises CaseError naming the key as given, with
+    (torque1_value: "constant"). faults: a list of dicts with the keys of a
+    [[faults]] table, one per faulted tooth (docs/faults.md), e.g.
+    faults=[dict(gear="pinion", tooth=0, kind="root-crack", depth="0.5 mm",
+    angle="45 deg")]; errors name faults[i].key. Raises CaseError naming the key as given, with
     a suggestion for a misspelt one; warns (GearimpactWarning) of a foundation
     fit used outside its range, unbalanced mean torques and speeds that do not
     roll.
