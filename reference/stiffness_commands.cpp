@@ -18,6 +18,7 @@
 #include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
+#include "gearimpact/stiffness/mesh_tables.hpp"
 #include "gearimpact/stiffness/time_varying_stiffness.hpp"
 #include "program.hpp"
 
@@ -102,6 +103,23 @@ void print_stiffness_table(StiffnessOptions& options, const CLI::App& command) {
 
 void print_mesh_stiffness(StiffnessOptions& options) {
   const auto [pair, model] = pair_and_model(options);
+  // A case file's [[faults]]: the mesh repeats only after its true period.
+  const std::vector<ToothFault> faults =
+      options.case_file.empty() ? std::vector<ToothFault>{}
+                                : read_pair_or_run_file(options.case_file).simulation_case.faults;
+  if (!faults.empty()) {
+    if (options.summary) {
+      throw InputError("--summary", "given for a case file with [[faults]]",
+                       "left out: with faults the command writes the CSV over the true period "
+                       "(the summary of one mesh period does not apply)");
+    }
+    const MeshTables tables(pair, model, faults);
+    const std::size_t samples = static_cast<std::size_t>(options.samples);
+    std::fputs(
+        true_period_mesh_stiffness_csv(true_period_mesh_stiffness(tables, pair, samples)).c_str(),
+        stdout);
+    return;
+  }
   const MeshStiffnessTexts texts = mesh_stiffness_texts(pair, model, options.samples);
   warn_if(texts.extrapolations);
   std::fputs((options.summary ? texts.summary_json : texts.csv).c_str(), stdout);
@@ -200,7 +218,8 @@ void register_stiffness_commands(CLI::App& app) {
   CLI::App* mesh = app.add_subcommand(
       "mesh-stiffness",
       "CSV of the mesh stiffness over one mesh period (fraction,theta1_rad,pairs,ke_n_m), or "
-      "with --summary its min, max and exact time mean as JSON");
+      "with --summary its min, max and exact time mean as JSON; for a case file with "
+      "[[faults]], over the true period, with the teeth of each pair and the healthy Ke");
   add_pair_options(mesh, *mesh_options);
   mesh_options->keys.add_flags(mesh, kMeshStiffness);
   mesh->add_option("--samples", mesh_options->samples,

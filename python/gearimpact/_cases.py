@@ -61,7 +61,10 @@ def case(name=None, **keys):
     the keys without one (the pair's teeth, module, pressure angle, face width,
     material and backlash, the torques, end_time) must be given, and are listed
     together when missing. A torque's kind follows from its keys when left out
-    (torque1_value: "constant"). Raises CaseError naming the key as given, with
+    (torque1_value: "constant"). faults: a list of dicts with the keys of a
+    [[faults]] table, one per faulted tooth (docs/faults.md), e.g.
+    faults=[dict(gear="pinion", tooth=0, kind="root-crack", depth="0.5 mm",
+    angle="45 deg")]; errors name faults[i].key. Raises CaseError naming the key as given, with
     a suggestion for a misspelt one; warns (GearimpactWarning) of a foundation
     fit used outside its range, unbalanced mean torques and speeds that do not
     roll.
@@ -71,6 +74,7 @@ def case(name=None, **keys):
             'name: a case needs a name (it names output files), e.g. case(name="my-pair", ...)',
             "name")
     given = {"name": ("name", _arguments.text("name", name))}
+    faults_text = _faults_text(keys.pop("faults", None))
     for user_key, value in keys.items():
         _add_given(given, resolve(user_key), user_key, value)
     for section in _KIND_SECTIONS:
@@ -85,11 +89,39 @@ def case(name=None, **keys):
     literals = {dotted: _literal(user_key or dotted, dotted, value)
                 for dotted, (user_key, value) in given.items()}
     try:
-        made = _core.parse_case(_toml_text(literals), _KEYWORDS)
+        made = _core.parse_case(_toml_text(literals) + faults_text, _KEYWORDS)
     except CaseError as error:
         raise _explained(error, given) from None
     _warnings.warn_conditions(made)
     return made
+
+
+def _faults_text(faults):
+    """[[faults]] tables for faults=[dict(gear="pinion", tooth=0, kind="root-crack", depth="0.5 mm",
+    angle="45 deg"), ...]: the reader checks the keys and values, and names them faults[i].key."""
+    if faults is None:
+        return ""
+    if isinstance(faults, (str, bytes, dict)) or not hasattr(faults, "__iter__"):
+        raise case_error(
+            f"faults={faults!r}: a list of dicts, one per faulted tooth, e.g. "
+            'faults=[dict(gear="pinion", tooth=0, kind="missing")]', "faults")
+    text = ""
+    for i, fault in enumerate(faults):
+        if not isinstance(fault, dict):
+            raise case_error(f"faults[{i}]={fault!r}: a dict of the keys of [[faults]] "
+                             "(gear, tooth, kind, depth, angle, ...)", f"faults[{i}]")
+        text += "\n[[faults]]\n"
+        for key, value in fault.items():
+            if not isinstance(key, str) or not re.fullmatch(r"[A-Za-z0-9_]+", key):
+                raise case_error(f"faults[{i}]: the key {key!r} is not a key of [[faults]]",
+                                 f"faults[{i}]")
+            if is_bool(value) or not isinstance(value, (str, numbers.Integral, numbers.Real)):
+                raise case_error(f"faults[{i}].{key}={value!r}: a string (\"0.5 mm\") or a number",
+                                 f"faults[{i}].{key}")
+            literal = json.dumps(value) if isinstance(value, str) else (
+                str(int(value)) if isinstance(value, numbers.Integral) else repr(float(value)))
+            text += f"{key} = {literal}\n"
+    return text
 
 
 def _add_given(given, dotted, user_key, value):
@@ -227,6 +259,9 @@ def replace(case, **changes):
     if not changes:
         return case
     current = fields_of(case)
+    # The [[faults]] tables are kept as they are, or replaced by faults=[...].
+    kept = current.pop("faults", None)
+    faults_text = _faults_text(changes.pop("faults", kept))
     given = {}
     for user_key, value in changes.items():
         _add_given(given, resolve(user_key), user_key, value)
@@ -237,7 +272,7 @@ def replace(case, **changes):
     for dotted, (user_key, value) in given.items():
         literals[dotted] = _literal(user_key, dotted, value)
     try:
-        changed = _core.parse_case(_toml_text(literals), _KEYWORDS)
+        changed = _core.parse_case(_toml_text(literals) + faults_text, _KEYWORDS)
     except CaseError as error:
         raise _explained(error, given) from None
     _warnings.warn_conditions(changed, before=case)

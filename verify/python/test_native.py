@@ -401,3 +401,34 @@ def test_iso6336_takes_a_load_as_the_program_does():
     assert abs(loaded["c_prime_n_mm_um"] / plain["c_prime_n_mm_um"] - 0.5 ** 0.25) < 1e-12
     with pytest.raises(gearimpact.CaseError, match="load"):
         gearimpact.iso6336(my_pair(), load="50 N/mmm")
+
+
+# Faulted teeth ---------------------------------------------------------------------------------
+
+
+FAULT_TOML = """
+[[faults]]
+gear = "pinion"
+tooth = 0
+kind = "root-crack"
+depth = "0.5 mm"
+angle = "45 deg"
+"""
+
+
+def test_faults_from_keywords_read_as_the_case_file_does():
+    faulted = my_pair(faults=[dict(gear="pinion", tooth=0, kind="root-crack", depth="0.5 mm",
+                                   angle="45 deg")])
+    assert faulted == quiet(lambda: gearimpact.parse_case(PAIR_TOML + FAULT_TOML, "my-pair.toml"))
+    assert faulted != my_pair()
+    # A change of another key keeps the faults.
+    assert "[[faults]]" in faulted.replace(end_time="10 ms").to_toml("si")
+
+
+def test_a_fault_on_a_tooth_the_gear_lacks_names_the_key_and_range():
+    with pytest.raises(gearimpact.CaseError) as error:
+        my_pair(faults=[dict(gear="pinion", tooth=25, kind="missing")])
+    assert "faults[0].tooth" in str(error.value)
+    assert "0 ... " in str(error.value)
+    with pytest.raises(gearimpact.CaseError):
+        my_pair(faults=dict(gear="pinion", tooth=0, kind="missing"))

@@ -50,6 +50,7 @@
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "gearimpact/stiffness/mesh_models.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
+#include "gearimpact/stiffness/mesh_tables.hpp"
 #include "gearimpact/stiffness/model.hpp"
 #include "gearimpact/stiffness/root_crack.hpp"
 #include "gearimpact/stiffness/surface_faults.hpp"
@@ -59,4 +60,5 @@
 #include "gearimpact/stiffness/terms.hpp"
 #include "gearimpact/stiffness/time_varying_stiffness.hpp"
 #include "gearimpact/stiffness/tooth_beam.hpp"
+#include "gearimpact/stiffness/tooth_state.hpp"
 #include "gearimpact/stiffness/x_form.hpp"

@@ -821,7 +821,97 @@ const Field& field_or_throw(std::string_view key, std::string_view name) {
                    nearest ? "did you mean " + *nearest + "?" : std::string());
 }
 
+// The rows of one [[faults]] table. Their slots read the first fault of a
+// case: the reader and the writer pass each fault in a case of its own.
+std::vector<Field> make_fault_schema() {
+  std::vector<Field> rows;
+  Rows r(rows, "faults");
+  const auto fault = [](auto& c) -> auto& {
+    return c.faults.front();
+  };
+  r.choice(
+      "gear",
+      {choice("pinion", Gear::one, "gear 1, the driving pinion"),
+       choice("wheel", Gear::two, "gear 2")},
+      true,
+      "the gear the faulted tooth belongs to", [fault](auto& c) -> auto& { return fault(c).gear; });
+  r.integer(
+      "tooth", {closed(0.0), {}, "and below the gear's number of teeth"}, true,
+      "the tooth's number in mesh order, 0 ... z-1 (docs/faults.md, Tooth identity); "
+      "one fault per tooth",
+      [fault](auto& c) -> auto& { return fault(c).tooth; });
+  r.choice(
+      "kind",
+      {choice("root-crack", ToothKind::root_crack,
+              "a crack from the root (Tian 2004; Chen & Shao 2011 across the face)"),
+       choice("missing", ToothKind::missing, "the tooth is gone: its pair carries nothing")},
+      true, "the tooth's fault", [fault](auto& c) -> auto& { return fault(c).state.kind; });
+  const auto crack = [fault](auto& c) -> auto& {
+    return fault(c).state.crack;
+  };
+  r.quantity(
+       "depth", Dimension::length, "mm", {closed(0.0), {}, {}}, true,
+       "q of a uniform crack, q0 (at the start edge) of the width profiles; q sin nu < h_c, "
+       "the half thickness where the crack starts",
+       [crack](auto& c) -> auto& { return crack(c).depth_m; })
+      .only_when = FieldCondition{"kind", {"root-crack"}};
+  r.quantity(
+       "angle", Dimension::angle, "deg", {open(0.0), closed(0.5 * pi), {}}, true,
+       "nu, between the crack and the tooth centre line",
+       [crack](auto& c) -> auto& { return crack(c).angle_rad; })
+      .only_when = FieldCondition{"kind", {"root-crack"}};
+  r.choice(
+       "profile",
+       {choice("uniform", CrackProfile::uniform, "q across the whole face"),
+        choice("partial-width", CrackProfile::partial_width,
+               "q0 sqrt((W_c - z) / W_c) up to width W_c"),
+        choice("full-width", CrackProfile::full_width,
+               "sqrt((q2^2 - q0^2) z / b + q0^2), q2 the end_depth")},
+       false,
+       "how the depth runs across the face", [crack](auto& c) -> auto& { return crack(c).profile; })
+      .only_when = FieldCondition{"kind", {"root-crack"}};
+  r.quantity(
+       "end_depth", Dimension::length, "mm", {closed(0.0), {}, {}}, true,
+       "q2, the depth at the far edge of the face",
+       [crack](auto& c) -> auto& { return crack(c).end_depth_m; })
+      .only_when = FieldCondition{"profile", {"full-width"}};
+  r.quantity(
+       "width", Dimension::length, "mm", {open(0.0), {}, "and at most the face width"}, true,
+       "W_c, how far across the face the crack runs",
+       [crack](auto& c) -> auto& { return crack(c).width_m; })
+      .only_when = FieldCondition{"profile", {"partial-width"}};
+  Field& start = r.quantity(
+      "start_radius", Dimension::length, "mm", {open(0.0), {}, {}}, false,
+      "r_s, where the crack starts on the flank; potential-energy and ross-compatible only",
+      [crack](auto& c) -> auto& { return crack(c).start_radius_m; });
+  start.only_when = FieldCondition{"kind", {"root-crack"}};
+  start.when_absent =
+      "the fillet point whose tangent makes 30 deg with the centre line (potential-energy, "
+      "ross-compatible); the base circle (yang-lin-1987)";
+  return rows;
+}
+
 }  // namespace
+
+const std::vector<Field>& fault_schema() {
+  static const std::vector<Field> rows = make_fault_schema();
+  return rows;
+}
+
+bool fault_row_applies(const Field& field, const SimulationCase& one_fault) {
+  if (!field.only_when) return true;
+  for (const Field& selector : fault_schema()) {
+    if (selector.key != field.only_when->key) continue;
+    if (!fault_row_applies(selector, one_fault)) return false;
+    const double code = selector.get(one_fault);
+    for (const ChoiceName& c : selector.choices) {
+      if (c.code != code) continue;
+      const auto& choices = field.only_when->choices;
+      return std::find(choices.begin(), choices.end(), c.name) != choices.end();
+    }
+  }
+  return false;
+}
 
 std::string FieldCondition::text() const {
   std::string list;
@@ -1046,8 +1136,11 @@ std::string value_text(const Field& field, const SimulationCase& c, bool readabl
 std::string default_text(const Field& field) {
   if (field.required) return "required";
   if (field.kind == FieldKind::text) return "the file's stem";
-  if (absent(field, SimulationCase{})) return "absent: " + std::string(field.when_absent);
-  return value_text(field, SimulationCase{});
+  // A [[faults]] row reads the case's first fault: a default one.
+  SimulationCase defaults;
+  if (field.section == "faults") defaults.faults.resize(1);
+  if (absent(field, defaults)) return "absent: " + std::string(field.when_absent);
+  return value_text(field, defaults);
 }
 
 void check_value(const Field& field, double value, std::string_view name,
@@ -1262,6 +1355,66 @@ bool any_failed(const std::vector<std::string>& failed, std::string_view prefix)
 
 }  // namespace
 
+namespace {
+
+// The [[faults]] key a crack's refusal by the library names (root_crack.hpp).
+std::string fault_key_of(const std::string& library_name) {
+  if (library_name == "crack end depth q2") return "end_depth";
+  if (library_name == "crack width W_c") return "width";
+  if (library_name == "crack angle nu") return "angle";
+  if (library_name == "crack start radius r_s") return "start_radius";
+  return "depth";
+}
+
+// The checks of [[faults]] that need the gears and the model: a constant
+// stiffness has no teeth, a tooth number below the gear's teeth, one fault per
+// tooth, and a crack that fits its tooth (place_crack).
+void fault_problems(const SimulationCase& c, const std::vector<std::string>& failed,
+                    Problems& problems) {
+  if (c.faults.empty() || any_failed(failed, "faults")) return;
+  if (c.model.mesh_stiffness == MeshStiffnessMode::constant) {
+    if (!any_failed(failed, "model.mesh_stiffness")) {
+      problems.add(range_problem("model.mesh_stiffness", "\"constant\"",
+                                 "\"time-varying\" in a case with [[faults]]: a constant "
+                                 "stiffness has no teeth to fault"));
+    }
+    return;
+  }
+  if (any_failed(failed, "gears.") || any_failed(failed, "model.")) return;
+  for (std::size_t i = 0; i < c.faults.size(); ++i) {
+    const ToothFault& f = c.faults[i];
+    const std::string name = "faults[" + std::to_string(i) + "]";
+    const int z = teeth(c.gears, f.gear);
+    const std::string gear = f.gear == Gear::one ? "pinion" : "wheel";
+    if (f.tooth >= z) {
+      problems.add(range_problem(name + ".tooth", std::to_string(f.tooth),
+                                 "0 ... " + std::to_string(z - 1) + ", the " + std::to_string(z) +
+                                     " teeth of the " + gear + " (gears.teeth" +
+                                     (f.gear == Gear::one ? "1" : "2") + ")"));
+      continue;
+    }
+    bool repeated = false;
+    for (std::size_t j = 0; j < i && !repeated; ++j) {
+      if (c.faults[j].gear == f.gear && c.faults[j].tooth == f.tooth) {
+        repeated = true;
+        problems.add(range_problem(name + ".tooth", std::to_string(f.tooth),
+                                   "a " + gear + " tooth without a fault: faults[" +
+                                       std::to_string(j) + "] is on it already (one per tooth)"));
+      }
+    }
+    if (repeated || f.state.kind != ToothKind::root_crack) continue;
+    try {
+      check_tooth_faults(c.gears, c.model.stiffness, {f});
+    } catch (const InputError& e) {
+      for (const Problem& p : e.problems()) {
+        problems.add(p.renamed(name + "." + fault_key_of(p.field), p.value));
+      }
+    }
+  }
+}
+
+}  // namespace
+
 void relation_problems(const SimulationCase& c, const std::vector<std::string>& failed,
                        Problems& problems) {
   bool geometry_valid = false;
@@ -1342,6 +1495,7 @@ void relation_problems(const SimulationCase& c, const std::vector<std::string>& 
       }
     }
   }
+  fault_problems(c, failed, problems);
   if (c.model.friction_law == FrictionLaw::table &&
       !any_failed(failed, "model.friction_table_slide_to_roll") &&
       !any_failed(failed, "model.friction_table_coefficients")) {
@@ -1414,6 +1568,15 @@ std::string case_key(const SimulationCase& c) {
     if (!applies(field, c) || absent(field, c)) continue;
     key += field.name() + "=" + value_text(field, c, false) + "\n";
   }
+  for (std::size_t i = 0; i < c.faults.size(); ++i) {
+    SimulationCase one;
+    one.faults = {c.faults[i]};
+    for (const Field& field : fault_schema()) {
+      if (!fault_row_applies(field, one) || absent(field, one)) continue;
+      key += "faults[" + std::to_string(i) + "]." + std::string(field.key) + "=" +
+             value_text(field, one, false) + "\n";
+    }
+  }
   return key;
 }
 
@@ -1427,7 +1590,11 @@ std::string schema_markdown() {
     return escaped;
   };
   std::string table = "| key | unit | default | allowed | meaning |\n|---|---|---|---|---|\n";
-  for (const Field& field : case_schema()) {
+  std::vector<const Field*> rows;
+  for (const Field& field : case_schema()) rows.push_back(&field);
+  for (const Field& field : fault_schema()) rows.push_back(&field);
+  for (const Field* row : rows) {
+    const Field& field = *row;
     std::string help(field.help);
     if (field.kind == FieldKind::choice) {
       for (const ChoiceName& c : field.choices) {

@@ -1,6 +1,8 @@
 #include "gearimpact/dynamics/mesh.hpp"
 
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "gearimpact/error.hpp"
 #include "gearimpact/numerics/quadrature.hpp"
@@ -43,18 +45,55 @@ double viscous_mesh_damping_n_s_per_m(double damping_ratio, double mesh_stiffnes
   return 2.0 * damping_ratio * std::sqrt(mesh_stiffness_n_per_m * effective_mass_kg);
 }
 
+namespace {
+
+// Int Ke(X) dX of one table over the contact segment. Ke is smooth on the
+// segment (its table is a piecewise Chebyshev fit): the adaptive rule meets
+// 1e-12 relative.
+double stiffness_integral(const SimulationCase& c, const StiffnessTable& table) {
+  const ContactSegment segment = contact_segment(c.gears);
+  QuadratureTolerance tolerance;
+  tolerance.relative = 1e-12;
+  return integrate_gsl_qag([&](double x) { return table.stiffness(x); }, segment.start_m,
+                           segment.end_m, tolerance)
+      .value;
+}
+
+}  // namespace
+
 double mean_mesh_stiffness_n_per_m(const SimulationCase& c, const StiffnessTable& table) {
   if (c.model.mesh_stiffness == MeshStiffnessMode::constant) {
     return c.model.constant_mesh_stiffness_n_per_m;
   }
-  const ContactSegment segment = contact_segment(c.gears);
-  // Ke is smooth on the segment (its table is a piecewise Chebyshev fit): the
-  // adaptive rule meets 1e-12 relative.
-  QuadratureTolerance tolerance;
-  tolerance.relative = 1e-12;
-  const QuadratureResult integral = integrate_gsl_qag([&](double x) { return table.stiffness(x); },
-                                                      segment.start_m, segment.end_m, tolerance);
-  return integral.value / base_pitch(c.gears);
+  return stiffness_integral(c, table) / base_pitch(c.gears);
+}
+
+double mean_mesh_stiffness_n_per_m(const SimulationCase& c, const MeshTables& tables) {
+  if (c.model.mesh_stiffness == MeshStiffnessMode::constant) {
+    return c.model.constant_mesh_stiffness_n_per_m;
+  }
+  if (!tables.has_faults()) return mean_mesh_stiffness_n_per_m(c, tables.healthy());
+  // Each table integrated once, times how often its pair comes in a period;
+  // summed in the order the pairs come, so that the sum does not depend on
+  // where the tables lie in memory.
+  const long long periods = tables.true_period_mesh_periods();
+  std::vector<std::pair<const StiffnessTable*, long long>> count;
+  for (long long n = 0; n < periods; ++n) {
+    const StiffnessTable* t = tables.table(Region::n1, static_cast<int>(-n));
+    if (t == nullptr) continue;
+    auto seen = count.begin();
+    while (seen != count.end() && seen->first != t) ++seen;
+    if (seen == count.end()) {
+      count.emplace_back(t, 1);
+    } else {
+      ++seen->second;
+    }
+  }
+  double sum = 0.0;
+  for (const auto& [table, times] : count) {
+    sum += static_cast<double>(times) * stiffness_integral(c, *table);
+  }
+  return sum / (static_cast<double>(periods) * base_pitch(c.gears));
 }
 
 double natural_frequency_rad_per_s(const SimulationCase& c, const StiffnessTable& table) {

@@ -106,9 +106,18 @@ GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table,
   constant_torques_ =
       c.torque1.kind == Torque::Kind::constant && c.torque2.kind == Torque::Kind::constant;
   if (constant_torques_) torque_values_ = {c.torque1.constant_n_m, c.torque2.constant_n_m};
+  if (!c.faults.empty() && constant_k_ == 0.0) {
+    // The caller keeps the healthy table alive; MeshTables shares it without owning it.
+    teeth_ = std::make_shared<const MeshTables>(
+        g, c.model.stiffness, c.faults,
+        std::shared_ptr<const StiffnessTable>(&table, [](const StiffnessTable*) {}));
+  }
   if (c.model.mesh_damping_ratio > 0.0) {
-    mesh_damping_ = viscous_mesh_damping_n_s_per_m(
-        c.model.mesh_damping_ratio, mean_mesh_stiffness_n_per_m(c, table), effective_mass_kg(g));
+    // With faults the damper sees the mean over the true period.
+    const double mean_k =
+        teeth_ ? mean_mesh_stiffness_n_per_m(c, *teeth_) : mean_mesh_stiffness_n_per_m(c, table);
+    mesh_damping_ =
+        viscous_mesh_damping_n_s_per_m(c.model.mesh_damping_ratio, mean_k, effective_mass_kg(g));
   }
 }
 
@@ -132,14 +141,15 @@ void GearSystem::impose_driver(double t, State& y) const {
 // Stage states of a step that ends on a pair's entry or exit can reach a hair
 // beyond the segment: there Ke continues along its tangent, so the right-hand
 // side stays smooth.
-void GearSystem::pair_stiffness(double x, int count, double& ke, double& dke) const {
+void GearSystem::pair_stiffness(const StiffnessTable& table, double x, int count, double& ke,
+                                double& dke) const {
   if (constant_k_ > 0.0) {
     ke = constant_k_ / count;
     dke = 0.0;
     return;
   }
   const double xc = std::clamp(x, xs_, xe_);
-  const StiffnessAndDerivative k = table_.stiffness_and_derivative(xc);
+  const StiffnessAndDerivative k = table.stiffness_and_derivative(xc);
   dke = k.derivative_n_per_m2;
   ke = k.stiffness_n_per_m + dke * (x - xc);
 }
@@ -196,10 +206,13 @@ void GearSystem::rhs(double t, const State& y_in, const Mode& m, const ContactMe
     const double ref = layout_.reference_m(m.region, y[kTheta1]);
     const double x_rate = sign * rb1_ * w1;
     for (int j = 0; j < m.count; ++j) {
+      const StiffnessTable* table = pair_table(m.region, m.k_first + j);
+      // A pair with a missing tooth: no force, no damping, no friction.
+      if (table == nullptr) continue;
       const double x = layout_.position_m(ref, m.k_first + j);
       double ke = 0.0;
       double dke = 0.0;
-      pair_stiffness(x, m.count, ke, dke);
+      pair_stiffness(*table, x, m.count, ke, dke);
       const double f_elastic = elastic_force(ke, dl);
       const double g_damping = hertzian_damping_force(damping_factor(d, ke), dl, dl_rate);
       const double n = normal_force(f_elastic, g_damping, m.clipped[j]);
@@ -294,7 +307,8 @@ int GearSystem::event_values(const State& y, const Mode& m, const ContactMemory&
     const double x = layout_.position_m(ref, m.k_first + j);
     // A smoothed sign has no switch to locate: the value stays positive.
     g[n++] = smoothing_speed_ > 0.0 ? 1.0 : m.slip[j] * sliding_speed(y[kW1], y[kW2], x, lp_);
-    const double push = push_sign_function(x, m.count, d, dl, dl_rate);
+    const double push =
+        push_sign_function(pair_table(m.region, m.k_first + j), x, m.count, d, dl, dl_rate);
     g[n++] = m.clipped[j] ? -push : push;
   }
   return n;
@@ -303,14 +317,16 @@ int GearSystem::event_values(const State& y, const Mode& m, const ContactMemory&
 // A function with the sign and the zeros of F + G of one pair. With D
 // proportional to the pair's own Ke, F + G = Ke delta (1 + (D/K) d(delta)/dt)
 // and the positive factor Ke need not be evaluated.
-double GearSystem::push_sign_function(double x, int count, const ContactMemory& d, double dl,
-                                      double dl_rate) const {
+// A pair with a missing tooth never pushes nor switches: 1.
+double GearSystem::push_sign_function(const StiffnessTable* table, double x, int count,
+                                      const ContactMemory& d, double dl, double dl_rate) const {
+  if (table == nullptr) return 1.0;
   if (damping_on_current_pair_) {
     return dl * (1.0 + d.damping_per_stiffness_s_m * dl_rate);
   }
   double ke = 0.0;
   double dke = 0.0;
-  pair_stiffness(x, count, ke, dke);
+  pair_stiffness(*table, x, count, ke, dke);
   return elastic_force(ke, dl) + hertzian_damping_force(damping_factor(d, ke), dl, dl_rate);
 }
 
@@ -347,7 +363,8 @@ void GearSystem::classify_forces(const State& y, const ContactMemory& d, Mode& m
   for (int j = 0; j < m.count; ++j) {
     const double x = pair_position(m, y, j);
     m.slip[j] = sliding_speed(y[kW1], y[kW2], x, lp_) >= 0.0 ? 1.0 : -1.0;
-    m.clipped[j] = push_sign_function(x, m.count, d, dl, dl_rate) < 0.0;
+    m.clipped[j] =
+        push_sign_function(pair_table(m.region, m.k_first + j), x, m.count, d, dl, dl_rate) < 0.0;
   }
 }
 
@@ -368,17 +385,23 @@ GearSystem::Onset GearSystem::damping_at_onset(const State& y, const Mode& m) co
   if (case_.model.damping_stiffness == DampingStiffness::hertz) {
     d.frozen_stiffness_n_per_m = kh_;
   } else if (m.count > 0) {
-    int nearest = 0;
-    for (int j = 1; j < m.count; ++j) {
-      if (std::fabs(pair_position(m, y, j) - x_pitch_) <
-          std::fabs(pair_position(m, y, nearest) - x_pitch_)) {
+    // The loaded pair nearest the pitch point; with faults, among the pairs
+    // that carry (none: the stiffness stays 0, as nothing pushes).
+    int nearest = -1;
+    for (int j = 0; j < m.count; ++j) {
+      if (pair_table(m.region, m.k_first + j) == nullptr) continue;
+      if (nearest < 0 || std::fabs(pair_position(m, y, j) - x_pitch_) <
+                             std::fabs(pair_position(m, y, nearest) - x_pitch_)) {
         nearest = j;
       }
     }
-    double ke = 0.0;
-    double dke = 0.0;
-    pair_stiffness(pair_position(m, y, nearest), m.count, ke, dke);
-    d.frozen_stiffness_n_per_m = ke;
+    if (nearest >= 0) {
+      double ke = 0.0;
+      double dke = 0.0;
+      pair_stiffness(*pair_table(m.region, m.k_first + nearest), pair_position(m, y, nearest),
+                     m.count, ke, dke);
+      d.frozen_stiffness_n_per_m = ke;
+    }
   }
   return onset;
 }
@@ -393,7 +416,10 @@ ElasticEnergy GearSystem::stored_energy(const State& y, const Mode& m) const {
       u.j[index_of(Term::hertz)] += 0.5 * constant_k_ / m.count * dl * dl;
       continue;
     }
-    const Compliances c = table_.compliance(std::clamp(x, xs_, xe_));
+    const StiffnessTable* table = pair_table(m.region, m.k_first + j);
+    // A missing tooth stores nothing.
+    if (table == nullptr) continue;
+    const Compliances c = table->compliance(std::clamp(x, xs_, xe_));
     // (30) F = Ke delta with 1/Ke the total compliance of (29).
     const ElasticEnergy pair = pair_energy(c, dl / c.total_m_per_n());
     for (std::size_t i = 0; i < kTermCount; ++i) u.j[i] += pair.j[i];

@@ -284,7 +284,8 @@ CaseFileKind kind_of(const toml::value& root) {
   for (const auto& [key, value] : root.as_table()) {
     const Field* field = find_field(key);
     const bool top_level_key = field != nullptr && field->section.empty();
-    if (!top_level_key && !is_pair_section(key)) return CaseFileKind::run;
+    // Faulted teeth belong to the pair: a pair file may list them.
+    if (!top_level_key && !is_pair_section(key) && key != "faults") return CaseFileKind::run;
   }
   return CaseFileKind::pair;
 }
@@ -329,7 +330,9 @@ class Document {
     for (const auto& [key, value] : root.as_table()) {
       const Field* field = find_field(key);
       const bool top_level_key = field != nullptr && field->section.empty();
-      if (!top_level_key && std::find(sections.begin(), sections.end(), key) == sections.end()) {
+      // [[faults]] is read apart (read_faults), by fault_schema().
+      if (!top_level_key && key != "faults" &&
+          std::find(sections.begin(), sections.end(), key) == sections.end()) {
         unknown.push_back(key);
       }
     }
@@ -357,6 +360,21 @@ class Document {
     const auto& top = root_.as_table();
     const auto found = top.find(std::string(name));
     return found == top.end() ? nullptr : &found->second;
+  }
+
+  // The value of "faults[i].key" in the file, or nullptr.
+  const toml::value* fault_value(const std::string& name) const {
+    const std::size_t close = name.find("].");
+    const toml::value* list = section("faults");
+    if (name.rfind("faults[", 0) != 0 || close == std::string::npos || list == nullptr ||
+        !list->is_array()) {
+      return nullptr;
+    }
+    const std::size_t i = std::stoul(name.substr(7, close - 7));
+    if (i >= list->as_array().size() || !list->as_array()[i].is_table()) return nullptr;
+    const auto& entries = list->as_array()[i].as_table();
+    const auto found = entries.find(name.substr(close + 2));
+    return found == entries.end() ? &list->as_array()[i] : &found->second;
   }
 
   // True when the section is missing or not a table: its keys are not
@@ -555,6 +573,12 @@ Problem at_key(const Reader& reader, const Document& document, const SimulationC
   const Field* field = find_field(problem.field);
   const toml::value* at = field != nullptr ? document.find(*field) : nullptr;
   std::string value = problem.value;
+  if (field == nullptr && (at = document.fault_value(problem.field)) != nullptr) {
+    // The value as the file wrote it, unless the key is absent (then `at` is its table).
+    Problem p = at->is_table() ? problem : problem.renamed(problem.field, written(*at));
+    p.where = reader.where(at);
+    return p;
+  }
   if (at != nullptr) {
     value = written(*at);
   } else if (field != nullptr) {
@@ -620,6 +644,94 @@ void read_row(const Reader& reader, const Document& document, const Field& field
   field.set(result, read_value(reader, field, *value));
 }
 
+std::string fault_key_list() {
+  std::string names;
+  for (const Field& field : fault_schema()) {
+    names += (names.empty() ? "" : ", ") + std::string(field.key);
+  }
+  return names;
+}
+
+// The [[faults]] tables into result.faults, each read by the rows of
+// fault_schema() in a case of its own and named faults[i].key. A table with a
+// problem is left out of the case, and "faults" is then among `failed`, so that
+// no check across keys reads a shifted list.
+void read_faults(const Reader& reader, const toml::value& root, SimulationCase& result,
+                 std::vector<std::string>& failed, std::vector<Problem>& problems) {
+  const auto& top = root.as_table();
+  const auto found = top.find("faults");
+  if (found == top.end()) return;
+  const toml::value& list = found->second;
+  if (!list.is_array()) {
+    failed.emplace_back("faults");
+    problems.push_back(reader.problem(
+        "faults", &list,
+        "faults = " + written(list) + " is " + type_name(list) +
+            ", not an array of tables: write one [[faults]] table per faulted tooth, with keys " +
+            fault_key_list()));
+    return;
+  }
+  for (std::size_t i = 0; i < list.as_array().size(); ++i) {
+    const toml::value& table = list.as_array()[i];
+    const std::string section = "faults[" + std::to_string(i) + "]";
+    if (!table.is_table()) {
+      failed.push_back(section);
+      problems.push_back(reader.problem(section, &table,
+                                        section + " = " + written(table) + " is " +
+                                            type_name(table) + ", not a [[faults]] table"));
+      continue;
+    }
+    const std::size_t before = problems.size();
+    for (const auto& [key, value] : table.as_table()) {
+      const bool known = std::any_of(fault_schema().begin(), fault_schema().end(),
+                                     [&](const Field& f) { return f.key == key; });
+      if (!known) {
+        problems.push_back(reader.problem(section + "." + key, &value,
+                                          "unknown key " + section + "." + key +
+                                              "; the keys of [[faults]] are " + fault_key_list()));
+      }
+    }
+    SimulationCase one;
+    one.faults.resize(1);
+    for (const Field& row : fault_schema()) {
+      Field named = row;
+      named.section = section;
+      const std::string name = named.name();
+      const auto entry = table.as_table().find(std::string(row.key));
+      const toml::value* value = entry == table.as_table().end() ? nullptr : &entry->second;
+      if (!fault_row_applies(row, one)) {
+        if (value != nullptr) {
+          problems.push_back(reader.problem(
+              name, value,
+              name + " = " + written(*value) + " is not used with " + row.only_when->text()));
+        }
+        continue;
+      }
+      if (value == nullptr) {
+        if (row.required) {
+          problems.push_back(reader.problem(
+              name, &table, name + " is missing (required: " + expected_of(named) + ")"));
+          // The rows after a missing choice depend on it.
+          if (row.kind == FieldKind::choice) break;
+        }
+        continue;
+      }
+      try {
+        row.set(one, read_value(reader, named, *value));
+      } catch (const CaseFileError& e) {
+        problems.insert(problems.end(), e.problems().begin(), e.problems().end());
+        // The rows after a refused choice depend on it.
+        if (row.kind == FieldKind::choice) break;
+      }
+    }
+    if (problems.size() == before) {
+      result.faults.push_back(one.faults.front());
+    } else {
+      failed.push_back(section);
+    }
+  }
+}
+
 SimulationCase read_case(const Reader& reader, const toml::value& root, std::string_view file_name,
                          CaseFileKind kind) {
   // Every problem of the file is gathered and reported at once; the checks
@@ -651,6 +763,7 @@ SimulationCase read_case(const Reader& reader, const toml::value& root, std::str
       problems.insert(problems.end(), e.problems().begin(), e.problems().end());
     }
   }
+  read_faults(reader, root, result, failed, problems);
   Problems relations;
   relation_problems(result, failed, relations);
   for (const Problem& p : relations.list()) problems.push_back(at_key(reader, document, result, p));
@@ -853,6 +966,16 @@ std::string write_case_file(const SimulationCase& c, CaseUnits units) {
     std::string value = value_text(field, c, units == CaseUnits::readable);
     if (is_list(field.kind)) value = wrapped_list(value);
     text += std::string(field.key) + " = " + value + "\n";
+  }
+  for (const ToothFault& fault : c.faults) {
+    SimulationCase one;
+    one.faults = {fault};
+    text += "\n[[faults]]\n";
+    for (const Field& field : fault_schema()) {
+      if (!fault_row_applies(field, one) || absent(field, one)) continue;
+      text += std::string(field.key) + " = " +
+              value_text(field, one, units == CaseUnits::readable) + "\n";
+    }
   }
   return text;
 }

@@ -269,6 +269,34 @@ std::string mesh_stiffness_csv(const TimeVaryingMeshStiffness& tvms) {
   return out;
 }
 
+std::string true_period_mesh_stiffness_csv(const std::vector<TruePeriodSample>& samples) {
+  std::size_t most = 0;
+  for (const TruePeriodSample& s : samples) most = std::max(most, s.teeth.size());
+  std::string out = "fraction,theta1_rad,pairs,ke_n_m,healthy_ke_n_m";
+  for (std::size_t j = 1; j <= most; ++j) {
+    const std::string p = "pair" + std::to_string(j);
+    out += "," + p + "_pinion_tooth," + p + "_wheel_tooth," + p + "_ke_n_m";
+  }
+  out += "\n";
+  char line[160];
+  for (const TruePeriodSample& s : samples) {
+    std::snprintf(line, sizeof line, "%.17g,%.17g,%zu,%.17g,%.17g", s.fraction, s.theta1_rad,
+                  s.teeth.size(), s.ke_n_per_m, s.healthy_ke_n_per_m);
+    out += line;
+    for (std::size_t j = 0; j < most; ++j) {
+      if (j < s.teeth.size()) {
+        std::snprintf(line, sizeof line, ",%d,%d,%.17g", s.teeth[j].pinion_tooth,
+                      s.teeth[j].wheel_tooth, s.pair_ke_n_per_m[j]);
+        out += line;
+      } else {
+        out += ",,,";
+      }
+    }
+    out += "\n";
+  }
+  return out;
+}
+
 std::string mesh_stiffness_summary_json(const TimeVaryingMeshStiffness& tvms,
                                         double contact_ratio) {
   const bool extrapolated = !tvms.foundation_extrapolations.empty();

@@ -293,6 +293,14 @@ std::string to_string(Regime regime) {
 }
 
 void require_steady_case(const SimulationCase& c) {
+  // The Poincare section is one mesh period (or the forcing's); faulted teeth
+  // repeat only after the true period (docs/faults.md).
+  if (!c.faults.empty()) {
+    throw InputError("faults", std::to_string(c.faults.size()) + " faulted teeth",
+                     "none: steady states and sweeps sample the motion once per mesh period, "
+                     "and a case with [[faults]] repeats only after its true period (a pinion "
+                     "revolution or the hunting period); not supported yet");
+  }
   // A kinematic driver holds the mean speed whatever the load, the drag and
   // friction draw from it: nothing need balance.
   if (c.torque1.kind == Torque::Kind::prescribed_speed) return;

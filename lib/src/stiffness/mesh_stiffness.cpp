@@ -2,13 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/rack_generation.hpp"
 #include "gearimpact/stiffness/mesh_models.hpp"
+#include "gearimpact/stiffness/root_crack.hpp"
 #include "gearimpact/stiffness/tau_form.hpp"
+#include "gearimpact/stiffness/tooth_state.hpp"
 #include "gearimpact/stiffness/x_form.hpp"
 
 namespace gearimpact {
@@ -78,8 +81,18 @@ Compliances tooth_terms(const ToothCompliances& c) {
   return result;
 }
 
-// potential_energy and ross_compatible: the rack-cut teeth of mesh_models.hpp.
-MeshStiffness rack_model_stiffness(const GearPair& pair, double x1_m, const StiffnessModel& model) {
+// A tooth the compliance can be computed for: healthy or cracked.
+void check_loadable(const ToothState& tooth) {
+  if (tooth.kind == ToothKind::missing) {
+    throw std::logic_error("mesh_stiffness of a pair with a missing tooth: it carries nothing");
+  }
+}
+
+// potential_energy and ross_compatible: the rack-cut teeth of mesh_models.hpp;
+// a cracked tooth (tooth1 or tooth2 not null) by cracked_tooth_compliances.
+MeshStiffness rack_model_stiffness(const GearPair& pair, double x1_m, const StiffnessModel& model,
+                                   const RootCrack* crack1 = nullptr,
+                                   const RootCrack* crack2 = nullptr) {
   const ContactSegment segment = contact_segment(pair);
   if (!(x1_m >= segment.start_m && x1_m <= segment.end_m)) {
     throw InputError("contact position X1", x1_m,
@@ -98,14 +111,44 @@ MeshStiffness rack_model_stiffness(const GearPair& pair, double x1_m, const Stif
   // may sit an ulp outside the rack pair's path.
   const double s_m =
       std::clamp(x1_m, geometry.start_of_active_profile_m, geometry.end_of_active_profile_m);
-  const PairStiffness rack = pair_stiffness(geometry, rack_model, s_m);
   MeshStiffness k{};
-  k.tooth1 = tooth_terms(rack.gear1);
-  k.tooth2 = tooth_terms(rack.gear2);
-  k.foundation_extrapolated =
-      rack.gear1.foundation_extrapolated || rack.gear2.foundation_extrapolated;
+  if (crack1 == nullptr && crack2 == nullptr) {
+    const PairStiffness rack = pair_stiffness(geometry, rack_model, s_m);
+    k.tooth1 = tooth_terms(rack.gear1);
+    k.tooth2 = tooth_terms(rack.gear2);
+    k.foundation_extrapolated =
+        rack.gear1.foundation_extrapolated || rack.gear2.foundation_extrapolated;
+  } else {
+    // pair_stiffness tooth by tooth, a cracked tooth by its own route.
+    validate(rack_model, geometry);
+    const PairContact contact = pair_contact(geometry, s_m);
+    const double width = geometry.contact_width_m;
+    const ToothCompliances c1 =
+        crack1 ? cracked_tooth_compliances(geometry.gear1, Gear::one, contact.gear1, width,
+                                           rack_model, *crack1)
+               : tooth_compliances(geometry.gear1, Gear::one, contact.gear1, width, rack_model);
+    const ToothCompliances c2 =
+        crack2 ? cracked_tooth_compliances(geometry.gear2, Gear::two, contact.gear2, width,
+                                           rack_model, *crack2)
+               : tooth_compliances(geometry.gear2, Gear::two, contact.gear2, width, rack_model);
+    k.tooth1 = tooth_terms(c1);
+    k.tooth2 = tooth_terms(c2);
+    k.foundation_extrapolated = c1.foundation_extrapolated || c2.foundation_extrapolated;
+  }
   combine(pair, model, k);
   return k;
+}
+
+// The paper's tooth of `gear` at `contact_x_m` from its base-circle tangent
+// point, cracked or not.
+Compliances paper_tooth_terms(const GearPair& pair, Gear gear, double contact_x_m,
+                              const StiffnessModel& model, const RootCrack* crack) {
+  const double e = gear == Gear::one ? pair.youngs_modulus_pa : youngs_modulus(pair, Gear::two);
+  if (crack == nullptr) {
+    return tooth_compliance(tooth_of(pair, gear), contact_x_m, e, pair.face_width_m, model);
+  }
+  return cracked_paper_tooth_compliances(tooth_of(pair, gear), contact_x_m, e, pair.face_width_m,
+                                         model, *crack);
 }
 
 }  // namespace
@@ -134,6 +177,31 @@ MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessM
   // (25),(26): gear 2 sees the contact at lp - X1 from C2.
   k.tooth2 = tooth_compliance(tooth_of(pair, Gear::two), lp - x1_m, youngs_modulus(pair, Gear::two),
                               width, model);
+  combine(pair, model, k);
+  return k;
+}
+
+MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessModel& model,
+                             const ToothState& tooth1, const ToothState& tooth2) {
+  check_loadable(tooth1);
+  check_loadable(tooth2);
+  const RootCrack* crack1 = tooth1.kind == ToothKind::root_crack ? &tooth1.crack : nullptr;
+  const RootCrack* crack2 = tooth2.kind == ToothKind::root_crack ? &tooth2.crack : nullptr;
+  if (crack1 == nullptr && crack2 == nullptr) return mesh_stiffness(pair, x1_m, model);
+  validate_terms(model);
+  if (model.kind != StiffnessModelKind::yang_lin_1987) {
+    return rack_model_stiffness(pair, x1_m, model, crack1, crack2);
+  }
+  const double lp = line_of_action_length(pair);
+  if (!std::isfinite(x1_m) || x1_m <= 0.0 || x1_m >= lp) {
+    throw InputError(
+        "contact position X1", x1_m,
+        "(0, lp) with lp = " + format_number(lp) + " m: between the tangent points C1 and C2");
+  }
+  MeshStiffness k{};
+  k.tooth1 = paper_tooth_terms(pair, Gear::one, x1_m, model, crack1);
+  // (25),(26): gear 2 sees the contact at lp - X1 from C2.
+  k.tooth2 = paper_tooth_terms(pair, Gear::two, lp - x1_m, model, crack2);
   combine(pair, model, k);
   return k;
 }

@@ -388,12 +388,9 @@ double integrate_pieces(QuadratureRule rule, const Integrand& f, const std::vect
 
 }  // namespace
 
-Compliances cracked_paper_tooth_compliances(const InvoluteTooth& tooth, double contact_x_m,
-                                            double e, double b, const StiffnessModel& model,
-                                            const RootCrack& crack) {
+void check_paper_crack(const InvoluteTooth& tooth, double b, const RootCrack& crack) {
   check_crack_shape(crack, b);
   const double rb = tooth.base_radius_m;
-  const double theta_b = tooth.half_tooth_angle_rad;
   if (crack.start_radius_m) {
     throw InputError("crack start radius r_s", *crack.start_radius_m,
                      "absent for yang-lin-1987: the paper's tooth, and its crack, start at the "
@@ -401,8 +398,17 @@ Compliances cracked_paper_tooth_compliances(const InvoluteTooth& tooth, double c
                          format_number(rb) + " m)");
   }
   // The base-circle section's half thickness, Rb sin theta_b.
+  check_crack_reach(crack, rb * std::sin(tooth.half_tooth_angle_rad), rb);
+}
+
+Compliances cracked_paper_tooth_compliances(const InvoluteTooth& tooth, double contact_x_m,
+                                            double e, double b, const StiffnessModel& model,
+                                            const RootCrack& crack) {
+  check_paper_crack(tooth, b, crack);
+  const double rb = tooth.base_radius_m;
+  const double theta_b = tooth.half_tooth_angle_rad;
+  // The base-circle section's half thickness, Rb sin theta_b.
   const double h_c = rb * std::sin(theta_b);
-  check_crack_reach(crack, h_c, rb);
   const double s = std::sin(crack.angle_rad);
   if (!(s * largest_crack_depth(crack) > 0.0)) {
     return model.route == StiffnessRoute::tau_form

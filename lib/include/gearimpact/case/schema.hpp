@@ -111,6 +111,14 @@ struct Field {
 // Every key, in the order case files are written.
 const std::vector<Field>& case_schema();
 
+// The rows of one [[faults]] table (a faulted tooth, docs/faults.md), each
+// reading and writing the first element of SimulationCase::faults. Not part of
+// case_schema(): a case has any number of these tables.
+const std::vector<Field>& fault_schema();
+// Whether a fault row applies to the fault of `one_fault` (its first): its
+// condition holds, and so does the condition of the row it depends on.
+bool fault_row_applies(const Field& field, const SimulationCase& one_fault);
+
 // The row of "section.key", or nullptr.
 const Field* find_field(std::string_view section_dot_key);
 

@@ -17,6 +17,7 @@
 #include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/named_values.hpp"
 #include "gearimpact/stiffness/model.hpp"
+#include "gearimpact/stiffness/tooth_state.hpp"
 
 namespace gearimpact {
 
@@ -200,6 +201,9 @@ struct SimulationCase {
   // (modifications.hpp): the static transmission error reads them; the
   // dynamics refuses a case with any (refuse_gaps of dynamics/simulate.hpp).
   Modifications modifications;
+  // Teeth that differ from the others ([[faults]], docs/faults.md); empty:
+  // every tooth healthy.
+  std::vector<ToothFault> faults;
 };
 
 }  // namespace gearimpact

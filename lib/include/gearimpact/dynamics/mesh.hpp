@@ -5,6 +5,7 @@
 
 #include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/stiffness/mesh_tables.hpp"
 #include "gearimpact/stiffness/table.hpp"
 
 namespace gearimpact {
@@ -30,6 +31,12 @@ double viscous_mesh_damping_n_s_per_m(double damping_ratio, double mesh_stiffnes
 // position of the segment is passed by exactly one loaded pair (42). Throws
 // QuadratureError when the integral misses its tolerance.
 double mean_mesh_stiffness_n_per_m(const SimulationCase& c, const StiffnessTable& table);
+
+// With teeth that differ, the mean over the true period of N mesh periods
+// (MeshTables::true_period_mesh_periods): (1/(N t0)) times the sum over the N
+// drive-line pairs of one period of Int Ke(X) dX of each pair's table, 0 for
+// a pair with a missing tooth. Every tooth alike: the one-pitch mean above.
+double mean_mesh_stiffness_n_per_m(const SimulationCase& c, const MeshTables& tables);
 
 // w_n = sqrt(k_mean / m_e), the natural frequency of the relative mode with
 // the mean mesh stiffness (docs/steady-state.md section 2). Throws as

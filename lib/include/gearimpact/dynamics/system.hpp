@@ -9,12 +9,14 @@
 #include <array>
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <utility>
 
 #include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/stiffness/energy.hpp"
+#include "gearimpact/stiffness/mesh_tables.hpp"
 #include "gearimpact/stiffness/table.hpp"
 
 namespace gearimpact {
@@ -73,6 +75,9 @@ double mean_torque_n_m(const Torque& torque, const char* field);
 class GearSystem {
  public:
   // The table must cover the contact segment of c.gears; both must outlive the system.
+  // With c.faults, each pair reads the table of its two teeth (MeshTables,
+  // built here with `table` as the healthy one), and a pair with a missing
+  // tooth carries nothing.
   GearSystem(const SimulationCase& c, const StiffnessTable& table, const RunControl& control);
 
   // J1, for the impulse that pays a jump of the stored energy under the
@@ -132,16 +137,24 @@ class GearSystem {
   // time again as the next step's start: the last answer is kept, so a
   // sinusoid costs two sines a step instead of four (the same values).
   std::pair<double, double> torques(double t) const;
-  // Ke and dKe/dX of one of `count` loaded pairs at X.
-  void pair_stiffness(double x, int count, double& ke, double& dke) const;
+  // The table of pair k on `line`: the healthy one, or with faults that of
+  // the pair's teeth (nullptr: a missing tooth, the pair carries nothing).
+  const StiffnessTable* pair_table(Region line, int k) const {
+    return teeth_ ? teeth_->table(line, k) : &table_;
+  }
+  // Ke and dKe/dX of one of `count` loaded pairs at X, read from `table`.
+  void pair_stiffness(const StiffnessTable& table, double x, int count, double& ke,
+                      double& dke) const;
   double damping_factor(const ContactMemory& d, double ke) const;
   // f of (35) of a pair with normal force N, sliding speed Vs and entrainment
   // speed Ve, under the case's friction law.
   double friction_coefficient(double normal_force_n, double vs, double ve) const;
-  double push_sign_function(double x, int count, const ContactMemory& d, double dl,
-                            double dl_rate) const;
+  double push_sign_function(const StiffnessTable* table, double x, int count,
+                            const ContactMemory& d, double dl, double dl_rate) const;
 
   const StiffnessTable& table_;
+  // With faults: the table of each pair's teeth.
+  std::shared_ptr<const MeshTables> teeth_;
   const SimulationCase& case_;
   MeshLayout layout_;
   double rb1_ = 0.0, rb2_ = 0.0, j1_ = 0.0, j2_ = 0.0, backlash_ = 0.0, lp_ = 0.0;

@@ -13,6 +13,7 @@
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "gearimpact/stiffness/static_transmission_error.hpp"
+#include "gearimpact/stiffness/mesh_tables.hpp"
 #include "gearimpact/stiffness/time_varying_stiffness.hpp"
 
 namespace gearimpact {
@@ -62,6 +63,11 @@ std::string stiffness_csv(const GearPair& pair, const StiffnessModel& model,
                           const std::vector<double>& x1_m);
 // One mesh period: fraction,theta1_rad,pairs,ke_n_per_m.
 std::string mesh_stiffness_csv(const TimeVaryingMeshStiffness& tvms);
+// The true period of a faulted mesh: fraction,theta1_rad,pairs,ke_n_m,
+// healthy_ke_n_m, then for each of the most pairs in contact
+// pairJ_pinion_tooth,pairJ_wheel_tooth,pairJ_ke_n_m (empty cells where fewer
+// pairs are in contact); pair 1 entered first.
+std::string true_period_mesh_stiffness_csv(const std::vector<TruePeriodSample>& samples);
 // min_n_m, max_n_m, mean_n_m (the exact time mean), contact_ratio,
 // extrapolated (the foundation fit used outside its range: tvms's foundation_extrapolations),
 // and when it is a warning naming each gear, parameter, value and the fit's range.

@@ -62,7 +62,8 @@ std::vector<double> forcing_frequencies(const SimulationCase& c);
 // sinusoidal or harmonic (a user function's mean and period are not known); mean torques balanced
 // (T1/Rb1 + T2/Rb2 = 0, both along the line of action as in docs/model.md's equations of motion);
 // no friction: friction loss f N |Vs| is drawn from the mean rotation, which balanced torques do
-// not feed, so with f > 0 the pair slows down without end.
+// not feed, so with f > 0 the pair slows down without end. A case with faults
+// (SimulationCase::faults) is refused first: its true period is not sampled yet.
 void require_steady_case(const SimulationCase& c);
 
 // A pair with less backlash than this many modules (none at all, B = 0) measures

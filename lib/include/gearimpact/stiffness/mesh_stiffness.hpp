@@ -13,6 +13,8 @@
 
 namespace gearimpact {
 
+struct ToothState;  // tooth_state.hpp
+
 InvoluteTooth tooth_of(const GearPair& pair, Gear gear);
 
 // (4) Kh = pi E L / (4 (1 - nu^2)) for gears of one material; for two,
@@ -53,6 +55,16 @@ struct MeshStiffness {
 // their foundation term needs both bores (InputError naming bore_diameter1 or
 // bore_diameter2 otherwise).
 MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessModel& model = {});
+
+// The same pair with the pinion tooth in state `tooth1` and the wheel tooth in
+// `tooth2` (docs/faults.md): Hertz and each tooth's terms as above, a cracked
+// tooth's by root_crack.hpp (cracked_paper_tooth_compliances for
+// yang_lin_1987, cracked_tooth_compliances for the rack-cut models). Two
+// healthy teeth give mesh_stiffness(pair, x1_m, model) bit for bit. A missing
+// tooth has no compliance: std::logic_error (the pair carries nothing, see
+// MeshTables).
+MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessModel& model,
+                             const ToothState& tooth1, const ToothState& tooth2);
 
 // The gears whose foundation fit the model uses outside its range, pinion first: empty for a
 // model without the foundation term (yang_lin_1987) or with it off. InputError naming

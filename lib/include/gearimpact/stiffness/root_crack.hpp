@@ -107,6 +107,10 @@ ToothCompliances cracked_tooth_compliances(const RackGearGeometry& gear, Gear wh
 // section (Tian's tooth, h_c = Rb sin theta_b): each section's integrand
 // times (2/3) x^3 b / I(y), resp. 2 x b / A(y). The start is that section; a
 // given r_s is refused. Throws InputError as place_crack.
+// The refusals of cracked_paper_tooth_compliances without its integrals:
+// InputError for a crack that does not fit the paper's tooth.
+void check_paper_crack(const InvoluteTooth& tooth, double face_width_m, const RootCrack& crack);
+
 Compliances cracked_paper_tooth_compliances(const InvoluteTooth& tooth, double contact_x_m,
                                             double youngs_modulus_pa, double face_width_m,
                                             const StiffnessModel& model, const RootCrack& crack);

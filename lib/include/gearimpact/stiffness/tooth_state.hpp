@@ -1,0 +1,58 @@
+// The state of single teeth (docs/faults.md): healthy, a root crack, missing;
+// the list of faulted teeth of a case; and the check that a fault fits its
+// tooth. A new kind of fault is one more ToothKind, its parameters in
+// ToothState, and one branch where the compliance of a pair reads the state
+// (mesh_stiffness.cpp) and where equal states are told apart (operator==).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/stiffness/model.hpp"
+#include "gearimpact/stiffness/root_crack.hpp"
+
+namespace gearimpact {
+
+enum class ToothKind {
+  healthy,
+  root_crack,  // ToothState::crack
+  missing,     // the pair that holds the tooth carries nothing
+};
+
+// "healthy", "root-crack", "missing": the names case files use.
+std::string to_string(ToothKind kind);
+
+struct ToothState {
+  ToothKind kind = ToothKind::healthy;
+  RootCrack crack;  // read only when kind == root_crack
+};
+
+// Two states load a tooth alike: the same kind and, for a crack, the same
+// crack (every field, the start radius absent in both or equal).
+bool operator==(const ToothState& a, const ToothState& b);
+inline bool operator!=(const ToothState& a, const ToothState& b) {
+  return !(a == b);
+}
+
+// One faulted tooth: gear 1 (pinion) or 2 (wheel), its number in mesh order
+// (0 ... z-1, geometry/tooth_identity.hpp) and its state.
+struct ToothFault {
+  Gear gear = Gear::one;
+  int tooth = 0;
+  ToothState state;
+};
+bool operator==(const ToothFault& a, const ToothFault& b);
+
+// Throws InputError unless every fault fits: the tooth number in 0 ... z-1 of
+// its gear, one fault per tooth, and a crack that place_crack (or, for
+// yang-lin-1987, the paper's tooth) accepts. Names "faults[i].tooth" and the
+// library's crack names; the case-file reader checks the same before, under
+// the keys a file writes.
+void check_tooth_faults(const GearPair& pair, const StiffnessModel& model,
+                        const std::vector<ToothFault>& faults);
+
+// The state of tooth `tooth` of `gear`: the fault's, or healthy.
+ToothState tooth_state(const std::vector<ToothFault>& faults, Gear gear, int tooth);
+
+}  // namespace gearimpact

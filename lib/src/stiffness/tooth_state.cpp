@@ -1,0 +1,73 @@
+#include "gearimpact/stiffness/tooth_state.hpp"
+
+#include <string>
+
+#include "gearimpact/error.hpp"
+#include "gearimpact/geometry/rack_generation.hpp"
+#include "gearimpact/stiffness/mesh_stiffness.hpp"
+
+namespace gearimpact {
+
+std::string to_string(ToothKind kind) {
+  switch (kind) {
+    case ToothKind::healthy:
+      return "healthy";
+    case ToothKind::root_crack:
+      return "root-crack";
+    case ToothKind::missing:
+      return "missing";
+  }
+  return "healthy";
+}
+
+bool operator==(const ToothState& a, const ToothState& b) {
+  if (a.kind != b.kind) return false;
+  if (a.kind != ToothKind::root_crack) return true;
+  const RootCrack& p = a.crack;
+  const RootCrack& q = b.crack;
+  return p.profile == q.profile && p.depth_m == q.depth_m && p.end_depth_m == q.end_depth_m &&
+         p.width_m == q.width_m && p.angle_rad == q.angle_rad &&
+         p.start_radius_m == q.start_radius_m && p.flank == q.flank;
+}
+
+bool operator==(const ToothFault& a, const ToothFault& b) {
+  return a.gear == b.gear && a.tooth == b.tooth && a.state == b.state;
+}
+
+void check_tooth_faults(const GearPair& pair, const StiffnessModel& model,
+                        const std::vector<ToothFault>& faults) {
+  for (std::size_t i = 0; i < faults.size(); ++i) {
+    const ToothFault& f = faults[i];
+    const std::string name = "faults[" + std::to_string(i) + "]";
+    const int z = teeth(pair, f.gear);
+    if (!(f.tooth >= 0 && f.tooth < z)) {
+      throw InputError(name + ".tooth", f.tooth,
+                       "0 ... " + std::to_string(z - 1) + ": the teeth of the " +
+                           (f.gear == Gear::one ? "pinion" : "wheel") + " in mesh order");
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      if (faults[j].gear == f.gear && faults[j].tooth == f.tooth) {
+        throw InputError(name + ".tooth", f.tooth,
+                         "a tooth not already faulted: faults[" + std::to_string(j) +
+                             "] is on the same tooth, and a tooth has one state");
+      }
+    }
+    if (f.state.kind != ToothKind::root_crack) continue;
+    if (model.kind == StiffnessModelKind::yang_lin_1987) {
+      check_paper_crack(tooth_of(pair, f.gear), pair.face_width_m, f.state.crack);
+    } else {
+      const RackGearPairGeometry geometry = rack_gear_pair_geometry(pair);
+      place_crack(f.state.crack, f.gear == Gear::one ? geometry.gear1 : geometry.gear2, model.kind,
+                  geometry.contact_width_m);
+    }
+  }
+}
+
+ToothState tooth_state(const std::vector<ToothFault>& faults, Gear gear, int tooth) {
+  for (const ToothFault& f : faults) {
+    if (f.gear == gear && f.tooth == tooth) return f.state;
+  }
+  return {};
+}
+
+}  // namespace gearimpact

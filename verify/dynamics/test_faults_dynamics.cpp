@@ -1,0 +1,172 @@
+// The dynamics of teeth that differ (docs/faults.md): each pair reads the
+// table of its own teeth, a missing tooth's pair carries nothing and stores
+// nothing, a crack of depth 0 is today's run to the bit, and the energy
+// ledger closes with a crack and with a missing tooth.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "gearimpact/constants.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/dynamics/system.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/paper/table1.hpp"
+#include "gearimpact/stiffness/table.hpp"
+#include "gearimpact/stiffness/tooth_state.hpp"
+#include "relative.hpp"
+
+using namespace gearimpact;
+using gearimpact::verify::relative_difference;
+
+namespace {
+
+RunControl summary_only() {
+  RunControl control;
+  control.keep_series = false;
+  return control;
+}
+
+ToothFault crack_on(Gear gear, int tooth, double q_m) {
+  ToothFault f;
+  f.gear = gear;
+  f.tooth = tooth;
+  f.state.kind = ToothKind::root_crack;
+  f.state.crack.depth_m = q_m;
+  f.state.crack.angle_rad = pi / 4;
+  return f;
+}
+
+ToothFault missing(Gear gear, int tooth) {
+  ToothFault f;
+  f.gear = gear;
+  f.tooth = tooth;
+  f.state.kind = ToothKind::missing;
+  return f;
+}
+
+// A state at rotation theta1 pressed into N1 by `delta` beyond the backlash,
+// at rest.
+State pressed(const SimulationCase& c, double theta1, double delta) {
+  State y{};
+  y[kTheta1] = theta1;
+  // s = Rb1 theta1 - Rb2 theta2 = B + delta.
+  y[kTheta2] = (base_radius(c.gears, Gear::one) * theta1 - c.gears.backlash_m - delta) /
+               base_radius(c.gears, Gear::two);
+  return y;
+}
+
+}  // namespace
+
+TEST_CASE("a crack of depth 0 runs as the healthy pair, to the bit") {
+  // FAULTS.md: zero-size faults are today's outputs. The paper's route
+  // returns the healthy tooth's compliances for q = 0, so the fault's table
+  // is fitted to the same values.
+  for (int n = 1; n <= 3; ++n) {
+    CAPTURE(n);
+    SimulationCase healthy = paper_case(n);
+    healthy.integrator.end_time_s = 0.01;
+    SimulationCase faulted = healthy;
+    faulted.faults = {crack_on(Gear::one, 0, 0.0), crack_on(Gear::two, 1, 0.0)};
+    const SimulationSummary a = simulate(healthy, summary_only()).summary;
+    const SimulationSummary b = simulate(faulted, summary_only()).summary;
+    CHECK(a.final_w1_rad_per_s == b.final_w1_rad_per_s);
+    CHECK(a.final_w2_rad_per_s == b.final_w2_rad_per_s);
+    CHECK(a.damping_loss_j == b.damping_loss_j);
+    CHECK(a.impacts_n1 == b.impacts_n1);
+    CHECK(a.impacts_n2 == b.impacts_n2);
+    CHECK(a.steps == b.steps);
+  }
+}
+
+TEST_CASE("a missing tooth's pair carries nothing, the other pair everything") {
+  SimulationCase c = paper_case(1);
+  c.model.friction_coefficient = 0.0;
+  c.faults = {missing(Gear::one, 0)};
+  const StiffnessTable table(c.gears, c.model.stiffness);
+  const GearSystem system(c, table, summary_only());
+  const MeshLayout layout(c.gears, c.model.coast_phase);
+  const double rb1 = base_radius(c.gears, Gear::one);
+  const double delta = 2e-6;
+  const ContactMemory no_damping{};
+  int two_pair_states = 0;
+  int lone_states = 0;
+  // Pinion tooth 0 is pair k = 0 on N1, at X = X_pitch + Rb1 theta1: sweep it
+  // across the segment.
+  for (int i = 0; i <= 200; ++i) {
+    const double x0 = layout.start_m() + (layout.end_m() - layout.start_m()) * (i + 0.5) / 201.0;
+    const double theta1 = (x0 - pitch_point_position(c.gears)) / rb1;
+    const State y = pressed(c, theta1, delta);
+    Mode m = system.classify_geometry(y);
+    REQUIRE(m.region == Region::n1);
+    system.classify_forces(y, no_damping, m);
+    State dydt{};
+    ContactTotals totals;
+    system.rhs(0.0, y, m, no_damping, dydt, &totals);
+    // The force and energy by hand: F = Ke delta, U = Ke delta^2 / 2 over the
+    // loaded pairs other than k = 0, from the healthy table.
+    double carried = 0.0;
+    for (int j = 0; j < m.count; ++j) {
+      const int k = m.k_first + j;
+      if (k == 0) continue;
+      carried += table.stiffness(layout.position_m(layout.reference_m(Region::n1, theta1), k));
+    }
+    const double energy = system.stored_energy(y, m).total_j();
+    if (m.count == 1) {
+      ++lone_states;
+      // The missing tooth alone: the teeth pass through each other.
+      CHECK(totals.normal_force_n == 0.0);
+      CHECK(energy == 0.0);
+    } else {
+      ++two_pair_states;
+      const double dl = system.delta(Region::n1, y);
+      CHECK(relative_difference(totals.normal_force_n, carried * dl) < 1e-15);
+      // The energy reads the table's term series, the force its Ke series:
+      // two fits of one function, within the table's 1e-12 (test_stiffness_table).
+      CHECK(relative_difference(energy, 0.5 * carried * dl * dl) < 1e-11);
+    }
+  }
+  CHECK(two_pair_states > 0);
+  CHECK(lone_states > 0);
+}
+
+TEST_CASE("the energy ledger closes with a crack and with a missing tooth") {
+  // The bound of the ledger suite (test_dynamics): 1e-7 of the energy that
+  // passes through the run resolves the parametric work by orders while
+  // RK4's error at h w ~ 0.01 is ~1e-8 per contact period. A fault changes
+  // the stiffness a pair reads, not how the ledger adds.
+  // Pinion tooth 0 holds the reference contact at theta1 = 0, so it meets
+  // its mate in every run. Case 2 with a missing tooth runs away (the overlap
+  // grows each revolution until the fixed step cannot follow; docs/faults.md),
+  // so it is left out here.
+  for (int n = 1; n <= 3; ++n) {
+    std::vector<ToothFault> faults{crack_on(Gear::one, 0, 1.0e-3)};
+    if (n != 2) faults.push_back(missing(Gear::one, 0));
+    for (const ToothFault& fault : faults) {
+      CAPTURE(n);
+      CAPTURE(to_string(fault.state.kind));
+      SimulationCase healthy = paper_case(n);
+      if (fault.state.kind == ToothKind::missing) {
+        // While the missing tooth's pair is alone the teeth overlap, and the
+        // next pair enters some 0.5 mm deep instead of a few um: a contact
+        // of a hundred times the energy, whose RK4 error (h w)^4 a quarter of
+        // the paper's step brings back within the bound (at the paper's
+        // step the residual is 2e-5 of the throughput, at a quarter 5e-8).
+        healthy.integrator.step_s /= 4.0;
+      }
+      SimulationCase c = healthy;
+      c.faults = {fault};
+      const SimulationSummary s = simulate(c, summary_only()).summary;
+      const SimulationSummary h = simulate(healthy, summary_only()).summary;
+      const double throughput =
+          s.kinetic_energy_initial_j + s.stored_energy_initial_j + std::fabs(s.torque_work_j);
+      MESSAGE("case " << n << " " << to_string(fault.state.kind) << ": residual "
+                      << s.ledger_residual_max_j << " J of " << throughput << " J, max penetration "
+                      << s.max_penetration_m << " m, impacts " << s.impacts_n1 << "/"
+                      << s.impacts_n2 << ", steps " << s.steps << ", end " << s.end_time_s);
+      CHECK(s.ledger_residual_max_j < 1e-7 * throughput);
+      // The faulted tooth met its mate during the run: the motion differs.
+      CHECK(s.final_w2_rad_per_s != h.final_w2_rad_per_s);
+    }
+  }
+}

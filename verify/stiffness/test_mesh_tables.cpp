@@ -1,0 +1,274 @@
+// Teeth that differ (tooth_state.hpp, mesh_tables.hpp; docs/faults.md): two
+// healthy teeth compose exactly as mesh_stiffness does, a faulted tooth changes
+// the mesh only while it is in contact, one table per combination of states
+// that meets, and the refusals of faults that do not fit.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "gearimpact/constants.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/stiffness/mesh_stiffness.hpp"
+#include "gearimpact/stiffness/mesh_tables.hpp"
+#include "gearimpact/stiffness/root_crack.hpp"
+#include "gearimpact/stiffness/tooth_state.hpp"
+#include "relative.hpp"
+
+using namespace gearimpact;
+using gearimpact::verify::relative_difference;
+
+namespace {
+
+ToothState crack_state(double q_m, double nu_rad) {
+  ToothState s;
+  s.kind = ToothKind::root_crack;
+  s.crack.depth_m = q_m;
+  s.crack.angle_rad = nu_rad;
+  return s;
+}
+
+ToothFault fault(Gear gear, int tooth, ToothState state) {
+  ToothFault f;
+  f.gear = gear;
+  f.tooth = tooth;
+  f.state = state;
+  return f;
+}
+
+ToothState missing() {
+  ToothState s;
+  s.kind = ToothKind::missing;
+  return s;
+}
+
+// The paper's pair with bores, so that the rack-cut models' foundation term
+// can be computed.
+GearPair pair_with_bores() {
+  GearPair g = paper_gear_pair();
+  g.bore_diameter1_m = 0.020;
+  g.bore_diameter2_m = 0.060;
+  return g;
+}
+
+StiffnessModel model_of(StiffnessModelKind kind) {
+  StiffnessModel m;
+  m.kind = kind;
+  return m;
+}
+
+// Sum of Ke over the pairs loaded on N1 at rotation theta1, each read from
+// `table_of(k)` (nullptr: carries nothing).
+template <typename TableOf>
+double tvms(const GearPair& g, double theta1, TableOf table_of) {
+  const MeshLayout layout(g, CoastPhase{});
+  const double ref = layout.reference_m(Region::n1, theta1);
+  const LoadedRange r = layout.loaded(ref);
+  double sum = 0.0;
+  for (int j = 0; j < r.count; ++j) {
+    const StiffnessTable* t = table_of(r.k_first + j);
+    if (t != nullptr) sum += t->stiffness(layout.position_m(ref, r.k_first + j));
+  }
+  return sum;
+}
+
+}  // namespace
+
+TEST_CASE("two healthy teeth compose as mesh_stiffness, to the bit") {
+  const GearPair g = pair_with_bores();
+  for (StiffnessModelKind kind :
+       {StiffnessModelKind::yang_lin_1987, StiffnessModelKind::potential_energy}) {
+    CAPTURE(to_string(kind));
+    const StiffnessModel model = model_of(kind);
+    const ContactSegment seg = contact_segment(g);
+    for (int i = 0; i <= 8; ++i) {
+      const double x = seg.start_m + (seg.end_m - seg.start_m) * i / 8.0;
+      const MeshStiffness a = mesh_stiffness(g, x, model);
+      const MeshStiffness b = mesh_stiffness(g, x, model, ToothState{}, ToothState{});
+      CHECK(a.ke == b.ke);
+      for (const TermInfo& t : kTerms) CHECK(a.included.of(t.term) == b.included.of(t.term));
+    }
+  }
+}
+
+TEST_CASE("a cracked pair is Hertz plus each tooth's terms, the cracked one from root_crack") {
+  // The composition written out here: 1/Ke = 1/Kh + the pinion's cracked
+  // terms + the wheel's healthy terms, over the terms the model switches on.
+  const GearPair g = paper_gear_pair();
+  const StiffnessModel model = model_of(StiffnessModelKind::yang_lin_1987);
+  const ToothState cracked = crack_state(0.5e-3, 45.0 * pi / 180.0);
+  const double lp = line_of_action_length(g);
+  const ContactSegment seg = contact_segment(g);
+  for (int i = 0; i <= 4; ++i) {
+    const double x = seg.start_m + (seg.end_m - seg.start_m) * i / 4.0;
+    const Compliances c1 = cracked_paper_tooth_compliances(
+        tooth_of(g, Gear::one), x, g.youngs_modulus_pa, g.face_width_m, model, cracked.crack);
+    const Compliances c2 = tooth_compliance(tooth_of(g, Gear::two), lp - x,
+                                            youngs_modulus(g, Gear::two), g.face_width_m, model);
+    double compliance = 1.0 / hertz_stiffness(g);
+    for (const TermInfo& t : kTerms) {
+      if (t.per_tooth && model.terms.has(t.term)) compliance += c1.of(t.term) + c2.of(t.term);
+    }
+    const double ke = mesh_stiffness(g, x, model, cracked, ToothState{}).ke;
+    // Two sums of the same five terms in different orders: a few ulps.
+    CHECK(relative_difference(ke, 1.0 / compliance) < 1e-14);
+    CHECK(ke < mesh_stiffness(g, x, model).ke);
+  }
+}
+
+TEST_CASE("without faults every pair reads the one healthy table") {
+  const GearPair g = paper_gear_pair();
+  const MeshTables tables(g, {}, {});
+  CHECK(tables.fault_table_count() == 0);
+  CHECK(tables.true_period_mesh_periods() == 1);
+  for (int k = -25; k <= 25; ++k) {
+    CHECK(tables.table(Region::n1, k) == &tables.healthy());
+    CHECK(tables.table(Region::n2, k) == &tables.healthy());
+  }
+}
+
+TEST_CASE("a cracked tooth changes the TVMS only while it is in contact") {
+  // Over one pinion revolution, the faulted TVMS equals the healthy one
+  // wherever the cracked tooth's pair lies outside the contact segment, which
+  // is a window of eps_alpha base pitches, and is lower inside it.
+  const GearPair g = paper_gear_pair();
+  const int cracked_tooth = 3;
+  const MeshTables tables(g, {}, {fault(Gear::one, cracked_tooth, crack_state(0.8e-3, pi / 4))});
+  CHECK(tables.fault_table_count() == 1);
+  CHECK(tables.true_period_mesh_periods() == g.teeth1);
+  const StiffnessTable& healthy = tables.healthy();
+  const MeshLayout layout(g, CoastPhase{});
+  const double t0 = layout.base_pitch_m();
+  const double eps_alpha = (layout.end_m() - layout.start_m()) / t0;
+  // The cracked tooth is pair k = -3 on N1: it lies on the segment while
+  // X_pitch + Rb1 theta1 - 3 t0 is in [X_start, X_end].
+  int inside = 0;
+  int outside = 0;
+  const int samples = 4000;
+  for (int i = 0; i < samples; ++i) {
+    const double theta1 = 2.0 * pi * (i + 0.5) / samples;
+    const double x_cracked =
+        layout.reference_m(Region::n1, theta1) + static_cast<double>(-cracked_tooth) * t0;
+    const double faulted = tvms(g, theta1, [&](int k) { return tables.table(Region::n1, k); });
+    const double reference = tvms(g, theta1, [&](int) { return &healthy; });
+    if (x_cracked >= layout.start_m() && x_cracked <= layout.end_m()) {
+      ++inside;
+      CHECK(faulted < reference);
+    } else {
+      ++outside;
+      CHECK(faulted == reference);
+    }
+  }
+  // The window's share of a revolution: eps_alpha pitches of z1.
+  const double share = static_cast<double>(inside) / samples;
+  CHECK(std::fabs(share - eps_alpha / g.teeth1) < 2.0 / samples);
+  CHECK(outside > 0);
+}
+
+TEST_CASE("one table per distinct combination of states that meets") {
+  const GearPair g = paper_gear_pair();  // z1 = 20, z2 = 80: gcd 20
+  SUBCASE("five distinct cracks on the pinion: five tables") {
+    std::vector<ToothFault> faults;
+    for (int i = 0; i < 5; ++i) {
+      faults.push_back(fault(Gear::one, 2 * i, crack_state((0.2 + 0.1 * i) * 1e-3, pi / 4)));
+    }
+    const MeshTables tables(g, {}, faults);
+    CHECK(tables.fault_table_count() == 5);
+    // Each cracked tooth's pairs read its own table, the others the healthy one.
+    for (int n = 0; n < 80; ++n) {
+      const int i = n % 20;
+      const StiffnessTable* t = tables.table(Region::n1, -n);
+      if (i % 2 == 0 && i < 10) {
+        CHECK(t != &tables.healthy());
+      } else {
+        CHECK(t == &tables.healthy());
+      }
+    }
+  }
+  SUBCASE("five equal cracks share one table") {
+    std::vector<ToothFault> faults;
+    for (int i = 0; i < 5; ++i) faults.push_back(fault(Gear::one, i, crack_state(0.3e-3, pi / 4)));
+    CHECK(MeshTables(g, {}, faults).fault_table_count() == 1);
+  }
+  SUBCASE("a cracked pinion tooth and a cracked wheel tooth that never meet") {
+    // Pinion tooth 3 meets wheel teeth 3 mod 20 on N1 and 4 mod 20 on N2
+    // (teeth_of_pair); wheel tooth 10 meets pinion 10 (N1) and 9 (N2).
+    const MeshTables tables(g, {},
+                            {fault(Gear::one, 3, crack_state(0.3e-3, pi / 4)),
+                             fault(Gear::two, 10, crack_state(0.4e-3, pi / 4))});
+    CHECK(tables.fault_table_count() == 2);
+  }
+  SUBCASE("wheel tooth 4 meets pinion tooth 3 on the coast line: a third table") {
+    const MeshTables tables(g, {},
+                            {fault(Gear::one, 3, crack_state(0.3e-3, pi / 4)),
+                             fault(Gear::two, 4, crack_state(0.4e-3, pi / 4))});
+    CHECK(tables.fault_table_count() == 3);
+    CHECK(tables.true_period_mesh_periods() == 80);
+  }
+  SUBCASE("a missing tooth has no table") {
+    const MeshTables tables(g, {}, {fault(Gear::one, 3, missing())});
+    CHECK(tables.fault_table_count() == 0);
+    CHECK(tables.table(Region::n1, -3) == nullptr);
+    CHECK(tables.table(Region::n1, -23) == nullptr);
+    CHECK(tables.table(Region::n2, 3) == nullptr);
+    CHECK(tables.table(Region::n1, -4) == &tables.healthy());
+  }
+}
+
+TEST_CASE("faults that do not fit are refused before any table is built") {
+  const GearPair g = paper_gear_pair();
+  const auto message = [&](const std::vector<ToothFault>& faults,
+                           StiffnessModelKind kind = StiffnessModelKind::yang_lin_1987) {
+    try {
+      check_tooth_faults(pair_with_bores(), model_of(kind), faults);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string tooth = message({fault(Gear::one, 25, missing())});
+  CHECK(tooth.find("faults[0].tooth") != std::string::npos);
+  CHECK(tooth.find("0 ... 19") != std::string::npos);
+  const std::string twice =
+      message({fault(Gear::two, 7, missing()), fault(Gear::two, 7, crack_state(1e-4, pi / 4))});
+  CHECK(twice.find("faults[1].tooth") != std::string::npos);
+  // The paper's tooth: h_c = Rb sin theta_b; a crack at 90 deg with q = h_c
+  // reaches the centre line.
+  const double h_c = base_radius(g, Gear::one) * std::sin(half_tooth_angle(g, Gear::one));
+  const std::string deep = message({fault(Gear::one, 0, crack_state(h_c, pi / 2))});
+  CHECK(deep.find("q sin nu < h_c") != std::string::npos);
+  CHECK(message({fault(Gear::one, 0, crack_state(0.99 * h_c, pi / 2))}).empty());
+  const std::string deep_rack = message({fault(Gear::one, 0, crack_state(5e-3, pi / 2))},
+                                        StiffnessModelKind::potential_energy);
+  CHECK(deep_rack.find("q sin nu < h_c") != std::string::npos);
+  CHECK_THROWS_AS(MeshTables(g, {}, {fault(Gear::one, 20, missing())}), InputError);
+}
+
+TEST_CASE("the TVMS over the true period names the teeth and differs only where the crack meshes") {
+  const GearPair g = paper_gear_pair();
+  const MeshTables tables(g, {}, {fault(Gear::one, 3, crack_state(0.8e-3, pi / 4))});
+  const std::vector<TruePeriodSample> samples = true_period_mesh_stiffness(tables, g, 50);
+  // A crack on the pinion only: the true period is one pinion revolution.
+  REQUIRE(samples.size() == 50u * 20u);
+  CHECK(std::fabs(samples.back().theta1_rad + 2.0 * pi / 1000.0 - 2.0 * pi) < 1e-12);
+  int with_crack = 0;
+  for (const TruePeriodSample& s : samples) {
+    bool cracked = false;
+    for (const TeethInContact& t : s.teeth) {
+      // On N1 the n-th pair holds pinion tooth n mod 20 and wheel tooth n mod 80.
+      CHECK(t.pinion_tooth == t.wheel_tooth % 20);
+      cracked = cracked || t.pinion_tooth == 3;
+    }
+    if (cracked) {
+      ++with_crack;
+      CHECK(s.ke_n_per_m < s.healthy_ke_n_per_m);
+    } else {
+      CHECK(s.ke_n_per_m == s.healthy_ke_n_per_m);
+    }
+  }
+  // Tooth 3 meshes eps_alpha of the 20 pitches of a revolution.
+  const double eps_alpha = contact_ratio(g);
+  CHECK(std::fabs(with_crack / 1000.0 - eps_alpha / 20.0) < 2.0 / 1000.0);
+}
