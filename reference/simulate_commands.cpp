@@ -108,15 +108,15 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
   if (command.get_option("--sample-rate")->count() > 0) {
     sample_rate = parse_number_flag("--sample-rate", o.sample_rate, "the sample rate in Hz, > 0");
     if (command.get_option("--every")->count() > 0) {
-      throw InputError(std::vector<Problem>{refused_problem(
-          "--every", command.get_option("--every")->as<std::string>(),
-          "contradicts --sample-rate, whose samples are on their own grid",
-          "--every without --sample-rate")});
+      throw InputError(std::vector<Problem>{
+          refused_problem("--every", command.get_option("--every")->as<std::string>(),
+                          "contradicts --sample-rate, whose samples are on their own grid",
+                          "--every without --sample-rate")});
     }
     if (o.out.empty()) {
-      throw InputError(std::vector<Problem>{refused_problem(
-          "--sample-rate", o.sample_rate, "needs --out, the file the samples go to",
-          "--sample-rate FS with --out FILE.csv")});
+      throw InputError(std::vector<Problem>{
+          refused_problem("--sample-rate", o.sample_rate, "needs --out, the file the samples go to",
+                          "--sample-rate FS with --out FILE.csv")});
     }
   }
   const SimulationCase c = case_to_run(o, command);
@@ -192,9 +192,14 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
                        e.allowed() + " (--every keeps fewer rows, --max-rows lifts the bound)");
     }
     if (e.field() == "sample_rate") {
-      const bool bound = e.allowed().find("samples over") != std::string::npos;
-      throw InputError("--sample-rate", o.sample_rate,
-                       e.allowed() + (bound ? " (--max-rows lifts the bound)" : ""));
+      // The library's bound is the program's --max-rows.
+      std::string allowed = e.allowed();
+      const std::string lift = "lift the bound";
+      if (allowed.size() >= lift.size() &&
+          allowed.compare(allowed.size() - lift.size(), lift.size(), lift) == 0) {
+        allowed += " (--max-rows)";
+      }
+      throw InputError("--sample-rate", o.sample_rate, allowed);
     }
     throw;
   }

@@ -18,8 +18,7 @@ using Rk4Stages = std::array<State, 4>;
 // event location tries many step sizes from the same start. `stages`, when
 // given, receives k1 ... k4.
 void rk4_step_from(const GearSystem& system, double t, const State& y, const State& k1, double h,
-                   const Mode& m, const ContactMemory& d, State& out,
-                   Rk4Stages* stages = nullptr);
+                   const Mode& m, const ContactMemory& d, State& out, Rk4Stages* stages = nullptr);
 // The classical RK4 step; k1 receives f(t, y).
 void rk4_step(const GearSystem& system, double t, const State& y, double h, const Mode& m,
               const ContactMemory& d, State& out, State& k1, Rk4Stages* stages = nullptr);

@@ -62,13 +62,13 @@ void validate_control(const SimulationCase& c, const RunControl& control) {
     const double samples = sample_count(c, rate, t0);
     if (samples > most) {
       const double end = c.integrator.end_time_s;
-      throw InputError(
-          "sample_rate", rate_text,
-          "a rate in (0, " + shortest_decimal((most - 1.0) / end) + "] Hz: at most " +
-              shortest_decimal(most) + " samples over integrator.end_time = " +
-              shortest_decimal(end) + " s; this run would have " + shortest_decimal(samples) +
-              " samples, about " + csv_size_text(samples * kSampleRowBytes) +
-              " as CSV: lower the rate, shorten the run, or lift the bound");
+      throw InputError("sample_rate", rate_text,
+                       "a rate in (0, " + shortest_decimal((most - 1.0) / end) + "] Hz: at most " +
+                           shortest_decimal(most) +
+                           " samples over integrator.end_time = " + shortest_decimal(end) +
+                           " s; this run would have " + shortest_decimal(samples) +
+                           " samples, about " + csv_size_text(samples * kSampleRowBytes) +
+                           " as CSV: lower the rate, shorten the run, or lift the bound");
     }
   }
   if (control.resume) {

@@ -33,12 +33,12 @@ std::string samples_csv_header() {
 
 void append_sample_row(std::string& out, const SampleRow& r) {
   char line[512];
-  const int n = std::snprintf(
-      line, sizeof line,
-      "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d,%d\n", r.t_s,
-      r.theta1_rad, r.theta2_rad, r.w1_rad_per_s, r.w2_rad_per_s, r.acceleration1_rad_per_s2,
-      r.acceleration2_rad_per_s2, r.s_m, r.dte_m, r.normal_force_n1_n, r.normal_force_n2_n,
-      r.region, r.pairs);
+  const int n =
+      std::snprintf(line, sizeof line,
+                    "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d,%d\n",
+                    r.t_s, r.theta1_rad, r.theta2_rad, r.w1_rad_per_s, r.w2_rad_per_s,
+                    r.acceleration1_rad_per_s2, r.acceleration2_rad_per_s2, r.s_m, r.dte_m,
+                    r.normal_force_n1_n, r.normal_force_n2_n, r.region, r.pairs);
   out.append(line, static_cast<std::size_t>(n));
 }
 
