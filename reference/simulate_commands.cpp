@@ -1,4 +1,5 @@
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -65,6 +66,7 @@ struct SimulateOptions {
   std::string case_file;
   std::string out;
   double max_rows = static_cast<double>(kMostSeriesRows);
+  std::string sample_rate;
   CaseOptions keys;
 };
 
@@ -107,6 +109,21 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
     require_output_file(o.out, o.case_file.empty() ? std::vector<std::string>{}
                                                    : std::vector<std::string>{o.case_file});
   }
+  std::optional<double> sample_rate;
+  if (command.get_option("--sample-rate")->count() > 0) {
+    sample_rate = parse_number_flag("--sample-rate", o.sample_rate, "the sample rate in Hz, > 0");
+    if (command.get_option("--every")->count() > 0) {
+      throw InputError(std::vector<Problem>{
+          refused_problem("--every", command.get_option("--every")->as<std::string>(),
+                          "contradicts --sample-rate, whose samples are on their own grid",
+                          "--every without --sample-rate")});
+    }
+    if (o.out.empty()) {
+      throw InputError(std::vector<Problem>{
+          refused_problem("--sample-rate", o.sample_rate, "needs --out, the file the samples go to",
+                          "--sample-rate FS with --out FILE.csv")});
+    }
+  }
   const SimulationCase c = case_to_run(o, command);
   // A driven run's impacts go beside the series, refused here too.
   const bool rattle_files = !o.out.empty() && c.torque1.kind == Torque::Kind::prescribed_speed;
@@ -127,6 +144,8 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
     require_output_file(histogram_path, inputs);
   }
   RunControl control;
+  control.sample_rate_hz = sample_rate;
+  control.keep_samples = false;
   // The series goes to its file as the run makes it, a megabyte at a time,
   // so that a long run's memory does not grow with its length.
   control.keep_series = false;
@@ -139,24 +158,36 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
   control.most_series_rows = static_cast<long long>(o.max_rows);
   // A long run says how far it is, a line per tenth, on standard error.
   constexpr double kRowsWorthProgress = 1e7;
-  const bool progress = series_rows(c) >= kRowsWorthProgress;
   int tenths_done = 0;
-  if (!o.out.empty()) {
+  const auto flush = [&](double t_s, bool progress) {
+    if (pending.size() < kFlushBytes) return;
+    series_file->append(pending);
+    pending.clear();
+    const int tenths = static_cast<int>(10.0 * t_s / c.integrator.end_time_s);
+    if (progress && tenths > tenths_done) {
+      tenths_done = tenths;
+      std::fprintf(stderr, "simulate: %d%% (t = %s of %s s)\n", 10 * tenths,
+                   format_number(t_s).c_str(), format_number(c.integrator.end_time_s).c_str());
+    }
+  };
+  if (!o.out.empty() && sample_rate) {
+    // Samples instead of the integrator's rows, streamed alike. The rate is
+    // checked by simulate(), before the run; a bad one gives no count here.
+    const bool progress = std::isfinite(*sample_rate) && *sample_rate > 0.0 &&
+                          sample_count(c, *sample_rate) >= kRowsWorthProgress;
+    series_file.emplace(o.out);
+    pending = samples_csv_header();
+    control.on_sample = [&, progress](const SampleRow& row) {
+      append_sample_row(pending, row);
+      flush(row.t_s, progress);
+    };
+  } else if (!o.out.empty()) {
+    const bool progress = series_rows(c) >= kRowsWorthProgress;
     series_file.emplace(o.out);
     pending = series_csv_header();
-    control.on_row = [&](const SeriesRow& row) {
+    control.on_row = [&, progress](const SeriesRow& row) {
       append_series_row(pending, row);
-      if (pending.size() >= kFlushBytes) {
-        series_file->append(pending);
-        pending.clear();
-        const int tenths = static_cast<int>(10.0 * row.t_s / c.integrator.end_time_s);
-        if (progress && tenths > tenths_done) {
-          tenths_done = tenths;
-          std::fprintf(stderr, "simulate: %d%% (t = %s of %s s)\n", 10 * tenths,
-                       format_number(row.t_s).c_str(),
-                       format_number(c.integrator.end_time_s).c_str());
-        }
-      }
+      flush(row.t_s, progress);
     };
   }
   // Unbalanced torques and non-rolling speeds of a case file are said before a run that may
@@ -184,6 +215,16 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
     if (e.allowed().find("rows of time series") != std::string::npos) {
       throw InputError(e.field(), e.value(),
                        e.allowed() + " (--every keeps fewer rows, --max-rows lifts the bound)");
+    }
+    if (e.field() == "sample_rate") {
+      // The library's bound is the program's --max-rows.
+      std::string allowed = e.allowed();
+      const std::string lift = "lift the bound";
+      if (allowed.size() >= lift.size() &&
+          allowed.compare(allowed.size() - lift.size(), lift.size(), lift) == 0) {
+        allowed += " (--max-rows)";
+      }
+      throw InputError("--sample-rate", o.sample_rate, allowed);
     }
     throw;
   }
@@ -246,6 +287,11 @@ void register_simulate_commands(CLI::App& app) {
   simulate->add_option("--out", options->out,
                        "time series CSV file (written atomically); a driven run also writes "
                        "rattle_impacts.csv and rattle_impacts_histogram.csv beside it");
+  simulate->add_option(
+      "--sample-rate", options->sample_rate,
+      "Hz: with --out, write samples at t = n / FS exactly (the integrator's dense output; "
+      "accelerations, DTE, mesh force per side) instead of the integrator's steps; not with "
+      "--every");
   simulate->add_option("--max-rows", options->max_rows,
                        "the most rows the time series may have, so that a slip of --t-end does "
                        "not fill a disk (default " +

@@ -116,13 +116,16 @@ class SimulationResult:
     of its time-series CSV, each a view of one column of the rows; zero-length
     when keep_series was False) and .impacts (a
     list of dicts: line "N1" or "N2", start_s, impact_speed_m_s, restitution,
-    end_s, end_speed_m_s, the last two None for a contact still on at the end)."""
+    end_s, end_speed_m_s, the last two None for a contact still on at the end)
+    and .samples (with sample_rate, a dict of numpy arrays with the columns of
+    ``gearimpact simulate --sample-rate``; zero-length without it)."""
 
-    def __init__(self, case, summary, series, impacts):
+    def __init__(self, case, summary, series, impacts, samples=None):
         self.case = case
         self.summary = summary
         self.series = series
         self.impacts = impacts
+        self.samples = samples
 
     def __repr__(self):
         s = self.summary
@@ -133,7 +136,7 @@ class SimulationResult:
         )
 
 
-def simulate(case, keep_series=True, max_rows=None, **changes):
+def simulate(case, keep_series=True, max_rows=None, sample_rate=None, **changes):
     """Runs a case: the same run as ``gearimpact simulate``, bit for bit.
 
     case: a Case, a Table 1 case number (1, 2, 3) or a case file's path.
@@ -142,7 +145,12 @@ def simulate(case, keep_series=True, max_rows=None, **changes):
     integrator_kind="adaptive". keep_series: True or False; False skips the time series
     (faster, less memory). max_rows: the most rows the kept series may have
     (None: the library's bound, 5e7 rows, 4.4 GB; a longer run is refused
-    before it starts, naming end_time). The computation runs without the GIL; Ctrl-C stops it
+    before it starts, naming end_time). sample_rate: Hz, > 0: .samples holds
+    samples at t = n / sample_rate exactly from the integrator's dense output
+    (t_s, theta1_rad, theta2_rad, w1_rad_s, w2_rad_s, w1_dot_rad_s2,
+    w2_dot_rad_s2, s_m, dte_m = s - B, normal_force_n1_N, normal_force_n2_N,
+    region, pairs; docs/usage.md), the run itself unchanged; at most max_rows
+    of them. The computation runs without the GIL; Ctrl-C stops it
     (KeyboardInterrupt). Raises CaseError for a case outside its ranges (with
     the step checked against the contact's period) and SimulationError for a
     run that cannot continue.
@@ -151,11 +159,12 @@ def simulate(case, keep_series=True, max_rows=None, **changes):
     rows = _core.most_series_rows if max_rows is None else _arguments.integer("max_rows", max_rows)
     if rows < 1:
         raise _arguments.case_error(f"max_rows={max_rows!r}: a count >= 1, or None", "max_rows")
+    rate = None if sample_rate is None else _arguments.real("sample_rate", sample_rate)
     run = _as_case(case)
     if changes:
         run = run.replace(**changes)
     try:
-        summary_json, series, impacts = _core.simulate(run, keep, rows)
+        summary_json, series, impacts, samples = _core.simulate(run, keep, rows, rate)
     except CaseError as error:
         if "rows of time series" not in str(error):
             raise
@@ -167,7 +176,7 @@ def simulate(case, keep_series=True, max_rows=None, **changes):
     summary = json.loads(summary_json)
     if summary.get("foundation_extrapolated"):
         _warnings.warn(f"{run.name or 'the case'}: {summary['warning']}")
-    return SimulationResult(run, summary, series, impacts)
+    return SimulationResult(run, summary, series, impacts, samples)
 
 
 def sweep_friction(

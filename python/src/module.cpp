@@ -226,6 +226,35 @@ py::dict series_columns(std::vector<SeriesRow>&& rows) {
   return series;
 }
 
+// The columns of `gearimpact simulate --sample-rate FS --out` (samples_csv_header),
+// in its order, viewed in place as the series' are.
+py::dict sample_columns(std::vector<SampleRow>&& rows) {
+  auto* owned = new std::vector<SampleRow>(std::move(rows));
+  const py::capsule keeper(owned, [](void* p) { delete static_cast<std::vector<SampleRow>*>(p); });
+  const auto n = static_cast<py::ssize_t>(owned->size());
+  const auto view = [&](auto SampleRow::*member) {
+    using T = std::remove_reference_t<decltype(std::declval<SampleRow&>().*member)>;
+    if (n == 0) return py::array_t<T>(0);
+    return py::array_t<T>({n}, {static_cast<py::ssize_t>(sizeof(SampleRow))},
+                          &((*owned)[0].*member), keeper);
+  };
+  py::dict samples;
+  samples["t_s"] = view(&SampleRow::t_s);
+  samples["theta1_rad"] = view(&SampleRow::theta1_rad);
+  samples["theta2_rad"] = view(&SampleRow::theta2_rad);
+  samples["w1_rad_s"] = view(&SampleRow::w1_rad_per_s);
+  samples["w2_rad_s"] = view(&SampleRow::w2_rad_per_s);
+  samples["w1_dot_rad_s2"] = view(&SampleRow::acceleration1_rad_per_s2);
+  samples["w2_dot_rad_s2"] = view(&SampleRow::acceleration2_rad_per_s2);
+  samples["s_m"] = view(&SampleRow::s_m);
+  samples["dte_m"] = view(&SampleRow::dte_m);
+  samples["normal_force_n1_N"] = view(&SampleRow::normal_force_n1_n);
+  samples["normal_force_n2_N"] = view(&SampleRow::normal_force_n2_n);
+  samples["region"] = view(&SampleRow::region);
+  samples["pairs"] = view(&SampleRow::pairs);
+  return samples;
+}
+
 py::object optional_number(const std::optional<double>& value) {
   return value ? py::object(py::float_(*value)) : py::object(py::none());
 }
@@ -247,16 +276,18 @@ py::list impact_records(const std::vector<ImpactRecord>& impacts) {
 
 // summary_json's text (the program's JSON, parsed by the Python layer so that
 // the keys and numbers are the program's), the series and the impacts.
-py::tuple run_simulation(const SimulationCase& c, bool keep_series, long long max_rows) {
+py::tuple run_simulation(const SimulationCase& c, bool keep_series, long long max_rows,
+                         std::optional<double> sample_rate_hz) {
   SimulationResult result = interruptible([&](std::function<bool()> should_stop) {
     RunControl control;
     control.keep_series = keep_series;
     control.most_series_rows = max_rows;
+    control.sample_rate_hz = sample_rate_hz;
     control.should_stop = std::move(should_stop);
     return simulate(c, control);
   });
   return py::make_tuple(summary_json(result.summary), series_columns(std::move(result.series)),
-                        impact_records(result.impacts));
+                        impact_records(result.impacts), sample_columns(std::move(result.samples)));
 }
 
 // The stiffness columns of `gearimpact stiffness` at the contact positions xs.
@@ -740,7 +771,8 @@ void define_module(py::module_& m) {
       },
       py::arg("key"));
 
-  m.def("simulate", &run_simulation, py::arg("case"), py::arg("keep_series"), py::arg("max_rows"));
+  m.def("simulate", &run_simulation, py::arg("case"), py::arg("keep_series"), py::arg("max_rows"),
+        py::arg("sample_rate") = py::none());
   m.attr("most_series_rows") = kMostSeriesRows;
   m.def("stiffness_samples", &stiffness_samples, py::arg("pair"), py::arg("model"),
         py::arg("points"));

@@ -178,3 +178,25 @@ def test_ste_equals_the_program(cli, tmp_path):
     assert gearimpact.ste(case, torque=100.0, points=20)["summary"] == ours["summary"]
     with pytest.raises(gearimpact.CaseError, match="torque"):
         gearimpact.ste(case, torque="0 N*m", points=20)
+
+
+SAMPLE_COLUMNS = [
+    "t_s", "theta1_rad", "theta2_rad", "w1_rad_s", "w2_rad_s", "w1_dot_rad_s2", "w2_dot_rad_s2",
+    "s_m", "dte_m", "normal_force_n1_N", "normal_force_n2_N", "region", "pairs",
+]
+
+
+def test_simulate_samples_as_the_program_writes_them(cli, tmp_path):
+    out = tmp_path / "samples.csv"
+    summary = json.loads(cli("simulate", "--case", "3", "--t-end", "0.002", "--sample-rate",
+                             "1.5e6", "--out", out))
+    result = gearimpact.simulate(3, keep_series=False, sample_rate=1.5e6, end_time="2 ms")
+    assert result.summary == summary
+    assert_same_table(result.samples, out.read_text(), SAMPLE_COLUMNS, "samples of case 3")
+    assert len(result.samples["t_s"]) == 3001
+
+
+@pytest.mark.parametrize("rate", [0, -1.0, float("inf"), True, "fast"])
+def test_simulate_refuses_a_bad_sample_rate(rate):
+    with pytest.raises(gearimpact.CaseError, match="sample_rate"):
+        gearimpact.simulate(1, keep_series=False, sample_rate=rate, end_time="1 ms")

@@ -69,6 +69,9 @@ SimulationResult run_adaptive(const SimulationCase& c, const StiffnessTable& tab
       ++next_output;
     }
   };
+  // The samples inside a step: Dormand-Prince's own dense output, of order 4
+  // (Hairer, Norsett & Wanner, Solving ODE I, II.6), over the step just taken.
+  const auto dense = [&](double tau, State& x) { stepper.calc_state(tau, x); };
   while (t < end) {
     std::pair<double, double> span;
     try {
@@ -87,6 +90,7 @@ SimulationResult run_adaptive(const SimulationCase& c, const StiffnessTable& tab
       emit_until(end);
       stepper.calc_state(end, yb);
       system.impose_driver(end, yb);
+      run.emit_samples(end, yb, mode, dense);
       run.y() = yb;
       ++run.steps();
       t = end;
@@ -97,6 +101,8 @@ SimulationResult run_adaptive(const SimulationCase& c, const StiffnessTable& tab
     // The dense output integrates the driver's closed-form speed to the
     // tolerance; the accepted state takes the closed form itself.
     system.impose_driver(t_next, yb);
+    // Before the mode changes at an event: the step's samples are its own mode's.
+    run.emit_samples(t_next, yb, mode, dense);
     run.y() = yb;
     ++run.steps();
     run.check_progress(t, t_next, h);

@@ -14,7 +14,7 @@ namespace gearimpact {
 // The classical RK4 step from (t, y) with k1 = f(t, y) already evaluated:
 // event location tries many step sizes from the same start.
 void rk4_step_from(const GearSystem& system, double t, const State& y, const State& k1, double h,
-                   const Mode& m, const ContactMemory& d, State& out) {
+                   const Mode& m, const ContactMemory& d, State& out, Rk4Stages* stages) {
   // Not zeroed: rhs writes every component.
   State k2, k3, k4, tmp;
   for (std::size_t i = 0; i < kStateSize; ++i) tmp[i] = y[i] + 0.5 * h * k1[i];
@@ -26,12 +26,22 @@ void rk4_step_from(const GearSystem& system, double t, const State& y, const Sta
   for (std::size_t i = 0; i < kStateSize; ++i) {
     out[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
   }
+  if (stages != nullptr) *stages = {k1, k2, k3, k4};
 }
 
 void rk4_step(const GearSystem& system, double t, const State& y, double h, const Mode& m,
-              const ContactMemory& d, State& out, State& k1) {
+              const ContactMemory& d, State& out, State& k1, Rk4Stages* stages) {
   system.rhs(t, y, m, d, k1);
-  rk4_step_from(system, t, y, k1, h, m, d, out);
+  rk4_step_from(system, t, y, k1, h, m, d, out, stages);
+}
+
+void rk4_dense(const State& y, double h, const Rk4Stages& k, double theta, State& out) {
+  const double b1 = theta * (1.0 - theta * (1.5 - theta * (2.0 / 3.0)));
+  const double b23 = theta * theta * (1.0 - theta * (2.0 / 3.0));
+  const double b4 = theta * theta * (theta * (2.0 / 3.0) - 0.5);
+  for (std::size_t i = 0; i < kStateSize; ++i) {
+    out[i] = y[i] + h * (b1 * k[0][i] + b23 * (k[1][i] + k[2][i]) + b4 * k[3][i]);
+  }
 }
 
 // The classical RK4 step with the mode re-evaluated at every stage: what a
@@ -59,23 +69,34 @@ void rk4_step_unlocated(const GearSystem& system, double t, const State& y, doub
 namespace {
 
 // One RK4 step from t towards `target` in the run's mode, cut at the first
-// event inside it. Returns the time reached: `target`, or the event's time
-// (after which the mode has been classified again).
-double event_cut_step(Run& run, double t, double target) {
+// event inside it: the time reached (`target`, or the event's), whether an
+// event ends the step (the mode is not yet classified again), and what the
+// dense output of the accepted step needs.
+struct CutStep {
+  double reached;
+  bool event;
+  State start;
+  double h;
+  Rk4Stages stages;
+};
+
+CutStep event_cut_step(Run& run, double t, double target, bool want_stages) {
   const GearSystem& system = run.system();
   const State y = run.y();
   const Mode mode = run.mode();
   const ContactMemory damping = run.damping();
+  CutStep step{target, false, y, target - t, {}};
+  Rk4Stages* stages = want_stages ? &step.stages : nullptr;
   State k1;
   State next{};
-  rk4_step(system, t, y, target - t, mode, damping, next, k1);
+  rk4_step(system, t, y, target - t, mode, damping, next, k1, stages);
   system.impose_driver(target, next);
   run.rhs_evaluations() += 4;
   run.check_finite(target, next);
   ++run.steps();
   if (system.mode_holds(next, mode, damping)) {
     run.y() = next;
-    return target;
+    return step;
   }
   EventValues g_a{}, g_b{};
   const int n = system.event_values(y, mode, damping, g_a);
@@ -89,13 +110,16 @@ double event_cut_step(Run& run, double t, double target) {
   const double t_event = earliest_event(system, mode, damping, t, target, g_a, g_b, n, state_at);
   run.rhs_evaluations() += evaluations;
   if (t_event < target) {
-    state_at(t_event, next);
+    // The same step as state_at's, keeping its stages.
+    rk4_step_from(system, t, y, k1, t_event - t, mode, damping, next, stages);
+    system.impose_driver(t_event, next);
     run.check_finite(t_event, next);
+    step.reached = t_event;
+    step.h = t_event - t;
   }
   run.y() = next;
-  const double reached = t_event >= target ? target : t_event;
-  run.change_mode(reached);
-  return reached;
+  step.event = true;
+  return step;
 }
 
 }  // namespace
@@ -124,9 +148,16 @@ SimulationResult run_rk4(const SimulationCase& c, const StiffnessTable& table,
       t = target;
       run.set_mode_without_events(t);
     } else {
-      const double reached = event_cut_step(run, t, target);
-      run.check_progress(t, reached, h);
-      t = reached;
+      const CutStep step = event_cut_step(run, t, target, run.sampling());
+      if (run.sampling()) {
+        // Before the mode changes at an event: the step's samples are its own mode's.
+        run.emit_samples(step.reached, run.y(), run.mode(), [&](double tau, State& x) {
+          rk4_dense(step.start, step.h, step.stages, (tau - t) / step.h, x);
+        });
+      }
+      if (step.event) run.change_mode(step.reached);
+      run.check_progress(t, step.reached, h);
+      t = step.reached;
     }
     if (t == target) ++k;
     run.book_keep(t);

@@ -41,6 +41,16 @@ class Run {
       }
       record(start_time_);
     }
+    if (control_.sample_rate_hz) {
+      sample_rate_ = *control_.sample_rate_hz;
+      samples_ = static_cast<long long>(sample_count(c, sample_rate_, start_time_));
+      if (control_.keep_samples) {
+        constexpr long long most_reserved_samples = 4'000'000;
+        result_.samples.reserve(
+            static_cast<std::size_t>(std::min(samples_, most_reserved_samples)));
+      }
+      emit_samples(start_time_, y_, mode_, [](double, State&) {});
+    }
   }
 
   const GearSystem& system() const { return system_; }
@@ -52,6 +62,8 @@ class Run {
   double start_time() const { return start_time_; }
   // Whether the output grid is wanted: kept as the series or observed.
   bool records() const { return control_.keep_series || static_cast<bool>(control_.on_row); }
+  // Whether the run is sampled (RunControl::sample_rate_hz).
+  bool sampling() const { return samples_ > 0; }
 
   void check_finite(double t, const State& y) const {
     if (!std::all_of(y.begin(), y.end(), [](double v) { return std::isfinite(v); })) {
@@ -146,6 +158,28 @@ class Run {
     friction_max_ = std::max(friction_max_, f);
   }
 
+  // The samples not yet taken up to t_b, the end of an accepted step in mode m
+  // at y_b (before any change of mode at t_b): a sample at t_b is y_b itself,
+  // one inside the step comes from `state_at` (its dense output). At the start,
+  // t_b = the start time takes the sample there.
+  template <typename StateAt>
+  void emit_samples(double t_b, const State& y_b, const Mode& m, StateAt state_at) {
+    while (next_sample_ < samples_) {
+      const double t = sample_time_s(start_time_, next_sample_, sample_rate_);
+      if (t > t_b) return;
+      if (t == t_b) {
+        sample(t, y_b, m);
+      } else {
+        // t_a < t < t_b: the steps before took every sample up to t_a.
+        State x{};
+        state_at(t, x);
+        system_.impose_driver(t, x);
+        sample(t, x, m);
+      }
+      ++next_sample_;
+    }
+  }
+
   void record(double t) { record(t, y_, mode_); }
   void record(double t, const State& y, const Mode& m) {
     ContactTotals totals;
@@ -165,6 +199,28 @@ class Run {
                         totals.friction_force_n};
     if (control_.keep_series) result_.series.push_back(row);
     if (control_.on_row) control_.on_row(row);
+  }
+
+  void sample(double t, const State& y, const Mode& m) {
+    ContactTotals totals;
+    State dydt{};
+    system_.rhs(t, y, m, damping_, dydt, &totals);
+    const double sv = system_.s(y);
+    const SampleRow row{t,
+                        y[kTheta1],
+                        y[kTheta2],
+                        y[kW1],
+                        y[kW2],
+                        dydt[kW1],
+                        dydt[kW2],
+                        sv,
+                        sv - c_.gears.backlash_m,
+                        m.region == Region::n1 ? totals.normal_force_n : 0.0,
+                        m.region == Region::n2 ? totals.normal_force_n : 0.0,
+                        static_cast<int>(m.region),
+                        m.count};
+    if (control_.keep_samples) result_.samples.push_back(row);
+    if (control_.on_sample) control_.on_sample(row);
   }
 
   SimulationResult finish(double t, const char* integrator) {
@@ -353,6 +409,10 @@ class Run {
   double friction_loaded_time_ = 0.0;
   double friction_max_ = 0.0;
   double friction_last_t_ = 0.0;
+  // The sample grid: samples_ of them (0 without sampling), the next one to take.
+  double sample_rate_ = 0.0;
+  long long samples_ = 0;
+  long long next_sample_ = 0;
   // Last: its construction sets the start state above (make_ledger).
   EnergyLedger ledger_;
 };

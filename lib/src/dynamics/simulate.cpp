@@ -22,6 +22,8 @@ namespace {
 // A series row as CSV, measured on the paper's cases (138 bytes); for the
 // estimate a message gives.
 constexpr double kSeriesRowBytes = 140.0;
+// A sample row as CSV: 11 numbers of 17 digits and two small integers.
+constexpr double kSampleRowBytes = 230.0;
 
 // "14 GB", "140 MB": the size a message gives, rounded.
 std::string csv_size_text(double bytes) {
@@ -42,6 +44,31 @@ void validate_control(const SimulationCase& c, const RunControl& control) {
               "), about " + csv_size_text(rows * kSeriesRowBytes) +
               " as CSV: shorten the run, keep fewer rows (integrator.output_every), or lift "
               "the bound");
+    }
+  }
+  if (control.sample_rate_hz) {
+    const double rate = *control.sample_rate_hz;
+    const std::string rate_text = format_number(rate) + " Hz";
+    if (!(std::isfinite(rate) && rate > 0.0)) {
+      throw InputError("sample_rate", rate_text, "a finite rate > 0 Hz");
+    }
+    if (!control.locate_events) {
+      throw InputError("sample_rate", rate_text,
+                       "only with event location (RunControl::locate_events): the dense output "
+                       "of a step needs one mode");
+    }
+    const double most = static_cast<double>(control.most_series_rows);
+    const double t0 = control.resume ? control.resume->time_s : 0.0;
+    const double samples = sample_count(c, rate, t0);
+    if (samples > most) {
+      const double end = c.integrator.end_time_s;
+      throw InputError("sample_rate", rate_text,
+                       "a rate in (0, " + shortest_decimal((most - 1.0) / end) + "] Hz: at most " +
+                           shortest_decimal(most) +
+                           " samples over integrator.end_time = " + shortest_decimal(end) +
+                           " s; this run would have " + shortest_decimal(samples) +
+                           " samples, about " + csv_size_text(samples * kSampleRowBytes) +
+                           " as CSV: lower the rate, shorten the run, or lift the bound");
     }
   }
   if (control.resume) {
@@ -114,7 +141,6 @@ SimulationResult simulate_checked(const SimulationCase& c, const StiffnessTable&
                                   const RunControl& control) {
   check_table(c, table);
   validate_implied(c, table);
-  validate_control(c, control);
   SimulationResult result = c.integrator.kind == IntegratorKind::rk4
                                 ? run_rk4(c, table, control)
                                 : run_adaptive(c, table, control);
@@ -155,6 +181,15 @@ void refuse_gaps(const SimulationCase& c) {
       "the dynamics (simulate, sweep, sweep-friction) do not use the gaps yet",
       "no relief and no tooth error: set them to 0, or compute their static transmission error "
       "with `gearimpact ste`")});
+double sample_count(const SimulationCase& c, double sample_rate_hz, double t0_s) {
+  const double end = t0_s + c.integrator.end_time_s;
+  const double guess = std::floor(c.integrator.end_time_s * sample_rate_hz);
+  // Beyond 2^53 samples the count is only an estimate for a refusal.
+  if (!(guess < 9007199254740992.0)) return guess + 1.0;
+  auto n = static_cast<long long>(guess);
+  while (sample_time_s(t0_s, n + 1, sample_rate_hz) <= end) ++n;
+  while (n > 0 && sample_time_s(t0_s, n, sample_rate_hz) > end) --n;
+  return static_cast<double>(n) + 1.0;
 }
 
 void validate(const SimulationCase& c) {
@@ -213,6 +248,8 @@ std::vector<std::string> run_warnings(const SimulationCase& c) {
 SimulationResult simulate(const SimulationCase& c, const RunControl& control) {
   validate_fields(c);
   refuse_gaps(c);
+  // The controls before the table, which may take a while to build.
+  validate_control(c, control);
   const StiffnessTable table(c.gears, c.model.stiffness);
   return simulate_checked(c, table, control);
 }
@@ -221,6 +258,7 @@ SimulationResult simulate(const SimulationCase& c, const StiffnessTable& table,
                           const RunControl& control) {
   validate_fields(c);
   refuse_gaps(c);
+  validate_control(c, control);
   return simulate_checked(c, table, control);
 }
 

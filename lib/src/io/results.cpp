@@ -29,6 +29,22 @@ void append_series_row(std::string& out, const SeriesRow& r) {
   out.append(line, static_cast<std::size_t>(n));
 }
 
+std::string samples_csv_header() {
+  return "t_s,theta1_rad,theta2_rad,w1_rad_s,w2_rad_s,w1_dot_rad_s2,w2_dot_rad_s2,s_m,dte_m,"
+         "normal_force_n1_N,normal_force_n2_N,region,pairs\n";
+}
+
+void append_sample_row(std::string& out, const SampleRow& r) {
+  char line[512];
+  const int n =
+      std::snprintf(line, sizeof line,
+                    "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d,%d\n",
+                    r.t_s, r.theta1_rad, r.theta2_rad, r.w1_rad_per_s, r.w2_rad_per_s,
+                    r.acceleration1_rad_per_s2, r.acceleration2_rad_per_s2, r.s_m, r.dte_m,
+                    r.normal_force_n1_n, r.normal_force_n2_n, r.region, r.pairs);
+  out.append(line, static_cast<std::size_t>(n));
+}
+
 std::string series_csv(const std::vector<SeriesRow>& rows) {
   std::string out = series_csv_header();
   out.reserve(out.size() + rows.size() * 220);

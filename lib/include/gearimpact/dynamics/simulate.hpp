@@ -48,6 +48,40 @@ struct SeriesRow {
   double friction_force_n;
 };
 
+// One sample of a run at t = t0 + n / fs exactly (RunControl::sample_rate_hz;
+// sample_time_s), from the integrator's dense output inside the accepted step
+// that holds it (RK4: its continuous extension of order 3; the adaptive
+// Dormand-Prince: its own of order 4); a sample at a step's end is that
+// step's state. Steps end at events, so a sample belongs to one mode's step:
+// at an event time it is the left limit, in the mode before the event.
+struct SampleRow {
+  double t_s;
+  double theta1_rad;
+  double theta2_rad;
+  double w1_rad_per_s;
+  double w2_rad_per_s;
+  // w1', w2': the equations of motion at the sampled state in its step's mode
+  // (the derivative of the interpolant would be an order less accurate).
+  double acceleration1_rad_per_s2;
+  double acceleration2_rad_per_s2;
+  double s_m;
+  // s - B: the deflection measured from the contact of the drive flank N1
+  // (the sweep's dte_contact with T1 loading N1): positive in an N1 contact,
+  // -2B at the onset of an N2 contact.
+  double dte_m;
+  // Normal forces summed over the loaded pairs of each line (0 off it).
+  double normal_force_n1_n;
+  double normal_force_n2_n;
+  int region;
+  int pairs;
+};
+
+// The time of sample n of a run that starts at t0: the one formula of the
+// sampled rows, so that a caller computes the same doubles.
+inline double sample_time_s(double t0_s, long long n, double sample_rate_hz) {
+  return t0_s + static_cast<double>(n) / sample_rate_hz;
+}
+
 // One impact: a contact that begins at `start_s` with approach speed Vi on
 // `line`; it ends (if it ends within the run) with separation speed `end_speed_m_s`.
 // A run that starts in contact counts that contact as an impact at t = 0.
@@ -168,6 +202,7 @@ struct RunState {
 
 struct SimulationResult {
   std::vector<SeriesRow> series;
+  std::vector<SampleRow> samples;  // with RunControl::sample_rate_hz and keep_samples
   std::vector<ImpactRecord> impacts;
   SimulationSummary summary;
   RunState final_state;
@@ -208,8 +243,16 @@ struct RunControl {
   std::function<void(const SeriesRow&)> on_row;
   // The most rows the series (kept or observed) may have, checked before the
   // run against series_rows(); refused with the estimate, naming
-  // integrator.end_time.
+  // integrator.end_time. It bounds the samples too (sample_count()), naming
+  // sample_rate.
   long long most_series_rows = kMostSeriesRows;
+  // Samples at t = t0 + n / sample_rate_hz (Hz, finite and > 0), n = 0, 1, ...
+  // up to the run's end (SampleRow): kept in SimulationResult::samples when
+  // keep_samples, and passed to on_sample. They are interpolated inside the
+  // accepted steps and leave the integration as it is. Needs locate_events.
+  std::optional<double> sample_rate_hz;
+  bool keep_samples = true;
+  std::function<void(const SampleRow&)> on_sample;
   // When set, asked every kStepsBetweenStopChecks steps; true ends the run
   // with SimulationStopped. Lets a caller cancel a long run (an interactive
   // session's Ctrl-C, a time limit); it may also throw its own exception.
@@ -234,6 +277,10 @@ double series_rows(const SimulationCase& c);
 // read the gaps yet, and a run that ignored them would answer another
 // question than its case asks. simulate(), validate() and the run pool call it.
 void refuse_gaps(const SimulationCase& c);
+// The samples of a run of c at sample_rate_hz: the n >= 0 with
+// sample_time_s(t0, n, rate) <= t0 + end_time_s, for t0 = 0 (about
+// floor(end_time_s rate) + 1; a continued run's start moves the end's rounding).
+double sample_count(const SimulationCase& c, double sample_rate_hz, double t0_s = 0.0);
 
 // Throws InputError naming the first field outside its range (validate_fields),
 // then a case with gaps (refuse_gaps), then what the fields imply together

@@ -29,6 +29,11 @@ std::string series_csv(const std::vector<SeriesRow>& rows);
 // header line, and one row appended to `out`.
 std::string series_csv_header();
 void append_series_row(std::string& out, const SeriesRow& row);
+// The samples of RunControl::sample_rate_hz, in pieces as the series:
+// t_s,theta1_rad,theta2_rad,w1_rad_s,w2_rad_s,w1_dot_rad_s2,w2_dot_rad_s2,s_m,dte_m,
+// normal_force_n1_N,normal_force_n2_N,region,pairs
+std::string samples_csv_header();
+void append_sample_row(std::string& out, const SampleRow& row);
 // The summary as a JSON object.
 std::string summary_json(const SimulationSummary& summary);
 // A driven run's struck impacts (struck_impacts), one row each:
