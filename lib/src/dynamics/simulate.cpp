@@ -181,6 +181,8 @@ void refuse_gaps(const SimulationCase& c) {
       "the dynamics (simulate, sweep, sweep-friction) do not use the gaps yet",
       "no relief and no tooth error: set them to 0, or compute their static transmission error "
       "with `gearimpact ste`")});
+}
+
 double sample_count(const SimulationCase& c, double sample_rate_hz, double t0_s) {
   const double end = t0_s + c.integrator.end_time_s;
   const double guess = std::floor(c.integrator.end_time_s * sample_rate_hz);
