@@ -138,7 +138,25 @@ class Run {
     ledger_.observe(y_, mode_, s);
     if (mode_.region != Region::free) {
       s.max_penetration_m = std::max(s.max_penetration_m, system_.delta(mode_.region, y_));
+      check_overlap(t);
     }
+  }
+
+  // A deflection on the line of action of half a base pitch means the teeth
+  // have passed through each other by about a tooth's thickness: the contact
+  // on the line of action no longer describes them (a pinion with a missing
+  // tooth under load runs ahead into the next pair), and what follows would be
+  // numbers without a meaning.
+  void check_overlap(double t) const {
+    const double overlap = result_.summary.max_penetration_m;
+    if (!(overlap > half_base_pitch_m_)) return;
+    throw SimulationError(
+        "the teeth overlap by " + format_number(overlap) + " m on the line of action at " +
+        where(t, result_.summary.steps) + ", more than half a base pitch (" +
+        format_number(half_base_pitch_m_) +
+        " m): the model's contact on the line of action no longer holds; with a missing tooth "
+        "the load drives the pinion ahead while no pair carries it, so lower the load or the "
+        "backlash, or raise the speed");
   }
 
   // The line's coefficient sum(f N) / sum(N) at the end of a step under a law
@@ -390,6 +408,7 @@ class Run {
   }
 
   const SimulationCase& c_;
+  const double half_base_pitch_m_ = 0.5 * base_pitch(c_.gears);
   const RunControl& control_;
   GearSystem system_;
   State y_{};
