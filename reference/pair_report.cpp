@@ -329,6 +329,14 @@ void write_report(const ReportOptions& o) {
   const std::filesystem::path dir = folder.temporary();
   const Progress progress;
   std::vector<std::string> warnings;
+  if (!c.faults.empty()) {
+    warnings.push_back("the case has " + std::to_string(c.faults.size()) +
+                       " faulted teeth ([[faults]]): the geometry, stiffness and load-sharing "
+                       "sections are the healthy pair's" +
+                       (run ? std::string("; the time history runs with the faults") : "") +
+                       "; `gearimpact mesh-stiffness --case-file` gives the faulted stiffness "
+                       "over the true period");
+  }
 
   const std::string geometry = geometry_section(c.gears, dir);
   progress.done("geometry");

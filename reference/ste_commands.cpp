@@ -22,7 +22,36 @@
 
 namespace gearimpact::cli {
 
+namespace {
+
+// The STE reads each pair's healthy stiffness and the gaps; a faulted tooth's
+// own table is not read yet, and an STE of healthy teeth for a faulted case
+// would answer another question than the case asks.
+void refuse_faults(const SimulationCase& c) {
+  if (c.faults.empty()) return;
+  throw InputError("[[faults]]", std::to_string(c.faults.size()) + " faulted teeth",
+                   "none: ste does not read per-tooth faults yet (it would give the healthy "
+                   "teeth's STE); mesh-stiffness --case-file gives the faulted mesh stiffness");
+}
+
+// A static deflection of half a base pitch, about a tooth's thickness, has
+// passed the teeth through each other: no STE describes it.
+void refuse_overlap(const SimulationCase& c, const StaticTransmissionError& ste,
+                    double torque1_n_m) {
+  const double half_pitch = 0.5 * base_pitch(c.gears);
+  double largest = 0.0;
+  for (const auto& point : ste.points) largest = std::max(largest, point.ste_m);
+  if (!(largest > half_pitch)) return;
+  throw InputError("torque", format_number(torque1_n_m) + " N*m",
+                   "a torque whose static deflection stays below half a base pitch (" +
+                       format_number(half_pitch) + " m; this one reaches " +
+                       format_number(largest) + " m)");
+}
+
+}  // namespace
+
 SteTexts ste_texts(const SimulationCase& c, double torque1_n_m, int points_per_mesh_period) {
+  refuse_faults(c);
   StaticTransmissionErrorOptions options;
   options.points_per_mesh_period = points_per_mesh_period;
   // Every refusal before the table's quadrature.
@@ -30,6 +59,7 @@ SteTexts ste_texts(const SimulationCase& c, double torque1_n_m, int points_per_m
   const StiffnessTable table(c.gears, c.model.stiffness);
   SteTexts texts;
   texts.modified = static_transmission_error(c.gears, c.modifications, torque1_n_m, table, options);
+  refuse_overlap(c, texts.modified, torque1_n_m);
   // The unmodified pair over the same angles, so that the two curves share one axis.
   StaticTransmissionErrorOptions same = options;
   same.mesh_periods = texts.modified.mesh_periods;
@@ -109,6 +139,7 @@ void write_ste(const SteOptions& o) {
                          "): it loads the drive flanks");
   }
   const SimulationCase c = read_pair_or_run_file(o.case_file).simulation_case;
+  refuse_faults(c);
   StaticTransmissionErrorOptions options;
   options.points_per_mesh_period = o.points;
   try {
@@ -118,7 +149,13 @@ void write_ste(const SteOptions& o) {
   }
   AtomicFolder folder(o.out, o.overwrite, {o.case_file});
   const std::filesystem::path dir = folder.temporary();
-  const SteTexts texts = ste_texts(c, torque, o.points);
+  SteTexts texts;
+  try {
+    texts = ste_texts(c, torque, o.points);
+  } catch (const InputError& e) {
+    if (e.field() != "torque") throw;
+    throw InputError("--torque", o.torque, e.allowed());
+  }
   write_file_atomically((dir / "ste.csv").string(), texts.csv);
   write_file_atomically((dir / "ste_unmodified.csv").string(), texts.unmodified_csv);
   write_file_atomically((dir / "summary.json").string(), texts.summary_json);

@@ -1,5 +1,6 @@
 #include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -98,6 +99,12 @@ void print_stiffness_table(StiffnessOptions& options, const CLI::App& command) {
                                     : contact_positions(pair, options.points);
   const std::string csv = stiffness_csv(pair, model, x);
   warn_if(foundation_extrapolations(pair, model));
+  if (!options.case_file.empty() &&
+      !read_pair_or_run_file(options.case_file).simulation_case.faults.empty()) {
+    std::cerr << "gearimpact: warning: " << options.case_file
+              << " has [[faults]]: these are the healthy teeth's terms; mesh-stiffness "
+                 "--case-file gives the faulted mesh stiffness over the true period\n";
+  }
   std::fputs(csv.c_str(), stdout);
 }
 

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -277,4 +278,25 @@ TEST_CASE(
   CHECK(has(report, "## Time history"));
   CHECK_FALSE(has(report, "low-load factor (F_t K_A / b / 100 N/mm)^0.25 below 100 N/mm is"));
   CHECK(std::filesystem::exists(out / "time_history.csv"));
+}
+
+TEST_CASE("report on a pair file with a missing tooth says its sections are the healthy pair's") {
+  // The report's stiffness sections are of healthy teeth; a faulted case must
+  // not pass for a healthy one.
+  Scratch scratch("report-faulted");
+  const std::filesystem::path pair = scratch.dir / "faulted.toml";
+  std::ofstream(pair) << "[gears]\nteeth1 = 20\nteeth2 = 80\nmodule = \"2 mm\"\n"
+                         "pressure_angle = \"20 deg\"\nface_width = \"10 mm\"\n"
+                         "youngs_modulus = \"206.8 GPa\"\npoisson_ratio = 0.3\n"
+                         "density = \"7800 kg/m^3\"\nbacklash = \"0.05 mm\"\n\n[[faults]]\n"
+                         "gear = \"pinion\"\ntooth = 0\nkind = \"missing\"\n";
+  const std::filesystem::path out = scratch.dir / "out";
+  const CommandResult r = run_command(cli("report " + pair.string() + " --out " + out.string()));
+  REQUIRE(r.exit_code == 0);
+  std::ifstream in(out / "REPORT.md");
+  const std::string md((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CHECK(md.find("1 faulted teeth") != std::string::npos);
+  CHECK(md.find("healthy pair's") != std::string::npos);
+  // A pair file has no time history to run with the faults.
+  CHECK(md.find("time history runs") == std::string::npos);
 }

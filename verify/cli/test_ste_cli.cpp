@@ -134,6 +134,30 @@ TEST_CASE("ste refuses bad flags before any work, naming the flag and its range"
   CHECK(missing.err.find("--torque") != std::string::npos);
 }
 
+TEST_CASE("ste refuses what it cannot answer: faulted teeth, teeth pressed through each other") {
+  Scratch scratch("ste-cannot");
+  const std::filesystem::path out = scratch.dir / "out";
+  // A faulted case: the STE would be the healthy teeth's, so it is refused.
+  const std::filesystem::path faulted = scratch.dir / "faulted.toml";
+  write(faulted,
+        pair_file("") + "\n[[faults]]\ngear = \"pinion\"\ntooth = 0\nkind = \"missing\"\n");
+  const CommandResult f =
+      run_command(cli("ste " + faulted.string() + " --torque \"10 N*m\" --out " + out.string()));
+  CHECK(f.exit_code == 1);
+  CHECK_MESSAGE(f.err.find("[[faults]]") != std::string::npos, f.err);
+  CHECK(!std::filesystem::exists(out));
+  // 1e9 N*m on a 10 mm face: a deflection of metres, past half a base pitch
+  // (2 mm pi cos 20 deg / 2 = 2.95 mm), where the teeth have passed through
+  // each other.
+  const std::string input = (examples / "tip_relief_20_80.toml").string();
+  const CommandResult t =
+      run_command(cli("ste " + input + " --torque \"1e9 N*m\" --out " + out.string()));
+  CHECK(t.exit_code == 1);
+  CHECK_MESSAGE(t.err.find("--torque") != std::string::npos, t.err);
+  CHECK_MESSAGE(t.err.find("half a base pitch") != std::string::npos, t.err);
+  CHECK(!std::filesystem::exists(out));
+}
+
 TEST_CASE("[modifications] keys: units read, and refusals name file, line, key and range") {
   Scratch scratch("ste-keys");
   const std::filesystem::path file = scratch.dir / "pair.toml";

@@ -432,3 +432,11 @@ def test_a_fault_on_a_tooth_the_gear_lacks_names_the_key_and_range():
     assert "0 ... " in str(error.value)
     with pytest.raises(gearimpact.CaseError):
         my_pair(faults=dict(gear="pinion", tooth=0, kind="missing"))
+
+
+def test_mesh_stiffness_and_ste_refuse_a_faulted_case_rather_than_answer_for_healthy_teeth():
+    faulted = my_pair(faults=[dict(gear="pinion", tooth=0, kind="missing")])
+    with pytest.raises(gearimpact.CaseError, match="faults"):
+        gearimpact.mesh_stiffness(faulted)
+    with pytest.raises(gearimpact.CaseError, match="faults"):
+        gearimpact.ste(faulted, torque="10 N*m")
