@@ -701,9 +701,10 @@ void read_faults(const Reader& reader, const toml::value& root, SimulationCase& 
       const toml::value* value = entry == table.as_table().end() ? nullptr : &entry->second;
       if (!fault_row_applies(row, one)) {
         if (value != nullptr) {
-          problems.push_back(reader.problem(
-              name, value,
-              name + " = " + written(*value) + " is not used with " + row.only_when->text()));
+          problems.push_back(reader.problem(name, value,
+                                            name + " = " + written(*value) + " is read only with " +
+                                                row.only_when->text() +
+                                                "; this fault is of another kind"));
         }
         continue;
       }
