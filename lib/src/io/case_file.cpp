@@ -682,7 +682,9 @@ void read_faults(const Reader& reader, const toml::value& root, SimulationCase& 
       continue;
     }
     const std::size_t before = problems.size();
-    for (const auto& [key, value] : table.as_table()) {
+    for (const auto& entry : table.as_table()) {
+      const std::string& key = entry.first;
+      const toml::value& value = entry.second;
       const bool known = std::any_of(fault_schema().begin(), fault_schema().end(),
                                      [&](const Field& f) { return f.key == key; });
       if (!known) {
