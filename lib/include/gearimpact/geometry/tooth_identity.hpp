@@ -30,7 +30,24 @@ struct TeethInContact {
   int wheel_tooth = 0;   // 0 ... z2-1
 };
 
-// The teeth of pair k on `line` (Region::n1 or Region::n2).
+// n mod z in 0 ... z-1 for negative n too.
+inline int tooth_number(long long n, int z) {
+  const long long r = n % z;
+  return static_cast<int>(r < 0 ? r + z : r);
+}
+
+// The teeth of pair k on `line` (Region::n1 or Region::n2) of a pinion of z1
+// and a wheel of z2 teeth. Inline: the dynamics ask it for every loaded pair
+// at every evaluation of the equations of motion.
+inline TeethInContact teeth_of_pair(int z1, int z2, Region line, int k) {
+  if (line == Region::n2) {
+    return {tooth_number(k, z1), tooth_number(static_cast<long long>(k) + 1, z2)};
+  }
+  const long long n = -static_cast<long long>(k);
+  return {tooth_number(n, z1), tooth_number(n, z2)};
+}
+
+// The same for the teeth of `pair`.
 TeethInContact teeth_of_pair(const GearPair& pair, Region line, int k);
 
 // Which gears have teeth that differ from the others.

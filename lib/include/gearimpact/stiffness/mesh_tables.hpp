@@ -31,7 +31,7 @@ class MeshTables {
   // MeshLayout and teeth_of_pair count it); nullptr when either tooth of the
   // pair is missing.
   const StiffnessTable* table(Region line, int k) const {
-    const TeethInContact t = teeth_of_pair(pair_, line, k);
+    const TeethInContact t = teeth_of_pair(pair_.teeth1, pair_.teeth2, line, k);
     return tables_[combination(t)].get();
   }
   // The table of pinion tooth i against wheel tooth j (nullptr: a missing tooth).
