@@ -95,10 +95,9 @@ const bool registered = [] {
     for (const int revolutions : {1, 2}) {
       const std::string name = std::string("faults/") + (cracked ? "cracked" : "healthy") +
                                "_revolutions_" + std::to_string(revolutions);
-      benchmark::RegisterBenchmark(name.c_str(),
-                                   [cracked, revolutions](benchmark::State& s) {
-                                     revolution_run(s, cracked, revolutions);
-                                   })
+      benchmark::RegisterBenchmark(
+          name.c_str(),
+          [cracked, revolutions](benchmark::State& s) { revolution_run(s, cracked, revolutions); })
           ->Unit(benchmark::kMillisecond)
           ->UseRealTime();
     }
@@ -117,12 +116,14 @@ const bool targets_registered = [] {
     const double one = figure("faults/healthy_table");
     const double five = figure("faults/five_crack_tables");
     if (std::isnan(one) || std::isnan(five)) {
-      return std::string("Tables of five distinct cracked teeth at most five healthy tables: "
-                         "not measured in this run");
+      return std::string(
+          "Tables of five distinct cracked teeth at most five healthy tables: "
+          "not measured in this run");
     }
-    return two_figures("Tables of five distinct cracked teeth at most five healthy tables: "
-                       "%.2f healthy tables (one healthy table %.2f ms): ",
-                       five / one, one / 1e6) +
+    return two_figures(
+               "Tables of five distinct cracked teeth at most five healthy tables: "
+               "%.2f healthy tables (one healthy table %.2f ms): ",
+               five / one, one / 1e6) +
            (five <= 5.0 * one ? "**met**" : "**not met**");
   });
   register_target([](const Figures& figure) {
@@ -136,14 +137,16 @@ const bool targets_registered = [] {
     const double healthy = per_step("healthy");
     const double cracked = per_step("cracked");
     if (std::isnan(healthy) || std::isnan(cracked)) {
-      return std::string("Cost per step of a cracked pair equal to the healthy pair's: "
-                         "not measured in this run");
+      return std::string(
+          "Cost per step of a cracked pair equal to the healthy pair's: "
+          "not measured in this run");
     }
     const double ratio = cracked / healthy;
     // Within 10 %: the machine is shared.
-    return two_figures("Cost per step over pinion revolutions, cracked / healthy (case 2), "
-                       "the same within 10 %%: %.3f (healthy %.0f ns a step): ",
-                       ratio, healthy) +
+    return two_figures(
+               "Cost per step over pinion revolutions, cracked / healthy (case 2), "
+               "the same within 10 %%: %.3f (healthy %.0f ns a step): ",
+               ratio, healthy) +
            (std::abs(ratio - 1.0) <= 0.1 ? "**met**" : "**not met**");
   });
   return true;

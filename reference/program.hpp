@@ -39,7 +39,11 @@ struct SteTexts {
   StaticTransmissionError modified;
   std::string csv;
   std::string unmodified_csv;
+  std::string pairs_csv;
+  std::string unmodified_pairs_csv;
   std::string summary_json;
+  // False when the modifications leave every gap at 0: the two curves are one.
+  bool modified_differs = true;
 };
 SteTexts ste_texts(const SimulationCase& c, double torque1_n_m, int points_per_mesh_period);
 

@@ -67,6 +67,9 @@ SteTexts ste_texts(const SimulationCase& c, double torque1_n_m, int points_per_m
       static_transmission_error(c.gears, Modifications{}, torque1_n_m, table, same);
   texts.csv = ste_csv(texts.modified);
   texts.unmodified_csv = ste_csv(unmodified);
+  texts.pairs_csv = ste_pairs_csv(texts.modified);
+  texts.unmodified_pairs_csv = ste_pairs_csv(unmodified);
+  texts.modified_differs = texts.csv != texts.unmodified_csv;
   texts.summary_json = ste_summary_json(texts.modified, unmodified);
   return texts;
 }
@@ -93,6 +96,13 @@ Figure ste_figure(const SimulationCase& c, const SteTexts& texts) {
   f.y_label = "transmission error on the line of action, {/Symbol m}m";
   f.setup = {"set key outside right top vertical",
              "set xrange [0:" + format_data_number(period_deg) + "]"};
+  if (!texts.modified_differs) {
+    f.title += ", no modifications";
+    f.series = {"'ste.csv' using 2:($3 * 1e6) with lines lw 2 lc rgb '#1f77b4' title 'STE'",
+                "'ste.csv' using 2:($4 * 1e6) with lines lw 1 dt 2 lc rgb '#d62728' title 'KTE "
+                "(min gap)'"};
+    return f;
+  }
   f.series = {
       "'ste_unmodified.csv' using 2:($3 * 1e6) with lines lw 2 lc rgb 'gray50' title 'STE "
       "unmodified'",
@@ -112,20 +122,18 @@ Figure sharing_figure(const SimulationCase& c, const SteTexts& texts) {
   f.y_label = "share of the mesh force";
   f.setup = {"set key outside right top vertical", "set yrange [-0.02:1.05]",
              "set xrange [0:" + format_data_number(period_deg) + "]"};
-  // Every pair slot as points: together they trace each pair's share as it crosses the
-  // segment (a slot changes pairs where one enters).
-  for (int slot = 1; slot <= 3; ++slot) {
-    const std::string column = std::to_string(7 + slot);
-    f.series.push_back("'ste_unmodified.csv' using 2:" + column +
-                       " with points pt 7 ps 0.35 lc rgb 'gray60' " +
-                       (slot == 1 ? "title 'unmodified'" : "notitle"));
+  // One curve per pair of teeth, from its entry to its exit (ste_pairs.csv holds a data set per
+  // pair; column(-2) is the data set's number, so neighbouring pairs differ in colour).
+  if (texts.modified_differs) {
+    f.series.push_back(
+        "'ste_unmodified_pairs.csv' using 4:5 with lines lw 1 dt 2 lc rgb 'gray50' title "
+        "'unmodified'");
+  } else {
+    f.title += ", no modifications";
   }
-  for (int slot = 1; slot <= 3; ++slot) {
-    const std::string column = std::to_string(7 + slot);
-    f.series.push_back("'ste.csv' using 2:" + column +
-                       " with points pt 7 ps 0.35 lc rgb '#1f77b4' " +
-                       (slot == 1 ? "title 'modified'" : "notitle"));
-  }
+  f.series.push_back(
+      "'ste_pairs.csv' using 4:5:(column(-2) % 4 + 1) with lines lw 2 lc variable title "
+      "'each pair of teeth'");
   return f;
 }
 
@@ -158,6 +166,8 @@ void write_ste(const SteOptions& o) {
   }
   write_file_atomically((dir / "ste.csv").string(), texts.csv);
   write_file_atomically((dir / "ste_unmodified.csv").string(), texts.unmodified_csv);
+  write_file_atomically((dir / "ste_pairs.csv").string(), texts.pairs_csv);
+  write_file_atomically((dir / "ste_unmodified_pairs.csv").string(), texts.unmodified_pairs_csv);
   write_file_atomically((dir / "summary.json").string(), texts.summary_json);
   if (!o.no_plots) {
     render(dir, ste_figure(c, texts));
@@ -176,7 +186,8 @@ void register_ste_commands(CLI::App& app) {
       "ste",
       "The loaded static transmission error of a case's pair with its [modifications] over the "
       "true period of its teeth, beside the same pair unmodified: ste.csv, ste_unmodified.csv, "
-      "summary.json, and the figures ste.png and ste_load_sharing.png");
+      "ste_pairs.csv and ste_unmodified_pairs.csv (pair by pair), summary.json, and the figures "
+      "ste.png and ste_load_sharing.png");
   ste->add_option("case", o->case_file,
                   "case file: a pair file ([gears], [model], "
                   "[modifications]) or a run file")

@@ -78,8 +78,9 @@ TEST_CASE("ste writes its files, and the summary's figures are those of ste.csv"
       run_command(cli("ste " + (examples / "tip_relief_20_80.toml").string() +
                       " --torque \"100 N*m\" --points 50 --out " + out.string()));
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
-  for (const char* file : {"ste.csv", "ste_unmodified.csv", "summary.json", "ste.png",
-                           "ste_load_sharing.png", "ste.gp", "ste_load_sharing.gp"}) {
+  for (const char* file :
+       {"ste.csv", "ste_unmodified.csv", "ste_pairs.csv", "ste_unmodified_pairs.csv",
+        "summary.json", "ste.png", "ste_load_sharing.png", "ste.gp", "ste_load_sharing.gp"}) {
     CHECK_MESSAGE(std::filesystem::is_regular_file(out / file), file);
   }
   const std::string csv = read(out / "ste.csv");
@@ -103,6 +104,83 @@ TEST_CASE("ste writes its files, and the summary's figures are those of ste.csv"
   // Relief and error only add to the deflection.
   CHECK(json_value(summary, "ste_peak_to_peak_m") >
         json_value(summary, "unmodified_ste_peak_to_peak_m"));
+}
+
+TEST_CASE("ste_pairs.csv holds each pair from entry to exit; its shares are ste.csv's") {
+  Scratch scratch("ste-pairs");
+  const std::filesystem::path out = scratch.dir / "out";
+  const CommandResult r =
+      run_command(cli("ste " + (examples / "tip_relief_20_80.toml").string() +
+                      " --torque \"100 N*m\" --points 50 --out " + out.string()));
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  // ste.csv: each point's shares, slot by slot.
+  const std::string csv = read(out / "ste.csv");
+  const std::vector<double> theta = csv_column(csv, "theta1_deg");
+  const std::vector<double> pairs = csv_column(csv, "pairs");
+  // ste_pairs.csv: blocks of rows, one block per pair, separated by empty lines.
+  std::istringstream in(read(out / "ste_pairs.csv"));
+  std::string line;
+  std::getline(in, line);
+  CHECK(line == "pair,pinion_tooth,wheel_tooth,theta1_deg,share,gap_m,stiffness_n_per_m");
+  std::vector<double> share_sum(theta.size(), 0.0);
+  std::vector<int> rows_at(theta.size(), 0);
+  int blocks = 1;
+  bool previous_empty = false;
+  double previous_theta = -1.0;
+  std::string pair;
+  while (std::getline(in, line)) {
+    if (line.empty()) {
+      if (!previous_empty) ++blocks;
+      previous_empty = true;
+      previous_theta = -1.0;
+      continue;
+    }
+    previous_empty = false;
+    std::istringstream row(line);
+    std::vector<std::string> cells;
+    std::string cell;
+    while (std::getline(row, cell, ',')) cells.push_back(cell);
+    REQUIRE(cells.size() == 7u);
+    // Within a block one pair, at rising angles.
+    if (previous_theta < 0.0) pair = cells[0];
+    CHECK(cells[0] == pair);
+    const double t = std::stod(cells[3]);
+    CHECK(t > previous_theta);
+    previous_theta = t;
+    // The point of ste.csv at this angle (the same 17-digit text, so the same double).
+    const auto at = std::find(theta.begin(), theta.end(), t);
+    REQUIRE(at != theta.end());
+    const std::size_t i = static_cast<std::size_t>(at - theta.begin());
+    share_sum[i] += std::stod(cells[4]);
+    ++rows_at[i];
+  }
+  // 20 mesh periods, each pair in contact over about eps_alpha of them: about 20 pairs.
+  CHECK(blocks >= 20);
+  CHECK(blocks <= 22);
+  for (std::size_t i = 0; i < theta.size(); ++i) {
+    CAPTURE(theta[i]);
+    // Every pair in the segment appears once, and the shares of a point add up to the whole
+    // force (the static balance: sum F_k = F).
+    CHECK(rows_at[i] == static_cast<int>(pairs[i]));
+    CHECK(std::abs(share_sum[i] - 1.0) < 1e-12);
+  }
+}
+
+TEST_CASE("ste draws one curve where the modifications leave every gap at 0") {
+  Scratch scratch("ste-plain");
+  const std::filesystem::path file = scratch.dir / "pair.toml";
+  write(file, pair_file("tip_relief1 = \"0 mm\"\n"));
+  const std::filesystem::path out = scratch.dir / "out";
+  const CommandResult r =
+      run_command(cli("ste " + file.string() + " --torque \"100 N*m\" --out " + out.string()));
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  for (const char* script : {"ste.gp", "ste_load_sharing.gp"}) {
+    CAPTURE(script);
+    const std::string text = read(out / script);
+    CHECK(text.find("no modifications") != std::string::npos);
+    CHECK(text.find("unmodified") == std::string::npos);
+  }
+  CHECK(read(out / "ste.csv") == read(out / "ste_unmodified.csv"));
 }
 
 TEST_CASE("ste refuses bad flags before any work, naming the flag and its range") {

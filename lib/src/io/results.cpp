@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <string>
 
 #include "gearimpact/constants.hpp"
@@ -406,6 +407,29 @@ std::string ste_csv(const StaticTransmissionError& ste) {
              std::to_string(p.teeth[j].wheel_tooth);
     }
     out += "\n";
+  }
+  return out;
+}
+
+std::string ste_pairs_csv(const StaticTransmissionError& ste) {
+  // The pairs by mesh index, each with the points it is in contact at, in
+  // the order of the points.
+  std::map<int, std::string> blocks;
+  for (const StePoint& p : ste.points) {
+    for (std::size_t j = 0; j < p.pairs; ++j) {
+      blocks[p.k[j]] += std::to_string(p.k[j]) + "," + std::to_string(p.teeth[j].pinion_tooth) +
+                        "," + std::to_string(p.teeth[j].wheel_tooth) + "," +
+                        format_data_number(p.theta1_rad * 180.0 / pi) + "," +
+                        format_data_number(p.share[j]) + "," + format_data_number(p.gap_m[j]) +
+                        "," + format_data_number(p.stiffness_n_per_m[j]) + "\n";
+    }
+  }
+  std::string out = "pair,pinion_tooth,wheel_tooth,theta1_deg,share,gap_m,stiffness_n_per_m\n";
+  bool first = true;
+  for (const auto& [k, rows] : blocks) {
+    if (!first) out += "\n\n";
+    first = false;
+    out += rows;
   }
   return out;
 }

@@ -12,8 +12,8 @@
 #include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
-#include "gearimpact/stiffness/static_transmission_error.hpp"
 #include "gearimpact/stiffness/mesh_tables.hpp"
+#include "gearimpact/stiffness/static_transmission_error.hpp"
 #include "gearimpact/stiffness/time_varying_stiffness.hpp"
 
 namespace gearimpact {
@@ -90,6 +90,12 @@ std::string iso6336_json(const Iso6336Stiffness& iso, double face_width_m,
 // newest first; empty beyond `pairs`), teeth ("pinion/wheel" of each, space-separated, in the
 // same order).
 std::string ste_csv(const StaticTransmissionError& ste);
+// The same points pair by pair: one block per pair of teeth (in the order the
+// pairs enter), each row a point where the pair is in the contact segment,
+// blocks separated by two empty lines so that gnuplot reads each pair as one
+// data set. Columns: pair (its mesh index k), pinion_tooth, wheel_tooth,
+// theta1_deg, share (F_k / F), gap_m, stiffness_n_per_m.
+std::string ste_pairs_csv(const StaticTransmissionError& ste);
 // torque1_n_m, force_n, mesh_periods, period_rad, points, then for the modified pair and the
 // same pair unmodified (unmodified_ prefix): ste_mean_m, ste_min_m, ste_max_m,
 // ste_peak_to_peak_m, kte_peak_to_peak_m, least_effective_stiffness_n_per_m.
