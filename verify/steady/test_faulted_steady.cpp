@@ -244,3 +244,45 @@ TEST_CASE("the period map of a faulted case spans the true period") {
   const GearPeriodMap map(c, table, SteadySettings{});
   CHECK(std::fabs(map.period_s() / (c.gears.teeth1 * mesh_period_s(c)) - 1.0) < 1e-14);
 }
+
+TEST_CASE("a prescribed-speed driver: the common period of its orders and the faulted teeth") {
+  // In pinion revolutions the teeth repeat after N / z1 = a / b and a driver of orders with
+  // greatest common divisor g after 1 / g: the least common period is a / gcd(b, g) revolutions,
+  // that is 2 pi a / (W gcd(b, g)).
+  SimulationCase c = loaded_paper_pair(2000.0);
+  const double w = 2000.0;
+  c.torque1 = Torque{};
+  c.torque1.kind = Torque::Kind::prescribed_speed;
+  c.torque1.mean_speed_rad_per_s = w;
+  c.torque1.driver_orders = {2.0, 4.0};
+  c.torque1.driver_speed_amplitudes_rad_per_s = {1.0, 0.5};
+  c.torque1.harmonic_phases_rad = {0.0, 0.0};
+  c.torque2 = Torque{};
+  c.torque2.kind = Torque::Kind::drag;
+  c.torque2.drag_constant_n_m = 1.0;
+  const StiffnessTable table(c.gears, c.model.stiffness);
+  const int z1 = c.gears.teeth1;  // 20
+  const int z2 = c.gears.teeth2;  // 80
+  struct Expected {
+    std::vector<ToothFault> faults;
+    const char* kind;
+    double revolutions;
+    long long mesh_periods;
+  };
+  ToothFault wheel_tooth = cracked_pinion_tooth();
+  wheel_tooth.gear = Gear::two;
+  // Healthy: gcd(z1, 2, 4) = 2, half a revolution. A cracked pinion tooth: a / b = 1 / 1, one
+  // revolution. A cracked wheel tooth: z2 / z1 = 4 / 1, four revolutions (the wheel's one).
+  for (const Expected& e :
+       {Expected{{}, "mesh+driver", 0.5, z1 / 2},
+        Expected{{cracked_pinion_tooth()}, "pinion-revolution+driver", 1.0, z1},
+        Expected{{wheel_tooth}, "wheel-revolution+driver", 4.0, z2},
+        Expected{{cracked_pinion_tooth(), wheel_tooth}, "hunting+driver", 4.0, z2}}) {
+    CAPTURE(e.kind);
+    c.faults = e.faults;
+    const SteadyTiming timing = steady_timing(c, table, SteadySettings{});
+    CHECK(timing.kind == e.kind);
+    CHECK(timing.mesh_periods == e.mesh_periods);
+    CHECK(std::fabs(timing.excitation_period_s / (2.0 * pi * e.revolutions / w) - 1.0) < 1e-14);
+  }
+}
