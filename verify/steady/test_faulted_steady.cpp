@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/steady/period_map.hpp"
+#include "gearimpact/steady/shooting.hpp"
 #include "gearimpact/steady/steady_state.hpp"
 #include "gearimpact/stiffness/table.hpp"
 #include "steady_cases.hpp"
@@ -241,8 +243,27 @@ TEST_CASE("the period map of a faulted case spans the true period") {
   SimulationCase c = cracked_case();
   c.model.damping_update = DampingUpdate::off;
   const StiffnessTable table(c.gears, c.model.stiffness);
-  const GearPeriodMap map(c, table, SteadySettings{});
+  const SteadySettings settings;
+  const GearPeriodMap map(c, table, settings);
   CHECK(std::fabs(map.period_s() / (c.gears.teeth1 * mesh_period_s(c)) - 1.0) < 1e-14);
+  // Its fixed point is the steady state found by running: the sampled state equals it to the
+  // periodicity tolerance (1e-6 of B and of B w_n) times the contraction factor
+  // rho / (1 - rho) of periodicity.hpp, under 10 for multipliers of modulus below 0.9 a period.
+  const SteadyPoint point = find_steady_state(c, table, settings);
+  REQUIRE(point.verdict == PeriodicityVerdict::periodic);
+  REQUIRE(point.period == 1);
+  ShootingSettings shooting;
+  shooting.scale = map.scale();
+  const Eigen::Vector2d guess(c.gears.backlash_m + 1000.0 / 8e8, 0.0);
+  const PeriodicOrbit orbit = find_periodic_orbit(map, guess, shooting);
+  const double ds = std::fabs(point.poincare[0].s_m - orbit.fixed_point[0]) / map.scale()[0];
+  const double dv = std::fabs(point.poincare[0].s_rate_m_s - orbit.fixed_point[1]) / map.scale()[1];
+  MESSAGE("steady sample against the shot fixed point: " << ds << " B, " << dv << " B w_n; "
+                                                         << "multiplier "
+                                                         << std::abs(orbit.floquet_multipliers[0]));
+  CHECK(ds <= 1e-5);
+  CHECK(dv <= 1e-5);
+  CHECK(std::abs(orbit.floquet_multipliers[0]) < 0.9);
 }
 
 TEST_CASE("a prescribed-speed driver: the common period of its orders and the faulted teeth") {
