@@ -188,7 +188,14 @@ void print_mesh_stiffness(StiffnessOptions& options) {
   SimulationCase c;
   c.name = "the paper's pair";
   if (!options.case_file.empty()) c = read_pair_or_run_file(options.case_file).simulation_case;
-  const MeshStiffnessTexts texts = mesh_stiffness_texts(pair, model, options.samples, c.faults);
+  MeshStiffnessTexts texts;
+  try {
+    texts = mesh_stiffness_texts(pair, model, options.samples, c.faults);
+  } catch (const InputError& e) {
+    // The true period's bound on the samples, under the flag that sets them.
+    if (e.field() != "samples") throw;
+    throw InputError("--samples", e.value(), e.allowed());
+  }
   warn_if(texts.extrapolations);
   if (!figure_folder.empty()) {
     AtomicFolder folder(figure_folder, options.overwrite, {options.case_file});

@@ -251,6 +251,14 @@ TEST_CASE("mesh-stiffness of faulted teeth: the summary over the true period aga
   const std::string gp((std::istreambuf_iterator<char>(script)), std::istreambuf_iterator<char>());
   CHECK(gp.find("pinion 3 root-crack") != std::string::npos);
   CHECK(gp.find("pinion 12 missing") != std::string::npos);
+
+  // More samples than the true period's bound (1e7 over 20 mesh periods): refused under the flag
+  // before any work, with the bound per mesh period.
+  const CommandResult many = run_command(
+      cli("mesh-stiffness --case-file " + file.string() + " --samples 1000000 --summary"));
+  CHECK(many.exit_code != 0);
+  CHECK(many.err.find("--samples") != std::string::npos);
+  CHECK(many.err.find("at most 500000 per mesh period") != std::string::npos);
 }
 
 TEST_CASE("iso6336: method B for the paper's pair and for a helical variant") {
