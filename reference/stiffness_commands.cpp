@@ -126,10 +126,9 @@ Figure mesh_stiffness_figure(const TruePeriodMeshStiffness& tvms,
   f.x_label = "pinion angle {/Symbol q}_1 from pinion tooth 0 entering against wheel tooth 0, deg";
   f.y_label = "mesh stiffness, 10^8 N/m";
   const double degrees = 180.0 / pi;
-  const double step_deg = tvms.samples.size() > 1
-                              ? (tvms.samples[1].theta1_rad - tvms.samples[0].theta1_rad) * degrees
-                              : 0.0;
-  const double end_deg = (tvms.samples.back().theta1_rad) * degrees + step_deg;
+  // The true period's end, one step past the last sample (there are at least two).
+  const double step_deg = (tvms.samples[1].theta1_rad - tvms.samples[0].theta1_rad) * degrees;
+  const double end_deg = tvms.samples.back().theta1_rad * degrees + step_deg;
   f.setup = {"set key outside right top vertical",
              "set xrange [0:" + format_data_number(end_deg) + "]"};
   // The faulted teeth in contact, stretch by stretch: a stretch runs while one faulted tooth
