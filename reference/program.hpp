@@ -13,6 +13,7 @@
 #include "gearimpact/stiffness/fillet_foundation.hpp"
 #include "gearimpact/stiffness/model.hpp"
 #include "gearimpact/stiffness/static_transmission_error.hpp"
+#include "gearimpact/stiffness/time_varying_stiffness.hpp"
 
 namespace gearimpact::cli {
 
@@ -20,16 +21,20 @@ namespace gearimpact::cli {
 // package's points and samples): more only cost time, the curves are smooth long before.
 inline constexpr int kMostSamples = 1000000;
 
-// `gearimpact mesh-stiffness`: the CSV of one mesh period and (--summary) its JSON. Throws
-// InputError naming "samples" unless 2 <= samples <= kMostSamples.
+// `gearimpact mesh-stiffness`: the CSV over the true period of the teeth with `faults` (one
+// mesh period without), `samples` per mesh period, and (--summary) its JSON
+// (true_period_mesh_stiffness). Throws InputError naming "samples" unless
+// 2 <= samples <= kMostSamples (and the true period's samples stay within
+// kMostTruePeriodSamples), and as check_tooth_faults.
 struct MeshStiffnessTexts {
   std::string csv;
   std::string summary_json;
   bool extrapolated = false;
   std::vector<FoundationExtrapolation> extrapolations;  // which gears, inputs and ranges
+  TruePeriodMeshStiffness tvms;
 };
 MeshStiffnessTexts mesh_stiffness_texts(const GearPair& pair, const StiffnessModel& model,
-                                        int samples);
+                                        int samples, const std::vector<ToothFault>& faults = {});
 
 // `gearimpact ste`: the static transmission error of the case's pair with its modifications
 // (ste.csv), of the same pair unmodified over the same angles (ste_unmodified.csv) and the

@@ -1,6 +1,8 @@
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -14,6 +16,7 @@
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/results.hpp"
 #include "gearimpact/stiffness/energy.hpp"
@@ -21,6 +24,7 @@
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "gearimpact/stiffness/mesh_tables.hpp"
 #include "gearimpact/stiffness/time_varying_stiffness.hpp"
+#include "gnuplot.hpp"
 #include "program.hpp"
 
 namespace gearimpact::cli {
@@ -36,7 +40,9 @@ struct StiffnessOptions {
   int samples = 200;
   bool summary = false;
   double helix_angle_deg = 0.0;
-  std::string load;  // iso6336 --load, empty: none
+  std::string load;    // iso6336 --load, empty: none
+  std::string figure;  // mesh-stiffness --figure DIR, empty: none
+  bool overwrite = false;
 };
 
 // The gear pair and the stiffness model: the paper's pair with the default model, or a case
@@ -108,27 +114,96 @@ void print_stiffness_table(StiffnessOptions& options, const CLI::App& command) {
   std::fputs(csv.c_str(), stdout);
 }
 
+// The figure of `mesh-stiffness --figure DIR`: the mesh stiffness over the true period against
+// the same pairs all healthy, with each stretch where a faulted tooth is in contact shaded and
+// labelled by its gear and number.
+Figure mesh_stiffness_figure(const TruePeriodMeshStiffness& tvms,
+                             const std::vector<ToothFault>& faults, const std::string& name) {
+  Figure f;
+  f.name = "mesh_stiffness";
+  f.title = "Mesh stiffness over the true period (" + tvms.period_kind + ", " +
+            std::to_string(tvms.mesh_periods) + " mesh periods), " + literal_key(name, true);
+  f.x_label = "pinion angle {/Symbol q}_1 from pinion tooth 0 entering against wheel tooth 0, deg";
+  f.y_label = "mesh stiffness, 10^8 N/m";
+  const double degrees = 180.0 / pi;
+  // The true period's end, one step past the last sample (there are at least two).
+  const double step_deg = (tvms.samples[1].theta1_rad - tvms.samples[0].theta1_rad) * degrees;
+  const double end_deg = tvms.samples.back().theta1_rad * degrees + step_deg;
+  f.setup = {"set key outside right top vertical",
+             "set xrange [0:" + format_data_number(end_deg) + "]"};
+  // The faulted teeth in contact, stretch by stretch: a stretch runs while one faulted tooth
+  // stays in contact (it is in contact for eps_alpha mesh periods on end).
+  const auto faulted_tooth = [&](const TeethInContact& t) -> std::string {
+    for (const ToothFault& fault : faults) {
+      const int tooth = fault.gear == Gear::one ? t.pinion_tooth : t.wheel_tooth;
+      if (tooth == fault.tooth) {
+        return std::string(fault.gear == Gear::one ? "pinion " : "wheel ") +
+               std::to_string(fault.tooth) + " " + to_string(fault.state.kind);
+      }
+    }
+    return "";
+  };
+  std::map<std::string, double> open;  // a faulted tooth in contact since this angle
+  int object = 0;
+  const auto close = [&](const std::string& label, double from_deg, double to_deg) {
+    ++object;
+    f.setup.push_back("set object " + std::to_string(object) + " rect from " +
+                      format_data_number(from_deg) + ", graph 0 to " + format_data_number(to_deg) +
+                      ", graph 1 fc rgb '#fddbc7' fs solid 0.6 noborder behind");
+    f.setup.push_back("set label " + std::to_string(object) + " '" + label + "' at " +
+                      format_data_number(0.5 * (from_deg + to_deg)) +
+                      ", graph 0.04 left rotate by 90 font ',8'");
+  };
+  for (const TruePeriodSample& sample : tvms.samples) {
+    const double at = sample.theta1_rad * degrees;
+    std::map<std::string, double> now;
+    for (const TeethInContact& t : sample.teeth) {
+      const std::string label = faulted_tooth(t);
+      if (label.empty()) continue;
+      const auto found = open.find(label);
+      now[label] = found != open.end() ? found->second : at;
+    }
+    for (const auto& [label, from] : open) {
+      if (now.count(label) == 0) close(label, from, at);
+    }
+    open = std::move(now);
+  }
+  for (const auto& [label, from] : open) close(label, from, end_deg);
+  f.series = {"'mesh_stiffness.csv' using ($2 * " + format_data_number(degrees) +
+                  "):($5 * 1e-8) with lines lw 2 lc rgb 'gray50' title 'all teeth healthy'",
+              "'mesh_stiffness.csv' using ($2 * " + format_data_number(degrees) +
+                  "):($4 * 1e-8) with lines lw 2 lc rgb '#1f77b4' title 'with the faults'"};
+  return f;
+}
+
 void print_mesh_stiffness(StiffnessOptions& options) {
+  const std::string figure_folder = options.figure;
+  // Every refusal before any work: the folder, then the case and the samples.
+  if (!figure_folder.empty()) {
+    require_output_folder(figure_folder, options.overwrite, {options.case_file});
+  }
   const auto [pair, model] = pair_and_model(options);
   // A case file's [[faults]]: the mesh repeats only after its true period.
-  const std::vector<ToothFault> faults =
-      options.case_file.empty() ? std::vector<ToothFault>{}
-                                : read_pair_or_run_file(options.case_file).simulation_case.faults;
-  if (!faults.empty()) {
-    if (options.summary) {
-      throw InputError("--summary", "given for a case file with [[faults]]",
-                       "left out: with faults the command writes the CSV over the true period "
-                       "(the summary of one mesh period does not apply)");
-    }
-    const MeshTables tables(pair, model, faults);
-    const std::size_t samples = static_cast<std::size_t>(options.samples);
-    std::fputs(
-        true_period_mesh_stiffness_csv(true_period_mesh_stiffness(tables, pair, samples)).c_str(),
-        stdout);
-    return;
+  SimulationCase c;
+  c.name = "the paper's pair";
+  if (!options.case_file.empty()) c = read_pair_or_run_file(options.case_file).simulation_case;
+  MeshStiffnessTexts texts;
+  try {
+    texts = mesh_stiffness_texts(pair, model, options.samples, c.faults);
+  } catch (const InputError& e) {
+    // The true period's bound on the samples, under the flag that sets them.
+    if (e.field() != "samples") throw;
+    throw InputError("--samples", e.value(), e.allowed());
   }
-  const MeshStiffnessTexts texts = mesh_stiffness_texts(pair, model, options.samples);
   warn_if(texts.extrapolations);
+  if (!figure_folder.empty()) {
+    AtomicFolder folder(figure_folder, options.overwrite, {options.case_file});
+    const std::filesystem::path dir = folder.temporary();
+    write_file_atomically((dir / "mesh_stiffness.csv").string(), texts.csv);
+    write_file_atomically((dir / "summary.json").string(), texts.summary_json);
+    render(dir, mesh_stiffness_figure(texts.tvms, c.faults, c.name));
+    folder.commit();
+  }
   std::fputs((options.summary ? texts.summary_json : texts.csv).c_str(), stdout);
 }
 
@@ -161,15 +236,16 @@ void add_model_options(CLI::App* command, StiffnessOptions& options, CaseCommand
 }  // namespace
 
 MeshStiffnessTexts mesh_stiffness_texts(const GearPair& pair, const StiffnessModel& model,
-                                        int samples) {
+                                        int samples, const std::vector<ToothFault>& faults) {
   if (samples < 2 || samples > kMostSamples) {
     throw InputError("samples", std::to_string(samples),
-                     "an integer in [2, " + std::to_string(kMostSamples) + "]");
+                     "an integer in [2, " + std::to_string(kMostSamples) + "] per mesh period");
   }
-  const TimeVaryingMeshStiffness tvms =
-      time_varying_mesh_stiffness(pair, model, static_cast<std::size_t>(samples));
-  return {mesh_stiffness_csv(tvms), mesh_stiffness_summary_json(tvms, contact_ratio(pair)),
-          !tvms.foundation_extrapolations.empty(), tvms.foundation_extrapolations};
+  const TruePeriodMeshStiffness tvms =
+      true_period_mesh_stiffness(pair, model, faults, static_cast<std::size_t>(samples));
+  return {true_period_mesh_stiffness_csv(tvms),
+          true_period_mesh_stiffness_summary_json(tvms, contact_ratio(pair)),
+          !tvms.foundation_extrapolations.empty(), tvms.foundation_extrapolations, tvms};
 }
 
 std::string iso6336_text(const GearPair& pair, double helix_angle_deg,
@@ -224,15 +300,25 @@ void register_stiffness_commands(CLI::App& app) {
   auto mesh_options = std::make_shared<StiffnessOptions>();
   CLI::App* mesh = app.add_subcommand(
       "mesh-stiffness",
-      "CSV of the mesh stiffness over one mesh period (fraction,theta1_rad,pairs,ke_n_m), or "
-      "with --summary its min, max and exact time mean as JSON; for a case file with "
-      "[[faults]], over the true period, with the teeth of each pair and the healthy Ke");
+      "CSV of the mesh stiffness over the true period of the teeth (one mesh period when every "
+      "tooth is alike; a pinion or wheel revolution or the hunting period with [[faults]]) from "
+      "pinion tooth 0 entering against wheel tooth 0: fraction,theta1_rad,pairs,ke_n_m,"
+      "healthy_ke_n_m and the teeth and Ke of each pair; with --summary its min, max and exact "
+      "time mean as JSON");
   add_pair_options(mesh, *mesh_options);
   mesh_options->keys.add_flags(mesh, kMeshStiffness);
   mesh->add_option("--samples", mesh_options->samples,
-                   "samples over the period, 2 to " + std::to_string(kMostSamples))
+                   "samples per mesh period (the true period's N mesh periods get N times as "
+                   "many), 2 to " +
+                       std::to_string(kMostSamples))
       ->check(CLI::Range(2, kMostSamples));
-  mesh->add_flag("--summary", mesh_options->summary, "print min, max, mean as JSON instead");
+  mesh->add_flag("--summary", mesh_options->summary,
+                 "print min, max, exact mean over the true period as JSON instead");
+  mesh->add_option("--figure", mesh_options->figure,
+                   "also write DIR/mesh_stiffness.csv, DIR/summary.json and the figure "
+                   "DIR/mesh_stiffness.png (.svg, .gp): the stiffness against the same pairs all "
+                   "healthy, the faulted teeth's contact shaded; DIR new or empty");
+  mesh->add_flag("--overwrite", mesh_options->overwrite, "replace a non-empty --figure folder");
   mesh->callback([mesh_options] { print_mesh_stiffness(*mesh_options); });
 
   auto iso_options = std::make_shared<StiffnessOptions>();

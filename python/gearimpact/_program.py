@@ -113,12 +113,16 @@ def iso6336(case=None, helix_angle_deg=0.0, load=None):
 
 
 def mesh_stiffness(case=None, model=None, samples=200):
-    """The mesh stiffness over one mesh period with exact line-of-action kinematics, as
-    ``gearimpact mesh-stiffness``: (table, summary), the table a dict of numpy arrays
-    fraction, theta1_rad, pairs, ke_n_m, the summary a dict with min_n_m, max_n_m, mean_n_m
-    (the exact time mean), contact_ratio, extrapolated. case: a Case or None (the paper's
-    pair); model: yang-lin-1987, potential-energy or ross-compatible (default: the case's);
-    samples: an int, 2 up to the program's --samples bound."""
+    """The mesh stiffness over the true period of the teeth (one mesh period when every tooth
+    is alike; a pinion or wheel revolution or the hunting period with the case's faults) with
+    exact line-of-action kinematics, as ``gearimpact mesh-stiffness``: (table, summary), the
+    table a dict of numpy arrays fraction, theta1_rad, pairs, ke_n_m, healthy_ke_n_m and
+    pairJ_pinion_tooth, pairJ_wheel_tooth, pairJ_ke_n_m (NaN where fewer pairs touch), the
+    summary a dict with min_n_m, max_n_m, mean_n_m (the exact time mean over the true
+    period), contact_ratio, period, mesh_periods, healthy_mean_n_m, extrapolated. case: a Case
+    or None (the paper's pair); model: yang-lin-1987, potential-energy or ross-compatible
+    (default: the case's); samples: an int per mesh period, 2 up to the program's --samples
+    bound."""
     chosen = _case_or_none(case)
     table, summary = _core.mesh_stiffness(
         chosen, None if model is None else _arguments.text("model", model),

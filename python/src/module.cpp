@@ -442,19 +442,11 @@ SimulationCase stiffness_case(const std::optional<SimulationCase>& c,
 py::tuple mesh_stiffness_texts_of(const std::optional<SimulationCase>& c,
                                   const std::optional<std::string>& model, long long samples) {
   const int n = sample_count("samples", samples);
-  if (c && !c->faults.empty()) {
-    // This gives one mesh period of healthy teeth; a faulted mesh repeats
-    // only over its true period, which the program's mesh-stiffness writes.
-    throw InputError("case", "a case with " + std::to_string(c->faults.size()) + " [[faults]]",
-                     "a case without faults: mesh_stiffness gives one mesh period of healthy "
-                     "teeth; `gearimpact mesh-stiffness --case-file FILE` gives a faulted case's "
-                     "stiffness over its true period");
-  }
   const SimulationCase chosen = stiffness_case(c, model);
   cli::MeshStiffnessTexts texts;
   {
     py::gil_scoped_release release;
-    texts = cli::mesh_stiffness_texts(chosen.gears, chosen.model.stiffness, n);
+    texts = cli::mesh_stiffness_texts(chosen.gears, chosen.model.stiffness, n, chosen.faults);
   }
   return py::make_tuple(texts.csv, texts.summary_json);
 }

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -21,6 +22,7 @@
 #include "paper_data.hpp"
 #include "relative.hpp"
 #include "run_command.hpp"
+#include "scratch.hpp"
 
 using namespace gearimpact;
 using namespace gearimpact::verify;
@@ -139,7 +141,12 @@ TEST_CASE("mesh-stiffness: one period, and its summary's min, max and exact mean
   REQUIRE(csv.exit_code == 0);
   const auto rows = csv_rows(csv.out);
   REQUIRE(rows.size() == 4001);
-  CHECK(rows[0] == std::vector<std::string>{"fraction", "theta1_rad", "pairs", "ke_n_m"});
+  // The healthy columns first, then the same pairs all healthy (here the same) and each pair's
+  // teeth and Ke.
+  REQUIRE(rows[0].size() >= 5u);
+  CHECK(std::vector<std::string>(rows[0].begin(), rows[0].begin() + 5) ==
+        std::vector<std::string>{"fraction", "theta1_rad", "pairs", "ke_n_m", "healthy_ke_n_m"});
+  CHECK(rows[0][5] == "pair1_pinion_tooth");
   double sum = 0.0;
   double low = 1e300;
   double high = 0.0;
@@ -161,6 +168,97 @@ TEST_CASE("mesh-stiffness: one period, and its summary's min, max and exact mean
   CHECK(json.out.find("\"extrapolated\": true") != std::string::npos);
   CHECK(json.err.find("warning") != std::string::npos);
   std::filesystem::remove(file);
+}
+
+TEST_CASE("mesh-stiffness of faulted teeth: the summary over the true period against the CSV") {
+  // The paper's pair with pinion tooth 3 cracked and pinion tooth 12 missing: a pinion
+  // revolution of 20 mesh periods, --samples per mesh period.
+  Scratch scratch("mesh-stiffness-faulted");
+  const std::filesystem::path file = scratch.dir / "cracked.toml";
+  std::ofstream(file) << "name = \"cracked\"\n[gears]\nteeth1 = 20\nteeth2 = 80\n"
+                         "module = \"2 mm\"\npressure_angle = \"20 deg\"\n"
+                         "face_width = \"10 mm\"\nyoungs_modulus = \"206.8 GPa\"\n"
+                         "poisson_ratio = 0.3\ndensity = \"7800 kg/m^3\"\n"
+                         "backlash = \"0.05 mm\"\n\n[[faults]]\ngear = \"pinion\"\ntooth = 3\n"
+                         "kind = \"root-crack\"\ndepth = \"0.8 mm\"\nangle = \"45 deg\"\n\n"
+                         "[[faults]]\ngear = \"pinion\"\ntooth = 12\nkind = \"missing\"\n";
+  const int per_mesh = 500;
+  const CommandResult csv = run_command(cli("mesh-stiffness --case-file " + file.string() +
+                                            " --samples " + std::to_string(per_mesh)));
+  REQUIRE(csv.exit_code == 0);
+  const auto rows = csv_rows(csv.out);
+  const std::size_t count = 20u * per_mesh;
+  REQUIRE(rows.size() == count + 1);
+  CHECK(rows[0][5] == "pair1_pinion_tooth");
+  CHECK(rows[0][6] == "pair1_wheel_tooth");
+  double sum = 0.0;
+  double low = 1e300;
+  double high = 0.0;
+  double variation = 0.0;
+  double smooth_step = 0.0;  // the largest change between neighbours with the same pairs
+  int missing_rows = 0;
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const double k = std::stod(rows[i][3]);
+    CHECK(std::stod(rows[i][0]) == static_cast<double>(i - 1) / count);
+    sum += k;
+    low = std::min(low, k);
+    high = std::max(high, k);
+    // Wrapping round: the period's last row against its first.
+    const auto& next = rows[i + 1 < rows.size() ? i + 1 : 1];
+    const double change = std::fabs(std::stod(next[3]) - k);
+    variation += change;
+    if (next[2] == rows[i][2] && next[5] == rows[i][5]) smooth_step = std::max(smooth_step, change);
+    for (std::size_t j = 5; j + 2 < rows[i].size(); j += 3) {
+      if (rows[i][j] == "12") {
+        ++missing_rows;
+        CHECK(std::stod(rows[i][j + 2]) == 0.0);
+      }
+    }
+  }
+  CHECK(missing_rows > 0);
+  const CommandResult json =
+      run_command(cli("mesh-stiffness --case-file " + file.string() + " --summary"));
+  REQUIRE(json.exit_code == 0);
+  CHECK(json.out.find("\"period\": \"pinion-revolution\"") != std::string::npos);
+  CHECK(json_value(json.out, "mesh_periods") == 20.0);
+  const double mean = json_value(json.out, "mean_n_m");
+  // The rectangle rule on a periodic function of bounded variation V errs by at most V / count
+  // (each sample stands for 1 / count of the period, over which the function moves by its
+  // variation there); V is read from the samples.
+  MESSAGE("rectangle mean " << sum / count << " against " << mean << ", bound "
+                            << variation / count);
+  CHECK(std::fabs(sum / count - mean) <= variation / count);
+  // The extremes bound every sample, and some sample lies within one smooth step of each (the
+  // extreme sits on a smooth piece or at its one-sided end).
+  const double min = json_value(json.out, "min_n_m");
+  const double max = json_value(json.out, "max_n_m");
+  CHECK(min <= low);
+  CHECK(max >= high);
+  CHECK(low - min <= smooth_step);
+  CHECK(max - high <= smooth_step);
+  // Where the missing tooth's pair is the only one, the mesh has no stiffness.
+  CHECK(min == 0.0);
+  CHECK(json_value(json.out, "mean_n_m") < json_value(json.out, "healthy_mean_n_m"));
+
+  // --figure: the CSV and summary beside the figure, which marks the faulted teeth.
+  const std::filesystem::path out = scratch.dir / "figure";
+  const CommandResult figure = run_command(cli("mesh-stiffness --case-file " + file.string() +
+                                               " --samples 50 --figure " + out.string()));
+  REQUIRE(figure.exit_code == 0);
+  CHECK(std::filesystem::exists(out / "mesh_stiffness.png"));
+  CHECK(std::filesystem::exists(out / "mesh_stiffness.csv"));
+  std::ifstream script(out / "mesh_stiffness.gp");
+  const std::string gp((std::istreambuf_iterator<char>(script)), std::istreambuf_iterator<char>());
+  CHECK(gp.find("pinion 3 root-crack") != std::string::npos);
+  CHECK(gp.find("pinion 12 missing") != std::string::npos);
+
+  // More samples than the true period's bound (1e7 over 20 mesh periods): refused under the flag
+  // before any work, with the bound per mesh period.
+  const CommandResult many = run_command(
+      cli("mesh-stiffness --case-file " + file.string() + " --samples 1000000 --summary"));
+  CHECK(many.exit_code != 0);
+  CHECK(many.err.find("--samples") != std::string::npos);
+  CHECK(many.err.find("at most 500000 per mesh period") != std::string::npos);
 }
 
 TEST_CASE("iso6336: method B for the paper's pair and for a helical variant") {

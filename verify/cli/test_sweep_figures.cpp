@@ -80,7 +80,9 @@ void write_sweep_folder(const fs::path& dir, const Data& d) {
       "1.69, \"iso_line_load_n_m\": 15000.0, \"quasi_static_force_ratio\": 1.3, \"tolerance\": "
       "1e-06, "
       "\"steps_per_contact_period\": 128.0, \"max_periods\": 3000, "
-      "\"damping_update\": \"frozen\"}, \"warnings\": []}\n";
+      "\"damping_update\": \"frozen\", \"poincare_period_kind\": \"mesh\", "
+      "\"poincare_period_s\": [1e-4, 1e-4], \"poincare_period_mesh_periods\": [1, 1]}, "
+      "\"warnings\": []}\n";
   write(dir / "summary.json", spec);
   std::string sweep =
       "line,direction,index,value_si,regime,period,converged,dte_mean_m,dte_amplitude_m,dte_rms_m,"

@@ -107,6 +107,14 @@ TEST_CASE("three shards merge to the rows of one run, and summary.json holds spe
   CHECK(s.at("damping_update") == "frozen");  // the case file's, by its schema name
   CHECK(s.at("tolerance").get<double>() == SteadySettings{}.tolerance);
   CHECK(s.contains("iso_resonance_speed_rad_s"));  // a sweep of w1
+  // Every tooth alike, constant torques: the mesh period at each end, each the period its points
+  // ran.
+  CHECK(s.at("poincare_period_kind") == "mesh");
+  CHECK(s.at("poincare_period_mesh_periods") == nlohmann::json::array({1, 1}));
+  CHECK(s.at("poincare_period_s")[0].get<double>() ==
+        whole.rows.front().point.timing.excitation_period_s);
+  CHECK(s.at("poincare_period_s")[1].get<double>() > 0.0);
+  CHECK(s.at("poincare_period_s")[1].get<double>() < s.at("poincare_period_s")[0].get<double>());
   CHECK(summary.at("shard") == "0/3");
   const nlohmann::json merged_summary = nlohmann::json::parse(sweep_summary_json(merged));
   CHECK(merged_summary.at("spec") == s);

@@ -4,6 +4,7 @@ ctest sets GEARIMPACT_CLI (the program built beside the module) and
 GEARIMPACT_SOURCE_DIR, and PYTHONPATH to the build tree's package.
 """
 
+import math
 import os
 import subprocess
 from pathlib import Path
@@ -41,10 +42,12 @@ def source_dir():
 
 def parse_csv(text):
     """The program's CSV as {column: float64 array}. Its numbers have 17
-    significant digits, which read back to the very doubles it printed."""
+    significant digits, which read back to the very doubles it printed; an
+    empty cell (a pair column where fewer pairs touch) reads as NaN."""
     lines = text.strip().splitlines()
     header = lines[0].split(",")
-    rows = [[float(field) for field in line.split(",")] for line in lines[1:]]
+    rows = [[float(field) if field else math.nan for field in line.split(",")]
+            for line in lines[1:]]
     table = np.array(rows, dtype=np.float64).reshape(len(rows), len(header))
     return {name: table[:, j] for j, name in enumerate(header)}
 

@@ -434,9 +434,13 @@ def test_a_fault_on_a_tooth_the_gear_lacks_names_the_key_and_range():
         my_pair(faults=dict(gear="pinion", tooth=0, kind="missing"))
 
 
-def test_mesh_stiffness_and_ste_refuse_a_faulted_case_rather_than_answer_for_healthy_teeth():
+def test_mesh_stiffness_of_a_faulted_case_spans_its_true_period_and_ste_refuses_it():
     faulted = my_pair(faults=[dict(gear="pinion", tooth=0, kind="missing")])
-    with pytest.raises(gearimpact.CaseError, match="faults"):
-        gearimpact.mesh_stiffness(faulted)
+    table, summary = gearimpact.mesh_stiffness(faulted, samples=4)
+    # A pinion tooth missing: one pinion revolution, z1 = 23 mesh periods of 4 samples.
+    assert summary["period"] == "pinion-revolution"
+    assert summary["mesh_periods"] == 23
+    assert len(table["fraction"]) == 4 * 23
+    assert summary["mean_n_m"] < summary["healthy_mean_n_m"]
     with pytest.raises(gearimpact.CaseError, match="faults"):
         gearimpact.ste(faulted, torque="10 N*m")

@@ -14,6 +14,7 @@
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "gearimpact/stiffness/mesh_tables.hpp"
 #include "gearimpact/stiffness/root_crack.hpp"
+#include "gearimpact/stiffness/time_varying_stiffness.hpp"
 #include "gearimpact/stiffness/tooth_state.hpp"
 #include "relative.hpp"
 
@@ -248,8 +249,9 @@ TEST_CASE("faults that do not fit are refused before any table is built") {
 
 TEST_CASE("the TVMS over the true period names the teeth and differs only where the crack meshes") {
   const GearPair g = paper_gear_pair();
-  const MeshTables tables(g, {}, {fault(Gear::one, 3, crack_state(0.8e-3, pi / 4))});
-  const std::vector<TruePeriodSample> samples = true_period_mesh_stiffness(tables, g, 50);
+  const std::vector<TruePeriodSample> samples =
+      true_period_mesh_stiffness(g, {}, {fault(Gear::one, 3, crack_state(0.8e-3, pi / 4))}, 50)
+          .samples;
   // A crack on the pinion only: the true period is one pinion revolution.
   REQUIRE(samples.size() == 50u * 20u);
   CHECK(std::fabs(samples.back().theta1_rad + 2.0 * pi / 1000.0 - 2.0 * pi) < 1e-12);

@@ -231,6 +231,9 @@ SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
   // without a steady state at either end of each grid (a key's range may hold at one end only).
   require_read_key(spec.vary, base, "vary");
   if (!spec.vary2.empty()) require_read_key(spec.vary2, base, "vary2");
+  // The Poincare period at the first and the last point of the sweep, for its record.
+  SteadyTiming first_timing;
+  SteadyTiming last_timing;
   for (const double value2 : {grid2.front(), grid2.back()}) {
     for (const double value : {grid.front(), grid.back()}) {
       // The end named in the message: a key derived from the swept one (the step) is not a
@@ -263,6 +266,8 @@ SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
                                  : std::string("no finite step"),
                              "values at which the steady state's RK4 step is a positive time");
           }
+          if (value2 == grid2.front() && value == grid.front()) first_timing = timing;
+          if (value2 == grid2.back() && value == grid.back()) last_timing = timing;
         });
       }
       if (!problems.empty()) {
@@ -299,6 +304,9 @@ SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
   record.steps_per_contact_period = spec.settings.steps_per_contact_period;
   record.max_periods = spec.settings.max_periods;
   record.damping_update = base.model.damping_update;
+  record.poincare_period_kind = first_timing.kind;
+  record.poincare_period_s = {first_timing.excitation_period_s, last_timing.excitation_period_s};
+  record.poincare_mesh_periods = {first_timing.mesh_periods, last_timing.mesh_periods};
   sweep.shard = spec.shard;
   sweep.warnings = sweep_warnings(spec);
 

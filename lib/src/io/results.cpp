@@ -286,9 +286,9 @@ std::string mesh_stiffness_csv(const TimeVaryingMeshStiffness& tvms) {
   return out;
 }
 
-std::string true_period_mesh_stiffness_csv(const std::vector<TruePeriodSample>& samples) {
+std::string true_period_mesh_stiffness_csv(const TruePeriodMeshStiffness& tvms) {
   std::size_t most = 0;
-  for (const TruePeriodSample& s : samples) most = std::max(most, s.teeth.size());
+  for (const TruePeriodSample& s : tvms.samples) most = std::max(most, s.teeth.size());
   std::string out = "fraction,theta1_rad,pairs,ke_n_m,healthy_ke_n_m";
   for (std::size_t j = 1; j <= most; ++j) {
     const std::string p = "pair" + std::to_string(j);
@@ -296,7 +296,7 @@ std::string true_period_mesh_stiffness_csv(const std::vector<TruePeriodSample>& 
   }
   out += "\n";
   char line[160];
-  for (const TruePeriodSample& s : samples) {
+  for (const TruePeriodSample& s : tvms.samples) {
     std::snprintf(line, sizeof line, "%.17g,%.17g,%zu,%.17g,%.17g", s.fraction, s.theta1_rad,
                   s.teeth.size(), s.ke_n_per_m, s.healthy_ke_n_per_m);
     out += line;
@@ -314,14 +314,20 @@ std::string true_period_mesh_stiffness_csv(const std::vector<TruePeriodSample>& 
   return out;
 }
 
-std::string mesh_stiffness_summary_json(const TimeVaryingMeshStiffness& tvms,
-                                        double contact_ratio) {
+std::string true_period_mesh_stiffness_summary_json(const TruePeriodMeshStiffness& tvms,
+                                                    double contact_ratio) {
   const bool extrapolated = !tvms.foundation_extrapolations.empty();
   std::string out = "{\n";
   json_number(out, "min_n_m", tvms.min_n_per_m);
   json_number(out, "max_n_m", tvms.max_n_per_m);
   json_number(out, "mean_n_m", tvms.mean_n_per_m);
   json_number(out, "contact_ratio", contact_ratio);
+  out += "  \"period\": " + json_string(tvms.period_kind) + ",\n";
+  out += "  \"mesh_periods\": " + std::to_string(tvms.mesh_periods) + ",\n";
+  json_number(out, "min_at_fraction", tvms.min_at_fraction);
+  json_number(out, "max_at_fraction", tvms.max_at_fraction);
+  json_number(out, "healthy_mean_n_m", tvms.healthy_mean_n_per_m);
+  json_number(out, "simulation_theta1_offset_rad", tvms.simulation_theta1_offset_rad);
   out += std::string("  \"extrapolated\": ") + (extrapolated ? "true" : "false");
   if (extrapolated) {
     out += ",\n  \"warning\": " +

@@ -1,6 +1,7 @@
 #include "gearimpact/io/sweep_files.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstddef>
@@ -93,6 +94,9 @@ Json spec_json(const SteadySweepRecord& s) {
   j["steps_per_contact_period"] = s.steps_per_contact_period;
   j["max_periods"] = s.max_periods;
   j["damping_update"] = damping_update_name(s.damping_update);
+  j["poincare_period_kind"] = s.poincare_period_kind;
+  j["poincare_period_s"] = s.poincare_period_s;
+  j["poincare_period_mesh_periods"] = s.poincare_mesh_periods;
   return j;
 }
 
@@ -149,6 +153,9 @@ SteadySweepRecord spec_record(const Json& j, const std::string& file) {
     const std::string update = j.at("damping_update").get<std::string>();
     const double code = parse_value(damping_update_field(), update, file + ": damping_update");
     s.damping_update = static_cast<DampingUpdate>(static_cast<int>(code));
+    s.poincare_period_kind = j.at("poincare_period_kind").get<std::string>();
+    s.poincare_period_s = j.at("poincare_period_s").get<std::array<double, 2>>();
+    s.poincare_mesh_periods = j.at("poincare_period_mesh_periods").get<std::array<long long, 2>>();
     return s;
   } catch (const Json::exception& e) {
     throw InputError("merge", file + ": " + e.what(), kSweepFile);

@@ -15,6 +15,7 @@
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/tooth_identity.hpp"
 #include "gearimpact/steady/closed_forms.hpp"
 
 namespace gearimpact {
@@ -245,6 +246,98 @@ void summarize_window(const std::deque<PeriodStats>& history, std::size_t period
   }
 }
 
+// The name of the mesh period as a Poincare period's kind.
+constexpr const char* kMeshPeriodKind = "mesh";
+
+// After how many mesh periods the teeth repeat (docs/faults.md, "True period"), and its name.
+struct ToothPattern {
+  long long mesh_periods;
+  const char* kind;
+};
+
+ToothPattern tooth_pattern(const SimulationCase& c) {
+  DistinctTeeth distinct;
+  for (const ToothFault& f : c.faults)
+    (f.gear == Gear::one ? distinct.pinion : distinct.wheel) = true;
+  const long long n = true_period_mesh_periods(c.gears, distinct);
+  if (distinct.pinion && distinct.wheel) return {n, "hunting"};
+  if (distinct.pinion) return {n, "pinion-revolution"};
+  if (distinct.wheel) return {n, "wheel-revolution"};
+  return {n, kMeshPeriodKind};
+}
+
+// The keys of forcing_frequencies' entries, in its order.
+std::vector<std::string> forcing_keys(const SimulationCase& c) {
+  std::vector<std::string> keys;
+  for (const auto& [t, name] : {std::pair<const Torque*, std::string>{&c.torque1, "torque1"},
+                                std::pair<const Torque*, std::string>{&c.torque2, "torque2"}}) {
+    if (t->kind == Torque::Kind::sinusoidal && t->amplitude_n_m != 0.0 &&
+        t->angular_frequency_rad_per_s != 0.0) {
+      keys.push_back(name + ".angular_frequency");
+    }
+    if (t->kind == Torque::Kind::harmonic) {
+      for (std::size_t i = 0; i < t->harmonic_amplitudes_n_m.size(); ++i) {
+        if (t->harmonic_amplitudes_n_m[i] != 0.0 &&
+            t->harmonic_angular_frequencies_rad_per_s[i] != 0.0) {
+          keys.push_back(name + ".angular_frequencies[" + std::to_string(i) + "]");
+        }
+      }
+    }
+  }
+  return keys;
+}
+
+// The mean pinion speed of the rolling pair (Rb1 w1 = Rb2 w2 on average over a periodic s).
+// The momentum P = J1 w1/Rb1 + J2 w2/Rb2 obeys P' = T1/Rb1 + T2/Rb2, the mesh forces
+// cancelling. Without fluctuation it is constant. A fluctuation A sin(w t + phi) adds
+// A (cos(phi) - cos(w t + phi)) / w, whose mean over its period is A cos(phi) / w: with
+// `with_forcing` the mean of P, which sets the speed at which the teeth pass, includes it.
+double rolling_mean_pinion_speed(const SimulationCase& c, bool with_forcing) {
+  const GearPair& g = c.gears;
+  const double rb1 = base_radius(g, Gear::one);
+  const double rb2 = base_radius(g, Gear::two);
+  const double j1 = moment_of_inertia(g, Gear::one);
+  const double j2 = moment_of_inertia(g, Gear::two);
+  double momentum = j1 * c.initial.w1_rad_per_s / rb1 + j2 * c.initial.w2_rad_per_s / rb2;
+  if (with_forcing) {
+    for (const auto& [t, rb] : {std::pair<const Torque*, double>{&c.torque1, rb1},
+                                std::pair<const Torque*, double>{&c.torque2, rb2}}) {
+      if (t->kind == Torque::Kind::sinusoidal && t->angular_frequency_rad_per_s != 0.0) {
+        momentum += t->amplitude_n_m * std::cos(t->phase_rad) / t->angular_frequency_rad_per_s / rb;
+      }
+      if (t->kind == Torque::Kind::harmonic) {
+        for (std::size_t i = 0; i < t->harmonic_amplitudes_n_m.size(); ++i) {
+          const double wi = t->harmonic_angular_frequencies_rad_per_s[i];
+          if (wi != 0.0) {
+            momentum +=
+                t->harmonic_amplitudes_n_m[i] * std::cos(t->harmonic_phases_rad[i]) / wi / rb;
+          }
+        }
+      }
+    }
+  }
+  return momentum / (j1 / rb1 + j2 * rb1 / (rb2 * rb2));
+}
+
+// q tooth patterns of P s that are p forcing periods of T s (q P = p T to 1e-9 relative, the
+// 10 significant digits a frequency is typed with), q the least up to
+// kMostToothPatternsPerPoincarePeriod; p = 0 when none is.
+struct Commensurate {
+  long long tooth_patterns = 0;
+  long long forcing_periods = 0;
+};
+
+Commensurate common_period(double pattern_s, double forcing_s) {
+  const double ratio = pattern_s / forcing_s;
+  for (long long q = 1; q <= kMostToothPatternsPerPoincarePeriod; ++q) {
+    const double periods = ratio * static_cast<double>(q);
+    const double whole = std::round(periods);
+    if (whole >= 1.0 && std::fabs(periods - whole) <= 1e-9 * periods) {
+      return {q, static_cast<long long>(whole)};
+    }
+  }
+  return {};
+}
 }  // namespace
 
 std::vector<double> forcing_frequencies(const SimulationCase& c) {
@@ -293,14 +386,6 @@ std::string to_string(Regime regime) {
 }
 
 void require_steady_case(const SimulationCase& c) {
-  // The Poincare section is one mesh period (or the forcing's); faulted teeth
-  // repeat only after the true period (docs/faults.md).
-  if (!c.faults.empty()) {
-    throw InputError("faults", std::to_string(c.faults.size()) + " faulted teeth",
-                     "none: steady states and sweeps sample the motion once per mesh period, "
-                     "and a case with [[faults]] repeats only after its true period (a pinion "
-                     "revolution or the hunting period); not supported yet");
-  }
   // A kinematic driver holds the mean speed whatever the load, the drag and
   // friction draw from it: nothing need balance.
   if (c.torque1.kind == Torque::Kind::prescribed_speed) return;
@@ -370,13 +455,17 @@ SteadyTiming steady_timing(const SimulationCase& c, const StiffnessTable& table,
   double fastest_mesh = std::max(c.gears.teeth1 * std::fabs(c.initial.w1_rad_per_s),
                                  c.gears.teeth2 * std::fabs(c.initial.w2_rad_per_s));
   const std::vector<double> w = forcing_frequencies(c);
+  const bool time_varying = c.model.mesh_stiffness == MeshStiffnessMode::time_varying;
+  // Faults need a time-varying stiffness (validation refuses them on a constant one).
+  const ToothPattern pattern = time_varying ? tooth_pattern(c) : ToothPattern{1, kMeshPeriodKind};
+  const bool faulted = pattern.mesh_periods > 1;
   if (c.torque1.kind == Torque::Kind::prescribed_speed) {
     // The driver's period: its orders are harmonics of W, and a time-varying
     // mesh stiffness repeats with the mesh, z1 W; the motion repeats at W
     // times their greatest common divisor, so the orders must be whole.
     const Torque& d = c.torque1;
-    long long divisor =
-        c.model.mesh_stiffness == MeshStiffnessMode::time_varying ? c.gears.teeth1 : 0;
+    long long divisor = time_varying ? c.gears.teeth1 : 0;
+    long long orders_divisor = 0;
     double fastest = d.mean_speed_rad_per_s;
     for (std::size_t i = 0; i < d.driver_orders.size(); ++i) {
       const double order = d.driver_orders[i];
@@ -385,10 +474,31 @@ SteadyTiming steady_timing(const SimulationCase& c, const StiffnessTable& table,
                          "a whole number for a steady state, so that the driver has one period");
       }
       divisor = std::gcd(divisor, static_cast<long long>(order));
+      orders_divisor = std::gcd(orders_divisor, static_cast<long long>(order));
       fastest += std::fabs(d.driver_speed_amplitudes_rad_per_s[i]);
     }
     if (divisor == 0) divisor = 1;
-    timing.excitation_period_s = 2.0 * pi / (d.mean_speed_rad_per_s * static_cast<double>(divisor));
+    if (faulted) {
+      // In pinion revolutions the teeth repeat after a / b = N / z1 (lowest terms) and the
+      // driver after 1 / g, g the orders' divisor: their least common multiple is
+      // lcm(a, 1) / gcd(b, g) = a / gcd(b, g) (with g = 0, no orders, gcd(b, 0) = b).
+      const long long z1 = c.gears.teeth1;
+      const long long common = std::gcd(pattern.mesh_periods, z1);
+      const long long a = pattern.mesh_periods / common;
+      const long long b = z1 / common;
+      const long long denominator = std::gcd(b, orders_divisor);
+      timing.excitation_period_s = 2.0 * pi * static_cast<double>(a) /
+                                   (d.mean_speed_rad_per_s * static_cast<double>(denominator));
+      timing.mesh_periods = z1 * a / denominator;
+    } else {
+      timing.excitation_period_s =
+          2.0 * pi / (d.mean_speed_rad_per_s * static_cast<double>(divisor));
+      if (time_varying) timing.mesh_periods = c.gears.teeth1 / divisor;
+    }
+    timing.kind = time_varying ? std::string(pattern.kind) : std::string();
+    if (!d.driver_orders.empty() || !time_varying) {
+      timing.kind += std::string(timing.kind.empty() ? "" : "+") + "driver";
+    }
     fastest_mesh = std::max(fastest_mesh, c.gears.teeth1 * fastest);
   } else if (!w.empty()) {
     const double fundamental = *std::min_element(w.begin(), w.end());
@@ -402,22 +512,54 @@ SteadyTiming steady_timing(const SimulationCase& c, const StiffnessTable& table,
       }
     }
     timing.excitation_period_s = 2.0 * pi / fundamental;
+    timing.kind = "forcing";
+    if (faulted) {
+      const double w1_mean = std::fabs(rolling_mean_pinion_speed(c, true));
+      if (!std::isfinite(w1_mean) || w1_mean == 0.0) {
+        throw InputError("initial.w1", c.initial.w1_rad_per_s,
+                         "a mean pinion speed != 0: the faulted teeth repeat every " +
+                             std::to_string(pattern.mesh_periods) + " mesh periods 2 pi / (z1 w1)");
+      }
+      const double pattern_s =
+          2.0 * pi * static_cast<double>(pattern.mesh_periods) / (c.gears.teeth1 * w1_mean);
+      const Commensurate common = common_period(pattern_s, timing.excitation_period_s);
+      if (common.forcing_periods == 0) {
+        const std::string forcing_key = forcing_keys(
+            c)[static_cast<std::size_t>(std::min_element(w.begin(), w.end()) - w.begin())];
+        throw InputError(
+            forcing_key + ", initial.w1",
+            format_number(fundamental) + " rad/s against " + pattern.kind + " " +
+                format_number(pattern_s) + " s (mean pinion speed " + format_number(w1_mean) +
+                " rad/s)",
+            "a forcing commensurate with the faulted teeth: its period T = 2 pi / w and the "
+            "teeth's period P (" +
+                std::to_string(pattern.mesh_periods) +
+                " mesh periods at the mean speed) with q P = p T for whole p and q <= " +
+                std::to_string(kMostToothPatternsPerPoincarePeriod) +
+                " to 1e-9, so that the motion has one period; here P / T = " +
+                format_number(pattern_s / timing.excitation_period_s));
+      }
+      timing.excitation_period_s *= static_cast<double>(common.forcing_periods);
+      timing.mesh_periods = pattern.mesh_periods * common.tooth_patterns;
+      timing.kind = std::string(pattern.kind) + "+forcing";
+      fastest_mesh = std::max(fastest_mesh, c.gears.teeth1 * w1_mean);
+    }
   } else {
     const GearPair& g = c.gears;
-    const double rb1 = base_radius(g, Gear::one);
-    const double rb2 = base_radius(g, Gear::two);
-    const double j1 = moment_of_inertia(g, Gear::one);
-    const double j2 = moment_of_inertia(g, Gear::two);
-    // J1 w1/Rb1 + J2 w2/Rb2 is constant without fluctuating torques and friction; the rolling
-    // pair (Rb1 w1 = Rb2 w2 on average over a periodic s) with it turns at this w1.
-    const double momentum = j1 * c.initial.w1_rad_per_s / rb1 + j2 * c.initial.w2_rad_per_s / rb2;
-    const double w1_mean = momentum / (j1 / rb1 + j2 * rb1 / (rb2 * rb2));
+    const double w1_mean = rolling_mean_pinion_speed(c, false);
     if (!std::isfinite(w1_mean) || w1_mean == 0.0) {
       throw InputError("initial.w1", c.initial.w1_rad_per_s,
                        "a mean pinion speed != 0: without torque fluctuations the mesh period "
                        "2 pi / (z1 w1) is the sampling period");
     }
-    timing.excitation_period_s = 2.0 * pi / (g.teeth1 * std::fabs(w1_mean));
+    if (faulted) {
+      timing.excitation_period_s =
+          2.0 * pi * static_cast<double>(pattern.mesh_periods) / (g.teeth1 * std::fabs(w1_mean));
+    } else {
+      timing.excitation_period_s = 2.0 * pi / (g.teeth1 * std::fabs(w1_mean));
+    }
+    timing.mesh_periods = pattern.mesh_periods;
+    timing.kind = pattern.kind;
     fastest_mesh = std::max(fastest_mesh, g.teeth1 * std::fabs(w1_mean));
   }
   // The contact period of the stiffest contact: the table's largest Ke sum (step_bound.hpp is

@@ -3,7 +3,6 @@
 #include <numeric>
 #include <utility>
 
-#include "gearimpact/error.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 
 namespace gearimpact {
@@ -75,41 +74,6 @@ MeshTables::MeshTables(const GearPair& pair, const StiffnessModel& model,
 
 long long MeshTables::true_period_mesh_periods() const {
   return gearimpact::true_period_mesh_periods(pair_, distinct_);
-}
-
-std::vector<TruePeriodSample> true_period_mesh_stiffness(const MeshTables& tables,
-                                                         const GearPair& pair,
-                                                         std::size_t samples_per_mesh_period) {
-  if (samples_per_mesh_period < 2) {
-    throw InputError("samples", std::to_string(samples_per_mesh_period),
-                     "at least 2 per mesh period");
-  }
-  const MeshLayout layout(pair, CoastPhase::half_base_pitch);
-  const long long periods = tables.true_period_mesh_periods();
-  const std::size_t count = samples_per_mesh_period * static_cast<std::size_t>(periods);
-  const double rb1 = base_radius(pair, Gear::one);
-  const double t0 = layout.base_pitch_m();
-  std::vector<TruePeriodSample> samples;
-  samples.reserve(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    TruePeriodSample s{};
-    s.fraction = static_cast<double>(i) / static_cast<double>(count);
-    s.theta1_rad = s.fraction * static_cast<double>(periods) * t0 / rb1;
-    const double ref = layout.reference_m(Region::n1, s.theta1_rad);
-    const LoadedRange loaded = layout.loaded(ref);
-    for (int j = 0; j < loaded.count; ++j) {
-      const int k = loaded.k_first + j;
-      const double x = layout.position_m(ref, k);
-      const StiffnessTable* table = tables.table(Region::n1, k);
-      const double ke = table != nullptr ? table->stiffness(x) : 0.0;
-      s.teeth.push_back(teeth_of_pair(pair, Region::n1, k));
-      s.pair_ke_n_per_m.push_back(ke);
-      s.ke_n_per_m += ke;
-      s.healthy_ke_n_per_m += tables.healthy().stiffness(x);
-    }
-    samples.push_back(std::move(s));
-  }
-  return samples;
 }
 
 }  // namespace gearimpact

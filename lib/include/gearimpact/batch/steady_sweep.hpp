@@ -5,6 +5,7 @@
 // give the same rows as one run.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -85,6 +86,12 @@ struct SteadySweepRecord {
   double steps_per_contact_period = 0.0;
   int max_periods = 0;
   DampingUpdate damping_update = DampingUpdate::each_impact;
+  // The Poincare period (SteadyTiming) at the first and the last point of the sweep (line 0's
+  // first value, the last line's last value): what it is the common period of, its length and
+  // its mesh periods (0: not tied to the mesh).
+  std::string poincare_period_kind;
+  std::array<double, 2> poincare_period_s{};
+  std::array<long long, 2> poincare_mesh_periods{};
 };
 
 struct SteadySweep {

@@ -68,15 +68,19 @@ std::string stiffness_csv(const GearPair& pair, const StiffnessModel& model,
                           const std::vector<double>& x1_m);
 // One mesh period: fraction,theta1_rad,pairs,ke_n_per_m.
 std::string mesh_stiffness_csv(const TimeVaryingMeshStiffness& tvms);
-// The true period of a faulted mesh: fraction,theta1_rad,pairs,ke_n_m,
-// healthy_ke_n_m, then for each of the most pairs in contact
-// pairJ_pinion_tooth,pairJ_wheel_tooth,pairJ_ke_n_m (empty cells where fewer
-// pairs are in contact); pair 1 entered first.
-std::string true_period_mesh_stiffness_csv(const std::vector<TruePeriodSample>& samples);
-// min_n_m, max_n_m, mean_n_m (the exact time mean), contact_ratio,
-// extrapolated (the foundation fit used outside its range: tvms's foundation_extrapolations),
-// and when it is a warning naming each gear, parameter, value and the fit's range.
-std::string mesh_stiffness_summary_json(const TimeVaryingMeshStiffness& tvms, double contact_ratio);
+// The true period of a mesh whose teeth may differ (true_period_mesh_stiffness, one mesh
+// period without faults, with the same first four columns as mesh_stiffness_csv to the bit):
+// fraction,theta1_rad,pairs,ke_n_m,healthy_ke_n_m, then for each of the most pairs in contact
+// pairJ_pinion_tooth,pairJ_wheel_tooth,pairJ_ke_n_m (empty cells where fewer pairs are in
+// contact); pair 1 is the one nearest the start of contact (the last to enter).
+std::string true_period_mesh_stiffness_csv(const TruePeriodMeshStiffness& tvms);
+// min_n_m, max_n_m, mean_n_m (the exact time mean over the true period), contact_ratio,
+// period (its kind), mesh_periods, min_at_fraction, max_at_fraction (of the true period),
+// healthy_mean_n_m (the same pairs all healthy), simulation_theta1_offset_rad, extrapolated
+// (the foundation fit used outside its range) and, when it is, a warning naming each gear,
+// parameter, value and the fit's range.
+std::string true_period_mesh_stiffness_summary_json(const TruePeriodMeshStiffness& tvms,
+                                                    double contact_ratio);
 // zn1, zn2, c_prime_th_n_mm_um, c_prime_n_mm_um, c_gamma_alpha_n_mm_um,
 // eps_alpha, c_prime_b_n_per_m, c_gamma_alpha_b_n_per_m (c' and c_gamma_alpha times
 // the face width b); with a specific load F_t K_A / b (N/m), also specific_load_n_mm and

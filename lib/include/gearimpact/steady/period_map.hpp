@@ -14,7 +14,9 @@
 // - X matters only through the mesh position u1 when the stiffness varies (42); the map then
 //   needs constant torques, so that the period is the mesh period t0 / V (V = P / (m1 + m2),
 //   steady_timing), X advances by exactly one base pitch t0 a period and the mesh is where it
-//   started. With a constant mesh stiffness X does not enter the forces at all.
+//   started. With faulted teeth the period is their true period N t0 / V (steady_timing), X
+//   advances N base pitches and the same teeth are back in mesh. With a constant mesh
+//   stiffness X does not enter the forces at all.
 // So the 4x4 map of the full state is block triangular, [[DP, C], [0, R]], R the rigid block
 // (X, P) with the double multiplier 1 of a free rigid motion, and the multipliers of DP are the
 // other two of the full map.

@@ -43,14 +43,32 @@ struct SteadySettings {
   int max_periods = 3000;
 };
 
-// The sampling period and the step of a case.
+// The most tooth patterns (true periods of faulted teeth) one Poincare period may hold when a
+// torque's forcing is commensurate with them only over several (steady_timing).
+inline constexpr long long kMostToothPatternsPerPoincarePeriod = 100;
+
+// The sampling (Poincare) period and the step of a case (docs/steady-state.md, "Poincare
+// period"). Without faults: the forcing period 2 pi / w when the torques fluctuate (their
+// angular frequencies must be whole multiples of the lowest), else the mesh period
+// 2 pi / (z1 w1_mean), w1_mean the mean pinion speed of the rolling pair with the case's
+// momentum J1 w1/Rb1 + J2 w2/Rb2; under a prescribed-speed driver the common period of its
+// orders and the mesh. With faults (SimulationCase::faults) the teeth repeat only after their
+// true period P, N mesh periods (a pinion or wheel revolution, or the hunting period,
+// true_period_mesh_periods), and the Poincare period is the least common period of P and the
+// driver's or the forcing's period: for a forcing of period T, q P = p T with whole p and the
+// least q <= kMostToothPatternsPerPoincarePeriod (to 1e-9 relative), P taken at the mean speed
+// including the forcing's share of the momentum; otherwise the forcing is incommensurate and
+// refused.
 struct SteadyTiming {
-  // The forcing period 2 pi / w when the torques fluctuate (their angular frequencies must be
-  // whole multiples of the lowest), else the mesh period 2 pi / (z1 w1_mean), w1_mean the mean
-  // pinion speed of the rolling pair with the case's momentum J1 w1/Rb1 + J2 w2/Rb2.
   double excitation_period_s = 0.0;
   double step_s = 0.0;
   long long steps_per_period = 0;
+  // What the period is the common period of, joined by "+": "mesh" (every tooth alike),
+  // "pinion-revolution", "wheel-revolution" or "hunting" (faulted teeth), "forcing" (a torque's
+  // fluctuation), "driver" (a prescribed speed's orders, or its revolution).
+  std::string kind;
+  // The mesh periods in it; 0 when it is not tied to the mesh (a healthy pair's forcing period).
+  long long mesh_periods = 0;
 };
 
 // The angular frequencies of the torques' fluctuations (the harmonics with amplitude != 0 and
@@ -62,8 +80,8 @@ std::vector<double> forcing_frequencies(const SimulationCase& c);
 // sinusoidal or harmonic (a user function's mean and period are not known); mean torques balanced
 // (T1/Rb1 + T2/Rb2 = 0, both along the line of action as in docs/model.md's equations of motion);
 // no friction: friction loss f N |Vs| is drawn from the mean rotation, which balanced torques do
-// not feed, so with f > 0 the pair slows down without end. A case with faults
-// (SimulationCase::faults) is refused first: its true period is not sampled yet.
+// not feed, so with f > 0 the pair slows down without end. A case with faults is sampled at
+// its true period (SteadyTiming).
 void require_steady_case(const SimulationCase& c);
 
 // A pair with less backlash than this many modules (none at all, B = 0) measures
@@ -79,7 +97,8 @@ inline constexpr double kLeastStateScalePerModule = 1e-3;
 Eigen::Vector2d state_scale(const SimulationCase& c, const StiffnessTable& table);
 
 // Throws InputError as require_steady_case, and when the torques' frequencies have no common
-// period or (without fluctuation) the mean speed is 0.
+// period, a faulted case's forcing is incommensurate with its teeth (naming the forcing's key
+// and initial.w1), or (without fluctuation) the mean speed is 0.
 SteadyTiming steady_timing(const SimulationCase& c, const StiffnessTable& table,
                            const SteadySettings& settings);
 

@@ -70,21 +70,4 @@ class MeshTables {
   DistinctTeeth distinct_;
 };
 
-// The mesh stiffness over the true period of a faulted mesh, at rest on the
-// drive line N1. theta1 as in the dynamics: at theta1 = 0 pair k = 0 (pinion
-// tooth 0 against wheel tooth 0) holds the pitch point.
-struct TruePeriodSample {
-  double fraction;                      // of the true period, i / count
-  double theta1_rad;                    // fraction times N base pitches, over Rb1
-  std::vector<TeethInContact> teeth;    // of each loaded pair, entering first
-  std::vector<double> pair_ke_n_per_m;  // each pair's Ke, 0 for a missing tooth
-  double ke_n_per_m;                    // their sum
-  double healthy_ke_n_per_m;            // the same pairs all healthy
-};
-// `samples_per_mesh_period` (>= 2) samples per mesh period over the
-// true period. Throws InputError for fewer.
-std::vector<TruePeriodSample> true_period_mesh_stiffness(const MeshTables& tables,
-                                                         const GearPair& pair,
-                                                         std::size_t samples_per_mesh_period);
-
 }  // namespace gearimpact

@@ -5,12 +5,15 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/rack_generation.hpp"
+#include "gearimpact/geometry/tooth_identity.hpp"
 #include "gearimpact/stiffness/mesh_models.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
+#include "gearimpact/stiffness/tooth_state.hpp"
 
 namespace gearimpact {
 
@@ -60,6 +63,54 @@ TimeVaryingMeshStiffness time_varying_mesh_stiffness(const RackGearPairGeometry&
 TimeVaryingMeshStiffness time_varying_mesh_stiffness(const GearPair& pair,
                                                      const StiffnessModel& model,
                                                      std::size_t sample_count = 200);
+
+// The mesh stiffness over the true period of a pair whose teeth may differ (docs/faults.md,
+// docs/usage.md "mesh-stiffness"): N mesh periods (true_period_mesh_periods: 1 when every tooth
+// is alike, z1 or z2 when one gear's teeth differ, lcm(z1, z2) when both do), at rest on the
+// drive line N1, each pair's Ke from mesh_stiffness with its teeth's states (a missing tooth's
+// pair 0), directly rather than from a fitted table.
+//
+// One origin for every pair: theta1 = 0 where pinion tooth 0 meets wheel tooth 0 at the start
+// of the contact segment X_start (that pair enters). Without faults this is the one mesh
+// period of time_varying_mesh_stiffness above (a pair at s_SAP), to the bit. The simulation
+// measures theta1 from pair 0/0 at the pitch point instead: its angle is this theta1 plus
+// simulation_theta1_offset_rad = (X_start - X_pitch) / Rb1.
+struct TruePeriodSample {
+  double fraction;                      // of the true period, i / (N n)
+  double theta1_rad;                    // fraction N 2 pi / z1
+  std::vector<TeethInContact> teeth;    // of each pair in contact, the one entering last first
+  std::vector<double> pair_ke_n_per_m;  // each pair's Ke, 0 for a missing tooth
+  double ke_n_per_m;                    // their sum
+  double healthy_ke_n_per_m;            // the same pairs all healthy
+};
+
+struct TruePeriodMeshStiffness {
+  long long mesh_periods = 1;  // N
+  // "mesh" (every tooth alike), "pinion-revolution", "wheel-revolution" or "hunting".
+  std::string period_kind;
+  double simulation_theta1_offset_rad = 0.0;
+  // n per mesh period over the N mesh periods, at fraction i / (N n) of the true period.
+  std::vector<TruePeriodSample> samples;
+  // Over the true period, as TimeVaryingMeshStiffness over one mesh period (the extremes of
+  // each smooth piece of each mesh period, the mean by GSL QAG on each piece), with the
+  // fraction of the true period where the extremes fall; the mean of the same pairs all healthy.
+  double min_n_per_m = 0.0;
+  double min_at_fraction = 0.0;
+  double max_n_per_m = 0.0;
+  double max_at_fraction = 0.0;
+  double mean_n_per_m = 0.0;
+  double healthy_mean_n_per_m = 0.0;
+  std::vector<FoundationExtrapolation> foundation_extrapolations;
+};
+
+// `samples_per_mesh_period` (n >= 2) samples in each of the N mesh periods; at most
+// kMostTruePeriodSamples in all (InputError naming "samples" beyond). Checks the faults
+// (check_tooth_faults) first; QuadratureError when an integral misses its tolerance.
+inline constexpr std::size_t kMostTruePeriodSamples = 10000000;
+TruePeriodMeshStiffness true_period_mesh_stiffness(const GearPair& pair,
+                                                   const StiffnessModel& model,
+                                                   const std::vector<ToothFault>& faults,
+                                                   std::size_t samples_per_mesh_period);
 
 // Load sharing along the path of contact: one pair at X1 (m from C1) on the pair's contact
 // segment carries k(X1) / sum_j k(X1 + j t0) of the mesh force, the sum over the pairs then in
