@@ -353,6 +353,19 @@ PlacedSpall place_spall(const Spall& spall, const GearPair& pair, Gear which) {
       [&](double r) { return r * std::sin(flank_half_angle(tooth, r)); }, pair.face_width_m);
 }
 
+double flank_half_thickness(const GearPair& pair, Gear which, StiffnessModelKind kind,
+                            double radius_m) {
+  if (kind == StiffnessModelKind::yang_lin_1987) {
+    return radius_m * std::sin(flank_half_angle(tooth_of(pair, which), radius_m));
+  }
+  const RackGearPairGeometry geometry = rack_gear_pair_geometry(pair);
+  const RackGearGeometry& gear = which == Gear::one ? geometry.gear1 : geometry.gear2;
+  const double rb = gear.base_radius_m;
+  return involute_point(gear,
+                        roll_distance_at_radius(rb, radius_m) / rb - gear.half_tooth_angle_base_rad)
+      .x_m;
+}
+
 PlacedChip place_chip(const TipChip& chip, const RackGearGeometry& gear, double b) {
   return place_chip_on(chip, gear.root_radius_m, gear.tip_radius_m, "root circle", b);
 }
