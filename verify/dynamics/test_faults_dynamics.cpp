@@ -186,3 +186,49 @@ TEST_CASE("teeth that pass through each other by half a pitch stop the run with 
   const SimulationSummary healthy = simulate(paper_case(1), summary_only()).summary;
   CHECK(healthy.max_penetration_m < 1e-2 * 0.5 * base_pitch(c.gears));
 }
+
+TEST_CASE("the energy ledger closes with a spalled and with a chipped tooth") {
+  // The bound of the crack's ledger test above. A spall's or a partial
+  // chip's contact line jumps where the contact meets the fault's edge, and
+  // with it Ke: the stored energy 1/2 dKe delta^2 of that jump is no event
+  // of the run and is left out of the parametric work, but it is of order
+  // (dKe / Ke) delta / t0 ~ 1e-8 of the work a mesh period passes, and
+  // entering and leaving the band cancel but for the change of delta.
+  for (int n = 1; n <= 3; ++n) {
+    const SimulationCase healthy = paper_case(n);
+    const GearPair& g = healthy.gears;
+    const ContactSegment segment = contact_segment(g);
+    const double rb1 = base_radius(g, Gear::one);
+    const auto radius_at = [&](double f) {
+      return std::hypot(rb1, segment.start_m + f * (segment.end_m - segment.start_m));
+    };
+    ToothFault spall;
+    spall.gear = Gear::one;
+    spall.tooth = 0;
+    spall.state.kind = ToothKind::spall;
+    spall.state.spall.start_radius_m = radius_at(0.3);
+    spall.state.spall.end_radius_m = radius_at(0.6);
+    spall.state.spall.width_m = 0.5 * g.face_width_m;
+    spall.state.spall.depth_m = 0.3e-3;
+    ToothFault chip;
+    chip.gear = Gear::one;
+    chip.tooth = 0;
+    chip.state.kind = ToothKind::tip_chip;
+    chip.state.chip.radius_m = radius_at(0.75);
+    chip.state.chip.width_m = 0.5 * g.face_width_m;
+    for (const ToothFault& fault : {spall, chip}) {
+      CAPTURE(n);
+      CAPTURE(to_string(fault.state.kind));
+      SimulationCase c = healthy;
+      c.faults = {fault};
+      const SimulationSummary s = simulate(c, summary_only()).summary;
+      const SimulationSummary h = simulate(healthy, summary_only()).summary;
+      const double throughput =
+          s.kinetic_energy_initial_j + s.stored_energy_initial_j + std::fabs(s.torque_work_j);
+      MESSAGE("case " << n << " " << to_string(fault.state.kind) << ": residual "
+                      << s.ledger_residual_max_j << " J of " << throughput << " J");
+      CHECK(s.ledger_residual_max_j < 1e-7 * throughput);
+      CHECK(s.final_w2_rad_per_s != h.final_w2_rad_per_s);
+    }
+  }
+}
