@@ -195,10 +195,9 @@ width = "5 mm"
   }
   CHECK(has(case_key(c), "faults[0].end_radius="));
   CHECK(has(case_key(c), "faults[1].radius="));
-  // The drive flank is the default, and is left out when written.
+  // The drive flank is the default.
   const SimulationCase drive = parse_case(paper_case1() + kSpall, "f.toml");
   CHECK(drive.faults[0].state.spall.flank == CrackFlank::loaded);
-  CHECK(!has(write_case_file(drive, CaseUnits::readable), "flank"));
 }
 
 TEST_CASE("a spall or a chip that does not fit is refused, naming the key and its limit in mm") {
@@ -222,8 +221,8 @@ TEST_CASE("a spall or a chip that does not fit is refused, naming the key and it
   }
   SUBCASE("a spall off the active profile") {
     // The pinion's base circle is 18.79 mm, its tip 22 mm; the wheel's tip
-    // meets its flank a little above the base circle.
-    const std::string low = refusal(spall_with("start_radius", "start_radius = \"18.9 mm\""));
+    // meets its flank at 18.85 mm (X_start = lp - sqrt(82^2 - 75.18^2) mm).
+    const std::string low = refusal(spall_with("start_radius", "start_radius = \"18.82 mm\""));
     CHECK(has(low, "faults[0].start_radius"));
     CHECK(has(low, "on the active profile of the pinion tooth"));
     CHECK(has(low, "22 mm"));
