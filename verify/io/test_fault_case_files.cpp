@@ -202,8 +202,7 @@ width = "5 mm"
 
 TEST_CASE("a spall or a chip that does not fit is refused, naming the key and its limit in mm") {
   SUBCASE("an unknown kind lists the kinds") {
-    const std::string m =
-        refusal("\n[[faults]]\ngear = \"pinion\"\ntooth = 0\nkind = \"pit\"\n");
+    const std::string m = refusal("\n[[faults]]\ngear = \"pinion\"\ntooth = 0\nkind = \"pit\"\n");
     CHECK(has(m, "faults[0].kind"));
     CHECK(has(m, "\"root-crack\", \"missing\", \"spall\", \"tip-chip\""));
   }
@@ -229,8 +228,7 @@ TEST_CASE("a spall or a chip that does not fit is refused, naming the key and it
     const std::string high = refusal(spall_with("end_radius", "end_radius = \"22.5 mm\""));
     CHECK(has(high, "faults[0].end_radius"));
     CHECK(has(high, "(20 mm, 22 mm]"));
-    CHECK(has(refusal(spall_with("end_radius", "end_radius = \"19.5 mm\"")),
-              "above start_radius"));
+    CHECK(has(refusal(spall_with("end_radius", "end_radius = \"19.5 mm\"")), "above start_radius"));
   }
   SUBCASE("a pit deeper than the tooth's half thickness") {
     const std::string m = refusal(spall_with("depth", "depth = \"1.5 mm\""));
@@ -267,13 +265,16 @@ TEST_CASE("a spall or a chip that does not fit is refused, naming the key and it
     const std::string depth = refusal(
         "\n[[faults]]\ngear = \"pinion\"\ntooth = 0\nkind = \"tip-chip\"\nradius = \"21 mm\"\n"
         "width = \"2 mm\"\ndepth = \"0.1 mm\"\n");
-    CHECK(has(depth, "faults[0].depth = \"0.1 mm\" is read only with kind = \"root-crack\" or "
-                     "\"spall\""));
+    CHECK(has(depth,
+              "faults[0].depth = \"0.1 mm\" is read only with kind = \"root-crack\" or "
+              "\"spall\""));
     // One message for the key, not one per row that has it.
     CHECK(depth.find("faults[0].depth") == depth.rfind("faults[0].depth"));
-    const std::string width = refusal("\n[[faults]]\ngear = \"pinion\"\ntooth = 0\n"
-                                      "kind = \"missing\"\nwidth = \"2 mm\"\n");
-    CHECK(has(width, "is read only with profile = \"partial-width\", or kind = \"spall\" or "
-                     "\"tip-chip\""));
+    const std::string width = refusal(
+        "\n[[faults]]\ngear = \"pinion\"\ntooth = 0\n"
+        "kind = \"missing\"\nwidth = \"2 mm\"\n");
+    CHECK(has(width,
+              "is read only with profile = \"partial-width\", or kind = \"spall\" or "
+              "\"tip-chip\""));
   }
 }

@@ -12,10 +12,10 @@
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
-#include "gearimpact/stiffness/mesh_stiffness.hpp"
-#include "gearimpact/stiffness/mesh_tables.hpp"
 #include "gearimpact/geometry/rack_generation.hpp"
 #include "gearimpact/stiffness/mesh_models.hpp"
+#include "gearimpact/stiffness/mesh_stiffness.hpp"
+#include "gearimpact/stiffness/mesh_tables.hpp"
 #include "gearimpact/stiffness/root_crack.hpp"
 #include "gearimpact/stiffness/surface_faults.hpp"
 #include "gearimpact/stiffness/tooth_state.hpp"
@@ -325,17 +325,17 @@ double direct_ke(const GearPair& g, const StiffnessModel& m, double x1_m, double
   double compliance = 1.0 / hertz_stiffness(g, contact_length_m);
   if (m.kind == StiffnessModelKind::yang_lin_1987) {
     compliance += pinion_tooth(x1_m, nullptr).total_m_per_n();
-    compliance += tooth_compliance(tooth_of(g, Gear::two), lp - x1_m,
-                                   youngs_modulus(g, Gear::two), g.face_width_m, m)
+    compliance += tooth_compliance(tooth_of(g, Gear::two), lp - x1_m, youngs_modulus(g, Gear::two),
+                                   g.face_width_m, m)
                       .total_m_per_n();
     return 1.0 / compliance;
   }
   const RackGearPairGeometry geometry = rack_gear_pair_geometry(g);
   const PairContact contact = pair_contact(geometry, x1_m);
   compliance += pinion_tooth(x1_m, &contact.gear1).total_m_per_n();
-  compliance += tooth_compliances(geometry.gear2, Gear::two, contact.gear2,
-                                  geometry.contact_width_m, m)
-                    .total_m_per_n();
+  compliance +=
+      tooth_compliances(geometry.gear2, Gear::two, contact.gear2, geometry.contact_width_m, m)
+          .total_m_per_n();
   return 1.0 / compliance;
 }
 
@@ -366,8 +366,8 @@ TEST_CASE("a spalled pinion tooth's table equals surface_faults' own values, on 
         c = spalled_paper_tooth_compliances(g, Gear::one, x1_m, m, spall);
       } else {
         const RackGearPairGeometry geometry = rack_gear_pair_geometry(g);
-        const ToothCompliances t = spalled_tooth_compliances(
-            geometry.gear1, Gear::one, *contact, geometry.contact_width_m, m, spall);
+        const ToothCompliances t = spalled_tooth_compliances(geometry.gear1, Gear::one, *contact,
+                                                             geometry.contact_width_m, m, spall);
         c.of(Term::bending) = t.bending_m_per_n;
         c.of(Term::shear) = t.shear_m_per_n;
         c.of(Term::axial) = t.axial_m_per_n;
@@ -381,8 +381,7 @@ TEST_CASE("a spalled pinion tooth's table equals surface_faults' own values, on 
       const bool in_band = f > 0.45 && f < 0.70;
       // On the drive flank the contact in the band runs over b - b_s; on the
       // coast flank over b, its sections pitted all the same.
-      const double on_drive =
-          direct_ke(g, m, x, in_band ? b - spall.width_m : b, pinion_tooth);
+      const double on_drive = direct_ke(g, m, x, in_band ? b - spall.width_m : b, pinion_tooth);
       const double on_coast = direct_ke(g, m, x, b, pinion_tooth);
       // The table's fit (near 1e-14, benchmarks/README.md) and both routes'
       // quadrature at the model's tolerance, 1e-12 each.
@@ -426,8 +425,8 @@ TEST_CASE("a chipped tip lowers the stiffness only where the contact is above r_
         c = chipped_paper_tooth_compliances(g, Gear::one, x1_m, m, chip);
       } else {
         const RackGearPairGeometry geometry = rack_gear_pair_geometry(g);
-        const ToothCompliances t = chipped_tooth_compliances(
-            geometry.gear1, Gear::one, *contact, geometry.contact_width_m, m, chip);
+        const ToothCompliances t = chipped_tooth_compliances(geometry.gear1, Gear::one, *contact,
+                                                             geometry.contact_width_m, m, chip);
         c.of(Term::bending) = t.bending_m_per_n;
         c.of(Term::shear) = t.shear_m_per_n;
         c.of(Term::axial) = t.axial_m_per_n;
