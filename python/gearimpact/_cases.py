@@ -64,7 +64,10 @@ def case(name=None, **keys):
     (torque1_value: "constant"). faults: a list of dicts with the keys of a
     [[faults]] table, one per faulted tooth (docs/faults.md), e.g.
     faults=[dict(gear="pinion", tooth=0, kind="root-crack", depth="0.5 mm",
-    angle="45 deg")]; errors name faults[i].key. Raises CaseError naming the key as given, with
+    angle="45 deg")] or dict(gear="pinion", tooth=0, kind="spall", depth="0.2 mm",
+    width="4 mm", start_radius="20 mm", end_radius="21 mm") or dict(gear="wheel",
+    tooth=3, kind="tip-chip", radius="81.5 mm", width="5 mm"); errors name
+    faults[i].key. Raises CaseError naming the key as given, with
     a suggestion for a misspelt one; warns (GearimpactWarning) of a foundation
     fit used outside its range, unbalanced mean torques and speeds that do not
     roll.

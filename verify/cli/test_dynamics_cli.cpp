@@ -330,3 +330,14 @@ TEST_CASE("simulate of a driven case writes its impacts and their histogram besi
   CHECK(clash.err.find("rattle_impacts_histogram.csv") != std::string::npos);
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("the spalled example passes check-case without a warning") {
+  const std::filesystem::path example =
+      std::filesystem::path(GEARIMPACT_PAPER_DATA_DIR) / ".." / "examples" / "spall_20_80.toml";
+  const CommandResult check = run_command(cli("check-case " + example.string()));
+  CHECK(check.exit_code == 0);
+  CHECK(check.out.find("valid") != std::string::npos);
+  CHECK(check.out.find("kind = \"spall\"") != std::string::npos);
+  // Balanced torques and rolling speeds: nothing to warn about.
+  CHECK(check.err.empty());
+}

@@ -142,3 +142,139 @@ TEST_CASE("faults that do not fit are refused, naming the key and its range") {
               "faults[0].depth is missing"));
   }
 }
+
+namespace {
+
+const std::string kSpall = R"(
+[[faults]]
+gear = "pinion"
+tooth = 2
+kind = "spall"
+depth = "0.2 mm"
+width = "4 mm"
+start_radius = "20 mm"
+end_radius = "21 mm"
+)";
+
+// kSpall with one line replaced: `key = ...` by `line`.
+std::string spall_with(const std::string& key, const std::string& line) {
+  std::string text = kSpall;
+  const std::size_t at = text.find("\n" + key + " = ");
+  text.replace(at + 1, text.find('\n', at + 1) - at - 1, line);
+  return text;
+}
+
+}  // namespace
+
+TEST_CASE("a spall and a chipped tip read, write back and enter the case key") {
+  const std::string tail = kSpall + R"(flank = "coast"
+
+[[faults]]
+gear = "wheel"
+tooth = 5
+kind = "tip-chip"
+radius = "81.5 mm"
+width = "5 mm"
+)";
+  const SimulationCase c = parse_case(paper_case1() + tail, "f.toml");
+  REQUIRE(c.faults.size() == 2);
+  const Spall& spall = c.faults[0].state.spall;
+  CHECK(c.faults[0].state.kind == ToothKind::spall);
+  CHECK(spall.depth_m == 0.2e-3);
+  CHECK(spall.width_m == 4e-3);
+  CHECK(spall.start_radius_m == 20e-3);
+  CHECK(spall.end_radius_m == 21e-3);
+  CHECK(spall.flank == CrackFlank::unloaded);
+  CHECK(c.faults[1].state.kind == ToothKind::tip_chip);
+  CHECK(c.faults[1].state.chip.radius_m == 81.5e-3);
+  CHECK(c.faults[1].state.chip.width_m == 5e-3);
+  for (CaseUnits units : {CaseUnits::si, CaseUnits::readable}) {
+    const SimulationCase again = parse_case(write_case_file(c, units), "g.toml");
+    CHECK(again.faults == c.faults);
+    CHECK(case_key(again) == case_key(c));
+  }
+  CHECK(has(case_key(c), "faults[0].end_radius="));
+  CHECK(has(case_key(c), "faults[1].radius="));
+  // The drive flank is the default.
+  const SimulationCase drive = parse_case(paper_case1() + kSpall, "f.toml");
+  CHECK(drive.faults[0].state.spall.flank == CrackFlank::loaded);
+}
+
+TEST_CASE("a spall or a chip that does not fit is refused, naming the key and its limit in mm") {
+  SUBCASE("an unknown kind lists the kinds") {
+    const std::string m = refusal("\n[[faults]]\ngear = \"pinion\"\ntooth = 0\nkind = \"pit\"\n");
+    CHECK(has(m, "faults[0].kind"));
+    CHECK(has(m, "\"root-crack\", \"missing\", \"spall\", \"tip-chip\""));
+  }
+  SUBCASE("each key's range") {
+    CHECK(has(refusal(spall_with("depth", "depth = \"-0.1 mm\"")), "faults[0].depth"));
+    CHECK(has(refusal(spall_with("width", "width = \"0 mm\"")), "faults[0].width"));
+    CHECK(has(refusal(spall_with("start_radius", "start_radius = \"-1 mm\"")),
+              "faults[0].start_radius"));
+    const std::string flank = refusal(kSpall + "flank = \"left\"\n");
+    CHECK(has(flank, "faults[0].flank"));
+    CHECK(has(flank, "\"drive\", \"coast\""));
+    CHECK(has(refusal("\n[[faults]]\ngear = \"pinion\"\ntooth = 0\nkind = \"tip-chip\"\n"
+                      "radius = \"21 mm\"\nwidth = \"-2 mm\"\n"),
+              "faults[0].width"));
+  }
+  SUBCASE("a spall off the active profile") {
+    // The pinion's base circle is 18.79 mm, its tip 22 mm; the wheel's tip
+    // meets its flank at 18.85 mm (X_start = lp - sqrt(82^2 - 75.18^2) mm).
+    const std::string low = refusal(spall_with("start_radius", "start_radius = \"18.82 mm\""));
+    CHECK(has(low, "faults[0].start_radius"));
+    CHECK(has(low, "on the active profile of the pinion tooth"));
+    CHECK(has(low, "22 mm"));
+    const std::string high = refusal(spall_with("end_radius", "end_radius = \"22.5 mm\""));
+    CHECK(has(high, "faults[0].end_radius"));
+    CHECK(has(high, "(20 mm, 22 mm]"));
+    CHECK(has(refusal(spall_with("end_radius", "end_radius = \"19.5 mm\"")), "above start_radius"));
+  }
+  SUBCASE("a pit deeper than the tooth's half thickness") {
+    const std::string m = refusal(spall_with("depth", "depth = \"1.5 mm\""));
+    CHECK(has(m, "faults[0].depth"));
+    CHECK(has(m, "the half thickness of the pinion tooth at r = 21 mm"));
+    CHECK(has(m, " mm, the thinner end"));
+    CHECK(refusal(spall_with("depth", "depth = \"0.9 mm\"")).empty());
+  }
+  SUBCASE("across the whole face") {
+    const std::string m = refusal(spall_with("width", "width = \"10 mm\""));
+    CHECK(has(m, "faults[0].width"));
+    CHECK(has(m, "below the face width b = 10 mm"));
+    const std::string chip = refusal(
+        "\n[[faults]]\ngear = \"pinion\"\ntooth = 0\nkind = \"tip-chip\"\n"
+        "radius = \"21 mm\"\nwidth = \"10 mm\"\n");
+    CHECK(has(chip, "faults[0].width"));
+    CHECK(has(chip, "the dynamics lets a pair enter and leave"));
+  }
+  SUBCASE("a chip radius beyond the tip or below the base circle") {
+    for (const char* r : {"22.5 mm", "18 mm"}) {
+      const std::string m =
+          refusal(std::string("\n[[faults]]\ngear = \"pinion\"\ntooth = 0\nkind = \"tip-chip\"\n"
+                              "radius = \"") +
+                  r + "\"\nwidth = \"2 mm\"\n");
+      CHECK(has(m, "faults[0].radius"));
+      CHECK(has(m, "22 mm]: above the base circle"));
+    }
+  }
+  SUBCASE("keys of another kind") {
+    const std::string radius = refusal(kSpall + "radius = \"21 mm\"\n");
+    CHECK(has(radius, "faults[0].radius = \"21 mm\" is read only with kind = \"tip-chip\""));
+    const std::string angle = refusal(kSpall + "angle = \"45 deg\"\n");
+    CHECK(has(angle, "is read only with kind = \"root-crack\""));
+    const std::string depth = refusal(
+        "\n[[faults]]\ngear = \"pinion\"\ntooth = 0\nkind = \"tip-chip\"\nradius = \"21 mm\"\n"
+        "width = \"2 mm\"\ndepth = \"0.1 mm\"\n");
+    CHECK(has(depth,
+              "faults[0].depth = \"0.1 mm\" is read only with kind = \"root-crack\" or "
+              "\"spall\""));
+    // One message for the key, not one per row that has it.
+    CHECK(depth.find("faults[0].depth") == depth.rfind("faults[0].depth"));
+    const std::string width = refusal(
+        "\n[[faults]]\ngear = \"pinion\"\ntooth = 0\n"
+        "kind = \"missing\"\nwidth = \"2 mm\"\n");
+    CHECK(has(width,
+              "is read only with profile = \"partial-width\", or kind = \"spall\" or "
+              "\"tip-chip\""));
+  }
+}

@@ -425,6 +425,41 @@ def test_faults_from_keywords_read_as_the_case_file_does():
     assert "[[faults]]" in faulted.replace(end_time="10 ms").to_toml("si")
 
 
+SURFACE_FAULT_TOML = """
+[[faults]]
+gear = "pinion"
+tooth = 0
+kind = "spall"
+depth = "0.3 mm"
+width = "8 mm"
+start_radius = "35 mm"
+end_radius = "36.5 mm"
+flank = "coast"
+
+[[faults]]
+gear = "pinion"
+tooth = 1
+kind = "tip-chip"
+radius = "37.5 mm"
+width = "5 mm"
+"""
+
+
+def test_a_spall_and_a_chip_from_keywords_read_as_the_case_file_does():
+    faulted = my_pair(faults=[
+        dict(gear="pinion", tooth=0, kind="spall", depth="0.3 mm", width="8 mm",
+             start_radius="35 mm", end_radius="36.5 mm", flank="coast"),
+        dict(gear="pinion", tooth=1, kind="tip-chip", radius="37.5 mm", width="5 mm")])
+    assert faulted == quiet(
+        lambda: gearimpact.parse_case(PAIR_TOML + SURFACE_FAULT_TOML, "my-pair.toml"))
+    # The pinion's half thickness at r = 36.5 mm is about 2 mm: a 3 mm pit does not fit.
+    with pytest.raises(gearimpact.CaseError) as error:
+        my_pair(faults=[dict(gear="pinion", tooth=0, kind="spall", depth="3 mm", width="8 mm",
+                             start_radius="35 mm", end_radius="36.5 mm")])
+    assert "faults[0].depth" in str(error.value)
+    assert "the half thickness of the pinion tooth" in str(error.value)
+
+
 def test_a_fault_on_a_tooth_the_gear_lacks_names_the_key_and_range():
     with pytest.raises(gearimpact.CaseError) as error:
         my_pair(faults=[dict(gear="pinion", tooth=25, kind="missing")])

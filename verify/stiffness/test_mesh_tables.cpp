@@ -1,7 +1,8 @@
 // Teeth that differ (tooth_state.hpp, mesh_tables.hpp; docs/faults.md): two
 // healthy teeth compose exactly as mesh_stiffness does, a faulted tooth changes
 // the mesh only while it is in contact, one table per combination of states
-// that meets, and the refusals of faults that do not fit.
+// that meets, the tables of a spalled or chipped tooth against surface_faults'
+// own functions, and the refusals of faults that do not fit.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -11,9 +12,12 @@
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/rack_generation.hpp"
+#include "gearimpact/stiffness/mesh_models.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "gearimpact/stiffness/mesh_tables.hpp"
 #include "gearimpact/stiffness/root_crack.hpp"
+#include "gearimpact/stiffness/surface_faults.hpp"
 #include "gearimpact/stiffness/time_varying_stiffness.hpp"
 #include "gearimpact/stiffness/tooth_state.hpp"
 #include "relative.hpp"
@@ -273,4 +277,200 @@ TEST_CASE("the TVMS over the true period names the teeth and differs only where 
   // Tooth 3 meshes eps_alpha of the 20 pitches of a revolution.
   const double eps_alpha = contact_ratio(g);
   CHECK(std::fabs(with_crack / 1000.0 - eps_alpha / 20.0) < 2.0 / 1000.0);
+}
+
+namespace {
+
+// A position on the contact segment, a fraction f of its length from X_start.
+double along(const GearPair& g, double f) {
+  const ContactSegment s = contact_segment(g);
+  return s.start_m + f * (s.end_m - s.start_m);
+}
+
+// The radius of the pinion's flank point that a contact at X1 touches.
+double pinion_radius(const GearPair& g, double x1_m) {
+  return radius_at_roll_distance(base_radius(g, Gear::one), x1_m);
+}
+
+// A spall on the drive flank of a pinion tooth over 45 % to 70 % of the
+// contact segment, 4 mm of the 10 mm face, 0.2 mm deep.
+Spall pinion_spall(const GearPair& g) {
+  Spall s;
+  s.start_radius_m = pinion_radius(g, along(g, 0.45));
+  s.end_radius_m = pinion_radius(g, along(g, 0.70));
+  s.width_m = 0.4 * g.face_width_m;
+  s.depth_m = 0.2e-3;
+  return s;
+}
+
+ToothState spall_state(const Spall& spall) {
+  ToothState s;
+  s.kind = ToothKind::spall;
+  s.spall = spall;
+  return s;
+}
+
+ToothState chip_state(const TipChip& chip) {
+  ToothState s;
+  s.kind = ToothKind::tip_chip;
+  s.chip = chip;
+  return s;
+}
+
+// Ke of a healthy wheel tooth against a pinion tooth whose own compliances
+// and contact length come straight from surface_faults.hpp, summed by (29)
+// here: the direct route the tables are checked against.
+template <typename PinionTooth>
+double direct_ke(const GearPair& g, const StiffnessModel& m, double x1_m, double contact_length_m,
+                 PinionTooth pinion_tooth) {
+  const double lp = line_of_action_length(g);
+  double compliance = 1.0 / hertz_stiffness(g, contact_length_m);
+  if (m.kind == StiffnessModelKind::yang_lin_1987) {
+    compliance += pinion_tooth(x1_m, nullptr).total_m_per_n();
+    compliance += tooth_compliance(tooth_of(g, Gear::two), lp - x1_m, youngs_modulus(g, Gear::two),
+                                   g.face_width_m, m)
+                      .total_m_per_n();
+    return 1.0 / compliance;
+  }
+  const RackGearPairGeometry geometry = rack_gear_pair_geometry(g);
+  const PairContact contact = pair_contact(geometry, x1_m);
+  compliance += pinion_tooth(x1_m, &contact.gear1).total_m_per_n();
+  compliance +=
+      tooth_compliances(geometry.gear2, Gear::two, contact.gear2, geometry.contact_width_m, m)
+          .total_m_per_n();
+  return 1.0 / compliance;
+}
+
+}  // namespace
+
+TEST_CASE("a spalled pinion tooth's table equals surface_faults' own values, on every model") {
+  const GearPair g = pair_with_bores();
+  const Spall spall = pinion_spall(g);
+  const double b = g.face_width_m;
+  for (StiffnessModelKind kind :
+       {StiffnessModelKind::yang_lin_1987, StiffnessModelKind::potential_energy,
+        StiffnessModelKind::ross_compatible}) {
+    CAPTURE(to_string(kind));
+    const StiffnessModel m = model_of(kind);
+    const MeshTables tables(g, m, {fault(Gear::one, 0, spall_state(spall))});
+    // Pinion tooth 0 meets wheel tooth 0 on N1 (drive flanks) and wheel
+    // tooth 1 on N2 (coast flanks): two tables, the pit on one flank.
+    const StiffnessTable* drive = tables.table_of_teeth(0, 0, Region::n1);
+    const StiffnessTable* coast = tables.table_of_teeth(0, 1, Region::n2);
+    REQUIRE(drive != nullptr);
+    REQUIRE(coast != nullptr);
+    CHECK(drive != coast);
+    CHECK(tables.fault_table_count() == 2);
+    CHECK(drive->breaks_m().size() == 2);
+    const auto pinion_tooth = [&](double x1_m, const ToothContact* contact) {
+      Compliances c;
+      if (contact == nullptr) {
+        c = spalled_paper_tooth_compliances(g, Gear::one, x1_m, m, spall);
+      } else {
+        const RackGearPairGeometry geometry = rack_gear_pair_geometry(g);
+        const ToothCompliances t = spalled_tooth_compliances(geometry.gear1, Gear::one, *contact,
+                                                             geometry.contact_width_m, m, spall);
+        c.of(Term::bending) = t.bending_m_per_n;
+        c.of(Term::shear) = t.shear_m_per_n;
+        c.of(Term::axial) = t.axial_m_per_n;
+        c.of(Term::foundation) = t.foundation_m_per_n;
+      }
+      return c;
+    };
+    for (double f : {0.05, 0.3, 0.44, 0.46, 0.5, 0.6, 0.69, 0.71, 0.85, 0.97}) {
+      CAPTURE(f);
+      const double x = along(g, f);
+      const bool in_band = f > 0.45 && f < 0.70;
+      // On the drive flank the contact in the band runs over b - b_s; on the
+      // coast flank over b, its sections pitted all the same.
+      const double on_drive = direct_ke(g, m, x, in_band ? b - spall.width_m : b, pinion_tooth);
+      const double on_coast = direct_ke(g, m, x, b, pinion_tooth);
+      // The table's fit (near 1e-14, benchmarks/README.md) and both routes'
+      // quadrature at the model's tolerance, 1e-12 each.
+      CHECK(relative_difference(drive->stiffness(x), on_drive) < 1e-11);
+      CHECK(relative_difference(coast->stiffness(x), on_coast) < 1e-11);
+      CHECK(relative_difference(drive->compliance(x).total_m_per_n(), 1.0 / on_drive) < 1e-11);
+      const double healthy = mesh_stiffness(g, x, m).ke;
+      if (f < 0.45) {
+        // Below the spall the contact loads no pitted section: healthy, to the bit.
+        CHECK(mesh_stiffness(g, x, m, spall_state(spall), ToothState{}).ke == healthy);
+        CHECK(mesh_stiffness(g, x, m, spall_state(spall), ToothState{}, CrackFlank::unloaded).ke ==
+              healthy);
+        CHECK(relative_difference(drive->stiffness(x), tables.healthy().stiffness(x)) < 1e-12);
+      } else {
+        // In and above it the pitted sections bend more; in it, on the
+        // drive flank, the shorter contact line adds to that.
+        CHECK(on_coast < healthy);
+        if (in_band) CHECK(on_drive < on_coast);
+      }
+    }
+  }
+}
+
+TEST_CASE("a chipped tip lowers the stiffness only where the contact is above r_k") {
+  const GearPair g = pair_with_bores();
+  TipChip chip;
+  chip.radius_m = pinion_radius(g, along(g, 0.8));
+  chip.width_m = 0.5 * g.face_width_m;
+  for (StiffnessModelKind kind :
+       {StiffnessModelKind::yang_lin_1987, StiffnessModelKind::potential_energy}) {
+    CAPTURE(to_string(kind));
+    const StiffnessModel m = model_of(kind);
+    const MeshTables tables(g, m, {fault(Gear::one, 0, chip_state(chip))});
+    const StiffnessTable* drive = tables.table_of_teeth(0, 0, Region::n1);
+    REQUIRE(drive != nullptr);
+    // A chip is on both flanks: the coast line shares the table.
+    CHECK(tables.table_of_teeth(0, 1, Region::n2) == drive);
+    const auto pinion_tooth = [&](double x1_m, const ToothContact* contact) {
+      Compliances c;
+      if (contact == nullptr) {
+        c = chipped_paper_tooth_compliances(g, Gear::one, x1_m, m, chip);
+      } else {
+        const RackGearPairGeometry geometry = rack_gear_pair_geometry(g);
+        const ToothCompliances t = chipped_tooth_compliances(geometry.gear1, Gear::one, *contact,
+                                                             geometry.contact_width_m, m, chip);
+        c.of(Term::bending) = t.bending_m_per_n;
+        c.of(Term::shear) = t.shear_m_per_n;
+        c.of(Term::axial) = t.axial_m_per_n;
+        c.of(Term::foundation) = t.foundation_m_per_n;
+      }
+      return c;
+    };
+    for (double f : {0.1, 0.5, 0.79, 0.81, 0.9, 0.99}) {
+      CAPTURE(f);
+      const double x = along(g, f);
+      const double healthy = mesh_stiffness(g, x, m).ke;
+      const double chipped = mesh_stiffness(g, x, m, chip_state(chip), ToothState{}).ke;
+      if (f < 0.8) {
+        CHECK(chipped == healthy);
+      } else {
+        CHECK(chipped < healthy);
+        const double direct = direct_ke(g, m, x, g.face_width_m - chip.width_m, pinion_tooth);
+        // As for the spall: the fit and two quadratures at 1e-12.
+        CHECK(relative_difference(drive->stiffness(x), direct) < 1e-11);
+        CHECK(relative_difference(chipped, direct) < 1e-11);
+      }
+    }
+  }
+}
+
+TEST_CASE("a spall or a chip across the whole face is refused with the reason") {
+  const GearPair g = paper_gear_pair();
+  Spall spall = pinion_spall(g);
+  spall.width_m = g.face_width_m;
+  TipChip chip;
+  chip.radius_m = pinion_radius(g, along(g, 0.8));
+  chip.width_m = g.face_width_m;
+  for (const ToothState& state : {spall_state(spall), chip_state(chip)}) {
+    std::string message;
+    try {
+      MeshTables(g, {}, {fault(Gear::one, 0, state)});
+    } catch (const InputError& e) {
+      message = e.what();
+    }
+    CAPTURE(message);
+    CHECK(message.find(state.kind == ToothKind::spall ? "spall width b_s" : "chip width b_k") !=
+          std::string::npos);
+    CHECK(message.find("below the face width") != std::string::npos);
+  }
 }

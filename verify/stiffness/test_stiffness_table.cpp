@@ -176,3 +176,30 @@ TEST_CASE("a term of (29) switched off is left out of the table as out of mesh_s
     CHECK(std::abs(table.stiffness(x) - direct) <= 1e-12 * direct);
   }
 }
+
+TEST_CASE("a table cut at its breaks fits a compliance that jumps there, Hertz included") {
+  // Hertz steps from 1e-9 to 2e-9 m/N at X = 0.3 and back at 0.6 (a contact
+  // line halved inside a band); bending is a smooth cubic.
+  const auto compliance = [](double x) {
+    Compliances c;
+    c.of(Term::hertz) = x >= 0.3 && x <= 0.6 ? 2e-9 : 1e-9;
+    c.of(Term::bending) = 1e-9 * (1.0 + x * x * x);
+    return c;
+  };
+  const StiffnessTable table(0.0, 1.0, compliance, std::vector<double>{0.6, 0.3, 1.5}, {4, 7});
+  // Breaks outside the domain are left out, the others sorted.
+  CHECK(table.breaks_m() == std::vector<double>{0.3, 0.6});
+  for (double x : {0.0, 0.1, 0.2999, 0.3, 0.3001, 0.45, 0.5999, 0.6001, 0.8, 1.0}) {
+    CAPTURE(x);
+    // At a break the part above it: [0.3, 0.6) in the band, 0.6 above it.
+    const double hertz = x >= 0.3 && x < 0.6 ? 2e-9 : 1e-9;
+    const double expected = 1.0 / (hertz + 1e-9 * (1.0 + x * x * x));
+    // Ke is analytic on each part: order-7 pieces 0.075 wide or less fit it
+    // far below 1e-9; a piece across a step would miss by a third of Ke.
+    const double scale = std::max(std::fabs(table.stiffness(x)), std::fabs(expected));
+    CHECK(std::fabs(table.stiffness(x) - expected) < 1e-9 * scale);
+    CHECK(std::fabs(table.compliance(x).of(Term::hertz) - hertz) < 1e-14 * hertz);
+  }
+  // A table without breaks has none.
+  CHECK(StiffnessTable(0.0, 1.0, compliance).breaks_m().empty());
+}

@@ -16,9 +16,11 @@
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/modifications.hpp"
+#include "gearimpact/geometry/rack_generation.hpp"
 #include "gearimpact/named_values.hpp"
 #include "gearimpact/numerics/quadrature.hpp"
 #include "gearimpact/stiffness/model.hpp"
+#include "gearimpact/stiffness/surface_faults.hpp"
 
 namespace gearimpact {
 
@@ -844,7 +846,11 @@ std::vector<Field> make_fault_schema() {
       "kind",
       {choice("root-crack", ToothKind::root_crack,
               "a crack from the root (Tian 2004; Chen & Shao 2011 across the face)"),
-       choice("missing", ToothKind::missing, "the tooth is gone: its pair carries nothing")},
+       choice("missing", ToothKind::missing, "the tooth is gone: its pair carries nothing"),
+       choice("spall", ToothKind::spall,
+              "a pit on one flank over part of the active profile and of the face"),
+       choice("tip-chip", ToothKind::tip_chip,
+              "the tooth above a radius gone over part of the face, from one edge")},
       true, "the tooth's fault", [fault](auto& c) -> auto& { return fault(c).state.kind; });
   const auto crack = [fault](auto& c) -> auto& {
     return fault(c).state.crack;
@@ -888,6 +894,54 @@ std::vector<Field> make_fault_schema() {
   start.when_absent =
       "the fillet point whose tangent makes 30 deg with the centre line (potential-energy, "
       "ross-compatible); the base circle (yang-lin-1987)";
+  // A spall and a chip (surface_faults.hpp). depth, width and start_radius
+  // share their keys with the crack's rows: one row of a key applies to a
+  // fault, by its kind (fault_row_applies).
+  const auto spall = [fault](auto& c) -> auto& {
+    return fault(c).state.spall;
+  };
+  r.quantity(
+       "depth", Dimension::length, "mm", {closed(0.0), {}, {}}, true,
+       "d_s, how deep the pit reaches into the tooth, normal to its centre line; below the "
+       "half thickness of the tooth at the thinner end of the spall",
+       [spall](auto& c) -> auto& { return spall(c).depth_m; })
+      .only_when = FieldCondition{"kind", {"spall"}};
+  r.quantity(
+       "width", Dimension::length, "mm", {open(0.0), {}, "and below the face width"}, true,
+       "b_s of a spall, b_k of a chip: how far across the face it runs; below the face width "
+       "(docs/faults.md: across the whole face the pair would stop carrying inside the contact "
+       "segment, which the stiffness tables do not express)",
+       [fault](auto& c) -> auto& {
+         return fault(c).state.kind == ToothKind::tip_chip ? fault(c).state.chip.width_m
+                                                           : fault(c).state.spall.width_m;
+       })
+      .only_when = FieldCondition{"kind", {"spall", "tip-chip"}};
+  r.quantity(
+       "start_radius", Dimension::length, "mm", {open(0.0), {}, "and on the active profile"}, true,
+       "where the spall begins: the radius of its lower edge on the flank, on the active "
+       "profile (from where the mating tip meets the flank to below the tip)",
+       [spall](auto& c) -> auto& { return spall(c).start_radius_m; })
+      .only_when = FieldCondition{"kind", {"spall"}};
+  r.quantity(
+       "end_radius", Dimension::length, "mm", {open(0.0), {}, "above start_radius, up to the tip"},
+       true, "where the spall ends: the radius of its upper edge on the flank",
+       [spall](auto& c) -> auto& { return spall(c).end_radius_m; })
+      .only_when = FieldCondition{"kind", {"spall"}};
+  r.choice(
+       "flank",
+       {choice("drive", CrackFlank::loaded,
+               "the flank that carries the load when the pinion drives (line of action N1)"),
+        choice("coast", CrackFlank::unloaded, "the other flank (line of action N2)")},
+       false,
+       "the flank the pit is on: a contact on the other flank keeps its whole length, the "
+       "sections lose the pit all the same",
+       [spall](auto& c) -> auto& { return spall(c).flank; })
+      .only_when = FieldCondition{"kind", {"spall"}};
+  r.quantity(
+       "radius", Dimension::length, "mm", {open(0.0), {}, "above the root, up to the tip"}, true,
+       "r_k: the tooth above this radius is gone over the chip's width, on both flanks",
+       [fault](auto& c) -> auto& { return fault(c).state.chip.radius_m; })
+      .only_when = FieldCondition{"kind", {"tip-chip"}};
   return rows;
 }
 
@@ -1366,6 +1420,108 @@ std::string fault_key_of(const std::string& library_name) {
   return "depth";
 }
 
+// A length as the [[faults]] rows write it.
+std::string in_mm(double length_m) {
+  return format_quantity(length_m, Dimension::length, "mm");
+}
+
+// The [[faults]] key a spall's or a chip's refusal by the library names
+// (surface_faults.hpp, check_surface_fault_width).
+std::string surface_fault_key_of(const std::string& library_name) {
+  if (library_name == "spall start radius") return "start_radius";
+  if (library_name == "spall end radius") return "end_radius";
+  if (library_name == "chip radius r_k") return "radius";
+  if (library_name == "spall depth d_s") return "depth";
+  return "width";
+}
+
+// The checks of a spall or a chip that need the gears and the model, each
+// naming its key with the limit in mm: the spall's edges on the active
+// profile of its tooth (where the mating tip meets the flank up to the tip),
+// its depth below the half thickness at its thinner end, the chip's radius
+// above the root (the base circle of the paper's tooth) up to the tip, and a
+// width below the face width. Then the library's own checks (place_spall,
+// place_chip), should they find more.
+void surface_fault_problems(const SimulationCase& c, const ToothFault& f, const std::string& name,
+                            Problems& problems) {
+  const GearPair& pair = c.gears;
+  const StiffnessModelKind kind = c.model.stiffness.kind;
+  const std::string gear = f.gear == Gear::one ? "pinion" : "wheel";
+  const std::size_t before = problems.list().size();
+  const double b = pair.face_width_m;
+  const double width =
+      f.state.kind == ToothKind::spall ? f.state.spall.width_m : f.state.chip.width_m;
+  if (!(width < b)) {
+    problems.add(range_problem(
+        name + ".width", in_mm(width),
+        "below the face width b = " + in_mm(b) +
+            " (gears.face_width): across the whole face the pair would stop carrying inside the "
+            "contact segment, and the stiffness tables cover one contact segment for every pair, "
+            "whose ends alone are where the dynamics lets a pair enter and leave"));
+  }
+  const double rb = base_radius(pair, f.gear);
+  const double tip = tip_radius(pair, f.gear);
+  if (f.state.kind == ToothKind::spall) {
+    const Spall& spall = f.state.spall;
+    // The active profile: the roll distances of the contact segment's ends on
+    // this tooth (the wheel's measured from C2).
+    const ContactSegment segment = contact_segment(pair);
+    const double lp = line_of_action_length(pair);
+    const double sap =
+        radius_at_roll_distance(rb, f.gear == Gear::one ? segment.start_m : lp - segment.end_m);
+    const std::string where =
+        "on the active profile of the " + gear + " tooth, from r = " + in_mm(sap) +
+        " (where the mating tip meets the flank) to the tip r = " + in_mm(tip);
+    bool edges = true;
+    if (!(spall.start_radius_m >= sap && spall.start_radius_m < tip)) {
+      edges = false;
+      problems.add(range_problem(name + ".start_radius", in_mm(spall.start_radius_m),
+                                 "[" + in_mm(sap) + ", " + in_mm(tip) + "): " + where));
+    } else if (!(spall.end_radius_m > spall.start_radius_m && spall.end_radius_m <= tip)) {
+      edges = false;
+      problems.add(range_problem(name + ".end_radius", in_mm(spall.end_radius_m),
+                                 "(" + in_mm(spall.start_radius_m) + ", " + in_mm(tip) +
+                                     "]: above start_radius, " + where));
+    }
+    if (edges) {
+      const double x1 = flank_half_thickness(pair, f.gear, kind, spall.start_radius_m);
+      const double x2 = flank_half_thickness(pair, f.gear, kind, spall.end_radius_m);
+      const double x = std::min(x1, x2);
+      const double r = x1 <= x2 ? spall.start_radius_m : spall.end_radius_m;
+      if (!(spall.depth_m < x)) {
+        problems.add(range_problem(name + ".depth", in_mm(spall.depth_m),
+                                   "below x = " + in_mm(x) + ", the half thickness of the " + gear +
+                                       " tooth at r = " + in_mm(r) +
+                                       ", the thinner end of the spall: the pit may not reach "
+                                       "the tooth's centre line"));
+      }
+    }
+  } else {
+    const bool paper = kind == StiffnessModelKind::yang_lin_1987;
+    double root = rb;
+    if (!paper) {
+      const RackGearPairGeometry geometry = rack_gear_pair_geometry(pair);
+      root = (f.gear == Gear::one ? geometry.gear1 : geometry.gear2).root_radius_m;
+    }
+    const double r_k = f.state.chip.radius_m;
+    if (!(r_k > root && r_k <= tip)) {
+      problems.add(range_problem(
+          name + ".radius", in_mm(r_k),
+          "(" + in_mm(root) + ", " + in_mm(tip) + "]: above the " +
+              (paper ? "base circle (the paper's tooth starts there)" : "root circle") +
+              ", up to the tip of the " + gear + " tooth"));
+    }
+  }
+  if (problems.list().size() != before) return;
+  try {
+    check_tooth_faults(pair, c.model.stiffness, {f});
+  } catch (const InputError& e) {
+    for (const Problem& p : e.problems()) {
+      problems.add(p.renamed(name + "." + surface_fault_key_of(p.field), p.value));
+    }
+  }
+}
+
 // The checks of [[faults]] that need the gears and the model: a constant
 // stiffness has no teeth, a tooth number below the gear's teeth, one fault per
 // tooth, and a crack that fits its tooth (place_crack).
@@ -1402,7 +1558,12 @@ void fault_problems(const SimulationCase& c, const std::vector<std::string>& fai
                                        std::to_string(j) + "] is on it already (one per tooth)"));
       }
     }
-    if (repeated || f.state.kind != ToothKind::root_crack) continue;
+    if (repeated) continue;
+    if (f.state.kind == ToothKind::spall || f.state.kind == ToothKind::tip_chip) {
+      surface_fault_problems(c, f, name, problems);
+      continue;
+    }
+    if (f.state.kind != ToothKind::root_crack) continue;
     try {
       check_tooth_faults(c.gears, c.model.stiffness, {f});
     } catch (const InputError& e) {

@@ -645,11 +645,47 @@ void read_row(const Reader& reader, const Document& document, const Field& field
 }
 
 std::string fault_key_list() {
-  std::string names;
+  std::vector<std::string_view> keys;
   for (const Field& field : fault_schema()) {
-    names += (names.empty() ? "" : ", ") + std::string(field.key);
+    if (std::find(keys.begin(), keys.end(), field.key) == keys.end()) keys.push_back(field.key);
   }
+  std::string names;
+  for (std::string_view key : keys) names += (names.empty() ? "" : ", ") + std::string(key);
   return names;
+}
+
+// Whether a row of [[faults]] with this key applies to the fault: several
+// kinds share a key (depth, width, start_radius), each by its own row.
+bool fault_key_applies(std::string_view key, const SimulationCase& one_fault) {
+  return std::any_of(fault_schema().begin(), fault_schema().end(), [&](const Field& f) {
+    return f.key == key && fault_row_applies(f, one_fault);
+  });
+}
+
+// The conditions under which some row with this key is read, choices of one
+// selector together: kind = "root-crack" or "spall", or profile = ...
+std::string fault_key_conditions(std::string_view key) {
+  std::vector<std::pair<std::string_view, std::vector<std::string_view>>> conditions;
+  for (const Field& f : fault_schema()) {
+    if (f.key != key || !f.only_when) continue;
+    auto found = std::find_if(conditions.begin(), conditions.end(),
+                              [&](const auto& c) { return c.first == f.only_when->key; });
+    if (found == conditions.end()) {
+      conditions.emplace_back(f.only_when->key, std::vector<std::string_view>{});
+      found = conditions.end() - 1;
+    }
+    for (std::string_view choice : f.only_when->choices) {
+      if (std::find(found->second.begin(), found->second.end(), choice) == found->second.end()) {
+        found->second.push_back(choice);
+      }
+    }
+  }
+  std::string text;
+  for (const auto& [selector, choices] : conditions) {
+    if (!text.empty()) text += ", or ";
+    text += FieldCondition{selector, choices}.text();
+  }
+  return text;
 }
 
 // The [[faults]] tables into result.faults, each read by the rows of
@@ -702,10 +738,14 @@ void read_faults(const Reader& reader, const toml::value& root, SimulationCase& 
       const auto entry = table.as_table().find(std::string(row.key));
       const toml::value* value = entry == table.as_table().end() ? nullptr : &entry->second;
       if (!fault_row_applies(row, one)) {
-        if (value != nullptr) {
+        // Reported once, by the key's first row, unless another row reads it.
+        const bool first_of_key =
+            &*std::find_if(fault_schema().begin(), fault_schema().end(),
+                           [&](const Field& f) { return f.key == row.key; }) == &row;
+        if (value != nullptr && first_of_key && !fault_key_applies(row.key, one)) {
           problems.push_back(reader.problem(name, value,
                                             name + " = " + written(*value) + " is read only with " +
-                                                row.only_when->text() +
+                                                fault_key_conditions(row.key) +
                                                 "; this fault is of another kind"));
         }
         continue;

@@ -10,6 +10,7 @@
 #include "gearimpact/geometry/rack_generation.hpp"
 #include "gearimpact/stiffness/mesh_models.hpp"
 #include "gearimpact/stiffness/root_crack.hpp"
+#include "gearimpact/stiffness/surface_faults.hpp"
 #include "gearimpact/stiffness/tau_form.hpp"
 #include "gearimpact/stiffness/tooth_state.hpp"
 #include "gearimpact/stiffness/x_form.hpp"
@@ -59,17 +60,34 @@ double MeshStiffness::stiffness(Term term, Gear gear) const {
 
 namespace {
 
-// The per-pair and included terms and Ke (29) from the two teeth's terms.
-void combine(const GearPair& pair, const StiffnessModel& model, MeshStiffness& k) {
+// The per-pair and included terms and Ke (29) from the two teeth's terms,
+// Hertz over the contact length L (the face width of healthy teeth).
+void combine(const GearPair& pair, const StiffnessModel& model, MeshStiffness& k,
+             double contact_length_m) {
   for (const TermInfo& t : kTerms) {
     k.pair.of(t.term) = t.per_tooth ? k.tooth1.of(t.term) + k.tooth2.of(t.term) : 0.0;
   }
-  k.pair.of(Term::hertz) = 1.0 / hertz_stiffness(pair);
+  k.pair.of(Term::hertz) = 1.0 / hertz_stiffness(pair, contact_length_m);
   k.included = included(k.pair, model.terms);
   // (29) 1/Ke = 1/Kh + 1/Kb1 + 1/Ka1 + 1/Kb2 + 1/Ka2 over the terms switched
   // on, and for the models beyond the paper 1/Ks and 1/Kf of both teeth
   // (docs/stiffness-models.md section 2).
   k.ke = 1.0 / k.included.total_m_per_n();
+}
+
+void combine(const GearPair& pair, const StiffnessModel& model, MeshStiffness& k) {
+  combine(pair, model, k, pair.face_width_m);
+}
+
+// The Hertzian contact length a tooth in `state` leaves to a contact at
+// `roll_distance_m` from its base-circle tangent point on `flank`.
+double contact_length(const GearPair& pair, Gear gear, const ToothState& state,
+                      double roll_distance_m, CrackFlank flank) {
+  const double b = pair.face_width_m;
+  const double r = radius_at_roll_distance(base_radius(pair, gear), roll_distance_m);
+  if (state.kind == ToothKind::spall) return spall_contact_length(state.spall, flank, r, b);
+  if (state.kind == ToothKind::tip_chip) return chip_contact_length(state.chip, r, b);
+  return b;
 }
 
 Compliances tooth_terms(const ToothCompliances& c) {
@@ -81,18 +99,38 @@ Compliances tooth_terms(const ToothCompliances& c) {
   return result;
 }
 
-// A tooth the compliance can be computed for: healthy or cracked.
+// A tooth the compliance can be computed for: any but a missing one.
 void check_loadable(const ToothState& tooth) {
   if (tooth.kind == ToothKind::missing) {
     throw std::logic_error("mesh_stiffness of a pair with a missing tooth: it carries nothing");
   }
 }
 
+// One rack-cut tooth in `state` (null: healthy).
+ToothCompliances rack_tooth(const RackGearGeometry& gear, Gear which, const ToothContact& contact,
+                            double width_m, const StiffnessModel& model, const ToothState* state) {
+  if (state == nullptr) return tooth_compliances(gear, which, contact, width_m, model);
+  switch (state->kind) {
+    case ToothKind::root_crack:
+      return cracked_tooth_compliances(gear, which, contact, width_m, model, state->crack);
+    case ToothKind::spall:
+      return spalled_tooth_compliances(gear, which, contact, width_m, model, state->spall);
+    case ToothKind::tip_chip:
+      return chipped_tooth_compliances(gear, which, contact, width_m, model, state->chip);
+    case ToothKind::healthy:
+    case ToothKind::missing:
+      break;
+  }
+  return tooth_compliances(gear, which, contact, width_m, model);
+}
+
 // potential_energy and ross_compatible: the rack-cut teeth of mesh_models.hpp;
-// a cracked tooth (tooth1 or tooth2 not null) by cracked_tooth_compliances.
+// a faulted tooth (state1 or state2 not null) by its own route, Hertz over
+// contact_length_m.
 MeshStiffness rack_model_stiffness(const GearPair& pair, double x1_m, const StiffnessModel& model,
-                                   const RootCrack* crack1 = nullptr,
-                                   const RootCrack* crack2 = nullptr) {
+                                   const ToothState* state1 = nullptr,
+                                   const ToothState* state2 = nullptr,
+                                   double contact_length_m = 0.0) {
   const ContactSegment segment = contact_segment(pair);
   if (!(x1_m >= segment.start_m && x1_m <= segment.end_m)) {
     throw InputError("contact position X1", x1_m,
@@ -112,43 +150,51 @@ MeshStiffness rack_model_stiffness(const GearPair& pair, double x1_m, const Stif
   const double s_m =
       std::clamp(x1_m, geometry.start_of_active_profile_m, geometry.end_of_active_profile_m);
   MeshStiffness k{};
-  if (crack1 == nullptr && crack2 == nullptr) {
+  if (state1 == nullptr && state2 == nullptr) {
     const PairStiffness rack = pair_stiffness(geometry, rack_model, s_m);
     k.tooth1 = tooth_terms(rack.gear1);
     k.tooth2 = tooth_terms(rack.gear2);
     k.foundation_extrapolated =
         rack.gear1.foundation_extrapolated || rack.gear2.foundation_extrapolated;
   } else {
-    // pair_stiffness tooth by tooth, a cracked tooth by its own route.
+    // pair_stiffness tooth by tooth, a faulted tooth by its own route.
     validate(rack_model, geometry);
     const PairContact contact = pair_contact(geometry, s_m);
     const double width = geometry.contact_width_m;
     const ToothCompliances c1 =
-        crack1 ? cracked_tooth_compliances(geometry.gear1, Gear::one, contact.gear1, width,
-                                           rack_model, *crack1)
-               : tooth_compliances(geometry.gear1, Gear::one, contact.gear1, width, rack_model);
+        rack_tooth(geometry.gear1, Gear::one, contact.gear1, width, rack_model, state1);
     const ToothCompliances c2 =
-        crack2 ? cracked_tooth_compliances(geometry.gear2, Gear::two, contact.gear2, width,
-                                           rack_model, *crack2)
-               : tooth_compliances(geometry.gear2, Gear::two, contact.gear2, width, rack_model);
+        rack_tooth(geometry.gear2, Gear::two, contact.gear2, width, rack_model, state2);
     k.tooth1 = tooth_terms(c1);
     k.tooth2 = tooth_terms(c2);
     k.foundation_extrapolated = c1.foundation_extrapolated || c2.foundation_extrapolated;
   }
-  combine(pair, model, k);
+  if (state1 == nullptr && state2 == nullptr) {
+    combine(pair, model, k);
+  } else {
+    combine(pair, model, k, contact_length_m);
+  }
   return k;
 }
 
 // The paper's tooth of `gear` at `contact_x_m` from its base-circle tangent
-// point, cracked or not.
+// point, in `state`.
 Compliances paper_tooth_terms(const GearPair& pair, Gear gear, double contact_x_m,
-                              const StiffnessModel& model, const RootCrack* crack) {
+                              const StiffnessModel& model, const ToothState& state) {
   const double e = gear == Gear::one ? pair.youngs_modulus_pa : youngs_modulus(pair, Gear::two);
-  if (crack == nullptr) {
-    return tooth_compliance(tooth_of(pair, gear), contact_x_m, e, pair.face_width_m, model);
+  switch (state.kind) {
+    case ToothKind::root_crack:
+      return cracked_paper_tooth_compliances(tooth_of(pair, gear), contact_x_m, e,
+                                             pair.face_width_m, model, state.crack);
+    case ToothKind::spall:
+      return spalled_paper_tooth_compliances(pair, gear, contact_x_m, model, state.spall);
+    case ToothKind::tip_chip:
+      return chipped_paper_tooth_compliances(pair, gear, contact_x_m, model, state.chip);
+    case ToothKind::healthy:
+    case ToothKind::missing:
+      break;
   }
-  return cracked_paper_tooth_compliances(tooth_of(pair, gear), contact_x_m, e, pair.face_width_m,
-                                         model, *crack);
+  return tooth_compliance(tooth_of(pair, gear), contact_x_m, e, pair.face_width_m, model);
 }
 
 }  // namespace
@@ -183,26 +229,34 @@ MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessM
 
 MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessModel& model,
                              const ToothState& tooth1, const ToothState& tooth2) {
+  return mesh_stiffness(pair, x1_m, model, tooth1, tooth2, CrackFlank::loaded);
+}
+
+MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessModel& model,
+                             const ToothState& tooth1, const ToothState& tooth2,
+                             CrackFlank contact_flank) {
   check_loadable(tooth1);
   check_loadable(tooth2);
-  const RootCrack* crack1 = tooth1.kind == ToothKind::root_crack ? &tooth1.crack : nullptr;
-  const RootCrack* crack2 = tooth2.kind == ToothKind::root_crack ? &tooth2.crack : nullptr;
-  if (crack1 == nullptr && crack2 == nullptr) return mesh_stiffness(pair, x1_m, model);
+  const ToothState* state1 = tooth1.kind != ToothKind::healthy ? &tooth1 : nullptr;
+  const ToothState* state2 = tooth2.kind != ToothKind::healthy ? &tooth2 : nullptr;
+  if (state1 == nullptr && state2 == nullptr) return mesh_stiffness(pair, x1_m, model);
   validate_terms(model);
-  if (model.kind != StiffnessModelKind::yang_lin_1987) {
-    return rack_model_stiffness(pair, x1_m, model, crack1, crack2);
-  }
   const double lp = line_of_action_length(pair);
+  // (25),(26): gear 2 sees the contact at lp - X1 from C2.
+  const double length = std::min(contact_length(pair, Gear::one, tooth1, x1_m, contact_flank),
+                                 contact_length(pair, Gear::two, tooth2, lp - x1_m, contact_flank));
+  if (model.kind != StiffnessModelKind::yang_lin_1987) {
+    return rack_model_stiffness(pair, x1_m, model, state1, state2, length);
+  }
   if (!std::isfinite(x1_m) || x1_m <= 0.0 || x1_m >= lp) {
     throw InputError(
         "contact position X1", x1_m,
         "(0, lp) with lp = " + format_number(lp) + " m: between the tangent points C1 and C2");
   }
   MeshStiffness k{};
-  k.tooth1 = paper_tooth_terms(pair, Gear::one, x1_m, model, crack1);
-  // (25),(26): gear 2 sees the contact at lp - X1 from C2.
-  k.tooth2 = paper_tooth_terms(pair, Gear::two, lp - x1_m, model, crack2);
-  combine(pair, model, k);
+  k.tooth1 = paper_tooth_terms(pair, Gear::one, x1_m, model, tooth1);
+  k.tooth2 = paper_tooth_terms(pair, Gear::two, lp - x1_m, model, tooth2);
+  combine(pair, model, k, length);
   return k;
 }
 

@@ -1,5 +1,6 @@
 #include "gearimpact/stiffness/mesh_tables.hpp"
 
+#include <cmath>
 #include <numeric>
 #include <utility>
 
@@ -39,37 +40,73 @@ MeshTables::MeshTables(const GearPair& pair, const StiffnessModel& model,
   const std::vector<ToothState> wheel = classify(faults_, Gear::two, z2, wheel_class_);
   wheel_states_ = wheel.size();
   distinct_ = {pinion.size() > 1, wheel.size() > 1};
-  tables_.assign(pinion.size() * wheel_states_, nullptr);
+  const std::size_t combinations = pinion.size() * wheel_states_;
   // The combinations that meet: pinion tooth i meets wheel tooth j on N1 when
   // i = j mod gcd(z1, z2), on N2 when j = i + 1 mod gcd (teeth_of_pair); so
-  // every pair of one hunting period on both lines.
-  std::vector<bool> meets(tables_.size(), false);
+  // every pair of one hunting period on each line.
+  std::array<std::vector<bool>, 2> meets{std::vector<bool>(combinations, false),
+                                         std::vector<bool>(combinations, false)};
   const int period = static_cast<int>(std::lcm(z1, z2));
   for (int n = 0; n < period; ++n) {
-    meets[combination(teeth_of_pair(pair_, Region::n1, -n))] = true;
-    meets[combination(teeth_of_pair(pair_, Region::n2, n))] = true;
+    meets[0][combination(teeth_of_pair(pair_, Region::n1, -n))] = true;
+    meets[1][combination(teeth_of_pair(pair_, Region::n2, n))] = true;
   }
   const ContactSegment segment = contact_segment(pair_);
+  for (auto& line : tables_) line.assign(combinations, nullptr);
   for (std::size_t a = 0; a < pinion.size(); ++a) {
     for (std::size_t b = 0; b < wheel_states_; ++b) {
       const std::size_t c = a * wheel_states_ + b;
-      if (!meets[c] || pinion[a].kind == ToothKind::missing ||
-          wheel[b].kind == ToothKind::missing) {
-        continue;
-      }
+      if (pinion[a].kind == ToothKind::missing || wheel[b].kind == ToothKind::missing) continue;
       if (a == 0 && b == 0) {
-        tables_[c] = healthy_;
+        for (std::size_t line = 0; line < 2; ++line) {
+          if (meets[line][c]) tables_[line][c] = healthy_;
+        }
         continue;
       }
       const ToothState& s1 = pinion[a];
       const ToothState& s2 = wheel[b];
-      tables_[c] = std::make_shared<const StiffnessTable>(
-          segment.start_m, segment.end_m,
-          [&](double x1_m) { return mesh_stiffness(pair_, x1_m, model, s1, s2).included; },
-          options);
-      ++fault_tables_;
+      std::vector<double> breaks = fault_breaks(pair_, Gear::one, s1);
+      const std::vector<double> breaks2 = fault_breaks(pair_, Gear::two, s2);
+      breaks.insert(breaks.end(), breaks2.begin(), breaks2.end());
+      // Only a spall's Hertzian length depends on the flank the contact is on.
+      const bool by_line = s1.kind == ToothKind::spall || s2.kind == ToothKind::spall;
+      for (std::size_t line = 0; line < 2; ++line) {
+        if (!meets[line][c]) continue;
+        if (line == 1 && !by_line && tables_[0][c]) {
+          tables_[1][c] = tables_[0][c];
+          continue;
+        }
+        const CrackFlank flank = line == 0 ? CrackFlank::loaded : CrackFlank::unloaded;
+        const ComplianceFunction compliance = [&](double x1_m) {
+          return mesh_stiffness(pair_, x1_m, model, s1, s2, flank).included;
+        };
+        tables_[line][c] = breaks.empty()
+                               ? std::make_shared<const StiffnessTable>(
+                                     segment.start_m, segment.end_m, compliance, options)
+                               : std::make_shared<const StiffnessTable>(
+                                     segment.start_m, segment.end_m, compliance, breaks, options);
+        ++fault_tables_;
+      }
     }
   }
+}
+
+std::vector<double> fault_breaks(const GearPair& pair, Gear which, const ToothState& state) {
+  std::vector<double> radii;
+  if (state.kind == ToothKind::spall)
+    radii = {state.spall.start_radius_m, state.spall.end_radius_m};
+  if (state.kind == ToothKind::tip_chip) radii = {state.chip.radius_m};
+  const double rb = base_radius(pair, which);
+  const double lp = line_of_action_length(pair);
+  std::vector<double> breaks;
+  for (double r : radii) {
+    if (!(r > rb)) continue;
+    // The roll distance sqrt(r^2 - Rb^2) as (r - Rb)(r + Rb), as
+    // surface_faults.cpp places the band; the wheel's is measured from C2.
+    const double roll = std::sqrt((r - rb) * (r + rb));
+    breaks.push_back(which == Gear::one ? roll : lp - roll);
+  }
+  return breaks;
 }
 
 long long MeshTables::true_period_mesh_periods() const {

@@ -353,6 +353,19 @@ PlacedSpall place_spall(const Spall& spall, const GearPair& pair, Gear which) {
       [&](double r) { return r * std::sin(flank_half_angle(tooth, r)); }, pair.face_width_m);
 }
 
+double flank_half_thickness(const GearPair& pair, Gear which, StiffnessModelKind kind,
+                            double radius_m) {
+  if (kind == StiffnessModelKind::yang_lin_1987) {
+    return radius_m * std::sin(flank_half_angle(tooth_of(pair, which), radius_m));
+  }
+  const RackGearPairGeometry geometry = rack_gear_pair_geometry(pair);
+  const RackGearGeometry& gear = which == Gear::one ? geometry.gear1 : geometry.gear2;
+  const double rb = gear.base_radius_m;
+  return involute_point(gear,
+                        roll_distance_at_radius(rb, radius_m) / rb - gear.half_tooth_angle_base_rad)
+      .x_m;
+}
+
 PlacedChip place_chip(const TipChip& chip, const RackGearGeometry& gear, double b) {
   return place_chip_on(chip, gear.root_radius_m, gear.tip_radius_m, "root circle", b);
 }
@@ -385,7 +398,8 @@ ToothCompliances spalled_tooth_compliances(const RackGearGeometry& gear, Gear wh
                                            const StiffnessModel& model, const Spall& spall) {
   refuse_paper_model(model, "a spall");
   place_spall(spall, gear, contact_width_m);
-  if (!(spall.depth_m > 0.0)) {
+  // A contact at or below the band loads no section of it: the healthy tooth.
+  if (!(spall.depth_m > 0.0) || contact.radius_m <= spall.start_radius_m) {
     return tooth_compliances(gear, which, contact, contact_width_m, model);
   }
   return banded_tooth_compliances(gear, which, contact, contact_width_m, model,
@@ -398,7 +412,7 @@ ToothCompliances chipped_tooth_compliances(const RackGearGeometry& gear, Gear wh
   refuse_paper_model(model, "a chip");
   place_chip(chip, gear, contact_width_m);
   check_contact_below_chip(chip, contact.radius_m, contact_width_m);
-  if (!(chip.radius_m < gear.tip_radius_m)) {
+  if (!(chip.radius_m < gear.tip_radius_m) || contact.radius_m <= chip.radius_m) {
     return tooth_compliances(gear, which, contact, contact_width_m, model);
   }
   return banded_tooth_compliances(gear, which, contact, contact_width_m, model,
@@ -411,7 +425,11 @@ Compliances spalled_paper_tooth_compliances(const GearPair& pair, Gear which, do
   const InvoluteTooth tooth = tooth_of(pair, which);
   const double e = youngs_modulus(pair, which);
   const double b = pair.face_width_m;
-  if (!(spall.depth_m > 0.0)) return healthy_paper_tooth(tooth, contact_x_m, e, b, model);
+  // A contact at or below the band loads no section of it: the healthy tooth.
+  if (!(spall.depth_m > 0.0) ||
+      radius_at_roll_distance(tooth.base_radius_m, contact_x_m) <= spall.start_radius_m) {
+    return healthy_paper_tooth(tooth, contact_x_m, e, b, model);
+  }
   return banded_paper_tooth_compliances(tooth, contact_x_m, e, b, model, band_of(spall, b));
 }
 
@@ -422,7 +440,8 @@ Compliances chipped_paper_tooth_compliances(const GearPair& pair, Gear which, do
   const double e = youngs_modulus(pair, which);
   const double b = pair.face_width_m;
   check_contact_below_chip(chip, radius_at_roll_distance(tooth.base_radius_m, contact_x_m), b);
-  if (!(chip.radius_m < tip_radius(pair, which))) {
+  if (!(chip.radius_m < tip_radius(pair, which)) ||
+      radius_at_roll_distance(tooth.base_radius_m, contact_x_m) <= chip.radius_m) {
     return healthy_paper_tooth(tooth, contact_x_m, e, b, model);
   }
   return banded_paper_tooth_compliances(tooth, contact_x_m, e, b, model, band_of(chip, b));

@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "gearimpact/error.hpp"
 
@@ -112,8 +113,8 @@ void append_polynomial(std::vector<double>& out, const gsl_cheb_series* series,
 
 }  // namespace
 
-StiffnessTable::StiffnessTable(double start_m, double end_m, const ComplianceFunction& compliance,
-                               StiffnessTableOptions options) {
+StiffnessTableOptions StiffnessTable::checked(StiffnessTableOptions options, double start_m,
+                                              double end_m) {
   constexpr int max_pieces = 4096;
   constexpr int max_order = 15;
   if (options.pieces < 1 || options.pieces > max_pieces) {
@@ -128,36 +129,46 @@ StiffnessTable::StiffnessTable(double start_m, double end_m, const ComplianceFun
     throw InputError("table domain", format_number(start_m) + " to " + format_number(end_m),
                      "finite start < end, m");
   }
-  start_ = start_m;
-  end_ = end_m;
-  pieces_ = options.pieces;
-  order_ = options.order;
-  stride_ = order_ <= 7 ? 8 : 16;
-  const double piece_width = (end_ - start_) / pieces_;
-  pieces_per_m_ = 1.0 / piece_width;
+  return options;
+}
 
+void StiffnessTable::fit_part(double a, double b, const ComplianceFunction& compliance,
+                              bool every_term) {
+  const double piece_width = (b - a) / pieces_;
   ChebPtr derivative(gsl_cheb_alloc(static_cast<std::size_t>(order_)));
   if (!derivative) throw std::bad_alloc();
   for (int i = 0; i < pieces_; ++i) {
-    const double a = start_ + i * piece_width;
-    const double b = i + 1 == pieces_ ? end_ : start_ + (i + 1) * piece_width;
+    const double p = a + i * piece_width;
+    const double q = i + 1 == pieces_ ? b : a + (i + 1) * piece_width;
     NodeCompliances nodes(compliance);
     for (const TermInfo& t : kTerms) {
-      if (!t.per_tooth) continue;
-      const ChebPtr series = nodes.fit(t.term, a, b, order_);
+      if (!t.per_tooth && !every_term) continue;
+      const ChebPtr series = nodes.fit(t.term, p, q, order_);
       append_polynomial(term_series_[index_of(t.term)], series.get(), stride_);
     }
-    const ChebPtr stiffness = nodes.fit(std::nullopt, a, b, order_);
+    const ChebPtr stiffness = nodes.fit(std::nullopt, p, q, order_);
     append_polynomial(stiffness_, stiffness.get(), stride_);
     gsl_cheb_calc_deriv(derivative.get(), stiffness.get());
     append_polynomial(stiffness_derivative_, derivative.get(), stride_);
-    if (i == 0) {
+    if (i == 0 && !every_term) {
       const Compliances& first = nodes.first();
       for (const TermInfo& t : kTerms) {
         if (!t.per_tooth) constant_terms_.of(t.term) = first.of(t.term);
       }
     }
   }
+}
+
+StiffnessTable::StiffnessTable(double start_m, double end_m, const ComplianceFunction& compliance,
+                               StiffnessTableOptions options) {
+  options = checked(options, start_m, end_m);
+  start_ = start_m;
+  end_ = end_m;
+  pieces_ = options.pieces;
+  order_ = options.order;
+  stride_ = order_ <= 7 ? 8 : 16;
+  pieces_per_m_ = 1.0 / ((end_ - start_) / pieces_);
+  fit_part(start_, end_, compliance, false);
   // A term that is 0 at every node (one the model does not have, or one
   // switched off) keeps no series: compliance() then reads 0 without
   // evaluating it.
@@ -166,6 +177,41 @@ StiffnessTable::StiffnessTable(double start_m, double end_m, const ComplianceFun
       series.clear();
     }
   }
+}
+
+StiffnessTable::StiffnessTable(double start_m, double end_m, const ComplianceFunction& compliance,
+                               std::vector<double> breaks_m, StiffnessTableOptions options) {
+  options = checked(options, start_m, end_m);
+  start_ = start_m;
+  end_ = end_m;
+  pieces_ = options.pieces;
+  order_ = options.order;
+  stride_ = order_ <= 7 ? 8 : 16;
+  pieces_per_m_ = 1.0 / ((end_ - start_) / pieces_);
+  breaks_m.erase(std::remove_if(breaks_m.begin(), breaks_m.end(),
+                                [&](double x) { return !(x > start_m && x < end_m); }),
+                 breaks_m.end());
+  std::sort(breaks_m.begin(), breaks_m.end());
+  breaks_m.erase(std::unique(breaks_m.begin(), breaks_m.end()), breaks_m.end());
+  std::vector<double> ends{start_m};
+  ends.insert(ends.end(), breaks_m.begin(), breaks_m.end());
+  ends.push_back(end_m);
+  for (std::size_t i = 1; i < ends.size(); ++i) {
+    parts_.push_back(
+        {ends[i - 1], pieces_ / (ends[i] - ends[i - 1]), static_cast<int>(i - 1) * pieces_});
+    fit_part(ends[i - 1], ends[i], compliance, true);
+  }
+  for (std::vector<double>& series : term_series_) {
+    if (std::all_of(series.begin(), series.end(), [](double a) { return a == 0.0; })) {
+      series.clear();
+    }
+  }
+}
+
+std::vector<double> StiffnessTable::breaks_m() const {
+  std::vector<double> breaks;
+  for (std::size_t i = 1; i < parts_.size(); ++i) breaks.push_back(parts_[i].start_m);
+  return breaks;
 }
 
 StiffnessTable::StiffnessTable(const GearPair& pair, const StiffnessModel& model,
@@ -193,7 +239,7 @@ Compliances StiffnessTable::compliance(double x1_m) const {
   Compliances c = constant_terms_;
   for (const TermInfo& t : kTerms) {
     const std::vector<double>& series = term_series_[index_of(t.term)];
-    if (t.per_tooth && !series.empty()) c.of(t.term) = polynomial(&series[at.offset], at.t);
+    if (!series.empty()) c.of(t.term) = polynomial(&series[at.offset], at.t);
   }
   return c;
 }

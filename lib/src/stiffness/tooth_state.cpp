@@ -16,12 +16,25 @@ std::string to_string(ToothKind kind) {
       return "root-crack";
     case ToothKind::missing:
       return "missing";
+    case ToothKind::spall:
+      return "spall";
+    case ToothKind::tip_chip:
+      return "tip-chip";
   }
   return "healthy";
 }
 
 bool operator==(const ToothState& a, const ToothState& b) {
   if (a.kind != b.kind) return false;
+  if (a.kind == ToothKind::spall) {
+    const Spall& p = a.spall;
+    const Spall& q = b.spall;
+    return p.flank == q.flank && p.start_radius_m == q.start_radius_m &&
+           p.end_radius_m == q.end_radius_m && p.width_m == q.width_m && p.depth_m == q.depth_m;
+  }
+  if (a.kind == ToothKind::tip_chip) {
+    return a.chip.radius_m == b.chip.radius_m && a.chip.width_m == b.chip.width_m;
+  }
   if (a.kind != ToothKind::root_crack) return true;
   const RootCrack& p = a.crack;
   const RootCrack& q = b.crack;
@@ -52,8 +65,31 @@ void check_tooth_faults(const GearPair& pair, const StiffnessModel& model,
                              "] is on the same tooth, and a tooth has one state");
       }
     }
+    const bool paper = model.kind == StiffnessModelKind::yang_lin_1987;
+    if (f.state.kind == ToothKind::spall) {
+      if (paper) {
+        place_spall(f.state.spall, pair, f.gear);
+      } else {
+        const RackGearPairGeometry geometry = rack_gear_pair_geometry(pair);
+        place_spall(f.state.spall, f.gear == Gear::one ? geometry.gear1 : geometry.gear2,
+                    geometry.contact_width_m);
+      }
+      check_surface_fault_width("spall width b_s", f.state.spall.width_m, pair.face_width_m);
+      continue;
+    }
+    if (f.state.kind == ToothKind::tip_chip) {
+      if (paper) {
+        place_chip(f.state.chip, pair, f.gear);
+      } else {
+        const RackGearPairGeometry geometry = rack_gear_pair_geometry(pair);
+        place_chip(f.state.chip, f.gear == Gear::one ? geometry.gear1 : geometry.gear2,
+                   geometry.contact_width_m);
+      }
+      check_surface_fault_width("chip width b_k", f.state.chip.width_m, pair.face_width_m);
+      continue;
+    }
     if (f.state.kind != ToothKind::root_crack) continue;
-    if (model.kind == StiffnessModelKind::yang_lin_1987) {
+    if (paper) {
       check_paper_crack(tooth_of(pair, f.gear), pair.face_width_m, f.state.crack);
     } else {
       const RackGearPairGeometry geometry = rack_gear_pair_geometry(pair);
@@ -61,6 +97,16 @@ void check_tooth_faults(const GearPair& pair, const StiffnessModel& model,
                   geometry.contact_width_m);
     }
   }
+}
+
+void check_surface_fault_width(const std::string& field, double width_m, double face_width_m) {
+  if (width_m < face_width_m) return;
+  throw InputError(field, width_m,
+                   "< b = " + format_number(face_width_m) +
+                       " m, below the face width: across the whole face the pair would stop "
+                       "carrying inside the contact segment, and the stiffness tables cover one "
+                       "contact segment for every pair, whose ends alone are where the dynamics "
+                       "lets a pair enter and leave");
 }
 
 ToothState tooth_state(const std::vector<ToothFault>& faults, Gear gear, int tooth) {

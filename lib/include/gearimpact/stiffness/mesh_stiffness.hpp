@@ -13,7 +13,8 @@
 
 namespace gearimpact {
 
-struct ToothState;  // tooth_state.hpp
+struct ToothState;      // tooth_state.hpp
+enum class CrackFlank;  // root_crack.hpp
 
 InvoluteTooth tooth_of(const GearPair& pair, Gear gear);
 
@@ -57,14 +58,25 @@ struct MeshStiffness {
 MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessModel& model = {});
 
 // The same pair with the pinion tooth in state `tooth1` and the wheel tooth in
-// `tooth2` (docs/faults.md): Hertz and each tooth's terms as above, a cracked
-// tooth's by root_crack.hpp (cracked_paper_tooth_compliances for
-// yang_lin_1987, cracked_tooth_compliances for the rack-cut models). Two
-// healthy teeth give mesh_stiffness(pair, x1_m, model) bit for bit. A missing
-// tooth has no compliance: std::logic_error (the pair carries nothing, see
-// MeshTables).
+// `tooth2` (docs/faults.md), in contact on the drive flanks (line N1): Hertz
+// and each tooth's terms as above, a cracked tooth's by root_crack.hpp
+// (cracked_paper_tooth_compliances for yang_lin_1987,
+// cracked_tooth_compliances for the rack-cut models), a spalled or chipped
+// tooth's by surface_faults.hpp (spalled_ / chipped_paper_tooth_compliances,
+// spalled_ / chipped_tooth_compliances). Hertz (4) runs over the contact
+// length the faults leave: the smaller of the two teeth's
+// spall_contact_length / chip_contact_length (the faults are taken to face
+// each other across the face). Two healthy teeth give
+// mesh_stiffness(pair, x1_m, model) bit for bit. A missing tooth has no
+// compliance: std::logic_error (the pair carries nothing, see MeshTables).
 MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessModel& model,
                              const ToothState& tooth1, const ToothState& tooth2);
+// The same with the contact on the flanks `contact_flank`: loaded, the drive
+// flanks (N1); unloaded, the coast flanks (N2). Only a spall tells them apart:
+// a contact on the flank without the pit keeps its whole length.
+MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessModel& model,
+                             const ToothState& tooth1, const ToothState& tooth2,
+                             CrackFlank contact_flank);
 
 // The gears whose foundation fit the model uses outside its range, pinion first: empty for a
 // model without the foundation term (yang_lin_1987) or with it off. InputError naming

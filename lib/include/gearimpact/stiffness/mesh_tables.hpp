@@ -1,10 +1,13 @@
 // The stiffness tables of a mesh whose teeth differ (docs/faults.md): the
 // healthy table, shared by every pair of two healthy teeth, and one
 // StiffnessTable per distinct (pinion tooth state, wheel tooth state) that
-// meets on either line of action. A pair with a missing tooth has no table:
-// it carries nothing.
+// meets on either line of action; with a spall in the pair, one per line (the
+// pit lies on one flank). A table of a spalled or chipped tooth is cut at the
+// positions where the contact meets the fault's edges (fault_breaks). A pair
+// with a missing tooth has no table: it carries nothing.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <memory>
 #include <vector>
@@ -32,11 +35,13 @@ class MeshTables {
   // pair is missing.
   const StiffnessTable* table(Region line, int k) const {
     const TeethInContact t = teeth_of_pair(pair_.teeth1, pair_.teeth2, line, k);
-    return tables_[combination(t)].get();
+    return tables_[line == Region::n2 ? 1 : 0][combination(t)].get();
   }
-  // The table of pinion tooth i against wheel tooth j (nullptr: a missing tooth).
-  const StiffnessTable* table_of_teeth(int pinion_tooth, int wheel_tooth) const {
-    return tables_[combination({pinion_tooth, wheel_tooth})].get();
+  // The table of pinion tooth i against wheel tooth j on `line` (nullptr: a
+  // missing tooth, or teeth that never meet on that line).
+  const StiffnessTable* table_of_teeth(int pinion_tooth, int wheel_tooth,
+                                       Region line = Region::n1) const {
+    return tables_[line == Region::n2 ? 1 : 0][combination({pinion_tooth, wheel_tooth})].get();
   }
   const StiffnessTable& healthy() const { return *healthy_; }
   // How many tables were built beside the healthy one.
@@ -63,11 +68,17 @@ class MeshTables {
   std::vector<int> pinion_class_;
   std::vector<int> wheel_class_;
   std::size_t wheel_states_ = 1;
-  // One entry per (pinion class, wheel class): the healthy table, a fault
-  // table, or null (a missing tooth, or a combination that never meets).
-  std::vector<std::shared_ptr<const StiffnessTable>> tables_;
+  // Per line (N1, N2), one entry per (pinion class, wheel class): the
+  // healthy table, a fault table, or null (a missing tooth, or a combination
+  // that never meets on that line).
+  std::array<std::vector<std::shared_ptr<const StiffnessTable>>, 2> tables_;
   std::size_t fault_tables_ = 0;
   DistinctTeeth distinct_;
 };
+
+// The positions X1 (from C1) at which the contact meets an edge of the fault
+// of a tooth of gear `which` in `state`: a spall's two radii, a chip's r_k;
+// none for the other kinds. They may lie outside the contact segment.
+std::vector<double> fault_breaks(const GearPair& pair, Gear which, const ToothState& state);
 
 }  // namespace gearimpact

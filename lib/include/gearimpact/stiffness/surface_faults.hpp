@@ -85,6 +85,14 @@ PlacedSpall place_spall(const Spall& spall, const RackGearGeometry& gear, double
 // The paper's tooth of gear `which`, from its base circle.
 PlacedSpall place_spall(const Spall& spall, const GearPair& pair, Gear which);
 
+// x, the half thickness of the section through the flank point at radius_m
+// of the tooth of gear `which` as the model shapes it: the paper's involute
+// tooth from its base circle (yang_lin_1987), the rack-cut involute otherwise.
+// The thickness a spall's depth is held against (place_spall); radius_m on
+// the involute, between its start and the tip.
+double flank_half_thickness(const GearPair& pair, Gear which, StiffnessModelKind kind,
+                            double radius_m);
+
 // The chip on a tooth and the radius at which that tooth's contact ends: r_k
 // for a full-width chip (b_k = b), the tip otherwise.
 struct PlacedChip {

@@ -50,6 +50,14 @@ class StiffnessTable {
   // what `compliance` throws (QuadratureError when a node cannot be integrated).
   StiffnessTable(double start_m, double end_m, const ComplianceFunction& compliance,
                  StiffnessTableOptions options = {});
+  // The same for a function that may jump or kink at `breaks_m` (a spall's or
+  // a chip's edges, surface_faults.hpp): the domain is cut there, and each
+  // part gets options.pieces pieces of its own, so that no piece straddles a
+  // break. Every term is fitted as a series, the Hertzian one too (a fault
+  // shortens the contact line in part of the domain). At a break the table
+  // gives the part above it. Breaks outside (start_m, end_m) are ignored.
+  StiffnessTable(double start_m, double end_m, const ComplianceFunction& compliance,
+                 std::vector<double> breaks_m, StiffnessTableOptions options = {});
   // mesh_stiffness(pair, X1, model).included over the contact segment
   // [X_start, X_end]; the table remembers the pair and model it was built for.
   explicit StiffnessTable(const GearPair& pair, const StiffnessModel& model = {},
@@ -63,6 +71,8 @@ class StiffnessTable {
 
   double domain_start_m() const { return start_; }
   double domain_end_m() const { return end_; }
+  // Where the domain is cut (ascending, inside it), empty for one part.
+  std::vector<double> breaks_m() const;
   int pieces() const { return pieces_; }
   int order() const { return order_; }
 
@@ -95,10 +105,22 @@ class StiffnessTable {
     if (!(x1_m >= start_ && x1_m <= end_)) {
       throw_outside(x1_m);
     }
+    if (!parts_.empty()) return locate_in_parts(x1_m);
     const double u = (x1_m - start_) * pieces_per_m_;
     const int piece = std::min(static_cast<int>(u), pieces_ - 1);
     return {static_cast<std::size_t>(piece) * stride_, 2.0 * (u - piece) - 1.0};
   }
+  Local locate_in_parts(double x1_m) const {
+    std::size_t i = parts_.size() - 1;
+    while (i > 0 && x1_m < parts_[i].start_m) --i;
+    const Part& p = parts_[i];
+    const double u = (x1_m - p.start_m) * p.pieces_per_m;
+    const int piece = std::min(static_cast<int>(u), pieces_ - 1);
+    return {static_cast<std::size_t>(p.first_piece + piece) * stride_, 2.0 * (u - piece) - 1.0};
+  }
+  // Fits the pieces of [a, b] (count of them) after those already fitted.
+  void fit_part(double a, double b, const ComplianceFunction& compliance, bool every_term);
+  static StiffnessTableOptions checked(StiffnessTableOptions options, double start_m, double end_m);
   // Estrin's scheme for a[0] + a[1] t + ... + a[7] t^7.
   static double estrin8(const double* a, double t) {
     const double t2 = t * t;
@@ -125,11 +147,19 @@ class StiffnessTable {
   int pieces_ = 0;
   int order_ = 0;
   std::size_t stride_ = 0;  // 8 or 16 coefficients per piece
+  // The parts between breaks, each of pieces_ equal pieces; empty for a
+  // table without breaks (then pieces_ equal pieces span the domain).
+  struct Part {
+    double start_m;
+    double pieces_per_m;
+    int first_piece;
+  };
+  std::vector<Part> parts_;
   // Polynomial coefficients in t, stride_ per piece, piece after piece: one
-  // series per per-tooth term (empty for the others and for a term 0 at every
-  // node), of Ke and of dKe/dX1.
+  // series per per-tooth term (empty for the others, unless the table has
+  // breaks, and for a term 0 at every node), of Ke and of dKe/dX1.
   std::array<std::vector<double>, kTermCount> term_series_;
-  Compliances constant_terms_;  // the terms that are not per tooth
+  Compliances constant_terms_;  // the terms that are not per tooth (0 with breaks)
   std::vector<double> stiffness_;
   std::vector<double> stiffness_derivative_;
   // What the pair constructor was given.

@@ -1,4 +1,5 @@
-// The state of single teeth (docs/faults.md): healthy, a root crack, missing;
+// The state of single teeth (docs/faults.md): healthy, a root crack, a spall,
+// a chipped tip, missing;
 // the list of faulted teeth of a case; and the check that a fault fits its
 // tooth. A new kind of fault is one more ToothKind, its parameters in
 // ToothState, and one branch where the compliance of a pair reads the state
@@ -11,6 +12,7 @@
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/stiffness/model.hpp"
 #include "gearimpact/stiffness/root_crack.hpp"
+#include "gearimpact/stiffness/surface_faults.hpp"
 
 namespace gearimpact {
 
@@ -18,18 +20,24 @@ enum class ToothKind {
   healthy,
   root_crack,  // ToothState::crack
   missing,     // the pair that holds the tooth carries nothing
+  spall,       // ToothState::spall
+  tip_chip,    // ToothState::chip
 };
 
-// "healthy", "root-crack", "missing": the names case files use.
+// "healthy", "root-crack", "missing", "spall", "tip-chip": the names case
+// files use.
 std::string to_string(ToothKind kind);
 
 struct ToothState {
   ToothKind kind = ToothKind::healthy;
   RootCrack crack;  // read only when kind == root_crack
+  Spall spall;      // read only when kind == spall
+  TipChip chip;     // read only when kind == tip_chip
 };
 
-// Two states load a tooth alike: the same kind and, for a crack, the same
-// crack (every field, the start radius absent in both or equal).
+// Two states load a tooth alike: the same kind and, for a crack, a spall or a
+// chip, the same fault (every field, a crack's start radius absent in both or
+// equal).
 bool operator==(const ToothState& a, const ToothState& b);
 inline bool operator!=(const ToothState& a, const ToothState& b) {
   return !(a == b);
@@ -45,12 +53,23 @@ struct ToothFault {
 bool operator==(const ToothFault& a, const ToothFault& b);
 
 // Throws InputError unless every fault fits: the tooth number in 0 ... z-1 of
-// its gear, one fault per tooth, and a crack that place_crack (or, for
-// yang-lin-1987, the paper's tooth) accepts. Names "faults[i].tooth" and the
-// library's crack names; the case-file reader checks the same before, under
-// the keys a file writes.
+// its gear, one fault per tooth, a crack that place_crack (or, for
+// yang-lin-1987, the paper's tooth) accepts, a spall or a chip that
+// place_spall / place_chip accepts on the model's tooth, and a spall or chip
+// narrower than the face (check_surface_fault_width). Names "faults[i].tooth"
+// and the library's fault names; the case-file reader checks the same before,
+// under the keys a file writes.
 void check_tooth_faults(const GearPair& pair, const StiffnessModel& model,
                         const std::vector<ToothFault>& faults);
+
+// A spall or a chip across the whole face (b_s or b_k = b) leaves its pair
+// without contact inside the contact segment: its stiffness falls to 0 there
+// and rises again (a spall) or ends early (a chip). The stiffness tables cover
+// one contact segment for every pair, whose ends are where the dynamics lets
+// a pair enter and leave and books the stored energy that comes and goes with
+// it, so a pair cannot stop carrying halfway along. Throws InputError naming
+// `field` for a width that is not below the face width.
+void check_surface_fault_width(const std::string& field, double width_m, double face_width_m);
 
 // The state of tooth `tooth` of `gear`: the fault's, or healthy.
 ToothState tooth_state(const std::vector<ToothFault>& faults, Gear gear, int tooth);
