@@ -301,6 +301,31 @@ void require_steady_case(const SimulationCase& c) {
                      "and a case with [[faults]] repeats only after its true period (a pinion "
                      "revolution or the hunting period); not supported yet");
   }
+  // Tooth errors that differ from tooth to tooth repeat after the true period
+  // too; reliefs and errors alike on every tooth repeat every mesh period.
+  const DistinctTeeth distinct = distinct_teeth(c.modifications);
+  if (distinct.pinion || distinct.wheel) {
+    std::string keys;
+    const auto name = [&](const std::vector<double>& list, const char* key, int gear) {
+      if (std::any_of(list.begin(), list.end(), [&](double v) { return v != list.front(); })) {
+        keys +=
+            (keys.empty() ? "" : ", ") + std::string("modifications.") + key + std::to_string(gear);
+      }
+    };
+    for (const int gear : {1, 2}) {
+      const GearModifications& g = gear == 1 ? c.modifications.gear1 : c.modifications.gear2;
+      name(g.pitch_m, "pitch_deviations", gear);
+      name(g.thickness_m, "thickness_deviations", gear);
+      name(g.profile_slope_m, "profile_slope_deviations", gear);
+    }
+    throw InputError(keys, "values that differ from tooth to tooth",
+                     "one value for every tooth (or none) for a steady state or sweep: they "
+                     "sample the motion once per mesh period, and teeth that differ repeat only "
+                     "after the true period (" +
+                         std::to_string(true_period_mesh_periods(c.gears, distinct)) +
+                         " mesh periods here); not supported yet. `gearimpact simulate` runs "
+                         "such a case");
+  }
   // A kinematic driver holds the mean speed whatever the load, the drag and
   // friction draw from it: nothing need balance.
   if (c.torque1.kind == Torque::Kind::prescribed_speed) return;
