@@ -175,25 +175,22 @@ double GearSystem::friction_coefficient(double normal_force_n, double vs, double
 GearSystem::PairPenetration GearSystem::pair_penetration(const Mode& m, int j, double x, double dl,
                                                          double dl_rate, double x_rate) const {
   // The gap of the pair's zone between two kinks (or the segment's ends),
-  // continued along its tangent beyond them, as Ke is: a stage state of a
-  // step that ends on a kink sees the zone's own gap, so the right-hand side
-  // stays smooth while the mode holds. The tangent is taken a millionth of
-  // the zone inside it, where the slope is the zone's (constant for a linear
-  // relief, whose kinks these are).
+  // continued along its tangent beyond them, as Ke is, so that the
+  // right-hand side stays smooth while the mode holds: a stage state of a
+  // step that ends on a kink sees the zone's own gap. The slope is taken at
+  // least a millionth of the zone inside it, where it is the zone's whatever
+  // the rounding of the kink's position (exactly, for the linear reliefs
+  // whose kinks these are).
   const auto zone = static_cast<std::size_t>(m.zone[j]);
   const double lo = zone > 0 ? kinks_[zone - 1] : xs_;
   const double hi = zone < kinks_.size() ? kinks_[zone] : xe_;
+  const double margin = 1e-6 * (hi - lo);
   const int k = m.k_first + j;
-  ToothGaps::GapAndSlope e{};
-  if (x < lo || x > hi) {
-    const double edge = x < lo ? lo : hi;
-    const double inside = x < lo ? lo + 1e-6 * (hi - lo) : hi - 1e-6 * (hi - lo);
-    e.slope = gaps_->gap_and_slope(m.region, k, inside).slope;
-    e.gap_m = gaps_->gap_m(m.region, k, edge) + e.slope * (x - edge);
-  } else {
-    e = gaps_->gap_and_slope(m.region, k, x);
-  }
-  return {dl - e.gap_m, dl_rate - e.slope * x_rate, e.slope};
+  const double slope =
+      gaps_->gap_and_slope(m.region, k, std::clamp(x, lo + margin, hi - margin)).slope;
+  const double edge = std::clamp(x, lo, hi);
+  const double gap = gaps_->gap_m(m.region, k, edge) + slope * (x - edge);
+  return {dl - gap, dl_rate - slope * x_rate, slope};
 }
 
 double GearSystem::least_gap_m(Region line, double theta1) const {
