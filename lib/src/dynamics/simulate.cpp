@@ -118,6 +118,13 @@ void add_rattle_index(const SimulationCase& c, const StiffnessTable& table,
     rattle.rattle_index = 1.0;
     return;
   }
+  // Tooth errors that use up part of the play would let the twin, without
+  // it, press both flanks at once (validate_gaps): no index then.
+  if (least_gap_bound_m(c.modifications, Region::n1) +
+          least_gap_bound_m(c.modifications, Region::n2) <
+      0.0) {
+    return;
+  }
   SimulationCase twin = c;
   twin.gears.backlash_m = 0.0;
   const double rb1 = base_radius(c.gears, Gear::one);

@@ -118,8 +118,9 @@ struct RattleSummary {
   // sqrt(Int w2'^2 dt / duration), each step's w2' its mean change of w2.
   double rms_acceleration2_rad_s2 = 0.0;
   // The same of the run with backlash 0 (started at the same penetration),
-  // and the ratio: the rattle index. Absent for a continued run, or with
-  // backlash 0 already (then the index is 1).
+  // and the ratio: the rattle index. Absent for a continued run, and where
+  // negative tooth errors (modifications) use up part of the backlash, which
+  // the twin does not have; with backlash 0 already the index is 1.
   std::optional<double> rms_acceleration2_no_backlash_rad_s2;
   std::optional<double> rattle_index;
   RattleRegime regime = RattleRegime::no_impact;
