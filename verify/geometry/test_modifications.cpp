@@ -4,8 +4,10 @@
 // the refusals across fields.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
@@ -155,5 +157,77 @@ TEST_CASE("a relief starting outside the active profile is refused naming the ke
   } catch (const InputError& e) {
     CHECK(e.field() == "modifications.pitch_deviations2");
     CHECK(e.allowed().find("teeth2 = 80") != std::string::npos);
+  }
+}
+
+TEST_CASE("a gap's slope is its central difference; the kinks are where linear reliefs begin") {
+  // Every kind of deviation on both gears, then de_k/dX against the central
+  // difference (e(X + h) - e(X - h)) / 2h with h = 1e-7 m: exact for the
+  // linear parts, off by C h^2 / L^3 ~ 1e-9 of the slope for a parabolic
+  // relief (L ~ 1 mm), so the bound 1e-6 of the largest slope leaves room
+  // for the rounding of e (1e-21 m / 1e-7 m).
+  const GearPair g = paper_gear_pair();
+  const ContactSegment seg = contact_segment(g);
+  Modifications m;
+  m.gear1.tip = {10e-6, 43.2e-3, ReliefShape::linear};
+  m.gear2.tip = {8e-6, 163.2e-3, ReliefShape::parabolic};
+  m.gear1.root = {3e-6, 41.0e-3, ReliefShape::parabolic};
+  m.gear2.root = {2e-6, 158.5e-3, ReliefShape::linear};
+  m.gear1.profile_slope_m.assign(20, 1e-6);
+  m.gear2.pitch_m.assign(80, 0.0);
+  m.gear2.pitch_m[1] = 4e-6;
+  REQUIRE_NOTHROW(validate_modifications(g, m));
+  const ToothGaps gaps(g, m);
+  const std::vector<double> kinks = gaps.kinks_m();
+  // The linear ones: the pinion's tip relief start and the wheel's root
+  // relief end, on the line of action X = s1 and X = lp - s2.
+  const double rb1 = base_radius(g, Gear::one);
+  const double rb2 = base_radius(g, Gear::two);
+  const double lp = line_of_action_length(g);
+  REQUIRE(kinks.size() == 2);
+  const double pinion_tip = std::sqrt(0.25 * 43.2e-3 * 43.2e-3 - rb1 * rb1);
+  const double wheel_root = lp - std::sqrt(0.25 * 158.5e-3 * 158.5e-3 - rb2 * rb2);
+  CHECK(std::fabs(kinks[0] - std::min(pinion_tip, wheel_root)) < 1e-15);
+  CHECK(std::fabs(kinks[1] - std::max(pinion_tip, wheel_root)) < 1e-15);
+  for (const Region line : {Region::n1, Region::n2}) {
+    for (int k = -2; k <= 1; ++k) {
+      for (int i = 1; i < 100; ++i) {
+        const double x = seg.start_m + (seg.end_m - seg.start_m) * i / 100.0;
+        // Away from the kinks, where the difference would straddle one.
+        if (std::fabs(x - kinks[0]) < 1e-6 || std::fabs(x - kinks[1]) < 1e-6) continue;
+        const double h = 1e-7;
+        const double difference =
+            (gaps.gap_m(line, k, x + h) - gaps.gap_m(line, k, x - h)) / (2 * h);
+        const ToothGaps::GapAndSlope e = gaps.gap_and_slope(line, k, x);
+        CHECK(e.gap_m == gaps.gap_m(line, k, x));
+        CHECK(std::fabs(e.slope - difference) < 1e-6 * 0.02);
+      }
+    }
+  }
+}
+
+TEST_CASE("the least gap bound lies below every pair's gap on its line") {
+  // Thicker and thinner teeth, pitch and profile slope deviations: the bound
+  // by hand is the pinion's least (-f_t + the line's pitch - |f_Ha|/2) plus
+  // the wheel's, and every gap on the line of action lies at or above it.
+  const GearPair g = paper_gear_pair();
+  const ContactSegment seg = contact_segment(g);
+  Modifications m;
+  m.gear1.thickness_m.assign(20, 0.0);
+  m.gear1.thickness_m[2] = -5e-6;
+  m.gear1.pitch_m.assign(20, 0.0);
+  m.gear1.pitch_m[2] = 2e-6;
+  m.gear2.profile_slope_m.assign(80, 4e-6);
+  // N1: tooth 2 gives -5 + 2 = -3 um, the wheel -2 um: -5 um. N2: -5 - 2 - 2 = -9 um.
+  CHECK(std::fabs(least_gap_bound_m(m, Region::n1) - -5e-6) < 1e-18);
+  CHECK(std::fabs(least_gap_bound_m(m, Region::n2) - -9e-6) < 1e-18);
+  const ToothGaps gaps(g, m);
+  for (const Region line : {Region::n1, Region::n2}) {
+    for (int k = -100; k <= 100; ++k) {
+      for (int i = 0; i <= 20; ++i) {
+        const double x = seg.start_m + (seg.end_m - seg.start_m) * i / 20.0;
+        CHECK(gaps.gap_m(line, k, x) >= least_gap_bound_m(m, line) - 1e-18);
+      }
+    }
   }
 }

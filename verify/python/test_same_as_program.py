@@ -91,6 +91,21 @@ def test_simulate_table1_torques_in_newton_millimetres(cli, tmp_path):
                   gearimpact.paper_case(2, torque_unit="n-mm"), end_time=0.003)
 
 
+def test_simulate_a_case_with_relief_and_a_pitch_error(cli, tmp_path):
+    # Case 2 with both tips relieved and one pinion tooth out of position: the
+    # dynamics read the gaps, the same in Python as in the program.
+    path = tmp_path / "relieved.toml"
+    pitch = ", ".join('"0.05 um"' if i == 0 else '"0 um"' for i in range(20))
+    path.write_text((gearimpact.paper_data_dir() / "case2.toml").read_text()
+                    + '\n[modifications]\ntip_relief1 = "0.2 um"\n'
+                    + 'tip_relief_start1 = "43.2 mm"\ntip_relief2 = "0.2 um"\n'
+                    + f'tip_relief_start2 = "163.2 mm"\npitch_deviations1 = [{pitch}]\n')
+    relieved = simulate_both(cli, tmp_path, ["--case-file", path, "--t-end", "0.003"], path,
+                             end_time="3 ms")
+    plain = gearimpact.simulate(gearimpact.paper_data_dir() / "case2.toml", end_time="3 ms")
+    assert relieved.summary["final_w2_rad_s"] != plain.summary["final_w2_rad_s"]
+
+
 def test_simulate_a_case_file_with_the_adaptive_integrator(cli, tmp_path):
     path = gearimpact.paper_data_dir() / "case2.toml"
     simulate_both(cli, tmp_path,

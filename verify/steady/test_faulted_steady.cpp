@@ -307,3 +307,37 @@ TEST_CASE("a prescribed-speed driver: the common period of its orders and the fa
     CHECK(std::fabs(timing.excitation_period_s / (2.0 * pi * e.revolutions / w) - 1.0) < 1e-14);
   }
 }
+
+TEST_CASE("a pitch error on one pinion tooth: a pinion revolution, and the point is periodic") {
+  // A tooth error that differs from tooth to tooth repeats after the true period as a fault
+  // does: pinion tooth 3 lags 2 um, the others none.
+  SimulationCase c = loaded_paper_pair(2000.0);
+  c.name = "pitch-error";
+  c.modifications.gear1.pitch_m.assign(static_cast<std::size_t>(c.gears.teeth1), 0.0);
+  c.modifications.gear1.pitch_m[3] = 2e-6;
+  const StiffnessTable table(c.gears, c.model.stiffness);
+  const SteadyTiming timing = steady_timing(c, table, SteadySettings{});
+  CHECK(timing.kind == "pinion-revolution");
+  CHECK(timing.mesh_periods == c.gears.teeth1);
+  CHECK(std::fabs(timing.excitation_period_s / (c.gears.teeth1 * mesh_period_s(c)) - 1.0) < 1e-14);
+  // One value on every tooth repeats every mesh period.
+  SimulationCase even = c;
+  even.modifications.gear1.pitch_m.assign(static_cast<std::size_t>(c.gears.teeth1), 2e-6);
+  CHECK(steady_timing(even, table, SteadySettings{}).kind == "mesh");
+
+  SteadySweepSpec spec;
+  spec.base = c;
+  spec.vary = "initial.w1";
+  spec.from_si = 2000.0;
+  spec.to_si = 2000.0;
+  spec.points = 1;
+  spec.directions = {SweepDirection::up};
+  spec.threads = 1;
+  const SteadySweep sweep = run_steady_sweep(spec);
+  CHECK(sweep.spec.poincare_period_kind == "pinion-revolution");
+  REQUIRE(sweep.rows.size() == 1u);
+  const SteadyPoint& point = sweep.rows[0].point;
+  MESSAGE(point.explanation << " after " << point.periods_run << " periods");
+  CHECK(point.verdict == PeriodicityVerdict::periodic);
+  CHECK(point.period == 1);
+}

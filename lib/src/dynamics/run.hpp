@@ -255,6 +255,7 @@ class Run {
     s.end_time_s = t;
     s.step_s = c_.integrator.step_s;
     ledger_.finish(y_, mode_, s);
+    if (system_.lagrangian()) s.stored_energy_jumps_j = stored_energy_jumps_;
     s.final_w1_rad_per_s = y_[kW1];
     s.final_w2_rad_per_s = y_[kW2];
     if (system_.driven()) s.rattle = rattle_summary(t);
@@ -356,6 +357,7 @@ class Run {
   void pay_stored_energy_jump(double t, const Mode& old, double before, double after) {
     const double jump = after - before;
     if (jump == 0.0) return;
+    stored_energy_jumps_ += std::fabs(jump);
     if (system_.driven()) {
       // A kinematic driver keeps w1: it pays the jump, as work of its torque.
       y_[kTorqueWork] += jump;
@@ -428,6 +430,8 @@ class Run {
   double friction_loaded_time_ = 0.0;
   double friction_max_ = 0.0;
   double friction_last_t_ = 0.0;
+  // Under the Lagrangian mesh force: the sum of |dU| of the jumps paid.
+  double stored_energy_jumps_ = 0.0;
   // The sample grid: samples_ of them (0 without sampling), the next one to take.
   double sample_rate_ = 0.0;
   long long samples_ = 0;

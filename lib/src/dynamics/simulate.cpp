@@ -118,6 +118,13 @@ void add_rattle_index(const SimulationCase& c, const StiffnessTable& table,
     rattle.rattle_index = 1.0;
     return;
   }
+  // Tooth errors that use up part of the play would let the twin, without
+  // it, press both flanks at once (validate_gaps): no index then.
+  if (least_gap_bound_m(c.modifications, Region::n1) +
+          least_gap_bound_m(c.modifications, Region::n2) <
+      0.0) {
+    return;
+  }
   SimulationCase twin = c;
   twin.gears.backlash_m = 0.0;
   const double rb1 = base_radius(c.gears, Gear::one);
@@ -158,29 +165,31 @@ double series_rows(const SimulationCase& c) {
   return std::floor(s.end_time_s / s.step_s / static_cast<double>(s.output_every)) + 1.0;
 }
 
-void refuse_gaps(const SimulationCase& c) {
+void validate_gaps(const SimulationCase& c) {
   if (is_unmodified(c.modifications)) return;
-  std::string keys;
-  for (const Field& field : case_schema()) {
-    if (field.section != "modifications" || field.kind == FieldKind::choice) continue;
-    // A relief's diameter without its amount puts no gap between the flanks.
-    if (field.kind == FieldKind::quantity && field.key.find("relief_") != std::string_view::npos) {
-      continue;
-    }
-    bool zero = true;
-    if (is_list(field.kind)) {
-      const std::vector<double> values = field.get_list(c);
-      zero = std::all_of(values.begin(), values.end(), [](double v) { return v == 0.0; });
-    } else {
-      zero = field.get(c) == 0.0;
-    }
-    if (!zero) keys += (keys.empty() ? "" : ", ") + std::string(field.key);
+  if (c.model.mesh_stiffness == MeshStiffnessMode::constant) {
+    throw InputError(std::vector<Problem>{range_problem(
+        "model.mesh_stiffness", "constant",
+        "\"time-varying\" with [modifications]: a constant mesh stiffness has no tooth pairs "
+        "whose gaps could differ",
+        "model.mesh_stiffness = \"time-varying\", or no relief and no tooth error")});
   }
-  throw InputError(std::vector<Problem>{refused_problem(
-      "[modifications]", keys,
-      "the dynamics (simulate, sweep, sweep-friction) do not use the gaps yet",
-      "no relief and no tooth error: set them to 0, or compute their static transmission error "
-      "with `gearimpact ste`")});
+  // Both lines touch where s - B > e_k on N1 and -s - B > e'_j on N2, which
+  // needs e_k + e'_j < -2 B.
+  const double least = least_gap_bound_m(c.modifications, Region::n1) +
+                       least_gap_bound_m(c.modifications, Region::n2);
+  if (2.0 * c.gears.backlash_m + least < 0.0) {
+    throw InputError(std::vector<Problem>{range_problem(
+        "gears.backlash", format_number(c.gears.backlash_m * 1e3) + " mm",
+        "at least " + format_number(-0.5 * least * 1e3) +
+            " mm with these [modifications]: their tooth errors (pitch, thickness, profile "
+            "slope) may close the gap by up to " +
+            format_number(-least * 1e3) +
+            " mm on the two flanks together, so that a pair could press both the drive and the "
+            "coast flank at once, which the contact on one line of action cannot describe",
+        "gears.backlash = \"" + format_number(-0.5 * least * 1e3) +
+            " mm\", or smaller negative tooth errors")});
+  }
 }
 
 double sample_count(const SimulationCase& c, double sample_rate_hz, double t0_s) {
@@ -196,7 +205,7 @@ double sample_count(const SimulationCase& c, double sample_rate_hz, double t0_s)
 
 void validate(const SimulationCase& c) {
   validate_fields(c);
-  refuse_gaps(c);
+  validate_gaps(c);
   validate_implied(c);
 }
 
@@ -249,7 +258,7 @@ std::vector<std::string> run_warnings(const SimulationCase& c) {
 
 SimulationResult simulate(const SimulationCase& c, const RunControl& control) {
   validate_fields(c);
-  refuse_gaps(c);
+  validate_gaps(c);
   // The controls before the table, which may take a while to build.
   validate_control(c, control);
   const StiffnessTable table(c.gears, c.model.stiffness);
@@ -259,7 +268,7 @@ SimulationResult simulate(const SimulationCase& c, const RunControl& control) {
 SimulationResult simulate(const SimulationCase& c, const StiffnessTable& table,
                           const RunControl& control) {
   validate_fields(c);
-  refuse_gaps(c);
+  validate_gaps(c);
   validate_control(c, control);
   return simulate_checked(c, table, control);
 }

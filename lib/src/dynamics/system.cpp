@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "gearimpact/contact/contact.hpp"
@@ -112,6 +113,10 @@ GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table,
         g, c.model.stiffness, c.faults,
         std::shared_ptr<const StiffnessTable>(&table, [](const StiffnessTable*) {}));
   }
+  if (!is_unmodified(c.modifications)) {
+    gaps_ = std::make_shared<const ToothGaps>(g, c.modifications);
+    kinks_ = gaps_->kinks_m();
+  }
   if (c.model.mesh_damping_ratio > 0.0) {
     // With faults the damper sees the mean over the true period.
     const double mean_k =
@@ -167,6 +172,38 @@ double GearSystem::friction_coefficient(double normal_force_n, double vs, double
   return friction_;
 }
 
+GearSystem::PairPenetration GearSystem::pair_penetration(const Mode& m, int j, double x, double dl,
+                                                         double dl_rate, double x_rate) const {
+  // The gap of the pair's zone between two kinks (or the segment's ends),
+  // continued along its tangent beyond them, as Ke is, so that the
+  // right-hand side stays smooth while the mode holds: a stage state of a
+  // step that ends on a kink sees the zone's own gap. The slope is taken at
+  // least a millionth of the zone inside it, where it is the zone's whatever
+  // the rounding of the kink's position (exactly, for the linear reliefs
+  // whose kinks these are).
+  const auto zone = static_cast<std::size_t>(m.zone[j]);
+  const double lo = zone > 0 ? kinks_[zone - 1] : xs_;
+  const double hi = zone < kinks_.size() ? kinks_[zone] : xe_;
+  const double margin = 1e-6 * (hi - lo);
+  const int k = m.k_first + j;
+  const double slope =
+      gaps_->gap_and_slope(m.region, k, std::clamp(x, lo + margin, hi - margin)).slope;
+  const double edge = std::clamp(x, lo, hi);
+  const double gap = gaps_->gap_m(m.region, k, edge) + slope * (x - edge);
+  return {dl - gap, dl_rate - slope * x_rate, slope};
+}
+
+double GearSystem::least_gap_m(Region line, double theta1) const {
+  const double ref = layout_.reference_m(line, theta1);
+  const LoadedRange range = layout_.loaded(ref);
+  double least = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < range.count; ++j) {
+    const int k = range.k_first + j;
+    least = std::min(least, gaps_->gap_m(line, k, layout_.position_m(ref, k)));
+  }
+  return least;
+}
+
 double GearSystem::damping_factor(const ContactMemory& d, double ke) const {
   return damping_on_current_pair_ ? d.damping_per_stiffness_s_m * ke
                                   : d.damping_per_stiffness_s_m * d.frozen_stiffness_n_per_m;
@@ -207,14 +244,25 @@ void GearSystem::rhs(double t, const State& y_in, const Mode& m, const ContactMe
     const double x_rate = sign * rb1_ * w1;
     for (int j = 0; j < m.count; ++j) {
       const StiffnessTable* table = pair_table(m.region, m.k_first + j);
-      // A pair with a missing tooth: no force, no damping, no friction.
-      if (table == nullptr) continue;
+      // A pair with a missing tooth: no force, no damping, no friction; nor
+      // a pair whose gap is open.
+      if (table == nullptr || (gaps_ && !m.touching[j])) continue;
       const double x = layout_.position_m(ref, m.k_first + j);
+      // The pair's own penetration and its rate: the line's, less the gap.
+      double dk = dl;
+      double dk_rate = dl_rate;
+      double gap_slope = 0.0;
+      if (gaps_) {
+        const PairPenetration p = pair_penetration(m, j, x, dl, dl_rate, x_rate);
+        dk = p.delta_m;
+        dk_rate = p.rate_m_s;
+        gap_slope = p.gap_slope;
+      }
       double ke = 0.0;
       double dke = 0.0;
       pair_stiffness(*table, x, m.count, ke, dke);
-      const double f_elastic = elastic_force(ke, dl);
-      const double g_damping = hertzian_damping_force(damping_factor(d, ke), dl, dl_rate);
+      const double f_elastic = elastic_force(ke, dk);
+      const double g_damping = hertzian_damping_force(damping_factor(d, ke), dk, dk_rate);
       const double n = normal_force(f_elastic, g_damping, m.clipped[j]);
       const double vs = sliding_speed(w1, w2, x, lp_);
       const double f = friction_coefficient(n, vs, entrainment_speed(w1, w2, x, lp_));
@@ -227,20 +275,32 @@ void GearSystem::rhs(double t, const State& y_in, const Mode& m, const ContactMe
       moment2 += sign * (n * rb2_ + ff * (lp_ - x));
       // The damping force is what N adds to F; with N clipped it is -F, so the
       // stored energy released while the tooth cannot push counts as damping loss.
-      damping_power += (n - f_elastic) * dl_rate;
+      damping_power += (n - f_elastic) * dk_rate;
       friction_power += f * n * slip * vs;
       // d/dt of 1/2 Ke(X) delta^2 at fixed delta. Newtonian: work of the
       // varying stiffness. Lagrangian: -dV/dtheta1 adds the torque
       // -1/2 dKe/dX (dX/dtheta1) delta^2, dX/dtheta1 = sign Rb1, whose power is
       // minus this; a clipped pair exerts no force, so the stored energy it
       // gains or loses counts with its damping loss, as above.
-      const double stiffness_power = 0.5 * dl * dl * dke * x_rate;
+      const double stiffness_power = 0.5 * dk * dk * dke * x_rate;
       if (!lagrangian_) {
         parametric_power += stiffness_power;
       } else if (m.clipped[j]) {
         damping_power -= stiffness_power;
       } else {
-        moment1 -= 0.5 * dl * dl * dke * sign * rb1_;
+        moment1 -= 0.5 * dk * dk * dke * sign * rb1_;
+      }
+      if (gaps_) {
+        // The gap moves with the pinion: the pair's penetration changes at
+        // fixed s by -de_k/dX dX/dt, and N acting on it does the work
+        // -N de_k/dX dX/dt. Newtonian: more work of the varying mesh.
+        // Lagrangian: N acts on delta_k, whose lever on the pinion is
+        // sign Rb1 (1 - de_k/dX), and that torque does this work on the pinion.
+        if (!lagrangian_) {
+          parametric_power -= n * gap_slope * x_rate;
+        } else {
+          moment1 += sign * rb1_ * n * gap_slope;
+        }
       }
       if (totals != nullptr) {
         totals->normal_force_n += n;
@@ -282,13 +342,22 @@ int GearSystem::event_values(const State& y, const Mode& m, const ContactMemory&
                              EventValues& g) const {
   const double sv = s(y);
   if (m.region == Region::free) {
-    // Region (2) ends where (31) makes delta positive on either line.
+    // Region (2) ends where (31) makes delta positive on either line; with
+    // gaps, where it passes the least gap of the line's pairs (a pair that
+    // enters the segment already pressed in ends it at its entry).
+    if (gaps_) {
+      g[0] = backlash_ + least_gap_m(Region::n1, y[kTheta1]) - sv;
+      g[1] = sv + backlash_ + least_gap_m(Region::n2, y[kTheta1]);
+      return 2;
+    }
     g[0] = backlash_ - sv;
     g[1] = sv + backlash_;
     return 2;
   }
   const double dl = delta(m.region, y);
-  g[0] = dl;
+  // With gaps the contact ends where the last touching pair lets go, which
+  // the pairs' own values below locate.
+  g[0] = gaps_ ? 1.0 : dl;
   // (42): the first and last loaded pair stay in [X_start, X_end], the
   // neighbours outside it. Each position is ref + k t0 for its own k, as
   // MeshLayout::loaded computes it: (ref + k t0) - t0 rounds differently, and
@@ -303,12 +372,30 @@ int GearSystem::event_values(const State& y, const Mode& m, const ContactMemory&
   g[4] = layout_.position_m(ref, m.k_first + m.count) - xe_;
   int n = 5;
   const double dl_rate = line_sign(m.region) * s_rate(y);
+  const double x_rate = line_sign(m.region) * rb1_ * y[kW1];
   for (int j = 0; j < m.count; ++j) {
     const double x = layout_.position_m(ref, m.k_first + j);
+    double dk = dl;
+    double dk_rate = dl_rate;
+    if (gaps_) {
+      const PairPenetration p = pair_penetration(m, j, x, dl, dl_rate, x_rate);
+      dk = p.delta_m;
+      dk_rate = p.rate_m_s;
+      g[n++] = m.touching[j] ? dk : -dk;
+      if (!m.touching[j]) {
+        // A pair whose gap is open neither slides under load nor pushes, and
+        // its gap's kinks change nothing.
+        for (int i = 0; i < 4; ++i) g[n++] = 1.0;
+        continue;
+      }
+      const auto zone = static_cast<std::size_t>(m.zone[j]);
+      g[n++] = zone > 0 ? x - kinks_[zone - 1] : 1.0;
+      g[n++] = zone < kinks_.size() ? kinks_[zone] - x : 1.0;
+    }
     // A smoothed sign has no switch to locate: the value stays positive.
     g[n++] = smoothing_speed_ > 0.0 ? 1.0 : m.slip[j] * sliding_speed(y[kW1], y[kW2], x, lp_);
     const double push =
-        push_sign_function(pair_table(m.region, m.k_first + j), x, m.count, d, dl, dl_rate);
+        push_sign_function(pair_table(m.region, m.k_first + j), x, m.count, d, dk, dk_rate);
     g[n++] = m.clipped[j] ? -push : push;
   }
   return n;
@@ -343,6 +430,33 @@ bool GearSystem::mode_holds(const State& y, const Mode& m, const ContactMemory& 
 Mode GearSystem::classify_geometry(const State& y) const {
   Mode m;
   const double sv = s(y);
+  if (gaps_) {
+    // The line one of whose pairs is pressed in: delta - e_k > 0 (the
+    // backlash check of the case keeps the two lines from both touching).
+    for (const Region line : {Region::n1, Region::n2}) {
+      const double dl = penetration(line, sv, backlash_);
+      const double ref = layout_.reference_m(line, y[kTheta1]);
+      const LoadedRange range = layout_.loaded(ref);
+      bool any = false;
+      for (int j = 0; j < range.count; ++j) {
+        const int k = range.k_first + j;
+        const double x = layout_.position_m(ref, k);
+        m.touching[j] = dl - gaps_->gap_m(line, k, x) > 0.0;
+        m.zone[j] =
+            static_cast<int>(std::upper_bound(kinks_.begin(), kinks_.end(), x) - kinks_.begin());
+        any = any || m.touching[j];
+      }
+      if (any) {
+        m.region = line;
+        m.k_first = range.k_first;
+        m.count = range.count;
+        return m;
+      }
+    }
+    m.touching = {};
+    m.zone = {};
+    return m;
+  }
   if (sv - backlash_ > 0.0) {
     m.region = Region::n1;
   } else if (-sv - backlash_ > 0.0) {
@@ -360,17 +474,39 @@ void GearSystem::classify_forces(const State& y, const ContactMemory& d, Mode& m
   if (m.region == Region::free) return;
   const double dl = delta(m.region, y);
   const double dl_rate = line_sign(m.region) * s_rate(y);
+  const double x_rate = line_sign(m.region) * rb1_ * y[kW1];
   for (int j = 0; j < m.count; ++j) {
     const double x = pair_position(m, y, j);
     m.slip[j] = sliding_speed(y[kW1], y[kW2], x, lp_) >= 0.0 ? 1.0 : -1.0;
+    double dk = dl;
+    double dk_rate = dl_rate;
+    if (gaps_) {
+      const PairPenetration p = pair_penetration(m, j, x, dl, dl_rate, x_rate);
+      dk = p.delta_m;
+      dk_rate = p.rate_m_s;
+    }
     m.clipped[j] =
-        push_sign_function(pair_table(m.region, m.k_first + j), x, m.count, d, dl, dl_rate) < 0.0;
+        push_sign_function(pair_table(m.region, m.k_first + j), x, m.count, d, dk, dk_rate) < 0.0;
   }
 }
 
 GearSystem::Onset GearSystem::damping_at_onset(const State& y, const Mode& m) const {
   Onset onset{};
-  onset.impact_speed_m_s = std::max(line_sign(m.region) * s_rate(y), kSmallestImpactSpeed_m_s);
+  const double line_rate = line_sign(m.region) * s_rate(y);
+  double approach = line_rate;
+  if (gaps_) {
+    // The fastest approach among the pairs that touch, each at its own
+    // penetration rate.
+    const double dl = delta(m.region, y);
+    const double x_rate = line_sign(m.region) * rb1_ * y[kW1];
+    approach = -std::numeric_limits<double>::infinity();
+    for (int j = 0; j < m.count; ++j) {
+      if (!m.touching[j]) continue;
+      approach = std::max(
+          approach, pair_penetration(m, j, pair_position(m, y, j), dl, line_rate, x_rate).rate_m_s);
+    }
+  }
+  onset.impact_speed_m_s = std::max(approach, kSmallestImpactSpeed_m_s);
   // DampingUpdate: e and D of (32),(33) from this impact's Vi, from the
   // case's reference speed, or none.
   const DampingUpdate update = case_.model.damping_update;
@@ -409,9 +545,13 @@ GearSystem::Onset GearSystem::damping_at_onset(const State& y, const Mode& m) co
 ElasticEnergy GearSystem::stored_energy(const State& y, const Mode& m) const {
   ElasticEnergy u;
   if (m.region == Region::free) return u;
-  const double dl = delta(m.region, y);
+  const double line_delta = delta(m.region, y);
   for (int j = 0; j < m.count; ++j) {
     const double x = pair_position(m, y, j);
+    // A pair whose gap is open stores nothing; one that touches, by its own
+    // penetration.
+    if (gaps_ && !m.touching[j]) continue;
+    const double dl = gaps_ ? pair_penetration(m, j, x, line_delta, 0.0, 0.0).delta_m : line_delta;
     if (constant_k_ > 0.0) {
       u.j[index_of(Term::hertz)] += 0.5 * constant_k_ / m.count * dl * dl;
       continue;

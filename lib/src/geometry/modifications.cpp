@@ -51,6 +51,11 @@ double relief_curve(double amount_m, ReliefShape shape, double u) {
   return shape == ReliefShape::parabolic ? amount_m * u * u : amount_m * u;
 }
 
+// d(C u^p)/du.
+double relief_curve_slope(double amount_m, ReliefShape shape, double u) {
+  return shape == ReliefShape::parabolic ? 2.0 * amount_m * u : amount_m;
+}
+
 std::string mm(double metres) {
   return format_number(metres * 1e3) + " mm";
 }
@@ -80,6 +85,24 @@ bool is_unmodified(const Modifications& m) {
 
 DistinctTeeth distinct_teeth(const Modifications& m) {
   return {differ(m.gear1), differ(m.gear2)};
+}
+
+double least_gap_bound_m(const Modifications& m, Region line) {
+  double bound = 0.0;
+  for (const GearModifications* g : {&m.gear1, &m.gear2}) {
+    const std::size_t n =
+        std::max({g->pitch_m.size(), g->thickness_m.size(), g->profile_slope_m.size()});
+    double least = 0.0;
+    for (std::size_t t = 0; t < n; ++t) {
+      double e = 0.0;
+      if (!g->pitch_m.empty()) e += line == Region::n1 ? g->pitch_m[t] : -g->pitch_m[t];
+      if (!g->thickness_m.empty()) e += g->thickness_m[t];
+      if (!g->profile_slope_m.empty()) e -= 0.5 * std::fabs(g->profile_slope_m[t]);
+      least = t == 0 ? e : std::min(least, e);
+    }
+    bound += least;
+  }
+  return bound;
 }
 
 ActiveProfile active_profile(const GearPair& pair, Gear gear) {
@@ -176,6 +199,57 @@ double ToothGaps::tooth_m(Gear gear, int tooth, Region line, double x_m) const {
     e += g.profile_slope_m[t] * ((s - sap) / (tip - sap) - 0.5);
   }
   return e;
+}
+
+double ToothGaps::tooth_slope(Gear gear, int tooth, double x_m) const {
+  const GearModifications& g = gear == Gear::one ? m_.gear1 : m_.gear2;
+  const auto i = static_cast<std::size_t>(gear == Gear::one ? 0 : 1);
+  // The wheel's roll distance lp - X falls as X grows.
+  const double ds_dx = gear == Gear::one ? 1.0 : -1.0;
+  const double s = gear == Gear::one ? x_m : lp_ - x_m;
+  const double sap = gear == Gear::one ? start_ : lp_ - end_;
+  const double tip = gear == Gear::one ? end_ : lp_ - start_;
+  double de_ds = 0.0;
+  if (g.tip.amount_m > 0.0 && s >= tip_start_roll_[i]) {
+    const double length = tip - tip_start_roll_[i];
+    const double u = (s - tip_start_roll_[i]) / length;
+    if (u < 1.0) de_ds += relief_curve_slope(g.tip.amount_m, g.tip.shape, u) / length;
+  }
+  if (g.root.amount_m > 0.0 && s < root_end_roll_[i]) {
+    const double length = root_end_roll_[i] - sap;
+    const double u = (root_end_roll_[i] - s) / length;
+    if (u < 1.0) de_ds -= relief_curve_slope(g.root.amount_m, g.root.shape, u) / length;
+  }
+  if (!g.profile_slope_m.empty()) {
+    de_ds += g.profile_slope_m[static_cast<std::size_t>(tooth)] / (tip - sap);
+  }
+  return de_ds * ds_dx;
+}
+
+ToothGaps::GapAndSlope ToothGaps::gap_and_slope(Region line, int k, double x_m) const {
+  const TeethInContact teeth = teeth_of_pair(pair_, line, k);
+  return {tooth_m(Gear::one, teeth.pinion_tooth, line, x_m) +
+              tooth_m(Gear::two, teeth.wheel_tooth, line, x_m),
+          tooth_slope(Gear::one, teeth.pinion_tooth, x_m) +
+              tooth_slope(Gear::two, teeth.wheel_tooth, x_m)};
+}
+
+std::vector<double> ToothGaps::kinks_m() const {
+  std::vector<double> kinks;
+  for (const Gear gear : {Gear::one, Gear::two}) {
+    const GearModifications& g = gear == Gear::one ? m_.gear1 : m_.gear2;
+    const auto i = static_cast<std::size_t>(gear == Gear::one ? 0 : 1);
+    // A parabolic relief starts with slope 0: no jump.
+    const auto add = [&](const Relief& relief, double roll_m) {
+      if (relief.amount_m <= 0.0 || relief.shape != ReliefShape::linear) return;
+      const double x = gear == Gear::one ? roll_m : lp_ - roll_m;
+      if (x > start_ && x < end_) kinks.push_back(x);
+    };
+    add(g.tip, tip_start_roll_[i]);
+    add(g.root, root_end_roll_[i]);
+  }
+  std::sort(kinks.begin(), kinks.end());
+  return kinks;
 }
 
 double ToothGaps::gap_m(Region line, int k, double x_m) const {

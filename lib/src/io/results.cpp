@@ -120,6 +120,8 @@ std::string summary_json(const SimulationSummary& s) {
   json_number(out, "friction_loss_J", s.friction_loss_j);
   json_number(out, "parametric_work_J", s.parametric_work_j);
   json_number(out, "parametric_jump_work_J", s.parametric_jump_work_j);
+  // Under the Lagrangian mesh force only, so that other runs' summaries keep their bytes.
+  if (s.stored_energy_jumps_j) json_optional(out, "stored_energy_jumps_J", s.stored_energy_jumps_j);
   for (const TermInfo& t : kTerms) {
     if (!provides(s.stiffness_model, t.term)) continue;
     json_number(out, (std::string(t.id) + "_energy_max_J").c_str(),

@@ -256,7 +256,8 @@ struct ToothPattern {
 };
 
 ToothPattern tooth_pattern(const SimulationCase& c) {
-  DistinctTeeth distinct;
+  // Faulted teeth, and tooth errors that differ from tooth to tooth, alike.
+  DistinctTeeth distinct = distinct_teeth(c.modifications);
   for (const ToothFault& f : c.faults)
     (f.gear == Gear::one ? distinct.pinion : distinct.wheel) = true;
   const long long n = true_period_mesh_periods(c.gears, distinct);

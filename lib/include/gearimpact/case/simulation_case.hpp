@@ -198,8 +198,8 @@ struct SimulationCase {
   ModelOptions model;
   IntegratorSettings integrator;
   // Tip and root relief and tooth errors, as gaps between the flanks
-  // (modifications.hpp): the static transmission error reads them; the
-  // dynamics refuses a case with any (refuse_gaps of dynamics/simulate.hpp).
+  // (modifications.hpp): the static transmission error and the dynamics read
+  // them (each pair touches by its own penetration, delta - e_k).
   Modifications modifications;
   // Teeth that differ from the others ([[faults]], docs/faults.md); empty:
   // every tooth healthy.

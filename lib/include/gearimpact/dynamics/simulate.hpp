@@ -118,8 +118,9 @@ struct RattleSummary {
   // sqrt(Int w2'^2 dt / duration), each step's w2' its mean change of w2.
   double rms_acceleration2_rad_s2 = 0.0;
   // The same of the run with backlash 0 (started at the same penetration),
-  // and the ratio: the rattle index. Absent for a continued run, or with
-  // backlash 0 already (then the index is 1).
+  // and the ratio: the rattle index. Absent for a continued run, and where
+  // negative tooth errors (modifications) use up part of the backlash, which
+  // the twin does not have; with backlash 0 already the index is 1.
   std::optional<double> rms_acceleration2_no_backlash_rad_s2;
   std::optional<double> rattle_index;
   RattleRegime regime = RattleRegime::no_impact;
@@ -162,6 +163,11 @@ struct SimulationSummary {
   // pinion instead (its kinetic energy pays it).
   double parametric_work_j = 0.0;
   double parametric_jump_work_j = 0.0;
+  // Under mesh_force = "lagrangian" only: the sum of |dU| over the jumps of the
+  // stored energy where a pair enters or leaves, which the pinion's kinetic
+  // energy (or a kinematic driver's work) paid. With enough tip relief a pair
+  // enters and leaves unloaded and this is 0.
+  std::optional<double> stored_energy_jumps_j;
   // The largest stored energy of each term of (29) over the run (kTerms order;
   // 0 for a term the stiffness model does not have).
   std::array<double, kTermCount> energy_max_j{};
@@ -272,18 +278,21 @@ inline constexpr long long kStepsBetweenStopChecks = 16384;
 // stands in for them, so its count is an estimate.
 double series_rows(const SimulationCase& c);
 
-// Throws InputError naming the keys of [modifications] that put a gap between
-// the flanks (a relief amount or a tooth error not 0): the dynamics do not
-// read the gaps yet, and a run that ignored them would answer another
-// question than its case asks. simulate(), validate() and the run pool call it.
-void refuse_gaps(const SimulationCase& c);
+// The checks of a case with gaps between the flanks ([modifications]: a relief
+// amount or a tooth error not 0) that the dynamics needs beyond the fields:
+// InputError naming model.mesh_stiffness under a constant mesh stiffness
+// (which has no teeth to modify), and gears.backlash when negative gaps
+// (thicker teeth, pitch or profile deviations) could press the drive and the
+// coast flanks at once (2 B + the least gap on N1 + that on N2 < 0, a bound
+// over every pair). simulate(), validate() and the run pool call it.
+void validate_gaps(const SimulationCase& c);
 // The samples of a run of c at sample_rate_hz: the n >= 0 with
 // sample_time_s(t0, n, rate) <= t0 + end_time_s, for t0 = 0 (about
 // floor(end_time_s rate) + 1; a continued run's start moves the end's rounding).
 double sample_count(const SimulationCase& c, double sample_rate_hz, double t0_s = 0.0);
 
 // Throws InputError naming the first field outside its range (validate_fields),
-// then a case with gaps (refuse_gaps), then what the fields imply together
+// then the gaps of its modifications (validate_gaps), then what the fields imply together
 // (validate_implied of step_bound.hpp).
 void validate(const SimulationCase& c);
 

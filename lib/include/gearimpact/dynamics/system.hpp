@@ -11,10 +11,12 @@
 #include <limits>
 #include <memory>
 #include <utility>
+#include <vector>
 
 #include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/stiffness/mesh_tables.hpp"
 #include "gearimpact/stiffness/table.hpp"
@@ -41,8 +43,9 @@ enum StateIndex : std::size_t {
 inline constexpr int kMaxPairs = MeshLayout::capacity;
 // The event values of a mode: two in free flight; in contact the penetration,
 // four bounds of the loaded pairs, and the friction sign and force clipping of
-// each pair.
-inline constexpr int kMaxEvents = 2 + 4 + 2 * kMaxPairs;
+// each pair, and with gaps (modifications.hpp) whether each pair touches and
+// the two kinks of its gap about it.
+inline constexpr int kMaxEvents = 2 + 4 + 5 * kMaxPairs;
 using EventValues = std::array<double, kMaxEvents>;
 
 // Everything that is constant during a step: which side is in contact, which
@@ -55,6 +58,14 @@ struct Mode {
   int count = 0;
   std::array<double, kMaxPairs> slip{};  // sign of Vs, +1 or -1
   std::array<bool, kMaxPairs> clipped{};
+  // With gaps: whether each pair's own penetration delta - e_k is positive
+  // (a pair that does not touch carries nothing). Without gaps every pair of
+  // the contact segment touches and this is not read.
+  std::array<bool, kMaxPairs> touching{};
+  // With gaps: how many kinks of the gap (ToothGaps::kinks_m) lie at or
+  // below each pair's X, so that a step does not straddle a jump of the
+  // gap's slope (the Lagrangian force and the damping force jump there).
+  std::array<int, kMaxPairs> zone{};
 };
 
 // Summed over the loaded pairs, for the time series.
@@ -103,6 +114,8 @@ class GearSystem {
   double pair_position(const Mode& m, const State& y, int j) const {
     return layout_.position_m(layout_.reference_m(m.region, y[kTheta1]), m.k_first + j);
   }
+  // Whether the case's modifications put a gap between the flanks of a pair.
+  bool has_gaps() const { return static_cast<bool>(gaps_); }
 
   // The equations of motion in the mode m, and the powers of the ledger.
   void rhs(double t, const State& y, const Mode& m, const ContactMemory& d, State& dydt,
@@ -151,10 +164,28 @@ class GearSystem {
   double friction_coefficient(double normal_force_n, double vs, double ve) const;
   double push_sign_function(const StiffnessTable* table, double x, int count,
                             const ContactMemory& d, double dl, double dl_rate) const;
+  // Pair j of mode m at X with the line's penetration dl and its rate: its
+  // own penetration dl - e_k(X) and rate dl_rate - de_k/dX dX/dt, and the
+  // slope de_k/dX, on the branch of the pair's zone (Mode::zone). Only with
+  // gaps.
+  struct PairPenetration {
+    double delta_m;
+    double rate_m_s;
+    double gap_slope;
+  };
+  PairPenetration pair_penetration(const Mode& m, int j, double x, double dl, double dl_rate,
+                                   double x_rate) const;
+  // The least gap of the pairs in the contact segment of `line` at theta1:
+  // the line's contact begins where its penetration passes it.
+  double least_gap_m(Region line, double theta1) const;
 
   const StiffnessTable& table_;
   // With faults: the table of each pair's teeth.
   std::shared_ptr<const MeshTables> teeth_;
+  // With modifications: each pair's gap (docs/faults.md); none without, so
+  // that an unmodified case runs the code it ran before, bit for bit.
+  std::shared_ptr<const ToothGaps> gaps_;
+  std::vector<double> kinks_;  // gaps_->kinks_m()
   const SimulationCase& case_;
   MeshLayout layout_;
   double rb1_ = 0.0, rb2_ = 0.0, j1_ = 0.0, j2_ = 0.0, backlash_ = 0.0, lp_ = 0.0;

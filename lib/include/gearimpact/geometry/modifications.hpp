@@ -78,6 +78,12 @@ bool is_unmodified(const Modifications& m);
 // values are not all equal), for true_period_mesh_periods.
 DistinctTeeth distinct_teeth(const Modifications& m);
 
+// A bound below every pair's gap on `line` (Region::n1 or Region::n2): each
+// gear's least tooth deviation there (pitch with the line's sign, thickness,
+// and the profile slope at its lower end, -|f_Ha|/2), reliefs adding nothing
+// below 0. 0 without errors.
+double least_gap_bound_m(const Modifications& m, Region line);
+
 // The active profile of one gear as radii: from the contact with the mating
 // tip (the start of the active profile, SAP) to its own tip.
 struct ActiveProfile {
@@ -107,8 +113,23 @@ class ToothGaps {
   // The deviation of tooth `tooth` of `gear` at X on `line` (Region::n1 or
   // Region::n2): relief, pitch, thickness and profile slope.
   double tooth_m(Gear gear, int tooth, Region line, double x_m) const;
+  // d tooth_m / dX.
+  double tooth_slope(Gear gear, int tooth, double x_m) const;
   // e_k(X): the sum of the two teeth of pair k on `line` (teeth_of_pair).
   double gap_m(Region line, int k, double x_m) const;
+  // e_k(X) and its slope de_k/dX, which the dynamics needs for the rate of a
+  // pair's penetration as its contact moves along the line. The slope is
+  // one-sided where a relief begins (its right-hand value; linear reliefs
+  // have a kink there) and 0 beyond the tip, where u is held at 1.
+  struct GapAndSlope {
+    double gap_m;
+    double slope;  // de_k/dX, m/m
+  };
+  GapAndSlope gap_and_slope(Region line, int k, double x_m) const;
+  // The contact positions X strictly inside the contact segment where a
+  // gap's slope jumps (where a linear relief begins), ascending, on either
+  // line: the dynamics locates them as events.
+  std::vector<double> kinks_m() const;
 
  private:
   GearPair pair_;
