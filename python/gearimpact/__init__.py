@@ -67,6 +67,7 @@ from ._signals import indicators, order_analysis, spectrum
 from ._program import (
     iso6336,
     mesh_stiffness,
+    modes,
     paper_data_dir,
     program_path,
     reproduce,
@@ -96,6 +97,7 @@ __all__ = [
     "iso6336",
     "line_of_action_length",
     "mesh_stiffness",
+    "modes",
     "moment_of_inertia",
     "order_analysis",
     "paper_case",

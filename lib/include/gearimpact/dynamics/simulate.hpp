@@ -277,14 +277,19 @@ double series_rows(const SimulationCase& c);
 // read the gaps yet, and a run that ignored them would answer another
 // question than its case asks. simulate(), validate() and the run pool call it.
 void refuse_gaps(const SimulationCase& c);
+// Throws InputError naming bearings.kind and shafts.kind when they are
+// "elastic": the planar model's keys are read by `gearimpact modes` only (its
+// linearised form); the dynamics are torsional. simulate(), validate(), the
+// run pool and the steady-state sweep call it before any work.
+void refuse_planar(const SimulationCase& c);
 // The samples of a run of c at sample_rate_hz: the n >= 0 with
 // sample_time_s(t0, n, rate) <= t0 + end_time_s, for t0 = 0 (about
 // floor(end_time_s rate) + 1; a continued run's start moves the end's rounding).
 double sample_count(const SimulationCase& c, double sample_rate_hz, double t0_s = 0.0);
 
 // Throws InputError naming the first field outside its range (validate_fields),
-// then a case with gaps (refuse_gaps), then what the fields imply together
-// (validate_implied of step_bound.hpp).
+// then a case with gaps (refuse_gaps) or a planar one (refuse_planar), then what the fields imply
+// together (validate_implied of step_bound.hpp).
 void validate(const SimulationCase& c);
 
 // What a user should hear before running a valid case, each a sentence with its numbers and the
