@@ -15,7 +15,8 @@ Cases
 Results
     ``stiffness``, ``energy_ratios`` (dicts of numpy arrays), ``simulate``
     (a ``SimulationResult`` with ``.summary`` and ``.series``),
-    ``sweep_friction`` (Fig. 7), ``reproduce`` (every figure and REPORT.md).
+    ``sweep_friction`` (Fig. 7), ``reproduce`` (every figure and REPORT.md),
+    ``modes`` (the natural modes of the linearised planar model).
 Tables
     dicts of numpy arrays: text columns as str arrays, ``converged`` as bool,
     keys and counts (``line``, ``index``, ``period``, ``pairs``) as int64, the
