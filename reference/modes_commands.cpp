@@ -13,17 +13,14 @@
 
 #include "case_flags.hpp"
 #include "commands.hpp"
-#include "gearimpact/case/schema.hpp"
 #include "gearimpact/case/units.hpp"
 #include "gearimpact/constants.hpp"
-#include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/modes_files.hpp"
 #include "gearimpact/io/results.hpp"
 #include "gearimpact/modes/modes.hpp"
-#include "gearimpact/stiffness/mesh_tables.hpp"
 #include "gnuplot.hpp"
 #include "program.hpp"
 
@@ -52,7 +49,6 @@ ModesTexts modes_texts(const SimulationCase& c, int harmonics,
                        std::optional<double> max_pinion_speed_rad_per_s) {
   require_harmonics(harmonics);
   require_max_speed(max_pinion_speed_rad_per_s);
-  validate_fields(c);
   ModesTexts texts;
   texts.modes = natural_modes(c);
   double highest = 0.0;
