@@ -400,8 +400,10 @@ void add_bearing(std::vector<Field>& rows, int gear, BearingSlot of) {
   Rows r(rows, "bearings");
   const std::string n = gear == 1 ? "1" : "2";
   // Stiffer than any rolling or journal bearing (1e8 to 1e10 N/m) by five
-  // orders and more; beyond it the eigenproblem's rounding, eps k / m,
-  // reaches the mesh's modes: kind = "rigid" is that limit, exactly.
+  // orders and more. The eigenproblem's rounding grows as eps k / m: at 1e16
+  // it is still below 1e-8 of a mesh mode's w^2 (the paper's pair meets the
+  // torsional limit to 2e-8 there); stiffer only loses digits, and
+  // kind = "rigid" is that limit exactly.
   const Range stiffness{open(0.0), closed(1e16), "stiffer is kind = \"rigid\""};
   const Range damping{closed(0.0), {}, {}};
   const FieldCondition elastic{"kind", {"elastic"}};
