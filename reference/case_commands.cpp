@@ -41,8 +41,9 @@ void check_case(const std::string& file) {
   const GearPair& g = c.gears;
   if (read.kind == CaseFileKind::pair) {
     std::printf(
-        "# %s: a valid pair file ([gears] and [model]: the stiffness commands and report read "
-        "it; a run also needs [torque1], [torque2], [initial] and [integrator]). The pair in SI "
+        "# %s: a valid pair file ([gears] and [model]: the stiffness commands, report, ste and "
+        "modes read it; a run also needs [torque1], [torque2], [initial] and [integrator]). The "
+        "pair in SI "
         "units (itself a pair file):\n",
         file.c_str());
     std::fputs(pair_sections(write_case_file(c, CaseUnits::si)).c_str(), stdout);
@@ -73,6 +74,12 @@ void check_case(const std::string& file) {
       std::printf("# warning: %s\n", w.c_str());
       std::fprintf(stderr, "gearimpact: warning: %s\n", w.c_str());
     }
+  }
+  // A valid planar case that the dynamics refuse: said before a run is tried.
+  if (c.bearings.kind == BearingKind::elastic || c.shafts.kind == ShaftKind::elastic) {
+    std::printf(
+        "# note: elastic bearings or shafts are read by `gearimpact modes` only; simulate and "
+        "sweep refuse the case (the dynamics are torsional)\n");
   }
 }
 

@@ -42,7 +42,8 @@ std::string command_names(unsigned commands) {
       {kSweep, "sweep"},
       {kStiffness, "stiffness"},
       {kEnergyRatios, "energy-ratios"},
-      {kMeshStiffness, "mesh-stiffness"}};
+      {kMeshStiffness, "mesh-stiffness"},
+      {kModes, "modes"}};
   std::string names;
   for (const auto& [bit, name] : kNames) {
     if ((commands & bit) != 0) names += (names.empty() ? "" : ", ") + std::string(name);

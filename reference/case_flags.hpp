@@ -26,6 +26,7 @@ enum CaseCommand : unsigned {
   kStiffness = 1u << 3,
   kEnergyRatios = 1u << 4,
   kMeshStiffness = 1u << 5,
+  kModes = 1u << 6,
 };
 
 // "simulate, sweep-friction": the commands of a mask, in the order above.
@@ -58,11 +59,11 @@ inline constexpr CaseFlag kCaseFlags[] = {
     {"--restitution-exponent", "model.restitution_exponent", kBothSimulations},
     {"--speed-unit", "model.restitution_speed_unit", kBothSimulations},
     {"--coast-phase", "model.coast_phase", kBothSimulations},
-    {"--flipped-moment", "model.moment_sign", kBothSimulations | kStiffness | kEnergyRatios,
-     "flipped"},
-    {"--method", "model.stiffness_method", kStiffness | kEnergyRatios | kMeshStiffness},
-    {"--model", "model.stiffness_model", kStiffness | kMeshStiffness},
-    {"--mesh-stiffness", "model.mesh_stiffness", kSweep},
+    {"--flipped-moment", "model.moment_sign",
+     kBothSimulations | kStiffness | kEnergyRatios | kModes, "flipped"},
+    {"--method", "model.stiffness_method", kStiffness | kEnergyRatios | kMeshStiffness | kModes},
+    {"--model", "model.stiffness_model", kStiffness | kMeshStiffness | kModes},
+    {"--mesh-stiffness", "model.mesh_stiffness", kSweep | kModes},
     {"--damping-update", "model.damping_update", kSweep},
 };
 

@@ -25,5 +25,7 @@ void register_ste_commands(CLI::App& app);
 void register_sweep_commands(CLI::App& app);
 // `signals IN.csv --column NAME --out DIR`: spectrum, order spectrum, TSA, indicators.
 void register_signals_commands(CLI::App& app);
+// `modes CASE --out DIR`: the linearised planar model's natural modes and Campbell diagram.
+void register_modes_commands(CLI::App& app);
 
 }  // namespace gearimpact::cli

@@ -10,6 +10,7 @@
 #include "gearimpact/batch/steady_sweep.hpp"
 #include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/modes/modes.hpp"
 #include "gearimpact/stiffness/fillet_foundation.hpp"
 #include "gearimpact/stiffness/model.hpp"
 #include "gearimpact/stiffness/static_transmission_error.hpp"
@@ -51,6 +52,23 @@ struct SteTexts {
   bool modified_differs = true;
 };
 SteTexts ste_texts(const SimulationCase& c, double torque1_n_m, int points_per_mesh_period);
+
+// `gearimpact modes`: the natural modes of the case's linearised model at its mean mesh
+// stiffness (modes.csv), the crossings of the mesh harmonics 1..harmonics with them up to the
+// pinion speed max_pinion_speed_rad_per_s (campbell.csv; absent: 1.1 times the speed at which
+// the first harmonic meets the highest natural frequency) and summary.json. Throws InputError
+// naming "harmonics" or "max_speed" before the stiffness tables are built.
+struct ModesTexts {
+  Modes modes;
+  std::vector<CampbellCrossing> crossings;
+  double max_pinion_speed_rad_per_s = 0.0;
+  std::string csv;
+  std::string campbell_csv;
+  std::string summary_json;
+};
+inline constexpr int kMostHarmonics = 100;
+ModesTexts modes_texts(const SimulationCase& c, int harmonics,
+                       std::optional<double> max_pinion_speed_rad_per_s = std::nullopt);
 
 // `gearimpact iso6336`: the JSON of ISO 6336-1 method B for the pair at this helix angle, with
 // the low-load correction at a specific load F_t K_A / b (N/m) when one is given.

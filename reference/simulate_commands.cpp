@@ -200,7 +200,10 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
     fields_valid = false;
   }
   // A case the dynamics refuses gets its refusal alone, before the warnings.
-  if (fields_valid) validate_gaps(c);
+  if (fields_valid) {
+    refuse_planar(c);
+    validate_gaps(c);
+  }
   if (fields_valid) {
     for (const std::string& w : run_warnings(c)) {
       std::fprintf(stderr, "gearimpact: warning: %s\n", w.c_str());

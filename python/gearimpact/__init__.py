@@ -15,7 +15,8 @@ Cases
 Results
     ``stiffness``, ``energy_ratios`` (dicts of numpy arrays), ``simulate``
     (a ``SimulationResult`` with ``.summary`` and ``.series``),
-    ``sweep_friction`` (Fig. 7), ``reproduce`` (every figure and REPORT.md).
+    ``sweep_friction`` (Fig. 7), ``reproduce`` (every figure and REPORT.md),
+    ``modes`` (the natural modes of the linearised planar model).
 Tables
     dicts of numpy arrays: text columns as str arrays, ``converged`` as bool,
     keys and counts (``line``, ``index``, ``period``, ``pairs``) as int64, the
@@ -67,6 +68,7 @@ from ._signals import indicators, order_analysis, spectrum
 from ._program import (
     iso6336,
     mesh_stiffness,
+    modes,
     paper_data_dir,
     program_path,
     reproduce,
@@ -96,6 +98,7 @@ __all__ = [
     "iso6336",
     "line_of_action_length",
     "mesh_stiffness",
+    "modes",
     "moment_of_inertia",
     "order_analysis",
     "paper_case",

@@ -64,7 +64,8 @@ def reproduce(out_dir, paper_data=None):
 # when it holds only true/false, float64 when it holds only numbers (NaN for
 # an empty field), str otherwise, so that a column the program adds arrives
 # with its type.
-_INTEGER_COLUMNS = frozenset({"line", "index", "period", "pairs", "loaded_pairs"})
+_INTEGER_COLUMNS = frozenset({"line", "index", "period", "pairs", "loaded_pairs", "mode",
+                              "harmonic"})
 _BOOL_COLUMNS = frozenset({"converged"})
 _TEXT_COLUMNS = frozenset({"direction", "regime", "teeth"})
 
@@ -154,6 +155,39 @@ def ste(case, torque, points=200):
                                               _arguments.integer("points", points))
     return {"ste": _table(modified), "unmodified": _table(unmodified),
             "summary": json.loads(summary)}
+
+
+def modes(case, harmonics=3, max_speed=None):
+    """The natural modes of a case's linearised model at its mean mesh stiffness, as
+    ``gearimpact modes`` (docs/vibration.md): torsional, or planar with [bearings]
+    kind = "elastic", with a motor and a load with [shafts] kind = "elastic". `case` a Case,
+    `harmonics` the mesh harmonics of the Campbell table (an int, 1 to 100), `max_speed` its
+    largest pinion speed as case files write it ("6000 rpm") or a number of rad/s (None: 1.1
+    times where the first harmonic meets the highest mode). Returns a dict: "modes" and
+    "campbell" (dicts of numpy arrays with the columns of modes.csv and campbell.csv: mode and
+    harmonic int64, rigid bool, the rest float64), "dofs" (the shape's degrees of freedom in
+    order), "shapes" (a float64 array, one mass-normalised shape a row, one column a DOF) and
+    "summary" (summary.json)."""
+    if not isinstance(case, _core.Case):
+        raise _arguments.case_error(
+            f"case={case!r}: a Case (gearimpact.case, paper_case, read_case), "
+            f"not {type(case).__name__}",
+            "case",
+        )
+    if max_speed is not None and isinstance(max_speed, numbers.Real) and not \
+            _arguments.is_bool(max_speed):
+        max_speed = repr(_arguments.real("max_speed", max_speed)) + " rad/s"
+    table, campbell, summary = _core.modes(
+        case, _arguments.integer("harmonics", harmonics),
+        None if max_speed is None else _arguments.text("max_speed", max_speed))
+    table = _table(table)
+    summary = json.loads(summary)
+    dofs = summary["dofs"]
+    columns = [next(name for name in table if name.startswith(dof + "_")) for dof in dofs]
+    shapes = numpy.column_stack([table[name] for name in columns]) if table["mode"].size else \
+        numpy.zeros((0, len(dofs)))
+    return {"modes": table, "campbell": _table(campbell), "dofs": dofs, "shapes": shapes,
+            "summary": summary}
 
 
 def sweep(case, vary, start, stop, points, direction="both", options=()):

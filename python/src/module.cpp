@@ -469,6 +469,31 @@ py::tuple ste_texts_of(const SimulationCase& c, const std::string& torque, long 
   return py::make_tuple(texts.csv, texts.unmodified_csv, texts.summary_json);
 }
 
+// `gearimpact modes`: (modes.csv, campbell.csv, summary.json) as the program writes them;
+// `max_speed` a quantity with its unit ("6000 rpm"), absent for the program's default.
+py::tuple modes_texts_of(const SimulationCase& c, long long harmonics,
+                         const std::optional<std::string>& max_speed) {
+  if (harmonics < 1 || harmonics > cli::kMostHarmonics) {
+    throw InputError("harmonics", std::to_string(harmonics),
+                     "an integer in [1, " + std::to_string(cli::kMostHarmonics) + "]");
+  }
+  std::optional<double> speed;
+  if (max_speed) {
+    speed = parse_quantity(*max_speed, Dimension::angular_velocity, "max_speed");
+    if (!(*speed > 0.0)) {
+      throw InputError("max_speed", "\"" + *max_speed + "\"",
+                       "a pinion speed > 0 (" + allowed_units(Dimension::angular_velocity) + ")");
+    }
+  }
+  validate_fields(c);
+  cli::ModesTexts texts;
+  {
+    py::gil_scoped_release release;
+    texts = cli::modes_texts(c, static_cast<int>(harmonics), speed);
+  }
+  return py::make_tuple(texts.csv, texts.campbell_csv, texts.summary_json);
+}
+
 // `gearimpact sweep` of a case with the command's options: (sweep.csv, poincare.csv,
 // summary.json) as the program writes them.
 py::tuple sweep_texts(const SimulationCase& c, const std::vector<std::string>& options) {
@@ -808,6 +833,7 @@ void define_module(py::module_& m) {
         py::arg("samples"));
   m.def("sweep", &sweep_texts, py::arg("case"), py::arg("options"));
   m.def("ste", &ste_texts_of, py::arg("case"), py::arg("torque"), py::arg("points"));
+  m.def("modes", &modes_texts_of, py::arg("case"), py::arg("harmonics"), py::arg("max_speed"));
   m.def(
       "reproduce",
       [](const std::string& out, const std::string& paper_data) {

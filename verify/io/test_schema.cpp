@@ -60,7 +60,7 @@ SimulationCase every_key_case() {
 
 // A case the row applies to: every_key_case(), for the keys of the other
 // torque kinds case 2 with torque2 made sinusoidal or with a driver and a
-// drag, for the keys of the
+// drag, for the planar model's keys one with elastic bearings and shafts, for the keys of the
 // constant mesh stiffness, the frozen D and Benedict and Kelley's friction a
 // case with those.
 SimulationCase case_for(const Field& field) {
@@ -87,6 +87,26 @@ SimulationCase case_for(const Field& field) {
     d.torque2.drag_constant_n_m = 0.5;
     d.torque2.drag_viscous_n_m_s = 1e-4;
     if (applies(field, d)) return d;
+  }
+  {
+    // The planar model's keys: elastic bearings and shafts.
+    SimulationCase p = paper_case(2);
+    p.bearings.kind = BearingKind::elastic;
+    p.bearings.gear1.stiffness_x_n_per_m = 5e8;
+    p.bearings.gear2.stiffness_x_n_per_m = 7e8;
+    // Every optional key given, so that each has a value to read back.
+    for (GearBearing* b : {&p.bearings.gear1, &p.bearings.gear2}) {
+      b->stiffness_y_n_per_m = 9e8;
+      b->damping_x_n_s_per_m = 150.0;
+      b->damping_y_n_s_per_m = 250.0;
+      b->mass_kg = 1.25;
+    }
+    p.shafts.kind = ShaftKind::elastic;
+    p.shafts.motor_inertia_kg_m2 = 2e-3;
+    p.shafts.motor_stiffness_n_m_per_rad = 5e4;
+    p.shafts.load_inertia_kg_m2 = 8e-3;
+    p.shafts.load_stiffness_n_m_per_rad = 9e4;
+    if (applies(field, p)) return p;
   }
   c.model.mesh_stiffness = MeshStiffnessMode::constant;
   c.model.constant_mesh_stiffness_n_per_m = 3.5e8;

@@ -211,6 +211,49 @@ def test_ste_equals_the_program(cli, tmp_path):
         gearimpact.ste(case, torque="0 N*m", points=20)
 
 
+def test_modes_equal_the_program(cli, tmp_path):
+    # Case 1 on elastic bearings with a motor and a load: 8 DOF.
+    case_file = tmp_path / "planar.toml"
+    case_file.write_text((gearimpact.paper_data_dir() / "case1.toml").read_text()
+                         + '\n[bearings]\nkind = "elastic"\nstiffness_x1 = "500 N/um"\n'
+                         + 'stiffness_x2 = "700 N/um"\n'
+                         + '[shafts]\nkind = "elastic"\nmotor_inertia = "2e-3 kg*m^2"\n'
+                         + 'motor_stiffness = "5e4 N*m/rad"\nload_inertia = "8e-3 kg*m^2"\n'
+                         + 'load_stiffness = "9e4 N*m/rad"\n')
+    case = gearimpact.read_case(case_file)
+    ours = gearimpact.modes(case, harmonics=2, max_speed="20000 rpm")
+    out = tmp_path / "out"
+    cli("modes", case_file, "--harmonics", "2", "--max-speed", "20000 rpm", "--out", out,
+        "--no-plots")
+    for key, name in (("modes", "modes.csv"), ("campbell", "campbell.csv")):
+        lines = (out / name).read_text().strip().splitlines()
+        header = lines[0].split(",")
+        assert list(ours[key]) == header
+        for j, column_name in enumerate(header):
+            written = [line.split(",")[j] for line in lines[1:]]
+            column = ours[key][column_name]
+            if column.dtype == np.float64:
+                assert_bitwise_equal(column, [float(v) for v in written], f"{name} {column_name}")
+            else:
+                assert [as_written(v) for v in column.tolist()] == written, column_name
+    assert ours["summary"] == json.loads((out / "summary.json").read_text())
+    assert ours["dofs"] == ["x1", "y1", "theta1", "x2", "y2", "theta2", "theta_motor",
+                            "theta_load"]
+    assert ours["shapes"].shape == (8, 8)
+    assert ours["modes"]["mode"].dtype == np.int64
+    assert ours["modes"]["rigid"].tolist() == [True] + [False] * 7
+    # A number is rad/s.
+    assert gearimpact.modes(case, harmonics=2, max_speed=20000 * np.pi / 30)["summary"][
+        "max_pinion_speed_rad_per_s"] == pytest.approx(20000 * np.pi / 30, rel=1e-15)
+    with pytest.raises(gearimpact.CaseError, match="harmonics"):
+        gearimpact.modes(case, harmonics=0)
+    with pytest.raises(gearimpact.CaseError, match="max_speed"):
+        gearimpact.modes(case, max_speed="0 rpm")
+    # The dynamics are torsional: a planar case is refused naming the key.
+    with pytest.raises(gearimpact.CaseError, match="bearings.kind"):
+        gearimpact.simulate(case)
+
+
 SAMPLE_COLUMNS = [
     "t_s", "theta1_rad", "theta2_rad", "w1_rad_s", "w2_rad_s", "w1_dot_rad_s2", "w2_dot_rad_s2",
     "s_m", "dte_m", "normal_force_n1_N", "normal_force_n2_N", "region", "pairs",

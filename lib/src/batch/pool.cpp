@@ -105,6 +105,7 @@ std::shared_future<SimulationResult> RunPool::submit(const SimulationCase& c, bo
     // checks that need the mesh stiffness use the table, without a quadrature
     // of their own.
     validate_fields(c);
+    refuse_planar(c);
     validate_gaps(c);
     table = table_for(c);
     validate_implied(c, *table);

@@ -15,6 +15,7 @@
 #include "gearimpact/case/schema.hpp"
 #include "gearimpact/case/units.hpp"
 #include "gearimpact/constants.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 
@@ -229,6 +230,7 @@ SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
   const SimulationCase& base = spec.base;
   // Refuse, before any work and naming the key, a swept key the run does not read and a case
   // without a steady state at either end of each grid (a key's range may hold at one end only).
+  refuse_planar(base);
   require_read_key(spec.vary, base, "vary");
   if (!spec.vary2.empty()) require_read_key(spec.vary2, base, "vary2");
   // The Poincare period at the first and the last point of the sweep, for its record.

@@ -42,6 +42,13 @@ constexpr std::array kViscosity{Unit{"Pa*s", 0, 1.0}, Unit{"mPa*s", -3, 1.0}, Un
 
 // A viscous torque per angular velocity.
 constexpr std::array kRotationalDamping{Unit{"N*m*s/rad", 0, 1.0}, Unit{"N*mm*s/rad", -3, 1.0}};
+constexpr std::array kMass{Unit{"kg", 0, 1.0}, Unit{"g", -3, 1.0}};
+constexpr std::array kMomentOfInertia{Unit{"kg*m^2", 0, 1.0}, Unit{"kg*mm^2", -6, 1.0},
+                                      Unit{"kg*cm^2", -4, 1.0}};
+// A bearing's viscous damper: N*s/mm = 1e3 N*s/m.
+constexpr std::array kDamping{Unit{"N*s/m", 0, 1.0}, Unit{"N*s/mm", 3, 1.0}};
+constexpr std::array kTorsionalStiffness{Unit{"N*m/rad", 0, 1.0}, Unit{"N*mm/rad", -3, 1.0},
+                                         Unit{"kN*m/rad", 3, 1.0}};
 
 constexpr std::array kDimensions{Dimension::length,
                                  Dimension::angle,
@@ -54,7 +61,11 @@ constexpr std::array kDimensions{Dimension::length,
                                  Dimension::speed,
                                  Dimension::stiffness,
                                  Dimension::viscosity,
-                                 Dimension::rotational_damping};
+                                 Dimension::rotational_damping,
+                                 Dimension::mass,
+                                 Dimension::moment_of_inertia,
+                                 Dimension::damping,
+                                 Dimension::torsional_stiffness};
 
 // Exponents beyond this put any mantissa outside the doubles (with up to a few
 // hundred digits); it keeps the exponent arithmetic far from int overflow.
@@ -166,6 +177,14 @@ UnitList units_of(Dimension dimension) {
       return {kViscosity.data(), kViscosity.size()};
     case Dimension::rotational_damping:
       return {kRotationalDamping.data(), kRotationalDamping.size()};
+    case Dimension::mass:
+      return {kMass.data(), kMass.size()};
+    case Dimension::moment_of_inertia:
+      return {kMomentOfInertia.data(), kMomentOfInertia.size()};
+    case Dimension::damping:
+      return {kDamping.data(), kDamping.size()};
+    case Dimension::torsional_stiffness:
+      return {kTorsionalStiffness.data(), kTorsionalStiffness.size()};
   }
   return {};
 }
@@ -196,6 +215,14 @@ std::string_view describe(Dimension dimension) {
       return "a dynamic viscosity";
     case Dimension::rotational_damping:
       return "a rotational damping";
+    case Dimension::mass:
+      return "a mass";
+    case Dimension::moment_of_inertia:
+      return "a moment of inertia";
+    case Dimension::damping:
+      return "a damping";
+    case Dimension::torsional_stiffness:
+      return "a torsional stiffness";
   }
   return "a quantity";
 }

@@ -192,6 +192,22 @@ void validate_gaps(const SimulationCase& c) {
   }
 }
 
+void refuse_planar(const SimulationCase& c) {
+  std::vector<Problem> problems;
+  const auto refuse = [&](const char* key, const char* torsional) {
+    problems.push_back(refused_problem(
+        key, "\"elastic\"",
+        "read by `gearimpact modes` only; the dynamics (simulate, sweep, sweep-friction) are "
+        "torsional",
+        std::string("\"") + torsional + "\" (the default) to run the dynamics",
+        "leave the key out to simulate the torsional model, or run `gearimpact modes` for the "
+        "planar model's natural frequencies"));
+  };
+  if (c.bearings.kind == BearingKind::elastic) refuse("bearings.kind", "rigid");
+  if (c.shafts.kind == ShaftKind::elastic) refuse("shafts.kind", "none");
+  if (!problems.empty()) throw InputError(std::move(problems));
+}
+
 double sample_count(const SimulationCase& c, double sample_rate_hz, double t0_s) {
   const double end = t0_s + c.integrator.end_time_s;
   const double guess = std::floor(c.integrator.end_time_s * sample_rate_hz);
@@ -205,6 +221,7 @@ double sample_count(const SimulationCase& c, double sample_rate_hz, double t0_s)
 
 void validate(const SimulationCase& c) {
   validate_fields(c);
+  refuse_planar(c);
   validate_gaps(c);
   validate_implied(c);
 }
@@ -258,6 +275,7 @@ std::vector<std::string> run_warnings(const SimulationCase& c) {
 
 SimulationResult simulate(const SimulationCase& c, const RunControl& control) {
   validate_fields(c);
+  refuse_planar(c);
   validate_gaps(c);
   // The controls before the table, which may take a while to build.
   validate_control(c, control);
@@ -268,6 +286,7 @@ SimulationResult simulate(const SimulationCase& c, const RunControl& control) {
 SimulationResult simulate(const SimulationCase& c, const StiffnessTable& table,
                           const RunControl& control) {
   validate_fields(c);
+  refuse_planar(c);
   validate_gaps(c);
   validate_control(c, control);
   return simulate_checked(c, table, control);

@@ -234,6 +234,11 @@ double moment_of_inertia(const GearPair& pair, Gear gear) {
   return pair.density_kg_m3 * pi * r * r * r * r * pair.face_width_m / 2.0;
 }
 
+double disc_mass(const GearPair& pair, Gear gear) {
+  const double r = pitch_radius(pair, gear);
+  return pair.density_kg_m3 * pi * r * r * pair.face_width_m;
+}
+
 namespace {
 
 // The relations of one gear's teeth with the rack that cuts them and the gear

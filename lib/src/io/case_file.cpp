@@ -970,7 +970,9 @@ std::string read_text(const std::filesystem::path& path) {
 }  // namespace
 
 bool is_pair_section(std::string_view section) {
-  return section == "gears" || section == "model" || section == "modifications";
+  // The bearings and shafts mount the pair: `modes` reads them from a pair file.
+  return section == "gears" || section == "model" || section == "modifications" ||
+         section == "bearings" || section == "shafts";
 }
 
 SimulationCase parse_case(std::string_view toml_text, std::string_view file_name) {

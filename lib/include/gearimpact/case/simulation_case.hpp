@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -155,6 +156,67 @@ struct ModelOptions {
   double damping_reference_speed_m_s = 1.0;  // V_ref of DampingUpdate::frozen, > 0
 };
 
+// How the gears' centres are held (docs/vibration.md). Rigid bearings fix the
+// centres: the paper's torsional model, the one the dynamics integrate.
+// Elastic bearings let each centre move in the plane on a spring and a damper
+// per direction: the planar model, of which `gearimpact modes` reads the
+// linearised form; the dynamics refuse it (refuse_planar of
+// dynamics/simulate.hpp) until they integrate it.
+enum class BearingKind { rigid, elastic };
+inline constexpr std::array<NamedValue<BearingKind>, 2> kBearingKinds{{
+    {BearingKind::rigid, "rigid",
+     "the centres are fixed: the torsional model of the paper (2 DOF)"},
+    {BearingKind::elastic, "elastic",
+     "each centre moves in the plane on its bearing's springs and dampers (x, y, theta per "
+     "gear: 6 DOF); read by `gearimpact modes` only"},
+}};
+
+// Per gear and direction (x along the centre line O1 -> O2, y across it), in SI.
+struct GearBearing {
+  double stiffness_x_n_per_m = 0.0;
+  // Absent: stiffness_x (isotropic).
+  std::optional<double> stiffness_y_n_per_m;
+  double damping_x_n_s_per_m = 0.0;
+  // Absent: damping_x.
+  std::optional<double> damping_y_n_s_per_m;
+  // Absent: the disc of moment_of_inertia, rho pi r^2 L (geometry/gear_pair.hpp).
+  std::optional<double> mass_kg;
+};
+
+struct Bearings {
+  BearingKind kind = BearingKind::rigid;
+  GearBearing gear1;
+  GearBearing gear2;
+};
+
+// The y stiffness and damping of a bearing: its own, else the x one's.
+inline double stiffness_y(const GearBearing& b) {
+  return b.stiffness_y_n_per_m.value_or(b.stiffness_x_n_per_m);
+}
+inline double damping_y(const GearBearing& b) {
+  return b.damping_y_n_s_per_m.value_or(b.damping_x_n_s_per_m);
+}
+
+// Whether the torques act on the gears themselves or on a motor and a load
+// behind torsional shafts (docs/vibration.md).
+enum class ShaftKind { none, elastic };
+inline constexpr std::array<NamedValue<ShaftKind>, 2> kShaftKinds{{
+    {ShaftKind::none, "none", "the torques act on the gears"},
+    {ShaftKind::elastic, "elastic",
+     "a motor inertia on the pinion's shaft and a load inertia on the wheel's, each through a "
+     "torsional spring and damper (2 more DOF); read by `gearimpact modes` only"},
+}};
+
+struct Shafts {
+  ShaftKind kind = ShaftKind::none;
+  double motor_inertia_kg_m2 = 0.0;          // J_m, on the pinion's side
+  double motor_stiffness_n_m_per_rad = 0.0;  // k_t of the pinion's shaft
+  double motor_damping_n_m_s_per_rad = 0.0;  // c_t of the pinion's shaft
+  double load_inertia_kg_m2 = 0.0;           // J_L, on the wheel's side
+  double load_stiffness_n_m_per_rad = 0.0;   // k_t of the wheel's shaft
+  double load_damping_n_m_s_per_rad = 0.0;   // c_t of the wheel's shaft
+};
+
 enum class IntegratorKind { rk4, adaptive };
 inline constexpr std::array<NamedValue<IntegratorKind>, 2> kIntegratorKinds{{
     {IntegratorKind::rk4, "rk4", "fixed-step RK4 with event location"},
@@ -204,6 +266,10 @@ struct SimulationCase {
   // Teeth that differ from the others ([[faults]], docs/faults.md); empty:
   // every tooth healthy.
   std::vector<ToothFault> faults;
+  // The mounting of the pair (docs/vibration.md); the defaults are the
+  // paper's torsional model.
+  Bearings bearings;
+  Shafts shafts;
 };
 
 }  // namespace gearimpact

@@ -10,18 +10,22 @@
 namespace gearimpact {
 
 enum class Dimension {
-  length,              // m
-  angle,               // rad
-  pressure,            // Pa (Young's modulus)
-  density,             // kg/m^3
-  torque,              // N m
-  time,                // s
-  angular_velocity,    // rad/s
-  angular_frequency,   // rad/s, the W of sin(W t)
-  speed,               // m/s
-  stiffness,           // N/m, a mesh stiffness along the line of action
-  viscosity,           // Pa s, a lubricant's dynamic viscosity
-  rotational_damping,  // N m s/rad, a viscous drag torque per angular velocity
+  length,               // m
+  angle,                // rad
+  pressure,             // Pa (Young's modulus)
+  density,              // kg/m^3
+  torque,               // N m
+  time,                 // s
+  angular_velocity,     // rad/s
+  angular_frequency,    // rad/s, the W of sin(W t)
+  speed,                // m/s
+  stiffness,            // N/m, a mesh stiffness along the line of action or a bearing's
+  viscosity,            // Pa s, a lubricant's dynamic viscosity
+  rotational_damping,   // N m s/rad, a viscous drag torque per angular velocity
+  mass,                 // kg
+  moment_of_inertia,    // kg m^2
+  damping,              // N s/m, a viscous force per speed (a bearing's damper)
+  torsional_stiffness,  // N m/rad, a shaft's torque per twist
 };
 
 // One allowed unit: SI value = (number x 10^decimal_exponent) x factor. A

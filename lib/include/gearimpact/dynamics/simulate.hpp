@@ -286,14 +286,19 @@ double series_rows(const SimulationCase& c);
 // coast flanks at once (2 B + the least gap on N1 + that on N2 < 0, a bound
 // over every pair). simulate(), validate() and the run pool call it.
 void validate_gaps(const SimulationCase& c);
+// Throws InputError naming bearings.kind and shafts.kind when they are
+// "elastic": the planar model's keys are read by `gearimpact modes` only (its
+// linearised form); the dynamics are torsional. simulate(), validate(), the
+// run pool and the steady-state sweep call it before any work.
+void refuse_planar(const SimulationCase& c);
 // The samples of a run of c at sample_rate_hz: the n >= 0 with
 // sample_time_s(t0, n, rate) <= t0 + end_time_s, for t0 = 0 (about
 // floor(end_time_s rate) + 1; a continued run's start moves the end's rounding).
 double sample_count(const SimulationCase& c, double sample_rate_hz, double t0_s = 0.0);
 
 // Throws InputError naming the first field outside its range (validate_fields),
-// then the gaps of its modifications (validate_gaps), then what the fields imply together
-// (validate_implied of step_bound.hpp).
+// then a planar case (refuse_planar), then the gaps of its modifications (validate_gaps), then
+// what the fields imply together (validate_implied of step_bound.hpp).
 void validate(const SimulationCase& c);
 
 // What a user should hear before running a valid case, each a sentence with its numbers and the

@@ -191,6 +191,8 @@ LoadedPairs loaded_pairs(const GearPair& pair, Region line, double theta1_rad,
 
 // Solid discs on the pitch radius: J = rho pi r^4 L / 2.
 double moment_of_inertia(const GearPair& pair, Gear gear);
+// The same discs' mass, m = rho pi r^2 L (so that J = m r^2 / 2).
+double disc_mass(const GearPair& pair, Gear gear);
 
 // The fixes validate_geometry names for a gear whose teeth are undercut,
 // pointed or interfere at the root: the fewest teeth at its shift, and the

@@ -50,7 +50,7 @@ SimulationCase read_case_file(const std::filesystem::path& path);
 // TOML, lacks the key or gives it another type (read_case_file says what is wrong with it).
 std::string case_file_text(const std::filesystem::path& path, const std::string& key);
 
-// What a case file describes. A pair file has the sections [gears] and [model] only (and the
+// What a case file describes. A pair file has pair sections only (is_pair_section; and the
 // top-level `name`): a gear pair and its models, enough for the stiffness commands and `report`;
 // the torques, initial conditions and integrator keep their defaults and the file is no run. A run
 // file is anything else, read as read_case_file reads it: a file with [initial] but no [torque1]
@@ -62,7 +62,7 @@ struct PairOrRunCase {
   CaseFileKind kind = CaseFileKind::run;
 };
 
-// The sections of a pair file: [gears], [model] and [modifications].
+// The sections of a pair file: [gears], [model], [modifications], [bearings] and [shafts].
 bool is_pair_section(std::string_view section);
 
 // parse_case for a pair file or a run file: a pair file's keys are checked by their schema rows,

@@ -1,0 +1,35 @@
+// The files of `gearimpact modes` (docs/vibration.md): the natural modes of
+// the linearised model, where the mesh harmonics cross them, and a summary.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "gearimpact/modes/modes.hpp"
+
+namespace gearimpact {
+
+// One row per mode, ascending frequency:
+// mode,rigid,frequency_hz,angular_frequency_rad_per_s,share_mesh,share_bearing1,
+// share_bearing2,share_motor_shaft,share_load_shaft, then the mass-normalised
+// shape's components of the model's DOFs: x1_per_sqrt_kg, y1_per_sqrt_kg,
+// theta1_rad_per_sqrt_kg_m, ... (x, y only on elastic bearings; theta_motor,
+// theta_load only on elastic shafts). mode counts from 1; rigid is true or false.
+std::string modes_csv(const Modes& modes);
+
+// One row per crossing: harmonic,mode,frequency_hz,pinion_speed_rad_per_s,
+// pinion_speed_rpm (mode as modes.csv numbers it).
+std::string campbell_csv(const std::vector<CampbellCrossing>& crossings);
+
+// What the modes were computed from, and the torsional reference
+// sqrt(k / m_e) / (2 pi) with 1/m_e = Rb1^2/J1 + Rb2^2/J2.
+struct ModesSummary {
+  std::string case_name;
+  int teeth1 = 0;
+  int harmonics = 0;
+  double max_pinion_speed_rad_per_s = 0.0;
+};
+std::string modes_summary_json(const ModesSummary& summary, const Modes& modes,
+                               const std::vector<CampbellCrossing>& crossings);
+
+}  // namespace gearimpact

@@ -1,0 +1,222 @@
+// `gearimpact modes CASE --out DIR`: the natural modes of the case's
+// linearised model (docs/vibration.md), each mode's strain-energy shares, and
+// a Campbell diagram of the mesh harmonics against the pinion speed.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "case_flags.hpp"
+#include "commands.hpp"
+#include "gearimpact/case/units.hpp"
+#include "gearimpact/constants.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/io/atomic_file.hpp"
+#include "gearimpact/io/case_file.hpp"
+#include "gearimpact/io/modes_files.hpp"
+#include "gearimpact/io/results.hpp"
+#include "gearimpact/modes/modes.hpp"
+#include "gnuplot.hpp"
+#include "program.hpp"
+
+namespace gearimpact::cli {
+
+namespace {
+
+constexpr double kRpm = 60.0 / (2.0 * pi);
+
+void require_harmonics(int harmonics) {
+  if (harmonics < 1 || harmonics > kMostHarmonics) {
+    throw InputError("harmonics", std::to_string(harmonics),
+                     "an integer in [1, " + std::to_string(kMostHarmonics) + "]");
+  }
+}
+
+void require_max_speed(std::optional<double> speed) {
+  if (speed && !(std::isfinite(*speed) && *speed > 0.0)) {
+    throw InputError("max_speed", *speed, "a pinion speed > 0 and finite, in rad/s");
+  }
+}
+
+}  // namespace
+
+ModesTexts modes_texts(const SimulationCase& c, int harmonics,
+                       std::optional<double> max_pinion_speed_rad_per_s) {
+  require_harmonics(harmonics);
+  require_max_speed(max_pinion_speed_rad_per_s);
+  ModesTexts texts;
+  texts.modes = natural_modes(c);
+  double highest = 0.0;
+  for (const NaturalMode& mode : texts.modes.modes)
+    highest = std::max(highest, mode.angular_frequency);
+  // Every crossing of every harmonic lies below the first harmonic's with the highest mode.
+  const double teeth1 = static_cast<double>(c.gears.teeth1);
+  texts.max_pinion_speed_rad_per_s = max_pinion_speed_rad_per_s.value_or(1.1 * highest / teeth1);
+  texts.crossings =
+      campbell_crossings(texts.modes, c.gears.teeth1, harmonics, texts.max_pinion_speed_rad_per_s);
+  texts.csv = modes_csv(texts.modes);
+  texts.campbell_csv = campbell_csv(texts.crossings);
+  ModesSummary summary;
+  summary.case_name = c.name;
+  summary.teeth1 = c.gears.teeth1;
+  summary.harmonics = harmonics;
+  summary.max_pinion_speed_rad_per_s = texts.max_pinion_speed_rad_per_s;
+  texts.summary_json = modes_summary_json(summary, texts.modes, texts.crossings);
+  return texts;
+}
+
+namespace {
+
+struct ModesOptions {
+  std::string case_file;
+  std::string out;
+  int harmonics = 3;
+  std::string max_speed;
+  bool overwrite = false;
+  bool no_plots = false;
+  CaseOptions keys;
+};
+
+// The pinion speed a run file holds (its driver's mean speed, or its initial
+// w1), to mark on the Campbell diagram; nothing for a pair at rest.
+std::optional<double> running_speed(const SimulationCase& c) {
+  const double w = c.torque1.kind == Torque::Kind::prescribed_speed ? c.torque1.mean_speed_rad_per_s
+                                                                    : c.initial.w1_rad_per_s;
+  if (w == 0.0) return std::nullopt;
+  return std::fabs(w);
+}
+
+// Each elastic mode as a bar split into its strain-energy shares.
+Figure energy_figure(const SimulationCase& c) {
+  Figure f;
+  f.name = "modes_energy";
+  f.title = "Strain-energy shares of each mode (" + literal_key(c.name, true) + ")";
+  f.x_label = "mode: natural frequency";
+  f.y_label = "share of the mode's strain energy";
+  f.setup = {"set style data histograms",
+             "set style histogram rowstacked",
+             "set style fill solid 0.85 border -1",
+             "set boxwidth 0.7",
+             "set yrange [0:1.05]",
+             "set key outside right top vertical",
+             "set xtics rotate by -30"};
+  // modes.csv's share columns 5..9; a rigid mode's bar is empty (it stores no energy).
+  const char* titles[kSpringParts] = {"mesh", "bearing 1", "bearing 2", "motor shaft",
+                                      "load shaft"};
+  for (std::size_t part = 0; part < kSpringParts; ++part) {
+    std::string series = "'modes.csv' using " + std::to_string(5 + part);
+    if (part == 0) {
+      series +=
+          ":xtic((strcol(2) eq 'true') ? sprintf('%d: rigid', int($1)) : "
+          "sprintf('%d: %.5g Hz', int($1), $3))";
+    }
+    f.series.push_back(series + " title '" + titles[part] + "'");
+  }
+  return f;
+}
+
+// The mesh harmonics k Z1 n / 60 (n in rpm) against the natural frequencies, crossings marked.
+Figure campbell_figure(const SimulationCase& c, const ModesTexts& texts, int harmonics) {
+  const double max_rpm = texts.max_pinion_speed_rad_per_s * kRpm;
+  double highest_hz = 0.0;
+  for (const NaturalMode& mode : texts.modes.modes)
+    highest_hz = std::max(highest_hz, mode.frequency_hz);
+  Figure f;
+  f.name = "campbell";
+  f.title = "Campbell diagram: mesh harmonics k f_m and natural frequencies (" +
+            literal_key(c.name, true) + ")";
+  f.x_label = "pinion speed, rpm";
+  f.y_label = "frequency, Hz";
+  f.setup = {"set key outside right top vertical", "set samples 500",
+             "set xrange [0:" + format_data_number(max_rpm) + "]",
+             "set yrange [0:" + format_data_number(1.1 * highest_hz) + "]"};
+  if (const std::optional<double> w = running_speed(c)) {
+    const std::string x = format_data_number(*w * kRpm);
+    f.setup.push_back("set arrow from " + x + ", graph 0 to " + x +
+                      ", graph 1 nohead dt 3 lw 2 lc rgb 'gray30'");
+    f.setup.push_back("set label 'running speed' at " + x + ", graph 0.97 offset 0.5, 0");
+  }
+  for (int k = 1; k <= harmonics; ++k) {
+    f.series.push_back(std::to_string(k) + " * " + std::to_string(c.gears.teeth1) +
+                       " * x / 60 with lines lw 2 title '" + std::to_string(k) + " f_m'");
+  }
+  bool first = true;
+  for (const NaturalMode& mode : texts.modes.modes) {
+    if (mode.rigid) continue;
+    f.series.push_back(format_data_number(mode.frequency_hz) + " with lines dt 2 lc rgb 'gray40' " +
+                       (first ? "title 'natural frequencies'" : "notitle"));
+    first = false;
+  }
+  // gnuplot refuses a plot with no point: the crossings only when there are some.
+  if (!texts.crossings.empty()) {
+    f.series.push_back(
+        "'campbell.csv' using 5:3 with points pt 7 ps 1.2 lc rgb '#d62728' title 'crossings'");
+  }
+  return f;
+}
+
+void write_modes(ModesOptions& o) {
+  // Every refusal before any work: the folder, the options, the case.
+  require_output_folder(o.out, o.overwrite, {o.case_file});
+  require_harmonics(o.harmonics);
+  std::optional<double> max_speed;
+  if (!o.max_speed.empty()) {
+    max_speed = parse_quantity(o.max_speed, Dimension::angular_velocity, "--max-speed");
+    if (!(*max_speed > 0.0)) {
+      throw InputError("--max-speed", o.max_speed,
+                       "a pinion speed > 0 (" + allowed_units(Dimension::angular_velocity) + ")");
+    }
+  }
+  SimulationCase c = read_pair_or_run_file(o.case_file).simulation_case;
+  o.keys.apply(c);
+  ModesTexts texts;
+  o.keys.naming_options([&] { texts = modes_texts(c, o.harmonics, max_speed); });
+  AtomicFolder folder(o.out, o.overwrite, {o.case_file});
+  const std::filesystem::path dir = folder.temporary();
+  write_file_atomically((dir / "modes.csv").string(), texts.csv);
+  write_file_atomically((dir / "campbell.csv").string(), texts.campbell_csv);
+  write_file_atomically((dir / "summary.json").string(), texts.summary_json);
+  if (!o.no_plots) {
+    render(dir, energy_figure(c));
+    render(dir, campbell_figure(c, texts, o.harmonics));
+  }
+  folder.commit();
+  std::fputs(texts.summary_json.c_str(), stdout);
+  std::cerr << "modes: wrote " << (std::filesystem::path(o.out) / "modes.csv").string() << "\n";
+}
+
+}  // namespace
+
+void register_modes_commands(CLI::App& app) {
+  auto o = std::make_shared<ModesOptions>();
+  CLI::App* modes = app.add_subcommand(
+      "modes",
+      "The natural modes of the case's linearised model at its mean mesh stiffness "
+      "(docs/vibration.md): torsional, or planar with [bearings] kind = \"elastic\", with a "
+      "motor and a load with [shafts] kind = \"elastic\". Writes modes.csv (frequencies, "
+      "strain-energy shares, mass-normalised shapes), campbell.csv (where the mesh harmonics "
+      "cross them), summary.json and the figures modes_energy.png and campbell.png");
+  modes->add_option("case", o->case_file, "case file: a pair file or a run file")->required();
+  modes
+      ->add_option("--out", o->out,
+                   "output folder: new or empty (else --overwrite), in a folder that exists")
+      ->required();
+  modes->add_option("--harmonics", o->harmonics,
+                    "mesh harmonics k f_m on the Campbell diagram, 1 to " +
+                        std::to_string(kMostHarmonics) + " (default 3)");
+  modes->add_option("--max-speed", o->max_speed,
+                    "the Campbell diagram's largest pinion speed with its unit (\"6000 rpm\"); "
+                    "default: 1.1 times where the first harmonic meets the highest mode");
+  o->keys.add_flags(modes, kModes);
+  o->keys.add_set(modes, "KEY=VALUE for any key of the case schema (repeatable), after the flags");
+  modes->add_flag("--overwrite", o->overwrite, "replace a non-empty --out folder whole");
+  modes->add_flag("--no-plots", o->no_plots, "write the CSV and JSON files only");
+  modes->callback([o] { write_modes(*o); });
+}
+
+}  // namespace gearimpact::cli

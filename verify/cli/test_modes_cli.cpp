@@ -1,0 +1,134 @@
+// End to end: `gearimpact modes` on the paper's case 1 mounted on elastic bearings (its files,
+// its numbers those of the library, its refusals before any work), and simulate and sweep
+// refusing a planar case with one message naming the key.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "gearimpact/io/case_file.hpp"
+#include "gearimpact/io/modes_files.hpp"
+#include "gearimpact/modes/modes.hpp"
+#include "run_command.hpp"
+#include "scratch.hpp"
+
+using namespace gearimpact;
+using namespace gearimpact::verify;
+
+namespace {
+
+const std::filesystem::path paper_data(GEARIMPACT_PAPER_DATA_DIR);
+
+std::string read(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Case 1 on bearings of 500 N/um, the wheel's stiffer across the centre line.
+std::filesystem::path planar_file(const std::filesystem::path& dir) {
+  const std::filesystem::path path = dir / "planar.toml";
+  std::ofstream(path) << read(paper_data / "case1.toml")
+                      << "\n[bearings]\nkind = \"elastic\"\nstiffness_x1 = \"500 N/um\"\n"
+                         "stiffness_x2 = \"500 N/um\"\nstiffness_y2 = \"900 N/um\"\n";
+  return path;
+}
+
+}  // namespace
+
+TEST_CASE("modes writes the library's modes, the crossings and the figures") {
+  Scratch scratch("modes-cli");
+  const std::filesystem::path input = planar_file(scratch.dir);
+  const std::filesystem::path out = scratch.dir / "out";
+  const CommandResult r =
+      run_command(cli("modes " + input.string() + " --harmonics 2 --out " + out.string()));
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  for (const char* file : {"modes.csv", "campbell.csv", "summary.json", "modes_energy.png",
+                           "campbell.png", "modes_energy.gp", "campbell.gp"}) {
+    CHECK_MESSAGE(std::filesystem::is_regular_file(out / file), file);
+  }
+  CHECK(read(out / "summary.json") == r.out);
+  // The program's files are the library's modes of the same case, byte for byte.
+  const Modes modes = natural_modes(read_case_file(input));
+  CHECK(read(out / "modes.csv") == modes_csv(modes));
+  REQUIRE(modes.modes.size() == 6);
+  std::istringstream csv(read(out / "modes.csv"));
+  std::string header;
+  std::getline(csv, header);
+  CHECK(header.find("share_mesh") != std::string::npos);
+  CHECK(header.find("x1_per_sqrt_kg") != std::string::npos);
+  CHECK(header.find("theta2_rad_per_sqrt_kg_m") != std::string::npos);
+  // By default every crossing of both harmonics with the 5 elastic modes is on the diagram.
+  std::istringstream campbell(read(out / "campbell.csv"));
+  std::string line;
+  int rows = -1;
+  while (std::getline(campbell, line)) ++rows;
+  CHECK(rows == 2 * 5);
+}
+
+TEST_CASE("modes: --set and the flags reach the case; rigid bearings leave two modes") {
+  Scratch scratch("modes-set");
+  const std::filesystem::path out = scratch.dir / "out";
+  const CommandResult r =
+      run_command(cli("modes " + planar_file(scratch.dir).string() +
+                      " --set bearings.kind=rigid --no-plots --out " + out.string()));
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  CHECK(r.out.find("\"rigid_modes\": 1") != std::string::npos);
+  std::istringstream csv(read(out / "modes.csv"));
+  std::string line;
+  int rows = -1;
+  while (std::getline(csv, line)) ++rows;
+  CHECK(rows == 2);
+  CHECK_FALSE(std::filesystem::exists(out / "campbell.png"));
+}
+
+TEST_CASE("modes refuses bad options before any work, naming them") {
+  Scratch scratch("modes-refusals");
+  const std::string input = planar_file(scratch.dir).string();
+  const std::filesystem::path out = scratch.dir / "out";
+  struct Case {
+    std::string arguments;
+    std::string names;
+    std::string allowed;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"--harmonics 0", "harmonics", "[1, 100]"},
+           {"--harmonics 101", "harmonics", "[1, 100]"},
+           {"--max-speed \"0 rpm\"", "--max-speed", "> 0"},
+           {"--max-speed 5", "--max-speed", "rpm"},
+           {"--set bearings.stiffness_x1=0", "bearings.stiffness_x1", "(0, 1e16]"},
+           {"--set bearings.mass2=-1", "bearings.mass2", "> 0"},
+       }) {
+    const CommandResult r =
+        run_command(cli("modes " + input + " " + c.arguments + " --out " + out.string()));
+    CHECK_MESSAGE(r.exit_code == 1, c.arguments);
+    CHECK_MESSAGE(r.err.find(c.names) != std::string::npos, r.err);
+    CHECK_MESSAGE(r.err.find(c.allowed) != std::string::npos, r.err);
+    CHECK(r.err.rfind("gearimpact: error: ", 0) == 0);
+    CHECK(!std::filesystem::exists(out));
+  }
+}
+
+TEST_CASE("simulate and sweep refuse a planar case with one message naming the key") {
+  Scratch scratch("modes-refuse-dynamics");
+  const std::string input = planar_file(scratch.dir).string();
+  const std::filesystem::path out = scratch.dir / "out";
+  for (const std::string& command :
+       {"simulate --case-file " + input + " --out " + (scratch.dir / "series.csv").string(),
+        "sweep " + input + " --vary initial.w1 --from 100 --to 200 --points 2 --out " +
+            out.string()}) {
+    const CommandResult r = run_command(cli(command));
+    CHECK_MESSAGE(r.exit_code == 1, command);
+    CHECK_MESSAGE(
+        r.err.find("bearings.kind = \"elastic\": read by `gearimpact modes` only; the "
+                   "dynamics (simulate, sweep, sweep-friction) are torsional") != std::string::npos,
+        r.err);
+    CHECK(r.err.rfind("gearimpact: error: ", 0) == 0);
+  }
+  CHECK_FALSE(std::filesystem::exists(scratch.dir / "series.csv"));
+  CHECK_FALSE(std::filesystem::exists(out));
+}
