@@ -14,6 +14,7 @@
 #include "gearimpact/contact/contact.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/error.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/results.hpp"
 #include "gearimpact/paper/table1.hpp"
@@ -400,4 +401,36 @@ TEST_CASE("the summary's coefficient: the constant f, or the law's mean and max 
   CHECK(*bk.friction_coefficient_mean > 0.0);
   CHECK(*bk.friction_coefficient_mean <= *bk.friction_coefficient_max);
   CHECK(summary_json(bk).find("\"friction_law\": \"benedict-kelley\"") != std::string::npos);
+}
+
+TEST_CASE(
+    "a heavy load stalls the exact friction switch at the pitch point; the message names "
+    "the smoothing that runs it") {
+  // The paper's pair at 20 N*m (about 1060 N on the line of action) rolling at 50 rad/s: at the
+  // pitch point rho1 times the jump of the pinion's acceleration, 2 f N X / J1, exceeds the
+  // kinematic rate of the sliding speed, (w1 + w2) Rb1 w1, so the exact switch cannot reverse.
+  SimulationCase c = paper_case(2);
+  c.torque1.constant_n_m = 20.0;
+  c.torque2.constant_n_m =
+      -20.0 * base_radius(c.gears, Gear::two) / base_radius(c.gears, Gear::one);
+  c.initial.w2_rad_per_s =
+      c.initial.w1_rad_per_s * base_radius(c.gears, Gear::one) / base_radius(c.gears, Gear::two);
+  c.integrator.end_time_s = 0.01;
+  RunControl control;
+  control.keep_series = false;
+  try {
+    simulate(c, control);
+    FAIL("the exact switch ran through");
+  } catch (const SimulationError& e) {
+    const std::string text = e.what();
+    CHECK(text.find("event location stalled") != std::string::npos);
+    CHECK(text.find("model.friction_smoothing_speed") != std::string::npos);
+  }
+  // The remedy the message names runs it, and its friction loss converges as v_s shrinks.
+  c.model.friction_smoothing_speed_m_s = 1e-3;
+  const double coarse = simulate(c, control).summary.friction_loss_j;
+  c.model.friction_smoothing_speed_m_s = 1e-4;
+  const double fine = simulate(c, control).summary.friction_loss_j;
+  CHECK(fine > 0.0);
+  CHECK(std::abs(coarse - fine) / fine < 1e-4);
 }

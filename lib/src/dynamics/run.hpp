@@ -78,8 +78,19 @@ class Run {
   void check_progress(double t_from, double t_to, double h) {
     stalled_ = t_to - t_from <= 1e-9 * h ? stalled_ + 1 : 0;
     if (stalled_ > kMostStalledEvents) {
-      throw SimulationError("event location stalled at " + where(t_from, result_.summary.steps) +
-                            ": the mode changes back and forth without time advancing");
+      std::string text = "event location stalled at " + where(t_from, result_.summary.steps) +
+                         ": the mode changes back and forth without time advancing";
+      // The stall a loaded pair meets: at the pitch point the friction force's jump turns the
+      // sliding back before it can reverse (the contact would stick), which the exact switch
+      // cannot follow; the smoothed sign can.
+      if (c_.model.friction_smoothing_speed_m_s == 0.0) {
+        text +=
+            ". Under load with friction this is the friction's reversal at the pitch point: the "
+            "jump of the friction torque turns the sliding back. model.friction_smoothing_speed "
+            "(e.g. \"1e-3 m/s\") replaces the exact switch by tanh(Vs / v_s) (docs/model.md, "
+            "\"Smoothed reversal\")";
+      }
+      throw SimulationError(text);
     }
   }
 
