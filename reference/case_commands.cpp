@@ -23,7 +23,10 @@ std::string pair_sections(const std::string& text) {
   while (at < text.size()) {
     const std::size_t end = std::min(text.find('\n', at), text.size());
     const std::string line = text.substr(at, end - at);
-    if (line.size() > 2 && line.front() == '[' && line.back() == ']') {
+    if (line == "[[faults]]") {
+      // The teeth of the pair: a pair file keeps its faults.
+      keep = true;
+    } else if (line.size() > 2 && line.front() == '[' && line.back() == ']') {
       keep = is_pair_section(std::string_view(line).substr(1, line.size() - 2));
     }
     if (keep) out += line + "\n";

@@ -122,6 +122,19 @@ TEST_CASE("stiffness commands read a pair file; a run file missing a section is 
   const CommandResult again = run_command(cli("check-case " + echoed.string()));
   CHECK_MESSAGE(again.exit_code == 0, again.err);
   CHECK(checked.out.substr(checked.out.find('\n')) == again.out.substr(again.out.find('\n')));
+  // A pair file with faulted teeth keeps them in its echo, which reads back to the same case
+  // (its true period: a pinion revolution of 20 mesh periods).
+  const CommandResult cracked =
+      run_command(cli("check-case " + (examples / "cracked_pinion.toml").string()));
+  REQUIRE_MESSAGE(cracked.exit_code == 0, cracked.err);
+  const std::string cracked_body = cracked.out.substr(cracked.out.find('\n') + 1);
+  CHECK(has(cracked_body, "\n[[faults]]\n"));
+  const std::filesystem::path cracked_echo = scratch.dir / "cracked_echo.toml";
+  write(cracked_echo, cracked_body);
+  const CommandResult cracked_again = run_command(cli("check-case " + cracked_echo.string()));
+  CHECK_MESSAGE(cracked_again.exit_code == 0, cracked_again.err);
+  CHECK(cracked.out.substr(cracked.out.find('\n')) ==
+        cracked_again.out.substr(cracked_again.out.find('\n')));
   // [initial] makes it a run file, which needs its torques.
   const std::filesystem::path partial = scratch.dir / "partial.toml";
   write(partial, read(pair) + "\n[initial]\nw1 = \"100 rad/s\"\n");
