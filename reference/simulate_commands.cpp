@@ -246,6 +246,9 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
         stderr, "gearimpact: warning: %s\n",
         foundation_extrapolation_warning(result.summary.foundation_extrapolations).c_str());
   }
+  for (const std::string& w : result_warnings(c, result.summary)) {
+    std::fprintf(stderr, "gearimpact: warning: %s\n", w.c_str());
+  }
   std::fputs(summary_json(result.summary).c_str(), stdout);
 }
 

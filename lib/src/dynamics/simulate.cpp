@@ -241,6 +241,24 @@ bool known_mean(const Torque& t) {
 
 }  // namespace
 
+std::vector<std::string> result_warnings(const SimulationCase& c, const SimulationSummary& s) {
+  std::vector<std::string> warnings;
+  const double bound = kMostPlausibleOverlapModules * c.gears.module_m;
+  if (s.max_penetration_m > bound) {
+    warnings.push_back(
+        "the teeth overlapped by up to " + format_number(s.max_penetration_m * 1e3) +
+        " mm on the line of action (max_penetration_m), more than " +
+        format_number(kMostPlausibleOverlapModules * 100.0) + " % of the module (" +
+        format_number(bound * 1e3) +
+        " mm), far beyond an elastic deflection: a pair entered the contact segment already "
+        "pressed in, as after a missing or broken tooth, where real teeth would have met before "
+        "the segment, at the tip's corner, which this line-of-action model does not describe; "
+        "from there on the run describes the model, not the gears (docs/faults.md, \"A missing "
+        "tooth\")");
+  }
+  return warnings;
+}
+
 std::vector<std::string> run_warnings(const SimulationCase& c) {
   std::vector<std::string> warnings;
   const double rb1 = base_radius(c.gears, Gear::one);

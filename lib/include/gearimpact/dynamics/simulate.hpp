@@ -308,6 +308,14 @@ void validate(const SimulationCase& c);
 // driven case is checked for its speeds only. Bounds as require_balanced_mean_torques: 1e-9.
 std::vector<std::string> run_warnings(const SimulationCase& c);
 
+// What a user should hear about a finished run: teeth that overlapped on the line of action by
+// more than kMostPlausibleOverlapModules of the module, far beyond any elastic deflection. That
+// happens where a pair enters the contact segment already pressed in (after a missing or broken
+// tooth the gears turn freely until the next pair reaches the segment), where real teeth would
+// have met before it, at the tip's corner, which a line-of-action model does not describe.
+inline constexpr double kMostPlausibleOverlapModules = 0.05;
+std::vector<std::string> result_warnings(const SimulationCase& c, const SimulationSummary& s);
+
 SimulationResult simulate(const SimulationCase& c, const RunControl& control = {});
 // Same, with a stiffness table already built for c.gears and c.model.stiffness
 // (checked when the table knows what it was built for: StiffnessTable::built_for).
