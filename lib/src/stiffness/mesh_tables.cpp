@@ -8,26 +8,6 @@
 
 namespace gearimpact {
 
-namespace {
-
-// The distinct states of one gear's teeth, healthy first, and each tooth's
-// index among them.
-std::vector<ToothState> classify(const std::vector<ToothFault>& faults, Gear gear, int z,
-                                 std::vector<int>& tooth_class) {
-  std::vector<ToothState> states{ToothState{}};
-  tooth_class.assign(static_cast<std::size_t>(z), 0);
-  for (const ToothFault& f : faults) {
-    if (f.gear != gear) continue;
-    std::size_t c = 0;
-    while (c < states.size() && states[c] != f.state) ++c;
-    if (c == states.size()) states.push_back(f.state);
-    tooth_class[static_cast<std::size_t>(f.tooth)] = static_cast<int>(c);
-  }
-  return states;
-}
-
-}  // namespace
-
 MeshTables::MeshTables(const GearPair& pair, const StiffnessModel& model,
                        std::vector<ToothFault> faults,
                        std::shared_ptr<const StiffnessTable> healthy, StiffnessTableOptions options)
@@ -36,8 +16,8 @@ MeshTables::MeshTables(const GearPair& pair, const StiffnessModel& model,
   if (!healthy_) healthy_ = std::make_shared<const StiffnessTable>(pair_, model, options);
   const int z1 = teeth(pair_, Gear::one);
   const int z2 = teeth(pair_, Gear::two);
-  const std::vector<ToothState> pinion = classify(faults_, Gear::one, z1, pinion_class_);
-  const std::vector<ToothState> wheel = classify(faults_, Gear::two, z2, wheel_class_);
+  const std::vector<ToothState> pinion = tooth_classes(faults_, Gear::one, z1, pinion_class_);
+  const std::vector<ToothState> wheel = tooth_classes(faults_, Gear::two, z2, wheel_class_);
   wheel_states_ = wheel.size();
   distinct_ = {pinion.size() > 1, wheel.size() > 1};
   const std::size_t combinations = pinion.size() * wheel_states_;

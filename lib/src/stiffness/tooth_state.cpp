@@ -116,4 +116,18 @@ ToothState tooth_state(const std::vector<ToothFault>& faults, Gear gear, int too
   return {};
 }
 
+std::vector<ToothState> tooth_classes(const std::vector<ToothFault>& faults, Gear gear, int z,
+                                      std::vector<int>& tooth_class) {
+  std::vector<ToothState> states{ToothState{}};
+  tooth_class.assign(static_cast<std::size_t>(z), 0);
+  for (const ToothFault& f : faults) {
+    if (f.gear != gear) continue;
+    std::size_t c = 0;
+    while (c < states.size() && states[c] != f.state) ++c;
+    if (c == states.size()) states.push_back(f.state);
+    tooth_class[static_cast<std::size_t>(f.tooth)] = static_cast<int>(c);
+  }
+  return states;
+}
+
 }  // namespace gearimpact

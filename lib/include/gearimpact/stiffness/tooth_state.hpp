@@ -52,6 +52,11 @@ struct ToothFault {
 };
 bool operator==(const ToothFault& a, const ToothFault& b);
 
+// The distinct states of one gear's teeth (gear `gear` of z teeth), healthy
+// first, and in `tooth_class` each tooth's index among them.
+std::vector<ToothState> tooth_classes(const std::vector<ToothFault>& faults, Gear gear, int z,
+                                      std::vector<int>& tooth_class);
+
 // Throws InputError unless every fault fits: the tooth number in 0 ... z-1 of
 // its gear, one fault per tooth, a crack that place_crack (or, for
 // yang-lin-1987, the paper's tooth) accepts, a spall or a chip that
