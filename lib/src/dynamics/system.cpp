@@ -174,6 +174,7 @@ double GearSystem::friction_coefficient(double normal_force_n, double vs, double
 
 GearSystem::PairPenetration GearSystem::pair_penetration(const Mode& m, int j, double x, double dl,
                                                          double dl_rate, double x_rate) const {
+  if (!gaps_) return {dl, dl_rate, 0.0};
   // The gap of the pair's zone between two kinks (or the segment's ends),
   // continued along its tangent beyond them, as Ke is, so that the
   // right-hand side stays smooth while the mode holds: a stage state of a
@@ -249,15 +250,10 @@ void GearSystem::rhs(double t, const State& y_in, const Mode& m, const ContactMe
       if (table == nullptr || (gaps_ && !m.touching[j])) continue;
       const double x = layout_.position_m(ref, m.k_first + j);
       // The pair's own penetration and its rate: the line's, less the gap.
-      double dk = dl;
-      double dk_rate = dl_rate;
-      double gap_slope = 0.0;
-      if (gaps_) {
-        const PairPenetration p = pair_penetration(m, j, x, dl, dl_rate, x_rate);
-        dk = p.delta_m;
-        dk_rate = p.rate_m_s;
-        gap_slope = p.gap_slope;
-      }
+      const PairPenetration p = pair_penetration(m, j, x, dl, dl_rate, x_rate);
+      const double dk = p.delta_m;
+      const double dk_rate = p.rate_m_s;
+      const double gap_slope = p.gap_slope;
       double ke = 0.0;
       double dke = 0.0;
       pair_stiffness(*table, x, m.count, ke, dke);
@@ -375,12 +371,10 @@ int GearSystem::event_values(const State& y, const Mode& m, const ContactMemory&
   const double x_rate = line_sign(m.region) * rb1_ * y[kW1];
   for (int j = 0; j < m.count; ++j) {
     const double x = layout_.position_m(ref, m.k_first + j);
-    double dk = dl;
-    double dk_rate = dl_rate;
+    const PairPenetration p = pair_penetration(m, j, x, dl, dl_rate, x_rate);
+    const double dk = p.delta_m;
+    const double dk_rate = p.rate_m_s;
     if (gaps_) {
-      const PairPenetration p = pair_penetration(m, j, x, dl, dl_rate, x_rate);
-      dk = p.delta_m;
-      dk_rate = p.rate_m_s;
       g[n++] = m.touching[j] ? dk : -dk;
       if (!m.touching[j]) {
         // A pair whose gap is open neither slides under load nor pushes, and
@@ -478,15 +472,9 @@ void GearSystem::classify_forces(const State& y, const ContactMemory& d, Mode& m
   for (int j = 0; j < m.count; ++j) {
     const double x = pair_position(m, y, j);
     m.slip[j] = sliding_speed(y[kW1], y[kW2], x, lp_) >= 0.0 ? 1.0 : -1.0;
-    double dk = dl;
-    double dk_rate = dl_rate;
-    if (gaps_) {
-      const PairPenetration p = pair_penetration(m, j, x, dl, dl_rate, x_rate);
-      dk = p.delta_m;
-      dk_rate = p.rate_m_s;
-    }
-    m.clipped[j] =
-        push_sign_function(pair_table(m.region, m.k_first + j), x, m.count, d, dk, dk_rate) < 0.0;
+    const PairPenetration p = pair_penetration(m, j, x, dl, dl_rate, x_rate);
+    m.clipped[j] = push_sign_function(pair_table(m.region, m.k_first + j), x, m.count, d, p.delta_m,
+                                      p.rate_m_s) < 0.0;
   }
 }
 
@@ -551,7 +539,7 @@ ElasticEnergy GearSystem::stored_energy(const State& y, const Mode& m) const {
     // A pair whose gap is open stores nothing; one that touches, by its own
     // penetration.
     if (gaps_ && !m.touching[j]) continue;
-    const double dl = gaps_ ? pair_penetration(m, j, x, line_delta, 0.0, 0.0).delta_m : line_delta;
+    const double dl = pair_penetration(m, j, x, line_delta, 0.0, 0.0).delta_m;
     if (constant_k_ > 0.0) {
       u.j[index_of(Term::hertz)] += 0.5 * constant_k_ / m.count * dl * dl;
       continue;

@@ -159,8 +159,7 @@ void StiffnessTable::fit_part(double a, double b, const ComplianceFunction& comp
   }
 }
 
-StiffnessTable::StiffnessTable(double start_m, double end_m, const ComplianceFunction& compliance,
-                               StiffnessTableOptions options) {
+void StiffnessTable::set_grid(double start_m, double end_m, StiffnessTableOptions options) {
   options = checked(options, start_m, end_m);
   start_ = start_m;
   end_ = end_m;
@@ -168,7 +167,9 @@ StiffnessTable::StiffnessTable(double start_m, double end_m, const ComplianceFun
   order_ = options.order;
   stride_ = order_ <= 7 ? 8 : 16;
   pieces_per_m_ = 1.0 / ((end_ - start_) / pieces_);
-  fit_part(start_, end_, compliance, false);
+}
+
+void StiffnessTable::drop_zero_terms() {
   // A term that is 0 at every node (one the model does not have, or one
   // switched off) keeps no series: compliance() then reads 0 without
   // evaluating it.
@@ -180,14 +181,15 @@ StiffnessTable::StiffnessTable(double start_m, double end_m, const ComplianceFun
 }
 
 StiffnessTable::StiffnessTable(double start_m, double end_m, const ComplianceFunction& compliance,
+                               StiffnessTableOptions options) {
+  set_grid(start_m, end_m, options);
+  fit_part(start_, end_, compliance, false);
+  drop_zero_terms();
+}
+
+StiffnessTable::StiffnessTable(double start_m, double end_m, const ComplianceFunction& compliance,
                                std::vector<double> breaks_m, StiffnessTableOptions options) {
-  options = checked(options, start_m, end_m);
-  start_ = start_m;
-  end_ = end_m;
-  pieces_ = options.pieces;
-  order_ = options.order;
-  stride_ = order_ <= 7 ? 8 : 16;
-  pieces_per_m_ = 1.0 / ((end_ - start_) / pieces_);
+  set_grid(start_m, end_m, options);
   breaks_m.erase(std::remove_if(breaks_m.begin(), breaks_m.end(),
                                 [&](double x) { return !(x > start_m && x < end_m); }),
                  breaks_m.end());
@@ -201,11 +203,7 @@ StiffnessTable::StiffnessTable(double start_m, double end_m, const ComplianceFun
         {ends[i - 1], pieces_ / (ends[i] - ends[i - 1]), static_cast<int>(i - 1) * pieces_});
     fit_part(ends[i - 1], ends[i], compliance, true);
   }
-  for (std::vector<double>& series : term_series_) {
-    if (std::all_of(series.begin(), series.end(), [](double a) { return a == 0.0; })) {
-      series.clear();
-    }
-  }
+  drop_zero_terms();
 }
 
 std::vector<double> StiffnessTable::breaks_m() const {

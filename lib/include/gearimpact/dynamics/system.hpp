@@ -166,8 +166,8 @@ class GearSystem {
                             const ContactMemory& d, double dl, double dl_rate) const;
   // Pair j of mode m at X with the line's penetration dl and its rate: its
   // own penetration dl - e_k(X) and rate dl_rate - de_k/dX dX/dt, and the
-  // slope de_k/dX, on the branch of the pair's zone (Mode::zone). Only with
-  // gaps.
+  // slope de_k/dX, on the branch of the pair's zone (Mode::zone). Without
+  // gaps, the line's own penetration and rate and a slope of 0.
   struct PairPenetration {
     double delta_m;
     double rate_m_s;

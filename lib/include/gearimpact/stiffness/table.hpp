@@ -120,6 +120,10 @@ class StiffnessTable {
   }
   // Fits the pieces of [a, b] (count of them) after those already fitted.
   void fit_part(double a, double b, const ComplianceFunction& compliance, bool every_term);
+  // The domain and the grid of the options (checked against the domain).
+  void set_grid(double start_m, double end_m, StiffnessTableOptions options);
+  // Clears the series of every term that is 0 at every node.
+  void drop_zero_terms();
   static StiffnessTableOptions checked(StiffnessTableOptions options, double start_m, double end_m);
   // Estrin's scheme for a[0] + a[1] t + ... + a[7] t^7.
   static double estrin8(const double* a, double t) {
