@@ -3,11 +3,14 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "commands.hpp"
 #include "gearimpact/case/units.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/iso1328.hpp"
+#include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/io/case_file.hpp"
 
 namespace gearimpact::cli {
@@ -33,6 +36,37 @@ std::string pair_sections(const std::string& text) {
     at = end + 1;
   }
   return out;
+}
+
+// "[v0, v1, ...]" in SI, each value exact.
+std::string values_text(const std::vector<double>& values) {
+  std::string text = "[";
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    text += (i == 0 ? "" : ", ") + shortest_decimal(values[i]);
+  }
+  return text + "]";
+}
+
+// The tolerances of each gear with a tolerance class and the errors its seed
+// draws, which the case file states only as the class and the seed.
+void print_drawn_errors(const SimulationCase& c) {
+  const Modifications drawn = with_drawn_errors(c.gears, c.modifications);
+  for (const Gear gear : {Gear::one, Gear::two}) {
+    const int tolerance_class =
+        (gear == Gear::one ? c.modifications.gear1 : c.modifications.gear2).iso1328_class;
+    if (tolerance_class == 0) continue;
+    const GearModifications& g = gear == Gear::one ? drawn.gear1 : drawn.gear2;
+    const Iso1328Tolerances t = iso1328_tolerances(c.gears, gear, tolerance_class);
+    const char* n = gear == Gear::one ? "1" : "2";
+    std::printf("#   gear %s, ISO 1328-1:2013 class %d: f_pT = %s m, f_HalphaT = %s m\n", n,
+                tolerance_class, shortest_decimal(t.single_pitch_m).c_str(),
+                shortest_decimal(t.profile_slope_m).c_str());
+    std::printf("#     drawn with error_seed = %u, on the line of action, tooth 0 first:\n",
+                static_cast<unsigned>(c.modifications.error_seed));
+    std::printf("#     pitch_deviations%s = %s\n", n, values_text(g.pitch_m).c_str());
+    std::printf("#     profile_slope_deviations%s = %s\n", n,
+                values_text(g.profile_slope_m).c_str());
+  }
 }
 
 // Prints the case as a case file in SI units, which reads back to the same
@@ -70,6 +104,7 @@ void check_case(const std::string& file) {
   std::printf("#   moments of inertia J1, J2 = %s kg m^2, %s kg m^2\n",
               shortest_decimal(moment_of_inertia(g, Gear::one)).c_str(),
               shortest_decimal(moment_of_inertia(g, Gear::two)).c_str());
+  print_drawn_errors(c);
   // A valid run can still surprise: said on stderr, as every command warns, and kept as
   // comments of the printed case.
   if (read.kind == CaseFileKind::run) {

@@ -219,14 +219,14 @@ TEST_CASE("the least gap bound lies below every pair's gap on its line") {
   m.gear1.pitch_m[2] = 2e-6;
   m.gear2.profile_slope_m.assign(80, 4e-6);
   // N1: tooth 2 gives -5 + 2 = -3 um, the wheel -2 um: -5 um. N2: -5 - 2 - 2 = -9 um.
-  CHECK(std::fabs(least_gap_bound_m(m, Region::n1) - -5e-6) < 1e-18);
-  CHECK(std::fabs(least_gap_bound_m(m, Region::n2) - -9e-6) < 1e-18);
+  CHECK(std::fabs(least_gap_bound_m(g, m, Region::n1) - -5e-6) < 1e-18);
+  CHECK(std::fabs(least_gap_bound_m(g, m, Region::n2) - -9e-6) < 1e-18);
   const ToothGaps gaps(g, m);
   for (const Region line : {Region::n1, Region::n2}) {
     for (int k = -100; k <= 100; ++k) {
       for (int i = 0; i <= 20; ++i) {
         const double x = seg.start_m + (seg.end_m - seg.start_m) * i / 20.0;
-        CHECK(gaps.gap_m(line, k, x) >= least_gap_bound_m(m, line) - 1e-18);
+        CHECK(gaps.gap_m(line, k, x) >= least_gap_bound_m(g, m, line) - 1e-18);
       }
     }
   }

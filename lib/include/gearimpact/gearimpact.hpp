@@ -19,6 +19,7 @@
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/iso1328.hpp"
 #include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/geometry/rack_generation.hpp"
 #include "gearimpact/geometry/tooth_identity.hpp"

@@ -393,6 +393,15 @@ void add_modifications(std::vector<Field>& rows, int gear, GearSlot of) {
            "-f_Ha/2 at d_SAP to +f_Ha/2 at the tip (0 at the middle of its roll length)",
        [of](auto& c) -> auto& { return of(c).profile_slope_m; })
       .written_at_default = false;
+  r.integer(
+       one ? "iso1328_class1" : "iso1328_class2",
+       {closed(0.0), closed(11.0), "0: none; ISO 1328-1:2013 has the classes 1 to 11"}, false,
+       "A, the flank tolerance class of gear " + n +
+           " (ISO 1328-1:2013, 1 the finest): draws its pitch and profile slope deviations "
+           "within the class's f_pT and f_HalphaT with error_seed, in place of their lists "
+           "(docs/faults.md, \"Errors drawn from a tolerance class\"); 0: none",
+       [of](auto& c) -> auto& { return of(c).iso1328_class; })
+      .written_at_default = false;
 }
 
 // The rows of one gear's bearing in [bearings] (their names end in the
@@ -790,6 +799,13 @@ std::vector<Field> make_schema() {
       rows, 1, [](auto& c) -> auto& { return c.modifications.gear1; });
   add_modifications(
       rows, 2, [](auto& c) -> auto& { return c.modifications.gear2; });
+  Rows(rows, "modifications")
+      .integer(
+          "error_seed", {closed(0.0), closed(4294967295.0), "a 32-bit unsigned integer"}, false,
+          "the seed of the tooth errors iso1328_class1 and iso1328_class2 draw: the same seed, "
+          "the same teeth, bit for bit",
+          [](auto& c) -> auto& { return c.modifications.error_seed; })
+      .written_at_default = false;
   {
     // The planar model's keys (docs/vibration.md). Every row is left out of
     // a case file at its default, so that files written before they existed

@@ -120,8 +120,8 @@ void add_rattle_index(const SimulationCase& c, const StiffnessTable& table,
   }
   // Tooth errors that use up part of the play would let the twin, without
   // it, press both flanks at once (validate_gaps): no index then.
-  if (least_gap_bound_m(c.modifications, Region::n1) +
-          least_gap_bound_m(c.modifications, Region::n2) <
+  if (least_gap_bound_m(c.gears, c.modifications, Region::n1) +
+          least_gap_bound_m(c.gears, c.modifications, Region::n2) <
       0.0) {
     return;
   }
@@ -176,8 +176,8 @@ void validate_gaps(const SimulationCase& c) {
   }
   // Both lines touch where s - B > e_k on N1 and -s - B > e'_j on N2, which
   // needs e_k + e'_j < -2 B.
-  const double least = least_gap_bound_m(c.modifications, Region::n1) +
-                       least_gap_bound_m(c.modifications, Region::n2);
+  const double least = least_gap_bound_m(c.gears, c.modifications, Region::n1) +
+                       least_gap_bound_m(c.gears, c.modifications, Region::n2);
   if (2.0 * c.gears.backlash_m + least < 0.0) {
     throw InputError(std::vector<Problem>{range_problem(
         "gears.backlash", format_number(c.gears.backlash_m * 1e3) + " mm",

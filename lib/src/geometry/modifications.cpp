@@ -5,6 +5,7 @@
 #include <string>
 
 #include "gearimpact/error.hpp"
+#include "gearimpact/geometry/iso1328.hpp"
 
 namespace gearimpact {
 
@@ -19,7 +20,8 @@ bool all_equal(const std::vector<double>& values) {
 }
 
 bool differ(const GearModifications& g) {
-  return !all_equal(g.pitch_m) || !all_equal(g.thickness_m) || !all_equal(g.profile_slope_m);
+  return g.iso1328_class > 0 || !all_equal(g.pitch_m) || !all_equal(g.thickness_m) ||
+         !all_equal(g.profile_slope_m);
 }
 
 // The roll distance on `gear`'s base circle of a point at `diameter`.
@@ -60,6 +62,42 @@ std::string mm(double metres) {
   return format_number(metres * 1e3) + " mm";
 }
 
+// A gear with a tolerance class: no list of the errors it draws, and a gear
+// in the scope of ISO 1328-1:2013, whose formulae are not to be extrapolated.
+void check_tolerance_class(const GearPair& pair, Gear gear, const GearModifications& g,
+                           const std::string& prefix, Problems& problems) {
+  const std::string n = gear == Gear::one ? "1" : "2";
+  const std::string key = prefix + ".iso1328_class" + n;
+  const std::string written = std::to_string(g.iso1328_class);
+  std::string lists;
+  if (!g.pitch_m.empty()) lists = "pitch_deviations" + n;
+  if (!g.profile_slope_m.empty()) {
+    lists += (lists.empty() ? "" : " and ") + std::string("profile_slope_deviations") + n;
+  }
+  if (!lists.empty()) {
+    problems.add(refused_problem(key, written,
+                                 "the class draws the pitch and profile slope errors of gear " + n +
+                                     ", which " + lists + " give as well",
+                                 "a class, or the lists, for the errors of one gear",
+                                 "leave out " + lists + ", or iso1328_class" + n));
+    return;
+  }
+  const int z = teeth(pair, gear);
+  const double m_mm = pair.module_m * 1e3;
+  const double d_mm = m_mm * z;
+  if (z < 5 || z > 1000 || d_mm < 5.0 || d_mm > 15000.0 || m_mm < 0.5 || m_mm > 70.0) {
+    problems.add(refused_problem(
+        key, written,
+        "gear " + n + " (z = " + std::to_string(z) + ", d = " + format_number(d_mm) +
+            " mm, m = " + format_number(m_mm) +
+            " mm) lies outside the scope of ISO 1328-1:2013, whose formulae are not to be "
+            "extrapolated",
+        "a class only for a gear with 5 <= z <= 1000, 5 mm <= d = m z <= 15000 mm and "
+        "0.5 mm <= m <= 70 mm",
+        "give the errors as lists instead"));
+  }
+}
+
 }  // namespace
 
 bool operator==(const Relief& a, const Relief& b) {
@@ -67,16 +105,17 @@ bool operator==(const Relief& a, const Relief& b) {
 }
 bool operator==(const GearModifications& a, const GearModifications& b) {
   return a.tip == b.tip && a.root == b.root && a.pitch_m == b.pitch_m &&
-         a.thickness_m == b.thickness_m && a.profile_slope_m == b.profile_slope_m;
+         a.thickness_m == b.thickness_m && a.profile_slope_m == b.profile_slope_m &&
+         a.iso1328_class == b.iso1328_class;
 }
 bool operator==(const Modifications& a, const Modifications& b) {
-  return a.gear1 == b.gear1 && a.gear2 == b.gear2;
+  return a.gear1 == b.gear1 && a.gear2 == b.gear2 && a.error_seed == b.error_seed;
 }
 
 bool is_unmodified(const Modifications& m) {
   for (const GearModifications* g : {&m.gear1, &m.gear2}) {
-    if (g->tip.amount_m != 0.0 || g->root.amount_m != 0.0 || !all_zero(g->pitch_m) ||
-        !all_zero(g->thickness_m) || !all_zero(g->profile_slope_m)) {
+    if (g->tip.amount_m != 0.0 || g->root.amount_m != 0.0 || g->iso1328_class > 0 ||
+        !all_zero(g->pitch_m) || !all_zero(g->thickness_m) || !all_zero(g->profile_slope_m)) {
       return false;
     }
   }
@@ -87,7 +126,20 @@ DistinctTeeth distinct_teeth(const Modifications& m) {
   return {differ(m.gear1), differ(m.gear2)};
 }
 
-double least_gap_bound_m(const Modifications& m, Region line) {
+Modifications with_drawn_errors(const GearPair& pair, const Modifications& m) {
+  Modifications drawn = m;
+  for (const Gear gear : {Gear::one, Gear::two}) {
+    GearModifications& g = gear == Gear::one ? drawn.gear1 : drawn.gear2;
+    if (g.iso1328_class == 0) continue;
+    DrawnToothErrors errors = draw_tooth_errors(pair, gear, g.iso1328_class, m.error_seed);
+    g.pitch_m = std::move(errors.pitch_m);
+    g.profile_slope_m = std::move(errors.profile_slope_m);
+  }
+  return drawn;
+}
+
+double least_gap_bound_m(const GearPair& pair, const Modifications& modifications, Region line) {
+  const Modifications m = with_drawn_errors(pair, modifications);
   double bound = 0.0;
   for (const GearModifications* g : {&m.gear1, &m.gear2}) {
     const std::size_t n =
@@ -150,12 +202,20 @@ void validate_modifications(const GearPair& pair, const Modifications& m,
     per_tooth(g.pitch_m, "pitch_deviations");
     per_tooth(g.thickness_m, "thickness_deviations");
     per_tooth(g.profile_slope_m, "profile_slope_deviations");
+    if (g.iso1328_class > 0) check_tolerance_class(pair, gear, g, prefix, problems);
+  }
+  if (m.error_seed != 0 && m.gear1.iso1328_class == 0 && m.gear2.iso1328_class == 0) {
+    problems.add(refused_problem(prefix + ".error_seed", std::to_string(m.error_seed),
+                                 "it seeds the errors a tolerance class draws, and neither gear "
+                                 "has one",
+                                 "0 without iso1328_class1 or iso1328_class2",
+                                 "iso1328_class1 = 6 (or 2) to draw the errors, or no error_seed"));
   }
   problems.throw_if_any();
 }
 
 ToothGaps::ToothGaps(const GearPair& pair, const Modifications& m)
-    : pair_(pair), m_(m), lp_(line_of_action_length(pair)) {
+    : pair_(pair), m_(with_drawn_errors(pair, m)), lp_(line_of_action_length(pair)) {
   const ContactSegment segment = contact_segment(pair);
   start_ = segment.start_m;
   end_ = segment.end_m;

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -53,36 +54,47 @@ struct Relief {
 // - profile_slope: f_Ha, a gap rising linearly along the active profile from
 //   -f_Ha/2 at its start to +f_Ha/2 at the tip, 0 at the middle of its roll
 //   length (both flanks alike): a positive f_Ha leaves the tip thinner.
+// A flank tolerance class of ISO 1328-1:2013 (iso1328_class > 0) draws the
+// pitch and profile slope errors instead (draw_tooth_errors of iso1328.hpp,
+// with the pair's error_seed); their lists are then empty.
 struct GearModifications {
   Relief tip;
   Relief root;
   std::vector<double> pitch_m;
   std::vector<double> thickness_m;
   std::vector<double> profile_slope_m;
+  int iso1328_class = 0;  // 0: no class
 };
 
 struct Modifications {
   GearModifications gear1;
   GearModifications gear2;
+  std::uint32_t error_seed = 0;  // read only with a tolerance class
 };
 
 bool operator==(const Relief& a, const Relief& b);
 bool operator==(const GearModifications& a, const GearModifications& b);
 bool operator==(const Modifications& a, const Modifications& b);
 
-// True when every relief amount is 0 and every error list is empty or all 0:
-// the gaps are 0 everywhere.
+// True when every relief amount is 0, every error list is empty or all 0 and
+// no gear has a tolerance class: the gaps are 0 everywhere.
 bool is_unmodified(const Modifications& m);
 
 // Which gears have teeth that differ from each other (an error list whose
-// values are not all equal), for true_period_mesh_periods.
+// values are not all equal, or errors drawn from a tolerance class), for
+// true_period_mesh_periods.
 DistinctTeeth distinct_teeth(const Modifications& m);
+
+// `m` with the errors of each gear that has a tolerance class drawn into its
+// pitch and profile slope lists (draw_tooth_errors); unchanged without one.
+Modifications with_drawn_errors(const GearPair& pair, const Modifications& m);
 
 // A bound below every pair's gap on `line` (Region::n1 or Region::n2): each
 // gear's least tooth deviation there (pitch with the line's sign, thickness,
-// and the profile slope at its lower end, -|f_Ha|/2), reliefs adding nothing
-// below 0. 0 without errors.
-double least_gap_bound_m(const Modifications& m, Region line);
+// and the profile slope at its lower end, -|f_Ha|/2, the drawn errors of a
+// tolerance class among them), reliefs adding nothing below 0. 0 without
+// errors.
+double least_gap_bound_m(const GearPair& pair, const Modifications& m, Region line);
 
 // The active profile of one gear as radii: from the contact with the mating
 // tip (the start of the active profile, SAP) to its own tip.
@@ -95,14 +107,18 @@ ActiveProfile active_profile(const GearPair& pair, Gear gear);
 // The checks across fields: each relief with an amount > 0 has its diameter
 // in the active profile (a tip relief's start in [d_SAP, d_a), a root
 // relief's end in (d_SAP, d_a]), and the tip and root relief of one gear do
-// not overlap; each error list is empty or has one value per tooth. Throws
+// not overlap; each error list is empty or has one value per tooth; a gear
+// with a tolerance class has no pitch or profile slope list and lies in the
+// scope of ISO 1328-1:2013 (5 <= z <= 1000, 5 mm <= d <= 15000 mm,
+// 0.5 mm <= m <= 70 mm), and an error_seed other than 0 has a class to
+// seed. Throws
 // InputError naming the field as `prefix` + "." + the case-file key
 // ("modifications.tip_relief_start1"), with the limit in its allowed text.
 void validate_modifications(const GearPair& pair, const Modifications& m,
                             const std::string& prefix = "modifications");
 
 // The gaps of a validated pair and its modifications, with the roll lengths
-// precomputed.
+// precomputed and the errors of a tolerance class drawn.
 class ToothGaps {
  public:
   ToothGaps(const GearPair& pair, const Modifications& m);
