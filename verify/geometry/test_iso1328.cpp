@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <random>
 #include <string>
 #include <vector>
@@ -20,11 +21,19 @@
 #include "gearimpact/geometry/iso1328.hpp"
 #include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/geometry/tooth_identity.hpp"
+#include "gearimpact/io/case_file.hpp"
+#include "gearimpact/paper/table1.hpp"
 #include "gearimpact/stiffness/static_transmission_error.hpp"
 #include "relative.hpp"
+#include "run_command.hpp"
+#include "scratch.hpp"
 
 using namespace gearimpact;
+using gearimpact::verify::cli;
+using gearimpact::verify::CommandResult;
 using gearimpact::verify::relative_difference;
+using gearimpact::verify::run_command;
+using gearimpact::verify::Scratch;
 
 namespace {
 
@@ -287,4 +296,29 @@ TEST_CASE("drawn errors reach the gaps and the static transmission error as thei
     CHECK(ste_drawn.points[i].ste_m == ste_listed.points[i].ste_m);
   }
   CHECK(ste_drawn.ste_peak_to_peak_m > 0.0);
+}
+
+TEST_CASE("check-case echoes the class and the seed, which read back, and prints the drawn teeth") {
+  SimulationCase c = paper_case(2);
+  c.modifications.gear1.iso1328_class = 6;
+  c.modifications.error_seed = 42;
+  const std::string text = write_case_file(c, CaseUnits::si);
+  CHECK(contains(text, "iso1328_class1 = 6\n"));
+  CHECK(contains(text, "error_seed = 42\n"));
+  // Gear 2 has no class: its row stays out, as every modification at its default.
+  CHECK(!contains(text, "iso1328_class2"));
+  const SimulationCase back = parse_case(text, "echo.toml");
+  CHECK(back.modifications == c.modifications);
+
+  Scratch scratch("iso1328-check-case");
+  const std::filesystem::path file = scratch.dir / "class6.toml";
+  std::ofstream(file) << text;
+  const CommandResult run = run_command(cli("check-case " + file.string()));
+  REQUIRE(run.exit_code == 0);
+  CHECK(contains(run.out, "iso1328_class1 = 6\n"));
+  CHECK(contains(run.out, "gear 1, ISO 1328-1:2013 class 6: f_pT = 8.5e-6 m, f_HalphaT = 7e-6 m"));
+  const DrawnToothErrors d = draw_tooth_errors(c.gears, Gear::one, 6, 42);
+  CHECK(contains(run.out, "pitch_deviations1 = [" + shortest_decimal(d.pitch_m[0]) + ", " +
+                              shortest_decimal(d.pitch_m[1]) + ", "));
+  CHECK(contains(run.out, ", " + shortest_decimal(d.profile_slope_m[19]) + "]\n"));
 }

@@ -211,6 +211,31 @@ def test_ste_equals_the_program(cli, tmp_path):
         gearimpact.ste(case, torque="0 N*m", points=20)
 
 
+def test_ste_of_errors_drawn_from_a_tolerance_class_equals_the_program(cli, tmp_path):
+    # Case 2 with the pinion's errors drawn from ISO 1328-1 class 6: the
+    # keywords give the case the file gives, and the drawn teeth reach the STE
+    # of both alike, bit for bit.
+    case_file = tmp_path / "class6.toml"
+    case_file.write_text((gearimpact.paper_data_dir() / "case2.toml").read_text()
+                         + "\n[modifications]\niso1328_class1 = 6\nerror_seed = 42\n")
+    case = gearimpact.read_case(case_file)
+    plain = gearimpact.read_case(gearimpact.paper_data_dir() / "case2.toml")
+    assert case == plain.replace(iso1328_class1=6, error_seed=42)
+    assert case != plain.replace(iso1328_class1=6, error_seed=43)
+    ours = gearimpact.ste(case, torque="100 N*m", points=20)
+    out = tmp_path / "out"
+    cli("ste", case_file, "--torque", "100 N*m", "--points", "20", "--out", out, "--no-plots")
+    lines = (out / "ste.csv").read_text().strip().splitlines()
+    header = lines[0].split(",")
+    j = header.index("ste_m")
+    assert_bitwise_equal(ours["ste"]["ste_m"], [float(line.split(",")[j]) for line in lines[1:]],
+                         "ste_m")
+    # The pinion's teeth differ: the STE repeats once a pinion revolution.
+    assert len(lines) - 1 == 20 * 20
+    with pytest.raises(gearimpact.CaseError, match="iso1328_class1"):
+        plain.replace(iso1328_class1=12)
+
+
 def test_modes_equal_the_program(cli, tmp_path):
     # Case 1 on elastic bearings with a motor and a load: 8 DOF.
     case_file = tmp_path / "planar.toml"
