@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "gearimpact/case/schema.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/iso1328.hpp"
@@ -321,4 +322,30 @@ TEST_CASE("check-case echoes the class and the seed, which read back, and prints
   CHECK(contains(run.out, "pitch_deviations1 = [" + shortest_decimal(d.pitch_m[0]) + ", " +
                               shortest_decimal(d.pitch_m[1]) + ", "));
   CHECK(contains(run.out, ", " + shortest_decimal(d.profile_slope_m[19]) + "]\n"));
+}
+
+TEST_CASE("a run with drawn errors is the run with the same errors as lists, bit for bit") {
+  SimulationCase drawn = paper_case(2);
+  drawn.integrator.end_time_s = 0.002;
+  drawn.modifications.gear1.iso1328_class = 6;
+  drawn.modifications.gear2.iso1328_class = 8;
+  drawn.modifications.error_seed = 5;
+  SimulationCase listed = drawn;
+  listed.modifications = with_drawn_errors(drawn.gears, drawn.modifications);
+  listed.modifications.gear1.iso1328_class = 0;
+  listed.modifications.gear2.iso1328_class = 0;
+  listed.modifications.error_seed = 0;
+  REQUIRE(!listed.modifications.gear2.pitch_m.empty());
+  RunControl control;
+  control.keep_series = false;
+  const SimulationSummary a = simulate(drawn, control).summary;
+  const SimulationSummary b = simulate(listed, control).summary;
+  CHECK(a.final_w1_rad_per_s == b.final_w1_rad_per_s);
+  CHECK(a.final_w2_rad_per_s == b.final_w2_rad_per_s);
+  CHECK(a.impacts_n1 == b.impacts_n1);
+  CHECK(a.events == b.events);
+  CHECK(a.ledger_residual_max_j == b.ledger_residual_max_j);
+  SimulationCase plain = drawn;
+  plain.modifications = {};
+  CHECK(simulate(plain, control).summary.final_w2_rad_per_s != a.final_w2_rad_per_s);
 }
