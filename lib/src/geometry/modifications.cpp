@@ -71,13 +71,14 @@ void check_tolerance_class(const GearPair& pair, Gear gear, const GearModificati
   const std::string written = std::to_string(g.iso1328_class);
   std::string lists;
   if (!g.pitch_m.empty()) lists = "pitch_deviations" + n;
+  const bool both = !g.pitch_m.empty() && !g.profile_slope_m.empty();
   if (!g.profile_slope_m.empty()) {
     lists += (lists.empty() ? "" : " and ") + std::string("profile_slope_deviations") + n;
   }
   if (!lists.empty()) {
     problems.add(refused_problem(key, written,
                                  "the class draws the pitch and profile slope errors of gear " + n +
-                                     ", which " + lists + " give as well",
+                                     ", which " + lists + (both ? " give" : " gives") + " as well",
                                  "a class, or the lists, for the errors of one gear",
                                  "leave out " + lists + ", or iso1328_class" + n));
     return;
@@ -205,11 +206,12 @@ void validate_modifications(const GearPair& pair, const Modifications& m,
     if (g.iso1328_class > 0) check_tolerance_class(pair, gear, g, prefix, problems);
   }
   if (m.error_seed != 0 && m.gear1.iso1328_class == 0 && m.gear2.iso1328_class == 0) {
-    problems.add(refused_problem(prefix + ".error_seed", std::to_string(m.error_seed),
-                                 "it seeds the errors a tolerance class draws, and neither gear "
-                                 "has one",
-                                 "0 without iso1328_class1 or iso1328_class2",
-                                 "iso1328_class1 = 6 (or 2) to draw the errors, or no error_seed"));
+    problems.add(refused_problem(
+        prefix + ".error_seed", std::to_string(m.error_seed),
+        "it seeds the errors a tolerance class draws, and neither gear "
+        "has one",
+        "0 without iso1328_class1 or iso1328_class2",
+        "iso1328_class1 (or iso1328_class2) = 6 to draw the errors, or no error_seed"));
   }
   problems.throw_if_any();
 }
