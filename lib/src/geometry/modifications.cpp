@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/iso1328.hpp"
