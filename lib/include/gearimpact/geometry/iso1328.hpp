@@ -7,7 +7,9 @@
 // them. The draw takes the raw output of std::mt19937_64, whose sequence the
 // C++ standard fixes, through the transform below (never a std::
 // distribution, whose results differ between standard libraries), so that a
-// seed gives the same teeth bit for bit on every compiler.
+// seed gives the same numbers bit for bit on every compiler; only the
+// positions' cos(alpha) onto the line of action comes from std::cos, as the
+// rest of the geometry does.
 #pragma once
 
 #include <cstdint>
