@@ -118,7 +118,7 @@ ReportSection reproduce_faults(const ReproduceContext& context) {
   partial.crack.width_m = 0.5 * pair.face_width_m;
   partial.crack.angle_rad = kCrackAngleRad;
   curves.push_back(curve_of(pair, model, on_pinion_tooth_0(partial), "crack_half_width",
-                            "crack q_0/h_c = 0.5 over half the face (Chen & Shao)"));
+                            "crack q_0/h_c = 0.5 over half the face (Chen and Shao)"));
   ToothState spall;
   spall.kind = ToothKind::spall;
   spall.spall.start_radius_m = 20e-3;
@@ -149,25 +149,22 @@ ReportSection reproduce_faults(const ReproduceContext& context) {
     return "'faults_tvms.csv' using 1:($" + std::to_string(column) +
            " * 1e-8) every ::1 with lines " + style + " title '" + title + "'";
   };
-  const std::vector<std::string> setup{"set key outside right top vertical", "set xrange [0:360]",
-                                       "set xtics 30"};
+  const std::vector<std::string> setup{"set key below", "set xrange [0:360]", "set xtics 30"};
   std::vector<std::string> crack_series{column_plot(2, "healthy", "lw 2 lc rgb 'gray50'")};
   for (std::size_t k = 1; k < kFigureDepths.size(); ++k) {
     crack_series.push_back(column_plot(static_cast<int>(k) + 3, curves[k].title, "lw 1.5"));
   }
   const std::string x_label = "pinion angle {/Symbol q}_1 from the faulted tooth 0 entering, deg";
   render(context.out, {"faults_tvms_cracks",
-                       "Mesh stiffness over a pinion revolution, root crack at 45 deg on pinion "
-                       "tooth 0 (potential-energy, bores 20/60 mm)",
+                       "Root crack at 45 deg in pinion tooth 0: mesh stiffness over a revolution",
                        x_label, "mesh stiffness, 10^8 N/m", setup, crack_series});
   std::vector<std::string> other_series{column_plot(2, "healthy", "lw 2 lc rgb 'gray50'")};
   for (std::size_t k = kFigureDepths.size(); k < curves.size(); ++k) {
     other_series.push_back(column_plot(static_cast<int>(k) + 3, curves[k].title, "lw 1.5"));
   }
-  render(context.out, {"faults_tvms_others",
-                       "Mesh stiffness over a pinion revolution, pinion tooth 0 faulted "
-                       "(potential-energy, bores 20/60 mm)",
-                       x_label, "mesh stiffness, 10^8 N/m", setup, other_series});
+  render(context.out,
+         {"faults_tvms_others", "One faulted pinion tooth: mesh stiffness over a revolution",
+          x_label, "mesh stiffness, 10^8 N/m", setup, other_series});
 
   // 2. Mean and minimum stiffness loss against crack depth.
   const double healthy_min =
