@@ -147,7 +147,7 @@ ReportSection reproduce_faults(const ReproduceContext& context) {
   write_file_atomically((context.out / "faults_tvms.csv").string(), csv);
   const auto column_plot = [](int column, const std::string& title, const std::string& style) {
     return "'faults_tvms.csv' using 1:($" + std::to_string(column) +
-           " * 1e-8) every ::1 with lines " + style + " title '" + title + "'";
+           " * 1e-8) with lines " + style + " title '" + title + "'";
   };
   const std::vector<std::string> setup{"set key below", "set xrange [0:360]", "set xtics 30"};
   std::vector<std::string> crack_series{column_plot(2, "healthy", "lw 2 lc rgb 'gray50'")};
@@ -191,9 +191,9 @@ ReportSection reproduce_faults(const ReproduceContext& context) {
                        "crack depth q / h_c",
                        "loss against the healthy pair, %",
                        {"set key top left", "set xrange [0:1]"},
-                       {"'faults_stiffness_loss.csv' using 1:($6 * 100) every ::1 with "
+                       {"'faults_stiffness_loss.csv' using 1:($6 * 100) with "
                         "linespoints lw 2 pt 7 title 'minimum over the revolution'",
-                        "'faults_stiffness_loss.csv' using 1:($5 * 100) every ::1 with "
+                        "'faults_stiffness_loss.csv' using 1:($5 * 100) with "
                         "linespoints lw 2 pt 5 title 'mean over the revolution'"}});
 
   // 3. Loaded STE with and without the tip relief, at Table 1's torque of case 2.
@@ -242,10 +242,10 @@ ReportSection reproduce_faults(const ReproduceContext& context) {
           "pinion angle {/Symbol q}_1, deg (two mesh periods)",
           "STE, {/Symbol m}m",
           {"set key outside right top vertical"},
-          {"'faults_ste.csv' using 1:($2 * 1e6) every ::1 with lines lw 2 lc rgb 'gray40' title "
+          {"'faults_ste.csv' using 1:($2 * 1e6) with lines lw 2 lc rgb 'gray40' title "
            "'unmodified'",
-           "'faults_ste.csv' using 1:($3 * 1e6) every ::1 with lines lw 2 title 'tip relief'",
-           "'faults_ste.csv' using 1:($4 * 1e6) every ::1 with lines dt 2 title 'relief, "
+           "'faults_ste.csv' using 1:($3 * 1e6) with lines lw 2 title 'tip relief'",
+           "'faults_ste.csv' using 1:($4 * 1e6) with lines dt 2 title 'relief, "
            "unloaded (KTE)'"}});
 
   ReportSection section;
