@@ -22,6 +22,7 @@
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "gearimpact/stiffness/time_varying_stiffness.hpp"
+#include "mesh_stiffness_figure.hpp"
 #include "program.hpp"
 #include "reproduce.hpp"
 
@@ -320,6 +321,39 @@ std::string time_history_section(const SimulationCase& run, const std::filesyste
   return text + ".\n";
 }
 
+// The faulted pair's mesh stiffness over its true period against the same pairs all healthy
+// (mesh_stiffness.csv, the figure of `mesh-stiffness --figure`), `samples` per mesh period.
+std::string faulted_stiffness_section(const SimulationCase& c, int samples,
+                                      const std::filesystem::path& dir) {
+  MeshStiffnessTexts texts;
+  try {
+    texts = mesh_stiffness_texts(c.gears, c.model.stiffness, samples, c.faults);
+  } catch (const InputError& e) {
+    // The true period's bound on the samples, under the option that sets them.
+    if (e.field() != "samples") throw;
+    throw InputError("--samples", e.value(), e.allowed());
+  }
+  write_file_atomically((dir / "mesh_stiffness.csv").string(), texts.csv);
+  render(dir, mesh_stiffness_figure(texts.tvms, c.faults, c.name));
+  const TruePeriodMeshStiffness& t = texts.tvms;
+  const double healthy_min =
+      time_varying_mesh_stiffness(c.gears, c.model.stiffness, static_cast<std::size_t>(samples))
+          .min_n_per_m;
+  return "The mesh stiffness of the case's model (" + to_string(c.model.stiffness.kind) +
+         ") with its [[faults]] over the true period (" + t.period_kind + ", " +
+         std::to_string(t.mesh_periods) +
+         " mesh periods) from pinion tooth 0 entering against wheel tooth 0, against the same "
+         "pairs all healthy; the stretches where a faulted tooth is in contact are shaded "
+         "(`mesh_stiffness.png`, data `mesh_stiffness.csv`).\n\n"
+         "| | min (N/um) | mean (N/um) |\n|---|---|---|\n| with the faults | " +
+         number(t.min_n_per_m / kNPerUm, 5) + " | " + number(t.mean_n_per_m / kNPerUm, 6) +
+         " |\n| healthy | " + number(healthy_min / kNPerUm, 5) + " | " +
+         number(t.healthy_mean_n_per_m / kNPerUm, 6) + " |\n\nThe mean is " +
+         number(100.0 * (1.0 - t.mean_n_per_m / t.healthy_mean_n_per_m), 4) +
+         " % below the healthy mean, the minimum " +
+         number(100.0 * (1.0 - t.min_n_per_m / healthy_min), 4) + " % below the healthy minimum.\n";
+}
+
 void write_report(const ReportOptions& o) {
   require_output_folder(o.out, o.overwrite, {o.case_file});
   const PairOrRunCase read = read_pair_or_run_file(o.case_file);
@@ -329,13 +363,16 @@ void write_report(const ReportOptions& o) {
   const std::filesystem::path dir = folder.temporary();
   const Progress progress;
   std::vector<std::string> warnings;
+  std::string faulted;
   if (!c.faults.empty()) {
     warnings.push_back("the case has " + std::to_string(c.faults.size()) +
                        " faulted teeth ([[faults]]): the geometry, stiffness and load-sharing "
                        "sections are the healthy pair's" +
                        (run ? std::string("; the time history runs with the faults") : "") +
-                       "; `gearimpact mesh-stiffness --case-file` gives the faulted stiffness "
-                       "over the true period");
+                       "; the section \"Mesh stiffness with the faults\" gives the faulted "
+                       "stiffness over the true period");
+    faulted = faulted_stiffness_section(c, o.samples, dir);
+    progress.done("mesh stiffness with the faults");
   }
 
   const std::string geometry = geometry_section(c.gears, dir);
@@ -389,7 +426,9 @@ void write_report(const ReportOptions& o) {
   if (warnings.empty()) md += "None.\n";
   for (const std::string& w : warnings) md += "- " + w + "\n";
   md += "\n## Geometry\n\n" + geometry + "\n## Mesh stiffness and ISO 6336-1\n\n" + stiffness +
-        "\n## Load sharing\n\n" + sharing + "\n## Time history\n\n" + history;
+        "\n## Load sharing\n\n" + sharing;
+  if (!faulted.empty()) md += "\n## Mesh stiffness with the faults\n\n" + faulted;
+  md += "\n## Time history\n\n" + history;
   write_file_atomically((dir / "REPORT.md").string(), md);
   folder.commit();
   for (const std::string& w : warnings) std::cerr << "gearimpact: warning: " << w << "\n";

@@ -43,5 +43,8 @@ ReportSection reproduce_steady_state(const ReproduceContext& context);
 // driver's speed amplitude and frequency, with the closed-form separation
 // boundary (docs/model.md, section Rattle of a loose gear).
 ReportSection reproduce_rattle(const ReproduceContext& context);
+// The paper's pair with faulted and modified teeth (docs/faults.md): the mesh stiffness over a
+// pinion revolution, its loss against crack depth, and the STE with a tip relief.
+ReportSection reproduce_faults(const ReproduceContext& context);
 
 }  // namespace gearimpact::cli

@@ -88,7 +88,8 @@ std::filesystem::path reproduce(const std::filesystem::path& out,
                                 {"the open readings side by side", reproduce_readings},
                                 {"case 3 ensemble", reproduce_case3_ensemble},
                                 {"steady state of the loaded pair", reproduce_steady_state},
-                                {"rattle map of a loose gear, 512 runs", reproduce_rattle}};
+                                {"rattle map of a loose gear, 512 runs", reproduce_rattle},
+                                {"tooth faults and modifications", reproduce_faults}};
   // The parts run side by side: each submits its simulations to the one pool
   // and waits for them, so the cores stay busy until the last run is done.
   std::vector<std::future<std::pair<ReportSection, double>>> running;

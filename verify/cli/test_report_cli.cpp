@@ -312,4 +312,38 @@ TEST_CASE("report on a pair file with a missing tooth says its sections are the 
   CHECK(md.find("healthy pair's") != std::string::npos);
   // A pair file has no time history to run with the faults.
   CHECK(md.find("time history runs") == std::string::npos);
+  // Its own section draws the faulted stiffness over the pinion revolution (its true period):
+  // 400 samples (the default --samples) in each of 20 mesh periods. Where the missing tooth would
+  // carry alone the mesh stiffness is 0 and the healthy one is not; outside the missing tooth's
+  // contact the two columns are one curve.
+  CHECK(md.find("## Mesh stiffness with the faults") != std::string::npos);
+  CHECK(md.find("pinion-revolution, 20 mesh periods") != std::string::npos);
+  for (const char* file : {"mesh_stiffness.png", "mesh_stiffness.svg", "mesh_stiffness.gp"}) {
+    CAPTURE(file);
+    CHECK(std::filesystem::exists(out / file));
+  }
+  std::ifstream csv(out / "mesh_stiffness.csv");
+  std::string line;
+  std::getline(csv, line);
+  REQUIRE(line.rfind("fraction,theta1_rad,pairs,ke_n_m,healthy_ke_n_m,", 0) == 0);
+  int rows = 0;
+  int zero_rows = 0;
+  int equal_rows = 0;
+  while (std::getline(csv, line)) {
+    ++rows;
+    std::istringstream fields(line);
+    std::string field;
+    std::vector<double> v;
+    // The first five columns; a row with one pair in contact leaves the second pair's empty.
+    while (v.size() < 5 && std::getline(fields, field, ',')) v.push_back(std::stod(field));
+    REQUIRE(v.size() == 5);
+    CHECK(v[4] > 0.0);
+    zero_rows += v[3] == 0.0;
+    equal_rows += v[3] == v[4];
+  }
+  CHECK(rows == 20 * 400);
+  CHECK(zero_rows > 0);
+  // Pinion tooth 0 is in contact eps_alpha = 1.69 of the 20 mesh periods: the rest agree.
+  CHECK(equal_rows > rows * 18 / 20);
+  CHECK(equal_rows < rows);
 }

@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -13,6 +14,74 @@
 #include "run_command.hpp"
 
 using namespace gearimpact::verify;
+
+namespace {
+
+// The rows of a CSV of numbers, its header dropped.
+std::vector<std::vector<double>> numbers_of(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::vector<double>> rows;
+  while (std::getline(in, line)) {
+    std::istringstream fields(line);
+    std::string field;
+    rows.emplace_back();
+    while (std::getline(fields, field, ',')) rows.back().push_back(std::stod(field));
+  }
+  return rows;
+}
+
+// The faults section's data: faults_tvms.csv has the columns theta1_deg, healthy, the cracks
+// q/h_c = 0, 0.25, 0.5, 0.75, the half-width crack, the spall and the missing tooth;
+// faults_stiffness_loss.csv q/h_c, q, mean, min, mean loss, min loss.
+void check_faults_section(const std::filesystem::path& out) {
+  const auto tvms = numbers_of(out / "faults_tvms.csv");
+  // 50 samples in each of the 20 mesh periods of a pinion revolution.
+  REQUIRE(tvms.size() == 20 * 50);
+  double healthy_min = INFINITY;
+  double missing_min = INFINITY;
+  for (const auto& row : tvms) {
+    REQUIRE(row.size() == 9);
+    // A crack of depth 0 leaves the tooth as it is: the same sections, up to the rounding of
+    // the integrals (their tolerance is 1e-12 relative).
+    CHECK(std::fabs(row[2] - row[1]) <= 1e-12 * row[1]);
+    // A deeper crack never stiffens the mesh.
+    CHECK(row[3] <= row[2] * (1.0 + 1e-12));
+    CHECK(row[4] <= row[3] * (1.0 + 1e-12));
+    CHECK(row[5] <= row[4] * (1.0 + 1e-12));
+    healthy_min = std::min(healthy_min, row[1]);
+    missing_min = std::min(missing_min, row[8]);
+  }
+  // Where the missing tooth would carry alone no pair carries: 0 exactly, against a healthy
+  // single-pair stiffness above 1e8 N/m.
+  CHECK(missing_min == 0.0);
+  CHECK(healthy_min > 1e8);
+  const auto loss = numbers_of(out / "faults_stiffness_loss.csv");
+  REQUIRE(loss.size() == 9);
+  CHECK(std::fabs(loss[0][4]) <= 1e-12);
+  CHECK(std::fabs(loss[0][5]) <= 1e-12);
+  for (std::size_t i = 1; i < loss.size(); ++i) {
+    CAPTURE(loss[i][0]);
+    // Monotone in depth; the mean falls less than the minimum (one tooth in 20 is cracked).
+    CHECK(loss[i][4] > loss[i - 1][4]);
+    CHECK(loss[i][5] > loss[i - 1][5]);
+    CHECK(loss[i][4] < loss[i][5]);
+  }
+  // The relief scan brackets its optimum (the least peak to peak is inside the scan, not at an
+  // end) and the relief lowers the peak to peak.
+  const auto scan = numbers_of(out / "faults_ste_relief_scan.csv");
+  REQUIRE(scan.size() > 3);
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < scan.size(); ++i) {
+    if (scan[i][1] < scan[best][1]) best = i;
+  }
+  CHECK(best > 0);
+  CHECK(best + 1 < scan.size());
+  CHECK(scan[best][1] < 0.5 * scan[0][1]);
+}
+
+}  // namespace
 
 TEST_CASE("reproduce: every figure, its data, and REPORT.md with no unexplained failure") {
   const std::filesystem::path out = std::filesystem::temp_directory_path() /
@@ -33,7 +102,11 @@ TEST_CASE("reproduce: every figure, its data, and REPORT.md with no unexplained 
                                          "fig8_energy_ratios_flipped_moment",
                                          "steady_state_dynamic_factor",
                                          "steady_state_regimes",
-                                         "rattle_map"};
+                                         "rattle_map",
+                                         "faults_tvms_cracks",
+                                         "faults_tvms_others",
+                                         "faults_stiffness_loss",
+                                         "faults_ste"};
   for (const std::string& figure : figures) {
     for (const char* extension : {".png", ".svg", ".gp"}) {
       const std::filesystem::path file = out / (figure + extension);
@@ -46,7 +119,8 @@ TEST_CASE("reproduce: every figure, its data, and REPORT.md with no unexplained 
        {"case1_time_series.csv", "case2_time_series.csv", "case3_time_series.csv",
         "case1_summary.json", "case2_summary.json", "case3_summary.json", "fig7_friction_sweep.csv",
         "fig8_energy_ratios.csv", "fig8_energy_ratios_flipped_moment.csv", "steady_state.csv",
-        "steady_state_iso_kv_band.csv", "rattle_map.csv", "rattle_boundary.csv"}) {
+        "steady_state_iso_kv_band.csv", "rattle_map.csv", "rattle_boundary.csv", "faults_tvms.csv",
+        "faults_stiffness_loss.csv", "faults_ste.csv", "faults_ste_relief_scan.csv"}) {
     CAPTURE(data);
     CHECK(std::filesystem::exists(out / data));
   }
@@ -66,6 +140,8 @@ TEST_CASE("reproduce: every figure, its data, and REPORT.md with no unexplained 
   steady_text << steady.rdbuf();
   const std::string csv = steady_text.str();
   CHECK(std::count(csv.begin(), csv.end(), '\n') == 1 + 2 * 41);
+  CHECK(report.find("## Tooth faults and modifications") != std::string::npos);
+  check_faults_section(out);
   // No temporary files (hidden siblings) are left behind by the atomic writes.
   for (const auto& entry : std::filesystem::directory_iterator(out)) {
     CHECK(entry.path().filename().string().front() != '.');
