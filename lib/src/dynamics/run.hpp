@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
 #include "ledger.hpp"
@@ -336,9 +337,43 @@ class Run {
       damping_ = control_.resume->contact;
     } else if (mode_.region != Region::free) {
       begin_contact(start_time_);
+      check_start_damping();
     }
     system_.classify_forces(y_, damping_, mode_);
     return EnergyLedger(system_, y_, mode_, result_.summary);
+  }
+
+  // A run that starts in contact takes its Hertzian damping from the approach
+  // speed at t = 0. Near rest (Vi floored) the damping that each impact sets by
+  // (32)-(33) grows without bound, and under the tooth load the fixed RK4 step
+  // would diverge within a few steps into an overlap that says nothing of the
+  // cause; this names it and the keys that avoid it before any step is taken.
+  void check_start_damping() const {
+    if (c_.integrator.kind != IntegratorKind::rk4) return;
+    ContactTotals totals;
+    State dydt{};
+    system_.rhs(start_time_, y_, mode_, damping_, dydt, &totals);
+    const double load = std::max(totals.normal_force_n, peak_tooth_load_n(c_));
+    const double d = damping_.damping_per_stiffness_s_m;
+    const double rate = damping_rate_per_step(c_, d, load);
+    if (!(rate > kRk4RealStabilityLimit)) return;
+    const ImpactRecord& start = impacts_.back();
+    const std::string side = mode_.region == Region::n1 ? "drive (N1)" : "coast (N2)";
+    throw InputError(
+        "initial.theta1", format_number(c_.initial.theta1_rad) + " rad",
+        "a start with the teeth apart, or in contact and approaching fast enough: this start "
+        "presses the " +
+            side + " flanks by " + format_number(system_.delta(mode_.region, y_)) +
+            " m at an approach speed Vi = " + format_number(start.impact_speed_m_s) +
+            " m/s, for which the Hertzian damping that each impact sets by (32)-(33) is D = " +
+            format_number(d) +
+            " s/m (it grows without bound as Vi falls to 0); with the tooth load " +
+            format_number(load) +
+            " N its damping rate per step h D F / m_e = " + format_number(rate) + " exceeds " +
+            format_number(kRk4RealStabilityLimit) + ", where fixed-step RK4 diverges",
+        "start inside the backlash (|Rb1 theta1 - Rb2 theta2| < gears.backlash), or set "
+        "model.damping_update = \"frozen\" (D from model.damping_reference_speed), or "
+        "integrator.kind = \"adaptive\"");
   }
 
   void begin_contact(double t) {

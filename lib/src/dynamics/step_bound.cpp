@@ -245,6 +245,24 @@ void validate_step(const SimulationCase& c, double largest) {
       "<= " + format_number(largest) + " s: " + why + "; that period is " + digits(period) + " s");
 }
 
+double peak_tooth_load_n(const SimulationCase& c) {
+  const double load1 = torque_peak(c.torque1, "torque1", c.initial.w1_rad_per_s).first /
+                       base_radius(c.gears, Gear::one);
+  const double load2 = torque_peak(c.torque2, "torque2", c.initial.w2_rad_per_s).first /
+                       base_radius(c.gears, Gear::two);
+  return std::max(load1, load2);
+}
+
+double damping_rate_per_step(const SimulationCase& c, double damping_per_stiffness_s_m,
+                             double load_n) {
+  const GearPair& g = c.gears;
+  const double rb2 = base_radius(g, Gear::two);
+  const double mass = c.torque1.kind == Torque::Kind::prescribed_speed
+                          ? moment_of_inertia(g, Gear::two) / (rb2 * rb2)
+                          : effective_mass_kg(g);
+  return c.integrator.step_s * damping_per_stiffness_s_m * load_n / mass;
+}
+
 double largest_resolving_step_s(const SimulationCase& c) {
   return largest_step(c, total_stiffness_extremes(c, [&](double x) {
                            return mesh_stiffness(c.gears, x, c.model.stiffness).ke;

@@ -34,6 +34,20 @@ void validate_step(const SimulationCase& c, double largest_step_s);
 // - the torques' angular frequencies: as many steps per forcing period 2 pi / W.
 // The mesh stiffness is sampled as largest_resolving_step_s samples it, by
 // quadrature or from the table.
+// The largest tooth load the case's torques imply, max over the gears of the
+// peak |T(t)| / Rb (0 for a driver or a torque given as a function).
+double peak_tooth_load_n(const SimulationCase& c);
+
+// The damping rate of one fixed step, h c / m_e, of a contact whose Hertzian
+// damping (32) is D (s/m) under the tooth load F: the damper's coefficient is
+// D K delta with delta about F / K, so D F. Fixed-step RK4 diverges on a decay
+// whose h c / m_e exceeds kRk4RealStabilityLimit; m_e is the pair's effective
+// mass, or the wheel's J2 / Rb2^2 behind a driver.
+double damping_rate_per_step(const SimulationCase& c, double damping_per_stiffness_s_m,
+                             double load_n);
+// The classical RK4's stability interval on the negative real axis, [-2.785, 0].
+inline constexpr double kRk4RealStabilityLimit = 2.785;
+
 void validate_implied(const SimulationCase& c);
 void validate_implied(const SimulationCase& c, const StiffnessTable& table);
 
