@@ -316,6 +316,19 @@ TEST_CASE("a start pressed into contact at rest, whose damping RK4 cannot carry,
     CHECK(std::fabs(number_after(ok.out, "\"ledger_residual_max_J\": ")) <=
           1e-9 * number_after(ok.out, "\"ledger_scale_J\": "));
   }
+  // A damping frozen at a reference speed near rest is known before the run: refused alike,
+  // naming its key, with the same D as (32)-(33) give at that speed (4 digits printed).
+  const CommandResult frozen =
+      run_command(cli("simulate --case 2 --t-end 1ms --set model.damping_update=frozen --set "
+                      "'model.damping_reference_speed=1e-9 m/s'"));
+  check_refusal(frozen, "--set model.damping_reference_speed = 1e-9 m/s");
+  CHECK(relative_difference(number_after(frozen.err, "give D = "), d) <= kPrinted);
+  SimulationCase c = paper_case(2);
+  c.model.damping_update = DampingUpdate::frozen;
+  c.model.damping_reference_speed_m_s = 1e-9;
+  CHECK(error_of(c) == "model.damping_reference_speed");
+  c.model.damping_reference_speed_m_s = 1e-3;
+  CHECK(error_of(c).empty());
   // Apart in the backlash the same torques run as case 2 does.
   CHECK(run_command(cli("simulate --case 2 --t-end 1ms --set 'initial.w1=0 rad/s'")).exit_code ==
         0);

@@ -162,13 +162,28 @@ class Run {
   void check_overlap(double t) const {
     const double overlap = result_.summary.max_penetration_m;
     if (!(overlap > half_base_pitch_m_)) return;
-    throw SimulationError(
-        "the teeth overlap by " + format_number(overlap) + " m on the line of action at " +
-        where(t, result_.summary.steps) + ", more than half a base pitch (" +
-        format_number(half_base_pitch_m_) +
-        " m): the model's contact on the line of action no longer holds; with a missing tooth "
-        "the load drives the pinion ahead while no pair carries it, so lower the load or the "
-        "backlash, or raise the speed");
+    std::string cause =
+        "with a missing tooth the load drives the pinion ahead while no pair carries it, so lower "
+        "the load or the backlash, or raise the speed";
+    // A contact that began near rest carries a damping whose fixed step
+    // diverges (check_start_damping): say so rather than blame the load. A
+    // frozen damping is checked before the run.
+    const double rate =
+        damping_rate_per_step(c_, damping_.damping_per_stiffness_s_m, peak_tooth_load_n(c_));
+    if (c_.integrator.kind == IntegratorKind::rk4 && rate > kRk4RealStabilityLimit) {
+      cause = "the Hertzian damping of (32)-(33) that the last impact set is D = " +
+              format_number(damping_.damping_per_stiffness_s_m) +
+              " s/m, and its rate per step h D F / m_e = " + format_number(rate) + " exceeds " +
+              format_number(kRk4RealStabilityLimit) +
+              ", where fixed-step RK4 diverges (an impact near rest sets a D without bound): set "
+              "model.damping_update = \"frozen\", or integrator.kind = \"adaptive\", or a "
+              "smaller integrator.step";
+    }
+    throw SimulationError("the teeth overlap by " + format_number(overlap) +
+                          " m on the line of action at " + where(t, result_.summary.steps) +
+                          ", more than half a base pitch (" + format_number(half_base_pitch_m_) +
+                          " m): the model's contact on the line of action no longer holds; " +
+                          cause);
   }
 
   // The line's coefficient sum(f N) / sum(N) at the end of a step under a law

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "gearimpact/constants.hpp"
+#include "gearimpact/contact/contact.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
@@ -208,6 +209,28 @@ void validate_drag(const SimulationCase& c) {
           " s per 2 pi of it; raise drag_speed_scale (or lower drag_viscous, or the step)");
 }
 
+// A damping frozen at a reference impact speed is known before the run: under
+// the torques' tooth load, its rate per fixed step h D F / m_e must stay inside
+// RK4's stability interval, or the first loaded contact diverges.
+void validate_frozen_damping(const SimulationCase& c) {
+  const ModelOptions& m = c.model;
+  if (c.integrator.kind != IntegratorKind::rk4 || m.damping_update != DampingUpdate::frozen) return;
+  const double speed = m.damping_reference_speed_m_s;
+  const double d = damping_factor_per_stiffness(
+      m.damping_form, restitution_coefficient(m.restitution, speed), speed);
+  const double load = peak_tooth_load_n(c);
+  const double rate = damping_rate_per_step(c, d, load);
+  if (!(rate > kRk4RealStabilityLimit)) return;
+  throw InputError(
+      "model.damping_reference_speed", digits(speed) + " m/s",
+      "a speed whose frozen damping fixed-step RK4 can carry: at it (32)-(33) give D = " +
+          digits(d) + " s/m, and under the tooth load " + digits(load) +
+          " N its rate per step h D F / m_e = " + digits(rate) + " exceeds " +
+          digits(kRk4RealStabilityLimit) + ", where RK4 diverges",
+      "raise model.damping_reference_speed, or integrator.kind = \"adaptive\", or a "
+      "smaller integrator.step");
+}
+
 void validate_implied(const SimulationCase& c, const std::pair<double, double>& extremes) {
   const double softest = c.model.mesh_stiffness == MeshStiffnessMode::constant
                              ? c.model.constant_mesh_stiffness_n_per_m
@@ -219,6 +242,7 @@ void validate_implied(const SimulationCase& c, const std::pair<double, double>& 
   problems.collect([&] { validate_speeds(c); });
   problems.collect([&] { validate_forcing(c); });
   problems.collect([&] { validate_drag(c); });
+  problems.collect([&] { validate_frozen_damping(c); });
   problems.throw_if_any();
 }
 
