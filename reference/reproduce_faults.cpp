@@ -129,8 +129,8 @@ std::pair<double, double> tooth0_contact_revolutions(const GearPair& pair) {
 }
 
 // The faulted and healthy responses over kDynamicsRevolutions, each continued from the healthy
-// pair's state after one revolution from the static deflection (where the start's transient has
-// died out: the healthy run then strikes nothing), written to faults_dynamics.csv (DTE samples)
+// pair's state more than a revolution after the static deflection (where the start's transient
+// has died out: the healthy run then strikes nothing), written to faults_dynamics.csv (DTE samples)
 // and faults_dynamics_impacts.csv (every impact), drawn, and described.
 std::string dynamic_response(const ReproduceContext& context, const GearPair& pair,
                              const StiffnessModel& model, const StiffnessTable& table, double h_c,
@@ -288,9 +288,10 @@ std::string dynamic_response(const ReproduceContext& context, const GearPair& pa
       "These equations are linear in the deflection and the load, so another load scales the "
       "DTE and leaves the impacts as they are (`test_faults_dynamics`; docs/faults.md): \"low "
       "load\" is no cause of separation here, the operating point near the edge where contact is "
-      "lost is. The healthy pair starts at the static deflection F / k_mean and runs one pinion "
-      "revolution, in which the start's transient strikes and dies out; every response below "
-      "continues from that state for " +
+      "lost is. The healthy pair starts at the static deflection F / k_mean and runs " +
+      number(warm.time_s / revolution_s, 3) +
+      " pinion revolutions, to half a mesh period before tooth 0 enters, in which the start's "
+      "transient dies out; every response below continues from that state for " +
       number(kDynamicsRevolutions, 2) +
       " revolutions, the fault acting from then on. Impacts are counted in revolution windows "
       "from tooth 0's entry into the contact segment; the phases are those of the first "
@@ -307,7 +308,8 @@ std::string dynamic_response(const ReproduceContext& context, const GearPair& pa
       text += "no impact.";
     } else if (steady) {
       text += std::to_string(counts.front()) + (counts.front() == 1 ? " impact" : " impacts") +
-              " in every revolution, at the same phase after tooth 0 enters.";
+              " in every revolution, at the same " + (counts.front() == 1 ? "phase" : "phases") +
+              " after tooth 0 enters.";
     } else {
       text += "impacts that change from revolution to revolution.";
     }
