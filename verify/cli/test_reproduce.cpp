@@ -32,6 +32,57 @@ std::vector<std::vector<double>> numbers_of(const std::filesystem::path& file) {
   return rows;
 }
 
+// The faults section's dynamic response: faults_dynamics_impacts.csv has one row per impact
+// (response 0 healthy, 1 crack q/h_c = 0.5, 2 crack q/h_c = 0.75, 3 missing tooth; revolutions
+// from tooth 0's first entry; the revolution; mesh periods after tooth 0's entry in it; Vi),
+// faults_dynamics.csv the DTE of each response over four revolutions.
+void check_faults_dynamics(const std::filesystem::path& out) {
+  const int revolutions = 4;
+  const int teeth1 = 20;
+  const auto impacts = numbers_of(out / "faults_dynamics_impacts.csv");
+  std::vector<std::vector<int>> counts(4, std::vector<int>(revolutions, 0));
+  for (const auto& row : impacts) {
+    REQUIRE(row.size() == 5);
+    const int response = static_cast<int>(row[0]);
+    const int revolution = static_cast<int>(row[2]);
+    REQUIRE(response >= 0);
+    REQUIRE(response < 4);
+    REQUIRE(revolution >= 0);
+    REQUIRE(revolution < revolutions);
+    ++counts[static_cast<std::size_t>(response)][static_cast<std::size_t>(revolution)];
+    CHECK(row[4] > 0.0);
+    if (response == 1 || response == 2) {
+      // A crack's impacts come with its passage: tooth 0 carries for the contact ratio, 1.69
+      // mesh periods, and the pair rebounds within the next mesh period.
+      CAPTURE(row[3]);
+      CHECK(row[3] < 3.0);
+    }
+    CHECK(row[3] >= 0.0);
+    CHECK(row[3] < teeth1);
+  }
+  for (int k = 0; k < revolutions; ++k) {
+    CAPTURE(k);
+    // The healthy pair stays in contact; the crack of q/h_c = 0.5 strikes once per revolution,
+    // the deeper one at least as often; the missing tooth's pair strikes too.
+    CHECK(counts[0][static_cast<std::size_t>(k)] == 0);
+    CHECK(counts[1][static_cast<std::size_t>(k)] == 1);
+    CHECK(counts[2][static_cast<std::size_t>(k)] >= counts[1][static_cast<std::size_t>(k)]);
+    CHECK(counts[3][static_cast<std::size_t>(k)] > 0);
+  }
+  // The DTE agrees with the impacts: the healthy one stays above 0, the cracked ones pass below.
+  const auto dte = numbers_of(out / "faults_dynamics.csv");
+  REQUIRE(dte.size() > 50u * teeth1 * revolutions);
+  double least_healthy = INFINITY;
+  double least_cracked = INFINITY;
+  for (const auto& row : dte) {
+    REQUIRE(row.size() == 5);
+    least_healthy = std::min(least_healthy, row[1]);
+    least_cracked = std::min(least_cracked, row[2]);
+  }
+  CHECK(least_healthy > 0.0);
+  CHECK(least_cracked < 0.0);
+}
+
 // The faults section's data: faults_tvms.csv has the columns theta1_deg, healthy, the cracks
 // q/h_c = 0, 0.25, 0.5, 0.75, the half-width crack, the spall and the missing tooth;
 // faults_stiffness_loss.csv q/h_c, q, mean, min, mean loss, min loss.
@@ -79,6 +130,7 @@ void check_faults_section(const std::filesystem::path& out) {
   CHECK(best > 0);
   CHECK(best + 1 < scan.size());
   CHECK(scan[best][1] < 0.5 * scan[0][1]);
+  check_faults_dynamics(out);
 }
 
 }  // namespace
@@ -106,7 +158,9 @@ TEST_CASE("reproduce: every figure, its data, and REPORT.md with no unexplained 
                                          "faults_tvms_cracks",
                                          "faults_tvms_others",
                                          "faults_stiffness_loss",
-                                         "faults_ste"};
+                                         "faults_ste",
+                                         "faults_dynamics_crack",
+                                         "faults_dynamics_missing"};
   for (const std::string& figure : figures) {
     for (const char* extension : {".png", ".svg", ".gp"}) {
       const std::filesystem::path file = out / (figure + extension);
@@ -120,7 +174,8 @@ TEST_CASE("reproduce: every figure, its data, and REPORT.md with no unexplained 
         "case1_summary.json", "case2_summary.json", "case3_summary.json", "fig7_friction_sweep.csv",
         "fig8_energy_ratios.csv", "fig8_energy_ratios_flipped_moment.csv", "steady_state.csv",
         "steady_state_iso_kv_band.csv", "rattle_map.csv", "rattle_boundary.csv", "faults_tvms.csv",
-        "faults_stiffness_loss.csv", "faults_ste.csv", "faults_ste_relief_scan.csv"}) {
+        "faults_stiffness_loss.csv", "faults_ste.csv", "faults_ste_relief_scan.csv",
+        "faults_dynamics.csv", "faults_dynamics_impacts.csv"}) {
     CAPTURE(data);
     CHECK(std::filesystem::exists(out / data));
   }
