@@ -233,7 +233,28 @@ void StiffnessTable::throw_outside(double x1_m) const {
 }
 
 Compliances StiffnessTable::compliance(double x1_m) const {
-  const Local at = locate(x1_m);
+  return compliance_at(locate(x1_m));
+}
+
+Compliances StiffnessTable::compliance_in_part(double x1_m, int part) const {
+  return compliance_at(locate_in_part(x1_m, part));
+}
+
+int StiffnessTable::part_of(double x1_m) const {
+  int i = part_count() - 1;
+  while (i > 0 && x1_m < parts_[static_cast<std::size_t>(i)].start_m) --i;
+  return i;
+}
+
+double StiffnessTable::part_start_m(int part) const {
+  return parts_.empty() ? start_ : parts_.at(static_cast<std::size_t>(part)).start_m;
+}
+
+double StiffnessTable::part_end_m(int part) const {
+  return part + 1 < part_count() ? parts_[static_cast<std::size_t>(part + 1)].start_m : end_;
+}
+
+Compliances StiffnessTable::compliance_at(const Local& at) const {
   Compliances c = constant_terms_;
   for (const TermInfo& t : kTerms) {
     const std::vector<double>& series = term_series_[index_of(t.term)];

@@ -76,6 +76,24 @@ class StiffnessTable {
   int pieces() const { return pieces_; }
   int order() const { return order_; }
 
+  // The parts between the breaks: part_count() of them (1 without breaks),
+  // part i over [part_start_m(i), part_end_m(i)]. part_of(x1) is the part x1
+  // falls in (at a break, the one above it, as the look-ups below read it).
+  int part_count() const { return parts_.empty() ? 1 : static_cast<int>(parts_.size()); }
+  int part_of(double x1_m) const;
+  double part_start_m(int part) const;
+  double part_end_m(int part) const;
+  // Ke, dKe/dX1 and the compliances from part `part`'s own series, at x1 in
+  // [part_start_m(part), part_end_m(part)]: at a break, from the side asked
+  // for, so that a run can stay on one side of a jump up to its event.
+  // Throws InputError for x1 outside the part.
+  StiffnessAndDerivative stiffness_and_derivative_in_part(double x1_m, int part) const {
+    const Local at = locate_in_part(x1_m, part);
+    return {polynomial(&stiffness_[at.offset], at.t),
+            polynomial(&stiffness_derivative_[at.offset], at.t)};
+  }
+  Compliances compliance_in_part(double x1_m, int part) const;
+
   // Each throws InputError for x1 outside the domain.
   Compliances compliance(double x1_m) const;
   // Ke, N/m, from its own series, fitted to (29) 1/Ke = total compliance.
@@ -118,6 +136,15 @@ class StiffnessTable {
     const int piece = std::min(static_cast<int>(u), pieces_ - 1);
     return {static_cast<std::size_t>(p.first_piece + piece) * stride_, 2.0 * (u - piece) - 1.0};
   }
+  Local locate_in_part(double x1_m, int part) const {
+    if (parts_.empty()) return locate(x1_m);
+    if (!(x1_m >= part_start_m(part) && x1_m <= part_end_m(part))) throw_outside(x1_m);
+    const Part& p = parts_[static_cast<std::size_t>(part)];
+    const double u = (x1_m - p.start_m) * p.pieces_per_m;
+    const int piece = std::min(static_cast<int>(u), pieces_ - 1);
+    return {static_cast<std::size_t>(p.first_piece + piece) * stride_, 2.0 * (u - piece) - 1.0};
+  }
+  Compliances compliance_at(const Local& at) const;
   // Fits the pieces of [a, b] (count of them) after those already fitted.
   void fit_part(double a, double b, const ComplianceFunction& compliance, bool every_term);
   // The domain and the grid of the options (checked against the domain).
