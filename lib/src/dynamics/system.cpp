@@ -253,9 +253,9 @@ void GearSystem::rhs(double t, const State& y_in, const Mode& m, const ContactMe
     const double x_rate = sign * rb1_ * w1;
     for (int j = 0; j < m.count; ++j) {
       const StiffnessTable* table = pair_table(m.region, m.k_first + j);
-      // A pair with a missing tooth: no force, no damping, no friction; nor
-      // a pair whose gap is open.
-      if (table == nullptr || (gaps_ && !m.touching[j])) continue;
+      // A pair with a missing tooth or without contact over a fault across
+      // the face: no force, no damping, no friction; nor a pair whose gap is open.
+      if (!carries(table, m.part[j]) || (gaps_ && !m.touching[j])) continue;
       const double x = layout_.position_m(ref, m.k_first + j);
       // The pair's own penetration and its rate: the line's, less the gap.
       const PairPenetration p = pair_penetration(m, j, x, dl, dl_rate, x_rate);
@@ -412,10 +412,10 @@ int GearSystem::event_values(const State& y, const Mode& m, const ContactMemory&
 // A function with the sign and the zeros of F + G of one pair. With D
 // proportional to the pair's own Ke, F + G = Ke delta (1 + (D/K) d(delta)/dt)
 // and the positive factor Ke need not be evaluated.
-// A pair with a missing tooth never pushes nor switches: 1.
+// A pair that cannot carry (a missing tooth, no contact) never pushes nor switches: 1.
 double GearSystem::push_sign_function(const StiffnessTable* table, int part, double x, int count,
                                       const ContactMemory& d, double dl, double dl_rate) const {
-  if (table == nullptr) return 1.0;
+  if (!carries(table, part)) return 1.0;
   if (damping_on_current_pair_) {
     return dl * (1.0 + d.damping_per_stiffness_s_m * dl_rate);
   }
@@ -539,7 +539,7 @@ GearSystem::Onset GearSystem::damping_at_onset(const State& y, const Mode& m) co
     // that carry (none: the stiffness stays 0, as nothing pushes).
     int nearest = -1;
     for (int j = 0; j < m.count; ++j) {
-      if (pair_table(m.region, m.k_first + j) == nullptr) continue;
+      if (!carries(pair_table(m.region, m.k_first + j), m.part[j])) continue;
       if (nearest < 0 || std::fabs(pair_position(m, y, j) - x_pitch_) <
                              std::fabs(pair_position(m, y, nearest) - x_pitch_)) {
         nearest = j;
@@ -571,8 +571,8 @@ ElasticEnergy GearSystem::stored_energy(const State& y, const Mode& m) const {
       continue;
     }
     const StiffnessTable* table = pair_table(m.region, m.k_first + j);
-    // A missing tooth stores nothing.
-    if (table == nullptr) continue;
+    // A missing tooth stores nothing, nor a pair without contact over a fault across the face.
+    if (!carries(table, m.part[j])) continue;
     // At a fault's edge, the side of the pair's part: the ledger books the jump between the two
     // sides at the event.
     const Compliances c =

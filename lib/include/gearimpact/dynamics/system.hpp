@@ -162,6 +162,12 @@ class GearSystem {
   const StiffnessTable* pair_table(Region line, int k) const {
     return teeth_ ? teeth_->table(line, k) : &table_;
   }
+  // Whether a pair on `table` in its part `part` can carry: not with a
+  // missing tooth (no table), nor over the extent of a fault across the whole
+  // face (a part without contact).
+  static bool carries(const StiffnessTable* table, int part) {
+    return table != nullptr && table->part_in_contact(part);
+  }
   // Ke and dKe/dX of one of `count` loaded pairs at X, read from `table`
   // (from its part `part`, Mode::part).
   void pair_stiffness(const StiffnessTable& table, int part, double x, int count, double& ke,
