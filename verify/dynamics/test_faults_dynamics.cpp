@@ -378,12 +378,11 @@ TEST_CASE("a spall or a chip across the whole face: the pair lets go over it, th
     const SimulationSummary h = simulate(healthy, summary_only()).summary;
     const double throughput =
         s.kinetic_energy_initial_j + s.stored_energy_initial_j + std::fabs(s.torque_work_j);
-    MESSAGE(to_string(fault.state.kind) << ": residual " << s.ledger_residual_max_j << " J of "
-                                        << throughput << " J, max penetration "
-                                        << s.max_penetration_m << " m (healthy "
-                                        << h.max_penetration_m << " m), jumps booked "
-                                        << s.parametric_jump_work_j << " J (healthy "
-                                        << h.parametric_jump_work_j << " J)");
+    MESSAGE(to_string(fault.state.kind)
+            << ": residual " << s.ledger_residual_max_j << " J of " << throughput
+            << " J, max penetration " << s.max_penetration_m << " m (healthy "
+            << h.max_penetration_m << " m), jumps booked " << s.parametric_jump_work_j
+            << " J (healthy " << h.parametric_jump_work_j << " J)");
     CHECK(s.ledger_residual_max_j < 1e-7 * throughput);
     // The pair behind alone is softer than two pairs: the deflection grows, elastically.
     CHECK(s.max_penetration_m > h.max_penetration_m);
