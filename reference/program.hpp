@@ -38,8 +38,8 @@ MeshStiffnessTexts mesh_stiffness_texts(const GearPair& pair, const StiffnessMod
                                         int samples, const std::vector<ToothFault>& faults = {});
 
 // `gearimpact ste`: the static transmission error of the case's pair with its modifications
-// (ste.csv), of the same pair unmodified over the same angles (ste_unmodified.csv) and the
-// summary.json of both, at pinion torque T1 > 0 and `points_per_mesh_period` angles per mesh
+// (ste.csv), of the same pair healthy and unmodified over the same angles (ste_unmodified.csv) and
+// the summary.json of both, at pinion torque T1 > 0 and `points_per_mesh_period` angles per mesh
 // period. Throws InputError naming "torque" or "points" before the stiffness table is built.
 struct SteTexts {
   StaticTransmissionError modified;

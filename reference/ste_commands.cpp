@@ -7,6 +7,7 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "gearimpact/case/units.hpp"
@@ -15,8 +16,10 @@
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/results.hpp"
+#include "gearimpact/stiffness/mesh_tables.hpp"
 #include "gearimpact/stiffness/static_transmission_error.hpp"
 #include "gearimpact/stiffness/table.hpp"
+#include "gearimpact/stiffness/tooth_state.hpp"
 #include "gnuplot.hpp"
 #include "program.hpp"
 
@@ -24,14 +27,11 @@ namespace gearimpact::cli {
 
 namespace {
 
-// The STE reads each pair's healthy stiffness and the gaps; a faulted tooth's
-// own table is not read yet, and an STE of healthy teeth for a faulted case
-// would answer another question than the case asks.
-void refuse_faults(const SimulationCase& c) {
-  if (c.faults.empty()) return;
-  throw InputError("[[faults]]", std::to_string(c.faults.size()) + " faulted teeth",
-                   "none: ste does not read per-tooth faults yet (it would give the healthy "
-                   "teeth's STE); mesh-stiffness --case-file gives the faulted mesh stiffness");
+// The gears whose teeth differ by their faults, known before any table is built.
+DistinctTeeth faulted_teeth(const SimulationCase& c) {
+  std::vector<int> classes;
+  return {tooth_classes(c.faults, Gear::one, c.gears.teeth1, classes).size() > 1,
+          tooth_classes(c.faults, Gear::two, c.gears.teeth2, classes).size() > 1};
 }
 
 // A static deflection of half a base pitch, about a tooth's thickness, has
@@ -40,7 +40,9 @@ void refuse_overlap(const SimulationCase& c, const StaticTransmissionError& ste,
                     double torque1_n_m) {
   const double half_pitch = 0.5 * base_pitch(c.gears);
   double largest = 0.0;
-  for (const auto& point : ste.points) largest = std::max(largest, point.ste_m);
+  for (const auto& point : ste.points) {
+    if (point.carried) largest = std::max(largest, point.ste_m);
+  }
   if (!(largest > half_pitch)) return;
   throw InputError("torque", format_number(torque1_n_m) + " N*m",
                    "a torque whose static deflection stays below half a base pitch (" +
@@ -51,20 +53,25 @@ void refuse_overlap(const SimulationCase& c, const StaticTransmissionError& ste,
 }  // namespace
 
 SteTexts ste_texts(const SimulationCase& c, double torque1_n_m, int points_per_mesh_period) {
-  refuse_faults(c);
   StaticTransmissionErrorOptions options;
   options.points_per_mesh_period = points_per_mesh_period;
-  // Every refusal before the table's quadrature.
+  options.faulted = faulted_teeth(c);
+  // Every refusal before the tables' quadrature.
   validate_static_transmission_error(c.gears, c.modifications, torque1_n_m, options);
-  const StiffnessTable table(c.gears, c.model.stiffness);
+  check_tooth_faults(c.gears, c.model.stiffness, c.faults);
+  const auto healthy = std::make_shared<const StiffnessTable>(c.gears, c.model.stiffness);
+  // Each pair reads its own teeth's table; without faults every pair reads the healthy one.
+  const MeshTables tables(c.gears, c.model.stiffness, c.faults, healthy);
   SteTexts texts;
-  texts.modified = static_transmission_error(c.gears, c.modifications, torque1_n_m, table, options);
+  texts.modified =
+      static_transmission_error(c.gears, c.modifications, torque1_n_m, tables, options);
   refuse_overlap(c, texts.modified, torque1_n_m);
-  // The unmodified pair over the same angles, so that the two curves share one axis.
+  // The healthy pair without modifications over the same angles, so that the two curves share
+  // one axis.
   StaticTransmissionErrorOptions same = options;
   same.mesh_periods = texts.modified.mesh_periods;
   const StaticTransmissionError unmodified =
-      static_transmission_error(c.gears, Modifications{}, torque1_n_m, table, same);
+      static_transmission_error(c.gears, Modifications{}, torque1_n_m, *healthy, same);
   texts.csv = ste_csv(texts.modified);
   texts.unmodified_csv = ste_csv(unmodified);
   texts.pairs_csv = ste_pairs_csv(texts.modified);
@@ -85,7 +92,23 @@ struct SteOptions {
   bool no_plots = false;
 };
 
-// STE of both pairs over the modified pair's true period, and its KTE.
+// What the case's curve is, and the reference curve beside it: "modified", "faulted" or
+// "faulted, modified" against "unmodified" or "healthy, unmodified".
+struct CurveNames {
+  std::string own;
+  std::string reference;
+};
+CurveNames curve_names(const SimulationCase& c) {
+  const bool modified = !is_unmodified(c.modifications);
+  if (c.faults.empty()) return {"modified", "unmodified"};
+  return {modified ? "faulted, modified" : "faulted", "healthy, unmodified"};
+}
+
+// STE of both pairs over the case's true period, and its KTE; where no pair carries the load
+// (missing teeth) ste.csv leaves ste_m empty, and NaN breaks the curve there (gnuplot skips a
+// row whose $3 is empty and joins its neighbours; strcol reads the row).
+constexpr const char* kCarriedSteMicrons = "(strcol(3) eq \"\" ? NaN : real(strcol(3)) * 1e6)";
+
 Figure ste_figure(const SimulationCase& c, const SteTexts& texts) {
   const double period_deg = texts.modified.period_rad * 180.0 / pi;
   Figure f;
@@ -103,12 +126,14 @@ Figure ste_figure(const SimulationCase& c, const SteTexts& texts) {
                 "(min gap)'"};
     return f;
   }
+  const CurveNames names = curve_names(c);
   f.series = {
-      "'ste_unmodified.csv' using 2:($3 * 1e6) with lines lw 2 lc rgb 'gray50' title 'STE "
-      "unmodified'",
-      "'ste.csv' using 2:($3 * 1e6) with lines lw 2 lc rgb '#1f77b4' title 'STE modified'",
-      "'ste.csv' using 2:($4 * 1e6) with lines lw 1 dt 2 lc rgb '#d62728' title 'KTE modified "
-      "(min gap)'"};
+      "'ste_unmodified.csv' using 2:($3 * 1e6) with lines lw 2 lc rgb 'gray50' title 'STE " +
+          names.reference + "'",
+      std::string("'ste.csv' using 2:") + kCarriedSteMicrons +
+          " with lines lw 2 lc rgb '#1f77b4' title 'STE " + names.own + "'",
+      "'ste.csv' using 2:($4 * 1e6) with lines lw 1 dt 2 lc rgb '#d62728' title 'KTE " + names.own +
+          " (min gap)'"};
   return f;
 }
 
@@ -126,8 +151,8 @@ Figure sharing_figure(const SimulationCase& c, const SteTexts& texts) {
   // pair; column(-2) is the data set's number, so neighbouring pairs differ in colour).
   if (texts.modified_differs) {
     f.series.push_back(
-        "'ste_unmodified_pairs.csv' using 4:5 with lines lw 1 dt 2 lc rgb 'gray50' title "
-        "'unmodified'");
+        "'ste_unmodified_pairs.csv' using 4:5 with lines lw 1 dt 2 lc rgb 'gray50' title '" +
+        curve_names(c).reference + "'");
   } else {
     f.title += ", no modifications";
   }
@@ -147,9 +172,9 @@ void write_ste(const SteOptions& o) {
                          "): it loads the drive flanks");
   }
   const SimulationCase c = read_pair_or_run_file(o.case_file).simulation_case;
-  refuse_faults(c);
   StaticTransmissionErrorOptions options;
   options.points_per_mesh_period = o.points;
+  options.faulted = faulted_teeth(c);
   try {
     validate_static_transmission_error(c.gears, c.modifications, torque, options);
   } catch (const InputError& e) {
@@ -175,6 +200,12 @@ void write_ste(const SteOptions& o) {
   }
   folder.commit();
   std::fputs(texts.summary_json.c_str(), stdout);
+  if (texts.modified.uncarried_points > 0) {
+    std::cerr << "ste: warning: at " << texts.modified.uncarried_points << " of "
+              << texts.modified.points.size()
+              << " angles every pair in the contact segment has a missing tooth: no pair on the "
+                 "line of action carries the load, and ste.csv leaves ste_m empty there\n";
+  }
   std::cerr << "ste: wrote " << (std::filesystem::path(o.out) / "ste.csv").string() << "\n";
 }
 

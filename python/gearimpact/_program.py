@@ -142,7 +142,9 @@ def ste(case, torque, points=200):
     with the columns of ste.csv and ste_unmodified.csv: theta1_rad, theta1_deg, ste_m, kte_m,
     effective_stiffness_n_per_m, pairs and loaded_pairs int64, share_1..share_4 and
     gap_1..gap_4 float64 with NaN beyond the pairs in contact, teeth str) and "summary"
-    (summary.json)."""
+    (summary.json). Faulted teeth ([[faults]]) read their own stiffness; "unmodified" is then
+    the healthy pair, and where every pair in contact has a missing tooth ste_m and
+    effective_stiffness_n_per_m are NaN (with a warning)."""
     if not isinstance(case, _core.Case):
         raise _arguments.case_error(
             f"case={case!r}: a Case (gearimpact.case, paper_case, read_case), "
@@ -153,8 +155,12 @@ def ste(case, torque, points=200):
         torque = repr(_arguments.real("torque", torque)) + " N*m"
     modified, unmodified, summary = _core.ste(case, _arguments.text("torque", torque),
                                               _arguments.integer("points", points))
-    return {"ste": _table(modified), "unmodified": _table(unmodified),
-            "summary": json.loads(summary)}
+    summary = json.loads(summary)
+    if summary["uncarried_points"]:
+        _warnings.warn(f"{case.name}: at {summary['uncarried_points']} of {summary['points']:.0f} "
+                       "angles every pair in the contact segment has a missing tooth: no pair "
+                       "carries the load, and ste_m is NaN there")
+    return {"ste": _table(modified), "unmodified": _table(unmodified), "summary": summary}
 
 
 def modes(case, harmonics=3, max_speed=None):

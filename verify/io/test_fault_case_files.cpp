@@ -237,15 +237,19 @@ TEST_CASE("a spall or a chip that does not fit is refused, naming the key and it
     CHECK(has(m, " mm, the thinner end"));
     CHECK(refusal(spall_with("depth", "depth = \"0.9 mm\"")).empty());
   }
-  SUBCASE("across the whole face") {
-    const std::string m = refusal(spall_with("width", "width = \"10 mm\""));
+  SUBCASE("wider than the face") {
+    const std::string m = refusal(spall_with("width", "width = \"11 mm\""));
     CHECK(has(m, "faults[0].width"));
-    CHECK(has(m, "below the face width b = 10 mm"));
+    CHECK(has(m, "at most the face width b = 10 mm"));
     const std::string chip = refusal(
         "\n[[faults]]\ngear = \"pinion\"\ntooth = 0\nkind = \"tip-chip\"\n"
-        "radius = \"21 mm\"\nwidth = \"10 mm\"\n");
+        "radius = \"21 mm\"\nwidth = \"10.5 mm\"\n");
     CHECK(has(chip, "faults[0].width"));
-    CHECK(has(chip, "the dynamics lets a pair enter and leave"));
+    // Across the whole face is read: the pair has no contact over the fault's extent.
+    CHECK(refusal(spall_with("width", "width = \"10 mm\"")).empty());
+    CHECK(refusal("\n[[faults]]\ngear = \"pinion\"\ntooth = 0\nkind = \"tip-chip\"\n"
+                  "radius = \"21 mm\"\nwidth = \"10 mm\"\n")
+              .empty());
   }
   SUBCASE("a chip radius beyond the tip or below the base circle") {
     for (const char* r : {"22.5 mm", "18 mm"}) {

@@ -469,7 +469,7 @@ def test_a_fault_on_a_tooth_the_gear_lacks_names_the_key_and_range():
         my_pair(faults=dict(gear="pinion", tooth=0, kind="missing"))
 
 
-def test_mesh_stiffness_of_a_faulted_case_spans_its_true_period_and_ste_refuses_it():
+def test_mesh_stiffness_and_ste_of_a_faulted_case_span_its_true_period():
     faulted = my_pair(faults=[dict(gear="pinion", tooth=0, kind="missing")])
     table, summary = gearimpact.mesh_stiffness(faulted, samples=4)
     # A pinion tooth missing: one pinion revolution, z1 = 23 mesh periods of 4 samples.
@@ -477,5 +477,10 @@ def test_mesh_stiffness_of_a_faulted_case_spans_its_true_period_and_ste_refuses_
     assert summary["mesh_periods"] == 23
     assert len(table["fraction"]) == 4 * 23
     assert summary["mean_n_m"] < summary["healthy_mean_n_m"]
-    with pytest.raises(gearimpact.CaseError, match="faults"):
-        gearimpact.ste(faulted, torque="10 N*m")
+    # The missing tooth's pair alone in the segment carries nothing: ste_m is NaN there.
+    with pytest.warns(UserWarning, match="missing tooth"):
+        ste = gearimpact.ste(faulted, torque="10 N*m", points=4)
+    assert len(ste["ste"]["ste_m"]) == 4 * 23
+    uncarried = int(np.isnan(ste["ste"]["ste_m"]).sum())
+    assert uncarried == ste["summary"]["uncarried_points"] > 0
+    assert ste["summary"]["unmodified_uncarried_points"] == 0

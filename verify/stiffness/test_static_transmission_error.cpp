@@ -2,11 +2,14 @@
 // error"): against its closed forms without gaps and for equal constant pair
 // stiffnesses with a linear tip relief, the exact solve against Boost's
 // bracketing root finder, shares that sum to 1, and two-pair zones that grow
-// with the load.
+// with the load; faulted teeth, each pair on its own table: a crack of depth 0
+// as the healthy pair, a missing tooth's load on the other pairs, a cracked
+// pair alone against its own stiffness.
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <cstddef>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -14,8 +17,11 @@
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/modifications.hpp"
+#include "gearimpact/stiffness/mesh_stiffness.hpp"
+#include "gearimpact/stiffness/mesh_tables.hpp"
 #include "gearimpact/stiffness/static_transmission_error.hpp"
 #include "gearimpact/stiffness/table.hpp"
+#include "gearimpact/stiffness/tooth_state.hpp"
 #include "relative.hpp"
 
 using namespace gearimpact;
@@ -31,6 +37,22 @@ Modifications tip_relief(const GearPair& g, double c_a, double s_r) {
   Modifications m;
   m.gear1.tip = {c_a, 2.0 * std::sqrt(rb1 * rb1 + s_r * s_r), ReliefShape::linear};
   return m;
+}
+
+ToothFault crack_on(int pinion_tooth, double depth_m) {
+  ToothFault f;
+  f.tooth = pinion_tooth;
+  f.state.kind = ToothKind::root_crack;
+  f.state.crack.depth_m = depth_m;
+  f.state.crack.angle_rad = pi / 4.0;
+  return f;
+}
+
+ToothFault missing(int pinion_tooth) {
+  ToothFault f;
+  f.tooth = pinion_tooth;
+  f.state.kind = ToothKind::missing;
+  return f;
 }
 
 }  // namespace
@@ -219,4 +241,115 @@ TEST_CASE("a bad torque or number of points is refused naming it") {
   options.points_per_mesh_period = 1;
   CHECK_THROWS_AS(static_transmission_error(g, Modifications{}, 1.0, constant, options),
                   InputError);
+}
+
+TEST_CASE("faulted teeth: each pair on its own table over a pinion revolution") {
+  const GearPair g = paper_gear_pair();
+  const StiffnessModel model;
+  const auto healthy = std::make_shared<const StiffnessTable>(g, model);
+  const double force = kTorque / base_radius(g, Gear::one);
+  StaticTransmissionErrorOptions options;
+  options.points_per_mesh_period = 40;
+
+  SUBCASE("a crack of depth 0 gives the healthy STE, to the bit") {
+    const MeshTables tables(g, model, {crack_on(5, 0.0)}, healthy);
+    const StaticTransmissionError faulted =
+        static_transmission_error(g, Modifications{}, kTorque, tables, options);
+    // A pinion tooth differs: the true period is a pinion revolution.
+    REQUIRE(faulted.mesh_periods == g.teeth1);
+    options.mesh_periods = faulted.mesh_periods;
+    const StaticTransmissionError plain =
+        static_transmission_error(g, Modifications{}, kTorque, *healthy, options);
+    REQUIRE(plain.points.size() == faulted.points.size());
+    for (std::size_t i = 0; i < plain.points.size(); ++i) {
+      CHECK(faulted.points[i].carried);
+      CHECK(faulted.points[i].ste_m == plain.points[i].ste_m);
+      CHECK(faulted.points[i].effective_stiffness_n_per_m ==
+            plain.points[i].effective_stiffness_n_per_m);
+    }
+    CHECK(faulted.ste_mean_m == plain.ste_mean_m);
+  }
+
+  SUBCASE("a missing tooth: the other pairs carry F, and alone no pair does") {
+    constexpr int gone = 7;
+    const MeshTables tables(g, model, {missing(gone)}, healthy);
+    const StaticTransmissionError ste =
+        static_transmission_error(g, Modifications{}, kTorque, tables, options);
+    REQUIRE(ste.mesh_periods == g.teeth1);
+    int shared = 0;
+    std::size_t alone = 0;
+    for (const StePoint& p : ste.points) {
+      double others = 0.0;  // by hand: the healthy table's Ke of every other pair
+      bool has_gone = false;
+      for (std::size_t j = 0; j < p.pairs; ++j) {
+        if (p.teeth[j].pinion_tooth == gone) {
+          has_gone = true;
+          CHECK(p.share[j] == 0.0);
+          CHECK(p.stiffness_n_per_m[j] == 0.0);
+        } else {
+          others += healthy->stiffness(p.x_m[j]);
+        }
+      }
+      if (!has_gone) continue;
+      if (p.pairs == 1) {
+        // The missing tooth's pair alone in the segment: nothing on the line of action.
+        CHECK_FALSE(p.carried);
+        ++alone;
+        continue;
+      }
+      REQUIRE(p.carried);
+      CAPTURE(p.theta1_rad);
+      // STE = F / sum Ke of the remaining pairs: the same quotient up to a rounding or two.
+      CHECK(relative_difference(p.ste_m, force / others) < 1e-14);
+      CHECK(p.effective_stiffness_n_per_m == others);
+      ++shared;
+    }
+    // Over its pass (the contact ratio eps ~ 1.6 mesh periods) the pair spends eps - 1
+    // of a mesh period beside the pair behind or ahead and 2 - eps alone.
+    CHECK(shared > 0);
+    CHECK(alone > 0);
+    CHECK(ste.uncarried_points == alone);
+    const double eps = contact_ratio(g);
+    CHECK(std::fabs(static_cast<double>(alone) / options.points_per_mesh_period - (2.0 - eps)) <=
+          1.0 / options.points_per_mesh_period);
+    // The mean is over the carried points only.
+    double sum = 0.0;
+    for (const StePoint& p : ste.points) sum += p.carried ? p.ste_m : 0.0;
+    CHECK(relative_difference(ste.ste_mean_m,
+                              sum / static_cast<double>(ste.points.size() - alone)) < 1e-13);
+  }
+
+  SUBCASE("where the cracked pair is alone, STE = F / ke of that pair") {
+    constexpr int cracked = 3;
+    const ToothFault crack = crack_on(cracked, 0.8e-3);
+    const MeshTables tables(g, model, {crack}, healthy);
+    const StaticTransmissionError ste =
+        static_transmission_error(g, Modifications{}, kTorque, tables, options);
+    int alone = 0;
+    for (const StePoint& p : ste.points) {
+      if (p.pairs != 1 || p.teeth[0].pinion_tooth != cracked) continue;
+      CAPTURE(p.x_m[0]);
+      // Ke of the cracked pair directly (not the fitted table, which agrees to ~1e-12): the
+      // tolerance is the table's fit, well below the crack's effect (several %).
+      const double ke = mesh_stiffness(g, p.x_m[0], model, crack.state, ToothState{}).ke;
+      CHECK(relative_difference(p.ste_m, force / ke) < 1e-9);
+      CHECK(relative_difference(p.ste_m, force / healthy->stiffness(p.x_m[0])) > 1e-3);
+      ++alone;
+    }
+    CHECK(alone >= 10);
+  }
+}
+
+TEST_CASE("no angle carried: every pinion tooth missing is refused, naming [[faults]]") {
+  const GearPair g = paper_gear_pair();
+  const StiffnessModel model;
+  std::vector<ToothFault> all;
+  for (int i = 0; i < g.teeth1; ++i) all.push_back(missing(i));
+  const MeshTables tables(g, model, all);
+  try {
+    static_transmission_error(g, Modifications{}, kTorque, tables, {10, 0});
+    FAIL("not refused");
+  } catch (const InputError& e) {
+    CHECK(e.field() == "[[faults]]");
+  }
 }

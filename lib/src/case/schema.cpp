@@ -1034,10 +1034,10 @@ std::vector<Field> make_fault_schema() {
        [spall](auto& c) -> auto& { return spall(c).depth_m; })
       .only_when = FieldCondition{"kind", {"spall"}};
   r.quantity(
-       "width", Dimension::length, "mm", {open(0.0), {}, "and below the face width"}, true,
-       "b_s of a spall, b_k of a chip: how far across the face it runs; below the face width "
-       "(docs/faults.md: across the whole face the pair would stop carrying inside the contact "
-       "segment, which the stiffness tables do not express)",
+       "width", Dimension::length, "mm", {open(0.0), {}, "and at most the face width"}, true,
+       "b_s of a spall, b_k of a chip: how far across the face it runs, up to the face width "
+       "(docs/faults.md: across the whole face its pair has no contact over the spall's band, "
+       "or above the chip's radius)",
        [fault](auto& c) -> auto& {
          return fault(c).state.kind == ToothKind::tip_chip ? fault(c).state.chip.width_m
                                                            : fault(c).state.spall.width_m;
@@ -1553,7 +1553,7 @@ std::string in_mm(double length_m) {
 }
 
 // The [[faults]] key a spall's or a chip's refusal by the library names
-// (surface_faults.hpp, check_surface_fault_width).
+// (surface_faults.hpp).
 std::string surface_fault_key_of(const std::string& library_name) {
   if (library_name == "spall start radius") return "start_radius";
   if (library_name == "spall end radius") return "end_radius";
@@ -1567,7 +1567,7 @@ std::string surface_fault_key_of(const std::string& library_name) {
 // profile of its tooth (where the mating tip meets the flank up to the tip),
 // its depth below the half thickness at its thinner end, the chip's radius
 // above the root (the base circle of the paper's tooth) up to the tip, and a
-// width below the face width. Then the library's own checks (place_spall,
+// width up to the face width. Then the library's own checks (place_spall,
 // place_chip), should they find more.
 void surface_fault_problems(const SimulationCase& c, const ToothFault& f, const std::string& name,
                             Problems& problems) {
@@ -1578,13 +1578,10 @@ void surface_fault_problems(const SimulationCase& c, const ToothFault& f, const 
   const double b = pair.face_width_m;
   const double width =
       f.state.kind == ToothKind::spall ? f.state.spall.width_m : f.state.chip.width_m;
-  if (!(width < b)) {
-    problems.add(range_problem(
-        name + ".width", in_mm(width),
-        "below the face width b = " + in_mm(b) +
-            " (gears.face_width): across the whole face the pair would stop carrying inside the "
-            "contact segment, and the stiffness tables cover one contact segment for every pair, "
-            "whose ends alone are where the dynamics lets a pair enter and leave"));
+  if (!(width <= b)) {
+    problems.add(range_problem(name + ".width", in_mm(width),
+                               "at most the face width b = " + in_mm(b) +
+                                   " (gears.face_width): a fault runs across the face at most"));
   }
   const double rb = base_radius(pair, f.gear);
   const double tip = tip_radius(pair, f.gear);

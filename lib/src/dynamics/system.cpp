@@ -145,12 +145,20 @@ void GearSystem::impose_driver(double t, State& y) const {
 
 // Stage states of a step that ends on a pair's entry or exit can reach a hair
 // beyond the segment: there Ke continues along its tangent, so the right-hand
-// side stays smooth.
-void GearSystem::pair_stiffness(const StiffnessTable& table, double x, int count, double& ke,
-                                double& dke) const {
+// side stays smooth. So it does beyond the ends of the pair's part at a
+// fault's edge.
+void GearSystem::pair_stiffness(const StiffnessTable& table, int part, double x, int count,
+                                double& ke, double& dke) const {
   if (constant_k_ > 0.0) {
     ke = constant_k_ / count;
     dke = 0.0;
+    return;
+  }
+  if (table.part_count() > 1) {
+    const double xc = std::clamp(x, table.part_start_m(part), table.part_end_m(part));
+    const StiffnessAndDerivative k = table.stiffness_and_derivative_in_part(xc, part);
+    dke = k.derivative_n_per_m2;
+    ke = k.stiffness_n_per_m + dke * (x - xc);
     return;
   }
   const double xc = std::clamp(x, xs_, xe_);
@@ -245,9 +253,9 @@ void GearSystem::rhs(double t, const State& y_in, const Mode& m, const ContactMe
     const double x_rate = sign * rb1_ * w1;
     for (int j = 0; j < m.count; ++j) {
       const StiffnessTable* table = pair_table(m.region, m.k_first + j);
-      // A pair with a missing tooth: no force, no damping, no friction; nor
-      // a pair whose gap is open.
-      if (table == nullptr || (gaps_ && !m.touching[j])) continue;
+      // A pair with a missing tooth or without contact over a fault across
+      // the face: no force, no damping, no friction; nor a pair whose gap is open.
+      if (!carries(table, m.part[j]) || (gaps_ && !m.touching[j])) continue;
       const double x = layout_.position_m(ref, m.k_first + j);
       // The pair's own penetration and its rate: the line's, less the gap.
       const PairPenetration p = pair_penetration(m, j, x, dl, dl_rate, x_rate);
@@ -256,7 +264,7 @@ void GearSystem::rhs(double t, const State& y_in, const Mode& m, const ContactMe
       const double gap_slope = p.gap_slope;
       double ke = 0.0;
       double dke = 0.0;
-      pair_stiffness(*table, x, m.count, ke, dke);
+      pair_stiffness(*table, m.part[j], x, m.count, ke, dke);
       const double f_elastic = elastic_force(ke, dk);
       const double g_damping = hertzian_damping_force(damping_factor(d, ke), dk, dk_rate);
       const double n = normal_force(f_elastic, g_damping, m.clipped[j]);
@@ -371,6 +379,13 @@ int GearSystem::event_values(const State& y, const Mode& m, const ContactMemory&
   const double x_rate = line_sign(m.region) * rb1_ * y[kW1];
   for (int j = 0; j < m.count; ++j) {
     const double x = layout_.position_m(ref, m.k_first + j);
+    const StiffnessTable* table = pair_table(m.region, m.k_first + j);
+    if (table != nullptr && table->part_count() > 1) {
+      // Ke jumps at the ends of the pair's part inside the segment (a fault's edges).
+      const int part = m.part[j];
+      g[n++] = part > 0 ? x - table->part_start_m(part) : 1.0;
+      g[n++] = part + 1 < table->part_count() ? table->part_end_m(part) - x : 1.0;
+    }
     const PairPenetration p = pair_penetration(m, j, x, dl, dl_rate, x_rate);
     const double dk = p.delta_m;
     const double dk_rate = p.rate_m_s;
@@ -388,8 +403,7 @@ int GearSystem::event_values(const State& y, const Mode& m, const ContactMemory&
     }
     // A smoothed sign has no switch to locate: the value stays positive.
     g[n++] = smoothing_speed_ > 0.0 ? 1.0 : m.slip[j] * sliding_speed(y[kW1], y[kW2], x, lp_);
-    const double push =
-        push_sign_function(pair_table(m.region, m.k_first + j), x, m.count, d, dk, dk_rate);
+    const double push = push_sign_function(table, m.part[j], x, m.count, d, dk, dk_rate);
     g[n++] = m.clipped[j] ? -push : push;
   }
   return n;
@@ -398,16 +412,16 @@ int GearSystem::event_values(const State& y, const Mode& m, const ContactMemory&
 // A function with the sign and the zeros of F + G of one pair. With D
 // proportional to the pair's own Ke, F + G = Ke delta (1 + (D/K) d(delta)/dt)
 // and the positive factor Ke need not be evaluated.
-// A pair with a missing tooth never pushes nor switches: 1.
-double GearSystem::push_sign_function(const StiffnessTable* table, double x, int count,
+// A pair that cannot carry (a missing tooth, no contact) never pushes nor switches: 1.
+double GearSystem::push_sign_function(const StiffnessTable* table, int part, double x, int count,
                                       const ContactMemory& d, double dl, double dl_rate) const {
-  if (table == nullptr) return 1.0;
+  if (!carries(table, part)) return 1.0;
   if (damping_on_current_pair_) {
     return dl * (1.0 + d.damping_per_stiffness_s_m * dl_rate);
   }
   double ke = 0.0;
   double dke = 0.0;
-  pair_stiffness(*table, x, count, ke, dke);
+  pair_stiffness(*table, part, x, count, ke, dke);
   return elastic_force(ke, dl) + hertzian_damping_force(damping_factor(d, ke), dl, dl_rate);
 }
 
@@ -444,6 +458,7 @@ Mode GearSystem::classify_geometry(const State& y) const {
         m.region = line;
         m.k_first = range.k_first;
         m.count = range.count;
+        set_parts(y, m);
         return m;
       }
     }
@@ -461,7 +476,18 @@ Mode GearSystem::classify_geometry(const State& y) const {
   const LoadedRange range = layout_.loaded(layout_.reference_m(m.region, y[kTheta1]));
   m.k_first = range.k_first;
   m.count = range.count;
+  set_parts(y, m);
   return m;
+}
+
+void GearSystem::set_parts(const State& y, Mode& m) const {
+  if (!teeth_) return;
+  for (int j = 0; j < m.count; ++j) {
+    const StiffnessTable* table = pair_table(m.region, m.k_first + j);
+    m.part[j] = table != nullptr && table->part_count() > 1
+                    ? table->part_of(std::clamp(pair_position(m, y, j), xs_, xe_))
+                    : 0;
+  }
 }
 
 void GearSystem::classify_forces(const State& y, const ContactMemory& d, Mode& m) const {
@@ -473,8 +499,8 @@ void GearSystem::classify_forces(const State& y, const ContactMemory& d, Mode& m
     const double x = pair_position(m, y, j);
     m.slip[j] = sliding_speed(y[kW1], y[kW2], x, lp_) >= 0.0 ? 1.0 : -1.0;
     const PairPenetration p = pair_penetration(m, j, x, dl, dl_rate, x_rate);
-    m.clipped[j] = push_sign_function(pair_table(m.region, m.k_first + j), x, m.count, d, p.delta_m,
-                                      p.rate_m_s) < 0.0;
+    m.clipped[j] = push_sign_function(pair_table(m.region, m.k_first + j), m.part[j], x, m.count, d,
+                                      p.delta_m, p.rate_m_s) < 0.0;
   }
 }
 
@@ -513,7 +539,7 @@ GearSystem::Onset GearSystem::damping_at_onset(const State& y, const Mode& m) co
     // that carry (none: the stiffness stays 0, as nothing pushes).
     int nearest = -1;
     for (int j = 0; j < m.count; ++j) {
-      if (pair_table(m.region, m.k_first + j) == nullptr) continue;
+      if (!carries(pair_table(m.region, m.k_first + j), m.part[j])) continue;
       if (nearest < 0 || std::fabs(pair_position(m, y, j) - x_pitch_) <
                              std::fabs(pair_position(m, y, nearest) - x_pitch_)) {
         nearest = j;
@@ -522,8 +548,8 @@ GearSystem::Onset GearSystem::damping_at_onset(const State& y, const Mode& m) co
     if (nearest >= 0) {
       double ke = 0.0;
       double dke = 0.0;
-      pair_stiffness(*pair_table(m.region, m.k_first + nearest), pair_position(m, y, nearest),
-                     m.count, ke, dke);
+      pair_stiffness(*pair_table(m.region, m.k_first + nearest), m.part[nearest],
+                     pair_position(m, y, nearest), m.count, ke, dke);
       d.frozen_stiffness_n_per_m = ke;
     }
   }
@@ -545,9 +571,16 @@ ElasticEnergy GearSystem::stored_energy(const State& y, const Mode& m) const {
       continue;
     }
     const StiffnessTable* table = pair_table(m.region, m.k_first + j);
-    // A missing tooth stores nothing.
-    if (table == nullptr) continue;
-    const Compliances c = table->compliance(std::clamp(x, xs_, xe_));
+    // A missing tooth stores nothing, nor a pair without contact over a fault across the face.
+    if (!carries(table, m.part[j])) continue;
+    // At a fault's edge, the side of the pair's part: the ledger books the jump between the two
+    // sides at the event.
+    const Compliances c =
+        table->part_count() > 1
+            ? table->compliance_in_part(
+                  std::clamp(x, table->part_start_m(m.part[j]), table->part_end_m(m.part[j])),
+                  m.part[j])
+            : table->compliance(std::clamp(x, xs_, xe_));
     // (30) F = Ke delta with 1/Ke the total compliance of (29).
     const ElasticEnergy pair = pair_energy(c, dl / c.total_m_per_n());
     for (std::size_t i = 0; i < kTermCount; ++i) u.j[i] += pair.j[i];

@@ -371,6 +371,7 @@ void ste_figures(std::string& out, const char* prefix, const StaticTransmissionE
   double kte_most = -least;
   double stiffness = least;
   for (const StePoint& p : ste.points) {
+    if (!p.carried) continue;
     least = std::min(least, p.ste_m);
     most = std::max(most, p.ste_m);
     kte_least = std::min(kte_least, p.kte_m);
@@ -383,7 +384,9 @@ void ste_figures(std::string& out, const char* prefix, const StaticTransmissionE
   json_number(out, (p + "ste_max_m").c_str(), most);
   json_number(out, (p + "ste_peak_to_peak_m").c_str(), ste.ste_peak_to_peak_m);
   json_number(out, (p + "kte_peak_to_peak_m").c_str(), kte_most - kte_least);
-  json_number(out, (p + "least_effective_stiffness_n_per_m").c_str(), stiffness, last);
+  json_number(out, (p + "least_effective_stiffness_n_per_m").c_str(), stiffness);
+  json_number(out, (p + "uncarried_points").c_str(), static_cast<double>(ste.uncarried_points),
+              last);
 }
 
 }  // namespace
@@ -399,9 +402,11 @@ std::string ste_csv(const StaticTransmissionError& ste) {
   for (const StePoint& p : ste.points) {
     std::size_t loaded = 0;
     for (std::size_t j = 0; j < p.pairs; ++j) loaded += p.share[j] > 0.0;
+    // An angle that no pair carries has no STE and no effective stiffness: empty fields.
+    const auto carried = [&p](double value) { return p.carried ? format_data_number(value) : ""; };
     out += format_data_number(p.theta1_rad) + "," + format_data_number(p.theta1_rad * 180.0 / pi) +
-           "," + format_data_number(p.ste_m) + "," + format_data_number(p.kte_m) + "," +
-           format_data_number(p.effective_stiffness_n_per_m) + "," + std::to_string(p.pairs) + "," +
+           "," + carried(p.ste_m) + "," + format_data_number(p.kte_m) + "," +
+           carried(p.effective_stiffness_n_per_m) + "," + std::to_string(p.pairs) + "," +
            std::to_string(loaded);
     for (const auto* values : {&p.share, &p.gap_m}) {
       for (std::size_t j = 0; j < slots; ++j) {

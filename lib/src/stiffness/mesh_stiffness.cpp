@@ -245,6 +245,8 @@ MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessM
   // (25),(26): gear 2 sees the contact at lp - X1 from C2.
   const double length = std::min(contact_length(pair, Gear::one, tooth1, x1_m, contact_flank),
                                  contact_length(pair, Gear::two, tooth2, lp - x1_m, contact_flank));
+  // A fault across the whole face leaves no contact here: the pair carries nothing.
+  if (!(length > 0.0)) return MeshStiffness{};
   if (model.kind != StiffnessModelKind::yang_lin_1987) {
     return rack_model_stiffness(pair, x1_m, model, state1, state2, length);
   }

@@ -34,6 +34,14 @@ void check_springs(const std::vector<PairSpring>& springs, double force_n) {
   }
 }
 
+// The true period of the modifications' and the faults' distinct teeth.
+long long true_period(const GearPair& pair, const Modifications& m, DistinctTeeth faulted) {
+  DistinctTeeth distinct = distinct_teeth(m);
+  distinct.pinion = distinct.pinion || faulted.pinion;
+  distinct.wheel = distinct.wheel || faulted.wheel;
+  return true_period_mesh_periods(pair, distinct);
+}
+
 }  // namespace
 
 double solve_deflection(const std::vector<PairSpring>& springs, double force_n) {
@@ -101,9 +109,8 @@ void validate_static_transmission_error(const GearPair& pair, const Modification
     throw InputError("mesh_periods", std::to_string(options.mesh_periods),
                      "0 (the true period of the teeth) or a number of mesh periods >= 1");
   }
-  const long long periods = options.mesh_periods > 0
-                                ? options.mesh_periods
-                                : true_period_mesh_periods(pair, distinct_teeth(m));
+  const long long periods =
+      options.mesh_periods > 0 ? options.mesh_periods : true_period(pair, m, options.faulted);
   if (periods > kMostAngles / options.points_per_mesh_period) {
     throw InputError("points", std::to_string(options.points_per_mesh_period),
                      "at most " + std::to_string(kMostAngles / periods) +
@@ -121,9 +128,8 @@ StaticTransmissionError static_transmission_error(const GearPair& pair, const Mo
   StaticTransmissionError result;
   result.torque1_n_m = torque1_n_m;
   result.force_n = torque1_n_m / base_radius(pair, Gear::one);
-  result.mesh_periods = options.mesh_periods > 0
-                            ? options.mesh_periods
-                            : true_period_mesh_periods(pair, distinct_teeth(m));
+  result.mesh_periods =
+      options.mesh_periods > 0 ? options.mesh_periods : true_period(pair, m, options.faulted);
   const long long angles = result.mesh_periods * options.points_per_mesh_period;
   const double mesh_period_rad = 2.0 * pi / teeth(pair, Gear::one);
   result.period_rad = static_cast<double>(result.mesh_periods) * mesh_period_rad;
@@ -150,7 +156,14 @@ StaticTransmissionError static_transmission_error(const GearPair& pair, const Mo
       p.stiffness_n_per_m[j] = stiffness(k, p.x_m[j]);
       p.teeth[j] = teeth_of_pair(pair, Region::n1, k);
       p.kte_m = std::min(p.kte_m, p.gap_m[j]);
-      springs.push_back({p.stiffness_n_per_m[j], p.gap_m[j]});
+      // A pair that carries nothing (a missing tooth) takes no part in the balance.
+      if (p.stiffness_n_per_m[j] > 0.0) springs.push_back({p.stiffness_n_per_m[j], p.gap_m[j]});
+    }
+    if (springs.empty()) {
+      p.carried = false;
+      ++result.uncarried_points;
+      result.points.push_back(p);
+      continue;
     }
     p.ste_m = solve_deflection(springs, result.force_n);
     for (std::size_t j = 0; j < p.pairs; ++j) {
@@ -165,7 +178,13 @@ StaticTransmissionError static_transmission_error(const GearPair& pair, const Mo
     most = std::max(most, p.ste_m);
     result.points.push_back(p);
   }
-  result.ste_mean_m = sum / static_cast<double>(angles);
+  const long long carried = angles - static_cast<long long>(result.uncarried_points);
+  if (carried == 0) {
+    throw InputError("[[faults]]", "missing teeth",
+                     "faults that leave a pair of teeth in contact at some angle: at every angle "
+                     "every pair in the contact segment has a missing tooth");
+  }
+  result.ste_mean_m = sum / static_cast<double>(carried);
   result.ste_peak_to_peak_m = most - least;
   return result;
 }
@@ -175,6 +194,19 @@ StaticTransmissionError static_transmission_error(const GearPair& pair, const Mo
                                                   StaticTransmissionErrorOptions options) {
   return static_transmission_error(
       pair, m, torque1_n_m, [&table](int, double x_m) { return table.stiffness(x_m); }, options);
+}
+
+StaticTransmissionError static_transmission_error(const GearPair& pair, const Modifications& m,
+                                                  double torque1_n_m, const MeshTables& tables,
+                                                  StaticTransmissionErrorOptions options) {
+  options.faulted = tables.distinct();
+  return static_transmission_error(
+      pair, m, torque1_n_m,
+      [&tables](int k, double x_m) {
+        const StiffnessTable* table = tables.table(Region::n1, k);
+        return table ? table->stiffness(x_m) : 0.0;
+      },
+      options);
 }
 
 }  // namespace gearimpact

@@ -159,6 +159,17 @@ void StiffnessTable::fit_part(double a, double b, const ComplianceFunction& comp
   }
 }
 
+void StiffnessTable::zero_part() {
+  const std::size_t size = static_cast<std::size_t>(pieces_) * stride_;
+  for (std::vector<double>* series : {&stiffness_, &stiffness_derivative_}) {
+    series->insert(series->end(), size, 0.0);
+  }
+  for (const TermInfo& t : kTerms) {
+    std::vector<double>& series = term_series_[index_of(t.term)];
+    series.insert(series.end(), size, 0.0);
+  }
+}
+
 void StiffnessTable::set_grid(double start_m, double end_m, StiffnessTableOptions options) {
   options = checked(options, start_m, end_m);
   start_ = start_m;
@@ -199,9 +210,14 @@ StiffnessTable::StiffnessTable(double start_m, double end_m, const ComplianceFun
   ends.insert(ends.end(), breaks_m.begin(), breaks_m.end());
   ends.push_back(end_m);
   for (std::size_t i = 1; i < ends.size(); ++i) {
-    parts_.push_back(
-        {ends[i - 1], pieces_ / (ends[i] - ends[i - 1]), static_cast<int>(i - 1) * pieces_});
-    fit_part(ends[i - 1], ends[i], compliance, true);
+    const bool contact = compliance(0.5 * (ends[i - 1] + ends[i])).total_m_per_n() != 0.0;
+    parts_.push_back({ends[i - 1], pieces_ / (ends[i] - ends[i - 1]),
+                      static_cast<int>(i - 1) * pieces_, contact});
+    if (contact) {
+      fit_part(ends[i - 1], ends[i], compliance, true);
+    } else {
+      zero_part();
+    }
   }
   drop_zero_terms();
 }
@@ -233,7 +249,28 @@ void StiffnessTable::throw_outside(double x1_m) const {
 }
 
 Compliances StiffnessTable::compliance(double x1_m) const {
-  const Local at = locate(x1_m);
+  return compliance_at(locate(x1_m));
+}
+
+Compliances StiffnessTable::compliance_in_part(double x1_m, int part) const {
+  return compliance_at(locate_in_part(x1_m, part));
+}
+
+int StiffnessTable::part_of(double x1_m) const {
+  int i = part_count() - 1;
+  while (i > 0 && x1_m < parts_[static_cast<std::size_t>(i)].start_m) --i;
+  return i;
+}
+
+double StiffnessTable::part_start_m(int part) const {
+  return parts_.empty() ? start_ : parts_.at(static_cast<std::size_t>(part)).start_m;
+}
+
+double StiffnessTable::part_end_m(int part) const {
+  return part + 1 < part_count() ? parts_[static_cast<std::size_t>(part + 1)].start_m : end_;
+}
+
+Compliances StiffnessTable::compliance_at(const Local& at) const {
   Compliances c = constant_terms_;
   for (const TermInfo& t : kTerms) {
     const std::vector<double>& series = term_series_[index_of(t.term)];

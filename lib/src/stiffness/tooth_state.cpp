@@ -74,7 +74,6 @@ void check_tooth_faults(const GearPair& pair, const StiffnessModel& model,
         place_spall(f.state.spall, f.gear == Gear::one ? geometry.gear1 : geometry.gear2,
                     geometry.contact_width_m);
       }
-      check_surface_fault_width("spall width b_s", f.state.spall.width_m, pair.face_width_m);
       continue;
     }
     if (f.state.kind == ToothKind::tip_chip) {
@@ -85,7 +84,6 @@ void check_tooth_faults(const GearPair& pair, const StiffnessModel& model,
         place_chip(f.state.chip, f.gear == Gear::one ? geometry.gear1 : geometry.gear2,
                    geometry.contact_width_m);
       }
-      check_surface_fault_width("chip width b_k", f.state.chip.width_m, pair.face_width_m);
       continue;
     }
     if (f.state.kind != ToothKind::root_crack) continue;
@@ -97,16 +95,6 @@ void check_tooth_faults(const GearPair& pair, const StiffnessModel& model,
                   geometry.contact_width_m);
     }
   }
-}
-
-void check_surface_fault_width(const std::string& field, double width_m, double face_width_m) {
-  if (width_m < face_width_m) return;
-  throw InputError(field, width_m,
-                   "< b = " + format_number(face_width_m) +
-                       " m, below the face width: across the whole face the pair would stop "
-                       "carrying inside the contact segment, and the stiffness tables cover one "
-                       "contact segment for every pair, whose ends alone are where the dynamics "
-                       "lets a pair enter and leave");
 }
 
 ToothState tooth_state(const std::vector<ToothFault>& faults, Gear gear, int tooth) {

@@ -44,8 +44,9 @@ inline constexpr int kMaxPairs = MeshLayout::capacity;
 // The event values of a mode: two in free flight; in contact the penetration,
 // four bounds of the loaded pairs, and the friction sign and force clipping of
 // each pair, and with gaps (modifications.hpp) whether each pair touches and
-// the two kinks of its gap about it.
-inline constexpr int kMaxEvents = 2 + 4 + 5 * kMaxPairs;
+// the two kinks of its gap about it, and with a table cut at a fault's edges
+// the two ends of the pair's part about it.
+inline constexpr int kMaxEvents = 2 + 4 + 7 * kMaxPairs;
 using EventValues = std::array<double, kMaxEvents>;
 
 // Everything that is constant during a step: which side is in contact, which
@@ -66,6 +67,12 @@ struct Mode {
   // below each pair's X, so that a step does not straddle a jump of the
   // gap's slope (the Lagrangian force and the damping force jump there).
   std::array<int, kMaxPairs> zone{};
+  // With a pair's table cut at a fault's edges (a spall's, a chip's): the
+  // part of the table its X lies in (StiffnessTable::part_of), whose series
+  // gives its Ke while the mode holds, continued along its tangent beyond the
+  // part's ends, so that a step does not straddle Ke's jump at the edge; 0
+  // for a table of one part.
+  std::array<int, kMaxPairs> part{};
 };
 
 // Summed over the loaded pairs, for the time series.
@@ -155,14 +162,23 @@ class GearSystem {
   const StiffnessTable* pair_table(Region line, int k) const {
     return teeth_ ? teeth_->table(line, k) : &table_;
   }
-  // Ke and dKe/dX of one of `count` loaded pairs at X, read from `table`.
-  void pair_stiffness(const StiffnessTable& table, double x, int count, double& ke,
+  // Whether a pair on `table` in its part `part` can carry: not with a
+  // missing tooth (no table), nor over the extent of a fault across the whole
+  // face (a part without contact).
+  static bool carries(const StiffnessTable* table, int part) {
+    return table != nullptr && table->part_in_contact(part);
+  }
+  // Ke and dKe/dX of one of `count` loaded pairs at X, read from `table`
+  // (from its part `part`, Mode::part).
+  void pair_stiffness(const StiffnessTable& table, int part, double x, int count, double& ke,
                       double& dke) const;
+  // Mode::part of each pair of m at y.
+  void set_parts(const State& y, Mode& m) const;
   double damping_factor(const ContactMemory& d, double ke) const;
   // f of (35) of a pair with normal force N, sliding speed Vs and entrainment
   // speed Ve, under the case's friction law.
   double friction_coefficient(double normal_force_n, double vs, double ve) const;
-  double push_sign_function(const StiffnessTable* table, double x, int count,
+  double push_sign_function(const StiffnessTable* table, int part, double x, int count,
                             const ContactMemory& d, double dl, double dl_rate) const;
   // Pair j of mode m at X with the line's penetration dl and its rate: its
   // own penetration dl - e_k(X) and rate dl_rate - de_k/dX dX/dt, and the

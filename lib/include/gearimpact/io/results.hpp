@@ -92,7 +92,8 @@ std::string iso6336_json(const Iso6336Stiffness& iso, double face_width_m,
 // theta1_rad,theta1_deg,ste_m,kte_m,effective_stiffness_n_per_m,pairs,loaded_pairs,
 // share_1..share_4,gap_1..gap_4 (the pairs within the contact segment in ascending X, the
 // newest first; empty beyond `pairs`), teeth ("pinion/wheel" of each, space-separated, in the
-// same order).
+// same order). ste_m and effective_stiffness_n_per_m are empty where no pair carries the load
+// (StePoint::carried: every pair in the segment has a missing tooth).
 std::string ste_csv(const StaticTransmissionError& ste);
 // The same points pair by pair: one block per pair of teeth (in the order the
 // pairs enter), each row a point where the pair is in the contact segment,
@@ -102,7 +103,8 @@ std::string ste_csv(const StaticTransmissionError& ste);
 std::string ste_pairs_csv(const StaticTransmissionError& ste);
 // torque1_n_m, force_n, mesh_periods, period_rad, points, then for the modified pair and the
 // same pair unmodified (unmodified_ prefix): ste_mean_m, ste_min_m, ste_max_m,
-// ste_peak_to_peak_m, kte_peak_to_peak_m, least_effective_stiffness_n_per_m.
+// ste_peak_to_peak_m, kte_peak_to_peak_m, least_effective_stiffness_n_per_m (over the carried
+// points), uncarried_points.
 std::string ste_summary_json(const StaticTransmissionError& modified,
                              const StaticTransmissionError& unmodified);
 

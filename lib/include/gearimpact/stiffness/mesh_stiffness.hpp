@@ -67,8 +67,11 @@ MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessM
 // length the faults leave: the smaller of the two teeth's
 // spall_contact_length / chip_contact_length (the faults are taken to face
 // each other across the face). Two healthy teeth give
-// mesh_stiffness(pair, x1_m, model) bit for bit. A missing tooth has no
-// compliance: std::logic_error (the pair carries nothing, see MeshTables).
+// mesh_stiffness(pair, x1_m, model) bit for bit. Where a spall or a chip
+// across the whole face leaves no contact length (inside the spall's band on
+// its flank, above the chip's r_k) the pair has no contact: Ke and every term
+// 0. A missing tooth has no compliance: std::logic_error (the pair carries
+// nothing, see MeshTables).
 MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessModel& model,
                              const ToothState& tooth1, const ToothState& tooth2);
 // The same with the contact on the flanks `contact_flank`: loaded, the drive

@@ -3,8 +3,10 @@
 // StiffnessTable per distinct (pinion tooth state, wheel tooth state) that
 // meets on either line of action; with a spall in the pair, one per line (the
 // pit lies on one flank). A table of a spalled or chipped tooth is cut at the
-// positions where the contact meets the fault's edges (fault_breaks). A pair
-// with a missing tooth has no table: it carries nothing.
+// positions where the contact meets the fault's edges (fault_breaks); across
+// the whole face its part beyond the edge has no contact (Ke 0,
+// StiffnessTable::part_in_contact). A pair with a missing tooth has no table:
+// it carries nothing.
 #pragma once
 
 #include <array>

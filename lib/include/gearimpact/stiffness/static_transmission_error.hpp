@@ -19,13 +19,15 @@
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/geometry/tooth_identity.hpp"
+#include "gearimpact/stiffness/mesh_tables.hpp"
 #include "gearimpact/stiffness/model.hpp"
 #include "gearimpact/stiffness/table.hpp"
 
 namespace gearimpact {
 
 // The stiffness of drive pair k in contact at X (N/m): the healthy table's
-// Ke(X) by default, a per-tooth table where teeth differ.
+// Ke(X) by default, each pair's own table where teeth differ (MeshTables); 0
+// for a pair that carries nothing (a missing tooth).
 using PairStiffnessFunction = std::function<double(int k, double x_m)>;
 
 // One pair's part in the balance: its stiffness and its gap.
@@ -52,11 +54,19 @@ struct StaticTransmissionErrorOptions {
   // The mesh periods computed: 0 the true period of the teeth; more (a
   // multiple of it) to set an unmodified pair beside a modified one.
   long long mesh_periods = 0;
+  // The gears whose teeth differ by their faults (MeshTables::distinct()):
+  // with the modifications' distinct_teeth they set the true period.
+  DistinctTeeth faulted{};
 };
 
 // One pinion angle.
 struct StePoint {
   double theta1_rad = 0.0;
+  // False where every pair in the segment has a missing tooth: no pair on the
+  // line of action carries F (the teeth would turn through the gap until the
+  // next pair met off the line of action, which the model has not), so
+  // ste_m and the effective stiffness have no value (0 here; empty in CSV).
+  bool carried = true;
   double ste_m = 0.0;  // delta: the wheel's lag behind rigid perfect gears, on the line of action
   double kte_m = 0.0;  // min_k e_k: the unloaded (kinematic) transmission error
   double effective_stiffness_n_per_m = 0.0;  // sum of k_k over the loaded pairs
@@ -72,12 +82,13 @@ struct StePoint {
 
 struct StaticTransmissionError {
   double torque1_n_m = 0.0;
-  double force_n = 0.0;             // |T1| / Rb1
-  long long mesh_periods = 1;       // the true period in mesh periods
-  double period_rad = 0.0;          // the true period as a pinion angle
-  std::vector<StePoint> points;     // theta1 = i period / n, i = 0 ... n-1
-  double ste_mean_m = 0.0;          // the mean over the points
-  double ste_peak_to_peak_m = 0.0;  // max - min over the points
+  double force_n = 0.0;              // |T1| / Rb1
+  long long mesh_periods = 1;        // the true period in mesh periods
+  double period_rad = 0.0;           // the true period as a pinion angle
+  std::vector<StePoint> points;      // theta1 = i period / n, i = 0 ... n-1
+  double ste_mean_m = 0.0;           // the mean over the carried points
+  double ste_peak_to_peak_m = 0.0;   // max - min over the carried points
+  std::size_t uncarried_points = 0;  // points with carried false
 };
 
 // Throws InputError naming "torque" for T1 = 0, negative or not finite, and
@@ -90,8 +101,9 @@ void validate_static_transmission_error(const GearPair& pair, const Modification
 
 // The STE of a validated pair with its modifications under the pinion torque
 // T1 (the load |T1| / Rb1 on the drive flanks), over the true period of the
-// teeth (true_period_mesh_periods with distinct_teeth(m)). Throws as
-// validate_static_transmission_error.
+// teeth (true_period_mesh_periods with distinct_teeth(m) and
+// options.faulted). Throws as validate_static_transmission_error, and
+// InputError naming "[[faults]]" when no point is carried.
 StaticTransmissionError static_transmission_error(const GearPair& pair, const Modifications& m,
                                                   double torque1_n_m,
                                                   const PairStiffnessFunction& stiffness,
@@ -99,6 +111,11 @@ StaticTransmissionError static_transmission_error(const GearPair& pair, const Mo
 // The same with the healthy table's Ke(X) for every pair.
 StaticTransmissionError static_transmission_error(const GearPair& pair, const Modifications& m,
                                                   double torque1_n_m, const StiffnessTable& table,
+                                                  StaticTransmissionErrorOptions options = {});
+// The same with each pair's own table (faulted teeth), over the true period
+// of the faults and the modifications (options.faulted is set from `tables`).
+StaticTransmissionError static_transmission_error(const GearPair& pair, const Modifications& m,
+                                                  double torque1_n_m, const MeshTables& tables,
                                                   StaticTransmissionErrorOptions options = {});
 
 }  // namespace gearimpact

@@ -63,8 +63,7 @@ SectionProperties chipped_section(const TipChip& chip, double half_thickness_m,
 // for the drive side when the spall's flank is named for the drive side),
 // b - b_k above r_k; else b. A length of 0 (a full-width spall or chip)
 // means that the pair carries nothing there: hertz_stiffness(pair, 0) is 0,
-// and a mesh should set the pair's force to zero rather than add a
-// compliance 1/0.
+// and mesh_stiffness of the pair gives Ke 0 there rather than a compliance 1/0.
 double spall_contact_length(const Spall& spall, CrackFlank contact_flank, double contact_radius_m,
                             double face_width_m);
 double chip_contact_length(const TipChip& chip, double contact_radius_m, double face_width_m);

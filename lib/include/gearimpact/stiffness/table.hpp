@@ -55,7 +55,11 @@ class StiffnessTable {
   // part gets options.pieces pieces of its own, so that no piece straddles a
   // break. Every term is fitted as a series, the Hertzian one too (a fault
   // shortens the contact line in part of the domain). At a break the table
-  // gives the part above it. Breaks outside (start_m, end_m) are ignored.
+  // gives the part above it. Breaks outside (start_m, end_m) are ignored. A
+  // part where `compliance` gives every term 0 at its middle is one where the
+  // pair has no contact (a spall or a chip across the whole face): it is not
+  // fitted, and Ke, dKe/dX1 and every compliance are 0 there
+  // (part_in_contact false).
   StiffnessTable(double start_m, double end_m, const ComplianceFunction& compliance,
                  std::vector<double> breaks_m, StiffnessTableOptions options = {});
   // mesh_stiffness(pair, X1, model).included over the contact segment
@@ -75,6 +79,29 @@ class StiffnessTable {
   std::vector<double> breaks_m() const;
   int pieces() const { return pieces_; }
   int order() const { return order_; }
+
+  // The parts between the breaks: part_count() of them (1 without breaks),
+  // part i over [part_start_m(i), part_end_m(i)]. part_of(x1) is the part x1
+  // falls in (at a break, the one above it, as the look-ups below read it).
+  int part_count() const { return parts_.empty() ? 1 : static_cast<int>(parts_.size()); }
+  int part_of(double x1_m) const;
+  double part_start_m(int part) const;
+  double part_end_m(int part) const;
+  // Whether the pair has contact over the part (above); a table without
+  // breaks has it everywhere.
+  bool part_in_contact(int part) const {
+    return parts_.empty() || parts_[static_cast<std::size_t>(part)].contact;
+  }
+  // Ke, dKe/dX1 and the compliances from part `part`'s own series, at x1 in
+  // [part_start_m(part), part_end_m(part)]: at a break, from the side asked
+  // for, so that a run can stay on one side of a jump up to its event.
+  // Throws InputError for x1 outside the part.
+  StiffnessAndDerivative stiffness_and_derivative_in_part(double x1_m, int part) const {
+    const Local at = locate_in_part(x1_m, part);
+    return {polynomial(&stiffness_[at.offset], at.t),
+            polynomial(&stiffness_derivative_[at.offset], at.t)};
+  }
+  Compliances compliance_in_part(double x1_m, int part) const;
 
   // Each throws InputError for x1 outside the domain.
   Compliances compliance(double x1_m) const;
@@ -118,8 +145,19 @@ class StiffnessTable {
     const int piece = std::min(static_cast<int>(u), pieces_ - 1);
     return {static_cast<std::size_t>(p.first_piece + piece) * stride_, 2.0 * (u - piece) - 1.0};
   }
+  Local locate_in_part(double x1_m, int part) const {
+    if (parts_.empty()) return locate(x1_m);
+    if (!(x1_m >= part_start_m(part) && x1_m <= part_end_m(part))) throw_outside(x1_m);
+    const Part& p = parts_[static_cast<std::size_t>(part)];
+    const double u = (x1_m - p.start_m) * p.pieces_per_m;
+    const int piece = std::min(static_cast<int>(u), pieces_ - 1);
+    return {static_cast<std::size_t>(p.first_piece + piece) * stride_, 2.0 * (u - piece) - 1.0};
+  }
+  Compliances compliance_at(const Local& at) const;
   // Fits the pieces of [a, b] (count of them) after those already fitted.
   void fit_part(double a, double b, const ComplianceFunction& compliance, bool every_term);
+  // Zero series for the pieces of a part without contact.
+  void zero_part();
   // The domain and the grid of the options (checked against the domain).
   void set_grid(double start_m, double end_m, StiffnessTableOptions options);
   // Clears the series of every term that is 0 at every node.
@@ -157,6 +195,7 @@ class StiffnessTable {
     double start_m;
     double pieces_per_m;
     int first_piece;
+    bool contact;
   };
   std::vector<Part> parts_;
   // Polynomial coefficients in t, stride_ per piece, piece after piece: one

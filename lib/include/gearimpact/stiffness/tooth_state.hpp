@@ -60,21 +60,13 @@ std::vector<ToothState> tooth_classes(const std::vector<ToothFault>& faults, Gea
 // Throws InputError unless every fault fits: the tooth number in 0 ... z-1 of
 // its gear, one fault per tooth, a crack that place_crack (or, for
 // yang-lin-1987, the paper's tooth) accepts, a spall or a chip that
-// place_spall / place_chip accepts on the model's tooth, and a spall or chip
-// narrower than the face (check_surface_fault_width). Names "faults[i].tooth"
+// place_spall / place_chip accepts on the model's tooth (a width up to the
+// face width: across the whole face the pair has no contact over the fault's
+// extent, MeshTables). Names "faults[i].tooth"
 // and the library's fault names; the case-file reader checks the same before,
 // under the keys a file writes.
 void check_tooth_faults(const GearPair& pair, const StiffnessModel& model,
                         const std::vector<ToothFault>& faults);
-
-// A spall or a chip across the whole face (b_s or b_k = b) leaves its pair
-// without contact inside the contact segment: its stiffness falls to 0 there
-// and rises again (a spall) or ends early (a chip). The stiffness tables cover
-// one contact segment for every pair, whose ends are where the dynamics lets
-// a pair enter and leave and books the stored energy that comes and goes with
-// it, so a pair cannot stop carrying halfway along. Throws InputError naming
-// `field` for a width that is not below the face width.
-void check_surface_fault_width(const std::string& field, double width_m, double face_width_m);
 
 // The state of tooth `tooth` of `gear`: the fault's, or healthy.
 ToothState tooth_state(const std::vector<ToothFault>& faults, Gear gear, int tooth);
