@@ -201,7 +201,7 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
   }
   // A case the dynamics refuses gets its refusal alone, before the warnings.
   if (fields_valid) {
-    refuse_planar(c);
+    refuse_planar_simulation(c);
     validate_gaps(c);
   }
   if (fields_valid) {

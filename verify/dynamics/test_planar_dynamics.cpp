@@ -1,0 +1,304 @@
+// The planar nonlinear dynamics (docs/vibration.md, "The planar dynamics")
+// against the limits of VIBRATION.md section 3, each reached by a route other
+// than the code under test: momentum without bearings (sums written out
+// here), the energy ledger closing at RK4's order, the torsional model
+// approached as 1/k_bearing, rigid bearings running the torsional code, and the
+// free vibration at the first elastic frequency of `modes`'s eigenproblem.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "gearimpact/constants.hpp"
+#include "gearimpact/dynamics/planar.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/modes/modes.hpp"
+#include "gearimpact/paper/table1.hpp"
+#include "gearimpact/stiffness/table.hpp"
+
+using namespace gearimpact;
+
+namespace {
+
+constexpr double kMesh = 2.0e8;  // N/m, the constant mesh stiffness of most cases here
+
+// The paper's case 1 (no torques, w1 = 50 rad/s, the gears apart) on elastic
+// bearings of stiffness kb in both directions, without friction, at a
+// constant mesh stiffness (so that k is known exactly).
+SimulationCase planar_case(double kb) {
+  SimulationCase c = paper_case(1);
+  c.model.friction_coefficient = 0.0;
+  c.model.mesh_stiffness = MeshStiffnessMode::constant;
+  c.model.constant_mesh_stiffness_n_per_m = kMesh;
+  c.bearings.kind = BearingKind::elastic;
+  c.bearings.gear1.stiffness_x_n_per_m = kb;
+  c.bearings.gear2.stiffness_x_n_per_m = kb;
+  return c;
+}
+
+// Loaded by F along the drive line (T1 = F Rb1, T2 = -F Rb2), without
+// Hertzian damping, started at the torsional static deflection B + F/k.
+SimulationCase loaded_case(double kb, double force_n) {
+  SimulationCase c = planar_case(kb);
+  const double rb1 = base_radius(c.gears, Gear::one);
+  const double rb2 = base_radius(c.gears, Gear::two);
+  c.model.damping_update = DampingUpdate::off;
+  c.torque1.constant_n_m = force_n * rb1;
+  c.torque2.constant_n_m = -force_n * rb2;
+  c.initial =
+      InitialState{(c.gears.backlash_m + force_n / kMesh) / rb1, 0.0, 50.0, 50.0 * rb1 / rb2};
+  return c;
+}
+
+double largest(const std::array<double, 2>& v) {
+  return std::max(std::fabs(v[0]), std::fabs(v[1]));
+}
+
+}  // namespace
+
+TEST_CASE("without bearings and torques the momenta are conserved") {
+  // Free centres (k = 0): only the mesh acts, its forces equal and opposite.
+  // Linear momentum is a linear invariant, which RK4 keeps to round-off. The
+  // angular momentum about O1 changes by (u1 - u2) x F (the lines of action
+  // keep their nominal place, docs/vibration.md); after a drive-side impact
+  // without friction, starting from rest in translation, u1 - u2 and F are
+  // both along n1, so it is conserved too, its quadratic terms being
+  // products of parallel vectors.
+  SimulationCase c = planar_case(1e9);
+  c.integrator.end_time_s = 2e-3;
+  PlanarMounting m = planar_mounting(c);
+  m.stiffness_x_n_per_m = {0.0, 0.0};
+  m.stiffness_y_n_per_m = {0.0, 0.0};
+  const PlanarState start = planar_initial_state(c);
+  const StiffnessTable table(c.gears, c.model.stiffness);
+  const SimulationResult r = simulate_planar(c, table, m, start, RunControl{});
+  REQUIRE(r.summary.impacts_n1 >= 1);
+  REQUIRE(r.summary.impacts_n2 == 0);
+  // The scale of the momenta exchanged: the pinion's initial J1 w1 and the
+  // mesh impulse it passes, over Rb1.
+  const double j1w1 = moment_of_inertia(c.gears, Gear::one) * start.w1_rad_per_s;
+  const double impulse = j1w1 / base_radius(c.gears, Gear::one);
+  const double l0 = planar_angular_momentum(c, m, start);
+  double most_p = 0.0;
+  double most_l = 0.0;
+  double most_u = 0.0;
+  for (const PlanarRow& row : r.planar_series) {
+    most_p = std::max(most_p, largest(planar_linear_momentum(m, row.state)));
+    most_l = std::max(most_l, std::fabs(planar_angular_momentum(c, m, row.state) - l0));
+    most_u = std::max(most_u, std::fabs(row.state.x1_m));
+  }
+  // The centres did move (else the test shows nothing).
+  CHECK(most_u > 1e-9);
+  // Round-off of 2e4 steps of sums of order 1: a few 1e-16 of the scale per step.
+  CHECK(most_p < 1e-11 * impulse);
+  CHECK(most_l < 1e-11 * j1w1);
+
+  SUBCASE("with friction the linear momentum still is") {
+    c.model.friction_coefficient = 0.1;
+    const SimulationResult f = simulate_planar(c, table, m, start, RunControl{});
+    double most = 0.0;
+    for (const PlanarRow& row : f.planar_series) {
+      most = std::max(most, largest(planar_linear_momentum(m, row.state)));
+    }
+    CHECK(f.summary.friction_loss_j > 0.0);
+    CHECK(most < 1e-11 * impulse);
+  }
+}
+
+TEST_CASE("without damping and friction the ledger closes at RK4's order") {
+  // Torques, bearings, impacts on the drive side: every energy is counted
+  // (kinetic of x, y, theta; mesh, bearings). The contact's onset (a kink of
+  // the force in time) costs the fixed step its order there; the residual
+  // must fall at least eightfold when the step halves (order >= 3).
+  SimulationCase c = planar_case(5e8);
+  c.model.damping_update = DampingUpdate::off;
+  c.torque1.constant_n_m = 2.0;
+  c.torque2.constant_n_m = -2.0 * base_radius(c.gears, Gear::two) / base_radius(c.gears, Gear::one);
+  c.integrator.end_time_s = 4e-3;
+  c.integrator.step_s = 4e-7;
+  c.integrator.output_every = 100;
+  const SimulationResult coarse = simulate(c);
+  c.integrator.step_s = 2e-7;
+  c.integrator.output_every = 200;
+  const SimulationResult fine = simulate(c);
+  REQUIRE(fine.summary.planar);
+  CHECK(fine.summary.planar->bearing_energy_final_j > 0.0);
+  CHECK(fine.summary.impacts_n1 >= 1);
+  CHECK(fine.summary.damping_loss_j == 0.0);
+  MESSAGE("ledger residual " << coarse.summary.ledger_residual_max_j << " J, "
+                             << fine.summary.ledger_residual_max_j << " J of "
+                             << fine.summary.ledger_scale_j << " J");
+  CHECK(fine.summary.ledger_residual_max_j < 1e-8 * fine.summary.ledger_scale_j);
+  CHECK(coarse.summary.ledger_residual_max_j > 8.0 * fine.summary.ledger_residual_max_j);
+}
+
+TEST_CASE("with damping the ledger books the bearings' loss") {
+  SimulationCase c = planar_case(5e8);
+  c.bearings.gear1.damping_x_n_s_per_m = 2e3;
+  c.bearings.gear2.damping_x_n_s_per_m = 2e3;
+  c.integrator.end_time_s = 4e-3;
+  c.integrator.output_every = 1000;
+  const SimulationResult r = simulate(c);
+  REQUIRE(r.summary.planar);
+  CHECK(r.summary.planar->bearing_damping_loss_j > 0.0);
+  CHECK(r.summary.damping_loss_j > 0.0);
+  // The losses are of the scale of the energies, the residual far below.
+  CHECK(r.summary.ledger_residual_max_j < 1e-7 * r.summary.ledger_scale_j);
+}
+
+TEST_CASE("rigid bearings run the torsional model bit for bit") {
+  // kind = "rigid" with bearing values set (which rigid bearings do not read)
+  // against the case without [bearings].
+  SimulationCase plain = paper_case(1);
+  plain.integrator.end_time_s = 5e-3;
+  SimulationCase rigid = plain;
+  rigid.bearings.kind = BearingKind::rigid;
+  rigid.bearings.gear1.stiffness_x_n_per_m = 1e9;
+  rigid.bearings.gear2.damping_x_n_s_per_m = 1e3;
+  const SimulationResult a = simulate(plain);
+  const SimulationResult b = simulate(rigid);
+  REQUIRE(a.series.size() == b.series.size());
+  CHECK(b.planar_series.empty());
+  CHECK_FALSE(b.summary.planar);
+  bool same = true;
+  for (std::size_t i = 0; i < a.series.size(); ++i) {
+    same = same && a.series[i].theta1_rad == b.series[i].theta1_rad &&
+           a.series[i].theta2_rad == b.series[i].theta2_rad &&
+           a.series[i].w1_rad_per_s == b.series[i].w1_rad_per_s &&
+           a.series[i].w2_rad_per_s == b.series[i].w2_rad_per_s &&
+           a.series[i].normal_force_n == b.series[i].normal_force_n;
+  }
+  CHECK(same);
+  CHECK(a.summary.ledger_residual_max_j == b.summary.ledger_residual_max_j);
+}
+
+TEST_CASE("stiff bearings approach the torsional model as 1/k_bearing") {
+  // Loaded, in contact throughout, no friction and no damping: both models
+  // are smooth, so the integration error (RK4 at the step the stiffest
+  // bearing needs) is far below the difference. The difference of theta2
+  // at the end falls tenfold per tenfold stiffer bearing; 1/k to within
+  // 10 % (the next order, 1/k^2, is k_mesh/k_b ~ 1e-3 of it here).
+  constexpr double force = 400.0;  // N
+  const double end = 1e-3;
+  SimulationCase torsional = loaded_case(1e9, force);
+  torsional.bearings.kind = BearingKind::rigid;
+  torsional.integrator.end_time_s = end;
+  torsional.integrator.step_s = 2e-8;
+  torsional.integrator.output_every = 1000;
+  const SimulationResult t = simulate(torsional);
+  std::vector<double> differences;
+  for (const double kb : {2e10, 2e11, 2e12}) {
+    SimulationCase planar = loaded_case(kb, force);
+    planar.integrator = torsional.integrator;
+    const SimulationResult p = simulate(planar);
+    REQUIRE(p.summary.impacts_n1 == 1);  // the contact it starts in, never left
+    differences.push_back(
+        std::fabs(p.planar_final_state->theta2_rad - t.final_state.state.theta2_rad));
+  }
+  MESSAGE("theta2 differences " << differences[0] << ", " << differences[1] << ", "
+                                << differences[2] << " rad");
+  CHECK(differences[0] > 0.0);
+  CHECK(differences[0] / differences[1] == doctest::Approx(10.0).epsilon(0.1));
+  CHECK(differences[1] / differences[2] == doctest::Approx(10.0).epsilon(0.1));
+}
+
+TEST_CASE("a small free vibration has the first elastic frequency of modes") {
+  // At the static equilibrium of the loaded pair (written out: each bearing
+  // carries the mesh force F n1, the mesh deflects by F/k), the motion started
+  // with a velocity along the first elastic mode shape stays in that mode:
+  // with a constant mesh stiffness, drive-side contact throughout and no
+  // friction the planar equations are linear there.
+  constexpr double kb = 1e9;
+  constexpr double force = 400.0;
+  SimulationCase c = loaded_case(kb, force);
+  c.integrator.step_s = 5e-8;
+  c.integrator.end_time_s = 4e-3;
+  c.integrator.output_every = 1;
+  const Modes modes = natural_modes(linear_model(linear_parameters(c, kMesh)));
+  const NaturalMode& first = modes.modes[modes.model.rigid_modes];
+  const double a = operating_pressure_angle(c.gears);
+  const double rb1 = base_radius(c.gears, Gear::one);
+  PlanarState s;
+  s.x1_m = -force * std::sin(a) / kb;
+  s.y1_m = -force * std::cos(a) / kb;
+  s.x2_m = -s.x1_m;
+  s.y2_m = -s.y1_m;
+  // s_d = B + F/k with (u1 - u2) . n1 = -2F/kb.
+  s.theta1_rad = (c.gears.backlash_m + force / kMesh + 2.0 * force / kb) / rb1;
+  // Velocities along the shape (x1, y1, theta1, x2, y2, theta2), 1e-4 m/s at most.
+  const double scale = 1e-4 / first.shape.cwiseAbs().maxCoeff();
+  s.vx1_m_s = scale * first.shape(0);
+  s.vy1_m_s = scale * first.shape(1);
+  s.w1_rad_per_s = scale * first.shape(2);
+  s.vx2_m_s = scale * first.shape(3);
+  s.vy2_m_s = scale * first.shape(4);
+  s.w2_rad_per_s = scale * first.shape(5);
+  const StiffnessTable table(c.gears, c.model.stiffness);
+  const SimulationResult r = simulate_planar(c, table, planar_mounting(c), s, RunControl{});
+  // The modal coordinate's velocity v^T M q', which oscillates as cos(w t):
+  // its zero crossings are half periods apart.
+  const Eigen::VectorXd mv = modes.model.mass * first.shape;
+  std::vector<double> crossings;
+  double previous = 0.0;
+  for (std::size_t i = 0; i < r.planar_series.size(); ++i) {
+    const PlanarState& q = r.planar_series[i].state;
+    const double eta = mv(0) * q.vx1_m_s + mv(1) * q.vy1_m_s + mv(2) * q.w1_rad_per_s +
+                       mv(3) * q.vx2_m_s + mv(4) * q.vy2_m_s + mv(5) * q.w2_rad_per_s;
+    if (i > 0 && previous * eta < 0.0) {
+      // Linear interpolation between rows.
+      const double t0 = r.planar_series[i - 1].t_s;
+      const double t1 = r.planar_series[i].t_s;
+      crossings.push_back(t0 + (t1 - t0) * previous / (previous - eta));
+    }
+    previous = eta;
+  }
+  REQUIRE(crossings.size() >= 4);
+  const double half_period =
+      (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+  const double measured = pi / half_period;
+  MESSAGE("first elastic mode " << first.frequency_hz << " Hz, measured " << measured / (2.0 * pi)
+                                << " Hz over " << crossings.size() << " crossings");
+  // The interpolation's error at each crossing is (w h)^2 / 8 of a step at
+  // most; over the crossings' span it is far below 1e-5.
+  CHECK(std::fabs(measured - first.angular_frequency) < 1e-5 * first.angular_frequency);
+}
+
+TEST_CASE("what the planar model does not take is refused by its key") {
+  const auto field_of = [](const SimulationCase& c) {
+    try {
+      simulate(c);
+    } catch (const InputError& e) {
+      return std::string(e.field());
+    }
+    return std::string("none");
+  };
+  SimulationCase c = planar_case(1e9);
+  c.integrator.end_time_s = 1e-5;
+  SimulationCase driven = c;
+  driven.torque1.kind = Torque::Kind::prescribed_speed;
+  driven.torque1.mean_speed_rad_per_s = 50.0;
+  CHECK(field_of(driven) == "torque1.kind");
+  SimulationCase adaptive = c;
+  adaptive.integrator.kind = IntegratorKind::adaptive;
+  CHECK(field_of(adaptive) == "integrator.kind");
+  SimulationCase coarse = c;
+  coarse.integrator.step_s = 1e-5;
+  coarse.integrator.end_time_s = 1e-3;
+  CHECK(field_of(coarse) == "integrator.step");
+  SimulationCase shafts_only = paper_case(1);
+  shafts_only.shafts.kind = ShaftKind::elastic;
+  shafts_only.shafts.motor_inertia_kg_m2 = 1e-3;
+  shafts_only.shafts.motor_stiffness_n_m_per_rad = 1e4;
+  shafts_only.shafts.load_inertia_kg_m2 = 1e-3;
+  shafts_only.shafts.load_stiffness_n_m_per_rad = 1e4;
+  CHECK(field_of(shafts_only) == "shafts.kind");
+  const StiffnessTable table(c.gears, c.model.stiffness);
+  PlanarMounting m = planar_mounting(c);
+  m.stiffness_y_n_per_m[1] = -1.0;
+  CHECK_THROWS_WITH_AS(simulate_planar(c, table, m, planar_initial_state(c)),
+                       doctest::Contains("stiffness_y2"), InputError);
+}
