@@ -69,7 +69,9 @@ TEST_CASE("without bearings and torques the momenta are conserved") {
   // both along n1, so it is conserved too, its quadratic terms being
   // products of parallel vectors.
   SimulationCase c = planar_case(1e9);
-  c.integrator.end_time_s = 2e-3;
+  // Long enough for the drive-side impact and the flight after it, before
+  // the coast flanks meet.
+  c.integrator.end_time_s = 2.5e-4;
   PlanarMounting m = planar_mounting(c);
   m.stiffness_x_n_per_m = {0.0, 0.0};
   m.stiffness_y_n_per_m = {0.0, 0.0};
@@ -91,9 +93,11 @@ TEST_CASE("without bearings and torques the momenta are conserved") {
     most_l = std::max(most_l, std::fabs(planar_angular_momentum(c, m, row.state) - l0));
     most_u = std::max(most_u, std::fabs(row.state.x1_m));
   }
+  MESSAGE("linear momentum " << most_p / impulse << ", angular " << most_l / j1w1
+                             << " of their scales");
   // The centres did move (else the test shows nothing).
   CHECK(most_u > 1e-9);
-  // Round-off of 2e4 steps of sums of order 1: a few 1e-16 of the scale per step.
+  // Round-off of 2500 steps of sums of order 1: a few 1e-16 of the scale per step.
   CHECK(most_p < 1e-11 * impulse);
   CHECK(most_l < 1e-11 * j1w1);
 
@@ -111,9 +115,12 @@ TEST_CASE("without bearings and torques the momenta are conserved") {
 
 TEST_CASE("without damping and friction the ledger closes at RK4's order") {
   // Torques, bearings, impacts on the drive side: every energy is counted
-  // (kinetic of x, y, theta; mesh, bearings). The contact's onset (a kink of
-  // the force in time) costs the fixed step its order there; the residual
-  // must fall at least eightfold when the step halves (order >= 3).
+  // (kinetic of x, y, theta; mesh, bearings). The fixed step has no event
+  // location: a step that holds a contact's onset or end integrates a kink of
+  // the force with an error O(h^2) (Simpson's rule over |t|), the rest at
+  // RK4's order. So the residual falls as h^2: at least threefold when the
+  // step halves (fourfold less the smooth part's own), and at the paper's
+  // step it is 1e-5 of the energies (the bar of event location is later).
   SimulationCase c = planar_case(5e8);
   c.model.damping_update = DampingUpdate::off;
   c.torque1.constant_n_m = 2.0;
@@ -132,8 +139,8 @@ TEST_CASE("without damping and friction the ledger closes at RK4's order") {
   MESSAGE("ledger residual " << coarse.summary.ledger_residual_max_j << " J, "
                              << fine.summary.ledger_residual_max_j << " J of "
                              << fine.summary.ledger_scale_j << " J");
-  CHECK(fine.summary.ledger_residual_max_j < 1e-8 * fine.summary.ledger_scale_j);
-  CHECK(coarse.summary.ledger_residual_max_j > 8.0 * fine.summary.ledger_residual_max_j);
+  CHECK(fine.summary.ledger_residual_max_j < 2e-5 * fine.summary.ledger_scale_j);
+  CHECK(coarse.summary.ledger_residual_max_j > 3.0 * fine.summary.ledger_residual_max_j);
 }
 
 TEST_CASE("with damping the ledger books the bearings' loss") {
@@ -146,8 +153,10 @@ TEST_CASE("with damping the ledger books the bearings' loss") {
   REQUIRE(r.summary.planar);
   CHECK(r.summary.planar->bearing_damping_loss_j > 0.0);
   CHECK(r.summary.damping_loss_j > 0.0);
-  // The losses are of the scale of the energies, the residual far below.
-  CHECK(r.summary.ledger_residual_max_j < 1e-7 * r.summary.ledger_scale_j);
+  // The losses are of the scale of the energies, the residual far below
+  // (the contacts' onsets, as above).
+  CHECK(r.summary.planar->bearing_damping_loss_j > 1e-3 * r.summary.ledger_scale_j);
+  CHECK(r.summary.ledger_residual_max_j < 1e-5 * r.summary.ledger_scale_j);
 }
 
 TEST_CASE("rigid bearings run the torsional model bit for bit") {
@@ -178,32 +187,38 @@ TEST_CASE("rigid bearings run the torsional model bit for bit") {
 
 TEST_CASE("stiff bearings approach the torsional model as 1/k_bearing") {
   // Loaded, in contact throughout, no friction and no damping: both models
-  // are smooth, so the integration error (RK4 at the step the stiffest
-  // bearing needs) is far below the difference. The difference of theta2
-  // at the end falls tenfold per tenfold stiffer bearing; 1/k to within
-  // 10 % (the next order, 1/k^2, is k_mesh/k_b ~ 1e-3 of it here).
+  // are smooth, so the integration error (RK4 at 1e-8 s, w h <= 0.1 on the
+  // stiffest bearing) is far below the difference. The planar model starts
+  // off its own equilibrium by the bearings' compliance, so its theta2
+  // oscillates about the torsional one with an amplitude ~ F/k_b; the
+  // largest difference over the run falls tenfold per tenfold stiffer
+  // bearing. Its mesh mode is slower by O(k_mesh/k_b), a phase drift of
+  // w_m T k_mesh/k_b (w_m T ~ 12, k_mesh/k_b <= 1e-3 here): 1/k within 5 %.
   constexpr double force = 400.0;  // N
-  const double end = 1e-3;
   SimulationCase torsional = loaded_case(1e9, force);
   torsional.bearings.kind = BearingKind::rigid;
-  torsional.integrator.end_time_s = end;
-  torsional.integrator.step_s = 2e-8;
-  torsional.integrator.output_every = 1000;
+  torsional.integrator.end_time_s = 5e-4;
+  torsional.integrator.step_s = 1e-8;
+  torsional.integrator.output_every = 10;
   const SimulationResult t = simulate(torsional);
   std::vector<double> differences;
-  for (const double kb : {2e10, 2e11, 2e12}) {
+  for (const double kb : {2e11, 2e12, 2e13}) {
     SimulationCase planar = loaded_case(kb, force);
     planar.integrator = torsional.integrator;
     const SimulationResult p = simulate(planar);
     REQUIRE(p.summary.impacts_n1 == 1);  // the contact it starts in, never left
-    differences.push_back(
-        std::fabs(p.planar_final_state->theta2_rad - t.final_state.state.theta2_rad));
+    REQUIRE(p.series.size() == t.series.size());
+    double most = 0.0;
+    for (std::size_t i = 0; i < t.series.size(); ++i) {
+      most = std::max(most, std::fabs(p.series[i].theta2_rad - t.series[i].theta2_rad));
+    }
+    differences.push_back(most);
   }
-  MESSAGE("theta2 differences " << differences[0] << ", " << differences[1] << ", "
-                                << differences[2] << " rad");
-  CHECK(differences[0] > 0.0);
-  CHECK(differences[0] / differences[1] == doctest::Approx(10.0).epsilon(0.1));
-  CHECK(differences[1] / differences[2] == doctest::Approx(10.0).epsilon(0.1));
+  MESSAGE("largest theta2 differences " << differences[0] << ", " << differences[1] << ", "
+                                        << differences[2] << " rad");
+  CHECK(differences[2] > 0.0);
+  CHECK(std::fabs(differences[0] / differences[1] - 10.0) < 0.5);
+  CHECK(std::fabs(differences[1] / differences[2] - 10.0) < 0.5);
 }
 
 TEST_CASE("a small free vibration has the first elastic frequency of modes") {
