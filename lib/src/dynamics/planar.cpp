@@ -84,6 +84,7 @@ std::size_t side_index(Region side) {
 struct Forces {
   std::array<double, 2> normal_n{};  // summed over each side's pairs
   std::array<double, 2> penetration_m{};
+  double friction_n = 0.0;  // Ff of (35)-(38) summed over both sides' pairs
 };
 
 class PlanarSystem {
@@ -252,6 +253,7 @@ class PlanarSystem {
         friction_power += f * normal_n * slip * vs;
         parametric_power += 0.5 * dl * dl * dke * x_rate;
         total += normal_n;
+        if (forces != nullptr) forces->friction_n += ff;
       }
       if (forces != nullptr) {
         forces->normal_n[i] = total;
@@ -588,6 +590,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     row.region = dd > 0.0 ? 1 : (dc > 0.0 ? -1 : 0);
     row.pairs = dd > 0.0 ? ranges[0].count : (dc > 0.0 ? ranges[1].count : 0);
     row.normal_force_n = f.normal_n[0] + f.normal_n[1];
+    row.friction_force_n = f.friction_n;
     if (control.on_row) control.on_row(row);
     if (control.keep_series) result.series.push_back(row);
     PlanarRow pr;
