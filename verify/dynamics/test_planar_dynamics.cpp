@@ -19,6 +19,7 @@
 #include "gearimpact/modes/modes.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "gearimpact/stiffness/table.hpp"
+#include "gearimpact/stiffness/terms.hpp"
 
 using namespace gearimpact;
 
@@ -136,6 +137,11 @@ TEST_CASE("without damping and friction the ledger closes at RK4's order") {
   CHECK(fine.summary.planar->bearing_energy_final_j > 0.0);
   CHECK(fine.summary.impacts_n1 >= 1);
   CHECK(fine.summary.damping_loss_j == 0.0);
+  // The mesh's largest stored energy (a constant stiffness: all of it Hertz's
+  // term) is at most the energy the run holds.
+  const double hertz = fine.summary.energy_max_j[index_of(Term::hertz)];
+  CHECK(hertz > 0.0);
+  CHECK(hertz <= fine.summary.ledger_scale_j);
   MESSAGE("ledger residual " << coarse.summary.ledger_residual_max_j << " J, "
                              << fine.summary.ledger_residual_max_j << " J of "
                              << fine.summary.ledger_scale_j << " J");
@@ -221,18 +227,16 @@ TEST_CASE("stiff bearings approach the torsional model as 1/k_bearing") {
   CHECK(std::fabs(differences[1] / differences[2] - 10.0) < 0.5);
 }
 
-TEST_CASE("a small free vibration has the first elastic frequency of modes") {
-  // At the static equilibrium of the loaded pair (written out: each bearing
-  // carries the mesh force F n1, the mesh deflects by F/k), the motion started
-  // with a velocity along the first elastic mode shape stays in that mode:
-  // with a constant mesh stiffness, drive-side contact throughout and no
-  // friction the planar equations are linear there.
-  constexpr double kb = 1e9;
-  constexpr double force = 400.0;
-  SimulationCase c = loaded_case(kb, force);
-  c.integrator.step_s = 5e-8;
-  c.integrator.end_time_s = 4e-3;
-  c.integrator.output_every = 1;
+namespace {
+
+// The angular frequency at which a small free vibration of the loaded case c
+// (bearings kb, mesh force F) oscillates, and the first elastic one of
+// `modes`. At the static equilibrium (written out: each bearing carries the
+// mesh force F n1, the mesh deflects by F/k, each shaft twists by its torque
+// over k_t), the motion started with a velocity along the first elastic mode
+// shape stays in that mode: with a constant mesh stiffness, drive-side
+// contact throughout and no friction the planar equations are linear there.
+std::pair<double, double> free_vibration(const SimulationCase& c, double kb, double force) {
   const Modes modes = natural_modes(linear_model(linear_parameters(c, kMesh)));
   const NaturalMode& first = modes.modes[modes.model.rigid_modes];
   const double a = operating_pressure_angle(c.gears);
@@ -244,14 +248,25 @@ TEST_CASE("a small free vibration has the first elastic frequency of modes") {
   s.y2_m = -s.y1_m;
   // s_d = B + F/k with (u1 - u2) . n1 = -2F/kb.
   s.theta1_rad = (c.gears.backlash_m + force / kMesh + 2.0 * force / kb) / rb1;
-  // Velocities along the shape (x1, y1, theta1, x2, y2, theta2), 1e-4 m/s at most.
-  const double scale = 1e-4 / first.shape.cwiseAbs().maxCoeff();
-  s.vx1_m_s = scale * first.shape(0);
-  s.vy1_m_s = scale * first.shape(1);
-  s.w1_rad_per_s = scale * first.shape(2);
-  s.vx2_m_s = scale * first.shape(3);
-  s.vy2_m_s = scale * first.shape(4);
-  s.w2_rad_per_s = scale * first.shape(5);
+  const bool shafts = c.shafts.kind == ShaftKind::elastic;
+  if (shafts) {
+    s.theta_motor_rad =
+        s.theta1_rad + c.torque1.constant_n_m / c.shafts.motor_stiffness_n_m_per_rad;
+    s.theta_load_rad = s.theta2_rad + c.torque2.constant_n_m / c.shafts.load_stiffness_n_m_per_rad;
+  }
+  // Velocities along the shape (x1, y1, theta1, x2, y2, theta2[, motor, load]),
+  // 1e-4 in SI at most.
+  const Eigen::VectorXd v = 1e-4 / first.shape.cwiseAbs().maxCoeff() * first.shape;
+  s.vx1_m_s = v(0);
+  s.vy1_m_s = v(1);
+  s.w1_rad_per_s = v(2);
+  s.vx2_m_s = v(3);
+  s.vy2_m_s = v(4);
+  s.w2_rad_per_s = v(5);
+  if (shafts) {
+    s.w_motor_rad_per_s = v(6);
+    s.w_load_rad_per_s = v(7);
+  }
   const StiffnessTable table(c.gears, c.model.stiffness);
   const SimulationResult r = simulate_planar(c, table, planar_mounting(c), s, RunControl{});
   // The modal coordinate's velocity v^T M q', which oscillates as cos(w t):
@@ -261,8 +276,9 @@ TEST_CASE("a small free vibration has the first elastic frequency of modes") {
   double previous = 0.0;
   for (std::size_t i = 0; i < r.planar_series.size(); ++i) {
     const PlanarState& q = r.planar_series[i].state;
-    const double eta = mv(0) * q.vx1_m_s + mv(1) * q.vy1_m_s + mv(2) * q.w1_rad_per_s +
-                       mv(3) * q.vx2_m_s + mv(4) * q.vy2_m_s + mv(5) * q.w2_rad_per_s;
+    double eta = mv(0) * q.vx1_m_s + mv(1) * q.vy1_m_s + mv(2) * q.w1_rad_per_s +
+                 mv(3) * q.vx2_m_s + mv(4) * q.vy2_m_s + mv(5) * q.w2_rad_per_s;
+    if (shafts) eta += mv(6) * q.w_motor_rad_per_s + mv(7) * q.w_load_rad_per_s;
     if (i > 0 && previous * eta < 0.0) {
       // Linear interpolation between rows.
       const double t0 = r.planar_series[i - 1].t_s;
@@ -274,12 +290,38 @@ TEST_CASE("a small free vibration has the first elastic frequency of modes") {
   REQUIRE(crossings.size() >= 4);
   const double half_period =
       (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
-  const double measured = pi / half_period;
-  MESSAGE("first elastic mode " << first.frequency_hz << " Hz, measured " << measured / (2.0 * pi)
+  MESSAGE("first elastic mode " << first.frequency_hz << " Hz, measured " << 0.5 / half_period
                                 << " Hz over " << crossings.size() << " crossings");
+  return {pi / half_period, first.angular_frequency};
+}
+
+}  // namespace
+
+TEST_CASE("a small free vibration has the first elastic frequency of modes") {
+  constexpr double kb = 1e9;
+  constexpr double force = 400.0;
+  SimulationCase c = loaded_case(kb, force);
+  c.integrator.step_s = 5e-8;
+  c.integrator.end_time_s = 4e-3;
   // The interpolation's error at each crossing is (w h)^2 / 8 of a step at
   // most; over the crossings' span it is far below 1e-5.
-  CHECK(std::fabs(measured - first.angular_frequency) < 1e-5 * first.angular_frequency);
+  const auto [measured, expected] = free_vibration(c, kb, force);
+  CHECK(std::fabs(measured - expected) < 1e-5 * expected);
+
+  SUBCASE("with a motor and a load on shafts (8 DOF)") {
+    c.shafts.kind = ShaftKind::elastic;
+    c.shafts.motor_inertia_kg_m2 = 2e-4;
+    c.shafts.motor_stiffness_n_m_per_rad = 2e3;
+    c.shafts.load_inertia_kg_m2 = 8e-4;
+    c.shafts.load_stiffness_n_m_per_rad = 5e3;
+    // A slower first mode (the shafts'): a longer run for as many crossings,
+    // every tenth step kept (w h ~ 2e-3 between rows).
+    c.integrator.end_time_s = 1e-2;
+    c.integrator.output_every = 10;
+    const auto [shaft_measured, shaft_expected] = free_vibration(c, kb, force);
+    CHECK(shaft_expected < 0.5 * expected);
+    CHECK(std::fabs(shaft_measured - shaft_expected) < 1e-5 * shaft_expected);
+  }
 }
 
 TEST_CASE("what the planar model does not take is refused by its key") {

@@ -12,6 +12,7 @@
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/modifications.hpp"
+#include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "gearimpact/stiffness/mesh_tables.hpp"
 
@@ -157,6 +158,31 @@ class PlanarSystem {
     for (int j = 0; j < range.count; ++j) {
       const int k = range.k_first + j;
       u += 0.5 * pair_stiffness(side, k, range.count, layout_.position_m(ref, k)).first * dl * dl;
+    }
+    return u;
+  }
+
+  // The mesh's stored energy of both sides by term of (29), as the
+  // torsional ledger reports it (F = Ke delta of each pair inside the segment).
+  ElasticEnergy mesh_terms(const Y& y) const {
+    ElasticEnergy u;
+    for (const Region side : kSides) {
+      const double dl = penetration(side, y).first;
+      if (dl <= 0.0) continue;
+      const double ref = layout_.reference_m(side, y[kT1]);
+      const LoadedRange range = layout_.loaded(ref);
+      for (int j = 0; j < range.count; ++j) {
+        const int k = range.k_first + j;
+        if (constant_k_ > 0.0) {
+          u.j[index_of(Term::hertz)] += 0.5 * constant_k_ / range.count * dl * dl;
+          continue;
+        }
+        const StiffnessTable* table = teeth_ ? teeth_->table(side, k) : &table_;
+        if (table == nullptr) continue;
+        const Compliances c = table->compliance(std::clamp(layout_.position_m(ref, k), xs_, xe_));
+        const ElasticEnergy pair = pair_energy(c, dl / c.total_m_per_n());
+        for (std::size_t i = 0; i < kTermCount; ++i) u.j[i] += pair.j[i];
+      }
     }
     return u;
   }
@@ -649,6 +675,10 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     const double energy =
         system.kinetic_energy(y) + mesh + system.bearing_energy(y) + system.shaft_energy(y);
     s.ledger_scale_j = std::max(s.ledger_scale_j, energy);
+    const ElasticEnergy terms = system.mesh_terms(y);
+    for (std::size_t i = 0; i < kTermCount; ++i) {
+      s.energy_max_j[i] = std::max(s.energy_max_j[i], terms.j[i]);
+    }
     const double residual = energy - energy0 - y[kWork] + y[kHertzLoss] + y[kSlidingLoss] +
                             y[kBearingLoss] + y[kShaftLoss] - y[kParametric] - jump_work;
     s.ledger_residual_j = residual;
