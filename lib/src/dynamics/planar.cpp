@@ -137,12 +137,18 @@ class PlanarSystem {
     return layout_.loaded(layout_.reference_m(side, theta1));
   }
 
-  // Ke of pair k of `range` on `side` at X, continued along its tangent
-  // beyond the segment (a stage state of a step may reach a hair past it)
-  // and dKe/dX; 0 for a pair with a missing tooth.
+  // The table of pair k on `side`: the healthy one, or with faults that of
+  // the pair's teeth (nullptr: a missing tooth, the pair carries nothing).
+  const StiffnessTable* pair_table(Region side, int k) const {
+    return teeth_ ? teeth_->table(side, k) : &table_;
+  }
+
+  // Ke of pair k of `count` loaded pairs on `side` at X, continued along its
+  // tangent beyond the segment (a stage state of a step may reach a hair past
+  // it), and dKe/dX; 0 for a pair with a missing tooth.
   std::pair<double, double> pair_stiffness(Region side, int k, int count, double x) const {
     if (constant_k_ > 0.0) return {constant_k_ / count, 0.0};
-    const StiffnessTable* table = teeth_ ? teeth_->table(side, k) : &table_;
+    const StiffnessTable* table = pair_table(side, k);
     if (table == nullptr) return {0.0, 0.0};
     const double xc = std::clamp(x, xs_, xe_);
     const StiffnessAndDerivative s = table->stiffness_and_derivative(xc);
@@ -177,7 +183,7 @@ class PlanarSystem {
           u.j[index_of(Term::hertz)] += 0.5 * constant_k_ / range.count * dl * dl;
           continue;
         }
-        const StiffnessTable* table = teeth_ ? teeth_->table(side, k) : &table_;
+        const StiffnessTable* table = pair_table(side, k);
         if (table == nullptr) continue;
         const Compliances c = table->compliance(std::clamp(layout_.position_m(ref, k), xs_, xe_));
         const ElasticEnergy pair = pair_energy(c, dl / c.total_m_per_n());
@@ -247,8 +253,9 @@ class PlanarSystem {
       for (int j = 0; j < range.count; ++j) {
         const int k = range.k_first + j;
         const double x = layout_.position_m(ref, k);
+        // A pair with a missing tooth: no force, no damping, no friction.
+        if (pair_table(side, k) == nullptr) continue;
         const auto [ke, dke] = pair_stiffness(side, k, range.count, x);
-        if (ke == 0.0 && dke == 0.0) continue;  // a missing tooth
         const double f_elastic = elastic_force(ke, dl);
         const double d =
             c_.model.damping_stiffness == DampingStiffness::current_pair
@@ -334,18 +341,20 @@ class PlanarSystem {
     if (c_.model.damping_stiffness == DampingStiffness::hertz) {
       memory.frozen_stiffness_n_per_m = hertz_stiffness(c_.gears);
     } else {
-      // The loaded pair nearest the pitch point.
+      // The loaded pair nearest the pitch point; with faults, among the
+      // pairs that carry (none: the stiffness stays 0, as nothing pushes).
       const double ref = layout_.reference_m(side, y[kT1]);
       const LoadedRange range = layout_.loaded(ref);
       const double pitch = pitch_point_position(c_.gears);
-      int nearest = range.k_first;
+      int nearest = -1;
       for (int k = range.k_first; k < range.k_first + range.count; ++k) {
-        if (std::fabs(layout_.position_m(ref, k) - pitch) <
-            std::fabs(layout_.position_m(ref, nearest) - pitch)) {
+        if (pair_table(side, k) == nullptr) continue;
+        if (nearest < 0 || std::fabs(layout_.position_m(ref, k) - pitch) <
+                               std::fabs(layout_.position_m(ref, nearest) - pitch)) {
           nearest = k;
         }
       }
-      if (range.count > 0) {
+      if (nearest >= 0) {
         memory.frozen_stiffness_n_per_m =
             pair_stiffness(side, nearest, range.count, layout_.position_m(ref, nearest)).first;
       }
