@@ -380,8 +380,9 @@ void refuse(const char* key, const std::string& value, const std::string& allowe
   throw InputError(key, value, allowed + " with [bearings] kind = \"elastic\" (docs/vibration.md)");
 }
 
-// What the planar model does not take (yet), each refused by its key.
-void check_planar(const SimulationCase& c, const PlanarMounting& m, const RunControl& control) {
+}  // namespace
+
+void validate_planar(const SimulationCase& c, const PlanarMounting& m, const RunControl& control) {
   const char* masses[2] = {"mass1", "mass2"};
   const char* kx[2] = {"stiffness_x1", "stiffness_x2"};
   const char* ky[2] = {"stiffness_y1", "stiffness_y2"};
@@ -442,6 +443,8 @@ void check_planar(const SimulationCase& c, const PlanarMounting& m, const RunCon
   }
   if (control.resume) refuse("resume", "a run state", "none (a planar run starts afresh)");
 }
+
+namespace {
 
 // The step must resolve the fastest motion the planar system can have. Its
 // largest w^2 is at most the sum over the springs of k a^T M^-1 a (each
@@ -553,7 +556,7 @@ double planar_angular_momentum(const SimulationCase& c, const PlanarMounting& m,
 SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& table,
                                  const PlanarMounting& mounting, const PlanarState& initial,
                                  const RunControl& control) {
-  check_planar(c, mounting, control);
+  validate_planar(c, mounting, control);
   check_step(c, table, mounting);
   const PlanarSystem system(c, table, mounting);
   SimulationResult result;

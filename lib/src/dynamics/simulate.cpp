@@ -318,6 +318,7 @@ SimulationResult simulate(const SimulationCase& c, const RunControl& control) {
   validate_gaps(c);
   // The controls before the table, which may take a while to build.
   validate_control(c, control);
+  if (c.bearings.kind == BearingKind::elastic) validate_planar(c, planar_mounting(c), control);
   const StiffnessTable table(c.gears, c.model.stiffness);
   return simulate_checked(c, table, control);
 }
@@ -328,6 +329,7 @@ SimulationResult simulate(const SimulationCase& c, const StiffnessTable& table,
   refuse_planar_simulation(c);
   validate_gaps(c);
   validate_control(c, control);
+  if (c.bearings.kind == BearingKind::elastic) validate_planar(c, planar_mounting(c), control);
   return simulate_checked(c, table, control);
 }
 

@@ -51,16 +51,21 @@ std::array<double, 2> planar_linear_momentum(const PlanarMounting& m, const Plan
 double planar_angular_momentum(const SimulationCase& c, const PlanarMounting& m,
                                const PlanarState& s);
 
-// The run of c on `mounting` from `initial`: fixed-step RK4 at
-// integrator.step (docs/vibration.md says why no event location yet).
 // Throws InputError naming the mounting's field (mass1, stiffness_x2, ...)
 // unless every mass is finite and > 0, every bearing stiffness and damping
-// finite and >= 0 (the shafts' values as [shafts]' rows); naming what the
+// finite and >= 0 (the shafts' values as [shafts]' rows); and naming what the
 // planar model does not take yet (a kinematic driver or a drag, the
 // Lagrangian mesh force, the viscous mesh damper, [modifications], the
-// adaptive integrator, sampling, a continued run); and naming
-// integrator.step when it exceeds 1/kStepsPerContactPeriod of the shortest
-// period the planar system can have (a bound from its stiffest springs).
+// adaptive integrator, sampling, a continued run). simulate() calls it for an
+// elastic case before it builds the stiffness table.
+void validate_planar(const SimulationCase& c, const PlanarMounting& mounting,
+                     const RunControl& control);
+
+// The run of c on `mounting` from `initial`: fixed-step RK4 at
+// integrator.step (docs/vibration.md says why no event location yet), after
+// validate_planar; throws InputError naming integrator.step when it exceeds
+// 1/kStepsPerContactPeriod of the shortest period the planar system can have
+// (a bound from its stiffest springs).
 SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& table,
                                  const PlanarMounting& mounting, const PlanarState& initial,
                                  const RunControl& control = {});
