@@ -142,6 +142,11 @@ TEST_CASE("without damping and friction the ledger closes at RK4's order") {
   const double hertz = fine.summary.energy_max_j[index_of(Term::hertz)];
   CHECK(hertz > 0.0);
   CHECK(hertz <= fine.summary.ledger_scale_j);
+  // Without shafts the motor and the load columns are the gears' own.
+  const PlanarState& last = fine.planar_series.back().state;
+  CHECK(last.theta_motor_rad == last.theta1_rad);
+  CHECK(last.w_load_rad_per_s == last.w2_rad_per_s);
+  CHECK(last.w1_rad_per_s != 0.0);
   MESSAGE("ledger residual " << coarse.summary.ledger_residual_max_j << " J, "
                              << fine.summary.ledger_residual_max_j << " J of "
                              << fine.summary.ledger_scale_j << " J");

@@ -55,7 +55,8 @@ Y to_vector(const PlanarState& s) {
   return y;
 }
 
-PlanarState to_state(const Y& y) {
+// The state of y; without shafts the motor and the load are the gears.
+PlanarState to_state(const Y& y, bool shafts) {
   PlanarState s;
   s.x1_m = y[kX1];
   s.y1_m = y[kY1];
@@ -73,6 +74,12 @@ PlanarState to_state(const Y& y) {
   s.w2_rad_per_s = y[kVelocity + kT2];
   s.w_motor_rad_per_s = y[kVelocity + kTm];
   s.w_load_rad_per_s = y[kVelocity + kTl];
+  if (!shafts) {
+    s.theta_motor_rad = s.theta1_rad;
+    s.theta_load_rad = s.theta2_rad;
+    s.w_motor_rad_per_s = s.w1_rad_per_s;
+    s.w_load_rad_per_s = s.w2_rad_per_s;
+  }
   return s;
 }
 
@@ -296,8 +303,10 @@ class PlanarSystem {
     double t1 = torque_at(c_.torque1, t);
     double t2 = torque_at(c_.torque2, t);
     double shaft_power = 0.0;
-    dy[kTm] = v[kTm];
-    dy[kTl] = v[kTl];
+    // Without shafts the motor and the load are not bodies: their entries
+    // stay as they started, and the outputs report the gears' own.
+    dy[kTm] = m_.shafts ? v[kTm] : 0.0;
+    dy[kTl] = m_.shafts ? v[kTl] : 0.0;
     dy[kVelocity + kTm] = 0.0;
     dy[kVelocity + kTl] = 0.0;
     double work = t1 * w1 + t2 * w2;
@@ -612,7 +621,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     Y dy{};
     Forces f;
     system.rhs(t, y, memory, dy, &f);
-    const PlanarState st = to_state(y);
+    const PlanarState st = to_state(y, mounting.shafts);
     SeriesRow row{};
     row.t_s = t;
     row.theta1_rad = st.theta1_rad;
@@ -715,7 +724,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   p.bearing_damping_loss_j = y[kBearingLoss];
   p.shaft_energy_final_j = system.shaft_energy(y);
   p.shaft_damping_loss_j = y[kShaftLoss];
-  result.planar_final_state = to_state(y);
+  result.planar_final_state = to_state(y, mounting.shafts);
   result.final_state.time_s = t;
   result.final_state.state = {y[kT1], y[kT2], y[kVelocity + kT1], y[kVelocity + kT2]};
   result.final_state.contact = memory[0];
