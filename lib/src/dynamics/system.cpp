@@ -83,7 +83,6 @@ GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table,
   t0_ = layout_.base_pitch_m();
   xs_ = layout_.start_m();
   xe_ = layout_.end_m();
-  friction_ = c.model.friction_coefficient;
   smoothing_speed_ = c.model.friction_smoothing_speed_m_s;
   face_width_ = g.face_width_m;
   kh_ = hertz_stiffness(g);

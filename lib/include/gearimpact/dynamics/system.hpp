@@ -206,7 +206,7 @@ class GearSystem {
   MeshLayout layout_;
   double rb1_ = 0.0, rb2_ = 0.0, j1_ = 0.0, j2_ = 0.0, backlash_ = 0.0, lp_ = 0.0;
   double x_pitch_ = 0.0, t0_ = 0.0, xs_ = 0.0, xe_ = 0.0;
-  double friction_ = 0.0, kh_ = 0.0, constant_k_ = 0.0;
+  double kh_ = 0.0, constant_k_ = 0.0;
   double smoothing_speed_ = 0.0;  // v_s of tanh(Vs / v_s); 0: the exact sign
   double face_width_ = 0.0;
   double mesh_damping_ = 0.0;  // c of the viscous mesh damper, N s/m
