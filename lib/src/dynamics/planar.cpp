@@ -491,6 +491,12 @@ void check_step(const SimulationCase& c, const StiffnessTable& table, const Plan
   }
 }
 
+// The location of a contact's onset or end: at most this many trial steps,
+// to a bracket of this fraction of integrator.step (the kink's integration
+// error then falls far below RK4's own).
+constexpr int kMostLocationIterations = 100;
+constexpr double kLocationTolerance = 1e-10;
+
 void rk4(const PlanarSystem& s, double t, const Y& y, double h,
          const std::array<ContactMemory, 2>& memory, Y& out) {
   Y k1, k2, k3, k4, stage;
@@ -672,10 +678,57 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   record(0.0);
   Y next{};
   double t = 0.0;
-  for (long long n = 1; n <= steps; ++n) {
-    const double t_next = std::min(static_cast<double>(n) * h, c.integrator.end_time_s);
-    rk4(system, t, y, t_next - t, memory, next);
+  const auto contact = [&](Region side, const Y& state) {
+    return system.penetration(side, state).first > 0.0;
+  };
+  for (long long n = 1; n <= steps;) {
+    const double t_grid = std::min(static_cast<double>(n) * h, c.integrator.end_time_s);
+    const double full = t_grid - t;
+    rk4(system, t, y, full, memory, next);
     s.rhs_evaluations += 4;
+    // A side whose contact begins or ends inside the step: the step is cut
+    // back to that instant (the force's kink there would cost RK4 its
+    // order), located on the step's length by the Illinois method, ending
+    // just past it so that the new contact state is booked.
+    double length = full;
+    for (const Region side : kSides) {
+      if (contact(side, y) == contact(side, next)) continue;
+      const bool before = contact(side, y);
+      const auto value = [&](double l, Y& out) {
+        rk4(system, t, y, l, memory, out);
+        s.rhs_evaluations += 4;
+        return system.penetration(side, out).first;
+      };
+      double lo = 0.0;
+      double hi = length;
+      Y trial{};
+      double g_lo = system.penetration(side, y).first;
+      double g_hi = value(hi, trial);
+      if (contact(side, trial) == before) continue;  // an earlier side's cut ends before
+      int stale = 0;
+      for (int i = 0; i < kMostLocationIterations && hi - lo > kLocationTolerance * h; ++i) {
+        double l = hi - g_hi * (hi - lo) / (g_hi - g_lo);
+        if (!(l > lo && l < hi)) l = 0.5 * (lo + hi);
+        const double g = value(l, trial);
+        if ((g > 0.0) == before) {
+          lo = l;
+          g_lo = g;
+          // Illinois: halve the kept end's value when the same end stays.
+          if (stale++ > 0) g_hi *= 0.5;
+        } else {
+          hi = l;
+          g_hi = g;
+          stale = 0;
+        }
+      }
+      length = hi;
+    }
+    if (length < full) {
+      rk4(system, t, y, length, memory, next);
+      s.rhs_evaluations += 4;
+      ++s.events;
+    }
+    const double t_next = length < full ? t + length : t_grid;
     if (!std::all_of(next.begin(), next.end(), [](double v) { return std::isfinite(v); })) {
       throw SimulationError(
           "the planar run diverged: the state is not finite at t = " + format_number(t_next) +
@@ -704,11 +757,13 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
                             y[kBearingLoss] + y[kShaftLoss] - y[kParametric] - jump_work;
     s.ledger_residual_j = residual;
     s.ledger_residual_max_j = std::max(s.ledger_residual_max_j, std::fabs(residual));
+    if (t != t_grid) continue;  // a cut step: the grid point is still ahead
     if (n % c.integrator.output_every == 0 || n == steps) record(t);
     if (control.should_stop && n % kStepsBetweenStopChecks == 0 && control.should_stop()) {
       throw SimulationStopped("the run was stopped by its caller at t = " + format_number(t) +
                               " s, step " + std::to_string(n));
     }
+    ++n;
   }
   s.end_time_s = t;
   s.kinetic_energy_final_j = system.kinetic_energy(y);
