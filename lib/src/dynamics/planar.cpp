@@ -248,7 +248,7 @@ class PlanarSystem {
       const std::size_t i = side_index(side);
       const double sign = line_sign(side);
       const auto n = normal(side);
-      // t = e_z x n: the direction of the friction force's lever.
+      // t = e_z x n: the flanks' common tangent, along which friction acts.
       const double tx = -n[1];
       const double ty = n[0];
       // The centres' relative speed along t adds to the flanks' sliding.
@@ -269,8 +269,8 @@ class PlanarSystem {
                 ? memory[i].damping_per_stiffness_s_m * ke
                 : memory[i].damping_per_stiffness_s_m * memory[i].frozen_stiffness_n_per_m;
         const double pushed = f_elastic + hertzian_damping_force(d, dl, dl_rate);
-        // A tooth pushes, never pulls: without event location the clipping
-        // is evaluated at each stage.
+        // A tooth pushes, never pulls: the clipping is not located, each
+        // stage takes it from its own state.
         const double normal_n = normal_force(f_elastic, pushed - f_elastic, pushed < 0.0);
         // (36)-(38) with the centres' sliding: the speed whose product with
         // f N is the friction's loss (docs/vibration.md).

@@ -62,7 +62,8 @@ void validate_planar(const SimulationCase& c, const PlanarMounting& mounting,
                      const RunControl& control);
 
 // The run of c on `mounting` from `initial`: fixed-step RK4 at
-// integrator.step (docs/vibration.md says why no event location yet), after
+// integrator.step, each step cut at a side's contact onset or end
+// (docs/vibration.md says which events are located and why), after
 // validate_planar; throws InputError naming integrator.step when it exceeds
 // 1/kStepsPerContactPeriod of the shortest period the planar system can have
 // (a bound from its stiffest springs).
