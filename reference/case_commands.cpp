@@ -113,11 +113,12 @@ void check_case(const std::string& file) {
       std::fprintf(stderr, "gearimpact: warning: %s\n", w.c_str());
     }
   }
-  // A valid planar case that the dynamics refuse: said before a run is tried.
+  // A valid planar case that the sweeps refuse: said before a run is tried.
   if (c.bearings.kind == BearingKind::elastic || c.shafts.kind == ShaftKind::elastic) {
     std::printf(
-        "# note: elastic bearings or shafts are read by `gearimpact modes` only; simulate and "
-        "sweep refuse the case (the dynamics are torsional)\n");
+        "# note: elastic bearings or shafts are run by `gearimpact simulate` (with elastic "
+        "bearings) and `gearimpact modes`; sweep, steady and sweep-friction refuse the case "
+        "(they are torsional)\n");
   }
 }
 

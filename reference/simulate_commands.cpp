@@ -181,6 +181,16 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
       append_sample_row(pending, row);
       flush(row.t_s, progress);
     };
+  } else if (!o.out.empty() && c.bearings.kind == BearingKind::elastic) {
+    // The planar model's rows: positions and speeds of the centres, bearing
+    // and mesh forces of each side (planar_series_csv_header).
+    const bool progress = series_rows(c) >= kRowsWorthProgress;
+    series_file.emplace(o.out);
+    pending = planar_series_csv_header();
+    control.on_planar_row = [&, progress](const PlanarRow& row) {
+      append_planar_row(pending, row);
+      flush(row.t_s, progress);
+    };
   } else if (!o.out.empty()) {
     const bool progress = series_rows(c) >= kRowsWorthProgress;
     series_file.emplace(o.out);
@@ -201,7 +211,7 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
   }
   // A case the dynamics refuses gets its refusal alone, before the warnings.
   if (fields_valid) {
-    refuse_planar(c);
+    refuse_planar_simulation(c);
     validate_gaps(c);
   }
   if (fields_valid) {

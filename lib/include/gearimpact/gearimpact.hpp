@@ -14,6 +14,8 @@
 #include "gearimpact/constants.hpp"
 #include "gearimpact/contact/contact.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
+#include "gearimpact/dynamics/planar.hpp"
+#include "gearimpact/dynamics/planar_state.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/dynamics/system.hpp"

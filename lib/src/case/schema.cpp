@@ -439,8 +439,8 @@ void add_bearing(std::vector<Field>& rows, int gear, BearingSlot of) {
   r.quantity(
        name[2], Dimension::damping, "N*s/m", damping, false,
        "c_x of gear " + n +
-           "'s bearing; 0: none (read and checked, not used yet: the modes are "
-           "those of the undamped system)",
+           "'s bearing; 0: none (simulate uses it; the modes are those of the undamped "
+           "system)",
        [of](auto& c) -> auto& { return of(c).damping_x_n_s_per_m; })
       .only_when = elastic;
   Field& cy = r.quantity(
@@ -843,7 +843,7 @@ std::vector<Field> make_schema() {
         .only_when = elastic;
     r.quantity(
          "motor_damping", Dimension::rotational_damping, "N*m*s/rad", damping, false,
-         "c_t of the pinion's shaft; 0: none (not used yet: the modes are undamped)",
+         "c_t of the pinion's shaft; 0: none (simulate uses it; the modes are undamped)",
          [](auto& c) -> auto& { return c.shafts.motor_damping_n_m_s_per_rad; })
         .only_when = elastic;
     r.quantity(
@@ -858,7 +858,7 @@ std::vector<Field> make_schema() {
         .only_when = elastic;
     r.quantity(
          "load_damping", Dimension::rotational_damping, "N*m*s/rad", damping, false,
-         "c_t of the wheel's shaft; 0: none (not used yet: the modes are undamped)",
+         "c_t of the wheel's shaft; 0: none (simulate uses it; the modes are undamped)",
          [](auto& c) -> auto& { return c.shafts.load_damping_n_m_s_per_rad; })
         .only_when = elastic;
   }

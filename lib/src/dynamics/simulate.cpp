@@ -9,6 +9,7 @@
 
 #include "gearimpact/case/schema.hpp"
 #include "gearimpact/constants.hpp"
+#include "gearimpact/dynamics/planar.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
@@ -148,6 +149,15 @@ SimulationResult simulate_checked(const SimulationCase& c, const StiffnessTable&
                                   const RunControl& control) {
   check_table(c, table);
   validate_implied(c, table);
+  if (c.bearings.kind == BearingKind::elastic) {
+    // Rigid bearings never come here: they run the torsional model below.
+    SimulationResult result =
+        simulate_planar(c, table, planar_mounting(c), planar_initial_state(c), control);
+    result.summary.foundation_extrapolations =
+        foundation_extrapolations(c.gears, c.model.stiffness);
+    result.summary.foundation_extrapolated = !result.summary.foundation_extrapolations.empty();
+    return result;
+  }
   SimulationResult result = c.integrator.kind == IntegratorKind::rk4
                                 ? run_rk4(c, table, control)
                                 : run_adaptive(c, table, control);
@@ -192,13 +202,24 @@ void validate_gaps(const SimulationCase& c) {
   }
 }
 
+void refuse_planar_simulation(const SimulationCase& c) {
+  if (c.shafts.kind == ShaftKind::elastic && c.bearings.kind != BearingKind::elastic) {
+    throw InputError(std::vector<Problem>{refused_problem(
+        "shafts.kind", "\"elastic\"",
+        "simulated with [bearings] kind = \"elastic\" only: the motor and the load belong to "
+        "the planar model",
+        "\"none\" (the default) with rigid bearings",
+        "add [bearings] kind = \"elastic\" to simulate the planar model with its shafts")});
+  }
+}
+
 void refuse_planar(const SimulationCase& c) {
   std::vector<Problem> problems;
   const auto refuse = [&](const char* key, const char* torsional) {
     problems.push_back(refused_problem(
         key, "\"elastic\"",
-        "read by `gearimpact modes` only; the dynamics (simulate, sweep, sweep-friction) are "
-        "torsional",
+        "read by `gearimpact modes` and `gearimpact simulate` only; sweep, steady and "
+        "sweep-friction are torsional",
         std::string("\"") + torsional + "\" (the default) to run the dynamics",
         "leave the key out to simulate the torsional model, or run `gearimpact modes` for the "
         "planar model's natural frequencies"));
@@ -293,10 +314,11 @@ std::vector<std::string> run_warnings(const SimulationCase& c) {
 
 SimulationResult simulate(const SimulationCase& c, const RunControl& control) {
   validate_fields(c);
-  refuse_planar(c);
+  refuse_planar_simulation(c);
   validate_gaps(c);
   // The controls before the table, which may take a while to build.
   validate_control(c, control);
+  if (c.bearings.kind == BearingKind::elastic) validate_planar(c, planar_mounting(c), control);
   const StiffnessTable table(c.gears, c.model.stiffness);
   return simulate_checked(c, table, control);
 }
@@ -304,9 +326,10 @@ SimulationResult simulate(const SimulationCase& c, const RunControl& control) {
 SimulationResult simulate(const SimulationCase& c, const StiffnessTable& table,
                           const RunControl& control) {
   validate_fields(c);
-  refuse_planar(c);
+  refuse_planar_simulation(c);
   validate_gaps(c);
   validate_control(c, control);
+  if (c.bearings.kind == BearingKind::elastic) validate_planar(c, planar_mounting(c), control);
   return simulate_checked(c, table, control);
 }
 

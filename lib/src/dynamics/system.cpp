@@ -83,7 +83,6 @@ GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table,
   t0_ = layout_.base_pitch_m();
   xs_ = layout_.start_m();
   xe_ = layout_.end_m();
-  friction_ = c.model.friction_coefficient;
   smoothing_speed_ = c.model.friction_smoothing_speed_m_s;
   face_width_ = g.face_width_m;
   kh_ = hertz_stiffness(g);
@@ -167,17 +166,22 @@ void GearSystem::pair_stiffness(const StiffnessTable& table, int part, double x,
   ke = k.stiffness_n_per_m + dke * (x - xc);
 }
 
-double GearSystem::friction_coefficient(double normal_force_n, double vs, double ve) const {
-  switch (case_.model.friction_law) {
+double pair_friction_coefficient(const ModelOptions& model, double face_width_m,
+                                 double normal_force_n, double vs, double ve) {
+  switch (model.friction_law) {
     case FrictionLaw::constant:
       break;
     case FrictionLaw::benedict_kelley:
-      return benedict_kelley_coefficient(case_.model.benedict_kelley, normal_force_n / face_width_,
-                                         vs, ve);
+      return benedict_kelley_coefficient(model.benedict_kelley, normal_force_n / face_width_m, vs,
+                                         ve);
     case FrictionLaw::table:
-      return table_friction_coefficient(case_.model.friction_table, slide_to_roll_ratio(vs, ve));
+      return table_friction_coefficient(model.friction_table, slide_to_roll_ratio(vs, ve));
   }
-  return friction_;
+  return model.friction_coefficient;
+}
+
+double GearSystem::friction_coefficient(double normal_force_n, double vs, double ve) const {
+  return pair_friction_coefficient(case_.model, face_width_, normal_force_n, vs, ve);
 }
 
 GearSystem::PairPenetration GearSystem::pair_penetration(const Mode& m, int j, double x, double dl,
@@ -504,6 +508,22 @@ void GearSystem::classify_forces(const State& y, const ContactMemory& d, Mode& m
   }
 }
 
+OnsetDamping onset_damping(const ModelOptions& model, double approach_m_s) {
+  OnsetDamping onset;
+  onset.impact_speed_m_s = std::max(approach_m_s, kSmallestImpactSpeed_m_s);
+  // DampingUpdate: e and D of (32),(33) from this impact's Vi, from the
+  // case's reference speed, or none.
+  const DampingUpdate update = model.damping_update;
+  const double speed =
+      update == DampingUpdate::frozen ? model.damping_reference_speed_m_s : onset.impact_speed_m_s;
+  onset.restitution = restitution_coefficient(model.restitution, speed);
+  onset.damping_per_stiffness_s_m =
+      update == DampingUpdate::off
+          ? 0.0
+          : damping_factor_per_stiffness(model.damping_form, onset.restitution, speed);
+  return onset;
+}
+
 GearSystem::Onset GearSystem::damping_at_onset(const State& y, const Mode& m) const {
   Onset onset{};
   const double line_rate = line_sign(m.region) * s_rate(y);
@@ -520,18 +540,11 @@ GearSystem::Onset GearSystem::damping_at_onset(const State& y, const Mode& m) co
           approach, pair_penetration(m, j, pair_position(m, y, j), dl, line_rate, x_rate).rate_m_s);
     }
   }
-  onset.impact_speed_m_s = std::max(approach, kSmallestImpactSpeed_m_s);
-  // DampingUpdate: e and D of (32),(33) from this impact's Vi, from the
-  // case's reference speed, or none.
-  const DampingUpdate update = case_.model.damping_update;
-  const double speed = update == DampingUpdate::frozen ? case_.model.damping_reference_speed_m_s
-                                                       : onset.impact_speed_m_s;
-  onset.restitution = restitution_coefficient(case_.model.restitution, speed);
+  const OnsetDamping damping = onset_damping(case_.model, approach);
+  onset.impact_speed_m_s = damping.impact_speed_m_s;
+  onset.restitution = damping.restitution;
   ContactMemory& d = onset.damping;
-  d.damping_per_stiffness_s_m =
-      update == DampingUpdate::off
-          ? 0.0
-          : damping_factor_per_stiffness(case_.model.damping_form, onset.restitution, speed);
+  d.damping_per_stiffness_s_m = damping.damping_per_stiffness_s_m;
   if (case_.model.damping_stiffness == DampingStiffness::hertz) {
     d.frozen_stiffness_n_per_m = kh_;
   } else if (m.count > 0) {

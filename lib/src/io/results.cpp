@@ -30,6 +30,51 @@ void append_series_row(std::string& out, const SeriesRow& r) {
   out.append(line, static_cast<std::size_t>(n));
 }
 
+std::string planar_series_csv_header() {
+  return "t_s,x1_m,y1_m,theta1_rad,x2_m,y2_m,theta2_rad,vx1_m_s,vy1_m_s,w1_rad_s,vx2_m_s,vy2_m_s,"
+         "w2_rad_s,theta_motor_rad,theta_load_rad,w_motor_rad_s,w_load_rad_s,bearing_fx1_N,"
+         "bearing_fy1_N,bearing_fx2_N,bearing_fy2_N,drive_force_N,coast_force_N,"
+         "drive_penetration_m,coast_penetration_m\n";
+}
+
+void append_planar_row(std::string& out, const PlanarRow& r) {
+  const PlanarState& q = r.state;
+  const double values[] = {r.t_s,
+                           q.x1_m,
+                           q.y1_m,
+                           q.theta1_rad,
+                           q.x2_m,
+                           q.y2_m,
+                           q.theta2_rad,
+                           q.vx1_m_s,
+                           q.vy1_m_s,
+                           q.w1_rad_per_s,
+                           q.vx2_m_s,
+                           q.vy2_m_s,
+                           q.w2_rad_per_s,
+                           q.theta_motor_rad,
+                           q.theta_load_rad,
+                           q.w_motor_rad_per_s,
+                           q.w_load_rad_per_s,
+                           r.bearing_fx1_n,
+                           r.bearing_fy1_n,
+                           r.bearing_fx2_n,
+                           r.bearing_fy2_n,
+                           r.drive_force_n,
+                           r.coast_force_n,
+                           r.drive_penetration_m,
+                           r.coast_penetration_m};
+  char number[32];
+  bool first = true;
+  for (const double v : values) {
+    if (!first) out += ',';
+    first = false;
+    const int n = std::snprintf(number, sizeof number, "%.17g", v);
+    out.append(number, static_cast<std::size_t>(n));
+  }
+  out += '\n';
+}
+
 std::string samples_csv_header() {
   return "t_s,theta1_rad,theta2_rad,w1_rad_s,w2_rad_s,w1_dot_rad_s2,w2_dot_rad_s2,s_m,dte_m,"
          "normal_force_n1_N,normal_force_n2_N,region,pairs\n";
@@ -153,6 +198,16 @@ std::string summary_json(const SimulationSummary& s) {
                   r.rms_acceleration2_no_backlash_rad_s2);
     json_optional(out, "rattle_index", r.rattle_index);
     out += "  \"rattle_regime\": " + json_string(name_of(kRattleRegimes, r.regime)) + ",\n";
+  }
+  if (s.planar) {
+    // With elastic bearings only, so that other runs' summaries keep their bytes.
+    const PlanarEnergies& p = *s.planar;
+    json_number(out, "bearing_energy_initial_J", p.bearing_energy_initial_j);
+    json_number(out, "bearing_energy_final_J", p.bearing_energy_final_j);
+    json_number(out, "bearing_damping_loss_J", p.bearing_damping_loss_j);
+    json_number(out, "shaft_energy_initial_J", p.shaft_energy_initial_j);
+    json_number(out, "shaft_energy_final_J", p.shaft_energy_final_j);
+    json_number(out, "shaft_damping_loss_J", p.shaft_damping_loss_j);
   }
   out += "  \"steps\": " + std::to_string(s.steps) + ",\n";
   out += "  \"events\": " + std::to_string(s.events) + ",\n";

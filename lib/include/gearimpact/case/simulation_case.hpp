@@ -159,16 +159,16 @@ struct ModelOptions {
 // How the gears' centres are held (docs/vibration.md). Rigid bearings fix the
 // centres: the paper's torsional model, the one the dynamics integrate.
 // Elastic bearings let each centre move in the plane on a spring and a damper
-// per direction: the planar model, of which `gearimpact modes` reads the
-// linearised form; the dynamics refuse it (refuse_planar of
-// dynamics/simulate.hpp) until they integrate it.
+// per direction: the planar model, which simulate() integrates
+// (dynamics/planar.hpp) and of which `gearimpact modes` reads the linearised
+// form; the sweeps refuse it (refuse_planar of dynamics/simulate.hpp).
 enum class BearingKind { rigid, elastic };
 inline constexpr std::array<NamedValue<BearingKind>, 2> kBearingKinds{{
     {BearingKind::rigid, "rigid",
      "the centres are fixed: the torsional model of the paper (2 DOF)"},
     {BearingKind::elastic, "elastic",
      "each centre moves in the plane on its bearing's springs and dampers (x, y, theta per "
-     "gear: 6 DOF); read by `gearimpact modes` only"},
+     "gear: 6 DOF); run by `gearimpact simulate` and `gearimpact modes`"},
 }};
 
 // Per gear and direction (x along the centre line O1 -> O2, y across it), in SI.
@@ -204,7 +204,8 @@ inline constexpr std::array<NamedValue<ShaftKind>, 2> kShaftKinds{{
     {ShaftKind::none, "none", "the torques act on the gears"},
     {ShaftKind::elastic, "elastic",
      "a motor inertia on the pinion's shaft and a load inertia on the wheel's, each through a "
-     "torsional spring and damper (2 more DOF); read by `gearimpact modes` only"},
+     "torsional spring and damper (2 more DOF), with elastic bearings; run by `gearimpact "
+     "simulate` and `gearimpact modes`"},
 }};
 
 struct Shafts {

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/dynamics/planar_state.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
@@ -126,6 +127,19 @@ struct RattleSummary {
   RattleRegime regime = RattleRegime::no_impact;
 };
 
+// What the planar ledger adds to SimulationSummary's energies (which then
+// hold the mesh's stored energy, the kinetic energy of every body, the
+// torque work and the mesh's losses): the bearings' and the shafts' strain
+// energy and damping loss. A torsional run has none.
+struct PlanarEnergies {
+  double bearing_energy_initial_j = 0.0;
+  double bearing_energy_final_j = 0.0;
+  double bearing_damping_loss_j = 0.0;
+  double shaft_energy_initial_j = 0.0;
+  double shaft_energy_final_j = 0.0;
+  double shaft_damping_loss_j = 0.0;
+};
+
 struct SimulationSummary {
   std::string case_name;
   std::string integrator;
@@ -188,7 +202,8 @@ struct SimulationSummary {
   long long steps = 0;   // accepted steps, including those cut at events
   long long events = 0;  // mode changes located
   long long rhs_evaluations = 0;
-  std::optional<RattleSummary> rattle;  // only under a kinematic driver
+  std::optional<RattleSummary> rattle;   // only under a kinematic driver
+  std::optional<PlanarEnergies> planar;  // only with [bearings] kind = "elastic"
 };
 
 // What a contact remembers from its onset, (32),(33): with no impact, D keeps
@@ -212,6 +227,10 @@ struct SimulationResult {
   std::vector<ImpactRecord> impacts;
   SimulationSummary summary;
   RunState final_state;
+  // With [bearings] kind = "elastic" (planar.hpp): the planar rows (with
+  // RunControl::keep_series) beside `series`, and the final planar state.
+  std::vector<PlanarRow> planar_series;
+  std::optional<PlanarState> planar_final_state;
   double start_time_s = 0.0;  // 0, or the time a continued run resumed at
 };
 
@@ -247,6 +266,8 @@ struct RunControl {
   // An observer of the output grid: called with every row the series would
   // keep (every output_every-th step), whether or not keep_series.
   std::function<void(const SeriesRow&)> on_row;
+  // The same for the planar rows of a case with [bearings] kind = "elastic".
+  std::function<void(const PlanarRow&)> on_planar_row;
   // The most rows the series (kept or observed) may have, checked before the
   // run against series_rows(); refused with the estimate, naming
   // integrator.end_time. It bounds the samples too (sample_count()), naming
@@ -287,10 +308,13 @@ double series_rows(const SimulationCase& c);
 // over every pair). simulate(), validate() and the run pool call it.
 void validate_gaps(const SimulationCase& c);
 // Throws InputError naming bearings.kind and shafts.kind when they are
-// "elastic": the planar model's keys are read by `gearimpact modes` only (its
-// linearised form); the dynamics are torsional. simulate(), validate(), the
+// "elastic": the planar model runs in `gearimpact modes` (its linearised
+// form) and simulate() (planar.hpp); the sweeps are torsional. validate(), the
 // run pool and the steady-state sweep call it before any work.
 void refuse_planar(const SimulationCase& c);
+// What simulate() refuses of the planar keys: elastic shafts on rigid
+// bearings (the motor and the load belong to the planar model), naming shafts.kind.
+void refuse_planar_simulation(const SimulationCase& c);
 // The samples of a run of c at sample_rate_hz: the n >= 0 with
 // sample_time_s(t0, n, rate) <= t0 + end_time_s, for t0 = 0 (about
 // floor(end_time_s rate) + 1; a continued run's start moves the end's rounding).

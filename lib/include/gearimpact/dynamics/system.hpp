@@ -90,6 +90,22 @@ double torque_at(const Torque& torque, double t_s);
 // to. Throws InputError for a user function, whose mean is not known.
 double mean_torque_n_m(const Torque& torque, const char* field);
 
+// f of (35) of a pair with normal force N, sliding speed Vs and entrainment
+// speed Ve under the case's friction law: the torsional and the planar
+// dynamics share it.
+double pair_friction_coefficient(const ModelOptions& model, double face_width_m,
+                                 double normal_force_n, double vs, double ve);
+
+// (32),(33) at the onset of a contact approached at d(delta)/dt = approach:
+// Vi (floored, as D grows without bound as Vi -> 0), e(Vi) and D/K under the
+// case's damping update.
+struct OnsetDamping {
+  double impact_speed_m_s = 0.0;
+  double restitution = 0.0;
+  double damping_per_stiffness_s_m = 0.0;
+};
+OnsetDamping onset_damping(const ModelOptions& model, double approach_m_s);
+
 class GearSystem {
  public:
   // The table must cover the contact segment of c.gears; both must outlive the system.
@@ -206,7 +222,7 @@ class GearSystem {
   MeshLayout layout_;
   double rb1_ = 0.0, rb2_ = 0.0, j1_ = 0.0, j2_ = 0.0, backlash_ = 0.0, lp_ = 0.0;
   double x_pitch_ = 0.0, t0_ = 0.0, xs_ = 0.0, xe_ = 0.0;
-  double friction_ = 0.0, kh_ = 0.0, constant_k_ = 0.0;
+  double kh_ = 0.0, constant_k_ = 0.0;
   double smoothing_speed_ = 0.0;  // v_s of tanh(Vs / v_s); 0: the exact sign
   double face_width_ = 0.0;
   double mesh_damping_ = 0.0;  // c of the viscous mesh damper, N s/m

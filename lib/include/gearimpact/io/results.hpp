@@ -29,6 +29,14 @@ std::string series_csv(const std::vector<SeriesRow>& rows);
 // header line, and one row appended to `out`.
 std::string series_csv_header();
 void append_series_row(std::string& out, const SeriesRow& row);
+// The planar series of a case with elastic bearings (SimulationResult::
+// planar_series), in pieces as the series: t_s, the positions x1_m, y1_m,
+// theta1_rad, x2_m, y2_m, theta2_rad, their rates (vx1_m_s, ..., w2_rad_s),
+// the motor's and the load's angles and speeds (their gears' without shafts),
+// the force each bearing exerts on its gear (bearing_fx1_N, ...), the normal
+// forces of each side (drive_force_N, coast_force_N) and their penetrations.
+std::string planar_series_csv_header();
+void append_planar_row(std::string& out, const PlanarRow& row);
 // The samples of RunControl::sample_rate_hz, in pieces as the series:
 // t_s,theta1_rad,theta2_rad,w1_rad_s,w2_rad_s,w1_dot_rad_s2,w2_dot_rad_s2,s_m,dte_m,
 // normal_force_n1_N,normal_force_n2_N,region,pairs

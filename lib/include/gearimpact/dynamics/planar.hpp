@@ -1,0 +1,74 @@
+// The planar nonlinear dynamics of docs/vibration.md, section "The planar
+// dynamics": x, y, theta per gear on elastic bearings (and a motor and a load
+// behind torsional shafts), both lines of action with the centres' motion in
+// their deflections (the backlash breathes), each side an independent contact
+// with its own pairs, Hertzian damping and friction, whose forces act on the
+// centres too. simulate() runs it for a case with [bearings] kind = "elastic";
+// simulate_planar() lets a library caller set the mounting and the initial
+// state directly (bearing stiffness 0: free centres).
+#pragma once
+
+#include <array>
+#include <optional>
+#include <vector>
+
+#include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/stiffness/table.hpp"
+
+namespace gearimpact {
+
+// How the gears are held, in SI; index 0 the pinion, 1 the wheel.
+struct PlanarMounting {
+  std::array<double, 2> mass_kg{};  // > 0
+  // Per direction (x along O1 -> O2, y across it), >= 0: 0 leaves the centre free.
+  std::array<double, 2> stiffness_x_n_per_m{};
+  std::array<double, 2> stiffness_y_n_per_m{};
+  std::array<double, 2> damping_x_n_s_per_m{};
+  std::array<double, 2> damping_y_n_s_per_m{};
+  // A motor behind the pinion and a load behind the wheel, each on a torsional
+  // shaft; the torques then act on them, not on the gears.
+  bool shafts = false;
+  double motor_inertia_kg_m2 = 0.0;
+  double motor_stiffness_n_m_per_rad = 0.0;
+  double motor_damping_n_m_s_per_rad = 0.0;
+  double load_inertia_kg_m2 = 0.0;
+  double load_stiffness_n_m_per_rad = 0.0;
+  double load_damping_n_m_s_per_rad = 0.0;
+};
+
+// The mounting of a case with [bearings] kind = "elastic": its [bearings] and
+// [shafts] (an absent mass the disc of moment_of_inertia, absent y values the x ones).
+PlanarMounting planar_mounting(const SimulationCase& c);
+
+// The state of a case: its initial angles and speeds, the centres at rest on
+// their bearings' unloaded positions, the motor and load with their gears.
+PlanarState planar_initial_state(const SimulationCase& c);
+
+// Linear momentum of both gears, and angular momentum about O1 (the pinion's
+// unloaded centre, z up; theta2 turns about -z) of every body.
+std::array<double, 2> planar_linear_momentum(const PlanarMounting& m, const PlanarState& s);
+double planar_angular_momentum(const SimulationCase& c, const PlanarMounting& m,
+                               const PlanarState& s);
+
+// Throws InputError naming the mounting's field (mass1, stiffness_x2, ...)
+// unless every mass is finite and > 0, every bearing stiffness and damping
+// finite and >= 0 (the shafts' values as [shafts]' rows); and naming what the
+// planar model does not take yet (a kinematic driver or a drag, the
+// Lagrangian mesh force, the viscous mesh damper, [modifications], the
+// adaptive integrator, sampling, a continued run). simulate() calls it for an
+// elastic case before it builds the stiffness table.
+void validate_planar(const SimulationCase& c, const PlanarMounting& mounting,
+                     const RunControl& control);
+
+// The run of c on `mounting` from `initial`: fixed-step RK4 at
+// integrator.step, each step cut at a side's contact onset or end
+// (docs/vibration.md says which events are located and why), after
+// validate_planar; throws InputError naming integrator.step when it exceeds
+// 1/kStepsPerContactPeriod of the shortest period the planar system can have
+// (a bound from its stiffest springs).
+SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& table,
+                                 const PlanarMounting& mounting, const PlanarState& initial,
+                                 const RunControl& control = {});
+
+}  // namespace gearimpact
