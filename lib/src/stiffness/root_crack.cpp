@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
@@ -149,44 +151,48 @@ SectionProperties healthy_section(double x, double b) {
 
 namespace {
 
-// cracked_section with s = sin nu given: the sections of one crack at many
-// heights compute the sine once.
-SectionProperties cut_section(const RootCrack& crack, double s, double x, double h_c, double b) {
-  const double delta = std::max(0.0, h_c - x);
-  // Nothing reaches past the gap: the healthy section.
-  if (!(s * largest_crack_depth(crack) > delta)) return healthy_section(x, b);
-  switch (crack.profile) {
-    case CrackProfile::uniform: {
-      const double t = slice_height(x, s * crack.depth_m - delta);
-      return {b * t, b * t * t * t / 12.0};
-    }
-    case CrackProfile::partial_width: {
-      // z = W_c (1 - w^2), q = q0 w, dz = 2 W_c w dw; cut where s q0 w > delta.
-      const double a = s * crack.depth_m;
-      const double w0 = delta / a;
-      const double cut_width = crack.width_m * (1.0 - w0 * w0);
-      return integrate_slices(
-          x, b - cut_width, [&](double w) { return a * w - delta; },
-          [&](double w) { return 2.0 * crack.width_m * w; }, w0, 1.0);
-    }
-    case CrackProfile::full_width: {
-      const double q0 = crack.depth_m;
-      const double q2 = crack.end_depth_m;
-      if (q0 == q2) {
-        const double t = slice_height(x, s * q0 - delta);
-        return {b * t, b * t * t * t / 12.0};
-      }
-      // z = (v^2 - q0^2) b / (q2^2 - q0^2), q = v, |dz| = 2 v b / |q2^2 - q0^2| dv.
-      const double span = std::abs(q2 * q2 - q0 * q0);
-      const double v_low = std::max(delta / s, std::min(q0, q2));
-      const double v_high = std::max(q0, q2);
-      const double cut_width = b * (v_high * v_high - v_low * v_low) / span;
-      return integrate_slices(
-          x, b - cut_width, [&](double v) { return s * v - delta; },
-          [&](double v) { return 2.0 * v * b / span; }, v_low, v_high);
-    }
+// The partial- and full-width profiles of cut_section, where the cut
+// reaches past the gap delta.
+SectionProperties cut_across_width(const RootCrack& crack, double s, double x, double delta,
+                                   double b) {
+  if (crack.profile == CrackProfile::partial_width) {
+    // z = W_c (1 - w^2), q = q0 w, dz = 2 W_c w dw; cut where s q0 w > delta.
+    const double a = s * crack.depth_m;
+    const double w0 = delta / a;
+    const double cut_width = crack.width_m * (1.0 - w0 * w0);
+    return integrate_slices(
+        x, b - cut_width, [&](double w) { return a * w - delta; },
+        [&](double w) { return 2.0 * crack.width_m * w; }, w0, 1.0);
   }
-  return healthy_section(x, b);
+  const double q0 = crack.depth_m;
+  const double q2 = crack.end_depth_m;
+  if (q0 == q2) {
+    const double t = slice_height(x, s * q0 - delta);
+    return {b * t, b * t * t * t / 12.0};
+  }
+  // z = (v^2 - q0^2) b / (q2^2 - q0^2), q = v, |dz| = 2 v b / |q2^2 - q0^2| dv.
+  const double span = std::abs(q2 * q2 - q0 * q0);
+  const double v_low = std::max(delta / s, std::min(q0, q2));
+  const double v_high = std::max(q0, q2);
+  const double cut_width = b * (v_high * v_high - v_low * v_low) / span;
+  return integrate_slices(
+      x, b - cut_width, [&](double v) { return s * v - delta; },
+      [&](double v) { return 2.0 * v * b / span; }, v_low, v_high);
+}
+
+// cracked_section with s = sin nu given: the sections of one crack at many
+// heights compute the sine once, and the uniform depth's closed form stays
+// small enough to inline into their integrands.
+inline SectionProperties cut_section(const RootCrack& crack, double s, double x, double h_c,
+                                     double b) {
+  const double delta = std::max(0.0, h_c - x);
+  const double largest =
+      crack.profile == CrackProfile::uniform ? crack.depth_m : largest_crack_depth(crack);
+  // Nothing reaches past the gap: the healthy section.
+  if (!(s * largest > delta)) return healthy_section(x, b);
+  if (crack.profile != CrackProfile::uniform) return cut_across_width(crack, s, x, delta, b);
+  const double t = slice_height(x, s * crack.depth_m - delta);
+  return {b * t, b * t * t * t / 12.0};
 }
 
 }  // namespace
@@ -506,6 +512,58 @@ bool is_cut(const RootCrack& crack, double sin_nu, double x, double h_c) {
   return largest_cut(crack, sin_nu) > std::max(0.0, h_c - x);
 }
 
+// The bending and the axial change at one point.
+struct PointChange {
+  double bending;
+  double axial;
+};
+
+// The integrals over the pieces between `ends` of both parts of f, by one
+// rule: the axial integral of a piece asks for the points its bending integral
+// did, in the same order (the same rule on the same interval), so each
+// point's section, the costly part of f, is found once. A point it asks for
+// beyond them is evaluated.
+template <class PointChangeAt>
+PointChange integrate_both(QuadratureRule rule, const PointChangeAt& f,
+                           const std::vector<double>& ends, QuadratureTolerance tolerance) {
+  // What the two passes share, captured by one reference so that the
+  // integrands stay small enough for std::function to hold without
+  // allocating.
+  struct Points {
+    const PointChangeAt& f;
+    std::vector<std::pair<double, double>> axial_at;
+    std::size_t next = 0;
+  } points{f, {}, 0};
+  points.axial_at.reserve(61);  // the 61-point rules' first pass
+  PointChange sum{0.0, 0.0};
+  for (std::size_t i = 1; i < ends.size(); ++i) {
+    points.axial_at.clear();
+    sum.bending += integrate(
+                       rule,
+                       [&points](double p) {
+                         const PointChange c = points.f(p);
+                         points.axial_at.emplace_back(p, c.axial);
+                         return c.bending;
+                       },
+                       ends[i - 1], ends[i], tolerance)
+                       .value;
+    points.next = 0;
+    sum.axial += integrate(
+                     rule,
+                     [&points](double p) {
+                       std::vector<std::pair<double, double>>& at = points.axial_at;
+                       if (points.next < at.size() && at[points.next].first == p) {
+                         return at[points.next++].second;
+                       }
+                       points.next = at.size();
+                       return points.f(p).axial;
+                     },
+                     ends[i - 1], ends[i], tolerance)
+                     .value;
+  }
+  return sum;
+}
+
 }  // namespace
 
 PaperCrackChange::PaperCrackChange(const InvoluteTooth& tooth, double youngs_modulus_pa,
@@ -557,27 +615,26 @@ Compliances PaperCrackChange::tau_form_change(double contact_x_m) const {
   }
   ends.push_back(theta_b);
   const TauFormContact contact = tau_form_contact(theta_b, phi, model_.moment_sign);
-  // The healthy integrand times healthy / cracked - 1, the healthy section over
-  // the cracked one, as cracked_paper_tooth_compliances grows it.
-  const auto change = [&](bool bending) {
-    return [&, bending](double tau) {
-      const double sin_tau = std::sin(tau);
-      const double cos_tau = std::cos(tau);
-      const double x = rb * section_factor(theta_b, tau, sin_tau, cos_tau);
-      const SectionProperties healthy = healthy_section(x, b);
-      const SectionProperties cut = cut_section(crack_, sin_nu_, x, h_c_, b);
-      return bending
-                 ? bending_integrand(contact, tau, sin_tau, cos_tau) *
-                       ((healthy.second_moment_m4 - cut.second_moment_m4) / cut.second_moment_m4)
-                 : axial_integrand(contact, tau, sin_tau, cos_tau) *
-                       ((healthy.area_m2 - cut.area_m2) / cut.area_m2);
-    };
+  // The healthy integrands times healthy / cracked - 1, the healthy section
+  // over the cracked one, as cracked_paper_tooth_compliances grows them.
+  const auto change = [&](double tau) {
+    const double sin_tau = std::sin(tau);
+    const double cos_tau = std::cos(tau);
+    const double x = rb * section_factor(theta_b, tau, sin_tau, cos_tau);
+    const SectionProperties healthy = healthy_section(x, b);
+    const SectionProperties cut = cut_section(crack_, sin_nu_, x, h_c_, b);
+    return PointChange{
+        bending_integrand(contact, tau, sin_tau, cos_tau) *
+            ((healthy.second_moment_m4 - cut.second_moment_m4) / cut.second_moment_m4),
+        axial_integrand(contact, tau, sin_tau, cos_tau) *
+            ((healthy.area_m2 - cut.area_m2) / cut.area_m2)};
   };
-  const QuadratureTolerance tolerance{model_.relative_tolerance, 0.0};
+  const PointChange sum =
+      integrate_both(model_.rule, change, ends, {model_.relative_tolerance, 0.0});
   const double scale = 1.0 / (youngs_modulus_pa_ * b);
   Compliances c;
-  c.of(Term::bending) = scale * integrate_pieces(model_.rule, change(true), ends, tolerance);
-  c.of(Term::axial) = scale * integrate_pieces(model_.rule, change(false), ends, tolerance);
+  c.of(Term::bending) = scale * sum.bending;
+  c.of(Term::axial) = scale * sum.axial;
   return c;
 }
 
@@ -609,29 +666,22 @@ Compliances PaperCrackChange::x_form_change(double contact_x_m) const {
     if (u > ends.back() && u < top) ends.push_back(u);
   }
   ends.push_back(top);
-  const auto sections = [&](double u) {
-    const double y = section_half_thickness(tooth_, l * u * u);
-    return std::pair{healthy_section(y, b), cut_section(crack_, sin_nu_, y, h_c_, b)};
+  const auto change = [&](double u) {
+    const double x = l * u * u;
+    const double y = section_half_thickness(tooth_, x);
+    const SectionProperties healthy = healthy_section(y, b);
+    const SectionProperties cut = cut_section(crack_, sin_nu_, y, h_c_, b);
+    const double moment = fb * (l - x) + axial_arm;
+    return PointChange{moment * moment / e *
+                           (1.0 / cut.second_moment_m4 - 1.0 / healthy.second_moment_m4) * 2.0 * l *
+                           u,
+                       fa * fa / e * (1.0 / cut.area_m2 - 1.0 / healthy.area_m2) * 2.0 * l * u};
   };
-  const QuadratureTolerance tolerance{model_.relative_tolerance, 0.0};
+  const PointChange sum =
+      integrate_both(model_.rule, change, ends, {model_.relative_tolerance, 0.0});
   Compliances c;
-  c.of(Term::bending) = integrate_pieces(
-      model_.rule,
-      [&](double u) {
-        const double x = l * u * u;
-        const auto [healthy, cut] = sections(u);
-        const double moment = fb * (l - x) + axial_arm;
-        return moment * moment / e * (1.0 / cut.second_moment_m4 - 1.0 / healthy.second_moment_m4) *
-               2.0 * l * u;
-      },
-      ends, tolerance);
-  c.of(Term::axial) = integrate_pieces(
-      model_.rule,
-      [&](double u) {
-        const auto [healthy, cut] = sections(u);
-        return fa * fa / e * (1.0 / cut.area_m2 - 1.0 / healthy.area_m2) * 2.0 * l * u;
-      },
-      ends, tolerance);
+  c.of(Term::bending) = sum.bending;
+  c.of(Term::axial) = sum.axial;
   return c;
 }
 
