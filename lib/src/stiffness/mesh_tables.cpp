@@ -28,6 +28,13 @@ class ClassTerms {
     if (state.kind == ToothKind::root_crack) crack_.emplace(pair, model, gear, state.crack);
   }
 
+  // The terms at x1 when they are known already (a healthy tooth at a node of
+  // the healthy table). The foundation's extrapolation flag is not kept there:
+  // false, as the tables read only the compliances.
+  void know(double x1_m, const Compliances& terms) {
+    terms_.emplace(x1_m, ToothTerms{terms, false});
+  }
+
   const ToothTerms& at(double x1_m) {
     const auto found = terms_.find(x1_m);
     if (found != terms_.end()) return found->second;
@@ -96,6 +103,12 @@ MeshTables::MeshTables(const GearPair& pair, const StiffnessModel& model,
       class_terms(pair_, model, Gear::one, pinion);
   const std::vector<std::unique_ptr<ClassTerms>> wheel_terms =
       class_terms(pair_, model, Gear::two, wheel);
+  // The healthy teeth at the healthy table's nodes, which are the fault
+  // tables' too where they have no breaks.
+  for (const NodeTeeth& node : healthy_->node_teeth()) {
+    pinion_terms.front()->know(node.x1_m, node.tooth1);
+    wheel_terms.front()->know(node.x1_m, node.tooth2);
+  }
   for (auto& line : tables_) line.assign(combinations, nullptr);
   for (std::size_t a = 0; a < pinion.size(); ++a) {
     for (std::size_t b = 0; b < wheel_states_; ++b) {
