@@ -104,10 +104,13 @@ MeshTables::MeshTables(const GearPair& pair, const StiffnessModel& model,
   const std::vector<std::unique_ptr<ClassTerms>> wheel_terms =
       class_terms(pair_, model, Gear::two, wheel);
   // The healthy teeth at the healthy table's nodes, which are the fault
-  // tables' too where they have no breaks.
-  for (const NodeTeeth& node : healthy_->node_teeth()) {
-    pinion_terms.front()->know(node.x1_m, node.tooth1);
-    wheel_terms.front()->know(node.x1_m, node.tooth2);
+  // tables' too where they have no breaks (and the same options); only from
+  // a table known to be of this pair and model.
+  if (healthy_->built_for(pair_, model)) {
+    for (const NodeTeeth& node : healthy_->node_teeth()) {
+      pinion_terms.front()->know(node.x1_m, node.tooth1);
+      wheel_terms.front()->know(node.x1_m, node.tooth2);
+    }
   }
   for (auto& line : tables_) line.assign(combinations, nullptr);
   for (std::size_t a = 0; a < pinion.size(); ++a) {
