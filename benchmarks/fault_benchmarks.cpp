@@ -5,9 +5,9 @@
 //
 // The tables of MeshTables are built one per distinct pair of tooth states;
 // given the healthy table, the five cracks cost five tables, so the target is
-// that the five cost no more than five healthy tables (a cracked tooth's
-// compliance integrals are the healthy ones with the crack's section, one
-// quadrature each). The runs are the paper's case 2 over one pinion
+// that the five cost no more than five healthy tables (a cracked tooth is the
+// healthy tooth, taken from the healthy table's nodes, plus what the crack
+// changes over the sections it cuts). The runs are the paper's case 2 over one pinion
 // revolution, the true period of the paper's pair with one cracked pinion
 // tooth, and over two; the cost per step is the difference of the two run
 // lengths over the difference of their steps, so that what a run does once

@@ -6,6 +6,7 @@
 // its extent, and the refusals of faults that do not fit.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -509,6 +510,110 @@ TEST_CASE("a spall or a chip across the whole face: no contact over its extent, 
         REQUIRE(coast != nullptr);
         CHECK(coast->stiffness(along(g, 0.6)) > 0.0);
       }
+    }
+  }
+}
+
+TEST_CASE(
+    "a cracked tooth's table, the healthy tooth plus the crack's change, equals the full "
+    "integration on every model and both lines") {
+  // MeshTables builds a cracked tooth as its healthy tooth plus the change
+  // the crack makes, integrated over the cut sections only
+  // (PaperCrackChange, RackCrackChange); the reference here is a table of
+  // the same grid fitted to mesh_stiffness with the tooth states, which
+  // integrates the cracked tooth whole (cracked_paper_tooth_compliances,
+  // cracked_tooth_compliances). Both routes ask each quadrature for 1e-12
+  // relative to its own integral, and the change is a part of the tooth's
+  // term, so the node values differ by a few 1e-12 at most; the two fits are
+  // the same linear map of the node values, which can grow a difference by
+  // its Lebesgue constant (below 3 at order 7): 1e-10 leaves a margin of ten.
+  const GearPair g = pair_with_bores();
+  const ContactSegment seg = contact_segment(g);
+  ToothState partial = crack_state(0.6e-3, pi / 3);
+  partial.crack.profile = CrackProfile::partial_width;
+  partial.crack.width_m = 0.6 * g.face_width_m;
+  struct Case {
+    StiffnessModelKind kind;
+    StiffnessRoute route;
+    int pieces;
+  };
+  // The rack-cut teeth's x-form solves for every section: on 3 pieces.
+  for (const Case c : {Case{StiffnessModelKind::yang_lin_1987, StiffnessRoute::tau_form, 64},
+                       Case{StiffnessModelKind::yang_lin_1987, StiffnessRoute::x_form, 64},
+                       Case{StiffnessModelKind::potential_energy, StiffnessRoute::tau_form, 64},
+                       Case{StiffnessModelKind::potential_energy, StiffnessRoute::x_form, 3},
+                       Case{StiffnessModelKind::ross_compatible, StiffnessRoute::tau_form, 64}}) {
+    StiffnessModel m = model_of(c.kind);
+    m.route = c.route;
+    CAPTURE(to_string(c.kind));
+    CAPTURE(static_cast<int>(c.route));
+    for (const ToothFault& f :
+         {fault(Gear::one, 1, crack_state(0.3e-3, pi / 4)),
+          fault(Gear::two, 2, crack_state(1.0e-3, pi / 4)), fault(Gear::one, 4, partial)}) {
+      CAPTURE(f.gear == Gear::one ? "pinion" : "wheel");
+      CAPTURE(f.state.crack.depth_m);
+      StiffnessTableOptions options;
+      options.pieces = c.pieces;
+      const MeshTables tables(g, m, {f}, nullptr, options);
+      const ToothState s1 = f.gear == Gear::one ? f.state : ToothState{};
+      const ToothState s2 = f.gear == Gear::two ? f.state : ToothState{};
+      for (const Region line : {Region::n1, Region::n2}) {
+        CAPTURE(line == Region::n1 ? "N1" : "N2");
+        // A pair of this line with the cracked tooth in it.
+        const StiffnessTable* fast = nullptr;
+        for (int k = -2 * g.teeth1 * g.teeth2; k <= 0 && fast == nullptr; ++k) {
+          const TeethInContact t = teeth_of_pair(g.teeth1, g.teeth2, line, k);
+          const bool cracked =
+              f.gear == Gear::one ? t.pinion_tooth == f.tooth : t.wheel_tooth == f.tooth;
+          if (cracked) fast = tables.table(line, k);
+        }
+        REQUIRE(fast != nullptr);
+        REQUIRE(fast != &tables.healthy());
+        const CrackFlank flank = line == Region::n1 ? CrackFlank::loaded : CrackFlank::unloaded;
+        const StiffnessTable full(
+            seg.start_m, seg.end_m,
+            [&](double x1_m) { return mesh_stiffness(g, x1_m, m, s1, s2, flank).included; },
+            options);
+        double largest_change = 0.0;
+        for (int i = 0; i <= 200; ++i) {
+          const double x = seg.start_m + (seg.end_m - seg.start_m) * i / 200.0;
+          CAPTURE(x);
+          CHECK(relative_difference(fast->stiffness(x), full.stiffness(x)) < 1e-10);
+          const Compliances a = fast->compliance(x);
+          const Compliances b = full.compliance(x);
+          for (Term t : {Term::bending, Term::shear, Term::axial}) {
+            if (b.of(t) != 0.0) CHECK(relative_difference(a.of(t), b.of(t)) < 1e-10);
+          }
+          largest_change =
+              std::max(largest_change,
+                       relative_difference(fast->stiffness(x), tables.healthy().stiffness(x)));
+        }
+        // The crack does change the table, by far more than the bound.
+        CHECK(largest_change > 1e-4);
+      }
+    }
+  }
+}
+
+TEST_CASE("a crack of depth 0 gives the table the full integration gives, to the bit") {
+  // Nothing is cut: the change is 0 without a quadrature, and either route
+  // computes the healthy tooth as it is.
+  const GearPair g = pair_with_bores();
+  const ContactSegment seg = contact_segment(g);
+  for (StiffnessModelKind kind :
+       {StiffnessModelKind::yang_lin_1987, StiffnessModelKind::potential_energy}) {
+    CAPTURE(to_string(kind));
+    const StiffnessModel m = model_of(kind);
+    const ToothState none = crack_state(0.0, pi / 4);
+    const MeshTables tables(g, m, {fault(Gear::one, 0, none)});
+    const StiffnessTable* fast = tables.table_of_teeth(0, 0, Region::n1);
+    REQUIRE(fast != nullptr);
+    const StiffnessTable full(seg.start_m, seg.end_m, [&](double x1_m) {
+      return mesh_stiffness(g, x1_m, m, none, ToothState{}).included;
+    });
+    for (int i = 0; i <= 50; ++i) {
+      const double x = seg.start_m + (seg.end_m - seg.start_m) * i / 50.0;
+      CHECK(fast->stiffness(x) == full.stiffness(x));
     }
   }
 }

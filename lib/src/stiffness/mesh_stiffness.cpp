@@ -14,6 +14,7 @@
 #include "gearimpact/stiffness/tau_form.hpp"
 #include "gearimpact/stiffness/tooth_state.hpp"
 #include "gearimpact/stiffness/x_form.hpp"
+#include "pair_crack_change.hpp"
 
 namespace gearimpact {
 
@@ -124,13 +125,17 @@ ToothCompliances rack_tooth(const RackGearGeometry& gear, Gear which, const Toot
   return tooth_compliances(gear, which, contact, width_m, model);
 }
 
-// potential_energy and ross_compatible: the rack-cut teeth of mesh_models.hpp;
-// a faulted tooth (state1 or state2 not null) by its own route, Hertz over
-// contact_length_m.
-MeshStiffness rack_model_stiffness(const GearPair& pair, double x1_m, const StiffnessModel& model,
-                                   const ToothState* state1 = nullptr,
-                                   const ToothState* state2 = nullptr,
-                                   double contact_length_m = 0.0) {
+// The beam terms come out of one integration together; the switches act in
+// combine(). Hertz is (4) here, as for the paper's model.
+StiffnessModel rack_tooth_model(const StiffnessModel& model) {
+  StiffnessModel rack_model = model;
+  for (Term term : {Term::bending, Term::shear, Term::axial}) rack_model.terms.set(term, true);
+  rack_model.terms.set(Term::hertz, false);
+  return rack_model;
+}
+
+// InputError for X1 off the contact segment.
+void check_on_segment(const GearPair& pair, double x1_m, const StiffnessModel& model) {
   const ContactSegment segment = contact_segment(pair);
   if (!(x1_m >= segment.start_m && x1_m <= segment.end_m)) {
     throw InputError("contact position X1", x1_m,
@@ -138,43 +143,47 @@ MeshStiffness rack_model_stiffness(const GearPair& pair, double x1_m, const Stif
                          "] m, the contact segment: the " + to_string(model.kind) +
                          " model loads the involutes only");
   }
+}
+
+// The rack pair's s for X1 on the contact segment. The path's ends are
+// computed here and in rack_generation.cpp by different roundings of the same
+// lengths: an end of the contact segment may sit an ulp outside the rack
+// pair's path.
+double rack_position(const RackGearPairGeometry& geometry, double x1_m) {
+  return std::clamp(x1_m, geometry.start_of_active_profile_m, geometry.end_of_active_profile_m);
+}
+
+// potential_energy and ross_compatible: the rack-cut teeth of mesh_models.hpp.
+MeshStiffness rack_model_stiffness(const GearPair& pair, double x1_m, const StiffnessModel& model) {
+  check_on_segment(pair, x1_m, model);
   const RackGearPairGeometry geometry = rack_gear_pair_geometry(pair);
-  // The beam terms come out of one integration together; the switches act in
-  // combine(). Hertz is (4) here, as for the paper's model.
-  StiffnessModel rack_model = model;
-  for (Term term : {Term::bending, Term::shear, Term::axial}) rack_model.terms.set(term, true);
-  rack_model.terms.set(Term::hertz, false);
-  // The path's ends are computed here and in rack_generation.cpp by
-  // different roundings of the same lengths: an end of the contact segment
-  // may sit an ulp outside the rack pair's path.
-  const double s_m =
-      std::clamp(x1_m, geometry.start_of_active_profile_m, geometry.end_of_active_profile_m);
+  const double s_m = rack_position(geometry, x1_m);
+  const PairStiffness rack = pair_stiffness(geometry, rack_tooth_model(model), s_m);
   MeshStiffness k{};
-  if (state1 == nullptr && state2 == nullptr) {
-    const PairStiffness rack = pair_stiffness(geometry, rack_model, s_m);
-    k.tooth1 = tooth_terms(rack.gear1);
-    k.tooth2 = tooth_terms(rack.gear2);
-    k.foundation_extrapolated =
-        rack.gear1.foundation_extrapolated || rack.gear2.foundation_extrapolated;
-  } else {
-    // pair_stiffness tooth by tooth, a faulted tooth by its own route.
-    validate(rack_model, geometry);
-    const PairContact contact = pair_contact(geometry, s_m);
-    const double width = geometry.contact_width_m;
-    const ToothCompliances c1 =
-        rack_tooth(geometry.gear1, Gear::one, contact.gear1, width, rack_model, state1);
-    const ToothCompliances c2 =
-        rack_tooth(geometry.gear2, Gear::two, contact.gear2, width, rack_model, state2);
-    k.tooth1 = tooth_terms(c1);
-    k.tooth2 = tooth_terms(c2);
-    k.foundation_extrapolated = c1.foundation_extrapolated || c2.foundation_extrapolated;
-  }
-  if (state1 == nullptr && state2 == nullptr) {
-    combine(pair, model, k);
-  } else {
-    combine(pair, model, k, contact_length_m);
-  }
+  k.tooth1 = tooth_terms(rack.gear1);
+  k.tooth2 = tooth_terms(rack.gear2);
+  k.foundation_extrapolated =
+      rack.gear1.foundation_extrapolated || rack.gear2.foundation_extrapolated;
+  combine(pair, model, k);
   return k;
+}
+
+// The rack-cut tooth of `gear` in `state` by its own route: pair_stiffness
+// tooth by tooth.
+ToothTerms rack_faulted_tooth(const GearPair& pair, Gear gear, double x1_m,
+                              const StiffnessModel& model, const ToothState* state) {
+  check_on_segment(pair, x1_m, model);
+  const RackGearPairGeometry geometry = rack_gear_pair_geometry(pair);
+  const double s_m = rack_position(geometry, x1_m);
+  const StiffnessModel rack_model = rack_tooth_model(model);
+  validate(rack_model, geometry);
+  const PairContact contact = pair_contact(geometry, s_m);
+  const ToothCompliances c = gear == Gear::one
+                                 ? rack_tooth(geometry.gear1, Gear::one, contact.gear1,
+                                              geometry.contact_width_m, rack_model, state)
+                                 : rack_tooth(geometry.gear2, Gear::two, contact.gear2,
+                                              geometry.contact_width_m, rack_model, state);
+  return {tooth_terms(c), c.foundation_extrapolated};
 }
 
 // The paper's tooth of `gear` at `contact_x_m` from its base-circle tangent
@@ -207,9 +216,8 @@ std::vector<FoundationExtrapolation> foundation_extrapolations(const GearPair& p
 
 MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessModel& model) {
   validate_terms(model);
-  if (model.kind != StiffnessModelKind::yang_lin_1987) {
+  if (model.kind != StiffnessModelKind::yang_lin_1987)
     return rack_model_stiffness(pair, x1_m, model);
-  }
   const double lp = line_of_action_length(pair);
   if (!std::isfinite(x1_m) || x1_m <= 0.0 || x1_m >= lp) {
     throw InputError(
@@ -232,34 +240,90 @@ MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessM
   return mesh_stiffness(pair, x1_m, model, tooth1, tooth2, CrackFlank::loaded);
 }
 
-MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessModel& model,
-                             const ToothState& tooth1, const ToothState& tooth2,
-                             CrackFlank contact_flank) {
-  check_loadable(tooth1);
-  check_loadable(tooth2);
-  const ToothState* state1 = tooth1.kind != ToothKind::healthy ? &tooth1 : nullptr;
-  const ToothState* state2 = tooth2.kind != ToothKind::healthy ? &tooth2 : nullptr;
-  if (state1 == nullptr && state2 == nullptr) return mesh_stiffness(pair, x1_m, model);
+ToothTerms faulted_pair_tooth_terms(const GearPair& pair, Gear gear, double x1_m,
+                                    const StiffnessModel& model, const ToothState& state) {
+  check_loadable(state);
   validate_terms(model);
+  const ToothState* faulted = state.kind != ToothKind::healthy ? &state : nullptr;
+  if (model.kind != StiffnessModelKind::yang_lin_1987) {
+    return rack_faulted_tooth(pair, gear, x1_m, model, faulted);
+  }
+  const double lp = line_of_action_length(pair);
+  if (!std::isfinite(x1_m) || x1_m <= 0.0 || x1_m >= lp) {
+    throw InputError(
+        "contact position X1", x1_m,
+        "(0, lp) with lp = " + format_number(lp) + " m: between the tangent points C1 and C2");
+  }
+  // (25),(26): gear 2 sees the contact at lp - X1 from C2.
+  return {paper_tooth_terms(pair, gear, gear == Gear::one ? x1_m : lp - x1_m, model, state), false};
+}
+
+MeshStiffness mesh_stiffness_of_teeth(const GearPair& pair, double x1_m,
+                                      const StiffnessModel& model, const ToothState& tooth1,
+                                      const ToothState& tooth2, CrackFlank contact_flank,
+                                      const ToothTerms& terms1, const ToothTerms& terms2) {
   const double lp = line_of_action_length(pair);
   // (25),(26): gear 2 sees the contact at lp - X1 from C2.
   const double length = std::min(contact_length(pair, Gear::one, tooth1, x1_m, contact_flank),
                                  contact_length(pair, Gear::two, tooth2, lp - x1_m, contact_flank));
   // A fault across the whole face leaves no contact here: the pair carries nothing.
   if (!(length > 0.0)) return MeshStiffness{};
-  if (model.kind != StiffnessModelKind::yang_lin_1987) {
-    return rack_model_stiffness(pair, x1_m, model, state1, state2, length);
-  }
-  if (!std::isfinite(x1_m) || x1_m <= 0.0 || x1_m >= lp) {
-    throw InputError(
-        "contact position X1", x1_m,
-        "(0, lp) with lp = " + format_number(lp) + " m: between the tangent points C1 and C2");
-  }
   MeshStiffness k{};
-  k.tooth1 = paper_tooth_terms(pair, Gear::one, x1_m, model, tooth1);
-  k.tooth2 = paper_tooth_terms(pair, Gear::two, lp - x1_m, model, tooth2);
+  k.tooth1 = terms1.terms;
+  k.tooth2 = terms2.terms;
+  k.foundation_extrapolated = terms1.foundation_extrapolated || terms2.foundation_extrapolated;
   combine(pair, model, k, length);
   return k;
+}
+
+MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessModel& model,
+                             const ToothState& tooth1, const ToothState& tooth2,
+                             CrackFlank contact_flank) {
+  check_loadable(tooth1);
+  check_loadable(tooth2);
+  if (tooth1.kind == ToothKind::healthy && tooth2.kind == ToothKind::healthy) {
+    return mesh_stiffness(pair, x1_m, model);
+  }
+  return mesh_stiffness_of_teeth(pair, x1_m, model, tooth1, tooth2, contact_flank,
+                                 faulted_pair_tooth_terms(pair, Gear::one, x1_m, model, tooth1),
+                                 faulted_pair_tooth_terms(pair, Gear::two, x1_m, model, tooth2));
+}
+
+PairCrackChange::PairCrackChange(const GearPair& pair, const StiffnessModel& model, Gear gear,
+                                 const RootCrack& crack)
+    : pair_(pair), model_(model), gear_(gear) {
+  validate_terms(model);
+  if (model.kind == StiffnessModelKind::yang_lin_1987) {
+    const double e = gear == Gear::one ? pair.youngs_modulus_pa : youngs_modulus(pair, Gear::two);
+    paper_.emplace(tooth_of(pair, gear), e, pair.face_width_m, model, crack);
+    return;
+  }
+  geometry_ = std::make_shared<const RackGearPairGeometry>(rack_gear_pair_geometry(pair));
+  const StiffnessModel rack_model = rack_tooth_model(model);
+  validate(rack_model, *geometry_);
+  rack_.emplace(gear == Gear::one ? geometry_->gear1 : geometry_->gear2, geometry_->contact_width_m,
+                rack_model, crack);
+}
+
+Compliances PairCrackChange::at(double x1_m) const {
+  if (paper_) {
+    const double lp = line_of_action_length(pair_);
+    if (!std::isfinite(x1_m) || x1_m <= 0.0 || x1_m >= lp) {
+      throw InputError(
+          "contact position X1", x1_m,
+          "(0, lp) with lp = " + format_number(lp) + " m: between the tangent points C1 and C2");
+    }
+    // (25),(26): gear 2 sees the contact at lp - X1 from C2.
+    return paper_->at(gear_ == Gear::one ? x1_m : lp - x1_m);
+  }
+  check_on_segment(pair_, x1_m, model_);
+  const PairContact contact = pair_contact(*geometry_, rack_position(*geometry_, x1_m));
+  const BeamCompliance beam = rack_->at(gear_ == Gear::one ? contact.gear1 : contact.gear2);
+  Compliances c;
+  c.of(Term::bending) = beam.bending_m_per_n;
+  c.of(Term::shear) = beam.shear_m_per_n;
+  c.of(Term::axial) = beam.axial_m_per_n;
+  return c;
 }
 
 }  // namespace gearimpact

@@ -1,12 +1,79 @@
 #include "gearimpact/stiffness/mesh_tables.hpp"
 
 #include <cmath>
+#include <map>
+#include <memory>
 #include <numeric>
+#include <optional>
 #include <utility>
 
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
+#include "pair_crack_change.hpp"
 
 namespace gearimpact {
+
+namespace {
+
+// The terms of the teeth of one class of one gear at the positions the
+// tables ask for, each computed once: the tables meet the same teeth at the
+// same Chebyshev nodes (a healthy wheel tooth beside every cracked pinion
+// tooth). A cracked tooth is its gear's healthy tooth plus what the crack
+// changes (PairCrackChange), integrated over the cut sections only; every
+// other tooth is faulted_pair_tooth_terms, as mesh_stiffness computes it.
+class ClassTerms {
+ public:
+  ClassTerms(const GearPair& pair, const StiffnessModel& model, Gear gear, const ToothState& state,
+             ClassTerms* healthy)
+      : pair_(pair), model_(model), gear_(gear), state_(state), healthy_(healthy) {
+    if (state.kind == ToothKind::root_crack) crack_.emplace(pair, model, gear, state.crack);
+  }
+
+  // The terms at x1 when they are known already (a healthy tooth at a node of
+  // the healthy table). The foundation's extrapolation flag is not kept there:
+  // false, as the tables read only the compliances.
+  void know(double x1_m, const Compliances& terms) {
+    terms_.emplace(x1_m, ToothTerms{terms, false});
+  }
+
+  const ToothTerms& at(double x1_m) {
+    const auto found = terms_.find(x1_m);
+    if (found != terms_.end()) return found->second;
+    ToothTerms t;
+    if (crack_) {
+      t = healthy_->at(x1_m);
+      const Compliances change = crack_->at(x1_m);
+      for (Term term : {Term::bending, Term::shear, Term::axial}) {
+        t.terms.of(term) += change.of(term);
+      }
+    } else {
+      t = faulted_pair_tooth_terms(pair_, gear_, x1_m, model_, state_);
+    }
+    return terms_.emplace(x1_m, t).first->second;
+  }
+
+ private:
+  const GearPair& pair_;
+  const StiffnessModel& model_;
+  Gear gear_;
+  ToothState state_;
+  ClassTerms* healthy_;
+  std::optional<PairCrackChange> crack_;
+  std::map<double, ToothTerms> terms_;
+};
+
+// One ClassTerms per state of `gear`, the healthy one (state 0) first.
+std::vector<std::unique_ptr<ClassTerms>> class_terms(const GearPair& pair,
+                                                     const StiffnessModel& model, Gear gear,
+                                                     const std::vector<ToothState>& states) {
+  std::vector<std::unique_ptr<ClassTerms>> terms;
+  for (const ToothState& state : states) {
+    terms.push_back(std::make_unique<ClassTerms>(pair, model, gear, state,
+                                                 terms.empty() ? nullptr : terms.front().get()));
+  }
+  return terms;
+}
+
+}  // namespace
 
 MeshTables::MeshTables(const GearPair& pair, const StiffnessModel& model,
                        std::vector<ToothFault> faults,
@@ -32,6 +99,19 @@ MeshTables::MeshTables(const GearPair& pair, const StiffnessModel& model,
     meets[1][combination(teeth_of_pair(pair_, Region::n2, n))] = true;
   }
   const ContactSegment segment = contact_segment(pair_);
+  const std::vector<std::unique_ptr<ClassTerms>> pinion_terms =
+      class_terms(pair_, model, Gear::one, pinion);
+  const std::vector<std::unique_ptr<ClassTerms>> wheel_terms =
+      class_terms(pair_, model, Gear::two, wheel);
+  // The healthy teeth at the healthy table's nodes, which are the fault
+  // tables' too where they have no breaks (and the same options); only from
+  // a table known to be of this pair and model.
+  if (healthy_->built_for(pair_, model)) {
+    for (const NodeTeeth& node : healthy_->node_teeth()) {
+      pinion_terms.front()->know(node.x1_m, node.tooth1);
+      wheel_terms.front()->know(node.x1_m, node.tooth2);
+    }
+  }
   for (auto& line : tables_) line.assign(combinations, nullptr);
   for (std::size_t a = 0; a < pinion.size(); ++a) {
     for (std::size_t b = 0; b < wheel_states_; ++b) {
@@ -57,8 +137,12 @@ MeshTables::MeshTables(const GearPair& pair, const StiffnessModel& model,
           continue;
         }
         const CrackFlank flank = line == 0 ? CrackFlank::loaded : CrackFlank::unloaded;
+        ClassTerms& t1 = *pinion_terms[a];
+        ClassTerms& t2 = *wheel_terms[b];
         const ComplianceFunction compliance = [&](double x1_m) {
-          return mesh_stiffness(pair_, x1_m, model, s1, s2, flank).included;
+          return mesh_stiffness_of_teeth(pair_, x1_m, model, s1, s2, flank, t1.at(x1_m),
+                                         t2.at(x1_m))
+              .included;
         };
         tables_[line][c] = breaks.empty()
                                ? std::make_shared<const StiffnessTable>(

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
@@ -147,43 +149,56 @@ SectionProperties healthy_section(double x, double b) {
   return {2.0 * x * b, 2.0 / 3.0 * x * x * x * b};
 }
 
-SectionProperties cracked_section(const RootCrack& crack, double x, double h_c, double b) {
-  const double s = std::sin(crack.angle_rad);
-  const double delta = std::max(0.0, h_c - x);
-  // Nothing reaches past the gap: the healthy section.
-  if (!(s * largest_crack_depth(crack) > delta)) return healthy_section(x, b);
-  switch (crack.profile) {
-    case CrackProfile::uniform: {
-      const double t = slice_height(x, s * crack.depth_m - delta);
-      return {b * t, b * t * t * t / 12.0};
-    }
-    case CrackProfile::partial_width: {
-      // z = W_c (1 - w^2), q = q0 w, dz = 2 W_c w dw; cut where s q0 w > delta.
-      const double a = s * crack.depth_m;
-      const double w0 = delta / a;
-      const double cut_width = crack.width_m * (1.0 - w0 * w0);
-      return integrate_slices(
-          x, b - cut_width, [&](double w) { return a * w - delta; },
-          [&](double w) { return 2.0 * crack.width_m * w; }, w0, 1.0);
-    }
-    case CrackProfile::full_width: {
-      const double q0 = crack.depth_m;
-      const double q2 = crack.end_depth_m;
-      if (q0 == q2) {
-        const double t = slice_height(x, s * q0 - delta);
-        return {b * t, b * t * t * t / 12.0};
-      }
-      // z = (v^2 - q0^2) b / (q2^2 - q0^2), q = v, |dz| = 2 v b / |q2^2 - q0^2| dv.
-      const double span = std::abs(q2 * q2 - q0 * q0);
-      const double v_low = std::max(delta / s, std::min(q0, q2));
-      const double v_high = std::max(q0, q2);
-      const double cut_width = b * (v_high * v_high - v_low * v_low) / span;
-      return integrate_slices(
-          x, b - cut_width, [&](double v) { return s * v - delta; },
-          [&](double v) { return 2.0 * v * b / span; }, v_low, v_high);
-    }
+namespace {
+
+// The partial- and full-width profiles of cut_section, where the cut
+// reaches past the gap delta.
+SectionProperties cut_across_width(const RootCrack& crack, double s, double x, double delta,
+                                   double b) {
+  if (crack.profile == CrackProfile::partial_width) {
+    // z = W_c (1 - w^2), q = q0 w, dz = 2 W_c w dw; cut where s q0 w > delta.
+    const double a = s * crack.depth_m;
+    const double w0 = delta / a;
+    const double cut_width = crack.width_m * (1.0 - w0 * w0);
+    return integrate_slices(
+        x, b - cut_width, [&](double w) { return a * w - delta; },
+        [&](double w) { return 2.0 * crack.width_m * w; }, w0, 1.0);
   }
-  return healthy_section(x, b);
+  const double q0 = crack.depth_m;
+  const double q2 = crack.end_depth_m;
+  if (q0 == q2) {
+    const double t = slice_height(x, s * q0 - delta);
+    return {b * t, b * t * t * t / 12.0};
+  }
+  // z = (v^2 - q0^2) b / (q2^2 - q0^2), q = v, |dz| = 2 v b / |q2^2 - q0^2| dv.
+  const double span = std::abs(q2 * q2 - q0 * q0);
+  const double v_low = std::max(delta / s, std::min(q0, q2));
+  const double v_high = std::max(q0, q2);
+  const double cut_width = b * (v_high * v_high - v_low * v_low) / span;
+  return integrate_slices(
+      x, b - cut_width, [&](double v) { return s * v - delta; },
+      [&](double v) { return 2.0 * v * b / span; }, v_low, v_high);
+}
+
+// cracked_section with s = sin nu given: the sections of one crack at many
+// heights compute the sine once, and the uniform depth's closed form stays
+// small enough to inline into their integrands.
+inline SectionProperties cut_section(const RootCrack& crack, double s, double x, double h_c,
+                                     double b) {
+  const double delta = std::max(0.0, h_c - x);
+  const double largest =
+      crack.profile == CrackProfile::uniform ? crack.depth_m : largest_crack_depth(crack);
+  // Nothing reaches past the gap: the healthy section.
+  if (!(s * largest > delta)) return healthy_section(x, b);
+  if (crack.profile != CrackProfile::uniform) return cut_across_width(crack, s, x, delta, b);
+  const double t = slice_height(x, s * crack.depth_m - delta);
+  return {b * t, b * t * t * t / 12.0};
+}
+
+}  // namespace
+
+SectionProperties cracked_section(const RootCrack& crack, double x, double h_c, double b) {
+  return cut_section(crack, std::sin(crack.angle_rad), x, h_c, b);
 }
 
 SectionProperties cracked_section_over_width(const std::function<double(double)>& depth_m_at_z,
@@ -483,6 +498,237 @@ Compliances cracked_paper_tooth_compliances(const InvoluteTooth& tooth, double c
       },
       ends, tolerance);
   return c;
+}
+
+namespace {
+
+// The largest cut, q_max sin nu.
+double largest_cut(const RootCrack& crack, double sin_nu) {
+  return sin_nu * largest_crack_depth(crack);
+}
+
+// Whether the section of half thickness x (at or above the start) is cut.
+bool is_cut(const RootCrack& crack, double sin_nu, double x, double h_c) {
+  return largest_cut(crack, sin_nu) > std::max(0.0, h_c - x);
+}
+
+// The bending and the axial change at one point.
+struct PointChange {
+  double bending;
+  double axial;
+};
+
+// The integrals over the pieces between `ends` of both parts of f, by one
+// rule: the axial integral of a piece asks for the points its bending integral
+// did, in the same order (the same rule on the same interval), so each
+// point's section, the costly part of f, is found once. A point it asks for
+// beyond them is evaluated.
+template <class PointChangeAt>
+PointChange integrate_both(QuadratureRule rule, const PointChangeAt& f,
+                           const std::vector<double>& ends, QuadratureTolerance tolerance) {
+  // What the two passes share, captured by one reference so that the
+  // integrands stay small enough for std::function to hold without
+  // allocating.
+  struct Points {
+    const PointChangeAt& f;
+    std::vector<std::pair<double, double>> axial_at;
+    std::size_t next = 0;
+  } points{f, {}, 0};
+  points.axial_at.reserve(61);  // the 61-point rules' first pass
+  PointChange sum{0.0, 0.0};
+  for (std::size_t i = 1; i < ends.size(); ++i) {
+    points.axial_at.clear();
+    sum.bending += integrate(
+                       rule,
+                       [&points](double p) {
+                         const PointChange c = points.f(p);
+                         points.axial_at.emplace_back(p, c.axial);
+                         return c.bending;
+                       },
+                       ends[i - 1], ends[i], tolerance)
+                       .value;
+    points.next = 0;
+    sum.axial += integrate(
+                     rule,
+                     [&points](double p) {
+                       std::vector<std::pair<double, double>>& at = points.axial_at;
+                       if (points.next < at.size() && at[points.next].first == p) {
+                         return at[points.next++].second;
+                       }
+                       points.next = at.size();
+                       return points.f(p).axial;
+                     },
+                     ends[i - 1], ends[i], tolerance)
+                     .value;
+  }
+  return sum;
+}
+
+}  // namespace
+
+PaperCrackChange::PaperCrackChange(const InvoluteTooth& tooth, double youngs_modulus_pa,
+                                   double face_width_m, const StiffnessModel& model,
+                                   const RootCrack& crack)
+    : tooth_(tooth),
+      youngs_modulus_pa_(youngs_modulus_pa),
+      face_width_m_(face_width_m),
+      model_(model),
+      crack_(crack),
+      sin_nu_(std::sin(crack.angle_rad)),
+      h_c_(tooth.base_radius_m * std::sin(tooth.half_tooth_angle_rad)) {
+  check_paper_crack(tooth, face_width_m, crack);
+  if (!(largest_cut(crack, sin_nu_) > 0.0)) return;
+  const double rb = tooth.base_radius_m;
+  const double theta_b = tooth.half_tooth_angle_rad;
+  // x(tau) = Rb [sin tau + (theta_b - tau) cos tau] has the slope
+  // -Rb (theta_b - tau) sin tau: it rises on (-pi/2, 0) from -Rb to Rb theta_b
+  // and falls on (0, theta_b] to h_c = Rb sin theta_b. A level in (0, h_c]
+  // (h_c - q sin nu > 0 is checked) is met once on (-pi/2, 0), and every
+  // section on (0, theta_b] is wider than h_c, so cut.
+  for (double level :
+       {h_c_ - largest_cut(crack, sin_nu_), h_c_, h_c_ - sin_nu_ * smallest_crack_depth(crack)}) {
+    tau_ends_.push_back(solve_on(
+        [&](double tau) { return rb * (std::sin(tau) + (theta_b - tau) * std::cos(tau)) - level; },
+        -0.5 * pi, 0.0));
+  }
+  std::sort(tau_ends_.begin(), tau_ends_.end());
+  tau_ends_.erase(std::unique(tau_ends_.begin(), tau_ends_.end()), tau_ends_.end());
+}
+
+Compliances PaperCrackChange::at(double contact_x_m) const {
+  if (tau_ends_.empty()) return {};
+  return model_.route == StiffnessRoute::tau_form ? tau_form_change(contact_x_m)
+                                                  : x_form_change(contact_x_m);
+}
+
+Compliances PaperCrackChange::tau_form_change(double contact_x_m) const {
+  const double rb = tooth_.base_radius_m;
+  const double theta_b = tooth_.half_tooth_angle_rad;
+  const double b = face_width_m_;
+  const double phi = contact_x_m / rb - theta_b;
+  // The cut sections from the load or the start of the cut, whichever is
+  // lower on the tooth, to the base circle (tau = theta_b).
+  std::vector<double> ends{std::max(-phi, tau_ends_.front())};
+  if (!(ends.front() < theta_b)) return {};
+  for (double tau : tau_ends_) {
+    if (tau > ends.front() && tau < theta_b) ends.push_back(tau);
+  }
+  ends.push_back(theta_b);
+  const TauFormContact contact = tau_form_contact(theta_b, phi, model_.moment_sign);
+  // The healthy integrands times healthy / cracked - 1, the healthy section
+  // over the cracked one, as cracked_paper_tooth_compliances grows them.
+  const auto change = [&](double tau) {
+    const double sin_tau = std::sin(tau);
+    const double cos_tau = std::cos(tau);
+    const double x = rb * section_factor(theta_b, tau, sin_tau, cos_tau);
+    const SectionProperties healthy = healthy_section(x, b);
+    const SectionProperties cut = cut_section(crack_, sin_nu_, x, h_c_, b);
+    return PointChange{
+        bending_integrand(contact, tau, sin_tau, cos_tau) *
+            ((healthy.second_moment_m4 - cut.second_moment_m4) / cut.second_moment_m4),
+        axial_integrand(contact, tau, sin_tau, cos_tau) *
+            ((healthy.area_m2 - cut.area_m2) / cut.area_m2)};
+  };
+  const PointChange sum =
+      integrate_both(model_.rule, change, ends, {model_.relative_tolerance, 0.0});
+  const double scale = 1.0 / (youngs_modulus_pa_ * b);
+  Compliances c;
+  c.of(Term::bending) = scale * sum.bending;
+  c.of(Term::axial) = scale * sum.axial;
+  return c;
+}
+
+Compliances PaperCrackChange::x_form_change(double contact_x_m) const {
+  const double rb = tooth_.base_radius_m;
+  const double theta_b = tooth_.half_tooth_angle_rad;
+  const double b = face_width_m_;
+  const double e = youngs_modulus_pa_;
+  // As x_form_compliances: x = l u^2 along the centre line from the base
+  // circle. The section at tau lies at the height
+  // Rb [cos tau + (tau - theta_b) sin tau - cos theta_b], which falls as tau
+  // rises: the cut runs from the base circle (u = 0) to the height of the
+  // first of tau_ends_.
+  const PolarContact contact = polar_contact(tooth_, contact_x_m);
+  const double l = contact.arm.height_l_m;
+  const double h = contact.arm.offset_h_m;
+  const double fb = std::cos(contact.phi_rad);
+  const double fa = std::sin(contact.phi_rad);
+  const double axial_arm = model_.moment_sign == AxialMomentSign::physical ? -fa * h : fa * h;
+  const auto u_at = [&](double tau) {
+    return std::sqrt(rb * (std::cos(tau) + (tau - theta_b) * std::sin(tau) - std::cos(theta_b)) /
+                     l);
+  };
+  // Up to the load when the cut reaches past it.
+  const double top = std::min(1.0, u_at(tau_ends_.front()));
+  std::vector<double> ends{0.0};
+  for (std::size_t k = tau_ends_.size() - 1; k > 0; --k) {
+    const double u = u_at(tau_ends_[k]);
+    if (u > ends.back() && u < top) ends.push_back(u);
+  }
+  ends.push_back(top);
+  const auto change = [&](double u) {
+    const double x = l * u * u;
+    const double y = section_half_thickness(tooth_, x);
+    const SectionProperties healthy = healthy_section(y, b);
+    const SectionProperties cut = cut_section(crack_, sin_nu_, y, h_c_, b);
+    const double moment = fb * (l - x) + axial_arm;
+    return PointChange{moment * moment / e *
+                           (1.0 / cut.second_moment_m4 - 1.0 / healthy.second_moment_m4) * 2.0 * l *
+                           u,
+                       fa * fa / e * (1.0 / cut.area_m2 - 1.0 / healthy.area_m2) * 2.0 * l * u};
+  };
+  const PointChange sum =
+      integrate_both(model_.rule, change, ends, {model_.relative_tolerance, 0.0});
+  Compliances c;
+  c.of(Term::bending) = sum.bending;
+  c.of(Term::axial) = sum.axial;
+  return c;
+}
+
+RackCrackChange::RackCrackChange(const RackGearGeometry& gear, double contact_width_m,
+                                 const StiffnessModel& model, const RootCrack& crack)
+    : gear_(&gear),
+      contact_width_m_(contact_width_m),
+      model_(model),
+      placed_(place_crack(crack, gear, model.kind, contact_width_m)),
+      sin_nu_(std::sin(crack.angle_rad)) {
+  if (!(largest_cut(crack, sin_nu_) > 0.0)) return;
+  const double r_s = placed_.start_radius_m;
+  const double h_c = placed_.start_half_thickness_m;
+  heights_.push_back(r_s);
+  // The levels of cracked_beam_compliance, over the whole flank.
+  for (double level :
+       {h_c, h_c - largest_cut(crack, sin_nu_), h_c - sin_nu_ * smallest_crack_depth(crack)}) {
+    for (double y : heights_where_half_thickness_is(whole_flank(gear), level, r_s)) {
+      heights_.push_back(y);
+    }
+  }
+}
+
+BeamCompliance RackCrackChange::at(const ToothContact& contact) const {
+  if (heights_.empty()) return {0.0, 0.0, 0.0};
+  const double r_s = placed_.start_radius_m;
+  const double h_c = placed_.start_half_thickness_m;
+  // The pieces between r_s and the kinks up to the contact; the cut ones
+  // are those whose middle is.
+  std::vector<FlankPiece> cut_pieces;
+  for (FlankPiece& piece : split_at_heights(flank_to_contact(*gear_, contact.tau_rad), heights_)) {
+    const ProfilePoint middle = piece.point(0.5 * (piece.parameter_root + piece.parameter_top));
+    if (middle.y_m >= r_s && is_cut(placed_.crack, sin_nu_, middle.x_m, h_c)) {
+      cut_pieces.push_back(std::move(piece));
+    }
+  }
+  const RootCrack& crack = placed_.crack;
+  const double b = contact_width_m_;
+  const double s = sin_nu_;
+  const BeamSections sections = [&crack, s, h_c, b](double x, double) {
+    const SectionProperties p = cut_section(crack, s, x, h_c, b);
+    return BeamSection{p.area_m2, p.second_moment_m4};
+  };
+  const double e = gear_->youngs_modulus_pa;
+  return tooth_beam_compliance_change(cut_pieces, {contact.x_m, contact.y_m, contact.tau_rad},
+                                      {e, e / (2.0 * (1.0 + gear_->poisson_ratio)), b},
+                                      model_.route, model_.relative_tolerance, sections);
 }
 
 }  // namespace gearimpact

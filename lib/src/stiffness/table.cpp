@@ -229,11 +229,18 @@ std::vector<double> StiffnessTable::breaks_m() const {
 }
 
 StiffnessTable::StiffnessTable(const GearPair& pair, const StiffnessModel& model,
-                               StiffnessTableOptions options)
-    : StiffnessTable(
-          contact_segment(pair).start_m, contact_segment(pair).end_m,
-          [&pair, &model](double x1_m) { return mesh_stiffness(pair, x1_m, model).included; },
-          options) {
+                               StiffnessTableOptions options) {
+  const ContactSegment segment = contact_segment(pair);
+  set_grid(segment.start_m, segment.end_m, options);
+  fit_part(
+      start_, end_,
+      [&](double x1_m) {
+        const MeshStiffness k = mesh_stiffness(pair, x1_m, model);
+        node_teeth_.push_back({x1_m, k.tooth1, k.tooth2});
+        return k.included;
+      },
+      false);
+  drop_zero_terms();
   pair_ = pair;
   model_ = model;
 }

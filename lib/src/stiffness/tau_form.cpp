@@ -1,38 +1,61 @@
 #include "gearimpact/stiffness/tau_form.hpp"
 
 #include <cmath>
+#include <optional>
 
 namespace gearimpact {
 
 namespace {
 
-// sin tau + (theta_b - tau) cos tau: the half thickness of the section at
-// tau over Rb, from the involute r(tau) of (23),(24).
-double section_factor(double theta_b, double tau) {
-  return std::sin(tau) + (theta_b - tau) * std::cos(tau);
+// 2 h sin phi / Rb with h from (11).
+std::optional<double> flipped_arm(double theta_b, double phi, double cos_phi, double sin_phi,
+                                  AxialMomentSign sign) {
+  if (sign != AxialMomentSign::flipped) return std::nullopt;
+  return 2.0 * sin_phi * ((theta_b + phi) * cos_phi - sin_phi);
 }
 
 }  // namespace
 
-double bending_integrand(double theta_b, double phi, double tau, AxialMomentSign sign) {
+TauFormContact tau_form_contact(double theta_b, double phi, AxialMomentSign sign) {
   const double cos_phi = std::cos(phi);
+  const double sin_phi = std::sin(phi);
+  return {theta_b, cos_phi, sin_phi, flipped_arm(theta_b, phi, cos_phi, sin_phi, sign)};
+}
+
+double bending_integrand(const TauFormContact& contact, double tau, double sin_tau,
+                         double cos_tau) {
+  const double theta_b = contact.theta_b;
   // (22) over Rb: [(l - x) cos phi -/+ h sin phi] / Rb with l, h from (10),(11)
   // and x(tau) from the involute. The printed sign simplifies to
   // 1 + cos phi [(theta_b - tau) sin tau - cos tau]; the flipped one keeps
   // 2 h sin phi / Rb more.
-  double arm = 1.0 + cos_phi * ((theta_b - tau) * std::sin(tau) - std::cos(tau));
-  if (sign == AxialMomentSign::flipped) {
-    arm += 2.0 * std::sin(phi) * ((theta_b + phi) * cos_phi - std::sin(phi));
-  }
-  const double s = section_factor(theta_b, tau);
+  double arm = 1.0 + contact.cos_phi * ((theta_b - tau) * sin_tau - cos_tau);
+  if (contact.flipped_arm) arm += *contact.flipped_arm;
+  const double s = section_factor(theta_b, tau, sin_tau, cos_tau);
   // (20) with (23)
-  return 3.0 * arm * arm * (theta_b - tau) * std::cos(tau) / (2.0 * s * s * s);
+  return 3.0 * arm * arm * (theta_b - tau) * cos_tau / (2.0 * s * s * s);
+}
+
+double axial_integrand(const TauFormContact& contact, double tau, double sin_tau, double cos_tau) {
+  const double theta_b = contact.theta_b;
+  // (21) with (24)
+  return (theta_b - tau) * cos_tau * contact.sin_phi * contact.sin_phi /
+         (2.0 * section_factor(theta_b, tau, sin_tau, cos_tau));
+}
+
+// One tau of the healthy tooth's integrals: only the functions of phi each
+// integrand uses.
+double bending_integrand(double theta_b, double phi, double tau, AxialMomentSign sign) {
+  const double cos_phi = std::cos(phi);
+  const double sin_phi = sign == AxialMomentSign::flipped ? std::sin(phi) : 0.0;
+  return bending_integrand(
+      {theta_b, cos_phi, sin_phi, flipped_arm(theta_b, phi, cos_phi, sin_phi, sign)}, tau,
+      std::sin(tau), std::cos(tau));
 }
 
 double axial_integrand(double theta_b, double phi, double tau) {
-  const double sin_phi = std::sin(phi);
-  // (21) with (24)
-  return (theta_b - tau) * std::cos(tau) * sin_phi * sin_phi / (2.0 * section_factor(theta_b, tau));
+  return axial_integrand({theta_b, 0.0, std::sin(phi), std::nullopt}, tau, std::sin(tau),
+                         std::cos(tau));
 }
 
 Compliances tau_form_compliances(const InvoluteTooth& tooth, double contact_x_m,

@@ -23,24 +23,34 @@ struct Densities {
 
 class EnergyDensity {
  public:
-  EnergyDensity(const BeamLoad& load, const BeamMaterial& material, const BeamSections* sections)
+  EnergyDensity(const BeamLoad& load, const BeamMaterial& material, const BeamSections* sections,
+                bool change = false)
       : load_(load),
         material_(material),
         sections_(sections),
+        change_(change),
         cos_tau_(std::cos(load.tau_rad)),
         sin_tau_(std::sin(load.tau_rad)) {}
 
   // 1/kb integrand: M^2 / (E I) with M = F [cos tau (y_t - y) - x_t sin tau].
   double bending(double x, double y) const {
     const double arm = cos_tau_ * (load_.y_m - y) - load_.x_m * sin_tau_;
+    const double second_moment = 2.0 / 3.0 * x * x * x * material_.width_m;
+    if (change_) {
+      return arm * arm / material_.youngs_modulus_pa *
+             (1.0 / (*sections_)(x, y).second_moment_m4 - 1.0 / second_moment);
+    }
     if (sections_) {
       return arm * arm / (material_.youngs_modulus_pa * (*sections_)(x, y).second_moment_m4);
     }
-    const double second_moment = 2.0 / 3.0 * x * x * x * material_.width_m;
     return arm * arm / (material_.youngs_modulus_pa * second_moment);
   }
   // 1/ks integrand, Tian 2004: 1.2 (F cos tau)^2 / (G A).
   double shear(double x, double y) const {
+    if (change_) {
+      return 1.2 * cos_tau_ * cos_tau_ / material_.shear_modulus_pa *
+             (1.0 / (*sections_)(x, y).area_m2 - 1.0 / (2.0 * x * material_.width_m));
+    }
     if (sections_) {
       return 1.2 * cos_tau_ * cos_tau_ / (material_.shear_modulus_pa * (*sections_)(x, y).area_m2);
     }
@@ -48,6 +58,10 @@ class EnergyDensity {
   }
   // 1/ka integrand: (F sin tau)^2 / (E A).
   double axial(double x, double y) const {
+    if (change_) {
+      return sin_tau_ * sin_tau_ / material_.youngs_modulus_pa *
+             (1.0 / (*sections_)(x, y).area_m2 - 1.0 / (2.0 * x * material_.width_m));
+    }
     if (sections_) {
       return sin_tau_ * sin_tau_ / (material_.youngs_modulus_pa * (*sections_)(x, y).area_m2);
     }
@@ -60,6 +74,8 @@ class EnergyDensity {
   BeamLoad load_;
   BeamMaterial material_;
   const BeamSections* sections_;  // null: A = 2 x b, I = (2/3) x^3 b
+  // The density with sections_ less the one with 2 x b, (2/3) x^3 b.
+  bool change_;
   double cos_tau_;
   double sin_tau_;
 };
@@ -142,9 +158,10 @@ double integrate_flank(const std::vector<FlankPiece>& flank, const EnergyDensity
 
 BeamCompliance beam_compliance(const std::vector<FlankPiece>& flank, const BeamLoad& load,
                                const BeamMaterial& material, StiffnessRoute route,
-                               double relative_tolerance, const BeamSections* sections) {
+                               double relative_tolerance, const BeamSections* sections,
+                               bool change = false) {
   if (flank.empty()) throw InputError("flank", "empty", "at least one piece");
-  const EnergyDensity d(load, material, sections);
+  const EnergyDensity d(load, material, sections, change);
   const QuadratureTolerance tolerance{relative_tolerance, 0.0};
   BeamCompliance c{};
   c.bending_m_per_n = integrate_flank(flank, d, Term::bending, route, tolerance);
@@ -167,6 +184,14 @@ BeamCompliance tooth_beam_compliance(const std::vector<FlankPiece>& flank, const
                                      const BeamMaterial& material, StiffnessRoute route,
                                      double relative_tolerance, const BeamSections& sections) {
   return beam_compliance(flank, load, material, route, relative_tolerance, &sections);
+}
+
+BeamCompliance tooth_beam_compliance_change(const std::vector<FlankPiece>& flank,
+                                            const BeamLoad& load, const BeamMaterial& material,
+                                            StiffnessRoute route, double relative_tolerance,
+                                            const BeamSections& sections) {
+  if (flank.empty()) return {0.0, 0.0, 0.0};
+  return beam_compliance(flank, load, material, route, relative_tolerance, &sections, true);
 }
 
 }  // namespace gearimpact

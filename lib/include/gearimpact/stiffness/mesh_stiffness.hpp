@@ -81,6 +81,26 @@ MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessM
                              const ToothState& tooth1, const ToothState& tooth2,
                              CrackFlank contact_flank);
 
+// One tooth's per-tooth terms and whether its foundation fit was
+// extrapolated.
+struct ToothTerms {
+  Compliances terms;
+  bool foundation_extrapolated = false;
+};
+// The tooth of `gear` in `state` (not missing) of a pair in contact at X1, as
+// mesh_stiffness(pair, X1, model, tooth1, tooth2) computes each tooth of a
+// pair with a faulted tooth (a healthy tooth too: pair_stiffness tooth by
+// tooth for the rack-cut models). InputError for X1 off its range.
+ToothTerms faulted_pair_tooth_terms(const GearPair& pair, Gear gear, double x1_m,
+                                    const StiffnessModel& model, const ToothState& state);
+// That mesh_stiffness from its two teeth's terms: Hertz over the contact
+// length the states leave on `contact_flank`, and (29). With the terms of
+// faulted_pair_tooth_terms it is that mesh_stiffness to the bit.
+MeshStiffness mesh_stiffness_of_teeth(const GearPair& pair, double x1_m,
+                                      const StiffnessModel& model, const ToothState& tooth1,
+                                      const ToothState& tooth2, CrackFlank contact_flank,
+                                      const ToothTerms& terms1, const ToothTerms& terms2);
+
 // The gears whose foundation fit the model uses outside its range, pinion first: empty for a
 // model without the foundation term (yang_lin_1987) or with it off. InputError naming
 // bore_diameter1 or bore_diameter2 when the term is on and a bore is missing.

@@ -115,4 +115,61 @@ Compliances cracked_paper_tooth_compliances(const InvoluteTooth& tooth, double c
                                             double youngs_modulus_pa, double face_width_m,
                                             const StiffnessModel& model, const RootCrack& crack);
 
+// The change a root crack makes to a tooth's beam terms, prepared once for
+// many contact positions: the cracked tooth's integrals less the healthy
+// tooth's, integrated over the sections the crack cuts only (those with
+// q sin nu > h_c - x at or above the start) and split where the cut starts and
+// kinks, found once for the whole flank. The cracked tooth is the healthy one
+// plus this change (MeshTables builds its tables so); the functions above
+// integrate the cracked tooth whole, the route the change is checked against.
+
+// The paper's tooth (yang_lin_1987): bending and axial, by model.route.
+// Throws InputError as check_paper_crack.
+class PaperCrackChange {
+ public:
+  PaperCrackChange(const InvoluteTooth& tooth, double youngs_modulus_pa, double face_width_m,
+                   const StiffnessModel& model, const RootCrack& crack);
+  // cracked_paper_tooth_compliances less tau_form_compliances (or
+  // x_form_compliances) at the same contact; 0 where the crack cuts nothing.
+  Compliances at(double contact_x_m) const;
+
+ private:
+  Compliances tau_form_change(double contact_x_m) const;
+  Compliances x_form_change(double contact_x_m) const;
+
+  InvoluteTooth tooth_;
+  double youngs_modulus_pa_;
+  double face_width_m_;
+  StiffnessModel model_;
+  RootCrack crack_;
+  double sin_nu_;
+  double h_c_;
+  // The section angles tau (ascending, in (-pi/2, 0)) where the cut starts
+  // (the first: x = h_c - q_max sin nu) and where it kinks (x = h_c and
+  // x = h_c - q_min sin nu); from there down to the base circle every section
+  // is cut. Empty when the crack cuts nothing.
+  std::vector<double> tau_ends_;
+};
+
+// A rack-cut tooth (potential_energy, ross_compatible): bending, shear and
+// axial, by model.route; the foundation is unchanged. `gear` must outlive the
+// object. Throws InputError as place_crack.
+class RackCrackChange {
+ public:
+  RackCrackChange(const RackGearGeometry& gear, double contact_width_m, const StiffnessModel& model,
+                  const RootCrack& crack);
+  // cracked_beam_compliance less tooth_beam_compliance of the flank up to the
+  // contact, as cracked_tooth_compliances and tooth_compliances load it.
+  BeamCompliance at(const ToothContact& contact) const;
+
+ private:
+  const RackGearGeometry* gear_;
+  double contact_width_m_;
+  StiffnessModel model_;
+  PlacedCrack placed_;
+  double sin_nu_;
+  // r_s and the heights above it where the cut kinks, over the whole flank.
+  std::vector<double> heights_;
+};
+
 }  // namespace gearimpact

@@ -39,6 +39,14 @@ struct StiffnessAndDerivative {
   double derivative_n_per_m2;
 };
 
+// The two teeth's terms (MeshStiffness::tooth1, tooth2) at one node of a
+// table.
+struct NodeTeeth {
+  double x1_m;
+  Compliances tooth1;
+  Compliances tooth2;
+};
+
 // The compliances of a pair in contact at X1, terms switched off at 0.
 using ComplianceFunction = std::function<Compliances(double x1_m)>;
 
@@ -67,6 +75,10 @@ class StiffnessTable {
   explicit StiffnessTable(const GearPair& pair, const StiffnessModel& model = {},
                           StiffnessTableOptions options = {});
 
+  // The pair constructor's nodes with the teeth's terms there, so that the
+  // tables of a faulted tooth (MeshTables) need not compute the healthy teeth
+  // beside it again; empty for a table built from a function.
+  const std::vector<NodeTeeth>& node_teeth() const { return node_teeth_; }
   // Whether the table was built by the second constructor for this pair and
   // model; a table built from a function says false.
   bool built_for(const GearPair& pair, const StiffnessModel& model) const;
@@ -205,6 +217,7 @@ class StiffnessTable {
   Compliances constant_terms_;  // the terms that are not per tooth (0 with breaks)
   std::vector<double> stiffness_;
   std::vector<double> stiffness_derivative_;
+  std::vector<NodeTeeth> node_teeth_;
   // What the pair constructor was given.
   std::optional<GearPair> pair_;
   std::optional<StiffnessModel> model_;

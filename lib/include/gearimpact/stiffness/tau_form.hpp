@@ -2,6 +2,8 @@
 // as integrals over the involute parameter tau, (20)-(24).
 #pragma once
 
+#include <optional>
+
 #include "gearimpact/geometry/tooth_profile.hpp"
 #include "gearimpact/stiffness/model.hpp"
 
@@ -13,6 +15,26 @@ namespace gearimpact {
 double bending_integrand(double theta_b, double phi, double tau, AxialMomentSign sign);
 // (21),(24): (theta_b - tau) cos tau sin^2 phi / (2 [sin tau + (theta_b - tau) cos tau]).
 double axial_integrand(double theta_b, double phi, double tau);
+
+// The same integrands for one contact at many tau: the contact's functions of
+// phi computed once, and each tau's sine and cosine once for both integrands
+// and the section (what a cracked tooth's integrals evaluate at every point).
+// bending_integrand and axial_integrand are these, to the bit.
+struct TauFormContact {
+  double theta_b;
+  double cos_phi;
+  double sin_phi;
+  // 2 h sin phi / Rb of the flipped moment sign; not added for the physical one.
+  std::optional<double> flipped_arm;
+};
+TauFormContact tau_form_contact(double theta_b, double phi, AxialMomentSign sign);
+// sin tau + (theta_b - tau) cos tau: the half thickness of the section at tau
+// over Rb, (23),(24).
+inline double section_factor(double theta_b, double tau, double sin_tau, double cos_tau) {
+  return sin_tau + (theta_b - tau) * cos_tau;
+}
+double bending_integrand(const TauFormContact& contact, double tau, double sin_tau, double cos_tau);
+double axial_integrand(const TauFormContact& contact, double tau, double sin_tau, double cos_tau);
 
 // The per-tooth terms of one tooth loaded a distance contact_x_m from the
 // tangent point of its base circle along the line of action (> 0). Terms the

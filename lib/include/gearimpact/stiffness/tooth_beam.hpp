@@ -79,4 +79,13 @@ BeamCompliance tooth_beam_compliance(const std::vector<FlankPiece>& flank, const
                                      const BeamMaterial& material, StiffnessRoute route,
                                      double relative_tolerance, const BeamSections& sections);
 
+// What `sections` change: the integrals over `flank` of each density with
+// them less the density with A = 2 x b and I = (2/3) x^3 b, so that a tooth
+// whose sections differ on part of its flank is the intact tooth plus this
+// over that part. The flank may be empty (no change). Throws as above.
+BeamCompliance tooth_beam_compliance_change(const std::vector<FlankPiece>& flank,
+                                            const BeamLoad& load, const BeamMaterial& material,
+                                            StiffnessRoute route, double relative_tolerance,
+                                            const BeamSections& sections);
+
 }  // namespace gearimpact
