@@ -258,14 +258,19 @@ ToothTerms faulted_pair_tooth_terms(const GearPair& pair, Gear gear, double x1_m
   return {paper_tooth_terms(pair, gear, gear == Gear::one ? x1_m : lp - x1_m, model, state), false};
 }
 
+double pair_contact_length_m(const GearPair& pair, double x1_m, const ToothState& tooth1,
+                             const ToothState& tooth2, CrackFlank contact_flank) {
+  const double lp = line_of_action_length(pair);
+  // (25),(26): gear 2 sees the contact at lp - X1 from C2.
+  return std::min(contact_length(pair, Gear::one, tooth1, x1_m, contact_flank),
+                  contact_length(pair, Gear::two, tooth2, lp - x1_m, contact_flank));
+}
+
 MeshStiffness mesh_stiffness_of_teeth(const GearPair& pair, double x1_m,
                                       const StiffnessModel& model, const ToothState& tooth1,
                                       const ToothState& tooth2, CrackFlank contact_flank,
                                       const ToothTerms& terms1, const ToothTerms& terms2) {
-  const double lp = line_of_action_length(pair);
-  // (25),(26): gear 2 sees the contact at lp - X1 from C2.
-  const double length = std::min(contact_length(pair, Gear::one, tooth1, x1_m, contact_flank),
-                                 contact_length(pair, Gear::two, tooth2, lp - x1_m, contact_flank));
+  const double length = pair_contact_length_m(pair, x1_m, tooth1, tooth2, contact_flank);
   // A fault across the whole face leaves no contact here: the pair carries nothing.
   if (!(length > 0.0)) return MeshStiffness{};
   MeshStiffness k{};
@@ -283,6 +288,9 @@ MeshStiffness mesh_stiffness(const GearPair& pair, double x1_m, const StiffnessM
   check_loadable(tooth2);
   if (tooth1.kind == ToothKind::healthy && tooth2.kind == ToothKind::healthy) {
     return mesh_stiffness(pair, x1_m, model);
+  }
+  if (!(pair_contact_length_m(pair, x1_m, tooth1, tooth2, contact_flank) > 0.0)) {
+    return MeshStiffness{};
   }
   return mesh_stiffness_of_teeth(pair, x1_m, model, tooth1, tooth2, contact_flank,
                                  faulted_pair_tooth_terms(pair, Gear::one, x1_m, model, tooth1),

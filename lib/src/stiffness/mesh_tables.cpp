@@ -140,6 +140,9 @@ MeshTables::MeshTables(const GearPair& pair, const StiffnessModel& model,
         ClassTerms& t1 = *pinion_terms[a];
         ClassTerms& t2 = *wheel_terms[b];
         const ComplianceFunction compliance = [&](double x1_m) {
+          if (!(pair_contact_length_m(pair_, x1_m, s1, s2, flank) > 0.0)) {
+            return MeshStiffness{}.included;
+          }
           return mesh_stiffness_of_teeth(pair_, x1_m, model, s1, s2, flank, t1.at(x1_m),
                                          t2.at(x1_m))
               .included;

@@ -93,6 +93,12 @@ struct ToothTerms {
 // tooth for the rack-cut models). InputError for X1 off its range.
 ToothTerms faulted_pair_tooth_terms(const GearPair& pair, Gear gear, double x1_m,
                                     const StiffnessModel& model, const ToothState& state);
+// The Hertzian contact length the two teeth's states leave to a contact at X1
+// on `contact_flank`: the face width, less a spall's or a chip's share; 0
+// where a fault across the whole face leaves no contact (the pair carries
+// nothing there, and its teeth's terms are not asked for).
+double pair_contact_length_m(const GearPair& pair, double x1_m, const ToothState& tooth1,
+                             const ToothState& tooth2, CrackFlank contact_flank);
 // That mesh_stiffness from its two teeth's terms: Hertz over the contact
 // length the states leave on `contact_flank`, and (29). With the terms of
 // faulted_pair_tooth_terms it is that mesh_stiffness to the bit.
