@@ -7,6 +7,8 @@
 
 #include "gearimpact/constants.hpp"
 #include "gearimpact/contact/contact.hpp"
+#include "gearimpact/dynamics/mesh.hpp"
+#include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
@@ -157,9 +159,8 @@ class PlanarSystem {
     if (constant_k_ > 0.0) return {constant_k_ / count, 0.0};
     const StiffnessTable* table = pair_table(side, k);
     if (table == nullptr) return {0.0, 0.0};
-    const double xc = std::clamp(x, xs_, xe_);
-    const StiffnessAndDerivative s = table->stiffness_and_derivative(xc);
-    return {s.stiffness_n_per_m + s.derivative_n_per_m2 * (x - xc), s.derivative_n_per_m2};
+    const StiffnessAndDerivative s = pair_stiffness_continued(*table, -1, x, xs_, xe_);
+    return {s.stiffness_n_per_m, s.derivative_n_per_m2};
   }
 
   // The mesh's stored energy of `side` at y with the pairs of `range`.

@@ -142,10 +142,8 @@ void GearSystem::impose_driver(double t, State& y) const {
   y[kW1] = m.speed_rad_per_s;
 }
 
-// Stage states of a step that ends on a pair's entry or exit can reach a hair
-// beyond the segment: there Ke continues along its tangent, so the right-hand
-// side stays smooth. So it does beyond the ends of the pair's part at a
-// fault's edge.
+// Ke continued along its tangent beyond the segment, or beyond the ends of
+// the pair's part at a fault's edge (pair_stiffness_continued).
 void GearSystem::pair_stiffness(const StiffnessTable& table, int part, double x, int count,
                                 double& ke, double& dke) const {
   if (constant_k_ > 0.0) {
@@ -153,17 +151,12 @@ void GearSystem::pair_stiffness(const StiffnessTable& table, int part, double x,
     dke = 0.0;
     return;
   }
-  if (table.part_count() > 1) {
-    const double xc = std::clamp(x, table.part_start_m(part), table.part_end_m(part));
-    const StiffnessAndDerivative k = table.stiffness_and_derivative_in_part(xc, part);
-    dke = k.derivative_n_per_m2;
-    ke = k.stiffness_n_per_m + dke * (x - xc);
-    return;
-  }
-  const double xc = std::clamp(x, xs_, xe_);
-  const StiffnessAndDerivative k = table.stiffness_and_derivative(xc);
+  const StiffnessAndDerivative k =
+      table.part_count() > 1 ? pair_stiffness_continued(table, part, x, table.part_start_m(part),
+                                                        table.part_end_m(part))
+                             : pair_stiffness_continued(table, -1, x, xs_, xe_);
+  ke = k.stiffness_n_per_m;
   dke = k.derivative_n_per_m2;
-  ke = k.stiffness_n_per_m + dke * (x - xc);
 }
 
 double pair_friction_coefficient(const ModelOptions& model, double face_width_m,

@@ -20,6 +20,14 @@ double effective_mass_kg(double base_radius1_m, double inertia1_kg_m2, double ba
 double inverse_effective_mass_per_kg(const GearPair& pair);
 double effective_mass_kg(const GearPair& pair);
 
+// Ke and dKe/dX of one pair at X from its table, continued along the tangent
+// beyond [start, end] (the contact segment, or with part >= 0 that part of a
+// table cut at a fault's edges): stage states of a step that ends on a pair's
+// entry, exit or a fault's edge reach a hair beyond it, and the right-hand
+// side stays smooth there. part < 0: the table's own piece at X.
+StiffnessAndDerivative pair_stiffness_continued(const StiffnessTable& table, int part, double x_m,
+                                                double start_m, double end_m);
+
 // docs/steady-state.md section 1: the optional linear viscous mesh damper
 // c = 2 zeta sqrt(k m_e), in N s/m. Throws InputError unless zeta >= 0 and
 // k, m_e > 0, all finite.
