@@ -108,7 +108,13 @@ Figure energy_figure(const SimulationCase& c) {
   // modes.csv's share columns 5..9; a rigid mode's bar is empty (it stores no energy).
   const char* titles[kSpringParts] = {"mesh", "bearing 1", "bearing 2", "motor shaft",
                                       "load shaft"};
+  // The bearings' and shafts' parts are drawn only where the case has them: an
+  // empty series would still take a key entry and mislead.
+  const bool elastic_bearings = c.bearings.kind == BearingKind::elastic;
+  const bool elastic_shafts = c.shafts.kind == ShaftKind::elastic;
   for (std::size_t part = 0; part < kSpringParts; ++part) {
+    if ((part == 1 || part == 2) && !elastic_bearings) continue;
+    if ((part == 3 || part == 4) && !elastic_shafts) continue;
     std::string series = "'modes.csv' using " + std::to_string(5 + part);
     if (part == 0) {
       series +=

@@ -52,6 +52,10 @@ TEST_CASE("modes writes the library's modes, the crossings and the figures") {
     CHECK_MESSAGE(std::filesystem::is_regular_file(out / file), file);
   }
   CHECK(read(out / "summary.json") == r.out);
+  // The energy figure's key holds the parts the case has: its bearings, not the absent shafts.
+  const std::string energy_script = read(out / "modes_energy.gp");
+  CHECK(energy_script.find("title 'bearing 2'") != std::string::npos);
+  CHECK(energy_script.find("shaft") == std::string::npos);
   // The program's files are the library's modes of the same case, byte for byte.
   const Modes modes = natural_modes(read_case_file(input));
   CHECK(read(out / "modes.csv") == modes_csv(modes));
