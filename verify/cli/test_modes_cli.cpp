@@ -47,8 +47,9 @@ TEST_CASE("modes writes the library's modes, the crossings and the figures") {
   const CommandResult r =
       run_command(cli("modes " + input.string() + " --harmonics 2 --out " + out.string()));
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
-  for (const char* file : {"modes.csv", "campbell.csv", "summary.json", "modes_energy.png",
-                           "campbell.png", "modes_energy.gp", "campbell.gp"}) {
+  for (const char* file :
+       {"modes.csv", "campbell.csv", "summary.json", "modes_energy.png", "campbell.png",
+        "modes_energy.gp", "campbell.gp", "mode_shapes.csv", "mode_shapes.png"}) {
     CHECK_MESSAGE(std::filesystem::is_regular_file(out / file), file);
   }
   CHECK(read(out / "summary.json") == r.out);
@@ -59,6 +60,7 @@ TEST_CASE("modes writes the library's modes, the crossings and the figures") {
   // The program's files are the library's modes of the same case, byte for byte.
   const Modes modes = natural_modes(read_case_file(input));
   CHECK(read(out / "modes.csv") == modes_csv(modes));
+  CHECK(read(out / "mode_shapes.csv") == mode_shapes_csv(modes));
   REQUIRE(modes.modes.size() == 6);
   std::istringstream csv(read(out / "modes.csv"));
   std::string header;
