@@ -491,7 +491,7 @@ py::tuple modes_texts_of(const SimulationCase& c, long long harmonics,
     py::gil_scoped_release release;
     texts = cli::modes_texts(c, static_cast<int>(harmonics), speed);
   }
-  return py::make_tuple(texts.csv, texts.campbell_csv, texts.summary_json);
+  return py::make_tuple(texts.csv, texts.campbell_csv, texts.shapes_csv, texts.summary_json);
 }
 
 // `gearimpact sweep` of a case with the command's options: (sweep.csv, poincare.csv,

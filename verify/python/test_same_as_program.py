@@ -250,7 +250,8 @@ def test_modes_equal_the_program(cli, tmp_path):
     out = tmp_path / "out"
     cli("modes", case_file, "--harmonics", "2", "--max-speed", "20000 rpm", "--out", out,
         "--no-plots")
-    for key, name in (("modes", "modes.csv"), ("campbell", "campbell.csv")):
+    for key, name in (("modes", "modes.csv"), ("campbell", "campbell.csv"),
+                      ("mode_shapes", "mode_shapes.csv")):
         lines = (out / name).read_text().strip().splitlines()
         header = lines[0].split(",")
         assert list(ours[key]) == header
