@@ -230,6 +230,8 @@ struct SimulationResult {
   // With [bearings] kind = "elastic" (planar.hpp): the planar rows (with
   // RunControl::keep_series) beside `series`, and the final planar state.
   std::vector<PlanarRow> planar_series;
+  // Its samples (PlanarSample) with RunControl::sample_rate_hz and keep_samples.
+  std::vector<PlanarSample> planar_samples;
   std::optional<PlanarState> planar_final_state;
   double start_time_s = 0.0;  // 0, or the time a continued run resumed at
 };
@@ -280,6 +282,8 @@ struct RunControl {
   std::optional<double> sample_rate_hz;
   bool keep_samples = true;
   std::function<void(const SampleRow&)> on_sample;
+  // The same for the samples of a case with [bearings] kind = "elastic".
+  std::function<void(const PlanarSample&)> on_planar_sample;
   // When set, asked every kStepsBetweenStopChecks steps; true ends the run
   // with SimulationStopped. Lets a caller cancel a long run (an interactive
   // session's Ctrl-C, a time limit); it may also throw its own exception.
