@@ -823,7 +823,7 @@ std::vector<Field> make_schema() {
     Field& gear = r.integer(
         "sensor_gear", {closed(1.0), closed(2.0), "1: the pinion, 2: the wheel"}, false,
         "the gear on whose bearing the accelerometer of the samples sits "
-        "(sensor_acceleration_m_per_s2 of samples.csv)",
+        "(sensor_acceleration_m_per_s2 of the planar samples, simulate --sample-rate)",
         [](auto& c) -> auto& { return c.bearings.sensor_gear; });
     gear.only_when = elastic;
     gear.written_at_default = false;
