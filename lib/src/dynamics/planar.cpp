@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
 
 #include "gearimpact/constants.hpp"
 #include "gearimpact/contact/contact.hpp"
-#include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/dynamics/system.hpp"
@@ -40,6 +40,7 @@ enum P : std::size_t {
   kParametric,
   kBearingLoss,
   kShaftLoss,
+  kMeshDamperLoss,
   kSize
 };
 using Y = std::array<double, kSize>;
@@ -121,6 +122,15 @@ class PlanarSystem {
           g, c.model.stiffness, c.faults,
           std::shared_ptr<const StiffnessTable>(&table, [](const StiffnessTable*) {}));
     }
+    if (!is_unmodified(c.modifications)) {
+      gaps_ = std::make_shared<const ToothGaps>(g, c.modifications);
+      kinks_ = gaps_->kinks_m();
+      for (const Region side : kSides) {
+        least_gap_[side_index(side)] = least_gap_bound_m(g, c.modifications, side);
+      }
+    }
+    mesh_damping_ = case_mesh_damping_n_s_per_m(c, table, teeth_.get());
+    drag_ = c.torque2.kind == Torque::Kind::drag;
   }
 
   double rb1() const { return rb1_; }
@@ -140,6 +150,25 @@ class PlanarSystem {
                         (y[kVelocity + kY1] - y[kVelocity + kY2]) * n[1];
     const double sign = line_sign(side);
     return {sign * s - backlash_, sign * rate};
+  }
+
+  // Pair k on `side` at X with the line's penetration dl and its rate: its own
+  // penetration and rate, less the gap of its teeth with [modifications]. The
+  // gap's branch is that of the zone X is in: the planar run does not locate
+  // the kinks of a linear relief, each stage takes its own.
+  PairPenetration pair_penetration(Region side, int k, double x, double dl, double dl_rate,
+                                   double x_rate) const {
+    if (!gaps_) return {dl, dl_rate, 0.0};
+    return pair_penetration_with_gap(*gaps_, kinks_, gap_zone(kinks_, x), side, k, x, dl, dl_rate,
+                                     x_rate, xs_, xe_);
+  }
+
+  // The largest penetration of a pair on `side`: the line's, less the least
+  // gap of its pairs with [modifications]. The side is in contact while it is
+  // positive; its onset and end are the located events.
+  double contact_value(Region side, const Y& y) const {
+    const double dl = penetration(side, y).first;
+    return gaps_ ? dl - least_pair_gap_m(*gaps_, layout_, side, y[kT1]) : dl;
   }
 
   LoadedRange loaded(Region side, double theta1) const {
@@ -166,12 +195,15 @@ class PlanarSystem {
   // The mesh's stored energy of `side` at y with the pairs of `range`.
   double mesh_energy(Region side, const Y& y, LoadedRange range) const {
     const double dl = penetration(side, y).first;
-    if (dl <= 0.0) return 0.0;
+    if (dl <= least_gap_[side_index(side)]) return 0.0;
     const double ref = layout_.reference_m(side, y[kT1]);
     double u = 0.0;
     for (int j = 0; j < range.count; ++j) {
       const int k = range.k_first + j;
-      u += 0.5 * pair_stiffness(side, k, range.count, layout_.position_m(ref, k)).first * dl * dl;
+      const double x = layout_.position_m(ref, k);
+      const double dk = pair_penetration(side, k, x, dl, 0.0, 0.0).delta_m;
+      if (dk <= 0.0) continue;  // its gap is open
+      u += 0.5 * pair_stiffness(side, k, range.count, x).first * dk * dk;
     }
     return u;
   }
@@ -181,12 +213,15 @@ class PlanarSystem {
   ElasticEnergy mesh_terms(const Y& y) const {
     ElasticEnergy u;
     for (const Region side : kSides) {
-      const double dl = penetration(side, y).first;
-      if (dl <= 0.0) continue;
+      const double line_dl = penetration(side, y).first;
+      if (line_dl <= least_gap_[side_index(side)]) continue;
       const double ref = layout_.reference_m(side, y[kT1]);
       const LoadedRange range = layout_.loaded(ref);
       for (int j = 0; j < range.count; ++j) {
         const int k = range.k_first + j;
+        const double dl =
+            pair_penetration(side, k, layout_.position_m(ref, k), line_dl, 0.0, 0.0).delta_m;
+        if (dl <= 0.0) continue;  // its gap is open
         if (constant_k_ > 0.0) {
           u.j[index_of(Term::hertz)] += 0.5 * constant_k_ / range.count * dl * dl;
           continue;
@@ -245,8 +280,9 @@ class PlanarSystem {
     double parametric_power = 0.0;
     for (const Region side : kSides) {
       const auto [dl, dl_rate] = penetration(side, y);
-      if (dl <= 0.0) continue;
       const std::size_t i = side_index(side);
+      // Below every pair's gap (0 without [modifications]) the side is apart.
+      if (dl <= least_gap_[i]) continue;
       const double sign = line_sign(side);
       const auto n = normal(side);
       // t = e_z x n: the flanks' common tangent, along which friction acts.
@@ -263,13 +299,17 @@ class PlanarSystem {
         const double x = layout_.position_m(ref, k);
         // A pair with a missing tooth: no force, no damping, no friction.
         if (pair_table(side, k) == nullptr) continue;
+        // The pair's own penetration: the line's, less its gap.
+        const PairPenetration p = pair_penetration(side, k, x, dl, dl_rate, x_rate);
+        if (p.delta_m <= 0.0) continue;  // its gap is open
+        const double dk = p.delta_m;
         const auto [ke, dke] = pair_stiffness(side, k, range.count, x);
-        const double f_elastic = elastic_force(ke, dl);
+        const double f_elastic = elastic_force(ke, dk);
         const double d =
             c_.model.damping_stiffness == DampingStiffness::current_pair
                 ? memory[i].damping_per_stiffness_s_m * ke
                 : memory[i].damping_per_stiffness_s_m * memory[i].frozen_stiffness_n_per_m;
-        const double pushed = f_elastic + hertzian_damping_force(d, dl, dl_rate);
+        const double pushed = f_elastic + hertzian_damping_force(d, dk, p.rate_m_s);
         // A tooth pushes, never pulls: the clipping is not located, each
         // stage takes it from its own state.
         const double normal_n = normal_force(f_elastic, pushed - f_elastic, pushed < 0.0);
@@ -290,9 +330,13 @@ class PlanarSystem {
         f1[1] += fy;
         f2[0] -= fx;
         f2[1] -= fy;
-        hertz_power += (normal_n - f_elastic) * dl_rate;
+        hertz_power += (normal_n - f_elastic) * p.rate_m_s;
         friction_power += f * normal_n * slip * vs;
-        parametric_power += 0.5 * dl * dl * dke * x_rate;
+        parametric_power += 0.5 * dk * dk * dke * x_rate;
+        // The gap moves with the pinion: N does the work -N de_k/dX dX/dt on
+        // the pair's penetration at fixed centres and angles, the varying
+        // mesh's as in the torsional system.
+        if (gaps_) parametric_power -= normal_n * p.gap_slope * x_rate;
         total += normal_n;
         if (forces != nullptr) forces->friction_n += ff;
       }
@@ -301,8 +345,32 @@ class PlanarSystem {
         forces->penetration_m[i] = dl;
       }
     }
+    double mesh_damping_power = 0.0;
+    if (mesh_damping_ > 0.0) {
+      // The viscous mesh damper, half of c on each line of action on that
+      // line's s' (s_d', s_c'), in contact and in the backlash alike: with the
+      // centres fixed both rates are s' and the two halves are the torsional
+      // c s' (docs/vibration.md). Each acts as a contact force of its line
+      // would: on the pinion -f n, -f Rb1, on the wheel +f n, +f Rb2.
+      const double roll = rb1_ * w1 - rb2_ * w2;
+      for (const Region side : kSides) {
+        const auto n = normal(side);
+        const double rate = roll + (v[kX1] - v[kX2]) * n[0] + (v[kY1] - v[kY2]) * n[1];
+        const double force = 0.5 * mesh_damping_ * rate;
+        moment1 -= force * rb1_;
+        moment2 += force * rb2_;
+        f1[0] -= force * n[0];
+        f1[1] -= force * n[1];
+        f2[0] += force * n[0];
+        f2[1] += force * n[1];
+        mesh_damping_power += force * rate;
+      }
+    }
     double t1 = torque_at(c_.torque1, t);
-    double t2 = torque_at(c_.torque2, t);
+    // A drag opposes the turning of the body it acts on: the load on its
+    // shaft, else the wheel.
+    double t2 =
+        drag_ ? drag_torque_n_m(c_.torque2, m_.shafts ? v[kTl] : w2) : torque_at(c_.torque2, t);
     double shaft_power = 0.0;
     // Without shafts the motor and the load are not bodies: their entries
     // stay as they started, and the outputs report the gears' own.
@@ -339,11 +407,27 @@ class PlanarSystem {
     dy[kParametric] = parametric_power;
     dy[kBearingLoss] = bearing_power;
     dy[kShaftLoss] = shaft_power;
+    dy[kMeshDamperLoss] = mesh_damping_power;
   }
 
   // The memory of a contact that begins on `side` at y.
   ContactMemory onset(Region side, const Y& y, double& impact_speed, double& restitution) const {
-    const OnsetDamping d = onset_damping(c_.model, penetration(side, y).second);
+    const auto [dl, dl_rate] = penetration(side, y);
+    double approach = dl_rate;
+    if (gaps_) {
+      // The fastest approach among the pairs that touch, each at its own
+      // penetration rate, as in the torsional system.
+      const double ref = layout_.reference_m(side, y[kT1]);
+      const LoadedRange range = layout_.loaded(ref);
+      const double x_rate = line_sign(side) * rb1_ * y[kVelocity + kT1];
+      approach = -std::numeric_limits<double>::infinity();
+      for (int k = range.k_first; k < range.k_first + range.count; ++k) {
+        const PairPenetration p =
+            pair_penetration(side, k, layout_.position_m(ref, k), dl, dl_rate, x_rate);
+        if (p.delta_m > 0.0) approach = std::max(approach, p.rate_m_s);
+      }
+    }
+    const OnsetDamping d = onset_damping(c_.model, approach);
     impact_speed = d.impact_speed_m_s;
     restitution = d.restitution;
     ContactMemory memory;
@@ -377,6 +461,13 @@ class PlanarSystem {
   const PlanarMounting& m_;
   const StiffnessTable& table_;
   std::shared_ptr<const MeshTables> teeth_;
+  // With [modifications]: each pair's gap (docs/faults.md), the kinks of its
+  // slope, and per side a bound below every pair's gap (0 without).
+  std::shared_ptr<const ToothGaps> gaps_;
+  std::vector<double> kinks_;
+  std::array<double, 2> least_gap_{};
+  double mesh_damping_ = 0.0;  // c of the viscous mesh damper, N s/m; 0: none
+  bool drag_ = false;          // torque2 a drag
   MeshLayout layout_;
   double rb1_ = 0.0, rb2_ = 0.0, j1_ = 0.0, j2_ = 0.0, backlash_ = 0.0, lp_ = 0.0;
   double xs_ = 0.0, xe_ = 0.0, sin_a_ = 0.0, cos_a_ = 0.0, constant_k_ = 0.0;
@@ -427,24 +518,15 @@ void validate_planar(const SimulationCase& c, const PlanarMounting& m, const Run
     require(std::isfinite(m.load_damping_n_m_s_per_rad) && m.load_damping_n_m_s_per_rad >= 0.0,
             "load_damping", m.load_damping_n_m_s_per_rad, "a finite value >= 0");
   }
-  for (const auto& [key, torque] :
-       {std::pair<const char*, const Torque*>{"torque1.kind", &c.torque1},
-        std::pair<const char*, const Torque*>{"torque2.kind", &c.torque2}}) {
-    if (torque->kind == Torque::Kind::prescribed_speed || torque->kind == Torque::Kind::drag) {
-      refuse(key, torque->kind == Torque::Kind::drag ? "drag" : "prescribed-speed",
-             "\"constant\", \"sinusoidal\", \"harmonic\" or a user function");
-    }
+  if (c.torque1.kind == Torque::Kind::prescribed_speed) {
+    refuse("torque1.kind", "prescribed-speed",
+           "\"constant\", \"sinusoidal\", \"harmonic\" or a user function (a kinematic "
+           "driver would fix theta1 against the step's events and the ledger's work, which the "
+           "planar stepping does not impose yet)");
   }
   if (c.model.mesh_force == MeshForce::lagrangian &&
       c.model.mesh_stiffness != MeshStiffnessMode::constant) {
     refuse("model.mesh_force", "lagrangian", "\"newtonian\"");
-  }
-  if (c.model.mesh_damping_ratio > 0.0) {
-    refuse("model.mesh_damping_ratio", format_number(c.model.mesh_damping_ratio),
-           "0 (the viscous mesh damper acts on the torsional s only)");
-  }
-  if (!is_unmodified(c.modifications)) {
-    refuse("modifications", "a relief or a tooth error", "none (the gaps are torsional only yet)");
   }
   if (c.integrator.kind != IntegratorKind::rk4) refuse("integrator.kind", "adaptive", "\"rk4\"");
   if (control.sample_rate_hz) {
@@ -600,7 +682,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   const auto begin_contacts = [&](double t) {
     for (const Region side : kSides) {
       const std::size_t i = side_index(side);
-      const bool now = system.penetration(side, y).first > 0.0;
+      const bool now = system.contact_value(side, y) > 0.0;
       if (now && !touching[i]) {
         ImpactRecord impact{};
         impact.line = side;
@@ -638,8 +720,8 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     // The drive line's s_d and the larger penetration; the side in contact
     // (the drive side when both are).
     row.s_m = system.penetration(Region::n1, y).first + c.gears.backlash_m;
-    const double dd = system.penetration(Region::n1, y).first;
-    const double dc = system.penetration(Region::n2, y).first;
+    const double dd = system.contact_value(Region::n1, y);
+    const double dc = system.contact_value(Region::n2, y);
     row.delta_m = std::max(dd, dc);
     row.region = dd > 0.0 ? 1 : (dc > 0.0 ? -1 : 0);
     row.pairs = dd > 0.0 ? ranges[0].count : (dc > 0.0 ? ranges[1].count : 0);
@@ -680,7 +762,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   Y next{};
   double t = 0.0;
   const auto contact = [&](Region side, const Y& state) {
-    return system.penetration(side, state).first > 0.0;
+    return system.contact_value(side, state) > 0.0;
   };
   for (long long n = 1; n <= steps;) {
     const double t_grid = std::min(static_cast<double>(n) * h, c.integrator.end_time_s);
@@ -698,12 +780,12 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
       const auto value = [&](double l, Y& out) {
         rk4(system, t, y, l, memory, out);
         s.rhs_evaluations += 4;
-        return system.penetration(side, out).first;
+        return system.contact_value(side, out);
       };
       double lo = 0.0;
       double hi = length;
       Y trial{};
-      double g_lo = system.penetration(side, y).first;
+      double g_lo = system.contact_value(side, y);
       double g_hi = value(hi, trial);
       if (contact(side, trial) == before) continue;  // an earlier side's cut ends before
       int stale = 0;
@@ -745,8 +827,8 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     const double mesh = mesh_energy(y);
     jump_work += mesh - before;
     begin_contacts(t);
-    s.max_penetration_m = std::max({s.max_penetration_m, system.penetration(Region::n1, y).first,
-                                    system.penetration(Region::n2, y).first});
+    s.max_penetration_m = std::max({s.max_penetration_m, system.contact_value(Region::n1, y),
+                                    system.contact_value(Region::n2, y)});
     const double energy =
         system.kinetic_energy(y) + mesh + system.bearing_energy(y) + system.shaft_energy(y);
     s.ledger_scale_j = std::max(s.ledger_scale_j, energy);
@@ -755,7 +837,8 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
       s.energy_max_j[i] = std::max(s.energy_max_j[i], terms.j[i]);
     }
     const double residual = energy - energy0 - y[kWork] + y[kHertzLoss] + y[kSlidingLoss] +
-                            y[kBearingLoss] + y[kShaftLoss] - y[kParametric] - jump_work;
+                            y[kBearingLoss] + y[kShaftLoss] + y[kMeshDamperLoss] - y[kParametric] -
+                            jump_work;
     s.ledger_residual_j = residual;
     s.ledger_residual_max_j = std::max(s.ledger_residual_max_j, std::fabs(residual));
     if (t != t_grid) continue;  // a cut step: the grid point is still ahead
@@ -772,6 +855,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   s.torque_work_j = y[kWork];
   s.damping_loss_j = y[kHertzLoss];
   s.friction_loss_j = y[kSlidingLoss];
+  s.mesh_damping_loss_j = y[kMeshDamperLoss];
   s.parametric_jump_work_j = jump_work;
   s.parametric_work_j = y[kParametric] + jump_work;
   s.final_w1_rad_per_s = y[kVelocity + kT1];
