@@ -100,7 +100,9 @@ struct Forces {
 
 class PlanarSystem {
  public:
-  PlanarSystem(const SimulationCase& c, const StiffnessTable& table, const PlanarMounting& m)
+  // driver_theta0: with a kinematic driver, the angle its body starts from.
+  PlanarSystem(const SimulationCase& c, const StiffnessTable& table, const PlanarMounting& m,
+               double driver_theta0)
       : c_(c), m_(m), table_(table), layout_(c.gears, c.model.coast_phase) {
     const GearPair& g = c.gears;
     rb1_ = base_radius(g, Gear::one);
@@ -131,6 +133,19 @@ class PlanarSystem {
     }
     mesh_damping_ = case_mesh_damping_n_s_per_m(c, table, teeth_.get());
     drag_ = c.torque2.kind == Torque::Kind::drag;
+    driven_ = c.torque1.kind == Torque::Kind::prescribed_speed;
+    // torque1 acts on the motor with shafts, so the driver turns it.
+    driven_index_ = m.shafts ? kTm : kT1;
+    driver_theta0_ = driver_theta0;
+  }
+
+  // A kinematic driver's body (the pinion, the motor with shafts) where its
+  // closed form puts it at t.
+  void impose_driver(double t, Y& y) const {
+    if (!driven_) return;
+    const DriverMotion d = driver_motion(c_.torque1, driver_theta0_, t);
+    y[driven_index_] = d.theta_rad;
+    y[kVelocity + driven_index_] = d.speed_rad_per_s;
   }
 
   double rb1() const { return rb1_; }
@@ -260,8 +275,19 @@ class PlanarSystem {
   }
 
   // The equations of motion with the contact memory of each side.
-  void rhs(double t, const Y& y, const std::array<ContactMemory, 2>& memory, Y& dy,
+  void rhs(double t, const Y& y_in, const std::array<ContactMemory, 2>& memory, Y& dy,
            Forces* forces = nullptr) const {
+    // A driven body is where its closed form puts it, whatever the stage
+    // state the integrator passes.
+    Y driven_state;
+    DriverMotion driver;
+    if (driven_) {
+      driver = driver_motion(c_.torque1, driver_theta0_, t);
+      driven_state = y_in;
+      driven_state[driven_index_] = driver.theta_rad;
+      driven_state[kVelocity + driven_index_] = driver.speed_rad_per_s;
+    }
+    const Y& y = driven_ ? driven_state : y_in;
     const double* v = &y[kVelocity];
     const double w1 = v[kT1];
     const double w2 = v[kT2];
@@ -366,7 +392,10 @@ class PlanarSystem {
         mesh_damping_power += force * rate;
       }
     }
-    double t1 = torque_at(c_.torque1, t);
+    // A driver's torque is what gives its body the prescribed acceleration:
+    // set below, once the moments on that body are known.
+    double t1 = driven_ ? 0.0 : torque_at(c_.torque1, t);
+    if (driven_ && !m_.shafts) t1 = j1_ * driver.acceleration_rad_per_s2 - moment1;
     // A drag opposes the turning of the body it acts on: the load on its
     // shaft, else the wheel.
     double t2 =
@@ -386,6 +415,7 @@ class PlanarSystem {
                              m_.motor_damping_n_m_s_per_rad * rel_m;
       const double shaft_l =
           m_.load_stiffness_n_m_per_rad * (y[kTl] - y[kT2]) + m_.load_damping_n_m_s_per_rad * rel_l;
+      if (driven_) t1 = m_.motor_inertia_kg_m2 * driver.acceleration_rad_per_s2 + shaft_m;
       dy[kVelocity + kTm] = (t1 - shaft_m) / m_.motor_inertia_kg_m2;
       dy[kVelocity + kTl] = (t2 - shaft_l) / m_.load_inertia_kg_m2;
       work = t1 * v[kTm] + t2 * v[kTl];
@@ -468,6 +498,9 @@ class PlanarSystem {
   std::array<double, 2> least_gap_{};
   double mesh_damping_ = 0.0;  // c of the viscous mesh damper, N s/m; 0: none
   bool drag_ = false;          // torque2 a drag
+  bool driven_ = false;        // torque1 a kinematic driver
+  std::size_t driven_index_ = kT1;
+  double driver_theta0_ = 0.0;
   MeshLayout layout_;
   double rb1_ = 0.0, rb2_ = 0.0, j1_ = 0.0, j2_ = 0.0, backlash_ = 0.0, lp_ = 0.0;
   double xs_ = 0.0, xe_ = 0.0, sin_a_ = 0.0, cos_a_ = 0.0, constant_k_ = 0.0;
@@ -518,15 +551,11 @@ void validate_planar(const SimulationCase& c, const PlanarMounting& m, const Run
     require(std::isfinite(m.load_damping_n_m_s_per_rad) && m.load_damping_n_m_s_per_rad >= 0.0,
             "load_damping", m.load_damping_n_m_s_per_rad, "a finite value >= 0");
   }
-  if (c.torque1.kind == Torque::Kind::prescribed_speed) {
-    refuse("torque1.kind", "prescribed-speed",
-           "\"constant\", \"sinusoidal\", \"harmonic\" or a user function (a kinematic "
-           "driver would fix theta1 against the step's events and the ledger's work, which the "
-           "planar stepping does not impose yet)");
-  }
   if (c.model.mesh_force == MeshForce::lagrangian &&
       c.model.mesh_stiffness != MeshStiffnessMode::constant) {
-    refuse("model.mesh_force", "lagrangian", "\"newtonian\"");
+    refuse("model.mesh_force", "lagrangian",
+           "\"newtonian\" (the stored energy's jump where a pair enters or leaves under load is "
+           "paid by the pinion at that instant, which needs the pair's entry and exit located)");
   }
   if (c.integrator.kind != IntegratorKind::rk4) refuse("integrator.kind", "adaptive", "\"rk4\"");
   if (control.sample_rate_hz) {
@@ -561,6 +590,17 @@ void check_step(const SimulationCase& c, const StiffnessTable& table, const Plan
     w2 += m.motor_stiffness_n_m_per_rad * (1.0 / m.motor_inertia_kg_m2 + 1.0 / j1) +
           m.load_stiffness_n_m_per_rad * (1.0 / m.load_inertia_kg_m2 + 1.0 / j2);
   }
+  // A drag on the load relaxes its speed with the rate (drag_constant /
+  // drag_speed_scale + drag_viscous) / J_load, which the case's check of the
+  // drag bounds for the wheel only: counted as a frequency, it needs as many
+  // steps per 2 pi of its time constant as that check does.
+  const bool load_drag = m.shafts && c.torque2.kind == Torque::Kind::drag;
+  if (load_drag) {
+    const double rate = (c.torque2.drag_constant_n_m / c.torque2.drag_speed_scale_rad_per_s +
+                         c.torque2.drag_viscous_n_m_s) /
+                        m.load_inertia_kg_m2;
+    w2 += rate * rate;
+  }
   const double largest = 2.0 * pi / std::sqrt(w2) / kStepsPerContactPeriod;
   if (c.integrator.step_s > largest) {
     throw InputError("integrator.step", format_number(c.integrator.step_s) + " s",
@@ -570,7 +610,8 @@ void check_step(const SimulationCase& c, const StiffnessTable& table, const Plan
                          format_number(kStepsPerContactPeriod) +
                          " of the shortest period the planar system can have (its stiffest "
                          "springs: the mesh on both sides, the bearings" +
-                         std::string(m.shafts ? ", the shafts" : "") + ")");
+                         std::string(m.shafts ? ", the shafts" : "") +
+                         std::string(load_drag ? ", the drag's relaxation of the load" : "") + ")");
   }
 }
 
@@ -656,7 +697,8 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
                                  const RunControl& control) {
   validate_planar(c, mounting, control);
   check_step(c, table, mounting);
-  const PlanarSystem system(c, table, mounting);
+  const PlanarSystem system(c, table, mounting,
+                            mounting.shafts ? initial.theta_motor_rad : initial.theta1_rad);
   SimulationResult result;
   SimulationSummary& s = result.summary;
   s.case_name = c.name;
@@ -669,6 +711,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   PlanarEnergies& p = *s.planar;
 
   Y y = to_vector(initial);
+  system.impose_driver(0.0, y);
   const double h = c.integrator.step_s;
   const auto steps = static_cast<long long>(std::ceil(c.integrator.end_time_s / h - 1e-9));
   std::array<ContactMemory, 2> memory{};
@@ -818,6 +861,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
           " s, step " + std::to_string(n) + "; a smaller integrator.step may resolve it");
     }
     y = next;
+    system.impose_driver(t_next, y);
     t = t_next;
     ++s.steps;
     // A pair that entered or left during the step takes or releases its
