@@ -137,6 +137,7 @@ class PlanarSystem {
     // torque1 acts on the motor with shafts, so the driver turns it.
     driven_index_ = m.shafts ? kTm : kT1;
     driver_theta0_ = driver_theta0;
+    options_ = gaps_ || mesh_damping_ > 0.0 || driven_ || drag_;
   }
 
   // A kinematic driver's body (the pinion, the motor with shafts) where its
@@ -275,19 +276,22 @@ class PlanarSystem {
   }
 
   // The equations of motion with the contact memory of each side.
-  void rhs(double t, const Y& y_in, const std::array<ContactMemory, 2>& memory, Y& dy,
+  void rhs(double t, const Y& y, const std::array<ContactMemory, 2>& memory, Y& dy,
            Forces* forces = nullptr) const {
-    // A driven body is where its closed form puts it, whatever the stage
-    // state the integrator passes.
-    Y driven_state;
-    DriverMotion driver;
-    if (driven_) {
-      driver = driver_motion(c_.torque1, driver_theta0_, t);
-      driven_state = y_in;
-      driven_state[driven_index_] = driver.theta_rad;
-      driven_state[kVelocity + driven_index_] = driver.speed_rad_per_s;
+    if (options_) {
+      motion<true>(t, y, memory, dy, forces);
+    } else {
+      motion<false>(t, y, memory, dy, forces);
     }
-    const Y& y = driven_ ? driven_state : y_in;
+  }
+
+ private:
+  // The equations of motion; kOptions false compiles out the code of the
+  // options a case may not have (gaps, the mesh damper, a driver, a drag), so
+  // that a run without them pays nothing for them.
+  template <bool kOptions>
+  void motion(double t, const Y& y, const std::array<ContactMemory, 2>& memory, Y& dy,
+              Forces* forces) const {
     const double* v = &y[kVelocity];
     const double w1 = v[kT1];
     const double w2 = v[kT2];
@@ -326,8 +330,11 @@ class PlanarSystem {
         // A pair with a missing tooth: no force, no damping, no friction.
         if (pair_table(side, k) == nullptr) continue;
         // The pair's own penetration: the line's, less its gap.
-        const PairPenetration p = pair_penetration(side, k, x, dl, dl_rate, x_rate);
-        if (p.delta_m <= 0.0) continue;  // its gap is open
+        PairPenetration p{dl, dl_rate, 0.0};
+        if (kOptions && gaps_) {
+          p = pair_penetration(side, k, x, dl, dl_rate, x_rate);
+          if (p.delta_m <= 0.0) continue;  // its gap is open
+        }
         const double dk = p.delta_m;
         const auto [ke, dke] = pair_stiffness(side, k, range.count, x);
         const double f_elastic = elastic_force(ke, dk);
@@ -362,7 +369,7 @@ class PlanarSystem {
         // The gap moves with the pinion: N does the work -N de_k/dX dX/dt on
         // the pair's penetration at fixed centres and angles, the varying
         // mesh's as in the torsional system.
-        if (gaps_) parametric_power -= normal_n * p.gap_slope * x_rate;
+        if (kOptions && gaps_) parametric_power -= normal_n * p.gap_slope * x_rate;
         total += normal_n;
         if (forces != nullptr) forces->friction_n += ff;
       }
@@ -372,7 +379,7 @@ class PlanarSystem {
       }
     }
     double mesh_damping_power = 0.0;
-    if (mesh_damping_ > 0.0) {
+    if (kOptions && mesh_damping_ > 0.0) {
       // The viscous mesh damper, half of c on each line of action on that
       // line's s' (s_d', s_c'), in contact and in the backlash alike: with the
       // centres fixed both rates are s' and the two halves are the torsional
@@ -394,12 +401,21 @@ class PlanarSystem {
     }
     // A driver's torque is what gives its body the prescribed acceleration:
     // set below, once the moments on that body are known.
-    double t1 = driven_ ? 0.0 : torque_at(c_.torque1, t);
-    if (driven_ && !m_.shafts) t1 = j1_ * driver.acceleration_rad_per_s2 - moment1;
+    // A driven body has the closed form's acceleration in every stage (its
+    // angle and speed are set to the closed form after every step): the
+    // driver's torque is what gives it that against the other moments on it.
+    double t1 = 0.0;
+    double driven_acceleration = 0.0;
+    if (kOptions && driven_) {
+      driven_acceleration = driver_motion(c_.torque1, driver_theta0_, t).acceleration_rad_per_s2;
+      if (!m_.shafts) t1 = j1_ * driven_acceleration - moment1;
+    } else {
+      t1 = torque_at(c_.torque1, t);
+    }
     // A drag opposes the turning of the body it acts on: the load on its
     // shaft, else the wheel.
-    double t2 =
-        drag_ ? drag_torque_n_m(c_.torque2, m_.shafts ? v[kTl] : w2) : torque_at(c_.torque2, t);
+    double t2 = kOptions && drag_ ? drag_torque_n_m(c_.torque2, m_.shafts ? v[kTl] : w2)
+                                  : torque_at(c_.torque2, t);
     double shaft_power = 0.0;
     // Without shafts the motor and the load are not bodies: their entries
     // stay as they started, and the outputs report the gears' own.
@@ -415,7 +431,7 @@ class PlanarSystem {
                              m_.motor_damping_n_m_s_per_rad * rel_m;
       const double shaft_l =
           m_.load_stiffness_n_m_per_rad * (y[kTl] - y[kT2]) + m_.load_damping_n_m_s_per_rad * rel_l;
-      if (driven_) t1 = m_.motor_inertia_kg_m2 * driver.acceleration_rad_per_s2 + shaft_m;
+      if (kOptions && driven_) t1 = m_.motor_inertia_kg_m2 * driven_acceleration + shaft_m;
       dy[kVelocity + kTm] = (t1 - shaft_m) / m_.motor_inertia_kg_m2;
       dy[kVelocity + kTl] = (t2 - shaft_l) / m_.load_inertia_kg_m2;
       work = t1 * v[kTm] + t2 * v[kTl];
@@ -438,8 +454,10 @@ class PlanarSystem {
     dy[kBearingLoss] = bearing_power;
     dy[kShaftLoss] = shaft_power;
     dy[kMeshDamperLoss] = mesh_damping_power;
+    if (kOptions && driven_) dy[kVelocity + driven_index_] = driven_acceleration;
   }
 
+ public:
   // The memory of a contact that begins on `side` at y.
   ContactMemory onset(Region side, const Y& y, double& impact_speed, double& restitution) const {
     const auto [dl, dl_rate] = penetration(side, y);
@@ -501,6 +519,7 @@ class PlanarSystem {
   bool driven_ = false;        // torque1 a kinematic driver
   std::size_t driven_index_ = kT1;
   double driver_theta0_ = 0.0;
+  bool options_ = false;  // any of the four above
   MeshLayout layout_;
   double rb1_ = 0.0, rb2_ = 0.0, j1_ = 0.0, j2_ = 0.0, backlash_ = 0.0, lp_ = 0.0;
   double xs_ = 0.0, xe_ = 0.0, sin_a_ = 0.0, cos_a_ = 0.0, constant_k_ = 0.0;
