@@ -399,8 +399,6 @@ class PlanarSystem {
         mesh_damping_power += force * rate;
       }
     }
-    // A driver's torque is what gives its body the prescribed acceleration:
-    // set below, once the moments on that body are known.
     // A driven body has the closed form's acceleration in every stage (its
     // angle and speed are set to the closed form after every step): the
     // driver's torque is what gives it that against the other moments on it.
