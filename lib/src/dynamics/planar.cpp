@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -40,6 +41,7 @@ enum P : std::size_t {
   kParametric,
   kBearingLoss,
   kShaftLoss,
+  kMeshDamperLoss,
   kSize
 };
 using Y = std::array<double, kSize>;
@@ -99,7 +101,9 @@ struct Forces {
 
 class PlanarSystem {
  public:
-  PlanarSystem(const SimulationCase& c, const StiffnessTable& table, const PlanarMounting& m)
+  // driver_theta0: with a kinematic driver, the angle its body starts from.
+  PlanarSystem(const SimulationCase& c, const StiffnessTable& table, const PlanarMounting& m,
+               double driver_theta0)
       : c_(c), m_(m), table_(table), layout_(c.gears, c.model.coast_phase) {
     const GearPair& g = c.gears;
     rb1_ = base_radius(g, Gear::one);
@@ -121,6 +125,29 @@ class PlanarSystem {
           g, c.model.stiffness, c.faults,
           std::shared_ptr<const StiffnessTable>(&table, [](const StiffnessTable*) {}));
     }
+    if (!is_unmodified(c.modifications)) {
+      gaps_ = std::make_shared<const ToothGaps>(g, c.modifications);
+      kinks_ = gaps_->kinks_m();
+      for (const Region side : kSides) {
+        least_gap_[side_index(side)] = least_gap_bound_m(g, c.modifications, side);
+      }
+    }
+    mesh_damping_ = case_mesh_damping_n_s_per_m(c, table, teeth_.get());
+    drag_ = c.torque2.kind == Torque::Kind::drag;
+    driven_ = c.torque1.kind == Torque::Kind::prescribed_speed;
+    // torque1 acts on the motor with shafts, so the driver turns it.
+    driven_index_ = m.shafts ? kTm : kT1;
+    driver_theta0_ = driver_theta0;
+    options_ = gaps_ || mesh_damping_ > 0.0 || driven_ || drag_;
+  }
+
+  // A kinematic driver's body (the pinion, the motor with shafts) where its
+  // closed form puts it at t.
+  void impose_driver(double t, Y& y) const {
+    if (!driven_) return;
+    const DriverMotion d = driver_motion(c_.torque1, driver_theta0_, t);
+    y[driven_index_] = d.theta_rad;
+    y[kVelocity + driven_index_] = d.speed_rad_per_s;
   }
 
   double rb1() const { return rb1_; }
@@ -140,6 +167,25 @@ class PlanarSystem {
                         (y[kVelocity + kY1] - y[kVelocity + kY2]) * n[1];
     const double sign = line_sign(side);
     return {sign * s - backlash_, sign * rate};
+  }
+
+  // Pair k on `side` at X with the line's penetration dl and its rate: its own
+  // penetration and rate, less the gap of its teeth with [modifications]. The
+  // gap's branch is that of the zone X is in: the planar run does not locate
+  // the kinks of a linear relief, each stage takes its own.
+  PairPenetration pair_penetration(Region side, int k, double x, double dl, double dl_rate,
+                                   double x_rate) const {
+    if (!gaps_) return {dl, dl_rate, 0.0};
+    return pair_penetration_with_gap(*gaps_, kinks_, gap_zone(kinks_, x), side, k, x, dl, dl_rate,
+                                     x_rate, xs_, xe_);
+  }
+
+  // The largest penetration of a pair on `side`: the line's, less the least
+  // gap of its pairs with [modifications]. The side is in contact while it is
+  // positive; its onset and end are the located events.
+  double contact_value(Region side, const Y& y) const {
+    const double dl = penetration(side, y).first;
+    return gaps_ ? dl - least_pair_gap_m(*gaps_, layout_, side, y[kT1]) : dl;
   }
 
   LoadedRange loaded(Region side, double theta1) const {
@@ -166,12 +212,15 @@ class PlanarSystem {
   // The mesh's stored energy of `side` at y with the pairs of `range`.
   double mesh_energy(Region side, const Y& y, LoadedRange range) const {
     const double dl = penetration(side, y).first;
-    if (dl <= 0.0) return 0.0;
+    if (dl <= least_gap_[side_index(side)]) return 0.0;
     const double ref = layout_.reference_m(side, y[kT1]);
     double u = 0.0;
     for (int j = 0; j < range.count; ++j) {
       const int k = range.k_first + j;
-      u += 0.5 * pair_stiffness(side, k, range.count, layout_.position_m(ref, k)).first * dl * dl;
+      const double x = layout_.position_m(ref, k);
+      const double dk = pair_penetration(side, k, x, dl, 0.0, 0.0).delta_m;
+      if (dk <= 0.0) continue;  // its gap is open
+      u += 0.5 * pair_stiffness(side, k, range.count, x).first * dk * dk;
     }
     return u;
   }
@@ -181,12 +230,15 @@ class PlanarSystem {
   ElasticEnergy mesh_terms(const Y& y) const {
     ElasticEnergy u;
     for (const Region side : kSides) {
-      const double dl = penetration(side, y).first;
-      if (dl <= 0.0) continue;
+      const double line_dl = penetration(side, y).first;
+      if (line_dl <= least_gap_[side_index(side)]) continue;
       const double ref = layout_.reference_m(side, y[kT1]);
       const LoadedRange range = layout_.loaded(ref);
       for (int j = 0; j < range.count; ++j) {
         const int k = range.k_first + j;
+        const double dl =
+            pair_penetration(side, k, layout_.position_m(ref, k), line_dl, 0.0, 0.0).delta_m;
+        if (dl <= 0.0) continue;  // its gap is open
         if (constant_k_ > 0.0) {
           u.j[index_of(Term::hertz)] += 0.5 * constant_k_ / range.count * dl * dl;
           continue;
@@ -227,6 +279,20 @@ class PlanarSystem {
   // The equations of motion with the contact memory of each side.
   void rhs(double t, const Y& y, const std::array<ContactMemory, 2>& memory, Y& dy,
            Forces* forces = nullptr) const {
+    if (options_) {
+      motion<true>(t, y, memory, dy, forces);
+    } else {
+      motion<false>(t, y, memory, dy, forces);
+    }
+  }
+
+ private:
+  // The equations of motion; kOptions false compiles out the code of the
+  // options a case may not have (gaps, the mesh damper, a driver, a drag), so
+  // that a run without them pays nothing for them.
+  template <bool kOptions>
+  void motion(double t, const Y& y, const std::array<ContactMemory, 2>& memory, Y& dy,
+              Forces* forces) const {
     const double* v = &y[kVelocity];
     const double w1 = v[kT1];
     const double w2 = v[kT2];
@@ -245,8 +311,9 @@ class PlanarSystem {
     double parametric_power = 0.0;
     for (const Region side : kSides) {
       const auto [dl, dl_rate] = penetration(side, y);
-      if (dl <= 0.0) continue;
       const std::size_t i = side_index(side);
+      // Below every pair's gap (0 without [modifications]) the side is apart.
+      if (dl <= least_gap_[i]) continue;
       const double sign = line_sign(side);
       const auto n = normal(side);
       // t = e_z x n: the flanks' common tangent, along which friction acts.
@@ -263,13 +330,20 @@ class PlanarSystem {
         const double x = layout_.position_m(ref, k);
         // A pair with a missing tooth: no force, no damping, no friction.
         if (pair_table(side, k) == nullptr) continue;
+        // The pair's own penetration: the line's, less its gap.
+        PairPenetration p{dl, dl_rate, 0.0};
+        if (kOptions && gaps_) {
+          p = pair_penetration(side, k, x, dl, dl_rate, x_rate);
+          if (p.delta_m <= 0.0) continue;  // its gap is open
+        }
+        const double dk = p.delta_m;
         const auto [ke, dke] = pair_stiffness(side, k, range.count, x);
-        const double f_elastic = elastic_force(ke, dl);
+        const double f_elastic = elastic_force(ke, dk);
         const double d =
             c_.model.damping_stiffness == DampingStiffness::current_pair
                 ? memory[i].damping_per_stiffness_s_m * ke
                 : memory[i].damping_per_stiffness_s_m * memory[i].frozen_stiffness_n_per_m;
-        const double pushed = f_elastic + hertzian_damping_force(d, dl, dl_rate);
+        const double pushed = f_elastic + hertzian_damping_force(d, dk, p.rate_m_s);
         // A tooth pushes, never pulls: the clipping is not located, each
         // stage takes it from its own state.
         const double normal_n = normal_force(f_elastic, pushed - f_elastic, pushed < 0.0);
@@ -290,9 +364,13 @@ class PlanarSystem {
         f1[1] += fy;
         f2[0] -= fx;
         f2[1] -= fy;
-        hertz_power += (normal_n - f_elastic) * dl_rate;
+        hertz_power += (normal_n - f_elastic) * p.rate_m_s;
         friction_power += f * normal_n * slip * vs;
-        parametric_power += 0.5 * dl * dl * dke * x_rate;
+        parametric_power += 0.5 * dk * dk * dke * x_rate;
+        // The gap moves with the pinion: N does the work -N de_k/dX dX/dt on
+        // the pair's penetration at fixed centres and angles, the varying
+        // mesh's as in the torsional system.
+        if (kOptions && gaps_) parametric_power -= normal_n * p.gap_slope * x_rate;
         total += normal_n;
         if (forces != nullptr) forces->friction_n += ff;
       }
@@ -301,8 +379,42 @@ class PlanarSystem {
         forces->penetration_m[i] = dl;
       }
     }
-    double t1 = torque_at(c_.torque1, t);
-    double t2 = torque_at(c_.torque2, t);
+    double mesh_damping_power = 0.0;
+    if (kOptions && mesh_damping_ > 0.0) {
+      // The viscous mesh damper, half of c on each line of action on that
+      // line's s' (s_d', s_c'), in contact and in the backlash alike: with the
+      // centres fixed both rates are s' and the two halves are the torsional
+      // c s' (docs/vibration.md). Each acts as a contact force of its line
+      // would: on the pinion -f n, -f Rb1, on the wheel +f n, +f Rb2.
+      const double roll = rb1_ * w1 - rb2_ * w2;
+      for (const Region side : kSides) {
+        const auto n = normal(side);
+        const double rate = roll + (v[kX1] - v[kX2]) * n[0] + (v[kY1] - v[kY2]) * n[1];
+        const double force = 0.5 * mesh_damping_ * rate;
+        moment1 -= force * rb1_;
+        moment2 += force * rb2_;
+        f1[0] -= force * n[0];
+        f1[1] -= force * n[1];
+        f2[0] += force * n[0];
+        f2[1] += force * n[1];
+        mesh_damping_power += force * rate;
+      }
+    }
+    // A driven body has the closed form's acceleration in every stage (its
+    // angle and speed are set to the closed form after every step): the
+    // driver's torque is what gives it that against the other moments on it.
+    double t1 = 0.0;
+    double driven_acceleration = 0.0;
+    if (kOptions && driven_) {
+      driven_acceleration = driver_motion(c_.torque1, driver_theta0_, t).acceleration_rad_per_s2;
+      if (!m_.shafts) t1 = j1_ * driven_acceleration - moment1;
+    } else {
+      t1 = torque_at(c_.torque1, t);
+    }
+    // A drag opposes the turning of the body it acts on: the load on its
+    // shaft, else the wheel.
+    double t2 = kOptions && drag_ ? drag_torque_n_m(c_.torque2, m_.shafts ? v[kTl] : w2)
+                                  : torque_at(c_.torque2, t);
     double shaft_power = 0.0;
     // Without shafts the motor and the load are not bodies: their entries
     // stay as they started, and the outputs report the gears' own.
@@ -318,6 +430,7 @@ class PlanarSystem {
                              m_.motor_damping_n_m_s_per_rad * rel_m;
       const double shaft_l =
           m_.load_stiffness_n_m_per_rad * (y[kTl] - y[kT2]) + m_.load_damping_n_m_s_per_rad * rel_l;
+      if (kOptions && driven_) t1 = m_.motor_inertia_kg_m2 * driven_acceleration + shaft_m;
       dy[kVelocity + kTm] = (t1 - shaft_m) / m_.motor_inertia_kg_m2;
       dy[kVelocity + kTl] = (t2 - shaft_l) / m_.load_inertia_kg_m2;
       work = t1 * v[kTm] + t2 * v[kTl];
@@ -339,11 +452,29 @@ class PlanarSystem {
     dy[kParametric] = parametric_power;
     dy[kBearingLoss] = bearing_power;
     dy[kShaftLoss] = shaft_power;
+    dy[kMeshDamperLoss] = mesh_damping_power;
+    if (kOptions && driven_) dy[kVelocity + driven_index_] = driven_acceleration;
   }
 
+ public:
   // The memory of a contact that begins on `side` at y.
   ContactMemory onset(Region side, const Y& y, double& impact_speed, double& restitution) const {
-    const OnsetDamping d = onset_damping(c_.model, penetration(side, y).second);
+    const auto [dl, dl_rate] = penetration(side, y);
+    double approach = dl_rate;
+    if (gaps_) {
+      // The fastest approach among the pairs that touch, each at its own
+      // penetration rate, as in the torsional system.
+      const double ref = layout_.reference_m(side, y[kT1]);
+      const LoadedRange range = layout_.loaded(ref);
+      const double x_rate = line_sign(side) * rb1_ * y[kVelocity + kT1];
+      approach = -std::numeric_limits<double>::infinity();
+      for (int k = range.k_first; k < range.k_first + range.count; ++k) {
+        const PairPenetration p =
+            pair_penetration(side, k, layout_.position_m(ref, k), dl, dl_rate, x_rate);
+        if (p.delta_m > 0.0) approach = std::max(approach, p.rate_m_s);
+      }
+    }
+    const OnsetDamping d = onset_damping(c_.model, approach);
     impact_speed = d.impact_speed_m_s;
     restitution = d.restitution;
     ContactMemory memory;
@@ -377,6 +508,17 @@ class PlanarSystem {
   const PlanarMounting& m_;
   const StiffnessTable& table_;
   std::shared_ptr<const MeshTables> teeth_;
+  // With [modifications]: each pair's gap (docs/faults.md), the kinks of its
+  // slope, and per side a bound below every pair's gap (0 without).
+  std::shared_ptr<const ToothGaps> gaps_;
+  std::vector<double> kinks_;
+  std::array<double, 2> least_gap_{};
+  double mesh_damping_ = 0.0;  // c of the viscous mesh damper, N s/m; 0: none
+  bool drag_ = false;          // torque2 a drag
+  bool driven_ = false;        // torque1 a kinematic driver
+  std::size_t driven_index_ = kT1;
+  double driver_theta0_ = 0.0;
+  bool options_ = false;  // any of the four above
   MeshLayout layout_;
   double rb1_ = 0.0, rb2_ = 0.0, j1_ = 0.0, j2_ = 0.0, backlash_ = 0.0, lp_ = 0.0;
   double xs_ = 0.0, xe_ = 0.0, sin_a_ = 0.0, cos_a_ = 0.0, constant_k_ = 0.0;
@@ -427,24 +569,11 @@ void validate_planar(const SimulationCase& c, const PlanarMounting& m, const Run
     require(std::isfinite(m.load_damping_n_m_s_per_rad) && m.load_damping_n_m_s_per_rad >= 0.0,
             "load_damping", m.load_damping_n_m_s_per_rad, "a finite value >= 0");
   }
-  for (const auto& [key, torque] :
-       {std::pair<const char*, const Torque*>{"torque1.kind", &c.torque1},
-        std::pair<const char*, const Torque*>{"torque2.kind", &c.torque2}}) {
-    if (torque->kind == Torque::Kind::prescribed_speed || torque->kind == Torque::Kind::drag) {
-      refuse(key, torque->kind == Torque::Kind::drag ? "drag" : "prescribed-speed",
-             "\"constant\", \"sinusoidal\", \"harmonic\" or a user function");
-    }
-  }
   if (c.model.mesh_force == MeshForce::lagrangian &&
       c.model.mesh_stiffness != MeshStiffnessMode::constant) {
-    refuse("model.mesh_force", "lagrangian", "\"newtonian\"");
-  }
-  if (c.model.mesh_damping_ratio > 0.0) {
-    refuse("model.mesh_damping_ratio", format_number(c.model.mesh_damping_ratio),
-           "0 (the viscous mesh damper acts on the torsional s only)");
-  }
-  if (!is_unmodified(c.modifications)) {
-    refuse("modifications", "a relief or a tooth error", "none (the gaps are torsional only yet)");
+    refuse("model.mesh_force", "lagrangian",
+           "\"newtonian\" (the stored energy's jump where a pair enters or leaves under load is "
+           "paid by the pinion at that instant, which needs the pair's entry and exit located)");
   }
   if (c.integrator.kind != IntegratorKind::rk4) refuse("integrator.kind", "adaptive", "\"rk4\"");
   if (control.resume) refuse("resume", "a run state", "none (a planar run starts afresh)");
@@ -475,6 +604,17 @@ void check_step(const SimulationCase& c, const StiffnessTable& table, const Plan
     w2 += m.motor_stiffness_n_m_per_rad * (1.0 / m.motor_inertia_kg_m2 + 1.0 / j1) +
           m.load_stiffness_n_m_per_rad * (1.0 / m.load_inertia_kg_m2 + 1.0 / j2);
   }
+  // A drag on the load relaxes its speed with the rate (drag_constant /
+  // drag_speed_scale + drag_viscous) / J_load, which the case's check of the
+  // drag bounds for the wheel only: counted as a frequency, it needs as many
+  // steps per 2 pi of its time constant as that check does.
+  const bool load_drag = m.shafts && c.torque2.kind == Torque::Kind::drag;
+  if (load_drag) {
+    const double rate = (c.torque2.drag_constant_n_m / c.torque2.drag_speed_scale_rad_per_s +
+                         c.torque2.drag_viscous_n_m_s) /
+                        m.load_inertia_kg_m2;
+    w2 += rate * rate;
+  }
   const double largest = 2.0 * pi / std::sqrt(w2) / kStepsPerContactPeriod;
   if (c.integrator.step_s > largest) {
     throw InputError("integrator.step", format_number(c.integrator.step_s) + " s",
@@ -484,7 +624,8 @@ void check_step(const SimulationCase& c, const StiffnessTable& table, const Plan
                          format_number(kStepsPerContactPeriod) +
                          " of the shortest period the planar system can have (its stiffest "
                          "springs: the mesh on both sides, the bearings" +
-                         std::string(m.shafts ? ", the shafts" : "") + ")");
+                         std::string(m.shafts ? ", the shafts" : "") +
+                         std::string(load_drag ? ", the drag's relaxation of the load" : "") + ")");
   }
 }
 
@@ -584,7 +725,8 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   validate_planar(c, mounting, control);
   validate_sampling(c, control);
   check_step(c, table, mounting);
-  const PlanarSystem system(c, table, mounting);
+  const PlanarSystem system(c, table, mounting,
+                            mounting.shafts ? initial.theta_motor_rad : initial.theta1_rad);
   SimulationResult result;
   SimulationSummary& s = result.summary;
   s.case_name = c.name;
@@ -597,6 +739,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   PlanarEnergies& p = *s.planar;
 
   Y y = to_vector(initial);
+  system.impose_driver(0.0, y);
   const double h = c.integrator.step_s;
   const auto steps = static_cast<long long>(std::ceil(c.integrator.end_time_s / h - 1e-9));
   std::array<ContactMemory, 2> memory{};
@@ -610,7 +753,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   const auto begin_contacts = [&](double t) {
     for (const Region side : kSides) {
       const std::size_t i = side_index(side);
-      const bool now = system.penetration(side, y).first > 0.0;
+      const bool now = system.contact_value(side, y) > 0.0;
       if (now && !touching[i]) {
         ImpactRecord impact{};
         impact.line = side;
@@ -648,8 +791,8 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     // The drive line's s_d and the larger penetration; the side in contact
     // (the drive side when both are).
     row.s_m = system.penetration(Region::n1, y).first + c.gears.backlash_m;
-    const double dd = system.penetration(Region::n1, y).first;
-    const double dc = system.penetration(Region::n2, y).first;
+    const double dd = system.contact_value(Region::n1, y);
+    const double dc = system.contact_value(Region::n2, y);
     row.delta_m = std::max(dd, dc);
     row.region = dd > 0.0 ? 1 : (dc > 0.0 ? -1 : 0);
     row.pairs = dd > 0.0 ? ranges[0].count : (dc > 0.0 ? ranges[1].count : 0);
@@ -747,7 +890,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   Y next{};
   double t = 0.0;
   const auto contact = [&](Region side, const Y& state) {
-    return system.penetration(side, state).first > 0.0;
+    return system.contact_value(side, state) > 0.0;
   };
   for (long long n = 1; n <= steps;) {
     // The last step ends at end_time exactly, where the last sample may be.
@@ -770,12 +913,12 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
       const auto value = [&](double l, Y& out) {
         rk4(system, t, y, l, memory, out);
         s.rhs_evaluations += 4;
-        return system.penetration(side, out).first;
+        return system.contact_value(side, out);
       };
       double lo = 0.0;
       double hi = length;
       Y trial{};
-      double g_lo = system.penetration(side, y).first;
+      double g_lo = system.contact_value(side, y);
       double g_hi = value(hi, trial);
       if (contact(side, trial) == before) continue;  // an earlier side's cut ends before
       int stale = 0;
@@ -810,6 +953,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     // Before the contact memory changes at an event: the step's samples are its own.
     if (dense != nullptr) emit_samples(t, y, length, stages, t_next, next);
     y = next;
+    system.impose_driver(t_next, y);
     t = t_next;
     ++s.steps;
     // A pair that entered or left during the step takes or releases its
@@ -819,8 +963,8 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     const double mesh = mesh_energy(y);
     jump_work += mesh - before;
     begin_contacts(t);
-    s.max_penetration_m = std::max({s.max_penetration_m, system.penetration(Region::n1, y).first,
-                                    system.penetration(Region::n2, y).first});
+    s.max_penetration_m = std::max({s.max_penetration_m, system.contact_value(Region::n1, y),
+                                    system.contact_value(Region::n2, y)});
     const double energy =
         system.kinetic_energy(y) + mesh + system.bearing_energy(y) + system.shaft_energy(y);
     s.ledger_scale_j = std::max(s.ledger_scale_j, energy);
@@ -829,7 +973,8 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
       s.energy_max_j[i] = std::max(s.energy_max_j[i], terms.j[i]);
     }
     const double residual = energy - energy0 - y[kWork] + y[kHertzLoss] + y[kSlidingLoss] +
-                            y[kBearingLoss] + y[kShaftLoss] - y[kParametric] - jump_work;
+                            y[kBearingLoss] + y[kShaftLoss] + y[kMeshDamperLoss] - y[kParametric] -
+                            jump_work;
     s.ledger_residual_j = residual;
     s.ledger_residual_max_j = std::max(s.ledger_residual_max_j, std::fabs(residual));
     if (t != t_grid) continue;  // a cut step: the grid point is still ahead
@@ -846,6 +991,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   s.torque_work_j = y[kWork];
   s.damping_loss_j = y[kHertzLoss];
   s.friction_loss_j = y[kSlidingLoss];
+  s.mesh_damping_loss_j = y[kMeshDamperLoss];
   s.parametric_jump_work_j = jump_work;
   s.parametric_work_j = y[kParametric] + jump_work;
   s.final_w1_rad_per_s = y[kVelocity + kT1];
