@@ -17,6 +17,7 @@
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/io/atomic_file.hpp"
+#include "gearimpact/io/results.hpp"
 #include "gearimpact/io/signal_files.hpp"
 #include "gearimpact/signals/indicators.hpp"
 #include "gearimpact/signals/resample.hpp"
@@ -114,9 +115,30 @@ void mark_mesh_harmonics(Figure& f, double mesh, double highest, const std::stri
   }
 }
 
+// Short red ticks at the top at the sidebands h * mesh +- j * shaft (j = 1..
+// sidebands) of each marked harmonic, where a fault's once-per-revolution
+// modulation puts its energy; a key entry says what they are.
+void mark_sidebands(Figure& f, double mesh, double shaft, std::size_t sidebands, double highest,
+                    const std::string& label) {
+  for (int h = 1; h * mesh <= highest && h <= 20; ++h) {
+    for (std::size_t j = 1; j <= sidebands; ++j) {
+      for (const double sign : {-1.0, 1.0}) {
+        const double at = h * mesh + sign * static_cast<double>(j) * shaft;
+        if (at <= 0.0 || at > highest) continue;
+        char x[64];
+        std::snprintf(x, sizeof x, "%.10g", at);
+        f.setup.push_back(std::string("set arrow from ") + x + ", graph 0.86 to " + x +
+                          ", graph 0.93 nohead lw 1.5 lc rgb '#c0392b'");
+      }
+    }
+  }
+  f.setup.emplace_back("set key bottom right opaque box");
+  f.series.push_back("NaN with lines lw 1.5 lc rgb '#c0392b' title '" + label + "'");
+}
+
 void spectrum_figure(const std::filesystem::path& dir, const std::string& name,
                      const std::string& title, const std::string& x_label, double top, double mesh,
-                     const std::string& mesh_name) {
+                     const std::string& mesh_name, double shaft = 0.0, std::size_t sidebands = 0) {
   Figure f;
   f.name = name;
   f.title = title;
@@ -125,7 +147,46 @@ void spectrum_figure(const std::filesystem::path& dir, const std::string& name,
   f.setup = {"set logscale y", "set format y '10^{%L}'", "set key off"};
   add(f, tick_commands("x", nice_ticks(0.0, top)));
   if (mesh > 0.0) mark_mesh_harmonics(f, mesh, top, mesh_name);
-  f.series = {"'" + name + ".csv' using 1:($2 > 0 ? $2 : NaN) with lines lw 1.2 lc rgb '#1f4e99'"};
+  f.series = {"'" + name +
+              ".csv' using 1:($2 > 0 ? $2 : NaN) with lines lw 1.2 lc rgb '#1f4e99' notitle"};
+  if (mesh > 0.0 && shaft > 0.0 && sidebands > 0) {
+    mark_sidebands(f, mesh, shaft, sidebands, top,
+                   "sidebands " + mesh_name + " +- 1.." + std::to_string(sidebands) +
+                       (name == "order_spectrum" ? " orders" : " shaft frequencies"));
+  }
+  render(dir, f);
+}
+
+// The record as it was analysed (the uniform grid), at most its last
+// kWaveformSamples samples so that the figure stays legible: waveform.csv.
+constexpr std::size_t kWaveformSamples = 16384;
+
+std::size_t waveform_start(const std::vector<double>& uniform) {
+  return uniform.size() > kWaveformSamples ? uniform.size() - kWaveformSamples : 0;
+}
+
+void write_waveform(const std::filesystem::path& dir, const std::string& column,
+                    const std::vector<double>& uniform, double start_s, double rate_hz) {
+  std::string csv = "t_s," + column + "\n";
+  for (std::size_t i = waveform_start(uniform); i < uniform.size(); ++i) {
+    csv += format_data_number(start_s + static_cast<double>(i) / rate_hz) + "," +
+           format_data_number(uniform[i]) + "\n";
+  }
+  write_file_atomically((dir / "waveform.csv").string(), csv);
+}
+
+void waveform_figure(const std::filesystem::path& dir, const std::string& column,
+                     const std::vector<double>& uniform) {
+  const std::size_t first = waveform_start(uniform);
+  Figure f;
+  f.name = "waveform";
+  f.title = "Waveform of " + literal_key(column, true) +
+            (first > 0 ? " (the record's last " + std::to_string(kWaveformSamples) + " samples)"
+                       : std::string());
+  f.x_label = "time (s)";
+  f.y_label = "signal";
+  f.setup = {"set key off"};
+  f.series = {"'waveform.csv' using 1:2 with lines lw 1 lc rgb '#1f4e99'"};
   render(dir, f);
 }
 
@@ -227,6 +288,7 @@ void run_signals(const SignalsOptions& o) {
   AtomicFolder folder(o.out, o.overwrite, {o.input});
   const std::filesystem::path dir = folder.temporary();
   write_file_atomically((dir / "spectrum.csv").string(), spectrum_csv(spectrum, "frequency_hz"));
+  write_waveform(dir, o.column, uniform, time.front(), run.sample_rate_hz);
   signals::Indicators indicators;
   std::vector<double> tsa_values;
   double mesh_hz = 0.0;
@@ -257,11 +319,13 @@ void run_signals(const SignalsOptions& o) {
   write_file_atomically((dir / "indicators.json").string(), json);
   if (o.plots) {
     const double nyquist = run.sample_rate_hz / 2.0;
+    const std::size_t sidebands = sets ? sets->sidebands : 0;
+    waveform_figure(dir, o.column, uniform);
     spectrum_figure(
         dir, "spectrum",
         "Amplitude spectrum of " + literal_key(o.column, true) + " (" + run.window + " window)",
         "frequency (Hz)", mesh_hz > 0.0 ? std::min(nyquist, 6.5 * mesh_hz) : nyquist, mesh_hz,
-        "f_m");
+        "f_m", run.shaft_frequency_hz, sidebands);
     if (has_angle) {
       const double half = static_cast<double>(run.angle_grid) / 2.0;
       const double z = sets ? static_cast<double>(sets->teeth) : 0.0;
@@ -269,7 +333,7 @@ void run_signals(const SignalsOptions& o) {
                       "Order spectrum of " + literal_key(o.column, true) + " on " +
                           literal_key(o.angle_column, true),
                       "order (cycles per revolution)", sets ? std::min(half, 3.5 * z) : half, z,
-                      "z");
+                      "z", 1.0, sidebands);
       tsa_figure(dir, tsa_values, sets.has_value());
     }
   }

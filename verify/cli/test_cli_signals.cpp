@@ -109,6 +109,46 @@ TEST_CASE("signals: order spectrum, TSA and FM0 of mesh harmonics in an uneven a
   CHECK(std::count(tsa.begin(), tsa.end(), '\n') == 641);
 }
 
+// Occurrences of `what` in `text`.
+std::size_t count_of(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST_CASE("signals: the waveform is the record's end, the sidebands are marked where they lie") {
+  Scratch scratch("signals-figures");
+  const auto csv = scratch.dir / "signal.csv";
+  write_signal(csv);
+  const auto out = scratch.dir / "out";
+  const auto r = run_command(kCli + " signals " + csv.string() +
+                             " --column x --angle-column theta_rad --teeth 20 --sidebands 2"
+                             " --samples-per-revolution 640 --out " +
+                             out.string());
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  for (const char* name : {"waveform.csv", "waveform.png", "spectrum.png", "order_spectrum.png"}) {
+    CHECK(std::filesystem::exists(out / name));
+  }
+  // At the record's own rate the grid is the record's times, where the cubic returns each
+  // sample itself: the last of the 16384 rows kept is the signal at t = 1 s in closed form.
+  // The rate is 1 / the median spacing, 2e-5 s computed as a difference of the times (about
+  // 1e-12 relative), so the grid's last time is 1 s within 1e-10 and the value, whose slope is
+  // below 2e3 per s, within 1e-8.
+  const std::string waveform = read(out / "waveform.csv");
+  CHECK(std::count(waveform.begin(), waveform.end(), '\n') == 16384 + 1);
+  const std::string last = waveform.substr(waveform.rfind('\n', waveform.size() - 2) + 1);
+  const double theta = 2.0 * pi * 5.0 + 0.3 * std::sin(2.0 * pi * 3.0);
+  CHECK(relative_difference(std::stod(last.substr(0, last.find(','))), 1.0) < 1e-10);
+  CHECK(relative_difference(std::stod(last.substr(last.find(',') + 1)),
+                            1.0 + std::cos(20.0 * theta) + 0.25 * std::cos(40.0 * theta)) < 1e-8);
+  // Sidebands h f_m +- 1, 2 f_s of each harmonic drawn: 6 harmonics up to 6.5 f_m in the
+  // spectrum, 3 up to order 70 (3.5 z) in the order spectrum, 4 ticks each.
+  CHECK(count_of(read(out / "spectrum.gp"), "graph 0.86") == 6 * 4);
+  CHECK(count_of(read(out / "order_spectrum.gp"), "graph 0.86") == 3 * 4);
+  CHECK(read(out / "order_spectrum.gp").find("set arrow from 38, graph 0.86") != std::string::npos);
+}
+
 TEST_CASE("signals refuses a bad flag before any work, naming it and its range") {
   Scratch scratch("signals-flags");
   const auto csv = scratch.dir / "signal.csv";
