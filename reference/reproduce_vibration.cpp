@@ -1,0 +1,464 @@
+// Vibration of a healthy and a cracked pinion: the test-rig-like pair of examples/rig_17_38.toml
+// on elastic bearings (docs/vibration.md), its modes, the pinion bearing's signal with a root
+// crack of growing depth in pinion tooth 0 (spectrum, time-synchronous average, condition
+// indicators of docs/signals.md), and the pair at low load with a torque ripple, where the
+// breathing backlash lets the teeth separate.
+#include <algorithm>
+#include <cmath>
+#include <future>
+#include <numeric>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "gearimpact/constants.hpp"
+#include "gearimpact/dynamics/planar_state.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/rack_generation.hpp"
+#include "gearimpact/io/atomic_file.hpp"
+#include "gearimpact/io/case_file.hpp"
+#include "gearimpact/io/modes_files.hpp"
+#include "gearimpact/io/results.hpp"
+#include "gearimpact/modes/modes.hpp"
+#include "gearimpact/signals/indicators.hpp"
+#include "gearimpact/signals/spectrum.hpp"
+#include "gearimpact/signals/tsa.hpp"
+#include "gearimpact/stiffness/root_crack.hpp"
+#include "reproduce.hpp"
+
+namespace gearimpact::cli {
+
+namespace {
+
+constexpr double kDegree = pi / 180.0;
+// The sampling is locked to the mesh: 32 samples a mesh period (f_s = 32 x 680 = 21760 Hz, the
+// mesh's 15th harmonic below the Nyquist frequency), every 46th step of a step of 1 / (46 f_s)
+// = 0.999 us (the file's 1 us adjusted). Every tooth then passes the samples at the same phase,
+// so that what the interpolation onto the angle grid of the TSA errs is the same for each tooth
+// and stays in the mesh harmonics, out of the difference signal (at 20 kHz, 29.4 samples a mesh
+// period, the healthy pair's difference signal was that error, with FM4 = 8).
+constexpr int kSamplesPerMeshPeriod = 32;
+constexpr int kStepsPerSample = 46;
+// The start (the gears at rest on their bearings, the teeth apart) strikes the teeth and rings
+// the bearing modes; their damping ratio is 500 / (2 sqrt(1.9e8 m)), about 0.03 to 0.05, so the
+// slowest (1897 Hz) decays as exp(-t / 2.8 ms): after 50 ms it is down by exp(-18).
+constexpr double kSettleS = 0.05;  // two revolutions
+constexpr int kRevolutions = 16;
+// Samples kept before the analysed window for the cubic interpolation onto the angle grid.
+constexpr std::size_t kLead = 2;
+const std::vector<double> kDepths{0.0, 0.25, 0.5, 0.75};
+constexpr double kCrackAngleRad = 45.0 * kDegree;
+// The low-load pair: a once-per-revolution ripple of the input torque (a coupling's
+// misalignment) of a fixed amplitude, at the rig's load and at a tenth of it.
+constexpr double kRippleNm = 3.0;
+constexpr double kLowLoadFraction = 0.1;
+constexpr int kLowLoadRevolutions = 8;
+
+SimulationCase rig_case() {
+  return parse_case(rig_17_38_toml(), "examples/rig_17_38.toml");
+}
+
+ToothFault crack_on_pinion_tooth_0(double depth_m) {
+  ToothFault fault;
+  fault.gear = Gear::one;
+  fault.tooth = 0;
+  fault.state.kind = ToothKind::root_crack;
+  fault.state.crack.depth_m = depth_m;
+  fault.state.crack.angle_rad = kCrackAngleRad;
+  return fault;
+}
+
+// A run's samples after the settling time: the planar rows are taken on the step grid, never
+// at a cut, so every kStepsPerSample-th step is a sample at t = n / f_s.
+struct Record {
+  std::vector<double> t_s;
+  std::vector<double> theta1_rad;
+  std::vector<double> sensor_n;  // the pinion bearing's force across the centre line (y)
+  std::vector<double> dte_m;     // s_d - B
+  std::vector<double> coast_penetration_m;
+  int impacts_drive = 0;
+  int impacts_coast = 0;
+};
+
+Record run_record(SimulationCase c, double sample_rate_hz, double end_s) {
+  c.integrator.step_s = 1.0 / (kStepsPerSample * sample_rate_hz);
+  c.integrator.output_every = kStepsPerSample;
+  c.integrator.end_time_s = end_s;
+  Record r;
+  RunControl control;
+  control.keep_series = false;
+  control.on_planar_row = [&r, sample_rate_hz](const PlanarRow& row) {
+    if (row.t_s < kSettleS - 0.5 / sample_rate_hz) return;
+    r.t_s.push_back(row.t_s);
+    r.theta1_rad.push_back(row.state.theta1_rad);
+    r.sensor_n.push_back(row.bearing_fy1_n);
+    r.dte_m.push_back(row.drive_penetration_m);
+    r.coast_penetration_m.push_back(row.coast_penetration_m);
+  };
+  const SimulationResult result = simulate(c, control);
+  for (const ImpactRecord& impact : result.impacts) {
+    if (impact.start_s < kSettleS) continue;
+    (impact.line == Region::n1 ? r.impacts_drive : r.impacts_coast) += 1;
+  }
+  return r;
+}
+
+struct Analysed {
+  double depth = 0.0;  // q / h_c
+  Record record;
+  double t0_s = 0.0;             // the window's start
+  std::vector<double> waveform;  // kRevolutions revolutions at the nominal speed
+  signals::Spectrum spectrum;
+  signals::OrderAnalysis orders;
+  signals::Indicators indicators;
+};
+
+std::string optional_number(const std::optional<double>& v, int digits) {
+  return v ? number(*v, digits) : std::string("-");
+}
+std::string optional_data(const std::optional<double>& v) {
+  return v ? format_data_number(*v) : std::string("nan");
+}
+
+}  // namespace
+
+ReportSection reproduce_vibration(const ReproduceContext& context) {
+  const SimulationCase rig = rig_case();
+  const GearPair& pair = rig.gears;
+  const double w1 = rig.initial.w1_rad_per_s;
+  const double revolution_s = 2.0 * pi / w1;
+  const double f_shaft = 1.0 / revolution_s;
+  const double f_mesh = pair.teeth1 * f_shaft;
+  const double sample_rate_hz = kSamplesPerMeshPeriod * f_mesh;
+  // The TSA at the samples a revolution the record has.
+  const auto tsa_samples = static_cast<std::size_t>(kSamplesPerMeshPeriod * pair.teeth1);
+
+  // 1. The modes at the mean mesh stiffness.
+  const Modes modes = natural_modes(rig);
+  write_file_atomically((context.out / "vibration_modes.csv").string(), modes_csv(modes));
+  std::string modes_table =
+      "| mode | f (Hz) | mesh | pinion bearing | wheel bearing |\n|---|---|---|---|---|\n";
+  for (std::size_t k = 0; k < modes.modes.size(); ++k) {
+    const NaturalMode& m = modes.modes[k];
+    if (m.rigid) continue;
+    const auto share = [&m](SpringPart part) {
+      return number(100.0 * m.energy_share[static_cast<std::size_t>(part)], 3) + " %";
+    };
+    modes_table += "| " + std::to_string(k + 1) + " | " + number(m.frequency_hz, 5) + " | " +
+                   share(SpringPart::mesh) + " | " + share(SpringPart::bearing1) + " | " +
+                   share(SpringPart::bearing2) + " |\n";
+  }
+
+  // 2. Healthy and cracked: the runs side by side on the pool.
+  const RackGearPairGeometry geometry = rack_gear_pair_geometry(pair);
+  const double h_c = place_crack(crack_on_pinion_tooth_0(0.0).state.crack, geometry.gear1,
+                                 rig.model.stiffness.kind, pair.face_width_m)
+                         .start_half_thickness_m;
+  const double record_end_s = kSettleS + (kRevolutions + 1.5) * revolution_s;
+  std::vector<std::future<Record>> running;
+  for (double depth : kDepths) {
+    SimulationCase c = rig;
+    if (depth > 0.0) c.faults = {crack_on_pinion_tooth_0(depth * h_c)};
+    running.push_back(context.pool->run(
+        [c, sample_rate_hz, record_end_s] { return run_record(c, sample_rate_hz, record_end_s); }));
+  }
+  // The low-load pair: T1 = mean + ripple sin(w1 t); the load torque T2 scales with the mean,
+  // as the rig's T2 does (it balances T1 and the friction power, which is proportional to the
+  // normal force).
+  const auto ripple_case = [&rig, w1](double fraction) {
+    SimulationCase c = rig;
+    const double mean = fraction * rig.torque1.constant_n_m;
+    c.torque1 = Torque{};
+    c.torque1.kind = Torque::Kind::sinusoidal;
+    c.torque1.mean_n_m = mean;
+    c.torque1.amplitude_n_m = kRippleNm;
+    c.torque1.angular_frequency_rad_per_s = w1;
+    c.torque2.constant_n_m = fraction * rig.torque2.constant_n_m;
+    return c;
+  };
+  const double low_end_s = kSettleS + kLowLoadRevolutions * revolution_s;
+  std::vector<std::future<Record>> low_running;
+  for (double fraction : {1.0, kLowLoadFraction}) {
+    const SimulationCase c = ripple_case(fraction);
+    low_running.push_back(context.pool->run(
+        [c, sample_rate_hz, low_end_s] { return run_record(c, sample_rate_hz, low_end_s); }));
+  }
+
+  const signals::OrderSets sets{static_cast<std::size_t>(pair.teeth1), 1, 1};
+  const auto waveform_samples =
+      static_cast<std::size_t>(std::lround(kRevolutions * sample_rate_hz * revolution_s));
+  std::vector<Analysed> analysed;
+  for (std::size_t k = 0; k < kDepths.size(); ++k) {
+    Analysed a;
+    a.depth = kDepths[k];
+    a.record = running[k].get();
+    // The analysed window starts where the pinion angle first reaches a multiple of 2 pi (within
+    // the first revolution after settling) and holds kRevolutions revolutions at the nominal
+    // speed: the spectrum's record, and the revolutions the TSA averages (its resampling starts
+    // at that multiple of 2 pi); kLead samples before it and a mesh period after it are kept for
+    // the TSA's interpolation.
+    const double start = 2.0 * pi * std::ceil(a.record.theta1_rad.front() / (2.0 * pi));
+    const auto first = static_cast<std::size_t>(
+        std::lower_bound(a.record.theta1_rad.begin(), a.record.theta1_rad.end(), start) -
+        a.record.theta1_rad.begin());
+    const std::size_t from = first - std::min<std::size_t>(first, kLead);
+    const auto begin = static_cast<std::ptrdiff_t>(first);
+    const auto end = begin + static_cast<std::ptrdiff_t>(waveform_samples);
+    // An accelerometer does not see the static load: the window's mean, the bearing's share of
+    // the mean mesh force, is removed.
+    const double mean =
+        std::accumulate(a.record.sensor_n.begin() + begin, a.record.sensor_n.begin() + end, 0.0) /
+        static_cast<double>(waveform_samples);
+    for (double& v : a.record.sensor_n) v -= mean;
+    a.t0_s = a.record.t_s[first];
+    a.waveform.assign(a.record.sensor_n.begin() + begin, a.record.sensor_n.begin() + end);
+    a.spectrum = signals::amplitude_spectrum(a.waveform, sample_rate_hz, signals::Window::hann);
+    const auto tsa_end = end + kSamplesPerMeshPeriod;
+    const std::vector<double> angle(a.record.theta1_rad.begin() + static_cast<std::ptrdiff_t>(from),
+                                    a.record.theta1_rad.begin() + tsa_end);
+    const std::vector<double> sensor(a.record.sensor_n.begin() + static_cast<std::ptrdiff_t>(from),
+                                     a.record.sensor_n.begin() + tsa_end);
+    a.orders = signals::analyse_orders(angle, sensor, tsa_samples, signals::Window::hann, sets,
+                                       "theta1", "sensor");
+    a.indicators = signals::gear_indicators(a.waveform, *a.orders.parts, sets);
+    analysed.push_back(std::move(a));
+  }
+  const std::vector<std::string> labels{"healthy", "q/h_c = 0.25", "q/h_c = 0.5", "q/h_c = 0.75"};
+
+  // The waveform, the spectrum and the TSA, one column per depth.
+  std::string wave_csv = "t_s";
+  std::string spectrum_csv = "frequency_hz";
+  std::string tsa_csv = "pinion_angle_deg";
+  for (const Analysed& a : analysed) {
+    const std::string q = "q" + number(100.0 * a.depth, 3);
+    wave_csv += ",sensor_" + q + "_n";
+    spectrum_csv += ",amplitude_" + q + "_n";
+    tsa_csv += ",tsa_" + q + "_n,difference_" + q + "_n";
+  }
+  wave_csv += "\n";
+  spectrum_csv += "\n";
+  tsa_csv += "\n";
+  for (std::size_t i = 0; i < waveform_samples; ++i) {
+    wave_csv += format_data_number(static_cast<double>(i) / sample_rate_hz);
+    for (const Analysed& a : analysed) {
+      wave_csv += ',';
+      wave_csv += format_data_number(a.waveform[i]);
+    }
+    wave_csv += "\n";
+  }
+  for (std::size_t i = 0; i < analysed.front().spectrum.frequency.size(); ++i) {
+    spectrum_csv += format_data_number(analysed.front().spectrum.frequency[i]);
+    for (const Analysed& a : analysed) {
+      spectrum_csv += ',';
+      spectrum_csv += format_data_number(a.spectrum.amplitude[i]);
+    }
+    spectrum_csv += "\n";
+  }
+  for (std::size_t j = 0; j < tsa_samples; ++j) {
+    tsa_csv +=
+        format_data_number(360.0 * static_cast<double>(j) / static_cast<double>(tsa_samples));
+    for (const Analysed& a : analysed) {
+      tsa_csv += ',';
+      tsa_csv += format_data_number(a.orders.tsa[j]);
+      tsa_csv += ',';
+      tsa_csv += format_data_number(a.orders.parts->difference[j]);
+    }
+    tsa_csv += "\n";
+  }
+  write_file_atomically((context.out / "vibration_waveform.csv").string(), wave_csv);
+  write_file_atomically((context.out / "vibration_spectrum.csv").string(), spectrum_csv);
+  write_file_atomically((context.out / "vibration_tsa.csv").string(), tsa_csv);
+
+  // The indicators against crack depth, with the mesh order's amplitude read two ways: from
+  // the TSA (order 17 of the angle-domain average) and from the time spectrum at f_m (a bin:
+  // the record is a whole number of revolutions).
+  const auto mesh_bin =
+      static_cast<std::size_t>(std::lround(f_mesh / analysed.front().spectrum.resolution));
+  std::string ind_csv =
+      "q_over_hc,depth_m,rms_n,kurtosis,fm0,fm4,na4,nb4,m6a,m8a,energy_ratio,sideband_level,"
+      "tsa_mesh_order_amplitude_n,spectrum_mesh_amplitude_n,impacts\n";
+  std::string ind_table =
+      "| q/h_c | RMS (N) | kurtosis | FM0 | FM4 | NA4 | NB4 | M6A | M8A | energy ratio | "
+      "sideband level |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const Analysed& a : analysed) {
+    const signals::Indicators& x = a.indicators;
+    ind_csv += format_data_number(a.depth) + "," + format_data_number(a.depth * h_c) + "," +
+               format_data_number(x.rms) + "," + optional_data(x.kurtosis) + "," +
+               optional_data(x.fm0) + "," + optional_data(x.fm4) + "," + optional_data(x.na4) +
+               "," + optional_data(x.nb4) + "," + optional_data(x.m6a) + "," +
+               optional_data(x.m8a) + "," + optional_data(x.energy_ratio) + "," +
+               optional_data(x.sideband_level) + "," +
+               format_data_number(a.orders.parts->order_amplitude[sets.teeth]) + "," +
+               format_data_number(a.spectrum.amplitude[mesh_bin]) + "," +
+               std::to_string(a.record.impacts_drive + a.record.impacts_coast) + "\n";
+    ind_table += "| " + number(a.depth, 3) + " | " + number(x.rms, 4) + " | " +
+                 optional_number(x.kurtosis, 4) + " | " + optional_number(x.fm0, 4) + " | " +
+                 optional_number(x.fm4, 4) + " | " + optional_number(x.na4, 4) + " | " +
+                 optional_number(x.nb4, 4) + " | " + optional_number(x.m6a, 4) + " | " +
+                 optional_number(x.m8a, 4) + " | " + optional_number(x.energy_ratio, 4) + " | " +
+                 optional_number(x.sideband_level, 4) + " |\n";
+  }
+  write_file_atomically((context.out / "vibration_indicators.csv").string(), ind_csv);
+
+  // Figures: the waveform over two revolutions, the spectrum to 3 kHz with the mesh harmonics
+  // and their +-1 shaft-order sidebands marked, the TSA with tooth 0's passage shaded.
+  const auto column = [](const std::string& file, int x, int y, const std::string& title,
+                         const std::string& style, const std::string& scale = "") {
+    return "'" + file + "' using " + std::to_string(x) + ":($" + std::to_string(y) + scale +
+           ") with lines " + style + " title '" + title + "'";
+  };
+  render(context.out,
+         {"vibration_waveform",
+          "Pinion bearing force across the centre line (y), two revolutions after settling",
+          "t, ms",
+          "bearing force F_{y1}, N",
+          {"set key below", "set grid", "set xrange [0:" + number(2e3 * revolution_s, 6) + "]"},
+          {"'vibration_waveform.csv' using ($1 * 1e3):5 with lines lw 1.2 lc rgb '#d62728' title "
+           "'root crack q/h_c = 0.75'",
+           "'vibration_waveform.csv' using ($1 * 1e3):2 with lines lw 1 lc rgb 'black' title "
+           "'healthy'"}});
+  std::vector<std::string> spectrum_setup{"set key top right", "set grid", "set logscale y",
+                                          "set xrange [0:3000]"};
+  for (int h = 1; f_mesh * h < 3000.0; ++h) {
+    const double f = f_mesh * h;
+    spectrum_setup.push_back("set arrow from " + number(f, 6) + ", graph 0 to " + number(f, 6) +
+                             ", graph 1 nohead dt 2 lc rgb 'gray60'");
+    spectrum_setup.push_back("set label '" + std::to_string(h) + " f_m' at " + number(f, 6) +
+                             ", graph 0.96 center font ',9'");
+    for (int side : {-1, 1}) {
+      spectrum_setup.push_back("set label '" + std::string(side < 0 ? "-" : "+") + "' at " +
+                               number(f + side * f_shaft, 6) +
+                               ", graph 0.9 center font ',9' tc rgb '#1f77b4'");
+    }
+  }
+  render(context.out, {"vibration_spectrum",
+                       "Spectrum of the pinion bearing force (Hann, " +
+                           std::to_string(kRevolutions) + " revolutions): mesh harmonics f_m = " +
+                           number(f_mesh, 4) + " Hz, sidebands +-" + number(f_shaft, 3) + " Hz",
+                       "f, Hz",
+                       "amplitude, N",
+                       spectrum_setup,
+                       {column("vibration_spectrum.csv", 1, 5, "root crack q/h_c = 0.75",
+                               "lw 1.2 lc rgb '#d62728'"),
+                        column("vibration_spectrum.csv", 1, 2, "healthy", "lw 1 lc rgb 'black'")}});
+  // Tooth 0's passage in the pinion angle of the TSA (theta1 mod 2 pi): pair 0 sits at X = X_p +
+  // Rb1 theta1 on the drive line (MeshLayout), inside the contact segment from X_start to X_end.
+  const ContactSegment segment = contact_segment(pair);
+  const double rb1 = base_radius(pair, Gear::one);
+  const double x_p = pitch_point_position(pair);
+  double enter_deg = (segment.start_m - x_p) / rb1 / kDegree;
+  enter_deg -= 360.0 * std::floor(enter_deg / 360.0);
+  const double passage_deg = (segment.end_m - segment.start_m) / rb1 / kDegree;
+  std::vector<std::string> tsa_setup{"set key below", "set grid", "set xrange [0:360]",
+                                     "set xtics 30"};
+  for (double from : {enter_deg, enter_deg - 360.0}) {
+    tsa_setup.push_back("set object rect from " + number(from, 6) + ", graph 0 to " +
+                        number(from + passage_deg, 6) +
+                        ", graph 1 fc rgb '#ffd9b3' fs solid 1.0 noborder behind");
+  }
+  std::vector<std::string> tsa_series;
+  const std::vector<std::string> styles{"lw 1.5 lc rgb 'black'", "lw 1 lc rgb '#2ca02c'",
+                                        "lw 1 lc rgb '#1f77b4'", "lw 1.5 lc rgb '#d62728'"};
+  for (std::size_t k = 0; k < analysed.size(); ++k) {
+    tsa_series.push_back(
+        column("vibration_tsa.csv", 1, static_cast<int>(2 * k + 2), labels[k], styles[k]));
+  }
+  render(context.out, {"vibration_tsa",
+                       "TSA of the pinion bearing force over " + std::to_string(kRevolutions) +
+                           " pinion revolutions (shaded: cracked tooth 0 in contact)",
+                       "pinion angle {/Symbol q}_1 mod 360, deg", "TSA, N", tsa_setup, tsa_series});
+
+  // 3. Low load with the ripple.
+  const Record full = low_running[0].get();
+  const Record low = low_running[1].get();
+  std::string low_csv = "revolutions,dte_full_load_m,dte_low_load_m,coast_edge_low_load_m\n";
+  for (std::size_t i = 0; i < low.t_s.size(); ++i) {
+    // The coast flanks touch when delta_c = -s_c - B > 0, i.e. at DTE = s_d - B = -2B plus the
+    // difference the breathing makes between the two lines: the band's lower edge.
+    low_csv += format_data_number((low.t_s[i] - kSettleS) / revolution_s) + "," +
+               format_data_number(full.dte_m[i]) + "," + format_data_number(low.dte_m[i]) + "," +
+               format_data_number(low.dte_m[i] + low.coast_penetration_m[i]) + "\n";
+  }
+  write_file_atomically((context.out / "vibration_low_load.csv").string(), low_csv);
+  render(context.out,
+         {"vibration_low_load",
+          "DTE with a " + number(kRippleNm, 3) + " N m once-per-revolution ripple of T_1",
+          "pinion revolutions after settling",
+          "DTE = s_d - B, {/Symbol m}m (0: drive flanks touch)",
+          {"set key below", "set grid",
+           "set arrow from graph 0, first 0 to graph 1, first 0 nohead lc rgb 'black'"},
+          {"'vibration_low_load.csv' using 1:($4 * 1e6) with lines dt 2 lc rgb 'gray40' title "
+           "'coast flanks touch at low load (the band edge)'",
+           "'vibration_low_load.csv' using 1:($2 * 1e6) with lines lw 1.2 lc rgb 'black' title "
+           "'T_1 = " +
+               number(rig.torque1.constant_n_m, 3) + " N m mean'",
+           "'vibration_low_load.csv' using 1:($3 * 1e6) with lines lw 1.2 lc rgb '#d62728' "
+           "title 'T_1 = " +
+               number(kLowLoadFraction * rig.torque1.constant_n_m, 3) + " N m mean'"}});
+
+  ReportSection section;
+  section.title = "Vibration of a healthy and a cracked pinion (an extension)";
+  std::string text =
+      "The test-rig-like pair of `examples/rig_17_38.toml` (compiled into the program): 17/38 "
+      "teeth, module 3 mm, 15 mm face, x1 = -x2 = 0.1, the potential-energy stiffness model, "
+      "the planar model on bearings of 1.9e8 N/m and 500 N s/m each way, friction f = 0.04, "
+      "w1 = " +
+      number(w1, 5) + " rad/s (" + number(f_shaft, 4) + " Hz, f_m = " + number(f_mesh, 4) +
+      " Hz), T1 = " + number(rig.torque1.constant_n_m, 3) +
+      " N m and T2 = " + number(rig.torque2.constant_n_m, 6) +
+      " N m, which balances T1 and the mean friction power (17.6 W) so that the train holds its "
+      "speed (the file says how).\n\nModes at the mean mesh stiffness (`gearimpact modes`; data "
+      "`vibration_modes.csv`), with each mode's share of the strain energy:\n\n" +
+      modes_table +
+      "\nThe pinion's bearing force across the centre line, F_y1 = -k y1 - c vy1 (the force "
+      "its housing receives; a stiff housing's accelerometer reads it over the housing's mass), "
+      "sampled at " +
+      number(sample_rate_hz, 5) + " Hz, " + std::to_string(kSamplesPerMeshPeriod) +
+      " samples a mesh period, on the integrator's grid (every " + std::to_string(kStepsPerSample) +
+      "th step of " + number(1e6 / (kStepsPerSample * sample_rate_hz), 4) +
+      " us; locked to the mesh, so that each tooth meets the samples at the same phase), the "
+      "record's mean (the static load) removed, from " +
+      number(kSettleS, 3) +
+      " s on, after the start's transient has decayed; a root crack at nu = 45 deg in pinion "
+      "tooth 0 of depth q/h_c = 0.25, 0.5, 0.75 (h_c = " +
+      number(h_c * 1e3, 5) +
+      " mm, placed as in the faults section). Waveform `vibration_waveform.png`, spectrum of " +
+      std::to_string(kRevolutions) +
+      " revolutions with the Hann window `vibration_spectrum.png` (mesh harmonics and the "
+      "+-1 shaft-order sidebands marked), TSA on the simulated pinion angle over the same " +
+      "revolutions at " + std::to_string(tsa_samples) +
+      " samples a revolution `vibration_tsa.png` (tooth 0's passage shaded); data "
+      "`vibration_waveform.csv`, `vibration_spectrum.csv`, `vibration_tsa.csv`. Indicators "
+      "(docs/signals.md; RMS and kurtosis of the record, the others of the TSA with one "
+      "sideband a side; `vibration_indicators.csv`):\n\n" +
+      ind_table;
+  const Analysed& healthy = analysed.front();
+  text += "\nThe mesh order's amplitude two ways, healthy: " +
+          number(healthy.orders.parts->order_amplitude[sets.teeth], 6) + " N from the TSA (order " +
+          std::to_string(sets.teeth) + ") and " + number(healthy.spectrum.amplitude[mesh_bin], 6) +
+          " N from the spectrum at " + number(f_mesh, 4) +
+          " Hz. No run strikes the teeth after settling (impacts: " +
+          std::to_string(healthy.record.impacts_drive + healthy.record.impacts_coast) +
+          " healthy).\n";
+  text +=
+      "\nLow load (`vibration_low_load.png`, data `vibration_low_load.csv`): the input "
+      "torque carries a once-per-revolution ripple of " +
+      number(kRippleNm, 3) + " N m, T1 = T_m + " + number(kRippleNm, 3) +
+      " sin(w1 t), with T2 scaled with T_m. The dynamics are linear in the load as long as "
+      "the teeth stay in contact, so a constant torque alone never separates them at any "
+      "load; the ripple is an excitation of fixed size against a load that falls. After " +
+      number(kSettleS, 3) + " s, over " + std::to_string(kLowLoadRevolutions) +
+      " revolutions: at T_m = " + number(rig.torque1.constant_n_m, 3) + " N m " +
+      std::to_string(full.impacts_drive) + " drive-side and " + std::to_string(full.impacts_coast) +
+      " coast-side impacts; at T_m = " + number(kLowLoadFraction * rig.torque1.constant_n_m, 3) +
+      " N m " + std::to_string(low.impacts_drive) + " drive-side and " +
+      std::to_string(low.impacts_coast) +
+      " coast-side impacts: the teeth leave the drive flanks, cross the backlash and strike "
+      "the coast flanks (the band's lower edge moves with the centres: the breathing "
+      "backlash).\n";
+  section.text = text;
+  return section;
+}
+
+}  // namespace gearimpact::cli
