@@ -318,8 +318,8 @@ ReportSection reproduce_vibration(const ReproduceContext& context) {
            "'root crack q/h_c = 0.75'",
            "'vibration_waveform.csv' using ($1 * 1e3):2 with lines lw 1 lc rgb 'black' title "
            "'healthy'"}});
-  std::vector<std::string> spectrum_setup{"set key top right", "set grid", "set logscale y",
-                                          "set xrange [0:3000]"};
+  std::vector<std::string> spectrum_setup{"set key below", "set grid", "set logscale y",
+                                          "set format y '10^{%L}'", "set xrange [0:3000]"};
   for (int h = 1; f_mesh * h < 3000.0; ++h) {
     const double f = f_mesh * h;
     spectrum_setup.push_back("set arrow from " + number(f, 6) + ", graph 0 to " + number(f, 6) +
@@ -357,17 +357,28 @@ ReportSection reproduce_vibration(const ReproduceContext& context) {
                         number(from + passage_deg, 6) +
                         ", graph 1 fc rgb '#ffd9b3' fs solid 1.0 noborder behind");
   }
-  std::vector<std::string> tsa_series;
+  // The TSA of the healthy and the deepest crack, and the difference signals of all (the TSA
+  // without its shaft orders, mesh harmonics and their sidebands), where the crack shows.
+  render(context.out,
+         {"vibration_tsa",
+          "TSA of the pinion bearing force over " + std::to_string(kRevolutions) +
+              " pinion revolutions (shaded: cracked tooth 0 in contact)",
+          "pinion angle {/Symbol q}_1 mod 360, deg",
+          "TSA, N",
+          tsa_setup,
+          {column("vibration_tsa.csv", 1, 8, "root crack q/h_c = 0.75", "lw 1.5 lc rgb '#d62728'"),
+           column("vibration_tsa.csv", 1, 2, "healthy", "lw 1 lc rgb 'black'")}});
+  std::vector<std::string> difference_series;
   const std::vector<std::string> styles{"lw 1.5 lc rgb 'black'", "lw 1 lc rgb '#2ca02c'",
                                         "lw 1 lc rgb '#1f77b4'", "lw 1.5 lc rgb '#d62728'"};
-  for (std::size_t k = 0; k < analysed.size(); ++k) {
-    tsa_series.push_back(
-        column("vibration_tsa.csv", 1, static_cast<int>(2 * k + 2), labels[k], styles[k]));
+  for (std::size_t k = analysed.size(); k-- > 0;) {
+    difference_series.push_back(
+        column("vibration_tsa.csv", 1, static_cast<int>(2 * k + 3), labels[k], styles[k]));
   }
-  render(context.out, {"vibration_tsa",
-                       "TSA of the pinion bearing force over " + std::to_string(kRevolutions) +
-                           " pinion revolutions (shaded: cracked tooth 0 in contact)",
-                       "pinion angle {/Symbol q}_1 mod 360, deg", "TSA, N", tsa_setup, tsa_series});
+  render(context.out, {"vibration_tsa_difference",
+                       "Difference signal of the TSA (shaded: cracked tooth 0 in contact)",
+                       "pinion angle {/Symbol q}_1 mod 360, deg", "difference signal, N", tsa_setup,
+                       difference_series});
 
   // 3. Low load with the ripple.
   const Record full = low_running[0].get();
@@ -381,21 +392,22 @@ ReportSection reproduce_vibration(const ReproduceContext& context) {
                format_data_number(low.dte_m[i] + low.coast_penetration_m[i]) + "\n";
   }
   write_file_atomically((context.out / "vibration_low_load.csv").string(), low_csv);
-  render(context.out,
-         {"vibration_low_load",
-          "DTE with a " + number(kRippleNm, 3) + " N m once-per-revolution ripple of T_1",
-          "pinion revolutions after settling",
-          "DTE = s_d - B, {/Symbol m}m (0: drive flanks touch)",
-          {"set key below", "set grid",
-           "set arrow from graph 0, first 0 to graph 1, first 0 nohead lc rgb 'black'"},
-          {"'vibration_low_load.csv' using 1:($4 * 1e6) with lines dt 2 lc rgb 'gray40' title "
-           "'coast flanks touch at low load (the band edge)'",
-           "'vibration_low_load.csv' using 1:($2 * 1e6) with lines lw 1.2 lc rgb 'black' title "
-           "'T_1 = " +
-               number(rig.torque1.constant_n_m, 3) + " N m mean'",
-           "'vibration_low_load.csv' using 1:($3 * 1e6) with lines lw 1.2 lc rgb '#d62728' "
-           "title 'T_1 = " +
-               number(kLowLoadFraction * rig.torque1.constant_n_m, 3) + " N m mean'"}});
+  render(
+      context.out,
+      {"vibration_low_load",
+       "DTE with a " + number(kRippleNm, 3) + " N m once-per-revolution ripple of T_1",
+       "pinion revolutions after settling",
+       "DTE = s_d - B, {/Symbol m}m (0: drive flanks touch)",
+       {"set key below", "set grid", "set xrange [0:" + std::to_string(kLowLoadRevolutions) + "]",
+        "set arrow from graph 0, first 0 to graph 1, first 0 nohead lc rgb 'black'"},
+       {"'vibration_low_load.csv' using 1:($4 * 1e6) with lines dt 2 lc rgb 'gray40' title "
+        "'coast flanks touch at low load (the band edge)'",
+        "'vibration_low_load.csv' using 1:($2 * 1e6) with lines lw 1.2 lc rgb 'black' title "
+        "'T_1 = " +
+            number(rig.torque1.constant_n_m, 3) + " N m mean'",
+        "'vibration_low_load.csv' using 1:($3 * 1e6) with lines lw 1.2 lc rgb '#d62728' "
+        "title 'T_1 = " +
+            number(kLowLoadFraction * rig.torque1.constant_n_m, 3) + " N m mean'"}});
 
   ReportSection section;
   section.title = "Vibration of a healthy and a cracked pinion (an extension)";
@@ -428,7 +440,8 @@ ReportSection reproduce_vibration(const ReproduceContext& context) {
       " revolutions with the Hann window `vibration_spectrum.png` (mesh harmonics and the "
       "+-1 shaft-order sidebands marked), TSA on the simulated pinion angle over the same " +
       "revolutions at " + std::to_string(tsa_samples) +
-      " samples a revolution `vibration_tsa.png` (tooth 0's passage shaded); data "
+      " samples a revolution `vibration_tsa.png` and its difference signal "
+      "`vibration_tsa_difference.png` (tooth 0's passage shaded); data "
       "`vibration_waveform.csv`, `vibration_spectrum.csv`, `vibration_tsa.csv`. Indicators "
       "(docs/signals.md; RMS and kurtosis of the record, the others of the TSA with one "
       "sideband a side; `vibration_indicators.csv`):\n\n" +
