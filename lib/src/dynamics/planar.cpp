@@ -8,7 +8,6 @@
 #include "gearimpact/constants.hpp"
 #include "gearimpact/contact/contact.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
-#include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
@@ -17,6 +16,7 @@
 #include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "gearimpact/stiffness/mesh_tables.hpp"
+#include "rk4_dense.hpp"
 
 namespace gearimpact {
 
@@ -447,10 +447,6 @@ void validate_planar(const SimulationCase& c, const PlanarMounting& m, const Run
     refuse("modifications", "a relief or a tooth error", "none (the gaps are torsional only yet)");
   }
   if (c.integrator.kind != IntegratorKind::rk4) refuse("integrator.kind", "adaptive", "\"rk4\"");
-  if (control.sample_rate_hz) {
-    refuse("sample_rate", format_number(*control.sample_rate_hz) + " Hz",
-           "none (the planar series has every integrator.output_every-th step)");
-  }
   if (control.resume) refuse("resume", "a run state", "none (a planar run starts afresh)");
 }
 
@@ -498,8 +494,12 @@ void check_step(const SimulationCase& c, const StiffnessTable& table, const Plan
 constexpr int kMostLocationIterations = 100;
 constexpr double kLocationTolerance = 1e-10;
 
+using Stages = Rk4StagesOf<kSize>;
+
+// The classical RK4 step; `stages`, when given, receives k1 ... k4 for the
+// step's dense output (rk4_dense).
 void rk4(const PlanarSystem& s, double t, const Y& y, double h,
-         const std::array<ContactMemory, 2>& memory, Y& out) {
+         const std::array<ContactMemory, 2>& memory, Y& out, Stages* stages = nullptr) {
   Y k1, k2, k3, k4, stage;
   s.rhs(t, y, memory, k1);
   for (std::size_t i = 0; i < kSize; ++i) stage[i] = y[i] + 0.5 * h * k1[i];
@@ -511,6 +511,15 @@ void rk4(const PlanarSystem& s, double t, const Y& y, double h,
   for (std::size_t i = 0; i < kSize; ++i) {
     out[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
   }
+  if (stages != nullptr) *stages = {k1, k2, k3, k4};
+}
+
+// The force each bearing exerts on its gear, -k u - c u': x1, y1, x2, y2.
+std::array<double, 4> bearing_forces(const PlanarMounting& m, const PlanarState& s) {
+  return {-m.stiffness_x_n_per_m[0] * s.x1_m - m.damping_x_n_s_per_m[0] * s.vx1_m_s,
+          -m.stiffness_y_n_per_m[0] * s.y1_m - m.damping_y_n_s_per_m[0] * s.vy1_m_s,
+          -m.stiffness_x_n_per_m[1] * s.x2_m - m.damping_x_n_s_per_m[1] * s.vx2_m_s,
+          -m.stiffness_y_n_per_m[1] * s.y2_m - m.damping_y_n_s_per_m[1] * s.vy2_m_s};
 }
 
 }  // namespace
@@ -573,6 +582,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
                                  const PlanarMounting& mounting, const PlanarState& initial,
                                  const RunControl& control) {
   validate_planar(c, mounting, control);
+  validate_sampling(c, control);
   check_step(c, table, mounting);
   const PlanarSystem system(c, table, mounting);
   SimulationResult result;
@@ -650,14 +660,11 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     PlanarRow pr;
     pr.t_s = t;
     pr.state = st;
-    pr.bearing_fx1_n =
-        -mounting.stiffness_x_n_per_m[0] * st.x1_m - mounting.damping_x_n_s_per_m[0] * st.vx1_m_s;
-    pr.bearing_fy1_n =
-        -mounting.stiffness_y_n_per_m[0] * st.y1_m - mounting.damping_y_n_s_per_m[0] * st.vy1_m_s;
-    pr.bearing_fx2_n =
-        -mounting.stiffness_x_n_per_m[1] * st.x2_m - mounting.damping_x_n_s_per_m[1] * st.vx2_m_s;
-    pr.bearing_fy2_n =
-        -mounting.stiffness_y_n_per_m[1] * st.y2_m - mounting.damping_y_n_s_per_m[1] * st.vy2_m_s;
+    const std::array<double, 4> bearing = bearing_forces(mounting, st);
+    pr.bearing_fx1_n = bearing[0];
+    pr.bearing_fy1_n = bearing[1];
+    pr.bearing_fx2_n = bearing[2];
+    pr.bearing_fy2_n = bearing[3];
     pr.drive_force_n = f.normal_n[0];
     pr.coast_force_n = f.normal_n[1];
     pr.drive_penetration_m = dd;
@@ -666,8 +673,68 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     if (control.keep_series) result.planar_series.push_back(pr);
   };
 
+  // The samples (RunControl::sample_rate_hz), as the torsional run takes
+  // them: the accelerations from the equations of motion with the step's
+  // contact memory, so that at an event time a sample is the left limit.
+  const double sample_rate = control.sample_rate_hz.value_or(0.0);
+  const long long sample_total =
+      control.sample_rate_hz ? static_cast<long long>(sample_count(c, sample_rate)) : 0;
+  if (control.keep_samples && sample_total > 0) {
+    constexpr long long most_reserved_samples = 4'000'000;
+    result.planar_samples.reserve(
+        static_cast<std::size_t>(std::min(sample_total, most_reserved_samples)));
+  }
+  const double sensor_cos = std::cos(c.bearings.sensor_angle_rad);
+  const double sensor_sin = std::sin(c.bearings.sensor_angle_rad);
+  const auto sample = [&](double ts, const Y& state) {
+    Y dy{};
+    Forces f;
+    system.rhs(ts, state, memory, dy, &f);
+    PlanarSample ps;
+    ps.t_s = ts;
+    ps.state = to_state(state, mounting.shafts);
+    ps.ax1_m_per_s2 = dy[kVelocity + kX1];
+    ps.ay1_m_per_s2 = dy[kVelocity + kY1];
+    ps.alpha1_rad_per_s2 = dy[kVelocity + kT1];
+    ps.ax2_m_per_s2 = dy[kVelocity + kX2];
+    ps.ay2_m_per_s2 = dy[kVelocity + kY2];
+    ps.alpha2_rad_per_s2 = dy[kVelocity + kT2];
+    const std::array<double, 4> bearing = bearing_forces(mounting, ps.state);
+    ps.bearing_fx1_n = bearing[0];
+    ps.bearing_fy1_n = bearing[1];
+    ps.bearing_fx2_n = bearing[2];
+    ps.bearing_fy2_n = bearing[3];
+    ps.dte_m = system.penetration(Region::n1, state).first;
+    ps.drive_force_n = f.normal_n[0];
+    ps.coast_force_n = f.normal_n[1];
+    const bool pinion = c.bearings.sensor_gear == 1;
+    ps.sensor_acceleration_m_per_s2 = (pinion ? ps.ax1_m_per_s2 : ps.ax2_m_per_s2) * sensor_cos +
+                                      (pinion ? ps.ay1_m_per_s2 : ps.ay2_m_per_s2) * sensor_sin;
+    if (control.keep_samples) result.planar_samples.push_back(ps);
+    if (control.on_planar_sample) control.on_planar_sample(ps);
+  };
+  // The samples not yet taken up to t_b, the end of the accepted step of
+  // length h from (t_a, y_a) with `stages`, at y_b: one at t_b is y_b itself,
+  // one inside the step its dense output. At the start t_b = 0 takes the first.
+  long long next_sample = 0;
+  const auto emit_samples = [&](double t_a, const Y& y_a, double step, const Stages& stages,
+                                double t_b, const Y& y_b) {
+    for (; next_sample < sample_total; ++next_sample) {
+      const double ts = sample_time_s(0.0, next_sample, sample_rate);
+      if (ts > t_b) return;
+      if (ts == t_b) {
+        sample(ts, y_b);
+      } else {
+        Y x{};
+        rk4_dense(y_a, step, stages, (ts - t_a) / step, x);
+        sample(ts, x);
+      }
+    }
+  };
+
   for (const Region side : kSides) ranges[side_index(side)] = system.loaded(side, y[kT1]);
   begin_contacts(0.0);
+  emit_samples(0.0, y, 0.0, Stages{}, 0.0, y);
   const double kinetic0 = system.kinetic_energy(y);
   const double mesh0 = mesh_energy(y);
   s.kinetic_energy_initial_j = kinetic0;
@@ -683,9 +750,14 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     return system.penetration(side, state).first > 0.0;
   };
   for (long long n = 1; n <= steps;) {
-    const double t_grid = std::min(static_cast<double>(n) * h, c.integrator.end_time_s);
+    // The last step ends at end_time exactly, where the last sample may be.
+    const double t_grid = n == steps
+                              ? c.integrator.end_time_s
+                              : std::min(static_cast<double>(n) * h, c.integrator.end_time_s);
     const double full = t_grid - t;
-    rk4(system, t, y, full, memory, next);
+    Stages stages{};
+    Stages* const dense = sample_total > 0 ? &stages : nullptr;
+    rk4(system, t, y, full, memory, next, dense);
     s.rhs_evaluations += 4;
     // A side whose contact begins or ends inside the step: the step is cut
     // back to that instant (the force's kink there would cost RK4 its
@@ -725,7 +797,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
       length = hi;
     }
     if (length < full) {
-      rk4(system, t, y, length, memory, next);
+      rk4(system, t, y, length, memory, next, dense);
       s.rhs_evaluations += 4;
       ++s.events;
     }
@@ -735,6 +807,8 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
           "the planar run diverged: the state is not finite at t = " + format_number(t_next) +
           " s, step " + std::to_string(n) + "; a smaller integrator.step may resolve it");
     }
+    // Before the contact memory changes at an event: the step's samples are its own.
+    if (dense != nullptr) emit_samples(t, y, length, stages, t_next, next);
     y = next;
     t = t_next;
     ++s.steps;

@@ -56,7 +56,7 @@ double planar_angular_momentum(const SimulationCase& c, const PlanarMounting& m,
 // finite and >= 0 (the shafts' values as [shafts]' rows); and naming what the
 // planar model does not take yet (a kinematic driver or a drag, the
 // Lagrangian mesh force, the viscous mesh damper, [modifications], the
-// adaptive integrator, sampling, a continued run). simulate() calls it for an
+// adaptive integrator, a continued run). simulate() calls it for an
 // elastic case before it builds the stiffness table.
 void validate_planar(const SimulationCase& c, const PlanarMounting& mounting,
                      const RunControl& control);
@@ -64,7 +64,10 @@ void validate_planar(const SimulationCase& c, const PlanarMounting& mounting,
 // The run of c on `mounting` from `initial`: fixed-step RK4 at
 // integrator.step, each step cut at a side's contact onset or end
 // (docs/vibration.md says which events are located and why), after
-// validate_planar; throws InputError naming integrator.step when it exceeds
+// validate_planar and validate_sampling; with RunControl::sample_rate_hz it
+// samples (PlanarSample) at sample_time_s(0, n, rate) from each accepted
+// step's continuous extension, the left limit at an event time. It throws
+// InputError naming integrator.step when the step exceeds
 // 1/kStepsPerContactPeriod of the shortest period the planar system can have
 // (a bound from its stiffest springs).
 SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& table,

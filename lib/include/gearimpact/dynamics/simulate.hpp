@@ -324,6 +324,11 @@ void refuse_planar_simulation(const SimulationCase& c);
 // floor(end_time_s rate) + 1; a continued run's start moves the end's rounding).
 double sample_count(const SimulationCase& c, double sample_rate_hz, double t0_s = 0.0);
 
+// Throws InputError naming sample_rate unless RunControl::sample_rate_hz is
+// absent, or finite and > 0 with event location and at most most_series_rows
+// samples (sample_count). simulate() and simulate_planar() call it before any work.
+void validate_sampling(const SimulationCase& c, const RunControl& control);
+
 // Throws InputError naming the first field outside its range (validate_fields),
 // then a planar case (refuse_planar), then the gaps of its modifications (validate_gaps), then
 // what the fields imply together (validate_implied of step_bound.hpp).
