@@ -33,18 +33,21 @@ namespace {
 
 constexpr double kDegree = pi / 180.0;
 // The sampling is locked to the mesh: 32 samples a mesh period (f_s = 32 x 680 = 21760 Hz, the
-// mesh's 15th harmonic below the Nyquist frequency), every 46th step of a step of 1 / (46 f_s)
-// = 0.999 us (the file's 1 us adjusted). Every tooth then passes the samples at the same phase,
-// so that what the interpolation onto the angle grid of the TSA errs is the same for each tooth
-// and stays in the mesh harmonics, out of the difference signal (at 20 kHz, 29.4 samples a mesh
-// period, the healthy pair's difference signal was that error, with FM4 = 8).
+// mesh's 15th harmonic below the Nyquist frequency), from the integrator's dense output at t =
+// n / f_s. Every tooth then meets the samples at the same phase, so that what the interpolation
+// onto the angle grid of the TSA errs is the same for each tooth and stays in the mesh
+// harmonics, out of the difference signal (at 20 kHz, 29.4 samples a mesh period, the healthy
+// pair's difference signal was that error, with FM4 = 8).
 constexpr int kSamplesPerMeshPeriod = 32;
-constexpr int kStepsPerSample = 46;
 // The start (the gears at rest on their bearings, the teeth apart) strikes the teeth and rings
 // the bearing modes; their damping ratio is 500 / (2 sqrt(1.9e8 m)), about 0.03 to 0.05, so the
 // slowest (1897 Hz) decays as exp(-t / 2.8 ms): after 50 ms it is down by exp(-18).
 constexpr double kSettleS = 0.05;  // two revolutions
-constexpr int kRevolutions = 16;
+// 38 pinion revolutions are 17 wheel revolutions, the pair's whole period (17 and 38 have no
+// common factor): the signal's wheel-periodic part (the healthy pair's, 2 f_wheel - f_pinion
+// = 4.2 Hz, modulates its mesh harmonics) then falls out of the pinion's TSA exactly, and every
+// wheel order is a bin of the spectrum.
+constexpr int kRevolutions = 38;
 // Samples kept before the analysed window for the cubic interpolation onto the angle grid.
 constexpr std::size_t kLead = 2;
 const std::vector<double> kDepths{0.0, 0.25, 0.5, 0.75};
@@ -69,32 +72,34 @@ ToothFault crack_on_pinion_tooth_0(double depth_m) {
   return fault;
 }
 
-// A run's samples after the settling time: the planar rows are taken on the step grid, never
-// at a cut, so every kStepsPerSample-th step is a sample at t = n / f_s.
+// A run's samples after the settling time.
 struct Record {
   std::vector<double> t_s;
   std::vector<double> theta1_rad;
-  std::vector<double> sensor_n;  // the pinion bearing's force across the centre line (y)
-  std::vector<double> dte_m;     // s_d - B
-  std::vector<double> coast_penetration_m;
+  // The accelerometer on the pinion's bearing, across the centre line (y).
+  std::vector<double> sensor_m_per_s2;
+  std::vector<double> dte_m;  // s_d - B
+  std::vector<double> coast_force_n;
   int impacts_drive = 0;
   int impacts_coast = 0;
 };
 
 Record run_record(SimulationCase c, double sample_rate_hz, double end_s) {
-  c.integrator.step_s = 1.0 / (kStepsPerSample * sample_rate_hz);
-  c.integrator.output_every = kStepsPerSample;
   c.integrator.end_time_s = end_s;
+  c.bearings.sensor_gear = 1;
+  c.bearings.sensor_angle_rad = 0.5 * pi;
   Record r;
   RunControl control;
   control.keep_series = false;
-  control.on_planar_row = [&r, sample_rate_hz](const PlanarRow& row) {
-    if (row.t_s < kSettleS - 0.5 / sample_rate_hz) return;
-    r.t_s.push_back(row.t_s);
-    r.theta1_rad.push_back(row.state.theta1_rad);
-    r.sensor_n.push_back(row.bearing_fy1_n);
-    r.dte_m.push_back(row.drive_penetration_m);
-    r.coast_penetration_m.push_back(row.coast_penetration_m);
+  control.keep_samples = false;
+  control.sample_rate_hz = sample_rate_hz;
+  control.on_planar_sample = [&r, sample_rate_hz](const PlanarSample& sample) {
+    if (sample.t_s < kSettleS - 0.5 / sample_rate_hz) return;
+    r.t_s.push_back(sample.t_s);
+    r.theta1_rad.push_back(sample.state.theta1_rad);
+    r.sensor_m_per_s2.push_back(sample.sensor_acceleration_m_per_s2);
+    r.dte_m.push_back(sample.dte_m);
+    r.coast_force_n.push_back(sample.coast_force_n);
   };
   const SimulationResult result = simulate(c, control);
   for (const ImpactRecord& impact : result.impacts) {
@@ -205,20 +210,22 @@ ReportSection reproduce_vibration(const ReproduceContext& context) {
     const std::size_t from = first - std::min<std::size_t>(first, kLead);
     const auto begin = static_cast<std::ptrdiff_t>(first);
     const auto end = begin + static_cast<std::ptrdiff_t>(waveform_samples);
-    // An accelerometer does not see the static load: the window's mean, the bearing's share of
-    // the mean mesh force, is removed.
-    const double mean =
-        std::accumulate(a.record.sensor_n.begin() + begin, a.record.sensor_n.begin() + end, 0.0) /
-        static_cast<double>(waveform_samples);
-    for (double& v : a.record.sensor_n) v -= mean;
+    // The window's mean (a slow drift of the centre, which an accelerometer does not pass) is
+    // removed.
+    const double mean = std::accumulate(a.record.sensor_m_per_s2.begin() + begin,
+                                        a.record.sensor_m_per_s2.begin() + end, 0.0) /
+                        static_cast<double>(waveform_samples);
+    for (double& v : a.record.sensor_m_per_s2) v -= mean;
     a.t0_s = a.record.t_s[first];
-    a.waveform.assign(a.record.sensor_n.begin() + begin, a.record.sensor_n.begin() + end);
+    a.waveform.assign(a.record.sensor_m_per_s2.begin() + begin,
+                      a.record.sensor_m_per_s2.begin() + end);
     a.spectrum = signals::amplitude_spectrum(a.waveform, sample_rate_hz, signals::Window::hann);
     const auto tsa_end = end + kSamplesPerMeshPeriod;
     const std::vector<double> angle(a.record.theta1_rad.begin() + static_cast<std::ptrdiff_t>(from),
                                     a.record.theta1_rad.begin() + tsa_end);
-    const std::vector<double> sensor(a.record.sensor_n.begin() + static_cast<std::ptrdiff_t>(from),
-                                     a.record.sensor_n.begin() + tsa_end);
+    const std::vector<double> sensor(
+        a.record.sensor_m_per_s2.begin() + static_cast<std::ptrdiff_t>(from),
+        a.record.sensor_m_per_s2.begin() + tsa_end);
     a.orders = signals::analyse_orders(angle, sensor, tsa_samples, signals::Window::hann, sets,
                                        "theta1", "sensor");
     a.indicators = signals::gear_indicators(a.waveform, *a.orders.parts, sets);
@@ -232,9 +239,9 @@ ReportSection reproduce_vibration(const ReproduceContext& context) {
   std::string tsa_csv = "pinion_angle_deg";
   for (const Analysed& a : analysed) {
     const std::string q = "q" + number(100.0 * a.depth, 3);
-    wave_csv += ",sensor_" + q + "_n";
-    spectrum_csv += ",amplitude_" + q + "_n";
-    tsa_csv += ",tsa_" + q + "_n,difference_" + q + "_n";
+    wave_csv += ",sensor_" + q + "_m_s2";
+    spectrum_csv += ",amplitude_" + q + "_m_s2";
+    tsa_csv += ",tsa_" + q + "_m_s2,difference_" + q + "_m_s2";
   }
   wave_csv += "\n";
   spectrum_csv += "\n";
@@ -276,10 +283,10 @@ ReportSection reproduce_vibration(const ReproduceContext& context) {
   const auto mesh_bin =
       static_cast<std::size_t>(std::lround(f_mesh / analysed.front().spectrum.resolution));
   std::string ind_csv =
-      "q_over_hc,depth_m,rms_n,kurtosis,fm0,fm4,na4,nb4,m6a,m8a,energy_ratio,sideband_level,"
-      "tsa_mesh_order_amplitude_n,spectrum_mesh_amplitude_n,impacts\n";
+      "q_over_hc,depth_m,rms_m_s2,kurtosis,fm0,fm4,na4,nb4,m6a,m8a,energy_ratio,sideband_level,"
+      "tsa_mesh_order_amplitude_m_s2,spectrum_mesh_amplitude_m_s2,impacts\n";
   std::string ind_table =
-      "| q/h_c | RMS (N) | kurtosis | FM0 | FM4 | NA4 | NB4 | M6A | M8A | energy ratio | "
+      "| q/h_c | RMS (m/s^2) | kurtosis | FM0 | FM4 | NA4 | NB4 | M6A | M8A | energy ratio | "
       "sideband level |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Analysed& a : analysed) {
     const signals::Indicators& x = a.indicators;
@@ -310,9 +317,9 @@ ReportSection reproduce_vibration(const ReproduceContext& context) {
   };
   render(context.out,
          {"vibration_waveform",
-          "Pinion bearing force across the centre line (y), two revolutions after settling",
+          "Pinion bearing acceleration across the centre line (y), two revolutions after settling",
           "t, ms",
-          "bearing force F_{y1}, N",
+          "acceleration a_{y1}, m/s^2",
           {"set key below", "set grid", "set xrange [0:" + number(2e3 * revolution_s, 6) + "]"},
           {"'vibration_waveform.csv' using ($1 * 1e3):5 with lines lw 1.2 lc rgb '#d62728' title "
            "'root crack q/h_c = 0.75'",
@@ -333,11 +340,11 @@ ReportSection reproduce_vibration(const ReproduceContext& context) {
     }
   }
   render(context.out, {"vibration_spectrum",
-                       "Spectrum of the pinion bearing force (Hann, " +
+                       "Spectrum of the pinion bearing acceleration (Hann, " +
                            std::to_string(kRevolutions) + " revolutions): mesh harmonics f_m = " +
                            number(f_mesh, 4) + " Hz, sidebands +-" + number(f_shaft, 3) + " Hz",
                        "f, Hz",
-                       "amplitude, N",
+                       "amplitude, m/s^2",
                        spectrum_setup,
                        {column("vibration_spectrum.csv", 1, 5, "root crack q/h_c = 0.75",
                                "lw 1.2 lc rgb '#d62728'"),
@@ -361,10 +368,10 @@ ReportSection reproduce_vibration(const ReproduceContext& context) {
   // without its shaft orders, mesh harmonics and their sidebands), where the crack shows.
   render(context.out,
          {"vibration_tsa",
-          "TSA of the pinion bearing force over " + std::to_string(kRevolutions) +
+          "TSA of the pinion bearing acceleration over " + std::to_string(kRevolutions) +
               " pinion revolutions (shaded: cracked tooth 0 in contact)",
           "pinion angle {/Symbol q}_1 mod 360, deg",
-          "TSA, N",
+          "TSA, m/s^2",
           tsa_setup,
           {column("vibration_tsa.csv", 1, 8, "root crack q/h_c = 0.75", "lw 1.5 lc rgb '#d62728'"),
            column("vibration_tsa.csv", 1, 2, "healthy", "lw 1 lc rgb 'black'")}});
@@ -377,19 +384,17 @@ ReportSection reproduce_vibration(const ReproduceContext& context) {
   }
   render(context.out, {"vibration_tsa_difference",
                        "Difference signal of the TSA (shaded: cracked tooth 0 in contact)",
-                       "pinion angle {/Symbol q}_1 mod 360, deg", "difference signal, N", tsa_setup,
-                       difference_series});
+                       "pinion angle {/Symbol q}_1 mod 360, deg", "difference signal, m/s^2",
+                       tsa_setup, difference_series});
 
   // 3. Low load with the ripple.
   const Record full = low_running[0].get();
   const Record low = low_running[1].get();
-  std::string low_csv = "revolutions,dte_full_load_m,dte_low_load_m,coast_edge_low_load_m\n";
+  std::string low_csv = "revolutions,dte_full_load_m,dte_low_load_m,coast_force_low_load_n\n";
   for (std::size_t i = 0; i < low.t_s.size(); ++i) {
-    // The coast flanks touch when delta_c = -s_c - B > 0, i.e. at DTE = s_d - B = -2B plus the
-    // difference the breathing makes between the two lines: the band's lower edge.
     low_csv += format_data_number((low.t_s[i] - kSettleS) / revolution_s) + "," +
                format_data_number(full.dte_m[i]) + "," + format_data_number(low.dte_m[i]) + "," +
-               format_data_number(low.dte_m[i] + low.coast_penetration_m[i]) + "\n";
+               format_data_number(low.coast_force_n[i]) + "\n";
   }
   write_file_atomically((context.out / "vibration_low_load.csv").string(), low_csv);
   render(
@@ -399,10 +404,15 @@ ReportSection reproduce_vibration(const ReproduceContext& context) {
        "pinion revolutions after settling",
        "DTE = s_d - B, {/Symbol m}m (0: drive flanks touch)",
        {"set key below", "set grid", "set xrange [0:" + std::to_string(kLowLoadRevolutions) + "]",
-        "set arrow from graph 0, first 0 to graph 1, first 0 nohead lc rgb 'black'"},
-       {"'vibration_low_load.csv' using 1:($4 * 1e6) with lines dt 2 lc rgb 'gray40' title "
-        "'coast flanks touch at low load (the band edge)'",
-        "'vibration_low_load.csv' using 1:($2 * 1e6) with lines lw 1.2 lc rgb 'black' title "
+        "set arrow from graph 0, first 0 to graph 1, first 0 nohead lc rgb 'black'",
+        // Where the coast flanks touch with the centres at rest; the centres' motion moves it
+        // (the breathing backlash).
+        "set arrow from graph 0, first " + number(-2e6 * pair.backlash_m, 6) +
+            " to graph 1, first " + number(-2e6 * pair.backlash_m, 6) +
+            " nohead dt 2 lc rgb 'gray40'",
+        "set label 'coast flanks touch (centres at rest)' at graph 0.02, first " +
+            number(-2e6 * pair.backlash_m + 4.0, 6)},
+       {"'vibration_low_load.csv' using 1:($2 * 1e6) with lines lw 1.2 lc rgb 'black' title "
         "'T_1 = " +
             number(rig.torque1.constant_n_m, 3) + " N m mean'",
         "'vibration_low_load.csv' using 1:($3 * 1e6) with lines lw 1.2 lc rgb '#d62728' "
@@ -423,14 +433,12 @@ ReportSection reproduce_vibration(const ReproduceContext& context) {
       "speed (the file says how).\n\nModes at the mean mesh stiffness (`gearimpact modes`; data "
       "`vibration_modes.csv`), with each mode's share of the strain energy:\n\n" +
       modes_table +
-      "\nThe pinion's bearing force across the centre line, F_y1 = -k y1 - c vy1 (the force "
-      "its housing receives; a stiff housing's accelerometer reads it over the housing's mass), "
-      "sampled at " +
+      "\nThe acceleration of the pinion's centre across the centre line (y: the accelerometer "
+      "on its bearing, [bearings] sensor_gear = 1, sensor_angle = 90 deg), sampled at " +
       number(sample_rate_hz, 5) + " Hz, " + std::to_string(kSamplesPerMeshPeriod) +
-      " samples a mesh period, on the integrator's grid (every " + std::to_string(kStepsPerSample) +
-      "th step of " + number(1e6 / (kStepsPerSample * sample_rate_hz), 4) +
-      " us; locked to the mesh, so that each tooth meets the samples at the same phase), the "
-      "record's mean (the static load) removed, from " +
+      " samples a mesh period (locked to the mesh, so that each tooth meets the samples at the "
+      "same phase), from the integrator's dense output (step 1 us), the window's mean removed, "
+      "from " +
       number(kSettleS, 3) +
       " s on, after the start's transient has decayed; a root crack at nu = 45 deg in pinion "
       "tooth 0 of depth q/h_c = 0.25, 0.5, 0.75 (h_c = " +
@@ -447,13 +455,43 @@ ReportSection reproduce_vibration(const ReproduceContext& context) {
       "sideband a side; `vibration_indicators.csv`):\n\n" +
       ind_table;
   const Analysed& healthy = analysed.front();
-  text += "\nThe mesh order's amplitude two ways, healthy: " +
-          number(healthy.orders.parts->order_amplitude[sets.teeth], 6) + " N from the TSA (order " +
-          std::to_string(sets.teeth) + ") and " + number(healthy.spectrum.amplitude[mesh_bin], 6) +
-          " N from the spectrum at " + number(f_mesh, 4) +
-          " Hz. No run strikes the teeth after settling (impacts: " +
-          std::to_string(healthy.record.impacts_drive + healthy.record.impacts_coast) +
-          " healthy).\n";
+  // Which indicators rise with every step of depth, which do not: the table in words.
+  const std::vector<std::pair<std::string, std::optional<double> signals::Indicators::*>> named{
+      {"kurtosis", &signals::Indicators::kurtosis},
+      {"FM0", &signals::Indicators::fm0},
+      {"FM4", &signals::Indicators::fm4},
+      {"NA4", &signals::Indicators::na4},
+      {"NB4", &signals::Indicators::nb4},
+      {"M6A", &signals::Indicators::m6a},
+      {"M8A", &signals::Indicators::m8a},
+      {"energy ratio", &signals::Indicators::energy_ratio},
+      {"sideband level", &signals::Indicators::sideband_level}};
+  std::string rising;
+  std::string other;
+  for (const auto& entry : named) {
+    bool up = true;
+    for (std::size_t k = 1; k < analysed.size(); ++k) {
+      const std::optional<double>& before = analysed[k - 1].indicators.*(entry.second);
+      const std::optional<double>& now = analysed[k].indicators.*(entry.second);
+      up = up && before && now && *now > *before;
+    }
+    std::string& list = up ? rising : other;
+    list += (list.empty() ? "" : ", ") + entry.first;
+  }
+  int struck = 0;
+  for (const Analysed& a : analysed) struck += a.record.impacts_drive + a.record.impacts_coast;
+  text += "\nRising with every step of crack depth: " + (rising.empty() ? "none" : rising) +
+          "; not: " + (other.empty() ? "none" : other) + ". " + std::to_string(struck) +
+          " impacts after settling in the four runs. The healthy signal is not periodic in the "
+          "pinion's revolution alone: its mesh harmonics are modulated at 2 f_wheel - f_pinion "
+          "(4.2 Hz; in the time spectrum a hump of about +-4 Hz about each harmonic, the line at "
+          "f_m itself weak), which the TSA over the pair's whole period of 38 pinion revolutions "
+          "removes; the healthy FM4 and M6A, far above a Gaussian's 3 and 15, show what is left "
+          "of it. The mesh order's amplitude of the healthy pair: " +
+          number(healthy.orders.parts->order_amplitude[sets.teeth], 6) +
+          " m/s^2 from the TSA (order " + std::to_string(sets.teeth) + "), " +
+          number(healthy.spectrum.amplitude[mesh_bin], 6) + " m/s^2 from the Hann spectrum at " +
+          number(f_mesh, 4) + " Hz.\n";
   text +=
       "\nLow load (`vibration_low_load.png`, data `vibration_low_load.csv`): the input "
       "torque carries a once-per-revolution ripple of " +
