@@ -483,11 +483,13 @@ ReportSection reproduce_vibration(const ReproduceContext& context) {
   text += "\nRising with every step of crack depth: " + (rising.empty() ? "none" : rising) +
           "; not: " + (other.empty() ? "none" : other) + ". " + std::to_string(struck) +
           " impacts after settling in the four runs. The healthy signal is not periodic in the "
-          "pinion's revolution alone: its mesh harmonics are modulated at 2 f_wheel - f_pinion "
-          "(4.2 Hz; in the time spectrum a hump of about +-4 Hz about each harmonic, the line at "
-          "f_m itself weak), which the TSA over the pair's whole period of 38 pinion revolutions "
-          "removes; the healthy FM4 and M6A, far above a Gaussian's 3 and 15, show what is left "
-          "of it. The mesh order's amplitude of the healthy pair: " +
+          "pinion's revolution alone: its mesh harmonics are modulated at about 4 Hz, a period "
+          "of about 10 pinion revolutions (near 2 f_wheel - f_pinion = 4.2 Hz; its cause is not "
+          "found yet), which in the time spectrum spreads each harmonic into a hump of about +-4 "
+          "Hz, the line at f_m itself weak; the TSA over the pair's whole period of 38 pinion "
+          "revolutions (about 4 periods of the modulation) averages most of it out, and the "
+          "healthy FM4 and M6A, far above a Gaussian's 3 and 15, show what is left. The mesh "
+          "order's amplitude of the healthy pair: " +
           number(healthy.orders.parts->order_amplitude[sets.teeth], 6) +
           " m/s^2 from the TSA (order " + std::to_string(sets.teeth) + "), " +
           number(healthy.spectrum.amplitude[mesh_bin], 6) + " m/s^2 from the Hann spectrum at " +
