@@ -35,7 +35,7 @@ except NameError:
         HERE = Path.cwd()
 rig_text = (HERE / "rig_17_38.toml").read_text()
 # Two warnings are expected: the pinion's foundation fit is extrapolated (17 teeth), and the mean
-# torques do not balance on their own: the load torque leaves 17.6 W for friction (the file
+# torques do not balance on their own: the load torque leaves 17.59 W for friction (the file
 # says how), which holds the speed.
 modes = gearimpact.modes(gearimpact.parse_case(rig_text, "rig_17_38"))["modes"]
 print("natural frequencies, Hz:", np.round(modes["frequency_hz"], 1))

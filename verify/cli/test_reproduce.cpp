@@ -177,29 +177,33 @@ void check_vibration_section(const std::filesystem::path& out) {
   const auto [low, high] = std::minmax_element(healthy_tsa.begin(), healthy_tsa.end());
   CHECK(relative_difference(indicators[0][4], (*high - *low) / mesh_sum) < 1e-9);
 
-  // The TSA's mesh-order amplitude against the record's own at f_m = 17 x 40 Hz, a direct DFT of
-  // the 38 revolutions in time with the TSA's uniform weight (no window): the mean of the 38
-  // blocks of 544 samples, each a revolution at 40 Hz. They differ by what the TSA's resampling
-  // on the simulated angle changes: that angle runs 1e-4 ahead of 40 Hz and carries the speed's
-  // slow fluctuation (REPORT.md: 4.2 Hz), which shifts the mesh events in time; 1.2 % here.
+  // The TSA's largest mesh harmonic (the 6th) against the record's own at 6 f_m, a
+  // direct DFT of the 38 revolutions in time with the TSA's uniform weight (no window): the
+  // mean of the 38 blocks of 544 samples, each a revolution at 40 Hz. The two routes (equal
+  // steps of time, equal steps of the simulated angle) agree when the speed holds 40 Hz: the
+  // rig's torques hold it within 1e-5 (examples/rig_17_38.toml), which moves the harmonics
+  // 0.05 of a bin off at most (a loss of 0.4 %); the cubic interpolation onto the angle errs by
+  // (w h)^4 / 24, 1e-3 at this harmonic; and what folds back from above the sampling's Nyquist
+  // frequency (the acceleration steps where pairs enter and leave), about 1 m/s^2 at a bin
+  // against 67 m/s^2, differs between the two: 2 % in all.
   const auto wave_rows = numbers_of(out / "vibration_waveform.csv");
   REQUIRE(wave_rows.size() == revolutions * p);
   std::vector<double> healthy_record;
   for (const auto& row : wave_rows) healthy_record.push_back(row[1]);
-  const double in_time = order_amplitude(healthy_record, revolutions * teeth);
-  const double in_angle = order_amplitude(healthy_tsa, teeth);
+  const double in_time = order_amplitude(healthy_record, revolutions * teeth * 6);
+  const double in_angle = order_amplitude(healthy_tsa, teeth * 6);
   CAPTURE(in_time);
   CAPTURE(in_angle);
   CHECK(relative_difference(in_angle, in_time) < 0.02);
-  CHECK(relative_difference(indicators[0][12], in_angle) < 1e-9);
+  CHECK(relative_difference(indicators[0][12], order_amplitude(healthy_tsa, teeth)) < 1e-9);
 
-  // The section's finding (REPORT.md): the record's kurtosis and the sideband level rise with
-  // the crack depth (13.84, 13.92, 14.11, 18.88 and 0.0096, 0.0109, 0.0140, 0.0286 for q/h_c =
-  // 0 to 0.75); no run strikes the teeth.
+  // The section's finding (REPORT.md): FM0 and the energy ratio rise with the crack depth
+  // (1.049, 1.090, 1.120, 1.139 and 0.0037, 0.0081, 0.0240, 0.0486 for q/h_c = 0 to 0.75); no run
+  // strikes the teeth.
   for (std::size_t k = 1; k < indicators.size(); ++k) {
     CAPTURE(k);
-    CHECK(indicators[k][3] > indicators[k - 1][3]);
-    CHECK(indicators[k][11] > indicators[k - 1][11]);
+    CHECK(indicators[k][4] > indicators[k - 1][4]);
+    CHECK(indicators[k][10] > 1.5 * indicators[k - 1][10]);
   }
   for (const auto& row : indicators) CHECK(row[14] == 0.0);
 
