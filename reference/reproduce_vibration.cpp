@@ -16,6 +16,7 @@
 #include "gearimpact/dynamics/planar_state.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/tooth_identity.hpp"
 #include "gearimpact/geometry/rack_generation.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
@@ -374,14 +375,10 @@ ReportSection reproduce_vibration(const ReproduceContext& context) {
                        {column("vibration_spectrum.csv", 1, 5, "root crack q/h_c = 0.75",
                                "lw 1.2 lc rgb '#d62728'"),
                         column("vibration_spectrum.csv", 1, 2, "healthy", "lw 1 lc rgb 'black'")}});
-  // Tooth 0's passage in the pinion angle of the TSA (theta1 mod 2 pi): pair 0 sits at X = X_p +
-  // Rb1 theta1 on the drive line (MeshLayout), inside the contact segment from X_start to X_end.
-  const ContactSegment segment = contact_segment(pair);
-  const double rb1 = base_radius(pair, Gear::one);
-  const double x_p = pitch_point_position(pair);
-  double enter_deg = (segment.start_m - x_p) / rb1 / kDegree;
-  enter_deg -= 360.0 * std::floor(enter_deg / 360.0);
-  const double passage_deg = (segment.end_m - segment.start_m) / rb1 / kDegree;
+  // Tooth 0's passage in the pinion angle of the TSA (theta1 mod 2 pi).
+  const ToothPassage passage = tooth_passage(pair, Gear::one, 0);
+  const double enter_deg = passage.entry_rad / kDegree;
+  const double passage_deg = passage.span_rad / kDegree;
   std::vector<std::string> tsa_setup{"set key below", "set grid", "set xrange [0:360]",
                                      "set xtics 30"};
   for (double from : {enter_deg, enter_deg - 360.0}) {
