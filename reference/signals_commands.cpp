@@ -16,7 +16,9 @@
 #include "commands.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
+#include "gearimpact/geometry/tooth_identity.hpp"
 #include "gearimpact/io/atomic_file.hpp"
+#include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/results.hpp"
 #include "gearimpact/io/signal_files.hpp"
 #include "gearimpact/signals/indicators.hpp"
@@ -39,10 +41,46 @@ struct SignalsOptions {
   std::string teeth;
   std::string shaft_orders = "1";
   std::string sidebands = "1";
+  std::string case_file;
+  std::string mark_tooth;
   std::string out;
   bool overwrite = false;
   bool plots = true;
 };
+
+// --mark-tooth "pinion:N" or "wheel:N" with --case-file: where that tooth's
+// drive flank carries, in its gear's angle (tooth_passage), to shade on the TSA.
+ToothPassage marked_passage(const SignalsOptions& o) {
+  const std::string allowed =
+      "\"pinion:N\" or \"wheel:N\", N a tooth number from 0 (mesh order, as [[faults]] tooth)";
+  const auto colon = o.mark_tooth.find(':');
+  const std::string gear_name = o.mark_tooth.substr(0, colon);
+  if (colon == std::string::npos || (gear_name != "pinion" && gear_name != "wheel")) {
+    throw InputError("--mark-tooth", o.mark_tooth, allowed);
+  }
+  const std::string digits = o.mark_tooth.substr(colon + 1);
+  int tooth = 0;
+  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), tooth);
+  if (digits.empty() || error != std::errc{} || end != digits.data() + digits.size()) {
+    throw InputError("--mark-tooth", o.mark_tooth, allowed);
+  }
+  if (o.case_file.empty()) {
+    throw InputError("--mark-tooth", o.mark_tooth,
+                     "with --case-file, the pair or run file of the record's run");
+  }
+  if (o.angle_column.empty()) {
+    throw InputError("--mark-tooth", o.mark_tooth,
+                     "with --angle-column, the marked gear's simulated angle (theta1_rad or "
+                     "theta2_rad): the TSA it shades");
+  }
+  const GearPair pair = read_pair_or_run_file(o.case_file).simulation_case.gears;
+  const Gear gear = gear_name == "pinion" ? Gear::one : Gear::two;
+  try {
+    return tooth_passage(pair, gear, tooth);
+  } catch (const InputError& e) {
+    throw InputError("--mark-tooth", o.mark_tooth, e.problems().front().allowed);
+  }
+}
 
 // The library's names of the settings, as the flags that set them.
 InputError as_flags(const InputError& e) {
@@ -192,7 +230,8 @@ void waveform_figure(const std::filesystem::path& dir, const std::string& column
 
 // The TSA less its mean (which would otherwise set the scale), with the
 // difference and residual signals, which have none.
-void tsa_figure(const std::filesystem::path& dir, const std::vector<double>& tsa, bool with_parts) {
+void tsa_figure(const std::filesystem::path& dir, const std::vector<double>& tsa, bool with_parts,
+                const std::optional<ToothPassage>& marked, const std::string& marked_name) {
   double mean = 0.0;
   for (double v : tsa) mean += v / static_cast<double>(tsa.size());
   char shift[40];
@@ -204,6 +243,20 @@ void tsa_figure(const std::filesystem::path& dir, const std::vector<double>& tsa
   f.y_label = "signal";
   f.setup = {"set key outside right top"};
   add(f, tick_commands("x", Ticks{0.0, 360.0, 45.0, 0}));
+  if (marked) {
+    // The passage may wrap past 360 deg: its part there is drawn from 0.
+    const double from = marked->entry_rad * 180.0 / pi;
+    const double span = marked->span_rad * 180.0 / pi;
+    for (const double start : {from, from - 360.0}) {
+      char rect[160];
+      std::snprintf(rect, sizeof rect,
+                    "set object rect from %.10g, graph 0 to %.10g, graph 1 fc rgb '#ffd9b3' "
+                    "fs solid 1.0 noborder behind",
+                    start, start + span);
+      f.setup.emplace_back(rect);
+    }
+    f.title += " (shaded: " + marked_name + " in contact)";
+  }
   f.series = {"'tsa.csv' using ($1*180/pi):($2-(" + std::string(shift) +
               ")) with lines lw 1.5 lc rgb '#1f4e99' title 'TSA - mean (" + ten_digits(mean) +
               ")'"};
@@ -241,6 +294,11 @@ void run_signals(const SignalsOptions& o) {
                                 whole_number(o.sidebands, "--sidebands")};
       naming_flags([&] { signals::check_order_sets(*sets, per_revolution); });
     }
+  }
+  std::optional<ToothPassage> marked;
+  if (!o.mark_tooth.empty()) marked = marked_passage(o);
+  if (o.mark_tooth.empty() && !o.case_file.empty()) {
+    throw InputError("--case-file", o.case_file, "only with --mark-tooth, which reads it");
   }
   require_output_folder(o.out, o.overwrite, {o.input});
 
@@ -334,7 +392,9 @@ void run_signals(const SignalsOptions& o) {
                           literal_key(o.angle_column, true),
                       "order (cycles per revolution)", sets ? std::min(half, 3.5 * z) : half, z,
                       "z", 1.0, sidebands);
-      tsa_figure(dir, tsa_values, sets.has_value());
+      tsa_figure(dir, tsa_values, sets.has_value(), marked,
+                 o.mark_tooth.substr(0, o.mark_tooth.find(':')) + " tooth " +
+                     o.mark_tooth.substr(o.mark_tooth.find(':') + 1));
     }
   }
   folder.commit();
@@ -373,6 +433,12 @@ void register_signals_commands(CLI::App& app) {
                   "shaft orders 0..k counted regular (default 1)");
   cmd->add_option("--sidebands", o->sidebands,
                   "sidebands +-1..m of each mesh harmonic counted regular (default 1)");
+  cmd->add_option("--case-file", o->case_file,
+                  "the pair or run file of the record's run (read for --mark-tooth)");
+  cmd->add_option("--mark-tooth", o->mark_tooth,
+                  "\"pinion:N\" or \"wheel:N\" with --case-file: shade on tsa.png where that "
+                  "tooth's drive flank carries (the angle column must be that gear's simulated "
+                  "angle)");
   cmd->add_option("--out", o->out,
                   "output folder: new or empty (else --overwrite), written beside it and renamed "
                   "into place when complete")

@@ -13,6 +13,8 @@
 #include <sstream>
 #include <string>
 
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/tooth_identity.hpp"
 #include "relative.hpp"
 #include "run_command.hpp"
 #include "scratch.hpp"
@@ -149,8 +151,32 @@ TEST_CASE("signals: the waveform is the record's end, the sidebands are marked w
   CHECK(read(out / "order_spectrum.gp").find("set arrow from 38, graph 0.86") != std::string::npos);
 }
 
+TEST_CASE("signals shades a marked tooth's passage on the TSA, where tooth_passage puts it") {
+  Scratch scratch("signals-mark");
+  const auto csv = scratch.dir / "signal.csv";
+  write_signal(csv);
+  const auto out = scratch.dir / "out";
+  const std::string case1 = std::string(GEARIMPACT_PAPER_DATA_DIR) + "/case1.toml";
+  const auto r = run_command(kCli + " signals " + csv.string() +
+                             " --column x --angle-column theta_rad --teeth 20 --case-file " +
+                             case1 + " --mark-tooth pinion:7 --out " + out.string());
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const gearimpact::ToothPassage p =
+      gearimpact::tooth_passage(gearimpact::paper_gear_pair(), gearimpact::Gear::one, 7);
+  const std::string script = read(out / "tsa.gp");
+  const std::string rect = "set object rect from ";
+  const auto at = script.find(rect);
+  REQUIRE(at != std::string::npos);
+  const double from_deg = std::stod(script.substr(at + rect.size()));
+  // Printed with ten digits.
+  CHECK(std::abs(from_deg - p.entry_rad * 180.0 / pi) < 1e-7);
+  CHECK(script.find("pinion tooth 7 in contact") != std::string::npos);
+}
+
 TEST_CASE("signals refuses a bad flag before any work, naming it and its range") {
   Scratch scratch("signals-flags");
+  const std::string case1 = std::string(GEARIMPACT_PAPER_DATA_DIR) + "/case1.toml";
   const auto csv = scratch.dir / "signal.csv";
   write_signal(csv);
   const std::string head = kCli + " signals " + csv.string() + " ";
@@ -180,6 +206,15 @@ TEST_CASE("signals refuses a bad flag before any work, naming it and its range")
       {"--column x --angle-column theta_rad --teeth two",
        "--teeth = two is outside the allowed range: a whole number"},
       {"--column x --angle-column x", "x (sample 2)"},  // not increasing
+      {"--column x --angle-column theta_rad --mark-tooth pinion:3",
+       "--mark-tooth = pinion:3 is outside the allowed range: with --case-file"},
+      {"--column x --angle-column theta_rad --mark-tooth gear:3 --case-file " + case1,
+       "--mark-tooth = gear:3 is outside the allowed range: \"pinion:N\" or \"wheel:N\""},
+      {"--column x --angle-column theta_rad --mark-tooth pinion:20 --case-file " + case1,
+       "--mark-tooth = pinion:20 is outside the allowed range: a tooth number in [0, 19]"},
+      {"--column x --mark-tooth wheel:3 --case-file " + case1,
+       "--mark-tooth = wheel:3 is outside the allowed range: with --angle-column"},
+      {"--column x --case-file " + case1, "--case-file = " + case1},
   };
   for (const auto& c : cases) {
     CAPTURE(c.flags);
