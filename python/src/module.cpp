@@ -689,6 +689,8 @@ py::dict case_conditions(const SimulationCase& c) {
   const double rb2 = base_radius(pair, Gear::two);
   out["rb1_m"] = rb1;
   out["rb2_m"] = rb2;
+  out["friction"] =
+      c.model.friction_law != FrictionLaw::constant || c.model.friction_coefficient > 0.0;
   // A user's callable, a kinematic driver and a drag have no mean known before the run.
   const auto known_mean = [](const Torque& t) {
     return t.kind == Torque::Kind::constant || t.kind == Torque::Kind::sinusoidal ||

@@ -298,10 +298,20 @@ std::vector<std::string> run_warnings(const SimulationCase& c) {
     if (std::fabs(imbalance) > 1e-9 * std::max(std::fabs(t1 / rb1), std::fabs(t2 / rb2))) {
       const std::string key =
           c.torque2.kind == Torque::Kind::constant ? "torque2.value" : "torque2.mean";
+      // Friction takes power from the train, so torques that leave an excess for
+      // it can hold a speed (a rig's load set against its friction); the check
+      // cannot tell, as friction's mean power is known only from a run.
+      const bool friction =
+          c.model.friction_law != FrictionLaw::constant || c.model.friction_coefficient > 0.0;
+      const std::string consequence =
+          friction ? "without friction the pair would accelerate without bound; with it a "
+                     "steady speed needs the excess power T1 w1 + T2 w2 to equal friction's mean "
+                     "power, which this check does not compute"
+                   : "the pair accelerates without bound and has no steady state";
       warnings.push_back("unbalanced mean torques: T1/Rb1 + T2/Rb2 = " + six_digits(imbalance) +
-                         " N (T1 = " + six_digits(t1) + " N*m, T2 = " + six_digits(t2) +
-                         " N*m); the pair accelerates without bound and has no steady state; " +
-                         key + " = \"" + format_number(-t1 * rb2 / rb1) + " N*m\" balances T1");
+                         " N (T1 = " + six_digits(t1) + " N*m, T2 = " + six_digits(t2) + " N*m); " +
+                         consequence + "; " + key + " = \"" + format_number(-t1 * rb2 / rb1) +
+                         " N*m\" balances T1");
     }
   }
   const double v1 = rb1 * c.initial.w1_rad_per_s;
