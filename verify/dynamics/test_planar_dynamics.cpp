@@ -511,6 +511,21 @@ TEST_CASE("friction reversals are events: the friction loss converges at RK4's o
     CAPTURE(ratio);
     CHECK(ratio > 12.0);
   }
+
+  SUBCASE("a contact that sticks is crossed, not stalled on") {
+    // 2000 N at 100 rad/s: the friction's jump at a reversal exceeds what
+    // drives the sliding through zero, and the exact switch would chatter
+    // (the run stopped on a stalled event location without the fallback).
+    // The sticking steps take each stage's own signs, O(h) there: the
+    // residual stays small against the friction loss, not at RK4's level.
+    SimulationCase c = meshing_case(2000.0, 100.0, 1e-7);
+    c.model.friction_coefficient = 0.05;
+    const SimulationSummary s = run_meshing(c, table);
+    MESSAGE("sticking: residual " << s.ledger_residual_max_j << " J, friction loss "
+                                  << s.friction_loss_j << " J, " << s.events << " events");
+    CHECK(s.friction_loss_j > 0.0);
+    CHECK(s.ledger_residual_max_j < 1e-5 * s.friction_loss_j);
+  }
 }
 
 TEST_CASE("a spall's edges are events in the planar run: the ledger at RK4's order") {

@@ -867,7 +867,10 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
           "the planar run diverged: the state is not finite at t = " + format_number(t_next) +
           " s, step " + std::to_string(n) + "; a smaller integrator.step may resolve it");
     }
-    stalled = event && t_next - t <= 1e-9 * h ? stalled + 1 : 0;
+    // Events that advance by less than a millionth of the step: a sequence
+    // of them is the contact's chatter, not the motion (a friction reversal
+    // that turns back at once advances by round-off or a few 1e-14 s).
+    stalled = event && t_next - t <= 1e-6 * h ? stalled + 1 : 0;
     const bool stepped_per_stage = mode[0].slip_per_stage;
     if (stalled > kMostStalledEvents) {
       throw SimulationError(
@@ -893,10 +896,18 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
       mesh = mesh_energy(y);
       jump_work += mesh - before;
     } else if (stepped_per_stage) {
+      // The sticking goes on while a pair's sliding still changed sign over
+      // the step; once every pair slid one way through a whole step, its
+      // reversals are events again.
+      bool sticking = false;
       for (const Region side : kSides) {
-        mode[side_index(side)].slip_per_stage = false;
-        system.classify_forces(side, y, memory[side_index(side)], mode[side_index(side)]);
+        SideMode& m = mode[side_index(side)];
+        const std::array<double, kMaxPairs> slip = m.slip;
+        system.classify_forces(side, y, memory[side_index(side)], m);
+        sticking = sticking || slip != m.slip;
       }
+      mode[0].slip_per_stage = sticking;
+      mode[1].slip_per_stage = sticking;
     }
     // Two events in a row that advanced by almost nothing: with an exact
     // friction switch, a pair whose sliding turns back at once after its
