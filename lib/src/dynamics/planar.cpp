@@ -267,7 +267,7 @@ class PlanarSystem {
   void classify_forces(Region side, const Y& y, const ContactMemory& memory, SideMode& m) const {
     if (!m.contact) return;
     for (int j = 0; j < m.range.count; ++j) {
-      const PairMotion p = pair_motion(side, y, memory, m, j);
+      const PairMotion p = pair_motion(side, y, memory, m, j, true);
       m.slip[j] = p.sliding_m_s >= 0.0 ? 1.0 : -1.0;
       m.clipped[j] = p.push_n < 0.0;
     }
@@ -304,7 +304,7 @@ class PlanarSystem {
           g[n++] = part > 0 ? x - table->part_start_m(part) : 1.0;
           g[n++] = part + 1 < table->part_count() ? table->part_end_m(part) - x : 1.0;
         }
-        const PairMotion p = pair_motion(side, y, memory[i], m, j);
+        const PairMotion p = pair_motion(side, y, memory[i], m, j, true);
         // A smoothed sign has no switch to locate.
         g[n++] = c_.model.friction_smoothing_speed_m_s > 0.0 || m.slip_per_stage
                      ? 1.0
@@ -358,8 +358,12 @@ class PlanarSystem {
     bool carries = false;
     double x_m = 0.0, ke = 0.0, dke = 0.0, elastic_n = 0.0, push_n = 1.0, sliding_m_s = 0.0;
   };
+  // With sign_only, push_n has the sign and zeros of F + G only: with D
+  // proportional to the pair's own Ke, F + G = Ke delta (1 + (D/K) delta'),
+  // and the positive Ke need not be read (the event values and the forces'
+  // classification want no more); ke, dke and elastic_n are then not set.
   PairMotion pair_motion(Region side, const Y& y, const ContactMemory& memory, const SideMode& m,
-                         int j) const {
+                         int j, bool sign_only = false) const {
     const double* v = &y[kVelocity];
     const auto [dl, dl_rate] = penetration(side, y);
     const auto n = normal(side);
@@ -370,6 +374,10 @@ class PlanarSystem {
     p.sliding_m_s = sliding_speed(v[kT1], v[kT2], p.x_m, lp_) + slide_of_centres;
     if (!carries(side, k, m.part[j])) return p;
     p.carries = true;
+    if (sign_only && c_.model.damping_stiffness == DampingStiffness::current_pair) {
+      p.push_n = dl * (1.0 + memory.damping_per_stiffness_s_m * dl_rate);
+      return p;
+    }
     std::tie(p.ke, p.dke) = pair_stiffness(side, k, m.range.count, m.part[j], p.x_m);
     p.elastic_n = elastic_force(p.ke, dl);
     const double d = c_.model.damping_stiffness == DampingStiffness::current_pair
