@@ -62,8 +62,9 @@ void validate_planar(const SimulationCase& c, const PlanarMounting& mounting,
                      const RunControl& control);
 
 // The run of c on `mounting` from `initial`: fixed-step RK4 at
-// integrator.step, each step cut at a side's contact onset or end
-// (docs/vibration.md says which events are located and why), after
+// integrator.step, each step cut at a side's events (contact onset and end,
+// a pair's entry and exit, a fault's edges, a friction reversal, a clipping;
+// docs/vibration.md, "Integration"), after
 // validate_planar; throws InputError naming integrator.step when it exceeds
 // 1/kStepsPerContactPeriod of the shortest period the planar system can have
 // (a bound from its stiffest springs).
