@@ -917,11 +917,11 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
       mode[0].slip_per_stage = sticking;
       mode[1].slip_per_stage = sticking;
     }
-    // Two events in a row that advanced by almost nothing: with an exact
-    // friction switch, a pair whose sliding turns back at once after its
-    // reversal (the friction's jump exceeds what drives the sliding through
-    // zero: the contact would stick). The next step takes each stage's own
-    // signs instead, across the sticking with an error O(h) in that step.
+    // Two events in a row that each advanced less than 1e-6 of the step:
+    // with an exact friction switch, a pair whose sliding turns back at once
+    // after its reversal (the friction's jump exceeds what drives the sliding
+    // through zero: the contact would stick). The steps then take each
+    // stage's own signs, across the sticking with an error O(h) there.
     if (stalled >= 2 && c.model.friction_smoothing_speed_m_s == 0.0) {
       mode[0].slip_per_stage = true;
       mode[1].slip_per_stage = true;
