@@ -23,8 +23,10 @@ namespace {
 // A series row as CSV, measured on the paper's cases (138 bytes); for the
 // estimate a message gives.
 constexpr double kSeriesRowBytes = 140.0;
-// A sample row as CSV: 11 numbers of 17 digits and two small integers.
+// A sample row as CSV: 11 numbers of 17 digits and two small integers; a
+// planar one, 31 numbers.
 constexpr double kSampleRowBytes = 230.0;
+constexpr double kPlanarSampleRowBytes = 720.0;
 
 // "14 GB", "140 MB": the size a message gives, rounded.
 std::string csv_size_text(double bytes) {
@@ -47,31 +49,7 @@ void validate_control(const SimulationCase& c, const RunControl& control) {
               "the bound");
     }
   }
-  if (control.sample_rate_hz) {
-    const double rate = *control.sample_rate_hz;
-    const std::string rate_text = format_number(rate) + " Hz";
-    if (!(std::isfinite(rate) && rate > 0.0)) {
-      throw InputError("sample_rate", rate_text, "a finite rate > 0 Hz");
-    }
-    if (!control.locate_events) {
-      throw InputError("sample_rate", rate_text,
-                       "only with event location (RunControl::locate_events): the dense output "
-                       "of a step needs one mode");
-    }
-    const double most = static_cast<double>(control.most_series_rows);
-    const double t0 = control.resume ? control.resume->time_s : 0.0;
-    const double samples = sample_count(c, rate, t0);
-    if (samples > most) {
-      const double end = c.integrator.end_time_s;
-      throw InputError("sample_rate", rate_text,
-                       "a rate in (0, " + shortest_decimal((most - 1.0) / end) + "] Hz: at most " +
-                           shortest_decimal(most) +
-                           " samples over integrator.end_time = " + shortest_decimal(end) +
-                           " s; this run would have " + shortest_decimal(samples) +
-                           " samples, about " + csv_size_text(samples * kSampleRowBytes) +
-                           " as CSV: lower the rate, shorten the run, or lift the bound");
-    }
-  }
+  validate_sampling(c, control);
   if (control.resume) {
     const RunState& r = *control.resume;
     const InitialState& y = r.state;
@@ -238,6 +216,35 @@ double sample_count(const SimulationCase& c, double sample_rate_hz, double t0_s)
   while (sample_time_s(t0_s, n + 1, sample_rate_hz) <= end) ++n;
   while (n > 0 && sample_time_s(t0_s, n, sample_rate_hz) > end) --n;
   return static_cast<double>(n) + 1.0;
+}
+
+void validate_sampling(const SimulationCase& c, const RunControl& control) {
+  if (!control.sample_rate_hz) return;
+  const double rate = *control.sample_rate_hz;
+  const std::string rate_text = format_number(rate) + " Hz";
+  if (!(std::isfinite(rate) && rate > 0.0)) {
+    throw InputError("sample_rate", rate_text, "a finite rate > 0 Hz");
+  }
+  if (!control.locate_events) {
+    throw InputError("sample_rate", rate_text,
+                     "only with event location (RunControl::locate_events): the dense output "
+                     "of a step needs one mode");
+  }
+  const double most = static_cast<double>(control.most_series_rows);
+  const double t0 = control.resume ? control.resume->time_s : 0.0;
+  const double samples = sample_count(c, rate, t0);
+  if (samples > most) {
+    const double end = c.integrator.end_time_s;
+    throw InputError(
+        "sample_rate", rate_text,
+        "a rate in (0, " + shortest_decimal((most - 1.0) / end) + "] Hz: at most " +
+            shortest_decimal(most) +
+            " samples over integrator.end_time = " + shortest_decimal(end) +
+            " s; this run would have " + shortest_decimal(samples) + " samples, about " +
+            csv_size_text(samples * (c.bearings.kind == BearingKind::elastic ? kPlanarSampleRowBytes
+                                                                             : kSampleRowBytes)) +
+            " as CSV: lower the rate, shorten the run, or lift the bound");
+  }
 }
 
 void validate(const SimulationCase& c) {
