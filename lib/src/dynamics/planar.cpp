@@ -451,6 +451,9 @@ class PlanarSystem {
   // proportional to the pair's own Ke, F + G = Ke delta (1 + (D/K) delta'),
   // and the positive Ke need not be read (the event values and the forces'
   // classification want no more); ke, dke and elastic_n are then not set.
+  // kGaps false compiles out the gaps, for the right-hand side of a run
+  // without them (motion<false>).
+  template <bool kGaps = true>
   PairMotion pair_motion(Region side, const Y& y, const ContactMemory& memory, const SideMode& m,
                          int j, bool sign_only = false) const {
     const double* v = &y[kVelocity];
@@ -461,9 +464,11 @@ class PlanarSystem {
     p.x_m = layout_.position_m(layout_.reference_m(side, y[kT1]), k);
     const double slide_of_centres = (v[kX1] - v[kX2]) * -n[1] + (v[kY1] - v[kY2]) * n[0];
     p.sliding_m_s = sliding_speed(v[kT1], v[kT2], p.x_m, lp_) + slide_of_centres;
-    if (!pair_loaded(side, m, j)) return p;
+    if (!carries(side, k, m.part[j]) || (kGaps && gaps_ && !m.touching[j])) return p;
     p.carries = true;
-    p.own = pair_penetration(side, m, j, p.x_m, dl, dl_rate, line_sign(side) * rb1_ * v[kT1]);
+    p.own = kGaps
+                ? pair_penetration(side, m, j, p.x_m, dl, dl_rate, line_sign(side) * rb1_ * v[kT1])
+                : PairPenetration{dl, dl_rate, 0.0};
     const double dk = p.own.delta_m;
     const double dk_rate = p.own.rate_m_s;
     if (sign_only && c_.model.damping_stiffness == DampingStiffness::current_pair) {
@@ -528,7 +533,7 @@ class PlanarSystem {
       const double x_rate = sign * rb1_ * w1;
       double total = 0.0;
       for (int j = 0; j < m.range.count; ++j) {
-        const PairMotion p = pair_motion(side, y, memory[i], m, j);
+        const PairMotion p = pair_motion<kOptions>(side, y, memory[i], m, j);
         // A pair that carries no force: no damping, no friction.
         if (!p.carries) continue;
         const double x = p.x_m;
