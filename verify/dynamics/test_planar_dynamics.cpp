@@ -8,10 +8,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <string>
 #include <vector>
 
 #include "gearimpact/constants.hpp"
+#include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/dynamics/planar.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/error.hpp"
@@ -419,11 +421,11 @@ TEST_CASE("modifications act on the planar model as on the torsional one") {
   // Tip reliefs and a pitch error, loaded: on stiff bearings the planar run
   // follows the modified torsional run, and closer as the bearings stiffen.
   // Its difference from it falls as 1/k_b (the bearings' compliance, as in
-  // the healthy case above): tenfold from 2e12 to 2e13 N/m (measured 10.0),
-  // within 20 %, as a pair's entry and exit (a jump of Ke under load) and its
-  // touching are not located in the planar run (each stage takes its own),
-  // an integration error that does not fall with k_b (with the reliefs'
-  // kinks passed, also unlocated, the ledger test's case falls only 7.2-fold).
+  // the healthy case above): tenfold from 2e12 to 2e13 N/m (measured 9.995),
+  // within 10 %, the share of the terms in 1/k_b^2 and of the integration
+  // error, which does not fall with k_b (a pair's entry and exit, its
+  // touching and the reliefs' kinks are located events, so that error is
+  // RK4's own).
   // The modifications' own effect, the unmodified torsional run's difference
   // from the modified one, is the scale: the planar run must be far closer
   // than that (measured 8e-4 of it).
@@ -447,26 +449,29 @@ TEST_CASE("modifications act on the planar model as on the torsional one") {
           << " rad, unmodified torsional " << plain_to_modified << " rad");
   CHECK(plain_to_modified > 0.0);
   CHECK(planar_to_modified < 1e-2 * plain_to_modified);
-  CHECK(std::fabs(softer_to_modified / planar_to_modified - 10.0) < 2.0);
+  CHECK(std::fabs(softer_to_modified / planar_to_modified - 10.0) < 1.0);
 }
 
 TEST_CASE("with modifications the planar ledger closes and converges") {
   // The modified pair on 500 N/um bearings, rattling without damping or
   // friction: the gaps' work (their slope moving with the pinion) and each
   // pair's own penetration are booked; the residual is far below the
-  // energies and falls when the step halves: at least threefold (measured
-  // 6.3; the unlocated pair entries, touchings and kinks above keep it from
-  // RK4's 16).
+  // energies and falls when the step halves at RK4's order at least: more
+  // than tenfold, which a kink of the force stepped over unlocated (a local
+  // error O(h^3), eightfold) would fail: measured 34 with a pair's entry and
+  // exit, its touching and the reliefs' kinks located, 6.3 when they were
+  // not. Steps of 0.4 and 0.2 us: at 0.1 us the residual already meets its
+  // round-off (2e-12 J).
   // The reliefs begin where a loaded pair passes their kink during the run.
   SimulationCase c = modified_case(5e8, 0.6);
   c.torque1.constant_n_m *= 0.1;
   c.torque2.constant_n_m *= 0.1;
   c.integrator.end_time_s = 4e-3;
-  c.integrator.step_s = 1e-7;
-  c.integrator.output_every = 1000;
+  c.integrator.step_s = 4e-7;
+  c.integrator.output_every = 250;
   const SimulationResult coarse = simulate(c);
-  c.integrator.step_s = 5e-8;
-  c.integrator.output_every = 2000;
+  c.integrator.step_s = 2e-7;
+  c.integrator.output_every = 500;
   const SimulationResult fine = simulate(c);
   MESSAGE("ledger residual " << coarse.summary.ledger_residual_max_j << " J, "
                              << fine.summary.ledger_residual_max_j << " J of "
@@ -475,7 +480,7 @@ TEST_CASE("with modifications the planar ledger closes and converges") {
   CHECK(fine.summary.impacts_n1 >= 1);
   CHECK(fine.summary.parametric_work_j != 0.0);
   CHECK(fine.summary.ledger_residual_max_j < 1e-8 * fine.summary.ledger_scale_j);
-  CHECK(coarse.summary.ledger_residual_max_j > 3.0 * fine.summary.ledger_residual_max_j);
+  CHECK(coarse.summary.ledger_residual_max_j > 10.0 * fine.summary.ledger_residual_max_j);
 }
 
 TEST_CASE("the viscous mesh damper acts on the planar model as on the torsional one") {
@@ -891,4 +896,166 @@ TEST_CASE("planar samples of a free vibration: the dense output's order and a = 
   // w^2 multiplies the sum): measured 1e-8 at both steps, not falling with them.
   CHECK(coarse.acceleration < 1e-7);
   CHECK(fine.acceleration < 1e-7);
+}
+
+namespace {
+
+// The paper's pair loaded by `force` along the drive line on bearings of
+// 1e9 N/m without dampers, without Hertzian damping, the time-varying table,
+// rolling at w1 over 2.5 mesh periods from near its static state (each
+// centre pushed back by F n1 on its bearing, the mesh by F over its mean
+// stiffness): its pairs enter and leave the contact segment under load, Ke
+// jumping at each.
+SimulationCase meshing_case(double force_n, double w1, double step_s) {
+  SimulationCase c = loaded_case(1e9, force_n);
+  c.model.mesh_stiffness = MeshStiffnessMode::time_varying;
+  c.initial.w1_rad_per_s = w1;
+  c.initial.w2_rad_per_s = w1 * base_radius(c.gears, Gear::one) / base_radius(c.gears, Gear::two);
+  c.integrator.end_time_s = 2.5 * 2.0 * pi / (c.gears.teeth1 * w1);
+  c.integrator.step_s = step_s;
+  return c;
+}
+
+SimulationSummary run_meshing(const SimulationCase& c, const StiffnessTable& table) {
+  const double force = c.torque1.constant_n_m / base_radius(c.gears, Gear::one);
+  const double a = operating_pressure_angle(c.gears);
+  const double kb = c.bearings.gear1.stiffness_x_n_per_m;
+  PlanarState s = planar_initial_state(c);
+  s.x1_m = -force * std::sin(a) / kb;
+  s.y1_m = -force * std::cos(a) / kb;
+  s.x2_m = -s.x1_m;
+  s.y2_m = -s.y1_m;
+  // The healthy mean also with a fault: a start near the static state suffices.
+  s.theta1_rad =
+      (c.gears.backlash_m + force / mean_mesh_stiffness_n_per_m(c, table) + 2.0 * force / kb) /
+      base_radius(c.gears, Gear::one);
+  RunControl control;
+  control.keep_series = false;
+  return simulate_planar(c, table, planar_mounting(c), s, control).summary;
+}
+
+// The ledger residuals of runs at each step, and the ratio of successive ones.
+void check_ledger_order(const std::vector<SimulationSummary>& runs) {
+  for (std::size_t i = 1; i < runs.size(); ++i) {
+    const double ratio = runs[i - 1].ledger_residual_max_j / runs[i].ledger_residual_max_j;
+    CAPTURE(i);
+    CAPTURE(ratio);
+    // RK4's global error falls 16-fold per halved step (the ledger's drift
+    // up to 32-fold, test_dynamics); 12 leaves room for a run not yet quite
+    // asymptotic, while a step straddling a jump of Ke or of the friction
+    // keeps it near 2 (measured before these were events: 4.4 and 2.2 in the
+    // first test below, 2.3 and 0.9 in the second, 1.0 with the spall, whose
+    // jumps went unbooked).
+    CHECK(ratio > 12.0);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("pairs entering and leaving under load are events: the ledger at RK4's order") {
+  // 2000 N at w1 = 100 rad/s, no friction: the undamped run loses and regains
+  // contact ten times besides (each a located event too).
+  const SimulationCase base = meshing_case(2000.0, 100.0, 1e-7);
+  const StiffnessTable table(base.gears, base.model.stiffness);
+  std::vector<SimulationSummary> runs;
+  for (const double h : {2e-7, 1e-7, 0.5e-7}) {
+    SimulationCase c = base;
+    c.integrator.step_s = h;
+    runs.push_back(run_meshing(c, table));
+    const SimulationSummary& s = runs.back();
+    MESSAGE("step " << h << " s: residual " << s.ledger_residual_max_j << " J of "
+                    << s.ledger_scale_j << " J, jumps " << s.parametric_jump_work_j << " J, "
+                    << s.events << " events, " << s.impacts_n1 << " impacts");
+    // Every pair's entry and exit (2.5 mesh periods: at least four) is an event.
+    CHECK(s.events >= s.impacts_n1 + s.impacts_n2 + 4);
+  }
+  check_ledger_order(runs);
+}
+
+TEST_CASE("friction reversals are events: the friction loss converges at RK4's order") {
+  // 500 N at w1 = 200 rad/s, f = 0.05: each loaded pair's sliding reverses
+  // near the pitch point with the centres' tangential motion in it, and the
+  // sliding runs through zero (at a higher load or a lower speed the
+  // friction's jump turns it back: the contact sticks, and those steps fall
+  // back to O(h), docs/vibration.md). The friction loss's differences
+  // between successive halvings fall as RK4's error, 16-fold (measured 15;
+  // before the reversals were events -9 and -0.2: no order at all).
+  SimulationCase base = meshing_case(500.0, 200.0, 1e-7);
+  base.model.friction_coefficient = 0.05;
+  const StiffnessTable table(base.gears, base.model.stiffness);
+  std::vector<SimulationSummary> runs;
+  for (const double h : {4e-7, 2e-7, 1e-7, 0.5e-7}) {
+    SimulationCase c = base;
+    c.integrator.step_s = h;
+    runs.push_back(run_meshing(c, table));
+    const SimulationSummary& s = runs.back();
+    MESSAGE("step " << h << " s: residual " << s.ledger_residual_max_j << " J of "
+                    << s.ledger_scale_j << " J, friction loss " << std::setprecision(12)
+                    << s.friction_loss_j << std::setprecision(6) << " J, " << s.events
+                    << " events, " << s.impacts_n1 << " impacts");
+  }
+  // The residual reaches round-off (1e-13 of the energies) at 1e-7 s.
+  check_ledger_order({runs[0], runs[1], runs[2]});
+  for (std::size_t i = 2; i < runs.size(); ++i) {
+    const double ratio = (runs[i - 2].friction_loss_j - runs[i - 1].friction_loss_j) /
+                         (runs[i - 1].friction_loss_j - runs[i].friction_loss_j);
+    CAPTURE(ratio);
+    CHECK(ratio > 12.0);
+  }
+
+  SUBCASE("a contact that sticks is crossed, not stalled on") {
+    // 2000 N at 100 rad/s: the friction's jump at a reversal exceeds what
+    // drives the sliding through zero, and the exact switch would chatter
+    // (the run stopped on a stalled event location without the fallback).
+    // The sticking steps take each stage's own signs, O(h) there: the
+    // residual stays small against the friction loss, not at RK4's level.
+    SimulationCase c = meshing_case(2000.0, 100.0, 1e-7);
+    c.model.friction_coefficient = 0.05;
+    const SimulationSummary s = run_meshing(c, table);
+    MESSAGE("sticking: residual " << s.ledger_residual_max_j << " J, friction loss "
+                                  << s.friction_loss_j << " J, " << s.events << " events");
+    CHECK(s.friction_loss_j > 0.0);
+    CHECK(s.ledger_residual_max_j < 1e-5 * s.friction_loss_j);
+  }
+}
+
+TEST_CASE("a spall's edges are events in the planar run: the ledger at RK4's order") {
+  // A spall over [0.2, 0.6] of the way from the pitch point to X_end on the
+  // drive flank of pinion tooth 0 (as test_faults_dynamics), half the face:
+  // its pair crosses both edges under load, Ke jumping at each; the steps
+  // land on them and the jumps of the stored energy are booked there, beside
+  // the entries and exits.
+  SimulationCase base = meshing_case(2000.0, 100.0, 1e-7);
+  const GearPair& g = base.gears;
+  const ContactSegment segment = contact_segment(g);
+  const double rb1 = base_radius(g, Gear::one);
+  const double xp = pitch_point_position(g);
+  ToothFault spall;
+  spall.gear = Gear::one;
+  spall.tooth = 0;
+  spall.state.kind = ToothKind::spall;
+  spall.state.spall.start_radius_m = std::hypot(rb1, xp + 0.2 * (segment.end_m - xp));
+  spall.state.spall.end_radius_m = std::hypot(rb1, xp + 0.6 * (segment.end_m - xp));
+  spall.state.spall.width_m = 0.5 * g.face_width_m;
+  spall.state.spall.depth_m = 0.2e-3;
+  base.faults = {spall};
+  const StiffnessTable table(g, base.model.stiffness);
+  SimulationCase healthy = base;
+  healthy.faults.clear();
+  const SimulationSummary without = run_meshing(healthy, table);
+  std::vector<SimulationSummary> runs;
+  for (const double h : {2e-7, 1e-7, 0.5e-7}) {
+    SimulationCase c = base;
+    c.integrator.step_s = h;
+    runs.push_back(run_meshing(c, table));
+    const SimulationSummary& s = runs.back();
+    MESSAGE("step " << h << " s: residual " << s.ledger_residual_max_j << " J of "
+                    << s.ledger_scale_j << " J, jumps " << s.parametric_jump_work_j
+                    << " J (healthy " << without.parametric_jump_work_j << " J), " << s.events
+                    << " events");
+  }
+  // The spall's two edges: two events more than the healthy run's, at 1e-7 s.
+  CHECK(runs[1].events >= without.events + 2);
+  CHECK(runs[1].parametric_jump_work_j != without.parametric_jump_work_j);
+  check_ledger_order(runs);
 }

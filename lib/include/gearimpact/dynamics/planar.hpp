@@ -61,11 +61,13 @@ void validate_planar(const SimulationCase& c, const PlanarMounting& mounting,
                      const RunControl& control);
 
 // The run of c on `mounting` from `initial`: fixed-step RK4 at
-// integrator.step, each step cut at a side's contact onset or end
-// (docs/vibration.md says which events are located and why), after
-// validate_planar and validate_sampling; with RunControl::sample_rate_hz it
-// samples (PlanarSample) at sample_time_s(0, n, rate) from each accepted
-// step's continuous extension, the left limit at an event time. It throws
+// integrator.step, each step cut at a side's events (contact onset and end,
+// a pair's entry and exit, with [modifications] its touching or letting go
+// and a relief's kink, a fault's edges, a friction reversal, a clipping;
+// docs/vibration.md, "Integration"), after validate_planar and
+// validate_sampling; with RunControl::sample_rate_hz it samples
+// (PlanarSample) at sample_time_s(0, n, rate) from each accepted step's
+// continuous extension, the left limit at an event time. It throws
 // InputError naming integrator.step when the step exceeds
 // 1/kStepsPerContactPeriod of the shortest period the planar system can have
 // (a bound from its stiffest springs and a drag's relaxation of the load).
