@@ -6,7 +6,7 @@
 set -eu
 source=$1 work=$2 python=$3 cli=$4
 rm -rf "$work" && mkdir -p "$work/src"
-for entry in CMakeLists.txt cmake lib reference python paper_data README.md pyproject.toml \
+for entry in CMakeLists.txt cmake lib reference python paper_data examples README.md pyproject.toml \
     setup.py setup.cfg; do
   cp -R "$source/$entry" "$work/src/"
 done
