@@ -173,8 +173,11 @@ ReportSection reproduce_vibration(const ReproduceContext& context) {
   for (std::size_t k = 0; k < modes.modes.size(); ++k) {
     const NaturalMode& m = modes.modes[k];
     if (m.rigid) continue;
+    // A share below 1e-12 is the eigensolver's rounding of a mode that leaves
+    // that spring unstrained (a bearing mode across the line of action).
     const auto share = [&m](SpringPart part) {
-      return number(100.0 * m.energy_share[static_cast<std::size_t>(part)], 3) + " %";
+      const double value = m.energy_share[static_cast<std::size_t>(part)];
+      return (value < 1e-12 ? std::string("0") : number(100.0 * value, 3)) + " %";
     };
     modes_table += "| " + std::to_string(k + 1) + " | " + number(m.frequency_hz, 5) + " | " +
                    share(SpringPart::mesh) + " | " + share(SpringPart::bearing1) + " | " +
