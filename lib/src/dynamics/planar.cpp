@@ -177,14 +177,15 @@ class PlanarSystem {
   }
 
   // The mesh's stored energy of both sides by term of (29), as the
-  // torsional ledger reports it (F = Ke delta of each pair inside the segment).
-  ElasticEnergy mesh_terms(const Y& y) const {
+  // torsional ledger reports it (F = Ke delta of each pair inside the segment),
+  // with the pairs of `ranges` (those loaded at y).
+  ElasticEnergy mesh_terms(const Y& y, const std::array<LoadedRange, 2>& ranges) const {
     ElasticEnergy u;
     for (const Region side : kSides) {
       const double dl = penetration(side, y).first;
       if (dl <= 0.0) continue;
       const double ref = layout_.reference_m(side, y[kT1]);
-      const LoadedRange range = layout_.loaded(ref);
+      const LoadedRange range = ranges[side_index(side)];
       for (int j = 0; j < range.count; ++j) {
         const int k = range.k_first + j;
         if (constant_k_ > 0.0) {
@@ -740,9 +741,16 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     ++s.steps;
     // A pair that entered or left during the step takes or releases its
     // stored energy: work of the time-varying stiffness, booked at the step's end.
+    // Mostly none did: the energy is then the same sum, computed once.
+    const std::array<LoadedRange, 2> entered{system.loaded(Region::n1, y[kT1]),
+                                             system.loaded(Region::n2, y[kT1])};
+    const auto same_pairs = [](LoadedRange a, LoadedRange b) {
+      return a.k_first == b.k_first && a.count == b.count;
+    };
+    const bool same = same_pairs(entered[0], ranges[0]) && same_pairs(entered[1], ranges[1]);
     const double before = mesh_energy(y);
-    for (const Region side : kSides) ranges[side_index(side)] = system.loaded(side, y[kT1]);
-    const double mesh = mesh_energy(y);
+    ranges = entered;
+    const double mesh = same ? before : mesh_energy(y);
     jump_work += mesh - before;
     begin_contacts(t);
     s.max_penetration_m = std::max({s.max_penetration_m, system.penetration(Region::n1, y).first,
@@ -750,7 +758,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     const double energy =
         system.kinetic_energy(y) + mesh + system.bearing_energy(y) + system.shaft_energy(y);
     s.ledger_scale_j = std::max(s.ledger_scale_j, energy);
-    const ElasticEnergy terms = system.mesh_terms(y);
+    const ElasticEnergy terms = system.mesh_terms(y, ranges);
     for (std::size_t i = 0; i < kTermCount; ++i) {
       s.energy_max_j[i] = std::max(s.energy_max_j[i], terms.j[i]);
     }
