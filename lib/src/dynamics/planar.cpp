@@ -302,8 +302,8 @@ class PlanarSystem {
         forces->penetration_m[i] = dl;
       }
     }
-    double t1 = torque_at(c_.torque1, t);
-    double t2 = torque_at(c_.torque2, t);
+    double t1 = torque(c_.torque1, t);
+    double t2 = torque(c_.torque2, t);
     double shaft_power = 0.0;
     // Without shafts the motor and the load are not bodies: their entries
     // stay as they started, and the outputs report the gears' own.
@@ -340,6 +340,12 @@ class PlanarSystem {
     dy[kParametric] = parametric_power;
     dy[kBearingLoss] = bearing_power;
     dy[kShaftLoss] = shaft_power;
+  }
+
+  // torque_at without its call for a constant torque, the common case
+  // (the call costs as much as a pair's forces).
+  static double torque(const Torque& q, double t) {
+    return q.kind == Torque::Kind::constant ? q.constant_n_m : torque_at(q, t);
   }
 
   // The memory of a contact that begins on `side` at y.
