@@ -1,8 +1,9 @@
-"""Writes examples/gear_pair.ipynb from its twin examples/gear_pair.py.
+"""Writes each example notebook (examples/NAME.ipynb) from its twin examples/NAME.py.
 
 The twin is a plain script in the "percent" format: `# %%` starts a code cell,
 `# %% [markdown]` a Markdown cell whose lines are comments. Run after editing
 the twin: /usr/bin/python3 examples/make_notebook.py (needs python3-nbformat).
+Each notebook is listed in NOTEBOOKS.
 """
 
 import sys
@@ -11,6 +12,7 @@ from pathlib import Path
 import nbformat
 
 HERE = Path(__file__).resolve().parent
+NOTEBOOKS = ("gear_pair", "cracked_pinion_vibration")
 
 
 def cells_of(script):
@@ -43,10 +45,11 @@ def notebook_of(script):
 
 
 def main():
-    script = (HERE / "gear_pair.py").read_text()
-    target = HERE / "gear_pair.ipynb"
-    nbformat.write(notebook_of(script), str(target))
-    print(f"wrote {target}", file=sys.stderr)
+    for name in NOTEBOOKS:
+        script = (HERE / f"{name}.py").read_text()
+        target = HERE / f"{name}.ipynb"
+        nbformat.write(notebook_of(script), str(target))
+        print(f"wrote {target}", file=sys.stderr)
 
 
 if __name__ == "__main__":

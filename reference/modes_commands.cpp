@@ -61,6 +61,7 @@ ModesTexts modes_texts(const SimulationCase& c, int harmonics,
       campbell_crossings(texts.modes, c.gears.teeth1, harmonics, texts.max_pinion_speed_rad_per_s);
   texts.csv = modes_csv(texts.modes);
   texts.campbell_csv = campbell_csv(texts.crossings);
+  texts.shapes_csv = mode_shapes_csv(texts.modes);
   ModesSummary summary;
   summary.case_name = c.name;
   summary.teeth1 = c.gears.teeth1;
@@ -108,7 +109,13 @@ Figure energy_figure(const SimulationCase& c) {
   // modes.csv's share columns 5..9; a rigid mode's bar is empty (it stores no energy).
   const char* titles[kSpringParts] = {"mesh", "bearing 1", "bearing 2", "motor shaft",
                                       "load shaft"};
+  // The bearings' and shafts' parts are drawn only where the case has them: an
+  // empty series would still take a key entry and mislead.
+  const bool elastic_bearings = c.bearings.kind == BearingKind::elastic;
+  const bool elastic_shafts = c.shafts.kind == ShaftKind::elastic;
   for (std::size_t part = 0; part < kSpringParts; ++part) {
+    if ((part == 1 || part == 2) && !elastic_bearings) continue;
+    if ((part == 3 || part == 4) && !elastic_shafts) continue;
     std::string series = "'modes.csv' using " + std::to_string(5 + part);
     if (part == 0) {
       series +=
@@ -116,6 +123,38 @@ Figure energy_figure(const SimulationCase& c) {
           "sprintf('%d: %.5g Hz', int($1), $3))";
     }
     f.series.push_back(series + " title '" + titles[part] + "'");
+  }
+  return f;
+}
+
+// Each mode's shape as a cluster of bars, one per DOF, in base-circle lengths
+// (mode_shapes.csv): which body moves, and which way, in each mode.
+Figure shapes_figure(const SimulationCase& c, const Modes& modes) {
+  Figure f;
+  f.name = "mode_shapes";
+  f.title =
+      "Mode shapes, rotations as Rb theta, largest component 1 (" + literal_key(c.name, true) + ")";
+  f.x_label = "mode: natural frequency";
+  f.y_label = "component of the shape";
+  f.setup = {"set style data histograms",
+             "set style histogram clustered gap 1",
+             "set style fill solid 0.85 border -1",
+             "set yrange [-1.1:1.1]",
+             "set key outside right top vertical noenhanced",
+             "set xtics rotate by -30",
+             "set xzeroaxis lt -1"};
+  for (std::size_t k = 0; k < modes.model.dofs.size(); ++k) {
+    const Dof dof = modes.model.dofs[k];
+    std::string label(dof_name(dof));
+    if (dof == Dof::theta1 || dof == Dof::theta_motor) label = "Rb1 " + label;
+    if (dof == Dof::theta2 || dof == Dof::theta_load) label = "Rb2 " + label;
+    std::string series = "'mode_shapes.csv' using " + std::to_string(4 + k);
+    if (k == 0) {
+      series +=
+          ":xtic((strcol(2) eq 'true') ? sprintf('%d: rigid', int($1)) : "
+          "sprintf('%d: %.5g Hz', int($1), $3))";
+    }
+    f.series.push_back(series + " title '" + label + "'");
   }
   return f;
 }
@@ -180,9 +219,11 @@ void write_modes(ModesOptions& o) {
   const std::filesystem::path dir = folder.temporary();
   write_file_atomically((dir / "modes.csv").string(), texts.csv);
   write_file_atomically((dir / "campbell.csv").string(), texts.campbell_csv);
+  write_file_atomically((dir / "mode_shapes.csv").string(), texts.shapes_csv);
   write_file_atomically((dir / "summary.json").string(), texts.summary_json);
   if (!o.no_plots) {
     render(dir, energy_figure(c));
+    render(dir, shapes_figure(c, texts.modes));
     render(dir, campbell_figure(c, texts, o.harmonics));
   }
   folder.commit();
@@ -200,7 +241,8 @@ void register_modes_commands(CLI::App& app) {
       "(docs/vibration.md): torsional, or planar with [bearings] kind = \"elastic\", with a "
       "motor and a load with [shafts] kind = \"elastic\". Writes modes.csv (frequencies, "
       "strain-energy shares, mass-normalised shapes), campbell.csv (where the mesh harmonics "
-      "cross them), summary.json and the figures modes_energy.png and campbell.png");
+      "cross them), mode_shapes.csv, summary.json and the figures modes_energy.png, "
+      "mode_shapes.png and campbell.png");
   modes->add_option("case", o->case_file, "case file: a pair file or a run file")->required();
   modes
       ->add_option("--out", o->out,

@@ -64,6 +64,7 @@ struct ModesTexts {
   double max_pinion_speed_rad_per_s = 0.0;
   std::string csv;
   std::string campbell_csv;
+  std::string shapes_csv;
   std::string summary_json;
 };
 inline constexpr int kMostHarmonics = 100;

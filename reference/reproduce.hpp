@@ -46,5 +46,12 @@ ReportSection reproduce_rattle(const ReproduceContext& context);
 // The paper's pair with faulted and modified teeth (docs/faults.md): the mesh stiffness over a
 // pinion revolution, its loss against crack depth, and the STE with a tip relief.
 ReportSection reproduce_faults(const ReproduceContext& context);
+// The test-rig-like pair of examples/rig_17_38.toml on elastic bearings (docs/vibration.md,
+// docs/signals.md): its modes, the pinion bearing's signal healthy and with a root crack of
+// growing depth (spectrum, TSA, condition indicators), and the pair at low load with a torque
+// ripple, where the teeth separate.
+ReportSection reproduce_vibration(const ReproduceContext& context);
+// The text of examples/rig_17_38.toml, compiled in.
+const char* rig_17_38_toml();
 
 }  // namespace gearimpact::cli

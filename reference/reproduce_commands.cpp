@@ -81,15 +81,17 @@ std::filesystem::path reproduce(const std::filesystem::path& out,
     const char* what;
     ReportSection (*run)(const ReproduceContext&);
   };
-  const std::vector<Part> parts{{"Figs. 4-6 time histories of cases 1-3", reproduce_time_histories},
-                                {"Fig. 7 friction sweep, 27 runs", reproduce_fig7},
-                                {"Fig. 8 energy ratios", reproduce_fig8},
-                                {"stiffness models and ISO 6336-1", reproduce_stiffness},
-                                {"the open readings side by side", reproduce_readings},
-                                {"case 3 ensemble", reproduce_case3_ensemble},
-                                {"steady state of the loaded pair", reproduce_steady_state},
-                                {"rattle map of a loose gear, 512 runs", reproduce_rattle},
-                                {"tooth faults and modifications", reproduce_faults}};
+  const std::vector<Part> parts{
+      {"Figs. 4-6 time histories of cases 1-3", reproduce_time_histories},
+      {"Fig. 7 friction sweep, 27 runs", reproduce_fig7},
+      {"Fig. 8 energy ratios", reproduce_fig8},
+      {"stiffness models and ISO 6336-1", reproduce_stiffness},
+      {"the open readings side by side", reproduce_readings},
+      {"case 3 ensemble", reproduce_case3_ensemble},
+      {"steady state of the loaded pair", reproduce_steady_state},
+      {"rattle map of a loose gear, 512 runs", reproduce_rattle},
+      {"tooth faults and modifications", reproduce_faults},
+      {"vibration of a healthy and a cracked pinion", reproduce_vibration}};
   // The parts run side by side: each submits its simulations to the one pool
   // and waits for them, so the cores stay busy until the last run is done.
   std::vector<std::future<std::pair<ReportSection, double>>> running;

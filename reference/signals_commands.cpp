@@ -16,7 +16,10 @@
 #include "commands.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
+#include "gearimpact/geometry/tooth_identity.hpp"
 #include "gearimpact/io/atomic_file.hpp"
+#include "gearimpact/io/case_file.hpp"
+#include "gearimpact/io/results.hpp"
 #include "gearimpact/io/signal_files.hpp"
 #include "gearimpact/signals/indicators.hpp"
 #include "gearimpact/signals/resample.hpp"
@@ -38,10 +41,46 @@ struct SignalsOptions {
   std::string teeth;
   std::string shaft_orders = "1";
   std::string sidebands = "1";
+  std::string case_file;
+  std::string mark_tooth;
   std::string out;
   bool overwrite = false;
   bool plots = true;
 };
+
+// --mark-tooth "pinion:N" or "wheel:N" with --case-file: where that tooth's
+// drive flank carries, in its gear's angle (tooth_passage), to shade on the TSA.
+ToothPassage marked_passage(const SignalsOptions& o) {
+  const std::string allowed =
+      "\"pinion:N\" or \"wheel:N\", N a tooth number from 0 (mesh order, as [[faults]] tooth)";
+  const auto colon = o.mark_tooth.find(':');
+  const std::string gear_name = o.mark_tooth.substr(0, colon);
+  if (colon == std::string::npos || (gear_name != "pinion" && gear_name != "wheel")) {
+    throw InputError("--mark-tooth", o.mark_tooth, allowed);
+  }
+  const std::string digits = o.mark_tooth.substr(colon + 1);
+  int tooth = 0;
+  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), tooth);
+  if (digits.empty() || error != std::errc{} || end != digits.data() + digits.size()) {
+    throw InputError("--mark-tooth", o.mark_tooth, allowed);
+  }
+  if (o.case_file.empty()) {
+    throw InputError("--mark-tooth", o.mark_tooth,
+                     "with --case-file, the pair or run file of the record's run");
+  }
+  if (o.angle_column.empty()) {
+    throw InputError("--mark-tooth", o.mark_tooth,
+                     "with --angle-column, the marked gear's simulated angle (theta1_rad or "
+                     "theta2_rad): the TSA it shades");
+  }
+  const GearPair pair = read_pair_or_run_file(o.case_file).simulation_case.gears;
+  const Gear gear = gear_name == "pinion" ? Gear::one : Gear::two;
+  try {
+    return tooth_passage(pair, gear, tooth);
+  } catch (const InputError& e) {
+    throw InputError("--mark-tooth", o.mark_tooth, e.problems().front().allowed);
+  }
+}
 
 // The library's names of the settings, as the flags that set them.
 InputError as_flags(const InputError& e) {
@@ -114,9 +153,30 @@ void mark_mesh_harmonics(Figure& f, double mesh, double highest, const std::stri
   }
 }
 
+// Short red ticks at the top at the sidebands h * mesh +- j * shaft (j = 1..
+// sidebands) of each marked harmonic, where a fault's once-per-revolution
+// modulation puts its energy; a key entry says what they are.
+void mark_sidebands(Figure& f, double mesh, double shaft, std::size_t sidebands, double highest,
+                    const std::string& label) {
+  for (int h = 1; h * mesh <= highest && h <= 20; ++h) {
+    for (std::size_t j = 1; j <= sidebands; ++j) {
+      for (const double sign : {-1.0, 1.0}) {
+        const double at = h * mesh + sign * static_cast<double>(j) * shaft;
+        if (at <= 0.0 || at > highest) continue;
+        char x[64];
+        std::snprintf(x, sizeof x, "%.10g", at);
+        f.setup.push_back(std::string("set arrow from ") + x + ", graph 0.86 to " + x +
+                          ", graph 0.93 nohead lw 1.5 lc rgb '#c0392b'");
+      }
+    }
+  }
+  f.setup.emplace_back("set key bottom right opaque box");
+  f.series.push_back("NaN with lines lw 1.5 lc rgb '#c0392b' title '" + label + "'");
+}
+
 void spectrum_figure(const std::filesystem::path& dir, const std::string& name,
                      const std::string& title, const std::string& x_label, double top, double mesh,
-                     const std::string& mesh_name) {
+                     const std::string& mesh_name, double shaft = 0.0, std::size_t sidebands = 0) {
   Figure f;
   f.name = name;
   f.title = title;
@@ -125,13 +185,53 @@ void spectrum_figure(const std::filesystem::path& dir, const std::string& name,
   f.setup = {"set logscale y", "set format y '10^{%L}'", "set key off"};
   add(f, tick_commands("x", nice_ticks(0.0, top)));
   if (mesh > 0.0) mark_mesh_harmonics(f, mesh, top, mesh_name);
-  f.series = {"'" + name + ".csv' using 1:($2 > 0 ? $2 : NaN) with lines lw 1.2 lc rgb '#1f4e99'"};
+  f.series = {"'" + name +
+              ".csv' using 1:($2 > 0 ? $2 : NaN) with lines lw 1.2 lc rgb '#1f4e99' notitle"};
+  if (mesh > 0.0 && shaft > 0.0 && sidebands > 0) {
+    mark_sidebands(f, mesh, shaft, sidebands, top,
+                   "sidebands " + mesh_name + " +- 1.." + std::to_string(sidebands) +
+                       (name == "order_spectrum" ? " orders" : " shaft frequencies"));
+  }
+  render(dir, f);
+}
+
+// The record as it was analysed (the uniform grid), at most its last
+// kWaveformSamples samples so that the figure stays legible: waveform.csv.
+constexpr std::size_t kWaveformSamples = 16384;
+
+std::size_t waveform_start(const std::vector<double>& uniform) {
+  return uniform.size() > kWaveformSamples ? uniform.size() - kWaveformSamples : 0;
+}
+
+void write_waveform(const std::filesystem::path& dir, const std::string& column,
+                    const std::vector<double>& uniform, double start_s, double rate_hz) {
+  std::string csv = "t_s," + column + "\n";
+  for (std::size_t i = waveform_start(uniform); i < uniform.size(); ++i) {
+    csv += format_data_number(start_s + static_cast<double>(i) / rate_hz) + "," +
+           format_data_number(uniform[i]) + "\n";
+  }
+  write_file_atomically((dir / "waveform.csv").string(), csv);
+}
+
+void waveform_figure(const std::filesystem::path& dir, const std::string& column,
+                     const std::vector<double>& uniform) {
+  const std::size_t first = waveform_start(uniform);
+  Figure f;
+  f.name = "waveform";
+  f.title = "Waveform of " + literal_key(column, true) +
+            (first > 0 ? " (the record's last " + std::to_string(kWaveformSamples) + " samples)"
+                       : std::string());
+  f.x_label = "time (s)";
+  f.y_label = "signal";
+  f.setup = {"set key off"};
+  f.series = {"'waveform.csv' using 1:2 with lines lw 1 lc rgb '#1f4e99'"};
   render(dir, f);
 }
 
 // The TSA less its mean (which would otherwise set the scale), with the
 // difference and residual signals, which have none.
-void tsa_figure(const std::filesystem::path& dir, const std::vector<double>& tsa, bool with_parts) {
+void tsa_figure(const std::filesystem::path& dir, const std::vector<double>& tsa, bool with_parts,
+                const std::optional<ToothPassage>& marked, const std::string& marked_name) {
   double mean = 0.0;
   for (double v : tsa) mean += v / static_cast<double>(tsa.size());
   char shift[40];
@@ -143,6 +243,20 @@ void tsa_figure(const std::filesystem::path& dir, const std::vector<double>& tsa
   f.y_label = "signal";
   f.setup = {"set key outside right top"};
   add(f, tick_commands("x", Ticks{0.0, 360.0, 45.0, 0}));
+  if (marked) {
+    // The passage may wrap past 360 deg: its part there is drawn from 0.
+    const double from = marked->entry_rad * 180.0 / pi;
+    const double span = marked->span_rad * 180.0 / pi;
+    for (const double start : {from, from - 360.0}) {
+      char rect[160];
+      std::snprintf(rect, sizeof rect,
+                    "set object rect from %.10g, graph 0 to %.10g, graph 1 fc rgb '#ffd9b3' "
+                    "fs solid 1.0 noborder behind",
+                    start, start + span);
+      f.setup.emplace_back(rect);
+    }
+    f.title += " (shaded: " + marked_name + " in contact)";
+  }
   f.series = {"'tsa.csv' using ($1*180/pi):($2-(" + std::string(shift) +
               ")) with lines lw 1.5 lc rgb '#1f4e99' title 'TSA - mean (" + ten_digits(mean) +
               ")'"};
@@ -180,6 +294,11 @@ void run_signals(const SignalsOptions& o) {
                                 whole_number(o.sidebands, "--sidebands")};
       naming_flags([&] { signals::check_order_sets(*sets, per_revolution); });
     }
+  }
+  std::optional<ToothPassage> marked;
+  if (!o.mark_tooth.empty()) marked = marked_passage(o);
+  if (o.mark_tooth.empty() && !o.case_file.empty()) {
+    throw InputError("--case-file", o.case_file, "only with --mark-tooth, which reads it");
   }
   require_output_folder(o.out, o.overwrite, {o.input});
 
@@ -227,6 +346,7 @@ void run_signals(const SignalsOptions& o) {
   AtomicFolder folder(o.out, o.overwrite, {o.input});
   const std::filesystem::path dir = folder.temporary();
   write_file_atomically((dir / "spectrum.csv").string(), spectrum_csv(spectrum, "frequency_hz"));
+  write_waveform(dir, o.column, uniform, time.front(), run.sample_rate_hz);
   signals::Indicators indicators;
   std::vector<double> tsa_values;
   double mesh_hz = 0.0;
@@ -257,11 +377,13 @@ void run_signals(const SignalsOptions& o) {
   write_file_atomically((dir / "indicators.json").string(), json);
   if (o.plots) {
     const double nyquist = run.sample_rate_hz / 2.0;
+    const std::size_t sidebands = sets ? sets->sidebands : 0;
+    waveform_figure(dir, o.column, uniform);
     spectrum_figure(
         dir, "spectrum",
         "Amplitude spectrum of " + literal_key(o.column, true) + " (" + run.window + " window)",
         "frequency (Hz)", mesh_hz > 0.0 ? std::min(nyquist, 6.5 * mesh_hz) : nyquist, mesh_hz,
-        "f_m");
+        "f_m", run.shaft_frequency_hz, sidebands);
     if (has_angle) {
       const double half = static_cast<double>(run.angle_grid) / 2.0;
       const double z = sets ? static_cast<double>(sets->teeth) : 0.0;
@@ -269,8 +391,10 @@ void run_signals(const SignalsOptions& o) {
                       "Order spectrum of " + literal_key(o.column, true) + " on " +
                           literal_key(o.angle_column, true),
                       "order (cycles per revolution)", sets ? std::min(half, 3.5 * z) : half, z,
-                      "z");
-      tsa_figure(dir, tsa_values, sets.has_value());
+                      "z", 1.0, sidebands);
+      tsa_figure(dir, tsa_values, sets.has_value(), marked,
+                 o.mark_tooth.substr(0, o.mark_tooth.find(':')) + " tooth " +
+                     o.mark_tooth.substr(o.mark_tooth.find(':') + 1));
     }
   }
   folder.commit();
@@ -309,6 +433,12 @@ void register_signals_commands(CLI::App& app) {
                   "shaft orders 0..k counted regular (default 1)");
   cmd->add_option("--sidebands", o->sidebands,
                   "sidebands +-1..m of each mesh harmonic counted regular (default 1)");
+  cmd->add_option("--case-file", o->case_file,
+                  "the pair or run file of the record's run (read for --mark-tooth)");
+  cmd->add_option("--mark-tooth", o->mark_tooth,
+                  "\"pinion:N\" or \"wheel:N\" with --case-file: shade on tsa.png where that "
+                  "tooth's drive flank carries (the angle column must be that gear's simulated "
+                  "angle)");
   cmd->add_option("--out", o->out,
                   "output folder: new or empty (else --overwrite), written beside it and renamed "
                   "into place when complete")

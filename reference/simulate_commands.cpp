@@ -176,11 +176,21 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
     const bool progress = std::isfinite(*sample_rate) && *sample_rate > 0.0 &&
                           sample_count(c, *sample_rate) >= kRowsWorthProgress;
     series_file.emplace(o.out);
-    pending = samples_csv_header();
-    control.on_sample = [&, progress](const SampleRow& row) {
-      append_sample_row(pending, row);
-      flush(row.t_s, progress);
-    };
+    if (c.bearings.kind == BearingKind::elastic) {
+      // The planar model's samples: its state, accelerations, bearing and
+      // mesh forces and the sensor's acceleration (planar_samples_csv_header).
+      pending = planar_samples_csv_header();
+      control.on_planar_sample = [&, progress](const PlanarSample& row) {
+        append_planar_sample(pending, row);
+        flush(row.t_s, progress);
+      };
+    } else {
+      pending = samples_csv_header();
+      control.on_sample = [&, progress](const SampleRow& row) {
+        append_sample_row(pending, row);
+        flush(row.t_s, progress);
+      };
+    }
   } else if (!o.out.empty() && c.bearings.kind == BearingKind::elastic) {
     // The planar model's rows: positions and speeds of the centres, bearing
     // and mesh forces of each side (planar_series_csv_header).
@@ -306,8 +316,9 @@ void register_simulate_commands(CLI::App& app) {
   simulate->add_option(
       "--sample-rate", options->sample_rate,
       "Hz: with --out, write samples at t = n / FS exactly (the integrator's dense output; "
-      "accelerations, DTE, mesh force per side) instead of the integrator's steps; not with "
-      "--every");
+      "accelerations, DTE, mesh force per side; with elastic bearings the centres' "
+      "accelerations and the sensor's, [bearings] sensor_gear and sensor_angle) instead of the "
+      "integrator's steps; not with --every");
   simulate->add_option("--max-rows", options->max_rows,
                        "the most rows the time series may have, so that a slip of --t-end does "
                        "not fill a disk (default " +

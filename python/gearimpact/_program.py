@@ -172,8 +172,9 @@ def modes(case, harmonics=3, max_speed=None):
     times where the first harmonic meets the highest mode). Returns a dict: "modes" and
     "campbell" (dicts of numpy arrays with the columns of modes.csv and campbell.csv: mode and
     harmonic int64, rigid bool, the rest float64), "dofs" (the shape's degrees of freedom in
-    order), "shapes" (a float64 array, one mass-normalised shape a row, one column a DOF) and
-    "summary" (summary.json)."""
+    order), "shapes" (a float64 array, one mass-normalised shape a row, one column a DOF),
+    "mode_shapes" (mode_shapes.csv: each shape with its rotations as Rb theta, the largest
+    component 1, as the program's mode_shapes.png draws them) and "summary" (summary.json)."""
     if not isinstance(case, _core.Case):
         raise _arguments.case_error(
             f"case={case!r}: a Case (gearimpact.case, paper_case, read_case), "
@@ -183,7 +184,7 @@ def modes(case, harmonics=3, max_speed=None):
     if max_speed is not None and isinstance(max_speed, numbers.Real) and not \
             _arguments.is_bool(max_speed):
         max_speed = repr(_arguments.real("max_speed", max_speed)) + " rad/s"
-    table, campbell, summary = _core.modes(
+    table, campbell, mode_shapes, summary = _core.modes(
         case, _arguments.integer("harmonics", harmonics),
         None if max_speed is None else _arguments.text("max_speed", max_speed))
     table = _table(table)
@@ -193,7 +194,7 @@ def modes(case, harmonics=3, max_speed=None):
     shapes = numpy.column_stack([table[name] for name in columns]) if table["mode"].size else \
         numpy.zeros((0, len(dofs)))
     return {"modes": table, "campbell": _table(campbell), "dofs": dofs, "shapes": shapes,
-            "summary": summary}
+            "mode_shapes": _table(mode_shapes), "summary": summary}
 
 
 def sweep(case, vary, start, stop, points, direction="both", options=()):

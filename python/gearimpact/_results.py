@@ -150,7 +150,10 @@ def simulate(case, keep_series=True, max_rows=None, sample_rate=None, **changes)
     (t_s, theta1_rad, theta2_rad, w1_rad_s, w2_rad_s, w1_dot_rad_s2,
     w2_dot_rad_s2, s_m, dte_m = s - B, normal_force_n1_N, normal_force_n2_N,
     region, pairs; docs/usage.md), the run itself unchanged; at most max_rows
-    of them. The computation runs without the GIL; Ctrl-C stops it
+    of them. With [bearings] kind = "elastic" the columns are the planar
+    samples' (t_s, the state x1_m ... w_load_rad_s, ax1_m_per_s2 ...
+    alpha2_rad_per_s2, bearing_fx1_N ... bearing_fy2_N, dte_m, drive_force_N,
+    coast_force_N, sensor_acceleration_m_per_s2; docs/vibration.md). The computation runs without the GIL; Ctrl-C stops it
     (KeyboardInterrupt). Raises CaseError for a case outside its ranges (with
     the step checked against the contact's period) and SimulationError for a
     run that cannot continue.

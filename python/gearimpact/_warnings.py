@@ -54,10 +54,15 @@ def conditions(case):
         t1, t2, balancing = c["mean_torque1_n_m"], c["mean_torque2_n_m"], c["balancing_torque2_n_m"]
         key = "torque2_value" if case.fields()["torque2.kind"] == "constant" else "torque2_mean"
         imbalance = t1 / c["rb1_m"] + t2 / c["rb2_m"]
+        consequence = (
+            "without friction the pair would accelerate without bound; with it a steady speed "
+            "needs the excess power T1 w1 + T2 w2 to equal friction's mean power, which this "
+            "check does not compute" if c["friction"] else
+            "the pair accelerates without bound and has no steady state")
         found["unbalanced"] = (
             f"{name}: mean torques unbalanced, T1 = {_g(t1)} N*m, T2 = {_g(t2)} N*m "
-            f"(T1/Rb1 + T2/Rb2 = {_g(imbalance)} N): the pair accelerates without bound and has "
-            f"no steady state; {key}={balancing!r} (N*m) balances T1")
+            f"(T1/Rb1 + T2/Rb2 = {_g(imbalance)} N): {consequence}; "
+            f"{key}={balancing!r} (N*m) balances T1")
     if not c["rolling"]:
         w1, w2, rolling = c["w1_rad_s"], c["w2_rad_s"], c["rolling_w2_rad_s"]
         found["not_rolling"] = (

@@ -255,6 +255,57 @@ py::dict sample_columns(std::vector<SampleRow>&& rows) {
   return samples;
 }
 
+// The columns of `gearimpact simulate --sample-rate FS --out` for a planar
+// case (planar_samples_csv_header), in its order. The state is a member of a
+// member, which a strided view cannot reach by a member pointer: copied.
+py::dict planar_sample_columns(const std::vector<PlanarSample>& rows) {
+  const auto of = [&](auto get) {
+    py::array_t<double> array(static_cast<py::ssize_t>(rows.size()));
+    double* data = array.mutable_data();
+    for (std::size_t i = 0; i < rows.size(); ++i) data[i] = get(rows[i]);
+    return array;
+  };
+  py::dict samples;
+  const auto state = [&](const char* name, double PlanarState::*member) {
+    samples[name] = of([member](const PlanarSample& r) { return r.state.*member; });
+  };
+  const auto own = [&](const char* name, double PlanarSample::*member) {
+    samples[name] = of([member](const PlanarSample& r) { return r.*member; });
+  };
+  own("t_s", &PlanarSample::t_s);
+  state("x1_m", &PlanarState::x1_m);
+  state("y1_m", &PlanarState::y1_m);
+  state("theta1_rad", &PlanarState::theta1_rad);
+  state("x2_m", &PlanarState::x2_m);
+  state("y2_m", &PlanarState::y2_m);
+  state("theta2_rad", &PlanarState::theta2_rad);
+  state("vx1_m_s", &PlanarState::vx1_m_s);
+  state("vy1_m_s", &PlanarState::vy1_m_s);
+  state("w1_rad_s", &PlanarState::w1_rad_per_s);
+  state("vx2_m_s", &PlanarState::vx2_m_s);
+  state("vy2_m_s", &PlanarState::vy2_m_s);
+  state("w2_rad_s", &PlanarState::w2_rad_per_s);
+  state("theta_motor_rad", &PlanarState::theta_motor_rad);
+  state("theta_load_rad", &PlanarState::theta_load_rad);
+  state("w_motor_rad_s", &PlanarState::w_motor_rad_per_s);
+  state("w_load_rad_s", &PlanarState::w_load_rad_per_s);
+  own("ax1_m_per_s2", &PlanarSample::ax1_m_per_s2);
+  own("ay1_m_per_s2", &PlanarSample::ay1_m_per_s2);
+  own("alpha1_rad_per_s2", &PlanarSample::alpha1_rad_per_s2);
+  own("ax2_m_per_s2", &PlanarSample::ax2_m_per_s2);
+  own("ay2_m_per_s2", &PlanarSample::ay2_m_per_s2);
+  own("alpha2_rad_per_s2", &PlanarSample::alpha2_rad_per_s2);
+  own("bearing_fx1_N", &PlanarSample::bearing_fx1_n);
+  own("bearing_fy1_N", &PlanarSample::bearing_fy1_n);
+  own("bearing_fx2_N", &PlanarSample::bearing_fx2_n);
+  own("bearing_fy2_N", &PlanarSample::bearing_fy2_n);
+  own("dte_m", &PlanarSample::dte_m);
+  own("drive_force_N", &PlanarSample::drive_force_n);
+  own("coast_force_N", &PlanarSample::coast_force_n);
+  own("sensor_acceleration_m_per_s2", &PlanarSample::sensor_acceleration_m_per_s2);
+  return samples;
+}
+
 py::object optional_number(const std::optional<double>& value) {
   return value ? py::object(py::float_(*value)) : py::object(py::none());
 }
@@ -286,8 +337,12 @@ py::tuple run_simulation(const SimulationCase& c, bool keep_series, long long ma
     control.should_stop = std::move(should_stop);
     return simulate(c, control);
   });
+  // A planar run's samples are its own (the torsional columns would be empty).
+  py::dict samples = c.bearings.kind == BearingKind::elastic
+                         ? planar_sample_columns(result.planar_samples)
+                         : sample_columns(std::move(result.samples));
   return py::make_tuple(summary_json(result.summary), series_columns(std::move(result.series)),
-                        impact_records(result.impacts), sample_columns(std::move(result.samples)));
+                        impact_records(result.impacts), samples);
 }
 
 // The stiffness columns of `gearimpact stiffness` at the contact positions xs.
@@ -491,7 +546,7 @@ py::tuple modes_texts_of(const SimulationCase& c, long long harmonics,
     py::gil_scoped_release release;
     texts = cli::modes_texts(c, static_cast<int>(harmonics), speed);
   }
-  return py::make_tuple(texts.csv, texts.campbell_csv, texts.summary_json);
+  return py::make_tuple(texts.csv, texts.campbell_csv, texts.shapes_csv, texts.summary_json);
 }
 
 // `gearimpact sweep` of a case with the command's options: (sweep.csv, poincare.csv,
@@ -634,6 +689,8 @@ py::dict case_conditions(const SimulationCase& c) {
   const double rb2 = base_radius(pair, Gear::two);
   out["rb1_m"] = rb1;
   out["rb2_m"] = rb2;
+  out["friction"] =
+      c.model.friction_law != FrictionLaw::constant || c.model.friction_coefficient > 0.0;
   // A user's callable, a kinematic driver and a drag have no mean known before the run.
   const auto known_mean = [](const Torque& t) {
     return t.kind == Torque::Kind::constant || t.kind == Torque::Kind::sinusoidal ||

@@ -13,6 +13,8 @@
 #include <sstream>
 #include <string>
 
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/tooth_identity.hpp"
 #include "relative.hpp"
 #include "run_command.hpp"
 #include "scratch.hpp"
@@ -109,8 +111,72 @@ TEST_CASE("signals: order spectrum, TSA and FM0 of mesh harmonics in an uneven a
   CHECK(std::count(tsa.begin(), tsa.end(), '\n') == 641);
 }
 
+// Occurrences of `what` in `text`.
+std::size_t count_of(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST_CASE("signals: the waveform is the record's end, the sidebands are marked where they lie") {
+  Scratch scratch("signals-figures");
+  const auto csv = scratch.dir / "signal.csv";
+  write_signal(csv);
+  const auto out = scratch.dir / "out";
+  const auto r = run_command(kCli + " signals " + csv.string() +
+                             " --column x --angle-column theta_rad --teeth 20 --sidebands 2"
+                             " --samples-per-revolution 640 --out " +
+                             out.string());
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  for (const char* name : {"waveform.csv", "waveform.png", "spectrum.png", "order_spectrum.png"}) {
+    CHECK(std::filesystem::exists(out / name));
+  }
+  // At the record's own rate the grid is the record's times, where the cubic returns each
+  // sample itself: the last of the 16384 rows kept is the signal at t = 1 s in closed form.
+  // The rate is 1 / the median spacing, 2e-5 s computed as a difference of the times (about
+  // 1e-12 relative), so the grid's last time is 1 s within 1e-10 and the value, whose slope is
+  // below 2e3 per s, within 1e-8.
+  const std::string waveform = read(out / "waveform.csv");
+  CHECK(std::count(waveform.begin(), waveform.end(), '\n') == 16384 + 1);
+  const std::string last = waveform.substr(waveform.rfind('\n', waveform.size() - 2) + 1);
+  const double theta = 2.0 * pi * 5.0 + 0.3 * std::sin(2.0 * pi * 3.0);
+  CHECK(relative_difference(std::stod(last.substr(0, last.find(','))), 1.0) < 1e-10);
+  CHECK(relative_difference(std::stod(last.substr(last.find(',') + 1)),
+                            1.0 + std::cos(20.0 * theta) + 0.25 * std::cos(40.0 * theta)) < 1e-8);
+  // Sidebands h f_m +- 1, 2 f_s of each harmonic drawn: 6 harmonics up to 6.5 f_m in the
+  // spectrum, 3 up to order 70 (3.5 z) in the order spectrum, 4 ticks each.
+  CHECK(count_of(read(out / "spectrum.gp"), "graph 0.86") == 6 * 4);
+  CHECK(count_of(read(out / "order_spectrum.gp"), "graph 0.86") == 3 * 4);
+  CHECK(read(out / "order_spectrum.gp").find("set arrow from 38, graph 0.86") != std::string::npos);
+}
+
+TEST_CASE("signals shades a marked tooth's passage on the TSA, where tooth_passage puts it") {
+  Scratch scratch("signals-mark");
+  const auto csv = scratch.dir / "signal.csv";
+  write_signal(csv);
+  const auto out = scratch.dir / "out";
+  const std::string case1 = std::string(GEARIMPACT_PAPER_DATA_DIR) + "/case1.toml";
+  const auto r = run_command(kCli + " signals " + csv.string() +
+                             " --column x --angle-column theta_rad --teeth 20 --case-file " +
+                             case1 + " --mark-tooth pinion:7 --out " + out.string());
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const gearimpact::ToothPassage p =
+      gearimpact::tooth_passage(gearimpact::paper_gear_pair(), gearimpact::Gear::one, 7);
+  const std::string script = read(out / "tsa.gp");
+  const std::string rect = "set object rect from ";
+  const auto at = script.find(rect);
+  REQUIRE(at != std::string::npos);
+  const double from_deg = std::stod(script.substr(at + rect.size()));
+  // Printed with ten digits.
+  CHECK(std::abs(from_deg - p.entry_rad * 180.0 / pi) < 1e-7);
+  CHECK(script.find("pinion tooth 7 in contact") != std::string::npos);
+}
+
 TEST_CASE("signals refuses a bad flag before any work, naming it and its range") {
   Scratch scratch("signals-flags");
+  const std::string case1 = std::string(GEARIMPACT_PAPER_DATA_DIR) + "/case1.toml";
   const auto csv = scratch.dir / "signal.csv";
   write_signal(csv);
   const std::string head = kCli + " signals " + csv.string() + " ";
@@ -140,6 +206,15 @@ TEST_CASE("signals refuses a bad flag before any work, naming it and its range")
       {"--column x --angle-column theta_rad --teeth two",
        "--teeth = two is outside the allowed range: a whole number"},
       {"--column x --angle-column x", "x (sample 2)"},  // not increasing
+      {"--column x --angle-column theta_rad --mark-tooth pinion:3",
+       "--mark-tooth = pinion:3 is outside the allowed range: with --case-file"},
+      {"--column x --angle-column theta_rad --mark-tooth gear:3 --case-file " + case1,
+       "--mark-tooth = gear:3 is outside the allowed range: \"pinion:N\" or \"wheel:N\""},
+      {"--column x --angle-column theta_rad --mark-tooth pinion:20 --case-file " + case1,
+       "--mark-tooth = pinion:20 is outside the allowed range: a tooth number in [0, 19]"},
+      {"--column x --mark-tooth wheel:3 --case-file " + case1,
+       "--mark-tooth = wheel:3 is outside the allowed range: with --angle-column"},
+      {"--column x --case-file " + case1, "--case-file = " + case1},
   };
   for (const auto& c : cases) {
     CAPTURE(c.flags);

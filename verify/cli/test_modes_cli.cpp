@@ -47,14 +47,20 @@ TEST_CASE("modes writes the library's modes, the crossings and the figures") {
   const CommandResult r =
       run_command(cli("modes " + input.string() + " --harmonics 2 --out " + out.string()));
   REQUIRE_MESSAGE(r.exit_code == 0, r.err);
-  for (const char* file : {"modes.csv", "campbell.csv", "summary.json", "modes_energy.png",
-                           "campbell.png", "modes_energy.gp", "campbell.gp"}) {
+  for (const char* file :
+       {"modes.csv", "campbell.csv", "summary.json", "modes_energy.png", "campbell.png",
+        "modes_energy.gp", "campbell.gp", "mode_shapes.csv", "mode_shapes.png"}) {
     CHECK_MESSAGE(std::filesystem::is_regular_file(out / file), file);
   }
   CHECK(read(out / "summary.json") == r.out);
+  // The energy figure's key holds the parts the case has: its bearings, not the absent shafts.
+  const std::string energy_script = read(out / "modes_energy.gp");
+  CHECK(energy_script.find("title 'bearing 2'") != std::string::npos);
+  CHECK(energy_script.find("shaft") == std::string::npos);
   // The program's files are the library's modes of the same case, byte for byte.
   const Modes modes = natural_modes(read_case_file(input));
   CHECK(read(out / "modes.csv") == modes_csv(modes));
+  CHECK(read(out / "mode_shapes.csv") == mode_shapes_csv(modes));
   REQUIRE(modes.modes.size() == 6);
   std::istringstream csv(read(out / "modes.csv"));
   std::string header;

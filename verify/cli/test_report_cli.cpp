@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/paper/table1.hpp"
 #include "relative.hpp"
 #include "run_command.hpp"
 #include "scratch.hpp"
@@ -214,6 +216,24 @@ TEST_CASE("report on the 23/67 run file: files, contact ratio, warnings with the
   const CommandResult paper = run_command(cli("simulate --case 2 --t-end 0.1ms"));
   REQUIRE_MESSAGE(paper.exit_code == 0, paper.err);
   CHECK_FALSE(has(paper.err, "unbalanced"));
+}
+
+TEST_CASE("the unbalanced-torque warning says what friction changes") {
+  // Case 2 with a load 1.5 times Table 1's: T1/Rb1 + T2/Rb2 far from 0.
+  gearimpact::SimulationCase c = gearimpact::paper_case(2);
+  c.torque2.constant_n_m *= 1.5;
+  const auto unbalanced = [](const gearimpact::SimulationCase& k) {
+    for (const std::string& w : gearimpact::run_warnings(k)) {
+      if (has(w, "unbalanced mean torques")) return w;
+    }
+    return std::string();
+  };
+  c.model.friction_coefficient = 0.0;
+  CHECK(has(unbalanced(c), "accelerates without bound and has no steady state"));
+  // With friction an excess power can be what friction takes: a speed may hold.
+  c.model.friction_coefficient = 0.04;
+  CHECK(has(unbalanced(c), "friction's mean power"));
+  CHECK_FALSE(has(unbalanced(c), "has no steady state"));
 }
 
 TEST_CASE("report on a 17-tooth pinion with x = +0.5 (a pair file): no time history") {

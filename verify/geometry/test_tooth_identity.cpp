@@ -2,10 +2,13 @@
 // the true period of the mesh, checked by counting over whole revolutions.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <numeric>
 #include <set>
 #include <utility>
 
+#include "gearimpact/constants.hpp"
+#include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/tooth_identity.hpp"
 
@@ -76,4 +79,47 @@ TEST_CASE("the true period in mesh periods") {
   CHECK(true_period_mesh_periods(g, {false, true}) == 67);
   CHECK(true_period_mesh_periods(g, {true, true}) == 23 * 67);
   CHECK(true_period_mesh_periods(pair_of(20, 30), {true, true}) == 60);
+}
+
+TEST_CASE("a tooth's passage is where the layout's loaded pairs hold it") {
+  // Another route than tooth_passage's closed form: at each angle the layout's loaded pairs
+  // on N1 and teeth_of_pair's numbering say which teeth carry; away from the passage's ends
+  // (1e-9 rad, far above the rounding of X) the two must agree.
+  const GearPair g = pair_of(23, 67);
+  const MeshLayout layout(g, CoastPhase::half_base_pitch);
+  const double rb1 = base_radius(g, Gear::one);
+  const double rb2 = base_radius(g, Gear::two);
+  const auto inside = [](const ToothPassage& p, double theta) {
+    double d = theta - p.entry_rad;
+    d -= 2.0 * pi * std::floor(d / (2.0 * pi));
+    if (std::fabs(d) < 1e-9 || std::fabs(d - p.span_rad) < 1e-9) return -1;  // an end
+    return d < p.span_rad ? 1 : 0;
+  };
+  for (const Gear gear : {Gear::one, Gear::two}) {
+    const int z = teeth(g, gear);
+    for (const int tooth : {0, 5, z - 1}) {
+      const ToothPassage p = tooth_passage(g, gear, tooth);
+      CHECK(p.entry_rad >= 0.0);
+      CHECK(p.entry_rad < 2.0 * pi);
+      int carried = 0;
+      for (int i = 0; i < 2000; ++i) {
+        const double theta = 2.0 * pi * i / 2000.0;  // the gear's own angle
+        const double theta1 = gear == Gear::one ? theta : theta * rb2 / rb1;
+        const LoadedRange range = layout.loaded(layout.reference_m(Region::n1, theta1));
+        bool held = false;
+        for (int j = 0; j < range.count; ++j) {
+          const TeethInContact t = teeth_of_pair(g, Region::n1, range.k_first + j);
+          held = held || (gear == Gear::one ? t.pinion_tooth : t.wheel_tooth) == tooth;
+        }
+        const int expected = inside(p, theta);
+        if (expected < 0) continue;
+        CHECK(held == (expected == 1));
+        carried += held ? 1 : 0;
+      }
+      // The span is the contact ratio's share of a pitch: eps t0 / Rb = eps 2 pi / z.
+      CHECK(std::fabs(p.span_rad * z / (2.0 * pi) - contact_ratio(g)) < 1e-12);
+      CHECK(carried > 0);
+    }
+  }
+  CHECK_THROWS_WITH_AS(tooth_passage(g, Gear::one, 23), doctest::Contains("[0, 22]"), InputError);
 }

@@ -88,6 +88,30 @@ TEST_CASE("rigid bearings: the one elastic mode is sqrt(k / m_e) / (2 pi)") {
   CHECK(modes.modes[1].energy_share[0] == 1.0);
 }
 
+TEST_CASE("base-circle shapes: the rigid mode rolls, the mesh mode keeps the momentum balance") {
+  SimulationCase c = planar_case(1e9);
+  c.bearings.kind = BearingKind::rigid;
+  const Modes modes = natural_modes(c);
+  REQUIRE(modes.modes.size() == 2);
+  // Rolling without deflection: Rb1 theta1 = Rb2 theta2, both scaled to 1.
+  const Eigen::VectorXd rolling = base_circle_shape(modes.model, modes.modes[0]);
+  CHECK(std::fabs(rolling(0) - 1.0) < 1e-12);
+  CHECK(std::fabs(rolling(1) - 1.0) < 1e-12);
+  // The elastic mode is M-orthogonal to rolling: J1 v1 / Rb1 + J2 v2 / Rb2 = 0, so
+  // Rb1 v1 / (Rb2 v2) = -m_e2 / m_e1 with m_ei = J_i / Rb_i^2 (discs on the pitch circles).
+  const GearPair& g = c.gears;
+  const double r1 = g.module_m * g.teeth1 / 2.0;
+  const double r2 = g.module_m * g.teeth2 / 2.0;
+  const double rb1 = r1 * std::cos(g.pressure_angle_rad);
+  const double rb2 = r2 * std::cos(g.pressure_angle_rad);
+  const double me1 = g.density_kg_m3 * pi * std::pow(r1, 4) * g.face_width_m / 2.0 / (rb1 * rb1);
+  const double me2 = g.density_kg_m3 * pi * std::pow(r2, 4) * g.face_width_m / 2.0 / (rb2 * rb2);
+  const Eigen::VectorXd mesh = base_circle_shape(modes.model, modes.modes[1]);
+  CHECK(relative(mesh(0) / mesh(1), -me2 / me1) < 1e-12);
+  // The pinion's effective mass is the smaller: it moves more, and carries the 1.
+  CHECK(mesh(0) == 1.0);
+}
+
 TEST_CASE("very stiff bearings approach the torsional mode, the difference falling as 1/kb") {
   const double k = 2.0e8;
   const double ft = torsional_hz(paper_gear_pair(), k);

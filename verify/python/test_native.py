@@ -266,6 +266,14 @@ def test_unbalanced_torques_warn_with_the_balancing_torque():
     assert abs(balancing / (-150 * RATIO) - 1) < FEW_ULPS
     # The warning points at the caller's line, not into the package.
     assert all(w.filename == __file__ for w in caught)
+    assert "accelerates without bound and has no steady state" in message
+    # With friction, torques with an excess can hold a speed against it, so the warning says
+    # what a steady speed needs instead of that none exists.
+    with pytest.warns(gearimpact.GearimpactWarning, match="mean torques unbalanced") as caught:
+        gearimpact.case(name="my-pair", **{**PAIR, "torque2_value": "-436.96 N*m",
+                                           "friction_coefficient": 0.04})
+    message = next(str(w.message) for w in caught if "unbalanced" in str(w.message))
+    assert "friction's mean power" in message
 
 
 def test_speeds_that_do_not_roll_warn_with_the_rolling_speed():

@@ -250,7 +250,8 @@ def test_modes_equal_the_program(cli, tmp_path):
     out = tmp_path / "out"
     cli("modes", case_file, "--harmonics", "2", "--max-speed", "20000 rpm", "--out", out,
         "--no-plots")
-    for key, name in (("modes", "modes.csv"), ("campbell", "campbell.csv")):
+    for key, name in (("modes", "modes.csv"), ("campbell", "campbell.csv"),
+                      ("mode_shapes", "mode_shapes.csv")):
         lines = (out / name).read_text().strip().splitlines()
         header = lines[0].split(",")
         assert list(ours[key]) == header
@@ -295,6 +296,36 @@ def test_simulate_samples_as_the_program_writes_them(cli, tmp_path):
     assert result.summary == summary
     assert_same_table(result.samples, out.read_text(), SAMPLE_COLUMNS, "samples of case 3")
     assert len(result.samples["t_s"]) == 3001
+
+
+PLANAR_SAMPLE_COLUMNS = [
+    "t_s", "x1_m", "y1_m", "theta1_rad", "x2_m", "y2_m", "theta2_rad", "vx1_m_s", "vy1_m_s",
+    "w1_rad_s", "vx2_m_s", "vy2_m_s", "w2_rad_s", "theta_motor_rad", "theta_load_rad",
+    "w_motor_rad_s", "w_load_rad_s", "ax1_m_per_s2", "ay1_m_per_s2", "alpha1_rad_per_s2",
+    "ax2_m_per_s2", "ay2_m_per_s2", "alpha2_rad_per_s2", "bearing_fx1_N", "bearing_fy1_N",
+    "bearing_fx2_N", "bearing_fy2_N", "dte_m", "drive_force_N", "coast_force_N",
+    "sensor_acceleration_m_per_s2",
+]
+
+
+def test_simulate_planar_samples_as_the_program_writes_them(cli, tmp_path):
+    # Case 1 on elastic bearings, the sensor on the wheel's bearing at 30 deg.
+    case_file = tmp_path / "planar.toml"
+    case_file.write_text((gearimpact.paper_data_dir() / "case1.toml").read_text()
+                         + '\n[bearings]\nkind = "elastic"\nstiffness_x1 = "500 N/um"\n'
+                         + 'stiffness_x2 = "700 N/um"\nsensor_gear = 2\n'
+                         + 'sensor_angle = "30 deg"\n')
+    out = tmp_path / "samples.csv"
+    summary = json.loads(cli("simulate", "--case-file", case_file, "--t-end", "0.001",
+                             "--sample-rate", "2e5", "--out", out))
+    result = gearimpact.simulate(case_file, keep_series=False, sample_rate=2e5,
+                                 end_time="1 ms")
+    assert result.summary == summary
+    assert_same_table(result.samples, out.read_text(), PLANAR_SAMPLE_COLUMNS,
+                      "planar samples of case 1")
+    assert len(result.samples["t_s"]) == 201
+    # The wheel moved, and the sensor reads it.
+    assert np.max(np.abs(result.samples["sensor_acceleration_m_per_s2"])) > 0.0
 
 
 @pytest.mark.parametrize("rate", [0, -1.0, float("inf"), True, "fast"])

@@ -819,6 +819,22 @@ std::vector<Field> make_schema() {
         rows, 1, [](auto& c) -> auto& { return c.bearings.gear1; });
     add_bearing(
         rows, 2, [](auto& c) -> auto& { return c.bearings.gear2; });
+    const FieldCondition elastic{"kind", {"elastic"}};
+    Field& gear = r.integer(
+        "sensor_gear", {closed(1.0), closed(2.0), "1: the pinion, 2: the wheel"}, false,
+        "the gear on whose bearing the accelerometer of the samples sits "
+        "(sensor_acceleration_m_per_s2 of the planar samples, simulate --sample-rate)",
+        [](auto& c) -> auto& { return c.bearings.sensor_gear; });
+    gear.only_when = elastic;
+    gear.written_at_default = false;
+    // A full turn either way: an angle as a user measures it, clockwise or not.
+    Field& angle = r.quantity(
+        "sensor_angle", Dimension::angle, "deg", {closed(-2.0 * pi), closed(2.0 * pi), {}}, false,
+        "the accelerometer's direction, from x (O1 -> O2) towards y; 90 deg: across the centre "
+        "line",
+        [](auto& c) -> auto& { return c.bearings.sensor_angle_rad; });
+    angle.only_when = elastic;
+    angle.written_at_default = false;
   }
   {
     Rows r(rows, "shafts");

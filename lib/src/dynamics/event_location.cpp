@@ -1,5 +1,6 @@
 #include "event_location.hpp"
 
+#include <algorithm>
 #include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
 #include <cstdint>
@@ -8,22 +9,15 @@
 
 namespace gearimpact {
 
-double earliest_event(const GearSystem& system, const Mode& m, const ContactMemory& d, double a,
-                      double b, const EventValues& g_a, const EventValues& g_b, int n,
-                      const std::function<void(double, State&)>& state_at) {
+double earliest_event(double a, double b, const double* g_a, const double* g_b, int n,
+                      const std::function<double(double, int)>& value_at) {
   double earliest = b;
   const double width = b - a;
   for (int i = 0; i < n; ++i) {
     // A value already zero at a has no bracket: the change then counts at the
     // end of the step (a tie of measure zero, not worth a cut).
     if (!(g_b[i] < 0.0) || g_a[i] <= 0.0) continue;
-    const auto value = [&](double t) {
-      State x{};
-      state_at(t, x);
-      EventValues g{};
-      system.event_values(x, m, d, g);
-      return g[i];
-    };
+    const auto value = [&](double t) { return value_at(t, i); };
     std::uintmax_t iterations = 200;
     // Late in a run 4 eps of the step is below the spacing of doubles near t:
     // once the bracket is two neighbouring doubles it cannot shrink, and
@@ -46,6 +40,18 @@ double earliest_event(const GearSystem& system, const Mode& m, const ContactMemo
     earliest = std::min(earliest, after);
   }
   return earliest;
+}
+
+double earliest_event(const GearSystem& system, const Mode& m, const ContactMemory& d, double a,
+                      double b, const EventValues& g_a, const EventValues& g_b, int n,
+                      const std::function<void(double, State&)>& state_at) {
+  return earliest_event(a, b, g_a.data(), g_b.data(), n, [&](double t, int i) {
+    State x{};
+    state_at(t, x);
+    EventValues g{};
+    system.event_values(x, m, d, g);
+    return g[i];
+  });
 }
 
 }  // namespace gearimpact

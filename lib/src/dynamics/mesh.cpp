@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -53,6 +54,36 @@ double viscous_mesh_damping_n_s_per_m(double damping_ratio, double mesh_stiffnes
     throw InputError("effective_mass", effective_mass_kg, "a finite value > 0 in kg");
   }
   return 2.0 * damping_ratio * std::sqrt(mesh_stiffness_n_per_m * effective_mass_kg);
+}
+
+int gap_zone(const std::vector<double>& kinks_m, double x_m) {
+  return static_cast<int>(std::upper_bound(kinks_m.begin(), kinks_m.end(), x_m) - kinks_m.begin());
+}
+
+PairPenetration pair_penetration_with_gap(const ToothGaps& gaps, const std::vector<double>& kinks_m,
+                                          int zone, Region line, int k, double x_m, double dl_m,
+                                          double dl_rate_m_s, double x_rate_m_s, double start_m,
+                                          double end_m) {
+  const auto z = static_cast<std::size_t>(zone);
+  const double lo = z > 0 ? kinks_m[z - 1] : start_m;
+  const double hi = z < kinks_m.size() ? kinks_m[z] : end_m;
+  const double margin = 1e-6 * (hi - lo);
+  const double slope = gaps.gap_and_slope(line, k, std::clamp(x_m, lo + margin, hi - margin)).slope;
+  const double edge = std::clamp(x_m, lo, hi);
+  const double gap = gaps.gap_m(line, k, edge) + slope * (x_m - edge);
+  return {dl_m - gap, dl_rate_m_s - slope * x_rate_m_s, slope};
+}
+
+double least_pair_gap_m(const ToothGaps& gaps, const MeshLayout& layout, Region line,
+                        double theta1_rad) {
+  const double ref = layout.reference_m(line, theta1_rad);
+  const LoadedRange range = layout.loaded(ref);
+  double least = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < range.count; ++j) {
+    const int k = range.k_first + j;
+    least = std::min(least, gaps.gap_m(line, k, layout.position_m(ref, k)));
+  }
+  return least;
 }
 
 namespace {
@@ -113,6 +144,16 @@ double mean_mesh_stiffness_n_per_m(const SimulationCase& c, const MeshTables& ta
     sum += static_cast<double>(times) * stiffness_integral(c, *table);
   }
   return sum / (static_cast<double>(periods) * base_pitch(c.gears));
+}
+
+double case_mesh_damping_n_s_per_m(const SimulationCase& c, const StiffnessTable& table,
+                                   const MeshTables* teeth) {
+  if (c.model.mesh_damping_ratio <= 0.0) return 0.0;
+  // With faults the damper sees the mean over the true period.
+  const double mean_k =
+      teeth ? mean_mesh_stiffness_n_per_m(c, *teeth) : mean_mesh_stiffness_n_per_m(c, table);
+  return viscous_mesh_damping_n_s_per_m(c.model.mesh_damping_ratio, mean_k,
+                                        effective_mass_kg(c.gears));
 }
 
 double natural_frequency_rad_per_s(const SimulationCase& c, const StiffnessTable& table) {

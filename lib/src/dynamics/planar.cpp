@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
+#include <tuple>
+#include <vector>
 
+#include "event_location.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/contact/contact.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
@@ -16,6 +20,8 @@
 #include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "gearimpact/stiffness/mesh_tables.hpp"
+#include "rk4_dense.hpp"
+#include "run.hpp"
 
 namespace gearimpact {
 
@@ -39,6 +45,7 @@ enum P : std::size_t {
   kParametric,
   kBearingLoss,
   kShaftLoss,
+  kMeshDamperLoss,
   kSize
 };
 using Y = std::array<double, kSize>;
@@ -96,9 +103,40 @@ struct Forces {
   double friction_n = 0.0;  // Ff of (35)-(38) summed over both sides' pairs
 };
 
+// What stays constant during a step on one side, as the torsional Mode does:
+// whether the side is in contact, its loaded pairs, the part of each pair's
+// table cut at a fault's edges, with [modifications] whether each pair's own
+// penetration is positive and the zone of its gap between the reliefs' kinks,
+// each pair's friction sign and whether its normal force is clipped. The
+// right-hand side is smooth while every side's holds; a change is an event,
+// located and stepped onto.
+struct SideMode {
+  bool contact = false;
+  LoadedRange range;
+  std::array<int, kMaxPairs> part{};
+  // With gaps only (without, every pair of a side in contact touches).
+  std::array<bool, kMaxPairs> touching{};
+  std::array<int, kMaxPairs> zone{};
+  std::array<double, kMaxPairs> slip{};
+  std::array<bool, kMaxPairs> clipped{};
+  // For one step after the sliding of a pair turned back at once after its
+  // reversal (the contact would stick, which an exact switch cannot follow):
+  // each stage takes the friction signs from its own state, unlocated.
+  bool slip_per_stage = false;
+};
+using PlanarMode = std::array<SideMode, 2>;
+
+// The event values of a side: its contact, the four bounds of its loaded
+// pairs, and per pair the two ends of its part, with gaps its own penetration
+// and the two kinks around it, its sliding speed and its push; of both sides.
+constexpr int kSideEvents = 5 + 7 * kMaxPairs;
+using PlanarEvents = std::array<double, 2 * kSideEvents>;
+
 class PlanarSystem {
  public:
-  PlanarSystem(const SimulationCase& c, const StiffnessTable& table, const PlanarMounting& m)
+  // driver_theta0: with a kinematic driver, the angle its body starts from.
+  PlanarSystem(const SimulationCase& c, const StiffnessTable& table, const PlanarMounting& m,
+               double driver_theta0)
       : c_(c), m_(m), table_(table), layout_(c.gears, c.model.coast_phase) {
     const GearPair& g = c.gears;
     rb1_ = base_radius(g, Gear::one);
@@ -120,11 +158,17 @@ class PlanarSystem {
           g, c.model.stiffness, c.faults,
           std::shared_ptr<const StiffnessTable>(&table, [](const StiffnessTable*) {}));
     }
-    if (!teeth_ && constant_k_ == 0.0) {
+    if (!is_unmodified(c.modifications)) {
+      gaps_ = std::make_shared<const ToothGaps>(g, c.modifications);
+      kinks_ = gaps_->kinks_m();
+    }
+    if (!teeth_ && !gaps_ && constant_k_ == 0.0) {
       // A pair stores 0.5 delta^2 c / c_total^2 in a term of compliance c
       // (F = delta / c_total): the factor's largest value over the segment,
       // sampled 16 times on each of the table's pieces (smooth polynomials,
-      // which move by far less than the 5 % added between two samples).
+      // which move by far less than the 5 % added between two samples). A
+      // gap can be negative (pitch, thickness errors): a pair's delta may
+      // then exceed the line's, and the bound is not kept with gaps.
       const int samples = 16 * table.pieces();
       for (int j = 0; j <= samples; ++j) {
         const double x = std::min(xs_ + (xe_ - xs_) * j / samples, xe_);
@@ -136,6 +180,22 @@ class PlanarSystem {
       }
       bounded_ = true;
     }
+    mesh_damping_ = case_mesh_damping_n_s_per_m(c, table, teeth_.get());
+    drag_ = c.torque2.kind == Torque::Kind::drag;
+    driven_ = c.torque1.kind == Torque::Kind::prescribed_speed;
+    // torque1 acts on the motor with shafts, so the driver turns it.
+    driven_index_ = m.shafts ? kTm : kT1;
+    driver_theta0_ = driver_theta0;
+    options_ = gaps_ || mesh_damping_ > 0.0 || driven_ || drag_;
+  }
+
+  // A kinematic driver's body (the pinion, the motor with shafts) where its
+  // closed form puts it at t.
+  void impose_driver(double t, Y& y) const {
+    if (!driven_) return;
+    const DriverMotion d = driver_motion(c_.torque1, driver_theta0_, t);
+    y[driven_index_] = d.theta_rad;
+    y[kVelocity + driven_index_] = d.speed_rad_per_s;
   }
 
   double rb1() const { return rb1_; }
@@ -157,8 +217,23 @@ class PlanarSystem {
     return {sign * s - backlash_, sign * rate};
   }
 
-  LoadedRange loaded(Region side, double theta1) const {
-    return layout_.loaded(layout_.reference_m(side, theta1));
+  // Pair j of the side's mode m at X with the line's penetration dl and its
+  // rate: its own penetration and rate, less the gap of its teeth with
+  // [modifications]. The gap's branch is that of the zone the mode holds: a
+  // stage state of a step that ends on a kink sees the zone's own gap.
+  PairPenetration pair_penetration(Region side, const SideMode& m, int j, double x, double dl,
+                                   double dl_rate, double x_rate) const {
+    if (!gaps_) return {dl, dl_rate, 0.0};
+    return pair_penetration_with_gap(*gaps_, kinks_, m.zone[j], side, m.range.k_first + j, x, dl,
+                                     dl_rate, x_rate, xs_, xe_);
+  }
+
+  // The largest penetration of a pair on `side`: the line's, less the least
+  // gap of its pairs with [modifications]. The side is in contact while it is
+  // positive, which is while one of its pairs touches.
+  double contact_value(Region side, const Y& y) const {
+    const double dl = penetration(side, y).first;
+    return gaps_ ? dl - least_pair_gap_m(*gaps_, layout_, side, y[kT1]) : dl;
   }
 
   // The table of pair k on `side`: the healthy one, or with faults that of
@@ -167,49 +242,78 @@ class PlanarSystem {
     return teeth_ ? teeth_->table(side, k) : &table_;
   }
 
-  // Ke of pair k of `count` loaded pairs on `side` at X, continued along its
-  // tangent beyond the segment (a stage state of a step may reach a hair past
-  // it), and dKe/dX; 0 for a pair with a missing tooth.
-  std::pair<double, double> pair_stiffness(Region side, int k, int count, double x) const {
-    if (constant_k_ > 0.0) return {constant_k_ / count, 0.0};
+  // Whether pair k on `side` can carry in its part `part`: not with a
+  // missing tooth, nor over a fault across the whole face.
+  bool carries(Region side, int k, int part) const {
     const StiffnessTable* table = pair_table(side, k);
-    if (table == nullptr) return {0.0, 0.0};
-    const StiffnessAndDerivative s = pair_stiffness_continued(*table, -1, x, xs_, xe_);
+    return table != nullptr && table->part_in_contact(part);
+  }
+
+  // Ke of pair k of `count` loaded pairs on `side` at X and dKe/dX, from its
+  // part `part` (SideMode::part), continued along its tangent beyond the
+  // segment or the part (pair_stiffness_continued): a stage state of a step
+  // that ends on a pair's entry, exit or a fault's edge reaches a hair past it.
+  std::pair<double, double> pair_stiffness(Region side, int k, int count, int part,
+                                           double x) const {
+    if (constant_k_ > 0.0) return {constant_k_ / count, 0.0};
+    const StiffnessTable& table = *pair_table(side, k);
+    const StiffnessAndDerivative s =
+        table.part_count() > 1 ? pair_stiffness_continued(table, part, x, table.part_start_m(part),
+                                                          table.part_end_m(part))
+                               : pair_stiffness_continued(table, -1, x, xs_, xe_);
     return {s.stiffness_n_per_m, s.derivative_n_per_m2};
   }
 
-  // The mesh's stored energy of `side` at y with the pairs of `range`.
-  double mesh_energy(Region side, const Y& y, LoadedRange range) const {
+  // Whether pair j of the side's mode m carries a force: it can carry (its
+  // table, its part) and, with gaps, touches.
+  bool pair_loaded(Region side, const SideMode& m, int j) const {
+    return carries(side, m.range.k_first + j, m.part[j]) && (!gaps_ || m.touching[j]);
+  }
+
+  // The mesh's stored energy of `side` at y in the side's mode m: each pair
+  // that touches by its own penetration.
+  double mesh_energy(Region side, const Y& y, const SideMode& m) const {
+    if (!m.contact) return 0.0;
     const double dl = penetration(side, y).first;
-    if (dl <= 0.0) return 0.0;
     const double ref = layout_.reference_m(side, y[kT1]);
     double u = 0.0;
-    for (int j = 0; j < range.count; ++j) {
-      const int k = range.k_first + j;
-      u += 0.5 * pair_stiffness(side, k, range.count, layout_.position_m(ref, k)).first * dl * dl;
+    for (int j = 0; j < m.range.count; ++j) {
+      if (!pair_loaded(side, m, j)) continue;
+      const int k = m.range.k_first + j;
+      const double x = layout_.position_m(ref, k);
+      const double dk = pair_penetration(side, m, j, x, dl, 0.0, 0.0).delta_m;
+      u += 0.5 * pair_stiffness(side, k, m.range.count, m.part[j], x).first * dk * dk;
     }
     return u;
   }
 
   // The mesh's stored energy of both sides by term of (29), as the
-  // torsional ledger reports it (F = Ke delta of each pair inside the segment),
-  // with the pairs of `ranges` (those loaded at y).
-  ElasticEnergy mesh_terms(const Y& y, const std::array<LoadedRange, 2>& ranges) const {
+  // torsional ledger reports it (F = Ke delta of each pair inside the segment).
+  ElasticEnergy mesh_terms(const Y& y, const PlanarMode& mode) const {
     ElasticEnergy u;
     for (const Region side : kSides) {
-      const double dl = penetration(side, y).first;
-      if (dl <= 0.0) continue;
+      const SideMode& m = mode[side_index(side)];
+      if (!m.contact) continue;
+      const double line_dl = penetration(side, y).first;
       const double ref = layout_.reference_m(side, y[kT1]);
-      const LoadedRange range = ranges[side_index(side)];
-      for (int j = 0; j < range.count; ++j) {
-        const int k = range.k_first + j;
+      for (int j = 0; j < m.range.count; ++j) {
+        if (!pair_loaded(side, m, j)) continue;
+        const int k = m.range.k_first + j;
+        const double x = layout_.position_m(ref, k);
+        const double dl = pair_penetration(side, m, j, x, line_dl, 0.0, 0.0).delta_m;
         if (constant_k_ > 0.0) {
-          u.j[index_of(Term::hertz)] += 0.5 * constant_k_ / range.count * dl * dl;
+          u.j[index_of(Term::hertz)] += 0.5 * constant_k_ / m.range.count * dl * dl;
           continue;
         }
-        const StiffnessTable* table = pair_table(side, k);
-        if (table == nullptr) continue;
-        const Compliances c = table->compliance(std::clamp(layout_.position_m(ref, k), xs_, xe_));
+        const StiffnessTable& table = *pair_table(side, k);
+        // At a fault's edge, the side of the pair's part: the jump between
+        // the two is booked at the event.
+        const Compliances c =
+            table.part_count() > 1
+                ? table.compliance_in_part(
+                      std::clamp(x, table.part_start_m(m.part[j]), table.part_end_m(m.part[j])),
+                      m.part[j])
+                : table.compliance(std::clamp(x, xs_, xe_));
         const ElasticEnergy pair = pair_energy(c, dl / c.total_m_per_n());
         for (std::size_t i = 0; i < kTermCount; ++i) u.j[i] += pair.j[i];
       }
@@ -217,22 +321,133 @@ class PlanarSystem {
     return u;
   }
 
-  // Whether a term's energy at y (mesh_terms) could exceed its entry of
-  // `most`: not when the bound above stays below every entry, and the ledger
-  // then need not evaluate the terms (most steps, once the largest
-  // penetration has passed).
-  bool terms_may_exceed(const Y& y, const std::array<LoadedRange, 2>& ranges,
+  // Whether a term's energy at y in the mode (mesh_terms) could exceed its
+  // entry of `most`: not when the bound above stays below every entry, and
+  // the ledger then need not evaluate the terms (most steps, once the
+  // largest penetration has passed).
+  bool terms_may_exceed(const Y& y, const PlanarMode& mode,
                         const std::array<double, kTermCount>& most) const {
     if (!bounded_) return true;
     double squares = 0.0;  // delta^2 summed over the loaded pairs
     for (const Region side : kSides) {
+      const SideMode& m = mode[side_index(side)];
+      if (!m.contact) continue;
       const double dl = penetration(side, y).first;
-      if (dl > 0.0) squares += ranges[side_index(side)].count * dl * dl;
+      squares += m.range.count * dl * dl;
     }
     for (std::size_t i = 0; i < kTermCount; ++i) {
       if (term_bound_[i] * squares > most[i]) return true;
     }
     return false;
+  }
+
+  // The side's contact, loaded pairs, their parts and with gaps which of
+  // them touch and their gaps' zones at y (the forces' signs are
+  // classify_forces's, once the contact memory is set).
+  SideMode classify_geometry(Region side, const Y& y) const {
+    SideMode m;
+    m.contact = contact_value(side, y) > 0.0;
+    const double dl = penetration(side, y).first;
+    const double ref = layout_.reference_m(side, y[kT1]);
+    m.range = layout_.loaded(ref);
+    for (int j = 0; j < m.range.count; ++j) {
+      const int k = m.range.k_first + j;
+      const double x = layout_.position_m(ref, k);
+      if (gaps_) {
+        // As contact_value: the side is in contact exactly when one of these touches.
+        m.touching[j] = dl - gaps_->gap_m(side, k, x) > 0.0;
+        m.zone[j] = gap_zone(kinks_, x);
+      }
+      if (!teeth_) continue;
+      const StiffnessTable* table = pair_table(side, k);
+      m.part[j] =
+          table != nullptr && table->part_count() > 1 ? table->part_of(std::clamp(x, xs_, xe_)) : 0;
+    }
+    return m;
+  }
+
+  // The friction sign and clipping of each pair of the side's mode m at y.
+  void classify_forces(Region side, const Y& y, const ContactMemory& memory, SideMode& m) const {
+    if (!m.contact) return;
+    for (int j = 0; j < m.range.count; ++j) {
+      const PairMotion p = pair_motion(side, y, memory, m, j, true);
+      m.slip[j] = p.sliding_m_s >= 0.0 ? 1.0 : -1.0;
+      m.clipped[j] = p.push_n < 0.0;
+    }
+  }
+
+  // The values whose sign changes end the mode (each >= 0 while it holds, as
+  // GearSystem::event_values): per side, its contact_value (contact begins or
+  // ends), and in contact the bounds of its loaded pairs (42) and per pair
+  // the ends of its part, with gaps its own penetration (it touches or lets
+  // go) and the kinks of its gap around it, its sliding speed times its sign
+  // and its push F + G (clipping). Returns how many are set.
+  int event_values(const Y& y, const PlanarMode& mode, const std::array<ContactMemory, 2>& memory,
+                   PlanarEvents& g) const {
+    int n = 0;
+    for (const Region side : kSides) {
+      const std::size_t i = side_index(side);
+      const SideMode& m = mode[i];
+      if (!m.contact) {
+        g[n++] = -contact_value(side, y);
+        continue;
+      }
+      const auto [dl, dl_rate] = penetration(side, y);
+      // With gaps the contact ends where the last touching pair lets go,
+      // which the pairs' own values below locate.
+      g[n++] = gaps_ ? 1.0 : dl;
+      // Each position is ref + k t0 for its own k, as MeshLayout::loaded computes it.
+      const double ref = layout_.reference_m(side, y[kT1]);
+      const int first = m.range.k_first;
+      const int last = first + m.range.count - 1;
+      g[n++] = layout_.position_m(ref, first) - xs_;
+      g[n++] = xs_ - layout_.position_m(ref, first - 1);
+      g[n++] = xe_ - layout_.position_m(ref, last);
+      g[n++] = layout_.position_m(ref, last + 1) - xe_;
+      const double x_rate = line_sign(side) * rb1_ * y[kVelocity + kT1];
+      for (int j = 0; j < m.range.count; ++j) {
+        const StiffnessTable* table = pair_table(side, first + j);
+        const double x = layout_.position_m(ref, first + j);
+        if (table != nullptr && table->part_count() > 1) {
+          // Ke jumps at the ends of the pair's part inside the segment (a fault's edges).
+          const int part = m.part[j];
+          g[n++] = part > 0 ? x - table->part_start_m(part) : 1.0;
+          g[n++] = part + 1 < table->part_count() ? table->part_end_m(part) - x : 1.0;
+        }
+        if (gaps_) {
+          const double dk = pair_penetration(side, m, j, x, dl, dl_rate, x_rate).delta_m;
+          g[n++] = m.touching[j] ? dk : -dk;
+          if (!m.touching[j]) {
+            // A pair whose gap is open neither slides under load nor pushes,
+            // and its gap's kinks change nothing.
+            for (int e = 0; e < 4; ++e) g[n++] = 1.0;
+            continue;
+          }
+          // The gap's slope jumps at a linear relief's start: the damping
+          // force and the gap's work with it.
+          const auto zone = static_cast<std::size_t>(m.zone[j]);
+          g[n++] = zone > 0 ? x - kinks_[zone - 1] : 1.0;
+          g[n++] = zone < kinks_.size() ? kinks_[zone] - x : 1.0;
+        }
+        const PairMotion p = pair_motion(side, y, memory[i], m, j, true);
+        // A smoothed sign has no switch to locate.
+        g[n++] = c_.model.friction_smoothing_speed_m_s > 0.0 || m.slip_per_stage
+                     ? 1.0
+                     : m.slip[j] * p.sliding_m_s;
+        g[n++] = m.clipped[j] ? -p.push_n : p.push_n;
+      }
+    }
+    return n;
+  }
+
+  bool mode_holds(const Y& y, const PlanarMode& mode,
+                  const std::array<ContactMemory, 2>& memory) const {
+    PlanarEvents g;
+    const int n = event_values(y, mode, memory, g);
+    for (int i = 0; i < n; ++i) {
+      if (g[i] < 0.0) return false;
+    }
+    return true;
   }
 
   double bearing_energy(const Y& y) const {
@@ -258,9 +473,72 @@ class PlanarSystem {
     return 0.5 * e;
   }
 
-  // The equations of motion with the contact memory of each side.
-  void rhs(double t, const Y& y, const std::array<ContactMemory, 2>& memory, Y& dy,
-           Forces* forces = nullptr) const {
+  // Pair j of the side's mode m at y: its X, its own penetration and rate
+  // (the line's less its gap), Ke and dKe/dX, elastic force F, push F + G
+  // (the normal force unless clipped) and sliding speed: (36)-(38) with the
+  // centres' relative speed along the flanks' common tangent t = e_z x n,
+  // the speed whose product with f N is the friction's loss
+  // (docs/vibration.md). A pair that carries no force (a missing tooth, no
+  // contact over a fault across the face, an open gap) pushes 1.
+  struct PairMotion {
+    bool carries = false;
+    PairPenetration own{0.0, 0.0, 0.0};
+    double x_m = 0.0, ke = 0.0, dke = 0.0, elastic_n = 0.0, push_n = 1.0, sliding_m_s = 0.0;
+  };
+  // With sign_only, push_n has the sign and zeros of F + G only: with D
+  // proportional to the pair's own Ke, F + G = Ke delta (1 + (D/K) delta'),
+  // and the positive Ke need not be read (the event values and the forces'
+  // classification want no more); ke, dke and elastic_n are then not set.
+  // kGaps false compiles out the gaps, for the right-hand side of a run
+  // without them (motion<false>).
+  template <bool kGaps = true>
+  PairMotion pair_motion(Region side, const Y& y, const ContactMemory& memory, const SideMode& m,
+                         int j, bool sign_only = false) const {
+    const double* v = &y[kVelocity];
+    const auto [dl, dl_rate] = penetration(side, y);
+    const auto n = normal(side);
+    const int k = m.range.k_first + j;
+    PairMotion p;
+    p.x_m = layout_.position_m(layout_.reference_m(side, y[kT1]), k);
+    const double slide_of_centres = (v[kX1] - v[kX2]) * -n[1] + (v[kY1] - v[kY2]) * n[0];
+    p.sliding_m_s = sliding_speed(v[kT1], v[kT2], p.x_m, lp_) + slide_of_centres;
+    if (!carries(side, k, m.part[j]) || (kGaps && gaps_ && !m.touching[j])) return p;
+    p.carries = true;
+    p.own = kGaps
+                ? pair_penetration(side, m, j, p.x_m, dl, dl_rate, line_sign(side) * rb1_ * v[kT1])
+                : PairPenetration{dl, dl_rate, 0.0};
+    const double dk = p.own.delta_m;
+    const double dk_rate = p.own.rate_m_s;
+    if (sign_only && c_.model.damping_stiffness == DampingStiffness::current_pair) {
+      p.push_n = dk * (1.0 + memory.damping_per_stiffness_s_m * dk_rate);
+      return p;
+    }
+    std::tie(p.ke, p.dke) = pair_stiffness(side, k, m.range.count, m.part[j], p.x_m);
+    p.elastic_n = elastic_force(p.ke, dk);
+    const double d = c_.model.damping_stiffness == DampingStiffness::current_pair
+                         ? memory.damping_per_stiffness_s_m * p.ke
+                         : memory.damping_per_stiffness_s_m * memory.frozen_stiffness_n_per_m;
+    p.push_n = p.elastic_n + hertzian_damping_force(d, dk, dk_rate);
+    return p;
+  }
+
+  // The equations of motion in the mode, with the contact memory of each side.
+  void rhs(double t, const Y& y, const PlanarMode& mode, const std::array<ContactMemory, 2>& memory,
+           Y& dy, Forces* forces = nullptr) const {
+    if (options_) {
+      motion<true>(t, y, mode, memory, dy, forces);
+    } else {
+      motion<false>(t, y, mode, memory, dy, forces);
+    }
+  }
+
+ private:
+  // The equations of motion; kOptions false compiles out the code of the
+  // options a case may not have (gaps, the mesh damper, a driver, a drag), so
+  // that a run without them pays nothing for them.
+  template <bool kOptions>
+  void motion(double t, const Y& y, const PlanarMode& mode,
+              const std::array<ContactMemory, 2>& memory, Y& dy, Forces* forces) const {
     const double* v = &y[kVelocity];
     const double w1 = v[kT1];
     const double w2 = v[kT2];
@@ -278,42 +556,37 @@ class PlanarSystem {
     double friction_power = 0.0;
     double parametric_power = 0.0;
     for (const Region side : kSides) {
-      const auto [dl, dl_rate] = penetration(side, y);
-      if (dl <= 0.0) continue;
       const std::size_t i = side_index(side);
+      const SideMode& m = mode[i];
+      // Contact, pairs, parts, touching pairs, gaps' zones, friction signs
+      // and clipping are the mode's, whatever a stage state says: the forces
+      // stay smooth within a step.
+      if (!m.contact) continue;
+      const double dl = penetration(side, y).first;
       const double sign = line_sign(side);
       const auto n = normal(side);
       // t = e_z x n: the flanks' common tangent, along which friction acts.
       const double tx = -n[1];
       const double ty = n[0];
-      // The centres' relative speed along t adds to the flanks' sliding.
-      const double slide_of_centres = (v[kX1] - v[kX2]) * tx + (v[kY1] - v[kY2]) * ty;
-      const double ref = layout_.reference_m(side, y[kT1]);
-      const LoadedRange range = layout_.loaded(ref);
       const double x_rate = sign * rb1_ * w1;
       double total = 0.0;
-      for (int j = 0; j < range.count; ++j) {
-        const int k = range.k_first + j;
-        const double x = layout_.position_m(ref, k);
-        // A pair with a missing tooth: no force, no damping, no friction.
-        if (pair_table(side, k) == nullptr) continue;
-        const auto [ke, dke] = pair_stiffness(side, k, range.count, x);
-        const double f_elastic = elastic_force(ke, dl);
-        const double d =
-            c_.model.damping_stiffness == DampingStiffness::current_pair
-                ? memory[i].damping_per_stiffness_s_m * ke
-                : memory[i].damping_per_stiffness_s_m * memory[i].frozen_stiffness_n_per_m;
-        const double pushed = f_elastic + hertzian_damping_force(d, dl, dl_rate);
-        // A tooth pushes, never pulls: the clipping is not located, each
-        // stage takes it from its own state.
-        const double normal_n = normal_force(f_elastic, pushed - f_elastic, pushed < 0.0);
-        // (36)-(38) with the centres' sliding: the speed whose product with
-        // f N is the friction's loss (docs/vibration.md).
-        const double vs = sliding_speed(w1, w2, x, lp_) + slide_of_centres;
+      for (int j = 0; j < m.range.count; ++j) {
+        const PairMotion p = pair_motion<kOptions>(side, y, memory[i], m, j);
+        // A pair that carries no force: no damping, no friction.
+        if (!p.carries) continue;
+        const double x = p.x_m;
+        const double dk = p.own.delta_m;
+        const double dke = p.dke;
+        const double f_elastic = p.elastic_n;
+        // A tooth pushes, never pulls: clipped at the event where F + G turns negative.
+        const double normal_n = normal_force(f_elastic, p.push_n - f_elastic, m.clipped[j]);
+        const double vs = p.sliding_m_s;
         const double f = pair_friction_coefficient(c_.model, c_.gears.face_width_m, normal_n, vs,
                                                    entrainment_speed(w1, w2, x, lp_));
         const double smoothing = c_.model.friction_smoothing_speed_m_s;
-        const double slip = smoothing > 0.0 ? std::tanh(vs / smoothing) : (vs >= 0.0 ? 1.0 : -1.0);
+        const double slip = smoothing > 0.0    ? std::tanh(vs / smoothing)
+                            : m.slip_per_stage ? (vs >= 0.0 ? 1.0 : -1.0)
+                                               : m.slip[j];
         const double ff = friction_force(side, f, normal_n, slip);
         moment1 -= sign * (normal_n * rb1_ + ff * x);
         moment2 += sign * (normal_n * rb2_ + ff * (lp_ - x));
@@ -324,9 +597,13 @@ class PlanarSystem {
         f1[1] += fy;
         f2[0] -= fx;
         f2[1] -= fy;
-        hertz_power += (normal_n - f_elastic) * dl_rate;
+        hertz_power += (normal_n - f_elastic) * p.own.rate_m_s;
         friction_power += f * normal_n * slip * vs;
-        parametric_power += 0.5 * dl * dl * dke * x_rate;
+        parametric_power += 0.5 * dk * dk * dke * x_rate;
+        // The gap moves with the pinion: N does the work -N de_k/dX dX/dt on
+        // the pair's penetration at fixed centres and angles, the varying
+        // mesh's as in the torsional system.
+        if (kOptions && gaps_) parametric_power -= normal_n * p.own.gap_slope * x_rate;
         total += normal_n;
         if (forces != nullptr) forces->friction_n += ff;
       }
@@ -335,8 +612,42 @@ class PlanarSystem {
         forces->penetration_m[i] = dl;
       }
     }
-    double t1 = torque(c_.torque1, t);
-    double t2 = torque(c_.torque2, t);
+    double mesh_damping_power = 0.0;
+    if (kOptions && mesh_damping_ > 0.0) {
+      // The viscous mesh damper, half of c on each line of action on that
+      // line's s' (s_d', s_c'), in contact and in the backlash alike: with the
+      // centres fixed both rates are s' and the two halves are the torsional
+      // c s' (docs/vibration.md). Each acts as a contact force of its line
+      // would: on the pinion -f n, -f Rb1, on the wheel +f n, +f Rb2.
+      const double roll = rb1_ * w1 - rb2_ * w2;
+      for (const Region side : kSides) {
+        const auto n = normal(side);
+        const double rate = roll + (v[kX1] - v[kX2]) * n[0] + (v[kY1] - v[kY2]) * n[1];
+        const double force = 0.5 * mesh_damping_ * rate;
+        moment1 -= force * rb1_;
+        moment2 += force * rb2_;
+        f1[0] -= force * n[0];
+        f1[1] -= force * n[1];
+        f2[0] += force * n[0];
+        f2[1] += force * n[1];
+        mesh_damping_power += force * rate;
+      }
+    }
+    // A driven body has the closed form's acceleration in every stage (its
+    // angle and speed are set to the closed form after every step): the
+    // driver's torque is what gives it that against the other moments on it.
+    double t1 = 0.0;
+    double driven_acceleration = 0.0;
+    if (kOptions && driven_) {
+      driven_acceleration = driver_motion(c_.torque1, driver_theta0_, t).acceleration_rad_per_s2;
+      if (!m_.shafts) t1 = j1_ * driven_acceleration - moment1;
+    } else {
+      t1 = torque(c_.torque1, t);
+    }
+    // A drag opposes the turning of the body it acts on: the load on its
+    // shaft, else the wheel.
+    double t2 = kOptions && drag_ ? drag_torque_n_m(c_.torque2, m_.shafts ? v[kTl] : w2)
+                                  : torque(c_.torque2, t);
     double shaft_power = 0.0;
     // Without shafts the motor and the load are not bodies: their entries
     // stay as they started, and the outputs report the gears' own.
@@ -352,6 +663,7 @@ class PlanarSystem {
                              m_.motor_damping_n_m_s_per_rad * rel_m;
       const double shaft_l =
           m_.load_stiffness_n_m_per_rad * (y[kTl] - y[kT2]) + m_.load_damping_n_m_s_per_rad * rel_l;
+      if (kOptions && driven_) t1 = m_.motor_inertia_kg_m2 * driven_acceleration + shaft_m;
       dy[kVelocity + kTm] = (t1 - shaft_m) / m_.motor_inertia_kg_m2;
       dy[kVelocity + kTl] = (t2 - shaft_l) / m_.load_inertia_kg_m2;
       work = t1 * v[kTm] + t2 * v[kTl];
@@ -373,6 +685,8 @@ class PlanarSystem {
     dy[kParametric] = parametric_power;
     dy[kBearingLoss] = bearing_power;
     dy[kShaftLoss] = shaft_power;
+    dy[kMeshDamperLoss] = mesh_damping_power;
+    if (kOptions && driven_) dy[kVelocity + driven_index_] = driven_acceleration;
   }
 
   // torque_at without its call for a constant torque, the common case
@@ -381,9 +695,26 @@ class PlanarSystem {
     return q.kind == Torque::Kind::constant ? q.constant_n_m : torque_at(q, t);
   }
 
-  // The memory of a contact that begins on `side` at y.
-  ContactMemory onset(Region side, const Y& y, double& impact_speed, double& restitution) const {
-    const OnsetDamping d = onset_damping(c_.model, penetration(side, y).second);
+ public:
+  // The memory of a contact that begins on `side` at y, in the side's mode m.
+  ContactMemory onset(Region side, const Y& y, const SideMode& m, double& impact_speed,
+                      double& restitution) const {
+    const auto [dl, dl_rate] = penetration(side, y);
+    double approach = dl_rate;
+    if (gaps_) {
+      // The fastest approach among the pairs that touch, each at its own
+      // penetration rate, as in the torsional system.
+      const double ref = layout_.reference_m(side, y[kT1]);
+      const double x_rate = line_sign(side) * rb1_ * y[kVelocity + kT1];
+      approach = -std::numeric_limits<double>::infinity();
+      for (int j = 0; j < m.range.count; ++j) {
+        if (!m.touching[j]) continue;
+        const double x = layout_.position_m(ref, m.range.k_first + j);
+        approach =
+            std::max(approach, pair_penetration(side, m, j, x, dl, dl_rate, x_rate).rate_m_s);
+      }
+    }
+    const OnsetDamping d = onset_damping(c_.model, approach);
     impact_speed = d.impact_speed_m_s;
     restitution = d.restitution;
     ContactMemory memory;
@@ -394,19 +725,21 @@ class PlanarSystem {
       // The loaded pair nearest the pitch point; with faults, among the
       // pairs that carry (none: the stiffness stays 0, as nothing pushes).
       const double ref = layout_.reference_m(side, y[kT1]);
-      const LoadedRange range = layout_.loaded(ref);
       const double pitch = pitch_point_position(c_.gears);
       int nearest = -1;
-      for (int k = range.k_first; k < range.k_first + range.count; ++k) {
-        if (pair_table(side, k) == nullptr) continue;
-        if (nearest < 0 || std::fabs(layout_.position_m(ref, k) - pitch) <
-                               std::fabs(layout_.position_m(ref, nearest) - pitch)) {
-          nearest = k;
+      for (int j = 0; j < m.range.count; ++j) {
+        if (!carries(side, m.range.k_first + j, m.part[j])) continue;
+        if (nearest < 0 ||
+            std::fabs(layout_.position_m(ref, m.range.k_first + j) - pitch) <
+                std::fabs(layout_.position_m(ref, m.range.k_first + nearest) - pitch)) {
+          nearest = j;
         }
       }
       if (nearest >= 0) {
+        const int k = m.range.k_first + nearest;
         memory.frozen_stiffness_n_per_m =
-            pair_stiffness(side, nearest, range.count, layout_.position_m(ref, nearest)).first;
+            pair_stiffness(side, k, m.range.count, m.part[nearest], layout_.position_m(ref, k))
+                .first;
       }
     }
     return memory;
@@ -417,10 +750,20 @@ class PlanarSystem {
   const PlanarMounting& m_;
   const StiffnessTable& table_;
   std::shared_ptr<const MeshTables> teeth_;
+  // With [modifications]: each pair's gap (docs/faults.md) and the kinks of its slope.
+  std::shared_ptr<const ToothGaps> gaps_;
+  std::vector<double> kinks_;
+  double mesh_damping_ = 0.0;  // c of the viscous mesh damper, N s/m; 0: none
+  bool drag_ = false;          // torque2 a drag
+  bool driven_ = false;        // torque1 a kinematic driver
+  std::size_t driven_index_ = kT1;
+  double driver_theta0_ = 0.0;
+  bool options_ = false;  // any of the four above
   MeshLayout layout_;
   double rb1_ = 0.0, rb2_ = 0.0, j1_ = 0.0, j2_ = 0.0, backlash_ = 0.0, lp_ = 0.0;
   double xs_ = 0.0, xe_ = 0.0, sin_a_ = 0.0, cos_a_ = 0.0, constant_k_ = 0.0;
-  // The bound of terms_may_exceed per term, J/m^2 (bounded_ with the healthy table).
+  // The bound of terms_may_exceed per term, J/m^2 (bounded_ with the healthy
+  // table, without gaps).
   std::array<double, kTermCount> term_bound_{};
   bool bounded_ = false;
 };
@@ -470,30 +813,13 @@ void validate_planar(const SimulationCase& c, const PlanarMounting& m, const Run
     require(std::isfinite(m.load_damping_n_m_s_per_rad) && m.load_damping_n_m_s_per_rad >= 0.0,
             "load_damping", m.load_damping_n_m_s_per_rad, "a finite value >= 0");
   }
-  for (const auto& [key, torque] :
-       {std::pair<const char*, const Torque*>{"torque1.kind", &c.torque1},
-        std::pair<const char*, const Torque*>{"torque2.kind", &c.torque2}}) {
-    if (torque->kind == Torque::Kind::prescribed_speed || torque->kind == Torque::Kind::drag) {
-      refuse(key, torque->kind == Torque::Kind::drag ? "drag" : "prescribed-speed",
-             "\"constant\", \"sinusoidal\", \"harmonic\" or a user function");
-    }
-  }
   if (c.model.mesh_force == MeshForce::lagrangian &&
       c.model.mesh_stiffness != MeshStiffnessMode::constant) {
-    refuse("model.mesh_force", "lagrangian", "\"newtonian\"");
-  }
-  if (c.model.mesh_damping_ratio > 0.0) {
-    refuse("model.mesh_damping_ratio", format_number(c.model.mesh_damping_ratio),
-           "0 (the viscous mesh damper acts on the torsional s only)");
-  }
-  if (!is_unmodified(c.modifications)) {
-    refuse("modifications", "a relief or a tooth error", "none (the gaps are torsional only yet)");
+    refuse("model.mesh_force", "lagrangian",
+           "\"newtonian\" (the stored energy's jump where a pair enters or leaves under load is "
+           "paid by the pinion at that instant, which the planar run does not model yet)");
   }
   if (c.integrator.kind != IntegratorKind::rk4) refuse("integrator.kind", "adaptive", "\"rk4\"");
-  if (control.sample_rate_hz) {
-    refuse("sample_rate", format_number(*control.sample_rate_hz) + " Hz",
-           "none (the planar series has every integrator.output_every-th step)");
-  }
   if (control.resume) refuse("resume", "a run state", "none (a planar run starts afresh)");
 }
 
@@ -522,6 +848,17 @@ void check_step(const SimulationCase& c, const StiffnessTable& table, const Plan
     w2 += m.motor_stiffness_n_m_per_rad * (1.0 / m.motor_inertia_kg_m2 + 1.0 / j1) +
           m.load_stiffness_n_m_per_rad * (1.0 / m.load_inertia_kg_m2 + 1.0 / j2);
   }
+  // A drag on the load relaxes its speed with the rate (drag_constant /
+  // drag_speed_scale + drag_viscous) / J_load, which the case's check of the
+  // drag bounds for the wheel only: counted as a frequency, it needs as many
+  // steps per 2 pi of its time constant as that check does.
+  const bool load_drag = m.shafts && c.torque2.kind == Torque::Kind::drag;
+  if (load_drag) {
+    const double rate = (c.torque2.drag_constant_n_m / c.torque2.drag_speed_scale_rad_per_s +
+                         c.torque2.drag_viscous_n_m_s) /
+                        m.load_inertia_kg_m2;
+    w2 += rate * rate;
+  }
   const double largest = 2.0 * pi / std::sqrt(w2) / kStepsPerContactPeriod;
   if (c.integrator.step_s > largest) {
     throw InputError("integrator.step", format_number(c.integrator.step_s) + " s",
@@ -531,29 +868,38 @@ void check_step(const SimulationCase& c, const StiffnessTable& table, const Plan
                          format_number(kStepsPerContactPeriod) +
                          " of the shortest period the planar system can have (its stiffest "
                          "springs: the mesh on both sides, the bearings" +
-                         std::string(m.shafts ? ", the shafts" : "") + ")");
+                         std::string(m.shafts ? ", the shafts" : "") +
+                         std::string(load_drag ? ", the drag's relaxation of the load" : "") + ")");
   }
 }
 
-// The location of a contact's onset or end: at most this many trial steps,
-// to a bracket of this fraction of integrator.step (the kink's integration
-// error then falls far below RK4's own).
-constexpr int kMostLocationIterations = 100;
-constexpr double kLocationTolerance = 1e-10;
+using Stages = Rk4StagesOf<kSize>;
 
-void rk4(const PlanarSystem& s, double t, const Y& y, double h,
-         const std::array<ContactMemory, 2>& memory, Y& out) {
-  Y k1, k2, k3, k4, stage;
-  s.rhs(t, y, memory, k1);
+// The classical RK4 step from (t, y) in the mode, with k1 = f(t, y) already
+// evaluated: event location tries many step lengths from the same start.
+// `stages`, when given, receives k1 ... k4 for the step's dense output (rk4_dense).
+void rk4_from(const PlanarSystem& s, double t, const Y& y, const Y& k1, double h,
+              const PlanarMode& mode, const std::array<ContactMemory, 2>& memory, Y& out,
+              Stages* stages = nullptr) {
+  Y k2, k3, k4, stage;
   for (std::size_t i = 0; i < kSize; ++i) stage[i] = y[i] + 0.5 * h * k1[i];
-  s.rhs(t + 0.5 * h, stage, memory, k2);
+  s.rhs(t + 0.5 * h, stage, mode, memory, k2);
   for (std::size_t i = 0; i < kSize; ++i) stage[i] = y[i] + 0.5 * h * k2[i];
-  s.rhs(t + 0.5 * h, stage, memory, k3);
+  s.rhs(t + 0.5 * h, stage, mode, memory, k3);
   for (std::size_t i = 0; i < kSize; ++i) stage[i] = y[i] + h * k3[i];
-  s.rhs(t + h, stage, memory, k4);
+  s.rhs(t + h, stage, mode, memory, k4);
   for (std::size_t i = 0; i < kSize; ++i) {
     out[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
   }
+  if (stages != nullptr) *stages = {k1, k2, k3, k4};
+}
+
+// The force each bearing exerts on its gear, -k u - c u': x1, y1, x2, y2.
+std::array<double, 4> bearing_forces(const PlanarMounting& m, const PlanarState& s) {
+  return {-m.stiffness_x_n_per_m[0] * s.x1_m - m.damping_x_n_s_per_m[0] * s.vx1_m_s,
+          -m.stiffness_y_n_per_m[0] * s.y1_m - m.damping_y_n_s_per_m[0] * s.vy1_m_s,
+          -m.stiffness_x_n_per_m[1] * s.x2_m - m.damping_x_n_s_per_m[1] * s.vx2_m_s,
+          -m.stiffness_y_n_per_m[1] * s.y2_m - m.damping_y_n_s_per_m[1] * s.vy2_m_s};
 }
 
 }  // namespace
@@ -616,8 +962,10 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
                                  const PlanarMounting& mounting, const PlanarState& initial,
                                  const RunControl& control) {
   validate_planar(c, mounting, control);
+  validate_sampling(c, control);
   check_step(c, table, mounting);
-  const PlanarSystem system(c, table, mounting);
+  const PlanarSystem system(c, table, mounting,
+                            mounting.shafts ? initial.theta_motor_rad : initial.theta1_rad);
   SimulationResult result;
   SimulationSummary& s = result.summary;
   s.case_name = c.name;
@@ -630,25 +978,29 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   PlanarEnergies& p = *s.planar;
 
   Y y = to_vector(initial);
+  system.impose_driver(0.0, y);
   const double h = c.integrator.step_s;
   const auto steps = static_cast<long long>(std::ceil(c.integrator.end_time_s / h - 1e-9));
   std::array<ContactMemory, 2> memory{};
-  std::array<bool, 2> touching{};
-  std::array<LoadedRange, 2> ranges{};
+  PlanarMode mode{};
   std::array<std::optional<std::size_t>, 2> open_impact;
   const auto mesh_energy = [&](const Y& state) {
-    return system.mesh_energy(Region::n1, state, ranges[0]) +
-           system.mesh_energy(Region::n2, state, ranges[1]);
+    return system.mesh_energy(Region::n1, state, mode[0]) +
+           system.mesh_energy(Region::n2, state, mode[1]);
   };
-  const auto begin_contacts = [&](double t) {
+  // The mode of y at t: each side's contact, pairs and parts; an impact
+  // where a side's contact begins (its damping memory then set), its end
+  // where it ends; then the forces' signs.
+  const auto classify = [&](double t) {
     for (const Region side : kSides) {
       const std::size_t i = side_index(side);
-      const bool now = system.penetration(side, y).first > 0.0;
-      if (now && !touching[i]) {
+      const bool before = mode[i].contact;
+      mode[i] = system.classify_geometry(side, y);
+      if (mode[i].contact && !before) {
         ImpactRecord impact{};
         impact.line = side;
         impact.start_s = t;
-        memory[i] = system.onset(side, y, impact.impact_speed_m_s, impact.restitution);
+        memory[i] = system.onset(side, y, mode[i], impact.impact_speed_m_s, impact.restitution);
         (side == Region::n1 ? s.impacts_n1 : s.impacts_n2) += 1;
         if (!s.first_impact_s) {
           s.first_impact_s = t;
@@ -657,20 +1009,20 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
         (side == Region::n1 ? s.last_n1_impact_s : s.last_n2_impact_s) = t;
         open_impact[i] = result.impacts.size();
         result.impacts.push_back(impact);
-      } else if (!now && touching[i] && open_impact[i]) {
+      } else if (!mode[i].contact && before && open_impact[i]) {
         ImpactRecord& impact = result.impacts[*open_impact[i]];
         impact.end_s = t;
         impact.end_speed_m_s = -system.penetration(side, y).second;
         open_impact[i].reset();
       }
-      touching[i] = now;
+      system.classify_forces(side, y, memory[i], mode[i]);
     }
   };
   const auto record = [&](double t) {
     if (!control.keep_series && !control.on_row && !control.on_planar_row) return;
     Y dy{};
     Forces f;
-    system.rhs(t, y, memory, dy, &f);
+    system.rhs(t, y, mode, memory, dy, &f);
     const PlanarState st = to_state(y, mounting.shafts);
     SeriesRow row{};
     row.t_s = t;
@@ -678,14 +1030,14 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     row.theta2_rad = st.theta2_rad;
     row.w1_rad_per_s = st.w1_rad_per_s;
     row.w2_rad_per_s = st.w2_rad_per_s;
-    // The drive line's s_d and the larger penetration; the side in contact
-    // (the drive side when both are).
+    // The drive line's s_d and the larger penetration of a pair; the side in
+    // contact (the drive side when both are).
     row.s_m = system.penetration(Region::n1, y).first + c.gears.backlash_m;
-    const double dd = system.penetration(Region::n1, y).first;
-    const double dc = system.penetration(Region::n2, y).first;
+    const double dd = system.contact_value(Region::n1, y);
+    const double dc = system.contact_value(Region::n2, y);
     row.delta_m = std::max(dd, dc);
-    row.region = dd > 0.0 ? 1 : (dc > 0.0 ? -1 : 0);
-    row.pairs = dd > 0.0 ? ranges[0].count : (dc > 0.0 ? ranges[1].count : 0);
+    row.region = mode[0].contact ? 1 : (mode[1].contact ? -1 : 0);
+    row.pairs = mode[0].contact ? mode[0].range.count : (mode[1].contact ? mode[1].range.count : 0);
     row.normal_force_n = f.normal_n[0] + f.normal_n[1];
     row.friction_force_n = f.friction_n;
     if (control.on_row) control.on_row(row);
@@ -693,14 +1045,11 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     PlanarRow pr;
     pr.t_s = t;
     pr.state = st;
-    pr.bearing_fx1_n =
-        -mounting.stiffness_x_n_per_m[0] * st.x1_m - mounting.damping_x_n_s_per_m[0] * st.vx1_m_s;
-    pr.bearing_fy1_n =
-        -mounting.stiffness_y_n_per_m[0] * st.y1_m - mounting.damping_y_n_s_per_m[0] * st.vy1_m_s;
-    pr.bearing_fx2_n =
-        -mounting.stiffness_x_n_per_m[1] * st.x2_m - mounting.damping_x_n_s_per_m[1] * st.vx2_m_s;
-    pr.bearing_fy2_n =
-        -mounting.stiffness_y_n_per_m[1] * st.y2_m - mounting.damping_y_n_s_per_m[1] * st.vy2_m_s;
+    const std::array<double, 4> bearing = bearing_forces(mounting, st);
+    pr.bearing_fx1_n = bearing[0];
+    pr.bearing_fy1_n = bearing[1];
+    pr.bearing_fx2_n = bearing[2];
+    pr.bearing_fy2_n = bearing[3];
     pr.drive_force_n = f.normal_n[0];
     pr.coast_force_n = f.normal_n[1];
     pr.drive_penetration_m = dd;
@@ -709,8 +1058,67 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     if (control.keep_series) result.planar_series.push_back(pr);
   };
 
-  for (const Region side : kSides) ranges[side_index(side)] = system.loaded(side, y[kT1]);
-  begin_contacts(0.0);
+  // The samples (RunControl::sample_rate_hz), as the torsional run takes
+  // them: the accelerations from the equations of motion in the step's mode
+  // with its contact memory, so that at an event time a sample is the left limit.
+  const double sample_rate = control.sample_rate_hz.value_or(0.0);
+  const long long sample_total =
+      control.sample_rate_hz ? static_cast<long long>(sample_count(c, sample_rate)) : 0;
+  if (control.keep_samples && sample_total > 0) {
+    constexpr long long most_reserved_samples = 4'000'000;
+    result.planar_samples.reserve(
+        static_cast<std::size_t>(std::min(sample_total, most_reserved_samples)));
+  }
+  const double sensor_cos = std::cos(c.bearings.sensor_angle_rad);
+  const double sensor_sin = std::sin(c.bearings.sensor_angle_rad);
+  const auto sample = [&](double ts, const Y& state) {
+    Y dy{};
+    Forces f;
+    system.rhs(ts, state, mode, memory, dy, &f);
+    PlanarSample ps;
+    ps.t_s = ts;
+    ps.state = to_state(state, mounting.shafts);
+    ps.ax1_m_per_s2 = dy[kVelocity + kX1];
+    ps.ay1_m_per_s2 = dy[kVelocity + kY1];
+    ps.alpha1_rad_per_s2 = dy[kVelocity + kT1];
+    ps.ax2_m_per_s2 = dy[kVelocity + kX2];
+    ps.ay2_m_per_s2 = dy[kVelocity + kY2];
+    ps.alpha2_rad_per_s2 = dy[kVelocity + kT2];
+    const std::array<double, 4> bearing = bearing_forces(mounting, ps.state);
+    ps.bearing_fx1_n = bearing[0];
+    ps.bearing_fy1_n = bearing[1];
+    ps.bearing_fx2_n = bearing[2];
+    ps.bearing_fy2_n = bearing[3];
+    ps.dte_m = system.penetration(Region::n1, state).first;
+    ps.drive_force_n = f.normal_n[0];
+    ps.coast_force_n = f.normal_n[1];
+    const bool pinion = c.bearings.sensor_gear == 1;
+    ps.sensor_acceleration_m_per_s2 = (pinion ? ps.ax1_m_per_s2 : ps.ax2_m_per_s2) * sensor_cos +
+                                      (pinion ? ps.ay1_m_per_s2 : ps.ay2_m_per_s2) * sensor_sin;
+    if (control.keep_samples) result.planar_samples.push_back(ps);
+    if (control.on_planar_sample) control.on_planar_sample(ps);
+  };
+  // The samples not yet taken up to t_b, the end of the accepted step of
+  // length h from (t_a, y_a) with `stages`, at y_b: one at t_b is y_b itself,
+  // one inside the step its dense output. At the start t_b = 0 takes the first.
+  long long next_sample = 0;
+  const auto emit_samples = [&](double t_a, const Y& y_a, double step, const Stages& stages,
+                                double t_b, const Y& y_b) {
+    for (; next_sample < sample_total; ++next_sample) {
+      const double ts = sample_time_s(0.0, next_sample, sample_rate);
+      if (ts > t_b) return;
+      if (ts == t_b) {
+        sample(ts, y_b);
+      } else {
+        Y x{};
+        rk4_dense(y_a, step, stages, (ts - t_a) / step, x);
+        sample(ts, x);
+      }
+    }
+  };
+
+  classify(0.0);
+  emit_samples(0.0, y, 0.0, Stages{}, 0.0, y);
   const double kinetic0 = system.kinetic_energy(y);
   const double mesh0 = mesh_energy(y);
   s.kinetic_energy_initial_j = kinetic0;
@@ -721,93 +1129,126 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   double jump_work = 0.0;
   record(0.0);
   Y next{};
+  Y k1{};
   double t = 0.0;
-  const auto contact = [&](Region side, const Y& state) {
-    return system.penetration(side, state).first > 0.0;
-  };
+  int stalled = 0;
   for (long long n = 1; n <= steps;) {
-    const double t_grid = std::min(static_cast<double>(n) * h, c.integrator.end_time_s);
-    const double full = t_grid - t;
-    rk4(system, t, y, full, memory, next);
+    // The last step ends at end_time exactly, where the last sample may be.
+    const double t_grid = n == steps
+                              ? c.integrator.end_time_s
+                              : std::min(static_cast<double>(n) * h, c.integrator.end_time_s);
+    Stages stages{};
+    Stages* const dense = sample_total > 0 ? &stages : nullptr;
+    system.rhs(t, y, mode, memory, k1);
+    rk4_from(system, t, y, k1, t_grid - t, mode, memory, next, dense);
+    // A driven body ends each step (and each trial of the location) where
+    // its closed form is: the event values see the state the step keeps.
+    system.impose_driver(t_grid, next);
     s.rhs_evaluations += 4;
-    // A side whose contact begins or ends inside the step: the step is cut
-    // back to that instant (the force's kink there would cost RK4 its
-    // order), located on the step's length by the Illinois method, ending
-    // just past it so that the new contact state is booked.
-    double length = full;
-    for (const Region side : kSides) {
-      if (contact(side, y) == contact(side, next)) continue;
-      const bool before = contact(side, y);
-      const auto value = [&](double l, Y& out) {
-        rk4(system, t, y, l, memory, out);
-        s.rhs_evaluations += 4;
-        return system.penetration(side, out).first;
-      };
-      double lo = 0.0;
-      double hi = length;
-      Y trial{};
-      double g_lo = system.penetration(side, y).first;
-      double g_hi = value(hi, trial);
-      if (contact(side, trial) == before) continue;  // an earlier side's cut ends before
-      int stale = 0;
-      for (int i = 0; i < kMostLocationIterations && hi - lo > kLocationTolerance * h; ++i) {
-        double l = hi - g_hi * (hi - lo) / (g_hi - g_lo);
-        if (!(l > lo && l < hi)) l = 0.5 * (lo + hi);
-        const double g = value(l, trial);
-        if ((g > 0.0) == before) {
-          lo = l;
-          g_lo = g;
-          // Illinois: halve the kept end's value when the same end stays.
-          if (stale++ > 0) g_hi *= 0.5;
-        } else {
-          hi = l;
-          g_hi = g;
-          stale = 0;
-        }
+    double t_next = t_grid;
+    const bool event = !system.mode_holds(next, mode, memory);
+    if (event) {
+      // The mode ends inside the step (a side's contact begins or ends, a
+      // pair enters or leaves, touches or lets go by its gap, a fault's edge,
+      // a relief's kink, a friction reversal, a clipping): the step is cut
+      // back to the earliest event, located on the step from the same start
+      // (event_location), ending just past it so that the new mode is
+      // unambiguous; the grid resumes after it.
+      PlanarEvents g_a{};
+      PlanarEvents g_b{};
+      const int count = system.event_values(y, mode, memory, g_a);
+      system.event_values(next, mode, memory, g_b);
+      long long evaluations = 0;
+      t_next = earliest_event(t, t_grid, g_a.data(), g_b.data(), count, [&](double tau, int i) {
+        Y trial{};
+        rk4_from(system, t, y, k1, tau - t, mode, memory, trial);
+        system.impose_driver(tau, trial);
+        evaluations += 3;
+        PlanarEvents g{};
+        system.event_values(trial, mode, memory, g);
+        return g[static_cast<std::size_t>(i)];
+      });
+      s.rhs_evaluations += evaluations;
+      if (t_next < t_grid) {
+        // The cut step's own stages, for its samples.
+        rk4_from(system, t, y, k1, t_next - t, mode, memory, next, dense);
+        system.impose_driver(t_next, next);
+        s.rhs_evaluations += 3;
       }
-      length = hi;
     }
-    if (length < full) {
-      rk4(system, t, y, length, memory, next);
-      s.rhs_evaluations += 4;
-      ++s.events;
-    }
-    const double t_next = length < full ? t + length : t_grid;
     if (!std::all_of(next.begin(), next.end(), [](double v) { return std::isfinite(v); })) {
       throw SimulationError(
           "the planar run diverged: the state is not finite at t = " + format_number(t_next) +
           " s, step " + std::to_string(n) + "; a smaller integrator.step may resolve it");
     }
+    // Events that advance by less than a millionth of the step: a sequence
+    // of them is the contact's chatter, not the motion (a friction reversal
+    // that turns back at once advances by round-off or a few 1e-14 s).
+    stalled = event && t_next - t <= 1e-6 * h ? stalled + 1 : 0;
+    const bool stepped_per_stage = mode[0].slip_per_stage;
+    if (stalled > kMostStalledEvents) {
+      throw SimulationError(
+          "event location stalled at t = " + format_number(t) + " s, step " + std::to_string(n) +
+          ": the planar mode changes back and forth without time advancing" +
+          (c.model.friction_smoothing_speed_m_s == 0.0
+               ? std::string(". Under load with friction this is a friction reversal whose jump "
+                             "turns the sliding back; model.friction_smoothing_speed (e.g. "
+                             "\"1e-3 m/s\") replaces the exact switch by tanh(Vs / v_s)")
+               : std::string()));
+    }
+    // Before the mode and the contact memory change at an event: the step's
+    // samples are its own, the left limit at the event.
+    if (dense != nullptr) emit_samples(t, y, t_next - t, stages, t_next, next);
     y = next;
     t = t_next;
     ++s.steps;
-    // A pair that entered or left during the step takes or releases its
-    // stored energy: work of the time-varying stiffness, booked at the step's end.
-    // Mostly none did: the energy is then the same sum, computed once.
-    const std::array<LoadedRange, 2> entered{system.loaded(Region::n1, y[kT1]),
-                                             system.loaded(Region::n2, y[kT1])};
-    const auto same_pairs = [](LoadedRange a, LoadedRange b) {
-      return a.k_first == b.k_first && a.count == b.count;
-    };
-    const bool same = same_pairs(entered[0], ranges[0]) && same_pairs(entered[1], ranges[1]);
-    const double before = mesh_energy(y);
-    ranges = entered;
-    const double mesh = same ? before : mesh_energy(y);
-    jump_work += mesh - before;
-    begin_contacts(t);
-    s.max_penetration_m = std::max({s.max_penetration_m, system.penetration(Region::n1, y).first,
-                                    system.penetration(Region::n2, y).first});
+    double mesh = mesh_energy(y);
+    if (event) {
+      ++s.events;
+      // A pair that entered or left, or crossed a fault's edge, takes or
+      // releases its stored energy: work of the time-varying stiffness,
+      // booked at the event.
+      const double before = mesh;
+      classify(t);
+      mesh = mesh_energy(y);
+      jump_work += mesh - before;
+    } else if (stepped_per_stage) {
+      // The sticking goes on while a pair's sliding still changed sign over
+      // the step; once every pair slid one way through a whole step, its
+      // reversals are events again.
+      bool sticking = false;
+      for (const Region side : kSides) {
+        SideMode& m = mode[side_index(side)];
+        const std::array<double, kMaxPairs> slip = m.slip;
+        system.classify_forces(side, y, memory[side_index(side)], m);
+        sticking = sticking || slip != m.slip;
+      }
+      mode[0].slip_per_stage = sticking;
+      mode[1].slip_per_stage = sticking;
+    }
+    // Two events in a row that each advanced less than 1e-6 of the step:
+    // with an exact friction switch, a pair whose sliding turns back at once
+    // after its reversal (the friction's jump exceeds what drives the sliding
+    // through zero: the contact would stick). The steps then take each
+    // stage's own signs, across the sticking with an error O(h) there.
+    if (stalled >= 2 && c.model.friction_smoothing_speed_m_s == 0.0) {
+      mode[0].slip_per_stage = true;
+      mode[1].slip_per_stage = true;
+    }
+    s.max_penetration_m = std::max({s.max_penetration_m, system.contact_value(Region::n1, y),
+                                    system.contact_value(Region::n2, y)});
     const double energy =
         system.kinetic_energy(y) + mesh + system.bearing_energy(y) + system.shaft_energy(y);
     s.ledger_scale_j = std::max(s.ledger_scale_j, energy);
-    if (system.terms_may_exceed(y, ranges, s.energy_max_j)) {
-      const ElasticEnergy terms = system.mesh_terms(y, ranges);
+    if (system.terms_may_exceed(y, mode, s.energy_max_j)) {
+      const ElasticEnergy terms = system.mesh_terms(y, mode);
       for (std::size_t i = 0; i < kTermCount; ++i) {
         s.energy_max_j[i] = std::max(s.energy_max_j[i], terms.j[i]);
       }
     }
     const double residual = energy - energy0 - y[kWork] + y[kHertzLoss] + y[kSlidingLoss] +
-                            y[kBearingLoss] + y[kShaftLoss] - y[kParametric] - jump_work;
+                            y[kBearingLoss] + y[kShaftLoss] + y[kMeshDamperLoss] - y[kParametric] -
+                            jump_work;
     s.ledger_residual_j = residual;
     s.ledger_residual_max_j = std::max(s.ledger_residual_max_j, std::fabs(residual));
     if (t != t_grid) continue;  // a cut step: the grid point is still ahead
@@ -824,6 +1265,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   s.torque_work_j = y[kWork];
   s.damping_loss_j = y[kHertzLoss];
   s.friction_loss_j = y[kSlidingLoss];
+  s.mesh_damping_loss_j = y[kMeshDamperLoss];
   s.parametric_jump_work_j = jump_work;
   s.parametric_work_j = y[kParametric] + jump_work;
   s.final_w1_rad_per_s = y[kVelocity + kT1];

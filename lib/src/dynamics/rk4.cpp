@@ -35,15 +35,6 @@ void rk4_step(const GearSystem& system, double t, const State& y, double h, cons
   rk4_step_from(system, t, y, k1, h, m, d, out, stages);
 }
 
-void rk4_dense(const State& y, double h, const Rk4Stages& k, double theta, State& out) {
-  const double b1 = theta * (1.0 - theta * (1.5 - theta * (2.0 / 3.0)));
-  const double b23 = theta * theta * (1.0 - theta * (2.0 / 3.0));
-  const double b4 = theta * theta * (theta * (2.0 / 3.0) - 0.5);
-  for (std::size_t i = 0; i < kStateSize; ++i) {
-    out[i] = y[i] + h * (b1 * k[0][i] + b23 * (k[1][i] + k[2][i]) + b4 * k[3][i]);
-  }
-}
-
 // The classical RK4 step with the mode re-evaluated at every stage: what a
 // fixed-step integration without event location does.
 void rk4_step_unlocated(const GearSystem& system, double t, const State& y, double h,

@@ -8,11 +8,12 @@
 
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/dynamics/system.hpp"
+#include "rk4_dense.hpp"
 
 namespace gearimpact {
 
-// k1 ... k4 of a classical RK4 step, for its dense output.
-using Rk4Stages = std::array<State, 4>;
+// k1 ... k4 of a classical RK4 step, for its dense output (rk4_dense).
+using Rk4Stages = Rk4StagesOf<kStateSize>;
 
 // The classical RK4 step from (t, y) with k1 = f(t, y) already evaluated:
 // event location tries many step sizes from the same start. `stages`, when
@@ -22,13 +23,6 @@ void rk4_step_from(const GearSystem& system, double t, const State& y, const Sta
 // The classical RK4 step; k1 receives f(t, y).
 void rk4_step(const GearSystem& system, double t, const State& y, double h, const Mode& m,
               const ContactMemory& d, State& out, State& k1, Rk4Stages* stages = nullptr);
-// The continuous extension of the RK4 step of length h from y with stages k,
-// at y(t + theta h), 0 <= theta <= 1: y + h sum b_i(theta) k_i with
-// b1 = theta - 3 theta^2/2 + 2 theta^3/3, b2 = b3 = theta^2 - 2 theta^3/3,
-// b4 = -theta^2/2 + 2 theta^3/3 (Hairer, Norsett & Wanner, Solving ODE I,
-// II.6): order 3, a local error O(h^4), the classical weights at theta = 1.
-// Cubic in theta, it is exact for a state that is.
-void rk4_dense(const State& y, double h, const Rk4Stages& k, double theta, State& out);
 // The classical RK4 step with the mode re-evaluated at every stage: what a
 // fixed-step integration without event location does.
 void rk4_step_unlocated(const GearSystem& system, double t, const State& y, double h,

@@ -23,8 +23,10 @@ namespace {
 // A series row as CSV, measured on the paper's cases (138 bytes); for the
 // estimate a message gives.
 constexpr double kSeriesRowBytes = 140.0;
-// A sample row as CSV: 11 numbers of 17 digits and two small integers.
+// A sample row as CSV: 11 numbers of 17 digits and two small integers; a
+// planar one, 31 numbers.
 constexpr double kSampleRowBytes = 230.0;
+constexpr double kPlanarSampleRowBytes = 720.0;
 
 // "14 GB", "140 MB": the size a message gives, rounded.
 std::string csv_size_text(double bytes) {
@@ -47,31 +49,7 @@ void validate_control(const SimulationCase& c, const RunControl& control) {
               "the bound");
     }
   }
-  if (control.sample_rate_hz) {
-    const double rate = *control.sample_rate_hz;
-    const std::string rate_text = format_number(rate) + " Hz";
-    if (!(std::isfinite(rate) && rate > 0.0)) {
-      throw InputError("sample_rate", rate_text, "a finite rate > 0 Hz");
-    }
-    if (!control.locate_events) {
-      throw InputError("sample_rate", rate_text,
-                       "only with event location (RunControl::locate_events): the dense output "
-                       "of a step needs one mode");
-    }
-    const double most = static_cast<double>(control.most_series_rows);
-    const double t0 = control.resume ? control.resume->time_s : 0.0;
-    const double samples = sample_count(c, rate, t0);
-    if (samples > most) {
-      const double end = c.integrator.end_time_s;
-      throw InputError("sample_rate", rate_text,
-                       "a rate in (0, " + shortest_decimal((most - 1.0) / end) + "] Hz: at most " +
-                           shortest_decimal(most) +
-                           " samples over integrator.end_time = " + shortest_decimal(end) +
-                           " s; this run would have " + shortest_decimal(samples) +
-                           " samples, about " + csv_size_text(samples * kSampleRowBytes) +
-                           " as CSV: lower the rate, shorten the run, or lift the bound");
-    }
-  }
+  validate_sampling(c, control);
   if (control.resume) {
     const RunState& r = *control.resume;
     const InitialState& y = r.state;
@@ -240,6 +218,35 @@ double sample_count(const SimulationCase& c, double sample_rate_hz, double t0_s)
   return static_cast<double>(n) + 1.0;
 }
 
+void validate_sampling(const SimulationCase& c, const RunControl& control) {
+  if (!control.sample_rate_hz) return;
+  const double rate = *control.sample_rate_hz;
+  const std::string rate_text = format_number(rate) + " Hz";
+  if (!(std::isfinite(rate) && rate > 0.0)) {
+    throw InputError("sample_rate", rate_text, "a finite rate > 0 Hz");
+  }
+  if (!control.locate_events) {
+    throw InputError("sample_rate", rate_text,
+                     "only with event location (RunControl::locate_events): the dense output "
+                     "of a step needs one mode");
+  }
+  const double most = static_cast<double>(control.most_series_rows);
+  const double t0 = control.resume ? control.resume->time_s : 0.0;
+  const double samples = sample_count(c, rate, t0);
+  if (samples > most) {
+    const double end = c.integrator.end_time_s;
+    throw InputError(
+        "sample_rate", rate_text,
+        "a rate in (0, " + shortest_decimal((most - 1.0) / end) + "] Hz: at most " +
+            shortest_decimal(most) +
+            " samples over integrator.end_time = " + shortest_decimal(end) +
+            " s; this run would have " + shortest_decimal(samples) + " samples, about " +
+            csv_size_text(samples * (c.bearings.kind == BearingKind::elastic ? kPlanarSampleRowBytes
+                                                                             : kSampleRowBytes)) +
+            " as CSV: lower the rate, shorten the run, or lift the bound");
+  }
+}
+
 void validate(const SimulationCase& c) {
   validate_fields(c);
   refuse_planar(c);
@@ -291,10 +298,20 @@ std::vector<std::string> run_warnings(const SimulationCase& c) {
     if (std::fabs(imbalance) > 1e-9 * std::max(std::fabs(t1 / rb1), std::fabs(t2 / rb2))) {
       const std::string key =
           c.torque2.kind == Torque::Kind::constant ? "torque2.value" : "torque2.mean";
+      // Friction takes power from the train, so torques that leave an excess for
+      // it can hold a speed (a rig's load set against its friction); the check
+      // cannot tell, as friction's mean power is known only from a run.
+      const bool friction =
+          c.model.friction_law != FrictionLaw::constant || c.model.friction_coefficient > 0.0;
+      const std::string consequence =
+          friction ? "without friction the pair would accelerate without bound; with it a "
+                     "steady speed needs the excess power T1 w1 + T2 w2 to equal friction's mean "
+                     "power, which this check does not compute"
+                   : "the pair accelerates without bound and has no steady state";
       warnings.push_back("unbalanced mean torques: T1/Rb1 + T2/Rb2 = " + six_digits(imbalance) +
-                         " N (T1 = " + six_digits(t1) + " N*m, T2 = " + six_digits(t2) +
-                         " N*m); the pair accelerates without bound and has no steady state; " +
-                         key + " = \"" + format_number(-t1 * rb2 / rb1) + " N*m\" balances T1");
+                         " N (T1 = " + six_digits(t1) + " N*m, T2 = " + six_digits(t2) + " N*m); " +
+                         consequence + "; " + key + " = \"" + format_number(-t1 * rb2 / rb1) +
+                         " N*m\" balances T1");
     }
   }
   const double v1 = rb1 * c.initial.w1_rad_per_s;

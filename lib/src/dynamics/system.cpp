@@ -48,6 +48,11 @@ double torque_at(const Torque& torque, double t_s) {
   throw std::logic_error("torque_at of a torque that depends on the state");
 }
 
+double drag_torque_n_m(const Torque& drag, double w_rad_per_s) {
+  return -(drag.drag_constant_n_m * std::tanh(w_rad_per_s / drag.drag_speed_scale_rad_per_s) +
+           drag.drag_viscous_n_m_s * w_rad_per_s);
+}
+
 double mean_torque_n_m(const Torque& torque, const char* field) {
   switch (torque.kind) {
     case Torque::Kind::constant:
@@ -116,13 +121,7 @@ GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table,
     gaps_ = std::make_shared<const ToothGaps>(g, c.modifications);
     kinks_ = gaps_->kinks_m();
   }
-  if (c.model.mesh_damping_ratio > 0.0) {
-    // With faults the damper sees the mean over the true period.
-    const double mean_k =
-        teeth_ ? mean_mesh_stiffness_n_per_m(c, *teeth_) : mean_mesh_stiffness_n_per_m(c, table);
-    mesh_damping_ =
-        viscous_mesh_damping_n_s_per_m(c.model.mesh_damping_ratio, mean_k, effective_mass_kg(g));
-  }
+  mesh_damping_ = case_mesh_damping_n_s_per_m(c, table, teeth_.get());
 }
 
 std::pair<double, double> GearSystem::torques(double t) const {
@@ -177,37 +176,17 @@ double GearSystem::friction_coefficient(double normal_force_n, double vs, double
   return pair_friction_coefficient(case_.model, face_width_, normal_force_n, vs, ve);
 }
 
-GearSystem::PairPenetration GearSystem::pair_penetration(const Mode& m, int j, double x, double dl,
-                                                         double dl_rate, double x_rate) const {
+PairPenetration GearSystem::pair_penetration(const Mode& m, int j, double x, double dl,
+                                             double dl_rate, double x_rate) const {
   if (!gaps_) return {dl, dl_rate, 0.0};
-  // The gap of the pair's zone between two kinks (or the segment's ends),
-  // continued along its tangent beyond them, as Ke is, so that the
-  // right-hand side stays smooth while the mode holds: a stage state of a
-  // step that ends on a kink sees the zone's own gap. The slope is taken at
-  // least a millionth of the zone inside it, where it is the zone's whatever
-  // the rounding of the kink's position (exactly, for the linear reliefs
-  // whose kinks these are).
-  const auto zone = static_cast<std::size_t>(m.zone[j]);
-  const double lo = zone > 0 ? kinks_[zone - 1] : xs_;
-  const double hi = zone < kinks_.size() ? kinks_[zone] : xe_;
-  const double margin = 1e-6 * (hi - lo);
-  const int k = m.k_first + j;
-  const double slope =
-      gaps_->gap_and_slope(m.region, k, std::clamp(x, lo + margin, hi - margin)).slope;
-  const double edge = std::clamp(x, lo, hi);
-  const double gap = gaps_->gap_m(m.region, k, edge) + slope * (x - edge);
-  return {dl - gap, dl_rate - slope * x_rate, slope};
+  // The zone's branch, as the mode holds it: a stage state of a step that
+  // ends on a kink sees the zone's own gap.
+  return pair_penetration_with_gap(*gaps_, kinks_, m.zone[j], m.region, m.k_first + j, x, dl,
+                                   dl_rate, x_rate, xs_, xe_);
 }
 
 double GearSystem::least_gap_m(Region line, double theta1) const {
-  const double ref = layout_.reference_m(line, theta1);
-  const LoadedRange range = layout_.loaded(ref);
-  double least = std::numeric_limits<double>::infinity();
-  for (int j = 0; j < range.count; ++j) {
-    const int k = range.k_first + j;
-    least = std::min(least, gaps_->gap_m(line, k, layout_.position_m(ref, k)));
-  }
-  return least;
+  return least_pair_gap_m(*gaps_, layout_, line, theta1);
 }
 
 double GearSystem::damping_factor(const ContactMemory& d, double ke) const {
@@ -229,12 +208,7 @@ void GearSystem::rhs(double t, const State& y_in, const Mode& m, const ContactMe
     driven_state[kW1] = driver.speed_rad_per_s;
   }
   const State& y = driven_ ? driven_state : y_in;
-  if (drag_) {
-    const Torque& drag = case_.torque2;
-    const double w = y[kW2];
-    t2 = -(drag.drag_constant_n_m * std::tanh(w / drag.drag_speed_scale_rad_per_s) +
-           drag.drag_viscous_n_m_s * w);
-  }
+  if (drag_) t2 = drag_torque_n_m(case_.torque2, y[kW2]);
   const double w1 = y[kW1];
   const double w2 = y[kW2];
   double moment1 = t1;
@@ -447,8 +421,7 @@ Mode GearSystem::classify_geometry(const State& y) const {
         const int k = range.k_first + j;
         const double x = layout_.position_m(ref, k);
         m.touching[j] = dl - gaps_->gap_m(line, k, x) > 0.0;
-        m.zone[j] =
-            static_cast<int>(std::upper_bound(kinks_.begin(), kinks_.end(), x) - kinks_.begin());
+        m.zone[j] = gap_zone(kinks_, x);
         any = any || m.touching[j];
       }
       if (any) {

@@ -22,7 +22,38 @@ std::string shape_column(Dof dof) {
   return std::string(dof_name(dof)) + (is_rotation(dof) ? "_rad_per_sqrt_kg_m" : "_per_sqrt_kg");
 }
 
+// A base-circle shape's column: a rotation named with the base radius it is scaled by.
+std::string base_circle_column(Dof dof) {
+  switch (dof) {
+    case Dof::theta1:
+      return "rb1_theta1";
+    case Dof::theta2:
+      return "rb2_theta2";
+    case Dof::theta_motor:
+      return "rb1_theta_motor";
+    case Dof::theta_load:
+      return "rb2_theta_load";
+    default:
+      return std::string(dof_name(dof));
+  }
+}
+
 }  // namespace
+
+std::string mode_shapes_csv(const Modes& modes) {
+  std::string out = "mode,rigid,frequency_hz";
+  for (Dof dof : modes.model.dofs) out += "," + base_circle_column(dof);
+  out += "\n";
+  for (std::size_t i = 0; i < modes.modes.size(); ++i) {
+    const NaturalMode& m = modes.modes[i];
+    out += std::to_string(i + 1) + (m.rigid ? ",true," : ",false,") +
+           format_data_number(m.frequency_hz);
+    const Eigen::VectorXd v = base_circle_shape(modes.model, m);
+    for (Eigen::Index k = 0; k < v.size(); ++k) out += "," + format_data_number(v(k));
+    out += "\n";
+  }
+  return out;
+}
 
 std::string modes_csv(const Modes& modes) {
   std::string out = "mode,rigid,frequency_hz,angular_frequency_rad_per_s";

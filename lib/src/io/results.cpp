@@ -1,6 +1,7 @@
 #include "gearimpact/io/results.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdio>
 #include <limits>
 #include <map>
@@ -37,6 +38,24 @@ std::string planar_series_csv_header() {
          "drive_penetration_m,coast_penetration_m\n";
 }
 
+namespace {
+
+// Numbers as a CSV line, each "%.17g".
+template <std::size_t N>
+void append_numbers(std::string& out, const double (&values)[N]) {
+  char number[32];
+  bool first = true;
+  for (const double v : values) {
+    if (!first) out += ',';
+    first = false;
+    const int n = std::snprintf(number, sizeof number, "%.17g", v);
+    out.append(number, static_cast<std::size_t>(n));
+  }
+  out += '\n';
+}
+
+}  // namespace
+
 void append_planar_row(std::string& out, const PlanarRow& r) {
   const PlanarState& q = r.state;
   const double values[] = {r.t_s,
@@ -64,15 +83,51 @@ void append_planar_row(std::string& out, const PlanarRow& r) {
                            r.coast_force_n,
                            r.drive_penetration_m,
                            r.coast_penetration_m};
-  char number[32];
-  bool first = true;
-  for (const double v : values) {
-    if (!first) out += ',';
-    first = false;
-    const int n = std::snprintf(number, sizeof number, "%.17g", v);
-    out.append(number, static_cast<std::size_t>(n));
-  }
-  out += '\n';
+  append_numbers(out, values);
+}
+
+std::string planar_samples_csv_header() {
+  return "t_s,x1_m,y1_m,theta1_rad,x2_m,y2_m,theta2_rad,vx1_m_s,vy1_m_s,w1_rad_s,vx2_m_s,vy2_m_s,"
+         "w2_rad_s,theta_motor_rad,theta_load_rad,w_motor_rad_s,w_load_rad_s,ax1_m_per_s2,"
+         "ay1_m_per_s2,alpha1_rad_per_s2,ax2_m_per_s2,ay2_m_per_s2,alpha2_rad_per_s2,"
+         "bearing_fx1_N,bearing_fy1_N,bearing_fx2_N,bearing_fy2_N,dte_m,drive_force_N,"
+         "coast_force_N,sensor_acceleration_m_per_s2\n";
+}
+
+void append_planar_sample(std::string& out, const PlanarSample& r) {
+  const PlanarState& q = r.state;
+  const double values[] = {r.t_s,
+                           q.x1_m,
+                           q.y1_m,
+                           q.theta1_rad,
+                           q.x2_m,
+                           q.y2_m,
+                           q.theta2_rad,
+                           q.vx1_m_s,
+                           q.vy1_m_s,
+                           q.w1_rad_per_s,
+                           q.vx2_m_s,
+                           q.vy2_m_s,
+                           q.w2_rad_per_s,
+                           q.theta_motor_rad,
+                           q.theta_load_rad,
+                           q.w_motor_rad_per_s,
+                           q.w_load_rad_per_s,
+                           r.ax1_m_per_s2,
+                           r.ay1_m_per_s2,
+                           r.alpha1_rad_per_s2,
+                           r.ax2_m_per_s2,
+                           r.ay2_m_per_s2,
+                           r.alpha2_rad_per_s2,
+                           r.bearing_fx1_n,
+                           r.bearing_fy1_n,
+                           r.bearing_fx2_n,
+                           r.bearing_fy2_n,
+                           r.dte_m,
+                           r.drive_force_n,
+                           r.coast_force_n,
+                           r.sensor_acceleration_m_per_s2};
+  append_numbers(out, values);
 }
 
 std::string samples_csv_header() {

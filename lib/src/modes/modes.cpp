@@ -56,6 +56,20 @@ bool is_rotation(Dof dof) {
          dof == Dof::theta_load;
 }
 
+Eigen::VectorXd base_circle_shape(const LinearModel& model, const NaturalMode& mode) {
+  Eigen::VectorXd v = mode.shape;
+  for (std::size_t k = 0; k < model.dofs.size(); ++k) {
+    const Dof dof = model.dofs[k];
+    const bool pinion_side = dof == Dof::theta1 || dof == Dof::theta_motor;
+    const bool wheel_side = dof == Dof::theta2 || dof == Dof::theta_load;
+    const auto i = static_cast<Eigen::Index>(k);
+    if (pinion_side) v(i) *= model.parameters.base_radius1_m;
+    if (wheel_side) v(i) *= model.parameters.base_radius2_m;
+  }
+  const double largest = v.cwiseAbs().maxCoeff();
+  return largest > 0.0 ? Eigen::VectorXd(v / largest) : v;
+}
+
 std::string_view part_name(SpringPart part) {
   switch (part) {
     case SpringPart::mesh:

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "gearimpact/constants.hpp"
 #include "gearimpact/contact/contact.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/modifications.hpp"
@@ -187,6 +188,11 @@ struct Bearings {
   BearingKind kind = BearingKind::rigid;
   GearBearing gear1;
   GearBearing gear2;
+  // The accelerometer of a planar run's samples (PlanarSample): on the
+  // bearing of gear 1 or 2, measuring along the direction at sensor_angle_rad
+  // from x towards y. Read with kind = "elastic" only.
+  int sensor_gear = 1;
+  double sensor_angle_rad = pi / 2.0;  // across the centre line
 };
 
 // The y stiffness and damping of a bearing: its own, else the x one's.

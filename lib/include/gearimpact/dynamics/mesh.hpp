@@ -3,6 +3,8 @@
 // docs/steady-state.md section 2, and the viscous mesh damper they set.
 #pragma once
 
+#include <vector>
+
 #include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/stiffness/mesh_tables.hpp"
@@ -33,6 +35,39 @@ StiffnessAndDerivative pair_stiffness_continued(const StiffnessTable& table, int
 // k, m_e > 0, all finite.
 double viscous_mesh_damping_n_s_per_m(double damping_ratio, double mesh_stiffness_n_per_m,
                                       double effective_mass_kg);
+
+// c of the case's viscous mesh damper, 0 without one (model.mesh_damping_ratio
+// 0): c = 2 zeta sqrt(k m_e) with m_e of the discs and k the mean mesh
+// stiffness, over the true period when the teeth differ (`teeth` with faults,
+// else nullptr). The torsional and the planar system both take theirs here.
+double case_mesh_damping_n_s_per_m(const SimulationCase& c, const StiffnessTable& table,
+                                   const MeshTables* teeth);
+
+// With modifications (docs/faults.md) a pair touches by its own penetration
+// dl - e_k(X), whose rate is dl' - de_k/dX dX/dt, dX/dt the line's sign times
+// Rb1 w1. The gap's branch is that of its zone: how many of `kinks_m`
+// (ToothGaps::kinks_m, ascending) lie at or below X.
+int gap_zone(const std::vector<double>& kinks_m, double x_m);
+struct PairPenetration {
+  double delta_m;    // dl - e_k(X)
+  double rate_m_s;   // its rate
+  double gap_slope;  // de_k/dX, m/m
+};
+// Pair k on `line` at X with the line's penetration dl and its rate: the gap of
+// the zone `zone` between two kinks (or the segment's ends [start, end]),
+// continued along its tangent beyond them, as Ke is, so that a stage state of
+// a step that ends on a kink keeps the zone's own gap. The slope is taken at
+// least a millionth of the zone inside it, where it is the zone's whatever the
+// rounding of the kink's position (exactly, for the linear reliefs whose kinks
+// these are).
+PairPenetration pair_penetration_with_gap(const ToothGaps& gaps, const std::vector<double>& kinks_m,
+                                          int zone, Region line, int k, double x_m, double dl_m,
+                                          double dl_rate_m_s, double x_rate_m_s, double start_m,
+                                          double end_m);
+// The least gap e_k(X_k) of the pairs in the contact segment of `line` at
+// theta1: the line's contact begins where its penetration passes it.
+double least_pair_gap_m(const ToothGaps& gaps, const MeshLayout& layout, Region line,
+                        double theta1_rad);
 
 // The mesh stiffness averaged over one base pitch: k of MeshStiffnessMode::constant,
 // else (1/t0) Int Ke(X) dX over the contact segment, since over one pitch each

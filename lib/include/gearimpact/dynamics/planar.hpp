@@ -54,19 +54,25 @@ double planar_angular_momentum(const SimulationCase& c, const PlanarMounting& m,
 // Throws InputError naming the mounting's field (mass1, stiffness_x2, ...)
 // unless every mass is finite and > 0, every bearing stiffness and damping
 // finite and >= 0 (the shafts' values as [shafts]' rows); and naming what the
-// planar model does not take yet (a kinematic driver or a drag, the
-// Lagrangian mesh force, the viscous mesh damper, [modifications], the
-// adaptive integrator, sampling, a continued run). simulate() calls it for an
-// elastic case before it builds the stiffness table.
+// planar model does not take yet (the Lagrangian mesh force of a
+// time-varying stiffness, the adaptive integrator, a continued run). simulate()
+// calls it for an elastic case before it builds the stiffness table.
 void validate_planar(const SimulationCase& c, const PlanarMounting& mounting,
                      const RunControl& control);
 
 // The run of c on `mounting` from `initial`: fixed-step RK4 at
-// integrator.step, each step cut at a side's contact onset or end
-// (docs/vibration.md says which events are located and why), after
-// validate_planar; throws InputError naming integrator.step when it exceeds
+// integrator.step, each step cut at a side's events (contact onset and end,
+// a pair's entry and exit, with [modifications] its touching or letting go
+// and a relief's kink, a fault's edges, a friction reversal, a clipping;
+// docs/vibration.md, "Integration"), after validate_planar and
+// validate_sampling; with RunControl::sample_rate_hz it samples
+// (PlanarSample) at sample_time_s(0, n, rate) from each accepted step's
+// continuous extension, the left limit at an event time. It throws
+// InputError naming integrator.step when the step exceeds
 // 1/kStepsPerContactPeriod of the shortest period the planar system can have
-// (a bound from its stiffest springs).
+// (a bound from its stiffest springs and a drag's relaxation of the load).
+// A kinematic driver's angle starts from the initial state's (the pinion's,
+// the motor's with shafts).
 SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& table,
                                  const PlanarMounting& mounting, const PlanarState& initial,
                                  const RunControl& control = {});

@@ -28,4 +28,22 @@ struct PlanarRow {
   double drive_penetration_m = 0.0, coast_penetration_m = 0.0;
 };
 
+// One sample of a planar run at t = t0 + n / fs exactly (sample_time_s of
+// simulate.hpp), from RK4's continuous extension inside the accepted step that
+// holds it, as SampleRow: at an event time the left limit.
+struct PlanarSample {
+  double t_s = 0.0;
+  PlanarState state;  // positions and velocities at t_s (dense output)
+  // Accelerations from the equations of motion at the sampled state (not the
+  // interpolant's derivative, which is an order less accurate).
+  double ax1_m_per_s2 = 0.0, ay1_m_per_s2 = 0.0, alpha1_rad_per_s2 = 0.0;
+  double ax2_m_per_s2 = 0.0, ay2_m_per_s2 = 0.0, alpha2_rad_per_s2 = 0.0;
+  double bearing_fx1_n = 0.0, bearing_fy1_n = 0.0, bearing_fx2_n = 0.0, bearing_fy2_n = 0.0;
+  double dte_m = 0.0;  // s_d - B (drive line, as SampleRow::dte_m)
+  double drive_force_n = 0.0, coast_force_n = 0.0;
+  // The sensor's gear centre's acceleration along its direction
+  // ([bearings] sensor_gear, sensor_angle).
+  double sensor_acceleration_m_per_s2 = 0.0;
+};
+
 }  // namespace gearimpact

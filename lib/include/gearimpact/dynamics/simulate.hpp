@@ -230,6 +230,8 @@ struct SimulationResult {
   // With [bearings] kind = "elastic" (planar.hpp): the planar rows (with
   // RunControl::keep_series) beside `series`, and the final planar state.
   std::vector<PlanarRow> planar_series;
+  // Its samples (PlanarSample) with RunControl::sample_rate_hz and keep_samples.
+  std::vector<PlanarSample> planar_samples;
   std::optional<PlanarState> planar_final_state;
   double start_time_s = 0.0;  // 0, or the time a continued run resumed at
 };
@@ -280,6 +282,8 @@ struct RunControl {
   std::optional<double> sample_rate_hz;
   bool keep_samples = true;
   std::function<void(const SampleRow&)> on_sample;
+  // The same for the samples of a case with [bearings] kind = "elastic".
+  std::function<void(const PlanarSample&)> on_planar_sample;
   // When set, asked every kStepsBetweenStopChecks steps; true ends the run
   // with SimulationStopped. Lets a caller cancel a long run (an interactive
   // session's Ctrl-C, a time limit); it may also throw its own exception.
@@ -319,6 +323,11 @@ void refuse_planar_simulation(const SimulationCase& c);
 // sample_time_s(t0, n, rate) <= t0 + end_time_s, for t0 = 0 (about
 // floor(end_time_s rate) + 1; a continued run's start moves the end's rounding).
 double sample_count(const SimulationCase& c, double sample_rate_hz, double t0_s = 0.0);
+
+// Throws InputError naming sample_rate unless RunControl::sample_rate_hz is
+// absent, or finite and > 0 with event location and at most most_series_rows
+// samples (sample_count). simulate() and simulate_planar() call it before any work.
+void validate_sampling(const SimulationCase& c, const RunControl& control);
 
 // Throws InputError naming the first field outside its range (validate_fields),
 // then a planar case (refuse_planar), then the gaps of its modifications (validate_gaps), then

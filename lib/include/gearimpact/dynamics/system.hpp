@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/modifications.hpp"
@@ -86,6 +87,9 @@ struct ContactTotals {
 
 // T(t) of one torque.
 double torque_at(const Torque& torque, double t_s);
+// The torque of a drag (Torque::Kind::drag) on a gear turning at w:
+// -(drag_constant tanh(w / drag_speed_scale) + drag_viscous w).
+double drag_torque_n_m(const Torque& drag, double w_rad_per_s);
 // Its mean T_m over time: the constant, or the mean its fluctuation is added
 // to. Throws InputError for a user function, whose mean is not known.
 double mean_torque_n_m(const Torque& torque, const char* field);
@@ -200,11 +204,6 @@ class GearSystem {
   // own penetration dl - e_k(X) and rate dl_rate - de_k/dX dX/dt, and the
   // slope de_k/dX, on the branch of the pair's zone (Mode::zone). Without
   // gaps, the line's own penetration and rate and a slope of 0.
-  struct PairPenetration {
-    double delta_m;
-    double rate_m_s;
-    double gap_slope;
-  };
   PairPenetration pair_penetration(const Mode& m, int j, double x, double dl, double dl_rate,
                                    double x_rate) const;
   // The least gap of the pairs in the contact segment of `line` at theta1:

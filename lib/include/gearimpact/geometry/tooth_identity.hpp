@@ -50,6 +50,21 @@ inline TeethInContact teeth_of_pair(int z1, int z2, Region line, int k) {
 // The same for the teeth of `pair`.
 TeethInContact teeth_of_pair(const GearPair& pair, Region line, int k);
 
+// Where a tooth's drive flank carries, in its own gear's simulated angle: the
+// tooth meets the drive line N1 while theta mod 2 pi lies in
+// [entry_rad, entry_rad + span_rad) (that interval read modulo 2 pi). For
+// pinion tooth i, pair k = -i - m z1 sits at X = X_pitch + Rb1 theta1 + k t0
+// (MeshLayout), so with t0 = 2 pi Rb1 / z1 it is loaded while
+// theta1 - 2 pi i / z1 lies in [(X_start - X_pitch) / Rb1, (X_end - X_pitch) / Rb1];
+// a wheel tooth the same in theta2 with Rb2 where the pair rolls
+// (Rb1 theta1 = Rb2 theta2: the deflection, micrometres against the segment,
+// is left out). What a figure shades to show a faulted tooth's passage.
+struct ToothPassage {
+  double entry_rad = 0.0;  // in [0, 2 pi)
+  double span_rad = 0.0;   // the contact segment's length / Rb of the gear
+};
+ToothPassage tooth_passage(const GearPair& pair, Gear gear, int tooth);
+
 // Which gears have teeth that differ from the others.
 struct DistinctTeeth {
   bool pinion = false;

@@ -17,6 +17,12 @@ namespace gearimpact {
 // theta_load only on elastic shafts). mode counts from 1; rigid is true or false.
 std::string modes_csv(const Modes& modes);
 
+// One row per mode, as modes.csv numbers them: mode,rigid,frequency_hz, then
+// base_circle_shape's components, named x1, y1, rb1_theta1, x2, y2,
+// rb2_theta2, rb1_theta_motor, rb2_theta_load (those the model has):
+// dimensionless, the largest magnitude of each mode 1. What modes_shapes.png draws.
+std::string mode_shapes_csv(const Modes& modes);
+
 // One row per crossing: harmonic,mode,frequency_hz,pinion_speed_rad_per_s,
 // pinion_speed_rpm (mode as modes.csv numbers it).
 std::string campbell_csv(const std::vector<CampbellCrossing>& crossings);

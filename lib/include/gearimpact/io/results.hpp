@@ -42,6 +42,14 @@ void append_planar_row(std::string& out, const PlanarRow& row);
 // normal_force_n1_N,normal_force_n2_N,region,pairs
 std::string samples_csv_header();
 void append_sample_row(std::string& out, const SampleRow& row);
+// The samples of a planar run (SimulationResult::planar_samples), in pieces
+// as the series: t_s, the state as the planar series names it (x1_m, ...,
+// w_load_rad_s), the accelerations ax1_m_per_s2, ay1_m_per_s2,
+// alpha1_rad_per_s2, ax2_m_per_s2, ay2_m_per_s2, alpha2_rad_per_s2, the
+// bearing forces (bearing_fx1_N, ...), dte_m, drive_force_N, coast_force_N
+// and sensor_acceleration_m_per_s2.
+std::string planar_samples_csv_header();
+void append_planar_sample(std::string& out, const PlanarSample& sample);
 // The summary as a JSON object.
 std::string summary_json(const SimulationSummary& summary);
 // A driven run's struck impacts (struck_impacts), one row each:

@@ -105,6 +105,14 @@ struct Modes {
   std::vector<NaturalMode> modes;  // ascending frequency, the rigid ones first
 };
 
+// A mode's shape in lengths that compare across its DOFs: x and y as they
+// are, each rotation times the base radius of its gear (the motor's Rb1, the
+// load's Rb2), the motion of a point of that base circle along the line of
+// action; scaled so that its largest magnitude is 1 (the largest component
+// keeps its positive sign). A mass-normalised shape mixes 1/sqrt(kg) and
+// rad/(sqrt(kg) m), which a figure cannot put on one axis.
+Eigen::VectorXd base_circle_shape(const LinearModel& model, const NaturalMode& mode);
+
 // K v = w^2 M v by Eigen's GeneralizedSelfAdjointEigenSolver.
 Modes natural_modes(const LinearModel& model);
 
