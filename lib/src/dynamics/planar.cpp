@@ -162,20 +162,43 @@ class PlanarSystem {
       gaps_ = std::make_shared<const ToothGaps>(g, c.modifications);
       kinks_ = gaps_->kinks_m();
     }
-    if (!teeth_ && !gaps_ && constant_k_ == 0.0) {
+    if (!gaps_ && constant_k_ == 0.0) {
       // A pair stores 0.5 delta^2 c / c_total^2 in a term of compliance c
-      // (F = delta / c_total): the factor's largest value over the segment,
-      // sampled 16 times on each of the table's pieces (smooth polynomials,
-      // which move by far less than the 5 % added between two samples). A
-      // gap can be negative (pitch, thickness errors): a pair's delta may
-      // then exceed the line's, and the bound is not kept with gaps.
-      const int samples = 16 * table.pieces();
-      for (int j = 0; j <= samples; ++j) {
-        const double x = std::min(xs_ + (xe_ - xs_) * j / samples, xe_);
-        const Compliances at = table.compliance(x);
-        const double total = at.total_m_per_n();
-        for (std::size_t i = 0; i < kTermCount; ++i) {
-          term_bound_[i] = std::max(term_bound_[i], 1.05 * 0.5 * at.m_per_n[i] / (total * total));
+      // (F = delta / c_total): the factor's largest value over every table a
+      // pair can take (with faults, each pair of teeth's) and each part it
+      // carries in, sampled 16 times on each of the table's pieces (smooth
+      // polynomials, which move by far less than the 5 % added between two
+      // samples). A gap can be negative (pitch, thickness errors): a pair's
+      // delta may then exceed the line's, and the bound is not kept with gaps.
+      std::vector<const StiffnessTable*> tables{&table};
+      if (teeth_) {
+        for (const Region side : kSides) {
+          for (int i = 0; i < g.teeth1; ++i) {
+            for (int w = 0; w < g.teeth2; ++w) {
+              const StiffnessTable* t = teeth_->table_of_teeth(i, w, side);
+              if (t != nullptr && std::find(tables.begin(), tables.end(), t) == tables.end()) {
+                tables.push_back(t);
+              }
+            }
+          }
+        }
+      }
+      for (const StiffnessTable* t : tables) {
+        for (int part = 0; part < t->part_count(); ++part) {
+          if (!t->part_in_contact(part)) continue;
+          const bool whole = t->part_count() == 1;
+          const double lo = whole ? xs_ : t->part_start_m(part);
+          const double hi = whole ? xe_ : t->part_end_m(part);
+          const int samples = 16 * t->pieces();
+          for (int j = 0; j <= samples; ++j) {
+            const double x = std::min(lo + (hi - lo) * j / samples, hi);
+            const Compliances at = whole ? t->compliance(x) : t->compliance_in_part(x, part);
+            const double total = at.total_m_per_n();
+            for (std::size_t q = 0; q < kTermCount; ++q) {
+              term_bound_[q] =
+                  std::max(term_bound_[q], 1.05 * 0.5 * at.m_per_n[q] / (total * total));
+            }
+          }
         }
       }
       bounded_ = true;
@@ -762,8 +785,8 @@ class PlanarSystem {
   MeshLayout layout_;
   double rb1_ = 0.0, rb2_ = 0.0, j1_ = 0.0, j2_ = 0.0, backlash_ = 0.0, lp_ = 0.0;
   double xs_ = 0.0, xe_ = 0.0, sin_a_ = 0.0, cos_a_ = 0.0, constant_k_ = 0.0;
-  // The bound of terms_may_exceed per term, J/m^2 (bounded_ with the healthy
-  // table, without gaps).
+  // The bound of terms_may_exceed per term, J/m^2 (bounded_ without gaps or
+  // a constant stiffness).
   std::array<double, kTermCount> term_bound_{};
   bool bounded_ = false;
 };
