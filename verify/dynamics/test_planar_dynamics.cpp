@@ -22,6 +22,7 @@
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/modes/modes.hpp"
 #include "gearimpact/paper/table1.hpp"
+#include "gearimpact/stiffness/mesh_tables.hpp"
 #include "gearimpact/stiffness/table.hpp"
 #include "gearimpact/stiffness/terms.hpp"
 #include "gearimpact/stiffness/tooth_state.hpp"
@@ -631,6 +632,78 @@ TEST_CASE("a kinematic driver acts on the planar model as on the torsional one")
     REQUIRE(r.summary.planar);
     CHECK(r.summary.planar->shaft_energy_final_j > 0.0);
     CHECK(r.summary.ledger_residual_max_j < 1e-8 * r.summary.ledger_scale_j);
+  }
+}
+
+TEST_CASE("the ledger's largest energy of each term is that of the steps' states") {
+  // A pair carrying F stores F^2 c / 2 in a term of compliance c, F = delta /
+  // c_total: written out here from each step's row (the loaded pairs at
+  // theta1, their teeth's table's compliances there), against the summary's
+  // maxima. The run passes from two pairs to one and back, where the terms
+  // share the load differently; the ledger skips the terms at a step that
+  // cannot raise a maximum, and must not miss one that does, healthy or with
+  // a cracked tooth (whose table's terms bound the others).
+  for (const bool cracked : {false, true}) {
+    INFO("cracked " << cracked);
+    SimulationCase c = loaded_case(1e9, 400.0);
+    c.model.mesh_stiffness = MeshStiffnessMode::time_varying;
+    c.integrator.end_time_s = 4e-3;
+    if (cracked) {
+      // Tooth 1 meshes during the run (the missing-tooth case above).
+      ToothFault crack;
+      crack.gear = Gear::one;
+      crack.tooth = 1;
+      crack.state.kind = ToothKind::root_crack;
+      crack.state.crack.depth_m = 0.8e-3;
+      crack.state.crack.angle_rad = pi / 4;
+      c.faults.push_back(crack);
+    }
+    const StiffnessTable healthy(c.gears, c.model.stiffness);
+    const MeshTables teeth(c.gears, c.model.stiffness, c.faults);
+    const MeshLayout layout(c.gears, c.model.coast_phase);
+    const SimulationResult r = simulate(c, healthy);
+    std::array<double, kTermCount> most{};
+    std::array<bool, 2> pair_counts{};  // one pair, two pairs seen
+    bool crack_loaded = false;
+    bool same_pairs = true;  // the layout's loaded pairs are loaded_pairs'
+    // From the first step's end: the initial state is no step's.
+    for (std::size_t row = 1; row < r.planar_series.size(); ++row) {
+      const PlanarRow& p = r.planar_series[row];
+      std::array<double, kTermCount> u{};
+      for (const auto line : {Region::n1, Region::n2}) {
+        const double delta = line == Region::n1 ? p.drive_penetration_m : p.coast_penetration_m;
+        if (delta <= 0.0) continue;
+        const LoadedPairs pairs =
+            loaded_pairs(c.gears, line, p.state.theta1_rad, c.model.coast_phase);
+        const double ref = layout.reference_m(line, p.state.theta1_rad);
+        const LoadedRange range = layout.loaded(ref);
+        same_pairs = same_pairs && static_cast<std::size_t>(range.count) == pairs.count;
+        if (line == Region::n1) pair_counts[std::min<std::size_t>(pairs.count, 2) - 1] = true;
+        for (std::size_t k = 0; k < pairs.count; ++k) {
+          const StiffnessTable* table = teeth.table(line, range.k_first + static_cast<int>(k));
+          crack_loaded = crack_loaded || table != &teeth.healthy();
+          const Compliances at = table->compliance(pairs.position_m[k]);
+          const double force = delta / at.total_m_per_n();
+          for (std::size_t i = 0; i < kTermCount; ++i) {
+            u[i] += 0.5 * force * force * at.m_per_n[i];
+          }
+        }
+      }
+      for (std::size_t i = 0; i < kTermCount; ++i) most[i] = std::max(most[i], u[i]);
+    }
+    CHECK(pair_counts[0]);
+    CHECK(pair_counts[1]);
+    CHECK(same_pairs);
+    CHECK(crack_loaded == cracked);
+    // The paper's model has no shear or foundation term: those store nothing.
+    CHECK(most[index_of(Term::hertz)] > 0.0);
+    CHECK(most[index_of(Term::bending)] > 0.0);
+    for (std::size_t i = 0; i < kTermCount; ++i) {
+      INFO(std::string(kTerms[i].id));
+      const double reported = r.summary.energy_max_j[i];
+      // The same products summed in another order: a few rounding errors.
+      CHECK(std::fabs(reported - most[i]) <= 1e-12 * most[i]);
+    }
   }
 }
 

@@ -162,6 +162,47 @@ class PlanarSystem {
       gaps_ = std::make_shared<const ToothGaps>(g, c.modifications);
       kinks_ = gaps_->kinks_m();
     }
+    if (!gaps_ && constant_k_ == 0.0) {
+      // A pair stores 0.5 delta^2 c / c_total^2 in a term of compliance c
+      // (F = delta / c_total): the factor's largest value over every table a
+      // pair can take (with faults, each pair of teeth's) and each part it
+      // carries in, sampled 16 times on each of the table's pieces (smooth
+      // polynomials, which move by far less than the 5 % added between two
+      // samples). A gap can be negative (pitch, thickness errors): a pair's
+      // delta may then exceed the line's, and the bound is not kept with gaps.
+      std::vector<const StiffnessTable*> tables{&table};
+      if (teeth_) {
+        for (const Region side : kSides) {
+          for (int i = 0; i < g.teeth1; ++i) {
+            for (int w = 0; w < g.teeth2; ++w) {
+              const StiffnessTable* t = teeth_->table_of_teeth(i, w, side);
+              if (t != nullptr && std::find(tables.begin(), tables.end(), t) == tables.end()) {
+                tables.push_back(t);
+              }
+            }
+          }
+        }
+      }
+      for (const StiffnessTable* t : tables) {
+        for (int part = 0; part < t->part_count(); ++part) {
+          if (!t->part_in_contact(part)) continue;
+          const bool whole = t->part_count() == 1;
+          const double lo = whole ? xs_ : t->part_start_m(part);
+          const double hi = whole ? xe_ : t->part_end_m(part);
+          const int samples = 16 * t->pieces();
+          for (int j = 0; j <= samples; ++j) {
+            const double x = std::min(lo + (hi - lo) * j / samples, hi);
+            const Compliances at = whole ? t->compliance(x) : t->compliance_in_part(x, part);
+            const double total = at.total_m_per_n();
+            for (std::size_t q = 0; q < kTermCount; ++q) {
+              term_bound_[q] =
+                  std::max(term_bound_[q], 1.05 * 0.5 * at.m_per_n[q] / (total * total));
+            }
+          }
+        }
+      }
+      bounded_ = true;
+    }
     mesh_damping_ = case_mesh_damping_n_s_per_m(c, table, teeth_.get());
     drag_ = c.torque2.kind == Torque::Kind::drag;
     driven_ = c.torque1.kind == Torque::Kind::prescribed_speed;
@@ -301,6 +342,26 @@ class PlanarSystem {
       }
     }
     return u;
+  }
+
+  // Whether a term's energy at y in the mode (mesh_terms) could exceed its
+  // entry of `most`: not when the bound above stays below every entry, and
+  // the ledger then need not evaluate the terms (most steps, once the
+  // largest penetration has passed).
+  bool terms_may_exceed(const Y& y, const PlanarMode& mode,
+                        const std::array<double, kTermCount>& most) const {
+    if (!bounded_) return true;
+    double squares = 0.0;  // delta^2 summed over the loaded pairs
+    for (const Region side : kSides) {
+      const SideMode& m = mode[side_index(side)];
+      if (!m.contact) continue;
+      const double dl = penetration(side, y).first;
+      squares += m.range.count * dl * dl;
+    }
+    for (std::size_t i = 0; i < kTermCount; ++i) {
+      if (term_bound_[i] * squares > most[i]) return true;
+    }
+    return false;
   }
 
   // The side's contact, loaded pairs, their parts and with gaps which of
@@ -604,12 +665,12 @@ class PlanarSystem {
       driven_acceleration = driver_motion(c_.torque1, driver_theta0_, t).acceleration_rad_per_s2;
       if (!m_.shafts) t1 = j1_ * driven_acceleration - moment1;
     } else {
-      t1 = torque_at(c_.torque1, t);
+      t1 = torque(c_.torque1, t);
     }
     // A drag opposes the turning of the body it acts on: the load on its
     // shaft, else the wheel.
     double t2 = kOptions && drag_ ? drag_torque_n_m(c_.torque2, m_.shafts ? v[kTl] : w2)
-                                  : torque_at(c_.torque2, t);
+                                  : torque(c_.torque2, t);
     double shaft_power = 0.0;
     // Without shafts the motor and the load are not bodies: their entries
     // stay as they started, and the outputs report the gears' own.
@@ -649,6 +710,12 @@ class PlanarSystem {
     dy[kShaftLoss] = shaft_power;
     dy[kMeshDamperLoss] = mesh_damping_power;
     if (kOptions && driven_) dy[kVelocity + driven_index_] = driven_acceleration;
+  }
+
+  // torque_at without its call for a constant torque, the common case
+  // (the call costs as much as a pair's forces).
+  static double torque(const Torque& q, double t) {
+    return q.kind == Torque::Kind::constant ? q.constant_n_m : torque_at(q, t);
   }
 
  public:
@@ -718,6 +785,10 @@ class PlanarSystem {
   MeshLayout layout_;
   double rb1_ = 0.0, rb2_ = 0.0, j1_ = 0.0, j2_ = 0.0, backlash_ = 0.0, lp_ = 0.0;
   double xs_ = 0.0, xe_ = 0.0, sin_a_ = 0.0, cos_a_ = 0.0, constant_k_ = 0.0;
+  // The bound of terms_may_exceed per term, J/m^2 (bounded_ without gaps or
+  // a constant stiffness).
+  std::array<double, kTermCount> term_bound_{};
+  bool bounded_ = false;
 };
 
 void require(bool ok, const char* key, double value, const char* allowed) {
@@ -1192,9 +1263,11 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     const double energy =
         system.kinetic_energy(y) + mesh + system.bearing_energy(y) + system.shaft_energy(y);
     s.ledger_scale_j = std::max(s.ledger_scale_j, energy);
-    const ElasticEnergy terms = system.mesh_terms(y, mode);
-    for (std::size_t i = 0; i < kTermCount; ++i) {
-      s.energy_max_j[i] = std::max(s.energy_max_j[i], terms.j[i]);
+    if (system.terms_may_exceed(y, mode, s.energy_max_j)) {
+      const ElasticEnergy terms = system.mesh_terms(y, mode);
+      for (std::size_t i = 0; i < kTermCount; ++i) {
+        s.energy_max_j[i] = std::max(s.energy_max_j[i], terms.j[i]);
+      }
     }
     const double residual = energy - energy0 - y[kWork] + y[kHertzLoss] + y[kSlidingLoss] +
                             y[kBearingLoss] + y[kShaftLoss] + y[kMeshDamperLoss] - y[kParametric] -
