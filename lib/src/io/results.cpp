@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdio>
+#include <initializer_list>
 #include <limits>
 #include <map>
 #include <string>
@@ -40,50 +41,46 @@ std::string planar_series_csv_header() {
 
 namespace {
 
-// Numbers as a CSV line, each "%.17g".
-template <std::size_t N>
-void append_numbers(std::string& out, const double (&values)[N]) {
+// Numbers as a CSV line, each "%.17g": a time, the planar state in the
+// column order both planar headers share, then the row's own values.
+void append_numbers(std::string& out, double t, const PlanarState& q,
+                    std::initializer_list<double> rest) {
+  const double state[] = {t,
+                          q.x1_m,
+                          q.y1_m,
+                          q.theta1_rad,
+                          q.x2_m,
+                          q.y2_m,
+                          q.theta2_rad,
+                          q.vx1_m_s,
+                          q.vy1_m_s,
+                          q.w1_rad_per_s,
+                          q.vx2_m_s,
+                          q.vy2_m_s,
+                          q.w2_rad_per_s,
+                          q.theta_motor_rad,
+                          q.theta_load_rad,
+                          q.w_motor_rad_per_s,
+                          q.w_load_rad_per_s};
   char number[32];
   bool first = true;
-  for (const double v : values) {
+  const auto append = [&](double v) {
     if (!first) out += ',';
     first = false;
     const int n = std::snprintf(number, sizeof number, "%.17g", v);
     out.append(number, static_cast<std::size_t>(n));
-  }
+  };
+  for (const double v : state) append(v);
+  for (const double v : rest) append(v);
   out += '\n';
 }
 
 }  // namespace
 
 void append_planar_row(std::string& out, const PlanarRow& r) {
-  const PlanarState& q = r.state;
-  const double values[] = {r.t_s,
-                           q.x1_m,
-                           q.y1_m,
-                           q.theta1_rad,
-                           q.x2_m,
-                           q.y2_m,
-                           q.theta2_rad,
-                           q.vx1_m_s,
-                           q.vy1_m_s,
-                           q.w1_rad_per_s,
-                           q.vx2_m_s,
-                           q.vy2_m_s,
-                           q.w2_rad_per_s,
-                           q.theta_motor_rad,
-                           q.theta_load_rad,
-                           q.w_motor_rad_per_s,
-                           q.w_load_rad_per_s,
-                           r.bearing_fx1_n,
-                           r.bearing_fy1_n,
-                           r.bearing_fx2_n,
-                           r.bearing_fy2_n,
-                           r.drive_force_n,
-                           r.coast_force_n,
-                           r.drive_penetration_m,
-                           r.coast_penetration_m};
-  append_numbers(out, values);
+  append_numbers(out, r.t_s, r.state,
+                 {r.bearing_fx1_n, r.bearing_fy1_n, r.bearing_fx2_n, r.bearing_fy2_n,
+                  r.drive_force_n, r.coast_force_n, r.drive_penetration_m, r.coast_penetration_m});
 }
 
 std::string planar_samples_csv_header() {
@@ -95,39 +92,11 @@ std::string planar_samples_csv_header() {
 }
 
 void append_planar_sample(std::string& out, const PlanarSample& r) {
-  const PlanarState& q = r.state;
-  const double values[] = {r.t_s,
-                           q.x1_m,
-                           q.y1_m,
-                           q.theta1_rad,
-                           q.x2_m,
-                           q.y2_m,
-                           q.theta2_rad,
-                           q.vx1_m_s,
-                           q.vy1_m_s,
-                           q.w1_rad_per_s,
-                           q.vx2_m_s,
-                           q.vy2_m_s,
-                           q.w2_rad_per_s,
-                           q.theta_motor_rad,
-                           q.theta_load_rad,
-                           q.w_motor_rad_per_s,
-                           q.w_load_rad_per_s,
-                           r.ax1_m_per_s2,
-                           r.ay1_m_per_s2,
-                           r.alpha1_rad_per_s2,
-                           r.ax2_m_per_s2,
-                           r.ay2_m_per_s2,
-                           r.alpha2_rad_per_s2,
-                           r.bearing_fx1_n,
-                           r.bearing_fy1_n,
-                           r.bearing_fx2_n,
-                           r.bearing_fy2_n,
-                           r.dte_m,
-                           r.drive_force_n,
-                           r.coast_force_n,
-                           r.sensor_acceleration_m_per_s2};
-  append_numbers(out, values);
+  append_numbers(
+      out, r.t_s, r.state,
+      {r.ax1_m_per_s2, r.ay1_m_per_s2, r.alpha1_rad_per_s2, r.ax2_m_per_s2, r.ay2_m_per_s2,
+       r.alpha2_rad_per_s2, r.bearing_fx1_n, r.bearing_fy1_n, r.bearing_fx2_n, r.bearing_fy2_n,
+       r.dte_m, r.drive_force_n, r.coast_force_n, r.sensor_acceleration_m_per_s2});
 }
 
 std::string samples_csv_header() {
