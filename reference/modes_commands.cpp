@@ -92,6 +92,12 @@ std::optional<double> running_speed(const SimulationCase& c) {
   return std::fabs(w);
 }
 
+// The x tics of a bar per mode, from columns 1-3 (mode, rigid, frequency_hz)
+// that modes.csv and mode_shapes.csv share.
+constexpr const char* kModeTics =
+    ":xtic((strcol(2) eq 'true') ? sprintf('%d: rigid', int($1)) : "
+    "sprintf('%d: %.5g Hz', int($1), $3))";
+
 // Each elastic mode as a bar split into its strain-energy shares.
 Figure energy_figure(const SimulationCase& c) {
   Figure f;
@@ -118,9 +124,7 @@ Figure energy_figure(const SimulationCase& c) {
     if ((part == 3 || part == 4) && !elastic_shafts) continue;
     std::string series = "'modes.csv' using " + std::to_string(5 + part);
     if (part == 0) {
-      series +=
-          ":xtic((strcol(2) eq 'true') ? sprintf('%d: rigid', int($1)) : "
-          "sprintf('%d: %.5g Hz', int($1), $3))";
+      series += kModeTics;
     }
     f.series.push_back(series + " title '" + titles[part] + "'");
   }
@@ -150,9 +154,7 @@ Figure shapes_figure(const SimulationCase& c, const Modes& modes) {
     if (dof == Dof::theta2 || dof == Dof::theta_load) label = "Rb2 " + label;
     std::string series = "'mode_shapes.csv' using " + std::to_string(4 + k);
     if (k == 0) {
-      series +=
-          ":xtic((strcol(2) eq 'true') ? sprintf('%d: rigid', int($1)) : "
-          "sprintf('%d: %.5g Hz', int($1), $3))";
+      series += kModeTics;
     }
     f.series.push_back(series + " title '" + label + "'");
   }
