@@ -33,15 +33,6 @@ double effective_mass_kg(const GearPair& pair) {
   return 1.0 / inverse_effective_mass_per_kg(pair);
 }
 
-StiffnessAndDerivative pair_stiffness_continued(const StiffnessTable& table, int part, double x_m,
-                                                double start_m, double end_m) {
-  const double xc = std::clamp(x_m, start_m, end_m);
-  StiffnessAndDerivative k = part >= 0 ? table.stiffness_and_derivative_in_part(xc, part)
-                                       : table.stiffness_and_derivative(xc);
-  k.stiffness_n_per_m += k.derivative_n_per_m2 * (x_m - xc);
-  return k;
-}
-
 double viscous_mesh_damping_n_s_per_m(double damping_ratio, double mesh_stiffness_n_per_m,
                                       double effective_mass_kg) {
   if (!std::isfinite(damping_ratio) || damping_ratio < 0.0) {

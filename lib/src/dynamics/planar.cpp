@@ -101,6 +101,9 @@ struct Forces {
   std::array<double, 2> normal_n{};  // summed over each side's pairs
   std::array<double, 2> penetration_m{};
   double friction_n = 0.0;  // Ff of (35)-(38) summed over both sides' pairs
+  // Each side's stored energy in the mode, PlanarSystem::mesh_energy's sum
+  // (so that the step's ledger takes it from the next step's first stage).
+  std::array<double, 2> mesh_energy_j{};
 };
 
 // What stays constant during a step on one side, as the torsional Mode does:
@@ -113,7 +116,16 @@ struct Forces {
 struct SideMode {
   bool contact = false;
   LoadedRange range;
+  // Each loaded pair's table (PlanarSystem::pair_table, nullptr: a missing
+  // tooth), found once a mode: finding it takes integer remainders, which the
+  // right-hand side would otherwise pay for every pair at every stage.
+  std::array<const StiffnessTable*, kMaxPairs> table{};
   std::array<int, kMaxPairs> part{};
+  // What pair_stiffness_continued reads Ke in: the part of a table cut at a
+  // fault's edges (-1: the whole table) and the ends it continues beyond.
+  std::array<int, kMaxPairs> series{};
+  std::array<double, kMaxPairs> series_start_m{};
+  std::array<double, kMaxPairs> series_end_m{};
   // With gaps only (without, every pair of a side in contact touches).
   std::array<bool, kMaxPairs> touching{};
   std::array<int, kMaxPairs> zone{};
@@ -143,6 +155,12 @@ class PlanarSystem {
     rb2_ = base_radius(g, Gear::two);
     j1_ = moment_of_inertia(g, Gear::one);
     j2_ = moment_of_inertia(g, Gear::two);
+    // The inverse masses, so that each stage multiplies: a division's latency
+    // sits on the path from one RK4 stage to the next.
+    inverse_mass_ = {1.0 / m.mass_kg[0], 1.0 / m.mass_kg[0], 1.0 / j1_,
+                     1.0 / m.mass_kg[1], 1.0 / m.mass_kg[1], 1.0 / j2_,
+                     m.shafts ? 1.0 / m.motor_inertia_kg_m2 : 0.0,
+                     m.shafts ? 1.0 / m.load_inertia_kg_m2 : 0.0};
     backlash_ = g.backlash_m;
     lp_ = line_of_action_length(g);
     xs_ = layout_.start_m();
@@ -265,32 +283,27 @@ class PlanarSystem {
     return teeth_ ? teeth_->table(side, k) : &table_;
   }
 
-  // Whether pair k on `side` can carry in its part `part`: not with a
+  // Whether pair j of the side's mode m can carry in its part: not with a
   // missing tooth, nor over a fault across the whole face.
-  bool carries(Region side, int k, int part) const {
-    const StiffnessTable* table = pair_table(side, k);
-    return table != nullptr && table->part_in_contact(part);
+  static bool carries(const SideMode& m, int j) {
+    return m.table[j] != nullptr && m.table[j]->part_in_contact(m.part[j]);
   }
 
-  // Ke of pair k of `count` loaded pairs on `side` at X and dKe/dX, from its
-  // part `part` (SideMode::part), continued along its tangent beyond the
-  // segment or the part (pair_stiffness_continued): a stage state of a step
-  // that ends on a pair's entry, exit or a fault's edge reaches a hair past it.
-  std::pair<double, double> pair_stiffness(Region side, int k, int count, int part,
-                                           double x) const {
-    if (constant_k_ > 0.0) return {constant_k_ / count, 0.0};
-    const StiffnessTable& table = *pair_table(side, k);
-    const StiffnessAndDerivative s =
-        table.part_count() > 1 ? pair_stiffness_continued(table, part, x, table.part_start_m(part),
-                                                          table.part_end_m(part))
-                               : pair_stiffness_continued(table, -1, x, xs_, xe_);
+  // Ke of pair j of the side's mode m at X and dKe/dX, from its part
+  // (SideMode::part), continued along its tangent beyond the segment or the
+  // part (pair_stiffness_continued): a stage state of a step that ends on a
+  // pair's entry, exit or a fault's edge reaches a hair past it.
+  std::pair<double, double> pair_stiffness(const SideMode& m, int j, double x) const {
+    if (constant_k_ > 0.0) return {constant_k_ / m.range.count, 0.0};
+    const StiffnessAndDerivative s = pair_stiffness_continued(
+        *m.table[j], m.series[j], x, m.series_start_m[j], m.series_end_m[j]);
     return {s.stiffness_n_per_m, s.derivative_n_per_m2};
   }
 
   // Whether pair j of the side's mode m carries a force: it can carry (its
   // table, its part) and, with gaps, touches.
-  bool pair_loaded(Region side, const SideMode& m, int j) const {
-    return carries(side, m.range.k_first + j, m.part[j]) && (!gaps_ || m.touching[j]);
+  bool pair_loaded(const SideMode& m, int j) const {
+    return carries(m, j) && (!gaps_ || m.touching[j]);
   }
 
   // The mesh's stored energy of `side` at y in the side's mode m: each pair
@@ -301,11 +314,10 @@ class PlanarSystem {
     const double ref = layout_.reference_m(side, y[kT1]);
     double u = 0.0;
     for (int j = 0; j < m.range.count; ++j) {
-      if (!pair_loaded(side, m, j)) continue;
-      const int k = m.range.k_first + j;
-      const double x = layout_.position_m(ref, k);
+      if (!pair_loaded(m, j)) continue;
+      const double x = layout_.position_m(ref, m.range.k_first + j);
       const double dk = pair_penetration(side, m, j, x, dl, 0.0, 0.0).delta_m;
-      u += 0.5 * pair_stiffness(side, k, m.range.count, m.part[j], x).first * dk * dk;
+      u += 0.5 * pair_stiffness(m, j, x).first * dk * dk;
     }
     return u;
   }
@@ -320,15 +332,14 @@ class PlanarSystem {
       const double line_dl = penetration(side, y).first;
       const double ref = layout_.reference_m(side, y[kT1]);
       for (int j = 0; j < m.range.count; ++j) {
-        if (!pair_loaded(side, m, j)) continue;
-        const int k = m.range.k_first + j;
-        const double x = layout_.position_m(ref, k);
+        if (!pair_loaded(m, j)) continue;
+        const double x = layout_.position_m(ref, m.range.k_first + j);
         const double dl = pair_penetration(side, m, j, x, line_dl, 0.0, 0.0).delta_m;
         if (constant_k_ > 0.0) {
           u.j[index_of(Term::hertz)] += 0.5 * constant_k_ / m.range.count * dl * dl;
           continue;
         }
-        const StiffnessTable& table = *pair_table(side, k);
+        const StiffnessTable& table = *m.table[j];
         // At a fault's edge, the side of the pair's part: the jump between
         // the two is booked at the event.
         const Compliances c =
@@ -381,10 +392,13 @@ class PlanarSystem {
         m.touching[j] = dl - gaps_->gap_m(side, k, x) > 0.0;
         m.zone[j] = gap_zone(kinks_, x);
       }
-      if (!teeth_) continue;
       const StiffnessTable* table = pair_table(side, k);
-      m.part[j] =
-          table != nullptr && table->part_count() > 1 ? table->part_of(std::clamp(x, xs_, xe_)) : 0;
+      m.table[j] = table;
+      const bool cut = table != nullptr && table->part_count() > 1;
+      m.part[j] = cut ? table->part_of(std::clamp(x, xs_, xe_)) : 0;
+      m.series[j] = cut ? m.part[j] : -1;
+      m.series_start_m[j] = cut ? table->part_start_m(m.part[j]) : xs_;
+      m.series_end_m[j] = cut ? table->part_end_m(m.part[j]) : xe_;
     }
     return m;
   }
@@ -392,8 +406,9 @@ class PlanarSystem {
   // The friction sign and clipping of each pair of the side's mode m at y.
   void classify_forces(Region side, const Y& y, const ContactMemory& memory, SideMode& m) const {
     if (!m.contact) return;
+    const auto [dl, dl_rate] = penetration(side, y);
     for (int j = 0; j < m.range.count; ++j) {
-      const PairMotion p = pair_motion(side, y, memory, m, j, true);
+      const PairMotion p = pair_motion(side, y, dl, dl_rate, memory, m, j, true);
       m.slip[j] = p.sliding_m_s >= 0.0 ? 1.0 : -1.0;
       m.clipped[j] = p.push_n < 0.0;
     }
@@ -429,7 +444,7 @@ class PlanarSystem {
       g[n++] = layout_.position_m(ref, last + 1) - xe_;
       const double x_rate = line_sign(side) * rb1_ * y[kVelocity + kT1];
       for (int j = 0; j < m.range.count; ++j) {
-        const StiffnessTable* table = pair_table(side, first + j);
+        const StiffnessTable* table = m.table[j];
         const double x = layout_.position_m(ref, first + j);
         if (table != nullptr && table->part_count() > 1) {
           // Ke jumps at the ends of the pair's part inside the segment (a fault's edges).
@@ -452,7 +467,7 @@ class PlanarSystem {
           g[n++] = zone > 0 ? x - kinks_[zone - 1] : 1.0;
           g[n++] = zone < kinks_.size() ? kinks_[zone] - x : 1.0;
         }
-        const PairMotion p = pair_motion(side, y, memory[i], m, j, true);
+        const PairMotion p = pair_motion(side, y, dl, dl_rate, memory[i], m, j, true);
         // A smoothed sign has no switch to locate.
         g[n++] = c_.model.friction_smoothing_speed_m_s > 0.0 || m.slip_per_stage
                      ? 1.0
@@ -514,18 +529,19 @@ class PlanarSystem {
   // classification want no more); ke, dke and elastic_n are then not set.
   // kGaps false compiles out the gaps, for the right-hand side of a run
   // without them (motion<false>).
+  // dl and dl_rate: the side's penetration(side, y).
   template <bool kGaps = true>
-  PairMotion pair_motion(Region side, const Y& y, const ContactMemory& memory, const SideMode& m,
-                         int j, bool sign_only = false) const {
+  PairMotion pair_motion(Region side, const Y& y, double dl, double dl_rate,
+                         const ContactMemory& memory, const SideMode& m, int j,
+                         bool sign_only = false) const {
     const double* v = &y[kVelocity];
-    const auto [dl, dl_rate] = penetration(side, y);
     const auto n = normal(side);
     const int k = m.range.k_first + j;
     PairMotion p;
     p.x_m = layout_.position_m(layout_.reference_m(side, y[kT1]), k);
     const double slide_of_centres = (v[kX1] - v[kX2]) * -n[1] + (v[kY1] - v[kY2]) * n[0];
     p.sliding_m_s = sliding_speed(v[kT1], v[kT2], p.x_m, lp_) + slide_of_centres;
-    if (!carries(side, k, m.part[j]) || (kGaps && gaps_ && !m.touching[j])) return p;
+    if (!carries(m, j) || (kGaps && gaps_ && !m.touching[j])) return p;
     p.carries = true;
     p.own = kGaps
                 ? pair_penetration(side, m, j, p.x_m, dl, dl_rate, line_sign(side) * rb1_ * v[kT1])
@@ -536,7 +552,7 @@ class PlanarSystem {
       p.push_n = dk * (1.0 + memory.damping_per_stiffness_s_m * dk_rate);
       return p;
     }
-    std::tie(p.ke, p.dke) = pair_stiffness(side, k, m.range.count, m.part[j], p.x_m);
+    std::tie(p.ke, p.dke) = pair_stiffness(m, j, p.x_m);
     p.elastic_n = elastic_force(p.ke, dk);
     const double d = c_.model.damping_stiffness == DampingStiffness::current_pair
                          ? memory.damping_per_stiffness_s_m * p.ke
@@ -585,7 +601,7 @@ class PlanarSystem {
       // and clipping are the mode's, whatever a stage state says: the forces
       // stay smooth within a step.
       if (!m.contact) continue;
-      const double dl = penetration(side, y).first;
+      const auto [dl, dl_rate] = penetration(side, y);
       const double sign = line_sign(side);
       const auto n = normal(side);
       // t = e_z x n: the flanks' common tangent, along which friction acts.
@@ -594,7 +610,7 @@ class PlanarSystem {
       const double x_rate = sign * rb1_ * w1;
       double total = 0.0;
       for (int j = 0; j < m.range.count; ++j) {
-        const PairMotion p = pair_motion<kOptions>(side, y, memory[i], m, j);
+        const PairMotion p = pair_motion<kOptions>(side, y, dl, dl_rate, memory[i], m, j);
         // A pair that carries no force: no damping, no friction.
         if (!p.carries) continue;
         const double x = p.x_m;
@@ -628,7 +644,10 @@ class PlanarSystem {
         // mesh's as in the torsional system.
         if (kOptions && gaps_) parametric_power -= normal_n * p.own.gap_slope * x_rate;
         total += normal_n;
-        if (forces != nullptr) forces->friction_n += ff;
+        if (forces != nullptr) {
+          forces->friction_n += ff;
+          forces->mesh_energy_j[i] += 0.5 * p.ke * dk * dk;
+        }
       }
       if (forces != nullptr) {
         forces->normal_n[i] = total;
@@ -687,8 +706,8 @@ class PlanarSystem {
       const double shaft_l =
           m_.load_stiffness_n_m_per_rad * (y[kTl] - y[kT2]) + m_.load_damping_n_m_s_per_rad * rel_l;
       if (kOptions && driven_) t1 = m_.motor_inertia_kg_m2 * driven_acceleration + shaft_m;
-      dy[kVelocity + kTm] = (t1 - shaft_m) / m_.motor_inertia_kg_m2;
-      dy[kVelocity + kTl] = (t2 - shaft_l) / m_.load_inertia_kg_m2;
+      dy[kVelocity + kTm] = (t1 - shaft_m) * inverse_mass_[kTm];
+      dy[kVelocity + kTl] = (t2 - shaft_l) * inverse_mass_[kTl];
       work = t1 * v[kTm] + t2 * v[kTl];
       shaft_power = m_.motor_damping_n_m_s_per_rad * rel_m * rel_m +
                     m_.load_damping_n_m_s_per_rad * rel_l * rel_l;
@@ -696,12 +715,12 @@ class PlanarSystem {
       t2 = shaft_l;
     }
     for (const std::size_t q : {kX1, kY1, kT1, kX2, kY2, kT2}) dy[q] = v[q];
-    dy[kVelocity + kX1] = f1[0] / m_.mass_kg[0];
-    dy[kVelocity + kY1] = f1[1] / m_.mass_kg[0];
-    dy[kVelocity + kT1] = (t1 + moment1) / j1_;
-    dy[kVelocity + kX2] = f2[0] / m_.mass_kg[1];
-    dy[kVelocity + kY2] = f2[1] / m_.mass_kg[1];
-    dy[kVelocity + kT2] = (t2 + moment2) / j2_;
+    dy[kVelocity + kX1] = f1[0] * inverse_mass_[kX1];
+    dy[kVelocity + kY1] = f1[1] * inverse_mass_[kY1];
+    dy[kVelocity + kT1] = (t1 + moment1) * inverse_mass_[kT1];
+    dy[kVelocity + kX2] = f2[0] * inverse_mass_[kX2];
+    dy[kVelocity + kY2] = f2[1] * inverse_mass_[kY2];
+    dy[kVelocity + kT2] = (t2 + moment2) * inverse_mass_[kT2];
     dy[kWork] = work;
     dy[kHertzLoss] = hertz_power;
     dy[kSlidingLoss] = friction_power;
@@ -751,7 +770,7 @@ class PlanarSystem {
       const double pitch = pitch_point_position(c_.gears);
       int nearest = -1;
       for (int j = 0; j < m.range.count; ++j) {
-        if (!carries(side, m.range.k_first + j, m.part[j])) continue;
+        if (!carries(m, j)) continue;
         if (nearest < 0 ||
             std::fabs(layout_.position_m(ref, m.range.k_first + j) - pitch) <
                 std::fabs(layout_.position_m(ref, m.range.k_first + nearest) - pitch)) {
@@ -759,10 +778,8 @@ class PlanarSystem {
         }
       }
       if (nearest >= 0) {
-        const int k = m.range.k_first + nearest;
         memory.frozen_stiffness_n_per_m =
-            pair_stiffness(side, k, m.range.count, m.part[nearest], layout_.position_m(ref, k))
-                .first;
+            pair_stiffness(m, nearest, layout_.position_m(ref, m.range.k_first + nearest)).first;
       }
     }
     return memory;
@@ -784,6 +801,7 @@ class PlanarSystem {
   bool options_ = false;  // any of the four above
   MeshLayout layout_;
   double rb1_ = 0.0, rb2_ = 0.0, j1_ = 0.0, j2_ = 0.0, backlash_ = 0.0, lp_ = 0.0;
+  std::array<double, kVelocity> inverse_mass_{};  // 1/m or 1/J of each position
   double xs_ = 0.0, xe_ = 0.0, sin_a_ = 0.0, cos_a_ = 0.0, constant_k_ = 0.0;
   // The bound of terms_may_exceed per term, J/m^2 (bounded_ without gaps or
   // a constant stiffness).
@@ -1152,22 +1170,26 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   double jump_work = 0.0;
   record(0.0);
   Y next{};
+  // f(t, y) in the mode: each step's first stage, evaluated at the end of the
+  // step before (after its events), where its mesh energy serves the ledger.
   Y k1{};
+  Forces at_start;
+  system.rhs(0.0, y, mode, memory, k1, &at_start);
+  s.rhs_evaluations += 1;
   double t = 0.0;
   int stalled = 0;
+  Stages stages{};
+  Stages* const dense = sample_total > 0 ? &stages : nullptr;
   for (long long n = 1; n <= steps;) {
     // The last step ends at end_time exactly, where the last sample may be.
     const double t_grid = n == steps
                               ? c.integrator.end_time_s
                               : std::min(static_cast<double>(n) * h, c.integrator.end_time_s);
-    Stages stages{};
-    Stages* const dense = sample_total > 0 ? &stages : nullptr;
-    system.rhs(t, y, mode, memory, k1);
     rk4_from(system, t, y, k1, t_grid - t, mode, memory, next, dense);
     // A driven body ends each step (and each trial of the location) where
     // its closed form is: the event values see the state the step keeps.
     system.impose_driver(t_grid, next);
-    s.rhs_evaluations += 4;
+    s.rhs_evaluations += 3;
     double t_next = t_grid;
     const bool event = !system.mode_holds(next, mode, memory);
     if (event) {
@@ -1225,16 +1247,11 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     y = next;
     t = t_next;
     ++s.steps;
-    double mesh = mesh_energy(y);
+    double before = 0.0;
     if (event) {
       ++s.events;
-      // A pair that entered or left, or crossed a fault's edge, takes or
-      // releases its stored energy: work of the time-varying stiffness,
-      // booked at the event.
-      const double before = mesh;
+      before = mesh_energy(y);
       classify(t);
-      mesh = mesh_energy(y);
-      jump_work += mesh - before;
     } else if (stepped_per_stage) {
       // The sticking goes on while a pair's sliding still changed sign over
       // the step; once every pair slid one way through a whole step, its
@@ -1258,6 +1275,15 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
       mode[0].slip_per_stage = true;
       mode[1].slip_per_stage = true;
     }
+    // The next step's first stage, in the mode the run now holds.
+    at_start = Forces{};
+    system.rhs(t, y, mode, memory, k1, &at_start);
+    s.rhs_evaluations += 1;
+    const double mesh = at_start.mesh_energy_j[0] + at_start.mesh_energy_j[1];
+    // A pair that entered or left, or crossed a fault's edge, takes or
+    // releases its stored energy: work of the time-varying stiffness, booked
+    // at the event.
+    if (event) jump_work += mesh - before;
     s.max_penetration_m = std::max({s.max_penetration_m, system.contact_value(Region::n1, y),
                                     system.contact_value(Region::n2, y)});
     const double energy =

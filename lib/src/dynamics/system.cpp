@@ -158,8 +158,8 @@ void GearSystem::pair_stiffness(const StiffnessTable& table, int part, double x,
   dke = k.derivative_n_per_m2;
 }
 
-double pair_friction_coefficient(const ModelOptions& model, double face_width_m,
-                                 double normal_force_n, double vs, double ve) {
+double varying_friction_coefficient(const ModelOptions& model, double face_width_m,
+                                    double normal_force_n, double vs, double ve) {
   switch (model.friction_law) {
     case FrictionLaw::constant:
       break;

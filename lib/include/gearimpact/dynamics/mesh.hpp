@@ -3,6 +3,7 @@
 // docs/steady-state.md section 2, and the viscous mesh damper they set.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "gearimpact/case/simulation_case.hpp"
@@ -26,9 +27,16 @@ double effective_mass_kg(const GearPair& pair);
 // beyond [start, end] (the contact segment, or with part >= 0 that part of a
 // table cut at a fault's edges): stage states of a step that ends on a pair's
 // entry, exit or a fault's edge reach a hair beyond it, and the right-hand
-// side stays smooth there. part < 0: the table's own piece at X.
-StiffnessAndDerivative pair_stiffness_continued(const StiffnessTable& table, int part, double x_m,
-                                                double start_m, double end_m);
+// side stays smooth there. part < 0: the table's own piece at X. Inline:
+// both systems read it for every loaded pair at every stage.
+inline StiffnessAndDerivative pair_stiffness_continued(const StiffnessTable& table, int part,
+                                                       double x_m, double start_m, double end_m) {
+  const double xc = std::clamp(x_m, start_m, end_m);
+  StiffnessAndDerivative k = part >= 0 ? table.stiffness_and_derivative_in_part(xc, part)
+                                       : table.stiffness_and_derivative(xc);
+  k.stiffness_n_per_m += k.derivative_n_per_m2 * (x_m - xc);
+  return k;
+}
 
 // docs/steady-state.md section 1: the optional linear viscous mesh damper
 // c = 2 zeta sqrt(k m_e), in N s/m. Throws InputError unless zeta >= 0 and

@@ -95,10 +95,17 @@ double drag_torque_n_m(const Torque& drag, double w_rad_per_s);
 double mean_torque_n_m(const Torque& torque, const char* field);
 
 // f of (35) of a pair with normal force N, sliding speed Vs and entrainment
-// speed Ve under the case's friction law: the torsional and the planar
-// dynamics share it.
-double pair_friction_coefficient(const ModelOptions& model, double face_width_m,
-                                 double normal_force_n, double vs, double ve);
+// speed Ve under a friction law whose f varies (Benedict-Kelley, a table).
+double varying_friction_coefficient(const ModelOptions& model, double face_width_m,
+                                    double normal_force_n, double vs, double ve);
+// f of (35) of a pair under the case's friction law: the torsional and the
+// planar dynamics share it. Inline, the constant law without a call: it is
+// read for every loaded pair at every stage.
+inline double pair_friction_coefficient(const ModelOptions& model, double face_width_m,
+                                        double normal_force_n, double vs, double ve) {
+  if (model.friction_law == FrictionLaw::constant) return model.friction_coefficient;
+  return varying_friction_coefficient(model, face_width_m, normal_force_n, vs, ve);
+}
 
 // (32),(33) at the onset of a contact approached at d(delta)/dt = approach:
 // Vi (floored, as D grows without bound as Vi -> 0), e(Vi) and D/K under the
