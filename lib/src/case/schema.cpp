@@ -776,7 +776,9 @@ std::vector<Field> make_schema() {
         "step", Dimension::time, "us", {open(0.0), {}, {}}, false,
         "the fixed RK4 step (the adaptive integrator's first step); the dynamics also "
         "requires at least " +
-            shortest_decimal(kStepsPerContactPeriod) + " steps per period of the stiffest contact",
+            shortest_decimal(kStepsPerContactPeriod) +
+            " steps per period of the stiffest contact (" +
+            shortest_decimal(kDopri5StepsPerContactPeriod) + " with kind = \"dopri5\")",
         [](auto& c) -> auto& { return c.integrator.step_s; });
     r.quantity(
         "end_time", Dimension::time, "ms", {open(0.0), {}, {}}, true,

@@ -1,6 +1,7 @@
 #include "gearimpact/dynamics/planar.hpp"
 
 #include <algorithm>
+#include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -241,6 +242,8 @@ class PlanarSystem {
 
   double rb1() const { return rb1_; }
   double rb2() const { return rb2_; }
+  // Whether a kinematic driver sets a body's angle and speed after each step.
+  bool driven() const { return driven_; }
 
   // n of a side, (sin a, cos a) on the drive line, (-sin a, cos a) on the coast line.
   std::array<double, 2> normal(Region side) const {
@@ -860,7 +863,10 @@ void validate_planar(const SimulationCase& c, const PlanarMounting& m, const Run
            "\"newtonian\" (the stored energy's jump where a pair enters or leaves under load is "
            "paid by the pinion at that instant, which the planar run does not model yet)");
   }
-  if (c.integrator.kind != IntegratorKind::rk4) refuse("integrator.kind", "adaptive", "\"rk4\"");
+  if (c.integrator.kind == IntegratorKind::adaptive) {
+    refuse("integrator.kind", "adaptive",
+           "\"rk4\" or \"dopri5\" (Dormand-Prince 5(4) at the fixed step, order 5)");
+  }
   if (control.resume) refuse("resume", "a run state", "none (a planar run starts afresh)");
 }
 
@@ -900,13 +906,15 @@ void check_step(const SimulationCase& c, const StiffnessTable& table, const Plan
                         m.load_inertia_kg_m2;
     w2 += rate * rate;
   }
-  const double largest = 2.0 * pi / std::sqrt(w2) / kStepsPerContactPeriod;
+  const double steps = steps_per_contact_period(c.integrator.kind);
+  const double largest = 2.0 * pi / std::sqrt(w2) / steps;
   if (c.integrator.step_s > largest) {
     throw InputError("integrator.step", format_number(c.integrator.step_s) + " s",
                      "at most " + format_number(largest) +
                          " s with [bearings] kind = "
-                         "\"elastic\": 1/" +
-                         format_number(kStepsPerContactPeriod) +
+                         "\"elastic\" and integrator.kind = \"" +
+                         std::string(name_of(kIntegratorKinds, c.integrator.kind)) + "\": 1/" +
+                         format_number(steps) +
                          " of the shortest period the planar system can have (its stiffest "
                          "springs: the mesh on both sides, the bearings" +
                          std::string(m.shafts ? ", the shafts" : "") +
@@ -934,6 +942,60 @@ void rk4_from(const PlanarSystem& s, double t, const Y& y, const Y& k1, double h
   }
   if (stages != nullptr) *stages = {k1, k2, k3, k4};
 }
+
+// The run's method (integrator.kind): the classical RK4 above, or Boost.Odeint's
+// Dormand-Prince 5(4) at the same fixed step, its order-5 solution and its
+// order-4 continuous extension (Hairer, Norsett & Wanner, Solving ODE I,
+// II.5-II.6). Both take f(t, y) in the mode as their first stage, so that the
+// event location, the samples and the ledger treat them alike.
+class PlanarStepper {
+ public:
+  PlanarStepper(const PlanarSystem& system, IntegratorKind kind)
+      : system_(system), dopri5_(kind == IntegratorKind::dopri5) {}
+  bool dopri5() const { return dopri5_; }
+  // The evaluations of f a step takes beyond its first stage: Dormand-Prince's
+  // last one is f at the step's end (first same as last).
+  int evaluations() const { return dopri5_ ? 6 : 3; }
+
+  // A step of length h from (t, y) with k1 = f(t, y) in the mode into out;
+  // with keep, RK4 keeps its stages for dense() (Dormand-Prince keeps those of
+  // its last step in any case).
+  void step(double t, const Y& y, const Y& k1, double h, const PlanarMode& mode,
+            const std::array<ContactMemory, 2>& memory, Y& out, bool keep) {
+    if (!dopri5_) {
+      rk4_from(system_, t, y, k1, h, mode, memory, out, keep ? &stages_ : nullptr);
+      return;
+    }
+    const auto f = [&](const Y& x, Y& dx, double tau) {
+      end_forces_ = Forces{};
+      system_.rhs(tau, x, mode, memory, dx, &end_forces_);
+    };
+    dopri5_stepper_.do_step(f, y, k1, t, out, end_slope_, h);
+  }
+  // Dormand-Prince's last stage f(t + h, out) in the step's mode, and the
+  // forces there: the next step's first stage while the mode holds.
+  const Y& end_slope() const { return end_slope_; }
+  const Forces& end_forces() const { return end_forces_; }
+
+  // The last step's continuous extension at ts in [t_a, t_a + h], the step
+  // from (t_a, y_a) with first stage k1 to y_b.
+  void dense(double t_a, const Y& y_a, const Y& k1, double h, const Y& y_b, double ts,
+             Y& x) const {
+    if (!dopri5_) {
+      rk4_dense(y_a, h, stages_, (ts - t_a) / h, x);
+      return;
+    }
+    dopri5_stepper_.calc_state(ts, x, y_a, k1, t_a, y_b, end_slope_, t_a + h);
+  }
+
+ private:
+  const PlanarSystem& system_;
+  bool dopri5_;
+  Stages stages_{};
+  boost::numeric::odeint::runge_kutta_dopri5<Y> dopri5_stepper_;
+  Y end_slope_{};
+  Forces end_forces_;
+};
 
 // The force each bearing exerts on its gear, -k u - c u': x1, y1, x2, y2.
 std::array<double, 4> bearing_forces(const PlanarMounting& m, const PlanarState& s) {
@@ -1139,12 +1201,17 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     if (control.keep_samples) result.planar_samples.push_back(ps);
     if (control.on_planar_sample) control.on_planar_sample(ps);
   };
-  // The samples not yet taken up to t_b, the end of the accepted step of
-  // length h from (t_a, y_a) with `stages`, at y_b: one at t_b is y_b itself,
-  // one inside the step its dense output. At the start t_b = 0 takes the first.
   long long next_sample = 0;
-  const auto emit_samples = [&](double t_a, const Y& y_a, double step, const Stages& stages,
-                                double t_b, const Y& y_b) {
+  PlanarStepper stepper(system, c.integrator.kind);
+  const bool dense = sample_total > 0;
+  Y k1{};
+  // The samples not yet taken up to t_b, where the run is at y_b: one at t_b
+  // is y_b itself, one before it the continuous extension of the step of
+  // length `step` from (t_a, y_a) to y_end (with Dormand-Prince the whole
+  // step, whose extension also gave y_b at an event inside it). At the start
+  // t_b = 0 takes the first.
+  const auto emit_samples = [&](double t_a, const Y& y_a, double step, const Y& y_end, double t_b,
+                                const Y& y_b) {
     for (; next_sample < sample_total; ++next_sample) {
       const double ts = sample_time_s(0.0, next_sample, sample_rate);
       if (ts > t_b) return;
@@ -1152,14 +1219,14 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
         sample(ts, y_b);
       } else {
         Y x{};
-        rk4_dense(y_a, step, stages, (ts - t_a) / step, x);
+        stepper.dense(t_a, y_a, k1, step, y_end, ts, x);
         sample(ts, x);
       }
     }
   };
 
   classify(0.0);
-  emit_samples(0.0, y, 0.0, Stages{}, 0.0, y);
+  emit_samples(0.0, y, 0.0, y, 0.0, y);
   const double kinetic0 = system.kinetic_energy(y);
   const double mesh0 = mesh_energy(y);
   s.kinetic_energy_initial_j = kinetic0;
@@ -1170,55 +1237,70 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   double jump_work = 0.0;
   record(0.0);
   Y next{};
-  // f(t, y) in the mode: each step's first stage, evaluated at the end of the
-  // step before (after its events), where its mesh energy serves the ledger.
-  Y k1{};
+  // k1, f(t, y) in the mode: each step's first stage, evaluated at the end of
+  // the step before (after its events), where its mesh energy serves the ledger.
   Forces at_start;
   system.rhs(0.0, y, mode, memory, k1, &at_start);
   s.rhs_evaluations += 1;
   double t = 0.0;
   int stalled = 0;
-  Stages stages{};
-  Stages* const dense = sample_total > 0 ? &stages : nullptr;
   for (long long n = 1; n <= steps;) {
     // The last step ends at end_time exactly, where the last sample may be.
     const double t_grid = n == steps
                               ? c.integrator.end_time_s
                               : std::min(static_cast<double>(n) * h, c.integrator.end_time_s);
-    rk4_from(system, t, y, k1, t_grid - t, mode, memory, next, dense);
+    stepper.step(t, y, k1, t_grid - t, mode, memory, next, dense);
     // A driven body ends each step (and each trial of the location) where
     // its closed form is: the event values see the state the step keeps.
     system.impose_driver(t_grid, next);
-    s.rhs_evaluations += 3;
+    s.rhs_evaluations += stepper.evaluations();
+    // The step whose continuous extension gives the samples: this one, or
+    // with RK4 the step cut at an event.
+    double dense_step = t_grid - t;
+    Y dense_end = next;
     double t_next = t_grid;
     const bool event = !system.mode_holds(next, mode, memory);
     if (event) {
       // The mode ends inside the step (a side's contact begins or ends, a
       // pair enters or leaves, touches or lets go by its gap, a fault's edge,
       // a relief's kink, a friction reversal, a clipping): the step is cut
-      // back to the earliest event, located on the step from the same start
-      // (event_location), ending just past it so that the new mode is
-      // unambiguous; the grid resumes after it.
+      // back to the earliest event (event_location), ending just past it so
+      // that the new mode is unambiguous; the grid resumes after it. RK4
+      // locates it on the step taken again from the same start; Dormand-Prince
+      // on the step's continuous extension, as the adaptive method does,
+      // which errs by O(h^5) at the event as a step does over the run.
       PlanarEvents g_a{};
       PlanarEvents g_b{};
       const int count = system.event_values(y, mode, memory, g_a);
       system.event_values(next, mode, memory, g_b);
       long long evaluations = 0;
+      const Y whole = next;
+      const auto state_at = [&](double tau, Y& x) {
+        if (stepper.dopri5()) {
+          stepper.dense(t, y, k1, t_grid - t, whole, tau, x);
+        } else {
+          stepper.step(t, y, k1, tau - t, mode, memory, x, false);
+          evaluations += stepper.evaluations();
+        }
+        system.impose_driver(tau, x);
+      };
       t_next = earliest_event(t, t_grid, g_a.data(), g_b.data(), count, [&](double tau, int i) {
         Y trial{};
-        rk4_from(system, t, y, k1, tau - t, mode, memory, trial);
-        system.impose_driver(tau, trial);
-        evaluations += 3;
+        state_at(tau, trial);
         PlanarEvents g{};
         system.event_values(trial, mode, memory, g);
         return g[static_cast<std::size_t>(i)];
       });
       s.rhs_evaluations += evaluations;
-      if (t_next < t_grid) {
+      if (t_next < t_grid && stepper.dopri5()) {
+        state_at(t_next, next);
+      } else if (t_next < t_grid) {
         // The cut step's own stages, for its samples.
-        rk4_from(system, t, y, k1, t_next - t, mode, memory, next, dense);
+        stepper.step(t, y, k1, t_next - t, mode, memory, next, dense);
         system.impose_driver(t_next, next);
-        s.rhs_evaluations += 3;
+        s.rhs_evaluations += stepper.evaluations();
+        dense_step = t_next - t;
+        dense_end = next;
       }
     }
     if (!std::all_of(next.begin(), next.end(), [](double v) { return std::isfinite(v); })) {
@@ -1243,7 +1325,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     }
     // Before the mode and the contact memory change at an event: the step's
     // samples are its own, the left limit at the event.
-    if (dense != nullptr) emit_samples(t, y, t_next - t, stages, t_next, next);
+    if (dense) emit_samples(t, y, dense_step, dense_end, t_next, next);
     y = next;
     t = t_next;
     ++s.steps;
@@ -1275,10 +1357,16 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
       mode[0].slip_per_stage = true;
       mode[1].slip_per_stage = true;
     }
-    // The next step's first stage, in the mode the run now holds.
-    at_start = Forces{};
-    system.rhs(t, y, mode, memory, k1, &at_start);
-    s.rhs_evaluations += 1;
+    // The next step's first stage, in the mode the run now holds: after a step
+    // that kept its mode and whose end no driver moved, Dormand-Prince's last.
+    if (stepper.dopri5() && !event && !stepped_per_stage && !system.driven()) {
+      k1 = stepper.end_slope();
+      at_start = stepper.end_forces();
+    } else {
+      at_start = Forces{};
+      system.rhs(t, y, mode, memory, k1, &at_start);
+      s.rhs_evaluations += 1;
+    }
     const double mesh = at_start.mesh_energy_j[0] + at_start.mesh_energy_j[1];
     // A pair that entered or left, or crossed a fault's edge, takes or
     // releases its stored energy: work of the time-varying stiffness, booked

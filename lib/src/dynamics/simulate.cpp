@@ -180,7 +180,20 @@ void validate_gaps(const SimulationCase& c) {
   }
 }
 
+void refuse_planar_integrator(const SimulationCase& c) {
+  if (c.integrator.kind != IntegratorKind::dopri5 || c.bearings.kind == BearingKind::elastic) {
+    return;
+  }
+  throw InputError(std::vector<Problem>{refused_problem(
+      "integrator.kind", "\"dopri5\"",
+      "taken by the planar model only ([bearings] kind = \"elastic\"), whose long signals it is "
+      "for; the torsional model runs RK4 or the adaptive method",
+      "\"rk4\" (the default) or \"adaptive\" with rigid bearings",
+      "integrator.kind = \"rk4\", or [bearings] kind = \"elastic\" for the planar model")});
+}
+
 void refuse_planar_simulation(const SimulationCase& c) {
+  refuse_planar_integrator(c);
   if (c.shafts.kind == ShaftKind::elastic && c.bearings.kind != BearingKind::elastic) {
     throw InputError(std::vector<Problem>{refused_problem(
         "shafts.kind", "\"elastic\"",
@@ -192,6 +205,7 @@ void refuse_planar_simulation(const SimulationCase& c) {
 }
 
 void refuse_planar(const SimulationCase& c) {
+  refuse_planar_integrator(c);
   std::vector<Problem> problems;
   const auto refuse = [&](const char* key, const char* torsional) {
     problems.push_back(refused_problem(

@@ -214,19 +214,23 @@ void validate_drag(const SimulationCase& c) {
 // RK4's stability interval, or the first loaded contact diverges.
 void validate_frozen_damping(const SimulationCase& c) {
   const ModelOptions& m = c.model;
-  if (c.integrator.kind != IntegratorKind::rk4 || m.damping_update != DampingUpdate::frozen) return;
+  if (c.integrator.kind == IntegratorKind::adaptive || m.damping_update != DampingUpdate::frozen) {
+    return;
+  }
   const double speed = m.damping_reference_speed_m_s;
   const double d = damping_factor_per_stiffness(
       m.damping_form, restitution_coefficient(m.restitution, speed), speed);
   const double load = peak_tooth_load_n(c);
   const double rate = damping_rate_per_step(c, d, load);
-  if (!(rate > kRk4RealStabilityLimit)) return;
+  const double limit = real_stability_limit(c.integrator.kind);
+  if (!(rate > limit)) return;
+  const std::string method = name_of(kIntegratorKinds, c.integrator.kind);
   throw InputError(
       "model.damping_reference_speed", digits(speed) + " m/s",
-      "a speed whose frozen damping fixed-step RK4 can carry: at it (32)-(33) give D = " +
-          digits(d) + " s/m, and under the tooth load " + digits(load) +
-          " N its rate per step h D F / m_e = " + digits(rate) + " exceeds " +
-          digits(kRk4RealStabilityLimit) + ", where RK4 diverges",
+      "a speed whose frozen damping the fixed-step " + method +
+          " can carry: at it (32)-(33) give D = " + digits(d) + " s/m, and under the tooth load " +
+          digits(load) + " N its rate per step h D F / m_e = " + digits(rate) + " exceeds " +
+          digits(limit) + ", where " + method + " diverges",
       "raise model.damping_reference_speed, or integrator.kind = \"adaptive\", or a "
       "smaller integrator.step");
 }
@@ -238,7 +242,11 @@ void validate_implied(const SimulationCase& c, const std::pair<double, double>& 
   // Independent checks, every refusal reported at once.
   Problems problems;
   problems.collect([&] { validate_static_deflection(c, softest); });
-  problems.collect([&] { validate_step(c, largest_step(c, extremes.second)); });
+  // Dormand-Prince at a fixed step needs half RK4's steps per period.
+  problems.collect([&] {
+    validate_step(c, largest_step(c, extremes.second) * kStepsPerContactPeriod /
+                         steps_per_contact_period(c.integrator.kind));
+  });
   problems.collect([&] { validate_speeds(c); });
   problems.collect([&] { validate_forcing(c); });
   problems.collect([&] { validate_drag(c); });
@@ -251,9 +259,10 @@ void validate_implied(const SimulationCase& c, const std::pair<double, double>& 
 void validate_step(const SimulationCase& c, double largest) {
   const IntegratorSettings& s = c.integrator;
   if (s.step_s <= largest) return;
-  const double period = largest * kStepsPerContactPeriod;
+  const double steps = steps_per_contact_period(s.kind);
+  const double period = largest * steps;
   const std::string why =
-      "at least " + digits(kStepsPerContactPeriod) +
+      "at least " + digits(steps) +
       " steps per period of the stiffest contact, 2 pi sqrt(m_e / K) with K its mesh stiffness "
       "(gears.youngs_modulus, gears.face_width) and m_e = " +
       digits(effective_mass_kg(c.gears)) +

@@ -223,7 +223,7 @@ void GearSystem::rhs(double t, const State& y_in, const Mode& m, const ContactMe
     const double ref = layout_.reference_m(m.region, y[kTheta1]);
     const double x_rate = sign * rb1_ * w1;
     for (int j = 0; j < m.count; ++j) {
-      const StiffnessTable* table = pair_table(m.region, m.k_first + j);
+      const StiffnessTable* table = m.table[j];
       // A pair with a missing tooth or without contact over a fault across
       // the face: no force, no damping, no friction; nor a pair whose gap is open.
       if (!carries(table, m.part[j]) || (gaps_ && !m.touching[j])) continue;
@@ -350,7 +350,7 @@ int GearSystem::event_values(const State& y, const Mode& m, const ContactMemory&
   const double x_rate = line_sign(m.region) * rb1_ * y[kW1];
   for (int j = 0; j < m.count; ++j) {
     const double x = layout_.position_m(ref, m.k_first + j);
-    const StiffnessTable* table = pair_table(m.region, m.k_first + j);
+    const StiffnessTable* table = m.table[j];
     if (table != nullptr && table->part_count() > 1) {
       // Ke jumps at the ends of the pair's part inside the segment (a fault's edges).
       const int part = m.part[j];
@@ -451,9 +451,10 @@ Mode GearSystem::classify_geometry(const State& y) const {
 }
 
 void GearSystem::set_parts(const State& y, Mode& m) const {
-  if (!teeth_) return;
   for (int j = 0; j < m.count; ++j) {
     const StiffnessTable* table = pair_table(m.region, m.k_first + j);
+    m.table[j] = table;
+    if (!teeth_) continue;
     m.part[j] = table != nullptr && table->part_count() > 1
                     ? table->part_of(std::clamp(pair_position(m, y, j), xs_, xe_))
                     : 0;
@@ -469,7 +470,7 @@ void GearSystem::classify_forces(const State& y, const ContactMemory& d, Mode& m
     const double x = pair_position(m, y, j);
     m.slip[j] = sliding_speed(y[kW1], y[kW2], x, lp_) >= 0.0 ? 1.0 : -1.0;
     const PairPenetration p = pair_penetration(m, j, x, dl, dl_rate, x_rate);
-    m.clipped[j] = push_sign_function(pair_table(m.region, m.k_first + j), m.part[j], x, m.count, d,
+    m.clipped[j] = push_sign_function(m.table[j], m.part[j], x, m.count, d,
                                       p.delta_m, p.rate_m_s) < 0.0;
   }
 }
@@ -518,7 +519,7 @@ GearSystem::Onset GearSystem::damping_at_onset(const State& y, const Mode& m) co
     // that carry (none: the stiffness stays 0, as nothing pushes).
     int nearest = -1;
     for (int j = 0; j < m.count; ++j) {
-      if (!carries(pair_table(m.region, m.k_first + j), m.part[j])) continue;
+      if (!carries(m.table[j], m.part[j])) continue;
       if (nearest < 0 || std::fabs(pair_position(m, y, j) - x_pitch_) <
                              std::fabs(pair_position(m, y, nearest) - x_pitch_)) {
         nearest = j;
@@ -527,7 +528,7 @@ GearSystem::Onset GearSystem::damping_at_onset(const State& y, const Mode& m) co
     if (nearest >= 0) {
       double ke = 0.0;
       double dke = 0.0;
-      pair_stiffness(*pair_table(m.region, m.k_first + nearest), m.part[nearest],
+      pair_stiffness(*m.table[nearest], m.part[nearest],
                      pair_position(m, y, nearest), m.count, ke, dke);
       d.frozen_stiffness_n_per_m = ke;
     }
@@ -549,7 +550,7 @@ ElasticEnergy GearSystem::stored_energy(const State& y, const Mode& m) const {
       u.j[index_of(Term::hertz)] += 0.5 * constant_k_ / m.count * dl * dl;
       continue;
     }
-    const StiffnessTable* table = pair_table(m.region, m.k_first + j);
+    const StiffnessTable* table = m.table[j];
     // A missing tooth stores nothing, nor a pair without contact over a fault across the face.
     if (!carries(table, m.part[j])) continue;
     // At a fault's edge, the side of the pair's part: the ledger books the jump between the two

@@ -74,6 +74,10 @@ struct Mode {
   // part's ends, so that a step does not straddle Ke's jump at the edge; 0
   // for a table of one part.
   std::array<int, kMaxPairs> part{};
+  // Each loaded pair's table (GearSystem::pair_table, nullptr: a missing
+  // tooth), found once a mode: finding it takes integer remainders, which the
+  // right-hand side would otherwise pay for every pair at every stage.
+  std::array<const StiffnessTable*, kMaxPairs> table{};
 };
 
 // Summed over the loaded pairs, for the time series.
@@ -199,7 +203,7 @@ class GearSystem {
   // (from its part `part`, Mode::part).
   void pair_stiffness(const StiffnessTable& table, int part, double x, int count, double& ke,
                       double& dke) const;
-  // Mode::part of each pair of m at y.
+  // Mode::table and Mode::part of each pair of m at y.
   void set_parts(const State& y, Mode& m) const;
   double damping_factor(const ContactMemory& d, double ke) const;
   // f of (35) of a pair with normal force N, sliding speed Vs and entrainment
