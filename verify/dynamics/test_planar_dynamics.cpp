@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <iomanip>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/dynamics/planar.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/modifications.hpp"
@@ -729,6 +731,48 @@ TEST_CASE("what the planar model does not take is refused by its key") {
   coarse.integrator.step_s = 1e-5;
   coarse.integrator.end_time_s = 1e-3;
   CHECK(field_of(coarse) == "integrator.step");
+  // Dormand-Prince at a fixed step takes up to 1/10 of the shortest period
+  // the planar system can have, RK4 1/20 of the same bound: each refusal
+  // names its method and the largest step, the one twice the other, and a
+  // step between the two runs by Dormand-Prince.
+  const auto largest_step = [](const SimulationCase& t) {
+    try {
+      simulate(t);
+    } catch (const InputError& e) {
+      const std::string text = e.what();
+      const std::size_t at = text.find("at most ");
+      REQUIRE(at != std::string::npos);
+      return std::stod(text.substr(at + 8));
+    }
+    return 0.0;
+  };
+  // Probes past the planar bounds (1.1 us and 2.2 us here) and within the
+  // torsional contact's (2.3 us, 4.6 us), which is checked first.
+  SimulationCase rk4_coarse = c;
+  rk4_coarse.integrator.step_s = 2e-6;
+  const double rk4_largest = largest_step(rk4_coarse);
+  SimulationCase dp_coarse = c;
+  dp_coarse.integrator.kind = IntegratorKind::dopri5;
+  dp_coarse.integrator.step_s = 3e-6;
+  const double dopri5_largest = largest_step(dp_coarse);
+  // Each printed to 16 significant digits.
+  CHECK(std::fabs(dopri5_largest - 2.0 * rk4_largest) < 1e-14 * dopri5_largest);
+  SimulationCase between = dp_coarse;
+  between.integrator.step_s = 1.5 * rk4_largest;
+  between.integrator.end_time_s = 100.0 * between.integrator.step_s;
+  CHECK(field_of(between) == "none");
+  between.integrator.kind = IntegratorKind::rk4;
+  CHECK(field_of(between) == "integrator.step");
+  CHECK(field_of(dp_coarse) == "integrator.step");
+  CHECK_THROWS_WITH_AS(simulate(dp_coarse), doctest::Contains("integrator.kind = \"dopri5\": 1/10"),
+                       InputError);
+  // The torsional model refuses the fixed-step Dormand-Prince by its key,
+  // in simulate() and in validate() (the sweeps') before any work.
+  SimulationCase torsional_dopri5 = paper_case(1);
+  torsional_dopri5.integrator.kind = IntegratorKind::dopri5;
+  CHECK(field_of(torsional_dopri5) == "integrator.kind");
+  CHECK_THROWS_WITH_AS(validate(torsional_dopri5), doctest::Contains("integrator.kind"),
+                       InputError);
   SimulationCase quick_load = c;
   // A drag relaxing a light load within a few steps (its rate / J_load =
   // 1e7 /s against the step's 1e7 /s): integrator.step, naming the drag.
@@ -989,7 +1033,8 @@ SimulationCase meshing_case(double force_n, double w1, double step_s) {
   return c;
 }
 
-SimulationSummary run_meshing(const SimulationCase& c, const StiffnessTable& table) {
+// The start of meshing_case near its static state.
+PlanarState meshing_start(const SimulationCase& c, const StiffnessTable& table) {
   const double force = c.torque1.constant_n_m / base_radius(c.gears, Gear::one);
   const double a = operating_pressure_angle(c.gears);
   const double kb = c.bearings.gear1.stiffness_x_n_per_m;
@@ -1002,9 +1047,13 @@ SimulationSummary run_meshing(const SimulationCase& c, const StiffnessTable& tab
   s.theta1_rad =
       (c.gears.backlash_m + force / mean_mesh_stiffness_n_per_m(c, table) + 2.0 * force / kb) /
       base_radius(c.gears, Gear::one);
+  return s;
+}
+
+SimulationSummary run_meshing(const SimulationCase& c, const StiffnessTable& table) {
   RunControl control;
   control.keep_series = false;
-  return simulate_planar(c, table, planar_mounting(c), s, control).summary;
+  return simulate_planar(c, table, planar_mounting(c), meshing_start(c, table), control).summary;
 }
 
 // The ledger residuals of runs at each step, and the ratio of successive ones.
@@ -1131,4 +1180,268 @@ TEST_CASE("a spall's edges are events in the planar run: the ledger at RK4's ord
   CHECK(runs[1].events >= without.events + 2);
   CHECK(runs[1].parametric_jump_work_j != without.parametric_jump_work_j);
   check_ledger_order(runs);
+}
+
+namespace {
+
+// c stepped by the fixed-step Dormand-Prince method.
+SimulationCase by_dopri5(SimulationCase c) {
+  c.integrator.kind = IntegratorKind::dopri5;
+  return c;
+}
+
+// Runs of `base` by Dormand-Prince at each step.
+std::vector<SimulationSummary> dopri5_runs(const SimulationCase& base, const StiffnessTable& table,
+                                           const std::vector<double>& steps) {
+  std::vector<SimulationSummary> runs;
+  for (const double h : steps) {
+    SimulationCase c = by_dopri5(base);
+    c.integrator.step_s = h;
+    runs.push_back(run_meshing(c, table));
+    const SimulationSummary& s = runs.back();
+    MESSAGE("dopri5, step " << h << " s: residual " << s.ledger_residual_max_j << " J of "
+                            << s.ledger_scale_j << " J, friction loss " << std::setprecision(12)
+                            << s.friction_loss_j << std::setprecision(6) << " J, " << s.events
+                            << " events, " << s.rhs_evaluations << " evaluations");
+  }
+  return runs;
+}
+
+// Dormand-Prince's global error falls 32-fold per halved step (order 5); 24
+// (order 4.6) leaves room for a run not quite asymptotic and fails an order-4
+// method (16), let alone a step straddling a jump (near 2).
+constexpr double kDopri5HalvingRatio = 24.0;
+
+void check_dopri5_ledger_order(const std::vector<SimulationSummary>& runs) {
+  for (std::size_t i = 1; i < runs.size(); ++i) {
+    const double ratio = runs[i - 1].ledger_residual_max_j / runs[i].ledger_residual_max_j;
+    CAPTURE(i);
+    CAPTURE(ratio);
+    CHECK(ratio > kDopri5HalvingRatio);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("Dormand-Prince at a fixed step: the ledger at order 5 through the events") {
+  SUBCASE("pairs entering and leaving under load, contact lost and regained") {
+    const SimulationCase base = meshing_case(2000.0, 100.0, 1e-7);
+    const StiffnessTable table(base.gears, base.model.stiffness);
+    const std::vector<SimulationSummary> runs = dopri5_runs(base, table, {8e-7, 4e-7, 2e-7});
+    for (const SimulationSummary& s : runs) CHECK(s.events >= s.impacts_n1 + s.impacts_n2 + 4);
+    check_dopri5_ledger_order(runs);
+    // The same run by RK4 at the finest step: the two methods agree on the
+    // impacts and within RK4's error on the losses.
+    SimulationCase rk4 = base;
+    rk4.integrator.step_s = 2e-7;
+    const SimulationSummary r = run_meshing(rk4, table);
+    CHECK(r.impacts_n1 == runs.back().impacts_n1);
+    CHECK(r.impacts_n2 == runs.back().impacts_n2);
+    CHECK(std::fabs(r.parametric_work_j - runs.back().parametric_work_j) <
+          1e-6 * r.ledger_scale_j);
+  }
+  SUBCASE("friction reversals: the friction loss converges at order 5") {
+    SimulationCase base = meshing_case(500.0, 200.0, 1e-7);
+    base.model.friction_coefficient = 0.05;
+    const StiffnessTable table(base.gears, base.model.stiffness);
+    const std::vector<SimulationSummary> runs =
+        dopri5_runs(base, table, {1.6e-6, 8e-7, 4e-7, 2e-7});
+    check_dopri5_ledger_order({runs[0], runs[1], runs[2]});
+    for (std::size_t i = 2; i < runs.size(); ++i) {
+      const double ratio = (runs[i - 2].friction_loss_j - runs[i - 1].friction_loss_j) /
+                           (runs[i - 1].friction_loss_j - runs[i].friction_loss_j);
+      CAPTURE(ratio);
+      CHECK(ratio > kDopri5HalvingRatio);
+    }
+  }
+  SUBCASE("a spall's edges") {
+    SimulationCase base = meshing_case(2000.0, 100.0, 1e-7);
+    const GearPair& g = base.gears;
+    const ContactSegment segment = contact_segment(g);
+    const double rb1 = base_radius(g, Gear::one);
+    const double xp = pitch_point_position(g);
+    ToothFault spall;
+    spall.gear = Gear::one;
+    spall.tooth = 0;
+    spall.state.kind = ToothKind::spall;
+    spall.state.spall.start_radius_m = std::hypot(rb1, xp + 0.2 * (segment.end_m - xp));
+    spall.state.spall.end_radius_m = std::hypot(rb1, xp + 0.6 * (segment.end_m - xp));
+    spall.state.spall.width_m = 0.5 * g.face_width_m;
+    spall.state.spall.depth_m = 0.2e-3;
+    base.faults = {spall};
+    const StiffnessTable table(g, base.model.stiffness);
+    check_dopri5_ledger_order(dopri5_runs(base, table, {8e-7, 4e-7, 2e-7}));
+  }
+}
+
+TEST_CASE("Dormand-Prince with modifications and a driver: the ledger closes") {
+  SUBCASE("tip reliefs and a pitch error, rattling") {
+    // As the RK4 test of the modified ledger: a pair's touching and the
+    // reliefs' kinks are events, located on the continuous extension.
+    SimulationCase c = by_dopri5(modified_case(5e8, 0.6));
+    c.torque1.constant_n_m *= 0.1;
+    c.torque2.constant_n_m *= 0.1;
+    c.integrator.end_time_s = 4e-3;
+    c.integrator.step_s = 8e-7;
+    c.integrator.output_every = 125;
+    const SimulationResult coarse = simulate(c);
+    c.integrator.step_s = 4e-7;
+    c.integrator.output_every = 250;
+    const SimulationResult fine = simulate(c);
+    MESSAGE("dopri5 with modifications: ledger residual " << coarse.summary.ledger_residual_max_j
+                                                          << " J, "
+                                                          << fine.summary.ledger_residual_max_j
+                                                          << " J of " << fine.summary.ledger_scale_j
+                                                          << " J");
+    CHECK(fine.summary.impacts_n1 >= 1);
+    CHECK(fine.summary.ledger_residual_max_j < 1e-8 * fine.summary.ledger_scale_j);
+    CHECK(coarse.summary.ledger_residual_max_j >
+          kDopri5HalvingRatio * fine.summary.ledger_residual_max_j);
+  }
+  SUBCASE("a kinematic driver: its body on the closed form, the next step's first stage anew") {
+    SimulationCase c = by_dopri5(loaded_case(2e13, 400.0));
+    c.torque1.kind = Torque::Kind::prescribed_speed;
+    c.torque1.mean_speed_rad_per_s = 50.0;
+    c.torque1.driver_orders = {20.0};
+    c.torque1.driver_speed_amplitudes_rad_per_s = {5.0};
+    c.torque1.harmonic_phases_rad = {0.0};
+    c.integrator.end_time_s = 5e-4;
+    c.integrator.step_s = 2e-8;
+    c.integrator.output_every = 5;
+    const SimulationResult r = simulate(c);
+    double pinion = 0.0;
+    for (const SeriesRow& row : r.series) {
+      const DriverMotion d = driver_motion(c.torque1, c.initial.theta1_rad, row.t_s);
+      pinion = std::max({pinion, std::fabs(row.theta1_rad - d.theta_rad),
+                         std::fabs(row.w1_rad_per_s - d.speed_rad_per_s) * 1e-6});
+    }
+    CHECK(pinion < 1e-15);
+    CHECK(r.summary.ledger_residual_max_j < 1e-8 * r.summary.ledger_scale_j);
+    // Without the end's stage reused: one evaluation a step beyond the six.
+    CHECK(r.summary.rhs_evaluations >= 7 * r.summary.steps);
+  }
+}
+
+TEST_CASE("Dormand-Prince's samples: order 5 through the events, and a = -w^2 x") {
+  SUBCASE("the loaded pair meshing: samples against a run at a sixteenth of the step") {
+    // Samples at a rate the steps do not divide, most inside a step, some in
+    // a step cut at an event: the continuous extension (order 4, a local
+    // error O(h^5)) and the steps' global error O(h^5) fall 32-fold per
+    // halving; the bounds are the orders 4.5 and 5.5.
+    const SimulationCase base = by_dopri5(meshing_case(2000.0, 100.0, 1e-7));
+    const StiffnessTable table(base.gears, base.model.stiffness);
+    RunControl control;
+    control.keep_series = false;
+    control.sample_rate_hz = 123457.0;
+    const auto samples = [&](double step) {
+      SimulationCase c = base;
+      c.integrator.step_s = step;
+      return simulate_planar(c, table, planar_mounting(c), meshing_start(c, table), control)
+          .planar_samples;
+    };
+    const std::vector<PlanarSample> reference = samples(8e-7 / 16.0);
+    const auto error = [&](double step) {
+      const std::vector<PlanarSample> run = samples(step);
+      REQUIRE(run.size() == reference.size());
+      double most = 0.0;
+      for (std::size_t n = 0; n < run.size(); ++n) {
+        REQUIRE(run[n].t_s == reference[n].t_s);
+        const std::vector<double> q = components(run[n].state);
+        const std::vector<double> r = components(reference[n].state);
+        // The velocities' largest difference (the gears' speeds, near 100
+        // and 25 rad/s, set it).
+        for (std::size_t i = 8; i < 14; ++i) most = std::max(most, std::fabs(q[i] - r[i]));
+      }
+      return most;
+    };
+    const double coarse = error(8e-7);
+    const double fine = error(4e-7);
+    MESSAGE("dopri5 samples of the meshing pair: velocity errors " << coarse << ", " << fine
+                                                                   << " (ratio " << coarse / fine
+                                                                   << ")");
+    CHECK(coarse / fine > std::pow(2.0, 4.5));
+    CHECK(coarse / fine < std::pow(2.0, 5.5));
+  }
+  SUBCASE("a free vibration: the accelerations are the equations of motion's") {
+    constexpr double kb = 1e9;
+    constexpr double force = 400.0;
+    SimulationCase c = by_dopri5(loaded_case(kb, force));
+    const Modes modes = natural_modes(linear_model(linear_parameters(c, kMesh)));
+    const NaturalMode& first = modes.modes[modes.model.rigid_modes];
+    const double w = first.angular_frequency;
+    const PlanarState start = modal_start(c, kb, force, first);
+    const std::vector<double> q0 = components(start);
+    const StiffnessTable table(c.gears, c.model.stiffness);
+    c.integrator.end_time_s = 10.0 * 2.0 * pi / w;
+    // Dormand-Prince's largest step here: 1/10 of the stiffest springs'
+    // period bound, 2.2 us.
+    c.integrator.step_s = 2e-6;
+    RunControl control;
+    control.keep_series = false;
+    control.sample_rate_hz = 37.3 * w / (2.0 * pi);
+    const SimulationResult r = simulate_planar(c, table, planar_mounting(c), start, control);
+    double velocity = 0.0;
+    double acceleration = 0.0;
+    for (const PlanarSample& s : r.planar_samples) {
+      const std::vector<double> q = components(s.state);
+      const double cosine = std::cos(w * s.t_s);
+      for (std::size_t i = 8; i < 14; ++i) {
+        velocity = std::max(velocity, std::fabs(q[i] - q0[i] * cosine));
+      }
+      const double a[6] = {s.ax1_m_per_s2, s.ay1_m_per_s2, s.alpha1_rad_per_s2,
+                           s.ax2_m_per_s2, s.ay2_m_per_s2, s.alpha2_rad_per_s2};
+      for (std::size_t i = 0; i < 6; ++i) {
+        acceleration = std::max(acceleration, std::fabs(a[i] + w * w * (q[i] - q0[i])));
+      }
+    }
+    velocity /= 1e-4;
+    acceleration /= w * 1e-4;
+    MESSAGE("dopri5 free vibration at 2 us: velocity error " << velocity << ", acceleration error "
+                                                             << acceleration);
+    // At RK4's 0.5 us the velocities err by 1.5e-8 of max|v|; at four times
+    // the step Dormand-Prince errs by as little (the round-off of the
+    // positions' static offset and the nominal geometry's second-order moment).
+    CHECK(velocity < 1e-7);
+    CHECK(acceleration < 1e-7);
+  }
+}
+
+TEST_CASE("a period by Dormand-Prince in 10 steps errs less than by RK4 in 20") {
+  // The stability polynomials (Hairer & Wanner, Solving ODE II, IV.2): RK4's
+  // sum z^k / k! to k = 4; Dormand-Prince's order-5 solution's the same to
+  // k = 5 plus z^6 / 600. On a harmonic oscillator at N steps a period
+  // (z = i 2 pi / N) the step's phase and modulus against e^z give the
+  // frequency error and the amplitude lost over a period: the reason for
+  // kDopri5StepsPerContactPeriod = 10 against kStepsPerContactPeriod = 20.
+  const auto polynomial = [](const std::vector<double>& c, std::complex<double> z) {
+    std::complex<double> sum = 0.0;
+    std::complex<double> power = 1.0;
+    for (const double ck : c) {
+      sum += ck * power;
+      power *= z;
+    }
+    return sum;
+  };
+  const std::vector<double> rk4{1.0, 1.0, 1.0 / 2, 1.0 / 6, 1.0 / 24};
+  const std::vector<double> dopri5{1.0, 1.0, 1.0 / 2, 1.0 / 6, 1.0 / 24, 1.0 / 120, 1.0 / 600};
+  const auto errors = [&](const std::vector<double>& c, double steps) {
+    const double theta = 2.0 * pi / steps;
+    const std::complex<double> r = polynomial(c, {0.0, theta});
+    return std::pair<double, double>{std::fabs(std::arg(r) - theta) / theta,
+                                     1.0 - std::pow(std::abs(r), steps)};
+  };
+  const auto [rk4_frequency, rk4_amplitude] = errors(rk4, kStepsPerContactPeriod);
+  const auto [dp_frequency, dp_amplitude] = errors(dopri5, kDopri5StepsPerContactPeriod);
+  MESSAGE("RK4 at 20 steps: frequency " << rk4_frequency << ", amplitude " << rk4_amplitude
+                                        << " a period; Dormand-Prince at 10: " << dp_frequency
+                                        << ", " << dp_amplitude);
+  CHECK(dp_frequency < rk4_frequency);
+  CHECK(dp_amplitude < rk4_amplitude);
+  // And the stability limits on the negative real axis: |R(-limit)| = 1 to
+  // the limits' digits (|R| changes by about 1.4 and 2.5 per unit of z there,
+  // times the last digit's half unit).
+  CHECK(std::fabs(std::abs(polynomial(rk4, -kRk4RealStabilityLimit)) - 1.0) < 1e-3);
+  CHECK(std::fabs(std::abs(polynomial(dopri5, -kDopri5RealStabilityLimit)) - 1.0) < 2e-4);
+  CHECK(std::abs(polynomial(dopri5, -0.99 * kDopri5RealStabilityLimit)) < 1.0);
+  CHECK(std::abs(polynomial(dopri5, -1.01 * kDopri5RealStabilityLimit)) > 1.0);
 }

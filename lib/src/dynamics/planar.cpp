@@ -409,9 +409,9 @@ class PlanarSystem {
   // The friction sign and clipping of each pair of the side's mode m at y.
   void classify_forces(Region side, const Y& y, const ContactMemory& memory, SideMode& m) const {
     if (!m.contact) return;
-    const auto [dl, dl_rate] = penetration(side, y);
+    const SideMotion sm = side_motion(side, y);
     for (int j = 0; j < m.range.count; ++j) {
-      const PairMotion p = pair_motion(side, y, dl, dl_rate, memory, m, j, true);
+      const PairMotion p = pair_motion(side, y, sm, memory, m, j, true);
       m.slip[j] = p.sliding_m_s >= 0.0 ? 1.0 : -1.0;
       m.clipped[j] = p.push_n < 0.0;
     }
@@ -433,12 +433,14 @@ class PlanarSystem {
         g[n++] = -contact_value(side, y);
         continue;
       }
-      const auto [dl, dl_rate] = penetration(side, y);
+      const SideMotion sm = side_motion(side, y);
+      const double dl = sm.dl;
+      const double dl_rate = sm.dl_rate;
       // With gaps the contact ends where the last touching pair lets go,
       // which the pairs' own values below locate.
       g[n++] = gaps_ ? 1.0 : dl;
       // Each position is ref + k t0 for its own k, as MeshLayout::loaded computes it.
-      const double ref = layout_.reference_m(side, y[kT1]);
+      const double ref = sm.reference_m;
       const int first = m.range.k_first;
       const int last = first + m.range.count - 1;
       g[n++] = layout_.position_m(ref, first) - xs_;
@@ -470,7 +472,7 @@ class PlanarSystem {
           g[n++] = zone > 0 ? x - kinks_[zone - 1] : 1.0;
           g[n++] = zone < kinks_.size() ? kinks_[zone] - x : 1.0;
         }
-        const PairMotion p = pair_motion(side, y, dl, dl_rate, memory[i], m, j, true);
+        const PairMotion p = pair_motion(side, y, sm, memory[i], m, j, true);
         // A smoothed sign has no switch to locate.
         g[n++] = c_.model.friction_smoothing_speed_m_s > 0.0 || m.slip_per_stage
                      ? 1.0
@@ -532,18 +534,30 @@ class PlanarSystem {
   // classification want no more); ke, dke and elastic_n are then not set.
   // kGaps false compiles out the gaps, for the right-hand side of a run
   // without them (motion<false>).
-  // dl and dl_rate: the side's penetration(side, y).
+  // What every pair of a side shares at y: the line's penetration and its
+  // rate, the reference position of the pair k = 0, and the centres'
+  // relative speed along the flanks' common tangent.
+  struct SideMotion {
+    double dl, dl_rate, reference_m, slide_of_centres_m_s;
+  };
+  SideMotion side_motion(Region side, const Y& y) const {
+    const double* v = &y[kVelocity];
+    const auto n = normal(side);
+    const auto [dl, dl_rate] = penetration(side, y);
+    return {dl, dl_rate, layout_.reference_m(side, y[kT1]),
+            (v[kX1] - v[kX2]) * -n[1] + (v[kY1] - v[kY2]) * n[0]};
+  }
   template <bool kGaps = true>
-  PairMotion pair_motion(Region side, const Y& y, double dl, double dl_rate,
+  PairMotion pair_motion(Region side, const Y& y, const SideMotion& sm,
                          const ContactMemory& memory, const SideMode& m, int j,
                          bool sign_only = false) const {
     const double* v = &y[kVelocity];
-    const auto n = normal(side);
+    const double dl = sm.dl;
+    const double dl_rate = sm.dl_rate;
     const int k = m.range.k_first + j;
     PairMotion p;
-    p.x_m = layout_.position_m(layout_.reference_m(side, y[kT1]), k);
-    const double slide_of_centres = (v[kX1] - v[kX2]) * -n[1] + (v[kY1] - v[kY2]) * n[0];
-    p.sliding_m_s = sliding_speed(v[kT1], v[kT2], p.x_m, lp_) + slide_of_centres;
+    p.x_m = layout_.position_m(sm.reference_m, k);
+    p.sliding_m_s = sliding_speed(v[kT1], v[kT2], p.x_m, lp_) + sm.slide_of_centres_m_s;
     if (!carries(m, j) || (kGaps && gaps_ && !m.touching[j])) return p;
     p.carries = true;
     p.own = kGaps
@@ -604,7 +618,8 @@ class PlanarSystem {
       // and clipping are the mode's, whatever a stage state says: the forces
       // stay smooth within a step.
       if (!m.contact) continue;
-      const auto [dl, dl_rate] = penetration(side, y);
+      const SideMotion sm = side_motion(side, y);
+      const double dl = sm.dl;
       const double sign = line_sign(side);
       const auto n = normal(side);
       // t = e_z x n: the flanks' common tangent, along which friction acts.
@@ -613,7 +628,7 @@ class PlanarSystem {
       const double x_rate = sign * rb1_ * w1;
       double total = 0.0;
       for (int j = 0; j < m.range.count; ++j) {
-        const PairMotion p = pair_motion<kOptions>(side, y, dl, dl_rate, memory[i], m, j);
+        const PairMotion p = pair_motion<kOptions>(side, y, sm, memory[i], m, j);
         // A pair that carries no force: no damping, no friction.
         if (!p.carries) continue;
         const double x = p.x_m;

@@ -48,8 +48,8 @@ double damping_rate_per_step(const SimulationCase& c, double damping_per_stiffne
 // The classical RK4's stability interval on the negative real axis, [-2.785, 0].
 inline constexpr double kRk4RealStabilityLimit = 2.785;
 // Dormand-Prince 5(4)'s (its order-5 solution, whose stability polynomial is
-// sum z^k / k! to k = 5 plus z^6 / 600): [-3.306, 0].
-inline constexpr double kDopri5RealStabilityLimit = 3.306;
+// sum z^k / k! to k = 5 plus z^6 / 600): [-3.3066, 0].
+inline constexpr double kDopri5RealStabilityLimit = 3.3066;
 // The interval of a fixed-step method (integrator.kind rk4 or dopri5).
 inline constexpr double real_stability_limit(IntegratorKind kind) {
   return kind == IntegratorKind::dopri5 ? kDopri5RealStabilityLimit : kRk4RealStabilityLimit;
