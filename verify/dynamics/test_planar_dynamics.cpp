@@ -1237,8 +1237,7 @@ TEST_CASE("Dormand-Prince at a fixed step: the ledger at order 5 through the eve
     const SimulationSummary r = run_meshing(rk4, table);
     CHECK(r.impacts_n1 == runs.back().impacts_n1);
     CHECK(r.impacts_n2 == runs.back().impacts_n2);
-    CHECK(std::fabs(r.parametric_work_j - runs.back().parametric_work_j) <
-          1e-6 * r.ledger_scale_j);
+    CHECK(std::fabs(r.parametric_work_j - runs.back().parametric_work_j) < 1e-6 * r.ledger_scale_j);
   }
   SUBCASE("friction reversals: the friction loss converges at order 5") {
     SimulationCase base = meshing_case(500.0, 200.0, 1e-7);
@@ -1288,11 +1287,9 @@ TEST_CASE("Dormand-Prince with modifications and a driver: the ledger closes") {
     c.integrator.step_s = 4e-7;
     c.integrator.output_every = 250;
     const SimulationResult fine = simulate(c);
-    MESSAGE("dopri5 with modifications: ledger residual " << coarse.summary.ledger_residual_max_j
-                                                          << " J, "
-                                                          << fine.summary.ledger_residual_max_j
-                                                          << " J of " << fine.summary.ledger_scale_j
-                                                          << " J");
+    MESSAGE("dopri5 with modifications: ledger residual "
+            << coarse.summary.ledger_residual_max_j << " J, " << fine.summary.ledger_residual_max_j
+            << " J of " << fine.summary.ledger_scale_j << " J");
     CHECK(fine.summary.impacts_n1 >= 1);
     CHECK(fine.summary.ledger_residual_max_j < 1e-8 * fine.summary.ledger_scale_j);
     CHECK(coarse.summary.ledger_residual_max_j >
@@ -1356,9 +1353,8 @@ TEST_CASE("Dormand-Prince's samples: order 5 through the events, and a = -w^2 x"
     };
     const double coarse = error(8e-7);
     const double fine = error(4e-7);
-    MESSAGE("dopri5 samples of the meshing pair: velocity errors " << coarse << ", " << fine
-                                                                   << " (ratio " << coarse / fine
-                                                                   << ")");
+    MESSAGE("dopri5 samples of the meshing pair: velocity errors "
+            << coarse << ", " << fine << " (ratio " << coarse / fine << ")");
     CHECK(coarse / fine > std::pow(2.0, 4.5));
     CHECK(coarse / fine < std::pow(2.0, 5.5));
   }

@@ -71,9 +71,9 @@ double halving_change(const SimulationCase& rig, const StiffnessTable& table, In
                       double step_s) {
   const double coarse = sensor_rms(rig, table, kind, step_s);
   const double fine = sensor_rms(rig, table, kind, step_s / 2.0);
-  MESSAGE(name_of(kIntegratorKinds, kind) << " at " << step_s * 1e6 << " us: RMS " << coarse
-                                          << " m/s^2, at half the step " << fine
-                                          << " m/s^2, change " << std::fabs(coarse - fine) / fine);
+  MESSAGE(name_of(kIntegratorKinds, kind)
+          << " at " << step_s * 1e6 << " us: RMS " << coarse << " m/s^2, at half the step " << fine
+          << " m/s^2, change " << std::fabs(coarse - fine) / fine);
   return std::fabs(coarse - fine) / fine;
 }
 

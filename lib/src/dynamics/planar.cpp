@@ -158,8 +158,12 @@ class PlanarSystem {
     j2_ = moment_of_inertia(g, Gear::two);
     // The inverse masses, so that each stage multiplies: a division's latency
     // sits on the path from one RK4 stage to the next.
-    inverse_mass_ = {1.0 / m.mass_kg[0], 1.0 / m.mass_kg[0], 1.0 / j1_,
-                     1.0 / m.mass_kg[1], 1.0 / m.mass_kg[1], 1.0 / j2_,
+    inverse_mass_ = {1.0 / m.mass_kg[0],
+                     1.0 / m.mass_kg[0],
+                     1.0 / j1_,
+                     1.0 / m.mass_kg[1],
+                     1.0 / m.mass_kg[1],
+                     1.0 / j2_,
                      m.shafts ? 1.0 / m.motor_inertia_kg_m2 : 0.0,
                      m.shafts ? 1.0 / m.load_inertia_kg_m2 : 0.0};
     backlash_ = g.backlash_m;
@@ -548,9 +552,8 @@ class PlanarSystem {
             (v[kX1] - v[kX2]) * -n[1] + (v[kY1] - v[kY2]) * n[0]};
   }
   template <bool kGaps = true>
-  PairMotion pair_motion(Region side, const Y& y, const SideMotion& sm,
-                         const ContactMemory& memory, const SideMode& m, int j,
-                         bool sign_only = false) const {
+  PairMotion pair_motion(Region side, const Y& y, const SideMotion& sm, const ContactMemory& memory,
+                         const SideMode& m, int j, bool sign_only = false) const {
     const double* v = &y[kVelocity];
     const double dl = sm.dl;
     const double dl_rate = sm.dl_rate;
@@ -994,8 +997,7 @@ class PlanarStepper {
 
   // The last step's continuous extension at ts in [t_a, t_a + h], the step
   // from (t_a, y_a) with first stage k1 to y_b.
-  void dense(double t_a, const Y& y_a, const Y& k1, double h, const Y& y_b, double ts,
-             Y& x) const {
+  void dense(double t_a, const Y& y_a, const Y& k1, double h, const Y& y_b, double ts, Y& x) const {
     if (!dopri5_) {
       rk4_dense(y_a, h, stages_, (ts - t_a) / h, x);
       return;

@@ -225,14 +225,14 @@ void validate_frozen_damping(const SimulationCase& c) {
   const double limit = real_stability_limit(c.integrator.kind);
   if (!(rate > limit)) return;
   const std::string method = name_of(kIntegratorKinds, c.integrator.kind);
-  throw InputError(
-      "model.damping_reference_speed", digits(speed) + " m/s",
-      "a speed whose frozen damping the fixed-step " + method +
-          " can carry: at it (32)-(33) give D = " + digits(d) + " s/m, and under the tooth load " +
-          digits(load) + " N its rate per step h D F / m_e = " + digits(rate) + " exceeds " +
-          digits(limit) + ", where " + method + " diverges",
-      "raise model.damping_reference_speed, or integrator.kind = \"adaptive\", or a "
-      "smaller integrator.step");
+  throw InputError("model.damping_reference_speed", digits(speed) + " m/s",
+                   "a speed whose frozen damping the fixed-step " + method +
+                       " can carry: at it (32)-(33) give D = " + digits(d) +
+                       " s/m, and under the tooth load " + digits(load) +
+                       " N its rate per step h D F / m_e = " + digits(rate) + " exceeds " +
+                       digits(limit) + ", where " + method + " diverges",
+                   "raise model.damping_reference_speed, or integrator.kind = \"adaptive\", or a "
+                   "smaller integrator.step");
 }
 
 void validate_implied(const SimulationCase& c, const std::pair<double, double>& extremes) {

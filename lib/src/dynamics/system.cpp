@@ -470,8 +470,8 @@ void GearSystem::classify_forces(const State& y, const ContactMemory& d, Mode& m
     const double x = pair_position(m, y, j);
     m.slip[j] = sliding_speed(y[kW1], y[kW2], x, lp_) >= 0.0 ? 1.0 : -1.0;
     const PairPenetration p = pair_penetration(m, j, x, dl, dl_rate, x_rate);
-    m.clipped[j] = push_sign_function(m.table[j], m.part[j], x, m.count, d,
-                                      p.delta_m, p.rate_m_s) < 0.0;
+    m.clipped[j] =
+        push_sign_function(m.table[j], m.part[j], x, m.count, d, p.delta_m, p.rate_m_s) < 0.0;
   }
 }
 
@@ -528,8 +528,8 @@ GearSystem::Onset GearSystem::damping_at_onset(const State& y, const Mode& m) co
     if (nearest >= 0) {
       double ke = 0.0;
       double dke = 0.0;
-      pair_stiffness(*m.table[nearest], m.part[nearest],
-                     pair_position(m, y, nearest), m.count, ke, dke);
+      pair_stiffness(*m.table[nearest], m.part[nearest], pair_position(m, y, nearest), m.count, ke,
+                     dke);
       d.frozen_stiffness_n_per_m = ke;
     }
   }
