@@ -1056,6 +1056,28 @@ SimulationSummary run_meshing(const SimulationCase& c, const StiffnessTable& tab
   return simulate_planar(c, table, planar_mounting(c), meshing_start(c, table), control).summary;
 }
 
+// meshing_case at 2000 N and 100 rad/s with a spall over [0.2, 0.6] of the
+// way from the pitch point to X_end on the drive flank of pinion tooth 0 (as
+// test_faults_dynamics), half the face: its pair crosses both edges under
+// load, Ke jumping at each.
+SimulationCase spalled_meshing_case() {
+  SimulationCase c = meshing_case(2000.0, 100.0, 1e-7);
+  const GearPair& g = c.gears;
+  const ContactSegment segment = contact_segment(g);
+  const double rb1 = base_radius(g, Gear::one);
+  const double xp = pitch_point_position(g);
+  ToothFault spall;
+  spall.gear = Gear::one;
+  spall.tooth = 0;
+  spall.state.kind = ToothKind::spall;
+  spall.state.spall.start_radius_m = std::hypot(rb1, xp + 0.2 * (segment.end_m - xp));
+  spall.state.spall.end_radius_m = std::hypot(rb1, xp + 0.6 * (segment.end_m - xp));
+  spall.state.spall.width_m = 0.5 * g.face_width_m;
+  spall.state.spall.depth_m = 0.2e-3;
+  c.faults = {spall};
+  return c;
+}
+
 // The ledger residuals of runs at each step, and the ratio of successive ones.
 void check_ledger_order(const std::vector<SimulationSummary>& runs) {
   for (std::size_t i = 1; i < runs.size(); ++i) {
@@ -1142,25 +1164,11 @@ TEST_CASE("friction reversals are events: the friction loss converges at RK4's o
 }
 
 TEST_CASE("a spall's edges are events in the planar run: the ledger at RK4's order") {
-  // A spall over [0.2, 0.6] of the way from the pitch point to X_end on the
-  // drive flank of pinion tooth 0 (as test_faults_dynamics), half the face:
-  // its pair crosses both edges under load, Ke jumping at each; the steps
-  // land on them and the jumps of the stored energy are booked there, beside
-  // the entries and exits.
-  SimulationCase base = meshing_case(2000.0, 100.0, 1e-7);
+  // The spalled pair crosses both edges under load: the steps land on them
+  // and the jumps of the stored energy are booked there, beside the entries
+  // and exits.
+  const SimulationCase base = spalled_meshing_case();
   const GearPair& g = base.gears;
-  const ContactSegment segment = contact_segment(g);
-  const double rb1 = base_radius(g, Gear::one);
-  const double xp = pitch_point_position(g);
-  ToothFault spall;
-  spall.gear = Gear::one;
-  spall.tooth = 0;
-  spall.state.kind = ToothKind::spall;
-  spall.state.spall.start_radius_m = std::hypot(rb1, xp + 0.2 * (segment.end_m - xp));
-  spall.state.spall.end_radius_m = std::hypot(rb1, xp + 0.6 * (segment.end_m - xp));
-  spall.state.spall.width_m = 0.5 * g.face_width_m;
-  spall.state.spall.depth_m = 0.2e-3;
-  base.faults = {spall};
   const StiffnessTable table(g, base.model.stiffness);
   SimulationCase healthy = base;
   healthy.faults.clear();
@@ -1254,21 +1262,8 @@ TEST_CASE("Dormand-Prince at a fixed step: the ledger at order 5 through the eve
     }
   }
   SUBCASE("a spall's edges") {
-    SimulationCase base = meshing_case(2000.0, 100.0, 1e-7);
-    const GearPair& g = base.gears;
-    const ContactSegment segment = contact_segment(g);
-    const double rb1 = base_radius(g, Gear::one);
-    const double xp = pitch_point_position(g);
-    ToothFault spall;
-    spall.gear = Gear::one;
-    spall.tooth = 0;
-    spall.state.kind = ToothKind::spall;
-    spall.state.spall.start_radius_m = std::hypot(rb1, xp + 0.2 * (segment.end_m - xp));
-    spall.state.spall.end_radius_m = std::hypot(rb1, xp + 0.6 * (segment.end_m - xp));
-    spall.state.spall.width_m = 0.5 * g.face_width_m;
-    spall.state.spall.depth_m = 0.2e-3;
-    base.faults = {spall};
-    const StiffnessTable table(g, base.model.stiffness);
+    const SimulationCase base = spalled_meshing_case();
+    const StiffnessTable table(base.gears, base.model.stiffness);
     check_dopri5_ledger_order(dopri5_runs(base, table, {8e-7, 4e-7, 2e-7}));
   }
 }
