@@ -422,27 +422,29 @@ ReportSection reproduce_vibration(const ReproduceContext& context) {
                format_data_number(low.coast_force_n[i]) + "\n";
   }
   write_file_atomically((context.out / "vibration_low_load.csv").string(), low_csv);
-  render(
-      context.out,
-      {"vibration_low_load",
-       "DTE with a " + number(kRippleNm, 3) + " N m once-per-revolution ripple of T_1",
-       "pinion revolutions after settling",
-       "DTE = s_d - B, {/Symbol m}m (0: drive flanks touch)",
-       {"set key below", "set grid", "set xrange [0:" + std::to_string(kLowLoadRevolutions) + "]",
-        "set arrow from graph 0, first 0 to graph 1, first 0 nohead lc rgb 'black'",
-        // Where the coast flanks touch with the centres at rest; the centres' motion moves it
-        // (the breathing backlash).
-        "set arrow from graph 0, first " + number(-2e6 * pair.backlash_m, 6) +
-            " to graph 1, first " + number(-2e6 * pair.backlash_m, 6) +
-            " nohead dt 2 lc rgb 'gray40'",
-        "set label 'coast flanks touch (centres at rest)' at graph 0.02, first " +
-            number(-2e6 * pair.backlash_m + 4.0, 6)},
-       {"'vibration_low_load.csv' using 1:($2 * 1e6) with lines lw 1.2 lc rgb 'black' title "
-        "'T_1 = " +
-            number(rig.torque1.constant_n_m, 3) + " N m mean'",
-        "'vibration_low_load.csv' using 1:($3 * 1e6) with lines lw 1.2 lc rgb '#d62728' "
-        "title 'T_1 = " +
-            number(kLowLoadFraction * rig.torque1.constant_n_m, 3) + " N m mean'"}});
+  render(context.out,
+         {"vibration_low_load",
+          "DTE with a " + number(kRippleNm, 3) + " N m once-per-revolution ripple of T_1",
+          "pinion revolutions after settling",
+          "DTE = s_d - B, {/Symbol m}m (0: drive flanks touch)",
+          // The key inside, above the curves (the x label and a key below it met), and the coast
+          // line's label below the line, where no curve runs.
+          {"set key top right opaque", "set grid",
+           "set xrange [0:" + std::to_string(kLowLoadRevolutions) + "]",
+           "set arrow from graph 0, first 0 to graph 1, first 0 nohead lc rgb 'black'",
+           // Where the coast flanks touch with the centres at rest; the centres' motion moves it
+           // (the breathing backlash).
+           "set arrow from graph 0, first " + number(-2e6 * pair.backlash_m, 6) +
+               " to graph 1, first " + number(-2e6 * pair.backlash_m, 6) +
+               " nohead dt 2 lc rgb 'gray40'",
+           "set label 'coast flanks touch (centres at rest)' at graph 0.02, first " +
+               number(-2e6 * pair.backlash_m - 8.0, 6)},
+          {"'vibration_low_load.csv' using 1:($2 * 1e6) with lines lw 1.2 lc rgb 'black' title "
+           "'T_1 = " +
+               number(rig.torque1.constant_n_m, 3) + " N m mean'",
+           "'vibration_low_load.csv' using 1:($3 * 1e6) with lines lw 1.2 lc rgb '#d62728' "
+           "title 'T_1 = " +
+               number(kLowLoadFraction * rig.torque1.constant_n_m, 3) + " N m mean'"}});
 
   ReportSection section;
   section.title = "Vibration of a healthy and a cracked pinion (an extension)";
