@@ -6,14 +6,17 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
+#include "gearimpact/case/units.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/tooth_identity.hpp"
@@ -34,6 +37,7 @@ struct SignalsOptions {
   std::string input;
   std::string column;
   std::string time_column = "t_s";
+  std::string from;
   std::string angle_column;
   std::string sample_rate;
   std::string window = "hann";
@@ -277,6 +281,19 @@ void run_signals(const SignalsOptions& o) {
     naming_flags([&] { signals::check_sample_rate(*rate); });
   }
   const signals::Window window = signals::parse_window(o.window, "--window");
+  // The record's start, in s or with a unit: what comes before (a run's
+  // start ringing its modes) is left out.
+  double from = -std::numeric_limits<double>::infinity();
+  if (!o.from.empty()) {
+    char* end = nullptr;
+    const double plain = std::strtod(o.from.c_str(), &end);
+    from = end == o.from.c_str() + o.from.size()
+               ? plain
+               : parse_quantity(o.from, Dimension::time, "--from");
+    if (!(std::isfinite(from) && from >= 0.0)) {
+      throw InputError("--from", o.from, "a time >= 0 s (a plain number in s or with a unit)");
+    }
+  }
   const bool has_angle = !o.angle_column.empty();
   if (!has_angle && !o.teeth.empty()) {
     throw InputError(std::vector<Problem>{
@@ -308,36 +325,64 @@ void run_signals(const SignalsOptions& o) {
     names.push_back(o.angle_column);
     flags.emplace_back("--angle-column");
   }
-  const std::vector<std::vector<double>> columns = read_csv_columns(o.input, names, flags);
+  std::vector<std::vector<double>> columns = read_csv_columns(o.input, names, flags);
+  // The rows from --from on (the time column ascends, as a run writes it).
+  const auto first = static_cast<std::ptrdiff_t>(
+      std::lower_bound(columns[0].begin(), columns[0].end(), from) - columns[0].begin());
+  for (std::vector<double>& column : columns) column.erase(column.begin(), column.begin() + first);
   const std::vector<double>& time = columns[0];
   const std::vector<double>& signal = columns[1];
   if (time.size() < 4) {
-    throw InputError(o.input, std::to_string(time.size()) + " rows", "at least 4 rows");
+    throw InputError(o.input,
+                     std::to_string(time.size()) + " rows" +
+                         (o.from.empty() ? std::string() : " from --from = " + o.from),
+                     "at least 4 rows");
   }
   const double span = time.back() - time.front();
   // The record's own rate, 1 / its median spacing (a run's event rows add a
-  // few shorter steps). A grid coarser than the record would fold what lies
-  // above its Nyquist frequency onto the spectrum, so it is refused;
-  // without --sample-rate the grid is the record's.
+  // few shorter steps); without --sample-rate the grid is the record's.
   std::vector<double> spacing(time.size() - 1);
   for (std::size_t i = 1; i < time.size(); ++i) spacing[i - 1] = time[i] - time[i - 1];
   std::nth_element(spacing.begin(), spacing.begin() + spacing.size() / 2, spacing.end());
   const double record_rate = 1.0 / spacing[spacing.size() / 2];
-  if (rate && *rate < record_rate * (1.0 - 1e-9)) {
-    throw InputError("--sample-rate", o.sample_rate,
-                     "at least the record's rate " + ten_digits(record_rate) +
-                         " Hz (1 / its median spacing): a coarser grid would alias");
+  // A coarser grid would fold what lies above its Nyquist frequency onto the
+  // spectrum (a simulated acceleration steps where pairs enter and leave):
+  // as a recorder's anti-alias filter does, the record on its own uniform grid
+  // is low-passed below that frequency first, and the angle taken on the same
+  // grid for the order analysis.
+  const bool coarser = rate && *rate < record_rate * (1.0 - 1e-9);
+  std::vector<double> filtered_time;
+  std::vector<double> filtered_signal;
+  std::vector<double> filtered_angle;
+  if (coarser) {
+    naming_flags([&] {
+      filtered_time = signals::uniform_times(time.front(), time.back(), record_rate);
+      filtered_signal =
+          signals::low_pass(signals::resample_uniform(time, signal, record_rate,
+                                                      o.time_column.c_str(), o.column.c_str()),
+                            record_rate, 0.5 * *rate);
+      if (has_angle) {
+        filtered_angle = signals::resample_uniform(time, columns[2], record_rate,
+                                                   o.time_column.c_str(), o.angle_column.c_str());
+      }
+    });
   }
+  const std::vector<double>& analysed_time = coarser ? filtered_time : time;
+  const std::vector<double>& analysed_signal = coarser ? filtered_signal : signal;
   SignalsRun run;
   run.input = o.input;
   run.column = o.column;
   run.time_column = o.time_column;
+  run.start_s = time.front();
+  run.end_s = time.back();
   run.sample_rate_hz = rate ? *rate : record_rate;
+  run.record_rate_hz = record_rate;
+  if (coarser) run.low_pass_hz = 0.5 * *rate;
   run.window = std::string(signals::to_string(window));
   std::vector<double> uniform;
   naming_flags([&] {
-    uniform = signals::resample_uniform(time, signal, run.sample_rate_hz, o.time_column.c_str(),
-                                        o.column.c_str());
+    uniform = signals::resample_uniform(analysed_time, analysed_signal, run.sample_rate_hz,
+                                        o.time_column.c_str(), o.column.c_str());
   });
   run.samples = uniform.size();
   const signals::Spectrum spectrum =
@@ -351,12 +396,13 @@ void run_signals(const SignalsOptions& o) {
   std::vector<double> tsa_values;
   double mesh_hz = 0.0;
   if (has_angle) {
-    const std::vector<double>& angle = columns[2];
+    const std::vector<double>& angle = coarser ? filtered_angle : columns[2];
     run.angle_column = o.angle_column;
     run.samples_per_revolution = per_revolution;
     run.sets = sets;
-    const signals::OrderAnalysis a = signals::analyse_orders(
-        angle, signal, per_revolution, window, sets, o.angle_column.c_str(), o.column.c_str());
+    const signals::OrderAnalysis a =
+        signals::analyse_orders(angle, analysed_signal, per_revolution, window, sets,
+                                o.angle_column.c_str(), o.column.c_str());
     run.angle_grid = a.grid;
     run.revolutions = a.revolutions;
     run.shaft_frequency_hz = (angle.back() - angle.front()) / (2.0 * pi * span);
@@ -416,6 +462,9 @@ void register_signals_commands(CLI::App& app) {
   cmd->add_option("--column", o->column, "the signal's column (e.g. s_m, normal_force_N)")
       ->required();
   cmd->add_option("--time-column", o->time_column, "the time column, s (default t_s)");
+  cmd->add_option("--from", o->from,
+                  "the record's start, s or with a unit (e.g. \"50 ms\"): the rows before it are "
+                  "left out, such as a run's start ringing its modes (default: the first row)");
   cmd->add_option("--sample-rate", o->sample_rate,
                   "Hz of the uniform grid the samples are interpolated onto (cubic, fourth "
                   "order); default: the record's mean rate, (rows - 1) / duration");

@@ -64,7 +64,7 @@ from ._results import (
     stiffness,
     sweep_friction,
 )
-from ._signals import indicators, order_analysis, spectrum
+from ._signals import indicators, low_pass, order_analysis, spectrum
 from ._program import (
     iso6336,
     mesh_stiffness,
@@ -97,6 +97,7 @@ __all__ = [
     "indicators",
     "iso6336",
     "line_of_action_length",
+    "low_pass",
     "mesh_stiffness",
     "modes",
     "moment_of_inertia",

@@ -15,6 +15,17 @@ def spectrum(signal, rate, window="hann"):
     return _core.amplitude_spectrum(signal, float(rate), str(window))
 
 
+def low_pass(signal, rate, cutoff):
+    """The content of a uniformly sampled ``signal`` below ``cutoff`` (Hz), at the
+    same samples: an ideal low-pass by its DFT, the record taken as periodic.
+
+    A recorder's anti-alias filter: sample a run faster than the rate you keep,
+    low-pass below that rate's Nyquist frequency, then keep every n-th sample.
+    ``rate``: samples per second. Returns a numpy array.
+    """
+    return _core.low_pass(signal, float(rate), float(cutoff))
+
+
 def order_analysis(angle, signal, samples_per_revolution=512, teeth=None, shaft_orders=1,
                    sidebands=1, window="hann"):
     """Order spectrum and time-synchronous average of ``signal`` sampled with its

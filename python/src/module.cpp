@@ -969,6 +969,13 @@ void define_module(py::module_& m) {
       },
       py::arg("signal"), py::arg("rate"), py::arg("window"));
   m.def(
+      "low_pass",
+      [](const ArrayIn& x, double rate, double cutoff) {
+        const std::vector<double> values = vector_of(x, "signal");
+        return to_array(naming_keywords([&] { return signals::low_pass(values, rate, cutoff); }));
+      },
+      py::arg("signal"), py::arg("rate"), py::arg("cutoff"));
+  m.def(
       "order_analysis",
       [](const ArrayIn& angle, const ArrayIn& x, long long per_revolution, long long teeth,
          long long shaft_orders, long long sidebands, const std::string& window) {

@@ -21,6 +21,19 @@ def test_spectrum_reads_a_sine_on_a_bin():
         assert abs(s["amplitude"][0] - 0.7) / 0.7 < 1e-11
 
 
+def test_low_pass_keeps_the_tones_below_its_cutoff():
+    # 1000 samples at 1 kHz (bins 1 Hz apart): the mean and 50 Hz kept to
+    # rounding, 300 Hz gone, as numpy's own DFT with those bins zeroed gives.
+    t = numpy.arange(1000) / 1000.0
+    x = 0.5 + numpy.cos(2 * math.pi * 50.0 * t) + 0.75 * numpy.sin(2 * math.pi * 300.0 * t)
+    y = gearimpact.low_pass(x, 1000.0, 100.0)
+    assert isinstance(y, numpy.ndarray) and y.shape == x.shape
+    assert numpy.max(numpy.abs(y - (0.5 + numpy.cos(2 * math.pi * 50.0 * t)))) < 1e-11
+    half = numpy.fft.rfft(x)
+    half[100:] = 0.0
+    assert numpy.max(numpy.abs(y - numpy.fft.irfft(half, n=1000))) < 1e-11
+
+
 def test_order_analysis_of_mesh_harmonics_in_an_uneven_angle():
     # x = 1 + cos(20 theta) + 0.25 cos(40 theta), theta advancing unevenly:
     # FM0 = (2.25 - 0.25) / (1 + 0.25) = 1.6 (640 samples a revolution hit
@@ -53,6 +66,8 @@ def test_indicators_of_a_sine():
     "call, field",
     [
         (lambda: gearimpact.spectrum([1.0, 2.0, 3.0], 0.0), "rate"),
+        (lambda: gearimpact.low_pass([1.0, 2.0, 3.0], 0.0, 1.0), "rate"),
+        (lambda: gearimpact.low_pass([1.0, 2.0, 3.0], 10.0, -1.0), "cutoff"),
         (lambda: gearimpact.spectrum([1.0, 2.0, 3.0], 1.0, "hamming"), "window"),
         (lambda: gearimpact.spectrum([[1.0, 2.0]], 1.0), "signal"),
         (lambda: gearimpact.order_analysis(numpy.linspace(0, 20, 100), numpy.zeros(100),

@@ -305,6 +305,44 @@ TEST_CASE("NB4: the envelope of an amplitude-modulated mesh tone") {
   CHECK(relative_difference(*gear_indicators(tsa, parts, sets).nb4, 1.5) < kRounding);
 }
 
+TEST_CASE("the low-pass keeps the tones below its cutoff and removes those above") {
+  // 1000 samples at 1 kHz: bins every 1 Hz. Tones on bins 50 and 300 Hz and a
+  // mean; a cutoff at 100 Hz keeps the mean and the 50 Hz tone to rounding and
+  // leaves nothing of 300 Hz. A cutoff on a bin removes that bin.
+  const double rate = 1000.0;
+  const auto x = sampled(1000, [&](double n) {
+    const double t = n / rate;
+    return 0.5 + std::cos(2.0 * pi * 50.0 * t) + 0.75 * std::sin(2.0 * pi * 300.0 * t);
+  });
+  const std::vector<double> kept = low_pass(x, rate, 100.0);
+  const std::vector<double> on_bin = low_pass(x, rate, 50.0);
+  double off = 0.0;
+  double bin = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double t = static_cast<double>(i) / rate;
+    off = std::max(off, std::fabs(kept[i] - (0.5 + std::cos(2.0 * pi * 50.0 * t))));
+    bin = std::max(bin, std::fabs(on_bin[i] - 0.5));
+  }
+  CHECK(off < kRounding);
+  CHECK(bin < kRounding);
+  CHECK_THROWS_WITH_AS(low_pass(x, rate, 0.0), doctest::Contains("cutoff"), InputError);
+  CHECK_THROWS_WITH_AS(low_pass(x, -1.0, 10.0), doctest::Contains("sample rate"), InputError);
+  CHECK_THROWS_WITH_AS(low_pass({1.0}, rate, 10.0), doctest::Contains("at least 2 samples"),
+                       InputError);
+  CHECK_THROWS_WITH_AS(low_pass({1.0, NAN}, rate, 10.0), doctest::Contains("signal (sample 2)"),
+                       InputError);
+}
+
+TEST_CASE("the uniform grid: t0 + n / rate inside the record, the last kept against rounding") {
+  const std::vector<double> grid = uniform_times(0.25, 0.5, 2000.0);
+  REQUIRE(grid.size() == 501);
+  for (std::size_t n = 0; n < grid.size(); ++n) {
+    CHECK(grid[n] == std::min(0.25 + static_cast<double>(n) / 2000.0, 0.5));
+  }
+  CHECK(grid.back() == 0.5);
+  CHECK_THROWS_WITH_AS(uniform_times(0.0, 1e-4, 1000.0), doctest::Contains("2 to 1e9"), InputError);
+}
+
 TEST_CASE("bad inputs are refused naming the input and its range") {
   const auto tsa = revolution(64, [](double u) { return std::cos(u); });
   try {

@@ -110,8 +110,18 @@ std::string indicators_json(const SignalsRun& run, const signals::Indicators& i)
   j["input"] = run.input;
   j["column"] = run.column;
   j["time_column"] = run.time_column;
+  j["record_start_s"] = run.start_s;
+  j["record_end_s"] = run.end_s;
   j["resampling"] = "cubic Lagrange through the four nearest samples (fourth order)";
   j["sample_rate_hz"] = run.sample_rate_hz;
+  j["record_rate_hz"] = run.record_rate_hz;
+  if (run.low_pass_hz) {
+    j["anti_alias"] = "the record on its own uniform grid low-passed below " +
+                      format_number(*run.low_pass_hz) +
+                      " Hz by its DFT (ideal, the record taken as periodic), then resampled";
+  } else {
+    j["anti_alias"] = nullptr;
+  }
   j["samples"] = run.samples;
   j["window"] = run.window;
   j["amplitude_scaling"] = "a sinusoid of amplitude A at a bin reads A (coherent gain corrected)";

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <string>
 
 #include "../require.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
+#include "gearimpact/signals/fft.hpp"
 
 namespace gearimpact::signals {
 namespace {
@@ -94,23 +96,49 @@ std::vector<double> resample_uniform(const std::vector<double>& time,
                                      const char* time_name, const char* signal_name) {
   check_abscissa(time, time_name);
   check_values(signal, time.size(), signal_name);
+  const std::vector<double> grid = uniform_times(time.front(), time.back(), rate);
+  std::vector<double> out(grid.size());
+  for (std::size_t k = 0; k < grid.size(); ++k) {
+    out[k] = lagrange4(time, signal, stencil(time, grid[k]), grid[k]);
+  }
+  return out;
+}
+
+std::vector<double> uniform_times(double t0, double t_end, double rate) {
   check_sample_rate(rate);
-  const double span = time.back() - time.front();
+  const double span = t_end - t0;
   // Whole samples inside the span; the tiny allowance keeps the last one
   // when span * rate is an integer spoiled by rounding.
   const double count = std::floor(span * rate * (1.0 + 1e-12)) + 1.0;
-  if (count < 2.0 || count > 1e9) {
+  if (!(count >= 2.0 && count <= 1e9)) {
     throw InputError(
         "sample rate", rate,
         "a rate giving 2 to 1e9 samples over the record of " + format_number(span) + " s");
   }
   const auto n = static_cast<std::size_t>(count);
-  std::vector<double> out(n);
+  std::vector<double> grid(n);
   for (std::size_t k = 0; k < n; ++k) {
-    const double t = std::min(time.front() + static_cast<double>(k) / rate, time.back());
-    out[k] = lagrange4(time, signal, stencil(time, t), t);
+    grid[k] = std::min(t0 + static_cast<double>(k) / rate, t_end);
   }
-  return out;
+  return grid;
+}
+
+std::vector<double> low_pass(const std::vector<double>& uniform, double rate_hz, double cutoff_hz) {
+  check_sample_rate(rate_hz);
+  if (!(std::isfinite(cutoff_hz) && cutoff_hz > 0.0)) {
+    throw InputError("cutoff", cutoff_hz, "a finite frequency > 0 Hz");
+  }
+  if (uniform.size() < 2) {
+    throw InputError("signal", std::to_string(uniform.size()) + " samples", "at least 2 samples");
+  }
+  check_values(uniform, uniform.size(), "signal");
+  std::vector<std::complex<double>> spectrum = real_dft(uniform);
+  const double n = static_cast<double>(uniform.size());
+  // Bin k lies at k rate / N: those at and above the cutoff go.
+  for (std::size_t k = 0; k < spectrum.size(); ++k) {
+    if (static_cast<double>(k) * rate_hz / n >= cutoff_hz) spectrum[k] = 0.0;
+  }
+  return inverse_real_dft(spectrum, uniform.size());
 }
 
 AngleSignal resample_on_angle(const std::vector<double>& angle, const std::vector<double>& signal,

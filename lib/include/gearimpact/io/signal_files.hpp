@@ -34,8 +34,15 @@ struct SignalsRun {
   std::string input;
   std::string column;
   std::string time_column;
+  // The record's first and last time, s: the rows analysed (from --from on).
+  double start_s = 0.0;
+  double end_s = 0.0;
   std::string angle_column;  // empty without an angle
   double sample_rate_hz = 0.0;
+  double record_rate_hz = 0.0;  // the record's own, 1 / its median spacing
+  // The anti-alias low-pass before a grid coarser than the record (low_pass
+  // of resample.hpp), Hz; empty when the grid is not coarser.
+  std::optional<double> low_pass_hz;
   std::size_t samples = 0;
   std::string window;
   std::size_t samples_per_revolution = 0;  // of the TSA

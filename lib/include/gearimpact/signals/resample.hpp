@@ -34,6 +34,23 @@ std::vector<double> resample_uniform(const std::vector<double>& time,
                                      const char* time_name = "time",
                                      const char* signal_name = "signal");
 
+// The instants of resample_uniform's grid over [t0, t_end]: t0 + n / rate,
+// n = 0, 1, ... while inside (the last one clamped to t_end against the
+// rounding of n / rate). Throws InputError naming "sample rate" unless rate is
+// finite and > 0 and gives 2 to 1e9 instants.
+std::vector<double> uniform_times(double t0, double t_end, double rate);
+
+// The content of a uniformly sampled record below `cutoff_hz`, at the same
+// samples: an ideal low-pass by the record's DFT (the bins at and above the
+// cutoff set to 0; the record taken as periodic, so the mismatch of its ends
+// rings into its first and last stretch). A recorder's anti-alias filter
+// before a coarser rate: a simulated acceleration steps where a pair enters
+// or leaves, and its content far above a coarser grid's Nyquist frequency
+// would fold onto the spectrum. Throws InputError naming "sample rate" or
+// "cutoff" unless each is finite and > 0, and "signal" for fewer than 2
+// samples or a non-finite one.
+std::vector<double> low_pass(const std::vector<double>& uniform, double rate_hz, double cutoff_hz);
+
 // A signal sampled at equal steps of a shaft's angle, whole revolutions only.
 struct AngleSignal {
   std::size_t samples_per_revolution = 0;
