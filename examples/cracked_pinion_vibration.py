@@ -50,11 +50,19 @@ print("natural frequencies, Hz:", np.round(modes["frequency_hz"], 1))
 # defaults). The sample rate is locked to the mesh, 32 samples a mesh period, so that every
 # tooth meets the samples at the same phase; the first 50 ms (two revolutions) are the start's
 # transient and are dropped.
+#
+# The centre's acceleration steps where a pair enters or leaves and where friction reverses, so
+# its content reaches far above any sample rate's Nyquist frequency, and samples taken straight
+# fold it onto the spectrum (with the rate locked to the mesh, onto the mesh harmonics
+# themselves: the first harmonic would read some ten times too much). As a recorder's anti-alias
+# filter does, the run is sampled four times faster, low-passed below the kept rate's Nyquist
+# frequency (`gearimpact.low_pass`) and every fourth sample kept.
 
 # %%
 shaft_hz = 40.0
 teeth = 17
 rate = 32 * teeth * shaft_hz
+oversampling = 4
 settle_s = 0.05
 revolutions = 8
 crack = """
@@ -68,12 +76,16 @@ angle = "45 deg"
 
 
 def accelerometer(text):
-    """The pinion angle and the sensor's acceleration after the settling time."""
+    """The pinion angle and the anti-aliased sensor's acceleration after the settling time."""
     case = gearimpact.parse_case(text, "rig_17_38")
     end = settle_s + (revolutions + 1.5) / shaft_hz
-    run = gearimpact.simulate(case, keep_series=False, sample_rate=rate, end_time=end)
+    run = gearimpact.simulate(case, keep_series=False, sample_rate=oversampling * rate,
+                              end_time=end)
     kept = run.samples["t_s"] >= settle_s
-    return run.samples["theta1_rad"][kept], run.samples["sensor_acceleration_m_per_s2"][kept]
+    angle = run.samples["theta1_rad"][kept]
+    filtered = gearimpact.low_pass(run.samples["sensor_acceleration_m_per_s2"][kept],
+                                   oversampling * rate, rate / 2)
+    return angle[::oversampling], filtered[::oversampling]
 
 
 runs = {"healthy": accelerometer(rig_text), "root crack 2 mm": accelerometer(rig_text + crack)}
@@ -111,7 +123,11 @@ plt.show()
 #
 # The TSA on the pinion's simulated angle over the whole revolutions, its difference signal
 # (without the shaft orders, the mesh harmonics and their first sidebands), and the indicators.
-# The crack shows in the difference signal just after tooth 0 passes.
+# The crack shows in the difference signal just after tooth 0 passes. The energy ratio and FM0
+# rise with it. FM4 and NA4 are kurtoses of the difference and residual signals: the healthy
+# model has no noise, so its difference signal is a small residue left by the sampling, a few
+# spikes where pairs enter and leave, whose kurtosis is large; a measured healthy gear, whose
+# difference signal is mostly noise, reads near 3.
 
 # %%
 fig, ax = plt.subplots(figsize=(9, 4))
@@ -131,3 +147,5 @@ for key in ("fm0", "fm4", "na4", "m6a", "energy_ratio", "sideband_level"):
         f"{name}: {'-' if table[name][key] is None else f'{table[name][key]:.4g}'}" for name in table)
     print(f"{key:15s} {values}")
 assert all(math.isfinite(table[name]["fm0"]) for name in table)
+# The crack raises the difference signal's share of the TSA.
+assert table["root crack 2 mm"]["energy_ratio"] > table["healthy"]["energy_ratio"]

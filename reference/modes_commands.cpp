@@ -187,11 +187,25 @@ Figure campbell_figure(const SimulationCase& c, const ModesTexts& texts, int har
                        " * x / 60 with lines lw 2 title '" + std::to_string(k) + " f_m'");
   }
   bool first = true;
-  for (const NaturalMode& mode : texts.modes.modes) {
+  const std::vector<NaturalMode>& modes = texts.modes.modes;
+  for (std::size_t i = 0; i < modes.size(); ++i) {
+    const NaturalMode& mode = modes[i];
     if (mode.rigid) continue;
     f.series.push_back(format_data_number(mode.frequency_hz) + " with lines dt 2 lc rgb 'gray40' " +
                        (first ? "title 'natural frequencies'" : "notitle"));
     first = false;
+    // Each line named at its right end by its mode (as modes.csv numbers them) and frequency,
+    // above it, or below it where the next mode's line is closer than a label's height (4 % of
+    // the axis).
+    const bool crowded = i + 1 < modes.size() &&
+                         modes[i + 1].frequency_hz - mode.frequency_hz < 0.04 * 1.1 * highest_hz;
+    char label[160];
+    std::snprintf(label, sizeof label,
+                  "set label 'mode %zu: %.0f Hz' at graph 1, first %s right offset -0.5, %s "
+                  "font ',9' tc rgb 'gray30'",
+                  i + 1, mode.frequency_hz, format_data_number(mode.frequency_hz).c_str(),
+                  crowded ? "-0.7" : "0.6");
+    f.setup.emplace_back(label);
   }
   // gnuplot refuses a plot with no point: the crossings only when there are some.
   if (!texts.crossings.empty()) {

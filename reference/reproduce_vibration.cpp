@@ -338,8 +338,9 @@ ReportSection reproduce_vibration(const ReproduceContext& context) {
   }
   write_file_atomically((context.out / "vibration_indicators.csv").string(), ind_csv);
 
-  // Figures: the waveform over two revolutions, the spectrum to 3 kHz with the mesh harmonics
-  // and their +-1 shaft-order sidebands marked, the TSA with tooth 0's passage shaded.
+  // Figures: the waveform over two revolutions, the spectrum to 7.5 f_m (past the largest
+  // harmonic, the 6th) with the mesh harmonics and their +-1 shaft-order sidebands marked, the
+  // TSA with tooth 0's passage shaded.
   const auto column = [](const std::string& file, int x, int y, const std::string& title,
                          const std::string& style, const std::string& scale = "") {
     return "'" + file + "' using " + std::to_string(x) + ":($" + std::to_string(y) + scale +
@@ -355,9 +356,11 @@ ReportSection reproduce_vibration(const ReproduceContext& context) {
            "'root crack q/h_c = 0.75'",
            "'vibration_waveform.csv' using ($1 * 1e3):2 with lines lw 1 lc rgb 'black' title "
            "'healthy'"}});
+  const double spectrum_end_hz = 7.5 * f_mesh;
   std::vector<std::string> spectrum_setup{"set key below", "set grid", "set logscale y",
-                                          "set format y '10^{%L}'", "set xrange [0:3000]"};
-  for (int h = 1; f_mesh * h < 3000.0; ++h) {
+                                          "set format y '10^{%L}'",
+                                          "set xrange [0:" + number(spectrum_end_hz, 6) + "]"};
+  for (int h = 1; f_mesh * h < spectrum_end_hz; ++h) {
     const double f = f_mesh * h;
     spectrum_setup.push_back("set arrow from " + number(f, 6) + ", graph 0 to " + number(f, 6) +
                              ", graph 1 nohead dt 2 lc rgb 'gray60'");

@@ -132,10 +132,10 @@ double number(const std::string& text, const std::string& flag) {
   return value;
 }
 
-// Ten digits: the last digits of 1 / spacing are the spacing's rounding.
-std::string ten_digits(double value) {
+// Four digits: a number a figure's legend states.
+std::string four_digits(double value) {
   char text[32];
-  std::snprintf(text, sizeof text, "%.10g", value);
+  std::snprintf(text, sizeof text, "%.4g", value);
   return text;
 }
 
@@ -226,7 +226,8 @@ void waveform_figure(const std::filesystem::path& dir, const std::string& column
             (first > 0 ? " (the record's last " + std::to_string(kWaveformSamples) + " samples)"
                        : std::string());
   f.x_label = "time (s)";
-  f.y_label = "signal";
+  // The column's name, which carries its unit (sensor_acceleration_m_per_s2).
+  f.y_label = literal_key(column, true);
   f.setup = {"set key off"};
   f.series = {"'waveform.csv' using 1:2 with lines lw 1 lc rgb '#1f4e99'"};
   render(dir, f);
@@ -234,7 +235,8 @@ void waveform_figure(const std::filesystem::path& dir, const std::string& column
 
 // The TSA less its mean (which would otherwise set the scale), with the
 // difference and residual signals, which have none.
-void tsa_figure(const std::filesystem::path& dir, const std::vector<double>& tsa, bool with_parts,
+void tsa_figure(const std::filesystem::path& dir, const std::string& column,
+                const std::vector<double>& tsa, bool with_parts,
                 const std::optional<ToothPassage>& marked, const std::string& marked_name) {
   double mean = 0.0;
   for (double v : tsa) mean += v / static_cast<double>(tsa.size());
@@ -242,9 +244,9 @@ void tsa_figure(const std::filesystem::path& dir, const std::vector<double>& tsa
   std::snprintf(shift, sizeof shift, "%.17g", mean);
   Figure f;
   f.name = "tsa";
-  f.title = "Time-synchronous average over one revolution";
+  f.title = "Time-synchronous average of " + literal_key(column, true) + " over one revolution";
   f.x_label = "shaft angle (deg)";
-  f.y_label = "signal";
+  f.y_label = literal_key(column, true);
   f.setup = {"set key outside right top"};
   add(f, tick_commands("x", Ticks{0.0, 360.0, 45.0, 0}));
   if (marked) {
@@ -262,8 +264,8 @@ void tsa_figure(const std::filesystem::path& dir, const std::vector<double>& tsa
     f.title += " (shaded: " + marked_name + " in contact)";
   }
   f.series = {"'tsa.csv' using ($1*180/pi):($2-(" + std::string(shift) +
-              ")) with lines lw 1.5 lc rgb '#1f4e99' title 'TSA - mean (" + ten_digits(mean) +
-              ")'"};
+              ")) with lines lw 1.5 lc rgb '#1f4e99' title 'TSA less its mean (" +
+              four_digits(mean) + ")'"};
   if (with_parts) {
     f.series.push_back(
         "'tsa.csv' using ($1*180/pi):5 with lines lw 1.2 lc rgb '#c0392b' title 'difference'");
@@ -438,7 +440,7 @@ void run_signals(const SignalsOptions& o) {
                           literal_key(o.angle_column, true),
                       "order (cycles per revolution)", sets ? std::min(half, 3.5 * z) : half, z,
                       "z", 1.0, sidebands);
-      tsa_figure(dir, tsa_values, sets.has_value(), marked,
+      tsa_figure(dir, o.column, tsa_values, sets.has_value(), marked,
                  o.mark_tooth.substr(0, o.mark_tooth.find(':')) + " tooth " +
                      o.mark_tooth.substr(o.mark_tooth.find(':') + 1));
     }
@@ -467,7 +469,9 @@ void register_signals_commands(CLI::App& app) {
                   "left out, such as a run's start ringing its modes (default: the first row)");
   cmd->add_option("--sample-rate", o->sample_rate,
                   "Hz of the uniform grid the samples are interpolated onto (cubic, fourth "
-                  "order); default: the record's mean rate, (rows - 1) / duration");
+                  "order); default: the record's own rate, 1 / its median spacing; a lower rate "
+                  "low-passes the record below its Nyquist frequency first (an anti-alias "
+                  "filter)");
   cmd->add_option("--window", o->window, "rectangular or hann (default hann)");
   cmd->add_option("--angle-column", o->angle_column,
                   "the shaft's angle, rad, strictly increasing (e.g. theta1_rad): order "

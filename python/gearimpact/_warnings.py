@@ -62,7 +62,8 @@ def conditions(case):
         found["unbalanced"] = (
             f"{name}: mean torques unbalanced, T1 = {_g(t1)} N*m, T2 = {_g(t2)} N*m "
             f"(T1/Rb1 + T2/Rb2 = {_g(imbalance)} N): {consequence}; "
-            f"{key}={balancing!r} (N*m) balances T1")
+            f"{key}={balancing!r} (N*m) balances T1"
+            f"{' without friction' if c['friction'] else ''}")
     if not c["rolling"]:
         w1, w2, rolling = c["w1_rad_s"], c["w2_rad_s"], c["rolling_w2_rad_s"]
         found["not_rolling"] = (

@@ -1236,7 +1236,10 @@ TEST_CASE("Dormand-Prince at a fixed step: the ledger at order 5 through the eve
     const SimulationCase base = meshing_case(2000.0, 100.0, 1e-7);
     const StiffnessTable table(base.gears, base.model.stiffness);
     const std::vector<SimulationSummary> runs = dopri5_runs(base, table, {8e-7, 4e-7, 2e-7});
-    for (const SimulationSummary& s : runs) CHECK(s.events >= s.impacts_n1 + s.impacts_n2 + 4);
+    for (const SimulationSummary& s : runs) {
+      CHECK(s.events >= s.impacts_n1 + s.impacts_n2 + 4);
+      CHECK(s.integrator == "dopri5");
+    }
     check_dopri5_ledger_order(runs);
     // The same run by RK4 at the finest step: the two methods agree on the
     // impacts and within RK4's error on the losses.

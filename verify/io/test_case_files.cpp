@@ -300,6 +300,7 @@ std::vector<BadInput> bad_inputs() {
       {"pressure angle 50 deg",
        set("gears", "pressure_angle", "\"50 deg\""),
        {"gears.pressure_angle", "(0, 45] deg"}},
+
       {"negative friction",
        set("model", "friction_coefficient", "-0.01"),
        {"model.friction_coefficient = -0.01", "[0, 1]"}},

@@ -352,6 +352,13 @@ TEST_CASE("set_field refuses with the key or the name the caller gives, and the 
   const InputError zero = refused("integrator.end_time", "0");
   CHECK(zero.field() == "integrator.end_time");
   CHECK(zero.allowed() == "a time > 0 s");
+  // A plain number is in SI: 20 read as rad is refused, and since 20 deg is
+  // in the range the message says how to write it; 90 rad, out of the range
+  // in deg too, gets no such hint.
+  CHECK(refused("gears.pressure_angle", "20").allowed() ==
+        "an angle in (0, 0.7853981633974483] rad, i.e. (0, 45] deg; a plain number is read in "
+        "rad: \"20 deg\" gives it in deg");
+  CHECK(!contains(refused("gears.pressure_angle", "90").allowed(), "plain number"));
   CHECK(refused("integrator.end_time", "0 ms", "--t-end").field() == "--t-end");
   CHECK(contains(refused("integrator.end_time", "nan").allowed(), "> 0 s"));
   CHECK(contains(refused("integrator.end_time", "20 furlong").what(), "unknown unit"));

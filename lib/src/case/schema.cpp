@@ -1409,6 +1409,23 @@ double parse_value(const Field& field, std::string_view value_text, std::string_
     case FieldKind::number_list:
       throw InputError(std::string(name), written, "a list: read it with parse_list");
   }
+  // A plain number of a quantity is in SI; where files write another unit
+  // (an angle in deg), a refused one that the range takes in that unit was
+  // most likely meant in it: the message says how to write it.
+  if (field.kind == FieldKind::quantity && plain_number(value_text) &&
+      !in_range(field.range, value)) {
+    const UnitList units = units_of(field.dimension);
+    const auto readable = std::find_if(units.begin(), units.end(),
+                                       [&](const Unit& u) { return u.symbol == field.unit; });
+    if (readable != units.begin() && readable != units.end() &&
+        in_range(field.range, value * readable->factor)) {
+      throw InputError(std::string(name), written,
+                       allowed_text(field) + "; a plain number is read in " +
+                           std::string(units.front().symbol) + ": \"" +
+                           std::string(trim(value_text)) + " " + std::string(field.unit) +
+                           "\" gives it in " + std::string(field.unit));
+    }
+  }
   check_value(field, value, name, written);
   return value;
 }

@@ -888,13 +888,12 @@ void validate_planar(const SimulationCase& c, const PlanarMounting& m, const Run
   if (control.resume) refuse("resume", "a run state", "none (a planar run starts afresh)");
 }
 
-namespace {
-
 // The step must resolve the fastest motion the planar system can have. Its
 // largest w^2 is at most the sum over the springs of k a^T M^-1 a (each
 // spring k a a^T adds at most that eigenvalue of M^-1/2 K M^-1/2), the mesh
 // counted on both sides at its stiffest.
-void check_step(const SimulationCase& c, const StiffnessTable& table, const PlanarMounting& m) {
+void check_planar_step(const SimulationCase& c, const StiffnessTable& table,
+                       const PlanarMounting& m) {
   const GearPair& g = c.gears;
   const double rb1 = base_radius(g, Gear::one);
   const double rb2 = base_radius(g, Gear::two);
@@ -939,6 +938,8 @@ void check_step(const SimulationCase& c, const StiffnessTable& table, const Plan
                          std::string(load_drag ? ", the drag's relaxation of the load" : "") + ")");
   }
 }
+
+namespace {
 
 using Stages = Rk4StagesOf<kSize>;
 
@@ -1083,13 +1084,13 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
                                  const RunControl& control) {
   validate_planar(c, mounting, control);
   validate_sampling(c, control);
-  check_step(c, table, mounting);
+  check_planar_step(c, table, mounting);
   const PlanarSystem system(c, table, mounting,
                             mounting.shafts ? initial.theta_motor_rad : initial.theta1_rad);
   SimulationResult result;
   SimulationSummary& s = result.summary;
   s.case_name = c.name;
-  s.integrator = "rk4";
+  s.integrator = name_of(kIntegratorKinds, c.integrator.kind);
   s.friction_coefficient = c.model.friction_coefficient;
   s.friction_law = c.model.friction_law;
   s.step_s = c.integrator.step_s;

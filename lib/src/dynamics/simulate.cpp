@@ -126,6 +126,9 @@ void add_rattle_index(const SimulationCase& c, const StiffnessTable& table,
 SimulationResult simulate_checked(const SimulationCase& c, const StiffnessTable& table,
                                   const RunControl& control) {
   check_table(c, table);
+  // The planar system's step bound is the tighter one: first, so that a step
+  // refused is refused once, with the step that runs.
+  if (c.bearings.kind == BearingKind::elastic) check_planar_step(c, table, planar_mounting(c));
   validate_implied(c, table);
   if (c.bearings.kind == BearingKind::elastic) {
     // Rigid bearings never come here: they run the torsional model below.
@@ -325,7 +328,7 @@ std::vector<std::string> run_warnings(const SimulationCase& c) {
       warnings.push_back("unbalanced mean torques: T1/Rb1 + T2/Rb2 = " + six_digits(imbalance) +
                          " N (T1 = " + six_digits(t1) + " N*m, T2 = " + six_digits(t2) + " N*m); " +
                          consequence + "; " + key + " = \"" + format_number(-t1 * rb2 / rb1) +
-                         " N*m\" balances T1");
+                         " N*m\" balances T1" + (friction ? " without friction" : ""));
     }
   }
   const double v1 = rb1 * c.initial.w1_rad_per_s;

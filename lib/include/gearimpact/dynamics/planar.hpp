@@ -60,19 +60,23 @@ double planar_angular_momentum(const SimulationCase& c, const PlanarMounting& m,
 void validate_planar(const SimulationCase& c, const PlanarMounting& mounting,
                      const RunControl& control);
 
-// The run of c on `mounting` from `initial`: fixed-step RK4 at
-// integrator.step, each step cut at a side's events (contact onset and end,
-// a pair's entry and exit, with [modifications] its touching or letting go
-// and a relief's kink, a fault's edges, a friction reversal, a clipping;
-// docs/vibration.md, "Integration"), after validate_planar and
-// validate_sampling; with RunControl::sample_rate_hz it samples
-// (PlanarSample) at sample_time_s(0, n, rate) from each accepted step's
-// continuous extension, the left limit at an event time. It throws
-// InputError naming integrator.step when the step exceeds
-// 1/kStepsPerContactPeriod of the shortest period the planar system can have
-// (a bound from its stiffest springs and a drag's relaxation of the load).
-// A kinematic driver's angle starts from the initial state's (the pinion's,
-// the motor's with shafts).
+// Throws InputError naming integrator.step when the step exceeds
+// 1/steps_per_contact_period(integrator.kind) of the shortest period the
+// planar system can have (a bound from its stiffest springs: the mesh on both
+// sides, the bearings, the shafts, and a drag's relaxation of the load). It is
+// tighter than the torsional contact's bound (validate_step), so simulate()
+// checks it first for a planar case: the message gives the step that runs.
+void check_planar_step(const SimulationCase& c, const StiffnessTable& table,
+                       const PlanarMounting& mounting);
+
+// The run of c on `mounting` from `initial`: fixed-step RK4 or Dormand-Prince
+// 5(4) (integrator.kind) at integrator.step, each step cut at a side's events (contact onset and
+// end, a pair's entry and exit, with [modifications] its touching or letting go and a relief's
+// kink, a fault's edges, a friction reversal, a clipping; docs/vibration.md, "Integration"), after
+// validate_planar and validate_sampling; with RunControl::sample_rate_hz it samples (PlanarSample)
+// at sample_time_s(0, n, rate) from each accepted step's continuous extension, the left limit at an
+// event time. It throws check_planar_step's InputError. A kinematic driver's angle starts from the
+// initial state's (the pinion's, the motor's with shafts).
 SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& table,
                                  const PlanarMounting& mounting, const PlanarState& initial,
                                  const RunControl& control = {});
