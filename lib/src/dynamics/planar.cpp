@@ -122,11 +122,6 @@ struct SideMode {
   // right-hand side would otherwise pay for every pair at every stage.
   std::array<const StiffnessTable*, kMaxPairs> table{};
   std::array<int, kMaxPairs> part{};
-  // What pair_stiffness_continued reads Ke in: the part of a table cut at a
-  // fault's edges (-1: the whole table) and the ends it continues beyond.
-  std::array<int, kMaxPairs> series{};
-  std::array<double, kMaxPairs> series_start_m{};
-  std::array<double, kMaxPairs> series_end_m{};
   // With gaps only (without, every pair of a side in contact touches).
   std::array<bool, kMaxPairs> touching{};
   std::array<int, kMaxPairs> zone{};
@@ -302,8 +297,12 @@ class PlanarSystem {
   // pair's entry, exit or a fault's edge reaches a hair past it.
   std::pair<double, double> pair_stiffness(const SideMode& m, int j, double x) const {
     if (constant_k_ > 0.0) return {constant_k_ / m.range.count, 0.0};
-    const StiffnessAndDerivative s = pair_stiffness_continued(
-        *m.table[j], m.series[j], x, m.series_start_m[j], m.series_end_m[j]);
+    const StiffnessTable& table = *m.table[j];
+    const int part = m.part[j];
+    const StiffnessAndDerivative s =
+        table.part_count() > 1 ? pair_stiffness_continued(table, part, x, table.part_start_m(part),
+                                                          table.part_end_m(part))
+                               : pair_stiffness_continued(table, -1, x, xs_, xe_);
     return {s.stiffness_n_per_m, s.derivative_n_per_m2};
   }
 
@@ -401,11 +400,8 @@ class PlanarSystem {
       }
       const StiffnessTable* table = pair_table(side, k);
       m.table[j] = table;
-      const bool cut = table != nullptr && table->part_count() > 1;
-      m.part[j] = cut ? table->part_of(std::clamp(x, xs_, xe_)) : 0;
-      m.series[j] = cut ? m.part[j] : -1;
-      m.series_start_m[j] = cut ? table->part_start_m(m.part[j]) : xs_;
-      m.series_end_m[j] = cut ? table->part_end_m(m.part[j]) : xe_;
+      m.part[j] =
+          table != nullptr && table->part_count() > 1 ? table->part_of(std::clamp(x, xs_, xe_)) : 0;
     }
     return m;
   }
@@ -520,6 +516,20 @@ class PlanarSystem {
     return 0.5 * e;
   }
 
+  // What every pair of a side shares at y: the line's penetration and its
+  // rate, the reference position of the pair k = 0, and the centres'
+  // relative speed along the flanks' common tangent.
+  struct SideMotion {
+    double dl, dl_rate, reference_m, slide_of_centres_m_s;
+  };
+  SideMotion side_motion(Region side, const Y& y) const {
+    const double* v = &y[kVelocity];
+    const auto n = normal(side);
+    const auto [dl, dl_rate] = penetration(side, y);
+    return {dl, dl_rate, layout_.reference_m(side, y[kT1]),
+            (v[kX1] - v[kX2]) * -n[1] + (v[kY1] - v[kY2]) * n[0]};
+  }
+
   // Pair j of the side's mode m at y: its X, its own penetration and rate
   // (the line's less its gap), Ke and dKe/dX, elastic force F, push F + G
   // (the normal force unless clipped) and sliding speed: (36)-(38) with the
@@ -537,20 +547,7 @@ class PlanarSystem {
   // and the positive Ke need not be read (the event values and the forces'
   // classification want no more); ke, dke and elastic_n are then not set.
   // kGaps false compiles out the gaps, for the right-hand side of a run
-  // without them (motion<false>).
-  // What every pair of a side shares at y: the line's penetration and its
-  // rate, the reference position of the pair k = 0, and the centres'
-  // relative speed along the flanks' common tangent.
-  struct SideMotion {
-    double dl, dl_rate, reference_m, slide_of_centres_m_s;
-  };
-  SideMotion side_motion(Region side, const Y& y) const {
-    const double* v = &y[kVelocity];
-    const auto n = normal(side);
-    const auto [dl, dl_rate] = penetration(side, y);
-    return {dl, dl_rate, layout_.reference_m(side, y[kT1]),
-            (v[kX1] - v[kX2]) * -n[1] + (v[kY1] - v[kY2]) * n[0]};
-  }
+  // without them (motion<false>). sm: side_motion(side, y).
   template <bool kGaps = true>
   PairMotion pair_motion(Region side, const Y& y, const SideMotion& sm, const ContactMemory& memory,
                          const SideMode& m, int j, bool sign_only = false) const {
@@ -1273,9 +1270,11 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     system.impose_driver(t_grid, next);
     s.rhs_evaluations += stepper.evaluations();
     // The step whose continuous extension gives the samples: this one, or
-    // with RK4 the step cut at an event.
+    // with RK4 the step cut at an event. With Dormand-Prince an event cuts
+    // the step on its extension, whose end is the whole step's (`whole`).
     double dense_step = t_grid - t;
-    Y dense_end = next;
+    Y whole;
+    bool cut_on_extension = false;
     double t_next = t_grid;
     const bool event = !system.mode_holds(next, mode, memory);
     if (event) {
@@ -1292,7 +1291,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
       const int count = system.event_values(y, mode, memory, g_a);
       system.event_values(next, mode, memory, g_b);
       long long evaluations = 0;
-      const Y whole = next;
+      if (stepper.dopri5()) whole = next;
       const auto state_at = [&](double tau, Y& x) {
         if (stepper.dopri5()) {
           stepper.dense(t, y, k1, t_grid - t, whole, tau, x);
@@ -1312,13 +1311,13 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
       s.rhs_evaluations += evaluations;
       if (t_next < t_grid && stepper.dopri5()) {
         state_at(t_next, next);
+        cut_on_extension = true;
       } else if (t_next < t_grid) {
         // The cut step's own stages, for its samples.
         stepper.step(t, y, k1, t_next - t, mode, memory, next, dense);
         system.impose_driver(t_next, next);
         s.rhs_evaluations += stepper.evaluations();
         dense_step = t_next - t;
-        dense_end = next;
       }
     }
     if (!std::all_of(next.begin(), next.end(), [](double v) { return std::isfinite(v); })) {
@@ -1343,7 +1342,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     }
     // Before the mode and the contact memory change at an event: the step's
     // samples are its own, the left limit at the event.
-    if (dense) emit_samples(t, y, dense_step, dense_end, t_next, next);
+    if (dense) emit_samples(t, y, dense_step, cut_on_extension ? whole : next, t_next, next);
     y = next;
     t = t_next;
     ++s.steps;

@@ -50,9 +50,11 @@ std::pair<double, double> total_stiffness_extremes(const SimulationCase& c,
   return {softest, stiffest};
 }
 
-double largest_step(const SimulationCase& c, double stiffest) {
+// 1/steps of the period of the stiffest contact.
+double largest_step(const SimulationCase& c, double stiffest,
+                    double steps = kStepsPerContactPeriod) {
   const double period = 2.0 * pi / std::sqrt(stiffest * inverse_effective_mass_per_kg(c.gears));
-  return period / kStepsPerContactPeriod;
+  return period / steps;
 }
 
 // The peak |T(t)| of a torque and the key that sets most of it, w_s the
@@ -244,8 +246,7 @@ void validate_implied(const SimulationCase& c, const std::pair<double, double>& 
   problems.collect([&] { validate_static_deflection(c, softest); });
   // Dormand-Prince at a fixed step needs half RK4's steps per period.
   problems.collect([&] {
-    validate_step(c, largest_step(c, extremes.second) * kStepsPerContactPeriod /
-                         steps_per_contact_period(c.integrator.kind));
+    validate_step(c, largest_step(c, extremes.second, steps_per_contact_period(c.integrator.kind)));
   });
   problems.collect([&] { validate_speeds(c); });
   problems.collect([&] { validate_forcing(c); });
