@@ -418,6 +418,41 @@ SimulationCase modified_case(double kb, double start) {
   return c;
 }
 
+// modified_case on 500 N/um bearings at a tenth of its torques over 4 ms:
+// it rattles, and the reliefs begin where a loaded pair passes their kink.
+SimulationCase rattling_modified_case() {
+  SimulationCase c = modified_case(5e8, 0.6);
+  c.torque1.constant_n_m *= 0.1;
+  c.torque2.constant_n_m *= 0.1;
+  c.integrator.end_time_s = 4e-3;
+  return c;
+}
+
+// The loaded case on 2e13 N/m bearings with its pinion driven at 50 rad/s
+// and a speed fluctuation of 5 rad/s at 20 times the mean speed, over 0.5 ms.
+SimulationCase driven_case() {
+  SimulationCase c = loaded_case(2e13, 400.0);
+  c.torque1.kind = Torque::Kind::prescribed_speed;
+  c.torque1.mean_speed_rad_per_s = 50.0;
+  c.torque1.driver_orders = {20.0};
+  c.torque1.driver_speed_amplitudes_rad_per_s = {5.0};
+  c.torque1.harmonic_phases_rad = {0.0};
+  c.integrator.end_time_s = 5e-4;
+  return c;
+}
+
+// How far a run's pinion is off the driver's closed form, its angle and
+// (scaled by 1e-6) its speed, over the series' rows.
+double off_driver(const SimulationCase& c, const SimulationResult& r) {
+  double most = 0.0;
+  for (const SeriesRow& row : r.series) {
+    const DriverMotion d = driver_motion(c.torque1, c.initial.theta1_rad, row.t_s);
+    most = std::max({most, std::fabs(row.theta1_rad - d.theta_rad),
+                     std::fabs(row.w1_rad_per_s - d.speed_rad_per_s) * 1e-6});
+  }
+  return most;
+}
+
 }  // namespace
 
 TEST_CASE("modifications act on the planar model as on the torsional one") {
@@ -465,11 +500,7 @@ TEST_CASE("with modifications the planar ledger closes and converges") {
   // exit, its touching and the reliefs' kinks located, 6.3 when they were
   // not. Steps of 0.4 and 0.2 us: at 0.1 us the residual already meets its
   // round-off (2e-12 J).
-  // The reliefs begin where a loaded pair passes their kink during the run.
-  SimulationCase c = modified_case(5e8, 0.6);
-  c.torque1.constant_n_m *= 0.1;
-  c.torque2.constant_n_m *= 0.1;
-  c.integrator.end_time_s = 4e-3;
+  SimulationCase c = rattling_modified_case();
   c.integrator.step_s = 4e-7;
   c.integrator.output_every = 250;
   const SimulationResult coarse = simulate(c);
@@ -573,13 +604,7 @@ TEST_CASE("a kinematic driver acts on the planar model as on the torsional one")
   // torsional run, far closer than the driver without the fluctuation does,
   // the pinion keeps the driver's closed form, and the driver's work closes
   // the ledger.
-  SimulationCase planar = loaded_case(2e13, 400.0);
-  planar.torque1.kind = Torque::Kind::prescribed_speed;
-  planar.torque1.mean_speed_rad_per_s = 50.0;
-  planar.torque1.driver_orders = {20.0};
-  planar.torque1.driver_speed_amplitudes_rad_per_s = {5.0};
-  planar.torque1.harmonic_phases_rad = {0.0};
-  planar.integrator.end_time_s = 5e-4;
+  SimulationCase planar = driven_case();
   planar.integrator.step_s = 1e-8;
   planar.integrator.output_every = 10;
   SimulationCase torsional = planar;
@@ -591,12 +616,7 @@ TEST_CASE("a kinematic driver acts on the planar model as on the torsional one")
   const SimulationResult k = simulate(steady);
   const double planar_to_driven = largest_theta2_difference(p, t);
   const double steady_to_driven = largest_theta2_difference(k, t);
-  double pinion = 0.0;
-  for (const SeriesRow& row : p.series) {
-    const DriverMotion d = driver_motion(planar.torque1, planar.initial.theta1_rad, row.t_s);
-    pinion = std::max({pinion, std::fabs(row.theta1_rad - d.theta_rad),
-                       std::fabs(row.w1_rad_per_s - d.speed_rad_per_s) * 1e-6});
-  }
+  const double pinion = off_driver(planar, p);
   MESSAGE("largest theta2 difference from the driven torsional run: planar "
           << planar_to_driven << " rad, steady driver " << steady_to_driven
           << " rad; pinion off the driver by " << pinion << "; ledger residual "
@@ -1078,6 +1098,24 @@ SimulationCase spalled_meshing_case() {
   return c;
 }
 
+// Runs of `base` at each step, by its integrator.
+std::vector<SimulationSummary> meshing_runs(const SimulationCase& base, const StiffnessTable& table,
+                                            const std::vector<double>& steps) {
+  std::vector<SimulationSummary> runs;
+  for (const double h : steps) {
+    SimulationCase c = base;
+    c.integrator.step_s = h;
+    runs.push_back(run_meshing(c, table));
+    const SimulationSummary& s = runs.back();
+    MESSAGE(s.integrator << ", step " << h << " s: residual " << s.ledger_residual_max_j << " J of "
+                         << s.ledger_scale_j << " J, jumps " << s.parametric_jump_work_j
+                         << " J, friction loss " << std::setprecision(12) << s.friction_loss_j
+                         << std::setprecision(6) << " J, " << s.events << " events, "
+                         << s.impacts_n1 << " impacts, " << s.rhs_evaluations << " evaluations");
+  }
+  return runs;
+}
+
 // The ledger residuals of runs at each step, and the ratio of successive ones.
 void check_ledger_order(const std::vector<SimulationSummary>& runs) {
   for (std::size_t i = 1; i < runs.size(); ++i) {
@@ -1101,18 +1139,9 @@ TEST_CASE("pairs entering and leaving under load are events: the ledger at RK4's
   // contact ten times besides (each a located event too).
   const SimulationCase base = meshing_case(2000.0, 100.0, 1e-7);
   const StiffnessTable table(base.gears, base.model.stiffness);
-  std::vector<SimulationSummary> runs;
-  for (const double h : {2e-7, 1e-7, 0.5e-7}) {
-    SimulationCase c = base;
-    c.integrator.step_s = h;
-    runs.push_back(run_meshing(c, table));
-    const SimulationSummary& s = runs.back();
-    MESSAGE("step " << h << " s: residual " << s.ledger_residual_max_j << " J of "
-                    << s.ledger_scale_j << " J, jumps " << s.parametric_jump_work_j << " J, "
-                    << s.events << " events, " << s.impacts_n1 << " impacts");
-    // Every pair's entry and exit (2.5 mesh periods: at least four) is an event.
-    CHECK(s.events >= s.impacts_n1 + s.impacts_n2 + 4);
-  }
+  const std::vector<SimulationSummary> runs = meshing_runs(base, table, {2e-7, 1e-7, 0.5e-7});
+  // Every pair's entry and exit (2.5 mesh periods: at least four) is an event.
+  for (const SimulationSummary& s : runs) CHECK(s.events >= s.impacts_n1 + s.impacts_n2 + 4);
   check_ledger_order(runs);
 }
 
@@ -1127,17 +1156,7 @@ TEST_CASE("friction reversals are events: the friction loss converges at RK4's o
   SimulationCase base = meshing_case(500.0, 200.0, 1e-7);
   base.model.friction_coefficient = 0.05;
   const StiffnessTable table(base.gears, base.model.stiffness);
-  std::vector<SimulationSummary> runs;
-  for (const double h : {4e-7, 2e-7, 1e-7, 0.5e-7}) {
-    SimulationCase c = base;
-    c.integrator.step_s = h;
-    runs.push_back(run_meshing(c, table));
-    const SimulationSummary& s = runs.back();
-    MESSAGE("step " << h << " s: residual " << s.ledger_residual_max_j << " J of "
-                    << s.ledger_scale_j << " J, friction loss " << std::setprecision(12)
-                    << s.friction_loss_j << std::setprecision(6) << " J, " << s.events
-                    << " events, " << s.impacts_n1 << " impacts");
-  }
+  const std::vector<SimulationSummary> runs = meshing_runs(base, table, {4e-7, 2e-7, 1e-7, 0.5e-7});
   // The residual reaches round-off (1e-13 of the energies) at 1e-7 s.
   check_ledger_order({runs[0], runs[1], runs[2]});
   for (std::size_t i = 2; i < runs.size(); ++i) {
@@ -1173,17 +1192,9 @@ TEST_CASE("a spall's edges are events in the planar run: the ledger at RK4's ord
   SimulationCase healthy = base;
   healthy.faults.clear();
   const SimulationSummary without = run_meshing(healthy, table);
-  std::vector<SimulationSummary> runs;
-  for (const double h : {2e-7, 1e-7, 0.5e-7}) {
-    SimulationCase c = base;
-    c.integrator.step_s = h;
-    runs.push_back(run_meshing(c, table));
-    const SimulationSummary& s = runs.back();
-    MESSAGE("step " << h << " s: residual " << s.ledger_residual_max_j << " J of "
-                    << s.ledger_scale_j << " J, jumps " << s.parametric_jump_work_j
-                    << " J (healthy " << without.parametric_jump_work_j << " J), " << s.events
-                    << " events");
-  }
+  MESSAGE("healthy: jumps " << without.parametric_jump_work_j << " J, " << without.events
+                            << " events");
+  const std::vector<SimulationSummary> runs = meshing_runs(base, table, {2e-7, 1e-7, 0.5e-7});
   // The spall's two edges: two events more than the healthy run's, at 1e-7 s.
   CHECK(runs[1].events >= without.events + 2);
   CHECK(runs[1].parametric_jump_work_j != without.parametric_jump_work_j);
@@ -1196,23 +1207,6 @@ namespace {
 SimulationCase by_dopri5(SimulationCase c) {
   c.integrator.kind = IntegratorKind::dopri5;
   return c;
-}
-
-// Runs of `base` by Dormand-Prince at each step.
-std::vector<SimulationSummary> dopri5_runs(const SimulationCase& base, const StiffnessTable& table,
-                                           const std::vector<double>& steps) {
-  std::vector<SimulationSummary> runs;
-  for (const double h : steps) {
-    SimulationCase c = by_dopri5(base);
-    c.integrator.step_s = h;
-    runs.push_back(run_meshing(c, table));
-    const SimulationSummary& s = runs.back();
-    MESSAGE("dopri5, step " << h << " s: residual " << s.ledger_residual_max_j << " J of "
-                            << s.ledger_scale_j << " J, friction loss " << std::setprecision(12)
-                            << s.friction_loss_j << std::setprecision(6) << " J, " << s.events
-                            << " events, " << s.rhs_evaluations << " evaluations");
-  }
-  return runs;
 }
 
 // Dormand-Prince's global error falls 32-fold per halved step (order 5); 24
@@ -1235,7 +1229,8 @@ TEST_CASE("Dormand-Prince at a fixed step: the ledger at order 5 through the eve
   SUBCASE("pairs entering and leaving under load, contact lost and regained") {
     const SimulationCase base = meshing_case(2000.0, 100.0, 1e-7);
     const StiffnessTable table(base.gears, base.model.stiffness);
-    const std::vector<SimulationSummary> runs = dopri5_runs(base, table, {8e-7, 4e-7, 2e-7});
+    const std::vector<SimulationSummary> runs =
+        meshing_runs(by_dopri5(base), table, {8e-7, 4e-7, 2e-7});
     for (const SimulationSummary& s : runs) {
       CHECK(s.events >= s.impacts_n1 + s.impacts_n2 + 4);
       CHECK(s.integrator == "dopri5");
@@ -1255,7 +1250,7 @@ TEST_CASE("Dormand-Prince at a fixed step: the ledger at order 5 through the eve
     base.model.friction_coefficient = 0.05;
     const StiffnessTable table(base.gears, base.model.stiffness);
     const std::vector<SimulationSummary> runs =
-        dopri5_runs(base, table, {1.6e-6, 8e-7, 4e-7, 2e-7});
+        meshing_runs(by_dopri5(base), table, {1.6e-6, 8e-7, 4e-7, 2e-7});
     check_dopri5_ledger_order({runs[0], runs[1], runs[2]});
     for (std::size_t i = 2; i < runs.size(); ++i) {
       const double ratio = (runs[i - 2].friction_loss_j - runs[i - 1].friction_loss_j) /
@@ -1267,7 +1262,7 @@ TEST_CASE("Dormand-Prince at a fixed step: the ledger at order 5 through the eve
   SUBCASE("a spall's edges") {
     const SimulationCase base = spalled_meshing_case();
     const StiffnessTable table(base.gears, base.model.stiffness);
-    check_dopri5_ledger_order(dopri5_runs(base, table, {8e-7, 4e-7, 2e-7}));
+    check_dopri5_ledger_order(meshing_runs(by_dopri5(base), table, {8e-7, 4e-7, 2e-7}));
   }
 }
 
@@ -1275,10 +1270,7 @@ TEST_CASE("Dormand-Prince with modifications and a driver: the ledger closes") {
   SUBCASE("tip reliefs and a pitch error, rattling") {
     // As the RK4 test of the modified ledger: a pair's touching and the
     // reliefs' kinks are events, located on the continuous extension.
-    SimulationCase c = by_dopri5(modified_case(5e8, 0.6));
-    c.torque1.constant_n_m *= 0.1;
-    c.torque2.constant_n_m *= 0.1;
-    c.integrator.end_time_s = 4e-3;
+    SimulationCase c = by_dopri5(rattling_modified_case());
     c.integrator.step_s = 8e-7;
     c.integrator.output_every = 125;
     const SimulationResult coarse = simulate(c);
@@ -1294,23 +1286,11 @@ TEST_CASE("Dormand-Prince with modifications and a driver: the ledger closes") {
           kDopri5HalvingRatio * fine.summary.ledger_residual_max_j);
   }
   SUBCASE("a kinematic driver: its body on the closed form, the next step's first stage anew") {
-    SimulationCase c = by_dopri5(loaded_case(2e13, 400.0));
-    c.torque1.kind = Torque::Kind::prescribed_speed;
-    c.torque1.mean_speed_rad_per_s = 50.0;
-    c.torque1.driver_orders = {20.0};
-    c.torque1.driver_speed_amplitudes_rad_per_s = {5.0};
-    c.torque1.harmonic_phases_rad = {0.0};
-    c.integrator.end_time_s = 5e-4;
+    SimulationCase c = by_dopri5(driven_case());
     c.integrator.step_s = 2e-8;
     c.integrator.output_every = 5;
     const SimulationResult r = simulate(c);
-    double pinion = 0.0;
-    for (const SeriesRow& row : r.series) {
-      const DriverMotion d = driver_motion(c.torque1, c.initial.theta1_rad, row.t_s);
-      pinion = std::max({pinion, std::fabs(row.theta1_rad - d.theta_rad),
-                         std::fabs(row.w1_rad_per_s - d.speed_rad_per_s) * 1e-6});
-    }
-    CHECK(pinion < 1e-15);
+    CHECK(off_driver(c, r) < 1e-15);
     CHECK(r.summary.ledger_residual_max_j < 1e-8 * r.summary.ledger_scale_j);
     // Without the end's stage reused: one evaluation a step beyond the six.
     CHECK(r.summary.rhs_evaluations >= 7 * r.summary.steps);
