@@ -517,8 +517,13 @@ class PlanarSystem {
   }
 
   // What every pair of a side shares at y: the line's penetration and its
-  // rate, the reference position of the pair k = 0, and the centres'
-  // relative speed along the flanks' common tangent.
+  // rate, the reference position of the pair k = 0, and the centres' share
+  // of the sliding speed: sign (u1' - u2') . t, t = e_z x n. The pinion's
+  // flank moves along t at w1 X on the drive line and at -w1 X on the coast
+  // line (there the contact lies at -X n2 from the pinion's base circle), so
+  // the sliding speed w1 X - w2 (lp - X) the side's friction sign is taken
+  // from counts the centres' relative speed along +t on N1 and along -t on
+  // N2 (docs/vibration.md).
   struct SideMotion {
     double dl, dl_rate, reference_m, slide_of_centres_m_s;
   };
@@ -527,7 +532,7 @@ class PlanarSystem {
     const auto n = normal(side);
     const auto [dl, dl_rate] = penetration(side, y);
     return {dl, dl_rate, layout_.reference_m(side, y[kT1]),
-            (v[kX1] - v[kX2]) * -n[1] + (v[kY1] - v[kY2]) * n[0]};
+            line_sign(side) * ((v[kX1] - v[kX2]) * -n[1] + (v[kY1] - v[kY2]) * n[0])};
   }
 
   // Pair j of the side's mode m at y: its X, its own penetration and rate
@@ -647,9 +652,13 @@ class PlanarSystem {
         const double ff = friction_force(side, f, normal_n, slip);
         moment1 -= sign * (normal_n * rb1_ + ff * x);
         moment2 += sign * (normal_n * rb2_ + ff * (lp_ - x));
-        // On the pinion -sign N n - sign Ff t, on the wheel the opposite.
-        const double fx = -sign * (normal_n * n[0] + ff * tx);
-        const double fy = -sign * (normal_n * n[1] + ff * ty);
+        // On the pinion -sign N n - Ff t, on the wheel the opposite. The
+        // friction's sign does not follow the line's: Ff t at the contact
+        // has the moment +Ff X about O1 on N1 (the contact at +X n1 from the
+        // pinion's base circle) and -Ff X on N2 (at -X n2), so -Ff t is what
+        // gives the pinion the torque -sign Ff X above on either line.
+        const double fx = -sign * (normal_n * n[0] + sign * ff * tx);
+        const double fy = -sign * (normal_n * n[1] + sign * ff * ty);
         f1[0] += fx;
         f1[1] += fy;
         f2[0] -= fx;
