@@ -139,7 +139,7 @@ TEST_CASE("a spall's edges are events: the ledger converges at RK4's order") {
 }
 
 TEST_CASE("a crack of depth 0 runs as the healthy pair, to the bit") {
-  // FAULTS.md: zero-size faults are today's outputs. The paper's route
+  // A fault of size zero is no fault (docs/faults.md, "Faulted teeth"). The paper's route
   // returns the healthy tooth's compliances for q = 0, so the fault's table
   // is fitted to the same values.
   for (int n = 1; n <= 3; ++n) {

@@ -1,5 +1,6 @@
 // The planar nonlinear dynamics (docs/vibration.md, "The planar dynamics")
-// against the limits of VIBRATION.md section 3, each reached by a route other
+// against the limits a planar model must meet (docs/vibration.md, "Checks of
+// the planar dynamics"), each reached by a route other
 // than the code under test: momentum without bearings (sums written out
 // here), the energy ledger closing at RK4's order, the torsional model
 // approached as 1/k_bearing, rigid bearings running the torsional code, and the

@@ -39,7 +39,8 @@ RootCrack uniform_crack(double q, double nu) {
   return c;
 }
 
-// FAULTS.md's slice height, literally.
+// The slice height as docs/stiffness-models.md ("A root crack in one tooth")
+// writes it, literally: x + min(x, h_c - q sin nu) + max(0, x - h_c).
 double slice(double x, double h_c, double q, double sin_nu) {
   const double h_q = h_c - q * sin_nu;
   return x + std::min(x, h_q) + std::max(0.0, x - h_c);

@@ -257,7 +257,9 @@ void check_crack_shape(const RootCrack& crack, double b) {
   }
 }
 
-// FAULTS.md's limit: the crack tip may not reach the centre line.
+// The crack tip may not reach the centre line (docs/stiffness-models.md, "A
+// root crack in one tooth", Refusals): the reading's h_c - q sin nu, the
+// cracked side's extent, is a distance from that line and turns negative past it.
 void check_crack_reach(const RootCrack& crack, double h_c, double r_s) {
   const double q_top = largest_crack_depth(crack);
   const double reach = q_top * std::sin(crack.angle_rad);
