@@ -126,10 +126,10 @@ TEST_CASE("without bearings and torques the momenta are conserved") {
 namespace {
 
 // The angular momentum about O1 balanced over a run: L(t) - L(0) less the
-// integral of what may change it, as a fraction of J1 |w1(0)|. The rows give
-// L (planar_angular_momentum) and each centre's acceleration from the
-// equations of motion at the samples (one per step), so the mesh's force on
-// the pinion F1 = m1 u1'' - Fb1 (the wheel's is -F1). With T1 = T2 = 0,
+// integral of what may change it, as a fraction of J1 |w1(0)|. The samples
+// (four per step) give L (planar_angular_momentum) and each centre's
+// acceleration from the equations of motion, so the mesh's force on the
+// pinion F1 = m1 u1'' - Fb1 (the wheel's is -F1). With T1 = T2 = 0,
 //   dL/dt = [u1 x Fb1 + (O2 + u2) x Fb2] + (u1 - u2) x F1,
 // the bracket the bearings' moment, the last term the mesh force pair's
 // moment when the centres move (its lines of action keep their nominal
@@ -220,8 +220,10 @@ TEST_CASE("an impact with friction keeps the angular momentum about O1 on either
       // The balance closes to the trapezoid rule's error at the friction's
       // jumps (a reversal), which falls as the samples' spacing: 1.2e-8,
       // 4.7e-9, 1.2e-9 of J1 |w1| at 1, 4, 16 samples per step on the drive
-      // line, 1.6e-9 at 4 on the coast line; 0.12 with the friction pushing
-      // the centres the wrong way on the coast line.
+      // line, 1.6e-9 at 4 on the coast line (with the friction smoothed over
+      // 1 cm/s, no jump: 3.8e-10 and 2.4e-11 at 1 and 4, the rule's order
+      // 2); 0.12 with the friction pushing the centres the wrong way on the
+      // coast line.
       CHECK(b.residual < 5e-8);
       // What is left of L's change is the mesh force pair's moment while the
       // centres drift apart (2.4e-6 coast, 3.4e-6 drive measured), second
