@@ -15,6 +15,7 @@
 #include "gearimpact/stiffness/tooth_state.hpp"
 #include "gearimpact/stiffness/x_form.hpp"
 #include "pair_crack_change.hpp"
+#include "solve_on.hpp"
 
 namespace gearimpact {
 
@@ -332,6 +333,37 @@ Compliances PairCrackChange::at(double x1_m) const {
   c.of(Term::shear) = beam.shear_m_per_n;
   c.of(Term::axial) = beam.axial_m_per_n;
   return c;
+}
+
+std::vector<double> PairCrackChange::kinks_x1_m() const {
+  const ContactSegment segment = contact_segment(pair_);
+  std::vector<double> kinks;
+  if (paper_) {
+    // (25),(26): gear 2 sees the contact at lp - X1 from C2.
+    const double lp = line_of_action_length(pair_);
+    for (double x : paper_->kinks_m()) {
+      const double x1 = gear_ == Gear::one ? x : lp - x;
+      if (x1 > segment.start_m && x1 < segment.end_m) kinks.push_back(x1);
+    }
+  } else {
+    // The height of the contact on the tooth rises with its radius, which
+    // rises (gear 1) or falls (gear 2) with X1 along the segment: each
+    // height is met at most once, where the contact's height crosses it.
+    const auto height_at = [&](double x1_m) {
+      const PairContact contact = pair_contact(*geometry_, rack_position(*geometry_, x1_m));
+      return (gear_ == Gear::one ? contact.gear1 : contact.gear2).y_m;
+    };
+    const double y_start = height_at(segment.start_m);
+    const double y_end = height_at(segment.end_m);
+    for (double y : rack_->kink_heights_m()) {
+      if ((y_start - y) * (y_end - y) < 0.0) {
+        kinks.push_back(solve_on([&](double x1_m) { return height_at(x1_m) - y; }, segment.start_m,
+                                 segment.end_m));
+      }
+    }
+  }
+  std::sort(kinks.begin(), kinks.end());
+  return kinks;
 }
 
 }  // namespace gearimpact

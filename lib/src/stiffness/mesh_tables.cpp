@@ -35,6 +35,12 @@ class ClassTerms {
     terms_.emplace(x1_m, ToothTerms{terms, false});
   }
 
+  // Where the cracked tooth's terms kink along the segment (none for the
+  // other kinds, whose edges fault_breaks gives).
+  std::vector<double> kinks() const {
+    return crack_ ? crack_->kinks_x1_m() : std::vector<double>{};
+  }
+
   const ToothTerms& at(double x1_m) {
     const auto found = terms_.find(x1_m);
     if (found != terms_.end()) return found->second;
@@ -128,6 +134,11 @@ MeshTables::MeshTables(const GearPair& pair, const StiffnessModel& model,
       std::vector<double> breaks = fault_breaks(pair_, Gear::one, s1);
       const std::vector<double> breaks2 = fault_breaks(pair_, Gear::two, s2);
       breaks.insert(breaks.end(), breaks2.begin(), breaks2.end());
+      // A crack's kinks too: a piece fitted across one misses the 1e-12.
+      for (const ClassTerms* t : {pinion_terms[a].get(), wheel_terms[b].get()}) {
+        const std::vector<double> kinks = t->kinks();
+        breaks.insert(breaks.end(), kinks.begin(), kinks.end());
+      }
       // Only a spall's Hertzian length depends on the flank the contact is on.
       const bool by_line = s1.kind == ToothKind::spall || s2.kind == ToothKind::spall;
       for (std::size_t line = 0; line < 2; ++line) {

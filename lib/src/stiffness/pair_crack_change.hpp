@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/rack_generation.hpp"
@@ -23,6 +24,10 @@ class PairCrackChange {
   // Bending, shear and axial of the cracked tooth less the healthy one's at
   // X1 (InputError for X1 off the range mesh_stiffness takes).
   Compliances at(double x1_m) const;
+  // The positions X1 on the contact segment where `at` kinks (the contact
+  // meets a section where the cut starts or kinks), ascending: the breaks
+  // of a table of the cracked tooth.
+  std::vector<double> kinks_x1_m() const;
 
  private:
   GearPair pair_;

@@ -603,6 +603,17 @@ Compliances PaperCrackChange::at(double contact_x_m) const {
                                                   : x_form_change(contact_x_m);
 }
 
+std::vector<double> PaperCrackChange::kinks_m() const {
+  // tau_form_change integrates from tau = -phi, phi = X / Rb - theta_b: the
+  // contact's own section is at tau for X = Rb (theta_b - tau), which falls
+  // as tau rises.
+  std::vector<double> kinks;
+  for (auto tau = tau_ends_.rbegin(); tau != tau_ends_.rend(); ++tau) {
+    kinks.push_back(tooth_.base_radius_m * (tooth_.half_tooth_angle_rad - *tau));
+  }
+  return kinks;
+}
+
 Compliances PaperCrackChange::tau_form_change(double contact_x_m) const {
   const double rb = tooth_.base_radius_m;
   const double theta_b = tooth_.half_tooth_angle_rad;

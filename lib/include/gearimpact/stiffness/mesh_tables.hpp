@@ -5,7 +5,10 @@
 // pit lies on one flank). A table of a spalled or chipped tooth is cut at the
 // positions where the contact meets the fault's edges (fault_breaks); across
 // the whole face its part beyond the edge has no contact (Ke 0,
-// StiffnessTable::part_in_contact). A pair with a missing tooth has no table:
+// StiffnessTable::part_in_contact). A table of a cracked tooth is cut where the
+// tooth's terms kink (PairCrackChange::kinks_x1_m: the contact meets a section
+// where the crack's cut starts or kinks), so that no piece is fitted across a
+// kink. A pair with a missing tooth has no table:
 // it carries nothing.
 #pragma once
 

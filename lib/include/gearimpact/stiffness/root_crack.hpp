@@ -132,6 +132,11 @@ class PaperCrackChange {
   // cracked_paper_tooth_compliances less tau_form_compliances (or
   // x_form_compliances) at the same contact; 0 where the crack cuts nothing.
   Compliances at(double contact_x_m) const;
+  // The contact positions X (from the tangent point, as `at` takes them)
+  // where the contact's own section is one of those where the cut starts or
+  // kinks: there the change kinks as a function of X. Ascending; empty when
+  // the crack cuts nothing. Some may lie off the contact segment.
+  std::vector<double> kinks_m() const;
 
  private:
   Compliances tau_form_change(double contact_x_m) const;
@@ -161,6 +166,10 @@ class RackCrackChange {
   // cracked_beam_compliance less tooth_beam_compliance of the flank up to the
   // contact, as cracked_tooth_compliances and tooth_compliances load it.
   BeamCompliance at(const ToothContact& contact) const;
+  // The heights y on the tooth (ToothContact::y_m) where the cut starts or
+  // kinks: where the contact meets one, the change kinks. Empty when the
+  // crack cuts nothing.
+  const std::vector<double>& kink_heights_m() const { return heights_; }
 
  private:
   const RackGearGeometry* gear_;
