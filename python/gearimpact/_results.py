@@ -112,7 +112,8 @@ def energy_ratios(case_or_pair=None, points=121, method=None, flipped_moment=Non
 
 class SimulationResult:
     """One run: .case (the Case run), .summary (a dict with the keys of the
-    program's JSON summary), .series (a dict of numpy arrays with the columns
+    program's JSON summary; the losses damping_loss_J (Hertzian damping),
+    friction_loss_J and, with a viscous mesh damper, mesh_damper_loss_J), .series (a dict of numpy arrays with the columns
     of its time-series CSV, each a view of one column of the rows; zero-length
     when keep_series was False) and .impacts (a
     list of dicts: line "N1" or "N2", start_s, impact_speed_m_s, restitution,
@@ -129,10 +130,14 @@ class SimulationResult:
 
     def __repr__(self):
         s = self.summary
+        # The viscous mesh damper's loss, a term of its own, where the run has one.
+        damper = (
+            f", mesh damper loss {s['mesh_damper_loss_J']:.6g} J" if "mesh_damper_loss_J" in s else ""
+        )
         return (
             f"<SimulationResult {s['case']}: {s['impacts_n1']} impacts on N1, "
             f"{s['impacts_n2']} on N2 in {s['end_time_s']} s; damping loss "
-            f"{s['damping_loss_J']:.6g} J, friction loss {s['friction_loss_J']:.6g} J>"
+            f"{s['damping_loss_J']:.6g} J, friction loss {s['friction_loss_J']:.6g} J{damper}>"
         )
 
 

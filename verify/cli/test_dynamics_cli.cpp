@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -340,4 +341,84 @@ TEST_CASE("the spalled example passes check-case without a warning") {
   CHECK(check.out.find("kind = \"spall\"") != std::string::npos);
   // Balanced torques and rolling speeds: nothing to warn about.
   CHECK(check.err.empty());
+}
+
+TEST_CASE("the mesh damper's loss is its own term of the summary, and the ledger closes with it") {
+  // The run of the summary's example: no Hertzian damping (damping_loss_J 0),
+  // the viscous mesh damper dissipates instead. Its loss is
+  // mesh_damper_loss_J; the printed terms close the ledger to its residual.
+  const auto closure = [](const nlohmann::json& j, bool planar) {
+    double sum =
+        j.at("kinetic_energy_final_J").get<double>() + j.at("stored_energy_final_J").get<double>() -
+        j.at("kinetic_energy_initial_J").get<double>() -
+        j.at("stored_energy_initial_J").get<double>() - j.at("torque_work_J").get<double>() +
+        j.at("damping_loss_J").get<double>() + j.at("friction_loss_J").get<double>() +
+        j.at("mesh_damper_loss_J").get<double>() - j.at("parametric_work_J").get<double>();
+    if (planar) {
+      sum += j.at("bearing_energy_final_J").get<double>() -
+             j.at("bearing_energy_initial_J").get<double>() +
+             j.at("bearing_damping_loss_J").get<double>() +
+             j.at("shaft_energy_final_J").get<double>() -
+             j.at("shaft_energy_initial_J").get<double>() +
+             j.at("shaft_damping_loss_J").get<double>();
+    }
+    return sum;
+  };
+  const std::string damped =
+      " --t-end '5 ms' --set model.damping_update=off --set model.mesh_damping_ratio=0.05";
+  for (const bool planar : {false, true}) {
+    CAPTURE(planar);
+    const std::string bearings =
+        planar ? " --set bearings.kind=elastic --set 'bearings.stiffness_x1=5e8 N/m' --set "
+                 "'bearings.stiffness_x2=5e8 N/m'"
+               : "";
+    const CommandResult r = run_command(cli("simulate --case 2" + damped + bearings));
+    REQUIRE(r.exit_code == 0);
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    const double loss = j.at("mesh_damper_loss_J").get<double>();
+    const double scale = j.at("ledger_scale_J").get<double>();
+    const double residual = j.at("ledger_residual_J").get<double>();
+    MESSAGE(std::string(planar ? "planar" : "torsional")
+            << ": mesh damper loss " << loss << " J, damping loss "
+            << j.at("damping_loss_J").get<double>() << " J, closure " << closure(j, planar)
+            << " J, residual " << residual << " J of " << scale << " J");
+    CHECK(j.at("damping_loss_J").get<double>() == 0.0);
+    // The terms as printed (17 digits) sum to the run's own residual but for
+    // the rounding of a few sums of terms of the scale's size.
+    CHECK(std::fabs(closure(j, planar) - residual) < 1e-12 * scale);
+    // The ledger's bound (test_dynamics), and a loss standing far above it.
+    CHECK(std::fabs(residual) < 1e-7 * scale);
+    CHECK(loss > 100.0 * 1e-7 * scale);
+  }
+  // Without a damper the key is left out (the other summaries keep their bytes).
+  const CommandResult plain = run_command(cli("simulate --case 2 --t-end '1 ms'"));
+  REQUIRE(plain.exit_code == 0);
+  CHECK(plain.out.find("mesh_damper_loss_J") == std::string::npos);
+}
+
+TEST_CASE(
+    "a friction smoothing speed the step cannot resolve, or one that removes friction, is "
+    "refused") {
+  // Case 2 at the default step 1e-7 s: Rb1 |w1| (|w1| + |w2|) at w1 = 50,
+  // w2 = 0 rad/s, Rb1 = 20 mm cos 20 deg, is 46.98 m/s^2, so v_s must be
+  // at least 10 h of it, 4.698e-05 m/s.
+  const CommandResult coarse =
+      run_command(cli("simulate --case 2 --set 'model.friction_smoothing_speed=1e-5 m/s'"));
+  CHECK(coarse.exit_code == 1);
+  CHECK(coarse.err.find("model.friction_smoothing_speed") != std::string::npos);
+  CHECK(coarse.err.find(">= 4.698e-05 m/s") != std::string::npos);
+  CHECK(coarse.out.empty());
+  const CommandResult huge =
+      run_command(cli("simulate --case 2 --set 'model.friction_smoothing_speed=1e300 m/s'"));
+  CHECK(huge.exit_code == 1);
+  CHECK(huge.err.find("model.friction_smoothing_speed") != std::string::npos);
+  CHECK(huge.err.find("0.1 m/s") != std::string::npos);
+  CHECK(huge.out.empty());
+  // A smaller step resolves the same v_s; a resolvable v_s runs at the default step.
+  CHECK(run_command(cli("simulate --case 2 --t-end '0.2 ms' --dt 1e-8 --set "
+                        "'model.friction_smoothing_speed=1e-5 m/s'"))
+            .exit_code == 0);
+  CHECK(run_command(cli("simulate --case 2 --t-end '0.2 ms' --set "
+                        "'model.friction_smoothing_speed=1e-4 m/s'"))
+            .exit_code == 0);
 }

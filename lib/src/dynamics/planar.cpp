@@ -1099,6 +1099,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   s.integrator = name_of(kIntegratorKinds, c.integrator.kind);
   s.friction_coefficient = c.model.friction_coefficient;
   s.friction_law = c.model.friction_law;
+  s.mesh_damper = c.model.mesh_damping_ratio > 0.0;
   s.step_s = c.integrator.step_s;
   s.stiffness_model = c.model.stiffness.kind;
   s.planar = PlanarEnergies{};

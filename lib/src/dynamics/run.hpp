@@ -275,6 +275,7 @@ class Run {
     s.stiffness_model = c_.model.stiffness.kind;
     s.friction_coefficient = c_.model.friction_coefficient;
     s.friction_law = c_.model.friction_law;
+    s.mesh_damper = c_.model.mesh_damping_ratio > 0.0;
     if (friction_loaded_time_ > 0.0) {
       s.friction_coefficient_mean = friction_time_integral_ / friction_loaded_time_;
       s.friction_coefficient_max = friction_max_;

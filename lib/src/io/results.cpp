@@ -187,6 +187,10 @@ std::string summary_json(const SimulationSummary& s) {
   json_number(out, "torque_work_J", s.torque_work_j);
   json_number(out, "damping_loss_J", s.damping_loss_j);
   json_number(out, "friction_loss_J", s.friction_loss_j);
+  // The viscous mesh damper's loss, its own term of the ledger (damping_loss_J
+  // is the Hertzian damping's of (32)); only with a damper, so that other
+  // runs' summaries keep their bytes.
+  if (s.mesh_damper) json_number(out, "mesh_damper_loss_J", s.mesh_damping_loss_j);
   json_number(out, "parametric_work_J", s.parametric_work_j);
   json_number(out, "parametric_jump_work_J", s.parametric_jump_work_j);
   // Under the Lagrangian mesh force only, so that other runs' summaries keep their bytes.

@@ -171,6 +171,10 @@ struct SimulationSummary {
   double damping_loss_j = 0.0;
   double friction_loss_j = 0.0;
   double mesh_damping_loss_j = 0.0;  // Int c s'^2 dt of the viscous mesh damper
+  // Whether the run has that damper (model.mesh_damping_ratio > 0): then the
+  // summary's JSON books its loss as mesh_damper_loss_J, which other runs'
+  // summaries leave out so that they keep their bytes.
+  bool mesh_damper = false;
   // Work of the time-varying stiffness: the integral of 0.5 delta^2 dKe/dX dX/dt
   // plus the jumps of stored energy when a pair enters or leaves under load.
   // Both 0 with mesh_force = "lagrangian", whose forces do that work on the
