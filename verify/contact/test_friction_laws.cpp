@@ -210,6 +210,68 @@ TEST_CASE("the smoothed sign converges to the exact switch as v_s shrinks") {
   CHECK(previous < 1e-2 * exact);
 }
 
+TEST_CASE("a smoothing speed the step cannot resolve is refused before work, naming the bound") {
+  // The band 2 v_s of tanh(Vs / v_s) must span 20 fixed steps of the sliding
+  // speed's sweep by the rolling, Rb1 |w1| (|w1| + |w2|) at the initial
+  // speeds: v_s >= 10 h Rb1 |w1| (|w1| + |w2|).
+  SimulationCase c = case2();
+  c.integrator.end_time_s = 2e-4;
+  const double rb1 = base_radius(c.gears, Gear::one);
+  const double w1 = c.initial.w1_rad_per_s;
+  const double w2 = c.initial.w2_rad_per_s;
+  const double least =
+      10.0 * c.integrator.step_s * rb1 * std::fabs(w1) * (std::fabs(w1) + std::fabs(w2));
+  const auto refusal = [](const SimulationCase& run) -> std::string {
+    try {
+      run_summary(run);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "(accepted)";
+  };
+  c.model.friction_smoothing_speed_m_s = 0.9 * least;
+  const std::string text = refusal(c);
+  CHECK(text.find("model.friction_smoothing_speed") != std::string::npos);
+  CHECK(text.find("integrator.step") != std::string::npos);
+  // Just above the bound it runs; and at a step ten times smaller the refused
+  // speed runs too.
+  c.model.friction_smoothing_speed_m_s = 1.1 * least;
+  CHECK(refusal(c) == "(accepted)");
+  c.model.friction_smoothing_speed_m_s = 0.9 * least;
+  c.integrator.step_s /= 10.0;
+  CHECK(refusal(c) == "(accepted)");
+  // The adaptive integrator's error control resolves the band by itself; and
+  // without friction there is nothing to smooth.
+  c.integrator.step_s *= 10.0;
+  c.integrator.kind = IntegratorKind::adaptive;
+  CHECK(refusal(c) == "(accepted)");
+  c.integrator.kind = IntegratorKind::rk4;
+  c.model.friction_coefficient = 0.0;
+  CHECK(refusal(c) == "(accepted)");
+  // The example: 1e-5 m/s at case 2's step 1e-7 s (bound 4.7e-5).
+  SimulationCase example = case2();
+  example.model.friction_smoothing_speed_m_s = 1e-5;
+  CHECK(refusal(example).find("model.friction_smoothing_speed") != std::string::npos);
+}
+
+TEST_CASE("a smoothing speed beyond the sliding speeds is refused by its row") {
+  // tanh(Vs / v_s) with v_s far above the sliding speeds is f N Vs / v_s:
+  // friction all but gone, silently. The row bounds v_s at 0.1 m/s.
+  const std::string base = write_case_file(case2());
+  const auto with = [&](const std::string& line) {
+    std::string text = base;
+    text.insert(text.find("[model]\n") + 8, line);
+    return error_of(text);
+  };
+  for (const char* value : {"1e300 m/s", "0.2 m/s"}) {
+    CAPTURE(value);
+    const std::string text = with(std::string("friction_smoothing_speed = \"") + value + "\"\n");
+    CHECK(text.find("friction_smoothing_speed") != std::string::npos);
+    CHECK(text.find("0.1 m/s") != std::string::npos);
+  }
+  CHECK(with("friction_smoothing_speed = \"0.1 m/s\"\n") == "(accepted)");
+}
+
 TEST_CASE("bad friction-law inputs are refused, naming the key and its range") {
   const std::string base = write_case_file(case2());
   const auto with = [&](const std::string& lines) {

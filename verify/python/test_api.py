@@ -86,6 +86,11 @@ def test_gear_pair_from_keys():
         ({"modul": 1}, "modul", ["modul", "gears.module"]),
         ({"kind": "adaptive"}, "kind", ["integrator.kind", "torque1.kind"]),
         ({"module": [1]}, "module", ["module=[1]", "list"]),
+        (
+            {"friction_smoothing_speed": "1e300 m/s"},
+            "model.friction_smoothing_speed",
+            ["friction_smoothing_speed='1e300 m/s'", "0.1 m/s"],
+        ),
     ],
 )
 def test_bad_keyword_arguments_name_the_key_and_the_range(changes, field, words):
@@ -95,6 +100,18 @@ def test_bad_keyword_arguments_name_the_key_and_the_range(changes, field, words)
     for word in words:
         assert word in str(error.value)
     assert "<keyword arguments>" not in str(error.value)
+
+
+def test_a_smoothing_speed_the_step_cannot_resolve_is_refused_before_the_run():
+    # Case 2 at 0.1 us needs v_s >= 10 h Rb1 |w1| (|w1| + |w2|) = 4.698e-05 m/s.
+    with pytest.raises(gearimpact.CaseError) as error:
+        gearimpact.simulate(2, keep_series=False, friction_smoothing_speed="1e-5 m/s")
+    assert "model.friction_smoothing_speed" in str(error.value)
+    assert ">= 4.698e-05 m/s" in str(error.value)
+    result = gearimpact.simulate(
+        2, keep_series=False, end_time="0.2 ms", friction_smoothing_speed="1e-4 m/s"
+    )
+    assert result.summary["friction_loss_J"] > 0
 
 
 def test_errors_are_value_and_runtime_errors():
@@ -203,6 +220,31 @@ def test_series_columns_hold_their_definitions():
     assert len(impacts) == result.summary["impacts_n1"] + result.summary["impacts_n2"]
     assert sum(i["line"] == "N1" for i in impacts) == result.summary["impacts_n1"]
     assert impacts[0]["start_s"] == result.summary["first_impact_s"]
+
+
+def test_the_mesh_damper_loss_is_a_term_of_its_own_and_closes_the_ledger():
+    # No Hertzian damping: the viscous mesh damper alone dissipates at the
+    # contacts, and its loss is mesh_damper_loss_J.
+    result = gearimpact.simulate(
+        2, keep_series=False, end_time="5 ms", damping_update="off", mesh_damping_ratio=0.05
+    )
+    s = result.summary
+    assert s["damping_loss_J"] == 0
+    closure = (
+        s["kinetic_energy_final_J"] + s["stored_energy_final_J"]
+        - s["kinetic_energy_initial_J"] - s["stored_energy_initial_J"]
+        - s["torque_work_J"] + s["damping_loss_J"] + s["friction_loss_J"]
+        + s["mesh_damper_loss_J"] - s["parametric_work_J"]
+    )
+    # The printed terms sum to the printed residual but for the rounding of
+    # sums of terms of the scale's size; the residual is within the ledger's
+    # bound (1e-7 of the scale), the damper's loss far above it.
+    assert abs(closure - s["ledger_residual_J"]) < 1e-12 * s["ledger_scale_J"]
+    assert abs(s["ledger_residual_J"]) < 1e-7 * s["ledger_scale_J"]
+    assert s["mesh_damper_loss_J"] > 1e-5 * s["ledger_scale_J"]
+    assert "mesh damper loss" in repr(result)
+    plain = gearimpact.simulate(2, keep_series=False, end_time="1 ms")
+    assert "mesh_damper_loss_J" not in plain.summary
 
 
 def test_without_the_series():

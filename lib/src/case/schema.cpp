@@ -639,9 +639,15 @@ std::vector<Field> make_schema() {
          [](auto& c) -> auto& { return c.model.friction_table.coefficient; })
         .only_when = FieldCondition{"friction_law", {"table"}};
     r.quantity(
-         "friction_smoothing_speed", Dimension::speed, "m/s", {closed(0.0), {}, {}}, false,
+         "friction_smoothing_speed", Dimension::speed, "m/s",
+         {closed(0.0), closed(0.1),
+          "at most 0.1 m/s: a band a small part of the sliding speeds (tenths of m/s and "
+          "more on a flank); a wider one turns the friction into a weak viscous f N Vs / v_s "
+          "and removes most of it"},
+         false,
          "v_s of Ff = f N tanh(Vs / v_s), which replaces sign(Vs) of (35) and so the "
-         "friction-reversal event; 0 keeps the exact switch (the paper's)",
+         "friction-reversal event; 0 keeps the exact switch (the paper's). A fixed step h "
+         "needs v_s >= 10 h Rb1 |w1| (|w1| + |w2|): 20 steps across the band 2 v_s",
          [](auto& c) -> auto& { return c.model.friction_smoothing_speed_m_s; })
         .written_at_default = false;
     r.choice(

@@ -211,6 +211,46 @@ void validate_drag(const SimulationCase& c) {
           " s per 2 pi of it; raise drag_speed_scale (or lower drag_viscous, or the step)");
 }
 
+// The rate at which the rolling sweeps the sliding speed through zero at the
+// pitch point, |dVs/dt| = Rb1 |w1| (|w1| + |w2|): the contact moves along the
+// line at Rb1 w1, and Vs = w1 X1 - w2 (lp - X1) changes by w1 + w2 per metre
+// of it. At the gears' initial speeds (the driver's fastest, W + sum |a_i|).
+double sliding_sweep_rate_m_s2(const SimulationCase& c) {
+  double w1 = std::fabs(c.initial.w1_rad_per_s);
+  if (c.torque1.kind == Torque::Kind::prescribed_speed) {
+    w1 = std::fabs(c.torque1.mean_speed_rad_per_s);
+    for (double a : c.torque1.driver_speed_amplitudes_rad_per_s) w1 += std::fabs(a);
+  }
+  const double w2 = std::fabs(c.initial.w2_rad_per_s);
+  return base_radius(c.gears, Gear::one) * w1 * (w1 + w2);
+}
+
+// The smoothed sign tanh(Vs / v_s) turns the friction over a band of sliding
+// speeds 2 v_s wide (from -0.76 to +0.76 of f N); the rolling sweeps Vs
+// through it in 2 v_s / |dVs/dt|. A fixed step must cut that time into at
+// least kStepsPerContactPeriod steps (the sliding speed changes by at most
+// v_s / 10 per step), or the steps jump across the band as across the exact
+// switch, without its event: the smoothing then resolves nothing. The
+// adaptive integrator's error control shortens its steps there by itself.
+void validate_friction_smoothing(const SimulationCase& c) {
+  const ModelOptions& m = c.model;
+  const double vs = m.friction_smoothing_speed_m_s;
+  if (!(vs > 0.0) || c.integrator.kind == IntegratorKind::adaptive) return;
+  if (m.friction_law == FrictionLaw::constant && m.friction_coefficient == 0.0) return;
+  const double step = c.integrator.step_s;
+  const double rate = sliding_sweep_rate_m_s2(c);
+  const double least = 0.5 * kStepsPerContactPeriod * step * rate;
+  if (vs >= least) return;
+  throw InputError(
+      "model.friction_smoothing_speed", digits(vs) + " m/s",
+      ">= " + digits(least) + " m/s (or 0, the exact switch): the band 2 v_s over which " +
+          "tanh(Vs / v_s) turns the friction spans at least " + digits(kStepsPerContactPeriod) +
+          " steps of integrator.step = " + digits(step) +
+          " s, in which the rolling changes the sliding speed at the pitch point by Rb1 |w1| "
+          "(|w1| + |w2|) = " +
+          digits(rate) + " m/s^2 at the initial speeds; raise it, or a smaller integrator.step");
+}
+
 // A damping frozen at a reference impact speed is known before the run: under
 // the torques' tooth load, its rate per fixed step h D F / m_e must stay inside
 // RK4's stability interval, or the first loaded contact diverges.
@@ -251,6 +291,7 @@ void validate_implied(const SimulationCase& c, const std::pair<double, double>& 
   problems.collect([&] { validate_speeds(c); });
   problems.collect([&] { validate_forcing(c); });
   problems.collect([&] { validate_drag(c); });
+  problems.collect([&] { validate_friction_smoothing(c); });
   problems.collect([&] { validate_frozen_damping(c); });
   problems.throw_if_any();
 }

@@ -31,7 +31,12 @@ void validate_step(const SimulationCase& c, double largest_step_s);
 // - the step against the stiffest contact (validate_step);
 // - initial.w1, initial.w2: at least kStepsPerMeshPeriod steps of
 //   integrator.step per mesh period 2 pi / (z |w|);
-// - the torques' angular frequencies: as many steps per forcing period 2 pi / W.
+// - the torques' angular frequencies: as many steps per forcing period 2 pi / W;
+// - torque2.drag_speed_scale: as many steps per 2 pi of the drag's relaxation time;
+// - model.friction_smoothing_speed v_s > 0 under a fixed step h, with friction
+//   on: v_s >= (kStepsPerContactPeriod / 2) h Rb1 |w1| (|w1| + |w2|), so that
+//   the band 2 v_s of tanh(Vs / v_s) spans as many steps of the sliding speed's
+//   sweep by the rolling at the initial speeds (the driver's fastest).
 // The mesh stiffness is sampled as largest_resolving_step_s samples it, by
 // quadrature or from the table.
 // The largest tooth load the case's torques imply, max over the gears of the
