@@ -224,8 +224,10 @@ TEST_CASE("the mesh damper's loss equals c times the integral of s'^2 over the r
   const double loss = r.summary.mesh_damping_loss_j;
   const double fine = trapezoid(1);
   const double coarse = trapezoid(2);
-  MESSAGE("mesh damper loss " << loss << " J, trapezoid " << fine << " J (every other row "
-                              << coarse << " J), c = " << damper << " N s/m");
+  MESSAGE("mesh damper loss " << loss << " J, c = " << damper
+                              << " N s/m; trapezoid's relative difference "
+                              << relative_difference(loss, fine) << " (every other row "
+                              << relative_difference(loss, coarse) << ")");
   CHECK(relative_difference(loss, fine) < 1e-5);
   const double ratio = std::fabs(coarse - loss) / std::fabs(fine - loss);
   CHECK(ratio > 3.0);
