@@ -661,7 +661,7 @@ TEST_CASE(
   // each kink and down to 1e-9 m of it. The two routes' quadratures each
   // meet 1e-12 relative of their integrals (in fact near 1e-15) and the fit
   // of a smooth piece is near 1e-14 (StiffnessTableOptions): 1e-12 is the
-  // promise, with the observed differences far below it.
+  // promise (observed 1.2e-14 over the 44 kinks).
   const GearPair g = pair_with_bores();
   const ContactSegment seg = contact_segment(g);
   const double nu = pi / 4;
@@ -671,6 +671,7 @@ TEST_CASE(
     StiffnessRoute route;
   };
   int kinks_checked = 0;
+  double worst_of_all = 0.0;
   for (const Case c : {Case{StiffnessModelKind::yang_lin_1987, StiffnessRoute::tau_form},
                        Case{StiffnessModelKind::yang_lin_1987, StiffnessRoute::x_form},
                        Case{StiffnessModelKind::potential_energy, StiffnessRoute::tau_form}}) {
@@ -739,6 +740,7 @@ TEST_CASE(
             }
             CAPTURE(worst);
             CHECK(worst < 1e-12);
+            worst_of_all = std::max(worst_of_all, worst);
           }
         }
         // Up to half of q_max the cut starts on the segment (a deeper crack
@@ -750,7 +752,7 @@ TEST_CASE(
       }
     }
   }
-  MESSAGE("kinks checked: " << kinks_checked);
+  MESSAGE("kinks checked: " << kinks_checked << ", largest relative difference " << worst_of_all);
 }
 
 TEST_CASE("a crack of depth 0 gives the table the full integration gives, to the bit") {
