@@ -279,7 +279,7 @@ void run_signals(const SignalsOptions& o) {
   // Every flag first, before the file is read.
   std::optional<double> rate;
   if (!o.sample_rate.empty()) {
-    rate = number(o.sample_rate, "--sample-rate");
+    rate = parse_plain_or_quantity(o.sample_rate, Dimension::frequency, "--sample-rate");
     naming_flags([&] { signals::check_sample_rate(*rate); });
   }
   const signals::Window window = signals::parse_window(o.window, "--window");
@@ -468,7 +468,8 @@ void register_signals_commands(CLI::App& app) {
                   "the record's start, s or with a unit (e.g. \"50 ms\"): the rows before it are "
                   "left out, such as a run's start ringing its modes (default: the first row)");
   cmd->add_option("--sample-rate", o->sample_rate,
-                  "Hz of the uniform grid the samples are interpolated onto (cubic, fourth "
+                  "Hz (a plain number, or \"80 kHz\") of the uniform grid the samples are "
+                  "interpolated onto (cubic, fourth "
                   "order); default: the record's own rate, 1 / its median spacing; a lower rate "
                   "low-passes the record below its Nyquist frequency first (an anti-alias "
                   "filter)");

@@ -25,7 +25,7 @@ PAIR = dict(
     profile_shift1=0.2, profile_shift2=-0.2, bore_diameter1="30 mm", bore_diameter2="80 mm",
     youngs_modulus="206 GPa", poisson_ratio=0.3, density="7850 kg/m^3", backlash="0.05 mm",
     torque1_value="150 N*m", torque2_value=-150 * RATIO, w1="1000 rpm",
-    w2=1000 * RPM / RATIO, friction_coefficient=0, end_time="20 ms",
+    w2=f"{1000 * RPM / RATIO!r} rad/s", friction_coefficient=0, end_time="20 ms",
 )
 
 # The same pair written by hand as a case file: the keys case() leaves out
