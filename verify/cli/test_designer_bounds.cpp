@@ -12,7 +12,9 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
+#include "gearimpact/case/units.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/error.hpp"
@@ -66,8 +68,9 @@ double involute(double a) {
 // without backlash, as a textbook gives them: inv a_w = inv a0 + 2 tan a0 (x1 + x2) / (z1 + z2),
 // a_w = (Rb1 + Rb2) / cos a_w, r_a = m z / 2 + (1 + x) m, p_b = pi m cos a0. On the pinion the
 // active profile starts at the roll a_w sin a_w - sqrt(ra2^2 - Rb2^2) and ends at
-// sqrt(ra1^2 - Rb1^2); LPSTC a base pitch above the start, HPSTC a base pitch below the tip,
-// d = 2 sqrt(Rb^2 + roll^2); the wheel alike with the gears swapped.
+// sqrt(ra1^2 - Rb1^2). A tooth carries alone from where the pair ahead leaves (at the tip, a base
+// pitch on: LPSTC at the tip's roll - p_b) to where the pair behind enters (HPSTC at the start's
+// roll + p_b), d = 2 sqrt(Rb^2 + roll^2); the wheel alike with the gears swapped.
 struct SingleContact {
   double lpstc1, hpstc1, lpstc2, hpstc2;
 };
@@ -85,8 +88,8 @@ SingleContact textbook_single_contact(int z1, int z2, double m, double a0, doubl
   const double tip_roll2 = std::sqrt(ra2 * ra2 - rb2 * rb2);
   const double lp = centre * std::sin(aw);
   const auto d = [](double rb, double roll) { return 2.0 * std::sqrt(rb * rb + roll * roll); };
-  return {d(rb1, lp - tip_roll2 + pb), d(rb1, tip_roll1 - pb), d(rb2, lp - tip_roll1 + pb),
-          d(rb2, tip_roll2 - pb)};
+  return {d(rb1, tip_roll1 - pb), d(rb1, lp - tip_roll2 + pb), d(rb2, tip_roll2 - pb),
+          d(rb2, lp - tip_roll1 + pb)};
 }
 
 }  // namespace

@@ -53,7 +53,7 @@ kind = "constant"
 value = "50 N*m"
 [torque2]
 kind = "constant"
-value = "122.41379310344827 N*m"
+value = "-122.41379310344827 N*m"
 [initial]
 w1 = "1000 rpm"
 w2 = "408.45070422535213 rpm"

@@ -21,7 +21,7 @@ def _pair():
 
 
 def _whole():
-    return gearimpact.case(**PAIR, torque1_value="50 N*m", torque2_value="122.41379310344827 N*m",
+    return gearimpact.case(**PAIR, torque1_value="50 N*m", torque2_value="-122.41379310344827 N*m",
                            w1="1000 rpm", w2="408.45070422535213 rpm", end_time="1 ms")
 
 

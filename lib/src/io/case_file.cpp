@@ -810,8 +810,10 @@ SimulationCase read_case(const Reader& reader, const toml::value& root, std::str
   // A pair file gives no run: the keys a run would need are named, for a run to refuse.
   if (kind == CaseFileKind::pair) {
     for (const Field& field : case_schema()) {
-      if (field.required && !required_in(field, kind))
+      // The rows a run always needs; those under a torque's kind follow from the kind.
+      if (field.required && !field.only_when && !required_in(field, kind)) {
         result.run_keys_absent.push_back(field.name());
+      }
     }
   }
   Problems relations;
