@@ -27,7 +27,7 @@ namespace {
 
 // A loaded pair of Table 1's case 1 with a steady state: two points a direction, one thread.
 const std::string kUndamped =
-    "sweep 1 --vary initial.w1 --from 2000 --to 3000 --points 2 --threads 1 "
+    "sweep 1 --vary initial.w1 --from '2000 rad/s' --to '3000 rad/s' --points 2 --threads 1 "
     "--set model.friction_coefficient=0 --set 'torque1.mean=3 N*m'";
 const std::string kSweep = kUndamped + " --set model.mesh_damping_ratio=0.05";
 
@@ -144,7 +144,7 @@ TEST_CASE("bounds and meaningless sweeps are refused before any point runs, nami
   Scratch scratch("sweep-edges-bounds");
   const std::string out = " --no-plots --out " + (scratch.dir / "out").string();
   const std::string base =
-      "sweep 1 --vary initial.w1 --from 2000 --to 3000 --threads 1 "
+      "sweep 1 --vary initial.w1 --from '2000 rad/s' --to '3000 rad/s' --threads 1 "
       "--set model.friction_coefficient=0 --set 'torque1.mean=3 N*m'";
   const std::string second = " --vary2 gears.backlash --from2 4e-5 --to2 6e-5";
   struct Bad {
@@ -181,7 +181,7 @@ TEST_CASE("bounds and meaningless sweeps are refused before any point runs, nami
       {base + " --points 2 --tolerance 0", {"--tolerance", "0.1"}},
       {base + " --points 2 --tolerance 1", {"--tolerance"}},
       {base + " --points 2 --threads 100000", {"--threads", "1024"}},
-      {"sweep 1 --vary initial.w1 --from 3000 --to 2000 --points 2 "
+      {"sweep 1 --vary initial.w1 --from '3000 rad/s' --to '2000 rad/s' --points 2 "
        "--set model.friction_coefficient=0",
        {"--from", "3000"}},
       {base + " --points 2 --vary2 initial.w1 --from2 2000 --to2 3000 --points2 2",
@@ -422,7 +422,8 @@ TEST_CASE("a sweep ended by a signal leaves no output; a rerun is not hindered b
     CAPTURE(signal_name);
     const fs::path out = scratch.dir / "out";
     // Long enough to be under way when the signal comes (some seconds).
-    run_command(cli("sweep 1 --vary initial.w1 --from 2000 --to 3000 --points 1000 --direction up "
+    run_command(cli("sweep 1 --vary initial.w1 --from '2000 rad/s' --to '3000 rad/s' --points 1000 "
+                    "--direction up "
                     "--threads 1 "
                     "--set model.friction_coefficient=0 --set 'torque1.mean=3 N*m' "
                     "--set model.mesh_damping_ratio=0.05 --no-plots --out " +

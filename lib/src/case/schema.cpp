@@ -1383,10 +1383,12 @@ std::optional<std::string> plain_speed_warning(const Field& field, std::string_v
   const UnitList units = units_of(Dimension::angular_velocity);
   const auto rpm =
       std::find_if(units.begin(), units.end(), [](const Unit& u) { return u.symbol == "rpm"; });
-  char in_rpm[32];
-  std::snprintf(in_rpm, sizeof in_rpm, "%.6g", *value / rpm->factor);
-  return std::string(name) + " = " + written + " is read as " + written + " rad/s (" + in_rpm +
-         " rpm); write \"" + written + " rad/s\" or \"" + written + " rpm\" to say which";
+  // A speed near the largest double has no finite value in rpm: said without it.
+  const double in_rpm = *value / rpm->factor;
+  char rpm_text[48] = "";
+  if (std::isfinite(in_rpm)) std::snprintf(rpm_text, sizeof rpm_text, " (%.6g rpm)", in_rpm);
+  return std::string(name) + " = " + written + " is read as " + written + " rad/s" + rpm_text +
+         "; write \"" + written + " rad/s\" or \"" + written + " rpm\" to say which";
 }
 
 double parse_value(const Field& field, std::string_view value_text, std::string_view name) {
