@@ -29,6 +29,29 @@ def project_version():
     return match.group(1)
 
 
+def configure_command(build_dir):
+    """The configuration of the package's build tree (without GEARIMPACT_CMAKE_ARGS)."""
+    return [
+        "cmake",
+        "-S", str(ROOT),
+        "-B", str(build_dir),
+        "-DCMAKE_BUILD_TYPE=Release",
+        "-DGEARIMPACT_PYTHON=ON",
+        "-DGEARIMPACT_BUILD_TESTS=OFF",
+        "-DGEARIMPACT_BUILD_BENCHMARKS=OFF",
+        f"-DPython3_EXECUTABLE={sys.executable}",
+    ]
+
+
+def build_command(build_dir, jobs):
+    """The build of everything the `python` install component installs: one target that depends
+    on the module and the program. Two targets named in one parallel call of the Makefile
+    generator would each build the shared library they link, at the same time, in one tree
+    (verify/package/build_once.py checks that each object is compiled once)."""
+    return ["cmake", "--build", str(build_dir), "-j", str(jobs),
+            "--target", "gearimpact_python_package"]
+
+
 class CMakeExtension(Extension):
     def __init__(self, name):
         super().__init__(name, sources=[])
@@ -39,23 +62,11 @@ class CMakeBuild(build_ext):
         package_parent = Path(self.get_ext_fullpath(ext.name)).resolve().parent.parent
         build_dir = Path(self.build_temp).resolve() / "cmake"
         jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL", str(os.cpu_count() or 1))
-        configure = [
-            "cmake",
-            "-S", str(ROOT),
-            "-B", str(build_dir),
-            "-DCMAKE_BUILD_TYPE=Release",
-            "-DGEARIMPACT_PYTHON=ON",
-            "-DGEARIMPACT_BUILD_TESTS=OFF",
-            "-DGEARIMPACT_BUILD_BENCHMARKS=OFF",
-            f"-DPython3_EXECUTABLE={sys.executable}",
+        configure = configure_command(build_dir) + [
             "-DGEARIMPACT_PYTHON_INSTALL_DIR=.",
         ] + shlex.split(os.environ.get("GEARIMPACT_CMAKE_ARGS", ""))
         subprocess.run(configure, check=True)
-        subprocess.run(
-            ["cmake", "--build", str(build_dir), "-j", jobs,
-             "--target", "gearimpact_python", "gearimpact_cli"],
-            check=True,
-        )
+        subprocess.run(build_command(build_dir, jobs), check=True)
         subprocess.run(
             ["cmake", "--install", str(build_dir), "--component", "python",
              "--prefix", str(package_parent)],
@@ -63,11 +74,14 @@ class CMakeBuild(build_ext):
         )
 
 
-setup(
-    version=project_version(),
-    packages=["gearimpact"],
-    package_dir={"gearimpact": "python/gearimpact"},
-    ext_modules=[CMakeExtension("gearimpact._core")],
-    cmdclass={"build_ext": CMakeBuild},
-    zip_safe=False,
-)
+# Run by pip (setuptools' build backend runs this file as __main__) or by hand; imported by
+# verify/package/build_once.py for build_command alone.
+if __name__ == "__main__":
+    setup(
+        version=project_version(),
+        packages=["gearimpact"],
+        package_dir={"gearimpact": "python/gearimpact"},
+        ext_modules=[CMakeExtension("gearimpact._core")],
+        cmdclass={"build_ext": CMakeBuild},
+        zip_safe=False,
+    )

@@ -8,35 +8,16 @@
 #include "commands.hpp"
 #include "gearimpact/case/units.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/iso1328.hpp"
 #include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/io/case_file.hpp"
+#include "gearimpact/stiffness/tooth_state.hpp"
 
 namespace gearimpact::cli {
 
 namespace {
-
-// The text of a written case file without the sections a pair file leaves
-// out: what a pair file states, read back by read_pair_or_run_file alike.
-std::string pair_sections(const std::string& text) {
-  std::string out;
-  bool keep = true;
-  std::size_t at = 0;
-  while (at < text.size()) {
-    const std::size_t end = std::min(text.find('\n', at), text.size());
-    const std::string line = text.substr(at, end - at);
-    if (line == "[[faults]]") {
-      // The teeth of the pair: a pair file keeps its faults.
-      keep = true;
-    } else if (line.size() > 2 && line.front() == '[' && line.back() == ']') {
-      keep = is_pair_section(std::string_view(line).substr(1, line.size() - 2));
-    }
-    if (keep) out += line + "\n";
-    at = end + 1;
-  }
-  return out;
-}
 
 // "[v0, v1, ...]" in SI, each value exact.
 std::string values_text(const std::vector<double>& values) {
@@ -69,6 +50,74 @@ void print_drawn_errors(const SimulationCase& c) {
   }
 }
 
+// The bounds a run of the case is held to, before one is tried: the step (each integrator's, by
+// the contact; by the mesh period at the case's speed), the relief diameters of each gear, and
+// where a root crack starts and how deep it may reach.
+void print_bounds(const SimulationCase& c, bool run) {
+  const StepBounds b = step_bounds(c);
+  std::printf("\n# Bounds a run is held to (SI):\n");
+  std::printf(
+      "#   period of the stiffest contact 2 pi sqrt(m_e / K) = %s s: integrator.step <= %s s "
+      "with kind = \"rk4\" (the largest first step of \"adaptive\"), <= %s s with \"dopri5\"\n",
+      shortest_decimal(b.contact_period_s).c_str(), shortest_decimal(b.rk4_step_s).c_str(),
+      shortest_decimal(b.dopri5_step_s).c_str());
+  if (run && b.mesh_period_s > 0.0) {
+    std::printf(
+        "#   mesh period 2 pi / (z1 |w1|) = %s s at initial.w1: integrator.step <= %s s with "
+        "every kind\n",
+        shortest_decimal(b.mesh_period_s).c_str(), shortest_decimal(b.mesh_step_s).c_str());
+  }
+  if (run) {
+    std::printf("#   this case: integrator.kind = \"%s\", integrator.step = %s s\n",
+                name_of(kIntegratorKinds, c.integrator.kind).c_str(),
+                shortest_decimal(c.integrator.step_s).c_str());
+  }
+  if (c.bearings.kind == BearingKind::elastic) {
+    std::printf(
+        "#   elastic bearings: the planar model's own springs bound the step further (checked "
+        "when the run starts)\n");
+  }
+  for (const Gear gear : {Gear::one, Gear::two}) {
+    const ActiveProfile p = active_profile(c.gears, gear);
+    const char* n = gear == Gear::one ? "1" : "2";
+    std::printf(
+        "#   gear %s: tip_relief_start%s in [d_SAP, d_a) = [%s, %s) m, root_relief_end%s in "
+        "(d_SAP, d_a]; single tooth contact from the LPSTC d = %s m to the HPSTC d = %s m (a "
+        "long tip relief starts at the HPSTC)\n",
+        n, n, shortest_decimal(p.start_diameter_m).c_str(),
+        shortest_decimal(p.tip_diameter_m).c_str(), n,
+        shortest_decimal(p.lowest_single_contact_diameter_m).c_str(),
+        shortest_decimal(p.highest_single_contact_diameter_m).c_str());
+    RootCrack at_default;
+    at_default.angle_rad = pi / 4.0;
+    CrackReach reach;
+    try {
+      reach = crack_reach(c.gears, c.model.stiffness, gear, at_default);
+    } catch (const InputError& e) {
+      std::printf("#   gear %s: no root crack fits its tooth by default: %s\n", n, e.what());
+      continue;
+    }
+    std::printf(
+        "#   gear %s: a root crack starts at r_s = %s m (the model's default), where h_c = %s m; "
+        "its depth q < h_c / sin(nu) (%s m at nu = 45 deg)\n",
+        n, shortest_decimal(reach.start_radius_m).c_str(),
+        shortest_decimal(reach.start_half_thickness_m).c_str(),
+        shortest_decimal(reach.largest_depth_m).c_str());
+  }
+  for (std::size_t i = 0; i < c.faults.size(); ++i) {
+    const ToothFault& f = c.faults[i];
+    if (f.state.kind != ToothKind::root_crack) continue;
+    const CrackReach reach = crack_reach(c.gears, c.model.stiffness, f.gear, f.state.crack);
+    std::printf(
+        "#   faults[%zu] (gear %d, tooth %d): r_s = %s m, h_c = %s m; its deepest q = %s m, at "
+        "most h_c / sin(nu) = %s m\n",
+        i, f.gear == Gear::one ? 1 : 2, f.tooth, shortest_decimal(reach.start_radius_m).c_str(),
+        shortest_decimal(reach.start_half_thickness_m).c_str(),
+        shortest_decimal(largest_crack_depth(f.state.crack)).c_str(),
+        shortest_decimal(reach.largest_depth_m).c_str());
+  }
+}
+
 // Prints the case as a case file in SI units, which reads back to the same
 // values, and the derived quantities the checks used. A pair file (only
 // [gears] and [model]) is valid for the stiffness commands and `report`.
@@ -83,7 +132,7 @@ void check_case(const std::string& file) {
         "pair in SI "
         "units (itself a pair file):\n",
         file.c_str());
-    std::fputs(pair_sections(write_case_file(c, CaseUnits::si)).c_str(), stdout);
+    std::fputs(write_case_file(c, CaseUnits::si).c_str(), stdout);
   } else {
     std::printf("# %s: valid. The case in SI units (itself a case file):\n", file.c_str());
     std::fputs(write_case_file(c, CaseUnits::si).c_str(), stdout);
@@ -105,6 +154,7 @@ void check_case(const std::string& file) {
               shortest_decimal(moment_of_inertia(g, Gear::one)).c_str(),
               shortest_decimal(moment_of_inertia(g, Gear::two)).c_str());
   print_drawn_errors(c);
+  print_bounds(c, read.kind == CaseFileKind::run);
   // A valid run can still surprise: said on stderr, as every command warns, and kept as
   // comments of the printed case.
   if (read.kind == CaseFileKind::run) {

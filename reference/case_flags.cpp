@@ -177,6 +177,9 @@ void CaseOptions::set(SimulationCase& c, const std::string& key, const std::stri
     }
   }
   const Field& field = *find_field(key);
+  if (const auto warning = plain_speed_warning(field, value, option)) {
+    std::cerr << "gearimpact: warning: " << *warning << "\n";
+  }
   if (swept_value && numeric(field)) {
     const SimulationCase before = c;
     apply_sweep_value(c, before, key, parse_value(sweep_field(key, option), value, option));

@@ -14,7 +14,9 @@
 #include "gearimpact/case/schema.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/geometry/rack_generation.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
@@ -22,6 +24,7 @@
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "gearimpact/stiffness/time_varying_stiffness.hpp"
+#include "gearimpact/stiffness/tooth_state.hpp"
 #include "mesh_stiffness_figure.hpp"
 #include "program.hpp"
 #include "reproduce.hpp"
@@ -73,8 +76,10 @@ struct Lines {
   }
 };
 
-// The geometry section and geometry.csv (lengths in mm).
-std::string geometry_section(const GearPair& pair, const std::filesystem::path& dir) {
+// The geometry section and geometry.csv (lengths in mm), with the bounds a designer places
+// modifications and faults within and a run's step is held to.
+std::string geometry_section(const SimulationCase& c, bool run, const std::filesystem::path& dir) {
+  const GearPair& pair = c.gears;
   const RackGearPairGeometry g = rack_gear_pair_geometry(pair);
   const ContactSegment segment = contact_segment(pair);
   const double t0 = base_pitch(pair);
@@ -123,18 +128,73 @@ std::string geometry_section(const GearPair& pair, const std::filesystem::path& 
   lines.both("undercut_margin_shift", a.profile_shift_coefficient - least_shift(a),
              b.profile_shift_coefficient - least_shift(b), "1");
   lines.both("root_half_angle_theta_f", a.root_half_angle_rad, b.root_half_angle_rad, "rad");
+  // Where one pair carries the whole load, and so where a tip relief starts.
+  const ActiveProfile profile1 = active_profile(pair, Gear::one);
+  const ActiveProfile profile2 = active_profile(pair, Gear::two);
+  lines.both("lpstc_diameter", profile1.lowest_single_contact_diameter_m,
+             profile2.lowest_single_contact_diameter_m, "m");
+  lines.both("hpstc_diameter", profile1.highest_single_contact_diameter_m,
+             profile2.highest_single_contact_diameter_m, "m");
+  // A root crack at the model's default start: the section's half thickness there bounds its
+  // depth, q sin(nu) < h_c.
+  RootCrack at_default;
+  at_default.angle_rad = pi / 4.0;
+  try {
+    const CrackReach crack1 = crack_reach(pair, c.model.stiffness, Gear::one, at_default);
+    const CrackReach crack2 = crack_reach(pair, c.model.stiffness, Gear::two, at_default);
+    lines.both("crack_start_radius_r_s", crack1.start_radius_m, crack2.start_radius_m, "m");
+    lines.both("crack_start_half_thickness_h_c", crack1.start_half_thickness_m,
+               crack2.start_half_thickness_m, "m");
+  } catch (const InputError&) {
+    // A tooth whose model places no crack (its default start off the flank): no rows.
+  }
   lines.csv += "contact_ratio,pair," + format_number(contact_ratio(pair)) + ",1\n";
   lines.csv +=
       "operating_pressure_angle,pair," + format_number(g.operating_pressure_angle_rad) + ",rad\n";
   lines.csv += "centre_distance,pair," + format_number(g.centre_distance_m) + ",m\n";
   lines.csv += "contact_segment_start_x1,pair," + format_number(segment.start_m) + ",m\n";
   lines.csv += "contact_segment_end_x1,pair," + format_number(segment.end_m) + ",m\n";
+  const StepBounds bounds = step_bounds(c);
+  lines.csv += "contact_period,pair," + format_number(bounds.contact_period_s) + ",s\n";
+  lines.csv += "largest_step_rk4,pair," + format_number(bounds.rk4_step_s) + ",s\n";
+  lines.csv += "largest_step_dopri5,pair," + format_number(bounds.dopri5_step_s) + ",s\n";
+  if (run && bounds.mesh_period_s > 0.0) {
+    lines.csv += "largest_step_mesh_period,pair," + format_number(bounds.mesh_step_s) + ",s\n";
+  }
   write_file_atomically((dir / "geometry.csv").string(), lines.csv);
   text += lines.md;
   text +=
       "\n(`geometry.csv`, SI units. `active_profile_above_form_circle`: the margin by which "
       "the contact stays on the involute, > 0 on a sound pair. `undercut_margin_shift`: x "
-      "minus the least shift free of undercut, ha - z sin^2(a0) / 2.)\n";
+      "minus the least shift free of undercut, ha - z sin^2(a0) / 2. `lpstc_diameter`, "
+      "`hpstc_diameter`: the lowest and highest points of single tooth contact, a base pitch "
+      "from each end of the path of contact; a long tip relief starts at the HPSTC, and a relief "
+      "starts within [d_SAP, d_a) (`modifications.tip_relief_start1`, ...). "
+      "`crack_start_radius_r_s`, `crack_start_half_thickness_h_c`: where a root crack starts by "
+      "default for the model (" +
+      to_string(c.model.stiffness.kind) +
+      ") and the half thickness there; a crack's depth q is bounded by q sin(nu) < h_c.)\n\n";
+  for (std::size_t i = 0; i < c.faults.size(); ++i) {
+    const ToothFault& f = c.faults[i];
+    if (f.state.kind != ToothKind::root_crack) continue;
+    const CrackReach reach = crack_reach(pair, c.model.stiffness, f.gear, f.state.crack);
+    text += "Root crack faults[" + std::to_string(i) + "] (" +
+            (f.gear == Gear::one ? "pinion" : "wheel") + " tooth " + std::to_string(f.tooth) +
+            "): r_s = " + number(reach.start_radius_m * mm, 6) +
+            " mm, h_c = " + number(reach.start_half_thickness_m * mm, 6) +
+            " mm; its deepest q = " + number(largest_crack_depth(f.state.crack) * mm, 6) +
+            " mm of at most h_c / sin(nu) = " + number(reach.largest_depth_m * mm, 6) + " mm.\n\n";
+  }
+  text += "Step bound of a run: the stiffest contact's period 2 pi sqrt(m_e / K) is " +
+          number(bounds.contact_period_s * 1e6, 5) +
+          " us, so integrator.step <= " + number(bounds.rk4_step_s * 1e6, 5) +
+          " us with rk4 (the adaptive method's first step), " +
+          number(bounds.dopri5_step_s * 1e6, 5) + " us with dopri5";
+  if (run && bounds.mesh_period_s > 0.0) {
+    text += "; at the case's pinion speed, " + number(kStepsPerMeshPeriod, 3) +
+            " steps a mesh period: <= " + number(bounds.mesh_step_s * 1e6, 5) + " us";
+  }
+  text += " (`contact_period`, `largest_step_*` in `geometry.csv`).\n";
   return text;
 }
 
@@ -375,7 +435,7 @@ void write_report(const ReportOptions& o) {
     progress.done("mesh stiffness with the faults");
   }
 
-  const std::string geometry = geometry_section(c.gears, dir);
+  const std::string geometry = geometry_section(c, run, dir);
   progress.done("geometry");
   std::string note;
   const StiffnessComparison comparison =

@@ -123,15 +123,6 @@ std::size_t whole_number(const std::string& text, const std::string& flag) {
   return value;
 }
 
-double number(const std::string& text, const std::string& flag) {
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size()) {
-    throw InputError(flag, text, "a number (see gearimpact signals --help)");
-  }
-  return value;
-}
-
 // Four digits: a number a figure's legend states.
 std::string four_digits(double value) {
   char text[32];
@@ -279,7 +270,7 @@ void run_signals(const SignalsOptions& o) {
   // Every flag first, before the file is read.
   std::optional<double> rate;
   if (!o.sample_rate.empty()) {
-    rate = number(o.sample_rate, "--sample-rate");
+    rate = parse_plain_or_quantity(o.sample_rate, Dimension::frequency, "--sample-rate");
     naming_flags([&] { signals::check_sample_rate(*rate); });
   }
   const signals::Window window = signals::parse_window(o.window, "--window");
@@ -468,7 +459,8 @@ void register_signals_commands(CLI::App& app) {
                   "the record's start, s or with a unit (e.g. \"50 ms\"): the rows before it are "
                   "left out, such as a run's start ringing its modes (default: the first row)");
   cmd->add_option("--sample-rate", o->sample_rate,
-                  "Hz of the uniform grid the samples are interpolated onto (cubic, fourth "
+                  "Hz (a plain number, or \"80 kHz\") of the uniform grid the samples are "
+                  "interpolated onto (cubic, fourth "
                   "order); default: the record's own rate, 1 / its median spacing; a lower rate "
                   "low-passes the record below its Nyquist frequency first (an anti-alias "
                   "filter)");

@@ -111,7 +111,7 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
   }
   std::optional<double> sample_rate;
   if (command.get_option("--sample-rate")->count() > 0) {
-    sample_rate = parse_number_flag("--sample-rate", o.sample_rate, "the sample rate in Hz, > 0");
+    sample_rate = parse_plain_or_quantity(o.sample_rate, Dimension::frequency, "--sample-rate");
     if (command.get_option("--every")->count() > 0) {
       throw InputError(std::vector<Problem>{
           refused_problem("--every", command.get_option("--every")->as<std::string>(),
@@ -315,7 +315,8 @@ void register_simulate_commands(CLI::App& app) {
                        "rattle_impacts.csv and rattle_impacts_histogram.csv beside it");
   simulate->add_option(
       "--sample-rate", options->sample_rate,
-      "Hz: with --out, write samples at t = n / FS exactly (the integrator's dense output; "
+      "Hz, a plain number or with a unit (\"80 kHz\"): with --out, write samples at t = n / FS "
+      "exactly (the integrator's dense output; "
       "accelerations, DTE, mesh force per side; with elastic bearings the centres' "
       "accelerations and the sensor's, [bearings] sensor_gear and sensor_angle) instead of the "
       "integrator's steps; not with --every");

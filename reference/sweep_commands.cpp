@@ -60,7 +60,12 @@ struct SweepCommandOptions {
 // A value of a numeric key as the user wrote it: with a unit as in case files, or a plain number
 // (SI for a quantity), checked against the key's range.
 double sweep_value(const std::string& key, const std::string& text, const std::string& flag) {
-  return gearimpact::parse_value(sweep_field(key, flag), text, flag + " (" + key + ")");
+  const Field& field = sweep_field(key, flag);
+  const double value = gearimpact::parse_value(field, text, flag + " (" + key + ")");
+  if (const auto warning = plain_speed_warning(field, text, flag + " (" + key + ")")) {
+    std::cerr << "gearimpact: warning: " << *warning << '\n';
+  }
+  return value;
 }
 
 bool is_paper_case(const std::string& source) {

@@ -59,8 +59,11 @@ def case(name=None, **keys):
     values with units ("3 mm", "1000 rpm") or plain numbers in SI. A key left
     out takes the schema's default (``gearimpact schema``, docs/case-files.md);
     the keys without one (the pair's teeth, module, pressure angle, face width,
-    material and backlash, the torques, end_time) must be given, and are listed
-    together when missing. A torque's kind follows from its keys when left out
+    material and backlash; for a run also the torques and end_time) must be given,
+    and are listed together when missing. The pair's keys alone make a gear pair
+    alone (like a pair file), which stiffness, ste, iso6336, modes and
+    mesh_stiffness take; a run on it (simulate, sweep, sweep_friction) raises
+    CaseError naming the keys it lacks (Case.run_keys_absent). A torque's kind follows from its keys when left out
     (torque1_value: "constant"). faults: a list of dicts with the keys of a
     [[faults]] table, one per faulted tooth (docs/faults.md), e.g.
     faults=[dict(gear="pinion", tooth=0, kind="root-crack", depth="0.5 mm",
@@ -84,7 +87,7 @@ def case(name=None, **keys):
         kind = _implied_kind(section, given)
         if kind is not None:
             given[section + ".kind"] = (None, kind)
-    missing = _missing_keys(given)
+    missing = _missing_keys(given, pair_alone=all(_schema()[key]["pair"] for key in given))
     if missing:
         raise case_error(
             f"case {name!r}: keys without a default are missing: " + "; ".join(missing),
@@ -92,7 +95,7 @@ def case(name=None, **keys):
     literals = {dotted: _literal(user_key or dotted, dotted, value)
                 for dotted, (user_key, value) in given.items()}
     try:
-        made = _core.parse_case(_toml_text(literals) + faults_text, _KEYWORDS)
+        made = _core.parse_pair_or_run(_toml_text(literals) + faults_text, _KEYWORDS)
     except CaseError as error:
         raise _explained(error, given) from None
     _warnings.warn_conditions(made)
@@ -164,11 +167,14 @@ def _implied_kind(section, given):
     return fitting[0] if len(fitting) == 1 else None
 
 
-def _missing_keys(given):
+def _missing_keys(given, pair_alone):
     """The required keys that apply and are not given, each as
-    "keyword (section.key, in its unit: what it takes)"."""
+    "keyword (section.key, in its unit: what it takes)". pair_alone: only the pair's keys are
+    given, and only the pair's are required (a run on the case names the rest)."""
     missing = []
     for key, row in _schema().items():
+        if pair_alone and not row["pair"]:
+            continue
         if row["required"] and key not in given and _condition_holds(row, given):
             unit = f', in {row["unit"]}' if row["unit"] else ""
             missing.append(f"{_spelling(key)} ({key}{unit}: {row['allowed']})")
@@ -195,17 +201,20 @@ def paper_case(number, torque_unit="kgf-mm", case3_frequency_rad_s=10000.0, **fi
 
 
 def read_case(path):
-    """Reads and checks a case file (TOML, docs/case-files.md); path: a str or a pathlib.Path.
-    Raises CaseError; warns (GearimpactWarning) as case() does."""
-    made = _core.read_case_file(_arguments.path("path", path))
+    """Reads and checks a case file (TOML, docs/case-files.md), or a pair file (only [gears],
+    [model], [modifications], [bearings], [shafts] and [[faults]]: a gear pair alone, as case()
+    makes from the pair's keys); path: a str or a pathlib.Path. Raises CaseError; warns
+    (GearimpactWarning) as case() does."""
+    made = _core.read_pair_or_run_file(_arguments.path("path", path))
     _warnings.warn_conditions(made)
     return made
 
 
 def parse_case(text, name="<text>"):
-    """Reads a case file's text (a str); `name` (a str) names it in messages (and the case,
-    without a `name` key). Raises CaseError; warns (GearimpactWarning) as case() does."""
-    made = _core.parse_case(_arguments.text("text", text), _arguments.text("name", name))
+    """Reads a case file's or a pair file's text (a str), as read_case reads the file; `name` (a
+    str) names it in messages (and the case, without a `name` key). Raises CaseError; warns
+    (GearimpactWarning) as case() does."""
+    made = _core.parse_pair_or_run(_arguments.text("text", text), _arguments.text("name", name))
     _warnings.warn_conditions(made)
     return made
 
@@ -275,7 +284,7 @@ def replace(case, **changes):
     for dotted, (user_key, value) in given.items():
         literals[dotted] = _literal(user_key, dotted, value)
     try:
-        changed = _core.parse_case(_toml_text(literals) + faults_text, _KEYWORDS)
+        changed = _core.parse_pair_or_run(_toml_text(literals) + faults_text, _KEYWORDS)
     except CaseError as error:
         raise _explained(error, given) from None
     _warnings.warn_conditions(changed, before=case)
@@ -390,8 +399,18 @@ def _literal(user_key, dotted, value):
     )
 
 
+def is_speed(dotted):
+    """Whether the key is a speed, whose plain numbers (rad/s) warn."""
+    return _core.plain_speed_warning(dotted, "1", dotted) is not None
+
+
 def check_plausible(user_key, dotted, metres):
-    """Warns when a plain number for a length is implausible in metres."""
+    """Warns when a plain number for a length is implausible in metres, and of any plain number
+    for a speed (read in rad/s, where a person may mean rpm)."""
+    speed = _core.plain_speed_warning(dotted, _core.shortest_decimal(metres), user_key)
+    if speed is not None:
+        _warnings.warn(speed)
+        return
     if dotted not in _PLAUSIBLE_LENGTHS_M:
         return
     what, low, high = _PLAUSIBLE_LENGTHS_M[dotted]
@@ -519,10 +538,14 @@ def _speed_text(fields, key, symbol):
 def _case_repr(case):
     """The pair, the torques and the speeds, short; case.to_toml() shows every field."""
     f = fields_of(case)
-    return (
+    pair = (
         f"<gearimpact.Case {case.name!r}: {f['gears.teeth1']}/{f['gears.teeth2']} teeth, "
         f"module {_short(_si(f, 'gears.module') * 1e3)} mm, "
-        f"face width {_short(_si(f, 'gears.face_width') * 1e3)} mm; "
+        f"face width {_short(_si(f, 'gears.face_width') * 1e3)} mm; ")
+    if case.run_keys_absent:
+        return pair + "a gear pair alone (a run needs " + ", ".join(case.run_keys_absent) + ")>"
+    return (
+        pair +
         f"{_torque_text(f, 'torque1', 'T1')}, {_torque_text(f, 'torque2', 'T2')}; "
         f"{_speed_text(f, 'initial.w1', 'w1')}, {_speed_text(f, 'initial.w2', 'w2')}>"
     )

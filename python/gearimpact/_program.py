@@ -183,7 +183,9 @@ def modes(case, harmonics=3, max_speed=None):
         )
     if max_speed is not None and isinstance(max_speed, numbers.Real) and not \
             _arguments.is_bool(max_speed):
-        max_speed = repr(_arguments.real("max_speed", max_speed)) + " rad/s"
+        number = _arguments.real("max_speed", max_speed)
+        _cases.check_plausible("max_speed", "initial.w1", number)
+        max_speed = repr(number) + " rad/s"
     table, campbell, mode_shapes, summary = _core.modes(
         case, _arguments.integer("harmonics", harmonics),
         None if max_speed is None else _arguments.text("max_speed", max_speed))
@@ -222,12 +224,17 @@ def sweep(case, vary, start, stop, points, direction="both", options=()):
         raise _arguments.case_error(
             f"vary={vary!r}: {error} (a numeric key as section.key, section_key or bare)",
             "vary") from None
+    ends = {}
     for name, value in (("start", start), ("stop", stop)):
+        ends[name] = _arguments.quantity(name, value)
         if isinstance(value, numbers.Real) and not _arguments.is_bool(value):
             _cases.check_plausible(name, key, _arguments.real(name, value))
+            # Warned here; the unit keeps the program from warning again.
+            if _cases.is_speed(key):
+                ends[name] += " rad/s"
     arguments = ["--vary", key,
-                 "--from", _arguments.quantity("start", start),
-                 "--to", _arguments.quantity("stop", stop),
+                 "--from", ends["start"],
+                 "--to", ends["stop"],
                  "--points", str(_arguments.integer("points", points)),
                  "--direction", _arguments.text("direction", direction)]
     more = _arguments.strings("options", options, ["--threads", "2"])

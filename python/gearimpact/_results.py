@@ -150,7 +150,8 @@ def simulate(case, keep_series=True, max_rows=None, sample_rate=None, **changes)
     integrator_kind="adaptive". keep_series: True or False; False skips the time series
     (faster, less memory). max_rows: the most rows the kept series may have
     (None: the library's bound, 5e7 rows, 4.4 GB; a longer run is refused
-    before it starts, naming end_time). sample_rate: Hz, > 0: .samples holds
+    before it starts, naming end_time). sample_rate: Hz, > 0, a number or with
+    its unit ("80 kHz"): .samples holds
     samples at t = n / sample_rate exactly from the integrator's dense output
     (t_s, theta1_rad, theta2_rad, w1_rad_s, w2_rad_s, w1_dot_rad_s2,
     w2_dot_rad_s2, s_m, dte_m = s - B, normal_force_n1_N, normal_force_n2_N,
@@ -167,7 +168,12 @@ def simulate(case, keep_series=True, max_rows=None, sample_rate=None, **changes)
     rows = _core.most_series_rows if max_rows is None else _arguments.integer("max_rows", max_rows)
     if rows < 1:
         raise _arguments.case_error(f"max_rows={max_rows!r}: a count >= 1, or None", "max_rows")
-    rate = None if sample_rate is None else _arguments.real("sample_rate", sample_rate)
+    if sample_rate is None:
+        rate = None
+    elif isinstance(sample_rate, str):
+        rate = _core.parse_frequency(sample_rate, "sample_rate")
+    else:
+        rate = _arguments.real("sample_rate", sample_rate)
     run = _as_case(case)
     if changes:
         run = run.replace(**changes)

@@ -70,7 +70,7 @@ def conditions(case):
             f"{name}: initial speeds do not roll, Rb1 w1 = {_g(c['rb1_m'] * w1)} m/s, "
             f"Rb2 w2 = {_g(c['rb2_m'] * w2)} m/s (w1 = {_g(w1)} rad/s, w2 = {_g(w2)} rad/s): "
             f"the teeth start with a relative speed and the pair settles at another speed; "
-            f"w2={rolling!r} (rad/s) rolls with w1")
+            f'w2="{rolling!r} rad/s" rolls with w1')
     return found
 
 

@@ -649,6 +649,8 @@ py::list schema_rows() {
                  : py::object(py::none());
     row["unit"] = has_unit ? py::object(py::str(std::string(field.unit))) : py::object(py::none());
     row["required"] = field.required;
+    // A key of the pair (a pair file holds these sections only), or of a run.
+    row["pair"] = field.section.empty() || is_pair_section(field.section);
     if (field.only_when) {
       py::list choices;
       for (const std::string_view choice : field.only_when->choices) {
@@ -813,6 +815,11 @@ void define_module(py::module_& m) {
       .def_property_readonly(
           "stiffness_model", [](const SimulationCase& c) { return c.model.stiffness; },
           "the StiffnessModel (a copy)")
+      .def_property_readonly(
+          "run_keys_absent", [](const SimulationCase& c) { return c.run_keys_absent; },
+          "the keys a run needs that the case leaves out (a gear pair alone: the torques' kinds "
+          "and integrator.end_time), which every run names when it refuses the case; [] for a "
+          "case a run can use")
       .def(
           "to_toml",
           [](const SimulationCase& c, const std::string& units) {
@@ -842,7 +849,31 @@ void define_module(py::module_& m) {
       "read_case_file", [](const std::string& path) { return read_case_file(path); },
       py::arg("path"));
   m.def("parse_case", &parse_case, py::arg("text"), py::arg("file_name"));
+  m.def(
+      "read_pair_or_run_file",
+      [](const std::string& path) { return read_pair_or_run_file(path).simulation_case; },
+      py::arg("path"));
+  m.def(
+      "parse_pair_or_run",
+      [](const std::string& text, const std::string& file_name) {
+        return parse_pair_or_run(text, file_name).simulation_case;
+      },
+      py::arg("text"), py::arg("file_name"));
   m.def("shortest_decimal", &shortest_decimal, py::arg("value"));
+  m.def(
+      "plain_speed_warning",
+      [](const std::string& key, const std::string& text,
+         const std::string& name) -> std::optional<std::string> {
+        const Field* field = find_field(key);
+        return field == nullptr ? std::nullopt : plain_speed_warning(*field, text, name);
+      },
+      py::arg("key"), py::arg("text"), py::arg("name"));
+  m.def(
+      "parse_frequency",
+      [](const std::string& text, const std::string& name) {
+        return parse_plain_or_quantity(text, Dimension::frequency, name);
+      },
+      py::arg("text"), py::arg("name"));
   m.def("schema_rows", &schema_rows);
   m.def("case_conditions", &case_conditions, py::arg("case"));
   m.def(

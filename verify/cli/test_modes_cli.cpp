@@ -135,9 +135,9 @@ TEST_CASE("simulate runs a planar case and writes its planar series; sweep refus
   std::getline(file, header);
   CHECK(header.rfind("t_s,x1_m,y1_m,theta1_rad,x2_m,y2_m,theta2_rad,", 0) == 0);
   CHECK(header.find("bearing_fx1_N") != std::string::npos);
-  const CommandResult r =
-      run_command(cli("sweep " + input +
-                      " --vary initial.w1 --from 100 --to 200 --points 2 --out " + out.string()));
+  const CommandResult r = run_command(cli(
+      "sweep " + input +
+      " --vary initial.w1 --from '100 rad/s' --to '200 rad/s' --points 2 --out " + out.string()));
   CHECK(r.exit_code == 1);
   CHECK_MESSAGE(r.err.find("bearings.kind = \"elastic\": read by `gearimpact modes` and "
                            "`gearimpact simulate` only; sweep, steady and sweep-friction are "

@@ -215,7 +215,8 @@ TEST_CASE("a torque kind set on the command line requires its keys") {
 TEST_CASE("a sweep end far out is refused with the speed bound, never nan") {
   Scratch scratch("implied-sweep");
   const CommandResult r = run_command(
-      cli("sweep " + kSweepCase + " --vary initial.w1 --from 2000 --to 1e308 --points 2 --out " +
+      cli("sweep " + kSweepCase +
+          " --vary initial.w1 --from '2000 rad/s' --to '1e308 rad/s' --points 2 --out " +
           (scratch.dir / "s1").string() + " --no-plots"));
   check_refusal(r, "initial.w1");
   CHECK(r.err.find("an end of the sweep") != std::string::npos);

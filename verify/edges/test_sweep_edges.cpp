@@ -27,7 +27,7 @@ namespace {
 
 // A loaded pair of Table 1's case 1 with a steady state: two points a direction, one thread.
 const std::string kUndamped =
-    "sweep 1 --vary initial.w1 --from 2000 --to 3000 --points 2 --threads 1 "
+    "sweep 1 --vary initial.w1 --from '2000 rad/s' --to '3000 rad/s' --points 2 --threads 1 "
     "--set model.friction_coefficient=0 --set 'torque1.mean=3 N*m'";
 const std::string kSweep = kUndamped + " --set model.mesh_damping_ratio=0.05";
 
@@ -144,7 +144,7 @@ TEST_CASE("bounds and meaningless sweeps are refused before any point runs, nami
   Scratch scratch("sweep-edges-bounds");
   const std::string out = " --no-plots --out " + (scratch.dir / "out").string();
   const std::string base =
-      "sweep 1 --vary initial.w1 --from 2000 --to 3000 --threads 1 "
+      "sweep 1 --vary initial.w1 --from '2000 rad/s' --to '3000 rad/s' --threads 1 "
       "--set model.friction_coefficient=0 --set 'torque1.mean=3 N*m'";
   const std::string second = " --vary2 gears.backlash --from2 4e-5 --to2 6e-5";
   struct Bad {
@@ -163,7 +163,7 @@ TEST_CASE("bounds and meaningless sweeps are refused before any point runs, nami
       {base + " --points 3 --points2 2000000000 --vary2 initial.theta1 --from2 0 --to2 1",
        {"--points", "2000000000 lines", "--max-points"}},
       // Finite ends whose distance is not: the grid's step would be NaN.
-      {"sweep 1 --vary initial.w1 --from -1e308 --to 1e308 --points 3 "
+      {"sweep 1 --vary initial.w1 --from '-1e308 rad/s' --to '1e308 rad/s' --points 3 "
        "--set model.friction_coefficient=0 --set 'torque1.mean=3 N*m'",
        {"--to = 1e308", "a finite number"}},
       // A friction law has friction whatever friction_coefficient says.
@@ -181,10 +181,10 @@ TEST_CASE("bounds and meaningless sweeps are refused before any point runs, nami
       {base + " --points 2 --tolerance 0", {"--tolerance", "0.1"}},
       {base + " --points 2 --tolerance 1", {"--tolerance"}},
       {base + " --points 2 --threads 100000", {"--threads", "1024"}},
-      {"sweep 1 --vary initial.w1 --from 3000 --to 2000 --points 2 "
+      {"sweep 1 --vary initial.w1 --from '3000 rad/s' --to '2000 rad/s' --points 2 "
        "--set model.friction_coefficient=0",
        {"--from", "3000"}},
-      {base + " --points 2 --vary2 initial.w1 --from2 2000 --to2 3000 --points2 2",
+      {base + " --points 2 --vary2 initial.w1 --from2 '2000 rad/s' --to2 '3000 rad/s' --points2 2",
        {"--vary2", "initial.w1"}},
       // Keys no point reads: the steady state sets the integrator itself; the reference speed
       // is read only by frozen damping.
@@ -211,11 +211,12 @@ TEST_CASE("bounds and meaningless sweeps are refused before any point runs, nami
   refused(scratch, cli("sweep-friction --threads 100000"), {"--threads", "1024"});
   // The last value of a grid is checked as the first: a step that cannot exist there is
   // refused before the first point runs, naming the end.
-  refused(scratch,
-          cli("sweep 1 --vary initial.w1 --from 2000 --to 1e308 --points 2 --threads 1 "
-              "--set model.friction_coefficient=0 --set 'torque1.mean=3 N*m'" +
-              out),
-          {"initial.w1 = 1e", "an end of the sweep"});
+  refused(
+      scratch,
+      cli("sweep 1 --vary initial.w1 --from '2000 rad/s' --to '1e308 rad/s' --points 2 --threads 1 "
+          "--set model.friction_coefficient=0 --set 'torque1.mean=3 N*m'" +
+          out),
+      {"initial.w1 = 1e", "an end of the sweep"});
 }
 
 TEST_CASE("a valid run never fails in its plots: an empty or one-value figure is skipped") {
@@ -422,7 +423,8 @@ TEST_CASE("a sweep ended by a signal leaves no output; a rerun is not hindered b
     CAPTURE(signal_name);
     const fs::path out = scratch.dir / "out";
     // Long enough to be under way when the signal comes (some seconds).
-    run_command(cli("sweep 1 --vary initial.w1 --from 2000 --to 3000 --points 1000 --direction up "
+    run_command(cli("sweep 1 --vary initial.w1 --from '2000 rad/s' --to '3000 rad/s' --points 1000 "
+                    "--direction up "
                     "--threads 1 "
                     "--set model.friction_coefficient=0 --set 'torque1.mean=3 N*m' "
                     "--set model.mesh_damping_ratio=0.05 --no-plots --out " +

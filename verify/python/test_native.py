@@ -25,7 +25,7 @@ PAIR = dict(
     profile_shift1=0.2, profile_shift2=-0.2, bore_diameter1="30 mm", bore_diameter2="80 mm",
     youngs_modulus="206 GPa", poisson_ratio=0.3, density="7850 kg/m^3", backlash="0.05 mm",
     torque1_value="150 N*m", torque2_value=-150 * RATIO, w1="1000 rpm",
-    w2=1000 * RPM / RATIO, friction_coefficient=0, end_time="20 ms",
+    w2=f"{1000 * RPM / RATIO!r} rad/s", friction_coefficient=0, end_time="20 ms",
 )
 
 # The same pair written by hand as a case file: the keys case() leaves out
@@ -126,14 +126,23 @@ def test_paper_case_and_replace_take_bare_optional_keys():
 
 
 def test_missing_keys_are_listed_together():
+    # The pair's keys alone make a gear pair alone: only the pair's missing keys are listed.
     with pytest.raises(gearimpact.CaseError) as error:
         gearimpact.case(name="my-pair", teeth1=23, teeth2=67, module="3 mm")
     message = str(error.value)
     for key in ("pressure_angle", "face_width", "youngs_modulus", "poisson_ratio", "density",
-                "backlash", "torque1_kind", "torque2_kind", "end_time"):
+                "backlash"):
         assert key in message, key
+    for key in ("torque1_kind", "torque2_kind", "end_time"):
+        assert key not in message, key
     assert "teeth1" not in message
     assert "gears.face_width, in mm: a length > 0 m" in message
+    # A key of a run makes it a run: the run's keys are listed too.
+    with pytest.raises(gearimpact.CaseError) as error:
+        gearimpact.case(name="my-pair", teeth1=23, teeth2=67, module="3 mm", w1="100 rpm")
+    message = str(error.value)
+    for key in ("pressure_angle", "backlash", "torque1_kind", "torque2_kind", "end_time"):
+        assert key in message, key
 
 
 def test_a_case_needs_a_name():
@@ -280,7 +289,7 @@ def test_speeds_that_do_not_roll_warn_with_the_rolling_speed():
     with pytest.warns(gearimpact.GearimpactWarning, match="do not roll") as caught:
         gearimpact.case(name="my-pair", **{**PAIR, "w2": 0})
     message = str(caught[0].message)
-    rolling = float(message.split("w2=")[1].split(" ")[0])
+    rolling = float(message.split('w2="')[1].split(" ")[0])
     assert abs(rolling / (1000 * RPM / RATIO) - 1) < FEW_ULPS
 
 

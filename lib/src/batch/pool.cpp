@@ -104,6 +104,7 @@ std::shared_future<SimulationResult> RunPool::submit(const SimulationCase& c, bo
     // Validated here, so that a bad case throws InputError to the caller; the
     // checks that need the mesh stiffness use the table, without a quadrature
     // of their own.
+    validate_run_keys(c);
     validate_fields(c);
     refuse_planar(c);
     validate_gaps(c);

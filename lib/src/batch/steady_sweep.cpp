@@ -168,6 +168,7 @@ std::vector<std::string> sweep_warnings(const SteadySweepSpec& spec) {
 
 SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
                              const std::function<void(const SweepPointResult&)>& on_point) {
+  validate_run_keys(spec.base);
   sweep_field(spec.vary, "vary");
   if (!spec.vary2.empty()) {
     sweep_field(spec.vary2, "vary2");

@@ -5,6 +5,7 @@
 #include <charconv>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
 #include <string>
@@ -1377,6 +1378,25 @@ void check_text(const Field& field, const std::string& value, std::string_view n
   }
 }
 
+std::optional<std::string> plain_speed_warning(const Field& field, std::string_view value_text,
+                                               std::string_view name) {
+  if (field.kind != FieldKind::quantity || field.dimension != Dimension::angular_velocity) {
+    return std::nullopt;
+  }
+  const std::optional<double> value = plain_number(value_text);
+  if (!value || *value == 0.0 || !std::isfinite(*value)) return std::nullopt;
+  const std::string written(trim(value_text));
+  const UnitList units = units_of(Dimension::angular_velocity);
+  const auto rpm =
+      std::find_if(units.begin(), units.end(), [](const Unit& u) { return u.symbol == "rpm"; });
+  // A speed near the largest double has no finite value in rpm: said without it.
+  const double in_rpm = *value / rpm->factor;
+  char rpm_text[48] = "";
+  if (std::isfinite(in_rpm)) std::snprintf(rpm_text, sizeof rpm_text, " (%.6g rpm)", in_rpm);
+  return std::string(name) + " = " + written + " is read as " + written + " rad/s" + rpm_text +
+         "; write \"" + written + " rad/s\" or \"" + written + " rpm\" to say which";
+}
+
 double parse_value(const Field& field, std::string_view value_text, std::string_view name) {
   const std::string written(value_text);
   double value = 0.0;
@@ -1863,6 +1883,20 @@ void relation_problems(const SimulationCase& c, const std::vector<std::string>& 
 void validate_relations(const SimulationCase& c) {
   Problems problems;
   relation_problems(c, {}, problems);
+  problems.throw_if_any();
+}
+
+void validate_run_keys(const SimulationCase& c) {
+  Problems problems;
+  for (const std::string& key : c.run_keys_absent) {
+    const Field* field = find_field(key);
+    problems.add(refused_problem(
+        key, "absent",
+        "a run needs it, and this case is a gear pair alone (the stiffness, STE, ISO 6336, modes "
+        "and report need no more)",
+        field != nullptr ? allowed_text(*field) : std::string("a value"),
+        "give " + key + " (and the other keys of a run: the torques and integrator.end_time)"));
+  }
   problems.throw_if_any();
 }
 

@@ -33,6 +33,7 @@ constexpr std::array kTime{Unit{"s", 0, 1.0}, Unit{"ms", -3, 1.0}, Unit{"us", -6
 constexpr std::array kAngularVelocity{Unit{"rad/s", 0, 1.0}, Unit{"rpm", 0, 2.0 * pi / 60.0}};
 // Hz counts cycles: W = 2 pi f.
 constexpr std::array kAngularFrequency{Unit{"rad/s", 0, 1.0}, Unit{"Hz", 0, 2.0 * pi}};
+constexpr std::array kFrequency{Unit{"Hz", 0, 1.0}, Unit{"kHz", 3, 1.0}, Unit{"MHz", 6, 1.0}};
 constexpr std::array kSpeed{Unit{"m/s", 0, 1.0}, Unit{"mm/s", -3, 1.0}, Unit{"in/s", 0, kInch}};
 // A mesh stiffness, force per length along the line of action: N/um = kN/mm = 1e6 N/m.
 constexpr std::array kStiffness{Unit{"N/m", 0, 1.0}, Unit{"N/mm", 3, 1.0}, Unit{"N/um", 6, 1.0},
@@ -65,7 +66,8 @@ constexpr std::array kDimensions{Dimension::length,
                                  Dimension::mass,
                                  Dimension::moment_of_inertia,
                                  Dimension::damping,
-                                 Dimension::torsional_stiffness};
+                                 Dimension::torsional_stiffness,
+                                 Dimension::frequency};
 
 // Exponents beyond this put any mantissa outside the doubles (with up to a few
 // hundred digits); it keeps the exponent arithmetic far from int overflow.
@@ -185,6 +187,8 @@ UnitList units_of(Dimension dimension) {
       return {kDamping.data(), kDamping.size()};
     case Dimension::torsional_stiffness:
       return {kTorsionalStiffness.data(), kTorsionalStiffness.size()};
+    case Dimension::frequency:
+      return {kFrequency.data(), kFrequency.size()};
   }
   return {};
 }
@@ -223,6 +227,8 @@ std::string_view describe(Dimension dimension) {
       return "a damping";
     case Dimension::torsional_stiffness:
       return "a torsional stiffness";
+    case Dimension::frequency:
+      return "a frequency";
   }
   return "a quantity";
 }
@@ -308,6 +314,19 @@ double parse_quantity(std::string_view text, Dimension dimension, std::string_vi
     fail("a number outside the range of a double");
   }
   return value * unit->factor;
+}
+
+double parse_plain_or_quantity(std::string_view text, Dimension dimension, std::string_view field) {
+  std::string_view body = trim(text);
+  if (!body.empty() && body.front() == '+') body.remove_prefix(1);
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(body.data(), body.data() + body.size(), value);
+  // from_chars reads "inf" and "nan": a plain number is a finite decimal.
+  if (!body.empty() && error == std::errc{} && end == body.data() + body.size() &&
+      std::isfinite(value) && body.find_first_of("iInN") == std::string_view::npos) {
+    return value;
+  }
+  return parse_quantity(text, dimension, field);
 }
 
 std::string shortest_decimal(double value) {

@@ -265,6 +265,7 @@ void validate_sampling(const SimulationCase& c, const RunControl& control) {
 }
 
 void validate(const SimulationCase& c) {
+  validate_run_keys(c);
   validate_fields(c);
   refuse_planar(c);
   validate_gaps(c);
@@ -347,6 +348,7 @@ std::vector<std::string> run_warnings(const SimulationCase& c) {
 }
 
 SimulationResult simulate(const SimulationCase& c, const RunControl& control) {
+  validate_run_keys(c);
   validate_fields(c);
   refuse_planar_simulation(c);
   validate_gaps(c);
@@ -359,6 +361,7 @@ SimulationResult simulate(const SimulationCase& c, const RunControl& control) {
 
 SimulationResult simulate(const SimulationCase& c, const StiffnessTable& table,
                           const RunControl& control) {
+  validate_run_keys(c);
   validate_fields(c);
   refuse_planar_simulation(c);
   validate_gaps(c);

@@ -9,6 +9,7 @@
 #include <string>
 #include <utility>
 
+#include "gearimpact/case/schema.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/contact/contact.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
@@ -129,6 +130,7 @@ void validate_speeds(const SimulationCase& c) {
       {{c.gears.teeth1, c.initial.w1_rad_per_s}, {c.gears.teeth2, c.initial.w2_rad_per_s}}};
   for (std::size_t i = 0; i < gears.size(); ++i) {
     const auto [teeth, w] = gears[i];
+    // The speed at which largest_mesh_step_s(teeth, w) is the step.
     const double fastest = 2.0 * pi / (kStepsPerMeshPeriod * teeth * step);
     if (i == 0 && c.torque1.kind == Torque::Kind::prescribed_speed) {
       // The driver's fastest speed, W + sum_i |a_i|.
@@ -278,6 +280,8 @@ void validate_frozen_damping(const SimulationCase& c) {
 }
 
 void validate_implied(const SimulationCase& c, const std::pair<double, double>& extremes) {
+  // The torques and the step of a gear pair alone are defaults no one gave.
+  validate_run_keys(c);
   const double softest = c.model.mesh_stiffness == MeshStiffnessMode::constant
                              ? c.model.constant_mesh_stiffness_n_per_m
                              : extremes.first;
@@ -342,6 +346,24 @@ double largest_resolving_step_s(const SimulationCase& c) {
   return largest_step(c, total_stiffness_extremes(c, [&](double x) {
                            return mesh_stiffness(c.gears, x, c.model.stiffness).ke;
                          }).second);
+}
+
+double largest_mesh_step_s(int teeth, double w_rad_per_s) {
+  return 2.0 * pi / (kStepsPerMeshPeriod * teeth * std::fabs(w_rad_per_s));
+}
+
+StepBounds step_bounds(const SimulationCase& c) {
+  StepBounds b;
+  const double stiffest = total_stiffness_extremes(c, [&](double x) {
+                            return mesh_stiffness(c.gears, x, c.model.stiffness).ke;
+                          }).second;
+  b.contact_period_s = largest_step(c, stiffest, 1.0);
+  b.rk4_step_s = largest_step(c, stiffest, steps_per_contact_period(IntegratorKind::rk4));
+  b.dopri5_step_s = largest_step(c, stiffest, steps_per_contact_period(IntegratorKind::dopri5));
+  b.mesh_step_s = largest_mesh_step_s(c.gears.teeth1, c.initial.w1_rad_per_s);
+  b.mesh_period_s = b.mesh_step_s * kStepsPerMeshPeriod;
+  if (!std::isfinite(b.mesh_period_s)) b.mesh_period_s = 0.0;
+  return b;
 }
 
 double largest_resolving_step_s(const SimulationCase& c, const StiffnessTable& table) {

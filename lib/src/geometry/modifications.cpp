@@ -161,7 +161,9 @@ double least_gap_bound_m(const GearPair& pair, const Modifications& modification
 
 ActiveProfile active_profile(const GearPair& pair, Gear gear) {
   const RollRange roll = active_roll(pair, gear);
-  return {diameter_of_roll(pair, gear, roll.sap), 2.0 * tip_radius(pair, gear)};
+  const double t0 = base_pitch(pair);
+  return {diameter_of_roll(pair, gear, roll.sap), 2.0 * tip_radius(pair, gear),
+          diameter_of_roll(pair, gear, roll.tip - t0), diameter_of_roll(pair, gear, roll.sap + t0)};
 }
 
 void validate_modifications(const GearPair& pair, const Modifications& m,

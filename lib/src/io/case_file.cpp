@@ -807,6 +807,15 @@ SimulationCase read_case(const Reader& reader, const toml::value& root, std::str
     }
   }
   read_faults(reader, root, result, failed, problems);
+  // A pair file gives no run: the keys a run would need are named, for a run to refuse.
+  if (kind == CaseFileKind::pair) {
+    for (const Field& field : case_schema()) {
+      // The rows a run always needs; those under a torque's kind follow from the kind.
+      if (field.required && !field.only_when && !required_in(field, kind)) {
+        result.run_keys_absent.push_back(field.name());
+      }
+    }
+  }
   Problems relations;
   relation_problems(result, failed, relations);
   for (const Problem& p : relations.list()) problems.push_back(at_key(reader, document, result, p));
@@ -999,8 +1008,11 @@ SimulationCase read_case_file(const std::filesystem::path& path) {
 std::string write_case_file(const SimulationCase& c, CaseUnits units) {
   std::string text = "# gearimpact case file (see docs/case-files.md)\n";
   std::string_view section;
+  // A gear pair alone is written as a pair file: its torques and integrator are no one's values.
+  const bool pair_alone = !c.run_keys_absent.empty();
   for (const Field& field : case_schema()) {
     if (!applies(field, c) || absent(field, c)) continue;
+    if (pair_alone && !field.section.empty() && !is_pair_section(field.section)) continue;
     if (!field.written_at_default && value_text(field, c) == value_text(field, SimulationCase{})) {
       continue;
     }

@@ -405,6 +405,10 @@ double integrate_pieces(QuadratureRule rule, const Integrand& f, const std::vect
 
 }  // namespace
 
+double paper_crack_start_half_thickness(const InvoluteTooth& tooth) {
+  return tooth.base_radius_m * std::sin(tooth.half_tooth_angle_rad);
+}
+
 void check_paper_crack(const InvoluteTooth& tooth, double b, const RootCrack& crack) {
   check_crack_shape(crack, b);
   const double rb = tooth.base_radius_m;
@@ -414,8 +418,7 @@ void check_paper_crack(const InvoluteTooth& tooth, double b, const RootCrack& cr
                      "base-circle section (r_s = " +
                          format_number(rb) + " m)");
   }
-  // The base-circle section's half thickness, Rb sin theta_b.
-  check_crack_reach(crack, rb * std::sin(tooth.half_tooth_angle_rad), rb);
+  check_crack_reach(crack, paper_crack_start_half_thickness(tooth), rb);
 }
 
 Compliances cracked_paper_tooth_compliances(const InvoluteTooth& tooth, double contact_x_m,
@@ -424,8 +427,7 @@ Compliances cracked_paper_tooth_compliances(const InvoluteTooth& tooth, double c
   check_paper_crack(tooth, b, crack);
   const double rb = tooth.base_radius_m;
   const double theta_b = tooth.half_tooth_angle_rad;
-  // The base-circle section's half thickness, Rb sin theta_b.
-  const double h_c = rb * std::sin(theta_b);
+  const double h_c = paper_crack_start_half_thickness(tooth);
   const double s = std::sin(crack.angle_rad);
   if (!(s * largest_crack_depth(crack) > 0.0)) {
     return model.route == StiffnessRoute::tau_form

@@ -1,5 +1,6 @@
 #include "gearimpact/stiffness/tooth_state.hpp"
 
+#include <cmath>
 #include <string>
 
 #include "gearimpact/error.hpp"
@@ -95,6 +96,30 @@ void check_tooth_faults(const GearPair& pair, const StiffnessModel& model,
                   geometry.contact_width_m);
     }
   }
+}
+
+CrackReach crack_reach(const GearPair& pair, const StiffnessModel& model, Gear gear,
+                       const RootCrack& crack) {
+  // The place and the section do not depend on the depth: placed without one.
+  RootCrack shallow = crack;
+  shallow.depth_m = 0.0;
+  shallow.end_depth_m = 0.0;
+  CrackReach reach;
+  if (model.kind == StiffnessModelKind::yang_lin_1987) {
+    check_paper_crack(tooth_of(pair, gear), pair.face_width_m, shallow);
+    const InvoluteTooth tooth = tooth_of(pair, gear);
+    reach.start_radius_m = tooth.base_radius_m;
+    reach.start_half_thickness_m = paper_crack_start_half_thickness(tooth);
+  } else {
+    const RackGearPairGeometry geometry = rack_gear_pair_geometry(pair);
+    const PlacedCrack placed =
+        place_crack(shallow, gear == Gear::one ? geometry.gear1 : geometry.gear2, model.kind,
+                    geometry.contact_width_m);
+    reach.start_radius_m = placed.start_radius_m;
+    reach.start_half_thickness_m = placed.start_half_thickness_m;
+  }
+  reach.largest_depth_m = reach.start_half_thickness_m / std::sin(crack.angle_rad);
+  return reach;
 }
 
 ToothState tooth_state(const std::vector<ToothFault>& faults, Gear gear, int tooth) {

@@ -164,6 +164,15 @@ void check_text(const Field& field, const std::string& value, std::string_view n
 // section.key).
 double parse_value(const Field& field, std::string_view value_text, std::string_view name);
 
+// A plain number given for a speed (a quantity row of an angular velocity) is
+// read in rad/s, as every plain quantity is read in SI, while people count a
+// speed in rpm: the warning for `value_text` given as `name` ("initial.w1 =
+// 1500 is read as 1500 rad/s (14323.9 rpm); write \"1500 rad/s\" or \"1500
+// rpm\" to say which"), or nothing for text with a unit, another row, or 0
+// (the same in every unit).
+std::optional<std::string> plain_speed_warning(const Field& field, std::string_view value_text,
+                                               std::string_view name);
+
 // Sets one key of `c` from text, by its row; errors name `section_dot_key`,
 // or `name_in_messages` when given (the flag a user typed).
 void set_field(SimulationCase& c, std::string_view section_dot_key, std::string_view value_text,
@@ -204,6 +213,11 @@ void relation_problems(const SimulationCase& c, const std::vector<std::string>& 
 // (29) (validate_terms, under model.*), a callable user torque, a harmonic torque's lists of one
 // length, at most kMostSteps steps. InputError names the key as section.key.
 void validate_relations(const SimulationCase& c);
+
+// Throws one InputError naming every key of c.run_keys_absent (a gear pair
+// alone, without the torques or the end time a run needs), each with what it
+// takes; nothing for a case a run can use. Every run checks it first.
+void validate_run_keys(const SimulationCase& c);
 
 // Throws one InputError naming (as section.key) every field outside its
 // range, with the relations among the fields that passed (relation_problems):

@@ -290,6 +290,13 @@ struct SimulationCase {
   // paper's torsional model.
   Bearings bearings;
   Shafts shafts;
+  // The keys a run needs that the case leaves out ("torque1.kind", "integrator.end_time", ...):
+  // a gear pair alone (a pair file, or gearimpact.case() given the pair's keys only) has no
+  // torques and no end time, which the stiffness, the STE, ISO 6336, the modes and the report do
+  // not read. Its torques and integrator hold their defaults, unused: every run refuses the case
+  // naming these keys (validate_run_keys of case/schema.hpp), and write_case_file writes the pair
+  // alone. Empty: nothing a run needs is missing.
+  std::vector<std::string> run_keys_absent;
 };
 
 }  // namespace gearimpact

@@ -26,6 +26,7 @@ enum class Dimension {
   moment_of_inertia,    // kg m^2
   damping,              // N s/m, a viscous force per speed (a bearing's damper)
   torsional_stiffness,  // N m/rad, a shaft's torque per twist
+  frequency,            // Hz, cycles per second: a sample rate
 };
 
 // One allowed unit: SI value = (number x 10^decimal_exponent) x factor. A
@@ -58,6 +59,10 @@ std::string allowed_units(Dimension dimension);
 // `field`, the text and the allowed units when the number is not a finite
 // decimal, the unit is missing, unknown or of another dimension.
 double parse_quantity(std::string_view text, Dimension dimension, std::string_view field);
+
+// The same, or a plain finite decimal number taken in the SI unit (a flag's
+// "80000" or "80 kHz" for a sample rate in Hz). Errors as parse_quantity.
+double parse_plain_or_quantity(std::string_view text, Dimension dimension, std::string_view field);
 
 // Writes an SI value in `unit` (a symbol of units_of(dimension)) when the text
 // reads back to exactly the same double, else in the SI unit (the first of the

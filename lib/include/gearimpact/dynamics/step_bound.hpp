@@ -14,6 +14,25 @@ double largest_resolving_step_s(const SimulationCase& c);
 // The same from a table built for c: Ke to round-off, without the quadrature.
 double largest_resolving_step_s(const SimulationCase& c, const StiffnessTable& table);
 
+// The bounds a torsional run of c is held to on its step, for a person to read before a run
+// (check-case, report), each as validate_implied applies it: the contact's and, for a case with
+// speeds, the mesh period's. The planar model (elastic bearings) is held to a tighter bound of
+// its own springs as well (check_planar_step).
+struct StepBounds {
+  double contact_period_s = 0.0;  // 2 pi sqrt(m_e / K), K the stiffest total mesh stiffness
+  double rk4_step_s = 0.0;        // contact_period / kStepsPerContactPeriod; adaptive's first step
+  double dopri5_step_s = 0.0;     // contact_period / kDopri5StepsPerContactPeriod
+  // The mesh period 2 pi / (z1 |w1|) at the case's initial pinion speed and the largest step with
+  // kStepsPerMeshPeriod steps in it, for every method; 0 and infinity at rest.
+  double mesh_period_s = 0.0;
+  double mesh_step_s = 0.0;
+};
+StepBounds step_bounds(const SimulationCase& c);
+
+// The largest step with kStepsPerMeshPeriod steps per mesh period 2 pi / (z |w|) of a gear of z
+// teeth at w; infinity at rest.
+double largest_mesh_step_s(int teeth, double w_rad_per_s);
+
 // Throws InputError unless step <= largest_step_s (the schema holds the
 // step's other bounds and the most steps of a run). The message names the
 // contact period and the keys that set it; a period too short for any step

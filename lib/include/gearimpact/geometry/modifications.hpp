@@ -101,6 +101,12 @@ double least_gap_bound_m(const GearPair& pair, const Modifications& m, Region li
 struct ActiveProfile {
   double start_diameter_m;
   double tip_diameter_m;
+  // The lowest and the highest point of single tooth contact (LPSTC, HPSTC): in roll on the own
+  // base circle t0 below the tip's roll (the pair ahead leaves) and t0 above the start's (the pair
+  // behind enters), d = 2 sqrt(Rb^2 + roll^2). Between them one pair carries the whole load; a
+  // long tip relief starts at the HPSTC, a short one above it.
+  double lowest_single_contact_diameter_m;
+  double highest_single_contact_diameter_m;
 };
 ActiveProfile active_profile(const GearPair& pair, Gear gear);
 

@@ -52,7 +52,8 @@ std::string case_file_text(const std::filesystem::path& path, const std::string&
 
 // What a case file describes. A pair file has pair sections only (is_pair_section; and the
 // top-level `name`): a gear pair and its models, enough for the stiffness commands and `report`;
-// the torques, initial conditions and integrator keep their defaults and the file is no run. A run
+// the torques, initial conditions and integrator keep their defaults, the keys a run would need
+// are listed in SimulationCase::run_keys_absent, and every run refuses the case naming them. A run
 // file is anything else, read as read_case_file reads it: a file with [initial] but no [torque1]
 // is a run file missing a section, and is told so.
 enum class CaseFileKind { pair, run };
@@ -77,8 +78,9 @@ PairOrRunCase read_pair_or_run_file(const std::filesystem::path& path);
 enum class CaseUnits { readable, si };
 
 // TOML text that parse_case reads back to the same case, field by field and
-// bit for bit. Throws InputError for a Torque::Kind::user torque, which has
-// no text form.
+// bit for bit. A gear pair alone (run_keys_absent not empty) is written as a
+// pair file, which parse_pair_or_run reads back alike. Throws InputError for a Torque::Kind::user
+// torque, which has no text form.
 std::string write_case_file(const SimulationCase& simulation_case,
                             CaseUnits units = CaseUnits::readable);
 

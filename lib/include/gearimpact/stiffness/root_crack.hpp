@@ -110,6 +110,8 @@ ToothCompliances cracked_tooth_compliances(const RackGearGeometry& gear, Gear wh
 // The refusals of cracked_paper_tooth_compliances without its integrals:
 // InputError for a crack that does not fit the paper's tooth.
 void check_paper_crack(const InvoluteTooth& tooth, double face_width_m, const RootCrack& crack);
+// h_c of the paper's tooth, whose crack starts at the base-circle section: Rb sin theta_b.
+double paper_crack_start_half_thickness(const InvoluteTooth& tooth);
 
 Compliances cracked_paper_tooth_compliances(const InvoluteTooth& tooth, double contact_x_m,
                                             double youngs_modulus_pa, double face_width_m,

@@ -68,6 +68,20 @@ std::vector<ToothState> tooth_classes(const std::vector<ToothFault>& faults, Gea
 void check_tooth_faults(const GearPair& pair, const StiffnessModel& model,
                         const std::vector<ToothFault>& faults);
 
+// Where a root crack of a tooth of `gear` starts and how deep it may reach, as check_tooth_faults
+// holds it (docs/faults.md): the start radius r_s (the crack's own, else the model's default: the
+// base circle for yang-lin-1987, ISO's 30-degree tangent point otherwise), the half thickness h_c
+// of the section there, and the largest depth, q sin nu < h_c (the crack may not pass the tooth's
+// centre line): q < h_c / sin nu at the crack's angle nu. Throws as check_tooth_faults for a crack
+// that does not fit its tooth but for its depth.
+struct CrackReach {
+  double start_radius_m = 0.0;
+  double start_half_thickness_m = 0.0;  // h_c
+  double largest_depth_m = 0.0;         // h_c / sin nu, not reached
+};
+CrackReach crack_reach(const GearPair& pair, const StiffnessModel& model, Gear gear,
+                       const RootCrack& crack);
+
 // The state of tooth `tooth` of `gear`: the fault's, or healthy.
 ToothState tooth_state(const std::vector<ToothFault>& faults, Gear gear, int tooth);
 
