@@ -63,6 +63,17 @@ double mean_torque(const Torque& t) {
   return t.kind == Torque::Kind::constant ? t.constant_n_m : t.mean_n_m;
 }
 
+// T1's mean: a speed controller or a motor holds the load, so in the mean
+// T1 = -T2 Rb1 / Rb2.
+double mean_torque1(const SimulationCase& c) {
+  if (c.torque1.kind == Torque::Kind::speed_controlled ||
+      c.torque1.kind == Torque::Kind::induction_motor) {
+    return -mean_torque(c.torque2) * base_radius(c.gears, Gear::one) /
+           base_radius(c.gears, Gear::two);
+  }
+  return mean_torque(c.torque1);
+}
+
 struct Lines {
   std::string csv = "quantity,gear,value,unit\n";
   std::string md = "| quantity | pinion | wheel | unit |\n|---|---|---|---|\n";
@@ -340,7 +351,7 @@ std::string time_history_section(const SimulationCase& run, const std::filesyste
             << number(c.integrator.step_s * 1e6, 3) << " us ...\n";
   const SimulationResult r = simulate(c);
   // DTE relative to the contact: s - B on the drive flanks (T1 >= 0), s + B on the coast ones.
-  const double side = mean_torque(c.torque1) >= 0.0 ? 1.0 : -1.0;
+  const double side = mean_torque1(c) >= 0.0 ? 1.0 : -1.0;
   const double contact = side * c.gears.backlash_m;
   std::string csv = "t_ms,dte_um,s_um,pairs,normal_force_n\n";
   double least = INFINITY;
@@ -366,7 +377,7 @@ std::string time_history_section(const SimulationCase& run, const std::filesyste
                {"set key off"},
                {"'time_history.csv' using 1:2 with lines lw 1.5"}});
   const double rb1 = base_radius(c.gears, Gear::one);
-  const double static_load = std::fabs(mean_torque(c.torque1)) / rb1;
+  const double static_load = std::fabs(mean_torque1(c)) / rb1;
   std::string text = "The case run as its file says (" + number(c.integrator.end_time_s * 1e3, 4) +
                      " ms, every " + std::to_string(c.integrator.output_every) +
                      "th step kept; `time_history_dte.png`, data `time_history.csv`): DTE = s " +
@@ -444,10 +455,10 @@ void write_report(const ReportOptions& o) {
   // A kinematic driver's mean torque is not known before the run; a mean torque of 0 (a free
   // impact, Table 1's cases 1 and 3) has no line load for ISO's low-load factor.
   const bool driven = run && c.torque1.kind == Torque::Kind::prescribed_speed;
-  const double line_load = run && !driven
-                               ? std::fabs(mean_torque(c.torque1)) /
-                                     (pitch_radius(c.gears, Gear::one) * c.gears.face_width_m)
-                               : 0.0;
+  const double line_load =
+      run && !driven
+          ? std::fabs(mean_torque1(c)) / (pitch_radius(c.gears, Gear::one) * c.gears.face_width_m)
+          : 0.0;
   if (line_load > 0.0) {
     // ISO's line load at the reference circle, K_A = 1: below 100 N/mm c' takes the low-load
     // factor (iso6336 --load).

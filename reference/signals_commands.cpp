@@ -25,6 +25,7 @@
 #include "gearimpact/io/results.hpp"
 #include "gearimpact/io/signal_files.hpp"
 #include "gearimpact/signals/indicators.hpp"
+#include "gearimpact/signals/order_tracking.hpp"
 #include "gearimpact/signals/resample.hpp"
 #include "gearimpact/signals/spectrum.hpp"
 #include "gearimpact/signals/tsa.hpp"
@@ -39,6 +40,10 @@ struct SignalsOptions {
   std::string time_column = "t_s";
   std::string from;
   std::string angle_column;
+  // Computed order tracking: the angle estimated from a tacho's edge times
+  // (simulate --tacho-out's t_emitted_s) instead of a simulated angle.
+  std::string tacho_times;
+  std::string pulses_per_revolution = "1";
   std::string sample_rate;
   std::string window = "hann";
   std::string samples_per_revolution = "512";
@@ -266,7 +271,7 @@ void tsa_figure(const std::filesystem::path& dir, const std::string& column,
   render(dir, f);
 }
 
-void run_signals(const SignalsOptions& o) {
+void run_signals(SignalsOptions o) {
   // Every flag first, before the file is read.
   std::optional<double> rate;
   if (!o.sample_rate.empty()) {
@@ -287,6 +292,13 @@ void run_signals(const SignalsOptions& o) {
       throw InputError("--from", o.from, "a time >= 0 s (a plain number in s or with a unit)");
     }
   }
+  const bool tracked = !o.tacho_times.empty();
+  if (tracked && !o.angle_column.empty()) {
+    throw InputError(std::vector<Problem>{refused_problem(
+        "--tacho-times", o.tacho_times, "contradicts --angle-column: the angle is one or the other",
+        "--tacho-times or --angle-column")});
+  }
+  if (tracked) o.angle_column = "tacho angle";
   const bool has_angle = !o.angle_column.empty();
   if (!has_angle && !o.teeth.empty()) {
     throw InputError(std::vector<Problem>{
@@ -314,11 +326,32 @@ void run_signals(const SignalsOptions& o) {
 
   std::vector<std::string> names{o.time_column, o.column};
   std::vector<std::string> flags{"--time-column", "--column"};
-  if (has_angle) {
+  if (has_angle && !tracked) {
     names.push_back(o.angle_column);
     flags.emplace_back("--angle-column");
   }
   std::vector<std::vector<double>> columns = read_csv_columns(o.input, names, flags);
+  if (tracked) {
+    // The rows between the first and the last edge, where the angle is
+    // estimated, and the angle on them (signals::angle_from_pulses).
+    const std::size_t ppr = whole_number(o.pulses_per_revolution, "--pulses-per-revolution");
+    const std::vector<double> pulses =
+        read_csv_columns(o.tacho_times, {"t_emitted_s"}, {"--tacho-times"}).front();
+    if (pulses.size() < 3) {
+      throw InputError("--tacho-times", o.tacho_times,
+                       "a file of at least 3 edge times (column t_emitted_s)");
+    }
+    std::vector<std::vector<double>> kept(2);
+    for (std::size_t i = 0; i < columns[0].size(); ++i) {
+      if (columns[0][i] < pulses.front() || columns[0][i] > pulses.back()) continue;
+      kept[0].push_back(columns[0][i]);
+      kept[1].push_back(columns[1][i]);
+    }
+    naming_flags([&] {
+      kept.push_back(signals::angle_from_pulses(pulses, ppr, kept[0], o.tacho_times.c_str()));
+    });
+    columns = std::move(kept);
+  }
   // The rows from --from on (the time column ascends, as a run writes it).
   const auto first = static_cast<std::ptrdiff_t>(
       std::lower_bound(columns[0].begin(), columns[0].end(), from) - columns[0].begin());
@@ -468,6 +501,12 @@ void register_signals_commands(CLI::App& app) {
   cmd->add_option("--angle-column", o->angle_column,
                   "the shaft's angle, rad, strictly increasing (e.g. theta1_rad): order "
                   "spectrum and TSA over its whole revolutions");
+  cmd->add_option("--tacho-times", o->tacho_times,
+                  "computed order tracking: a CSV of a tacho's edge times (column t_emitted_s, "
+                  "as simulate --tacho-out writes), whose angle (a quadratic through each three "
+                  "edges) replaces --angle-column; the record is cut to the edges' span");
+  cmd->add_option("--pulses-per-revolution", o->pulses_per_revolution,
+                  "the tacho's edges a revolution, with --tacho-times (default 1)");
   cmd->add_option("--samples-per-revolution", o->samples_per_revolution,
                   "angle steps a revolution, 16 to 16777216, above 2 (teeth + sidebands) "
                   "(default 512)");

@@ -23,6 +23,7 @@
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/results.hpp"
 #include "gearimpact/paper/table1.hpp"
+#include "gearimpact/signals/order_tracking.hpp"
 
 namespace gearimpact::cli {
 
@@ -67,6 +68,7 @@ struct SimulateOptions {
   std::string out;
   double max_rows = static_cast<double>(kMostSeriesRows);
   std::string sample_rate;
+  std::string tacho_out;
   CaseOptions keys;
 };
 
@@ -125,6 +127,18 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
     }
   }
   const SimulationCase c = case_to_run(o, command);
+  if (!o.tacho_out.empty()) {
+    if (c.tacho.pulses_per_revolution == 0) {
+      throw InputError(std::vector<Problem>{refused_problem(
+          "--tacho-out", o.tacho_out, "needs a tacho: tacho.pulses_per_revolution is 0",
+          "--tacho-out with [tacho] pulses_per_revolution >= 1 (or --set "
+          "tacho.pulses_per_revolution=1)")});
+    }
+    std::vector<std::string> inputs;
+    if (!o.out.empty()) inputs.push_back(o.out);
+    if (!o.case_file.empty()) inputs.push_back(o.case_file);
+    require_output_file(o.tacho_out, inputs);
+  }
   // A driven run's impacts go beside the series, refused here too.
   const bool rattle_files = !o.out.empty() && c.torque1.kind == Torque::Kind::prescribed_speed;
   const std::filesystem::path out_folder = std::filesystem::path(o.out).parent_path();
@@ -255,6 +269,12 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
     series_file->append(pending);
     series_file->commit();
   }
+  if (!o.tacho_out.empty()) {
+    write_file_atomically(
+        o.tacho_out,
+        tacho_csv(result.tacho_times_s,
+                  signals::tacho_jitter(result.tacho_times_s, c.tacho.jitter_s, c.tacho.seed)));
+  }
   if (rattle_files) {
     const std::vector<ImpactRecord> struck = struck_impacts(result);
     write_file_atomically(impacts_path, rattle_impacts_csv(struck));
@@ -320,6 +340,9 @@ void register_simulate_commands(CLI::App& app) {
       "accelerations, DTE, mesh force per side; with elastic bearings the centres' "
       "accelerations and the sensor's, [bearings] sensor_gear and sensor_angle) instead of the "
       "integrator's steps; not with --every");
+  simulate->add_option("--tacho-out", options->tacho_out,
+                       "with [tacho] pulses_per_revolution >= 1: the tacho's edge times, CSV "
+                       "pulse,t_s,t_emitted_s (true; with the seeded jitter), written atomically");
   simulate->add_option("--max-rows", options->max_rows,
                        "the most rows the time series may have, so that a slip of --t-end does "
                        "not fill a disk (default " +

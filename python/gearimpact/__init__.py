@@ -64,7 +64,7 @@ from ._results import (
     stiffness,
     sweep_friction,
 )
-from ._signals import indicators, low_pass, order_analysis, spectrum
+from ._signals import indicators, low_pass, order_analysis, spectrum, tacho_angle, tacho_jitter
 from ._program import (
     iso6336,
     mesh_stiffness,
@@ -102,6 +102,8 @@ __all__ = [
     "modes",
     "moment_of_inertia",
     "order_analysis",
+    "tacho_angle",
+    "tacho_jitter",
     "paper_case",
     "paper_data_dir",
     "parse_case",

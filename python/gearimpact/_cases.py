@@ -523,6 +523,16 @@ def _torque_text(fields, section, symbol):
         speed = _si(fields, section + ".mean_speed")
         return (f"{symbol}: a driver at {_short(speed)} rad/s ({_short(speed * 30 / math.pi)} rpm)"
                 f" + {orders} orders")
+    if kind == "speed-controlled":
+        speed = _si(fields, section + ".mean_speed")
+        return (f"{symbol}: a speed controller at {_short(speed)} rad/s "
+                f"({_short(speed * 30 / math.pi)} rpm)")
+    if kind == "induction-motor":
+        return (f"{symbol}: an induction motor, breakdown "
+                f"{_short(_si(fields, section + '.breakdown_torque'))} N*m")
+    if kind == "profile":
+        points = len(fields.get(section + ".profile_times", []))
+        return f"{symbol}: a profile of {points} points"
     if kind == "drag":
         return (f"{symbol}: a drag of {_short(_si(fields, section + '.drag_constant'))} N*m"
                 f" + {_short(_si(fields, section + '.drag_viscous'))} N*m*s/rad w2")

@@ -119,14 +119,17 @@ class SimulationResult:
     list of dicts: line "N1" or "N2", start_s, impact_speed_m_s, restitution,
     end_s, end_speed_m_s, the last two None for a contact still on at the end)
     and .samples (with sample_rate, a dict of numpy arrays with the columns of
-    ``gearimpact simulate --sample-rate``; zero-length without it)."""
+    ``gearimpact simulate --sample-rate``; zero-length without it) and .tacho
+    (with [tacho] pulses_per_revolution >= 1, a planar run's true edge times, s,
+    jitter-free: gearimpact.tacho_jitter gives the emitted ones)."""
 
-    def __init__(self, case, summary, series, impacts, samples=None):
+    def __init__(self, case, summary, series, impacts, samples=None, tacho=None):
         self.case = case
         self.summary = summary
         self.series = series
         self.impacts = impacts
         self.samples = samples
+        self.tacho = tacho
 
     def __repr__(self):
         s = self.summary
@@ -178,7 +181,7 @@ def simulate(case, keep_series=True, max_rows=None, sample_rate=None, **changes)
     if changes:
         run = run.replace(**changes)
     try:
-        summary_json, series, impacts, samples = _core.simulate(run, keep, rows, rate)
+        summary_json, series, impacts, samples, tacho = _core.simulate(run, keep, rows, rate)
     except CaseError as error:
         if "rows of time series" not in str(error):
             raise
@@ -190,7 +193,7 @@ def simulate(case, keep_series=True, max_rows=None, sample_rate=None, **changes)
     summary = json.loads(summary_json)
     if summary.get("foundation_extrapolated"):
         _warnings.warn(f"{run.name or 'the case'}: {summary['warning']}")
-    return SimulationResult(run, summary, series, impacts, samples)
+    return SimulationResult(run, summary, series, impacts, samples, tacho)
 
 
 def sweep_friction(

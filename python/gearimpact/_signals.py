@@ -26,8 +26,23 @@ def low_pass(signal, rate, cutoff):
     return _core.low_pass(signal, float(rate), float(cutoff))
 
 
+def tacho_angle(tacho, pulses_per_revolution, time):
+    """The shaft's angle (rad, 0 at the first edge) at the instants ``time`` (s)
+    estimated from a tacho's edge times ``tacho`` (s), edge k at 2 pi k /
+    pulses_per_revolution: on each interval the quadratic through three
+    consecutive edges (constant angular acceleration), exact under a linear
+    speed ramp. ``time`` must lie between the first and the last edge."""
+    return _core.angle_from_pulses(tacho, int(pulses_per_revolution), time)
+
+
+def tacho_jitter(tacho, jitter, seed):
+    """Edge times moved by a seeded Gaussian jitter of standard deviation
+    ``jitter`` (s), as ``gearimpact simulate --tacho-out`` emits them."""
+    return _core.tacho_jitter(tacho, float(jitter), int(seed))
+
+
 def order_analysis(angle, signal, samples_per_revolution=512, teeth=None, shaft_orders=1,
-                   sidebands=1, window="hann"):
+                   sidebands=1, window="hann", tacho=None, time=None, pulses_per_revolution=1):
     """Order spectrum and time-synchronous average of ``signal`` sampled with its
     shaft's strictly increasing ``angle`` (rad), at any instants.
 
@@ -37,7 +52,17 @@ def order_analysis(angle, signal, samples_per_revolution=512, teeth=None, shaft_
     that shaft) the dict also holds the regular, residual and difference signals,
     the mesh band and its envelope, and ``indicators`` (FM0, FM4, NA4, NB4, M6A,
     M8A, energy ratio, sideband level, of the TSA; None where 0/0).
+
+    Computed order tracking: with ``tacho`` (edge times, s) and ``time`` (the
+    signal's sample times, s, inside the edges' span) and ``angle`` None, the
+    angle is ``tacho_angle(tacho, pulses_per_revolution, time)``.
     """
+    if tacho is not None:
+        if angle is not None:
+            raise ValueError("order_analysis: angle or tacho, not both")
+        if time is None:
+            raise ValueError("order_analysis: tacho needs time, the signal's sample times (s)")
+        angle = tacho_angle(tacho, pulses_per_revolution, time)
     return _core.order_analysis(angle, signal, samples_per_revolution,
                                 0 if teeth is None else teeth, shaft_orders, sidebands,
                                 str(window))

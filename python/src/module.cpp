@@ -342,7 +342,7 @@ py::tuple run_simulation(const SimulationCase& c, bool keep_series, long long ma
                          ? planar_sample_columns(result.planar_samples)
                          : sample_columns(std::move(result.samples));
   return py::make_tuple(summary_json(result.summary), series_columns(std::move(result.series)),
-                        impact_records(result.impacts), samples);
+                        impact_records(result.impacts), samples, to_array(result.tacho_times_s));
 }
 
 // The stiffness columns of `gearimpact stiffness` at the contact positions xs.
@@ -1006,6 +1006,25 @@ void define_module(py::module_& m) {
         return to_array(naming_keywords([&] { return signals::low_pass(values, rate, cutoff); }));
       },
       py::arg("signal"), py::arg("rate"), py::arg("cutoff"));
+  m.def(
+      "angle_from_pulses",
+      [](const ArrayIn& pulses, long long per_revolution, const ArrayIn& t) {
+        const std::vector<double> p = vector_of(pulses, "tacho");
+        const std::vector<double> times = vector_of(t, "time");
+        const std::size_t n = count_of(per_revolution, "pulses_per_revolution");
+        return to_array(
+            naming_keywords([&] { return signals::angle_from_pulses(p, n, times, "tacho"); }));
+      },
+      py::arg("tacho"), py::arg("pulses_per_revolution"), py::arg("time"));
+  m.def(
+      "tacho_jitter",
+      [](const ArrayIn& pulses, double sigma, long long seed) {
+        const std::vector<double> p = vector_of(pulses, "tacho");
+        if (seed < 0) throw InputError("seed", std::to_string(seed), "an integer >= 0");
+        return to_array(naming_keywords(
+            [&] { return signals::tacho_jitter(p, sigma, static_cast<std::uint64_t>(seed)); }));
+      },
+      py::arg("tacho"), py::arg("jitter"), py::arg("seed"));
   m.def(
       "order_analysis",
       [](const ArrayIn& angle, const ArrayIn& x, long long per_revolution, long long teeth,

@@ -89,6 +89,27 @@ SimulationCase case_for(const Field& field) {
     if (applies(field, d)) return d;
   }
   {
+    // The drive's keys: a speed controller with a speed profile, an
+    // induction motor, a load profile.
+    SimulationCase d = paper_case(2);
+    d.torque1 = Torque{};
+    d.torque1.kind = Torque::Kind::speed_controlled;
+    d.torque1.mean_speed_rad_per_s = 100.0;
+    d.torque1.speed_profile_times_s = {0.0, 0.01};
+    d.torque1.speed_profile_speeds_rad_per_s = {100.0, 120.0};
+    d.torque2 = Torque{};
+    d.torque2.kind = Torque::Kind::profile;
+    d.torque2.profile_times_s = {0.0, 0.01};
+    d.torque2.profile_torques_n_m = {-1.0, -2.0};
+    if (applies(field, d)) return d;
+    d.torque1 = Torque{};
+    d.torque1.kind = Torque::Kind::induction_motor;
+    d.torque1.synchronous_speed_rad_per_s = 110.0;
+    d.torque1.breakdown_torque_n_m = 3.0;
+    d.torque1.breakdown_slip = 0.1;
+    if (applies(field, d)) return d;
+  }
+  {
     // The planar model's keys: elastic bearings and shafts.
     SimulationCase p = paper_case(2);
     p.bearings.kind = BearingKind::elastic;
@@ -400,6 +421,7 @@ TEST_CASE("set_field refuses with the key or the name the caller gives, and the 
   CHECK(c.model.constant_mesh_stiffness_n_per_m == 3.5e8);
   set_field(c, "model.constant_mesh_stiffness", "0.35 kN/mm");
   CHECK(c.model.constant_mesh_stiffness_n_per_m == 3.5e5);
+  c.model.damping_update = DampingUpdate::each_impact;
   CHECK(contains(refused("model.damping_reference_speed", "1 m/s").allowed(),
                  "damping_update = \"frozen\""));
   CHECK_THROWS_AS(get_numeric_field(c, "model.damping_form"), InputError);

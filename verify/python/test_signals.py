@@ -86,3 +86,25 @@ def test_bad_arguments_are_named(call, field):
     with pytest.raises(gearimpact.CaseError) as error:
         call()
     assert error.value.field == field
+
+
+def test_order_tracking_from_a_tacho_on_a_ramp_is_the_true_angle():
+    # Edges of w0 t + alpha t^2 / 2 = 2 pi k / PPR in closed form (the root
+    # without cancellation): the quadratic through three edges is the ramp's
+    # own angle, so the estimate equals the truth to rounding and the order
+    # analysis of sin(3 theta) on it matches the one on the true angle.
+    w0, alpha, ppr = 240.0, 400.0, 2
+    theta = 2 * math.pi * numpy.arange(0, 40) / ppr
+    edges = 2 * theta / (w0 + numpy.sqrt(w0 * w0 + 2 * alpha * theta))
+    t = numpy.arange(0, int(edges[-1] * 20000) + 1) / 20000.0
+    truth = w0 * t + 0.5 * alpha * t * t
+    estimate = gearimpact.tacho_angle(edges, ppr, t)
+    assert numpy.max(numpy.abs(estimate - truth)) < 1e-9
+    x = numpy.sin(3 * truth)
+    tracked = gearimpact.order_analysis(None, x, 512, window="rectangular", tacho=edges,
+                                        time=t, pulses_per_revolution=ppr)
+    true = gearimpact.order_analysis(truth, x, 512, window="rectangular")
+    assert numpy.max(numpy.abs(tracked["amplitude"] - true["amplitude"])) < 1e-6
+    jittered = gearimpact.tacho_jitter(edges, 1e-6, 3)
+    assert numpy.array_equal(jittered, gearimpact.tacho_jitter(edges, 1e-6, 3))
+    assert 0 < numpy.max(numpy.abs(jittered - edges)) < 1e-5

@@ -129,7 +129,8 @@ std::vector<std::string> sweep_warnings(const SteadySweepSpec& spec) {
   std::vector<std::string> warnings;
   const SimulationCase& c = spec.base;
   const auto swept = [&](const char* key) { return spec.vary == key || spec.vary2 == key; };
-  if (c.model.mesh_damping_ratio == 0.0 && c.model.damping_update == DampingUpdate::each_impact &&
+  if (c.model.mesh_damping_ratio == 0.0 &&
+      resolved_damping_update(c) == DampingUpdate::each_impact &&
       !swept("model.mesh_damping_ratio")) {
     warnings.push_back(
         "model.mesh_damping_ratio = 0 with model.damping_update = \"each-impact\": nothing damps "
@@ -306,7 +307,7 @@ SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
   record.tolerance = spec.settings.tolerance;
   record.steps_per_contact_period = spec.settings.steps_per_contact_period;
   record.max_periods = spec.settings.max_periods;
-  record.damping_update = base.model.damping_update;
+  record.damping_update = resolved_damping_update(base);
   record.poincare_period_kind = first_timing.kind;
   record.poincare_period_s = {first_timing.excitation_period_s, last_timing.excitation_period_s};
   record.poincare_mesh_periods = {first_timing.mesh_periods, last_timing.mesh_periods};

@@ -217,11 +217,21 @@ void add_torque(std::vector<Field>& rows, std::string_view section, int gear, To
                            "a kinematic driver: w1 = mean_speed + sum_i speed_amplitudes[i] "
                            "sin(orders[i] mean_speed t + phases[i]), theta1(0) = initial.theta1; "
                            "the torque it needs is computed and its work booked"));
+    kinds.push_back(choice("speed-controlled", Torque::Kind::speed_controlled,
+                           "a motor with a PI speed controller: T = T_ff + K_p e + K_i Int e dt, "
+                           "e = mean_speed (or the speed profile) - w of the driven body, gains "
+                           "from bandwidth, damping_ratio and the train's inertia"));
+    kinds.push_back(choice("induction-motor", Torque::Kind::induction_motor,
+                           "Kloss's law T = 2 breakdown_torque / (s / breakdown_slip + "
+                           "breakdown_slip / s), s = 1 - w / synchronous_speed"));
   } else {
     kinds.push_back(choice("drag", Torque::Kind::drag,
                            "T = -(drag_constant tanh(w2 / drag_speed_scale) + drag_viscous w2), "
                            "opposing the rotation of a loose gear"));
   }
+  kinds.push_back(choice("profile", Torque::Kind::profile,
+                         "T(t) linear between the points (profile_times[i], profile_torques[i]), "
+                         "held beyond the ends; a time given twice is a step"));
   r.choice(
       "kind", std::move(kinds), true,
       "form of the external torque T(t) on the gear", [torque](auto& c) -> auto& {
@@ -282,7 +292,7 @@ void add_torque(std::vector<Field>& rows, std::string_view section, int gear, To
          "W, the driver's mean speed; positive (the loose gear's drag opposes the rotation it "
          "takes from it)",
          [torque](auto& c) -> auto& { return torque(c).mean_speed_rad_per_s; })
-        .only_when = FieldCondition{"kind", {"prescribed-speed"}};
+        .only_when = FieldCondition{"kind", {"prescribed-speed", "speed-controlled"}};
     r.number_list(
          "orders", {open(0.0), {}, {}}, kMostHarmonics, true,
          "n_i, the orders of the speed harmonics: the i-th turns at n_i W (2 for a four-stroke "
@@ -297,6 +307,53 @@ void add_torque(std::vector<Field>& rows, std::string_view section, int gear, To
          "an angle amplitude A_i is a_i = A_i n_i W",
          [torque](auto& c) -> auto& { return torque(c).driver_speed_amplitudes_rad_per_s; })
         .only_when = FieldCondition{"kind", {"prescribed-speed"}};
+    // A speed profile: a few segments (hold, ramp, step); each point costs
+    // a little at each right-hand side evaluation.
+    constexpr std::size_t kMostProfilePoints = 1000;
+    Field& times = r.quantity_list(
+        "speed_profile_times", Dimension::time, "s", {closed(0.0), {}, {}}, kMostProfilePoints,
+        false,
+        "t_i of the speed profile W(t), linear between the points (t_i, W_i) and held beyond "
+        "them, in place of mean_speed; non-decreasing, a time given twice a step (refused for "
+        "prescribed-speed); as many as speed_profile_speeds",
+        [torque](auto& c) -> auto& { return torque(c).speed_profile_times_s; });
+    times.only_when = FieldCondition{"kind", {"prescribed-speed", "speed-controlled"}};
+    times.written_at_default = false;
+    Field& speeds = r.quantity_list(
+        "speed_profile_speeds", Dimension::angular_velocity, "rpm", {open(0.0), {}, {}},
+        kMostProfilePoints, false,
+        "W_i of the speed profile, positive", [torque](auto& c) -> auto& {
+          return torque(c).speed_profile_speeds_rad_per_s;
+        });
+    speeds.only_when = FieldCondition{"kind", {"prescribed-speed", "speed-controlled"}};
+    speeds.written_at_default = false;
+    r.quantity(
+         "bandwidth", Dimension::angular_frequency, "Hz", {open(0.0), {}, {}}, false,
+         "f_c of the speed loop: K_p = 2 damping_ratio w_c J_eq, K_i = w_c^2 J_eq with w_c = "
+         "2 pi f_c and J_eq the train's inertia reflected to the pinion",
+         [torque](auto& c) -> auto& { return torque(c).controller_bandwidth_rad_per_s; })
+        .only_when = FieldCondition{"kind", {"speed-controlled"}};
+    r.number(
+         "damping_ratio", {open(0.0), {}, {}}, false,
+         "zeta_c of the speed loop: a rigid train's error obeys e'' + 2 zeta_c w_c e' + w_c^2 e = "
+         "0",
+         [torque](auto& c) -> auto& { return torque(c).controller_damping_ratio; })
+        .only_when = FieldCondition{"kind", {"speed-controlled"}};
+    r.quantity(
+         "synchronous_speed", Dimension::angular_velocity, "rpm", {open(0.0), {}, {}}, true,
+         "w_s, the induction motor's synchronous speed (slip s = 1 - w / w_s)",
+         [torque](auto& c) -> auto& { return torque(c).synchronous_speed_rad_per_s; })
+        .only_when = FieldCondition{"kind", {"induction-motor"}};
+    r.quantity(
+         "breakdown_torque", Dimension::torque, "N*m", {open(0.0), {}, {}}, true,
+         "T_b, the induction motor's largest (breakdown) torque",
+         [torque](auto& c) -> auto& { return torque(c).breakdown_torque_n_m; })
+        .only_when = FieldCondition{"kind", {"induction-motor"}};
+    r.number(
+         "breakdown_slip", {open(0.0), closed(1.0), "a slip between standstill and synchronism"},
+         true, "s_b, the slip of the breakdown torque",
+         [torque](auto& c) -> auto& { return torque(c).breakdown_slip; })
+        .only_when = FieldCondition{"kind", {"induction-motor"}};
   } else {
     r.quantity(
          "drag_constant", Dimension::torque, "N*m", {closed(0.0), {}, {}}, true,
@@ -315,6 +372,17 @@ void add_torque(std::vector<Field>& rows, std::string_view section, int gear, To
          [torque](auto& c) -> auto& { return torque(c).drag_speed_scale_rad_per_s; })
         .only_when = FieldCondition{"kind", {"drag"}};
   }
+  constexpr std::size_t kMostProfilePoints = 1000;
+  r.quantity_list(
+       "profile_times", Dimension::time, "s", {closed(0.0), {}, {}}, kMostProfilePoints, true,
+       "t_i of T(t), linear between the points (t_i, T_i) and held beyond them; non-decreasing, "
+       "a time given twice a step (a load step); as many as profile_torques",
+       [torque](auto& c) -> auto& { return torque(c).profile_times_s; })
+      .only_when = FieldCondition{"kind", {"profile"}};
+  r.quantity_list(
+       "profile_torques", Dimension::torque, "N*m", {}, kMostProfilePoints, true,
+       "T_i of T(t)", [torque](auto& c) -> auto& { return torque(c).profile_torques_n_m; })
+      .only_when = FieldCondition{"kind", {"profile"}};
 }
 
 // The keys of one gear's modifications in [modifications] (their names end in
@@ -768,11 +836,15 @@ std::vector<Field> make_schema() {
          "when the Hertzian damping factor D of (32) is set",
          [](auto& c) -> auto& { return c.model.damping_update; })
         .written_at_default = false;
-    r.quantity(
-         "damping_reference_speed", Dimension::speed, "m/s", {open(0.0), {}, {}}, false,
-         "V_ref: the impact speed of the frozen D",
-         [](auto& c) -> auto& { return c.model.damping_reference_speed_m_s; })
-        .only_when = FieldCondition{"damping_update", {"frozen"}};
+    Field& reference = r.quantity(
+        "damping_reference_speed", Dimension::speed, "m/s", {open(0.0), {}, {}}, false,
+        "V_ref: the impact speed of the frozen D (damping_update = \"frozen\", or \"auto\" "
+        "with elastic bearings)",
+        [](auto& c) -> auto& { return c.model.damping_reference_speed_m_s; });
+    reference.only_when = FieldCondition{"damping_update", {"frozen", "auto"}};
+    // Left out at its default, so that a case written under "auto" keeps the
+    // bytes it had when the row applied under "frozen" only.
+    reference.written_at_default = false;
   }
   {
     Rows r(rows, "integrator");
@@ -804,6 +876,51 @@ std::vector<Field> make_schema() {
         "keep every n-th row of the time series",
         [](auto& c) -> auto& { return c.integrator.output_every; });
   }
+  Rows(rows, "drive")
+      .number(
+          "speed_tolerance", {open(0.0), {}, {}}, false,
+          "the largest relative drift of the pinion's mean speed over a whole revolution "
+          "from its reference (speed_drift_max_rel) before a planar run warns; 1e-3: over a "
+          "1 s record of the rig example the mesh line moves by one bin at 1.5e-3",
+          [](auto& c) -> auto& { return c.drive.speed_tolerance; })
+      .written_at_default = false;
+  {
+    Rows r(rows, "tacho");
+    r.integer(
+         "pulses_per_revolution", {closed(0.0), closed(1048576.0), "0: no tacho"}, false,
+         "the tacho's edges a revolution of its shaft, each located as an event on the "
+         "true angle (planar runs; simulate --tacho-out writes their times)",
+         [](auto& c) -> auto& { return c.tacho.pulses_per_revolution; })
+        .written_at_default = false;
+    r.choice(
+         "shaft", choices_of(kTachoShafts), false, "the shaft the tacho reads",
+         [](auto& c) -> auto& { return c.tacho.shaft; })
+        .written_at_default = false;
+    r.quantity(
+         "offset", Dimension::angle, "deg", {}, false,
+         "the angle of edge 0: edges where the shaft's angle crosses offset + 2 pi k / "
+         "pulses_per_revolution upward",
+         [](auto& c) -> auto& { return c.tacho.offset_rad; })
+        .written_at_default = false;
+    r.quantity(
+         "jitter", Dimension::time, "s", {closed(0.0), {}, {}}, false,
+         "the standard deviation of a Gaussian jitter of the emitted edge times (the true "
+         "times stay jitter-free)",
+         [](auto& c) -> auto& { return c.tacho.jitter_s; })
+        .written_at_default = false;
+    r.integer(
+         "seed", {closed(0.0), closed(4294967295.0), "a 32-bit unsigned integer"}, false,
+         "the seed of the jitter: the same seed, the same times, bit for bit",
+         [](auto& c) -> auto& { return c.tacho.seed; })
+        .written_at_default = false;
+  }
+  Rows(rows, "drive")
+      .quantity(
+          "settle", Dimension::time, "s", {closed(0.0), {}, {}}, false,
+          "the start of the drift check: revolutions that begin earlier are the start's "
+          "transient, not drift (a 10 Hz speed loop's error falls by e^-6.3 in 0.1 s)",
+          [](auto& c) -> auto& { return c.drive.settle_s; })
+      .written_at_default = false;
   add_modifications(
       rows, 1, [](auto& c) -> auto& { return c.modifications.gear1; });
   add_modifications(
@@ -1809,6 +1926,49 @@ void relation_problems(const SimulationCase& c, const std::vector<std::string>& 
         }
       }
     }
+    const auto check_profile = [&](const char* times_key, const std::vector<double>& times,
+                                   const char* values_key, const std::size_t values,
+                                   bool steps_allowed) {
+      const std::string section = std::string(name) + ".";
+      if (times.size() != values) {
+        problems.add(range_problem(section + values_key, std::to_string(values) + " values",
+                                   "as many values as " + section + times_key + " (" +
+                                       std::to_string(times.size()) + ")"));
+        return false;
+      }
+      for (std::size_t i = 1; i < times.size(); ++i) {
+        const bool ok = steps_allowed ? times[i] >= times[i - 1] : times[i] > times[i - 1];
+        if (ok) continue;
+        problems.add(range_problem(
+            section + times_key + "[" + std::to_string(i) + "]", format_number(times[i]) + " s",
+            (steps_allowed ? "at least the time before it, " : "more than the time before it, ") +
+                format_number(times[i - 1]) + " s" +
+                (steps_allowed ? std::string()
+                               : std::string(": a kinematic driver cannot step its speed (it "
+                                             "would need an infinite torque); "
+                                             "kind = \"speed-controlled\" may step its "
+                                             "reference"))));
+        return false;
+      }
+      return true;
+    };
+    if (torque->kind == Torque::Kind::profile) {
+      if (torque->profile_times_s.empty()) {
+        problems.add(range_problem(std::string(name) + ".profile_times", "0 values",
+                                   "at least one point (one point is a constant torque)"));
+      } else {
+        check_profile("profile_times", torque->profile_times_s, "profile_torques",
+                      torque->profile_torques_n_m.size(), true);
+      }
+    }
+    bool profile_valid = true;
+    if (has_speed_reference(*torque) && (!torque->speed_profile_speeds_rad_per_s.empty() ||
+                                         !torque->speed_profile_times_s.empty())) {
+      profile_valid =
+          check_profile("speed_profile_times", torque->speed_profile_times_s,
+                        "speed_profile_speeds", torque->speed_profile_speeds_rad_per_s.size(),
+                        torque->kind == Torque::Kind::speed_controlled);
+    }
     if (torque->kind == Torque::Kind::prescribed_speed) {
       // One order is one element of each list.
       const std::size_t n = torque->driver_speed_amplitudes_rad_per_s.size();
@@ -1826,7 +1986,7 @@ void relation_problems(const SimulationCase& c, const std::vector<std::string>& 
         }
       }
       // The driver sets w1(0); a different initial.w1 would be ignored.
-      if (lists_agree && !any_failed(failed, "initial.w1")) {
+      if (lists_agree && profile_valid && !any_failed(failed, "initial.w1")) {
         const double w0 = driver_speed_at(*torque, 0.0);
         const double written = c.initial.w1_rad_per_s;
         if (std::fabs(written - w0) > 1e-9 * std::fabs(w0)) {

@@ -12,6 +12,7 @@
 #include "event_location.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/contact/contact.hpp"
+#include "gearimpact/dynamics/drive.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/dynamics/system.hpp"
@@ -223,11 +224,17 @@ class PlanarSystem {
     }
     mesh_damping_ = case_mesh_damping_n_s_per_m(c, table, teeth_.get());
     drag_ = c.torque2.kind == Torque::Kind::drag;
+    damping_update_ = resolved_damping_update(c);
     driven_ = c.torque1.kind == Torque::Kind::prescribed_speed;
-    // torque1 acts on the motor with shafts, so the driver turns it.
+    // torque1 acts on the motor with shafts, so the driver turns it (and a
+    // controller or a motor reads its motion).
     driven_index_ = m.shafts ? kTm : kT1;
     driver_theta0_ = driver_theta0;
-    options_ = gaps_ || mesh_damping_ > 0.0 || driven_ || drag_;
+    if (c.torque1.kind == Torque::Kind::speed_controlled) {
+      controller_ = std::make_shared<const SpeedController>(c, driver_theta0);
+    }
+    induction_ = c.torque1.kind == Torque::Kind::induction_motor;
+    options_ = gaps_ || mesh_damping_ > 0.0 || driven_ || drag_ || controller_ || induction_;
   }
 
   // A kinematic driver's body (the pinion, the motor with shafts) where its
@@ -710,6 +717,11 @@ class PlanarSystem {
     if (kOptions && driven_) {
       driven_acceleration = driver_motion(c_.torque1, driver_theta0_, t).acceleration_rad_per_s2;
       if (!m_.shafts) t1 = j1_ * driven_acceleration - moment1;
+    } else if (kOptions && controller_) {
+      // torque1 acts on the motor with shafts, so the controller reads it.
+      t1 = controller_->torque_n_m(t, y[driven_index_], v[driven_index_]);
+    } else if (kOptions && induction_) {
+      t1 = induction_motor_torque_n_m(c_.torque1, v[driven_index_]);
     } else {
       t1 = torque(c_.torque1, t);
     }
@@ -783,7 +795,7 @@ class PlanarSystem {
             std::max(approach, pair_penetration(side, m, j, x, dl, dl_rate, x_rate).rate_m_s);
       }
     }
-    const OnsetDamping d = onset_damping(c_.model, approach);
+    const OnsetDamping d = onset_damping(c_.model, damping_update_, approach);
     impact_speed = d.impact_speed_m_s;
     restitution = d.restitution;
     ContactMemory memory;
@@ -822,10 +834,15 @@ class PlanarSystem {
   std::vector<double> kinks_;
   double mesh_damping_ = 0.0;  // c of the viscous mesh damper, N s/m; 0: none
   bool drag_ = false;          // torque2 a drag
-  bool driven_ = false;        // torque1 a kinematic driver
+  DampingUpdate damping_update_ = DampingUpdate::frozen;  // resolved
+  bool driven_ = false;                                   // torque1 a kinematic driver
+  // torque1 a speed controller's (none otherwise) or an induction motor's,
+  // from the motion of the body it acts on (driven_index_).
+  std::shared_ptr<const SpeedController> controller_;
+  bool induction_ = false;
   std::size_t driven_index_ = kT1;
   double driver_theta0_ = 0.0;
-  bool options_ = false;  // any of the four above
+  bool options_ = false;  // any of the above
   MeshLayout layout_;
   double rb1_ = 0.0, rb2_ = 0.0, j1_ = 0.0, j2_ = 0.0, backlash_ = 0.0, lp_ = 0.0;
   std::array<double, kVelocity> inverse_mass_{};  // 1/m or 1/J of each position
@@ -1097,6 +1114,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   SimulationSummary& s = result.summary;
   s.case_name = c.name;
   s.integrator = name_of(kIntegratorKinds, c.integrator.kind);
+  s.damping_update = resolved_damping_update(c);
   s.friction_coefficient = c.model.friction_coefficient;
   s.friction_law = c.model.friction_law;
   s.mesh_damper = c.model.mesh_damping_ratio > 0.0;
@@ -1227,8 +1245,19 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     if (control.on_planar_sample) control.on_planar_sample(ps);
   };
   long long next_sample = 0;
+  SpeedDriftMonitor drift(c, 0.0, y[kT1], y[kVelocity + kT1]);
   PlanarStepper stepper(system, c.integrator.kind);
-  const bool dense = sample_total > 0;
+  // The tacho's shaft and its edges, located on each step's continuous
+  // extension (hence `dense` with a tacho), or on a driver's closed form.
+  const bool tacho_on = c.tacho.pulses_per_revolution > 0;
+  const std::size_t tacho_index = c.tacho.shaft == TachoShaft::wheel                      ? kT2
+                                  : c.tacho.shaft == TachoShaft::motor && mounting.shafts ? kTm
+                                                                                          : kT1;
+  const bool tacho_driven =
+      system.driven() && tacho_index == (mounting.shafts ? std::size_t{kTm} : std::size_t{kT1});
+  const double driver_theta0 = mounting.shafts ? initial.theta_motor_rad : initial.theta1_rad;
+  TachoEdges tacho(c.tacho.pulses_per_revolution > 0 ? c.tacho : Tacho{1}, y[tacho_index]);
+  const bool dense = sample_total > 0 || tacho_on;
   Y k1{};
   // The samples not yet taken up to t_b, where the run is at y_b: one at t_b
   // is y_b itself, one before it the continuous extension of the step of
@@ -1353,8 +1382,18 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     // Before the mode and the contact memory change at an event: the step's
     // samples are its own, the left limit at the event.
     if (dense) emit_samples(t, y, dense_step, cut_on_extension ? whole : next, t_next, next);
+    if (tacho_on) {
+      const Y& end = cut_on_extension ? whole : next;
+      tacho.step(t, y[tacho_index], t_next, next[tacho_index], [&](double tau) {
+        if (tacho_driven) return driver_motion(c.torque1, driver_theta0, tau).theta_rad;
+        Y x{};
+        stepper.dense(t, y, k1, dense_step, end, tau, x);
+        return x[tacho_index];
+      });
+    }
     y = next;
     t = t_next;
+    drift.observe(t, y[kT1]);
     ++s.steps;
     double before = 0.0;
     if (event) {
@@ -1434,6 +1473,8 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   s.parametric_work_j = y[kParametric] + jump_work;
   s.final_w1_rad_per_s = y[kVelocity + kT1];
   s.final_w2_rad_per_s = y[kVelocity + kT2];
+  s.speed_drift_max_rel = drift.max_relative_drift();
+  result.tacho_times_s = tacho.times();
   p.bearing_energy_final_j = system.bearing_energy(y);
   p.bearing_damping_loss_j = y[kBearingLoss];
   p.shaft_energy_final_j = system.shaft_energy(y);

@@ -147,6 +147,7 @@ class Run {
       last_w2_ = y_[kW2];
     }
     if (c_.model.friction_law != FrictionLaw::constant) observe_friction(t);
+    drift_.observe(t, y_[kTheta1]);
     ledger_.observe(y_, mode_, s);
     if (mode_.region != Region::free) {
       s.max_penetration_m = std::max(s.max_penetration_m, system_.delta(mode_.region, y_));
@@ -272,6 +273,8 @@ class Run {
     SimulationSummary& s = result_.summary;
     s.case_name = c_.name;
     s.integrator = integrator;
+    s.damping_update = resolved_damping_update(c_);
+    s.speed_drift_max_rel = drift_.max_relative_drift();
     s.stiffness_model = c_.model.stiffness.kind;
     s.friction_coefficient = c_.model.friction_coefficient;
     s.friction_law = c_.model.friction_law;
@@ -500,6 +503,8 @@ class Run {
   long long next_sample_ = 0;
   // Last: its construction sets the start state above (make_ledger).
   EnergyLedger ledger_;
+  // After ledger_, whose construction sets the start it begins from.
+  SpeedDriftMonitor drift_{c_, start_time_, y_[kTheta1], y_[kW1]};
 };
 
 }  // namespace gearimpact

@@ -205,6 +205,13 @@ void refuse_planar_simulation(const SimulationCase& c) {
         "\"none\" (the default) with rigid bearings",
         "add [bearings] kind = \"elastic\" to simulate the planar model with its shafts")});
   }
+  if (c.tacho.pulses_per_revolution > 0 && c.bearings.kind != BearingKind::elastic) {
+    throw InputError(std::vector<Problem>{refused_problem(
+        "tacho.pulses_per_revolution", std::to_string(c.tacho.pulses_per_revolution),
+        "a tacho with [bearings] kind = \"elastic\" only: its edges are located in the planar "
+        "run, the model of signal records",
+        "0 (no tacho) with rigid bearings", "add [bearings] kind = \"elastic\"")});
+  }
 }
 
 void refuse_planar(const SimulationCase& c) {
@@ -301,6 +308,26 @@ std::vector<std::string> result_warnings(const SimulationCase& c, const Simulati
         "the segment, at the tip's corner, which this line-of-action model does not describe; "
         "from there on the run describes the model, not the gears (docs/faults.md, \"A missing "
         "tooth\")");
+  }
+  // A signal run (elastic bearings) is a record at an operating point: say
+  // when the speed does not hold it. The paper's torsional transients change
+  // their speed by design and are not checked.
+  if (c.bearings.kind == BearingKind::elastic && s.speed_drift_max_rel &&
+      *s.speed_drift_max_rel > c.drive.speed_tolerance) {
+    const bool controlled = c.torque1.kind == Torque::Kind::speed_controlled ||
+                            c.torque1.kind == Torque::Kind::prescribed_speed;
+    warnings.push_back(
+        "the pinion's mean speed over a whole revolution drifted from its reference by up to " +
+        six_digits(*s.speed_drift_max_rel * 100.0) +
+        " % (speed_drift_max_rel), more than "
+        "drive.speed_tolerance = " +
+        six_digits(c.drive.speed_tolerance) +
+        (controlled ? std::string(": the controller's start, a profile faster than its bandwidth "
+                                  "or a load beyond it moved it; torque1.bandwidth sets how fast "
+                                  "it holds the reference")
+                    : std::string(": nothing holds the operating point against friction and "
+                                  "the load; torque1.kind = \"speed-controlled\" (a motor with "
+                                  "a speed controller, docs/vibration.md) holds it")));
   }
   return warnings;
 }

@@ -83,9 +83,19 @@ std::pair<double, std::string> torque_peak(const Torque& t, const std::string& s
               section + (std::fabs(t.drag_constant_n_m) >= std::fabs(t.drag_viscous_n_m_s * w_s)
                              ? ".drag_constant"
                              : ".drag_viscous")};
+    case Torque::Kind::profile: {
+      double peak = 0.0;
+      for (double v : t.profile_torques_n_m) peak = std::max(peak, std::fabs(v));
+      return {peak, section + ".profile_torques"};
+    }
+    case Torque::Kind::induction_motor:
+      // Kloss's law never exceeds its breakdown torque.
+      return {std::fabs(t.breakdown_torque_n_m), section + ".breakdown_torque"};
     case Torque::Kind::user:
     case Torque::Kind::prescribed_speed:
-      // A driver's torque is whatever the mesh needs: it has no peak of its own.
+    case Torque::Kind::speed_controlled:
+      // A driver's or a controller's torque is whatever the mesh and the load
+      // need: it has no peak of its own.
       break;
   }
   return {0.0, std::string()};
@@ -132,10 +142,12 @@ void validate_speeds(const SimulationCase& c) {
     const auto [teeth, w] = gears[i];
     // The speed at which largest_mesh_step_s(teeth, w) is the step.
     const double fastest = 2.0 * pi / (kStepsPerMeshPeriod * teeth * step);
-    if (i == 0 && c.torque1.kind == Torque::Kind::prescribed_speed) {
-      // The driver's fastest speed, W + sum_i |a_i|.
+    if (i == 0 && has_speed_reference(c.torque1)) {
+      // The driver's (or the reference's) fastest speed, W + sum_i |a_i|,
+      // W the largest of a speed profile's.
       const Torque& d = c.torque1;
       double peak = std::fabs(d.mean_speed_rad_per_s);
+      for (double v : d.speed_profile_speeds_rad_per_s) peak = std::max(peak, std::fabs(v));
       for (double a : d.driver_speed_amplitudes_rad_per_s) peak += std::fabs(a);
       if (peak <= fastest) continue;
       throw InputError("torque1.mean_speed", digits(d.mean_speed_rad_per_s) + " rad/s",
@@ -175,7 +187,7 @@ void validate_forcing(const SimulationCase& c) {
                            " s per forcing period 2 pi / W, so that the torque is resolved; "
                            "a faster forcing needs a smaller integrator.step");
     };
-    if (torque->kind == Torque::Kind::prescribed_speed) {
+    if (has_speed_reference(*torque)) {
       // The driver's harmonics turn at n_i W.
       for (std::size_t i = 0; i < torque->driver_orders.size(); ++i) {
         check(std::string(name) + ".orders[" + std::to_string(i) + "]",
@@ -258,7 +270,8 @@ void validate_friction_smoothing(const SimulationCase& c) {
 // RK4's stability interval, or the first loaded contact diverges.
 void validate_frozen_damping(const SimulationCase& c) {
   const ModelOptions& m = c.model;
-  if (c.integrator.kind == IntegratorKind::adaptive || m.damping_update != DampingUpdate::frozen) {
+  if (c.integrator.kind == IntegratorKind::adaptive ||
+      resolved_damping_update(c) != DampingUpdate::frozen) {
     return;
   }
   const double speed = m.damping_reference_speed_m_s;

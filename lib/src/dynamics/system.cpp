@@ -39,10 +39,15 @@ double torque_at(const Torque& torque, double t_s) {
     }
     case Torque::Kind::user:
       return torque.user(t_s);
+    case Torque::Kind::profile:
+      return profile_at(torque.profile_times_s, torque.profile_torques_n_m, t_s).value;
     case Torque::Kind::prescribed_speed:
     case Torque::Kind::drag:
-      // The driver's torque depends on the mesh force and the drag on w2:
-      // GearSystem::rhs computes both from the state.
+    case Torque::Kind::speed_controlled:
+    case Torque::Kind::induction_motor:
+      // The driver's torque depends on the mesh force, the drag on w2, the
+      // controller's and the motor's on the driven body's motion: the
+      // systems' right-hand sides compute them from the state.
       break;
   }
   throw std::logic_error("torque_at of a torque that depends on the state");
@@ -66,12 +71,20 @@ double mean_torque_n_m(const Torque& torque, const char* field) {
           "constant, sinusoidal or harmonic: the mean of a torque function is not known");
     case Torque::Kind::prescribed_speed:
     case Torque::Kind::drag:
+    case Torque::Kind::speed_controlled:
+    case Torque::Kind::induction_motor:
+    case Torque::Kind::profile:
       break;
   }
-  throw InputError(std::string(field) + ".kind",
-                   torque.kind == Torque::Kind::drag ? "drag" : "prescribed-speed",
-                   "constant, sinusoidal or harmonic: a driver's torque and a drag follow the "
-                   "motion, so their mean is not known before the run");
+  const char* kind = torque.kind == Torque::Kind::drag               ? "drag"
+                     : torque.kind == Torque::Kind::speed_controlled ? "speed-controlled"
+                     : torque.kind == Torque::Kind::induction_motor  ? "induction-motor"
+                     : torque.kind == Torque::Kind::profile          ? "profile"
+                                                                     : "prescribed-speed";
+  throw InputError(std::string(field) + ".kind", kind,
+                   "constant, sinusoidal or harmonic: a driver's, a controller's or a motor's "
+                   "torque and a drag follow the motion, and a profile's mean depends on the "
+                   "run's length, so their mean is not known before the run");
 }
 
 GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table,
@@ -99,7 +112,9 @@ GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table,
   // are then one, bit for bit.
   lagrangian_ = c.model.mesh_force == MeshForce::lagrangian && constant_k_ == 0.0;
   driven_ = c.torque1.kind == Torque::Kind::prescribed_speed;
-  if (driven_ && control.resume) {
+  const bool controlled = c.torque1.kind == Torque::Kind::speed_controlled;
+  induction_ = c.torque1.kind == Torque::Kind::induction_motor;
+  if ((driven_ || controlled) && control.resume) {
     // A continued run carries theta1 on from where it stopped, whatever time
     // it restarts at (the steady state's runs restart theirs at 0).
     driver_theta0_ = control.resume->state.theta1_rad -
@@ -107,7 +122,9 @@ GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table,
   } else {
     driver_theta0_ = c.initial.theta1_rad;
   }
+  if (controlled) controller_ = std::make_shared<const SpeedController>(c, driver_theta0_);
   drag_ = c.torque2.kind == Torque::Kind::drag;
+  damping_update_ = resolved_damping_update(c);
   constant_torques_ =
       c.torque1.kind == Torque::Kind::constant && c.torque2.kind == Torque::Kind::constant;
   if (constant_torques_) torque_values_ = {c.torque1.constant_n_m, c.torque2.constant_n_m};
@@ -128,7 +145,7 @@ std::pair<double, double> GearSystem::torques(double t) const {
   if (!constant_torques_ && t != torque_time_) {
     torque_time_ = t;
     // The driver's torque and the drag are set by rhs from the state.
-    torque_values_ = {driven_ ? 0.0 : torque_at(case_.torque1, t),
+    torque_values_ = {driven_ || controller_ || induction_ ? 0.0 : torque_at(case_.torque1, t),
                       drag_ ? 0.0 : torque_at(case_.torque2, t)};
   }
   return torque_values_;
@@ -209,6 +226,8 @@ void GearSystem::rhs(double t, const State& y_in, const Mode& m, const ContactMe
   }
   const State& y = driven_ ? driven_state : y_in;
   if (drag_) t2 = drag_torque_n_m(case_.torque2, y[kW2]);
+  if (controller_) t1 = controller_->torque_n_m(t, y[kTheta1], y[kW1]);
+  if (induction_) t1 = induction_motor_torque_n_m(case_.torque1, y[kW1]);
   const double w1 = y[kW1];
   const double w2 = y[kW2];
   double moment1 = t1;
@@ -475,12 +494,11 @@ void GearSystem::classify_forces(const State& y, const ContactMemory& d, Mode& m
   }
 }
 
-OnsetDamping onset_damping(const ModelOptions& model, double approach_m_s) {
+OnsetDamping onset_damping(const ModelOptions& model, DampingUpdate update, double approach_m_s) {
   OnsetDamping onset;
   onset.impact_speed_m_s = std::max(approach_m_s, kSmallestImpactSpeed_m_s);
   // DampingUpdate: e and D of (32),(33) from this impact's Vi, from the
   // case's reference speed, or none.
-  const DampingUpdate update = model.damping_update;
   const double speed =
       update == DampingUpdate::frozen ? model.damping_reference_speed_m_s : onset.impact_speed_m_s;
   onset.restitution = restitution_coefficient(model.restitution, speed);
@@ -507,7 +525,7 @@ GearSystem::Onset GearSystem::damping_at_onset(const State& y, const Mode& m) co
           approach, pair_penetration(m, j, pair_position(m, y, j), dl, line_rate, x_rate).rate_m_s);
     }
   }
-  const OnsetDamping damping = onset_damping(case_.model, approach);
+  const OnsetDamping damping = onset_damping(case_.model, damping_update_, approach);
   onset.impact_speed_m_s = damping.impact_speed_m_s;
   onset.restitution = damping.restitution;
   ContactMemory& d = onset.damping;

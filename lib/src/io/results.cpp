@@ -158,10 +158,21 @@ void json_optional(std::string& out, const char* key, const std::optional<double
 
 }  // namespace
 
+std::string tacho_csv(const std::vector<double>& true_times_s,
+                      const std::vector<double>& emitted_times_s) {
+  std::string out = "pulse,t_s,t_emitted_s\n";
+  for (std::size_t k = 0; k < true_times_s.size(); ++k) {
+    out += std::to_string(k) + "," + format_data_number(true_times_s[k]) + "," +
+           format_data_number(emitted_times_s[k]) + "\n";
+  }
+  return out;
+}
+
 std::string summary_json(const SimulationSummary& s) {
   std::string out = "{\n";
   out += "  \"case\": " + json_string(s.case_name) + ",\n";
   out += "  \"integrator\": " + json_string(s.integrator) + ",\n";
+  out += "  \"damping_update\": " + json_string(name_of(kDampingUpdates, s.damping_update)) + ",\n";
   if (s.friction_law == FrictionLaw::constant) {
     json_number(out, "friction_coefficient", s.friction_coefficient);
   } else {
@@ -213,6 +224,7 @@ std::string summary_json(const SimulationSummary& s) {
   json_number(out, "ledger_scale_J", s.ledger_scale_j);
   json_number(out, "final_w1_rad_s", s.final_w1_rad_per_s);
   json_number(out, "final_w2_rad_s", s.final_w2_rad_per_s);
+  if (s.speed_drift_max_rel) json_optional(out, "speed_drift_max_rel", s.speed_drift_max_rel);
   if (s.rattle) {
     // Under a kinematic driver only, so that other runs' summaries keep their bytes.
     const RattleSummary& r = *s.rattle;

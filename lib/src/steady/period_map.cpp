@@ -14,12 +14,12 @@ GearPeriodMap::GearPeriodMap(const SimulationCase& c, const StiffnessTable& tabl
                              const SteadySettings& settings, long long steps_per_period)
     : case_(c), table_(&table) {
   const SteadyTiming timing = steady_timing(c, table, settings);
-  if (c.model.damping_update == DampingUpdate::each_impact) {
+  if (resolved_damping_update(c) == DampingUpdate::each_impact) {
     throw InputError("model.damping_update", "each_impact",
                      "off or frozen for a period map of (s, s'): under each_impact the Hertzian D "
                      "of the last impact is part of the state");
   }
-  if (c.model.damping_update == DampingUpdate::frozen &&
+  if (resolved_damping_update(c) == DampingUpdate::frozen &&
       c.model.damping_stiffness == DampingStiffness::pitch_pair_at_impact) {
     throw InputError("model.damping_stiffness", "pitch_pair_at_impact",
                      "current_pair or hertz for a period map of (s, s'): the pitch pair's Ke is "

@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -23,11 +24,23 @@
 
 namespace gearimpact {
 
-// One external torque T_i(t), N m: a mean plus a fluctuation; or, on gear 1,
-// a kinematic driver that prescribes its motion; or, on gear 2, a drag that
-// opposes its rotation (docs/model.md, section Rattle of a loose gear).
+// One external torque T_i(t), N m: a mean plus a fluctuation, or a table in
+// time; or, on gear 1, a kinematic driver that prescribes its motion, a motor
+// with a speed controller or an induction motor; or, on gear 2, a drag that
+// opposes its rotation (docs/model.md, section Rattle of a loose gear;
+// docs/vibration.md, section Drive and load).
 struct Torque {
-  enum class Kind { constant, sinusoidal, harmonic, user, prescribed_speed, drag };
+  enum class Kind {
+    constant,
+    sinusoidal,
+    harmonic,
+    user,
+    prescribed_speed,
+    drag,
+    speed_controlled,
+    induction_motor,
+    profile
+  };
   Kind kind = Kind::constant;
   double constant_n_m = 0.0;  // Kind::constant: T
   // Kind::sinusoidal and Kind::harmonic: the mean T_m the fluctuation is added to.
@@ -52,11 +65,74 @@ struct Torque {
   double drag_constant_n_m = 0.0;
   double drag_viscous_n_m_s = 0.0;
   double drag_speed_scale_rad_per_s = 0.1;
+  // Kind::prescribed_speed and Kind::speed_controlled: the speed W(t) that
+  // replaces the constant mean_speed, linear between the points (t_i, W_i)
+  // and held beyond the first and the last; a time given twice is a step
+  // (refused for a kinematic driver, which would need an infinite torque).
+  // Empty: W(t) = mean_speed. The orders still turn at n_i mean_speed.
+  std::vector<double> speed_profile_times_s;
+  std::vector<double> speed_profile_speeds_rad_per_s;
+  // Kind::speed_controlled (gear 1 only): T = T_ff + K_p e + K_i Int e dt,
+  // e = W_ref(t) - w of the driven body (the motor with shafts, the pinion
+  // otherwise), W_ref the driver's motion above; K_p = 2 zeta_c w_c J_eq,
+  // K_i = w_c^2 J_eq (gearimpact/dynamics/drive.hpp).
+  double controller_bandwidth_rad_per_s = 2.0 * pi * 10.0;  // w_c = 2 pi f_c, f_c = 10 Hz
+  double controller_damping_ratio = 1.0;                    // zeta_c
+  // Kind::induction_motor (gear 1 only): T = 2 T_b / (s / s_b + s_b / s),
+  // s = 1 - w / w_s (Kloss's form).
+  double synchronous_speed_rad_per_s = 0.0;  // w_s
+  double breakdown_torque_n_m = 0.0;         // T_b
+  double breakdown_slip = 0.0;               // s_b
+  // Kind::profile: T(t) linear between the points (t_i, T_i), held beyond
+  // the first and the last; a time given twice is a step (a load step).
+  std::vector<double> profile_times_s;
+  std::vector<double> profile_torques_n_m;
 };
 
+// A table linear between its points (t_i, v_i), held before the first and
+// after the last, a time given twice a step (at the step the left value):
+// its value, slope and integral from 0 to t >= 0. The times must be
+// non-decreasing and >= 0 (the schema's rows and validate_relations).
+struct ProfileValue {
+  double integral = 0.0;
+  double value = 0.0;
+  double slope = 0.0;
+};
+inline ProfileValue profile_at(const std::vector<double>& times, const std::vector<double>& values,
+                               double t_s) {
+  double integral = 0.0;
+  double prev_t = 0.0;
+  double prev_v = values.front();  // held from 0 to the first point
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    const double ti = times[i];
+    const double vi = values[i];
+    if (t_s <= ti) {
+      const double span = ti - prev_t;
+      const double slope = span > 0.0 ? (vi - prev_v) / span : 0.0;
+      const double v = prev_v + slope * (t_s - prev_t);
+      // The trapezoid is exact for a linear piece.
+      integral += 0.5 * (prev_v + v) * (t_s - prev_t);
+      return {integral, v, slope};
+    }
+    integral += 0.5 * (prev_v + vi) * (ti - prev_t);
+    prev_t = ti;
+    prev_v = vi;
+  }
+  integral += prev_v * (t_s - prev_t);
+  return {integral, prev_v, 0.0};
+}
+
+// Whether torque1 follows the driver's motion below: a kinematic driver
+// (prescribed-speed) or a speed controller's reference.
+inline bool has_speed_reference(const Torque& t) {
+  return t.kind == Torque::Kind::prescribed_speed || t.kind == Torque::Kind::speed_controlled;
+}
+
 // The motion a Kind::prescribed_speed driver gives gear 1 at time t (absolute,
-// so that a continued run keeps the same driver), in closed form:
+// so that a continued run keeps the same driver), and the reference of a
+// Kind::speed_controlled one, in closed form:
 //   w1 = W + sum_i a_i sin(W_i t + phi_i),  W_i = n_i W,
+// with W(t) of speed_profile in place of W when a profile is given,
 //   theta1 = theta1(0) + W t + sum_i (a_i / W_i) (cos(phi_i) - cos(W_i t + phi_i)),
 //   w1' = sum_i a_i W_i cos(W_i t + phi_i).
 struct DriverMotion {
@@ -67,6 +143,13 @@ struct DriverMotion {
 inline DriverMotion driver_motion(const Torque& driver, double theta0_rad, double t_s) {
   const double w = driver.mean_speed_rad_per_s;
   DriverMotion m{theta0_rad + w * t_s, w, 0.0};
+  if (!driver.speed_profile_times_s.empty()) {
+    // W(t) of the profile in place of W: theta1(0) + Int_0^t W dt (exact
+    // for the linear pieces: quadratic in t on a ramp).
+    const ProfileValue p =
+        profile_at(driver.speed_profile_times_s, driver.speed_profile_speeds_rad_per_s, t_s);
+    m = {theta0_rad + p.integral, p.value, p.slope};
+  }
   for (std::size_t i = 0; i < driver.driver_speed_amplitudes_rad_per_s.size(); ++i) {
     const double a = driver.driver_speed_amplitudes_rad_per_s[i];
     const double wi = driver.driver_orders[i] * w;
@@ -117,6 +200,10 @@ inline constexpr std::array<NamedValue<MeshForce>, 2> kMeshForces{{
 
 // When the Hertzian damping factor D of (32) is set (docs/steady-state.md section 1).
 enum class DampingUpdate {
+  // each_impact with rigid bearings (the paper's torsional model, on which
+  // the reproduction rests), frozen with elastic ones (signal runs, whose
+  // level must not depend on the start): resolved_damping_update below.
+  automatic,
   // At every impact from e(Vi), carried with the state while no impact comes
   // (the paper's; a continued run or a sweep carries the last impact's D).
   each_impact,
@@ -126,7 +213,10 @@ enum class DampingUpdate {
   // D = 0: no Hertzian damping (the mesh damper can stand in for it).
   off,
 };
-inline constexpr std::array<NamedValue<DampingUpdate>, 3> kDampingUpdates{{
+inline constexpr std::array<NamedValue<DampingUpdate>, 4> kDampingUpdates{{
+    {DampingUpdate::automatic, "auto",
+     "each-impact with rigid bearings (the paper's), frozen with elastic bearings (signal runs: "
+     "D does not depend on the start)"},
     {DampingUpdate::each_impact, "each-impact",
      "D from e(Vi) at every impact, carried with the state (the paper's)"},
     {DampingUpdate::frozen, "frozen",
@@ -153,7 +243,7 @@ struct ModelOptions {
   // zeta of the linear viscous mesh damper c = 2 zeta sqrt(k_mean m_e) on s'
   // (mesh.hpp); 0 leaves it out.
   double mesh_damping_ratio = 0.0;
-  DampingUpdate damping_update = DampingUpdate::each_impact;
+  DampingUpdate damping_update = DampingUpdate::automatic;
   double damping_reference_speed_m_s = 1.0;  // V_ref of DampingUpdate::frozen, > 0
 };
 
@@ -271,6 +361,37 @@ struct IntegratorSettings {
   int output_every = 1;  // keep every n-th row of the time series
 };
 
+// The bound on a run's speed drift (docs/vibration.md, section Drive and
+// load): the mean pinion speed over each whole revolution that begins after
+// the start has settled, against the reference's mean over it.
+struct Drive {
+  double speed_tolerance = 1e-3;
+  // The start's transient (a controller's integral taking up the friction,
+  // the first contacts) is not drift: revolutions that begin before this
+  // time are not checked. 0.1 s: a 10 Hz loop's error has fallen by e^-6.3.
+  double settle_s = 0.1;
+};
+
+// A tacho on one shaft (docs/vibration.md, "Tacho"): an edge where the
+// shaft's angle crosses offset + 2 pi k / pulses_per_revolution upward (k
+// whole, the levels above its angle at the start), located as an event on
+// the run's true angle. Planar runs only; 0 pulses: no tacho.
+enum class TachoShaft { pinion, wheel, motor };
+inline constexpr std::array<NamedValue<TachoShaft>, 3> kTachoShafts{{
+    {TachoShaft::pinion, "pinion", "the pinion's angle theta1"},
+    {TachoShaft::wheel, "wheel", "the wheel's angle theta2"},
+    {TachoShaft::motor, "motor", "the motor's angle ([shafts]; the pinion's without shafts)"},
+}};
+struct Tacho {
+  int pulses_per_revolution = 0;
+  TachoShaft shaft = TachoShaft::pinion;
+  double offset_rad = 0.0;
+  // The standard deviation of a Gaussian jitter of each edge's time, seeded:
+  // the emitted times (the true ones are kept jitter-free).
+  double jitter_s = 0.0;
+  std::uint32_t seed = 0;
+};
+
 struct SimulationCase {
   std::string name;
   GearPair gears;
@@ -297,6 +418,16 @@ struct SimulationCase {
   // naming these keys (validate_run_keys of case/schema.hpp), and write_case_file writes the pair
   // alone. Empty: nothing a run needs is missing.
   std::vector<std::string> run_keys_absent;
+  Drive drive;
+  Tacho tacho;
 };
+
+// The reading of D that a run takes: model.damping_update, with "auto"
+// resolved by the bearings (each-impact rigid, frozen elastic).
+inline DampingUpdate resolved_damping_update(const SimulationCase& c) {
+  if (c.model.damping_update != DampingUpdate::automatic) return c.model.damping_update;
+  return c.bearings.kind == BearingKind::elastic ? DampingUpdate::frozen
+                                                 : DampingUpdate::each_impact;
+}
 
 }  // namespace gearimpact

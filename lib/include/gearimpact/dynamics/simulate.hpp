@@ -143,6 +143,13 @@ struct PlanarEnergies {
 struct SimulationSummary {
   std::string case_name;
   std::string integrator;
+  // The reading of the Hertzian D the run took (model.damping_update with
+  // "auto" resolved by the bearings: resolved_damping_update).
+  DampingUpdate damping_update = DampingUpdate::each_impact;
+  // The drift check (SpeedDriftMonitor, gearimpact/dynamics/drive.hpp): the
+  // largest |mean pinion speed / reference mean - 1| over the run's whole
+  // revolutions; none before one. A planar run above drive.speed_tolerance warns.
+  std::optional<double> speed_drift_max_rel;
   // model.friction_coefficient, f of the constant law: the coefficient of every
   // pair under friction_law = "constant" only.
   double friction_coefficient = 0.0;
@@ -237,6 +244,9 @@ struct SimulationResult {
   // Its samples (PlanarSample) with RunControl::sample_rate_hz and keep_samples.
   std::vector<PlanarSample> planar_samples;
   std::optional<PlanarState> planar_final_state;
+  // With [tacho] pulses_per_revolution > 0 (planar runs): the true edge
+  // times, jitter-free (signals::tacho_jitter gives the emitted ones).
+  std::vector<double> tacho_times_s;
   double start_time_s = 0.0;  // 0, or the time a continued run resumed at
 };
 

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/dynamics/drive.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
@@ -113,13 +114,13 @@ inline double pair_friction_coefficient(const ModelOptions& model, double face_w
 
 // (32),(33) at the onset of a contact approached at d(delta)/dt = approach:
 // Vi (floored, as D grows without bound as Vi -> 0), e(Vi) and D/K under the
-// case's damping update.
+// damping update (resolved: resolved_damping_update, never "auto").
 struct OnsetDamping {
   double impact_speed_m_s = 0.0;
   double restitution = 0.0;
   double damping_per_stiffness_s_m = 0.0;
 };
-OnsetDamping onset_damping(const ModelOptions& model, double approach_m_s);
+OnsetDamping onset_damping(const ModelOptions& model, DampingUpdate update, double approach_m_s);
 
 class GearSystem {
  public:
@@ -242,6 +243,10 @@ class GearSystem {
   // theta1(t) = driver_theta0_ + the driver's closed form from 0 to t.
   double driver_theta0_ = 0.0;
   bool drag_ = false;  // torque2 a drag, from w2
+  // torque1 a speed controller's (none otherwise) or an induction motor's, from theta1 and w1.
+  std::shared_ptr<const SpeedController> controller_;
+  bool induction_ = false;
+  DampingUpdate damping_update_ = DampingUpdate::each_impact;  // resolved
   // Both torques constant: torque_values_ holds them from the start.
   bool constant_torques_ = false;
   // A system belongs to one run, so one thread.

@@ -52,6 +52,10 @@ std::string planar_samples_csv_header();
 void append_planar_sample(std::string& out, const PlanarSample& sample);
 // The summary as a JSON object.
 std::string summary_json(const SimulationSummary& summary);
+// A tacho's edges, one row each: pulse,t_s,t_emitted_s, the true (jitter-free)
+// time and the emitted one (with the seeded jitter; equal without).
+std::string tacho_csv(const std::vector<double>& true_times_s,
+                      const std::vector<double>& emitted_times_s);
 // A driven run's struck impacts (struck_impacts), one row each:
 // t_s,flank,impact_speed_m_s with flank N1 (drive) or N2 (back).
 std::string rattle_impacts_csv(const std::vector<ImpactRecord>& struck);
