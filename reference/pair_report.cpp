@@ -26,7 +26,6 @@
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "gearimpact/stiffness/mesh_tables.hpp"
 #include "gearimpact/stiffness/static_transmission_error.hpp"
-#include "gearimpact/stiffness/tooth_state.hpp"
 #include "gearimpact/stiffness/time_varying_stiffness.hpp"
 #include "gearimpact/stiffness/tooth_state.hpp"
 #include "mesh_stiffness_figure.hpp"
@@ -323,8 +322,8 @@ std::string load_sharing_section(const GearPair& pair, const StiffnessModel& mod
                                  const std::string& modified_title = "") {
   const std::vector<LoadShareSample> shares = load_sharing(pair, model, points);
   const ContactSegment segment = contact_segment(pair);
-  std::string csv = std::string("x1_mm,path_fraction,pairs,share") +
-                    (modified ? ",share_modified" : "") + "\n";
+  std::string csv =
+      std::string("x1_mm,path_fraction,pairs,share") + (modified ? ",share_modified" : "") + "\n";
   double least = 1.0;
   for (std::size_t i = 0; i < shares.size(); ++i) {
     const LoadShareSample& s = shares[i];
@@ -336,16 +335,16 @@ std::string load_sharing_section(const GearPair& pair, const StiffnessModel& mod
     least = std::min(least, s.share);
   }
   write_file_atomically((dir / "load_sharing.csv").string(), csv);
-  Figure figure{"load_sharing",
-                "Load sharing: one tooth pair's share of the mesh force along its path (" +
-                    to_string(model.kind) + ")",
-                "position on the path of contact X_1, mm (pitch point dashed)",
-                "share of the mesh force",
-                {"set key off", "set yrange [0:1.05]",
-                 "set arrow from " + number(pitch_point_position(pair) * 1e3, 8) +
-                     ", graph 0 to " + number(pitch_point_position(pair) * 1e3, 8) +
-                     ", graph 1 nohead dt 2 lc rgb 'gray30'"},
-                {"'load_sharing.csv' using 1:4 with lines lw 2"}};
+  Figure figure{
+      "load_sharing",
+      "Load sharing: one tooth pair's share of the mesh force along its path (" +
+          to_string(model.kind) + ")",
+      "position on the path of contact X_1, mm (pitch point dashed)",
+      "share of the mesh force",
+      {"set key off", "set yrange [0:1.05]",
+       "set arrow from " + number(pitch_point_position(pair) * 1e3, 8) + ", graph 0 to " +
+           number(pitch_point_position(pair) * 1e3, 8) + ", graph 1 nohead dt 2 lc rgb 'gray30'"},
+      {"'load_sharing.csv' using 1:4 with lines lw 2"}};
   std::string text =
       "One tooth pair's share of the mesh force as it crosses the path of contact, the "
       "loaded pairs deflecting alike, k(X1) / sum of k over the pairs in contact (model " +
@@ -365,12 +364,13 @@ std::string load_sharing_section(const GearPair& pair, const StiffnessModel& mod
       least_modified = std::min(least_modified, m.share);
       most_modified = std::max(most_modified, m.share);
     }
-    text += "\nColumn `share_modified` (blue in the figure): the share of pair 0 (pinion tooth 0 "
-            "against wheel tooth 0) with the case's modifications and faults at the load of the "
-            "section \"Static transmission error\", from that STE's balance sum k max(0, delta - "
-            "e) = F at each position (0 where its gap keeps it out of contact): from " +
-            number(least_modified, 4) + " to " + number(most_modified, 4) +
-            ", against the unmodified column's " + number(least, 4) + " to 1.\n";
+    text +=
+        "\nColumn `share_modified` (blue in the figure): the share of pair 0 (pinion tooth 0 "
+        "against wheel tooth 0) with the case's modifications and faults at the load of the "
+        "section \"Static transmission error\", from that STE's balance sum k max(0, delta - "
+        "e) = F at each position (0 where its gap keeps it out of contact): from " +
+        number(least_modified, 4) + " to " + number(most_modified, 4) +
+        ", against the unmodified column's " + number(least, 4) + " to 1.\n";
   }
   render(dir, figure);
   return text;
@@ -460,13 +460,16 @@ std::string ste_section(const SimulationCase& c, const ReportLoad& load, int sam
   std::string text =
       "The loaded static transmission error of the case's pair with its modifications and "
       "faults, beside the healthy pair without modifications (`gearimpact ste` at T1 = " +
-      number(load.torque1_n_m, 6) + " N m, F = " + number(ste.force_n, 6) + " N on the drive "
-      "flanks, " + load.origin + "; " + std::to_string(samples) + " angles per mesh period over " +
+      number(load.torque1_n_m, 6) + " N m, F = " + number(ste.force_n, 6) +
+      " N on the drive "
+      "flanks, " +
+      load.origin + "; " + std::to_string(samples) + " angles per mesh period over " +
       std::to_string(ste.mesh_periods) +
       " mesh periods). Figures `ste.png` and `ste_load_sharing.png`, data `ste.csv`, "
       "`ste_unmodified.csv`, `ste_pairs.csv`, `ste_unmodified_pairs.csv` and `ste_summary.json` "
       "(as `gearimpact ste` writes them).\n\n";
-  text += "| | STE min (um) | STE max (um) | peak-to-peak (um) | mean (um) | quasi-static peak / F |\n";
+  text +=
+      "| | STE min (um) | STE max (um) | peak-to-peak (um) | mean (um) | quasi-static peak / F |\n";
   text += "|---|---|---|---|---|---|\n";
   text += row("this pair", ste, texts.quasi_static_force_ratio);
   text += row("healthy, unmodified", texts.unmodified, texts.unmodified_quasi_static_force_ratio);
@@ -584,8 +587,9 @@ ReportLoad report_load(const ReportOptions& o, const SimulationCase& c, bool run
     }
   }
   const double t = kIsoReferenceLineLoad * c.gears.face_width_m * pitch_radius(c.gears, Gear::one);
-  return {t, "ISO 6336-1's reference line load F_t / b = 100 N/mm at the reference circle: the "
-             "case gives no mean torque (--torque sets one)"};
+  return {t,
+          "ISO 6336-1's reference line load F_t / b = 100 N/mm at the reference circle: the "
+          "case gives no mean torque (--torque sets one)"};
 }
 
 void write_report(const ReportOptions& o) {
@@ -660,9 +664,8 @@ void write_report(const ReportOptions& o) {
   if (changed) {
     const auto healthy = std::make_shared<const StiffnessTable>(c.gears, c.model.stiffness);
     const MeshTables tables(c.gears, c.model.stiffness, c.faults, healthy);
-    const std::vector<LoadShareSample> shares =
-        loaded_load_sharing(c.gears, c.modifications, load.torque1_n_m, tables,
-                            contact_positions(c.gears, o.samples));
+    const std::vector<LoadShareSample> shares = loaded_load_sharing(
+        c.gears, c.modifications, load.torque1_n_m, tables, contact_positions(c.gears, o.samples));
     std::string title = modifications.empty() ? "faulted" : "modified";
     if (!modifications.empty() && !c.faults.empty()) title = "faulted, modified";
     sharing = load_sharing_section(c.gears, c.model.stiffness, o.samples, dir, &shares,
@@ -698,8 +701,9 @@ void write_report(const ReportOptions& o) {
   if (!modifications.empty()) {
     md += "Modifications ([modifications]):\n\n";
     for (const std::string& item : modifications) md += "- " + item + "\n";
-    md += "\nThe sections \"Load sharing\" and \"Static transmission error\" show the pair "
-          "with them beside the pair without.\n\n";
+    md +=
+        "\nThe sections \"Load sharing\" and \"Static transmission error\" show the pair "
+        "with them beside the pair without.\n\n";
   }
   md += "## Warnings\n\n";
   if (warnings.empty()) md += "None.\n";

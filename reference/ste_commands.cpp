@@ -81,9 +81,8 @@ SteTexts ste_texts(const SimulationCase& c, double torque1_n_m, int points_per_m
       quasi_static_peak_force_ratio(c.gears, c.modifications, torque1_n_m, tables);
   texts.unmodified_quasi_static_force_ratio = quasi_static_peak_force_ratio(
       c.gears, Modifications{}, torque1_n_m, MeshTables(c.gears, c.model.stiffness, {}, healthy));
-  texts.summary_json =
-      ste_summary_json(texts.modified, unmodified, texts.quasi_static_force_ratio,
-                       texts.unmodified_quasi_static_force_ratio);
+  texts.summary_json = ste_summary_json(texts.modified, unmodified, texts.quasi_static_force_ratio,
+                                        texts.unmodified_quasi_static_force_ratio);
   return texts;
 }
 

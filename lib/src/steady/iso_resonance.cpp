@@ -105,9 +105,9 @@ double quasi_static_force_ratio(const SimulationCase& c, const StiffnessTable& t
   if (!is_unmodified(c.modifications) || !c.faults.empty()) {
     // Gaps and faulted teeth: the peak of the pair's own loaded static transmission error, under
     // the mean load on the drive flanks. `table` is the healthy pair's, shared without a copy.
-    const MeshTables tables(c.gears, c.model.stiffness, c.faults,
-                            std::shared_ptr<const StiffnessTable>(
-                                std::shared_ptr<const StiffnessTable>(), &table));
+    const MeshTables tables(
+        c.gears, c.model.stiffness, c.faults,
+        std::shared_ptr<const StiffnessTable>(std::shared_ptr<const StiffnessTable>(), &table));
     return quasi_static_peak_force_ratio(c.gears, c.modifications,
                                          std::fabs(mean_torque_n_m(c.torque1, "torque1")), tables);
   }
