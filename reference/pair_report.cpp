@@ -19,6 +19,7 @@
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/geometry/rack_generation.hpp"
+#include "gearimpact/geometry/tooth_identity.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/stiffness/comparison.hpp"
@@ -319,7 +320,8 @@ std::string stiffness_section(const GearPair& pair, const StiffnessComparison& c
 std::string load_sharing_section(const GearPair& pair, const StiffnessModel& model, int points,
                                  const std::filesystem::path& dir,
                                  const std::vector<LoadShareSample>* modified = nullptr,
-                                 const std::string& modified_title = "") {
+                                 const std::string& modified_title = "",
+                                 TeethInContact teeth = {}) {
   const std::vector<LoadShareSample> shares = load_sharing(pair, model, points);
   const ContactSegment segment = contact_segment(pair);
   std::string csv =
@@ -365,8 +367,11 @@ std::string load_sharing_section(const GearPair& pair, const StiffnessModel& mod
       most_modified = std::max(most_modified, m.share);
     }
     text +=
-        "\nColumn `share_modified` (blue in the figure): the share of pair 0 (pinion tooth 0 "
-        "against wheel tooth 0) with the case's modifications and faults at the load of the "
+        "\nColumn `share_modified` (blue in the figure): the share of the pair of pinion tooth " +
+        std::to_string(teeth.pinion_tooth) + " and wheel tooth " +
+        std::to_string(teeth.wheel_tooth) +
+        " (the first faulted tooth's, else teeth 0) with the case's modifications and faults at "
+        "the load of the "
         "section \"Static transmission error\", from that STE's balance sum k max(0, delta - "
         "e) = F at each position (0 where its gap keeps it out of contact): from " +
         number(least_modified, 4) + " to " + number(most_modified, 4) +
@@ -664,12 +669,19 @@ void write_report(const ReportOptions& o) {
   if (changed) {
     const auto healthy = std::make_shared<const StiffnessTable>(c.gears, c.model.stiffness);
     const MeshTables tables(c.gears, c.model.stiffness, c.faults, healthy);
-    const std::vector<LoadShareSample> shares = loaded_load_sharing(
-        c.gears, c.modifications, load.torque1_n_m, tables, contact_positions(c.gears, o.samples));
+    // The pair of the first faulted tooth (pair -i holds tooth i of either gear), else pair 0.
+    const int k = c.faults.empty() ? 0 : -c.faults.front().tooth;
+    const std::vector<LoadShareSample> shares =
+        loaded_load_sharing(c.gears, c.modifications, load.torque1_n_m, tables,
+                            contact_positions(c.gears, o.samples), k);
+    const TeethInContact teeth = teeth_of_pair(c.gears, Region::n1, k);
     std::string title = modifications.empty() ? "faulted" : "modified";
     if (!modifications.empty() && !c.faults.empty()) title = "faulted, modified";
     sharing = load_sharing_section(c.gears, c.model.stiffness, o.samples, dir, &shares,
-                                   title + ", T_1 = " + number(load.torque1_n_m, 4) + " N m");
+                                   title + ", teeth " + std::to_string(teeth.pinion_tooth) + "/" +
+                                       std::to_string(teeth.wheel_tooth) +
+                                       ", T_1 = " + number(load.torque1_n_m, 4) + " N m",
+                                   teeth);
     progress.done("load sharing");
     ste = ste_section(c, load, o.samples, dir);
     progress.done("static transmission error");

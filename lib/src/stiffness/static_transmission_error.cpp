@@ -88,6 +88,14 @@ double pair_stiffness(const MeshTables& tables, int k, double x_m, bool below = 
   return table->stiffness_and_derivative_in_part(x_m, part - 1).stiffness_n_per_m;
 }
 
+// Options that leave only the torque to check: no angles are sampled over a period.
+StaticTransmissionErrorOptions torque_only() {
+  StaticTransmissionErrorOptions options;
+  options.points_per_mesh_period = 2;
+  options.mesh_periods = 1;
+  return options;
+}
+
 }  // namespace
 
 double solve_deflection(const std::vector<PairSpring>& springs, double force_n) {
@@ -234,13 +242,13 @@ StaticTransmissionError static_transmission_error(const GearPair& pair, const Mo
 
 std::vector<LoadShareSample> loaded_load_sharing(const GearPair& pair, const Modifications& m,
                                                  double torque1_n_m, const MeshTables& tables,
-                                                 const std::vector<double>& positions) {
-  validate_static_transmission_error(pair, m, torque1_n_m, {});
+                                                 const std::vector<double>& positions, int k) {
+  validate_static_transmission_error(pair, m, torque1_n_m, torque_only());
   const double force = torque1_n_m / base_radius(pair, Gear::one);
   const MeshLayout layout(pair, CoastPhase::half_base_pitch);
   const ToothGaps gaps(pair, m);
-  const PairStiffnessFunction stiffness = [&tables](int k, double x_m) {
-    return pair_stiffness(tables, k, x_m);
+  const PairStiffnessFunction stiffness = [&tables](int pair_k, double x_m) {
+    return pair_stiffness(tables, pair_k, x_m);
   };
   std::vector<LoadShareSample> shares;
   std::vector<PairSpring> springs;
@@ -250,12 +258,20 @@ std::vector<LoadShareSample> loaded_load_sharing(const GearPair& pair, const Mod
                        "positions in the contact segment [" + format_number(layout.start_m()) +
                            ", " + format_number(layout.end_m()) + "] m");
     }
+    // Pair k at X1: X_k = reference + k t0 (MeshLayout). Rounding can leave it a few ulps
+    // outside the segment at its ends, where it is in contact: move the reference in.
+    double reference = x - k * layout.base_pitch_m();
+    while (layout.position_m(reference, k) < layout.start_m()) {
+      reference = std::nextafter(reference, INFINITY);
+    }
+    while (layout.position_m(reference, k) > layout.end_m()) {
+      reference = std::nextafter(reference, -INFINITY);
+    }
     StePoint p;
-    // Pair 0 at X1: MeshLayout's X of pair 0 is the reference position itself.
-    balance_at(pair, layout, gaps, x, stiffness, force, springs, p);
+    balance_at(pair, layout, gaps, reference, stiffness, force, springs, p);
     double share = 0.0;
     for (std::size_t j = 0; j < p.pairs; ++j) {
-      if (p.k[j] == 0) share = p.share[j];
+      if (p.k[j] == k) share = p.share[j];
     }
     shares.push_back({x, static_cast<int>(p.pairs), share});
   }
@@ -264,9 +280,7 @@ std::vector<LoadShareSample> loaded_load_sharing(const GearPair& pair, const Mod
 
 double quasi_static_peak_force_ratio(const GearPair& pair, const Modifications& m,
                                      double torque1_n_m, const MeshTables& tables) {
-  StaticTransmissionErrorOptions options;
-  options.faulted = tables.distinct();
-  validate_static_transmission_error(pair, m, torque1_n_m, options);
+  validate_static_transmission_error(pair, m, torque1_n_m, torque_only());
   const double force = torque1_n_m / base_radius(pair, Gear::one);
   const MeshLayout layout(pair, CoastPhase::half_base_pitch);
   const ToothGaps gaps(pair, m);

@@ -124,14 +124,15 @@ StaticTransmissionError static_transmission_error(const GearPair& pair, const Mo
 
 // Load sharing with the modifications and faults under the pinion torque T1: at each X1 of
 // `positions` (m from C1 on N1, in the contact segment), the balance above at the angle that puts
-// pair 0 (pinion tooth 0 against wheel tooth 0) at X1, and that pair's share F_0 / F of the load
-// |T1| / Rb1 (0 where its gap keeps it out of contact); `pairs` counts the pairs in the contact
-// segment. Without gaps or faults the share is k(X1) / sum k of load_sharing
-// (time_varying_stiffness.hpp). Throws as validate_static_transmission_error for the torque, and
-// InputError naming "positions" for a position outside the contact segment.
+// pair k (MeshLayout's index on N1: pinion tooth -k mod z1 against wheel tooth -k mod z2,
+// teeth_of_pair) at X1, and that pair's share F_k / F of the load T1 / Rb1 (0 where its gap
+// keeps it out of contact); `pairs` counts the pairs in the contact segment. Without gaps or faults
+// the share is k(X1) / sum k of load_sharing (time_varying_stiffness.hpp). Throws InputError naming
+// "torque" as validate_static_transmission_error does, and "positions" for a position outside the
+// contact segment.
 std::vector<LoadShareSample> loaded_load_sharing(const GearPair& pair, const Modifications& m,
                                                  double torque1_n_m, const MeshTables& tables,
-                                                 const std::vector<double>& positions);
+                                                 const std::vector<double>& positions, int k = 0);
 
 // The zero-speed limit of the largest mesh force over the load F = |T1| / Rb1 of the drive
 // flanks, from the loaded static transmission error: in a slow run the deflection follows the
@@ -143,8 +144,8 @@ std::vector<LoadShareSample> loaded_load_sharing(const GearPair& pair, const Mod
 // at least 1 (where a pair leaves or a gap holds the entering pair off, the force does not rise).
 // An event with no pair carrying just before (missing teeth) is an impact, not a quasi-static
 // peak, and is left out. For a pair without gaps or faults it is K_after / K_before at the entry
-// (quasi_static_force_ratio of steady/iso_resonance.hpp). Throws as
-// validate_static_transmission_error.
+// (quasi_static_force_ratio of steady/iso_resonance.hpp). Throws InputError naming "torque" as
+// validate_static_transmission_error does.
 double quasi_static_peak_force_ratio(const GearPair& pair, const Modifications& m,
                                      double torque1_n_m, const MeshTables& tables);
 
