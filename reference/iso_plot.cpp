@@ -1,5 +1,6 @@
 #include "iso_plot.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
@@ -9,9 +10,27 @@
 
 namespace gearimpact::cli {
 
+namespace {
+
+constexpr int kBandIntervals = 400;
+
+}  // namespace
+
+double highest_iso_kv(const IsoScale& scale, double n_max, double from, double to) {
+  double highest = 0.0;
+  for (int i = 0; i <= kBandIntervals; ++i) {
+    const double n = n_max * i / kBandIntervals;
+    if (n < from || n > to) continue;
+    highest = std::max(
+        highest,
+        iso_dynamic_factor_perfect_gears(n, scale.contact_ratio, scale.line_load_n_per_m).value);
+  }
+  return highest;
+}
+
 void write_iso_kv_band(const std::filesystem::path& file, const IsoScale& scale, double n_max) {
   std::string csv = "iso_resonance_ratio,iso_kv_perfect_gears\n";
-  constexpr int intervals = 400;
+  constexpr int intervals = kBandIntervals;
   for (int i = 0; i <= intervals; ++i) {
     const double n = n_max * i / intervals;
     csv += format_data_number(n) + "," +

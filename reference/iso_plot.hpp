@@ -13,6 +13,9 @@ namespace gearimpact::cli {
 
 // Writes FILE: N and ISO's K_v of perfect gears on 401 points from 0 to n_max.
 void write_iso_kv_band(const std::filesystem::path& file, const IsoScale& scale, double n_max);
+// The largest K_v among those points with N in [from, to] (0 for none): what the band shows of
+// ISO's K_v over that range, for the figure's y range.
+double highest_iso_kv(const IsoScale& scale, double n_max, double from, double to);
 
 // The figure `name`: from `data` (CSV with a header) the dynamic factor in column df_column
 // against N in n_column, up and down told apart by the word in direction_column; ISO's K_v from

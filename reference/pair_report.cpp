@@ -12,17 +12,21 @@
 
 #include "commands.hpp"
 #include "gearimpact/case/schema.hpp"
+#include "gearimpact/case/units.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/geometry/rack_generation.hpp"
+#include "gearimpact/geometry/tooth_identity.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/stiffness/comparison.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
+#include "gearimpact/stiffness/mesh_tables.hpp"
+#include "gearimpact/stiffness/static_transmission_error.hpp"
 #include "gearimpact/stiffness/time_varying_stiffness.hpp"
 #include "gearimpact/stiffness/tooth_state.hpp"
 #include "mesh_stiffness_figure.hpp"
@@ -39,11 +43,23 @@ constexpr double kNPerUm = 1e6;
 // The most rows the time history keeps: a figure's worth, a CSV of about a megabyte.
 constexpr double kMostHistoryRows = 20000.0;
 
+// ISO 6336-1's line load at the reference circle above which its N_S and c' take no low-load
+// correction, 100 N/mm in N/m: the load a modified pair file without a torque is shown at.
+constexpr double kIsoReferenceLineLoad = 100e3;
+
 struct ReportOptions {
   std::string case_file;
   std::string out;
   bool overwrite = false;
   int samples = 400;
+  std::string torque;  // empty: the case's mean torque, else ISO's reference line load
+};
+
+// The load that a modified or faulted pair's STE and load sharing are computed at: T1 > 0 on the
+// drive flanks, and where it comes from, in words.
+struct ReportLoad {
+  double torque1_n_m = 0.0;
+  std::string origin;
 };
 
 // Writes the report's files into `dir` and prints a line per part on stderr.
@@ -310,35 +326,177 @@ std::string stiffness_section(const GearPair& pair, const StiffnessComparison& c
   return text;
 }
 
+// With `modified` (the shares of the case's pair with its modifications and faults, from its
+// loaded STE), load_sharing.csv gains the column share_modified and the figure its curve.
 std::string load_sharing_section(const GearPair& pair, const StiffnessModel& model, int points,
-                                 const std::filesystem::path& dir) {
+                                 const std::filesystem::path& dir,
+                                 const std::vector<LoadShareSample>* modified = nullptr,
+                                 const std::string& modified_title = "",
+                                 TeethInContact teeth = {}) {
   const std::vector<LoadShareSample> shares = load_sharing(pair, model, points);
   const ContactSegment segment = contact_segment(pair);
-  std::string csv = "x1_mm,path_fraction,pairs,share\n";
+  std::string csv =
+      std::string("x1_mm,path_fraction,pairs,share") + (modified ? ",share_modified" : "") + "\n";
   double least = 1.0;
-  for (const LoadShareSample& s : shares) {
+  for (std::size_t i = 0; i < shares.size(); ++i) {
+    const LoadShareSample& s = shares[i];
     csv += format_number(s.x1_m * 1e3) + "," +
            format_number((s.x1_m - segment.start_m) / (segment.end_m - segment.start_m)) + "," +
-           std::to_string(s.pairs) + "," + format_number(s.share) + "\n";
+           std::to_string(s.pairs) + "," + format_number(s.share);
+    if (modified) csv += "," + format_number((*modified)[i].share);
+    csv += "\n";
     least = std::min(least, s.share);
   }
   write_file_atomically((dir / "load_sharing.csv").string(), csv);
-  render(dir, {"load_sharing",
-               "Load sharing: one tooth pair's share of the mesh force along its path (" +
-                   to_string(model.kind) + ")",
-               "position on the path of contact X_1, mm (pitch point dashed)",
-               "share of the mesh force",
-               {"set key off", "set yrange [0:1.05]",
-                "set arrow from " + number(pitch_point_position(pair) * 1e3, 8) + ", graph 0 to " +
-                    number(pitch_point_position(pair) * 1e3, 8) +
-                    ", graph 1 nohead dt 2 lc rgb 'gray30'"},
-               {"'load_sharing.csv' using 1:4 with lines lw 2"}});
-  return "One tooth pair's share of the mesh force as it crosses the path of contact, the "
-         "loaded pairs deflecting alike, k(X1) / sum of k over the pairs in contact (model " +
-         to_string(model.kind) +
-         " of the case file; `load_sharing.png`, data "
-         "`load_sharing.csv`). Its least share, at the path's ends, is " +
-         number(least, 4) + ".\n";
+  Figure figure{
+      "load_sharing",
+      "Load sharing: one tooth pair's share of the mesh force along its path (" +
+          to_string(model.kind) + ")",
+      "position on the path of contact X_1, mm (pitch point dashed)",
+      "share of the mesh force",
+      {"set key off", "set yrange [0:1.05]",
+       "set arrow from " + number(pitch_point_position(pair) * 1e3, 8) + ", graph 0 to " +
+           number(pitch_point_position(pair) * 1e3, 8) + ", graph 1 nohead dt 2 lc rgb 'gray30'"},
+      {"'load_sharing.csv' using 1:4 with lines lw 2"}};
+  std::string text =
+      "One tooth pair's share of the mesh force as it crosses the path of contact, the "
+      "loaded pairs deflecting alike, k(X1) / sum of k over the pairs in contact (model " +
+      to_string(model.kind) +
+      " of the case file; `load_sharing.png`, data "
+      "`load_sharing.csv`). Its least share, at the path's ends, is " +
+      number(least, 4) + ".\n";
+  if (modified) {
+    figure.setup[0] = "set key outside bottom center horizontal";
+    figure.series = {
+        "'load_sharing.csv' using 1:4 with lines lw 2 lc rgb 'gray50' title 'healthy, unmodified'",
+        "'load_sharing.csv' using 1:5 with lines lw 2 lc rgb '#1f77b4' title '" + modified_title +
+            "'"};
+    double least_modified = 1.0;
+    double most_modified = 0.0;
+    for (const LoadShareSample& m : *modified) {
+      least_modified = std::min(least_modified, m.share);
+      most_modified = std::max(most_modified, m.share);
+    }
+    text +=
+        "\nColumn `share_modified` (blue in the figure): the share of the pair of pinion tooth " +
+        std::to_string(teeth.pinion_tooth) + " and wheel tooth " +
+        std::to_string(teeth.wheel_tooth) +
+        " (the first faulted tooth's, else teeth 0) with the case's modifications and faults at "
+        "the load of the "
+        "section \"Static transmission error\", from that STE's balance sum k max(0, delta - "
+        "e) = F at each position (0 where its gap keeps it out of contact): from " +
+        number(least_modified, 4) + " to " + number(most_modified, 4) +
+        ", against the unmodified column's " + number(least, 4) + " to 1.\n";
+  }
+  render(dir, figure);
+  return text;
+}
+
+// The modifications of the case in words, one item each; empty for none.
+std::vector<std::string> modification_items(const Modifications& m) {
+  std::vector<std::string> items;
+  const auto um = [](double metres) { return number(metres * 1e6, 4) + " um"; };
+  const auto shape = [](ReliefShape s) {
+    return std::string(s == ReliefShape::linear ? "linear" : "parabolic");
+  };
+  const auto largest = [](const std::vector<double>& values) {
+    double most = 0.0;
+    for (const double v : values) most = std::max(most, std::fabs(v));
+    return most;
+  };
+  for (const Gear gear : {Gear::one, Gear::two}) {
+    const GearModifications& g = gear == Gear::one ? m.gear1 : m.gear2;
+    const std::string who = gear == Gear::one ? "pinion" : "wheel";
+    if (g.tip.amount_m > 0.0) {
+      items.push_back(who + " tip relief " + um(g.tip.amount_m) + " at the tip, " +
+                      shape(g.tip.shape) + ", from d_Ca = " + number(g.tip.diameter_m * 1e3, 6) +
+                      " mm");
+    }
+    if (g.root.amount_m > 0.0) {
+      items.push_back(who + " root relief " + um(g.root.amount_m) +
+                      " at the start of the active profile, " + shape(g.root.shape) +
+                      ", to d_Cf = " + number(g.root.diameter_m * 1e3, 6) + " mm");
+    }
+    if (largest(g.pitch_m) > 0.0) {
+      items.push_back(who + " pitch errors, largest |f| " + um(largest(g.pitch_m)));
+    }
+    if (largest(g.thickness_m) > 0.0) {
+      items.push_back(who + " thickness errors, largest |f| " + um(largest(g.thickness_m)));
+    }
+    if (largest(g.profile_slope_m) > 0.0) {
+      items.push_back(who + " profile slope errors, largest |f_Ha| " +
+                      um(largest(g.profile_slope_m)));
+    }
+    if (g.iso1328_class > 0) {
+      items.push_back(who + " errors drawn from ISO 1328-1 flank tolerance class " +
+                      std::to_string(g.iso1328_class) + " (error_seed " +
+                      std::to_string(m.error_seed) + ")");
+    }
+  }
+  return items;
+}
+
+// The STE of the case's pair with its modifications and faults beside the healthy unmodified
+// pair (the files and figures of `gearimpact ste`), and what it says.
+std::string ste_section(const SimulationCase& c, const ReportLoad& load, int samples,
+                        const std::filesystem::path& dir) {
+  SteTexts texts;
+  try {
+    texts = ste_texts(c, load.torque1_n_m, samples);
+  } catch (const InputError& e) {
+    if (e.field() == "points") throw InputError("--samples", e.value(), e.allowed());
+    if (e.field() == "torque") throw InputError("--torque", e.value(), e.allowed());
+    throw;
+  }
+  write_file_atomically((dir / "ste.csv").string(), texts.csv);
+  write_file_atomically((dir / "ste_unmodified.csv").string(), texts.unmodified_csv);
+  write_file_atomically((dir / "ste_pairs.csv").string(), texts.pairs_csv);
+  write_file_atomically((dir / "ste_unmodified_pairs.csv").string(), texts.unmodified_pairs_csv);
+  write_file_atomically((dir / "ste_summary.json").string(), texts.summary_json);
+  render(dir, ste_figure(c, texts));
+  render(dir, ste_sharing_figure(c, texts));
+  const StaticTransmissionError& ste = texts.modified;
+  // The least and largest STE over the carried angles.
+  const auto extremes = [](const StaticTransmissionError& e) {
+    double least = INFINITY;
+    double most = -INFINITY;
+    for (const StePoint& p : e.points) {
+      if (!p.carried) continue;
+      least = std::min(least, p.ste_m);
+      most = std::max(most, p.ste_m);
+    }
+    return std::pair<double, double>{least, most};
+  };
+  const auto row = [&](const std::string& name, const StaticTransmissionError& e, double ratio) {
+    const auto [least, most] = extremes(e);
+    return "| " + name + " | " + number(least * 1e6, 5) + " | " + number(most * 1e6, 5) + " | " +
+           number(e.ste_peak_to_peak_m * 1e6, 5) + " | " + number(e.ste_mean_m * 1e6, 5) + " | " +
+           number(ratio, 5) + " |\n";
+  };
+  std::string text =
+      "The loaded static transmission error of the case's pair with its modifications and "
+      "faults, beside the healthy pair without modifications (`gearimpact ste` at T1 = " +
+      number(load.torque1_n_m, 6) + " N m, F = " + number(ste.force_n, 6) +
+      " N on the drive "
+      "flanks, " +
+      load.origin + "; " + std::to_string(samples) + " angles per mesh period over " +
+      std::to_string(ste.mesh_periods) +
+      " mesh periods). Figures `ste.png` and `ste_load_sharing.png`, data `ste.csv`, "
+      "`ste_unmodified.csv`, `ste_pairs.csv`, `ste_unmodified_pairs.csv` and `ste_summary.json` "
+      "(as `gearimpact ste` writes them).\n\n";
+  text +=
+      "| | STE min (um) | STE max (um) | peak-to-peak (um) | mean (um) | quasi-static peak / F |\n";
+  text += "|---|---|---|---|---|---|\n";
+  text += row("this pair", ste, texts.quasi_static_force_ratio);
+  text += row("healthy, unmodified", texts.unmodified, texts.unmodified_quasi_static_force_ratio);
+  text += "\n";
+  text +=
+      "The quasi-static peak is the largest mesh force of a slow run over F: where a pair enters "
+      "touching (or crosses a fault's edge) the loaded pairs keep their deflection for an "
+      "instant, and the force jumps; a relief that holds the entering pair off removes the jump "
+      "(docs/faults.md, \"Static transmission error\"). A sweep of this case divides its dynamic "
+      "factor by it.\n";
+  return text;
 }
 
 std::string time_history_section(const SimulationCase& run, const std::filesystem::path& dir) {
@@ -425,11 +583,56 @@ std::string faulted_stiffness_section(const SimulationCase& c, int samples,
          number(100.0 * (1.0 - t.min_n_per_m / healthy_min), 4) + " % below the healthy minimum.\n";
 }
 
+// The load of a modified or faulted pair's STE: --torque, else the run's mean pinion torque
+// (its size: the STE loads the drive flanks), else ISO's reference line load.
+ReportLoad report_load(const ReportOptions& o, const SimulationCase& c, bool run) {
+  if (!o.torque.empty()) {
+    const double t = parse_quantity(o.torque, Dimension::torque, "--torque");
+    if (!(t > 0.0)) {
+      throw InputError("--torque", o.torque,
+                       "a pinion torque > 0 (" + allowed_units(Dimension::torque) +
+                           "): it loads the drive flanks");
+    }
+    return {t, "the --torque given"};
+  }
+  if (run && c.torque1.kind != Torque::Kind::prescribed_speed) {
+    const double t = std::fabs(mean_torque(c.torque1));
+    if (t > 0.0) {
+      return {t, std::string("the size of the case's mean pinion torque") +
+                     (mean_torque(c.torque1) < 0.0 ? ", on the drive flanks" : "")};
+    }
+  }
+  const double t = kIsoReferenceLineLoad * c.gears.face_width_m * pitch_radius(c.gears, Gear::one);
+  return {t,
+          "ISO 6336-1's reference line load F_t / b = 100 N/mm at the reference circle: the "
+          "case gives no mean torque (--torque sets one)"};
+}
+
 void write_report(const ReportOptions& o) {
   require_output_folder(o.out, o.overwrite, {o.case_file});
   const PairOrRunCase read = read_pair_or_run_file(o.case_file);
   const SimulationCase& c = read.simulation_case;
   const bool run = read.kind == CaseFileKind::run;
+  // A modified or faulted pair: its STE and load sharing beside the unmodified, at one load.
+  const bool changed = !is_unmodified(c.modifications) || !c.faults.empty();
+  if (!changed && !o.torque.empty()) {
+    throw InputError("--torque", o.torque,
+                     "only for a pair with [modifications] or [[faults]], whose load sharing "
+                     "depends on the load; this pair has neither");
+  }
+  ReportLoad load;
+  if (changed) {
+    load = report_load(o, c, run);
+    StaticTransmissionErrorOptions options;
+    options.points_per_mesh_period = o.samples;
+    // The faults' true period, as `ste` finds it, bounds the samples before any work.
+    options.faulted = faulted_teeth(c);
+    try {
+      validate_static_transmission_error(c.gears, c.modifications, load.torque1_n_m, options);
+    } catch (const InputError& e) {
+      throw InputError(e.field() == "points" ? "--samples" : "--torque", e.value(), e.allowed());
+    }
+  }
   AtomicFolder folder(o.out, o.overwrite, {o.case_file});
   const std::filesystem::path dir = folder.temporary();
   const Progress progress;
@@ -437,8 +640,9 @@ void write_report(const ReportOptions& o) {
   std::string faulted;
   if (!c.faults.empty()) {
     warnings.push_back("the case has " + std::to_string(c.faults.size()) +
-                       " faulted teeth ([[faults]]): the geometry, stiffness and load-sharing "
-                       "sections are the healthy pair's" +
+                       " faulted teeth ([[faults]]): the geometry and stiffness sections are "
+                       "the healthy pair's, the load sharing and static transmission error "
+                       "sections show the faulted pair beside the healthy one" +
                        (run ? std::string("; the time history runs with the faults") : "") +
                        "; the section \"Mesh stiffness with the faults\" gives the faulted "
                        "stiffness over the true period");
@@ -470,8 +674,32 @@ void write_report(const ReportOptions& o) {
                  number(iso6336_method_b(loaded).low_load_factor, 4) + ".\n";
   }
   progress.done("stiffness models and ISO 6336-1");
-  const std::string sharing = load_sharing_section(c.gears, c.model.stiffness, o.samples, dir);
-  progress.done("load sharing");
+  std::string sharing;
+  std::string ste;
+  const std::vector<std::string> modifications = modification_items(c.modifications);
+  if (changed) {
+    const auto healthy = std::make_shared<const StiffnessTable>(c.gears, c.model.stiffness);
+    const MeshTables tables(c.gears, c.model.stiffness, c.faults, healthy);
+    // The pair of the first faulted tooth (pair -i holds tooth i of either gear), else pair 0.
+    const int k = c.faults.empty() ? 0 : -c.faults.front().tooth;
+    const std::vector<LoadShareSample> shares =
+        loaded_load_sharing(c.gears, c.modifications, load.torque1_n_m, tables,
+                            contact_positions(c.gears, o.samples), k);
+    const TeethInContact teeth = teeth_of_pair(c.gears, Region::n1, k);
+    std::string title = modifications.empty() ? "faulted" : "modified";
+    if (!modifications.empty() && !c.faults.empty()) title = "faulted, modified";
+    sharing = load_sharing_section(c.gears, c.model.stiffness, o.samples, dir, &shares,
+                                   title + ", teeth " + std::to_string(teeth.pinion_tooth) + "/" +
+                                       std::to_string(teeth.wheel_tooth) +
+                                       ", T_1 = " + number(load.torque1_n_m, 4) + " N m",
+                                   teeth);
+    progress.done("load sharing");
+    ste = ste_section(c, load, o.samples, dir);
+    progress.done("static transmission error");
+  } else {
+    sharing = load_sharing_section(c.gears, c.model.stiffness, o.samples, dir);
+    progress.done("load sharing");
+  }
   std::string history =
       "The case file is a pair file ([gears] and [model] only): no torques or speeds, no time "
       "history.\n";
@@ -493,11 +721,19 @@ void write_report(const ReportOptions& o) {
         number(c.gears.face_width_m * 1e3, 6) + " mm, x " + number(c.gears.profile_shift1, 4) +
         "/" + number(c.gears.profile_shift2, 4) + ", a0 " +
         number(c.gears.pressure_angle_rad * 180.0 / pi, 6) + " deg.\n\n";
+  if (!modifications.empty()) {
+    md += "Modifications ([modifications]):\n\n";
+    for (const std::string& item : modifications) md += "- " + item + "\n";
+    md +=
+        "\nThe sections \"Load sharing\" and \"Static transmission error\" show the pair "
+        "with them beside the pair without.\n\n";
+  }
   md += "## Warnings\n\n";
   if (warnings.empty()) md += "None.\n";
   for (const std::string& w : warnings) md += "- " + w + "\n";
   md += "\n## Geometry\n\n" + geometry + "\n## Mesh stiffness and ISO 6336-1\n\n" + stiffness +
         "\n## Load sharing\n\n" + sharing;
+  if (!ste.empty()) md += "\n## Static transmission error\n\n" + ste;
   if (!faulted.empty()) md += "\n## Mesh stiffness with the faults\n\n" + faulted;
   md += "\n## Time history\n\n" + history;
   write_file_atomically((dir / "REPORT.md").string(), md);
@@ -523,6 +759,10 @@ void register_report_commands(CLI::App& app) {
                    "output folder: new or empty (else --overwrite), in a folder that exists")
       ->required();
   report->add_flag("--overwrite", o->overwrite, "replace a non-empty --out folder whole");
+  report->add_option("--torque", o->torque,
+                     "for a pair with [modifications] or [[faults]]: the pinion torque T1 > 0 "
+                     "with its unit (\"100 N*m\") its STE and load sharing are computed at; "
+                     "default the run file's mean torque, else ISO's 100 N/mm line load");
   report
       ->add_option("--samples", o->samples,
                    "samples over the mesh period and the path, 2 to 100000")

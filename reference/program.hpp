@@ -15,6 +15,7 @@
 #include "gearimpact/stiffness/model.hpp"
 #include "gearimpact/stiffness/static_transmission_error.hpp"
 #include "gearimpact/stiffness/time_varying_stiffness.hpp"
+#include "gnuplot.hpp"
 
 namespace gearimpact::cli {
 
@@ -43,15 +44,27 @@ MeshStiffnessTexts mesh_stiffness_texts(const GearPair& pair, const StiffnessMod
 // period. Throws InputError naming "torque" or "points" before the stiffness table is built.
 struct SteTexts {
   StaticTransmissionError modified;
+  StaticTransmissionError unmodified;
   std::string csv;
   std::string unmodified_csv;
   std::string pairs_csv;
   std::string unmodified_pairs_csv;
   std::string summary_json;
+  // quasi_static_peak_force_ratio of the case's pair and of the healthy unmodified one.
+  double quasi_static_force_ratio = 1.0;
+  double unmodified_quasi_static_force_ratio = 1.0;
   // False when the modifications leave every gap at 0: the two curves are one.
   bool modified_differs = true;
 };
 SteTexts ste_texts(const SimulationCase& c, double torque1_n_m, int points_per_mesh_period);
+// The gears whose teeth differ by the case's faults, known before any table is built (the
+// faulted part of the STE's true period).
+DistinctTeeth faulted_teeth(const SimulationCase& c);
+// The figures of `ste` (ste.png and ste_load_sharing.png) from the files of `texts` in the folder
+// they are drawn in: the case's STE and each pair's load share, beside the healthy unmodified
+// pair's where they differ.
+Figure ste_figure(const SimulationCase& c, const SteTexts& texts);
+Figure ste_sharing_figure(const SimulationCase& c, const SteTexts& texts);
 
 // `gearimpact modes`: the natural modes of the case's linearised model at its mean mesh
 // stiffness (modes.csv), the crossings of the mesh harmonics 1..harmonics with them up to the

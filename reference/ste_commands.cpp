@@ -25,14 +25,13 @@
 
 namespace gearimpact::cli {
 
-namespace {
-
-// The gears whose teeth differ by their faults, known before any table is built.
 DistinctTeeth faulted_teeth(const SimulationCase& c) {
   std::vector<int> classes;
   return {tooth_classes(c.faults, Gear::one, c.gears.teeth1, classes).size() > 1,
           tooth_classes(c.faults, Gear::two, c.gears.teeth2, classes).size() > 1};
 }
+
+namespace {
 
 // A static deflection of half a base pitch, about a tooth's thickness, has
 // passed the teeth through each other: no STE describes it.
@@ -70,14 +69,20 @@ SteTexts ste_texts(const SimulationCase& c, double torque1_n_m, int points_per_m
   // one axis.
   StaticTransmissionErrorOptions same = options;
   same.mesh_periods = texts.modified.mesh_periods;
-  const StaticTransmissionError unmodified =
+  texts.unmodified =
       static_transmission_error(c.gears, Modifications{}, torque1_n_m, *healthy, same);
+  const StaticTransmissionError& unmodified = texts.unmodified;
   texts.csv = ste_csv(texts.modified);
   texts.unmodified_csv = ste_csv(unmodified);
   texts.pairs_csv = ste_pairs_csv(texts.modified);
   texts.unmodified_pairs_csv = ste_pairs_csv(unmodified);
   texts.modified_differs = texts.csv != texts.unmodified_csv;
-  texts.summary_json = ste_summary_json(texts.modified, unmodified);
+  texts.quasi_static_force_ratio =
+      quasi_static_peak_force_ratio(c.gears, c.modifications, torque1_n_m, tables);
+  texts.unmodified_quasi_static_force_ratio = quasi_static_peak_force_ratio(
+      c.gears, Modifications{}, torque1_n_m, MeshTables(c.gears, c.model.stiffness, {}, healthy));
+  texts.summary_json = ste_summary_json(texts.modified, unmodified, texts.quasi_static_force_ratio,
+                                        texts.unmodified_quasi_static_force_ratio);
   return texts;
 }
 
@@ -109,6 +114,8 @@ CurveNames curve_names(const SimulationCase& c) {
 // row whose $3 is empty and joins its neighbours; strcol reads the row).
 constexpr const char* kCarriedSteMicrons = "(strcol(3) eq \"\" ? NaN : real(strcol(3)) * 1e6)";
 
+}  // namespace
+
 Figure ste_figure(const SimulationCase& c, const SteTexts& texts) {
   const double period_deg = texts.modified.period_rad * 180.0 / pi;
   Figure f;
@@ -137,7 +144,7 @@ Figure ste_figure(const SimulationCase& c, const SteTexts& texts) {
   return f;
 }
 
-Figure sharing_figure(const SimulationCase& c, const SteTexts& texts) {
+Figure ste_sharing_figure(const SimulationCase& c, const SteTexts& texts) {
   const double period_deg = texts.modified.period_rad * 180.0 / pi;
   Figure f;
   f.name = "ste_load_sharing";
@@ -161,6 +168,8 @@ Figure sharing_figure(const SimulationCase& c, const SteTexts& texts) {
       "'each pair of teeth'");
   return f;
 }
+
+namespace {
 
 void write_ste(const SteOptions& o) {
   // Every refusal before any work: the folder, the torque, the points, the case.
@@ -196,7 +205,7 @@ void write_ste(const SteOptions& o) {
   write_file_atomically((dir / "summary.json").string(), texts.summary_json);
   if (!o.no_plots) {
     render(dir, ste_figure(c, texts));
-    render(dir, sharing_figure(c, texts));
+    render(dir, ste_sharing_figure(c, texts));
   }
   folder.commit();
   std::fputs(texts.summary_json.c_str(), stdout);

@@ -390,7 +390,8 @@ void render_iso_plot(const std::filesystem::path& dir, const IsoScale& iso,
             (df ? format_data_number(*df / iso.quasi_static_force_ratio) : "") + "\n";
   }
   write_file_atomically((dir / "dynamic_factor_vs_iso_n.csv").string(), data);
-  write_iso_kv_band(dir / "iso_kv_band.csv", iso, std::max(2.0, 1.1 * n_max));
+  const double band_end = std::max(2.0, 1.1 * n_max);
+  write_iso_kv_band(dir / "iso_kv_band.csv", iso, band_end);
   Figure f = dynamic_factor_vs_iso_n("dynamic_factor_vs_iso_n", iso, "dynamic_factor_vs_iso_n.csv",
                                      2, 5, 7, "iso_kv_band.csv", true);
   // The ticks of the swept range, readable at any width; the dynamic factor from 0 up.
@@ -400,7 +401,11 @@ void render_iso_plot(const std::filesystem::path& dir, const IsoScale& iso,
   const double to_iso_n =
       iso.resonance_speed_rad_per_s / iso.resonance_speed_iso_stiffness_rad_per_s;
   add(f, tick_commands("x2", nice_ticks(x.from * to_iso_n, x.to * to_iso_n), false));
-  Ticks y = nice_ticks(0.0, *std::max_element(dfs.begin(), dfs.end()), 8, 0.05);
+  // The y range holds the simulated factors and ISO's K_v over the N shown (up to 1 + C_v4 at
+  // the main resonance), as the band draws it.
+  const double highest = std::max(*std::max_element(dfs.begin(), dfs.end()),
+                                  highest_iso_kv(iso, band_end, x.from, x.to));
+  Ticks y = nice_ticks(0.0, highest, 8, 0.05);
   y.from = 0.0;
   add(f, tick_commands("y", y));
   render(dir, f);

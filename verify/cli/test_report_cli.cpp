@@ -14,7 +14,9 @@
 #include <vector>
 
 #include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/paper/table1.hpp"
+#include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "relative.hpp"
 #include "run_command.hpp"
 #include "scratch.hpp"
@@ -366,4 +368,114 @@ TEST_CASE("report on a pair file with a missing tooth says its sections are the 
   // Pinion tooth 0 is in contact eps_alpha = 1.69 of the 20 mesh periods: the rest agree.
   CHECK(equal_rows > rows * 18 / 20);
   CHECK(equal_rows < rows);
+}
+
+namespace {
+
+// The rows of a CSV with a header, as numbers.
+std::vector<std::vector<double>> csv_numbers(const std::string& csv, std::string& header) {
+  std::istringstream in(csv);
+  std::getline(in, header);
+  std::vector<std::vector<double>> rows;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream fields(line);
+    std::vector<double> row;
+    for (std::string field; std::getline(fields, field, ',');) row.push_back(std::stod(field));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+}  // namespace
+
+TEST_CASE("report of a tip-relieved pair: load sharing beside the unmodified, by hand at the tip") {
+  // The paper's pair (a pair file) with a linear pinion tip relief of C_a = 2 um from the roll
+  // distance s_r = X_end - 0.3 (X_end - X_start - t0), inside the exit's two-pair zone, at
+  // T1 = 100 N m. At the pinion's tip X_end two pairs are in contact: A there, with the gap C_a
+  // (the relief's full amount at the tip), and B a base pitch back, unrelieved. The two-pair
+  // compliance split with the gap: k_A (delta - e) + k_B delta = F, so
+  //   delta = (F + k_A C_a) / (k_A + k_B),  share_A = k_A (delta - C_a) / F
+  // (delta > C_a here), below the unrelieved share k_A / (k_A + k_B). k from the quadrature of
+  // mesh_stiffness, not the report's table; at X_start neither pair is relieved, so there the
+  // shares agree.
+  const gearimpact::GearPair g = gearimpact::paper_gear_pair();
+  const gearimpact::ContactSegment seg = gearimpact::contact_segment(g);
+  const double t0 = gearimpact::base_pitch(g);
+  const double rb1 = gearimpact::base_radius(g, gearimpact::Gear::one);
+  const double c_a = 2e-6;
+  const double s_r = seg.end_m - 0.3 * (seg.end_m - seg.start_m - t0);
+  char start[64];
+  std::snprintf(start, sizeof start, "%.17g mm", 2e3 * std::sqrt(rb1 * rb1 + s_r * s_r));
+  Scratch scratch("report-relief");
+  const std::string gears =
+      "[gears]\nteeth1 = 20\nteeth2 = 80\nmodule = \"2 mm\"\npressure_angle = \"20 deg\"\n"
+      "face_width = \"10 mm\"\nyoungs_modulus = \"206.8 GPa\"\npoisson_ratio = 0.3\n"
+      "density = \"7800 kg/m^3\"\nbacklash = \"0.05 mm\"\n";
+  const std::filesystem::path relieved = scratch.dir / "relieved.toml";
+  const std::filesystem::path plain = scratch.dir / "plain.toml";
+  write(relieved, gears + "\n[modifications]\ntip_relief1 = \"2 um\"\ntip_relief_start1 = \"" +
+                      start + "\"\n");
+  write(plain, gears);
+  const CommandResult r =
+      run_command(cli("report " + relieved.string() + " --torque '100 N*m' --samples 40 --out " +
+                      (scratch.dir / "relieved").string()));
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  const CommandResult p = run_command(
+      cli("report " + plain.string() + " --samples 40 --out " + (scratch.dir / "plain").string()));
+  REQUIRE_MESSAGE(p.exit_code == 0, p.err);
+
+  std::string header;
+  const std::vector<std::vector<double>> rows =
+      csv_numbers(read(scratch.dir / "relieved" / "load_sharing.csv"), header);
+  REQUIRE(header == "x1_mm,path_fraction,pairs,share,share_modified");
+  REQUIRE(rows.size() == 40);
+  // The unmodified columns are the plain pair's report, to the byte.
+  std::string plain_header;
+  const std::vector<std::vector<double>> plain_rows =
+      csv_numbers(read(scratch.dir / "plain" / "load_sharing.csv"), plain_header);
+  CHECK(plain_header == "x1_mm,path_fraction,pairs,share");
+  REQUIRE(plain_rows.size() == rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    for (std::size_t j = 0; j < 4; ++j) CHECK(rows[i][j] == plain_rows[i][j]);
+  }
+
+  const double force = 100.0 / rb1;
+  const std::vector<double>& tip = rows.back();
+  CHECK(std::fabs(tip[0] * 1e-3 - seg.end_m) <= 1e-15);
+  REQUIRE(tip[2] == 2.0);
+  const double k_a = gearimpact::mesh_stiffness(g, seg.end_m).ke;
+  const double k_b = gearimpact::mesh_stiffness(g, seg.end_m - t0).ke;
+  const double delta = (force + k_a * c_a) / (k_a + k_b);
+  REQUIRE(delta > c_a);
+  const double by_hand = k_a * (delta - c_a) / force;
+  MESSAGE("share at the tip: unrelieved " << tip[3] << ", relieved " << tip[4] << " (by hand "
+                                          << by_hand << ")");
+  // The table fits Ke to 1e-12 and the share is a difference of O(1) terms: 1e-10.
+  CHECK(std::fabs(tip[4] - by_hand) <= 1e-10);
+  CHECK(std::fabs(tip[3] - k_a / (k_a + k_b)) <= 1e-10);
+  CHECK(tip[4] < tip[3] - 0.05);  // the relief unloads the tip
+  // At the entry no pair is relieved: the same split.
+  const std::vector<double>& entry = rows.front();
+  CHECK(std::fabs(entry[4] - entry[3]) <= 1e-10);
+
+  // REPORT.md names the relief and has the STE section; the plain pair's has neither.
+  const std::string md = read(scratch.dir / "relieved" / "REPORT.md");
+  CHECK(md.find("pinion tip relief 2 um at the tip, linear") != std::string::npos);
+  CHECK(md.find("## Static transmission error") != std::string::npos);
+  CHECK(md.find("T1 = 100 N m") != std::string::npos);
+  for (const char* file : {"ste.csv", "ste_unmodified.csv", "ste.png", "ste_load_sharing.png"}) {
+    CAPTURE(file);
+    CHECK(std::filesystem::exists(scratch.dir / "relieved" / file));
+  }
+  const std::string plain_md = read(scratch.dir / "plain" / "REPORT.md");
+  CHECK(plain_md.find("## Static transmission error") == std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(scratch.dir / "plain" / "ste.csv"));
+  // --torque has nothing to load on a pair without modifications or faults.
+  const CommandResult t =
+      run_command(cli("report " + plain.string() + " --torque '100 N*m' --out " +
+                      (scratch.dir / "refused").string()));
+  CHECK(t.exit_code == 1);
+  CHECK(t.err.find("--torque") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(scratch.dir / "refused"));
 }

@@ -257,3 +257,45 @@ TEST_CASE("plain numbers are drawn in the unit the case file gives the swept key
           std::string::npos);
   }
 }
+
+TEST_CASE("the dynamic factor's figure shows ISO's K_v whole over the N it spans") {
+  // w1 from 3000 to 9000 rad/s with w_E1 = 6341.8 rad/s: N from 0.47 to 1.42, across ISO's main
+  // resonance, where K_v = 1 + C_v4 = 1.9 (eps_alpha 1.69); the simulated factors stay within
+  // 1.0 to 1.2. The y range must reach the band's highest point inside the x range.
+  const Data d{
+      {3000.0, 9000.0, false}, {1e-6, 2e-6, false}, {5e-5, 6e-5, false}, {1.0, 1.2, false}, 1};
+  const Scratch scratch("sweep-figures-kv");
+  write_sweep_folder(scratch.dir / "shard", d);
+  const CommandResult r =
+      run_command(std::string(GEARIMPACT_CLI) + " merge " + (scratch.dir / "shard").string() +
+                  " --out " + (scratch.dir / "merged").string());
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  const std::string gp = read(scratch.dir / "merged" / "dynamic_factor_vs_iso_n.gp");
+  const auto range = [&gp](const std::string& axis) {
+    // The last setting is the one drawn ("set yrange [0:*]" comes first).
+    const std::string key = "set " + axis + "range [";
+    const std::size_t at = gp.rfind(key);
+    REQUIRE(at != std::string::npos);
+    double low = 0.0;
+    double high = 0.0;
+    REQUIRE(std::sscanf(gp.c_str() + at + key.size(), "%lf:%lf", &low, &high) == 2);
+    return std::pair<double, double>{low, high};
+  };
+  const auto [x_low, x_high] = range("x");
+  const auto [y_low, y_high] = range("y");
+  std::istringstream band(read(scratch.dir / "merged" / "iso_kv_band.csv"));
+  std::string line;
+  std::getline(band, line);
+  double highest = 0.0;
+  while (std::getline(band, line)) {
+    double n = 0.0;
+    double kv = 0.0;
+    REQUIRE(std::sscanf(line.c_str(), "%lf,%lf", &n, &kv) == 2);
+    if (n >= x_low && n <= x_high) highest = std::max(highest, kv);
+  }
+  CAPTURE(x_low);
+  CAPTURE(x_high);
+  CHECK(highest == doctest::Approx(1.9).scale(0).epsilon(1e-12));
+  CHECK(y_low == 0.0);
+  CHECK(y_high >= highest);
+}

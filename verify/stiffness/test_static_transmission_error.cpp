@@ -4,7 +4,8 @@
 // bracketing root finder, shares that sum to 1, and two-pair zones that grow
 // with the load; faulted teeth, each pair on its own table: a crack of depth 0
 // as the healthy pair, a missing tooth's load on the other pairs, a cracked
-// pair alone against its own stiffness.
+// pair alone against its own stiffness; the quasi-static peak force as the entry jump without
+// gaps and as a spall's far edge where that is larger.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -352,4 +353,50 @@ TEST_CASE("no angle carried: every pinion tooth missing is refused, naming [[fau
   } catch (const InputError& e) {
     CHECK(e.field() == "[[faults]]");
   }
+}
+
+TEST_CASE(
+    "quasi-static peak: the entry jump without gaps, and a spall's far edge where it is larger") {
+  const GearPair g = paper_gear_pair();
+  const StiffnessModel model;
+  const auto healthy = std::make_shared<const StiffnessTable>(g, model);
+  const ContactSegment seg = contact_segment(g);
+  const double t0 = base_pitch(g);
+  const double rb1 = base_radius(g, Gear::one);
+  // Without gaps or faults: (K_before + k_in) / K_before at the entry, the pairs a base pitch on
+  // before, with the entering one after; the route solves and sums, a few roundings apart.
+  double before = 0.0;
+  for (int j = 1; seg.start_m + j * t0 <= seg.end_m; ++j) {
+    before += healthy->stiffness(seg.start_m + j * t0);
+  }
+  const double entry = (before + healthy->stiffness(seg.start_m)) / before;
+  const MeshTables plain(g, model, {}, healthy);
+  CHECK(relative_difference(quasi_static_peak_force_ratio(g, Modifications{}, kTorque, plain),
+                            entry) <= 1e-14);
+
+  // A spall across 90 % of the face on pinion tooth 0's drive flank, between the contacts at 42 %
+  // and 55 % of the path, both inside the single-pair zone [X_end - t0, X_start + t0]: where the
+  // contact leaves it the lone pair's stiffness jumps from the spalled k_- to the healthy k_+ at
+  // the deflection F / k_-, so the force jumps to k_+ / k_- times F. k on either side of the edge
+  // from the quadrature of mesh_stiffness, 1e-9 m inside each part (Ke moves by ~1e-7 of itself
+  // over that).
+  const auto x_at = [&](double f) { return seg.start_m + f * (seg.end_m - seg.start_m); };
+  REQUIRE(x_at(0.42) > seg.end_m - t0);
+  REQUIRE(x_at(0.55) < seg.start_m + t0);
+  ToothFault spalled;
+  spalled.tooth = 0;
+  spalled.state.kind = ToothKind::spall;
+  spalled.state.spall.start_radius_m = std::hypot(rb1, x_at(0.42));
+  spalled.state.spall.end_radius_m = std::hypot(rb1, x_at(0.55));
+  spalled.state.spall.width_m = 0.9 * g.face_width_m;
+  spalled.state.spall.depth_m = 0.2e-3;
+  const double edge = x_at(0.55);
+  const double k_below = mesh_stiffness(g, edge - 1e-9, model, spalled.state, ToothState{}).ke;
+  const double k_above = mesh_stiffness(g, edge + 1e-9, model, spalled.state, ToothState{}).ke;
+  const MeshTables tables(g, model, {spalled}, healthy);
+  const double ratio = quasi_static_peak_force_ratio(g, Modifications{}, kTorque, tables);
+  MESSAGE("entry jump " << entry << ", spall edge k+/k- " << k_above / k_below << ", peak "
+                        << ratio);
+  REQUIRE(k_above / k_below > entry);
+  CHECK(relative_difference(ratio, k_above / k_below) <= 1e-6);
 }

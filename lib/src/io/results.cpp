@@ -543,13 +543,17 @@ std::string ste_pairs_csv(const StaticTransmissionError& ste) {
 }
 
 std::string ste_summary_json(const StaticTransmissionError& modified,
-                             const StaticTransmissionError& unmodified) {
+                             const StaticTransmissionError& unmodified,
+                             double quasi_static_force_ratio,
+                             double unmodified_quasi_static_force_ratio) {
   std::string out = "{\n";
   json_number(out, "torque1_n_m", modified.torque1_n_m);
   json_number(out, "force_n", modified.force_n);
   json_number(out, "mesh_periods", static_cast<double>(modified.mesh_periods));
   json_number(out, "period_rad", modified.period_rad);
   json_number(out, "points", static_cast<double>(modified.points.size()));
+  json_number(out, "quasi_static_force_ratio", quasi_static_force_ratio);
+  json_number(out, "unmodified_quasi_static_force_ratio", unmodified_quasi_static_force_ratio);
   ste_figures(out, "", modified, false);
   ste_figures(out, "unmodified_", unmodified, true);
   out += "}\n";

@@ -1,6 +1,7 @@
 #include "gearimpact/steady/iso_resonance.hpp"
 
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include "../require.hpp"
@@ -9,8 +10,11 @@
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/geometry/rack_generation.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
+#include "gearimpact/stiffness/mesh_tables.hpp"
+#include "gearimpact/stiffness/static_transmission_error.hpp"
 
 namespace gearimpact {
 
@@ -98,6 +102,15 @@ IsoDynamicFactor iso_dynamic_factor_perfect_gears(double resonance_ratio,
 
 double quasi_static_force_ratio(const SimulationCase& c, const StiffnessTable& table) {
   if (c.model.mesh_stiffness == MeshStiffnessMode::constant) return 1.0;
+  if (!is_unmodified(c.modifications) || !c.faults.empty()) {
+    // Gaps and faulted teeth: the peak of the pair's own loaded static transmission error, under
+    // the mean load on the drive flanks. `table` is the healthy pair's, shared without a copy.
+    const MeshTables tables(
+        c.gears, c.model.stiffness, c.faults,
+        std::shared_ptr<const StiffnessTable>(std::shared_ptr<const StiffnessTable>(), &table));
+    return quasi_static_peak_force_ratio(c.gears, c.modifications,
+                                         std::fabs(mean_torque_n_m(c.torque1, "torque1")), tables);
+  }
   const ContactSegment segment = contact_segment(c.gears);
   const double t0 = base_pitch(c.gears);
   double before = 0.0;

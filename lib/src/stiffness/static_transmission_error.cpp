@@ -42,6 +42,60 @@ long long true_period(const GearPair& pair, const Modifications& m, DistinctTeet
   return true_period_mesh_periods(pair, distinct);
 }
 
+// The balance of the drive pairs with pair 0 at X = `reference` (MeshLayout): every pair in the
+// contact segment with its gap and stiffness, the deflection that carries `force_n`, and each
+// pair's share; p.carried false where no pair carries anything (missing teeth).
+void balance_at(const GearPair& pair, const MeshLayout& layout, const ToothGaps& gaps,
+                double reference, const PairStiffnessFunction& stiffness, double force_n,
+                std::vector<PairSpring>& springs, StePoint& p) {
+  const LoadedRange range = layout.loaded(reference);
+  p.pairs = static_cast<std::size_t>(range.count);
+  springs.clear();
+  p.kte_m = std::numeric_limits<double>::infinity();
+  for (std::size_t j = 0; j < p.pairs; ++j) {
+    const int k = range.k_first + static_cast<int>(j);
+    p.k[j] = k;
+    p.x_m[j] = layout.position_m(reference, k);
+    p.gap_m[j] = gaps.gap_m(Region::n1, k, p.x_m[j]);
+    p.stiffness_n_per_m[j] = stiffness(k, p.x_m[j]);
+    p.teeth[j] = teeth_of_pair(pair, Region::n1, k);
+    p.kte_m = std::min(p.kte_m, p.gap_m[j]);
+    // A pair that carries nothing (a missing tooth) takes no part in the balance.
+    if (p.stiffness_n_per_m[j] > 0.0) springs.push_back({p.stiffness_n_per_m[j], p.gap_m[j]});
+  }
+  if (springs.empty()) {
+    p.carried = false;
+    return;
+  }
+  p.ste_m = solve_deflection(springs, force_n);
+  for (std::size_t j = 0; j < p.pairs; ++j) {
+    const double penetration = p.ste_m - p.gap_m[j];
+    if (penetration > 0.0) {
+      p.share[j] = p.stiffness_n_per_m[j] * penetration / force_n;
+      p.effective_stiffness_n_per_m += p.stiffness_n_per_m[j];
+    }
+  }
+}
+
+// The stiffness of pair k at X from its own table (0 for a missing tooth); at a break of the
+// table, from the part below it with `below`, else from the part above (as the table reads).
+double pair_stiffness(const MeshTables& tables, int k, double x_m, bool below = false) {
+  const StiffnessTable* table = tables.table(Region::n1, k);
+  if (!table) return 0.0;
+  if (!below) return table->stiffness(x_m);
+  const int part = table->part_of(x_m);
+  if (part == 0 || x_m != table->part_start_m(part)) return table->stiffness(x_m);
+  return table->stiffness_and_derivative_in_part(x_m, part - 1).stiffness_n_per_m;
+}
+
+// Options that leave only the torque to check: no angles are sampled over a period.
+StaticTransmissionErrorOptions torque_only() {
+  StaticTransmissionErrorOptions options;
+  options.points_per_mesh_period = 2;
+  options.mesh_periods = 1;
+  return options;
+}
+
 }  // namespace
 
 double solve_deflection(const std::vector<PairSpring>& springs, double force_n) {
@@ -64,16 +118,16 @@ double solve_deflection(const std::vector<PairSpring>& springs, double force_n) 
   return delta;
 }
 
+double carried_force(const std::vector<PairSpring>& springs, double delta_m) {
+  double sum = 0.0;
+  for (const PairSpring& s : springs) sum += s.stiffness_n_per_m * std::max(0.0, delta_m - s.gap_m);
+  return sum;
+}
+
 double solve_deflection_bracketed(const std::vector<PairSpring>& springs, double force_n,
                                   double relative_tolerance) {
   check_springs(springs, force_n);
-  const auto residual = [&](double delta) {
-    double sum = 0.0;
-    for (const PairSpring& s : springs) {
-      sum += s.stiffness_n_per_m * std::max(0.0, delta - s.gap_m);
-    }
-    return sum - force_n;
-  };
+  const auto residual = [&](double delta) { return carried_force(springs, delta) - force_n; };
   const auto least =
       std::min_element(springs.begin(), springs.end(),
                        [](const PairSpring& a, const PairSpring& b) { return a.gap_m < b.gap_m; });
@@ -143,35 +197,12 @@ StaticTransmissionError static_transmission_error(const GearPair& pair, const Mo
   for (long long i = 0; i < angles; ++i) {
     StePoint p;
     p.theta1_rad = result.period_rad * static_cast<double>(i) / static_cast<double>(angles);
-    const double reference = layout.reference_m(Region::n1, p.theta1_rad);
-    const LoadedRange range = layout.loaded(reference);
-    p.pairs = static_cast<std::size_t>(range.count);
-    springs.clear();
-    p.kte_m = std::numeric_limits<double>::infinity();
-    for (std::size_t j = 0; j < p.pairs; ++j) {
-      const int k = range.k_first + static_cast<int>(j);
-      p.k[j] = k;
-      p.x_m[j] = layout.position_m(reference, k);
-      p.gap_m[j] = gaps.gap_m(Region::n1, k, p.x_m[j]);
-      p.stiffness_n_per_m[j] = stiffness(k, p.x_m[j]);
-      p.teeth[j] = teeth_of_pair(pair, Region::n1, k);
-      p.kte_m = std::min(p.kte_m, p.gap_m[j]);
-      // A pair that carries nothing (a missing tooth) takes no part in the balance.
-      if (p.stiffness_n_per_m[j] > 0.0) springs.push_back({p.stiffness_n_per_m[j], p.gap_m[j]});
-    }
-    if (springs.empty()) {
-      p.carried = false;
+    balance_at(pair, layout, gaps, layout.reference_m(Region::n1, p.theta1_rad), stiffness,
+               result.force_n, springs, p);
+    if (!p.carried) {
       ++result.uncarried_points;
       result.points.push_back(p);
       continue;
-    }
-    p.ste_m = solve_deflection(springs, result.force_n);
-    for (std::size_t j = 0; j < p.pairs; ++j) {
-      const double penetration = p.ste_m - p.gap_m[j];
-      if (penetration > 0.0) {
-        p.share[j] = p.stiffness_n_per_m[j] * penetration / result.force_n;
-        p.effective_stiffness_n_per_m += p.stiffness_n_per_m[j];
-      }
     }
     sum += p.ste_m;
     least = std::min(least, p.ste_m);
@@ -207,6 +238,97 @@ StaticTransmissionError static_transmission_error(const GearPair& pair, const Mo
         return table ? table->stiffness(x_m) : 0.0;
       },
       options);
+}
+
+std::vector<LoadShareSample> loaded_load_sharing(const GearPair& pair, const Modifications& m,
+                                                 double torque1_n_m, const MeshTables& tables,
+                                                 const std::vector<double>& positions, int k) {
+  validate_static_transmission_error(pair, m, torque1_n_m, torque_only());
+  const double force = torque1_n_m / base_radius(pair, Gear::one);
+  const MeshLayout layout(pair, CoastPhase::half_base_pitch);
+  const ToothGaps gaps(pair, m);
+  const PairStiffnessFunction stiffness = [&tables](int pair_k, double x_m) {
+    return pair_stiffness(tables, pair_k, x_m);
+  };
+  std::vector<LoadShareSample> shares;
+  std::vector<PairSpring> springs;
+  for (const double x : positions) {
+    if (!(x >= layout.start_m() && x <= layout.end_m())) {
+      throw InputError("positions", format_number(x) + " m",
+                       "positions in the contact segment [" + format_number(layout.start_m()) +
+                           ", " + format_number(layout.end_m()) + "] m");
+    }
+    // Pair k at X1: X_k = reference + k t0 (MeshLayout). Rounding can leave it a few ulps
+    // outside the segment at its ends, where it is in contact: move the reference in.
+    double reference = x - k * layout.base_pitch_m();
+    while (layout.position_m(reference, k) < layout.start_m()) {
+      reference = std::nextafter(reference, INFINITY);
+    }
+    while (layout.position_m(reference, k) > layout.end_m()) {
+      reference = std::nextafter(reference, -INFINITY);
+    }
+    StePoint p;
+    balance_at(pair, layout, gaps, reference, stiffness, force, springs, p);
+    double share = 0.0;
+    for (std::size_t j = 0; j < p.pairs; ++j) {
+      if (p.k[j] == k) share = p.share[j];
+    }
+    shares.push_back({x, static_cast<int>(p.pairs), share});
+  }
+  return shares;
+}
+
+double quasi_static_peak_force_ratio(const GearPair& pair, const Modifications& m,
+                                     double torque1_n_m, const MeshTables& tables) {
+  validate_static_transmission_error(pair, m, torque1_n_m, torque_only());
+  const double force = torque1_n_m / base_radius(pair, Gear::one);
+  const MeshLayout layout(pair, CoastPhase::half_base_pitch);
+  const ToothGaps gaps(pair, m);
+  const double start = layout.start_m();
+  const double end = layout.end_m();
+  const double t0 = layout.base_pitch_m();
+  // The pairs a whole number of base pitches from pair k at X (X itself included), on the
+  // contact segment, the pair at X read from below its break with `below`.
+  const auto springs_at = [&](int k, double x, bool below, bool with_k) {
+    std::vector<PairSpring> springs;
+    for (int side : {-1, 1}) {
+      for (int j = 1;; ++j) {
+        const double other = x + side * j * t0;
+        if (other < start || other > end) break;
+        const int k_other = k + side * j;
+        const double s = pair_stiffness(tables, k_other, other);
+        if (s > 0.0) springs.push_back({s, gaps.gap_m(Region::n1, k_other, other)});
+      }
+    }
+    if (with_k) {
+      const double s = pair_stiffness(tables, k, x, below);
+      if (s > 0.0) springs.push_back({s, gaps.gap_m(Region::n1, k, x)});
+    }
+    return springs;
+  };
+  // The force just after an event over F, from the deflection just before it.
+  double ratio = 1.0;
+  const auto event = [&](const std::vector<PairSpring>& before,
+                         const std::vector<PairSpring>& after) {
+    if (before.empty() || after.empty()) return;
+    ratio = std::max(ratio, carried_force(after, solve_deflection(before, force)) / force);
+  };
+  // Every pair of teeth that meets crosses the segment once in the true period: P pairs in turn,
+  // k = 0, -1, ..., -(P - 1) (pair k - 1 enters a base pitch after pair k).
+  const long long periods = true_period(pair, m, tables.distinct());
+  for (long long i = 0; i < periods; ++i) {
+    const int k = -static_cast<int>(i);
+    // Its entry at X_start: the pairs after it (at X_start + j t0) before, all of them after.
+    event(springs_at(k, start, false, false), springs_at(k, start, false, true));
+    // Its table's breaks inside the segment: its part below before, its part above after.
+    if (const StiffnessTable* table = tables.table(Region::n1, k)) {
+      for (const double b : table->breaks_m()) {
+        if (b <= start || b >= end) continue;
+        event(springs_at(k, b, true, true), springs_at(k, b, false, true));
+      }
+    }
+  }
+  return ratio;
 }
 
 }  // namespace gearimpact

@@ -121,11 +121,15 @@ std::string ste_csv(const StaticTransmissionError& ste);
 // data set. Columns: pair (its mesh index k), pinion_tooth, wheel_tooth,
 // theta1_deg, share (F_k / F), gap_m, stiffness_n_per_m.
 std::string ste_pairs_csv(const StaticTransmissionError& ste);
-// torque1_n_m, force_n, mesh_periods, period_rad, points, then for the modified pair and the
+// torque1_n_m, force_n, mesh_periods, period_rad, points, quasi_static_force_ratio and
+// unmodified_quasi_static_force_ratio (quasi_static_peak_force_ratio of each pair, the zero-speed
+// limit of a run's largest mesh force over F), then for the modified pair and the
 // same pair unmodified (unmodified_ prefix): ste_mean_m, ste_min_m, ste_max_m,
 // ste_peak_to_peak_m, kte_peak_to_peak_m, least_effective_stiffness_n_per_m (over the carried
 // points), uncarried_points.
 std::string ste_summary_json(const StaticTransmissionError& modified,
-                             const StaticTransmissionError& unmodified);
+                             const StaticTransmissionError& unmodified,
+                             double quasi_static_force_ratio,
+                             double unmodified_quasi_static_force_ratio);
 
 }  // namespace gearimpact

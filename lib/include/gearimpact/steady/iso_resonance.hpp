@@ -86,7 +86,11 @@ struct IsoScale {
 // for an instant, so the mesh force jumps by K_after / K_before, the mesh stiffness with the
 // entering pair over that without it (the pairs a whole base pitch on, on the contact segment).
 // The largest force of a slow run is that jump (the deflection relaxes from it; where a pair
-// leaves, the force drops). 1 for a constant mesh stiffness.
+// leaves, the force drops). 1 for a constant mesh stiffness. A pair with [modifications] or
+// [[faults]] has gaps and teeth of their own: its ratio is the peak of its own loaded static
+// transmission error under the mean load |T1| on the drive flanks
+// (quasi_static_peak_force_ratio of stiffness/static_transmission_error.hpp, which reduces to
+// the jump above without them); `table` must then be the healthy table of c's pair and model.
 double quasi_static_force_ratio(const SimulationCase& c, const StiffnessTable& table);
 
 // The scale of c's pair, or nothing when ISO's K_v has no meaning for it (no mean load).

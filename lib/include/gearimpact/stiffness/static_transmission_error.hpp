@@ -22,6 +22,7 @@
 #include "gearimpact/stiffness/mesh_tables.hpp"
 #include "gearimpact/stiffness/model.hpp"
 #include "gearimpact/stiffness/table.hpp"
+#include "gearimpact/stiffness/time_varying_stiffness.hpp"
 
 namespace gearimpact {
 
@@ -41,6 +42,9 @@ struct PairSpring {
 // where delta_m = (F + sum k_i e_i) / (sum k_i) does not pass the next gap.
 // Throws InputError for an empty list, force <= 0 or a stiffness <= 0.
 double solve_deflection(const std::vector<PairSpring>& springs, double force_n);
+
+// sum_i k_i max(0, delta - e_i): the force the pairs carry at the deflection delta.
+double carried_force(const std::vector<PairSpring>& springs, double delta_m);
 
 // The same by Boost.Math's TOMS 748 on [e_0, e_0 + 2 F / k_0], pair 0 the
 // one of the least gap (the residual is -F at the lower end, >= F at the
@@ -117,5 +121,32 @@ StaticTransmissionError static_transmission_error(const GearPair& pair, const Mo
 StaticTransmissionError static_transmission_error(const GearPair& pair, const Modifications& m,
                                                   double torque1_n_m, const MeshTables& tables,
                                                   StaticTransmissionErrorOptions options = {});
+
+// Load sharing with the modifications and faults under the pinion torque T1: at each X1 of
+// `positions` (m from C1 on N1, in the contact segment), the balance above at the angle that puts
+// pair k (MeshLayout's index on N1: pinion tooth -k mod z1 against wheel tooth -k mod z2,
+// teeth_of_pair) at X1, and that pair's share F_k / F of the load T1 / Rb1 (0 where its gap
+// keeps it out of contact); `pairs` counts the pairs in the contact segment. Without gaps or faults
+// the share is k(X1) / sum k of load_sharing (time_varying_stiffness.hpp). Throws InputError naming
+// "torque" as validate_static_transmission_error does, and "positions" for a position outside the
+// contact segment.
+std::vector<LoadShareSample> loaded_load_sharing(const GearPair& pair, const Modifications& m,
+                                                 double torque1_n_m, const MeshTables& tables,
+                                                 const std::vector<double>& positions, int k = 0);
+
+// The zero-speed limit of the largest mesh force over the load F = |T1| / Rb1 of the drive
+// flanks, from the loaded static transmission error: in a slow run the deflection follows the
+// STE delta(theta1), and the mesh force sum k max(0, delta - e) stays F wherever it is continuous
+// in theta1. Where it jumps (a pair enters at X_start touching, delta > e_k(X_start); a pair
+// crosses a break of its table, a spall's or a chip's edge) the loaded pairs keep the deflection
+// delta_- of just before for an instant, so the force is carried_force(the pairs just after,
+// delta_-): the largest of these over the true period of the teeth and modifications, over F, and
+// at least 1 (where a pair leaves or a gap holds the entering pair off, the force does not rise).
+// An event with no pair carrying just before (missing teeth) is an impact, not a quasi-static
+// peak, and is left out. For a pair without gaps or faults it is K_after / K_before at the entry
+// (quasi_static_force_ratio of steady/iso_resonance.hpp). Throws InputError naming "torque" as
+// validate_static_transmission_error does.
+double quasi_static_peak_force_ratio(const GearPair& pair, const Modifications& m,
+                                     double torque1_n_m, const MeshTables& tables);
 
 }  // namespace gearimpact
