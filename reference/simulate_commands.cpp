@@ -67,6 +67,7 @@ struct SimulateOptions {
   std::string out;
   double max_rows = static_cast<double>(kMostSeriesRows);
   std::string sample_rate;
+  std::string sample = "interval-average";
   CaseOptions keys;
 };
 
@@ -124,6 +125,12 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
                           "--sample-rate FS with --out FILE.csv")});
     }
   }
+  const SampleKind sample_kind = value_named(kSampleKinds, o.sample, "--sample");
+  if (command.get_option("--sample")->count() > 0 && !sample_rate) {
+    throw InputError(std::vector<Problem>{
+        refused_problem("--sample", o.sample, "needs --sample-rate, whose samples it defines",
+                        "--sample KIND with --sample-rate FS")});
+  }
   const SimulationCase c = case_to_run(o, command);
   // A driven run's impacts go beside the series, refused here too.
   const bool rattle_files = !o.out.empty() && c.torque1.kind == Torque::Kind::prescribed_speed;
@@ -145,6 +152,7 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
   }
   RunControl control;
   control.sample_rate_hz = sample_rate;
+  control.sample = sample_kind;
   control.keep_samples = false;
   // The series goes to its file as the run makes it, a megabyte at a time,
   // so that a long run's memory does not grow with its length.
@@ -320,6 +328,12 @@ void register_simulate_commands(CLI::App& app) {
       "accelerations, DTE, mesh force per side; with elastic bearings the centres' "
       "accelerations and the sensor's, [bearings] sensor_gear and sensor_angle) instead of the "
       "integrator's steps; not with --every");
+  simulate->add_option(
+      "--sample", options->sample,
+      "the samples' accelerations: interval-average (default: the mean over the interval ending "
+      "at each sample, the velocity difference over T, from n = 1 on; transfer sinc(f T) with a "
+      "delay of T / 2) or point (the value at each sample's instant, which folds the steps of the "
+      "acceleration back into the band)");
   simulate->add_option("--max-rows", options->max_rows,
                        "the most rows the time series may have, so that a slip of --t-end does "
                        "not fill a disk (default " +

@@ -328,12 +328,14 @@ py::list impact_records(const std::vector<ImpactRecord>& impacts) {
 // summary_json's text (the program's JSON, parsed by the Python layer so that
 // the keys and numbers are the program's), the series and the impacts.
 py::tuple run_simulation(const SimulationCase& c, bool keep_series, long long max_rows,
-                         std::optional<double> sample_rate_hz) {
+                         std::optional<double> sample_rate_hz, const std::string& sample) {
+  const SampleKind sample_kind = value_named(kSampleKinds, sample, "sample");
   SimulationResult result = interruptible([&](std::function<bool()> should_stop) {
     RunControl control;
     control.keep_series = keep_series;
     control.most_series_rows = max_rows;
     control.sample_rate_hz = sample_rate_hz;
+    control.sample = sample_kind;
     control.should_stop = std::move(should_stop);
     return simulate(c, control);
   });
@@ -885,7 +887,7 @@ void define_module(py::module_& m) {
       py::arg("key"));
 
   m.def("simulate", &run_simulation, py::arg("case"), py::arg("keep_series"), py::arg("max_rows"),
-        py::arg("sample_rate") = py::none());
+        py::arg("sample_rate") = py::none(), py::arg("sample") = "interval-average");
   m.attr("most_series_rows") = kMostSeriesRows;
   m.def("stiffness_samples", &stiffness_samples, py::arg("pair"), py::arg("model"),
         py::arg("points"));
