@@ -38,6 +38,7 @@
 #include "gearimpact/paper/table1.hpp"
 #include "gearimpact/signals/fft.hpp"
 #include "gearimpact/signals/indicators.hpp"
+#include "gearimpact/signals/recorder.hpp"
 #include "gearimpact/signals/resample.hpp"
 #include "gearimpact/signals/spectrum.hpp"
 #include "gearimpact/signals/tsa.hpp"
