@@ -13,6 +13,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "commands.hpp"
@@ -25,6 +26,7 @@
 #include "gearimpact/io/results.hpp"
 #include "gearimpact/io/signal_files.hpp"
 #include "gearimpact/signals/indicators.hpp"
+#include "gearimpact/signals/recorder.hpp"
 #include "gearimpact/signals/resample.hpp"
 #include "gearimpact/signals/spectrum.hpp"
 #include "gearimpact/signals/tsa.hpp"
@@ -50,7 +52,36 @@ struct SignalsOptions {
   std::string out;
   bool overwrite = false;
   bool plots = true;
+  // The recorder (signals/recorder.hpp).
+  std::string accelerometer;  // "F_HZ:ZETA"
+  std::string path_modes;
+  std::string path_band = "1000:8000";
+  std::string path_damping = "0.01:0.05";
+  std::string noise_snr;
+  bool noise_exact = false;
+  std::string seed = "0";
+  std::string range;
+  std::string bits = "16";
 };
+
+// "A:B" as two numbers, naming `flag`.
+std::pair<double, double> number_pair(const std::string& text, const std::string& flag,
+                                      const std::string& allowed) {
+  const auto colon = text.find(':');
+  if (colon == std::string::npos) throw InputError(flag, text, allowed);
+  char* end = nullptr;
+  const std::string a = text.substr(0, colon);
+  const std::string b = text.substr(colon + 1);
+  const double x = std::strtod(a.c_str(), &end);
+  if (a.empty() || end != a.c_str() + a.size() || !std::isfinite(x)) {
+    throw InputError(flag, text, allowed);
+  }
+  const double y = std::strtod(b.c_str(), &end);
+  if (b.empty() || end != b.c_str() + b.size() || !std::isfinite(y)) {
+    throw InputError(flag, text, allowed);
+  }
+  return {x, y};
+}
 
 // --mark-tooth "pinion:N" or "wheel:N" with --case-file: where that tooth's
 // drive flank carries, in its gear's angle (tooth_passage), to shade on the TSA.
@@ -305,6 +336,56 @@ void run_signals(const SignalsOptions& o) {
       naming_flags([&] { signals::check_order_sets(*sets, per_revolution); });
     }
   }
+  // The recorder's settings, checked before the file is read (the frequencies against the
+  // record's rate once it is known).
+  const auto seed = static_cast<unsigned long long>(whole_number(o.seed, "--seed"));
+  std::optional<signals::SecondOrderSection> accelerometer;
+  if (!o.accelerometer.empty()) {
+    const auto [f, zeta] = number_pair(o.accelerometer, "--accelerometer",
+                                       "RESONANCE_HZ:DAMPING_RATIO, e.g. 30000:0.02");
+    if (!(f > 0.0 && zeta > 0.0 && zeta < 1.0)) {
+      throw InputError("--accelerometer", o.accelerometer,
+                       "a resonance > 0 Hz and a damping ratio in (0, 1), e.g. 30000:0.02");
+    }
+    accelerometer = signals::accelerometer(f, zeta);
+  }
+  std::vector<signals::SecondOrderSection> path;
+  if (!o.path_modes.empty()) {
+    const std::size_t modes = whole_number(o.path_modes, "--path-modes");
+    const auto band = number_pair(o.path_band, "--path-band", "LOW_HZ:HIGH_HZ, 0 < LOW <= HIGH");
+    const auto damping =
+        number_pair(o.path_damping, "--path-damping", "LOW:HIGH, 0 < LOW <= HIGH < 1");
+    try {
+      path = signals::draw_path(seed, static_cast<int>(std::min<std::size_t>(modes, 1000)),
+                                band.first, band.second, damping.first, damping.second);
+    } catch (const InputError& e) {
+      const std::string field = e.problems().front().field;
+      const std::string flag = field == "path modes"  ? "--path-modes"
+                               : field == "path band" ? "--path-band"
+                                                      : "--path-damping";
+      throw InputError(flag,
+                       field == "path modes"  ? o.path_modes
+                       : field == "path band" ? o.path_band
+                                              : o.path_damping,
+                       e.problems().front().allowed);
+    }
+  }
+  std::optional<double> noise_snr;
+  if (!o.noise_snr.empty()) {
+    noise_snr = number(o.noise_snr, "--noise-snr");
+    if (!std::isfinite(*noise_snr)) {
+      throw InputError("--noise-snr", o.noise_snr, "a finite signal-to-noise ratio in dB");
+    }
+  }
+  std::optional<double> adc_range;
+  const std::size_t bits = whole_number(o.bits, "--bits");
+  if (bits > 32) throw InputError("--bits", o.bits, "an integer in [0, 32] (0: no rounding)");
+  if (!o.range.empty()) {
+    adc_range = number(o.range, "--range");
+    if (!(*adc_range > 0.0 && std::isfinite(*adc_range))) {
+      throw InputError("--range", o.range, "a finite full scale > 0, in the column's unit");
+    }
+  }
   std::optional<ToothPassage> marked;
   if (!o.mark_tooth.empty()) marked = marked_passage(o);
   if (o.mark_tooth.empty() && !o.case_file.empty()) {
@@ -344,24 +425,67 @@ void run_signals(const SignalsOptions& o) {
   // is low-passed below that frequency first, and the angle taken on the same
   // grid for the order analysis.
   const bool coarser = rate && *rate < record_rate * (1.0 - 1e-9);
+  // The accelerometer and the path act on the record at its own rate (each sample held over
+  // the interval ending at it, as an interval average is); a record whose spacing is not
+  // uniform is taken on its own uniform grid first.
+  std::vector<double> recorded = signal;
+  std::vector<double> recorded_time = time;
+  std::vector<double> uniform_angle;
+  std::vector<signals::SecondOrderSection> sections = path;
+  if (accelerometer) sections.push_back(*accelerometer);
+  if (!sections.empty()) {
+    const double most = *std::max_element(spacing.begin(), spacing.end());
+    if (most > 1.000001 / record_rate) {
+      naming_flags([&] {
+        recorded_time = signals::uniform_times(time.front(), time.back(), record_rate);
+        recorded = signals::resample_uniform(time, signal, record_rate, o.time_column.c_str(),
+                                             o.column.c_str());
+        if (has_angle) {
+          uniform_angle = signals::resample_uniform(time, columns[2], record_rate,
+                                                    o.time_column.c_str(), o.angle_column.c_str());
+        }
+      });
+    }
+    std::vector<double> response;
+    if (accelerometer && path.empty()) {
+      response =
+          signals::filter_sections(recorded, record_rate, {*accelerometer}, "--accelerometer");
+    } else {
+      // The path's modes sum to the path; the accelerometer follows it.
+      response = signals::filter_sections(recorded, record_rate, path, "--path-band");
+      if (accelerometer) {
+        response =
+            signals::filter_sections(response, record_rate, {*accelerometer}, "--accelerometer");
+      }
+    }
+    recorded = std::move(response);
+  }
+  const std::vector<double>& record_time = recorded_time;
+  const std::vector<double>& record_angle =
+      uniform_angle.empty() && has_angle ? columns[2] : uniform_angle;
   std::vector<double> filtered_time;
   std::vector<double> filtered_signal;
   std::vector<double> filtered_angle;
   if (coarser) {
     naming_flags([&] {
-      filtered_time = signals::uniform_times(time.front(), time.back(), record_rate);
+      filtered_time = signals::uniform_times(record_time.front(), record_time.back(), record_rate);
       filtered_signal =
-          signals::low_pass(signals::resample_uniform(time, signal, record_rate,
+          signals::low_pass(signals::resample_uniform(record_time, recorded, record_rate,
                                                       o.time_column.c_str(), o.column.c_str()),
                             record_rate, 0.5 * *rate);
       if (has_angle) {
-        filtered_angle = signals::resample_uniform(time, columns[2], record_rate,
+        filtered_angle = signals::resample_uniform(record_time, record_angle, record_rate,
                                                    o.time_column.c_str(), o.angle_column.c_str());
       }
     });
   }
-  const std::vector<double>& analysed_time = coarser ? filtered_time : time;
-  const std::vector<double>& analysed_signal = coarser ? filtered_signal : signal;
+  const std::vector<double>& analysed_time = coarser ? filtered_time : record_time;
+  std::vector<double> analysed_signal = coarser ? filtered_signal : recorded;
+  // Noise, then the ADC, on the band-limited record.
+  std::optional<signals::NoiseResult> noise;
+  if (noise_snr) noise = signals::add_noise(analysed_signal, *noise_snr, seed, o.noise_exact);
+  std::optional<signals::AdcResult> converted;
+  if (adc_range) converted = signals::adc(analysed_signal, *adc_range, static_cast<int>(bits));
   SignalsRun run;
   run.input = o.input;
   run.column = o.column;
@@ -371,6 +495,19 @@ void run_signals(const SignalsOptions& o) {
   run.sample_rate_hz = rate ? *rate : record_rate;
   run.record_rate_hz = record_rate;
   if (coarser) run.low_pass_hz = 0.5 * *rate;
+  run.accelerometer = accelerometer;
+  run.path = path;
+  run.noise_snr_db = noise_snr;
+  run.noise_exact = o.noise_exact;
+  run.noise = noise;
+  run.adc_range = adc_range;
+  run.adc_bits = static_cast<int>(bits);
+  run.adc = converted;
+  run.seed = seed;
+  if (converted && converted->clipped > 0) {
+    std::cerr << "warning: " << converted->clipped << " samples clipped at --range " << o.range
+              << "\n";
+  }
   run.window = std::string(signals::to_string(window));
   std::vector<double> uniform;
   naming_flags([&] {
@@ -389,7 +526,7 @@ void run_signals(const SignalsOptions& o) {
   std::vector<double> tsa_values;
   double mesh_hz = 0.0;
   if (has_angle) {
-    const std::vector<double>& angle = coarser ? filtered_angle : columns[2];
+    const std::vector<double>& angle = coarser ? filtered_angle : record_angle;
     run.angle_column = o.angle_column;
     run.samples_per_revolution = per_revolution;
     run.sets = sets;
@@ -488,6 +625,27 @@ void register_signals_commands(CLI::App& app) {
                   "output folder: new or empty (else --overwrite), written beside it and renamed "
                   "into place when complete")
       ->required();
+  cmd->add_option("--accelerometer", o->accelerometer,
+                  "RESONANCE_HZ:DAMPING_RATIO: an accelerometer's resonance, w^2 / (s^2 + 2 zeta w "
+                  "s + w^2), on the record at its own rate (below a quarter of it)");
+  cmd->add_option("--path-modes", o->path_modes,
+                  "a transfer path of this many modes, each g (2 zeta w s + w^2) / (s^2 + 2 zeta w "
+                  "s + w^2), drawn from --seed");
+  cmd->add_option("--path-band", o->path_band,
+                  "LOW_HZ:HIGH_HZ: the path modes' frequencies, log-uniform (default 1000:8000)");
+  cmd->add_option("--path-damping", o->path_damping,
+                  "LOW:HIGH: the path modes' damping ratios, uniform (default 0.01:0.05)");
+  cmd->add_option("--noise-snr", o->noise_snr,
+                  "dB: white Gaussian noise of sigma = RMS(x - mean) 10^(-SNR/20) after the "
+                  "anti-alias filter, drawn from --seed");
+  cmd->add_flag("--noise-exact", o->noise_exact,
+                "rescale the noise's draw to the stated SNR exactly (default: its expectation)");
+  cmd->add_option("--seed", o->seed, "the recorder's seed (default 0), a whole number");
+  cmd->add_option("--range", o->range,
+                  "an ADC's full scale in the column's unit: clip at +-RANGE (counted, warned)");
+  cmd->add_option(
+      "--bits", o->bits,
+      "the ADC's resolution with --range: LSB = 2 RANGE / 2^BITS (default 16; 0: none)");
   cmd->add_flag("--overwrite", o->overwrite, "replace a non-empty --out folder whole");
   cmd->add_flag("!--no-plots", o->plots, "skip the gnuplot figures");
   cmd->callback([o] { run_signals(*o); });

@@ -263,6 +263,21 @@ TEST_CASE("signals refuses a bad flag before any work, naming it and its range")
       {"--column x --mark-tooth wheel:3 --case-file " + case1,
        "--mark-tooth = wheel:3 is outside the allowed range: with --angle-column"},
       {"--column x --case-file " + case1, "--case-file = " + case1},
+      {"--column x --accelerometer 30000", "--accelerometer = 30000 is outside the allowed range"},
+      {"--column x --accelerometer 30000:1.5",
+       "--accelerometer = 30000:1.5 is outside the allowed range: a resonance > 0 Hz and a "
+       "damping ratio in (0, 1)"},
+      {"--column x --accelerometer 20000:0.05",
+       "--accelerometer = 20000 Hz is outside the allowed range: a frequency in (0, 12500) Hz"},
+      {"--column x --path-modes 0",
+       "--path-modes = 0 is outside the allowed range: an integer in [1, 16]"},
+      {"--column x --path-modes 2 --path-band 9000:8000",
+       "--path-band = 9000:8000 is outside the allowed range: 0 < low <= high"},
+      {"--column x --noise-snr inf", "--noise-snr = inf is outside the allowed range: a finite"},
+      {"--column x --range 0", "--range = 0 is outside the allowed range: a finite full scale > 0"},
+      {"--column x --range 1 --bits 40",
+       "--bits = 40 is outside the allowed range: an integer in [0, 32]"},
+      {"--column x --seed -1", "--seed = -1 is outside the allowed range: a whole number"},
   };
   for (const auto& c : cases) {
     CAPTURE(c.flags);
@@ -272,4 +287,40 @@ TEST_CASE("signals refuses a bad flag before any work, naming it and its range")
     CHECK(r.err.find('\n') == r.err.size() - 1);  // one line
     CHECK_FALSE(std::filesystem::exists(scratch.dir / "out"));
   }
+}
+
+TEST_CASE(
+    "signals' recorder: the noise's realised SNR, seeded, and the ADC's clip count recorded") {
+  Scratch scratch("signals-recorder");
+  const auto csv = scratch.dir / "signal.csv";
+  write_signal(csv);
+  const auto run = [&](const std::string& flags, const std::string& name) {
+    const auto out = scratch.dir / name;
+    const auto r = run_command(kCli + " signals " + csv.string() + " --column x --no-plots " +
+                               flags + " --out " + out.string());
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    return nlohmann::json::parse(read(out / "indicators.json"));
+  };
+  const auto clean = run("", "clean");
+  const auto a = run("--noise-snr 20 --seed 4", "a");
+  const auto b = run("--noise-snr 20 --seed 4", "b");
+  const auto c = run("--noise-snr 20 --seed 5", "c");
+  const auto exact = run("--noise-snr 20 --seed 4 --noise-exact", "exact");
+  CHECK(clean["recorder"]["noise_snr_db"].is_null());
+  // 50001 samples: the realised SNR scatters by (10 / ln 10) sqrt(2 / N) = 0.027 dB.
+  const double deviation = 10.0 / std::log(10.0) * std::sqrt(2.0 / 50001.0);
+  CHECK(std::abs(a["recorder"]["realised_snr_db"].get<double>() - 20.0) <= 5.0 * deviation);
+  CHECK(a["recorder"]["realised_snr_db"] == b["recorder"]["realised_snr_db"]);
+  CHECK(a["record"]["rms"] == b["record"]["rms"]);
+  CHECK(a["recorder"]["realised_snr_db"] != c["recorder"]["realised_snr_db"]);
+  CHECK(std::abs(exact["recorder"]["realised_snr_db"].get<double>() - 20.0) <= 1e-12);
+  CHECK(exact["recorder"]["noise_mode"] == "exact");
+  // x = 1 + cos(20 theta) + 0.25 cos(40 theta) reaches 2.25: a range of 2 clips its peaks.
+  const auto clipped = run("--range 2 --bits 0", "clipped");
+  CHECK(clipped["recorder"]["clipped"].get<long long>() > 0);
+  // The record's peak is the range's, to the cubic resampling's overshoot at a clip's corner.
+  CHECK(clipped["record"]["peak"].get<double>() <= 2.0 * 1.001);
+  CHECK(clean["record"]["peak"].get<double>() > 2.2);
+  CHECK(run("--range 3 --bits 0", "unclipped")["recorder"]["clipped"] == 0);
 }

@@ -139,6 +139,38 @@ std::string indicators_json(const SignalsRun& run, const signals::Indicators& i)
     j["sidebands"] = run.sets->sidebands;
     j["mesh_frequency_hz"] = run.shaft_frequency_hz * static_cast<double>(run.sets->teeth);
   }
+  Json recorder;
+  const auto section = [](const signals::SecondOrderSection& x, double gain) {
+    Json m;
+    m["frequency_hz"] = x.frequency_hz;
+    m["damping_ratio"] = x.damping_ratio;
+    m["gain"] = gain;
+    return m;
+  };
+  recorder["accelerometer"] = run.accelerometer ? section(*run.accelerometer, 1.0) : Json();
+  Json path = Json::array();
+  for (const signals::SecondOrderSection& m : run.path) {
+    path.push_back(section(m, signals::gain_at(m, 0.0)));
+  }
+  recorder["path"] = path;
+  recorder["seed"] = run.seed;
+  if (run.noise) {
+    recorder["noise_snr_db"] = *run.noise_snr_db;
+    recorder["noise_mode"] = run.noise_exact ? "exact" : "expected";
+    recorder["noise_sigma"] = run.noise->sigma;
+    recorder["realised_snr_db"] = run.noise->realised_snr_db;
+  } else {
+    recorder["noise_snr_db"] = nullptr;
+  }
+  if (run.adc) {
+    recorder["range"] = *run.adc_range;
+    recorder["bits"] = run.adc_bits;
+    recorder["lsb"] = run.adc->lsb;
+    recorder["clipped"] = run.adc->clipped;
+  } else {
+    recorder["range"] = nullptr;
+  }
+  j["recorder"] = recorder;
   Json record;
   record["rms"] = i.rms;
   record["peak"] = i.peak;
