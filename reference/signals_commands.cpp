@@ -43,7 +43,9 @@ struct SignalsOptions {
   std::string angle_column;
   std::string sample_rate;
   std::string window = "hann";
-  std::string samples_per_revolution = "512";
+  std::string samples_per_revolution = "auto";
+  std::string band;
+  std::string nb4_half_width = "auto";
   std::string teeth;
   std::string shaft_orders = "1";
   std::string sidebands = "1";
@@ -124,6 +126,8 @@ InputError as_flags(const InputError& e) {
       {"samples per revolution", "--samples-per-revolution"},
       {"teeth", "--teeth"},
       {"sidebands", "--sidebands"},
+      {"nb4 half width", "--nb4-half-width"},
+      {"band", "--band"},
       {"shaft orders", "--shaft-orders"}};
   std::vector<Problem> problems;
   for (const Problem& p : e.problems()) {
@@ -297,6 +301,31 @@ void tsa_figure(const std::filesystem::path& dir, const std::string& column,
   render(dir, f);
 }
 
+// The fastest whole revolution's mean speed, Hz: over each revolution of the angle from its
+// first multiple of 2 pi, one turn over the time between the crossings (linear between samples).
+double fastest_revolution_hz(const std::vector<double>& time, const std::vector<double>& angle) {
+  const double turn = 2.0 * pi;
+  double next = std::ceil(angle.front() / turn) * turn;
+  double last_crossing = std::numeric_limits<double>::quiet_NaN();
+  double fastest = 0.0;
+  for (std::size_t i = 1; i < angle.size(); ++i) {
+    while (angle[i] >= next && angle[i - 1] < next) {
+      const double t =
+          time[i - 1] + (time[i] - time[i - 1]) * (next - angle[i - 1]) / (angle[i] - angle[i - 1]);
+      if (std::isfinite(last_crossing) && t > last_crossing) {
+        fastest = std::max(fastest, 1.0 / (t - last_crossing));
+      }
+      last_crossing = t;
+      next += turn;
+    }
+  }
+  if (!(fastest > 0.0)) {
+    // Less than one whole revolution: the mean speed (resample_on_angle refuses it later).
+    fastest = (angle.back() - angle.front()) / (turn * (time.back() - time.front()));
+  }
+  return fastest;
+}
+
 void run_signals(const SignalsOptions& o) {
   // Every flag first, before the file is read.
   std::optional<double> rate;
@@ -327,13 +356,39 @@ void run_signals(const SignalsOptions& o) {
   std::size_t per_revolution = 0;
   std::optional<signals::OrderSets> sets;
   if (has_angle) {
-    per_revolution = whole_number(o.samples_per_revolution, "--samples-per-revolution");
-    naming_flags([&] { signals::check_samples_per_revolution(per_revolution); });
+    // auto (0): the indicators' grid, from the record's band.
+    if (o.samples_per_revolution != "auto") {
+      per_revolution = whole_number(o.samples_per_revolution, "--samples-per-revolution");
+      naming_flags([&] { signals::check_samples_per_revolution(per_revolution); });
+    }
     if (!o.teeth.empty()) {
       sets = signals::OrderSets{whole_number(o.teeth, "--teeth"),
                                 whole_number(o.shaft_orders, "--shaft-orders"),
                                 whole_number(o.sidebands, "--sidebands")};
-      naming_flags([&] { signals::check_order_sets(*sets, per_revolution); });
+      if (o.nb4_half_width != "auto") {
+        sets->nb4_half_width = whole_number(o.nb4_half_width, "--nb4-half-width");
+        if (sets->nb4_half_width == 0) {
+          throw InputError("--nb4-half-width", o.nb4_half_width,
+                           "2 to (teeth - 1) / 2, or auto (the default, (teeth - 1) / 2)");
+        }
+      }
+      // With P auto, the largest grid stands in until the record's band gives P.
+      naming_flags([&] {
+        signals::check_order_sets(*sets,
+                                  per_revolution != 0 ? per_revolution : std::size_t{1} << 24);
+      });
+    }
+  }
+  std::optional<double> band_hz;
+  if (!o.band.empty()) {
+    if (!has_angle) {
+      throw InputError(std::vector<Problem>{
+          refused_problem("--band", o.band, "needs --angle-column (it bounds the TSA's orders)",
+                          "--band HZ with --angle-column")});
+    }
+    band_hz = number(o.band, "--band");
+    if (!(*band_hz > 0.0 && std::isfinite(*band_hz))) {
+      throw InputError("--band", o.band, "a finite frequency > 0 Hz");
     }
   }
   // The recorder's settings, checked before the file is read (the frequencies against the
@@ -528,11 +583,29 @@ void run_signals(const SignalsOptions& o) {
   if (has_angle) {
     const std::vector<double>& angle = coarser ? filtered_angle : record_angle;
     run.angle_column = o.angle_column;
-    run.samples_per_revolution = per_revolution;
     run.sets = sets;
-    const signals::OrderAnalysis a =
-        signals::analyse_orders(angle, analysed_signal, per_revolution, window, sets,
-                                o.angle_column.c_str(), o.column.c_str());
+    // The band's highest order: --band, or kBandFraction of the analysed rate when that is not
+    // the record's own (below it the library counts the record's samples a revolution), over
+    // the fastest whole revolution's speed.
+    std::optional<std::size_t> max_order;
+    if (band_hz || coarser) {
+      const double band = band_hz ? *band_hz : signals::kBandFraction * run.sample_rate_hz;
+      max_order =
+          static_cast<std::size_t>(std::floor(band / fastest_revolution_hz(analysed_time, angle)));
+    }
+    signals::OrderAnalysis a;
+    naming_flags([&] {
+      a = signals::analyse_orders(angle, analysed_signal, per_revolution, window, sets,
+                                  o.angle_column.c_str(), o.column.c_str(), max_order);
+    });
+    run.samples_per_revolution = a.samples_per_revolution;
+    run.max_order = a.max_order;
+    run.band_hz = band_hz;
+    run.indicator_grid = a.indicator_grid;
+    if (a.indicator_parts) {
+      run.nb4_harmonic = a.indicator_parts->nb4_harmonic;
+      run.nb4_half_width = a.indicator_parts->nb4_half_width;
+    }
     run.angle_grid = a.grid;
     run.revolutions = a.revolutions;
     run.shaft_frequency_hz = (angle.back() - angle.front()) / (2.0 * pi * span);
@@ -541,7 +614,7 @@ void run_signals(const SignalsOptions& o) {
                           tsa_csv(a.tsa, a.parts ? &*a.parts : nullptr));
     tsa_values = a.tsa;
     if (sets) {
-      indicators = signals::gear_indicators(uniform, *a.parts, *sets);
+      indicators = signals::gear_indicators(uniform, *a.indicator_parts, *sets);
       mesh_hz = run.shaft_frequency_hz * static_cast<double>(sets->teeth);
     } else {
       indicators = signals::record_indicators(uniform);
@@ -606,8 +679,16 @@ void register_signals_commands(CLI::App& app) {
                   "the shaft's angle, rad, strictly increasing (e.g. theta1_rad): order "
                   "spectrum and TSA over its whole revolutions");
   cmd->add_option("--samples-per-revolution", o->samples_per_revolution,
-                  "angle steps a revolution, 16 to 16777216, above 2 (teeth + sidebands) "
-                  "(default 512)");
+                  "angle steps a revolution of tsa.csv, 16 to 16777216, above 2 (teeth + "
+                  "sidebands) (default auto: the indicators' grid, the smallest power of two >= 8 "
+                  "q_max + 1); the indicators do not depend on it");
+  cmd->add_option("--band", o->band,
+                  "Hz: the record's band; the TSA keeps the orders up to q_max = floor(BAND / "
+                  "the fastest revolution's speed) (default 0.4 of the analysed rate)");
+  cmd->add_option("--nb4-half-width", o->nb4_half_width,
+                  "NB4's band h* z +- W orders about the strongest mesh harmonic h*, W from 2 to "
+                  "(z - 1) / 2 (default auto: (z - 1) / 2; over z +- 1 NB4 is 1.5 whatever the "
+                  "fault)");
   cmd->add_option("--teeth", o->teeth,
                   "teeth of the gear on that shaft: regular, residual and difference signals, "
                   "FM0 ... sideband level, mesh harmonics marked");

@@ -1011,7 +1011,8 @@ void define_module(py::module_& m) {
   m.def(
       "order_analysis",
       [](const ArrayIn& angle, const ArrayIn& x, long long per_revolution, long long teeth,
-         long long shaft_orders, long long sidebands, const std::string& window) {
+         long long shaft_orders, long long sidebands, const std::string& window,
+         long long max_order, long long nb4_half_width) {
         const std::vector<double> a = vector_of(angle, "angle");
         const std::vector<double> values = vector_of(x, "signal");
         const signals::Window w = signals::parse_window(window, "window");
@@ -1020,10 +1021,14 @@ void define_module(py::module_& m) {
           sets =
               signals::OrderSets{count_of(teeth, "teeth"), count_of(shaft_orders, "shaft_orders"),
                                  count_of(sidebands, "sidebands")};
+          sets->nb4_half_width = count_of(nb4_half_width, "nb4_half_width");
         }
+        // 0: from the record's band (tsa.hpp).
         const std::size_t p = count_of(per_revolution, "samples_per_revolution");
+        std::optional<std::size_t> top;
+        if (max_order >= 0) top = count_of(max_order, "max_order");
         const signals::OrderAnalysis r = naming_keywords(
-            [&] { return signals::analyse_orders(a, values, p, w, sets, "angle", "signal"); });
+            [&] { return signals::analyse_orders(a, values, p, w, sets, "angle", "signal", top); });
         py::dict d;
         d["grid"] = r.grid;
         d["revolutions"] = r.revolutions;
@@ -1031,6 +1036,9 @@ void define_module(py::module_& m) {
         d["order"] = to_array(r.orders.frequency);
         d["amplitude"] = to_array(r.orders.amplitude);
         d["tsa"] = to_array(r.tsa);
+        d["samples_per_revolution"] = r.samples_per_revolution;
+        d["max_order"] = r.max_order;
+        d["indicator_grid"] = r.indicator_grid;
         if (r.parts) {
           d["regular"] = to_array(r.parts->regular);
           d["residual"] = to_array(r.parts->residual);
@@ -1038,12 +1046,17 @@ void define_module(py::module_& m) {
           d["mesh_band"] = to_array(r.parts->mesh_band);
           d["mesh_band_envelope"] = to_array(r.parts->mesh_band_envelope);
           d["tsa_order_amplitude"] = to_array(r.parts->order_amplitude);
-          d["indicators"] = indicators_dict(signals::gear_indicators(r.tsa, *r.parts, *sets));
+          d["nb4_harmonic"] = r.indicator_parts->nb4_harmonic;
+          d["nb4_half_width"] = r.indicator_parts->nb4_half_width;
+          // On the indicators' grid: independent of samples_per_revolution.
+          d["indicators"] = indicators_dict(
+              signals::gear_indicators(r.indicator_parts->tsa, *r.indicator_parts, *sets));
         }
         return d;
       },
       py::arg("angle"), py::arg("signal"), py::arg("samples_per_revolution"), py::arg("teeth"),
-      py::arg("shaft_orders"), py::arg("sidebands"), py::arg("window"));
+      py::arg("shaft_orders"), py::arg("sidebands"), py::arg("window"), py::arg("max_order"),
+      py::arg("nb4_half_width"));
   m.def(
       "condition_indicators",
       [](const ArrayIn& x) {

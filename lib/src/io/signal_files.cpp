@@ -129,7 +129,12 @@ std::string indicators_json(const SignalsRun& run, const signals::Indicators& i)
     j["angle_column"] = run.angle_column;
     j["angle_grid_per_revolution"] = run.angle_grid;
     j["samples_per_revolution"] = run.samples_per_revolution;
-    j["tsa_anti_alias"] = "orders below samples_per_revolution / 2 kept, the rest removed (DFT)";
+    j["tsa_anti_alias"] =
+        "orders up to max_order (the record's band over the fastest revolution's speed) and "
+        "below samples_per_revolution / 2 kept, the rest removed (DFT)";
+    j["band_hz"] = run.band_hz ? Json(*run.band_hz) : Json("0.4 of the sample rate");
+    j["max_order"] = run.max_order;
+    j["indicator_grid_per_revolution"] = run.indicator_grid;
     j["revolutions"] = run.revolutions;
     j["shaft_frequency_hz"] = run.shaft_frequency_hz;
   }
@@ -137,6 +142,8 @@ std::string indicators_json(const SignalsRun& run, const signals::Indicators& i)
     j["teeth"] = run.sets->teeth;
     j["shaft_orders"] = run.sets->shaft_orders;
     j["sidebands"] = run.sets->sidebands;
+    j["nb4_harmonic"] = run.nb4_harmonic;
+    j["nb4_half_width"] = run.nb4_half_width;
     j["mesh_frequency_hz"] = run.shaft_frequency_hz * static_cast<double>(run.sets->teeth);
   }
   Json recorder;
