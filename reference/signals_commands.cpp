@@ -200,18 +200,52 @@ void mark_sidebands(Figure& f, double mesh, double shaft, std::size_t sidebands,
       }
     }
   }
-  f.setup.emplace_back("set key bottom right opaque box");
+  f.setup.emplace_back("set key top right opaque box samplen 2");
   f.series.push_back("NaN with lines lw 1.5 lc rgb '#c0392b' title '" + label + "'");
+}
+
+// A column's physical quantity and unit from its name's unit suffix (the program's columns
+// carry one: sensor_acceleration_m_per_s2, w2_dot_rad_s2, drive_force_N, dte_m); the bare name
+// when it has none. `quantity` false gives the unit alone ("" without one).
+struct Physical {
+  std::string quantity;
+  std::string unit;
+};
+Physical physical(const std::string& column) {
+  static const std::vector<std::pair<std::string, Physical>> suffixes{
+      {"_m_per_s2", {"acceleration", "m/s^2"}},
+      {"_m_s2", {"acceleration", "m/s^2"}},
+      {"_rad_per_s2", {"angular acceleration", "rad/s^2"}},
+      {"_rad_s2", {"angular acceleration", "rad/s^2"}},
+      {"_m_s", {"velocity", "m/s"}},
+      {"_rad_s", {"angular speed", "rad/s"}},
+      {"_rad", {"angle", "rad"}},
+      {"_N", {"force", "N"}},
+      {"_m", {"displacement", "m"}},
+  };
+  for (const auto& [suffix, p] : suffixes) {
+    if (column.size() > suffix.size() &&
+        column.compare(column.size() - suffix.size(), suffix.size(), suffix) == 0) {
+      return p;
+    }
+  }
+  return {column, ""};
+}
+std::string axis_label(const std::string& column) {
+  const Physical p = physical(column);
+  return p.unit.empty() ? literal_key(column, true) : p.quantity + " (" + p.unit + ")";
 }
 
 void spectrum_figure(const std::filesystem::path& dir, const std::string& name,
                      const std::string& title, const std::string& x_label, double top, double mesh,
-                     const std::string& mesh_name, double shaft = 0.0, std::size_t sidebands = 0) {
+                     const std::string& mesh_name, const std::string& column, double shaft = 0.0,
+                     std::size_t sidebands = 0) {
   Figure f;
   f.name = name;
   f.title = title;
   f.x_label = x_label;
-  f.y_label = "amplitude (log scale)";
+  const std::string unit = physical(column).unit;
+  f.y_label = "amplitude (" + (unit.empty() ? std::string() : unit + ", ") + "log scale)";
   f.setup = {"set logscale y", "set format y '10^{%L}'", "set key off"};
   add(f, tick_commands("x", nice_ticks(0.0, top)));
   if (mesh > 0.0) mark_mesh_harmonics(f, mesh, top, mesh_name);
@@ -243,18 +277,33 @@ void write_waveform(const std::filesystem::path& dir, const std::string& column,
   write_file_atomically((dir / "waveform.csv").string(), csv);
 }
 
+// The figure's span: the last kWaveformRevolutions revolutions of a record with a shaft (its
+// mesh periods then stand apart instead of filling the plot as a band), else the last
+// kWaveformFigureSamples samples; waveform.csv keeps more.
+constexpr double kWaveformRevolutions = 2.0;
+constexpr std::size_t kWaveformFigureSamples = 2048;
+
 void waveform_figure(const std::filesystem::path& dir, const std::string& column,
-                     const std::vector<double>& uniform) {
-  const std::size_t first = waveform_start(uniform);
+                     const std::vector<double>& uniform, double start_s, double rate_hz,
+                     double shaft_hz) {
+  const std::size_t written = uniform.size() - waveform_start(uniform);
+  const std::size_t shown = std::min(
+      written, shaft_hz > 0.0
+                   ? static_cast<std::size_t>(std::ceil(kWaveformRevolutions * rate_hz / shaft_hz))
+                   : kWaveformFigureSamples);
+  const double from = start_s + static_cast<double>(uniform.size() - shown) / rate_hz;
   Figure f;
   f.name = "waveform";
   f.title = "Waveform of " + literal_key(column, true) +
-            (first > 0 ? " (the record's last " + std::to_string(kWaveformSamples) + " samples)"
-                       : std::string());
+            (shaft_hz > 0.0 && shown < written ? ", last 2 revolutions"
+             : shown < uniform.size()          ? ", last " + std::to_string(shown) + " samples"
+                                               : std::string());
   f.x_label = "time (s)";
-  // The column's name, which carries its unit (sensor_acceleration_m_per_s2).
-  f.y_label = literal_key(column, true);
-  f.setup = {"set key off"};
+  f.y_label = axis_label(column);
+  char range[96];
+  std::snprintf(range, sizeof range, "set xrange [%.15g:%.15g]", from,
+                start_s + static_cast<double>(uniform.size() - 1) / rate_hz);
+  f.setup = {"set key off", range};
   f.series = {"'waveform.csv' using 1:2 with lines lw 1 lc rgb '#1f4e99'"};
   render(dir, f);
 }
@@ -270,10 +319,11 @@ void tsa_figure(const std::filesystem::path& dir, const std::string& column,
   std::snprintf(shift, sizeof shift, "%.17g", mean);
   Figure f;
   f.name = "tsa";
-  f.title = "Time-synchronous average of " + literal_key(column, true) + " over one revolution";
+  f.title = "TSA of " + literal_key(column, true) + ", one revolution";
   f.x_label = "shaft angle (deg)";
-  f.y_label = literal_key(column, true);
-  f.setup = {"set key outside right top"};
+  f.y_label = axis_label(column);
+  // The key below the plot, in one row: the curves keep the figure's width.
+  f.setup = {"set key below horizontal samplen 2"};
   add(f, tick_commands("x", Ticks{0.0, 360.0, 45.0, 0}));
   if (marked) {
     // The passage may wrap past 360 deg: its part there is drawn from 0.
@@ -287,11 +337,13 @@ void tsa_figure(const std::filesystem::path& dir, const std::string& column,
                     start, start + span);
       f.setup.emplace_back(rect);
     }
-    f.title += " (shaded: " + marked_name + " in contact)";
+    // A key entry, not the title: a long title is cut at the figure's edge.
+    f.series.push_back("NaN with boxes fs solid 1.0 lc rgb '#ffd9b3' title '" + marked_name +
+                       " in contact'");
   }
-  f.series = {"'tsa.csv' using ($1*180/pi):($2-(" + std::string(shift) +
-              ")) with lines lw 1.5 lc rgb '#1f4e99' title 'TSA less its mean (" +
-              four_digits(mean) + ")'"};
+  f.series.push_back("'tsa.csv' using ($1*180/pi):($2-(" + std::string(shift) +
+                     ")) with lines lw 1.5 lc rgb '#1f4e99' title 'TSA less its mean (" +
+                     four_digits(mean) + ")'");
   if (with_parts) {
     f.series.push_back(
         "'tsa.csv' using ($1*180/pi):5 with lines lw 1.2 lc rgb '#c0392b' title 'difference'");
@@ -525,9 +577,9 @@ void run_signals(const SignalsOptions& o) {
     naming_flags([&] {
       filtered_time = signals::uniform_times(record_time.front(), record_time.back(), record_rate);
       filtered_signal =
-          signals::low_pass(signals::resample_uniform(record_time, recorded, record_rate,
-                                                      o.time_column.c_str(), o.column.c_str()),
-                            record_rate, 0.5 * *rate);
+          signals::low_pass_even(signals::resample_uniform(record_time, recorded, record_rate,
+                                                           o.time_column.c_str(), o.column.c_str()),
+                                 record_rate, 0.5 * *rate);
       if (has_angle) {
         filtered_angle = signals::resample_uniform(record_time, record_angle, record_rate,
                                                    o.time_column.c_str(), o.angle_column.c_str());
@@ -627,12 +679,13 @@ void run_signals(const SignalsOptions& o) {
   if (o.plots) {
     const double nyquist = run.sample_rate_hz / 2.0;
     const std::size_t sidebands = sets ? sets->sidebands : 0;
-    waveform_figure(dir, o.column, uniform);
+    waveform_figure(dir, o.column, uniform, time.front(), run.sample_rate_hz,
+                    run.shaft_frequency_hz);
     spectrum_figure(
         dir, "spectrum",
         "Amplitude spectrum of " + literal_key(o.column, true) + " (" + run.window + " window)",
         "frequency (Hz)", mesh_hz > 0.0 ? std::min(nyquist, 6.5 * mesh_hz) : nyquist, mesh_hz,
-        "f_m", run.shaft_frequency_hz, sidebands);
+        "f_m", o.column, run.shaft_frequency_hz, sidebands);
     if (has_angle) {
       const double half = static_cast<double>(run.angle_grid) / 2.0;
       const double z = sets ? static_cast<double>(sets->teeth) : 0.0;
@@ -640,7 +693,7 @@ void run_signals(const SignalsOptions& o) {
                       "Order spectrum of " + literal_key(o.column, true) + " on " +
                           literal_key(o.angle_column, true),
                       "order (cycles per revolution)", sets ? std::min(half, 3.5 * z) : half, z,
-                      "z", 1.0, sidebands);
+                      "z", o.column, 1.0, sidebands);
       tsa_figure(dir, o.column, tsa_values, sets.has_value(), marked,
                  o.mark_tooth.substr(0, o.mark_tooth.find(':')) + " tooth " +
                      o.mark_tooth.substr(o.mark_tooth.find(':') + 1));

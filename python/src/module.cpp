@@ -152,7 +152,9 @@ auto naming_keywords(Run run) {
     static const std::vector<std::pair<std::string, std::string>> keywords{
         {"sample rate", "rate"},
         {"samples per revolution", "samples_per_revolution"},
-        {"shaft orders", "shaft_orders"}};
+        {"shaft orders", "shaft_orders"},
+        {"nb4 half width", "nb4_half_width"},
+        {"band", "max_order"}};
     std::vector<Problem> problems;
     for (const Problem& p : e.problems()) {
       std::string field = p.field;

@@ -118,7 +118,8 @@ std::string indicators_json(const SignalsRun& run, const signals::Indicators& i)
   if (run.low_pass_hz) {
     j["anti_alias"] = "the record on its own uniform grid low-passed below " +
                       format_number(*run.low_pass_hz) +
-                      " Hz by its DFT (ideal, the record taken as periodic), then resampled";
+                      " Hz by the DFT of its even extension (ideal; the record followed by itself "
+                      "reversed, so that its ends do not ring), then resampled";
   } else {
     j["anti_alias"] = nullptr;
   }
