@@ -224,15 +224,16 @@ OrderAnalysis analyse_orders(const std::vector<double>& angle, const std::vector
                            "wider band)");
     }
   }
-  // The angle grid: the smallest power of two at or above the record's rows a revolution,
-  // whatever P, so that the TSA (and so every indicator) does not depend on P.
+  // The angle grid: the record's own rows a revolution, rounded (at least 16, at most 2^23),
+  // whatever P, so that the TSA (and so every indicator) does not depend on P; on a record
+  // locked to the shaft the grid's points are then the record's samples, where the cubic
+  // returns each sample itself (elsewhere the cubic droops near the record's Nyquist order).
   a.grid = 16;
   if (angle.size() >= 2 && angle.back() > angle.front()) {
     const double rows_per_revolution =
         static_cast<double>(angle.size() - 1) * 2.0 * pi / (angle.back() - angle.front());
-    while (static_cast<double>(a.grid) < rows_per_revolution && a.grid < (std::size_t{1} << 23)) {
-      a.grid *= 2;
-    }
+    a.grid = static_cast<std::size_t>(
+        std::clamp(std::round(rows_per_revolution), 16.0, static_cast<double>(1 << 23)));
   }
   const AngleSignal on_angle = resample_on_angle(angle, signal, a.grid, angle_name, signal_name);
   a.revolutions = on_angle.revolutions;

@@ -97,8 +97,7 @@ TsaParts tsa_parts(const std::vector<double>& tsa, const OrderSets& sets,
 
 // Order tracking of a record sampled at irregular instants with its shaft's
 // angle: the record resampled on the angle at `grid` steps a revolution, the
-// smallest power of two (>= 16) at or above the record's rows a revolution (so
-// that the interpolation does not alias), up to 2^23, whatever
+// record's own rows a revolution rounded (16 to 2^23), whatever
 // samples_per_revolution; its order spectrum; its TSA on samples_per_revolution
 // samples (band_limited_period); and with `sets` the TSA's parts.
 //
