@@ -391,8 +391,8 @@ TEST_CASE("decimating a revolution keeps the orders below the new Nyquist order 
 }
 
 TEST_CASE("order analysis: a grid as fine as the record, a TSA free of aliases") {
-  // 1000 rows a revolution over 4 revolutions of a steadily advancing angle;
-  // P = 64 gives the grid 64 * 16 = 1024, the first P 2^k at or above 1000.
+  // 1000 rows a revolution over 4 revolutions of a steadily advancing angle:
+  // the grid is the record's own 1000 rows a revolution, whatever P.
   // x = cos(3 theta) + cos(100 theta): order 100 lies above P/2 = 32, and a
   // TSA of 64 samples taken straight from the record would show it at
   // 128 - 100 = 28. The reduced TSA keeps cos(3 theta) alone, up to the
@@ -406,7 +406,7 @@ TEST_CASE("order analysis: a grid as fine as the record, a TSA free of aliases")
     x.push_back(std::cos(3.0 * theta) + std::cos(100.0 * theta));
   }
   const OrderAnalysis a = analyse_orders(angle, x, 64, Window::rectangular, std::nullopt);
-  CHECK(a.grid == 1024);
+  CHECK(a.grid == 1000);
   CHECK(a.revolutions == 4);
   REQUIRE(a.tsa.size() == 64);
   const auto expected = revolution(64, [](double u) { return std::cos(3.0 * u); });
