@@ -164,6 +164,8 @@ std::string dynamic_response(const ReproduceContext& context, const GearPair& pa
   RunControl control = quiet;
   control.resume = warm;
   control.sample_rate_hz = kDynamicsSamplesPerMeshPeriod * pair.teeth1 * kDynamicsW1 / (2.0 * pi);
+  // The grid from the resumed start on, as recorded (only the deflection is used).
+  control.sample = SampleKind::point;
   for (Response& r : responses) {
     SimulationCase c = healthy;
     c.faults = r.faults;

@@ -125,6 +125,8 @@ Record run_record(SimulationCase c, double sample_rate_hz, double end_s) {
   control.keep_series = false;
   control.keep_samples = false;
   control.sample_rate_hz = sample_rate_hz * kOversampling;
+  // The recorded numbers rest on point samples, low-passed below.
+  control.sample = SampleKind::point;
   control.on_planar_sample = [&fine, sample_rate_hz](const PlanarSample& sample) {
     if (sample.t_s < kSettleS - kFilterLeadS - 0.5 / sample_rate_hz) return;
     fine.t_s.push_back(sample.t_s);

@@ -13,6 +13,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "commands.hpp"
@@ -26,6 +27,7 @@
 #include "gearimpact/io/signal_files.hpp"
 #include "gearimpact/signals/indicators.hpp"
 #include "gearimpact/signals/order_tracking.hpp"
+#include "gearimpact/signals/recorder.hpp"
 #include "gearimpact/signals/resample.hpp"
 #include "gearimpact/signals/spectrum.hpp"
 #include "gearimpact/signals/tsa.hpp"
@@ -46,7 +48,9 @@ struct SignalsOptions {
   std::string pulses_per_revolution = "1";
   std::string sample_rate;
   std::string window = "hann";
-  std::string samples_per_revolution = "512";
+  std::string samples_per_revolution = "auto";
+  std::string band;
+  std::string nb4_half_width = "auto";
   std::string teeth;
   std::string shaft_orders = "1";
   std::string sidebands = "1";
@@ -55,7 +59,36 @@ struct SignalsOptions {
   std::string out;
   bool overwrite = false;
   bool plots = true;
+  // The recorder (signals/recorder.hpp).
+  std::string accelerometer;  // "F_HZ:ZETA"
+  std::string path_modes;
+  std::string path_band = "1000:8000";
+  std::string path_damping = "0.01:0.05";
+  std::string noise_snr;
+  bool noise_exact = false;
+  std::string seed = "0";
+  std::string range;
+  std::string bits = "16";
 };
+
+// "A:B" as two numbers, naming `flag`.
+std::pair<double, double> number_pair(const std::string& text, const std::string& flag,
+                                      const std::string& allowed) {
+  const auto colon = text.find(':');
+  if (colon == std::string::npos) throw InputError(flag, text, allowed);
+  char* end = nullptr;
+  const std::string a = text.substr(0, colon);
+  const std::string b = text.substr(colon + 1);
+  const double x = std::strtod(a.c_str(), &end);
+  if (a.empty() || end != a.c_str() + a.size() || !std::isfinite(x)) {
+    throw InputError(flag, text, allowed);
+  }
+  const double y = std::strtod(b.c_str(), &end);
+  if (b.empty() || end != b.c_str() + b.size() || !std::isfinite(y)) {
+    throw InputError(flag, text, allowed);
+  }
+  return {x, y};
+}
 
 // --mark-tooth "pinion:N" or "wheel:N" with --case-file: where that tooth's
 // drive flank carries, in its gear's angle (tooth_passage), to shade on the TSA.
@@ -98,6 +131,8 @@ InputError as_flags(const InputError& e) {
       {"samples per revolution", "--samples-per-revolution"},
       {"teeth", "--teeth"},
       {"sidebands", "--sidebands"},
+      {"nb4 half width", "--nb4-half-width"},
+      {"band", "--band"},
       {"shaft orders", "--shaft-orders"}};
   std::vector<Problem> problems;
   for (const Problem& p : e.problems()) {
@@ -170,18 +205,52 @@ void mark_sidebands(Figure& f, double mesh, double shaft, std::size_t sidebands,
       }
     }
   }
-  f.setup.emplace_back("set key bottom right opaque box");
+  f.setup.emplace_back("set key top right opaque box samplen 2");
   f.series.push_back("NaN with lines lw 1.5 lc rgb '#c0392b' title '" + label + "'");
+}
+
+// A column's physical quantity and unit from its name's unit suffix (the program's columns
+// carry one: sensor_acceleration_m_per_s2, w2_dot_rad_s2, drive_force_N, dte_m); the bare name
+// when it has none. `quantity` false gives the unit alone ("" without one).
+struct Physical {
+  std::string quantity;
+  std::string unit;
+};
+Physical physical(const std::string& column) {
+  static const std::vector<std::pair<std::string, Physical>> suffixes{
+      {"_m_per_s2", {"acceleration", "m/s^2"}},
+      {"_m_s2", {"acceleration", "m/s^2"}},
+      {"_rad_per_s2", {"angular acceleration", "rad/s^2"}},
+      {"_rad_s2", {"angular acceleration", "rad/s^2"}},
+      {"_m_s", {"velocity", "m/s"}},
+      {"_rad_s", {"angular speed", "rad/s"}},
+      {"_rad", {"angle", "rad"}},
+      {"_N", {"force", "N"}},
+      {"_m", {"displacement", "m"}},
+  };
+  for (const auto& [suffix, p] : suffixes) {
+    if (column.size() > suffix.size() &&
+        column.compare(column.size() - suffix.size(), suffix.size(), suffix) == 0) {
+      return p;
+    }
+  }
+  return {column, ""};
+}
+std::string axis_label(const std::string& column) {
+  const Physical p = physical(column);
+  return p.unit.empty() ? literal_key(column, true) : p.quantity + " (" + p.unit + ")";
 }
 
 void spectrum_figure(const std::filesystem::path& dir, const std::string& name,
                      const std::string& title, const std::string& x_label, double top, double mesh,
-                     const std::string& mesh_name, double shaft = 0.0, std::size_t sidebands = 0) {
+                     const std::string& mesh_name, const std::string& column, double shaft = 0.0,
+                     std::size_t sidebands = 0) {
   Figure f;
   f.name = name;
   f.title = title;
   f.x_label = x_label;
-  f.y_label = "amplitude (log scale)";
+  const std::string unit = physical(column).unit;
+  f.y_label = "amplitude (" + (unit.empty() ? std::string() : unit + ", ") + "log scale)";
   f.setup = {"set logscale y", "set format y '10^{%L}'", "set key off"};
   add(f, tick_commands("x", nice_ticks(0.0, top)));
   if (mesh > 0.0) mark_mesh_harmonics(f, mesh, top, mesh_name);
@@ -213,18 +282,33 @@ void write_waveform(const std::filesystem::path& dir, const std::string& column,
   write_file_atomically((dir / "waveform.csv").string(), csv);
 }
 
+// The figure's span: the last kWaveformRevolutions revolutions of a record with a shaft (its
+// mesh periods then stand apart instead of filling the plot as a band), else the last
+// kWaveformFigureSamples samples; waveform.csv keeps more.
+constexpr double kWaveformRevolutions = 2.0;
+constexpr std::size_t kWaveformFigureSamples = 2048;
+
 void waveform_figure(const std::filesystem::path& dir, const std::string& column,
-                     const std::vector<double>& uniform) {
-  const std::size_t first = waveform_start(uniform);
+                     const std::vector<double>& uniform, double start_s, double rate_hz,
+                     double shaft_hz) {
+  const std::size_t written = uniform.size() - waveform_start(uniform);
+  const std::size_t shown = std::min(
+      written, shaft_hz > 0.0
+                   ? static_cast<std::size_t>(std::ceil(kWaveformRevolutions * rate_hz / shaft_hz))
+                   : kWaveformFigureSamples);
+  const double from = start_s + static_cast<double>(uniform.size() - shown) / rate_hz;
   Figure f;
   f.name = "waveform";
   f.title = "Waveform of " + literal_key(column, true) +
-            (first > 0 ? " (the record's last " + std::to_string(kWaveformSamples) + " samples)"
-                       : std::string());
+            (shaft_hz > 0.0 && shown < written ? ", last 2 revolutions"
+             : shown < uniform.size()          ? ", last " + std::to_string(shown) + " samples"
+                                               : std::string());
   f.x_label = "time (s)";
-  // The column's name, which carries its unit (sensor_acceleration_m_per_s2).
-  f.y_label = literal_key(column, true);
-  f.setup = {"set key off"};
+  f.y_label = axis_label(column);
+  char range[96];
+  std::snprintf(range, sizeof range, "set xrange [%.15g:%.15g]", from,
+                start_s + static_cast<double>(uniform.size() - 1) / rate_hz);
+  f.setup = {"set key off", range};
   f.series = {"'waveform.csv' using 1:2 with lines lw 1 lc rgb '#1f4e99'"};
   render(dir, f);
 }
@@ -240,10 +324,11 @@ void tsa_figure(const std::filesystem::path& dir, const std::string& column,
   std::snprintf(shift, sizeof shift, "%.17g", mean);
   Figure f;
   f.name = "tsa";
-  f.title = "Time-synchronous average of " + literal_key(column, true) + " over one revolution";
+  f.title = "TSA of " + literal_key(column, true) + ", one revolution";
   f.x_label = "shaft angle (deg)";
-  f.y_label = literal_key(column, true);
-  f.setup = {"set key outside right top"};
+  f.y_label = axis_label(column);
+  // The key below the plot, in one row: the curves keep the figure's width.
+  f.setup = {"set key below horizontal samplen 2"};
   add(f, tick_commands("x", Ticks{0.0, 360.0, 45.0, 0}));
   if (marked) {
     // The passage may wrap past 360 deg: its part there is drawn from 0.
@@ -257,11 +342,13 @@ void tsa_figure(const std::filesystem::path& dir, const std::string& column,
                     start, start + span);
       f.setup.emplace_back(rect);
     }
-    f.title += " (shaded: " + marked_name + " in contact)";
+    // A key entry, not the title: a long title is cut at the figure's edge.
+    f.series.push_back("NaN with boxes fs solid 1.0 lc rgb '#ffd9b3' title '" + marked_name +
+                       " in contact'");
   }
-  f.series = {"'tsa.csv' using ($1*180/pi):($2-(" + std::string(shift) +
-              ")) with lines lw 1.5 lc rgb '#1f4e99' title 'TSA less its mean (" +
-              four_digits(mean) + ")'"};
+  f.series.push_back("'tsa.csv' using ($1*180/pi):($2-(" + std::string(shift) +
+                     ")) with lines lw 1.5 lc rgb '#1f4e99' title 'TSA less its mean (" +
+                     four_digits(mean) + ")'");
   if (with_parts) {
     f.series.push_back(
         "'tsa.csv' using ($1*180/pi):5 with lines lw 1.2 lc rgb '#c0392b' title 'difference'");
@@ -269,6 +356,31 @@ void tsa_figure(const std::filesystem::path& dir, const std::string& column,
         "'tsa.csv' using ($1*180/pi):4 with lines lw 1 dt 2 lc rgb '#27ae60' title 'residual'");
   }
   render(dir, f);
+}
+
+// The fastest whole revolution's mean speed, Hz: over each revolution of the angle from its
+// first multiple of 2 pi, one turn over the time between the crossings (linear between samples).
+double fastest_revolution_hz(const std::vector<double>& time, const std::vector<double>& angle) {
+  const double turn = 2.0 * pi;
+  double next = std::ceil(angle.front() / turn) * turn;
+  double last_crossing = std::numeric_limits<double>::quiet_NaN();
+  double fastest = 0.0;
+  for (std::size_t i = 1; i < angle.size(); ++i) {
+    while (angle[i] >= next && angle[i - 1] < next) {
+      const double t =
+          time[i - 1] + (time[i] - time[i - 1]) * (next - angle[i - 1]) / (angle[i] - angle[i - 1]);
+      if (std::isfinite(last_crossing) && t > last_crossing) {
+        fastest = std::max(fastest, 1.0 / (t - last_crossing));
+      }
+      last_crossing = t;
+      next += turn;
+    }
+  }
+  if (!(fastest > 0.0)) {
+    // Less than one whole revolution: the mean speed (resample_on_angle refuses it later).
+    fastest = (angle.back() - angle.front()) / (turn * (time.back() - time.front()));
+  }
+  return fastest;
 }
 
 void run_signals(SignalsOptions o) {
@@ -308,13 +420,89 @@ void run_signals(SignalsOptions o) {
   std::size_t per_revolution = 0;
   std::optional<signals::OrderSets> sets;
   if (has_angle) {
-    per_revolution = whole_number(o.samples_per_revolution, "--samples-per-revolution");
-    naming_flags([&] { signals::check_samples_per_revolution(per_revolution); });
+    // auto (0): the indicators' grid, from the record's band.
+    if (o.samples_per_revolution != "auto") {
+      per_revolution = whole_number(o.samples_per_revolution, "--samples-per-revolution");
+      naming_flags([&] { signals::check_samples_per_revolution(per_revolution); });
+    }
     if (!o.teeth.empty()) {
       sets = signals::OrderSets{whole_number(o.teeth, "--teeth"),
                                 whole_number(o.shaft_orders, "--shaft-orders"),
                                 whole_number(o.sidebands, "--sidebands")};
-      naming_flags([&] { signals::check_order_sets(*sets, per_revolution); });
+      if (o.nb4_half_width != "auto") {
+        sets->nb4_half_width = whole_number(o.nb4_half_width, "--nb4-half-width");
+        if (sets->nb4_half_width == 0) {
+          throw InputError("--nb4-half-width", o.nb4_half_width,
+                           "2 to (teeth - 1) / 2, or auto (the default, (teeth - 1) / 2)");
+        }
+      }
+      // With P auto, the largest grid stands in until the record's band gives P.
+      naming_flags([&] {
+        signals::check_order_sets(*sets,
+                                  per_revolution != 0 ? per_revolution : std::size_t{1} << 24);
+      });
+    }
+  }
+  std::optional<double> band_hz;
+  if (!o.band.empty()) {
+    if (!has_angle) {
+      throw InputError(std::vector<Problem>{
+          refused_problem("--band", o.band, "needs --angle-column (it bounds the TSA's orders)",
+                          "--band HZ with --angle-column")});
+    }
+    band_hz = number(o.band, "--band");
+    if (!(*band_hz > 0.0 && std::isfinite(*band_hz))) {
+      throw InputError("--band", o.band, "a finite frequency > 0 Hz");
+    }
+  }
+  // The recorder's settings, checked before the file is read (the frequencies against the
+  // record's rate once it is known).
+  const auto seed = static_cast<unsigned long long>(whole_number(o.seed, "--seed"));
+  std::optional<signals::SecondOrderSection> accelerometer;
+  if (!o.accelerometer.empty()) {
+    const auto [f, zeta] = number_pair(o.accelerometer, "--accelerometer",
+                                       "RESONANCE_HZ:DAMPING_RATIO, e.g. 30000:0.02");
+    if (!(f > 0.0 && zeta > 0.0 && zeta < 1.0)) {
+      throw InputError("--accelerometer", o.accelerometer,
+                       "a resonance > 0 Hz and a damping ratio in (0, 1), e.g. 30000:0.02");
+    }
+    accelerometer = signals::accelerometer(f, zeta);
+  }
+  std::vector<signals::SecondOrderSection> path;
+  if (!o.path_modes.empty()) {
+    const std::size_t modes = whole_number(o.path_modes, "--path-modes");
+    const auto band = number_pair(o.path_band, "--path-band", "LOW_HZ:HIGH_HZ, 0 < LOW <= HIGH");
+    const auto damping =
+        number_pair(o.path_damping, "--path-damping", "LOW:HIGH, 0 < LOW <= HIGH < 1");
+    try {
+      path = signals::draw_path(seed, static_cast<int>(std::min<std::size_t>(modes, 1000)),
+                                band.first, band.second, damping.first, damping.second);
+    } catch (const InputError& e) {
+      const std::string field = e.problems().front().field;
+      const std::string flag = field == "path modes"  ? "--path-modes"
+                               : field == "path band" ? "--path-band"
+                                                      : "--path-damping";
+      throw InputError(flag,
+                       field == "path modes"  ? o.path_modes
+                       : field == "path band" ? o.path_band
+                                              : o.path_damping,
+                       e.problems().front().allowed);
+    }
+  }
+  std::optional<double> noise_snr;
+  if (!o.noise_snr.empty()) {
+    noise_snr = number(o.noise_snr, "--noise-snr");
+    if (!std::isfinite(*noise_snr)) {
+      throw InputError("--noise-snr", o.noise_snr, "a finite signal-to-noise ratio in dB");
+    }
+  }
+  std::optional<double> adc_range;
+  const std::size_t bits = whole_number(o.bits, "--bits");
+  if (bits > 32) throw InputError("--bits", o.bits, "an integer in [0, 32] (0: no rounding)");
+  if (!o.range.empty()) {
+    adc_range = number(o.range, "--range");
+    if (!(*adc_range > 0.0 && std::isfinite(*adc_range))) {
+      throw InputError("--range", o.range, "a finite full scale > 0, in the column's unit");
     }
   }
   std::optional<ToothPassage> marked;
@@ -377,24 +565,67 @@ void run_signals(SignalsOptions o) {
   // is low-passed below that frequency first, and the angle taken on the same
   // grid for the order analysis.
   const bool coarser = rate && *rate < record_rate * (1.0 - 1e-9);
+  // The accelerometer and the path act on the record at its own rate (each sample held over
+  // the interval ending at it, as an interval average is); a record whose spacing is not
+  // uniform is taken on its own uniform grid first.
+  std::vector<double> recorded = signal;
+  std::vector<double> recorded_time = time;
+  std::vector<double> uniform_angle;
+  std::vector<signals::SecondOrderSection> sections = path;
+  if (accelerometer) sections.push_back(*accelerometer);
+  if (!sections.empty()) {
+    const double most = *std::max_element(spacing.begin(), spacing.end());
+    if (most > 1.000001 / record_rate) {
+      naming_flags([&] {
+        recorded_time = signals::uniform_times(time.front(), time.back(), record_rate);
+        recorded = signals::resample_uniform(time, signal, record_rate, o.time_column.c_str(),
+                                             o.column.c_str());
+        if (has_angle) {
+          uniform_angle = signals::resample_uniform(time, columns[2], record_rate,
+                                                    o.time_column.c_str(), o.angle_column.c_str());
+        }
+      });
+    }
+    std::vector<double> response;
+    if (accelerometer && path.empty()) {
+      response =
+          signals::filter_sections(recorded, record_rate, {*accelerometer}, "--accelerometer");
+    } else {
+      // The path's modes sum to the path; the accelerometer follows it.
+      response = signals::filter_sections(recorded, record_rate, path, "--path-band");
+      if (accelerometer) {
+        response =
+            signals::filter_sections(response, record_rate, {*accelerometer}, "--accelerometer");
+      }
+    }
+    recorded = std::move(response);
+  }
+  const std::vector<double>& record_time = recorded_time;
+  const std::vector<double>& record_angle =
+      uniform_angle.empty() && has_angle ? columns[2] : uniform_angle;
   std::vector<double> filtered_time;
   std::vector<double> filtered_signal;
   std::vector<double> filtered_angle;
   if (coarser) {
     naming_flags([&] {
-      filtered_time = signals::uniform_times(time.front(), time.back(), record_rate);
+      filtered_time = signals::uniform_times(record_time.front(), record_time.back(), record_rate);
       filtered_signal =
-          signals::low_pass(signals::resample_uniform(time, signal, record_rate,
-                                                      o.time_column.c_str(), o.column.c_str()),
-                            record_rate, 0.5 * *rate);
+          signals::low_pass_even(signals::resample_uniform(record_time, recorded, record_rate,
+                                                           o.time_column.c_str(), o.column.c_str()),
+                                 record_rate, 0.5 * *rate);
       if (has_angle) {
-        filtered_angle = signals::resample_uniform(time, columns[2], record_rate,
+        filtered_angle = signals::resample_uniform(record_time, record_angle, record_rate,
                                                    o.time_column.c_str(), o.angle_column.c_str());
       }
     });
   }
-  const std::vector<double>& analysed_time = coarser ? filtered_time : time;
-  const std::vector<double>& analysed_signal = coarser ? filtered_signal : signal;
+  const std::vector<double>& analysed_time = coarser ? filtered_time : record_time;
+  std::vector<double> analysed_signal = coarser ? filtered_signal : recorded;
+  // Noise, then the ADC, on the band-limited record.
+  std::optional<signals::NoiseResult> noise;
+  if (noise_snr) noise = signals::add_noise(analysed_signal, *noise_snr, seed, o.noise_exact);
+  std::optional<signals::AdcResult> converted;
+  if (adc_range) converted = signals::adc(analysed_signal, *adc_range, static_cast<int>(bits));
   SignalsRun run;
   run.input = o.input;
   run.column = o.column;
@@ -404,6 +635,19 @@ void run_signals(SignalsOptions o) {
   run.sample_rate_hz = rate ? *rate : record_rate;
   run.record_rate_hz = record_rate;
   if (coarser) run.low_pass_hz = 0.5 * *rate;
+  run.accelerometer = accelerometer;
+  run.path = path;
+  run.noise_snr_db = noise_snr;
+  run.noise_exact = o.noise_exact;
+  run.noise = noise;
+  run.adc_range = adc_range;
+  run.adc_bits = static_cast<int>(bits);
+  run.adc = converted;
+  run.seed = seed;
+  if (converted && converted->clipped > 0) {
+    std::cerr << "warning: " << converted->clipped << " samples clipped at --range " << o.range
+              << "\n";
+  }
   run.window = std::string(signals::to_string(window));
   std::vector<double> uniform;
   naming_flags([&] {
@@ -422,13 +666,31 @@ void run_signals(SignalsOptions o) {
   std::vector<double> tsa_values;
   double mesh_hz = 0.0;
   if (has_angle) {
-    const std::vector<double>& angle = coarser ? filtered_angle : columns[2];
+    const std::vector<double>& angle = coarser ? filtered_angle : record_angle;
     run.angle_column = o.angle_column;
-    run.samples_per_revolution = per_revolution;
     run.sets = sets;
-    const signals::OrderAnalysis a =
-        signals::analyse_orders(angle, analysed_signal, per_revolution, window, sets,
-                                o.angle_column.c_str(), o.column.c_str());
+    // The band's highest order: --band, or kBandFraction of the analysed rate when that is not
+    // the record's own (below it the library counts the record's samples a revolution), over
+    // the fastest whole revolution's speed.
+    std::optional<std::size_t> max_order;
+    if (band_hz || coarser) {
+      const double band = band_hz ? *band_hz : signals::kBandFraction * run.sample_rate_hz;
+      max_order =
+          static_cast<std::size_t>(std::floor(band / fastest_revolution_hz(analysed_time, angle)));
+    }
+    signals::OrderAnalysis a;
+    naming_flags([&] {
+      a = signals::analyse_orders(angle, analysed_signal, per_revolution, window, sets,
+                                  o.angle_column.c_str(), o.column.c_str(), max_order);
+    });
+    run.samples_per_revolution = a.samples_per_revolution;
+    run.max_order = a.max_order;
+    run.band_hz = band_hz;
+    run.indicator_grid = a.indicator_grid;
+    if (a.indicator_parts) {
+      run.nb4_harmonic = a.indicator_parts->nb4_harmonic;
+      run.nb4_half_width = a.indicator_parts->nb4_half_width;
+    }
     run.angle_grid = a.grid;
     run.revolutions = a.revolutions;
     run.shaft_frequency_hz = (angle.back() - angle.front()) / (2.0 * pi * span);
@@ -437,7 +699,7 @@ void run_signals(SignalsOptions o) {
                           tsa_csv(a.tsa, a.parts ? &*a.parts : nullptr));
     tsa_values = a.tsa;
     if (sets) {
-      indicators = signals::gear_indicators(uniform, *a.parts, *sets);
+      indicators = signals::gear_indicators(uniform, *a.indicator_parts, *sets);
       mesh_hz = run.shaft_frequency_hz * static_cast<double>(sets->teeth);
     } else {
       indicators = signals::record_indicators(uniform);
@@ -450,12 +712,13 @@ void run_signals(SignalsOptions o) {
   if (o.plots) {
     const double nyquist = run.sample_rate_hz / 2.0;
     const std::size_t sidebands = sets ? sets->sidebands : 0;
-    waveform_figure(dir, o.column, uniform);
+    waveform_figure(dir, o.column, uniform, time.front(), run.sample_rate_hz,
+                    run.shaft_frequency_hz);
     spectrum_figure(
         dir, "spectrum",
         "Amplitude spectrum of " + literal_key(o.column, true) + " (" + run.window + " window)",
         "frequency (Hz)", mesh_hz > 0.0 ? std::min(nyquist, 6.5 * mesh_hz) : nyquist, mesh_hz,
-        "f_m", run.shaft_frequency_hz, sidebands);
+        "f_m", o.column, run.shaft_frequency_hz, sidebands);
     if (has_angle) {
       const double half = static_cast<double>(run.angle_grid) / 2.0;
       const double z = sets ? static_cast<double>(sets->teeth) : 0.0;
@@ -463,7 +726,7 @@ void run_signals(SignalsOptions o) {
                       "Order spectrum of " + literal_key(o.column, true) + " on " +
                           literal_key(o.angle_column, true),
                       "order (cycles per revolution)", sets ? std::min(half, 3.5 * z) : half, z,
-                      "z", 1.0, sidebands);
+                      "z", o.column, 1.0, sidebands);
       tsa_figure(dir, o.column, tsa_values, sets.has_value(), marked,
                  o.mark_tooth.substr(0, o.mark_tooth.find(':')) + " tooth " +
                      o.mark_tooth.substr(o.mark_tooth.find(':') + 1));
@@ -508,8 +771,16 @@ void register_signals_commands(CLI::App& app) {
   cmd->add_option("--pulses-per-revolution", o->pulses_per_revolution,
                   "the tacho's edges a revolution, with --tacho-times (default 1)");
   cmd->add_option("--samples-per-revolution", o->samples_per_revolution,
-                  "angle steps a revolution, 16 to 16777216, above 2 (teeth + sidebands) "
-                  "(default 512)");
+                  "angle steps a revolution of tsa.csv, 16 to 16777216, above 2 (teeth + "
+                  "sidebands) (default auto: the indicators' grid, the smallest power of two >= 8 "
+                  "q_max + 1); the indicators do not depend on it");
+  cmd->add_option("--band", o->band,
+                  "Hz: the record's band; the TSA keeps the orders up to q_max = floor(BAND / "
+                  "the fastest revolution's speed) (default 0.4 of the analysed rate)");
+  cmd->add_option("--nb4-half-width", o->nb4_half_width,
+                  "NB4's band h* z +- W orders about the strongest mesh harmonic h*, W from 2 to "
+                  "(z - 1) / 2 (default auto: (z - 1) / 2; over z +- 1 NB4 is 1.5 whatever the "
+                  "fault)");
   cmd->add_option("--teeth", o->teeth,
                   "teeth of the gear on that shaft: regular, residual and difference signals, "
                   "FM0 ... sideband level, mesh harmonics marked");
@@ -527,6 +798,27 @@ void register_signals_commands(CLI::App& app) {
                   "output folder: new or empty (else --overwrite), written beside it and renamed "
                   "into place when complete")
       ->required();
+  cmd->add_option("--accelerometer", o->accelerometer,
+                  "RESONANCE_HZ:DAMPING_RATIO: an accelerometer's resonance, w^2 / (s^2 + 2 zeta w "
+                  "s + w^2), on the record at its own rate (below a quarter of it)");
+  cmd->add_option("--path-modes", o->path_modes,
+                  "a transfer path of this many modes, each g (2 zeta w s + w^2) / (s^2 + 2 zeta w "
+                  "s + w^2), drawn from --seed");
+  cmd->add_option("--path-band", o->path_band,
+                  "LOW_HZ:HIGH_HZ: the path modes' frequencies, log-uniform (default 1000:8000)");
+  cmd->add_option("--path-damping", o->path_damping,
+                  "LOW:HIGH: the path modes' damping ratios, uniform (default 0.01:0.05)");
+  cmd->add_option("--noise-snr", o->noise_snr,
+                  "dB: white Gaussian noise of sigma = RMS(x - mean) 10^(-SNR/20) after the "
+                  "anti-alias filter, drawn from --seed");
+  cmd->add_flag("--noise-exact", o->noise_exact,
+                "rescale the noise's draw to the stated SNR exactly (default: its expectation)");
+  cmd->add_option("--seed", o->seed, "the recorder's seed (default 0), a whole number");
+  cmd->add_option("--range", o->range,
+                  "an ADC's full scale in the column's unit: clip at +-RANGE (counted, warned)");
+  cmd->add_option(
+      "--bits", o->bits,
+      "the ADC's resolution with --range: LSB = 2 RANGE / 2^BITS (default 16; 0: none)");
   cmd->add_flag("--overwrite", o->overwrite, "replace a non-empty --out folder whole");
   cmd->add_flag("!--no-plots", o->plots, "skip the gnuplot figures");
   cmd->callback([o] { run_signals(*o); });

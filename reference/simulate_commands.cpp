@@ -69,6 +69,7 @@ struct SimulateOptions {
   double max_rows = static_cast<double>(kMostSeriesRows);
   std::string sample_rate;
   std::string tacho_out;
+  std::string sample = "interval-average";
   CaseOptions keys;
 };
 
@@ -126,6 +127,12 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
                           "--sample-rate FS with --out FILE.csv")});
     }
   }
+  const SampleKind sample_kind = value_named(kSampleKinds, o.sample, "--sample");
+  if (command.get_option("--sample")->count() > 0 && !sample_rate) {
+    throw InputError(std::vector<Problem>{
+        refused_problem("--sample", o.sample, "needs --sample-rate, whose samples it defines",
+                        "--sample KIND with --sample-rate FS")});
+  }
   const SimulationCase c = case_to_run(o, command);
   if (!o.tacho_out.empty()) {
     if (c.tacho.pulses_per_revolution == 0) {
@@ -159,6 +166,7 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
   }
   RunControl control;
   control.sample_rate_hz = sample_rate;
+  control.sample = sample_kind;
   control.keep_samples = false;
   // The series goes to its file as the run makes it, a megabyte at a time,
   // so that a long run's memory does not grow with its length.
@@ -343,6 +351,12 @@ void register_simulate_commands(CLI::App& app) {
   simulate->add_option("--tacho-out", options->tacho_out,
                        "with [tacho] pulses_per_revolution >= 1: the tacho's edge times, CSV "
                        "pulse,t_s,t_emitted_s (true; with the seeded jitter), written atomically");
+  simulate->add_option(
+      "--sample", options->sample,
+      "the samples' accelerations: interval-average (default: the mean over the interval ending "
+      "at each sample, the velocity difference over T, from n = 1 on; transfer sinc(f T) with a "
+      "delay of T / 2) or point (the value at each sample's instant, which folds the steps of the "
+      "acceleration back into the band)");
   simulate->add_option("--max-rows", options->max_rows,
                        "the most rows the time series may have, so that a slip of --t-end does "
                        "not fill a disk (default " +

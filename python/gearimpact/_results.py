@@ -144,7 +144,9 @@ class SimulationResult:
         )
 
 
-def simulate(case, keep_series=True, max_rows=None, sample_rate=None, **changes):
+def simulate(
+    case, keep_series=True, max_rows=None, sample_rate=None, sample="interval-average", **changes
+):
     """Runs a case: the same run as ``gearimpact simulate``, bit for bit.
 
     case: a Case, a Table 1 case number (1, 2, 3) or a case file's path.
@@ -162,7 +164,11 @@ def simulate(case, keep_series=True, max_rows=None, sample_rate=None, **changes)
     of them. With [bearings] kind = "elastic" the columns are the planar
     samples' (t_s, the state x1_m ... w_load_rad_s, ax1_m_per_s2 ...
     alpha2_rad_per_s2, bearing_fx1_N ... bearing_fy2_N, dte_m, drive_force_N,
-    coast_force_N, sensor_acceleration_m_per_s2; docs/vibration.md). The computation runs without the GIL; Ctrl-C stops it
+    coast_force_N, sensor_acceleration_m_per_s2; docs/vibration.md). sample:
+    "interval-average" (default: each acceleration is the mean over the
+    interval ending at its sample, the velocity difference over 1 /
+    sample_rate, so the samples start at n = 1; transfer sinc(f T), delay
+    T / 2; docs/signals.md) or "point" (the value at the instant). The computation runs without the GIL; Ctrl-C stops it
     (KeyboardInterrupt). Raises CaseError for a case outside its ranges (with
     the step checked against the contact's period) and SimulationError for a
     run that cannot continue.
@@ -177,11 +183,12 @@ def simulate(case, keep_series=True, max_rows=None, sample_rate=None, **changes)
         rate = _core.parse_frequency(sample_rate, "sample_rate")
     else:
         rate = _arguments.real("sample_rate", sample_rate)
+    kind = _arguments.text("sample", sample)
     run = _as_case(case)
     if changes:
         run = run.replace(**changes)
     try:
-        summary_json, series, impacts, samples, tacho = _core.simulate(run, keep, rows, rate)
+        summary_json, series, impacts, samples, tacho = _core.simulate(run, keep, rows, rate, kind)
     except CaseError as error:
         if "rows of time series" not in str(error):
             raise

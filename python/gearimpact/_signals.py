@@ -41,8 +41,9 @@ def tacho_jitter(tacho, jitter, seed):
     return _core.tacho_jitter(tacho, float(jitter), int(seed))
 
 
-def order_analysis(angle, signal, samples_per_revolution=512, teeth=None, shaft_orders=1,
-                   sidebands=1, window="hann", tacho=None, time=None, pulses_per_revolution=1):
+def order_analysis(angle, signal, samples_per_revolution=None, teeth=None, shaft_orders=1,
+                   sidebands=1, window="hann", max_order=None, nb4_half_width=None, tacho=None,
+                   time=None, pulses_per_revolution=1):
     """Order spectrum and time-synchronous average of ``signal`` sampled with its
     shaft's strictly increasing ``angle`` (rad), at any instants.
 
@@ -52,6 +53,15 @@ def order_analysis(angle, signal, samples_per_revolution=512, teeth=None, shaft_
     that shaft) the dict also holds the regular, residual and difference signals,
     the mesh band and its envelope, and ``indicators`` (FM0, FM4, NA4, NB4, M6A,
     M8A, energy ratio, sideband level, of the TSA; None where 0/0).
+
+    The TSA keeps the orders the record's band holds, up to ``max_order``
+    (None: 0.4 of the fewest samples any whole revolution holds, i.e. 0.4 of a
+    uniform record's rate over the fastest revolution's speed, as ``gearimpact
+    signals`` takes it). ``samples_per_revolution`` (None: the indicators' grid,
+    the smallest power of two >= 8 max_order + 1) sets the TSA's samples only:
+    the indicators are computed on the indicators' grid whatever it is.
+    ``nb4_half_width``: NB4's band h* z +- W about the strongest mesh harmonic
+    (None: (z - 1) // 2; 1 is refused, its NB4 being 1.5 whatever the fault).
 
     Computed order tracking: with ``tacho`` (edge times, s) and ``time`` (the
     signal's sample times, s, inside the edges' span) and ``angle`` None, the
@@ -63,9 +73,11 @@ def order_analysis(angle, signal, samples_per_revolution=512, teeth=None, shaft_
         if time is None:
             raise ValueError("order_analysis: tacho needs time, the signal's sample times (s)")
         angle = tacho_angle(tacho, pulses_per_revolution, time)
-    return _core.order_analysis(angle, signal, samples_per_revolution,
+    return _core.order_analysis(angle, signal,
+                                0 if samples_per_revolution is None else samples_per_revolution,
                                 0 if teeth is None else teeth, shaft_orders, sidebands,
-                                str(window))
+                                str(window), -1 if max_order is None else max_order,
+                                0 if nb4_half_width is None else nb4_half_width)
 
 
 def indicators(record):

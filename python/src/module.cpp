@@ -152,7 +152,9 @@ auto naming_keywords(Run run) {
     static const std::vector<std::pair<std::string, std::string>> keywords{
         {"sample rate", "rate"},
         {"samples per revolution", "samples_per_revolution"},
-        {"shaft orders", "shaft_orders"}};
+        {"shaft orders", "shaft_orders"},
+        {"nb4 half width", "nb4_half_width"},
+        {"band", "max_order"}};
     std::vector<Problem> problems;
     for (const Problem& p : e.problems()) {
       std::string field = p.field;
@@ -328,12 +330,14 @@ py::list impact_records(const std::vector<ImpactRecord>& impacts) {
 // summary_json's text (the program's JSON, parsed by the Python layer so that
 // the keys and numbers are the program's), the series and the impacts.
 py::tuple run_simulation(const SimulationCase& c, bool keep_series, long long max_rows,
-                         std::optional<double> sample_rate_hz) {
+                         std::optional<double> sample_rate_hz, const std::string& sample) {
+  const SampleKind sample_kind = value_named(kSampleKinds, sample, "sample");
   SimulationResult result = interruptible([&](std::function<bool()> should_stop) {
     RunControl control;
     control.keep_series = keep_series;
     control.most_series_rows = max_rows;
     control.sample_rate_hz = sample_rate_hz;
+    control.sample = sample_kind;
     control.should_stop = std::move(should_stop);
     return simulate(c, control);
   });
@@ -885,7 +889,7 @@ void define_module(py::module_& m) {
       py::arg("key"));
 
   m.def("simulate", &run_simulation, py::arg("case"), py::arg("keep_series"), py::arg("max_rows"),
-        py::arg("sample_rate") = py::none());
+        py::arg("sample_rate") = py::none(), py::arg("sample") = "interval-average");
   m.attr("most_series_rows") = kMostSeriesRows;
   m.def("stiffness_samples", &stiffness_samples, py::arg("pair"), py::arg("model"),
         py::arg("points"));
@@ -1028,7 +1032,8 @@ void define_module(py::module_& m) {
   m.def(
       "order_analysis",
       [](const ArrayIn& angle, const ArrayIn& x, long long per_revolution, long long teeth,
-         long long shaft_orders, long long sidebands, const std::string& window) {
+         long long shaft_orders, long long sidebands, const std::string& window,
+         long long max_order, long long nb4_half_width) {
         const std::vector<double> a = vector_of(angle, "angle");
         const std::vector<double> values = vector_of(x, "signal");
         const signals::Window w = signals::parse_window(window, "window");
@@ -1037,10 +1042,14 @@ void define_module(py::module_& m) {
           sets =
               signals::OrderSets{count_of(teeth, "teeth"), count_of(shaft_orders, "shaft_orders"),
                                  count_of(sidebands, "sidebands")};
+          sets->nb4_half_width = count_of(nb4_half_width, "nb4_half_width");
         }
+        // 0: from the record's band (tsa.hpp).
         const std::size_t p = count_of(per_revolution, "samples_per_revolution");
+        std::optional<std::size_t> top;
+        if (max_order >= 0) top = count_of(max_order, "max_order");
         const signals::OrderAnalysis r = naming_keywords(
-            [&] { return signals::analyse_orders(a, values, p, w, sets, "angle", "signal"); });
+            [&] { return signals::analyse_orders(a, values, p, w, sets, "angle", "signal", top); });
         py::dict d;
         d["grid"] = r.grid;
         d["revolutions"] = r.revolutions;
@@ -1048,6 +1057,9 @@ void define_module(py::module_& m) {
         d["order"] = to_array(r.orders.frequency);
         d["amplitude"] = to_array(r.orders.amplitude);
         d["tsa"] = to_array(r.tsa);
+        d["samples_per_revolution"] = r.samples_per_revolution;
+        d["max_order"] = r.max_order;
+        d["indicator_grid"] = r.indicator_grid;
         if (r.parts) {
           d["regular"] = to_array(r.parts->regular);
           d["residual"] = to_array(r.parts->residual);
@@ -1055,12 +1067,17 @@ void define_module(py::module_& m) {
           d["mesh_band"] = to_array(r.parts->mesh_band);
           d["mesh_band_envelope"] = to_array(r.parts->mesh_band_envelope);
           d["tsa_order_amplitude"] = to_array(r.parts->order_amplitude);
-          d["indicators"] = indicators_dict(signals::gear_indicators(r.tsa, *r.parts, *sets));
+          d["nb4_harmonic"] = r.indicator_parts->nb4_harmonic;
+          d["nb4_half_width"] = r.indicator_parts->nb4_half_width;
+          // On the indicators' grid: independent of samples_per_revolution.
+          d["indicators"] = indicators_dict(
+              signals::gear_indicators(r.indicator_parts->tsa, *r.indicator_parts, *sets));
         }
         return d;
       },
       py::arg("angle"), py::arg("signal"), py::arg("samples_per_revolution"), py::arg("teeth"),
-      py::arg("shaft_orders"), py::arg("sidebands"), py::arg("window"));
+      py::arg("shaft_orders"), py::arg("sidebands"), py::arg("window"), py::arg("max_order"),
+      py::arg("nb4_half_width"));
   m.def(
       "condition_indicators",
       [](const ArrayIn& x) {

@@ -1005,6 +1005,7 @@ TEST_CASE("planar samples sit at n / fs exactly and on the grid are its rows") {
   c.integrator.end_time_s = std::ldexp(1.0, -10);
   RunControl control;
   control.sample_rate_hz = std::ldexp(1.0, 19);
+  control.sample = SampleKind::point;  // the values at t_n this checks
   const SimulationResult r = simulate(c, control);
   REQUIRE(r.summary.events >= 1);  // cut steps among them
   REQUIRE(r.planar_samples.size() ==
@@ -1053,6 +1054,7 @@ TEST_CASE("the sensor reads its gear's acceleration along its direction") {
   c.bearings.sensor_angle_rad = pi / 6.0;
   RunControl control;
   control.sample_rate_hz = 2e5;
+  control.sample = SampleKind::point;  // the values at t_n this checks
   control.keep_series = false;
   const SimulationResult wheel = simulate(c, control);
   c.bearings.sensor_gear = 1;
@@ -1096,6 +1098,7 @@ TEST_CASE("planar samples of a free vibration: the dense output's order and a = 
   control.keep_series = false;
   // Not commensurate with the steps: the samples fall anywhere inside them.
   control.sample_rate_hz = 37.3 * w / (2.0 * pi);
+  control.sample = SampleKind::point;  // the values at t_n this checks
   struct Errors {
     double velocity;      // of the sampled velocities against v cos(w t), over max|v|
     double acceleration;  // of the sampled accelerations against -w^2 (q - q(0)), over w max|v|
@@ -1419,6 +1422,7 @@ TEST_CASE("Dormand-Prince's samples: order 5 through the events, and a = -w^2 x"
     RunControl control;
     control.keep_series = false;
     control.sample_rate_hz = 123457.0;
+    control.sample = SampleKind::point;  // the values at t_n this checks
     const auto samples = [&](double step) {
       SimulationCase c = base;
       c.integrator.step_s = step;
@@ -1464,6 +1468,7 @@ TEST_CASE("Dormand-Prince's samples: order 5 through the events, and a = -w^2 x"
     RunControl control;
     control.keep_series = false;
     control.sample_rate_hz = 37.3 * w / (2.0 * pi);
+    control.sample = SampleKind::point;  // the values at t_n this checks
     const SimulationResult r = simulate_planar(c, table, planar_mounting(c), start, control);
     double velocity = 0.0;
     double acceleration = 0.0;

@@ -30,6 +30,9 @@ SimulationResult sampled(const SimulationCase& c, double rate, bool keep_series 
   RunControl control;
   control.keep_series = keep_series;
   control.sample_rate_hz = rate;
+  // The point values at t_n, whose grid and dense output this suite checks (the interval
+  // averages are test_sensor_sample's).
+  control.sample = SampleKind::point;
   return simulate(c, control);
 }
 
@@ -268,6 +271,7 @@ TEST_CASE("bad sample rates are refused before the run, naming sample_rate and i
   for (const double rate : {0.0, -1.0, std::nan(""), HUGE_VAL}) {
     RunControl control;
     control.sample_rate_hz = rate;
+    control.sample = SampleKind::point;
     const std::string m = message_of(c, control);
     CAPTURE(m);
     CHECK(m.rfind("sample_rate |", 0) == 0);
@@ -305,7 +309,16 @@ TEST_CASE(
         "normal_force_n1_N,normal_force_n2_N,region,pairs");
   int rows = 0;
   while (std::getline(in, line)) ++rows;
-  CHECK(rows == 1001);
+  // Interval averages by default: n = 1 ... 1000 (n = 0 ends no interval).
+  CHECK(rows == 1000);
+  std::filesystem::remove(out);
+  const auto point = run_command(
+      cli("simulate --case 1 --t-end 0.001 --sample-rate 1e6 --sample point --out " + out));
+  REQUIRE(point.exit_code == 0);
+  std::ifstream point_in(out);
+  rows = 0;
+  while (std::getline(point_in, line)) ++rows;
+  CHECK(rows == 1002);  // the header and n = 0 ... 1000
   std::filesystem::remove(out);
   for (const auto& [flags, expected] : std::vector<std::pair<std::string, std::string>>{
            {"--sample-rate 0 --out " + out,
@@ -314,7 +327,10 @@ TEST_CASE(
            {"--sample-rate 1e12 --out " + out,
             "a rate in (0, 49999999000] Hz: at most 50000000 samples"},
            {"--sample-rate 1e6 --every 10 --out " + out, "--every = 10: contradicts --sample-rate"},
-           {"--sample-rate 1e6", "--sample-rate = 1e6: needs --out"}}) {
+           {"--sample-rate 1e6", "--sample-rate = 1e6: needs --out"},
+           {"--sample-rate 1e6 --sample pointy --out " + out,
+            "--sample = pointy is outside the allowed range: one of interval-average, point"},
+           {"--sample point --out " + out, "--sample = point: needs --sample-rate"}}) {
     CAPTURE(flags);
     const auto bad = run_command(cli("simulate --case 1 --t-end 0.001 " + flags));
     CHECK(bad.exit_code == 1);

@@ -295,7 +295,15 @@ def test_simulate_samples_as_the_program_writes_them(cli, tmp_path):
     result = gearimpact.simulate(3, keep_series=False, sample_rate=1.5e6, end_time="2 ms")
     assert result.summary == summary
     assert_same_table(result.samples, out.read_text(), SAMPLE_COLUMNS, "samples of case 3")
-    assert len(result.samples["t_s"]) == 3001
+    # Interval averages by default: n = 1 ... 3000 (n = 0 ends no interval).
+    assert len(result.samples["t_s"]) == 3000
+    # The point samples, the same way on both sides, with n = 0.
+    cli("simulate", "--case", "3", "--t-end", "0.002", "--sample-rate", "1.5e6", "--sample",
+        "point", "--out", out)
+    point = gearimpact.simulate(3, keep_series=False, sample_rate=1.5e6, sample="point",
+                                end_time="2 ms")
+    assert_same_table(point.samples, out.read_text(), SAMPLE_COLUMNS, "point samples of case 3")
+    assert len(point.samples["t_s"]) == 3001
 
 
 PLANAR_SAMPLE_COLUMNS = [
@@ -323,7 +331,7 @@ def test_simulate_planar_samples_as_the_program_writes_them(cli, tmp_path):
     assert result.summary == summary
     assert_same_table(result.samples, out.read_text(), PLANAR_SAMPLE_COLUMNS,
                       "planar samples of case 1")
-    assert len(result.samples["t_s"]) == 201
+    assert len(result.samples["t_s"]) == 200
     # The wheel moved, and the sensor reads it.
     assert np.max(np.abs(result.samples["sensor_acceleration_m_per_s2"])) > 0.0
 

@@ -1,6 +1,7 @@
 """The signal layer from Python: numpy arrays in and out, the same closed forms
 as verify/signals/test_signals.cpp, and the library's refusals naming keywords."""
 
+import json
 import math
 
 import numpy
@@ -80,6 +81,10 @@ def test_indicators_of_a_sine():
                                            teeth=-3), "teeth"),
         (lambda: gearimpact.order_analysis(numpy.linspace(20, 0, 100), numpy.zeros(100)),
          "angle (sample 2)"),
+        (lambda: gearimpact.order_analysis(numpy.linspace(0, 20, 100), numpy.zeros(100),
+                                           teeth=20, nb4_half_width=1), "nb4_half_width"),
+        (lambda: gearimpact.order_analysis(numpy.linspace(0, 20, 100), numpy.zeros(100),
+                                           teeth=20, max_order=15), "max_order"),
     ],
 )
 def test_bad_arguments_are_named(call, field):
@@ -108,3 +113,24 @@ def test_order_tracking_from_a_tacho_on_a_ramp_is_the_true_angle():
     jittered = gearimpact.tacho_jitter(edges, 1e-6, 3)
     assert numpy.array_equal(jittered, gearimpact.tacho_jitter(edges, 1e-6, 3))
     assert 0 < numpy.max(numpy.abs(jittered - edges)) < 1e-5
+
+
+def test_order_analysis_defaults_are_the_programs(cli, tmp_path):
+    # The same record through `gearimpact signals` and order_analysis with both defaults: the
+    # same band, TSA grid and indicators (before, the program's 512 and other grids differed).
+    t = numpy.arange(50001) * 2e-5
+    theta = 2 * math.pi * 5.0 * t + 0.3 * numpy.sin(2 * math.pi * 3.0 * t)
+    x = (1.0 + numpy.cos(20 * theta) + 0.25 * numpy.cos(40 * theta)
+         + 0.1 * numpy.cos(17 * theta) * numpy.exp(-((theta % (2 * math.pi)) - 1.0) ** 2 * 40))
+    path = tmp_path / "record.csv"
+    numpy.savetxt(path, numpy.column_stack([t, theta, x]), delimiter=",", fmt="%.17g",
+                  header="t_s,theta_rad,x", comments="")
+    out = tmp_path / "out"
+    program = json.loads(cli("signals", path, "--column", "x", "--angle-column", "theta_rad",
+                             "--teeth", "20", "--no-plots", "--out", out))
+    ours = gearimpact.order_analysis(theta, x, teeth=20)
+    assert ours["max_order"] == program["max_order"]
+    assert ours["samples_per_revolution"] == program["samples_per_revolution"]
+    assert ours["nb4_half_width"] == program["nb4_half_width"]
+    for name in ("fm0", "fm4", "na4", "nb4", "m6a", "m8a", "energy_ratio"):
+        assert ours["indicators"][name] == program["gear"][name], name

@@ -40,6 +40,7 @@
 #include "gearimpact/signals/fft.hpp"
 #include "gearimpact/signals/indicators.hpp"
 #include "gearimpact/signals/order_tracking.hpp"
+#include "gearimpact/signals/recorder.hpp"
 #include "gearimpact/signals/resample.hpp"
 #include "gearimpact/signals/spectrum.hpp"
 #include "gearimpact/signals/tsa.hpp"

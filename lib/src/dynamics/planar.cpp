@@ -1,6 +1,7 @@
 #include "gearimpact/dynamics/planar.hpp"
 
 #include <algorithm>
+#include <array>
 #include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
 #include <cmath>
 #include <limits>
@@ -1217,10 +1218,31 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   }
   const double sensor_cos = std::cos(c.bearings.sensor_angle_rad);
   const double sensor_sin = std::sin(c.bearings.sensor_angle_rad);
+  long long next_sample = 0;
+  // Interval averages (SampleKind): the last sample's time and the bodies' velocities, where the
+  // next sample's interval begins.
+  const bool average = control.sample == SampleKind::interval_average;
+  double last_sample_t = 0.0;
+  std::array<double, kT2 + 1> last_velocity{};
   const auto sample = [&](double ts, const Y& state) {
+    if (average && next_sample == 0) {
+      // n = 0 ends no interval: its velocities begin the first.
+      last_sample_t = ts;
+      for (std::size_t i = 0; i <= kT2; ++i) last_velocity[i] = state[kVelocity + i];
+      return;
+    }
     Y dy{};
     Forces f;
     system.rhs(ts, state, mode, memory, dy, &f);
+    if (average) {
+      // The mean acceleration over [t_{n-1}, t_n]: the velocity difference over the interval.
+      const double interval = ts - last_sample_t;
+      for (std::size_t i = 0; i <= kT2; ++i) {
+        dy[kVelocity + i] = (state[kVelocity + i] - last_velocity[i]) / interval;
+        last_velocity[i] = state[kVelocity + i];
+      }
+      last_sample_t = ts;
+    }
     PlanarSample ps;
     ps.t_s = ts;
     ps.state = to_state(state, mounting.shafts);
@@ -1244,7 +1266,6 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     if (control.keep_samples) result.planar_samples.push_back(ps);
     if (control.on_planar_sample) control.on_planar_sample(ps);
   };
-  long long next_sample = 0;
   SpeedDriftMonitor drift(c, 0.0, y[kT1], y[kVelocity + kT1]);
   PlanarStepper stepper(system, c.integrator.kind);
   // The tacho's shaft and its edges, located on each step's continuous

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -248,9 +249,22 @@ class Run {
   }
 
   void sample(double t, const State& y, const Mode& m) {
+    const bool average = control_.sample == SampleKind::interval_average;
+    if (average && next_sample_ == 0) {
+      // n = 0 ends no interval: its velocities begin the first.
+      last_sample_ = {t, y[kW1], y[kW2]};
+      return;
+    }
     ContactTotals totals;
     State dydt{};
     system_.rhs(t, y, m, damping_, dydt, &totals);
+    if (average) {
+      // The mean acceleration over [t_{n-1}, t_n]: the velocity difference over the interval.
+      const double interval = t - last_sample_[0];
+      dydt[kW1] = (y[kW1] - last_sample_[1]) / interval;
+      dydt[kW2] = (y[kW2] - last_sample_[2]) / interval;
+      last_sample_ = {t, y[kW1], y[kW2]};
+    }
     const double sv = system_.s(y);
     const SampleRow row{t,
                         y[kTheta1],
@@ -501,6 +515,8 @@ class Run {
   double sample_rate_ = 0.0;
   long long samples_ = 0;
   long long next_sample_ = 0;
+  // The last sample's time and velocities w1, w2, where an interval average's interval begins.
+  std::array<double, 3> last_sample_{};
   // Last: its construction sets the start state above (make_ledger).
   EnergyLedger ledger_;
   // After ledger_, whose construction sets the start it begins from.

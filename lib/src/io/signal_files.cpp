@@ -118,7 +118,8 @@ std::string indicators_json(const SignalsRun& run, const signals::Indicators& i)
   if (run.low_pass_hz) {
     j["anti_alias"] = "the record on its own uniform grid low-passed below " +
                       format_number(*run.low_pass_hz) +
-                      " Hz by its DFT (ideal, the record taken as periodic), then resampled";
+                      " Hz by the DFT of its even extension (ideal; the record followed by itself "
+                      "reversed, so that its ends do not ring), then resampled";
   } else {
     j["anti_alias"] = nullptr;
   }
@@ -129,7 +130,12 @@ std::string indicators_json(const SignalsRun& run, const signals::Indicators& i)
     j["angle_column"] = run.angle_column;
     j["angle_grid_per_revolution"] = run.angle_grid;
     j["samples_per_revolution"] = run.samples_per_revolution;
-    j["tsa_anti_alias"] = "orders below samples_per_revolution / 2 kept, the rest removed (DFT)";
+    j["tsa_anti_alias"] =
+        "orders up to max_order (the record's band over the fastest revolution's speed) and "
+        "below samples_per_revolution / 2 kept, the rest removed (DFT)";
+    j["band_hz"] = run.band_hz ? Json(*run.band_hz) : Json("0.4 of the sample rate");
+    j["max_order"] = run.max_order;
+    j["indicator_grid_per_revolution"] = run.indicator_grid;
     j["revolutions"] = run.revolutions;
     j["shaft_frequency_hz"] = run.shaft_frequency_hz;
   }
@@ -137,8 +143,42 @@ std::string indicators_json(const SignalsRun& run, const signals::Indicators& i)
     j["teeth"] = run.sets->teeth;
     j["shaft_orders"] = run.sets->shaft_orders;
     j["sidebands"] = run.sets->sidebands;
+    j["nb4_harmonic"] = run.nb4_harmonic;
+    j["nb4_half_width"] = run.nb4_half_width;
     j["mesh_frequency_hz"] = run.shaft_frequency_hz * static_cast<double>(run.sets->teeth);
   }
+  Json recorder;
+  const auto section = [](const signals::SecondOrderSection& x, double gain) {
+    Json m;
+    m["frequency_hz"] = x.frequency_hz;
+    m["damping_ratio"] = x.damping_ratio;
+    m["gain"] = gain;
+    return m;
+  };
+  recorder["accelerometer"] = run.accelerometer ? section(*run.accelerometer, 1.0) : Json();
+  Json path = Json::array();
+  for (const signals::SecondOrderSection& m : run.path) {
+    path.push_back(section(m, signals::gain_at(m, 0.0)));
+  }
+  recorder["path"] = path;
+  recorder["seed"] = run.seed;
+  if (run.noise) {
+    recorder["noise_snr_db"] = *run.noise_snr_db;
+    recorder["noise_mode"] = run.noise_exact ? "exact" : "expected";
+    recorder["noise_sigma"] = run.noise->sigma;
+    recorder["realised_snr_db"] = run.noise->realised_snr_db;
+  } else {
+    recorder["noise_snr_db"] = nullptr;
+  }
+  if (run.adc) {
+    recorder["range"] = *run.adc_range;
+    recorder["bits"] = run.adc_bits;
+    recorder["lsb"] = run.adc->lsb;
+    recorder["clipped"] = run.adc->clipped;
+  } else {
+    recorder["range"] = nullptr;
+  }
+  j["recorder"] = recorder;
   Json record;
   record["rms"] = i.rms;
   record["peak"] = i.peak;

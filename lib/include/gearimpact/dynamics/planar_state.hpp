@@ -34,8 +34,10 @@ struct PlanarRow {
 struct PlanarSample {
   double t_s = 0.0;
   PlanarState state;  // positions and velocities at t_s (dense output)
-  // Accelerations from the equations of motion at the sampled state (not the
-  // interpolant's derivative, which is an order less accurate).
+  // Accelerations (RunControl::sample): interval averages, the velocity
+  // difference over [t_{n-1}, t_n] of the dense output over its length, or
+  // under SampleKind::point the equations of motion at the sampled state (not
+  // the interpolant's derivative, which is an order less accurate).
   double ax1_m_per_s2 = 0.0, ay1_m_per_s2 = 0.0, alpha1_rad_per_s2 = 0.0;
   double ax2_m_per_s2 = 0.0, ay2_m_per_s2 = 0.0, alpha2_rad_per_s2 = 0.0;
   double bearing_fx1_n = 0.0, bearing_fy1_n = 0.0, bearing_fx2_n = 0.0, bearing_fy2_n = 0.0;

@@ -61,8 +61,10 @@ struct SampleRow {
   double theta2_rad;
   double w1_rad_per_s;
   double w2_rad_per_s;
-  // w1', w2': the equations of motion at the sampled state in its step's mode
-  // (the derivative of the interpolant would be an order less accurate).
+  // w1', w2' (RunControl::sample): interval averages [w(t_n) - w(t_{n-1})] /
+  // (t_n - t_{n-1}) of the dense output, or under SampleKind::point the
+  // equations of motion at the sampled state in its step's mode (the
+  // derivative of the interpolant would be an order less accurate).
   double acceleration1_rad_per_s2;
   double acceleration2_rad_per_s2;
   double s_m;
@@ -273,6 +275,26 @@ class SimulationStopped : public SimulationError {
   using SimulationError::SimulationError;
 };
 
+// What a sample's accelerations are (docs/signals.md, "The sensor's sample").
+// interval-average: the exact mean of the acceleration over the interval that
+// ends at the sample, a_n = [v(t_n) - v(t_{n-1})] / (t_n - t_{n-1}), v the
+// velocity from the integrator's dense output at both ends. Its transfer is
+// H(f) = sinc(f T) e^{-i pi f T} (T = 1 / fs): the droop of sinc(f T) = sin(pi
+// f T) / (pi f T) and a delay of T / 2; H vanishes at every multiple of fs, so
+// the steps of the acceleration (pair entries, friction reversals) fold back
+// at second order in 1 / fs instead of first. Sample n = 0 has no interval: an
+// interval-average run's samples are n = 1, 2, ...
+// point: the acceleration at t_n from the equations of motion (the values before
+// the interval average existed; a point value of an acceleration that steps).
+// Only the accelerations differ: angles, velocities, forces and deflections are
+// point values of the state at t_n in both.
+enum class SampleKind { interval_average, point };
+inline constexpr std::array<NamedValue<SampleKind>, 2> kSampleKinds{{
+    {SampleKind::interval_average, "interval-average",
+     "the mean acceleration over the interval ending at each sample (velocity difference / T)"},
+    {SampleKind::point, "point", "the acceleration at each sample's instant"},
+}};
+
 // Controls that are not part of the physical case.
 struct RunControl {
   bool keep_series = true;
@@ -294,6 +316,8 @@ struct RunControl {
   // keep_samples, and passed to on_sample. They are interpolated inside the
   // accepted steps and leave the integration as it is. Needs locate_events.
   std::optional<double> sample_rate_hz;
+  // The samples' accelerations: interval averages (from n = 1 on) or point values.
+  SampleKind sample = SampleKind::interval_average;
   bool keep_samples = true;
   std::function<void(const SampleRow&)> on_sample;
   // The same for the samples of a case with [bearings] kind = "elastic".
@@ -338,9 +362,10 @@ void refuse_planar_integrator(const SimulationCase& c);
 // bearings (the motor and the load belong to the planar model), naming
 // shafts.kind, and refuse_planar_integrator's.
 void refuse_planar_simulation(const SimulationCase& c);
-// The samples of a run of c at sample_rate_hz: the n >= 0 with
+// The sample grid of a run of c at sample_rate_hz: the n >= 0 with
 // sample_time_s(t0, n, rate) <= t0 + end_time_s, for t0 = 0 (about
 // floor(end_time_s rate) + 1; a continued run's start moves the end's rounding).
+// Interval averages (SampleKind) leave out n = 0: one sample fewer.
 double sample_count(const SimulationCase& c, double sample_rate_hz, double t0_s = 0.0);
 
 // Throws InputError naming sample_rate unless RunControl::sample_rate_hz is

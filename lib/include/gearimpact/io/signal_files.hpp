@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "gearimpact/signals/indicators.hpp"
+#include "gearimpact/signals/recorder.hpp"
 #include "gearimpact/signals/spectrum.hpp"
 #include "gearimpact/signals/tsa.hpp"
 
@@ -50,6 +51,23 @@ struct SignalsRun {
   std::size_t revolutions = 0;
   std::optional<signals::OrderSets> sets;
   double shaft_frequency_hz = 0.0;  // mean, from the angle; 0 without one
+  // The TSA's band (OrderAnalysis): --band if given, the highest order kept, the indicators'
+  // grid, NB4's harmonic h* and half-width.
+  std::optional<double> band_hz;
+  std::size_t max_order = 0;
+  std::size_t indicator_grid = 0;
+  std::size_t nb4_harmonic = 0;
+  std::size_t nb4_half_width = 0;
+  // The recorder's parts applied to the record (signals/recorder.hpp), each absent unless asked.
+  std::optional<signals::SecondOrderSection> accelerometer;
+  std::vector<signals::SecondOrderSection> path;  // drawn from `seed`
+  std::optional<double> noise_snr_db;
+  bool noise_exact = false;
+  std::optional<signals::NoiseResult> noise;
+  std::optional<double> adc_range;
+  int adc_bits = 0;
+  std::optional<signals::AdcResult> adc;
+  unsigned long long seed = 0;
 };
 
 // The run and every indicator (null where it is absent: no gear given, or 0/0).

@@ -51,6 +51,13 @@ std::vector<double> uniform_times(double t0, double t_end, double rate);
 // samples or a non-finite one.
 std::vector<double> low_pass(const std::vector<double>& uniform, double rate_hz, double cutoff_hz);
 
+// low_pass of the record's even extension (the record followed by itself reversed), its first
+// half kept: the extension has no jump where it wraps, so the ideal filter does not ring at the
+// record's ends as it does where their values differ (only the slopes' mismatch remains, whose
+// ringing falls off a factor of the bin count faster). Throws as low_pass.
+std::vector<double> low_pass_even(const std::vector<double>& uniform, double rate_hz,
+                                  double cutoff_hz);
+
 // A signal sampled at equal steps of a shaft's angle, whole revolutions only.
 struct AngleSignal {
   std::size_t samples_per_revolution = 0;
