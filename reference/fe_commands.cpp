@@ -37,7 +37,7 @@ struct FeCheckOptions {
   std::string out;
   int gear = 1;
   int positions = 7;
-  double element_size = 0.2;
+  double element_size = 0.4;
   int refinements = 3;
   bool cantilever = false;
   bool overwrite = false;
@@ -83,7 +83,8 @@ std::vector<FeDisplacements> solve(const std::filesystem::path& dir, const std::
   solver.shown = (dir / (stem + ".inp")).string();
   solver.missing_hint = "Debian's calculix-ccx; scripts/setup.sh installs it";
   // One thread: the machine's cores belong to the caller (a sweep, a test suite).
-  solver.environment = {"OMP_NUM_THREADS=1", "CCX_NPROC_STIFFNESS=1", "CCX_NPROC_EQUATION_SOLVER=1"};
+  solver.environment = {"OMP_NUM_THREADS=1", "CCX_NPROC_STIFFNESS=1",
+                        "CCX_NPROC_EQUATION_SOLVER=1"};
   solver.capture_output = true;
   const std::string log = run_program(solver);
   // CalculiX may report an error in its log and still exit with 0.
@@ -109,19 +110,20 @@ void run_cantilever(const FeCheckOptions& o) {
   std::size_t triangles = 0;
   const auto u = solve(
       dir, "cantilever", cantilever_geo(length, depth, 0.0015, measured_x), material,
-      [](const FeMesh& m) { return std::vector<FeLoad>{{m.node_of("LOAD"), 0.0, -1.0}}; },
+      [](const FeMesh& m) {
+        return std::vector<FeLoad>{{m.node_of("LOAD"), 0.0, -1.0}};
+      },
       [](const FeMesh& m) { return std::vector<long>{m.node_of("MEAS")}; }, triangles);
   // The printed node is the only one.
   const double deflection = -u.front().begin()->second[1];
-  const std::string json = "{\n  \"length_m\": " + format_data_number(length) +
-                           ",\n  \"depth_m\": " + format_data_number(depth) +
-                           ",\n  \"width_m\": " + format_data_number(material.thickness_m) +
-                           ",\n  \"youngs_modulus_pa\": " +
-                           format_data_number(material.youngs_modulus_pa) +
-                           ",\n  \"poisson_ratio\": 0,\n  \"measured_x_m\": " +
-                           format_data_number(measured_x) + ",\n  \"triangles\": " +
-                           std::to_string(triangles) + ",\n  \"deflection_m_per_n\": " +
-                           format_data_number(deflection) + "\n}\n";
+  const std::string json =
+      "{\n  \"length_m\": " + format_data_number(length) +
+      ",\n  \"depth_m\": " + format_data_number(depth) +
+      ",\n  \"width_m\": " + format_data_number(material.thickness_m) +
+      ",\n  \"youngs_modulus_pa\": " + format_data_number(material.youngs_modulus_pa) +
+      ",\n  \"poisson_ratio\": 0,\n  \"measured_x_m\": " + format_data_number(measured_x) +
+      ",\n  \"triangles\": " + std::to_string(triangles) +
+      ",\n  \"deflection_m_per_n\": " + format_data_number(deflection) + "\n}\n";
   write_file_atomically((dir / "cantilever.json").string(), json);
   folder.commit();
   std::fputs(json.c_str(), stdout);
@@ -159,9 +161,9 @@ void run_tooth(const FeCheckOptions& o) {
   std::vector<ToothContact> contacts;
   std::vector<double> taus;
   for (int i = 0; i < o.positions; ++i) {
-    const double s = pair.start_of_active_profile_m +
-                     (pair.end_of_active_profile_m - pair.start_of_active_profile_m) * i /
-                         (o.positions - 1);
+    const double s =
+        pair.start_of_active_profile_m +
+        (pair.end_of_active_profile_m - pair.start_of_active_profile_m) * i / (o.positions - 1);
     const PairContact both = pair_contact(pair, s);
     const ToothContact contact = o.gear == 1 ? both.gear1 : both.gear2;
     rows.push_back({s, contact, {}, {}, {}, {}});
@@ -186,9 +188,9 @@ void run_tooth(const FeCheckOptions& o) {
   std::vector<double> tooth_sizes;
   for (int k = 0; k < o.refinements; ++k) {
     const double factor = std::ldexp(1.0, -k);
-    const FeMeshSizes sizes{o.element_size * m * factor,
-                            std::min(2.0 * m, 0.5 * (outline.root_radius_m - outline.bore_radius_m)) *
-                                factor};
+    const FeMeshSizes sizes{
+        o.element_size * m * factor,
+        std::min(2.0 * m, 0.5 * (outline.root_radius_m - outline.bore_radius_m)) * factor};
     tooth_sizes.push_back(sizes.tooth_m);
     const std::string stem = "tooth_mesh" + std::to_string(k + 1);
     const auto u = solve(
@@ -216,8 +218,8 @@ void run_tooth(const FeCheckOptions& o) {
       const std::string n = std::to_string(i + 1);
       const FeDisplacements& step = u[i];
       const FeToothReading r =
-          tooth_reading(contacts[i], step.at(mesh.node_of("C" + n)),
-                        step.at(mesh.node_of("A" + n)), step.at(mesh.node_of("B" + n)));
+          tooth_reading(contacts[i], step.at(mesh.node_of("C" + n)), step.at(mesh.node_of("A" + n)),
+                        step.at(mesh.node_of("B" + n)));
       rows[i].fe.push_back(r.compliance_m_per_n);
       rows[i].fe_centre_line.push_back(r.centre_line_m_per_n);
     }
@@ -269,8 +271,8 @@ void run_tooth(const FeCheckOptions& o) {
   }
   std::string meshes = "  \"meshes\": [";
   for (std::size_t k = 0; k < triangles.size(); ++k) {
-    meshes += std::string(k ? ", " : "") + "{\"tooth_element_m\": " +
-              format_data_number(tooth_sizes[k]) +
+    meshes += std::string(k ? ", " : "") +
+              "{\"tooth_element_m\": " + format_data_number(tooth_sizes[k]) +
               ", \"triangles\": " + std::to_string(triangles[k]) + "}";
   }
   meshes += "],\n";
@@ -354,9 +356,9 @@ void register_fe_commands(CLI::App& app) {
       throw InputError("case", o->case_file.empty() ? "absent" : o->case_file,
                        "either a case file or --cantilever");
     }
-    require_output_folder(o->out, o->overwrite, o->case_file.empty()
-                                                    ? std::vector<std::string>{}
-                                                    : std::vector<std::string>{o->case_file});
+    require_output_folder(
+        o->out, o->overwrite,
+        o->case_file.empty() ? std::vector<std::string>{} : std::vector<std::string>{o->case_file});
     if (o->cantilever) {
       run_cantilever(*o);
     } else {

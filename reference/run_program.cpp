@@ -58,11 +58,10 @@ std::string run_program(const ProgramCall& call) {
   ::close(pipe_fds[1]);
   if (spawned != 0) {
     ::close(pipe_fds[0]);
-    throw std::runtime_error("cannot run " + program + " on " + call.shown + ": " +
-                             std::strerror(spawned) +
-                             (spawned == ENOENT && !call.missing_hint.empty()
-                                  ? " (" + call.missing_hint + ")"
-                                  : std::string()));
+    throw std::runtime_error(
+        "cannot run " + program + " on " + call.shown + ": " + std::strerror(spawned) +
+        (spawned == ENOENT && !call.missing_hint.empty() ? " (" + call.missing_hint + ")"
+                                                         : std::string()));
   }
   std::string messages;
   char buffer[4096];

@@ -9,9 +9,8 @@
 
 namespace gearimpact {
 
-ToothOutline tooth_outline(const RackGearGeometry& gear, const char* bore_key,
-                           int fillet_segments, int involute_segments,
-                           const std::vector<double>& vertices_tau_rad) {
+ToothOutline tooth_outline(const RackGearGeometry& gear, const char* bore_key, int fillet_segments,
+                           int involute_segments, const std::vector<double>& vertices_tau_rad) {
   if (!gear.bore_diameter_m) {
     throw InputError(bore_key, "absent",
                      "a bore diameter inside the root circle: the model's rim ends at the bore");
@@ -48,8 +47,9 @@ ToothOutline tooth_outline(const RackGearGeometry& gear, const char* bore_key,
   std::vector<double> taus;
   for (int i = 0; i <= involute_segments; ++i) {
     const double tau = gear.form_tau_rad + step * i;
-    const bool near_vertex = std::any_of(vertices_tau_rad.begin(), vertices_tau_rad.end(),
-                                         [&](double v) { return std::fabs(v - tau) < 0.25 * step; });
+    const bool near_vertex =
+        std::any_of(vertices_tau_rad.begin(), vertices_tau_rad.end(),
+                    [&](double v) { return std::fabs(v - tau) < 0.25 * step; });
     if (!near_vertex) taus.push_back(tau);
   }
   taus.insert(taus.end(), vertices_tau_rad.begin(), vertices_tau_rad.end());

@@ -103,7 +103,8 @@ std::string tooth_geo(const ToothOutline& outline, const std::vector<ToothContac
   const std::array<int, 4> bore{geo.point(0.0, ri, coarse), geo.point(-ri, 0.0, coarse),
                                 geo.point(0.0, -ri, coarse), geo.point(ri, 0.0, coarse)};
   std::vector<int> outer;
-  for (std::size_t i = 0; i + 1 < right.size(); ++i) outer.push_back(geo.line(right[i], right[i + 1]));
+  for (std::size_t i = 0; i + 1 < right.size(); ++i)
+    outer.push_back(geo.line(right[i], right[i + 1]));
   outer.push_back(geo.arc(right.back(), centre, left.back()));
   for (std::size_t i = left.size() - 1; i > 0; --i) outer.push_back(geo.line(left[i], left[i - 1]));
   outer.push_back(geo.arc(left.front(), centre, west));
@@ -138,8 +139,7 @@ std::string tooth_geo(const ToothOutline& outline, const std::vector<ToothContac
   return geo.text() + groups;
 }
 
-std::string cantilever_geo(double length_m, double depth_m, double element_m,
-                           double measured_x_m) {
+std::string cantilever_geo(double length_m, double depth_m, double element_m, double measured_x_m) {
   GeoWriter geo;
   const double half = 0.5 * depth_m;
   const int p1 = geo.point(0.0, -half, element_m);
@@ -289,9 +289,11 @@ std::string calculix_input(const FeMesh& mesh, const FeMaterial& material,
   if (fixed == mesh.node_sets.end() || fixed->second.empty()) {
     throw std::runtime_error("the mesh has no node set " + fixed_set + " to hold");
   }
-  std::string text = "** Made by gearimpact fe-check: mm, N, MPa. Plane stress.\n*NODE, NSET=NALL\n";
+  std::string text =
+      "** Made by gearimpact fe-check: mm, N, MPa. Plane stress.\n*NODE, NSET=NALL\n";
   for (const auto& [id, xy] : mesh.nodes_m) {
-    text += std::to_string(id) + ", " + short_number(xy[0] * kMm) + ", " + short_number(xy[1] * kMm) + "\n";
+    text += std::to_string(id) + ", " + short_number(xy[0] * kMm) + ", " +
+            short_number(xy[1] * kMm) + "\n";
   }
   text += "*ELEMENT, TYPE=CPS6, ELSET=BODY\n";
   long element = 0;
@@ -308,9 +310,10 @@ std::string calculix_input(const FeMesh& mesh, const FeMaterial& material,
   };
   node_set("FIXED", fixed->second);
   node_set("PRINTED", printed_nodes);
-  text += "*MATERIAL, NAME=GEAR\n*ELASTIC\n" + short_number(material.youngs_modulus_pa / 1e6) + ", " +
-          short_number(material.poisson_ratio) + "\n";
-  text += "*SOLID SECTION, ELSET=BODY, MATERIAL=GEAR\n" + short_number(material.thickness_m * kMm) + "\n";
+  text += "*MATERIAL, NAME=GEAR\n*ELASTIC\n" + short_number(material.youngs_modulus_pa / 1e6) +
+          ", " + short_number(material.poisson_ratio) + "\n";
+  text += "*SOLID SECTION, ELSET=BODY, MATERIAL=GEAR\n" + short_number(material.thickness_m * kMm) +
+          "\n";
   text += "*BOUNDARY\nFIXED, 1, 2\n";
   for (const FeLoad& load : loads) {
     text += "*STEP\n*STATIC\n*CLOAD, OP=NEW\n";
@@ -351,8 +354,8 @@ std::vector<FeDisplacements> read_calculix_dat(const std::string& text, std::siz
   for (std::size_t s = 0; s < steps; ++s) {
     for (const long n : printed_nodes) {
       if (!result[s].count(n)) {
-        throw std::runtime_error("CalculiX's .dat lacks node " + std::to_string(n) +
-                                 " in step " + std::to_string(s + 1));
+        throw std::runtime_error("CalculiX's .dat lacks node " + std::to_string(n) + " in step " +
+                                 std::to_string(s + 1));
       }
     }
   }

@@ -39,8 +39,7 @@ struct ToothOutline {
 // added as a vertex, so that a load there falls on a node. Throws InputError
 // naming the bore when the gear has none (bore_diameter1 / bore_diameter2 by
 // `gear_name`), or a tau off the involute, or fewer than 2 segments.
-ToothOutline tooth_outline(const RackGearGeometry& gear, const char* bore_key,
-                           int fillet_segments, int involute_segments,
-                           const std::vector<double>& vertices_tau_rad);
+ToothOutline tooth_outline(const RackGearGeometry& gear, const char* bore_key, int fillet_segments,
+                           int involute_segments, const std::vector<double>& vertices_tau_rad);
 
 }  // namespace gearimpact

@@ -47,8 +47,7 @@ std::string tooth_geo(const ToothOutline& outline, const std::vector<ToothContac
 // depth h from y = -h/2 to h/2; the node LOAD at the free end's centre
 // (L, 0) and the node MEAS at (x_measured, 0) on the neutral axis, away from
 // the load's local field. Element size `element_m` everywhere.
-std::string cantilever_geo(double length_m, double depth_m, double element_m,
-                           double measured_x_m);
+std::string cantilever_geo(double length_m, double depth_m, double element_m, double measured_x_m);
 
 // The mesh gmsh writes in Abaqus form (-format inp), reduced to what the
 // solver needs: the nodes, the six-node triangles and the node sets.
