@@ -69,22 +69,8 @@ std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
 }
 
 // The paper's pair (20/80, m 2 mm, b 10 mm) with bores 20 / 60 mm.
-const char* kPaperPairWithBores = R"(name = "paper_pair_bores"
-[gears]
-teeth1 = 20
-teeth2 = 80
-module = "2 mm"
-pressure_angle = "20 deg"
-face_width = "10 mm"
-youngs_modulus = "206.8 GPa"
-poisson_ratio = 0.3
-density = "7800 kg/m^3"
-backlash = "0.05 mm"
-bore_diameter1 = "20 mm"
-bore_diameter2 = "60 mm"
-[model]
-stiffness_model = "potential-energy"
-)";
+const std::filesystem::path kPaperPairWithBores =
+    std::filesystem::path(GEARIMPACT_PAPER_DATA_DIR) / ".." / "examples" / "paper_pair_bores.toml";
 
 // One coarse run of the pinion's tooth at three positions (SAP, middle, EAP) on three meshes
 // (tooth elements 1, 0.5, 0.25 mm), shared by the cases below.
@@ -96,8 +82,7 @@ struct ToothRun {
 const ToothRun& tooth_run() {
   static const ToothRun run = [] {
     Scratch scratch("fe-tooth");
-    const auto case_file = scratch.dir / "pair.toml";
-    std::ofstream(case_file) << kPaperPairWithBores;
+    const std::filesystem::path& case_file = kPaperPairWithBores;
     ToothRun r;
     r.result =
         run_command(cli("fe-check " + case_file.string() + " --positions 3 " +
