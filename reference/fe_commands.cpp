@@ -180,6 +180,11 @@ void run_tooth(const FeCheckOptions& o) {
     row.pe = tooth_compliances(gear, which, row.contact, pair.contact_width_m, pe_model);
     row.ross = tooth_compliances(gear, which, row.contact, pair.contact_width_m, ross_model);
   }
+  // The foundation fit outside its range, for this gear: said on stderr and in the summary.
+  std::vector<FoundationExtrapolation> extrapolated;
+  for (const FoundationExtrapolation& e : foundation_extrapolations(pair, pe_model)) {
+    if (e.gear == which) extrapolated.push_back(e);
+  }
   AtomicFolder folder(o.out, o.overwrite, {o.case_file});
   const std::filesystem::path dir = folder.temporary();
   const FeMaterial material{gear.youngs_modulus_pa, gear.poisson_ratio, pair.contact_width_m};
@@ -188,9 +193,13 @@ void run_tooth(const FeCheckOptions& o) {
   std::vector<double> tooth_sizes;
   for (int k = 0; k < o.refinements; ++k) {
     const double factor = std::ldexp(1.0, -k);
+    // The ring far from the tooth carries little strain energy: its elements refine by the
+    // square root of the tooth's, so that a large wheel's ring does not dominate the cost (the
+    // convergence check covers both).
     const FeMeshSizes sizes{
         o.element_size * m * factor,
-        std::min(2.0 * m, 0.5 * (outline.root_radius_m - outline.bore_radius_m)) * factor};
+        std::min(4.0 * m, (outline.root_radius_m - outline.bore_radius_m) / 3.0) *
+            std::sqrt(factor)};
     tooth_sizes.push_back(sizes.tooth_m);
     const std::string stem = "tooth_mesh" + std::to_string(k + 1);
     const auto u = solve(
@@ -283,7 +292,8 @@ void run_tooth(const FeCheckOptions& o) {
       "  \"plane\": \"stress\",\n  \"thickness_m\": " + format_data_number(material.thickness_m) +
       ",\n  \"largest_last_mesh_change\": " + format_data_number(worst_change) +
       ",\n  \"converged\": " + (converged ? "true" : "false") +
-      ",\n  \"largest_fe_vs_pe\": " + format_data_number(worst_pe) + "\n}\n";
+      ",\n  \"largest_fe_vs_pe\": " + format_data_number(worst_pe) +
+      ",\n  \"foundation_extrapolated\": " + (extrapolated.empty() ? "false" : "true") + "\n}\n";
   write_file_atomically((dir / "fe_check.csv").string(), csv);
   write_file_atomically((dir / "fe_check.md").string(), table);
   write_file_atomically((dir / "summary.json").string(), json);
@@ -309,6 +319,10 @@ void run_tooth(const FeCheckOptions& o) {
     render(dir, f);
   }
   folder.commit();
+  if (!extrapolated.empty()) {
+    std::fprintf(stderr, "gearimpact: warning: %s\n",
+                 foundation_extrapolation_warning(extrapolated).c_str());
+  }
   std::fputs(table.c_str(), stdout);
   std::fputs(json.c_str(), stdout);
   if (!converged) {
