@@ -1,22 +1,14 @@
 #include "gnuplot.hpp"
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "gearimpact/io/atomic_file.hpp"
-
-extern char** environ;
+#include "run_program.hpp"
 
 namespace gearimpact::cli {
 
@@ -45,60 +37,6 @@ std::string script_text(const Figure& figure) {
   text += "set output " + quoted(figure.name + ".svg") + "\n";
   text += "replot\n";
   return text;
-}
-
-// Runs `gnuplot SCRIPT` in `dir` from an argument vector: no shell sees the
-// folder's or the script's name. Throws naming the script, with gnuplot's own
-// message, where gnuplot cannot start or fails.
-void run_gnuplot(const std::filesystem::path& dir, const std::string& script,
-                 const std::filesystem::path& shown) {
-  int pipe_fds[2];
-  if (::pipe(pipe_fds) != 0) {
-    throw std::runtime_error("cannot run gnuplot on " + shown.string() + ": " +
-                             std::strerror(errno));
-  }
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addchdir_np(&actions, dir.c_str());
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], STDERR_FILENO);
-  posix_spawn_file_actions_addclose(&actions, pipe_fds[0]);
-  std::string program = "gnuplot";
-  std::vector<char*> argv{program.data(), const_cast<char*>(script.c_str()), nullptr};
-  pid_t child = 0;
-  const int spawned = posix_spawnp(&child, "gnuplot", &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  ::close(pipe_fds[1]);
-  if (spawned != 0) {
-    ::close(pipe_fds[0]);
-    throw std::runtime_error("cannot run gnuplot on " + shown.string() + ": " +
-                             std::strerror(spawned) +
-                             (spawned == ENOENT ? " (Debian's gnuplot-nox; scripts/setup.sh "
-                                                  "installs it)"
-                                                : ""));
-  }
-  std::string messages;
-  char buffer[4096];
-  for (;;) {
-    const ssize_t n = ::read(pipe_fds[0], buffer, sizeof buffer);
-    if (n > 0) {
-      messages.append(buffer, static_cast<std::size_t>(n));
-    } else if (n == 0 || errno != EINTR) {
-      break;
-    }
-  }
-  ::close(pipe_fds[0]);
-  int status = 0;
-  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
-  }
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    while (!messages.empty() && (messages.back() == '\n' || messages.back() == ' ')) {
-      messages.pop_back();
-    }
-    throw std::runtime_error("gnuplot failed on " + shown.string() + ": " +
-                             (messages.empty() ? std::string("no message") : messages));
-  }
 }
 
 }  // namespace
@@ -162,7 +100,14 @@ std::vector<std::string> tick_commands(const std::string& axis, const Ticks& tic
 void render(const std::filesystem::path& dir, const Figure& figure) {
   const std::filesystem::path script = dir / (figure.name + ".gp");
   write_file_atomically(script.string(), script_text(figure));
-  run_gnuplot(dir.empty() ? std::filesystem::path(".") : dir, figure.name + ".gp", script);
+  // gnuplot SCRIPT in `dir`, from an argument vector: no shell sees the folder's or the
+  // script's name; a failure names the script with gnuplot's own message.
+  ProgramCall call;
+  call.argv = {"gnuplot", figure.name + ".gp"};
+  call.dir = dir.empty() ? std::filesystem::path(".") : dir;
+  call.shown = script.string();
+  call.missing_hint = "Debian's gnuplot-nox; scripts/setup.sh installs it";
+  run_program(call);
 }
 
 }  // namespace gearimpact::cli

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   gearimpact::cli::register_signals_commands(app);
   gearimpact::cli::register_ste_commands(app);
   gearimpact::cli::register_modes_commands(app);
+  gearimpact::cli::register_fe_commands(app);
   int status = 0;
   try {
     app.parse(argc, argv);

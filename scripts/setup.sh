@@ -9,6 +9,7 @@ packages=(
   libcli11-dev libtoml11-dev nlohmann-json3-dev
   clang libclang-rt-14-dev
   gnuplot-nox
+  gmsh calculix-ccx
   slurm-wlm munge parallel
   pkg-config
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-venv python3-pip

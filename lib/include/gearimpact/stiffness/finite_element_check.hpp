@@ -1,0 +1,112 @@
+// An independent check of the tooth compliances by finite elements: the
+// texts that gmsh (the mesher) and CalculiX (the solver) read, the readers of
+// what they write, and the reading of a compliance from the displacements
+// (docs/verification.md, "Finite-element check"). The programs themselves
+// are run by the `gearimpact fe-check` command; everything here is text in,
+// text out, so that it is tested without them.
+//
+// Units in the files: mm, N and MPa (the solver has none of its own); every
+// function here takes and returns SI and converts at the file's edge.
+// The model is two-dimensional, plane stress with the thickness of the face
+// width: the potential-energy terms use E (not E / (1 - nu^2)) with sections
+// b wide, which is plane stress.
+#pragma once
+
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "gearimpact/geometry/rack_generation.hpp"
+#include "gearimpact/geometry/tooth_outline.hpp"
+
+namespace gearimpact {
+
+// Element sizes: along the tooth (flanks, tip, the measured points) and on the
+// rim's far side and the bore; gmsh grades between them.
+struct FeMeshSizes {
+  double tooth_m;
+  double body_m;
+};
+
+// The gmsh geometry (.geo) of the tooth with its whole rim, a full ring from
+// the root circle to the bore with this one tooth: the flanks as the
+// polyline of `outline` (the other flank mirrored), the tip and root circles
+// and the bore as arcs; second-order triangles. Physical groups, which gmsh
+// writes as node sets: BODY (the surface), FIXED (the bore), and for the
+// contact i = 1, 2, ... at outline.vertex_index[i-1]: Pi, the flank's node
+// where the load acts; Ci, the centre-line point (0, y_t) of the section
+// through the load; Ai and Bi, the points (-x_t/2, y_t) and (x_t/2, y_t) of
+// that section. `contacts` are the loads in the same order as the outline's
+// vertices.
+std::string tooth_geo(const ToothOutline& outline, const std::vector<ToothContact>& contacts,
+                      const FeMeshSizes& sizes);
+
+// A rectangular cantilever for the check of the pipeline against beam theory:
+// length L along x from the clamped end x = 0 (the physical curve FIXED),
+// depth h from y = -h/2 to h/2; the node LOAD at the free end's centre
+// (L, 0) and the node MEAS at (x_measured, 0) on the neutral axis, away from
+// the load's local field. Element size `element_m` everywhere.
+std::string cantilever_geo(double length_m, double depth_m, double element_m, double measured_x_m);
+
+// The mesh gmsh writes in Abaqus form (-format inp), reduced to what the
+// solver needs: the nodes, the six-node triangles and the node sets.
+struct FeMesh {
+  std::map<long, std::array<double, 2>> nodes_m;
+  std::vector<std::array<long, 6>> triangles;
+  std::map<std::string, std::vector<long>> node_sets;
+  // The one node of a set made from a physical point; throws std::runtime_error
+  // naming the set if it is absent or holds more than one node.
+  long node_of(const std::string& set) const;
+};
+// Throws std::runtime_error naming the line for text that is not gmsh's inp
+// output or holds no six-node triangle.
+FeMesh read_gmsh_inp(const std::string& text);
+
+struct FeMaterial {
+  double youngs_modulus_pa;
+  double poisson_ratio;
+  double thickness_m;  // the plane-stress elements' thickness: the face width
+};
+
+// One load case: a force on one node (N, in the model's x and y).
+struct FeLoad {
+  long node;
+  double fx_n;
+  double fy_n;
+};
+
+// The CalculiX input (.inp): the mesh as plane-stress elements (CPS6) of the
+// material's thickness, the set `fixed_set` held in x and y, one linear
+// static step per load (each replacing the last, OP=NEW), and the
+// displacements of `printed_nodes` printed to the .dat file at every step.
+std::string calculix_input(const FeMesh& mesh, const FeMaterial& material,
+                           const std::string& fixed_set, const std::vector<FeLoad>& loads,
+                           const std::vector<long>& printed_nodes);
+
+// The printed displacements of each step (m, x and y), in the steps' order,
+// from CalculiX's .dat. Throws std::runtime_error unless it holds `steps`
+// steps with every node of `printed_nodes`.
+using FeDisplacements = std::map<long, std::array<double, 2>>;
+std::vector<FeDisplacements> read_calculix_dat(const std::string& text, std::size_t steps,
+                                               const std::vector<long>& printed_nodes);
+
+// The tooth's compliance at one contact from the displacements of the
+// section through the load (docs/verification.md, "Finite-element check"):
+// the load's direction d = (-cos tau, -sin tau) per unit force; the section's
+// translation u_C at its centre-line point C and its rotation
+// theta = (u_y(B) - u_y(A)) / (x_B - x_A), carried rigidly to the load point:
+//   delta = d . u_C + theta x_t d_y.
+// This is what the beam of the potential-energy method moves along the load
+// (Castigliano: the section at y_t is rigid there), and it leaves out the
+// contact's local indentation, which the Hertzian term carries (Weber's
+// division of the tooth's deflection, the contact's share measured to the
+// centre line). `centre_line_m_per_n` is d . u_C alone.
+struct FeToothReading {
+  double compliance_m_per_n;
+  double centre_line_m_per_n;
+};
+FeToothReading tooth_reading(const ToothContact& contact, const std::array<double, 2>& u_centre,
+                             const std::array<double, 2>& u_a, const std::array<double, 2>& u_b);
+
+}  // namespace gearimpact

@@ -1,0 +1,376 @@
+#include "gearimpact/stiffness/finite_element_check.hpp"
+
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "gearimpact/constants.hpp"
+#include "gearimpact/error.hpp"
+
+namespace gearimpact {
+
+namespace {
+
+// The files' length unit: mm (and N, so MPa).
+constexpr double kMm = 1e3;
+
+std::string number(double value) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
+
+// CalculiX reads a field of at most 20 characters: 14 digits fit with sign and exponent.
+std::string short_number(double value) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.14g", value);
+  return text;
+}
+
+// Writes the gmsh entities of one geometry, numbering points and curves.
+class GeoWriter {
+ public:
+  GeoWriter() {
+    text_ =
+        "// Made by gearimpact fe-check: mm. Second-order triangles, node sets of the\n"
+        "// physical groups (the CalculiX input reads them).\n"
+        "Mesh.ElementOrder = 2;\n"
+        "Mesh.SecondOrderLinear = 0;\n"
+        "Mesh.SaveGroupsOfNodes = 1;\n"
+        "Mesh.Algorithm = 6;\n"
+        "Mesh.CharacteristicLengthExtendFromBoundary = 1;\n";
+  }
+  int point(double x_m, double y_m, double size_m) {
+    const int id = ++points_;
+    text_ += "Point(" + std::to_string(id) + ") = {" + number(x_m * kMm) + ", " +
+             number(y_m * kMm) + ", 0, " + number(size_m * kMm) + "};\n";
+    return id;
+  }
+  int line(int from, int to) {
+    const int id = ++curves_;
+    text_ += "Line(" + std::to_string(id) + ") = {" + std::to_string(from) + ", " +
+             std::to_string(to) + "};\n";
+    return id;
+  }
+  // An arc of less than pi about `centre`.
+  int arc(int from, int centre, int to) {
+    const int id = ++curves_;
+    text_ += "Circle(" + std::to_string(id) + ") = {" + std::to_string(from) + ", " +
+             std::to_string(centre) + ", " + std::to_string(to) + "};\n";
+    return id;
+  }
+  static std::string list(const std::vector<int>& ids) {
+    std::string out;
+    for (std::size_t i = 0; i < ids.size(); ++i) out += (i ? ", " : "") + std::to_string(ids[i]);
+    return out;
+  }
+  void add(const std::string& line) { text_ += line + "\n"; }
+  const std::string& text() const { return text_; }
+
+ private:
+  std::string text_;
+  int points_ = 0;
+  int curves_ = 0;
+};
+
+}  // namespace
+
+std::string tooth_geo(const ToothOutline& outline, const std::vector<ToothContact>& contacts,
+                      const FeMeshSizes& sizes) {
+  if (contacts.size() != outline.vertex_index.size()) {
+    throw std::invalid_argument("tooth_geo: one contact per outline vertex");
+  }
+  GeoWriter geo;
+  const double fine = sizes.tooth_m;
+  const double coarse = sizes.body_m;
+  const int centre = geo.point(0.0, 0.0, coarse);
+  // The loaded flank (x > 0) and its mirror, root to tip.
+  std::vector<int> right;
+  std::vector<int> left;
+  for (const OutlinePoint& p : outline.flank) right.push_back(geo.point(p.x_m, p.y_m, fine));
+  for (const OutlinePoint& p : outline.flank) left.push_back(geo.point(-p.x_m, p.y_m, fine));
+  // The root circle from the left flank's foot round the back of the ring to
+  // the right flank's foot, in arcs of less than pi.
+  const double rf = outline.root_radius_m;
+  const int west = geo.point(-rf, 0.0, coarse);
+  const int south = geo.point(0.0, -rf, coarse);
+  const int east = geo.point(rf, 0.0, coarse);
+  const double ri = outline.bore_radius_m;
+  const std::array<int, 4> bore{geo.point(0.0, ri, coarse), geo.point(-ri, 0.0, coarse),
+                                geo.point(0.0, -ri, coarse), geo.point(ri, 0.0, coarse)};
+  std::vector<int> outer;
+  for (std::size_t i = 0; i + 1 < right.size(); ++i)
+    outer.push_back(geo.line(right[i], right[i + 1]));
+  outer.push_back(geo.arc(right.back(), centre, left.back()));
+  for (std::size_t i = left.size() - 1; i > 0; --i) outer.push_back(geo.line(left[i], left[i - 1]));
+  outer.push_back(geo.arc(left.front(), centre, west));
+  outer.push_back(geo.arc(west, centre, south));
+  outer.push_back(geo.arc(south, centre, east));
+  outer.push_back(geo.arc(east, centre, right.front()));
+  std::vector<int> inner;
+  for (std::size_t i = 0; i < bore.size(); ++i) {
+    inner.push_back(geo.arc(bore[i], centre, bore[(i + 1) % bore.size()]));
+  }
+  geo.add("Curve Loop(1) = {" + GeoWriter::list(outer) + "};");
+  geo.add("Curve Loop(2) = {" + GeoWriter::list(inner) + "};");
+  geo.add("Plane Surface(1) = {1, 2};");
+  std::vector<int> embedded;
+  std::string groups;
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const ToothContact& c = contacts[i];
+    const std::string n = std::to_string(i + 1);
+    const int on_centre = geo.point(0.0, c.y_m, fine);
+    const int a = geo.point(-0.5 * c.x_m, c.y_m, fine);
+    const int b = geo.point(0.5 * c.x_m, c.y_m, fine);
+    embedded.insert(embedded.end(), {on_centre, a, b});
+    groups += "Physical Point(\"P" + n + "\") = {" +
+              std::to_string(right[outline.vertex_index[i]]) + "};\n";
+    groups += "Physical Point(\"C" + n + "\") = {" + std::to_string(on_centre) + "};\n";
+    groups += "Physical Point(\"A" + n + "\") = {" + std::to_string(a) + "};\n";
+    groups += "Physical Point(\"B" + n + "\") = {" + std::to_string(b) + "};\n";
+  }
+  if (!embedded.empty()) geo.add("Point{" + GeoWriter::list(embedded) + "} In Surface{1};");
+  geo.add("Physical Surface(\"BODY\") = {1};");
+  geo.add("Physical Curve(\"FIXED\") = {" + GeoWriter::list(inner) + "};");
+  return geo.text() + groups;
+}
+
+std::string cantilever_geo(double length_m, double depth_m, double element_m, double measured_x_m) {
+  GeoWriter geo;
+  const double half = 0.5 * depth_m;
+  const int p1 = geo.point(0.0, -half, element_m);
+  const int p2 = geo.point(length_m, -half, element_m);
+  const int load = geo.point(length_m, 0.0, element_m);
+  const int p3 = geo.point(length_m, half, element_m);
+  const int p4 = geo.point(0.0, half, element_m);
+  const int measured = geo.point(measured_x_m, 0.0, element_m);
+  const std::vector<int> loop{geo.line(p1, p2), geo.line(p2, load), geo.line(load, p3),
+                              geo.line(p3, p4)};
+  const int clamp = geo.line(p4, p1);
+  geo.add("Curve Loop(1) = {" + GeoWriter::list(loop) + ", " + std::to_string(clamp) + "};");
+  geo.add("Plane Surface(1) = {1};");
+  geo.add("Point{" + std::to_string(measured) + "} In Surface{1};");
+  geo.add("Physical Surface(\"BODY\") = {1};");
+  geo.add("Physical Curve(\"FIXED\") = {" + std::to_string(clamp) + "};");
+  geo.add("Physical Point(\"LOAD\") = {" + std::to_string(load) + "};");
+  geo.add("Physical Point(\"MEAS\") = {" + std::to_string(measured) + "};");
+  return geo.text();
+}
+
+long FeMesh::node_of(const std::string& set) const {
+  const auto found = node_sets.find(set);
+  if (found == node_sets.end() || found->second.size() != 1) {
+    throw std::runtime_error("the mesh has no single node in the set " + set +
+                             " (gmsh's physical point)");
+  }
+  return found->second.front();
+}
+
+namespace {
+
+std::string upper(std::string text) {
+  for (char& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return text;
+}
+
+std::string without_spaces(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    if (c != ' ' && c != '\t' && c != '\r') out += c;
+  }
+  return out;
+}
+
+// The comma-separated numbers of one data line ("1, 2.5, 3," or "1 2 3").
+std::vector<double> numbers_of(const std::string& line, std::size_t line_number) {
+  std::vector<double> values;
+  std::string field;
+  auto flush = [&] {
+    if (field.empty()) return;
+    std::size_t used = 0;
+    double v = 0.0;
+    try {
+      v = std::stod(field, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != field.size()) {
+      throw std::runtime_error("mesh line " + std::to_string(line_number) + ": '" + field +
+                               "' is not a number");
+    }
+    values.push_back(v);
+    field.clear();
+  };
+  for (const char c : line) {
+    if (c == ',' || c == ' ' || c == '\t' || c == '\r') {
+      flush();
+    } else {
+      field += c;
+    }
+  }
+  flush();
+  return values;
+}
+
+}  // namespace
+
+FeMesh read_gmsh_inp(const std::string& text) {
+  FeMesh mesh;
+  enum class Block { none, nodes, triangles, set } block = Block::none;
+  std::string set_name;
+  std::istringstream lines(text);
+  std::string line;
+  std::size_t number_of_line = 0;
+  while (std::getline(lines, line)) {
+    ++number_of_line;
+    if (line.rfind("**", 0) == 0) continue;
+    if (!line.empty() && line[0] == '*') {
+      const std::string key = upper(without_spaces(line));
+      block = Block::none;
+      if (key.rfind("*NODE", 0) == 0 && key.rfind("*NODEPRINT", 0) != 0) {
+        block = Block::nodes;
+      } else if (key.rfind("*ELEMENT", 0) == 0 && key.find("TYPE=CPS6") != std::string::npos) {
+        block = Block::triangles;
+      } else if (key.rfind("*NSET", 0) == 0) {
+        const auto at = key.find("NSET=", 5);
+        if (at == std::string::npos) {
+          throw std::runtime_error("mesh line " + std::to_string(number_of_line) +
+                                   ": a node set without a name");
+        }
+        set_name = without_spaces(line).substr(at + 5);
+        const auto comma = set_name.find(',');
+        if (comma != std::string::npos) set_name.resize(comma);
+        block = Block::set;
+      }
+      continue;
+    }
+    if (without_spaces(line).empty() || block == Block::none) continue;
+    const std::vector<double> v = numbers_of(line, number_of_line);
+    if (block == Block::nodes) {
+      if (v.size() < 3) {
+        throw std::runtime_error("mesh line " + std::to_string(number_of_line) +
+                                 ": a node needs a number and two coordinates");
+      }
+      mesh.nodes_m[static_cast<long>(v[0])] = {v[1] / kMm, v[2] / kMm};
+    } else if (block == Block::triangles) {
+      if (v.size() != 7) {
+        throw std::runtime_error("mesh line " + std::to_string(number_of_line) +
+                                 ": a six-node triangle needs its number and six nodes");
+      }
+      mesh.triangles.push_back({static_cast<long>(v[1]), static_cast<long>(v[2]),
+                                static_cast<long>(v[3]), static_cast<long>(v[4]),
+                                static_cast<long>(v[5]), static_cast<long>(v[6])});
+    } else {
+      for (const double n : v) mesh.node_sets[set_name].push_back(static_cast<long>(n));
+    }
+  }
+  if (mesh.triangles.empty()) {
+    throw std::runtime_error("the mesh holds no six-node triangle (gmsh -order 2 -format inp)");
+  }
+  for (const auto& triangle : mesh.triangles) {
+    for (const long n : triangle) {
+      if (!mesh.nodes_m.count(n)) {
+        throw std::runtime_error("the mesh's triangles name the node " + std::to_string(n) +
+                                 ", which it does not define");
+      }
+    }
+  }
+  return mesh;
+}
+
+std::string calculix_input(const FeMesh& mesh, const FeMaterial& material,
+                           const std::string& fixed_set, const std::vector<FeLoad>& loads,
+                           const std::vector<long>& printed_nodes) {
+  const auto fixed = mesh.node_sets.find(fixed_set);
+  if (fixed == mesh.node_sets.end() || fixed->second.empty()) {
+    throw std::runtime_error("the mesh has no node set " + fixed_set + " to hold");
+  }
+  std::string text =
+      "** Made by gearimpact fe-check: mm, N, MPa. Plane stress.\n*NODE, NSET=NALL\n";
+  for (const auto& [id, xy] : mesh.nodes_m) {
+    text += std::to_string(id) + ", " + short_number(xy[0] * kMm) + ", " +
+            short_number(xy[1] * kMm) + "\n";
+  }
+  text += "*ELEMENT, TYPE=CPS6, ELSET=BODY\n";
+  long element = 0;
+  for (const auto& t : mesh.triangles) {
+    text += std::to_string(++element);
+    for (const long n : t) text += ", " + std::to_string(n);
+    text += "\n";
+  }
+  auto node_set = [&](const std::string& name, const std::vector<long>& nodes) {
+    text += "*NSET, NSET=" + name + "\n";
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      text += std::to_string(nodes[i]) + ((i + 1) % 8 == 0 || i + 1 == nodes.size() ? ",\n" : ", ");
+    }
+  };
+  node_set("FIXED", fixed->second);
+  node_set("PRINTED", printed_nodes);
+  text += "*MATERIAL, NAME=GEAR\n*ELASTIC\n" + short_number(material.youngs_modulus_pa / 1e6) +
+          ", " + short_number(material.poisson_ratio) + "\n";
+  text += "*SOLID SECTION, ELSET=BODY, MATERIAL=GEAR\n" + short_number(material.thickness_m * kMm) +
+          "\n";
+  text += "*BOUNDARY\nFIXED, 1, 2\n";
+  for (const FeLoad& load : loads) {
+    text += "*STEP\n*STATIC\n*CLOAD, OP=NEW\n";
+    text += std::to_string(load.node) + ", 1, " + short_number(load.fx_n) + "\n";
+    text += std::to_string(load.node) + ", 2, " + short_number(load.fy_n) + "\n";
+    text += "*NODE PRINT, NSET=PRINTED\nU\n*END STEP\n";
+  }
+  return text;
+}
+
+std::vector<FeDisplacements> read_calculix_dat(const std::string& text, std::size_t steps,
+                                               const std::vector<long>& printed_nodes) {
+  std::vector<FeDisplacements> result;
+  std::istringstream lines(text);
+  std::string line;
+  bool in_block = false;
+  while (std::getline(lines, line)) {
+    if (line.find("displacements (vx,vy,vz)") != std::string::npos) {
+      result.emplace_back();
+      in_block = true;
+      continue;
+    }
+    if (!in_block) continue;
+    std::istringstream fields(line);
+    long node = 0;
+    double ux = 0.0;
+    double uy = 0.0;
+    if (fields >> node >> ux >> uy) {
+      result.back()[node] = {ux / kMm, uy / kMm};
+    } else if (!without_spaces(line).empty()) {
+      in_block = false;
+    }
+  }
+  if (result.size() != steps) {
+    throw std::runtime_error("CalculiX's .dat holds " + std::to_string(result.size()) +
+                             " steps of displacements, not " + std::to_string(steps));
+  }
+  for (std::size_t s = 0; s < steps; ++s) {
+    for (const long n : printed_nodes) {
+      if (!result[s].count(n)) {
+        throw std::runtime_error("CalculiX's .dat lacks node " + std::to_string(n) + " in step " +
+                                 std::to_string(s + 1));
+      }
+    }
+  }
+  return result;
+}
+
+FeToothReading tooth_reading(const ToothContact& contact, const std::array<double, 2>& u_centre,
+                             const std::array<double, 2>& u_a, const std::array<double, 2>& u_b) {
+  const double dx = -std::cos(contact.tau_rad);
+  const double dy = -std::sin(contact.tau_rad);
+  // A at -x_t / 2, B at +x_t / 2: the section's rigid rotation moves a point
+  // at x by theta x along y.
+  const double theta = (u_b[1] - u_a[1]) / contact.x_m;
+  const double centre = dx * u_centre[0] + dy * u_centre[1];
+  return {centre + theta * contact.x_m * dy, centre};
+}
+
+}  // namespace gearimpact

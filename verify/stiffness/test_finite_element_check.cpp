@@ -1,0 +1,169 @@
+// The finite-element check's own pieces without the outside programs: the
+// tooth outline against the involute's and the root circle's equations, the
+// readers of gmsh's and CalculiX's files on samples of their output, the
+// solver input's units, and the reading of a compliance against rigid-body
+// kinematics.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "gearimpact/constants.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/rack_generation.hpp"
+#include "gearimpact/geometry/tooth_outline.hpp"
+#include "gearimpact/stiffness/finite_element_check.hpp"
+#include "relative.hpp"
+
+using namespace gearimpact;
+using gearimpact::verify::relative_difference;
+
+namespace {
+
+GearPair pair_with_bores() {
+  GearPair p = paper_gear_pair();
+  p.bore_diameter1_m = 0.020;
+  p.bore_diameter2_m = 0.060;
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("the tooth outline runs from the root circle along the involute to the tip circle") {
+  const RackGearPairGeometry pair = rack_gear_pair_geometry(pair_with_bores());
+  const RackGearGeometry& g = pair.gear1;
+  const double pitch_tau = 0.5 * (g.form_tau_rad + g.tip_tau_rad);
+  const ToothOutline o =
+      tooth_outline(g, "gears.bore_diameter1", 12, 20, {pitch_tau, g.tip_tau_rad});
+  // The foot on the root circle, the last point on the tip circle (relative 1e-12: rounding of
+  // the parametric forms).
+  CHECK(relative_difference(std::hypot(o.flank.front().x_m, o.flank.front().y_m), g.root_radius_m) <
+        1e-12);
+  CHECK(relative_difference(std::hypot(o.flank.back().x_m, o.flank.back().y_m), g.tip_radius_m) <
+        1e-12);
+  CHECK(o.bore_radius_m == doctest::Approx(0.010).epsilon(1e-15));
+  // Every involute point satisfies the involute's polar form: at radius r the half angle is
+  // theta_b - inv(acos(r_b / r)) (an equation apart from the tau parametrisation).
+  for (std::size_t i = 12; i < o.flank.size(); ++i) {
+    const double r = std::hypot(o.flank[i].x_m, o.flank[i].y_m);
+    const double half_angle = std::atan2(o.flank[i].x_m, o.flank[i].y_m);
+    const double expected =
+        g.half_tooth_angle_base_rad - involute_function(std::acos(g.base_radius_m / r));
+    CHECK(std::fabs(half_angle - expected) < 1e-12);
+  }
+  // The radii rise from root to tip: a simple polyline.
+  for (std::size_t i = 1; i < o.flank.size(); ++i) {
+    CHECK(std::hypot(o.flank[i].x_m, o.flank[i].y_m) >
+          std::hypot(o.flank[i - 1].x_m, o.flank[i - 1].y_m));
+  }
+  // The asked points are vertices: the contact at tau lies at r_b sqrt(1 + (tau + theta_b)^2).
+  REQUIRE(o.vertex_index.size() == 2);
+  const OutlinePoint& at = o.flank[o.vertex_index[0]];
+  const double roll = pitch_tau + g.half_tooth_angle_base_rad;
+  CHECK(relative_difference(std::hypot(at.x_m, at.y_m),
+                            g.base_radius_m * std::sqrt(1.0 + roll * roll)) < 1e-12);
+  CHECK(o.vertex_index[1] == o.flank.size() - 1);
+}
+
+TEST_CASE("the tooth outline refuses a gear without a bore, naming the key") {
+  const RackGearPairGeometry pair = rack_gear_pair_geometry(paper_gear_pair());
+  try {
+    tooth_outline(pair.gear2, "gears.bore_diameter2", 12, 20, {});
+    FAIL("no refusal");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("gears.bore_diameter2") != std::string::npos);
+  }
+}
+
+TEST_CASE("gmsh's inp mesh is read in metres with its six-node triangles and node sets") {
+  // The form gmsh 4.8 writes (-format inp, Mesh.SaveGroupsOfNodes = 1).
+  const std::string text =
+      "*Heading\n mesh.inp\n*NODE\n1, 0, 0, 0\n2, 2, 0, 0\n3, 0, 2, 0\n4, 1, 0, 0\n5, 1, 1, 0\n"
+      "6, 0, 1, 0\n******* E L E M E N T S *************\n*ELEMENT, type=T3D3, ELSET=Line1\n"
+      "1, 1, 3, 6\n*ELEMENT, type=CPS6, ELSET=Surface1\n2, 1, 2, 3, 4, 5, 6\n"
+      "*ELSET,ELSET=BODY\n2, \n*NSET,NSET=LOAD\n2, \n*NSET,NSET=FIXED\n1, 3, 6, \n";
+  const FeMesh mesh = read_gmsh_inp(text);
+  REQUIRE(mesh.nodes_m.size() == 6);
+  CHECK(mesh.nodes_m.at(2)[0] == doctest::Approx(0.002).epsilon(1e-15));
+  REQUIRE(mesh.triangles.size() == 1);  // the line elements of the curve are left out
+  CHECK(mesh.triangles[0][5] == 6);
+  CHECK(mesh.node_of("LOAD") == 2);
+  CHECK(mesh.node_sets.at("FIXED").size() == 3);
+  CHECK_THROWS_AS(mesh.node_of("FIXED"), std::runtime_error);
+  CHECK_THROWS_AS(read_gmsh_inp("*NODE\n1, 0, 0, 0\n"), std::runtime_error);
+}
+
+TEST_CASE("the CalculiX input is in mm, N and MPa, and its fields fit CalculiX's 20 characters") {
+  FeMesh mesh;
+  mesh.nodes_m = {{1, {0.0, 0.0}},   {2, {0.002, 0.0}},   {3, {0.0, 0.002}},
+                  {4, {0.001, 0.0}}, {5, {0.001, 0.001}}, {6, {1.0 / 3.0e3, 0.001}}};
+  mesh.triangles = {{1, 2, 3, 4, 5, 6}};
+  mesh.node_sets["FIXED"] = {1, 3};
+  const std::string text =
+      calculix_input(mesh, {206e9, 0.3, 0.01}, "FIXED", {{2, -0.5, -0.25}, {5, 1.0, 0.0}}, {5});
+  CHECK(text.find("*SOLID SECTION, ELSET=BODY, MATERIAL=GEAR\n10\n") != std::string::npos);
+  CHECK(text.find("*ELASTIC\n206000, 0.3\n") != std::string::npos);
+  CHECK(text.find("2, 2, 0\n") != std::string::npos);  // node 2 at 2 mm
+  std::size_t steps = 0;
+  for (std::size_t at = text.find("*STEP"); at != std::string::npos;
+       at = text.find("*STEP", at + 1))
+    ++steps;
+  CHECK(steps == 2);
+  std::istringstream lines(text);
+  std::string line;
+  while (std::getline(lines, line)) {
+    if (line.rfind("**", 0) == 0) continue;  // a comment line
+    std::istringstream fields(line);
+    std::string field;
+    while (std::getline(fields, field, ',')) CHECK(field.size() <= 20);
+  }
+}
+
+TEST_CASE("CalculiX's printed displacements are read per step in metres") {
+  // The form CalculiX 2.20 prints (*NODE PRINT, U).
+  const std::string text =
+      "\n                        S T E P       1\n\n\n                                INCREMENT    "
+      " 1\n\n\n"
+      " displacements (vx,vy,vz) for set PRINTED and time  0.1000000E+01\n\n"
+      "         6  1.021019E-10 -1.624089E-03 -1.009690E-20\n"
+      "         7  2.0E-04 -3.0E-04  0.0E+00\n\n"
+      "                        S T E P       2\n\n"
+      " displacements (vx,vy,vz) for set PRINTED and time  0.2000000E+01\n\n"
+      "         6 -4.365208E-06 -6.395741E-11 -1.522012E-22\n"
+      "         7  1.0E-03  0.0E+00  0.0E+00\n";
+  const auto steps = read_calculix_dat(text, 2, {6, 7});
+  REQUIRE(steps.size() == 2);
+  CHECK(steps[0].at(6)[1] == doctest::Approx(-1.624089e-6).scale(0).epsilon(1e-12));
+  CHECK(steps[1].at(7)[0] == doctest::Approx(1e-6).scale(0).epsilon(1e-12));
+  CHECK_THROWS_AS(read_calculix_dat(text, 3, {6}), std::runtime_error);
+  CHECK_THROWS_AS(read_calculix_dat(text, 2, {8}), std::runtime_error);
+}
+
+TEST_CASE("the compliance read from a section moving rigidly is the load point's motion along d") {
+  // Rigid kinematics: u(p) = t + w z x (p - p0). Carried from C, A and B to the load point, the
+  // reading must equal d . u(load) for any translation, rotation and pivot.
+  ToothContact contact{};
+  contact.x_m = 1.7e-3;
+  contact.y_m = 20.3e-3;
+  contact.tau_rad = 0.41;
+  const double t[2] = {-3e-9, 2e-9};
+  const double w = 4e-7;
+  const double p0[2] = {0.5e-3, 11e-3};
+  auto u = [&](double x, double y) {
+    return std::array<double, 2>{t[0] - w * (y - p0[1]), t[1] + w * (x - p0[0])};
+  };
+  const FeToothReading r =
+      tooth_reading(contact, u(0.0, contact.y_m), u(-0.5 * contact.x_m, contact.y_m),
+                    u(0.5 * contact.x_m, contact.y_m));
+  const auto load = u(contact.x_m, contact.y_m);
+  const double expected =
+      -std::cos(contact.tau_rad) * load[0] - std::sin(contact.tau_rad) * load[1];
+  CHECK(relative_difference(r.compliance_m_per_n, expected) < 1e-12);
+  // The centre line alone misses the rotation's share w x_t d_y.
+  const auto centre = u(0.0, contact.y_m);
+  CHECK(relative_difference(r.centre_line_m_per_n, -std::cos(contact.tau_rad) * centre[0] -
+                                                       std::sin(contact.tau_rad) * centre[1]) <
+        1e-12);
+}
