@@ -148,7 +148,7 @@ void mark_mesh_harmonics(Figure& f, double mesh, double highest, const std::stri
     f.setup.push_back(std::string("set arrow from ") + at + ", graph 0 to " + at +
                       ", graph 1 nohead dt 2 lc rgb 'grey40'");
     const std::string label = (h == 1 ? "" : std::to_string(h) + " ") + name;
-    f.setup.push_back("set label \"" + label + "\" at " + at +
+    f.setup.push_back("set label " + gnuplot_string(label) + " at " + at +
                       ", graph 0.97 center front tc rgb 'grey20'");
   }
 }
@@ -171,7 +171,7 @@ void mark_sidebands(Figure& f, double mesh, double shaft, std::size_t sidebands,
     }
   }
   f.setup.emplace_back("set key bottom right opaque box");
-  f.series.push_back("NaN with lines lw 1.5 lc rgb '#c0392b' title '" + label + "'");
+  f.series.push_back("NaN with lines lw 1.5 lc rgb '#c0392b' title " + gnuplot_string(label));
 }
 
 void spectrum_figure(const std::filesystem::path& dir, const std::string& name,
@@ -185,8 +185,8 @@ void spectrum_figure(const std::filesystem::path& dir, const std::string& name,
   f.setup = {"set logscale y", "set format y '10^{%L}'", "set key off"};
   add(f, tick_commands("x", nice_ticks(0.0, top)));
   if (mesh > 0.0) mark_mesh_harmonics(f, mesh, top, mesh_name);
-  f.series = {"'" + name +
-              ".csv' using 1:($2 > 0 ? $2 : NaN) with lines lw 1.2 lc rgb '#1f4e99' notitle"};
+  f.series = {gnuplot_string(name + ".csv") +
+              " using 1:($2 > 0 ? $2 : NaN) with lines lw 1.2 lc rgb '#1f4e99' notitle"};
   if (mesh > 0.0 && shaft > 0.0 && sidebands > 0) {
     mark_sidebands(f, mesh, shaft, sidebands, top,
                    "sidebands " + mesh_name + " +- 1.." + std::to_string(sidebands) +
@@ -218,12 +218,12 @@ void waveform_figure(const std::filesystem::path& dir, const std::string& column
   const std::size_t first = waveform_start(uniform);
   Figure f;
   f.name = "waveform";
-  f.title = "Waveform of " + literal_key(column, true) +
+  f.title = "Waveform of " + literal_key(column) +
             (first > 0 ? " (the record's last " + std::to_string(kWaveformSamples) + " samples)"
                        : std::string());
   f.x_label = "time (s)";
   // The column's name, which carries its unit (sensor_acceleration_m_per_s2).
-  f.y_label = literal_key(column, true);
+  f.y_label = literal_key(column);
   f.setup = {"set key off"};
   f.series = {"'waveform.csv' using 1:2 with lines lw 1 lc rgb '#1f4e99'"};
   render(dir, f);
@@ -240,9 +240,9 @@ void tsa_figure(const std::filesystem::path& dir, const std::string& column,
   std::snprintf(shift, sizeof shift, "%.17g", mean);
   Figure f;
   f.name = "tsa";
-  f.title = "Time-synchronous average of " + literal_key(column, true) + " over one revolution";
+  f.title = "Time-synchronous average of " + literal_key(column) + " over one revolution";
   f.x_label = "shaft angle (deg)";
-  f.y_label = literal_key(column, true);
+  f.y_label = literal_key(column);
   f.setup = {"set key outside right top"};
   add(f, tick_commands("x", Ticks{0.0, 360.0, 45.0, 0}));
   if (marked) {
@@ -377,6 +377,11 @@ void run_signals(SignalsOptions o) {
   // is low-passed below that frequency first, and the angle taken on the same
   // grid for the order analysis.
   const bool coarser = rate && *rate < record_rate * (1.0 - 1e-9);
+  // The grids' sizes, before any is made: each is held a few times over.
+  naming_flags([&] {
+    signals::uniform_sample_count(time.front(), time.back(), rate ? *rate : record_rate);
+    if (coarser) signals::uniform_sample_count(time.front(), time.back(), record_rate);
+  });
   std::vector<double> filtered_time;
   std::vector<double> filtered_signal;
   std::vector<double> filtered_angle;
@@ -453,17 +458,17 @@ void run_signals(SignalsOptions o) {
     waveform_figure(dir, o.column, uniform);
     spectrum_figure(
         dir, "spectrum",
-        "Amplitude spectrum of " + literal_key(o.column, true) + " (" + run.window + " window)",
+        "Amplitude spectrum of " + literal_key(o.column) + " (" + run.window + " window)",
         "frequency (Hz)", mesh_hz > 0.0 ? std::min(nyquist, 6.5 * mesh_hz) : nyquist, mesh_hz,
         "f_m", run.shaft_frequency_hz, sidebands);
     if (has_angle) {
       const double half = static_cast<double>(run.angle_grid) / 2.0;
       const double z = sets ? static_cast<double>(sets->teeth) : 0.0;
-      spectrum_figure(dir, "order_spectrum",
-                      "Order spectrum of " + literal_key(o.column, true) + " on " +
-                          literal_key(o.angle_column, true),
-                      "order (cycles per revolution)", sets ? std::min(half, 3.5 * z) : half, z,
-                      "z", 1.0, sidebands);
+      spectrum_figure(
+          dir, "order_spectrum",
+          "Order spectrum of " + literal_key(o.column) + " on " + literal_key(o.angle_column),
+          "order (cycles per revolution)", sets ? std::min(half, 3.5 * z) : half, z, "z", 1.0,
+          sidebands);
       tsa_figure(dir, o.column, tsa_values, sets.has_value(), marked,
                  o.mark_tooth.substr(0, o.mark_tooth.find(':')) + " tooth " +
                      o.mark_tooth.substr(o.mark_tooth.find(':') + 1));

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <system_error>
 #include <type_traits>
@@ -134,6 +135,15 @@ class Rows {
   template <typename Slot>
   Field& integer(std::string_view key, Range range, bool required, const std::string& help,
                  Slot slot) {
+    // The row's range must fit its slot's type: a value past it would wrap when set (a tooth
+    // of 2^31 read as -2^31), so every integer row is bounded on both sides.
+    using T = std::decay_t<decltype(slot(std::declval<SimulationCase&>()))>;
+    if (!range.lower || !range.upper ||
+        range.lower->value < static_cast<double>(std::numeric_limits<T>::lowest()) ||
+        range.upper->value > static_cast<double>(std::numeric_limits<T>::max())) {
+      throw std::logic_error("the integer row " + std::string(key) +
+                             " has a range its slot's type cannot hold");
+    }
     Field& f = add(key, FieldKind::integer, required, help, slot);
     f.range = range;
     return f;
@@ -1107,7 +1117,8 @@ std::vector<Field> make_fault_schema() {
       true,
       "the gear the faulted tooth belongs to", [fault](auto& c) -> auto& { return fault(c).gear; });
   r.integer(
-      "tooth", {closed(0.0), {}, "and below the gear's number of teeth"}, true,
+      "tooth", {closed(0.0), closed(kMostTeeth - 1.0), "and below the gear's number of teeth"},
+      true,
       "the tooth's number in mesh order, 0 ... z-1 (docs/faults.md, Tooth identity); "
       "one fault per tooth",
       [fault](auto& c) -> auto& { return fault(c).tooth; });
