@@ -1,0 +1,261 @@
+// Hostile input through the program, as an attacker or a careless user writes it: a column's
+// name built to run a command in gnuplot, a tooth number past int32, a FIFO, a line of NULs or a
+// header of megabytes where a CSV belongs, a sample rate whose grid does not fit in memory. Each
+// refusal exits 1 with one "gearimpact: error:" message that names the key or flag, prints no
+// nan, leaves no output folder or temporary folder; each accepted input still draws its figures
+// and runs nothing. Devices and FIFOs are made in a temporary folder, never the machine's own.
+#include <doctest/doctest.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <sys/types.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "run_command.hpp"
+#include "scratch.hpp"
+
+namespace fs = std::filesystem;
+using gearimpact::verify::cli;
+using gearimpact::verify::CommandResult;
+using gearimpact::verify::run_command;
+using gearimpact::verify::Scratch;
+
+namespace {
+
+const fs::path kExamples = fs::path(GEARIMPACT_PAPER_DATA_DIR).parent_path() / "examples";
+
+// Single quotes for the shell that run_command uses to start the program.
+std::string single_quoted(const std::string& text) {
+  std::string quoted = "'";
+  for (char ch : text) quoted += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+  return quoted + "'";
+}
+
+std::string read(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The names in `dir` (a refusal leaves nothing: no output, no hidden temporary folder).
+std::set<std::string> entries(const fs::path& dir) {
+  std::set<std::string> names;
+  for (const auto& entry : fs::directory_iterator(dir)) names.insert(entry.path().filename());
+  return names;
+}
+
+// One refusal: exit 1, one "gearimpact: error:" message naming `key`, no nan, nothing on
+// standard output.
+void check_refusal(const CommandResult& r, const std::string& key) {
+  INFO(r.err);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.rfind("gearimpact: error: ", 0) == 0);
+  CHECK(r.err.find(key) != std::string::npos);
+  CHECK(r.err.find("nan") == std::string::npos);
+  CHECK(r.out.empty());
+}
+
+// A record of ten revolutions of a shaft at 5 rev/s, 200 rows a revolution, and a signal of a
+// 20-tooth gear's mesh order; the angle and the signal columns carry the given names.
+void write_record(const fs::path& path, const std::string& angle, const std::string& signal,
+                  const std::string& before_header = "") {
+  std::ofstream out(path, std::ios::binary);
+  out << before_header << "t_s," << angle << "," << signal << "\n";
+  for (int i = 0; i <= 2000; ++i) {
+    const double theta = 2.0 * std::numbers::pi * i / 200.0;
+    char line[128];
+    std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g\n", i * 1e-3, theta,
+                  1.0 + std::cos(20.0 * theta));
+    out << line;
+  }
+}
+
+}  // namespace
+
+TEST_CASE("a column's name reaches gnuplot's scripts as inert text") {
+  Scratch scratch("hostile-gnuplot");
+  const fs::path dir = scratch.dir;
+  // Each payload makes a file in the folder if gnuplot ever runs it: a backquote, system() in
+  // double quotes, a quote that would close a single-quoted string, a macro, a carriage return
+  // (a line break inside the script) before a command, a backslash that would continue a line.
+  const std::string signal = "x`touch BACKQUOTE`'\"system(\"touch SYSTEM\")@m\\";
+  const std::string angle = "a'.system('touch QUOTE').'\rsystem(\"touch NEWLINE\")";
+  const fs::path csv = dir / "record.csv";
+  write_record(csv, angle, signal);
+  const fs::path out = dir / "out";
+  const CommandResult r =
+      run_command("cd " + single_quoted(dir.string()) + " && " +
+                  cli("signals record.csv --column " + single_quoted(signal) + " --angle-column " +
+                      single_quoted(angle) + " --teeth 20 --samples-per-revolution 160 --out out"));
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const std::set<std::string> left{"out", "record.csv"};
+  CHECK(entries(dir) == left);
+  // gnuplot runs in the output folder: a payload that ran would have left its file there.
+  for (const char* made : {"BACKQUOTE", "SYSTEM", "QUOTE", "NEWLINE"}) {
+    CAPTURE(made);
+    CHECK_FALSE(fs::exists(out / made));
+  }
+  // The figures are drawn, each with the name in its title as text.
+  for (const char* figure : {"waveform", "spectrum", "order_spectrum", "tsa"}) {
+    CAPTURE(figure);
+    CHECK(fs::file_size(out / (std::string(figure) + ".png")) > 0);
+    CHECK(fs::file_size(out / (std::string(figure) + ".svg")) > 0);
+  }
+  CHECK(read(out / "waveform.gp").find("set title 'Waveform of x`touch BACKQUOTE`''") !=
+        std::string::npos);
+  // The scripts stay inert when a reader redraws them.
+  const std::set<std::string> outputs = entries(out);
+  for (const char* script : {"waveform.gp", "spectrum.gp", "order_spectrum.gp", "tsa.gp"}) {
+    CAPTURE(script);
+    const CommandResult again =
+        run_command("cd " + single_quoted(out.string()) + " && gnuplot " + script);
+    CHECK(again.exit_code == 0);
+  }
+  CHECK(entries(out) == outputs);
+  CHECK(entries(dir) == left);
+}
+
+TEST_CASE("a fault's tooth beyond int32 is refused under its key, not wrapped") {
+  Scratch scratch("hostile-tooth");
+  const std::string text = read(kExamples / "cracked_pinion.toml");
+  const std::string first = "tooth = 3\n";
+  REQUIRE(text.find(first) != std::string::npos);
+  // 2^31 once read as -2^31 (ste crashed); 2^32 as 0; -1 and the gear's 20 teeth are out too.
+  for (const char* tooth : {"2147483648", "4294967296", "9223372036854775807", "-1", "20"}) {
+    CAPTURE(tooth);
+    std::string changed = text;
+    changed.replace(changed.find(first), first.size(), "tooth = " + std::string(tooth) + "\n");
+    const fs::path file = scratch.dir / "pair.toml";
+    std::ofstream(file) << changed;
+    const fs::path out = scratch.dir / "out";
+    for (const std::string& command :
+         {"check-case " + file.string(),
+          "ste " + file.string() + " --torque '100 N*m' --out " + out.string(),
+          "mesh-stiffness --case-file " + file.string() + " --samples 50 --figure " + out.string(),
+          "stiffness --case-file " + file.string() + " --points 5"}) {
+      CAPTURE(command);
+      const CommandResult r = run_command(cli(command));
+      check_refusal(r, "faults[0].tooth = " + std::string(tooth));
+      CHECK(r.err.find(std::string(tooth) == "20" ? "0 ... 19" : "[0, 99999]") !=
+            std::string::npos);
+    }
+    CHECK(entries(scratch.dir) == std::set<std::string>{"pair.toml"});
+  }
+}
+
+TEST_CASE("signals reads a regular file only, within bounds, and quotes little of it") {
+  Scratch scratch("hostile-signals");
+  const fs::path dir = scratch.dir;
+  const fs::path out = dir / "out";
+  const auto signals = [&](const std::string& input, const std::string& more = "") {
+    // `timeout` turns a hang (a FIFO without a writer once blocked for ever) into a failure.
+    return run_command("timeout 60 " + cli("signals " + single_quoted(input) + " --column x " +
+                                           more + " --no-plots --out " + out.string()));
+  };
+
+  // A FIFO with no writer: refused from its type, before an open for reading could block.
+  const fs::path fifo = dir / "fifo.csv";
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  check_refusal(signals(fifo.string()), "not a regular file");
+  // A folder.
+  check_refusal(signals(dir.string()), "not a regular file");
+  // A device of NULs (/dev/zero's numbers), where this user may make one.
+  const fs::path zero = dir / "zero";
+  if (::mknod(zero.c_str(), S_IFCHR | 0666, makedev(1, 5)) == 0) {
+    check_refusal(signals(zero.string()), "not a regular file");
+    fs::remove(zero);
+  }
+  fs::remove(fifo);
+
+  // A 16 MiB line of NULs after the header and two rows: refused at that line, the message
+  // quoting a short prefix only.
+  {
+    const fs::path nul = dir / "nul.csv";
+    {
+      std::ofstream file(nul, std::ios::binary);
+      file << "t_s,x\n0,1\n1,2\n" << std::string(std::size_t{16} << 20, '\0');
+    }
+    const CommandResult r = signals(nul.string());
+    check_refusal(r, "nul.csv:4");
+    CHECK(r.err.find("NUL") != std::string::npos);
+    CHECK(r.err.size() < 600);
+    fs::remove(nul);
+  }
+  // A 10 MB header line: refused as too long, not echoed.
+  {
+    const fs::path wide = dir / "wide.csv";
+    std::ofstream(wide, std::ios::binary) << "t_s," << std::string(10000000, 'a') << "\n0,1\n";
+    const CommandResult r = signals(wide.string());
+    check_refusal(r, "wide.csv:1");
+    CHECK(r.err.find("longer than 65536 bytes") != std::string::npos);
+    CHECK(r.err.size() < 600);
+    fs::remove(wide);
+  }
+  // A row with a field more than the header, two columns of one name.
+  {
+    const fs::path extra = dir / "extra.csv";
+    write_record(extra, "theta_rad", "x");
+    std::ofstream(extra, std::ios::app) << "2.001,1,1,7\n";
+    check_refusal(signals(extra.string()), "extra.csv:2003");
+    const fs::path twice = dir / "twice.csv";
+    write_record(twice, "x", "x");
+    const CommandResult r = signals(twice.string());
+    check_refusal(r, "--column = x");
+    CHECK(r.err.find("two columns") != std::string::npos);
+    fs::remove(extra);
+    fs::remove(twice);
+  }
+  // A sample rate inside the old bound whose grid (1e9 samples a second) does not fit: refused
+  // with the estimate, before any grid is made.
+  {
+    const fs::path record = dir / "record.csv";
+    write_record(record, "theta_rad", "x");
+    const CommandResult r = signals(record.string(), "--sample-rate 1e9");
+    check_refusal(r, "--sample-rate");
+    CHECK(r.err.find("2e+09 samples") != std::string::npos);
+    fs::remove(record);
+  }
+  CHECK(entries(dir).empty());
+
+  // Valid: a UTF-8 byte order mark before the header (a spreadsheet's export) is no part of
+  // "t_s", and the spectrum is the one without it.
+  const fs::path plain = dir / "plain.csv";
+  const fs::path marked = dir / "marked.csv";
+  write_record(plain, "theta_rad", "x");
+  write_record(marked, "theta_rad", "x", "\xEF\xBB\xBF");
+  const CommandResult a = signals(plain.string());
+  REQUIRE(a.exit_code == 0);
+  const std::string spectrum = read(out / "spectrum.csv");
+  fs::remove_all(out);
+  const CommandResult b = signals(marked.string());
+  INFO(b.err);
+  REQUIRE(b.exit_code == 0);
+  CHECK(read(out / "spectrum.csv") == spectrum);
+}
+
+TEST_CASE("ste's angles are bounded by what they cost, before any work") {
+  Scratch scratch("hostile-ste");
+  const fs::path out = scratch.dir / "out";
+  // The relieved pair's true period is 20 mesh periods: 100000 points a mesh period are 2e6
+  // angles, over the 1e6 the bound allows (8e6 angles of another pair once took 9.3 GB of memory
+  // and wrote 4.2 GB of CSV); the message gives the estimate, at 1.2 kB and 490 bytes an angle.
+  const CommandResult r =
+      run_command(cli("ste " + (kExamples / "tip_relief_20_80.toml").string() +
+                      " --torque '100 N*m' --points 100000 --out " + out.string()));
+  check_refusal(r, "--points = 100000");
+  CHECK(r.err.find("at most 50000 per mesh period") != std::string::npos);
+  CHECK(r.err.find("these 2000000 would take about 2.4 GB and write about 980 MB") !=
+        std::string::npos);
+  CHECK(entries(scratch.dir).empty());
+}
