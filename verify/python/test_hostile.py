@@ -24,6 +24,17 @@ def harmonic(**changes):
     return CASE1.replace(**HARMONIC).replace(**changes)
 
 
+# A signal and its shaft's angle: 4 revolutions of 64 samples, a 20-tooth gear's mesh order.
+ANGLE = np.linspace(0.0, 8.0 * np.pi, 257)
+SIGNAL = np.cos(20.0 * ANGLE)
+
+
+def fault_text(tooth):
+    """Case 1 with one missing pinion tooth numbered `tooth`, as a case file writes it."""
+    return (CASE1.to_toml() + '\n[[faults]]\ngear = "pinion"\ntooth = ' + str(tooth)
+            + '\nkind = "missing"\n')
+
+
 def nan_pair():
     pair = gearimpact.GearPair()
     pair.module_m = float("nan")
@@ -223,6 +234,43 @@ REFUSED = [
      "torque1_amplitudes", ["1001 values", "at most 1000"]),
     ("a lone surrogate in parse_case", lambda: gearimpact.parse_case('name = "a\udcff"'), "text",
      ["surrogate"]),
+    # A fault's tooth past int32 once wrapped to -2**31 (ste crashed the interpreter).
+    ("tooth 2**31", lambda: gearimpact.parse_case(fault_text(2**31)), "faults[0].tooth",
+     ["[0, 99999]"]),
+    ("tooth 2**63-1", lambda: gearimpact.parse_case(fault_text(2**63 - 1)), "faults[0].tooth",
+     ["[0, 99999]"]),
+    ("tooth of the pinion's 20", lambda: gearimpact.parse_case(fault_text(20)), "faults[0].tooth",
+     ["0 ... 19"]),
+    # The signal functions' arguments: each a CaseError naming it, never pybind's TypeError or a
+    # silent conversion.
+    ("bool rate", lambda: gearimpact.spectrum(SIGNAL, True), "rate", ["number"]),
+    ("str rate", lambda: gearimpact.spectrum(SIGNAL, "100"), "rate", ["number"]),
+    ("complex signal", lambda: gearimpact.spectrum(SIGNAL * (1 + 1j), 100.0), "signal",
+     ["complex"]),
+    ("text signal", lambda: gearimpact.spectrum(["a", "b"], 100.0), "signal", ["real numbers"]),
+    ("2-d signal", lambda: gearimpact.spectrum(np.zeros((4, 4)), 100.0), "signal",
+     ["1-dimensional"]),
+    ("int window", lambda: gearimpact.spectrum(SIGNAL, 100.0, window=1), "window", ["str"]),
+    ("samples that overflow the DFT", lambda: gearimpact.spectrum(np.full(8, 1e308), 100),
+     "signal", ["1e300"]),
+    ("low_pass samples that overflow", lambda: gearimpact.low_pass(np.full(8, 1e308), 100, 10),
+     "signal", ["1e300"]),
+    ("bool cutoff", lambda: gearimpact.low_pass(SIGNAL, 100.0, True), "cutoff", ["number"]),
+    ("teeth=0", lambda: gearimpact.order_analysis(ANGLE, SIGNAL, teeth=0), "teeth", [">= 1"]),
+    ("float teeth", lambda: gearimpact.order_analysis(ANGLE, SIGNAL, teeth=20.0), "teeth",
+     ["integer"]),
+    ("str samples_per_revolution", lambda: gearimpact.order_analysis(
+        ANGLE, SIGNAL, samples_per_revolution="64"), "samples_per_revolution", ["integer"]),
+    ("complex angle", lambda: gearimpact.order_analysis(ANGLE + 0j, SIGNAL), "angle",
+     ["complex"]),
+    ("str record", lambda: gearimpact.indicators("abc"), "record", ["real numbers"]),
+    # sweep() writes no file: an --out among its options was ignored.
+    ("sweep --out", lambda: gearimpact.sweep(CASE1, "initial.w1", 1, 2, 2,
+                                             options=["--out", "sweep-out"]),
+     "options", ["--out", "writes no file"]),
+    ("sweep --points among options", lambda: gearimpact.sweep(CASE1, "initial.w1", 1, 2, 2,
+                                                              options=["--points=5"]),
+     "options", ["points="]),
 ]
 
 
@@ -332,6 +380,8 @@ VALID = [
         gearimpact.moment_of_inertia)] + list(gearimpact.contact_segment(gearimpact.GearPair()))),
     ("harmonic simulation", lambda: (lambda r: [r.summary, r.series, r.impacts])(
         gearimpact.simulate(harmonic(end_time="0.5 ms"), keep_series=True))),
+    ("spectrum", lambda: gearimpact.spectrum(SIGNAL.tolist(), np.int64(100))),
+    ("order analysis", lambda: gearimpact.order_analysis(ANGLE, SIGNAL, 64, teeth=np.int64(20))),
     ("friction sweep", lambda: gearimpact.sweep_friction(
         [1], from_=0.02, to=0.02, step=0.01, threads=np.int64(1), end_time="0.5 ms")),
 ]

@@ -141,6 +141,7 @@ std::vector<double> low_pass(const std::vector<double>& uniform, double rate_hz,
     throw InputError("signal", std::to_string(uniform.size()) + " samples", "at least 2 samples");
   }
   check_values(uniform, uniform.size(), "signal");
+  check_dft_range(uniform, "signal");
   std::vector<std::complex<double>> spectrum = real_dft(uniform);
   const double n = static_cast<double>(uniform.size());
   // Bin k lies at k rate / N: those at and above the cutoff go.
