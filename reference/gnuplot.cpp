@@ -1,6 +1,7 @@
 #include "gnuplot.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -63,8 +64,21 @@ void run_gnuplot(const std::filesystem::path& dir, const std::string& script,
   posix_spawn_file_actions_addclose(&actions, pipe_fds[0]);
   std::string program = "gnuplot";
   std::vector<char*> argv{program.data(), const_cast<char*>(script.c_str()), nullptr};
-  pid_t child = 0;
-  const int spawned = posix_spawnp(&child, "gnuplot", &actions, nullptr, argv.data(), environ);
+  // The child starts with no signal blocked (the parent blocks the terminating ones while it
+  // spawns, so that the child is registered to be stopped on them).
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  sigset_t none;
+  sigemptyset(&none);
+  posix_spawnattr_setsigmask(&attributes, &none);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK);
+  int spawned = 0;
+  TrackedChild child([&] {
+    pid_t pid = 0;
+    spawned = posix_spawnp(&pid, "gnuplot", &actions, &attributes, argv.data(), environ);
+    return spawned == 0 ? pid : -1;
+  });
+  posix_spawnattr_destroy(&attributes);
   posix_spawn_file_actions_destroy(&actions);
   ::close(pipe_fds[1]);
   if (spawned != 0) {
@@ -86,9 +100,7 @@ void run_gnuplot(const std::filesystem::path& dir, const std::string& script,
     }
   }
   ::close(pipe_fds[0]);
-  int status = 0;
-  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
-  }
+  const int status = child.wait();
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     while (!messages.empty() && (messages.back() == '\n' || messages.back() == ' ')) {
       messages.pop_back();

@@ -5,19 +5,26 @@
 // nan, leaves no output folder or temporary folder; each accepted input still draws its figures
 // and runs nothing. Devices and FIFOs are made in a temporary folder, never the machine's own.
 #include <doctest/doctest.h>
+#include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
 #include <sys/types.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <set>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "run_command.hpp"
@@ -258,4 +265,54 @@ TEST_CASE("ste's angles are bounded by what they cost, before any work") {
   CHECK(r.err.find("these 2000000 would take about 2.4 GB and write about 980 MB") !=
         std::string::npos);
   CHECK(entries(scratch.dir).empty());
+}
+
+TEST_CASE("SIGTERM while gnuplot draws stops gnuplot too and leaves no folder") {
+  Scratch scratch("hostile-sigterm");
+  // A stand-in for gnuplot, first on PATH: it writes its pid where the test reads it, then
+  // draws for ever (sleep, in its own process as exec keeps the pid).
+  const fs::path bin = scratch.dir / "bin";
+  const fs::path work = scratch.dir / "work";
+  const fs::path mark = scratch.dir / "gnuplot.pid";
+  fs::create_directories(bin);
+  fs::create_directories(work);
+  std::ofstream(bin / "gnuplot") << "#!/bin/sh\necho $$ > '" << mark.string() << ".part' && mv '"
+                                 << mark.string() << ".part' '" << mark.string()
+                                 << "'\nexec sleep 60\n";
+  fs::permissions(bin / "gnuplot", fs::perms::owner_all);
+  write_record(work / "record.csv", "theta_rad", "x");
+  const std::string path = bin.string() + ":" + (std::getenv("PATH") ? std::getenv("PATH") : "");
+
+  const pid_t program = ::fork();
+  REQUIRE(program >= 0);
+  if (program == 0) {
+    if (::chdir(work.c_str()) != 0) ::_exit(127);
+    const int log = ::open("../log.txt", O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    ::dup2(log, STDOUT_FILENO);
+    ::dup2(log, STDERR_FILENO);
+    ::setenv("PATH", path.c_str(), 1);
+    ::execl(GEARIMPACT_CLI, GEARIMPACT_CLI, "signals", "record.csv", "--column", "x", "--out",
+            "out", static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  // gnuplot has started once its pid is written (the program has then written its CSV files
+  // into its hidden folder).
+  for (int i = 0; i < 3000 && !fs::exists(mark); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  REQUIRE(fs::exists(mark));
+  pid_t gnuplot = 0;
+  std::ifstream(mark) >> gnuplot;
+  REQUIRE(gnuplot > 0);
+  REQUIRE(::kill(program, SIGTERM) == 0);
+  int status = 0;
+  REQUIRE(::waitpid(program, &status, 0) == program);
+  CHECK(WIFSIGNALED(status));
+  CHECK(WTERMSIG(status) == SIGTERM);
+  // The program stopped its child before it ended: the pid names no process any more.
+  const bool alive = ::kill(gnuplot, 0) == 0;
+  CHECK_FALSE(alive);
+  if (alive) ::kill(gnuplot, SIGKILL);  // this test's own stray, so that none outlives it
+  // Nothing is left beside the record: no output, no hidden temporary folder.
+  CHECK(entries(work) == std::set<std::string>{"record.csv"});
 }
