@@ -285,7 +285,8 @@ void run_signals(SignalsOptions o) {
   if (!o.from.empty()) {
     char* end = nullptr;
     const double plain = std::strtod(o.from.c_str(), &end);
-    from = end == o.from.c_str() + o.from.size()
+    from = end == o.from.c_str() + o.from.size() &&
+                   o.from.find_first_not_of("0123456789+-.eE") == std::string::npos
                ? plain
                : parse_quantity(o.from, Dimension::time, "--from");
     if (!(std::isfinite(from) && from >= 0.0)) {

@@ -89,6 +89,12 @@ SimulationCase case_to_run(SimulateOptions& o, const CLI::App& command) {
     if (!given("--case")) {
       throw InputError("--case", "none", "1, 2 or 3 (Table 1), or --case-file FILE");
     }
+    if (o.case_number != 3 && given("--case3-frequency")) {
+      throw InputError(std::vector<Problem>{refused_problem(
+          "--case3-frequency", command.get_option("--case3-frequency")->as<std::string>(),
+          "case " + std::to_string(o.case_number) + " has no forcing frequency",
+          "only with --case 3 (or sweep-friction), whose forcing frequency it sets")});
+    }
     c = o.keys.paper(o.case_number);
   } else {
     if (o.keys.reading_given()) {
@@ -99,6 +105,14 @@ SimulationCase case_to_run(SimulateOptions& o, const CLI::App& command) {
     c = read_case_file(o.case_file);
   }
   o.keys.apply(c);
+  if (given("--rtol") && c.integrator.kind != IntegratorKind::adaptive) {
+    throw InputError(std::vector<Problem>{
+        refused_problem("--rtol", command.get_option("--rtol")->as<std::string>(),
+                        "not used by integrator.kind = \"" +
+                            std::string(name_of(kIntegratorKinds, c.integrator.kind)) +
+                            "\", which steps at the fixed step",
+                        "only with --integrator adaptive, whose step it sets")});
+  }
   return c;
 }
 

@@ -596,10 +596,11 @@ void add_sweep_options(CLI::App* sweep, SweepCommandOptions& o) {
       ->required();
   sweep->add_option("--direction", o.direction, "up, down or both")
       ->check(CLI::IsMember({"up", "down", "both"}));
-  sweep->add_option("--vary2", o.vary2, "a second key: one line per value");
-  sweep->add_option("--from2", o.from2, "first value of the second key");
-  sweep->add_option("--to2", o.to2, "last value of the second key");
-  sweep->add_option("--points2", o.points2, "number of values of the second key");
+  CLI::Option* vary2 = sweep->add_option("--vary2", o.vary2, "a second key: one line per value");
+  // Without --vary2 they would do nothing.
+  sweep->add_option("--from2", o.from2, "first value of the second key")->needs(vary2);
+  sweep->add_option("--to2", o.to2, "last value of the second key")->needs(vary2);
+  sweep->add_option("--points2", o.points2, "number of values of the second key")->needs(vary2);
   sweep->add_option("--max-points", o.max_points,
                     "the most points (points x points2 x directions) the sweep may run, so that a "
                     "slip of --points does not start a run of days (default " +

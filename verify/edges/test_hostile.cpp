@@ -316,3 +316,58 @@ TEST_CASE("SIGTERM while gnuplot draws stops gnuplot too and leaves no folder") 
   // Nothing is left beside the record: no output, no hidden temporary folder.
   CHECK(entries(work) == std::set<std::string>{"record.csv"});
 }
+
+TEST_CASE("counts in hexadecimal, empty values and flags that would do nothing are refused") {
+  Scratch scratch("hostile-flags");
+  const std::string out = (scratch.dir / "out").string();
+  const std::string pair = (kExamples / "tip_relief_20_80.toml").string();
+  const std::string rig = (kExamples / "rig_17_38.toml").string();
+  const fs::path record = scratch.dir / "record.csv";
+  write_record(record, "theta_rad", "x");
+  struct Refused {
+    std::string arguments;
+    std::string names;  // what the message must hold: the flag, and why
+  };
+  const std::vector<Refused> refused{
+      // CLI11 read 0x10 as 16; strtod reads it too.
+      {"stiffness --points 0x10", "--points: \"0x10\" is not a whole number in decimal digits"},
+      {"mesh-stiffness --samples 0x10", "--samples: \"0x10\""},
+      {"ste " + pair + " --torque '100 N*m' --points 0x10 --out " + out, "--points: \"0x10\""},
+      {"signals " + record.string() + " --column x --sample-rate 0x10 --out " + out,
+       "--sample-rate = 0x10"},
+      {"signals " + record.string() + " --column x --sample-rate inf --out " + out,
+       "--sample-rate = inf"},
+      {"simulate --case 1 --t-end 1ms --dt 0x1p-20", "--dt"},
+      // An empty value was the option left out: the default, or no file written.
+      {"modes " + rig + " --max-speed '' --out " + out, "--max-speed: an empty value"},
+      {"signals " + record.string() + " --column x --sample-rate '' --out " + out,
+       "--sample-rate: an empty value"},
+      {"simulate --case 1 --t-end 1ms --out ''", "--out: an empty value"},
+      {"mesh-stiffness --samples 10 --figure ''", "--figure: an empty value"},
+      // Flags that do nothing where they stand.
+      {"simulate --case 1 --t-end 1ms --rtol 1e-8", "--rtol = 1e-8: not used by"},
+      {"simulate --case 1 --t-end 1ms --case3-frequency 1000", "--case3-frequency = 1000"},
+      {"sweep 1 --vary initial.w1 --from 1000 --to 2000 --points 2 --from2 1 --out " + out,
+       "--from2 requires --vary2"},
+      {"sweep 1 --vary initial.w1 --from 1000 --to 2000 --points 2 --points2 3 --out " + out,
+       "--points2 requires --vary2"},
+      {"mesh-stiffness --samples 10 --overwrite", "--overwrite requires --figure"},
+      // A misspelt command is named, with the commands there are.
+      {"frobnicate", "no command \"frobnicate\"; the commands: stiffness"},
+  };
+  for (const Refused& r : refused) {
+    CAPTURE(r.arguments);
+    check_refusal(run_command(cli(r.arguments)), r.names);
+    CHECK(entries(scratch.dir) == std::set<std::string>{"record.csv"});
+  }
+  // Positive controls: the same flags where they do something.
+  for (const std::string& valid :
+       {std::string("stiffness --points 16"),
+        std::string("simulate --case 1 --t-end 0.1ms --integrator adaptive --rtol 1e-8"),
+        std::string("simulate --case 3 --t-end 0.1ms --case3-frequency 1000")}) {
+    CAPTURE(valid);
+    const CommandResult r = run_command(cli(valid));
+    CHECK(r.exit_code == 0);
+    CHECK(r.out.find("nan") == std::string::npos);
+  }
+}
