@@ -370,8 +370,24 @@ void run_signals(SignalsOptions o) {
   // few shorter steps); without --sample-rate the grid is the record's.
   std::vector<double> spacing(time.size() - 1);
   for (std::size_t i = 1; i < time.size(); ++i) spacing[i - 1] = time[i] - time[i - 1];
+  const auto widest = std::max_element(spacing.begin(), spacing.end());
+  const std::size_t gap_row = static_cast<std::size_t>(widest - spacing.begin());
+  const double gap = *widest;
   std::nth_element(spacing.begin(), spacing.begin() + spacing.size() / 2, spacing.end());
-  const double record_rate = 1.0 / spacing[spacing.size() / 2];
+  const double median = spacing[spacing.size() / 2];
+  const double record_rate = 1.0 / median;
+  // A gap in the record (rows lost, two records joined) would be bridged by the interpolation
+  // as if the signal were smooth there: refused where it is both 100 times the median spacing
+  // and 1 % of the record (an adaptive run's free flights are long steps, not gaps).
+  if (gap > 100.0 * median && gap > 0.01 * span) {
+    char text[160];
+    std::snprintf(text, sizeof text, "a gap of %.4g s (%.3g %% of the record) after t = %.10g s",
+                  gap, 100.0 * gap / span, time[gap_row]);
+    throw InputError(std::vector<Problem>{
+        refused_problem("--time-column", o.time_column, text,
+                        "a record without gaps: at most 100 times its median spacing (" +
+                            four_digits(median) + " s) or 1 % of the record between rows")});
+  }
   // A coarser grid would fold what lies above its Nyquist frequency onto the
   // spectrum (a simulated acceleration steps where pairs enter and leave):
   // as a recorder's anti-alias filter does, the record on its own uniform grid

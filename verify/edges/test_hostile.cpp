@@ -233,6 +233,22 @@ TEST_CASE("signals reads a regular file only, within bounds, and quotes little o
     CHECK(r.err.find("2e+09 samples") != std::string::npos);
     fs::remove(record);
   }
+  // A gap of 40 % of the record (rows 401 to 1199 of 2001 left out), once bridged silently.
+  {
+    const fs::path gapped = dir / "gapped.csv";
+    write_record(gapped, "theta_rad", "x");
+    std::istringstream all(read(gapped));
+    std::string kept;
+    std::string line;
+    for (int number = 0; std::getline(all, line); ++number) {
+      if (number <= 401 || number >= 1201) kept += line + "\n";
+    }
+    std::ofstream(gapped, std::ios::binary) << kept;
+    const CommandResult r = signals(gapped.string());
+    check_refusal(r, "--time-column = t_s");
+    CHECK(r.err.find("a gap of 0.8 s (40 % of the record)") != std::string::npos);
+    fs::remove(gapped);
+  }
   CHECK(entries(dir).empty());
 
   // Valid: a UTF-8 byte order mark before the header (a spreadsheet's export) is no part of

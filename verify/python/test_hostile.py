@@ -4,6 +4,7 @@ it takes, before any work starts (no file is made, no NaN comes back); every
 valid call in between returns finite numbers."""
 
 import math
+import os
 
 import gearimpact
 import numpy as np
@@ -27,6 +28,10 @@ def harmonic(**changes):
 # A signal and its shaft's angle: 4 revolutions of 64 samples, a 20-tooth gear's mesh order.
 ANGLE = np.linspace(0.0, 8.0 * np.pi, 257)
 SIGNAL = np.cos(20.0 * ANGLE)
+
+
+RIG = gearimpact.read_case(os.path.join(os.environ["GEARIMPACT_SOURCE_DIR"], "examples",
+                                        "rig_17_38.toml"))
 
 
 def fault_text(tooth):
@@ -81,9 +86,9 @@ REFUSED = [
     ("NaN x1_m", lambda: gearimpact.contact_angle(gearimpact.GearPair(), 1, float("nan")),
      "x1_m", ["finite"]),
     ("NaN field of a GearPair", lambda: gearimpact.base_radius(nan_pair(), 1), "module",
-     ["> 0"]),
+     ["[1e-6, 1] m"]),
     ("NaN pair to contact_ratio", lambda: gearimpact.contact_ratio(nan_pair()), "module",
-     ["> 0"]),
+     ["[1e-6, 1] m"]),
     # Booleans are True/False, nothing else.
     ("str for flipped_moment", lambda: gearimpact.stiffness(flipped_moment="no"),
      "flipped_moment", ["True or False"]),
@@ -241,6 +246,15 @@ REFUSED = [
      ["[0, 99999]"]),
     ("tooth of the pinion's 20", lambda: gearimpact.parse_case(fault_text(20)), "faults[0].tooth",
      ["0 ... 19"]),
+    # Values past any gear, bearing or shaft, once blamed on other keys or NaN mid-run.
+    ("module 1e-30 m", lambda: CASE1.replace(module="1e-30 m"), "module", ["[1e-6, 1] m"]),
+    ("module 1e300 m", lambda: CASE1.replace(module="1e300 m"), "module", ["[1e-6, 1] m"]),
+    ("bearing damping 1e300", lambda: RIG.replace(damping_x1="1e300 N*s/m"), "damping_x1",
+     ["[0, 1000000] N*s/m"]),
+    ("bearing mass 1e-300", lambda: RIG.replace(mass1="1e-300 kg"), "mass1",
+     ["[0.0001, 1000000] kg"]),
+    ("bearing stiffness 1e-300", lambda: RIG.replace(stiffness_x1="1e-300 N/m"),
+     "stiffness_x1", ["[0.001, 1e16] N/m"]),
     # The signal functions' arguments: each a CaseError naming it, never pybind's TypeError or a
     # silent conversion.
     ("bool rate", lambda: gearimpact.spectrum(SIGNAL, True), "rate", ["number"]),
