@@ -180,8 +180,8 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
   std::optional<AtomicFile> series_file;
   std::string pending;
   constexpr std::size_t kFlushBytes = std::size_t{1} << 20;
-  if (!(o.max_rows >= 1.0 && o.max_rows <= 9e18)) {
-    throw InputError("--max-rows", format_number(o.max_rows), "a count in [1, 9e18]");
+  if (!(o.max_rows >= 1.0 && o.max_rows <= 9e18) || o.max_rows != std::floor(o.max_rows)) {
+    throw InputError("--max-rows", format_number(o.max_rows), "a whole count in [1, 9e18]");
   }
   control.most_series_rows = static_cast<long long>(o.max_rows);
   // A long run says how far it is, a line per tenth, on standard error.

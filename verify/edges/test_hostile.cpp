@@ -368,6 +368,11 @@ TEST_CASE("counts in hexadecimal, empty values and flags that would do nothing a
       {"sweep 1 --vary initial.w1 --from 1000 --to 2000 --points 2 --points2 3 --out " + out,
        "--points2 requires --vary2"},
       {"mesh-stiffness --samples 10 --overwrite", "--overwrite requires --figure"},
+      // Once blamed on --teeth with the range "3 to 0", and truncated to 3 then blamed on --t-end.
+      {"signals " + record.string() +
+           " --column x --angle-column theta_rad --teeth 20 --sidebands 100000 --out " + out,
+       "--sidebands = 100000 is outside the allowed range: 0 to 9 for 20 teeth"},
+      {"simulate --case 1 --t-end 1ms --max-rows 3.5", "--max-rows = 3.5"},
       // A misspelt command is named, with the commands there are.
       {"frobnicate", "no command \"frobnicate\"; the commands: stiffness"},
   };

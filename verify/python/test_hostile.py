@@ -271,6 +271,9 @@ REFUSED = [
      "signal", ["1e300"]),
     ("bool cutoff", lambda: gearimpact.low_pass(SIGNAL, 100.0, True), "cutoff", ["number"]),
     ("teeth=0", lambda: gearimpact.order_analysis(ANGLE, SIGNAL, teeth=0), "teeth", [">= 1"]),
+    ("sidebands=100000", lambda: gearimpact.order_analysis(ANGLE, SIGNAL, 64, teeth=20,
+                                                            sidebands=100000),
+     "sidebands", ["0 to 9 for 20 teeth"]),
     ("float teeth", lambda: gearimpact.order_analysis(ANGLE, SIGNAL, teeth=20.0), "teeth",
      ["integer"]),
     ("str samples_per_revolution", lambda: gearimpact.order_analysis(

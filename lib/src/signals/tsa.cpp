@@ -66,6 +66,14 @@ std::vector<double> decimate_periodic(const std::vector<double>& period, std::si
 
 void check_order_sets(const OrderSets& s, std::size_t p) {
   check_samples_per_revolution(p);
+  // Too many sidebands for the teeth first: the teeth' range below subtracts them, and
+  // --sidebands 100000 once read as the teeth' fault, "3 to 0".
+  if (s.teeth >= 3 && 2 * s.sidebands >= s.teeth) {
+    throw InputError("sidebands", std::to_string(s.sidebands),
+                     "0 to " + std::to_string((s.teeth - 1) / 2) + " for " +
+                         std::to_string(s.teeth) +
+                         " teeth (sidebands of neighbouring mesh harmonics apart)");
+  }
   if (s.teeth < 3 || 2 * (s.teeth + s.sidebands) >= p) {
     throw InputError("teeth", std::to_string(s.teeth),
                      "3 to " + std::to_string((p - 1) / 2 - std::min(s.sidebands, (p - 1) / 2)) +
