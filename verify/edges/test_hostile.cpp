@@ -435,3 +435,27 @@ TEST_CASE("values past any gear, bearing or shaft are refused under their own ke
     }
   }
 }
+
+TEST_CASE("an output folder that is a link or holds the current folder is refused before work") {
+  Scratch scratch("hostile-out");
+  const fs::path real = scratch.dir / "real";
+  const fs::path inner = scratch.dir / "sub" / "inner";
+  // ../link from inner: sub/link.
+  fs::create_directories(real);
+  fs::create_directories(inner);
+  std::ofstream(real / "kept.txt") << "an earlier run's file\n";
+  fs::create_directory_symlink(real, scratch.dir / "sub" / "link");
+  const std::string rig = (kExamples / "rig_17_38.toml").string();
+  // Once "Not a directory" and "Device or resource busy", after the work.
+  for (const std::string& out : {std::string("../link"), std::string(".."), std::string(".")}) {
+    CAPTURE(out);
+    const CommandResult r =
+        run_command("cd " + single_quoted(inner.string()) + " && " +
+                    cli("modes " + rig + " --no-plots --overwrite --out " + single_quoted(out)));
+    check_refusal(r, "cannot write the folder " + out + ": it");
+  }
+  CHECK(fs::exists(real / "kept.txt"));
+  CHECK(fs::is_symlink(scratch.dir / "sub" / "link"));
+  CHECK(entries(scratch.dir / "sub") == std::set<std::string>{"inner", "link"});
+  CHECK(entries(inner).empty());
+}

@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cerrno>
@@ -416,6 +417,24 @@ void require_output_folder(const std::string& path, bool overwrite,
                   " of this run");
     }
   }
+  // A link is renamed over, not followed: the folder it names would stay and the link go.
+  if (std::filesystem::is_symlink(std::filesystem::symlink_status(target, error))) {
+    throw Error("cannot write the folder " + path +
+                ": it is a symbolic link, and an output folder replaces only a folder (name "
+                "the folder it links to)");
+  }
+  // The current folder or one that holds it cannot be replaced by a rename (and would take
+  // the run's own folder with it).
+  const std::filesystem::path here = std::filesystem::current_path(error);
+  const std::filesystem::path whole = std::filesystem::weakly_canonical(target, error);
+  if (!error && !whole.empty()) {
+    const auto [end, rest] = std::mismatch(whole.begin(), whole.end(), here.begin(), here.end());
+    if (end == whole.end()) {
+      throw Error("cannot write the folder " + path +
+                  ": it is or holds the current folder, which an output folder cannot replace");
+    }
+  }
+  error.clear();
   const std::filesystem::file_status status = std::filesystem::status(target, error);
   if (std::filesystem::exists(status)) {
     if (!std::filesystem::is_directory(status)) {
