@@ -301,7 +301,7 @@ void run_tooth(const FeCheckOptions& o) {
     Figure f;
     f.name = "fe_check";
     f.title = "Tooth compliance of gear " + std::to_string(o.gear) + " (" +
-              literal_key(c.name, true) + "): finite elements and the potential-energy terms";
+              literal_key(c.name) + "): finite elements and the potential-energy terms";
     f.x_label = "contact position s from T_1 on the line of action, mm";
     f.y_label = "compliance along the load, 1e-9 m/N";
     f.setup = {"set key outside right top vertical"};

@@ -14,40 +14,51 @@ namespace gearimpact::cli {
 
 namespace {
 
-std::string quoted(const std::string& text) {
-  return "\"" + text + "\"";
-}
-
 std::string script_text(const Figure& figure) {
-  std::string text = "# " + figure.title + "\n" + "# Made by gearimpact; run `gnuplot " +
-                     figure.name + ".gp` in this folder to redraw.\n" +
-                     "set datafile separator ','\n" + "set key autotitle columnhead\n" +
-                     "set title " + quoted(figure.title) + "\n" + "set xlabel " +
-                     quoted(figure.x_label) + "\n" + "set ylabel " + quoted(figure.y_label) + "\n" +
-                     "set grid\n";
+  // The comment holds the title quoted too: a line ending in a backslash would continue it.
+  std::string text =
+      "# " + gnuplot_string(figure.title) + "\n" + "# Made by gearimpact; run `gnuplot " +
+      figure.name + ".gp` in this folder to redraw.\n" + "set datafile separator ','\n" +
+      "set key autotitle columnhead\n" + "set title " + gnuplot_string(figure.title) + "\n" +
+      "set xlabel " + gnuplot_string(figure.x_label) + "\n" + "set ylabel " +
+      gnuplot_string(figure.y_label) + "\n" + "set grid\n";
   for (const std::string& line : figure.setup) text += line + "\n";
   std::string plot = "plot ";
   for (std::size_t i = 0; i < figure.series.size(); ++i) {
     plot += (i ? ", \\\n     " : "") + figure.series[i];
   }
   text += "set terminal pngcairo size 1000,650 font 'Sans,11'\n";
-  text += "set output " + quoted(figure.name + ".png") + "\n";
+  text += "set output " + gnuplot_string(figure.name + ".png") + "\n";
   text += plot + "\n";
   text += "set terminal svg size 1000,650 font 'Sans,11'\n";
-  text += "set output " + quoted(figure.name + ".svg") + "\n";
+  text += "set output " + gnuplot_string(figure.name + ".svg") + "\n";
   text += "replot\n";
   return text;
 }
 
 }  // namespace
 
-std::string literal_key(const std::string& key, bool double_quoted) {
-  std::string out;
-  for (const char c : key) {
-    if (c == '_')
-      out += double_quoted ? "\\\\_" : "\\_";
+std::string gnuplot_string(const std::string& text) {
+  std::string out = "'";
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (c == '\'')
+      out += "''";
+    else if (byte < 0x20 || byte == 0x7f)
+      out += ' ';
     else
       out += c;
+  }
+  return out + "'";
+}
+
+std::string literal_key(const std::string& key) {
+  std::string out;
+  for (const char c : key) {
+    if (c == '_' || c == '^' || c == '{' || c == '}' || c == '@' || c == '&' || c == '~' ||
+        c == '\\')
+      out += '\\';
+    out += c;
   }
   return out;
 }

@@ -39,10 +39,18 @@ Ticks nice_ticks(double low, double high, int count = 8, double margin = 0.0);
 std::vector<std::string> tick_commands(const std::string& axis, const Ticks& ticks,
                                        bool with_range = true);
 
-// Text (a key, a case's name) as literal text in gnuplot's enhanced mode, where "_" makes a
-// subscript: "\_" in a single-quoted string, "\\_" in a double-quoted one (which reads its own
-// backslashes first).
-std::string literal_key(const std::string& key, bool double_quoted);
+// `text` as a gnuplot string literal that is inert wherever it stands in a script: single
+// quotes, in which gnuplot expands no backquote (`cmd`), no macro (@name) and no escape, with a
+// quote doubled (the one escape there is) and each control character (a newline would end the
+// command and start another) a space. Every string from outside the program (a case's name, a
+// column's, a file's) reaches a script through it, as do the figure's title, labels and outputs.
+std::string gnuplot_string(const std::string& text);
+
+// Text (a key, a case's or a column's name) shown literally in gnuplot's enhanced mode, where
+// "_" makes a subscript, "^" a superscript, "{...}" a group, "@", "&" and "~" boxes and "\" an
+// escape: each of them escaped by a backslash. Its result goes into a script through
+// gnuplot_string, like any text.
+std::string literal_key(const std::string& key);
 
 // Writes DIR/NAME.gp and runs gnuplot to make DIR/NAME.png and DIR/NAME.svg.
 // Throws std::runtime_error naming the script if gnuplot is missing or fails.

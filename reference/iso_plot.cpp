@@ -65,14 +65,13 @@ Figure dynamic_factor_vs_iso_n(const std::string& name, const IsoScale& scale,
   const std::string d = std::to_string(direction_column);
   const std::string n = std::to_string(n_column);
   const std::string df = std::to_string(df_column);
-  f.series = {"'" + data + "' using (strcol(" + d + ") eq \"up\" ? $" + n + " : NaN):" + df +
-                  " with linespoints pt 7 ps 0.6 lw 1.5 title 'simulated, sweep up'",
-              "'" + data + "' using (strcol(" + d + ") eq \"down\" ? $" + n + " : NaN):" + df +
-                  " with linespoints pt 6 ps 0.9 dt 2 title 'simulated, sweep down'",
-              "'" + band +
-                  "' using 1:2 with lines lw 2 lc rgb 'dark-red' title 'ISO K_v, perfect "
-                  "gears (" +
-                  std::string(load) + ")'"};
+  f.series = {
+      gnuplot_string(data) + " using (strcol(" + d + ") eq \"up\" ? $" + n + " : NaN):" + df +
+          " with linespoints pt 7 ps 0.6 lw 1.5 title 'simulated, sweep up'",
+      gnuplot_string(data) + " using (strcol(" + d + ") eq \"down\" ? $" + n + " : NaN):" + df +
+          " with linespoints pt 6 ps 0.9 dt 2 title 'simulated, sweep down'",
+      gnuplot_string(band) + " using 1:2 with lines lw 2 lc rgb 'dark-red' title " +
+          gnuplot_string("ISO K_v, perfect gears (" + std::string(load) + ")")};
   if (quasi_static) {
     // The ratio to 17 digits, so that the curve is the CSV's column over it exactly as drawn.
     const std::string qs = "($" + df + " / " + format_number(scale.quasi_static_force_ratio) + ")";
@@ -81,17 +80,18 @@ Figure dynamic_factor_vs_iso_n(const std::string& name, const IsoScale& scale,
     f.y_label = "dynamic factor: max mesh force / static load (grey), / quasi-static peak (colour)";
     f.title = "Dynamic factor against ISO 6336-1's resonance ratio N (quasi-static peak = " +
               std::string(ratio) + " x static load)";
-    f.series[0] = "'" + data + "' using (strcol(" + d + ") eq \"up\" ? $" + n + " : NaN):" + df +
+    f.series[0] = gnuplot_string(data) + " using (strcol(" + d + ") eq \"up\" ? $" + n +
+                  " : NaN):" + df +
                   " with linespoints pt 7 ps 0.4 lc rgb 'gray60' title 'over static load, up'";
     f.series[1] =
-        "'" + data + "' using (strcol(" + d + ") eq \"down\" ? $" + n + " : NaN):" + df +
+        gnuplot_string(data) + " using (strcol(" + d + ") eq \"down\" ? $" + n + " : NaN):" + df +
         " with linespoints pt 6 ps 0.6 dt 2 lc rgb 'gray60' title 'over static load, down'";
     f.series.insert(
         f.series.begin() + 2,
-        {"'" + data + "' using (strcol(" + d + ") eq \"up\" ? $" + n + " : NaN):" + qs +
+        {gnuplot_string(data) + " using (strcol(" + d + ") eq \"up\" ? $" + n + " : NaN):" + qs +
              " with linespoints pt 7 ps 0.6 lw 1.5 lc rgb 'blue' title 'over "
              "quasi-static peak, up'",
-         "'" + data + "' using (strcol(" + d + ") eq \"down\" ? $" + n + " : NaN):" + qs +
+         gnuplot_string(data) + " using (strcol(" + d + ") eq \"down\" ? $" + n + " : NaN):" + qs +
              " with linespoints pt 6 ps 0.9 dt 2 lc rgb 'blue' title 'over "
              "quasi-static peak, down'"});
   }

@@ -15,7 +15,7 @@ Figure mesh_stiffness_figure(const TruePeriodMeshStiffness& tvms,
   Figure f;
   f.name = "mesh_stiffness";
   f.title = "Mesh stiffness over the true period (" + tvms.period_kind + ", " +
-            std::to_string(tvms.mesh_periods) + " mesh periods), " + literal_key(name, true);
+            std::to_string(tvms.mesh_periods) + " mesh periods), " + literal_key(name);
   f.x_label = "pinion angle {/Symbol q}_1 from pinion tooth 0 entering against wheel tooth 0, deg";
   f.y_label = "mesh stiffness, 10^8 N/m";
   const double degrees = 180.0 / pi;
@@ -43,7 +43,7 @@ Figure mesh_stiffness_figure(const TruePeriodMeshStiffness& tvms,
     f.setup.push_back("set object " + std::to_string(object) + " rect from " +
                       format_data_number(from_deg) + ", graph 0 to " + format_data_number(to_deg) +
                       ", graph 1 fc rgb '#fddbc7' fs solid 0.6 noborder behind");
-    f.setup.push_back("set label " + std::to_string(object) + " '" + label + "' at " +
+    f.setup.push_back("set label " + std::to_string(object) + " " + gnuplot_string(label) + " at " +
                       format_data_number(0.5 * (from_deg + to_deg)) +
                       ", graph 0.04 left rotate by 90 font ',8'");
   };

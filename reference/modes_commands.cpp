@@ -102,7 +102,7 @@ constexpr const char* kModeTics =
 Figure energy_figure(const SimulationCase& c) {
   Figure f;
   f.name = "modes_energy";
-  f.title = "Strain-energy shares of each mode (" + literal_key(c.name, true) + ")";
+  f.title = "Strain-energy shares of each mode (" + literal_key(c.name) + ")";
   f.x_label = "mode: natural frequency";
   f.y_label = "share of the mode's strain energy";
   f.setup = {"set style data histograms",
@@ -126,7 +126,7 @@ Figure energy_figure(const SimulationCase& c) {
     if (part == 0) {
       series += kModeTics;
     }
-    f.series.push_back(series + " title '" + titles[part] + "'");
+    f.series.push_back(series + " title " + gnuplot_string(titles[part]));
   }
   return f;
 }
@@ -136,8 +136,7 @@ Figure energy_figure(const SimulationCase& c) {
 Figure shapes_figure(const SimulationCase& c, const Modes& modes) {
   Figure f;
   f.name = "mode_shapes";
-  f.title =
-      "Mode shapes, rotations as Rb theta, largest component 1 (" + literal_key(c.name, true) + ")";
+  f.title = "Mode shapes, rotations as Rb theta, largest component 1 (" + literal_key(c.name) + ")";
   f.x_label = "mode: natural frequency";
   f.y_label = "component of the shape";
   f.setup = {"set style data histograms",
@@ -156,7 +155,7 @@ Figure shapes_figure(const SimulationCase& c, const Modes& modes) {
     if (k == 0) {
       series += kModeTics;
     }
-    f.series.push_back(series + " title '" + label + "'");
+    f.series.push_back(series + " title " + gnuplot_string(label));
   }
   return f;
 }
@@ -170,7 +169,7 @@ Figure campbell_figure(const SimulationCase& c, const ModesTexts& texts, int har
   Figure f;
   f.name = "campbell";
   f.title = "Campbell diagram: mesh harmonics k f_m and natural frequencies (" +
-            literal_key(c.name, true) + ")";
+            literal_key(c.name) + ")";
   f.x_label = "pinion speed, rpm";
   f.y_label = "frequency, Hz";
   f.setup = {"set key outside right top vertical", "set samples 500",

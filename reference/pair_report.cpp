@@ -262,8 +262,8 @@ std::string stiffness_section(const GearPair& pair, const StiffnessComparison& c
              format_number(s.stiffness_n_per_m / pair.face_width_m / kNPerMmUm) + "\n";
     }
     write_file_atomically((dir / (stem + ".csv")).string(), csv);
-    series.push_back("'" + stem + ".csv' using 1:5 with lines lw 2 title '" + to_string(m.kind) +
-                     "'");
+    series.push_back(gnuplot_string(stem + ".csv") + " using 1:5 with lines lw 2 title " +
+                     gnuplot_string(to_string(m.kind)));
     if (!m.tvms.foundation_extrapolations.empty()) {
       warnings.push_back(to_string(m.kind) + ": " +
                          foundation_extrapolation_warning(m.tvms.foundation_extrapolations) + ".");

@@ -247,7 +247,7 @@ std::string dynamic_response(const ReproduceContext& context, const GearPair& pa
   setup.push_back("set arrow from graph 0, first 0 to graph 1, first 0 nohead lc rgb 'black'");
   const auto dte = [](int column, const std::string& title, const std::string& style) {
     return "'faults_dynamics.csv' using 1:($" + std::to_string(column) + " * 1e6) with lines " +
-           style + " title '" + title + "'";
+           style + " title " + gnuplot_string(title);
   };
   // Each response's impacts as points on the line DTE = 0.
   const auto impacts = [](int response, const std::string& style) {
@@ -381,7 +381,7 @@ ReportSection reproduce_faults(const ReproduceContext& context) {
   write_file_atomically((context.out / "faults_tvms.csv").string(), csv);
   const auto column_plot = [](int column, const std::string& title, const std::string& style) {
     return "'faults_tvms.csv' using 1:($" + std::to_string(column) + " * 1e-8) with lines " +
-           style + " title '" + title + "'";
+           style + " title " + gnuplot_string(title);
   };
   const std::vector<std::string> setup{"set key below", "set xrange [0:360]", "set xtics 30"};
   std::vector<std::string> crack_series{column_plot(2, "healthy", "lw 2 lc rgb 'gray50'")};

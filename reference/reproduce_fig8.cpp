@@ -29,7 +29,7 @@ std::vector<std::string> one_pair_shading(const std::vector<EnergyRatios>& rows)
 
 Figure fig8_figure(const std::string& stem, const std::string& title,
                    const std::vector<EnergyRatios>& rows) {
-  const std::string data = "'" + stem + ".csv'";
+  const std::string data = gnuplot_string(stem + ".csv");
   return {stem,
           title,
           "angular position phi1 (deg)",

@@ -36,7 +36,7 @@ Figure time_figure(const std::string& stem, const std::string& data, const std::
                    const std::string& y_label, std::vector<std::string> series,
                    std::vector<std::string> setup = {}) {
   for (std::string& s : series) {
-    if (s.starts_with("using")) s = "'" + data + "' " + s;
+    if (s.starts_with("using")) s = gnuplot_string(data) + " " + s;
   }
   setup.push_back("set key top right");
   return {stem, title, "time (ms)", y_label, std::move(setup), std::move(series)};

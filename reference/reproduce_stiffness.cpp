@@ -36,8 +36,8 @@ ReportSection reproduce_stiffness(const ReproduceContext& context) {
   for (const ModelComparison& m : comparison.models) {
     const std::string stem = "stiffness_tvms_" + to_string(m.kind);
     write_file_atomically((context.out / (stem + ".csv")).string(), mesh_stiffness_csv(m.tvms));
-    series.push_back("'" + stem + ".csv' using 1:4 every ::1 with lines lw 2 title '" +
-                     to_string(m.kind) + "'");
+    series.push_back(gnuplot_string(stem + ".csv") + " using 1:4 every ::1 with lines lw 2 title " +
+                     gnuplot_string(to_string(m.kind)));
   }
   series.push_back(number(comparison.iso_single_n_per_m, 6) +
                    " with lines dt 2 lw 2 title \"ISO 6336-1 c' b\"");

@@ -369,8 +369,8 @@ ReportSection reproduce_vibration(const ReproduceContext& context) {
   // TSA with tooth 0's passage shaded.
   const auto column = [](const std::string& file, int x, int y, const std::string& title,
                          const std::string& style, const std::string& scale = "") {
-    return "'" + file + "' using " + std::to_string(x) + ":($" + std::to_string(y) + scale +
-           ") with lines " + style + " title '" + title + "'";
+    return gnuplot_string(file) + " using " + std::to_string(x) + ":($" + std::to_string(y) +
+           scale + ") with lines " + style + " title " + gnuplot_string(title);
   };
   render(context.out,
          {"vibration_waveform",

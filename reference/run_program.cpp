@@ -1,6 +1,7 @@
 #include "run_program.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -9,6 +10,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
+
+#include "gearimpact/io/atomic_file.hpp"
 
 extern char** environ;
 
@@ -51,9 +54,21 @@ std::string run_program(const ProgramCall& call) {
   std::vector<char*> envp;
   for (std::string& e : environment) envp.push_back(e.data());
   envp.push_back(nullptr);
-  pid_t child = 0;
-  const int spawned =
-      posix_spawnp(&child, program.c_str(), &actions, nullptr, argv.data(), envp.data());
+  // The child starts with no signal blocked (the parent blocks the terminating ones while it
+  // spawns, so that the child is registered to be stopped on them).
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  sigset_t none;
+  sigemptyset(&none);
+  posix_spawnattr_setsigmask(&attributes, &none);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK);
+  int spawned = 0;
+  TrackedChild child([&] {
+    pid_t pid = 0;
+    spawned = posix_spawnp(&pid, program.c_str(), &actions, &attributes, argv.data(), envp.data());
+    return spawned == 0 ? pid : -1;
+  });
+  posix_spawnattr_destroy(&attributes);
   posix_spawn_file_actions_destroy(&actions);
   ::close(pipe_fds[1]);
   if (spawned != 0) {
@@ -74,9 +89,7 @@ std::string run_program(const ProgramCall& call) {
     }
   }
   ::close(pipe_fds[0]);
-  int status = 0;
-  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
-  }
+  const int status = child.wait();
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     while (!messages.empty() && (messages.back() == '\n' || messages.back() == ' ')) {
       messages.pop_back();

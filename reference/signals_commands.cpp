@@ -183,7 +183,7 @@ void mark_mesh_harmonics(Figure& f, double mesh, double highest, const std::stri
     f.setup.push_back(std::string("set arrow from ") + at + ", graph 0 to " + at +
                       ", graph 1 nohead dt 2 lc rgb 'grey40'");
     const std::string label = (h == 1 ? "" : std::to_string(h) + " ") + name;
-    f.setup.push_back("set label \"" + label + "\" at " + at +
+    f.setup.push_back("set label " + gnuplot_string(label) + " at " + at +
                       ", graph 0.97 center front tc rgb 'grey20'");
   }
 }
@@ -206,7 +206,7 @@ void mark_sidebands(Figure& f, double mesh, double shaft, std::size_t sidebands,
     }
   }
   f.setup.emplace_back("set key top right opaque box samplen 2");
-  f.series.push_back("NaN with lines lw 1.5 lc rgb '#c0392b' title '" + label + "'");
+  f.series.push_back("NaN with lines lw 1.5 lc rgb '#c0392b' title " + gnuplot_string(label));
 }
 
 // A column's physical quantity and unit from its name's unit suffix (the program's columns
@@ -238,7 +238,7 @@ Physical physical(const std::string& column) {
 }
 std::string axis_label(const std::string& column) {
   const Physical p = physical(column);
-  return p.unit.empty() ? literal_key(column, true) : p.quantity + " (" + p.unit + ")";
+  return p.unit.empty() ? literal_key(column) : p.quantity + " (" + p.unit + ")";
 }
 
 void spectrum_figure(const std::filesystem::path& dir, const std::string& name,
@@ -254,8 +254,8 @@ void spectrum_figure(const std::filesystem::path& dir, const std::string& name,
   f.setup = {"set logscale y", "set format y '10^{%L}'", "set key off"};
   add(f, tick_commands("x", nice_ticks(0.0, top)));
   if (mesh > 0.0) mark_mesh_harmonics(f, mesh, top, mesh_name);
-  f.series = {"'" + name +
-              ".csv' using 1:($2 > 0 ? $2 : NaN) with lines lw 1.2 lc rgb '#1f4e99' notitle"};
+  f.series = {gnuplot_string(name + ".csv") +
+              " using 1:($2 > 0 ? $2 : NaN) with lines lw 1.2 lc rgb '#1f4e99' notitle"};
   if (mesh > 0.0 && shaft > 0.0 && sidebands > 0) {
     mark_sidebands(f, mesh, shaft, sidebands, top,
                    "sidebands " + mesh_name + " +- 1.." + std::to_string(sidebands) +
@@ -299,7 +299,7 @@ void waveform_figure(const std::filesystem::path& dir, const std::string& column
   const double from = start_s + static_cast<double>(uniform.size() - shown) / rate_hz;
   Figure f;
   f.name = "waveform";
-  f.title = "Waveform of " + literal_key(column, true) +
+  f.title = "Waveform of " + literal_key(column) +
             (shaft_hz > 0.0 && shown < written ? ", last 2 revolutions"
              : shown < uniform.size()          ? ", last " + std::to_string(shown) + " samples"
                                                : std::string());
@@ -324,7 +324,7 @@ void tsa_figure(const std::filesystem::path& dir, const std::string& column,
   std::snprintf(shift, sizeof shift, "%.17g", mean);
   Figure f;
   f.name = "tsa";
-  f.title = "TSA of " + literal_key(column, true) + ", one revolution";
+  f.title = "TSA of " + literal_key(column) + ", one revolution";
   f.x_label = "shaft angle (deg)";
   f.y_label = axis_label(column);
   // The key below the plot, in one row: the curves keep the figure's width.
@@ -397,7 +397,8 @@ void run_signals(SignalsOptions o) {
   if (!o.from.empty()) {
     char* end = nullptr;
     const double plain = std::strtod(o.from.c_str(), &end);
-    from = end == o.from.c_str() + o.from.size()
+    from = end == o.from.c_str() + o.from.size() &&
+                   o.from.find_first_not_of("0123456789+-.eE") == std::string::npos
                ? plain
                : parse_quantity(o.from, Dimension::time, "--from");
     if (!(std::isfinite(from) && from >= 0.0)) {
@@ -557,14 +558,35 @@ void run_signals(SignalsOptions o) {
   // few shorter steps); without --sample-rate the grid is the record's.
   std::vector<double> spacing(time.size() - 1);
   for (std::size_t i = 1; i < time.size(); ++i) spacing[i - 1] = time[i] - time[i - 1];
+  const auto widest = std::max_element(spacing.begin(), spacing.end());
+  const std::size_t gap_row = static_cast<std::size_t>(widest - spacing.begin());
+  const double gap = *widest;
   std::nth_element(spacing.begin(), spacing.begin() + spacing.size() / 2, spacing.end());
-  const double record_rate = 1.0 / spacing[spacing.size() / 2];
+  const double median = spacing[spacing.size() / 2];
+  const double record_rate = 1.0 / median;
+  // A gap in the record (rows lost, two records joined) would be bridged by the interpolation
+  // as if the signal were smooth there: refused where it is both 100 times the median spacing
+  // and 1 % of the record (an adaptive run's free flights are long steps, not gaps).
+  if (gap > 100.0 * median && gap > 0.01 * span) {
+    char text[160];
+    std::snprintf(text, sizeof text, "a gap of %.4g s (%.3g %% of the record) after t = %.10g s",
+                  gap, 100.0 * gap / span, time[gap_row]);
+    throw InputError(std::vector<Problem>{
+        refused_problem("--time-column", o.time_column, text,
+                        "a record without gaps: at most 100 times its median spacing (" +
+                            four_digits(median) + " s) or 1 % of the record between rows")});
+  }
   // A coarser grid would fold what lies above its Nyquist frequency onto the
   // spectrum (a simulated acceleration steps where pairs enter and leave):
   // as a recorder's anti-alias filter does, the record on its own uniform grid
   // is low-passed below that frequency first, and the angle taken on the same
   // grid for the order analysis.
   const bool coarser = rate && *rate < record_rate * (1.0 - 1e-9);
+  // The grids' sizes, before any is made: each is held a few times over.
+  naming_flags([&] {
+    signals::uniform_sample_count(time.front(), time.back(), rate ? *rate : record_rate);
+    if (coarser) signals::uniform_sample_count(time.front(), time.back(), record_rate);
+  });
   // The accelerometer and the path act on the record at its own rate (each sample held over
   // the interval ending at it, as an interval average is); a record whose spacing is not
   // uniform is taken on its own uniform grid first.
@@ -716,15 +738,15 @@ void run_signals(SignalsOptions o) {
                     run.shaft_frequency_hz);
     spectrum_figure(
         dir, "spectrum",
-        "Amplitude spectrum of " + literal_key(o.column, true) + " (" + run.window + " window)",
+        "Amplitude spectrum of " + literal_key(o.column) + " (" + run.window + " window)",
         "frequency (Hz)", mesh_hz > 0.0 ? std::min(nyquist, 6.5 * mesh_hz) : nyquist, mesh_hz,
         "f_m", o.column, run.shaft_frequency_hz, sidebands);
     if (has_angle) {
       const double half = static_cast<double>(run.angle_grid) / 2.0;
       const double z = sets ? static_cast<double>(sets->teeth) : 0.0;
       spectrum_figure(dir, "order_spectrum",
-                      "Order spectrum of " + literal_key(o.column, true) + " on " +
-                          literal_key(o.angle_column, true),
+                      "Order spectrum of " + literal_key(o.column) + " on " +
+                          literal_key(o.angle_column),
                       "order (cycles per revolution)", sets ? std::min(half, 3.5 * z) : half, z,
                       "z", o.column, 1.0, sidebands);
       tsa_figure(dir, o.column, tsa_values, sets.has_value(), marked,

@@ -90,6 +90,12 @@ SimulationCase case_to_run(SimulateOptions& o, const CLI::App& command) {
     if (!given("--case")) {
       throw InputError("--case", "none", "1, 2 or 3 (Table 1), or --case-file FILE");
     }
+    if (o.case_number != 3 && given("--case3-frequency")) {
+      throw InputError(std::vector<Problem>{refused_problem(
+          "--case3-frequency", command.get_option("--case3-frequency")->as<std::string>(),
+          "case " + std::to_string(o.case_number) + " has no forcing frequency",
+          "only with --case 3 (or sweep-friction), whose forcing frequency it sets")});
+    }
     c = o.keys.paper(o.case_number);
   } else {
     if (o.keys.reading_given()) {
@@ -100,6 +106,14 @@ SimulationCase case_to_run(SimulateOptions& o, const CLI::App& command) {
     c = read_case_file(o.case_file);
   }
   o.keys.apply(c);
+  if (given("--rtol") && c.integrator.kind != IntegratorKind::adaptive) {
+    throw InputError(std::vector<Problem>{
+        refused_problem("--rtol", command.get_option("--rtol")->as<std::string>(),
+                        "not used by integrator.kind = \"" +
+                            std::string(name_of(kIntegratorKinds, c.integrator.kind)) +
+                            "\", which steps at the fixed step",
+                        "only with --integrator adaptive, whose step it sets")});
+  }
   return c;
 }
 
@@ -174,8 +188,8 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
   std::optional<AtomicFile> series_file;
   std::string pending;
   constexpr std::size_t kFlushBytes = std::size_t{1} << 20;
-  if (!(o.max_rows >= 1.0 && o.max_rows <= 9e18)) {
-    throw InputError("--max-rows", format_number(o.max_rows), "a count in [1, 9e18]");
+  if (!(o.max_rows >= 1.0 && o.max_rows <= 9e18) || o.max_rows != std::floor(o.max_rows)) {
+    throw InputError("--max-rows", format_number(o.max_rows), "a whole count in [1, 9e18]");
   }
   control.most_series_rows = static_cast<long long>(o.max_rows);
   // A long run says how far it is, a line per tenth, on standard error.

@@ -121,7 +121,7 @@ Figure ste_figure(const SimulationCase& c, const SteTexts& texts) {
   Figure f;
   f.name = "ste";
   f.title = "Loaded static transmission error, T_1 = " + format_number(texts.modified.torque1_n_m) +
-            " N m (" + literal_key(c.name, true) + ")";
+            " N m (" + literal_key(c.name) + ")";
   f.x_label = "pinion angle {/Symbol q}_1, deg";
   f.y_label = "transmission error on the line of action, {/Symbol m}m";
   f.setup = {"set key outside right top vertical",
@@ -134,13 +134,12 @@ Figure ste_figure(const SimulationCase& c, const SteTexts& texts) {
     return f;
   }
   const CurveNames names = curve_names(c);
-  f.series = {
-      "'ste_unmodified.csv' using 2:($3 * 1e6) with lines lw 2 lc rgb 'gray50' title 'STE " +
-          names.reference + "'",
-      std::string("'ste.csv' using 2:") + kCarriedSteMicrons +
-          " with lines lw 2 lc rgb '#1f77b4' title 'STE " + names.own + "'",
-      "'ste.csv' using 2:($4 * 1e6) with lines lw 1 dt 2 lc rgb '#d62728' title 'KTE " + names.own +
-          " (min gap)'"};
+  f.series = {"'ste_unmodified.csv' using 2:($3 * 1e6) with lines lw 2 lc rgb 'gray50' title " +
+                  gnuplot_string("STE " + names.reference),
+              std::string("'ste.csv' using 2:") + kCarriedSteMicrons +
+                  " with lines lw 2 lc rgb '#1f77b4' title " + gnuplot_string("STE " + names.own),
+              "'ste.csv' using 2:($4 * 1e6) with lines lw 1 dt 2 lc rgb '#d62728' title " +
+                  gnuplot_string("KTE " + names.own + " (min gap)")};
   return f;
 }
 
@@ -149,7 +148,7 @@ Figure ste_sharing_figure(const SimulationCase& c, const SteTexts& texts) {
   Figure f;
   f.name = "ste_load_sharing";
   f.title = "Load share F_k / F of each pair in contact, T_1 = " +
-            format_number(texts.modified.torque1_n_m) + " N m (" + literal_key(c.name, true) + ")";
+            format_number(texts.modified.torque1_n_m) + " N m (" + literal_key(c.name) + ")";
   f.x_label = "pinion angle {/Symbol q}_1, deg";
   f.y_label = "share of the mesh force";
   f.setup = {"set key outside right top vertical", "set yrange [-0.02:1.05]",
@@ -158,8 +157,8 @@ Figure ste_sharing_figure(const SimulationCase& c, const SteTexts& texts) {
   // pair; column(-2) is the data set's number, so neighbouring pairs differ in colour).
   if (texts.modified_differs) {
     f.series.push_back(
-        "'ste_unmodified_pairs.csv' using 4:5 with lines lw 1 dt 2 lc rgb 'gray50' title '" +
-        curve_names(c).reference + "'");
+        "'ste_unmodified_pairs.csv' using 4:5 with lines lw 1 dt 2 lc rgb 'gray50' title " +
+        gnuplot_string(curve_names(c).reference));
   } else {
     f.title += ", no modifications";
   }

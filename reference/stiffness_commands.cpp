@@ -252,11 +252,13 @@ void register_stiffness_commands(CLI::App& app) {
       ->check(CLI::Range(2, kMostSamples));
   mesh->add_flag("--summary", mesh_options->summary,
                  "print min, max, exact mean over the true period as JSON instead");
-  mesh->add_option("--figure", mesh_options->figure,
-                   "also write DIR/mesh_stiffness.csv, DIR/summary.json and the figure "
-                   "DIR/mesh_stiffness.png (.svg, .gp): the stiffness against the same pairs all "
-                   "healthy, the faulted teeth's contact shaded; DIR new or empty");
-  mesh->add_flag("--overwrite", mesh_options->overwrite, "replace a non-empty --figure folder");
+  CLI::Option* figure = mesh->add_option(
+      "--figure", mesh_options->figure,
+      "also write DIR/mesh_stiffness.csv, DIR/summary.json and the figure "
+      "DIR/mesh_stiffness.png (.svg, .gp): the stiffness against the same pairs all "
+      "healthy, the faulted teeth's contact shaded; DIR new or empty");
+  mesh->add_flag("--overwrite", mesh_options->overwrite, "replace a non-empty --figure folder")
+      ->needs(figure);
   mesh->callback([mesh_options] { print_mesh_stiffness(*mesh_options); });
 
   auto iso_options = std::make_shared<StiffnessOptions>();

@@ -231,7 +231,7 @@ struct ShownUnit {
 
 ShownUnit shown_unit(const std::string& key, const std::string& unit) {
   const Field& field = sweep_field(key, key);
-  std::string name = literal_key(key, true);
+  std::string name = literal_key(key);
   if (key == "initial.w1") name = "pinion speed w_1";
   if (key == "initial.w2") name = "gear speed w_2";
   if (field.kind != FieldKind::quantity) return {name, 1.0, ""};
@@ -423,7 +423,7 @@ std::string line_title(const SteadySweepRecord& spec, int line, const char* dire
                            : from2 + (to2 - from2) * line / static_cast<double>(spec.lines - 1);
   char number[64];
   std::snprintf(number, sizeof number, "%.6g", value / unit2.si_per_unit);
-  return literal_key(spec.vary2, false) + " = " + number +
+  return literal_key(spec.vary2) + " = " + number +
          (unit2.symbol.empty() ? "" : " " + unit2.symbol) + ", " + direction;
 }
 
@@ -485,7 +485,7 @@ void render_plots(const std::filesystem::path& dir, const SteadySweep& sweep) {
             direction + "\") ? " + x_of + " : NaN):($9 * 1e6) with linespoints " +
             (one_line ? std::string(styles[d])
                       : "lc " + std::to_string(line + 1) + (d == 0 ? " pt 7" : " pt 6 dt 2")) +
-            " title '" + line_title(spec, line, direction) + "'");
+            " title " + gnuplot_string(line_title(spec, line, direction)));
       }
     }
     if (!jumps.empty()) {
@@ -596,10 +596,11 @@ void add_sweep_options(CLI::App* sweep, SweepCommandOptions& o) {
       ->required();
   sweep->add_option("--direction", o.direction, "up, down or both")
       ->check(CLI::IsMember({"up", "down", "both"}));
-  sweep->add_option("--vary2", o.vary2, "a second key: one line per value");
-  sweep->add_option("--from2", o.from2, "first value of the second key");
-  sweep->add_option("--to2", o.to2, "last value of the second key");
-  sweep->add_option("--points2", o.points2, "number of values of the second key");
+  CLI::Option* vary2 = sweep->add_option("--vary2", o.vary2, "a second key: one line per value");
+  // Without --vary2 they would do nothing.
+  sweep->add_option("--from2", o.from2, "first value of the second key")->needs(vary2);
+  sweep->add_option("--to2", o.to2, "last value of the second key")->needs(vary2);
+  sweep->add_option("--points2", o.points2, "number of values of the second key")->needs(vary2);
   sweep->add_option("--max-points", o.max_points,
                     "the most points (points x points2 x directions) the sweep may run, so that a "
                     "slip of --points does not start a run of days (default " +

@@ -238,6 +238,14 @@ def sweep(case, vary, start, stop, points, direction="both", options=()):
                  "--points", str(_arguments.integer("points", points)),
                  "--direction", _arguments.text("direction", direction)]
     more = _arguments.strings("options", options, ["--threads", "2"])
+    for option in more:
+        flag = option.split("=")[0]
+        if flag in _SWEEP_FILE_OPTIONS or flag in _SWEEP_ARGUMENTS:
+            what = (f"sweep()'s own argument {_SWEEP_ARGUMENTS[flag]}=" if flag in _SWEEP_ARGUMENTS
+                    else "nothing here: sweep() writes no file and returns the tables")
+            raise _arguments.case_error(
+                f"options: {flag} sets {what}; the options are the command's others "
+                f"(e.g. --vary2, --threads, --tolerance)", "options")
     try:
         sweep_text, poincare_text, summary_text = _core.sweep(case, arguments + more)
     except _core.CaseError as error:
@@ -256,6 +264,9 @@ def sweep(case, vary, start, stop, points, direction="both", options=()):
         "summary": summary,
     }
 
+
+# The command's options about its files, which sweep() has none of: they would be ignored.
+_SWEEP_FILE_OPTIONS = {"--out", "--overwrite", "--no-plots", "--shard"}
 
 # The command's options that sweep() sets from its own arguments.
 _SWEEP_ARGUMENTS = {"--vary": "vary", "--from": "start", "--to": "stop", "--points": "points",

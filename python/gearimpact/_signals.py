@@ -1,7 +1,42 @@
 """Spectra, order analysis, time-synchronous average and condition indicators of
 sampled signals, as numpy arrays (docs/signals.md gives every definition)."""
 
-from . import _core
+import numpy
+
+from . import _arguments, _core
+
+
+def _samples(name, value):
+    """A 1-dimensional sequence of real numbers as float64: a complex signal (whose imaginary
+    part would be dropped), bools, text or objects are refused naming the argument."""
+    try:
+        array = numpy.asarray(value)
+    except (TypeError, ValueError) as error:
+        raise _arguments.case_error(f"{name}: a 1-dimensional array of real numbers ({error})",
+                                    name) from None
+    if array.dtype.kind == "c":
+        raise _arguments.case_error(
+            f"{name}: real samples, not complex ({array.dtype}): take .real, .imag or abs() "
+            f"first", name)
+    if array.dtype.kind not in "iuf":
+        raise _arguments.case_error(
+            f"{name}: a 1-dimensional array of real numbers, not of {array.dtype}", name)
+    if array.ndim != 1:
+        raise _arguments.case_error(
+            f"{name}: a 1-dimensional array of real numbers, not {array.ndim}-dimensional", name)
+    return array.astype(numpy.float64)
+
+
+def _window(window):
+    return _arguments.text("window", window, 'a str, "hann" or "rectangular"')
+
+
+def _count(name, value):
+    """An int >= 1 (a bool, a float or a str refused); its upper range is the library's."""
+    count = _arguments.integer(name, value)
+    if count < 1:
+        raise _arguments.case_error(f"{name}={value!r}: an integer >= 1", name)
+    return count
 
 
 def spectrum(signal, rate, window="hann"):
@@ -12,7 +47,8 @@ def spectrum(signal, rate, window="hann"):
     on a bin reads A with either window. Returns a dict: ``frequency``,
     ``amplitude`` (numpy arrays, bins 0..N/2), ``resolution``, ``coherent_gain``.
     """
-    return _core.amplitude_spectrum(signal, float(rate), str(window))
+    return _core.amplitude_spectrum(_samples("signal", signal), _arguments.real("rate", rate),
+                                    _window(window))
 
 
 def low_pass(signal, rate, cutoff):
@@ -23,7 +59,8 @@ def low_pass(signal, rate, cutoff):
     low-pass below that rate's Nyquist frequency, then keep every n-th sample.
     ``rate``: samples per second. Returns a numpy array.
     """
-    return _core.low_pass(signal, float(rate), float(cutoff))
+    return _core.low_pass(_samples("signal", signal), _arguments.real("rate", rate),
+                          _arguments.real("cutoff", cutoff))
 
 
 def tacho_angle(tacho, pulses_per_revolution, time):
@@ -73,13 +110,18 @@ def order_analysis(angle, signal, samples_per_revolution=None, teeth=None, shaft
         if time is None:
             raise ValueError("order_analysis: tacho needs time, the signal's sample times (s)")
         angle = tacho_angle(tacho, pulses_per_revolution, time)
-    return _core.order_analysis(angle, signal,
-                                0 if samples_per_revolution is None else samples_per_revolution,
-                                0 if teeth is None else teeth, shaft_orders, sidebands,
-                                str(window), -1 if max_order is None else max_order,
-                                0 if nb4_half_width is None else nb4_half_width)
+    # teeth=None is no gear; 0 would be taken for it, so a tooth count is >= 1.
+    return _core.order_analysis(_samples("angle", angle), _samples("signal", signal),
+                                0 if samples_per_revolution is None
+                                else _count("samples_per_revolution", samples_per_revolution),
+                                0 if teeth is None else _count("teeth", teeth),
+                                _arguments.integer("shaft_orders", shaft_orders),
+                                _arguments.integer("sidebands", sidebands), _window(window),
+                                -1 if max_order is None else _count("max_order", max_order),
+                                0 if nb4_half_width is None
+                                else _count("nb4_half_width", nb4_half_width))
 
 
 def indicators(record):
     """RMS, peak, crest factor and kurtosis of a record (a dict; None where 0/0)."""
-    return _core.condition_indicators(record)
+    return _core.condition_indicators(_samples("record", record))

@@ -106,8 +106,8 @@ TEST_CASE("modes refuses bad options before any work, naming them") {
            {"--harmonics 101", "harmonics", "[1, 100]"},
            {"--max-speed \"0 rpm\"", "--max-speed", "> 0"},
            {"--max-speed 5", "--max-speed", "rpm"},
-           {"--set bearings.stiffness_x1=0", "bearings.stiffness_x1", "(0, 1e16]"},
-           {"--set bearings.mass2=-1", "bearings.mass2", "> 0"},
+           {"--set bearings.stiffness_x1=0", "bearings.stiffness_x1", "[0.001, 1e16]"},
+           {"--set bearings.mass2=-1", "bearings.mass2", "[0.0001, 1000000] kg"},
        }) {
     const CommandResult r =
         run_command(cli("modes " + input + " " + c.arguments + " --out " + out.string()));

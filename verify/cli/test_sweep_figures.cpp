@@ -253,7 +253,7 @@ TEST_CASE("plain numbers are drawn in the unit the case file gives the swept key
         " --vary initial.w1 --from 300 --to 400 --points 2 --direction up --out " + out.string());
     CAPTURE(r.err);
     REQUIRE(r.exit_code == 0);
-    CHECK(read(out / "amplitude.gp").find("set xlabel \"pinion speed w_1 " + unit + "\"") !=
+    CHECK(read(out / "amplitude.gp").find("set xlabel 'pinion speed w_1 " + unit + "'") !=
           std::string::npos);
   }
 }

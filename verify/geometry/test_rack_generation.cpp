@@ -297,7 +297,7 @@ TEST_CASE("bad input is refused naming the field and its allowed range") {
   // case schema's row.
   pair = GearPair{};
   pair.module_m = -2.5e-3;
-  check_refused([&] { validate(pair); }, "module", "> 0");
+  check_refused([&] { validate(pair); }, "module", "[1e-6, 1] m");
 
   pair = GearPair{};
   pair.poisson_ratio = 0.5;

@@ -4,6 +4,7 @@ it takes, before any work starts (no file is made, no NaN comes back); every
 valid call in between returns finite numbers."""
 
 import math
+import os
 
 import gearimpact
 import numpy as np
@@ -22,6 +23,21 @@ HARMONIC = dict(
 
 def harmonic(**changes):
     return CASE1.replace(**HARMONIC).replace(**changes)
+
+
+# A signal and its shaft's angle: 4 revolutions of 64 samples, a 20-tooth gear's mesh order.
+ANGLE = np.linspace(0.0, 8.0 * np.pi, 257)
+SIGNAL = np.cos(20.0 * ANGLE)
+
+
+RIG = gearimpact.read_case(os.path.join(os.environ["GEARIMPACT_SOURCE_DIR"], "examples",
+                                        "rig_17_38.toml"))
+
+
+def fault_text(tooth):
+    """Case 1 with one missing pinion tooth numbered `tooth`, as a case file writes it."""
+    return (CASE1.to_toml() + '\n[[faults]]\ngear = "pinion"\ntooth = ' + str(tooth)
+            + '\nkind = "missing"\n')
 
 
 def nan_pair():
@@ -70,9 +86,9 @@ REFUSED = [
     ("NaN x1_m", lambda: gearimpact.contact_angle(gearimpact.GearPair(), 1, float("nan")),
      "x1_m", ["finite"]),
     ("NaN field of a GearPair", lambda: gearimpact.base_radius(nan_pair(), 1), "module",
-     ["> 0"]),
+     ["[1e-6, 1] m"]),
     ("NaN pair to contact_ratio", lambda: gearimpact.contact_ratio(nan_pair()), "module",
-     ["> 0"]),
+     ["[1e-6, 1] m"]),
     # Booleans are True/False, nothing else.
     ("str for flipped_moment", lambda: gearimpact.stiffness(flipped_moment="no"),
      "flipped_moment", ["True or False"]),
@@ -223,6 +239,55 @@ REFUSED = [
      "torque1_amplitudes", ["1001 values", "at most 1000"]),
     ("a lone surrogate in parse_case", lambda: gearimpact.parse_case('name = "a\udcff"'), "text",
      ["surrogate"]),
+    # A fault's tooth past int32 once wrapped to -2**31 (ste crashed the interpreter).
+    ("tooth 2**31", lambda: gearimpact.parse_case(fault_text(2**31)), "faults[0].tooth",
+     ["[0, 99999]"]),
+    ("tooth 2**63-1", lambda: gearimpact.parse_case(fault_text(2**63 - 1)), "faults[0].tooth",
+     ["[0, 99999]"]),
+    ("tooth of the pinion's 20", lambda: gearimpact.parse_case(fault_text(20)), "faults[0].tooth",
+     ["0 ... 19"]),
+    # Values past any gear, bearing or shaft, once blamed on other keys or NaN mid-run.
+    ("module 1e-30 m", lambda: CASE1.replace(module="1e-30 m"), "module", ["[1e-6, 1] m"]),
+    ("module 1e300 m", lambda: CASE1.replace(module="1e300 m"), "module", ["[1e-6, 1] m"]),
+    ("bearing damping 1e300", lambda: RIG.replace(damping_x1="1e300 N*s/m"), "damping_x1",
+     ["[0, 1000000] N*s/m"]),
+    ("bearing mass 1e-300", lambda: RIG.replace(mass1="1e-300 kg"), "mass1",
+     ["[0.0001, 1000000] kg"]),
+    ("bearing stiffness 1e-300", lambda: RIG.replace(stiffness_x1="1e-300 N/m"),
+     "stiffness_x1", ["[0.001, 1e16] N/m"]),
+    # The signal functions' arguments: each a CaseError naming it, never pybind's TypeError or a
+    # silent conversion.
+    ("bool rate", lambda: gearimpact.spectrum(SIGNAL, True), "rate", ["number"]),
+    ("str rate", lambda: gearimpact.spectrum(SIGNAL, "100"), "rate", ["number"]),
+    ("complex signal", lambda: gearimpact.spectrum(SIGNAL * (1 + 1j), 100.0), "signal",
+     ["complex"]),
+    ("text signal", lambda: gearimpact.spectrum(["a", "b"], 100.0), "signal", ["real numbers"]),
+    ("2-d signal", lambda: gearimpact.spectrum(np.zeros((4, 4)), 100.0), "signal",
+     ["1-dimensional"]),
+    ("int window", lambda: gearimpact.spectrum(SIGNAL, 100.0, window=1), "window", ["str"]),
+    ("samples that overflow the DFT", lambda: gearimpact.spectrum(np.full(8, 1e308), 100),
+     "signal", ["1e300"]),
+    ("low_pass samples that overflow", lambda: gearimpact.low_pass(np.full(8, 1e308), 100, 10),
+     "signal", ["1e300"]),
+    ("bool cutoff", lambda: gearimpact.low_pass(SIGNAL, 100.0, True), "cutoff", ["number"]),
+    ("teeth=0", lambda: gearimpact.order_analysis(ANGLE, SIGNAL, teeth=0), "teeth", [">= 1"]),
+    ("sidebands=100000", lambda: gearimpact.order_analysis(ANGLE, SIGNAL, 64, teeth=20,
+                                                            sidebands=100000),
+     "sidebands", ["0 to 9 for 20 teeth"]),
+    ("float teeth", lambda: gearimpact.order_analysis(ANGLE, SIGNAL, teeth=20.0), "teeth",
+     ["integer"]),
+    ("str samples_per_revolution", lambda: gearimpact.order_analysis(
+        ANGLE, SIGNAL, samples_per_revolution="64"), "samples_per_revolution", ["integer"]),
+    ("complex angle", lambda: gearimpact.order_analysis(ANGLE + 0j, SIGNAL), "angle",
+     ["complex"]),
+    ("str record", lambda: gearimpact.indicators("abc"), "record", ["real numbers"]),
+    # sweep() writes no file: an --out among its options was ignored.
+    ("sweep --out", lambda: gearimpact.sweep(CASE1, "initial.w1", 1, 2, 2,
+                                             options=["--out", "sweep-out"]),
+     "options", ["--out", "writes no file"]),
+    ("sweep --points among options", lambda: gearimpact.sweep(CASE1, "initial.w1", 1, 2, 2,
+                                                              options=["--points=5"]),
+     "options", ["points="]),
 ]
 
 
@@ -332,6 +397,8 @@ VALID = [
         gearimpact.moment_of_inertia)] + list(gearimpact.contact_segment(gearimpact.GearPair()))),
     ("harmonic simulation", lambda: (lambda r: [r.summary, r.series, r.impacts])(
         gearimpact.simulate(harmonic(end_time="0.5 ms"), keep_series=True))),
+    ("spectrum", lambda: gearimpact.spectrum(SIGNAL.tolist(), np.int64(100))),
+    ("order analysis", lambda: gearimpact.order_analysis(ANGLE, SIGNAL, 64, teeth=np.int64(20))),
     ("friction sweep", lambda: gearimpact.sweep_friction(
         [1], from_=0.02, to=0.02, step=0.01, threads=np.int64(1), end_time="0.5 ms")),
 ]

@@ -340,7 +340,15 @@ TEST_CASE("the uniform grid: t0 + n / rate inside the record, the last kept agai
     CHECK(grid[n] == std::min(0.25 + static_cast<double>(n) / 2000.0, 0.5));
   }
   CHECK(grid.back() == 0.5);
-  CHECK_THROWS_WITH_AS(uniform_times(0.0, 1e-4, 1000.0), doctest::Contains("2 to 1e9"), InputError);
+  CHECK_THROWS_WITH_AS(uniform_times(0.0, 1e-4, 1000.0), doctest::Contains("2 to 50000000"),
+                       InputError);
+  // The count is known before a grid is made: one below the bound passes, one over it is refused
+  // with the estimate (a rate of 1e9 Hz over a second once ended in std::bad_alloc).
+  CHECK(uniform_sample_count(0.0, 1.0, 5e7 - 1.0) == 50000000);
+  CHECK_THROWS_WITH_AS(uniform_sample_count(0.0, 1.0, 5e7), doctest::Contains("5e+07 samples"),
+                       InputError);
+  CHECK_THROWS_WITH_AS(uniform_times(0.0, 1.0, 1e9), doctest::Contains("1e+09 samples, 8 GB"),
+                       InputError);
 }
 
 TEST_CASE("bad inputs are refused naming the input and its range") {

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <system_error>
 #include <type_traits>
@@ -134,6 +135,15 @@ class Rows {
   template <typename Slot>
   Field& integer(std::string_view key, Range range, bool required, const std::string& help,
                  Slot slot) {
+    // The row's range must fit its slot's type: a value past it would wrap when set (a tooth
+    // of 2^31 read as -2^31), so every integer row is bounded on both sides.
+    using T = std::decay_t<decltype(slot(std::declval<SimulationCase&>()))>;
+    if (!range.lower || !range.upper ||
+        range.lower->value < static_cast<double>(std::numeric_limits<T>::lowest()) ||
+        range.upper->value > static_cast<double>(std::numeric_limits<T>::max())) {
+      throw std::logic_error("the integer row " + std::string(key) +
+                             " has a range its slot's type cannot hold");
+    }
     Field& f = add(key, FieldKind::integer, required, help, slot);
     f.range = range;
     return f;
@@ -484,8 +494,12 @@ void add_bearing(std::vector<Field>& rows, int gear, BearingSlot of) {
   // it is still below 1e-8 of a mesh mode's w^2 (the paper's pair meets the
   // torsional limit to 2e-8 there); stiffer only loses digits, and
   // kind = "rigid" is that limit exactly.
-  const Range stiffness{open(0.0), closed(1e16), "stiffer is kind = \"rigid\""};
-  const Range damping{closed(0.0), {}, {}};
+  // Softer than 1e-3 N/m is no bearing (the centres then move freely to rounding, and the
+  // modes call near-zero modes elastic). A damper past 1e6 N*s/m is past any bearing or
+  // squeeze-film damper (1e2 to 1e5) and made a run's state NaN mid-run.
+  const Range stiffness{closed(1e-3), closed(1e16),
+                        "softer is no bearing; stiffer is kind = \"rigid\""};
+  const Range damping{closed(0.0), closed(1e6), "more is past any bearing or squeeze-film damper"};
   const FieldCondition elastic{"kind", {"elastic"}};
   // A row's key is a string_view: the names live in static storage.
   static const std::array<std::array<const char*, 5>, 2> names{{
@@ -520,7 +534,8 @@ void add_bearing(std::vector<Field>& rows, int gear, BearingSlot of) {
   cy.only_when = elastic;
   cy.when_absent = gear == 1 ? "damping_x1 (isotropic)" : "damping_x2 (isotropic)";
   Field& mass = r.quantity(
-      name[4], Dimension::mass, "kg", {open(0.0), {}, {}}, false,
+      name[4], Dimension::mass, "kg",
+      {closed(1e-4), closed(1e6), "a tenth of a gram (a watch's gear) to a thousand tonnes"}, false,
       "m, the mass of gear " + n + " with what moves with its centre", [of](auto& c) -> auto& {
         return of(c).mass_kg;
       });
@@ -553,8 +568,9 @@ std::vector<Field> make_schema() {
         "teeth2", teeth, true, "Z2, teeth of gear 2; the same limits as teeth1",
         [](auto& c) -> auto& { return c.gears.teeth2; });
     r.quantity(
-        "module", Dimension::length, "mm", {open(0.0), {}, {}}, true,
-        "m: pitch radius r_i = m Z_i / 2", [](auto& c) -> auto& { return c.gears.module_m; });
+        "module", Dimension::length, "mm",
+        {closed(1e-6), closed(1.0), "1 um (a micro gear) to 1 m (a mill's ring gear is 0.05 m)"},
+        true, "m: pitch radius r_i = m Z_i / 2", [](auto& c) -> auto& { return c.gears.module_m; });
     r.quantity(
         "pressure_angle", Dimension::angle, "deg", {open(0.0), closed(pi / 4.0), {}}, true,
         "a0 of the generating rack and of the mesh (standard centre distance)",
@@ -969,9 +985,11 @@ std::vector<Field> make_schema() {
          "whether the torques act on the gears or on a motor and a load behind torsional shafts",
          [](auto& c) -> auto& { return c.shafts.kind; })
         .written_at_default = false;
-    const Range inertia{open(0.0), {}, {}};
-    const Range stiffness{open(0.0), {}, {}};
-    const Range damping{closed(0.0), {}, {}};
+    // A watch's wheel to a mill's drive; a shaft from nearly free to stiffer than any (the
+    // modes lost their order past it), a damper past any shaft's.
+    const Range inertia{closed(1e-12), closed(1e6), {}};
+    const Range stiffness{closed(1e-3), closed(1e12), {}};
+    const Range damping{closed(0.0), closed(1e6), {}};
     const FieldCondition elastic{"kind", {"elastic"}};
     r.quantity(
          "motor_inertia", Dimension::moment_of_inertia, "kg*m^2", inertia, true,
@@ -1107,7 +1125,8 @@ std::vector<Field> make_fault_schema() {
       true,
       "the gear the faulted tooth belongs to", [fault](auto& c) -> auto& { return fault(c).gear; });
   r.integer(
-      "tooth", {closed(0.0), {}, "and below the gear's number of teeth"}, true,
+      "tooth", {closed(0.0), closed(kMostTeeth - 1.0), "and below the gear's number of teeth"},
+      true,
       "the tooth's number in mesh order, 0 ... z-1 (docs/faults.md, Tooth identity); "
       "one fault per tooth",
       [fault](auto& c) -> auto& { return fault(c).tooth; });

@@ -5,8 +5,10 @@
 #include <signal.h>
 #include <sys/stat.h>
 #include <sys/syscall.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cerrno>
@@ -103,7 +105,19 @@ void remove_folder_in_handler(const char* name) noexcept {
   ::rmdir(name);
 }
 
+// The children writing into temporary folders (TrackedChild), 0 where none.
+constexpr std::size_t kChildSlots = 16;
+std::array<std::atomic<long>, kChildSlots> children{};
+
 extern "C" void remove_temporaries_and_reraise(int signal_number) {
+  // The children first: one still drawing would write into a folder being removed.
+  for (std::atomic<long>& child : children) {
+    const long pid = child.load();
+    if (pid <= 0) continue;
+    ::kill(static_cast<pid_t>(pid), SIGKILL);
+    while (::waitpid(static_cast<pid_t>(pid), nullptr, 0) < 0 && errno == EINTR) {
+    }
+  }
   // Files first: a temporary file may lie in a temporary folder.
   for (Slot& slot : slots) {
     if (slot.ready.load() && !slot.folder.load()) ::unlink(slot.name.data());
@@ -403,6 +417,24 @@ void require_output_folder(const std::string& path, bool overwrite,
                   " of this run");
     }
   }
+  // A link is renamed over, not followed: the folder it names would stay and the link go.
+  if (std::filesystem::is_symlink(std::filesystem::symlink_status(target, error))) {
+    throw Error("cannot write the folder " + path +
+                ": it is a symbolic link, and an output folder replaces only a folder (name "
+                "the folder it links to)");
+  }
+  // The current folder or one that holds it cannot be replaced by a rename (and would take
+  // the run's own folder with it).
+  const std::filesystem::path here = std::filesystem::current_path(error);
+  const std::filesystem::path whole = std::filesystem::weakly_canonical(target, error);
+  if (!error && !whole.empty()) {
+    const auto [end, rest] = std::mismatch(whole.begin(), whole.end(), here.begin(), here.end());
+    if (end == whole.end()) {
+      throw Error("cannot write the folder " + path +
+                  ": it is or holds the current folder, which an output folder cannot replace");
+    }
+  }
+  error.clear();
   const std::filesystem::file_status status = std::filesystem::status(target, error);
   if (std::filesystem::exists(status)) {
     if (!std::filesystem::is_directory(status)) {
@@ -501,6 +533,41 @@ void write_file_atomically(const std::string& path, std::string_view text) {
   AtomicFile file(path);
   file.append(text);
   file.commit();
+}
+
+void TrackedChild::start(const std::function<long()>& spawn) {
+  slot_ = kChildSlots;
+  with_terminating_signals_blocked([&] {
+    pid_ = spawn();
+    if (pid_ <= 0) return;
+    for (std::size_t i = 0; i < kChildSlots; ++i) {
+      long expected = 0;
+      if (children[i].compare_exchange_strong(expected, pid_)) {
+        slot_ = i;
+        break;
+      }
+    }
+  });
+}
+
+int TrackedChild::wait() {
+  if (pid_ <= 0) return 0;
+  // Wait for the end without reaping, unregister, then reap: between the two the pid still
+  // names this (ended) child, never another process.
+  siginfo_t info{};
+  while (::waitid(P_PID, static_cast<id_t>(pid_), &info, WEXITED | WNOWAIT) < 0 && errno == EINTR) {
+  }
+  if (slot_ < kChildSlots) children[slot_].store(0);
+  slot_ = kChildSlots;
+  int status = 0;
+  while (::waitpid(static_cast<pid_t>(pid_), &status, 0) < 0 && errno == EINTR) {
+  }
+  pid_ = -1;
+  return status;
+}
+
+TrackedChild::~TrackedChild() {
+  if (pid_ > 0) wait();
 }
 
 void remove_temporaries_on_signals() {

@@ -1,8 +1,16 @@
 #include "gearimpact/io/signal_files.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
-#include <fstream>
+#include <cstring>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -30,47 +38,157 @@ Json optional_number(const std::optional<double>& v) {
 
 }  // namespace
 
+namespace {
+
+// At most a short prefix of a text from the file in a message: a header of megabytes or a line
+// of NULs is not echoed.
+std::string shown(const std::string& text) {
+  constexpr std::size_t kShown = 60;
+  std::string out;
+  for (std::size_t i = 0; i < text.size() && i < kShown; ++i) {
+    const auto byte = static_cast<unsigned char>(text[i]);
+    out += byte < 0x20 || byte == 0x7f ? '?' : text[i];
+  }
+  if (text.size() > kShown) out += "... (" + std::to_string(text.size()) + " bytes)";
+  return out;
+}
+
+// The file's lines, read through a descriptor that was checked to be a regular file before a
+// byte was read (a FIFO without a writer would block an open for reading, a device would not
+// end), each at most kLongestCsvLine bytes and free of NULs.
+class CsvLines {
+ public:
+  explicit CsvLines(const std::string& path) : path_(path) {
+    const auto refuse = [&](const std::string& why) {
+      throw InputError(std::vector<Problem>{refused_problem(
+          "input file", path, why,
+          "a regular CSV file of at most " + std::to_string(kLargestCsvBytes >> 30) + " GiB")});
+    };
+    struct stat status {};
+    if (::stat(path.c_str(), &status) != 0) refuse(std::strerror(errno));
+    if (!S_ISREG(status.st_mode)) refuse("not a regular file (a FIFO, device or folder)");
+    // O_NONBLOCK: should a FIFO replace the file after stat, the open still returns at once.
+    fd_ = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd_ < 0) refuse(std::strerror(errno));
+    if (::fstat(fd_, &status) != 0 || !S_ISREG(status.st_mode)) {
+      ::close(fd_);
+      refuse("not a regular file (a FIFO, device or folder)");
+    }
+    if (static_cast<std::uintmax_t>(status.st_size) > kLargestCsvBytes) {
+      ::close(fd_);
+      refuse("is " + std::to_string(status.st_size) + " bytes");
+    }
+  }
+  ~CsvLines() { ::close(fd_); }
+  CsvLines(const CsvLines&) = delete;
+  CsvLines& operator=(const CsvLines&) = delete;
+
+  // The next line without its "\n" (or "\r\n"); false at the end of the file.
+  bool next(std::string& line) {
+    line.clear();
+    for (;;) {
+      if (at_ == size_) {
+        const ssize_t n = ::read(fd_, buffer_.data(), buffer_.size());
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) {
+          throw InputError(std::vector<Problem>{
+              refused_problem("input file", path_, std::strerror(errno), "a readable CSV file")});
+        }
+        at_ = 0;
+        size_ = static_cast<std::size_t>(n);
+        if (n == 0) break;
+      }
+      const char* begin = buffer_.data() + at_;
+      const auto* newline = static_cast<const char*>(std::memchr(begin, '\n', size_ - at_));
+      const std::size_t take = newline ? static_cast<std::size_t>(newline - begin) : size_ - at_;
+      if (std::memchr(begin, '\0', take) != nullptr)
+        refuse_line(line + std::string(begin, take), "holds a NUL byte: not text");
+      line.append(begin, take);
+      at_ += take;
+      if (line.size() > kLongestCsvLine)
+        refuse_line(line, "is longer than " + std::to_string(kLongestCsvLine) + " bytes");
+      if (newline) {
+        ++at_;
+        ++number_;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        return true;
+      }
+    }
+    if (line.empty()) return false;
+    ++number_;
+    if (line.back() == '\r') line.pop_back();
+    return true;
+  }
+  std::size_t number() const { return number_; }
+
+ private:
+  [[noreturn]] void refuse_line(const std::string& line, const std::string& why) const {
+    throw InputError(std::vector<Problem>{
+        refused_problem(path_ + ":" + std::to_string(number_ + 1), shown(line), why,
+                        "lines of at most " + std::to_string(kLongestCsvLine) +
+                            " bytes of text (a header of names, rows of numbers)")});
+  }
+
+  std::string path_;
+  int fd_ = -1;
+  std::array<char, 1 << 16> buffer_{};
+  std::size_t at_ = 0;
+  std::size_t size_ = 0;
+  std::size_t number_ = 0;
+};
+
+}  // namespace
+
 std::vector<std::vector<double>> read_csv_columns(const std::string& path,
                                                   const std::vector<std::string>& names,
                                                   const std::vector<std::string>& chosen_by) {
-  std::ifstream in(path);
-  if (!in) throw InputError("input file", path, "a readable CSV file");
+  CsvLines in(path);
   std::string line;
-  if (!std::getline(in, line)) throw InputError("input file", path, "a CSV file with a header");
-  if (!line.empty() && line.back() == '\r') line.pop_back();
+  if (!in.next(line)) throw InputError("input file", path, "a CSV file with a header");
+  // A UTF-8 byte order mark, which some editors and spreadsheets put first, is no part of the
+  // first name.
+  if (line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3);
   const std::vector<std::string> header = split(line);
   std::vector<std::size_t> index;
   for (std::size_t c = 0; c < names.size(); ++c) {
     const std::string& name = names[c];
-    std::size_t i = 0;
-    while (i < header.size() && header[i] != name) ++i;
-    if (i == header.size()) {
+    const std::string flag = c < chosen_by.size() ? chosen_by[c] : "column";
+    const auto found = std::find(header.begin(), header.end(), name);
+    if (found == header.end()) {
       std::string known;
       for (const std::string& h : header) known += (known.empty() ? "" : ", ") + h;
-      throw InputError(
-          std::vector<Problem>{refused_problem(c < chosen_by.size() ? chosen_by[c] : "column", name,
-                                               "no such column in " + path, "one of " + known)});
+      throw InputError(std::vector<Problem>{refused_problem(
+          flag, shown(name), "no such column in " + path, "one of " + shown(known))});
     }
-    index.push_back(i);
+    if (std::find(found + 1, header.end(), name) != header.end()) {
+      throw InputError(std::vector<Problem>{
+          refused_problem(flag, shown(name), "two columns of " + path + " have this name",
+                          "a column whose name the header holds once")});
+    }
+    index.push_back(static_cast<std::size_t>(found - header.begin()));
   }
   std::vector<std::vector<double>> columns(names.size());
-  std::size_t number = 1;
-  while (std::getline(in, line)) {
-    ++number;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
+  std::size_t rows = 0;
+  while (in.next(line)) {
     if (line.empty()) continue;
+    const std::string where = path + ":" + std::to_string(in.number());
+    if (++rows > kMostCsvRows) {
+      throw InputError(
+          "input file", path,
+          "at most " + std::to_string(kMostCsvRows) + " rows (as simulate's max_rows)");
+    }
     const std::vector<std::string> fields = split(line);
+    if (fields.size() != header.size()) {
+      throw InputError(std::vector<Problem>{
+          refused_problem(where, shown(line), std::to_string(fields.size()) + " fields",
+                          std::to_string(header.size()) + " fields a row, as the header has")});
+    }
     for (std::size_t c = 0; c < names.size(); ++c) {
-      const std::string where = path + ":" + std::to_string(number);
-      if (index[c] >= fields.size()) {
-        throw InputError(names[c] + " (" + where + ")", "missing",
-                         std::to_string(header.size()) + " fields a row");
-      }
       const std::string& text = fields[index[c]];
       char* end = nullptr;
       const double value = std::strtod(text.c_str(), &end);
       if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value)) {
-        throw InputError(names[c] + " (" + where + ")", text, "a finite number");
+        throw InputError(names[c] + " (" + where + ")", shown(text), "a finite number");
       }
       columns[c].push_back(value);
     }

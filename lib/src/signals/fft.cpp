@@ -2,9 +2,12 @@
 
 #include <fftw3.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <memory>
 #include <mutex>
+#include <string>
 
 #include "gearimpact/error.hpp"
 
@@ -50,6 +53,18 @@ int checked_size(std::size_t n) {
 }
 
 }  // namespace
+
+void check_dft_range(const std::vector<double>& x, const char* name) {
+  const double largest = 1e300 / static_cast<double>(std::max<std::size_t>(x.size(), 1));
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (!(std::fabs(x[i]) <= largest)) {
+      throw InputError(std::string(name) + " (sample " + std::to_string(i + 1) + ")", x[i],
+                       "a magnitude of at most 1e300 / N = " + format_number(largest) +
+                           " for its N = " + std::to_string(x.size()) +
+                           " samples: a larger one overflows the transform's sums");
+    }
+  }
+}
 
 std::vector<std::complex<double>> real_dft(const std::vector<double>& x) {
   const int n = checked_size(x.size());

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <cstdio>
 #include <string>
 
 #include "../require.hpp"
@@ -104,18 +105,26 @@ std::vector<double> resample_uniform(const std::vector<double>& time,
   return out;
 }
 
-std::vector<double> uniform_times(double t0, double t_end, double rate) {
+std::size_t uniform_sample_count(double t0, double t_end, double rate) {
   check_sample_rate(rate);
   const double span = t_end - t0;
   // Whole samples inside the span; the tiny allowance keeps the last one
   // when span * rate is an integer spoiled by rounding.
   const double count = std::floor(span * rate * (1.0 + 1e-12)) + 1.0;
-  if (!(count >= 2.0 && count <= 1e9)) {
-    throw InputError(
-        "sample rate", rate,
-        "a rate giving 2 to 1e9 samples over the record of " + format_number(span) + " s");
+  if (!(count >= 2.0 && count <= static_cast<double>(kMostUniformSamples))) {
+    char estimate[96];
+    std::snprintf(estimate, sizeof estimate, "%.3g samples, %.3g GB a copy", count,
+                  count * 8.0 * 1e-9);
+    throw InputError("sample rate", rate,
+                     "a rate giving 2 to " + std::to_string(kMostUniformSamples) +
+                         " samples over the record of " + format_number(span) + " s (this one " +
+                         estimate + ")");
   }
-  const auto n = static_cast<std::size_t>(count);
+  return static_cast<std::size_t>(count);
+}
+
+std::vector<double> uniform_times(double t0, double t_end, double rate) {
+  const std::size_t n = uniform_sample_count(t0, t_end, rate);
   std::vector<double> grid(n);
   for (std::size_t k = 0; k < n; ++k) {
     grid[k] = std::min(t0 + static_cast<double>(k) / rate, t_end);
@@ -132,6 +141,7 @@ std::vector<double> low_pass(const std::vector<double>& uniform, double rate_hz,
     throw InputError("signal", std::to_string(uniform.size()) + " samples", "at least 2 samples");
   }
   check_values(uniform, uniform.size(), "signal");
+  check_dft_range(uniform, "signal");
   std::vector<std::complex<double>> spectrum = real_dft(uniform);
   const double n = static_cast<double>(uniform.size());
   // Bin k lies at k rate / N: those at and above the cutoff go.

@@ -40,6 +40,7 @@ Spectrum amplitude_spectrum(const std::vector<double>& signal, double rate, Wind
     weight_sum += w;
     weighted[i] = w * signal[i];
   }
+  check_dft_range(signal, "signal");
   const std::vector<std::complex<double>> x = real_dft(weighted);
   Spectrum s;
   s.window = window;

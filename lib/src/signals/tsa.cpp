@@ -125,6 +125,14 @@ void check_order_sets(const OrderSets& s, std::size_t p) {
                          " teeth, or 0 for that default (over z +- 1 the envelope's kurtosis is "
                          "1.5 whatever the fault)");
   }
+  // Too many sidebands for the teeth first: the teeth' range below subtracts them, and
+  // --sidebands 100000 once read as the teeth' fault, "3 to 0".
+  if (s.teeth >= 3 && 2 * s.sidebands >= s.teeth) {
+    throw InputError("sidebands", std::to_string(s.sidebands),
+                     "0 to " + std::to_string((s.teeth - 1) / 2) + " for " +
+                         std::to_string(s.teeth) +
+                         " teeth (sidebands of neighbouring mesh harmonics apart)");
+  }
   if (s.teeth < 3 || 2 * (s.teeth + s.sidebands) >= p) {
     throw InputError("teeth", std::to_string(s.teeth),
                      "3 to " + std::to_string((p - 1) / 2 - std::min(s.sidebands, (p - 1) / 2)) +

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -112,5 +113,33 @@ class AtomicFolder {
 // with an error instead of killing the process silently. For programs; a host
 // with handlers of its own (an interpreter) need not call it.
 void remove_temporaries_on_signals();
+
+// A child process that writes into a temporary folder (gnuplot drawing a figure): the
+// handlers of remove_temporaries_on_signals() kill it (SIGKILL) and wait for it before they
+// remove the temporaries, so that it cannot write a file into a folder being removed (a PNG
+// was once left in a hidden folder). `spawn` starts the child and returns its pid (or -1); it
+// runs with the terminating signals blocked, so the child is registered before one can end the
+// process; the child must set its own signal mask (posix_spawnattr_setsigmask) as it inherits
+// the blocked one. wait() reaps the child and ends the registration.
+class TrackedChild {
+ public:
+  template <typename Spawn>
+  explicit TrackedChild(Spawn spawn) {
+    start([&spawn] { return static_cast<long>(spawn()); });
+  }
+  ~TrackedChild();
+  TrackedChild(const TrackedChild&) = delete;
+  TrackedChild& operator=(const TrackedChild&) = delete;
+
+  long pid() const { return pid_; }
+  // The child's wait status (waitpid), once it has ended; it is unregistered before it is
+  // reaped, so that the handler never signals a pid the system may have given another process.
+  int wait();
+
+ private:
+  void start(const std::function<long()>& spawn);
+  long pid_ = -1;
+  std::size_t slot_ = 0;
+};
 
 }  // namespace gearimpact

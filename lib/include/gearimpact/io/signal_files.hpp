@@ -2,6 +2,8 @@
 // wrote, the spectra, the TSA and its parts, the indicators.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -13,11 +15,21 @@
 
 namespace gearimpact {
 
+// The bounds of a CSV file read_csv_columns reads, checked as it reads: its size (from the
+// file system, before a byte is read), a line's length and the rows (simulate's max_rows).
+constexpr std::uintmax_t kLargestCsvBytes = std::uintmax_t{16} << 30;
+constexpr std::size_t kLongestCsvLine = 1 << 16;
+constexpr std::size_t kMostCsvRows = 50000000;
+
 // The columns `names` of the CSV file `path` (a header line of names, then
-// rows of numbers), in that order. Throws InputError naming, for a missing
-// column, what chose it (`chosen_by`, e.g. the flag "--column"; "column" when
-// empty) with the header's names, and file:line for a short row or a field
-// that is not a finite number.
+// rows of numbers), in that order; a UTF-8 byte order mark before the header
+// is skipped. Throws InputError naming, for a missing column or one whose name
+// the header holds twice, what chose it (`chosen_by`, e.g. the flag
+// "--column"; "column" when empty) with the header's names, and file:line
+// for a row of another number of fields than the header's or a field that is
+// not a finite number; and the file unless it is a regular file within the
+// bounds above (a FIFO or device is refused before it is read). A message
+// quotes at most a short prefix of what the file holds.
 std::vector<std::vector<double>> read_csv_columns(const std::string& path,
                                                   const std::vector<std::string>& names,
                                                   const std::vector<std::string>& chosen_by = {});

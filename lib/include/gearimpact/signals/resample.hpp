@@ -34,10 +34,18 @@ std::vector<double> resample_uniform(const std::vector<double>& time,
                                      const char* time_name = "time",
                                      const char* signal_name = "signal");
 
+// The most instants of a uniform grid: each copy of a signal on it is then at most 400 MB
+// (as many as simulate's max_rows), and an analysis holds a few.
+constexpr std::size_t kMostUniformSamples = 50000000;
+
+// The instants resample_uniform's grid over [t0, t_end] has, checked before any is made:
+// throws InputError naming "sample rate" unless rate is finite and > 0 and gives 2 to
+// kMostUniformSamples instants (the message says how many it would give, and their size).
+std::size_t uniform_sample_count(double t0, double t_end, double rate);
+
 // The instants of resample_uniform's grid over [t0, t_end]: t0 + n / rate,
 // n = 0, 1, ... while inside (the last one clamped to t_end against the
-// rounding of n / rate). Throws InputError naming "sample rate" unless rate is
-// finite and > 0 and gives 2 to 1e9 instants.
+// rounding of n / rate). Throws as uniform_sample_count.
 std::vector<double> uniform_times(double t0, double t_end, double rate);
 
 // The content of a uniformly sampled record below `cutoff_hz`, at the same
