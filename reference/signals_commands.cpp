@@ -163,6 +163,15 @@ std::size_t whole_number(const std::string& text, const std::string& flag) {
   return value;
 }
 
+double number(const std::string& text, const std::string& flag) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size()) {
+    throw InputError(flag, text, "a number (see gearimpact signals --help)");
+  }
+  return value;
+}
+
 // Four digits: a number a figure's legend states.
 std::string four_digits(double value) {
   char text[32];
