@@ -323,7 +323,7 @@ TEST_CASE(
   for (const auto& [flags, expected] : std::vector<std::pair<std::string, std::string>>{
            {"--sample-rate 0 --out " + out,
             "--sample-rate = 0 is outside the allowed range: a finite rate > 0 Hz"},
-           {"--sample-rate inf --out " + out, "--sample-rate = inf is outside"},
+           {"--sample-rate inf --out " + out, "--sample-rate = \"inf\": no finite decimal number"},
            {"--sample-rate 1e12 --out " + out,
             "a rate in (0, 49999999000] Hz: at most 50000000 samples"},
            {"--sample-rate 1e6 --every 10 --out " + out, "--every = 10: contradicts --sample-rate"},

