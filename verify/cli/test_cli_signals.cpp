@@ -159,10 +159,10 @@ TEST_CASE("signals: the waveform is the record's end, the sidebands are marked w
   CHECK(figure.find("last 16384 samples") != std::string::npos);
   // A column without a unit suffix is labelled by its name; the TSA's key goes below the plot
   // and its title stays short enough for the figure's width.
-  CHECK(figure.find("set ylabel \"x\"") != std::string::npos);
+  CHECK(figure.find("set ylabel 'x'") != std::string::npos);
   const std::string tsa = read(out / "tsa.gp");
   CHECK(tsa.find("set key below") != std::string::npos);
-  CHECK(tsa.find("set title \"TSA of x, one revolution\"") != std::string::npos);
+  CHECK(tsa.find("set title 'TSA of x, one revolution'") != std::string::npos);
 }
 
 TEST_CASE("signals labels a column with a unit suffix by its quantity and unit") {
@@ -178,8 +178,8 @@ TEST_CASE("signals labels a column with a unit suffix by its quantity and unit")
                              " --column sensor_acceleration_m_per_s2 --out " + out.string());
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
-  CHECK(read(out / "waveform.gp").find("set ylabel \"acceleration (m/s^2)\"") != std::string::npos);
-  CHECK(read(out / "spectrum.gp").find("set ylabel \"amplitude (m/s^2, log scale)\"") !=
+  CHECK(read(out / "waveform.gp").find("set ylabel 'acceleration (m/s^2)'") != std::string::npos);
+  CHECK(read(out / "spectrum.gp").find("set ylabel 'amplitude (m/s^2, log scale)'") !=
         std::string::npos);
 }
 

@@ -350,9 +350,9 @@ TEST_CASE("counts in hexadecimal, empty values and flags that would do nothing a
       {"mesh-stiffness --samples 0x10", "--samples: \"0x10\""},
       {"ste " + pair + " --torque '100 N*m' --points 0x10 --out " + out, "--points: \"0x10\""},
       {"signals " + record.string() + " --column x --sample-rate 0x10 --out " + out,
-       "--sample-rate = 0x10"},
+       "--sample-rate = \"0x10\""},
       {"signals " + record.string() + " --column x --sample-rate inf --out " + out,
-       "--sample-rate = inf"},
+       "--sample-rate = \"inf\""},
       {"simulate --case 1 --t-end 1ms --dt 0x1p-20", "--dt"},
       // An empty value was the option left out: the default, or no file written.
       {"modes " + rig + " --max-speed '' --out " + out, "--max-speed: an empty value"},

@@ -192,7 +192,7 @@ TEST_CASE("bounds and meaningless sweeps are refused before any point runs, nami
       {"sweep 1 --vary integrator.step --from 1e-7 --to 2e-7 --points 2",
        {"--vary", "integrator.step"}},
       {"sweep 1 --vary model.damping_reference_speed --from 1 --to 2 --points 2 "
-       "--set model.friction_coefficient=0",
+       "--set model.friction_coefficient=0 --damping-update each-impact",
        {"--vary", "model.damping_reference_speed", "frozen"}},
       // An integer key on a grid of fractions: refused before the first point, not after it.
       {"sweep 1 --vary gears.teeth1 --from 20 --to 25 --points 3 "
