@@ -100,6 +100,9 @@ class CaseOptions {
   void add_set(CLI::App* command, const std::string& help,
                SetNumbers numbers = SetNumbers::as_case_file);
 
+  // The --set texts as given, "section.key=value".
+  const std::vector<std::string>& sets() const { return sets_; }
+
   bool reading_given() const;
   const char* reading_flag() const;
   const std::string& reading_text() const;

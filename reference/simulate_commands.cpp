@@ -321,6 +321,15 @@ void run_sweep(SweepOptions& o) {
   const double step = parse_number_flag("--step", o.step, "the increment of f, > 0");
   const auto threads = static_cast<unsigned>(
       parse_integer_flag("--threads", o.threads, 0, kMostThreads, "0: all cores"));
+  // The sweep sets f itself: a --set of it would do nothing.
+  for (const std::string& set : o.keys.sets()) {
+    const std::string key = set.substr(0, set.find('='));
+    if (key.find("model.friction_coefficient") != std::string::npos) {
+      throw InputError("--set", set,
+                       "a key other than model.friction_coefficient: sweep-friction sets f "
+                       "itself (--from, --to, --step)");
+    }
+  }
   std::vector<SimulationCase> cases;
   for (int n = 1; n <= 3; ++n) {
     cases.push_back(o.keys.paper(n));
@@ -397,6 +406,9 @@ void register_simulate_commands(CLI::App& app) {
       ->capture_default_str();
   sweep_options->keys.add_flags(sweep, kSweepFriction);
   sweep_options->keys.add_reading(sweep);
+  sweep_options->keys.add_set(sweep,
+                              "section.key=value: set any key of the case schema of cases 1-3 "
+                              "but f, which the sweep sets; repeatable");
   sweep->callback([sweep_options] { run_sweep(*sweep_options); });
 }
 

@@ -251,20 +251,27 @@ TEST_CASE("the energy ledger closes with a crack and with a missing tooth") {
 }
 
 TEST_CASE("teeth that pass through each other by half a pitch stop the run with a message") {
-  // With every pinion tooth missing nothing holds the pinion: its torque
-  // drives it ahead and s - B grows as the free motion's closed form. Half a
-  // base pitch is about a tooth's thickness: beyond it the contact on the
-  // line of action describes nothing, so the run must stop and say so
-  // rather than go on to metres of penetration.
+  // With every pinion tooth missing but one, half a turn away, nothing holds
+  // the pinion at first: its torque drives it ahead and s - B grows as the
+  // free motion's closed form. Half a base pitch is about a tooth's
+  // thickness: beyond it the contact on the line of action describes
+  // nothing, so the run must stop and say so rather than go on to metres of
+  // penetration. (Every tooth missing is refused before the run.)
   SimulationCase c = paper_case(1);
   c.faults.clear();
-  for (int i = 0; i < c.gears.teeth1; ++i) c.faults.push_back(missing(Gear::one, i));
+  for (int i = 0; i < c.gears.teeth1; ++i) {
+    if (i != c.gears.teeth1 / 2) c.faults.push_back(missing(Gear::one, i));
+  }
   CHECK_THROWS_WITH_AS(simulate(c, summary_only()),
                        doctest::Contains("more than half a base pitch"), SimulationError);
   // The healthy pair stays far below the bound (a deflection of micrometres
   // against a half pitch of millimetres).
   const SimulationSummary healthy = simulate(paper_case(1), summary_only()).summary;
   CHECK(healthy.max_penetration_m < 1e-2 * 0.5 * base_pitch(c.gears));
+  // Every tooth missing leaves no tooth to carry the load: refused, naming faults.
+  c.faults.push_back(missing(Gear::one, c.gears.teeth1 / 2));
+  CHECK_THROWS_WITH_AS(simulate(c, summary_only()),
+                       doctest::Contains("no tooth is left to carry the load"), InputError);
 }
 
 TEST_CASE("the energy ledger closes with a spall and with a chip") {

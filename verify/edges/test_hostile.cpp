@@ -459,3 +459,76 @@ TEST_CASE("an output folder that is a link or holds the current folder is refuse
   CHECK(entries(scratch.dir / "sub") == std::set<std::string>{"inner", "link"});
   CHECK(entries(inner).empty());
 }
+
+TEST_CASE("a gear with every tooth missing is refused under faults before work") {
+  // Once `simulate` ran it with only an overlap warning while `ste` refused it.
+  Scratch scratch("hostile-missing");
+  const std::string healthy = read(kExamples / "cracked_pinion.toml");
+  const std::string gears = healthy.substr(0, healthy.find("[[faults]]"));
+  const auto all_missing = [&](const std::string& gear, int teeth, int skip) {
+    std::string text = gears;
+    for (int i = 0; i < teeth; ++i) {
+      if (i == skip) continue;
+      text += "\n[[faults]]\ngear = \"" + gear + "\"\ntooth = " + std::to_string(i) +
+              "\nkind = \"missing\"\n";
+    }
+    return text;
+  };
+  const std::string out = (scratch.dir / "out").string();
+  const std::string run =
+      " --set torque1.kind=constant --set 'torque1.value=10 N*m' --set torque2.kind=constant "
+      "--set 'torque2.value=40 N*m' --set 'integrator.end_time=1 ms' --out " +
+      out;
+  for (const auto& [gear, teeth] : {std::pair{"pinion", 20}, std::pair{"wheel", 80}}) {
+    const fs::path file = scratch.dir / (std::string(gear) + ".toml");
+    std::ofstream(file) << all_missing(gear, teeth, -1);
+    for (const std::string& command : {"ste " + file.string() + " --torque '10 N*m' --out " + out,
+                                       "simulate --case-file " + file.string() + run}) {
+      CAPTURE(command);
+      const CommandResult r = run_command(cli(command));
+      check_refusal(r, "faults = all " + std::to_string(teeth) + " " + gear + " teeth missing");
+      CHECK(r.err.find("no tooth is left to carry the load") != std::string::npos);
+      CHECK(entries(scratch.dir) == std::set<std::string>{std::string(gear) + ".toml"});
+    }
+    fs::remove(file);
+  }
+  // Positive control: one pinion tooth left carries the load.
+  const fs::path one_left = scratch.dir / "one_left.toml";
+  std::ofstream(one_left) << all_missing("pinion", 20, 7);
+  const CommandResult r =
+      run_command(cli("ste " + one_left.string() + " --torque '10 N*m' --out " + out));
+  CHECK(r.err.find("no tooth is left") == std::string::npos);
+}
+
+TEST_CASE("sweep-friction takes --set as docs/usage.md lists it, but not of the f it sweeps") {
+  const CommandResult set = run_command(cli(
+      "sweep-friction --from 0.01 --to 0.01 --step 0.01 --set model.restitution_coefficient=0.5"));
+  INFO(set.err);
+  CHECK(set.exit_code == 0);
+  CHECK(set.out.rfind("f,ratio_case1,ratio_case2,ratio_case3\n0.01,", 0) == 0);
+  CHECK(set.out.find("nan") == std::string::npos);
+  // The same run without --set: the key changes the ratios, so --set was applied.
+  const CommandResult plain = run_command(cli("sweep-friction --from 0.01 --to 0.01 --step 0.01"));
+  CHECK(plain.exit_code == 0);
+  CHECK(plain.out != set.out);
+  check_refusal(run_command(cli("sweep-friction --set model.friction_coefficient=0.1")),
+                "--set = model.friction_coefficient=0.1");
+  check_refusal(run_command(cli("sweep-friction --set model.nonsense=1")), "model.nonsense");
+}
+
+TEST_CASE("a bearing damper faster than the step can follow is refused before work") {
+  // c/m of 1e6 N*s/m on the rig's bearing mass is 4.2e6 1/s: h c/m = 4.2 at the rig's 1 us,
+  // past RK4's real-axis limit 2.785, so the run once diverged to nan.
+  const std::string rig = (kExamples / "rig_17_38.toml").string();
+  for (const char* key : {"bearings.damping_x1", "bearings.damping_y2"}) {
+    CAPTURE(key);
+    const CommandResult r = run_command(
+        cli("simulate --case-file " + rig + " --t-end 1ms --set '" + key + "=1e6 N*s/m'"));
+    check_refusal(r, "integrator.step");
+    CHECK(r.err.find(std::string(key) + " alone decays its centre") != std::string::npos);
+  }
+  // Positive control: the rig's own 500 N*s/m is far inside the bound.
+  const CommandResult r = run_command(cli("simulate --case-file " + rig + " --t-end 0.05ms"));
+  CHECK(r.exit_code == 0);
+  CHECK(r.out.find("nan") == std::string::npos);
+}

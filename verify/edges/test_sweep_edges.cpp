@@ -375,6 +375,13 @@ TEST_CASE("merge reads every row of every shard and names the shard, file and li
       {"huge-index", "sweep.csv", field_replaced(2, 2, "99999999999"), ":3", "99999999999"},
       {"index-out-of-grid", "sweep.csv", field_replaced(2, 2, "2"), ":3", "[0, 2)"},
       {"line-out-of-grid", "sweep.csv", field_replaced(1, 0, "1"), ":2", "[0, 1)"},
+      // Inside the grid's ends but at no index of it (the grid is 2000, 3000).
+      {"value-off-grid", "sweep.csv", field_replaced(1, 3, "2500"), ":2", "grid at index"},
+      // The last field (mesh_frequency_hz) cut to its first three characters, or to nothing.
+      {"last-field-cut", "sweep.csv",
+       replace_line(1, sweep_rows[1].substr(0, sweep_rows[1].rfind(',') + 4)), ":2", "cut short"},
+      {"last-field-empty", "sweep.csv",
+       replace_line(1, sweep_rows[1].substr(0, sweep_rows[1].rfind(',') + 1)), ":2", "cut short"},
       {"cut-mid-number", "poincare.csv", poincare_text.substr(0, poincare_text.size() - 4),
        ":" + std::to_string(lines_of(poincare_text).size()), "cut short"},
   };

@@ -1893,6 +1893,25 @@ void fault_problems(const SimulationCase& c, const std::vector<std::string>& fai
       }
     }
   }
+  // A gear with every tooth missing has no tooth left to carry the load: no
+  // pair is ever loaded, so a run would only drift and the STE is undefined.
+  for (const Gear gear : {Gear::one, Gear::two}) {
+    const int z = teeth(c.gears, gear);
+    std::vector<bool> missing(static_cast<std::size_t>(std::max(z, 0)), false);
+    for (const ToothFault& f : c.faults) {
+      if (f.gear == gear && f.state.kind == ToothKind::missing && f.tooth >= 0 && f.tooth < z) {
+        missing[static_cast<std::size_t>(f.tooth)] = true;
+      }
+    }
+    if (z > 0 && std::all_of(missing.begin(), missing.end(), [](bool m) { return m; })) {
+      const std::string which = gear == Gear::one ? "pinion" : "wheel";
+      problems.add(range_problem("faults",
+                                 "all " + std::to_string(z) + " " + which + " teeth missing",
+                                 "at least one " + which +
+                                     " tooth not missing: with every tooth missing no tooth is "
+                                     "left to carry the load"));
+    }
+  }
 }
 
 }  // namespace

@@ -947,19 +947,48 @@ void check_planar_step(const SimulationCase& c, const StiffnessTable& table,
                         m.load_inertia_kg_m2;
     w2 += rate * rate;
   }
+  // A bearing's damper c on its mass m decays the centre's speed at the rate
+  // c/m: a real eigenvalue -c/m, on which RK4 is stable only for h c/m <=
+  // 2.785 (its stability limit on the negative real axis). Counted as a
+  // frequency, it needs as many steps per 2 pi / (c/m) as a contact period,
+  // h c/m <= 2 pi / steps (0.31 for RK4): a factor of 9 inside that limit,
+  // so that the damper's decay is resolved, not only kept from diverging.
+  double damper_rate = 0.0;
+  std::string damper_key;
+  for (std::size_t i = 0; i < 2; ++i) {
+    const double cx = m.damping_x_n_s_per_m[i] / m.mass_kg[i];
+    const double cy = m.damping_y_n_s_per_m[i] / m.mass_kg[i];
+    w2 += cx * cx + cy * cy;
+    const double rate = std::max(cx, cy);
+    if (rate > damper_rate) {
+      damper_rate = rate;
+      damper_key =
+          std::string("bearings.damping_") + (cx >= cy ? "x" : "y") + std::to_string(i + 1);
+    }
+  }
   const double steps = steps_per_contact_period(c.integrator.kind);
   const double largest = 2.0 * pi / std::sqrt(w2) / steps;
+  // Whether the dampers alone would need a smaller step: then the message names the key.
+  const bool damper_bound =
+      damper_rate > 0.0 && c.integrator.step_s * damper_rate > 2.0 * pi / steps;
   if (c.integrator.step_s > largest) {
-    throw InputError("integrator.step", format_number(c.integrator.step_s) + " s",
-                     "at most " + format_number(largest) +
-                         " s with [bearings] kind = "
-                         "\"elastic\" and integrator.kind = \"" +
-                         std::string(name_of(kIntegratorKinds, c.integrator.kind)) + "\": 1/" +
-                         format_number(steps) +
-                         " of the shortest period the planar system can have (its stiffest "
-                         "springs: the mesh on both sides, the bearings" +
-                         std::string(m.shafts ? ", the shafts" : "") +
-                         std::string(load_drag ? ", the drag's relaxation of the load" : "") + ")");
+    throw InputError(
+        "integrator.step", format_number(c.integrator.step_s) + " s",
+        "at most " + format_number(largest) +
+            " s with [bearings] kind = "
+            "\"elastic\" and integrator.kind = \"" +
+            std::string(name_of(kIntegratorKinds, c.integrator.kind)) + "\": 1/" +
+            format_number(steps) +
+            " of the shortest period the planar system can have (its stiffest "
+            "springs: the mesh on both sides, the bearings" +
+            std::string(m.shafts ? ", the shafts" : "") +
+            std::string(load_drag ? ", the drag's relaxation of the load" : "") +
+            std::string(damper_rate > 0.0 ? ", the bearings' dampers' decay rates c/m" : "") + ")" +
+            (damper_bound
+                 ? "; " + damper_key + " alone decays its centre at " + format_number(damper_rate) +
+                       " 1/s (c/m, bearings.mass), more than 2 pi/" + format_number(steps) +
+                       " per step: lower it or the step"
+                 : std::string()));
   }
 }
 

@@ -294,6 +294,17 @@ SweepPointResult row_key(const std::vector<std::string>& f, const SteadySweepRec
         "merge", where + ": value " + f[3],
         "a value of its spec's grid [" + format_number(low) + ", " + format_number(high) + "]");
   }
+  // The value at its index of the grid the sweep ran (sweep_grid), to within the same slack.
+  const double on_grid = spec.points == 1 ? spec.from_si
+                         : r.index + 1 == spec.points
+                             ? spec.to_si
+                             : spec.from_si + (spec.to_si - spec.from_si) *
+                                                  static_cast<double>(r.index) / (spec.points - 1);
+  if (std::abs(r.value_si - on_grid) > slack) {
+    throw InputError("merge", where + ": value " + f[3],
+                     "the value of its spec's grid at index " + std::to_string(r.index) + ", " +
+                         format_number(on_grid));
+  }
   return r;
 }
 
@@ -453,6 +464,20 @@ std::vector<SweepPointResult> parse_sweep_csv(const std::string& text, const std
     p.w2_mean_rad_s = optional_field(f[19], where);
     p.pinion_rpm = optional_field(f[20], where);
     p.mesh_frequency_hz = optional_field(f[21], where);
+    // The last two fields follow from w1_mean (pinion_rpm = 60 w1 / (2 pi), mesh_frequency_hz =
+    // z1 |w1| / (2 pi)): both present with it, and their ratio the whole number z1 / 60 (to
+    // 1e-12 relative, far above the rounding of the 17 digits written); a row cut short fails.
+    if (p.w1_mean_rad_s) {
+      const bool whole = p.pinion_rpm && p.mesh_frequency_hz && *p.pinion_rpm != 0.0 && [&] {
+        const double z1 = *p.mesh_frequency_hz * 60.0 / std::abs(*p.pinion_rpm);
+        return z1 >= 1.0 && std::abs(z1 - std::round(z1)) <= 1e-12 * z1;
+      }();
+      if (!whole) {
+        throw InputError("merge", where + ": " + line,
+                         "a whole row: pinion_rpm and mesh_frequency_hz written with w1_mean_rad_s "
+                         "and mesh_frequency_hz = z1 |pinion_rpm| / 60 (the row is cut short)");
+      }
+    }
     rows.push_back(std::move(r));
   }
   return rows;
