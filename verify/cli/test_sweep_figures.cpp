@@ -98,7 +98,11 @@ void write_sweep_folder(const fs::path& dir, const Data& d) {
         // The down branch a quarter step further along: the two differ, as on either side of a
         // jump.
         const double u = direction == "up" ? t : std::min(1.0, t + 0.25);
-        const double w = i + 1 == points ? d.speed.at(1) : d.speed.at(t);
+        // The swept value on the sweep's own grid (linear, sweep_grid), which merge checks.
+        const double w = i + 1 == points
+                             ? d.speed.high
+                             : d.speed.low + (d.speed.high - d.speed.low) * static_cast<double>(i) /
+                                                 (points - 1);
         const double a = d.amplitude.at(u);
         const double s = d.s.at(u);
         sweep += std::to_string(line) + "," + direction + "," + std::to_string(i) + "," +
