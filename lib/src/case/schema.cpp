@@ -1964,10 +1964,11 @@ void relation_problems(const SimulationCase& c, const std::vector<std::string>& 
         }
       }
     }
+    // The section's name as a copy: a lambda may not capture a structured binding in C++17.
+    const std::string section = std::string(name) + ".";
     const auto check_profile = [&](const char* times_key, const std::vector<double>& times,
                                    const char* values_key, const std::size_t values,
                                    bool steps_allowed) {
-      const std::string section = std::string(name) + ".";
       if (times.size() != values) {
         problems.add(range_problem(section + values_key, std::to_string(values) + " values",
                                    "as many values as " + section + times_key + " (" +
