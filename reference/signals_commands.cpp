@@ -753,11 +753,11 @@ void run_signals(SignalsOptions o) {
     if (has_angle) {
       const double half = static_cast<double>(run.angle_grid) / 2.0;
       const double z = sets ? static_cast<double>(sets->teeth) : 0.0;
-      spectrum_figure(dir, "order_spectrum",
-                      "Order spectrum of " + literal_key(o.column) + " on " +
-                          literal_key(o.angle_column),
-                      "order (cycles per revolution)", sets ? std::min(half, 3.5 * z) : half, z,
-                      "z", o.column, 1.0, sidebands);
+      spectrum_figure(
+          dir, "order_spectrum",
+          "Order spectrum of " + literal_key(o.column) + " on " + literal_key(o.angle_column),
+          "order (cycles per revolution)", sets ? std::min(half, 3.5 * z) : half, z, "z", o.column,
+          1.0, sidebands);
       tsa_figure(dir, o.column, tsa_values, sets.has_value(), marked,
                  o.mark_tooth.substr(0, o.mark_tooth.find(':')) + " tooth " +
                      o.mark_tooth.substr(o.mark_tooth.find(':') + 1));

@@ -99,10 +99,9 @@ void write_sweep_folder(const fs::path& dir, const Data& d) {
         // jump.
         const double u = direction == "up" ? t : std::min(1.0, t + 0.25);
         // The swept value on the sweep's own grid (linear, sweep_grid), which merge checks.
-        const double w = i + 1 == points
-                             ? d.speed.high
-                             : d.speed.low + (d.speed.high - d.speed.low) * static_cast<double>(i) /
-                                                 (points - 1);
+        const double w = i + 1 == points ? d.speed.high
+                                         : d.speed.low + (d.speed.high - d.speed.low) *
+                                                             static_cast<double>(i) / (points - 1);
         const double a = d.amplitude.at(u);
         const double s = d.s.at(u);
         sweep += std::to_string(line) + "," + direction + "," + std::to_string(i) + "," +

@@ -22,6 +22,7 @@
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/stiffness/root_crack.hpp"
 #include "gearimpact/stiffness/table.hpp"
+#include "rig_drive.hpp"
 
 using namespace gearimpact;
 
@@ -39,13 +40,7 @@ SimulationCase cracked_rig() {
   // example's own drive (a speed controller) and frozen D converge faster:
   // halving dopri5's 4 us moves the RMS by 5.7e-6, its 4.5 us by 1.0e-5 and
   // RK4's 2.5 us by 3.5e-6, so the guards above the bar would not fail there.
-  c.torque1 = Torque{};
-  c.torque1.kind = Torque::Kind::constant;
-  c.torque1.constant_n_m = 10.0;
-  c.torque2 = Torque{};
-  c.torque2.kind = Torque::Kind::constant;
-  c.torque2.constant_n_m = -22.196478760533587;
-  c.model.damping_update = DampingUpdate::each_impact;
+  gearimpact::verify::use_rig_constant_drive(c);
   ToothFault crack;
   crack.gear = Gear::one;
   crack.tooth = 0;

@@ -17,6 +17,7 @@
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "relative.hpp"
+#include "rig_drive.hpp"
 
 using namespace gearimpact;
 using gearimpact::verify::relative_difference;
@@ -190,13 +191,7 @@ TEST_CASE("the rig's first mesh harmonic converges with the sample rate under in
   // impact, as the convergence was measured. Under the example's own speed controller and D
   // frozen at 1 m/s the record from 25 ms still carries the controller's start and a lightly
   // damped mesh mode, and its first harmonic (0.31 m/s^2) moves by 12 % from 20 to 640 kHz.
-  rig.torque1 = Torque{};
-  rig.torque1.kind = Torque::Kind::constant;
-  rig.torque1.constant_n_m = 10.0;
-  rig.torque2 = Torque{};
-  rig.torque2.kind = Torque::Kind::constant;
-  rig.torque2.constant_n_m = -22.196478760533587;
-  rig.model.damping_update = DampingUpdate::each_impact;
+  gearimpact::verify::use_rig_constant_drive(rig);
   std::vector<double> average;
   std::vector<double> point;
   for (const double fs : {20e3, 40e3, 80e3, 160e3, 320e3, 640e3}) {

@@ -18,6 +18,7 @@
 #include "gearimpact/signals/tsa.hpp"
 #include "gearimpact/stiffness/root_crack.hpp"
 #include "relative.hpp"
+#include "rig_drive.hpp"
 
 using namespace gearimpact;
 using namespace gearimpact::signals;
@@ -39,13 +40,7 @@ Record rig_record(double fraction) {
   // drive and reading the indicators' bands were measured on. Under the example's speed
   // controller and D frozen at 1 m/s the lightly damped record's NB4 moves by 0.2 to 4 % over
   // these cracks, not monotonically.
-  c.torque1 = Torque{};
-  c.torque1.kind = Torque::Kind::constant;
-  c.torque1.constant_n_m = 10.0;
-  c.torque2 = Torque{};
-  c.torque2.kind = Torque::Kind::constant;
-  c.torque2.constant_n_m = -22.196478760533587;
-  c.model.damping_update = DampingUpdate::each_impact;
+  gearimpact::verify::use_rig_constant_drive(c);
   if (fraction > 0.0) {
     ToothFault crack;
     crack.gear = Gear::one;
