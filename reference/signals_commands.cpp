@@ -25,6 +25,7 @@
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/results.hpp"
 #include "gearimpact/io/signal_files.hpp"
+#include "gearimpact/signals/decimate.hpp"
 #include "gearimpact/signals/indicators.hpp"
 #include "gearimpact/signals/order_tracking.hpp"
 #include "gearimpact/signals/recorder.hpp"
@@ -128,6 +129,7 @@ ToothPassage marked_passage(const SignalsOptions& o) {
 InputError as_flags(const InputError& e) {
   static const std::vector<std::pair<std::string, std::string>> flags{
       {"sample rate", "--sample-rate"},
+      {"output rate", "--sample-rate"},
       {"samples per revolution", "--samples-per-revolution"},
       {"teeth", "--teeth"},
       {"sidebands", "--sidebands"},
@@ -214,7 +216,8 @@ void mark_sidebands(Figure& f, double mesh, double shaft, std::size_t sidebands,
       }
     }
   }
-  f.setup.emplace_back("set key top right opaque box samplen 2");
+  // Below the plot: the harmonics' labels along the top stay free.
+  f.setup.emplace_back("set key below horizontal samplen 2");
   f.series.push_back("NaN with lines lw 1.5 lc rgb '#c0392b' title " + gnuplot_string(label));
 }
 
@@ -266,9 +269,13 @@ void spectrum_figure(const std::filesystem::path& dir, const std::string& name,
   f.series = {gnuplot_string(name + ".csv") +
               " using 1:($2 > 0 ? $2 : NaN) with lines lw 1.2 lc rgb '#1f4e99' notitle"};
   if (mesh > 0.0 && shaft > 0.0 && sidebands > 0) {
-    mark_sidebands(f, mesh, shaft, sidebands, top,
-                   "sidebands " + mesh_name + " +- 1.." + std::to_string(sidebands) +
-                       (name == "order_spectrum" ? " orders" : " shaft frequencies"));
+    const std::string orders = sidebands == 1 ? "1" : "1.." + std::to_string(sidebands);
+    const bool one = sidebands == 1;
+    mark_sidebands(
+        f, mesh, shaft, sidebands, top,
+        "sidebands " + mesh_name + " +- " + orders +
+            (name == "order_spectrum" ? (one ? " order" : " orders")
+                                      : (one ? " shaft frequency" : " shaft frequencies")));
   }
   render(dir, f);
 }
@@ -638,15 +645,27 @@ void run_signals(SignalsOptions o) {
   std::vector<double> filtered_signal;
   std::vector<double> filtered_angle;
   if (coarser) {
+    // The record on its own uniform grid through the anti-alias decimator, which gives the
+    // coarser grid's instants half its span inside the record's ends; the angle, smooth, at the
+    // same instants by the cubic.
     naming_flags([&] {
-      filtered_time = signals::uniform_times(record_time.front(), record_time.back(), record_rate);
-      filtered_signal =
-          signals::low_pass_even(signals::resample_uniform(record_time, recorded, record_rate,
-                                                           o.time_column.c_str(), o.column.c_str()),
-                                 record_rate, 0.5 * *rate);
+      signals::UniformRecord uniform_record;
+      uniform_record.start_s = record_time.front();
+      uniform_record.rate_hz = record_rate;
+      uniform_record.values = signals::resample_uniform(record_time, recorded, record_rate,
+                                                        o.time_column.c_str(), o.column.c_str());
+      const signals::UniformRecord decimated = signals::anti_alias_resample(uniform_record, *rate);
+      filtered_signal = decimated.values;
+      filtered_time.resize(filtered_signal.size());
+      for (std::size_t n = 0; n < filtered_time.size(); ++n) {
+        filtered_time[n] = decimated.start_s + static_cast<double>(n) / *rate;
+      }
       if (has_angle) {
-        filtered_angle = signals::resample_uniform(record_time, record_angle, record_rate,
-                                                   o.time_column.c_str(), o.angle_column.c_str());
+        filtered_angle.resize(filtered_time.size());
+        for (std::size_t n = 0; n < filtered_time.size(); ++n) {
+          filtered_angle[n] =
+              signals::interpolate_cubic(record_time, record_angle, filtered_time[n]);
+        }
       }
     });
   }
@@ -665,7 +684,11 @@ void run_signals(SignalsOptions o) {
   run.end_s = time.back();
   run.sample_rate_hz = rate ? *rate : record_rate;
   run.record_rate_hz = record_rate;
-  if (coarser) run.low_pass_hz = 0.5 * *rate;
+  if (coarser) {
+    run.anti_alias = signals::kaiser_low_pass(record_rate, signals::kAliasFreeFraction * *rate,
+                                              signals::kStopbandFraction * *rate,
+                                              signals::kAntiAliasAttenuationDb);
+  }
   run.accelerometer = accelerometer;
   run.path = path;
   run.noise_snr_db = noise_snr;
@@ -692,7 +715,7 @@ void run_signals(SignalsOptions o) {
   AtomicFolder folder(o.out, o.overwrite, {o.input});
   const std::filesystem::path dir = folder.temporary();
   write_file_atomically((dir / "spectrum.csv").string(), spectrum_csv(spectrum, "frequency_hz"));
-  write_waveform(dir, o.column, uniform, time.front(), run.sample_rate_hz);
+  write_waveform(dir, o.column, uniform, analysed_time.front(), run.sample_rate_hz);
   signals::Indicators indicators;
   std::vector<double> tsa_values;
   double mesh_hz = 0.0;
@@ -724,7 +747,9 @@ void run_signals(SignalsOptions o) {
     }
     run.angle_grid = a.grid;
     run.revolutions = a.revolutions;
-    run.shaft_frequency_hz = (angle.back() - angle.front()) / (2.0 * pi * span);
+    // Over the analysed instants: the decimator's record starts and ends inside the input's.
+    run.shaft_frequency_hz = (angle.back() - angle.front()) /
+                             (2.0 * pi * (analysed_time.back() - analysed_time.front()));
     write_file_atomically((dir / "order_spectrum.csv").string(), spectrum_csv(a.orders, "order"));
     write_file_atomically((dir / "tsa.csv").string(),
                           tsa_csv(a.tsa, a.parts ? &*a.parts : nullptr));
@@ -741,15 +766,16 @@ void run_signals(SignalsOptions o) {
   const std::string json = indicators_json(run, indicators);
   write_file_atomically((dir / "indicators.json").string(), json);
   if (o.plots) {
-    const double nyquist = run.sample_rate_hz / 2.0;
+    // The spectrum up to the band free of aliases when the record was decimated, else up to
+    // the Nyquist frequency.
+    const double nyquist = run.anti_alias ? run.anti_alias->pass_hz : run.sample_rate_hz / 2.0;
     const std::size_t sidebands = sets ? sets->sidebands : 0;
-    waveform_figure(dir, o.column, uniform, time.front(), run.sample_rate_hz,
+    waveform_figure(dir, o.column, uniform, analysed_time.front(), run.sample_rate_hz,
                     run.shaft_frequency_hz);
     spectrum_figure(
         dir, "spectrum",
         "Amplitude spectrum of " + literal_key(o.column) + " (" + run.window + " window)",
-        "frequency (Hz)", mesh_hz > 0.0 ? std::min(nyquist, 6.5 * mesh_hz) : nyquist, mesh_hz,
-        "f_m", o.column, run.shaft_frequency_hz, sidebands);
+        "frequency (Hz)", nyquist, mesh_hz, "f_m", o.column, run.shaft_frequency_hz, sidebands);
     if (has_angle) {
       const double half = static_cast<double>(run.angle_grid) / 2.0;
       const double z = sets ? static_cast<double>(sets->teeth) : 0.0;
@@ -789,8 +815,9 @@ void register_signals_commands(CLI::App& app) {
                   "Hz (a plain number, or \"80 kHz\") of the uniform grid the samples are "
                   "interpolated onto (cubic, fourth "
                   "order); default: the record's own rate, 1 / its median spacing; a lower rate "
-                  "low-passes the record below its Nyquist frequency first (an anti-alias "
-                  "filter)");
+                  "decimates the record through an anti-alias filter (a linear-phase Kaiser FIR, "
+                  "100 dB from the lower rate's Nyquist frequency, alias-free below 0.4 of it; "
+                  "the record then starts and ends half the filter's span inside)");
   cmd->add_option("--window", o->window, "rectangular or hann (default hann)");
   cmd->add_option("--angle-column", o->angle_column,
                   "the shaft's angle, rad, strictly increasing (e.g. theta1_rad): order "

@@ -64,7 +64,7 @@ from ._results import (
     stiffness,
     sweep_friction,
 )
-from ._signals import indicators, low_pass, order_analysis, spectrum, tacho_angle, tacho_jitter
+from ._signals import decimate, indicators, low_pass, order_analysis, spectrum, tacho_angle, tacho_jitter
 from ._program import (
     iso6336,
     mesh_stiffness,
@@ -92,6 +92,7 @@ __all__ = [
     "contact_angle",
     "contact_ratio",
     "contact_segment",
+    "decimate",
     "energy_ratios",
     "gear_pair",
     "indicators",

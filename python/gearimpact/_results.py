@@ -188,7 +188,8 @@ def simulate(
     if changes:
         run = run.replace(**changes)
     try:
-        summary_json, series, impacts, samples, tacho = _core.simulate(run, keep, rows, rate, kind)
+        summary_json, series, impacts, samples, tacho, warnings = _core.simulate(
+            run, keep, rows, rate, kind)
     except CaseError as error:
         if "rows of time series" not in str(error):
             raise
@@ -200,6 +201,9 @@ def simulate(
     summary = json.loads(summary_json)
     if summary.get("foundation_extrapolated"):
         _warnings.warn(f"{run.name or 'the case'}: {summary['warning']}")
+    # The run's own warnings, as the program prints them (a drifting speed, teeth pressed far in).
+    for warning in warnings:
+        _warnings.warn(f"{run.name or 'the case'}: {warning}")
     return SimulationResult(run, summary, series, impacts, samples, tacho)
 
 

@@ -151,6 +151,7 @@ auto naming_keywords(Run run) {
   } catch (const InputError& e) {
     static const std::vector<std::pair<std::string, std::string>> keywords{
         {"sample rate", "rate"},
+        {"output rate", "rate_out"},
         {"samples per revolution", "samples_per_revolution"},
         {"shaft orders", "shaft_orders"},
         {"nb4 half width", "nb4_half_width"},
@@ -345,8 +346,11 @@ py::tuple run_simulation(const SimulationCase& c, bool keep_series, long long ma
   py::dict samples = c.bearings.kind == BearingKind::elastic
                          ? planar_sample_columns(result.planar_samples)
                          : sample_columns(std::move(result.samples));
+  py::list warnings;
+  for (const std::string& w : result_warnings(c, result.summary)) warnings.append(w);
   return py::make_tuple(summary_json(result.summary), series_columns(std::move(result.series)),
-                        impact_records(result.impacts), samples, to_array(result.tacho_times_s));
+                        impact_records(result.impacts), samples, to_array(result.tacho_times_s),
+                        warnings);
 }
 
 // The stiffness columns of `gearimpact stiffness` at the contact positions xs.
@@ -1010,6 +1014,26 @@ void define_module(py::module_& m) {
         return to_array(naming_keywords([&] { return signals::low_pass(values, rate, cutoff); }));
       },
       py::arg("signal"), py::arg("rate"), py::arg("cutoff"));
+  m.def(
+      "anti_alias_resample",
+      [](const ArrayIn& x, double rate, double rate_out, double start) {
+        signals::UniformRecord r;
+        r.values = vector_of(x, "signal");
+        r.rate_hz = rate;
+        r.start_s = start;
+        const signals::UniformRecord out =
+            naming_keywords([&] { return signals::anti_alias_resample(r, rate_out); });
+        std::vector<double> t(out.values.size());
+        for (std::size_t n = 0; n < t.size(); ++n) {
+          t[n] = out.start_s + static_cast<double>(n) / out.rate_hz;
+        }
+        py::dict d;
+        d["t"] = to_array(t);
+        d["values"] = to_array(out.values);
+        d["alias_free_band"] = signals::kAliasFreeFraction * rate_out;
+        return d;
+      },
+      py::arg("signal"), py::arg("rate"), py::arg("rate_out"), py::arg("start"));
   m.def(
       "angle_from_pulses",
       [](const ArrayIn& pulses, long long per_revolution, const ArrayIn& t) {

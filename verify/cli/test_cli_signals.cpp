@@ -144,9 +144,10 @@ TEST_CASE("signals: the waveform is the record's end, the sidebands are marked w
   CHECK(relative_difference(std::stod(last.substr(0, last.find(','))), 1.0) < 1e-10);
   CHECK(relative_difference(std::stod(last.substr(last.find(',') + 1)),
                             1.0 + std::cos(20.0 * theta) + 0.25 * std::cos(40.0 * theta)) < 1e-8);
-  // Sidebands h f_m +- 1, 2 f_s of each harmonic drawn: 6 harmonics up to 6.5 f_m in the
-  // spectrum, 3 up to order 70 (3.5 z) in the order spectrum, 4 ticks each.
-  CHECK(count_of(read(out / "spectrum.gp"), "graph 0.86") == 6 * 4);
+  // Sidebands h f_m +- 1, 2 f_s of each harmonic drawn: the spectrum spans the record's band (to
+  // its Nyquist frequency, 25 kHz) and marks its first 20 harmonics (f_m = 100 Hz), the order
+  // spectrum 3 up to order 70 (3.5 z), 4 ticks each.
+  CHECK(count_of(read(out / "spectrum.gp"), "graph 0.86") == 20 * 4);
   CHECK(count_of(read(out / "order_spectrum.gp"), "graph 0.86") == 3 * 4);
   CHECK(read(out / "order_spectrum.gp").find("set arrow from 38, graph 0.86") != std::string::npos);
   // The waveform's figure spans at most the last two revolutions and what waveform.csv holds:
@@ -206,22 +207,20 @@ TEST_CASE("signals shades a marked tooth's passage on the TSA, where tooth_passa
   CHECK(script.find("pinion tooth 7 in contact") != std::string::npos);
 }
 
-TEST_CASE("signals at a rate below the record's low-passes it first: nothing folds") {
-  // 4000 samples at 8 kHz of sin(2 pi 300 t) + 0.5 sin(2 pi 3300 t), from
-  // 0.25 s on (2000 samples, 500 at 2 kHz), kept at 2 kHz (Nyquist 1 kHz):
-  // 3300 Hz would fold to |3300 - 2 2000| = 700 Hz. The low-pass filters the
-  // record's even extension (the record and its mirror, so that a record's
-  // ends do not ring): for these sines, whole periods long, the mirror joins
-  // them with a kink in slope, whose leakage reads 1.1e-4 at 300 Hz and
-  // 5.7e-4 at 700 Hz (measured); 1e-3 of the tone is the bar. Without the
-  // low-pass the 2 kHz grid's samples hold the 3300 Hz tone, which reads 0.5
-  // at 700 Hz.
+TEST_CASE("signals at a rate below the record's decimates it through the anti-alias filter") {
+  // 4258 samples at 8 kHz of sin(2 pi 300 t) + 0.5 sin(2 pi 3300 t), from 0.25 s on (2258
+  // samples), kept at 2 kHz (Nyquist 1 kHz): 3300 Hz would fold to |3300 - 2 2000| = 700 Hz. The
+  // decimator at the ratio 4 has 259 taps and gives only the instants whose span lies inside the
+  // record: from ceil(129 / 4) = 33 outputs in, 500 samples (0.25 s: whole periods of 300 Hz and
+  // of the folded 700 Hz, so each falls on a bin of the rectangular window). Its passband ripple
+  // and stopband are 1e-5 (100 dB) within Kaiser's 1 dB: the bar is 2e-5 of the tone. Without
+  // the filter the 2 kHz grid's samples hold the 3300 Hz tone, which reads 0.5 at 700 Hz.
   Scratch scratch("signals-alias");
   const auto csv = scratch.dir / "tones.csv";
   {
     std::ofstream out(csv);
     out << "t_s,x\n";
-    for (int i = 0; i < 4000; ++i) {
+    for (int i = 0; i < 4258; ++i) {
       const double t = i / 8000.0;
       char line[96];
       std::snprintf(line, sizeof line, "%.17g,%.17g\n", t,
@@ -230,26 +229,28 @@ TEST_CASE("signals at a rate below the record's low-passes it first: nothing fol
     }
   }
   const auto run = [&](const std::string& flags, const std::string& folder) {
-    const auto r = run_command(kCli + " signals " + csv.string() + " --column x --window " +
-                               "rectangular --from '0.25 s' " + flags + " --no-plots --out " +
-                               (scratch.dir / folder).string());
+    const auto r =
+        run_command(kCli + " signals " + csv.string() + " --column x --window " + "rectangular " +
+                    flags + " --no-plots --out " + (scratch.dir / folder).string());
     CAPTURE(r.err);
     REQUIRE(r.exit_code == 0);
     return nlohmann::json::parse(r.out);
   };
-  const nlohmann::json kept = run("--sample-rate 2000", "kept");
+  const nlohmann::json kept = run("--from '0.25 s' --sample-rate 2000", "kept");
   CHECK(kept["record_start_s"].get<double>() == 0.25);
   // 1 / the spacing 1/8000 as the CSV's 17 digits give it.
   CHECK(relative_difference(kept["record_rate_hz"].get<double>(), 8000.0) < 1e-12);
-  CHECK(kept["anti_alias"].get<std::string>().find("below 1000 Hz") != std::string::npos);
+  CHECK(kept["anti_alias"]["stopband_edge_hz"].get<double>() == 1000.0);
+  CHECK(kept["anti_alias"]["taps"].get<int>() == 259);
+  CHECK(kept["alias_free_band_hz"].get<double>() == 800.0);
   CHECK(kept["samples"].get<int>() == 500);
   const std::string spectrum = read(scratch.dir / "kept" / "spectrum.csv");
-  CHECK(std::abs(amplitude_at(spectrum, 300.0) - 1.0) < 1e-3);
-  CHECK(amplitude_at(spectrum, 700.0) < 1e-3);
+  CHECK(std::abs(amplitude_at(spectrum, 300.0) - 1.0) < 2e-5);
+  CHECK(amplitude_at(spectrum, 700.0) < 2e-5);
   // At the record's own rate nothing is filtered and 3300 Hz reads 0.5 (to
   // 1e-9: measured 6e-11, the cubic's error at the record's own instants
-  // given to 17 digits).
-  const nlohmann::json own = run("", "own");
+  // given to 17 digits), from 2018 / 8000 s: 2240 samples, whole periods of both tones.
+  const nlohmann::json own = run("--from '0.25225 s'", "own");
   CHECK(own["anti_alias"].is_null());
   const std::string full = read(scratch.dir / "own" / "spectrum.csv");
   CHECK(std::abs(amplitude_at(full, 3300.0) - 0.5) < 1e-9);

@@ -194,6 +194,10 @@ TEST_CASE("bounds and meaningless sweeps are refused before any point runs, nami
       {"sweep 1 --vary model.damping_reference_speed --from 1 --to 2 --points 2 "
        "--set model.friction_coefficient=0 --damping-update each-impact",
        {"--vary", "model.damping_reference_speed", "frozen"}},
+      // "auto" on the sweeps' rigid bearings resolves to each-impact: the same.
+      {"sweep 1 --vary model.damping_reference_speed --from 1 --to 2 --points 2 "
+       "--set model.friction_coefficient=0 --damping-update auto",
+       {"--vary", "model.damping_reference_speed", "resolves to \"each-impact\""}},
       // An integer key on a grid of fractions: refused before the first point, not after it.
       {"sweep 1 --vary gears.teeth1 --from 20 --to 25 --points 3 "
        "--set model.friction_coefficient=0",

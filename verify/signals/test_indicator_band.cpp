@@ -18,7 +18,6 @@
 #include "gearimpact/signals/tsa.hpp"
 #include "gearimpact/stiffness/root_crack.hpp"
 #include "relative.hpp"
-#include "rig_drive.hpp"
 
 using namespace gearimpact;
 using namespace gearimpact::signals;
@@ -32,15 +31,12 @@ struct Record {
 };
 
 // The rig with a root crack of depth `fraction` of the tooth's half thickness at its start in
-// pinion tooth 0 (0: healthy), its sensor recorded at 20.48 kHz (interval averages) from 50 ms
-// (the start's ringing gone) to 0.3 s: ten revolutions at 40 Hz.
+// pinion tooth 0 (0: healthy), its sensor recorded at 20.48 kHz (interval averages) from 0.2 s
+// (the speed controller settled: every revolution after 0.2 s is within 1.9e-7 of the
+// reference speed, test_drive) to 0.45 s: ten revolutions at 40 Hz. The example's own drive and
+// damping reading (speed-controlled, D frozen at 1 m/s).
 Record rig_record(double fraction) {
   SimulationCase c = read_case_file(std::string(GEARIMPACT_EXAMPLES_DIR) + "/rig_17_38.toml");
-  // Constant torques balancing friction's 17.592 W at 40 Hz and D set at each impact, the
-  // drive and reading the indicators' bands were measured on. Under the example's speed
-  // controller and D frozen at 1 m/s the lightly damped record's NB4 moves by 0.2 to 4 % over
-  // these cracks, not monotonically.
-  gearimpact::verify::use_rig_constant_drive(c);
   if (fraction > 0.0) {
     ToothFault crack;
     crack.gear = Gear::one;
@@ -55,14 +51,14 @@ Record rig_record(double fraction) {
   }
   c.integrator.kind = IntegratorKind::dopri5;
   c.integrator.step_s = 4e-6;
-  c.integrator.end_time_s = 0.3;
+  c.integrator.end_time_s = 0.45;
   Record r;
   RunControl control;
   control.keep_series = false;
   control.keep_samples = false;
   control.sample_rate_hz = 20480.0;
   control.on_planar_sample = [&r](const PlanarSample& s) {
-    if (s.t_s < 0.05) return;
+    if (s.t_s < 0.2) return;
     r.angle.push_back(s.state.theta1_rad);
     r.sensor.push_back(s.sensor_acceleration_m_per_s2);
   };
@@ -127,8 +123,11 @@ TEST_CASE("NB4 over the whole band between harmonics moves with the crack; over 
                      << ", FM4 " << *i.fm4 << ", h* " << a.indicator_parts->nb4_harmonic);
   }
   // Not one value (over z +- 1 it was 1.5000 for every depth): each depth's NB4 differs from
-  // the healthy one by more than 1 % (measured 1.528, 1.509, 1.511, 1.738 at 0, 0.25, 0.5, 0.75).
-  for (std::size_t k = 1; k < nb4.size(); ++k) CHECK(relative_difference(nb4[k], nb4[0]) > 0.01);
+  // the healthy one by more than 100 times the envelope's interpolation error (1e-6, above), and
+  // the deepest crack's by more than 1 % (measured 1.5446, 1.5385, 1.5308, 1.6106 at 0, 0.25,
+  // 0.5, 0.75: NB4 falls slightly at the smaller cracks, whose burst is below the band's level).
+  for (std::size_t k = 1; k < nb4.size(); ++k) CHECK(relative_difference(nb4[k], nb4[0]) > 1e-4);
+  CHECK(relative_difference(nb4.back(), nb4[0]) > 0.01);
   OrderSets narrow = kPinion;
   narrow.nb4_half_width = 1;
   CHECK_THROWS_AS(check_order_sets(narrow, 512), InputError);

@@ -38,6 +38,7 @@
 #include "gearimpact/numerics/quadrature.hpp"
 #include "gearimpact/paper/statements.hpp"
 #include "gearimpact/paper/table1.hpp"
+#include "gearimpact/signals/decimate.hpp"
 #include "gearimpact/signals/fft.hpp"
 #include "gearimpact/signals/indicators.hpp"
 #include "gearimpact/signals/order_tracking.hpp"

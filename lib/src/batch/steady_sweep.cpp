@@ -49,10 +49,21 @@ void require_read_key(const std::string& key, const SimulationCase& c, const cha
                      "a key the steady state reads: it sets the integrator itself (RK4, the step "
                      "from the steps per contact period, a run per excitation period)");
   }
-  if (!applies(field, c)) {
+  // The condition as the run resolves it: damping_update = "auto" reads as the reading the
+  // bearings give it (each-impact on the sweeps' rigid bearings), which a frozen D's reference
+  // speed does not enter.
+  SimulationCase resolved = c;
+  resolved.model.damping_update = resolved_damping_update(c);
+  if (!applies(field, resolved)) {
     throw InputError(
         flag, key,
-        "a key this case reads: " + key + " applies only when " + field.only_when->text());
+        "a key this case reads: " + key + " applies only when " + field.only_when->text() +
+            (c.model.damping_update == DampingUpdate::automatic &&
+                     field.only_when->key == "damping_update"
+                 ? " (here damping_update = \"auto\" resolves to \"" +
+                       std::string(name_of(kDampingUpdates, resolved.model.damping_update)) +
+                       "\" by the bearings)"
+                 : std::string()));
   }
 }
 

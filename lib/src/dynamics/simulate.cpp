@@ -9,6 +9,8 @@
 
 #include "gearimpact/case/schema.hpp"
 #include "gearimpact/constants.hpp"
+#include "gearimpact/contact/contact.hpp"
+#include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/dynamics/planar.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/dynamics/system.hpp"
@@ -137,11 +139,13 @@ SimulationResult simulate_checked(const SimulationCase& c, const StiffnessTable&
     result.summary.foundation_extrapolations =
         foundation_extrapolations(c.gears, c.model.stiffness);
     result.summary.foundation_extrapolated = !result.summary.foundation_extrapolations.empty();
+    result.summary.equivalent_mesh_damping_ratio = equivalent_mesh_damping_ratio(c, table);
     return result;
   }
   SimulationResult result = c.integrator.kind == IntegratorKind::rk4
                                 ? run_rk4(c, table, control)
                                 : run_adaptive(c, table, control);
+  result.summary.equivalent_mesh_damping_ratio = equivalent_mesh_damping_ratio(c, table);
   if (result.summary.rattle) add_rattle_index(c, table, control, *result.summary.rattle);
   const StiffnessModel& k = c.model.stiffness;
   result.summary.foundation_extrapolations = foundation_extrapolations(c.gears, k);
@@ -330,6 +334,27 @@ std::vector<std::string> result_warnings(const SimulationCase& c, const Simulati
                                   "a speed controller, docs/vibration.md) holds it")));
   }
   return warnings;
+}
+
+std::optional<double> equivalent_mesh_damping_ratio(const SimulationCase& c,
+                                                    const StiffnessTable& table) {
+  if (resolved_damping_update(c) != DampingUpdate::frozen ||
+      c.model.damping_stiffness != DampingStiffness::current_pair) {
+    return std::nullopt;
+  }
+  double force = 0.0;
+  if (known_mean(c.torque2)) {
+    force = std::fabs(mean_torque_n_m(c.torque2, "torque2")) / base_radius(c.gears, Gear::two);
+  }
+  if (force == 0.0 && known_mean(c.torque1)) {
+    force = std::fabs(mean_torque_n_m(c.torque1, "torque1")) / base_radius(c.gears, Gear::one);
+  }
+  if (force == 0.0) return std::nullopt;
+  const double speed = c.model.damping_reference_speed_m_s;
+  const double g = damping_factor_per_stiffness(
+      c.model.damping_form, restitution_coefficient(c.model.restitution, speed), speed);
+  return g * force /
+         (2.0 * std::sqrt(mean_mesh_stiffness_n_per_m(c, table) * effective_mass_kg(c.gears)));
 }
 
 std::vector<std::string> run_warnings(const SimulationCase& c) {

@@ -225,6 +225,9 @@ std::string summary_json(const SimulationSummary& s) {
   json_number(out, "final_w1_rad_s", s.final_w1_rad_per_s);
   json_number(out, "final_w2_rad_s", s.final_w2_rad_per_s);
   if (s.speed_drift_max_rel) json_optional(out, "speed_drift_max_rel", s.speed_drift_max_rel);
+  if (s.equivalent_mesh_damping_ratio) {
+    json_optional(out, "equivalent_mesh_damping_ratio", s.equivalent_mesh_damping_ratio);
+  }
   if (s.rattle) {
     // Under a kinematic driver only, so that other runs' summaries keep their bytes.
     const RattleSummary& r = *s.rattle;

@@ -233,11 +233,18 @@ std::string indicators_json(const SignalsRun& run, const signals::Indicators& i)
   j["resampling"] = "cubic Lagrange through the four nearest samples (fourth order)";
   j["sample_rate_hz"] = run.sample_rate_hz;
   j["record_rate_hz"] = run.record_rate_hz;
-  if (run.low_pass_hz) {
-    j["anti_alias"] = "the record on its own uniform grid low-passed below " +
-                      format_number(*run.low_pass_hz) +
-                      " Hz by the DFT of its even extension (ideal; the record followed by itself "
-                      "reversed, so that its ends do not ring), then resampled";
+  if (run.anti_alias) {
+    const signals::KaiserLowPass& f = *run.anti_alias;
+    Json a;
+    a["filter"] = "linear-phase FIR, Kaiser window (no delay), on the record's own uniform grid";
+    a["passband_edge_hz"] = f.pass_hz;
+    a["stopband_edge_hz"] = f.stop_hz;
+    a["attenuation_db"] = f.attenuation_db;
+    a["taps"] = f.order + 1;
+    a["kaiser_beta"] = f.beta;
+    a["input_rate_hz"] = f.rate_hz;
+    j["anti_alias"] = a;
+    j["alias_free_band_hz"] = f.pass_hz;
   } else {
     j["anti_alias"] = nullptr;
   }

@@ -181,16 +181,3 @@ AngleSignal resample_on_angle(const std::vector<double>& angle, const std::vecto
 }
 
 }  // namespace gearimpact::signals
-
-namespace gearimpact::signals {
-
-std::vector<double> low_pass_even(const std::vector<double>& uniform, double rate_hz,
-                                  double cutoff_hz) {
-  std::vector<double> extended(uniform);
-  extended.insert(extended.end(), uniform.rbegin(), uniform.rend());
-  std::vector<double> filtered = low_pass(extended, rate_hz, cutoff_hz);
-  filtered.resize(uniform.size());
-  return filtered;
-}
-
-}  // namespace gearimpact::signals

@@ -152,6 +152,9 @@ struct SimulationSummary {
   // largest |mean pinion speed / reference mean - 1| over the run's whole
   // revolutions; none before one. A planar run above drive.speed_tolerance warns.
   std::optional<double> speed_drift_max_rel;
+  // A frozen D as a damping ratio of the mesh's relative mode
+  // (equivalent_mesh_damping_ratio below); none under the other readings.
+  std::optional<double> equivalent_mesh_damping_ratio;
   // model.friction_coefficient, f of the constant law: the coefficient of every
   // pair under friction_law = "constant" only.
   double friction_coefficient = 0.0;
@@ -384,6 +387,17 @@ void validate(const SimulationCase& c);
 // start with a relative speed). A driver's and a drag's means are not known before the run, so a
 // driven case is checked for its speeds only. Bounds as require_balanced_mean_torques: 1e-9.
 std::vector<std::string> run_warnings(const SimulationCase& c);
+
+// A frozen D (32) as a damping ratio: the Hertzian damper (34) linearised about the static
+// deflection delta_s = F_s / k_mean, G = D delta delta' ~ (D delta_s) delta' per loaded pair.
+// With D = Ke g, g = damping_factor_per_stiffness(form, e(V_ref), V_ref) and K each loaded pair's
+// current Ke (damping_stiffness = "current-pair"), the pairs' dampers sum to the viscous
+// c = g k_mean delta_s = g F_s, whose ratio to the relative mode's critical damping is
+//   zeta = g F_s / (2 sqrt(k_mean m_e)).
+// F_s is the static mesh force of the load: |mean torque2| / Rb2, else |mean torque1| / Rb1.
+// None unless the resolved reading is frozen, K is the current pair's and a mean torque is known.
+std::optional<double> equivalent_mesh_damping_ratio(const SimulationCase& c,
+                                                    const StiffnessTable& table);
 
 // What a user should hear about a finished run: teeth that overlapped on the line of action by
 // more than kMostPlausibleOverlapModules of the module, far beyond any elastic deflection. That

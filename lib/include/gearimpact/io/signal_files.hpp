@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "gearimpact/signals/decimate.hpp"
 #include "gearimpact/signals/indicators.hpp"
 #include "gearimpact/signals/recorder.hpp"
 #include "gearimpact/signals/spectrum.hpp"
@@ -53,9 +54,9 @@ struct SignalsRun {
   std::string angle_column;  // empty without an angle
   double sample_rate_hz = 0.0;
   double record_rate_hz = 0.0;  // the record's own, 1 / its median spacing
-  // The anti-alias low-pass before a grid coarser than the record (low_pass
-  // of resample.hpp), Hz; empty when the grid is not coarser.
-  std::optional<double> low_pass_hz;
+  // The anti-alias decimator before a grid coarser than the record (signals/decimate.hpp);
+  // empty when the grid is not coarser.
+  std::optional<signals::KaiserLowPass> anti_alias;
   std::size_t samples = 0;
   std::string window;
   std::size_t samples_per_revolution = 0;  // of the TSA

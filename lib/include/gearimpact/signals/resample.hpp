@@ -54,17 +54,11 @@ std::vector<double> uniform_times(double t0, double t_end, double rate);
 // rings into its first and last stretch). A recorder's anti-alias filter
 // before a coarser rate: a simulated acceleration steps where a pair enters
 // or leaves, and its content far above a coarser grid's Nyquist frequency
-// would fold onto the spectrum. Throws InputError naming "sample rate" or
+// would fold onto the spectrum (the program's recorder uses the anti-alias decimator of
+// decimate.hpp instead, which neither leaks nor rings). Throws InputError naming "sample rate" or
 // "cutoff" unless each is finite and > 0, and "signal" for fewer than 2
 // samples or a non-finite one.
 std::vector<double> low_pass(const std::vector<double>& uniform, double rate_hz, double cutoff_hz);
-
-// low_pass of the record's even extension (the record followed by itself reversed), its first
-// half kept: the extension has no jump where it wraps, so the ideal filter does not ring at the
-// record's ends as it does where their values differ (only the slopes' mismatch remains, whose
-// ringing falls off a factor of the bin count faster). Throws as low_pass.
-std::vector<double> low_pass_even(const std::vector<double>& uniform, double rate_hz,
-                                  double cutoff_hz);
 
 // A signal sampled at equal steps of a shaft's angle, whole revolutions only.
 struct AngleSignal {
