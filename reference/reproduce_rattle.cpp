@@ -34,38 +34,12 @@ struct MapPoint {
   RattleSummary rattle;
 };
 
-// Case 1's pair without friction or Hertzian damping on a constant mesh
-// stiffness k, driven at w1 = W + a sin(w t + 90 deg) against the drag, and
-// started on the forced solution of the contact (as verify/dynamics/test_rattle.cpp),
-// so that whatever separates is the forcing's doing, not a start transient.
+// Table 1's driven loose gear (driven_loose_gear) at the map's point.
 SimulationCase map_case(double k, double order, double a) {
-  SimulationCase c = paper_case(1);
+  SimulationCase c = driven_loose_gear(k, kMeanSpeed, order, a, kDrag);
   c.name = "rattle";
-  c.model.friction_coefficient = 0.0;
-  c.model.damping_update = DampingUpdate::off;
-  c.model.mesh_stiffness = MeshStiffnessMode::constant;
-  c.model.constant_mesh_stiffness_n_per_m = k;
-  c.torque1 = Torque{};
-  c.torque1.kind = Torque::Kind::prescribed_speed;
-  c.torque1.mean_speed_rad_per_s = kMeanSpeed;
-  c.torque1.driver_orders = {order};
-  c.torque1.driver_speed_amplitudes_rad_per_s = {a};
-  c.torque1.harmonic_phases_rad = {pi / 2.0};
-  c.torque2 = Torque{};
-  c.torque2.kind = Torque::Kind::drag;
-  c.torque2.drag_constant_n_m = kDrag;
-  const GearPair& g = c.gears;
-  const double rb1 = base_radius(g, Gear::one);
-  const double rb2 = base_radius(g, Gear::two);
-  const double m2 = moment_of_inertia(g, Gear::two) / (rb2 * rb2);
-  const double w = order * kMeanSpeed;
-  const double r2 = m2 * w * w / k;
-  c.initial.theta1_rad = 0.0;
-  c.initial.theta2_rad = -(g.backlash_m + kDrag / (rb2 * k)) / rb2;
-  c.initial.w1_rad_per_s = kMeanSpeed + a;
-  c.initial.w2_rad_per_s = rb1 * (kMeanSpeed + a / (1.0 - r2)) / rb2;
   // Three driver periods: the contact force's minimum comes in the first.
-  c.integrator.end_time_s = 3.0 * 2.0 * pi / w;
+  c.integrator.end_time_s = 3.0 * 2.0 * pi / (order * kMeanSpeed);
   c.integrator.step_s = 2e-6;
   return c;
 }

@@ -46,32 +46,11 @@ constexpr double kDrag = 2.0;  // T_d, N m
 // reaches zero when J2 (Rb1 / Rb2) A w^2 = T_d (1 - r^2): the rigid limit's
 // J2 (Rb1 / Rb2) A w^2 = T_d times (1 - r^2).
 SimulationCase driven_case(double k, double a) {
-  SimulationCase c = paper_case(1);
-  c.model.friction_coefficient = 0.0;
-  c.model.damping_update = DampingUpdate::off;
-  c.model.mesh_stiffness = MeshStiffnessMode::constant;
-  c.model.constant_mesh_stiffness_n_per_m = k;
-  c.torque1 = Torque{};
-  c.torque1.kind = Torque::Kind::prescribed_speed;
-  c.torque1.mean_speed_rad_per_s = kMeanSpeed;
-  c.torque1.driver_orders = {kOrder};
-  c.torque1.driver_speed_amplitudes_rad_per_s = {a};
-  c.torque1.harmonic_phases_rad = {pi / 2.0};
-  c.torque2 = Torque{};
-  c.torque2.kind = Torque::Kind::drag;
-  c.torque2.drag_constant_n_m = kDrag;
-  const GearPair& g = c.gears;
-  const double rb1 = base_radius(g, Gear::one);
-  const double rb2 = base_radius(g, Gear::two);
-  const double m2 = moment_of_inertia(g, Gear::two) / (rb2 * rb2);
-  const double w = kOrder * kMeanSpeed;
-  const double r2 = m2 * w * w / k;
-  c.initial.theta1_rad = 0.0;
-  c.initial.theta2_rad = -(g.backlash_m + kDrag / (rb2 * k)) / rb2;
-  c.initial.w1_rad_per_s = kMeanSpeed + a;
-  c.initial.w2_rad_per_s = rb1 * (kMeanSpeed + a / (1.0 - r2)) / rb2;
+  SimulationCase c = driven_loose_gear(k, kMeanSpeed, kOrder, a, kDrag);
+  const double rb2 = base_radius(c.gears, Gear::two);
+  const double m2 = moment_of_inertia(c.gears, Gear::two) / (rb2 * rb2);
   // Two driver periods: the force's minimum comes in the first.
-  c.integrator.end_time_s = 2.0 * 2.0 * pi / w;
+  c.integrator.end_time_s = 2.0 * 2.0 * pi / (kOrder * kMeanSpeed);
   // At least 40 steps per contact period of the loose gear on the spring,
   // 2 pi / sqrt(k / m2), and within the step bound of case 1's stiffest
   // contact (2.29 us), which validation checks whatever the mesh stiffness.

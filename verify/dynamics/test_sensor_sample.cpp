@@ -47,30 +47,9 @@ constexpr double kDrag = 2.0;
 // the wheel on the spring: u = Rb2 theta2 moves as Rb1 (W t + (a / w) sin(w t) / (1 - r^2)) +
 // const, r^2 = m2 w^2 / k, so w2 = (Rb1 / Rb2) (W + a cos(w t) / (1 - r^2)).
 SimulationCase driven_oscillator(double k) {
-  SimulationCase c = paper_case(1);
-  c.model.friction_coefficient = 0.0;
-  c.model.damping_update = DampingUpdate::off;
-  c.model.mesh_stiffness = MeshStiffnessMode::constant;
-  c.model.constant_mesh_stiffness_n_per_m = k;
-  c.torque1 = Torque{};
-  c.torque1.kind = Torque::Kind::prescribed_speed;
-  c.torque1.mean_speed_rad_per_s = kMeanSpeed;
-  c.torque1.driver_orders = {kOrder};
-  c.torque1.driver_speed_amplitudes_rad_per_s = {kAmplitude};
-  c.torque1.harmonic_phases_rad = {pi / 2.0};
-  c.torque2 = Torque{};
-  c.torque2.kind = Torque::Kind::drag;
-  c.torque2.drag_constant_n_m = kDrag;
-  const GearPair& g = c.gears;
-  const double rb1 = base_radius(g, Gear::one);
-  const double rb2 = base_radius(g, Gear::two);
-  const double m2 = moment_of_inertia(g, Gear::two) / (rb2 * rb2);
-  const double w = kOrder * kMeanSpeed;
-  const double r2 = m2 * w * w / k;
-  c.initial.theta1_rad = 0.0;
-  c.initial.theta2_rad = -(g.backlash_m + kDrag / (rb2 * k)) / rb2;
-  c.initial.w1_rad_per_s = kMeanSpeed + kAmplitude;
-  c.initial.w2_rad_per_s = rb1 * (kMeanSpeed + kAmplitude / (1.0 - r2)) / rb2;
+  SimulationCase c = driven_loose_gear(k, kMeanSpeed, kOrder, kAmplitude, kDrag);
+  const double m2 = moment_of_inertia(c.gears, Gear::two) /
+                    (base_radius(c.gears, Gear::two) * base_radius(c.gears, Gear::two));
   c.integrator.end_time_s = 0.03;
   c.integrator.step_s = std::min(2.0 * pi / std::sqrt(k / m2) / 40.0, 2e-6);
   return c;

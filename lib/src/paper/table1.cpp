@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 
@@ -65,6 +66,35 @@ SimulationCase paper_case(int number, const PaperReading& reading) {
   c.model.restitution = reading.restitution;
   c.model.coast_phase = reading.coast_phase;
   c.model.stiffness.moment_sign = reading.moment_sign;
+  return c;
+}
+
+SimulationCase driven_loose_gear(double k_n_per_m, double mean_speed_rad_per_s, double order,
+                                 double amplitude_rad_per_s, double drag_n_m) {
+  SimulationCase c = paper_case(1);
+  c.model.friction_coefficient = 0.0;
+  c.model.damping_update = DampingUpdate::off;
+  c.model.mesh_stiffness = MeshStiffnessMode::constant;
+  c.model.constant_mesh_stiffness_n_per_m = k_n_per_m;
+  c.torque1 = Torque{};
+  c.torque1.kind = Torque::Kind::prescribed_speed;
+  c.torque1.mean_speed_rad_per_s = mean_speed_rad_per_s;
+  c.torque1.driver_orders = {order};
+  c.torque1.driver_speed_amplitudes_rad_per_s = {amplitude_rad_per_s};
+  c.torque1.harmonic_phases_rad = {pi / 2.0};
+  c.torque2 = Torque{};
+  c.torque2.kind = Torque::Kind::drag;
+  c.torque2.drag_constant_n_m = drag_n_m;
+  const GearPair& g = c.gears;
+  const double rb1 = base_radius(g, Gear::one);
+  const double rb2 = base_radius(g, Gear::two);
+  const double m2 = moment_of_inertia(g, Gear::two) / (rb2 * rb2);
+  const double w = order * mean_speed_rad_per_s;
+  const double r2 = m2 * w * w / k_n_per_m;
+  c.initial.theta1_rad = 0.0;
+  c.initial.theta2_rad = -(g.backlash_m + drag_n_m / (rb2 * k_n_per_m)) / rb2;
+  c.initial.w1_rad_per_s = mean_speed_rad_per_s + amplitude_rad_per_s;
+  c.initial.w2_rad_per_s = rb1 * (mean_speed_rad_per_s + amplitude_rad_per_s / (1.0 - r2)) / rb2;
   return c;
 }
 

@@ -57,4 +57,16 @@ struct PairLoad {
 // benchmark.
 SimulationCase loaded_paper_pair(double w1_rad_per_s, const PairLoad& load);
 
+// Case 1's pair as a loose gear on a spring: without friction or Hertzian
+// damping, on the constant mesh stiffness k, the pinion driven at
+// w1 = W + a sin(q W t + 90 deg) (a prescribed speed) against a constant drag
+// T_d on the wheel, and started on the forced solution of the contact: the
+// wheel pressed by the drag's static deflection T_d / (Rb2 k) beyond the
+// backlash and moving at Rb1 (W + a / (1 - r)) / Rb2, r = m2 (q W)^2 / k with
+// m2 = J2 / Rb2^2, so that whatever separates is the forcing's doing, not a
+// start transient (docs/model.md, "Rattle of a loose gear"). The integrator's step and end
+// time are the caller's.
+SimulationCase driven_loose_gear(double k_n_per_m, double mean_speed_rad_per_s, double order,
+                                 double amplitude_rad_per_s, double drag_n_m);
+
 }  // namespace gearimpact
