@@ -5,9 +5,15 @@
 // kinematics.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
@@ -166,4 +172,80 @@ TEST_CASE("the compliance read from a section moving rigidly is the load point's
   CHECK(relative_difference(r.centre_line_m_per_n, -std::cos(contact.tau_rad) * centre[0] -
                                                        std::sin(contact.tau_rad) * centre[1]) <
         1e-12);
+}
+
+TEST_CASE(
+    "a root crack's slit runs q from the flank point at r_s, its tip h_c - q sin nu from the "
+    "centre line") {
+  const double r_s = 0.0779;
+  const double h_c = 0.00223;
+  const double q = 0.0015;
+  const double nu = 0.6;
+  const FeSlit slit = root_crack_slit(r_s, h_c, q, nu);
+  // Relative 1e-15 and absolute 1e-18 m: one or two roundings of the inputs' size.
+  CHECK(relative_difference(std::hypot(slit.mouth.x_m, slit.mouth.y_m), r_s) < 1e-15);
+  CHECK(slit.mouth.x_m == h_c);
+  CHECK(std::fabs(slit.tip.x_m - (h_c - q * std::sin(nu))) < 1e-18);
+  // The slit's length from its ends' coordinates, which are 50 times q: 1e-13 leaves room for
+  // the cancellation's 50 ulps of q.
+  CHECK(relative_difference(
+            std::hypot(slit.tip.x_m - slit.mouth.x_m, slit.tip.y_m - slit.mouth.y_m), q) < 1e-13);
+  // Towards the root: the tip lies below the mouth, at nu to the centre line.
+  CHECK(slit.tip.y_m < slit.mouth.y_m);
+  CHECK(std::fabs(std::atan2(slit.mouth.x_m - slit.tip.x_m, slit.mouth.y_m - slit.tip.y_m) - nu) <
+        1e-12);
+}
+
+TEST_CASE("open_slit gives the triangles on the slit's left their own nodes, all but the tip's") {
+  // Six-node triangles around a slit from the mouth (0, 0) on the left edge to the tip (1, 0):
+  // two above it, two below, two beyond the tip. Vertices 1..7, then the mid-side nodes.
+  FeMesh mesh;
+  const std::map<long, std::array<double, 2>> vertices{
+      {1, {0, 0}}, {2, {1, 0}}, {3, {0, 1}}, {4, {1, 1}}, {5, {0, -1}}, {6, {1, -1}}, {7, {2, 0}}};
+  mesh.nodes_m = vertices;
+  long next = 7;
+  std::map<std::pair<long, long>, long> mid;
+  const auto middle = [&](long a, long b) {
+    const auto key = std::minmax(a, b);
+    const auto found = mid.find(key);
+    if (found != mid.end()) return found->second;
+    const long n = ++next;
+    mesh.nodes_m[n] = {0.5 * (mesh.nodes_m[a][0] + mesh.nodes_m[b][0]),
+                       0.5 * (mesh.nodes_m[a][1] + mesh.nodes_m[b][1])};
+    mid[key] = n;
+    return n;
+  };
+  for (const auto& [a, b, c] : std::vector<std::array<long, 3>>{
+           {1, 2, 3}, {2, 4, 3}, {1, 5, 2}, {2, 5, 6}, {2, 7, 4}, {2, 6, 7}}) {
+    mesh.triangles.push_back({a, b, c, middle(a, b), middle(b, c), middle(c, a)});
+  }
+  const long slit_middle = middle(1, 2);
+  mesh.node_sets["SLIT"] = {1, slit_middle, 2};
+  const FeMesh before = mesh;
+  const std::size_t duplicated = open_slit(mesh, FeSlit{{0, 0}, {1, 0}}, "SLIT");
+  // The mouth and the slit's mid-side node are doubled; the tip is not.
+  CHECK(duplicated == 2);
+  CHECK(mesh.nodes_m.size() == before.nodes_m.size() + 2);
+  // Above the slit (its left, looking from mouth to tip): the twins, at the same places.
+  for (const std::size_t t : {0, 1}) {
+    for (std::size_t k = 0; k < 6; ++k) {
+      const long was = before.triangles[t][k];
+      const long is = mesh.triangles[t][k];
+      if (was == 1 || was == slit_middle) {
+        CHECK(is > next);
+        CHECK(mesh.nodes_m.at(is) == before.nodes_m.at(was));
+      } else {
+        CHECK(is == was);
+      }
+    }
+  }
+  // Below and beyond the tip: unchanged; the tip one node for all.
+  for (const std::size_t t : {2, 3, 4, 5}) CHECK(mesh.triangles[t] == before.triangles[t]);
+  CHECK(mesh.node_sets == before.node_sets);
+  // Without the set, or with a tip off the set's nodes: named.
+  FeMesh other = before;
+  CHECK_THROWS_WITH_AS(open_slit(other, FeSlit{{0, 0}, {1, 0}}, "CRACK"),
+                       doctest::Contains("CRACK"), std::runtime_error);
+  CHECK_THROWS_WITH_AS(open_slit(other, FeSlit{{0, 0}, {1.5, 0}}, "SLIT"), doctest::Contains("tip"),
+                       std::runtime_error);
 }

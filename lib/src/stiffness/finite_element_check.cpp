@@ -1,5 +1,6 @@
 #include "gearimpact/stiffness/finite_element_check.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -79,8 +80,17 @@ class GeoWriter {
 
 }  // namespace
 
+FeSlit root_crack_slit(double start_radius_m, double start_half_thickness_m, double depth_m,
+                       double angle_rad) {
+  const double y =
+      std::sqrt(start_radius_m * start_radius_m - start_half_thickness_m * start_half_thickness_m);
+  return {
+      {start_half_thickness_m, y},
+      {start_half_thickness_m - depth_m * std::sin(angle_rad), y - depth_m * std::cos(angle_rad)}};
+}
+
 std::string tooth_geo(const ToothOutline& outline, const std::vector<ToothContact>& contacts,
-                      const FeMeshSizes& sizes) {
+                      const FeMeshSizes& sizes, const std::optional<FeSlit>& slit) {
   if (contacts.size() != outline.vertex_index.size()) {
     throw std::invalid_argument("tooth_geo: one contact per outline vertex");
   }
@@ -93,6 +103,28 @@ std::string tooth_geo(const ToothOutline& outline, const std::vector<ToothContac
   std::vector<int> left;
   for (const OutlinePoint& p : outline.flank) right.push_back(geo.point(p.x_m, p.y_m, fine));
   for (const OutlinePoint& p : outline.flank) left.push_back(geo.point(-p.x_m, p.y_m, fine));
+  // The loads' nodes before a slit's mouth joins the flank's vertices.
+  std::vector<int> loaded;
+  for (const std::size_t v : outline.vertex_index) loaded.push_back(right.at(v));
+  int mouth = 0;
+  int tip = 0;
+  if (slit) {
+    // The mouth between the two flank vertices whose radii bracket its own (the radius rises
+    // from root to tip along the flank); the tip's elements a quarter of the tooth's, where the
+    // strain is singular.
+    const double r = std::hypot(slit->mouth.x_m, slit->mouth.y_m);
+    std::size_t after = 1;
+    while (after < outline.flank.size() &&
+           std::hypot(outline.flank[after].x_m, outline.flank[after].y_m) < r) {
+      ++after;
+    }
+    if (after >= outline.flank.size()) {
+      throw std::invalid_argument("tooth_geo: the slit's mouth lies above the flank's tip");
+    }
+    mouth = geo.point(slit->mouth.x_m, slit->mouth.y_m, 0.5 * fine);
+    tip = geo.point(slit->tip.x_m, slit->tip.y_m, 0.25 * fine);
+    right.insert(right.begin() + static_cast<std::ptrdiff_t>(after), mouth);
+  }
   // The root circle from the left flank's foot round the back of the ring to
   // the right flank's foot, in arcs of less than pi.
   const double rf = outline.root_radius_m;
@@ -127,19 +159,25 @@ std::string tooth_geo(const ToothOutline& outline, const std::vector<ToothContac
     const int a = geo.point(-0.5 * c.x_m, c.y_m, fine);
     const int b = geo.point(0.5 * c.x_m, c.y_m, fine);
     embedded.insert(embedded.end(), {on_centre, a, b});
-    groups += "Physical Point(\"P" + n + "\") = {" +
-              std::to_string(right[outline.vertex_index[i]]) + "};\n";
+    groups += "Physical Point(\"P" + n + "\") = {" + std::to_string(loaded[i]) + "};\n";
     groups += "Physical Point(\"C" + n + "\") = {" + std::to_string(on_centre) + "};\n";
     groups += "Physical Point(\"A" + n + "\") = {" + std::to_string(a) + "};\n";
     groups += "Physical Point(\"B" + n + "\") = {" + std::to_string(b) + "};\n";
   }
   if (!embedded.empty()) geo.add("Point{" + GeoWriter::list(embedded) + "} In Surface{1};");
+  if (slit) {
+    const int cut = geo.line(mouth, tip);
+    geo.add("Line{" + std::to_string(cut) + "} In Surface{1};");
+    groups += "Physical Curve(\"SLIT\") = {" + std::to_string(cut) + "};\n";
+    groups += "Physical Point(\"TIP\") = {" + std::to_string(tip) + "};\n";
+  }
   geo.add("Physical Surface(\"BODY\") = {1};");
   geo.add("Physical Curve(\"FIXED\") = {" + GeoWriter::list(inner) + "};");
   return geo.text() + groups;
 }
 
-std::string cantilever_geo(double length_m, double depth_m, double element_m, double measured_x_m) {
+std::string cantilever_geo(double length_m, double depth_m, double element_m, double measured_x_m,
+                           double crack_x_m, double edge_crack_m) {
   GeoWriter geo;
   const double half = 0.5 * depth_m;
   const int p1 = geo.point(0.0, -half, element_m);
@@ -148,12 +186,29 @@ std::string cantilever_geo(double length_m, double depth_m, double element_m, do
   const int p3 = geo.point(length_m, half, element_m);
   const int p4 = geo.point(0.0, half, element_m);
   const int measured = geo.point(measured_x_m, 0.0, element_m);
-  const std::vector<int> loop{geo.line(p1, p2), geo.line(p2, load), geo.line(load, p3),
-                              geo.line(p3, p4)};
+  std::vector<int> loop{geo.line(p1, p2), geo.line(p2, load), geo.line(load, p3)};
+  int mouth = 0;
+  int tip = 0;
+  if (edge_crack_m > 0.0) {
+    // Elements along the slit a tenth of its length at most, a quarter of that at the tip.
+    const double slit_element = std::min(0.5 * element_m, 0.1 * edge_crack_m);
+    mouth = geo.point(crack_x_m, half, slit_element);
+    tip = geo.point(crack_x_m, half - edge_crack_m, 0.25 * slit_element);
+    loop.push_back(geo.line(p3, mouth));
+    loop.push_back(geo.line(mouth, p4));
+  } else {
+    loop.push_back(geo.line(p3, p4));
+  }
   const int clamp = geo.line(p4, p1);
   geo.add("Curve Loop(1) = {" + GeoWriter::list(loop) + ", " + std::to_string(clamp) + "};");
   geo.add("Plane Surface(1) = {1};");
   geo.add("Point{" + std::to_string(measured) + "} In Surface{1};");
+  if (edge_crack_m > 0.0) {
+    const int cut = geo.line(mouth, tip);
+    geo.add("Line{" + std::to_string(cut) + "} In Surface{1};");
+    geo.add("Physical Curve(\"SLIT\") = {" + std::to_string(cut) + "};");
+    geo.add("Physical Point(\"TIP\") = {" + std::to_string(tip) + "};");
+  }
   geo.add("Physical Surface(\"BODY\") = {1};");
   geo.add("Physical Curve(\"FIXED\") = {" + std::to_string(clamp) + "};");
   geo.add("Physical Point(\"LOAD\") = {" + std::to_string(load) + "};");
@@ -280,6 +335,56 @@ FeMesh read_gmsh_inp(const std::string& text) {
     }
   }
   return mesh;
+}
+
+std::size_t open_slit(FeMesh& mesh, const FeSlit& slit, const std::string& slit_set) {
+  const auto found = mesh.node_sets.find(slit_set);
+  if (found == mesh.node_sets.end() || found->second.empty()) {
+    throw std::runtime_error("the mesh has no node set " + slit_set + " (the slit's curve)");
+  }
+  const double ax = slit.tip.x_m - slit.mouth.x_m;
+  const double ay = slit.tip.y_m - slit.mouth.y_m;
+  const double length = std::hypot(ax, ay);
+  long tip = 0;
+  double nearest = 0.0;
+  for (const long n : found->second) {
+    const auto& p = mesh.nodes_m.at(n);
+    const double d = std::hypot(p[0] - slit.tip.x_m, p[1] - slit.tip.y_m);
+    if (tip == 0 || d < nearest) {
+      tip = n;
+      nearest = d;
+    }
+  }
+  if (!(nearest <= 1e-3 * length)) {
+    throw std::runtime_error("the slit's node set " + slit_set + " has no node at its tip");
+  }
+  long next = mesh.nodes_m.rbegin()->first;
+  std::map<long, long> twin;
+  for (const long n : found->second) {
+    if (n == tip || twin.count(n)) continue;
+    twin[n] = ++next;
+    mesh.nodes_m[next] = mesh.nodes_m.at(n);
+  }
+  // A triangle with a node on the slit lies wholly on one side of it (the mesh runs along the
+  // slit's line); its centroid says which.
+  for (auto& triangle : mesh.triangles) {
+    bool touches = false;
+    for (const long n : triangle) touches = touches || twin.count(n) != 0;
+    if (!touches) continue;
+    double cx = 0.0;
+    double cy = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      cx += mesh.nodes_m.at(triangle[static_cast<std::size_t>(k)])[0] / 3.0;
+      cy += mesh.nodes_m.at(triangle[static_cast<std::size_t>(k)])[1] / 3.0;
+    }
+    if (ax * (cy - slit.mouth.y_m) - ay * (cx - slit.mouth.x_m) > 0.0) {
+      for (long& n : triangle) {
+        const auto t = twin.find(n);
+        if (t != twin.end()) n = t->second;
+      }
+    }
+  }
+  return twin.size();
 }
 
 std::string calculix_input(const FeMesh& mesh, const FeMaterial& material,
