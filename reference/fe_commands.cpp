@@ -28,6 +28,7 @@
 #include "gearimpact/stiffness/finite_element_check.hpp"
 #include "gearimpact/stiffness/mesh_models.hpp"
 #include "gearimpact/stiffness/root_crack.hpp"
+#include "gearimpact/stiffness/surface_faults.hpp"
 #include "gnuplot.hpp"
 #include "run_program.hpp"
 
@@ -47,6 +48,11 @@ struct FeCheckOptions {
   double edge_crack = 0.0;
   // Root cracks of these depths (m) as slits, each on its own three meshes.
   std::vector<double> crack_depths;
+  // A spall of this width (m; 0: none) on the pinion's drive flank at the pitch point: both
+  // teeth in 3-D, loaded over the whole face and over the width the spall leaves.
+  double spall_width = 0.0;
+  double spall_depth = 2e-4;
+  double solid_element_size = 1.0;
   double crack_angle_deg = 45.0;
   bool overwrite = false;
   bool no_plots = false;
@@ -257,16 +263,20 @@ void run_tooth(const FeCheckOptions& o) {
           [&](const FeMesh& g) {
             std::vector<FeLoad> loads;
             for (std::size_t i = 0; i < contacts.size(); ++i) {
-              loads.push_back({g.node_of("P" + std::to_string(i + 1)),
-                               -std::cos(contacts[i].tau_rad), -std::sin(contacts[i].tau_rad)});
+              std::string set = "P";
+              set += std::to_string(i + 1);
+              loads.push_back(
+                  {g.node_of(set), -std::cos(contacts[i].tau_rad), -std::sin(contacts[i].tau_rad)});
             }
             return loads;
           },
           [&](const FeMesh& g) {
             std::vector<long> nodes;
             for (std::size_t i = 0; i < contacts.size(); ++i) {
-              for (const char* set : {"C", "A", "B"}) {
-                nodes.push_back(g.node_of(set + std::to_string(i + 1)));
+              for (const char* prefix : {"C", "A", "B"}) {
+                std::string set = prefix;
+                set += std::to_string(i + 1);
+                nodes.push_back(g.node_of(set));
               }
             }
             return nodes;
@@ -465,6 +475,250 @@ void run_tooth(const FeCheckOptions& o) {
   }
 }
 
+// The spall in 3-D (docs/verification.md, "The spall in 3-D"): each tooth of the pair at the
+// pitch point, loaded along the line of action by a unit force spread evenly over the whole
+// face and over the width the spall leaves (z in [b_s, b]: the spall takes z in [0, b_s], where
+// the flanks do not touch); its compliance the load-weighted mean of the section readings
+// along z. The pair's compliance adds Hertz over the contact length; the pit's material stays.
+void run_spall(const FeCheckOptions& o) {
+  const SimulationCase c = read_pair_or_run_file(o.case_file).simulation_case;
+  const RackGearPairGeometry pair = rack_gear_pair_geometry(c.gears);
+  const double b = pair.contact_width_m;
+  const double b_s = o.spall_width;
+  const double quarters = 4.0 * b_s / b;
+  if (!(b_s > 0.0 && b_s < b) || std::fabs(quarters - std::round(quarters)) > 1e-9) {
+    throw InputError("--spall-width", b_s,
+                     "a quarter, a half or three quarters of the contact width (" +
+                         format_number(b) + " m): the layers of the solid mesh meet there");
+  }
+  const double s_pitch = pair.gear1.base_radius_m * std::tan(pair.operating_pressure_angle_rad);
+  const PairContact both = pair_contact(pair, s_pitch);
+  // The spall on the pinion's drive flank, +-0.5 mm of roll about the pitch point.
+  Spall spall;
+  spall.start_radius_m = radius_at_roll_distance(pair.gear1.base_radius_m, s_pitch - 5e-4);
+  spall.end_radius_m = radius_at_roll_distance(pair.gear1.base_radius_m, s_pitch + 5e-4);
+  spall.width_m = b_s;
+  spall.depth_m = o.spall_depth;
+  place_spall(spall, pair.gear1, b);
+  StiffnessModel pe_model;
+  pe_model.kind = StiffnessModelKind::potential_energy;
+  const ToothContact contact[2] = {both.gear1, both.gear2};
+  const RackGearGeometry* gears[2] = {&pair.gear1, &pair.gear2};
+  const char* bore_keys[2] = {"gears.bore_diameter1", "gears.bore_diameter2"};
+  ToothCompliances healthy_model[2];
+  ToothOutline outlines[2];
+  for (int g = 0; g < 2; ++g) {
+    outlines[g] = tooth_outline(*gears[g], bore_keys[g], 24, 48, {contact[g].tau_rad});
+    healthy_model[g] =
+        tooth_compliances(*gears[g], g == 0 ? Gear::one : Gear::two, contact[g], b, pe_model);
+  }
+  const ToothCompliances spalled_pinion =
+      spalled_tooth_compliances(pair.gear1, Gear::one, contact[0], b, pe_model, spall);
+  AtomicFolder folder(o.out, o.overwrite, {o.case_file});
+  const std::filesystem::path dir = folder.temporary();
+  const double m = c.gears.module_m;
+  // [gear][mesh]: the compliance over the whole face and over the width left.
+  std::vector<double> full[2];
+  std::vector<double> part[2];
+  std::vector<std::size_t> wedges;
+  std::vector<int> layer_counts;
+  std::vector<double> sizes_used;
+  for (int g = 0; g < 2; ++g) {
+    const RackGearGeometry& gear = *gears[g];
+    const ToothOutline& outline = outlines[g];
+    const FeMaterial material{gear.youngs_modulus_pa, gear.poisson_ratio, b};
+    for (int k = 0; k < o.refinements; ++k) {
+      // Three meshes a factor sqrt 2 apart (halving would multiply a solid's cost by 8).
+      const double factor = std::pow(2.0, -0.5 * k);
+      const FeMeshSizes sizes{
+          o.solid_element_size * m * factor,
+          std::min(4.0 * m, (outline.root_radius_m - outline.bore_radius_m) / 3.0) *
+              std::sqrt(factor)};
+      // Layers a multiple of 4 (so that b_s falls on a layer plane), each at most twice the
+      // tooth's element size: quadratic along z.
+      const int layers = 4 * static_cast<int>(std::ceil(b / (8.0 * sizes.tooth_m)));
+      const std::string stem =
+          "solid_gear" + std::to_string(g + 1) + "_mesh" + std::to_string(k + 1);
+      write_file_atomically((dir / (stem + ".geo")).string(),
+                            tooth_geo_3d(outline, {contact[g]}, sizes, b, layers));
+      ProgramCall mesher;
+      mesher.argv = {"gmsh", "-3", "-format", "inp", "-o", stem + "_mesh.inp", stem + ".geo"};
+      mesher.dir = dir;
+      mesher.shown = (dir / (stem + ".geo")).string();
+      mesher.missing_hint = "Debian's gmsh; scripts/setup.sh installs it";
+      mesher.capture_output = true;
+      run_program(mesher);
+      const FeMesh3 mesh = read_gmsh_inp_3d(read_text(dir / (stem + "_mesh.inp")));
+      const OutlinePoint& p = outline.flank.at(outline.vertex_index.front());
+      const ToothContact& t = contact[g];
+      const std::vector<long> line_p = nodes_on_z_line(mesh, p.x_m, p.y_m);
+      const std::vector<long> line_c = nodes_on_z_line(mesh, 0.0, t.y_m);
+      const std::vector<long> line_a = nodes_on_z_line(mesh, -0.5 * t.x_m, t.y_m);
+      const std::vector<long> line_b = nodes_on_z_line(mesh, 0.5 * t.x_m, t.y_m);
+      const std::size_t n = static_cast<std::size_t>(2 * layers + 1);
+      if (line_p.size() != n || line_c.size() != n || line_a.size() != n || line_b.size() != n) {
+        throw std::runtime_error("the solid mesh " + stem +
+                                 " lacks the lines of nodes along z at the load and its section");
+      }
+      std::vector<double> z;
+      for (const long id : line_p) z.push_back(mesh.nodes_m.at(id)[2]);
+      const std::vector<double> w_full = line_load_weights(z, 0.0, b);
+      const std::vector<double> w_part = line_load_weights(z, b_s, b);
+      const double dx = -std::cos(t.tau_rad);
+      const double dy = -std::sin(t.tau_rad);
+      std::vector<std::vector<FeLoad>> steps(2);
+      for (std::size_t i = 0; i < n; ++i) {
+        if (w_full[i] != 0.0) steps[0].push_back({line_p[i], dx * w_full[i], dy * w_full[i]});
+        if (w_part[i] != 0.0) steps[1].push_back({line_p[i], dx * w_part[i], dy * w_part[i]});
+      }
+      std::vector<long> printed;
+      for (const auto* line : {&line_c, &line_a, &line_b}) {
+        printed.insert(printed.end(), line->begin(), line->end());
+      }
+      write_file_atomically(
+          (dir / (stem + ".inp")).string(),
+          calculix_input_3d(mesh, material, nodes_at_radius(mesh, outline.bore_radius_m), steps,
+                            printed));
+      ProgramCall solver;
+      solver.argv = {"ccx", "-i", stem};
+      solver.dir = dir;
+      solver.shown = (dir / (stem + ".inp")).string();
+      solver.missing_hint = "Debian's calculix-ccx; scripts/setup.sh installs it";
+      solver.environment = {"OMP_NUM_THREADS=1", "CCX_NPROC_STIFFNESS=1",
+                            "CCX_NPROC_EQUATION_SOLVER=1"};
+      solver.capture_output = true;
+      const std::string log = run_program(solver);
+      const auto error = log.find("*ERROR");
+      if (error != std::string::npos) {
+        throw std::runtime_error("ccx failed on " + solver.shown + ": " +
+                                 log.substr(error, std::min<std::size_t>(400, log.size() - error)));
+      }
+      const auto u = read_calculix_dat(read_text(dir / (stem + ".dat")), 2, printed);
+      // Each step's compliance: the section readings along z weighted by the step's load.
+      double readings[2] = {0.0, 0.0};
+      for (std::size_t step = 0; step < 2; ++step) {
+        const std::vector<double>& w = step == 0 ? w_full : w_part;
+        for (std::size_t i = 0; i < n; ++i) {
+          if (w[i] == 0.0) continue;
+          readings[step] += w[i] * tooth_reading(t, u[step].at(line_c[i]), u[step].at(line_a[i]),
+                                                 u[step].at(line_b[i]))
+                                       .compliance_m_per_n;
+        }
+      }
+      full[g].push_back(readings[0]);
+      part[g].push_back(readings[1]);
+      if (g == 0) {
+        wedges.push_back(mesh.wedges.size());
+        layer_counts.push_back(layers);
+        sizes_used.push_back(sizes.tooth_m);
+      }
+    }
+  }
+  // The pair: Hertz over the contact length plus both teeth.
+  const double e1 = pair.gear1.youngs_modulus_pa;
+  const double e2 = pair.gear2.youngs_modulus_pa;
+  const double nu1 = pair.gear1.poisson_ratio;
+  const double nu2 = pair.gear2.poisson_ratio;
+  const double hertz_full = 1.0 / hertz_stiffness_two_materials(b, e1, nu1, e2, nu2);
+  const double hertz_part = 1.0 / hertz_stiffness_two_materials(b - b_s, e1, nu1, e2, nu2);
+  const double scale = b / (b - b_s);
+  const auto width_scaled = [&](const ToothCompliances& t) {
+    return scale * (t.bending_m_per_n + t.foundation_m_per_n) + t.shear_m_per_n + t.axial_m_per_n;
+  };
+  struct Reading {
+    const char* name;
+    double tooth1_healthy, tooth1_spalled, tooth2_healthy, tooth2_spalled;
+  };
+  const Reading fe{"finite elements (3-D, finest mesh)", full[0].back(), part[0].back(),
+                   full[1].back(), part[1].back()};
+  const Reading hertz_only{
+      "potential-energy, this code's reading (Hertz over b - b_s, pit sections)",
+      healthy_model[0].total_m_per_n(), spalled_pinion.total_m_per_n(),
+      healthy_model[1].total_m_per_n(), healthy_model[1].total_m_per_n()};
+  const Reading scaled{"potential-energy, width-scaled (bending and foundation x b / (b - b_s))",
+                       healthy_model[0].total_m_per_n(), width_scaled(healthy_model[0]),
+                       healthy_model[1].total_m_per_n(), width_scaled(healthy_model[1])};
+  std::string table =
+      "| reading | pinion tooth healthy, m/N | spalled | change | wheel tooth healthy | "
+      "spalled | change | pair healthy, N/m | spalled | pair stiffness lost |\n"
+      "|---|---|---|---|---|---|---|---|---|---|\n";
+  std::string csv =
+      "reading,tooth1_healthy_m_per_n,tooth1_spalled_m_per_n,tooth2_healthy_m_per_n,"
+      "tooth2_spalled_m_per_n,hertz_healthy_m_per_n,hertz_spalled_m_per_n,pair_healthy_n_per_m,"
+      "pair_spalled_n_per_m,pair_loss\n";
+  double fe_loss = 0.0;
+  for (const Reading* r : {&fe, &hertz_only, &scaled}) {
+    const double k_healthy = 1.0 / (hertz_full + r->tooth1_healthy + r->tooth2_healthy);
+    const double k_spalled = 1.0 / (hertz_part + r->tooth1_spalled + r->tooth2_spalled);
+    const double loss = 1.0 - k_spalled / k_healthy;
+    if (r == &fe) fe_loss = loss;
+    table += std::string("| ") + r->name + " | " + scientific(r->tooth1_healthy) + " | " +
+             scientific(r->tooth1_spalled) + " | " +
+             percent(r->tooth1_spalled / r->tooth1_healthy - 1.0) + " | " +
+             scientific(r->tooth2_healthy) + " | " + scientific(r->tooth2_spalled) + " | " +
+             percent(r->tooth2_spalled / r->tooth2_healthy - 1.0) + " | " + scientific(k_healthy) +
+             " | " + scientific(k_spalled) + " | " + percent(loss) + " |\n";
+    std::vector<double> fields{r->tooth1_healthy, r->tooth1_spalled, r->tooth2_healthy,
+                               r->tooth2_spalled, hertz_full,        hertz_part,
+                               k_healthy,         k_spalled,         loss};
+    csv += std::string("\"") + r->name + "\"";
+    for (const double v : fields) {
+      csv += ',';
+      csv += format_data_number(v);
+    }
+    csv += '\n';
+  }
+  // Convergence: every mesh's four compliances.
+  std::string meshes_csv =
+      "mesh,tooth_element_m,layers,wedges_gear1,tooth1_full_m_per_n,"
+      "tooth1_part_m_per_n,tooth2_full_m_per_n,tooth2_part_m_per_n\n";
+  double worst_change = 0.0;
+  for (std::size_t k = 0; k < full[0].size(); ++k) {
+    std::vector<double> fields{sizes_used[k],
+                               static_cast<double>(layer_counts[k]),
+                               static_cast<double>(wedges[k]),
+                               full[0][k],
+                               part[0][k],
+                               full[1][k],
+                               part[1][k]};
+    meshes_csv += std::to_string(k + 1);
+    for (const double v : fields) {
+      meshes_csv += ',';
+      meshes_csv += format_data_number(v);
+    }
+    meshes_csv += '\n';
+    if (k > 0 && k + 1 == full[0].size()) {
+      for (int g = 0; g < 2; ++g) {
+        worst_change = std::max(worst_change, std::fabs(full[g][k] / full[g][k - 1] - 1.0));
+        worst_change = std::max(worst_change, std::fabs(part[g][k] / part[g][k - 1] - 1.0));
+      }
+    }
+  }
+  const bool converged = o.refinements < 2 || worst_change < kConvergence;
+  const std::string json =
+      "{\n  \"case\": \"" + c.name + "\",\n  \"s_m\": " + format_data_number(s_pitch) +
+      ",\n  \"contact_width_m\": " + format_data_number(b) +
+      ",\n  \"spall_width_m\": " + format_data_number(b_s) +
+      ",\n  \"spall_depth_m\": " + format_data_number(o.spall_depth) +
+      ",\n  \"largest_last_mesh_change\": " + format_data_number(worst_change) +
+      ",\n  \"converged\": " + (converged ? "true" : "false") +
+      ",\n  \"fe_pair_loss\": " + format_data_number(fe_loss) + "\n}\n";
+  write_file_atomically((dir / "fe_spall.csv").string(), csv);
+  write_file_atomically((dir / "fe_spall.md").string(), table);
+  write_file_atomically((dir / "fe_spall_meshes.csv").string(), meshes_csv);
+  write_file_atomically((dir / "summary.json").string(), json);
+  folder.commit();
+  std::fputs(table.c_str(), stdout);
+  std::fputs(meshes_csv.c_str(), stdout);
+  std::fputs(json.c_str(), stdout);
+  if (!converged) {
+    throw std::runtime_error(
+        "fe-check --spall-width: the solid meshes changed by " +
+        format_number(100.0 * worst_change) + " % between the two finest (at most " +
+        format_number(100.0 * kConvergence) + " % asked; the results are in " + o.out + ")");
+  }
+}
+
 }  // namespace
 
 void register_fe_commands(CLI::App& app) {
@@ -503,6 +757,19 @@ void register_fe_commands(CLI::App& app) {
   fe->add_option("--crack-angle", o->crack_angle_deg,
                  "the cracks' angle nu to the tooth's centre line, deg, in (0, 90]")
       ->check(CLI::Range(0.001, 90.0));
+  fe->add_option("--spall-width", o->spall_width,
+                 "solve the spall in 3-D instead: both teeth at the pitch point, loaded over the "
+                 "whole face and over the width a spall this wide (m; a quarter, half or three "
+                 "quarters of the face) leaves; fe_spall.csv, fe_spall.md, fe_spall_meshes.csv")
+      ->check(CLI::Range(0.0, 1.0));
+  fe->add_option("--spall-depth", o->spall_depth,
+                 "the spall's depth d_s for the models' reading (m, default 2e-4; the solid "
+                 "keeps the pit's material)")
+      ->check(CLI::Range(0.0, 0.01));
+  fe->add_option("--solid-element-size", o->solid_element_size,
+                 "with --spall-width: the coarsest solid mesh's element size on the tooth, a "
+                 "fraction of the module in [0.2, 1]; each finer mesh divides it by sqrt 2")
+      ->check(CLI::Range(0.2, 1.0));
   fe->add_option("--edge-crack", o->edge_crack,
                  "with --cantilever: a slit this deep (m, below half the depth, 5 mm) from the "
                  "top edge at x = 40 mm")
@@ -519,6 +786,8 @@ void register_fe_commands(CLI::App& app) {
         o->case_file.empty() ? std::vector<std::string>{} : std::vector<std::string>{o->case_file});
     if (o->cantilever) {
       run_cantilever(*o);
+    } else if (o->spall_width > 0.0) {
+      run_spall(*o);
     } else {
       run_tooth(*o);
     }

@@ -89,12 +89,16 @@ FeSlit root_crack_slit(double start_radius_m, double start_half_thickness_m, dou
       {start_half_thickness_m - depth_m * std::sin(angle_rad), y - depth_m * std::cos(angle_rad)}};
 }
 
-std::string tooth_geo(const ToothOutline& outline, const std::vector<ToothContact>& contacts,
-                      const FeMeshSizes& sizes, const std::optional<FeSlit>& slit) {
+namespace {
+
+// The tooth's surface (with its physical groups for the 2-D model); `geo` is
+// left with the surface numbered 1.
+std::string tooth_surface(GeoWriter& geo, const ToothOutline& outline,
+                          const std::vector<ToothContact>& contacts, const FeMeshSizes& sizes,
+                          const std::optional<FeSlit>& slit) {
   if (contacts.size() != outline.vertex_index.size()) {
     throw std::invalid_argument("tooth_geo: one contact per outline vertex");
   }
-  GeoWriter geo;
   const double fine = sizes.tooth_m;
   const double coarse = sizes.body_m;
   const int centre = geo.point(0.0, 0.0, coarse);
@@ -171,9 +175,31 @@ std::string tooth_geo(const ToothOutline& outline, const std::vector<ToothContac
     groups += "Physical Curve(\"SLIT\") = {" + std::to_string(cut) + "};\n";
     groups += "Physical Point(\"TIP\") = {" + std::to_string(tip) + "};\n";
   }
-  geo.add("Physical Surface(\"BODY\") = {1};");
-  geo.add("Physical Curve(\"FIXED\") = {" + GeoWriter::list(inner) + "};");
+  groups += "Physical Surface(\"BODY\") = {1};\n";
+  groups += "Physical Curve(\"FIXED\") = {" + GeoWriter::list(inner) + "};\n";
+  return groups;
+}
+
+}  // namespace
+
+std::string tooth_geo(const ToothOutline& outline, const std::vector<ToothContact>& contacts,
+                      const FeMeshSizes& sizes, const std::optional<FeSlit>& slit) {
+  GeoWriter geo;
+  const std::string groups = tooth_surface(geo, outline, contacts, sizes, slit);
   return geo.text() + groups;
+}
+
+std::string tooth_geo_3d(const ToothOutline& outline, const std::vector<ToothContact>& contacts,
+                         const FeMeshSizes& sizes, double face_width_m, int layers) {
+  if (layers < 1) throw std::invalid_argument("tooth_geo_3d: at least one layer");
+  GeoWriter geo;
+  tooth_surface(geo, outline, contacts, sizes, std::nullopt);
+  geo.add("Mesh.SecondOrderIncomplete = 1;");
+  geo.add("Mesh.SaveGroupsOfNodes = 0;");
+  geo.add("extruded[] = Extrude {0, 0, " + number(face_width_m * kMm) + "} { Surface{1}; Layers{" +
+          std::to_string(layers) + "}; Recombine; };");
+  geo.add("Physical Volume(\"BODY\") = {extruded[1]};");
+  return geo.text();
 }
 
 std::string cantilever_geo(double length_m, double depth_m, double element_m, double measured_x_m,
@@ -385,6 +411,152 @@ std::size_t open_slit(FeMesh& mesh, const FeSlit& slit, const std::string& slit_
     }
   }
   return twin.size();
+}
+
+FeMesh3 read_gmsh_inp_3d(const std::string& text) {
+  FeMesh3 mesh;
+  enum class Block { none, nodes, wedges } block = Block::none;
+  std::istringstream lines(text);
+  std::string line;
+  std::size_t number_of_line = 0;
+  std::vector<long> pending;  // an element's numbers over continuation lines
+  while (std::getline(lines, line)) {
+    ++number_of_line;
+    if (line.rfind("**", 0) == 0) continue;
+    if (!line.empty() && line[0] == '*') {
+      const std::string key = upper(without_spaces(line));
+      block = Block::none;
+      if (key.rfind("*NODE", 0) == 0 && key.rfind("*NODEPRINT", 0) != 0) {
+        block = Block::nodes;
+      } else if (key.rfind("*ELEMENT", 0) == 0 && key.find("TYPE=C3D15") != std::string::npos) {
+        block = Block::wedges;
+      }
+      continue;
+    }
+    if (without_spaces(line).empty() || block == Block::none) continue;
+    const std::vector<double> v = numbers_of(line, number_of_line);
+    if (block == Block::nodes) {
+      if (v.size() < 4) {
+        throw std::runtime_error("mesh line " + std::to_string(number_of_line) +
+                                 ": a node needs a number and three coordinates");
+      }
+      mesh.nodes_m[static_cast<long>(v[0])] = {v[1] / kMm, v[2] / kMm, v[3] / kMm};
+    } else {
+      for (const double n : v) pending.push_back(static_cast<long>(n));
+      // An element's line ends without a comma; gmsh breaks a long one after a comma.
+      const std::string bare = without_spaces(line);
+      if (bare.back() == ',') continue;
+      if (pending.size() != 16) {
+        throw std::runtime_error("mesh line " + std::to_string(number_of_line) +
+                                 ": a fifteen-node wedge needs its number and fifteen nodes");
+      }
+      std::array<long, 15> wedge{};
+      for (std::size_t k = 0; k < 15; ++k) wedge[k] = pending[k + 1];
+      mesh.wedges.push_back(wedge);
+      pending.clear();
+    }
+  }
+  if (mesh.wedges.empty()) {
+    throw std::runtime_error(
+        "the mesh holds no fifteen-node wedge (gmsh -3 -format inp of a recombined extrusion)");
+  }
+  for (const auto& wedge : mesh.wedges) {
+    for (const long n : wedge) {
+      if (!mesh.nodes_m.count(n)) {
+        throw std::runtime_error("the mesh's wedges name the node " + std::to_string(n) +
+                                 ", which it does not define");
+      }
+    }
+  }
+  return mesh;
+}
+
+std::vector<long> nodes_on_z_line(const FeMesh3& mesh, double x_m, double y_m) {
+  std::vector<std::pair<double, long>> found;
+  for (const auto& [id, p] : mesh.nodes_m) {
+    if (std::fabs(p[0] - x_m) < 1e-9 && std::fabs(p[1] - y_m) < 1e-9) found.push_back({p[2], id});
+  }
+  std::sort(found.begin(), found.end());
+  std::vector<long> ids;
+  for (const auto& f : found) ids.push_back(f.second);
+  return ids;
+}
+
+std::vector<long> nodes_at_radius(const FeMesh3& mesh, double radius_m) {
+  std::vector<long> ids;
+  for (const auto& [id, p] : mesh.nodes_m) {
+    if (std::fabs(std::hypot(p[0], p[1]) - radius_m) < 1e-9) ids.push_back(id);
+  }
+  return ids;
+}
+
+std::vector<double> line_load_weights(const std::vector<double>& z_m, double from_m, double to_m) {
+  if (z_m.size() < 3 || z_m.size() % 2 == 0 || !(from_m < to_m)) {
+    throw std::invalid_argument(
+        "line_load_weights: an odd number of nodes (corner, mid-side, ..., corner) and from < to");
+  }
+  std::vector<double> w(z_m.size(), 0.0);
+  bool from_found = false;
+  bool to_found = false;
+  for (std::size_t k = 0; k < z_m.size(); k += 2) {
+    from_found = from_found || std::fabs(z_m[k] - from_m) < 1e-9;
+    to_found = to_found || std::fabs(z_m[k] - to_m) < 1e-9;
+  }
+  if (!from_found || !to_found) {
+    throw std::invalid_argument("line_load_weights: the loaded range ends between layer planes");
+  }
+  const double length = to_m - from_m;
+  for (std::size_t k = 0; k + 2 < z_m.size(); k += 2) {
+    const double middle = 0.5 * (z_m[k] + z_m[k + 2]);
+    if (middle < from_m || middle > to_m) continue;
+    const double h = z_m[k + 2] - z_m[k];
+    w[k] += h / 6.0 / length;
+    w[k + 1] += 4.0 * h / 6.0 / length;
+    w[k + 2] += h / 6.0 / length;
+  }
+  return w;
+}
+
+std::string calculix_input_3d(const FeMesh3& mesh, const FeMaterial& material,
+                              const std::vector<long>& fixed,
+                              const std::vector<std::vector<FeLoad>>& steps,
+                              const std::vector<long>& printed_nodes) {
+  if (fixed.empty()) throw std::runtime_error("the 3-D mesh has no node to hold");
+  std::string text =
+      "** Made by gearimpact fe-check: mm, N, MPa. Solid wedges.\n*NODE, NSET=NALL\n";
+  for (const auto& [id, p] : mesh.nodes_m) {
+    text += std::to_string(id) + ", " + short_number(p[0] * kMm) + ", " + short_number(p[1] * kMm) +
+            ", " + short_number(p[2] * kMm) + "\n";
+  }
+  text += "*ELEMENT, TYPE=C3D15, ELSET=BODY\n";
+  long element = 0;
+  for (const auto& w : mesh.wedges) {
+    // CalculiX reads at most 16 entries a line: the number and 15 nodes fit.
+    text += std::to_string(++element);
+    for (const long n : w) text += ", " + std::to_string(n);
+    text += "\n";
+  }
+  auto node_set = [&](const std::string& name, const std::vector<long>& nodes) {
+    text += "*NSET, NSET=" + name + "\n";
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      text += std::to_string(nodes[i]) + ((i + 1) % 8 == 0 || i + 1 == nodes.size() ? ",\n" : ", ");
+    }
+  };
+  node_set("FIXED", fixed);
+  node_set("PRINTED", printed_nodes);
+  text += "*MATERIAL, NAME=GEAR\n*ELASTIC\n" + short_number(material.youngs_modulus_pa / 1e6) +
+          ", " + short_number(material.poisson_ratio) + "\n";
+  text += "*SOLID SECTION, ELSET=BODY, MATERIAL=GEAR\n";
+  text += "*BOUNDARY\nFIXED, 1, 3\n";
+  for (const auto& loads : steps) {
+    text += "*STEP\n*STATIC\n*CLOAD, OP=NEW\n";
+    for (const FeLoad& load : loads) {
+      text += std::to_string(load.node) + ", 1, " + short_number(load.fx_n) + "\n";
+      text += std::to_string(load.node) + ", 2, " + short_number(load.fy_n) + "\n";
+    }
+    text += "*NODE PRINT, NSET=PRINTED\nU\n*END STEP\n";
+  }
+  return text;
 }
 
 std::string calculix_input(const FeMesh& mesh, const FeMaterial& material,

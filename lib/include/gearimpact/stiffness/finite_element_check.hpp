@@ -143,4 +143,45 @@ struct FeToothReading {
 FeToothReading tooth_reading(const ToothContact& contact, const std::array<double, 2>& u_centre,
                              const std::array<double, 2>& u_a, const std::array<double, 2>& u_b);
 
+// The three-dimensional tooth (docs/verification.md, "The spall in 3-D"):
+// tooth_geo's surface (no slit) extruded over the face width, z from 0 to b,
+// in `layers` equal layers of fifteen-node wedges (gmsh's structured
+// extrusion with Recombine and incomplete second order; CalculiX C3D15). The
+// extrusion copies the surface's mesh to every layer plane, so the flank
+// vertex of each contact and its section's points C, A, B become lines of
+// nodes along z (corner nodes on the planes, mid-side nodes between), found
+// by their coordinates (nodes_on_z_line); the bore's nodes are the FIXED ones.
+std::string tooth_geo_3d(const ToothOutline& outline, const std::vector<ToothContact>& contacts,
+                         const FeMeshSizes& sizes, double face_width_m, int layers);
+
+struct FeMesh3 {
+  std::map<long, std::array<double, 3>> nodes_m;
+  std::vector<std::array<long, 15>> wedges;
+};
+// Throws std::runtime_error naming the line for text that is not gmsh's inp
+// output or holds no fifteen-node wedge (C3D15).
+FeMesh3 read_gmsh_inp_3d(const std::string& text);
+
+// The nodes at (x, y) (within 1e-9 m), sorted by z; the nodes at radius r
+// from the z axis (within 1e-9 m).
+std::vector<long> nodes_on_z_line(const FeMesh3& mesh, double x_m, double y_m);
+std::vector<long> nodes_at_radius(const FeMesh3& mesh, double radius_m);
+
+// The consistent nodal forces of a unit force spread evenly over z in
+// [from, to] along a line of quadratic element edges: `z_m` the line's nodes
+// sorted, corner and mid-side alternating (corner first and last); each edge
+// of length h inside [from, to] gives h/6, 4h/6, h/6 of its share h / (to -
+// from). Throws std::invalid_argument unless from and to are corner nodes'
+// z (within 1e-9 m) with from < to, and the count is odd.
+std::vector<double> line_load_weights(const std::vector<double>& z_m, double from_m, double to_m);
+
+// The CalculiX input of the 3-D mesh: C3D15 of the material (its thickness
+// unused), the nodes `fixed` held in x, y and z, one linear static step per
+// entry of `steps` (each a set of nodal forces in x and y, replacing the
+// last), the displacements of `printed_nodes` printed at every step.
+std::string calculix_input_3d(const FeMesh3& mesh, const FeMaterial& material,
+                              const std::vector<long>& fixed,
+                              const std::vector<std::vector<FeLoad>>& steps,
+                              const std::vector<long>& printed_nodes);
+
 }  // namespace gearimpact
