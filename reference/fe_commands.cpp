@@ -30,6 +30,7 @@
 #include "gearimpact/stiffness/root_crack.hpp"
 #include "gearimpact/stiffness/surface_faults.hpp"
 #include "gnuplot.hpp"
+#include "reproduce.hpp"
 #include "run_program.hpp"
 
 namespace gearimpact::cli {
@@ -56,6 +57,8 @@ struct FeCheckOptions {
   double crack_angle_deg = 45.0;
   bool overwrite = false;
   bool no_plots = false;
+  // Nothing on stdout (reproduce reads the files).
+  bool quiet = false;
 };
 
 // The convergence asked of the two finest meshes at every position.
@@ -463,9 +466,11 @@ void run_tooth(const FeCheckOptions& o) {
     std::fprintf(stderr, "gearimpact: warning: %s\n",
                  foundation_extrapolation_warning(extrapolated).c_str());
   }
-  std::fputs(table.c_str(), stdout);
-  if (!cracks.empty()) std::fputs(crack_table.c_str(), stdout);
-  std::fputs(json.c_str(), stdout);
+  if (!o.quiet) {
+    std::fputs(table.c_str(), stdout);
+    if (!cracks.empty()) std::fputs(crack_table.c_str(), stdout);
+    std::fputs(json.c_str(), stdout);
+  }
   if (!converged) {
     throw std::runtime_error(
         "fe-check: the meshes have not converged: the compliance at s = " +
@@ -708,9 +713,11 @@ void run_spall(const FeCheckOptions& o) {
   write_file_atomically((dir / "fe_spall_meshes.csv").string(), meshes_csv);
   write_file_atomically((dir / "summary.json").string(), json);
   folder.commit();
-  std::fputs(table.c_str(), stdout);
-  std::fputs(meshes_csv.c_str(), stdout);
-  std::fputs(json.c_str(), stdout);
+  if (!o.quiet) {
+    std::fputs(table.c_str(), stdout);
+    std::fputs(meshes_csv.c_str(), stdout);
+    std::fputs(json.c_str(), stdout);
+  }
   if (!converged) {
     throw std::runtime_error(
         "fe-check --spall-width: the solid meshes changed by " +
@@ -719,7 +726,108 @@ void run_spall(const FeCheckOptions& o) {
   }
 }
 
+// The paper's pair with the bores of the ROSS peer run, as examples/paper_pair_bores.toml.
+constexpr const char* kPaperPairBores =
+    "name = \"paper_pair_bores\"\n\n[gears]\nteeth1 = 20\nteeth2 = 80\nmodule = \"2 mm\"\n"
+    "pressure_angle = \"20 deg\"\nface_width = \"10 mm\"\nyoungs_modulus = \"206.8 GPa\"\n"
+    "poisson_ratio = 0.3\ndensity = \"7800 kg/m^3\"\nbacklash = \"0.05 mm\"\n"
+    "bore_diameter1 = \"20 mm\"\nbore_diameter2 = \"60 mm\"\n\n[model]\n"
+    "stiffness_model = \"potential-energy\"\n";
+
 }  // namespace
+
+ReportSection reproduce_fe(const ReproduceContext& context) {
+  const std::filesystem::path dir = context.out / "fe";
+  std::filesystem::create_directories(dir);
+  write_file_atomically((dir / "paper_pair_bores.toml").string(), kPaperPairBores);
+  write_file_atomically((dir / "rig_17_38.toml").string(), rig_17_38_toml());
+  FeCheckOptions tooth;
+  tooth.case_file = (dir / "paper_pair_bores.toml").string();
+  tooth.out = (dir / "wheel").string();
+  tooth.gear = 2;
+  tooth.crack_depths = {0.0, 1e-3, 2e-3};
+  tooth.overwrite = true;
+  tooth.no_plots = true;
+  tooth.quiet = true;
+  run_tooth(tooth);
+  FeCheckOptions solid;
+  solid.case_file = (dir / "rig_17_38.toml").string();
+  solid.out = (dir / "spall").string();
+  solid.spall_width = 7.5e-3;
+  solid.overwrite = true;
+  solid.quiet = true;
+  run_spall(solid);
+  // The figure: the wheel's compliance over the path of contact at each crack depth.
+  Figure f;
+  f.name = "fe_crack";
+  f.title = "Paper's wheel tooth with a root crack (45 deg): finite elements against the models";
+  f.x_label = "contact position s from T_1 on the line of action, mm";
+  f.y_label = "tooth compliance along the load, 1e-9 m/N";
+  f.setup = {"set key outside right top vertical"};
+  const char* colours[3] = {"#1f77b4", "#ff7f0e", "#d62728"};
+  const char* depths[3] = {"0", "0.001", "0.002"};
+  const char* names[3] = {"healthy", "q = 1 mm", "q = 2 mm"};
+  for (int j = 0; j < 3; ++j) {
+    const std::string pick = std::string("(abs($1-") + depths[j] + ")<1e-9 ? $5*1e3 : 1/0)";
+    const std::string colour = std::string(" lc rgb '") + colours[j] + "'";
+    f.series.push_back("'wheel/fe_crack.csv' using " + pick +
+                       ":($9*1e9) with linespoints lw 2 pt 7" + colour + " title 'FE, " + names[j] +
+                       "'");
+    f.series.push_back("'wheel/fe_crack.csv' using " + pick +
+                       ":($10*1e9) with linespoints lw 1 dt 2 pt 5" + colour +
+                       " title 'potential energy, " + names[j] + "'");
+    f.series.push_back("'wheel/fe_crack.csv' using " + pick +
+                       ":($11*1e9) with linespoints lw 1 dt 3 pt 4" + colour +
+                       " title 'ross-compatible, " + names[j] + "'");
+  }
+  render(dir, f);
+  // The spall: the pair's stiffness lost by a half-face spall, each reading.
+  const auto read = [](const std::filesystem::path& path) {
+    std::ifstream in(path);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+  };
+  {
+    std::istringstream rows(read(dir / "spall" / "fe_spall.csv"));
+    std::string line;
+    std::getline(rows, line);
+    const char* labels[3] = {"finite elements", "Hertz only (this code)", "width-scaled"};
+    std::string bars = "reading,pair_loss_percent\n";
+    for (int r = 0; r < 3 && std::getline(rows, line); ++r) {
+      bars += std::string("\"") + labels[r] + "\"," +
+              format_data_number(100.0 * std::stod(line.substr(line.rfind(',') + 1))) + "\n";
+    }
+    write_file_atomically((dir / "fe_spall_loss.csv").string(), bars);
+  }
+  Figure g;
+  g.name = "fe_spall";
+  g.title = "Rig pair 17/38 at the pitch point, half-face spall on the pinion: stiffness lost";
+  g.x_label = "reading of the spall";
+  g.y_label = "pair stiffness lost, %";
+  g.setup = {"set style fill solid 0.6 border -1", "set boxwidth 0.5", "set yrange [0:*]",
+             "set xrange [-0.6:2.6]", "unset key"};
+  g.series = {"'fe_spall_loss.csv' using 0:2:xtic(1) with boxes lc rgb '#1f77b4'",
+              "'fe_spall_loss.csv' using 0:2:(sprintf('%.1f %%', $2)) with labels offset 0,1"};
+  render(dir, g);
+  ReportSection section;
+  section.title = "Finite-element check of the tooth compliance (reproduce --fe)";
+  section.text =
+      "gmsh and CalculiX (docs/verification.md, \"Finite-element check of the tooth "
+      "compliance\"). The paper's wheel (80 teeth, bore 60 mm) in 2-D plane stress, healthy and "
+      "with a root crack of q = 1 and 2 mm at 45 deg from the potential-energy model's crack "
+      "start, as a slit; 1e-9 m/N, finest of three meshes (`fe/wheel/`; a depth of 0 is the "
+      "healthy tooth). FE change, PE change: the compliance the crack adds by each.\n\n" +
+      read(dir / "wheel" / "fe_crack.md") +
+      "\n![Cracked wheel tooth](fe/fe_crack.png)\n\nThe healthy wheel term by term:\n\n" +
+      read(dir / "wheel" / "fe_check.md") +
+      "\nThe rig pair (17/38, m 3 mm, b 15 mm) at the pitch point in 3-D, each tooth loaded over "
+      "the whole face and over the half a spall of b_s = 7.5 mm leaves (`fe/spall/`; the pair "
+      "adds Hertz over the contact length to the teeth):\n\n" +
+      read(dir / "spall" / "fe_spall.md") + "\nThe solid meshes (m/N):\n\n```\n" +
+      read(dir / "spall" / "fe_spall_meshes.csv") + "```\n\n![Spall](fe/fe_spall.png)\n";
+  return section;
+}
 
 void register_fe_commands(CLI::App& app) {
   auto o = std::make_shared<FeCheckOptions>();
@@ -780,6 +888,16 @@ void register_fe_commands(CLI::App& app) {
     if (o->cantilever == !o->case_file.empty()) {
       throw InputError("case", o->case_file.empty() ? "absent" : o->case_file,
                        "either a case file or --cantilever");
+    }
+    if (o->edge_crack > 0.0 && !o->cantilever) {
+      throw InputError("--edge-crack", o->edge_crack, "only with --cantilever");
+    }
+    if (o->spall_width > 0.0 && (o->cantilever || !o->crack_depths.empty())) {
+      throw InputError("--spall-width", o->spall_width,
+                       "a case's 3-D spall, without --cantilever or --crack-depths");
+    }
+    if (!o->crack_depths.empty() && o->cantilever) {
+      throw InputError("--crack-depths", "given", "a case's cracked tooth, without --cantilever");
     }
     require_output_folder(
         o->out, o->overwrite,

@@ -270,3 +270,27 @@ TEST_CASE("a cracked tooth's FE compliance converges and exceeds the healthy too
     CHECK(pe_change > 0.0);
   }
 }
+
+// Refused before any mesh or folder, each naming the flag (no outside program runs).
+TEST_CASE("fe-check refuses a crack past the centre line, a spall off the layers and mixed modes") {
+  Scratch scratch("fe-refusals");
+  const std::string out = " --out " + (scratch.dir / "out").string();
+  const std::string wheel = "fe-check " + kPaperPairWithBores.string() + " --gear 2";
+  const std::filesystem::path rig =
+      std::filesystem::path(GEARIMPACT_PAPER_DATA_DIR) / ".." / "examples" / "rig_17_38.toml";
+  // q sin nu = 2.83 mm against the wheel's h_c = 2.23 mm.
+  CommandResult r = run_command(cli(wheel + " --crack-depths 4e-3" + out));
+  CHECK(r.exit_code != 0);
+  CHECK(r.err.find("q sin nu < h_c") != std::string::npos);
+  // 5 mm of a 15 mm face falls between the quarters' layer planes.
+  r = run_command(cli("fe-check " + rig.string() + " --spall-width 5e-3" + out));
+  CHECK(r.exit_code != 0);
+  CHECK(r.err.find("--spall-width") != std::string::npos);
+  r = run_command(cli(wheel + " --spall-width 5e-3 --crack-depths 1e-3" + out));
+  CHECK(r.err.find("--spall-width") != std::string::npos);
+  r = run_command(cli(wheel + " --edge-crack 1e-3" + out));
+  CHECK(r.err.find("--edge-crack") != std::string::npos);
+  r = run_command(cli("fe-check --cantilever --crack-depths 1e-3" + out));
+  CHECK(r.err.find("--crack-depths") != std::string::npos);
+  CHECK(!std::filesystem::exists(scratch.dir / "out"));
+}
