@@ -11,12 +11,14 @@
 #include <functional>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
+#include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/rack_generation.hpp"
 #include "gearimpact/geometry/tooth_outline.hpp"
@@ -25,7 +27,10 @@
 #include "gearimpact/io/results.hpp"
 #include "gearimpact/stiffness/finite_element_check.hpp"
 #include "gearimpact/stiffness/mesh_models.hpp"
+#include "gearimpact/stiffness/root_crack.hpp"
+#include "gearimpact/stiffness/surface_faults.hpp"
 #include "gnuplot.hpp"
+#include "reproduce.hpp"
 #include "run_program.hpp"
 
 namespace gearimpact::cli {
@@ -40,8 +45,20 @@ struct FeCheckOptions {
   double element_size = 0.4;
   int refinements = 3;
   bool cantilever = false;
+  // A slit from the cantilever's top edge at x = 40 mm (m; 0: none).
+  double edge_crack = 0.0;
+  // Root cracks of these depths (m) as slits, each on its own three meshes.
+  std::vector<double> crack_depths;
+  // A spall of this width (m; 0: none) on the pinion's drive flank at the pitch point: both
+  // teeth in 3-D, loaded over the whole face and over the width the spall leaves.
+  double spall_width = 0.0;
+  double spall_depth = 2e-4;
+  double solid_element_size = 1.0;
+  double crack_angle_deg = 45.0;
   bool overwrite = false;
   bool no_plots = false;
+  // Nothing on stdout (reproduce reads the files).
+  bool quiet = false;
 };
 
 // The convergence asked of the two finest meshes at every position.
@@ -62,7 +79,8 @@ std::vector<FeDisplacements> solve(const std::filesystem::path& dir, const std::
                                    const std::string& geo, const FeMaterial& material,
                                    const std::function<std::vector<FeLoad>(const FeMesh&)>& loads,
                                    const std::function<std::vector<long>(const FeMesh&)>& printed,
-                                   std::size_t& triangles, FeMesh* mesh_out = nullptr) {
+                                   std::size_t& triangles, FeMesh* mesh_out = nullptr,
+                                   const std::optional<FeSlit>& slit = std::nullopt) {
   write_file_atomically((dir / (stem + ".geo")).string(), geo);
   ProgramCall mesher;
   mesher.argv = {"gmsh", "-2", "-format", "inp", "-o", stem + "_mesh.inp", stem + ".geo"};
@@ -71,7 +89,8 @@ std::vector<FeDisplacements> solve(const std::filesystem::path& dir, const std::
   mesher.missing_hint = "Debian's gmsh; scripts/setup.sh installs it";
   mesher.capture_output = true;
   run_program(mesher);
-  const FeMesh mesh = read_gmsh_inp(read_text(dir / (stem + "_mesh.inp")));
+  FeMesh mesh = read_gmsh_inp(read_text(dir / (stem + "_mesh.inp")));
+  if (slit) open_slit(mesh, *slit, "SLIT");
   triangles = mesh.triangles.size();
   const std::vector<FeLoad> steps = loads(mesh);
   const std::vector<long> nodes = printed(mesh);
@@ -104,16 +123,23 @@ void run_cantilever(const FeCheckOptions& o) {
   const double length = 0.1;
   const double depth = 0.01;
   const double measured_x = length - depth;
+  const double crack_x = 0.04;
   const FeMaterial material{206e9, 0.0, 0.01};
+  std::optional<FeSlit> slit;
+  if (o.edge_crack > 0.0) {
+    slit = FeSlit{{crack_x, 0.5 * depth}, {crack_x, 0.5 * depth - o.edge_crack}};
+  }
   AtomicFolder folder(o.out, o.overwrite);
   const std::filesystem::path dir = folder.temporary();
   std::size_t triangles = 0;
   const auto u = solve(
-      dir, "cantilever", cantilever_geo(length, depth, 0.0015, measured_x), material,
+      dir, "cantilever", cantilever_geo(length, depth, 0.0015, measured_x, crack_x, o.edge_crack),
+      material,
       [](const FeMesh& m) {
         return std::vector<FeLoad>{{m.node_of("LOAD"), 0.0, -1.0}};
       },
-      [](const FeMesh& m) { return std::vector<long>{m.node_of("MEAS")}; }, triangles);
+      [](const FeMesh& m) { return std::vector<long>{m.node_of("MEAS")}; }, triangles, nullptr,
+      slit);
   // The printed node is the only one.
   const double deflection = -u.front().begin()->second[1];
   const std::string json =
@@ -122,6 +148,8 @@ void run_cantilever(const FeCheckOptions& o) {
       ",\n  \"width_m\": " + format_data_number(material.thickness_m) +
       ",\n  \"youngs_modulus_pa\": " + format_data_number(material.youngs_modulus_pa) +
       ",\n  \"poisson_ratio\": 0,\n  \"measured_x_m\": " + format_data_number(measured_x) +
+      ",\n  \"edge_crack_m\": " + format_data_number(o.edge_crack) +
+      ",\n  \"crack_x_m\": " + format_data_number(crack_x) +
       ",\n  \"triangles\": " + std::to_string(triangles) +
       ",\n  \"deflection_m_per_n\": " + format_data_number(deflection) + "\n}\n";
   write_file_atomically((dir / "cantilever.json").string(), json);
@@ -185,53 +213,163 @@ void run_tooth(const FeCheckOptions& o) {
   for (const FoundationExtrapolation& e : foundation_extrapolations(pair, pe_model)) {
     if (e.gear == which) extrapolated.push_back(e);
   }
+  // The cracks, placed and refused (q sin nu >= h_c) before any mesh: a uniform crack of each
+  // depth at the model's default start, the same for both models.
+  struct CrackRun {
+    RootCrack crack;
+    PlacedCrack placed;
+    std::vector<ToothCompliances> pe;
+    std::vector<ToothCompliances> ross;
+  };
+  std::vector<CrackRun> cracks;
+  for (const double depth : o.crack_depths) {
+    CrackRun run;
+    run.crack.depth_m = depth;
+    run.crack.angle_rad = o.crack_angle_deg * pi / 180.0;
+    run.placed = place_crack(run.crack, gear, pe_model.kind, pair.contact_width_m);
+    for (const PositionRow& row : rows) {
+      run.pe.push_back(cracked_tooth_compliances(gear, which, row.contact, pair.contact_width_m,
+                                                 pe_model, run.crack));
+      run.ross.push_back(cracked_tooth_compliances(gear, which, row.contact, pair.contact_width_m,
+                                                   ross_model, run.crack));
+    }
+    cracks.push_back(run);
+  }
   AtomicFolder folder(o.out, o.overwrite, {o.case_file});
   const std::filesystem::path dir = folder.temporary();
   const FeMaterial material{gear.youngs_modulus_pa, gear.poisson_ratio, pair.contact_width_m};
   const double m = c.gears.module_m;
-  std::vector<std::size_t> triangles(static_cast<std::size_t>(o.refinements));
-  std::vector<double> tooth_sizes;
-  for (int k = 0; k < o.refinements; ++k) {
-    const double factor = std::ldexp(1.0, -k);
-    // The ring far from the tooth carries little strain energy: its elements refine by the
-    // square root of the tooth's, so that a large wheel's ring does not dominate the cost (the
-    // convergence check covers both).
-    const FeMeshSizes sizes{
-        o.element_size * m * factor,
-        std::min(4.0 * m, (outline.root_radius_m - outline.bore_radius_m) / 3.0) *
-            std::sqrt(factor)};
-    tooth_sizes.push_back(sizes.tooth_m);
-    const std::string stem = "tooth_mesh" + std::to_string(k + 1);
-    const auto u = solve(
-        dir, stem, tooth_geo(outline, contacts, sizes), material,
-        [&](const FeMesh& mesh) {
-          std::vector<FeLoad> loads;
-          for (std::size_t i = 0; i < contacts.size(); ++i) {
-            loads.push_back({mesh.node_of("P" + std::to_string(i + 1)),
-                             -std::cos(contacts[i].tau_rad), -std::sin(contacts[i].tau_rad)});
-          }
-          return loads;
-        },
-        [&](const FeMesh& mesh) {
-          std::vector<long> nodes;
-          for (std::size_t i = 0; i < contacts.size(); ++i) {
-            for (const char* set : {"C", "A", "B"}) {
-              nodes.push_back(mesh.node_of(set + std::to_string(i + 1)));
+  // One geometry (healthy, or with a slit) on every mesh: its readings per position, per mesh.
+  struct Meshes {
+    std::vector<std::vector<FeToothReading>> readings;  // [position][mesh]
+    std::vector<std::size_t> triangles;
+    std::vector<double> tooth_sizes;
+  };
+  const auto run_meshes = [&](const std::string& name, const std::optional<FeSlit>& slit) {
+    Meshes out;
+    out.readings.resize(contacts.size());
+    for (int k = 0; k < o.refinements; ++k) {
+      const double factor = std::ldexp(1.0, -k);
+      // The ring far from the tooth carries little strain energy: its elements refine by the
+      // square root of the tooth's, so that a large wheel's ring does not dominate the cost (the
+      // convergence check covers both).
+      const FeMeshSizes sizes{
+          o.element_size * m * factor,
+          std::min(4.0 * m, (outline.root_radius_m - outline.bore_radius_m) / 3.0) *
+              std::sqrt(factor)};
+      out.tooth_sizes.push_back(sizes.tooth_m);
+      const std::string stem = name + "_mesh" + std::to_string(k + 1);
+      std::size_t triangles = 0;
+      FeMesh mesh;
+      const auto u = solve(
+          dir, stem, tooth_geo(outline, contacts, sizes, slit), material,
+          [&](const FeMesh& g) {
+            std::vector<FeLoad> loads;
+            for (std::size_t i = 0; i < contacts.size(); ++i) {
+              std::string set = "P";
+              set += std::to_string(i + 1);
+              loads.push_back(
+                  {g.node_of(set), -std::cos(contacts[i].tau_rad), -std::sin(contacts[i].tau_rad)});
             }
-          }
-          return nodes;
-        },
-        triangles[static_cast<std::size_t>(k)]);
-    const FeMesh mesh = read_gmsh_inp(read_text(dir / (stem + "_mesh.inp")));
-    for (std::size_t i = 0; i < contacts.size(); ++i) {
-      const std::string n = std::to_string(i + 1);
-      const FeDisplacements& step = u[i];
-      const FeToothReading r =
-          tooth_reading(contacts[i], step.at(mesh.node_of("C" + n)), step.at(mesh.node_of("A" + n)),
-                        step.at(mesh.node_of("B" + n)));
+            return loads;
+          },
+          [&](const FeMesh& g) {
+            std::vector<long> nodes;
+            for (std::size_t i = 0; i < contacts.size(); ++i) {
+              for (const char* prefix : {"C", "A", "B"}) {
+                std::string set = prefix;
+                set += std::to_string(i + 1);
+                nodes.push_back(g.node_of(set));
+              }
+            }
+            return nodes;
+          },
+          triangles, &mesh, slit);
+      out.triangles.push_back(triangles);
+      for (std::size_t i = 0; i < contacts.size(); ++i) {
+        const std::string n = std::to_string(i + 1);
+        const FeDisplacements& step = u[i];
+        out.readings[i].push_back(tooth_reading(contacts[i], step.at(mesh.node_of("C" + n)),
+                                                step.at(mesh.node_of("A" + n)),
+                                                step.at(mesh.node_of("B" + n))));
+      }
+    }
+    return out;
+  };
+  const Meshes healthy = run_meshes("tooth", std::nullopt);
+  const std::vector<std::size_t>& triangles = healthy.triangles;
+  const std::vector<double>& tooth_sizes = healthy.tooth_sizes;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    for (const FeToothReading& r : healthy.readings[i]) {
       rows[i].fe.push_back(r.compliance_m_per_n);
       rows[i].fe_centre_line.push_back(r.centre_line_m_per_n);
     }
+  }
+  // The cracked teeth: each depth's slit on its own three meshes (a depth of 0 is the healthy
+  // tooth's meshes), against each model's cracked reading and as the change the crack makes.
+  std::string crack_csv = "depth_m,angle_rad,start_radius_m,start_half_thickness_m,s_m,radius_m";
+  for (int k = 0; k < o.refinements; ++k) {
+    crack_csv += ",fe_mesh" + std::to_string(k + 1) + "_m_per_n";
+  }
+  crack_csv +=
+      ",pe_total_m_per_n,ross_total_m_per_n,fe_vs_pe,fe_vs_ross,fe_change,pe_change,ross_change,"
+      "last_mesh_change\n";
+  std::string crack_table =
+      "| q, mm | s, mm | r, mm | FE, m/N | PE total | FE vs PE | ROSS total | FE vs ROSS | FE "
+      "change | PE change | ROSS change | FE mesh change |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  double crack_worst_change = 0.0;
+  for (std::size_t j = 0; j < cracks.size(); ++j) {
+    const CrackRun& run = cracks[j];
+    const Meshes cracked = run.crack.depth_m > 0.0
+                               ? run_meshes("crack" + std::to_string(j + 1),
+                                            root_crack_slit(run.placed.start_radius_m,
+                                                            run.placed.start_half_thickness_m,
+                                                            run.crack.depth_m, run.crack.angle_rad))
+                               : healthy;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const PositionRow& r = rows[i];
+      const auto& fe_meshes = cracked.readings[i];
+      const double fe = fe_meshes.back().compliance_m_per_n;
+      const double fe_healthy = healthy.readings[i].back().compliance_m_per_n;
+      const double change =
+          fe_meshes.size() > 1
+              ? std::fabs(fe - fe_meshes[fe_meshes.size() - 2].compliance_m_per_n) / fe
+              : 0.0;
+      crack_worst_change = std::max(crack_worst_change, change);
+      const double pe = run.pe[i].total_m_per_n();
+      const double ross = run.ross[i].total_m_per_n();
+      const double radius = std::hypot(r.contact.x_m, r.contact.y_m);
+      std::vector<double> fields{run.crack.depth_m,
+                                 run.crack.angle_rad,
+                                 run.placed.start_radius_m,
+                                 run.placed.start_half_thickness_m,
+                                 r.s_m,
+                                 radius};
+      for (const FeToothReading& v : fe_meshes) fields.push_back(v.compliance_m_per_n);
+      for (const double v :
+           {pe, ross, fe / pe - 1.0, fe / ross - 1.0, fe / fe_healthy - 1.0,
+            pe / r.pe.total_m_per_n() - 1.0, ross / r.ross.total_m_per_n() - 1.0, change}) {
+        fields.push_back(v);
+      }
+      for (std::size_t f = 0; f < fields.size(); ++f) {
+        if (f) crack_csv += ',';
+        crack_csv += format_data_number(fields[f]);
+      }
+      crack_csv += '\n';
+      char head[80];
+      std::snprintf(head, sizeof head, "| %.3f | %.3f | %.3f | ", run.crack.depth_m * 1e3,
+                    r.s_m * 1e3, radius * 1e3);
+      crack_table +=
+          head + scientific(fe) + " | " + scientific(pe) + " | " + percent(fe / pe - 1.0) + " | " +
+          scientific(ross) + " | " + percent(fe / ross - 1.0) + " | " +
+          percent(fe / fe_healthy - 1.0) + " | " + percent(pe / r.pe.total_m_per_n() - 1.0) +
+          " | " + percent(ross / r.ross.total_m_per_n() - 1.0) + " | " + percent(change) + " |\n";
+    }
+  }
+  if (!cracks.empty()) {
+    write_file_atomically((dir / "fe_crack.csv").string(), crack_csv);
+    write_file_atomically((dir / "fe_crack.md").string(), crack_table);
   }
   // The table: CSV with every mesh, Markdown with the finest.
   std::string csv = "s_m,radius_m,y_t_m,tau_rad";
@@ -293,6 +431,11 @@ void run_tooth(const FeCheckOptions& o) {
       ",\n  \"largest_last_mesh_change\": " + format_data_number(worst_change) +
       ",\n  \"converged\": " + (converged ? "true" : "false") +
       ",\n  \"largest_fe_vs_pe\": " + format_data_number(worst_pe) +
+      (cracks.empty()
+           ? std::string()
+           : ",\n  \"crack_largest_last_mesh_change\": " + format_data_number(crack_worst_change) +
+                 ",\n  \"crack_converged\": " +
+                 (o.refinements < 2 || crack_worst_change < kConvergence ? "true" : "false")) +
       ",\n  \"foundation_extrapolated\": " + (extrapolated.empty() ? "false" : "true") + "\n}\n";
   write_file_atomically((dir / "fe_check.csv").string(), csv);
   write_file_atomically((dir / "fe_check.md").string(), table);
@@ -300,8 +443,8 @@ void run_tooth(const FeCheckOptions& o) {
   if (!o.no_plots) {
     Figure f;
     f.name = "fe_check";
-    f.title = "Tooth compliance of gear " + std::to_string(o.gear) + " (" +
-              literal_key(c.name) + "): finite elements and the potential-energy terms";
+    f.title = "Tooth compliance of gear " + std::to_string(o.gear) + " (" + literal_key(c.name) +
+              "): finite elements and the potential-energy terms";
     f.x_label = "contact position s from T_1 on the line of action, mm";
     f.y_label = "compliance along the load, 1e-9 m/N";
     f.setup = {"set key outside right top vertical"};
@@ -323,8 +466,11 @@ void run_tooth(const FeCheckOptions& o) {
     std::fprintf(stderr, "gearimpact: warning: %s\n",
                  foundation_extrapolation_warning(extrapolated).c_str());
   }
-  std::fputs(table.c_str(), stdout);
-  std::fputs(json.c_str(), stdout);
+  if (!o.quiet) {
+    std::fputs(table.c_str(), stdout);
+    if (!cracks.empty()) std::fputs(crack_table.c_str(), stdout);
+    std::fputs(json.c_str(), stdout);
+  }
   if (!converged) {
     throw std::runtime_error(
         "fe-check: the meshes have not converged: the compliance at s = " +
@@ -334,7 +480,354 @@ void run_tooth(const FeCheckOptions& o) {
   }
 }
 
+// The spall in 3-D (docs/verification.md, "The spall in 3-D"): each tooth of the pair at the
+// pitch point, loaded along the line of action by a unit force spread evenly over the whole
+// face and over the width the spall leaves (z in [b_s, b]: the spall takes z in [0, b_s], where
+// the flanks do not touch); its compliance the load-weighted mean of the section readings
+// along z. The pair's compliance adds Hertz over the contact length; the pit's material stays.
+void run_spall(const FeCheckOptions& o) {
+  const SimulationCase c = read_pair_or_run_file(o.case_file).simulation_case;
+  const RackGearPairGeometry pair = rack_gear_pair_geometry(c.gears);
+  const double b = pair.contact_width_m;
+  const double b_s = o.spall_width;
+  const double quarters = 4.0 * b_s / b;
+  if (!(b_s > 0.0 && b_s < b) || std::fabs(quarters - std::round(quarters)) > 1e-9) {
+    throw InputError("--spall-width", b_s,
+                     "a quarter, a half or three quarters of the contact width (" +
+                         format_number(b) + " m): the layers of the solid mesh meet there");
+  }
+  const double s_pitch = pair.gear1.base_radius_m * std::tan(pair.operating_pressure_angle_rad);
+  const PairContact both = pair_contact(pair, s_pitch);
+  // The spall on the pinion's drive flank, +-0.5 mm of roll about the pitch point.
+  Spall spall;
+  spall.start_radius_m = radius_at_roll_distance(pair.gear1.base_radius_m, s_pitch - 5e-4);
+  spall.end_radius_m = radius_at_roll_distance(pair.gear1.base_radius_m, s_pitch + 5e-4);
+  spall.width_m = b_s;
+  spall.depth_m = o.spall_depth;
+  place_spall(spall, pair.gear1, b);
+  StiffnessModel pe_model;
+  pe_model.kind = StiffnessModelKind::potential_energy;
+  const ToothContact contact[2] = {both.gear1, both.gear2};
+  const RackGearGeometry* gears[2] = {&pair.gear1, &pair.gear2};
+  const char* bore_keys[2] = {"gears.bore_diameter1", "gears.bore_diameter2"};
+  ToothCompliances healthy_model[2];
+  ToothOutline outlines[2];
+  for (int g = 0; g < 2; ++g) {
+    outlines[g] = tooth_outline(*gears[g], bore_keys[g], 24, 48, {contact[g].tau_rad});
+    healthy_model[g] =
+        tooth_compliances(*gears[g], g == 0 ? Gear::one : Gear::two, contact[g], b, pe_model);
+  }
+  const ToothCompliances spalled_pinion =
+      spalled_tooth_compliances(pair.gear1, Gear::one, contact[0], b, pe_model, spall);
+  AtomicFolder folder(o.out, o.overwrite, {o.case_file});
+  const std::filesystem::path dir = folder.temporary();
+  const double m = c.gears.module_m;
+  // [gear][mesh]: the compliance over the whole face and over the width left.
+  std::vector<double> full[2];
+  std::vector<double> part[2];
+  std::vector<std::size_t> wedges;
+  std::vector<int> layer_counts;
+  std::vector<double> sizes_used;
+  for (int g = 0; g < 2; ++g) {
+    const RackGearGeometry& gear = *gears[g];
+    const ToothOutline& outline = outlines[g];
+    const FeMaterial material{gear.youngs_modulus_pa, gear.poisson_ratio, b};
+    for (int k = 0; k < o.refinements; ++k) {
+      // Three meshes a factor sqrt 2 apart (halving would multiply a solid's cost by 8).
+      const double factor = std::pow(2.0, -0.5 * k);
+      const FeMeshSizes sizes{
+          o.solid_element_size * m * factor,
+          std::min(4.0 * m, (outline.root_radius_m - outline.bore_radius_m) / 3.0) *
+              std::sqrt(factor)};
+      // Layers a multiple of 4 (so that b_s falls on a layer plane), each at most twice the
+      // tooth's element size: quadratic along z.
+      const int layers = 4 * static_cast<int>(std::ceil(b / (8.0 * sizes.tooth_m)));
+      const std::string stem =
+          "solid_gear" + std::to_string(g + 1) + "_mesh" + std::to_string(k + 1);
+      write_file_atomically((dir / (stem + ".geo")).string(),
+                            tooth_geo_3d(outline, {contact[g]}, sizes, b, layers));
+      ProgramCall mesher;
+      mesher.argv = {"gmsh", "-3", "-format", "inp", "-o", stem + "_mesh.inp", stem + ".geo"};
+      mesher.dir = dir;
+      mesher.shown = (dir / (stem + ".geo")).string();
+      mesher.missing_hint = "Debian's gmsh; scripts/setup.sh installs it";
+      mesher.capture_output = true;
+      run_program(mesher);
+      const FeMesh3 mesh = read_gmsh_inp_3d(read_text(dir / (stem + "_mesh.inp")));
+      const OutlinePoint& p = outline.flank.at(outline.vertex_index.front());
+      const ToothContact& t = contact[g];
+      const std::vector<long> line_p = nodes_on_z_line(mesh, p.x_m, p.y_m);
+      const std::vector<long> line_c = nodes_on_z_line(mesh, 0.0, t.y_m);
+      const std::vector<long> line_a = nodes_on_z_line(mesh, -0.5 * t.x_m, t.y_m);
+      const std::vector<long> line_b = nodes_on_z_line(mesh, 0.5 * t.x_m, t.y_m);
+      const std::size_t n = static_cast<std::size_t>(2 * layers + 1);
+      if (line_p.size() != n || line_c.size() != n || line_a.size() != n || line_b.size() != n) {
+        throw std::runtime_error("the solid mesh " + stem +
+                                 " lacks the lines of nodes along z at the load and its section");
+      }
+      std::vector<double> z;
+      for (const long id : line_p) z.push_back(mesh.nodes_m.at(id)[2]);
+      const std::vector<double> w_full = line_load_weights(z, 0.0, b);
+      const std::vector<double> w_part = line_load_weights(z, b_s, b);
+      const double dx = -std::cos(t.tau_rad);
+      const double dy = -std::sin(t.tau_rad);
+      std::vector<std::vector<FeLoad>> steps(2);
+      for (std::size_t i = 0; i < n; ++i) {
+        if (w_full[i] != 0.0) steps[0].push_back({line_p[i], dx * w_full[i], dy * w_full[i]});
+        if (w_part[i] != 0.0) steps[1].push_back({line_p[i], dx * w_part[i], dy * w_part[i]});
+      }
+      std::vector<long> printed;
+      for (const auto* line : {&line_c, &line_a, &line_b}) {
+        printed.insert(printed.end(), line->begin(), line->end());
+      }
+      write_file_atomically(
+          (dir / (stem + ".inp")).string(),
+          calculix_input_3d(mesh, material, nodes_at_radius(mesh, outline.bore_radius_m), steps,
+                            printed));
+      ProgramCall solver;
+      solver.argv = {"ccx", "-i", stem};
+      solver.dir = dir;
+      solver.shown = (dir / (stem + ".inp")).string();
+      solver.missing_hint = "Debian's calculix-ccx; scripts/setup.sh installs it";
+      solver.environment = {"OMP_NUM_THREADS=1", "CCX_NPROC_STIFFNESS=1",
+                            "CCX_NPROC_EQUATION_SOLVER=1"};
+      solver.capture_output = true;
+      const std::string log = run_program(solver);
+      const auto error = log.find("*ERROR");
+      if (error != std::string::npos) {
+        throw std::runtime_error("ccx failed on " + solver.shown + ": " +
+                                 log.substr(error, std::min<std::size_t>(400, log.size() - error)));
+      }
+      const auto u = read_calculix_dat(read_text(dir / (stem + ".dat")), 2, printed);
+      // Each step's compliance: the section readings along z weighted by the step's load.
+      double readings[2] = {0.0, 0.0};
+      for (std::size_t step = 0; step < 2; ++step) {
+        const std::vector<double>& w = step == 0 ? w_full : w_part;
+        for (std::size_t i = 0; i < n; ++i) {
+          if (w[i] == 0.0) continue;
+          readings[step] += w[i] * tooth_reading(t, u[step].at(line_c[i]), u[step].at(line_a[i]),
+                                                 u[step].at(line_b[i]))
+                                       .compliance_m_per_n;
+        }
+      }
+      full[g].push_back(readings[0]);
+      part[g].push_back(readings[1]);
+      if (g == 0) {
+        wedges.push_back(mesh.wedges.size());
+        layer_counts.push_back(layers);
+        sizes_used.push_back(sizes.tooth_m);
+      }
+    }
+  }
+  // The pair: Hertz over the contact length plus both teeth.
+  const double e1 = pair.gear1.youngs_modulus_pa;
+  const double e2 = pair.gear2.youngs_modulus_pa;
+  const double nu1 = pair.gear1.poisson_ratio;
+  const double nu2 = pair.gear2.poisson_ratio;
+  const double hertz_full = 1.0 / hertz_stiffness_two_materials(b, e1, nu1, e2, nu2);
+  const double hertz_part = 1.0 / hertz_stiffness_two_materials(b - b_s, e1, nu1, e2, nu2);
+  const double scale = b / (b - b_s);
+  const auto width_scaled = [&](const ToothCompliances& t) {
+    return scale * (t.bending_m_per_n + t.foundation_m_per_n) + t.shear_m_per_n + t.axial_m_per_n;
+  };
+  struct Reading {
+    const char* name;
+    double tooth1_healthy, tooth1_spalled, tooth2_healthy, tooth2_spalled;
+  };
+  const Reading fe{"finite elements (3-D, finest mesh)", full[0].back(), part[0].back(),
+                   full[1].back(), part[1].back()};
+  const Reading hertz_only{
+      "potential-energy, this code's reading (Hertz over b - b_s, pit sections)",
+      healthy_model[0].total_m_per_n(), spalled_pinion.total_m_per_n(),
+      healthy_model[1].total_m_per_n(), healthy_model[1].total_m_per_n()};
+  const Reading scaled{"potential-energy, width-scaled (bending and foundation x b / (b - b_s))",
+                       healthy_model[0].total_m_per_n(), width_scaled(healthy_model[0]),
+                       healthy_model[1].total_m_per_n(), width_scaled(healthy_model[1])};
+  std::string table =
+      "| reading | pinion tooth healthy, m/N | spalled | change | wheel tooth healthy | "
+      "spalled | change | pair healthy, N/m | spalled | pair stiffness lost |\n"
+      "|---|---|---|---|---|---|---|---|---|---|\n";
+  std::string csv =
+      "reading,tooth1_healthy_m_per_n,tooth1_spalled_m_per_n,tooth2_healthy_m_per_n,"
+      "tooth2_spalled_m_per_n,hertz_healthy_m_per_n,hertz_spalled_m_per_n,pair_healthy_n_per_m,"
+      "pair_spalled_n_per_m,pair_loss\n";
+  double fe_loss = 0.0;
+  for (const Reading* r : {&fe, &hertz_only, &scaled}) {
+    const double k_healthy = 1.0 / (hertz_full + r->tooth1_healthy + r->tooth2_healthy);
+    const double k_spalled = 1.0 / (hertz_part + r->tooth1_spalled + r->tooth2_spalled);
+    const double loss = 1.0 - k_spalled / k_healthy;
+    if (r == &fe) fe_loss = loss;
+    table += std::string("| ") + r->name + " | " + scientific(r->tooth1_healthy) + " | " +
+             scientific(r->tooth1_spalled) + " | " +
+             percent(r->tooth1_spalled / r->tooth1_healthy - 1.0) + " | " +
+             scientific(r->tooth2_healthy) + " | " + scientific(r->tooth2_spalled) + " | " +
+             percent(r->tooth2_spalled / r->tooth2_healthy - 1.0) + " | " + scientific(k_healthy) +
+             " | " + scientific(k_spalled) + " | " + percent(loss) + " |\n";
+    std::vector<double> fields{r->tooth1_healthy, r->tooth1_spalled, r->tooth2_healthy,
+                               r->tooth2_spalled, hertz_full,        hertz_part,
+                               k_healthy,         k_spalled,         loss};
+    csv += std::string("\"") + r->name + "\"";
+    for (const double v : fields) {
+      csv += ',';
+      csv += format_data_number(v);
+    }
+    csv += '\n';
+  }
+  // Convergence: every mesh's four compliances.
+  std::string meshes_csv =
+      "mesh,tooth_element_m,layers,wedges_gear1,tooth1_full_m_per_n,"
+      "tooth1_part_m_per_n,tooth2_full_m_per_n,tooth2_part_m_per_n\n";
+  double worst_change = 0.0;
+  for (std::size_t k = 0; k < full[0].size(); ++k) {
+    std::vector<double> fields{sizes_used[k],
+                               static_cast<double>(layer_counts[k]),
+                               static_cast<double>(wedges[k]),
+                               full[0][k],
+                               part[0][k],
+                               full[1][k],
+                               part[1][k]};
+    meshes_csv += std::to_string(k + 1);
+    for (const double v : fields) {
+      meshes_csv += ',';
+      meshes_csv += format_data_number(v);
+    }
+    meshes_csv += '\n';
+    if (k > 0 && k + 1 == full[0].size()) {
+      for (int g = 0; g < 2; ++g) {
+        worst_change = std::max(worst_change, std::fabs(full[g][k] / full[g][k - 1] - 1.0));
+        worst_change = std::max(worst_change, std::fabs(part[g][k] / part[g][k - 1] - 1.0));
+      }
+    }
+  }
+  const bool converged = o.refinements < 2 || worst_change < kConvergence;
+  const std::string json =
+      "{\n  \"case\": \"" + c.name + "\",\n  \"s_m\": " + format_data_number(s_pitch) +
+      ",\n  \"contact_width_m\": " + format_data_number(b) +
+      ",\n  \"spall_width_m\": " + format_data_number(b_s) +
+      ",\n  \"spall_depth_m\": " + format_data_number(o.spall_depth) +
+      ",\n  \"largest_last_mesh_change\": " + format_data_number(worst_change) +
+      ",\n  \"converged\": " + (converged ? "true" : "false") +
+      ",\n  \"fe_pair_loss\": " + format_data_number(fe_loss) + "\n}\n";
+  write_file_atomically((dir / "fe_spall.csv").string(), csv);
+  write_file_atomically((dir / "fe_spall.md").string(), table);
+  write_file_atomically((dir / "fe_spall_meshes.csv").string(), meshes_csv);
+  write_file_atomically((dir / "summary.json").string(), json);
+  folder.commit();
+  if (!o.quiet) {
+    std::fputs(table.c_str(), stdout);
+    std::fputs(meshes_csv.c_str(), stdout);
+    std::fputs(json.c_str(), stdout);
+  }
+  if (!converged) {
+    throw std::runtime_error(
+        "fe-check --spall-width: the solid meshes changed by " +
+        format_number(100.0 * worst_change) + " % between the two finest (at most " +
+        format_number(100.0 * kConvergence) + " % asked; the results are in " + o.out + ")");
+  }
+}
+
+// The paper's pair with the bores of the ROSS peer run, as examples/paper_pair_bores.toml.
+constexpr const char* kPaperPairBores =
+    "name = \"paper_pair_bores\"\n\n[gears]\nteeth1 = 20\nteeth2 = 80\nmodule = \"2 mm\"\n"
+    "pressure_angle = \"20 deg\"\nface_width = \"10 mm\"\nyoungs_modulus = \"206.8 GPa\"\n"
+    "poisson_ratio = 0.3\ndensity = \"7800 kg/m^3\"\nbacklash = \"0.05 mm\"\n"
+    "bore_diameter1 = \"20 mm\"\nbore_diameter2 = \"60 mm\"\n\n[model]\n"
+    "stiffness_model = \"potential-energy\"\n";
+
 }  // namespace
+
+ReportSection reproduce_fe(const ReproduceContext& context) {
+  const std::filesystem::path dir = context.out / "fe";
+  std::filesystem::create_directories(dir);
+  write_file_atomically((dir / "paper_pair_bores.toml").string(), kPaperPairBores);
+  write_file_atomically((dir / "rig_17_38.toml").string(), rig_17_38_toml());
+  FeCheckOptions tooth;
+  tooth.case_file = (dir / "paper_pair_bores.toml").string();
+  tooth.out = (dir / "wheel").string();
+  tooth.gear = 2;
+  tooth.crack_depths = {0.0, 1e-3, 2e-3};
+  tooth.overwrite = true;
+  tooth.no_plots = true;
+  tooth.quiet = true;
+  run_tooth(tooth);
+  FeCheckOptions solid;
+  solid.case_file = (dir / "rig_17_38.toml").string();
+  solid.out = (dir / "spall").string();
+  solid.spall_width = 7.5e-3;
+  solid.overwrite = true;
+  solid.quiet = true;
+  run_spall(solid);
+  // The figure: the wheel's compliance over the path of contact at each crack depth.
+  Figure f;
+  f.name = "fe_crack";
+  f.title = "Paper's wheel tooth with a root crack (45 deg): finite elements against the models";
+  f.x_label = "contact position s from T_1 on the line of action, mm";
+  f.y_label = "tooth compliance along the load, 1e-9 m/N";
+  f.setup = {"set key outside right top vertical"};
+  const char* colours[3] = {"#1f77b4", "#ff7f0e", "#d62728"};
+  const char* depths[3] = {"0", "0.001", "0.002"};
+  const char* names[3] = {"healthy", "q = 1 mm", "q = 2 mm"};
+  for (int j = 0; j < 3; ++j) {
+    const std::string pick = std::string("(abs($1-") + depths[j] + ")<1e-9 ? $5*1e3 : 1/0)";
+    const std::string colour = std::string(" lc rgb '") + colours[j] + "'";
+    f.series.push_back("'wheel/fe_crack.csv' using " + pick +
+                       ":($9*1e9) with linespoints lw 2 pt 7" + colour + " title 'FE, " + names[j] +
+                       "'");
+    f.series.push_back("'wheel/fe_crack.csv' using " + pick +
+                       ":($10*1e9) with linespoints lw 1 dt 2 pt 5" + colour +
+                       " title 'potential energy, " + names[j] + "'");
+    f.series.push_back("'wheel/fe_crack.csv' using " + pick +
+                       ":($11*1e9) with linespoints lw 1 dt 3 pt 4" + colour +
+                       " title 'ross-compatible, " + names[j] + "'");
+  }
+  render(dir, f);
+  // The spall: the pair's stiffness lost by a half-face spall, each reading.
+  const auto read = [](const std::filesystem::path& path) {
+    std::ifstream in(path);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+  };
+  {
+    std::istringstream rows(read(dir / "spall" / "fe_spall.csv"));
+    std::string line;
+    std::getline(rows, line);
+    const char* labels[3] = {"finite elements", "Hertz only (this code)", "width-scaled"};
+    std::string bars = "reading,pair_loss_percent\n";
+    for (int r = 0; r < 3 && std::getline(rows, line); ++r) {
+      bars += std::string("\"") + labels[r] + "\"," +
+              format_data_number(100.0 * std::stod(line.substr(line.rfind(',') + 1))) + "\n";
+    }
+    write_file_atomically((dir / "fe_spall_loss.csv").string(), bars);
+  }
+  Figure g;
+  g.name = "fe_spall";
+  g.title = "Rig pair 17/38 at the pitch point, half-face spall on the pinion: stiffness lost";
+  g.x_label = "reading of the spall";
+  g.y_label = "pair stiffness lost, %";
+  g.setup = {"set style fill solid 0.6 border -1", "set boxwidth 0.5", "set yrange [0:*]",
+             "set xrange [-0.6:2.6]", "unset key"};
+  g.series = {"'fe_spall_loss.csv' using 0:2:xtic(1) with boxes lc rgb '#1f77b4'",
+              "'fe_spall_loss.csv' using 0:2:(sprintf('%.1f %%', $2)) with labels offset 0,1"};
+  render(dir, g);
+  ReportSection section;
+  section.title = "Finite-element check of the tooth compliance (reproduce --fe)";
+  section.text =
+      "gmsh and CalculiX (docs/verification.md, \"Finite-element check of the tooth "
+      "compliance\"). The paper's wheel (80 teeth, bore 60 mm) in 2-D plane stress, healthy and "
+      "with a root crack of q = 1 and 2 mm at 45 deg from the potential-energy model's crack "
+      "start, as a slit; 1e-9 m/N, finest of three meshes (`fe/wheel/`; a depth of 0 is the "
+      "healthy tooth). FE change, PE change: the compliance the crack adds by each.\n\n" +
+      read(dir / "wheel" / "fe_crack.md") +
+      "\n![Cracked wheel tooth](fe/fe_crack.png)\n\nThe healthy wheel term by term:\n\n" +
+      read(dir / "wheel" / "fe_check.md") +
+      "\nThe rig pair (17/38, m 3 mm, b 15 mm) at the pitch point in 3-D, each tooth loaded over "
+      "the whole face and over the half a spall of b_s = 7.5 mm leaves (`fe/spall/`; the pair "
+      "adds Hertz over the contact length to the teeth):\n\n" +
+      read(dir / "spall" / "fe_spall.md") + "\nThe solid meshes (m/N):\n\n```\n" +
+      read(dir / "spall" / "fe_spall_meshes.csv") + "```\n\n![Spall](fe/fe_spall.png)\n";
+  return section;
+}
 
 void register_fe_commands(CLI::App& app) {
   auto o = std::make_shared<FeCheckOptions>();
@@ -363,6 +856,32 @@ void register_fe_commands(CLI::App& app) {
   fe->add_option("--out", o->out,
                  "output folder: new or empty (else --overwrite), in a folder that exists")
       ->required();
+  fe->add_option("--crack-depths", o->crack_depths,
+                 "root-crack depths q in m (comma-separated, e.g. 0,1e-3,2e-3): each a slit on "
+                 "the loaded flank from the model's crack start, on its own three meshes; "
+                 "fe_crack.csv and fe_crack.md")
+      ->delimiter(',')
+      ->check(CLI::Range(0.0, 0.1));
+  fe->add_option("--crack-angle", o->crack_angle_deg,
+                 "the cracks' angle nu to the tooth's centre line, deg, in (0, 90]")
+      ->check(CLI::Range(0.001, 90.0));
+  fe->add_option("--spall-width", o->spall_width,
+                 "solve the spall in 3-D instead: both teeth at the pitch point, loaded over the "
+                 "whole face and over the width a spall this wide (m; a quarter, half or three "
+                 "quarters of the face) leaves; fe_spall.csv, fe_spall.md, fe_spall_meshes.csv")
+      ->check(CLI::Range(0.0, 1.0));
+  fe->add_option("--spall-depth", o->spall_depth,
+                 "the spall's depth d_s for the models' reading (m, default 2e-4; the solid "
+                 "keeps the pit's material)")
+      ->check(CLI::Range(0.0, 0.01));
+  fe->add_option("--solid-element-size", o->solid_element_size,
+                 "with --spall-width: the coarsest solid mesh's element size on the tooth, a "
+                 "fraction of the module in [0.2, 1]; each finer mesh divides it by sqrt 2")
+      ->check(CLI::Range(0.2, 1.0));
+  fe->add_option("--edge-crack", o->edge_crack,
+                 "with --cantilever: a slit this deep (m, below half the depth, 5 mm) from the "
+                 "top edge at x = 40 mm")
+      ->check(CLI::Range(0.0, 0.0049));
   fe->add_flag("--overwrite", o->overwrite, "replace a non-empty --out folder whole");
   fe->add_flag("--no-plots", o->no_plots, "write the tables only");
   fe->callback([o] {
@@ -370,11 +889,23 @@ void register_fe_commands(CLI::App& app) {
       throw InputError("case", o->case_file.empty() ? "absent" : o->case_file,
                        "either a case file or --cantilever");
     }
+    if (o->edge_crack > 0.0 && !o->cantilever) {
+      throw InputError("--edge-crack", o->edge_crack, "only with --cantilever");
+    }
+    if (o->spall_width > 0.0 && (o->cantilever || !o->crack_depths.empty())) {
+      throw InputError("--spall-width", o->spall_width,
+                       "a case's 3-D spall, without --cantilever or --crack-depths");
+    }
+    if (!o->crack_depths.empty() && o->cantilever) {
+      throw InputError("--crack-depths", "given", "a case's cracked tooth, without --cantilever");
+    }
     require_output_folder(
         o->out, o->overwrite,
         o->case_file.empty() ? std::vector<std::string>{} : std::vector<std::string>{o->case_file});
     if (o->cantilever) {
       run_cantilever(*o);
+    } else if (o->spall_width > 0.0) {
+      run_spall(*o);
     } else {
       run_tooth(*o);
     }

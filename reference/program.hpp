@@ -99,8 +99,10 @@ double specific_load_of(const std::string& text, const GearPair& pair);
 // option for a bad one.
 SteadySweep sweep_with_options(const SimulationCase& c, const std::vector<std::string>& options);
 
-// `gearimpact reproduce --out OUT [--paper-data PAPER_DATA]` (empty: the program's default
-// folder): every figure and REPORT.md into `out`, progress on stderr. Returns REPORT.md's path.
-std::filesystem::path reproduce(const std::filesystem::path& out, const std::string& paper_data);
+// `gearimpact reproduce --out OUT [--paper-data PAPER_DATA] [--fe]` (empty: the program's default
+// folder): every figure and REPORT.md into `out`, progress on stderr; with_fe adds the
+// finite-element check (minutes). Returns REPORT.md's path.
+std::filesystem::path reproduce(const std::filesystem::path& out, const std::string& paper_data,
+                                bool with_fe = false);
 
 }  // namespace gearimpact::cli

@@ -51,6 +51,9 @@ ReportSection reproduce_faults(const ReproduceContext& context);
 // growing depth (spectrum, TSA, condition indicators), and the pair at low load with a torque
 // ripple, where the teeth separate.
 ReportSection reproduce_vibration(const ReproduceContext& context);
+// The finite-element check (fe-check, docs/verification.md), opt-in (`reproduce --fe`, minutes):
+// the paper's wheel healthy and cracked in 2-D, the rig pair's half-face spall in 3-D.
+ReportSection reproduce_fe(const ReproduceContext& context);
 // The text of examples/rig_17_38.toml, compiled in.
 const char* rig_17_38_toml();
 

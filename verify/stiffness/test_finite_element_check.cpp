@@ -5,9 +5,15 @@
 // kinematics.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
@@ -166,4 +172,162 @@ TEST_CASE("the compliance read from a section moving rigidly is the load point's
   CHECK(relative_difference(r.centre_line_m_per_n, -std::cos(contact.tau_rad) * centre[0] -
                                                        std::sin(contact.tau_rad) * centre[1]) <
         1e-12);
+}
+
+TEST_CASE(
+    "a root crack's slit runs q from the flank point at r_s, its tip h_c - q sin nu from the "
+    "centre line") {
+  const double r_s = 0.0779;
+  const double h_c = 0.00223;
+  const double q = 0.0015;
+  const double nu = 0.6;
+  const FeSlit slit = root_crack_slit(r_s, h_c, q, nu);
+  // Relative 1e-15 and absolute 1e-18 m: one or two roundings of the inputs' size.
+  CHECK(relative_difference(std::hypot(slit.mouth.x_m, slit.mouth.y_m), r_s) < 1e-15);
+  CHECK(slit.mouth.x_m == h_c);
+  CHECK(std::fabs(slit.tip.x_m - (h_c - q * std::sin(nu))) < 1e-18);
+  // The slit's length from its ends' coordinates, which are 50 times q: 1e-13 leaves room for
+  // the cancellation's 50 ulps of q.
+  CHECK(relative_difference(
+            std::hypot(slit.tip.x_m - slit.mouth.x_m, slit.tip.y_m - slit.mouth.y_m), q) < 1e-13);
+  // Towards the root: the tip lies below the mouth, at nu to the centre line.
+  CHECK(slit.tip.y_m < slit.mouth.y_m);
+  CHECK(std::fabs(std::atan2(slit.mouth.x_m - slit.tip.x_m, slit.mouth.y_m - slit.tip.y_m) - nu) <
+        1e-12);
+}
+
+TEST_CASE("open_slit gives the triangles on the slit's left their own nodes, all but the tip's") {
+  // Six-node triangles around a slit from the mouth (0, 0) on the left edge to the tip (1, 0):
+  // two above it, two below, two beyond the tip. Vertices 1..7, then the mid-side nodes.
+  FeMesh mesh;
+  const std::map<long, std::array<double, 2>> vertices{
+      {1, {0, 0}}, {2, {1, 0}}, {3, {0, 1}}, {4, {1, 1}}, {5, {0, -1}}, {6, {1, -1}}, {7, {2, 0}}};
+  mesh.nodes_m = vertices;
+  long next = 7;
+  std::map<std::pair<long, long>, long> mid;
+  const auto middle = [&](long a, long b) {
+    const auto key = std::minmax(a, b);
+    const auto found = mid.find(key);
+    if (found != mid.end()) return found->second;
+    const long n = ++next;
+    mesh.nodes_m[n] = {0.5 * (mesh.nodes_m[a][0] + mesh.nodes_m[b][0]),
+                       0.5 * (mesh.nodes_m[a][1] + mesh.nodes_m[b][1])};
+    mid[key] = n;
+    return n;
+  };
+  for (const auto& [a, b, c] : std::vector<std::array<long, 3>>{
+           {1, 2, 3}, {2, 4, 3}, {1, 5, 2}, {2, 5, 6}, {2, 7, 4}, {2, 6, 7}}) {
+    mesh.triangles.push_back({a, b, c, middle(a, b), middle(b, c), middle(c, a)});
+  }
+  const long slit_middle = middle(1, 2);
+  mesh.node_sets["SLIT"] = {1, slit_middle, 2};
+  const FeMesh before = mesh;
+  const std::size_t duplicated = open_slit(mesh, FeSlit{{0, 0}, {1, 0}}, "SLIT");
+  // The mouth and the slit's mid-side node are doubled; the tip is not.
+  CHECK(duplicated == 2);
+  CHECK(mesh.nodes_m.size() == before.nodes_m.size() + 2);
+  // Above the slit (its left, looking from mouth to tip): the twins, at the same places.
+  for (const std::size_t t : {0, 1}) {
+    for (std::size_t k = 0; k < 6; ++k) {
+      const long was = before.triangles[t][k];
+      const long is = mesh.triangles[t][k];
+      if (was == 1 || was == slit_middle) {
+        CHECK(is > next);
+        CHECK(mesh.nodes_m.at(is) == before.nodes_m.at(was));
+      } else {
+        CHECK(is == was);
+      }
+    }
+  }
+  // Below and beyond the tip: unchanged; the tip one node for all.
+  for (const std::size_t t : {2, 3, 4, 5}) CHECK(mesh.triangles[t] == before.triangles[t]);
+  CHECK(mesh.node_sets == before.node_sets);
+  // Without the set, or with a tip off the set's nodes: named.
+  FeMesh other = before;
+  CHECK_THROWS_WITH_AS(open_slit(other, FeSlit{{0, 0}, {1, 0}}, "CRACK"),
+                       doctest::Contains("CRACK"), std::runtime_error);
+  CHECK_THROWS_WITH_AS(open_slit(other, FeSlit{{0, 0}, {1.5, 0}}, "SLIT"), doctest::Contains("tip"),
+                       std::runtime_error);
+}
+
+TEST_CASE("a line load's consistent nodal forces integrate a quadratic exactly over its range") {
+  // Four quadratic edges over b = 8 mm: corner, mid-side, corner, ...
+  const double b = 0.008;
+  std::vector<double> z;
+  for (int k = 0; k <= 8; ++k) z.push_back(b * k / 8.0);
+  // The nodal forces of a unit force spread over [from, to] reproduce the mean of any quadratic
+  // q(z) over that range (Simpson's rule on each edge); relative 1e-14: a few roundings.
+  const auto mean = [&](const std::vector<double>& w, int power) {
+    double sum = 0.0;
+    for (std::size_t k = 0; k < z.size(); ++k) sum += w[k] * std::pow(z[k], power);
+    return sum;
+  };
+  const std::vector<double> full = line_load_weights(z, 0.0, b);
+  CHECK(relative_difference(mean(full, 0), 1.0) < 1e-14);
+  CHECK(relative_difference(mean(full, 1), b / 2.0) < 1e-14);
+  CHECK(relative_difference(mean(full, 2), b * b / 3.0) < 1e-14);
+  const std::vector<double> half = line_load_weights(z, b / 2.0, b);
+  for (std::size_t k = 0; k < 4; ++k) CHECK(half[k] == 0.0);
+  CHECK(half[4] > 0.0);
+  CHECK(relative_difference(mean(half, 0), 1.0) < 1e-14);
+  CHECK(relative_difference(mean(half, 1), 0.75 * b) < 1e-14);
+  // (b^3 - (b/2)^3) / 3 / (b/2) = 7 b^2 / 12.
+  CHECK(relative_difference(mean(half, 2), 7.0 * b * b / 12.0) < 1e-14);
+  // Corner 1/6, mid-side 4/6 of an edge's share, corners shared by two edges.
+  CHECK(relative_difference(full[1], 4.0 / 6.0 / 4.0) < 1e-14);
+  CHECK(relative_difference(full[2], 2.0 / 6.0 / 4.0) < 1e-14);
+  // A range that ends between layer planes, or an even count, is refused.
+  CHECK_THROWS_AS(line_load_weights(z, 0.3 * b, b), std::invalid_argument);
+  CHECK_THROWS_AS(line_load_weights({0.0, 1.0}, 0.0, 1.0), std::invalid_argument);
+}
+
+TEST_CASE("gmsh's solid mesh is read in metres with its wedges, and its lines of nodes found") {
+  // One fifteen-node wedge, 2 mm high, as gmsh 4.8 writes a recombined extrusion (-format inp):
+  // corners of the bottom triangle, of the top one, mid-sides below, above and along z.
+  const std::string text =
+      "*Heading\n mesh.inp\n*NODE\n"
+      "1, 0, 0, 0\n2, 3, 0, 0\n3, 0, 4, 0\n4, 0, 0, 2\n5, 3, 0, 2\n6, 0, 4, 2\n"
+      "7, 1.5, 0, 0\n8, 1.5, 2, 0\n9, 0, 2, 0\n10, 1.5, 0, 2\n11, 1.5, 2, 2\n12, 0, 2, 2\n"
+      "13, 0, 0, 1\n14, 3, 0, 1\n15, 0, 4, 1\n"
+      "******* E L E M E N T S *************\n*ELEMENT, type=CPS6, ELSET=Surface1\n"
+      "1, 1, 2, 3, 7, 8, 9\n*ELEMENT, type=C3D15, ELSET=Volume1\n"
+      "2, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15\n*ELSET,ELSET=BODY\n2, \n";
+  const FeMesh3 mesh = read_gmsh_inp_3d(text);
+  REQUIRE(mesh.nodes_m.size() == 15);
+  REQUIRE(mesh.wedges.size() == 1);  // the triangle is left out
+  CHECK(mesh.wedges[0][14] == 15);
+  CHECK(mesh.nodes_m.at(6)[1] == doctest::Approx(0.004).epsilon(1e-15));
+  CHECK(mesh.nodes_m.at(6)[2] == doctest::Approx(0.002).epsilon(1e-15));
+  CHECK(nodes_on_z_line(mesh, 0.003, 0.0) == std::vector<long>{2, 14, 5});
+  CHECK(nodes_on_z_line(mesh, 0.001, 0.0).empty());
+  CHECK(nodes_at_radius(mesh, 0.004) == std::vector<long>{3, 6, 15});
+  // A wedge without all its nodes, and text without wedges, are refused.
+  CHECK_THROWS_AS(read_gmsh_inp_3d("*NODE\n1, 0, 0, 0\n"), std::runtime_error);
+  CHECK_THROWS_AS(read_gmsh_inp_3d("*NODE\n1, 0, 0, 0\n*ELEMENT, type=C3D15\n"
+                                   "1, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15\n"),
+                  std::runtime_error);
+  // The solver's input: C3D15 in mm, the bore held in x, y and z, a step per load set.
+  const std::string inp = calculix_input_3d(mesh, {206e9, 0.3, 0.01}, {3, 6, 15},
+                                            {{{2, -0.5, -0.25}}, {{5, 1.0, 0.0}}}, {1});
+  CHECK(inp.find("*ELEMENT, TYPE=C3D15, ELSET=BODY\n1, 1, 2, 3,") != std::string::npos);
+  CHECK(inp.find("\n6, 0, 4, 2\n") != std::string::npos);
+  CHECK(inp.find("*BOUNDARY\nFIXED, 1, 3\n") != std::string::npos);
+  CHECK(inp.find("*CLOAD, OP=NEW\n2, 1, -0.5\n2, 2, -0.25\n") != std::string::npos);
+  CHECK(inp.find("*CLOAD, OP=NEW\n5, 1, 1\n5, 2, 0\n") != std::string::npos);
+}
+
+TEST_CASE("the solid tooth is the surface extruded over the face width in recombined layers") {
+  const RackGearPairGeometry pair = rack_gear_pair_geometry(pair_with_bores());
+  const RackGearGeometry& g = pair.gear1;
+  const double tau = 0.5 * (g.form_tau_rad + g.tip_tau_rad);
+  const ToothOutline o = tooth_outline(g, "gears.bore_diameter1", 12, 20, {tau});
+  const PairContact c =
+      pair_contact(pair, 0.5 * (pair.start_of_active_profile_m + pair.end_of_active_profile_m));
+  const std::string geo = tooth_geo_3d(o, {c.gear1}, {0.001, 0.004}, 0.01, 8);
+  CHECK(geo.find("Extrude {0, 0, 10} { Surface{1}; Layers{8}; Recombine; };") != std::string::npos);
+  CHECK(geo.find("Mesh.SecondOrderIncomplete = 1;") != std::string::npos);
+  CHECK(geo.find("Physical Volume(\"BODY\")") != std::string::npos);
+  // No 2-D groups: a physical surface or point would make gmsh write only those.
+  CHECK(geo.find("Physical Surface") == std::string::npos);
+  CHECK(geo.find("Physical Point") == std::string::npos);
 }

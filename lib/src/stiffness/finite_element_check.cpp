@@ -1,5 +1,6 @@
 #include "gearimpact/stiffness/finite_element_check.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -79,12 +80,25 @@ class GeoWriter {
 
 }  // namespace
 
-std::string tooth_geo(const ToothOutline& outline, const std::vector<ToothContact>& contacts,
-                      const FeMeshSizes& sizes) {
+FeSlit root_crack_slit(double start_radius_m, double start_half_thickness_m, double depth_m,
+                       double angle_rad) {
+  const double y =
+      std::sqrt(start_radius_m * start_radius_m - start_half_thickness_m * start_half_thickness_m);
+  return {
+      {start_half_thickness_m, y},
+      {start_half_thickness_m - depth_m * std::sin(angle_rad), y - depth_m * std::cos(angle_rad)}};
+}
+
+namespace {
+
+// The tooth's surface (with its physical groups for the 2-D model); `geo` is
+// left with the surface numbered 1.
+std::string tooth_surface(GeoWriter& geo, const ToothOutline& outline,
+                          const std::vector<ToothContact>& contacts, const FeMeshSizes& sizes,
+                          const std::optional<FeSlit>& slit) {
   if (contacts.size() != outline.vertex_index.size()) {
     throw std::invalid_argument("tooth_geo: one contact per outline vertex");
   }
-  GeoWriter geo;
   const double fine = sizes.tooth_m;
   const double coarse = sizes.body_m;
   const int centre = geo.point(0.0, 0.0, coarse);
@@ -93,6 +107,28 @@ std::string tooth_geo(const ToothOutline& outline, const std::vector<ToothContac
   std::vector<int> left;
   for (const OutlinePoint& p : outline.flank) right.push_back(geo.point(p.x_m, p.y_m, fine));
   for (const OutlinePoint& p : outline.flank) left.push_back(geo.point(-p.x_m, p.y_m, fine));
+  // The loads' nodes before a slit's mouth joins the flank's vertices.
+  std::vector<int> loaded;
+  for (const std::size_t v : outline.vertex_index) loaded.push_back(right.at(v));
+  int mouth = 0;
+  int tip = 0;
+  if (slit) {
+    // The mouth between the two flank vertices whose radii bracket its own (the radius rises
+    // from root to tip along the flank); the tip's elements a quarter of the tooth's, where the
+    // strain is singular.
+    const double r = std::hypot(slit->mouth.x_m, slit->mouth.y_m);
+    std::size_t after = 1;
+    while (after < outline.flank.size() &&
+           std::hypot(outline.flank[after].x_m, outline.flank[after].y_m) < r) {
+      ++after;
+    }
+    if (after >= outline.flank.size()) {
+      throw std::invalid_argument("tooth_geo: the slit's mouth lies above the flank's tip");
+    }
+    mouth = geo.point(slit->mouth.x_m, slit->mouth.y_m, 0.5 * fine);
+    tip = geo.point(slit->tip.x_m, slit->tip.y_m, 0.25 * fine);
+    right.insert(right.begin() + static_cast<std::ptrdiff_t>(after), mouth);
+  }
   // The root circle from the left flank's foot round the back of the ring to
   // the right flank's foot, in arcs of less than pi.
   const double rf = outline.root_radius_m;
@@ -127,19 +163,47 @@ std::string tooth_geo(const ToothOutline& outline, const std::vector<ToothContac
     const int a = geo.point(-0.5 * c.x_m, c.y_m, fine);
     const int b = geo.point(0.5 * c.x_m, c.y_m, fine);
     embedded.insert(embedded.end(), {on_centre, a, b});
-    groups += "Physical Point(\"P" + n + "\") = {" +
-              std::to_string(right[outline.vertex_index[i]]) + "};\n";
+    groups += "Physical Point(\"P" + n + "\") = {" + std::to_string(loaded[i]) + "};\n";
     groups += "Physical Point(\"C" + n + "\") = {" + std::to_string(on_centre) + "};\n";
     groups += "Physical Point(\"A" + n + "\") = {" + std::to_string(a) + "};\n";
     groups += "Physical Point(\"B" + n + "\") = {" + std::to_string(b) + "};\n";
   }
   if (!embedded.empty()) geo.add("Point{" + GeoWriter::list(embedded) + "} In Surface{1};");
-  geo.add("Physical Surface(\"BODY\") = {1};");
-  geo.add("Physical Curve(\"FIXED\") = {" + GeoWriter::list(inner) + "};");
+  if (slit) {
+    const int cut = geo.line(mouth, tip);
+    geo.add("Line{" + std::to_string(cut) + "} In Surface{1};");
+    groups += "Physical Curve(\"SLIT\") = {" + std::to_string(cut) + "};\n";
+    groups += "Physical Point(\"TIP\") = {" + std::to_string(tip) + "};\n";
+  }
+  groups += "Physical Surface(\"BODY\") = {1};\n";
+  groups += "Physical Curve(\"FIXED\") = {" + GeoWriter::list(inner) + "};\n";
+  return groups;
+}
+
+}  // namespace
+
+std::string tooth_geo(const ToothOutline& outline, const std::vector<ToothContact>& contacts,
+                      const FeMeshSizes& sizes, const std::optional<FeSlit>& slit) {
+  GeoWriter geo;
+  const std::string groups = tooth_surface(geo, outline, contacts, sizes, slit);
   return geo.text() + groups;
 }
 
-std::string cantilever_geo(double length_m, double depth_m, double element_m, double measured_x_m) {
+std::string tooth_geo_3d(const ToothOutline& outline, const std::vector<ToothContact>& contacts,
+                         const FeMeshSizes& sizes, double face_width_m, int layers) {
+  if (layers < 1) throw std::invalid_argument("tooth_geo_3d: at least one layer");
+  GeoWriter geo;
+  tooth_surface(geo, outline, contacts, sizes, std::nullopt);
+  geo.add("Mesh.SecondOrderIncomplete = 1;");
+  geo.add("Mesh.SaveGroupsOfNodes = 0;");
+  geo.add("extruded[] = Extrude {0, 0, " + number(face_width_m * kMm) + "} { Surface{1}; Layers{" +
+          std::to_string(layers) + "}; Recombine; };");
+  geo.add("Physical Volume(\"BODY\") = {extruded[1]};");
+  return geo.text();
+}
+
+std::string cantilever_geo(double length_m, double depth_m, double element_m, double measured_x_m,
+                           double crack_x_m, double edge_crack_m) {
   GeoWriter geo;
   const double half = 0.5 * depth_m;
   const int p1 = geo.point(0.0, -half, element_m);
@@ -148,12 +212,29 @@ std::string cantilever_geo(double length_m, double depth_m, double element_m, do
   const int p3 = geo.point(length_m, half, element_m);
   const int p4 = geo.point(0.0, half, element_m);
   const int measured = geo.point(measured_x_m, 0.0, element_m);
-  const std::vector<int> loop{geo.line(p1, p2), geo.line(p2, load), geo.line(load, p3),
-                              geo.line(p3, p4)};
+  std::vector<int> loop{geo.line(p1, p2), geo.line(p2, load), geo.line(load, p3)};
+  int mouth = 0;
+  int tip = 0;
+  if (edge_crack_m > 0.0) {
+    // Elements along the slit a tenth of its length at most, a quarter of that at the tip.
+    const double slit_element = std::min(0.5 * element_m, 0.1 * edge_crack_m);
+    mouth = geo.point(crack_x_m, half, slit_element);
+    tip = geo.point(crack_x_m, half - edge_crack_m, 0.25 * slit_element);
+    loop.push_back(geo.line(p3, mouth));
+    loop.push_back(geo.line(mouth, p4));
+  } else {
+    loop.push_back(geo.line(p3, p4));
+  }
   const int clamp = geo.line(p4, p1);
   geo.add("Curve Loop(1) = {" + GeoWriter::list(loop) + ", " + std::to_string(clamp) + "};");
   geo.add("Plane Surface(1) = {1};");
   geo.add("Point{" + std::to_string(measured) + "} In Surface{1};");
+  if (edge_crack_m > 0.0) {
+    const int cut = geo.line(mouth, tip);
+    geo.add("Line{" + std::to_string(cut) + "} In Surface{1};");
+    geo.add("Physical Curve(\"SLIT\") = {" + std::to_string(cut) + "};");
+    geo.add("Physical Point(\"TIP\") = {" + std::to_string(tip) + "};");
+  }
   geo.add("Physical Surface(\"BODY\") = {1};");
   geo.add("Physical Curve(\"FIXED\") = {" + std::to_string(clamp) + "};");
   geo.add("Physical Point(\"LOAD\") = {" + std::to_string(load) + "};");
@@ -280,6 +361,202 @@ FeMesh read_gmsh_inp(const std::string& text) {
     }
   }
   return mesh;
+}
+
+std::size_t open_slit(FeMesh& mesh, const FeSlit& slit, const std::string& slit_set) {
+  const auto found = mesh.node_sets.find(slit_set);
+  if (found == mesh.node_sets.end() || found->second.empty()) {
+    throw std::runtime_error("the mesh has no node set " + slit_set + " (the slit's curve)");
+  }
+  const double ax = slit.tip.x_m - slit.mouth.x_m;
+  const double ay = slit.tip.y_m - slit.mouth.y_m;
+  const double length = std::hypot(ax, ay);
+  long tip = 0;
+  double nearest = 0.0;
+  for (const long n : found->second) {
+    const auto& p = mesh.nodes_m.at(n);
+    const double d = std::hypot(p[0] - slit.tip.x_m, p[1] - slit.tip.y_m);
+    if (tip == 0 || d < nearest) {
+      tip = n;
+      nearest = d;
+    }
+  }
+  if (!(nearest <= 1e-3 * length)) {
+    throw std::runtime_error("the slit's node set " + slit_set + " has no node at its tip");
+  }
+  long next = mesh.nodes_m.rbegin()->first;
+  std::map<long, long> twin;
+  for (const long n : found->second) {
+    if (n == tip || twin.count(n)) continue;
+    twin[n] = ++next;
+    mesh.nodes_m[next] = mesh.nodes_m.at(n);
+  }
+  // A triangle with a node on the slit lies wholly on one side of it (the mesh runs along the
+  // slit's line); its centroid says which.
+  for (auto& triangle : mesh.triangles) {
+    bool touches = false;
+    for (const long n : triangle) touches = touches || twin.count(n) != 0;
+    if (!touches) continue;
+    double cx = 0.0;
+    double cy = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      cx += mesh.nodes_m.at(triangle[static_cast<std::size_t>(k)])[0] / 3.0;
+      cy += mesh.nodes_m.at(triangle[static_cast<std::size_t>(k)])[1] / 3.0;
+    }
+    if (ax * (cy - slit.mouth.y_m) - ay * (cx - slit.mouth.x_m) > 0.0) {
+      for (long& n : triangle) {
+        const auto t = twin.find(n);
+        if (t != twin.end()) n = t->second;
+      }
+    }
+  }
+  return twin.size();
+}
+
+FeMesh3 read_gmsh_inp_3d(const std::string& text) {
+  FeMesh3 mesh;
+  enum class Block { none, nodes, wedges } block = Block::none;
+  std::istringstream lines(text);
+  std::string line;
+  std::size_t number_of_line = 0;
+  std::vector<long> pending;  // an element's numbers over continuation lines
+  while (std::getline(lines, line)) {
+    ++number_of_line;
+    if (line.rfind("**", 0) == 0) continue;
+    if (!line.empty() && line[0] == '*') {
+      const std::string key = upper(without_spaces(line));
+      block = Block::none;
+      if (key.rfind("*NODE", 0) == 0 && key.rfind("*NODEPRINT", 0) != 0) {
+        block = Block::nodes;
+      } else if (key.rfind("*ELEMENT", 0) == 0 && key.find("TYPE=C3D15") != std::string::npos) {
+        block = Block::wedges;
+      }
+      continue;
+    }
+    if (without_spaces(line).empty() || block == Block::none) continue;
+    const std::vector<double> v = numbers_of(line, number_of_line);
+    if (block == Block::nodes) {
+      if (v.size() < 4) {
+        throw std::runtime_error("mesh line " + std::to_string(number_of_line) +
+                                 ": a node needs a number and three coordinates");
+      }
+      mesh.nodes_m[static_cast<long>(v[0])] = {v[1] / kMm, v[2] / kMm, v[3] / kMm};
+    } else {
+      for (const double n : v) pending.push_back(static_cast<long>(n));
+      // An element's line ends without a comma; gmsh breaks a long one after a comma.
+      const std::string bare = without_spaces(line);
+      if (bare.back() == ',') continue;
+      if (pending.size() != 16) {
+        throw std::runtime_error("mesh line " + std::to_string(number_of_line) +
+                                 ": a fifteen-node wedge needs its number and fifteen nodes");
+      }
+      std::array<long, 15> wedge{};
+      for (std::size_t k = 0; k < 15; ++k) wedge[k] = pending[k + 1];
+      mesh.wedges.push_back(wedge);
+      pending.clear();
+    }
+  }
+  if (mesh.wedges.empty()) {
+    throw std::runtime_error(
+        "the mesh holds no fifteen-node wedge (gmsh -3 -format inp of a recombined extrusion)");
+  }
+  for (const auto& wedge : mesh.wedges) {
+    for (const long n : wedge) {
+      if (!mesh.nodes_m.count(n)) {
+        throw std::runtime_error("the mesh's wedges name the node " + std::to_string(n) +
+                                 ", which it does not define");
+      }
+    }
+  }
+  return mesh;
+}
+
+std::vector<long> nodes_on_z_line(const FeMesh3& mesh, double x_m, double y_m) {
+  std::vector<std::pair<double, long>> found;
+  for (const auto& [id, p] : mesh.nodes_m) {
+    if (std::fabs(p[0] - x_m) < 1e-9 && std::fabs(p[1] - y_m) < 1e-9) found.push_back({p[2], id});
+  }
+  std::sort(found.begin(), found.end());
+  std::vector<long> ids;
+  for (const auto& f : found) ids.push_back(f.second);
+  return ids;
+}
+
+std::vector<long> nodes_at_radius(const FeMesh3& mesh, double radius_m) {
+  std::vector<long> ids;
+  for (const auto& [id, p] : mesh.nodes_m) {
+    if (std::fabs(std::hypot(p[0], p[1]) - radius_m) < 1e-9) ids.push_back(id);
+  }
+  return ids;
+}
+
+std::vector<double> line_load_weights(const std::vector<double>& z_m, double from_m, double to_m) {
+  if (z_m.size() < 3 || z_m.size() % 2 == 0 || !(from_m < to_m)) {
+    throw std::invalid_argument(
+        "line_load_weights: an odd number of nodes (corner, mid-side, ..., corner) and from < to");
+  }
+  std::vector<double> w(z_m.size(), 0.0);
+  bool from_found = false;
+  bool to_found = false;
+  for (std::size_t k = 0; k < z_m.size(); k += 2) {
+    from_found = from_found || std::fabs(z_m[k] - from_m) < 1e-9;
+    to_found = to_found || std::fabs(z_m[k] - to_m) < 1e-9;
+  }
+  if (!from_found || !to_found) {
+    throw std::invalid_argument("line_load_weights: the loaded range ends between layer planes");
+  }
+  const double length = to_m - from_m;
+  for (std::size_t k = 0; k + 2 < z_m.size(); k += 2) {
+    const double middle = 0.5 * (z_m[k] + z_m[k + 2]);
+    if (middle < from_m || middle > to_m) continue;
+    const double h = z_m[k + 2] - z_m[k];
+    w[k] += h / 6.0 / length;
+    w[k + 1] += 4.0 * h / 6.0 / length;
+    w[k + 2] += h / 6.0 / length;
+  }
+  return w;
+}
+
+std::string calculix_input_3d(const FeMesh3& mesh, const FeMaterial& material,
+                              const std::vector<long>& fixed,
+                              const std::vector<std::vector<FeLoad>>& steps,
+                              const std::vector<long>& printed_nodes) {
+  if (fixed.empty()) throw std::runtime_error("the 3-D mesh has no node to hold");
+  std::string text =
+      "** Made by gearimpact fe-check: mm, N, MPa. Solid wedges.\n*NODE, NSET=NALL\n";
+  for (const auto& [id, p] : mesh.nodes_m) {
+    text += std::to_string(id) + ", " + short_number(p[0] * kMm) + ", " + short_number(p[1] * kMm) +
+            ", " + short_number(p[2] * kMm) + "\n";
+  }
+  text += "*ELEMENT, TYPE=C3D15, ELSET=BODY\n";
+  long element = 0;
+  for (const auto& w : mesh.wedges) {
+    // CalculiX reads at most 16 entries a line: the number and 15 nodes fit.
+    text += std::to_string(++element);
+    for (const long n : w) text += ", " + std::to_string(n);
+    text += "\n";
+  }
+  auto node_set = [&](const std::string& name, const std::vector<long>& nodes) {
+    text += "*NSET, NSET=" + name + "\n";
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      text += std::to_string(nodes[i]) + ((i + 1) % 8 == 0 || i + 1 == nodes.size() ? ",\n" : ", ");
+    }
+  };
+  node_set("FIXED", fixed);
+  node_set("PRINTED", printed_nodes);
+  text += "*MATERIAL, NAME=GEAR\n*ELASTIC\n" + short_number(material.youngs_modulus_pa / 1e6) +
+          ", " + short_number(material.poisson_ratio) + "\n";
+  text += "*SOLID SECTION, ELSET=BODY, MATERIAL=GEAR\n";
+  text += "*BOUNDARY\nFIXED, 1, 3\n";
+  for (const auto& loads : steps) {
+    text += "*STEP\n*STATIC\n*CLOAD, OP=NEW\n";
+    for (const FeLoad& load : loads) {
+      text += std::to_string(load.node) + ", 1, " + short_number(load.fx_n) + "\n";
+      text += std::to_string(load.node) + ", 2, " + short_number(load.fy_n) + "\n";
+    }
+    text += "*NODE PRINT, NSET=PRINTED\nU\n*END STEP\n";
+  }
+  return text;
 }
 
 std::string calculix_input(const FeMesh& mesh, const FeMaterial& material,
