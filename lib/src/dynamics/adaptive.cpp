@@ -10,6 +10,7 @@
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "rk4.hpp"
 #include "run.hpp"
+#include "step_methods.hpp"
 
 namespace gearimpact {
 
@@ -26,7 +27,7 @@ double end_of_mode(Stepper& stepper, const GearSystem& system, const Mode& mode,
   const int n = system.event_values(ya, mode, damping, g_a);
   system.event_values(yb, mode, damping, g_b);
   const auto state_at = [&](double tau, State& x) { stepper.calc_state(tau, x); };
-  const double t_event = earliest_event(system, mode, damping, a, b, g_a, g_b, n, state_at);
+  const double t_event = earliest_event_of(system, mode, damping, a, b, g_a, g_b, n, state_at);
   stepper.calc_state(t_event, yb);
   return t_event;
 }

@@ -25,6 +25,7 @@
 #include "gearimpact/stiffness/mesh_tables.hpp"
 #include "rk4_dense.hpp"
 #include "run.hpp"
+#include "step_methods.hpp"
 
 namespace gearimpact {
 
@@ -142,8 +143,15 @@ using PlanarMode = std::array<SideMode, 2>;
 constexpr int kSideEvents = 5 + 7 * kMaxPairs;
 using PlanarEvents = std::array<double, 2 * kSideEvents>;
 
+// A system of the step methods (step_methods.hpp): both lines of action,
+// each with its own mode and contact memory.
 class PlanarSystem {
  public:
+  using StateType = Y;
+  using ModeType = PlanarMode;
+  using MemoryType = std::array<ContactMemory, 2>;
+  using EventsType = PlanarEvents;
+
   // driver_theta0: with a kinematic driver, the angle its body starts from.
   PlanarSystem(const SimulationCase& c, const StiffnessTable& table, const PlanarMounting& m,
                double driver_theta0)
@@ -994,26 +1002,7 @@ void check_planar_step(const SimulationCase& c, const StiffnessTable& table,
 
 namespace {
 
-using Stages = Rk4StagesOf<kSize>;
-
-// The classical RK4 step from (t, y) in the mode, with k1 = f(t, y) already
-// evaluated: event location tries many step lengths from the same start.
-// `stages`, when given, receives k1 ... k4 for the step's dense output (rk4_dense).
-void rk4_from(const PlanarSystem& s, double t, const Y& y, const Y& k1, double h,
-              const PlanarMode& mode, const std::array<ContactMemory, 2>& memory, Y& out,
-              Stages* stages = nullptr) {
-  Y k2, k3, k4, stage;
-  for (std::size_t i = 0; i < kSize; ++i) stage[i] = y[i] + 0.5 * h * k1[i];
-  s.rhs(t + 0.5 * h, stage, mode, memory, k2);
-  for (std::size_t i = 0; i < kSize; ++i) stage[i] = y[i] + 0.5 * h * k2[i];
-  s.rhs(t + 0.5 * h, stage, mode, memory, k3);
-  for (std::size_t i = 0; i < kSize; ++i) stage[i] = y[i] + h * k3[i];
-  s.rhs(t + h, stage, mode, memory, k4);
-  for (std::size_t i = 0; i < kSize; ++i) {
-    out[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
-  }
-  if (stages != nullptr) *stages = {k1, k2, k3, k4};
-}
+using Stages = Rk4StagesFor<PlanarSystem>;
 
 // The run's method (integrator.kind): the classical RK4 above, or Boost.Odeint's
 // Dormand-Prince 5(4) at the same fixed step, its order-5 solution and its
@@ -1035,7 +1024,7 @@ class PlanarStepper {
   void step(double t, const Y& y, const Y& k1, double h, const PlanarMode& mode,
             const std::array<ContactMemory, 2>& memory, Y& out, bool keep) {
     if (!dopri5_) {
-      rk4_from(system_, t, y, k1, h, mode, memory, out, keep ? &stages_ : nullptr);
+      rk4_step_from(system_, t, y, k1, h, mode, memory, out, keep ? &stages_ : nullptr);
       return;
     }
     const auto f = [&](const Y& x, Y& dx, double tau) {
@@ -1390,13 +1379,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
         }
         system.impose_driver(tau, x);
       };
-      t_next = earliest_event(t, t_grid, g_a.data(), g_b.data(), count, [&](double tau, int i) {
-        Y trial{};
-        state_at(tau, trial);
-        PlanarEvents g{};
-        system.event_values(trial, mode, memory, g);
-        return g[static_cast<std::size_t>(i)];
-      });
+      t_next = earliest_event_of(system, mode, memory, t, t_grid, g_a, g_b, count, state_at);
       s.rhs_evaluations += evaluations;
       if (t_next < t_grid && stepper.dopri5()) {
         state_at(t_next, next);

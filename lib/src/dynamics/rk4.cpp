@@ -11,24 +11,6 @@
 
 namespace gearimpact {
 
-// The classical RK4 step from (t, y) with k1 = f(t, y) already evaluated:
-// event location tries many step sizes from the same start.
-void rk4_step_from(const GearSystem& system, double t, const State& y, const State& k1, double h,
-                   const Mode& m, const ContactMemory& d, State& out, Rk4Stages* stages) {
-  // Not zeroed: rhs writes every component.
-  State k2, k3, k4, tmp;
-  for (std::size_t i = 0; i < kStateSize; ++i) tmp[i] = y[i] + 0.5 * h * k1[i];
-  system.rhs(t + 0.5 * h, tmp, m, d, k2);
-  for (std::size_t i = 0; i < kStateSize; ++i) tmp[i] = y[i] + 0.5 * h * k2[i];
-  system.rhs(t + 0.5 * h, tmp, m, d, k3);
-  for (std::size_t i = 0; i < kStateSize; ++i) tmp[i] = y[i] + h * k3[i];
-  system.rhs(t + h, tmp, m, d, k4);
-  for (std::size_t i = 0; i < kStateSize; ++i) {
-    out[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
-  }
-  if (stages != nullptr) *stages = {k1, k2, k3, k4};
-}
-
 void rk4_step(const GearSystem& system, double t, const State& y, double h, const Mode& m,
               const ContactMemory& d, State& out, State& k1, Rk4Stages* stages) {
   system.rhs(t, y, m, d, k1);
@@ -98,7 +80,7 @@ CutStep event_cut_step(Run& run, double t, double target, bool want_stages) {
     system.impose_driver(tau, x);
     evaluations += 3;
   };
-  const double t_event = earliest_event(system, mode, damping, t, target, g_a, g_b, n, state_at);
+  const double t_event = earliest_event_of(system, mode, damping, t, target, g_a, g_b, n, state_at);
   run.rhs_evaluations() += evaluations;
   if (t_event < target) {
     // The same step as state_at's, keeping its stages.

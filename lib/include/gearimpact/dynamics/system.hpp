@@ -124,6 +124,12 @@ OnsetDamping onset_damping(const ModelOptions& model, DampingUpdate update, doub
 
 class GearSystem {
  public:
+  // The system concept of the step methods (src/dynamics/step_methods.hpp).
+  using StateType = State;
+  using ModeType = Mode;
+  using MemoryType = ContactMemory;
+  using EventsType = EventValues;
+
   // The table must cover the contact segment of c.gears; both must outlive the system.
   // With c.faults, each pair reads the table of its two teeth (MeshTables,
   // built here with `table` as the healthy one), and a pair with a missing
