@@ -106,10 +106,12 @@ SimulationResult run_adaptive(const SimulationCase& c, const StiffnessTable& tab
     run.emit_samples(t_next, yb, mode, dense);
     run.y() = yb;
     ++run.steps();
-    run.check_progress(t, t_next, h);
+    const double t_from = t;
     t = t_next;
-    if (event) {
-      run.change_mode(t);
+    if (event) run.change_mode(t);
+    // A new mode, or the friction signs of a contact that sticks classified again: the
+    // stepper starts afresh from the state, as the right-hand side may jump there.
+    if (run.check_progress(t_from, t, event) || event) {
       mode = run.mode();
       damping = run.damping();
       stepper.initialize(run.y(), t, std::max(stepper.current_time_step(), 1e-3 * h));

@@ -25,6 +25,7 @@
 #include "gearimpact/stiffness/mesh_tables.hpp"
 #include "rk4_dense.hpp"
 #include "run.hpp"
+#include "stall.hpp"
 #include "step_methods.hpp"
 
 namespace gearimpact {
@@ -1336,7 +1337,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   system.rhs(0.0, y, mode, memory, k1, &at_start);
   s.rhs_evaluations += 1;
   double t = 0.0;
-  int stalled = 0;
+  StallWatch stall(h, c.model.friction_smoothing_speed_m_s);
   for (long long n = 1; n <= steps;) {
     // The last step ends at end_time exactly, where the last sample may be.
     const double t_grid = n == steps
@@ -1397,21 +1398,9 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
           "the planar run diverged: the state is not finite at t = " + format_number(t_next) +
           " s, step " + std::to_string(n) + "; a smaller integrator.step may resolve it");
     }
-    // Events that advance by less than a millionth of the step: a sequence
-    // of them is the contact's chatter, not the motion (a friction reversal
-    // that turns back at once advances by round-off or a few 1e-14 s).
-    stalled = event && t_next - t <= 1e-6 * h ? stalled + 1 : 0;
+    // Events that stall, and a contact that sticks (stall.hpp).
+    const bool sticks = stall.after_step(event, t, t_next, [&] { return where(t, n); });
     const bool stepped_per_stage = mode[0].slip_per_stage;
-    if (stalled > kMostStalledEvents) {
-      throw SimulationError(
-          "event location stalled at t = " + format_number(t) + " s, step " + std::to_string(n) +
-          ": the planar mode changes back and forth without time advancing" +
-          (c.model.friction_smoothing_speed_m_s == 0.0
-               ? std::string(". Under load with friction this is a friction reversal whose jump "
-                             "turns the sliding back; model.friction_smoothing_speed (e.g. "
-                             "\"1e-3 m/s\") replaces the exact switch by tanh(Vs / v_s)")
-               : std::string()));
-    }
     // Before the mode and the contact memory change at an event: the step's
     // samples are its own, the left limit at the event.
     if (dense) emit_samples(t, y, dense_step, cut_on_extension ? whole : next, t_next, next);
@@ -1447,12 +1436,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
       mode[0].slip_per_stage = sticking;
       mode[1].slip_per_stage = sticking;
     }
-    // Two events in a row that each advanced less than 1e-6 of the step:
-    // with an exact friction switch, a pair whose sliding turns back at once
-    // after its reversal (the friction's jump exceeds what drives the sliding
-    // through zero: the contact would stick). The steps then take each
-    // stage's own signs, across the sticking with an error O(h) there.
-    if (stalled >= 2 && c.model.friction_smoothing_speed_m_s == 0.0) {
+    if (sticks) {
       mode[0].slip_per_stage = true;
       mode[1].slip_per_stage = true;
     }

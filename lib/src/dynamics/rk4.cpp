@@ -129,7 +129,7 @@ SimulationResult run_rk4(const SimulationCase& c, const StiffnessTable& table,
         });
       }
       if (step.event) run.change_mode(step.reached);
-      run.check_progress(t, step.reached, h);
+      run.check_progress(t, step.reached, step.event);
       t = step.reached;
     }
     if (t == target) ++k;

@@ -15,15 +15,13 @@
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
 #include "ledger.hpp"
+#include "stall.hpp"
 
 namespace gearimpact {
 
 inline std::string where(double t_s, long long step) {
   return "t = " + format_number(t_s) + " s, step " + std::to_string(step);
 }
-
-// Consecutive events that advance time by almost nothing: event location has stalled.
-inline constexpr int kMostStalledEvents = 10000;
 
 class Run {
  public:
@@ -75,25 +73,25 @@ class Run {
     }
   }
 
-  // After a step from t_from to t_to: throws when steps keep ending on events
-  // that advance time by almost nothing (1e-9 of the step h).
-  void check_progress(double t_from, double t_to, double h) {
-    stalled_ = t_to - t_from <= 1e-9 * h ? stalled_ + 1 : 0;
-    if (stalled_ > kMostStalledEvents) {
-      std::string text = "event location stalled at " + where(t_from, result_.summary.steps) +
-                         ": the mode changes back and forth without time advancing";
-      // The stall a loaded pair meets: at the pitch point the friction force's jump turns the
-      // sliding back before it can reverse (the contact would stick), which the exact switch
-      // cannot follow; the smoothed sign can.
-      if (c_.model.friction_smoothing_speed_m_s == 0.0) {
-        text +=
-            ". Under load with friction this is the friction's reversal at the pitch point: the "
-            "jump of the friction torque turns the sliding back. model.friction_smoothing_speed "
-            "(e.g. \"1e-3 m/s\") replaces the exact switch by tanh(Vs / v_s) (docs/model.md, "
-            "\"Smoothed reversal\")";
-      }
-      throw SimulationError(text);
+  // After a step from t_from to t_to, which ended on an event or not (the
+  // mode then classified again): the stall watch and the sticking fallback
+  // (stall.hpp). A step taken with each stage's friction signs classifies the
+  // signs again, and keeps them per stage while one of them changed. Returns
+  // whether the mode's friction signs changed without an event.
+  bool check_progress(double t_from, double t_to, bool event) {
+    bool changed = false;
+    if (!event && mode_.slip_per_stage) {
+      const std::array<double, kMaxPairs> slip = mode_.slip;
+      system_.classify_forces(y_, damping_, mode_);
+      mode_.slip_per_stage = slip != mode_.slip;
+      changed = true;
     }
+    if (stall_.after_step(event, t_from, t_to,
+                          [&] { return where(t_from, result_.summary.steps); })) {
+      changed = changed || !mode_.slip_per_stage;
+      mode_.slip_per_stage = true;
+    }
+    return changed;
   }
 
   // Every kStepsBetweenStopChecks steps, the caller's should_stop.
@@ -496,7 +494,7 @@ class Run {
   Mode mode_;
   ContactMemory damping_;
   double start_time_ = 0.0;
-  int stalled_ = 0;
+  StallWatch stall_{c_.integrator.step_s, c_.model.friction_smoothing_speed_m_s};
   SimulationResult result_;
   std::vector<ImpactRecord> impacts_;
   // Under a kinematic driver: Int w2'^2 dt, and the end of the last step.

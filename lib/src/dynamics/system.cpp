@@ -260,7 +260,9 @@ void GearSystem::rhs(double t, const State& y_in, const Mode& m, const ContactMe
       const double n = normal_force(f_elastic, g_damping, m.clipped[j]);
       const double vs = sliding_speed(w1, w2, x, lp_);
       const double f = friction_coefficient(n, vs, entrainment_speed(w1, w2, x, lp_));
-      const double slip = smoothing_speed_ > 0.0 ? std::tanh(vs / smoothing_speed_) : m.slip[j];
+      const double slip = smoothing_speed_ > 0.0 ? std::tanh(vs / smoothing_speed_)
+                          : m.slip_per_stage     ? (vs >= 0.0 ? 1.0 : -1.0)
+                                                 : m.slip[j];
       const double ff = friction_force(m.region, f, n, slip);
       // (1),(3) for one pair, (43),(45) summed over the pairs the line carries:
       // on N1 J1 w1' = T1 - [N Rb1 + Ff X], J2 w2' = T2 + [N Rb2 + Ff (lp - X)];
@@ -391,8 +393,10 @@ int GearSystem::event_values(const State& y, const Mode& m, const ContactMemory&
       g[n++] = zone > 0 ? x - kinks_[zone - 1] : 1.0;
       g[n++] = zone < kinks_.size() ? kinks_[zone] - x : 1.0;
     }
-    // A smoothed sign has no switch to locate: the value stays positive.
-    g[n++] = smoothing_speed_ > 0.0 ? 1.0 : m.slip[j] * sliding_speed(y[kW1], y[kW2], x, lp_);
+    // A smoothed sign, or one taken per stage, has no switch to locate: the value stays positive.
+    g[n++] = smoothing_speed_ > 0.0 || m.slip_per_stage
+                 ? 1.0
+                 : m.slip[j] * sliding_speed(y[kW1], y[kW2], x, lp_);
     const double push = push_sign_function(table, m.part[j], x, m.count, d, dk, dk_rate);
     g[n++] = m.clipped[j] ? -push : push;
   }

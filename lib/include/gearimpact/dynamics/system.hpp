@@ -79,6 +79,9 @@ struct Mode {
   // tooth), found once a mode: finding it takes integer remainders, which the
   // right-hand side would otherwise pay for every pair at every stage.
   std::array<const StiffnessTable*, kMaxPairs> table{};
+  // While a contact sticks (StallWatch, stall.hpp): each stage takes the
+  // friction signs from its own state, and reversals are not events.
+  bool slip_per_stage = false;
 };
 
 // Summed over the loaded pairs, for the time series.
