@@ -1149,7 +1149,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   const auto steps = static_cast<long long>(std::ceil(c.integrator.end_time_s / h - 1e-9));
   std::array<ContactMemory, 2> memory{};
   PlanarMode mode{};
-  std::array<std::optional<std::size_t>, 2> open_impact;
+  ImpactBook impacts;
   const auto mesh_energy = [&](const Y& state) {
     return system.mesh_energy(Region::n1, state, mode[0]) +
            system.mesh_energy(Region::n2, state, mode[1]);
@@ -1163,23 +1163,12 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
       const bool before = mode[i].contact;
       mode[i] = system.classify_geometry(side, y);
       if (mode[i].contact && !before) {
-        ImpactRecord impact{};
-        impact.line = side;
-        impact.start_s = t;
-        memory[i] = system.onset(side, y, mode[i], impact.impact_speed_m_s, impact.restitution);
-        (side == Region::n1 ? s.impacts_n1 : s.impacts_n2) += 1;
-        if (!s.first_impact_s) {
-          s.first_impact_s = t;
-          s.first_impact_speed_m_s = impact.impact_speed_m_s;
-        }
-        (side == Region::n1 ? s.last_n1_impact_s : s.last_n2_impact_s) = t;
-        open_impact[i] = result.impacts.size();
-        result.impacts.push_back(impact);
-      } else if (!mode[i].contact && before && open_impact[i]) {
-        ImpactRecord& impact = result.impacts[*open_impact[i]];
-        impact.end_s = t;
-        impact.end_speed_m_s = -system.penetration(side, y).second;
-        open_impact[i].reset();
+        double speed = 0.0;
+        double restitution = 0.0;
+        memory[i] = system.onset(side, y, mode[i], speed, restitution);
+        impacts.begin(side, t, speed, restitution, s);
+      } else if (!mode[i].contact && before) {
+        impacts.end(side, t, -system.penetration(side, y).second);
       }
       system.classify_forces(side, y, memory[i], mode[i]);
     }
@@ -1393,11 +1382,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
         dense_step = t_next - t;
       }
     }
-    if (!std::all_of(next.begin(), next.end(), [](double v) { return std::isfinite(v); })) {
-      throw SimulationError(
-          "the planar run diverged: the state is not finite at t = " + format_number(t_next) +
-          " s, step " + std::to_string(n) + "; a smaller integrator.step may resolve it");
-    }
+    check_finite_state(t_next, n, next);
     // Events that stall, and a contact that sticks (stall.hpp).
     const bool sticks = stall.after_step(event, t, t_next, [&] { return where(t, n); });
     const bool stepped_per_stage = mode[0].slip_per_stage;
@@ -1459,24 +1444,19 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
                                     system.contact_value(Region::n2, y)});
     const double energy =
         system.kinetic_energy(y) + mesh + system.bearing_energy(y) + system.shaft_energy(y);
-    s.ledger_scale_j = std::max(s.ledger_scale_j, energy);
     if (system.terms_may_exceed(y, mode, s.energy_max_j)) {
       const ElasticEnergy terms = system.mesh_terms(y, mode);
       for (std::size_t i = 0; i < kTermCount; ++i) {
         s.energy_max_j[i] = std::max(s.energy_max_j[i], terms.j[i]);
       }
     }
-    const double residual = energy - energy0 - y[kWork] + y[kHertzLoss] + y[kSlidingLoss] +
-                            y[kBearingLoss] + y[kShaftLoss] + y[kMeshDamperLoss] - y[kParametric] -
-                            jump_work;
-    s.ledger_residual_j = residual;
-    s.ledger_residual_max_j = std::max(s.ledger_residual_max_j, std::fabs(residual));
+    book_ledger_residual(
+        energy, energy0, y[kWork],
+        {y[kHertzLoss], y[kSlidingLoss], y[kBearingLoss], y[kShaftLoss], y[kMeshDamperLoss]},
+        y[kParametric], jump_work, s);
     if (t != t_grid) continue;  // a cut step: the grid point is still ahead
     if (n % c.integrator.output_every == 0 || n == steps) record(t);
-    if (control.should_stop && n % kStepsBetweenStopChecks == 0 && control.should_stop()) {
-      throw SimulationStopped("the run was stopped by its caller at t = " + format_number(t) +
-                              " s, step " + std::to_string(n));
-    }
+    poll_stop_request(control, n, t);
     ++n;
   }
   s.end_time_s = t;
@@ -1492,6 +1472,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   s.final_w2_rad_per_s = y[kVelocity + kT2];
   s.speed_drift_max_rel = drift.max_relative_drift();
   result.tacho_times_s = tacho.times();
+  result.impacts = impacts.take();
   p.bearing_energy_final_j = system.bearing_energy(y);
   p.bearing_damping_loss_j = y[kBearingLoss];
   p.shaft_energy_final_j = system.shaft_energy(y);

@@ -15,13 +15,10 @@
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
 #include "ledger.hpp"
+#include "run_parts.hpp"
 #include "stall.hpp"
 
 namespace gearimpact {
-
-inline std::string where(double t_s, long long step) {
-  return "t = " + format_number(t_s) + " s, step " + std::to_string(step);
-}
 
 class Run {
  public:
@@ -66,11 +63,7 @@ class Run {
   bool sampling() const { return samples_ > 0; }
 
   void check_finite(double t, const State& y) const {
-    if (!std::all_of(y.begin(), y.end(), [](double v) { return std::isfinite(v); })) {
-      throw SimulationError("the run diverged: the state is not finite at " +
-                            where(t, result_.summary.steps) +
-                            "; a smaller step or a tighter tolerance may resolve it");
-    }
+    check_finite_state(t, result_.summary.steps, y);
   }
 
   // After a step from t_from to t_to, which ended on an event or not (the
@@ -95,13 +88,7 @@ class Run {
   }
 
   // Every kStepsBetweenStopChecks steps, the caller's should_stop.
-  void poll_stop(double t) const {
-    if (control_.should_stop && result_.summary.steps % kStepsBetweenStopChecks == 0 &&
-        control_.should_stop()) {
-      throw SimulationStopped("the run was stopped by its caller at " +
-                              where(t, result_.summary.steps));
-    }
-  }
+  void poll_stop(double t) const { poll_stop_request(control_, result_.summary.steps, t); }
 
   // The mode changed at (t, y_): classify again, book impacts and jumps.
   void change_mode(double t) {
@@ -302,7 +289,7 @@ class Run {
     s.final_w1_rad_per_s = y_[kW1];
     s.final_w2_rad_per_s = y_[kW2];
     if (system_.driven()) s.rattle = rattle_summary(t);
-    result_.impacts = impacts_;
+    result_.impacts = impacts_.take();
     result_.start_time_s = start_time_;
     result_.final_state = {t, {y_[kTheta1], y_[kTheta2], y_[kW1], y_[kW2]}, damping_};
     return std::move(result_);
@@ -330,7 +317,7 @@ class Run {
     int n1 = 0;
     int n2 = 0;
     double speeds = 0.0;
-    for (const ImpactRecord& impact : impacts_) {
+    for (const ImpactRecord& impact : impacts_.records()) {
       // A contact the run starts in was not struck.
       if (impact.start_s == start_time_) continue;
       (impact.line == Region::n1 ? n1 : n2) += 1;
@@ -388,7 +375,7 @@ class Run {
     const double d = damping_.damping_per_stiffness_s_m;
     const double rate = damping_rate_per_step(c_, d, load);
     if (!(rate > kRk4RealStabilityLimit)) return;
-    const ImpactRecord& start = impacts_.back();
+    const ImpactRecord& start = impacts_.records().back();
     const std::string side = mode_.region == Region::n1 ? "drive (N1)" : "coast (N2)";
     throw InputError(
         "initial.theta1", format_number(c_.initial.theta1_rad) + " rad",
@@ -410,20 +397,7 @@ class Run {
   void begin_contact(double t) {
     const GearSystem::Onset onset = system_.damping_at_onset(y_, mode_);
     damping_ = onset.damping;
-    SimulationSummary& s = result_.summary;
-    if (mode_.region == Region::n1) {
-      ++s.impacts_n1;
-      s.last_n1_impact_s = t;
-    } else {
-      ++s.impacts_n2;
-      s.last_n2_impact_s = t;
-    }
-    if (!s.first_impact_s) {
-      s.first_impact_s = t;
-      s.first_impact_speed_m_s = onset.impact_speed_m_s;
-    }
-    impacts_.push_back(ImpactRecord{mode_.region, t, onset.impact_speed_m_s, onset.restitution,
-                                    std::nullopt, std::nullopt});
+    impacts_.begin(mode_.region, t, onset.impact_speed_m_s, onset.restitution, result_.summary);
   }
 
   // The Lagrangian mesh force: V = 1/2 Ke(theta1) delta^2 jumps from `before`
@@ -481,9 +455,7 @@ class Run {
   }
 
   void end_contact(double t, const Mode& old) {
-    if (impacts_.empty()) return;
-    impacts_.back().end_s = t;
-    impacts_.back().end_speed_m_s = -line_sign(old.region) * system_.s_rate(y_);
+    impacts_.end(old.region, t, -line_sign(old.region) * system_.s_rate(y_));
   }
 
   const SimulationCase& c_;
@@ -496,7 +468,7 @@ class Run {
   double start_time_ = 0.0;
   StallWatch stall_{c_.integrator.step_s, c_.model.friction_smoothing_speed_m_s};
   SimulationResult result_;
-  std::vector<ImpactRecord> impacts_;
+  ImpactBook impacts_;
   // Under a kinematic driver: Int w2'^2 dt, and the end of the last step.
   double acceleration2_squared_integral_ = 0.0;
   double last_t_ = 0.0;

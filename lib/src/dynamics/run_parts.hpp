@@ -1,0 +1,99 @@
+// The parts of a run that do not depend on its system: the place of a step
+// in messages, the finite-state check, the caller's stop request, the impact
+// book and the ledger's balance. The torsional run (run.hpp, ledger.hpp) and
+// the planar run (planar.cpp) share them.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <initializer_list>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/error.hpp"
+
+namespace gearimpact {
+
+// "t = ... s, step N", for messages.
+inline std::string where(double t_s, long long step) {
+  return "t = " + format_number(t_s) + " s, step " + std::to_string(step);
+}
+
+// Throws where a step's state is not finite.
+template <typename StateType>
+void check_finite_state(double t, long long step, const StateType& y) {
+  if (!std::all_of(y.begin(), y.end(), [](double v) { return std::isfinite(v); })) {
+    throw SimulationError("the run diverged: the state is not finite at " + where(t, step) +
+                          "; a smaller step or a tighter tolerance may resolve it");
+  }
+}
+
+// Every kStepsBetweenStopChecks steps, the caller's should_stop.
+inline void poll_stop_request(const RunControl& control, long long step, double t) {
+  if (control.should_stop && step % kStepsBetweenStopChecks == 0 && control.should_stop()) {
+    throw SimulationStopped("the run was stopped by its caller at " + where(t, step));
+  }
+}
+
+// The impacts of a run: one record a contact, from its onset (where the
+// contact memory is set) to its end; the summary's counts and first and last
+// impact times. A line's contact is open from begin to end; a run resumed in
+// contact has none open on that line (its contact was struck before).
+class ImpactBook {
+ public:
+  void begin(Region line, double t, double impact_speed_m_s, double restitution,
+             SimulationSummary& s) {
+    if (line == Region::n1) {
+      ++s.impacts_n1;
+      s.last_n1_impact_s = t;
+    } else {
+      ++s.impacts_n2;
+      s.last_n2_impact_s = t;
+    }
+    if (!s.first_impact_s) {
+      s.first_impact_s = t;
+      s.first_impact_speed_m_s = impact_speed_m_s;
+    }
+    open_[line_index(line)] = records_.size();
+    records_.push_back(
+        ImpactRecord{line, t, impact_speed_m_s, restitution, std::nullopt, std::nullopt});
+  }
+  // The contact on `line` ends at t, the teeth parting at end_speed_m_s.
+  void end(Region line, double t, double end_speed_m_s) {
+    std::optional<std::size_t>& open = open_[line_index(line)];
+    if (!open) return;
+    records_[*open].end_s = t;
+    records_[*open].end_speed_m_s = end_speed_m_s;
+    open.reset();
+  }
+  const std::vector<ImpactRecord>& records() const { return records_; }
+  std::vector<ImpactRecord> take() { return std::move(records_); }
+
+ private:
+  static std::size_t line_index(Region line) { return line == Region::n1 ? 0 : 1; }
+  std::vector<ImpactRecord> records_;
+  std::array<std::optional<std::size_t>, 2> open_;
+};
+
+// The ledger's balance after an accepted step (docs/model.md, Energies):
+// (kinetic + stored)(t) - (kinetic + stored)(0) - the drives' work + each
+// loss - the parametric work - the work of the stored energy's jumps, zero
+// for the exact solution; summed in that order. Updates the summary's scale,
+// residual and largest residual.
+inline void book_ledger_residual(double energy_j, double energy0_j, double work_j,
+                                 std::initializer_list<double> losses_j, double parametric_j,
+                                 double jump_work_j, SimulationSummary& s) {
+  s.ledger_scale_j = std::max(s.ledger_scale_j, energy_j);
+  double residual = energy_j - energy0_j - work_j;
+  for (const double loss : losses_j) residual += loss;
+  residual = residual - parametric_j - jump_work_j;
+  s.ledger_residual_j = residual;
+  s.ledger_residual_max_j = std::max(s.ledger_residual_max_j, std::fabs(residual));
+}
+
+}  // namespace gearimpact
