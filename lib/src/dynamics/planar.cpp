@@ -1216,40 +1216,24 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   // The samples (RunControl::sample_rate_hz), as the torsional run takes
   // them: the accelerations from the equations of motion in the step's mode
   // with its contact memory, so that at an event time a sample is the left limit.
-  const double sample_rate = control.sample_rate_hz.value_or(0.0);
-  const long long sample_total =
-      control.sample_rate_hz ? static_cast<long long>(sample_count(c, sample_rate)) : 0;
-  if (control.keep_samples && sample_total > 0) {
-    constexpr long long most_reserved_samples = 4'000'000;
-    result.planar_samples.reserve(
-        static_cast<std::size_t>(std::min(sample_total, most_reserved_samples)));
-  }
+  SampleClock clock(c, control, 0.0);
+  if (control.keep_samples && clock.on()) result.planar_samples.reserve(clock.reserve_rows());
   const double sensor_cos = std::cos(c.bearings.sensor_angle_rad);
   const double sensor_sin = std::sin(c.bearings.sensor_angle_rad);
-  long long next_sample = 0;
-  // Interval averages (SampleKind): the last sample's time and the bodies' velocities, where the
-  // next sample's interval begins.
+  // Interval averages (SampleKind): the gears' velocities of the last sample.
   const bool average = control.sample == SampleKind::interval_average;
-  double last_sample_t = 0.0;
-  std::array<double, kT2 + 1> last_velocity{};
+  IntervalAverage<kT2 + 1> interval_average;
   const auto sample = [&](double ts, const Y& state) {
-    if (average && next_sample == 0) {
-      // n = 0 ends no interval: its velocities begin the first.
-      last_sample_t = ts;
-      for (std::size_t i = 0; i <= kT2; ++i) last_velocity[i] = state[kVelocity + i];
+    const auto v = [&](std::size_t i) { return state[kVelocity + i]; };
+    if (average && clock.first()) {
+      interval_average.start(ts, v);
       return;
     }
     Y dy{};
     Forces f;
     system.rhs(ts, state, mode, memory, dy, &f);
     if (average) {
-      // The mean acceleration over [t_{n-1}, t_n]: the velocity difference over the interval.
-      const double interval = ts - last_sample_t;
-      for (std::size_t i = 0; i <= kT2; ++i) {
-        dy[kVelocity + i] = (state[kVelocity + i] - last_velocity[i]) / interval;
-        last_velocity[i] = state[kVelocity + i];
-      }
-      last_sample_t = ts;
+      interval_average.next(ts, v, [&](std::size_t i) -> double& { return dy[kVelocity + i]; });
     }
     PlanarSample ps;
     ps.t_s = ts;
@@ -1286,7 +1270,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
       system.driven() && tacho_index == (mounting.shafts ? std::size_t{kTm} : std::size_t{kT1});
   const double driver_theta0 = mounting.shafts ? initial.theta_motor_rad : initial.theta1_rad;
   TachoEdges tacho(c.tacho.pulses_per_revolution > 0 ? c.tacho : Tacho{1}, y[tacho_index]);
-  const bool dense = sample_total > 0 || tacho_on;
+  const bool dense = clock.on() || tacho_on;
   Y k1{};
   // The samples not yet taken up to t_b, where the run is at y_b: one at t_b
   // is y_b itself, one before it the continuous extension of the step of
@@ -1295,17 +1279,13 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   // t_b = 0 takes the first.
   const auto emit_samples = [&](double t_a, const Y& y_a, double step, const Y& y_end, double t_b,
                                 const Y& y_b) {
-    for (; next_sample < sample_total; ++next_sample) {
-      const double ts = sample_time_s(0.0, next_sample, sample_rate);
-      if (ts > t_b) return;
-      if (ts == t_b) {
-        sample(ts, y_b);
-      } else {
-        Y x{};
-        stepper.dense(t_a, y_a, k1, step, y_end, ts, x);
-        sample(ts, x);
-      }
-    }
+    clock.emit(
+        t_b, [&](double ts) { sample(ts, y_b); },
+        [&](double ts) {
+          Y x{};
+          stepper.dense(t_a, y_a, k1, step, y_end, ts, x);
+          sample(ts, x);
+        });
   };
 
   classify(0.0);

@@ -38,14 +38,8 @@ class Run {
       }
       record(start_time_);
     }
-    if (control_.sample_rate_hz) {
-      sample_rate_ = *control_.sample_rate_hz;
-      samples_ = static_cast<long long>(sample_count(c, sample_rate_, start_time_));
-      if (control_.keep_samples) {
-        constexpr long long most_reserved_samples = 4'000'000;
-        result_.samples.reserve(
-            static_cast<std::size_t>(std::min(samples_, most_reserved_samples)));
-      }
+    if (clock_.on()) {
+      if (control_.keep_samples) result_.samples.reserve(clock_.reserve_rows());
       emit_samples(start_time_, y_, mode_, [](double, State&) {});
     }
   }
@@ -60,7 +54,7 @@ class Run {
   // Whether the output grid is wanted: kept as the series or observed.
   bool records() const { return control_.keep_series || static_cast<bool>(control_.on_row); }
   // Whether the run is sampled (RunControl::sample_rate_hz).
-  bool sampling() const { return samples_ > 0; }
+  bool sampling() const { return clock_.on(); }
 
   void check_finite(double t, const State& y) const {
     check_finite_state(t, result_.summary.steps, y);
@@ -196,20 +190,14 @@ class Run {
   // t_b = the start time takes the sample there.
   template <typename StateAt>
   void emit_samples(double t_b, const State& y_b, const Mode& m, StateAt state_at) {
-    while (next_sample_ < samples_) {
-      const double t = sample_time_s(start_time_, next_sample_, sample_rate_);
-      if (t > t_b) return;
-      if (t == t_b) {
-        sample(t, y_b, m);
-      } else {
-        // t_a < t < t_b: the steps before took every sample up to t_a.
-        State x{};
-        state_at(t, x);
-        system_.impose_driver(t, x);
-        sample(t, x, m);
-      }
-      ++next_sample_;
-    }
+    clock_.emit(
+        t_b, [&](double t) { sample(t, y_b, m); },
+        [&](double t) {
+          State x{};
+          state_at(t, x);
+          system_.impose_driver(t, x);
+          sample(t, x, m);
+        });
   }
 
   void record(double t) { record(t, y_, mode_); }
@@ -235,21 +223,15 @@ class Run {
 
   void sample(double t, const State& y, const Mode& m) {
     const bool average = control_.sample == SampleKind::interval_average;
-    if (average && next_sample_ == 0) {
-      // n = 0 ends no interval: its velocities begin the first.
-      last_sample_ = {t, y[kW1], y[kW2]};
+    const auto w = [&](std::size_t i) { return y[kW1 + i]; };
+    if (average && clock_.first()) {
+      average_.start(t, w);
       return;
     }
     ContactTotals totals;
     State dydt{};
     system_.rhs(t, y, m, damping_, dydt, &totals);
-    if (average) {
-      // The mean acceleration over [t_{n-1}, t_n]: the velocity difference over the interval.
-      const double interval = t - last_sample_[0];
-      dydt[kW1] = (y[kW1] - last_sample_[1]) / interval;
-      dydt[kW2] = (y[kW2] - last_sample_[2]) / interval;
-      last_sample_ = {t, y[kW1], y[kW2]};
-    }
+    if (average) average_.next(t, w, [&](std::size_t i) -> double& { return dydt[kW1 + i]; });
     const double sv = system_.s(y);
     const SampleRow row{t,
                         y[kTheta1],
@@ -481,16 +463,14 @@ class Run {
   double friction_last_t_ = 0.0;
   // Under the Lagrangian mesh force: the sum of |dU| of the jumps paid.
   double stored_energy_jumps_ = 0.0;
-  // The sample grid: samples_ of them (0 without sampling), the next one to take.
-  double sample_rate_ = 0.0;
-  long long samples_ = 0;
-  long long next_sample_ = 0;
-  // The last sample's time and velocities w1, w2, where an interval average's interval begins.
-  std::array<double, 3> last_sample_{};
+  // The velocities w1, w2 of the last sample, where an interval average's interval begins.
+  IntervalAverage<2> average_;
   // Last: its construction sets the start state above (make_ledger).
   EnergyLedger ledger_;
   // After ledger_, whose construction sets the start it begins from.
   SpeedDriftMonitor drift_{c_, start_time_, y_[kTheta1], y_[kW1]};
+  // The sample grid, from the start time make_ledger set.
+  SampleClock clock_{c_, control_, start_time_};
 };
 
 }  // namespace gearimpact

@@ -96,4 +96,77 @@ inline void book_ledger_residual(double energy_j, double energy0_j, double work_
   s.ledger_residual_max_j = std::max(s.ledger_residual_max_j, std::fabs(residual));
 }
 
+// The sample grid of a run (RunControl::sample_rate_hz): t = t0 + n / fs
+// exactly (sample_time_s), up to the run's end (sample_count); none without a
+// rate. `emit` takes the samples not yet taken up to t_b, the end of an
+// accepted step (before any change of mode there): one at t_b from the step's
+// end state, one before it from the step's dense output.
+class SampleClock {
+ public:
+  SampleClock(const SimulationCase& c, const RunControl& control, double t0_s)
+      : t0_s_(t0_s), rate_hz_(control.sample_rate_hz.value_or(0.0)) {
+    if (control.sample_rate_hz) total_ = static_cast<long long>(sample_count(c, rate_hz_, t0_s));
+  }
+  bool on() const { return total_ > 0; }
+  // The first sample (n = 0) is the one taken now.
+  bool first() const { return next_ == 0; }
+  // The rows to reserve for the samples kept: capped, as a guess must not fail a run.
+  std::size_t reserve_rows() const {
+    constexpr long long most_reserved_samples = 4'000'000;
+    return static_cast<std::size_t>(std::min(total_, most_reserved_samples));
+  }
+
+  // at_end(t): the sample at t = t_b; inside(t): one at t_a < t < t_b (the
+  // steps before took every sample up to t_a).
+  template <typename AtEnd, typename Inside>
+  void emit(double t_b, AtEnd at_end, Inside inside) {
+    while (next_ < total_) {
+      const double t = sample_time_s(t0_s_, next_, rate_hz_);
+      if (t > t_b) return;
+      if (t == t_b) {
+        at_end(t);
+      } else {
+        inside(t);
+      }
+      ++next_;
+    }
+  }
+
+ private:
+  double t0_s_;
+  double rate_hz_;
+  long long total_ = 0;
+  long long next_ = 0;
+};
+
+// The mean accelerations over a sample's interval (SampleKind::interval_average):
+// the velocity differences of the bodies over [t_{n-1}, t_n]. The first sample
+// ends no interval: its velocities begin the first.
+template <std::size_t Bodies>
+class IntervalAverage {
+ public:
+  // At the first sample: remembers t and the velocities v[i].
+  template <typename Velocity>
+  void start(double t, Velocity v) {
+    last_t_ = t;
+    for (std::size_t i = 0; i < Bodies; ++i) last_[i] = v(i);
+  }
+  // At a later sample: a[i] receives (v[i] - v_{n-1}[i]) / (t - t_{n-1}); t
+  // and v then begin the next interval.
+  template <typename Velocity, typename Acceleration>
+  void next(double t, Velocity v, Acceleration a) {
+    const double interval = t - last_t_;
+    for (std::size_t i = 0; i < Bodies; ++i) {
+      const double now = v(i);
+      a(i) = (now - last_[i]) / interval;
+      last_[i] = now;
+    }
+    last_t_ = t;
+  }
+
+ private:
+  double last_t_ = 0.0;
+  std::array<double, Bodies> last_{};
+};
+
 }  // namespace gearimpact
