@@ -48,6 +48,13 @@ SHAFTS = [
     "--set", "shafts.load_stiffness=3e4 N*m/rad",
 ]
 
+RELIEF = [
+    "--set", "modifications.tip_relief1=10 um",
+    "--set", "modifications.tip_relief_start1=43.2 mm",
+    "--set", "modifications.tip_relief2=10 um",
+    "--set", "modifications.tip_relief_start2=163.2 mm",
+]
+
 
 def ex(name):
     return str(EXAMPLES / name)
@@ -107,6 +114,13 @@ COMMANDS = [
       "--out", "{out}/series.csv"], True),
     ("planar_spall",
      ["simulate", "--case-file", ex("spall_20_80.toml"), *ELASTIC, "--t-end", "5 ms",
+      "--every", "10", "--out", "{out}/series.csv"], True),
+    # Tip relief: each pair touches by its own penetration (gaps, the reliefs' kinks).
+    ("relief_case2",
+     ["simulate", "--case", "2", *RELIEF, "--t-end", "10 ms", "--every", "10",
+      "--out", "{out}/series.csv"], True),
+    ("planar_relief_case2",
+     ["simulate", "--case", "2", *RELIEF, *ELASTIC, "--friction", "0.05", "--t-end", "5 ms",
       "--every", "10", "--out", "{out}/series.csv"], True),
     ("sweep_case1",
      ["sweep", "1", "--vary", "initial.w1", "--from", "2000 rad/s", "--to", "4000 rad/s",

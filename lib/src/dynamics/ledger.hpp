@@ -44,14 +44,9 @@ class EnergyLedger {
   }
 
   void finish(const State& y, const Mode& m, SimulationSummary& s) const {
-    s.kinetic_energy_final_j = system_.kinetic_energy(y);
-    s.stored_energy_final_j = system_.stored_energy(y, m).total_j();
-    s.torque_work_j = y[kTorqueWork];
-    s.damping_loss_j = y[kDampingLoss];
-    s.friction_loss_j = y[kFrictionLoss];
-    s.mesh_damping_loss_j = y[kMeshDampingLoss];
-    s.parametric_jump_work_j = jump_work_;
-    s.parametric_work_j = y[kParametricWork] + jump_work_;
+    book_ledger_totals(system_.kinetic_energy(y), system_.stored_energy(y, m).total_j(),
+                       y[kTorqueWork], y[kDampingLoss], y[kFrictionLoss], y[kMeshDampingLoss],
+                       y[kParametricWork], jump_work_, s);
   }
 
  private:

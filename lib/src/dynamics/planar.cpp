@@ -468,26 +468,10 @@ class PlanarSystem {
       for (int j = 0; j < m.range.count; ++j) {
         const StiffnessTable* table = m.table[j];
         const double x = layout_.position_m(ref, first + j);
-        if (table != nullptr && table->part_count() > 1) {
-          // Ke jumps at the ends of the pair's part inside the segment (a fault's edges).
-          const int part = m.part[j];
-          g[n++] = part > 0 ? x - table->part_start_m(part) : 1.0;
-          g[n++] = part + 1 < table->part_count() ? table->part_end_m(part) - x : 1.0;
-        }
+        append_part_events(table, m.part[j], x, g.data(), n);
         if (gaps_) {
           const double dk = pair_penetration(side, m, j, x, dl, dl_rate, x_rate).delta_m;
-          g[n++] = m.touching[j] ? dk : -dk;
-          if (!m.touching[j]) {
-            // A pair whose gap is open neither slides under load nor pushes,
-            // and its gap's kinks change nothing.
-            for (int e = 0; e < 4; ++e) g[n++] = 1.0;
-            continue;
-          }
-          // The gap's slope jumps at a linear relief's start: the damping
-          // force and the gap's work with it.
-          const auto zone = static_cast<std::size_t>(m.zone[j]);
-          g[n++] = zone > 0 ? x - kinks_[zone - 1] : 1.0;
-          g[n++] = zone < kinks_.size() ? kinks_[zone] - x : 1.0;
+          if (!append_gap_events(m.touching[j], m.zone[j], kinks_, x, dk, g.data(), n)) continue;
         }
         const PairMotion p = pair_motion(side, y, sm, memory[i], m, j, true);
         // A smoothed sign has no switch to locate.
@@ -1440,14 +1424,8 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     ++n;
   }
   s.end_time_s = t;
-  s.kinetic_energy_final_j = system.kinetic_energy(y);
-  s.stored_energy_final_j = mesh_energy(y);
-  s.torque_work_j = y[kWork];
-  s.damping_loss_j = y[kHertzLoss];
-  s.friction_loss_j = y[kSlidingLoss];
-  s.mesh_damping_loss_j = y[kMeshDamperLoss];
-  s.parametric_jump_work_j = jump_work;
-  s.parametric_work_j = y[kParametric] + jump_work;
+  book_ledger_totals(system.kinetic_energy(y), mesh_energy(y), y[kWork], y[kHertzLoss],
+                     y[kSlidingLoss], y[kMeshDamperLoss], y[kParametric], jump_work, s);
   s.final_w1_rad_per_s = y[kVelocity + kT1];
   s.final_w2_rad_per_s = y[kVelocity + kT2];
   s.speed_drift_max_rel = drift.max_relative_drift();

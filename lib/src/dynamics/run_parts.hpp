@@ -96,6 +96,23 @@ inline void book_ledger_residual(double energy_j, double energy0_j, double work_
   s.ledger_residual_max_j = std::max(s.ledger_residual_max_j, std::fabs(residual));
 }
 
+// The ledger's totals at the end of a run: the final energies, the drives'
+// work, the losses (Hertzian damping, friction, mesh damper) and the
+// parametric work, the jumps' share of it named on its own.
+inline void book_ledger_totals(double kinetic_j, double stored_j, double work_j,
+                               double damping_loss_j, double friction_loss_j,
+                               double mesh_damping_loss_j, double parametric_j, double jump_work_j,
+                               SimulationSummary& s) {
+  s.kinetic_energy_final_j = kinetic_j;
+  s.stored_energy_final_j = stored_j;
+  s.torque_work_j = work_j;
+  s.damping_loss_j = damping_loss_j;
+  s.friction_loss_j = friction_loss_j;
+  s.mesh_damping_loss_j = mesh_damping_loss_j;
+  s.parametric_jump_work_j = jump_work_j;
+  s.parametric_work_j = parametric_j + jump_work_j;
+}
+
 // The sample grid of a run (RunControl::sample_rate_hz): t = t0 + n / fs
 // exactly (sample_time_s), up to the run's end (sample_count); none without a
 // rate. `emit` takes the samples not yet taken up to t_b, the end of an

@@ -372,26 +372,12 @@ int GearSystem::event_values(const State& y, const Mode& m, const ContactMemory&
   for (int j = 0; j < m.count; ++j) {
     const double x = layout_.position_m(ref, m.k_first + j);
     const StiffnessTable* table = m.table[j];
-    if (table != nullptr && table->part_count() > 1) {
-      // Ke jumps at the ends of the pair's part inside the segment (a fault's edges).
-      const int part = m.part[j];
-      g[n++] = part > 0 ? x - table->part_start_m(part) : 1.0;
-      g[n++] = part + 1 < table->part_count() ? table->part_end_m(part) - x : 1.0;
-    }
+    append_part_events(table, m.part[j], x, g.data(), n);
     const PairPenetration p = pair_penetration(m, j, x, dl, dl_rate, x_rate);
     const double dk = p.delta_m;
     const double dk_rate = p.rate_m_s;
-    if (gaps_) {
-      g[n++] = m.touching[j] ? dk : -dk;
-      if (!m.touching[j]) {
-        // A pair whose gap is open neither slides under load nor pushes, and
-        // its gap's kinks change nothing.
-        for (int i = 0; i < 4; ++i) g[n++] = 1.0;
-        continue;
-      }
-      const auto zone = static_cast<std::size_t>(m.zone[j]);
-      g[n++] = zone > 0 ? x - kinks_[zone - 1] : 1.0;
-      g[n++] = zone < kinks_.size() ? kinks_[zone] - x : 1.0;
+    if (gaps_ && !append_gap_events(m.touching[j], m.zone[j], kinks_, x, dk, g.data(), n)) {
+      continue;
     }
     // A smoothed sign, or one taken per stage, has no switch to locate: the value stays positive.
     g[n++] = smoothing_speed_ > 0.0 || m.slip_per_stage
