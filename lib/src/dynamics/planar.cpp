@@ -152,6 +152,7 @@ class PlanarSystem {
   using ModeType = PlanarMode;
   using MemoryType = std::array<ContactMemory, 2>;
   using EventsType = PlanarEvents;
+  using ForcesType = Forces;
 
   // driver_theta0: with a kinematic driver, the angle its body starts from.
   PlanarSystem(const SimulationCase& c, const StiffnessTable& table, const PlanarMounting& m,

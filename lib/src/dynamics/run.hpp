@@ -20,8 +20,15 @@
 
 namespace gearimpact {
 
+// The torsional run: the books of run_fixed_grid (step_methods.hpp) and of
+// the adaptive integrator for the GearSystem.
 class Run {
  public:
+  using System = GearSystem;
+  // The evaluations of the step taken again to an event are left out of
+  // rhs_evaluations, as this run has always counted them.
+  static constexpr bool kCountsCutStep = false;
+
   Run(const SimulationCase& c, const StiffnessTable& table, const RunControl& control)
       : c_(c), control_(control), system_(c, table, control), ledger_(make_ledger()) {
     last_t_ = start_time_;
@@ -51,6 +58,22 @@ class Run {
   long long& steps() { return result_.summary.steps; }
   long long& rhs_evaluations() { return result_.summary.rhs_evaluations; }
   double start_time() const { return start_time_; }
+  // The grid's steps, the last one ending at the run's end.
+  long long grid_steps() const {
+    return static_cast<long long>(
+        std::ceil(c_.integrator.end_time_s / c_.integrator.step_s * (1.0 - 1e-12)));
+  }
+  // Whether a step keeps what its dense output needs: for the samples.
+  bool wants_dense() const { return sampling(); }
+  // f(t, y) in the mode: the step's first stage.
+  const State& first_stage(double t) {
+    system_.rhs(t, y_, mode_, damping_, k1_);
+    ++result_.summary.rhs_evaluations;
+    return k1_;
+  }
+  // What a step from (t_a, y_a) to (t_b, y_b) shows beyond its samples: nothing here.
+  template <typename Dense>
+  void observe_step(double, const State&, double, const State&, const Dense&) {}
   // Whether the output grid is wanted: kept as the series or observed.
   bool records() const { return control_.keep_series || static_cast<bool>(control_.on_row); }
   // Whether the run is sampled (RunControl::sample_rate_hz).
@@ -445,6 +468,7 @@ class Run {
   const RunControl& control_;
   GearSystem system_;
   State y_{};
+  State k1_{};
   Mode mode_;
   ContactMemory damping_;
   double start_time_ = 0.0;

@@ -132,6 +132,7 @@ class GearSystem {
   using ModeType = Mode;
   using MemoryType = ContactMemory;
   using EventsType = EventValues;
+  using ForcesType = ContactTotals;
 
   // The table must cover the contact segment of c.gears; both must outlive the system.
   // With c.faults, each pair reads the table of its two teeth (MeshTables,
