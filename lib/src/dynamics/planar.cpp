@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -988,61 +989,6 @@ void check_planar_step(const SimulationCase& c, const StiffnessTable& table,
 
 namespace {
 
-using Stages = Rk4StagesFor<PlanarSystem>;
-
-// The run's method (integrator.kind): the classical RK4 above, or Boost.Odeint's
-// Dormand-Prince 5(4) at the same fixed step, its order-5 solution and its
-// order-4 continuous extension (Hairer, Norsett & Wanner, Solving ODE I,
-// II.5-II.6). Both take f(t, y) in the mode as their first stage, so that the
-// event location, the samples and the ledger treat them alike.
-class PlanarStepper {
- public:
-  PlanarStepper(const PlanarSystem& system, IntegratorKind kind)
-      : system_(system), dopri5_(kind == IntegratorKind::dopri5) {}
-  bool dopri5() const { return dopri5_; }
-  // The evaluations of f a step takes beyond its first stage: Dormand-Prince's
-  // last one is f at the step's end (first same as last).
-  int evaluations() const { return dopri5_ ? 6 : 3; }
-
-  // A step of length h from (t, y) with k1 = f(t, y) in the mode into out;
-  // with keep, RK4 keeps its stages for dense() (Dormand-Prince keeps those of
-  // its last step in any case).
-  void step(double t, const Y& y, const Y& k1, double h, const PlanarMode& mode,
-            const std::array<ContactMemory, 2>& memory, Y& out, bool keep) {
-    if (!dopri5_) {
-      rk4_step_from(system_, t, y, k1, h, mode, memory, out, keep ? &stages_ : nullptr);
-      return;
-    }
-    const auto f = [&](const Y& x, Y& dx, double tau) {
-      end_forces_ = Forces{};
-      system_.rhs(tau, x, mode, memory, dx, &end_forces_);
-    };
-    dopri5_stepper_.do_step(f, y, k1, t, out, end_slope_, h);
-  }
-  // Dormand-Prince's last stage f(t + h, out) in the step's mode, and the
-  // forces there: the next step's first stage while the mode holds.
-  const Y& end_slope() const { return end_slope_; }
-  const Forces& end_forces() const { return end_forces_; }
-
-  // The last step's continuous extension at ts in [t_a, t_a + h], the step
-  // from (t_a, y_a) with first stage k1 to y_b.
-  void dense(double t_a, const Y& y_a, const Y& k1, double h, const Y& y_b, double ts, Y& x) const {
-    if (!dopri5_) {
-      rk4_dense(y_a, h, stages_, (ts - t_a) / h, x);
-      return;
-    }
-    dopri5_stepper_.calc_state(ts, x, y_a, k1, t_a, y_b, end_slope_, t_a + h);
-  }
-
- private:
-  const PlanarSystem& system_;
-  bool dopri5_;
-  Stages stages_{};
-  boost::numeric::odeint::runge_kutta_dopri5<Y> dopri5_stepper_;
-  Y end_slope_{};
-  Forces end_forces_;
-};
-
 // The force each bearing exerts on its gear, -k u - c u': x1, y1, x2, y2.
 std::array<double, 4> bearing_forces(const PlanarMounting& m, const PlanarState& s) {
   return {-m.stiffness_x_n_per_m[0] * s.x1_m - m.damping_x_n_s_per_m[0] * s.vx1_m_s,
@@ -1107,63 +1053,202 @@ double planar_angular_momentum(const SimulationCase& c, const PlanarMounting& m,
   return l;
 }
 
-SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& table,
-                                 const PlanarMounting& mounting, const PlanarState& initial,
-                                 const RunControl& control) {
-  validate_planar(c, mounting, control);
-  validate_sampling(c, control);
-  check_planar_step(c, table, mounting);
-  const PlanarSystem system(c, table, mounting,
-                            mounting.shafts ? initial.theta_motor_rad : initial.theta1_rad);
-  SimulationResult result;
-  SimulationSummary& s = result.summary;
-  s.case_name = c.name;
-  s.integrator = name_of(kIntegratorKinds, c.integrator.kind);
-  s.damping_update = resolved_damping_update(c);
-  s.friction_coefficient = c.model.friction_coefficient;
-  s.friction_law = c.model.friction_law;
-  s.mesh_damper = c.model.mesh_damping_ratio > 0.0;
-  s.step_s = c.integrator.step_s;
-  s.stiffness_model = c.model.stiffness.kind;
-  s.planar = PlanarEnergies{};
-  PlanarEnergies& p = *s.planar;
+namespace {
 
-  Y y = to_vector(initial);
-  system.impose_driver(0.0, y);
-  const double h = c.integrator.step_s;
-  const auto steps = static_cast<long long>(std::ceil(c.integrator.end_time_s / h - 1e-9));
-  std::array<ContactMemory, 2> memory{};
-  PlanarMode mode{};
-  ImpactBook impacts;
-  const auto mesh_energy = [&](const Y& state) {
-    return system.mesh_energy(Region::n1, state, mode[0]) +
-           system.mesh_energy(Region::n2, state, mode[1]);
-  };
-  // The mode of y at t: each side's contact, pairs and parts; an impact
-  // where a side's contact begins (its damping memory then set), its end
-  // where it ends; then the forces' signs.
-  const auto classify = [&](double t) {
-    for (const Region side : kSides) {
-      const std::size_t i = side_index(side);
-      const bool before = mode[i].contact;
-      mode[i] = system.classify_geometry(side, y);
-      if (mode[i].contact && !before) {
-        double speed = 0.0;
-        double restitution = 0.0;
-        memory[i] = system.onset(side, y, mode[i], speed, restitution);
-        impacts.begin(side, t, speed, restitution, s);
-      } else if (!mode[i].contact && before) {
-        impacts.end(side, t, -system.penetration(side, y).second);
+// The planar run: the books of run_fixed_grid (step_methods.hpp) for the
+// PlanarSystem: the state and both sides' modes and contact memories, the
+// impacts, the ledger with the bearings' and shafts' energies, the series,
+// the samples and the tacho.
+class PlanarRun {
+ public:
+  using System = PlanarSystem;
+  // The evaluations of the step taken again to an event count in rhs_evaluations.
+  static constexpr bool kCountsCutStep = true;
+
+  PlanarRun(const SimulationCase& c, const StiffnessTable& table, const PlanarMounting& mounting,
+            const PlanarState& initial, const RunControl& control)
+      : c_(c),
+        m_(mounting),
+        control_(control),
+        system_(c, table, mounting, mounting.shafts ? initial.theta_motor_rad : initial.theta1_rad),
+        y_(to_vector(initial)),
+        clock_(c, control, 0.0),
+        stall_(c.integrator.step_s, c.model.friction_smoothing_speed_m_s),
+        sensor_cos_(std::cos(c.bearings.sensor_angle_rad)),
+        sensor_sin_(std::sin(c.bearings.sensor_angle_rad)),
+        average_(control.sample == SampleKind::interval_average),
+        tacho_on_(c.tacho.pulses_per_revolution > 0),
+        tacho_index_(c.tacho.shaft == TachoShaft::wheel                      ? kT2
+                     : c.tacho.shaft == TachoShaft::motor && mounting.shafts ? kTm
+                                                                             : kT1),
+        driver_theta0_(mounting.shafts ? initial.theta_motor_rad : initial.theta1_rad) {
+    SimulationSummary& s = result_.summary;
+    s.case_name = c.name;
+    s.integrator = name_of(kIntegratorKinds, c.integrator.kind);
+    s.damping_update = resolved_damping_update(c);
+    s.friction_coefficient = c.model.friction_coefficient;
+    s.friction_law = c.model.friction_law;
+    s.mesh_damper = c.model.mesh_damping_ratio > 0.0;
+    s.step_s = c.integrator.step_s;
+    s.stiffness_model = c.model.stiffness.kind;
+    s.planar = PlanarEnergies{};
+    system_.impose_driver(0.0, y_);
+    if (control.keep_samples && clock_.on()) result_.planar_samples.reserve(clock_.reserve_rows());
+    // The tacho's shaft and its edges, located on each step's continuous
+    // extension (hence wants_dense with a tacho), or on a driver's closed form.
+    tacho_driven_ =
+        system_.driven() && tacho_index_ == (mounting.shafts ? std::size_t{kTm} : std::size_t{kT1});
+    tacho_.emplace(tacho_on_ ? c.tacho : Tacho{1}, y_[tacho_index_]);
+    drift_.emplace(c, 0.0, y_[kT1], y_[kVelocity + kT1]);
+    classify(0.0);
+    emit_samples(0.0, y_, mode_, [](double, Y&) {});
+    PlanarEnergies& p = *s.planar;
+    const double kinetic0 = system_.kinetic_energy(y_);
+    const double mesh0 = mesh_energy(y_);
+    s.kinetic_energy_initial_j = kinetic0;
+    s.stored_energy_initial_j = mesh0;
+    p.bearing_energy_initial_j = system_.bearing_energy(y_);
+    p.shaft_energy_initial_j = system_.shaft_energy(y_);
+    energy0_ = kinetic0 + mesh0 + p.bearing_energy_initial_j + p.shaft_energy_initial_j;
+    record(0.0);
+    // k1, f(t, y) in the mode: each step's first stage, evaluated at the end
+    // of the step before (after its events), where its mesh energy serves the ledger.
+    system_.rhs(0.0, y_, mode_, memory_, k1_, &at_start_);
+    s.rhs_evaluations += 1;
+  }
+
+  // The fixed-step method whose last stage may serve as the next step's first.
+  void use_stepper(const FixedStepper<PlanarSystem>* stepper) { stepper_ = stepper; }
+
+  const PlanarSystem& system() const { return system_; }
+  Y& y() { return y_; }
+  const PlanarMode& mode() const { return mode_; }
+  const std::array<ContactMemory, 2>& damping() const { return memory_; }
+  long long& steps() { return result_.summary.steps; }
+  long long& rhs_evaluations() { return result_.summary.rhs_evaluations; }
+  double start_time() const { return 0.0; }
+  long long grid_steps() const {
+    return static_cast<long long>(
+        std::ceil(c_.integrator.end_time_s / c_.integrator.step_s - 1e-9));
+  }
+  bool wants_dense() const { return clock_.on() || tacho_on_; }
+  bool records() const {
+    return control_.keep_series || static_cast<bool>(control_.on_row) ||
+           static_cast<bool>(control_.on_planar_row);
+  }
+  bool sampling() const { return clock_.on(); }
+  const Y& first_stage(double) const { return k1_; }
+  void check_finite(double t, const Y& y) const { check_finite_state(t, steps_taken(), y); }
+  void poll_stop(double t) const { poll_stop_request(control_, steps_taken(), t); }
+
+  // The samples not yet taken up to t_b, the end of a step in mode m at y_b:
+  // one at t_b is y_b itself, one before it the step's continuous extension.
+  template <typename StateAt>
+  void emit_samples(double t_b, const Y& y_b, const PlanarMode& m, StateAt state_at) {
+    clock_.emit(
+        t_b, [&](double ts) { sample(ts, y_b, m); },
+        [&](double ts) {
+          Y x{};
+          state_at(ts, x);
+          sample(ts, x, m);
+        });
+  }
+
+  // The tacho's edges inside the step from (t_a, y_a) to (t_b, y_b).
+  template <typename Dense>
+  void observe_step(double t_a, const Y& y_a, double t_b, const Y& y_b, const Dense& dense) {
+    if (!tacho_on_) return;
+    tacho_->step(t_a, y_a[tacho_index_], t_b, y_b[tacho_index_], [&](double tau) {
+      if (tacho_driven_) return driver_motion(c_.torque1, driver_theta0_, tau).theta_rad;
+      Y x{};
+      dense(tau, x);
+      return x[tacho_index_];
+    });
+  }
+
+  // The mode changed at (t, y_): classify again; the stored energy before,
+  // for the jump's work.
+  void change_mode(double t) {
+    ++result_.summary.events;
+    before_ = mesh_energy(y_);
+    classify(t);
+    event_ = true;
+  }
+
+  // After a step from t_from to t_to (stall.hpp): a step taken with each
+  // stage's friction signs classifies them again and keeps them per stage
+  // while one of them changed; events that stall make the steps take them so.
+  bool check_progress(double t_from, double t_to, bool event) {
+    const bool sticks =
+        stall_.after_step(event, t_from, t_to, [&] { return where(t_from, steps_taken()); });
+    stepped_per_stage_ = !event && mode_[0].slip_per_stage;
+    if (stepped_per_stage_) {
+      // The sticking goes on while a pair's sliding still changed sign over
+      // the step; once every pair slid one way through a whole step, its
+      // reversals are events again.
+      bool sticking = false;
+      for (const Region side : kSides) {
+        SideMode& m = mode_[side_index(side)];
+        const std::array<double, kMaxPairs> slip = m.slip;
+        system_.classify_forces(side, y_, memory_[side_index(side)], m);
+        sticking = sticking || slip != m.slip;
       }
-      system.classify_forces(side, y, memory[i], mode[i]);
+      mode_[0].slip_per_stage = sticking;
+      mode_[1].slip_per_stage = sticking;
     }
-  };
-  const auto record = [&](double t) {
-    if (!control.keep_series && !control.on_row && !control.on_planar_row) return;
+    if (sticks) {
+      mode_[0].slip_per_stage = true;
+      mode_[1].slip_per_stage = true;
+    }
+    return stepped_per_stage_ || sticks;
+  }
+
+  // After an accepted step, which ends at t: the next step's first stage, the
+  // jump's work at an event, the largest penetration and the ledger.
+  void book_keep(double t) {
+    SimulationSummary& s = result_.summary;
+    drift_->observe(t, y_[kT1]);
+    // The next step's first stage, in the mode the run now holds: after a step
+    // that kept its mode and whose end no driver moved, Dormand-Prince's last.
+    if (stepper_ != nullptr && stepper_->dopri5() && !event_ && !stepped_per_stage_ &&
+        !system_.driven()) {
+      k1_ = stepper_->end_slope();
+      at_start_ = stepper_->end_forces();
+    } else {
+      at_start_ = Forces{};
+      system_.rhs(t, y_, mode_, memory_, k1_, &at_start_);
+      s.rhs_evaluations += 1;
+    }
+    const double mesh = at_start_.mesh_energy_j[0] + at_start_.mesh_energy_j[1];
+    // A pair that entered or left, or crossed a fault's edge, takes or
+    // releases its stored energy: work of the time-varying stiffness, booked
+    // at the event.
+    if (event_) jump_work_ += mesh - before_;
+    event_ = false;
+    stepped_per_stage_ = false;
+    s.max_penetration_m = std::max({s.max_penetration_m, system_.contact_value(Region::n1, y_),
+                                    system_.contact_value(Region::n2, y_)});
+    const double energy =
+        system_.kinetic_energy(y_) + mesh + system_.bearing_energy(y_) + system_.shaft_energy(y_);
+    if (system_.terms_may_exceed(y_, mode_, s.energy_max_j)) {
+      const ElasticEnergy terms = system_.mesh_terms(y_, mode_);
+      for (std::size_t i = 0; i < kTermCount; ++i) {
+        s.energy_max_j[i] = std::max(s.energy_max_j[i], terms.j[i]);
+      }
+    }
+    book_ledger_residual(
+        energy, energy0_, y_[kWork],
+        {y_[kHertzLoss], y_[kSlidingLoss], y_[kBearingLoss], y_[kShaftLoss], y_[kMeshDamperLoss]},
+        y_[kParametric], jump_work_, s);
+  }
+
+  void record(double t) { record(t, y_, mode_); }
+  void record(double t, const Y& y, const PlanarMode& mode) {
+    if (!records()) return;
     Y dy{};
     Forces f;
-    system.rhs(t, y, mode, memory, dy, &f);
-    const PlanarState st = to_state(y, mounting.shafts);
+    system_.rhs(t, y, mode, memory_, dy, &f);
+    const PlanarState st = to_state(y, m_.shafts);
     SeriesRow row{};
     row.t_s = t;
     row.theta1_rad = st.theta1_rad;
@@ -1172,20 +1257,20 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     row.w2_rad_per_s = st.w2_rad_per_s;
     // The drive line's s_d and the larger penetration of a pair; the side in
     // contact (the drive side when both are).
-    row.s_m = system.penetration(Region::n1, y).first + c.gears.backlash_m;
-    const double dd = system.contact_value(Region::n1, y);
-    const double dc = system.contact_value(Region::n2, y);
+    row.s_m = system_.penetration(Region::n1, y).first + c_.gears.backlash_m;
+    const double dd = system_.contact_value(Region::n1, y);
+    const double dc = system_.contact_value(Region::n2, y);
     row.delta_m = std::max(dd, dc);
     row.region = mode[0].contact ? 1 : (mode[1].contact ? -1 : 0);
     row.pairs = mode[0].contact ? mode[0].range.count : (mode[1].contact ? mode[1].range.count : 0);
     row.normal_force_n = f.normal_n[0] + f.normal_n[1];
     row.friction_force_n = f.friction_n;
-    if (control.on_row) control.on_row(row);
-    if (control.keep_series) result.series.push_back(row);
+    if (control_.on_row) control_.on_row(row);
+    if (control_.keep_series) result_.series.push_back(row);
     PlanarRow pr;
     pr.t_s = t;
     pr.state = st;
-    const std::array<double, 4> bearing = bearing_forces(mounting, st);
+    const std::array<double, 4> bearing = bearing_forces(m_, st);
     pr.bearing_fx1_n = bearing[0];
     pr.bearing_fy1_n = bearing[1];
     pr.bearing_fx2_n = bearing[2];
@@ -1194,253 +1279,147 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     pr.coast_force_n = f.normal_n[1];
     pr.drive_penetration_m = dd;
     pr.coast_penetration_m = dc;
-    if (control.on_planar_row) control.on_planar_row(pr);
-    if (control.keep_series) result.planar_series.push_back(pr);
-  };
+    if (control_.on_planar_row) control_.on_planar_row(pr);
+    if (control_.keep_series) result_.planar_series.push_back(pr);
+  }
 
-  // The samples (RunControl::sample_rate_hz), as the torsional run takes
-  // them: the accelerations from the equations of motion in the step's mode
-  // with its contact memory, so that at an event time a sample is the left limit.
-  SampleClock clock(c, control, 0.0);
-  if (control.keep_samples && clock.on()) result.planar_samples.reserve(clock.reserve_rows());
-  const double sensor_cos = std::cos(c.bearings.sensor_angle_rad);
-  const double sensor_sin = std::sin(c.bearings.sensor_angle_rad);
-  // Interval averages (SampleKind): the gears' velocities of the last sample.
-  const bool average = control.sample == SampleKind::interval_average;
-  IntervalAverage<kT2 + 1> interval_average;
-  const auto sample = [&](double ts, const Y& state) {
+  SimulationResult finish(double t) {
+    SimulationSummary& s = result_.summary;
+    PlanarEnergies& p = *s.planar;
+    s.end_time_s = t;
+    book_ledger_totals(system_.kinetic_energy(y_), mesh_energy(y_), y_[kWork], y_[kHertzLoss],
+                       y_[kSlidingLoss], y_[kMeshDamperLoss], y_[kParametric], jump_work_, s);
+    s.final_w1_rad_per_s = y_[kVelocity + kT1];
+    s.final_w2_rad_per_s = y_[kVelocity + kT2];
+    s.speed_drift_max_rel = drift_->max_relative_drift();
+    result_.tacho_times_s = tacho_->times();
+    result_.impacts = impacts_.take();
+    p.bearing_energy_final_j = system_.bearing_energy(y_);
+    p.bearing_damping_loss_j = y_[kBearingLoss];
+    p.shaft_energy_final_j = system_.shaft_energy(y_);
+    p.shaft_damping_loss_j = y_[kShaftLoss];
+    result_.planar_final_state = to_state(y_, m_.shafts);
+    result_.final_state.time_s = t;
+    result_.final_state.state = {y_[kT1], y_[kT2], y_[kVelocity + kT1], y_[kVelocity + kT2]};
+    result_.final_state.contact = memory_[0];
+    return std::move(result_);
+  }
+
+ private:
+  long long steps_taken() const { return result_.summary.steps; }
+
+  double mesh_energy(const Y& state) const {
+    return system_.mesh_energy(Region::n1, state, mode_[0]) +
+           system_.mesh_energy(Region::n2, state, mode_[1]);
+  }
+
+  // The mode of y_ at t: each side's contact, pairs and parts; an impact
+  // where a side's contact begins (its damping memory then set), its end
+  // where it ends; then the forces' signs.
+  void classify(double t) {
+    for (const Region side : kSides) {
+      const std::size_t i = side_index(side);
+      const bool before = mode_[i].contact;
+      mode_[i] = system_.classify_geometry(side, y_);
+      if (mode_[i].contact && !before) {
+        double speed = 0.0;
+        double restitution = 0.0;
+        memory_[i] = system_.onset(side, y_, mode_[i], speed, restitution);
+        impacts_.begin(side, t, speed, restitution, result_.summary);
+      } else if (!mode_[i].contact && before) {
+        impacts_.end(side, t, -system_.penetration(side, y_).second);
+      }
+      system_.classify_forces(side, y_, memory_[i], mode_[i]);
+    }
+  }
+
+  // A sample at ts of `state` in mode m (RunControl::sample_rate_hz), as the
+  // torsional run takes them: the accelerations from the equations of motion
+  // in the step's mode with its contact memory, so that at an event time a
+  // sample is the left limit; under SampleKind::interval_average the gears'
+  // mean accelerations over the interval instead.
+  void sample(double ts, const Y& state, const PlanarMode& m) {
     const auto v = [&](std::size_t i) { return state[kVelocity + i]; };
-    if (average && clock.first()) {
-      interval_average.start(ts, v);
+    if (average_ && clock_.first()) {
+      interval_average_.start(ts, v);
       return;
     }
     Y dy{};
     Forces f;
-    system.rhs(ts, state, mode, memory, dy, &f);
-    if (average) {
-      interval_average.next(ts, v, [&](std::size_t i) -> double& { return dy[kVelocity + i]; });
+    system_.rhs(ts, state, m, memory_, dy, &f);
+    if (average_) {
+      interval_average_.next(ts, v, [&](std::size_t i) -> double& { return dy[kVelocity + i]; });
     }
     PlanarSample ps;
     ps.t_s = ts;
-    ps.state = to_state(state, mounting.shafts);
+    ps.state = to_state(state, m_.shafts);
     ps.ax1_m_per_s2 = dy[kVelocity + kX1];
     ps.ay1_m_per_s2 = dy[kVelocity + kY1];
     ps.alpha1_rad_per_s2 = dy[kVelocity + kT1];
     ps.ax2_m_per_s2 = dy[kVelocity + kX2];
     ps.ay2_m_per_s2 = dy[kVelocity + kY2];
     ps.alpha2_rad_per_s2 = dy[kVelocity + kT2];
-    const std::array<double, 4> bearing = bearing_forces(mounting, ps.state);
+    const std::array<double, 4> bearing = bearing_forces(m_, ps.state);
     ps.bearing_fx1_n = bearing[0];
     ps.bearing_fy1_n = bearing[1];
     ps.bearing_fx2_n = bearing[2];
     ps.bearing_fy2_n = bearing[3];
-    ps.dte_m = system.penetration(Region::n1, state).first;
+    ps.dte_m = system_.penetration(Region::n1, state).first;
     ps.drive_force_n = f.normal_n[0];
     ps.coast_force_n = f.normal_n[1];
-    const bool pinion = c.bearings.sensor_gear == 1;
-    ps.sensor_acceleration_m_per_s2 = (pinion ? ps.ax1_m_per_s2 : ps.ax2_m_per_s2) * sensor_cos +
-                                      (pinion ? ps.ay1_m_per_s2 : ps.ay2_m_per_s2) * sensor_sin;
-    if (control.keep_samples) result.planar_samples.push_back(ps);
-    if (control.on_planar_sample) control.on_planar_sample(ps);
-  };
-  SpeedDriftMonitor drift(c, 0.0, y[kT1], y[kVelocity + kT1]);
-  PlanarStepper stepper(system, c.integrator.kind);
-  // The tacho's shaft and its edges, located on each step's continuous
-  // extension (hence `dense` with a tacho), or on a driver's closed form.
-  const bool tacho_on = c.tacho.pulses_per_revolution > 0;
-  const std::size_t tacho_index = c.tacho.shaft == TachoShaft::wheel                      ? kT2
-                                  : c.tacho.shaft == TachoShaft::motor && mounting.shafts ? kTm
-                                                                                          : kT1;
-  const bool tacho_driven =
-      system.driven() && tacho_index == (mounting.shafts ? std::size_t{kTm} : std::size_t{kT1});
-  const double driver_theta0 = mounting.shafts ? initial.theta_motor_rad : initial.theta1_rad;
-  TachoEdges tacho(c.tacho.pulses_per_revolution > 0 ? c.tacho : Tacho{1}, y[tacho_index]);
-  const bool dense = clock.on() || tacho_on;
-  Y k1{};
-  // The samples not yet taken up to t_b, where the run is at y_b: one at t_b
-  // is y_b itself, one before it the continuous extension of the step of
-  // length `step` from (t_a, y_a) to y_end (with Dormand-Prince the whole
-  // step, whose extension also gave y_b at an event inside it). At the start
-  // t_b = 0 takes the first.
-  const auto emit_samples = [&](double t_a, const Y& y_a, double step, const Y& y_end, double t_b,
-                                const Y& y_b) {
-    clock.emit(
-        t_b, [&](double ts) { sample(ts, y_b); },
-        [&](double ts) {
-          Y x{};
-          stepper.dense(t_a, y_a, k1, step, y_end, ts, x);
-          sample(ts, x);
-        });
-  };
-
-  classify(0.0);
-  emit_samples(0.0, y, 0.0, y, 0.0, y);
-  const double kinetic0 = system.kinetic_energy(y);
-  const double mesh0 = mesh_energy(y);
-  s.kinetic_energy_initial_j = kinetic0;
-  s.stored_energy_initial_j = mesh0;
-  p.bearing_energy_initial_j = system.bearing_energy(y);
-  p.shaft_energy_initial_j = system.shaft_energy(y);
-  const double energy0 = kinetic0 + mesh0 + p.bearing_energy_initial_j + p.shaft_energy_initial_j;
-  double jump_work = 0.0;
-  record(0.0);
-  Y next{};
-  // k1, f(t, y) in the mode: each step's first stage, evaluated at the end of
-  // the step before (after its events), where its mesh energy serves the ledger.
-  Forces at_start;
-  system.rhs(0.0, y, mode, memory, k1, &at_start);
-  s.rhs_evaluations += 1;
-  double t = 0.0;
-  StallWatch stall(h, c.model.friction_smoothing_speed_m_s);
-  for (long long n = 1; n <= steps;) {
-    // The last step ends at end_time exactly, where the last sample may be.
-    const double t_grid = n == steps
-                              ? c.integrator.end_time_s
-                              : std::min(static_cast<double>(n) * h, c.integrator.end_time_s);
-    stepper.step(t, y, k1, t_grid - t, mode, memory, next, dense);
-    // A driven body ends each step (and each trial of the location) where
-    // its closed form is: the event values see the state the step keeps.
-    system.impose_driver(t_grid, next);
-    s.rhs_evaluations += stepper.evaluations();
-    // The step whose continuous extension gives the samples: this one, or
-    // with RK4 the step cut at an event. With Dormand-Prince an event cuts
-    // the step on its extension, whose end is the whole step's (`whole`).
-    double dense_step = t_grid - t;
-    Y whole;
-    bool cut_on_extension = false;
-    double t_next = t_grid;
-    const bool event = !system.mode_holds(next, mode, memory);
-    if (event) {
-      // The mode ends inside the step (a side's contact begins or ends, a
-      // pair enters or leaves, touches or lets go by its gap, a fault's edge,
-      // a relief's kink, a friction reversal, a clipping): the step is cut
-      // back to the earliest event (event_location), ending just past it so
-      // that the new mode is unambiguous; the grid resumes after it. RK4
-      // locates it on the step taken again from the same start; Dormand-Prince
-      // on the step's continuous extension, as the adaptive method does,
-      // which errs by O(h^5) at the event as a step does over the run.
-      PlanarEvents g_a{};
-      PlanarEvents g_b{};
-      const int count = system.event_values(y, mode, memory, g_a);
-      system.event_values(next, mode, memory, g_b);
-      long long evaluations = 0;
-      if (stepper.dopri5()) whole = next;
-      const auto state_at = [&](double tau, Y& x) {
-        if (stepper.dopri5()) {
-          stepper.dense(t, y, k1, t_grid - t, whole, tau, x);
-        } else {
-          stepper.step(t, y, k1, tau - t, mode, memory, x, false);
-          evaluations += stepper.evaluations();
-        }
-        system.impose_driver(tau, x);
-      };
-      t_next = earliest_event_of(system, mode, memory, t, t_grid, g_a, g_b, count, state_at);
-      s.rhs_evaluations += evaluations;
-      if (t_next < t_grid && stepper.dopri5()) {
-        state_at(t_next, next);
-        cut_on_extension = true;
-      } else if (t_next < t_grid) {
-        // The cut step's own stages, for its samples.
-        stepper.step(t, y, k1, t_next - t, mode, memory, next, dense);
-        system.impose_driver(t_next, next);
-        s.rhs_evaluations += stepper.evaluations();
-        dense_step = t_next - t;
-      }
-    }
-    check_finite_state(t_next, n, next);
-    // Events that stall, and a contact that sticks (stall.hpp).
-    const bool sticks = stall.after_step(event, t, t_next, [&] { return where(t, n); });
-    const bool stepped_per_stage = mode[0].slip_per_stage;
-    // Before the mode and the contact memory change at an event: the step's
-    // samples are its own, the left limit at the event.
-    if (dense) emit_samples(t, y, dense_step, cut_on_extension ? whole : next, t_next, next);
-    if (tacho_on) {
-      const Y& end = cut_on_extension ? whole : next;
-      tacho.step(t, y[tacho_index], t_next, next[tacho_index], [&](double tau) {
-        if (tacho_driven) return driver_motion(c.torque1, driver_theta0, tau).theta_rad;
-        Y x{};
-        stepper.dense(t, y, k1, dense_step, end, tau, x);
-        return x[tacho_index];
-      });
-    }
-    y = next;
-    t = t_next;
-    drift.observe(t, y[kT1]);
-    ++s.steps;
-    double before = 0.0;
-    if (event) {
-      ++s.events;
-      before = mesh_energy(y);
-      classify(t);
-    } else if (stepped_per_stage) {
-      // The sticking goes on while a pair's sliding still changed sign over
-      // the step; once every pair slid one way through a whole step, its
-      // reversals are events again.
-      bool sticking = false;
-      for (const Region side : kSides) {
-        SideMode& m = mode[side_index(side)];
-        const std::array<double, kMaxPairs> slip = m.slip;
-        system.classify_forces(side, y, memory[side_index(side)], m);
-        sticking = sticking || slip != m.slip;
-      }
-      mode[0].slip_per_stage = sticking;
-      mode[1].slip_per_stage = sticking;
-    }
-    if (sticks) {
-      mode[0].slip_per_stage = true;
-      mode[1].slip_per_stage = true;
-    }
-    // The next step's first stage, in the mode the run now holds: after a step
-    // that kept its mode and whose end no driver moved, Dormand-Prince's last.
-    if (stepper.dopri5() && !event && !stepped_per_stage && !system.driven()) {
-      k1 = stepper.end_slope();
-      at_start = stepper.end_forces();
-    } else {
-      at_start = Forces{};
-      system.rhs(t, y, mode, memory, k1, &at_start);
-      s.rhs_evaluations += 1;
-    }
-    const double mesh = at_start.mesh_energy_j[0] + at_start.mesh_energy_j[1];
-    // A pair that entered or left, or crossed a fault's edge, takes or
-    // releases its stored energy: work of the time-varying stiffness, booked
-    // at the event.
-    if (event) jump_work += mesh - before;
-    s.max_penetration_m = std::max({s.max_penetration_m, system.contact_value(Region::n1, y),
-                                    system.contact_value(Region::n2, y)});
-    const double energy =
-        system.kinetic_energy(y) + mesh + system.bearing_energy(y) + system.shaft_energy(y);
-    if (system.terms_may_exceed(y, mode, s.energy_max_j)) {
-      const ElasticEnergy terms = system.mesh_terms(y, mode);
-      for (std::size_t i = 0; i < kTermCount; ++i) {
-        s.energy_max_j[i] = std::max(s.energy_max_j[i], terms.j[i]);
-      }
-    }
-    book_ledger_residual(
-        energy, energy0, y[kWork],
-        {y[kHertzLoss], y[kSlidingLoss], y[kBearingLoss], y[kShaftLoss], y[kMeshDamperLoss]},
-        y[kParametric], jump_work, s);
-    if (t != t_grid) continue;  // a cut step: the grid point is still ahead
-    if (n % c.integrator.output_every == 0 || n == steps) record(t);
-    poll_stop_request(control, n, t);
-    ++n;
+    const bool pinion = c_.bearings.sensor_gear == 1;
+    ps.sensor_acceleration_m_per_s2 = (pinion ? ps.ax1_m_per_s2 : ps.ax2_m_per_s2) * sensor_cos_ +
+                                      (pinion ? ps.ay1_m_per_s2 : ps.ay2_m_per_s2) * sensor_sin_;
+    if (control_.keep_samples) result_.planar_samples.push_back(ps);
+    if (control_.on_planar_sample) control_.on_planar_sample(ps);
   }
-  s.end_time_s = t;
-  book_ledger_totals(system.kinetic_energy(y), mesh_energy(y), y[kWork], y[kHertzLoss],
-                     y[kSlidingLoss], y[kMeshDamperLoss], y[kParametric], jump_work, s);
-  s.final_w1_rad_per_s = y[kVelocity + kT1];
-  s.final_w2_rad_per_s = y[kVelocity + kT2];
-  s.speed_drift_max_rel = drift.max_relative_drift();
-  result.tacho_times_s = tacho.times();
-  result.impacts = impacts.take();
-  p.bearing_energy_final_j = system.bearing_energy(y);
-  p.bearing_damping_loss_j = y[kBearingLoss];
-  p.shaft_energy_final_j = system.shaft_energy(y);
-  p.shaft_damping_loss_j = y[kShaftLoss];
-  result.planar_final_state = to_state(y, mounting.shafts);
-  result.final_state.time_s = t;
-  result.final_state.state = {y[kT1], y[kT2], y[kVelocity + kT1], y[kVelocity + kT2]};
-  result.final_state.contact = memory[0];
-  return result;
+
+  const SimulationCase& c_;
+  const PlanarMounting& m_;
+  const RunControl& control_;
+  const PlanarSystem system_;
+  Y y_;
+  Y k1_{};
+  // The forces with k1_: its mesh energy serves the ledger.
+  Forces at_start_;
+  PlanarMode mode_{};
+  std::array<ContactMemory, 2> memory_{};
+  SimulationResult result_;
+  ImpactBook impacts_;
+  SampleClock clock_;
+  StallWatch stall_;
+  const FixedStepper<PlanarSystem>* stepper_ = nullptr;
+  double energy0_ = 0.0;
+  double jump_work_ = 0.0;
+  // The step just accepted ended on an event (before_: the stored energy
+  // before it), or was taken with each stage's friction signs.
+  bool event_ = false;
+  double before_ = 0.0;
+  bool stepped_per_stage_ = false;
+  double sensor_cos_, sensor_sin_;
+  bool average_;
+  IntervalAverage<kT2 + 1> interval_average_;
+  bool tacho_on_;
+  std::size_t tacho_index_;
+  bool tacho_driven_ = false;
+  double driver_theta0_;
+  std::optional<TachoEdges> tacho_;
+  std::optional<SpeedDriftMonitor> drift_;
+};
+
+}  // namespace
+
+SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& table,
+                                 const PlanarMounting& mounting, const PlanarState& initial,
+                                 const RunControl& control) {
+  validate_planar(c, mounting, control);
+  validate_sampling(c, control);
+  check_planar_step(c, table, mounting);
+  PlanarRun run(c, table, mounting, initial, control);
+  FixedStepper<PlanarSystem> stepper(run.system(), c.integrator.kind);
+  run.use_stepper(&stepper);
+  const double t = run_fixed_grid(run, stepper, c);
+  return run.finish(t);
 }
 
 }  // namespace gearimpact
