@@ -11,6 +11,7 @@
 #include <tuple>
 #include <vector>
 
+#include "adaptive_loop.hpp"
 #include "event_location.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/contact/contact.hpp"
@@ -900,10 +901,6 @@ void validate_planar(const SimulationCase& c, const PlanarMounting& m, const Run
            "\"newtonian\" (the stored energy's jump where a pair enters or leaves under load is "
            "paid by the pinion at that instant, which the planar run does not model yet)");
   }
-  if (c.integrator.kind == IntegratorKind::adaptive) {
-    refuse("integrator.kind", "adaptive",
-           "\"rk4\" or \"dopri5\" (Dormand-Prince 5(4) at the fixed step, order 5)");
-  }
   if (control.resume) refuse("resume", "a run state", "none (a planar run starts afresh)");
 }
 
@@ -911,8 +908,19 @@ void validate_planar(const SimulationCase& c, const PlanarMounting& m, const Run
 // largest w^2 is at most the sum over the springs of k a^T M^-1 a (each
 // spring k a a^T adds at most that eigenvalue of M^-1/2 K M^-1/2), the mesh
 // counted on both sides at its stiffest.
-void check_planar_step(const SimulationCase& c, const StiffnessTable& table,
-                       const PlanarMounting& m) {
+namespace {
+
+// w^2 of that bound, and the bearing damper whose decay rate c/m is the largest.
+struct PlanarFastest {
+  double w2 = 0.0;
+  bool load_drag = false;
+  double damper_rate = 0.0;
+  std::string damper_key;
+};
+
+PlanarFastest planar_fastest(const SimulationCase& c, const StiffnessTable& table,
+                             const PlanarMounting& m) {
+  PlanarFastest f;
   const GearPair& g = c.gears;
   const double rb1 = base_radius(g, Gear::one);
   const double rb2 = base_radius(g, Gear::two);
@@ -923,7 +931,8 @@ void check_planar_step(const SimulationCase& c, const StiffnessTable& table,
   const double inverse_torsional = rb1 * rb1 / j1 + rb2 * rb2 / j2;
   const double w_torsional = 2.0 * pi / (kStepsPerContactPeriod * torsional);
   const double stiffest_mesh = w_torsional * w_torsional / inverse_torsional;
-  double w2 = 2.0 * stiffest_mesh * (inverse_torsional + 1.0 / m.mass_kg[0] + 1.0 / m.mass_kg[1]);
+  double& w2 = f.w2;
+  w2 = 2.0 * stiffest_mesh * (inverse_torsional + 1.0 / m.mass_kg[0] + 1.0 / m.mass_kg[1]);
   for (std::size_t i = 0; i < 2; ++i) {
     w2 += (m.stiffness_x_n_per_m[i] + m.stiffness_y_n_per_m[i]) / m.mass_kg[i];
   }
@@ -935,7 +944,8 @@ void check_planar_step(const SimulationCase& c, const StiffnessTable& table,
   // drag_speed_scale + drag_viscous) / J_load, which the case's check of the
   // drag bounds for the wheel only: counted as a frequency, it needs as many
   // steps per 2 pi of its time constant as that check does.
-  const bool load_drag = m.shafts && c.torque2.kind == Torque::Kind::drag;
+  f.load_drag = m.shafts && c.torque2.kind == Torque::Kind::drag;
+  const bool load_drag = f.load_drag;
   if (load_drag) {
     const double rate = (c.torque2.drag_constant_n_m / c.torque2.drag_speed_scale_rad_per_s +
                          c.torque2.drag_viscous_n_m_s) /
@@ -948,8 +958,8 @@ void check_planar_step(const SimulationCase& c, const StiffnessTable& table,
   // frequency, it needs as many steps per 2 pi / (c/m) as a contact period,
   // h c/m <= 2 pi / steps (0.31 for RK4): a factor of 9 inside that limit,
   // so that the damper's decay is resolved, not only kept from diverging.
-  double damper_rate = 0.0;
-  std::string damper_key;
+  double& damper_rate = f.damper_rate;
+  std::string& damper_key = f.damper_key;
   for (std::size_t i = 0; i < 2; ++i) {
     const double cx = m.damping_x_n_s_per_m[i] / m.mass_kg[i];
     const double cy = m.damping_y_n_s_per_m[i] / m.mass_kg[i];
@@ -961,6 +971,23 @@ void check_planar_step(const SimulationCase& c, const StiffnessTable& table,
           std::string("bearings.damping_") + (cx >= cy ? "x" : "y") + std::to_string(i + 1);
     }
   }
+  return f;
+}
+
+}  // namespace
+
+double planar_largest_step_s(const SimulationCase& c, const StiffnessTable& table,
+                             const PlanarMounting& m, IntegratorKind kind) {
+  return 2.0 * pi / std::sqrt(planar_fastest(c, table, m).w2) / steps_per_contact_period(kind);
+}
+
+void check_planar_step(const SimulationCase& c, const StiffnessTable& table,
+                       const PlanarMounting& m) {
+  const PlanarFastest f = planar_fastest(c, table, m);
+  const double w2 = f.w2;
+  const bool load_drag = f.load_drag;
+  const double damper_rate = f.damper_rate;
+  const std::string& damper_key = f.damper_key;
   const double steps = steps_per_contact_period(c.integrator.kind);
   const double largest = 2.0 * pi / std::sqrt(w2) / steps;
   // Whether the dampers alone would need a smaller step: then the message names the key.
@@ -1416,6 +1443,11 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   validate_sampling(c, control);
   check_planar_step(c, table, mounting);
   PlanarRun run(c, table, mounting, initial, control);
+  if (c.integrator.kind == IntegratorKind::adaptive) {
+    // Steps of the error's size, at most RK4's step bound of the planar system.
+    return run.finish(run_adaptive_loop(
+        run, c, planar_largest_step_s(c, table, mounting, IntegratorKind::adaptive)));
+  }
   FixedStepper<PlanarSystem> stepper(run.system(), c.integrator.kind);
   run.use_stepper(&stepper);
   const double t = run_fixed_grid(run, stepper, c);
