@@ -247,7 +247,11 @@ class PlanarSystem {
       controller_ = std::make_shared<const SpeedController>(c, driver_theta0);
     }
     induction_ = c.torque1.kind == Torque::Kind::induction_motor;
-    options_ = gaps_ || mesh_damping_ > 0.0 || driven_ || drag_ || controller_ || induction_;
+    // The Lagrangian force of a time-varying stiffness (with a constant one
+    // the two forces are the same).
+    lagrangian_ = c.model.mesh_force == MeshForce::lagrangian && constant_k_ == 0.0;
+    options_ = gaps_ || mesh_damping_ > 0.0 || driven_ || drag_ || controller_ || induction_ ||
+               lagrangian_;
   }
 
   // A kinematic driver's body (the pinion, the motor with shafts) where its
@@ -263,6 +267,12 @@ class PlanarSystem {
   double rb2() const { return rb2_; }
   // Whether a kinematic driver sets a body's angle and speed after each step.
   bool driven() const { return driven_; }
+  // Whether the mesh force is the Lagrangian one (model.mesh_force).
+  bool lagrangian() const { return lagrangian_; }
+  // J1, whose kinetic energy pays a jump of the stored energy (Lagrangian).
+  double pinion_inertia() const { return j1_; }
+  // Whether the driver holds the pinion's speed (it then pays such a jump).
+  bool drives_pinion() const { return driven_ && driven_index_ == kT1; }
 
   // n of a side, (sin a, cos a) on the drive line, (-sin a, cos a) on the coast line.
   std::array<double, 2> normal(Region side) const {
@@ -669,11 +679,30 @@ class PlanarSystem {
         f2[1] -= fy;
         hertz_power += (normal_n - f_elastic) * p.own.rate_m_s;
         friction_power += f * normal_n * slip * vs;
-        parametric_power += 0.5 * dk * dk * dke * x_rate;
+        // d/dt of 1/2 Ke(X) delta^2 at fixed delta, X a function of theta1
+        // alone (dX/dtheta1 = sign Rb1), as in the torsional system.
+        // Newtonian: work of the varying stiffness. Lagrangian: -dV/dtheta1
+        // adds the torque -1/2 dKe/dX sign Rb1 delta^2 on the pinion, whose
+        // power is minus this; a clipped pair exerts no force, so the stored
+        // energy it gains or loses counts with its damping loss.
+        if (!(kOptions && lagrangian_)) {
+          parametric_power += 0.5 * dk * dk * dke * x_rate;
+        } else if (m.clipped[j]) {
+          hertz_power -= 0.5 * dk * dk * dke * x_rate;
+        } else {
+          moment1 -= 0.5 * dk * dk * dke * sign * rb1_;
+        }
         // The gap moves with the pinion: N does the work -N de_k/dX dX/dt on
         // the pair's penetration at fixed centres and angles, the varying
-        // mesh's as in the torsional system.
-        if (kOptions && gaps_) parametric_power -= normal_n * p.own.gap_slope * x_rate;
+        // mesh's as in the torsional system. Lagrangian: N acts on delta_k,
+        // whose lever on the pinion is sign Rb1 (1 - de_k/dX).
+        if (kOptions && gaps_) {
+          if (!lagrangian_) {
+            parametric_power -= normal_n * p.own.gap_slope * x_rate;
+          } else {
+            moment1 += sign * rb1_ * normal_n * p.own.gap_slope;
+          }
+        }
         total += normal_n;
         if (forces != nullptr) {
           forces->friction_n += ff;
@@ -839,6 +868,7 @@ class PlanarSystem {
   bool induction_ = false;
   std::size_t driven_index_ = kT1;
   double driver_theta0_ = 0.0;
+  bool lagrangian_ = false;
   bool options_ = false;  // any of the above
   MeshLayout layout_;
   double rb1_ = 0.0, rb2_ = 0.0, j1_ = 0.0, j2_ = 0.0, backlash_ = 0.0, lp_ = 0.0;
@@ -860,7 +890,8 @@ void refuse(const char* key, const std::string& value, const std::string& allowe
 
 }  // namespace
 
-void validate_planar(const SimulationCase& c, const PlanarMounting& m, const RunControl& control) {
+void validate_planar(const SimulationCase& /*c*/, const PlanarMounting& m,
+                     const RunControl& control) {
   const char* masses[2] = {"mass1", "mass2"};
   const char* kx[2] = {"stiffness_x1", "stiffness_x2"};
   const char* ky[2] = {"stiffness_y1", "stiffness_y2"};
@@ -894,12 +925,6 @@ void validate_planar(const SimulationCase& c, const PlanarMounting& m, const Run
             "motor_damping", m.motor_damping_n_m_s_per_rad, "a finite value >= 0");
     require(std::isfinite(m.load_damping_n_m_s_per_rad) && m.load_damping_n_m_s_per_rad >= 0.0,
             "load_damping", m.load_damping_n_m_s_per_rad, "a finite value >= 0");
-  }
-  if (c.model.mesh_force == MeshForce::lagrangian &&
-      c.model.mesh_stiffness != MeshStiffnessMode::constant) {
-    refuse("model.mesh_force", "lagrangian",
-           "\"newtonian\" (the stored energy's jump where a pair enters or leaves under load is "
-           "paid by the pinion at that instant, which the planar run does not model yet)");
   }
   if (control.resume) refuse("resume", "a run state", "none (a planar run starts afresh)");
 }
@@ -1199,6 +1224,7 @@ class PlanarRun {
     ++result_.summary.events;
     before_ = mesh_energy(y_);
     classify(t);
+    if (system_.lagrangian()) pay_stored_energy_jump(t, mesh_energy(y_) - before_);
     event_ = true;
   }
 
@@ -1250,7 +1276,8 @@ class PlanarRun {
     // A pair that entered or left, or crossed a fault's edge, takes or
     // releases its stored energy: work of the time-varying stiffness, booked
     // at the event.
-    if (event_) jump_work_ += mesh - before_;
+    // Under the Lagrangian force the jump was paid at the event (change_mode).
+    if (event_ && !system_.lagrangian()) jump_work_ += mesh - before_;
     event_ = false;
     stepped_per_stage_ = false;
     s.max_penetration_m = std::max({s.max_penetration_m, system_.contact_value(Region::n1, y_),
@@ -1319,6 +1346,7 @@ class PlanarRun {
     s.final_w1_rad_per_s = y_[kVelocity + kT1];
     s.final_w2_rad_per_s = y_[kVelocity + kT2];
     s.speed_drift_max_rel = drift_->max_relative_drift();
+    if (system_.lagrangian()) s.stored_energy_jumps_j = stored_energy_jumps_;
     result_.tacho_times_s = tacho_->times();
     result_.impacts = impacts_.take();
     p.bearing_energy_final_j = system_.bearing_energy(y_);
@@ -1334,6 +1362,26 @@ class PlanarRun {
 
  private:
   long long steps_taken() const { return result_.summary.steps; }
+
+  // The Lagrangian mesh force: the stored energy's jump at an event, paid by
+  // the pinion's kinetic energy (pinion_speed_after_jump), or with a driver
+  // on the pinion by the driver, as work of its torque; the forces' signs are
+  // then those of the new speed.
+  void pay_stored_energy_jump(double t, double jump) {
+    if (jump == 0.0) return;
+    stored_energy_jumps_ += std::fabs(jump);
+    if (system_.drives_pinion()) {
+      y_[kWork] += jump;
+      return;
+    }
+    y_[kVelocity + kT1] =
+        pinion_speed_after_jump(jump, system_.pinion_inertia(), y_[kVelocity + kT1],
+                                where(t, steps_taken()), "the loaded pairs change");
+    for (const Region side : kSides) {
+      const std::size_t i = side_index(side);
+      system_.classify_forces(side, y_, memory_[i], mode_[i]);
+    }
+  }
 
   double mesh_energy(const Y& state) const {
     return system_.mesh_energy(Region::n1, state, mode_[0]) +
@@ -1418,6 +1466,8 @@ class PlanarRun {
   const FixedStepper<PlanarSystem>* stepper_ = nullptr;
   double energy0_ = 0.0;
   double jump_work_ = 0.0;
+  // Under the Lagrangian force: the sum of |dU| of the jumps paid.
+  double stored_energy_jumps_ = 0.0;
   // The step just accepted ended on an event (before_: the stored energy
   // before it), or was taken with each stage's friction signs.
   bool event_ = false;

@@ -419,19 +419,12 @@ class Run {
       y_[kTorqueWork] += jump;
       return;
     }
+    // The message's text only where the pinion cannot pay.
     const double j1 = system_.pinion_inertia();
     const double w1 = y_[kW1];
-    const double kinetic1 = 0.5 * j1 * w1 * w1;
-    if (jump > kinetic1) {
-      throw SimulationError(
-          "mesh_force = \"lagrangian\": at " + where(t, result_.summary.steps) + ", " +
-          pair_change(old) + ": the stored energy jumps by " + format_number(jump) +
-          " J, more than the pinion's kinetic energy J1 w1^2 / 2 = " + format_number(kinetic1) +
-          " J (w1 = " + format_number(w1) +
-          " rad/s) can pay; the gears would have to turn back there. "
-          "mesh_force = \"newtonian\" books the jump as parametric work");
-    }
-    y_[kW1] = std::copysign(std::sqrt(w1 * w1 - 2.0 * jump / j1), w1);
+    const bool pays = jump <= 0.5 * j1 * w1 * w1;
+    y_[kW1] = pinion_speed_after_jump(jump, j1, w1, where(t, result_.summary.steps),
+                                      pays ? std::string() : pair_change(old));
   }
 
   // Which pairs entered or left between `old` and mode_, for messages: pair k

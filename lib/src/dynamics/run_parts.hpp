@@ -96,6 +96,26 @@ inline void book_ledger_residual(double energy_j, double energy0_j, double work_
   s.ledger_residual_max_j = std::max(s.ledger_residual_max_j, std::fabs(residual));
 }
 
+// The Lagrangian mesh force: the stored energy jumps by jump_j where a pair
+// enters or leaves, at fixed angles (and centres). The pinion's kinetic energy
+// pays it, J1 (w1+^2 - w1-^2) / 2 = -jump_j, w1 keeping its sign (Ke depends
+// on theta1 alone, so the impulse is on the pinion): returns w1+. Where it
+// cannot, the run stops; `where_text` and `change` say where and what changed.
+inline double pinion_speed_after_jump(double jump_j, double j1_kg_m2, double w1_rad_per_s,
+                                      const std::string& where_text, const std::string& change) {
+  const double kinetic1 = 0.5 * j1_kg_m2 * w1_rad_per_s * w1_rad_per_s;
+  if (jump_j > kinetic1) {
+    throw SimulationError("mesh_force = \"lagrangian\": at " + where_text + ", " + change +
+                          ": the stored energy jumps by " + format_number(jump_j) +
+                          " J, more than the pinion's kinetic energy J1 w1^2 / 2 = " +
+                          format_number(kinetic1) + " J (w1 = " + format_number(w1_rad_per_s) +
+                          " rad/s) can pay; the gears would have to turn back there. "
+                          "mesh_force = \"newtonian\" books the jump as parametric work");
+  }
+  return std::copysign(std::sqrt(w1_rad_per_s * w1_rad_per_s - 2.0 * jump_j / j1_kg_m2),
+                       w1_rad_per_s);
+}
+
 // The ledger's totals at the end of a run: the final energies, the drives'
 // work, the losses (Hertzian damping, friction, mesh damper) and the
 // parametric work, the jumps' share of it named on its own.

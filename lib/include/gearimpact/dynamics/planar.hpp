@@ -54,8 +54,7 @@ double planar_angular_momentum(const SimulationCase& c, const PlanarMounting& m,
 // Throws InputError naming the mounting's field (mass1, stiffness_x2, ...)
 // unless every mass is finite and > 0, every bearing stiffness and damping
 // finite and >= 0 (the shafts' values as [shafts]' rows); and naming what the
-// planar model does not take yet (the Lagrangian mesh force of a
-// time-varying stiffness, a continued run). simulate()
+// planar model does not take yet (a continued run). simulate()
 // calls it for an elastic case before it builds the stiffness table.
 void validate_planar(const SimulationCase& c, const PlanarMounting& mounting,
                      const RunControl& control);
