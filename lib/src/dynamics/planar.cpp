@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "adaptive_loop.hpp"
@@ -185,15 +186,10 @@ class PlanarSystem {
     constant_k_ = c.model.mesh_stiffness == MeshStiffnessMode::constant
                       ? c.model.constant_mesh_stiffness_n_per_m
                       : 0.0;
-    if (!c.faults.empty() && constant_k_ == 0.0) {
-      teeth_ = std::make_shared<const MeshTables>(
-          g, c.model.stiffness, c.faults,
-          std::shared_ptr<const StiffnessTable>(&table, [](const StiffnessTable*) {}));
-    }
-    if (!is_unmodified(c.modifications)) {
-      gaps_ = std::make_shared<const ToothGaps>(g, c.modifications);
-      kinks_ = gaps_->kinks_m();
-    }
+    MeshTeeth teeth = mesh_teeth(c, table, constant_k_);
+    teeth_ = std::move(teeth.tables);
+    gaps_ = std::move(teeth.gaps);
+    kinks_ = std::move(teeth.kinks_m);
     if (!gaps_ && constant_k_ == 0.0) {
       // A pair stores 0.5 delta^2 c / c_total^2 in a term of compliance c
       // (F = delta / c_total): the factor's largest value over every table a

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "gearimpact/contact/contact.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
@@ -128,16 +129,10 @@ GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table,
   constant_torques_ =
       c.torque1.kind == Torque::Kind::constant && c.torque2.kind == Torque::Kind::constant;
   if (constant_torques_) torque_values_ = {c.torque1.constant_n_m, c.torque2.constant_n_m};
-  if (!c.faults.empty() && constant_k_ == 0.0) {
-    // The caller keeps the healthy table alive; MeshTables shares it without owning it.
-    teeth_ = std::make_shared<const MeshTables>(
-        g, c.model.stiffness, c.faults,
-        std::shared_ptr<const StiffnessTable>(&table, [](const StiffnessTable*) {}));
-  }
-  if (!is_unmodified(c.modifications)) {
-    gaps_ = std::make_shared<const ToothGaps>(g, c.modifications);
-    kinks_ = gaps_->kinks_m();
-  }
+  MeshTeeth teeth = mesh_teeth(c, table, constant_k_);
+  teeth_ = std::move(teeth.tables);
+  gaps_ = std::move(teeth.gaps);
+  kinks_ = std::move(teeth.kinks_m);
   mesh_damping_ = case_mesh_damping_n_s_per_m(c, table, teeth_.get());
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <memory>
 #include <vector>
 
 #include "gearimpact/case/simulation_case.hpp"
@@ -72,6 +73,19 @@ PairPenetration pair_penetration_with_gap(const ToothGaps& gaps, const std::vect
                                           int zone, Region line, int k, double x_m, double dl_m,
                                           double dl_rate_m_s, double x_rate_m_s, double start_m,
                                           double end_m);
+// The teeth of a mesh that differ from pair to pair, built once a run by
+// either system: with faults (and a time-varying stiffness) each pair's
+// tables (MeshTables, sharing the healthy `table`, which the caller keeps
+// alive, without owning it); with modifications each pair's gap and the
+// kinks of its slope.
+struct MeshTeeth {
+  std::shared_ptr<const MeshTables> tables;  // none: every pair reads the healthy table
+  std::shared_ptr<const ToothGaps> gaps;     // none: no modifications
+  std::vector<double> kinks_m;               // ToothGaps::kinks_m
+};
+// constant_k: model.constant_mesh_stiffness where the stiffness is constant, else 0.
+MeshTeeth mesh_teeth(const SimulationCase& c, const StiffnessTable& table, double constant_k);
+
 // The event values a loaded pair adds for its table's part and its gap, in
 // the torsional and the planar system alike; each appends to g from g[n] on
 // and advances n.
