@@ -1,122 +1,15 @@
-// The cross-check of the fixed-step runs: Boost.Odeint's dense-output
-// Dormand-Prince method (order 5, with an embedded order-4 error estimate),
-// with the mode's events located on its dense output.
-#include <boost/numeric/odeint.hpp>
-#include <cmath>
-#include <exception>
-#include <utility>
-
-#include "event_location.hpp"
+// The torsional run by the adaptive integrator (adaptive_loop.hpp).
+#include "adaptive_loop.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "rk4.hpp"
 #include "run.hpp"
 
 namespace gearimpact {
 
-namespace {
-
-// The first event of the mode inside the dense-output step [a, b], located on
-// the dense output; yb receives the state there.
-template <typename Stepper>
-double end_of_mode(Stepper& stepper, const GearSystem& system, const Mode& mode,
-                   const ContactMemory& damping, double a, double b, State& yb) {
-  EventValues g_a{}, g_b{};
-  State ya{};
-  stepper.calc_state(a, ya);
-  const int n = system.event_values(ya, mode, damping, g_a);
-  system.event_values(yb, mode, damping, g_b);
-  const auto state_at = [&](double tau, State& x) { stepper.calc_state(tau, x); };
-  const double t_event = earliest_event(system, mode, damping, a, b, g_a, g_b, n, state_at);
-  stepper.calc_state(t_event, yb);
-  return t_event;
-}
-
-}  // namespace
-
 SimulationResult run_adaptive(const SimulationCase& c, const StiffnessTable& table,
                               const RunControl& control) {
-  namespace odeint = boost::numeric::odeint;
   Run run(c, table, control);
-  const GearSystem& system = run.system();
-  const double h = c.integrator.step_s;
-  const double t0 = run.start_time();
-  const double end = t0 + c.integrator.end_time_s;
-  const double output_step = h * c.integrator.output_every;
-  const auto outputs =
-      static_cast<long long>(std::floor(c.integrator.end_time_s / output_step * (1.0 + 1e-12)));
-  long long next_output = 1;
-  Mode mode = run.mode();
-  ContactMemory damping = run.damping();
-  long long evaluations = 0;
-  const auto ode = [&](const State& x, State& dxdt, double tt) {
-    system.rhs(tt, x, mode, damping, dxdt);
-    ++evaluations;
-  };
-  const double rtol = c.integrator.adaptive_relative_tolerance;
-  // Angles are of order 1 rad and penetrations of 1e-6 m on a 0.02 m radius:
-  // an absolute tolerance 1e-4 of the relative one keeps delta resolved.
-  auto stepper = odeint::make_dense_output(rtol * 1e-4, rtol, largest_resolving_step_s(c),
-                                           odeint::runge_kutta_dopri5<State>());
-  stepper.initialize(run.y(), t0, h);
-  double t = t0;
-  const auto emit_until = [&](double upto) {
-    while (run.records() && next_output <= outputs &&
-           t0 + static_cast<double>(next_output) * output_step <= upto) {
-      const double to = t0 + static_cast<double>(next_output) * output_step;
-      State x{};
-      stepper.calc_state(to, x);
-      run.record(to, x, mode);
-      ++next_output;
-    }
-  };
-  // The samples inside a step: Dormand-Prince's own dense output, of order 4
-  // (Hairer, Norsett & Wanner, Solving ODE I, II.6), over the step just taken.
-  const auto dense = [&](double tau, State& x) { stepper.calc_state(tau, x); };
-  while (t < end) {
-    std::pair<double, double> span;
-    try {
-      span = stepper.do_step(ode);
-    } catch (const std::exception& e) {
-      throw SimulationError("the adaptive integrator failed at " + where(t, run.steps()) + ": " +
-                            e.what());
-    }
-    const double a = span.first;
-    const double b = span.second;
-    State yb = stepper.current_state();
-    run.check_finite(b, yb);
-    const bool event = !system.mode_holds(yb, mode, damping);
-    const double t_next = event ? end_of_mode(stepper, system, mode, damping, a, b, yb) : b;
-    if (t_next >= end) {
-      emit_until(end);
-      stepper.calc_state(end, yb);
-      system.impose_driver(end, yb);
-      run.emit_samples(end, yb, mode, dense);
-      run.y() = yb;
-      ++run.steps();
-      t = end;
-      run.book_keep(t);
-      break;
-    }
-    emit_until(t_next);
-    // The dense output integrates the driver's closed-form speed to the
-    // tolerance; the accepted state takes the closed form itself.
-    system.impose_driver(t_next, yb);
-    // Before the mode changes at an event: the step's samples are its own mode's.
-    run.emit_samples(t_next, yb, mode, dense);
-    run.y() = yb;
-    ++run.steps();
-    run.check_progress(t, t_next, h);
-    t = t_next;
-    if (event) {
-      run.change_mode(t);
-      mode = run.mode();
-      damping = run.damping();
-      stepper.initialize(run.y(), t, std::max(stepper.current_time_step(), 1e-3 * h));
-    }
-    run.book_keep(t);
-    run.poll_stop(t);
-  }
-  run.rhs_evaluations() = evaluations;
+  const double t = run_adaptive_loop(run, c, largest_resolving_step_s(c));
   return run.finish(t, "adaptive");
 }
 

@@ -42,16 +42,4 @@ double earliest_event(double a, double b, const double* g_a, const double* g_b, 
   return earliest;
 }
 
-double earliest_event(const GearSystem& system, const Mode& m, const ContactMemory& d, double a,
-                      double b, const EventValues& g_a, const EventValues& g_b, int n,
-                      const std::function<void(double, State&)>& state_at) {
-  return earliest_event(a, b, g_a.data(), g_b.data(), n, [&](double t, int i) {
-    State x{};
-    state_at(t, x);
-    EventValues g{};
-    system.event_values(x, m, d, g);
-    return g[i];
-  });
-}
-
 }  // namespace gearimpact

@@ -10,6 +10,7 @@
 
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/dynamics/system.hpp"
+#include "run_parts.hpp"
 
 namespace gearimpact {
 
@@ -36,26 +37,16 @@ class EnergyLedger {
       s.energy_max_j[i] = std::max(s.energy_max_j[i], u.j[i]);
     }
     const double energy = system_.kinetic_energy(y) + u.total_j();
-    s.ledger_scale_j = std::max(s.ledger_scale_j, energy);
-    // (kinetic + stored)(t) - (kinetic + stored)(0) - torque work + losses
-    // (Hertzian damping, friction, mesh damper) -
-    // parametric work: zero for the exact solution.
-    const double residual = energy - energy0_ - y[kTorqueWork] + y[kDampingLoss] +
-                            y[kFrictionLoss] + y[kMeshDampingLoss] - y[kParametricWork] -
-                            jump_work_;
-    s.ledger_residual_j = residual;
-    s.ledger_residual_max_j = std::max(s.ledger_residual_max_j, std::fabs(residual));
+    // The losses: Hertzian damping, friction, mesh damper.
+    book_ledger_residual(energy, energy0_, y[kTorqueWork],
+                         {y[kDampingLoss], y[kFrictionLoss], y[kMeshDampingLoss]},
+                         y[kParametricWork], jump_work_, s);
   }
 
   void finish(const State& y, const Mode& m, SimulationSummary& s) const {
-    s.kinetic_energy_final_j = system_.kinetic_energy(y);
-    s.stored_energy_final_j = system_.stored_energy(y, m).total_j();
-    s.torque_work_j = y[kTorqueWork];
-    s.damping_loss_j = y[kDampingLoss];
-    s.friction_loss_j = y[kFrictionLoss];
-    s.mesh_damping_loss_j = y[kMeshDampingLoss];
-    s.parametric_jump_work_j = jump_work_;
-    s.parametric_work_j = y[kParametricWork] + jump_work_;
+    book_ledger_totals(system_.kinetic_energy(y), system_.stored_energy(y, m).total_j(),
+                       y[kTorqueWork], y[kDampingLoss], y[kFrictionLoss], y[kMeshDampingLoss],
+                       y[kParametricWork], jump_work_, s);
   }
 
  private:

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "gearimpact/error.hpp"
+#include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/numerics/quadrature.hpp"
 
 namespace gearimpact {
@@ -149,6 +150,20 @@ double case_mesh_damping_n_s_per_m(const SimulationCase& c, const StiffnessTable
 
 double natural_frequency_rad_per_s(const SimulationCase& c, const StiffnessTable& table) {
   return std::sqrt(mean_mesh_stiffness_n_per_m(c, table) / effective_mass_kg(c.gears));
+}
+
+MeshTeeth mesh_teeth(const SimulationCase& c, const StiffnessTable& table, double constant_k) {
+  MeshTeeth teeth;
+  if (!c.faults.empty() && constant_k == 0.0) {
+    teeth.tables = std::make_shared<const MeshTables>(
+        c.gears, c.model.stiffness, c.faults,
+        std::shared_ptr<const StiffnessTable>(&table, [](const StiffnessTable*) {}));
+  }
+  if (!is_unmodified(c.modifications)) {
+    teeth.gaps = std::make_shared<const ToothGaps>(c.gears, c.modifications);
+    teeth.kinks_m = teeth.gaps->kinks_m();
+  }
+  return teeth;
 }
 
 }  // namespace gearimpact

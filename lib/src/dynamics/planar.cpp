@@ -6,10 +6,13 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
+#include "adaptive_loop.hpp"
 #include "event_location.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/contact/contact.hpp"
@@ -25,6 +28,8 @@
 #include "gearimpact/stiffness/mesh_tables.hpp"
 #include "rk4_dense.hpp"
 #include "run.hpp"
+#include "stall.hpp"
+#include "step_methods.hpp"
 
 namespace gearimpact {
 
@@ -142,8 +147,16 @@ using PlanarMode = std::array<SideMode, 2>;
 constexpr int kSideEvents = 5 + 7 * kMaxPairs;
 using PlanarEvents = std::array<double, 2 * kSideEvents>;
 
+// A system of the step methods (step_methods.hpp): both lines of action,
+// each with its own mode and contact memory.
 class PlanarSystem {
  public:
+  using StateType = Y;
+  using ModeType = PlanarMode;
+  using MemoryType = std::array<ContactMemory, 2>;
+  using EventsType = PlanarEvents;
+  using ForcesType = Forces;
+
   // driver_theta0: with a kinematic driver, the angle its body starts from.
   PlanarSystem(const SimulationCase& c, const StiffnessTable& table, const PlanarMounting& m,
                double driver_theta0)
@@ -173,15 +186,10 @@ class PlanarSystem {
     constant_k_ = c.model.mesh_stiffness == MeshStiffnessMode::constant
                       ? c.model.constant_mesh_stiffness_n_per_m
                       : 0.0;
-    if (!c.faults.empty() && constant_k_ == 0.0) {
-      teeth_ = std::make_shared<const MeshTables>(
-          g, c.model.stiffness, c.faults,
-          std::shared_ptr<const StiffnessTable>(&table, [](const StiffnessTable*) {}));
-    }
-    if (!is_unmodified(c.modifications)) {
-      gaps_ = std::make_shared<const ToothGaps>(g, c.modifications);
-      kinks_ = gaps_->kinks_m();
-    }
+    MeshTeeth teeth = mesh_teeth(c, table, constant_k_);
+    teeth_ = std::move(teeth.tables);
+    gaps_ = std::move(teeth.gaps);
+    kinks_ = std::move(teeth.kinks_m);
     if (!gaps_ && constant_k_ == 0.0) {
       // A pair stores 0.5 delta^2 c / c_total^2 in a term of compliance c
       // (F = delta / c_total): the factor's largest value over every table a
@@ -235,7 +243,11 @@ class PlanarSystem {
       controller_ = std::make_shared<const SpeedController>(c, driver_theta0);
     }
     induction_ = c.torque1.kind == Torque::Kind::induction_motor;
-    options_ = gaps_ || mesh_damping_ > 0.0 || driven_ || drag_ || controller_ || induction_;
+    // The Lagrangian force of a time-varying stiffness (with a constant one
+    // the two forces are the same).
+    lagrangian_ = c.model.mesh_force == MeshForce::lagrangian && constant_k_ == 0.0;
+    options_ = gaps_ || mesh_damping_ > 0.0 || driven_ || drag_ || controller_ || induction_ ||
+               lagrangian_;
   }
 
   // A kinematic driver's body (the pinion, the motor with shafts) where its
@@ -251,6 +263,12 @@ class PlanarSystem {
   double rb2() const { return rb2_; }
   // Whether a kinematic driver sets a body's angle and speed after each step.
   bool driven() const { return driven_; }
+  // Whether the mesh force is the Lagrangian one (model.mesh_force).
+  bool lagrangian() const { return lagrangian_; }
+  // J1, whose kinetic energy pays a jump of the stored energy (Lagrangian).
+  double pinion_inertia() const { return j1_; }
+  // Whether the driver holds the pinion's speed (it then pays such a jump).
+  bool drives_pinion() const { return driven_ && driven_index_ == kT1; }
 
   // n of a side, (sin a, cos a) on the drive line, (-sin a, cos a) on the coast line.
   std::array<double, 2> normal(Region side) const {
@@ -459,26 +477,10 @@ class PlanarSystem {
       for (int j = 0; j < m.range.count; ++j) {
         const StiffnessTable* table = m.table[j];
         const double x = layout_.position_m(ref, first + j);
-        if (table != nullptr && table->part_count() > 1) {
-          // Ke jumps at the ends of the pair's part inside the segment (a fault's edges).
-          const int part = m.part[j];
-          g[n++] = part > 0 ? x - table->part_start_m(part) : 1.0;
-          g[n++] = part + 1 < table->part_count() ? table->part_end_m(part) - x : 1.0;
-        }
+        append_part_events(table, m.part[j], x, g.data(), n);
         if (gaps_) {
           const double dk = pair_penetration(side, m, j, x, dl, dl_rate, x_rate).delta_m;
-          g[n++] = m.touching[j] ? dk : -dk;
-          if (!m.touching[j]) {
-            // A pair whose gap is open neither slides under load nor pushes,
-            // and its gap's kinks change nothing.
-            for (int e = 0; e < 4; ++e) g[n++] = 1.0;
-            continue;
-          }
-          // The gap's slope jumps at a linear relief's start: the damping
-          // force and the gap's work with it.
-          const auto zone = static_cast<std::size_t>(m.zone[j]);
-          g[n++] = zone > 0 ? x - kinks_[zone - 1] : 1.0;
-          g[n++] = zone < kinks_.size() ? kinks_[zone] - x : 1.0;
+          if (!append_gap_events(m.touching[j], m.zone[j], kinks_, x, dk, g.data(), n)) continue;
         }
         const PairMotion p = pair_motion(side, y, sm, memory[i], m, j, true);
         // A smoothed sign has no switch to locate.
@@ -673,11 +675,30 @@ class PlanarSystem {
         f2[1] -= fy;
         hertz_power += (normal_n - f_elastic) * p.own.rate_m_s;
         friction_power += f * normal_n * slip * vs;
-        parametric_power += 0.5 * dk * dk * dke * x_rate;
+        // d/dt of 1/2 Ke(X) delta^2 at fixed delta, X a function of theta1
+        // alone (dX/dtheta1 = sign Rb1), as in the torsional system.
+        // Newtonian: work of the varying stiffness. Lagrangian: -dV/dtheta1
+        // adds the torque -1/2 dKe/dX sign Rb1 delta^2 on the pinion, whose
+        // power is minus this; a clipped pair exerts no force, so the stored
+        // energy it gains or loses counts with its damping loss.
+        if (!(kOptions && lagrangian_)) {
+          parametric_power += 0.5 * dk * dk * dke * x_rate;
+        } else if (m.clipped[j]) {
+          hertz_power -= 0.5 * dk * dk * dke * x_rate;
+        } else {
+          moment1 -= 0.5 * dk * dk * dke * sign * rb1_;
+        }
         // The gap moves with the pinion: N does the work -N de_k/dX dX/dt on
         // the pair's penetration at fixed centres and angles, the varying
-        // mesh's as in the torsional system.
-        if (kOptions && gaps_) parametric_power -= normal_n * p.own.gap_slope * x_rate;
+        // mesh's as in the torsional system. Lagrangian: N acts on delta_k,
+        // whose lever on the pinion is sign Rb1 (1 - de_k/dX).
+        if (kOptions && gaps_) {
+          if (!lagrangian_) {
+            parametric_power -= normal_n * p.own.gap_slope * x_rate;
+          } else {
+            moment1 += sign * rb1_ * normal_n * p.own.gap_slope;
+          }
+        }
         total += normal_n;
         if (forces != nullptr) {
           forces->friction_n += ff;
@@ -843,6 +864,7 @@ class PlanarSystem {
   bool induction_ = false;
   std::size_t driven_index_ = kT1;
   double driver_theta0_ = 0.0;
+  bool lagrangian_ = false;
   bool options_ = false;  // any of the above
   MeshLayout layout_;
   double rb1_ = 0.0, rb2_ = 0.0, j1_ = 0.0, j2_ = 0.0, backlash_ = 0.0, lp_ = 0.0;
@@ -864,7 +886,8 @@ void refuse(const char* key, const std::string& value, const std::string& allowe
 
 }  // namespace
 
-void validate_planar(const SimulationCase& c, const PlanarMounting& m, const RunControl& control) {
+void validate_planar(const SimulationCase& /*c*/, const PlanarMounting& m,
+                     const RunControl& control) {
   const char* masses[2] = {"mass1", "mass2"};
   const char* kx[2] = {"stiffness_x1", "stiffness_x2"};
   const char* ky[2] = {"stiffness_y1", "stiffness_y2"};
@@ -899,16 +922,6 @@ void validate_planar(const SimulationCase& c, const PlanarMounting& m, const Run
     require(std::isfinite(m.load_damping_n_m_s_per_rad) && m.load_damping_n_m_s_per_rad >= 0.0,
             "load_damping", m.load_damping_n_m_s_per_rad, "a finite value >= 0");
   }
-  if (c.model.mesh_force == MeshForce::lagrangian &&
-      c.model.mesh_stiffness != MeshStiffnessMode::constant) {
-    refuse("model.mesh_force", "lagrangian",
-           "\"newtonian\" (the stored energy's jump where a pair enters or leaves under load is "
-           "paid by the pinion at that instant, which the planar run does not model yet)");
-  }
-  if (c.integrator.kind == IntegratorKind::adaptive) {
-    refuse("integrator.kind", "adaptive",
-           "\"rk4\" or \"dopri5\" (Dormand-Prince 5(4) at the fixed step, order 5)");
-  }
   if (control.resume) refuse("resume", "a run state", "none (a planar run starts afresh)");
 }
 
@@ -916,8 +929,19 @@ void validate_planar(const SimulationCase& c, const PlanarMounting& m, const Run
 // largest w^2 is at most the sum over the springs of k a^T M^-1 a (each
 // spring k a a^T adds at most that eigenvalue of M^-1/2 K M^-1/2), the mesh
 // counted on both sides at its stiffest.
-void check_planar_step(const SimulationCase& c, const StiffnessTable& table,
-                       const PlanarMounting& m) {
+namespace {
+
+// w^2 of that bound, and the bearing damper whose decay rate c/m is the largest.
+struct PlanarFastest {
+  double w2 = 0.0;
+  bool load_drag = false;
+  double damper_rate = 0.0;
+  std::string damper_key;
+};
+
+PlanarFastest planar_fastest(const SimulationCase& c, const StiffnessTable& table,
+                             const PlanarMounting& m) {
+  PlanarFastest f;
   const GearPair& g = c.gears;
   const double rb1 = base_radius(g, Gear::one);
   const double rb2 = base_radius(g, Gear::two);
@@ -928,7 +952,8 @@ void check_planar_step(const SimulationCase& c, const StiffnessTable& table,
   const double inverse_torsional = rb1 * rb1 / j1 + rb2 * rb2 / j2;
   const double w_torsional = 2.0 * pi / (kStepsPerContactPeriod * torsional);
   const double stiffest_mesh = w_torsional * w_torsional / inverse_torsional;
-  double w2 = 2.0 * stiffest_mesh * (inverse_torsional + 1.0 / m.mass_kg[0] + 1.0 / m.mass_kg[1]);
+  double& w2 = f.w2;
+  w2 = 2.0 * stiffest_mesh * (inverse_torsional + 1.0 / m.mass_kg[0] + 1.0 / m.mass_kg[1]);
   for (std::size_t i = 0; i < 2; ++i) {
     w2 += (m.stiffness_x_n_per_m[i] + m.stiffness_y_n_per_m[i]) / m.mass_kg[i];
   }
@@ -940,7 +965,8 @@ void check_planar_step(const SimulationCase& c, const StiffnessTable& table,
   // drag_speed_scale + drag_viscous) / J_load, which the case's check of the
   // drag bounds for the wheel only: counted as a frequency, it needs as many
   // steps per 2 pi of its time constant as that check does.
-  const bool load_drag = m.shafts && c.torque2.kind == Torque::Kind::drag;
+  f.load_drag = m.shafts && c.torque2.kind == Torque::Kind::drag;
+  const bool load_drag = f.load_drag;
   if (load_drag) {
     const double rate = (c.torque2.drag_constant_n_m / c.torque2.drag_speed_scale_rad_per_s +
                          c.torque2.drag_viscous_n_m_s) /
@@ -953,8 +979,8 @@ void check_planar_step(const SimulationCase& c, const StiffnessTable& table,
   // frequency, it needs as many steps per 2 pi / (c/m) as a contact period,
   // h c/m <= 2 pi / steps (0.31 for RK4): a factor of 9 inside that limit,
   // so that the damper's decay is resolved, not only kept from diverging.
-  double damper_rate = 0.0;
-  std::string damper_key;
+  double& damper_rate = f.damper_rate;
+  std::string& damper_key = f.damper_key;
   for (std::size_t i = 0; i < 2; ++i) {
     const double cx = m.damping_x_n_s_per_m[i] / m.mass_kg[i];
     const double cy = m.damping_y_n_s_per_m[i] / m.mass_kg[i];
@@ -966,6 +992,23 @@ void check_planar_step(const SimulationCase& c, const StiffnessTable& table,
           std::string("bearings.damping_") + (cx >= cy ? "x" : "y") + std::to_string(i + 1);
     }
   }
+  return f;
+}
+
+}  // namespace
+
+double planar_largest_step_s(const SimulationCase& c, const StiffnessTable& table,
+                             const PlanarMounting& m, IntegratorKind kind) {
+  return 2.0 * pi / std::sqrt(planar_fastest(c, table, m).w2) / steps_per_contact_period(kind);
+}
+
+void check_planar_step(const SimulationCase& c, const StiffnessTable& table,
+                       const PlanarMounting& m) {
+  const PlanarFastest f = planar_fastest(c, table, m);
+  const double w2 = f.w2;
+  const bool load_drag = f.load_drag;
+  const double damper_rate = f.damper_rate;
+  const std::string& damper_key = f.damper_key;
   const double steps = steps_per_contact_period(c.integrator.kind);
   const double largest = 2.0 * pi / std::sqrt(w2) / steps;
   // Whether the dampers alone would need a smaller step: then the message names the key.
@@ -993,80 +1036,6 @@ void check_planar_step(const SimulationCase& c, const StiffnessTable& table,
 }
 
 namespace {
-
-using Stages = Rk4StagesOf<kSize>;
-
-// The classical RK4 step from (t, y) in the mode, with k1 = f(t, y) already
-// evaluated: event location tries many step lengths from the same start.
-// `stages`, when given, receives k1 ... k4 for the step's dense output (rk4_dense).
-void rk4_from(const PlanarSystem& s, double t, const Y& y, const Y& k1, double h,
-              const PlanarMode& mode, const std::array<ContactMemory, 2>& memory, Y& out,
-              Stages* stages = nullptr) {
-  Y k2, k3, k4, stage;
-  for (std::size_t i = 0; i < kSize; ++i) stage[i] = y[i] + 0.5 * h * k1[i];
-  s.rhs(t + 0.5 * h, stage, mode, memory, k2);
-  for (std::size_t i = 0; i < kSize; ++i) stage[i] = y[i] + 0.5 * h * k2[i];
-  s.rhs(t + 0.5 * h, stage, mode, memory, k3);
-  for (std::size_t i = 0; i < kSize; ++i) stage[i] = y[i] + h * k3[i];
-  s.rhs(t + h, stage, mode, memory, k4);
-  for (std::size_t i = 0; i < kSize; ++i) {
-    out[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
-  }
-  if (stages != nullptr) *stages = {k1, k2, k3, k4};
-}
-
-// The run's method (integrator.kind): the classical RK4 above, or Boost.Odeint's
-// Dormand-Prince 5(4) at the same fixed step, its order-5 solution and its
-// order-4 continuous extension (Hairer, Norsett & Wanner, Solving ODE I,
-// II.5-II.6). Both take f(t, y) in the mode as their first stage, so that the
-// event location, the samples and the ledger treat them alike.
-class PlanarStepper {
- public:
-  PlanarStepper(const PlanarSystem& system, IntegratorKind kind)
-      : system_(system), dopri5_(kind == IntegratorKind::dopri5) {}
-  bool dopri5() const { return dopri5_; }
-  // The evaluations of f a step takes beyond its first stage: Dormand-Prince's
-  // last one is f at the step's end (first same as last).
-  int evaluations() const { return dopri5_ ? 6 : 3; }
-
-  // A step of length h from (t, y) with k1 = f(t, y) in the mode into out;
-  // with keep, RK4 keeps its stages for dense() (Dormand-Prince keeps those of
-  // its last step in any case).
-  void step(double t, const Y& y, const Y& k1, double h, const PlanarMode& mode,
-            const std::array<ContactMemory, 2>& memory, Y& out, bool keep) {
-    if (!dopri5_) {
-      rk4_from(system_, t, y, k1, h, mode, memory, out, keep ? &stages_ : nullptr);
-      return;
-    }
-    const auto f = [&](const Y& x, Y& dx, double tau) {
-      end_forces_ = Forces{};
-      system_.rhs(tau, x, mode, memory, dx, &end_forces_);
-    };
-    dopri5_stepper_.do_step(f, y, k1, t, out, end_slope_, h);
-  }
-  // Dormand-Prince's last stage f(t + h, out) in the step's mode, and the
-  // forces there: the next step's first stage while the mode holds.
-  const Y& end_slope() const { return end_slope_; }
-  const Forces& end_forces() const { return end_forces_; }
-
-  // The last step's continuous extension at ts in [t_a, t_a + h], the step
-  // from (t_a, y_a) with first stage k1 to y_b.
-  void dense(double t_a, const Y& y_a, const Y& k1, double h, const Y& y_b, double ts, Y& x) const {
-    if (!dopri5_) {
-      rk4_dense(y_a, h, stages_, (ts - t_a) / h, x);
-      return;
-    }
-    dopri5_stepper_.calc_state(ts, x, y_a, k1, t_a, y_b, end_slope_, t_a + h);
-  }
-
- private:
-  const PlanarSystem& system_;
-  bool dopri5_;
-  Stages stages_{};
-  boost::numeric::odeint::runge_kutta_dopri5<Y> dopri5_stepper_;
-  Y end_slope_{};
-  Forces end_forces_;
-};
 
 // The force each bearing exerts on its gear, -k u - c u': x1, y1, x2, y2.
 std::array<double, 4> bearing_forces(const PlanarMounting& m, const PlanarState& s) {
@@ -1132,74 +1101,204 @@ double planar_angular_momentum(const SimulationCase& c, const PlanarMounting& m,
   return l;
 }
 
-SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& table,
-                                 const PlanarMounting& mounting, const PlanarState& initial,
-                                 const RunControl& control) {
-  validate_planar(c, mounting, control);
-  validate_sampling(c, control);
-  check_planar_step(c, table, mounting);
-  const PlanarSystem system(c, table, mounting,
-                            mounting.shafts ? initial.theta_motor_rad : initial.theta1_rad);
-  SimulationResult result;
-  SimulationSummary& s = result.summary;
-  s.case_name = c.name;
-  s.integrator = name_of(kIntegratorKinds, c.integrator.kind);
-  s.damping_update = resolved_damping_update(c);
-  s.friction_coefficient = c.model.friction_coefficient;
-  s.friction_law = c.model.friction_law;
-  s.mesh_damper = c.model.mesh_damping_ratio > 0.0;
-  s.step_s = c.integrator.step_s;
-  s.stiffness_model = c.model.stiffness.kind;
-  s.planar = PlanarEnergies{};
-  PlanarEnergies& p = *s.planar;
+namespace {
 
-  Y y = to_vector(initial);
-  system.impose_driver(0.0, y);
-  const double h = c.integrator.step_s;
-  const auto steps = static_cast<long long>(std::ceil(c.integrator.end_time_s / h - 1e-9));
-  std::array<ContactMemory, 2> memory{};
-  PlanarMode mode{};
-  std::array<std::optional<std::size_t>, 2> open_impact;
-  const auto mesh_energy = [&](const Y& state) {
-    return system.mesh_energy(Region::n1, state, mode[0]) +
-           system.mesh_energy(Region::n2, state, mode[1]);
-  };
-  // The mode of y at t: each side's contact, pairs and parts; an impact
-  // where a side's contact begins (its damping memory then set), its end
-  // where it ends; then the forces' signs.
-  const auto classify = [&](double t) {
-    for (const Region side : kSides) {
-      const std::size_t i = side_index(side);
-      const bool before = mode[i].contact;
-      mode[i] = system.classify_geometry(side, y);
-      if (mode[i].contact && !before) {
-        ImpactRecord impact{};
-        impact.line = side;
-        impact.start_s = t;
-        memory[i] = system.onset(side, y, mode[i], impact.impact_speed_m_s, impact.restitution);
-        (side == Region::n1 ? s.impacts_n1 : s.impacts_n2) += 1;
-        if (!s.first_impact_s) {
-          s.first_impact_s = t;
-          s.first_impact_speed_m_s = impact.impact_speed_m_s;
-        }
-        (side == Region::n1 ? s.last_n1_impact_s : s.last_n2_impact_s) = t;
-        open_impact[i] = result.impacts.size();
-        result.impacts.push_back(impact);
-      } else if (!mode[i].contact && before && open_impact[i]) {
-        ImpactRecord& impact = result.impacts[*open_impact[i]];
-        impact.end_s = t;
-        impact.end_speed_m_s = -system.penetration(side, y).second;
-        open_impact[i].reset();
+// The planar run: the books of run_fixed_grid (step_methods.hpp) for the
+// PlanarSystem: the state and both sides' modes and contact memories, the
+// impacts, the ledger with the bearings' and shafts' energies, the series,
+// the samples and the tacho.
+class PlanarRun {
+ public:
+  using System = PlanarSystem;
+  // The evaluations of the step taken again to an event count in rhs_evaluations.
+  static constexpr bool kCountsCutStep = true;
+
+  PlanarRun(const SimulationCase& c, const StiffnessTable& table, const PlanarMounting& mounting,
+            const PlanarState& initial, const RunControl& control)
+      : c_(c),
+        m_(mounting),
+        control_(control),
+        system_(c, table, mounting, mounting.shafts ? initial.theta_motor_rad : initial.theta1_rad),
+        y_(to_vector(initial)),
+        clock_(c, control, 0.0),
+        stall_(c.integrator.step_s, c.model.friction_smoothing_speed_m_s),
+        sensor_cos_(std::cos(c.bearings.sensor_angle_rad)),
+        sensor_sin_(std::sin(c.bearings.sensor_angle_rad)),
+        average_(control.sample == SampleKind::interval_average),
+        tacho_on_(c.tacho.pulses_per_revolution > 0),
+        tacho_index_(c.tacho.shaft == TachoShaft::wheel                      ? kT2
+                     : c.tacho.shaft == TachoShaft::motor && mounting.shafts ? kTm
+                                                                             : kT1),
+        driver_theta0_(mounting.shafts ? initial.theta_motor_rad : initial.theta1_rad) {
+    SimulationSummary& s = result_.summary;
+    s.case_name = c.name;
+    s.integrator = name_of(kIntegratorKinds, c.integrator.kind);
+    s.damping_update = resolved_damping_update(c);
+    s.friction_coefficient = c.model.friction_coefficient;
+    s.friction_law = c.model.friction_law;
+    s.mesh_damper = c.model.mesh_damping_ratio > 0.0;
+    s.step_s = c.integrator.step_s;
+    s.stiffness_model = c.model.stiffness.kind;
+    s.planar = PlanarEnergies{};
+    system_.impose_driver(0.0, y_);
+    if (control.keep_samples && clock_.on()) result_.planar_samples.reserve(clock_.reserve_rows());
+    // The tacho's shaft and its edges, located on each step's continuous
+    // extension (hence wants_dense with a tacho), or on a driver's closed form.
+    tacho_driven_ =
+        system_.driven() && tacho_index_ == (mounting.shafts ? std::size_t{kTm} : std::size_t{kT1});
+    tacho_.emplace(tacho_on_ ? c.tacho : Tacho{1}, y_[tacho_index_]);
+    drift_.emplace(c, 0.0, y_[kT1], y_[kVelocity + kT1]);
+    classify(0.0);
+    emit_samples(0.0, y_, mode_, [](double, Y&) {});
+    PlanarEnergies& p = *s.planar;
+    const double kinetic0 = system_.kinetic_energy(y_);
+    const double mesh0 = mesh_energy(y_);
+    s.kinetic_energy_initial_j = kinetic0;
+    s.stored_energy_initial_j = mesh0;
+    p.bearing_energy_initial_j = system_.bearing_energy(y_);
+    p.shaft_energy_initial_j = system_.shaft_energy(y_);
+    energy0_ = kinetic0 + mesh0 + p.bearing_energy_initial_j + p.shaft_energy_initial_j;
+    record(0.0);
+    // k1, f(t, y) in the mode: each step's first stage, evaluated at the end
+    // of the step before (after its events), where its mesh energy serves the ledger.
+    system_.rhs(0.0, y_, mode_, memory_, k1_, &at_start_);
+    s.rhs_evaluations += 1;
+  }
+
+  // The fixed-step method whose last stage may serve as the next step's first.
+  void use_stepper(const FixedStepper<PlanarSystem>* stepper) { stepper_ = stepper; }
+
+  const PlanarSystem& system() const { return system_; }
+  Y& y() { return y_; }
+  const PlanarMode& mode() const { return mode_; }
+  const std::array<ContactMemory, 2>& damping() const { return memory_; }
+  long long& steps() { return result_.summary.steps; }
+  long long& rhs_evaluations() { return result_.summary.rhs_evaluations; }
+  double start_time() const { return 0.0; }
+  long long grid_steps() const {
+    return static_cast<long long>(
+        std::ceil(c_.integrator.end_time_s / c_.integrator.step_s - 1e-9));
+  }
+  bool wants_dense() const { return clock_.on() || tacho_on_; }
+  bool records() const {
+    return control_.keep_series || static_cast<bool>(control_.on_row) ||
+           static_cast<bool>(control_.on_planar_row);
+  }
+  bool sampling() const { return clock_.on(); }
+  const Y& first_stage(double) const { return k1_; }
+  void check_finite(double t, const Y& y) const { check_finite_state(t, steps_taken(), y); }
+  void poll_stop(double t) const { poll_stop_request(control_, steps_taken(), t); }
+
+  // The samples not yet taken up to t_b, the end of a step in mode m at y_b:
+  // one at t_b is y_b itself, one before it the step's continuous extension.
+  template <typename StateAt>
+  void emit_samples(double t_b, const Y& y_b, const PlanarMode& m, StateAt state_at) {
+    clock_.emit(
+        t_b, [&](double ts) { sample(ts, y_b, m); },
+        [&](double ts) {
+          Y x{};
+          state_at(ts, x);
+          sample(ts, x, m);
+        });
+  }
+
+  // The tacho's edges inside the step from (t_a, y_a) to (t_b, y_b).
+  template <typename Dense>
+  void observe_step(double t_a, const Y& y_a, double t_b, const Y& y_b, const Dense& dense) {
+    if (!tacho_on_) return;
+    tacho_->step(t_a, y_a[tacho_index_], t_b, y_b[tacho_index_], [&](double tau) {
+      if (tacho_driven_) return driver_motion(c_.torque1, driver_theta0_, tau).theta_rad;
+      Y x{};
+      dense(tau, x);
+      return x[tacho_index_];
+    });
+  }
+
+  // The mode changed at (t, y_): classify again; the stored energy before,
+  // for the jump's work.
+  void change_mode(double t) {
+    ++result_.summary.events;
+    before_ = mesh_energy(y_);
+    classify(t);
+    if (system_.lagrangian()) pay_stored_energy_jump(t, mesh_energy(y_) - before_);
+    event_ = true;
+  }
+
+  // After a step from t_from to t_to (stall.hpp): a step taken with each
+  // stage's friction signs classifies them again and keeps them per stage
+  // while one of them changed; events that stall make the steps take them so.
+  bool check_progress(double t_from, double t_to, bool event) {
+    const bool sticks =
+        stall_.after_step(event, t_from, t_to, [&] { return where(t_from, steps_taken()); });
+    stepped_per_stage_ = !event && mode_[0].slip_per_stage;
+    if (stepped_per_stage_) {
+      // The sticking goes on while a pair's sliding still changed sign over
+      // the step; once every pair slid one way through a whole step, its
+      // reversals are events again.
+      bool sticking = false;
+      for (const Region side : kSides) {
+        SideMode& m = mode_[side_index(side)];
+        const std::array<double, kMaxPairs> slip = m.slip;
+        system_.classify_forces(side, y_, memory_[side_index(side)], m);
+        sticking = sticking || slip != m.slip;
       }
-      system.classify_forces(side, y, memory[i], mode[i]);
+      mode_[0].slip_per_stage = sticking;
+      mode_[1].slip_per_stage = sticking;
     }
-  };
-  const auto record = [&](double t) {
-    if (!control.keep_series && !control.on_row && !control.on_planar_row) return;
+    if (sticks) {
+      mode_[0].slip_per_stage = true;
+      mode_[1].slip_per_stage = true;
+    }
+    return stepped_per_stage_ || sticks;
+  }
+
+  // After an accepted step, which ends at t: the next step's first stage, the
+  // jump's work at an event, the largest penetration and the ledger.
+  void book_keep(double t) {
+    SimulationSummary& s = result_.summary;
+    drift_->observe(t, y_[kT1]);
+    // The next step's first stage, in the mode the run now holds: after a step
+    // that kept its mode and whose end no driver moved, Dormand-Prince's last.
+    if (stepper_ != nullptr && stepper_->dopri5() && !event_ && !stepped_per_stage_ &&
+        !system_.driven()) {
+      k1_ = stepper_->end_slope();
+      at_start_ = stepper_->end_forces();
+    } else {
+      at_start_ = Forces{};
+      system_.rhs(t, y_, mode_, memory_, k1_, &at_start_);
+      s.rhs_evaluations += 1;
+    }
+    const double mesh = at_start_.mesh_energy_j[0] + at_start_.mesh_energy_j[1];
+    // A pair that entered or left, or crossed a fault's edge, takes or
+    // releases its stored energy: work of the time-varying stiffness, booked
+    // at the event.
+    // Under the Lagrangian force the jump was paid at the event (change_mode).
+    if (event_ && !system_.lagrangian()) jump_work_ += mesh - before_;
+    event_ = false;
+    stepped_per_stage_ = false;
+    s.max_penetration_m = std::max({s.max_penetration_m, system_.contact_value(Region::n1, y_),
+                                    system_.contact_value(Region::n2, y_)});
+    const double energy =
+        system_.kinetic_energy(y_) + mesh + system_.bearing_energy(y_) + system_.shaft_energy(y_);
+    if (system_.terms_may_exceed(y_, mode_, s.energy_max_j)) {
+      const ElasticEnergy terms = system_.mesh_terms(y_, mode_);
+      for (std::size_t i = 0; i < kTermCount; ++i) {
+        s.energy_max_j[i] = std::max(s.energy_max_j[i], terms.j[i]);
+      }
+    }
+    book_ledger_residual(
+        energy, energy0_, y_[kWork],
+        {y_[kHertzLoss], y_[kSlidingLoss], y_[kBearingLoss], y_[kShaftLoss], y_[kMeshDamperLoss]},
+        y_[kParametric], jump_work_, s);
+  }
+
+  void record(double t) { record(t, y_, mode_); }
+  void record(double t, const Y& y, const PlanarMode& mode) {
+    if (!records()) return;
     Y dy{};
     Forces f;
-    system.rhs(t, y, mode, memory, dy, &f);
-    const PlanarState st = to_state(y, mounting.shafts);
+    system_.rhs(t, y, mode, memory_, dy, &f);
+    const PlanarState st = to_state(y, m_.shafts);
     SeriesRow row{};
     row.t_s = t;
     row.theta1_rad = st.theta1_rad;
@@ -1208,20 +1307,20 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     row.w2_rad_per_s = st.w2_rad_per_s;
     // The drive line's s_d and the larger penetration of a pair; the side in
     // contact (the drive side when both are).
-    row.s_m = system.penetration(Region::n1, y).first + c.gears.backlash_m;
-    const double dd = system.contact_value(Region::n1, y);
-    const double dc = system.contact_value(Region::n2, y);
+    row.s_m = system_.penetration(Region::n1, y).first + c_.gears.backlash_m;
+    const double dd = system_.contact_value(Region::n1, y);
+    const double dc = system_.contact_value(Region::n2, y);
     row.delta_m = std::max(dd, dc);
     row.region = mode[0].contact ? 1 : (mode[1].contact ? -1 : 0);
     row.pairs = mode[0].contact ? mode[0].range.count : (mode[1].contact ? mode[1].range.count : 0);
     row.normal_force_n = f.normal_n[0] + f.normal_n[1];
     row.friction_force_n = f.friction_n;
-    if (control.on_row) control.on_row(row);
-    if (control.keep_series) result.series.push_back(row);
+    if (control_.on_row) control_.on_row(row);
+    if (control_.keep_series) result_.series.push_back(row);
     PlanarRow pr;
     pr.t_s = t;
     pr.state = st;
-    const std::array<double, 4> bearing = bearing_forces(mounting, st);
+    const std::array<double, 4> bearing = bearing_forces(m_, st);
     pr.bearing_fx1_n = bearing[0];
     pr.bearing_fy1_n = bearing[1];
     pr.bearing_fx2_n = bearing[2];
@@ -1230,310 +1329,175 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
     pr.coast_force_n = f.normal_n[1];
     pr.drive_penetration_m = dd;
     pr.coast_penetration_m = dc;
-    if (control.on_planar_row) control.on_planar_row(pr);
-    if (control.keep_series) result.planar_series.push_back(pr);
-  };
-
-  // The samples (RunControl::sample_rate_hz), as the torsional run takes
-  // them: the accelerations from the equations of motion in the step's mode
-  // with its contact memory, so that at an event time a sample is the left limit.
-  const double sample_rate = control.sample_rate_hz.value_or(0.0);
-  const long long sample_total =
-      control.sample_rate_hz ? static_cast<long long>(sample_count(c, sample_rate)) : 0;
-  if (control.keep_samples && sample_total > 0) {
-    constexpr long long most_reserved_samples = 4'000'000;
-    result.planar_samples.reserve(
-        static_cast<std::size_t>(std::min(sample_total, most_reserved_samples)));
+    if (control_.on_planar_row) control_.on_planar_row(pr);
+    if (control_.keep_series) result_.planar_series.push_back(pr);
   }
-  const double sensor_cos = std::cos(c.bearings.sensor_angle_rad);
-  const double sensor_sin = std::sin(c.bearings.sensor_angle_rad);
-  long long next_sample = 0;
-  // Interval averages (SampleKind): the last sample's time and the bodies' velocities, where the
-  // next sample's interval begins.
-  const bool average = control.sample == SampleKind::interval_average;
-  double last_sample_t = 0.0;
-  std::array<double, kT2 + 1> last_velocity{};
-  const auto sample = [&](double ts, const Y& state) {
-    if (average && next_sample == 0) {
-      // n = 0 ends no interval: its velocities begin the first.
-      last_sample_t = ts;
-      for (std::size_t i = 0; i <= kT2; ++i) last_velocity[i] = state[kVelocity + i];
+
+  SimulationResult finish(double t) {
+    SimulationSummary& s = result_.summary;
+    PlanarEnergies& p = *s.planar;
+    s.end_time_s = t;
+    book_ledger_totals(system_.kinetic_energy(y_), mesh_energy(y_), y_[kWork], y_[kHertzLoss],
+                       y_[kSlidingLoss], y_[kMeshDamperLoss], y_[kParametric], jump_work_, s);
+    s.final_w1_rad_per_s = y_[kVelocity + kT1];
+    s.final_w2_rad_per_s = y_[kVelocity + kT2];
+    s.speed_drift_max_rel = drift_->max_relative_drift();
+    if (system_.lagrangian()) s.stored_energy_jumps_j = stored_energy_jumps_;
+    result_.tacho_times_s = tacho_->times();
+    result_.impacts = impacts_.take();
+    p.bearing_energy_final_j = system_.bearing_energy(y_);
+    p.bearing_damping_loss_j = y_[kBearingLoss];
+    p.shaft_energy_final_j = system_.shaft_energy(y_);
+    p.shaft_damping_loss_j = y_[kShaftLoss];
+    result_.planar_final_state = to_state(y_, m_.shafts);
+    result_.final_state.time_s = t;
+    result_.final_state.state = {y_[kT1], y_[kT2], y_[kVelocity + kT1], y_[kVelocity + kT2]};
+    result_.final_state.contact = memory_[0];
+    return std::move(result_);
+  }
+
+ private:
+  long long steps_taken() const { return result_.summary.steps; }
+
+  // The Lagrangian mesh force: the stored energy's jump at an event, paid by
+  // the pinion's kinetic energy (pinion_speed_after_jump), or with a driver
+  // on the pinion by the driver, as work of its torque; the forces' signs are
+  // then those of the new speed.
+  void pay_stored_energy_jump(double t, double jump) {
+    if (jump == 0.0) return;
+    stored_energy_jumps_ += std::fabs(jump);
+    if (system_.drives_pinion()) {
+      y_[kWork] += jump;
+      return;
+    }
+    y_[kVelocity + kT1] =
+        pinion_speed_after_jump(jump, system_.pinion_inertia(), y_[kVelocity + kT1],
+                                where(t, steps_taken()), "the loaded pairs change");
+    for (const Region side : kSides) {
+      const std::size_t i = side_index(side);
+      system_.classify_forces(side, y_, memory_[i], mode_[i]);
+    }
+  }
+
+  double mesh_energy(const Y& state) const {
+    return system_.mesh_energy(Region::n1, state, mode_[0]) +
+           system_.mesh_energy(Region::n2, state, mode_[1]);
+  }
+
+  // The mode of y_ at t: each side's contact, pairs and parts; an impact
+  // where a side's contact begins (its damping memory then set), its end
+  // where it ends; then the forces' signs.
+  void classify(double t) {
+    for (const Region side : kSides) {
+      const std::size_t i = side_index(side);
+      const bool before = mode_[i].contact;
+      mode_[i] = system_.classify_geometry(side, y_);
+      if (mode_[i].contact && !before) {
+        double speed = 0.0;
+        double restitution = 0.0;
+        memory_[i] = system_.onset(side, y_, mode_[i], speed, restitution);
+        impacts_.begin(side, t, speed, restitution, result_.summary);
+      } else if (!mode_[i].contact && before) {
+        impacts_.end(side, t, -system_.penetration(side, y_).second);
+      }
+      system_.classify_forces(side, y_, memory_[i], mode_[i]);
+    }
+  }
+
+  // A sample at ts of `state` in mode m (RunControl::sample_rate_hz), as the
+  // torsional run takes them: the accelerations from the equations of motion
+  // in the step's mode with its contact memory, so that at an event time a
+  // sample is the left limit; under SampleKind::interval_average the gears'
+  // mean accelerations over the interval instead.
+  void sample(double ts, const Y& state, const PlanarMode& m) {
+    const auto v = [&](std::size_t i) { return state[kVelocity + i]; };
+    if (average_ && clock_.first()) {
+      interval_average_.start(ts, v);
       return;
     }
     Y dy{};
     Forces f;
-    system.rhs(ts, state, mode, memory, dy, &f);
-    if (average) {
-      // The mean acceleration over [t_{n-1}, t_n]: the velocity difference over the interval.
-      const double interval = ts - last_sample_t;
-      for (std::size_t i = 0; i <= kT2; ++i) {
-        dy[kVelocity + i] = (state[kVelocity + i] - last_velocity[i]) / interval;
-        last_velocity[i] = state[kVelocity + i];
-      }
-      last_sample_t = ts;
+    system_.rhs(ts, state, m, memory_, dy, &f);
+    if (average_) {
+      interval_average_.next(ts, v, [&](std::size_t i) -> double& { return dy[kVelocity + i]; });
     }
     PlanarSample ps;
     ps.t_s = ts;
-    ps.state = to_state(state, mounting.shafts);
+    ps.state = to_state(state, m_.shafts);
     ps.ax1_m_per_s2 = dy[kVelocity + kX1];
     ps.ay1_m_per_s2 = dy[kVelocity + kY1];
     ps.alpha1_rad_per_s2 = dy[kVelocity + kT1];
     ps.ax2_m_per_s2 = dy[kVelocity + kX2];
     ps.ay2_m_per_s2 = dy[kVelocity + kY2];
     ps.alpha2_rad_per_s2 = dy[kVelocity + kT2];
-    const std::array<double, 4> bearing = bearing_forces(mounting, ps.state);
+    const std::array<double, 4> bearing = bearing_forces(m_, ps.state);
     ps.bearing_fx1_n = bearing[0];
     ps.bearing_fy1_n = bearing[1];
     ps.bearing_fx2_n = bearing[2];
     ps.bearing_fy2_n = bearing[3];
-    ps.dte_m = system.penetration(Region::n1, state).first;
+    ps.dte_m = system_.penetration(Region::n1, state).first;
     ps.drive_force_n = f.normal_n[0];
     ps.coast_force_n = f.normal_n[1];
-    const bool pinion = c.bearings.sensor_gear == 1;
-    ps.sensor_acceleration_m_per_s2 = (pinion ? ps.ax1_m_per_s2 : ps.ax2_m_per_s2) * sensor_cos +
-                                      (pinion ? ps.ay1_m_per_s2 : ps.ay2_m_per_s2) * sensor_sin;
-    if (control.keep_samples) result.planar_samples.push_back(ps);
-    if (control.on_planar_sample) control.on_planar_sample(ps);
-  };
-  SpeedDriftMonitor drift(c, 0.0, y[kT1], y[kVelocity + kT1]);
-  PlanarStepper stepper(system, c.integrator.kind);
-  // The tacho's shaft and its edges, located on each step's continuous
-  // extension (hence `dense` with a tacho), or on a driver's closed form.
-  const bool tacho_on = c.tacho.pulses_per_revolution > 0;
-  const std::size_t tacho_index = c.tacho.shaft == TachoShaft::wheel                      ? kT2
-                                  : c.tacho.shaft == TachoShaft::motor && mounting.shafts ? kTm
-                                                                                          : kT1;
-  const bool tacho_driven =
-      system.driven() && tacho_index == (mounting.shafts ? std::size_t{kTm} : std::size_t{kT1});
-  const double driver_theta0 = mounting.shafts ? initial.theta_motor_rad : initial.theta1_rad;
-  TachoEdges tacho(c.tacho.pulses_per_revolution > 0 ? c.tacho : Tacho{1}, y[tacho_index]);
-  const bool dense = sample_total > 0 || tacho_on;
-  Y k1{};
-  // The samples not yet taken up to t_b, where the run is at y_b: one at t_b
-  // is y_b itself, one before it the continuous extension of the step of
-  // length `step` from (t_a, y_a) to y_end (with Dormand-Prince the whole
-  // step, whose extension also gave y_b at an event inside it). At the start
-  // t_b = 0 takes the first.
-  const auto emit_samples = [&](double t_a, const Y& y_a, double step, const Y& y_end, double t_b,
-                                const Y& y_b) {
-    for (; next_sample < sample_total; ++next_sample) {
-      const double ts = sample_time_s(0.0, next_sample, sample_rate);
-      if (ts > t_b) return;
-      if (ts == t_b) {
-        sample(ts, y_b);
-      } else {
-        Y x{};
-        stepper.dense(t_a, y_a, k1, step, y_end, ts, x);
-        sample(ts, x);
-      }
-    }
-  };
-
-  classify(0.0);
-  emit_samples(0.0, y, 0.0, y, 0.0, y);
-  const double kinetic0 = system.kinetic_energy(y);
-  const double mesh0 = mesh_energy(y);
-  s.kinetic_energy_initial_j = kinetic0;
-  s.stored_energy_initial_j = mesh0;
-  p.bearing_energy_initial_j = system.bearing_energy(y);
-  p.shaft_energy_initial_j = system.shaft_energy(y);
-  const double energy0 = kinetic0 + mesh0 + p.bearing_energy_initial_j + p.shaft_energy_initial_j;
-  double jump_work = 0.0;
-  record(0.0);
-  Y next{};
-  // k1, f(t, y) in the mode: each step's first stage, evaluated at the end of
-  // the step before (after its events), where its mesh energy serves the ledger.
-  Forces at_start;
-  system.rhs(0.0, y, mode, memory, k1, &at_start);
-  s.rhs_evaluations += 1;
-  double t = 0.0;
-  int stalled = 0;
-  for (long long n = 1; n <= steps;) {
-    // The last step ends at end_time exactly, where the last sample may be.
-    const double t_grid = n == steps
-                              ? c.integrator.end_time_s
-                              : std::min(static_cast<double>(n) * h, c.integrator.end_time_s);
-    stepper.step(t, y, k1, t_grid - t, mode, memory, next, dense);
-    // A driven body ends each step (and each trial of the location) where
-    // its closed form is: the event values see the state the step keeps.
-    system.impose_driver(t_grid, next);
-    s.rhs_evaluations += stepper.evaluations();
-    // The step whose continuous extension gives the samples: this one, or
-    // with RK4 the step cut at an event. With Dormand-Prince an event cuts
-    // the step on its extension, whose end is the whole step's (`whole`).
-    double dense_step = t_grid - t;
-    Y whole;
-    bool cut_on_extension = false;
-    double t_next = t_grid;
-    const bool event = !system.mode_holds(next, mode, memory);
-    if (event) {
-      // The mode ends inside the step (a side's contact begins or ends, a
-      // pair enters or leaves, touches or lets go by its gap, a fault's edge,
-      // a relief's kink, a friction reversal, a clipping): the step is cut
-      // back to the earliest event (event_location), ending just past it so
-      // that the new mode is unambiguous; the grid resumes after it. RK4
-      // locates it on the step taken again from the same start; Dormand-Prince
-      // on the step's continuous extension, as the adaptive method does,
-      // which errs by O(h^5) at the event as a step does over the run.
-      PlanarEvents g_a{};
-      PlanarEvents g_b{};
-      const int count = system.event_values(y, mode, memory, g_a);
-      system.event_values(next, mode, memory, g_b);
-      long long evaluations = 0;
-      if (stepper.dopri5()) whole = next;
-      const auto state_at = [&](double tau, Y& x) {
-        if (stepper.dopri5()) {
-          stepper.dense(t, y, k1, t_grid - t, whole, tau, x);
-        } else {
-          stepper.step(t, y, k1, tau - t, mode, memory, x, false);
-          evaluations += stepper.evaluations();
-        }
-        system.impose_driver(tau, x);
-      };
-      t_next = earliest_event(t, t_grid, g_a.data(), g_b.data(), count, [&](double tau, int i) {
-        Y trial{};
-        state_at(tau, trial);
-        PlanarEvents g{};
-        system.event_values(trial, mode, memory, g);
-        return g[static_cast<std::size_t>(i)];
-      });
-      s.rhs_evaluations += evaluations;
-      if (t_next < t_grid && stepper.dopri5()) {
-        state_at(t_next, next);
-        cut_on_extension = true;
-      } else if (t_next < t_grid) {
-        // The cut step's own stages, for its samples.
-        stepper.step(t, y, k1, t_next - t, mode, memory, next, dense);
-        system.impose_driver(t_next, next);
-        s.rhs_evaluations += stepper.evaluations();
-        dense_step = t_next - t;
-      }
-    }
-    if (!std::all_of(next.begin(), next.end(), [](double v) { return std::isfinite(v); })) {
-      throw SimulationError(
-          "the planar run diverged: the state is not finite at t = " + format_number(t_next) +
-          " s, step " + std::to_string(n) + "; a smaller integrator.step may resolve it");
-    }
-    // Events that advance by less than a millionth of the step: a sequence
-    // of them is the contact's chatter, not the motion (a friction reversal
-    // that turns back at once advances by round-off or a few 1e-14 s).
-    stalled = event && t_next - t <= 1e-6 * h ? stalled + 1 : 0;
-    const bool stepped_per_stage = mode[0].slip_per_stage;
-    if (stalled > kMostStalledEvents) {
-      throw SimulationError(
-          "event location stalled at t = " + format_number(t) + " s, step " + std::to_string(n) +
-          ": the planar mode changes back and forth without time advancing" +
-          (c.model.friction_smoothing_speed_m_s == 0.0
-               ? std::string(". Under load with friction this is a friction reversal whose jump "
-                             "turns the sliding back; model.friction_smoothing_speed (e.g. "
-                             "\"1e-3 m/s\") replaces the exact switch by tanh(Vs / v_s)")
-               : std::string()));
-    }
-    // Before the mode and the contact memory change at an event: the step's
-    // samples are its own, the left limit at the event.
-    if (dense) emit_samples(t, y, dense_step, cut_on_extension ? whole : next, t_next, next);
-    if (tacho_on) {
-      const Y& end = cut_on_extension ? whole : next;
-      tacho.step(t, y[tacho_index], t_next, next[tacho_index], [&](double tau) {
-        if (tacho_driven) return driver_motion(c.torque1, driver_theta0, tau).theta_rad;
-        Y x{};
-        stepper.dense(t, y, k1, dense_step, end, tau, x);
-        return x[tacho_index];
-      });
-    }
-    y = next;
-    t = t_next;
-    drift.observe(t, y[kT1]);
-    ++s.steps;
-    double before = 0.0;
-    if (event) {
-      ++s.events;
-      before = mesh_energy(y);
-      classify(t);
-    } else if (stepped_per_stage) {
-      // The sticking goes on while a pair's sliding still changed sign over
-      // the step; once every pair slid one way through a whole step, its
-      // reversals are events again.
-      bool sticking = false;
-      for (const Region side : kSides) {
-        SideMode& m = mode[side_index(side)];
-        const std::array<double, kMaxPairs> slip = m.slip;
-        system.classify_forces(side, y, memory[side_index(side)], m);
-        sticking = sticking || slip != m.slip;
-      }
-      mode[0].slip_per_stage = sticking;
-      mode[1].slip_per_stage = sticking;
-    }
-    // Two events in a row that each advanced less than 1e-6 of the step:
-    // with an exact friction switch, a pair whose sliding turns back at once
-    // after its reversal (the friction's jump exceeds what drives the sliding
-    // through zero: the contact would stick). The steps then take each
-    // stage's own signs, across the sticking with an error O(h) there.
-    if (stalled >= 2 && c.model.friction_smoothing_speed_m_s == 0.0) {
-      mode[0].slip_per_stage = true;
-      mode[1].slip_per_stage = true;
-    }
-    // The next step's first stage, in the mode the run now holds: after a step
-    // that kept its mode and whose end no driver moved, Dormand-Prince's last.
-    if (stepper.dopri5() && !event && !stepped_per_stage && !system.driven()) {
-      k1 = stepper.end_slope();
-      at_start = stepper.end_forces();
-    } else {
-      at_start = Forces{};
-      system.rhs(t, y, mode, memory, k1, &at_start);
-      s.rhs_evaluations += 1;
-    }
-    const double mesh = at_start.mesh_energy_j[0] + at_start.mesh_energy_j[1];
-    // A pair that entered or left, or crossed a fault's edge, takes or
-    // releases its stored energy: work of the time-varying stiffness, booked
-    // at the event.
-    if (event) jump_work += mesh - before;
-    s.max_penetration_m = std::max({s.max_penetration_m, system.contact_value(Region::n1, y),
-                                    system.contact_value(Region::n2, y)});
-    const double energy =
-        system.kinetic_energy(y) + mesh + system.bearing_energy(y) + system.shaft_energy(y);
-    s.ledger_scale_j = std::max(s.ledger_scale_j, energy);
-    if (system.terms_may_exceed(y, mode, s.energy_max_j)) {
-      const ElasticEnergy terms = system.mesh_terms(y, mode);
-      for (std::size_t i = 0; i < kTermCount; ++i) {
-        s.energy_max_j[i] = std::max(s.energy_max_j[i], terms.j[i]);
-      }
-    }
-    const double residual = energy - energy0 - y[kWork] + y[kHertzLoss] + y[kSlidingLoss] +
-                            y[kBearingLoss] + y[kShaftLoss] + y[kMeshDamperLoss] - y[kParametric] -
-                            jump_work;
-    s.ledger_residual_j = residual;
-    s.ledger_residual_max_j = std::max(s.ledger_residual_max_j, std::fabs(residual));
-    if (t != t_grid) continue;  // a cut step: the grid point is still ahead
-    if (n % c.integrator.output_every == 0 || n == steps) record(t);
-    if (control.should_stop && n % kStepsBetweenStopChecks == 0 && control.should_stop()) {
-      throw SimulationStopped("the run was stopped by its caller at t = " + format_number(t) +
-                              " s, step " + std::to_string(n));
-    }
-    ++n;
+    const bool pinion = c_.bearings.sensor_gear == 1;
+    ps.sensor_acceleration_m_per_s2 = (pinion ? ps.ax1_m_per_s2 : ps.ax2_m_per_s2) * sensor_cos_ +
+                                      (pinion ? ps.ay1_m_per_s2 : ps.ay2_m_per_s2) * sensor_sin_;
+    if (control_.keep_samples) result_.planar_samples.push_back(ps);
+    if (control_.on_planar_sample) control_.on_planar_sample(ps);
   }
-  s.end_time_s = t;
-  s.kinetic_energy_final_j = system.kinetic_energy(y);
-  s.stored_energy_final_j = mesh_energy(y);
-  s.torque_work_j = y[kWork];
-  s.damping_loss_j = y[kHertzLoss];
-  s.friction_loss_j = y[kSlidingLoss];
-  s.mesh_damping_loss_j = y[kMeshDamperLoss];
-  s.parametric_jump_work_j = jump_work;
-  s.parametric_work_j = y[kParametric] + jump_work;
-  s.final_w1_rad_per_s = y[kVelocity + kT1];
-  s.final_w2_rad_per_s = y[kVelocity + kT2];
-  s.speed_drift_max_rel = drift.max_relative_drift();
-  result.tacho_times_s = tacho.times();
-  p.bearing_energy_final_j = system.bearing_energy(y);
-  p.bearing_damping_loss_j = y[kBearingLoss];
-  p.shaft_energy_final_j = system.shaft_energy(y);
-  p.shaft_damping_loss_j = y[kShaftLoss];
-  result.planar_final_state = to_state(y, mounting.shafts);
-  result.final_state.time_s = t;
-  result.final_state.state = {y[kT1], y[kT2], y[kVelocity + kT1], y[kVelocity + kT2]};
-  result.final_state.contact = memory[0];
-  return result;
+
+  const SimulationCase& c_;
+  const PlanarMounting& m_;
+  const RunControl& control_;
+  const PlanarSystem system_;
+  Y y_;
+  Y k1_{};
+  // The forces with k1_: its mesh energy serves the ledger.
+  Forces at_start_;
+  PlanarMode mode_{};
+  std::array<ContactMemory, 2> memory_{};
+  SimulationResult result_;
+  ImpactBook impacts_;
+  SampleClock clock_;
+  StallWatch stall_;
+  const FixedStepper<PlanarSystem>* stepper_ = nullptr;
+  double energy0_ = 0.0;
+  double jump_work_ = 0.0;
+  // Under the Lagrangian force: the sum of |dU| of the jumps paid.
+  double stored_energy_jumps_ = 0.0;
+  // The step just accepted ended on an event (before_: the stored energy
+  // before it), or was taken with each stage's friction signs.
+  bool event_ = false;
+  double before_ = 0.0;
+  bool stepped_per_stage_ = false;
+  double sensor_cos_, sensor_sin_;
+  bool average_;
+  IntervalAverage<kT2 + 1> interval_average_;
+  bool tacho_on_;
+  std::size_t tacho_index_;
+  bool tacho_driven_ = false;
+  double driver_theta0_;
+  std::optional<TachoEdges> tacho_;
+  std::optional<SpeedDriftMonitor> drift_;
+};
+
+}  // namespace
+
+SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& table,
+                                 const PlanarMounting& mounting, const PlanarState& initial,
+                                 const RunControl& control) {
+  validate_planar(c, mounting, control);
+  validate_sampling(c, control);
+  check_planar_step(c, table, mounting);
+  PlanarRun run(c, table, mounting, initial, control);
+  if (c.integrator.kind == IntegratorKind::adaptive) {
+    // Steps of the error's size, at most RK4's step bound of the planar system.
+    return run.finish(run_adaptive_loop(
+        run, c, planar_largest_step_s(c, table, mounting, IntegratorKind::adaptive)));
+  }
+  FixedStepper<PlanarSystem> stepper(run.system(), c.integrator.kind);
+  run.use_stepper(&stepper);
+  const double t = run_fixed_grid(run, stepper, c);
+  return run.finish(t);
 }
 
 }  // namespace gearimpact

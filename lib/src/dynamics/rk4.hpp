@@ -9,18 +9,15 @@
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/dynamics/system.hpp"
 #include "rk4_dense.hpp"
+#include "step_methods.hpp"
 
 namespace gearimpact {
 
 // k1 ... k4 of a classical RK4 step, for its dense output (rk4_dense).
-using Rk4Stages = Rk4StagesOf<kStateSize>;
+using Rk4Stages = Rk4StagesFor<GearSystem>;
 
-// The classical RK4 step from (t, y) with k1 = f(t, y) already evaluated:
-// event location tries many step sizes from the same start. `stages`, when
-// given, receives k1 ... k4.
-void rk4_step_from(const GearSystem& system, double t, const State& y, const State& k1, double h,
-                   const Mode& m, const ContactMemory& d, State& out, Rk4Stages* stages = nullptr);
-// The classical RK4 step; k1 receives f(t, y).
+// The classical RK4 step; k1 receives f(t, y) (rk4_step_from of step_methods.hpp
+// takes it evaluated).
 void rk4_step(const GearSystem& system, double t, const State& y, double h, const Mode& m,
               const ContactMemory& d, State& out, State& k1, Rk4Stages* stages = nullptr);
 // The classical RK4 step with the mode re-evaluated at every stage: what a

@@ -15,18 +15,20 @@
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
 #include "ledger.hpp"
+#include "run_parts.hpp"
+#include "stall.hpp"
 
 namespace gearimpact {
 
-inline std::string where(double t_s, long long step) {
-  return "t = " + format_number(t_s) + " s, step " + std::to_string(step);
-}
-
-// Consecutive events that advance time by almost nothing: event location has stalled.
-inline constexpr int kMostStalledEvents = 10000;
-
+// The torsional run: the books of run_fixed_grid (step_methods.hpp) and of
+// the adaptive integrator for the GearSystem.
 class Run {
  public:
+  using System = GearSystem;
+  // The evaluations of the step taken again to an event are left out of
+  // rhs_evaluations, as this run has always counted them.
+  static constexpr bool kCountsCutStep = false;
+
   Run(const SimulationCase& c, const StiffnessTable& table, const RunControl& control)
       : c_(c), control_(control), system_(c, table, control), ledger_(make_ledger()) {
     last_t_ = start_time_;
@@ -43,14 +45,8 @@ class Run {
       }
       record(start_time_);
     }
-    if (control_.sample_rate_hz) {
-      sample_rate_ = *control_.sample_rate_hz;
-      samples_ = static_cast<long long>(sample_count(c, sample_rate_, start_time_));
-      if (control_.keep_samples) {
-        constexpr long long most_reserved_samples = 4'000'000;
-        result_.samples.reserve(
-            static_cast<std::size_t>(std::min(samples_, most_reserved_samples)));
-      }
+    if (clock_.on()) {
+      if (control_.keep_samples) result_.samples.reserve(clock_.reserve_rows());
       emit_samples(start_time_, y_, mode_, [](double, State&) {});
     }
   }
@@ -62,48 +58,54 @@ class Run {
   long long& steps() { return result_.summary.steps; }
   long long& rhs_evaluations() { return result_.summary.rhs_evaluations; }
   double start_time() const { return start_time_; }
+  // The grid's steps, the last one ending at the run's end.
+  long long grid_steps() const {
+    return static_cast<long long>(
+        std::ceil(c_.integrator.end_time_s / c_.integrator.step_s * (1.0 - 1e-12)));
+  }
+  // Whether a step keeps what its dense output needs: for the samples.
+  bool wants_dense() const { return sampling(); }
+  // f(t, y) in the mode: the step's first stage.
+  const State& first_stage(double t) {
+    system_.rhs(t, y_, mode_, damping_, k1_);
+    ++result_.summary.rhs_evaluations;
+    return k1_;
+  }
+  // What a step from (t_a, y_a) to (t_b, y_b) shows beyond its samples: nothing here.
+  template <typename Dense>
+  void observe_step(double, const State&, double, const State&, const Dense&) {}
   // Whether the output grid is wanted: kept as the series or observed.
   bool records() const { return control_.keep_series || static_cast<bool>(control_.on_row); }
   // Whether the run is sampled (RunControl::sample_rate_hz).
-  bool sampling() const { return samples_ > 0; }
+  bool sampling() const { return clock_.on(); }
 
   void check_finite(double t, const State& y) const {
-    if (!std::all_of(y.begin(), y.end(), [](double v) { return std::isfinite(v); })) {
-      throw SimulationError("the run diverged: the state is not finite at " +
-                            where(t, result_.summary.steps) +
-                            "; a smaller step or a tighter tolerance may resolve it");
-    }
+    check_finite_state(t, result_.summary.steps, y);
   }
 
-  // After a step from t_from to t_to: throws when steps keep ending on events
-  // that advance time by almost nothing (1e-9 of the step h).
-  void check_progress(double t_from, double t_to, double h) {
-    stalled_ = t_to - t_from <= 1e-9 * h ? stalled_ + 1 : 0;
-    if (stalled_ > kMostStalledEvents) {
-      std::string text = "event location stalled at " + where(t_from, result_.summary.steps) +
-                         ": the mode changes back and forth without time advancing";
-      // The stall a loaded pair meets: at the pitch point the friction force's jump turns the
-      // sliding back before it can reverse (the contact would stick), which the exact switch
-      // cannot follow; the smoothed sign can.
-      if (c_.model.friction_smoothing_speed_m_s == 0.0) {
-        text +=
-            ". Under load with friction this is the friction's reversal at the pitch point: the "
-            "jump of the friction torque turns the sliding back. model.friction_smoothing_speed "
-            "(e.g. \"1e-3 m/s\") replaces the exact switch by tanh(Vs / v_s) (docs/model.md, "
-            "\"Smoothed reversal\")";
-      }
-      throw SimulationError(text);
+  // After a step from t_from to t_to, which ended on an event or not (the
+  // mode then classified again): the stall watch and the sticking fallback
+  // (stall.hpp). A step taken with each stage's friction signs classifies the
+  // signs again, and keeps them per stage while one of them changed. Returns
+  // whether the mode's friction signs changed without an event.
+  bool check_progress(double t_from, double t_to, bool event) {
+    bool changed = false;
+    if (!event && mode_.slip_per_stage) {
+      const std::array<double, kMaxPairs> slip = mode_.slip;
+      system_.classify_forces(y_, damping_, mode_);
+      mode_.slip_per_stage = slip != mode_.slip;
+      changed = true;
     }
+    if (stall_.after_step(event, t_from, t_to,
+                          [&] { return where(t_from, result_.summary.steps); })) {
+      changed = changed || !mode_.slip_per_stage;
+      mode_.slip_per_stage = true;
+    }
+    return changed;
   }
 
   // Every kStepsBetweenStopChecks steps, the caller's should_stop.
-  void poll_stop(double t) const {
-    if (control_.should_stop && result_.summary.steps % kStepsBetweenStopChecks == 0 &&
-        control_.should_stop()) {
-      throw SimulationStopped("the run was stopped by its caller at " +
-                              where(t, result_.summary.steps));
-    }
-  }
+  void poll_stop(double t) const { poll_stop_request(control_, result_.summary.steps, t); }
 
   // The mode changed at (t, y_): classify again, book impacts and jumps.
   void change_mode(double t) {
@@ -211,20 +213,14 @@ class Run {
   // t_b = the start time takes the sample there.
   template <typename StateAt>
   void emit_samples(double t_b, const State& y_b, const Mode& m, StateAt state_at) {
-    while (next_sample_ < samples_) {
-      const double t = sample_time_s(start_time_, next_sample_, sample_rate_);
-      if (t > t_b) return;
-      if (t == t_b) {
-        sample(t, y_b, m);
-      } else {
-        // t_a < t < t_b: the steps before took every sample up to t_a.
-        State x{};
-        state_at(t, x);
-        system_.impose_driver(t, x);
-        sample(t, x, m);
-      }
-      ++next_sample_;
-    }
+    clock_.emit(
+        t_b, [&](double t) { sample(t, y_b, m); },
+        [&](double t) {
+          State x{};
+          state_at(t, x);
+          system_.impose_driver(t, x);
+          sample(t, x, m);
+        });
   }
 
   void record(double t) { record(t, y_, mode_); }
@@ -250,21 +246,15 @@ class Run {
 
   void sample(double t, const State& y, const Mode& m) {
     const bool average = control_.sample == SampleKind::interval_average;
-    if (average && next_sample_ == 0) {
-      // n = 0 ends no interval: its velocities begin the first.
-      last_sample_ = {t, y[kW1], y[kW2]};
+    const auto w = [&](std::size_t i) { return y[kW1 + i]; };
+    if (average && clock_.first()) {
+      average_.start(t, w);
       return;
     }
     ContactTotals totals;
     State dydt{};
     system_.rhs(t, y, m, damping_, dydt, &totals);
-    if (average) {
-      // The mean acceleration over [t_{n-1}, t_n]: the velocity difference over the interval.
-      const double interval = t - last_sample_[0];
-      dydt[kW1] = (y[kW1] - last_sample_[1]) / interval;
-      dydt[kW2] = (y[kW2] - last_sample_[2]) / interval;
-      last_sample_ = {t, y[kW1], y[kW2]};
-    }
+    if (average) average_.next(t, w, [&](std::size_t i) -> double& { return dydt[kW1 + i]; });
     const double sv = system_.s(y);
     const SampleRow row{t,
                         y[kTheta1],
@@ -304,7 +294,7 @@ class Run {
     s.final_w1_rad_per_s = y_[kW1];
     s.final_w2_rad_per_s = y_[kW2];
     if (system_.driven()) s.rattle = rattle_summary(t);
-    result_.impacts = impacts_;
+    result_.impacts = impacts_.take();
     result_.start_time_s = start_time_;
     result_.final_state = {t, {y_[kTheta1], y_[kTheta2], y_[kW1], y_[kW2]}, damping_};
     return std::move(result_);
@@ -332,7 +322,7 @@ class Run {
     int n1 = 0;
     int n2 = 0;
     double speeds = 0.0;
-    for (const ImpactRecord& impact : impacts_) {
+    for (const ImpactRecord& impact : impacts_.records()) {
       // A contact the run starts in was not struck.
       if (impact.start_s == start_time_) continue;
       (impact.line == Region::n1 ? n1 : n2) += 1;
@@ -390,7 +380,7 @@ class Run {
     const double d = damping_.damping_per_stiffness_s_m;
     const double rate = damping_rate_per_step(c_, d, load);
     if (!(rate > kRk4RealStabilityLimit)) return;
-    const ImpactRecord& start = impacts_.back();
+    const ImpactRecord& start = impacts_.records().back();
     const std::string side = mode_.region == Region::n1 ? "drive (N1)" : "coast (N2)";
     throw InputError(
         "initial.theta1", format_number(c_.initial.theta1_rad) + " rad",
@@ -412,20 +402,7 @@ class Run {
   void begin_contact(double t) {
     const GearSystem::Onset onset = system_.damping_at_onset(y_, mode_);
     damping_ = onset.damping;
-    SimulationSummary& s = result_.summary;
-    if (mode_.region == Region::n1) {
-      ++s.impacts_n1;
-      s.last_n1_impact_s = t;
-    } else {
-      ++s.impacts_n2;
-      s.last_n2_impact_s = t;
-    }
-    if (!s.first_impact_s) {
-      s.first_impact_s = t;
-      s.first_impact_speed_m_s = onset.impact_speed_m_s;
-    }
-    impacts_.push_back(ImpactRecord{mode_.region, t, onset.impact_speed_m_s, onset.restitution,
-                                    std::nullopt, std::nullopt});
+    impacts_.begin(mode_.region, t, onset.impact_speed_m_s, onset.restitution, result_.summary);
   }
 
   // The Lagrangian mesh force: V = 1/2 Ke(theta1) delta^2 jumps from `before`
@@ -442,19 +419,12 @@ class Run {
       y_[kTorqueWork] += jump;
       return;
     }
+    // The message's text only where the pinion cannot pay.
     const double j1 = system_.pinion_inertia();
     const double w1 = y_[kW1];
-    const double kinetic1 = 0.5 * j1 * w1 * w1;
-    if (jump > kinetic1) {
-      throw SimulationError(
-          "mesh_force = \"lagrangian\": at " + where(t, result_.summary.steps) + ", " +
-          pair_change(old) + ": the stored energy jumps by " + format_number(jump) +
-          " J, more than the pinion's kinetic energy J1 w1^2 / 2 = " + format_number(kinetic1) +
-          " J (w1 = " + format_number(w1) +
-          " rad/s) can pay; the gears would have to turn back there. "
-          "mesh_force = \"newtonian\" books the jump as parametric work");
-    }
-    y_[kW1] = std::copysign(std::sqrt(w1 * w1 - 2.0 * jump / j1), w1);
+    const bool pays = jump <= 0.5 * j1 * w1 * w1;
+    y_[kW1] = pinion_speed_after_jump(jump, j1, w1, where(t, result_.summary.steps),
+                                      pays ? std::string() : pair_change(old));
   }
 
   // Which pairs entered or left between `old` and mode_, for messages: pair k
@@ -483,9 +453,7 @@ class Run {
   }
 
   void end_contact(double t, const Mode& old) {
-    if (impacts_.empty()) return;
-    impacts_.back().end_s = t;
-    impacts_.back().end_speed_m_s = -line_sign(old.region) * system_.s_rate(y_);
+    impacts_.end(old.region, t, -line_sign(old.region) * system_.s_rate(y_));
   }
 
   const SimulationCase& c_;
@@ -493,12 +461,13 @@ class Run {
   const RunControl& control_;
   GearSystem system_;
   State y_{};
+  State k1_{};
   Mode mode_;
   ContactMemory damping_;
   double start_time_ = 0.0;
-  int stalled_ = 0;
+  StallWatch stall_{c_.integrator.step_s, c_.model.friction_smoothing_speed_m_s};
   SimulationResult result_;
-  std::vector<ImpactRecord> impacts_;
+  ImpactBook impacts_;
   // Under a kinematic driver: Int w2'^2 dt, and the end of the last step.
   double acceleration2_squared_integral_ = 0.0;
   double last_t_ = 0.0;
@@ -511,16 +480,14 @@ class Run {
   double friction_last_t_ = 0.0;
   // Under the Lagrangian mesh force: the sum of |dU| of the jumps paid.
   double stored_energy_jumps_ = 0.0;
-  // The sample grid: samples_ of them (0 without sampling), the next one to take.
-  double sample_rate_ = 0.0;
-  long long samples_ = 0;
-  long long next_sample_ = 0;
-  // The last sample's time and velocities w1, w2, where an interval average's interval begins.
-  std::array<double, 3> last_sample_{};
+  // The velocities w1, w2 of the last sample, where an interval average's interval begins.
+  IntervalAverage<2> average_;
   // Last: its construction sets the start state above (make_ledger).
   EnergyLedger ledger_;
   // After ledger_, whose construction sets the start it begins from.
   SpeedDriftMonitor drift_{c_, start_time_, y_[kTheta1], y_[kW1]};
+  // The sample grid, from the start time make_ledger set.
+  SampleClock clock_{c_, control_, start_time_};
 };
 
 }  // namespace gearimpact

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "gearimpact/contact/contact.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
@@ -128,16 +129,10 @@ GearSystem::GearSystem(const SimulationCase& c, const StiffnessTable& table,
   constant_torques_ =
       c.torque1.kind == Torque::Kind::constant && c.torque2.kind == Torque::Kind::constant;
   if (constant_torques_) torque_values_ = {c.torque1.constant_n_m, c.torque2.constant_n_m};
-  if (!c.faults.empty() && constant_k_ == 0.0) {
-    // The caller keeps the healthy table alive; MeshTables shares it without owning it.
-    teeth_ = std::make_shared<const MeshTables>(
-        g, c.model.stiffness, c.faults,
-        std::shared_ptr<const StiffnessTable>(&table, [](const StiffnessTable*) {}));
-  }
-  if (!is_unmodified(c.modifications)) {
-    gaps_ = std::make_shared<const ToothGaps>(g, c.modifications);
-    kinks_ = gaps_->kinks_m();
-  }
+  MeshTeeth teeth = mesh_teeth(c, table, constant_k_);
+  teeth_ = std::move(teeth.tables);
+  gaps_ = std::move(teeth.gaps);
+  kinks_ = std::move(teeth.kinks_m);
   mesh_damping_ = case_mesh_damping_n_s_per_m(c, table, teeth_.get());
 }
 
@@ -260,7 +255,9 @@ void GearSystem::rhs(double t, const State& y_in, const Mode& m, const ContactMe
       const double n = normal_force(f_elastic, g_damping, m.clipped[j]);
       const double vs = sliding_speed(w1, w2, x, lp_);
       const double f = friction_coefficient(n, vs, entrainment_speed(w1, w2, x, lp_));
-      const double slip = smoothing_speed_ > 0.0 ? std::tanh(vs / smoothing_speed_) : m.slip[j];
+      const double slip = smoothing_speed_ > 0.0 ? std::tanh(vs / smoothing_speed_)
+                          : m.slip_per_stage     ? (vs >= 0.0 ? 1.0 : -1.0)
+                                                 : m.slip[j];
       const double ff = friction_force(m.region, f, n, slip);
       // (1),(3) for one pair, (43),(45) summed over the pairs the line carries:
       // on N1 J1 w1' = T1 - [N Rb1 + Ff X], J2 w2' = T2 + [N Rb2 + Ff (lp - X)];
@@ -370,29 +367,17 @@ int GearSystem::event_values(const State& y, const Mode& m, const ContactMemory&
   for (int j = 0; j < m.count; ++j) {
     const double x = layout_.position_m(ref, m.k_first + j);
     const StiffnessTable* table = m.table[j];
-    if (table != nullptr && table->part_count() > 1) {
-      // Ke jumps at the ends of the pair's part inside the segment (a fault's edges).
-      const int part = m.part[j];
-      g[n++] = part > 0 ? x - table->part_start_m(part) : 1.0;
-      g[n++] = part + 1 < table->part_count() ? table->part_end_m(part) - x : 1.0;
-    }
+    append_part_events(table, m.part[j], x, g.data(), n);
     const PairPenetration p = pair_penetration(m, j, x, dl, dl_rate, x_rate);
     const double dk = p.delta_m;
     const double dk_rate = p.rate_m_s;
-    if (gaps_) {
-      g[n++] = m.touching[j] ? dk : -dk;
-      if (!m.touching[j]) {
-        // A pair whose gap is open neither slides under load nor pushes, and
-        // its gap's kinks change nothing.
-        for (int i = 0; i < 4; ++i) g[n++] = 1.0;
-        continue;
-      }
-      const auto zone = static_cast<std::size_t>(m.zone[j]);
-      g[n++] = zone > 0 ? x - kinks_[zone - 1] : 1.0;
-      g[n++] = zone < kinks_.size() ? kinks_[zone] - x : 1.0;
+    if (gaps_ && !append_gap_events(m.touching[j], m.zone[j], kinks_, x, dk, g.data(), n)) {
+      continue;
     }
-    // A smoothed sign has no switch to locate: the value stays positive.
-    g[n++] = smoothing_speed_ > 0.0 ? 1.0 : m.slip[j] * sliding_speed(y[kW1], y[kW2], x, lp_);
+    // A smoothed sign, or one taken per stage, has no switch to locate: the value stays positive.
+    g[n++] = smoothing_speed_ > 0.0 || m.slip_per_stage
+                 ? 1.0
+                 : m.slip[j] * sliding_speed(y[kW1], y[kW2], x, lp_);
     const double push = push_sign_function(table, m.part[j], x, m.count, d, dk, dk_rate);
     g[n++] = m.clipped[j] ? -push : push;
   }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <memory>
 #include <vector>
 
 #include "gearimpact/case/simulation_case.hpp"
@@ -72,6 +73,49 @@ PairPenetration pair_penetration_with_gap(const ToothGaps& gaps, const std::vect
                                           int zone, Region line, int k, double x_m, double dl_m,
                                           double dl_rate_m_s, double x_rate_m_s, double start_m,
                                           double end_m);
+// The teeth of a mesh that differ from pair to pair, built once a run by
+// either system: with faults (and a time-varying stiffness) each pair's
+// tables (MeshTables, sharing the healthy `table`, which the caller keeps
+// alive, without owning it); with modifications each pair's gap and the
+// kinks of its slope.
+struct MeshTeeth {
+  std::shared_ptr<const MeshTables> tables;  // none: every pair reads the healthy table
+  std::shared_ptr<const ToothGaps> gaps;     // none: no modifications
+  std::vector<double> kinks_m;               // ToothGaps::kinks_m
+};
+// constant_k: model.constant_mesh_stiffness where the stiffness is constant, else 0.
+MeshTeeth mesh_teeth(const SimulationCase& c, const StiffnessTable& table, double constant_k);
+
+// The event values a loaded pair adds for its table's part and its gap, in
+// the torsional and the planar system alike; each appends to g from g[n] on
+// and advances n.
+// Where the pair's table is cut at a fault's edges: the two ends of its part
+// inside the segment, where Ke jumps (held positive at the segment's ends).
+inline void append_part_events(const StiffnessTable* table, int part, double x_m, double* g,
+                               int& n) {
+  if (table == nullptr || table->part_count() <= 1) return;
+  g[n++] = part > 0 ? x_m - table->part_start_m(part) : 1.0;
+  g[n++] = part + 1 < table->part_count() ? table->part_end_m(part) - x_m : 1.0;
+}
+// With gaps: the pair's touching by its own penetration dk (it touches or
+// lets go), and for a touching pair the kinks of its gap around X (zone), where
+// the gap's slope jumps at a linear relief's start: the damping force and the
+// gap's work with it. A pair whose gap is open neither slides under load nor
+// pushes, and its kinks change nothing: four values held positive. Returns
+// whether the pair touches (its friction and push values follow).
+inline bool append_gap_events(bool touching, int zone, const std::vector<double>& kinks_m,
+                              double x_m, double dk_m, double* g, int& n) {
+  g[n++] = touching ? dk_m : -dk_m;
+  if (!touching) {
+    for (int e = 0; e < 4; ++e) g[n++] = 1.0;
+    return false;
+  }
+  const auto z = static_cast<std::size_t>(zone);
+  g[n++] = z > 0 ? x_m - kinks_m[z - 1] : 1.0;
+  g[n++] = z < kinks_m.size() ? kinks_m[z] - x_m : 1.0;
+  return true;
+}
+
 // The least gap e_k(X_k) of the pairs in the contact segment of `line` at
 // theta1: the line's contact begins where its penetration passes it.
 double least_pair_gap_m(const ToothGaps& gaps, const MeshLayout& layout, Region line,

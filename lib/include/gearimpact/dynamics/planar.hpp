@@ -54,8 +54,7 @@ double planar_angular_momentum(const SimulationCase& c, const PlanarMounting& m,
 // Throws InputError naming the mounting's field (mass1, stiffness_x2, ...)
 // unless every mass is finite and > 0, every bearing stiffness and damping
 // finite and >= 0 (the shafts' values as [shafts]' rows); and naming what the
-// planar model does not take yet (the Lagrangian mesh force of a
-// time-varying stiffness, the adaptive integrator, a continued run). simulate()
+// planar model does not take yet (a continued run). simulate()
 // calls it for an elastic case before it builds the stiffness table.
 void validate_planar(const SimulationCase& c, const PlanarMounting& mounting,
                      const RunControl& control);
@@ -68,9 +67,15 @@ void validate_planar(const SimulationCase& c, const PlanarMounting& mounting,
 // checks it first for a planar case: the message gives the step that runs.
 void check_planar_step(const SimulationCase& c, const StiffnessTable& table,
                        const PlanarMounting& mounting);
+// The largest step of `kind` within that bound (for "adaptive", RK4's count
+// of steps): the adaptive integrator's largest step on the planar system.
+double planar_largest_step_s(const SimulationCase& c, const StiffnessTable& table,
+                             const PlanarMounting& mounting, IntegratorKind kind);
 
 // The run of c on `mounting` from `initial`: fixed-step RK4 or Dormand-Prince
-// 5(4) (integrator.kind) at integrator.step, each step cut at a side's events (contact onset and
+// 5(4) (integrator.kind) at integrator.step, or the adaptive Dormand-Prince
+// (steps of its error's size, each ending at the mode's first event on its
+// dense output), each step cut at a side's events (contact onset and
 // end, a pair's entry and exit, with [modifications] its touching or letting go and a relief's
 // kink, a fault's edges, a friction reversal, a clipping; docs/vibration.md, "Integration"), after
 // validate_planar and validate_sampling; with RunControl::sample_rate_hz it samples (PlanarSample)

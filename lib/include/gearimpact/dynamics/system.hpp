@@ -79,6 +79,9 @@ struct Mode {
   // tooth), found once a mode: finding it takes integer remainders, which the
   // right-hand side would otherwise pay for every pair at every stage.
   std::array<const StiffnessTable*, kMaxPairs> table{};
+  // While a contact sticks (StallWatch, stall.hpp): each stage takes the
+  // friction signs from its own state, and reversals are not events.
+  bool slip_per_stage = false;
 };
 
 // Summed over the loaded pairs, for the time series.
@@ -124,6 +127,13 @@ OnsetDamping onset_damping(const ModelOptions& model, DampingUpdate update, doub
 
 class GearSystem {
  public:
+  // The system concept of the step methods (src/dynamics/step_methods.hpp).
+  using StateType = State;
+  using ModeType = Mode;
+  using MemoryType = ContactMemory;
+  using EventsType = EventValues;
+  using ForcesType = ContactTotals;
+
   // The table must cover the contact segment of c.gears; both must outlive the system.
   // With c.faults, each pair reads the table of its two teeth (MeshTables,
   // built here with `table` as the healthy one), and a pair with a missing
