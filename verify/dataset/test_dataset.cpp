@@ -1,0 +1,251 @@
+// Data sets (docs/datasets.md): the spec's plan and labels, the design's strata, refusals before
+// any work, SHA-256 against FIPS 180-4's examples, and the program end to end: a set run whole,
+// in two shards and merged, and killed then resumed gives the same bytes in every record.
+#include <doctest/doctest.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include "gearimpact/constants.hpp"
+#include "gearimpact/dataset/run.hpp"
+#include "gearimpact/dataset/spec.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/io/sha256.hpp"
+#include "run_command.hpp"
+#include "scratch.hpp"
+// After the library's headers: signal.h defines si_value, a parameter's name there.
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+using namespace gearimpact;
+using gearimpact::verify::cli;
+using gearimpact::verify::run_command;
+using gearimpact::verify::Scratch;
+
+namespace {
+
+const fs::path kHere = GEARIMPACT_DATASET_TEST_DIR;
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string six_text() {
+  return read(kHere / "six.toml");
+}
+
+dataset::DatasetSpec spec_of(const std::string& text) {
+  return dataset::parse_spec(text, kHere, "six.toml");
+}
+
+// The refusal's text of a spec (empty when accepted).
+std::string refusal(const std::string& text, const dataset::Bounds& bounds = {}) {
+  try {
+    dataset::make_plan(spec_of(text), bounds);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  REQUIRE(at != std::string::npos);
+  return text.replace(at, from.size(), to);
+}
+
+}  // namespace
+
+TEST_CASE("sha256_hex: FIPS 180-4's examples") {
+  CHECK(sha256_hex("") == "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
+  CHECK(sha256_hex("abc") == "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+  CHECK(sha256_hex("abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq") ==
+        "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1");
+  CHECK(sha256_hex(std::string(1000000, 'a')) ==
+        "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
+}
+
+TEST_CASE("the plan of six records: conditions, labels and splits from the spec's values") {
+  const dataset::Plan plan = dataset::make_plan(spec_of(six_text()));
+  REQUIRE(plan.records.size() == 6);
+  REQUIRE(plan.conditions.size() == 6);
+  CHECK(plan.samples_per_record == 1000);  // 50 ms at 20 kHz
+  // The grid, last factor fastest; 1 rpm = 2 pi / 60 rad/s, 1 mm = 1e-3 m.
+  const double speeds[] = {2400.0 * 2.0 * pi / 60.0, 1800.0 * 2.0 * pi / 60.0};
+  const double depths[] = {0.2e-3, 0.6e-3, 1e-3};
+  for (std::size_t c = 0; c < 6; ++c) {
+    const dataset::Condition& k = plan.conditions[c];
+    const double w = speeds[c / 3];
+    const double q = depths[c % 3];
+    CHECK(std::abs(k.values[0] / w - 1.0) < 1e-15);  // a unit's factor: rounding
+    CHECK(k.values[1] == q);
+    // The labels are the case's keys: the controller's reference and the crack depth.
+    CHECK(k.simulation_case.torque1.mean_speed_rad_per_s == k.values[0]);
+    CHECK(k.simulation_case.faults.at(0).state.crack.depth_m == k.values[1]);
+    // The pair starts rolling at the reference.
+    CHECK(k.simulation_case.initial.w1_rad_per_s == k.values[0]);
+    CHECK(k.split == (c < 3 ? "train" : "test"));
+  }
+  // Seeds depend on (set seed, condition, replicate) only, and differ.
+  std::set<std::uint64_t> seeds;
+  for (const dataset::Record& r : plan.records) {
+    CHECK(r.seed == dataset::record_seed(7, r.condition, r.replicate));
+    seeds.insert(r.seed);
+  }
+  CHECK(seeds.size() == 6);
+}
+
+TEST_CASE("a Latin hypercube puts each factor's values once in each stratum") {
+  const std::string text = replaced(
+      replaced(replaced(six_text(), "levels = [\"2400 rpm\", \"1800 rpm\"]",
+                        "range = [\"1500 rpm\", \"2500 rpm\"]"),
+               "levels = [\"0.2 mm\", \"0.6 mm\", \"1 mm\"]", "range = [\"0.1 mm\", \"1.2 mm\"]"),
+      "[[split.heldout]]\nkey = \"torque1.mean_speed\"\nlevels = [\"1800 rpm\"]",
+      "[design]\nkind = \"latin-hypercube\"\npoints = 7");
+  const dataset::Plan plan = dataset::make_plan(spec_of(text));
+  REQUIRE(plan.conditions.size() == 7);
+  const double low[] = {1500.0 * 2.0 * pi / 60.0, 0.1e-3};
+  const double high[] = {2500.0 * 2.0 * pi / 60.0, 1.2e-3};
+  for (std::size_t i = 0; i < 2; ++i) {
+    std::set<int> strata;
+    for (const dataset::Condition& c : plan.conditions) {
+      const double u = (c.values[i] - low[i]) / (high[i] - low[i]);
+      strata.insert(static_cast<int>(std::floor(u * 7.0)));
+    }
+    CHECK(strata == std::set<int>{0, 1, 2, 3, 4, 5, 6});
+  }
+}
+
+TEST_CASE("a bad spec is refused before any work, naming the key as written and its range") {
+  SUBCASE("a key that does not exist") {
+    const std::string e =
+        refusal(replaced(six_text(), "\"faults[0].depth\"", "\"faults[0].dept\""));
+    CHECK(e.find("factors[1].key = faults[0].dept") != std::string::npos);
+    CHECK(e.find("depth") != std::string::npos);
+    const std::string e2 =
+        refusal(replaced(six_text(), "\"torque1.mean_speed\"", "\"torque1.mean_sped\""));
+    CHECK(e2.find("did you mean torque1.mean_speed") != std::string::npos);
+  }
+  SUBCASE("a level outside its range, named with the condition") {
+    const std::string e = refusal(replaced(six_text(), "\"1 mm\"]", "\"9 mm\"]"));
+    CHECK(e.find("faults[0].depth = 9 mm") != std::string::npos);
+    CHECK(e.find("q <") != std::string::npos);  // the admissible depth
+    const std::string e2 = refusal(replaced(six_text(), "\"30 dB\"", "\"300 dB\""));
+    CHECK(e2.find("recorder.noise_snr = 300 dB") != std::string::npos);
+    CHECK(e2.find("[-100, 200]") != std::string::npos);
+  }
+  SUBCASE("a fault the base case does not have") {
+    const std::string e =
+        refusal(replaced(six_text(), "\"faults[0].depth\"", "\"faults[1].depth\""));
+    CHECK(e.find("faults[1].depth") != std::string::npos);
+    CHECK(e.find("1 [[faults]] table") != std::string::npos);
+  }
+  SUBCASE("a bound, with the estimate") {
+    dataset::Bounds bounds;
+    bounds.max_records = 5;
+    const std::string e = refusal(six_text(), bounds);
+    CHECK(e.find("records = 6") != std::string::npos);
+    CHECK(e.find("--max-records") != std::string::npos);
+    bounds = {};
+    bounds.max_bytes = 1e5;
+    const std::string e2 = refusal(six_text(), bounds);
+    CHECK(e2.find("bytes = ") != std::string::npos);
+    CHECK(e2.find("--max-bytes") != std::string::npos);
+  }
+}
+
+namespace {
+
+// The records' bytes of a folder, by name.
+std::map<std::string, std::string> records_in(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    if (entry.path().extension() == ".h5") files[entry.path().filename()] = read(entry.path());
+  }
+  return files;
+}
+
+std::string quoted(const fs::path& p) {
+  return "'" + p.string() + "'";
+}
+
+}  // namespace
+
+TEST_CASE("the program: whole, two shards merged, and killed then resumed give the same bytes") {
+  Scratch scratch("dataset");
+  const fs::path spec = kHere / "six.toml";
+  const fs::path whole = scratch.dir / "whole";
+  const auto run = [&](const std::string& args) {
+    const auto r = run_command(cli("dataset " + quoted(spec) + " " + args + " --quiet"));
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+  };
+  run("--out " + quoted(whole));
+  const std::map<std::string, std::string> reference = records_in(whole);
+  REQUIRE(reference.size() == 6);
+
+  const fs::path sharded = scratch.dir / "sharded";
+  run("--out " + quoted(sharded) + " --shard 0/2");
+  CHECK(records_in(sharded).size() == 3);
+  // A merge before every shard ran names the missing records.
+  const auto early =
+      run_command(cli("dataset merge " + quoted(sharded) + " --out " + quoted(scratch.dir / "x")));
+  CHECK(early.exit_code == 1);
+  CHECK(early.err.find("3 missing") != std::string::npos);
+  CHECK(!fs::exists(scratch.dir / "x"));
+  run("--out " + quoted(sharded) + " --shard 1/2");
+  const fs::path merged = scratch.dir / "merged";
+  const auto m = run_command(cli("dataset merge " + quoted(sharded) + " --out " + quoted(merged)));
+  INFO(m.err);
+  REQUIRE(m.exit_code == 0);
+  CHECK(records_in(merged) == reference);
+
+  // Killed: SIGKILL once the first record is complete, then the same command again.
+  const fs::path resumed = scratch.dir / "resumed";
+  fs::create_directories(resumed);
+  const pid_t child = ::fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {
+    ::execl(GEARIMPACT_CLI, GEARIMPACT_CLI, "dataset", spec.c_str(), "--out", resumed.c_str(),
+            "--quiet", static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  for (int i = 0; i < 2000 && !fs::exists(resumed / "r0000000.json"); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  ::kill(child, SIGKILL);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  // And what a kill between the two writes of a record, or a damaged file, would leave: a file
+  // without its sidecar, and a file cut short under its sidecar.
+  run("--out " + quoted(resumed) + " --shard 0/1");
+  fs::remove(resumed / "r0000004.json");
+  const std::string cut = read(resumed / "r0000005.h5").substr(0, 1000);
+  std::ofstream(resumed / "r0000005.h5", std::ios::binary | std::ios::trunc) << cut;
+  const auto again = run_command(cli("dataset " + quoted(spec) + " --out " + quoted(resumed)));
+  REQUIRE(again.exit_code == 0);
+  // Four records were complete, two were made again.
+  CHECK(again.err.find("6/6 records (4 found complete)") != std::string::npos);
+  CHECK(records_in(resumed) == reference);
+
+  // A folder of another spec's set is refused.
+  fs::copy_file(spec, scratch.dir / "six.toml");
+  fs::copy_file(kHere / "rig_cracked.toml", scratch.dir / "rig_cracked.toml");
+  std::ofstream(scratch.dir / "six.toml", std::ios::app) << "\n# another spec\n";
+  const auto other = run_command(
+      cli("dataset " + quoted(scratch.dir / "six.toml") + " --out " + quoted(whole) + " --quiet"));
+  CHECK(other.exit_code == 1);
+  CHECK(other.err.find("spec sha256") != std::string::npos);
+}
