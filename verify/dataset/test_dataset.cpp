@@ -249,3 +249,106 @@ TEST_CASE("the program: whole, two shards merged, and killed then resumed give t
   CHECK(other.exit_code == 1);
   CHECK(other.err.find("spec sha256") != std::string::npos);
 }
+
+namespace {
+
+// da/dN = C (Y dsigma sqrt(pi a))^m (dsigma in MPa) integrated by classical RK4 from a0 over n
+// cycles in `steps` steps: an independent method for the closed form.
+double integrated_depth(double a0, double n, double c, double m, double y, double dsigma_mpa,
+                        int steps) {
+  const auto rate = [&](double a) { return c * std::pow(y * dsigma_mpa * std::sqrt(pi * a), m); };
+  double a = a0;
+  const double h = n / steps;
+  for (int i = 0; i < steps; ++i) {
+    const double k1 = rate(a);
+    const double k2 = rate(a + 0.5 * h * k1);
+    const double k3 = rate(a + 0.5 * h * k2);
+    const double k4 = rate(a + h * k3);
+    a += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+  }
+  return a;
+}
+
+std::string trajectory_spec(const std::string& m, const std::string& spacing) {
+  return replaced(
+      replaced(
+          six_text(),
+          "[[factors]]\nkey = \"faults[0].depth\"\nlevels = [\"0.2 mm\", \"0.6 mm\", \"1 mm\"]\n",
+          ""),
+      "[[split.heldout]]",
+      "[trajectory]\nkey = \"faults[0].depth\"\ninitial = \"0.1 mm\"\nfinal = \"1.2 mm\"\n"
+      "paris_c = 1e-11\nparis_m = " +
+          m +
+          "\ngeometry_factor = 1.12\n"
+          "stress_range = \"200 MPa\"\nsnapshots = 5\nspacing = \"" +
+          spacing +
+          "\"\n\n"
+          "[[split.heldout]]");
+}
+
+}  // namespace
+
+TEST_CASE("a Paris-law trajectory: snapshot depths against the growth law integrated numerically") {
+  for (const std::string m : {"4", "2", "3.3"}) {
+    for (const std::string spacing : {"cycles", "depth"}) {
+      CAPTURE(m);
+      CAPTURE(spacing);
+      const dataset::Plan plan = dataset::make_plan(spec_of(trajectory_spec(m, spacing)));
+      REQUIRE(plan.conditions.size() == 10);  // 2 speeds x 5 snapshots
+      REQUIRE(plan.spec.factors.back().key == "faults[0].depth");
+      for (const dataset::Condition& c : plan.conditions) {
+        const double a = c.values.back();
+        CHECK(c.simulation_case.faults.at(0).state.crack.depth_m == a);
+        // RK4 with 20000 steps: its error (h^4) is far below the 1e-9 bar on these smooth
+        // growths (a rises by 12 times at most).
+        const double reference =
+            integrated_depth(1e-4, c.cycles, 1e-11, std::stod(m), 1.12, 200.0, 20000);
+        CHECK(std::abs(a / reference - 1.0) < 1e-9);
+        CHECK(c.cycles_to_failure == plan.conditions.front().cycles_to_failure);
+        // The whole trajectory shares its design condition's split.
+        CHECK(c.split == plan.conditions[c.trajectory * 5].split);
+      }
+      CHECK(plan.conditions[4].values.back() == 1.2e-3);  // the last snapshot: the final depth
+      CHECK(plan.conditions[0].values.back() == 1e-4);
+      const double to_failure = plan.conditions.front().cycles_to_failure;
+      CHECK(std::abs(integrated_depth(1e-4, to_failure, 1e-11, std::stod(m), 1.12, 200.0, 20000) /
+                         1.2e-3 -
+                     1.0) < 1e-9);
+      if (spacing == "cycles") {
+        CHECK(std::abs(plan.conditions[2].cycles / (0.5 * to_failure) - 1.0) < 1e-15);
+      } else {
+        CHECK(std::abs(plan.conditions[2].values.back() / 0.65e-3 - 1.0) < 1e-15);
+      }
+    }
+  }
+}
+
+TEST_CASE("a random design: seeded, in range; a held-out range takes its conditions") {
+  const std::string text =
+      replaced(replaced(replaced(six_text(), "levels = [\"2400 rpm\", \"1800 rpm\"]",
+                                 "range = [\"1500 rpm\", \"2500 rpm\"]"),
+                        "levels = [\"1800 rpm\"]", "range = [\"1500 rpm\", \"2000 rpm\"]"),
+               "[[split.heldout]]",
+               "[design]\nkind = \"random\"\npoints = 20\nseed = 11\n\n[[split.heldout]]");
+  const dataset::Plan a = dataset::make_plan(spec_of(text));
+  const dataset::Plan b = dataset::make_plan(spec_of(text));
+  const dataset::Plan c = dataset::make_plan(spec_of(replaced(text, "seed = 11", "seed = 12")));
+  REQUIRE(a.conditions.size() == 20);
+  const double low = 1500.0 * 2.0 * pi / 60.0;
+  const double split = 2000.0 * 2.0 * pi / 60.0;
+  const double high = 2500.0 * 2.0 * pi / 60.0;
+  int held = 0;
+  bool differs = false;
+  for (std::size_t k = 0; k < 20; ++k) {
+    const double w = a.conditions[k].values[0];
+    CHECK(w >= low);
+    CHECK(w <= high);
+    CHECK(a.conditions[k].values == b.conditions[k].values);
+    differs = differs || a.conditions[k].values != c.conditions[k].values;
+    CHECK(a.conditions[k].split == (w <= split ? "test" : "train"));
+    held += a.conditions[k].split == "test";
+  }
+  CHECK(differs);
+  CHECK(held > 0);
+  CHECK(held < 20);
+}

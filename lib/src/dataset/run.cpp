@@ -259,6 +259,13 @@ std::string record_file(const Plan& plan, const Record& record, const RecordData
       h5.attribute("/labels", name, condition.texts[i]);
     }
   }
+  if (spec.trajectory) {
+    h5.attribute("/labels", "trajectory", static_cast<std::int64_t>(condition.trajectory));
+    h5.attribute("/labels", "trajectory_step", std::int64_t{condition.trajectory_step});
+    h5.attribute("/labels", "cycles", condition.cycles);
+    h5.attribute("/labels", "cycles_to_failure", condition.cycles_to_failure);
+    h5.attribute("/labels", "rul_cycles", condition.cycles_to_failure - condition.cycles);
+  }
   h5.attribute("/labels", "realised_snr_db", data.labels.realised_snr_db);
   h5.attribute("/labels", "clipped", static_cast<std::int64_t>(data.labels.clipped));
   h5.attribute("/labels", "settled", std::int64_t{data.labels.settled ? 1 : 0});
@@ -389,6 +396,8 @@ Progress run_shard(const Plan& plan, const std::string& out, Shard shard,
 std::string labels_csv(const Plan& plan, const std::vector<std::string>& record_json) {
   std::string csv = "record_id,file,split,condition,replicate,seed";
   for (const Factor& f : plan.spec.factors) csv += "," + column_name(f);
+  const bool trajectory = plan.spec.trajectory.has_value();
+  if (trajectory) csv += ",trajectory,trajectory_step,cycles,cycles_to_failure,rul_cycles";
   csv += ",realised_snr_db,clipped,settled,speed_drift_max_rel,file_sha256\n";
   for (std::size_t id = 0; id < plan.records.size(); ++id) {
     const nlohmann::json j = nlohmann::json::parse(record_json.at(id));
@@ -400,6 +409,11 @@ std::string labels_csv(const Plan& plan, const std::vector<std::string>& record_
     for (std::size_t i = 0; i < plan.spec.factors.size(); ++i) {
       csv += ",";
       csv += plan.spec.factors[i].numeric ? shortest_decimal(c.values[i]) : c.texts[i];
+    }
+    if (trajectory) {
+      csv += "," + std::to_string(c.trajectory) + "," + std::to_string(c.trajectory_step) + "," +
+             shortest_decimal(c.cycles) + "," + shortest_decimal(c.cycles_to_failure) + "," +
+             shortest_decimal(c.cycles_to_failure - c.cycles);
     }
     csv += "," + j.at("realised_snr_db").get<std::string>() + "," +
            std::to_string(j.at("clipped").get<long long>()) + "," +
@@ -484,6 +498,24 @@ std::string card(const Plan& plan, const std::vector<std::string>& record_json) 
     }
     t += "| `" + f.key + "` | `" + column_name(f) + "` | " + values + " |\n";
   }
+  if (s.trajectory) {
+    const Trajectory& tr = *s.trajectory;
+    t += "\nDegradation: every condition of the design is a trajectory of " +
+         std::to_string(tr.snapshots) + " snapshots of `" + tr.key + "` from " +
+         shortest_decimal(tr.initial_m) + " m to " + shortest_decimal(tr.final_m) +
+         " m, grown by Paris' law da/dN = C (Y dsigma sqrt(pi a))^m with C = " +
+         shortest_decimal(tr.paris_c) +
+         " m/cycle (dK in MPa sqrt(m)), m = " + shortest_decimal(tr.paris_m) +
+         ", Y = " + shortest_decimal(tr.geometry_factor) +
+         ", dsigma = " + shortest_decimal(tr.stress_range_pa * 1e-6) +
+         " MPa; N counts revolutions "
+         "of the faulted gear, " +
+         (tr.even_in_depth ? "snapshots evenly in depth" : "snapshots evenly in N") + ", " +
+         shortest_decimal(paris_cycles(tr, tr.final_m)) +
+         " cycles to the final depth. "
+         "Each snapshot is a steady record in which the crack does not grow. Labels: trajectory, "
+         "trajectory_step, cycles, cycles_to_failure, rul_cycles.\n";
+  }
   t += "\n## Splits\n\n";
   std::map<std::string, int> splits;
   for (const Record& rec : plan.records) splits[plan.conditions[rec.condition].split] += 1;
@@ -511,7 +543,8 @@ std::string card(const Plan& plan, const std::vector<std::string>& record_json) 
     }
   }
   t += "`labels.csv`: one row per record (record_id, file, split, condition, replicate, seed, each "
-       "factor in SI with its unit in the column's name, realised_snr_db, clipped, settled, "
+       "factor in SI with its unit in the column's name, the trajectory's columns if any, "
+       "realised_snr_db, clipped, settled, "
        "speed_drift_max_rel, file_sha256). Settled (halves' RMS within 2 %): " +
        std::to_string(settled) + " of " + std::to_string(n) +
        ". Samples clipped: " + std::to_string(clipped) + ".";

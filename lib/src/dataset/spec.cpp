@@ -11,6 +11,7 @@
 #include <toml.hpp>
 
 #include "gearimpact/case/schema.hpp"
+#include "gearimpact/constants.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/io/case_file.hpp"
@@ -83,6 +84,29 @@ const std::vector<ChannelInfo>& truth_channels() {
       {"dte_m", "m", "the dynamic transmission error s - B along the drive line"},
   };
   return channels;
+}
+
+namespace {
+
+// (Y dsigma sqrt(pi))^m with dsigma in MPa: dK = that^(1/m) sqrt(a) in MPa sqrt(m).
+double paris_scale(const Trajectory& t) {
+  return std::pow(t.geometry_factor * t.stress_range_pa * 1e-6 * std::sqrt(pi), t.paris_m);
+}
+
+}  // namespace
+
+double paris_depth_m(const Trajectory& t, double cycles) {
+  const double k = t.paris_c * paris_scale(t);
+  if (t.paris_m == 2.0) return t.initial_m * std::exp(k * cycles);
+  const double e = 1.0 - t.paris_m / 2.0;
+  return std::pow(std::pow(t.initial_m, e) + e * k * cycles, 1.0 / e);
+}
+
+double paris_cycles(const Trajectory& t, double depth_m) {
+  const double k = t.paris_c * paris_scale(t);
+  if (t.paris_m == 2.0) return std::log(depth_m / t.initial_m) / k;
+  const double e = 1.0 - t.paris_m / 2.0;
+  return (std::pow(depth_m, e) - std::pow(t.initial_m, e)) / (e * k);
 }
 
 std::uint64_t record_seed(std::uint64_t set_seed, std::size_t condition, int replicate) {
@@ -431,7 +455,7 @@ DatasetSpec parse_spec_with_base(std::string_view spec_text, const std::filesyst
     first = first.substr(0, first.find('\n'));
     throw InputError(std::string(file_name), "(not TOML)", "a TOML file: " + first);
   }
-  only_keys(root, "", {"dataset", "base", "recorder", "factors", "design", "split"});
+  only_keys(root, "", {"dataset", "base", "recorder", "factors", "design", "split", "trajectory"});
 
   // [dataset]
   const toml::value& d = table_at(root, "dataset", true);
@@ -677,6 +701,68 @@ DatasetSpec parse_spec_with_base(std::string_view spec_text, const std::filesyst
       spec.heldout.push_back(held);
     }
   }
+  // [trajectory]
+  if (const toml::value* tv = lookup(root, "trajectory")) {
+    if (!tv->is_table()) throw InputError("trajectory", shown(*tv), "a [trajectory] table");
+    only_keys(*tv, "trajectory",
+              {"key", "initial", "final", "paris_c", "paris_m", "geometry_factor", "stress_range",
+               "snapshots", "spacing"});
+    Trajectory t;
+    t.key = text(required(*tv, "trajectory", "key"), "trajectory.key", "faults[i].depth");
+    const auto fault = fault_address(t.key);
+    if (!fault || fault->second != "depth") {
+      throw InputError("trajectory.key", t.key,
+                       "faults[i].depth: the depth of a root crack of the base case");
+    }
+    key_info(spec.base, t.key, "trajectory.key");
+    for (const Factor& f : spec.factors) {
+      if (f.key == t.key) {
+        throw InputError("trajectory.key", t.key, "a key that is not also a factor");
+      }
+    }
+    for (const HeldOut& h : spec.heldout) {
+      if (h.key == t.key) throw InputError("split.heldout key", h.key, "not the trajectory's key");
+    }
+    t.initial_m =
+        quantity(required(*tv, "trajectory", "initial"), Dimension::length, "trajectory.initial");
+    t.final_m =
+        quantity(required(*tv, "trajectory", "final"), Dimension::length, "trajectory.final");
+    if (!(t.initial_m > 0.0) || !(t.final_m > t.initial_m) || !std::isfinite(t.final_m)) {
+      throw InputError("trajectory.final", shortest_decimal(t.final_m) + " m",
+                       "a depth above trajectory.initial (" + shortest_decimal(t.initial_m) +
+                           " m), which is > 0");
+    }
+    const auto positive = [&](const char* key, double lower_open) {
+      const double v = number(required(*tv, "trajectory", key), std::string("trajectory.") + key,
+                              "a number > " + shortest_decimal(lower_open));
+      if (!(v > lower_open) || !std::isfinite(v)) {
+        throw InputError(std::string("trajectory.") + key, shortest_decimal(v),
+                         "a finite number > " + shortest_decimal(lower_open));
+      }
+      return v;
+    };
+    t.paris_c = positive("paris_c", 0.0);
+    t.paris_m = positive("paris_m", 0.0);
+    if (lookup(*tv, "geometry_factor") != nullptr)
+      t.geometry_factor = positive("geometry_factor", 0.0);
+    t.stress_range_pa = quantity(required(*tv, "trajectory", "stress_range"), Dimension::pressure,
+                                 "trajectory.stress_range");
+    if (!(t.stress_range_pa > 0.0) || !std::isfinite(t.stress_range_pa)) {
+      throw InputError("trajectory.stress_range", shortest_decimal(t.stress_range_pa) + " Pa",
+                       "a stress range > 0");
+    }
+    t.snapshots = static_cast<int>(
+        whole(required(*tv, "trajectory", "snapshots"), "trajectory.snapshots", 2, 100000));
+    if (const toml::value* v = lookup(*tv, "spacing")) {
+      const std::string sp = text(*v, "trajectory.spacing", "\"cycles\" or \"depth\"");
+      if (sp != "cycles" && sp != "depth") {
+        throw InputError("trajectory.spacing", shown(*v),
+                         "\"cycles\" (snapshots evenly in N) or \"depth\" (evenly in a)");
+      }
+      t.even_in_depth = sp == "depth";
+    }
+    spec.trajectory = t;
+  }
   spec.spec_sha256 = sha256_hex(spec.spec_text + std::string(1, '\0') + spec.base_case_text);
   return spec;
 }
@@ -759,6 +845,7 @@ Plan make_plan(const DatasetSpec& spec, const Bounds& bounds) {
   } else {
     conditions = spec.design_points;
   }
+  if (spec.trajectory) conditions *= spec.trajectory->snapshots;
   const double records = conditions * spec.replicates;
   const std::size_t n0 =
       static_cast<std::size_t>(std::llround(spec.settle_s * spec.sample_rate_hz));
@@ -784,7 +871,9 @@ Plan make_plan(const DatasetSpec& spec, const Bounds& bounds) {
   const double bytes = records * plan.bytes_per_record;
   if (bytes > bounds.max_bytes) refuse("bytes", bytes, bounds.max_bytes, "--max-bytes");
 
-  const auto count = static_cast<std::size_t>(conditions);
+  const std::size_t snapshots =
+      spec.trajectory ? static_cast<std::size_t>(spec.trajectory->snapshots) : 1;
+  std::size_t count = static_cast<std::size_t>(conditions) / snapshots;
   texts.assign(count, std::vector<std::string>(nf));
   if (spec.design == DesignKind::grid) {
     std::size_t stride = 1;
@@ -817,17 +906,56 @@ Plan make_plan(const DatasetSpec& spec, const Bounds& bounds) {
     }
   }
 
+  // A trajectory: each design condition becomes its snapshots, the depth a factor of the plan.
+  std::vector<Condition> grown(count);
+  if (spec.trajectory) {
+    const Trajectory& t = *spec.trajectory;
+    Factor depth;
+    depth.key = t.key;
+    depth.unit = "m";
+    plan.spec.factors.push_back(depth);
+    const double last = static_cast<double>(snapshots - 1);
+    const double to_failure = paris_cycles(t, t.final_m);
+    std::vector<std::vector<std::string>> expanded;
+    grown.clear();
+    for (std::size_t c = 0; c < count; ++c) {
+      for (std::size_t k = 0; k < snapshots; ++k) {
+        const double f = static_cast<double>(k) / last;
+        double a = 0.0;
+        double n = 0.0;
+        if (t.even_in_depth) {
+          a = k + 1 == snapshots ? t.final_m : t.initial_m + f * (t.final_m - t.initial_m);
+          n = k == 0 ? 0.0 : k + 1 == snapshots ? to_failure : paris_cycles(t, a);
+        } else {
+          n = k + 1 == snapshots ? to_failure : f * to_failure;
+          a = k == 0 ? t.initial_m : k + 1 == snapshots ? t.final_m : paris_depth_m(t, n);
+        }
+        expanded.push_back(texts[c]);
+        expanded.back().push_back(shortest_decimal(a));
+        Condition g;
+        g.trajectory = c;
+        g.trajectory_step = static_cast<int>(k);
+        g.cycles = n;
+        g.cycles_to_failure = to_failure;
+        grown.push_back(g);
+      }
+    }
+    texts = std::move(expanded);
+    count = texts.size();
+  }
+  const std::vector<Factor>& factors = plan.spec.factors;
   // Every condition's case, validated before any record.
   for (std::size_t c = 0; c < count; ++c) {
-    Condition condition;
+    Condition condition = grown[c];
     condition.texts = texts[c];
     condition.simulation_case = spec.base;
     condition.recorder = spec.recorder;
     const std::string where = "condition " + std::to_string(c);
-    for (std::size_t i = 0; i < nf; ++i) {
-      const std::string name = "factors[" + std::to_string(i) + "] " + spec.factors[i].key;
+    for (std::size_t i = 0; i < factors.size(); ++i) {
+      const std::string name =
+          i < nf ? "factors[" + std::to_string(i) + "] " + factors[i].key : "trajectory.key";
       condition.values.push_back(set_key(condition.simulation_case, condition.recorder,
-                                         spec.factors[i].key, texts[c][i], name));
+                                         factors[i].key, texts[c][i], name));
     }
     SimulationCase& sc = condition.simulation_case;
     sc.integrator.end_time_s = (static_cast<double>(n0 + samples) + 0.5) / spec.sample_rate_hz;
@@ -841,8 +969,8 @@ Plan make_plan(const DatasetSpec& spec, const Bounds& bounds) {
     } catch (const CaseFileError& e) {
       // Named by the condition's factor values as the spec writes them, then the key.
       std::string values;
-      for (std::size_t i = 0; i < nf; ++i) {
-        values += (i ? ", " : "") + spec.factors[i].key + " = " + texts[c][i];
+      for (std::size_t i = 0; i < factors.size(); ++i) {
+        values += (i ? ", " : "") + factors[i].key + " = " + texts[c][i];
       }
       std::vector<Problem> problems;
       for (const Problem& p : e.problems()) {

@@ -73,6 +73,29 @@ struct HeldOut {
   std::string split = "test";
 };
 
+// A degradation trajectory (run to failure): a crack's depth grown by Paris' law,
+// da/dN = C dK^m with dK = Y dsigma sqrt(pi a) (C in m/cycle with dK in MPa sqrt(m); N counts
+// revolutions of the faulted gear), sampled at `snapshots` steps from `initial` to `final`, evenly
+// in N or in a. Each snapshot is a steady record in which the crack does not grow. Every condition
+// of the design runs the whole trajectory, which stays in one split.
+struct Trajectory {
+  std::string key;  // faults[i].depth
+  double initial_m = 0.0;
+  double final_m = 0.0;
+  double paris_c = 0.0;
+  double paris_m = 0.0;
+  double geometry_factor = 1.0;
+  double stress_range_pa = 0.0;
+  int snapshots = 2;
+  bool even_in_depth = false;  // false: evenly in cycles
+};
+
+// Paris' law in closed form: the depth after n cycles from a0, and the cycles from a0 to a.
+// a(N) = [a0^(1-m/2) + (1-m/2) C (Y dsigma sqrt(pi))^m N]^(1/(1-m/2)) for m != 2, a0 exp(C (Y
+// dsigma)^2 pi N) for m = 2 (dsigma in MPa, a in m).
+double paris_depth_m(const Trajectory& t, double cycles);
+double paris_cycles(const Trajectory& t, double depth_m);
+
 struct DatasetSpec {
   std::string name;
   std::uint64_t seed = 0;
@@ -90,6 +113,7 @@ struct DatasetSpec {
   std::uint64_t design_seed = 0;
   std::string default_split = "train";
   std::vector<HeldOut> heldout;
+  std::optional<Trajectory> trajectory;
   std::string spec_text;
   // sha256 of the spec's text and the base case's: shards of one set share it.
   std::string spec_sha256;
@@ -113,6 +137,12 @@ struct Condition {
   std::string split;
   SimulationCase simulation_case;  // the base case with the factors set, validated
   RecorderSettings recorder;
+  // With a trajectory: the design's condition it grows from, the snapshot, its cycles and the
+  // cycles from its start to its final depth; values and texts end with the depth.
+  std::size_t trajectory = 0;
+  int trajectory_step = 0;
+  double cycles = 0.0;
+  double cycles_to_failure = 0.0;
 };
 
 struct Record {
