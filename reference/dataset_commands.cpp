@@ -65,7 +65,27 @@ void run_dataset(const DatasetOptions& o) {
   bounds.max_records = o.max_records;
   bounds.max_samples = o.max_samples;
   bounds.max_bytes = o.max_bytes;
-  const dataset::Plan plan = dataset::make_plan(dataset::read_spec(o.spec), bounds);
+  dataset::Plan plan;
+  try {
+    plan = dataset::make_plan(dataset::read_spec(o.spec), bounds);
+  } catch (const InputError& e) {
+    // The library names its bounds as dataset::Bounds does; the program's are flags.
+    std::vector<Problem> problems;
+    for (Problem p : e.problems()) {
+      for (const auto& [name, flag] :
+           {std::pair{"max_records", "--max-records"}, std::pair{"max_samples", "--max-samples"},
+            std::pair{"max_bytes", "--max-bytes"}}) {
+        const std::string lifts = std::string("(") + name + " lifts the bound)";
+        const std::size_t at = p.allowed.find(lifts);
+        if (at != std::string::npos) {
+          p.allowed.replace(at, lifts.size(), std::string("(") + flag + " lifts the bound)");
+          p = refused_problem(p.field, p.value, p.reason, p.allowed, p.fix);
+        }
+      }
+      problems.push_back(p);
+    }
+    throw InputError(problems);
+  }
   const double records = static_cast<double>(plan.records.size());
   std::printf(
       "{\n  \"records\": %zu,\n  \"conditions\": %zu,\n  \"samples_per_record\": %zu,\n"

@@ -157,12 +157,12 @@ TEST_CASE("a bad spec is refused before any work, naming the key as written and 
     bounds.max_records = 5;
     const std::string e = refusal(six_text(), bounds);
     CHECK(e.find("records = 6") != std::string::npos);
-    CHECK(e.find("--max-records") != std::string::npos);
+    CHECK(e.find("max_records lifts the bound") != std::string::npos);
     bounds = {};
     bounds.max_bytes = 1e5;
     const std::string e2 = refusal(six_text(), bounds);
     CHECK(e2.find("bytes = ") != std::string::npos);
-    CHECK(e2.find("--max-bytes") != std::string::npos);
+    CHECK(e2.find("max_bytes lifts the bound") != std::string::npos);
   }
 }
 
@@ -192,6 +192,14 @@ TEST_CASE("the program: whole, two shards merged, and killed then resumed give t
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
   };
+  // The program names its flag, before any work.
+  const auto bounded =
+      run_command(cli("dataset " + quoted(spec) + " --out " + quoted(whole) + " --max-records 5"));
+  CHECK(bounded.exit_code == 1);
+  CHECK(bounded.err.find("records = 6: the set's estimate is above the bound 5") !=
+        std::string::npos);
+  CHECK(bounded.err.find("--max-records lifts the bound") != std::string::npos);
+  CHECK(!fs::exists(whole));
   run("--out " + quoted(whole));
   const std::map<std::string, std::string> reference = records_in(whole);
   REQUIRE(reference.size() == 6);

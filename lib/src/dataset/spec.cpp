@@ -863,13 +863,13 @@ Plan make_plan(const DatasetSpec& spec, const Bounds& bounds) {
                         "the set's estimate is above the bound " + shortest_decimal(bound),
                         "at most " + shortest_decimal(bound) + " (" + flag + " lifts the bound)")});
   };
-  if (records > bounds.max_records) refuse("records", records, bounds.max_records, "--max-records");
+  if (records > bounds.max_records) refuse("records", records, bounds.max_records, "max_records");
   const double total_samples = records * static_cast<double>(samples) * channels;
   if (total_samples > bounds.max_samples) {
-    refuse("samples", total_samples, bounds.max_samples, "--max-samples");
+    refuse("samples", total_samples, bounds.max_samples, "max_samples");
   }
   const double bytes = records * plan.bytes_per_record;
-  if (bytes > bounds.max_bytes) refuse("bytes", bytes, bounds.max_bytes, "--max-bytes");
+  if (bytes > bounds.max_bytes) refuse("bytes", bytes, bounds.max_bytes, "max_bytes");
 
   const std::size_t snapshots =
       spec.trajectory ? static_cast<std::size_t>(spec.trajectory->snapshots) : 1;

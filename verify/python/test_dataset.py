@@ -1,0 +1,53 @@
+"""The Python twin of `gearimpact dataset` (docs/datasets.md): the same files as the program, bit
+for bit, the set loaded back, and refusals naming the key or argument."""
+
+import filecmp
+import shutil
+
+import pytest
+
+import gearimpact
+
+
+def _six(source_dir, tmp_path):
+    for name in ("six.toml", "rig_cracked.toml"):
+        shutil.copy(source_dir / "verify" / "dataset" / name, tmp_path / name)
+    return tmp_path / "six.toml"
+
+
+def test_run_and_merge_give_the_programs_files(cli, source_dir, tmp_path):
+    spec = _six(source_dir, tmp_path)
+    plan = gearimpact.dataset_plan(spec)
+    assert plan["records"] == 6 and plan["samples_per_record"] == 1000
+    made = gearimpact.dataset_run(spec, tmp_path / "py", shard=(0, 1))
+    assert made["made"] == 6 and made["found_complete"] == 0
+    again = gearimpact.dataset_run(spec, tmp_path / "py", shard=(0, 1))
+    assert again["made"] == 0 and again["found_complete"] == 6
+    gearimpact.dataset_merge(tmp_path / "py", tmp_path / "py-merged")
+    cli("dataset", spec, "--out", tmp_path / "cli", "--quiet")
+    cli("dataset", "merge", tmp_path / "cli", "--out", tmp_path / "cli-merged")
+    names = sorted(p.name for p in (tmp_path / "cli-merged").iterdir())
+    _, mismatch, errors = filecmp.cmpfiles(tmp_path / "cli-merged", tmp_path / "py-merged",
+                                           names, shallow=False)
+    assert mismatch == [] and errors == []
+    pytest.importorskip("h5py")
+    data = gearimpact.load_dataset(tmp_path / "py-merged")
+    assert data["signals/sensor"].shape == (6, 1000)
+    assert list(data["labels"]["faults[0].depth_m"]) == [2e-4, 6e-4, 1e-3] * 2
+    assert list(data["labels"]["split"]) == ["train"] * 3 + ["test"] * 3
+
+
+def test_refusals_name_the_key_and_the_argument(source_dir, tmp_path):
+    spec = _six(source_dir, tmp_path)
+    text = spec.read_text().replace('"faults[0].depth"', '"faults[0].dept"')
+    (tmp_path / "bad.toml").write_text(text)
+    with pytest.raises(gearimpact.CaseError) as error:
+        gearimpact.dataset_plan(tmp_path / "bad.toml")
+    assert "factors[1].key = faults[0].dept" in str(error.value)
+    with pytest.raises(gearimpact.CaseError) as error:
+        gearimpact.dataset_plan(spec, max_records=5)
+    assert "records = 6" in str(error.value) and "max_records" in str(error.value)
+    with pytest.raises(gearimpact.CaseError) as error:
+        gearimpact.dataset_run(spec, tmp_path / "x", shard=(2, 2))
+    assert error.value.field == "shard"
+    assert not (tmp_path / "x").exists()
