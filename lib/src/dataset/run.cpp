@@ -152,20 +152,19 @@ RecordData make_record(const Plan& plan, const Record& record) {
   // The recorder chain on the whole sampled run: path, accelerometer; then the record is cut.
   const RecorderSettings& r = condition.recorder;
   const std::uint64_t noise_seed = mixed_seed(record.seed, r.seed);
+  std::vector<signals::SecondOrderSection> path;
   if (r.path_modes > 0) {
     const std::uint64_t path_seed = r.path_per_record ? noise_seed : mixed_seed(spec.seed, r.seed);
-    sensor = signals::filter_sections(
-        sensor, fs,
-        signals::draw_path(path_seed, r.path_modes, r.path_band_low_hz, r.path_band_high_hz,
-                           r.path_damping_low, r.path_damping_high),
-        "recorder.path_band_high");
+    path = signals::draw_path(path_seed, r.path_modes, r.path_band_low_hz, r.path_band_high_hz,
+                              r.path_damping_low, r.path_damping_high);
   }
+  std::optional<signals::SecondOrderSection> accelerometer;
   if (r.accelerometer_resonance_hz) {
-    sensor = signals::filter_sections(
-        sensor, fs,
-        {signals::accelerometer(*r.accelerometer_resonance_hz, r.accelerometer_damping)},
-        "recorder.accelerometer_resonance");
+    accelerometer = signals::accelerometer(*r.accelerometer_resonance_hz, r.accelerometer_damping);
   }
+  sensor =
+      signals::path_then_accelerometer(sensor, fs, path, accelerometer, "recorder.path_band_high",
+                                       "recorder.accelerometer_resonance");
   data.sensor.assign(sensor.end() - n, sensor.end());
   const std::size_t half = data.sensor.size() / 2;
   const double first = rms_about_mean(data.sensor.data(), half);
