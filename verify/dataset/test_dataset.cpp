@@ -249,9 +249,9 @@ TEST_CASE("the program: whole, two shards merged, and killed then resumed give t
   CHECK(records_in(resumed) == reference);
 
   // A folder of another spec's set is refused.
-  fs::copy_file(spec, scratch.dir / "six.toml");
-  fs::copy_file(kHere / "rig_cracked.toml", scratch.dir / "rig_cracked.toml");
-  std::ofstream(scratch.dir / "six.toml", std::ios::app) << "\n# another spec\n";
+  std::ofstream(scratch.dir / "six.toml")
+      << replaced(six_text(), "../../examples/", (kHere / "../../examples/").string())
+      << "\n# another spec\n";
   const auto other = run_command(
       cli("dataset " + quoted(scratch.dir / "six.toml") + " --out " + quoted(whole) + " --quiet"));
   CHECK(other.exit_code == 1);

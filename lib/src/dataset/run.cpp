@@ -523,7 +523,12 @@ std::string card(const Plan& plan, const std::vector<std::string>& record_json) 
     t += "- held out to `" + h.split + "`: `" + h.key + "` " +
          (h.range ? "in [" + shortest_decimal(h.range->first) + ", " +
                         shortest_decimal(h.range->second) + "] (SI)"
-                  : "at levels given in the spec") +
+                  : "at " +
+                        [&] {
+                          std::string l;
+                          for (const std::string& v : h.levels) l += (l.empty() ? "" : ", ") + v;
+                          return l;
+                        }()) +
          "\n";
   }
   t += "\nWhole conditions go to one split: no condition's replicates span two.\n\n";
@@ -555,7 +560,8 @@ std::string card(const Plan& plan, const std::vector<std::string>& record_json) 
        "rows = list(csv.DictReader(open(\"labels.csv\")))\n"
        "x = np.stack([h5py.File(r[\"file\"], \"r\")[\"signals/sensor\"][:] for r in rows])\n"
        "y = np.array([r[\"split\"] for r in rows])\n```\n\n"
-       "MATLAB:\n\n```matlab\nT = readtable('labels.csv', 'Delimiter', ',');\n"
+       "MATLAB:\n\n```matlab\nT = readtable('labels.csv', 'Delimiter', ',', 'VariableNamingRule', "
+       "'preserve');\n"
        "x = h5read(T.file{1}, '/signals/sensor');\n"
        "fs = h5readatt(T.file{1}, '/', 'sample_rate_hz');\n```\n\n";
   t += "## Limitations\n\nSpur gears, lumped bearings, no casing (a transfer path is an "
