@@ -88,6 +88,14 @@ for row in rows:
         check(float(speed.split()[0]) == float(row["torque1.mean_speed_rad_s"]),
               f"{name}: case speed {speed}")
         check(f["provenance"].attrs["seed"].decode() == row["seed"], f"{name}: provenance seed")
+        # The seeded start: the pinion turned by less than one of its 17 teeth' pitch from the
+        # base case's 0, the wheel by the same arc on its base circle (Rb ratio 17/38).
+        theta1 = float(case["initial"]["theta1"].split()[0])
+        theta2 = float(case["initial"]["theta2"].split()[0])
+        check(theta1 == float(row["theta1_start_rad"]) == labels["theta1_start_rad"],
+              f"{name}: theta1_start_rad")
+        check(0 <= theta1 < 2 * math.pi / 17, f"{name}: start angle {theta1} within a pitch")
+        check(abs(theta2 / (theta1 * 17 / 38) - 1) < 1e-14, f"{name}: wheel turned alike")
         check(len(f["provenance"].attrs["code_version"]) > 0, f"{name}: code_version")
 
 check((merged / "DATASET_CARD.md").read_text().startswith("---\npretty_name: six"), "card")

@@ -12,8 +12,10 @@
 #include <sstream>
 
 #include "gearimpact/case/schema.hpp"
+#include "gearimpact/constants.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/error.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/hdf5_image.hpp"
@@ -96,6 +98,14 @@ RecordData make_record(const Plan& plan, const Record& record) {
   if (c.tacho.pulses_per_revolution > 0) {
     c.tacho.seed = static_cast<std::uint32_t>(record.seed & 0xffffffffu);
   }
+  if (spec.random_start) {
+    // Stream 3 of the record's seed (1 and 2 are the noise's and the path's).
+    signals::RandomStream start(record.seed, 3);
+    const double turn = start.uniform() * 2.0 * pi / c.gears.teeth1;
+    c.initial.theta1_rad += turn;
+    c.initial.theta2_rad +=
+        turn * base_radius(c.gears, Gear::one) / base_radius(c.gears, Gear::two);
+  }
   const double fs = spec.sample_rate_hz;
   const auto n0 = static_cast<long long>(std::llround(spec.settle_s * fs));
   const auto n = static_cast<long long>(plan.samples_per_record);
@@ -148,6 +158,7 @@ RecordData make_record(const Plan& plan, const Record& record) {
                           std::to_string(n));
   }
   data.labels.speed_drift_max_rel = result.summary.speed_drift_max_rel.value_or(std::nan(""));
+  data.labels.theta1_start_rad = c.initial.theta1_rad;
 
   // The recorder chain on the whole sampled run: path, accelerometer; then the record is cut.
   const RecorderSettings& r = condition.recorder;
@@ -269,6 +280,7 @@ std::string record_file(const Plan& plan, const Record& record, const RecordData
   h5.attribute("/labels", "clipped", static_cast<std::int64_t>(data.labels.clipped));
   h5.attribute("/labels", "settled", std::int64_t{data.labels.settled ? 1 : 0});
   h5.attribute("/labels", "speed_drift_max_rel", data.labels.speed_drift_max_rel);
+  h5.attribute("/labels", "theta1_start_rad", data.labels.theta1_start_rad);
   h5.group("/provenance");
   h5.text("/provenance/case_toml", data.case_toml);
   h5.text("/provenance/spec_toml", spec.spec_text);
@@ -295,6 +307,7 @@ std::string sidecar(const Plan& plan, const Record& record, const RecordData& da
   j["clipped"] = data.labels.clipped;
   j["settled"] = data.labels.settled;
   j["speed_drift_max_rel"] = number_text(data.labels.speed_drift_max_rel);
+  j["theta1_start_rad"] = number_text(data.labels.theta1_start_rad);
   return j.dump(1) + "\n";
 }
 
@@ -397,7 +410,7 @@ std::string labels_csv(const Plan& plan, const std::vector<std::string>& record_
   for (const Factor& f : plan.spec.factors) csv += "," + column_name(f);
   const bool trajectory = plan.spec.trajectory.has_value();
   if (trajectory) csv += ",trajectory,trajectory_step,cycles,cycles_to_failure,rul_cycles";
-  csv += ",realised_snr_db,clipped,settled,speed_drift_max_rel,file_sha256\n";
+  csv += ",realised_snr_db,clipped,settled,speed_drift_max_rel,theta1_start_rad,file_sha256\n";
   for (std::size_t id = 0; id < plan.records.size(); ++id) {
     const nlohmann::json j = nlohmann::json::parse(record_json.at(id));
     const Record& r = plan.records[id];
@@ -418,6 +431,7 @@ std::string labels_csv(const Plan& plan, const std::vector<std::string>& record_
            std::to_string(j.at("clipped").get<long long>()) + "," +
            (j.at("settled").get<bool>() ? "1" : "0") + "," +
            j.at("speed_drift_max_rel").get<std::string>() + "," +
+           j.at("theta1_start_rad").get<std::string>() + "," +
            j.at("file_sha256").get<std::string>() + "\n";
   }
   return csv;
@@ -471,8 +485,8 @@ std::string card(const Plan& plan, const std::vector<std::string>& record_json) 
                                                   : "seeded random") +
        ", " + std::to_string(plan.conditions.size()) + " conditions x " +
        std::to_string(s.replicates) +
-       " replicates (replicates differ by their seed: noise, "
-       "path per record, tacho jitter). Set seed " +
+       " replicates (replicates differ by their seed: start "
+       "angle, noise, path per record, tacho jitter). Set seed " +
        std::to_string(s.seed) + ".\n\n";
   t += "| factor | label column | values |\n|---|---|---|\n";
   for (std::size_t i = 0; i < s.factors.size(); ++i) {
@@ -549,7 +563,7 @@ std::string card(const Plan& plan, const std::vector<std::string>& record_json) 
   t += "`labels.csv`: one row per record (record_id, file, split, condition, replicate, seed, each "
        "factor in SI with its unit in the column's name, the trajectory's columns if any, "
        "realised_snr_db, clipped, settled, "
-       "speed_drift_max_rel, file_sha256). Settled (halves' RMS within 2 %): " +
+       "speed_drift_max_rel, theta1_start_rad, file_sha256). Settled (halves' RMS within 2 %): " +
        std::to_string(settled) + " of " + std::to_string(n) +
        ". Samples clipped: " + std::to_string(clipped) + ".";
   if (std::isfinite(snr_lo)) {

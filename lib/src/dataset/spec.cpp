@@ -459,7 +459,17 @@ DatasetSpec parse_spec_with_base(std::string_view spec_text, const std::filesyst
 
   // [dataset]
   const toml::value& d = table_at(root, "dataset", true);
-  only_keys(d, "dataset", {"name", "seed", "duration", "settle", "replicates", "sample_rate"});
+  only_keys(d, "dataset",
+            {"name", "seed", "duration", "settle", "replicates", "sample_rate", "start_angle"});
+  if (const toml::value* v = lookup(d, "start_angle")) {
+    const std::string a = text(*v, "dataset.start_angle", "\"random\" or \"case\"");
+    if (a != "random" && a != "case") {
+      throw InputError("dataset.start_angle", shown(*v),
+                       "\"random\" (a seeded mesh phase per record, the default) or \"case\" "
+                       "(the base case's angles)");
+    }
+    spec.random_start = a == "random";
+  }
   const auto required = [&](const toml::value& t, const std::string& section,
                             const std::string& key) -> const toml::value& {
     const toml::value* v = lookup(t, key);

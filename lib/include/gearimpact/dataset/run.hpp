@@ -27,6 +27,7 @@ struct RecordLabels {
   long long clipped = 0;
   bool settled = true;
   double speed_drift_max_rel = 0.0;  // NaN before a whole revolution
+  double theta1_start_rad = 0.0;     // the pinion's angle at t = 0 (dataset.start_angle)
 };
 
 // One record's arrays and labels.

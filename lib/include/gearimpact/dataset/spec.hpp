@@ -103,6 +103,11 @@ struct DatasetSpec {
   double settle_s = 0.0;
   int replicates = 1;
   double sample_rate_hz = 0.0;
+  // true ("random", the default): each record starts the pair turned by a seeded angle,
+  // theta1 + d with d ~ U[0, 2 pi / z1) and theta2 + d Rb1 / Rb2 (the deflection unchanged), so
+  // that replicates differ in their mesh phase, not in their noise alone; false ("case"): the
+  // base case's angles.
+  bool random_start = true;
   std::filesystem::path base_case_path;
   std::string base_case_text;
   SimulationCase base;
