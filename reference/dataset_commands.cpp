@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "case_flags.hpp"
 #include "commands.hpp"
 #include "gearimpact/case/units.hpp"
 #include "gearimpact/dataset/run.hpp"
@@ -27,6 +28,7 @@ struct DatasetOptions {
   double max_records = 1e6;
   double max_samples = 1e11;
   double max_bytes = 200e9;
+  unsigned threads = 1;
   bool plan_only = false;
   bool quiet = false;
 };
@@ -107,7 +109,12 @@ void run_dataset(const DatasetOptions& o) {
                  p.cpu_s > 0.0 ? p.signal_s / p.cpu_s : 0.0, duration_text(p.elapsed_s).c_str(),
                  duration_text(p.remaining_s).c_str());
   };
-  const dataset::Progress p = dataset::run_shard(plan, o.out, {shard.k, shard.n}, progress);
+  if (o.threads > kMostThreads) {
+    throw InputError("--threads", std::to_string(o.threads),
+                     "an integer in [0, " + std::to_string(kMostThreads) + "] (0: all cores)");
+  }
+  const dataset::Progress p =
+      dataset::run_shard(plan, o.out, {shard.k, shard.n}, o.threads, progress);
   if (!o.quiet && p.done == 0) {
     std::fprintf(stderr, "dataset: shard %d/%d: all %zu records were complete\n", shard.k, shard.n,
                  p.total);
@@ -137,6 +144,9 @@ void register_dataset_commands(CLI::App& app) {
                   "the most samples over every record and channel (default 1e11)");
   cmd->add_option("--max-bytes", o->max_bytes,
                   "the most bytes the records may take, estimated (default 2e11)");
+  cmd->add_option("--threads", o->threads,
+                  "records made at once in this process, 0 to 1024 (0: one per core; default 1); "
+                  "the files are the same bytes for any count");
   cmd->add_flag("--plan", o->plan_only, "print the plan (counts, bytes) and stop");
   cmd->add_flag("--quiet", o->quiet, "no progress lines on stderr");
   cmd->require_subcommand(0, 1);

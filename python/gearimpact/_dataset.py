@@ -28,12 +28,13 @@ def dataset_plan(spec, max_records=_BOUNDS["max_records"], max_samples=_BOUNDS["
     return _core.dataset_plan(_spec(spec), *_bounds(max_records, max_samples, max_bytes))
 
 
-def dataset_run(spec, out, shard=(0, 1), max_records=_BOUNDS["max_records"],
+def dataset_run(spec, out, shard=(0, 1), threads=1, max_records=_BOUNDS["max_records"],
                 max_samples=_BOUNDS["max_samples"], max_bytes=_BOUNDS["max_bytes"]):
     """Makes the records of shard (K, N) of a spec into the folder `out` (made if absent), as
     ``gearimpact dataset SPEC --out OUT --shard K/N``: bit for bit the program's files. Records
-    found complete are kept (a rerun resumes). Returns a dict: made, found_complete, records,
-    signal_s, cpu_s."""
+    found complete are kept (a rerun resumes). `threads`: records made at once, 0 to 1024 (0: one
+    per core); the files are the same bytes for any count. Returns a dict: made, found_complete,
+    records, signal_s, cpu_s."""
     if (not isinstance(shard, (tuple, list)) or len(shard) != 2
             or any(_arguments.is_bool(v) for v in shard)):
         raise _arguments.case_error(f"shard={shard!r}: a pair (K, N) with 0 <= K < N", "shard")
@@ -42,7 +43,11 @@ def dataset_run(spec, out, shard=(0, 1), max_records=_BOUNDS["max_records"],
     if not 0 <= k < n:
         raise _arguments.case_error(f"shard={shard!r}: a pair (K, N) with 0 <= K < N", "shard")
     out = os.fspath(out) if isinstance(out, os.PathLike) else _arguments.text("out", out)
-    return _core.dataset_run(_spec(spec), out, k, n,
+    workers = _arguments.integer("threads", threads)
+    if not 0 <= workers <= 1024:
+        raise _arguments.case_error(f"threads={threads!r}: an integer in [0, 1024] (0: all cores)",
+                                    "threads")
+    return _core.dataset_run(_spec(spec), out, k, n, workers,
                              *_bounds(max_records, max_samples, max_bytes))
 
 

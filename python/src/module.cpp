@@ -961,14 +961,14 @@ void define_module(py::module_& m) {
   m.def(
       "dataset_run",
       [dataset_bounds](const std::string& spec, const std::string& out, int k, int n,
-                       double records, double samples, double bytes) {
+                       unsigned threads, double records, double samples, double bytes) {
         const dataset::Plan plan =
             dataset::make_plan(dataset::read_spec(spec), dataset_bounds(records, samples, bytes));
         std::filesystem::create_directories(out);
         dataset::Progress p;
         {
           py::gil_scoped_release release;
-          p = dataset::run_shard(plan, out, {k, n});
+          p = dataset::run_shard(plan, out, {k, n}, threads);
         }
         py::dict d;
         d["made"] = p.done;
@@ -978,8 +978,8 @@ void define_module(py::module_& m) {
         d["cpu_s"] = p.cpu_s;
         return d;
       },
-      py::arg("spec"), py::arg("out"), py::arg("k"), py::arg("n"), py::arg("max_records"),
-      py::arg("max_samples"), py::arg("max_bytes"));
+      py::arg("spec"), py::arg("out"), py::arg("k"), py::arg("n"), py::arg("threads"),
+      py::arg("max_records"), py::arg("max_samples"), py::arg("max_bytes"));
   m.def(
       "dataset_merge",
       [](const std::vector<std::string>& folders, const std::string& out, bool overwrite) {

@@ -183,7 +183,9 @@ std::string quoted(const fs::path& p) {
 
 }  // namespace
 
-TEST_CASE("the program: whole, two shards merged, and killed then resumed give the same bytes") {
+TEST_CASE(
+    "the program: whole, two shards (one on two threads) merged, and killed then resumed give the "
+    "same bytes") {
   Scratch scratch("dataset");
   const fs::path spec = kHere / "six.toml";
   const fs::path whole = scratch.dir / "whole";
@@ -213,7 +215,8 @@ TEST_CASE("the program: whole, two shards merged, and killed then resumed give t
   CHECK(early.exit_code == 1);
   CHECK(early.err.find("3 missing") != std::string::npos);
   CHECK(!fs::exists(scratch.dir / "x"));
-  run("--out " + quoted(sharded) + " --shard 1/2");
+  // Two threads in this shard: the files do not depend on them.
+  run("--out " + quoted(sharded) + " --shard 1/2 --threads 2");
   const fs::path merged = scratch.dir / "merged";
   const auto m = run_command(cli("dataset merge " + quoted(sharded) + " --out " + quoted(merged)));
   INFO(m.err);

@@ -1,16 +1,19 @@
 #include "gearimpact/dataset/run.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
+#include "gearimpact/batch/pool.hpp"
 #include "gearimpact/case/schema.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
@@ -91,7 +94,7 @@ std::string number_text(double v) {
 
 }  // namespace
 
-RecordData make_record(const Plan& plan, const Record& record) {
+RecordData make_record(const Plan& plan, const Record& record, const StiffnessTable* table) {
   const DatasetSpec& spec = plan.spec;
   const Condition& condition = plan.conditions.at(record.condition);
   SimulationCase c = condition.simulation_case;
@@ -150,7 +153,7 @@ RecordData make_record(const Plan& plan, const Record& record) {
             s.normal_force_n2_n, s.dte_m});
     };
   }
-  const SimulationResult result = simulate(c, control);
+  const SimulationResult result = table ? simulate(c, *table, control) : simulate(c, control);
   if (static_cast<long long>(sensor.size()) != n0 + n - 1 ||
       static_cast<long long>(data.contact.size()) != n) {
     throw SimulationError("record " + std::to_string(record.id) + ": " +
@@ -357,39 +360,59 @@ void write_spec_files(const Plan& plan, const fs::path& out) {
 
 }  // namespace
 
-Progress run_shard(const Plan& plan, const std::string& out, Shard shard,
+Progress run_shard(const Plan& plan, const std::string& out, Shard shard, unsigned threads,
                    const std::function<void(const Progress&)>& progress) {
   if (shard.n < 1 || shard.k < 0 || shard.k >= shard.n) {
-    throw InputError("--shard", std::to_string(shard.k) + "/" + std::to_string(shard.n),
+    throw InputError("shard", std::to_string(shard.k) + "/" + std::to_string(shard.n),
                      "K/N with 0 <= K < N");
   }
   const fs::path folder(out);
   std::error_code error;
   if (!fs::is_directory(folder, error)) {
-    throw InputError("--out", out, "an existing folder (the shards of a set share it)");
+    throw InputError("out", out, "an existing folder (the shards of a set share it)");
   }
   write_spec_files(plan, folder);
   Progress p;
   std::vector<const Record*> mine;
   for (const Record& r : plan.records) {
-    if (static_cast<int>(r.id % static_cast<std::size_t>(shard.n)) == shard.k) mine.push_back(&r);
+    if (static_cast<int>(r.id % static_cast<std::size_t>(shard.n)) != shard.k) continue;
+    if (complete_record(folder, r.id, plan.spec.spec_sha256).valid) {
+      ++p.skipped;
+    } else {
+      mine.push_back(&r);
+    }
   }
-  p.total = mine.size();
+  p.total = mine.size() + p.skipped;
   const double cpu0 = cpu_seconds();
   const auto wall0 = std::chrono::steady_clock::now();
-  const double record_s = plan.spec.settle_s + plan.spec.duration_s;
+  // Records on the pool's workers, each stiffness table built once per gear pair and model; a
+  // record depends on nothing but its plan and id, so the threads change no byte. After a
+  // failure the records not yet begun are skipped, not made.
+  // Declared before the pool, whose destructor waits for the tasks that read it.
+  std::atomic<bool> failed{false};
+  RunPool pool(threads);
+  std::vector<std::future<void>> made;
+  made.reserve(mine.size());
   for (const Record* r : mine) {
-    if (complete_record(folder, r->id, plan.spec.spec_sha256).valid) {
-      ++p.skipped;
-      continue;
-    }
-    const RecordData data = make_record(plan, *r);
-    const std::string bytes = record_file(plan, *r, data);
-    const std::string name = record_name(r->id);
-    write_file_atomically((folder / (name + ".h5")).string(), bytes);
-    // The sidecar last: its presence, with the file's digest, marks the record complete.
-    write_file_atomically((folder / (name + ".json")).string(),
-                          sidecar(plan, *r, data, sha256_hex(bytes)));
+    made.push_back(pool.run([&plan, &pool, &folder, &failed, r] {
+      if (failed.load()) return;
+      try {
+        const auto table = pool.table_for(plan.conditions.at(r->condition).simulation_case);
+        const RecordData data = make_record(plan, *r, table.get());
+        const std::string bytes = record_file(plan, *r, data);
+        const std::string name = record_name(r->id);
+        write_file_atomically((folder / (name + ".h5")).string(), bytes);
+        // The sidecar last: its presence, with the file's digest, marks the record complete.
+        write_file_atomically((folder / (name + ".json")).string(),
+                              sidecar(plan, *r, data, sha256_hex(bytes)));
+      } catch (...) {
+        failed.store(true);
+        throw;
+      }
+    }));
+  }
+  for (std::future<void>& f : made) {
+    f.get();
     ++p.done;
     p.signal_s += plan.spec.duration_s;
     p.cpu_s = cpu_seconds() - cpu0;
@@ -397,7 +420,6 @@ Progress run_shard(const Plan& plan, const std::string& out, Shard shard,
     const std::size_t left = p.total - p.done - p.skipped;
     p.remaining_s =
         p.done == 0 ? 0.0 : p.elapsed_s / static_cast<double>(p.done) * static_cast<double>(left);
-    (void)record_s;
     if (progress) progress(p);
   }
   p.cpu_s = cpu_seconds() - cpu0;

@@ -53,7 +53,14 @@ struct Hdf5Image::Handles {
   hid_t dataset_properties = -1;
 };
 
-Hdf5Image::Hdf5Image() : h_(std::make_unique<Handles>()) {
+namespace {
+std::mutex& hdf5_mutex() {
+  static std::mutex m;
+  return m;
+}
+}  // namespace
+
+Hdf5Image::Hdf5Image() : lock_(hdf5_mutex()), h_(std::make_unique<Handles>()) {
   // Errors reach the caller as exceptions, not as HDF5's stack printed on stderr.
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   const hid_t access = checked(H5Pcreate(H5P_FILE_ACCESS), "create file access properties");

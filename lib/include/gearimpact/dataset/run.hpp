@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "gearimpact/dataset/spec.hpp"
+#include "gearimpact/stiffness/table.hpp"
 
 namespace gearimpact::dataset {
 
@@ -46,8 +47,10 @@ struct RecordData {
   std::string case_toml;  // the record's case, SI, as a case file
 };
 
-// Simulates and records one record of the plan.
-RecordData make_record(const Plan& plan, const Record& record);
+// Simulates and records one record of the plan; `table`, when given, is the stiffness table of
+// its condition's gear pair and model (RunPool::table_for), built once for many records.
+RecordData make_record(const Plan& plan, const Record& record,
+                       const StiffnessTable* table = nullptr);
 
 // The record's HDF5 file, as bytes (the layout of docs/datasets.md).
 std::string record_file(const Plan& plan, const Record& record, const RecordData& data);
@@ -69,8 +72,9 @@ struct Progress {
 // Makes the shard's records into out/records/ (out must exist): each record's r<id>.h5, then its
 // r<id>.json (labels, the file's sha256, the spec's sha256), both atomic; a record whose pair is
 // complete and verifies is skipped. out/spec.toml holds the spec; a folder of another spec is
-// refused. `progress` is called after every record.
-Progress run_shard(const Plan& plan, const std::string& out, Shard shard,
+// refused. Records run on `threads` workers (0: one per core), which change no byte;
+// `progress` is called, on the calling thread, as each record is written, in id order.
+Progress run_shard(const Plan& plan, const std::string& out, Shard shard, unsigned threads = 1,
                    const std::function<void(const Progress&)>& progress = {});
 
 // The labels table of the records (docs/datasets.md, labels.csv).

@@ -8,11 +8,14 @@
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
 namespace gearimpact {
 
+// Debian's libhdf5 is the serial build, not thread-safe: an image holds the process's one HDF5
+// lock from construction to destruction, so that images built on several threads take turns.
 class Hdf5Image {
  public:
   Hdf5Image();
@@ -40,6 +43,7 @@ class Hdf5Image {
 
  private:
   struct Handles;
+  std::unique_lock<std::mutex> lock_;  // first: held until the handles are closed
   std::unique_ptr<Handles> h_;
 };
 
