@@ -113,8 +113,16 @@ void run_dataset(const DatasetOptions& o) {
     throw InputError("--threads", std::to_string(o.threads),
                      "an integer in [0, " + std::to_string(kMostThreads) + "] (0: all cores)");
   }
-  const dataset::Progress p =
-      dataset::run_shard(plan, o.out, {shard.k, shard.n}, o.threads, progress);
+  dataset::Progress p;
+  try {
+    p = dataset::run_shard(plan, o.out, {shard.k, shard.n}, o.threads, progress);
+  } catch (const InputError& e) {
+    // The library names its arguments; the program, its flags.
+    if (e.field() != "out" && e.field() != "shard") throw;
+    std::vector<Problem> problems;
+    for (const Problem& q : e.problems()) problems.push_back(q.renamed("--" + q.field, q.value));
+    throw InputError(problems);
+  }
   if (!o.quiet && p.done == 0) {
     std::fprintf(stderr, "dataset: shard %d/%d: all %zu records were complete\n", shard.k, shard.n,
                  p.total);

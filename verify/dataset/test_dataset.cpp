@@ -222,6 +222,13 @@ TEST_CASE(
   INFO(m.err);
   REQUIRE(m.exit_code == 0);
   CHECK(records_in(merged) == reference);
+  // A record in two folders is refused, naming it.
+  const auto doubled = run_command(cli("dataset merge " + quoted(sharded) + " " + quoted(whole) +
+                                       " --out " + quoted(scratch.dir / "y")));
+  CHECK(doubled.exit_code == 1);
+  CHECK(doubled.err.find("record 0") != std::string::npos);
+  CHECK(doubled.err.find("one shard folder per record") != std::string::npos);
+  CHECK(!fs::exists(scratch.dir / "y"));
 
   // Killed: SIGKILL once the first record is complete, then the same command again.
   const fs::path resumed = scratch.dir / "resumed";
@@ -250,6 +257,20 @@ TEST_CASE(
   // Four records were complete, two were made again.
   CHECK(again.err.find("6/6 records (4 found complete)") != std::string::npos);
   CHECK(records_in(resumed) == reference);
+
+  // A set larger than its disk is refused before anything is written: 120000 records of 10 s,
+  // 1.75 TB by the estimate.
+  const fs::path big = scratch.dir / "big";
+  std::ofstream(scratch.dir / "big.toml") << replaced(
+      replaced(replaced(six_text(), "../../examples/", (kHere / "../../examples/").string()),
+               "replicates = 1", "replicates = 20000"),
+      "duration = \"50 ms\"", "duration = \"10 s\"");
+  const auto full = run_command(cli("dataset " + quoted(scratch.dir / "big.toml") + " --out " +
+                                    quoted(big) + " --max-bytes 1e15 --max-samples 1e15"));
+  CHECK(full.exit_code == 1);
+  CHECK(full.err.find("--out = ") != std::string::npos);
+  CHECK(full.err.find("bytes free, below 1.2 times the shard's estimate") != std::string::npos);
+  CHECK(fs::is_empty(big));
 
   // A folder of another spec's set is refused.
   std::ofstream(scratch.dir / "six.toml")

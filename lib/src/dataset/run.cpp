@@ -343,15 +343,20 @@ double cpu_seconds() {
   return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
 }
 
-void write_spec_files(const Plan& plan, const fs::path& out) {
+// Throws InputError naming `out` when it holds another spec's set.
+void require_same_spec(const Plan& plan, const fs::path& out) {
   const std::string previous = read_all(out / "spec.sha256");
   if (!previous.empty() && previous != plan.spec.spec_sha256 + "\n") {
-    throw InputError("--out", out.string(),
+    throw InputError("out", out.string(),
                      "a new folder, or one of this spec's set (it holds the set of spec sha256 " +
                          previous.substr(0, previous.size() - 1) + "; this spec's is " +
                          plan.spec.spec_sha256 + ")");
   }
-  if (previous.empty()) {
+}
+
+void write_spec_files(const Plan& plan, const fs::path& out) {
+  require_same_spec(plan, out);
+  if (read_all(out / "spec.sha256").empty()) {
     write_file_atomically((out / "spec.toml").string(), plan.spec.spec_text);
     write_file_atomically((out / "base_case.toml").string(), plan.spec.base_case_text);
     write_file_atomically((out / "spec.sha256").string(), plan.spec.spec_sha256 + "\n");
@@ -371,7 +376,7 @@ Progress run_shard(const Plan& plan, const std::string& out, Shard shard, unsign
   if (!fs::is_directory(folder, error)) {
     throw InputError("out", out, "an existing folder (the shards of a set share it)");
   }
-  write_spec_files(plan, folder);
+  require_same_spec(plan, folder);
   Progress p;
   std::vector<const Record*> mine;
   for (const Record& r : plan.records) {
@@ -383,6 +388,18 @@ Progress run_shard(const Plan& plan, const std::string& out, Shard shard, unsign
     }
   }
   p.total = mine.size() + p.skipped;
+  // The disk must hold what is left with a margin (the estimate is rough), before any work.
+  const double needed = 1.2 * plan.bytes_per_record * static_cast<double>(mine.size());
+  const fs::space_info space = fs::space(folder, error);
+  if (!error && static_cast<double>(space.available) < needed) {
+    throw InputError(std::vector<Problem>{refused_problem(
+        "out", out,
+        "its file system has " + shortest_decimal(static_cast<double>(space.available)) +
+            " bytes free, below 1.2 times the shard's estimate (" + shortest_decimal(needed / 1.2) +
+            " bytes)",
+        "a folder on a file system with room for the records")});
+  }
+  write_spec_files(plan, folder);
   const double cpu0 = cpu_seconds();
   const auto wall0 = std::chrono::steady_clock::now();
   // Records on the pool's workers, each stiffness table built once per gear pair and model; a
