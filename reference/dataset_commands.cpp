@@ -91,9 +91,11 @@ void run_dataset(const DatasetOptions& o) {
   const double records = static_cast<double>(plan.records.size());
   std::printf(
       "{\n  \"records\": %zu,\n  \"conditions\": %zu,\n  \"samples_per_record\": %zu,\n"
-      "  \"bytes_estimate\": %.0f,\n  \"spec_sha256\": \"%s\",\n  \"shard\": \"%d/%d\"\n}\n",
+      "  \"bytes_estimate\": %.0f,\n  \"spec_sha256\": \"%s\",\n  \"code_version\": \"%s\",\n"
+      "  \"shard\": \"%d/%d\"\n}\n",
       plan.records.size(), plan.conditions.size(), plan.samples_per_record,
-      records * plan.bytes_per_record, plan.spec.spec_sha256.c_str(), shard.k, shard.n);
+      records * plan.bytes_per_record, plan.spec.spec_sha256.c_str(),
+      dataset::code_version().c_str(), shard.k, shard.n);
   if (o.plan_only) return;
   if (o.out.empty()) throw InputError("--out", "none", "the set's folder (made if absent)");
   std::filesystem::create_directories(o.out);

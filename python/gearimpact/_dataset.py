@@ -23,7 +23,8 @@ def _bounds(max_records, max_samples, max_bytes):
 def dataset_plan(spec, max_records=_BOUNDS["max_records"], max_samples=_BOUNDS["max_samples"],
                  max_bytes=_BOUNDS["max_bytes"]):
     """The plan of a data set's spec file, as ``gearimpact dataset SPEC --plan``: a dict of
-    records, conditions, samples_per_record, bytes_estimate and spec_sha256. Every key and bound
+    records, conditions, samples_per_record, bytes_estimate, spec_sha256 and code_version (which
+    every record carries: files are the same bytes on one build). Every key and bound
     is checked first; a refusal raises CaseError naming the key as the spec writes it."""
     return _core.dataset_plan(_spec(spec), *_bounds(max_records, max_samples, max_bytes))
 

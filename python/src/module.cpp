@@ -955,6 +955,7 @@ void define_module(py::module_& m) {
         d["samples_per_record"] = plan.samples_per_record;
         d["bytes_estimate"] = static_cast<double>(plan.records.size()) * plan.bytes_per_record;
         d["spec_sha256"] = plan.spec.spec_sha256;
+        d["code_version"] = dataset::code_version();
         return d;
       },
       py::arg("spec"), py::arg("max_records"), py::arg("max_samples"), py::arg("max_bytes"));

@@ -35,38 +35,38 @@ constexpr double kMostSectionFraction = 0.25;
 
 const std::vector<RecorderKey>& recorder_keys() {
   static const std::vector<RecorderKey> keys{
-      {"accelerometer_resonance", Dimension::frequency, "Hz", 0.0, kInf, false,
+      {"accelerometer_resonance", Dimension::frequency, "Hz", 0.0, kInf, false, false,
        "an accelerometer's mounted resonance, w^2 / (s^2 + 2 zeta w s + w^2), below a quarter of "
        "the sample rate (default: none)",
        [](RecorderSettings& r, double v) { r.accelerometer_resonance_hz = v; }},
-      {"accelerometer_damping", std::nullopt, "", 0.0, 1.0, false,
+      {"accelerometer_damping", std::nullopt, "", 0.0, 1.0, false, false,
        "the accelerometer's damping ratio, in (0, 1) (default 0.02)",
        [](RecorderSettings& r, double v) { r.accelerometer_damping = v; }},
-      {"path_modes", std::nullopt, "", 0.0, 32.0, true,
+      {"path_modes", std::nullopt, "", 0.0, 32.0, true, true,
        "modes of a seeded transfer path, 0 to 32 (default 0: none)",
        [](RecorderSettings& r, double v) { r.path_modes = static_cast<int>(v); }},
-      {"path_band_low", Dimension::frequency, "Hz", 0.0, kInf, false,
+      {"path_band_low", Dimension::frequency, "Hz", 0.0, kInf, false, false,
        "the path modes' lowest frequency (log-uniform draws; default 1 kHz)",
        [](RecorderSettings& r, double v) { r.path_band_low_hz = v; }},
-      {"path_band_high", Dimension::frequency, "Hz", 0.0, kInf, false,
+      {"path_band_high", Dimension::frequency, "Hz", 0.0, kInf, false, false,
        "the path modes' highest frequency, below a quarter of the sample rate (default 8 kHz)",
        [](RecorderSettings& r, double v) { r.path_band_high_hz = v; }},
-      {"path_damping_low", std::nullopt, "", 0.0, 1.0, false,
+      {"path_damping_low", std::nullopt, "", 0.0, 1.0, false, false,
        "the path modes' least damping ratio (uniform draws; default 0.01)",
        [](RecorderSettings& r, double v) { r.path_damping_low = v; }},
-      {"path_damping_high", std::nullopt, "", 0.0, 1.0, false,
+      {"path_damping_high", std::nullopt, "", 0.0, 1.0, false, false,
        "the path modes' largest damping ratio (default 0.05)",
        [](RecorderSettings& r, double v) { r.path_damping_high = v; }},
-      {"noise_snr", std::nullopt, "dB", -100.0, 200.0, false,
+      {"noise_snr", std::nullopt, "dB", -100.0, 200.0, true, false,
        "white Gaussian noise at this SNR, dB: sigma = RMS(x - mean) 10^(-SNR/20) (default: none)",
        [](RecorderSettings& r, double v) { r.noise_snr_db = v; }},
-      {"adc_range", std::nullopt, "", 0.0, kInf, false,
+      {"adc_range", std::nullopt, "", 0.0, kInf, false, false,
        "an ADC's full scale in the sensor's unit: clip at +-range, counted (default: none)",
        [](RecorderSettings& r, double v) { r.adc_range = v; }},
-      {"adc_bits", std::nullopt, "", 0.0, 32.0, true,
+      {"adc_bits", std::nullopt, "", 0.0, 32.0, true, true,
        "the ADC's resolution, LSB = 2 range / 2^bits, 0: no rounding (default 16)",
        [](RecorderSettings& r, double v) { r.adc_bits = static_cast<int>(v); }},
-      {"seed", std::nullopt, "", 0.0, 9.0e15, true,
+      {"seed", std::nullopt, "", 0.0, 9.0e15, true, true,
        "mixed into every record's noise and path seeds (default 0)",
        [](RecorderSettings& r, double v) { r.seed = static_cast<std::int64_t>(v); }},
   };
@@ -241,16 +241,12 @@ const RecorderKey* recorder_key(const std::string& key) {
 }
 
 std::string recorder_allowed(const RecorderKey& k) {
-  std::string range =
-      k.integer
-          ? "an integer in [" + shortest_decimal(k.lower) + ", " + shortest_decimal(k.upper) + "]"
-          : "a value in (" + shortest_decimal(k.lower) + ", " +
-                (std::isinf(k.upper) ? std::string("inf") : shortest_decimal(k.upper)) + ")";
-  if (k.key == "noise_snr") range = "dB in [-100, 200]";
-  if (k.key == "path_modes" || k.key == "adc_bits" || k.key == "seed") {
-    range = "an integer in [" + shortest_decimal(k.lower) + ", " + shortest_decimal(k.upper) + "]";
-  }
-  if (k.dimension) range += " (" + std::string(k.unit) + ", or with a unit)";
+  const std::string upper = std::isinf(k.upper) ? std::string("inf") : shortest_decimal(k.upper);
+  std::string range = (k.integer ? "an integer in " : "a value in ") +
+                      std::string(k.closed ? "[" : "(") + shortest_decimal(k.lower) + ", " + upper +
+                      (k.closed ? "]" : ")");
+  if (!k.unit.empty()) range += " " + std::string(k.unit);
+  if (k.dimension) range += " (or with a unit)";
   return range + ": " + std::string(k.help);
 }
 
@@ -260,9 +256,11 @@ double recorder_value(const RecorderKey& k, const std::string& written, const st
     v = parse_plain_or_quantity(written, *k.dimension, name);
   } else {
     std::string t = written;
-    // "30 dB": the unit of an SNR is said, not converted.
-    if (k.key == "noise_snr" && t.size() > 2 && t.compare(t.size() - 2, 2, "dB") == 0) {
-      t = t.substr(0, t.size() - 2);
+    // "30 dB": a plain row's unit may be said, and is not converted.
+    const std::string unit(k.unit);
+    if (!unit.empty() && t.size() > unit.size() &&
+        t.compare(t.size() - unit.size(), unit.size(), unit) == 0) {
+      t = t.substr(0, t.size() - unit.size());
     }
     char* end = nullptr;
     v = std::strtod(t.c_str(), &end);
@@ -271,11 +269,9 @@ double recorder_value(const RecorderKey& k, const std::string& written, const st
       throw InputError(name, written, recorder_allowed(k));
     }
   }
-  const bool open_lower = !k.integer && k.key != "noise_snr";
-  const bool bad =
-      !std::isfinite(v) || (open_lower ? v <= k.lower : v < k.lower) ||
-      (k.integer ? v > k.upper : (k.key == "noise_snr" ? v > k.upper : v >= k.upper)) ||
-      (k.integer && v != std::floor(v));
+  const bool bad = !std::isfinite(v) || (k.closed ? v < k.lower || v > k.upper
+                                                     : v <= k.lower || v >= k.upper) ||
+                   (k.integer && v != std::floor(v));
   if (bad) throw InputError(name, written, recorder_allowed(k));
   return v;
 }
@@ -286,11 +282,6 @@ struct KeyInfo {
   bool integer = false;
   std::optional<Dimension> dimension;
 };
-
-std::string unit_suffix_of(std::string_view symbol) {
-  std::string s(symbol);
-  return s;
-}
 
 // What a factor's key is, checked against the base case: an unknown key, a list key, a fault
 // the case does not have, or a key the case does not read are refused naming `name`.
@@ -355,7 +346,7 @@ KeyInfo key_info(const SimulationCase& base, const std::string& key, const std::
   info.integer = field->kind == FieldKind::integer;
   if (field->kind == FieldKind::quantity) {
     info.dimension = field->dimension;
-    info.unit = unit_suffix_of(units_of(field->dimension).front().symbol);
+    info.unit = std::string(units_of(field->dimension).front().symbol);
   }
   return info;
 }
@@ -792,15 +783,15 @@ DatasetSpec read_spec(const std::filesystem::path& path) {
 namespace {
 
 // The value of design draw u in [0, 1) of a factor: a level, or a value of its range.
-std::pair<std::string, bool> drawn(const Factor& f, double u, bool integer) {
+std::string drawn(const Factor& f, double u, bool integer) {
   if (!f.levels.empty()) {
     const auto j = std::min(f.levels.size() - 1,
                             static_cast<std::size_t>(u * static_cast<double>(f.levels.size())));
-    return {f.levels[j], false};
+    return f.levels[j];
   }
   double v = f.range->first + u * (f.range->second - f.range->first);
   if (integer) v = std::round(v);
-  return {shortest_decimal(v), true};
+  return shortest_decimal(v);
 }
 
 // The grid's values of one factor: its levels, or `points` values evenly over its range.
@@ -845,7 +836,7 @@ Plan make_plan(const DatasetSpec& spec, const Bounds& bounds) {
     integer[i] =
         key_info(spec.base, spec.factors[i].key, "factors[" + std::to_string(i) + "].key").integer;
   }
-  // The design's texts per condition, and whether each is an SI number (a range's value).
+  // The design's texts per condition: a level as written, or a range's value in SI.
   std::vector<std::vector<std::string>> texts;
   double conditions = 1.0;
   if (spec.design == DesignKind::grid) {
@@ -911,7 +902,7 @@ Plan make_plan(const DatasetSpec& spec, const Bounds& bounds) {
             spec.design == DesignKind::latin_hypercube
                 ? (static_cast<double>(strata[c]) + stream.uniform()) / static_cast<double>(count)
                 : stream.uniform();
-        texts[c][i] = drawn(spec.factors[i], u, integer[i]).first;
+        texts[c][i] = drawn(spec.factors[i], u, integer[i]);
       }
     }
   }

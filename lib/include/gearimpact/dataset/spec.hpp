@@ -44,6 +44,7 @@ struct RecorderKey {
   std::string_view unit;               // SI unit as labels name it ("Hz", "dB", "")
   double lower;
   double upper;
+  bool closed;  // [lower, upper], else (lower, upper)
   bool integer;
   std::string_view help;
   void (*set)(RecorderSettings&, double);
