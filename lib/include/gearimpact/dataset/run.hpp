@@ -37,10 +37,10 @@ struct RecordData {
   std::vector<double> sensor;
   std::string sensor_units;
   std::string sensor_quantity;
-  // Per sample, in truth_channels() order; the last two are int8 (contact, pairs).
+  // Per sample, in truth_channels() order.
   std::vector<std::vector<double>> truth;
+  // Per sample: 1 when the drive flanks carry, plus 2 when the coast flanks carry.
   std::vector<std::int8_t> contact;
-  std::vector<std::int8_t> pairs;
   std::vector<double> tacho_times_s;          // true edges within the record; empty: no tacho
   std::vector<double> tacho_emitted_times_s;  // with the seeded jitter
   RecordLabels labels;
