@@ -29,5 +29,7 @@ void register_signals_commands(CLI::App& app);
 void register_modes_commands(CLI::App& app);
 // `fe-check CASE --out DIR`: the tooth compliance by finite elements (fe_commands.cpp).
 void register_fe_commands(CLI::App& app);
+// `dataset SPEC --out DIR` and `dataset merge`: labelled data sets (dataset_commands.cpp).
+void register_dataset_commands(CLI::App& app);
 
 }  // namespace gearimpact::cli

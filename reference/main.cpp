@@ -63,6 +63,7 @@ int main(int argc, char** argv) {
   gearimpact::cli::register_ste_commands(app);
   gearimpact::cli::register_modes_commands(app);
   gearimpact::cli::register_fe_commands(app);
+  gearimpact::cli::register_dataset_commands(app);
   refuse_empty_and_non_decimal(app);
   int status = 0;
   try {

@@ -624,19 +624,8 @@ void run_signals(SignalsOptions o) {
         }
       });
     }
-    std::vector<double> response;
-    if (accelerometer && path.empty()) {
-      response =
-          signals::filter_sections(recorded, record_rate, {*accelerometer}, "--accelerometer");
-    } else {
-      // The path's modes sum to the path; the accelerometer follows it.
-      response = signals::filter_sections(recorded, record_rate, path, "--path-band");
-      if (accelerometer) {
-        response =
-            signals::filter_sections(response, record_rate, {*accelerometer}, "--accelerometer");
-      }
-    }
-    recorded = std::move(response);
+    recorded = signals::path_then_accelerometer(recorded, record_rate, path, accelerometer,
+                                                "--path-band", "--accelerometer");
   }
   const std::vector<double>& record_time = recorded_time;
   const std::vector<double>& record_angle =

@@ -64,6 +64,7 @@ from ._results import (
     stiffness,
     sweep_friction,
 )
+from ._dataset import dataset_merge, dataset_plan, dataset_run, load_dataset
 from ._signals import decimate, indicators, low_pass, order_analysis, spectrum, tacho_angle, tacho_jitter
 from ._program import (
     iso6336,
@@ -92,6 +93,9 @@ __all__ = [
     "contact_angle",
     "contact_ratio",
     "contact_segment",
+    "dataset_merge",
+    "dataset_plan",
+    "dataset_run",
     "decimate",
     "energy_ratios",
     "gear_pair",
@@ -99,6 +103,7 @@ __all__ = [
     "iso6336",
     "line_of_action_length",
     "low_pass",
+    "load_dataset",
     "mesh_stiffness",
     "modes",
     "moment_of_inertia",

@@ -15,6 +15,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstddef>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
@@ -928,6 +929,65 @@ void define_module(py::module_& m) {
   m.def("mesh_stiffness", &mesh_stiffness_texts_of, py::arg("case"), py::arg("model"),
         py::arg("samples"));
   m.def("sweep", &sweep_texts, py::arg("case"), py::arg("options"));
+  // Data sets (docs/datasets.md): the library's dataset/ functions on a spec file.
+  const auto dataset_bounds = [](double records, double samples, double bytes) {
+    dataset::Bounds b;
+    for (const auto& [value, name] :
+         {std::pair{records, "max_records"}, std::pair{samples, "max_samples"},
+          std::pair{bytes, "max_bytes"}}) {
+      if (!(value >= 1.0) || !std::isfinite(value)) {
+        throw InputError(name, format_number(value), "a finite number >= 1");
+      }
+    }
+    b.max_records = records;
+    b.max_samples = samples;
+    b.max_bytes = bytes;
+    return b;
+  };
+  m.def(
+      "dataset_plan",
+      [dataset_bounds](const std::string& spec, double records, double samples, double bytes) {
+        const dataset::Plan plan =
+            dataset::make_plan(dataset::read_spec(spec), dataset_bounds(records, samples, bytes));
+        py::dict d;
+        d["records"] = plan.records.size();
+        d["conditions"] = plan.conditions.size();
+        d["samples_per_record"] = plan.samples_per_record;
+        d["bytes_estimate"] = static_cast<double>(plan.records.size()) * plan.bytes_per_record;
+        d["spec_sha256"] = plan.spec.spec_sha256;
+        d["code_version"] = dataset::code_version();
+        return d;
+      },
+      py::arg("spec"), py::arg("max_records"), py::arg("max_samples"), py::arg("max_bytes"));
+  m.def(
+      "dataset_run",
+      [dataset_bounds](const std::string& spec, const std::string& out, int k, int n,
+                       unsigned threads, double records, double samples, double bytes) {
+        const dataset::Plan plan =
+            dataset::make_plan(dataset::read_spec(spec), dataset_bounds(records, samples, bytes));
+        std::filesystem::create_directories(out);
+        dataset::Progress p;
+        {
+          py::gil_scoped_release release;
+          p = dataset::run_shard(plan, out, {k, n}, threads);
+        }
+        py::dict d;
+        d["made"] = p.done;
+        d["found_complete"] = p.skipped;
+        d["records"] = p.total;
+        d["signal_s"] = p.signal_s;
+        d["cpu_s"] = p.cpu_s;
+        return d;
+      },
+      py::arg("spec"), py::arg("out"), py::arg("k"), py::arg("n"), py::arg("threads"),
+      py::arg("max_records"), py::arg("max_samples"), py::arg("max_bytes"));
+  m.def(
+      "dataset_merge",
+      [](const std::vector<std::string>& folders, const std::string& out, bool overwrite) {
+        py::gil_scoped_release release;
+        dataset::merge(folders, out, overwrite);
+      },
+      py::arg("folders"), py::arg("out"), py::arg("overwrite"));
   m.def("ste", &ste_texts_of, py::arg("case"), py::arg("torque"), py::arg("points"));
   m.def("modes", &modes_texts_of, py::arg("case"), py::arg("harmonics"), py::arg("max_speed"));
   m.def(

@@ -19,7 +19,7 @@ from pathlib import Path
 
 # Bottom to top (signals, numerics and geometry are independent of each other); the root headers (error.hpp, constants.hpp) sit below everything.
 ORDER = ["signals", "numerics", "geometry", "contact", "stiffness", "case", "dynamics", "modes", "steady", "batch",
-         "io", "paper"]
+         "io", "paper", "dataset"]
 # Public headers that are the program's plumbing, not part of the facade.
 INTERNAL = {"io/atomic_file.hpp", "paper/scoring.hpp"}
 

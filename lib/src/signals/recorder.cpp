@@ -123,6 +123,17 @@ std::vector<double> filter_sections(const std::vector<double>& x, double rate_hz
   return y;
 }
 
+std::vector<double> path_then_accelerometer(const std::vector<double>& x, double rate_hz,
+                                            const std::vector<SecondOrderSection>& path,
+                                            const std::optional<SecondOrderSection>& accelerometer,
+                                            const std::string& path_name,
+                                            const std::string& accelerometer_name) {
+  // The path's modes sum to the path; the accelerometer follows it.
+  std::vector<double> y = path.empty() ? x : filter_sections(x, rate_hz, path, path_name);
+  if (accelerometer) y = filter_sections(y, rate_hz, {*accelerometer}, accelerometer_name);
+  return y;
+}
+
 std::vector<SecondOrderSection> draw_path(std::uint64_t seed, int modes, double band_low_hz,
                                           double band_high_hz, double damping_low,
                                           double damping_high) {

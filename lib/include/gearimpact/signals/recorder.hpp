@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -58,6 +59,15 @@ double gain_at(const SecondOrderSection& s, double f_hz);
 std::vector<double> filter_sections(const std::vector<double>& x, double rate_hz,
                                     const std::vector<SecondOrderSection>& sections,
                                     const std::string& name);
+
+// What the recorder's filters do to a record, in their order: the path's modes summed (none when
+// `path` is empty), then the accelerometer's resonance (when given). Errors name `path_name`
+// or `accelerometer_name` as filter_sections does.
+std::vector<double> path_then_accelerometer(const std::vector<double>& x, double rate_hz,
+                                            const std::vector<SecondOrderSection>& path,
+                                            const std::optional<SecondOrderSection>& accelerometer,
+                                            const std::string& path_name,
+                                            const std::string& accelerometer_name);
 
 // A transfer path of `modes` modes, seeded: f_r log-uniform in [band_low,
 // band_high], zeta_r uniform in [damping_low, damping_high], the gains a flat
