@@ -10,6 +10,7 @@
 #include <sstream>
 #include <toml.hpp>
 
+#include "../io/toml_values.hpp"
 #include "gearimpact/case/schema.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
@@ -119,39 +120,12 @@ namespace {
 
 // ---- reading the spec's TOML ----
 
-std::string type_of(const toml::value& v) {
-  switch (v.type()) {
-    case toml::value_t::boolean:
-      return "a boolean";
-    case toml::value_t::integer:
-      return "an integer";
-    case toml::value_t::floating:
-      return "a float";
-    case toml::value_t::string:
-      return "a string";
-    case toml::value_t::array:
-      return "an array";
-    case toml::value_t::table:
-      return "a table";
-    default:
-      return "a value";
-  }
-}
-
-std::string shown(const toml::value& v) {
-  if (v.is_string()) return "\"" + v.as_string().str + "\"";
-  if (v.is_integer()) return std::to_string(v.as_integer());
-  if (v.is_floating()) return shortest_decimal(v.as_floating());
-  if (v.is_boolean()) return v.as_boolean() ? "true" : "false";
-  return "(" + type_of(v) + ")";
-}
-
 // A value's text as --set takes it: a string as written, a number in SI.
 std::string as_text(const toml::value& v, const std::string& name, const std::string& allowed) {
   if (v.is_string()) return v.as_string().str;
   if (v.is_integer()) return std::to_string(v.as_integer());
   if (v.is_floating()) return shortest_decimal(v.as_floating());
-  throw InputError(name, shown(v), allowed);
+  throw InputError(name, toml_written(v), allowed);
 }
 
 // A quantity ("20 kHz", or a plain number in SI).
@@ -159,7 +133,7 @@ double quantity(const toml::value& v, Dimension dimension, const std::string& na
   if (v.is_integer()) return static_cast<double>(v.as_integer());
   if (v.is_floating()) return v.as_floating();
   if (v.is_string()) return parse_plain_or_quantity(v.as_string().str, dimension, name);
-  throw InputError(name, shown(v),
+  throw InputError(name, toml_written(v),
                    "a quantity: a plain number in SI or a string with a unit of " +
                        std::string(describe(dimension)));
 }
@@ -167,20 +141,20 @@ double quantity(const toml::value& v, Dimension dimension, const std::string& na
 double number(const toml::value& v, const std::string& name, const std::string& allowed) {
   if (v.is_integer()) return static_cast<double>(v.as_integer());
   if (v.is_floating()) return v.as_floating();
-  throw InputError(name, shown(v), allowed);
+  throw InputError(name, toml_written(v), allowed);
 }
 
 long long whole(const toml::value& v, const std::string& name, long long lower, long long upper) {
   const std::string allowed =
       "an integer in [" + std::to_string(lower) + ", " + std::to_string(upper) + "]";
   if (!v.is_integer() || v.as_integer() < lower || v.as_integer() > upper) {
-    throw InputError(name, shown(v), allowed);
+    throw InputError(name, toml_written(v), allowed);
   }
   return v.as_integer();
 }
 
 std::string text(const toml::value& v, const std::string& name, const std::string& allowed) {
-  if (!v.is_string()) throw InputError(name, shown(v), allowed);
+  if (!v.is_string()) throw InputError(name, toml_written(v), allowed);
   return v.as_string().str;
 }
 
@@ -191,7 +165,7 @@ void only_keys(const toml::value& table, const std::string& section,
     if (std::find(known.begin(), known.end(), key) == known.end()) {
       std::string list;
       for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
-      throw InputError(section.empty() ? key : section + "." + key, shown(value),
+      throw InputError(section.empty() ? key : section + "." + key, toml_written(value),
                        "a key of " +
                            (section.empty() ? std::string("the spec") : "[" + section + "]") +
                            ": " + list);
@@ -212,7 +186,7 @@ const toml::value& table_at(const toml::value& root, const std::string& key, boo
     if (required) throw InputError(key, "missing", "a [" + key + "] table");
     return empty;
   }
-  if (!v->is_table()) throw InputError(key, shown(*v), "a [" + key + "] table");
+  if (!v->is_table()) throw InputError(key, toml_written(*v), "a [" + key + "] table");
   return *v;
 }
 
@@ -269,8 +243,8 @@ double recorder_value(const RecorderKey& k, const std::string& written, const st
       throw InputError(name, written, recorder_allowed(k));
     }
   }
-  const bool bad = !std::isfinite(v) || (k.closed ? v < k.lower || v > k.upper
-                                                     : v <= k.lower || v >= k.upper) ||
+  const bool bad = !std::isfinite(v) ||
+                   (k.closed ? v < k.lower || v > k.upper : v <= k.lower || v >= k.upper) ||
                    (k.integer && v != std::floor(v));
   if (bad) throw InputError(name, written, recorder_allowed(k));
   return v;
@@ -401,7 +375,7 @@ double set_key(SimulationCase& c, RecorderSettings& r, const std::string& key,
 std::pair<double, double> range_of(const toml::value& v, const KeyInfo& info,
                                    const std::string& name) {
   if (!v.is_array() || v.as_array().size() != 2) {
-    throw InputError(name, shown(v), "[LOW, HIGH]: two values, LOW < HIGH");
+    throw InputError(name, toml_written(v), "[LOW, HIGH]: two values, LOW < HIGH");
   }
   const auto one = [&](const toml::value& e, const std::string& n) {
     if (info.dimension) return quantity(e, *info.dimension, n);
@@ -411,7 +385,7 @@ std::pair<double, double> range_of(const toml::value& v, const KeyInfo& info,
       char* end = nullptr;
       const double x = std::strtod(t.c_str(), &end);
       while (end != nullptr && *end == ' ') ++end;
-      if (t.empty() || *end != '\0') throw InputError(n, shown(e), "a number");
+      if (t.empty() || *end != '\0') throw InputError(n, toml_written(e), "a number");
       return x;
     }
     return number(e, n, "a number");
@@ -419,7 +393,7 @@ std::pair<double, double> range_of(const toml::value& v, const KeyInfo& info,
   const double low = one(v.as_array()[0], name + "[0]");
   const double high = one(v.as_array()[1], name + "[1]");
   if (!(low < high) || !std::isfinite(low) || !std::isfinite(high)) {
-    throw InputError(name, shown(v.as_array()[0]) + ", " + shown(v.as_array()[1]),
+    throw InputError(name, toml_written(v.as_array()[0]) + ", " + toml_written(v.as_array()[1]),
                      "[LOW, HIGH]: two finite values, LOW < HIGH");
   }
   return {low, high};
@@ -455,7 +429,7 @@ DatasetSpec parse_spec_with_base(std::string_view spec_text, const std::filesyst
   if (const toml::value* v = lookup(d, "start_angle")) {
     const std::string a = text(*v, "dataset.start_angle", "\"random\" or \"case\"");
     if (a != "random" && a != "case") {
-      throw InputError("dataset.start_angle", shown(*v),
+      throw InputError("dataset.start_angle", toml_written(*v),
                        "\"random\" (a seeded mesh phase per record, the default) or \"case\" "
                        "(the base case's angles)");
     }
@@ -478,16 +452,17 @@ DatasetSpec parse_spec_with_base(std::string_view spec_text, const std::filesyst
   spec.sample_rate_hz =
       quantity(required(d, "dataset", "sample_rate"), Dimension::frequency, "dataset.sample_rate");
   if (!(spec.sample_rate_hz > 0.0) || !std::isfinite(spec.sample_rate_hz)) {
-    throw InputError("dataset.sample_rate", shown(*lookup(d, "sample_rate")), "a frequency > 0 Hz");
+    throw InputError("dataset.sample_rate", toml_written(*lookup(d, "sample_rate")),
+                     "a frequency > 0 Hz");
   }
   if (!(spec.duration_s * spec.sample_rate_hz >= kLeastSamples) ||
       !std::isfinite(spec.duration_s)) {
-    throw InputError("dataset.duration", shown(*lookup(d, "duration")),
+    throw InputError("dataset.duration", toml_written(*lookup(d, "duration")),
                      "a time of at least 16 samples (16 / sample_rate = " +
                          shortest_decimal(kLeastSamples / spec.sample_rate_hz) + " s)");
   }
   if (!(spec.settle_s * spec.sample_rate_hz >= 1.0) || !std::isfinite(spec.settle_s)) {
-    throw InputError("dataset.settle", shown(*lookup(d, "settle")),
+    throw InputError("dataset.settle", toml_written(*lookup(d, "settle")),
                      "a time of at least one sample interval (" +
                          shortest_decimal(1.0 / spec.sample_rate_hz) +
                          " s): the start's transient is discarded");
@@ -536,13 +511,14 @@ DatasetSpec parse_spec_with_base(std::string_view spec_text, const std::filesyst
       k.set(spec.recorder, recorder_value(k, as_text(*v, name, recorder_allowed(k)), name));
     }
     if (const toml::value* v = lookup(r, "noise_exact")) {
-      if (!v->is_boolean()) throw InputError("recorder.noise_exact", shown(*v), "true or false");
+      if (!v->is_boolean())
+        throw InputError("recorder.noise_exact", toml_written(*v), "true or false");
       spec.recorder.noise_exact = v->as_boolean();
     }
     if (const toml::value* v = lookup(r, "path")) {
       const std::string p = text(*v, "recorder.path", "\"fixed\" or \"per-record\"");
       if (p != "fixed" && p != "per-record") {
-        throw InputError("recorder.path", shown(*v),
+        throw InputError("recorder.path", toml_written(*v),
                          "\"fixed\" (one path for the set) or \"per-record\"");
       }
       spec.recorder.path_per_record = p == "per-record";
@@ -551,11 +527,11 @@ DatasetSpec parse_spec_with_base(std::string_view spec_text, const std::filesyst
 
   // [[factors]]
   if (const toml::value* fs = lookup(root, "factors")) {
-    if (!fs->is_array()) throw InputError("factors", shown(*fs), "[[factors]] tables");
+    if (!fs->is_array()) throw InputError("factors", toml_written(*fs), "[[factors]] tables");
     for (std::size_t i = 0; i < fs->as_array().size(); ++i) {
       const toml::value& f = fs->as_array()[i];
       const std::string at = "factors[" + std::to_string(i) + "]";
-      if (!f.is_table()) throw InputError(at, shown(f), "a [[factors]] table");
+      if (!f.is_table()) throw InputError(at, toml_written(f), "a [[factors]] table");
       only_keys(f, at, {"key", "levels", "range", "points"});
       Factor factor;
       factor.key = text(required(f, at, "key"), at + ".key", "a key as --set names it");
@@ -574,7 +550,7 @@ DatasetSpec parse_spec_with_base(std::string_view spec_text, const std::filesyst
       }
       if (levels != nullptr) {
         if (!levels->is_array() || levels->as_array().empty()) {
-          throw InputError(at + ".levels", shown(*levels), "a non-empty array of values");
+          throw InputError(at + ".levels", toml_written(*levels), "a non-empty array of values");
         }
         for (std::size_t j = 0; j < levels->as_array().size(); ++j) {
           factor.levels.push_back(as_text(levels->as_array()[j],
@@ -582,11 +558,11 @@ DatasetSpec parse_spec_with_base(std::string_view spec_text, const std::filesyst
                                           "a value as a case file writes it"));
         }
         if (lookup(f, "points") != nullptr) {
-          throw InputError(at + ".points", shown(*lookup(f, "points")), "only with range");
+          throw InputError(at + ".points", toml_written(*lookup(f, "points")), "only with range");
         }
       } else {
         if (!info.numeric) {
-          throw InputError(at + ".range", shown(*range),
+          throw InputError(at + ".range", toml_written(*range),
                            "levels = [...]: " + factor.key + " is a choice or a name");
         }
         factor.range = range_of(*range, info, at + ".range");
@@ -619,7 +595,8 @@ DatasetSpec parse_spec_with_base(std::string_view spec_text, const std::filesyst
     } else if (kind == "random") {
       spec.design = DesignKind::random;
     } else {
-      throw InputError("design.kind", shown(*k), "\"grid\", \"latin-hypercube\" or \"random\"");
+      throw InputError("design.kind", toml_written(*k),
+                       "\"grid\", \"latin-hypercube\" or \"random\"");
     }
   }
   spec.design_seed = spec.seed;
@@ -629,7 +606,7 @@ DatasetSpec parse_spec_with_base(std::string_view spec_text, const std::filesyst
   }
   if (spec.design == DesignKind::grid) {
     if (lookup(g, "points") != nullptr) {
-      throw InputError("design.points", shown(*lookup(g, "points")),
+      throw InputError("design.points", toml_written(*lookup(g, "points")),
                        "only with kind = \"latin-hypercube\" or \"random\" (a grid's size is "
                        "its factors' levels and points)");
     }
@@ -662,11 +639,12 @@ DatasetSpec parse_spec_with_base(std::string_view spec_text, const std::filesyst
     spec.default_split = text(*v, "split.default", "a split's name (default \"train\")");
   }
   if (const toml::value* hs = lookup(s, "heldout")) {
-    if (!hs->is_array()) throw InputError("split.heldout", shown(*hs), "[[split.heldout]] tables");
+    if (!hs->is_array())
+      throw InputError("split.heldout", toml_written(*hs), "[[split.heldout]] tables");
     for (std::size_t i = 0; i < hs->as_array().size(); ++i) {
       const toml::value& h = hs->as_array()[i];
       const std::string at = "split.heldout[" + std::to_string(i) + "]";
-      if (!h.is_table()) throw InputError(at, shown(h), "a [[split.heldout]] table");
+      if (!h.is_table()) throw InputError(at, toml_written(h), "a [[split.heldout]] table");
       only_keys(h, at, {"key", "levels", "range", "split"});
       HeldOut held;
       held.key = text(required(h, at, "key"), at + ".key", "a factor's key");
@@ -685,7 +663,7 @@ DatasetSpec parse_spec_with_base(std::string_view spec_text, const std::filesyst
       }
       if (levels != nullptr) {
         if (!levels->is_array() || levels->as_array().empty()) {
-          throw InputError(at + ".levels", shown(*levels), "a non-empty array of values");
+          throw InputError(at + ".levels", toml_written(*levels), "a non-empty array of values");
         }
         for (std::size_t j = 0; j < levels->as_array().size(); ++j) {
           held.levels.push_back(as_text(levels->as_array()[j],
@@ -693,7 +671,8 @@ DatasetSpec parse_spec_with_base(std::string_view spec_text, const std::filesyst
                                         "a value as a case file writes it"));
         }
       } else {
-        if (!info.numeric) throw InputError(at + ".range", shown(*range), "levels of a choice");
+        if (!info.numeric)
+          throw InputError(at + ".range", toml_written(*range), "levels of a choice");
         held.range = range_of(*range, info, at + ".range");
       }
       if (const toml::value* v = lookup(h, "split")) {
@@ -704,7 +683,7 @@ DatasetSpec parse_spec_with_base(std::string_view spec_text, const std::filesyst
   }
   // [trajectory]
   if (const toml::value* tv = lookup(root, "trajectory")) {
-    if (!tv->is_table()) throw InputError("trajectory", shown(*tv), "a [trajectory] table");
+    if (!tv->is_table()) throw InputError("trajectory", toml_written(*tv), "a [trajectory] table");
     only_keys(*tv, "trajectory",
               {"key", "initial", "final", "paris_c", "paris_m", "geometry_factor", "stress_range",
                "snapshots", "spacing"});
@@ -757,7 +736,7 @@ DatasetSpec parse_spec_with_base(std::string_view spec_text, const std::filesyst
     if (const toml::value* v = lookup(*tv, "spacing")) {
       const std::string sp = text(*v, "trajectory.spacing", "\"cycles\" or \"depth\"");
       if (sp != "cycles" && sp != "depth") {
-        throw InputError("trajectory.spacing", shown(*v),
+        throw InputError("trajectory.spacing", toml_written(*v),
                          "\"cycles\" (snapshots evenly in N) or \"depth\" (evenly in a)");
       }
       t.even_in_depth = sp == "depth";

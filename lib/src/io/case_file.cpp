@@ -13,6 +13,7 @@
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
+#include "toml_values.hpp"
 
 namespace gearimpact {
 
@@ -41,50 +42,6 @@ constexpr int kDeepestNesting = 32;
 // The longest line of a case file; with the cap on listed values it bounds the
 // parser's work (see TextShape).
 constexpr std::size_t kLongestLineBytes = 4096;
-
-std::string type_name(const toml::value& value) {
-  switch (value.type()) {
-    case toml::value_t::boolean:
-      return "a boolean";
-    case toml::value_t::integer:
-      return "an integer";
-    case toml::value_t::floating:
-      return "a float";
-    case toml::value_t::string:
-      return "a string";
-    case toml::value_t::array:
-      return "an array";
-    case toml::value_t::table:
-      return "a table";
-    case toml::value_t::empty:
-      return "nothing";
-    default:
-      return "a date or time";
-  }
-}
-
-// The value as the file wrote it, for messages.
-std::string written(const toml::value& value) {
-  switch (value.type()) {
-    case toml::value_t::string:
-      return "\"" + value.as_string().str + "\"";
-    case toml::value_t::integer:
-      return std::to_string(value.as_integer());
-    case toml::value_t::floating:
-      return shortest_decimal(value.as_floating());
-    case toml::value_t::boolean:
-      return value.as_boolean() ? "true" : "false";
-    case toml::value_t::array: {
-      std::string list = "[";
-      for (const toml::value& element : value.as_array()) {
-        list += (list.size() > 1 ? ", " : "") + written(element);
-      }
-      return list + "]";
-    }
-    default:
-      return "(" + type_name(value) + ")";
-  }
-}
 
 // The stem of a path without touching the file system.
 std::string stem_of(std::string_view file_name) {
@@ -403,8 +360,8 @@ class Document {
     if (!table->is_table()) {
       broken_.push_back(section_name);
       problems_.push_back(reader_.problem(section_name, table,
-                                          section_name + " = " + written(*table) + " is " +
-                                              type_name(*table) + ", not a section: write [" +
+                                          section_name + " = " + toml_written(*table) + " is " +
+                                              toml_type_name(*table) + ", not a section: write [" +
                                               section_name + "] with keys " + key_list(name)));
       return;
     }
@@ -466,7 +423,8 @@ std::vector<double> read_list(const Reader& reader, const Field& field, const to
                     allowed_units(field.dimension) + ", e.g. [\"10 " + std::string(field.unit) +
                     "\", \"2 " + std::string(field.unit) + "\"]";
   if (!value.is_array()) {
-    reader.out_of_range(name, &value, written(value), type_name(value) + "; expected " + expected);
+    reader.out_of_range(name, &value, toml_written(value),
+                        toml_type_name(value) + "; expected " + expected);
   }
   if (value.as_array().size() > field.most_values) {
     reader.out_of_range(name, &value, std::to_string(value.as_array().size()) + " values",
@@ -477,28 +435,28 @@ std::vector<double> read_list(const Reader& reader, const Field& field, const to
     const std::string element_name = name + "[" + std::to_string(values.size()) + "]";
     if (numbers) {
       if (!element.is_floating() && !element.is_integer()) {
-        reader.out_of_range(element_name, &element, written(element),
-                            type_name(element) + "; expected " + expected);
+        reader.out_of_range(element_name, &element, toml_written(element),
+                            toml_type_name(element) + "; expected " + expected);
       }
       values.push_back(element.is_floating() ? element.as_floating()
                                              : static_cast<double>(element.as_integer()));
       try {
         check_list(field, {values.back()}, element_name);
       } catch (const InputError& e) {
-        reader.out_of_range(element_name, &element, written(element), e.allowed());
+        reader.out_of_range(element_name, &element, toml_written(element), e.allowed());
       }
       continue;
     }
     if (!element.is_string()) {
-      reader.out_of_range(element_name, &element, written(element),
-                          type_name(element) + "; expected " + expected);
+      reader.out_of_range(element_name, &element, toml_written(element),
+                          toml_type_name(element) + "; expected " + expected);
     }
     try {
       values.push_back(parse_quantity(element.as_string().str, field.dimension, element_name));
       check_list(field, {values.back()}, element_name);
     } catch (const InputError& e) {
       reader.fail(&element,
-                  InputError({e.problems().front().renamed(element_name, written(element))}));
+                  InputError({e.problems().front().renamed(element_name, toml_written(element))}));
     }
   }
   return values;
@@ -513,8 +471,8 @@ double read_value(const Reader& reader, const Field& field, const toml::value& v
       if (!value.is_string()) {
         const std::string why = value.is_integer() || value.is_floating()
                                     ? "a number without a unit; expected "
-                                    : type_name(value) + "; expected ";
-        reader.out_of_range(name, &value, written(value), why + expected_of(field));
+                                    : toml_type_name(value) + "; expected ";
+        reader.out_of_range(name, &value, toml_written(value), why + expected_of(field));
       }
       try {
         x = parse_quantity(value.as_string().str, field.dimension, name);
@@ -528,15 +486,15 @@ double read_value(const Reader& reader, const Field& field, const toml::value& v
       } else if (value.is_integer()) {
         x = static_cast<double>(value.as_integer());
       } else {
-        reader.out_of_range(
-            name, &value, written(value),
-            type_name(value) + "; expected a plain number (no unit) in " + allowed_text(field));
+        reader.out_of_range(name, &value, toml_written(value),
+                            toml_type_name(value) + "; expected a plain number (no unit) in " +
+                                allowed_text(field));
       }
       break;
     case FieldKind::integer:
       if (!value.is_integer()) {
-        reader.out_of_range(name, &value, written(value),
-                            type_name(value) + "; expected " + allowed_text(field));
+        reader.out_of_range(name, &value, toml_written(value),
+                            toml_type_name(value) + "; expected " + allowed_text(field));
       }
       x = static_cast<double>(value.as_integer());
       break;
@@ -547,7 +505,7 @@ double read_value(const Reader& reader, const Field& field, const toml::value& v
             return c.has_text && value.is_string() && value.as_string().str == c.name;
           });
       if (chosen == field.choices.end()) {
-        reader.out_of_range(name, &value, written(value),
+        reader.out_of_range(name, &value, toml_written(value),
                             allowed_text(field) + nearest_choice(field, value));
       }
       x = chosen->code;
@@ -559,7 +517,7 @@ double read_value(const Reader& reader, const Field& field, const toml::value& v
       throw std::logic_error("read_value on a text or list row");
   }
   try {
-    check_value(field, x, name, written(value));
+    check_value(field, x, name, toml_written(value));
   } catch (const InputError& e) {
     reader.fail(&value, e);
   }
@@ -575,12 +533,12 @@ Problem at_key(const Reader& reader, const Document& document, const SimulationC
   std::string value = problem.value;
   if (field == nullptr && (at = document.fault_value(problem.field)) != nullptr) {
     // The value as the file wrote it, unless the key is absent (then `at` is its table).
-    Problem p = at->is_table() ? problem : problem.renamed(problem.field, written(*at));
+    Problem p = at->is_table() ? problem : problem.renamed(problem.field, toml_written(*at));
     p.where = reader.where(at);
     return p;
   }
   if (at != nullptr) {
-    value = written(*at);
+    value = toml_written(*at);
   } else if (field != nullptr) {
     value = value_text(*field, c) + " (the default)";
   }
@@ -604,7 +562,7 @@ void read_row(const Reader& reader, const Document& document, const Field& field
     if (value != nullptr) {
       const ChoiceName& choice = selected(field, result);
       reader.fail(name, value,
-                  name + " = " + written(*value) + " is not used by " +
+                  name + " = " + toml_written(*value) + " is not used by " +
                       std::string(field.only_when->key) + " = \"" + std::string(choice.name) +
                       "\" (" + std::string(choice.meaning) + ")");
     }
@@ -626,8 +584,8 @@ void read_row(const Reader& reader, const Document& document, const Field& field
   }
   if (field.kind == FieldKind::text) {
     if (!value->is_string()) {
-      reader.out_of_range(name, value, written(*value),
-                          type_name(*value) + "; expected a string of " + allowed_text(field));
+      reader.out_of_range(name, value, toml_written(*value),
+                          toml_type_name(*value) + "; expected a string of " + allowed_text(field));
     }
     try {
       check_text(field, value->as_string().str, name);
@@ -702,7 +660,7 @@ void read_faults(const Reader& reader, const toml::value& root, SimulationCase& 
     failed.emplace_back("faults");
     problems.push_back(reader.problem(
         "faults", &list,
-        "faults = " + written(list) + " is " + type_name(list) +
+        "faults = " + toml_written(list) + " is " + toml_type_name(list) +
             ", not an array of tables: write one [[faults]] table per faulted tooth, with keys " +
             fault_key_list()));
     return;
@@ -713,8 +671,8 @@ void read_faults(const Reader& reader, const toml::value& root, SimulationCase& 
     if (!table.is_table()) {
       failed.push_back(section);
       problems.push_back(reader.problem(section, &table,
-                                        section + " = " + written(table) + " is " +
-                                            type_name(table) + ", not a [[faults]] table"));
+                                        section + " = " + toml_written(table) + " is " +
+                                            toml_type_name(table) + ", not a [[faults]] table"));
       continue;
     }
     const std::size_t before = problems.size();
@@ -743,10 +701,10 @@ void read_faults(const Reader& reader, const toml::value& root, SimulationCase& 
             &*std::find_if(fault_schema().begin(), fault_schema().end(),
                            [&](const Field& f) { return f.key == row.key; }) == &row;
         if (value != nullptr && first_of_key && !fault_key_applies(row.key, one)) {
-          problems.push_back(reader.problem(name, value,
-                                            name + " = " + written(*value) + " is read only with " +
-                                                fault_key_conditions(row.key) +
-                                                "; this fault is of another kind"));
+          problems.push_back(reader.problem(
+              name, value,
+              name + " = " + toml_written(*value) + " is read only with " +
+                  fault_key_conditions(row.key) + "; this fault is of another kind"));
         }
         continue;
       }
@@ -977,6 +935,49 @@ std::string read_text(const std::filesystem::path& path) {
 }
 
 }  // namespace
+
+std::string toml_type_name(const toml::value& value) {
+  switch (value.type()) {
+    case toml::value_t::boolean:
+      return "a boolean";
+    case toml::value_t::integer:
+      return "an integer";
+    case toml::value_t::floating:
+      return "a float";
+    case toml::value_t::string:
+      return "a string";
+    case toml::value_t::array:
+      return "an array";
+    case toml::value_t::table:
+      return "a table";
+    case toml::value_t::empty:
+      return "nothing";
+    default:
+      return "a date or time";
+  }
+}
+
+std::string toml_written(const toml::value& value) {
+  switch (value.type()) {
+    case toml::value_t::string:
+      return "\"" + value.as_string().str + "\"";
+    case toml::value_t::integer:
+      return std::to_string(value.as_integer());
+    case toml::value_t::floating:
+      return shortest_decimal(value.as_floating());
+    case toml::value_t::boolean:
+      return value.as_boolean() ? "true" : "false";
+    case toml::value_t::array: {
+      std::string list = "[";
+      for (const toml::value& element : value.as_array()) {
+        list += (list.size() > 1 ? ", " : "") + toml_written(element);
+      }
+      return list + "]";
+    }
+    default:
+      return "(" + toml_type_name(value) + ")";
+  }
+}
 
 bool is_pair_section(std::string_view section) {
   // The bearings and shafts mount the pair: `modes` reads them from a pair file.
