@@ -517,6 +517,46 @@ std::vector<double> line_load_weights(const std::vector<double>& z_m, double fro
   return w;
 }
 
+namespace {
+
+// The parts of a CalculiX input both the plane and the solid model write alike.
+
+// Elements numbered from 1, a line each (CalculiX reads at most 16 entries a line: the number
+// and 15 nodes fit).
+template <std::size_t N>
+void append_elements(std::string& text, const char* type,
+                     const std::vector<std::array<long, N>>& elements) {
+  text += std::string("*ELEMENT, TYPE=") + type + ", ELSET=BODY\n";
+  long element = 0;
+  for (const auto& e : elements) {
+    text += std::to_string(++element);
+    for (const long n : e) text += ", " + std::to_string(n);
+    text += "\n";
+  }
+}
+
+// A node set, eight nodes a line.
+void append_node_set(std::string& text, const std::string& name, const std::vector<long>& nodes) {
+  text += "*NSET, NSET=" + name + "\n";
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    text += std::to_string(nodes[i]) + ((i + 1) % 8 == 0 || i + 1 == nodes.size() ? ",\n" : ", ");
+  }
+}
+
+// The linear elastic material, in MPa.
+void append_material(std::string& text, const FeMaterial& material) {
+  text += "*MATERIAL, NAME=GEAR\n*ELASTIC\n" + short_number(material.youngs_modulus_pa / 1e6) +
+          ", " + short_number(material.poisson_ratio) + "\n";
+}
+
+// A point load's two in-plane components on its node.
+void append_load(std::string& text, const FeLoad& load) {
+  text += std::to_string(load.node) + ", 1, " + short_number(load.fx_n) + "\n";
+  text += std::to_string(load.node) + ", 2, " + short_number(load.fy_n) + "\n";
+}
+
+}  // namespace
+
 std::string calculix_input_3d(const FeMesh3& mesh, const FeMaterial& material,
                               const std::vector<long>& fixed,
                               const std::vector<std::vector<FeLoad>>& steps,
@@ -528,32 +568,15 @@ std::string calculix_input_3d(const FeMesh3& mesh, const FeMaterial& material,
     text += std::to_string(id) + ", " + short_number(p[0] * kMm) + ", " + short_number(p[1] * kMm) +
             ", " + short_number(p[2] * kMm) + "\n";
   }
-  text += "*ELEMENT, TYPE=C3D15, ELSET=BODY\n";
-  long element = 0;
-  for (const auto& w : mesh.wedges) {
-    // CalculiX reads at most 16 entries a line: the number and 15 nodes fit.
-    text += std::to_string(++element);
-    for (const long n : w) text += ", " + std::to_string(n);
-    text += "\n";
-  }
-  auto node_set = [&](const std::string& name, const std::vector<long>& nodes) {
-    text += "*NSET, NSET=" + name + "\n";
-    for (std::size_t i = 0; i < nodes.size(); ++i) {
-      text += std::to_string(nodes[i]) + ((i + 1) % 8 == 0 || i + 1 == nodes.size() ? ",\n" : ", ");
-    }
-  };
-  node_set("FIXED", fixed);
-  node_set("PRINTED", printed_nodes);
-  text += "*MATERIAL, NAME=GEAR\n*ELASTIC\n" + short_number(material.youngs_modulus_pa / 1e6) +
-          ", " + short_number(material.poisson_ratio) + "\n";
+  append_elements(text, "C3D15", mesh.wedges);
+  append_node_set(text, "FIXED", fixed);
+  append_node_set(text, "PRINTED", printed_nodes);
+  append_material(text, material);
   text += "*SOLID SECTION, ELSET=BODY, MATERIAL=GEAR\n";
   text += "*BOUNDARY\nFIXED, 1, 3\n";
   for (const auto& loads : steps) {
     text += "*STEP\n*STATIC\n*CLOAD, OP=NEW\n";
-    for (const FeLoad& load : loads) {
-      text += std::to_string(load.node) + ", 1, " + short_number(load.fx_n) + "\n";
-      text += std::to_string(load.node) + ", 2, " + short_number(load.fy_n) + "\n";
-    }
+    for (const FeLoad& load : loads) append_load(text, load);
     text += "*NODE PRINT, NSET=PRINTED\nU\n*END STEP\n";
   }
   return text;
@@ -572,30 +595,16 @@ std::string calculix_input(const FeMesh& mesh, const FeMaterial& material,
     text += std::to_string(id) + ", " + short_number(xy[0] * kMm) + ", " +
             short_number(xy[1] * kMm) + "\n";
   }
-  text += "*ELEMENT, TYPE=CPS6, ELSET=BODY\n";
-  long element = 0;
-  for (const auto& t : mesh.triangles) {
-    text += std::to_string(++element);
-    for (const long n : t) text += ", " + std::to_string(n);
-    text += "\n";
-  }
-  auto node_set = [&](const std::string& name, const std::vector<long>& nodes) {
-    text += "*NSET, NSET=" + name + "\n";
-    for (std::size_t i = 0; i < nodes.size(); ++i) {
-      text += std::to_string(nodes[i]) + ((i + 1) % 8 == 0 || i + 1 == nodes.size() ? ",\n" : ", ");
-    }
-  };
-  node_set("FIXED", fixed->second);
-  node_set("PRINTED", printed_nodes);
-  text += "*MATERIAL, NAME=GEAR\n*ELASTIC\n" + short_number(material.youngs_modulus_pa / 1e6) +
-          ", " + short_number(material.poisson_ratio) + "\n";
+  append_elements(text, "CPS6", mesh.triangles);
+  append_node_set(text, "FIXED", fixed->second);
+  append_node_set(text, "PRINTED", printed_nodes);
+  append_material(text, material);
   text += "*SOLID SECTION, ELSET=BODY, MATERIAL=GEAR\n" + short_number(material.thickness_m * kMm) +
           "\n";
   text += "*BOUNDARY\nFIXED, 1, 2\n";
   for (const FeLoad& load : loads) {
     text += "*STEP\n*STATIC\n*CLOAD, OP=NEW\n";
-    text += std::to_string(load.node) + ", 1, " + short_number(load.fx_n) + "\n";
-    text += std::to_string(load.node) + ", 2, " + short_number(load.fy_n) + "\n";
+    append_load(text, load);
     text += "*NODE PRINT, NSET=PRINTED\nU\n*END STEP\n";
   }
   return text;
