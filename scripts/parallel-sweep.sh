@@ -18,37 +18,13 @@ usage() {
   exit 2
 }
 
-shards="" out="" jobs="$(nproc)" gearimpact="$here/../build/bin/gearimpact"
-while (($#)); do
-  case "$1" in
-    --shards) shards="${2-}"; shift 2 || usage ;;
-    --out) out="${2-}"; shift 2 || usage ;;
-    --jobs) jobs="${2-}"; shift 2 || usage ;;
-    --gearimpact) gearimpact="${2-}"; shift 2 || usage ;;
-    --) shift; break ;;
-    *) break ;;
-  esac
-done
-if [[ ! "$shards" =~ ^[1-9][0-9]*$ ]]; then
-  echo "parallel-sweep: --shards must be an integer >= 1, got '$shards'" >&2
-  usage
-fi
-if [[ ! "$jobs" =~ ^[1-9][0-9]*$ ]]; then
-  echo "parallel-sweep: --jobs must be an integer >= 1, got '$jobs'" >&2
-  usage
-fi
-[[ -n "$out" ]] || usage
-(($#)) || usage
+tool=parallel-sweep options="--jobs" jobs="$(nproc)" gearimpact="$here/../build/bin/gearimpact"
+source "$here/shard-options.sh"
+shard_options_read "$@"
+shift "$shard_options_used"
 if ! command -v parallel >/dev/null; then
   echo "parallel-sweep: GNU parallel is not installed (scripts/setup.sh installs it)" >&2
   exit 1
-fi
-if [[ "$gearimpact" != */* ]]; then
-  gearimpact="$(type -P "$gearimpact" || echo "$gearimpact")"
-fi
-if [[ ! -x "$gearimpact" ]]; then
-  echo "parallel-sweep: --gearimpact '$gearimpact' is not an executable program" >&2
-  exit 2
 fi
 mkdir -p "$out/logs"
 

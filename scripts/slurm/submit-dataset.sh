@@ -22,37 +22,10 @@ usage() {
   exit 2
 }
 
-shards="" out="" throttle="" gearimpact="$here/../../build/bin/gearimpact"
-while (($#)); do
-  case "$1" in
-    --shards) shards="${2-}"; shift 2 || usage ;;
-    --out) out="${2-}"; shift 2 || usage ;;
-    --throttle) throttle="${2-}"; shift 2 || usage ;;
-    --gearimpact) gearimpact="${2-}"; shift 2 || usage ;;
-    --) shift; break ;;
-    *) break ;;
-  esac
-done
-if [[ ! "$shards" =~ ^[1-9][0-9]*$ ]]; then
-  echo "submit-dataset: --shards must be an integer >= 1, got '$shards'" >&2
-  usage
-fi
-if [[ -n "$throttle" && ! "$throttle" =~ ^[1-9][0-9]*$ ]]; then
-  echo "submit-dataset: --throttle must be an integer >= 1, got '$throttle'" >&2
-  usage
-fi
-[[ -n "$out" ]] || usage
-(($#)) || usage
-
-if [[ "$gearimpact" == */* ]]; then
-  gearimpact="$(cd "$(dirname "$gearimpact")" 2>/dev/null && pwd -P)/$(basename "$gearimpact")"
-else
-  gearimpact="$(type -P "$gearimpact" || true)"
-fi
-if [[ ! -x "$gearimpact" ]]; then
-  echo "submit-dataset: --gearimpact '$gearimpact' is not an executable program" >&2
-  exit 2
-fi
+tool=submit-dataset options="--throttle" throttle="" gearimpact="$here/../../build/bin/gearimpact"
+source "$here/../shard-options.sh"
+shard_options_read "$@"
+shift "$shard_options_used"
 mkdir -p "$out/logs" "$out/records"
 out="$(cd "$out" && pwd -P)"
 array="0-$((shards - 1))${throttle:+%$throttle}"

@@ -20,33 +20,10 @@ usage() {
   exit 2
 }
 
-shards="" out="" gearimpact="$here/../../build/bin/gearimpact"
-while (($#)); do
-  case "$1" in
-    --shards) shards="${2-}"; shift 2 || usage ;;
-    --out) out="${2-}"; shift 2 || usage ;;
-    --gearimpact) gearimpact="${2-}"; shift 2 || usage ;;
-    --) shift; break ;;
-    *) break ;;
-  esac
-done
-if [[ ! "$shards" =~ ^[1-9][0-9]*$ ]]; then
-  echo "submit-sweep: --shards must be an integer >= 1, got '$shards'" >&2
-  usage
-fi
-[[ -n "$out" ]] || usage
-(($#)) || usage
-
-# The jobs get absolute paths: they may start on another node or after the caller has moved on.
-if [[ "$gearimpact" == */* ]]; then
-  gearimpact="$(cd "$(dirname "$gearimpact")" 2>/dev/null && pwd -P)/$(basename "$gearimpact")"
-else
-  gearimpact="$(type -P "$gearimpact" || true)"
-fi
-if [[ ! -x "$gearimpact" ]]; then
-  echo "submit-sweep: --gearimpact '$gearimpact' is not an executable program" >&2
-  exit 2
-fi
+tool=submit-sweep options="" gearimpact="$here/../../build/bin/gearimpact"
+source "$here/../shard-options.sh"
+shard_options_read "$@"
+shift "$shard_options_used"
 mkdir -p "$out/logs"
 out="$(cd "$out" && pwd -P)"
 
