@@ -17,6 +17,7 @@
 #include "gearimpact/dataset/spec.hpp"
 #include "gearimpact/dynamics/drive.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
+#include "gearimpact/dynamics/mesh_line.hpp"
 #include "gearimpact/dynamics/planar.hpp"
 #include "gearimpact/dynamics/planar_state.hpp"
 #include "gearimpact/dynamics/simulate.hpp"

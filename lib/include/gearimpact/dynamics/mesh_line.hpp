@@ -1,0 +1,229 @@
+// One mesh between two bodies as an object: the line of action of a gear pair
+// with its loaded pairs on the drive (N1) and coast (N2) lines, its tables
+// (one per pair of teeth with faults), its gaps (with modifications), the
+// touching of each pair, friction and its reversal, clipping, the event values,
+// the forces of the pairs on the two bodies through their base radii, the
+// stored energy and the damping set at a contact's onset. A mesh sees its
+// bodies through s = Rb_a theta_a - Rb_b theta_b and the speeds w_a, w_b: body a
+// is the pair's gear 1 (its pinion, whose angle places the pairs on the line),
+// body b its gear 2, each angle positive in the sense its gear turns when gear 1
+// drives. The two-gear torsional system (system.hpp) is one mesh between two
+// bodies; a gear train (train.hpp) has one mesh per pair of gears in contact.
+// docs/model.md, sections Contact, damping, friction and Equations of motion.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/dynamics/mesh.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/modifications.hpp"
+#include "gearimpact/stiffness/energy.hpp"
+#include "gearimpact/stiffness/mesh_tables.hpp"
+#include "gearimpact/stiffness/table.hpp"
+
+namespace gearimpact {
+
+inline constexpr int kMaxPairs = MeshLayout::capacity;
+// The event values of a mode: two in free flight; in contact the penetration,
+// four bounds of the loaded pairs, and the friction sign and force clipping of
+// each pair, and with gaps (modifications.hpp) whether each pair touches and
+// the two kinks of its gap about it, and with a table cut at a fault's edges
+// the two ends of the pair's part about it.
+inline constexpr int kMaxMeshEvents = 2 + 4 + 7 * kMaxPairs;
+
+// Everything that is constant during a step: which side is in contact, which
+// pairs are loaded, the sign of each pair's sliding speed and whether its
+// normal force is clipped at zero. The right-hand side is smooth while the mode
+// holds; a change of mode is an event.
+struct Mode {
+  Region region = Region::free;
+  int k_first = 0;
+  int count = 0;
+  std::array<double, kMaxPairs> slip{};  // sign of Vs, +1 or -1
+  std::array<bool, kMaxPairs> clipped{};
+  // With gaps: whether each pair's own penetration delta - e_k is positive
+  // (a pair that does not touch carries nothing). Without gaps every pair of
+  // the contact segment touches and this is not read.
+  std::array<bool, kMaxPairs> touching{};
+  // With gaps: how many kinks of the gap (ToothGaps::kinks_m) lie at or
+  // below each pair's X, so that a step does not straddle a jump of the
+  // gap's slope (the Lagrangian force and the damping force jump there).
+  std::array<int, kMaxPairs> zone{};
+  // With a pair's table cut at a fault's edges (a spall's, a chip's): the
+  // part of the table its X lies in (StiffnessTable::part_of), whose series
+  // gives its Ke while the mode holds, continued along its tangent beyond the
+  // part's ends, so that a step does not straddle Ke's jump at the edge; 0
+  // for a table of one part.
+  std::array<int, kMaxPairs> part{};
+  // Each loaded pair's table (MeshLine::pair_table, nullptr: a missing
+  // tooth), found once a mode: finding it takes integer remainders, which the
+  // right-hand side would otherwise pay for every pair at every stage.
+  std::array<const StiffnessTable*, kMaxPairs> table{};
+  // While a contact sticks (StallWatch, stall.hpp): each stage takes the
+  // friction signs from its own state, and reversals are not events.
+  bool slip_per_stage = false;
+};
+
+// Summed over the loaded pairs, for the time series.
+struct ContactTotals {
+  double normal_force_n = 0.0;
+  double friction_force_n = 0.0;
+  // Sum of f N over the pairs: over normal_force_n, the line's load-weighted
+  // coefficient of friction.
+  double friction_load_n = 0.0;
+};
+
+// f of (35) of a pair with normal force N, sliding speed Vs and entrainment
+// speed Ve under a friction law whose f varies (Benedict-Kelley, a table).
+double varying_friction_coefficient(const ModelOptions& model, double face_width_m,
+                                    double normal_force_n, double vs, double ve);
+// f of (35) of a pair under the case's friction law: the torsional and the
+// planar dynamics share it. Inline, the constant law without a call: it is
+// read for every loaded pair at every stage.
+inline double pair_friction_coefficient(const ModelOptions& model, double face_width_m,
+                                        double normal_force_n, double vs, double ve) {
+  if (model.friction_law == FrictionLaw::constant) return model.friction_coefficient;
+  return varying_friction_coefficient(model, face_width_m, normal_force_n, vs, ve);
+}
+
+// (32),(33) at the onset of a contact approached at d(delta)/dt = approach:
+// Vi (floored, as D grows without bound as Vi -> 0), e(Vi) and D/K under the
+// damping update (resolved: resolved_damping_update, never "auto").
+struct OnsetDamping {
+  double impact_speed_m_s = 0.0;
+  double restitution = 0.0;
+  double damping_per_stiffness_s_m = 0.0;
+};
+OnsetDamping onset_damping(const ModelOptions& model, DampingUpdate update, double approach_m_s);
+
+// The motion of a mesh's two bodies: a drives (the pair's gear 1), b is driven.
+struct MeshMotion {
+  double theta_a_rad;
+  double theta_b_rad;
+  double w_a_rad_per_s;
+  double w_b_rad_per_s;
+};
+
+// The powers of the ledger a mesh adds to (each accumulated, in W): the
+// Hertzian damping, friction, the continuous parametric work of the varying
+// stiffness, and the viscous mesh damper.
+struct MeshPowers {
+  double damping_w = 0.0;
+  double friction_w = 0.0;
+  double parametric_w = 0.0;
+  double mesh_damping_w = 0.0;
+};
+
+class MeshLine {
+ public:
+  // The mesh of c.gears under c.model, with c.faults and c.modifications; the
+  // table must cover the contact segment of c.gears, and both must outlive the
+  // mesh. With c.faults, each pair reads the table of its two teeth
+  // (MeshTables, built here with `table` as the healthy one), and a pair with
+  // a missing tooth carries nothing.
+  MeshLine(const SimulationCase& c, const StiffnessTable& table);
+
+  double base_radius_a() const { return rb1_; }
+  double base_radius_b() const { return rb2_; }
+  // mesh_force = "lagrangian" with a stiffness that varies: body a feels
+  // -1/2 dKe/dtheta_a delta^2 and pays the stored energy's jumps.
+  bool lagrangian() const { return lagrangian_; }
+  // Whether the case's modifications put a gap between the flanks of a pair.
+  bool has_gaps() const { return static_cast<bool>(gaps_); }
+
+  // s = Rb_a theta_a - Rb_b theta_b and its rate.
+  double s(const MeshMotion& q) const { return rb1_ * q.theta_a_rad - rb2_ * q.theta_b_rad; }
+  double s_rate(const MeshMotion& q) const {
+    return rb1_ * q.w_a_rad_per_s - rb2_ * q.w_b_rad_per_s;
+  }
+  // (31)
+  double delta(Region r, const MeshMotion& q) const { return penetration(r, s(q), backlash_); }
+  double pair_position(const Mode& m, const MeshMotion& q, int j) const {
+    return layout_.position_m(layout_.reference_m(m.region, q.theta_a_rad), m.k_first + j);
+  }
+
+  // The forces of the mesh in the mode m on its bodies, added to their
+  // moments (moment_a, moment_b, in their own senses), and the powers of the
+  // ledger added to `powers`; the totals over the loaded pairs when asked.
+  void add_forces(const MeshMotion& q, const Mode& m, const ContactMemory& d, double& moment_a,
+                  double& moment_b, MeshPowers& powers, ContactTotals* totals) const;
+
+  // The mesh's event values in mode m, written from g[0]: each >= 0 while
+  // the mode holds. Returns how many are set (at most kMaxMeshEvents).
+  int event_values(const MeshMotion& q, const Mode& m, const ContactMemory& d, double* g) const;
+
+  // Region and loaded pairs of the motion, (31) and (42), with the same tests as event_values.
+  Mode classify_geometry(const MeshMotion& q) const;
+  // Friction signs and clipping of the pairs of m at the motion.
+  void classify_forces(const MeshMotion& q, const ContactMemory& d, Mode& m) const;
+
+  // (32),(33) at the onset of a contact in mode m: Vi (floored), e(Vi) and D.
+  struct Onset {
+    double impact_speed_m_s;
+    double restitution;
+    ContactMemory damping;
+  };
+  Onset damping_at_onset(const MeshMotion& q, const Mode& m) const;
+
+  // (5),(16),(17),(28) of the loaded pairs, F = Ke delta each.
+  ElasticEnergy stored_energy(const MeshMotion& q, const Mode& m) const;
+
+ private:
+  // The table of pair k on `line`: the healthy one, or with faults that of
+  // the pair's teeth (nullptr: a missing tooth, the pair carries nothing).
+  const StiffnessTable* pair_table(Region line, int k) const {
+    return teeth_ ? teeth_->table(line, k) : table_;
+  }
+  // Whether a pair on `table` in its part `part` can carry: not with a
+  // missing tooth (no table), nor over the extent of a fault across the whole
+  // face (a part without contact).
+  static bool carries(const StiffnessTable* table, int part) {
+    return table != nullptr && table->part_in_contact(part);
+  }
+  // Ke and dKe/dX of one of `count` loaded pairs at X, read from `table`
+  // (from its part `part`, Mode::part).
+  void pair_stiffness(const StiffnessTable& table, int part, double x, int count, double& ke,
+                      double& dke) const;
+  // Mode::table and Mode::part of each pair of m at the motion.
+  void set_parts(const MeshMotion& q, Mode& m) const;
+  double damping_factor(const ContactMemory& d, double ke) const;
+  // f of (35) of a pair with normal force N, sliding speed Vs and entrainment
+  // speed Ve, under the case's friction law.
+  double friction_coefficient(double normal_force_n, double vs, double ve) const;
+  double push_sign_function(const StiffnessTable* table, int part, double x, int count,
+                            const ContactMemory& d, double dl, double dl_rate) const;
+  // Pair j of mode m at X with the line's penetration dl and its rate: its
+  // own penetration dl - e_k(X) and rate dl_rate - de_k/dX dX/dt, and the
+  // slope de_k/dX, on the branch of the pair's zone (Mode::zone). Without
+  // gaps, the line's own penetration and rate and a slope of 0.
+  PairPenetration pair_penetration(const Mode& m, int j, double x, double dl, double dl_rate,
+                                   double x_rate) const;
+  // The least gap of the pairs in the contact segment of `line` at theta_a:
+  // the line's contact begins where its penetration passes it.
+  double least_gap_m(Region line, double theta_a) const;
+
+  const StiffnessTable* table_;
+  // With faults: the table of each pair's teeth.
+  std::shared_ptr<const MeshTables> teeth_;
+  // With modifications: each pair's gap (docs/faults.md); none without, so
+  // that an unmodified case runs the code it ran before, bit for bit.
+  std::shared_ptr<const ToothGaps> gaps_;
+  std::vector<double> kinks_;  // gaps_->kinks_m()
+  const ModelOptions* model_;
+  MeshLayout layout_;
+  double rb1_ = 0.0, rb2_ = 0.0, backlash_ = 0.0, lp_ = 0.0;
+  double x_pitch_ = 0.0, xs_ = 0.0, xe_ = 0.0;
+  double kh_ = 0.0, constant_k_ = 0.0;
+  double smoothing_speed_ = 0.0;  // v_s of tanh(Vs / v_s); 0: the exact sign
+  double face_width_ = 0.0;
+  double mesh_damping_ = 0.0;  // c of the viscous mesh damper, N s/m
+  bool damping_on_current_pair_ = true;
+  bool lagrangian_ = false;
+  DampingUpdate damping_update_ = DampingUpdate::each_impact;  // resolved
+};
+
+}  // namespace gearimpact

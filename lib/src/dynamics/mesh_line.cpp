@@ -1,0 +1,423 @@
+#include "gearimpact/dynamics/mesh_line.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "gearimpact/contact/contact.hpp"
+#include "gearimpact/dynamics/mesh.hpp"
+#include "gearimpact/stiffness/mesh_stiffness.hpp"
+
+namespace gearimpact {
+
+namespace {
+
+// Grazing contacts can have Vi -> 0, where D of (32) grows without bound while
+// G = D delta d(delta)/dt stays finite; the floor keeps D finite.
+constexpr double kSmallestImpactSpeed_m_s = 1e-9;
+
+}  // namespace
+
+MeshLine::MeshLine(const SimulationCase& c, const StiffnessTable& table)
+    : table_(&table), model_(&c.model), layout_(c.gears, c.model.coast_phase) {
+  const GearPair& g = c.gears;
+  rb1_ = base_radius(g, Gear::one);
+  rb2_ = base_radius(g, Gear::two);
+  backlash_ = g.backlash_m;
+  lp_ = line_of_action_length(g);
+  x_pitch_ = pitch_point_position(g);
+  xs_ = layout_.start_m();
+  xe_ = layout_.end_m();
+  smoothing_speed_ = c.model.friction_smoothing_speed_m_s;
+  face_width_ = g.face_width_m;
+  kh_ = hertz_stiffness(g);
+  constant_k_ = c.model.mesh_stiffness == MeshStiffnessMode::constant
+                    ? c.model.constant_mesh_stiffness_n_per_m
+                    : 0.0;
+  damping_on_current_pair_ = c.model.damping_stiffness == DampingStiffness::current_pair;
+  // A constant stiffness has neither the extra torque nor jumps: both forms
+  // are then one, bit for bit.
+  lagrangian_ = c.model.mesh_force == MeshForce::lagrangian && constant_k_ == 0.0;
+  damping_update_ = resolved_damping_update(c);
+  MeshTeeth teeth = mesh_teeth(c, table, constant_k_);
+  teeth_ = std::move(teeth.tables);
+  gaps_ = std::move(teeth.gaps);
+  kinks_ = std::move(teeth.kinks_m);
+  // The damper's m_e is that of the pair's discs (mesh.hpp).
+  mesh_damping_ = case_mesh_damping_n_s_per_m(c, table, teeth_.get());
+}
+
+// Ke continued along its tangent beyond the segment, or beyond the ends of
+// the pair's part at a fault's edge (pair_stiffness_continued).
+void MeshLine::pair_stiffness(const StiffnessTable& table, int part, double x, int count,
+                              double& ke, double& dke) const {
+  if (constant_k_ > 0.0) {
+    ke = constant_k_ / count;
+    dke = 0.0;
+    return;
+  }
+  const StiffnessAndDerivative k =
+      table.part_count() > 1 ? pair_stiffness_continued(table, part, x, table.part_start_m(part),
+                                                        table.part_end_m(part))
+                             : pair_stiffness_continued(table, -1, x, xs_, xe_);
+  ke = k.stiffness_n_per_m;
+  dke = k.derivative_n_per_m2;
+}
+
+double varying_friction_coefficient(const ModelOptions& model, double face_width_m,
+                                    double normal_force_n, double vs, double ve) {
+  switch (model.friction_law) {
+    case FrictionLaw::constant:
+      break;
+    case FrictionLaw::benedict_kelley:
+      return benedict_kelley_coefficient(model.benedict_kelley, normal_force_n / face_width_m, vs,
+                                         ve);
+    case FrictionLaw::table:
+      return table_friction_coefficient(model.friction_table, slide_to_roll_ratio(vs, ve));
+  }
+  return model.friction_coefficient;
+}
+
+double MeshLine::friction_coefficient(double normal_force_n, double vs, double ve) const {
+  return pair_friction_coefficient(*model_, face_width_, normal_force_n, vs, ve);
+}
+
+PairPenetration MeshLine::pair_penetration(const Mode& m, int j, double x, double dl,
+                                           double dl_rate, double x_rate) const {
+  if (!gaps_) return {dl, dl_rate, 0.0};
+  // The zone's branch, as the mode holds it: a stage state of a step that
+  // ends on a kink sees the zone's own gap.
+  return pair_penetration_with_gap(*gaps_, kinks_, m.zone[j], m.region, m.k_first + j, x, dl,
+                                   dl_rate, x_rate, xs_, xe_);
+}
+
+double MeshLine::least_gap_m(Region line, double theta1) const {
+  return least_pair_gap_m(*gaps_, layout_, line, theta1);
+}
+
+double MeshLine::damping_factor(const ContactMemory& d, double ke) const {
+  return damping_on_current_pair_ ? d.damping_per_stiffness_s_m * ke
+                                  : d.damping_per_stiffness_s_m * d.frozen_stiffness_n_per_m;
+}
+
+void MeshLine::add_forces(const MeshMotion& q, const Mode& m, const ContactMemory& d,
+                          double& moment_a, double& moment_b, MeshPowers& powers,
+                          ContactTotals* totals) const {
+  const double w1 = q.w_a_rad_per_s;
+  const double w2 = q.w_b_rad_per_s;
+  if (m.region != Region::free) {
+    const double sign = line_sign(m.region);
+    const double dl = delta(m.region, q);
+    const double dl_rate = sign * s_rate(q);
+    const double ref = layout_.reference_m(m.region, q.theta_a_rad);
+    const double x_rate = sign * rb1_ * w1;
+    for (int j = 0; j < m.count; ++j) {
+      const StiffnessTable* table = m.table[j];
+      // A pair with a missing tooth or without contact over a fault across
+      // the face: no force, no damping, no friction; nor a pair whose gap is open.
+      if (!carries(table, m.part[j]) || (gaps_ && !m.touching[j])) continue;
+      const double x = layout_.position_m(ref, m.k_first + j);
+      // The pair's own penetration and its rate: the line's, less the gap.
+      const PairPenetration p = pair_penetration(m, j, x, dl, dl_rate, x_rate);
+      const double dk = p.delta_m;
+      const double dk_rate = p.rate_m_s;
+      const double gap_slope = p.gap_slope;
+      double ke = 0.0;
+      double dke = 0.0;
+      pair_stiffness(*table, m.part[j], x, m.count, ke, dke);
+      const double f_elastic = elastic_force(ke, dk);
+      const double g_damping = hertzian_damping_force(damping_factor(d, ke), dk, dk_rate);
+      const double n = normal_force(f_elastic, g_damping, m.clipped[j]);
+      const double vs = sliding_speed(w1, w2, x, lp_);
+      const double f = friction_coefficient(n, vs, entrainment_speed(w1, w2, x, lp_));
+      const double slip = smoothing_speed_ > 0.0 ? std::tanh(vs / smoothing_speed_)
+                          : m.slip_per_stage     ? (vs >= 0.0 ? 1.0 : -1.0)
+                                                 : m.slip[j];
+      const double ff = friction_force(m.region, f, n, slip);
+      // (1),(3) for one pair, (43),(45) summed over the pairs the line carries:
+      // on N1 J1 w1' = T1 - [N Rb1 + Ff X], J2 w2' = T2 + [N Rb2 + Ff (lp - X)];
+      // every sign flips on N2. In free flight, (2),(44): J w' = T.
+      moment_a -= sign * (n * rb1_ + ff * x);
+      moment_b += sign * (n * rb2_ + ff * (lp_ - x));
+      // The damping force is what N adds to F; with N clipped it is -F, so the
+      // stored energy released while the tooth cannot push counts as damping loss.
+      powers.damping_w += (n - f_elastic) * dk_rate;
+      powers.friction_w += f * n * slip * vs;
+      // d/dt of 1/2 Ke(X) delta^2 at fixed delta. Newtonian: work of the
+      // varying stiffness. Lagrangian: -dV/dtheta1 adds the torque
+      // -1/2 dKe/dX (dX/dtheta1) delta^2, dX/dtheta1 = sign Rb1, whose power is
+      // minus this; a clipped pair exerts no force, so the stored energy it
+      // gains or loses counts with its damping loss, as above.
+      const double stiffness_power = 0.5 * dk * dk * dke * x_rate;
+      if (!lagrangian_) {
+        powers.parametric_w += stiffness_power;
+      } else if (m.clipped[j]) {
+        powers.damping_w -= stiffness_power;
+      } else {
+        moment_a -= 0.5 * dk * dk * dke * sign * rb1_;
+      }
+      if (gaps_) {
+        // The gap moves with the pinion: the pair's penetration changes at
+        // fixed s by -de_k/dX dX/dt, and N acting on it does the work
+        // -N de_k/dX dX/dt. Newtonian: more work of the varying mesh.
+        // Lagrangian: N acts on delta_k, whose lever on the pinion is
+        // sign Rb1 (1 - de_k/dX), and that torque does this work on the pinion.
+        if (!lagrangian_) {
+          powers.parametric_w -= n * gap_slope * x_rate;
+        } else {
+          moment_a += sign * rb1_ * n * gap_slope;
+        }
+      }
+      if (totals != nullptr) {
+        totals->normal_force_n += n;
+        totals->friction_force_n += ff;
+        totals->friction_load_n += f * n;
+      }
+    }
+  }
+  if (mesh_damping_ > 0.0) {
+    // The viscous mesh damper acts on s' at all times, in contact and in the
+    // backlash alike, as the c x' of docs/steady-state.md's clearance oscillator:
+    // a force c s' along the line of action in the sense of an N1 contact force.
+    const double rate = s_rate(q);
+    const double force = mesh_damping_ * rate;
+    moment_a -= force * rb1_;
+    moment_b += force * rb2_;
+    powers.mesh_damping_w += force * rate;
+  }
+}
+
+int MeshLine::event_values(const MeshMotion& q, const Mode& m, const ContactMemory& d,
+                           double* g) const {
+  const double sv = s(q);
+  if (m.region == Region::free) {
+    // Region (2) ends where (31) makes delta positive on either line; with
+    // gaps, where it passes the least gap of the line's pairs (a pair that
+    // enters the segment already pressed in ends it at its entry).
+    if (gaps_) {
+      g[0] = backlash_ + least_gap_m(Region::n1, q.theta_a_rad) - sv;
+      g[1] = sv + backlash_ + least_gap_m(Region::n2, q.theta_a_rad);
+      return 2;
+    }
+    g[0] = backlash_ - sv;
+    g[1] = sv + backlash_;
+    return 2;
+  }
+  const double dl = delta(m.region, q);
+  // With gaps the contact ends where the last touching pair lets go, which
+  // the pairs' own values below locate.
+  g[0] = gaps_ ? 1.0 : dl;
+  // (42): the first and last loaded pair stay in [X_start, X_end], the
+  // neighbours outside it. Each position is ref + k t0 for its own k, as
+  // MeshLayout::loaded computes it: (ref + k t0) - t0 rounds differently, and
+  // far from theta1 = 0 (|ref| of metres after a long run) the two could
+  // disagree about a pair at the edge, which then enters a step late.
+  const double ref = layout_.reference_m(m.region, q.theta_a_rad);
+  const double first = layout_.position_m(ref, m.k_first);
+  const double last = layout_.position_m(ref, m.k_first + m.count - 1);
+  g[1] = first - xs_;
+  g[2] = xs_ - layout_.position_m(ref, m.k_first - 1);
+  g[3] = xe_ - last;
+  g[4] = layout_.position_m(ref, m.k_first + m.count) - xe_;
+  int n = 5;
+  const double dl_rate = line_sign(m.region) * s_rate(q);
+  const double x_rate = line_sign(m.region) * rb1_ * q.w_a_rad_per_s;
+  for (int j = 0; j < m.count; ++j) {
+    const double x = layout_.position_m(ref, m.k_first + j);
+    const StiffnessTable* table = m.table[j];
+    append_part_events(table, m.part[j], x, g, n);
+    const PairPenetration p = pair_penetration(m, j, x, dl, dl_rate, x_rate);
+    const double dk = p.delta_m;
+    const double dk_rate = p.rate_m_s;
+    if (gaps_ && !append_gap_events(m.touching[j], m.zone[j], kinks_, x, dk, g, n)) {
+      continue;
+    }
+    // A smoothed sign, or one taken per stage, has no switch to locate: the value stays positive.
+    g[n++] = smoothing_speed_ > 0.0 || m.slip_per_stage
+                 ? 1.0
+                 : m.slip[j] * sliding_speed(q.w_a_rad_per_s, q.w_b_rad_per_s, x, lp_);
+    const double push = push_sign_function(table, m.part[j], x, m.count, d, dk, dk_rate);
+    g[n++] = m.clipped[j] ? -push : push;
+  }
+  return n;
+}
+
+// A function with the sign and the zeros of F + G of one pair. With D
+// proportional to the pair's own Ke, F + G = Ke delta (1 + (D/K) d(delta)/dt)
+// and the positive factor Ke need not be evaluated.
+// A pair that cannot carry (a missing tooth, no contact) never pushes nor switches: 1.
+double MeshLine::push_sign_function(const StiffnessTable* table, int part, double x, int count,
+                                    const ContactMemory& d, double dl, double dl_rate) const {
+  if (!carries(table, part)) return 1.0;
+  if (damping_on_current_pair_) {
+    return dl * (1.0 + d.damping_per_stiffness_s_m * dl_rate);
+  }
+  double ke = 0.0;
+  double dke = 0.0;
+  pair_stiffness(*table, part, x, count, ke, dke);
+  return elastic_force(ke, dl) + hertzian_damping_force(damping_factor(d, ke), dl, dl_rate);
+}
+
+Mode MeshLine::classify_geometry(const MeshMotion& q) const {
+  Mode m;
+  const double sv = s(q);
+  if (gaps_) {
+    // The line one of whose pairs is pressed in: delta - e_k > 0 (the
+    // backlash check of the case keeps the two lines from both touching).
+    for (const Region line : {Region::n1, Region::n2}) {
+      const double dl = penetration(line, sv, backlash_);
+      const double ref = layout_.reference_m(line, q.theta_a_rad);
+      const LoadedRange range = layout_.loaded(ref);
+      bool any = false;
+      for (int j = 0; j < range.count; ++j) {
+        const int k = range.k_first + j;
+        const double x = layout_.position_m(ref, k);
+        m.touching[j] = dl - gaps_->gap_m(line, k, x) > 0.0;
+        m.zone[j] = gap_zone(kinks_, x);
+        any = any || m.touching[j];
+      }
+      if (any) {
+        m.region = line;
+        m.k_first = range.k_first;
+        m.count = range.count;
+        set_parts(q, m);
+        return m;
+      }
+    }
+    m.touching = {};
+    m.zone = {};
+    return m;
+  }
+  if (sv - backlash_ > 0.0) {
+    m.region = Region::n1;
+  } else if (-sv - backlash_ > 0.0) {
+    m.region = Region::n2;
+  } else {
+    return m;
+  }
+  const LoadedRange range = layout_.loaded(layout_.reference_m(m.region, q.theta_a_rad));
+  m.k_first = range.k_first;
+  m.count = range.count;
+  set_parts(q, m);
+  return m;
+}
+
+void MeshLine::set_parts(const MeshMotion& q, Mode& m) const {
+  for (int j = 0; j < m.count; ++j) {
+    const StiffnessTable* table = pair_table(m.region, m.k_first + j);
+    m.table[j] = table;
+    if (!teeth_) continue;
+    m.part[j] = table != nullptr && table->part_count() > 1
+                    ? table->part_of(std::clamp(pair_position(m, q, j), xs_, xe_))
+                    : 0;
+  }
+}
+
+void MeshLine::classify_forces(const MeshMotion& q, const ContactMemory& d, Mode& m) const {
+  if (m.region == Region::free) return;
+  const double dl = delta(m.region, q);
+  const double dl_rate = line_sign(m.region) * s_rate(q);
+  const double x_rate = line_sign(m.region) * rb1_ * q.w_a_rad_per_s;
+  for (int j = 0; j < m.count; ++j) {
+    const double x = pair_position(m, q, j);
+    m.slip[j] = sliding_speed(q.w_a_rad_per_s, q.w_b_rad_per_s, x, lp_) >= 0.0 ? 1.0 : -1.0;
+    const PairPenetration p = pair_penetration(m, j, x, dl, dl_rate, x_rate);
+    m.clipped[j] =
+        push_sign_function(m.table[j], m.part[j], x, m.count, d, p.delta_m, p.rate_m_s) < 0.0;
+  }
+}
+
+OnsetDamping onset_damping(const ModelOptions& model, DampingUpdate update, double approach_m_s) {
+  OnsetDamping onset;
+  onset.impact_speed_m_s = std::max(approach_m_s, kSmallestImpactSpeed_m_s);
+  // DampingUpdate: e and D of (32),(33) from this impact's Vi, from the
+  // case's reference speed, or none.
+  const double speed =
+      update == DampingUpdate::frozen ? model.damping_reference_speed_m_s : onset.impact_speed_m_s;
+  onset.restitution = restitution_coefficient(model.restitution, speed);
+  onset.damping_per_stiffness_s_m =
+      update == DampingUpdate::off
+          ? 0.0
+          : damping_factor_per_stiffness(model.damping_form, onset.restitution, speed);
+  return onset;
+}
+
+MeshLine::Onset MeshLine::damping_at_onset(const MeshMotion& q, const Mode& m) const {
+  Onset onset{};
+  const double line_rate = line_sign(m.region) * s_rate(q);
+  double approach = line_rate;
+  if (gaps_) {
+    // The fastest approach among the pairs that touch, each at its own
+    // penetration rate.
+    const double dl = delta(m.region, q);
+    const double x_rate = line_sign(m.region) * rb1_ * q.w_a_rad_per_s;
+    approach = -std::numeric_limits<double>::infinity();
+    for (int j = 0; j < m.count; ++j) {
+      if (!m.touching[j]) continue;
+      approach = std::max(
+          approach, pair_penetration(m, j, pair_position(m, q, j), dl, line_rate, x_rate).rate_m_s);
+    }
+  }
+  const OnsetDamping damping = onset_damping(*model_, damping_update_, approach);
+  onset.impact_speed_m_s = damping.impact_speed_m_s;
+  onset.restitution = damping.restitution;
+  ContactMemory& d = onset.damping;
+  d.damping_per_stiffness_s_m = damping.damping_per_stiffness_s_m;
+  if (model_->damping_stiffness == DampingStiffness::hertz) {
+    d.frozen_stiffness_n_per_m = kh_;
+  } else if (m.count > 0) {
+    // The loaded pair nearest the pitch point; with faults, among the pairs
+    // that carry (none: the stiffness stays 0, as nothing pushes).
+    int nearest = -1;
+    for (int j = 0; j < m.count; ++j) {
+      if (!carries(m.table[j], m.part[j])) continue;
+      if (nearest < 0 || std::fabs(pair_position(m, q, j) - x_pitch_) <
+                             std::fabs(pair_position(m, q, nearest) - x_pitch_)) {
+        nearest = j;
+      }
+    }
+    if (nearest >= 0) {
+      double ke = 0.0;
+      double dke = 0.0;
+      pair_stiffness(*m.table[nearest], m.part[nearest], pair_position(m, q, nearest), m.count, ke,
+                     dke);
+      d.frozen_stiffness_n_per_m = ke;
+    }
+  }
+  return onset;
+}
+
+ElasticEnergy MeshLine::stored_energy(const MeshMotion& q, const Mode& m) const {
+  ElasticEnergy u;
+  if (m.region == Region::free) return u;
+  const double line_delta = delta(m.region, q);
+  for (int j = 0; j < m.count; ++j) {
+    const double x = pair_position(m, q, j);
+    // A pair whose gap is open stores nothing; one that touches, by its own
+    // penetration.
+    if (gaps_ && !m.touching[j]) continue;
+    const double dl = pair_penetration(m, j, x, line_delta, 0.0, 0.0).delta_m;
+    if (constant_k_ > 0.0) {
+      u.j[index_of(Term::hertz)] += 0.5 * constant_k_ / m.count * dl * dl;
+      continue;
+    }
+    const StiffnessTable* table = m.table[j];
+    // A missing tooth stores nothing, nor a pair without contact over a fault across the face.
+    if (!carries(table, m.part[j])) continue;
+    // At a fault's edge, the side of the pair's part: the ledger books the jump between the two
+    // sides at the event.
+    const Compliances c =
+        table->part_count() > 1
+            ? table->compliance_in_part(
+                  std::clamp(x, table->part_start_m(m.part[j]), table->part_end_m(m.part[j])),
+                  m.part[j])
+            : table->compliance(std::clamp(x, xs_, xe_));
+    // (30) F = Ke delta with 1/Ke the total compliance of (29).
+    const ElasticEnergy pair = pair_energy(c, dl / c.total_m_per_n());
+    for (std::size_t i = 0; i < kTermCount; ++i) u.j[i] += pair.j[i];
+  }
+  return u;
+}
+
+}  // namespace gearimpact
