@@ -23,6 +23,7 @@
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/dynamics/system.hpp"
+#include "gearimpact/dynamics/train.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/iso1328.hpp"

@@ -1496,7 +1496,7 @@ SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& 
   }
   FixedStepper<PlanarSystem> stepper(run.system(), c.integrator.kind);
   run.use_stepper(&stepper);
-  const double t = run_fixed_grid(run, stepper, c);
+  const double t = run_fixed_grid(run, stepper, c.integrator);
   return run.finish(t);
 }
 

@@ -45,7 +45,7 @@ SimulationResult run_rk4(const SimulationCase& c, const StiffnessTable& table,
   Run run(c, table, control);
   if (control.locate_events) {
     FixedStepper<GearSystem> stepper(run.system(), IntegratorKind::rk4);
-    const double t = run_fixed_grid(run, stepper, c);
+    const double t = run_fixed_grid(run, stepper, c.integrator);
     return run.finish(t, "rk4");
   }
   // Without event location: the mode taken again at every stage, for the

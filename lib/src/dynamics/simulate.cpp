@@ -66,26 +66,6 @@ void validate_control(const SimulationCase& c, const RunControl& control) {
   }
 }
 
-// A table built for a pair and model must be this case's; one built from a
-// function must at least cover the contact segment.
-void check_table(const SimulationCase& c, const StiffnessTable& table) {
-  if (table.knows_origin()) {
-    if (!table.built_for(c.gears, c.model.stiffness)) {
-      throw InputError("table", "a StiffnessTable built for another gear pair or stiffness model",
-                       "the table of this case: StiffnessTable(c.gears, c.model.stiffness)");
-    }
-    return;
-  }
-  const ContactSegment segment = contact_segment(c.gears);
-  if (table.domain_start_m() > segment.start_m || table.domain_end_m() < segment.end_m) {
-    throw InputError("table",
-                     "a table over [" + format_number(table.domain_start_m()) + ", " +
-                         format_number(table.domain_end_m()) + "] m",
-                     "one that covers the contact segment [" + format_number(segment.start_m) +
-                         ", " + format_number(segment.end_m) + "] m of " + c.name);
-  }
-}
-
 // The rattle index of a driven run: its loose gear's RMS acceleration over
 // that of the same run without backlash, started at the same penetration
 // (s moved towards 0 by B, or s = 0 from within the backlash), so that the
@@ -154,6 +134,24 @@ SimulationResult simulate_checked(const SimulationCase& c, const StiffnessTable&
 }
 
 }  // namespace
+
+void check_table(const SimulationCase& c, const StiffnessTable& table) {
+  if (table.knows_origin()) {
+    if (!table.built_for(c.gears, c.model.stiffness)) {
+      throw InputError("table", "a StiffnessTable built for another gear pair or stiffness model",
+                       "the table of this case: StiffnessTable(c.gears, c.model.stiffness)");
+    }
+    return;
+  }
+  const ContactSegment segment = contact_segment(c.gears);
+  if (table.domain_start_m() > segment.start_m || table.domain_end_m() < segment.end_m) {
+    throw InputError("table",
+                     "a table over [" + format_number(table.domain_start_m()) + ", " +
+                         format_number(table.domain_end_m()) + "] m",
+                     "one that covers the contact segment [" + format_number(segment.start_m) +
+                         ", " + format_number(segment.end_m) + "] m of " + c.name);
+  }
+}
 
 double series_rows(const SimulationCase& c) {
   const IntegratorSettings& s = c.integrator;

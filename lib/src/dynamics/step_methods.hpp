@@ -169,15 +169,16 @@ class FixedStepper {
 //   leaves them out).
 // Returns the time reached, the run's end.
 template <typename R>
-double run_fixed_grid(R& run, FixedStepper<typename R::System>& stepper, const SimulationCase& c) {
+double run_fixed_grid(R& run, FixedStepper<typename R::System>& stepper,
+                      const IntegratorSettings& integrator) {
   using System = typename R::System;
   using StateType = typename System::StateType;
   const System& system = run.system();
-  const double h = c.integrator.step_s;
+  const double h = integrator.step_s;
   const double t0 = run.start_time();
-  const double end = t0 + c.integrator.end_time_s;
+  const double end = t0 + integrator.end_time_s;
   const long long grid_steps = run.grid_steps();
-  const long long every = c.integrator.output_every;
+  const long long every = integrator.output_every;
   const bool dense = run.wants_dense();
   double t = t0;
   long long k = 0;

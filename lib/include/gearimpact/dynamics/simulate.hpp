@@ -352,6 +352,10 @@ double series_rows(const SimulationCase& c);
 // coast flanks at once (2 B + the least gap on N1 + that on N2 < 0, a bound
 // over every pair). simulate(), validate() and the run pool call it.
 void validate_gaps(const SimulationCase& c);
+// A table given with a case must be the table of its pair and model; one
+// built from a function must at least cover the contact segment. Throws
+// InputError naming "table".
+void check_table(const SimulationCase& c, const StiffnessTable& table);
 // Throws InputError naming bearings.kind and shafts.kind when they are
 // "elastic": the planar model runs in `gearimpact modes` (its linearised
 // form) and simulate() (planar.hpp); the sweeps are torsional. With rigid

@@ -1,0 +1,113 @@
+// A torsional gear train: bodies turning on rigid bearings, the meshes
+// between them (each a MeshLine of its own gear pair, tables and backlash),
+// and shafts joining two bodies, rigid (the two become one body of summed
+// inertia) or a torsional spring. The state is the angle and speed of each
+// body; each mesh acts on its two bodies through their base radii. A train
+// runs through the same run loop as the two-gear models (run_fixed_grid of
+// step_methods.hpp); the two-gear torsional case is the train of two bodies
+// and one mesh (two_gear_train), and runs the same numbers bit for bit.
+// docs/architecture.md, section "A gear train".
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/dynamics/mesh_line.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/stiffness/table.hpp"
+
+namespace gearimpact {
+
+// The most bodies (after rigid shafts join them) and meshes of a train: the
+// state and the event values are fixed-size arrays.
+inline constexpr int kMaxTrainBodies = 6;
+inline constexpr int kMaxTrainMeshes = 4;
+
+// A body turning about its fixed axis. Its angle and speed are positive in the
+// sense it turns when the train runs forward: a mesh's driven body b turns
+// forward when its driving body a does.
+struct TrainBody {
+  std::string name;
+  double inertia_kg_m2 = 0.0;
+  // Its applied torque in its forward sense (constant, sinusoidal, harmonic,
+  // a profile or a user function of time; none: a constant 0).
+  Torque torque;
+  double theta_rad = 0.0;    // initial angle
+  double w_rad_per_s = 0.0;  // initial speed
+};
+
+// A mesh between bodies a (its pair's gear 1) and b (gear 2). Of `pair`, the
+// mesh reads the keys of the pair: gears (geometry, backlash), model (the
+// stiffness, contact, damping and friction), faults and modifications; its
+// torques, initial state and integrator are the train's. `table`: the
+// stiffness table of the pair, built by the run when none is given.
+struct TrainMesh {
+  std::string name;
+  int body_a = 0;
+  int body_b = 1;
+  SimulationCase pair;
+  std::shared_ptr<const StiffnessTable> table;
+};
+
+// A shaft between bodies a and b on one axis (both turn in the same sense).
+struct TrainShaft {
+  enum class Kind { rigid, torsional };
+  Kind kind = Kind::rigid;
+  int body_a = 0;
+  int body_b = 1;
+  double stiffness_n_m_per_rad = 0.0;  // torsional: T = k (theta_a - theta_b) on b
+};
+
+struct GearTrain {
+  std::vector<TrainBody> bodies;
+  std::vector<TrainMesh> meshes;
+  std::vector<TrainShaft> shafts;
+  // kind (rk4 or dopri5, at the fixed step), step, end time, output_every.
+  IntegratorSettings integrator;
+};
+
+// The two-gear torsional case as a train: the pinion (J1, torque1, theta1,
+// w1), the wheel (J2, torque2, theta2, w2) and one mesh between them.
+GearTrain two_gear_train(const SimulationCase& c);
+
+// One output row: each body's angle and speed (in the order of
+// GearTrain::bodies; bodies on one rigid shaft have the same), and each mesh's
+// s, delta, region, loaded pairs and forces, as SeriesRow has them.
+struct TrainMeshRow {
+  double s_m = 0.0;
+  double delta_m = 0.0;
+  int region = 0;
+  int pairs = 0;
+  double normal_force_n = 0.0;
+  double friction_force_n = 0.0;
+};
+struct TrainRow {
+  double t_s = 0.0;
+  std::vector<double> theta_rad;
+  std::vector<double> w_rad_per_s;
+  std::vector<TrainMeshRow> meshes;
+};
+
+// Per mesh: the contacts begun (a contact at the start counts), the largest
+// penetration, and the stored energy's jumps where pairs enter or leave.
+struct TrainMeshSummary {
+  int impacts = 0;
+  double max_penetration_m = 0.0;
+};
+
+struct TrainResult {
+  std::vector<TrainRow> series;
+  // steps, rhs_evaluations, events, end_time_s, step_s and the energy ledger
+  // (docs/model.md, Energies) of the whole train; the shafts' springs count
+  // with the stored energy.
+  SimulationSummary summary;
+  std::vector<TrainMeshSummary> meshes;
+};
+
+// Validates the train (InputError naming the field) and runs it; of
+// `control`, keep_series, on_row's absence and should_stop are read.
+TrainResult simulate_train(const GearTrain& train, const RunControl& control = {});
+
+}  // namespace gearimpact

@@ -1,0 +1,646 @@
+// The torsional gear train (train.hpp) as a system of the run loop: its
+// bodies' angles and speeds, one MeshLine per mesh, shafts; the run's books
+// (the mode and its changes, impacts, the energy ledger, the output rows) as
+// the torsional Run keeps them for its one mesh, here for each mesh.
+#include "gearimpact/dynamics/train.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <numeric>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "gearimpact/dynamics/system.hpp"
+#include "gearimpact/error.hpp"
+#include "run_parts.hpp"
+#include "stall.hpp"
+#include "step_methods.hpp"
+
+namespace gearimpact {
+
+namespace {
+
+// The bodies' angles, then their speeds, then the ledger's integrals as the
+// two-gear State has them: torque work, damping loss, friction loss,
+// parametric work (its continuous part), the mesh dampers' loss.
+constexpr std::size_t kBodies = kMaxTrainBodies;
+constexpr std::size_t kLedger = 2 * kBodies;
+enum LedgerIndex : std::size_t { kWork, kDamping, kFriction, kParametric, kMeshDamping };
+using TrainState = std::array<double, 2 * kBodies + 5>;
+constexpr std::size_t theta_of(int body) {
+  return static_cast<std::size_t>(body);
+}
+constexpr std::size_t w_of(int body) {
+  return kBodies + static_cast<std::size_t>(body);
+}
+
+struct TrainMode {
+  std::array<Mode, kMaxTrainMeshes> mesh{};
+};
+struct TrainMemory {
+  std::array<ContactMemory, kMaxTrainMeshes> mesh{};
+};
+struct TrainForces {
+  std::array<ContactTotals, kMaxTrainMeshes> mesh{};
+};
+using TrainEvents = std::array<double, kMaxTrainMeshes * kMaxMeshEvents>;
+
+bool state_dependent(const Torque& t) {
+  return t.kind == Torque::Kind::prescribed_speed || t.kind == Torque::Kind::drag ||
+         t.kind == Torque::Kind::speed_controlled || t.kind == Torque::Kind::induction_motor;
+}
+
+// Which of the train's degrees of freedom each body is: bodies joined by
+// rigid shafts are one, numbered in the order of their first body.
+std::vector<int> degrees_of_freedom(const GearTrain& train) {
+  const std::size_t n = train.bodies.size();
+  std::vector<std::size_t> root(n);
+  std::iota(root.begin(), root.end(), std::size_t{0});
+  const auto find = [&](std::size_t i) {
+    while (root[i] != i) i = root[i];
+    return i;
+  };
+  for (const TrainShaft& shaft : train.shafts) {
+    if (shaft.kind != TrainShaft::Kind::rigid) continue;
+    const std::size_t a = find(static_cast<std::size_t>(shaft.body_a));
+    const std::size_t b = find(static_cast<std::size_t>(shaft.body_b));
+    root[std::max(a, b)] = std::min(a, b);
+  }
+  std::vector<int> dof(n, -1);
+  int count = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t r = find(i);
+    if (dof[r] < 0) dof[r] = count++;
+    dof[i] = dof[r];
+  }
+  return dof;
+}
+
+void check_finite_field(const std::string& field, double value) {
+  if (!std::isfinite(value)) throw InputError(field, value, "a finite value");
+}
+
+void validate_torque(const std::string& field, const Torque& t) {
+  if (state_dependent(t)) {
+    throw InputError(field + ".kind", "a driver, drag, controller or motor",
+                     "constant, sinusoidal, harmonic, profile or user: a train's torques are "
+                     "functions of time");
+  }
+  check_finite_field(field + ".constant", t.constant_n_m);
+  check_finite_field(field + ".mean", t.mean_n_m);
+  check_finite_field(field + ".amplitude", t.amplitude_n_m);
+  check_finite_field(field + ".angular_frequency", t.angular_frequency_rad_per_s);
+  check_finite_field(field + ".phase", t.phase_rad);
+}
+
+void validate_body_index(const std::string& field, int body, std::size_t bodies) {
+  if (body < 0 || static_cast<std::size_t>(body) >= bodies) {
+    throw InputError(field, std::to_string(body),
+                     "the index of one of the train's " + std::to_string(bodies) + " bodies");
+  }
+}
+
+void validate_train(const GearTrain& train) {
+  const std::size_t n = train.bodies.size();
+  if (n < 2 || n > kBodies) {
+    throw InputError("bodies", std::to_string(n) + " bodies",
+                     "2 to " + std::to_string(kBodies) + " bodies");
+  }
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < n; ++i) {
+    const TrainBody& b = train.bodies[i];
+    if (b.name.empty() || std::find(names.begin(), names.end(), b.name) != names.end()) {
+      throw InputError("bodies[" + std::to_string(i) + "].name", "\"" + b.name + "\"",
+                       "a name no other body has");
+    }
+    names.push_back(b.name);
+    if (!std::isfinite(b.inertia_kg_m2) || b.inertia_kg_m2 <= 0.0) {
+      throw InputError("bodies." + b.name + ".inertia", b.inertia_kg_m2,
+                       "a finite value > 0 in kg m^2");
+    }
+    validate_torque("bodies." + b.name + ".torque", b.torque);
+    check_finite_field("bodies." + b.name + ".theta", b.theta_rad);
+    check_finite_field("bodies." + b.name + ".w", b.w_rad_per_s);
+  }
+  for (std::size_t i = 0; i < train.shafts.size(); ++i) {
+    const TrainShaft& s = train.shafts[i];
+    const std::string field = "shafts[" + std::to_string(i) + "]";
+    validate_body_index(field + ".body_a", s.body_a, n);
+    validate_body_index(field + ".body_b", s.body_b, n);
+    if (s.body_a == s.body_b) {
+      throw InputError(field + ".body_b", std::to_string(s.body_b), "a body other than body_a");
+    }
+  }
+  const std::vector<int> dof = degrees_of_freedom(train);
+  for (std::size_t i = 0; i < train.shafts.size(); ++i) {
+    const TrainShaft& s = train.shafts[i];
+    if (s.kind != TrainShaft::Kind::torsional) continue;
+    const std::string field = "shafts[" + std::to_string(i) + "]";
+    if (!std::isfinite(s.stiffness_n_m_per_rad) || s.stiffness_n_m_per_rad <= 0.0) {
+      throw InputError(field + ".stiffness", s.stiffness_n_m_per_rad,
+                       "a finite value > 0 in N m/rad");
+    }
+    if (dof[static_cast<std::size_t>(s.body_a)] == dof[static_cast<std::size_t>(s.body_b)]) {
+      throw InputError(field + ".body_b", std::to_string(s.body_b),
+                       "a body not joined to body_a by rigid shafts");
+    }
+  }
+  // Bodies on one rigid shaft turn as one: they must start as one.
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (dof[i] != dof[j]) continue;
+      const TrainBody& a = train.bodies[j];
+      const TrainBody& b = train.bodies[i];
+      if (a.theta_rad != b.theta_rad || a.w_rad_per_s != b.w_rad_per_s) {
+        throw InputError(
+            "bodies." + b.name + ".w",
+            format_number(b.w_rad_per_s) + " rad/s, theta " + format_number(b.theta_rad) + " rad",
+            "the initial angle and speed of " + a.name + ", to which a rigid shaft joins it");
+      }
+    }
+  }
+  const std::size_t m = train.meshes.size();
+  if (m < 1 || m > static_cast<std::size_t>(kMaxTrainMeshes)) {
+    throw InputError("meshes", std::to_string(m) + " meshes",
+                     "1 to " + std::to_string(kMaxTrainMeshes) + " meshes");
+  }
+  std::vector<std::string> mesh_names;
+  for (std::size_t k = 0; k < m; ++k) {
+    const TrainMesh& mesh = train.meshes[k];
+    if (mesh.name.empty() ||
+        std::find(mesh_names.begin(), mesh_names.end(), mesh.name) != mesh_names.end()) {
+      throw InputError("meshes[" + std::to_string(k) + "].name", "\"" + mesh.name + "\"",
+                       "a name no other mesh has");
+    }
+    mesh_names.push_back(mesh.name);
+    const std::string prefix = "meshes." + mesh.name + ".";
+    validate_body_index(prefix + "body_a", mesh.body_a, n);
+    validate_body_index(prefix + "body_b", mesh.body_b, n);
+    if (dof[static_cast<std::size_t>(mesh.body_a)] == dof[static_cast<std::size_t>(mesh.body_b)]) {
+      throw InputError(prefix + "body_b", std::to_string(mesh.body_b),
+                       "a body other than body_a, and not on one rigid shaft with it");
+    }
+    try {
+      validate(mesh.pair);
+      if (mesh.table) check_table(mesh.pair, *mesh.table);
+    } catch (const InputError& e) {
+      // The pair's keys, addressed by the mesh's name.
+      std::vector<Problem> problems;
+      for (const Problem& p : e.problems()) {
+        problems.push_back(p.renamed(prefix + p.field, p.value));
+      }
+      throw InputError(std::move(problems));
+    }
+    const ModelOptions& model = mesh.pair.model;
+    if (mesh.pair.bearings.kind != BearingKind::rigid) {
+      throw InputError(prefix + "bearings.kind", "elastic",
+                       "rigid: a train's bodies turn about fixed axes");
+    }
+    if (model.mesh_force == MeshForce::lagrangian &&
+        model.mesh_stiffness != MeshStiffnessMode::constant) {
+      throw InputError(prefix + "model.mesh_force", "lagrangian",
+                       "newtonian: a train does not yet pay the stored energy's jumps");
+    }
+    if (model.mesh_damping_ratio > 0.0) {
+      throw InputError(prefix + "model.mesh_damping_ratio", model.mesh_damping_ratio,
+                       "0 in a train: the damper's m_e would be that of the pair's discs, not "
+                       "of the train's bodies");
+    }
+  }
+  const IntegratorSettings& in = train.integrator;
+  if (in.kind != IntegratorKind::rk4 && in.kind != IntegratorKind::dopri5) {
+    throw InputError("integrator.kind", "adaptive",
+                     "rk4 or dopri5: a train runs at the fixed step");
+  }
+  if (!std::isfinite(in.step_s) || in.step_s <= 0.0) {
+    throw InputError("integrator.step", in.step_s, "a finite value > 0 in s");
+  }
+  if (!std::isfinite(in.end_time_s) || in.end_time_s <= 0.0) {
+    throw InputError("integrator.end_time", in.end_time_s, "a finite value > 0 in s");
+  }
+  if (in.end_time_s / in.step_s > static_cast<double>(kMostSteps)) {
+    throw InputError("integrator.step", in.step_s,
+                     "at most " + std::to_string(kMostSteps) + " steps over integrator.end_time");
+  }
+  if (in.output_every < 1) {
+    throw InputError("integrator.output_every", std::to_string(in.output_every), "an integer >= 1");
+  }
+}
+
+// The train as a system of the run loop (the concept of step_methods.hpp).
+class TrainSystem {
+ public:
+  using StateType = TrainState;
+  using ModeType = TrainMode;
+  using MemoryType = TrainMemory;
+  using EventsType = TrainEvents;
+  using ForcesType = TrainForces;
+
+  TrainSystem(const GearTrain& train, const std::vector<const StiffnessTable*>& tables)
+      : train_(train), body_dof_(degrees_of_freedom(train)) {
+    dofs_ = *std::max_element(body_dof_.begin(), body_dof_.end()) + 1;
+    // A degree of freedom's inertia: its bodies' summed in their order.
+    std::array<bool, kBodies> seen{};
+    for (std::size_t i = 0; i < train.bodies.size(); ++i) {
+      const auto d = static_cast<std::size_t>(body_dof_[i]);
+      inertia_[d] =
+          seen[d] ? inertia_[d] + train.bodies[i].inertia_kg_m2 : train.bodies[i].inertia_kg_m2;
+      seen[d] = true;
+    }
+    for (std::size_t k = 0; k < train.meshes.size(); ++k) {
+      const TrainMesh& m = train.meshes[k];
+      meshes_.emplace_back(m.pair, *tables[k]);
+      mesh_a_.push_back(dof_of(m.body_a));
+      mesh_b_.push_back(dof_of(m.body_b));
+    }
+    for (const TrainShaft& s : train.shafts) {
+      if (s.kind != TrainShaft::Kind::torsional) continue;
+      springs_.push_back({dof_of(s.body_a), dof_of(s.body_b), s.stiffness_n_m_per_rad});
+    }
+  }
+
+  int dofs() const { return dofs_; }
+  int dof_of(int body) const { return body_dof_[static_cast<std::size_t>(body)]; }
+  std::size_t mesh_count() const { return meshes_.size(); }
+  const MeshLine& mesh(std::size_t k) const { return meshes_[k]; }
+  MeshMotion motion(std::size_t k, const TrainState& y) const {
+    const int a = mesh_a_[k];
+    const int b = mesh_b_[k];
+    return {y[theta_of(a)], y[theta_of(b)], y[w_of(a)], y[w_of(b)]};
+  }
+
+  void impose_driver(double, TrainState&) const {}
+
+  // The applied torque on each degree of freedom: its bodies' summed.
+  std::array<double, kBodies> torques(double t) const {
+    std::array<double, kBodies> torque{};
+    std::array<bool, kBodies> seen{};
+    for (std::size_t i = 0; i < train_.bodies.size(); ++i) {
+      const auto d = static_cast<std::size_t>(body_dof_[i]);
+      const double value = torque_at(train_.bodies[i].torque, t);
+      torque[d] = seen[d] ? torque[d] + value : value;
+      seen[d] = true;
+    }
+    return torque;
+  }
+
+  // (1)-(3), (43)-(45) of each mesh on its two bodies, the shafts' springs,
+  // J w' = the sum of the moments on each body; the ledger's powers.
+  void rhs(double t, const TrainState& y, const TrainMode& m, const TrainMemory& d,
+           TrainState& dydt, TrainForces* forces = nullptr) const {
+    const std::array<double, kBodies> torque = torques(t);
+    std::array<double, kBodies> moment = torque;
+    MeshPowers powers;
+    for (std::size_t k = 0; k < meshes_.size(); ++k) {
+      meshes_[k].add_forces(motion(k, y), m.mesh[k], d.mesh[k],
+                            moment[static_cast<std::size_t>(mesh_a_[k])],
+                            moment[static_cast<std::size_t>(mesh_b_[k])], powers,
+                            forces != nullptr ? &forces->mesh[k] : nullptr);
+    }
+    for (const Spring& s : springs_) {
+      // The shaft twisted by theta_a - theta_b pulls b forward and a back.
+      const double torque_on_b = s.stiffness * (y[theta_of(s.a)] - y[theta_of(s.b)]);
+      moment[static_cast<std::size_t>(s.a)] -= torque_on_b;
+      moment[static_cast<std::size_t>(s.b)] += torque_on_b;
+    }
+    dydt = TrainState{};
+    double work = torque[0] * y[w_of(0)];
+    for (int i = 0; i < dofs_; ++i) {
+      const auto u = static_cast<std::size_t>(i);
+      dydt[theta_of(i)] = y[w_of(i)];
+      dydt[w_of(i)] = moment[u] / inertia_[u];
+      if (i > 0) work += torque[u] * y[w_of(i)];
+    }
+    dydt[kLedger + kWork] = work;
+    dydt[kLedger + kDamping] = powers.damping_w;
+    dydt[kLedger + kFriction] = powers.friction_w;
+    dydt[kLedger + kParametric] = powers.parametric_w;
+    dydt[kLedger + kMeshDamping] = powers.mesh_damping_w;
+  }
+
+  int event_values(const TrainState& y, const TrainMode& m, const TrainMemory& d,
+                   TrainEvents& g) const {
+    int n = 0;
+    for (std::size_t k = 0; k < meshes_.size(); ++k) {
+      n += meshes_[k].event_values(motion(k, y), m.mesh[k], d.mesh[k],
+                                   g.data() + static_cast<std::size_t>(n));
+    }
+    return n;
+  }
+  bool mode_holds(const TrainState& y, const TrainMode& m, const TrainMemory& d) const {
+    TrainEvents g;
+    const int n = event_values(y, m, d, g);
+    for (int i = 0; i < n; ++i) {
+      if (g[static_cast<std::size_t>(i)] < 0.0) return false;
+    }
+    return true;
+  }
+
+  double kinetic_energy(const TrainState& y) const {
+    double e = 0.5 * inertia_[0] * y[w_of(0)] * y[w_of(0)];
+    for (int i = 1; i < dofs_; ++i) {
+      e += 0.5 * inertia_[static_cast<std::size_t>(i)] * y[w_of(i)] * y[w_of(i)];
+    }
+    return e;
+  }
+  // The meshes' stored energy by term, and the shafts' springs' 1/2 k twist^2.
+  ElasticEnergy mesh_energy(const TrainState& y, const TrainMode& m) const {
+    ElasticEnergy u = meshes_[0].stored_energy(motion(0, y), m.mesh[0]);
+    for (std::size_t k = 1; k < meshes_.size(); ++k) {
+      const ElasticEnergy e = meshes_[k].stored_energy(motion(k, y), m.mesh[k]);
+      for (std::size_t i = 0; i < kTermCount; ++i) u.j[i] += e.j[i];
+    }
+    return u;
+  }
+  double spring_energy(const TrainState& y) const {
+    double e = 0.0;
+    for (const Spring& s : springs_) {
+      const double twist = y[theta_of(s.a)] - y[theta_of(s.b)];
+      e += 0.5 * s.stiffness * twist * twist;
+    }
+    return e;
+  }
+
+ private:
+  struct Spring {
+    int a;
+    int b;
+    double stiffness;
+  };
+  const GearTrain& train_;
+  std::vector<int> body_dof_;
+  int dofs_ = 0;
+  std::array<double, kBodies> inertia_{};
+  std::vector<MeshLine> meshes_;
+  std::vector<int> mesh_a_, mesh_b_;
+  std::vector<Spring> springs_;
+};
+
+// The train's run: the books of run_fixed_grid (step_methods.hpp), as the
+// torsional Run (run.hpp) keeps them, for each mesh.
+class TrainRun {
+ public:
+  using System = TrainSystem;
+  static constexpr bool kCountsCutStep = false;
+
+  TrainRun(const GearTrain& train, const std::vector<const StiffnessTable*>& tables,
+           const RunControl& control)
+      : train_(train),
+        control_(control),
+        system_(train, tables),
+        stall_(train.integrator.step_s, least_smoothing(train)) {
+    result_.meshes.resize(train.meshes.size());
+    for (const TrainMesh& m : train.meshes)
+      half_base_pitch_m_.push_back(0.5 * base_pitch(m.pair.gears));
+    for (std::size_t i = 0; i < train.bodies.size(); ++i) {
+      const int d = system_.dof_of(static_cast<int>(i));
+      y_[theta_of(d)] = train.bodies[i].theta_rad;
+      y_[w_of(d)] = train.bodies[i].w_rad_per_s;
+    }
+    for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
+      const MeshMotion q = system_.motion(k, y_);
+      mode_.mesh[k] = system_.mesh(k).classify_geometry(q);
+      if (mode_.mesh[k].region != Region::free) begin_contact(k);
+      system_.mesh(k).classify_forces(q, damping_.mesh[k], mode_.mesh[k]);
+    }
+    const double kinetic = system_.kinetic_energy(y_);
+    energy0_ = kinetic + stored_energy(y_, mode_);
+    result_.summary.kinetic_energy_initial_j = kinetic;
+    result_.summary.stored_energy_initial_j = energy0_ - kinetic;
+    book_keep(0.0);
+    if (records()) record(0.0);
+  }
+
+  const TrainSystem& system() const { return system_; }
+  TrainState& y() { return y_; }
+  const TrainMode& mode() const { return mode_; }
+  const TrainMemory& damping() const { return damping_; }
+  long long& steps() { return result_.summary.steps; }
+  long long& rhs_evaluations() { return result_.summary.rhs_evaluations; }
+  double start_time() const { return 0.0; }
+  long long grid_steps() const {
+    return static_cast<long long>(
+        std::ceil(train_.integrator.end_time_s / train_.integrator.step_s * (1.0 - 1e-12)));
+  }
+  bool wants_dense() const { return false; }
+  bool records() const { return control_.keep_series; }
+  bool sampling() const { return false; }
+  const TrainState& first_stage(double t) {
+    system_.rhs(t, y_, mode_, damping_, k1_);
+    ++result_.summary.rhs_evaluations;
+    return k1_;
+  }
+  template <typename StateAt>
+  void emit_samples(double, const TrainState&, const TrainMode&, StateAt) {}
+  template <typename Dense>
+  void observe_step(double, const TrainState&, double, const TrainState&, const Dense&) {}
+  void check_finite(double t, const TrainState& y) const {
+    check_finite_state(t, result_.summary.steps, y);
+  }
+  void poll_stop(double t) const { poll_stop_request(control_, result_.summary.steps, t); }
+
+  // As Run::check_progress, each mesh's friction signs on their own.
+  bool check_progress(double t_from, double t_to, bool event) {
+    bool changed = false;
+    for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
+      Mode& m = mode_.mesh[k];
+      if (event || !m.slip_per_stage) continue;
+      const std::array<double, kMaxPairs> slip = m.slip;
+      system_.mesh(k).classify_forces(system_.motion(k, y_), damping_.mesh[k], m);
+      m.slip_per_stage = slip != m.slip;
+      changed = true;
+    }
+    if (stall_.after_step(event, t_from, t_to,
+                          [&] { return where(t_from, result_.summary.steps); })) {
+      for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
+        changed = changed || !mode_.mesh[k].slip_per_stage;
+        mode_.mesh[k].slip_per_stage = true;
+      }
+    }
+    return changed;
+  }
+
+  // The mode changed at (t, y_): each mesh classified again as Run::change_mode
+  // classifies its one, impacts and the stored energy's jumps booked.
+  void change_mode(double) {
+    ++result_.summary.events;
+    for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
+      const MeshLine& mesh = system_.mesh(k);
+      const MeshMotion q = system_.motion(k, y_);
+      const Mode old = mode_.mesh[k];
+      const Mode next = mesh.classify_geometry(q);
+      const double before = mesh.stored_energy(q, old).total_j();
+      mode_.mesh[k] = next;
+      const double after = mesh.stored_energy(q, next).total_j();
+      if (old.region != next.region && next.region != Region::free) begin_contact(k);
+      Mode& now = mode_.mesh[k];
+      mesh.classify_forces(q, damping_.mesh[k], now);
+      if (next.region == old.region) {
+        // Keep the friction sign and clipping of pairs that stay loaded,
+        // unless this event is theirs.
+        const int shift = next.k_first - old.k_first;
+        std::array<double, kMaxMeshEvents> g{};
+        Mode probe = now;
+        for (int j = 0; j < next.count; ++j) {
+          const int i = j + shift;
+          if (i >= 0 && i < old.count) {
+            probe.slip[static_cast<std::size_t>(j)] = old.slip[static_cast<std::size_t>(i)];
+            probe.clipped[static_cast<std::size_t>(j)] = old.clipped[static_cast<std::size_t>(i)];
+          }
+        }
+        const int n = mesh.event_values(q, probe, damping_.mesh[k], g.data());
+        if (std::all_of(g.begin(), g.begin() + n, [](double v) { return v >= 0.0; })) now = probe;
+      }
+      // Stored energy appears or vanishes with a pair entering or leaving
+      // under load: work of the time-varying stiffness.
+      jump_work_ += after - before;
+    }
+  }
+
+  void book_keep(double t) {
+    SimulationSummary& s = result_.summary;
+    const ElasticEnergy u = system_.mesh_energy(y_, mode_);
+    for (std::size_t i = 0; i < kTermCount; ++i) {
+      s.energy_max_j[i] = std::max(s.energy_max_j[i], u.j[i]);
+    }
+    const double energy = system_.kinetic_energy(y_) + (u.total_j() + system_.spring_energy(y_));
+    book_ledger_residual(
+        energy, energy0_, y_[kLedger + kWork],
+        {y_[kLedger + kDamping], y_[kLedger + kFriction], y_[kLedger + kMeshDamping]},
+        y_[kLedger + kParametric], jump_work_, s);
+    for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
+      const Mode& m = mode_.mesh[k];
+      if (m.region == Region::free) continue;
+      TrainMeshSummary& mesh = result_.meshes[k];
+      mesh.max_penetration_m =
+          std::max(mesh.max_penetration_m, system_.mesh(k).delta(m.region, system_.motion(k, y_)));
+      if (mesh.max_penetration_m > half_base_pitch_m_[k]) {
+        throw SimulationError("the teeth of mesh " + train_.meshes[k].name + " overlap by " +
+                              format_number(mesh.max_penetration_m) +
+                              " m on the line of action at " + where(t, s.steps) +
+                              ", more than half a base pitch (" +
+                              format_number(half_base_pitch_m_[k]) +
+                              " m): the model's contact on the line of action no longer holds");
+      }
+    }
+  }
+
+  void record(double t) {
+    TrainForces forces;
+    TrainState dydt{};
+    system_.rhs(t, y_, mode_, damping_, dydt, &forces);
+    TrainRow row;
+    row.t_s = t;
+    for (std::size_t i = 0; i < train_.bodies.size(); ++i) {
+      const int d = system_.dof_of(static_cast<int>(i));
+      row.theta_rad.push_back(y_[theta_of(d)]);
+      row.w_rad_per_s.push_back(y_[w_of(d)]);
+    }
+    for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
+      const Mode& m = mode_.mesh[k];
+      const MeshMotion q = system_.motion(k, y_);
+      const MeshLine& mesh = system_.mesh(k);
+      row.meshes.push_back({mesh.s(q), m.region == Region::free ? 0.0 : mesh.delta(m.region, q),
+                            static_cast<int>(m.region), m.count, forces.mesh[k].normal_force_n,
+                            forces.mesh[k].friction_force_n});
+    }
+    result_.series.push_back(std::move(row));
+  }
+
+  TrainResult finish(double t, const char* integrator) {
+    SimulationSummary& s = result_.summary;
+    s.integrator = integrator;
+    s.end_time_s = t;
+    s.step_s = train_.integrator.step_s;
+    const double stored = stored_energy(y_, mode_);
+    book_ledger_totals(system_.kinetic_energy(y_), stored, y_[kLedger + kWork],
+                       y_[kLedger + kDamping], y_[kLedger + kFriction], y_[kLedger + kMeshDamping],
+                       y_[kLedger + kParametric], jump_work_, s);
+    s.final_w1_rad_per_s = y_[w_of(system_.dof_of(0))];
+    s.final_w2_rad_per_s = y_[w_of(system_.dof_of(1))];
+    return std::move(result_);
+  }
+
+ private:
+  // The stall watch's exact switch: a train whose meshes all smooth the sign has none.
+  static double least_smoothing(const GearTrain& train) {
+    double least = train.meshes.front().pair.model.friction_smoothing_speed_m_s;
+    for (const TrainMesh& m : train.meshes) {
+      least = std::min(least, m.pair.model.friction_smoothing_speed_m_s);
+    }
+    return least;
+  }
+
+  double stored_energy(const TrainState& y, const TrainMode& m) const {
+    return system_.mesh_energy(y, m).total_j() + system_.spring_energy(y);
+  }
+
+  // A contact of mesh k begins at y_: its damping from the approach speed.
+  void begin_contact(std::size_t k) {
+    const MeshLine::Onset onset =
+        system_.mesh(k).damping_at_onset(system_.motion(k, y_), mode_.mesh[k]);
+    damping_.mesh[k] = onset.damping;
+    ++result_.meshes[k].impacts;
+  }
+
+  const GearTrain& train_;
+  const RunControl& control_;
+  TrainSystem system_;
+  StallWatch stall_;
+  std::vector<double> half_base_pitch_m_;
+  TrainState y_{};
+  TrainState k1_{};
+  TrainMode mode_;
+  TrainMemory damping_;
+  TrainResult result_;
+  double energy0_ = 0.0;
+  double jump_work_ = 0.0;
+};
+
+}  // namespace
+
+GearTrain two_gear_train(const SimulationCase& c) {
+  GearTrain train;
+  TrainBody pinion;
+  pinion.name = "pinion";
+  pinion.inertia_kg_m2 = moment_of_inertia(c.gears, Gear::one);
+  pinion.torque = c.torque1;
+  pinion.theta_rad = c.initial.theta1_rad;
+  pinion.w_rad_per_s = c.initial.w1_rad_per_s;
+  TrainBody wheel;
+  wheel.name = "wheel";
+  wheel.inertia_kg_m2 = moment_of_inertia(c.gears, Gear::two);
+  wheel.torque = c.torque2;
+  wheel.theta_rad = c.initial.theta2_rad;
+  wheel.w_rad_per_s = c.initial.w2_rad_per_s;
+  train.bodies = {pinion, wheel};
+  TrainMesh mesh;
+  mesh.name = "mesh";
+  mesh.body_a = 0;
+  mesh.body_b = 1;
+  mesh.pair = c;
+  train.meshes = {mesh};
+  train.integrator = c.integrator;
+  return train;
+}
+
+TrainResult simulate_train(const GearTrain& train, const RunControl& control) {
+  validate_train(train);
+  std::vector<std::shared_ptr<const StiffnessTable>> built;
+  std::vector<const StiffnessTable*> tables;
+  for (const TrainMesh& m : train.meshes) {
+    if (!m.table) {
+      built.push_back(std::make_shared<const StiffnessTable>(m.pair.gears, m.pair.model.stiffness));
+    }
+    tables.push_back(m.table ? m.table.get() : built.back().get());
+  }
+  TrainRun run(train, tables, control);
+  FixedStepper<TrainSystem> stepper(run.system(), train.integrator.kind);
+  const double t = run_fixed_grid(run, stepper, train.integrator);
+  return run.finish(t, train.integrator.kind == IntegratorKind::rk4 ? "rk4" : "dopri5");
+}
+
+}  // namespace gearimpact

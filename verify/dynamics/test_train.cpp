@@ -1,0 +1,389 @@
+// The torsional gear train (dynamics/train.hpp): bodies, meshes and shafts
+// through the run loop of the two-gear model. References: the two-gear
+// torsional run itself where the train is that model written another way (a
+// two-body train, two discs on one rigid shaft), which must agree bit for bit;
+// the closed forms of a linear three-body train (kinematic ratio, reflected
+// inertia, the natural frequencies and shapes of the 3-DOF M, K); the energy
+// balance, whose residual falls with the step at the integrator's order.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gearimpact/constants.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/dynamics/train.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/modifications.hpp"
+#include "gearimpact/paper/table1.hpp"
+#include "gearimpact/stiffness/table.hpp"
+
+using namespace gearimpact;
+
+namespace {
+
+// The table of a run, shared with a train's mesh without owning it.
+std::shared_ptr<const StiffnessTable> borrowed(const StiffnessTable& table) {
+  return {&table, [](const StiffnessTable*) {}};
+}
+
+// Every column of every row, and the run's counts and ledger, the same bits.
+void require_same_run(const SimulationResult& two_gear, const TrainResult& train, int wheel_body) {
+  REQUIRE(train.series.size() == two_gear.series.size());
+  for (std::size_t i = 0; i < two_gear.series.size(); ++i) {
+    const SeriesRow& a = two_gear.series[i];
+    const TrainRow& b = train.series[i];
+    const TrainMeshRow& m = b.meshes[0];
+    const auto wheel = static_cast<std::size_t>(wheel_body);
+    const bool same =
+        a.t_s == b.t_s && a.theta1_rad == b.theta_rad[0] && a.theta2_rad == b.theta_rad[wheel] &&
+        a.w1_rad_per_s == b.w_rad_per_s[0] && a.w2_rad_per_s == b.w_rad_per_s[wheel] &&
+        a.s_m == m.s_m && a.delta_m == m.delta_m && a.region == m.region && a.pairs == m.pairs &&
+        a.normal_force_n == m.normal_force_n && a.friction_force_n == m.friction_force_n;
+    if (!same) {
+      INFO("row " << i << " at t = " << a.t_s);
+      REQUIRE(same);
+    }
+  }
+  const SimulationSummary& s = two_gear.summary;
+  const SimulationSummary& t = train.summary;
+  CHECK(t.steps == s.steps);
+  CHECK(t.events == s.events);
+  CHECK(t.rhs_evaluations == s.rhs_evaluations);
+  CHECK(t.damping_loss_j == s.damping_loss_j);
+  CHECK(t.friction_loss_j == s.friction_loss_j);
+  CHECK(t.torque_work_j == s.torque_work_j);
+  CHECK(t.parametric_work_j == s.parametric_work_j);
+  CHECK(t.ledger_residual_max_j == s.ledger_residual_max_j);
+  CHECK(t.stored_energy_final_j == s.stored_energy_final_j);
+  CHECK(train.meshes[0].max_penetration_m == s.max_penetration_m);
+}
+
+// Both tips relieved linearly (examples/tip_relief_20_80.toml's start diameters).
+Modifications tip_relief(double amount_m) {
+  Modifications m;
+  m.gear1.tip = {amount_m, 43.2e-3, ReliefShape::linear};
+  m.gear2.tip = {amount_m, 163.2e-3, ReliefShape::linear};
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("a two-body train is the two-gear torsional run, bit for bit") {
+  // Case 2 (torques, impacts, friction reversals, pairs entering and
+  // leaving); case 1 with tip relief (each pair's gap, touching and kinks).
+  SimulationCase loaded = paper_case(2);
+  loaded.integrator.end_time_s = 2e-3;
+  SimulationCase relieved = paper_case(1);
+  relieved.modifications = tip_relief(10e-6);
+  relieved.integrator.end_time_s = 2e-3;
+  const StiffnessTable table(loaded.gears, loaded.model.stiffness);
+  for (const SimulationCase* c : {&loaded, &relieved}) {
+    CAPTURE(c->name);
+    const SimulationResult two_gear = simulate(*c, table);
+    GearTrain train = two_gear_train(*c);
+    train.meshes[0].table = borrowed(table);
+    const TrainResult result = simulate_train(train);
+    REQUIRE(two_gear.summary.events > 10);
+    require_same_run(two_gear, result, 1);
+  }
+}
+
+TEST_CASE("two discs on one rigid shaft are one wheel of their summed inertia, bit for bit") {
+  SimulationCase c = paper_case(2);
+  c.integrator.end_time_s = 4e-4;
+  const StiffnessTable table(c.gears, c.model.stiffness);
+  const SimulationResult two_gear = simulate(c, table);
+  GearTrain train = two_gear_train(c);
+  train.meshes[0].table = borrowed(table);
+  // The wheel's inertia split between the wheel and a disc on its shaft: J2 = J2a + J2b exactly.
+  const double j2 = train.bodies[1].inertia_kg_m2;
+  TrainBody disc;
+  disc.name = "disc";
+  disc.inertia_kg_m2 = 0.375 * j2;
+  disc.theta_rad = c.initial.theta2_rad;
+  disc.w_rad_per_s = c.initial.w2_rad_per_s;
+  train.bodies[1].inertia_kg_m2 = j2 - disc.inertia_kg_m2;
+  REQUIRE(train.bodies[1].inertia_kg_m2 + disc.inertia_kg_m2 == j2);
+  // The disc first, so that the shaft's body is not the mesh's own index.
+  train.bodies.insert(train.bodies.begin() + 1, disc);
+  train.meshes[0].body_b = 2;
+  TrainShaft shaft;
+  shaft.kind = TrainShaft::Kind::rigid;
+  shaft.body_a = 2;
+  shaft.body_b = 1;
+  train.shafts = {shaft};
+  const TrainResult result = simulate_train(train);
+  require_same_run(two_gear, result, 2);
+  for (const TrainRow& row : result.series) {
+    REQUIRE(row.theta_rad[1] == row.theta_rad[2]);
+    REQUIRE(row.w_rad_per_s[1] == row.w_rad_per_s[2]);
+  }
+}
+
+namespace {
+
+// A pinion (20 teeth), an idler (30) and a wheel (60) of one module and
+// pressure angle, each mesh of constant stiffness k without friction and
+// Hertzian damping: a linear system while both meshes stay pressed.
+struct LinearTrain {
+  double k = 3e8;
+  GearPair pinion_idler;
+  GearPair idler_wheel;
+  double rp = 0.0, ri = 0.0, rw = 0.0;  // base radii
+  double jp = 0.0, ji = 0.0, jw = 0.0;  // inertias of the gears' discs
+
+  LinearTrain() {
+    pinion_idler.teeth1 = 20;
+    pinion_idler.teeth2 = 30;
+    idler_wheel.teeth1 = 30;
+    idler_wheel.teeth2 = 60;
+    rp = base_radius(pinion_idler, Gear::one);
+    ri = base_radius(pinion_idler, Gear::two);
+    rw = base_radius(idler_wheel, Gear::two);
+    jp = moment_of_inertia(pinion_idler, Gear::one);
+    ji = moment_of_inertia(pinion_idler, Gear::two);
+    jw = moment_of_inertia(idler_wheel, Gear::two);
+  }
+
+  SimulationCase pair(const GearPair& g) const {
+    SimulationCase c;
+    c.gears = g;
+    c.model.mesh_stiffness = MeshStiffnessMode::constant;
+    c.model.constant_mesh_stiffness_n_per_m = k;
+    c.model.friction_coefficient = 0.0;
+    c.model.damping_update = DampingUpdate::off;
+    return c;
+  }
+
+  // The bodies at theta_p = 0 with the speeds w_p, w_p rp/ri, w_p rp/rw and
+  // the meshes pressed by s1 - B1 and s2 - B2 (s = Rb_a theta_a - Rb_b theta_b).
+  GearTrain train(double torque_p, double torque_w, double w_p, double s1, double s2, double step,
+                  double end) const {
+    GearTrain t;
+    TrainBody p{"pinion", jp, {}, 0.0, w_p};
+    TrainBody i{"idler", ji, {}, (rp * 0.0 - s1) / ri, w_p * rp / ri};
+    TrainBody w{"wheel", jw, {}, 0.0, w_p * rp / rw};
+    w.theta_rad = (ri * i.theta_rad - s2) / rw;
+    p.torque.constant_n_m = torque_p;
+    w.torque.constant_n_m = torque_w;
+    t.bodies = {p, i, w};
+    t.meshes = {TrainMesh{"pinion-idler", 0, 1, pair(pinion_idler), nullptr},
+                TrainMesh{"idler-wheel", 1, 2, pair(idler_wheel), nullptr}};
+    t.integrator.step_s = step;
+    t.integrator.end_time_s = end;
+    return t;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("a pinion-idler-wheel train accelerates by its reflected inertia at the ratio of teeth") {
+  const LinearTrain l;
+  // T on the pinion, no load: every body accelerates at its kinematic ratio,
+  // the pinion at alpha = T / J_eq with the reflected inertia
+  // J_eq = Jp + Ji (rp/ri)^2 + Jw (rp/rw)^2, and the meshes carry the
+  // constant forces that accelerate what lies behind them. Started pressed by
+  // exactly those forces, the motion is this uniform acceleration: RK4
+  // integrates its polynomials exactly, to round-off.
+  const double torque = 20.0;
+  const double j_eq = l.jp + l.ji * std::pow(l.rp / l.ri, 2) + l.jw * std::pow(l.rp / l.rw, 2);
+  const double alpha = torque / j_eq;
+  const double f1 = (torque - l.jp * alpha) / l.rp;
+  const double f2 = f1 - l.ji * (alpha * l.rp / l.ri) / l.ri;
+  const double b1 = l.pinion_idler.backlash_m;
+  const double b2 = l.idler_wheel.backlash_m;
+  const double w0 = 100.0;
+  const double end = 2e-3;
+  const TrainResult r =
+      simulate_train(l.train(torque, 0.0, w0, b1 + f1 / l.k, b2 + f2 / l.k, 1e-6, end));
+  const TrainRow& last = r.series.back();
+  REQUIRE(last.t_s == end);
+  // Both meshes stayed pressed on N1.
+  for (const TrainRow& row : r.series) {
+    REQUIRE(row.meshes[0].region == static_cast<int>(Region::n1));
+    REQUIRE(row.meshes[1].region == static_cast<int>(Region::n1));
+  }
+  // Round-off of theta (~1 rad) against deflections of ~1e-6 m on radii of
+  // ~2e-2 m: ~1e-11 relative in the forces; 1e-9 leaves room.
+  const double w_p = w0 + alpha * end;
+  CHECK(std::fabs(last.w_rad_per_s[0] - w_p) / w_p < 1e-9);
+  // The kinematic ratio, the teeth's: z_p / z_i and z_p / z_w.
+  CHECK(std::fabs(last.w_rad_per_s[1] / last.w_rad_per_s[0] - 20.0 / 30.0) < 1e-9);
+  CHECK(std::fabs(last.w_rad_per_s[2] / last.w_rad_per_s[0] - 20.0 / 60.0) < 1e-9);
+  // The idler passes on what the wheel's inertia takes: F2 Rw = Jw alpha_w.
+  CHECK(std::fabs(last.meshes[1].normal_force_n - f2) / f2 < 1e-9);
+  CHECK(std::fabs(f2 * l.rw - l.jw * alpha * l.rp / l.rw) / (f2 * l.rw) < 1e-12);
+}
+
+TEST_CASE("a pinion-idler-wheel train vibrates at the eigenvalues of its 3-DOF M, K") {
+  const LinearTrain l;
+  // In the relative displacements s1, s2 the two elastic modes solve
+  // s'' = -A s with, for a = rp^2/Jp, b = ri^2/Ji, c = rw^2/Jw,
+  // A = [[k (a + b), -k b], [-k b, k (b + c)]].
+  const double a = l.rp * l.rp / l.jp;
+  const double b = l.ri * l.ri / l.ji;
+  const double c = l.rw * l.rw / l.jw;
+  const double half_trace = 0.5 * l.k * (a + 2.0 * b + c);
+  const double det = l.k * l.k * (a * b + a * c + b * c);
+  const std::array<double, 2> lambda{half_trace - std::sqrt(half_trace * half_trace - det),
+                                     half_trace + std::sqrt(half_trace * half_trace - det)};
+  // Balanced torques: T on the pinion, -T rw/rp on the wheel, both meshes
+  // carrying F = T / rp at constant speeds.
+  const double torque = 200.0;
+  const double f = torque / l.rp;
+  const double b1 = l.pinion_idler.backlash_m;
+  const double b2 = l.idler_wheel.backlash_m;
+  const double w0 = 100.0;
+  for (std::size_t mode = 0; mode < 2; ++mode) {
+    CAPTURE(mode);
+    const double lam = lambda[mode];
+    // The shape in s: (A - lambda) v = 0, v = (k b, k (a + b) - lambda).
+    std::array<double, 2> v{l.k * b, l.k * (a + b) - lam};
+    const double largest = std::max(std::fabs(v[0]), std::fabs(v[1]));
+    v = {v[0] / largest, v[1] / largest};
+    // The 3-DOF check of the reduction: phi in the angles, with
+    // rp phi_p - ri phi_i = v1, ri phi_i - rw phi_w = v2 and no momentum
+    // Jp phi_p + Ji (rp/ri) phi_i + Jw (rp/rw) phi_w = 0 (orthogonal in M to
+    // the rigid turning), satisfies K phi = lambda M phi for
+    // K = k g1 g1^T + k g2 g2^T, g1 = (rp, -ri, 0), g2 = (0, ri, -rw).
+    const double phi_i_coeff =
+        l.jp * (l.ri / l.rp) + l.ji * (l.rp / l.ri) + l.jw * (l.rp / l.rw) * (l.ri / l.rw);
+    const double phi_i = -(l.jp * v[0] / l.rp - l.jw * (l.rp / l.rw) * v[1] / l.rw) / phi_i_coeff;
+    const std::array<double, 3> phi{(v[0] + l.ri * phi_i) / l.rp, phi_i,
+                                    (l.ri * phi_i - v[1]) / l.rw};
+    const double g1 = l.rp * phi[0] - l.ri * phi[1];
+    const double g2 = l.ri * phi[1] - l.rw * phi[2];
+    const std::array<double, 3> k_phi{l.k * g1 * l.rp, l.k * (-g1 * l.ri + g2 * l.ri),
+                                      -l.k * g2 * l.rw};
+    const std::array<double, 3> m_phi{l.jp * phi[0], l.ji * phi[1], l.jw * phi[2]};
+    double norm = 0.0;
+    double residual = 0.0;
+    for (std::size_t i = 0; i < 3; ++i) {
+      norm = std::max(norm, std::fabs(k_phi[i]));
+      residual = std::max(residual, std::fabs(k_phi[i] - lam * m_phi[i]));
+    }
+    CHECK(residual / norm < 1e-12);
+    // Started from the balanced state moved by eps phi (the speeds
+    // unchanged), each mesh's s moves by eps v_i cos(omega t), omega = sqrt(lambda).
+    const double omega = std::sqrt(lam);
+    const double eps = 0.2 * f / l.k;  // the meshes stay pressed
+    const double period_fast = 2.0 * pi / std::sqrt(lambda[1]);
+    const double step = period_fast / 200.0;
+    const double end = 3.0 * 2.0 * pi / std::sqrt(lambda[0]);
+    GearTrain train =
+        l.train(torque, -torque * l.rw / l.rp, w0, b1 + f / l.k, b2 + f / l.k, step, end);
+    train.bodies[0].theta_rad += eps * phi[0];
+    train.bodies[1].theta_rad += eps * phi[1];
+    train.bodies[2].theta_rad += eps * phi[2];
+    const TrainResult r = simulate_train(train);
+    REQUIRE(r.series.size() > 100);
+    double error = 0.0;
+    for (const TrainRow& row : r.series) {
+      for (std::size_t m = 0; m < 2; ++m) {
+        const double steady = (m == 0 ? b1 : b2) + f / l.k;
+        const double expected = steady + eps * v[m] * std::cos(omega * row.t_s);
+        error = std::max(error, std::fabs(row.meshes[m].s_m - expected));
+      }
+    }
+    // RK4's phase error at 200 steps per fastest period, (omega h)^4 / 120 per
+    // radian over ~20 radians, ~2e-7 of the amplitude; the round-off of s
+    // (1e-16 of |Rb theta| < 1e-2 m) below 1e-12 of eps. 1e-5: fifty times
+    // the phase error's estimate.
+    CHECK(error / eps < 1e-5);
+  }
+}
+
+namespace {
+
+// A two-stage train of the paper's pair: pinion 1 drives wheel 1, whose shaft
+// (a torsional spring) turns pinion 2, which drives wheel 2 under a load;
+// time-varying stiffness, Hertzian damping and friction, impacts from the start.
+GearTrain two_stage(const StiffnessTable& table, double step) {
+  const SimulationCase c = paper_case(2);
+  GearTrain train;
+  const double j1 = moment_of_inertia(c.gears, Gear::one);
+  const double j2 = moment_of_inertia(c.gears, Gear::two);
+  TrainBody p1{"pinion1", j1, c.torque1, 0.0, 50.0};
+  TrainBody w1{"wheel1", j2, {}, 0.0, 10.0};
+  TrainBody p2{"pinion2", j1, {}, 0.0, 10.0};
+  TrainBody w2{"wheel2", j2, {}, 0.0, 2.0};
+  w2.torque.constant_n_m = -0.25 * c.torque1.constant_n_m;
+  train.bodies = {p1, w1, p2, w2};
+  train.meshes = {TrainMesh{"stage1", 0, 1, c, borrowed(table)},
+                  TrainMesh{"stage2", 2, 3, c, borrowed(table)}};
+  TrainShaft shaft;
+  shaft.kind = TrainShaft::Kind::torsional;
+  shaft.body_a = 1;
+  shaft.body_b = 2;
+  shaft.stiffness_n_m_per_rad = 2e3;
+  train.shafts = {shaft};
+  train.integrator.step_s = step;
+  train.integrator.end_time_s = 3e-3;
+  train.integrator.output_every = 100;
+  return train;
+}
+
+}  // namespace
+
+TEST_CASE("a two-stage train's energy balances to the integrator's order") {
+  const StiffnessTable table(paper_gear_pair(), paper_case(2).model.stiffness);
+  // The input work against kinetic + stored (meshes and shaft) + the losses
+  // + the parametric work, each integrated or evaluated on its own.
+  const TrainResult coarse = simulate_train(two_stage(table, 4e-7));
+  const TrainResult fine = simulate_train(two_stage(table, 2e-7));
+  for (const TrainResult* r : {&coarse, &fine}) {
+    REQUIRE(r->meshes[0].impacts >= 1);
+    REQUIRE(r->meshes[1].impacts >= 1);
+    REQUIRE(r->summary.damping_loss_j > 0.0);
+    REQUIRE(r->summary.friction_loss_j > 0.0);
+  }
+  const double scale = coarse.summary.ledger_scale_j;
+  CAPTURE(coarse.summary.ledger_residual_max_j);
+  CAPTURE(fine.summary.ledger_residual_max_j);
+  // RK4's error per unit time ~ (omega h)^4 with the mesh's omega ~ 1e5 rad/s
+  // at h = 4e-7 s: ~2e-6 of the scale per period's worth of energy exchanged,
+  // most of it in the ledger's oscillating terms, which cancel: 1e-7 bounds it.
+  CHECK(coarse.summary.ledger_residual_max_j / scale < 1e-7);
+  // Fourth order: halving h divides the residual by about 16; events cut
+  // the steps, so at least 8 is asked.
+  CHECK(fine.summary.ledger_residual_max_j < coarse.summary.ledger_residual_max_j / 8.0);
+}
+
+TEST_CASE("a train's bad input is refused naming its field") {
+  const LinearTrain l;
+  GearTrain t = l.train(1.0, 0.0, 0.0, 0.0, 0.0, 1e-6, 1e-4);
+  SUBCASE("a mesh's pair key, addressed by the mesh's name") {
+    t.meshes[1].pair.gears.teeth1 = 2;
+    try {
+      simulate_train(t);
+      FAIL("not refused");
+    } catch (const InputError& e) {
+      CHECK(e.field().rfind("meshes.idler-wheel.", 0) == 0);
+    }
+  }
+  SUBCASE("a mesh between two discs of one rigid shaft") {
+    TrainShaft shaft;
+    shaft.body_a = 1;
+    shaft.body_b = 2;
+    t.shafts = {shaft};
+    t.bodies[2].theta_rad = t.bodies[1].theta_rad;
+    t.bodies[2].w_rad_per_s = t.bodies[1].w_rad_per_s;
+    CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("meshes.idler-wheel.body_b"),
+                         InputError);
+  }
+  SUBCASE("a body without inertia") {
+    t.bodies[1].inertia_kg_m2 = 0.0;
+    CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("bodies.idler.inertia"), InputError);
+  }
+  SUBCASE("a state-dependent torque") {
+    t.bodies[2].torque.kind = Torque::Kind::drag;
+    CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("bodies.wheel.torque.kind"),
+                         InputError);
+  }
+}
