@@ -13,10 +13,12 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <memory>
 #include <vector>
 
 #include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/contact/contact.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
@@ -149,8 +151,11 @@ class MeshLine {
   // The forces of the mesh in the mode m on its bodies, added to their
   // moments (moment_a, moment_b, in their own senses), and the powers of the
   // ledger added to `powers`; the totals over the loaded pairs when asked.
-  void add_forces(const MeshMotion& q, const Mode& m, const ContactMemory& d, double& moment_a,
-                  double& moment_b, MeshPowers& powers, ContactTotals* totals) const;
+  // Inlined into the systems' right-hand sides, always: a call there costs
+  // as much as a stage of free flight.
+  [[gnu::always_inline]] void add_forces(const MeshMotion& q, const Mode& m, const ContactMemory& d,
+                                         double& moment_a, double& moment_b, MeshPowers& powers,
+                                         ContactTotals* totals) const;
 
   // The mesh's event values in mode m, written from g[0]: each >= 0 while
   // the mode holds. Returns how many are set (at most kMaxMeshEvents).
@@ -225,5 +230,113 @@ class MeshLine {
   bool lagrangian_ = false;
   DampingUpdate damping_update_ = DampingUpdate::each_impact;  // resolved
 };
+
+// The force's functions, inline: the systems' right-hand sides call them for
+// every loaded pair at every stage.
+
+inline double MeshLine::friction_coefficient(double normal_force_n, double vs, double ve) const {
+  return pair_friction_coefficient(*model_, face_width_, normal_force_n, vs, ve);
+}
+
+inline PairPenetration MeshLine::pair_penetration(const Mode& m, int j, double x, double dl,
+                                                  double dl_rate, double x_rate) const {
+  if (!gaps_) return {dl, dl_rate, 0.0};
+  // The zone's branch, as the mode holds it: a stage state of a step that
+  // ends on a kink sees the zone's own gap.
+  return pair_penetration_with_gap(*gaps_, kinks_, m.zone[j], m.region, m.k_first + j, x, dl,
+                                   dl_rate, x_rate, xs_, xe_);
+}
+
+inline double MeshLine::damping_factor(const ContactMemory& d, double ke) const {
+  return damping_on_current_pair_ ? d.damping_per_stiffness_s_m * ke
+                                  : d.damping_per_stiffness_s_m * d.frozen_stiffness_n_per_m;
+}
+
+inline void MeshLine::add_forces(const MeshMotion& q, const Mode& m, const ContactMemory& d,
+                                 double& moment_a, double& moment_b, MeshPowers& powers,
+                                 ContactTotals* totals) const {
+  const double w1 = q.w_a_rad_per_s;
+  const double w2 = q.w_b_rad_per_s;
+  if (m.region != Region::free) {
+    const double sign = line_sign(m.region);
+    const double dl = delta(m.region, q);
+    const double dl_rate = sign * s_rate(q);
+    const double ref = layout_.reference_m(m.region, q.theta_a_rad);
+    const double x_rate = sign * rb1_ * w1;
+    for (int j = 0; j < m.count; ++j) {
+      const StiffnessTable* table = m.table[j];
+      // A pair with a missing tooth or without contact over a fault across
+      // the face: no force, no damping, no friction; nor a pair whose gap is open.
+      if (!carries(table, m.part[j]) || (gaps_ && !m.touching[j])) continue;
+      const double x = layout_.position_m(ref, m.k_first + j);
+      // The pair's own penetration and its rate: the line's, less the gap.
+      const PairPenetration p = pair_penetration(m, j, x, dl, dl_rate, x_rate);
+      const double dk = p.delta_m;
+      const double dk_rate = p.rate_m_s;
+      const double gap_slope = p.gap_slope;
+      double ke = 0.0;
+      double dke = 0.0;
+      pair_stiffness(*table, m.part[j], x, m.count, ke, dke);
+      const double f_elastic = elastic_force(ke, dk);
+      const double g_damping = hertzian_damping_force(damping_factor(d, ke), dk, dk_rate);
+      const double n = normal_force(f_elastic, g_damping, m.clipped[j]);
+      const double vs = sliding_speed(w1, w2, x, lp_);
+      const double f = friction_coefficient(n, vs, entrainment_speed(w1, w2, x, lp_));
+      const double slip = smoothing_speed_ > 0.0 ? std::tanh(vs / smoothing_speed_)
+                          : m.slip_per_stage     ? (vs >= 0.0 ? 1.0 : -1.0)
+                                                 : m.slip[j];
+      const double ff = friction_force(m.region, f, n, slip);
+      // (1),(3) for one pair, (43),(45) summed over the pairs the line carries:
+      // on N1 J1 w1' = T1 - [N Rb1 + Ff X], J2 w2' = T2 + [N Rb2 + Ff (lp - X)];
+      // every sign flips on N2. In free flight, (2),(44): J w' = T.
+      moment_a -= sign * (n * rb1_ + ff * x);
+      moment_b += sign * (n * rb2_ + ff * (lp_ - x));
+      // The damping force is what N adds to F; with N clipped it is -F, so the
+      // stored energy released while the tooth cannot push counts as damping loss.
+      powers.damping_w += (n - f_elastic) * dk_rate;
+      powers.friction_w += f * n * slip * vs;
+      // d/dt of 1/2 Ke(X) delta^2 at fixed delta. Newtonian: work of the
+      // varying stiffness. Lagrangian: -dV/dtheta1 adds the torque
+      // -1/2 dKe/dX (dX/dtheta1) delta^2, dX/dtheta1 = sign Rb1, whose power is
+      // minus this; a clipped pair exerts no force, so the stored energy it
+      // gains or loses counts with its damping loss, as above.
+      const double stiffness_power = 0.5 * dk * dk * dke * x_rate;
+      if (!lagrangian_) {
+        powers.parametric_w += stiffness_power;
+      } else if (m.clipped[j]) {
+        powers.damping_w -= stiffness_power;
+      } else {
+        moment_a -= 0.5 * dk * dk * dke * sign * rb1_;
+      }
+      if (gaps_) {
+        // The gap moves with the pinion: the pair's penetration changes at
+        // fixed s by -de_k/dX dX/dt, and N acting on it does the work
+        // -N de_k/dX dX/dt. Newtonian: more work of the varying mesh.
+        // Lagrangian: N acts on delta_k, whose lever on the pinion is
+        // sign Rb1 (1 - de_k/dX), and that torque does this work on the pinion.
+        if (!lagrangian_) {
+          powers.parametric_w -= n * gap_slope * x_rate;
+        } else {
+          moment_a += sign * rb1_ * n * gap_slope;
+        }
+      }
+      if (totals != nullptr) {
+        totals->normal_force_n += n;
+        totals->friction_force_n += ff;
+        totals->friction_load_n += f * n;
+      }
+    }
+  }
+  if (mesh_damping_ > 0.0) {
+    // The viscous mesh damper acts on s' at all times, in contact and in the
+    // backlash alike, as the c x' of docs/steady-state.md's clearance oscillator:
+    // a force c s' along the line of action in the sense of an N1 contact force.
+    const double rate = s_rate(q);
+    const double force = mesh_damping_ * rate;
+    moment_a -= force * rb1_;
+    moment_b += force * rb2_;
+    powers.mesh_damping_w += force * rate;
+  }
+}
 
 }  // namespace gearimpact
