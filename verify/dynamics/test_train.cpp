@@ -381,6 +381,10 @@ TEST_CASE("a train's bad input is refused naming its field") {
     t.bodies[1].inertia_kg_m2 = 0.0;
     CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("bodies.idler.inertia"), InputError);
   }
+  SUBCASE("an integrator other than the event-cut RK4") {
+    t.integrator.kind = IntegratorKind::adaptive;
+    CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("integrator.kind"), InputError);
+  }
   SUBCASE("a state-dependent torque") {
     t.bodies[2].torque.kind = Torque::Kind::drag;
     CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("bodies.wheel.torque.kind"),

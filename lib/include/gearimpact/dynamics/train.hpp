@@ -64,7 +64,7 @@ struct GearTrain {
   std::vector<TrainBody> bodies;
   std::vector<TrainMesh> meshes;
   std::vector<TrainShaft> shafts;
-  // kind (rk4 or dopri5, at the fixed step), step, end time, output_every.
+  // kind (rk4: the event-cut RK4 at the fixed step), step, end time, output_every.
   IntegratorSettings integrator;
 };
 
@@ -106,8 +106,9 @@ struct TrainResult {
   std::vector<TrainMeshSummary> meshes;
 };
 
-// Validates the train (InputError naming the field) and runs it; of
-// `control`, keep_series, on_row's absence and should_stop are read.
+// Validates the train (InputError naming the field: bodies.NAME.inertia,
+// meshes.NAME.gears.teeth1, ...) and runs it; of `control`, keep_series and
+// should_stop are read.
 TrainResult simulate_train(const GearTrain& train, const RunControl& control = {});
 
 }  // namespace gearimpact
