@@ -221,6 +221,51 @@ TEST_CASE("a pinion-idler-wheel train accelerates by its reflected inertia at th
   CHECK(std::fabs(f2 * l.rw - l.jw * alpha * l.rp / l.rw) / (f2 * l.rw) < 1e-12);
 }
 
+TEST_CASE("a disc behind a torsional shaft spring is accelerated by the spring's twist") {
+  const LinearTrain l;
+  // The pinion drives the 30-tooth gear, on whose shaft a spring kt turns a
+  // disc: under T on the pinion everything accelerates at the kinematic
+  // ratio, the pinion at T / J_eq, J_eq = Jp + (Ji + Jd) (rp/ri)^2, and the
+  // spring carries the disc's Jd alpha_i at the twist Jd alpha_i / kt. Started
+  // in that state, the motion is this uniform acceleration.
+  const double torque = 20.0;
+  const double jd = 2.0 * l.ji;
+  const double kt = 1e3;
+  const double j_eq = l.jp + (l.ji + jd) * std::pow(l.rp / l.ri, 2);
+  const double alpha = torque / j_eq;
+  const double alpha_i = alpha * l.rp / l.ri;
+  const double force = (torque - l.jp * alpha) / l.rp;
+  const double twist = jd * alpha_i / kt;
+  const double w0 = 100.0;
+  const double end = 2e-3;
+  GearTrain t;
+  TrainBody p{"pinion", l.jp, {}, 0.0, w0};
+  p.torque.constant_n_m = torque;
+  const double s1 = l.pinion_idler.backlash_m + force / l.k;
+  TrainBody g{"gear", l.ji, {}, -s1 / l.ri, w0 * l.rp / l.ri};
+  TrainBody d{"disc", jd, {}, g.theta_rad - twist, g.w_rad_per_s};
+  t.bodies = {p, g, d};
+  t.meshes = {TrainMesh{"pinion-gear", 0, 1, l.pair(l.pinion_idler), nullptr}};
+  TrainShaft shaft;
+  shaft.kind = TrainShaft::Kind::torsional;
+  shaft.body_a = 1;
+  shaft.body_b = 2;
+  shaft.stiffness_n_m_per_rad = kt;
+  t.shafts = {shaft};
+  t.integrator.step_s = 1e-6;
+  t.integrator.end_time_s = end;
+  const TrainResult r = simulate_train(t);
+  const TrainRow& last = r.series.back();
+  // As above: round-off of angles of ~1 rad against a twist of ~1e-2 rad and
+  // deflections of ~1e-6 m, ~1e-12 relative; 1e-9 leaves room.
+  CHECK(std::fabs(last.w_rad_per_s[0] - (w0 + alpha * end)) / (w0 + alpha * end) < 1e-9);
+  CHECK(std::fabs((last.theta_rad[1] - last.theta_rad[2]) - twist) / twist < 1e-9);
+  CHECK(std::fabs(last.w_rad_per_s[2] / last.w_rad_per_s[0] - 20.0 / 30.0) < 1e-9);
+  // The spring's energy counts with the stored energy: the ledger closes to
+  // round-off, RK4 integrating the polynomial motion exactly.
+  CHECK(r.summary.ledger_residual_max_j / r.summary.ledger_scale_j < 1e-12);
+}
+
 TEST_CASE("a pinion-idler-wheel train vibrates at the eigenvalues of its 3-DOF M, K") {
   const LinearTrain l;
   // In the relative displacements s1, s2 the two elastic modes solve
