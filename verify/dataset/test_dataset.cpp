@@ -1,6 +1,7 @@
 // Data sets (docs/datasets.md): the spec's plan and labels, the design's strata, refusals before
 // any work, SHA-256 against FIPS 180-4's examples, and the program end to end: a set run whole,
-// in two shards and merged, and killed then resumed gives the same bytes in every record.
+// in two or five shards and merged, and killed then resumed gives the same bytes in every record;
+// the anti-alias decimator's record against anti_alias_resample of the undecimated record.
 #include <doctest/doctest.h>
 
 #include <chrono>
@@ -18,6 +19,7 @@
 #include "gearimpact/dataset/spec.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/io/sha256.hpp"
+#include "gearimpact/signals/decimate.hpp"
 #include "run_command.hpp"
 #include "scratch.hpp"
 // After the library's headers: signal.h defines si_value, a parameter's name there.
@@ -184,8 +186,8 @@ std::string quoted(const fs::path& p) {
 }  // namespace
 
 TEST_CASE(
-    "the program: whole, two shards (one on two threads) merged, and killed then resumed give the "
-    "same bytes") {
+    "the program: whole, two shards (one on two threads) merged, five shards merged, and killed "
+    "then resumed give the same bytes") {
   Scratch scratch("dataset");
   const fs::path spec = kHere / "six.toml";
   const fs::path whole = scratch.dir / "whole";
@@ -222,6 +224,21 @@ TEST_CASE(
   INFO(m.err);
   REQUIRE(m.exit_code == 0);
   CHECK(records_in(merged) == reference);
+  // Five shards (one of them empty: six records, ids 0 and 5 in shard 0), into their own
+  // folders, merged from the five.
+  std::string five;
+  for (int k = 0; k < 5; ++k) {
+    const fs::path part = scratch.dir / ("five-" + std::to_string(k));
+    run("--out " + quoted(part) + " --shard " + std::to_string(k) + "/5");
+    CHECK(records_in(part).size() == (k == 0 ? 2u : 1u));
+    five += " " + quoted(part);
+  }
+  const fs::path merged5 = scratch.dir / "merged5";
+  const auto m5 = run_command(cli("dataset merge" + five + " --out " + quoted(merged5)));
+  INFO(m5.err);
+  REQUIRE(m5.exit_code == 0);
+  CHECK(records_in(merged5) == reference);
+  CHECK(read(merged5 / "labels.csv") == read(merged / "labels.csv"));
   // A record in two folders is refused, naming it.
   const auto doubled = run_command(cli("dataset merge " + quoted(sharded) + " " + quoted(whole) +
                                        " --out " + quoted(scratch.dir / "y")));
@@ -383,4 +400,98 @@ TEST_CASE("a random design: seeded, in range; a held-out range takes its conditi
   CHECK(differs);
   CHECK(held > 0);
   CHECK(held < 20);
+}
+
+namespace {
+
+// six.toml without noise (which the decimated record adds at its own rate), at `rate`, with
+// `recorder` as its [recorder] section.
+std::string without_noise(const std::string& rate, const std::string& recorder) {
+  return replaced(replaced(six_text(), "[recorder]\nnoise_snr = \"30 dB\"\n", recorder),
+                  "sample_rate = \"20 kHz\"", "sample_rate = \"" + rate + "\"");
+}
+
+}  // namespace
+
+TEST_CASE(
+    "the anti-alias decimator: a record decimated from 4 x its rate is anti_alias_resample of the "
+    "undecimated record, bit for bit; the same bytes whole and in five shards") {
+  const dataset::Plan fine = dataset::make_plan(spec_of(without_noise("80 kHz", "")));
+  const dataset::Plan decimated =
+      dataset::make_plan(spec_of(without_noise("20 kHz", "[recorder]\noversample = 4\n")));
+  REQUIRE(decimated.records.size() == 6);
+  const std::size_t n = decimated.samples_per_record;
+  REQUIRE(fine.samples_per_record == 4 * n);
+  // The filter anti_alias_resample designs for 80 kHz to 20 kHz (decimate.hpp): order
+  // ceil((100 - 8) / (2.285 dw)), dw = 2 pi 2 kHz / 80 kHz, raised to even: 258.
+  const dataset::Oversampling over =
+      dataset::oversampling(20e3, decimated.conditions[0].recorder, 400, static_cast<long long>(n));
+  REQUIRE(over.filter.has_value());
+  CHECK(over.filter->order == 258);
+  CHECK(over.lead == 33);  // ceil(129 / 4)
+  // Two records: the first condition's, and the last (another speed and depth).
+  for (const std::size_t id : {std::size_t{0}, std::size_t{5}}) {
+    CAPTURE(id);
+    // The same seed: the same start angle.
+    REQUIRE(fine.records[id].seed == decimated.records[id].seed);
+    const dataset::RecordData a = dataset::make_record(fine, fine.records[id]);
+    const dataset::RecordData d = dataset::make_record(decimated, decimated.records[id]);
+    REQUIRE(d.sensor.size() == n);
+    signals::UniformRecord undecimated;
+    undecimated.rate_hz = 80e3;
+    undecimated.values = a.sensor;
+    const signals::UniformRecord expected = signals::anti_alias_resample(undecimated, 20e3);
+    // Its outputs start and end half the span inside the record: 33 samples at 20 kHz.
+    REQUIRE(expected.values.size() == n - 2 * 33 + 1);
+    CHECK(expected.start_s == 33 * 4 / 80e3);
+    std::size_t same = 0;
+    for (std::size_t j = 0; j < expected.values.size(); ++j) {
+      same += d.sensor[j + 33] == expected.values[j] ? 1 : 0;
+    }
+    CHECK(same == expected.values.size());
+    // The truth: the fine record's every fourth sample.
+    for (std::size_t k = 0; k < d.truth.size(); ++k) {
+      std::size_t equal = 0;
+      for (std::size_t j = 0; j < n; ++j) equal += d.truth[k][j] == a.truth[k][4 * j] ? 1 : 0;
+      CHECK(equal == n);
+    }
+    std::size_t flags = 0;
+    for (std::size_t j = 0; j < n; ++j) flags += d.contact[j] == a.contact[4 * j] ? 1 : 0;
+    CHECK(flags == n);
+    // The file names its filter.
+    const std::string file = dataset::record_file(decimated, decimated.records[id], d);
+    for (const char* name :
+         {"simulation_rate_hz", "decimator_passband_edge_hz", "decimator_stopband_edge_hz",
+          "decimator_taps", "decimator_kaiser_beta", "alias_free_band_hz"}) {
+      CHECK(file.find(name) != std::string::npos);
+    }
+  }
+
+  // Whole, and in five shards (two of them on two threads) into one folder.
+  Scratch scratch("dataset-decimated");
+  const fs::path whole = scratch.dir / "whole";
+  const fs::path sharded = scratch.dir / "sharded";
+  fs::create_directories(whole);
+  fs::create_directories(sharded);
+  CHECK(dataset::run_shard(decimated, whole.string(), {0, 1}).done == 6);
+  for (int k = 0; k < 5; ++k) {
+    dataset::run_shard(decimated, sharded.string(), {k, 5}, k < 2 ? 2 : 1);
+  }
+  const auto reference = records_in(whole);
+  CHECK(reference.size() == 6);
+  CHECK(records_in(sharded) == reference);
+}
+
+TEST_CASE("a bad oversampling is refused before any work, naming the key and its range") {
+  CHECK(refusal(replaced(six_text(), "[recorder]\n", "[recorder]\noversample = 0\n"))
+            .find("recorder.oversample") != std::string::npos);
+  CHECK(refusal(replaced(six_text(), "[recorder]\n", "[recorder]\noversample = 2.5\n"))
+            .find("an integer in [1, 64]") != std::string::npos);
+  // At oversample 2 the filter's order is 130 (decimate.hpp's formula): its half span, 65 fine
+  // samples, is 33 recorded samples, which with one more take 1.7 ms of settling; 1 ms is short.
+  const std::string e =
+      refusal(replaced(replaced(six_text(), "[recorder]\n", "[recorder]\noversample = 2\n"),
+                       "settle = \"20 ms\"", "settle = \"1 ms\""));
+  CHECK(e.find("dataset.settle") != std::string::npos);
+  CHECK(e.find("at least 0.0017 s with recorder.oversample = 2") != std::string::npos);
 }

@@ -23,6 +23,7 @@
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/hdf5_image.hpp"
 #include "gearimpact/io/sha256.hpp"
+#include "gearimpact/signals/decimate.hpp"
 #include "gearimpact/signals/order_tracking.hpp"
 #include "gearimpact/signals/recorder.hpp"
 
@@ -112,25 +113,29 @@ RecordData make_record(const Plan& plan, const Record& record, const StiffnessTa
   const double fs = spec.sample_rate_hz;
   const auto n0 = static_cast<long long>(std::llround(spec.settle_s * fs));
   const auto n = static_cast<long long>(plan.samples_per_record);
+  // With oversampling M the simulation samples at M fs (fine index i at i / (M fs)); the
+  // record's sample j is fine sample M (n0 + j).
+  const Oversampling over = oversampling(fs, condition.recorder, n0, n);
+  const long long m = over.factor;
   RecordData data;
   data.truth.assign(truth_channels().size(), {});
   for (auto& channel : data.truth) channel.reserve(static_cast<std::size_t>(n));
   data.contact.reserve(static_cast<std::size_t>(n));
-  // The sensor from sample 1 on, the settle time included, so that the recorder's filters have
-  // settled too when the record starts.
+  // The sensor from fine sample 1 on, the settle time included, so that the recorder's filters
+  // have settled too when the record starts (and the decimator's span before it is filled).
   std::vector<double> sensor;
-  sensor.reserve(static_cast<std::size_t>(n0 + n));
+  sensor.reserve(static_cast<std::size_t>(over.last_fine));
   const auto keep = [&](double t, double a, const std::array<double, 7>& truth) {
-    const long long index = std::llround(t * fs);
-    if (index < 1 || index >= n0 + n) return;
+    const long long index = std::llround(t * over.rate_hz);
+    if (index < 1 || index > over.last_fine) return;
     sensor.push_back(a);
-    if (index < n0) return;
+    if (index < m * n0 || index >= m * (n0 + n) || index % m != 0) return;
     for (std::size_t k = 0; k < truth.size(); ++k) data.truth[k].push_back(truth[k]);
     data.contact.push_back(
         static_cast<std::int8_t>((truth[4] > 0.0 ? 1 : 0) | (truth[5] > 0.0 ? 2 : 0)));
   };
   RunControl control;
-  control.sample_rate_hz = fs;
+  control.sample_rate_hz = over.rate_hz;
   control.keep_series = false;
   control.keep_samples = false;
   const bool planar = c.bearings.kind == BearingKind::elastic;
@@ -154,7 +159,7 @@ RecordData make_record(const Plan& plan, const Record& record, const StiffnessTa
     };
   }
   const SimulationResult result = table ? simulate(c, *table, control) : simulate(c, control);
-  if (static_cast<long long>(sensor.size()) != n0 + n - 1 ||
+  if (static_cast<long long>(sensor.size()) != over.last_fine ||
       static_cast<long long>(data.contact.size()) != n) {
     throw SimulationError("record " + std::to_string(record.id) + ": " +
                           std::to_string(data.contact.size()) + " samples instead of " +
@@ -176,10 +181,25 @@ RecordData make_record(const Plan& plan, const Record& record, const StiffnessTa
   if (r.accelerometer_resonance_hz) {
     accelerometer = signals::accelerometer(*r.accelerometer_resonance_hz, r.accelerometer_damping);
   }
-  sensor =
-      signals::path_then_accelerometer(sensor, fs, path, accelerometer, "recorder.path_band_high",
-                                       "recorder.accelerometer_resonance");
-  data.sensor.assign(sensor.end() - n, sensor.end());
+  sensor = signals::path_then_accelerometer(sensor, over.rate_hz, path, accelerometer,
+                                            "recorder.path_band_high",
+                                            "recorder.accelerometer_resonance");
+  if (m == 1) {
+    data.sensor.assign(sensor.end() - n, sensor.end());
+  } else {
+    // The decimator's input: fine samples M (n0 - lead) to the last, so that its outputs fall
+    // on the fine samples M (n0 + j), j = 0 ... n - 1, each the filter centred on its instant.
+    signals::UniformRecord fine;
+    fine.rate_hz = over.rate_hz;
+    fine.start_s = -static_cast<double>(over.lead) / fs;
+    fine.values.assign(sensor.begin() + (m * (n0 - over.lead) - 1), sensor.end());
+    data.sensor = signals::anti_alias_resample(fine, fs).values;
+    if (static_cast<long long>(data.sensor.size()) != n) {
+      throw SimulationError("record " + std::to_string(record.id) + ": the decimator gave " +
+                            std::to_string(data.sensor.size()) + " samples instead of " +
+                            std::to_string(n));
+    }
+  }
   const std::size_t half = data.sensor.size() / 2;
   const double first = rms_about_mean(data.sensor.data(), half);
   const double second = rms_about_mean(data.sensor.data() + half, data.sensor.size() - half);
@@ -235,10 +255,30 @@ std::string record_file(const Plan& plan, const Record& record, const RecordData
   h5.group("/signals");
   h5.dataset("/signals/sensor", data.sensor, data.sensor_units);
   h5.attribute("/signals/sensor", "quantity", data.sensor_quantity);
-  h5.attribute("/signals/sensor", "sample",
-               std::string("interval-average: the mean over the interval ending at each sample "
-                           "(transfer sinc(f T) with a delay of T/2)"));
   const RecorderSettings& r = condition.recorder;
+  const Oversampling over =
+      oversampling(spec.sample_rate_hz, r, std::llround(spec.settle_s * spec.sample_rate_hz),
+                   static_cast<long long>(plan.samples_per_record));
+  if (!over.filter) {
+    h5.attribute("/signals/sensor", "sample",
+                 std::string("interval-average: the mean over the interval ending at each sample "
+                             "(transfer sinc(f T) with a delay of T/2)"));
+  } else {
+    const signals::KaiserLowPass& f = *over.filter;
+    h5.attribute("/signals/sensor", "sample",
+                 std::string("interval-average at simulation_rate_hz (the mean over the interval "
+                             "ending at each fine sample), the recorder's filters at that rate, "
+                             "then the anti-alias decimator: a linear-phase FIR by Kaiser's "
+                             "window (no delay) centred on each recorded instant"));
+    h5.attribute("/signals/sensor", "oversample", std::int64_t{over.factor});
+    h5.attribute("/signals/sensor", "simulation_rate_hz", over.rate_hz);
+    h5.attribute("/signals/sensor", "decimator_passband_edge_hz", f.pass_hz);
+    h5.attribute("/signals/sensor", "decimator_stopband_edge_hz", f.stop_hz);
+    h5.attribute("/signals/sensor", "decimator_attenuation_db", f.attenuation_db);
+    h5.attribute("/signals/sensor", "decimator_taps", static_cast<std::int64_t>(f.order + 1));
+    h5.attribute("/signals/sensor", "decimator_kaiser_beta", f.beta);
+    h5.attribute("/signals/sensor", "alias_free_band_hz", f.pass_hz);
+  }
   h5.attribute("/signals/sensor", "path_modes", std::int64_t{r.path_modes});
   h5.attribute("/signals/sensor", "accelerometer_resonance_hz",
                r.accelerometer_resonance_hz.value_or(std::nan("")));

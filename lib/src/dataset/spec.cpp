@@ -36,6 +36,11 @@ constexpr double kMostSectionFraction = 0.25;
 
 const std::vector<RecorderKey>& recorder_keys() {
   static const std::vector<RecorderKey> keys{
+      {"oversample", std::nullopt, "", 1.0, 64.0, true, true,
+       "the simulation's samples per recorded sample, 1 to 64: the sensor sampled and filtered at "
+       "oversample x dataset.sample_rate, then decimated to it by the anti-alias FIR (Kaiser, "
+       "100 dB, alias-free below 0.4 x dataset.sample_rate) (default 1: no decimator)",
+       [](RecorderSettings& r, double v) { r.oversample = static_cast<int>(v); }},
       {"accelerometer_resonance", Dimension::frequency, "Hz", 0.0, kInf, false, false,
        "an accelerometer's mounted resonance, w^2 / (s^2 + 2 zeta w s + w^2), below a quarter of "
        "the sample rate (default: none)",
@@ -72,6 +77,24 @@ const std::vector<RecorderKey>& recorder_keys() {
        [](RecorderSettings& r, double v) { r.seed = static_cast<std::int64_t>(v); }},
   };
   return keys;
+}
+
+Oversampling oversampling(double sample_rate_hz, const RecorderSettings& recorder,
+                          long long settle_samples, long long samples) {
+  Oversampling o;
+  o.factor = recorder.oversample;
+  o.rate_hz = static_cast<double>(o.factor) * sample_rate_hz;
+  if (o.factor == 1) {
+    o.last_fine = settle_samples + samples - 1;
+    return o;
+  }
+  o.filter = signals::kaiser_low_pass(o.rate_hz, signals::kAliasFreeFraction * sample_rate_hz,
+                                      signals::kStopbandFraction * sample_rate_hz,
+                                      signals::kAntiAliasAttenuationDb);
+  const auto half = static_cast<long long>(o.filter->order / 2);
+  o.lead = (half + o.factor - 1) / o.factor;
+  o.last_fine = o.factor * (settle_samples + samples - 1) + half;
+  return o;
 }
 
 const std::vector<ChannelInfo>& truth_channels() {
@@ -938,13 +961,25 @@ Plan make_plan(const DatasetSpec& spec, const Bounds& bounds) {
                                          factors[i].key, texts[c][i], name));
     }
     SimulationCase& sc = condition.simulation_case;
-    sc.integrator.end_time_s = (static_cast<double>(n0 + samples) + 0.5) / spec.sample_rate_hz;
+    const Oversampling over =
+        oversampling(spec.sample_rate_hz, condition.recorder, static_cast<long long>(n0),
+                     static_cast<long long>(samples));
+    if (over.factor > 1 && static_cast<long long>(n0) <= over.lead) {
+      throw InputError(
+          "dataset.settle", shortest_decimal(spec.settle_s) + " s",
+          "at least " + shortest_decimal(static_cast<double>(over.lead + 1) / spec.sample_rate_hz) +
+              " s with recorder.oversample = " + std::to_string(over.factor) + " (" + where +
+              "): the anti-alias filter's half span before the record's first "
+              "sample, plus one sample");
+    }
+    // The run covers the last fine sample, and half a sample more.
+    sc.integrator.end_time_s = (static_cast<double>(over.last_fine) + 1.5) / over.rate_hz;
     try {
       sc = parse_case(write_case_file(sc, CaseUnits::si), "");
       refuse_planar_simulation(sc);
       validate_gaps(sc);
       RunControl control;
-      control.sample_rate_hz = spec.sample_rate_hz;
+      control.sample_rate_hz = over.rate_hz;
       validate_sampling(sc, control);
     } catch (const CaseFileError& e) {
       // Named by the condition's factor values as the spec writes them, then the key.
@@ -961,18 +996,20 @@ Plan make_plan(const DatasetSpec& spec, const Bounds& bounds) {
       throw InputError(problems);
     }
     const RecorderSettings& r = condition.recorder;
-    const double most = kMostSectionFraction * spec.sample_rate_hz;
+    // The sections run at the simulation's rate, M x dataset.sample_rate.
+    const double most = kMostSectionFraction * over.rate_hz;
+    const std::string rate_name =
+        over.factor == 1 ? "dataset.sample_rate" : "dataset.sample_rate x recorder.oversample";
     if (r.accelerometer_resonance_hz && *r.accelerometer_resonance_hz >= most) {
-      throw InputError(
-          "recorder.accelerometer_resonance",
-          shortest_decimal(*r.accelerometer_resonance_hz) + " Hz",
-          "below a quarter of dataset.sample_rate (" + shortest_decimal(most) + " Hz)");
+      throw InputError("recorder.accelerometer_resonance",
+                       shortest_decimal(*r.accelerometer_resonance_hz) + " Hz",
+                       "below a quarter of " + rate_name + " (" + shortest_decimal(most) + " Hz)");
     }
     if (r.path_modes > 0 &&
         (r.path_band_high_hz >= most || !(r.path_band_low_hz < r.path_band_high_hz) ||
          !(r.path_damping_low < r.path_damping_high))) {
       throw InputError("recorder.path_band_high", shortest_decimal(r.path_band_high_hz) + " Hz",
-                       "above recorder.path_band_low, below a quarter of dataset.sample_rate (" +
+                       "above recorder.path_band_low, below a quarter of " + rate_name + " (" +
                            shortest_decimal(most) +
                            " Hz); path_damping_low below path_damping_high");
     }

@@ -12,12 +12,16 @@
 
 #include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/case/units.hpp"
+#include "gearimpact/signals/decimate.hpp"
 
 namespace gearimpact::dataset {
 
 // What the recorder does to the sampled sensor (signals/recorder.hpp), in the order it does it:
 // a transfer path of seeded modes, an accelerometer resonance, noise at an SNR, an ADC.
 struct RecorderSettings {
+  // M: the sensor is sampled and filtered at M x the set's sample rate, then brought to it by
+  // the anti-alias decimator (signals::anti_alias_resample); 1: no decimator.
+  int oversample = 1;
   std::optional<double> accelerometer_resonance_hz;
   double accelerometer_damping = 0.02;
   int path_modes = 0;
@@ -50,6 +54,22 @@ struct RecorderKey {
   void (*set)(RecorderSettings&, double);
 };
 const std::vector<RecorderKey>& recorder_keys();
+
+// What a record's oversampling takes (docs/datasets.md, "The anti-alias decimator"): the
+// simulation's rate M fs, the decimator's filter (kaiser_low_pass(M fs, 0.4 fs, 0.5 fs, 100 dB),
+// the one anti_alias_resample designs), and the fine samples the record needs: from index 1 (the
+// recorder's filters settle over the settle time) to the last output's instant plus half the
+// filter's span, the decimator's input starting `lead` output samples before the record.
+struct Oversampling {
+  int factor = 1;  // M
+  double rate_hz = 0.0;
+  std::optional<signals::KaiserLowPass> filter;  // none for M = 1
+  long long lead = 0;                            // ceil(half span / M), in output samples
+  long long last_fine = 0;                       // the last fine sample's index (t = i / (M fs))
+};
+// For a record of `samples` after `settle_samples` at sample_rate_hz.
+Oversampling oversampling(double sample_rate_hz, const RecorderSettings& recorder,
+                          long long settle_samples, long long samples);
 
 // A factor: a key of the case schema as --set addresses it (faults[i].key included) or of
 // [recorder], over levels (texts as a case file or --set writes them) or a range [low, high]
