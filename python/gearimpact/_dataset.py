@@ -66,16 +66,19 @@ def dataset_merge(folders, out, overwrite=False):
 def load_dataset(folder, channels=("signals/sensor",)):
     """A merged set: a dict with "labels" (labels.csv's columns; numbers as float64 arrays,
     texts as str arrays) and each channel of `channels` as an (n_records, n_samples) float64
-    array read by h5py (Debian: python3-h5py)."""
+    array read by h5py (Debian: python3-h5py), or by numpy.load from a set of .npz records
+    (dataset.format = "npz")."""
     import numpy
-    try:
-        import h5py
-    except ImportError:
-        raise ImportError("load_dataset reads the records' HDF5 files with h5py "
-                          "(Debian: python3-h5py; pip: h5py)") from None
     folder = os.fspath(folder)
     with open(os.path.join(folder, "labels.csv"), newline="") as f:
         rows = list(csv.DictReader(f))
+    npz = bool(rows) and rows[0]["file"].endswith(".npz")
+    if not npz:
+        try:
+            import h5py
+        except ImportError:
+            raise ImportError("load_dataset reads the records' HDF5 files with h5py "
+                              "(Debian: python3-h5py; pip: h5py)") from None
     labels = {}
     for column in (rows[0].keys() if rows else []):
         values = [r[column] for r in rows]
@@ -87,7 +90,11 @@ def load_dataset(folder, channels=("signals/sensor",)):
     for channel in channels:
         arrays = []
         for r in rows:
-            with h5py.File(os.path.join(folder, r["file"]), "r") as h:
-                arrays.append(h[channel][:])
+            if npz:
+                with numpy.load(os.path.join(folder, r["file"])) as z:
+                    arrays.append(z[channel])
+            else:
+                with h5py.File(os.path.join(folder, r["file"]), "r") as h:
+                    arrays.append(h[channel][:])
         data[channel] = numpy.stack(arrays) if arrays else numpy.empty((0, 0))
     return data

@@ -18,6 +18,7 @@
 #include "gearimpact/dataset/run.hpp"
 #include "gearimpact/dataset/spec.hpp"
 #include "gearimpact/error.hpp"
+#include "gearimpact/io/npz_image.hpp"
 #include "gearimpact/io/sha256.hpp"
 #include "gearimpact/signals/decimate.hpp"
 #include "run_command.hpp"
@@ -494,4 +495,24 @@ TEST_CASE("a bad oversampling is refused before any work, naming the key and its
                        "settle = \"20 ms\"", "settle = \"1 ms\""));
   CHECK(e.find("dataset.settle") != std::string::npos);
   CHECK(e.find("at least 0.0017 s with recorder.oversample = 2") != std::string::npos);
+}
+
+TEST_CASE("NPZ records: CRC-32's check value; a .npy header; an unknown format refused") {
+  // The CRC catalogue's check value of CRC-32/ISO-HDLC, the CRC ZIP stores.
+  CHECK(crc32("123456789") == 0xCBF43926u);
+  CHECK(crc32("") == 0u);
+  // NEP 1: magic, version 1.0, the header's length; data at a multiple of 64 bytes (numpy.save
+  // writes these 144 bytes for [1.0, -2.5]).
+  const std::string npy = npy_file(std::vector<double>{1.0, -2.5});
+  REQUIRE(npy.size() == 128 + 16);
+  CHECK(npy.substr(0, 8) == std::string("\x93NUMPY\x01\x00", 8));
+  CHECK(static_cast<unsigned char>(npy[8]) + 256 * static_cast<unsigned char>(npy[9]) == 118);
+  CHECK(npy.substr(10, 118).find("{'descr': '<f8', 'fortran_order': False, 'shape': (2,), }") == 0);
+  CHECK(npy[127] == '\n');
+  // 1.0 little-endian: 00 .. 00 f0 3f.
+  CHECK(npy.substr(128, 8) == std::string("\0\0\0\0\0\0\xf0\x3f", 8));
+  const std::string e =
+      refusal(replaced(six_text(), "[dataset]\n", "[dataset]\nformat = \"csv\"\n"));
+  CHECK(e.find("dataset.format") != std::string::npos);
+  CHECK(e.find("\"npz\"") != std::string::npos);
 }

@@ -22,6 +22,7 @@
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/hdf5_image.hpp"
+#include "gearimpact/io/npz_image.hpp"
 #include "gearimpact/io/sha256.hpp"
 #include "gearimpact/signals/decimate.hpp"
 #include "gearimpact/signals/order_tracking.hpp"
@@ -233,10 +234,14 @@ RecordData make_record(const Plan& plan, const Record& record, const StiffnessTa
   return data;
 }
 
-std::string record_file(const Plan& plan, const Record& record, const RecordData& data) {
+namespace {
+
+// The record's layout (docs/datasets.md), into an HDF5 or an NPZ image: the same paths, arrays
+// and attributes.
+template <class Image>
+std::string fill_record(Image& h5, const Plan& plan, const Record& record, const RecordData& data) {
   const DatasetSpec& spec = plan.spec;
   const Condition& condition = plan.conditions.at(record.condition);
-  Hdf5Image h5;
   h5.attribute("/", "format", std::string("gearimpact-record"));
   h5.attribute("/", "format_version", std::int64_t{kFormatVersion});
   h5.attribute("/", "dataset", spec.name);
@@ -332,6 +337,17 @@ std::string record_file(const Plan& plan, const Record& record, const RecordData
   return h5.bytes();
 }
 
+}  // namespace
+
+std::string record_file(const Plan& plan, const Record& record, const RecordData& data) {
+  if (plan.spec.format == RecordFormat::npz) {
+    NpzImage npz;
+    return fill_record(npz, plan, record, data);
+  }
+  Hdf5Image h5;
+  return fill_record(h5, plan, record, data);
+}
+
 namespace {
 
 // The record's sidecar: what labels.csv needs, and what proves the record complete.
@@ -361,7 +377,8 @@ struct Sidecar {
 
 // The sidecar of record `id` in `folder` when it, and the file whose digest it holds, are
 // complete and of this spec.
-Sidecar complete_record(const fs::path& folder, std::size_t id, const std::string& spec_sha256) {
+Sidecar complete_record(const fs::path& folder, std::size_t id, const std::string& spec_sha256,
+                        const char* extension) {
   Sidecar s;
   const std::string text = read_all(folder / (record_name(id) + ".json"));
   if (text.empty()) return s;
@@ -374,7 +391,7 @@ Sidecar complete_record(const fs::path& folder, std::size_t id, const std::strin
       s.json.value("record_id", std::size_t{0} - 1) != id) {
     return s;
   }
-  const std::string bytes = read_all(folder / (record_name(id) + ".h5"));
+  const std::string bytes = read_all(folder / (record_name(id) + extension));
   s.valid = !bytes.empty() && sha256_hex(bytes) == s.json.value("file_sha256", "");
   return s;
 }
@@ -412,6 +429,7 @@ Progress run_shard(const Plan& plan, const std::string& out, Shard shard, unsign
                      "K/N with 0 <= K < N");
   }
   const fs::path folder(out);
+  const char* extension = record_extension(plan.spec.format);
   std::error_code error;
   if (!fs::is_directory(folder, error)) {
     throw InputError("out", out, "an existing folder (the shards of a set share it)");
@@ -421,7 +439,7 @@ Progress run_shard(const Plan& plan, const std::string& out, Shard shard, unsign
   std::vector<const Record*> mine;
   for (const Record& r : plan.records) {
     if (static_cast<int>(r.id % static_cast<std::size_t>(shard.n)) != shard.k) continue;
-    if (complete_record(folder, r.id, plan.spec.spec_sha256).valid) {
+    if (complete_record(folder, r.id, plan.spec.spec_sha256, extension).valid) {
       ++p.skipped;
     } else {
       mine.push_back(&r);
@@ -451,14 +469,14 @@ Progress run_shard(const Plan& plan, const std::string& out, Shard shard, unsign
   std::vector<std::future<void>> made;
   made.reserve(mine.size());
   for (const Record* r : mine) {
-    made.push_back(pool.run([&plan, &pool, &folder, &failed, r] {
+    made.push_back(pool.run([&plan, &pool, &folder, &failed, extension, r] {
       if (failed.load()) return;
       try {
         const auto table = pool.table_for(plan.conditions.at(r->condition).simulation_case);
         const RecordData data = make_record(plan, *r, table.get());
         const std::string bytes = record_file(plan, *r, data);
         const std::string name = record_name(r->id);
-        write_file_atomically((folder / (name + ".h5")).string(), bytes);
+        write_file_atomically((folder / (name + extension)).string(), bytes);
         // The sidecar last: its presence, with the file's digest, marks the record complete.
         write_file_atomically((folder / (name + ".json")).string(),
                               sidecar(plan, *r, data, sha256_hex(bytes)));
@@ -485,6 +503,7 @@ Progress run_shard(const Plan& plan, const std::string& out, Shard shard, unsign
 }
 
 std::string labels_csv(const Plan& plan, const std::vector<std::string>& record_json) {
+  const char* extension = record_extension(plan.spec.format);
   std::string csv = "record_id,file,split,condition,replicate,seed";
   for (const Factor& f : plan.spec.factors) csv += "," + column_name(f);
   const bool trajectory = plan.spec.trajectory.has_value();
@@ -494,7 +513,7 @@ std::string labels_csv(const Plan& plan, const std::vector<std::string>& record_
     const nlohmann::json j = nlohmann::json::parse(record_json.at(id));
     const Record& r = plan.records[id];
     const Condition& c = plan.conditions[r.condition];
-    csv += std::to_string(id) + "," + record_name(id) + ".h5," + c.split + "," +
+    csv += std::to_string(id) + "," + record_name(id) + extension + "," + c.split + "," +
            std::to_string(r.condition) + "," + std::to_string(r.replicate) + "," +
            std::to_string(r.seed);
     for (std::size_t i = 0; i < plan.spec.factors.size(); ++i) {
@@ -648,15 +667,30 @@ std::string card(const Plan& plan, const std::vector<std::string>& record_json) 
   if (std::isfinite(snr_lo)) {
     t += " Realised SNR " + shortest_decimal(snr_lo) + " to " + shortest_decimal(snr_hi) + " dB.";
   }
-  t += "\n\n## Loading\n\nOne HDF5 file per record (layout: docs/datasets.md of gearimpact). "
-       "Python (h5py, numpy):\n\n```python\nimport csv, h5py, numpy as np\n"
-       "rows = list(csv.DictReader(open(\"labels.csv\")))\n"
-       "x = np.stack([h5py.File(r[\"file\"], \"r\")[\"signals/sensor\"][:] for r in rows])\n"
-       "y = np.array([r[\"split\"] for r in rows])\n```\n\n"
-       "MATLAB:\n\n```matlab\nT = readtable('labels.csv', 'Delimiter', ',', 'VariableNamingRule', "
-       "'preserve');\n"
-       "x = h5read(T.file{1}, '/signals/sensor');\n"
-       "fs = h5readatt(T.file{1}, '/', 'sample_rate_hz');\n```\n\n";
+  if (s.format == RecordFormat::npz) {
+    t += "\n\n## Loading\n\nOne NumPy archive per record (`numpy.load`: each channel a .npy "
+         "member named by its path, `signals/sensor`, `truth/w1_rad_s`, ...; the attributes in "
+         "`attributes.json`, the case and spec as .txt; layout: docs/datasets.md of gearimpact). "
+         "Python (numpy):\n\n```python\nimport csv, json, numpy as np\n"
+         "rows = list(csv.DictReader(open(\"labels.csv\")))\n"
+         "x = np.stack([np.load(r[\"file\"])[\"signals/sensor\"] for r in rows])\n"
+         "fs = "
+         "json.loads(np.load(rows[0][\"file\"])[\"attributes.json\"])[\"/\"][\"sample_rate_hz\"]\n"
+         "y = np.array([r[\"split\"] for r in rows])\n```\n\n"
+         "MATLAB reads the .npy members after unzip (a .npy reader such as npy-matlab's readNPY), "
+         "or make the set as HDF5 (`format = \"hdf5\"`).\n\n";
+  } else {
+    t += "\n\n## Loading\n\nOne HDF5 file per record (layout: docs/datasets.md of gearimpact). "
+         "Python (h5py, numpy):\n\n```python\nimport csv, h5py, numpy as np\n"
+         "rows = list(csv.DictReader(open(\"labels.csv\")))\n"
+         "x = np.stack([h5py.File(r[\"file\"], \"r\")[\"signals/sensor\"][:] for r in rows])\n"
+         "y = np.array([r[\"split\"] for r in rows])\n```\n\n"
+         "MATLAB:\n\n```matlab\nT = readtable('labels.csv', 'Delimiter', ',', "
+         "'VariableNamingRule', "
+         "'preserve');\n"
+         "x = h5read(T.file{1}, '/signals/sensor');\n"
+         "fs = h5readatt(T.file{1}, '/', 'sample_rate_hz');\n```\n\n";
+  }
   t += "## Limitations\n\nSpur gears, lumped bearings, no casing (a transfer path is an "
        "augmentation model, not a casing model); cracks do not grow within a record.\n\n";
   t += "## Citation\n\nYang, D. C. H. and Lin, J. Y. (1987), Hertzian damping, tooth friction and "
@@ -691,6 +725,7 @@ void merge(const std::vector<std::string>& folders, const std::string& out, bool
                            read_all(first / "base_case.toml")),
       none);
   const std::string spec_sha = plan.spec.spec_sha256;
+  const char* extension = record_extension(plan.spec.format);
   if (spec_sha + "\n" != sha) {
     throw InputError("DIR", folders.front(),
                      "spec.toml and base_case.toml whose sha256 is spec.sha256's");
@@ -703,18 +738,19 @@ void merge(const std::vector<std::string>& folders, const std::string& out, bool
     for (const std::string& f : folders) {
       const fs::path folder(f);
       const bool present = fs::exists(folder / (record_name(r.id) + ".json")) ||
-                           fs::exists(folder / (record_name(r.id) + ".h5"));
+                           fs::exists(folder / (record_name(r.id) + extension));
       if (!present) continue;
-      const Sidecar s = complete_record(folder, r.id, spec_sha);
+      const Sidecar s = complete_record(folder, r.id, spec_sha, extension);
       if (!s.valid) {
         throw InputError("record " + std::to_string(r.id), (folder / record_name(r.id)).string(),
-                         "a complete record: its .h5 and .json of this spec, the file's sha256 "
-                         "as the .json holds (rerun the shard to complete it)");
+                         "a complete record: its " + std::string(extension) +
+                             " and .json of this spec, the file's sha256 "
+                             "as the .json holds (rerun the shard to complete it)");
       }
       if (!holders.empty() && fs::equivalent(fs::path(holders.front()), folder)) continue;
       holders.push_back(f);
       sidecars[r.id] = s.json.dump();
-      files[r.id] = folder / (record_name(r.id) + ".h5");
+      files[r.id] = folder / (record_name(r.id) + extension);
     }
     if (holders.size() > 1) {
       throw InputError("record " + std::to_string(r.id), holders[0] + ", " + holders[1],
@@ -737,7 +773,7 @@ void merge(const std::vector<std::string>& folders, const std::string& out, bool
   write_file_atomically((tmp / "labels.csv").string(), labels_csv(plan, sidecars));
   write_file_atomically((tmp / "DATASET_CARD.md").string(), card(plan, sidecars));
   for (const Record& r : plan.records) {
-    const fs::path target = tmp / (record_name(r.id) + ".h5");
+    const fs::path target = tmp / (record_name(r.id) + extension);
     std::error_code link_error;
     fs::create_hard_link(files[r.id], target, link_error);
     if (link_error) write_file_atomically(target.string(), read_all(files[r.id]));

@@ -79,6 +79,10 @@ const std::vector<RecorderKey>& recorder_keys() {
   return keys;
 }
 
+const char* record_extension(RecordFormat format) {
+  return format == RecordFormat::npz ? ".npz" : ".h5";
+}
+
 Oversampling oversampling(double sample_rate_hz, const RecorderSettings& recorder,
                           long long settle_samples, long long samples) {
   Oversampling o;
@@ -447,8 +451,17 @@ DatasetSpec parse_spec_with_base(std::string_view spec_text, const std::filesyst
 
   // [dataset]
   const toml::value& d = table_at(root, "dataset", true);
-  only_keys(d, "dataset",
-            {"name", "seed", "duration", "settle", "replicates", "sample_rate", "start_angle"});
+  only_keys(
+      d, "dataset",
+      {"name", "seed", "duration", "settle", "replicates", "sample_rate", "start_angle", "format"});
+  if (const toml::value* v = lookup(d, "format")) {
+    const std::string allowed =
+        "\"hdf5\" (one HDF5 file per record, the default) or \"npz\" (one NumPy archive of "
+        ".npy members per record)";
+    const std::string f = text(*v, "dataset.format", allowed);
+    if (f != "hdf5" && f != "npz") throw InputError("dataset.format", toml_written(*v), allowed);
+    spec.format = f == "npz" ? RecordFormat::npz : RecordFormat::hdf5;
+  }
   if (const toml::value* v = lookup(d, "start_angle")) {
     const std::string a = text(*v, "dataset.start_angle", "\"random\" or \"case\"");
     if (a != "random" && a != "case") {
@@ -867,6 +880,14 @@ Plan make_plan(const DatasetSpec& spec, const Bounds& bounds) {
                         "at most " + shortest_decimal(bound) + " (" + flag + " lifts the bound)")});
   };
   if (records > bounds.max_records) refuse("records", records, bounds.max_records, "max_records");
+  // A ZIP without its 64-bit extension holds at most 4 GiB.
+  if (spec.format == RecordFormat::npz && plan.bytes_per_record >= 4.0e9) {
+    throw InputError("dataset.format", "\"npz\"",
+                     "records below 4 GiB (a ZIP without its 64-bit extension): one record is "
+                     "about " +
+                         shortest_decimal(plan.bytes_per_record) +
+                         " bytes; \"hdf5\", or a shorter dataset.duration");
+  }
   const double total_samples = records * static_cast<double>(samples) * channels;
   if (total_samples > bounds.max_samples) {
     refuse("samples", total_samples, bounds.max_samples, "max_samples");

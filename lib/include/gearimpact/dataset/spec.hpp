@@ -117,6 +117,13 @@ struct Trajectory {
 double paris_depth_m(const Trajectory& t, double cycles);
 double paris_cycles(const Trajectory& t, double depth_m);
 
+// A record's file: HDF5 (".h5", the default) or a NumPy archive (".npz", the same arrays as .npy
+// members and the attributes as JSON).
+enum class RecordFormat { hdf5, npz };
+
+// The record file's extension: ".h5" or ".npz".
+const char* record_extension(RecordFormat format);
+
 struct DatasetSpec {
   std::string name;
   std::uint64_t seed = 0;
@@ -129,6 +136,7 @@ struct DatasetSpec {
   // that replicates differ in their mesh phase, not in their noise alone; false ("case"): the
   // base case's angles.
   bool random_start = true;
+  RecordFormat format = RecordFormat::hdf5;
   std::filesystem::path base_case_path;
   std::string base_case_text;
   SimulationCase base;
