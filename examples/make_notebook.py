@@ -12,7 +12,7 @@ from pathlib import Path
 import nbformat
 
 HERE = Path(__file__).resolve().parent
-NOTEBOOKS = ("gear_pair", "cracked_pinion_vibration")
+NOTEBOOKS = ("gear_pair", "cracked_pinion_vibration", "rig_cracks_dataset")
 
 
 def cells_of(script):
