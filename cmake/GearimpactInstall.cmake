@@ -45,6 +45,12 @@ else()
   string(REGEX REPLACE "[^/]+" ".." pc_up "${GEARIMPACT_PC_DIR}")
   set(GEARIMPACT_PC_PREFIX "\${pcfiledir}/${pc_up}")
 endif()
+# libmatio, when this build links it (MATLAB v5 records).
+if(GEARIMPACT_HAVE_MATIO)
+  set(GEARIMPACT_PC_MATIO " matio")
+else()
+  set(GEARIMPACT_PC_MATIO "")
+endif()
 configure_file(${CMAKE_CURRENT_LIST_DIR}/gearimpact.pc.in ${CMAKE_CURRENT_BINARY_DIR}/gearimpact.pc
   @ONLY)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/gearimpact.pc DESTINATION ${GEARIMPACT_PC_DIR})

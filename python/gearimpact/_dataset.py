@@ -66,14 +66,21 @@ def dataset_merge(folders, out, overwrite=False):
 def load_dataset(folder, channels=("signals/sensor",)):
     """A merged set: a dict with "labels" (labels.csv's columns; numbers as float64 arrays,
     texts as str arrays) and each channel of `channels` as an (n_records, n_samples) float64
-    array read by h5py (Debian: python3-h5py), or by numpy.load from a set of .npz records
-    (dataset.format = "npz")."""
+    array read by h5py (Debian: python3-h5py), by numpy.load from a set of .npz records
+    (dataset.format = "npz") or by scipy.io.loadmat from .mat records ("mat")."""
     import numpy
     folder = os.fspath(folder)
     with open(os.path.join(folder, "labels.csv"), newline="") as f:
         rows = list(csv.DictReader(f))
     npz = bool(rows) and rows[0]["file"].endswith(".npz")
-    if not npz:
+    mat = bool(rows) and rows[0]["file"].endswith(".mat")
+    if mat:
+        try:
+            import scipy.io
+        except ImportError:
+            raise ImportError("load_dataset reads the records' MAT-files with scipy "
+                              "(Debian: python3-scipy; pip: scipy)") from None
+    elif not npz:
         try:
             import h5py
         except ImportError:
@@ -93,6 +100,11 @@ def load_dataset(folder, channels=("signals/sensor",)):
             if npz:
                 with numpy.load(os.path.join(folder, r["file"])) as z:
                     arrays.append(z[channel])
+            elif mat:
+                value = scipy.io.loadmat(os.path.join(folder, r["file"]), simplify_cells=True)
+                for part in channel.split("/"):
+                    value = value[part]
+                arrays.append(numpy.asarray(value).ravel())
             else:
                 with h5py.File(os.path.join(folder, r["file"]), "r") as h:
                     arrays.append(h[channel][:])

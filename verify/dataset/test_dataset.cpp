@@ -18,6 +18,7 @@
 #include "gearimpact/dataset/run.hpp"
 #include "gearimpact/dataset/spec.hpp"
 #include "gearimpact/error.hpp"
+#include "gearimpact/io/mat_image.hpp"
 #include "gearimpact/io/npz_image.hpp"
 #include "gearimpact/io/sha256.hpp"
 #include "gearimpact/signals/decimate.hpp"
@@ -142,6 +143,17 @@ TEST_CASE("a bad spec is refused before any work, naming the key as written and 
     CHECK(e2.find("did you mean torque1.mean_speed") != std::string::npos);
   }
   SUBCASE("a level outside its range, named with the condition") {
+    // MATLAB names of the HDF5 layout's paths and labels (docs/datasets.md).
+    CHECK(matlab_name("/") == "root");
+    CHECK(matlab_name("/signals/sensor") == "signals_sensor");
+    CHECK(matlab_name("faults[0].depth_m") == "faults_0__depth_m");
+    CHECK(matlab_name("3x") == "x3x");
+    CHECK(matlab_name(std::string(80, 'a')).size() == 63);
+    // "mat" is a format where the build has libmatio, and refused naming the library otherwise.
+    const std::string m =
+        refusal(replaced(six_text(), "[dataset]\n", "[dataset]\nformat = \"mat\"\n"));
+    CHECK(m.empty() == mat_files_available());
+    if (!mat_files_available()) CHECK(m.find("libmatio") != std::string::npos);
     const std::string e = refusal(replaced(six_text(), "\"1 mm\"]", "\"9 mm\"]"));
     CHECK(e.find("faults[0].depth = 9 mm") != std::string::npos);
     CHECK(e.find("q <") != std::string::npos);  // the admissible depth
@@ -497,7 +509,9 @@ TEST_CASE("a bad oversampling is refused before any work, naming the key and its
   CHECK(e.find("at least 0.0017 s with recorder.oversample = 2") != std::string::npos);
 }
 
-TEST_CASE("NPZ records: CRC-32's check value; a .npy header; an unknown format refused") {
+TEST_CASE(
+    "NPZ and MAT records: CRC-32's check value; a .npy header; MATLAB names; an unknown format "
+    "refused") {
   // The CRC catalogue's check value of CRC-32/ISO-HDLC, the CRC ZIP stores.
   CHECK(crc32("123456789") == 0xCBF43926u);
   CHECK(crc32("") == 0u);

@@ -34,6 +34,7 @@
 #include "gearimpact/geometry/tooth_profile.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/hdf5_image.hpp"
+#include "gearimpact/io/mat_image.hpp"
 #include "gearimpact/io/npz_image.hpp"
 #include "gearimpact/io/modes_files.hpp"
 #include "gearimpact/io/results.hpp"

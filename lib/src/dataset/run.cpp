@@ -22,6 +22,7 @@
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/hdf5_image.hpp"
+#include "gearimpact/io/mat_image.hpp"
 #include "gearimpact/io/npz_image.hpp"
 #include "gearimpact/io/sha256.hpp"
 #include "gearimpact/signals/decimate.hpp"
@@ -343,6 +344,10 @@ std::string record_file(const Plan& plan, const Record& record, const RecordData
   if (plan.spec.format == RecordFormat::npz) {
     NpzImage npz;
     return fill_record(npz, plan, record, data);
+  }
+  if (plan.spec.format == RecordFormat::mat) {
+    MatImage mat;
+    return fill_record(mat, plan, record, data);
   }
   Hdf5Image h5;
   return fill_record(h5, plan, record, data);
@@ -667,7 +672,19 @@ std::string card(const Plan& plan, const std::vector<std::string>& record_json) 
   if (std::isfinite(snr_lo)) {
     t += " Realised SNR " + shortest_decimal(snr_lo) + " to " + shortest_decimal(snr_hi) + " dB.";
   }
-  if (s.format == RecordFormat::npz) {
+  if (s.format == RecordFormat::mat) {
+    t +=
+        "\n\n## Loading\n\nOne MATLAB v5 MAT-file per record: `time`, `signals.sensor`, "
+        "`truth.*`, `tacho.*`, `provenance.case_toml`, and the attributes of each path under "
+        "`attributes` (`attributes.root.sample_rate_hz`, `attributes.labels.*`; layout: "
+        "docs/datasets.md of gearimpact). MATLAB:\n\n```matlab\n"
+        "T = readtable('labels.csv', 'Delimiter', ',', 'VariableNamingRule', 'preserve');\n"
+        "r = load(T.file{1});\nx = r.signals.sensor;\nfs = r.attributes.root.sample_rate_hz;\n"
+        "```\n\nPython (scipy):\n\n```python\nimport csv, numpy as np, scipy.io\n"
+        "rows = list(csv.DictReader(open(\"labels.csv\")))\n"
+        "x = np.stack([scipy.io.loadmat(r[\"file\"], simplify_cells=True)[\"signals\"][\"sensor\"] "
+        "for r in rows])\n```\n\n";
+  } else if (s.format == RecordFormat::npz) {
     t += "\n\n## Loading\n\nOne NumPy archive per record (`numpy.load`: each channel a .npy "
          "member named by its path, `signals/sensor`, `truth/w1_rad_s`, ...; the attributes in "
          "`attributes.json`, the case and spec as .txt; layout: docs/datasets.md of gearimpact). "

@@ -16,6 +16,7 @@
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/io/case_file.hpp"
+#include "gearimpact/io/mat_image.hpp"
 #include "gearimpact/io/sha256.hpp"
 #include "gearimpact/signals/recorder.hpp"
 #include "gearimpact/steady/sweep.hpp"
@@ -80,7 +81,15 @@ const std::vector<RecorderKey>& recorder_keys() {
 }
 
 const char* record_extension(RecordFormat format) {
-  return format == RecordFormat::npz ? ".npz" : ".h5";
+  switch (format) {
+    case RecordFormat::npz:
+      return ".npz";
+    case RecordFormat::mat:
+      return ".mat";
+    case RecordFormat::hdf5:
+      break;
+  }
+  return ".h5";
 }
 
 Oversampling oversampling(double sample_rate_hz, const RecorderSettings& recorder,
@@ -456,11 +465,22 @@ DatasetSpec parse_spec_with_base(std::string_view spec_text, const std::filesyst
       {"name", "seed", "duration", "settle", "replicates", "sample_rate", "start_angle", "format"});
   if (const toml::value* v = lookup(d, "format")) {
     const std::string allowed =
-        "\"hdf5\" (one HDF5 file per record, the default) or \"npz\" (one NumPy archive of "
-        ".npy members per record)";
+        std::string(
+            "\"hdf5\" (one HDF5 file per record, the default), \"npz\" (one NumPy "
+            "archive of .npy members per record)") +
+        (mat_files_available() ? " or \"mat\" (one MATLAB v5 MAT-file per record)"
+                               : "; \"mat\" (MATLAB v5) needs a build with libmatio "
+                                 "(Debian: libmatio-dev)");
     const std::string f = text(*v, "dataset.format", allowed);
-    if (f != "hdf5" && f != "npz") throw InputError("dataset.format", toml_written(*v), allowed);
-    spec.format = f == "npz" ? RecordFormat::npz : RecordFormat::hdf5;
+    if (f == "hdf5") {
+      spec.format = RecordFormat::hdf5;
+    } else if (f == "npz") {
+      spec.format = RecordFormat::npz;
+    } else if (f == "mat" && mat_files_available()) {
+      spec.format = RecordFormat::mat;
+    } else {
+      throw InputError("dataset.format", toml_written(*v), allowed);
+    }
   }
   if (const toml::value* v = lookup(d, "start_angle")) {
     const std::string a = text(*v, "dataset.start_angle", "\"random\" or \"case\"");

@@ -117,11 +117,11 @@ struct Trajectory {
 double paris_depth_m(const Trajectory& t, double cycles);
 double paris_cycles(const Trajectory& t, double depth_m);
 
-// A record's file: HDF5 (".h5", the default) or a NumPy archive (".npz", the same arrays as .npy
-// members and the attributes as JSON).
-enum class RecordFormat { hdf5, npz };
+// A record's file: HDF5 (".h5", the default), a NumPy archive (".npz", the same arrays as .npy
+// members and the attributes as JSON) or a MATLAB v5 MAT-file (".mat", through libmatio).
+enum class RecordFormat { hdf5, npz, mat };
 
-// The record file's extension: ".h5" or ".npz".
+// The record file's extension: ".h5", ".npz" or ".mat".
 const char* record_extension(RecordFormat format);
 
 struct DatasetSpec {
