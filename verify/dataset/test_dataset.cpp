@@ -143,17 +143,6 @@ TEST_CASE("a bad spec is refused before any work, naming the key as written and 
     CHECK(e2.find("did you mean torque1.mean_speed") != std::string::npos);
   }
   SUBCASE("a level outside its range, named with the condition") {
-    // MATLAB names of the HDF5 layout's paths and labels (docs/datasets.md).
-    CHECK(matlab_name("/") == "root");
-    CHECK(matlab_name("/signals/sensor") == "signals_sensor");
-    CHECK(matlab_name("faults[0].depth_m") == "faults_0__depth_m");
-    CHECK(matlab_name("3x") == "x3x");
-    CHECK(matlab_name(std::string(80, 'a')).size() == 63);
-    // "mat" is a format where the build has libmatio, and refused naming the library otherwise.
-    const std::string m =
-        refusal(replaced(six_text(), "[dataset]\n", "[dataset]\nformat = \"mat\"\n"));
-    CHECK(m.empty() == mat_files_available());
-    if (!mat_files_available()) CHECK(m.find("libmatio") != std::string::npos);
     const std::string e = refusal(replaced(six_text(), "\"1 mm\"]", "\"9 mm\"]"));
     CHECK(e.find("faults[0].depth = 9 mm") != std::string::npos);
     CHECK(e.find("q <") != std::string::npos);  // the admissible depth
@@ -525,6 +514,17 @@ TEST_CASE(
   CHECK(npy[127] == '\n');
   // 1.0 little-endian: 00 .. 00 f0 3f.
   CHECK(npy.substr(128, 8) == std::string("\0\0\0\0\0\0\xf0\x3f", 8));
+  // MATLAB names of the HDF5 layout's paths and labels (docs/datasets.md).
+  CHECK(matlab_name("/") == "root");
+  CHECK(matlab_name("/signals/sensor") == "signals_sensor");
+  CHECK(matlab_name("faults[0].depth_m") == "faults_0__depth_m");
+  CHECK(matlab_name("3x") == "x3x");
+  CHECK(matlab_name(std::string(80, 'a')).size() == 63);
+  // "mat" is a format where the build has libmatio, and refused naming the library otherwise.
+  const std::string m =
+      refusal(replaced(six_text(), "[dataset]\n", "[dataset]\nformat = \"mat\"\n"));
+  CHECK(m.empty() == mat_files_available());
+  if (!mat_files_available()) CHECK(m.find("libmatio") != std::string::npos);
   const std::string e =
       refusal(replaced(six_text(), "[dataset]\n", "[dataset]\nformat = \"csv\"\n"));
   CHECK(e.find("dataset.format") != std::string::npos);
