@@ -38,9 +38,11 @@ for kind in ("h5", "mat"):
 subprocess.run([gearimpact, "dataset", "merge", str(work / "mat"), "--out", str(work / "merged")],
                check=True, stdout=subprocess.DEVNULL)
 # The same set in two shards: the same bytes (no date or temporary name enters a file).
+# The second shard on two threads: the images take turns.
 for k in (0, 1):
     subprocess.run([gearimpact, "dataset", str(work / "mat.toml"), "--out", str(work / "shards"),
-                    "--shard", f"{k}/2", "--quiet"], check=True, stdout=subprocess.DEVNULL)
+                    "--shard", f"{k}/2", "--threads", str(k + 1), "--quiet"], check=True,
+                   stdout=subprocess.DEVNULL)
 rows = list(csv.DictReader(open(work / "merged" / "labels.csv", newline="")))
 assert len(rows) == 6, len(rows)
 failures = []

@@ -179,6 +179,9 @@ std::mutex& matio_lock() {
 
 std::string MatImage::bytes() const {
 #ifdef GEARIMPACT_HAVE_MATIO
+  // One image at a time: records made on several threads take turns (libmatio's thread safety
+  // is not documented).
+  const std::lock_guard<std::mutex> lock(matio_lock());
   std::vector<matvar_t*> all;
   const auto free_all = [&all] {
     for (matvar_t* v : all) Mat_VarFree(v);
@@ -204,7 +207,6 @@ std::string MatImage::bytes() const {
     free_all();
     throw;
   }
-  const std::lock_guard<std::mutex> lock(matio_lock());
   std::string name = (std::filesystem::temp_directory_path() / "gearimpact-mat-XXXXXX").string();
   const int fd = ::mkstemp(name.data());
   if (fd < 0) {
