@@ -7,7 +7,7 @@ packages=(
   libeigen3-dev libgsl-dev libboost-dev libfftw3-dev
   doctest-dev libbenchmark-dev
   libcli11-dev libtoml11-dev nlohmann-json3-dev
-  libhdf5-dev hdf5-tools python3-h5py libssl-dev libmatio-dev python3-scipy
+  libhdf5-dev hdf5-tools python3-h5py libssl-dev zlib1g-dev libmatio-dev python3-scipy
   clang libclang-rt-14-dev
   gnuplot-nox
   gmsh calculix-ccx

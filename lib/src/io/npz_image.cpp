@@ -1,5 +1,8 @@
 #include "gearimpact/io/npz_image.hpp"
 
+#include <zlib.h>
+
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <limits>
@@ -10,16 +13,6 @@
 namespace gearimpact {
 
 namespace {
-
-std::array<std::uint32_t, 256> crc_table() {
-  std::array<std::uint32_t, 256> t{};
-  for (std::uint32_t n = 0; n < 256; ++n) {
-    std::uint32_t c = n;
-    for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-    t[n] = c;
-  }
-  return t;
-}
 
 // Little-endian integers, as ZIP and the .npy header length store them, whatever the host's order.
 void put16(std::string& out, std::uint32_t v) {
@@ -54,12 +47,17 @@ constexpr std::uint32_t kDosDate = (1u << 5) | 1u;
 }  // namespace
 
 std::uint32_t crc32(const std::string& bytes) {
-  static const std::array<std::uint32_t, 256> table = crc_table();
-  std::uint32_t c = 0xffffffffu;
-  for (const char ch : bytes) {
-    c = table[(c ^ static_cast<unsigned char>(ch)) & 0xffu] ^ (c >> 8);
+  // zlib's CRC-32 (Debian: zlib1g-dev), over the bytes in pieces its uInt length can hold.
+  uLong c = ::crc32(0L, Z_NULL, 0);
+  const auto* data = reinterpret_cast<const Bytef*>(bytes.data());
+  std::size_t left = bytes.size();
+  while (left > 0) {
+    const auto piece = static_cast<uInt>(std::min<std::size_t>(left, 1u << 30));
+    c = ::crc32(c, data, piece);
+    data += piece;
+    left -= piece;
   }
-  return c ^ 0xffffffffu;
+  return static_cast<std::uint32_t>(c);
 }
 
 std::string npy_file(const std::vector<double>& values) {

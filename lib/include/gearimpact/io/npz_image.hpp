@@ -16,7 +16,7 @@
 
 namespace gearimpact {
 
-// CRC-32 of ISO 3309 / ITU-T V.42 (the reflected polynomial 0xEDB88320), as ZIP stores it.
+// CRC-32 of ISO 3309 / ITU-T V.42 (the reflected polynomial 0xEDB88320), as ZIP stores it: zlib's.
 std::uint32_t crc32(const std::string& bytes);
 
 // The .npy file (format 1.0) of a 1-D array: descr "<f8" or "|i1".
