@@ -51,7 +51,9 @@ struct FeCheckOptions {
   std::vector<double> crack_depths;
   // A spall of this width (m; 0: none) on the pinion's drive flank at the pitch point: both
   // teeth in 3-D, loaded over the whole face and over the width the spall leaves.
-  double spall_width = 0.0;
+  std::vector<double> spall_widths;
+  // The contact positions s of the spall's runs (m from T_1; none: the pitch point).
+  std::vector<double> spall_positions;
   double spall_depth = 2e-4;
   double solid_element_size = 1.0;
   double crack_angle_deg = 45.0;
@@ -480,51 +482,86 @@ void run_tooth(const FeCheckOptions& o) {
   }
 }
 
-// The spall in 3-D (docs/verification.md, "The spall in 3-D"): each tooth of the pair at the
-// pitch point, loaded along the line of action by a unit force spread evenly over the whole
-// face and over the width the spall leaves (z in [b_s, b]: the spall takes z in [0, b_s], where
+// The spall in 3-D (docs/verification.md, "The spall in 3-D"): each tooth of the pair at each
+// contact position, loaded along the line of action by a unit force spread evenly over the whole
+// face and over the width each spall leaves (z in [b_s, b]: the spall takes z in [0, b_s], where
 // the flanks do not touch); its compliance the load-weighted mean of the section readings
 // along z. The pair's compliance adds Hertz over the contact length; the pit's material stays.
+// One mesh per gear and refinement carries every position (its load vertices); one linear step
+// per position and loaded width.
 void run_spall(const FeCheckOptions& o) {
   const SimulationCase c = read_pair_or_run_file(o.case_file).simulation_case;
   const RackGearPairGeometry pair = rack_gear_pair_geometry(c.gears);
   const double b = pair.contact_width_m;
-  const double b_s = o.spall_width;
-  const double quarters = 4.0 * b_s / b;
-  if (!(b_s > 0.0 && b_s < b) || std::fabs(quarters - std::round(quarters)) > 1e-9) {
-    throw InputError("--spall-width", b_s,
-                     "a quarter, a half or three quarters of the contact width (" +
-                         format_number(b) + " m): the layers of the solid mesh meet there");
+  std::vector<double> widths = o.spall_widths;
+  std::sort(widths.begin(), widths.end());
+  for (std::size_t w = 0; w < widths.size(); ++w) {
+    const double b_s = widths[w];
+    const double quarters = 4.0 * b_s / b;
+    if (!(b_s > 0.0 && b_s < b) || std::fabs(quarters - std::round(quarters)) > 1e-9 ||
+        (w > 0 && std::fabs(b_s - widths[w - 1]) < 1e-12)) {
+      throw InputError("--spall-width", b_s,
+                       "distinct quarters of the contact width (" + format_number(b) +
+                           " m: b/4, b/2 or 3b/4): the layers of the solid mesh meet there");
+    }
   }
   const double s_pitch = pair.gear1.base_radius_m * std::tan(pair.operating_pressure_angle_rad);
-  const PairContact both = pair_contact(pair, s_pitch);
-  // The spall on the pinion's drive flank, +-0.5 mm of roll about the pitch point.
-  Spall spall;
-  spall.start_radius_m = radius_at_roll_distance(pair.gear1.base_radius_m, s_pitch - 5e-4);
-  spall.end_radius_m = radius_at_roll_distance(pair.gear1.base_radius_m, s_pitch + 5e-4);
-  spall.width_m = b_s;
-  spall.depth_m = o.spall_depth;
-  place_spall(spall, pair.gear1, b);
+  std::vector<double> positions = o.spall_positions;
+  if (positions.empty()) positions.push_back(s_pitch);
+  std::sort(positions.begin(), positions.end());
+  // The spall's band, +-0.5 mm of roll about the contact, inside the active profile.
+  const double s_low = pair.start_of_active_profile_m + 5e-4;
+  const double s_high = pair.end_of_active_profile_m - 5e-4;
+  for (std::size_t p = 0; p < positions.size(); ++p) {
+    if (!(positions[p] >= s_low && positions[p] <= s_high) ||
+        (p > 0 && positions[p] - positions[p - 1] < 1e-4)) {
+      throw InputError("--spall-at", positions[p],
+                       "distinct contact positions s (m from T_1, at least 0.1 mm apart) in [" +
+                           format_number(s_low) + ", " + format_number(s_high) +
+                           "] (the active path less the spall's half band, 0.5 mm)");
+    }
+  }
+  const std::size_t np = positions.size();
+  const std::size_t nw = widths.size();
   StiffnessModel pe_model;
   pe_model.kind = StiffnessModelKind::potential_energy;
-  const ToothContact contact[2] = {both.gear1, both.gear2};
   const RackGearGeometry* gears[2] = {&pair.gear1, &pair.gear2};
   const char* bore_keys[2] = {"gears.bore_diameter1", "gears.bore_diameter2"};
-  ToothCompliances healthy_model[2];
+  // [gear][position]
+  std::vector<ToothContact> contact[2];
+  std::vector<ToothCompliances> healthy_model[2];
+  // [position][width]: the pinion's spalled terms by this code's reading.
+  std::vector<std::vector<ToothCompliances>> spalled_pinion(np);
+  for (std::size_t p = 0; p < np; ++p) {
+    const PairContact both = pair_contact(pair, positions[p]);
+    contact[0].push_back(both.gear1);
+    contact[1].push_back(both.gear2);
+    for (int g = 0; g < 2; ++g) {
+      healthy_model[g].push_back(tooth_compliances(*gears[g], g == 0 ? Gear::one : Gear::two,
+                                                   contact[g].back(), b, pe_model));
+    }
+    for (const double b_s : widths) {
+      Spall spall;
+      spall.start_radius_m = radius_at_roll_distance(pair.gear1.base_radius_m, positions[p] - 5e-4);
+      spall.end_radius_m = radius_at_roll_distance(pair.gear1.base_radius_m, positions[p] + 5e-4);
+      spall.width_m = b_s;
+      spall.depth_m = o.spall_depth;
+      place_spall(spall, pair.gear1, b);
+      spalled_pinion[p].push_back(
+          spalled_tooth_compliances(pair.gear1, Gear::one, both.gear1, b, pe_model, spall));
+    }
+  }
   ToothOutline outlines[2];
   for (int g = 0; g < 2; ++g) {
-    outlines[g] = tooth_outline(*gears[g], bore_keys[g], 24, 48, {contact[g].tau_rad});
-    healthy_model[g] =
-        tooth_compliances(*gears[g], g == 0 ? Gear::one : Gear::two, contact[g], b, pe_model);
+    std::vector<double> taus;
+    for (const ToothContact& t : contact[g]) taus.push_back(t.tau_rad);
+    outlines[g] = tooth_outline(*gears[g], bore_keys[g], 24, 48, taus);
   }
-  const ToothCompliances spalled_pinion =
-      spalled_tooth_compliances(pair.gear1, Gear::one, contact[0], b, pe_model, spall);
   AtomicFolder folder(o.out, o.overwrite, {o.case_file});
   const std::filesystem::path dir = folder.temporary();
   const double m = c.gears.module_m;
-  // [gear][mesh]: the compliance over the whole face and over the width left.
-  std::vector<double> full[2];
-  std::vector<double> part[2];
+  // fe[gear][mesh][position][0: whole face, 1 + w: the width spall w leaves].
+  std::vector<std::vector<std::vector<double>>> fe[2];
   std::vector<std::size_t> wedges;
   std::vector<int> layer_counts;
   std::vector<double> sizes_used;
@@ -545,7 +582,7 @@ void run_spall(const FeCheckOptions& o) {
       const std::string stem =
           "solid_gear" + std::to_string(g + 1) + "_mesh" + std::to_string(k + 1);
       write_file_atomically((dir / (stem + ".geo")).string(),
-                            tooth_geo_3d(outline, {contact[g]}, sizes, b, layers));
+                            tooth_geo_3d(outline, contact[g], sizes, b, layers));
       ProgramCall mesher;
       mesher.argv = {"gmsh", "-3", "-format", "inp", "-o", stem + "_mesh.inp", stem + ".geo"};
       mesher.dir = dir;
@@ -554,32 +591,45 @@ void run_spall(const FeCheckOptions& o) {
       mesher.capture_output = true;
       run_program(mesher);
       const FeMesh3 mesh = read_gmsh_inp_3d(read_text(dir / (stem + "_mesh.inp")));
-      const OutlinePoint& p = outline.flank.at(outline.vertex_index.front());
-      const ToothContact& t = contact[g];
-      const std::vector<long> line_p = nodes_on_z_line(mesh, p.x_m, p.y_m);
-      const std::vector<long> line_c = nodes_on_z_line(mesh, 0.0, t.y_m);
-      const std::vector<long> line_a = nodes_on_z_line(mesh, -0.5 * t.x_m, t.y_m);
-      const std::vector<long> line_b = nodes_on_z_line(mesh, 0.5 * t.x_m, t.y_m);
       const std::size_t n = static_cast<std::size_t>(2 * layers + 1);
-      if (line_p.size() != n || line_c.size() != n || line_a.size() != n || line_b.size() != n) {
-        throw std::runtime_error("the solid mesh " + stem +
-                                 " lacks the lines of nodes along z at the load and its section");
-      }
-      std::vector<double> z;
-      for (const long id : line_p) z.push_back(mesh.nodes_m.at(id)[2]);
-      const std::vector<double> w_full = line_load_weights(z, 0.0, b);
-      const std::vector<double> w_part = line_load_weights(z, b_s, b);
-      const double dx = -std::cos(t.tau_rad);
-      const double dy = -std::sin(t.tau_rad);
-      std::vector<std::vector<FeLoad>> steps(2);
-      for (std::size_t i = 0; i < n; ++i) {
-        if (w_full[i] != 0.0) steps[0].push_back({line_p[i], dx * w_full[i], dy * w_full[i]});
-        if (w_part[i] != 0.0) steps[1].push_back({line_p[i], dx * w_part[i], dy * w_part[i]});
-      }
+      struct Lines {
+        std::vector<long> p, c, a, b;
+      };
+      std::vector<Lines> lines(np);
+      std::vector<std::vector<FeLoad>> steps;
+      std::vector<std::vector<double>> step_weights;
       std::vector<long> printed;
-      for (const auto* line : {&line_c, &line_a, &line_b}) {
-        printed.insert(printed.end(), line->begin(), line->end());
+      for (std::size_t q = 0; q < np; ++q) {
+        const OutlinePoint& pt = outline.flank.at(outline.vertex_index.at(q));
+        const ToothContact& t = contact[g][q];
+        Lines& l = lines[q];
+        l.p = nodes_on_z_line(mesh, pt.x_m, pt.y_m);
+        l.c = nodes_on_z_line(mesh, 0.0, t.y_m);
+        l.a = nodes_on_z_line(mesh, -0.5 * t.x_m, t.y_m);
+        l.b = nodes_on_z_line(mesh, 0.5 * t.x_m, t.y_m);
+        if (l.p.size() != n || l.c.size() != n || l.a.size() != n || l.b.size() != n) {
+          throw std::runtime_error("the solid mesh " + stem +
+                                   " lacks the lines of nodes along z at the load and its section");
+        }
+        std::vector<double> z;
+        for (const long id : l.p) z.push_back(mesh.nodes_m.at(id)[2]);
+        const double dx = -std::cos(t.tau_rad);
+        const double dy = -std::sin(t.tau_rad);
+        for (std::size_t w = 0; w <= nw; ++w) {
+          const std::vector<double> weights = line_load_weights(z, w == 0 ? 0.0 : widths[w - 1], b);
+          std::vector<FeLoad> step;
+          for (std::size_t i = 0; i < n; ++i) {
+            if (weights[i] != 0.0) step.push_back({l.p[i], dx * weights[i], dy * weights[i]});
+          }
+          steps.push_back(step);
+          step_weights.push_back(weights);
+        }
+        for (const auto* line : {&l.c, &l.a, &l.b}) {
+          printed.insert(printed.end(), line->begin(), line->end());
+        }
       }
+      std::sort(printed.begin(), printed.end());
+      printed.erase(std::unique(printed.begin(), printed.end()), printed.end());
       write_file_atomically(
           (dir / (stem + ".inp")).string(),
           calculix_input_3d(mesh, material, nodes_at_radius(mesh, outline.bore_radius_m), steps,
@@ -598,20 +648,23 @@ void run_spall(const FeCheckOptions& o) {
         throw std::runtime_error("ccx failed on " + solver.shown + ": " +
                                  log.substr(error, std::min<std::size_t>(400, log.size() - error)));
       }
-      const auto u = read_calculix_dat(read_text(dir / (stem + ".dat")), 2, printed);
+      const auto u = read_calculix_dat(read_text(dir / (stem + ".dat")), steps.size(), printed);
       // Each step's compliance: the section readings along z weighted by the step's load.
-      double readings[2] = {0.0, 0.0};
-      for (std::size_t step = 0; step < 2; ++step) {
-        const std::vector<double>& w = step == 0 ? w_full : w_part;
-        for (std::size_t i = 0; i < n; ++i) {
-          if (w[i] == 0.0) continue;
-          readings[step] += w[i] * tooth_reading(t, u[step].at(line_c[i]), u[step].at(line_a[i]),
-                                                 u[step].at(line_b[i]))
-                                       .compliance_m_per_n;
+      std::vector<std::vector<double>> by_position(np, std::vector<double>(nw + 1, 0.0));
+      for (std::size_t q = 0; q < np; ++q) {
+        const Lines& l = lines[q];
+        for (std::size_t w = 0; w <= nw; ++w) {
+          const std::size_t step = q * (nw + 1) + w;
+          const std::vector<double>& weights = step_weights[step];
+          for (std::size_t i = 0; i < n; ++i) {
+            if (weights[i] == 0.0) continue;
+            by_position[q][w] += weights[i] * tooth_reading(contact[g][q], u[step].at(l.c[i]),
+                                                            u[step].at(l.a[i]), u[step].at(l.b[i]))
+                                                  .compliance_m_per_n;
+          }
         }
       }
-      full[g].push_back(readings[0]);
-      part[g].push_back(readings[1]);
+      fe[g].push_back(by_position);
       if (g == 0) {
         wedges.push_back(mesh.wedges.size());
         layer_counts.push_back(layers);
@@ -625,89 +678,121 @@ void run_spall(const FeCheckOptions& o) {
   const double nu1 = pair.gear1.poisson_ratio;
   const double nu2 = pair.gear2.poisson_ratio;
   const double hertz_full = 1.0 / hertz_stiffness_two_materials(b, e1, nu1, e2, nu2);
-  const double hertz_part = 1.0 / hertz_stiffness_two_materials(b - b_s, e1, nu1, e2, nu2);
-  const double scale = b / (b - b_s);
-  const auto width_scaled = [&](const ToothCompliances& t) {
-    return scale * (t.bending_m_per_n + t.foundation_m_per_n) + t.shear_m_per_n + t.axial_m_per_n;
-  };
   struct Reading {
-    const char* name;
+    std::string name;
     double tooth1_healthy, tooth1_spalled, tooth2_healthy, tooth2_spalled;
   };
-  const Reading fe{"finite elements (3-D, finest mesh)", full[0].back(), part[0].back(),
-                   full[1].back(), part[1].back()};
-  const Reading hertz_only{
-      "potential-energy, this code's reading (Hertz over b - b_s, pit sections)",
-      healthy_model[0].total_m_per_n(), spalled_pinion.total_m_per_n(),
-      healthy_model[1].total_m_per_n(), healthy_model[1].total_m_per_n()};
-  const Reading scaled{"potential-energy, width-scaled (bending and foundation x b / (b - b_s))",
-                       healthy_model[0].total_m_per_n(), width_scaled(healthy_model[0]),
-                       healthy_model[1].total_m_per_n(), width_scaled(healthy_model[1])};
   std::string table =
-      "| reading | pinion tooth healthy, m/N | spalled | change | wheel tooth healthy | "
-      "spalled | change | pair healthy, N/m | spalled | pair stiffness lost |\n"
-      "|---|---|---|---|---|---|---|---|---|---|\n";
+      "| s, mm | b_s / b | reading | pinion tooth healthy, m/N | spalled | change | wheel tooth "
+      "healthy | spalled | change | pair healthy, N/m | spalled | pair stiffness lost | loss vs "
+      "FE |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   std::string csv =
-      "reading,tooth1_healthy_m_per_n,tooth1_spalled_m_per_n,tooth2_healthy_m_per_n,"
-      "tooth2_spalled_m_per_n,hertz_healthy_m_per_n,hertz_spalled_m_per_n,pair_healthy_n_per_m,"
-      "pair_spalled_n_per_m,pair_loss\n";
-  double fe_loss = 0.0;
-  for (const Reading* r : {&fe, &hertz_only, &scaled}) {
-    const double k_healthy = 1.0 / (hertz_full + r->tooth1_healthy + r->tooth2_healthy);
-    const double k_spalled = 1.0 / (hertz_part + r->tooth1_spalled + r->tooth2_spalled);
-    const double loss = 1.0 - k_spalled / k_healthy;
-    if (r == &fe) fe_loss = loss;
-    table += std::string("| ") + r->name + " | " + scientific(r->tooth1_healthy) + " | " +
-             scientific(r->tooth1_spalled) + " | " +
-             percent(r->tooth1_spalled / r->tooth1_healthy - 1.0) + " | " +
-             scientific(r->tooth2_healthy) + " | " + scientific(r->tooth2_spalled) + " | " +
-             percent(r->tooth2_spalled / r->tooth2_healthy - 1.0) + " | " + scientific(k_healthy) +
-             " | " + scientific(k_spalled) + " | " + percent(loss) + " |\n";
-    std::vector<double> fields{r->tooth1_healthy, r->tooth1_spalled, r->tooth2_healthy,
-                               r->tooth2_spalled, hertz_full,        hertz_part,
-                               k_healthy,         k_spalled,         loss};
-    csv += std::string("\"") + r->name + "\"";
-    for (const double v : fields) {
-      csv += ',';
-      csv += format_data_number(v);
+      "s_m,spall_width_m,reading,tooth1_healthy_m_per_n,tooth1_spalled_m_per_n,"
+      "tooth2_healthy_m_per_n,tooth2_spalled_m_per_n,hertz_healthy_m_per_n,hertz_spalled_m_per_n,"
+      "pair_healthy_n_per_m,pair_spalled_n_per_m,pair_loss\n";
+  std::string json_losses;
+  for (std::size_t p = 0; p < np; ++p) {
+    for (std::size_t w = 0; w < nw; ++w) {
+      const double b_s = widths[w];
+      const double hertz_part = 1.0 / hertz_stiffness_two_materials(b - b_s, e1, nu1, e2, nu2);
+      const double scale = b / (b - b_s);
+      // The library's reading (surface_faults.hpp), each tooth by its root thickness.
+      const SpallWidthFactors factors[2] = {
+          spall_width_factors(b - b_s, b, root_thickness(pair.gear1)),
+          spall_width_factors(b - b_s, b, root_thickness(pair.gear2))};
+      const auto effective = [](const ToothCompliances& t, const SpallWidthFactors& f) {
+        return f.beam * (t.bending_m_per_n + t.shear_m_per_n + t.axial_m_per_n) +
+               f.foundation * t.foundation_m_per_n;
+      };
+      const auto width_scaled = [&](const ToothCompliances& t) {
+        return scale * (t.bending_m_per_n + t.foundation_m_per_n) + t.shear_m_per_n +
+               t.axial_m_per_n;
+      };
+      const std::vector<Reading> readings{
+          {"finite elements (3-D, finest mesh)", fe[0].back()[p][0], fe[0].back()[p][1 + w],
+           fe[1].back()[p][0], fe[1].back()[p][1 + w]},
+          {"potential-energy, Hertz-only (Hertz over b - b_s, pit sections)",
+           healthy_model[0][p].total_m_per_n(), spalled_pinion[p][w].total_m_per_n(),
+           healthy_model[1][p].total_m_per_n(), healthy_model[1][p].total_m_per_n()},
+          {"potential-energy, width-scaled (bending and foundation x b / (b - b_s))",
+           healthy_model[0][p].total_m_per_n(), width_scaled(healthy_model[0][p]),
+           healthy_model[1][p].total_m_per_n(), width_scaled(healthy_model[1][p])},
+          {"potential-energy, effective-width (spall_reading = \"effective-width\")",
+           healthy_model[0][p].total_m_per_n(), effective(spalled_pinion[p][w], factors[0]),
+           healthy_model[1][p].total_m_per_n(), effective(healthy_model[1][p], factors[1])}};
+      double fe_loss = 0.0;
+      for (const Reading& r : readings) {
+        const double k_healthy = 1.0 / (hertz_full + r.tooth1_healthy + r.tooth2_healthy);
+        const double k_spalled = 1.0 / (hertz_part + r.tooth1_spalled + r.tooth2_spalled);
+        const double loss = 1.0 - k_spalled / k_healthy;
+        if (&r == &readings.front()) fe_loss = loss;
+        char head[64];
+        std::snprintf(head, sizeof head, "| %.3f | %.2f | ", positions[p] * 1e3, b_s / b);
+        table += head + r.name + " | " + scientific(r.tooth1_healthy) + " | " +
+                 scientific(r.tooth1_spalled) + " | " +
+                 percent(r.tooth1_spalled / r.tooth1_healthy - 1.0) + " | " +
+                 scientific(r.tooth2_healthy) + " | " + scientific(r.tooth2_spalled) + " | " +
+                 percent(r.tooth2_spalled / r.tooth2_healthy - 1.0) + " | " +
+                 scientific(k_healthy) + " | " + scientific(k_spalled) + " | " +
+                 percent(loss).substr(1) + " | " + percent(loss - fe_loss) + " |\n";
+        std::vector<double> fields{r.tooth1_healthy, r.tooth1_spalled, r.tooth2_healthy,
+                                   r.tooth2_spalled, hertz_full,       hertz_part,
+                                   k_healthy,        k_spalled,        loss};
+        csv += format_data_number(positions[p]) + "," + format_data_number(b_s) + ",\"" + r.name +
+               "\"";
+        for (const double v : fields) {
+          csv += ',';
+          csv += format_data_number(v);
+        }
+        csv += '\n';
+      }
+      if (!json_losses.empty()) json_losses += ", ";
+      json_losses += "{\"s_m\": " + format_data_number(positions[p]) +
+                     ", \"spall_width_m\": " + format_data_number(b_s) +
+                     ", \"fe_pair_loss\": " + format_data_number(fe_loss) + "}";
     }
-    csv += '\n';
   }
-  // Convergence: every mesh's four compliances.
+  // Convergence: every mesh's compliances, at every position and loaded width.
   std::string meshes_csv =
-      "mesh,tooth_element_m,layers,wedges_gear1,tooth1_full_m_per_n,"
-      "tooth1_part_m_per_n,tooth2_full_m_per_n,tooth2_part_m_per_n\n";
+      "mesh,tooth_element_m,layers,wedges_gear1,s_m,loaded_from_m,tooth1_m_per_n,"
+      "tooth2_m_per_n,tooth1_change,tooth2_change\n";
   double worst_change = 0.0;
-  for (std::size_t k = 0; k < full[0].size(); ++k) {
-    std::vector<double> fields{sizes_used[k],
-                               static_cast<double>(layer_counts[k]),
-                               static_cast<double>(wedges[k]),
-                               full[0][k],
-                               part[0][k],
-                               full[1][k],
-                               part[1][k]};
-    meshes_csv += std::to_string(k + 1);
-    for (const double v : fields) {
-      meshes_csv += ',';
-      meshes_csv += format_data_number(v);
-    }
-    meshes_csv += '\n';
-    if (k > 0 && k + 1 == full[0].size()) {
-      for (int g = 0; g < 2; ++g) {
-        worst_change = std::max(worst_change, std::fabs(full[g][k] / full[g][k - 1] - 1.0));
-        worst_change = std::max(worst_change, std::fabs(part[g][k] / part[g][k - 1] - 1.0));
+  for (std::size_t k = 0; k < fe[0].size(); ++k) {
+    for (std::size_t p = 0; p < np; ++p) {
+      for (std::size_t w = 0; w <= nw; ++w) {
+        double change[2] = {0.0, 0.0};
+        for (int g = 0; g < 2; ++g) {
+          if (k > 0) change[g] = fe[g][k][p][w] / fe[g][k - 1][p][w] - 1.0;
+          if (k > 0 && k + 1 == fe[0].size()) {
+            worst_change = std::max(worst_change, std::fabs(change[g]));
+          }
+        }
+        std::vector<double> fields{sizes_used[k],
+                                   static_cast<double>(layer_counts[k]),
+                                   static_cast<double>(wedges[k]),
+                                   positions[p],
+                                   w == 0 ? 0.0 : widths[w - 1],
+                                   fe[0][k][p][w],
+                                   fe[1][k][p][w],
+                                   change[0],
+                                   change[1]};
+        meshes_csv += std::to_string(k + 1);
+        for (const double v : fields) {
+          meshes_csv += ',';
+          meshes_csv += format_data_number(v);
+        }
+        meshes_csv += '\n';
       }
     }
   }
   const bool converged = o.refinements < 2 || worst_change < kConvergence;
   const std::string json =
-      "{\n  \"case\": \"" + c.name + "\",\n  \"s_m\": " + format_data_number(s_pitch) +
+      "{\n  \"case\": \"" + c.name + "\",\n  \"s_pitch_m\": " + format_data_number(s_pitch) +
       ",\n  \"contact_width_m\": " + format_data_number(b) +
-      ",\n  \"spall_width_m\": " + format_data_number(b_s) +
       ",\n  \"spall_depth_m\": " + format_data_number(o.spall_depth) +
       ",\n  \"largest_last_mesh_change\": " + format_data_number(worst_change) +
-      ",\n  \"converged\": " + (converged ? "true" : "false") +
-      ",\n  \"fe_pair_loss\": " + format_data_number(fe_loss) + "\n}\n";
+      ",\n  \"converged\": " + (converged ? "true" : "false") + ",\n  \"fe_pair_losses\": [" +
+      json_losses + "]\n}\n";
   write_file_atomically((dir / "fe_spall.csv").string(), csv);
   write_file_atomically((dir / "fe_spall.md").string(), table);
   write_file_atomically((dir / "fe_spall_meshes.csv").string(), meshes_csv);
@@ -753,7 +838,7 @@ ReportSection reproduce_fe(const ReproduceContext& context) {
   FeCheckOptions solid;
   solid.case_file = (dir / "rig_17_38.toml").string();
   solid.out = (dir / "spall").string();
-  solid.spall_width = 7.5e-3;
+  solid.spall_widths = {7.5e-3};
   solid.overwrite = true;
   solid.quiet = true;
   run_spall(solid);
@@ -792,9 +877,10 @@ ReportSection reproduce_fe(const ReproduceContext& context) {
     std::istringstream rows(read(dir / "spall" / "fe_spall.csv"));
     std::string line;
     std::getline(rows, line);
-    const char* labels[3] = {"finite elements", "Hertz only (this code)", "width-scaled"};
+    const char* labels[4] = {"finite elements", "Hertz only (default)", "width-scaled",
+                             "effective width"};
     std::string bars = "reading,pair_loss_percent\n";
-    for (int r = 0; r < 3 && std::getline(rows, line); ++r) {
+    for (int r = 0; r < 4 && std::getline(rows, line); ++r) {
       bars += std::string("\"") + labels[r] + "\"," +
               format_data_number(100.0 * std::stod(line.substr(line.rfind(',') + 1))) + "\n";
     }
@@ -806,7 +892,7 @@ ReportSection reproduce_fe(const ReproduceContext& context) {
   g.x_label = "reading of the spall";
   g.y_label = "pair stiffness lost, %";
   g.setup = {"set style fill solid 0.6 border -1", "set boxwidth 0.5", "set yrange [0:*]",
-             "set xrange [-0.6:2.6]", "unset key"};
+             "set xrange [-0.6:3.6]", "unset key"};
   g.series = {"'fe_spall_loss.csv' using 0:2:xtic(1) with boxes lc rgb '#1f77b4'",
               "'fe_spall_loss.csv' using 0:2:(sprintf('%.1f %%', $2)) with labels offset 0,1"};
   render(dir, g);
@@ -865,10 +951,18 @@ void register_fe_commands(CLI::App& app) {
   fe->add_option("--crack-angle", o->crack_angle_deg,
                  "the cracks' angle nu to the tooth's centre line, deg, in (0, 90]")
       ->check(CLI::Range(0.001, 90.0));
-  fe->add_option("--spall-width", o->spall_width,
-                 "solve the spall in 3-D instead: both teeth at the pitch point, loaded over the "
-                 "whole face and over the width a spall this wide (m; a quarter, half or three "
-                 "quarters of the face) leaves; fe_spall.csv, fe_spall.md, fe_spall_meshes.csv")
+  fe->add_option("--spall-width", o->spall_widths,
+                 "solve the spall in 3-D instead: both teeth at each --spall-at position, loaded "
+                 "over the whole face and over the width each spall this wide leaves (m, "
+                 "comma-separated; a quarter, half or three quarters of the face); fe_spall.csv, "
+                 "fe_spall.md, fe_spall_meshes.csv")
+      ->delimiter(',')
+      ->check(CLI::Range(0.0, 1.0));
+  fe->add_option("--spall-at", o->spall_positions,
+                 "with --spall-width: contact positions s (m from T_1 along the line of action, "
+                 "comma-separated, on the active path less 0.5 mm at each end; default the pitch "
+                 "point)")
+      ->delimiter(',')
       ->check(CLI::Range(0.0, 1.0));
   fe->add_option("--spall-depth", o->spall_depth,
                  "the spall's depth d_s for the models' reading (m, default 2e-4; the solid "
@@ -892,8 +986,11 @@ void register_fe_commands(CLI::App& app) {
     if (o->edge_crack > 0.0 && !o->cantilever) {
       throw InputError("--edge-crack", o->edge_crack, "only with --cantilever");
     }
-    if (o->spall_width > 0.0 && (o->cantilever || !o->crack_depths.empty())) {
-      throw InputError("--spall-width", o->spall_width,
+    if (!o->spall_positions.empty() && o->spall_widths.empty()) {
+      throw InputError("--spall-at", "given", "only with --spall-width");
+    }
+    if (!o->spall_widths.empty() && (o->cantilever || !o->crack_depths.empty())) {
+      throw InputError("--spall-width", "given",
                        "a case's 3-D spall, without --cantilever or --crack-depths");
     }
     if (!o->crack_depths.empty() && o->cantilever) {
@@ -904,7 +1001,7 @@ void register_fe_commands(CLI::App& app) {
         o->case_file.empty() ? std::vector<std::string>{} : std::vector<std::string>{o->case_file});
     if (o->cantilever) {
       run_cantilever(*o);
-    } else if (o->spall_width > 0.0) {
+    } else if (!o->spall_widths.empty()) {
       run_spall(*o);
     } else {
       run_tooth(*o);

@@ -796,6 +796,13 @@ void define_module(py::module_& m) {
             s.moment_sign = parse_moment_sign(sign, "moment_sign");
           },
           "physical (M = Fb (l - x) - Fa h, as printed) or flipped")
+      .def_property(
+          "spall_reading", [](const StiffnessModel& s) { return to_string(s.spall_reading); },
+          [](StiffnessModel& s, const std::string& reading) {
+            s.spall_reading = parse_spall_reading(reading, "spall_reading");
+          },
+          "hertz-only (Hertz over b - b_s) or effective-width (also each tooth's beam and "
+          "foundation over the width the load spreads to; rack-cut models)")
       .def_readwrite("relative_tolerance", &StiffnessModel::relative_tolerance)
       .def(
           "term",

@@ -769,6 +769,11 @@ std::vector<Field> make_schema() {
         "moment_sign", choices_of(kMomentSigns), false,
         "sign of the axial-force moment in the bending stiffness",
         [](auto& c) -> auto& { return c.model.stiffness.moment_sign; });
+    r.choice(
+        "spall_reading", choices_of(kSpallReadings), false,
+        "how a partial-width spall's contact loads the teeth (docs/faults.md)",
+        [](auto& c) -> auto& { return c.model.stiffness.spall_reading; })
+        .written_at_default = false;
     // stiffness_method names the tau-form with a quadrature rule, or the
     // x-form route; xform_rule the rule of the x-form route (used only then).
     // The tau-form's methods have their rule's code, the x-form one past them.
@@ -1691,7 +1696,7 @@ void check_rows(const SimulationCase& c, std::string_view section, Holds holds,
 // The [model] rows that describe the StiffnessModel.
 bool is_stiffness_row(const Field& field) {
   for (std::string_view key : {"stiffness_model", "moment_sign", "stiffness_method", "xform_rule",
-                               "stiffness_tolerance"}) {
+                               "stiffness_tolerance", "spall_reading"}) {
     if (field.key == key) return true;
   }
   for (const TermInfo& t : kTerms) {
@@ -1719,6 +1724,7 @@ void validate(const StiffnessModel& model) {
   Problems problems;
   check_rows(c, "model", is_stiffness_row, problems);
   if (problems.empty()) problems.collect([&] { validate_terms(model); });
+  if (problems.empty()) problems.collect([&] { check_spall_reading(model); });
   problems.throw_if_any();
 }
 
@@ -1937,6 +1943,7 @@ void relation_problems(const SimulationCase& c, const std::vector<std::string>& 
   }
   if (!any_failed(failed, "model.")) {
     problems.collect([&] { validate_terms(c.model.stiffness, "model"); });
+    problems.collect([&] { check_spall_reading(c.model.stiffness, "model"); });
   }
   // The diameters of a relief against the active profile need a valid pair.
   if (geometry_valid && !any_failed(failed, "modifications.")) {

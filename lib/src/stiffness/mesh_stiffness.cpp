@@ -259,6 +259,35 @@ ToothTerms faulted_pair_tooth_terms(const GearPair& pair, Gear gear, double x1_m
   return {paper_tooth_terms(pair, gear, gear == Gear::one ? x1_m : lp - x1_m, model, state), false};
 }
 
+namespace {
+
+// The effective-width reading (spall_width_factors): where a spall shortens the pair's
+// contact to L < b, both teeth's beam and foundation terms grow by their factors.
+void spread_over_effective_width(const GearPair& pair, double x1_m, const ToothState& tooth1,
+                                 const ToothState& tooth2, CrackFlank contact_flank,
+                                 MeshStiffness& k) {
+  const double b = pair.face_width_m;
+  const double lp = line_of_action_length(pair);
+  double length = b;
+  if (tooth1.kind == ToothKind::spall) {
+    length = std::min(length, contact_length(pair, Gear::one, tooth1, x1_m, contact_flank));
+  }
+  if (tooth2.kind == ToothKind::spall) {
+    length = std::min(length, contact_length(pair, Gear::two, tooth2, lp - x1_m, contact_flank));
+  }
+  if (!(length < b)) return;
+  const RackGearPairGeometry geometry = rack_gear_pair_geometry(pair);
+  const RackGearGeometry* gears[2] = {&geometry.gear1, &geometry.gear2};
+  Compliances* teeth[2] = {&k.tooth1, &k.tooth2};
+  for (int g = 0; g < 2; ++g) {
+    const SpallWidthFactors f = spall_width_factors(length, b, root_thickness(*gears[g]));
+    for (Term term : {Term::bending, Term::shear, Term::axial}) teeth[g]->of(term) *= f.beam;
+    teeth[g]->of(Term::foundation) *= f.foundation;
+  }
+}
+
+}  // namespace
+
 double pair_contact_length_m(const GearPair& pair, double x1_m, const ToothState& tooth1,
                              const ToothState& tooth2, CrackFlank contact_flank) {
   const double lp = line_of_action_length(pair);
@@ -277,6 +306,10 @@ MeshStiffness mesh_stiffness_of_teeth(const GearPair& pair, double x1_m,
   MeshStiffness k{};
   k.tooth1 = terms1.terms;
   k.tooth2 = terms2.terms;
+  if (model.spall_reading == SpallReading::effective_width) {
+    check_spall_reading(model);
+    spread_over_effective_width(pair, x1_m, tooth1, tooth2, contact_flank, k);
+  }
   k.foundation_extrapolated = terms1.foundation_extrapolated || terms2.foundation_extrapolated;
   combine(pair, model, k, length);
   return k;

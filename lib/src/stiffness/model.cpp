@@ -12,7 +12,15 @@ namespace gearimpact {
 bool operator==(const StiffnessModel& a, const StiffnessModel& b) {
   return a.kind == b.kind && a.route == b.route && a.rule == b.rule &&
          a.moment_sign == b.moment_sign && a.relative_tolerance == b.relative_tolerance &&
-         a.terms == b.terms;
+         a.terms == b.terms && a.spall_reading == b.spall_reading;
+}
+
+SpallReading parse_spall_reading(std::string_view name, std::string_view field) {
+  return value_named(kSpallReadings, name, field);
+}
+
+std::string to_string(SpallReading reading) {
+  return name_of(kSpallReadings, reading);
 }
 
 StiffnessModelKind parse_stiffness_model(std::string_view name, std::string_view field) {
@@ -29,6 +37,18 @@ AxialMomentSign parse_moment_sign(std::string_view name, std::string_view field)
 
 std::string to_string(AxialMomentSign sign) {
   return name_of(kMomentSigns, sign);
+}
+
+void check_spall_reading(const StiffnessModel& model, std::string_view section) {
+  if (model.spall_reading != SpallReading::effective_width ||
+      model.kind != StiffnessModelKind::yang_lin_1987) {
+    return;
+  }
+  const std::string prefix = section.empty() ? "" : std::string(section) + ".";
+  throw InputError(prefix + "spall_reading", "\"" + to_string(model.spall_reading) + "\"",
+                   "\"hertz-only\" with stiffness_model = \"yang-lin-1987\" (\"effective-width\" "
+                   "spreads the load by the rack-cut tooth's root thickness and foundation: "
+                   "potential-energy or ross-compatible)");
 }
 
 bool provides(StiffnessModelKind kind, Term term) {

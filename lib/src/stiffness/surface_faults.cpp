@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -445,6 +446,25 @@ Compliances chipped_paper_tooth_compliances(const GearPair& pair, Gear which, do
     return healthy_paper_tooth(tooth, contact_x_m, e, b, model);
   }
   return banded_paper_tooth_compliances(tooth, contact_x_m, e, b, model, band_of(chip, b));
+}
+
+SpallWidthFactors spall_width_factors(double contact_length_m, double face_width_m,
+                                      double root_thickness_m) {
+  const double b = face_width_m;
+  const double length = contact_length_m;
+  if (!(b > 0.0 && length > 0.0 && length <= b && root_thickness_m > 0.0)) {
+    throw std::invalid_argument("spall_width_factors: 0 < L <= b and S_f > 0");
+  }
+  // b_eff = L + lambda (1 - exp(-(b - L) / lambda)), with expm1 for a short unloaded width.
+  const auto factor = [&](double lambda) {
+    return b / (length - lambda * std::expm1(-(b - length) / lambda));
+  };
+  return {factor(kSpallBeamSpread * root_thickness_m),
+          factor(kSpallFoundationSpread * root_thickness_m)};
+}
+
+double root_thickness(const RackGearGeometry& gear) {
+  return 2.0 * gear.root_radius_m * std::sin(gear.root_half_angle_rad);
 }
 
 }  // namespace gearimpact

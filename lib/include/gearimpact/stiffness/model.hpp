@@ -64,6 +64,23 @@ inline constexpr std::array<NamedValue<AxialMomentSign>, 2> kMomentSigns{{
 AxialMomentSign parse_moment_sign(std::string_view name, std::string_view field);
 std::string to_string(AxialMomentSign sign);
 
+// How a partial-width spall's contact (the length b - b_s it leaves) loads the
+// teeth (docs/faults.md, "A pair's compliance"; docs/verification.md, "The
+// spall in 3-D"). hertz_only: Hertz (4) over b - b_s, the beam and the
+// foundation over the whole face. effective_width: the rack-cut models'
+// bending, shear, axial and foundation terms of both teeth over the width the
+// load spreads to (spall_width_factors, surface_faults.hpp).
+enum class SpallReading { hertz_only, effective_width };
+inline constexpr std::array<NamedValue<SpallReading>, 2> kSpallReadings{{
+    {SpallReading::hertz_only, "hertz-only",
+     "Hertz over b - b_s, the beam and foundation over the whole face"},
+    {SpallReading::effective_width, "effective-width",
+     "also each tooth's beam and foundation over the width the load spreads to (the 3-D "
+     "finite elements' reading; potential-energy and ross-compatible)"},
+}};
+SpallReading parse_spall_reading(std::string_view name, std::string_view field);
+std::string to_string(SpallReading reading);
+
 struct StiffnessModel {
   StiffnessModelKind kind = StiffnessModelKind::yang_lin_1987;
   StiffnessRoute route = StiffnessRoute::tau_form;
@@ -74,6 +91,7 @@ struct StiffnessModel {
   // 1e-13 on these integrands although its result is better).
   double relative_tolerance = 1e-12;
   TermSet terms;
+  SpallReading spall_reading = SpallReading::hertz_only;
 };
 bool operator==(const StiffnessModel& a, const StiffnessModel& b);
 
@@ -83,6 +101,11 @@ bool operator==(const StiffnessModel& a, const StiffnessModel& b);
 // fields are the case schema's (validate(const StiffnessModel&) of
 // case/schema.hpp checks both).
 void validate_terms(const StiffnessModel& model, std::string_view section = {});
+// Throws InputError naming spall_reading (section.spall_reading for a
+// non-empty `section`) for effective_width with yang_lin_1987: the reading's
+// spread is the rack-cut tooth's (its root thickness, its foundation), which
+// the paper's tooth from the base circle does not have.
+void check_spall_reading(const StiffnessModel& model, std::string_view section = {});
 
 // A method of --method and of case files' stiffness_method: a route, and
 // for the tau-form the rule it integrates with.

@@ -125,6 +125,36 @@ ToothCompliances chipped_tooth_compliances(const RackGearGeometry& gear, Gear wh
                                            const ToothContact& contact, double contact_width_m,
                                            const StiffnessModel& model, const TipChip& chip);
 
+// The effective-width reading of a partial-width spall (SpallReading::
+// effective_width; docs/faults.md, docs/verification.md "The spall in 3-D").
+// A load over the length L = b - b_s that a spall leaves at one edge of the
+// face is carried by the loaded width and by the unloaded b - L beside it,
+// whose share decays with the distance z from the load's edge as
+// exp(-z / lambda) (the load spreading along the face through the tooth and
+// its body):
+//   b_eff = L + lambda (1 - exp(-(b - L) / lambda)),   factor = b / b_eff,
+// the factor by which a term computed over the whole face grows. The beam
+// (bending, shear, axial) and the foundation spread over their own lengths,
+// in proportion to the tooth's root thickness S_f = 2 r_f sin theta_f:
+// lambda = kSpallBeamSpread S_f, resp. kSpallFoundationSpread S_f. The two
+// constants are fitted (least squares of the relative error) to the rig
+// pair's 3-D finite elements, `gearimpact fe-check examples/rig_17_38.toml
+// --spall-width 3.75e-3,7.5e-3,11.25e-3 --spall-at 4e-3,8.7219e-3,13.5e-3`
+// (verify/data/fe_spall_rig_17_38.csv), and checked on the paper's pair
+// (verify/data/fe_spall_paper_pair.csv), which the fit did not see.
+inline constexpr double kSpallBeamSpread = 0.35;
+inline constexpr double kSpallFoundationSpread = 0.74;
+struct SpallWidthFactors {
+  double beam = 1.0;        // bending, shear and axial
+  double foundation = 1.0;  // the fillet foundation
+};
+// L in (0, b], S_f > 0; L = b gives 1 and 1. Throws std::invalid_argument
+// otherwise.
+SpallWidthFactors spall_width_factors(double contact_length_m, double face_width_m,
+                                      double root_thickness_m);
+// S_f = 2 r_f sin theta_f of a rack-cut gear (rack_generation.hpp).
+double root_thickness(const RackGearGeometry& gear);
+
 // tau_form_compliances or x_form_compliances (by model.route) of the paper's
 // tooth of gear `which` (yang_lin_1987; the pair's face width and the gear's
 // E) loaded contact_x_m from its base-circle tangent point, with a spall or a
