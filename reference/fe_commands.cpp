@@ -52,8 +52,11 @@ struct FeCheckOptions {
   // A spall of this width (m; 0: none) on the pinion's drive flank at the pitch point: both
   // teeth in 3-D, loaded over the whole face and over the width the spall leaves.
   std::vector<double> spall_widths;
-  // The contact positions s of the spall's runs (m from T_1; none: the pitch point).
-  std::vector<double> spall_positions;
+  // The contact positions s of the solid runs (m from T_1; none: the pitch point).
+  std::vector<double> solid_positions;
+  // A chip of these widths (m) above chip_radius on the pinion, in 3-D.
+  std::vector<double> chip_widths;
+  double chip_radius = 0.0;
   double spall_depth = 2e-4;
   double solid_element_size = 1.0;
   double crack_angle_deg = 45.0;
@@ -482,6 +485,97 @@ void run_tooth(const FeCheckOptions& o) {
   }
 }
 
+// gmsh meshes `geo` in 3-D as `stem`_mesh.inp in `dir`; the mesh read back.
+FeMesh3 mesh_solid(const std::filesystem::path& dir, const std::string& stem,
+                   const std::string& geo) {
+  write_file_atomically((dir / (stem + ".geo")).string(), geo);
+  ProgramCall mesher;
+  mesher.argv = {"gmsh", "-3", "-format", "inp", "-o", stem + "_mesh.inp", stem + ".geo"};
+  mesher.dir = dir;
+  mesher.shown = (dir / (stem + ".geo")).string();
+  mesher.missing_hint = "Debian's gmsh; scripts/setup.sh installs it";
+  mesher.capture_output = true;
+  run_program(mesher);
+  return read_gmsh_inp_3d(read_text(dir / (stem + "_mesh.inp")));
+}
+
+// CalculiX solves the solid `mesh` held on `fixed` under each step of `steps`; each step's
+// displacements of `printed`.
+std::vector<FeDisplacements> solve_solid(const std::filesystem::path& dir, const std::string& stem,
+                                         const FeMesh3& mesh, const FeMaterial& material,
+                                         const std::vector<long>& fixed,
+                                         const std::vector<std::vector<FeLoad>>& steps,
+                                         const std::vector<long>& printed) {
+  write_file_atomically((dir / (stem + ".inp")).string(),
+                        calculix_input_3d(mesh, material, fixed, steps, printed));
+  ProgramCall solver;
+  solver.argv = {"ccx", "-i", stem};
+  solver.dir = dir;
+  solver.shown = (dir / (stem + ".inp")).string();
+  solver.missing_hint = "Debian's calculix-ccx; scripts/setup.sh installs it";
+  solver.environment = {"OMP_NUM_THREADS=1", "CCX_NPROC_STIFFNESS=1",
+                        "CCX_NPROC_EQUATION_SOLVER=1"};
+  solver.capture_output = true;
+  const std::string log = run_program(solver);
+  const auto error = log.find("*ERROR");
+  if (error != std::string::npos) {
+    throw std::runtime_error("ccx failed on " + solver.shown + ": " +
+                             log.substr(error, std::min<std::size_t>(400, log.size() - error)));
+  }
+  return read_calculix_dat(read_text(dir / (stem + ".dat")), steps.size(), printed);
+}
+
+// The solid's mesh sizes of refinement k (a factor sqrt 2 apart: halving would multiply a
+// solid's cost by 8) and its layers, a multiple of 4 (so that b/4, b/2, 3b/4 fall on layer
+// planes), each at most twice the tooth's element size: quadratic along z.
+struct SolidSizes {
+  FeMeshSizes sizes;
+  int layers;
+};
+SolidSizes solid_sizes(const FeCheckOptions& o, const ToothOutline& outline, double m, double b,
+                       int k) {
+  const double factor = std::pow(2.0, -0.5 * k);
+  const FeMeshSizes sizes{
+      o.solid_element_size * m * factor,
+      std::min(4.0 * m, (outline.root_radius_m - outline.bore_radius_m) / 3.0) * std::sqrt(factor)};
+  return {sizes, 4 * static_cast<int>(std::ceil(b / (8.0 * sizes.tooth_m)))};
+}
+
+// A width of a solid run's fault: a quarter, a half or three quarters of b, distinct.
+void check_quarters(std::vector<double>& widths, double b, const char* flag) {
+  std::sort(widths.begin(), widths.end());
+  for (std::size_t w = 0; w < widths.size(); ++w) {
+    const double quarters = 4.0 * widths[w] / b;
+    if (!(widths[w] > 0.0 && widths[w] < b) || std::fabs(quarters - std::round(quarters)) > 1e-9 ||
+        (w > 0 && std::fabs(widths[w] - widths[w - 1]) < 1e-12)) {
+      throw InputError(flag, widths[w],
+                       "distinct quarters of the contact width (" + format_number(b) +
+                           " m: b/4, b/2 or 3b/4): the layers of the solid mesh meet there");
+    }
+  }
+}
+
+// The solid runs' contact positions (--solid-at; none: the pitch point), sorted, on the active
+// path less 0.5 mm at each end.
+std::vector<double> solid_positions(const FeCheckOptions& o, const RackGearPairGeometry& pair) {
+  const double s_pitch = pair.gear1.base_radius_m * std::tan(pair.operating_pressure_angle_rad);
+  std::vector<double> positions = o.solid_positions;
+  if (positions.empty()) positions.push_back(s_pitch);
+  std::sort(positions.begin(), positions.end());
+  const double s_low = pair.start_of_active_profile_m + 5e-4;
+  const double s_high = pair.end_of_active_profile_m - 5e-4;
+  for (std::size_t p = 0; p < positions.size(); ++p) {
+    if (!(positions[p] >= s_low && positions[p] <= s_high) ||
+        (p > 0 && positions[p] - positions[p - 1] < 1e-4)) {
+      throw InputError("--solid-at", positions[p],
+                       "distinct contact positions s (m from T_1, at least 0.1 mm apart) in [" +
+                           format_number(s_low) + ", " + format_number(s_high) +
+                           "] (the active path less the spall's half band, 0.5 mm)");
+    }
+  }
+  return positions;
+}
+
 // The spall in 3-D (docs/verification.md, "The spall in 3-D"): each tooth of the pair at each
 // contact position, loaded along the line of action by a unit force spread evenly over the whole
 // face and over the width each spall leaves (z in [b_s, b]: the spall takes z in [0, b_s], where
@@ -494,33 +588,10 @@ void run_spall(const FeCheckOptions& o) {
   const RackGearPairGeometry pair = rack_gear_pair_geometry(c.gears);
   const double b = pair.contact_width_m;
   std::vector<double> widths = o.spall_widths;
-  std::sort(widths.begin(), widths.end());
-  for (std::size_t w = 0; w < widths.size(); ++w) {
-    const double b_s = widths[w];
-    const double quarters = 4.0 * b_s / b;
-    if (!(b_s > 0.0 && b_s < b) || std::fabs(quarters - std::round(quarters)) > 1e-9 ||
-        (w > 0 && std::fabs(b_s - widths[w - 1]) < 1e-12)) {
-      throw InputError("--spall-width", b_s,
-                       "distinct quarters of the contact width (" + format_number(b) +
-                           " m: b/4, b/2 or 3b/4): the layers of the solid mesh meet there");
-    }
-  }
+  check_quarters(widths, b, "--spall-width");
   const double s_pitch = pair.gear1.base_radius_m * std::tan(pair.operating_pressure_angle_rad);
-  std::vector<double> positions = o.spall_positions;
-  if (positions.empty()) positions.push_back(s_pitch);
-  std::sort(positions.begin(), positions.end());
-  // The spall's band, +-0.5 mm of roll about the contact, inside the active profile.
-  const double s_low = pair.start_of_active_profile_m + 5e-4;
-  const double s_high = pair.end_of_active_profile_m - 5e-4;
-  for (std::size_t p = 0; p < positions.size(); ++p) {
-    if (!(positions[p] >= s_low && positions[p] <= s_high) ||
-        (p > 0 && positions[p] - positions[p - 1] < 1e-4)) {
-      throw InputError("--spall-at", positions[p],
-                       "distinct contact positions s (m from T_1, at least 0.1 mm apart) in [" +
-                           format_number(s_low) + ", " + format_number(s_high) +
-                           "] (the active path less the spall's half band, 0.5 mm)");
-    }
-  }
+  // The spall's band, +-0.5 mm of roll about each contact, inside the active profile.
+  const std::vector<double> positions = solid_positions(o, pair);
   const std::size_t np = positions.size();
   const std::size_t nw = widths.size();
   StiffnessModel pe_model;
@@ -570,27 +641,11 @@ void run_spall(const FeCheckOptions& o) {
     const ToothOutline& outline = outlines[g];
     const FeMaterial material{gear.youngs_modulus_pa, gear.poisson_ratio, b};
     for (int k = 0; k < o.refinements; ++k) {
-      // Three meshes a factor sqrt 2 apart (halving would multiply a solid's cost by 8).
-      const double factor = std::pow(2.0, -0.5 * k);
-      const FeMeshSizes sizes{
-          o.solid_element_size * m * factor,
-          std::min(4.0 * m, (outline.root_radius_m - outline.bore_radius_m) / 3.0) *
-              std::sqrt(factor)};
-      // Layers a multiple of 4 (so that b_s falls on a layer plane), each at most twice the
-      // tooth's element size: quadratic along z.
-      const int layers = 4 * static_cast<int>(std::ceil(b / (8.0 * sizes.tooth_m)));
+      const auto [sizes, layers] = solid_sizes(o, outline, m, b, k);
       const std::string stem =
           "solid_gear" + std::to_string(g + 1) + "_mesh" + std::to_string(k + 1);
-      write_file_atomically((dir / (stem + ".geo")).string(),
-                            tooth_geo_3d(outline, contact[g], sizes, b, layers));
-      ProgramCall mesher;
-      mesher.argv = {"gmsh", "-3", "-format", "inp", "-o", stem + "_mesh.inp", stem + ".geo"};
-      mesher.dir = dir;
-      mesher.shown = (dir / (stem + ".geo")).string();
-      mesher.missing_hint = "Debian's gmsh; scripts/setup.sh installs it";
-      mesher.capture_output = true;
-      run_program(mesher);
-      const FeMesh3 mesh = read_gmsh_inp_3d(read_text(dir / (stem + "_mesh.inp")));
+      const FeMesh3 mesh =
+          mesh_solid(dir, stem, tooth_geo_3d(outline, contact[g], sizes, b, layers));
       const std::size_t n = static_cast<std::size_t>(2 * layers + 1);
       struct Lines {
         std::vector<long> p, c, a, b;
@@ -630,25 +685,8 @@ void run_spall(const FeCheckOptions& o) {
       }
       std::sort(printed.begin(), printed.end());
       printed.erase(std::unique(printed.begin(), printed.end()), printed.end());
-      write_file_atomically(
-          (dir / (stem + ".inp")).string(),
-          calculix_input_3d(mesh, material, nodes_at_radius(mesh, outline.bore_radius_m), steps,
-                            printed));
-      ProgramCall solver;
-      solver.argv = {"ccx", "-i", stem};
-      solver.dir = dir;
-      solver.shown = (dir / (stem + ".inp")).string();
-      solver.missing_hint = "Debian's calculix-ccx; scripts/setup.sh installs it";
-      solver.environment = {"OMP_NUM_THREADS=1", "CCX_NPROC_STIFFNESS=1",
-                            "CCX_NPROC_EQUATION_SOLVER=1"};
-      solver.capture_output = true;
-      const std::string log = run_program(solver);
-      const auto error = log.find("*ERROR");
-      if (error != std::string::npos) {
-        throw std::runtime_error("ccx failed on " + solver.shown + ": " +
-                                 log.substr(error, std::min<std::size_t>(400, log.size() - error)));
-      }
-      const auto u = read_calculix_dat(read_text(dir / (stem + ".dat")), steps.size(), printed);
+      const auto u = solve_solid(dir, stem, mesh, material,
+                                 nodes_at_radius(mesh, outline.bore_radius_m), steps, printed);
       // Each step's compliance: the section readings along z weighted by the step's load.
       std::vector<std::vector<double>> by_position(np, std::vector<double>(nw + 1, 0.0));
       for (std::size_t q = 0; q < np; ++q) {
@@ -811,6 +849,239 @@ void run_spall(const FeCheckOptions& o) {
   }
 }
 
+// The chip in 3-D (docs/verification.md, "The chip in 3-D"): the pinion's tooth meshed with a
+// line across it at the chip's edge (the section through the flank point at r_k), whole and with
+// the wedges above that section cut away over z in [0, b_k]. Each position loads the chipped
+// tooth over the whole face, or over [b_k, b] where its contact lies above r_k; the whole tooth
+// is loaded over the whole face, and over [b_k, b] at those positions too (the load's width
+// apart from the material's). Compliances read as the spall's.
+void run_chip(const FeCheckOptions& o) {
+  const SimulationCase c = read_pair_or_run_file(o.case_file).simulation_case;
+  const RackGearPairGeometry pair = rack_gear_pair_geometry(c.gears);
+  const RackGearGeometry& gear = pair.gear1;
+  const double b = pair.contact_width_m;
+  std::vector<double> widths = o.chip_widths;
+  check_quarters(widths, b, "--chip-width");
+  const std::vector<double> positions = solid_positions(o, pair);
+  const double r_k = o.chip_radius;
+  const double rb = gear.base_radius_m;
+  const double s_k = r_k > rb ? std::sqrt((r_k - rb) * (r_k + rb)) : 0.0;
+  if (!(s_k > pair.start_of_active_profile_m && s_k < pair.end_of_active_profile_m)) {
+    throw InputError(
+        "--chip-radius", r_k,
+        "(" + format_number(radius_at_roll_distance(rb, pair.start_of_active_profile_m)) + ", " +
+            format_number(radius_at_roll_distance(rb, pair.end_of_active_profile_m)) +
+            ") m: the pinion's active profile, so that the mesh has its section");
+  }
+  const std::size_t np = positions.size();
+  const std::size_t nw = widths.size();
+  StiffnessModel pe_model;
+  pe_model.kind = StiffnessModelKind::potential_energy;
+  std::vector<ToothContact> contacts;
+  std::vector<bool> above;
+  std::vector<double> taus;
+  for (const double s : positions) {
+    contacts.push_back(pair_contact(pair, s).gear1);
+    taus.push_back(contacts.back().tau_rad);
+    above.push_back(radius_at_roll_distance(rb, s) > r_k);
+  }
+  taus.push_back(pair_contact(pair, s_k).gear1.tau_rad);
+  const ToothOutline outline = tooth_outline(gear, "gears.bore_diameter1", 24, 48, taus);
+  const double y_cut = outline.flank.at(outline.vertex_index.back()).y_m;
+  // The model: [position] healthy, [width][position] chipped (this code's reading).
+  std::vector<ToothCompliances> healthy_model;
+  std::vector<std::vector<ToothCompliances>> chipped_model(nw);
+  for (std::size_t p = 0; p < np; ++p) {
+    healthy_model.push_back(tooth_compliances(gear, Gear::one, contacts[p], b, pe_model));
+  }
+  for (std::size_t w = 0; w < nw; ++w) {
+    TipChip chip;
+    chip.radius_m = r_k;
+    chip.width_m = widths[w];
+    place_chip(chip, gear, b);
+    for (std::size_t p = 0; p < np; ++p) {
+      chipped_model[w].push_back(
+          chipped_tooth_compliances(gear, Gear::one, contacts[p], b, pe_model, chip));
+    }
+  }
+  AtomicFolder folder(o.out, o.overwrite, {o.case_file});
+  const std::filesystem::path dir = folder.temporary();
+  const FeMaterial material{gear.youngs_modulus_pa, gear.poisson_ratio, b};
+  // [mesh][position]: whole tooth over the whole face; [mesh][width][position]: whole tooth over
+  // [b_k, b], chipped tooth as loaded.
+  std::vector<std::vector<double>> whole;
+  std::vector<std::vector<std::vector<double>>> whole_part;
+  std::vector<std::vector<std::vector<double>>> chipped;
+  std::vector<std::size_t> wedges;
+  for (int k = 0; k < o.refinements; ++k) {
+    const auto [sizes, layers] = solid_sizes(o, outline, c.gears.module_m, b, k);
+    const std::string stem = "solid_chip_mesh" + std::to_string(k + 1);
+    const FeMesh3 mesh =
+        mesh_solid(dir, stem, tooth_geo_3d(outline, contacts, sizes, b, layers, true));
+    wedges.push_back(mesh.wedges.size());
+    const std::size_t n = static_cast<std::size_t>(2 * layers + 1);
+    struct Lines {
+      std::vector<long> p, c, a, b;
+      std::vector<double> z;
+    };
+    std::vector<Lines> lines(np);
+    for (std::size_t q = 0; q < np; ++q) {
+      const OutlinePoint& pt = outline.flank.at(outline.vertex_index.at(q));
+      const ToothContact& t = contacts[q];
+      Lines& l = lines[q];
+      l.p = nodes_on_z_line(mesh, pt.x_m, pt.y_m);
+      l.c = nodes_on_z_line(mesh, 0.0, t.y_m);
+      l.a = nodes_on_z_line(mesh, -0.5 * t.x_m, t.y_m);
+      l.b = nodes_on_z_line(mesh, 0.5 * t.x_m, t.y_m);
+      if (l.p.size() != n || l.c.size() != n || l.a.size() != n || l.b.size() != n) {
+        throw std::runtime_error("the solid mesh " + stem +
+                                 " lacks the lines of nodes along z at the load and its section");
+      }
+      for (const long id : l.p) l.z.push_back(mesh.nodes_m.at(id)[2]);
+    }
+    const std::vector<long> fixed = nodes_at_radius(mesh, outline.bore_radius_m);
+    // One solve: `loads` [step] = (position, loaded from z); the compliance of each step.
+    const auto solve_steps = [&](const FeMesh3& solid, const std::string& name,
+                                 const std::vector<std::pair<std::size_t, double>>& loads) {
+      std::vector<std::vector<FeLoad>> steps;
+      std::vector<std::vector<double>> weights;
+      std::vector<long> printed;
+      for (const auto& [q, from] : loads) {
+        const Lines& l = lines[q];
+        weights.push_back(line_load_weights(l.z, from, b));
+        const double dx = -std::cos(contacts[q].tau_rad);
+        const double dy = -std::sin(contacts[q].tau_rad);
+        std::vector<FeLoad> step;
+        for (std::size_t i = 0; i < n; ++i) {
+          if (weights.back()[i] == 0.0) continue;
+          step.push_back({l.p[i], dx * weights.back()[i], dy * weights.back()[i]});
+          printed.insert(printed.end(), {l.c[i], l.a[i], l.b[i]});
+        }
+        steps.push_back(step);
+      }
+      std::sort(printed.begin(), printed.end());
+      printed.erase(std::unique(printed.begin(), printed.end()), printed.end());
+      const auto u = solve_solid(dir, name, solid, material, fixed, steps, printed);
+      std::vector<double> out;
+      for (std::size_t j = 0; j < loads.size(); ++j) {
+        const Lines& l = lines[loads[j].first];
+        double reading = 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
+          if (weights[j][i] == 0.0) continue;
+          reading += weights[j][i] * tooth_reading(contacts[loads[j].first], u[j].at(l.c[i]),
+                                                   u[j].at(l.a[i]), u[j].at(l.b[i]))
+                                         .compliance_m_per_n;
+        }
+        out.push_back(reading);
+      }
+      return out;
+    };
+    // The whole tooth: every position over the whole face, then each width over [b_k, b].
+    std::vector<std::pair<std::size_t, double>> loads;
+    for (std::size_t q = 0; q < np; ++q) loads.push_back({q, 0.0});
+    for (std::size_t w = 0; w < nw; ++w) {
+      for (std::size_t q = 0; q < np; ++q) loads.push_back({q, widths[w]});
+    }
+    const std::vector<double> r = solve_steps(mesh, stem, loads);
+    whole.emplace_back(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(np));
+    whole_part.emplace_back();
+    chipped.emplace_back();
+    for (std::size_t w = 0; w < nw; ++w) {
+      const auto from = r.begin() + static_cast<std::ptrdiff_t>(np * (w + 1));
+      whole_part.back().emplace_back(from, from + static_cast<std::ptrdiff_t>(np));
+      FeMesh3 cut = mesh;
+      cut_chip(cut, y_cut, widths[w]);
+      std::vector<std::pair<std::size_t, double>> chip_loads;
+      for (std::size_t q = 0; q < np; ++q) chip_loads.push_back({q, above[q] ? widths[w] : 0.0});
+      chipped.back().push_back(
+          solve_steps(cut, stem + "_chip" + std::to_string(w + 1), chip_loads));
+    }
+  }
+  // The tables: each width and position, the finest mesh.
+  std::string table =
+      "| b_k / b | s, mm | contact above r_k | FE whole tooth, m/N | FE chipped | FE change | FE "
+      "whole tooth loaded over [b_k, b] | change | model whole tooth | model chipped (this "
+      "code) | change | chipped, beam and foundation x effective-width factors | change |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  std::string csv =
+      "chip_width_m,s_m,above_chip,fe_whole_m_per_n,fe_chipped_m_per_n,fe_whole_part_m_per_n,"
+      "model_whole_m_per_n,model_chipped_m_per_n,model_chipped_effective_m_per_n\n";
+  for (std::size_t w = 0; w < nw; ++w) {
+    const SpallWidthFactors f = spall_width_factors(b - widths[w], b, root_thickness(gear));
+    for (std::size_t p = 0; p < np; ++p) {
+      const double fe_whole = whole.back()[p];
+      const double fe_chip = chipped.back()[w][p];
+      const double fe_part = whole_part.back()[w][p];
+      const ToothCompliances& m = chipped_model[w][p];
+      const double model_whole = healthy_model[p].total_m_per_n();
+      const double model_chip = m.total_m_per_n();
+      const double model_eff =
+          above[p] ? f.beam * (m.bending_m_per_n + m.shear_m_per_n + m.axial_m_per_n) +
+                         f.foundation * m.foundation_m_per_n
+                   : model_chip;
+      char head[64];
+      std::snprintf(head, sizeof head, "| %.2f | %.3f | %s | ", widths[w] / b, positions[p] * 1e3,
+                    above[p] ? "yes" : "no");
+      table += head + scientific(fe_whole) + " | " + scientific(fe_chip) + " | " +
+               percent(fe_chip / fe_whole - 1.0) + " | " + scientific(fe_part) + " | " +
+               percent(fe_part / fe_whole - 1.0) + " | " + scientific(model_whole) + " | " +
+               scientific(model_chip) + " | " + percent(model_chip / model_whole - 1.0) + " | " +
+               scientific(model_eff) + " | " + percent(model_eff / model_whole - 1.0) + " |\n";
+      std::vector<double> fields{positions[p], above[p] ? 1.0 : 0.0, fe_whole,   fe_chip,
+                                 fe_part,      model_whole,          model_chip, model_eff};
+      csv += format_data_number(widths[w]);
+      for (const double v : fields) {
+        csv += ',';
+        csv += format_data_number(v);
+      }
+      csv += '\n';
+    }
+  }
+  std::string meshes_csv = "mesh,wedges,chip_width_m,s_m,fe_whole_m_per_n,fe_chipped_m_per_n\n";
+  double worst_change = 0.0;
+  for (std::size_t k = 0; k < whole.size(); ++k) {
+    for (std::size_t w = 0; w < nw; ++w) {
+      for (std::size_t p = 0; p < np; ++p) {
+        std::vector<double> fields{static_cast<double>(wedges[k]), widths[w], positions[p],
+                                   whole[k][p], chipped[k][w][p]};
+        meshes_csv += std::to_string(k + 1);
+        for (const double v : fields) {
+          meshes_csv += ',';
+          meshes_csv += format_data_number(v);
+        }
+        meshes_csv += '\n';
+        if (k > 0 && k + 1 == whole.size()) {
+          worst_change = std::max(worst_change, std::fabs(whole[k][p] / whole[k - 1][p] - 1.0));
+          worst_change =
+              std::max(worst_change, std::fabs(chipped[k][w][p] / chipped[k - 1][w][p] - 1.0));
+        }
+      }
+    }
+  }
+  const bool converged = o.refinements < 2 || worst_change < kConvergence;
+  const std::string json =
+      "{\n  \"case\": \"" + c.name + "\",\n  \"chip_radius_m\": " + format_data_number(r_k) +
+      ",\n  \"contact_width_m\": " + format_data_number(b) +
+      ",\n  \"largest_last_mesh_change\": " + format_data_number(worst_change) +
+      ",\n  \"converged\": " + (converged ? "true" : "false") + "\n}\n";
+  write_file_atomically((dir / "fe_chip.csv").string(), csv);
+  write_file_atomically((dir / "fe_chip.md").string(), table);
+  write_file_atomically((dir / "fe_chip_meshes.csv").string(), meshes_csv);
+  write_file_atomically((dir / "summary.json").string(), json);
+  folder.commit();
+  if (!o.quiet) {
+    std::fputs(table.c_str(), stdout);
+    std::fputs(meshes_csv.c_str(), stdout);
+    std::fputs(json.c_str(), stdout);
+  }
+  if (!converged) {
+    throw std::runtime_error(
+        "fe-check --chip-width: the solid meshes changed by " +
+        format_number(100.0 * worst_change) + " % between the two finest (at most " +
+        format_number(100.0 * kConvergence) + " % asked; the results are in " + o.out + ")");
+  }
+}
+
 // The paper's pair with the bores of the ROSS peer run, as examples/paper_pair_bores.toml.
 constexpr const char* kPaperPairBores =
     "name = \"paper_pair_bores\"\n\n[gears]\nteeth1 = 20\nteeth2 = 80\nmodule = \"2 mm\"\n"
@@ -958,12 +1229,24 @@ void register_fe_commands(CLI::App& app) {
                  "fe_spall.md, fe_spall_meshes.csv")
       ->delimiter(',')
       ->check(CLI::Range(0.0, 1.0));
-  fe->add_option("--spall-at", o->spall_positions,
-                 "with --spall-width: contact positions s (m from T_1 along the line of action, "
-                 "comma-separated, on the active path less 0.5 mm at each end; default the pitch "
-                 "point)")
+  fe->add_option("--solid-at", o->solid_positions,
+                 "with --spall-width or --chip-width: contact positions s (m from T_1 along the "
+                 "line of action, comma-separated, on the active path less 0.5 mm at each end; "
+                 "default the pitch point)")
       ->delimiter(',')
       ->check(CLI::Range(0.0, 1.0));
+  fe->add_option("--chip-width", o->chip_widths,
+                 "solve a chip in 3-D instead: the pinion's tooth above --chip-radius cut away "
+                 "over each of these widths b_k from the face z = 0 (m, comma-separated; a "
+                 "quarter, half or three quarters of the face), loaded at each --solid-at "
+                 "position over the face the chip leaves; fe_chip.csv, fe_chip.md, "
+                 "fe_chip_meshes.csv")
+      ->delimiter(',')
+      ->check(CLI::Range(0.0, 1.0));
+  fe->add_option("--chip-radius", o->chip_radius,
+                 "with --chip-width: r_k, the radius of the flank point on the chip's edge (m, "
+                 "above the lowest and below the highest contact of the pinion)")
+      ->check(CLI::Range(0.0, 10.0));
   fe->add_option("--spall-depth", o->spall_depth,
                  "the spall's depth d_s for the models' reading (m, default 2e-4; the solid "
                  "keeps the pit's material)")
@@ -986,8 +1269,16 @@ void register_fe_commands(CLI::App& app) {
     if (o->edge_crack > 0.0 && !o->cantilever) {
       throw InputError("--edge-crack", o->edge_crack, "only with --cantilever");
     }
-    if (!o->spall_positions.empty() && o->spall_widths.empty()) {
-      throw InputError("--spall-at", "given", "only with --spall-width");
+    if (!o->solid_positions.empty() && o->spall_widths.empty() && o->chip_widths.empty()) {
+      throw InputError("--solid-at", "given", "only with --spall-width or --chip-width");
+    }
+    if (!o->chip_widths.empty() &&
+        (o->cantilever || !o->crack_depths.empty() || !o->spall_widths.empty())) {
+      throw InputError("--chip-width", "given",
+                       "a case's 3-D chip, without --cantilever, --crack-depths or --spall-width");
+    }
+    if (o->chip_widths.empty() != !(o->chip_radius > 0.0)) {
+      throw InputError("--chip-radius", o->chip_radius, "given with --chip-width, and only then");
     }
     if (!o->spall_widths.empty() && (o->cantilever || !o->crack_depths.empty())) {
       throw InputError("--spall-width", "given",
@@ -1003,6 +1294,8 @@ void register_fe_commands(CLI::App& app) {
       run_cantilever(*o);
     } else if (!o->spall_widths.empty()) {
       run_spall(*o);
+    } else if (!o->chip_widths.empty()) {
+      run_chip(*o);
     } else {
       run_tooth(*o);
     }

@@ -272,7 +272,9 @@ TEST_CASE("a cracked tooth's FE compliance converges and exceeds the healthy too
 }
 
 // Refused before any mesh or folder, each naming the flag (no outside program runs).
-TEST_CASE("fe-check refuses a crack past the centre line, a spall off the layers and mixed modes") {
+TEST_CASE(
+    "fe-check refuses a crack past the centre line, a spall or chip off the layers or the path, "
+    "and mixed modes") {
   Scratch scratch("fe-refusals");
   const std::string out = " --out " + (scratch.dir / "out").string();
   const std::string wheel = "fe-check " + kPaperPairWithBores.string() + " --gear 2";
@@ -292,5 +294,26 @@ TEST_CASE("fe-check refuses a crack past the centre line, a spall off the layers
   CHECK(r.err.find("--edge-crack") != std::string::npos);
   r = run_command(cli("fe-check --cantilever --crack-depths 1e-3" + out));
   CHECK(r.err.find("--crack-depths") != std::string::npos);
+  // A width given twice; a position off the active path (the rig's ends at 1.85 and 15.98 mm,
+  // less 0.5 mm); positions without a solid run; a chip without its radius, or mixed with a
+  // spall; a chip's radius off the pinion's active profile.
+  r = run_command(cli("fe-check " + rig.string() + " --spall-width 7.5e-3,7.5e-3" + out));
+  CHECK(r.err.find("--spall-width") != std::string::npos);
+  r = run_command(cli("fe-check " + rig.string() + " --spall-width 7.5e-3 --solid-at 2e-3" + out));
+  CHECK(r.exit_code != 0);
+  CHECK(r.err.find("--solid-at = 0.002") != std::string::npos);
+  r = run_command(cli("fe-check " + rig.string() + " --solid-at 8e-3" + out));
+  CHECK(r.err.find("--solid-at") != std::string::npos);
+  r = run_command(cli("fe-check " + rig.string() + " --chip-width 7.5e-3" + out));
+  CHECK(r.err.find("--chip-radius") != std::string::npos);
+  r = run_command(cli("fe-check " + rig.string() +
+                      " --chip-width 7.5e-3 --chip-radius 27e-3 --spall-width "
+                      "7.5e-3" +
+                      out));
+  CHECK(r.err.find("--chip-width") != std::string::npos);
+  r = run_command(
+      cli("fe-check " + rig.string() + " --chip-width 7.5e-3 --chip-radius 29.5e-3" + out));
+  CHECK(r.exit_code != 0);
+  CHECK(r.err.find("--chip-radius = 0.0295") != std::string::npos);
   CHECK(!std::filesystem::exists(scratch.dir / "out"));
 }

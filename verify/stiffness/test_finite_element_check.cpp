@@ -331,3 +331,76 @@ TEST_CASE("the solid tooth is the surface extruded over the face width in recomb
   CHECK(geo.find("Physical Surface") == std::string::npos);
   CHECK(geo.find("Physical Point") == std::string::npos);
 }
+
+TEST_CASE(
+    "cut_chip removes the wedges above the chip's section within its width, and their nodes") {
+  // Two stacked wedges along z (0 to 2 mm and 2 to 4 mm) of the triangle (0,0) (3,0) (0,4) mm,
+  // and a third one shifted down by 10 mm in y, below any cut.
+  FeMesh3 mesh;
+  const std::array<std::array<double, 2>, 6> corners_xy{
+      {{0.0, 0.0}, {3e-3, 0.0}, {0.0, 4e-3}, {1.5e-3, 0.0}, {1.5e-3, 2e-3}, {0.0, 2e-3}}};
+  long next = 1;
+  const auto wedge = [&](double y_shift, double z0) {
+    std::array<long, 15> w{};
+    // Corners below, above; mid-sides below, above; along z (gmsh's C3D15 order).
+    const double z1 = z0 + 2e-3;
+    const double zm = z0 + 1e-3;
+    const auto add = [&](double x, double y, double z) {
+      mesh.nodes_m[next] = {x, y + y_shift, z};
+      return next++;
+    };
+    for (std::size_t i = 0; i < 3; ++i) w[i] = add(corners_xy[i][0], corners_xy[i][1], z0);
+    for (std::size_t i = 0; i < 3; ++i) w[3 + i] = add(corners_xy[i][0], corners_xy[i][1], z1);
+    for (std::size_t i = 0; i < 3; ++i)
+      w[6 + i] = add(corners_xy[3 + i][0], corners_xy[3 + i][1], z0);
+    for (std::size_t i = 0; i < 3; ++i)
+      w[9 + i] = add(corners_xy[3 + i][0], corners_xy[3 + i][1], z1);
+    for (std::size_t i = 0; i < 3; ++i) w[12 + i] = add(corners_xy[i][0], corners_xy[i][1], zm);
+    mesh.wedges.push_back(w);
+  };
+  wedge(0.0, 0.0);
+  wedge(0.0, 2e-3);
+  wedge(-10e-3, 0.0);
+  // The corners' centroids lie at y = 4/3 mm (the first two) and -8.67 mm; z at 1 and 3 mm.
+  FeMesh3 cut = mesh;
+  CHECK(cut_chip(cut, 1e-3, 2e-3) == 1);
+  REQUIRE(cut.wedges.size() == 2);
+  CHECK(cut.wedges[0] == mesh.wedges[1]);
+  CHECK(cut.wedges[1] == mesh.wedges[2]);
+  CHECK(cut.nodes_m.size() == 30);
+  CHECK(cut.nodes_m.count(mesh.wedges[0][0]) == 0);
+  // A cut above the centroids, or a width short of them, removes nothing.
+  cut = mesh;
+  CHECK(cut_chip(cut, 2e-3, 4e-3) == 0);
+  CHECK(cut_chip(cut, 1e-3, 0.5e-3) == 0);
+  CHECK(cut.nodes_m.size() == 45);
+}
+
+TEST_CASE("the solid tooth with a chip's edge: a line across the tooth at the last vertex") {
+  const RackGearPairGeometry pair = rack_gear_pair_geometry(pair_with_bores());
+  const RackGearGeometry& g = pair.gear1;
+  const double tau = 0.5 * (g.form_tau_rad + g.tip_tau_rad);
+  const double tau_edge = 0.25 * g.form_tau_rad + 0.75 * g.tip_tau_rad;
+  const ToothOutline o = tooth_outline(g, "gears.bore_diameter1", 12, 20, {tau, tau_edge});
+  const PairContact c =
+      pair_contact(pair, 0.5 * (pair.start_of_active_profile_m + pair.end_of_active_profile_m));
+  const std::string plain = tooth_geo_3d(o, {c.gear1, c.gear1}, {0.001, 0.004}, 0.01, 8);
+  const std::string edged = tooth_geo_3d(o, {c.gear1}, {0.001, 0.004}, 0.01, 8, true);
+  // One line more, embedded in the surface, and nothing else.
+  // Points, then the line, embedded in the surface.
+  const auto embedded = [](const std::string& text) {
+    std::size_t count = 0;
+    for (std::size_t at = text.find("} In Surface{1};"); at != std::string::npos;
+         at = text.find("} In Surface{1};", at + 1)) {
+      ++count;
+    }
+    return count;
+  };
+  CHECK(embedded(plain) == 1);
+  CHECK(embedded(edged) == 2);
+  CHECK(edged.find("Line{") != std::string::npos);
+  CHECK(plain.find("Line{") == std::string::npos);
+  // A contact count that does not leave exactly the edge's vertex is refused.
+  CHECK_THROWS_AS(tooth_geo_3d(o, {c.gear1, c.gear1}, {0.001, 0.004}, 0.01, 8, true),
+                  std::invalid_argument);
+}

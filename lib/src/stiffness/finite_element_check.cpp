@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -95,9 +96,10 @@ namespace {
 // left with the surface numbered 1.
 std::string tooth_surface(GeoWriter& geo, const ToothOutline& outline,
                           const std::vector<ToothContact>& contacts, const FeMeshSizes& sizes,
-                          const std::optional<FeSlit>& slit) {
-  if (contacts.size() != outline.vertex_index.size()) {
-    throw std::invalid_argument("tooth_geo: one contact per outline vertex");
+                          const std::optional<FeSlit>& slit, bool chip_edge = false) {
+  // A cut takes the outline's last vertex (tooth_geo_3d).
+  if (contacts.size() + (chip_edge ? 1 : 0) != outline.vertex_index.size()) {
+    throw std::invalid_argument("tooth_geo: one contact per outline vertex (and the cut's)");
   }
   const double fine = sizes.tooth_m;
   const double coarse = sizes.body_m;
@@ -109,7 +111,9 @@ std::string tooth_surface(GeoWriter& geo, const ToothOutline& outline,
   for (const OutlinePoint& p : outline.flank) left.push_back(geo.point(-p.x_m, p.y_m, fine));
   // The loads' nodes before a slit's mouth joins the flank's vertices.
   std::vector<int> loaded;
-  for (const std::size_t v : outline.vertex_index) loaded.push_back(right.at(v));
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    loaded.push_back(right.at(outline.vertex_index[i]));
+  }
   int mouth = 0;
   int tip = 0;
   if (slit) {
@@ -169,6 +173,11 @@ std::string tooth_surface(GeoWriter& geo, const ToothOutline& outline,
     groups += "Physical Point(\"B" + n + "\") = {" + std::to_string(b) + "};\n";
   }
   if (!embedded.empty()) geo.add("Point{" + GeoWriter::list(embedded) + "} In Surface{1};");
+  if (chip_edge) {
+    // Across the tooth between the last vertex and its mirror: the section a chip's edge lies on.
+    const std::size_t v = outline.vertex_index.back();
+    geo.add("Line{" + std::to_string(geo.line(left.at(v), right.at(v))) + "} In Surface{1};");
+  }
   if (slit) {
     const int cut = geo.line(mouth, tip);
     geo.add("Line{" + std::to_string(cut) + "} In Surface{1};");
@@ -190,10 +199,10 @@ std::string tooth_geo(const ToothOutline& outline, const std::vector<ToothContac
 }
 
 std::string tooth_geo_3d(const ToothOutline& outline, const std::vector<ToothContact>& contacts,
-                         const FeMeshSizes& sizes, double face_width_m, int layers) {
+                         const FeMeshSizes& sizes, double face_width_m, int layers, bool cut) {
   if (layers < 1) throw std::invalid_argument("tooth_geo_3d: at least one layer");
   GeoWriter geo;
-  tooth_surface(geo, outline, contacts, sizes, std::nullopt);
+  tooth_surface(geo, outline, contacts, sizes, std::nullopt, cut);
   geo.add("Mesh.SecondOrderIncomplete = 1;");
   geo.add("Mesh.SaveGroupsOfNodes = 0;");
   geo.add("extruded[] = Extrude {0, 0, " + number(face_width_m * kMm) + "} { Surface{1}; Layers{" +
@@ -556,6 +565,27 @@ void append_load(std::string& text, const FeLoad& load) {
 }
 
 }  // namespace
+
+std::size_t cut_chip(FeMesh3& mesh, double cut_y_m, double width_m) {
+  std::vector<std::array<long, 15>> kept;
+  for (const auto& wedge : mesh.wedges) {
+    std::array<double, 3> centroid{0.0, 0.0, 0.0};
+    // The six corners (gmsh's C3D15 lists them first).
+    for (std::size_t i = 0; i < 6; ++i) {
+      const auto& p = mesh.nodes_m.at(wedge[i]);
+      for (std::size_t k = 0; k < 3; ++k) centroid[k] += p[k] / 6.0;
+    }
+    if (!(centroid[1] > cut_y_m && centroid[2] < width_m)) kept.push_back(wedge);
+  }
+  const std::size_t removed = mesh.wedges.size() - kept.size();
+  mesh.wedges = std::move(kept);
+  std::set<long> used;
+  for (const auto& wedge : mesh.wedges) used.insert(wedge.begin(), wedge.end());
+  for (auto it = mesh.nodes_m.begin(); it != mesh.nodes_m.end();) {
+    it = used.count(it->first) ? std::next(it) : mesh.nodes_m.erase(it);
+  }
+  return removed;
+}
 
 std::string calculix_input_3d(const FeMesh3& mesh, const FeMaterial& material,
                               const std::vector<long>& fixed,

@@ -151,8 +151,12 @@ FeToothReading tooth_reading(const ToothContact& contact, const std::array<doubl
 // vertex of each contact and its section's points C, A, B become lines of
 // nodes along z (corner nodes on the planes, mid-side nodes between), found
 // by their coordinates (nodes_on_z_line); the bore's nodes are the FIXED ones.
+// With `cut`, the outline's last vertex (one past the contacts') and its
+// mirror are joined by a line across the tooth that the mesh follows: the
+// section of a chip's edge (cut_chip).
 std::string tooth_geo_3d(const ToothOutline& outline, const std::vector<ToothContact>& contacts,
-                         const FeMeshSizes& sizes, double face_width_m, int layers);
+                         const FeMeshSizes& sizes, double face_width_m, int layers,
+                         bool cut = false);
 
 struct FeMesh3 {
   std::map<long, std::array<double, 3>> nodes_m;
@@ -161,6 +165,12 @@ struct FeMesh3 {
 // Throws std::runtime_error naming the line for text that is not gmsh's inp
 // output or holds no fifteen-node wedge (C3D15).
 FeMesh3 read_gmsh_inp_3d(const std::string& text);
+
+// A chip (docs/verification.md, "The chip in 3-D"): removes the wedges whose
+// corners' centroid lies above y = cut_y_m and at z below width_m (the tooth
+// above the chip's section over b_k from the face z = 0), and the nodes no
+// wedge keeps. Returns the count removed.
+std::size_t cut_chip(FeMesh3& mesh, double cut_y_m, double width_m);
 
 // The nodes at (x, y) (within 1e-9 m), sorted by z; the nodes at radius r
 // from the z axis (within 1e-9 m).
