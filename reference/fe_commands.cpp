@@ -1223,7 +1223,7 @@ void register_fe_commands(CLI::App& app) {
                  "the cracks' angle nu to the tooth's centre line, deg, in (0, 90]")
       ->check(CLI::Range(0.001, 90.0));
   fe->add_option("--spall-width", o->spall_widths,
-                 "solve the spall in 3-D instead: both teeth at each --spall-at position, loaded "
+                 "solve the spall in 3-D instead: both teeth at each --solid-at position, loaded "
                  "over the whole face and over the width each spall this wide leaves (m, "
                  "comma-separated; a quarter, half or three quarters of the face); fe_spall.csv, "
                  "fe_spall.md, fe_spall_meshes.csv")

@@ -139,7 +139,7 @@ ToothCompliances chipped_tooth_compliances(const RackGearGeometry& gear, Gear wh
 // lambda = kSpallBeamSpread S_f, resp. kSpallFoundationSpread S_f. The two
 // constants are fitted (least squares of the relative error) to the rig
 // pair's 3-D finite elements, `gearimpact fe-check examples/rig_17_38.toml
-// --spall-width 3.75e-3,7.5e-3,11.25e-3 --spall-at 4e-3,8.7219e-3,13.5e-3`
+// --spall-width 3.75e-3,7.5e-3,11.25e-3 --solid-at 4e-3,8.7219e-3,13.5e-3`
 // (verify/data/fe_spall_rig_17_38.csv), and checked on the paper's pair
 // (verify/data/fe_spall_paper_pair.csv), which the fit did not see.
 inline constexpr double kSpallBeamSpread = 0.35;
