@@ -16,7 +16,7 @@ files, case files, notebooks and the Markdown pages; build folders and hidden fo
    (examples/NAME.py, paper_data/caseN.toml) stands for any name.
 3. Every bare page name (faults.md, vibration.md#anchor) in a Markdown page, a comment or a
    string is a page of docs/, of the citing file's folder or of the root; REPORT.md, which
-   `gearimpact reproduce` writes, fe_check.md, fe_crack.md and fe_spall.md, which
+   `gearimpact reproduce` writes, fe_check.md, fe_crack.md, fe_spall.md and fe_chip.md, which
    `gearimpact fe-check` writes, and DATASET_CARD.md, which `gearimpact dataset merge` writes,
    are the outputs named so.
 4. Every relative link of a Markdown page, [text](target), names a file that exists.
@@ -39,7 +39,8 @@ TOP = (r"(?:docs|verify|reference|python|examples|paper_data|benchmarks|scripts|
 PATH = re.compile(r"(?<![\w./$}-])((?:\.\./)*" + TOP + r"(?:/[\w.*-]+)+)")
 PAGE = re.compile(r"(?<![\w./-])([\w-]+\.md)(?=[#)\s`'\",.:;]|$)")
 LINK = re.compile(r"\]\(([^)\s#]+)(?:#[^)]*)?\)")
-OUTPUTS = {"REPORT.md", "fe_check.md", "fe_crack.md", "fe_spall.md", "DATASET_CARD.md"}
+OUTPUTS = {"REPORT.md", "fe_check.md", "fe_crack.md", "fe_spall.md", "fe_chip.md",
+           "DATASET_CARD.md"}
 TEXT = {".md", ".cpp", ".hpp", ".h", ".py", ".sh", ".cmake", ".txt", ".toml", ".cfg", ".ipynb",
         ".in", ".yml", ".yaml", ".gp"}
 PLACEHOLDER = re.compile(r"[A-Z]+")

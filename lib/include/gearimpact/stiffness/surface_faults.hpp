@@ -137,11 +137,11 @@ ToothCompliances chipped_tooth_compliances(const RackGearGeometry& gear, Gear wh
 // (bending, shear, axial) and the foundation spread over their own lengths,
 // in proportion to the tooth's root thickness S_f = 2 r_f sin theta_f:
 // lambda = kSpallBeamSpread S_f, resp. kSpallFoundationSpread S_f. The two
-// constants are fitted (least squares of the relative error) to the rig
-// pair's 3-D finite elements, `gearimpact fe-check examples/rig_17_38.toml
-// --spall-width 3.75e-3,7.5e-3,11.25e-3 --solid-at 4e-3,8.7219e-3,13.5e-3`
-// (verify/data/fe_spall_rig_17_38.csv), and checked on the paper's pair
-// (verify/data/fe_spall_paper_pair.csv), which the fit did not see.
+// constants are fitted (least squares of the relative error of each tooth's
+// compliance growth) to the rig pair's 3-D finite elements, `gearimpact
+// fe-check examples/rig_17_38.toml --spall-width 3.75e-3,7.5e-3,11.25e-3
+// --solid-at 4e-3,8.7219e-3,13.5e-3`, and checked on the paper's pair, which
+// the fit did not see (both in verify/data/fe_spall_3d.csv).
 inline constexpr double kSpallBeamSpread = 0.35;
 inline constexpr double kSpallFoundationSpread = 0.74;
 struct SpallWidthFactors {
