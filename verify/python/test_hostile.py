@@ -112,6 +112,14 @@ REFUSED = [
      ["True or False"]),
     ("'no' for an on/off key", lambda: CASE1.replace(axial_term="no"), "axial_term",
      ['"on", "off"']),
+    ("unknown spall_reading", lambda: CASE1.replace(spall_reading="wide"), "spall_reading",
+     ['"hertz-only"', '"effective-width"']),
+    ("effective-width with the paper's model",
+     lambda: CASE1.replace(spall_reading="effective-width"), "spall_reading",
+     ['"hertz-only" with stiffness_model = "yang-lin-1987"']),
+    ("unknown spall_reading of a StiffnessModel",
+     lambda: setattr(gearimpact.StiffnessModel(), "spall_reading", "wide"), "spall_reading",
+     ["hertz-only, effective-width"]),
     # Lists.
     ("empty list", lambda: harmonic(torque1_amplitudes=[]), "torque1_amplitudes",
      ["at least one"]),
@@ -361,6 +369,9 @@ def test_numpy_scalars_are_numbers_and_numpy_bools_are_bools():
     assert model.term("axial") is False
     model.set_term("axial", True)
     assert model.term("axial") is True
+    assert model.spall_reading == "hertz-only"
+    model.spall_reading = "effective-width"
+    assert model.spall_reading == "effective-width"
     flipped = gearimpact.stiffness(points=3, flipped_moment=np.bool_(True))
     assert np.array_equal(flipped["ke"], gearimpact.stiffness(points=3, flipped_moment=True)["ke"])
 
