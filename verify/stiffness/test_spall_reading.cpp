@@ -22,6 +22,7 @@
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/stiffness/mesh_models.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
+#include "gearimpact/stiffness/mesh_tables.hpp"
 #include "gearimpact/stiffness/surface_faults.hpp"
 #include "gearimpact/stiffness/tooth_state.hpp"
 
@@ -268,6 +269,34 @@ TEST_CASE("model.spall_reading in a case file: read, written back, refused by na
       FAIL("no refusal");
     } catch (const Error& e) {
       CHECK(std::string(e.what()).find("model.spall_reading") != std::string::npos);
+    }
+  }
+}
+
+TEST_CASE("The run's tables read the effective-width reading as mesh_stiffness does") {
+  const GearPair pair = pair_of("rig_17_38");
+  const StiffnessModel effective = potential_energy(SpallReading::effective_width);
+  const StiffnessModel hertz_only = potential_energy(SpallReading::hertz_only);
+  ToothFault fault;
+  fault.gear = Gear::one;
+  fault.tooth = 0;
+  fault.state = spall_at(pair, 8e-3, 7.5e-3);
+  const MeshTables tables(pair, effective, {fault});
+  const MeshTables default_tables(pair, hertz_only, {fault});
+  const StiffnessTable* drive = tables.table_of_teeth(0, 0, Region::n1);
+  const StiffnessTable* drive_default = default_tables.table_of_teeth(0, 0, Region::n1);
+  REQUIRE(drive != nullptr);
+  REQUIRE(drive_default != nullptr);
+  for (const double s : {6e-3, 7.6e-3, 8e-3, 8.4e-3, 10e-3}) {
+    CAPTURE(s);
+    const double direct = mesh_stiffness(pair, s, effective, fault.state, ToothState{}).ke;
+    // The table's fit and the quadrature at the model's tolerance (as test_mesh_tables).
+    CHECK(std::fabs(drive->stiffness(s) / direct - 1.0) < 1e-11);
+    const bool in_band = s > 7.5e-3 && s < 8.5e-3;
+    if (in_band) {
+      CHECK(drive->stiffness(s) < 0.8 * drive_default->stiffness(s));
+    } else {
+      CHECK(std::fabs(drive->stiffness(s) / drive_default->stiffness(s) - 1.0) < 1e-12);
     }
   }
 }
