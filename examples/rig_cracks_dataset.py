@@ -10,7 +10,7 @@
 # loads it with h5py, computes indicators of each record and shows how (little) they separate the
 # depths.
 #
-# Run it with the package from the build tree (about 20 CPU seconds, 53 MB in a temporary folder):
+# Run it with the package from the build tree (about 7 CPU seconds, 53 MB in a temporary folder):
 #
 #     PYTHONPATH=build/python jupyter notebook examples/rig_cracks_dataset.ipynb
 #
