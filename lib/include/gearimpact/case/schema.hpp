@@ -115,6 +115,17 @@ const std::vector<Field>& case_schema();
 // reading and writing the first element of SimulationCase::faults. Not part of
 // case_schema(): a case has any number of these tables.
 const std::vector<Field>& fault_schema();
+// The rows of a gear train's [[bodies]], [[meshes]] and [[shafts]] tables
+// (docs/case-files.md, A gear train): name, unit, default, range and help of
+// each key. Their values are a GearTrain's, not a SimulationCase's: the
+// case-file reader puts each into the body, mesh or shaft of the table it
+// reads, so get() gives NaN (an optional row is absent, its when_absent the
+// default) and set() is never called. Not part of case_schema(); a mesh's
+// pair keys are the rows of case_schema() under meshes.NAME.
+const std::vector<Field>& train_schema();
+// The row of "section.key" of train_schema() ("bodies.inertia"), or nullptr.
+const Field* find_train_field(std::string_view section_dot_key);
+
 // Whether a fault row applies to the fault of `one_fault` (its first): its
 // condition holds, and so does the condition of the row it depends on.
 bool fault_row_applies(const Field& field, const SimulationCase& one_fault);

@@ -72,6 +72,20 @@ bool is_pair_section(std::string_view section);
 PairOrRunCase parse_pair_or_run(std::string_view toml_text, std::string_view file_name);
 PairOrRunCase read_pair_or_run_file(const std::filesystem::path& path);
 
+struct GearTrain;
+
+// A train file (docs/case-files.md, A gear train) read into a GearTrain: its [[bodies]] (by the
+// rows of train_schema()), its [[meshes]], each the pair of the file's pair sections ([gears],
+// [model], [modifications], [bearings], [[faults]]: every mesh's defaults) with the mesh's own
+// sub-tables over them, key by key (its [[meshes.faults]] replacing the file's), read and checked
+// as a pair file's, and its [[shafts]]; [integrator] is the train's. Problems name the key as
+// written, under the body's or mesh's name (bodies.idler.inertia,
+// meshes.idler-wheel.gears.backlash), each at its line, all at once. A file without [[bodies]]
+// is a two-gear case: parse_case reads it, two_gear_train makes it a train. Throws
+// CaseFileError.
+GearTrain parse_train(std::string_view toml_text, std::string_view file_name);
+GearTrain read_train_file(const std::filesystem::path& path);
+
 // How write_case_file writes quantities: in the units a person would choose
 // (mm, deg, GPa, N*mm, us, ms) wherever that text reads back to exactly the
 // same double, or all in SI units (m, rad, Pa, N*m, s).

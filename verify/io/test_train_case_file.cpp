@@ -1,0 +1,275 @@
+// A gear train read from a case file (docs/case-files.md, A gear train). References: the train
+// the file describes, built by hand in C++ from the keys as written (every field equal, a pair's
+// inputs through case_key); the same train built by hand, run bit for bit as the file's; the
+// messages name each refused key under its body's or mesh's name, at its line.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "gearimpact/case/schema.hpp"
+#include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/constants.hpp"
+#include "gearimpact/dynamics/train.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/io/case_file.hpp"
+#include "gearimpact/paper/table1.hpp"
+#include "gearimpact/stiffness/tooth_state.hpp"
+
+using namespace gearimpact;
+
+namespace {
+
+const std::string kExample = std::string(GEARIMPACT_EXAMPLES_DIR) + "/pinion_idler_wheel.toml";
+
+std::string example_text() {
+  std::ifstream in(kExample, std::ios::binary);
+  REQUIRE(in);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The example's text with `from` (which it holds once) replaced by `to`.
+std::string edited(const std::string& from, const std::string& to) {
+  std::string text = example_text();
+  const std::size_t at = text.find(from);
+  REQUIRE(at != std::string::npos);
+  REQUIRE(text.find(from, at + 1) == std::string::npos);
+  return text.replace(at, from.size(), to);
+}
+
+// The example written in C++: its keys as the file writes them, the defaults its comments name.
+GearTrain hand_built() {
+  SimulationCase defaults;
+  defaults.name = "pinion-idler-wheel";
+  defaults.integrator.step_s = 0.5e-6;
+  defaults.integrator.end_time_s = 20e-3;
+  defaults.model.friction_coefficient = 0.04;
+  defaults.gears.module_m = 2e-3;
+  defaults.gears.face_width_m = 20e-3;
+  defaults.gears.pressure_angle_rad = 20.0 * (pi / 180.0);  // "20 deg": the number times the unit
+  defaults.gears.youngs_modulus_pa = 206.8e9;
+  defaults.gears.poisson_ratio = 0.3;
+  defaults.gears.density_kg_m3 = 7800.0;
+  defaults.gears.backlash_m = 0.05e-3;
+
+  TrainMesh first;
+  first.name = "pinion-idler";
+  first.body_a = 0;
+  first.body_b = 1;
+  first.pair = defaults;
+  first.pair.gears.teeth1 = 20;
+  first.pair.gears.teeth2 = 30;
+  TrainMesh second;
+  second.name = "idler-wheel";
+  second.body_a = 1;
+  second.body_b = 2;
+  second.pair = defaults;
+  second.pair.gears.teeth1 = 30;
+  second.pair.gears.teeth2 = 60;
+  second.pair.gears.backlash_m = 0.1e-3;
+  ToothFault missing;
+  missing.gear = Gear::two;
+  missing.tooth = 0;
+  missing.state.kind = ToothKind::missing;
+  second.pair.faults = {missing};
+
+  const auto body = [](std::string name, double inertia, double torque, double w) {
+    TrainBody b;
+    b.name = std::move(name);
+    b.inertia_kg_m2 = inertia;
+    b.torque.kind = Torque::Kind::constant;
+    b.torque.constant_n_m = torque;
+    b.w_rad_per_s = w;
+    return b;
+  };
+  GearTrain train;
+  train.bodies = {
+      body("pinion", 3.9e-5, 20.0, 100.0),
+      // Its disc as the idler of the first mesh naming it (gear 2 of pinion-idler).
+      body("idler", moment_of_inertia(first.pair.gears, Gear::two), 0.0, 66.666666666666667),
+      body("wheel", moment_of_inertia(second.pair.gears, Gear::two), -60.0, 33.333333333333333),
+      body("brake-disc", 2e-3, 0.0, 33.333333333333333)};
+  train.meshes = {first, second};
+  TrainShaft shaft;
+  shaft.kind = TrainShaft::Kind::rigid;
+  shaft.body_a = 2;
+  shaft.body_b = 3;
+  train.shafts = {shaft};
+  train.integrator = defaults.integrator;
+  return train;
+}
+
+// The first problem of reading `text`: its field and its "file:line".
+Problem first_problem(const std::string& text) {
+  try {
+    (void)parse_train(text, "train.toml");
+  } catch (const CaseFileError& e) {
+    return e.problems().front();
+  }
+  FAIL("the file was read without a problem");
+  return {};
+}
+
+// The 1-based line of the first line of the example holding `text`.
+std::string line_of(const std::string& text, const std::string& what) {
+  const std::size_t at = text.find(what);
+  REQUIRE(at != std::string::npos);
+  const auto line = std::count(text.begin(), text.begin() + static_cast<long>(at), '\n') + 1;
+  return "train.toml:" + std::to_string(line);
+}
+
+}  // namespace
+
+TEST_CASE("the example train file reads into the train built by hand, field by field") {
+  const GearTrain read = read_train_file(kExample);
+  const GearTrain hand = hand_built();
+  REQUIRE(read.bodies.size() == hand.bodies.size());
+  for (std::size_t i = 0; i < hand.bodies.size(); ++i) {
+    const TrainBody& a = read.bodies[i];
+    const TrainBody& b = hand.bodies[i];
+    CAPTURE(b.name);
+    CHECK(a.name == b.name);
+    CHECK(a.inertia_kg_m2 == b.inertia_kg_m2);
+    CHECK(a.torque.kind == b.torque.kind);
+    CHECK(a.torque.constant_n_m == b.torque.constant_n_m);
+    CHECK(a.theta_rad == b.theta_rad);
+    CHECK(a.w_rad_per_s == b.w_rad_per_s);
+  }
+  REQUIRE(read.meshes.size() == hand.meshes.size());
+  for (std::size_t k = 0; k < hand.meshes.size(); ++k) {
+    const TrainMesh& a = read.meshes[k];
+    const TrainMesh& b = hand.meshes[k];
+    CAPTURE(b.name);
+    CHECK(a.name == b.name);
+    CHECK(a.body_a == b.body_a);
+    CHECK(a.body_b == b.body_b);
+    // Every input of the pair, one line per schema row, its faults included.
+    CHECK(case_key(a.pair) == case_key(b.pair));
+    CHECK(a.pair.faults == b.pair.faults);
+    CHECK(a.pair.run_keys_absent.empty());
+  }
+  REQUIRE(read.shafts.size() == 1);
+  CHECK(read.shafts[0].kind == hand.shafts[0].kind);
+  CHECK(read.shafts[0].body_a == hand.shafts[0].body_a);
+  CHECK(read.shafts[0].body_b == hand.shafts[0].body_b);
+  CHECK(read.integrator.step_s == hand.integrator.step_s);
+  CHECK(read.integrator.end_time_s == hand.integrator.end_time_s);
+  CHECK(read.integrator.kind == hand.integrator.kind);
+  CHECK(read.integrator.output_every == hand.integrator.output_every);
+}
+
+TEST_CASE("a train run from the file is the run of the train built by hand, bit for bit") {
+  GearTrain read = read_train_file(kExample);
+  GearTrain hand = hand_built();
+  // 2 ms: the pinion turns a third of a revolution, both meshes pass pairs in and out.
+  read.integrator.end_time_s = hand.integrator.end_time_s = 2e-3;
+  const TrainResult a = simulate_train(read);
+  const TrainResult b = simulate_train(hand);
+  REQUIRE(a.series.size() == b.series.size());
+  REQUIRE(a.series.size() > 100);
+  for (std::size_t i = 0; i < a.series.size(); ++i) {
+    const TrainRow& x = a.series[i];
+    const TrainRow& y = b.series[i];
+    bool same = x.t_s == y.t_s && x.theta_rad == y.theta_rad && x.w_rad_per_s == y.w_rad_per_s;
+    for (std::size_t k = 0; k < x.meshes.size(); ++k) {
+      same = same && x.meshes[k].s_m == y.meshes[k].s_m &&
+             x.meshes[k].normal_force_n == y.meshes[k].normal_force_n &&
+             x.meshes[k].friction_force_n == y.meshes[k].friction_force_n &&
+             x.meshes[k].region == y.meshes[k].region && x.meshes[k].pairs == y.meshes[k].pairs;
+    }
+    if (!same) {
+      INFO("row " << i);
+      REQUIRE(same);
+    }
+  }
+  // Pairs enter and leave both meshes: the run crosses events, each cut alike.
+  REQUIRE(a.summary.events > 10);
+  CHECK(a.summary.events == b.summary.events);
+  CHECK(a.summary.ledger_residual_max_j == b.summary.ledger_residual_max_j);
+  CHECK(a.meshes[1].impacts == b.meshes[1].impacts);
+}
+
+TEST_CASE("a file without [[bodies]] is the two-gear case it always was") {
+  const std::string text = write_case_file(paper_case(2));
+  const GearTrain train = parse_train(text, "case2.toml");
+  const SimulationCase c = parse_case(text, "case2.toml");
+  REQUIRE(train.bodies.size() == 2);
+  REQUIRE(train.meshes.size() == 1);
+  CHECK(case_key(train.meshes[0].pair) == case_key(c));
+  CHECK(train.bodies[0].w_rad_per_s == c.initial.w1_rad_per_s);
+  CHECK(train.bodies[1].inertia_kg_m2 == moment_of_inertia(c.gears, Gear::two));
+}
+
+TEST_CASE("a refused key of each kind is named under its body's or mesh's name, at its line") {
+  SUBCASE("a body's key out of its range") {
+    const std::string text =
+        edited("name = \"idler\"\n", "name = \"idler\"\ninertia = \"-1 kg*m^2\"\n");
+    const Problem p = first_problem(text);
+    CHECK(p.field == "bodies.idler.inertia");
+    CHECK(p.where == line_of(text, "inertia = \"-1"));
+  }
+  SUBCASE("a mesh's pair key out of its range") {
+    const std::string text = edited("backlash = \"0.1 mm\"", "backlash = \"-0.1 mm\"");
+    const Problem p = first_problem(text);
+    CHECK(p.field == "meshes.idler-wheel.gears.backlash");
+    CHECK(p.where == line_of(text, "backlash = \"-0.1"));
+    CHECK(p.message.find("meshes.idler-wheel.gears.backlash") == 0);
+  }
+  SUBCASE("a default of every mesh refused under each mesh that reads it") {
+    const std::string text = edited("module = \"2 mm\"", "module = \"-2 mm\"");
+    const Problem p = first_problem(text);
+    CHECK(p.field == "meshes.pinion-idler.gears.module");
+    CHECK(p.where == line_of(text, "module = \"-2"));
+  }
+  SUBCASE("a mesh naming no body") {
+    const std::string text = edited("body_b = \"wheel\"", "body_b = \"whel\"");
+    const Problem p = first_problem(text);
+    CHECK(p.field == "meshes.idler-wheel.body_b");
+    CHECK(p.where == line_of(text, "body_b = \"whel\""));
+    CHECK(p.message.find("\"pinion\", \"idler\", \"wheel\", \"brake-disc\"") != std::string::npos);
+  }
+  SUBCASE("an unknown key of a body") {
+    const std::string text = edited("torque = \"20 N*m\"", "torke = \"20 N*m\"");
+    const Problem p = first_problem(text);
+    CHECK(p.field == "bodies.pinion.torke");
+    CHECK(p.where == line_of(text, "torke"));
+  }
+  SUBCASE("a torsional shaft without its stiffness") {
+    const std::string text = edited("kind = \"rigid\"", "kind = \"torsional\"");
+    const Problem p = first_problem(text);
+    CHECK(p.field == "shafts[0].stiffness");
+  }
+  SUBCASE("a two-gear section a train does not read") {
+    const std::string text =
+        example_text() + "\n[torque1]\nkind = \"constant\"\nvalue = \"1 N*m\"\n";
+    const Problem p = first_problem(text);
+    CHECK(p.field == "torque1");
+    CHECK(p.where == line_of(text, "[torque1]"));
+  }
+  SUBCASE("the train's end time missing") {
+    const std::string text = edited("end_time = \"20 ms\"\n", "");
+    const Problem p = first_problem(text);
+    CHECK(p.field == "integrator.end_time");
+  }
+  SUBCASE("a body without inertia that no mesh names") {
+    const std::string text = edited("inertia = \"2e-3 kg*m^2\"\n", "");
+    const Problem p = first_problem(text);
+    CHECK(p.field == "bodies.brake-disc.inertia");
+  }
+}
+
+TEST_CASE("every row of a train table has its unit, help and range or choices") {
+  for (const Field& row : train_schema()) {
+    CAPTURE(row.name());
+    CHECK(!row.help.empty());
+    if (row.kind == FieldKind::quantity) CHECK(!row.unit.empty());
+    if (row.kind == FieldKind::choice) CHECK(row.choices.size() == 2);
+  }
+  CHECK(find_train_field("bodies.inertia") != nullptr);
+  CHECK(find_train_field("meshes.body_a") != nullptr);
+  CHECK(find_train_field("shafts.stiffness") != nullptr);
+}
