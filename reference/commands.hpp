@@ -27,6 +27,8 @@ void register_sweep_commands(CLI::App& app);
 void register_signals_commands(CLI::App& app);
 // `modes CASE --out DIR`: the linearised planar model's natural modes and Campbell diagram.
 void register_modes_commands(CLI::App& app);
+// `train CASE --out DIR`: a gear train's run, its series and summary (train_commands.cpp).
+void register_train_commands(CLI::App& app);
 // `fe-check CASE --out DIR`: the tooth compliance by finite elements (fe_commands.cpp).
 void register_fe_commands(CLI::App& app);
 // `dataset SPEC --out DIR` and `dataset merge`: labelled data sets (dataset_commands.cpp).

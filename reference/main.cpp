@@ -58,6 +58,7 @@ int main(int argc, char** argv) {
   gearimpact::cli::register_simulate_commands(app);
   gearimpact::cli::register_case_commands(app);
   gearimpact::cli::register_schema_commands(app);
+  gearimpact::cli::register_train_commands(app);
   gearimpact::cli::register_sweep_commands(app);
   gearimpact::cli::register_signals_commands(app);
   gearimpact::cli::register_ste_commands(app);

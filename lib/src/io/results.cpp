@@ -158,6 +158,85 @@ void json_optional(std::string& out, const char* key, const std::optional<double
 
 }  // namespace
 
+std::vector<TrainColumn> train_series_columns(const GearTrain& train) {
+  std::vector<TrainColumn> columns;
+  columns.push_back({"t_s", "s", false, [](const TrainRow& r) { return r.t_s; }});
+  for (std::size_t i = 0; i < train.bodies.size(); ++i) {
+    const std::string& body = train.bodies[i].name;
+    columns.push_back({"theta_" + body + "_rad", "rad", false,
+                       [i](const TrainRow& r) { return r.theta_rad[i]; }});
+    columns.push_back({"w_" + body + "_rad_per_s", "rad/s", false,
+                       [i](const TrainRow& r) { return r.w_rad_per_s[i]; }});
+  }
+  for (std::size_t k = 0; k < train.meshes.size(); ++k) {
+    const std::string& mesh = train.meshes[k].name;
+    columns.push_back(
+        {"s_" + mesh + "_m", "m", false, [k](const TrainRow& r) { return r.meshes[k].s_m; }});
+    columns.push_back({"delta_" + mesh + "_m", "m", false,
+                       [k](const TrainRow& r) { return r.meshes[k].delta_m; }});
+    columns.push_back({"region_" + mesh, "", true,
+                       [k](const TrainRow& r) { return static_cast<double>(r.meshes[k].region); }});
+    columns.push_back({"pairs_" + mesh, "", true,
+                       [k](const TrainRow& r) { return static_cast<double>(r.meshes[k].pairs); }});
+    columns.push_back({"normal_force_" + mesh + "_N", "N", false,
+                       [k](const TrainRow& r) { return r.meshes[k].normal_force_n; }});
+    columns.push_back({"friction_force_" + mesh + "_N", "N", false,
+                       [k](const TrainRow& r) { return r.meshes[k].friction_force_n; }});
+  }
+  return columns;
+}
+
+std::string train_series_csv(const GearTrain& train, const std::vector<TrainRow>& rows) {
+  const std::vector<TrainColumn> columns = train_series_columns(train);
+  std::string out;
+  for (std::size_t c = 0; c < columns.size(); ++c) out += (c > 0 ? "," : "") + columns[c].name;
+  out += "\n";
+  for (const TrainRow& row : rows) {
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      if (c > 0) out += ',';
+      const double value = columns[c].value(row);
+      out += columns[c].integral ? std::to_string(static_cast<long long>(value))
+                                 : format_data_number(value);
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+std::string train_summary_json(const GearTrain& train, const TrainResult& result) {
+  const SimulationSummary& s = result.summary;
+  std::string out = "{\n";
+  out += "  \"integrator\": " + json_string(s.integrator) + ",\n";
+  json_number(out, "end_time_s", s.end_time_s);
+  json_number(out, "step_s", s.step_s);
+  out += "  \"steps\": " + std::to_string(s.steps) + ",\n";
+  out += "  \"events\": " + std::to_string(s.events) + ",\n";
+  json_number(out, "kinetic_energy_initial_J", s.kinetic_energy_initial_j);
+  json_number(out, "kinetic_energy_final_J", s.kinetic_energy_final_j);
+  json_number(out, "stored_energy_initial_J", s.stored_energy_initial_j);
+  json_number(out, "stored_energy_final_J", s.stored_energy_final_j);
+  json_number(out, "torque_work_J", s.torque_work_j);
+  json_number(out, "damping_loss_J", s.damping_loss_j);
+  json_number(out, "friction_loss_J", s.friction_loss_j);
+  json_number(out, "parametric_work_J", s.parametric_work_j);
+  json_number(out, "parametric_jump_work_J", s.parametric_jump_work_j);
+  json_number(out, "ledger_residual_J", s.ledger_residual_j);
+  json_number(out, "ledger_residual_max_J", s.ledger_residual_max_j);
+  json_number(out, "ledger_scale_J", s.ledger_scale_j);
+  out += "  \"meshes\": [";
+  for (std::size_t k = 0; k < train.meshes.size(); ++k) {
+    const TrainMeshSummary& m = result.meshes[k];
+    char penetration[64];
+    std::snprintf(penetration, sizeof penetration, "%.17g", m.max_penetration_m);
+    out += std::string(k > 0 ? ",\n" : "\n") +
+           "    {\"name\": " + json_string(train.meshes[k].name) +
+           ", \"impacts\": " + std::to_string(m.impacts) +
+           ", \"max_penetration_m\": " + penetration + "}";
+  }
+  out += "\n  ]\n}\n";
+  return out;
+}
+
 std::string tacho_csv(const std::vector<double>& true_times_s,
                       const std::vector<double>& emitted_times_s) {
   std::string out = "pulse,t_s,t_emitted_s\n";

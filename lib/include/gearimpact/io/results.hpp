@@ -3,12 +3,14 @@
 // reads back exactly), JSON with absent values as null.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "gearimpact/batch/sweep_friction.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/dynamics/train.hpp"
 #include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
@@ -52,6 +54,24 @@ std::string planar_samples_csv_header();
 void append_planar_sample(std::string& out, const PlanarSample& sample);
 // The summary as a JSON object.
 std::string summary_json(const SimulationSummary& summary);
+// The columns of a gear train's series (TrainRow), each described once: its name, unit and value.
+// t_s; per body, in the train's order, theta_BODY_rad and w_BODY_rad_per_s; per mesh,
+// s_MESH_m, delta_MESH_m, region_MESH, pairs_MESH, normal_force_MESH_N and
+// friction_force_MESH_N (BODY and MESH the names of the case file). Integral columns (region,
+// pairs) are written as integers.
+struct TrainColumn {
+  std::string name;
+  std::string unit;  // "" for a count or a code
+  bool integral = false;
+  std::function<double(const TrainRow&)> value;
+};
+std::vector<TrainColumn> train_series_columns(const GearTrain& train);
+// The series as CSV by those columns: a header line, a row each, numbers at 17 digits.
+std::string train_series_csv(const GearTrain& train, const std::vector<TrainRow>& rows);
+// The run's summary as a JSON object: the train's counts and energy ledger (its residual
+// ledger_residual_max_J among them), then "meshes": per mesh its name, impacts and largest
+// penetration.
+std::string train_summary_json(const GearTrain& train, const TrainResult& result);
 // A tacho's edges, one row each: pulse,t_s,t_emitted_s, the true (jitter-free)
 // time and the emitted one (with the seeded jitter; equal without).
 std::string tacho_csv(const std::vector<double>& true_times_s,

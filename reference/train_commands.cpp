@@ -1,0 +1,59 @@
+// `gearimpact train CASE --out DIR`: runs a gear train's case file (docs/case-files.md, A gear
+// train; a two-gear case file is the train of its pair) and writes its series and summary.
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "commands.hpp"
+#include "gearimpact/dynamics/train.hpp"
+#include "gearimpact/io/atomic_file.hpp"
+#include "gearimpact/io/case_file.hpp"
+#include "gearimpact/io/results.hpp"
+
+namespace gearimpact::cli {
+
+namespace {
+
+struct TrainOptions {
+  std::string case_file;
+  std::string out;
+  bool overwrite = false;
+};
+
+void run_train(const TrainOptions& o) {
+  // Every refusal before any work: the folder, then the case.
+  require_output_folder(o.out, o.overwrite, {o.case_file});
+  const GearTrain train = read_train_file(o.case_file);
+  const TrainResult result = simulate_train(train);
+  const std::string summary = train_summary_json(train, result);
+  AtomicFolder folder(o.out, o.overwrite, {o.case_file});
+  const std::filesystem::path dir = folder.temporary();
+  write_file_atomically((dir / "series.csv").string(), train_series_csv(train, result.series));
+  write_file_atomically((dir / "summary.json").string(), summary);
+  folder.commit();
+  std::cout << summary;
+  std::cerr << "train: wrote " << (std::filesystem::path(o.out) / "series.csv").string() << "\n";
+}
+
+}  // namespace
+
+void register_train_commands(CLI::App& app) {
+  auto o = std::make_shared<TrainOptions>();
+  CLI::App* train = app.add_subcommand(
+      "train",
+      "Runs a gear train's case file ([[bodies]], [[meshes]], [[shafts]]; a two-gear case file "
+      "is the train of its pair) by the event-cut RK4 and writes series.csv (each body's angle "
+      "and speed, each mesh's s, delta, region, pairs and forces, columns named by the bodies "
+      "and meshes) and summary.json (the energy ledger and its residual, per mesh its impacts "
+      "and largest penetration)");
+  train->add_option("case", o->case_file, "case file of a train")->required();
+  train
+      ->add_option("--out", o->out,
+                   "output folder: new or empty (else --overwrite), in a folder that exists")
+      ->required();
+  train->add_flag("--overwrite", o->overwrite, "replace a non-empty --out folder whole");
+  train->callback([o] { run_train(*o); });
+}
+
+}  // namespace gearimpact::cli
