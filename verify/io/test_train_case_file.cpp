@@ -238,6 +238,12 @@ TEST_CASE("a refused key of each kind is named under its body's or mesh's name, 
     CHECK(p.field == "bodies.pinion.torke");
     CHECK(p.where == line_of(text, "torke"));
   }
+  SUBCASE("a body's name with a dot, which would split its keys' names") {
+    const std::string text = edited("name = \"idler\"", "name = \"idler.1\"");
+    const Problem p = first_problem(text);
+    CHECK(p.field == "bodies[1].name");
+    CHECK(p.where == line_of(text, "idler.1"));
+  }
   SUBCASE("a torsional shaft without its stiffness") {
     const std::string text = edited("kind = \"rigid\"", "kind = \"torsional\"");
     const Problem p = first_problem(text);

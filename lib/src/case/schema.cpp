@@ -1270,10 +1270,10 @@ std::vector<Field> make_train_schema() {
     f.when_absent = when_absent;
     return f;
   };
-  const std::string name_help =
-      "; letters, digits, _ and - (its keys are addressed by it, so no dot)";
-  row("bodies", "name", FieldKind::text, true,
-      "the body's name, one no other body has" + name_help);
+  // A name addresses its table's keys (bodies.NAME.inertia): a dot would split it.
+  constexpr std::string_view no_dot = "and no '.' (it addresses the table's keys)";
+  row("bodies", "name", FieldKind::text, true, "the body's name, one no other body has")
+      .range.note = no_dot;
   // The range of [shafts] motor_inertia: a watch's wheel to a mill's drive.
   quantity("bodies", "inertia", Dimension::moment_of_inertia, "kg*m^2",
            {closed(1e-12), closed(1e6), {}},
@@ -1286,8 +1286,8 @@ std::vector<Field> make_train_schema() {
   quantity("bodies", "theta", Dimension::angle, "deg", {}, "0", "the body's initial angle");
   quantity("bodies", "w", Dimension::angular_velocity, "rad/s", {}, "0",
            "the body's initial speed, positive forward");
-  row("meshes", "name", FieldKind::text, true,
-      "the mesh's name, one no other mesh has" + name_help);
+  row("meshes", "name", FieldKind::text, true, "the mesh's name, one no other mesh has")
+      .range.note = no_dot;
   row("meshes", "body_a", FieldKind::text, true,
       "the name of the body that is the pair's gear 1 (its pinion: [gears] teeth1, faults' gear "
       "= \"pinion\")");
@@ -2244,6 +2244,7 @@ std::string schema_markdown() {
   std::vector<const Field*> rows;
   for (const Field& field : case_schema()) rows.push_back(&field);
   for (const Field& field : fault_schema()) rows.push_back(&field);
+  for (const Field& field : train_schema()) rows.push_back(&field);
   for (const Field* row : rows) {
     const Field& field = *row;
     std::string help(field.help);

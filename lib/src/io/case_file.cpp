@@ -925,16 +925,6 @@ toml::value parse_toml(const Reader& reader, std::string_view toml_text,
 
 // ---- A train file (docs/case-files.md, A gear train) ----
 
-// A body's or mesh's name: it addresses their keys (bodies.NAME.key), so it holds no dot.
-bool is_train_name(const std::string& name) {
-  constexpr std::size_t kLongestTrainName = 64;
-  return !name.empty() && name.size() <= kLongestTrainName &&
-         std::all_of(name.begin(), name.end(), [](char c) {
-           return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-                  c == '_' || c == '-';
-         });
-}
-
 std::string train_key_list(std::string_view section) {
   std::string names;
   for (const Field& field : train_schema()) {
@@ -994,16 +984,25 @@ class TrainTable {
     const std::string field = fallback + ".name";
     const toml::value* value = find("name");
     if (value == nullptr) {
-      problems_.push_back(reader_.problem(field, &table_,
-                                          field + " is missing (required: a name of letters, "
-                                                  "digits, _ and -)"));
+      problems_.push_back(reader_.problem(
+          field, &table_,
+          field + " is missing (required: " +
+              allowed_text(*find_train_field(std::string(section_) + ".name")) + ")"));
       return {};
     }
-    if (!value->is_string() || !is_train_name(value->as_string().str)) {
-      problems_.push_back(reader_.problem(field, value,
-                                          field + " = " + toml_written(*value) +
-                                              " is not a name: letters, digits, _ and -, at most "
-                                              "64 characters"));
+    // The row's rule, and no dot: a name addresses its table's keys.
+    const Field& row = *find_train_field(std::string(section_) + ".name");
+    bool valid = value->is_string() && !value->as_string().str.empty() &&
+                 value->as_string().str.find('.') == std::string::npos;
+    try {
+      if (valid) check_text(row, value->as_string().str, field);
+    } catch (const InputError&) {
+      valid = false;
+    }
+    if (!valid) {
+      problems_.push_back(reader_.problem(
+          field, value,
+          field + " = " + toml_written(*value) + " is not a name: " + allowed_text(row)));
       return {};
     }
     const std::string& text = value->as_string().str;

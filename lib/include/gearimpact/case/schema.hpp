@@ -243,7 +243,8 @@ void validate_fields(const SimulationCase& c);
 // Empty for a case with no text form (a torque given as a function).
 std::string case_key(const SimulationCase& c);
 
-// The schema as a Markdown table: key, unit, default, allowed range, help.
+// The schema as a Markdown table: key, unit, default, allowed range, help; the rows of
+// case_schema(), fault_schema() and train_schema().
 std::string schema_markdown();
 
 }  // namespace gearimpact
