@@ -4,6 +4,7 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "gearimpact/dynamics/train.hpp"
@@ -19,12 +20,13 @@ struct TrainOptions {
   std::string case_file;
   std::string out;
   bool overwrite = false;
+  std::vector<std::string> sets;
 };
 
 void run_train(const TrainOptions& o) {
   // Every refusal before any work: the folder, then the case.
   require_output_folder(o.out, o.overwrite, {o.case_file});
-  const GearTrain train = read_train_file(o.case_file);
+  const GearTrain train = read_train_file(o.case_file, o.sets);
   const TrainResult result = simulate_train(train);
   const std::string summary = train_summary_json(train, result);
   AtomicFolder folder(o.out, o.overwrite, {o.case_file});
@@ -52,6 +54,10 @@ void register_train_commands(CLI::App& app) {
       ->add_option("--out", o->out,
                    "output folder: new or empty (else --overwrite), in a folder that exists")
       ->required();
+  train->add_option("--set", o->sets,
+                    "KEY=VALUE (repeatable), as if the file said so: bodies.NAME.KEY, "
+                    "meshes.NAME.SECTION.KEY (a mesh's pair key), or SECTION.KEY of the file "
+                    "(integrator.end_time; gears.module, every mesh's default)");
   train->add_flag("--overwrite", o->overwrite, "replace a non-empty --out folder whole");
   train->callback([o] { run_train(*o); });
 }

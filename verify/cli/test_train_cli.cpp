@@ -99,6 +99,19 @@ TEST_CASE("train's series.csv holds the library run's rows, column by named colu
                      std::to_string(run.meshes[1].impacts)) != std::string::npos);
 }
 
+TEST_CASE("train --set writes the file's series as if the file said so") {
+  Scratch scratch("train-cli-set");
+  const std::filesystem::path file = short_example(scratch);
+  const CommandResult edited =
+      run_command(cli("train " + file.string() + " --out " + (scratch.dir / "a").string()));
+  const CommandResult set =
+      run_command(cli("train " + (examples / "pinion_idler_wheel.toml").string() +
+                      " --set 'integrator.end_time=2 ms' --out " + (scratch.dir / "b").string()));
+  REQUIRE(edited.exit_code == 0);
+  REQUIRE(set.exit_code == 0);
+  CHECK(read(scratch.dir / "a" / "series.csv") == read(scratch.dir / "b" / "series.csv"));
+}
+
 TEST_CASE("train refuses a bad key by its name before writing anything") {
   Scratch scratch("train-cli-refused");
   std::string text = read(examples / "pinion_idler_wheel.toml");

@@ -279,3 +279,58 @@ TEST_CASE("every row of a train table has its unit, help and range or choices") 
   CHECK(find_train_field("meshes.body_a") != nullptr);
   CHECK(find_train_field("shafts.stiffness") != nullptr);
 }
+
+TEST_CASE("a --set of a train's key reads as the file edited to say so") {
+  const std::string text = example_text();
+  const GearTrain set = parse_train(text, "train.toml",
+                                    {"meshes.idler-wheel.gears.backlash=0.2 mm",
+                                     "bodies.pinion.w=50 rad/s", "integrator.end_time=2 ms"});
+  std::string edited_text = text;
+  const auto replace = [&edited_text](const std::string& from, const std::string& to) {
+    const std::size_t at = edited_text.find(from);
+    REQUIRE(at != std::string::npos);
+    edited_text.replace(at, from.size(), to);
+  };
+  replace("backlash = \"0.1 mm\"", "backlash = \"0.2 mm\"");
+  replace("w = \"100 rad/s\"", "w = \"50 rad/s\"");
+  replace("end_time = \"20 ms\"", "end_time = \"2 ms\"");
+  const GearTrain file = parse_train(edited_text, "train.toml");
+  CHECK(set.bodies[0].w_rad_per_s == file.bodies[0].w_rad_per_s);
+  CHECK(set.integrator.end_time_s == file.integrator.end_time_s);
+  for (std::size_t k = 0; k < file.meshes.size(); ++k) {
+    CHECK(case_key(set.meshes[k].pair) == case_key(file.meshes[k].pair));
+  }
+  CHECK(set.meshes[1].pair.gears.backlash_m == 0.2e-3);
+}
+
+TEST_CASE("a body's default inertia follows a --set of its mesh's gears") {
+  const GearTrain before = parse_train(example_text(), "train.toml");
+  const GearTrain after =
+      parse_train(example_text(), "train.toml", {"meshes.pinion-idler.gears.face_width=30 mm"});
+  CHECK(after.meshes[0].pair.gears.face_width_m == 30e-3);
+  // The idler's disc, gear 2 of pinion-idler: J of a disc is proportional to its width.
+  CHECK(after.bodies[1].inertia_kg_m2 == moment_of_inertia(after.meshes[0].pair.gears, Gear::two));
+  CHECK(after.bodies[1].inertia_kg_m2 != before.bodies[1].inertia_kg_m2);
+}
+
+TEST_CASE("a --set naming no body, no key or a value out of range is refused by its key") {
+  const auto refused = [](const std::string& assignment) {
+    try {
+      (void)parse_train(example_text(), "train.toml", {assignment});
+    } catch (const InputError& e) {
+      return e.problems().front();
+    } catch (const CaseFileError& e) {
+      return e.problems().front();
+    }
+    FAIL("the --set was taken: " << assignment);
+    return Problem{};
+  };
+  const Problem no_body = refused("bodies.idlr.w=1 rad/s");
+  CHECK(no_body.field == "bodies.idlr.w");
+  CHECK(no_body.message.find("\"pinion\", \"idler\", \"wheel\", \"brake-disc\"") !=
+        std::string::npos);
+  CHECK(refused("meshes.idler-wheel.gears.modul=2 mm").field == "meshes.idler-wheel.gears.modul");
+  CHECK(refused("bodies.idler.inertia=-1 kg*m^2").field == "bodies.idler.inertia");
+  // A value the row takes but the pair refuses is the reader's: named under the mesh.
+  CHECK(refused("meshes.idler-wheel.gears.teeth2=5").field.rfind("meshes.idler-wheel.", 0) == 0);
+}

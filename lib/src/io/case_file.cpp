@@ -180,7 +180,10 @@ class Reader {
     std::string where = file_;
     if (at != nullptr) {
       const toml::source_location location = at->location();
-      if (!location.line_str().empty()) where += ":" + std::to_string(location.line());
+      // A value a --set wrote into the tables has no line of the file.
+      if (!location.line_str().empty() && location.file_name() == file_) {
+        where += ":" + std::to_string(location.line());
+      }
     }
     return where;
   }
@@ -1101,6 +1104,112 @@ Problem under_mesh(const Problem& problem, const std::string& prefix) {
   return p;
 }
 
+// ---- --set on a train file: KEY=VALUE written into the file's tables before they are read ----
+
+// The TOML value a case file gives `row` for the text of a --set, checked by the row (InputError
+// naming `name`): a quantity as a string in SI units that reads back to the same double, a
+// number, an integer, a choice by its name.
+toml::value toml_of(const Field& row, std::string_view text, const std::string& name) {
+  if (is_list(row.kind)) {
+    throw InputError(name, std::string(text),
+                     "a single value: a list is set in the case file on a train");
+  }
+  if (row.kind == FieldKind::text) {
+    check_text(row, std::string(text), name);
+    return toml::value(std::string(text));
+  }
+  const double x = parse_value(row, text, name);
+  switch (row.kind) {
+    case FieldKind::quantity:
+      return toml::value(
+          format_quantity(x, row.dimension, units_of(row.dimension).begin()->symbol));
+    case FieldKind::number:
+      return toml::value(x);
+    case FieldKind::integer:
+      return toml::value(static_cast<toml::integer>(x));
+    default:
+      for (const ChoiceName& c : row.choices) {
+        if (c.has_text && c.code == x) return toml::value(std::string(c.name));
+      }
+      throw InputError(name, std::string(text), allowed_text(row));
+  }
+}
+
+// The [[key]] table named `name` in `root`, or InputError naming `field` with the names there are.
+toml::value& named_table(toml::value& root, const std::string& key, const std::string& name,
+                         const std::string& field) {
+  std::string names;
+  auto found = root.as_table().find(key);
+  if (found != root.as_table().end() && found->second.is_array()) {
+    for (toml::value& table : found->second.as_array()) {
+      if (!table.is_table()) continue;
+      const auto n = table.as_table().find("name");
+      if (n == table.as_table().end() || !n->second.is_string()) continue;
+      if (n->second.as_string().str == name) return table;
+      names += (names.empty() ? "\"" : ", \"") + n->second.as_string().str + "\"";
+    }
+  }
+  throw InputError(field, "\"" + name + "\"",
+                   "the name of one of the file's [[" + key +
+                       "]]: " + (names.empty() ? std::string("it has none") : names));
+}
+
+// One `KEY=VALUE` of --set into the file's tables: bodies.NAME.KEY, meshes.NAME.KEY (body_a,
+// body_b), meshes.NAME.SECTION.KEY (a mesh's pair key), or SECTION.KEY / KEY of the file
+// itself (a train's integrator, every mesh's default). InputError names KEY.
+void set_in_file(toml::value& root, const std::string& assignment) {
+  const std::size_t equals = assignment.find('=');
+  if (equals == std::string::npos) {
+    throw InputError("--set", assignment, "KEY=VALUE, e.g. bodies.idler.inertia=2e-4 kg*m^2");
+  }
+  const std::string key = assignment.substr(0, equals);
+  const std::string_view text = std::string_view(assignment).substr(equals + 1);
+  const bool train = root.as_table().count("bodies") > 0;
+  for (const std::string table_key : {"bodies", "meshes"}) {
+    if (key.rfind(table_key + ".", 0) != 0) continue;
+    if (!train) {
+      throw InputError(key, std::string(text), "a key of the case file: it has no [[bodies]]");
+    }
+    const std::size_t name_end = key.find('.', table_key.size() + 1);
+    if (name_end == std::string::npos) {
+      throw InputError(key, std::string(text), table_key + ".NAME.KEY");
+    }
+    const std::string name = key.substr(table_key.size() + 1, name_end - table_key.size() - 1);
+    const std::string rest = key.substr(name_end + 1);
+    toml::value& table = named_table(root, table_key, name, key);
+    if (const Field* row = find_train_field(table_key + "." + rest);
+        row != nullptr && rest != "name") {
+      table.as_table()[rest] = toml_of(*row, text, key);
+      return;
+    }
+    const std::size_t dot = rest.find('.');
+    const Field* row = table_key == "meshes" ? find_field(rest) : nullptr;
+    if (row == nullptr || dot == std::string::npos ||
+        std::find(kMeshPairSections.begin(), kMeshPairSections.end(), rest.substr(0, dot)) ==
+            kMeshPairSections.end()) {
+      throw InputError(key, std::string(text),
+                       table_key == "bodies"
+                           ? "bodies.NAME.KEY with KEY one of inertia, torque, theta, w"
+                           : "meshes.NAME.body_a, body_b, or meshes.NAME.SECTION.KEY with "
+                             "SECTION.KEY a key of [gears], [model], [modifications] or "
+                             "[bearings]");
+    }
+    toml::value& section = table.as_table()[rest.substr(0, dot)];
+    if (!section.is_table()) section = toml::table{};
+    section.as_table()[rest.substr(dot + 1)] = toml_of(*row, text, key);
+    return;
+  }
+  const Field* row = find_field(key);
+  if (row == nullptr) throw InputError(key, std::string(text), "a key of the case schema");
+  if (row->section.empty()) {
+    root.as_table()[std::string(row->key)] = toml_of(*row, text, key);
+    return;
+  }
+  toml::value& section = root.as_table()[std::string(row->section)];
+  if (!section.is_table()) section = toml::table{};
+  section.as_table()[std::string(row->key)] = toml_of(*row, text, key);
+}
+
 GearTrain read_train(const Reader& reader, const toml::value& root, std::string_view file_name) {
   std::vector<Problem> problems;
   // The train's keys and every mesh's defaults: the file without its arrays of the train.
@@ -1385,18 +1494,21 @@ SimulationCase read_case_file(const std::filesystem::path& path) {
   return parse_case(read_text(path), path.string());
 }
 
-GearTrain parse_train(std::string_view toml_text, std::string_view file_name) {
+GearTrain parse_train(std::string_view toml_text, std::string_view file_name,
+                      const std::vector<std::string>& sets) {
   const Reader reader{std::string(file_name)};
-  const toml::value root = parse_toml(reader, toml_text, file_name);
-  if (!root.is_table() || root.as_table().count("bodies") == 0) {
+  toml::value root = parse_toml(reader, toml_text, file_name);
+  if (!root.is_table()) root = toml::table{};
+  for (const std::string& assignment : sets) set_in_file(root, assignment);
+  if (root.as_table().count("bodies") == 0) {
     // A two-gear case, read as it always is.
     return two_gear_train(read_case(reader, root, file_name, CaseFileKind::run));
   }
   return read_train(reader, root, file_name);
 }
 
-GearTrain read_train_file(const std::filesystem::path& path) {
-  return parse_train(read_text(path), path.string());
+GearTrain read_train_file(const std::filesystem::path& path, const std::vector<std::string>& sets) {
+  return parse_train(read_text(path), path.string(), sets);
 }
 
 std::string write_case_file(const SimulationCase& c, CaseUnits units) {

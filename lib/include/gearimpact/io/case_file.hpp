@@ -83,8 +83,16 @@ struct GearTrain;
 // meshes.idler-wheel.gears.backlash), each at its line, all at once. A file without [[bodies]]
 // is a two-gear case: parse_case reads it, two_gear_train makes it a train. Throws
 // CaseFileError.
-GearTrain parse_train(std::string_view toml_text, std::string_view file_name);
-GearTrain read_train_file(const std::filesystem::path& path);
+//
+// `sets`, "KEY=VALUE" each (the program's --set), are written into the file's tables before
+// they are read, as if the file said so (a body's default inertia follows a mesh's gears):
+// bodies.NAME.KEY, meshes.NAME.KEY, meshes.NAME.SECTION.KEY (a mesh's own pair key), or a key of
+// the file itself, SECTION.KEY (integrator.end_time; gears.module: every mesh's default). The
+// value is checked by its row; InputError names KEY, and NAME among the file's names.
+GearTrain parse_train(std::string_view toml_text, std::string_view file_name,
+                      const std::vector<std::string>& sets = {});
+GearTrain read_train_file(const std::filesystem::path& path,
+                          const std::vector<std::string>& sets = {});
 
 // How write_case_file writes quantities: in the units a person would choose
 // (mm, deg, GPa, N*mm, us, ms) wherever that text reads back to exactly the
