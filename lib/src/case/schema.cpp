@@ -770,9 +770,9 @@ std::vector<Field> make_schema() {
         "sign of the axial-force moment in the bending stiffness",
         [](auto& c) -> auto& { return c.model.stiffness.moment_sign; });
     r.choice(
-        "spall_reading", choices_of(kSpallReadings), false,
-        "how a partial-width spall's contact loads the teeth (docs/faults.md)",
-        [](auto& c) -> auto& { return c.model.stiffness.spall_reading; })
+         "spall_reading", choices_of(kSpallReadings), false,
+         "how a partial-width spall's contact loads the teeth (docs/faults.md)",
+         [](auto& c) -> auto& { return c.model.stiffness.spall_reading; })
         .written_at_default = false;
     // stiffness_method names the tau-form with a quadrature rule, or the
     // x-form route; xform_rule the rule of the x-form route (used only then).
