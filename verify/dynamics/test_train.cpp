@@ -430,6 +430,14 @@ TEST_CASE("a train's bad input is refused naming its field") {
     t.integrator.kind = IntegratorKind::adaptive;
     CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("integrator.kind"), InputError);
   }
+  SUBCASE("the integrator's settings, by the [integrator] rows' ranges") {
+    t.integrator.step_s = 0.0;
+    CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("integrator.step"), InputError);
+  }
+  SUBCASE("more steps than kMostSteps over the end time") {
+    t.integrator.end_time_s = t.integrator.step_s * (static_cast<double>(kMostSteps) + 1e3);
+    CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("integrator.end_time"), InputError);
+  }
   SUBCASE("a state-dependent torque") {
     t.bodies[2].torque.kind = Torque::Kind::drag;
     CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("bodies.wheel.torque.kind"),

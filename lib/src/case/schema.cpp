@@ -1822,7 +1822,38 @@ bool any_failed(const std::vector<std::string>& failed, std::string_view prefix)
   });
 }
 
+// At most kMostSteps steps over the run, unless its end time or step is refused already.
+void most_steps_problem(const IntegratorSettings& s, const std::vector<std::string>& failed,
+                        Problems& problems) {
+  const double most_steps = static_cast<double>(kMostSteps);
+  if (!any_failed(failed, "integrator.end_time") && !any_failed(failed, "integrator.step") &&
+      s.end_time_s / s.step_s > most_steps) {
+    problems.add(range_problem("integrator.end_time", format_number(s.end_time_s) + " s",
+                               "at most " + bound_text(most_steps) +
+                                   " steps of integrator.step = " + format_number(s.step_s) +
+                                   " s, i.e. end_time <= " + format_number(most_steps * s.step_s) +
+                                   " s"));
+  }
+}
+
 }  // namespace
+
+void validate(const IntegratorSettings& integrator) {
+  SimulationCase c;
+  c.integrator = integrator;
+  Problems problems;
+  std::vector<std::string> failed;
+  for (const Field& field : case_schema()) {
+    if (field.section != "integrator" || !applies(field, c) || absent(field, c)) continue;
+    const bool ok = problems.collect([&] {
+      const double value = field.get(c);
+      check_value(field, value, field.name(), si_text(field, value));
+    });
+    if (!ok) failed.push_back(field.name());
+  }
+  most_steps_problem(integrator, failed, problems);
+  problems.throw_if_any();
+}
 
 namespace {
 
@@ -2159,16 +2190,7 @@ void relation_problems(const SimulationCase& c, const std::vector<std::string>& 
       }
     });
   }
-  const IntegratorSettings& s = c.integrator;
-  const double most_steps = static_cast<double>(kMostSteps);
-  if (!any_failed(failed, "integrator.end_time") && !any_failed(failed, "integrator.step") &&
-      s.end_time_s / s.step_s > most_steps) {
-    problems.add(range_problem("integrator.end_time", format_number(s.end_time_s) + " s",
-                               "at most " + bound_text(most_steps) +
-                                   " steps of integrator.step = " + format_number(s.step_s) +
-                                   " s, i.e. end_time <= " + format_number(most_steps * s.step_s) +
-                                   " s"));
-  }
+  most_steps_problem(c.integrator, failed, problems);
 }
 
 void validate_relations(const SimulationCase& c) {

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "gearimpact/case/schema.hpp"
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
 #include "run_parts.hpp"
@@ -216,19 +217,7 @@ void validate_train(const GearTrain& train) {
                      "rk4: a train runs by the event-cut RK4 at the fixed step, as the two-gear "
                      "torsional model does");
   }
-  if (!std::isfinite(in.step_s) || in.step_s <= 0.0) {
-    throw InputError("integrator.step", in.step_s, "a finite value > 0 in s");
-  }
-  if (!std::isfinite(in.end_time_s) || in.end_time_s <= 0.0) {
-    throw InputError("integrator.end_time", in.end_time_s, "a finite value > 0 in s");
-  }
-  if (in.end_time_s / in.step_s > static_cast<double>(kMostSteps)) {
-    throw InputError("integrator.step", in.step_s,
-                     "at most " + std::to_string(kMostSteps) + " steps over integrator.end_time");
-  }
-  if (in.output_every < 1) {
-    throw InputError("integrator.output_every", std::to_string(in.output_every), "an integer >= 1");
-  }
+  validate(in);
 }
 
 // The train as a system of the run loop (the concept of step_methods.hpp).

@@ -213,6 +213,11 @@ void validate(const GearPair& pair);
 // (validate_terms of stiffness/model.hpp). InputError names the key.
 void validate(const StiffnessModel& model);
 
+// The integrator's settings of a library caller: the [integrator] rows' ranges that apply to
+// its kind, then at most kMostSteps steps over the end time. InputError names the key as
+// integrator.KEY.
+void validate(const IntegratorSettings& integrator);
+
 // The problems of validate_relations added to `problems`, each check left out
 // when a key it reads is in `failed` (rows already refused): a pair whose
 // module is refused has no contact ratio worth reporting.
