@@ -156,6 +156,31 @@ void json_optional(std::string& out, const char* key, const std::optional<double
   }
 }
 
+// The energy ledger's terms of a run, two-gear or train: kinetic and stored energy at both
+// ends, the torques' work, the losses and the parametric work.
+void json_energy_terms(std::string& out, const SimulationSummary& s) {
+  json_number(out, "kinetic_energy_initial_J", s.kinetic_energy_initial_j);
+  json_number(out, "kinetic_energy_final_J", s.kinetic_energy_final_j);
+  json_number(out, "stored_energy_initial_J", s.stored_energy_initial_j);
+  json_number(out, "stored_energy_final_J", s.stored_energy_final_j);
+  json_number(out, "torque_work_J", s.torque_work_j);
+  json_number(out, "damping_loss_J", s.damping_loss_j);
+  json_number(out, "friction_loss_J", s.friction_loss_j);
+  // The viscous mesh damper's loss, its own term of the ledger (damping_loss_J
+  // is the Hertzian damping's of (32)); only with a damper, so that other
+  // runs' summaries keep their bytes.
+  if (s.mesh_damper) json_number(out, "mesh_damper_loss_J", s.mesh_damping_loss_j);
+  json_number(out, "parametric_work_J", s.parametric_work_j);
+  json_number(out, "parametric_jump_work_J", s.parametric_jump_work_j);
+}
+
+// How well the ledger closed: its residual at the end and its largest, and its scale.
+void json_ledger_residual(std::string& out, const SimulationSummary& s) {
+  json_number(out, "ledger_residual_J", s.ledger_residual_j);
+  json_number(out, "ledger_residual_max_J", s.ledger_residual_max_j);
+  json_number(out, "ledger_scale_J", s.ledger_scale_j);
+}
+
 }  // namespace
 
 std::vector<TrainColumn> train_series_columns(const GearTrain& train) {
@@ -211,18 +236,8 @@ std::string train_summary_json(const GearTrain& train, const TrainResult& result
   json_number(out, "step_s", s.step_s);
   out += "  \"steps\": " + std::to_string(s.steps) + ",\n";
   out += "  \"events\": " + std::to_string(s.events) + ",\n";
-  json_number(out, "kinetic_energy_initial_J", s.kinetic_energy_initial_j);
-  json_number(out, "kinetic_energy_final_J", s.kinetic_energy_final_j);
-  json_number(out, "stored_energy_initial_J", s.stored_energy_initial_j);
-  json_number(out, "stored_energy_final_J", s.stored_energy_final_j);
-  json_number(out, "torque_work_J", s.torque_work_j);
-  json_number(out, "damping_loss_J", s.damping_loss_j);
-  json_number(out, "friction_loss_J", s.friction_loss_j);
-  json_number(out, "parametric_work_J", s.parametric_work_j);
-  json_number(out, "parametric_jump_work_J", s.parametric_jump_work_j);
-  json_number(out, "ledger_residual_J", s.ledger_residual_j);
-  json_number(out, "ledger_residual_max_J", s.ledger_residual_max_j);
-  json_number(out, "ledger_scale_J", s.ledger_scale_j);
+  json_energy_terms(out, s);
+  json_ledger_residual(out, s);
   out += "  \"meshes\": [";
   for (std::size_t k = 0; k < train.meshes.size(); ++k) {
     const TrainMeshSummary& m = result.meshes[k];
@@ -270,19 +285,7 @@ std::string summary_json(const SimulationSummary& s) {
   json_optional(out, "last_n1_impact_s", s.last_n1_impact_s);
   json_optional(out, "last_n2_impact_s", s.last_n2_impact_s);
   json_number(out, "max_penetration_m", s.max_penetration_m);
-  json_number(out, "kinetic_energy_initial_J", s.kinetic_energy_initial_j);
-  json_number(out, "kinetic_energy_final_J", s.kinetic_energy_final_j);
-  json_number(out, "stored_energy_initial_J", s.stored_energy_initial_j);
-  json_number(out, "stored_energy_final_J", s.stored_energy_final_j);
-  json_number(out, "torque_work_J", s.torque_work_j);
-  json_number(out, "damping_loss_J", s.damping_loss_j);
-  json_number(out, "friction_loss_J", s.friction_loss_j);
-  // The viscous mesh damper's loss, its own term of the ledger (damping_loss_J
-  // is the Hertzian damping's of (32)); only with a damper, so that other
-  // runs' summaries keep their bytes.
-  if (s.mesh_damper) json_number(out, "mesh_damper_loss_J", s.mesh_damping_loss_j);
-  json_number(out, "parametric_work_J", s.parametric_work_j);
-  json_number(out, "parametric_jump_work_J", s.parametric_jump_work_j);
+  json_energy_terms(out, s);
   // Under the Lagrangian mesh force only, so that other runs' summaries keep their bytes.
   if (s.stored_energy_jumps_j) json_optional(out, "stored_energy_jumps_J", s.stored_energy_jumps_j);
   for (const TermInfo& t : kTerms) {
@@ -298,9 +301,7 @@ std::string summary_json(const SimulationSummary& s) {
              json_string(foundation_extrapolation_warning(s.foundation_extrapolations)) + ",\n";
     }
   }
-  json_number(out, "ledger_residual_J", s.ledger_residual_j);
-  json_number(out, "ledger_residual_max_J", s.ledger_residual_max_j);
-  json_number(out, "ledger_scale_J", s.ledger_scale_j);
+  json_ledger_residual(out, s);
   json_number(out, "final_w1_rad_s", s.final_w1_rad_per_s);
   json_number(out, "final_w2_rad_s", s.final_w2_rad_per_s);
   if (s.speed_drift_max_rel) json_optional(out, "speed_drift_max_rel", s.speed_drift_max_rel);
