@@ -3,16 +3,15 @@ independent reader of the MAT format) against the same set's HDF5 records read b
 array the same values, dtype and length, every attribute the same value under its MATLAB name,
 the texts the same; labels.csv names the .mat files.
 
-test_dataset_mat.py GEARIMPACT SPEC WORKDIR [--no-matio]
+test_dataset_mat.py GEARIMPACT SPEC WORKDIR [--no-matio] (the set-up: format_twins.py)
 Exit 77 (skipped) where the build has no libmatio, or scipy or h5py is not installed.
 """
-import csv
 import math
-import pathlib
 import re
-import shutil
 import subprocess
 import sys
+
+from format_twins import twin_sets
 
 if "--no-matio" in sys.argv:
     print("this build has no libmatio (Debian: libmatio-dev; reconfigure after installing it): "
@@ -26,24 +25,13 @@ except ImportError:
     print("scipy, numpy or h5py is not installed (Debian: python3-scipy, python3-h5py): skipped")
     sys.exit(77)
 
-gearimpact, spec, work = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
-shutil.rmtree(work, ignore_errors=True)
-work.mkdir(parents=True)
-text = spec.read_text().replace('case = "', f'case = "{spec.parent}/')
-(work / "h5.toml").write_text(text)
-(work / "mat.toml").write_text(text.replace("[dataset]\n", '[dataset]\nformat = "mat"\n'))
-for kind in ("h5", "mat"):
-    subprocess.run([gearimpact, "dataset", str(work / f"{kind}.toml"), "--out",
-                    str(work / kind), "--quiet"], check=True, stdout=subprocess.DEVNULL)
-subprocess.run([gearimpact, "dataset", "merge", str(work / "mat"), "--out", str(work / "merged")],
-               check=True, stdout=subprocess.DEVNULL)
+gearimpact, work, rows = twin_sets("mat")
 # The same set in two shards: the same bytes (no date or temporary name enters a file).
 # The second shard on two threads: the images take turns.
 for k in (0, 1):
     subprocess.run([gearimpact, "dataset", str(work / "mat.toml"), "--out", str(work / "shards"),
                     "--shard", f"{k}/2", "--threads", str(k + 1), "--quiet"], check=True,
                    stdout=subprocess.DEVNULL)
-rows = list(csv.DictReader(open(work / "merged" / "labels.csv", newline="")))
 assert len(rows) == 6, len(rows)
 failures = []
 

@@ -2,17 +2,15 @@
 formats) against the same set's HDF5 records read by h5py: every array the same bytes, dtype
 and shape, every attribute the same value, the texts the same; labels.csv names the .npz files.
 
-test_dataset_npz.py GEARIMPACT SPEC WORKDIR
+test_dataset_npz.py GEARIMPACT SPEC WORKDIR (the set-up: format_twins.py)
 Exit 77 (skipped) where numpy or h5py is not installed.
 """
-import csv
 import json
 import math
-import pathlib
-import shutil
-import subprocess
 import sys
 import zipfile
+
+from format_twins import twin_sets
 
 try:
     import h5py
@@ -21,18 +19,7 @@ except ImportError:
     print("numpy or h5py is not installed (Debian: python3-numpy, python3-h5py): skipped")
     sys.exit(77)
 
-gearimpact, spec, work = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
-shutil.rmtree(work, ignore_errors=True)
-work.mkdir(parents=True)
-text = spec.read_text().replace('case = "', f'case = "{spec.parent}/')
-(work / "h5.toml").write_text(text)
-(work / "npz.toml").write_text(text.replace("[dataset]\n", '[dataset]\nformat = "npz"\n'))
-for kind in ("h5", "npz"):
-    subprocess.run([gearimpact, "dataset", str(work / f"{kind}.toml"), "--out",
-                    str(work / kind), "--quiet"], check=True, stdout=subprocess.DEVNULL)
-subprocess.run([gearimpact, "dataset", "merge", str(work / "npz"), "--out", str(work / "merged")],
-               check=True, stdout=subprocess.DEVNULL)
-rows = list(csv.DictReader(open(work / "merged" / "labels.csv", newline="")))
+gearimpact, work, rows = twin_sets("npz")
 assert len(rows) == 6, len(rows)
 failures = []
 
