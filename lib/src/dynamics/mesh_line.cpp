@@ -1,6 +1,7 @@
 #include "gearimpact/dynamics/mesh_line.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -207,6 +208,22 @@ void MeshLine::set_parts(const MeshMotion& q, Mode& m) const {
                     ? table->part_of(std::clamp(pair_position(m, q, j), xs_, xe_))
                     : 0;
   }
+}
+
+Mode MeshLine::carry_pair_signs(const MeshMotion& q, const Mode& old, const Mode& now,
+                                const ContactMemory& d) const {
+  const int shift = now.k_first - old.k_first;
+  Mode probe = now;
+  for (int j = 0; j < now.count; ++j) {
+    const int i = j + shift;
+    if (i >= 0 && i < old.count) {
+      probe.slip[static_cast<std::size_t>(j)] = old.slip[static_cast<std::size_t>(i)];
+      probe.clipped[static_cast<std::size_t>(j)] = old.clipped[static_cast<std::size_t>(i)];
+    }
+  }
+  std::array<double, kMaxMeshEvents> g{};
+  const int n = event_values(q, probe, d, g.data());
+  return std::all_of(g.begin(), g.begin() + n, [](double v) { return v >= 0.0; }) ? probe : now;
 }
 
 void MeshLine::classify_forces(const MeshMotion& q, const ContactMemory& d, Mode& m) const {

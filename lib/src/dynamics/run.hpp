@@ -120,20 +120,7 @@ class Run {
     if (old.region != next.region && next.region != Region::free) begin_contact(t);
     system_.classify_forces(y_, damping_, mode_);
     if (next.region == old.region) {
-      // Keep the friction sign and clipping of pairs that stay loaded, unless
-      // this event is theirs (then classify_forces has the new value).
-      const int shift = next.k_first - old.k_first;
-      EventValues g{};
-      Mode probe = mode_;
-      for (int j = 0; j < next.count; ++j) {
-        const int i = j + shift;
-        if (i >= 0 && i < old.count) {
-          probe.slip[j] = old.slip[i];
-          probe.clipped[j] = old.clipped[i];
-        }
-      }
-      const int n = system_.event_values(y_, probe, damping_, g);
-      if (std::all_of(g.begin(), g.begin() + n, [](double v) { return v >= 0.0; })) mode_ = probe;
+      mode_ = system_.mesh().carry_pair_signs(GearSystem::motion(y_), old, mode_, damping_);
     }
     if (!system_.lagrangian()) ledger_.mode_changed(before, after);
   }

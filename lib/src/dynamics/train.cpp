@@ -468,22 +468,7 @@ class TrainRun {
       if (old.region != next.region && next.region != Region::free) begin_contact(k);
       Mode& now = mode_.mesh[k];
       mesh.classify_forces(q, damping_.mesh[k], now);
-      if (next.region == old.region) {
-        // Keep the friction sign and clipping of pairs that stay loaded,
-        // unless this event is theirs.
-        const int shift = next.k_first - old.k_first;
-        std::array<double, kMaxMeshEvents> g{};
-        Mode probe = now;
-        for (int j = 0; j < next.count; ++j) {
-          const int i = j + shift;
-          if (i >= 0 && i < old.count) {
-            probe.slip[static_cast<std::size_t>(j)] = old.slip[static_cast<std::size_t>(i)];
-            probe.clipped[static_cast<std::size_t>(j)] = old.clipped[static_cast<std::size_t>(i)];
-          }
-        }
-        const int n = mesh.event_values(q, probe, damping_.mesh[k], g.data());
-        if (std::all_of(g.begin(), g.begin() + n, [](double v) { return v >= 0.0; })) now = probe;
-      }
+      if (next.region == old.region) now = mesh.carry_pair_signs(q, old, now, damping_.mesh[k]);
       // Stored energy appears or vanishes with a pair entering or leaving
       // under load: work of the time-varying stiffness.
       jump_work_ += after - before;

@@ -165,6 +165,11 @@ class MeshLine {
   Mode classify_geometry(const MeshMotion& q) const;
   // Friction signs and clipping of the pairs of m at the motion.
   void classify_forces(const MeshMotion& q, const ContactMemory& d, Mode& m) const;
+  // After a mode change that kept the region: `now` (classified afresh) with the friction sign
+  // and clipping of each pair that stays loaded carried over from `old`, unless this event is
+  // theirs (an event value of the carried mode is then negative, and `now` stands).
+  Mode carry_pair_signs(const MeshMotion& q, const Mode& old, const Mode& now,
+                        const ContactMemory& d) const;
 
   // (32),(33) at the onset of a contact in mode m: Vi (floored), e(Vi) and D.
   struct Onset {
