@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds into build-asan with AddressSanitizer and UndefinedBehaviorSanitizer
 # (GEARIMPACT_SANITIZE, GCC, benchmarks off) and runs the ctest suite under
-# them, but for the two suites labelled "long". Any sanitizer report fails its test.
+# them, but for the two suites labelled "long", with the fuzz targets replaying their committed
+# corpora (fuzz/replay_main.cpp). Any sanitizer report fails its test.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs="${JOBS:-$(nproc)}"

@@ -28,10 +28,8 @@
 #include "gearimpact/signals/decimate.hpp"
 #include "gearimpact/signals/order_tracking.hpp"
 #include "gearimpact/signals/recorder.hpp"
+#include "gearimpact_code_version.hpp"
 
-#ifndef GEARIMPACT_CODE_VERSION
-#define GEARIMPACT_CODE_VERSION "unknown"
-#endif
 
 namespace gearimpact::dataset {
 
