@@ -3,8 +3,11 @@
 // finite elements of verify/data/fe_spall_3d.csv (gearimpact fe-check
 // --spall-width, docs/verification.md "The spall in 3-D"): each tooth's
 // compliance growth, and the pair's stiffness lost through mesh_stiffness with a
-// spalled tooth, on the rig pair whose rows fitted the reading's two constants
-// and on the paper's pair, which the fit did not see. Also the factors' closed
+// spalled tooth, on the rig pair whose rows fitted the reading's two constants,
+// on the paper's pair, which the fit did not see, and on a third pair unlike
+// both (27/43, 25 deg, b / m = 8, shifted), which the reading misses by more,
+// always short of the FE's loss: the record of why the default stays
+// Hertz-only (docs/faults.md). Also the factors' closed
 // form and limits, the default reading unchanged, and the refusal with the
 // paper's model.
 #include <doctest/doctest.h>
@@ -73,10 +76,16 @@ std::vector<FeRow> fe_rows() {
   return rows;
 }
 
+// The rig and the paper's pair are examples; the third pair, kept for this check alone, lies
+// beside the data.
 GearPair pair_of(const std::string& case_name) {
-  return read_pair_or_run_file(std::string(GEARIMPACT_EXAMPLES_DIR) + "/" + case_name + ".toml")
-      .simulation_case.gears;
+  const std::string dir = case_name.rfind("fe_spall_", 0) == 0
+                              ? std::string(GEARIMPACT_VERIFY_DATA_DIR)
+                              : std::string(GEARIMPACT_EXAMPLES_DIR);
+  return read_pair_or_run_file(dir + "/" + case_name + ".toml").simulation_case.gears;
 }
+
+const std::string kThirdPair = "fe_spall_pair_27_43";
 
 StiffnessModel potential_energy(SpallReading reading) {
   StiffnessModel m;
@@ -102,10 +111,15 @@ ToothState spall_at(const GearPair& pair, double s_m, double width_m) {
 // met within 3 % on the rig (the rows the fit saw: largest 2.5 %) and 6 % on the paper's pair
 // (unseen by the fit: largest 5.8 %, its pinion at L = b/4); the pair's stiffness lost within
 // 2.5 points of the FE's on both (largest 1.7 and 2.1 points). The FE's own error, under 0.5 %,
-// is well inside each.
+// is well inside each. The third pair (unseen by the fit, pressure angle 25 deg, b / m = 8):
+// each tooth's growth within 9 % (largest 8.5 %, the wheel at s = 11.5 mm, L = b/4) and always
+// below the FE's; the pair's loss short of the FE's on every row, by under 4 points (2.3 to
+// 3.7): outside the band above, which is why the default reading stays Hertz-only.
 constexpr double kToothBandRig = 0.03;
 constexpr double kToothBandPaper = 0.06;
+constexpr double kToothBandThird = 0.09;
 constexpr double kLossBand = 0.025;
+constexpr double kLossShortThird = 0.04;
 
 }  // namespace
 
@@ -164,12 +178,20 @@ TEST_CASE("The effective-width reading meets each tooth's 3-D FE compliance grow
     const double fe_growth = r.loaded_width_m_per_n / r.whole_face_m_per_n;
     const double error = std::fabs(model_growth / fe_growth - 1.0);
     worst[r.case_name] = std::max(worst[r.case_name], error);
-    CHECK(error < (r.case_name == "rig_17_38" ? kToothBandRig : kToothBandPaper));
+    if (r.case_name == kThirdPair) {
+      CHECK(error < kToothBandThird);
+      CHECK(model_growth < fe_growth);
+    } else {
+      CHECK(error < (r.case_name == "rig_17_38" ? kToothBandRig : kToothBandPaper));
+    }
     // Neither older reading is within the band: the beam over the whole face (growth 1) ...
     CHECK(fe_growth - 1.0 > 0.09);
   }
+  // The three pairs are all there (before the message below names them).
+  CHECK(worst.size() == 3);
   MESSAGE("largest tooth errors: rig " << worst["rig_17_38"] << ", paper's pair "
-                                       << worst["paper_pair_bores"]);
+                                       << worst["paper_pair_bores"] << ", third pair "
+                                       << worst[kThirdPair]);
 }
 
 TEST_CASE("mesh_stiffness with a spalled pinion: the pair's stiffness lost against the FE's") {
@@ -201,7 +223,12 @@ TEST_CASE("mesh_stiffness with a spalled pinion: the pair's stiffness lost again
     const double k_healthy = mesh_stiffness(pair, r.s_m, effective).ke;
     const double loss =
         1.0 - mesh_stiffness(pair, r.s_m, effective, spalled, healthy).ke / k_healthy;
-    CHECK(std::fabs(loss - fe_loss) < kLossBand);
+    if (r.case_name == kThirdPair) {
+      CHECK(fe_loss - loss > 0.0);
+      CHECK(fe_loss - loss < kLossShortThird);
+    } else {
+      CHECK(std::fabs(loss - fe_loss) < kLossBand);
+    }
     // The default reading is the Hertz-only one, and it misses most of the FE's loss.
     const double loss_hertz = 1.0 - mesh_stiffness(pair, r.s_m, hertz_only, spalled, healthy).ke /
                                         mesh_stiffness(pair, r.s_m, hertz_only).ke;
@@ -209,7 +236,7 @@ TEST_CASE("mesh_stiffness with a spalled pinion: the pair's stiffness lost again
     CHECK(loss_hertz < 0.5 * fe_loss);
     ++compared;
   }
-  CHECK(compared >= 9);
+  CHECK(compared == 27);
 }
 
 TEST_CASE("The effective-width reading leaves a healthy pair and a spall out of contact alone") {
