@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -246,28 +247,24 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
       flush(row.t_s, progress);
     };
   }
-  // Unbalanced torques and non-rolling speeds of a case file are said before a run that may
-  // take minutes (the fields checked first, so that an invalid case gets its refusal alone);
-  // Table 1's cases are transients by design and run quietly.
-  bool fields_valid = !o.case_file.empty();
-  try {
-    if (fields_valid) validate_fields(c);
-  } catch (const InputError&) {
-    fields_valid = false;
-  }
-  // A case the dynamics refuses gets its refusal alone, before the warnings.
-  if (fields_valid) {
-    refuse_planar_simulation(c);
-    validate_gaps(c);
-  }
-  if (fields_valid) {
+  // The run is checked once (check_run), every refusal naming the option that set the key
+  // (naming_options). Unbalanced torques and non-rolling speeds of a case file are said once its
+  // keys, fields and gaps pass (an invalid case gets its refusal alone), before the table that
+  // may take a while and a run that may take minutes; Table 1's cases are transients by design
+  // and run quietly.
+  const bool from_file = !o.case_file.empty();
+  const auto say_warnings = [&c] {
     for (const std::string& w : run_warnings(c)) {
       std::fprintf(stderr, "gearimpact: warning: %s\n", w.c_str());
     }
-  }
+  };
   SimulationResult result;
   try {
-    o.keys.naming_options([&] { result = simulate(c, control); });
+    o.keys.naming_options([&] {
+      const CheckedRun run = check_run(
+          c, control, from_file ? std::function<void()>(say_warnings) : std::function<void()>());
+      result = simulate(run);
+    });
   } catch (const InputError& e) {
     // The key is named as the user gave it (naming_options); the flags that
     // thin the series or lift the bound are the program's.

@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "gearimpact/batch/sweep_friction.hpp"
 #include "gearimpact/constants.hpp"
@@ -416,6 +418,79 @@ TEST_CASE("bad input is refused with the field and its range") {
   c = paper_case(1);
   c.gears.backlash_m = -1.0;
   CHECK(message_of(c).find("backlash") != std::string::npos);
+}
+
+TEST_CASE("check_run checks a run once: simulate, check_run and the table paths refuse alike") {
+  // The key each public path names: simulate (which is check_run and the run), check_run, and
+  // both with a table built for the case. Each bad input stands for one stage of the checks.
+  const auto field_of = [](const auto& work) {
+    try {
+      work();
+    } catch (const InputError& e) {
+      return e.field();
+    }
+    return std::string("(accepted)");
+  };
+  struct Bad {
+    std::string key;
+    void (*make)(SimulationCase&, RunControl&);
+  };
+  const std::vector<Bad> bad{
+      // a row's range (validate_fields)
+      {"model.friction_coefficient",
+       [](SimulationCase& c, RunControl&) { c.model.friction_coefficient = -0.1; }},
+      // the planar keys (refuse_planar_simulation): Dormand-Prince is the planar run's only
+      {"integrator.kind",
+       [](SimulationCase& c, RunControl&) { c.integrator.kind = IntegratorKind::dopri5; }},
+      // the gaps (validate_gaps): teeth a millimetre thicker on every flank press the drive and
+      // the coast flanks at once within the paper's backlash
+      {"gears.backlash",
+       [](SimulationCase& c, RunControl&) {
+         c.modifications.gear1.thickness_m.assign(static_cast<std::size_t>(c.gears.teeth1), -1e-3);
+       }},
+      // the controls: a series longer than the bound
+      {"integrator.end_time",
+       [](SimulationCase&, RunControl& control) {
+         control.keep_series = true;
+         control.most_series_rows = 10;
+       }},
+      // what the fields imply with the table (validate_implied): a step past the contact's
+      {"integrator.step", [](SimulationCase& c, RunControl&) { c.integrator.step_s = 1e-5; }},
+  };
+  const SimulationCase base = short_case(1, 1e-4);
+  const auto table = std::make_shared<const StiffnessTable>(base.gears, base.model.stiffness);
+  for (const Bad& b : bad) {
+    CAPTURE(b.key);
+    SimulationCase c = base;
+    RunControl control = summary_only();
+    b.make(c, control);
+    CHECK(field_of([&] { simulate(c, control); }) == b.key);
+    CHECK(field_of([&] { check_run(c, control); }) == b.key);
+    CHECK(field_of([&] { simulate(c, *table, control); }) == b.key);
+    CHECK(field_of([&] { check_run(c, table, control); }) == b.key);
+  }
+  // A table of another pair is refused, naming it; the table given is the one the run uses.
+  SimulationCase other = base;
+  other.gears.teeth1 += 1;
+  CHECK(field_of([&] { check_run(other, table); }) == "table");
+  const CheckedRun checked = check_run(base, table, summary_only());
+  CHECK(&checked.table() == table.get());
+
+  // The program's warnings hook runs once, after the case's keys, fields and gaps pass and
+  // before the checks that need the table: never for a case refused before it.
+  int calls = 0;
+  const auto count = [&calls] { ++calls; };
+  check_run(base, summary_only(), count);
+  CHECK(calls == 1);
+  calls = 0;
+  SimulationCase refused = base;
+  refused.model.friction_coefficient = -0.1;
+  CHECK_THROWS_AS(check_run(refused, summary_only(), count), InputError);
+  CHECK(calls == 0);
+  refused = base;
+  refused.integrator.step_s = 1e-5;
+  CHECK_THROWS_AS(check_run(refused, summary_only(), count), InputError);
+  CHECK(calls == 1);
 }
 
 TEST_CASE("a diverging run stops with the time and step, never a NaN") {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -104,14 +106,9 @@ void add_rattle_index(const SimulationCase& c, const StiffnessTable& table,
   if (reference > 0.0) rattle.rattle_index = rattle.rms_acceleration2_rad_s2 / reference;
 }
 
-// The run of a case whose fields are checked.
+// The run of a case that check_run checked, with its table.
 SimulationResult simulate_checked(const SimulationCase& c, const StiffnessTable& table,
                                   const RunControl& control) {
-  check_table(c, table);
-  // The planar system's step bound is the tighter one: first, so that a step
-  // refused is refused once, with the step that runs.
-  if (c.bearings.kind == BearingKind::elastic) check_planar_step(c, table, planar_mounting(c));
-  validate_implied(c, table);
   if (c.bearings.kind == BearingKind::elastic) {
     // Rigid bearings never come here: they run the torsional model below.
     SimulationResult result =
@@ -397,27 +394,61 @@ std::vector<std::string> run_warnings(const SimulationCase& c) {
   return warnings;
 }
 
-SimulationResult simulate(const SimulationCase& c, const RunControl& control) {
+namespace {
+
+// check_run's checks; `table` is called once the case and the controls pass.
+template <typename Table>
+std::shared_ptr<const StiffnessTable> checked_table(const SimulationCase& c,
+                                                    const RunControl& control,
+                                                    const std::function<void()>& fields_checked,
+                                                    Table table) {
   validate_run_keys(c);
   validate_fields(c);
   refuse_planar_simulation(c);
   validate_gaps(c);
+  if (fields_checked) fields_checked();
   // The controls before the table, which may take a while to build.
   validate_control(c, control);
   if (c.bearings.kind == BearingKind::elastic) validate_planar(c, planar_mounting(c), control);
-  const StiffnessTable table(c.gears, c.model.stiffness);
-  return simulate_checked(c, table, control);
+  std::shared_ptr<const StiffnessTable> built = table();
+  check_table(c, *built);
+  // The planar system's step bound is the tighter one: first, so that a step
+  // refused is refused once, with the step that runs.
+  if (c.bearings.kind == BearingKind::elastic) check_planar_step(c, *built, planar_mounting(c));
+  validate_implied(c, *built);
+  return built;
+}
+
+}  // namespace
+
+CheckedRun check_run(const SimulationCase& c, const RunControl& control,
+                     const std::function<void()>& fields_checked) {
+  std::shared_ptr<const StiffnessTable> table = checked_table(c, control, fields_checked, [&c] {
+    return std::make_shared<const StiffnessTable>(c.gears, c.model.stiffness);
+  });
+  return CheckedRun(c, std::move(table), control);
+}
+
+CheckedRun check_run(const SimulationCase& c, std::shared_ptr<const StiffnessTable> table,
+                     const RunControl& control) {
+  if (!table) throw InputError("table", "none", "a StiffnessTable");
+  checked_table(c, control, {}, [&table] { return table; });
+  return CheckedRun(c, std::move(table), control);
+}
+
+SimulationResult simulate(const CheckedRun& run) {
+  return simulate_checked(run.simulation_case(), run.table(), run.control());
+}
+
+SimulationResult simulate(const SimulationCase& c, const RunControl& control) {
+  return simulate(check_run(c, control));
 }
 
 SimulationResult simulate(const SimulationCase& c, const StiffnessTable& table,
                           const RunControl& control) {
-  validate_run_keys(c);
-  validate_fields(c);
-  refuse_planar_simulation(c);
-  validate_gaps(c);
-  validate_control(c, control);
-  if (c.bearings.kind == BearingKind::elastic) validate_planar(c, planar_mounting(c), control);
-  return simulate_checked(c, table, control);
+  // The caller keeps the table for the call: not owned here.
+  return simulate(check_run(
+      c, std::shared_ptr<const StiffnessTable>(std::shared_ptr<void>(), &table), control));
 }
 
 std::vector<ImpactRecord> struck_impacts(const SimulationResult& result) {

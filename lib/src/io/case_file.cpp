@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "case_reader.hpp"
 #include "gearimpact/case/schema.hpp"
 #include "gearimpact/case/units.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
@@ -20,6 +21,8 @@
 #include "toml_values.hpp"
 
 namespace gearimpact {
+
+using namespace case_reader;
 
 CaseFileError::CaseFileError(std::string file, std::string field, const std::string& message)
     : Error(message), file_(std::move(file)), field_(std::move(field)) {
@@ -170,63 +173,6 @@ std::size_t first_invalid_utf8(std::string_view text) {
   }
   return std::string_view::npos;
 }
-
-class Reader {
- public:
-  explicit Reader(std::string file) : file_(std::move(file)) {}
-
-  // "file:line", the line when the value came from the text.
-  std::string where(const toml::value* at) const {
-    std::string where = file_;
-    if (at != nullptr) {
-      const toml::source_location location = at->location();
-      // A value a --set wrote into the tables has no line of the file.
-      if (!location.line_str().empty() && location.file_name() == file_) {
-        where += ":" + std::to_string(location.line());
-      }
-    }
-    return where;
-  }
-
-  // The problem at `at` (an InputError's problems keep their own wording).
-  Problem problem(const std::string& field, const toml::value* at,
-                  const std::string& message) const {
-    Problem p;
-    p.field = field;
-    p.message = message;
-    p.where = where(at);
-    return p;
-  }
-
-  [[noreturn]] void fail(const std::string& field, const toml::value* at,
-                         const std::string& message) const {
-    throw CaseFileError(file_, {problem(field, at, message)});
-  }
-
-  // The problems of `e` at `at`.
-  [[noreturn]] void fail(const toml::value* at, const InputError& e) const {
-    std::vector<Problem> problems = e.problems();
-    for (Problem& p : problems) p.where = where(at);
-    throw CaseFileError(file_, std::move(problems));
-  }
-
-  const std::string& file() const { return file_; }
-
-  [[noreturn]] void fail_at_line(std::size_t line, const std::string& message) const {
-    throw CaseFileError(file_, "", file_ + ":" + std::to_string(line) + ": " + message);
-  }
-
-  [[noreturn]] void out_of_range(const std::string& field, const toml::value* at,
-                                 const std::string& value, const std::string& allowed,
-                                 const std::string& fix = {}) const {
-    Problem p = range_problem(field, value, allowed, fix);
-    p.where = where(at);
-    throw CaseFileError(file_, {std::move(p)});
-  }
-
- private:
-  std::string file_;
-};
 
 std::string key_list(std::string_view section) {
   std::string names;
@@ -394,8 +340,10 @@ class Document {
   std::vector<std::string> broken_;
 };
 
+}  // namespace
+
 // What a missing required key needs, for the message.
-std::string expected_of(const Field& field) {
+std::string case_reader::expected_of(const Field& field) {
   switch (field.kind) {
     case FieldKind::quantity:
       return allowed_text(field) + ", as a string with one of the units " +
@@ -406,6 +354,8 @@ std::string expected_of(const Field& field) {
       return allowed_text(field);
   }
 }
+
+namespace {
 
 // The choice the row's condition depends on, e.g. [torque1] kind.
 const ChoiceName& selected(const Field& field, const SimulationCase& c) {
@@ -469,8 +419,10 @@ std::vector<double> read_list(const Reader& reader, const Field& field, const to
   return values;
 }
 
+}  // namespace
+
 // The value of a non-text row as get() returns it; checked against the row.
-double read_value(const Reader& reader, const Field& field, const toml::value& value) {
+double case_reader::read_value(const Reader& reader, const Field& field, const toml::value& value) {
   const std::string name = field.name();
   double x = 0.0;
   switch (field.kind) {
@@ -530,6 +482,8 @@ double read_value(const Reader& reader, const Field& field, const toml::value& v
   }
   return x;
 }
+
+namespace {
 
 // A problem of a check across keys, at the line of the key it names and with
 // that key's value as the file wrote it.
@@ -740,8 +694,10 @@ void read_faults(const Reader& reader, const toml::value& root, SimulationCase& 
   }
 }
 
-SimulationCase read_case(const Reader& reader, const toml::value& root, std::string_view file_name,
-                         CaseFileKind kind) {
+}  // namespace
+
+SimulationCase case_reader::read_case(const Reader& reader, const toml::value& root,
+                                      std::string_view file_name, CaseFileKind kind) {
   // Every problem of the file is gathered and reported at once; the checks
   // across keys run only on keys that were read without one.
   std::vector<Problem> problems;
@@ -808,6 +764,8 @@ SimulationCase read_case(const Reader& reader, const toml::value& root, std::str
   if (!problems.empty()) throw CaseFileError(reader.file(), std::move(problems));
   return result;
 }
+
+namespace {
 
 // A list's "[a, b, ...]" over lines of kValuesPerLine values: the reader
 // refuses lines longer than kLongestLineBytes, and the longest list must read
@@ -879,9 +837,11 @@ TomlError toml_error(const std::string& report) {
   return error;
 }
 
+}  // namespace
+
 // Parses the text to TOML, refusing what no case file can be. Throws CaseFileError.
-toml::value parse_toml(const Reader& reader, std::string_view toml_text,
-                       std::string_view file_name) {
+toml::value case_reader::parse_toml(const Reader& reader, std::string_view toml_text,
+                                    std::string_view file_name) {
   if (toml_text.size() > kLargestFileBytes) {
     reader.fail(
         "", nullptr,
@@ -926,488 +886,7 @@ toml::value parse_toml(const Reader& reader, std::string_view toml_text,
   return root;
 }
 
-// ---- A train file (docs/case-files.md, A gear train) ----
-
-std::string train_key_list(std::string_view section) {
-  std::string names;
-  for (const Field& field : train_schema()) {
-    if (field.section == section) names += (names.empty() ? "" : ", ") + std::string(field.key);
-  }
-  return names;
-}
-
-// The tables of the array `key` ([[bodies]], ...): a problem for anything else.
-std::vector<const toml::value*> array_of_tables(const Reader& reader, const toml::value& root,
-                                                const std::string& key,
-                                                std::vector<Problem>& problems) {
-  std::vector<const toml::value*> tables;
-  const auto found = root.as_table().find(key);
-  if (found == root.as_table().end()) return tables;
-  const toml::value& list = found->second;
-  if (!list.is_array()) {
-    problems.push_back(reader.problem(key, &list,
-                                      key + " = " + toml_written(list) + " is " +
-                                          toml_type_name(list) +
-                                          ", not an array of tables: write "
-                                          "one [[" +
-                                          key + "]] table each, with keys " + train_key_list(key)));
-    return tables;
-  }
-  for (std::size_t i = 0; i < list.as_array().size(); ++i) {
-    const toml::value& table = list.as_array()[i];
-    if (!table.is_table()) {
-      const std::string name = key + "[" + std::to_string(i) + "]";
-      problems.push_back(reader.problem(name, &table,
-                                        name + " = " + toml_written(table) + " is " +
-                                            toml_type_name(table) + ", not a [[" + key +
-                                            "]] table"));
-      continue;
-    }
-    tables.push_back(&table);
-  }
-  return tables;
-}
-
-// One [[bodies]], [[meshes]] or [[shafts]] table: its keys read by the rows of
-// train_schema() of `section`, problems named `label`.key (bodies.idler.inertia).
-class TrainTable {
- public:
-  TrainTable(const Reader& reader, const toml::value& table, std::string_view section,
-             std::vector<Problem>& problems)
-      : reader_(reader), table_(table), section_(section), problems_(problems) {}
-
-  const toml::value* find(std::string_view key) const {
-    const auto& entries = table_.as_table();
-    const auto found = entries.find(std::string(key));
-    return found == entries.end() ? nullptr : &found->second;
-  }
-
-  // The table's name (its `name` key), or "" with a problem named `fallback`.name.
-  std::string name(const std::string& fallback, const std::vector<std::string>& taken) {
-    const std::string field = fallback + ".name";
-    const toml::value* value = find("name");
-    if (value == nullptr) {
-      problems_.push_back(reader_.problem(
-          field, &table_,
-          field + " is missing (required: " +
-              allowed_text(*find_train_field(std::string(section_) + ".name")) + ")"));
-      return {};
-    }
-    // The row's rule, and no dot: a name addresses its table's keys.
-    const Field& row = *find_train_field(std::string(section_) + ".name");
-    bool valid = value->is_string() && !value->as_string().str.empty() &&
-                 value->as_string().str.find('.') == std::string::npos;
-    try {
-      if (valid) check_text(row, value->as_string().str, field);
-    } catch (const InputError&) {
-      valid = false;
-    }
-    if (!valid) {
-      problems_.push_back(reader_.problem(
-          field, value,
-          field + " = " + toml_written(*value) + " is not a name: " + allowed_text(row)));
-      return {};
-    }
-    const std::string& text = value->as_string().str;
-    if (std::find(taken.begin(), taken.end(), text) != taken.end()) {
-      problems_.push_back(reader_.problem(field, value,
-                                          field + " = " + toml_written(*value) +
-                                              " names another [[" + std::string(section_) +
-                                              "]] too; each has its own"));
-      return {};
-    }
-    return text;
-  }
-
-  // Problems for the keys outside `known` and the rows of the section.
-  void refuse_unknown(const std::string& label, const std::vector<std::string>& known,
-                      const std::string& keys_text) {
-    for (const auto& [key, value] : table_.as_table()) {
-      if (find_train_field(std::string(section_) + "." + key) != nullptr) continue;
-      if (std::find(known.begin(), known.end(), key) != known.end()) continue;
-      problems_.push_back(reader_.problem(label + "." + key, &value,
-                                          "unknown key " + label + "." + key + "; " + keys_text));
-    }
-  }
-
-  // A quantity row's value in SI, or nothing (absent or refused: a problem).
-  std::optional<double> quantity(const std::string& label, std::string_view key) {
-    const toml::value* value = find(key);
-    const Field& row = *find_train_field(std::string(section_) + "." + std::string(key));
-    if (value == nullptr) {
-      if (row.required) {
-        const std::string field = label + "." + std::string(key);
-        problems_.push_back(reader_.problem(
-            field, &table_, field + " is missing (required: " + expected_of(row) + ")"));
-      }
-      return std::nullopt;
-    }
-    Field named = row;
-    named.section = label;
-    try {
-      return read_value(reader_, named, *value);
-    } catch (const CaseFileError& e) {
-      problems_.insert(problems_.end(), e.problems().begin(), e.problems().end());
-      return std::nullopt;
-    }
-  }
-
-  // The body a body_a/body_b key names, or -1 with a problem listing the bodies.
-  int body(const std::string& label, std::string_view key, const std::vector<std::string>& bodies) {
-    const std::string field = label + "." + std::string(key);
-    const toml::value* value = find(key);
-    std::string list;
-    for (const std::string& b : bodies) list += (list.empty() ? "\"" : ", \"") + b + "\"";
-    if (value == nullptr) {
-      problems_.push_back(reader_.problem(
-          field, &table_, field + " is missing (required: the name of a body: " + list + ")"));
-      return -1;
-    }
-    const auto found = value->is_string()
-                           ? std::find(bodies.begin(), bodies.end(), value->as_string().str)
-                           : bodies.end();
-    if (found == bodies.end()) {
-      problems_.push_back(reader_.problem(
-          field, value,
-          field + " = " + toml_written(*value) + " names no body; the bodies are " + list));
-      return -1;
-    }
-    return static_cast<int>(found - bodies.begin());
-  }
-
- private:
-  const Reader& reader_;
-  const toml::value& table_;
-  std::string_view section_;
-  std::vector<Problem>& problems_;
-};
-
-// The sub-tables a mesh may give over the file's pair sections, and [[meshes.faults]].
-constexpr std::array<std::string_view, 4> kMeshPairSections{"gears", "model", "modifications",
-                                                            "bearings"};
-
-// A problem of a mesh's pair under the mesh's name: meshes.NAME.gears.backlash. Problems of keys
-// that are the train's (integrator.*, name) keep their names.
-Problem under_mesh(const Problem& problem, const std::string& prefix) {
-  const std::string section = problem.field.substr(0, problem.field.find_first_of(".["));
-  const bool of_pair = section == "faults" ||
-                       std::find(kMeshPairSections.begin(), kMeshPairSections.end(), section) !=
-                           kMeshPairSections.end();
-  if (!of_pair) return problem;
-  Problem p = problem;
-  p.field = prefix + problem.field;
-  if (p.message.rfind(problem.field, 0) == 0) {
-    p.message = prefix + p.message;
-  } else {
-    p.message = prefix.substr(0, prefix.size() - 1) + ": " + p.message;
-  }
-  return p;
-}
-
-// ---- --set on a train file: KEY=VALUE written into the file's tables before they are read ----
-
-// The TOML value a case file gives `row` for the text of a --set, checked by the row (InputError
-// naming `name`): a quantity as a string in SI units that reads back to the same double, a
-// number, an integer, a choice by its name.
-toml::value toml_of(const Field& row, std::string_view text, const std::string& name) {
-  if (is_list(row.kind)) {
-    throw InputError(name, std::string(text),
-                     "a single value: a list is set in the case file on a train");
-  }
-  if (row.kind == FieldKind::text) {
-    check_text(row, std::string(text), name);
-    return toml::value(std::string(text));
-  }
-  const double x = parse_value(row, text, name);
-  switch (row.kind) {
-    case FieldKind::quantity:
-      return toml::value(
-          format_quantity(x, row.dimension, units_of(row.dimension).begin()->symbol));
-    case FieldKind::number:
-      return toml::value(x);
-    case FieldKind::integer:
-      return toml::value(static_cast<toml::integer>(x));
-    default:
-      for (const ChoiceName& c : row.choices) {
-        if (c.has_text && c.code == x) return toml::value(std::string(c.name));
-      }
-      throw InputError(name, std::string(text), allowed_text(row));
-  }
-}
-
-// The [[key]] table named `name` in `root`, or InputError naming `field` with the names there are.
-toml::value& named_table(toml::value& root, const std::string& key, const std::string& name,
-                         const std::string& field) {
-  std::string names;
-  auto found = root.as_table().find(key);
-  if (found != root.as_table().end() && found->second.is_array()) {
-    for (toml::value& table : found->second.as_array()) {
-      if (!table.is_table()) continue;
-      const auto n = table.as_table().find("name");
-      if (n == table.as_table().end() || !n->second.is_string()) continue;
-      if (n->second.as_string().str == name) return table;
-      names += (names.empty() ? "\"" : ", \"") + n->second.as_string().str + "\"";
-    }
-  }
-  throw InputError(field, "\"" + name + "\"",
-                   "the name of one of the file's [[" + key +
-                       "]]: " + (names.empty() ? std::string("it has none") : names));
-}
-
-// One `KEY=VALUE` of --set into the file's tables: bodies.NAME.KEY, meshes.NAME.KEY (body_a,
-// body_b), meshes.NAME.SECTION.KEY (a mesh's pair key), or SECTION.KEY / KEY of the file
-// itself (a train's integrator, every mesh's default). InputError names KEY.
-void set_in_file(toml::value& root, const std::string& assignment) {
-  const std::size_t equals = assignment.find('=');
-  if (equals == std::string::npos) {
-    throw InputError("--set", assignment, "KEY=VALUE, e.g. bodies.idler.inertia=2e-4 kg*m^2");
-  }
-  const std::string key = assignment.substr(0, equals);
-  const std::string_view text = std::string_view(assignment).substr(equals + 1);
-  const bool train = root.as_table().count("bodies") > 0;
-  for (const std::string table_key : {"bodies", "meshes"}) {
-    if (key.rfind(table_key + ".", 0) != 0) continue;
-    if (!train) {
-      throw InputError(key, std::string(text), "a key of the case file: it has no [[bodies]]");
-    }
-    const std::size_t name_end = key.find('.', table_key.size() + 1);
-    if (name_end == std::string::npos) {
-      throw InputError(key, std::string(text), table_key + ".NAME.KEY");
-    }
-    const std::string name = key.substr(table_key.size() + 1, name_end - table_key.size() - 1);
-    const std::string rest = key.substr(name_end + 1);
-    toml::value& table = named_table(root, table_key, name, key);
-    if (const Field* row = find_train_field(table_key + "." + rest);
-        row != nullptr && rest != "name") {
-      table.as_table()[rest] = toml_of(*row, text, key);
-      return;
-    }
-    const std::size_t dot = rest.find('.');
-    const Field* row = table_key == "meshes" ? find_field(rest) : nullptr;
-    if (row == nullptr || dot == std::string::npos ||
-        std::find(kMeshPairSections.begin(), kMeshPairSections.end(), rest.substr(0, dot)) ==
-            kMeshPairSections.end()) {
-      throw InputError(key, std::string(text),
-                       table_key == "bodies"
-                           ? "bodies.NAME.KEY with KEY one of inertia, torque, theta, w"
-                           : "meshes.NAME.body_a, body_b, or meshes.NAME.SECTION.KEY with "
-                             "SECTION.KEY a key of [gears], [model], [modifications] or "
-                             "[bearings]");
-    }
-    toml::value& section = table.as_table()[rest.substr(0, dot)];
-    if (!section.is_table()) section = toml::table{};
-    section.as_table()[rest.substr(dot + 1)] = toml_of(*row, text, key);
-    return;
-  }
-  const Field* row = find_field(key);
-  if (row == nullptr) throw InputError(key, std::string(text), "a key of the case schema");
-  if (row->section.empty()) {
-    root.as_table()[std::string(row->key)] = toml_of(*row, text, key);
-    return;
-  }
-  toml::value& section = root.as_table()[std::string(row->section)];
-  if (!section.is_table()) section = toml::table{};
-  section.as_table()[std::string(row->key)] = toml_of(*row, text, key);
-}
-
-GearTrain read_train(const Reader& reader, const toml::value& root, std::string_view file_name) {
-  std::vector<Problem> problems;
-  // The train's keys and every mesh's defaults: the file without its arrays of the train.
-  toml::value defaults = toml::table{};
-  for (const auto& [key, value] : root.as_table()) {
-    if (key == "bodies" || key == "meshes" || (key == "shafts" && value.is_array())) continue;
-    const Field* field = find_field(key);
-    const bool top_level_key = field != nullptr && field->section.empty();
-    const bool pair = std::find(kMeshPairSections.begin(), kMeshPairSections.end(), key) !=
-                      kMeshPairSections.end();
-    if (top_level_key || pair || key == "integrator" || key == "faults") {
-      defaults.as_table()[key] = value;
-      continue;
-    }
-    std::string why;
-    if (key == "torque1" || key == "torque2" || key == "initial") {
-      why = "each body has its own torque, theta and w (bodies.NAME.torque, ...)";
-    } else if (key == "shafts") {
-      why = "a train's shafts are [[shafts]] tables joining two bodies";
-    } else {
-      why = "it is not a key of a train";
-    }
-    problems.push_back(reader.problem(
-        key, &value,
-        "[" + key + "] is not read in a train file: " + why +
-            "; a train file has name, [integrator], the pair sections [gears], [model], "
-            "[modifications], [bearings] and [[faults]] (every mesh's defaults), and [[bodies]], "
-            "[[meshes]], [[shafts]]"));
-  }
-  // A run needs these as a run file does.
-  for (const Field& field : case_schema()) {
-    if (field.section != "integrator" || !field.required || field.only_when) continue;
-    const auto section = defaults.as_table().find("integrator");
-    const bool given = section != defaults.as_table().end() && section->second.is_table() &&
-                       section->second.as_table().count(std::string(field.key)) > 0;
-    if (!given) {
-      problems.push_back(reader.problem(
-          field.name(), section != defaults.as_table().end() ? &section->second : nullptr,
-          field.name() + " is missing (required: " + expected_of(field) + ")"));
-    }
-  }
-
-  GearTrain train;
-  std::vector<std::string> body_names;
-  std::vector<std::optional<double>> inertias;
-  const std::vector<const toml::value*> bodies = array_of_tables(reader, root, "bodies", problems);
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    TrainTable table(reader, *bodies[i], "bodies", problems);
-    const std::string name = table.name("bodies[" + std::to_string(i) + "]", body_names);
-    const std::string label = name.empty() ? "bodies[" + std::to_string(i) + "]" : "bodies." + name;
-    table.refuse_unknown(label, {}, "the keys of [[bodies]] are " + train_key_list("bodies"));
-    TrainBody body;
-    body.name = name;
-    inertias.push_back(table.quantity(label, "inertia"));
-    if (const toml::value* torque = table.find("torque"); torque != nullptr && torque->is_table()) {
-      problems.push_back(reader.problem(label + ".torque", torque,
-                                        label + ".torque is a table; a train file reads a "
-                                                "constant torque, \"20 N*m\", only"));
-    } else {
-      body.torque.kind = Torque::Kind::constant;
-      body.torque.constant_n_m = table.quantity(label, "torque").value_or(0.0);
-    }
-    body.theta_rad = table.quantity(label, "theta").value_or(0.0);
-    body.w_rad_per_s = table.quantity(label, "w").value_or(0.0);
-    body_names.push_back(name);
-    train.bodies.push_back(std::move(body));
-  }
-  if (bodies.empty() && problems.empty()) {
-    problems.push_back(reader.problem("bodies", &root.as_table().at("bodies"),
-                                      "a train file has at least two [[bodies]]"));
-  }
-
-  const std::vector<const toml::value*> meshes = array_of_tables(reader, root, "meshes", problems);
-  if (meshes.empty() && root.as_table().count("meshes") == 0) {
-    problems.push_back(reader.problem("meshes", nullptr,
-                                      "[[meshes]] is missing: a train file has at least one "
-                                      "[[meshes]] table, with keys " +
-                                          train_key_list("meshes")));
-  }
-  std::vector<std::string> mesh_names;
-  for (std::size_t k = 0; k < meshes.size(); ++k) {
-    TrainTable table(reader, *meshes[k], "meshes", problems);
-    const std::string name = table.name("meshes[" + std::to_string(k) + "]", mesh_names);
-    mesh_names.push_back(name);
-    const std::string label = name.empty() ? "meshes[" + std::to_string(k) + "]" : "meshes." + name;
-    table.refuse_unknown(label, {"gears", "model", "modifications", "bearings", "faults"},
-                         "a mesh has " + train_key_list("meshes") +
-                             " and the sub-tables gears, model, modifications, bearings and "
-                             "[[meshes.faults]]");
-    TrainMesh mesh;
-    mesh.name = name;
-    mesh.body_a = table.body(label, "body_a", body_names);
-    mesh.body_b = table.body(label, "body_b", body_names);
-    // The pair: the file's pair sections with the mesh's keys over them.
-    toml::value pair = defaults;
-    bool tables_ok = true;
-    for (std::string_view section : kMeshPairSections) {
-      const toml::value* own = table.find(section);
-      if (own == nullptr) continue;
-      const std::string key(section);
-      if (!own->is_table()) {
-        problems.push_back(reader.problem(label + "." + key, own,
-                                          label + "." + key + " = " + toml_written(*own) + " is " +
-                                              toml_type_name(*own) +
-                                              ", not a table: write [meshes." + key + "]"));
-        tables_ok = false;
-        continue;
-      }
-      auto& merged = pair.as_table()[key];
-      if (!merged.is_table()) merged = toml::table{};
-      for (const auto& [entry, value] : own->as_table()) merged.as_table()[entry] = value;
-    }
-    if (const toml::value* faults = table.find("faults"); faults != nullptr) {
-      pair.as_table()["faults"] = *faults;
-    }
-    if (!tables_ok) continue;
-    try {
-      mesh.pair = read_case(reader, pair, file_name, CaseFileKind::pair);
-      mesh.pair.run_keys_absent.clear();
-    } catch (const CaseFileError& e) {
-      for (const Problem& p : e.problems()) {
-        Problem named = under_mesh(p, label + ".");
-        const bool seen = std::any_of(problems.begin(), problems.end(), [&](const Problem& q) {
-          return q.field == named.field && q.message == named.message && q.where == named.where;
-        });
-        if (!seen) problems.push_back(std::move(named));
-      }
-      continue;
-    }
-    train.integrator = mesh.pair.integrator;
-    // A body's inertia defaults to its gear's disc in the first mesh that names it.
-    for (const auto& [body, gear] : {std::pair{mesh.body_a, Gear::one}, {mesh.body_b, Gear::two}}) {
-      if (body < 0) continue;
-      const auto b = static_cast<std::size_t>(body);
-      if (!inertias[b]) inertias[b] = moment_of_inertia(mesh.pair.gears, gear);
-    }
-    train.meshes.push_back(std::move(mesh));
-  }
-
-  std::vector<const toml::value*> shafts;
-  if (const auto found = root.as_table().find("shafts");
-      found != root.as_table().end() && found->second.is_array()) {
-    shafts = array_of_tables(reader, root, "shafts", problems);
-  }
-  for (std::size_t i = 0; i < shafts.size(); ++i) {
-    TrainTable table(reader, *shafts[i], "shafts", problems);
-    const std::string label = "shafts[" + std::to_string(i) + "]";
-    table.refuse_unknown(label, {}, "the keys of [[shafts]] are " + train_key_list("shafts"));
-    TrainShaft shaft;
-    const Field& kind_row = *find_train_field("shafts.kind");
-    const toml::value* kind = table.find("kind");
-    Field named = kind_row;
-    named.section = label;
-    std::optional<double> code;
-    if (kind == nullptr) {
-      problems.push_back(
-          reader.problem(label + ".kind", shafts[i],
-                         label + ".kind is missing (required: " + allowed_text(kind_row) + ")"));
-    } else {
-      try {
-        code = read_value(reader, named, *kind);
-      } catch (const CaseFileError& e) {
-        problems.insert(problems.end(), e.problems().begin(), e.problems().end());
-      }
-    }
-    shaft.body_a = table.body(label, "body_a", body_names);
-    shaft.body_b = table.body(label, "body_b", body_names);
-    // The codes of train_schema()'s shafts.kind: 0 rigid, 1 torsional.
-    if (code && *code == 1.0) {
-      shaft.kind = TrainShaft::Kind::torsional;
-      shaft.stiffness_n_m_per_rad = table.quantity(label, "stiffness").value_or(0.0);
-    } else if (const toml::value* stiffness = table.find("stiffness");
-               code && stiffness != nullptr) {
-      problems.push_back(reader.problem(label + ".stiffness", stiffness,
-                                        label + ".stiffness is read only with kind = "
-                                                "\"torsional\"; this shaft is rigid"));
-    }
-    train.shafts.push_back(shaft);
-  }
-
-  for (std::size_t i = 0; i < train.bodies.size(); ++i) {
-    if (inertias[i]) {
-      train.bodies[i].inertia_kg_m2 = *inertias[i];
-    } else if (!train.bodies[i].name.empty() && mesh_names.size() == train.meshes.size()) {
-      const std::string field = "bodies." + train.bodies[i].name + ".inertia";
-      problems.push_back(reader.problem(field, bodies[i],
-                                        field +
-                                            " is missing (required for a body no mesh "
-                                            "names: " +
-                                            expected_of(*find_train_field("bodies.inertia")) +
-                                            ")"));
-    }
-  }
-  if (!problems.empty()) throw CaseFileError(reader.file(), std::move(problems));
-  return train;
-}
-
-std::string read_text(const std::filesystem::path& path) {
+std::string case_reader::read_text(const std::filesystem::path& path) {
   const std::string file = path.string();
   std::error_code error;
   const std::uintmax_t size = std::filesystem::file_size(path, error);
@@ -1421,8 +900,6 @@ std::string read_text(const std::filesystem::path& path) {
   if (!stream) throw CaseFileError(file, "", file + ": cannot be opened");
   return {std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>()};
 }
-
-}  // namespace
 
 std::string toml_type_name(const toml::value& value) {
   switch (value.type()) {
@@ -1492,23 +969,6 @@ PairOrRunCase read_pair_or_run_file(const std::filesystem::path& path) {
 
 SimulationCase read_case_file(const std::filesystem::path& path) {
   return parse_case(read_text(path), path.string());
-}
-
-GearTrain parse_train(std::string_view toml_text, std::string_view file_name,
-                      const std::vector<std::string>& sets) {
-  const Reader reader{std::string(file_name)};
-  toml::value root = parse_toml(reader, toml_text, file_name);
-  if (!root.is_table()) root = toml::table{};
-  for (const std::string& assignment : sets) set_in_file(root, assignment);
-  if (root.as_table().count("bodies") == 0) {
-    // A two-gear case, read as it always is.
-    return two_gear_train(read_case(reader, root, file_name, CaseFileKind::run));
-  }
-  return read_train(reader, root, file_name);
-}
-
-GearTrain read_train_file(const std::filesystem::path& path, const std::vector<std::string>& sets) {
-  return parse_train(read_text(path), path.string(), sets);
 }
 
 std::string write_case_file(const SimulationCase& c, CaseUnits units) {

@@ -9,9 +9,11 @@
 #include <array>
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gearimpact/case/simulation_case.hpp"
@@ -411,6 +413,46 @@ std::optional<double> equivalent_mesh_damping_ratio(const SimulationCase& c,
 inline constexpr double kMostPlausibleOverlapModules = 0.05;
 std::vector<std::string> result_warnings(const SimulationCase& c, const SimulationSummary& s);
 
+class CheckedRun;
+
+// Checks a run once (what simulate() checks, in its order): the case's keys and fields
+// (validate_run_keys, validate_fields), the planar keys (refuse_planar_simulation), the gaps of
+// its modifications (validate_gaps); then the run's controls (the series and sample bounds, a
+// resumed state) and the planar mounting (validate_planar); then its stiffness table (built
+// here, or the one given, which check_table checks against the case), the planar step bound
+// (check_planar_step) and what the fields imply with that table (validate_implied). Throws
+// InputError naming the key, before any run. `fields_checked`, when given, is called once the
+// case's keys, fields and gaps pass, before the controls and the table (which may take a
+// while): the program says its warnings there (run_warnings).
+CheckedRun check_run(const SimulationCase& c, const RunControl& control = {},
+                     const std::function<void()>& fields_checked = {});
+CheckedRun check_run(const SimulationCase& c, std::shared_ptr<const StiffnessTable> table,
+                     const RunControl& control = {});
+
+// A run that check_run checked: the case, its table and the controls it was checked with. Only
+// check_run makes one, and simulate(const CheckedRun&) runs it without checking it again.
+class CheckedRun {
+ public:
+  const SimulationCase& simulation_case() const { return case_; }
+  const StiffnessTable& table() const { return *table_; }
+  const RunControl& control() const { return control_; }
+
+ private:
+  CheckedRun(SimulationCase c, std::shared_ptr<const StiffnessTable> table, RunControl control)
+      : case_(std::move(c)), table_(std::move(table)), control_(std::move(control)) {}
+  friend CheckedRun check_run(const SimulationCase& c, const RunControl& control,
+                              const std::function<void()>& fields_checked);
+  friend CheckedRun check_run(const SimulationCase& c, std::shared_ptr<const StiffnessTable> table,
+                              const RunControl& control);
+
+  SimulationCase case_;
+  std::shared_ptr<const StiffnessTable> table_;
+  RunControl control_;
+};
+
+// The run of a checked case, with the controls it was checked with.
+SimulationResult simulate(const CheckedRun& run);
+// check_run, then that run: every check once, in that order.
 SimulationResult simulate(const SimulationCase& c, const RunControl& control = {});
 // Same, with a stiffness table already built for c.gears and c.model.stiffness
 // (checked when the table knows what it was built for: StiffnessTable::built_for).
