@@ -14,7 +14,8 @@ with one program and not with the other.
 The list covers what a refactor of the dynamics can change: the reproduction (its default),
 every example run file (torsional and planar, series and samples), the paper's cases 1-3, the
 adaptive integrator, the planar model (RK4 and Dormand-Prince, friction on both flanks, shafts,
-a tacho, modifications, a fault), a small steady sweep, `modes`, `ste`, `mesh-stiffness` and
+a tacho, modifications, a fault, the Lagrangian force and the mesh damper, a friction law
+whose f varies, a constant stiffness, a driver against a drag), a small steady sweep, `modes`, `ste`, `mesh-stiffness` and
 `signals` on the rig's samples. It is not part of ctest: a run takes about a minute.
 """
 
@@ -125,6 +126,30 @@ COMMANDS = [
     ("planar_relief_case2",
      ["simulate", "--case", "2", *RELIEF, *ELASTIC, "--friction", "0.05", "--t-end", "5 ms",
       "--every", "10", "--out", "{out}/series.csv"], True),
+    # The mesh's options on bearings: the Lagrangian force with the viscous mesh damper; a
+    # friction law whose f varies, smoothed, with D's stiffness frozen at the pitch pair; a
+    # constant stiffness with Hertz's K; a kinematic driver against a drag.
+    ("planar_case2_lagrangian_damper",
+     ["simulate", "--case", "2", *ELASTIC, "--set", "model.mesh_force=lagrangian",
+      "--set", "model.mesh_damping_ratio=0.05", "--t-end", "5 ms",
+      "--out", "{out}/series.csv"], True),
+    ("planar_case1_benedict_kelley",
+     ["simulate", "--case", "1", *ELASTIC, "--set", "model.friction_law=benedict-kelley",
+      "--set", "model.lubricant_viscosity=30 cP", "--set", "model.surface_roughness=0.5 um",
+      "--set", "model.friction_smoothing_speed=0.01 m/s",
+      "--set", "model.damping_stiffness=pitch-pair-at-impact", "--t-end", "10 ms",
+      "--out", "{out}/series.csv"], True),
+    ("planar_case3_constant_hertz",
+     ["simulate", "--case", "3", *ELASTIC, "--set", "model.damping_stiffness=hertz",
+      "--set", "model.mesh_stiffness=constant", "--set", "model.constant_mesh_stiffness=3e8 N/m",
+      "--friction", "0.05", "--t-end", "10 ms", "--out", "{out}/series.csv"], True),
+    ("planar_case1_driver_drag",
+     ["simulate", "--case", "1", *ELASTIC, "--set", "torque1.kind=prescribed-speed",
+      "--set", "torque1.mean_speed=477.4648292756860 rpm", "--set", "torque1.orders=2",
+      "--set", "torque1.speed_amplitudes=20 rad/s", "--set", "torque1.phases=0 deg",
+      "--set", "torque2.kind=drag", "--set", "torque2.drag_constant=0.5 N*m",
+      "--set", "torque2.drag_viscous=0.001 N*m*s/rad", "--friction", "0.05",
+      "--t-end", "10 ms", "--out", "{out}/series.csv"], True),
     ("sweep_case1",
      ["sweep", "1", "--vary", "initial.w1", "--from", "2000 rad/s", "--to", "4000 rad/s",
       "--points", "3", "--set", "model.friction_coefficient=0", "--threads", "1",

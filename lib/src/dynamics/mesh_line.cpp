@@ -4,7 +4,9 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <utility>
+#include <vector>
 
 #include "gearimpact/contact/contact.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
@@ -21,7 +23,7 @@ constexpr double kSmallestImpactSpeed_m_s = 1e-9;
 }  // namespace
 
 MeshLine::MeshLine(const SimulationCase& c, const StiffnessTable& table)
-    : table_(&table), model_(&c.model), layout_(c.gears, c.model.coast_phase) {
+    : table_(&table), model_(&c.model), gears_(&c.gears), layout_(c.gears, c.model.coast_phase) {
   const GearPair& g = c.gears;
   rb1_ = base_radius(g, Gear::one);
   rb2_ = base_radius(g, Gear::two);
@@ -30,6 +32,9 @@ MeshLine::MeshLine(const SimulationCase& c, const StiffnessTable& table)
   x_pitch_ = pitch_point_position(g);
   xs_ = layout_.start_m();
   xe_ = layout_.end_m();
+  const double a = operating_pressure_angle(g);
+  sin_a_ = std::sin(a);
+  cos_a_ = std::cos(a);
   smoothing_speed_ = c.model.friction_smoothing_speed_m_s;
   face_width_ = g.face_width_m;
   kh_ = hertz_stiffness(g);
@@ -86,8 +91,8 @@ double MeshLine::least_gap_m(Region line, double theta1) const {
 
 int MeshLine::event_values(const MeshMotion& q, const Mode& m, const ContactMemory& d,
                            double* g) const {
-  const double sv = s(q);
   if (m.region == Region::free) {
+    const double sv = s(q);
     // Region (2) ends where (31) makes delta positive on either line; with
     // gaps, where it passes the least gap of the line's pairs (a pair that
     // enters the segment already pressed in ends it at its entry).
@@ -100,6 +105,21 @@ int MeshLine::event_values(const MeshMotion& q, const Mode& m, const ContactMemo
     g[1] = sv + backlash_;
     return 2;
   }
+  return contact_event_values(q, m, d, g);
+}
+
+int MeshLine::line_event_values(Region line, const PlanarMeshMotion& q, const Mode& m,
+                                const ContactMemory& d, double* g) const {
+  if (m.region == Region::free) {
+    g[0] = -contact_value(line, q);
+    return 1;
+  }
+  return contact_event_values(q, m, d, g);
+}
+
+template <typename Motion>
+int MeshLine::contact_event_values(const Motion& q, const Mode& m, const ContactMemory& d,
+                                   double* g) const {
   const double dl = delta(m.region, q);
   // With gaps the contact ends where the last touching pair lets go, which
   // the pairs' own values below locate.
@@ -117,8 +137,9 @@ int MeshLine::event_values(const MeshMotion& q, const Mode& m, const ContactMemo
   g[3] = xe_ - last;
   g[4] = layout_.position_m(ref, m.k_first + m.count) - xe_;
   int n = 5;
-  const double dl_rate = line_sign(m.region) * s_rate(q);
+  const double dl_rate = line_sign(m.region) * s_rate(m.region, q);
   const double x_rate = line_sign(m.region) * rb1_ * q.w_a_rad_per_s;
+  const double slide = centres_slide(m.region, q);
   for (int j = 0; j < m.count; ++j) {
     const double x = layout_.position_m(ref, m.k_first + j);
     const StiffnessTable* table = m.table[j];
@@ -130,9 +151,8 @@ int MeshLine::event_values(const MeshMotion& q, const Mode& m, const ContactMemo
       continue;
     }
     // A smoothed sign, or one taken per stage, has no switch to locate: the value stays positive.
-    g[n++] = smoothing_speed_ > 0.0 || m.slip_per_stage
-                 ? 1.0
-                 : m.slip[j] * sliding_speed(q.w_a_rad_per_s, q.w_b_rad_per_s, x, lp_);
+    g[n++] =
+        smoothing_speed_ > 0.0 || m.slip_per_stage ? 1.0 : m.slip[j] * pair_sliding(q, x, slide);
     const double push = push_sign_function(table, m.part[j], x, m.count, d, dk, dk_rate);
     g[n++] = m.clipped[j] ? -push : push;
   }
@@ -156,50 +176,50 @@ double MeshLine::push_sign_function(const StiffnessTable* table, int part, doubl
 }
 
 Mode MeshLine::classify_geometry(const MeshMotion& q) const {
+  const Mode drive = line_contact(Region::n1, q);
+  return drive.region != Region::free ? drive : line_contact(Region::n2, q);
+}
+
+Mode MeshLine::classify_line(Region line, const PlanarMeshMotion& q) const {
+  return line_contact(line, q);
+}
+
+template <typename Motion>
+Mode MeshLine::line_contact(Region line, const Motion& q) const {
   Mode m;
-  const double sv = s(q);
+  const double dl = delta(line, q);
   if (gaps_) {
-    // The line one of whose pairs is pressed in: delta - e_k > 0 (the
-    // backlash check of the case keeps the two lines from both touching).
-    for (const Region line : {Region::n1, Region::n2}) {
-      const double dl = penetration(line, sv, backlash_);
-      const double ref = layout_.reference_m(line, q.theta_a_rad);
-      const LoadedRange range = layout_.loaded(ref);
-      bool any = false;
-      for (int j = 0; j < range.count; ++j) {
-        const int k = range.k_first + j;
-        const double x = layout_.position_m(ref, k);
-        m.touching[j] = dl - gaps_->gap_m(line, k, x) > 0.0;
-        m.zone[j] = gap_zone(kinks_, x);
-        any = any || m.touching[j];
-      }
-      if (any) {
-        m.region = line;
-        m.k_first = range.k_first;
-        m.count = range.count;
-        set_parts(q, m);
-        return m;
-      }
+    // The line is in contact where one of its pairs is pressed in: delta -
+    // e_k > 0 (the backlash check of the case keeps the two lines of the
+    // torsional model from both touching), which is where contact_value > 0.
+    const double ref = layout_.reference_m(line, q.theta_a_rad);
+    const LoadedRange range = layout_.loaded(ref);
+    bool any = false;
+    for (int j = 0; j < range.count; ++j) {
+      const int k = range.k_first + j;
+      const double x = layout_.position_m(ref, k);
+      m.touching[j] = dl - gaps_->gap_m(line, k, x) > 0.0;
+      m.zone[j] = gap_zone(kinks_, x);
+      any = any || m.touching[j];
     }
-    m.touching = {};
-    m.zone = {};
+    if (!any) return Mode{};
+    m.region = line;
+    m.k_first = range.k_first;
+    m.count = range.count;
+    set_parts(q, m);
     return m;
   }
-  if (sv - backlash_ > 0.0) {
-    m.region = Region::n1;
-  } else if (-sv - backlash_ > 0.0) {
-    m.region = Region::n2;
-  } else {
-    return m;
-  }
-  const LoadedRange range = layout_.loaded(layout_.reference_m(m.region, q.theta_a_rad));
+  if (!(dl > 0.0)) return m;
+  m.region = line;
+  const LoadedRange range = layout_.loaded(layout_.reference_m(line, q.theta_a_rad));
   m.k_first = range.k_first;
   m.count = range.count;
   set_parts(q, m);
   return m;
 }
 
-void MeshLine::set_parts(const MeshMotion& q, Mode& m) const {
+template <typename Motion>
+void MeshLine::set_parts(const Motion& q, Mode& m) const {
   for (int j = 0; j < m.count; ++j) {
     const StiffnessTable* table = pair_table(m.region, m.k_first + j);
     m.table[j] = table;
@@ -226,14 +246,16 @@ Mode MeshLine::carry_pair_signs(const MeshMotion& q, const Mode& old, const Mode
   return std::all_of(g.begin(), g.begin() + n, [](double v) { return v >= 0.0; }) ? probe : now;
 }
 
-void MeshLine::classify_forces(const MeshMotion& q, const ContactMemory& d, Mode& m) const {
+template <typename Motion>
+void MeshLine::classify_forces(const Motion& q, const ContactMemory& d, Mode& m) const {
   if (m.region == Region::free) return;
   const double dl = delta(m.region, q);
-  const double dl_rate = line_sign(m.region) * s_rate(q);
+  const double dl_rate = line_sign(m.region) * s_rate(m.region, q);
   const double x_rate = line_sign(m.region) * rb1_ * q.w_a_rad_per_s;
+  const double slide = centres_slide(m.region, q);
   for (int j = 0; j < m.count; ++j) {
     const double x = pair_position(m, q, j);
-    m.slip[j] = sliding_speed(q.w_a_rad_per_s, q.w_b_rad_per_s, x, lp_) >= 0.0 ? 1.0 : -1.0;
+    m.slip[j] = pair_sliding(q, x, slide) >= 0.0 ? 1.0 : -1.0;
     const PairPenetration p = pair_penetration(m, j, x, dl, dl_rate, x_rate);
     m.clipped[j] =
         push_sign_function(m.table[j], m.part[j], x, m.count, d, p.delta_m, p.rate_m_s) < 0.0;
@@ -255,9 +277,10 @@ OnsetDamping onset_damping(const ModelOptions& model, DampingUpdate update, doub
   return onset;
 }
 
-MeshLine::Onset MeshLine::damping_at_onset(const MeshMotion& q, const Mode& m) const {
+template <typename Motion>
+MeshLine::Onset MeshLine::damping_at_onset(const Motion& q, const Mode& m) const {
   Onset onset{};
-  const double line_rate = line_sign(m.region) * s_rate(q);
+  const double line_rate = line_sign(m.region) * s_rate(m.region, q);
   double approach = line_rate;
   if (gaps_) {
     // The fastest approach among the pairs that touch, each at its own
@@ -300,9 +323,9 @@ MeshLine::Onset MeshLine::damping_at_onset(const MeshMotion& q, const Mode& m) c
   return onset;
 }
 
-ElasticEnergy MeshLine::stored_energy(const MeshMotion& q, const Mode& m) const {
-  ElasticEnergy u;
-  if (m.region == Region::free) return u;
+template <typename Motion>
+void MeshLine::add_stored_energy(const Motion& q, const Mode& m, ElasticEnergy& u) const {
+  if (m.region == Region::free) return;
   const double line_delta = delta(m.region, q);
   for (int j = 0; j < m.count; ++j) {
     const double x = pair_position(m, q, j);
@@ -329,7 +352,71 @@ ElasticEnergy MeshLine::stored_energy(const MeshMotion& q, const Mode& m) const 
     const ElasticEnergy pair = pair_energy(c, dl / c.total_m_per_n());
     for (std::size_t i = 0; i < kTermCount; ++i) u.j[i] += pair.j[i];
   }
+}
+
+template <typename Motion>
+double MeshLine::elastic_energy_j(const Motion& q, const Mode& m) const {
+  if (m.region == Region::free) return 0.0;
+  const double dl = delta(m.region, q);
+  double u = 0.0;
+  for (int j = 0; j < m.count; ++j) {
+    // A pair that carries nothing (a missing tooth, no contact over a fault
+    // across the face, an open gap) stores nothing.
+    if (!carries(m.table[j], m.part[j]) || (gaps_ && !m.touching[j])) continue;
+    const double x = pair_position(m, q, j);
+    const double dk = pair_penetration(m, j, x, dl, 0.0, 0.0).delta_m;
+    double ke = 0.0;
+    double dke = 0.0;
+    pair_stiffness(*m.table[j], m.part[j], x, m.count, ke, dke);
+    u += 0.5 * ke * dk * dk;
+  }
   return u;
 }
+
+std::optional<std::array<double, kTermCount>> MeshLine::term_energy_bound() const {
+  if (gaps_ || constant_k_ > 0.0) return std::nullopt;
+  std::array<double, kTermCount> bound{};
+  std::vector<const StiffnessTable*> tables{table_};
+  if (teeth_) {
+    for (const Region line : {Region::n1, Region::n2}) {
+      for (int i = 0; i < gears_->teeth1; ++i) {
+        for (int w = 0; w < gears_->teeth2; ++w) {
+          const StiffnessTable* t = teeth_->table_of_teeth(i, w, line);
+          if (t != nullptr && std::find(tables.begin(), tables.end(), t) == tables.end()) {
+            tables.push_back(t);
+          }
+        }
+      }
+    }
+  }
+  for (const StiffnessTable* t : tables) {
+    for (int part = 0; part < t->part_count(); ++part) {
+      if (!t->part_in_contact(part)) continue;
+      const bool whole = t->part_count() == 1;
+      const double lo = whole ? xs_ : t->part_start_m(part);
+      const double hi = whole ? xe_ : t->part_end_m(part);
+      const int samples = 16 * t->pieces();
+      for (int j = 0; j <= samples; ++j) {
+        const double x = std::min(lo + (hi - lo) * j / samples, hi);
+        const Compliances at = whole ? t->compliance(x) : t->compliance_in_part(x, part);
+        const double total = at.total_m_per_n();
+        for (std::size_t i = 0; i < kTermCount; ++i) {
+          bound[i] = std::max(bound[i], 1.05 * 0.5 * at.m_per_n[i] / (total * total));
+        }
+      }
+    }
+  }
+  return bound;
+}
+
+// The two motions a mesh is seen through: the torsional bodies' and the planar model's.
+template void MeshLine::classify_forces(const MeshMotion&, const ContactMemory&, Mode&) const;
+template void MeshLine::classify_forces(const PlanarMeshMotion&, const ContactMemory&, Mode&) const;
+template MeshLine::Onset MeshLine::damping_at_onset(const MeshMotion&, const Mode&) const;
+template MeshLine::Onset MeshLine::damping_at_onset(const PlanarMeshMotion&, const Mode&) const;
+template void MeshLine::add_stored_energy(const MeshMotion&, const Mode&, ElasticEnergy&) const;
+template void MeshLine::add_stored_energy(const PlanarMeshMotion&, const Mode&,
+                                          ElasticEnergy&) const;
+template double MeshLine::elastic_energy_j(const PlanarMeshMotion&, const Mode&) const;
 
 }  // namespace gearimpact

@@ -2,13 +2,10 @@
 
 #include <algorithm>
 #include <array>
-#include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
 #include <cmath>
-#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
-#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -18,14 +15,12 @@
 #include "gearimpact/contact/contact.hpp"
 #include "gearimpact/dynamics/drive.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
+#include "gearimpact/dynamics/mesh_line.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
-#include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/stiffness/energy.hpp"
-#include "gearimpact/stiffness/mesh_stiffness.hpp"
-#include "gearimpact/stiffness/mesh_tables.hpp"
 #include "rk4_dense.hpp"
 #include "run.hpp"
 #include "stall.hpp"
@@ -107,48 +102,25 @@ std::size_t side_index(Region side) {
 // What the right-hand side reports beside the derivatives.
 struct Forces {
   std::array<double, 2> normal_n{};  // summed over each side's pairs
-  std::array<double, 2> penetration_m{};
-  double friction_n = 0.0;  // Ff of (35)-(38) summed over both sides' pairs
+  double friction_n = 0.0;           // Ff of (35)-(38) summed over both sides' pairs
   // Each side's stored energy in the mode, PlanarSystem::mesh_energy's sum
   // (so that the step's ledger takes it from the next step's first stage).
   std::array<double, 2> mesh_energy_j{};
 };
 
-// What stays constant during a step on one side, as the torsional Mode does:
-// whether the side is in contact, its loaded pairs, the part of each pair's
-// table cut at a fault's edges, with [modifications] whether each pair's own
-// penetration is positive and the zone of its gap between the reliefs' kinks,
-// each pair's friction sign and whether its normal force is clipped. The
-// right-hand side is smooth while every side's holds; a change is an event,
+// What stays constant during a step: the mesh's mode (mesh_line.hpp) on each
+// line of action, the drive line's first, each free or in contact on its own
+// line. The right-hand side is smooth while both hold; a change is an event,
 // located and stepped onto.
-struct SideMode {
-  bool contact = false;
-  LoadedRange range;
-  // Each loaded pair's table (PlanarSystem::pair_table, nullptr: a missing
-  // tooth), found once a mode: finding it takes integer remainders, which the
-  // right-hand side would otherwise pay for every pair at every stage.
-  std::array<const StiffnessTable*, kMaxPairs> table{};
-  std::array<int, kMaxPairs> part{};
-  // With gaps only (without, every pair of a side in contact touches).
-  std::array<bool, kMaxPairs> touching{};
-  std::array<int, kMaxPairs> zone{};
-  std::array<double, kMaxPairs> slip{};
-  std::array<bool, kMaxPairs> clipped{};
-  // For one step after the sliding of a pair turned back at once after its
-  // reversal (the contact would stick, which an exact switch cannot follow):
-  // each stage takes the friction signs from its own state, unlocated.
-  bool slip_per_stage = false;
-};
-using PlanarMode = std::array<SideMode, 2>;
+using PlanarMode = std::array<Mode, 2>;
 
-// The event values of a side: its contact, the four bounds of its loaded
-// pairs, and per pair the two ends of its part, with gaps its own penetration
-// and the two kinks around it, its sliding speed and its push; of both sides.
-constexpr int kSideEvents = 5 + 7 * kMaxPairs;
-using PlanarEvents = std::array<double, 2 * kSideEvents>;
+// The event values of both lines (MeshLine::line_event_values), the drive line's first.
+using PlanarEvents = std::array<double, 2 * kMaxMeshEvents>;
 
-// A system of the step methods (step_methods.hpp): both lines of action,
-// each with its own mode and contact memory.
+// A system of the step methods (step_methods.hpp): the two gears' turning and
+// their centres on the bearings, and the one mesh between them (MeshLine)
+// seen through the centres' motion, each line of action with its own mode
+// and contact memory.
 class PlanarSystem {
  public:
   using StateType = Y;
@@ -160,10 +132,8 @@ class PlanarSystem {
   // driver_theta0: with a kinematic driver, the angle its body starts from.
   PlanarSystem(const SimulationCase& c, const StiffnessTable& table, const PlanarMounting& m,
                double driver_theta0)
-      : c_(c), m_(m), table_(table), layout_(c.gears, c.model.coast_phase) {
+      : c_(c), m_(m), mesh_(c, table) {
     const GearPair& g = c.gears;
-    rb1_ = base_radius(g, Gear::one);
-    rb2_ = base_radius(g, Gear::two);
     j1_ = moment_of_inertia(g, Gear::one);
     j2_ = moment_of_inertia(g, Gear::two);
     // The inverse masses, so that each stage multiplies: a division's latency
@@ -176,64 +146,8 @@ class PlanarSystem {
                      1.0 / j2_,
                      m.shafts ? 1.0 / m.motor_inertia_kg_m2 : 0.0,
                      m.shafts ? 1.0 / m.load_inertia_kg_m2 : 0.0};
-    backlash_ = g.backlash_m;
-    lp_ = line_of_action_length(g);
-    xs_ = layout_.start_m();
-    xe_ = layout_.end_m();
-    const double a = operating_pressure_angle(g);
-    sin_a_ = std::sin(a);
-    cos_a_ = std::cos(a);
-    constant_k_ = c.model.mesh_stiffness == MeshStiffnessMode::constant
-                      ? c.model.constant_mesh_stiffness_n_per_m
-                      : 0.0;
-    MeshTeeth teeth = mesh_teeth(c, table, constant_k_);
-    teeth_ = std::move(teeth.tables);
-    gaps_ = std::move(teeth.gaps);
-    kinks_ = std::move(teeth.kinks_m);
-    if (!gaps_ && constant_k_ == 0.0) {
-      // A pair stores 0.5 delta^2 c / c_total^2 in a term of compliance c
-      // (F = delta / c_total): the factor's largest value over every table a
-      // pair can take (with faults, each pair of teeth's) and each part it
-      // carries in, sampled 16 times on each of the table's pieces (smooth
-      // polynomials, which move by far less than the 5 % added between two
-      // samples). A gap can be negative (pitch, thickness errors): a pair's
-      // delta may then exceed the line's, and the bound is not kept with gaps.
-      std::vector<const StiffnessTable*> tables{&table};
-      if (teeth_) {
-        for (const Region side : kSides) {
-          for (int i = 0; i < g.teeth1; ++i) {
-            for (int w = 0; w < g.teeth2; ++w) {
-              const StiffnessTable* t = teeth_->table_of_teeth(i, w, side);
-              if (t != nullptr && std::find(tables.begin(), tables.end(), t) == tables.end()) {
-                tables.push_back(t);
-              }
-            }
-          }
-        }
-      }
-      for (const StiffnessTable* t : tables) {
-        for (int part = 0; part < t->part_count(); ++part) {
-          if (!t->part_in_contact(part)) continue;
-          const bool whole = t->part_count() == 1;
-          const double lo = whole ? xs_ : t->part_start_m(part);
-          const double hi = whole ? xe_ : t->part_end_m(part);
-          const int samples = 16 * t->pieces();
-          for (int j = 0; j <= samples; ++j) {
-            const double x = std::min(lo + (hi - lo) * j / samples, hi);
-            const Compliances at = whole ? t->compliance(x) : t->compliance_in_part(x, part);
-            const double total = at.total_m_per_n();
-            for (std::size_t q = 0; q < kTermCount; ++q) {
-              term_bound_[q] =
-                  std::max(term_bound_[q], 1.05 * 0.5 * at.m_per_n[q] / (total * total));
-            }
-          }
-        }
-      }
-      bounded_ = true;
-    }
-    mesh_damping_ = case_mesh_damping_n_s_per_m(c, table, teeth_.get());
+    term_bound_ = mesh_.term_energy_bound();
     drag_ = c.torque2.kind == Torque::Kind::drag;
-    damping_update_ = resolved_damping_update(c);
     driven_ = c.torque1.kind == Torque::Kind::prescribed_speed;
     // torque1 acts on the motor with shafts, so the driver turns it (and a
     // controller or a motor reads its motion).
@@ -243,11 +157,7 @@ class PlanarSystem {
       controller_ = std::make_shared<const SpeedController>(c, driver_theta0);
     }
     induction_ = c.torque1.kind == Torque::Kind::induction_motor;
-    // The Lagrangian force of a time-varying stiffness (with a constant one
-    // the two forces are the same).
-    lagrangian_ = c.model.mesh_force == MeshForce::lagrangian && constant_k_ == 0.0;
-    options_ = gaps_ || mesh_damping_ > 0.0 || driven_ || drag_ || controller_ || induction_ ||
-               lagrangian_;
+    options_ = driven_ || drag_ || controller_ || induction_;
   }
 
   // A kinematic driver's body (the pinion, the motor with shafts) where its
@@ -259,150 +169,65 @@ class PlanarSystem {
     y[kVelocity + driven_index_] = d.speed_rad_per_s;
   }
 
-  double rb1() const { return rb1_; }
-  double rb2() const { return rb2_; }
   // Whether a kinematic driver sets a body's angle and speed after each step.
   bool driven() const { return driven_; }
   // Whether the mesh force is the Lagrangian one (model.mesh_force).
-  bool lagrangian() const { return lagrangian_; }
+  bool lagrangian() const { return mesh_.lagrangian(); }
   // J1, whose kinetic energy pays a jump of the stored energy (Lagrangian).
   double pinion_inertia() const { return j1_; }
   // Whether the driver holds the pinion's speed (it then pays such a jump).
   bool drives_pinion() const { return driven_ && driven_index_ == kT1; }
 
-  // n of a side, (sin a, cos a) on the drive line, (-sin a, cos a) on the coast line.
-  std::array<double, 2> normal(Region side) const {
-    return {side == Region::n1 ? sin_a_ : -sin_a_, cos_a_};
+  // The mesh's view of y: the gears' turning, and the pinion's centre less the wheel's.
+  static PlanarMeshMotion motion(const Y& y) {
+    const double* v = &y[kVelocity];
+    return {{y[kT1], y[kT2], v[kT1], v[kT2]},
+            y[kX1] - y[kX2],
+            y[kY1] - y[kY2],
+            v[kX1] - v[kX2],
+            v[kY1] - v[kY2]};
   }
   // delta_d = s_d - B, delta_c = -s_c - B and their rates.
-  std::pair<double, double> penetration(Region side, const Y& y) const {
-    const auto n = normal(side);
-    const double s =
-        rb1_ * y[kT1] - rb2_ * y[kT2] + (y[kX1] - y[kX2]) * n[0] + (y[kY1] - y[kY2]) * n[1];
-    const double rate = rb1_ * y[kVelocity + kT1] - rb2_ * y[kVelocity + kT2] +
-                        (y[kVelocity + kX1] - y[kVelocity + kX2]) * n[0] +
-                        (y[kVelocity + kY1] - y[kVelocity + kY2]) * n[1];
-    const double sign = line_sign(side);
-    return {sign * s - backlash_, sign * rate};
+  double delta(Region side, const Y& y) const { return mesh_.delta(side, motion(y)); }
+  double delta_rate(Region side, const Y& y) const {
+    return line_sign(side) * mesh_.s_rate(side, motion(y));
   }
-
-  // Pair j of the side's mode m at X with the line's penetration dl and its
-  // rate: its own penetration and rate, less the gap of its teeth with
-  // [modifications]. The gap's branch is that of the zone the mode holds: a
-  // stage state of a step that ends on a kink sees the zone's own gap.
-  PairPenetration pair_penetration(Region side, const SideMode& m, int j, double x, double dl,
-                                   double dl_rate, double x_rate) const {
-    if (!gaps_) return {dl, dl_rate, 0.0};
-    return pair_penetration_with_gap(*gaps_, kinks_, m.zone[j], side, m.range.k_first + j, x, dl,
-                                     dl_rate, x_rate, xs_, xe_);
-  }
-
-  // The largest penetration of a pair on `side`: the line's, less the least
-  // gap of its pairs with [modifications]. The side is in contact while it is
-  // positive, which is while one of its pairs touches.
+  // The largest penetration of a pair on `side` (MeshLine::contact_value).
   double contact_value(Region side, const Y& y) const {
-    const double dl = penetration(side, y).first;
-    return gaps_ ? dl - least_pair_gap_m(*gaps_, layout_, side, y[kT1]) : dl;
-  }
-
-  // The table of pair k on `side`: the healthy one, or with faults that of
-  // the pair's teeth (nullptr: a missing tooth, the pair carries nothing).
-  const StiffnessTable* pair_table(Region side, int k) const {
-    return teeth_ ? teeth_->table(side, k) : &table_;
-  }
-
-  // Whether pair j of the side's mode m can carry in its part: not with a
-  // missing tooth, nor over a fault across the whole face.
-  static bool carries(const SideMode& m, int j) {
-    return m.table[j] != nullptr && m.table[j]->part_in_contact(m.part[j]);
-  }
-
-  // Ke of pair j of the side's mode m at X and dKe/dX, from its part
-  // (SideMode::part), continued along its tangent beyond the segment or the
-  // part (pair_stiffness_continued): a stage state of a step that ends on a
-  // pair's entry, exit or a fault's edge reaches a hair past it.
-  std::pair<double, double> pair_stiffness(const SideMode& m, int j, double x) const {
-    if (constant_k_ > 0.0) return {constant_k_ / m.range.count, 0.0};
-    const StiffnessTable& table = *m.table[j];
-    const int part = m.part[j];
-    const StiffnessAndDerivative s =
-        table.part_count() > 1 ? pair_stiffness_continued(table, part, x, table.part_start_m(part),
-                                                          table.part_end_m(part))
-                               : pair_stiffness_continued(table, -1, x, xs_, xe_);
-    return {s.stiffness_n_per_m, s.derivative_n_per_m2};
-  }
-
-  // Whether pair j of the side's mode m carries a force: it can carry (its
-  // table, its part) and, with gaps, touches.
-  bool pair_loaded(const SideMode& m, int j) const {
-    return carries(m, j) && (!gaps_ || m.touching[j]);
+    return mesh_.contact_value(side, motion(y));
   }
 
   // The mesh's stored energy of `side` at y in the side's mode m: each pair
   // that touches by its own penetration.
-  double mesh_energy(Region side, const Y& y, const SideMode& m) const {
-    if (!m.contact) return 0.0;
-    const double dl = penetration(side, y).first;
-    const double ref = layout_.reference_m(side, y[kT1]);
-    double u = 0.0;
-    for (int j = 0; j < m.range.count; ++j) {
-      if (!pair_loaded(m, j)) continue;
-      const double x = layout_.position_m(ref, m.range.k_first + j);
-      const double dk = pair_penetration(side, m, j, x, dl, 0.0, 0.0).delta_m;
-      u += 0.5 * pair_stiffness(m, j, x).first * dk * dk;
-    }
-    return u;
+  double mesh_energy(const Y& y, const Mode& m) const {
+    return mesh_.elastic_energy_j(motion(y), m);
   }
 
   // The mesh's stored energy of both sides by term of (29), as the
   // torsional ledger reports it (F = Ke delta of each pair inside the segment).
   ElasticEnergy mesh_terms(const Y& y, const PlanarMode& mode) const {
     ElasticEnergy u;
-    for (const Region side : kSides) {
-      const SideMode& m = mode[side_index(side)];
-      if (!m.contact) continue;
-      const double line_dl = penetration(side, y).first;
-      const double ref = layout_.reference_m(side, y[kT1]);
-      for (int j = 0; j < m.range.count; ++j) {
-        if (!pair_loaded(m, j)) continue;
-        const double x = layout_.position_m(ref, m.range.k_first + j);
-        const double dl = pair_penetration(side, m, j, x, line_dl, 0.0, 0.0).delta_m;
-        if (constant_k_ > 0.0) {
-          u.j[index_of(Term::hertz)] += 0.5 * constant_k_ / m.range.count * dl * dl;
-          continue;
-        }
-        const StiffnessTable& table = *m.table[j];
-        // At a fault's edge, the side of the pair's part: the jump between
-        // the two is booked at the event.
-        const Compliances c =
-            table.part_count() > 1
-                ? table.compliance_in_part(
-                      std::clamp(x, table.part_start_m(m.part[j]), table.part_end_m(m.part[j])),
-                      m.part[j])
-                : table.compliance(std::clamp(x, xs_, xe_));
-        const ElasticEnergy pair = pair_energy(c, dl / c.total_m_per_n());
-        for (std::size_t i = 0; i < kTermCount; ++i) u.j[i] += pair.j[i];
-      }
-    }
+    const PlanarMeshMotion q = motion(y);
+    for (const Mode& m : mode) mesh_.add_stored_energy(q, m, u);
     return u;
   }
 
   // Whether a term's energy at y in the mode (mesh_terms) could exceed its
-  // entry of `most`: not when the bound above stays below every entry, and
-  // the ledger then need not evaluate the terms (most steps, once the
-  // largest penetration has passed).
+  // entry of `most`: not when the mesh's bound (MeshLine::term_energy_bound)
+  // stays below every entry, and the ledger then need not evaluate the terms
+  // (most steps, once the largest penetration has passed).
   bool terms_may_exceed(const Y& y, const PlanarMode& mode,
                         const std::array<double, kTermCount>& most) const {
-    if (!bounded_) return true;
+    if (!term_bound_) return true;
     double squares = 0.0;  // delta^2 summed over the loaded pairs
     for (const Region side : kSides) {
-      const SideMode& m = mode[side_index(side)];
-      if (!m.contact) continue;
-      const double dl = penetration(side, y).first;
-      squares += m.range.count * dl * dl;
+      const Mode& m = mode[side_index(side)];
+      if (m.region == Region::free) continue;
+      const double dl = delta(side, y);
+      squares += m.count * dl * dl;
     }
     for (std::size_t i = 0; i < kTermCount; ++i) {
-      if (term_bound_[i] * squares > most[i]) return true;
+      if ((*term_bound_)[i] * squares > most[i]) return true;
     }
     return false;
   }
@@ -410,85 +235,25 @@ class PlanarSystem {
   // The side's contact, loaded pairs, their parts and with gaps which of
   // them touch and their gaps' zones at y (the forces' signs are
   // classify_forces's, once the contact memory is set).
-  SideMode classify_geometry(Region side, const Y& y) const {
-    SideMode m;
-    m.contact = contact_value(side, y) > 0.0;
-    const double dl = penetration(side, y).first;
-    const double ref = layout_.reference_m(side, y[kT1]);
-    m.range = layout_.loaded(ref);
-    for (int j = 0; j < m.range.count; ++j) {
-      const int k = m.range.k_first + j;
-      const double x = layout_.position_m(ref, k);
-      if (gaps_) {
-        // As contact_value: the side is in contact exactly when one of these touches.
-        m.touching[j] = dl - gaps_->gap_m(side, k, x) > 0.0;
-        m.zone[j] = gap_zone(kinks_, x);
-      }
-      const StiffnessTable* table = pair_table(side, k);
-      m.table[j] = table;
-      m.part[j] =
-          table != nullptr && table->part_count() > 1 ? table->part_of(std::clamp(x, xs_, xe_)) : 0;
-    }
-    return m;
+  Mode classify_geometry(Region side, const Y& y) const {
+    return mesh_.classify_line(side, motion(y));
   }
 
   // The friction sign and clipping of each pair of the side's mode m at y.
-  void classify_forces(Region side, const Y& y, const ContactMemory& memory, SideMode& m) const {
-    if (!m.contact) return;
-    const SideMotion sm = side_motion(side, y);
-    for (int j = 0; j < m.range.count; ++j) {
-      const PairMotion p = pair_motion(side, y, sm, memory, m, j, true);
-      m.slip[j] = p.sliding_m_s >= 0.0 ? 1.0 : -1.0;
-      m.clipped[j] = p.push_n < 0.0;
-    }
+  void classify_forces(const Y& y, const ContactMemory& memory, Mode& m) const {
+    mesh_.classify_forces(motion(y), memory, m);
   }
 
-  // The values whose sign changes end the mode (each >= 0 while it holds, as
-  // GearSystem::event_values): per side, its contact_value (contact begins or
-  // ends), and in contact the bounds of its loaded pairs (42) and per pair
-  // the ends of its part, with gaps its own penetration (it touches or lets
-  // go) and the kinks of its gap around it, its sliding speed times its sign
-  // and its push F + G (clipping). Returns how many are set.
+  // The values whose sign changes end the mode (each >= 0 while it holds):
+  // those of each line in its own mode, the drive line's first. Returns how
+  // many are set.
   int event_values(const Y& y, const PlanarMode& mode, const std::array<ContactMemory, 2>& memory,
                    PlanarEvents& g) const {
+    const PlanarMeshMotion q = motion(y);
     int n = 0;
     for (const Region side : kSides) {
       const std::size_t i = side_index(side);
-      const SideMode& m = mode[i];
-      if (!m.contact) {
-        g[n++] = -contact_value(side, y);
-        continue;
-      }
-      const SideMotion sm = side_motion(side, y);
-      const double dl = sm.dl;
-      const double dl_rate = sm.dl_rate;
-      // With gaps the contact ends where the last touching pair lets go,
-      // which the pairs' own values below locate.
-      g[n++] = gaps_ ? 1.0 : dl;
-      // Each position is ref + k t0 for its own k, as MeshLayout::loaded computes it.
-      const double ref = sm.reference_m;
-      const int first = m.range.k_first;
-      const int last = first + m.range.count - 1;
-      g[n++] = layout_.position_m(ref, first) - xs_;
-      g[n++] = xs_ - layout_.position_m(ref, first - 1);
-      g[n++] = xe_ - layout_.position_m(ref, last);
-      g[n++] = layout_.position_m(ref, last + 1) - xe_;
-      const double x_rate = line_sign(side) * rb1_ * y[kVelocity + kT1];
-      for (int j = 0; j < m.range.count; ++j) {
-        const StiffnessTable* table = m.table[j];
-        const double x = layout_.position_m(ref, first + j);
-        append_part_events(table, m.part[j], x, g.data(), n);
-        if (gaps_) {
-          const double dk = pair_penetration(side, m, j, x, dl, dl_rate, x_rate).delta_m;
-          if (!append_gap_events(m.touching[j], m.zone[j], kinks_, x, dk, g.data(), n)) continue;
-        }
-        const PairMotion p = pair_motion(side, y, sm, memory[i], m, j, true);
-        // A smoothed sign has no switch to locate.
-        g[n++] = c_.model.friction_smoothing_speed_m_s > 0.0 || m.slip_per_stage
-                     ? 1.0
-                     : m.slip[j] * p.sliding_m_s;
-        g[n++] = m.clipped[j] ? -p.push_n : p.push_n;
-      }
+      n += mesh_.line_event_values(side, q, mode[i], memory[i], g.data() + n);
     }
     return n;
   }
@@ -526,211 +291,56 @@ class PlanarSystem {
     return 0.5 * e;
   }
 
-  // What every pair of a side shares at y: the line's penetration and its
-  // rate, the reference position of the pair k = 0, and the centres' share
-  // of the sliding speed: sign (u1' - u2') . t, t = e_z x n. The pinion's
-  // flank moves along t at w1 X on the drive line and at -w1 X on the coast
-  // line (there the contact lies at -X n2 from the pinion's base circle), so
-  // the sliding speed w1 X - w2 (lp - X) the side's friction sign is taken
-  // from counts the centres' relative speed along +t on N1 and along -t on
-  // N2 (docs/vibration.md).
-  struct SideMotion {
-    double dl, dl_rate, reference_m, slide_of_centres_m_s;
-  };
-  SideMotion side_motion(Region side, const Y& y) const {
-    const double* v = &y[kVelocity];
-    const auto n = normal(side);
-    const auto [dl, dl_rate] = penetration(side, y);
-    return {dl, dl_rate, layout_.reference_m(side, y[kT1]),
-            line_sign(side) * ((v[kX1] - v[kX2]) * -n[1] + (v[kY1] - v[kY2]) * n[0])};
-  }
-
-  // Pair j of the side's mode m at y: its X, its own penetration and rate
-  // (the line's less its gap), Ke and dKe/dX, elastic force F, push F + G
-  // (the normal force unless clipped) and sliding speed: (36)-(38) with the
-  // centres' relative speed along the flanks' common tangent t = e_z x n,
-  // the speed whose product with f N is the friction's loss
-  // (docs/vibration.md). A pair that carries no force (a missing tooth, no
-  // contact over a fault across the face, an open gap) pushes 1.
-  struct PairMotion {
-    bool carries = false;
-    PairPenetration own{0.0, 0.0, 0.0};
-    double x_m = 0.0, ke = 0.0, dke = 0.0, elastic_n = 0.0, push_n = 1.0, sliding_m_s = 0.0;
-  };
-  // With sign_only, push_n has the sign and zeros of F + G only: with D
-  // proportional to the pair's own Ke, F + G = Ke delta (1 + (D/K) delta'),
-  // and the positive Ke need not be read (the event values and the forces'
-  // classification want no more); ke, dke and elastic_n are then not set.
-  // kGaps false compiles out the gaps, for the right-hand side of a run
-  // without them (motion<false>). sm: side_motion(side, y).
-  template <bool kGaps = true>
-  PairMotion pair_motion(Region side, const Y& y, const SideMotion& sm, const ContactMemory& memory,
-                         const SideMode& m, int j, bool sign_only = false) const {
-    const double* v = &y[kVelocity];
-    const double dl = sm.dl;
-    const double dl_rate = sm.dl_rate;
-    const int k = m.range.k_first + j;
-    PairMotion p;
-    p.x_m = layout_.position_m(sm.reference_m, k);
-    p.sliding_m_s = sliding_speed(v[kT1], v[kT2], p.x_m, lp_) + sm.slide_of_centres_m_s;
-    if (!carries(m, j) || (kGaps && gaps_ && !m.touching[j])) return p;
-    p.carries = true;
-    p.own = kGaps
-                ? pair_penetration(side, m, j, p.x_m, dl, dl_rate, line_sign(side) * rb1_ * v[kT1])
-                : PairPenetration{dl, dl_rate, 0.0};
-    const double dk = p.own.delta_m;
-    const double dk_rate = p.own.rate_m_s;
-    if (sign_only && c_.model.damping_stiffness == DampingStiffness::current_pair) {
-      p.push_n = dk * (1.0 + memory.damping_per_stiffness_s_m * dk_rate);
-      return p;
-    }
-    std::tie(p.ke, p.dke) = pair_stiffness(m, j, p.x_m);
-    p.elastic_n = elastic_force(p.ke, dk);
-    const double d = c_.model.damping_stiffness == DampingStiffness::current_pair
-                         ? memory.damping_per_stiffness_s_m * p.ke
-                         : memory.damping_per_stiffness_s_m * memory.frozen_stiffness_n_per_m;
-    p.push_n = p.elastic_n + hertzian_damping_force(d, dk, dk_rate);
-    return p;
-  }
-
   // The equations of motion in the mode, with the contact memory of each side.
   void rhs(double t, const Y& y, const PlanarMode& mode, const std::array<ContactMemory, 2>& memory,
            Y& dy, Forces* forces = nullptr) const {
     if (options_) {
-      motion<true>(t, y, mode, memory, dy, forces);
+      equations<true>(t, y, mode, memory, dy, forces);
     } else {
-      motion<false>(t, y, mode, memory, dy, forces);
+      equations<false>(t, y, mode, memory, dy, forces);
     }
   }
 
  private:
   // The equations of motion; kOptions false compiles out the code of the
-  // options a case may not have (gaps, the mesh damper, a driver, a drag), so
+  // drives a case may not have (a driver, a controller, a motor, a drag), so
   // that a run without them pays nothing for them.
   template <bool kOptions>
-  void motion(double t, const Y& y, const PlanarMode& mode,
-              const std::array<ContactMemory, 2>& memory, Y& dy, Forces* forces) const {
+  void equations(double t, const Y& y, const PlanarMode& mode,
+                 const std::array<ContactMemory, 2>& memory, Y& dy, Forces* forces) const {
     const double* v = &y[kVelocity];
     const double w1 = v[kT1];
     const double w2 = v[kT2];
-    // Forces on the centres (x, y) and moments about them (in theta's sense).
-    double f1[2] = {-m_.stiffness_x_n_per_m[0] * y[kX1] - m_.damping_x_n_s_per_m[0] * v[kX1],
-                    -m_.stiffness_y_n_per_m[0] * y[kY1] - m_.damping_y_n_s_per_m[0] * v[kY1]};
-    double f2[2] = {-m_.stiffness_x_n_per_m[1] * y[kX2] - m_.damping_x_n_s_per_m[1] * v[kX2],
-                    -m_.stiffness_y_n_per_m[1] * y[kY2] - m_.damping_y_n_s_per_m[1] * v[kY2]};
+    // Forces on the centres (x, y) and moments about them (in theta's sense):
+    // the bearings', then the mesh's.
+    PlanarLoads loads;
+    loads.force_a = {-m_.stiffness_x_n_per_m[0] * y[kX1] - m_.damping_x_n_s_per_m[0] * v[kX1],
+                     -m_.stiffness_y_n_per_m[0] * y[kY1] - m_.damping_y_n_s_per_m[0] * v[kY1]};
+    loads.force_b = {-m_.stiffness_x_n_per_m[1] * y[kX2] - m_.damping_x_n_s_per_m[1] * v[kX2],
+                     -m_.stiffness_y_n_per_m[1] * y[kY2] - m_.damping_y_n_s_per_m[1] * v[kY2]};
     const double bearing_power =
         m_.damping_x_n_s_per_m[0] * v[kX1] * v[kX1] + m_.damping_y_n_s_per_m[0] * v[kY1] * v[kY1] +
         m_.damping_x_n_s_per_m[1] * v[kX2] * v[kX2] + m_.damping_y_n_s_per_m[1] * v[kY2] * v[kY2];
-    double moment1 = 0.0;
-    double moment2 = 0.0;
-    double hertz_power = 0.0;
-    double friction_power = 0.0;
-    double parametric_power = 0.0;
+    const PlanarMeshMotion q = motion(y);
+    MeshPowers powers;
+    // Each line's pairs, in the line's own mode (whatever a stage state says:
+    // the forces stay smooth within a step); the friction summed over both.
+    ContactTotals totals;
     for (const Region side : kSides) {
       const std::size_t i = side_index(side);
-      const SideMode& m = mode[i];
-      // Contact, pairs, parts, touching pairs, gaps' zones, friction signs
-      // and clipping are the mode's, whatever a stage state says: the forces
-      // stay smooth within a step.
-      if (!m.contact) continue;
-      const SideMotion sm = side_motion(side, y);
-      const double dl = sm.dl;
-      const double sign = line_sign(side);
-      const auto n = normal(side);
-      // t = e_z x n: the flanks' common tangent, along which friction acts.
-      const double tx = -n[1];
-      const double ty = n[0];
-      const double x_rate = sign * rb1_ * w1;
-      double total = 0.0;
-      for (int j = 0; j < m.range.count; ++j) {
-        const PairMotion p = pair_motion<kOptions>(side, y, sm, memory[i], m, j);
-        // A pair that carries no force: no damping, no friction.
-        if (!p.carries) continue;
-        const double x = p.x_m;
-        const double dk = p.own.delta_m;
-        const double dke = p.dke;
-        const double f_elastic = p.elastic_n;
-        // A tooth pushes, never pulls: clipped at the event where F + G turns negative.
-        const double normal_n = normal_force(f_elastic, p.push_n - f_elastic, m.clipped[j]);
-        const double vs = p.sliding_m_s;
-        const double f = pair_friction_coefficient(c_.model, c_.gears.face_width_m, normal_n, vs,
-                                                   entrainment_speed(w1, w2, x, lp_));
-        const double smoothing = c_.model.friction_smoothing_speed_m_s;
-        const double slip = smoothing > 0.0    ? std::tanh(vs / smoothing)
-                            : m.slip_per_stage ? (vs >= 0.0 ? 1.0 : -1.0)
-                                               : m.slip[j];
-        const double ff = friction_force(side, f, normal_n, slip);
-        moment1 -= sign * (normal_n * rb1_ + ff * x);
-        moment2 += sign * (normal_n * rb2_ + ff * (lp_ - x));
-        // On the pinion -sign N n - Ff t, on the wheel the opposite. The
-        // friction's sign does not follow the line's: Ff t at the contact
-        // has the moment +Ff X about O1 on N1 (the contact at +X n1 from the
-        // pinion's base circle) and -Ff X on N2 (at -X n2), so -Ff t is what
-        // gives the pinion the torque -sign Ff X above on either line.
-        const double fx = -sign * (normal_n * n[0] + sign * ff * tx);
-        const double fy = -sign * (normal_n * n[1] + sign * ff * ty);
-        f1[0] += fx;
-        f1[1] += fy;
-        f2[0] -= fx;
-        f2[1] -= fy;
-        hertz_power += (normal_n - f_elastic) * p.own.rate_m_s;
-        friction_power += f * normal_n * slip * vs;
-        // d/dt of 1/2 Ke(X) delta^2 at fixed delta, X a function of theta1
-        // alone (dX/dtheta1 = sign Rb1), as in the torsional system.
-        // Newtonian: work of the varying stiffness. Lagrangian: -dV/dtheta1
-        // adds the torque -1/2 dKe/dX sign Rb1 delta^2 on the pinion, whose
-        // power is minus this; a clipped pair exerts no force, so the stored
-        // energy it gains or loses counts with its damping loss.
-        if (!(kOptions && lagrangian_)) {
-          parametric_power += 0.5 * dk * dk * dke * x_rate;
-        } else if (m.clipped[j]) {
-          hertz_power -= 0.5 * dk * dk * dke * x_rate;
-        } else {
-          moment1 -= 0.5 * dk * dk * dke * sign * rb1_;
-        }
-        // The gap moves with the pinion: N does the work -N de_k/dX dX/dt on
-        // the pair's penetration at fixed centres and angles, the varying
-        // mesh's as in the torsional system. Lagrangian: N acts on delta_k,
-        // whose lever on the pinion is sign Rb1 (1 - de_k/dX).
-        if (kOptions && gaps_) {
-          if (!lagrangian_) {
-            parametric_power -= normal_n * p.own.gap_slope * x_rate;
-          } else {
-            moment1 += sign * rb1_ * normal_n * p.own.gap_slope;
-          }
-        }
-        total += normal_n;
-        if (forces != nullptr) {
-          forces->friction_n += ff;
-          forces->mesh_energy_j[i] += 0.5 * p.ke * dk * dk;
-        }
-      }
+      mesh_.add_line_forces(q, mode[i], memory[i], loads, powers,
+                            forces != nullptr ? &totals : nullptr);
       if (forces != nullptr) {
-        forces->normal_n[i] = total;
-        forces->penetration_m[i] = dl;
+        forces->normal_n[i] = totals.normal_force_n;
+        forces->mesh_energy_j[i] = totals.elastic_energy_j;
+        totals.normal_force_n = 0.0;
+        totals.elastic_energy_j = 0.0;
       }
     }
-    double mesh_damping_power = 0.0;
-    if (kOptions && mesh_damping_ > 0.0) {
-      // The viscous mesh damper, half of c on each line of action on that
-      // line's s' (s_d', s_c'), in contact and in the backlash alike: with the
-      // centres fixed both rates are s' and the two halves are the torsional
-      // c s' (docs/vibration.md). Each acts as a contact force of its line
-      // would: on the pinion -f n, -f Rb1, on the wheel +f n, +f Rb2.
-      const double roll = rb1_ * w1 - rb2_ * w2;
-      for (const Region side : kSides) {
-        const auto n = normal(side);
-        const double rate = roll + (v[kX1] - v[kX2]) * n[0] + (v[kY1] - v[kY2]) * n[1];
-        const double force = 0.5 * mesh_damping_ * rate;
-        moment1 -= force * rb1_;
-        moment2 += force * rb2_;
-        f1[0] -= force * n[0];
-        f1[1] -= force * n[1];
-        f2[0] += force * n[0];
-        f2[1] += force * n[1];
-        mesh_damping_power += force * rate;
-      }
-    }
+    if (forces != nullptr) forces->friction_n = totals.friction_force_n;
+    mesh_.add_damper(q, loads, powers);
+    double moment1 = loads.moment_a;
+    double moment2 = loads.moment_b;
     // A driven body has the closed form's acceleration in every stage (its
     // angle and speed are set to the closed form after every step): the
     // driver's torque is what gives it that against the other moments on it.
@@ -775,20 +385,20 @@ class PlanarSystem {
       t1 = shaft_m;
       t2 = shaft_l;
     }
-    for (const std::size_t q : {kX1, kY1, kT1, kX2, kY2, kT2}) dy[q] = v[q];
-    dy[kVelocity + kX1] = f1[0] * inverse_mass_[kX1];
-    dy[kVelocity + kY1] = f1[1] * inverse_mass_[kY1];
+    for (const std::size_t i : {kX1, kY1, kT1, kX2, kY2, kT2}) dy[i] = v[i];
+    dy[kVelocity + kX1] = loads.force_a[0] * inverse_mass_[kX1];
+    dy[kVelocity + kY1] = loads.force_a[1] * inverse_mass_[kY1];
     dy[kVelocity + kT1] = (t1 + moment1) * inverse_mass_[kT1];
-    dy[kVelocity + kX2] = f2[0] * inverse_mass_[kX2];
-    dy[kVelocity + kY2] = f2[1] * inverse_mass_[kY2];
+    dy[kVelocity + kX2] = loads.force_b[0] * inverse_mass_[kX2];
+    dy[kVelocity + kY2] = loads.force_b[1] * inverse_mass_[kY2];
     dy[kVelocity + kT2] = (t2 + moment2) * inverse_mass_[kT2];
     dy[kWork] = work;
-    dy[kHertzLoss] = hertz_power;
-    dy[kSlidingLoss] = friction_power;
-    dy[kParametric] = parametric_power;
+    dy[kHertzLoss] = powers.damping_w;
+    dy[kSlidingLoss] = powers.friction_w;
+    dy[kParametric] = powers.parametric_w;
     dy[kBearingLoss] = bearing_power;
     dy[kShaftLoss] = shaft_power;
-    dy[kMeshDamperLoss] = mesh_damping_power;
+    dy[kMeshDamperLoss] = powers.mesh_damping_w;
     if (kOptions && driven_) dy[kVelocity + driven_index_] = driven_acceleration;
   }
 
@@ -799,81 +409,28 @@ class PlanarSystem {
   }
 
  public:
-  // The memory of a contact that begins on `side` at y, in the side's mode m.
-  ContactMemory onset(Region side, const Y& y, const SideMode& m, double& impact_speed,
-                      double& restitution) const {
-    const auto [dl, dl_rate] = penetration(side, y);
-    double approach = dl_rate;
-    if (gaps_) {
-      // The fastest approach among the pairs that touch, each at its own
-      // penetration rate, as in the torsional system.
-      const double ref = layout_.reference_m(side, y[kT1]);
-      const double x_rate = line_sign(side) * rb1_ * y[kVelocity + kT1];
-      approach = -std::numeric_limits<double>::infinity();
-      for (int j = 0; j < m.range.count; ++j) {
-        if (!m.touching[j]) continue;
-        const double x = layout_.position_m(ref, m.range.k_first + j);
-        approach =
-            std::max(approach, pair_penetration(side, m, j, x, dl, dl_rate, x_rate).rate_m_s);
-      }
-    }
-    const OnsetDamping d = onset_damping(c_.model, damping_update_, approach);
-    impact_speed = d.impact_speed_m_s;
-    restitution = d.restitution;
-    ContactMemory memory;
-    memory.damping_per_stiffness_s_m = d.damping_per_stiffness_s_m;
-    if (c_.model.damping_stiffness == DampingStiffness::hertz) {
-      memory.frozen_stiffness_n_per_m = hertz_stiffness(c_.gears);
-    } else {
-      // The loaded pair nearest the pitch point; with faults, among the
-      // pairs that carry (none: the stiffness stays 0, as nothing pushes).
-      const double ref = layout_.reference_m(side, y[kT1]);
-      const double pitch = pitch_point_position(c_.gears);
-      int nearest = -1;
-      for (int j = 0; j < m.range.count; ++j) {
-        if (!carries(m, j)) continue;
-        if (nearest < 0 ||
-            std::fabs(layout_.position_m(ref, m.range.k_first + j) - pitch) <
-                std::fabs(layout_.position_m(ref, m.range.k_first + nearest) - pitch)) {
-          nearest = j;
-        }
-      }
-      if (nearest >= 0) {
-        memory.frozen_stiffness_n_per_m =
-            pair_stiffness(m, nearest, layout_.position_m(ref, m.range.k_first + nearest)).first;
-      }
-    }
-    return memory;
+  // (32),(33) at the onset of a contact on a side at y, in the side's mode m.
+  MeshLine::Onset onset(const Y& y, const Mode& m) const {
+    return mesh_.damping_at_onset(motion(y), m);
   }
 
  private:
   const SimulationCase& c_;
   const PlanarMounting& m_;
-  const StiffnessTable& table_;
-  std::shared_ptr<const MeshTables> teeth_;
-  // With [modifications]: each pair's gap (docs/faults.md) and the kinks of its slope.
-  std::shared_ptr<const ToothGaps> gaps_;
-  std::vector<double> kinks_;
-  double mesh_damping_ = 0.0;  // c of the viscous mesh damper, N s/m; 0: none
-  bool drag_ = false;          // torque2 a drag
-  DampingUpdate damping_update_ = DampingUpdate::frozen;  // resolved
-  bool driven_ = false;                                   // torque1 a kinematic driver
+  MeshLine mesh_;
+  bool drag_ = false;    // torque2 a drag
+  bool driven_ = false;  // torque1 a kinematic driver
   // torque1 a speed controller's (none otherwise) or an induction motor's,
   // from the motion of the body it acts on (driven_index_).
   std::shared_ptr<const SpeedController> controller_;
   bool induction_ = false;
   std::size_t driven_index_ = kT1;
   double driver_theta0_ = 0.0;
-  bool lagrangian_ = false;
   bool options_ = false;  // any of the above
-  MeshLayout layout_;
-  double rb1_ = 0.0, rb2_ = 0.0, j1_ = 0.0, j2_ = 0.0, backlash_ = 0.0, lp_ = 0.0;
+  double j1_ = 0.0, j2_ = 0.0;
   std::array<double, kVelocity> inverse_mass_{};  // 1/m or 1/J of each position
-  double xs_ = 0.0, xe_ = 0.0, sin_a_ = 0.0, cos_a_ = 0.0, constant_k_ = 0.0;
-  // The bound of terms_may_exceed per term, J/m^2 (bounded_ without gaps or
-  // a constant stiffness).
-  std::array<double, kTermCount> term_bound_{};
-  bool bounded_ = false;
+  // MeshLine::term_energy_bound, per term in J/m^2 (none with gaps or a constant stiffness).
+  std::optional<std::array<double, kTermCount>> term_bound_;
 };
 
 void require(bool ok, const char* key, double value, const char* allowed) {
@@ -1237,9 +794,9 @@ class PlanarRun {
       // reversals are events again.
       bool sticking = false;
       for (const Region side : kSides) {
-        SideMode& m = mode_[side_index(side)];
+        Mode& m = mode_[side_index(side)];
         const std::array<double, kMaxPairs> slip = m.slip;
-        system_.classify_forces(side, y_, memory_[side_index(side)], m);
+        system_.classify_forces(y_, memory_[side_index(side)], m);
         sticking = sticking || slip != m.slip;
       }
       mode_[0].slip_per_stage = sticking;
@@ -1307,12 +864,14 @@ class PlanarRun {
     row.w2_rad_per_s = st.w2_rad_per_s;
     // The drive line's s_d and the larger penetration of a pair; the side in
     // contact (the drive side when both are).
-    row.s_m = system_.penetration(Region::n1, y).first + c_.gears.backlash_m;
+    row.s_m = system_.delta(Region::n1, y) + c_.gears.backlash_m;
     const double dd = system_.contact_value(Region::n1, y);
     const double dc = system_.contact_value(Region::n2, y);
     row.delta_m = std::max(dd, dc);
-    row.region = mode[0].contact ? 1 : (mode[1].contact ? -1 : 0);
-    row.pairs = mode[0].contact ? mode[0].range.count : (mode[1].contact ? mode[1].range.count : 0);
+    const bool drive = mode[0].region != Region::free;
+    const bool coast = mode[1].region != Region::free;
+    row.region = drive ? 1 : (coast ? -1 : 0);
+    row.pairs = drive ? mode[0].count : (coast ? mode[1].count : 0);
     row.normal_force_n = f.normal_n[0] + f.normal_n[1];
     row.friction_force_n = f.friction_n;
     if (control_.on_row) control_.on_row(row);
@@ -1373,15 +932,13 @@ class PlanarRun {
     y_[kVelocity + kT1] =
         pinion_speed_after_jump(jump, system_.pinion_inertia(), y_[kVelocity + kT1],
                                 where(t, steps_taken()), "the loaded pairs change");
-    for (const Region side : kSides) {
-      const std::size_t i = side_index(side);
-      system_.classify_forces(side, y_, memory_[i], mode_[i]);
+    for (std::size_t i = 0; i < kSides.size(); ++i) {
+      system_.classify_forces(y_, memory_[i], mode_[i]);
     }
   }
 
   double mesh_energy(const Y& state) const {
-    return system_.mesh_energy(Region::n1, state, mode_[0]) +
-           system_.mesh_energy(Region::n2, state, mode_[1]);
+    return system_.mesh_energy(state, mode_[0]) + system_.mesh_energy(state, mode_[1]);
   }
 
   // The mode of y_ at t: each side's contact, pairs and parts; an impact
@@ -1390,17 +947,17 @@ class PlanarRun {
   void classify(double t) {
     for (const Region side : kSides) {
       const std::size_t i = side_index(side);
-      const bool before = mode_[i].contact;
+      const bool before = mode_[i].region != Region::free;
       mode_[i] = system_.classify_geometry(side, y_);
-      if (mode_[i].contact && !before) {
-        double speed = 0.0;
-        double restitution = 0.0;
-        memory_[i] = system_.onset(side, y_, mode_[i], speed, restitution);
-        impacts_.begin(side, t, speed, restitution, result_.summary);
-      } else if (!mode_[i].contact && before) {
-        impacts_.end(side, t, -system_.penetration(side, y_).second);
+      const bool now = mode_[i].region != Region::free;
+      if (now && !before) {
+        const MeshLine::Onset onset = system_.onset(y_, mode_[i]);
+        memory_[i] = onset.damping;
+        impacts_.begin(side, t, onset.impact_speed_m_s, onset.restitution, result_.summary);
+      } else if (!now && before) {
+        impacts_.end(side, t, -system_.delta_rate(side, y_));
       }
-      system_.classify_forces(side, y_, memory_[i], mode_[i]);
+      system_.classify_forces(y_, memory_[i], mode_[i]);
     }
   }
 
@@ -1435,7 +992,7 @@ class PlanarRun {
     ps.bearing_fy1_n = bearing[1];
     ps.bearing_fx2_n = bearing[2];
     ps.bearing_fy2_n = bearing[3];
-    ps.dte_m = system_.penetration(Region::n1, state).first;
+    ps.dte_m = system_.delta(Region::n1, state);
     ps.drive_force_n = f.normal_n[0];
     ps.coast_force_n = f.normal_n[1];
     const bool pinion = c_.bearings.sensor_gear == 1;

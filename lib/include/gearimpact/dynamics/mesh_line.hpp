@@ -9,12 +9,18 @@
 // body b its gear 2, each angle positive in the sense its gear turns when gear 1
 // drives. The two-gear torsional system (system.hpp) is one mesh between two
 // bodies; a gear train (train.hpp) has one mesh per pair of gears in contact.
+// The planar system (planar.cpp) sees the same mesh through PlanarMeshMotion:
+// each line of action then adds the centres' motion along its normal to s and
+// to its rate, and the centres' relative speed along the flanks' tangent to
+// the sliding speed, and each line holds a mode and a contact of its own.
 // docs/model.md, sections Contact, damping, friction and Equations of motion.
 #pragma once
 
 #include <array>
 #include <cmath>
 #include <memory>
+#include <optional>
+#include <type_traits>
 #include <vector>
 
 #include "gearimpact/case/simulation_case.hpp"
@@ -77,6 +83,9 @@ struct ContactTotals {
   // Sum of f N over the pairs: over normal_force_n, the line's load-weighted
   // coefficient of friction.
   double friction_load_n = 0.0;
+  // Sum of 1/2 Ke delta^2 over the pairs, with Ke as the force reads it
+  // (MeshLine::elastic_energy_j): the planar ledger takes it from the forces.
+  double elastic_energy_j = 0.0;
 };
 
 // f of (35) of a pair with normal force N, sliding speed Vs and entrainment
@@ -108,6 +117,25 @@ struct MeshMotion {
   double theta_b_rad;
   double w_a_rad_per_s;
   double w_b_rad_per_s;
+};
+
+// The planar model's motion of a mesh's bodies: their turning and their
+// centres' motion, body a's centre less body b's, in the frame whose x runs
+// from a's centre to b's and whose y is across it (docs/vibration.md).
+struct PlanarMeshMotion : MeshMotion {
+  double dx_m;
+  double dy_m;
+  double dvx_m_s;
+  double dvy_m_s;
+};
+
+// The loads of a mesh on its bodies in the planar model: the moments about
+// the centres (each in its body's sense) and the forces on the centres.
+struct PlanarLoads {
+  double moment_a = 0.0;
+  double moment_b = 0.0;
+  std::array<double, 2> force_a{};
+  std::array<double, 2> force_b{};
 };
 
 // The powers of the ledger a mesh adds to (each accumulated, in W): the
@@ -142,9 +170,40 @@ class MeshLine {
   double s_rate(const MeshMotion& q) const {
     return rb1_ * q.w_a_rad_per_s - rb2_ * q.w_b_rad_per_s;
   }
+  // The unit normal of `line` in the frame of PlanarMeshMotion: (sin a, cos a)
+  // on the drive line N1, (-sin a, cos a) on the coast line N2, a the
+  // operating pressure angle.
+  std::array<double, 2> normal(Region line) const {
+    return {line == Region::n1 ? sin_a_ : -sin_a_, cos_a_};
+  }
+  // s of `line`: with rigid centres the same on both lines; in the planar
+  // model s_d, s_c of docs/vibration.md, which add the centres' relative
+  // displacement along the line's normal (the backlash breathes), and their rates.
+  double s(Region, const MeshMotion& q) const { return s(q); }
+  double s_rate(Region, const MeshMotion& q) const { return s_rate(q); }
+  double s(Region line, const PlanarMeshMotion& q) const {
+    const std::array<double, 2> n = normal(line);
+    return rb1_ * q.theta_a_rad - rb2_ * q.theta_b_rad + q.dx_m * n[0] + q.dy_m * n[1];
+  }
+  double s_rate(Region line, const PlanarMeshMotion& q) const {
+    const std::array<double, 2> n = normal(line);
+    return rb1_ * q.w_a_rad_per_s - rb2_ * q.w_b_rad_per_s + q.dvx_m_s * n[0] + q.dvy_m_s * n[1];
+  }
   // (31)
-  double delta(Region r, const MeshMotion& q) const { return penetration(r, s(q), backlash_); }
-  double pair_position(const Mode& m, const MeshMotion& q, int j) const {
+  template <typename Motion>
+  double delta(Region r, const Motion& q) const {
+    return penetration(r, s(r, q), backlash_);
+  }
+  // The largest penetration of a pair on `line`: the line's, less the least
+  // gap of its pairs with modifications. The line is in contact while it is
+  // positive, which is while one of its pairs touches (classify_line).
+  template <typename Motion>
+  double contact_value(Region line, const Motion& q) const {
+    const double dl = delta(line, q);
+    return gaps_ ? dl - least_gap_m(line, q.theta_a_rad) : dl;
+  }
+  template <typename Motion>
+  double pair_position(const Mode& m, const Motion& q, int j) const {
     return layout_.position_m(layout_.reference_m(m.region, q.theta_a_rad), m.k_first + j);
   }
 
@@ -156,15 +215,36 @@ class MeshLine {
   [[gnu::always_inline]] void add_forces(const MeshMotion& q, const Mode& m, const ContactMemory& d,
                                          double& moment_a, double& moment_b, MeshPowers& powers,
                                          ContactTotals* totals) const;
+  // The planar model's: the forces of the pairs of one line's mode m (the
+  // other line holds a mode of its own) on the bodies' turning and on their
+  // centres, added to `loads`, the powers to `powers`, the totals when asked.
+  // The viscous mesh damper is add_damper's.
+  [[gnu::always_inline]] void add_line_forces(const PlanarMeshMotion& q, const Mode& m,
+                                              const ContactMemory& d, PlanarLoads& loads,
+                                              MeshPowers& powers, ContactTotals* totals) const;
+  // The planar model's viscous mesh damper: half of c on each line of action
+  // on that line's s' (s_d', s_c'), in contact and in the backlash alike; with
+  // the centres fixed both rates are s' and the two halves are the torsional
+  // c s' (docs/vibration.md). Each acts as a contact force of its line would.
+  void add_damper(const PlanarMeshMotion& q, PlanarLoads& loads, MeshPowers& powers) const;
 
   // The mesh's event values in mode m, written from g[0]: each >= 0 while
   // the mode holds. Returns how many are set (at most kMaxMeshEvents).
   int event_values(const MeshMotion& q, const Mode& m, const ContactMemory& d, double* g) const;
+  // The planar model's event values of `line` in its own mode m: in free
+  // flight minus contact_value (the line's contact begins), in contact those
+  // of event_values. Returns how many are set.
+  int line_event_values(Region line, const PlanarMeshMotion& q, const Mode& m,
+                        const ContactMemory& d, double* g) const;
 
   // Region and loaded pairs of the motion, (31) and (42), with the same tests as event_values.
   Mode classify_geometry(const MeshMotion& q) const;
+  // The planar model's: the contact of `line` alone (free, or `line` with its
+  // loaded pairs), with the same test as line_event_values.
+  Mode classify_line(Region line, const PlanarMeshMotion& q) const;
   // Friction signs and clipping of the pairs of m at the motion.
-  void classify_forces(const MeshMotion& q, const ContactMemory& d, Mode& m) const;
+  template <typename Motion>
+  void classify_forces(const Motion& q, const ContactMemory& d, Mode& m) const;
   // After a mode change that kept the region: `now` (classified afresh) with the friction sign
   // and clipping of each pair that stays loaded carried over from `old`, unless this event is
   // theirs (an event value of the carried mode is then negative, and `now` stands).
@@ -177,12 +257,75 @@ class MeshLine {
     double restitution;
     ContactMemory damping;
   };
-  Onset damping_at_onset(const MeshMotion& q, const Mode& m) const;
+  template <typename Motion>
+  Onset damping_at_onset(const Motion& q, const Mode& m) const;
 
   // (5),(16),(17),(28) of the loaded pairs, F = Ke delta each.
-  ElasticEnergy stored_energy(const MeshMotion& q, const Mode& m) const;
+  ElasticEnergy stored_energy(const MeshMotion& q, const Mode& m) const {
+    ElasticEnergy u;
+    add_stored_energy(q, m, u);
+    return u;
+  }
+  // The same added to u.
+  template <typename Motion>
+  void add_stored_energy(const Motion& q, const Mode& m, ElasticEnergy& u) const;
+  // 1/2 Ke delta^2 of the loaded pairs with Ke as the force reads it (continued
+  // along its tangent beyond the segment, pair_stiffness): the potential of
+  // the elastic forces of add_forces, which the planar ledger books.
+  template <typename Motion>
+  double elastic_energy_j(const Motion& q, const Mode& m) const;
+
+  // A bound b_i such that each term i of (29) of the stored energy in any mode
+  // is at most b_i times the sum over the loaded pairs of the line's delta^2:
+  // the largest 1/2 c_i / c_total^2 (a pair stores 1/2 delta^2 c_i / c_total^2
+  // in a term of compliance c_i) over every table a pair can take and each
+  // part it carries in, sampled 16 times on each of the table's pieces (smooth
+  // polynomials, which move by far less than the 5 % added between two
+  // samples). None with gaps (a gap can be negative, pitch and thickness
+  // errors: a pair's delta may then exceed the line's) or a constant stiffness.
+  std::optional<std::array<double, kTermCount>> term_energy_bound() const;
 
  private:
+  // True for the planar model's motion: the centres move.
+  template <typename Motion>
+  static constexpr bool kCentres = std::is_same_v<Motion, PlanarMeshMotion>;
+  // The sliding speed of a pair at X: (36)-(38), and in the planar model the
+  // centres' relative speed along the flanks' common tangent t = e_z x n,
+  // sign (u_a' - u_b') . t. The pinion's flank moves along t at w1 X on the
+  // drive line and at -w1 X on the coast line (there the contact lies at
+  // -X n2 from the pinion's base circle), so the sliding speed w1 X - w2 (lp
+  // - X) the line's friction sign is taken from counts the centres' relative
+  // speed along +t on N1 and along -t on N2 (docs/vibration.md).
+  double centres_slide(Region line, const MeshMotion&) const {
+    static_cast<void>(line);
+    return 0.0;
+  }
+  double centres_slide(Region line, const PlanarMeshMotion& q) const {
+    const std::array<double, 2> n = normal(line);
+    return line_sign(line) * (q.dvx_m_s * -n[1] + q.dvy_m_s * n[0]);
+  }
+  template <typename Motion>
+  double pair_sliding(const Motion& q, double x, double slide) const {
+    if constexpr (kCentres<Motion>) {
+      return sliding_speed(q.w_a_rad_per_s, q.w_b_rad_per_s, x, lp_) + slide;
+    } else {
+      static_cast<void>(slide);
+      return sliding_speed(q.w_a_rad_per_s, q.w_b_rad_per_s, x, lp_);
+    }
+  }
+  // The event values of a mode in contact, from g[0]; returns how many.
+  template <typename Motion>
+  int contact_event_values(const Motion& q, const Mode& m, const ContactMemory& d, double* g) const;
+  // The contact of `line` at the motion, free when none of its pairs touches.
+  template <typename Motion>
+  Mode line_contact(Region line, const Motion& q) const;
+  // The pairs' forces of a mode in contact, added to the moments and, in the
+  // planar model, to the centres' forces `centres` (a's; b's the opposite).
+  template <typename Motion>
+  [[gnu::always_inline]] void add_pair_forces(const Motion& q, const Mode& m,
+                                              const ContactMemory& d, double& moment_a,
+                                              double& moment_b, PlanarLoads* centres,
+                                              MeshPowers& powers, ContactTotals* totals) const;
   // The table of pair k on `line`: the healthy one, or with faults that of
   // the pair's teeth (nullptr: a missing tooth, the pair carries nothing).
   const StiffnessTable* pair_table(Region line, int k) const {
@@ -199,7 +342,8 @@ class MeshLine {
   void pair_stiffness(const StiffnessTable& table, int part, double x, int count, double& ke,
                       double& dke) const;
   // Mode::table and Mode::part of each pair of m at the motion.
-  void set_parts(const MeshMotion& q, Mode& m) const;
+  template <typename Motion>
+  void set_parts(const Motion& q, Mode& m) const;
   double damping_factor(const ContactMemory& d, double ke) const;
   // f of (35) of a pair with normal force N, sliding speed Vs and entrainment
   // speed Ve, under the case's friction law.
@@ -224,9 +368,11 @@ class MeshLine {
   std::shared_ptr<const ToothGaps> gaps_;
   std::vector<double> kinks_;  // gaps_->kinks_m()
   const ModelOptions* model_;
+  const GearPair* gears_;
   MeshLayout layout_;
   double rb1_ = 0.0, rb2_ = 0.0, backlash_ = 0.0, lp_ = 0.0;
   double x_pitch_ = 0.0, xs_ = 0.0, xe_ = 0.0;
+  double sin_a_ = 0.0, cos_a_ = 0.0;  // of the operating pressure angle
   double kh_ = 0.0, constant_k_ = 0.0;
   double smoothing_speed_ = 0.0;  // v_s of tanh(Vs / v_s); 0: the exact sign
   double face_width_ = 0.0;
@@ -257,80 +403,108 @@ inline double MeshLine::damping_factor(const ContactMemory& d, double ke) const 
                                   : d.damping_per_stiffness_s_m * d.frozen_stiffness_n_per_m;
 }
 
+template <typename Motion>
+inline void MeshLine::add_pair_forces(const Motion& q, const Mode& m, const ContactMemory& d,
+                                      double& moment_a, double& moment_b, PlanarLoads* centres,
+                                      MeshPowers& powers, ContactTotals* totals) const {
+  const double w1 = q.w_a_rad_per_s;
+  const double w2 = q.w_b_rad_per_s;
+  const double sign = line_sign(m.region);
+  const double dl = delta(m.region, q);
+  const double dl_rate = sign * s_rate(m.region, q);
+  const double ref = layout_.reference_m(m.region, q.theta_a_rad);
+  const double x_rate = sign * rb1_ * w1;
+  const double slide = centres_slide(m.region, q);
+  for (int j = 0; j < m.count; ++j) {
+    const StiffnessTable* table = m.table[j];
+    // A pair with a missing tooth or without contact over a fault across the
+    // face: no force, no damping, no friction; nor a pair whose gap is open.
+    if (!carries(table, m.part[j]) || (gaps_ && !m.touching[j])) continue;
+    const double x = layout_.position_m(ref, m.k_first + j);
+    // The pair's own penetration and its rate: the line's, less the gap.
+    const PairPenetration p = pair_penetration(m, j, x, dl, dl_rate, x_rate);
+    const double dk = p.delta_m;
+    const double dk_rate = p.rate_m_s;
+    const double gap_slope = p.gap_slope;
+    double ke = 0.0;
+    double dke = 0.0;
+    pair_stiffness(*table, m.part[j], x, m.count, ke, dke);
+    const double f_elastic = elastic_force(ke, dk);
+    const double g_damping = hertzian_damping_force(damping_factor(d, ke), dk, dk_rate);
+    const double n = normal_force(f_elastic, g_damping, m.clipped[j]);
+    const double vs = pair_sliding(q, x, slide);
+    const double f = friction_coefficient(n, vs, entrainment_speed(w1, w2, x, lp_));
+    const double slip = smoothing_speed_ > 0.0 ? std::tanh(vs / smoothing_speed_)
+                        : m.slip_per_stage     ? (vs >= 0.0 ? 1.0 : -1.0)
+                                               : m.slip[j];
+    const double ff = friction_force(m.region, f, n, slip);
+    // (1),(3) for one pair, (43),(45) summed over the pairs the line carries:
+    // on N1 J1 w1' = T1 - [N Rb1 + Ff X], J2 w2' = T2 + [N Rb2 + Ff (lp - X)];
+    // every sign flips on N2. In free flight, (2),(44): J w' = T.
+    moment_a -= sign * (n * rb1_ + ff * x);
+    moment_b += sign * (n * rb2_ + ff * (lp_ - x));
+    if constexpr (kCentres<Motion>) {
+      // On the pinion's centre -sign N n - Ff t, t = e_z x n the flanks'
+      // common tangent, on the wheel's the opposite. The friction's sign does
+      // not follow the line's: Ff t at the contact has the moment +Ff X about
+      // O1 on N1 (the contact at +X n1 from the pinion's base circle) and -Ff
+      // X on N2 (at -X n2), so -Ff t is what gives the pinion the torque
+      // -sign Ff X above on either line.
+      const std::array<double, 2> nl = normal(m.region);
+      const double tx = -nl[1];
+      const double ty = nl[0];
+      const double fx = -sign * (n * nl[0] + sign * ff * tx);
+      const double fy = -sign * (n * nl[1] + sign * ff * ty);
+      centres->force_a[0] += fx;
+      centres->force_a[1] += fy;
+      centres->force_b[0] -= fx;
+      centres->force_b[1] -= fy;
+    } else {
+      static_cast<void>(centres);
+    }
+    // The damping force is what N adds to F; with N clipped it is -F, so the
+    // stored energy released while the tooth cannot push counts as damping loss.
+    powers.damping_w += (n - f_elastic) * dk_rate;
+    powers.friction_w += f * n * slip * vs;
+    // d/dt of 1/2 Ke(X) delta^2 at fixed delta. Newtonian: work of the
+    // varying stiffness. Lagrangian: -dV/dtheta1 adds the torque
+    // -1/2 dKe/dX (dX/dtheta1) delta^2, dX/dtheta1 = sign Rb1, whose power is
+    // minus this; a clipped pair exerts no force, so the stored energy it
+    // gains or loses counts with its damping loss, as above.
+    const double stiffness_power = 0.5 * dk * dk * dke * x_rate;
+    if (!lagrangian_) {
+      powers.parametric_w += stiffness_power;
+    } else if (m.clipped[j]) {
+      powers.damping_w -= stiffness_power;
+    } else {
+      moment_a -= 0.5 * dk * dk * dke * sign * rb1_;
+    }
+    if (gaps_) {
+      // The gap moves with the pinion: the pair's penetration changes at
+      // fixed s by -de_k/dX dX/dt, and N acting on it does the work
+      // -N de_k/dX dX/dt. Newtonian: more work of the varying mesh.
+      // Lagrangian: N acts on delta_k, whose lever on the pinion is
+      // sign Rb1 (1 - de_k/dX), and that torque does this work on the pinion.
+      if (!lagrangian_) {
+        powers.parametric_w -= n * gap_slope * x_rate;
+      } else {
+        moment_a += sign * rb1_ * n * gap_slope;
+      }
+    }
+    if (totals != nullptr) {
+      totals->normal_force_n += n;
+      totals->friction_force_n += ff;
+      totals->friction_load_n += f * n;
+      totals->elastic_energy_j += 0.5 * ke * dk * dk;
+    }
+  }
+}
+
 inline void MeshLine::add_forces(const MeshMotion& q, const Mode& m, const ContactMemory& d,
                                  double& moment_a, double& moment_b, MeshPowers& powers,
                                  ContactTotals* totals) const {
-  const double w1 = q.w_a_rad_per_s;
-  const double w2 = q.w_b_rad_per_s;
   if (m.region != Region::free) {
-    const double sign = line_sign(m.region);
-    const double dl = delta(m.region, q);
-    const double dl_rate = sign * s_rate(q);
-    const double ref = layout_.reference_m(m.region, q.theta_a_rad);
-    const double x_rate = sign * rb1_ * w1;
-    for (int j = 0; j < m.count; ++j) {
-      const StiffnessTable* table = m.table[j];
-      // A pair with a missing tooth or without contact over a fault across
-      // the face: no force, no damping, no friction; nor a pair whose gap is open.
-      if (!carries(table, m.part[j]) || (gaps_ && !m.touching[j])) continue;
-      const double x = layout_.position_m(ref, m.k_first + j);
-      // The pair's own penetration and its rate: the line's, less the gap.
-      const PairPenetration p = pair_penetration(m, j, x, dl, dl_rate, x_rate);
-      const double dk = p.delta_m;
-      const double dk_rate = p.rate_m_s;
-      const double gap_slope = p.gap_slope;
-      double ke = 0.0;
-      double dke = 0.0;
-      pair_stiffness(*table, m.part[j], x, m.count, ke, dke);
-      const double f_elastic = elastic_force(ke, dk);
-      const double g_damping = hertzian_damping_force(damping_factor(d, ke), dk, dk_rate);
-      const double n = normal_force(f_elastic, g_damping, m.clipped[j]);
-      const double vs = sliding_speed(w1, w2, x, lp_);
-      const double f = friction_coefficient(n, vs, entrainment_speed(w1, w2, x, lp_));
-      const double slip = smoothing_speed_ > 0.0 ? std::tanh(vs / smoothing_speed_)
-                          : m.slip_per_stage     ? (vs >= 0.0 ? 1.0 : -1.0)
-                                                 : m.slip[j];
-      const double ff = friction_force(m.region, f, n, slip);
-      // (1),(3) for one pair, (43),(45) summed over the pairs the line carries:
-      // on N1 J1 w1' = T1 - [N Rb1 + Ff X], J2 w2' = T2 + [N Rb2 + Ff (lp - X)];
-      // every sign flips on N2. In free flight, (2),(44): J w' = T.
-      moment_a -= sign * (n * rb1_ + ff * x);
-      moment_b += sign * (n * rb2_ + ff * (lp_ - x));
-      // The damping force is what N adds to F; with N clipped it is -F, so the
-      // stored energy released while the tooth cannot push counts as damping loss.
-      powers.damping_w += (n - f_elastic) * dk_rate;
-      powers.friction_w += f * n * slip * vs;
-      // d/dt of 1/2 Ke(X) delta^2 at fixed delta. Newtonian: work of the
-      // varying stiffness. Lagrangian: -dV/dtheta1 adds the torque
-      // -1/2 dKe/dX (dX/dtheta1) delta^2, dX/dtheta1 = sign Rb1, whose power is
-      // minus this; a clipped pair exerts no force, so the stored energy it
-      // gains or loses counts with its damping loss, as above.
-      const double stiffness_power = 0.5 * dk * dk * dke * x_rate;
-      if (!lagrangian_) {
-        powers.parametric_w += stiffness_power;
-      } else if (m.clipped[j]) {
-        powers.damping_w -= stiffness_power;
-      } else {
-        moment_a -= 0.5 * dk * dk * dke * sign * rb1_;
-      }
-      if (gaps_) {
-        // The gap moves with the pinion: the pair's penetration changes at
-        // fixed s by -de_k/dX dX/dt, and N acting on it does the work
-        // -N de_k/dX dX/dt. Newtonian: more work of the varying mesh.
-        // Lagrangian: N acts on delta_k, whose lever on the pinion is
-        // sign Rb1 (1 - de_k/dX), and that torque does this work on the pinion.
-        if (!lagrangian_) {
-          powers.parametric_w -= n * gap_slope * x_rate;
-        } else {
-          moment_a += sign * rb1_ * n * gap_slope;
-        }
-      }
-      if (totals != nullptr) {
-        totals->normal_force_n += n;
-        totals->friction_force_n += ff;
-        totals->friction_load_n += f * n;
-      }
-    }
+    add_pair_forces(q, m, d, moment_a, moment_b, nullptr, powers, totals);
   }
   if (mesh_damping_ > 0.0) {
     // The viscous mesh damper acts on s' at all times, in contact and in the
@@ -340,6 +514,30 @@ inline void MeshLine::add_forces(const MeshMotion& q, const Mode& m, const Conta
     const double force = mesh_damping_ * rate;
     moment_a -= force * rb1_;
     moment_b += force * rb2_;
+    powers.mesh_damping_w += force * rate;
+  }
+}
+
+inline void MeshLine::add_line_forces(const PlanarMeshMotion& q, const Mode& m,
+                                      const ContactMemory& d, PlanarLoads& loads,
+                                      MeshPowers& powers, ContactTotals* totals) const {
+  if (m.region == Region::free) return;
+  add_pair_forces(q, m, d, loads.moment_a, loads.moment_b, &loads, powers, totals);
+}
+
+inline void MeshLine::add_damper(const PlanarMeshMotion& q, PlanarLoads& loads,
+                                 MeshPowers& powers) const {
+  if (!(mesh_damping_ > 0.0)) return;
+  for (const Region line : {Region::n1, Region::n2}) {
+    const std::array<double, 2> n = normal(line);
+    const double rate = s_rate(line, q);
+    const double force = 0.5 * mesh_damping_ * rate;
+    loads.moment_a -= force * rb1_;
+    loads.moment_b += force * rb2_;
+    loads.force_a[0] -= force * n[0];
+    loads.force_a[1] -= force * n[1];
+    loads.force_b[0] += force * n[0];
+    loads.force_b[1] += force * n[1];
     powers.mesh_damping_w += force * rate;
   }
 }
