@@ -54,23 +54,6 @@ MeshLine::MeshLine(const SimulationCase& c, const StiffnessTable& table)
   mesh_damping_ = case_mesh_damping_n_s_per_m(c, table, teeth_.get());
 }
 
-// Ke continued along its tangent beyond the segment, or beyond the ends of
-// the pair's part at a fault's edge (pair_stiffness_continued).
-void MeshLine::pair_stiffness(const StiffnessTable& table, int part, double x, int count,
-                              double& ke, double& dke) const {
-  if (constant_k_ > 0.0) {
-    ke = constant_k_ / count;
-    dke = 0.0;
-    return;
-  }
-  const StiffnessAndDerivative k =
-      table.part_count() > 1 ? pair_stiffness_continued(table, part, x, table.part_start_m(part),
-                                                        table.part_end_m(part))
-                             : pair_stiffness_continued(table, -1, x, xs_, xe_);
-  ke = k.stiffness_n_per_m;
-  dke = k.derivative_n_per_m2;
-}
-
 double varying_friction_coefficient(const ModelOptions& model, double face_width_m,
                                     double normal_force_n, double vs, double ve) {
   switch (model.friction_law) {

@@ -403,6 +403,23 @@ inline double MeshLine::damping_factor(const ContactMemory& d, double ke) const 
                                   : d.damping_per_stiffness_s_m * d.frozen_stiffness_n_per_m;
 }
 
+// Ke continued along its tangent beyond the segment, or beyond the ends of
+// the pair's part at a fault's edge (pair_stiffness_continued).
+inline void MeshLine::pair_stiffness(const StiffnessTable& table, int part, double x, int count,
+                                     double& ke, double& dke) const {
+  if (constant_k_ > 0.0) {
+    ke = constant_k_ / count;
+    dke = 0.0;
+    return;
+  }
+  const StiffnessAndDerivative k =
+      table.part_count() > 1 ? pair_stiffness_continued(table, part, x, table.part_start_m(part),
+                                                        table.part_end_m(part))
+                             : pair_stiffness_continued(table, -1, x, xs_, xe_);
+  ke = k.stiffness_n_per_m;
+  dke = k.derivative_n_per_m2;
+}
+
 template <typename Motion>
 inline void MeshLine::add_pair_forces(const Motion& q, const Mode& m, const ContactMemory& d,
                                       double& moment_a, double& moment_b, PlanarLoads* centres,
