@@ -17,6 +17,7 @@
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/named_values.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "gearimpact/stiffness/table.hpp"
 
@@ -364,6 +365,53 @@ TEST_CASE("one impact of the damped contact against its closed-form rebound") {
   const double hm = closed_form_restitution(d_over_k(DampingForm::herbert_mcwhannell, e, vi) * vi);
   const double hc = closed_form_restitution(d_over_k(DampingForm::hunt_crossley, e, vi) * vi);
   CHECK(std::fabs(hm - e) < std::fabs(hc - e));
+}
+
+TEST_CASE("the torsional run by the fixed-step Dormand-Prince: one undamped contact, order 5") {
+  // The conservative variant (e = 1, f = 0, the constant stiffness k shared by
+  // the loaded pairs: one linear spring while in contact). Case 1's pinion
+  // strikes the wheel at rest at Vi = Rb1 w1(0), and delta then swings
+  // through half a period of w = sqrt(k / m_e), m_e = 1 / (Rb1^2/J1 +
+  // Rb2^2/J2): the contact lasts pi / w and the teeth part at Vi again.
+  SimulationCase c = short_case(1, 1.2e-4);
+  c.model.friction_coefficient = 0.0;
+  c.model.restitution.coefficient = 0.0;
+  c.model.mesh_stiffness = MeshStiffnessMode::constant;
+  c.model.constant_mesh_stiffness_n_per_m = kConstantStiffness;
+  const double w = std::sqrt(kConstantStiffness / effective_mass_kg(c.gears));
+  const double vi = base_radius(c.gears, Gear::one) * c.initial.w1_rad_per_s;
+  // The larger of the relative errors of the contact's duration and of its end speed.
+  const auto error = [&](IntegratorKind kind, double h) {
+    c.integrator.kind = kind;
+    c.integrator.step_s = h;
+    const SimulationResult r = simulate(c, summary_only());
+    REQUIRE(!r.impacts.empty());
+    const ImpactRecord& impact = r.impacts.front();
+    REQUIRE(impact.end_s.has_value());
+    CHECK(r.summary.integrator == name_of(kIntegratorKinds, kind));
+    CHECK(relative_difference(impact.impact_speed_m_s, vi) < 1e-12);
+    return std::max(std::fabs(w * (*impact.end_s - impact.start_s) - pi) / pi,
+                    std::fabs(*impact.end_speed_m_s / vi - 1.0));
+  };
+  // h w = 0.06 and 0.03: in the asymptotic range of both methods, with the
+  // errors (about 7e-10 and 2e-11 for Dormand-Prince) far above the round-off
+  // (a few 1e-16 of the duration's events and speeds).
+  const double h = 1e-6;
+  REQUIRE(w * h < 0.07);
+  const double dopri5 = error(IntegratorKind::dopri5, h);
+  const double dopri5_half = error(IntegratorKind::dopri5, 0.5 * h);
+  const double rk4 = error(IntegratorKind::rk4, h);
+  const double order = std::log2(dopri5 / dopri5_half);
+  MESSAGE("w h = " << w * h << ": Dormand-Prince errors " << dopri5 << ", " << dopri5_half
+                   << " (observed order " << order << "), RK4's " << rk4);
+  // Order 5 (the step and the event located on its order-4 continuous
+  // extension both err by O(h^5)), within +-0.6 as the RK4 test above allows
+  // for its order 4; and an order more than RK4 at the same step, whose error
+  // is then larger by a factor of the order of 1/(w h) ~ 16 (160 here): at
+  // least 4 times.
+  CHECK(order > 4.4);
+  CHECK(order < 5.6);
+  CHECK(dopri5 < 0.25 * rk4);
 }
 
 TEST_CASE("friction: |Ff| = f N on a single loaded pair, and it dissipates") {

@@ -1,4 +1,6 @@
-// The fixed-step classical RK4 of the paper's runs, with every event of the
+// The fixed-step runs of the torsional model: the classical RK4 of the
+// paper's runs, or Dormand-Prince 5(4) at the same fixed step (FixedStepper),
+// with every event of the
 // mode (contact onset and loss, a pair entering or leaving, friction reversal,
 // force clipping) located inside the step and stepped onto, after which the
 // fixed grid resumes (run_fixed_grid of step_methods.hpp): a step that
@@ -6,8 +8,11 @@
 #include "rk4.hpp"
 
 #include <cmath>
+#include <string>
 
 #include "event_location.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/named_values.hpp"
 #include "run.hpp"
 
 namespace gearimpact {
@@ -40,13 +45,18 @@ void rk4_step_unlocated(const GearSystem& system, double t, const State& y, doub
   }
 }
 
-SimulationResult run_rk4(const SimulationCase& c, const StiffnessTable& table,
-                         const RunControl& control) {
+SimulationResult run_fixed_step(const SimulationCase& c, const StiffnessTable& table,
+                                const RunControl& control) {
+  if (!control.locate_events && c.integrator.kind != IntegratorKind::rk4) {
+    throw InputError("integrator.kind", name_of(kIntegratorKinds, c.integrator.kind),
+                     "\"rk4\" without event location (RunControl::locate_events false), the "
+                     "run that shows what locating the events buys");
+  }
   Run run(c, table, control);
   if (control.locate_events) {
-    FixedStepper<GearSystem> stepper(run.system(), IntegratorKind::rk4);
+    FixedStepper<GearSystem> stepper(run.system(), c.integrator.kind);
     const double t = run_fixed_grid(run, stepper, c.integrator);
-    return run.finish(t, "rk4");
+    return run.finish(t, name_of(kIntegratorKinds, c.integrator.kind).c_str());
   }
   // Without event location: the mode taken again at every stage, for the
   // comparison that shows what locating the events buys.

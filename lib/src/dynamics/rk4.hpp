@@ -26,8 +26,10 @@ void rk4_step_unlocated(const GearSystem& system, double t, const State& y, doub
                         const ContactMemory& d, State& out);
 
 // The runs; the case and the table are validated by simulate().
-SimulationResult run_rk4(const SimulationCase& c, const StiffnessTable& table,
-                         const RunControl& control);
+// At the fixed step: RK4 or, with integrator.kind = "dopri5", Dormand-Prince
+// 5(4) (FixedStepper of step_methods.hpp).
+SimulationResult run_fixed_step(const SimulationCase& c, const StiffnessTable& table,
+                                const RunControl& control);
 SimulationResult run_adaptive(const SimulationCase& c, const StiffnessTable& table,
                               const RunControl& control);
 

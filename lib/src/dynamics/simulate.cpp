@@ -98,9 +98,9 @@ void add_rattle_index(const SimulationCase& c, const StiffnessTable& table,
   RunControl quiet;
   quiet.keep_series = false;
   quiet.should_stop = control.should_stop;
-  const SimulationResult r = c.integrator.kind == IntegratorKind::rk4
-                                 ? run_rk4(twin, table, quiet)
-                                 : run_adaptive(twin, table, quiet);
+  const SimulationResult r = c.integrator.kind == IntegratorKind::adaptive
+                                 ? run_adaptive(twin, table, quiet)
+                                 : run_fixed_step(twin, table, quiet);
   const double reference = r.summary.rattle->rms_acceleration2_rad_s2;
   rattle.rms_acceleration2_no_backlash_rad_s2 = reference;
   if (reference > 0.0) rattle.rattle_index = rattle.rms_acceleration2_rad_s2 / reference;
@@ -119,9 +119,9 @@ SimulationResult simulate_checked(const SimulationCase& c, const StiffnessTable&
     result.summary.equivalent_mesh_damping_ratio = equivalent_mesh_damping_ratio(c, table);
     return result;
   }
-  SimulationResult result = c.integrator.kind == IntegratorKind::rk4
-                                ? run_rk4(c, table, control)
-                                : run_adaptive(c, table, control);
+  SimulationResult result = c.integrator.kind == IntegratorKind::adaptive
+                                ? run_adaptive(c, table, control)
+                                : run_fixed_step(c, table, control);
   result.summary.equivalent_mesh_damping_ratio = equivalent_mesh_damping_ratio(c, table);
   if (result.summary.rattle) add_rattle_index(c, table, control, *result.summary.rattle);
   const StiffnessModel& k = c.model.stiffness;
@@ -182,20 +182,7 @@ void validate_gaps(const SimulationCase& c) {
   }
 }
 
-void refuse_planar_integrator(const SimulationCase& c) {
-  if (c.integrator.kind != IntegratorKind::dopri5 || c.bearings.kind == BearingKind::elastic) {
-    return;
-  }
-  throw InputError(std::vector<Problem>{refused_problem(
-      "integrator.kind", "\"dopri5\"",
-      "taken by the planar model only ([bearings] kind = \"elastic\"), whose long signals it is "
-      "for; the torsional model runs RK4 or the adaptive method",
-      "\"rk4\" (the default) or \"adaptive\" with rigid bearings",
-      "integrator.kind = \"rk4\", or [bearings] kind = \"elastic\" for the planar model")});
-}
-
 void refuse_planar_simulation(const SimulationCase& c) {
-  refuse_planar_integrator(c);
   if (c.shafts.kind == ShaftKind::elastic && c.bearings.kind != BearingKind::elastic) {
     throw InputError(std::vector<Problem>{refused_problem(
         "shafts.kind", "\"elastic\"",
@@ -214,7 +201,6 @@ void refuse_planar_simulation(const SimulationCase& c) {
 }
 
 void refuse_planar(const SimulationCase& c) {
-  refuse_planar_integrator(c);
   std::vector<Problem> problems;
   const auto refuse = [&](const char* key, const char* torsional) {
     problems.push_back(refused_problem(

@@ -212,10 +212,10 @@ void validate_train(const GearTrain& train) {
     }
   }
   const IntegratorSettings& in = train.integrator;
-  if (in.kind != IntegratorKind::rk4) {
-    throw InputError("integrator.kind", in.kind == IntegratorKind::adaptive ? "adaptive" : "dopri5",
-                     "rk4: a train runs by the event-cut RK4 at the fixed step, as the two-gear "
-                     "torsional model does");
+  if (in.kind == IntegratorKind::adaptive) {
+    throw InputError("integrator.kind", "adaptive",
+                     "\"rk4\" or \"dopri5\": a train runs by a fixed-step method of the run "
+                     "loop, the event-cut RK4 or Dormand-Prince 5(4)");
   }
   validate(in);
 }
@@ -615,7 +615,7 @@ TrainResult simulate_train(const GearTrain& train, const RunControl& control) {
   TrainRun run(train, tables, control);
   FixedStepper<TrainSystem> stepper(run.system(), train.integrator.kind);
   const double t = run_fixed_grid(run, stepper, train.integrator);
-  return run.finish(t, "rk4");
+  return run.finish(t, name_of(kIntegratorKinds, train.integrator.kind).c_str());
 }
 
 }  // namespace gearimpact

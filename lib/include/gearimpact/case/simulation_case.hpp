@@ -319,8 +319,8 @@ inline constexpr std::array<NamedValue<IntegratorKind>, 3> kIntegratorKinds{{
     {IntegratorKind::rk4, "rk4", "fixed-step RK4 with event location"},
     {IntegratorKind::adaptive, "adaptive", "Dormand-Prince 5(4) with the same event location"},
     {IntegratorKind::dopri5, "dopri5",
-     "Dormand-Prince 5(4) at the fixed integrator.step with the same event location, order 5: "
-     "for long signals of the planar model ([bearings] kind = \"elastic\") only"},
+     "Dormand-Prince 5(4) at the fixed integrator.step with the same event location, order 5, "
+     "for long signals; the torsional and the planar model alike"},
 }};
 
 // Fewer steps per contact period than this do not resolve the contact.

@@ -360,16 +360,12 @@ void validate_gaps(const SimulationCase& c);
 void check_table(const SimulationCase& c, const StiffnessTable& table);
 // Throws InputError naming bearings.kind and shafts.kind when they are
 // "elastic": the planar model runs in `gearimpact modes` (its linearised
-// form) and simulate() (planar.hpp); the sweeps are torsional. With rigid
-// bearings it refuses integrator.kind = "dopri5" (refuse_planar_integrator).
+// form) and simulate() (planar.hpp); the sweeps are torsional.
 // validate(), the run pool and the steady-state sweep call it before any work.
 void refuse_planar(const SimulationCase& c);
-// Throws InputError naming integrator.kind for "dopri5" with rigid bearings:
-// the fixed-step Dormand-Prince method is the planar run's only.
-void refuse_planar_integrator(const SimulationCase& c);
 // What simulate() refuses of the planar keys: elastic shafts on rigid
 // bearings (the motor and the load belong to the planar model), naming
-// shafts.kind, and refuse_planar_integrator's.
+// shafts.kind, and a tacho on rigid bearings.
 void refuse_planar_simulation(const SimulationCase& c);
 // The sample grid of a run of c at sample_rate_hz: the n >= 0 with
 // sample_time_s(t0, n, rate) <= t0 + end_time_s, for t0 = 0 (about
