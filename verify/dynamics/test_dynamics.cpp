@@ -487,9 +487,9 @@ TEST_CASE("check_run checks a run once: simulate, check_run and the table paths 
       // a row's range (validate_fields)
       {"model.friction_coefficient",
        [](SimulationCase& c, RunControl&) { c.model.friction_coefficient = -0.1; }},
-      // the planar keys (refuse_planar_simulation): Dormand-Prince is the planar run's only
-      {"integrator.kind",
-       [](SimulationCase& c, RunControl&) { c.integrator.kind = IntegratorKind::dopri5; }},
+      // the planar keys (refuse_planar_simulation): a tacho's edges are the planar run's only
+      {"tacho.pulses_per_revolution",
+       [](SimulationCase& c, RunControl&) { c.tacho.pulses_per_revolution = 4; }},
       // the gaps (validate_gaps): teeth a millimetre thicker on every flank press the drive and
       // the coast flanks at once within the paper's backlash
       {"gears.backlash",
