@@ -97,6 +97,20 @@ TEST_CASE("train's series.csv holds the library run's rows, column by named colu
   CHECK(std::stod(summary.substr(at + 25)) == run.summary.ledger_residual_max_j);
   CHECK(summary.find("{\"name\": \"idler-wheel\", \"impacts\": " +
                      std::to_string(run.meshes[1].impacts)) != std::string::npos);
+  // Per mesh its losses, per body its final speed: the library run's doubles at 17 digits.
+  const auto number_after = [&summary](const std::string& key, std::size_t from) {
+    const std::size_t where = summary.find("\"" + key + "\": ", from);
+    REQUIRE(where != std::string::npos);
+    return std::stod(summary.substr(where + key.size() + 4));
+  };
+  const std::size_t idler_wheel = summary.find("{\"name\": \"idler-wheel\"");
+  REQUIRE(idler_wheel != std::string::npos);
+  CHECK(number_after("damping_loss_J", idler_wheel) == run.meshes[1].damping_loss_j);
+  CHECK(number_after("friction_loss_J", idler_wheel) == run.meshes[1].friction_loss_j);
+  const std::size_t wheel = summary.find("{\"name\": \"wheel\"");
+  REQUIRE(wheel != std::string::npos);
+  CHECK(number_after("final_w_rad_per_s", wheel) == run.bodies[2].final_w_rad_per_s);
+  CHECK(run.bodies[2].final_w_rad_per_s == run.series.back().w_rad_per_s[2]);
 }
 
 TEST_CASE("train --set writes the file's series as if the file said so") {

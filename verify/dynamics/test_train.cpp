@@ -62,6 +62,14 @@ void require_same_run(const SimulationResult& two_gear, const TrainResult& train
   CHECK(t.ledger_residual_max_j == s.ledger_residual_max_j);
   CHECK(t.stored_energy_final_j == s.stored_energy_final_j);
   CHECK(train.meshes[0].max_penetration_m == s.max_penetration_m);
+  // The one mesh's own losses are the train's, and the two-gear run's, to the bit; its bodies'
+  // final speeds the two gears'.
+  CHECK(train.meshes[0].damping_loss_j == s.damping_loss_j);
+  CHECK(train.meshes[0].friction_loss_j == s.friction_loss_j);
+  CHECK(train.meshes[0].mesh_damping_loss_j == s.mesh_damping_loss_j);
+  CHECK(train.bodies[0].final_w_rad_per_s == s.final_w1_rad_per_s);
+  CHECK(train.bodies[static_cast<std::size_t>(wheel_body)].final_w_rad_per_s ==
+        s.final_w2_rad_per_s);
 }
 
 // Both tips relieved linearly (examples/tip_relief_20_80.toml's start diameters).
@@ -403,6 +411,47 @@ TEST_CASE("a two-stage train's energy balances to the integrator's order") {
   // Fourth order: halving h divides the residual by about 16; events cut
   // the steps, so at least 8 is asked.
   CHECK(fine.summary.ledger_residual_max_j < coarse.summary.ledger_residual_max_j / 8.0);
+}
+
+TEST_CASE("a two-stage train's per-mesh and per-body summaries agree with its totals and series") {
+  const StiffnessTable table(paper_gear_pair(), paper_case(2).model.stiffness);
+  GearTrain train = two_stage(table, 4e-7);
+  train.integrator.output_every = 1;
+  const TrainResult r = simulate_train(train);
+  REQUIRE(r.meshes.size() == 2);
+  REQUIRE(r.bodies.size() == 4);
+  // Each mesh's losses are integrated beside the train's from what the mesh adds to the train's
+  // power: their sums are the train's up to one rounding of the power per stage, ~3e4 stages of
+  // 1.1e-16 each in the worst case; 1e-10 of the loss leaves room for the powers' changes of sign.
+  const auto close = [](double sum, double total) {
+    return std::abs(sum - total) <= 1e-10 * std::abs(total);
+  };
+  CHECK(r.meshes[0].damping_loss_j > 0.0);
+  CHECK(r.meshes[1].damping_loss_j > 0.0);
+  CHECK(close(r.meshes[0].damping_loss_j + r.meshes[1].damping_loss_j, r.summary.damping_loss_j));
+  CHECK(
+      close(r.meshes[0].friction_loss_j + r.meshes[1].friction_loss_j, r.summary.friction_loss_j));
+  for (std::size_t k = 0; k < 2; ++k) {
+    CAPTURE(k);
+    // The contacts begun, counted again from the series (a row each step): a row in contact in
+    // another region than the row before (the first row's contact counts, as the summary's).
+    int begun = 0;
+    double deepest = 0.0;
+    for (std::size_t i = 0; i < r.series.size(); ++i) {
+      const TrainMeshRow& m = r.series[i].meshes[k];
+      if (m.region != 0 && (i == 0 || r.series[i - 1].meshes[k].region != m.region)) ++begun;
+      if (m.region != 0) deepest = std::max(deepest, m.delta_m);
+    }
+    CHECK(begun == r.meshes[k].impacts);
+    // The summary's largest penetration is booked at every step and event, the series' at every
+    // step: the series' can only be less, and steps of 4e-7 s sample a contact's peak (a mesh
+    // period of ~1e-4 s) to within (w h)^2 / 8 ~ 2e-4 of it.
+    CHECK(deepest <= r.meshes[k].max_penetration_m);
+    CHECK(deepest >= (1.0 - 1e-3) * r.meshes[k].max_penetration_m);
+  }
+  for (std::size_t i = 0; i < train.bodies.size(); ++i) {
+    CHECK(r.bodies[i].final_w_rad_per_s == r.series.back().w_rad_per_s[i]);
+  }
 }
 
 TEST_CASE("a train's bad input is refused naming its field") {

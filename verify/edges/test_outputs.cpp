@@ -12,10 +12,13 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/dynamics/train.hpp"
 #include "gearimpact/io/results.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "run_command.hpp"
@@ -274,4 +277,56 @@ TEST_CASE("a full disk fails the run naming the output, and leaves nothing on th
     names.push_back(entry.path().filename().string());
   }
   CHECK(names == std::vector<std::string>{"filler"});
+}
+
+namespace {
+
+// An output's columns as docs/usage.md lists them: a Markdown table of name and unit.
+template <typename Row>
+std::string documented(const gearimpact::Columns<Row>& columns) {
+  std::string out = "| column | unit |\n|---|---|\n";
+  for (const gearimpact::Column<Row>& c : columns) {
+    out += "| `" + c.name + "` | " + (c.unit.empty() ? "-" : c.unit) + " |\n";
+  }
+  return out;
+}
+
+// The table docs/usage.md holds between "<!-- columns NAME -->" and "<!-- end columns -->".
+std::string doc_table(const std::string& doc, const std::string& name) {
+  const std::string open = "<!-- columns " + name + " -->\n";
+  const std::size_t at = doc.find(open);
+  if (at == std::string::npos) return "(no block " + name + ")";
+  const std::size_t from = at + open.size();
+  const std::size_t to = doc.find("<!-- end columns -->", from);
+  if (to == std::string::npos) return "(block " + name + " not closed)";
+  return doc.substr(from, to - from);
+}
+
+}  // namespace
+
+TEST_CASE("docs/usage.md lists exactly the columns of each output's table") {
+  std::ifstream in(fs::path(GEARIMPACT_PAPER_DATA_DIR) / ".." / "docs" / "usage.md");
+  REQUIRE(in);
+  const std::string doc{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  // A train of one body BODY and one mesh MESH: the names of its columns as the docs write them.
+  gearimpact::GearTrain train;
+  train.bodies.resize(1);
+  train.bodies[0].name = "BODY";
+  train.meshes.resize(1);
+  train.meshes[0].name = "MESH";
+  const std::vector<std::pair<std::string, std::string>> tables{
+      {"series", documented(gearimpact::series_columns())},
+      {"samples", documented(gearimpact::sample_columns())},
+      {"planar-series", documented(gearimpact::planar_series_columns())},
+      {"planar-samples", documented(gearimpact::planar_sample_columns())},
+      {"train-series", documented(gearimpact::train_series_columns(train))},
+      {"rattle-impacts", documented(gearimpact::rattle_impact_columns())}};
+  for (const auto& [name, expected] : tables) {
+    INFO("docs/usage.md's block \"<!-- columns " << name << " -->\" should read:\n" << expected);
+    CHECK(doc_table(doc, name) == expected);
+  }
+  // The CSV headers are the tables' names.
+  CHECK(gearimpact::series_csv_header() ==
+        "t_s,theta1_rad,theta2_rad,w1_rad_s,w2_rad_s,s_m,delta_m,region,pairs,normal_force_N,"
+        "friction_force_N\n");
 }

@@ -33,6 +33,7 @@
 #include "gearimpact/geometry/tooth_outline.hpp"
 #include "gearimpact/geometry/tooth_profile.hpp"
 #include "gearimpact/io/case_file.hpp"
+#include "gearimpact/io/columns.hpp"
 #include "gearimpact/io/hdf5_image.hpp"
 #include "gearimpact/io/mat_image.hpp"
 #include "gearimpact/io/modes_files.hpp"

@@ -26,11 +26,19 @@ namespace {
 
 // The bodies' angles, then their speeds, then the ledger's integrals as the
 // two-gear State has them: torque work, damping loss, friction loss,
-// parametric work (its continuous part), the mesh dampers' loss.
+// parametric work (its continuous part), the mesh dampers' loss; then each
+// mesh's own three losses (damping, friction, mesh damper) for its summary.
+// The train's totals are integrated as they were, so that adding the meshes'
+// own changes none of their bits.
 constexpr std::size_t kBodies = kMaxTrainBodies;
 constexpr std::size_t kLedger = 2 * kBodies;
 enum LedgerIndex : std::size_t { kWork, kDamping, kFriction, kParametric, kMeshDamping };
-using TrainState = std::array<double, 2 * kBodies + 5>;
+constexpr std::size_t kMeshLosses = kLedger + 5;
+enum MeshLossIndex : std::size_t { kMeshDampingLoss, kMeshFrictionLoss, kMeshDamperLoss };
+constexpr std::size_t mesh_loss_of(std::size_t mesh, MeshLossIndex loss) {
+  return kMeshLosses + 3 * mesh + loss;
+}
+using TrainState = std::array<double, kMeshLosses + 3 * kMaxTrainMeshes>;
 constexpr std::size_t theta_of(int body) {
   return static_cast<std::size_t>(body);
 }
@@ -284,11 +292,17 @@ class TrainSystem {
     const std::array<double, kBodies> torque = torques(t);
     std::array<double, kBodies> moment = torque;
     MeshPowers powers;
+    // Each mesh's own powers: what it added to the train's, which keep their order of addition.
+    std::array<MeshPowers, kMaxTrainMeshes> own;
     for (std::size_t k = 0; k < meshes_.size(); ++k) {
+      const MeshPowers before = powers;
       meshes_[k].add_forces(motion(k, y), m.mesh[k], d.mesh[k],
                             moment[static_cast<std::size_t>(mesh_a_[k])],
                             moment[static_cast<std::size_t>(mesh_b_[k])], powers,
                             forces != nullptr ? &forces->mesh[k] : nullptr);
+      own[k].damping_w = powers.damping_w - before.damping_w;
+      own[k].friction_w = powers.friction_w - before.friction_w;
+      own[k].mesh_damping_w = powers.mesh_damping_w - before.mesh_damping_w;
     }
     for (const Spring& s : springs_) {
       // The shaft twisted by theta_a - theta_b pulls b forward and a back.
@@ -309,6 +323,11 @@ class TrainSystem {
     dydt[kLedger + kFriction] = powers.friction_w;
     dydt[kLedger + kParametric] = powers.parametric_w;
     dydt[kLedger + kMeshDamping] = powers.mesh_damping_w;
+    for (std::size_t k = 0; k < meshes_.size(); ++k) {
+      dydt[mesh_loss_of(k, kMeshDampingLoss)] = own[k].damping_w;
+      dydt[mesh_loss_of(k, kMeshFrictionLoss)] = own[k].friction_w;
+      dydt[mesh_loss_of(k, kMeshDamperLoss)] = own[k].mesh_damping_w;
+    }
   }
 
   int event_values(const TrainState& y, const TrainMode& m, const TrainMemory& d,
@@ -536,6 +555,16 @@ class TrainRun {
                        y_[kLedger + kParametric], jump_work_, s);
     s.final_w1_rad_per_s = y_[w_of(system_.dof_of(0))];
     s.final_w2_rad_per_s = y_[w_of(system_.dof_of(1))];
+    for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
+      TrainMeshSummary& mesh = result_.meshes[k];
+      mesh.damping_loss_j = y_[mesh_loss_of(k, kMeshDampingLoss)];
+      mesh.friction_loss_j = y_[mesh_loss_of(k, kMeshFrictionLoss)];
+      mesh.mesh_damping_loss_j = y_[mesh_loss_of(k, kMeshDamperLoss)];
+    }
+    result_.bodies.resize(train_.bodies.size());
+    for (std::size_t i = 0; i < train_.bodies.size(); ++i) {
+      result_.bodies[i].final_w_rad_per_s = y_[w_of(system_.dof_of(static_cast<int>(i)))];
+    }
     return std::move(result_);
   }
 

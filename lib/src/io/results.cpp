@@ -7,6 +7,7 @@
 #include <limits>
 #include <map>
 #include <string>
+#include <tuple>
 
 #include "gearimpact/constants.hpp"
 
@@ -18,101 +19,141 @@ std::string format_data_number(double value) {
   return buffer;
 }
 
+Columns<SeriesRow> series_columns() {
+  return {member_column("t_s", "s", &SeriesRow::t_s),
+          member_column("theta1_rad", "rad", &SeriesRow::theta1_rad),
+          member_column("theta2_rad", "rad", &SeriesRow::theta2_rad),
+          member_column("w1_rad_s", "rad/s", &SeriesRow::w1_rad_per_s),
+          member_column("w2_rad_s", "rad/s", &SeriesRow::w2_rad_per_s),
+          member_column("s_m", "m", &SeriesRow::s_m),
+          member_column("delta_m", "m", &SeriesRow::delta_m),
+          member_column("region", &SeriesRow::region),
+          member_column("pairs", &SeriesRow::pairs),
+          member_column("normal_force_N", "N", &SeriesRow::normal_force_n),
+          member_column("friction_force_N", "N", &SeriesRow::friction_force_n)};
+}
+
 std::string series_csv_header() {
-  return "t_s,theta1_rad,theta2_rad,w1_rad_s,w2_rad_s,s_m,delta_m,region,pairs,normal_force_N,"
-         "friction_force_N\n";
+  return csv_header(series_columns());
 }
 
 void append_series_row(std::string& out, const SeriesRow& r) {
-  char line[512];
-  const int n = std::snprintf(
-      line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d,%d,%.17g,%.17g\n", r.t_s,
-      r.theta1_rad, r.theta2_rad, r.w1_rad_per_s, r.w2_rad_per_s, r.s_m, r.delta_m, r.region,
-      r.pairs, r.normal_force_n, r.friction_force_n);
-  out.append(line, static_cast<std::size_t>(n));
+  static const Columns<SeriesRow> columns = series_columns();
+  append_csv_row(out, columns, r);
 }
 
-std::string planar_series_csv_header() {
-  return "t_s,x1_m,y1_m,theta1_rad,x2_m,y2_m,theta2_rad,vx1_m_s,vy1_m_s,w1_rad_s,vx2_m_s,vy2_m_s,"
-         "w2_rad_s,theta_motor_rad,theta_load_rad,w_motor_rad_s,w_load_rad_s,bearing_fx1_N,"
-         "bearing_fy1_N,bearing_fx2_N,bearing_fy2_N,drive_force_N,coast_force_N,"
-         "drive_penetration_m,coast_penetration_m\n";
+Columns<SampleRow> sample_columns() {
+  return {member_column("t_s", "s", &SampleRow::t_s),
+          member_column("theta1_rad", "rad", &SampleRow::theta1_rad),
+          member_column("theta2_rad", "rad", &SampleRow::theta2_rad),
+          member_column("w1_rad_s", "rad/s", &SampleRow::w1_rad_per_s),
+          member_column("w2_rad_s", "rad/s", &SampleRow::w2_rad_per_s),
+          member_column("w1_dot_rad_s2", "rad/s^2", &SampleRow::acceleration1_rad_per_s2),
+          member_column("w2_dot_rad_s2", "rad/s^2", &SampleRow::acceleration2_rad_per_s2),
+          member_column("s_m", "m", &SampleRow::s_m),
+          member_column("dte_m", "m", &SampleRow::dte_m),
+          member_column("normal_force_n1_N", "N", &SampleRow::normal_force_n1_n),
+          member_column("normal_force_n2_N", "N", &SampleRow::normal_force_n2_n),
+          member_column("region", &SampleRow::region),
+          member_column("pairs", &SampleRow::pairs)};
+}
+
+std::string samples_csv_header() {
+  return csv_header(sample_columns());
+}
+
+void append_sample_row(std::string& out, const SampleRow& r) {
+  static const Columns<SampleRow> columns = sample_columns();
+  append_csv_row(out, columns, r);
 }
 
 namespace {
 
-// Numbers as a CSV line, each "%.17g": a time, the planar state in the
-// column order both planar headers share, then the row's own values.
-void append_numbers(std::string& out, double t, const PlanarState& q,
-                    std::initializer_list<double> rest) {
-  const double state[] = {t,
-                          q.x1_m,
-                          q.y1_m,
-                          q.theta1_rad,
-                          q.x2_m,
-                          q.y2_m,
-                          q.theta2_rad,
-                          q.vx1_m_s,
-                          q.vy1_m_s,
-                          q.w1_rad_per_s,
-                          q.vx2_m_s,
-                          q.vy2_m_s,
-                          q.w2_rad_per_s,
-                          q.theta_motor_rad,
-                          q.theta_load_rad,
-                          q.w_motor_rad_per_s,
-                          q.w_load_rad_per_s};
-  char number[32];
-  bool first = true;
-  const auto append = [&](double v) {
-    if (!first) out += ',';
-    first = false;
-    const int n = std::snprintf(number, sizeof number, "%.17g", v);
-    out.append(number, static_cast<std::size_t>(n));
+// The planar state's columns, in the order both planar tables share after t_s: the positions,
+// their rates, the motor's and the load's angles and speeds. A member of the row's state,
+// which a view by the row's stride cannot reach: computed.
+template <typename Row>
+void add_planar_state(Columns<Row>& columns) {
+  const auto state = [&](const char* name, const char* unit, double PlanarState::*member) {
+    columns.push_back(
+        computed_column<Row>(name, unit, [member](const Row& r) { return r.state.*member; }));
   };
-  for (const double v : state) append(v);
-  for (const double v : rest) append(v);
-  out += '\n';
+  state("x1_m", "m", &PlanarState::x1_m);
+  state("y1_m", "m", &PlanarState::y1_m);
+  state("theta1_rad", "rad", &PlanarState::theta1_rad);
+  state("x2_m", "m", &PlanarState::x2_m);
+  state("y2_m", "m", &PlanarState::y2_m);
+  state("theta2_rad", "rad", &PlanarState::theta2_rad);
+  state("vx1_m_s", "m/s", &PlanarState::vx1_m_s);
+  state("vy1_m_s", "m/s", &PlanarState::vy1_m_s);
+  state("w1_rad_s", "rad/s", &PlanarState::w1_rad_per_s);
+  state("vx2_m_s", "m/s", &PlanarState::vx2_m_s);
+  state("vy2_m_s", "m/s", &PlanarState::vy2_m_s);
+  state("w2_rad_s", "rad/s", &PlanarState::w2_rad_per_s);
+  state("theta_motor_rad", "rad", &PlanarState::theta_motor_rad);
+  state("theta_load_rad", "rad", &PlanarState::theta_load_rad);
+  state("w_motor_rad_s", "rad/s", &PlanarState::w_motor_rad_per_s);
+  state("w_load_rad_s", "rad/s", &PlanarState::w_load_rad_per_s);
 }
 
 }  // namespace
 
+Columns<PlanarRow> planar_series_columns() {
+  Columns<PlanarRow> columns{member_column("t_s", "s", &PlanarRow::t_s)};
+  add_planar_state(columns);
+  for (auto column : {member_column("bearing_fx1_N", "N", &PlanarRow::bearing_fx1_n),
+                      member_column("bearing_fy1_N", "N", &PlanarRow::bearing_fy1_n),
+                      member_column("bearing_fx2_N", "N", &PlanarRow::bearing_fx2_n),
+                      member_column("bearing_fy2_N", "N", &PlanarRow::bearing_fy2_n),
+                      member_column("drive_force_N", "N", &PlanarRow::drive_force_n),
+                      member_column("coast_force_N", "N", &PlanarRow::coast_force_n),
+                      member_column("drive_penetration_m", "m", &PlanarRow::drive_penetration_m),
+                      member_column("coast_penetration_m", "m", &PlanarRow::coast_penetration_m)}) {
+    columns.push_back(std::move(column));
+  }
+  return columns;
+}
+
+std::string planar_series_csv_header() {
+  return csv_header(planar_series_columns());
+}
+
 void append_planar_row(std::string& out, const PlanarRow& r) {
-  append_numbers(out, r.t_s, r.state,
-                 {r.bearing_fx1_n, r.bearing_fy1_n, r.bearing_fx2_n, r.bearing_fy2_n,
-                  r.drive_force_n, r.coast_force_n, r.drive_penetration_m, r.coast_penetration_m});
+  static const Columns<PlanarRow> columns = planar_series_columns();
+  append_csv_row(out, columns, r);
+}
+
+Columns<PlanarSample> planar_sample_columns() {
+  using S = PlanarSample;
+  Columns<S> columns{member_column("t_s", "s", &S::t_s)};
+  add_planar_state(columns);
+  for (auto column :
+       {member_column("ax1_m_per_s2", "m/s^2", &S::ax1_m_per_s2),
+        member_column("ay1_m_per_s2", "m/s^2", &S::ay1_m_per_s2),
+        member_column("alpha1_rad_per_s2", "rad/s^2", &S::alpha1_rad_per_s2),
+        member_column("ax2_m_per_s2", "m/s^2", &S::ax2_m_per_s2),
+        member_column("ay2_m_per_s2", "m/s^2", &S::ay2_m_per_s2),
+        member_column("alpha2_rad_per_s2", "rad/s^2", &S::alpha2_rad_per_s2),
+        member_column("bearing_fx1_N", "N", &S::bearing_fx1_n),
+        member_column("bearing_fy1_N", "N", &S::bearing_fy1_n),
+        member_column("bearing_fx2_N", "N", &S::bearing_fx2_n),
+        member_column("bearing_fy2_N", "N", &S::bearing_fy2_n),
+        member_column("dte_m", "m", &S::dte_m),
+        member_column("drive_force_N", "N", &S::drive_force_n),
+        member_column("coast_force_N", "N", &S::coast_force_n),
+        member_column("sensor_acceleration_m_per_s2", "m/s^2", &S::sensor_acceleration_m_per_s2)}) {
+    columns.push_back(std::move(column));
+  }
+  return columns;
 }
 
 std::string planar_samples_csv_header() {
-  return "t_s,x1_m,y1_m,theta1_rad,x2_m,y2_m,theta2_rad,vx1_m_s,vy1_m_s,w1_rad_s,vx2_m_s,vy2_m_s,"
-         "w2_rad_s,theta_motor_rad,theta_load_rad,w_motor_rad_s,w_load_rad_s,ax1_m_per_s2,"
-         "ay1_m_per_s2,alpha1_rad_per_s2,ax2_m_per_s2,ay2_m_per_s2,alpha2_rad_per_s2,"
-         "bearing_fx1_N,bearing_fy1_N,bearing_fx2_N,bearing_fy2_N,dte_m,drive_force_N,"
-         "coast_force_N,sensor_acceleration_m_per_s2\n";
+  return csv_header(planar_sample_columns());
 }
 
 void append_planar_sample(std::string& out, const PlanarSample& r) {
-  append_numbers(
-      out, r.t_s, r.state,
-      {r.ax1_m_per_s2, r.ay1_m_per_s2, r.alpha1_rad_per_s2, r.ax2_m_per_s2, r.ay2_m_per_s2,
-       r.alpha2_rad_per_s2, r.bearing_fx1_n, r.bearing_fy1_n, r.bearing_fx2_n, r.bearing_fy2_n,
-       r.dte_m, r.drive_force_n, r.coast_force_n, r.sensor_acceleration_m_per_s2});
-}
-
-std::string samples_csv_header() {
-  return "t_s,theta1_rad,theta2_rad,w1_rad_s,w2_rad_s,w1_dot_rad_s2,w2_dot_rad_s2,s_m,dte_m,"
-         "normal_force_n1_N,normal_force_n2_N,region,pairs\n";
-}
-
-void append_sample_row(std::string& out, const SampleRow& r) {
-  char line[512];
-  const int n =
-      std::snprintf(line, sizeof line,
-                    "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d,%d\n",
-                    r.t_s, r.theta1_rad, r.theta2_rad, r.w1_rad_per_s, r.w2_rad_per_s,
-                    r.acceleration1_rad_per_s2, r.acceleration2_rad_per_s2, r.s_m, r.dte_m,
-                    r.normal_force_n1_n, r.normal_force_n2_n, r.region, r.pairs);
-  out.append(line, static_cast<std::size_t>(n));
+  static const Columns<PlanarSample> columns = planar_sample_columns();
+  append_csv_row(out, columns, r);
 }
 
 std::string series_csv(const std::vector<SeriesRow>& rows) {
@@ -183,49 +224,39 @@ void json_ledger_residual(std::string& out, const SimulationSummary& s) {
 
 }  // namespace
 
-std::vector<TrainColumn> train_series_columns(const GearTrain& train) {
-  std::vector<TrainColumn> columns;
-  columns.push_back({"t_s", "s", false, [](const TrainRow& r) { return r.t_s; }});
+Columns<TrainRow> train_series_columns(const GearTrain& train) {
+  Columns<TrainRow> columns{member_column("t_s", "s", &TrainRow::t_s)};
   for (std::size_t i = 0; i < train.bodies.size(); ++i) {
     const std::string& body = train.bodies[i].name;
-    columns.push_back({"theta_" + body + "_rad", "rad", false,
-                       [i](const TrainRow& r) { return r.theta_rad[i]; }});
-    columns.push_back({"w_" + body + "_rad_per_s", "rad/s", false,
-                       [i](const TrainRow& r) { return r.w_rad_per_s[i]; }});
+    columns.push_back(computed_column<TrainRow>("theta_" + body + "_rad", "rad",
+                                                [i](const TrainRow& r) { return r.theta_rad[i]; }));
+    columns.push_back(computed_column<TrainRow>(
+        "w_" + body + "_rad_per_s", "rad/s", [i](const TrainRow& r) { return r.w_rad_per_s[i]; }));
   }
   for (std::size_t k = 0; k < train.meshes.size(); ++k) {
     const std::string& mesh = train.meshes[k].name;
+    columns.push_back(computed_column<TrainRow>(
+        "s_" + mesh + "_m", "m", [k](const TrainRow& r) { return r.meshes[k].s_m; }));
+    columns.push_back(computed_column<TrainRow>(
+        "delta_" + mesh + "_m", "m", [k](const TrainRow& r) { return r.meshes[k].delta_m; }));
+    columns.push_back(computed_column<TrainRow>(
+        "region_" + mesh, "",
+        [k](const TrainRow& r) { return static_cast<double>(r.meshes[k].region); }, true));
+    columns.push_back(computed_column<TrainRow>(
+        "pairs_" + mesh, "",
+        [k](const TrainRow& r) { return static_cast<double>(r.meshes[k].pairs); }, true));
     columns.push_back(
-        {"s_" + mesh + "_m", "m", false, [k](const TrainRow& r) { return r.meshes[k].s_m; }});
-    columns.push_back({"delta_" + mesh + "_m", "m", false,
-                       [k](const TrainRow& r) { return r.meshes[k].delta_m; }});
-    columns.push_back({"region_" + mesh, "", true,
-                       [k](const TrainRow& r) { return static_cast<double>(r.meshes[k].region); }});
-    columns.push_back({"pairs_" + mesh, "", true,
-                       [k](const TrainRow& r) { return static_cast<double>(r.meshes[k].pairs); }});
-    columns.push_back({"normal_force_" + mesh + "_N", "N", false,
-                       [k](const TrainRow& r) { return r.meshes[k].normal_force_n; }});
-    columns.push_back({"friction_force_" + mesh + "_N", "N", false,
-                       [k](const TrainRow& r) { return r.meshes[k].friction_force_n; }});
+        computed_column<TrainRow>("normal_force_" + mesh + "_N", "N",
+                                  [k](const TrainRow& r) { return r.meshes[k].normal_force_n; }));
+    columns.push_back(
+        computed_column<TrainRow>("friction_force_" + mesh + "_N", "N",
+                                  [k](const TrainRow& r) { return r.meshes[k].friction_force_n; }));
   }
   return columns;
 }
 
 std::string train_series_csv(const GearTrain& train, const std::vector<TrainRow>& rows) {
-  const std::vector<TrainColumn> columns = train_series_columns(train);
-  std::string out;
-  for (std::size_t c = 0; c < columns.size(); ++c) out += (c > 0 ? "," : "") + columns[c].name;
-  out += "\n";
-  for (const TrainRow& row : rows) {
-    for (std::size_t c = 0; c < columns.size(); ++c) {
-      if (c > 0) out += ',';
-      const double value = columns[c].value(row);
-      out += columns[c].integral ? std::to_string(static_cast<long long>(value))
-                                 : format_data_number(value);
-    }
-    out += '\n';
-  }
-  return out;
+  return csv_of(train_series_columns(train), rows);
 }
 
 std::string train_summary_json(const GearTrain& train, const TrainResult& result) {
@@ -241,12 +272,23 @@ std::string train_summary_json(const GearTrain& train, const TrainResult& result
   out += "  \"meshes\": [";
   for (std::size_t k = 0; k < train.meshes.size(); ++k) {
     const TrainMeshSummary& m = result.meshes[k];
-    char penetration[64];
-    std::snprintf(penetration, sizeof penetration, "%.17g", m.max_penetration_m);
     out += std::string(k > 0 ? ",\n" : "\n") +
            "    {\"name\": " + json_string(train.meshes[k].name) +
            ", \"impacts\": " + std::to_string(m.impacts) +
-           ", \"max_penetration_m\": " + penetration + "}";
+           ", \"max_penetration_m\": " + format_data_number(m.max_penetration_m) +
+           ", \"damping_loss_J\": " + format_data_number(m.damping_loss_j) +
+           ", \"friction_loss_J\": " + format_data_number(m.friction_loss_j);
+    // The viscous mesh damper's loss only for a mesh that has one, as the two-gear summary.
+    if (train.meshes[k].pair.model.mesh_damping_ratio > 0.0) {
+      out += ", \"mesh_damper_loss_J\": " + format_data_number(m.mesh_damping_loss_j);
+    }
+    out += "}";
+  }
+  out += "\n  ],\n  \"bodies\": [";
+  for (std::size_t i = 0; i < train.bodies.size(); ++i) {
+    out +=
+        std::string(i > 0 ? ",\n" : "\n") + "    {\"name\": " + json_string(train.bodies[i].name) +
+        ", \"final_w_rad_per_s\": " + format_data_number(result.bodies[i].final_w_rad_per_s) + "}";
   }
   out += "\n  ]\n}\n";
   return out;
@@ -339,14 +381,15 @@ std::string summary_json(const SimulationSummary& s) {
   return out;
 }
 
+Columns<ImpactRecord> rattle_impact_columns() {
+  return {member_column("t_s", "s", &ImpactRecord::start_s),
+          text_column<ImpactRecord>(
+              "flank", [](const ImpactRecord& r) { return r.line == Region::n1 ? "N1" : "N2"; }),
+          member_column("impact_speed_m_s", "m/s", &ImpactRecord::impact_speed_m_s)};
+}
+
 std::string rattle_impacts_csv(const std::vector<ImpactRecord>& struck) {
-  std::string out = "t_s,flank,impact_speed_m_s\n";
-  for (const ImpactRecord& impact : struck) {
-    out += format_data_number(impact.start_s);
-    out += impact.line == Region::n1 ? ",N1," : ",N2,";
-    out += format_data_number(impact.impact_speed_m_s) + "\n";
-  }
-  return out;
+  return csv_of(rattle_impact_columns(), struck);
 }
 
 std::string impact_speed_histogram_csv(const ImpactSpeedHistogram& h) {
@@ -466,32 +509,45 @@ std::string mesh_stiffness_csv(const TimeVaryingMeshStiffness& tvms) {
   return out;
 }
 
-std::string true_period_mesh_stiffness_csv(const TruePeriodMeshStiffness& tvms) {
+std::size_t most_pairs_in_contact(const TruePeriodMeshStiffness& tvms) {
   std::size_t most = 0;
   for (const TruePeriodSample& s : tvms.samples) most = std::max(most, s.teeth.size());
-  std::string out = "fraction,theta1_rad,pairs,ke_n_m,healthy_ke_n_m";
-  for (std::size_t j = 1; j <= most; ++j) {
-    const std::string p = "pair" + std::to_string(j);
-    out += "," + p + "_pinion_tooth," + p + "_wheel_tooth," + p + "_ke_n_m";
+  return most;
+}
+
+Columns<TruePeriodSample> true_period_mesh_stiffness_columns(std::size_t most_pairs) {
+  using S = TruePeriodSample;
+  Columns<S> columns{
+      member_column("fraction", "", &S::fraction),
+      member_column("theta1_rad", "rad", &S::theta1_rad),
+      computed_column<S>(
+          "pairs", "", [](const S& s) { return static_cast<double>(s.teeth.size()); }, true),
+      member_column("ke_n_m", "N/m", &S::ke_n_per_m),
+      member_column("healthy_ke_n_m", "N/m", &S::healthy_ke_n_per_m)};
+  const double none = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t j = 0; j < most_pairs; ++j) {
+    const std::string p = "pair" + std::to_string(j + 1);
+    columns.push_back(optional_column<S>(
+        p + "_pinion_tooth", "",
+        [j, none](const S& s) {
+          return j < s.teeth.size() ? static_cast<double>(s.teeth[j].pinion_tooth) : none;
+        },
+        true));
+    columns.push_back(optional_column<S>(
+        p + "_wheel_tooth", "",
+        [j, none](const S& s) {
+          return j < s.teeth.size() ? static_cast<double>(s.teeth[j].wheel_tooth) : none;
+        },
+        true));
+    columns.push_back(optional_column<S>(p + "_ke_n_m", "N/m", [j, none](const S& s) {
+      return j < s.teeth.size() ? s.pair_ke_n_per_m[j] : none;
+    }));
   }
-  out += "\n";
-  char line[160];
-  for (const TruePeriodSample& s : tvms.samples) {
-    std::snprintf(line, sizeof line, "%.17g,%.17g,%zu,%.17g,%.17g", s.fraction, s.theta1_rad,
-                  s.teeth.size(), s.ke_n_per_m, s.healthy_ke_n_per_m);
-    out += line;
-    for (std::size_t j = 0; j < most; ++j) {
-      if (j < s.teeth.size()) {
-        std::snprintf(line, sizeof line, ",%d,%d,%.17g", s.teeth[j].pinion_tooth,
-                      s.teeth[j].wheel_tooth, s.pair_ke_n_per_m[j]);
-        out += line;
-      } else {
-        out += ",,,";
-      }
-    }
-    out += "\n";
-  }
-  return out;
+  return columns;
+}
+
+std::string true_period_mesh_stiffness_csv(const TruePeriodMeshStiffness& tvms) {
+  return csv_of(true_period_mesh_stiffness_columns(most_pairs_in_contact(tvms)), tvms.samples);
 }
 
 std::string true_period_mesh_stiffness_summary_json(const TruePeriodMeshStiffness& tvms,
@@ -569,37 +625,51 @@ void ste_figures(std::string& out, const char* prefix, const StaticTransmissionE
 
 }  // namespace
 
-std::string ste_csv(const StaticTransmissionError& ste) {
+Columns<StePoint> ste_columns() {
+  using P = StePoint;
   constexpr std::size_t slots = MeshLayout::capacity;
-  std::string out =
-      "theta1_rad,theta1_deg,ste_m,kte_m,effective_stiffness_n_per_m,pairs,loaded_pairs";
-  for (const char* column : {"share_", "gap_"}) {
-    for (std::size_t j = 1; j <= slots; ++j) out += "," + std::string(column) + std::to_string(j);
-  }
-  out += ",teeth\n";
-  for (const StePoint& p : ste.points) {
-    std::size_t loaded = 0;
-    for (std::size_t j = 0; j < p.pairs; ++j) loaded += p.share[j] > 0.0;
-    // An angle that no pair carries has no STE and no effective stiffness: empty fields.
-    const auto carried = [&p](double value) { return p.carried ? format_data_number(value) : ""; };
-    out += format_data_number(p.theta1_rad) + "," + format_data_number(p.theta1_rad * 180.0 / pi) +
-           "," + carried(p.ste_m) + "," + format_data_number(p.kte_m) + "," +
-           carried(p.effective_stiffness_n_per_m) + "," + std::to_string(p.pairs) + "," +
-           std::to_string(loaded);
-    for (const auto* values : {&p.share, &p.gap_m}) {
-      for (std::size_t j = 0; j < slots; ++j) {
-        out += ",";
-        if (j < p.pairs) out += format_data_number((*values)[j]);
-      }
+  const double none = std::numeric_limits<double>::quiet_NaN();
+  // An angle that no pair carries has no STE and no effective stiffness: empty fields.
+  Columns<P> columns{
+      member_column("theta1_rad", "rad", &P::theta1_rad),
+      computed_column<P>("theta1_deg", "deg", [](const P& p) { return p.theta1_rad * 180.0 / pi; }),
+      optional_column<P>("ste_m", "m", [none](const P& p) { return p.carried ? p.ste_m : none; }),
+      member_column("kte_m", "m", &P::kte_m),
+      optional_column<P>(
+          "effective_stiffness_n_per_m", "N/m",
+          [none](const P& p) { return p.carried ? p.effective_stiffness_n_per_m : none; }),
+      computed_column<P>(
+          "pairs", "", [](const P& p) { return static_cast<double>(p.pairs); }, true),
+      computed_column<P>(
+          "loaded_pairs", "",
+          [](const P& p) {
+            std::size_t loaded = 0;
+            for (std::size_t j = 0; j < p.pairs; ++j) loaded += p.share[j] > 0.0;
+            return static_cast<double>(loaded);
+          },
+          true)};
+  // The pairs within the contact segment, in ascending X: empty beyond `pairs`.
+  for (const auto& [prefix, unit, values] :
+       {std::tuple{"share_", "", &P::share}, std::tuple{"gap_", "m", &P::gap_m}}) {
+    for (std::size_t j = 0; j < slots; ++j) {
+      columns.push_back(optional_column<P>(
+          prefix + std::to_string(j + 1), unit,
+          [j, none, values = values](const P& p) { return j < p.pairs ? (p.*values)[j] : none; }));
     }
-    out += ",";
+  }
+  columns.push_back(text_column<P>("teeth", [](const P& p) {
+    std::string teeth;
     for (std::size_t j = 0; j < p.pairs; ++j) {
-      out += (j ? " " : "") + std::to_string(p.teeth[j].pinion_tooth) + "/" +
-             std::to_string(p.teeth[j].wheel_tooth);
+      teeth += (j ? " " : "") + std::to_string(p.teeth[j].pinion_tooth) + "/" +
+               std::to_string(p.teeth[j].wheel_tooth);
     }
-    out += "\n";
-  }
-  return out;
+    return teeth;
+  }));
+  return columns;
+}
+
+std::string ste_csv(const StaticTransmissionError& ste) {
+  return csv_of(ste_columns(), ste.points);
 }
 
 std::string ste_pairs_csv(const StaticTransmissionError& ste) {

@@ -91,10 +91,20 @@ struct TrainRow {
 };
 
 // Per mesh: the contacts begun (a contact at the start counts), the largest
-// penetration, and the stored energy's jumps where pairs enter or leave.
+// penetration, and its losses: the Hertzian damping's of (32), the friction's
+// and the viscous mesh damper's (their sums over the meshes are the train's
+// damping_loss_j, friction_loss_j and mesh_damping_loss_j, to rounding).
 struct TrainMeshSummary {
   int impacts = 0;
   double max_penetration_m = 0.0;
+  double damping_loss_j = 0.0;
+  double friction_loss_j = 0.0;
+  double mesh_damping_loss_j = 0.0;
+};
+
+// Per body: its speed at the end of the run (a rigid shaft's bodies have the same).
+struct TrainBodySummary {
+  double final_w_rad_per_s = 0.0;
 };
 
 struct TrainResult {
@@ -104,6 +114,7 @@ struct TrainResult {
   // with the stored energy.
   SimulationSummary summary;
   std::vector<TrainMeshSummary> meshes;
+  std::vector<TrainBodySummary> bodies;  // in the order of GearTrain::bodies
 };
 
 // Validates the train (InputError naming the field: bodies.NAME.inertia,

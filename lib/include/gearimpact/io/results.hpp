@@ -3,7 +3,6 @@
 // reads back exactly), JSON with absent values as null.
 #pragma once
 
-#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,6 +10,7 @@
 #include "gearimpact/batch/sweep_friction.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/dynamics/train.hpp"
+#include "gearimpact/io/columns.hpp"
 #include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
@@ -25,7 +25,10 @@ namespace gearimpact {
 // shorter form of messages (format_number).
 std::string format_data_number(double value);
 
-// t_s,theta1_rad,theta2_rad,w1_rad_per_s,w2_rad_per_s,s_m,delta_m,region,pairs,normal_force_N,friction_force_N
+// The time series of a two-gear torsional run (SimulationResult::series), each column described
+// once: t_s,theta1_rad,theta2_rad,w1_rad_s,w2_rad_s,s_m,delta_m,region,pairs,normal_force_N,
+// friction_force_N (docs/usage.md, "Output columns").
+Columns<SeriesRow> series_columns();
 std::string series_csv(const std::vector<SeriesRow>& rows);
 // The same in pieces, for a series streamed to its file as the run goes: the
 // header line, and one row appended to `out`.
@@ -37,11 +40,13 @@ void append_series_row(std::string& out, const SeriesRow& row);
 // the motor's and the load's angles and speeds (their gears' without shafts),
 // the force each bearing exerts on its gear (bearing_fx1_N, ...), the normal
 // forces of each side (drive_force_N, coast_force_N) and their penetrations.
+Columns<PlanarRow> planar_series_columns();
 std::string planar_series_csv_header();
 void append_planar_row(std::string& out, const PlanarRow& row);
 // The samples of RunControl::sample_rate_hz, in pieces as the series:
 // t_s,theta1_rad,theta2_rad,w1_rad_s,w2_rad_s,w1_dot_rad_s2,w2_dot_rad_s2,s_m,dte_m,
 // normal_force_n1_N,normal_force_n2_N,region,pairs
+Columns<SampleRow> sample_columns();
 std::string samples_csv_header();
 void append_sample_row(std::string& out, const SampleRow& row);
 // The samples of a planar run (SimulationResult::planar_samples), in pieces
@@ -50,27 +55,23 @@ void append_sample_row(std::string& out, const SampleRow& row);
 // alpha1_rad_per_s2, ax2_m_per_s2, ay2_m_per_s2, alpha2_rad_per_s2, the
 // bearing forces (bearing_fx1_N, ...), dte_m, drive_force_N, coast_force_N
 // and sensor_acceleration_m_per_s2.
+Columns<PlanarSample> planar_sample_columns();
 std::string planar_samples_csv_header();
 void append_planar_sample(std::string& out, const PlanarSample& sample);
 // The summary as a JSON object.
 std::string summary_json(const SimulationSummary& summary);
-// The columns of a gear train's series (TrainRow), each described once: its name, unit and value.
-// t_s; per body, in the train's order, theta_BODY_rad and w_BODY_rad_per_s; per mesh,
-// s_MESH_m, delta_MESH_m, region_MESH, pairs_MESH, normal_force_MESH_N and
-// friction_force_MESH_N (BODY and MESH the names of the case file). Integral columns (region,
-// pairs) are written as integers.
-struct TrainColumn {
-  std::string name;
-  std::string unit;  // "" for a count or a code
-  bool integral = false;
-  std::function<double(const TrainRow&)> value;
-};
-std::vector<TrainColumn> train_series_columns(const GearTrain& train);
+// The columns of a gear train's series (TrainRow): t_s; per body, in the train's order,
+// theta_BODY_rad and w_BODY_rad_per_s; per mesh, s_MESH_m, delta_MESH_m, region_MESH,
+// pairs_MESH, normal_force_MESH_N and friction_force_MESH_N (BODY and MESH the names of the
+// case file). Integral columns (region, pairs) are written as integers.
+using TrainColumn = Column<TrainRow>;
+Columns<TrainRow> train_series_columns(const GearTrain& train);
 // The series as CSV by those columns: a header line, a row each, numbers at 17 digits.
 std::string train_series_csv(const GearTrain& train, const std::vector<TrainRow>& rows);
 // The run's summary as a JSON object: the train's counts and energy ledger (its residual
-// ledger_residual_max_J among them), then "meshes": per mesh its name, impacts and largest
-// penetration.
+// ledger_residual_max_J among them), then "meshes": per mesh its name, impacts, largest
+// penetration, damping_loss_J and friction_loss_J (and mesh_damper_loss_J for a mesh with a
+// mesh damper), then "bodies": per body its name and final_w_rad_per_s.
 std::string train_summary_json(const GearTrain& train, const TrainResult& result);
 // A tacho's edges, one row each: pulse,t_s,t_emitted_s, the true (jitter-free)
 // time and the emitted one (with the seeded jitter; equal without).
@@ -79,6 +80,8 @@ std::string tacho_csv(const std::vector<double>& true_times_s,
 // A driven run's struck impacts (struck_impacts), one row each:
 // t_s,flank,impact_speed_m_s with flank N1 (drive) or N2 (back).
 std::string rattle_impacts_csv(const std::vector<ImpactRecord>& struck);
+// Its columns, described once.
+Columns<ImpactRecord> rattle_impact_columns();
 // lower_m_s,upper_m_s,count_n1,count_n2,count: one row per bin of
 // impact_speed_histogram, its edges and its impacts on each flank and both.
 std::string impact_speed_histogram_csv(const ImpactSpeedHistogram& histogram);
@@ -114,6 +117,10 @@ std::string mesh_stiffness_csv(const TimeVaryingMeshStiffness& tvms);
 // pairJ_pinion_tooth,pairJ_wheel_tooth,pairJ_ke_n_m (empty cells where fewer pairs are in
 // contact); pair 1 is the one nearest the start of contact (the last to enter).
 std::string true_period_mesh_stiffness_csv(const TruePeriodMeshStiffness& tvms);
+// Its columns, described once (the CSV writer and the Python package's arrays follow them), for
+// a period whose samples have at most `most_pairs` pairs in contact (most_pairs_in_contact).
+Columns<TruePeriodSample> true_period_mesh_stiffness_columns(std::size_t most_pairs);
+std::size_t most_pairs_in_contact(const TruePeriodMeshStiffness& tvms);
 // min_n_m, max_n_m, mean_n_m (the exact time mean over the true period), contact_ratio,
 // period (its kind), mesh_periods, min_at_fraction, max_at_fraction (of the true period),
 // healthy_mean_n_m (the same pairs all healthy), simulation_theta1_offset_rad, extrapolated
@@ -135,6 +142,8 @@ std::string iso6336_json(const Iso6336Stiffness& iso, double face_width_m,
 // same order). ste_m and effective_stiffness_n_per_m are empty where no pair carries the load
 // (StePoint::carried: every pair in the segment has a missing tooth).
 std::string ste_csv(const StaticTransmissionError& ste);
+// Its columns, described once (the CSV writer and the Python package's arrays follow them).
+Columns<StePoint> ste_columns();
 // The same points pair by pair: one block per pair of teeth (in the order the
 // pairs enter), each row a point where the pair is in the contact segment,
 // blocks separated by two empty lines so that gnuplot reads each pair as one
