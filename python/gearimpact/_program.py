@@ -131,7 +131,7 @@ def mesh_stiffness(case=None, model=None, samples=200):
     summary = json.loads(summary)
     if summary["extrapolated"]:
         _warnings.warn(f"{chosen.name if chosen else 'the paper pair'}: {summary['warning']}")
-    return _table(table), summary
+    return table, summary
 
 
 def ste(case, torque, points=200):
@@ -160,7 +160,7 @@ def ste(case, torque, points=200):
         _warnings.warn(f"{case.name}: at {summary['uncarried_points']} of {summary['points']:.0f} "
                        "angles every pair in the contact segment has a missing tooth: no pair "
                        "carries the load, and ste_m is NaN there")
-    return {"ste": _table(modified), "unmodified": _table(unmodified), "summary": summary}
+    return {"ste": modified, "unmodified": unmodified, "summary": summary}
 
 
 def modes(case, harmonics=3, max_speed=None):

@@ -114,8 +114,9 @@ class SimulationResult:
     """One run: .case (the Case run), .summary (a dict with the keys of the
     program's JSON summary; the losses damping_loss_J (Hertzian damping),
     friction_loss_J and, with a viscous mesh damper, mesh_damper_loss_J), .series (a dict of numpy arrays with the columns
-    of its time-series CSV, each a view of one column of the rows; zero-length
-    when keep_series was False) and .impacts (a
+    of its time-series CSV, ``gearimpact simulate --out``'s: with [bearings] kind = "elastic"
+    the planar series' (docs/usage.md, "Output columns"); each column a member of the rows is
+    a view of it; zero-length when keep_series was False) and .impacts (a
     list of dicts: line "N1" or "N2", start_s, impact_speed_m_s, restitution,
     end_s, end_speed_m_s, the last two None for a contact still on at the end)
     and .samples (with sample_rate, a dict of numpy arrays with the columns of

@@ -15,6 +15,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -202,112 +203,48 @@ py::array_t<T> column(const std::vector<Row>& rows, T Row::*member) {
   return array;
 }
 
-// The columns of `gearimpact simulate --out` (series_csv), in its order: views
-// into the rows themselves (a stride of one row), which the arrays keep alive.
-// A copy would add as much time as the series takes to compute.
-py::dict series_columns(std::vector<SeriesRow>&& rows) {
-  auto* owned = new std::vector<SeriesRow>(std::move(rows));
-  const py::capsule keeper(owned, [](void* p) { delete static_cast<std::vector<SeriesRow>*>(p); });
+// The arrays of an output's columns (io/results.hpp's tables, the CSV's names and order), one
+// per column. A column that is a member of the row is a view into the rows themselves (a stride
+// of one row), which the arrays keep alive: a copy would add as much time as the series takes to
+// compute. A computed column is copied: into int64 when integral, else (or when a row may lack
+// it, NaN there) into float64; a text column into a numpy str array.
+template <typename Row>
+py::dict table_arrays(const Columns<Row>& columns, std::vector<Row>&& rows) {
+  auto* owned = new std::vector<Row>(std::move(rows));
+  const py::capsule keeper(owned, [](void* p) { delete static_cast<std::vector<Row>*>(p); });
   const auto n = static_cast<py::ssize_t>(owned->size());
-  const auto view = [&](auto SeriesRow::*member) {
-    using T = std::remove_reference_t<decltype(std::declval<SeriesRow&>().*member)>;
+  const auto view = [&](auto Row::*member) {
+    using T = std::remove_reference_t<decltype(std::declval<Row&>().*member)>;
     if (n == 0) return py::array_t<T>(0);
-    return py::array_t<T>({n}, {static_cast<py::ssize_t>(sizeof(SeriesRow))},
-                          &((*owned)[0].*member), keeper);
+    return py::array_t<T>({n}, {static_cast<py::ssize_t>(sizeof(Row))}, &((*owned)[0].*member),
+                          keeper);
   };
-  py::dict series;
-  series["t_s"] = view(&SeriesRow::t_s);
-  series["theta1_rad"] = view(&SeriesRow::theta1_rad);
-  series["theta2_rad"] = view(&SeriesRow::theta2_rad);
-  series["w1_rad_s"] = view(&SeriesRow::w1_rad_per_s);
-  series["w2_rad_s"] = view(&SeriesRow::w2_rad_per_s);
-  series["s_m"] = view(&SeriesRow::s_m);
-  series["delta_m"] = view(&SeriesRow::delta_m);
-  series["region"] = view(&SeriesRow::region);
-  series["pairs"] = view(&SeriesRow::pairs);
-  series["normal_force_N"] = view(&SeriesRow::normal_force_n);
-  series["friction_force_N"] = view(&SeriesRow::friction_force_n);
-  return series;
-}
-
-// The columns of `gearimpact simulate --sample-rate FS --out` (samples_csv_header),
-// in its order, viewed in place as the series' are.
-py::dict sample_columns(std::vector<SampleRow>&& rows) {
-  auto* owned = new std::vector<SampleRow>(std::move(rows));
-  const py::capsule keeper(owned, [](void* p) { delete static_cast<std::vector<SampleRow>*>(p); });
-  const auto n = static_cast<py::ssize_t>(owned->size());
-  const auto view = [&](auto SampleRow::*member) {
-    using T = std::remove_reference_t<decltype(std::declval<SampleRow&>().*member)>;
-    if (n == 0) return py::array_t<T>(0);
-    return py::array_t<T>({n}, {static_cast<py::ssize_t>(sizeof(SampleRow))},
-                          &((*owned)[0].*member), keeper);
-  };
-  py::dict samples;
-  samples["t_s"] = view(&SampleRow::t_s);
-  samples["theta1_rad"] = view(&SampleRow::theta1_rad);
-  samples["theta2_rad"] = view(&SampleRow::theta2_rad);
-  samples["w1_rad_s"] = view(&SampleRow::w1_rad_per_s);
-  samples["w2_rad_s"] = view(&SampleRow::w2_rad_per_s);
-  samples["w1_dot_rad_s2"] = view(&SampleRow::acceleration1_rad_per_s2);
-  samples["w2_dot_rad_s2"] = view(&SampleRow::acceleration2_rad_per_s2);
-  samples["s_m"] = view(&SampleRow::s_m);
-  samples["dte_m"] = view(&SampleRow::dte_m);
-  samples["normal_force_n1_N"] = view(&SampleRow::normal_force_n1_n);
-  samples["normal_force_n2_N"] = view(&SampleRow::normal_force_n2_n);
-  samples["region"] = view(&SampleRow::region);
-  samples["pairs"] = view(&SampleRow::pairs);
-  return samples;
-}
-
-// The columns of `gearimpact simulate --sample-rate FS --out` for a planar
-// case (planar_samples_csv_header), in its order. The state is a member of a
-// member, which a strided view cannot reach by a member pointer: copied.
-py::dict planar_sample_columns(const std::vector<PlanarSample>& rows) {
-  const auto of = [&](auto get) {
-    py::array_t<double> array(static_cast<py::ssize_t>(rows.size()));
-    double* data = array.mutable_data();
-    for (std::size_t i = 0; i < rows.size(); ++i) data[i] = get(rows[i]);
+  const auto copy = [&](const Column<Row>& column, auto zero) {
+    py::array_t<decltype(zero)> array(n);
+    auto* data = array.mutable_data();
+    for (py::ssize_t i = 0; i < n; ++i) {
+      data[i] = static_cast<decltype(zero)>(column.value((*owned)[static_cast<std::size_t>(i)]));
+    }
     return array;
   };
-  py::dict samples;
-  const auto state = [&](const char* name, double PlanarState::*member) {
-    samples[name] = of([member](const PlanarSample& r) { return r.state.*member; });
-  };
-  const auto own = [&](const char* name, double PlanarSample::*member) {
-    samples[name] = of([member](const PlanarSample& r) { return r.*member; });
-  };
-  own("t_s", &PlanarSample::t_s);
-  state("x1_m", &PlanarState::x1_m);
-  state("y1_m", &PlanarState::y1_m);
-  state("theta1_rad", &PlanarState::theta1_rad);
-  state("x2_m", &PlanarState::x2_m);
-  state("y2_m", &PlanarState::y2_m);
-  state("theta2_rad", &PlanarState::theta2_rad);
-  state("vx1_m_s", &PlanarState::vx1_m_s);
-  state("vy1_m_s", &PlanarState::vy1_m_s);
-  state("w1_rad_s", &PlanarState::w1_rad_per_s);
-  state("vx2_m_s", &PlanarState::vx2_m_s);
-  state("vy2_m_s", &PlanarState::vy2_m_s);
-  state("w2_rad_s", &PlanarState::w2_rad_per_s);
-  state("theta_motor_rad", &PlanarState::theta_motor_rad);
-  state("theta_load_rad", &PlanarState::theta_load_rad);
-  state("w_motor_rad_s", &PlanarState::w_motor_rad_per_s);
-  state("w_load_rad_s", &PlanarState::w_load_rad_per_s);
-  own("ax1_m_per_s2", &PlanarSample::ax1_m_per_s2);
-  own("ay1_m_per_s2", &PlanarSample::ay1_m_per_s2);
-  own("alpha1_rad_per_s2", &PlanarSample::alpha1_rad_per_s2);
-  own("ax2_m_per_s2", &PlanarSample::ax2_m_per_s2);
-  own("ay2_m_per_s2", &PlanarSample::ay2_m_per_s2);
-  own("alpha2_rad_per_s2", &PlanarSample::alpha2_rad_per_s2);
-  own("bearing_fx1_N", &PlanarSample::bearing_fx1_n);
-  own("bearing_fy1_N", &PlanarSample::bearing_fy1_n);
-  own("bearing_fx2_N", &PlanarSample::bearing_fx2_n);
-  own("bearing_fy2_N", &PlanarSample::bearing_fy2_n);
-  own("dte_m", &PlanarSample::dte_m);
-  own("drive_force_N", &PlanarSample::drive_force_n);
-  own("coast_force_N", &PlanarSample::coast_force_n);
-  own("sensor_acceleration_m_per_s2", &PlanarSample::sensor_acceleration_m_per_s2);
-  return samples;
+  py::dict table;
+  for (const Column<Row>& column : columns) {
+    if (column.text) {
+      py::list texts;
+      for (const Row& row : *owned) texts.append(column.text(row));
+      table[column.name.c_str()] =
+          py::module_::import("numpy").attr("array")(texts, py::arg("dtype") = "str");
+    } else if (column.real_member != nullptr) {
+      table[column.name.c_str()] = view(column.real_member);
+    } else if (column.int_member != nullptr) {
+      table[column.name.c_str()] = view(column.int_member);
+    } else if (column.integral && !column.may_be_empty) {
+      table[column.name.c_str()] = copy(column, std::int64_t{0});
+    } else {
+      table[column.name.c_str()] = copy(column, 0.0);
+    }
+  }
+  return table;
 }
 
 py::object optional_number(const std::optional<double>& value) {
@@ -343,15 +280,17 @@ py::tuple run_simulation(const SimulationCase& c, bool keep_series, long long ma
     control.should_stop = std::move(should_stop);
     return simulate(c, control);
   });
-  // A planar run's samples are its own (the torsional columns would be empty).
-  py::dict samples = c.bearings.kind == BearingKind::elastic
-                         ? planar_sample_columns(result.planar_samples)
-                         : sample_columns(std::move(result.samples));
+  // A planar run's series and samples are its own (the torsional columns would be empty).
+  const bool planar = c.bearings.kind == BearingKind::elastic;
+  py::dict series = planar ? table_arrays(planar_series_columns(), std::move(result.planar_series))
+                           : table_arrays(series_columns(), std::move(result.series));
+  py::dict samples = planar
+                         ? table_arrays(planar_sample_columns(), std::move(result.planar_samples))
+                         : table_arrays(sample_columns(), std::move(result.samples));
   py::list warnings;
   for (const std::string& w : result_warnings(c, result.summary)) warnings.append(w);
-  return py::make_tuple(summary_json(result.summary), series_columns(std::move(result.series)),
-                        impact_records(result.impacts), samples, to_array(result.tacho_times_s),
-                        warnings);
+  return py::make_tuple(summary_json(result.summary), series, impact_records(result.impacts),
+                        samples, to_array(result.tacho_times_s), warnings);
 }
 
 // The stiffness columns of `gearimpact stiffness` at the contact positions xs.
@@ -502,20 +441,27 @@ SimulationCase stiffness_case(const std::optional<SimulationCase>& c,
   return chosen;
 }
 
-// `gearimpact mesh-stiffness` and its --summary: (CSV, JSON), the program's texts.
-py::tuple mesh_stiffness_texts_of(const std::optional<SimulationCase>& c,
-                                  const std::optional<std::string>& model, long long samples) {
+// `gearimpact mesh-stiffness` and its --summary: the table as arrays of the CSV's columns (the
+// library's table of them) and the summary's JSON.
+py::tuple mesh_stiffness_of(const std::optional<SimulationCase>& c,
+                            const std::optional<std::string>& model, long long samples) {
   const int n = sample_count("samples", samples);
   const SimulationCase chosen = stiffness_case(c, model);
-  cli::MeshStiffnessTexts texts;
+  TruePeriodMeshStiffness tvms;
   {
     py::gil_scoped_release release;
-    texts = cli::mesh_stiffness_texts(chosen.gears, chosen.model.stiffness, n, chosen.faults);
+    tvms = true_period_mesh_stiffness(chosen.gears, chosen.model.stiffness, chosen.faults,
+                                      static_cast<std::size_t>(n));
   }
-  return py::make_tuple(texts.csv, texts.summary_json);
+  const std::string summary =
+      true_period_mesh_stiffness_summary_json(tvms, contact_ratio(chosen.gears));
+  const Columns<TruePeriodSample> columns =
+      true_period_mesh_stiffness_columns(most_pairs_in_contact(tvms));
+  return py::make_tuple(table_arrays(columns, std::move(tvms.samples)), summary);
 }
 
-// `gearimpact ste`: (ste.csv, ste_unmodified.csv, summary.json) as the program writes them;
+// `gearimpact ste`: ste.csv's and ste_unmodified.csv's columns as arrays (the library's table of
+// them) and summary.json's text;
 // `torque` a quantity with its unit ("100 N*m").
 py::tuple ste_texts_of(const SimulationCase& c, const std::string& torque, long long points) {
   const double t = parse_quantity(torque, Dimension::torque, "torque");
@@ -530,7 +476,10 @@ py::tuple ste_texts_of(const SimulationCase& c, const std::string& torque, long 
     py::gil_scoped_release release;
     texts = cli::ste_texts(c, t, static_cast<int>(points));
   }
-  return py::make_tuple(texts.csv, texts.unmodified_csv, texts.summary_json);
+  const Columns<StePoint> columns = ste_columns();
+  return py::make_tuple(table_arrays(columns, std::move(texts.modified.points)),
+                        table_arrays(columns, std::move(texts.unmodified.points)),
+                        texts.summary_json);
 }
 
 // `gearimpact modes`: (modes.csv, campbell.csv, summary.json) as the program writes them;
@@ -933,7 +882,7 @@ void define_module(py::module_& m) {
         }
       },
       py::arg("case"), py::arg("helix_angle_deg"), py::arg("load") = std::nullopt);
-  m.def("mesh_stiffness", &mesh_stiffness_texts_of, py::arg("case"), py::arg("model"),
+  m.def("mesh_stiffness", &mesh_stiffness_of, py::arg("case"), py::arg("model"),
         py::arg("samples"));
   m.def("sweep", &sweep_texts, py::arg("case"), py::arg("options"));
   // Data sets (docs/datasets.md): the library's dataset/ functions on a spec file.

@@ -336,6 +336,30 @@ def test_simulate_planar_samples_as_the_program_writes_them(cli, tmp_path):
     assert np.max(np.abs(result.samples["sensor_acceleration_m_per_s2"])) > 0.0
 
 
+PLANAR_SERIES_COLUMNS = PLANAR_SAMPLE_COLUMNS[:17] + [
+    "bearing_fx1_N", "bearing_fy1_N", "bearing_fx2_N", "bearing_fy2_N", "drive_force_N",
+    "coast_force_N", "drive_penetration_m", "coast_penetration_m",
+]
+
+
+def test_simulate_planar_series_as_the_program_writes_it(cli, tmp_path):
+    # Case 1 on elastic bearings: .series holds the planar series, the columns of the program's
+    # --out, the same doubles (before, the torsional columns, empty).
+    case_file = tmp_path / "planar.toml"
+    case_file.write_text((gearimpact.paper_data_dir() / "case1.toml").read_text()
+                         + '\n[bearings]\nkind = "elastic"\nstiffness_x1 = "500 N/um"\n'
+                         + 'stiffness_x2 = "700 N/um"\n')
+    out = tmp_path / "series.csv"
+    summary = json.loads(cli("simulate", "--case-file", case_file, "--t-end", "0.0005",
+                             "--every", "10", "--out", out))
+    result = gearimpact.simulate(case_file, end_time="0.5 ms", output_every=10)
+    assert result.summary == summary
+    assert_same_table(result.series, out.read_text(), PLANAR_SERIES_COLUMNS,
+                      "planar series of case 1")
+    assert len(result.series["t_s"]) > 100
+    assert np.max(np.abs(result.series["x2_m"])) > 0.0
+
+
 @pytest.mark.parametrize("rate", [0, -1.0, float("inf"), True, "fast"])
 def test_simulate_refuses_a_bad_sample_rate(rate):
     with pytest.raises(gearimpact.CaseError, match="sample_rate"):
