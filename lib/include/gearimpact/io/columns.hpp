@@ -4,9 +4,9 @@
 // docs compares their column lists to it (docs/usage.md, "Output columns").
 #pragma once
 
+#include <charconv>
 #include <cmath>
 #include <cstddef>
-#include <cstdio>
 #include <functional>
 #include <string>
 #include <utility>
@@ -96,31 +96,44 @@ std::string csv_header(const Columns<Row>& columns) {
   return out;
 }
 
-// One row appended to `out` as a CSV line: a real at 17 significant digits ("%.17g", every
-// double reads back exactly), an integral column as an integer.
+// A number appended to `out`: a real as "%.17g" writes it (17 significant digits, every double
+// reads back exactly), an integer in full. std::to_chars with a precision is specified as printf
+// with that precision in the C locale, the same bytes, and takes about half snprintf's time,
+// which a series of millions of rows notices.
+inline void append_real(std::string& out, double value) {
+  char number[32];
+  const std::to_chars_result r =
+      std::to_chars(number, number + sizeof number, value, std::chars_format::general, 17);
+  out.append(number, r.ptr);
+}
+inline void append_integer(std::string& out, long long value) {
+  char number[24];
+  const std::to_chars_result r = std::to_chars(number, number + sizeof number, value);
+  out.append(number, r.ptr);
+}
+
+// One row appended to `out` as a CSV line: a real at 17 significant digits, an integral column
+// as an integer, an empty field for a value the row lacks, a text as it is.
 template <typename Row>
 void append_csv_row(std::string& out, const Columns<Row>& columns, const Row& row) {
-  char number[32];
   for (std::size_t c = 0; c < columns.size(); ++c) {
     if (c > 0) out += ',';
     const Column<Row>& column = columns[c];
-    int n = 0;
     if (column.text) {
       out += column.text(row);
-      continue;
-    }
-    if (column.real_member != nullptr) {
-      n = std::snprintf(number, sizeof number, "%.17g", row.*column.real_member);
+    } else if (column.real_member != nullptr) {
+      append_real(out, row.*column.real_member);
     } else if (column.int_member != nullptr) {
-      n = std::snprintf(number, sizeof number, "%d", row.*column.int_member);
+      append_integer(out, row.*column.int_member);
     } else {
       const double value = column.value(row);
       if (column.may_be_empty && std::isnan(value)) continue;
-      n = column.integral
-              ? std::snprintf(number, sizeof number, "%lld", static_cast<long long>(value))
-              : std::snprintf(number, sizeof number, "%.17g", value);
+      if (column.integral) {
+        append_integer(out, static_cast<long long>(value));
+      } else {
+        append_real(out, value);
+      }
     }
-    out.append(number, static_cast<std::size_t>(n));
   }
   out += '\n';
 }
