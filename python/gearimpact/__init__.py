@@ -63,6 +63,7 @@ from ._results import (
     simulate,
     stiffness,
     sweep_friction,
+    train,
 )
 from ._dataset import dataset_merge, dataset_plan, dataset_run, load_dataset
 from ._signals import decimate, indicators, low_pass, order_analysis, spectrum, tacho_angle, tacho_jitter
@@ -125,4 +126,5 @@ __all__ = [
     "sweep",
     "sweep_friction",
     "tip_radius",
+    "train",
 ]

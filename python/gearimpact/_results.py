@@ -257,3 +257,23 @@ def sweep_friction(
     for j, name in enumerate(names):
         table["ratio_" + name] = ratio[:, j].copy()
     return table
+
+
+def train(case_file, sets=(), keep_series=True):
+    """Runs a gear train's case file (docs/case-files.md, "A gear train"; a two-gear case file
+    is the train of its pair) as ``gearimpact train`` does, bit for bit.
+
+    case_file: a str or pathlib.Path. sets: a list of "KEY=VALUE" str, as the command's --set
+    (e.g. ["integrator.end_time=2 ms", "meshes.idler-wheel.gears.backlash=0.1 mm"]).
+    keep_series: True or False. Returns a dict: "series" (numpy arrays by column of the
+    command's series.csv: t_s, theta_BODY_rad and w_BODY_rad_per_s per body, s_MESH_m,
+    delta_MESH_m, region_MESH and pairs_MESH (int64), normal_force_MESH_N and
+    friction_force_MESH_N per mesh, BODY and MESH the file's names; docs/usage.md, "Output
+    columns"; zero-length with keep_series=False) and "summary" (summary.json as a dict: the
+    train's counts and energy ledger, "meshes" with each mesh's impacts, largest penetration and
+    losses, "bodies" with each body's final speed). Raises CaseError naming a bad key."""
+    path = _arguments.path("case_file", case_file)
+    more = _arguments.strings("sets", sets, ["integrator.end_time=2 ms"])
+    keep = _arguments.flag("keep_series", keep_series)
+    summary, series = _core.train(path, list(more), keep)
+    return {"series": series, "summary": json.loads(summary)}

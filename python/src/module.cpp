@@ -293,6 +293,23 @@ py::tuple run_simulation(const SimulationCase& c, bool keep_series, long long ma
                         samples, to_array(result.tacho_times_s), warnings);
 }
 
+// A gear train's case file run as `gearimpact train` runs it: the summary's JSON
+// (train_summary_json) and the series as arrays by train_series_columns, named by the file's
+// bodies and meshes. `sets` as the command's --set.
+py::tuple run_train(const std::string& path, const std::vector<std::string>& sets,
+                    bool keep_series) {
+  const GearTrain train = read_train_file(path, sets);
+  TrainResult result = interruptible([&](std::function<bool()> should_stop) {
+    RunControl control;
+    control.keep_series = keep_series;
+    control.should_stop = std::move(should_stop);
+    return simulate_train(train, control);
+  });
+  const std::string summary = train_summary_json(train, result);
+  return py::make_tuple(summary,
+                        table_arrays(train_series_columns(train), std::move(result.series)));
+}
+
 // The stiffness columns of `gearimpact stiffness` at the contact positions xs.
 py::dict stiffness_columns(const GearPair& pair, const StiffnessModel& model,
                            const std::vector<double>& xs) {
@@ -944,6 +961,7 @@ void define_module(py::module_& m) {
         dataset::merge(folders, out, overwrite);
       },
       py::arg("folders"), py::arg("out"), py::arg("overwrite"));
+  m.def("train", &run_train, py::arg("case_file"), py::arg("sets"), py::arg("keep_series"));
   m.def("ste", &ste_texts_of, py::arg("case"), py::arg("torque"), py::arg("points"));
   m.def("modes", &modes_texts_of, py::arg("case"), py::arg("harmonics"), py::arg("max_speed"));
   m.def(

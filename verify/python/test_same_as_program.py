@@ -364,3 +364,22 @@ def test_simulate_planar_series_as_the_program_writes_it(cli, tmp_path):
 def test_simulate_refuses_a_bad_sample_rate(rate):
     with pytest.raises(gearimpact.CaseError, match="sample_rate"):
         gearimpact.simulate(1, keep_series=False, sample_rate=rate, end_time="1 ms")
+
+
+def test_train_equals_the_program(cli, source_dir, tmp_path):
+    # The example train over 2 ms: the series by the file's bodies and meshes, bit for bit.
+    example = Path(source_dir) / "examples" / "pinion_idler_wheel.toml"
+    out = tmp_path / "out"
+    cli("train", example, "--set", "integrator.end_time=2 ms", "--out", out)
+    ours = gearimpact.train(example, sets=["integrator.end_time=2 ms"])
+    assert ours["summary"] == json.loads((out / "summary.json").read_text())
+    theirs = parse_csv((out / "series.csv").read_text())
+    assert list(ours["series"]) == list(theirs)
+    assert "w_idler_rad_per_s" in theirs and "normal_force_idler-wheel_N" in theirs
+    for name in theirs:
+        assert_bitwise_equal(ours["series"][name], theirs[name], f"train {name}")
+    assert ours["series"]["region_pinion-idler"].dtype == np.int64
+    assert [b["name"] for b in ours["summary"]["bodies"]] == ["pinion", "idler", "wheel",
+                                                               "brake-disc"]
+    with pytest.raises(gearimpact.CaseError, match="bodies.whel"):
+        gearimpact.train(example, sets=["bodies.whel.inertia=1 kg*m^2"])
