@@ -189,14 +189,13 @@ def modes(case, harmonics=3, max_speed=None):
     table, campbell, mode_shapes, summary = _core.modes(
         case, _arguments.integer("harmonics", harmonics),
         None if max_speed is None else _arguments.text("max_speed", max_speed))
-    table = _table(table)
     summary = json.loads(summary)
     dofs = summary["dofs"]
     columns = [next(name for name in table if name.startswith(dof + "_")) for dof in dofs]
     shapes = numpy.column_stack([table[name] for name in columns]) if table["mode"].size else \
         numpy.zeros((0, len(dofs)))
-    return {"modes": table, "campbell": _table(campbell), "dofs": dofs, "shapes": shapes,
-            "mode_shapes": _table(mode_shapes), "summary": summary}
+    return {"modes": table, "campbell": campbell, "dofs": dofs, "shapes": shapes,
+            "mode_shapes": mode_shapes, "summary": summary}
 
 
 def sweep(case, vary, start, stop, points, direction="both", options=()):

@@ -238,6 +238,8 @@ py::dict table_arrays(const Columns<Row>& columns, std::vector<Row>&& rows) {
       table[column.name.c_str()] = view(column.real_member);
     } else if (column.int_member != nullptr) {
       table[column.name.c_str()] = view(column.int_member);
+    } else if (column.boolean) {
+      table[column.name.c_str()] = copy(column, false);
     } else if (column.integral && !column.may_be_empty) {
       table[column.name.c_str()] = copy(column, std::int64_t{0});
     } else {
@@ -499,7 +501,8 @@ py::tuple ste_texts_of(const SimulationCase& c, const std::string& torque, long 
                         texts.summary_json);
 }
 
-// `gearimpact modes`: (modes.csv, campbell.csv, summary.json) as the program writes them;
+// `gearimpact modes`: modes.csv's, campbell.csv's and mode_shapes.csv's columns as arrays (the
+// library's tables of them) and summary.json's text;
 // `max_speed` a quantity with its unit ("6000 rpm"), absent for the program's default.
 py::tuple modes_texts_of(const SimulationCase& c, long long harmonics,
                          const std::optional<std::string>& max_speed) {
@@ -521,7 +524,12 @@ py::tuple modes_texts_of(const SimulationCase& c, long long harmonics,
     py::gil_scoped_release release;
     texts = cli::modes_texts(c, static_cast<int>(harmonics), speed);
   }
-  return py::make_tuple(texts.csv, texts.campbell_csv, texts.shapes_csv, texts.summary_json);
+  const std::vector<ModeRow> rows = mode_rows(texts.modes);
+  return py::make_tuple(
+      table_arrays(modes_columns(texts.modes.model), std::vector<ModeRow>(rows)),
+      table_arrays(campbell_columns(), std::move(texts.crossings)),
+      table_arrays(mode_shapes_columns(texts.modes.model), std::vector<ModeRow>(rows)),
+      texts.summary_json);
 }
 
 // `gearimpact sweep` of a case with the command's options: (sweep.csv, poincare.csv,

@@ -40,47 +40,74 @@ std::string base_circle_column(Dof dof) {
 
 }  // namespace
 
-std::string mode_shapes_csv(const Modes& modes) {
-  std::string out = "mode,rigid,frequency_hz";
-  for (Dof dof : modes.model.dofs) out += "," + base_circle_column(dof);
-  out += "\n";
+std::vector<ModeRow> mode_rows(const Modes& modes) {
+  std::vector<ModeRow> rows;
   for (std::size_t i = 0; i < modes.modes.size(); ++i) {
-    const NaturalMode& m = modes.modes[i];
-    out += std::to_string(i + 1) + (m.rigid ? ",true," : ",false,") +
-           format_data_number(m.frequency_hz);
-    const Eigen::VectorXd v = base_circle_shape(modes.model, m);
-    for (Eigen::Index k = 0; k < v.size(); ++k) out += "," + format_data_number(v(k));
-    out += "\n";
+    rows.push_back(
+        {static_cast<int>(i + 1), modes.modes[i], base_circle_shape(modes.model, modes.modes[i])});
   }
-  return out;
+  return rows;
+}
+
+Columns<ModeRow> mode_shapes_columns(const LinearModel& model) {
+  Columns<ModeRow> columns{
+      computed_column<ModeRow>(
+          "mode", "", [](const ModeRow& r) { return static_cast<double>(r.number); }, true),
+      boolean_column<ModeRow>("rigid", [](const ModeRow& r) { return r.mode.rigid; }),
+      computed_column<ModeRow>("frequency_hz", "Hz",
+                               [](const ModeRow& r) { return r.mode.frequency_hz; })};
+  for (std::size_t k = 0; k < model.dofs.size(); ++k) {
+    columns.push_back(computed_column<ModeRow>(
+        base_circle_column(model.dofs[k]), "",
+        [k](const ModeRow& r) { return r.base_circle(static_cast<Eigen::Index>(k)); }));
+  }
+  return columns;
+}
+
+std::string mode_shapes_csv(const Modes& modes) {
+  return csv_of(mode_shapes_columns(modes.model), mode_rows(modes));
+}
+
+Columns<ModeRow> modes_columns(const LinearModel& model) {
+  Columns<ModeRow> columns{
+      computed_column<ModeRow>(
+          "mode", "", [](const ModeRow& r) { return static_cast<double>(r.number); }, true),
+      boolean_column<ModeRow>("rigid", [](const ModeRow& r) { return r.mode.rigid; }),
+      computed_column<ModeRow>("frequency_hz", "Hz",
+                               [](const ModeRow& r) { return r.mode.frequency_hz; }),
+      computed_column<ModeRow>("angular_frequency_rad_per_s", "rad/s",
+                               [](const ModeRow& r) { return r.mode.angular_frequency; })};
+  for (std::size_t part = 0; part < kSpringParts; ++part) {
+    columns.push_back(computed_column<ModeRow>(
+        "share_" + std::string(part_name(static_cast<SpringPart>(part))), "",
+        [part](const ModeRow& r) { return r.mode.energy_share[part]; }));
+  }
+  for (std::size_t k = 0; k < model.dofs.size(); ++k) {
+    columns.push_back(computed_column<ModeRow>(
+        shape_column(model.dofs[k]), "",
+        [k](const ModeRow& r) { return r.mode.shape(static_cast<Eigen::Index>(k)); }));
+  }
+  return columns;
 }
 
 std::string modes_csv(const Modes& modes) {
-  std::string out = "mode,rigid,frequency_hz,angular_frequency_rad_per_s";
-  for (std::size_t part = 0; part < kSpringParts; ++part) {
-    out += ",share_" + std::string(part_name(static_cast<SpringPart>(part)));
-  }
-  for (Dof dof : modes.model.dofs) out += "," + shape_column(dof);
-  out += "\n";
-  for (std::size_t i = 0; i < modes.modes.size(); ++i) {
-    const NaturalMode& m = modes.modes[i];
-    out += std::to_string(i + 1) + (m.rigid ? ",true," : ",false,") +
-           format_data_number(m.frequency_hz) + "," + format_data_number(m.angular_frequency);
-    for (double share : m.energy_share) out += "," + format_data_number(share);
-    for (Eigen::Index k = 0; k < m.shape.size(); ++k) out += "," + format_data_number(m.shape(k));
-    out += "\n";
-  }
-  return out;
+  return csv_of(modes_columns(modes.model), mode_rows(modes));
+}
+
+Columns<CampbellCrossing> campbell_columns() {
+  using C = CampbellCrossing;
+  return {computed_column<C>(
+              "harmonic", "", [](const C& c) { return static_cast<double>(c.harmonic); }, true),
+          computed_column<C>(
+              "mode", "", [](const C& c) { return static_cast<double>(c.mode + 1); }, true),
+          member_column("frequency_hz", "Hz", &C::frequency_hz),
+          member_column("pinion_speed_rad_per_s", "rad/s", &C::pinion_speed_rad_per_s),
+          computed_column<C>("pinion_speed_rpm", "rpm",
+                             [](const C& c) { return c.pinion_speed_rad_per_s * kRpm; })};
 }
 
 std::string campbell_csv(const std::vector<CampbellCrossing>& crossings) {
-  std::string out = "harmonic,mode,frequency_hz,pinion_speed_rad_per_s,pinion_speed_rpm\n";
-  for (const CampbellCrossing& c : crossings) {
-    out += std::to_string(c.harmonic) + "," + std::to_string(c.mode + 1) + "," +
-           format_data_number(c.frequency_hz) + "," + format_data_number(c.pinion_speed_rad_per_s) +
-           "," + format_data_number(c.pinion_speed_rad_per_s * kRpm) + "\n";
-  }
-  return out;
+  return csv_of(campbell_columns(), crossings);
 }
 
 std::string modes_summary_json(const ModesSummary& s, const Modes& modes,

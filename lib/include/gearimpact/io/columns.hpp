@@ -30,6 +30,8 @@ struct Column {
   // A column of text (a flank's name, a list of teeth) instead of a number: written as it is (no
   // comma in it), a str array in Python. `value` is then empty.
   std::function<std::string(const Row&)> text;
+  // A yes or no (value 1 or 0): written true or false, a bool array in Python.
+  bool boolean = false;
 };
 
 template <typename Row>
@@ -84,6 +86,15 @@ Column<Row> text_column(std::string name, std::function<std::string(const Row&)>
   return column;
 }
 
+// A yes-or-no column: true or false.
+template <typename Row>
+Column<Row> boolean_column(std::string name, std::function<bool(const Row&)> yes) {
+  Column<Row> column = computed_column<Row>(
+      std::move(name), "", [yes = std::move(yes)](const Row& r) { return yes(r) ? 1.0 : 0.0; });
+  column.boolean = true;
+  return column;
+}
+
 // The header line of a CSV of these columns: the names, comma-separated, and "\n".
 template <typename Row>
 std::string csv_header(const Columns<Row>& columns) {
@@ -128,7 +139,9 @@ void append_csv_row(std::string& out, const Columns<Row>& columns, const Row& ro
     } else {
       const double value = column.value(row);
       if (column.may_be_empty && std::isnan(value)) continue;
-      if (column.integral) {
+      if (column.boolean) {
+        out += value != 0.0 ? "true" : "false";
+      } else if (column.integral) {
         append_integer(out, static_cast<long long>(value));
       } else {
         append_real(out, value);

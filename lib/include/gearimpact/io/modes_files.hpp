@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "gearimpact/io/columns.hpp"
 #include "gearimpact/modes/modes.hpp"
 
 namespace gearimpact {
@@ -16,6 +17,20 @@ namespace gearimpact {
 // theta1_rad_per_sqrt_kg_m, ... (x, y only on elastic bearings; theta_motor,
 // theta_load only on elastic shafts). mode counts from 1; rigid is true or false.
 std::string modes_csv(const Modes& modes);
+
+// A row of modes.csv and mode_shapes.csv: the mode, its number (from 1) and its shape on the base
+// circles (base_circle_shape).
+struct ModeRow {
+  int number = 0;
+  NaturalMode mode;
+  Eigen::VectorXd base_circle;
+};
+std::vector<ModeRow> mode_rows(const Modes& modes);
+// The columns of modes.csv, mode_shapes.csv and campbell.csv, each described once (the CSV
+// writers and the Python package's arrays follow them), for the DOFs of `model`.
+Columns<ModeRow> modes_columns(const LinearModel& model);
+Columns<ModeRow> mode_shapes_columns(const LinearModel& model);
+Columns<CampbellCrossing> campbell_columns();
 
 // One row per mode, as modes.csv numbers them: mode,rigid,frequency_hz, then
 // base_circle_shape's components, named x1, y1, rb1_theta1, x2, y2,
