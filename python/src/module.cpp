@@ -775,8 +775,9 @@ void define_module(py::module_& m) {
           [](StiffnessModel& s, const std::string& reading) {
             s.spall_reading = parse_spall_reading(reading, "spall_reading");
           },
-          "hertz-only (Hertz over b - b_s) or effective-width (also each tooth's beam and "
-          "foundation over the width the load spreads to; rack-cut models)")
+          "by-model (the default: effective-width with the rack-cut models, hertz-only with "
+          "yang-lin-1987), hertz-only (Hertz over b - b_s) or effective-width (also each "
+          "tooth's beam and foundation over the width the load spreads to; rack-cut models)")
       .def_readwrite("relative_tolerance", &StiffnessModel::relative_tolerance)
       .def(
           "term",

@@ -369,7 +369,7 @@ def test_numpy_scalars_are_numbers_and_numpy_bools_are_bools():
     assert model.term("axial") is False
     model.set_term("axial", True)
     assert model.term("axial") is True
-    assert model.spall_reading == "hertz-only"
+    assert model.spall_reading == "by-model"
     model.spall_reading = "effective-width"
     assert model.spall_reading == "effective-width"
     flipped = gearimpact.stiffness(points=3, flipped_moment=np.bool_(True))

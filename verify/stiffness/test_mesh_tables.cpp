@@ -354,7 +354,10 @@ TEST_CASE("a spalled pinion tooth's table equals surface_faults' own values, on 
        {StiffnessModelKind::yang_lin_1987, StiffnessModelKind::potential_energy,
         StiffnessModelKind::ross_compatible}) {
     CAPTURE(to_string(kind));
-    const StiffnessModel m = model_of(kind);
+    // The Hertz-only reading, whose terms surface_faults gives alone (the rack-cut models'
+    // default, effective-width, scales them: test_spall_reading checks its table).
+    StiffnessModel m = model_of(kind);
+    m.spall_reading = SpallReading::hertz_only;
     const MeshTables tables(g, m, {fault(Gear::one, 0, spall_state(spall))});
     // Pinion tooth 0 meets wheel tooth 0 on N1 (drive flanks) and wheel
     // tooth 1 on N2 (coast flanks): two tables, the pit on one flank.

@@ -306,7 +306,7 @@ MeshStiffness mesh_stiffness_of_teeth(const GearPair& pair, double x1_m,
   MeshStiffness k{};
   k.tooth1 = terms1.terms;
   k.tooth2 = terms2.terms;
-  if (model.spall_reading == SpallReading::effective_width) {
+  if (applied_spall_reading(model) == SpallReading::effective_width) {
     check_spall_reading(model);
     spread_over_effective_width(pair, x1_m, tooth1, tooth2, contact_flank, k);
   }

@@ -51,6 +51,12 @@ void check_spall_reading(const StiffnessModel& model, std::string_view section) 
                    "potential-energy or ross-compatible)");
 }
 
+SpallReading applied_spall_reading(const StiffnessModel& model) {
+  if (model.spall_reading != SpallReading::by_model) return model.spall_reading;
+  return model.kind == StiffnessModelKind::yang_lin_1987 ? SpallReading::hertz_only
+                                                         : SpallReading::effective_width;
+}
+
 bool provides(StiffnessModelKind kind, Term term) {
   if (kind != StiffnessModelKind::yang_lin_1987) return true;
   return term == Term::hertz || term == Term::bending || term == Term::axial;

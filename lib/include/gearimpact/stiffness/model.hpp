@@ -69,9 +69,14 @@ std::string to_string(AxialMomentSign sign);
 // spall in 3-D"). hertz_only: Hertz (4) over b - b_s, the beam and the
 // foundation over the whole face. effective_width: the rack-cut models'
 // bending, shear, axial and foundation terms of both teeth over the width the
-// load spreads to (spall_width_factors, surface_faults.hpp).
-enum class SpallReading { hertz_only, effective_width };
-inline constexpr std::array<NamedValue<SpallReading>, 2> kSpallReadings{{
+// load spreads to (spall_width_factors, surface_faults.hpp). by_model, the
+// default: effective_width for the rack-cut models, which the 3-D finite
+// elements checked on three pairs, and hertz_only for yang_lin_1987, whose
+// tooth from the base circle has no root thickness or foundation to spread by.
+enum class SpallReading { by_model, hertz_only, effective_width };
+inline constexpr std::array<NamedValue<SpallReading>, 3> kSpallReadings{{
+    {SpallReading::by_model, "by-model",
+     "effective-width with potential-energy and ross-compatible, hertz-only with yang-lin-1987"},
     {SpallReading::hertz_only, "hertz-only",
      "Hertz over b - b_s, the beam and foundation over the whole face"},
     {SpallReading::effective_width, "effective-width",
@@ -91,7 +96,7 @@ struct StiffnessModel {
   // 1e-13 on these integrands although its result is better).
   double relative_tolerance = 1e-12;
   TermSet terms;
-  SpallReading spall_reading = SpallReading::hertz_only;
+  SpallReading spall_reading = SpallReading::by_model;
 };
 bool operator==(const StiffnessModel& a, const StiffnessModel& b);
 
@@ -106,6 +111,8 @@ void validate_terms(const StiffnessModel& model, std::string_view section = {});
 // spread is the rack-cut tooth's (its root thickness, its foundation), which
 // the paper's tooth from the base circle does not have.
 void check_spall_reading(const StiffnessModel& model, std::string_view section = {});
+// The reading a model applies: by_model resolved by its kind (above), the others as given.
+SpallReading applied_spall_reading(const StiffnessModel& model);
 
 // A method of --method and of case files' stiffness_method: a route, and
 // for the tau-form the rule it integrates with.
