@@ -14,9 +14,9 @@
 namespace gearimpact {
 
 std::string format_data_number(double value) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
+  std::string out;
+  append_real(out, value);
+  return out;
 }
 
 Columns<SeriesRow> series_columns() {
