@@ -303,6 +303,14 @@ TEST_CASE("a start pressed into contact at rest, whose damping RK4 cannot carry,
   CHECK(rate > 2.785);
   CHECK(relative_difference(rate / load, 1e-7 * d / effective_mass_kg(paper_case(2).gears)) <=
         1e-12);
+  // The fixed-step Dormand-Prince is refused alike: its real stability interval, [-3.3066, 0]
+  // (the order-5 polynomial sum z^k / k! to k = 5 plus z^6 / 600), holds a rate of some 70 no
+  // better than RK4's, and the run would diverge the same way.
+  const CommandResult dopri5 =
+      run_command(cli(start + " --set integrator.kind=dopri5 --t-end 1ms"));
+  check_refusal(dopri5, "initial.theta1");
+  CHECK(dopri5.err.find("Dormand-Prince") != std::string::npos);
+  CHECK(relative_difference(number_after(dopri5.err, "h D F / m_e = "), rate) <= 1e-12);
 
   // The remedies the message names run the same start: a damping frozen at a reference impact
   // speed, and the adaptive integrator (without friction, whose exact reversal at rest would

@@ -161,12 +161,14 @@ class Run {
     // frozen damping is checked before the run.
     const double rate =
         damping_rate_per_step(c_, damping_.damping_per_stiffness_s_m, peak_tooth_load_n(c_));
-    if (c_.integrator.kind == IntegratorKind::rk4 && rate > kRk4RealStabilityLimit) {
+    const IntegratorKind kind = c_.integrator.kind;
+    if (kind != IntegratorKind::adaptive && rate > real_stability_limit(kind)) {
       cause = "the Hertzian damping of (32)-(33) that the last impact set is D = " +
               format_number(damping_.damping_per_stiffness_s_m) +
               " s/m, and its rate per step h D F / m_e = " + format_number(rate) + " exceeds " +
-              format_number(kRk4RealStabilityLimit) +
-              ", where fixed-step RK4 diverges (an impact near rest sets a D without bound): set "
+              format_number(real_stability_limit(kind)) + ", where fixed-step " +
+              fixed_method_name(kind) +
+              " diverges (an impact near rest sets a D without bound): set "
               "model.damping_update = \"frozen\", or integrator.kind = \"adaptive\", or a "
               "smaller integrator.step";
     }
@@ -353,20 +355,27 @@ class Run {
     return EnergyLedger(system_, y_, mode_, result_.summary);
   }
 
+  // The fixed-step method's name as the messages give it.
+  static const char* fixed_method_name(IntegratorKind kind) {
+    return kind == IntegratorKind::dopri5 ? "Dormand-Prince (dopri5)" : "RK4";
+  }
+
   // A run that starts in contact takes its Hertzian damping from the approach
   // speed at t = 0. Near rest (Vi floored) the damping that each impact sets by
-  // (32)-(33) grows without bound, and under the tooth load the fixed RK4 step
-  // would diverge within a few steps into an overlap that says nothing of the
-  // cause; this names it and the keys that avoid it before any step is taken.
+  // (32)-(33) grows without bound, and under the tooth load a fixed step (RK4
+  // or Dormand-Prince, each past its real stability interval) would diverge
+  // within a few steps into an overlap that says nothing of the cause; this
+  // names it and the keys that avoid it before any step is taken.
   void check_start_damping() const {
-    if (c_.integrator.kind != IntegratorKind::rk4) return;
+    const IntegratorKind kind = c_.integrator.kind;
+    if (kind == IntegratorKind::adaptive) return;
     ContactTotals totals;
     State dydt{};
     system_.rhs(start_time_, y_, mode_, damping_, dydt, &totals);
     const double load = std::max(totals.normal_force_n, peak_tooth_load_n(c_));
     const double d = damping_.damping_per_stiffness_s_m;
     const double rate = damping_rate_per_step(c_, d, load);
-    if (!(rate > kRk4RealStabilityLimit)) return;
+    if (!(rate > real_stability_limit(kind))) return;
     const ImpactRecord& start = impacts_.records().back();
     const std::string side = mode_.region == Region::n1 ? "drive (N1)" : "coast (N2)";
     throw InputError(
@@ -378,9 +387,9 @@ class Run {
             " m/s, for which the Hertzian damping that each impact sets by (32)-(33) is D = " +
             format_number(d) +
             " s/m (it grows without bound as Vi falls to 0); with the tooth load " +
-            format_number(load) +
-            " N its damping rate per step h D F / m_e = " + format_number(rate) + " exceeds " +
-            format_number(kRk4RealStabilityLimit) + ", where fixed-step RK4 diverges",
+            format_number(load) + " N its damping rate per step h D F / m_e = " +
+            format_number(rate) + " exceeds " + format_number(real_stability_limit(kind)) +
+            ", where fixed-step " + fixed_method_name(kind) + " diverges",
         "start inside the backlash (|Rb1 theta1 - Rb2 theta2| < gears.backlash), or set "
         "model.damping_update = \"frozen\" (D from model.damping_reference_speed), or "
         "integrator.kind = \"adaptive\"");
