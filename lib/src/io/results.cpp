@@ -166,9 +166,11 @@ std::string series_csv(const std::vector<SeriesRow>& rows) {
 namespace {
 
 void json_number(std::string& out, const char* key, double value, bool last = false) {
-  char buffer[96];
-  std::snprintf(buffer, sizeof buffer, "  \"%s\": %.17g%s\n", key, value, last ? "" : ",");
-  out += buffer;
+  out += "  \"";
+  out += key;
+  out += "\": ";
+  append_real(out, value);
+  out += last ? "\n" : ",\n";
 }
 
 // A JSON string literal: quotes, backslashes and control characters escaped.
@@ -407,13 +409,11 @@ std::string friction_sweep_csv(const std::vector<SweepRow>& rows) {
   const std::size_t cases = rows.empty() ? 0 : rows.front().ratio.size();
   for (std::size_t j = 0; j < cases; ++j) out += ",ratio_case" + std::to_string(j + 1);
   out += "\n";
-  char number[32];
   for (const SweepRow& row : rows) {
-    std::snprintf(number, sizeof number, "%.17g", row.friction_coefficient);
-    out += number;
+    append_real(out, row.friction_coefficient);
     for (double ratio : row.ratio) {
-      std::snprintf(number, sizeof number, ",%.17g", ratio);
-      out += number;
+      out += ',';
+      append_real(out, ratio);
     }
     out += "\n";
   }
@@ -424,12 +424,16 @@ std::string energy_ratios_csv(const std::vector<EnergyRatios>& rows) {
   std::string out =
       "angle_deg,pairs,hertz_over_bending_one_pair,axial_over_bending_one_pair,"
       "hertz_over_bending_system,axial_over_bending_system\n";
-  char line[256];
   for (const EnergyRatios& row : rows) {
-    std::snprintf(line, sizeof line, "%.17g,%d,%.17g,%.17g,%.17g,%.17g\n", row.phi1_deg, row.pairs,
-                  row.hertz_over_bending_one_pair, row.axial_over_bending_one_pair,
-                  row.hertz_over_bending_system, row.axial_over_bending_system);
-    out += line;
+    append_real(out, row.phi1_deg);
+    out += ',';
+    append_integer(out, row.pairs);
+    for (double value : {row.hertz_over_bending_one_pair, row.axial_over_bending_one_pair,
+                         row.hertz_over_bending_system, row.axial_over_bending_system}) {
+      out += ',';
+      append_real(out, value);
+    }
+    out += "\n";
   }
   return out;
 }
@@ -481,10 +485,9 @@ std::string stiffness_csv(const GearPair& pair, const StiffnessModel& model,
   std::string out = "x_m,phi1_rad";
   for (const StiffnessColumn& column : columns) out += "," + column.name;
   out += "\n";
-  char number[32];
   const auto append = [&](double value, bool first = false) {
-    std::snprintf(number, sizeof number, first ? "%.17g" : ",%.17g", value);
-    out += number;
+    if (!first) out += ',';
+    append_real(out, value);
   };
   for (double x : x1_m) {
     const MeshStiffness k = mesh_stiffness(pair, x, model);
@@ -500,11 +503,15 @@ std::string stiffness_csv(const GearPair& pair, const StiffnessModel& model,
 
 std::string mesh_stiffness_csv(const TimeVaryingMeshStiffness& tvms) {
   std::string out = "fraction,theta1_rad,pairs,ke_n_m\n";
-  char line[160];
   for (const MeshStiffnessSample& sample : tvms.samples) {
-    std::snprintf(line, sizeof line, "%.17g,%.17g,%d,%.17g\n", sample.fraction, sample.theta1_rad,
-                  sample.pairs, sample.stiffness_n_per_m);
-    out += line;
+    append_real(out, sample.fraction);
+    out += ',';
+    append_real(out, sample.theta1_rad);
+    out += ',';
+    append_integer(out, sample.pairs);
+    out += ',';
+    append_real(out, sample.stiffness_n_per_m);
+    out += "\n";
   }
   return out;
 }
