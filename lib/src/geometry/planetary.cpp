@@ -244,6 +244,7 @@ double sun_ring_phase(const PlanetaryTeeth& teeth, const PlanetaryToothing& toot
 HarmonicType harmonic_type(int harmonic, int sun_teeth, int planets) {
   if (harmonic < 1) throw InputError("harmonic", std::to_string(harmonic), "an integer >= 1");
   if (planets < 1) throw InputError("planets", std::to_string(planets), "an integer >= 1");
+  if (sun_teeth < 1) throw InputError("sun_teeth", std::to_string(sun_teeth), "an integer >= 1");
   const long k = (static_cast<long>(harmonic) * sun_teeth) % planets;
   if (k == 0) return HarmonicType::rotational;
   if (k == 1 || k == planets - 1) return HarmonicType::translational;

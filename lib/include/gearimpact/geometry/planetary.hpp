@@ -72,12 +72,13 @@ double standard_carrier_radius(const PlanetaryTeeth& teeth, const PlanetaryTooth
 
 // Planet n at 2 pi (n - 1) / N. Throws InputError naming the assembly
 // condition unless (Z_s + Z_r) / N is an integer, and the tip clearance
-// unless 2 R_c sin(pi / N) > d_a,p.
+// unless 2 R_c sin(pi / N) > d_a,p (as checked_planet_angles).
 std::vector<double> equal_planet_angles(const PlanetaryTeeth& teeth,
                                         const PlanetaryToothing& toothing, int planets);
 // Unequal spacing: psi_1 = 0 < psi_2 < ... < 2 pi, each with
 // (Z_s + Z_r) psi_n / (2 pi) an integer (to 1e-9), neighbours (the last and
-// the first included) with 2 R_c sin(dpsi / 2) > d_a,p. Returns the angles;
+// the first included) with 2 R_c sin(dpsi / 2) > d_a,p, R_c = m (Z_s + Z_p) / 2
+// and d_a,p = m (Z_p + 2 h_a). Returns the angles;
 // throws InputError naming the planet and the condition.
 std::vector<double> checked_planet_angles(const PlanetaryTeeth& teeth,
                                           const PlanetaryToothing& toothing,
