@@ -490,35 +490,49 @@ TEST_CASE("Willis: the three arrangements from the two relations and the rigid m
   }
 }
 
-TEST_CASE("phasing rule: harmonic l's phased sun-mesh forces reach only the modes of its type") {
+TEST_CASE("phasing rule: harmonic l's phased mesh forces reach only the modes of its type") {
   // N = 4, Z_s = 21, Z_r = 79 (assembly: 100 / 4): l = 1 translational,
-  // 2 planet, 4 rotational; the forcing sum_n exp(-2 pi i l gamma_sn) a_sn,
-  // a_sn the sun mesh's line of planet n.
+  // 2 planet, 4 rotational. The forcing sum_n exp(-2 pi i l gamma_n) a_n over
+  // the sun meshes (gamma_sn), over the ring meshes (gamma_rn), and over both
+  // with the ring meshes a common fraction of a period apart (as gamma_rs
+  // puts them; any common offset keeps the rule).
   const PlanetaryModel model = planetary_model(lp99(equal_angles(4)));
   const PlanetaryModes m = planetary_modes(model);
-  for (int l = 1; l <= 8; ++l) {
-    CAPTURE(l);
-    const HarmonicType type = harmonic_type(l, 21, 4);
-    Eigen::VectorXcd f = Eigen::VectorXcd::Zero(model.mass.rows());
-    for (const StageSpringTerm& s : model.springs) {
-      if (s.kind != StageSpring::sun_mesh) continue;
-      const double gamma = sun_mesh_phase(21, model.parameters.planet_angles_rad[s.planet]);
-      f += std::polar(1.0, -2.0 * pi * l * gamma) * s.direction.cast<std::complex<double>>();
+  enum class Meshes { sun, ring, both };
+  for (Meshes which : {Meshes::sun, Meshes::ring, Meshes::both}) {
+    for (int l = 1; l <= 8; ++l) {
+      CAPTURE(static_cast<int>(which));
+      CAPTURE(l);
+      const HarmonicType type = harmonic_type(l, 21, 4);
+      Eigen::VectorXcd f = Eigen::VectorXcd::Zero(model.mass.rows());
+      for (const StageSpringTerm& s : model.springs) {
+        const double psi =
+            model.parameters.planet_angles_rad[static_cast<std::size_t>(std::max(s.planet, 0))];
+        double gamma = 0.0;
+        if (s.kind == StageSpring::sun_mesh && which != Meshes::ring) {
+          gamma = sun_mesh_phase(21, psi);
+        } else if (s.kind == StageSpring::ring_mesh && which != Meshes::sun) {
+          gamma = ring_mesh_phase(79, psi) + (which == Meshes::both ? 0.37 : 0.0);
+        } else {
+          continue;
+        }
+        f += std::polar(1.0, -2.0 * pi * l * gamma) * s.direction.cast<std::complex<double>>();
+      }
+      double allowed = 0.0;
+      double excluded = 0.0;
+      for (const StageMode& mode : m.modes) {
+        const double reach = std::abs(mode.shape.cast<std::complex<double>>().dot(f)) /
+                             (mode.shape.norm() * f.norm());
+        const bool same =
+            (type == HarmonicType::rotational && mode.type == StageModeType::rotational) ||
+            (type == HarmonicType::translational && mode.type == StageModeType::translational) ||
+            (type == HarmonicType::planet && mode.type == StageModeType::planet);
+        (same ? allowed : excluded) = std::max(same ? allowed : excluded, reach);
+      }
+      CHECK(allowed > 1e-2);
+      // Rounding of the shapes and of the phases: 1e-10.
+      CHECK(excluded < 1e-10);
     }
-    double allowed = 0.0;
-    double excluded = 0.0;
-    for (const StageMode& mode : m.modes) {
-      const double reach =
-          std::abs(mode.shape.cast<std::complex<double>>().dot(f)) / (mode.shape.norm() * f.norm());
-      const bool same =
-          (type == HarmonicType::rotational && mode.type == StageModeType::rotational) ||
-          (type == HarmonicType::translational && mode.type == StageModeType::translational) ||
-          (type == HarmonicType::planet && mode.type == StageModeType::planet);
-      (same ? allowed : excluded) = std::max(same ? allowed : excluded, reach);
-    }
-    CHECK(allowed > 1e-2);
-    // Rounding of the shapes: 1e-10.
-    CHECK(excluded < 1e-10);
   }
 }
 
