@@ -456,6 +456,11 @@ void validate_relations(const SimulationCase& c) {
 }
 
 void validate_run_keys(const SimulationCase& c) {
+  // Before anything else: the dynamics take spur meshes only, and a helical
+  // pair run as spur would be silently wrong.
+  if (c.gears.helix_angle_rad != 0.0) {
+    throw_helical_not_taken(c.gears.helix_angle_rad, "a run (simulate, steady, sweep)");
+  }
   Problems problems;
   for (const std::string& key : c.run_keys_absent) {
     const Field* field = find_field(key);
