@@ -36,8 +36,9 @@ void check_rows(const SimulationCase& c, std::string_view section, Holds holds,
 
 // The [model] rows that describe the StiffnessModel.
 bool is_stiffness_row(const Field& field) {
-  for (std::string_view key : {"stiffness_model", "moment_sign", "stiffness_method", "xform_rule",
-                               "stiffness_tolerance", "spall_reading"}) {
+  for (std::string_view key :
+       {"stiffness_model", "moment_sign", "stiffness_method", "xform_rule", "stiffness_tolerance",
+        "spall_reading", "face_slices", "helical_hertz"}) {
     if (field.key == key) return true;
   }
   for (const TermInfo& t : kTerms) {

@@ -209,10 +209,11 @@ const GearPair& spur_only(const GearPair& pair) {
 }  // namespace
 
 void throw_helical_not_taken(double helix_angle_rad, std::string_view what) {
-  throw InputError("gears.helix_angle", format_number(helix_angle_rad * 180.0 / pi) + " deg",
-                   "0 for " + std::string(what) +
-                       ": a helical mesh is taken by mesh-stiffness and report only (its slices "
-                       "are not in the dynamics yet); it is never run as a spur pair");
+  throw InputError(
+      "gears.helix_angle", format_number(helix_angle_rad * 180.0 / pi) + " deg",
+      "0 for " + std::string(what) +
+          ": a helical pair is taken by mesh-stiffness and iso6336 only (its slices are "
+          "not in the dynamics yet); it is never run as a spur pair");
 }
 
 MeshLayout::MeshLayout(const GearPair& pair, CoastPhase coast_phase)

@@ -10,6 +10,7 @@
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/helical.hpp"
+#include "gearimpact/stiffness/iso6336.hpp"
 
 namespace gearimpact {
 
@@ -146,8 +147,9 @@ PairRange pairs_near(double reference_m, double pitch_m, double start_m, double 
 }
 
 void check_slices(int slices) {
-  if (slices < 1 || slices > 100000) {
-    throw InputError("model.face_slices", std::to_string(slices), "an integer in [1, 100000]");
+  if (slices < 1 || slices > kMostFaceSlices) {
+    throw InputError("model.face_slices", std::to_string(slices),
+                     "an integer in [1, " + std::to_string(kMostFaceSlices) + "]");
   }
 }
 
@@ -209,6 +211,51 @@ double HelicalMesh::contact_line_length_slices(Region line, double theta1_rad, i
     }
   }
   return count * (b_ / slices) / std::cos(beta_b_);
+}
+
+HelicalMeshStiffnessCurve helical_mesh_stiffness(const GearPair& pair, const StiffnessModel& model,
+                                                 int samples) {
+  if (samples < 2 || samples > 100000) {
+    throw InputError("samples", std::to_string(samples),
+                     "an integer in [2, 100000] per mesh period");
+  }
+  check_slices(model.face_slices);
+  const FaceStiffness face(pair, model, model.helical_hertz);
+  const HelicalMesh mesh(pair, face);
+  HelicalMeshStiffnessCurve curve;
+  curve.geometry = helical_geometry(pair);
+  curve.face_slices = model.face_slices;
+  const double period = mesh.mesh_period_rad();
+  curve.samples.reserve(static_cast<std::size_t>(samples));
+  for (int i = 0; i < samples; ++i) {
+    HelicalMeshStiffnessSample s{};
+    s.fraction = static_cast<double>(i) / samples;
+    s.theta1_rad = period * s.fraction;
+    s.slices_n_per_m = mesh.stiffness_slices(Region::n1, s.theta1_rad, model.face_slices);
+    s.face_n_per_m = mesh.stiffness_face(Region::n1, s.theta1_rad);
+    s.contact_line_length_m = mesh.contact_line_length(Region::n1, s.theta1_rad);
+    s.contact_line_length_slices_m =
+        mesh.contact_line_length_slices(Region::n1, s.theta1_rad, model.face_slices);
+    curve.samples.push_back(s);
+  }
+  const auto extreme = [&](auto member, bool most) {
+    double value = curve.samples.front().*member;
+    for (const HelicalMeshStiffnessSample& s : curve.samples) {
+      value = most ? std::max(value, s.*member) : std::min(value, s.*member);
+    }
+    return value;
+  };
+  curve.min_face_n_per_m = extreme(&HelicalMeshStiffnessSample::face_n_per_m, false);
+  curve.max_face_n_per_m = extreme(&HelicalMeshStiffnessSample::face_n_per_m, true);
+  curve.min_slices_n_per_m = extreme(&HelicalMeshStiffnessSample::slices_n_per_m, false);
+  curve.max_slices_n_per_m = extreme(&HelicalMeshStiffnessSample::slices_n_per_m, true);
+  curve.mean_n_per_m = pair.face_width_m * face.cumulative(face.end_m()) / mesh.base_pitch_m();
+  curve.mean_contact_line_length_m = pair.face_width_m * curve.geometry.transverse_contact_ratio /
+                                     std::cos(curve.geometry.base_helix_angle_rad);
+  curve.iso_mesh_stiffness_n_per_m =
+      iso6336_method_b(iso6336_pair(pair, pair.helix_angle_rad)).mesh_stiffness_n_per_m2 *
+      pair.face_width_m;
+  return curve;
 }
 
 double face_load_factor_linear_gap(double c, double b, double force, double mismatch) {

@@ -12,20 +12,12 @@
 #include <vector>
 
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/helical.hpp"
 #include "gearimpact/named_values.hpp"
 #include "gearimpact/stiffness/model.hpp"
 #include "gearimpact/stiffness/table.hpp"
 
 namespace gearimpact {
-
-// How a slice's Hertzian term sees the inclined contact line.
-enum class HelicalHertz { projected, face_width };
-inline constexpr std::array<NamedValue<HelicalHertz>, 2> kHelicalHertz{{
-    {HelicalHertz::projected, "projected",
-     "c_H cos(beta_b): the slice's contact line is db / cos(beta_b) long and its approach the "
-     "transverse one times cos(beta_b)"},
-    {HelicalHertz::face_width, "face-width", "c_H: each slice a plain spur pair of its width"},
-}};
 
 // kappa_t(X) = [1 / kappa_beam(X) + 1 / (c_H cos(beta_b))]^-1 per unit face
 // width along the transverse path of contact [X_SAP, X_EAP] (measured from C1
@@ -66,7 +58,7 @@ class FaceStiffness {
 class HelicalMesh {
  public:
   // Throws InputError naming gears.helix_angle for beta = 0 (the spur path
-  // holds that pair) and for beta outside (0, 45] deg.
+  // holds that pair) and for beta outside (0, 45] deg. `face` must outlive the mesh.
   HelicalMesh(const GearPair& pair, const FaceStiffness& face,
               CoastPhase coast_phase = CoastPhase::half_base_pitch);
 
@@ -110,6 +102,36 @@ class HelicalMesh {
   int sigma_;
   double coast_offset_;
 };
+
+// The mesh stiffness of a helical pair over one mesh period, both routes,
+// from theta1 = 0 (pair 0's mid-face contact at the pitch point) on N1.
+struct HelicalMeshStiffnessSample {
+  double fraction;                      // of the mesh period
+  double theta1_rad;                    // pinion rotation
+  double slices_n_per_m;                // route A with model.face_slices slices
+  double face_n_per_m;                  // route B
+  double contact_line_length_m;         // the exact summed length in the zone
+  double contact_line_length_slices_m;  // the slices' (each db / cos(beta_b) while on the path)
+};
+struct HelicalMeshStiffnessCurve {
+  std::vector<HelicalMeshStiffnessSample> samples;
+  HelicalGeometry geometry;
+  int face_slices = 0;
+  // The exact mean over the mesh period, b C(X_EAP) / p_bt: the same for
+  // both routes and every N.
+  double mean_n_per_m = 0.0;
+  double min_face_n_per_m = 0.0;  // over the samples
+  double max_face_n_per_m = 0.0;
+  double min_slices_n_per_m = 0.0;
+  double max_slices_n_per_m = 0.0;
+  // b eps_alpha / cos(beta_b).
+  double mean_contact_line_length_m = 0.0;
+  // ISO 6336-1's c_gamma_alpha b (its helical c' with cos(beta) and zn), for comparison.
+  double iso_mesh_stiffness_n_per_m = 0.0;
+};
+// `samples` in [2, 100000] per mesh period; the model's face_slices and helical_hertz.
+HelicalMeshStiffnessCurve helical_mesh_stiffness(const GearPair& pair, const StiffnessModel& model,
+                                                 int samples);
 
 // The face-load factor of ISO 6336-1 from a slice solution: uniform stiffness
 // c per unit face width, a gap linear across the face e(y) = F_betay (y/b - 1/2),
