@@ -147,7 +147,7 @@ TEST_CASE("mesh-stiffness on a helical pair: both routes over a mesh period; a r
   REQUIRE(summary.exit_code == 0);
   CHECK(summary.out.find("\"iso_c_gamma_alpha_b_n_m\"") != std::string::npos);
   // The dynamics and --figure refuse it, naming the key or the flag.
-  const CommandResult run = run_command(cli("simulate --case-file " + file.string()));
+  const CommandResult run = run_command(cli("simulate --case 1 --set 'gears.helix_angle=15 deg'"));
   CHECK(run.exit_code != 0);
   CHECK(run.err.find("gears.helix_angle") != std::string::npos);
   const CommandResult figure =
