@@ -19,6 +19,7 @@
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/results.hpp"
 #include "gearimpact/stiffness/energy.hpp"
+#include "gearimpact/stiffness/helical.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "gearimpact/stiffness/mesh_tables.hpp"
@@ -114,7 +115,36 @@ void print_stiffness_table(StiffnessOptions& options, const CLI::App& command) {
   std::fputs(csv.c_str(), stdout);
 }
 
+// A helical pair: both routes of the slice model over one mesh period.
+void print_helical_mesh_stiffness(const StiffnessOptions& options, const GearPair& pair,
+                                  const StiffnessModel& model) {
+  if (!options.figure.empty()) {
+    throw InputError("--figure", options.figure,
+                     "absent for a helical pair (gears.helix_angle > 0): its figure is not drawn "
+                     "yet; the CSV or --summary goes to standard output");
+  }
+  if (!options.case_file.empty() &&
+      !read_pair_or_run_file(options.case_file).simulation_case.faults.empty()) {
+    throw InputError("faults", options.case_file,
+                     "no [[faults]] with a helical pair (gears.helix_angle > 0): faults on "
+                     "helical teeth are not modelled yet");
+  }
+  const HelicalMeshStiffnessCurve curve = helical_mesh_stiffness(pair, model, options.samples);
+  std::fputs((options.summary ? helical_mesh_stiffness_summary_json(curve)
+                              : helical_mesh_stiffness_csv(curve))
+                 .c_str(),
+             stdout);
+}
+
 void print_mesh_stiffness(StiffnessOptions& options) {
+  {
+    // A helical pair takes the slice model; the spur path below refuses it.
+    const auto [pair, model] = pair_and_model(options);
+    if (pair.helix_angle_rad != 0.0) {
+      print_helical_mesh_stiffness(options, pair, model);
+      return;
+    }
+  }
   const std::string figure_folder = options.figure;
   // Every refusal before any work: the folder, then the case and the samples.
   if (!figure_folder.empty()) {
@@ -149,7 +179,10 @@ void print_iso6336(StiffnessOptions& options) {
   const auto [pair, model] = pair_and_model(options);
   std::optional<double> load;
   if (!options.load.empty()) load = specific_load_of(options.load, pair);
-  std::fputs(iso6336_text(pair, options.helix_angle_deg, load).c_str(), stdout);
+  // A helical case's own helix angle unless --helix-angle names one.
+  const double helix_deg =
+      options.helix_angle_deg == 0.0 ? pair.helix_angle_rad * 180.0 / pi : options.helix_angle_deg;
+  std::fputs(iso6336_text(pair, helix_deg, load).c_str(), stdout);
 }
 
 void add_pair_options(CLI::App* command, StiffnessOptions& options) {
@@ -266,7 +299,8 @@ void register_stiffness_commands(CLI::App& app) {
       "iso6336", "JSON of the ISO 6336-1 method B stiffnesses c', c_gamma_alpha of the pair");
   add_pair_options(iso, *iso_options);
   iso->add_option("--helix-angle", iso_options->helix_angle_deg,
-                  "helix angle, deg, in [0, 45) (default 0: the spur pair)")
+                  "helix angle, deg, in [0, 45) (default: the case's gears.helix_angle, 0 for a "
+                  "spur pair)")
       ->check(CLI::Range(0.0, 44.999999));
   iso->add_option("--load", iso_options->load,
                   "F_t K_A / b (\"50 N/mm\") or the pinion's torque (\"150 N*m\", K_A = 1): "

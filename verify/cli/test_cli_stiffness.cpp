@@ -12,6 +12,7 @@
 
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/stiffness/energy.hpp"
+#include "gearimpact/stiffness/helical.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "paper_data.hpp"
 #include "run_command.hpp"
@@ -108,4 +109,49 @@ TEST_CASE("stiffness --case-file: a researcher's own pair, with the file's stiff
   CHECK(bad.exit_code != 0);
   CHECK(bad.err.find("/nonexistent.toml") != std::string::npos);
   std::filesystem::remove(file);
+}
+
+TEST_CASE("mesh-stiffness on a helical pair: both routes over a mesh period; a run refuses it") {
+  const std::filesystem::path file =
+      std::filesystem::path(GEARIMPACT_PAPER_DATA_DIR) / ".." / "examples" / "helical_h501.toml";
+  const CommandResult r =
+      run_command(cli("mesh-stiffness --case-file " + file.string() + " --samples 20"));
+  REQUIRE(r.exit_code == 0);
+  const auto rows = csv_rows(r.out);
+  REQUIRE(rows.size() == 21);
+  CHECK(rows[0] == std::vector<std::string>{"fraction", "theta1_rad", "k_slices_n_m", "k_face_n_m",
+                                            "contact_line_length_m",
+                                            "contact_line_length_slices_m"});
+  // The example's pair, built here: the program prints the library's slice
+  // model to the bit (17 significant digits).
+  GearPair pair;
+  pair.teeth1 = 20;
+  pair.teeth2 = 30;
+  pair.module_m = 3.5e-3;
+  pair.pressure_angle_rad = 20.0 * std::numbers::pi / 180.0;
+  pair.helix_angle_rad = 15.0 * std::numbers::pi / 180.0;
+  pair.face_width_m = 23e-3;
+  pair.youngs_modulus_pa = 206e9;
+  pair.poisson_ratio = 0.3;
+  pair.profile_shift1 = 0.1809;
+  pair.profile_shift2 = 0.0891;
+  const FaceStiffness face(pair, StiffnessModel{}, HelicalHertz::projected);
+  const HelicalMesh mesh(pair, face);
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const double theta = std::stod(rows[i][1]);
+    CHECK(std::stod(rows[i][2]) == mesh.stiffness_slices(Region::n1, theta, 32));
+    CHECK(std::stod(rows[i][3]) == mesh.stiffness_face(Region::n1, theta));
+  }
+  const CommandResult summary =
+      run_command(cli("mesh-stiffness --summary --case-file " + file.string()));
+  REQUIRE(summary.exit_code == 0);
+  CHECK(summary.out.find("\"iso_c_gamma_alpha_b_n_m\"") != std::string::npos);
+  // The dynamics and --figure refuse it, naming the key or the flag.
+  const CommandResult run = run_command(cli("simulate --case 1 --set 'gears.helix_angle=15 deg'"));
+  CHECK(run.exit_code != 0);
+  CHECK(run.err.find("gears.helix_angle") != std::string::npos);
+  const CommandResult figure =
+      run_command(cli("mesh-stiffness --case-file " + file.string() + " --figure does-not-matter"));
+  CHECK(figure.exit_code != 0);
+  CHECK(figure.err.find("--figure") != std::string::npos);
 }

@@ -79,6 +79,9 @@ TEST_CASE("ISO/TR 6336-30 Annex A: zn, c'_th, c', c_gamma_alpha to the printed d
   CHECK(to_printed_digits(r.theoretical_single_stiffness_n_per_m2 / n_per_mm_um, 17.85584, 1e-5));
   CHECK(to_printed_digits(r.single_stiffness_n_per_m2 / n_per_mm_um, 12.37047, 1e-5));
   CHECK(to_printed_digits(r.mesh_stiffness_n_per_m2 / n_per_mm_um, 17.46485, 1e-5));
+  // c_gamma_beta = 0.85 c_gamma_alpha: 14.84512 in a peer's transcription of the
+  // example (gfsReboucas/Drivetrain MATISO_6336.m), not read in the TR itself.
+  CHECK(to_printed_digits(iso6336_face_mesh_stiffness(r) / n_per_mm_um, 14.84512, 1e-5));
   // C_B = 1 + 0.5 (1.2 - 1.4) = 0.9 exactly for the 20 deg rack.
   CHECK(std::fabs(r.basic_rack_factor - 0.9) <= 4.0 * eps);
   CHECK(r.low_load_factor == 1.0);

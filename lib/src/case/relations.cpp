@@ -36,8 +36,9 @@ void check_rows(const SimulationCase& c, std::string_view section, Holds holds,
 
 // The [model] rows that describe the StiffnessModel.
 bool is_stiffness_row(const Field& field) {
-  for (std::string_view key : {"stiffness_model", "moment_sign", "stiffness_method", "xform_rule",
-                               "stiffness_tolerance", "spall_reading"}) {
+  for (std::string_view key :
+       {"stiffness_model", "moment_sign", "stiffness_method", "xform_rule", "stiffness_tolerance",
+        "spall_reading", "face_slices", "helical_hertz"}) {
     if (field.key == key) return true;
   }
   for (const TermInfo& t : kTerms) {
@@ -456,6 +457,11 @@ void validate_relations(const SimulationCase& c) {
 }
 
 void validate_run_keys(const SimulationCase& c) {
+  // Before anything else: the dynamics take spur meshes only, and a helical
+  // pair run as spur would be silently wrong.
+  if (c.gears.helix_angle_rad != 0.0) {
+    throw_helical_not_taken(c.gears.helix_angle_rad, "a run (simulate, steady, sweep)");
+  }
   Problems problems;
   for (const std::string& key : c.run_keys_absent) {
     const Field* field = find_field(key);

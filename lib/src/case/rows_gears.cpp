@@ -105,6 +105,24 @@ void schema_detail::add_gear_rows(std::vector<Field>& rows) {
        "poisson_ratio2", {open(-1.0), open(0.5), "both ends excluded"}, false, "nu of gear 2",
        [](auto& c) -> auto& { return c.gears.poisson_ratio2; })
       .when_absent = "gear 1's";
+  // Helical pairs (docs/helical.md). Case files written before them hold
+  // spur pairs, so the writer leaves both keys out at their defaults.
+  r.quantity(
+       "helix_angle", Dimension::angle, "deg", {closed(0.0), closed(pi / 4.0), {}}, false,
+       "beta at the reference cylinder; 0 is the spur pair. Above 0, module, pressure_angle, "
+       "the shifts and the rack coefficients are normal-section values; mesh-stiffness and "
+       "iso6336 take a helical pair, the dynamics (simulate, steady, sweep, ste, modes) and "
+       "report refuse it",
+       [](auto& c) -> auto& { return c.gears.helix_angle_rad; })
+      .written_at_default = false;
+  rows.back().keyed_at_default = false;
+  r.choice(
+       "helix_hand", choices_of(kHelixHands), false,
+       "the hand of gear 1's helix (gear 2 has the other); the order in which the face's "
+       "slices enter the zone of action",
+       [](auto& c) -> auto& { return c.gears.helix_hand; })
+      .written_at_default = false;
+  rows.back().keyed_at_default = false;
 }
 
 }  // namespace gearimpact

@@ -121,6 +121,21 @@ void schema_detail::add_model_rows(std::vector<Field>& rows) {
        "how a partial-width spall's contact loads the teeth (docs/faults.md)",
        [](auto& c) -> auto& { return c.model.stiffness.spall_reading; })
       .written_at_default = false;
+  // Helical pairs (docs/helical.md); spur case files leave both out.
+  r.integer(
+       "face_slices", {closed(1.0), closed(kMostFaceSlices), {}}, false,
+       "N, the slices across a helical pair's face (route A, midpoint rule; route B is the "
+       "exact face integral); a spur pair ignores it",
+       [](auto& c) -> auto& { return c.model.stiffness.face_slices; })
+      .written_at_default = false;
+  rows.back().keyed_at_default = false;
+  r.choice(
+       "helical_hertz", choices_of(kHelicalHertz), false,
+       "a helical slice's Hertzian term: projected on the inclined contact line, or face-width "
+       "(each slice a plain spur pair); a spur pair ignores it",
+       [](auto& c) -> auto& { return c.model.stiffness.helical_hertz; })
+      .written_at_default = false;
+  rows.back().keyed_at_default = false;
   // stiffness_method names the tau-form with a quadrature rule, or the
   // x-form route; xform_rule the rule of the x-form route (used only then).
   // The tau-form's methods have their rule's code, the x-form one past them.

@@ -142,9 +142,11 @@ bool applies(const Field& field, const SimulationCase& c) {
 std::string case_key(const SimulationCase& c) {
   if (c.torque1.kind == Torque::Kind::user || c.torque2.kind == Torque::Kind::user) return {};
   std::string key;
+  const SimulationCase defaults;
   for (const Field& field : case_schema()) {
     if (field.section.empty() && field.key == "name") continue;
     if (!applies(field, c) || absent(field, c)) continue;
+    if (!field.keyed_at_default && field.get(c) == field.get(defaults)) continue;
     key += field.name() + "=" + value_text(field, c, false) + "\n";
   }
   for (std::size_t i = 0; i < c.faults.size(); ++i) {

@@ -385,6 +385,8 @@ double largest_resolving_step_s(const SimulationCase& c, const StiffnessTable& t
 }
 
 void validate_implied(const SimulationCase& c) {
+  // A helical run is refused by name before the spur layout below is built.
+  if (c.gears.helix_angle_rad != 0.0) validate_run_keys(c);
   validate_implied(c, total_stiffness_extremes(c, [&](double x) {
                      return mesh_stiffness(c.gears, x, c.model.stiffness).ke;
                    }));

@@ -8,6 +8,7 @@
 
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
+#include "gearimpact/geometry/helical.hpp"
 #include "gearimpact/geometry/rack_generation.hpp"
 
 namespace gearimpact {
@@ -36,7 +37,8 @@ bool operator==(const GearPair& a, const GearPair& b) {
          a.profile_shift2 == b.profile_shift2 &&
          a.rack_tip_radius_coefficient == b.rack_tip_radius_coefficient &&
          a.bore_diameter1_m == b.bore_diameter1_m && a.bore_diameter2_m == b.bore_diameter2_m &&
-         a.youngs_modulus2_pa == b.youngs_modulus2_pa && a.poisson_ratio2 == b.poisson_ratio2;
+         a.youngs_modulus2_pa == b.youngs_modulus2_pa && a.poisson_ratio2 == b.poisson_ratio2 &&
+         a.helix_angle_rad == b.helix_angle_rad && a.helix_hand == b.helix_hand;
 }
 
 GearPair paper_gear_pair() {
@@ -193,8 +195,29 @@ double contact_position_from_phi1(const GearPair& pair, double phi1_rad) {
   return base_radius(pair, Gear::one) * (phi1_rad + half_tooth_angle(pair, Gear::one));
 }
 
+namespace {
+
+// The spur layout's lengths are those of the spur pair the fields describe; a
+// helical pair's are the transverse ones of geometry/helical.hpp, which the
+// dynamics do not take yet.
+const GearPair& spur_only(const GearPair& pair) {
+  if (pair.helix_angle_rad != 0.0)
+    throw_helical_not_taken(pair.helix_angle_rad, "the spur mesh layout");
+  return pair;
+}
+
+}  // namespace
+
+void throw_helical_not_taken(double helix_angle_rad, std::string_view what) {
+  throw InputError(
+      "gears.helix_angle", format_number(helix_angle_rad * 180.0 / pi) + " deg",
+      "0 for " + std::string(what) +
+          ": a helical pair is taken by mesh-stiffness and iso6336 only (its slices are "
+          "not in the dynamics yet); it is never run as a spur pair");
+}
+
 MeshLayout::MeshLayout(const GearPair& pair, CoastPhase coast_phase)
-    : x_pitch_(pitch_point_position(pair)),
+    : x_pitch_(pitch_point_position(spur_only(pair))),
       rb1_(base_radius(pair, Gear::one)),
       t0_(base_pitch(pair)),
       start_(contact_segment(pair).start_m),
@@ -332,6 +355,12 @@ std::optional<double> smallest_shift_for_teeth(const GearPair& pair, Gear gear) 
 }
 
 void validate_geometry(const GearPair& pair) {
+  // A helical pair's relations are those of its transverse section, the
+  // mapped spur pair (docs/helical.md).
+  if (pair.helix_angle_rad != 0.0) {
+    validate_geometry(transverse_pair(pair));
+    return;
+  }
   // Each gear's relations, both reported at once; the blame goes to its tooth
   // count, which a user most likely has to change, with the fixes: the
   // smallest count at this shift and the smallest shift at this count.

@@ -580,6 +580,38 @@ std::string true_period_mesh_stiffness_summary_json(const TruePeriodMeshStiffnes
   return out;
 }
 
+std::string helical_mesh_stiffness_csv(const HelicalMeshStiffnessCurve& curve) {
+  using S = HelicalMeshStiffnessSample;
+  const Columns<S> columns{
+      member_column("fraction", "", &S::fraction),
+      member_column("theta1_rad", "rad", &S::theta1_rad),
+      member_column("k_slices_n_m", "N/m", &S::slices_n_per_m),
+      member_column("k_face_n_m", "N/m", &S::face_n_per_m),
+      member_column("contact_line_length_m", "m", &S::contact_line_length_m),
+      member_column("contact_line_length_slices_m", "m", &S::contact_line_length_slices_m)};
+  return csv_of(columns, curve.samples);
+}
+
+std::string helical_mesh_stiffness_summary_json(const HelicalMeshStiffnessCurve& curve) {
+  const HelicalGeometry& g = curve.geometry;
+  std::string out = "{\n";
+  json_number(out, "helix_angle_deg", g.helix_angle_rad * 180.0 / pi);
+  json_number(out, "base_helix_angle_deg", g.base_helix_angle_rad * 180.0 / pi);
+  json_number(out, "eps_alpha", g.transverse_contact_ratio);
+  json_number(out, "eps_beta", g.overlap_ratio);
+  json_number(out, "eps_gamma", g.total_contact_ratio);
+  out += "  \"face_slices\": " + std::to_string(curve.face_slices) + ",\n";
+  json_number(out, "min_face_n_m", curve.min_face_n_per_m);
+  json_number(out, "max_face_n_m", curve.max_face_n_per_m);
+  json_number(out, "min_slices_n_m", curve.min_slices_n_per_m);
+  json_number(out, "max_slices_n_m", curve.max_slices_n_per_m);
+  json_number(out, "mean_n_m", curve.mean_n_per_m);
+  json_number(out, "mean_contact_line_length_m", curve.mean_contact_line_length_m);
+  json_number(out, "iso_c_gamma_alpha_b_n_m", curve.iso_mesh_stiffness_n_per_m, true);
+  out += "}\n";
+  return out;
+}
+
 std::string iso6336_json(const Iso6336Stiffness& iso, double face_width_m,
                          std::optional<double> specific_load_n_per_m) {
   // ISO's unit N/(mm um) is 1e9 N/m^2.

@@ -242,6 +242,7 @@ Modes natural_modes(const LinearModel& model) {
 }
 
 Modes natural_modes(const SimulationCase& c) {
+  if (c.gears.helix_angle_rad != 0.0) throw_helical_not_taken(c.gears.helix_angle_rad, "modes");
   validate_fields(c);
   const MeshTables tables(c.gears, c.model.stiffness, c.faults);
   return natural_modes(linear_model(linear_parameters(c, mean_mesh_stiffness_n_per_m(c, tables))));

@@ -177,4 +177,22 @@ Iso6336Pair iso6336_pair(const GearPair& pair, double helix_angle_rad) {
   return iso;
 }
 
+double iso6336_face_mesh_stiffness(const Iso6336Stiffness& stiffness) {
+  // c_gamma_beta = 0.85 c_gamma_alpha.
+  return 0.85 * stiffness.mesh_stiffness_n_per_m2;
+}
+
+double iso6336_face_load_factor(double mismatch_m, double c_gamma_beta, double load_per_width) {
+  if (!(mismatch_m >= 0.0) || !std::isfinite(mismatch_m)) {
+    throw InputError("F_betay", format_number(mismatch_m) + " m", "a finite value >= 0 m");
+  }
+  checks::require_finite_positive("c_gamma_beta", c_gamma_beta, "N/m^2");
+  checks::require_finite_positive("F_m/b", load_per_width, "N/m");
+  // The uncoupled face of uniform stiffness: contact over the whole face while
+  // the mismatch's share stays below the mean load, else over part of it.
+  const double full_contact = 1.0 + mismatch_m * c_gamma_beta / (2.0 * load_per_width);
+  if (full_contact <= 2.0) return full_contact;
+  return std::sqrt(2.0 * mismatch_m * c_gamma_beta / load_per_width);
+}
+
 }  // namespace gearimpact

@@ -12,7 +12,8 @@ namespace gearimpact {
 bool operator==(const StiffnessModel& a, const StiffnessModel& b) {
   return a.kind == b.kind && a.route == b.route && a.rule == b.rule &&
          a.moment_sign == b.moment_sign && a.relative_tolerance == b.relative_tolerance &&
-         a.terms == b.terms && a.spall_reading == b.spall_reading;
+         a.terms == b.terms && a.spall_reading == b.spall_reading &&
+         a.face_slices == b.face_slices && a.helical_hertz == b.helical_hertz;
 }
 
 SpallReading parse_spall_reading(std::string_view name, std::string_view field) {

@@ -103,6 +103,9 @@ struct Field {
   // false: the writer leaves the key out while it holds its default, so that
   // keys added after case files were written do not change those files.
   bool written_at_default = true;
+  // false: case_key leaves the key out while it holds its default, so that a
+  // key added later keeps the keys (and hashes) of the cases before it.
+  bool keyed_at_default = true;
 
   // "section.key", or "key" at the top level.
   std::string name() const;

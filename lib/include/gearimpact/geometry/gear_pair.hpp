@@ -5,11 +5,20 @@
 #include <array>
 #include <cstddef>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include "gearimpact/named_values.hpp"
 
 namespace gearimpact {
+
+// The hand of the pinion's helix (the wheel has the other): right, the
+// section turning forward about +z as z grows (docs/helical.md).
+enum class HelixHand { right, left };
+inline constexpr std::array<NamedValue<HelixHand>, 2> kHelixHands{{
+    {HelixHand::right, "right", "a right-hand pinion (the wheel left-hand)"},
+    {HelixHand::left, "left", "a left-hand pinion (the wheel right-hand)"},
+}};
 
 // Two involute spur gears cut by the same basic rack, meshing without
 // backlash on the operating centre distance (docs/stiffness-models.md, section 1).
@@ -44,6 +53,13 @@ struct GearPair {
   // Gear 2's material. Absent: gear 1's.
   std::optional<double> youngs_modulus2_pa;
   std::optional<double> poisson_ratio2;
+  // beta at the reference cylinder; 0 is the spur pair. A helical pair's
+  // module, pressure angle, shifts and rack coefficients are normal-section
+  // values (geometry/helical.hpp maps them to the transverse section). Only
+  // the helical functions take beta > 0: MeshLayout, and so the dynamics,
+  // refuse it.
+  double helix_angle_rad = 0.0;
+  HelixHand helix_hand = HelixHand::right;
 };
 
 bool operator==(const GearPair& a, const GearPair& b);
@@ -60,6 +76,10 @@ GearPair paper_gear_pair();
 // bore_diameter2, ...). Each field's own range is the case schema's
 // (validate(const GearPair&) of case/schema.hpp checks both).
 void validate_geometry(const GearPair& pair);
+
+// Throws InputError naming gears.helix_angle: `what` (a command, the spur
+// layout) takes spur pairs only.
+[[noreturn]] void throw_helical_not_taken(double helix_angle_rad, std::string_view what);
 
 // Which gear of the pair: 1 the pinion (driver in the paper), 2 the wheel.
 enum class Gear { one = 1, two = 2 };

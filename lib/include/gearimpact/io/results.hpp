@@ -12,6 +12,7 @@
 #include "gearimpact/dynamics/train.hpp"
 #include "gearimpact/io/columns.hpp"
 #include "gearimpact/stiffness/energy.hpp"
+#include "gearimpact/stiffness/helical.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "gearimpact/stiffness/mesh_tables.hpp"
@@ -126,6 +127,13 @@ std::size_t most_pairs_in_contact(const TruePeriodMeshStiffness& tvms);
 // healthy_mean_n_m (the same pairs all healthy), simulation_theta1_offset_rad, extrapolated
 // (the foundation fit used outside its range) and, when it is, a warning naming each gear,
 // parameter, value and the fit's range.
+// A helical pair's mesh stiffness over one mesh period (docs/helical.md):
+// fraction,theta1_rad,k_slices_n_m,k_face_n_m,contact_line_length_m,
+// contact_line_length_slices_m; and its summary (extremes, the exact mean,
+// the contact ratios, ISO's c_gamma_alpha b) as JSON.
+std::string helical_mesh_stiffness_csv(const HelicalMeshStiffnessCurve& curve);
+std::string helical_mesh_stiffness_summary_json(const HelicalMeshStiffnessCurve& curve);
+
 std::string true_period_mesh_stiffness_summary_json(const TruePeriodMeshStiffness& tvms,
                                                     double contact_ratio);
 // zn1, zn2, c_prime_th_n_mm_um, c_prime_n_mm_um, c_gamma_alpha_n_mm_um,

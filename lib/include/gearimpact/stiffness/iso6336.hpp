@@ -72,4 +72,16 @@ double iso6336_flexibility(double virtual_teeth1, double virtual_teeth2, double 
 // in the transverse plane (ISO 21771), cos alpha_wt = (d_b1 + d_b2) / (2 a_w).
 double iso6336_transverse_contact_ratio(const Iso6336Pair& pair);
 
+// c_gamma_beta = 0.85 c_gamma_alpha, the mesh stiffness ISO 6336-1 uses for
+// the face-load factor, N/m^2.
+double iso6336_face_mesh_stiffness(const Iso6336Stiffness& stiffness);
+
+// K_Hbeta of ISO 6336-1 for an effective mismatch F_betay (m), c_gamma_beta
+// (N/m^2) and the load per face width F_m / b = F_t K_A K_v / b (N/m):
+// 1 + F_betay c_gamma_beta / (2 F_m/b) while that is <= 2 (contact across the
+// whole face), else sqrt(2 F_betay c_gamma_beta / (F_m/b)). Throws InputError
+// naming the argument out of range.
+double iso6336_face_load_factor(double mismatch_m, double face_mesh_stiffness_n_per_m2,
+                                double load_per_width_n_per_m);
+
 }  // namespace gearimpact

@@ -86,6 +86,18 @@ inline constexpr std::array<NamedValue<SpallReading>, 3> kSpallReadings{{
 SpallReading parse_spall_reading(std::string_view name, std::string_view field);
 std::string to_string(SpallReading reading);
 
+// How a helical pair's slice sees the inclined contact line in its Hertzian
+// term (docs/helical.md, section The slice model).
+enum class HelicalHertz { projected, face_width };
+inline constexpr std::array<NamedValue<HelicalHertz>, 2> kHelicalHertz{{
+    {HelicalHertz::projected, "projected",
+     "c_H cos(beta_b): the slice's contact line is db / cos(beta_b) long and its approach the "
+     "transverse one times cos(beta_b)"},
+    {HelicalHertz::face_width, "face-width", "c_H: each slice a plain spur pair of its width"},
+}};
+// The most slices across a helical pair's face (model.face_slices).
+inline constexpr int kMostFaceSlices = 4096;
+
 struct StiffnessModel {
   StiffnessModelKind kind = StiffnessModelKind::yang_lin_1987;
   StiffnessRoute route = StiffnessRoute::tau_form;
@@ -97,6 +109,10 @@ struct StiffnessModel {
   double relative_tolerance = 1e-12;
   TermSet terms;
   SpallReading spall_reading = SpallReading::by_model;
+  // A helical pair's slices across the face (route A, midpoint rule) and
+  // their Hertzian term; a spur pair ignores both.
+  int face_slices = 32;
+  HelicalHertz helical_hertz = HelicalHertz::projected;
 };
 bool operator==(const StiffnessModel& a, const StiffnessModel& b);
 

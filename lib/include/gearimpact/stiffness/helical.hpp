@@ -1,0 +1,144 @@
+// The mesh stiffness of a helical pair by slices of its face (docs/helical.md,
+// section The slice model): each slice a transverse spur pair, its contact
+// shifted along the line of action by sigma (y - b/2) tan(beta_b). Route A sums
+// N slices (midpoint rule), route B integrates over the face exactly through
+// C(X), the cumulative per-width stiffness. Stiffnesses are transverse (force
+// and deflection along the transverse line of action), N/m; per unit face
+// width N/m^2.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <vector>
+
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/helical.hpp"
+#include "gearimpact/named_values.hpp"
+#include "gearimpact/stiffness/model.hpp"
+#include "gearimpact/stiffness/table.hpp"
+
+namespace gearimpact {
+
+// kappa_t(X) = [1 / kappa_beam(X) + 1 / (c_H cos(beta_b))]^-1 per unit face
+// width along the transverse path of contact [X_SAP, X_EAP] (measured from C1
+// as in MeshLayout), and its integral C(X) from X_SAP.
+class FaceStiffness {
+ public:
+  // From the stiffness table of the pair's transverse spur section
+  // (transverse_pair) at width b, by `model`: kappa_beam = 1 / (b (its beam
+  // terms)), c_H = Kh / b. face_width: kappa_t = Ke / b of that table.
+  FaceStiffness(const GearPair& pair, const StiffnessModel& model, HelicalHertz hertz,
+                StiffnessTableOptions options = {});
+  // `uniform`: kappa_t constant along the path.
+  static FaceStiffness uniform(const GearPair& pair, double kappa_n_per_m2);
+
+  double start_m() const { return start_; }
+  double end_m() const { return end_; }
+  // kappa_t at X in [X_SAP, X_EAP], N/m^2; InputError outside.
+  double kappa(double x_m) const;
+  // C(X) = integral of kappa_t from X_SAP to X, clamped to the path, N/m.
+  double cumulative(double x_m) const;
+  bool is_uniform() const { return !table_.has_value(); }
+
+ private:
+  FaceStiffness(double start_m, double end_m) : start_(start_m), end_(end_m) {}
+  double start_;
+  double end_;
+  double face_width_;
+  double cos_base_helix_ = 1.0;
+  HelicalHertz hertz_ = HelicalHertz::projected;
+  double uniform_kappa_ = 0.0;
+  std::optional<StiffnessTable> table_;
+  // C at the pieces' ends (Gauss-Legendre on each of the table's pieces).
+  std::vector<double> nodes_m_;
+  std::vector<double> cumulative_at_nodes_;
+};
+
+// The slices' layout on a line of action and the two routes.
+class HelicalMesh {
+ public:
+  // Throws InputError naming gears.helix_angle for beta = 0 (the spur path
+  // holds that pair) and for beta outside (0, 45] deg. `face` must outlive the mesh.
+  HelicalMesh(const GearPair& pair, const FaceStiffness& face,
+              CoastPhase coast_phase = CoastPhase::half_base_pitch);
+
+  // X_k of pair k at mid-face on `line` at pinion rotation theta1:
+  // N1 X_pitch + Rb1 theta1 + k p_bt, N2 X_pitch - Rb1 theta1 (+ p_bt / 2) + k p_bt.
+  double mid_face_position_m(Region line, double theta1_rad, int k) const;
+  // Slice j's (of n) offset from mid-face along `line`: on N1 sigma (y_j - b/2)
+  // tan(beta_b), on N2 its negative.
+  double slice_offset_m(Region line, int j, int slices) const;
+
+  // Route A: the sum of kappa_t(X_kj) b / N over the (k, j) on the path.
+  double stiffness_slices(Region line, double theta1_rad, int slices) const;
+  // Route B: the sum over pairs of [C(min(X_k + W/2, X_EAP)) - C(max(X_k - W/2, X_SAP))] /
+  // tan(beta_b).
+  double stiffness_face(Region line, double theta1_rad) const;
+  // One pair's route-B stiffness with its mid-face contact at X.
+  double pair_stiffness_face(double x_mid_m) const;
+  // The summed contact-line length in the zone: route B's exact, route A's
+  // slices (each db / cos(beta_b) long while its midpoint is on the path).
+  double contact_line_length(Region line, double theta1_rad) const;
+  double contact_line_length_slices(Region line, double theta1_rad, int slices) const;
+
+  double base_pitch_m() const { return p_bt_; }
+  double base_radius1_m() const { return rb1_; }
+  double face_width_m() const { return b_; }
+  double base_helix_angle_rad() const { return beta_b_; }
+  // The mesh period in pinion rotation, 2 pi / z1 = p_bt / Rb1.
+  double mesh_period_rad() const { return p_bt_ / rb1_; }
+
+ private:
+  const FaceStiffness& face_;
+  double x_pitch_;
+  double rb1_;
+  double p_bt_;
+  double start_;
+  double end_;
+  double b_;
+  double beta_b_;
+  double tan_bb_;
+  double half_w_;  // W / 2 = b tan(beta_b) / 2
+  int sigma_;
+  double coast_offset_;
+};
+
+// The mesh stiffness of a helical pair over one mesh period, both routes,
+// from theta1 = 0 (pair 0's mid-face contact at the pitch point) on N1.
+struct HelicalMeshStiffnessSample {
+  double fraction;                      // of the mesh period
+  double theta1_rad;                    // pinion rotation
+  double slices_n_per_m;                // route A with model.face_slices slices
+  double face_n_per_m;                  // route B
+  double contact_line_length_m;         // the exact summed length in the zone
+  double contact_line_length_slices_m;  // the slices' (each db / cos(beta_b) while on the path)
+};
+struct HelicalMeshStiffnessCurve {
+  std::vector<HelicalMeshStiffnessSample> samples;
+  HelicalGeometry geometry;
+  int face_slices = 0;
+  // The exact mean over the mesh period, b C(X_EAP) / p_bt: the same for
+  // both routes and every N.
+  double mean_n_per_m = 0.0;
+  double min_face_n_per_m = 0.0;  // over the samples
+  double max_face_n_per_m = 0.0;
+  double min_slices_n_per_m = 0.0;
+  double max_slices_n_per_m = 0.0;
+  // b eps_alpha / cos(beta_b).
+  double mean_contact_line_length_m = 0.0;
+  // ISO 6336-1's c_gamma_alpha b (its helical c' with cos(beta) and zn), for comparison.
+  double iso_mesh_stiffness_n_per_m = 0.0;
+};
+// `samples` in [2, 100000] per mesh period; the model's face_slices and helical_hertz.
+HelicalMeshStiffnessCurve helical_mesh_stiffness(const GearPair& pair, const StiffnessModel& model,
+                                                 int samples);
+
+// The face-load factor of ISO 6336-1 from a slice solution: uniform stiffness
+// c per unit face width, a gap linear across the face e(y) = F_betay (y/b - 1/2),
+// transverse load F: the deflection delta with integral of c max(0, delta - e)
+// over the face equal to F, solved exactly for a piecewise-linear gap, and
+// K_Hbeta = max_y w(y) / (F / b).
+double face_load_factor_linear_gap(double c_n_per_m2, double face_width_m, double force_n,
+                                   double mismatch_m);
+
+}  // namespace gearimpact

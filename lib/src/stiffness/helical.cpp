@@ -1,0 +1,288 @@
+#include "gearimpact/stiffness/helical.hpp"
+
+#include <algorithm>
+#include <boost/math/quadrature/gauss.hpp>
+#include <boost/math/tools/roots.hpp>
+#include <cmath>
+#include <cstdint>
+#include <string>
+
+#include "gearimpact/constants.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/geometry/helical.hpp"
+#include "gearimpact/stiffness/iso6336.hpp"
+
+namespace gearimpact {
+
+namespace {
+
+// 8-point Gauss-Legendre on each piece of the table: kappa_t is smooth there
+// (a ratio of degree-7 series), so the rule is exact to rounding for the
+// integrals C(X) needs.
+using Rule = boost::math::quadrature::gauss<double, 8>;
+
+double base_helix_angle(const GearPair& pair) {
+  const double cos_beta = std::cos(pair.helix_angle_rad);
+  const double at = std::atan(std::tan(pair.pressure_angle_rad) / cos_beta);
+  return std::atan(std::tan(pair.helix_angle_rad) * std::cos(at));
+}
+
+}  // namespace
+
+FaceStiffness::FaceStiffness(const GearPair& pair, const StiffnessModel& model, HelicalHertz hertz,
+                             StiffnessTableOptions options) {
+  const GearPair transverse = transverse_pair(pair);
+  const ContactSegment segment = contact_segment(transverse);
+  start_ = segment.start_m;
+  end_ = segment.end_m;
+  face_width_ = pair.face_width_m;
+  cos_base_helix_ = std::cos(base_helix_angle(pair));
+  hertz_ = hertz;
+  table_.emplace(transverse, model, options);
+  const int pieces = table_->pieces();
+  nodes_m_.resize(static_cast<std::size_t>(pieces) + 1);
+  cumulative_at_nodes_.assign(static_cast<std::size_t>(pieces) + 1, 0.0);
+  const double step = (end_ - start_) / pieces;
+  for (int i = 0; i <= pieces; ++i) {
+    nodes_m_[static_cast<std::size_t>(i)] = i == pieces ? end_ : start_ + i * step;
+  }
+  for (int i = 0; i < pieces; ++i) {
+    const auto u = static_cast<std::size_t>(i);
+    cumulative_at_nodes_[u + 1] =
+        cumulative_at_nodes_[u] +
+        Rule::integrate([this](double x) { return kappa(x); }, nodes_m_[u], nodes_m_[u + 1]);
+  }
+}
+
+FaceStiffness FaceStiffness::uniform(const GearPair& pair, double kappa_n_per_m2) {
+  if (!(kappa_n_per_m2 > 0.0) || !std::isfinite(kappa_n_per_m2)) {
+    throw InputError("uniform stiffness", format_number(kappa_n_per_m2) + " N/m^2",
+                     "a finite value > 0 N/m^2 per unit face width");
+  }
+  const ContactSegment segment = contact_segment(transverse_pair(pair));
+  FaceStiffness face(segment.start_m, segment.end_m);
+  face.face_width_ = pair.face_width_m;
+  face.uniform_kappa_ = kappa_n_per_m2;
+  return face;
+}
+
+double FaceStiffness::kappa(double x_m) const {
+  if (!table_) {
+    if (!(x_m >= start_ && x_m <= end_)) {
+      throw InputError(
+          "X", format_number(x_m) + " m",
+          "the path of contact [" + format_number(start_) + ", " + format_number(end_) + "] m");
+    }
+    return uniform_kappa_;
+  }
+  if (hertz_ == HelicalHertz::face_width) return table_->stiffness(x_m) / face_width_;
+  // Only Hertz sees the inclined line: 1/kappa_t = b (c_beam + c_hertz / cos(beta_b)),
+  // the compliances at width b.
+  const Compliances c = table_->compliance(x_m);
+  const double hertz = c.of(Term::hertz);
+  const double beam = c.total_m_per_n() - hertz;
+  return 1.0 / (face_width_ * (beam + hertz / cos_base_helix_));
+}
+
+double FaceStiffness::cumulative(double x_m) const {
+  const double x = std::clamp(x_m, start_, end_);
+  if (!table_) return uniform_kappa_ * (x - start_);
+  const double step = (end_ - start_) / static_cast<double>(nodes_m_.size() - 1);
+  auto i = static_cast<std::size_t>(
+      std::min<double>((x - start_) / step, static_cast<double>(nodes_m_.size() - 2)));
+  while (i > 0 && x < nodes_m_[i]) --i;
+  while (i + 2 < nodes_m_.size() && x >= nodes_m_[i + 1]) ++i;
+  if (x == nodes_m_[i]) return cumulative_at_nodes_[i];
+  return cumulative_at_nodes_[i] +
+         Rule::integrate([this](double s) { return kappa(s); }, nodes_m_[i], x);
+}
+
+HelicalMesh::HelicalMesh(const GearPair& pair, const FaceStiffness& face, CoastPhase coast_phase)
+    : face_(face) {
+  if (!(pair.helix_angle_rad > 0.0)) {
+    throw InputError("gears.helix_angle", format_number(pair.helix_angle_rad * 180.0 / pi) + " deg",
+                     "(0, 45] deg for the slice model: a spur pair takes the spur path");
+  }
+  const GearPair t = transverse_pair(pair);
+  x_pitch_ = pitch_point_position(t);
+  rb1_ = base_radius(t, Gear::one);
+  p_bt_ = base_pitch(t);
+  const ContactSegment segment = contact_segment(t);
+  start_ = segment.start_m;
+  end_ = segment.end_m;
+  b_ = pair.face_width_m;
+  beta_b_ = base_helix_angle(pair);
+  tan_bb_ = std::tan(beta_b_);
+  half_w_ = 0.5 * b_ * tan_bb_;
+  sigma_ = hand_sign(pair.helix_hand);
+  coast_offset_ = coast_phase == CoastPhase::half_base_pitch ? 0.5 * p_bt_ : 0.0;
+}
+
+double HelicalMesh::mid_face_position_m(Region line, double theta1_rad, int k) const {
+  if (line == Region::free) throw InputError("line", "free", "Region::n1 or Region::n2");
+  const double reference = line == Region::n1 ? x_pitch_ + rb1_ * theta1_rad
+                                              : x_pitch_ - rb1_ * theta1_rad + coast_offset_;
+  return reference + k * p_bt_;
+}
+
+double HelicalMesh::slice_offset_m(Region line, int j, int slices) const {
+  const double db = b_ / slices;
+  const double y = (j + 0.5) * db;
+  const double offset = sigma_ * (y - 0.5 * b_) * tan_bb_;
+  return line == Region::n1 ? offset : -offset;
+}
+
+namespace {
+
+// The pairs k whose mid-face contact lies within W/2 of the path: the ones
+// that may touch.
+struct PairRange {
+  int first;
+  int last;
+};
+PairRange pairs_near(double reference_m, double pitch_m, double start_m, double end_m,
+                     double half_w_m) {
+  return {static_cast<int>(std::floor((start_m - half_w_m - reference_m) / pitch_m)) - 1,
+          static_cast<int>(std::ceil((end_m + half_w_m - reference_m) / pitch_m)) + 1};
+}
+
+void check_slices(int slices) {
+  if (slices < 1 || slices > kMostFaceSlices) {
+    throw InputError("model.face_slices", std::to_string(slices),
+                     "an integer in [1, " + std::to_string(kMostFaceSlices) + "]");
+  }
+}
+
+}  // namespace
+
+double HelicalMesh::stiffness_slices(Region line, double theta1_rad, int slices) const {
+  check_slices(slices);
+  const double reference = mid_face_position_m(line, theta1_rad, 0);
+  const PairRange range = pairs_near(reference, p_bt_, start_, end_, half_w_);
+  const double db = b_ / slices;
+  double sum = 0.0;
+  for (int k = range.first; k <= range.last; ++k) {
+    const double xk = reference + k * p_bt_;
+    for (int j = 0; j < slices; ++j) {
+      const double x = xk + slice_offset_m(line, j, slices);
+      if (x >= start_ && x <= end_) sum += face_.kappa(x) * db;
+    }
+  }
+  return sum;
+}
+
+double HelicalMesh::pair_stiffness_face(double x_mid_m) const {
+  const double high = std::min(x_mid_m + half_w_, end_);
+  const double low = std::max(x_mid_m - half_w_, start_);
+  if (!(high > low)) return 0.0;
+  return (face_.cumulative(high) - face_.cumulative(low)) / tan_bb_;
+}
+
+double HelicalMesh::stiffness_face(Region line, double theta1_rad) const {
+  const double reference = mid_face_position_m(line, theta1_rad, 0);
+  const PairRange range = pairs_near(reference, p_bt_, start_, end_, half_w_);
+  double sum = 0.0;
+  for (int k = range.first; k <= range.last; ++k) sum += pair_stiffness_face(reference + k * p_bt_);
+  return sum;
+}
+
+double HelicalMesh::contact_line_length(Region line, double theta1_rad) const {
+  const double reference = mid_face_position_m(line, theta1_rad, 0);
+  const PairRange range = pairs_near(reference, p_bt_, start_, end_, half_w_);
+  double overlap = 0.0;
+  for (int k = range.first; k <= range.last; ++k) {
+    const double xk = reference + k * p_bt_;
+    overlap += std::max(0.0, std::min(xk + half_w_, end_) - std::max(xk - half_w_, start_));
+  }
+  // A line's length in the zone is its extent along X over sin(beta_b).
+  return overlap / std::sin(beta_b_);
+}
+
+double HelicalMesh::contact_line_length_slices(Region line, double theta1_rad, int slices) const {
+  check_slices(slices);
+  const double reference = mid_face_position_m(line, theta1_rad, 0);
+  const PairRange range = pairs_near(reference, p_bt_, start_, end_, half_w_);
+  int count = 0;
+  for (int k = range.first; k <= range.last; ++k) {
+    const double xk = reference + k * p_bt_;
+    for (int j = 0; j < slices; ++j) {
+      const double x = xk + slice_offset_m(line, j, slices);
+      if (x >= start_ && x <= end_) ++count;
+    }
+  }
+  return count * (b_ / slices) / std::cos(beta_b_);
+}
+
+HelicalMeshStiffnessCurve helical_mesh_stiffness(const GearPair& pair, const StiffnessModel& model,
+                                                 int samples) {
+  if (samples < 2 || samples > 100000) {
+    throw InputError("samples", std::to_string(samples),
+                     "an integer in [2, 100000] per mesh period");
+  }
+  check_slices(model.face_slices);
+  const FaceStiffness face(pair, model, model.helical_hertz);
+  const HelicalMesh mesh(pair, face);
+  HelicalMeshStiffnessCurve curve;
+  curve.geometry = helical_geometry(pair);
+  curve.face_slices = model.face_slices;
+  const double period = mesh.mesh_period_rad();
+  curve.samples.reserve(static_cast<std::size_t>(samples));
+  for (int i = 0; i < samples; ++i) {
+    HelicalMeshStiffnessSample s{};
+    s.fraction = static_cast<double>(i) / samples;
+    s.theta1_rad = period * s.fraction;
+    s.slices_n_per_m = mesh.stiffness_slices(Region::n1, s.theta1_rad, model.face_slices);
+    s.face_n_per_m = mesh.stiffness_face(Region::n1, s.theta1_rad);
+    s.contact_line_length_m = mesh.contact_line_length(Region::n1, s.theta1_rad);
+    s.contact_line_length_slices_m =
+        mesh.contact_line_length_slices(Region::n1, s.theta1_rad, model.face_slices);
+    curve.samples.push_back(s);
+  }
+  const auto extreme = [&](auto member, bool most) {
+    double value = curve.samples.front().*member;
+    for (const HelicalMeshStiffnessSample& s : curve.samples) {
+      value = most ? std::max(value, s.*member) : std::min(value, s.*member);
+    }
+    return value;
+  };
+  curve.min_face_n_per_m = extreme(&HelicalMeshStiffnessSample::face_n_per_m, false);
+  curve.max_face_n_per_m = extreme(&HelicalMeshStiffnessSample::face_n_per_m, true);
+  curve.min_slices_n_per_m = extreme(&HelicalMeshStiffnessSample::slices_n_per_m, false);
+  curve.max_slices_n_per_m = extreme(&HelicalMeshStiffnessSample::slices_n_per_m, true);
+  curve.mean_n_per_m = pair.face_width_m * face.cumulative(face.end_m()) / mesh.base_pitch_m();
+  curve.mean_contact_line_length_m = pair.face_width_m * curve.geometry.transverse_contact_ratio /
+                                     std::cos(curve.geometry.base_helix_angle_rad);
+  curve.iso_mesh_stiffness_n_per_m =
+      iso6336_method_b(iso6336_pair(pair, pair.helix_angle_rad)).mesh_stiffness_n_per_m2 *
+      pair.face_width_m;
+  return curve;
+}
+
+double face_load_factor_linear_gap(double c, double b, double force, double mismatch) {
+  if (!(c > 0.0) || !(b > 0.0) || !(force > 0.0) || !(mismatch >= 0.0) || !std::isfinite(c) ||
+      !std::isfinite(b) || !std::isfinite(force) || !std::isfinite(mismatch)) {
+    throw InputError("face load", "c, b, F, F_betay",
+                     "finite values, c, b and F > 0, F_betay >= 0");
+  }
+  // e(y) = F_betay (y/b - 1/2): the load of a deflection delta is
+  // c times the integral of max(0, delta - e) over [0, b], exact for the linear gap.
+  const double e_low = -0.5 * mismatch;
+  const double e_high = 0.5 * mismatch;
+  const auto load = [&](double delta) {
+    if (delta <= e_low) return 0.0;
+    if (mismatch == 0.0 || delta >= e_high) return c * b * delta;
+    const double y0 = b * (delta - e_low) / mismatch;  // where e(y0) = delta
+    return c * 0.5 * (delta - e_low) * y0;
+  };
+  // Bracket: delta = e_low carries nothing, full contact at e_high + F / (c b) carries more than F.
+  double low = e_low;
+  double high = e_high + force / (c * b);
+  std::uintmax_t iterations = 200;
+  const auto bracket = boost::math::tools::toms748_solve(
+      [&](double d) { return load(d) - force; }, low, high, -force, load(high) - force,
+      boost::math::tools::eps_tolerance<double>(), iterations);
+  const double delta = 0.5 * (bracket.first + bracket.second);
+  return c * (delta - e_low) / (force / b);
+}
+
+}  // namespace gearimpact

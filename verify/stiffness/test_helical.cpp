@@ -1,0 +1,441 @@
+// docs/helical.md: helical pairs by slices of the face. Every reference here
+// comes from outside the code under test: the contact lines clipped to the
+// zone of action as segments, the closed-form series of their summed length
+// (Poisson summation), the spur pair's mesh stiffness by direct quadrature,
+// GEARpie's printed H501 report, ISO 6336-1's face-load factor by hand.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <boost/math/quadrature/gauss.hpp>
+#include <cmath>
+#include <complex>
+#include <vector>
+
+#include "gearimpact/case/schema.hpp"
+#include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/geometry/helical.hpp"
+#include "gearimpact/modes/modes.hpp"
+#include "gearimpact/stiffness/helical.hpp"
+#include "gearimpact/stiffness/iso6336.hpp"
+#include "gearimpact/stiffness/mesh_stiffness.hpp"
+#include "rack_pairs.hpp"
+#include "relative.hpp"
+
+using namespace gearimpact;
+using gearimpact::verify::check_refused;
+using gearimpact::verify::degree;
+using gearimpact::verify::relative_difference;
+
+namespace {
+
+constexpr double pi_ = 3.141592653589793238462643383279502884;
+
+// GEARpie's H501 (REPORT/H501.txt, CLASSES/GEAR_LIBRARY.py): FZG-type helical.
+GearPair h501_pair() {
+  GearPair p;
+  p.teeth1 = 20;
+  p.teeth2 = 30;
+  p.module_m = 3.5e-3;
+  p.pressure_angle_rad = 20.0 * degree;
+  p.helix_angle_rad = 15.0 * degree;
+  p.face_width_m = 23e-3;
+  p.profile_shift1 = 0.1809;
+  p.profile_shift2 = 0.0891;
+  p.youngs_modulus_pa = 206e9;
+  p.poisson_ratio = 0.3;
+  return p;
+}
+
+// The same with the report's printed centre distance and tips.
+HelicalInputs h501_printed() {
+  HelicalInputs in = helical_inputs(h501_pair());
+  in.centre_distance_m = 91.5e-3;
+  in.tip_radius1_m = 40.336e-3;
+  in.tip_radius2_m = 58.132e-3;
+  return in;
+}
+
+// The summed length of the contact lines in the zone [S, E] x [0, b] of the
+// plane of action, each line clipped as a segment (Liang-Barsky on its arc
+// length s): line k crosses z = b/2 at X_k, runs at beta_b to the axis, and
+// moves by sigma sin(beta_b) along X per unit length.
+double clipped_length(const HelicalGeometry& g, double start, double end, double x0, int sigma) {
+  const double sb = std::sin(g.base_helix_angle_rad);
+  const double cb = std::cos(g.base_helix_angle_rad);
+  const double b = g.face_width_m;
+  const double p = g.transverse_base_pitch_m;
+  double total = 0.0;
+  for (int k = -8; k <= 8; ++k) {
+    const double xk = x0 + k * p;
+    // At s = 0 the line is at z = 0, X = xk - sigma (b/2) tan(beta_b).
+    const double xs = xk - sigma * 0.5 * b * sb / cb;
+    const double dx = sigma * sb;
+    double lo = 0.0;
+    double hi = b / cb;
+    const double a1 = (start - xs) / dx;
+    const double a2 = (end - xs) / dx;
+    lo = std::max(lo, std::min(a1, a2));
+    hi = std::min(hi, std::max(a1, a2));
+    total += std::max(0.0, hi - lo);
+  }
+  return total;
+}
+
+// (1/p) integral over one period of f(x) exp(-i 2 pi n x / p) for f linear
+// between the sorted breakpoints xs (spanning exactly one period), with values
+// at the segments' ends given by left/right: exact.
+std::complex<double> fourier_piecewise_linear(const std::vector<double>& xs,
+                                              const std::vector<double>& left_values,
+                                              const std::vector<double>& right_values, double p,
+                                              int n) {
+  std::complex<double> sum = 0.0;
+  const std::complex<double> i(0.0, 1.0);
+  for (std::size_t s = 0; s + 1 < xs.size(); ++s) {
+    const double x0 = xs[s];
+    const double x1 = xs[s + 1];
+    const double h = x1 - x0;
+    if (h <= 0.0) continue;
+    const double f0 = right_values[s];
+    const double f1 = left_values[s + 1];
+    if (n == 0) {
+      sum += 0.5 * (f0 + f1) * h;
+      continue;
+    }
+    const double w = 2.0 * pi_ * n / p;
+    const std::complex<double> e0 = std::exp(-i * w * x0);
+    const std::complex<double> e1 = std::exp(-i * w * x1);
+    const std::complex<double> m = -i * w;
+    const std::complex<double> integral_1 = (e1 - e0) / m;
+    const std::complex<double> integral_x = h * e1 / m - (e1 - e0) / (m * m);
+    sum += f0 * integral_1 + (f1 - f0) / h * integral_x;
+  }
+  return sum / p;
+}
+
+// Breakpoints x = c (mod p) in [base, base + p], sorted, with both ends.
+std::vector<double> breakpoints(const std::vector<double>& cs, double base, double p) {
+  std::vector<double> xs{base, base + p};
+  for (double c : cs) {
+    double r = std::fmod(c - base, p);
+    if (r < 0.0) r += p;
+    xs.push_back(base + r);
+  }
+  std::sort(xs.begin(), xs.end());
+  return xs;
+}
+
+// A_n of L / Lmean, the closed form of docs/helical.md.
+double series_amplitude(double ea, double eb, int n) {
+  return 2.0 * std::abs(std::sin(pi_ * n * ea) * std::sin(pi_ * n * eb)) /
+         (pi_ * pi_ * n * n * ea * eb);
+}
+double series_amplitude_slices(double ea, double eb, int n, int slices) {
+  return 2.0 * std::abs(std::sin(pi_ * n * ea) * std::sin(pi_ * n * eb)) /
+         (pi_ * n * ea * slices * std::abs(std::sin(pi_ * n * eb / slices)));
+}
+
+}  // namespace
+
+TEST_CASE("helix angle 0: the transverse pair is the spur pair itself, the keys refuse beyond 45") {
+  const GearPair spur = paper_gear_pair();
+  CHECK(transverse_pair(spur) == spur);
+  GearPair h = spur;
+  h.helix_angle_rad = 46.0 * degree;
+  check_refused([&] { validate(h); }, "helix_angle", "45");
+}
+
+TEST_CASE(
+    "the transverse section's reference-circle thickness is the normal rack's over cos(beta)") {
+  // docs/helical.md: (pi/2 + 2 x tan alpha_n) m_n / cos(beta), against the
+  // mapped spur pair's 2 r (theta_b - inv alpha_t) (its (13) with the shift).
+  for (double beta_deg : {8.0, 15.0, 30.0}) {
+    GearPair h = h501_pair();
+    h.helix_angle_rad = beta_deg * degree;
+    const GearPair t = transverse_pair(h);
+    for (Gear gear : {Gear::one, Gear::two}) {
+      const double thickness =
+          2.0 * pitch_radius(t, gear) *
+          (half_tooth_angle(t, gear) - involute_function(t.pressure_angle_rad));
+      const double expected =
+          (pi_ / 2.0 + 2.0 * profile_shift(h, gear) * std::tan(h.pressure_angle_rad)) * h.module_m /
+          std::cos(h.helix_angle_rad);
+      CHECK(relative_difference(thickness, expected) < 1e-14);
+    }
+    // The transverse pair's spur lengths are the helical geometry's.
+    const HelicalGeometry g = helical_geometry(h);
+    CHECK(relative_difference(base_pitch(t), g.transverse_base_pitch_m) < 1e-14);
+    CHECK(relative_difference(contact_ratio(t), g.transverse_contact_ratio) < 1e-12);
+    CHECK(relative_difference(base_radius(t, Gear::two), g.base_radius2_m) < 1e-14);
+    // p_bn = p_bt cos(beta_b); sin(beta_b) = sin(beta) cos(alpha_n).
+    CHECK(relative_difference(g.normal_base_pitch_m, g.transverse_base_pitch_m *
+                                                         std::cos(g.base_helix_angle_rad)) < 1e-14);
+    CHECK(relative_difference(std::sin(g.base_helix_angle_rad),
+                              std::sin(h.helix_angle_rad) * std::cos(h.pressure_angle_rad)) <
+          1e-14);
+    // eps_beta = b sin(beta) / (pi m_n).
+    CHECK(relative_difference(g.overlap_ratio, h.face_width_m * std::sin(h.helix_angle_rad) /
+                                                   (pi_ * h.module_m)) < 1e-14);
+  }
+}
+
+TEST_CASE("GEARpie's H501 geometry and forces to the printed digits") {
+  // REPORT/H501.txt. The shifts give a_w 91.5003 mm; the report prints 91.5.
+  CHECK(std::abs(helical_inputs(h501_pair()).centre_distance_m - 91.5003e-3) < 0.5e-7);
+  const HelicalGeometry g = helical_geometry(h501_printed());
+  const auto printed = [](double value, double digits, double half_unit) {
+    CAPTURE(value);
+    CAPTURE(digits);
+    return std::abs(value - digits) <= half_unit * (1.0 + 1e-9);
+  };
+  CHECK(printed(g.normal_base_pitch_m * 1e3, 10.332, 0.0005));
+  CHECK(printed(g.transverse_base_pitch_m * 1e3, 10.652, 0.0005));
+  CHECK(printed(g.pitch_radius1_m * 1e3, 36.235, 0.0005));
+  CHECK(printed(g.pitch_radius2_m * 1e3, 54.352, 0.0005));
+  // Working radii r_b / cos(alpha_wt), T1T2 = a_w sin(alpha_wt), AE = g_alpha.
+  CHECK(printed(g.base_radius1_m / std::cos(g.working_pressure_angle_rad) * 1e3, 36.600, 0.0005));
+  CHECK(printed(g.base_radius2_m / std::cos(g.working_pressure_angle_rad) * 1e3, 54.900, 0.0005));
+  CHECK(printed(g.centre_distance_m * std::sin(g.working_pressure_angle_rad) * 1e3, 34.45, 0.005));
+  CHECK(printed(g.path_of_contact_m * 1e3, 15.55, 0.005));
+  CHECK(printed(g.transverse_contact_ratio, 1.46, 0.005));
+  CHECK(printed(g.overlap_ratio, 0.54, 0.005));
+  CHECK(printed(g.total_contact_ratio, 2.00, 0.005));
+  const HelicalForces f = helical_forces(g, 200.0);
+  CHECK(printed(f.transverse_n, 5898.4, 0.05));
+  CHECK(printed(f.tangential_n, 5464.5, 0.05));
+  CHECK(printed(f.radial_n, 2220.6, 0.05));
+  CHECK(printed(f.axial_n, 1479.0, 0.05));
+  CHECK(printed(f.normal_n, 6081.0, 0.05));
+}
+
+TEST_CASE("contact-line length: clipped segments, the closed-form mean and harmonics") {
+  // H501 with the pair's own tips: eps_alpha 1.46, eps_beta 0.54.
+  for (HelixHand hand : {HelixHand::right, HelixHand::left}) {
+    GearPair h = h501_pair();
+    h.helix_hand = hand;
+    const HelicalGeometry g = helical_geometry(h);
+    const FaceStiffness face = FaceStiffness::uniform(h, 1.5e10);
+    const HelicalMesh mesh(h, face);
+    const double start = face.start_m();
+    const double end = face.end_m();
+    const double p = g.transverse_base_pitch_m;
+    const double w = g.face_width_m * std::tan(g.base_helix_angle_rad);
+    const int sigma = hand_sign(hand);
+    // The library's L against the clipped segments, on both lines.
+    for (int i = 0; i < 37; ++i) {
+      const double theta = -0.3 + 0.017 * i;
+      for (Region line : {Region::n1, Region::n2}) {
+        const double x0 = mesh.mid_face_position_m(line, theta, 0);
+        const int line_sigma = line == Region::n1 ? sigma : -sigma;
+        CHECK(relative_difference(mesh.contact_line_length(line, theta),
+                                  clipped_length(g, start, end, x0, line_sigma)) < 1e-13);
+      }
+    }
+    // Mean and harmonics of the clipped L, integrated exactly (L is linear
+    // between the breakpoints X0 = S +- W/2, E +- W/2 mod p_bt).
+    const std::vector<double> xs =
+        breakpoints({start - 0.5 * w, start + 0.5 * w, end - 0.5 * w, end + 0.5 * w}, 0.0, p);
+    std::vector<double> values;
+    for (double x : xs) values.push_back(clipped_length(g, start, end, x, sigma));
+    const double mean = fourier_piecewise_linear(xs, values, values, p, 0).real();
+    const double mean_closed =
+        g.face_width_m * g.transverse_contact_ratio / std::cos(g.base_helix_angle_rad);
+    CHECK(relative_difference(mean, mean_closed) < 1e-14);
+    for (int n = 1; n <= 6; ++n) {
+      const double amplitude =
+          2.0 * std::abs(fourier_piecewise_linear(xs, values, values, p, n)) / mean_closed;
+      CAPTURE(n);
+      CHECK(std::abs(amplitude - series_amplitude(g.transverse_contact_ratio, g.overlap_ratio, n)) <
+            1e-10);
+    }
+  }
+}
+
+TEST_CASE("uniform stiffness: K = k'_L L exactly, route A's harmonics are A_n(N)") {
+  const GearPair h = h501_pair();
+  const HelicalGeometry g = helical_geometry(h);
+  const double kappa = 1.5e10;
+  const FaceStiffness face = FaceStiffness::uniform(h, kappa);
+  const HelicalMesh mesh(h, face);
+  // k'_L = kappa_t cos(beta_b) per unit length of contact line.
+  const double k_line = kappa * std::cos(g.base_helix_angle_rad);
+  for (int i = 0; i < 41; ++i) {
+    const double theta = -0.2 + 0.013 * i;
+    CHECK(relative_difference(mesh.stiffness_face(Region::n1, theta),
+                              k_line * mesh.contact_line_length(Region::n1, theta)) < 1e-12);
+    for (int slices : {1, 7, 32}) {
+      CHECK(relative_difference(
+                mesh.stiffness_slices(Region::n2, theta, slices),
+                k_line * mesh.contact_line_length_slices(Region::n2, theta, slices)) < 1e-12);
+    }
+  }
+  // Route A is piecewise constant in X0, with steps where a slice's midpoint
+  // crosses S or E: its Fourier coefficients exactly, against A_n(N).
+  const double p = g.transverse_base_pitch_m;
+  const double x_pitch = mesh.mid_face_position_m(Region::n1, 0.0, 0);
+  const double rb1 = mesh.base_radius1_m();
+  for (int slices : {1, 4, 8, 32}) {
+    std::vector<double> cs;
+    for (int j = 0; j < slices; ++j) {
+      const double off = mesh.slice_offset_m(Region::n1, j, slices);
+      cs.push_back(face.start_m() - off);
+      cs.push_back(face.end_m() - off);
+    }
+    const std::vector<double> xs = breakpoints(cs, 0.0, p);
+    std::vector<double> left(xs.size(), 0.0);
+    std::vector<double> right(xs.size(), 0.0);
+    for (std::size_t s = 0; s + 1 < xs.size(); ++s) {
+      if (xs[s + 1] <= xs[s]) continue;
+      const double mid = 0.5 * (xs[s] + xs[s + 1]);
+      const double value = mesh.stiffness_slices(Region::n1, (mid - x_pitch) / rb1, slices);
+      right[s] = value;
+      left[s + 1] = value;
+    }
+    const double mean = fourier_piecewise_linear(xs, left, right, p, 0).real();
+    const double mean_closed =
+        k_line * g.face_width_m * g.transverse_contact_ratio / std::cos(g.base_helix_angle_rad);
+    CAPTURE(slices);
+    CHECK(relative_difference(mean, mean_closed) < 1e-12);
+    for (int n = 1; n <= 4; ++n) {
+      CAPTURE(n);
+      const double amplitude =
+          2.0 * std::abs(fourier_piecewise_linear(xs, left, right, p, n)) / mean_closed;
+      CHECK(std::abs(amplitude - series_amplitude_slices(g.transverse_contact_ratio,
+                                                         g.overlap_ratio, n, slices)) < 1e-10);
+    }
+  }
+}
+
+TEST_CASE("route B is the window average of the spur pair's mesh stiffness at width b") {
+  // face-width: kappa_t = Ke / b of the transverse spur pair. The reference
+  // Ke is mesh_stiffness's own quadrature (not the table), summed over the
+  // spur pairs and averaged over W = eps_beta p_bt by Gauss-Legendre between
+  // the steps of the spur curve.
+  const GearPair h = h501_pair();
+  const GearPair t = transverse_pair(h);
+  const StiffnessModel model;  // yang-lin-1987
+  const FaceStiffness face(h, model, HelicalHertz::face_width);
+  const HelicalMesh mesh(h, face);
+  const HelicalGeometry g = helical_geometry(h);
+  const double p = g.transverse_base_pitch_m;
+  const double w = g.face_width_m * std::tan(g.base_helix_angle_rad);
+  const double start = face.start_m();
+  const double end = face.end_m();
+  const auto spur = [&](double x0) {
+    double sum = 0.0;
+    for (int k = -6; k <= 6; ++k) {
+      const double x = x0 + k * p;
+      if (x >= start && x <= end) sum += mesh_stiffness(t, x, model).ke;
+    }
+    return sum;
+  };
+  using Rule = boost::math::quadrature::gauss<double, 20>;
+  for (double theta : {-0.031, 0.0, 0.0123, 0.047}) {
+    const double x0 = mesh.mid_face_position_m(Region::n1, theta, 0);
+    const std::vector<double> xs = breakpoints({start, end}, x0 - 0.5 * w, p);
+    double integral = 0.0;
+    for (std::size_t s = 0; s + 1 < xs.size(); ++s) {
+      const double a = xs[s];
+      const double b = std::min(xs[s + 1], x0 + 0.5 * w);
+      if (b > a) integral += Rule::integrate(spur, a, b);
+    }
+    CAPTURE(theta);
+    // Tolerance: the table's fit of Ke (1e-12 relative, docs/verification.md)
+    // and the quadratures' 1e-12.
+    CHECK(relative_difference(mesh.stiffness_face(Region::n1, theta), integral / w) < 1e-10);
+  }
+  // The mean over a mesh period, b C(X_EAP) / p_bt, is the spur pair's mean.
+  double spur_integral = 0.0;
+  const int pieces = 16;
+  for (int i = 0; i < pieces; ++i) {
+    const double a = start + (end - start) * i / pieces;
+    const double b = start + (end - start) * (i + 1) / pieces;
+    spur_integral +=
+        Rule::integrate([&](double x) { return mesh_stiffness(t, x, model).ke; }, a, b);
+  }
+  CHECK(relative_difference(face.cumulative(end) * h.face_width_m, spur_integral) < 1e-10);
+}
+
+TEST_CASE("eps_beta an integer: route B constant for a named model") {
+  for (int overlap : {1, 2}) {
+    GearPair h = h501_pair();
+    const HelicalGeometry g0 = helical_geometry(h);
+    // b = eps_beta p_bt / tan(beta_b).
+    h.face_width_m = overlap * g0.transverse_base_pitch_m / std::tan(g0.base_helix_angle_rad);
+    const FaceStiffness face(h, StiffnessModel{}, HelicalHertz::projected);
+    const HelicalMesh mesh(h, face);
+    const double reference = mesh.stiffness_face(Region::n1, 0.0);
+    for (int i = 1; i < 23; ++i) {
+      const double theta = 0.0047 * i;
+      CHECK(relative_difference(mesh.stiffness_face(Region::n1, theta), reference) < 1e-12);
+    }
+  }
+}
+
+TEST_CASE("route A converges to route B at first order in N") {
+  const GearPair h = h501_pair();
+  const FaceStiffness face(h, StiffnessModel{}, HelicalHertz::projected);
+  const HelicalMesh mesh(h, face);
+  const double period = mesh.mesh_period_rad();
+  std::vector<double> errors;
+  for (int slices : {8, 16, 32, 64}) {
+    double worst = 0.0;
+    for (int i = 0; i < 1500; ++i) {
+      const double theta = period * i / 1500.0;
+      worst = std::max(worst, std::abs(mesh.stiffness_slices(Region::n1, theta, slices) -
+                                       mesh.stiffness_face(Region::n1, theta)));
+    }
+    errors.push_back(worst);
+  }
+  // A slice enters whole: the largest pointwise difference is about one
+  // slice's kappa_t b / N, halving with N (the bound allows the sampling's miss).
+  for (std::size_t i = 0; i + 1 < errors.size(); ++i) {
+    CAPTURE(errors[i]);
+    CAPTURE(errors[i + 1]);
+    CHECK(errors[i] / errors[i + 1] > 1.6);
+    CHECK(errors[i] / errors[i + 1] < 2.5);
+  }
+}
+
+TEST_CASE("normal backlash: j_bn = 2 B cos(beta_b) = j_t cos(alpha_n) cos(beta), and back") {
+  const GearPair h = h501_pair();
+  const HelicalGeometry g = helical_geometry(h);
+  const double b = 0.05e-3;
+  const double jbn = normal_backlash_m(g, b);
+  // j_t on the reference circle: 2B along the transverse line of action over cos(alpha_t).
+  const double jt = 2.0 * b / std::cos(g.transverse_pressure_angle_rad);
+  CHECK(relative_difference(
+            jbn, jt * std::cos(h.pressure_angle_rad) * std::cos(h.helix_angle_rad)) < 1e-14);
+  CHECK(relative_difference(backlash_from_normal_m(g, jbn), b) < 1e-15);
+}
+
+TEST_CASE("K_Hbeta: the slice solver of a linear mismatch against ISO 6336-1's two branches") {
+  // c 17 N/(mm um), b 20 mm; by hand: 10 um at 200 N/mm gives 1 + 170/400 = 1.425;
+  // 30 um at 200 N/mm: 1 + 510/400 > 2, so sqrt(2 * 510 / 200) = sqrt(5.1);
+  // 40 um at 100 N/mm: sqrt(2 * 680 / 100) = sqrt(13.6).
+  const double c = 17e9;
+  const double b = 20e-3;
+  struct Case {
+    double mismatch_m;
+    double load_per_width;
+    double by_hand;
+  };
+  for (const Case k : {Case{10e-6, 200e3, 1.425}, Case{30e-6, 200e3, std::sqrt(5.1)},
+                       Case{40e-6, 100e3, std::sqrt(13.6)}}) {
+    const double iso = iso6336_face_load_factor(k.mismatch_m, c, k.load_per_width);
+    const double solver = face_load_factor_linear_gap(c, b, k.load_per_width * b, k.mismatch_m);
+    CHECK(std::abs(iso - k.by_hand) < 1e-12);
+    CHECK(std::abs(solver - k.by_hand) < 1e-12);
+  }
+}
+
+TEST_CASE("the dynamics refuse a helical pair, naming gears.helix_angle") {
+  SimulationCase c;
+  c.gears = h501_pair();
+  check_refused([&] { validate_run_keys(c); }, "gears.helix_angle", "never run as a spur pair");
+  check_refused([&] { natural_modes(c); }, "gears.helix_angle", "never run as a spur pair");
+  check_refused([&] { MeshLayout(c.gears, CoastPhase::half_base_pitch); }, "gears.helix_angle",
+                "never run as a spur pair");
+  // The geometry itself is valid: its transverse section's relations hold.
+  CHECK_NOTHROW(validate(c.gears));
+}
