@@ -299,7 +299,7 @@ void register_stiffness_commands(CLI::App& app) {
       "iso6336", "JSON of the ISO 6336-1 method B stiffnesses c', c_gamma_alpha of the pair");
   add_pair_options(iso, *iso_options);
   iso->add_option("--helix-angle", iso_options->helix_angle_deg,
-                  "helix angle, deg, in [0, 45) (default: the case's gears.helix_angle, 0 for a "
+                  "helix angle, deg, in [0, 45] (default: the case's gears.helix_angle, 0 for a "
                   "spur pair)")
       ->check(CLI::Range(0.0, 44.999999));
   iso->add_option("--load", iso_options->load,

@@ -104,7 +104,7 @@ def _case_or_none(case):
 def iso6336(case=None, helix_angle_deg=0.0, load=None):
     """ISO 6336-1 method B for a case's gear pair (a Case; None: the paper's), as
     ``gearimpact iso6336``, at the helix angle helix_angle_deg (a number of degrees in
-    [0, 45)): a dict with zn1, zn2, c_prime_th_n_mm_um, c_prime_n_mm_um,
+    [0, 45]): a dict with zn1, zn2, c_prime_th_n_mm_um, c_prime_n_mm_um,
     c_gamma_alpha_n_mm_um, eps_alpha, c_prime_b_n_m, c_gamma_alpha_b_n_m. load, as
     ``--load``: F_t K_A / b ("50 N/mm") or the pinion's torque ("150 N*m", K_A = 1); below
     100 N/mm c' takes the low-load factor (specific_load_n_mm, low_load_factor added)."""

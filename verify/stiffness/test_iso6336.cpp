@@ -173,7 +173,7 @@ TEST_CASE("ISO: bad input is refused naming the field") {
   check_refused([&] { iso6336_method_b(p); }, "centre_distance", "above (d_b1 + d_b2) / 2");
   p = annex_a();
   p.helix_angle_rad = 50.0 * degree;
-  check_refused([&] { iso6336_method_b(p); }, "helix_angle", "[0, 45) deg");
+  check_refused([&] { iso6336_method_b(p); }, "helix_angle", "[0, 45] deg");
   p = annex_a();
   p.specific_load_n_per_m = 0.0;
   check_refused([&] { iso6336_method_b(p); }, "specific_load", "> 0");

@@ -35,8 +35,8 @@ void validate(const Iso6336Pair& pair) {
     throw InputError("normal_pressure_angle", an, "(0, 45] deg in rad");
   }
   const double beta = pair.helix_angle_rad;
-  if (!std::isfinite(beta) || beta < 0.0 || beta >= 45.0 * degree) {
-    throw InputError("helix_angle", beta, "[0, 45) deg in rad");
+  if (!std::isfinite(beta) || beta < 0.0 || beta > 45.0 * degree) {
+    throw InputError("helix_angle", beta, "[0, 45] deg in rad");
   }
   checks::require_finite_positive("mesh_factor", pair.mesh_factor, "(C_M)");
   checks::require_finite_positive("blank_factor", pair.blank_factor, "(C_R)");
@@ -145,8 +145,8 @@ Iso6336Stiffness iso6336_method_b(const Iso6336Pair& pair) {
 
 Iso6336Pair iso6336_pair(const GearPair& pair, double helix_angle_rad) {
   if (!std::isfinite(helix_angle_rad) || helix_angle_rad < 0.0 ||
-      helix_angle_rad >= 45.0 * degree) {
-    throw InputError("helix_angle", helix_angle_rad, "[0, 45) deg in rad");
+      helix_angle_rad > 45.0 * degree) {
+    throw InputError("helix_angle", helix_angle_rad, "[0, 45] deg in rad");
   }
   Iso6336Pair iso;
   iso.normal_module_m = pair.module_m;
