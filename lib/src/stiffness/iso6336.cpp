@@ -144,8 +144,7 @@ Iso6336Stiffness iso6336_method_b(const Iso6336Pair& pair) {
 }
 
 Iso6336Pair iso6336_pair(const GearPair& pair, double helix_angle_rad) {
-  if (!std::isfinite(helix_angle_rad) || helix_angle_rad < 0.0 ||
-      helix_angle_rad > 45.0 * degree) {
+  if (!std::isfinite(helix_angle_rad) || helix_angle_rad < 0.0 || helix_angle_rad > 45.0 * degree) {
     throw InputError("helix_angle", helix_angle_rad, "[0, 45] deg in rad");
   }
   Iso6336Pair iso;
