@@ -50,8 +50,8 @@ void require_read_key(const std::string& key, const SimulationCase& c, const cha
                      "from the steps per contact period, a run per excitation period)");
   }
   // The condition as the run resolves it: damping_update = "auto" reads as the reading the
-  // bearings give it (each-impact on the sweeps' rigid bearings), which a frozen D's reference
-  // speed does not enter.
+  // bearings give it (each-impact on rigid bearings, frozen on elastic ones), which a frozen D's
+  // reference speed does not enter under each-impact.
   SimulationCase resolved = c;
   resolved.model.damping_update = resolved_damping_update(c);
   if (!applies(field, resolved)) {
@@ -243,7 +243,6 @@ SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
   const SimulationCase& base = spec.base;
   // Refuse, before any work and naming the key, a swept key the run does not read and a case
   // without a steady state at either end of each grid (a key's range may hold at one end only).
-  refuse_planar(base);
   require_read_key(spec.vary, base, "vary");
   if (!spec.vary2.empty()) require_read_key(spec.vary2, base, "vary2");
   // The Poincare period at the first and the last point of the sweep, for its record.
