@@ -159,8 +159,13 @@ std::vector<std::string> sweep_warnings(const SteadySweepSpec& spec) {
     const double v2 = rb2 * c.initial.w2_rad_per_s;
     // The speeds as typed round a rolling pair by a few ulps.
     if (std::fabs(v1 - v2) > 1e-12 * std::max(std::fabs(v1), std::fabs(v2))) {
-      const double j1 = moment_of_inertia(c.gears, Gear::one);
-      const double j2 = moment_of_inertia(c.gears, Gear::two);
+      double j1 = moment_of_inertia(c.gears, Gear::one);
+      double j2 = moment_of_inertia(c.gears, Gear::two);
+      if (c.bearings.kind == BearingKind::elastic && c.shafts.kind == ShaftKind::elastic) {
+        // The motor and the load turn with their gears (as the steady state's mean speed).
+        j1 += c.shafts.motor_inertia_kg_m2;
+        j2 += c.shafts.load_inertia_kg_m2;
+      }
       const double w1_mean =
           (j1 * c.initial.w1_rad_per_s / rb1 + j2 * c.initial.w2_rad_per_s / rb2) /
           (j1 / rb1 + j2 * rb1 / (rb2 * rb2));
