@@ -294,13 +294,13 @@ TEST_CASE("sweep: a planar case on stiff bearings sweeps as the torsional case, 
   const std::filesystem::path elastic = scratch("planar-elastic");
   const auto t = run_command(cli(base + " --out " + rigid.string()));
   REQUIRE(t.exit_code == 0);
-  const auto p = run_command(
-      cli(base +
-          " --set bearings.kind=elastic --set 'bearings.stiffness_x1=1e11 N/m' "
-          "--set 'bearings.stiffness_x2=1e11 N/m' --set 'bearings.mass1=1 kg' "
-          "--set 'bearings.mass2=1 kg' --set 'bearings.damping_x1=3.2e4 N*s/m' "
-          "--set 'bearings.damping_x2=3.2e4 N*s/m' --out " +
-          elastic.string()));
+  const auto p =
+      run_command(cli(base +
+                      " --set bearings.kind=elastic --set 'bearings.stiffness_x1=1e11 N/m' "
+                      "--set 'bearings.stiffness_x2=1e11 N/m' --set 'bearings.mass1=1 kg' "
+                      "--set 'bearings.mass2=1 kg' --set 'bearings.damping_x1=3.2e4 N*s/m' "
+                      "--set 'bearings.damping_x2=3.2e4 N*s/m' --out " +
+                      elastic.string()));
   CAPTURE(p.err);
   REQUIRE(p.exit_code == 0);
   const auto rows_t = csv_rows(read(rigid / "sweep.csv"));
@@ -313,10 +313,10 @@ TEST_CASE("sweep: a planar case on stiff bearings sweeps as the torsional case, 
   const double tolerance = 2e-2;
   for (std::size_t i = 0; i < rows_t.size(); ++i) {
     CAPTURE(i);
-    CHECK(rows_p[i][3] == rows_t[i][3]);  // value_si
-    CHECK(rows_p[i][4] == rows_t[i][4]);  // regime
-    CHECK(rows_p[i][5] == rows_t[i][5]);  // period
-    CHECK(rows_p[i][6] == "true");        // converged
+    CHECK(rows_p[i][3] == rows_t[i][3]);       // value_si
+    CHECK(rows_p[i][4] == rows_t[i][4]);       // regime
+    CHECK(rows_p[i][5] == rows_t[i][5]);       // period
+    CHECK(rows_p[i][6] == "true");             // converged
     for (std::size_t column : {7u, 8u, 9u}) {  // dte_mean_m, dte_amplitude_m, dte_rms_m
       CAPTURE(column);
       CHECK(relative_difference(std::stod(rows_p[i][column]), std::stod(rows_t[i][column])) <=

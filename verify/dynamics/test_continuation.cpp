@@ -109,12 +109,11 @@ TEST_CASE("a planar run continued from the final state of its first half is the 
   const PlanarState& a = *second.planar_final_state;
   const PlanarState& b = *whole.planar_final_state;
   // The same steps from the same state: every coordinate to the bit.
-  const double got[] = {a.x1_m,     a.y1_m,      a.theta1_rad, a.x2_m,         a.y2_m,
-                        a.theta2_rad, a.vx1_m_s, a.vy1_m_s,    a.w1_rad_per_s, a.vx2_m_s,
-                        a.vy2_m_s,  a.w2_rad_per_s};
-  const double want[] = {b.x1_m,     b.y1_m,      b.theta1_rad, b.x2_m,         b.y2_m,
-                         b.theta2_rad, b.vx1_m_s, b.vy1_m_s,    b.w1_rad_per_s, b.vx2_m_s,
-                         b.vy2_m_s,  b.w2_rad_per_s};
+  const double got[] = {a.x1_m,    a.y1_m,    a.theta1_rad,   a.x2_m,    a.y2_m,    a.theta2_rad,
+                        a.vx1_m_s, a.vy1_m_s, a.w1_rad_per_s, a.vx2_m_s, a.vy2_m_s, a.w2_rad_per_s};
+  const double want[] = {b.x1_m,         b.y1_m,       b.theta1_rad, b.x2_m,
+                         b.y2_m,         b.theta2_rad, b.vx1_m_s,    b.vy1_m_s,
+                         b.w1_rad_per_s, b.vx2_m_s,    b.vy2_m_s,    b.w2_rad_per_s};
   for (std::size_t i = 0; i < std::size(got); ++i) {
     CAPTURE(i);
     CHECK(got[i] == want[i]);

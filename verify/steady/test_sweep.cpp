@@ -183,8 +183,8 @@ TEST_CASE("the planar model's sweep on stiff bearings is the torsional sweep, ju
   const std::vector<double> grid = sweep_grid(0.76 * w_n, 1.24 * w_n, 7, "from", "to", "points");
   const auto run = [&](const SimulationCase& c, SweepDirection d) {
     auto table = std::make_shared<const StiffnessTable>(c.gears, c.model.stiffness);
-    return sweep_line(c, [&](const SimulationCase&) { return table; },
-                      "torque1.angular_frequency", grid, d, 0, SteadySettings{}, {});
+    return sweep_line(c, [&](const SimulationCase&) { return table; }, "torque1.angular_frequency",
+                      grid, d, 0, SteadySettings{}, {});
   };
   // The bearings add their compliance to the mesh's along the line of action: quasi-statically
   // (the excitation far below the bearing modes, sqrt(k_b / m) ~ 1e6 rad/s against w_n ~ 3e4
@@ -242,7 +242,6 @@ TEST_CASE("the planar model's sweep on stiff bearings is the torsional sweep, ju
     };
     CHECK(jump_at(elastic) == jump_at(torsional));
   }
-  MESSAGE("planar against torsional: amplitude and RMS within " << largest << ", mean within "
-                                                                << largest_mean << " (bound "
-                                                                << tolerance << ")");
+  MESSAGE("planar against torsional: amplitude and RMS within "
+          << largest << ", mean within " << largest_mean << " (bound " << tolerance << ")");
 }

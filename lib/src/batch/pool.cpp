@@ -108,6 +108,9 @@ std::shared_future<SimulationResult> RunPool::submit(const SimulationCase& c, bo
     // alike), so that a bad case throws InputError to the caller; the checks
     // that need the mesh stiffness use the pool's table, without a quadrature
     // of their own.
+    // The fields before the table, which a pair outside its ranges cannot build.
+    validate_run_keys(c);
+    validate_fields(c);
     run = std::make_shared<const CheckedRun>(check_run(c, table_for(c), control));
   } catch (...) {
     promise->set_exception(std::current_exception());
