@@ -163,12 +163,12 @@ void check_case(const std::string& file) {
       std::fprintf(stderr, "gearimpact: warning: %s\n", w.c_str());
     }
   }
-  // A valid planar case that the sweeps refuse: said before a run is tried.
+  // A valid planar case: what runs it, said before a run is tried.
   if (c.bearings.kind == BearingKind::elastic || c.shafts.kind == ShaftKind::elastic) {
     std::printf(
-        "# note: elastic bearings or shafts are run by `gearimpact simulate` (with elastic "
-        "bearings) and `gearimpact modes`; sweep, steady and sweep-friction refuse the case "
-        "(they are torsional)\n");
+        "# note: elastic bearings or shafts are run by `gearimpact simulate`, `sweep` and "
+        "`sweep-friction` (with elastic bearings) and `gearimpact modes`; the library's period "
+        "map of (s, s') (shooting, continuation) is torsional and refuses the case\n");
   }
 }
 

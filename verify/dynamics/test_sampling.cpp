@@ -90,7 +90,16 @@ TEST_CASE(
         CHECK(with.impacts[i].start_s == plain.impacts[i].start_s);
         CHECK(with.impacts[i].impact_speed_m_s == plain.impacts[i].impact_speed_m_s);
       }
-      CHECK(std::memcmp(&with.final_state, &plain.final_state, sizeof plain.final_state) == 0);
+      // Member by member: the planar state a torsional run leaves empty is an optional, whose
+      // unused storage is not part of the value.
+      const RunState& a = with.final_state;
+      const RunState& b = plain.final_state;
+      CHECK(std::memcmp(&a.time_s, &b.time_s, sizeof b.time_s) == 0);
+      CHECK(std::memcmp(&a.state, &b.state, sizeof b.state) == 0);
+      CHECK(std::memcmp(&a.contact, &b.contact, sizeof b.contact) == 0);
+      CHECK(std::memcmp(&a.coast_contact, &b.coast_contact, sizeof b.coast_contact) == 0);
+      CHECK_FALSE(a.planar);
+      CHECK_FALSE(b.planar);
     }
   }
 }

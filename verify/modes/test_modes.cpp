@@ -304,30 +304,45 @@ TEST_CASE("Campbell crossings: k Z1 w1 = w of each elastic mode, up to the large
   CHECK_THROWS_AS(campbell_crossings(modes, 20, 3, -1.0), InputError);
 }
 
-TEST_CASE("the sweeps refuse a planar case naming the key, before any work") {
-  // simulate runs it (verify/dynamics/test_planar_dynamics.cpp); what a sweep
-  // validates refuses it.
+TEST_CASE("the sweeps take a planar case; the period map of (s, s') refuses it, naming the key") {
+  // simulate and the sweeps run it (verify/dynamics/test_planar_dynamics.cpp,
+  // verify/steady/test_sweep.cpp): what a sweep validates takes it; the torsional period map
+  // (shooting, continuation) refuses it.
   const SimulationCase planar = planar_case(1e9);
+  CHECK_NOTHROW(validate(planar));
   try {
-    validate(planar);
-    FAIL("validate passed a planar case");
+    refuse_planar(planar);
+    FAIL("refuse_planar passed a planar case");
   } catch (const InputError& e) {
     CHECK(e.field() == "bearings.kind");
-    CHECK(std::string(e.what()).find("read by `gearimpact modes` and `gearimpact simulate` "
-                                     "only; sweep, steady and sweep-friction are torsional") !=
-          std::string::npos);
+    CHECK(std::string(e.what()).find("not read by the period map of (s, s')") != std::string::npos);
   }
+  // A planar mounting outside its rows is refused by validate, naming the field.
+  SimulationCase massless = planar;
+  massless.bearings.gear1.mass_kg = 0.0;
+  CHECK_THROWS_AS(validate(massless), InputError);
   SimulationCase shafts = paper_case(1);
+  shafts.bearings = planar.bearings;
   shafts.shafts.kind = ShaftKind::elastic;
   shafts.shafts.motor_inertia_kg_m2 = 1e-3;
   shafts.shafts.motor_stiffness_n_m_per_rad = 1e4;
   shafts.shafts.load_inertia_kg_m2 = 1e-3;
   shafts.shafts.load_stiffness_n_m_per_rad = 1e4;
+  CHECK_NOTHROW(validate(shafts));
+  // Elastic shafts on rigid bearings are not a model (refuse_planar_simulation).
+  SimulationCase rigid_shafts = shafts;
+  rigid_shafts.bearings.kind = BearingKind::rigid;
   try {
-    validate(shafts);
-    FAIL("validate passed elastic shafts");
+    validate(rigid_shafts);
+    FAIL("validate passed elastic shafts on rigid bearings");
   } catch (const InputError& e) {
     CHECK(e.field() == "shafts.kind");
+  }
+  try {
+    refuse_planar(shafts);
+    FAIL("refuse_planar passed elastic shafts");
+  } catch (const InputError& e) {
+    CHECK(e.problems().size() == 2);
   }
   // Today's cases are untouched.
   CHECK_NOTHROW(refuse_planar(paper_case(1)));

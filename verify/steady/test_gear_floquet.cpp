@@ -280,6 +280,12 @@ TEST_CASE("the gear period map refuses what it cannot map, naming the key") {
   c.model.friction_coefficient = 0.04;
   CHECK(field_of(c) == "model.friction_coefficient");
   CHECK(field_of(h.c, -1) == "steps_per_period");
+  // Its state is the torsional (s, s'): the planar model's centres and shafts are not in it.
+  c = h.c;
+  c.bearings.kind = BearingKind::elastic;
+  c.bearings.gear1.stiffness_x_n_per_m = 1e9;
+  c.bearings.gear2.stiffness_x_n_per_m = 1e9;
+  CHECK(field_of(c) == "bearings.kind");
   const GearPeriodMap map(h.c, table);
   CHECK_THROWS_AS((void)map(Eigen::VectorXd::Zero(3)), InputError);
   CHECK_THROWS_AS((void)map(Eigen::Vector2d(std::nan(""), 0.0)), InputError);

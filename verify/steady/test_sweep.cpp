@@ -3,20 +3,24 @@
 // hysteresis of a softening clearance oscillator swept up and down.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "gearimpact/case/schema.hpp"
+#include "gearimpact/dynamics/planar.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "gearimpact/steady/sweep.hpp"
+#include "relative.hpp"
 #include "steady_cases.hpp"
 
 using namespace gearimpact;
 using namespace gearimpact::steady_test;
+using gearimpact::verify::relative_difference;
 
 namespace {
 
@@ -157,4 +161,87 @@ TEST_CASE("a sweep sets any numeric schema key, a constant torque's mean its val
         1e-15 * std::fabs(c.torque1.mean_n_m / rb1));
   // The schema's range holds: a negative backlash is refused naming the key.
   CHECK_THROWS_AS(set_sweep_value(c, "gears.backlash", -1e-6), InputError);
+}
+
+TEST_CASE("the planar model's sweep on stiff bearings is the torsional sweep, jumps included") {
+  // The softening case above on a coarser grid, once on rigid bearings (the torsional model, 2
+  // DOF) and once on elastic bearings of k_b = 1e11 N/m per direction (the planar model, 6 DOF
+  // with both lines of action): the torsional model is the planar one's limit k_b -> infinity.
+  const ClearanceCase cc = clearance_case(1.0, 0.5, 0.05, 1.0);
+  SimulationCase planar = cc.c;
+  const double kb = 1e11;
+  planar.bearings.kind = BearingKind::elastic;
+  planar.bearings.gear1.stiffness_x_n_per_m = kb;
+  planar.bearings.gear2.stiffness_x_n_per_m = kb;
+  // Each bearing mode damped at 5 %, c = 0.1 sqrt(k_b m) with the gear's mass (the disc's):
+  // the centres' ringing settles, so that the Poincare samples, which hold the centres' motion
+  // too, repeat.
+  const PlanarMounting mounting = planar_mounting(planar);
+  planar.bearings.gear1.damping_x_n_s_per_m = 0.1 * std::sqrt(kb * mounting.mass_kg[0]);
+  planar.bearings.gear2.damping_x_n_s_per_m = 0.1 * std::sqrt(kb * mounting.mass_kg[1]);
+  const double w_n = cc.w_rad_per_s;
+  const std::vector<double> grid = sweep_grid(0.76 * w_n, 1.24 * w_n, 7, "from", "to", "points");
+  const auto run = [&](const SimulationCase& c, SweepDirection d) {
+    auto table = std::make_shared<const StiffnessTable>(c.gears, c.model.stiffness);
+    return sweep_line(c, [&](const SimulationCase&) { return table; }, "torque1.angular_frequency",
+                      grid, d, 0, SteadySettings{}, {});
+  };
+  // The bearings add their compliance to the mesh's along the line of action: quasi-statically
+  // (the excitation far below the bearing modes, sqrt(k_b / m) ~ 1e6 rad/s against w_n ~ 3e4
+  // rad/s) the mesh stiffness k becomes k / (1 + eps), eps = k (1/k_b1 + 1/k_b2) = 4e-3, and
+  // w_n moves by eps / 2. A linear oscillator's amplitude moves with w_n by at most 1/(2 zeta)
+  // of that, relative (the largest |d ln A / d ln w_n| of A = 1 / sqrt((1 - W^2)^2 + (2 zeta
+  // W)^2)): eps / (4 zeta) = 2e-2. The contact's nonlinearity steepens the branches near the
+  // jumps: twice that bound, 4e-2. The integrators' own errors are far below it: the torsional
+  // RK4 runs 20+ steps per contact period (phase error about 1e-4 a period), the planar one many
+  // more (its step resolves the bearings). Stiffer bearings tighten the bound in proportion, at
+  // the cost of a step shorter by sqrt(k_b): 1e11 N/m keeps the test within a second.
+  const double eps = 2.0 * cc.stiffness_n_per_m / kb;
+  const double zeta = 0.05;
+  const double tolerance = 2.0 * eps / (4.0 * zeta);
+  double largest = 0.0;
+  double largest_mean = 0.0;
+  for (SweepDirection d : {SweepDirection::up, SweepDirection::down}) {
+    const std::vector<SweepPointResult> torsional = run(cc.c, d);
+    const std::vector<SweepPointResult> elastic = run(planar, d);
+    REQUIRE(torsional.size() == elastic.size());
+    for (std::size_t i = 0; i < torsional.size(); ++i) {
+      const SteadyPoint& t = torsional[i].point;
+      const SteadyPoint& p = elastic[i].point;
+      CAPTURE(to_string(d));
+      CAPTURE(torsional[i].value_si / w_n);
+      REQUIRE(t.converged);
+      REQUIRE(p.converged);
+      CHECK(p.period == t.period);
+      CHECK(p.regime == t.regime);
+      const double a = relative_difference(*p.dte_amplitude_m, *t.dte_amplitude_m);
+      const double r = relative_difference(*p.dte_rms_m, *t.dte_rms_m);
+      const double m = relative_difference(*p.dte_mean_m, *t.dte_mean_m);
+      CHECK(a <= tolerance);
+      CHECK(r <= tolerance);
+      // The mean of s: B and the static deflection F_m / k, which s_d holds in both models (the
+      // bearings' share of the compliance moves the centres, and s_d adds their motion).
+      CHECK(m <= tolerance);
+      largest = std::max({largest, a, r});
+      largest_mean = std::max(largest_mean, m);
+    }
+    // The jump: the largest change of the amplitude between neighbouring points, in the same
+    // grid interval on both models.
+    const auto jump_at = [](const std::vector<SweepPointResult>& s) {
+      std::size_t at = 1;
+      double most = 0.0;
+      for (std::size_t i = 1; i < s.size(); ++i) {
+        const double change =
+            std::fabs(*s[i].point.dte_amplitude_m - *s[i - 1].point.dte_amplitude_m);
+        if (change > most) {
+          most = change;
+          at = i;
+        }
+      }
+      return at;
+    };
+    CHECK(jump_at(elastic) == jump_at(torsional));
+  }
+  MESSAGE("planar against torsional: amplitude and RMS within "
+          << largest << ", mean within " << largest_mean << " (bound " << tolerance << ")");
 }

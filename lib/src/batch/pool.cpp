@@ -99,27 +99,26 @@ std::shared_future<SimulationResult> RunPool::submit(const SimulationCase& c, bo
     }
     ++computed_;
   }
-  std::shared_ptr<const StiffnessTable> table;
+  RunControl control;
+  control.keep_series = keep_series;
+  control.should_stop = std::move(should_stop);
+  std::shared_ptr<const CheckedRun> run;
   try {
-    // Validated here, so that a bad case throws InputError to the caller; the
-    // checks that need the mesh stiffness use the table, without a quadrature
+    // Checked here, once (check_run: the torsional and the planar model
+    // alike), so that a bad case throws InputError to the caller; the checks
+    // that need the mesh stiffness use the pool's table, without a quadrature
     // of their own.
+    // The fields before the table, which a pair outside its ranges cannot build.
     validate_run_keys(c);
     validate_fields(c);
-    refuse_planar(c);
-    validate_gaps(c);
-    table = table_for(c);
-    validate_implied(c, *table);
+    run = std::make_shared<const CheckedRun>(check_run(c, table_for(c), control));
   } catch (...) {
     promise->set_exception(std::current_exception());
     throw;
   }
-  enqueue([promise, c, table, keep_series, should_stop = std::move(should_stop)] {
+  enqueue([promise, run] {
     try {
-      RunControl control;
-      control.keep_series = keep_series;
-      control.should_stop = should_stop;
-      promise->set_value(simulate(c, *table, control));
+      promise->set_value(simulate(*run));
     } catch (...) {
       promise->set_exception(std::current_exception());
     }

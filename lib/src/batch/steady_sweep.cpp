@@ -50,8 +50,8 @@ void require_read_key(const std::string& key, const SimulationCase& c, const cha
                      "from the steps per contact period, a run per excitation period)");
   }
   // The condition as the run resolves it: damping_update = "auto" reads as the reading the
-  // bearings give it (each-impact on the sweeps' rigid bearings), which a frozen D's reference
-  // speed does not enter.
+  // bearings give it (each-impact on rigid bearings, frozen on elastic ones), which a frozen D's
+  // reference speed does not enter under each-impact.
   SimulationCase resolved = c;
   resolved.model.damping_update = resolved_damping_update(c);
   if (!applies(field, resolved)) {
@@ -159,8 +159,13 @@ std::vector<std::string> sweep_warnings(const SteadySweepSpec& spec) {
     const double v2 = rb2 * c.initial.w2_rad_per_s;
     // The speeds as typed round a rolling pair by a few ulps.
     if (std::fabs(v1 - v2) > 1e-12 * std::max(std::fabs(v1), std::fabs(v2))) {
-      const double j1 = moment_of_inertia(c.gears, Gear::one);
-      const double j2 = moment_of_inertia(c.gears, Gear::two);
+      double j1 = moment_of_inertia(c.gears, Gear::one);
+      double j2 = moment_of_inertia(c.gears, Gear::two);
+      if (c.bearings.kind == BearingKind::elastic && c.shafts.kind == ShaftKind::elastic) {
+        // The motor and the load turn with their gears (as the steady state's mean speed).
+        j1 += c.shafts.motor_inertia_kg_m2;
+        j2 += c.shafts.load_inertia_kg_m2;
+      }
       const double w1_mean =
           (j1 * c.initial.w1_rad_per_s / rb1 + j2 * c.initial.w2_rad_per_s / rb2) /
           (j1 / rb1 + j2 * rb1 / (rb2 * rb2));
@@ -243,7 +248,6 @@ SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
   const SimulationCase& base = spec.base;
   // Refuse, before any work and naming the key, a swept key the run does not read and a case
   // without a steady state at either end of each grid (a key's range may hold at one end only).
-  refuse_planar(base);
   require_read_key(spec.vary, base, "vary");
   if (!spec.vary2.empty()) require_read_key(spec.vary2, base, "vary2");
   // The Poincare period at the first and the last point of the sweep, for its record.

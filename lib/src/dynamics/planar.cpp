@@ -479,7 +479,29 @@ void validate_planar(const SimulationCase& /*c*/, const PlanarMounting& m,
     require(std::isfinite(m.load_damping_n_m_s_per_rad) && m.load_damping_n_m_s_per_rad >= 0.0,
             "load_damping", m.load_damping_n_m_s_per_rad, "a finite value >= 0");
   }
-  if (control.resume) refuse("resume", "a run state", "none (a planar run starts afresh)");
+  if (control.resume) {
+    const RunState& r = *control.resume;
+    if (!r.planar) {
+      refuse("resume", "a run state without its planar state",
+             "the final_state of a planar run (RunState::planar)");
+    }
+    const PlanarState& p = *r.planar;
+    const double values[] = {p.x1_m,    p.y1_m,         p.theta1_rad,        p.x2_m,
+                             p.y2_m,    p.theta2_rad,   p.theta_motor_rad,   p.theta_load_rad,
+                             p.vx1_m_s, p.vy1_m_s,      p.w1_rad_per_s,      p.vx2_m_s,
+                             p.vy2_m_s, p.w2_rad_per_s, p.w_motor_rad_per_s, p.w_load_rad_per_s};
+    const ContactMemory memories[] = {r.contact, r.coast_contact};
+    bool finite = std::isfinite(r.time_s);
+    for (const double v : values) finite = finite && std::isfinite(v);
+    for (const ContactMemory& d : memories) {
+      finite = finite && std::isfinite(d.damping_per_stiffness_s_m) &&
+               std::isfinite(d.frozen_stiffness_n_per_m) && d.damping_per_stiffness_s_m >= 0.0;
+    }
+    if (!finite) {
+      refuse("resume", "a state with a non-finite or negative value",
+             "the final_state of a planar run, finite");
+    }
+  }
 }
 
 // The step must resolve the fastest motion the planar system can have. Its
@@ -670,14 +692,18 @@ class PlanarRun {
   // The evaluations of the step taken again to an event count in rhs_evaluations.
   static constexpr bool kCountsCutStep = true;
 
+  // A continued run (RunControl::resume) starts from its planar state at its
+  // time, each line with its contact memory (a contact in progress is no new
+  // impact); `initial` is then not used.
   PlanarRun(const SimulationCase& c, const StiffnessTable& table, const PlanarMounting& mounting,
             const PlanarState& initial, const RunControl& control)
       : c_(c),
         m_(mounting),
         control_(control),
-        system_(c, table, mounting, mounting.shafts ? initial.theta_motor_rad : initial.theta1_rad),
-        y_(to_vector(initial)),
-        clock_(c, control, 0.0),
+        start_time_(control.resume ? control.resume->time_s : 0.0),
+        system_(c, table, mounting, driver_start(c, mounting, initial, control)),
+        y_(to_vector(control.resume ? *control.resume->planar : initial)),
+        clock_(c, control, start_time_),
         stall_(c.integrator.step_s, c.model.friction_smoothing_speed_m_s),
         sensor_cos_(std::cos(c.bearings.sensor_angle_rad)),
         sensor_sin_(std::sin(c.bearings.sensor_angle_rad)),
@@ -686,7 +712,7 @@ class PlanarRun {
         tacho_index_(c.tacho.shaft == TachoShaft::wheel                      ? kT2
                      : c.tacho.shaft == TachoShaft::motor && mounting.shafts ? kTm
                                                                              : kT1),
-        driver_theta0_(mounting.shafts ? initial.theta_motor_rad : initial.theta1_rad) {
+        driver_theta0_(driver_start(c, mounting, initial, control)) {
     SimulationSummary& s = result_.summary;
     s.case_name = c.name;
     s.integrator = name_of(kIntegratorKinds, c.integrator.kind);
@@ -697,16 +723,25 @@ class PlanarRun {
     s.step_s = c.integrator.step_s;
     s.stiffness_model = c.model.stiffness.kind;
     s.planar = PlanarEnergies{};
-    system_.impose_driver(0.0, y_);
+    system_.impose_driver(start_time_, y_);
     if (control.keep_samples && clock_.on()) result_.planar_samples.reserve(clock_.reserve_rows());
     // The tacho's shaft and its edges, located on each step's continuous
     // extension (hence wants_dense with a tacho), or on a driver's closed form.
     tacho_driven_ =
         system_.driven() && tacho_index_ == (mounting.shafts ? std::size_t{kTm} : std::size_t{kT1});
     tacho_.emplace(tacho_on_ ? c.tacho : Tacho{1}, y_[tacho_index_]);
-    drift_.emplace(c, 0.0, y_[kT1], y_[kVelocity + kT1]);
-    classify(0.0);
-    emit_samples(0.0, y_, mode_, [](double, Y&) {});
+    drift_.emplace(c, start_time_, y_[kT1], y_[kVelocity + kT1]);
+    if (control.resume) {
+      memory_ = {control.resume->contact, control.resume->coast_contact};
+      for (const Region side : kSides) {
+        Mode& m = mode_[side_index(side)];
+        m = system_.classify_geometry(side, y_);
+        system_.classify_forces(y_, memory_[side_index(side)], m);
+      }
+    } else {
+      classify(0.0);
+    }
+    emit_samples(start_time_, y_, mode_, [](double, Y&) {});
     PlanarEnergies& p = *s.planar;
     const double kinetic0 = system_.kinetic_energy(y_);
     const double mesh0 = mesh_energy(y_);
@@ -715,10 +750,10 @@ class PlanarRun {
     p.bearing_energy_initial_j = system_.bearing_energy(y_);
     p.shaft_energy_initial_j = system_.shaft_energy(y_);
     energy0_ = kinetic0 + mesh0 + p.bearing_energy_initial_j + p.shaft_energy_initial_j;
-    record(0.0);
+    record(start_time_);
     // k1, f(t, y) in the mode: each step's first stage, evaluated at the end
     // of the step before (after its events), where its mesh energy serves the ledger.
-    system_.rhs(0.0, y_, mode_, memory_, k1_, &at_start_);
+    system_.rhs(start_time_, y_, mode_, memory_, k1_, &at_start_);
     s.rhs_evaluations += 1;
   }
 
@@ -731,7 +766,7 @@ class PlanarRun {
   const std::array<ContactMemory, 2>& damping() const { return memory_; }
   long long& steps() { return result_.summary.steps; }
   long long& rhs_evaluations() { return result_.summary.rhs_evaluations; }
-  double start_time() const { return 0.0; }
+  double start_time() const { return start_time_; }
   long long grid_steps() const {
     return static_cast<long long>(
         std::ceil(c_.integrator.end_time_s / c_.integrator.step_s - 1e-9));
@@ -912,11 +947,27 @@ class PlanarRun {
     result_.final_state.time_s = t;
     result_.final_state.state = {y_[kT1], y_[kT2], y_[kVelocity + kT1], y_[kVelocity + kT2]};
     result_.final_state.contact = memory_[0];
+    result_.final_state.planar = result_.planar_final_state;
+    result_.final_state.coast_contact = memory_[1];
+    result_.start_time_s = start_time_;
     return std::move(result_);
   }
 
  private:
   long long steps_taken() const { return result_.summary.steps; }
+
+  // The angle a kinematic driver's body (the motor with shafts, else the
+  // pinion) starts from; a continued run carries it on from where it stopped,
+  // whatever time it restarts at, as the torsional run does.
+  static double driver_start(const SimulationCase& c, const PlanarMounting& m,
+                             const PlanarState& initial, const RunControl& control) {
+    if (!control.resume) return m.shafts ? initial.theta_motor_rad : initial.theta1_rad;
+    const PlanarState& r = *control.resume->planar;
+    const bool moved = c.torque1.kind == Torque::Kind::prescribed_speed ||
+                       c.torque1.kind == Torque::Kind::speed_controlled;
+    const double theta = m.shafts ? r.theta_motor_rad : r.theta1_rad;
+    return moved ? theta - driver_motion(c.torque1, 0.0, control.resume->time_s).theta_rad : theta;
+  }
 
   // The Lagrangian mesh force: the stored energy's jump at an event, paid by
   // the pinion's kinetic energy (pinion_speed_after_jump), or with a driver
@@ -1005,6 +1056,7 @@ class PlanarRun {
   const SimulationCase& c_;
   const PlanarMounting& m_;
   const RunControl& control_;
+  double start_time_;
   const PlanarSystem system_;
   Y y_;
   Y k1_{};

@@ -285,7 +285,9 @@ class Run {
     if (system_.driven()) s.rattle = rattle_summary(t);
     result_.impacts = impacts_.take();
     result_.start_time_s = start_time_;
-    result_.final_state = {t, {y_[kTheta1], y_[kTheta2], y_[kW1], y_[kW2]}, damping_};
+    result_.final_state.time_s = t;
+    result_.final_state.state = {y_[kTheta1], y_[kTheta2], y_[kW1], y_[kW2]};
+    result_.final_state.contact = damping_;
     return std::move(result_);
   }
 

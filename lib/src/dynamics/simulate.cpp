@@ -205,11 +205,12 @@ void refuse_planar(const SimulationCase& c) {
   const auto refuse = [&](const char* key, const char* torsional) {
     problems.push_back(refused_problem(
         key, "\"elastic\"",
-        "read by `gearimpact modes` and `gearimpact simulate` only; sweep, steady and "
-        "sweep-friction are torsional",
-        std::string("\"") + torsional + "\" (the default) to run the dynamics",
-        "leave the key out to simulate the torsional model, or run `gearimpact modes` for the "
-        "planar model's natural frequencies"));
+        "not read by the period map of (s, s') (GearPeriodMap: shooting, Floquet multipliers, "
+        "continuation), whose state is the torsional model's relative motion; the planar "
+        "model's steady state is found period by period (find_steady_state, the steady sweeps)",
+        std::string("\"") + torsional + "\" (the default) for a period map",
+        "leave the key out for the torsional model's period map, or run the steady sweep "
+        "(`gearimpact sweep`) on the planar model"));
   };
   if (c.bearings.kind == BearingKind::elastic) refuse("bearings.kind", "rigid");
   if (c.shafts.kind == ShaftKind::elastic) refuse("shafts.kind", "none");
@@ -259,7 +260,8 @@ void validate_sampling(const SimulationCase& c, const RunControl& control) {
 void validate(const SimulationCase& c) {
   validate_run_keys(c);
   validate_fields(c);
-  refuse_planar(c);
+  refuse_planar_simulation(c);
+  if (c.bearings.kind == BearingKind::elastic) validate_planar(c, planar_mounting(c), {});
   validate_gaps(c);
   validate_implied(c);
 }

@@ -13,6 +13,9 @@ namespace gearimpact {
 GearPeriodMap::GearPeriodMap(const SimulationCase& c, const StiffnessTable& table,
                              const SteadySettings& settings, long long steps_per_period)
     : case_(c), table_(&table) {
+  // The map's state is the torsional relative motion (s, s'): the planar
+  // model's centres and shafts are not in it.
+  refuse_planar(c);
   const SteadyTiming timing = steady_timing(c, table, settings);
   if (resolved_damping_update(c) == DampingUpdate::each_impact) {
     throw InputError("model.damping_update", "each_impact",

@@ -5,12 +5,15 @@
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <memory>
 #include <numeric>
+#include <optional>
 #include <string>
 #include <utility>
 
 #include "gearimpact/constants.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
+#include "gearimpact/dynamics/planar.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
@@ -83,7 +86,12 @@ class PeriodRecorder {
   }
 
   void observe(const SeriesRow& row) {
-    const double rate = rb1_ * row.w1_rad_per_s - rb2_ * row.w2_rad_per_s;
+    observe(row, rb1_ * row.w1_rad_per_s - rb2_ * row.w2_rad_per_s);
+  }
+
+  // A row whose s_m moves at `rate`: the planar model's s_d adds the centres' motion along the
+  // drive line to the gears' turning.
+  void observe(const SeriesRow& row, double rate) {
     if (have_previous_ && row.t_s > start_s_) {
       hermite_extremes(row.t_s - previous_.t_s, previous_.s_m, previous_rate_, row.s_m, rate,
                        stats_);
@@ -288,6 +296,11 @@ std::vector<std::string> forcing_keys(const SimulationCase& c) {
   return keys;
 }
 
+// Whether the planar model runs the case with its motor and load behind shafts.
+bool planar_shafts(const SimulationCase& c) {
+  return c.bearings.kind == BearingKind::elastic && c.shafts.kind == ShaftKind::elastic;
+}
+
 // The mean pinion speed of the rolling pair (Rb1 w1 = Rb2 w2 on average over a periodic s).
 // The momentum P = J1 w1/Rb1 + J2 w2/Rb2 obeys P' = T1/Rb1 + T2/Rb2, the mesh forces
 // cancelling. Without fluctuation it is constant. A fluctuation A sin(w t + phi) adds
@@ -297,8 +310,14 @@ double rolling_mean_pinion_speed(const SimulationCase& c, bool with_forcing) {
   const GearPair& g = c.gears;
   const double rb1 = base_radius(g, Gear::one);
   const double rb2 = base_radius(g, Gear::two);
-  const double j1 = moment_of_inertia(g, Gear::one);
-  const double j2 = moment_of_inertia(g, Gear::two);
+  double j1 = moment_of_inertia(g, Gear::one);
+  double j2 = moment_of_inertia(g, Gear::two);
+  if (planar_shafts(c)) {
+    // The motor and the load turn with their gears on average (they start with them,
+    // planar_initial_state) and carry the torques: their inertias join the gears'.
+    j1 += c.shafts.motor_inertia_kg_m2;
+    j2 += c.shafts.load_inertia_kg_m2;
+  }
   double momentum = j1 * c.initial.w1_rad_per_s / rb1 + j2 * c.initial.w2_rad_per_s / rb2;
   if (with_forcing) {
     for (const auto& [t, rb] : {std::pair<const Torque*, double>{&c.torque1, rb1},
@@ -571,6 +590,13 @@ SteadyTiming steady_timing(const SimulationCase& c, const StiffnessTable& table,
         contact_period,
         2.0 * pi * std::sqrt(effective_mass_kg(c.gears) / c.model.constant_mesh_stiffness_n_per_m));
   }
+  if (c.bearings.kind == BearingKind::elastic) {
+    // The planar system's shortest period (its bearings, shafts and both lines of the mesh),
+    // which simulate() bounds the step by (check_planar_step).
+    contact_period = std::min(
+        contact_period, planar_largest_step_s(c, table, planar_mounting(c), IntegratorKind::rk4) *
+                            steps_per_contact_period(IntegratorKind::rk4));
+  }
   double largest = contact_period / settings.steps_per_contact_period;
   if (fastest_mesh > 0.0) {
     // A hair under the bound, so that the step rounded to a whole number per
@@ -589,6 +615,55 @@ Eigen::Vector2d state_scale(const SimulationCase& c, const StiffnessTable& table
   return Eigen::Vector2d(length, length * natural_frequency_rad_per_s(c, table));
 }
 
+namespace {
+
+// The Poincare sample's scales, in poincare_state's order: (L, L w_n) of state_scale for (s, s'),
+// then L for each planar displacement and L w_n for each planar speed.
+Eigen::VectorXd poincare_scale(const SimulationCase& c, const StiffnessTable& table) {
+  const Eigen::Vector2d relative = state_scale(c, table);
+  if (c.bearings.kind != BearingKind::elastic) return relative;
+  const Eigen::Index n = planar_shafts(c) ? 6 : 4;
+  Eigen::VectorXd scale(2 + 2 * n);
+  scale.head(2) = relative;
+  scale.segment(2, n).setConstant(relative[0]);
+  scale.tail(n).setConstant(relative[1]);
+  return scale;
+}
+
+// The Poincare sample of a state: (s, s') of the gears' turning, and for the planar model its
+// other coordinates (the centres x1, y1, x2, y2 and with shafts the twists Rb1 (theta_m -
+// theta1), Rb2 (theta_l - theta2), as lengths), then their speeds in the same order: a periodic
+// motion repeats every one of them, which the rigid rotation leaves out.
+Eigen::VectorXd poincare_state(const SimulationCase& c, const RunState& state) {
+  const GearPair& g = c.gears;
+  const double rb1 = base_radius(g, Gear::one);
+  const double rb2 = base_radius(g, Gear::two);
+  const InitialState& y = state.state;
+  const double s = rb1 * y.theta1_rad - rb2 * y.theta2_rad;
+  const double s_rate = rb1 * y.w1_rad_per_s - rb2 * y.w2_rad_per_s;
+  if (c.bearings.kind != BearingKind::elastic || !state.planar) {
+    Eigen::VectorXd v(2);
+    v << s, s_rate;
+    return v;
+  }
+  const PlanarState& p = *state.planar;
+  const bool shafts = planar_shafts(c);
+  const Eigen::Index n = shafts ? 6 : 4;
+  Eigen::VectorXd v(2 + 2 * n);
+  v.head(2) << s, s_rate;
+  v.segment(2, 4) << p.x1_m, p.y1_m, p.x2_m, p.y2_m;
+  v.segment(2 + n, 4) << p.vx1_m_s, p.vy1_m_s, p.vx2_m_s, p.vy2_m_s;
+  if (shafts) {
+    v.segment(6, 2) << rb1 * (p.theta_motor_rad - p.theta1_rad),
+        rb2 * (p.theta_load_rad - p.theta2_rad);
+    v.tail(2) << rb1 * (p.w_motor_rad_per_s - p.w1_rad_per_s),
+        rb2 * (p.w_load_rad_per_s - p.w2_rad_per_s);
+  }
+  return v;
+}
+
+}  // namespace
+
 SteadyPoint find_steady_state(const SimulationCase& c, const StiffnessTable& table,
                               const SteadySettings& settings,
                               const std::optional<RunState>& start) {
@@ -600,7 +675,7 @@ SteadyPoint find_steady_state(const SimulationCase& c, const StiffnessTable& tab
   const GearPair& g = c.gears;
   const double rb1 = base_radius(g, Gear::one);
   const double rb2 = base_radius(g, Gear::two);
-  const Eigen::VectorXd scale = state_scale(c, table);
+  const Eigen::VectorXd scale = poincare_scale(c, table);
 
   SimulationCase period_case = c;
   period_case.integrator.kind = IntegratorKind::rk4;
@@ -610,9 +685,45 @@ SteadyPoint find_steady_state(const SimulationCase& c, const StiffnessTable& tab
   PeriodRecorder recorder(rb1, rb2);
   RunControl control;
   control.keep_series = false;
-  control.on_row = [&recorder](const SeriesRow& row) { recorder.observe(row); };
+  std::optional<PlanarState> planar_start;
+  if (c.bearings.kind == BearingKind::elastic) {
+    // The planar rows follow their series rows (each from the same state): s_d's rate adds the
+    // centres' relative speed along the drive line's normal (sin a, cos a), a the operating
+    // pressure angle (docs/vibration.md, "The planar dynamics").
+    const double a = operating_pressure_angle(g);
+    const double sin_a = std::sin(a);
+    const double cos_a = std::cos(a);
+    auto pending = std::make_shared<SeriesRow>();
+    control.on_row = [pending](const SeriesRow& row) { *pending = row; };
+    control.on_planar_row = [pending, &recorder, rb1, rb2, sin_a, cos_a](const PlanarRow& row) {
+      const PlanarState& p = row.state;
+      recorder.observe(*pending, rb1 * p.w1_rad_per_s - rb2 * p.w2_rad_per_s +
+                                     (p.vx1_m_s - p.vx2_m_s) * sin_a +
+                                     (p.vy1_m_s - p.vy2_m_s) * cos_a);
+    };
+    if (!start || !start->planar) planar_start = planar_initial_state(c);
+  } else {
+    control.on_row = [&recorder](const SeriesRow& row) { recorder.observe(row); };
+  }
 
-  RunState state = start ? *start : RunState{0.0, c.initial, ContactMemory{}};
+  RunState state;
+  if (start) {
+    state = *start;
+  } else {
+    state.state = c.initial;
+  }
+  // A planar point started from a torsional state (or from none) starts its centres at rest
+  // on their bearings' unloaded positions, as a planar run does.
+  if (planar_start) {
+    if (start) {
+      planar_start->theta1_rad = planar_start->theta_motor_rad = state.state.theta1_rad;
+      planar_start->theta2_rad = planar_start->theta_load_rad = state.state.theta2_rad;
+      planar_start->w1_rad_per_s = planar_start->w_motor_rad_per_s = state.state.w1_rad_per_s;
+      planar_start->w2_rad_per_s = planar_start->w_load_rad_per_s = state.state.w2_rad_per_s;
+    }
+    state.planar = planar_start;
+  }
+  if (c.bearings.kind != BearingKind::elastic) state.planar.reset();
   state.time_s = 0.0;
   std::vector<Eigen::VectorXd> samples;
   std::deque<PeriodStats> history;
@@ -624,10 +735,7 @@ SteadyPoint find_steady_state(const SimulationCase& c, const StiffnessTable& tab
     state = r.final_state;
     history.push_back(recorder.finish(r.summary));
     if (history.size() > settings.window) history.pop_front();
-    const InitialState& y = state.state;
-    samples.emplace_back(2);
-    samples.back() << rb1 * y.theta1_rad - rb2 * y.theta2_rad,
-        rb1 * y.w1_rad_per_s - rb2 * y.w2_rad_per_s;
+    samples.push_back(poincare_state(c, state));
     point.periods_run = k + 1;
     if (decision.settled(samples, scale)) break;
   }

@@ -283,12 +283,22 @@ std::vector<SweepPointResult> sweep_line(
     if (start && (key == "initial.w1" || key == "initial.w2")) {
       // The relative motion s' = Rb1 w1 - Rb2 w2 carries over; the mean speed moves.
       const double dw = value - carried_value;
+      const double dw1 = key == "initial.w1" ? dw : dw * rb2 / rb1;
+      const double dw2 = key == "initial.w1" ? dw * rb1 / rb2 : dw;
       if (key == "initial.w1") {
         start->state.w1_rad_per_s += dw;
         start->state.w2_rad_per_s += dw * rb1 / rb2;
       } else {
         start->state.w2_rad_per_s += dw;
         start->state.w1_rad_per_s += dw * rb2 / rb1;
+      }
+      if (start->planar) {
+        // The planar state's gears, and the motor and the load turning with them.
+        PlanarState& p = *start->planar;
+        p.w1_rad_per_s = start->state.w1_rad_per_s;
+        p.w2_rad_per_s = start->state.w2_rad_per_s;
+        p.w_motor_rad_per_s += dw1;
+        p.w_load_rad_per_s += dw2;
       }
     }
     SweepPointResult r;

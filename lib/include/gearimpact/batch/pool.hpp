@@ -45,8 +45,10 @@ class RunPool {
 
   // The run of c, with its time series when keep_series. The same case asked
   // for twice is computed once, and a run without the series is served by an
-  // equal run with it, whose summary is the same. A case that fails
-  // validation throws InputError here, to the caller. `should_stop` goes to
+  // equal run with it, whose summary is the same. The case is checked here,
+  // once (check_run of dynamics/simulate.hpp, with the pool's table: the
+  // torsional and the planar model alike), and a case or a run that fails
+  // throws InputError here, to the caller. `should_stop` goes to
   // the run's RunControl (it may be called from several threads at once).
   std::shared_future<SimulationResult> submit(const SimulationCase& c, bool keep_series,
                                               std::function<bool()> should_stop = {});

@@ -122,8 +122,9 @@ std::size_t shard_point_count(const SteadySweepSpec& spec);
 // a swept key (integrator.*: the steady state sets its own step and duration; a key whose condition
 // does not hold), the shard is not 0 <= k < n, there is no direction, or the case (with the first
 // and with the last values of both keys) fails validation or has no steady state
-// (require_steady_case). `on_point` (may be empty) is called after each point, from the pool's
-// worker threads, possibly at once.
+// (require_steady_case). A case on elastic bearings sweeps the planar model (steady_state.hpp).
+// `on_point` (may be empty) is called after each point, from the pool's worker threads, possibly at
+// once.
 SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
                              const std::function<void(const SweepPointResult&)>& on_point = {});
 

@@ -252,14 +252,15 @@ struct ModelOptions {
 // Elastic bearings let each centre move in the plane on a spring and a damper
 // per direction: the planar model, which simulate() integrates
 // (dynamics/planar.hpp) and of which `gearimpact modes` reads the linearised
-// form; the sweeps refuse it (refuse_planar of dynamics/simulate.hpp).
+// form; the run pool and the steady sweeps run it too, the period map of
+// (s, s') refuses it (refuse_planar of dynamics/simulate.hpp).
 enum class BearingKind { rigid, elastic };
 inline constexpr std::array<NamedValue<BearingKind>, 2> kBearingKinds{{
     {BearingKind::rigid, "rigid",
      "the centres are fixed: the torsional model of the paper (2 DOF)"},
     {BearingKind::elastic, "elastic",
      "each centre moves in the plane on its bearing's springs and dampers (x, y, theta per "
-     "gear: 6 DOF); run by `gearimpact simulate` and `gearimpact modes`"},
+     "gear: 6 DOF); run by `gearimpact simulate`, `sweep`, `sweep-friction` and `modes`"},
 }};
 
 // Per gear and direction (x along the centre line O1 -> O2, y across it), in SI.
@@ -301,7 +302,7 @@ inline constexpr std::array<NamedValue<ShaftKind>, 2> kShaftKinds{{
     {ShaftKind::elastic, "elastic",
      "a motor inertia on the pinion's shaft and a load inertia on the wheel's, each through a "
      "torsional spring and damper (2 more DOF), with elastic bearings; run by `gearimpact "
-     "simulate` and `gearimpact modes`"},
+     "simulate`, `sweep`, `sweep-friction` and `modes`"},
 }};
 
 struct Shafts {

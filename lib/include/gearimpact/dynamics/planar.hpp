@@ -53,8 +53,9 @@ double planar_angular_momentum(const SimulationCase& c, const PlanarMounting& m,
 
 // Throws InputError naming the mounting's field (mass1, stiffness_x2, ...)
 // unless every mass is finite and > 0, every bearing stiffness and damping
-// finite and >= 0 (the shafts' values as [shafts]' rows); and naming what the
-// planar model does not take yet (a continued run). simulate()
+// finite and >= 0 (the shafts' values as [shafts]' rows); and naming resume
+// unless a continued run's state (RunControl::resume) holds a finite planar
+// state (RunState::planar, the final_state of a planar run). simulate()
 // calls it for an elastic case before it builds the stiffness table.
 void validate_planar(const SimulationCase& c, const PlanarMounting& mounting,
                      const RunControl& control);
@@ -81,7 +82,9 @@ double planar_largest_step_s(const SimulationCase& c, const StiffnessTable& tabl
 // validate_planar and validate_sampling; with RunControl::sample_rate_hz it samples (PlanarSample)
 // at sample_time_s(0, n, rate) from each accepted step's continuous extension, the left limit at an
 // event time. It throws check_planar_step's InputError. A kinematic driver's angle starts from the
-// initial state's (the pinion's, the motor's with shafts).
+// initial state's (the pinion's, the motor's with shafts). With RunControl::resume
+// the run continues from its planar state and both lines' contact memories at
+// its time (a contact in progress is no new impact), and `initial` is not used.
 SimulationResult simulate_planar(const SimulationCase& c, const StiffnessTable& table,
                                  const PlanarMounting& mounting, const PlanarState& initial,
                                  const RunControl& control = {});

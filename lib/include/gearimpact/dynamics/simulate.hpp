@@ -232,11 +232,16 @@ struct ContactMemory {
 };
 
 // Where a run ended, to continue from: the time, the state, and the damping of
-// the contact it may be in.
+// the contact it may be in. A planar run's ([bearings] kind = "elastic") adds
+// its whole state (`state` then holds its gears' angles and speeds) and the
+// coast line's contact memory (`contact` is the drive line's): each line of
+// action remembers its own.
 struct RunState {
   double time_s = 0.0;
   InitialState state;
   ContactMemory contact;
+  std::optional<PlanarState> planar;
+  ContactMemory coast_contact;
 };
 
 struct SimulationResult {
@@ -359,9 +364,10 @@ void validate_gaps(const SimulationCase& c);
 // InputError naming "table".
 void check_table(const SimulationCase& c, const StiffnessTable& table);
 // Throws InputError naming bearings.kind and shafts.kind when they are
-// "elastic": the planar model runs in `gearimpact modes` (its linearised
-// form) and simulate() (planar.hpp); the sweeps are torsional.
-// validate(), the run pool and the steady-state sweep call it before any work.
+// "elastic": the period map of (s, s') (GearPeriodMap of steady/period_map.hpp,
+// which shooting, the Floquet multipliers and continuation take) is the
+// torsional model's. The planar model runs everywhere else: simulate(), the
+// run pool, the steady state and its sweeps. GearPeriodMap calls it before any work.
 void refuse_planar(const SimulationCase& c);
 // What simulate() refuses of the planar keys: elastic shafts on rigid
 // bearings (the motor and the load belong to the planar model), naming
@@ -379,8 +385,9 @@ double sample_count(const SimulationCase& c, double sample_rate_hz, double t0_s 
 void validate_sampling(const SimulationCase& c, const RunControl& control);
 
 // Throws InputError naming the first field outside its range (validate_fields),
-// then a planar case (refuse_planar), then the gaps of its modifications (validate_gaps), then
-// what the fields imply together (validate_implied of step_bound.hpp).
+// then the planar keys (refuse_planar_simulation, and with elastic bearings the mounting's
+// fields: validate_planar of planar.hpp), then the gaps of its modifications (validate_gaps),
+// then what the fields imply together (validate_implied of step_bound.hpp).
 void validate(const SimulationCase& c);
 
 // What a user should hear before running a valid case, each a sentence with its numbers and the

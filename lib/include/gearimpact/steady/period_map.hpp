@@ -34,6 +34,8 @@ class GearPeriodMap {
  public:
   // The case must be accepted by steady_timing (require_steady_case: constant, sinusoidal or
   // harmonic torques, balanced means, no friction), and beyond it:
+  // - rigid bearings and no shafts (refuse_planar, naming bearings.kind and shafts.kind): the
+  //   planar model's centres and shafts are not part of (s, s');
   // - model.damping_update off or frozen: under each_impact the Hertzian D of the last impact
   //   is part of the state, which (s, s') does not carry;
   // - with DampingUpdate::frozen, a damping stiffness other than the pitch pair at impact,

@@ -152,6 +152,15 @@ std::string period_label(const SteadyPoint& point);
 
 // Runs c (from `start` when given, else from c.initial at t = 0) period by period until its
 // Poincare samples settle. Throws InputError as steady_timing, SimulationError from the run.
+// A case on elastic bearings runs the planar model (dynamics/planar.hpp): each period continues
+// its planar state (RunState::planar; a start without one puts the centres at rest on their
+// bearings, as planar_initial_state), and its Poincare samples add to (s, s') of the gears'
+// turning the centres x1, y1, x2, y2 (and with shafts the twists Rb1 (theta_m - theta1),
+// Rb2 (theta_l - theta2)) on the scale L of state_scale, then their speeds on L w_n, so that a
+// point is periodic when every coordinate repeats. Its s (the figures above) is the drive line's
+// s_d, which adds the centres' relative motion along the line; the step also resolves the planar
+// system's shortest period (planar_largest_step_s). final_state then holds the planar state.
+// With rigid bearings the samples are (s, s') alone.
 SteadyPoint find_steady_state(const SimulationCase& c, const StiffnessTable& table,
                               const SteadySettings& settings,
                               const std::optional<RunState>& start = std::nullopt);
