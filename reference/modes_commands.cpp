@@ -13,14 +13,17 @@
 
 #include "case_flags.hpp"
 #include "commands.hpp"
+#include "gearimpact/case/schema.hpp"
 #include "gearimpact/case/units.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/modes_files.hpp"
+#include "gearimpact/io/planetary_file.hpp"
 #include "gearimpact/io/results.hpp"
 #include "gearimpact/modes/modes.hpp"
+#include "gearimpact/modes/planetary.hpp"
 #include "gnuplot.hpp"
 #include "program.hpp"
 
@@ -81,6 +84,7 @@ struct ModesOptions {
   bool overwrite = false;
   bool no_plots = false;
   CaseOptions keys;
+  CLI::Option* harmonics_option = nullptr;
 };
 
 // The pinion speed a run file holds (its driver's mean speed, or its initial
@@ -214,9 +218,71 @@ Figure campbell_figure(const SimulationCase& c, const ModesTexts& texts, int har
   return f;
 }
 
+// The planetary modes as a table on stdout: frequency, multiplicity, type and
+// the strain-energy shares by spring kind.
+std::string stage_modes_table(const std::vector<StageModeRow>& rows) {
+  std::string table = " mode  frequency_hz  mult  type           ";
+  for (StageSpring kind : kStageSpringKinds) {
+    char head[32];
+    std::snprintf(head, sizeof head, " %15s", std::string(stage_spring_name(kind)).c_str());
+    table += head;
+  }
+  table += "\n";
+  for (const StageModeRow& r : rows) {
+    char line[96];
+    std::snprintf(line, sizeof line, "%5d  %12.3f  %4d  %-13s  ", r.number, r.frequency_hz,
+                  r.multiplicity, std::string(stage_mode_type_name(r.type)).c_str());
+    table += line;
+    for (double share : r.share) {
+      std::snprintf(line, sizeof line, " %15.3f", share);
+      table += line;
+    }
+    table += "\n";
+  }
+  return table;
+}
+
+// `modes` on a planetary file: the linear stage's modes (docs/planetary.md).
+void write_planetary_modes(ModesOptions& o) {
+  // The pair's options have nothing to act on here: refused, not ignored.
+  if (o.harmonics_option != nullptr && o.harmonics_option->count() > 0) {
+    throw InputError("--harmonics", std::to_string(o.harmonics),
+                     "left out on a planetary file (no Campbell diagram)");
+  }
+  if (!o.max_speed.empty()) {
+    throw InputError("--max-speed", o.max_speed,
+                     "left out on a planetary file (no Campbell diagram)");
+  }
+  SimulationCase probe;
+  const std::string untouched = case_key(probe);
+  o.keys.apply(probe);
+  if (case_key(probe) != untouched || !o.keys.sets().empty()) {
+    const std::string written = o.keys.sets().empty() ? "a case flag" : o.keys.sets().front();
+    throw InputError("--set", written,
+                     "no case flag or --set on a planetary file: its keys are [planetary]'s, "
+                     "set in the file");
+  }
+  const PlanetaryCase stage = read_planetary_file(o.case_file);
+  const PlanetaryModes modes = planetary_modes(planetary_model(stage.parameters));
+  const std::vector<StageModeRow> rows = stage_mode_rows(modes);
+  const std::string csv = csv_of(stage_modes_columns(), rows);
+  const std::string summary = stage_modes_summary_json(stage.name, modes);
+  AtomicFolder folder(o.out, o.overwrite, {o.case_file});
+  const std::filesystem::path dir = folder.temporary();
+  write_file_atomically((dir / "modes.csv").string(), csv);
+  write_file_atomically((dir / "summary.json").string(), summary);
+  folder.commit();
+  std::fputs(stage_modes_table(rows).c_str(), stdout);
+  std::cerr << "modes: wrote " << (std::filesystem::path(o.out) / "modes.csv").string() << "\n";
+}
+
 void write_modes(ModesOptions& o) {
   // Every refusal before any work: the folder, the options, the case.
   require_output_folder(o.out, o.overwrite, {o.case_file});
+  if (is_planetary_file(o.case_file)) {
+    write_planetary_modes(o);
+    return;
+  }
   require_harmonics(o.harmonics);
   std::optional<double> max_speed;
   if (!o.max_speed.empty()) {
@@ -257,13 +323,16 @@ void register_modes_commands(CLI::App& app) {
       "motor and a load with [shafts] kind = \"elastic\". Writes modes.csv (frequencies, "
       "strain-energy shares, mass-normalised shapes), campbell.csv (where the mesh harmonics "
       "cross them), mode_shapes.csv, summary.json and the figures modes_energy.png, "
-      "mode_shapes.png and campbell.png");
-  modes->add_option("case", o->case_file, "case file: a pair file or a run file")->required();
+      "mode_shapes.png and campbell.png. On a planetary file ([planetary], docs/planetary.md): the "
+      "linear stage's modes, modes.csv (frequency, multiplicity, type, strain-energy shares by "
+      "spring kind) and summary.json, the table printed");
+  modes->add_option("case", o->case_file, "case file: a pair file, a run file or a planetary file")
+      ->required();
   modes
       ->add_option("--out", o->out,
                    "output folder: new or empty (else --overwrite), in a folder that exists")
       ->required();
-  modes->add_option("--harmonics", o->harmonics,
+  o->harmonics_option = modes->add_option("--harmonics", o->harmonics,
                     "mesh harmonics k f_m on the Campbell diagram, 1 to " +
                         std::to_string(kMostHarmonics) + " (default 3)");
   modes->add_option("--max-speed", o->max_speed,
