@@ -13,7 +13,6 @@
 
 #include "case_flags.hpp"
 #include "commands.hpp"
-#include "gearimpact/case/schema.hpp"
 #include "gearimpact/case/units.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
@@ -85,6 +84,7 @@ struct ModesOptions {
   bool no_plots = false;
   CaseOptions keys;
   CLI::Option* harmonics_option = nullptr;
+  CLI::App* command = nullptr;  // the subcommand, whose case flags a planetary file refuses
 };
 
 // The pinion speed a run file holds (its driver's mean speed, or its initial
@@ -253,14 +253,15 @@ void write_planetary_modes(ModesOptions& o) {
     throw InputError("--max-speed", o.max_speed,
                      "left out on a planetary file (no Campbell diagram)");
   }
-  SimulationCase probe;
-  const std::string untouched = case_key(probe);
-  o.keys.apply(probe);
-  if (case_key(probe) != untouched || !o.keys.sets().empty()) {
-    const std::string written = o.keys.sets().empty() ? "a case flag" : o.keys.sets().front();
-    throw InputError("--set", written,
-                     "no case flag or --set on a planetary file: its keys are [planetary]'s, "
-                     "set in the file");
+  constexpr const char* kNoKeys =
+      "left out on a planetary file: its keys are [planetary]'s, set in the file";
+  if (!o.keys.sets().empty()) throw InputError("--set", o.keys.sets().front(), kNoKeys);
+  for (const CaseFlag& flag : kCaseFlags) {
+    if ((flag.commands & kModes) == 0) continue;
+    const CLI::Option* given = o.command->get_option_no_throw(flag.flag);
+    if (given != nullptr && given->count() > 0) {
+      throw InputError(flag.flag, given->as<std::string>(), kNoKeys);
+    }
   }
   const PlanetaryCase stage = read_planetary_file(o.case_file);
   const PlanetaryModes modes = planetary_modes(planetary_model(stage.parameters));
@@ -339,6 +340,7 @@ void register_modes_commands(CLI::App& app) {
                     "the Campbell diagram's largest pinion speed with its unit (\"6000 rpm\"); "
                     "default: 1.1 times where the first harmonic meets the highest mode");
   o->keys.add_flags(modes, kModes);
+  o->command = modes;
   o->keys.add_set(modes, "KEY=VALUE for any key of the case schema (repeatable), after the flags");
   modes->add_flag("--overwrite", o->overwrite, "replace a non-empty --out folder whole");
   modes->add_flag("--no-plots", o->no_plots, "write the CSV and JSON files only");
