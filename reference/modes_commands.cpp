@@ -334,8 +334,8 @@ void register_modes_commands(CLI::App& app) {
                    "output folder: new or empty (else --overwrite), in a folder that exists")
       ->required();
   o->harmonics_option = modes->add_option("--harmonics", o->harmonics,
-                    "mesh harmonics k f_m on the Campbell diagram, 1 to " +
-                        std::to_string(kMostHarmonics) + " (default 3)");
+                                          "mesh harmonics k f_m on the Campbell diagram, 1 to " +
+                                              std::to_string(kMostHarmonics) + " (default 3)");
   modes->add_option("--max-speed", o->max_speed,
                     "the Campbell diagram's largest pinion speed with its unit (\"6000 rpm\"); "
                     "default: 1.1 times where the first harmonic meets the highest mode");

@@ -49,8 +49,7 @@ std::vector<Field> make_planetary_schema() {
   // Up to 32 planets: stages carry 3 to 12; more is a typing slip, and the
   // model's size grows as 3 (N + 3).
   constexpr double kMostPlanets = 32.0;
-  Field& planets =
-      row("planets", FieldKind::integer, true, "N, the number of (identical) planets");
+  Field& planets = row("planets", FieldKind::integer, true, "N, the number of (identical) planets");
   planets.range = {closed(1.0), closed(kMostPlanets), {}};
   Field& angles = row("planet_angles", FieldKind::quantity_list, false,
                       "psi_n, each planet's angle counter-clockwise from the carrier axis: the "
@@ -84,8 +83,9 @@ std::vector<Field> make_planetary_schema() {
     quantity(m.support, Dimension::stiffness, "N/m", non_negative,
              "the " + name + "'s support stiffness on x and on y");
     quantity(m.torsional, Dimension::stiffness, "N/m", non_negative,
-             "k_theta / r^2, the " + name + "'s torsional support stiffness over r^2 (0: free "
-                                            "to turn)");
+             "k_theta / r^2, the " + name +
+                 "'s torsional support stiffness over r^2 (0: free "
+                 "to turn)");
   }
   quantity("planet_mass", Dimension::mass, "kg", positive, "m_p, each planet's mass");
   quantity("planet_inertia_over_r2", Dimension::mass, "kg", positive,

@@ -373,7 +373,8 @@ const ChoiceName& selected(const Field& field, const SimulationCase& c) {
 
 // The SI values of a list row, from a TOML array of quantity strings; each
 // element checked against the row, errors naming section.key[i].
-std::vector<double> case_reader::read_list(const Reader& reader, const Field& field, const toml::value& value) {
+std::vector<double> case_reader::read_list(const Reader& reader, const Field& field,
+                                           const toml::value& value) {
   const std::string name = field.name();
   const bool numbers = field.kind == FieldKind::number_list;
   const std::string expected =

@@ -164,8 +164,7 @@ std::vector<StageModeRow> stage_mode_rows(const PlanetaryModes& modes) {
 Columns<StageModeRow> stage_modes_columns() {
   Columns<StageModeRow> columns;
   columns.push_back(member_column<StageModeRow>("mode", &StageModeRow::number));
-  columns.push_back(
-      member_column<StageModeRow>("frequency_hz", "Hz", &StageModeRow::frequency_hz));
+  columns.push_back(member_column<StageModeRow>("frequency_hz", "Hz", &StageModeRow::frequency_hz));
   columns.push_back(member_column<StageModeRow>("multiplicity", &StageModeRow::multiplicity));
   columns.push_back(
       boolean_column<StageModeRow>("rigid", [](const StageModeRow& r) { return r.rigid; }));

@@ -47,7 +47,8 @@ std::string nearest_planetary_key(const std::string& key) {
       best = &field;
     }
   }
-  return best == nullptr ? std::string() : "did you mean planetary." + std::string(best->key) + "? ";
+  return best == nullptr ? std::string()
+                         : "did you mean planetary." + std::string(best->key) + "? ";
 }
 
 class PlanetaryReader {
@@ -140,15 +141,14 @@ PlanetaryCase parse_planetary(std::string_view toml_text, std::string_view file_
       if (value.is_string() && !value.as_string().str.empty()) {
         result.name = value.as_string().str;
       } else {
-        problems.push_back(reader.problem("name", &value,
-                                          "name = " + toml_written(value) +
-                                              " is not a name: a non-empty string"));
+        problems.push_back(
+            reader.problem("name", &value,
+                           "name = " + toml_written(value) + " is not a name: a non-empty string"));
       }
       continue;
     }
-    problems.push_back(reader.problem(key, &value,
-                                      "unknown key " + key +
-                                          "; a planetary file holds name and [planetary] only"));
+    problems.push_back(reader.problem(
+        key, &value, "unknown key " + key + "; a planetary file holds name and [planetary] only"));
   }
   const toml::value& table = root.as_table().at(std::string(kSection));
   if (!table.is_table()) {
@@ -188,10 +188,9 @@ PlanetaryCase parse_planetary(std::string_view toml_text, std::string_view file_
     if (angles) {
       if (angles->size() != n) {
         const toml::value* at = section.find("planet_angles");
-        Problem problem = range_problem("planetary.planet_angles",
-                                        std::to_string(angles->size()) + " angles",
-                                        "one angle per planet: planetary.planets = " +
-                                            std::to_string(n));
+        Problem problem =
+            range_problem("planetary.planet_angles", std::to_string(angles->size()) + " angles",
+                          "one angle per planet: planetary.planets = " + std::to_string(n));
         problem.where = reader.where(at);
         problems.push_back(std::move(problem));
       } else {
