@@ -83,9 +83,8 @@ std::vector<Field> make_planetary_schema() {
     quantity(m.support, Dimension::stiffness, "N/m", non_negative,
              "the " + name + "'s support stiffness on x and on y");
     quantity(m.torsional, Dimension::stiffness, "N/m", non_negative,
-             "k_theta / r^2, the " + name +
-                 "'s torsional support stiffness over r^2 (0: free "
-                 "to turn)");
+             "k_theta / r^2, the " + name + "'s torsional support stiffness over the square of " +
+                 radius + " (0: free to turn)");
   }
   quantity("planet_mass", Dimension::mass, "kg", positive, "m_p, each planet's mass");
   quantity("planet_inertia_over_r2", Dimension::mass, "kg", positive,
