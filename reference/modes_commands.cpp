@@ -19,8 +19,10 @@
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/modes_files.hpp"
+#include "gearimpact/io/planetary_file.hpp"
 #include "gearimpact/io/results.hpp"
 #include "gearimpact/modes/modes.hpp"
+#include "gearimpact/modes/planetary.hpp"
 #include "gnuplot.hpp"
 #include "program.hpp"
 
@@ -81,6 +83,8 @@ struct ModesOptions {
   bool overwrite = false;
   bool no_plots = false;
   CaseOptions keys;
+  CLI::Option* harmonics_option = nullptr;
+  CLI::App* command = nullptr;  // the subcommand, whose case flags a planetary file refuses
 };
 
 // The pinion speed a run file holds (its driver's mean speed, or its initial
@@ -214,9 +218,72 @@ Figure campbell_figure(const SimulationCase& c, const ModesTexts& texts, int har
   return f;
 }
 
+// The planetary modes as a table on stdout: frequency, multiplicity, type and
+// the strain-energy shares by spring kind.
+std::string stage_modes_table(const std::vector<StageModeRow>& rows) {
+  std::string table = " mode  frequency_hz  mult  type           ";
+  for (StageSpring kind : kStageSpringKinds) {
+    char head[32];
+    std::snprintf(head, sizeof head, " %15s", std::string(stage_spring_name(kind)).c_str());
+    table += head;
+  }
+  table += "\n";
+  for (const StageModeRow& r : rows) {
+    char line[96];
+    std::snprintf(line, sizeof line, "%5d  %12.3f  %4d  %-13s  ", r.number, r.frequency_hz,
+                  r.multiplicity, std::string(stage_mode_type_name(r.type)).c_str());
+    table += line;
+    for (double share : r.share) {
+      std::snprintf(line, sizeof line, " %15.3f", share);
+      table += line;
+    }
+    table += "\n";
+  }
+  return table;
+}
+
+// `modes` on a planetary file: the linear stage's modes (docs/planetary.md).
+void write_planetary_modes(ModesOptions& o) {
+  // The pair's options have nothing to act on here: refused, not ignored.
+  if (o.harmonics_option != nullptr && o.harmonics_option->count() > 0) {
+    throw InputError("--harmonics", std::to_string(o.harmonics),
+                     "left out on a planetary file (no Campbell diagram)");
+  }
+  if (!o.max_speed.empty()) {
+    throw InputError("--max-speed", o.max_speed,
+                     "left out on a planetary file (no Campbell diagram)");
+  }
+  constexpr const char* kNoKeys =
+      "left out on a planetary file: its keys are [planetary]'s, set in the file";
+  if (!o.keys.sets().empty()) throw InputError("--set", o.keys.sets().front(), kNoKeys);
+  for (const CaseFlag& flag : kCaseFlags) {
+    if ((flag.commands & kModes) == 0) continue;
+    const CLI::Option* given = o.command->get_option_no_throw(flag.flag);
+    if (given != nullptr && given->count() > 0) {
+      throw InputError(flag.flag, given->as<std::string>(), kNoKeys);
+    }
+  }
+  const PlanetaryCase stage = read_planetary_file(o.case_file);
+  const PlanetaryModes modes = planetary_modes(planetary_model(stage.parameters));
+  const std::vector<StageModeRow> rows = stage_mode_rows(modes);
+  const std::string csv = csv_of(stage_modes_columns(), rows);
+  const std::string summary = stage_modes_summary_json(stage.name, modes);
+  AtomicFolder folder(o.out, o.overwrite, {o.case_file});
+  const std::filesystem::path dir = folder.temporary();
+  write_file_atomically((dir / "modes.csv").string(), csv);
+  write_file_atomically((dir / "summary.json").string(), summary);
+  folder.commit();
+  std::fputs(stage_modes_table(rows).c_str(), stdout);
+  std::cerr << "modes: wrote " << (std::filesystem::path(o.out) / "modes.csv").string() << "\n";
+}
+
 void write_modes(ModesOptions& o) {
   // Every refusal before any work: the folder, the options, the case.
   require_output_folder(o.out, o.overwrite, {o.case_file});
+  if (is_planetary_file(o.case_file)) {
+    write_planetary_modes(o);
+    return;
+  }
   require_harmonics(o.harmonics);
   std::optional<double> max_speed;
   if (!o.max_speed.empty()) {
@@ -257,19 +324,23 @@ void register_modes_commands(CLI::App& app) {
       "motor and a load with [shafts] kind = \"elastic\". Writes modes.csv (frequencies, "
       "strain-energy shares, mass-normalised shapes), campbell.csv (where the mesh harmonics "
       "cross them), mode_shapes.csv, summary.json and the figures modes_energy.png, "
-      "mode_shapes.png and campbell.png");
-  modes->add_option("case", o->case_file, "case file: a pair file or a run file")->required();
+      "mode_shapes.png and campbell.png. On a planetary file ([planetary], docs/planetary.md): the "
+      "linear stage's modes, modes.csv (frequency, multiplicity, type, strain-energy shares by "
+      "spring kind) and summary.json, the table printed");
+  modes->add_option("case", o->case_file, "case file: a pair file, a run file or a planetary file")
+      ->required();
   modes
       ->add_option("--out", o->out,
                    "output folder: new or empty (else --overwrite), in a folder that exists")
       ->required();
-  modes->add_option("--harmonics", o->harmonics,
-                    "mesh harmonics k f_m on the Campbell diagram, 1 to " +
-                        std::to_string(kMostHarmonics) + " (default 3)");
+  o->harmonics_option = modes->add_option("--harmonics", o->harmonics,
+                                          "mesh harmonics k f_m on the Campbell diagram, 1 to " +
+                                              std::to_string(kMostHarmonics) + " (default 3)");
   modes->add_option("--max-speed", o->max_speed,
                     "the Campbell diagram's largest pinion speed with its unit (\"6000 rpm\"); "
                     "default: 1.1 times where the first harmonic meets the highest mode");
   o->keys.add_flags(modes, kModes);
+  o->command = modes;
   o->keys.add_set(modes, "KEY=VALUE for any key of the case schema (repeatable), after the flags");
   modes->add_flag("--overwrite", o->overwrite, "replace a non-empty --out folder whole");
   modes->add_flag("--no-plots", o->no_plots, "write the CSV and JSON files only");

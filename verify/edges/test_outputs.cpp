@@ -19,6 +19,7 @@
 
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/dynamics/train.hpp"
+#include "gearimpact/io/modes_files.hpp"
 #include "gearimpact/io/results.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "run_command.hpp"
@@ -320,7 +321,8 @@ TEST_CASE("docs/usage.md lists exactly the columns of each output's table") {
       {"planar-series", documented(gearimpact::planar_series_columns())},
       {"planar-samples", documented(gearimpact::planar_sample_columns())},
       {"train-series", documented(gearimpact::train_series_columns(train))},
-      {"rattle-impacts", documented(gearimpact::rattle_impact_columns())}};
+      {"rattle-impacts", documented(gearimpact::rattle_impact_columns())},
+      {"planetary-modes", documented(gearimpact::stage_modes_columns())}};
   for (const auto& [name, expected] : tables) {
     INFO("docs/usage.md's block \"<!-- columns " << name << " -->\" should read:\n" << expected);
     CHECK(doc_table(doc, name) == expected);

@@ -40,6 +40,7 @@
 #include "gearimpact/io/mat_image.hpp"
 #include "gearimpact/io/modes_files.hpp"
 #include "gearimpact/io/npz_image.hpp"
+#include "gearimpact/io/planetary_file.hpp"
 #include "gearimpact/io/results.hpp"
 #include "gearimpact/io/sha256.hpp"
 #include "gearimpact/io/signal_files.hpp"

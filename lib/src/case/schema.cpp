@@ -175,6 +175,7 @@ std::string schema_markdown() {
   for (const Field& field : case_schema()) rows.push_back(&field);
   for (const Field& field : fault_schema()) rows.push_back(&field);
   for (const Field& field : train_schema()) rows.push_back(&field);
+  for (const Field& field : planetary_schema()) rows.push_back(&field);
   for (const Field* row : rows) {
     const Field& field = *row;
     std::string help(field.help);

@@ -369,9 +369,12 @@ const ChoiceName& selected(const Field& field, const SimulationCase& c) {
   throw std::logic_error("a schema condition without its choice row");
 }
 
+}  // namespace
+
 // The SI values of a list row, from a TOML array of quantity strings; each
 // element checked against the row, errors naming section.key[i].
-std::vector<double> read_list(const Reader& reader, const Field& field, const toml::value& value) {
+std::vector<double> case_reader::read_list(const Reader& reader, const Field& field,
+                                           const toml::value& value) {
   const std::string name = field.name();
   const bool numbers = field.kind == FieldKind::number_list;
   const std::string expected =
@@ -418,8 +421,6 @@ std::vector<double> read_list(const Reader& reader, const Field& field, const to
   }
   return values;
 }
-
-}  // namespace
 
 // The value of a non-text row as get() returns it; checked against the row.
 double case_reader::read_value(const Reader& reader, const Field& field, const toml::value& value) {

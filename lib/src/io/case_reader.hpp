@@ -76,6 +76,10 @@ class Reader {
 // What a missing required key needs, for the message.
 std::string expected_of(const Field& field);
 
+// The SI values of a list row from a TOML array; each element checked against
+// the row, errors naming section.key[i].
+std::vector<double> read_list(const Reader& reader, const Field& field, const toml::value& value);
+
 // The value of a non-text row as get() returns it; checked against the row.
 double read_value(const Reader& reader, const Field& field, const toml::value& value);
 

@@ -140,4 +140,77 @@ std::string modes_summary_json(const ModesSummary& s, const Modes& modes,
   return j.dump(2) + "\n";
 }
 
+std::vector<StageModeRow> stage_mode_rows(const PlanetaryModes& modes) {
+  std::vector<StageModeRow> rows;
+  const std::vector<StageSpringTerm>& springs = modes.model.springs;
+  for (std::size_t i = 0; i < modes.modes.size(); ++i) {
+    const StageMode& mode = modes.modes[i];
+    StageModeRow row;
+    row.number = static_cast<int>(i) + 1;
+    row.frequency_hz = mode.frequency_hz;
+    row.multiplicity = static_cast<int>(mode.multiplicity);
+    row.rigid = mode.rigid;
+    row.type = mode.type;
+    for (std::size_t s = 0; s < springs.size() && s < mode.energy_share.size(); ++s) {
+      for (std::size_t k = 0; k < kStageSpringKindCount; ++k) {
+        if (springs[s].kind == kStageSpringKinds[k]) row.share[k] += mode.energy_share[s];
+      }
+    }
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+Columns<StageModeRow> stage_modes_columns() {
+  Columns<StageModeRow> columns;
+  columns.push_back(member_column<StageModeRow>("mode", &StageModeRow::number));
+  columns.push_back(member_column<StageModeRow>("frequency_hz", "Hz", &StageModeRow::frequency_hz));
+  columns.push_back(member_column<StageModeRow>("multiplicity", &StageModeRow::multiplicity));
+  columns.push_back(
+      boolean_column<StageModeRow>("rigid", [](const StageModeRow& r) { return r.rigid; }));
+  columns.push_back(text_column<StageModeRow>(
+      "type", [](const StageModeRow& r) { return std::string(stage_mode_type_name(r.type)); }));
+  for (std::size_t k = 0; k < kStageSpringKindCount; ++k) {
+    columns.push_back(computed_column<StageModeRow>(
+        "share_" + std::string(stage_spring_name(kStageSpringKinds[k])), "",
+        [k](const StageModeRow& r) { return r.share[k]; }));
+  }
+  return columns;
+}
+
+std::string stage_modes_summary_json(const std::string& case_name, const PlanetaryModes& modes) {
+  const PlanetaryModel& m = modes.model;
+  Json j;
+  j["case"] = case_name;
+  j["planets"] = m.parameters.planet_angles_rad.size();
+  Json angles = Json::array();
+  for (double psi : m.parameters.planet_angles_rad) angles.push_back(psi);
+  j["planet_angles_rad"] = angles;
+  j["dofs"] = m.mass.rows();
+  std::size_t rigid = 0;
+  for (const StageMode& mode : modes.modes) rigid += mode.rigid ? 1 : 0;
+  j["rigid_modes"] = rigid;
+  // One entry per distinct frequency (a cluster's modes are consecutive, its multiplicity >= 1).
+  Json distinct = Json::array();
+  for (std::size_t i = 0; i < modes.modes.size(); i += modes.modes[i].multiplicity) {
+    const StageMode& mode = modes.modes[i];
+    Json entry;
+    entry["frequency_hz"] = mode.frequency_hz;
+    entry["multiplicity"] = mode.multiplicity;
+    // The cluster's types, each once ("translational"; "planet+rotational" where two
+    // types meet at one frequency).
+    std::string types;
+    for (std::size_t k = i; k < i + mode.multiplicity && k < modes.modes.size(); ++k) {
+      const std::string type(stage_mode_type_name(modes.modes[k].type));
+      if (("+" + types + "+").find("+" + type + "+") == std::string::npos) {
+        types += (types.empty() ? "" : "+") + type;
+      }
+    }
+    entry["type"] = types;
+    distinct.push_back(entry);
+  }
+  j["frequencies"] = distinct;
+  return j.dump(2) + "\n";
+}
+
 }  // namespace gearimpact

@@ -128,6 +128,14 @@ const std::vector<Field>& fault_schema();
 const std::vector<Field>& train_schema();
 // The row of "section.key" of train_schema() ("bodies.inertia"), or nullptr.
 const Field* find_train_field(std::string_view section_dot_key);
+// The rows of a planetary file's [planetary] section (docs/planetary.md): the
+// linear stage's PlanetaryParameters, SI as every row. As train_schema's, not
+// a SimulationCase's: get() gives NaN and set() is never called; the
+// planetary file's reader (io/planetary_file.hpp) reads them. Not part of
+// case_schema().
+const std::vector<Field>& planetary_schema();
+// The row of `key` (without "planetary.") of planetary_schema(), or nullptr.
+const Field* find_planetary_field(std::string_view key);
 
 // Whether a fault row applies to the fault of `one_fault` (its first): its
 // condition holds, and so does the condition of the row it depends on.
@@ -252,7 +260,7 @@ void validate_fields(const SimulationCase& c);
 std::string case_key(const SimulationCase& c);
 
 // The schema as a Markdown table: key, unit, default, allowed range, help; the rows of
-// case_schema(), fault_schema() and train_schema().
+// case_schema(), fault_schema(), train_schema() and planetary_schema().
 std::string schema_markdown();
 
 }  // namespace gearimpact

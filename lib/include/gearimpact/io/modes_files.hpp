@@ -2,11 +2,14 @@
 // the linearised model, where the mesh harmonics cross them, and a summary.
 #pragma once
 
+#include <cstddef>
+#include <iterator>
 #include <string>
 #include <vector>
 
 #include "gearimpact/io/columns.hpp"
 #include "gearimpact/modes/modes.hpp"
+#include "gearimpact/modes/planetary.hpp"
 
 namespace gearimpact {
 
@@ -52,5 +55,32 @@ struct ModesSummary {
 };
 std::string modes_summary_json(const ModesSummary& summary, const Modes& modes,
                                const std::vector<CampbellCrossing>& crossings);
+
+// ---- A planetary stage's modes (docs/planetary.md) ----
+
+// The kinds of spring a planetary stage's strain energy is shared among, in
+// the order of modes.csv's share columns (the per-planet kinds summed over
+// the planets).
+inline constexpr StageSpring kStageSpringKinds[] = {
+    StageSpring::sun_mesh,    StageSpring::ring_mesh,    StageSpring::planet_bearing,
+    StageSpring::sun_support, StageSpring::ring_support, StageSpring::carrier_support};
+inline constexpr std::size_t kStageSpringKindCount = std::size(kStageSpringKinds);
+
+// A row of a planetary modes.csv: one mode, numbered from 1.
+struct StageModeRow {
+  int number = 0;
+  double frequency_hz = 0.0;
+  int multiplicity = 1;
+  bool rigid = false;
+  StageModeType type = StageModeType::mixed;
+  double share[kStageSpringKindCount] = {};  // by kind, summing to 1 (0 for a rigid mode)
+};
+std::vector<StageModeRow> stage_mode_rows(const PlanetaryModes& modes);
+// mode, frequency_hz, multiplicity, rigid, type, share_sun_mesh, share_ring_mesh,
+// share_planet_bearing, share_sun_support, share_ring_support, share_carrier_support.
+Columns<StageModeRow> stage_modes_columns();
+// The case's name, the planets and their angles, the dofs, the rigid modes and each
+// distinct frequency with its multiplicity and type.
+std::string stage_modes_summary_json(const std::string& case_name, const PlanetaryModes& modes);
 
 }  // namespace gearimpact
