@@ -425,29 +425,10 @@ class Run {
                                       pays ? std::string() : pair_change(old));
   }
 
-  // Which pairs entered or left between `old` and mode_, for messages: pair k
-  // is the one at X = X_pitch + k t0 (+ Rb1 theta1) of its line.
+  // Which pairs entered or left between `old` and mode_, for messages.
   std::string pair_change(const Mode& old) const {
-    const Mode& now = mode_;
-    if (old.region != now.region) {
-      return now.region == Region::free ? "the contact ends" : "a contact begins";
-    }
-    std::string text;
-    const auto describe = [&](const Mode& m, int j, const char* what) {
-      if (!text.empty()) text += " and ";
-      text += "pair k = " + std::to_string(m.k_first + j) + " of " +
-              (m.region == Region::n1 ? "N1" : "N2") + " " + what +
-              " at X = " + format_number(system_.pair_position(m, y_, j)) + " m";
-    };
-    for (int j = 0; j < old.count; ++j) {
-      const int k = old.k_first + j;
-      if (k < now.k_first || k >= now.k_first + now.count) describe(old, j, "leaves");
-    }
-    for (int j = 0; j < now.count; ++j) {
-      const int k = now.k_first + j;
-      if (k < old.k_first || k >= old.k_first + old.count) describe(now, j, "enters");
-    }
-    return text.empty() ? "the loaded pairs change" : text;
+    return pair_change_text(old, mode_,
+                            [&](const Mode& m, int j) { return system_.pair_position(m, y_, j); });
   }
 
   void end_contact(double t, const Mode& old) {
