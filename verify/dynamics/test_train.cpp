@@ -65,6 +65,30 @@ void require_same_run(const SimulationResult& two_gear, const TrainResult& train
   CHECK(t.mesh_damping_loss_j == s.mesh_damping_loss_j);
   CHECK(t.stored_energy_jumps_j == s.stored_energy_jumps_j);
   CHECK(t.mesh_damper == s.mesh_damper);
+  CHECK(t.kinetic_energy_initial_j == s.kinetic_energy_initial_j);
+  CHECK(t.stored_energy_initial_j == s.stored_energy_initial_j);
+  CHECK(t.energy_max_j == s.energy_max_j);
+  // The impacts, booked by the same book: their counts, times and records.
+  CHECK(t.impacts_n1 == s.impacts_n1);
+  CHECK(t.impacts_n2 == s.impacts_n2);
+  CHECK(t.first_impact_s == s.first_impact_s);
+  CHECK(t.first_impact_speed_m_s == s.first_impact_speed_m_s);
+  CHECK(t.last_n1_impact_s == s.last_n1_impact_s);
+  CHECK(t.last_n2_impact_s == s.last_n2_impact_s);
+  REQUIRE(train.impacts.size() == 1);
+  REQUIRE(train.impacts[0].size() == two_gear.impacts.size());
+  CHECK(train.meshes[0].impacts == static_cast<int>(two_gear.impacts.size()));
+  for (std::size_t i = 0; i < two_gear.impacts.size(); ++i) {
+    const ImpactRecord& a = two_gear.impacts[i];
+    const ImpactRecord& b = train.impacts[0][i];
+    const bool same = a.line == b.line && a.start_s == b.start_s &&
+                      a.impact_speed_m_s == b.impact_speed_m_s && a.restitution == b.restitution &&
+                      a.end_s == b.end_s && a.end_speed_m_s == b.end_speed_m_s;
+    if (!same) {
+      INFO("impact " << i << " at t = " << a.start_s);
+      REQUIRE(same);
+    }
+  }
   CHECK(train.meshes[0].max_penetration_m == s.max_penetration_m);
   // The one mesh's own losses are the train's, and the two-gear run's, to the bit; its bodies'
   // final speeds the two gears'.

@@ -21,6 +21,7 @@
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
+#include "ledger.hpp"
 #include "run_parts.hpp"
 #include "stall.hpp"
 #include "step_methods.hpp"
@@ -259,6 +260,7 @@ class TrainSystem {
   using MemoryType = TrainMemory;
   using EventsType = TrainEvents;
   using ForcesType = TrainForces;
+  static constexpr std::size_t kLedgerStart = kLedger;
 
   TrainSystem(const GearTrain& train, const std::vector<const StiffnessTable*>& tables)
       : train_(train), body_dof_(degrees_of_freedom(train)) {
@@ -435,7 +437,7 @@ class TrainSystem {
     return e;
   }
   // The meshes' stored energy by term, and the shafts' springs' 1/2 k twist^2.
-  ElasticEnergy mesh_energy(const TrainState& y, const TrainMode& m) const {
+  ElasticEnergy stored_energy(const TrainState& y, const TrainMode& m) const {
     ElasticEnergy u = meshes_[0].stored_energy(motion(0, y), m.mesh[0]);
     for (std::size_t k = 1; k < meshes_.size(); ++k) {
       const ElasticEnergy e = meshes_[k].stored_energy(motion(k, y), m.mesh[k]);
@@ -443,7 +445,7 @@ class TrainSystem {
     }
     return u;
   }
-  double spring_energy(const TrainState& y) const {
+  double shaft_energy_j(const TrainState& y) const {
     double e = 0.0;
     for (const Spring& s : springs_) {
       const double twist = y[theta_of(s.a)] - y[theta_of(s.b)];
@@ -563,26 +565,9 @@ class TrainRun {
       : train_(train),
         control_(control),
         system_(train, tables),
-        stall_(train.integrator.step_s, least_smoothing(train)) {
-    result_.meshes.resize(train.meshes.size());
-    for (const TrainMesh& m : train.meshes)
-      half_base_pitch_m_.push_back(0.5 * base_pitch(m.pair.gears));
-    for (std::size_t i = 0; i < train.bodies.size(); ++i) {
-      const int d = system_.dof_of(static_cast<int>(i));
-      y_[theta_of(d)] = train.bodies[i].theta_rad;
-      y_[w_of(d)] = train.bodies[i].w_rad_per_s;
-    }
-    system_.impose_driver(0.0, y_);
-    for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
-      const MeshMotion q = system_.motion(k, y_);
-      mode_.mesh[k] = system_.mesh(k).classify_geometry(q);
-      if (mode_.mesh[k].region != Region::free) begin_contact(k);
-      system_.mesh(k).classify_forces(q, damping_.mesh[k], mode_.mesh[k]);
-    }
-    const double kinetic = system_.kinetic_energy(y_);
-    energy0_ = kinetic + stored_energy(y_, mode_);
-    result_.summary.kinetic_energy_initial_j = kinetic;
-    result_.summary.stored_energy_initial_j = energy0_ - kinetic;
+        stall_(train.integrator.step_s, least_smoothing(train)),
+        impacts_(train.meshes.size()),
+        ledger_(make_ledger()) {
     book_keep(0.0);
     if (records()) record(0.0);
   }
@@ -645,33 +630,28 @@ class TrainRun {
       const MeshLine& mesh = system_.mesh(k);
       const Mode old = mode_.mesh[k];
       const Mode next = mesh.classify_geometry(system_.motion(k, y_));
+      if (old.region != Region::free && next.region != old.region) {
+        impacts_[k].end(old.region, t, -line_sign(old.region) * mesh.s_rate(system_.motion(k, y_)));
+      }
       const double before = mesh.stored_energy(system_.motion(k, y_), old).total_j();
       mode_.mesh[k] = next;
       const double after = mesh.stored_energy(system_.motion(k, y_), next).total_j();
       if (mesh.lagrangian()) pay_stored_energy_jump(k, t, old, before, after);
       // The motion after the jump is paid, as Run's contact begins from it.
       const MeshMotion q = system_.motion(k, y_);
-      if (old.region != next.region && next.region != Region::free) begin_contact(k);
+      if (old.region != next.region && next.region != Region::free) begin_contact(k, t);
       Mode& now = mode_.mesh[k];
       mesh.classify_forces(q, damping_.mesh[k], now);
       if (next.region == old.region) now = mesh.carry_pair_signs(q, old, now, damping_.mesh[k]);
       // Stored energy appears or vanishes with a pair entering or leaving
       // under load: work of the time-varying stiffness.
-      if (!mesh.lagrangian()) jump_work_ += after - before;
+      if (!mesh.lagrangian()) ledger_.mode_changed(before, after);
     }
   }
 
   void book_keep(double t) {
     SimulationSummary& s = result_.summary;
-    const ElasticEnergy u = system_.mesh_energy(y_, mode_);
-    for (std::size_t i = 0; i < kTermCount; ++i) {
-      s.energy_max_j[i] = std::max(s.energy_max_j[i], u.j[i]);
-    }
-    const double energy = system_.kinetic_energy(y_) + (u.total_j() + system_.spring_energy(y_));
-    book_ledger_residual(
-        energy, energy0_, y_[kLedger + kWork],
-        {y_[kLedger + kDamping], y_[kLedger + kFriction], y_[kLedger + kMeshDamping]},
-        y_[kLedger + kParametric], jump_work_, s);
+    ledger_.observe(y_, mode_, s);
     for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
       const Mode& m = mode_.mesh[k];
       if (m.region == Region::free) continue;
@@ -717,10 +697,7 @@ class TrainRun {
     s.integrator = integrator;
     s.end_time_s = t;
     s.step_s = train_.integrator.step_s;
-    const double stored = stored_energy(y_, mode_);
-    book_ledger_totals(system_.kinetic_energy(y_), stored, y_[kLedger + kWork],
-                       y_[kLedger + kDamping], y_[kLedger + kFriction], y_[kLedger + kMeshDamping],
-                       y_[kLedger + kParametric], jump_work_, s);
+    ledger_.finish(y_, mode_, s);
     s.mesh_damper = std::any_of(train_.meshes.begin(), train_.meshes.end(), [](const TrainMesh& m) {
       return m.pair.model.mesh_damping_ratio > 0.0;
     });
@@ -736,6 +713,8 @@ class TrainRun {
       mesh.damping_loss_j = y_[mesh_loss_of(k, kMeshDampingLoss)];
       mesh.friction_loss_j = y_[mesh_loss_of(k, kMeshFrictionLoss)];
       mesh.mesh_damping_loss_j = y_[mesh_loss_of(k, kMeshDamperLoss)];
+      mesh.impacts = static_cast<int>(impacts_[k].records().size());
+      result_.impacts.push_back(impacts_[k].take());
     }
     result_.bodies.resize(train_.bodies.size());
     for (std::size_t i = 0; i < train_.bodies.size(); ++i) {
@@ -754,8 +733,26 @@ class TrainRun {
     return least;
   }
 
-  double stored_energy(const TrainState& y, const TrainMode& m) const {
-    return system_.mesh_energy(y, m).total_j() + system_.spring_energy(y);
+  // The start: the bodies' initial state at t = 0, a driver's closed form on
+  // its body, each mesh classified (a contact there counts as an impact).
+  EnergyLedgerOf<TrainSystem> make_ledger() {
+    result_.meshes.resize(train_.meshes.size());
+    for (const TrainMesh& m : train_.meshes) {
+      half_base_pitch_m_.push_back(0.5 * base_pitch(m.pair.gears));
+    }
+    for (std::size_t i = 0; i < train_.bodies.size(); ++i) {
+      const int d = system_.dof_of(static_cast<int>(i));
+      y_[theta_of(d)] = train_.bodies[i].theta_rad;
+      y_[w_of(d)] = train_.bodies[i].w_rad_per_s;
+    }
+    system_.impose_driver(0.0, y_);
+    for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
+      const MeshMotion q = system_.motion(k, y_);
+      mode_.mesh[k] = system_.mesh(k).classify_geometry(q);
+      if (mode_.mesh[k].region != Region::free) begin_contact(k, 0.0);
+      system_.mesh(k).classify_forces(q, damping_.mesh[k], mode_.mesh[k]);
+    }
+    return EnergyLedgerOf<TrainSystem>(system_, y_, mode_, result_.summary);
   }
 
   // The Lagrangian mesh force of mesh k: its stored energy jumps by
@@ -786,12 +783,13 @@ class TrainRun {
     y_[w_of(a)] = pinion_speed_after_jump(jump, j, w, where(t, result_.summary.steps), change);
   }
 
-  // A contact of mesh k begins at y_: its damping from the approach speed.
-  void begin_contact(std::size_t k) {
+  // A contact of mesh k begins at (t, y_): its damping from the approach speed, an impact booked.
+  void begin_contact(std::size_t k, double t) {
     const MeshLine::Onset onset =
         system_.mesh(k).damping_at_onset(system_.motion(k, y_), mode_.mesh[k]);
     damping_.mesh[k] = onset.damping;
-    ++result_.meshes[k].impacts;
+    impacts_[k].begin(mode_.mesh[k].region, t, onset.impact_speed_m_s, onset.restitution,
+                      result_.summary);
   }
 
   const GearTrain& train_;
@@ -804,8 +802,10 @@ class TrainRun {
   TrainMode mode_;
   TrainMemory damping_;
   TrainResult result_;
-  double energy0_ = 0.0;
-  double jump_work_ = 0.0;
+  // Each mesh's contacts (their counts and first and last times the train's summary's).
+  std::vector<ImpactBook> impacts_;
+  // Last: its construction sets the start state above (make_ledger).
+  EnergyLedgerOf<TrainSystem> ledger_;
   // Under the Lagrangian mesh force: the sum of |dU| of the jumps paid.
   double stored_energy_jumps_ = 0.0;
 };
