@@ -89,17 +89,11 @@ class Run {
   // signs again, and keeps them per stage while one of them changed. Returns
   // whether the mode's friction signs changed without an event.
   bool check_progress(double t_from, double t_to, bool event) {
-    bool changed = false;
-    if (!event && mode_.slip_per_stage) {
-      const std::array<double, kMaxPairs> slip = mode_.slip;
-      system_.classify_forces(y_, damping_, mode_);
-      mode_.slip_per_stage = slip != mode_.slip;
-      changed = true;
-    }
+    bool changed = classify_stage_signs(event, mode_,
+                                        [&](Mode& m) { system_.classify_forces(y_, damping_, m); });
     if (stall_.after_step(event, t_from, t_to,
                           [&] { return where(t_from, result_.summary.steps); })) {
-      changed = changed || !mode_.slip_per_stage;
-      mode_.slip_per_stage = true;
+      changed = take_stage_signs(mode_) || changed;
     }
     return changed;
   }

@@ -604,18 +604,17 @@ class TrainRun {
   bool check_progress(double t_from, double t_to, bool event) {
     bool changed = false;
     for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
-      Mode& m = mode_.mesh[k];
-      if (event || !m.slip_per_stage) continue;
-      const std::array<double, kMaxPairs> slip = m.slip;
-      system_.mesh(k).classify_forces(system_.motion(k, y_), damping_.mesh[k], m);
-      m.slip_per_stage = slip != m.slip;
-      changed = true;
+      changed = classify_stage_signs(event, mode_.mesh[k],
+                                     [&](Mode& m) {
+                                       system_.mesh(k).classify_forces(system_.motion(k, y_),
+                                                                       damping_.mesh[k], m);
+                                     }) ||
+                changed;
     }
     if (stall_.after_step(event, t_from, t_to,
                           [&] { return where(t_from, result_.summary.steps); })) {
       for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
-        changed = changed || !mode_.mesh[k].slip_per_stage;
-        mode_.mesh[k].slip_per_stage = true;
+        changed = take_stage_signs(mode_.mesh[k]) || changed;
       }
     }
     return changed;
