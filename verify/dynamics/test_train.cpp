@@ -655,6 +655,7 @@ TEST_CASE("a train's bad input is refused naming its field") {
                          InputError);
   }
   SUBCASE("two kinematic drivers on one rigid shaft") {
+    t.bodies[2].w_rad_per_s = 10.0;
     TrainBody disc{"disc", 1e-3, {}, t.bodies[2].theta_rad, t.bodies[2].w_rad_per_s};
     disc.torque.kind = Torque::Kind::prescribed_speed;
     disc.torque.mean_speed_rad_per_s = 10.0;
@@ -674,6 +675,12 @@ TEST_CASE("a train's bad input is refused naming its field") {
   SUBCASE("more steps than kMostSteps over the end time") {
     t.integrator.end_time_s = t.integrator.step_s * (static_cast<double>(kMostSteps) + 1e3);
     CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("integrator.end_time"), InputError);
+  }
+  SUBCASE("a driven body's initial speed other than its driver's") {
+    t.bodies[0].torque.kind = Torque::Kind::prescribed_speed;
+    t.bodies[0].torque.mean_speed_rad_per_s = 10.0;
+    t.bodies[0].w_rad_per_s = 9.0;
+    CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("bodies.pinion.w"), InputError);
   }
   SUBCASE("a drag's parameter, by the [torque2] row's range, under the body's name") {
     t.bodies[2].torque.kind = Torque::Kind::drag;

@@ -238,6 +238,16 @@ void validate_train(const GearTrain& train) {
     const TrainBody& b = train.bodies[i];
     const std::string field = "bodies." + b.name + ".torque";
     validate_torque(field, b.torque, train.meshes.front().pair);
+    if (kinematic_driver(b.torque)) {
+      // The driver sets the body's speed at t = 0; a different w would be ignored.
+      const double w0 = driver_speed_at(b.torque, 0.0);
+      if (std::fabs(b.w_rad_per_s - w0) > 1e-9 * std::fabs(w0)) {
+        throw InputError("bodies." + b.name + ".w", format_number(b.w_rad_per_s) + " rad/s",
+                         "the driver's speed at t = 0, " + format_number(w0) +
+                             " rad/s (to 1e-9 of it), as its torque.kind = \"prescribed-speed\" "
+                             "prescribes it");
+      }
+    }
     if (!kinematic_driver(b.torque) && b.torque.kind != Torque::Kind::speed_controlled) continue;
     // One body's motion is prescribed, or followed by a controller, on a shaft.
     int& first = driven[static_cast<std::size_t>(dof[i])];
