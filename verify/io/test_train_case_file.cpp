@@ -232,6 +232,21 @@ TEST_CASE("a refused key of each kind is named under its body's or mesh's name, 
     CHECK(p.where == line_of(text, "body_b = \"whel\""));
     CHECK(p.message.find("\"pinion\", \"idler\", \"wheel\", \"brake-disc\"") != std::string::npos);
   }
+  SUBCASE("a key of a body's torque table, by its [torque2] row, under the body") {
+    const std::string text =
+        edited("torque = \"-60 N*m\"", "torque = {kind = \"drag\", drag_constant = \"-5 N*m\"}");
+    const Problem p = first_problem(text);
+    CHECK(p.field == "bodies.wheel.torque.drag_constant");
+    CHECK(p.where == line_of(text, "drag_constant = \"-5"));
+    CHECK(p.message.find("bodies.wheel.torque.drag_constant") == 0);
+  }
+  SUBCASE("a driven body whose w is not its driver's") {
+    const std::string text = edited(
+        "torque = \"20 N*m\"", "torque = {kind = \"prescribed-speed\", mean_speed = \"90 rad/s\"}");
+    const Problem p = first_problem(text);
+    CHECK(p.field == "bodies.pinion.w");
+    CHECK(p.fix == "bodies.pinion.w = \"90 rad/s\"");
+  }
   SUBCASE("an unknown key of a body") {
     const std::string text = edited("torque = \"20 N*m\"", "torke = \"20 N*m\"");
     const Problem p = first_problem(text);
@@ -333,4 +348,24 @@ TEST_CASE("a --set naming no body, no key or a value out of range is refused by 
   CHECK(refused("bodies.idler.inertia=-1 kg*m^2").field == "bodies.idler.inertia");
   // A value the row takes but the pair refuses is the reader's: named under the mesh.
   CHECK(refused("meshes.idler-wheel.gears.teeth2=5").field.rfind("meshes.idler-wheel.", 0) == 0);
+}
+
+TEST_CASE("a body's torque table reads by the rows of [torque1], a drag's by those of [torque2]") {
+  // The example's pinion driven at its speed, the wheel braked by a drag: each body's Torque is
+  // the one the rows give the two-gear case's sections for the same keys.
+  std::string text = edited("torque = \"20 N*m\"\n",
+                            "torque = {kind = \"prescribed-speed\", mean_speed = \"100 rad/s\"}\n");
+  text = text.replace(text.find("torque = \"-60 N*m\""), 18,
+                      "torque = {kind = \"drag\", drag_constant = \"5 N*m\", drag_viscous = "
+                      "\"1e-3 N*m*s/rad\"}");
+  const GearTrain t = parse_train(text, "driven.toml");
+  const Torque& driver = t.bodies[0].torque;
+  CHECK(driver.kind == Torque::Kind::prescribed_speed);
+  CHECK(driver.mean_speed_rad_per_s == 100.0);
+  const Torque& drag = t.bodies[2].torque;
+  CHECK(drag.kind == Torque::Kind::drag);
+  CHECK(drag.drag_constant_n_m == 5.0);
+  CHECK(drag.drag_viscous_n_m_s == 1e-3);
+  CHECK(t.bodies[1].torque.kind == Torque::Kind::constant);
+  CHECK(t.bodies[1].torque.constant_n_m == 0.0);
 }

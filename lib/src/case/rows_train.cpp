@@ -55,7 +55,9 @@ std::vector<Field> make_train_schema() {
            "J, the body's moment of inertia about its axis");
   quantity("bodies", "torque", Dimension::torque, "N*m", {}, "0",
            "a constant torque on the body, positive in the sense the body turns when the train "
-           "runs forward (a load is negative)");
+           "runs forward (a load is negative); or a table of [torque1]'s keys (with kind = "
+           "\"drag\", [torque2]'s): a driver, a speed controller, an induction motor, a drag, a "
+           "torque of time");
   quantity("bodies", "theta", Dimension::angle, "deg", {}, "0", "the body's initial angle");
   quantity("bodies", "w", Dimension::angular_velocity, "rad/s", {}, "0",
            "the body's initial speed, positive forward");

@@ -44,17 +44,17 @@ double end_of_mode(Stepper& stepper, const System& system, const typename System
 // error's size, at most largest_step_s, each ending at the first event of the
 // mode on its dense output. Returns the time reached, the run's end.
 template <typename R>
-double run_adaptive_loop(R& run, const SimulationCase& c, double largest_step_s) {
+double run_adaptive_loop(R& run, const IntegratorSettings& integrator, double largest_step_s) {
   namespace odeint = boost::numeric::odeint;
   using System = typename R::System;
   using State = typename System::StateType;
   const System& system = run.system();
-  const double h = c.integrator.step_s;
+  const double h = integrator.step_s;
   const double t0 = run.start_time();
-  const double end = t0 + c.integrator.end_time_s;
-  const double output_step = h * c.integrator.output_every;
+  const double end = t0 + integrator.end_time_s;
+  const double output_step = h * integrator.output_every;
   const auto outputs =
-      static_cast<long long>(std::floor(c.integrator.end_time_s / output_step * (1.0 + 1e-12)));
+      static_cast<long long>(std::floor(integrator.end_time_s / output_step * (1.0 + 1e-12)));
   long long next_output = 1;
   typename System::ModeType mode = run.mode();
   typename System::MemoryType damping = run.damping();
@@ -63,7 +63,7 @@ double run_adaptive_loop(R& run, const SimulationCase& c, double largest_step_s)
     system.rhs(tt, x, mode, damping, dxdt);
     ++evaluations;
   };
-  const double rtol = c.integrator.adaptive_relative_tolerance;
+  const double rtol = integrator.adaptive_relative_tolerance;
   // Angles are of order 1 rad and penetrations of 1e-6 m on a 0.02 m radius:
   // an absolute tolerance 1e-4 of the relative one keeps delta resolved.
   auto stepper = odeint::make_dense_output(rtol * 1e-4, rtol, largest_step_s,
@@ -134,6 +134,12 @@ double run_adaptive_loop(R& run, const SimulationCase& c, double largest_step_s)
   }
   run.rhs_evaluations() = evaluations;
   return t;
+}
+
+// The run of a two-gear case: its [integrator].
+template <typename R>
+double run_adaptive_loop(R& run, const SimulationCase& c, double largest_step_s) {
+  return run_adaptive_loop(run, c.integrator, largest_step_s);
 }
 
 }  // namespace gearimpact

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <utility>
@@ -39,30 +40,45 @@ double reflected_inertia_kg_m2(const SimulationCase& c) {
   return j1 + j2 * ratio * ratio;
 }
 
-SpeedControllerGains speed_controller_gains(const SimulationCase& c) {
+SpeedControllerGains speed_controller_gains(const Torque& drive, double inertia_kg_m2) {
   SpeedControllerGains g;
-  g.inertia_kg_m2 = reflected_inertia_kg_m2(c);
-  const double wc = c.torque1.controller_bandwidth_rad_per_s;
-  g.proportional_n_m_s = 2.0 * c.torque1.controller_damping_ratio * wc * g.inertia_kg_m2;
+  g.inertia_kg_m2 = inertia_kg_m2;
+  const double wc = drive.controller_bandwidth_rad_per_s;
+  g.proportional_n_m_s = 2.0 * drive.controller_damping_ratio * wc * g.inertia_kg_m2;
   g.integral_n_m = wc * wc * g.inertia_kg_m2;
   return g;
 }
 
+SpeedControllerGains speed_controller_gains(const SimulationCase& c) {
+  return speed_controller_gains(c.torque1, reflected_inertia_kg_m2(c));
+}
+
 SpeedController::SpeedController(const SimulationCase& c, double theta0_rad)
-    : c_(c),
-      gains_(speed_controller_gains(c)),
+    : SpeedController(
+          c.torque1, reflected_inertia_kg_m2(c), theta0_rad,
+          {{&c.torque2, base_radius(c.gears, Gear::one) / base_radius(c.gears, Gear::two)}}) {}
+
+SpeedController::SpeedController(const Torque& drive, double inertia_kg_m2, double theta0_rad,
+                                 std::vector<ReflectedLoad> loads)
+    : drive_(&drive),
+      gains_(speed_controller_gains(drive, inertia_kg_m2)),
       theta0_(theta0_rad),
-      ratio_(base_radius(c.gears, Gear::one) / base_radius(c.gears, Gear::two)) {}
+      loads_(std::move(loads)) {}
 
 double SpeedController::torque_n_m(double t_s, double theta_rad, double w_rad_per_s) const {
-  const DriverMotion ref = driver_motion(c_.torque1, theta0_, t_s);
-  const Torque& load = c_.torque2;
-  // The load on the wheel's side at the reference, reflected to the pinion's
-  // shaft by the power balance T1 w1 + T2 w2 = 0, w2 = w1 Rb1 / Rb2.
-  const double t2 = load.kind == Torque::Kind::drag
-                        ? drag_torque_n_m(load, ref.speed_rad_per_s * ratio_)
-                        : torque_at(load, t_s);
-  const double feed_forward = -t2 * ratio_ + gains_.inertia_kg_m2 * ref.acceleration_rad_per_s2;
+  const DriverMotion ref = driver_motion(*drive_, theta0_, t_s);
+  // Each load at the reference (a drag at its body's speed there), reflected
+  // to the driven shaft by the power balance: T_i w_i = T_i ratio_i w.
+  double load = 0.0;
+  for (std::size_t i = 0; i < loads_.size(); ++i) {
+    const Torque& t = *loads_[i].torque;
+    const double ratio = loads_[i].ratio;
+    const double value = t.kind == Torque::Kind::drag
+                             ? drag_torque_n_m(t, ref.speed_rad_per_s * ratio)
+                             : torque_at(t, t_s);
+    load = i == 0 ? value * ratio : load + value * ratio;
+  }
+  const double feed_forward = -load + gains_.inertia_kg_m2 * ref.acceleration_rad_per_s2;
   return feed_forward + gains_.proportional_n_m_s * (ref.speed_rad_per_s - w_rad_per_s) +
          gains_.integral_n_m * (ref.theta_rad - theta_rad);
 }

@@ -141,11 +141,16 @@ double mean_mesh_stiffness_n_per_m(const SimulationCase& c, const MeshTables& ta
 double case_mesh_damping_n_s_per_m(const SimulationCase& c, const StiffnessTable& table,
                                    const MeshTables* teeth) {
   if (c.model.mesh_damping_ratio <= 0.0) return 0.0;
+  return case_mesh_damping_n_s_per_m(c, table, teeth, effective_mass_kg(c.gears));
+}
+
+double case_mesh_damping_n_s_per_m(const SimulationCase& c, const StiffnessTable& table,
+                                   const MeshTables* teeth, double mass_kg) {
+  if (c.model.mesh_damping_ratio <= 0.0) return 0.0;
   // With faults the damper sees the mean over the true period.
   const double mean_k =
       teeth ? mean_mesh_stiffness_n_per_m(c, *teeth) : mean_mesh_stiffness_n_per_m(c, table);
-  return viscous_mesh_damping_n_s_per_m(c.model.mesh_damping_ratio, mean_k,
-                                        effective_mass_kg(c.gears));
+  return viscous_mesh_damping_n_s_per_m(c.model.mesh_damping_ratio, mean_k, mass_kg);
 }
 
 double natural_frequency_rad_per_s(const SimulationCase& c, const StiffnessTable& table) {

@@ -23,6 +23,9 @@ constexpr double kSmallestImpactSpeed_m_s = 1e-9;
 }  // namespace
 
 MeshLine::MeshLine(const SimulationCase& c, const StiffnessTable& table)
+    : MeshLine(c, table, 0.0) {}
+
+MeshLine::MeshLine(const SimulationCase& c, const StiffnessTable& table, double mass_kg)
     : table_(&table), model_(&c.model), gears_(&c.gears), layout_(c.gears, c.model.coast_phase) {
   const GearPair& g = c.gears;
   rb1_ = base_radius(g, Gear::one);
@@ -50,8 +53,9 @@ MeshLine::MeshLine(const SimulationCase& c, const StiffnessTable& table)
   teeth_ = std::move(teeth.tables);
   gaps_ = std::move(teeth.gaps);
   kinks_ = std::move(teeth.kinks_m);
-  // The damper's m_e is that of the pair's discs (mesh.hpp).
-  mesh_damping_ = case_mesh_damping_n_s_per_m(c, table, teeth_.get());
+  // The damper's m_e is that of the pair's discs (mesh.hpp), or of the train's bodies.
+  mesh_damping_ = mass_kg > 0.0 ? case_mesh_damping_n_s_per_m(c, table, teeth_.get(), mass_kg)
+                                : case_mesh_damping_n_s_per_m(c, table, teeth_.get());
 }
 
 double varying_friction_coefficient(const ModelOptions& model, double face_width_m,

@@ -89,17 +89,11 @@ class Run {
   // signs again, and keeps them per stage while one of them changed. Returns
   // whether the mode's friction signs changed without an event.
   bool check_progress(double t_from, double t_to, bool event) {
-    bool changed = false;
-    if (!event && mode_.slip_per_stage) {
-      const std::array<double, kMaxPairs> slip = mode_.slip;
-      system_.classify_forces(y_, damping_, mode_);
-      mode_.slip_per_stage = slip != mode_.slip;
-      changed = true;
-    }
+    bool changed = classify_stage_signs(event, mode_,
+                                        [&](Mode& m) { system_.classify_forces(y_, damping_, m); });
     if (stall_.after_step(event, t_from, t_to,
                           [&] { return where(t_from, result_.summary.steps); })) {
-      changed = changed || !mode_.slip_per_stage;
-      mode_.slip_per_stage = true;
+      changed = take_stage_signs(mode_) || changed;
     }
     return changed;
   }
@@ -425,29 +419,10 @@ class Run {
                                       pays ? std::string() : pair_change(old));
   }
 
-  // Which pairs entered or left between `old` and mode_, for messages: pair k
-  // is the one at X = X_pitch + k t0 (+ Rb1 theta1) of its line.
+  // Which pairs entered or left between `old` and mode_, for messages.
   std::string pair_change(const Mode& old) const {
-    const Mode& now = mode_;
-    if (old.region != now.region) {
-      return now.region == Region::free ? "the contact ends" : "a contact begins";
-    }
-    std::string text;
-    const auto describe = [&](const Mode& m, int j, const char* what) {
-      if (!text.empty()) text += " and ";
-      text += "pair k = " + std::to_string(m.k_first + j) + " of " +
-              (m.region == Region::n1 ? "N1" : "N2") + " " + what +
-              " at X = " + format_number(system_.pair_position(m, y_, j)) + " m";
-    };
-    for (int j = 0; j < old.count; ++j) {
-      const int k = old.k_first + j;
-      if (k < now.k_first || k >= now.k_first + now.count) describe(old, j, "leaves");
-    }
-    for (int j = 0; j < now.count; ++j) {
-      const int k = now.k_first + j;
-      if (k < old.k_first || k >= old.k_first + old.count) describe(now, j, "enters");
-    }
-    return text.empty() ? "the loaded pairs change" : text;
+    return pair_change_text(old, mode_,
+                            [&](const Mode& m, int j) { return system_.pair_position(m, y_, j); });
   }
 
   void end_contact(double t, const Mode& old) {

@@ -116,6 +116,32 @@ inline double pinion_speed_after_jump(double jump_j, double j1_kg_m2, double w1_
                        w1_rad_per_s);
 }
 
+// Which pairs entered or left a mesh between the modes `old` and `now`, for
+// messages: pair k is the one at X = X_pitch + k t0 (+ Rb1 theta1) of its
+// line; position(m, j) gives the X of the j-th loaded pair of mode m.
+template <typename ModeT, typename Position>
+std::string pair_change_text(const ModeT& old, const ModeT& now, Position position) {
+  if (old.region != now.region) {
+    return now.region == Region::free ? "the contact ends" : "a contact begins";
+  }
+  std::string text;
+  const auto describe = [&](const ModeT& m, int j, const char* what) {
+    if (!text.empty()) text += " and ";
+    text += "pair k = " + std::to_string(m.k_first + j) + " of " +
+            (m.region == Region::n1 ? "N1" : "N2") + " " + what +
+            " at X = " + format_number(position(m, j)) + " m";
+  };
+  for (int j = 0; j < old.count; ++j) {
+    const int k = old.k_first + j;
+    if (k < now.k_first || k >= now.k_first + now.count) describe(old, j, "leaves");
+  }
+  for (int j = 0; j < now.count; ++j) {
+    const int k = now.k_first + j;
+    if (k < old.k_first || k >= old.k_first + old.count) describe(now, j, "enters");
+  }
+  return text.empty() ? "the loaded pairs change" : text;
+}
+
 // The ledger's totals at the end of a run: the final energies, the drives'
 // work, the losses (Hertzian damping, friction, mesh damper) and the
 // parametric work, the jumps' share of it named on its own.

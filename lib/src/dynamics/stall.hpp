@@ -56,4 +56,26 @@ class StallWatch {
   int stalled_ = 0;
 };
 
+// After a step: a mesh's mode taken with each stage's own friction signs
+// classifies its signs again at the step's end (`classify`, which writes them
+// into the mode) and keeps them per stage while one changed; not after an
+// event, which classified the mode anew. Returns whether it classified.
+template <typename ModeT, typename Classify>
+bool classify_stage_signs(bool event, ModeT& mode, Classify classify) {
+  if (event || !mode.slip_per_stage) return false;
+  const auto slip = mode.slip;
+  classify(mode);
+  mode.slip_per_stage = slip != mode.slip;
+  return true;
+}
+
+// The sticking fallback (StallWatch::after_step true): the mode takes each
+// stage's own friction signs. Returns whether that changed it.
+template <typename ModeT>
+bool take_stage_signs(ModeT& mode) {
+  const bool changed = !mode.slip_per_stage;
+  mode.slip_per_stage = true;
+  return changed;
+}
+
 }  // namespace gearimpact

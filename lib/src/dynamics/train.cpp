@@ -8,14 +8,20 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <memory>
 #include <numeric>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "adaptive_loop.hpp"
 #include "gearimpact/case/schema.hpp"
+#include "gearimpact/dynamics/drive.hpp"
+#include "gearimpact/dynamics/mesh.hpp"
+#include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
+#include "ledger.hpp"
 #include "run_parts.hpp"
 #include "stall.hpp"
 #include "step_methods.hpp"
@@ -57,11 +63,13 @@ struct TrainForces {
 };
 using TrainEvents = std::array<double, kMaxTrainMeshes * kMaxMeshEvents>;
 
-bool state_dependent(const Torque& t) {
-  return t.kind == Torque::Kind::prescribed_speed || t.kind == Torque::Kind::drag ||
-         t.kind == Torque::Kind::speed_controlled || t.kind == Torque::Kind::induction_motor;
+bool kinematic_driver(const Torque& t) {
+  return t.kind == Torque::Kind::prescribed_speed;
 }
 
+const char* name_of_torque(const Torque& t) {
+  return t.kind == Torque::Kind::prescribed_speed ? "prescribed-speed" : "speed-controlled";
+}
 // Which of the train's degrees of freedom each body is: bodies joined by
 // rigid shafts are one, numbered in the order of their first body.
 std::vector<int> degrees_of_freedom(const GearTrain& train) {
@@ -92,17 +100,34 @@ void check_finite_field(const std::string& field, double value) {
   if (!std::isfinite(value)) throw InputError(field, value, "a finite value");
 }
 
-void validate_torque(const std::string& field, const Torque& t) {
-  if (state_dependent(t)) {
-    throw InputError(field + ".kind", "a driver, drag, controller or motor",
-                     "constant, sinusoidal, harmonic, profile or user: a train's torques are "
-                     "functions of time");
+// A body's torque, checked by the rows of [torque1] (a drag by those of
+// [torque2], where the two-gear case takes it), its problems named under the
+// body: bodies.NAME.torque.KEY.
+void validate_torque(const std::string& field, const Torque& t, const SimulationCase& pair) {
+  SimulationCase probe = pair;
+  const bool drag = t.kind == Torque::Kind::drag;
+  (drag ? probe.torque2 : probe.torque1) = t;
+  if (!drag) probe.torque2 = Torque{};
+  const std::string section = drag ? "torque2." : "torque1.";
+  std::vector<Problem> problems;
+  try {
+    validate_fields(probe);
+  } catch (const InputError& e) {
+    for (const Problem& p : e.problems()) {
+      if (p.field.rfind(section, 0) == 0) {
+        problems.push_back(p.renamed(field + "." + p.field.substr(section.size()), p.value));
+      }
+    }
   }
-  check_finite_field(field + ".constant", t.constant_n_m);
-  check_finite_field(field + ".mean", t.mean_n_m);
-  check_finite_field(field + ".amplitude", t.amplitude_n_m);
-  check_finite_field(field + ".angular_frequency", t.angular_frequency_rad_per_s);
-  check_finite_field(field + ".phase", t.phase_rad);
+  if (!problems.empty()) throw InputError(std::move(problems));
+  if (t.kind == Torque::Kind::constant || t.kind == Torque::Kind::sinusoidal ||
+      t.kind == Torque::Kind::harmonic) {
+    check_finite_field(field + ".constant", t.constant_n_m);
+    check_finite_field(field + ".mean", t.mean_n_m);
+    check_finite_field(field + ".amplitude", t.amplitude_n_m);
+    check_finite_field(field + ".angular_frequency", t.angular_frequency_rad_per_s);
+    check_finite_field(field + ".phase", t.phase_rad);
+  }
 }
 
 void validate_body_index(const std::string& field, int body, std::size_t bodies) {
@@ -130,7 +155,6 @@ void validate_train(const GearTrain& train) {
       throw InputError("bodies." + b.name + ".inertia", b.inertia_kg_m2,
                        "a finite value > 0 in kg m^2");
     }
-    validate_torque("bodies." + b.name + ".torque", b.torque);
     check_finite_field("bodies." + b.name + ".theta", b.theta_rad);
     check_finite_field("bodies." + b.name + ".w", b.w_rad_per_s);
   }
@@ -203,29 +227,39 @@ void validate_train(const GearTrain& train) {
       }
       throw InputError(std::move(problems));
     }
-    const ModelOptions& model = mesh.pair.model;
     if (mesh.pair.bearings.kind != BearingKind::rigid) {
       throw InputError(prefix + "bearings.kind", "elastic",
                        "rigid: a train's bodies turn about fixed axes");
     }
-    if (model.mesh_force == MeshForce::lagrangian &&
-        model.mesh_stiffness != MeshStiffnessMode::constant) {
-      throw InputError(prefix + "model.mesh_force", "lagrangian",
-                       "newtonian: a train does not yet pay the stored energy's jumps");
-    }
-    if (model.mesh_damping_ratio > 0.0) {
-      throw InputError(prefix + "model.mesh_damping_ratio", model.mesh_damping_ratio,
-                       "0 in a train: the damper's m_e would be that of the pair's discs, not "
-                       "of the train's bodies");
-    }
   }
-  const IntegratorSettings& in = train.integrator;
-  if (in.kind == IntegratorKind::adaptive) {
-    throw InputError("integrator.kind", "adaptive",
-                     "\"rk4\" or \"dopri5\": a train runs by a fixed-step method of the run "
-                     "loop, the event-cut RK4 or Dormand-Prince 5(4)");
+  // The bodies' torques, once the meshes' pairs (whose rows check them) are valid.
+  std::vector<int> driven(n, -1);
+  for (std::size_t i = 0; i < n; ++i) {
+    const TrainBody& b = train.bodies[i];
+    const std::string field = "bodies." + b.name + ".torque";
+    validate_torque(field, b.torque, train.meshes.front().pair);
+    if (kinematic_driver(b.torque)) {
+      // The driver sets the body's speed at t = 0; a different w would be ignored.
+      const double w0 = driver_speed_at(b.torque, 0.0);
+      if (std::fabs(b.w_rad_per_s - w0) > 1e-9 * std::fabs(w0)) {
+        throw InputError("bodies." + b.name + ".w", format_number(b.w_rad_per_s) + " rad/s",
+                         "the driver's speed at t = 0, " + format_number(w0) +
+                             " rad/s (to 1e-9 of it), as its torque.kind = \"prescribed-speed\" "
+                             "prescribes it");
+      }
+    }
+    if (!kinematic_driver(b.torque) && b.torque.kind != Torque::Kind::speed_controlled) continue;
+    // One body's motion is prescribed, or followed by a controller, on a shaft.
+    int& first = driven[static_cast<std::size_t>(dof[i])];
+    if (first >= 0) {
+      throw InputError(field + ".kind", name_of_torque(b.torque),
+                       "a torque that is neither a driver nor a speed controller: " +
+                           train.bodies[static_cast<std::size_t>(first)].name +
+                           ", on one rigid shaft with it, is driven already");
+    }
+    first = static_cast<int>(i);
   }
-  validate(in);
+  validate(train.integrator);
 }
 
 // The train as a system of the run loop (the concept of step_methods.hpp).
@@ -236,6 +270,7 @@ class TrainSystem {
   using MemoryType = TrainMemory;
   using EventsType = TrainEvents;
   using ForcesType = TrainForces;
+  static constexpr std::size_t kLedgerStart = kLedger;
 
   TrainSystem(const GearTrain& train, const std::vector<const StiffnessTable*>& tables)
       : train_(train), body_dof_(degrees_of_freedom(train)) {
@@ -250,35 +285,69 @@ class TrainSystem {
     }
     for (std::size_t k = 0; k < train.meshes.size(); ++k) {
       const TrainMesh& m = train.meshes[k];
-      meshes_.emplace_back(m.pair, *tables[k]);
       mesh_a_.push_back(dof_of(m.body_a));
       mesh_b_.push_back(dof_of(m.body_b));
+      // The viscous damper's m_e: that of the two bodies as they turn in the
+      // train (a rigid shaft's bodies together), 1/m_e = Rb_a^2/J_a + Rb_b^2/J_b.
+      const double mass = effective_mass_kg(
+          base_radius(m.pair.gears, Gear::one), inertia_[static_cast<std::size_t>(mesh_a_[k])],
+          base_radius(m.pair.gears, Gear::two), inertia_[static_cast<std::size_t>(mesh_b_[k])]);
+      meshes_.emplace_back(m.pair, *tables[k], mass);
     }
     for (const TrainShaft& s : train.shafts) {
       if (s.kind != TrainShaft::Kind::torsional) continue;
       springs_.push_back({dof_of(s.body_a), dof_of(s.body_b), s.stiffness_n_m_per_rad});
     }
+    driver_.fill(-1);
+    for (std::size_t i = 0; i < train.bodies.size(); ++i) {
+      const TrainBody& b = train.bodies[i];
+      const auto d = static_cast<std::size_t>(body_dof_[i]);
+      if (kinematic_driver(b.torque)) {
+        driver_[d] = static_cast<int>(i);
+        driven_ = true;
+      } else if (b.torque.kind == Torque::Kind::speed_controlled) {
+        controllers_.push_back({static_cast<int>(i), controller_of(static_cast<int>(i))});
+      }
+    }
   }
 
   int dofs() const { return dofs_; }
   int dof_of(int body) const { return body_dof_[static_cast<std::size_t>(body)]; }
+  double inertia_of_dof(int dof) const { return inertia_[static_cast<std::size_t>(dof)]; }
   std::size_t mesh_count() const { return meshes_.size(); }
   const MeshLine& mesh(std::size_t k) const { return meshes_[k]; }
+  int mesh_a(std::size_t k) const { return mesh_a_[k]; }
   MeshMotion motion(std::size_t k, const TrainState& y) const {
     const int a = mesh_a_[k];
     const int b = mesh_b_[k];
     return {y[theta_of(a)], y[theta_of(b)], y[w_of(a)], y[w_of(b)]};
   }
+  // Whether a kinematic driver holds the degree of freedom's motion.
+  bool driven(int dof) const { return driver_[static_cast<std::size_t>(dof)] >= 0; }
 
-  void impose_driver(double, TrainState&) const {}
+  // A prescribed-speed body's closed form (driver_motion from its initial
+  // angle) written into y at time t, as the two-gear system writes its pinion's.
+  void impose_driver(double t, TrainState& y) const {
+    if (!driven_) return;
+    for (int d = 0; d < dofs_; ++d) {
+      const int body = driver_[static_cast<std::size_t>(d)];
+      if (body < 0) continue;
+      const TrainBody& b = train_.bodies[static_cast<std::size_t>(body)];
+      const DriverMotion m = driver_motion(b.torque, b.theta_rad, t);
+      y[theta_of(d)] = m.theta_rad;
+      y[w_of(d)] = m.speed_rad_per_s;
+    }
+  }
 
-  // The applied torque on each degree of freedom: its bodies' summed.
-  std::array<double, kBodies> torques(double t) const {
+  // The applied torque on each degree of freedom at (t, y): its bodies'
+  // summed, a drag's and a motor's from its speed, a controller's from its
+  // angle and speed; a kinematic driver's is set by rhs against the rest.
+  std::array<double, kBodies> torques(double t, const TrainState& y) const {
     std::array<double, kBodies> torque{};
     std::array<bool, kBodies> seen{};
     for (std::size_t i = 0; i < train_.bodies.size(); ++i) {
       const auto d = static_cast<std::size_t>(body_dof_[i]);
-      const double value = torque_at(train_.bodies[i].torque, t);
+      const double value = body_torque(static_cast<int>(i), t, y);
       torque[d] = seen[d] ? torque[d] + value : value;
       seen[d] = true;
     }
@@ -287,9 +356,16 @@ class TrainSystem {
 
   // (1)-(3), (43)-(45) of each mesh on its two bodies, the shafts' springs,
   // J w' = the sum of the moments on each body; the ledger's powers.
-  void rhs(double t, const TrainState& y, const TrainMode& m, const TrainMemory& d,
+  void rhs(double t, const TrainState& y_in, const TrainMode& m, const TrainMemory& d,
            TrainState& dydt, TrainForces* forces = nullptr) const {
-    const std::array<double, kBodies> torque = torques(t);
+    // A driven body is where its closed form puts it, whatever the stage state.
+    TrainState driven_state;
+    if (driven_) {
+      driven_state = y_in;
+      impose_driver(t, driven_state);
+    }
+    const TrainState& y = driven_ ? driven_state : y_in;
+    std::array<double, kBodies> torque = torques(t, y);
     std::array<double, kBodies> moment = torque;
     MeshPowers powers;
     // Each mesh's own powers: what it added to the train's, which keep their order of addition.
@@ -309,6 +385,21 @@ class TrainSystem {
       const double torque_on_b = s.stiffness * (y[theta_of(s.a)] - y[theta_of(s.b)]);
       moment[static_cast<std::size_t>(s.a)] -= torque_on_b;
       moment[static_cast<std::size_t>(s.b)] += torque_on_b;
+    }
+    if (driven_) {
+      for (int i = 0; i < dofs_; ++i) {
+        const auto u = static_cast<std::size_t>(i);
+        if (driver_[u] < 0) continue;
+        // The driver applies the torque that gives its body the prescribed
+        // acceleration against the rest: J w' = T_driver + moment. Its work is
+        // the ledger's torque work.
+        const TrainBody& b = train_.bodies[static_cast<std::size_t>(driver_[u])];
+        const double driver =
+            inertia_[u] * driver_motion(b.torque, b.theta_rad, t).acceleration_rad_per_s2 -
+            moment[u];
+        moment[u] += driver;
+        torque[u] += driver;
+      }
     }
     dydt = TrainState{};
     double work = torque[0] * y[w_of(0)];
@@ -356,7 +447,7 @@ class TrainSystem {
     return e;
   }
   // The meshes' stored energy by term, and the shafts' springs' 1/2 k twist^2.
-  ElasticEnergy mesh_energy(const TrainState& y, const TrainMode& m) const {
+  ElasticEnergy stored_energy(const TrainState& y, const TrainMode& m) const {
     ElasticEnergy u = meshes_[0].stored_energy(motion(0, y), m.mesh[0]);
     for (std::size_t k = 1; k < meshes_.size(); ++k) {
       const ElasticEnergy e = meshes_[k].stored_energy(motion(k, y), m.mesh[k]);
@@ -364,7 +455,7 @@ class TrainSystem {
     }
     return u;
   }
-  double spring_energy(const TrainState& y) const {
+  double shaft_energy_j(const TrainState& y) const {
     double e = 0.0;
     for (const Spring& s : springs_) {
       const double twist = y[theta_of(s.a)] - y[theta_of(s.b)];
@@ -379,6 +470,86 @@ class TrainSystem {
     int b;
     double stiffness;
   };
+  // Body i's applied torque at (t, y); 0 for a kinematic driver (rhs sets it).
+  double body_torque(int i, double t, const TrainState& y) const {
+    const Torque& torque = train_.bodies[static_cast<std::size_t>(i)].torque;
+    const std::size_t d = w_of(dof_of(i));
+    switch (torque.kind) {
+      case Torque::Kind::prescribed_speed:
+        return 0.0;
+      case Torque::Kind::drag:
+        return drag_torque_n_m(torque, y[d]);
+      case Torque::Kind::induction_motor:
+        return induction_motor_torque_n_m(torque, y[d]);
+      case Torque::Kind::speed_controlled:
+        for (const Controlled& c : controllers_) {
+          if (c.body == i) return c.controller->torque_n_m(t, y[theta_of(dof_of(i))], y[d]);
+        }
+        break;
+      default:
+        break;
+    }
+    return torque_at(torque, t);
+  }
+
+  // Each degree of freedom's speed per unit speed of `dof` when the train
+  // rolls without slip: across a mesh w_b = w_a Rb_a / Rb_b, across a
+  // torsional shaft the same; 0 where no mesh or shaft leads.
+  std::array<double, kBodies> kinematic_ratios(int dof) const {
+    std::array<double, kBodies> ratio{};
+    std::array<bool, kBodies> known{};
+    ratio[static_cast<std::size_t>(dof)] = 1.0;
+    known[static_cast<std::size_t>(dof)] = true;
+    for (bool grew = true; grew;) {
+      grew = false;
+      const auto join = [&](int from, int to, double factor) {
+        const auto f = static_cast<std::size_t>(from);
+        const auto u = static_cast<std::size_t>(to);
+        if (!known[f] || known[u]) return;
+        ratio[u] = ratio[f] * factor;
+        known[u] = true;
+        grew = true;
+      };
+      for (std::size_t k = 0; k < meshes_.size(); ++k) {
+        const double ra = meshes_[k].base_radius_a();
+        const double rb = meshes_[k].base_radius_b();
+        join(mesh_a_[k], mesh_b_[k], ra / rb);
+        join(mesh_b_[k], mesh_a_[k], rb / ra);
+      }
+      for (const Spring& s : springs_) {
+        join(s.a, s.b, 1.0);
+        join(s.b, s.a, 1.0);
+      }
+    }
+    return ratio;
+  }
+
+  // A speed controller on body i: the train's inertia reflected to its degree
+  // of freedom, sum J_d ratio_d^2 (its own first), against the other bodies'
+  // torques reflected by their ratios (drive.hpp).
+  std::shared_ptr<const SpeedController> controller_of(int i) const {
+    const int dof = dof_of(i);
+    const std::array<double, kBodies> ratio = kinematic_ratios(dof);
+    double inertia = inertia_[static_cast<std::size_t>(dof)];
+    for (int d = 0; d < dofs_; ++d) {
+      const auto u = static_cast<std::size_t>(d);
+      if (d != dof) inertia += inertia_[u] * ratio[u] * ratio[u];
+    }
+    std::vector<ReflectedLoad> loads;
+    for (std::size_t j = 0; j < train_.bodies.size(); ++j) {
+      const auto u = static_cast<std::size_t>(body_dof_[j]);
+      if (static_cast<int>(j) == i || ratio[u] == 0.0) continue;
+      loads.push_back({&train_.bodies[j].torque, ratio[u]});
+    }
+    const TrainBody& b = train_.bodies[static_cast<std::size_t>(i)];
+    return std::make_shared<const SpeedController>(b.torque, inertia, b.theta_rad,
+                                                   std::move(loads));
+  }
+
+  struct Controlled {
+    int body;
+    std::shared_ptr<const SpeedController> controller;
+  };
   const GearTrain& train_;
   std::vector<int> body_dof_;
   int dofs_ = 0;
@@ -386,6 +557,10 @@ class TrainSystem {
   std::vector<MeshLine> meshes_;
   std::vector<int> mesh_a_, mesh_b_;
   std::vector<Spring> springs_;
+  // Per degree of freedom, the body whose kinematic driver holds it (-1: none).
+  std::array<int, kBodies> driver_{};
+  bool driven_ = false;
+  std::vector<Controlled> controllers_;
 };
 
 // The train's run: the books of run_fixed_grid (step_methods.hpp), as the
@@ -400,25 +575,9 @@ class TrainRun {
       : train_(train),
         control_(control),
         system_(train, tables),
-        stall_(train.integrator.step_s, least_smoothing(train)) {
-    result_.meshes.resize(train.meshes.size());
-    for (const TrainMesh& m : train.meshes)
-      half_base_pitch_m_.push_back(0.5 * base_pitch(m.pair.gears));
-    for (std::size_t i = 0; i < train.bodies.size(); ++i) {
-      const int d = system_.dof_of(static_cast<int>(i));
-      y_[theta_of(d)] = train.bodies[i].theta_rad;
-      y_[w_of(d)] = train.bodies[i].w_rad_per_s;
-    }
-    for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
-      const MeshMotion q = system_.motion(k, y_);
-      mode_.mesh[k] = system_.mesh(k).classify_geometry(q);
-      if (mode_.mesh[k].region != Region::free) begin_contact(k);
-      system_.mesh(k).classify_forces(q, damping_.mesh[k], mode_.mesh[k]);
-    }
-    const double kinetic = system_.kinetic_energy(y_);
-    energy0_ = kinetic + stored_energy(y_, mode_);
-    result_.summary.kinetic_energy_initial_j = kinetic;
-    result_.summary.stored_energy_initial_j = energy0_ - kinetic;
+        stall_(train.integrator.step_s, least_smoothing(train)),
+        impacts_(train.meshes.size()),
+        ledger_(make_ledger()) {
     book_keep(0.0);
     if (records()) record(0.0);
   }
@@ -455,56 +614,53 @@ class TrainRun {
   bool check_progress(double t_from, double t_to, bool event) {
     bool changed = false;
     for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
-      Mode& m = mode_.mesh[k];
-      if (event || !m.slip_per_stage) continue;
-      const std::array<double, kMaxPairs> slip = m.slip;
-      system_.mesh(k).classify_forces(system_.motion(k, y_), damping_.mesh[k], m);
-      m.slip_per_stage = slip != m.slip;
-      changed = true;
+      changed = classify_stage_signs(event, mode_.mesh[k],
+                                     [&](Mode& m) {
+                                       system_.mesh(k).classify_forces(system_.motion(k, y_),
+                                                                       damping_.mesh[k], m);
+                                     }) ||
+                changed;
     }
     if (stall_.after_step(event, t_from, t_to,
                           [&] { return where(t_from, result_.summary.steps); })) {
       for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
-        changed = changed || !mode_.mesh[k].slip_per_stage;
-        mode_.mesh[k].slip_per_stage = true;
+        changed = take_stage_signs(mode_.mesh[k]) || changed;
       }
     }
     return changed;
   }
 
   // The mode changed at (t, y_): each mesh classified again as Run::change_mode
-  // classifies its one, impacts and the stored energy's jumps booked.
-  void change_mode(double) {
+  // classifies its one, impacts and the stored energy's jumps booked (under
+  // the Lagrangian mesh force paid by the mesh's body a).
+  void change_mode(double t) {
     ++result_.summary.events;
     for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
       const MeshLine& mesh = system_.mesh(k);
-      const MeshMotion q = system_.motion(k, y_);
       const Mode old = mode_.mesh[k];
-      const Mode next = mesh.classify_geometry(q);
-      const double before = mesh.stored_energy(q, old).total_j();
+      const Mode next = mesh.classify_geometry(system_.motion(k, y_));
+      if (old.region != Region::free && next.region != old.region) {
+        impacts_[k].end(old.region, t, -line_sign(old.region) * mesh.s_rate(system_.motion(k, y_)));
+      }
+      const double before = mesh.stored_energy(system_.motion(k, y_), old).total_j();
       mode_.mesh[k] = next;
-      const double after = mesh.stored_energy(q, next).total_j();
-      if (old.region != next.region && next.region != Region::free) begin_contact(k);
+      const double after = mesh.stored_energy(system_.motion(k, y_), next).total_j();
+      if (mesh.lagrangian()) pay_stored_energy_jump(k, t, old, before, after);
+      // The motion after the jump is paid, as Run's contact begins from it.
+      const MeshMotion q = system_.motion(k, y_);
+      if (old.region != next.region && next.region != Region::free) begin_contact(k, t);
       Mode& now = mode_.mesh[k];
       mesh.classify_forces(q, damping_.mesh[k], now);
       if (next.region == old.region) now = mesh.carry_pair_signs(q, old, now, damping_.mesh[k]);
       // Stored energy appears or vanishes with a pair entering or leaving
       // under load: work of the time-varying stiffness.
-      jump_work_ += after - before;
+      if (!mesh.lagrangian()) ledger_.mode_changed(before, after);
     }
   }
 
   void book_keep(double t) {
     SimulationSummary& s = result_.summary;
-    const ElasticEnergy u = system_.mesh_energy(y_, mode_);
-    for (std::size_t i = 0; i < kTermCount; ++i) {
-      s.energy_max_j[i] = std::max(s.energy_max_j[i], u.j[i]);
-    }
-    const double energy = system_.kinetic_energy(y_) + (u.total_j() + system_.spring_energy(y_));
-    book_ledger_residual(
-        energy, energy0_, y_[kLedger + kWork],
-        {y_[kLedger + kDamping], y_[kLedger + kFriction], y_[kLedger + kMeshDamping]},
-        y_[kLedger + kParametric], jump_work_, s);
+    ledger_.observe(y_, mode_, s);
     for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
       const Mode& m = mode_.mesh[k];
       if (m.region == Region::free) continue;
@@ -522,20 +678,21 @@ class TrainRun {
     }
   }
 
-  void record(double t) {
+  void record(double t) { record(t, y_, mode_); }
+  void record(double t, const TrainState& y, const TrainMode& mode) {
     TrainForces forces;
     TrainState dydt{};
-    system_.rhs(t, y_, mode_, damping_, dydt, &forces);
+    system_.rhs(t, y, mode, damping_, dydt, &forces);
     TrainRow row;
     row.t_s = t;
     for (std::size_t i = 0; i < train_.bodies.size(); ++i) {
       const int d = system_.dof_of(static_cast<int>(i));
-      row.theta_rad.push_back(y_[theta_of(d)]);
-      row.w_rad_per_s.push_back(y_[w_of(d)]);
+      row.theta_rad.push_back(y[theta_of(d)]);
+      row.w_rad_per_s.push_back(y[w_of(d)]);
     }
     for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
-      const Mode& m = mode_.mesh[k];
-      const MeshMotion q = system_.motion(k, y_);
+      const Mode& m = mode.mesh[k];
+      const MeshMotion q = system_.motion(k, y);
       const MeshLine& mesh = system_.mesh(k);
       row.meshes.push_back({mesh.s(q), m.region == Region::free ? 0.0 : mesh.delta(m.region, q),
                             static_cast<int>(m.region), m.count, forces.mesh[k].normal_force_n,
@@ -549,10 +706,15 @@ class TrainRun {
     s.integrator = integrator;
     s.end_time_s = t;
     s.step_s = train_.integrator.step_s;
-    const double stored = stored_energy(y_, mode_);
-    book_ledger_totals(system_.kinetic_energy(y_), stored, y_[kLedger + kWork],
-                       y_[kLedger + kDamping], y_[kLedger + kFriction], y_[kLedger + kMeshDamping],
-                       y_[kLedger + kParametric], jump_work_, s);
+    ledger_.finish(y_, mode_, s);
+    s.mesh_damper = std::any_of(train_.meshes.begin(), train_.meshes.end(), [](const TrainMesh& m) {
+      return m.pair.model.mesh_damping_ratio > 0.0;
+    });
+    bool lagrangian = false;
+    for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
+      lagrangian = lagrangian || system_.mesh(k).lagrangian();
+    }
+    if (lagrangian) s.stored_energy_jumps_j = stored_energy_jumps_;
     s.final_w1_rad_per_s = y_[w_of(system_.dof_of(0))];
     s.final_w2_rad_per_s = y_[w_of(system_.dof_of(1))];
     for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
@@ -560,6 +722,8 @@ class TrainRun {
       mesh.damping_loss_j = y_[mesh_loss_of(k, kMeshDampingLoss)];
       mesh.friction_loss_j = y_[mesh_loss_of(k, kMeshFrictionLoss)];
       mesh.mesh_damping_loss_j = y_[mesh_loss_of(k, kMeshDamperLoss)];
+      mesh.impacts = static_cast<int>(impacts_[k].records().size());
+      result_.impacts.push_back(impacts_[k].take());
     }
     result_.bodies.resize(train_.bodies.size());
     for (std::size_t i = 0; i < train_.bodies.size(); ++i) {
@@ -578,16 +742,63 @@ class TrainRun {
     return least;
   }
 
-  double stored_energy(const TrainState& y, const TrainMode& m) const {
-    return system_.mesh_energy(y, m).total_j() + system_.spring_energy(y);
+  // The start: the bodies' initial state at t = 0, a driver's closed form on
+  // its body, each mesh classified (a contact there counts as an impact).
+  EnergyLedgerOf<TrainSystem> make_ledger() {
+    result_.meshes.resize(train_.meshes.size());
+    for (const TrainMesh& m : train_.meshes) {
+      half_base_pitch_m_.push_back(0.5 * base_pitch(m.pair.gears));
+    }
+    for (std::size_t i = 0; i < train_.bodies.size(); ++i) {
+      const int d = system_.dof_of(static_cast<int>(i));
+      y_[theta_of(d)] = train_.bodies[i].theta_rad;
+      y_[w_of(d)] = train_.bodies[i].w_rad_per_s;
+    }
+    system_.impose_driver(0.0, y_);
+    for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
+      const MeshMotion q = system_.motion(k, y_);
+      mode_.mesh[k] = system_.mesh(k).classify_geometry(q);
+      if (mode_.mesh[k].region != Region::free) begin_contact(k, 0.0);
+      system_.mesh(k).classify_forces(q, damping_.mesh[k], mode_.mesh[k]);
+    }
+    return EnergyLedgerOf<TrainSystem>(system_, y_, mode_, result_.summary);
   }
 
-  // A contact of mesh k begins at y_: its damping from the approach speed.
-  void begin_contact(std::size_t k) {
+  // The Lagrangian mesh force of mesh k: its stored energy jumps by
+  // after - before where a pair enters or leaves, at fixed angles, and its
+  // body a (whose angle places the pairs) pays it as the two-gear pinion does
+  // (pinion_speed_after_jump); a kinematic driver pays it as work.
+  void pay_stored_energy_jump(std::size_t k, double t, const Mode& old, double before,
+                              double after) {
+    const double jump = after - before;
+    if (jump == 0.0) return;
+    stored_energy_jumps_ += std::fabs(jump);
+    const int a = system_.mesh_a(k);
+    if (system_.driven(a)) {
+      y_[kLedger + kWork] += jump;
+      return;
+    }
+    const double j = system_.inertia_of_dof(a);
+    const double w = y_[w_of(a)];
+    const bool pays = jump <= 0.5 * j * w * w;
+    std::string change;
+    if (!pays) {
+      const MeshMotion q = system_.motion(k, y_);
+      change = "mesh " + train_.meshes[k].name + ": " +
+               pair_change_text(old, mode_.mesh[k], [&](const Mode& m, int i) {
+                 return system_.mesh(k).pair_position(m, q, i);
+               });
+    }
+    y_[w_of(a)] = pinion_speed_after_jump(jump, j, w, where(t, result_.summary.steps), change);
+  }
+
+  // A contact of mesh k begins at (t, y_): its damping from the approach speed, an impact booked.
+  void begin_contact(std::size_t k, double t) {
     const MeshLine::Onset onset =
         system_.mesh(k).damping_at_onset(system_.motion(k, y_), mode_.mesh[k]);
     damping_.mesh[k] = onset.damping;
-    ++result_.meshes[k].impacts;
+    impacts_[k].begin(mode_.mesh[k].region, t, onset.impact_speed_m_s, onset.restitution,
+                      result_.summary);
   }
 
   const GearTrain& train_;
@@ -600,9 +811,42 @@ class TrainRun {
   TrainMode mode_;
   TrainMemory damping_;
   TrainResult result_;
-  double energy0_ = 0.0;
-  double jump_work_ = 0.0;
+  // Each mesh's contacts (their counts and first and last times the train's summary's).
+  std::vector<ImpactBook> impacts_;
+  // Last: its construction sets the start state above (make_ledger).
+  EnergyLedgerOf<TrainSystem> ledger_;
+  // Under the Lagrangian mesh force: the sum of |dU| of the jumps paid.
+  double stored_energy_jumps_ = 0.0;
 };
+
+// The adaptive integrator's largest step: that of the stiffest contact of
+// any mesh (largest_resolving_step_s of its pair, whose period scales with
+// sqrt(m_e)), with m_e of the mesh's two bodies as they turn in the train.
+double largest_resolving_step_s(const GearTrain& train) {
+  const std::vector<int> dof = degrees_of_freedom(train);
+  std::vector<double> inertia(train.bodies.size(), 0.0);
+  std::vector<bool> seen(train.bodies.size(), false);
+  for (std::size_t i = 0; i < train.bodies.size(); ++i) {
+    const auto d = static_cast<std::size_t>(dof[i]);
+    inertia[d] =
+        seen[d] ? inertia[d] + train.bodies[i].inertia_kg_m2 : train.bodies[i].inertia_kg_m2;
+    seen[d] = true;
+  }
+  double largest = 0.0;
+  for (std::size_t k = 0; k < train.meshes.size(); ++k) {
+    const TrainMesh& m = train.meshes[k];
+    const GearPair& g = m.pair.gears;
+    const double own = inverse_effective_mass_per_kg(
+        base_radius(g, Gear::one),
+        inertia[static_cast<std::size_t>(dof[static_cast<std::size_t>(m.body_a)])],
+        base_radius(g, Gear::two),
+        inertia[static_cast<std::size_t>(dof[static_cast<std::size_t>(m.body_b)])]);
+    const double step =
+        largest_resolving_step_s(m.pair) * std::sqrt(inverse_effective_mass_per_kg(g) / own);
+    largest = k == 0 ? step : std::min(largest, step);
+  }
+  return largest;
+}
 
 }  // namespace
 
@@ -642,6 +886,10 @@ TrainResult simulate_train(const GearTrain& train, const RunControl& control) {
     tables.push_back(m.table ? m.table.get() : built.back().get());
   }
   TrainRun run(train, tables, control);
+  if (train.integrator.kind == IntegratorKind::adaptive) {
+    return run.finish(run_adaptive_loop(run, train.integrator, largest_resolving_step_s(train)),
+                      "adaptive");
+  }
   FixedStepper<TrainSystem> stepper(run.system(), train.integrator.kind);
   const double t = run_fixed_grid(run, stepper, train.integrator);
   return run.finish(t, name_of(kIntegratorKinds, train.integrator.kind).c_str());

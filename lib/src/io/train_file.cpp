@@ -3,6 +3,7 @@
 // train of its pair.
 #include <algorithm>
 #include <array>
+#include <cstdio>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -202,6 +203,59 @@ Problem under_mesh(const Problem& problem, const std::string& prefix) {
   return p;
 }
 
+// A body's torque written as a table: the keys of [torque1] (with kind = "drag", of [torque2],
+// the loose gear's section that has it), read by those sections' rows beside a mesh's pair that
+// read without a problem (`pair`), the body's w standing for initial.w1 (a driver's speed at
+// t = 0 is checked against it). Problems are named under the body, `label`.torque.KEY (and
+// `label`.w).
+Torque read_body_torque(const Reader& reader, const toml::value& pair, const toml::value& torque,
+                        const toml::value* w, const std::string& label, std::string_view file_name,
+                        std::vector<Problem>& problems) {
+  const auto kind = torque.as_table().find("kind");
+  const bool drag = kind != torque.as_table().end() && kind->second.is_string() &&
+                    kind->second.as_string().str == "drag";
+  const std::string section = drag ? "torque2" : "torque1";
+  toml::value probe = pair;
+  probe.as_table()[section] = torque;
+  if (!drag && w != nullptr) probe.as_table()["initial"] = toml::table{{"w1", *w}};
+  try {
+    const SimulationCase c = read_case(reader, probe, file_name, CaseFileKind::pair);
+    return drag ? c.torque2 : c.torque1;
+  } catch (const CaseFileError& e) {
+    // The section's names in the texts, the body's: [torque1] -> bodies.NAME.torque.
+    const std::vector<std::pair<std::string, std::string>> names{
+        {"[" + section + "]", label + ".torque"},
+        {section + ".", label + ".torque."},
+        {"initial.w1", label + ".w"}};
+    const auto rename = [&](std::string text) {
+      for (const auto& [from, to] : names) {
+        for (std::size_t at = text.find(from); at != std::string::npos;
+             at = text.find(from, at + to.size())) {
+          text.replace(at, from.size(), to);
+        }
+      }
+      return text;
+    };
+    for (const Problem& problem : e.problems()) {
+      const bool own = problem.field.rfind(section + ".", 0) == 0 || problem.field == "initial.w1";
+      Problem p = problem;
+      if (!own) {
+        // A relation of the torque with the pair's keys: said under the body.
+        p.message = label + ": " + p.message;
+        problems.push_back(std::move(p));
+        continue;
+      }
+      p.field = rename(p.field);
+      p.message = rename(p.message);
+      p.allowed = rename(p.allowed);
+      p.fix = rename(p.fix);
+      p.reason = rename(p.reason);
+      problems.push_back(std::move(p));
+    }
+  }
+  return Torque{};
+}
+
 // ---- --set on a train file: KEY=VALUE written into the file's tables before they are read ----
 
 // The TOML value a case file gives `row` for the text of a --set, checked by the row (InputError
@@ -351,6 +405,16 @@ GearTrain read_train(const Reader& reader, const toml::value& root, std::string_
   }
 
   GearTrain train;
+  // The bodies whose torque is a table: index, table, w, label.
+  struct TorqueTable {
+    std::size_t body;
+    const toml::value* torque;
+    const toml::value* w;
+    std::string label;
+  };
+  std::vector<TorqueTable> torque_tables;
+  // The first mesh's pair that read without a problem: the sections a torque table is read beside.
+  std::optional<toml::value> read_pair;
   std::vector<std::string> body_names;
   std::vector<std::optional<double>> inertias;
   const std::vector<const toml::value*> bodies = array_of_tables(reader, root, "bodies", problems);
@@ -363,9 +427,8 @@ GearTrain read_train(const Reader& reader, const toml::value& root, std::string_
     body.name = name;
     inertias.push_back(table.quantity(label, "inertia"));
     if (const toml::value* torque = table.find("torque"); torque != nullptr && torque->is_table()) {
-      problems.push_back(reader.problem(label + ".torque", torque,
-                                        label + ".torque is a table; a train file reads a "
-                                                "constant torque, \"20 N*m\", only"));
+      // Read once a mesh's pair has read (below).
+      torque_tables.push_back({i, torque, table.find("w"), label});
     } else {
       body.torque.kind = Torque::Kind::constant;
       body.torque.constant_n_m = table.quantity(label, "torque").value_or(0.0);
@@ -437,6 +500,7 @@ GearTrain read_train(const Reader& reader, const toml::value& root, std::string_
       }
       continue;
     }
+    if (!read_pair) read_pair = pair;
     train.integrator = mesh.pair.integrator;
     // A body's inertia defaults to its gear's disc in the first mesh that names it.
     for (const auto& [body, gear] : {std::pair{mesh.body_a, Gear::one}, {mesh.body_b, Gear::two}}) {
@@ -445,6 +509,13 @@ GearTrain read_train(const Reader& reader, const toml::value& root, std::string_
       if (!inertias[b]) inertias[b] = moment_of_inertia(mesh.pair.gears, gear);
     }
     train.meshes.push_back(std::move(mesh));
+  }
+
+  if (read_pair) {
+    for (const TorqueTable& t : torque_tables) {
+      train.bodies[t.body].torque =
+          read_body_torque(reader, *read_pair, *t.torque, t.w, t.label, file_name, problems);
+    }
   }
 
   std::vector<const toml::value*> shafts;

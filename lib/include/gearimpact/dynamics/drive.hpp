@@ -46,19 +46,33 @@ SpeedControllerGains speed_controller_gains(const SimulationCase& c);
 // of the speed error is the angle error and needs no state of its own; the
 // feed-forward T_ff = -T2 Rb1/Rb2 + J_eq W_ref' holds the load (torque2 at t,
 // a drag at the reference's wheel speed) and the reference's acceleration.
+// A load the controller's feed-forward holds: a torque on a body turning at
+// `ratio` times the driven body's speed when the train rolls without slip.
+struct ReflectedLoad {
+  const Torque* torque = nullptr;
+  double ratio = 0.0;
+};
 class SpeedController {
  public:
   // theta0: the reference's angle at t = 0 (the driven body's initial angle).
   SpeedController(const SimulationCase& c, double theta0_rad);
+  // A train's: the controller `drive` on a body whose train has the
+  // reflected inertia J_eq, against `loads` (the train's other torques, each
+  // the caller keeps alive), whose sum T_i ratio_i the feed-forward holds.
+  SpeedController(const Torque& drive, double inertia_kg_m2, double theta0_rad,
+                  std::vector<ReflectedLoad> loads);
   double torque_n_m(double t_s, double theta_rad, double w_rad_per_s) const;
   const SpeedControllerGains& gains() const { return gains_; }
 
  private:
-  const SimulationCase& c_;
+  const Torque* drive_;
   SpeedControllerGains gains_;
   double theta0_ = 0.0;
-  double ratio_ = 0.0;  // Rb1 / Rb2
+  std::vector<ReflectedLoad> loads_;
 };
+
+// The gains of a speed controller `drive` on a train of reflected inertia J_eq.
+SpeedControllerGains speed_controller_gains(const Torque& drive, double inertia_kg_m2);
 
 // The drift check: over each whole revolution of the pinion from its start
 // that begins at or after drive.settle, the mean speed 2 pi / dt against the reference's mean over

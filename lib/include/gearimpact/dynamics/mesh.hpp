@@ -51,6 +51,10 @@ double viscous_mesh_damping_n_s_per_m(double damping_ratio, double mesh_stiffnes
 // else nullptr). The torsional and the planar system both take theirs here.
 double case_mesh_damping_n_s_per_m(const SimulationCase& c, const StiffnessTable& table,
                                    const MeshTables* teeth);
+// The same with the m_e of the mesh's two bodies as they turn in a train
+// (effective_mass_kg of their base radii and inertias), not of the pair's discs.
+double case_mesh_damping_n_s_per_m(const SimulationCase& c, const StiffnessTable& table,
+                                   const MeshTables* teeth, double mass_kg);
 
 // With modifications (docs/faults.md) a pair touches by its own penetration
 // dl - e_k(X), whose rate is dl' - de_k/dX dX/dt, dX/dt the line's sign times

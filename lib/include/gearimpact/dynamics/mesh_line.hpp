@@ -156,6 +156,10 @@ class MeshLine {
   // (MeshTables, built here with `table` as the healthy one), and a pair with
   // a missing tooth carries nothing.
   MeshLine(const SimulationCase& c, const StiffnessTable& table);
+  // A mesh whose viscous damper (model.mesh_damping_ratio) sees the m_e of the
+  // two bodies it joins, mass_kg > 0 (a train's), rather than that
+  // of the pair's discs.
+  MeshLine(const SimulationCase& c, const StiffnessTable& table, double mass_kg);
 
   double base_radius_a() const { return rb1_; }
   double base_radius_b() const { return rb2_; }

@@ -65,6 +65,8 @@ class GearSystem {
   using MemoryType = ContactMemory;
   using EventsType = EventValues;
   using ForcesType = ContactTotals;
+  // Where the ledger's integrals begin in the state (ledger.hpp).
+  static constexpr std::size_t kLedgerStart = kTorqueWork;
 
   // The table must cover the contact segment of c.gears; both must outlive the system.
   // With c.faults, each pair reads the table of its two teeth (MeshTables,
@@ -129,6 +131,8 @@ class GearSystem {
   ElasticEnergy stored_energy(const State& y, const Mode& m) const {
     return mesh_.stored_energy(motion(y), m);
   }
+  // The stored energy beside the mesh's: none (a train's shaft springs, ledger.hpp).
+  static double shaft_energy_j(const State&) { return 0.0; }
 
  private:
   // T1(t), T2(t). An RK4 step asks for its middle time twice and for its end

@@ -109,12 +109,16 @@ struct TrainBodySummary {
 
 struct TrainResult {
   std::vector<TrainRow> series;
-  // steps, rhs_evaluations, events, end_time_s, step_s and the energy ledger
-  // (docs/model.md, Energies) of the whole train; the shafts' springs count
-  // with the stored energy.
+  // steps, rhs_evaluations, events, end_time_s, step_s, the impacts' counts
+  // and times, and the energy ledger (docs/model.md, Energies) of the whole
+  // train; the shafts' springs count with the stored energy.
   SimulationSummary summary;
   std::vector<TrainMeshSummary> meshes;
   std::vector<TrainBodySummary> bodies;  // in the order of GearTrain::bodies
+  // Each mesh's contacts, as SimulationResult::impacts has the one mesh's;
+  // the summary's impacts_n1, impacts_n2, first and last impact times are
+  // those of all the meshes together.
+  std::vector<std::vector<ImpactRecord>> impacts;
 };
 
 // Validates the train (InputError naming the field: bodies.NAME.inertia,
