@@ -3,8 +3,6 @@
 // without a slot of SimulationCase, as train_schema's.
 #include <cmath>
 #include <cstddef>
-#include <limits>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -25,17 +23,7 @@ std::vector<Field> make_planetary_schema() {
   std::vector<Field> rows;
   const auto row = [&rows](std::string_view key, FieldKind kind, bool required,
                            std::string help) -> Field& {
-    Field f;
-    f.section = kSection;
-    f.key = key;
-    f.kind = kind;
-    f.required = required;
-    f.help = std::move(help);
-    f.get = [](const SimulationCase&) { return std::numeric_limits<double>::quiet_NaN(); };
-    f.set = [](SimulationCase&, double) {
-      throw std::logic_error("a planetary row has no slot in SimulationCase");
-    };
-    rows.push_back(std::move(f));
+    rows.push_back(slotless_field(kSection, key, kind, required, std::move(help)));
     return rows.back();
   };
   const auto quantity = [&row](std::string_view key, Dimension dimension, std::string_view unit,

@@ -1,7 +1,5 @@
 // The rows of a train file (train_schema): plain Fields without a slot of SimulationCase.
 #include <cstddef>
-#include <limits>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -20,17 +18,7 @@ std::vector<Field> make_train_schema() {
   std::vector<Field> rows;
   const auto row = [&rows](std::string_view section, std::string_view key, FieldKind kind,
                            bool required, std::string help) -> Field& {
-    Field f;
-    f.section = section;
-    f.key = key;
-    f.kind = kind;
-    f.required = required;
-    f.help = std::move(help);
-    f.get = [](const SimulationCase&) { return std::numeric_limits<double>::quiet_NaN(); };
-    f.set = [](SimulationCase&, double) {
-      throw std::logic_error("a train row has no slot in SimulationCase");
-    };
-    rows.push_back(std::move(f));
+    rows.push_back(slotless_field(section, key, kind, required, std::move(help)));
     return rows.back();
   };
   const auto quantity = [&row](std::string_view section, std::string_view key, Dimension dimension,

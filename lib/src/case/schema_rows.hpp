@@ -72,6 +72,24 @@ void bind(Field& field, Slot slot) {
   };
 }
 
+// A row of a file's section that SimulationCase has no slot for (a train's
+// bodies, meshes and shafts; a planetary stage's members): its own reader
+// reads it, so a get or set through the case is a programming error.
+inline Field slotless_field(std::string_view section, std::string_view key, FieldKind kind,
+                            bool required, std::string help) {
+  Field f;
+  f.section = section;
+  f.key = key;
+  f.kind = kind;
+  f.required = required;
+  f.help = std::move(help);
+  f.get = [](const SimulationCase&) { return std::numeric_limits<double>::quiet_NaN(); };
+  f.set = [section](SimulationCase&, double) {
+    throw std::logic_error("a row of [" + std::string(section) + "] has no slot in SimulationCase");
+  };
+  return f;
+}
+
 template <typename E>
 ChoiceName choice(std::string_view name, E value, std::string_view meaning, bool has_text = true) {
   return {name, static_cast<int>(value), meaning, has_text};
