@@ -301,7 +301,7 @@ void register_stiffness_commands(CLI::App& app) {
   iso->add_option("--helix-angle", iso_options->helix_angle_deg,
                   "helix angle, deg, in [0, 45] (default: the case's gears.helix_angle, 0 for a "
                   "spur pair)")
-      ->check(CLI::Range(0.0, 44.999999));
+      ->check(CLI::Range(0.0, 45.0));
   iso->add_option("--load", iso_options->load,
                   "F_t K_A / b (\"50 N/mm\") or the pinion's torque (\"150 N*m\", K_A = 1): "
                   "below 100 N/mm c' takes ISO 6336-1's low-load factor (F_t K_A / b / 100)^0.25");
