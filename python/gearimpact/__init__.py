@@ -60,6 +60,7 @@ from ._warnings import GearimpactWarning
 from ._results import (
     SimulationResult,
     energy_ratios,
+    planetary_modes,
     simulate,
     stiffness,
     sweep_friction,
@@ -116,6 +117,7 @@ __all__ = [
     "parse_case",
     "pitch_point_position",
     "pitch_radius",
+    "planetary_modes",
     "program_path",
     "read_case",
     "reproduce",

@@ -259,6 +259,18 @@ def sweep_friction(
     return table
 
 
+def planetary_modes(case_file):
+    """The modes of a linear planetary stage (Lin & Parker 1999) from a planetary file (a
+    [planetary] section; docs/planetary.md), as ``gearimpact modes FILE`` gives them, bit for
+    bit. case_file: a str or pathlib.Path. Returns a dict: "modes" (numpy arrays by column of
+    the command's modes.csv: mode and multiplicity integers, rigid bool, type str, frequency_hz
+    and each spring kind's strain-energy share float64) and "summary" (summary.json as a dict).
+    Raises CaseError naming a bad key as planetary.KEY."""
+    path = _arguments.path("case_file", case_file)
+    modes, summary = _core.planetary_modes(path)
+    return {"modes": modes, "summary": json.loads(summary)}
+
+
 def train(case_file, sets=(), keep_series=True):
     """Runs a gear train's case file (docs/case-files.md, "A gear train"; a two-gear case file
     is the train of its pair) as ``gearimpact train`` does, bit for bit.

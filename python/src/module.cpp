@@ -501,6 +501,19 @@ py::tuple ste_texts_of(const SimulationCase& c, const std::string& torque, long 
                         texts.summary_json);
 }
 
+// `gearimpact modes` on a planetary file: modes.csv's columns as arrays (the library's table of
+// them) and summary.json's text.
+py::tuple planetary_modes_of(const std::string& path) {
+  const PlanetaryCase stage = read_planetary_file(path);
+  PlanetaryModes modes;
+  {
+    py::gil_scoped_release release;
+    modes = planetary_modes(planetary_model(stage.parameters));
+  }
+  const std::string summary = stage_modes_summary_json(stage.name, modes);
+  return py::make_tuple(table_arrays(stage_modes_columns(), stage_mode_rows(modes)), summary);
+}
+
 // `gearimpact modes`: modes.csv's, campbell.csv's and mode_shapes.csv's columns as arrays (the
 // library's tables of them) and summary.json's text;
 // `max_speed` a quantity with its unit ("6000 rpm"), absent for the program's default.
@@ -973,6 +986,7 @@ void define_module(py::module_& m) {
   m.def("train", &run_train, py::arg("case_file"), py::arg("sets"), py::arg("keep_series"));
   m.def("ste", &ste_texts_of, py::arg("case"), py::arg("torque"), py::arg("points"));
   m.def("modes", &modes_texts_of, py::arg("case"), py::arg("harmonics"), py::arg("max_speed"));
+  m.def("planetary_modes", &planetary_modes_of, py::arg("case_file"));
   m.def(
       "reproduce",
       [](const std::string& out, const std::string& paper_data) {

@@ -383,3 +383,31 @@ def test_train_equals_the_program(cli, source_dir, tmp_path):
                                                                "brake-disc"]
     with pytest.raises(gearimpact.CaseError, match="bodies.whel"):
         gearimpact.train(example, sets=["bodies.whel.inertia=1 kg*m^2"])
+
+
+def test_planetary_modes_equal_the_program(cli, source_dir, tmp_path):
+    # The LP99 stage (N = 4): modes.csv column by column, the numbers bit for bit, the mode
+    # types and the rigid flag as the program writes them, and summary.json whole.
+    example = Path(source_dir) / "examples" / "planetary_lp99.toml"
+    out = tmp_path / "out"
+    cli("modes", example, "--out", out)
+    ours = gearimpact.planetary_modes(example)
+    assert ours["summary"] == json.loads((out / "summary.json").read_text())
+    lines = (out / "modes.csv").read_text().strip().splitlines()
+    header = lines[0].split(",")
+    cells = [line.split(",") for line in lines[1:]]
+    assert list(ours["modes"]) == header
+    for j, name in enumerate(header):
+        column = [row[j] for row in cells]
+        if name == "type":
+            assert list(ours["modes"][name]) == column
+        elif name == "rigid":
+            assert list(ours["modes"][name]) == [cell == "true" for cell in column]
+        else:
+            assert_bitwise_equal(ours["modes"][name], [float(cell) for cell in column],
+                                 f"planetary {name}")
+    assert ours["modes"]["multiplicity"].dtype.kind == "i"
+    with pytest.raises(gearimpact.CaseError, match="planetary.planets"):
+        bad = tmp_path / "bad.toml"
+        bad.write_text(example.read_text().replace("planets = 4", "planets = 0"))
+        gearimpact.planetary_modes(bad)
