@@ -6,24 +6,13 @@
 
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
+#include "gearimpact/geometry/rack_generation.hpp"
 
 namespace gearimpact {
 
 namespace {
 
 constexpr double degree = pi / 180.0;
-
-// The normal rack's tip round rho* when the pair names none: its full round
-// c / (1 - sin a_n), or the largest round its tip land holds (as
-// rack_gear_geometry reads an absent round, in the normal section).
-double normal_rack_tip_radius_coefficient(const GearPair& pair) {
-  const double an = pair.pressure_angle_rad;
-  const double c = pair.dedendum_coefficient - pair.addendum_coefficient;
-  const double full_round = c / (1.0 - std::sin(an));
-  const double land =
-      (pi / 4.0 - pair.dedendum_coefficient * std::tan(an)) * std::cos(an) / (1.0 - std::sin(an));
-  return std::min(full_round, land);
-}
 
 void check_helix_angle(double beta) {
   if (!(beta >= 0.0 && beta <= 45.0 * degree)) {
@@ -49,7 +38,7 @@ GearPair transverse_pair(const GearPair& pair) {
   // First version: the normal round's radius as a circle in the transverse
   // rack (the true section is an ellipse, rho / cos(beta) along the pitch line).
   t.rack_tip_radius_coefficient =
-      pair.rack_tip_radius_coefficient.value_or(normal_rack_tip_radius_coefficient(pair)) *
+      pair.rack_tip_radius_coefficient.value_or(largest_rack_tip_radius_coefficient(pair)) *
       cos_beta;
   t.helix_angle_rad = 0.0;
   return t;

@@ -45,6 +45,8 @@ double tip_half_angle(double teeth, double module, double a0, double ha, double 
          involute_function(std::acos(rb / tip_radius(teeth, module, ha, x)));
 }
 
+}  // namespace
+
 // The rack's tip round when the pair names none: the full round c / (1 -
 // sin a0) of ISO 53 profile A where it fits the rack's tip land (at 20 deg it
 // does), else the largest that fits, rho* (1 - sin a0) / cos a0 = pi/4 -
@@ -58,8 +60,6 @@ double largest_rack_tip_radius_coefficient(const GearPair& pair) {
       (pi / 4.0 - pair.dedendum_coefficient * std::tan(a0)) * std::cos(a0) / (1.0 - std::sin(a0));
   return std::min(full_round, land);
 }
-
-}  // namespace
 
 RackGearGeometry rack_gear_geometry(const GearPair& pair, Gear gear) {
   const bool first = gear == Gear::one;

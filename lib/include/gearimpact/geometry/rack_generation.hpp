@@ -58,6 +58,11 @@ struct RackGearGeometry {
 // circle.
 RackGearGeometry rack_gear_geometry(const GearPair& pair, Gear gear);
 
+// The rack's tip radius coefficient rho* when the pair names none: the full
+// round c / (1 - sin a0) where it fits the rack's tip land, else the largest
+// that fits (rack_generation.cpp). A helical pair's normal rack reads it too.
+double largest_rack_tip_radius_coefficient(const GearPair& pair);
+
 // A point of a flank curve in the tooth frame with its derivative along the
 // curve's own parameter.
 struct ProfilePoint {
