@@ -110,6 +110,23 @@ Modifications tip_relief(double amount_m) {
 
 }  // namespace
 
+namespace {
+
+// The case as a two-body train (the two-gear run's table lent to its mesh) runs the two-gear run
+// bit for bit: its series, summary and impacts (require_same_run), over more than 10 events.
+void require_train_runs_as_two_gear(const SimulationCase& c, const StiffnessTable& table) {
+  CAPTURE(c.name);
+  const SimulationResult two_gear = simulate(c, table);
+  GearTrain train = two_gear_train(c);
+  train.meshes[0].table = borrowed(table);
+  const TrainResult result = simulate_train(train);
+  REQUIRE(two_gear.summary.events > 10);
+  CHECK(result.summary.integrator == two_gear.summary.integrator);
+  require_same_run(two_gear, result, 1);
+}
+
+}  // namespace
+
 TEST_CASE("a two-body train is the two-gear torsional run, bit for bit") {
   // Case 2 (torques, impacts, friction reversals, pairs entering and
   // leaving); case 1 with tip relief (each pair's gap, touching and kinks);
@@ -124,14 +141,7 @@ TEST_CASE("a two-body train is the two-gear torsional run, bit for bit") {
   dopri5.integrator.kind = IntegratorKind::dopri5;
   const StiffnessTable table(loaded.gears, loaded.model.stiffness);
   for (const SimulationCase* c : {&loaded, &relieved, &dopri5}) {
-    CAPTURE(c->name);
-    const SimulationResult two_gear = simulate(*c, table);
-    GearTrain train = two_gear_train(*c);
-    train.meshes[0].table = borrowed(table);
-    const TrainResult result = simulate_train(train);
-    REQUIRE(two_gear.summary.events > 10);
-    CHECK(result.summary.integrator == two_gear.summary.integrator);
-    require_same_run(two_gear, result, 1);
+    require_train_runs_as_two_gear(*c, table);
   }
 }
 
@@ -188,14 +198,7 @@ TEST_CASE("a two-body train takes every integrator, mesh force, damper and drive
   motor.torque1.synchronous_speed_rad_per_s = 1.02 * loaded.initial.w1_rad_per_s;
   for (const SimulationCase* c : {&adaptive, &lagrangian, &lagrangian_adaptive, &damper, &driven,
                                   &driven_lagrangian, &controlled, &motor}) {
-    CAPTURE(c->name);
-    const SimulationResult two_gear = simulate(*c, table);
-    GearTrain train = two_gear_train(*c);
-    train.meshes[0].table = borrowed(table);
-    const TrainResult result = simulate_train(train);
-    REQUIRE(two_gear.summary.events > 10);
-    CHECK(result.summary.integrator == two_gear.summary.integrator);
-    require_same_run(two_gear, result, 1);
+    require_train_runs_as_two_gear(*c, table);
   }
   // Each feature did what it does.
   CHECK(simulate(lagrangian, table).summary.stored_energy_jumps_j > 0.0);
