@@ -32,10 +32,12 @@
 #include <complex>
 #include <iomanip>
 #include <numbers>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "gearimpact/dynamics/mesh.hpp"
+#include "gearimpact/dynamics/planar.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
@@ -43,6 +45,7 @@
 #include "gearimpact/steady/meissner.hpp"
 #include "gearimpact/steady/period_map.hpp"
 #include "gearimpact/steady/shooting.hpp"
+#include "gearimpact/steady/steady_state.hpp"
 #include "gearimpact/stiffness/table.hpp"
 #include "steady_cases.hpp"
 
@@ -280,15 +283,27 @@ TEST_CASE("the gear period map refuses what it cannot map, naming the key") {
   c.model.friction_coefficient = 0.04;
   CHECK(field_of(c) == "model.friction_coefficient");
   CHECK(field_of(h.c, -1) == "steps_per_period");
-  // Its state is the torsional (s, s'): the planar model's centres and shafts are not in it.
+  // A planar case is mapped (its state the planar Poincare sample); what a planar run refuses,
+  // it refuses before any work: a step that does not resolve the bearings.
   c = h.c;
   c.bearings.kind = BearingKind::elastic;
   c.bearings.gear1.stiffness_x_n_per_m = 1e9;
   c.bearings.gear2.stiffness_x_n_per_m = 1e9;
-  CHECK(field_of(c) == "bearings.kind");
+  CHECK(field_of(c).empty());
+  CHECK(field_of(c, 10) == "integrator.step");
+  c.bearings.gear1.mass_kg = -1.0;
+  CHECK(field_of(c) == "bearings.mass1");
   const GearPeriodMap map(h.c, table);
+  CHECK(map.dimension() == 2);
   CHECK_THROWS_AS((void)map(Eigen::VectorXd::Zero(3)), InputError);
   CHECK_THROWS_AS((void)map(Eigen::Vector2d(std::nan(""), 0.0)), InputError);
+  // The torsional map has no planar state.
+  try {
+    (void)map.planar_state(Eigen::Vector2d::Zero());
+    FAIL("a torsional map gave a planar state");
+  } catch (const InputError& e) {
+    CHECK(e.field() == "bearings.kind");
+  }
 }
 
 TEST_CASE(
@@ -488,6 +503,158 @@ TEST_CASE(
       CHECK(std::fabs(point.poincare[0].s_m - orbit.fixed_point[0]) <= 1e-5 * map.scale()[0]);
     } else {
       CHECK(point.regime != Regime::no_impact);
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The planar model's period map (elastic bearings): its state is the planar Poincare sample (s,
+// s', the centres x1, y1, x2, y2, their speeds), the rigid rotation reduced as the torsional
+// map's. Against the torsional model in the rigid-bearing limit, and against the closed form of
+// a damped bearing oscillator.
+
+namespace {
+
+// The bearings' damping ratio: each centre's mode on its own bearing decays as
+// exp(-zeta_b w_b t), w_b = sqrt(k_b / m).
+constexpr double kBearingDamping = 0.05;
+
+// The case on bearings of k_b per direction, each damped at kBearingDamping with the gear's
+// mass (the disc's): c = 2 zeta_b sqrt(k_b m).
+SimulationCase on_bearings(const SimulationCase& c, double kb) {
+  SimulationCase planar = c;
+  planar.bearings.kind = BearingKind::elastic;
+  planar.bearings.gear1.stiffness_x_n_per_m = kb;
+  planar.bearings.gear2.stiffness_x_n_per_m = kb;
+  const PlanarMounting mounting = planar_mounting(planar);
+  planar.bearings.gear1.damping_x_n_s_per_m =
+      2.0 * kBearingDamping * std::sqrt(kb * mounting.mass_kg[0]);
+  planar.bearings.gear2.damping_x_n_s_per_m =
+      2.0 * kBearingDamping * std::sqrt(kb * mounting.mass_kg[1]);
+  return planar;
+}
+
+// Half the peak-to-peak of the series' s over one period from the map's state x.
+double s_amplitude(const SimulationCase& c, const StiffnessTable& table, const GearPeriodMap& map,
+                   const Eigen::VectorXd& x) {
+  SimulationCase run = c;
+  run.integrator.kind = IntegratorKind::rk4;
+  run.integrator.step_s = map.step_s();
+  run.integrator.end_time_s = map.period_s();
+  run.integrator.output_every = 1;
+  RunControl control;
+  SimulationResult r;
+  if (map.planar()) {
+    r = simulate_planar(run, table, planar_mounting(run), map.planar_state(x), control);
+  } else {
+    run.initial = map.full_state(x[0], x[1]);
+    r = simulate(run, table, control);
+  }
+  double lo = r.series.front().s_m;
+  double hi = lo;
+  for (const SeriesRow& row : r.series) {
+    lo = std::min(lo, row.s_m);
+    hi = std::max(hi, row.s_m);
+  }
+  return 0.5 * (hi - lo);
+}
+
+}  // namespace
+
+TEST_CASE("the planar period map in the rigid-bearing limit: the torsional orbit and multipliers") {
+  // The softening clearance case of test_sweep (F_m = 1, r = 0.5, zeta = 0.05), at Omega = 0.5
+  // (no impact) and 1.0 (single-sided impacts), once on rigid bearings (the torsional map of
+  // (s, s')) and once on bearings of k_b per direction (the planar map of 10 coordinates).
+  const double zeta = 0.05;
+  for (const double omega : {0.5, 1.0}) {
+    CAPTURE(omega);
+    const steady_test::ClearanceCase cc = steady_test::clearance_case(1.0, 0.5, zeta, omega);
+    const StiffnessTable table(cc.c.gears, cc.c.model.stiffness);
+    const double b = cc.c.gears.backlash_m;
+    const double k = cc.stiffness_n_per_m;
+
+    // The torsional orbit: shooting from the steady state's sample.
+    const GearPeriodMap torsional_map(cc.c, table);
+    const SteadyPoint steady = find_steady_state(cc.c, table, SteadySettings{});
+    REQUIRE(steady.converged);
+    ShootingSettings newton;
+    newton.scale = torsional_map.scale();
+    const PeriodicOrbit torsional =
+        find_periodic_orbit(torsional_map, torsional_map.map_state(steady.final_state), newton);
+    const double torsional_amplitude =
+        s_amplitude(cc.c, table, torsional_map, torsional.fixed_point);
+    const Multipliers mu_t{torsional.floquet_multipliers[0], torsional.floquet_multipliers[1]};
+
+    for (const double kb : {1e11, 1e12}) {
+      CAPTURE(kb);
+      const SimulationCase planar = on_bearings(cc.c, kb);
+      const GearPeriodMap map(planar, table);
+      REQUIRE(map.dimension() == 10);
+      // From the torsional orbit with the centres at rest on their bearings.
+      Eigen::VectorXd guess = Eigen::VectorXd::Zero(10);
+      guess.head(2) = torsional.fixed_point;
+      newton.scale = map.scale();
+      const PeriodicOrbit orbit = find_periodic_orbit(map, guess, newton);
+      CHECK(orbit.residual <= newton.tolerance);
+      // The bearings add their compliance to the mesh's along the line of action (test_sweep):
+      // k becomes k / (1 + eps), eps = k (1/k_b1 + 1/k_b2), w_n moves by eps / 2, and a linear
+      // oscillator's amplitude by at most eps / (4 zeta) relative; twice that for the contact's
+      // nonlinearity.
+      const double eps = 2.0 * k / kb;
+      const double amplitude = s_amplitude(planar, table, map, orbit.fixed_point);
+      const double amplitude_bound = 2.0 * eps / (4.0 * zeta);
+      const double amplitude_change =
+          std::fabs(amplitude - torsional_amplitude) / torsional_amplitude;
+      CHECK(amplitude_change <= amplitude_bound);
+
+      // The two largest multipliers are the torsional pair: a linear oscillator's are
+      // exp(lambda T), lambda = w_n (-zeta +- i sqrt(1 - zeta^2)); w_n moved by eps / 2 moves
+      // them by |mu| |lambda| T eps / 2 = |mu| w_n T eps / 2 at first order, w_n T = 2 pi /
+      // Omega; twice that bounds the second order and the contact's nonlinearity.
+      const Eigen::VectorXcd& mu = orbit.floquet_multipliers;
+      const Multipliers torsional_pair = matched({mu[0], mu[1]}, mu_t);
+      const double multiplier_bound = std::abs(mu_t[0]) * (2.0 * std::numbers::pi / omega) * eps;
+      double multiplier_change = 0.0;
+      for (std::size_t i = 0; i < 2; ++i) {
+        multiplier_change = std::max(multiplier_change, std::abs(torsional_pair[i] - mu_t[i]));
+      }
+      CHECK(multiplier_change <= multiplier_bound);
+
+      // The other eight are the centres' modes, two per centre and direction: a damped
+      // oscillator on its bearing, w_b = sqrt(k_b / m), decays over a period by
+      // exp(-zeta_b w_b T). The mesh adds its damper c_m = 2 zeta sqrt(k m_e) to the bearing's
+      // c_b = 2 zeta_b sqrt(k_b m) along the line of action, and its stiffness k to k_b (w_b
+      // up by k / (2 k_b)): ln |mu| moves by at most c_m / c_b + k / (2 k_b) relative. The
+      // heavier wheel's modes (lower w_b) are the larger four. Central differences resolve a
+      // multiplier to ~1e-9 of |DP| (shooting.hpp): checked where the closed form is > 1e-6.
+      const PlanarMounting m = planar_mounting(planar);
+      const double mesh_damping =
+          viscous_mesh_damping_n_s_per_m(zeta, k, effective_mass_kg(cc.c.gears));
+      std::ostringstream bearing_report;
+      bearing_report << std::setprecision(4);
+      for (int g = 0; g < 2; ++g) {
+        const double wb = std::sqrt(kb / m.mass_kg[g]);
+        const double closed = std::exp(-kBearingDamping * wb * map.period_s());
+        const double bearing_damping = 2.0 * kBearingDamping * std::sqrt(kb * m.mass_kg[g]);
+        const double bound = mesh_damping / bearing_damping + k / (2.0 * kb);
+        // The wheel's modes are mu[2..5], the pinion's mu[6..9].
+        const Eigen::Index first = g == 1 ? 2 : 6;
+        double change = 0.0;
+        for (Eigen::Index i = first; i < first + 4; ++i) {
+          change = std::max(change, std::fabs(std::log(std::abs(mu[i])) / std::log(closed) - 1.0));
+        }
+        bearing_report << "; gear " << g + 1 << " closed form " << closed << ", ln|mu| within "
+                       << change << " (bound " << bound << ")";
+        if (closed > 1e-6) CHECK(change <= bound);
+      }
+      MESSAGE("Omega " << omega << ", k_b " << kb << " N/m: amplitude " << amplitude / b
+                       << " B against " << torsional_amplitude / b << " B, relative "
+                       << amplitude_change << " (bound " << amplitude_bound
+                       << "); torsional multipliers within " << multiplier_change << " (bound "
+                       << multiplier_bound << ")" << bearing_report.str() << "; Newton "
+                       << orbit.iterations << " iterations, " << orbit.map_evaluations
+                       << " maps of " << map.steps_per_period() << " steps, residual "
+                       << orbit.residual);
     }
   }
 }
