@@ -28,6 +28,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <iomanip>
@@ -515,25 +516,6 @@ TEST_CASE(
 
 namespace {
 
-// The bearings' damping ratio: each centre's mode on its own bearing decays as
-// exp(-zeta_b w_b t), w_b = sqrt(k_b / m).
-constexpr double kBearingDamping = 0.05;
-
-// The case on bearings of k_b per direction, each damped at kBearingDamping with the gear's
-// mass (the disc's): c = 2 zeta_b sqrt(k_b m).
-SimulationCase on_bearings(const SimulationCase& c, double kb) {
-  SimulationCase planar = c;
-  planar.bearings.kind = BearingKind::elastic;
-  planar.bearings.gear1.stiffness_x_n_per_m = kb;
-  planar.bearings.gear2.stiffness_x_n_per_m = kb;
-  const PlanarMounting mounting = planar_mounting(planar);
-  planar.bearings.gear1.damping_x_n_s_per_m =
-      2.0 * kBearingDamping * std::sqrt(kb * mounting.mass_kg[0]);
-  planar.bearings.gear2.damping_x_n_s_per_m =
-      2.0 * kBearingDamping * std::sqrt(kb * mounting.mass_kg[1]);
-  return planar;
-}
-
 // Half the peak-to-peak of the series' s over one period from the map's state x.
 double s_amplitude(const SimulationCase& c, const StiffnessTable& table, const GearPeriodMap& map,
                    const Eigen::VectorXd& x) {
@@ -587,7 +569,7 @@ TEST_CASE("the planar period map in the rigid-bearing limit: the torsional orbit
 
     for (const double kb : {1e11, 1e12}) {
       CAPTURE(kb);
-      const SimulationCase planar = on_bearings(cc.c, kb);
+      const SimulationCase planar = steady_test::on_bearings(cc.c, kb);
       const GearPeriodMap map(planar, table);
       REQUIRE(map.dimension() == 10);
       // From the torsional orbit with the centres at rest on their bearings.
@@ -634,8 +616,9 @@ TEST_CASE("the planar period map in the rigid-bearing limit: the torsional orbit
       bearing_report << std::setprecision(4);
       for (int g = 0; g < 2; ++g) {
         const double wb = std::sqrt(kb / m.mass_kg[g]);
-        const double closed = std::exp(-kBearingDamping * wb * map.period_s());
-        const double bearing_damping = 2.0 * kBearingDamping * std::sqrt(kb * m.mass_kg[g]);
+        const double closed = std::exp(-steady_test::kBearingDamping * wb * map.period_s());
+        const double bearing_damping =
+            2.0 * steady_test::kBearingDamping * std::sqrt(kb * m.mass_kg[g]);
         const double bound = mesh_damping / bearing_damping + k / (2.0 * kb);
         // The wheel's modes are mu[2..5], the pinion's mu[6..9].
         const Eigen::Index first = g == 1 ? 2 : 6;
@@ -657,4 +640,152 @@ TEST_CASE("the planar period map in the rigid-bearing limit: the torsional orbit
                        << orbit.residual);
     }
   }
+}
+
+namespace {
+
+// The loaded paper pair of test_steady_state (1000 N, its time-varying stiffness, constant
+// torques, rolling at 1.5 times the resonance speed, the teeth never separating) on bearings of
+// 1e9 N/m damped at steady_test::kBearingDamping, with a motor and a load behind torsional shafts.
+SimulationCase planar_loaded_pair() {
+  SimulationCase c = steady_test::on_bearings(steady_test::loaded_paper_pair(9512.767), 1e9);
+  c.model.damping_update = DampingUpdate::off;
+  c.initial.theta1_rad = (c.gears.backlash_m + 1000.0 / 1e9) / base_radius(c.gears, Gear::one);
+  c.shafts.kind = ShaftKind::elastic;
+  c.shafts.motor_inertia_kg_m2 = 2e-4;
+  c.shafts.motor_stiffness_n_m_per_rad = 2e5;
+  c.shafts.motor_damping_n_m_s_per_rad = 0.4 * std::sqrt(2e5 * 2e-4);
+  c.shafts.load_inertia_kg_m2 = 8e-4;
+  c.shafts.load_stiffness_n_m_per_rad = 5e5;
+  c.shafts.load_damping_n_m_s_per_rad = 0.4 * std::sqrt(5e5 * 8e-4);
+  return c;
+}
+
+}  // namespace
+
+// The rotation along the line of action, X = sum m_i u_i / M and V = sum m_i u_i' / M over the
+// gears, the motor and the load (period_map.hpp), from the inertias directly.
+std::array<double, 2> rotation_of(const SimulationCase& c, const PlanarState& p) {
+  const double rb1 = base_radius(c.gears, Gear::one);
+  const double rb2 = base_radius(c.gears, Gear::two);
+  const double j[4] = {moment_of_inertia(c.gears, Gear::one), moment_of_inertia(c.gears, Gear::two),
+                       c.shafts.motor_inertia_kg_m2, c.shafts.load_inertia_kg_m2};
+  const double rb[4] = {rb1, rb2, rb1, rb2};
+  const double theta[4] = {p.theta1_rad, p.theta2_rad, p.theta_motor_rad, p.theta_load_rad};
+  const double w[4] = {p.w1_rad_per_s, p.w2_rad_per_s, p.w_motor_rad_per_s, p.w_load_rad_per_s};
+  double mass = 0.0;
+  double x = 0.0;
+  double v = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    const double m = j[i] / (rb[i] * rb[i]);
+    mass += m;
+    x += m * rb[i] * theta[i];
+    v += m * rb[i] * w[i];
+  }
+  return {x / mass, v / mass};
+}
+
+TEST_CASE("the planar period map: its coordinates, two maps are two periods of one run") {
+  // The loaded pair's mesh stiffness follows the pinion's position: the map is a map only if
+  // the rotation X advances exactly one base pitch a period and its speed comes back, with the
+  // motor and the load turning with the gears.
+  const SimulationCase c = planar_loaded_pair();
+  const StiffnessTable table(c.gears, c.model.stiffness);
+  const GearPeriodMap map(c, table);
+  REQUIRE(map.planar());
+  REQUIRE(map.dimension() == 14);
+
+  // The case's own state: its coordinates are those of the Poincare sample and back.
+  // A run's state as a planar run leaves it: the gears' angles and speeds, and the planar state.
+  const auto run_state = [](const PlanarState& p) {
+    RunState r;
+    r.state = InitialState{p.theta1_rad, p.theta2_rad, p.w1_rad_per_s, p.w2_rad_per_s};
+    r.planar = p;
+    return r;
+  };
+  const RunState start = run_state(planar_initial_state(c));
+  const Eigen::VectorXd x0 = map.map_state(start);
+  const PlanarState back = map.planar_state(x0);
+  CHECK(std::fabs(back.theta1_rad - start.planar->theta1_rad) <= 1e-15);
+  CHECK(std::fabs(back.theta_load_rad - start.planar->theta_load_rad) <= 1e-15);
+  CHECK(std::fabs(back.w2_rad_per_s - start.planar->w2_rad_per_s) <=
+        1e-12 * std::fabs(start.planar->w2_rad_per_s));
+
+  // A state off the orbit: every coordinate moved (the centres by 0.1 B, the twists by 0.3 B,
+  // their speeds likewise on B w_n).
+  Eigen::VectorXd x = x0;
+  for (Eigen::Index i = 2; i < x.size(); ++i) x[i] += (i % 2 == 0 ? 0.1 : 0.3) * map.scale()[i];
+  const PlanarState p = map.planar_state(x);
+  const RunState at_p = run_state(p);
+  // map_state of planar_state is the identity to rounding (a few ulps of u ~ 0.3 rad * Rb).
+  const Eigen::VectorXd round_trip = map.map_state(at_p);
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    CAPTURE(i);
+    CHECK(std::fabs(round_trip[i] - x[i]) <= 1e-9 * map.scale()[i]);
+  }
+  const auto rotation0 = rotation_of(c, planar_initial_state(c));
+  const auto rotation_p = rotation_of(c, p);
+  CHECK(std::fabs(rotation_p[0] - rotation0[0]) <= 1e-15 * base_radius(c.gears, Gear::one));
+  CHECK(std::fabs(rotation_p[1] - rotation0[1]) <= 1e-13 * std::fabs(rotation0[1]));
+
+  // One run of two periods from p against two maps.
+  SimulationCase run = c;
+  run.integrator.kind = IntegratorKind::rk4;
+  run.integrator.step_s = map.step_s();
+  run.integrator.end_time_s = map.period_s();
+  RunControl control;
+  control.keep_series = false;
+  const SimulationResult one = simulate_planar(run, table, planar_mounting(c), p, control);
+  // The rotation's closed form: X one base pitch on, V back (P' = T1/Rb1 + T2/Rb2 = 0).
+  const auto rotation1 = rotation_of(c, *one.final_state.planar);
+  const double pitch = base_pitch(c.gears);
+  MESSAGE("after a period X moved " << (rotation1[0] - rotation0[0]) / pitch
+                                    << " base pitches, V by "
+                                    << (rotation1[1] - rotation0[1]) / rotation0[1]);
+  CHECK(std::fabs(rotation1[0] - rotation0[0] - pitch) <= 1e-9 * pitch);
+  CHECK(std::fabs(rotation1[1] - rotation0[1]) <= 1e-12 * std::fabs(rotation0[1]));
+  run.integrator.end_time_s = 2.0 * map.period_s();
+  const SimulationResult two = simulate_planar(run, table, planar_mounting(c), p, control);
+  const Eigen::VectorXd direct = map.map_state(two.final_state);
+  const Eigen::VectorXd twice = map(map(x));
+  double largest = 0.0;
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    largest = std::max(largest, std::fabs(twice[i] - direct[i]) / map.scale()[i]);
+  }
+  MESSAGE("two maps against one run of two periods: within " << largest << " of the scales");
+  // As the torsional map's (above): the restarted run sees the same mesh, rounding apart.
+  CHECK(largest <= 1e-8);
+}
+
+TEST_CASE("a planar shooting from the steady state's sample converges in a few iterations") {
+  const SimulationCase c = planar_loaded_pair();
+  const StiffnessTable table(c.gears, c.model.stiffness);
+  const GearPeriodMap map(c, table);
+  const SteadyPoint point = find_steady_state(c, table, SteadySettings{});
+  REQUIRE(point.verdict == PeriodicityVerdict::periodic);
+  REQUIRE(point.period == 1);
+  ShootingSettings newton;
+  newton.scale = map.scale();
+  const PeriodicOrbit orbit = find_periodic_orbit(map, map.map_state(point.final_state), newton);
+  MESSAGE("steady state after " << point.periods_run
+                                << " periods; shooting from its sample: " << orbit.iterations
+                                << " iterations, " << orbit.map_evaluations << " maps, residual "
+                                << orbit.residual << " (tolerance " << newton.tolerance << ")");
+  // The sample repeats to 1e-6 of the scales (periodicity.hpp): Newton's quadratic convergence
+  // takes it below 1e-10 in one or two steps.
+  CHECK(orbit.iterations <= 2);
+  CHECK(orbit.residual <= newton.tolerance);
+  // Stable: every multiplier inside the unit circle, as the run that settled says.
+  CHECK(std::abs(orbit.floquet_multipliers[0]) < 1.0);
+  // The steady sample is the fixed point to the periodicity tolerance times the contraction
+  // allowance rho / (1 - rho) of periodicity.hpp (rho = 0.97 here: 32).
+  const double rho = std::abs(orbit.floquet_multipliers[0]);
+  const Eigen::VectorXd sample = map.map_state(point.final_state);
+  double largest = 0.0;
+  for (Eigen::Index i = 0; i < sample.size(); ++i) {
+    largest = std::max(largest, std::fabs(sample[i] - orbit.fixed_point[i]) / map.scale()[i]);
+  }
+  MESSAGE("steady sample within " << largest << " of the scales of the fixed point (rho " << rho
+                                  << ")");
+  CHECK(largest <= SteadySettings{}.tolerance * rho / (1.0 - rho));
 }
