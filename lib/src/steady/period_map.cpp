@@ -133,7 +133,7 @@ PlanarState GearPeriodMap::planar_state(const Eigen::VectorXd& relative) const {
   }
   require_map_state(relative, dimension());
   const Eigen::Index n = (dimension() - 2) / 2;  // displacements (and speeds) beyond (s, s')
-  const double* m = rotation_mass_kg_;
+  const std::array<double, 4>& m = rotation_mass_kg_;
   const double total = m[0] + m[1] + m[2] + m[3];
   const bool shafts = mounting_.shafts;
   // u1 = X + ((m2 + m_l) s - m_m q_m - m_l q_l) / M (period_map.hpp), u2 = u1 - s, u_m = u1 +

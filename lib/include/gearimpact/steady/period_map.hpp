@@ -40,6 +40,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <array>
 
 #include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/dynamics/planar.hpp"
@@ -56,7 +57,7 @@ class GearPeriodMap {
   // - on elastic bearings, what a planar run takes (check_run: the mounting, a step that
   //   resolves the bearings and the shafts);
   // - model.damping_update off or frozen: under each_impact the Hertzian D of the last impact
-  //   is part of the state, which (s, s') does not carry;
+  //   is part of the state, which the map's coordinates do not carry;
   // - with DampingUpdate::frozen, a damping stiffness other than the pitch pair at impact,
   //   whose Ke is remembered from the impact;
   // - model.mesh_stiffness constant, or constant torques (see above).
@@ -70,6 +71,8 @@ class GearPeriodMap {
   // that starts in contact counts that contact as an impact (DampingUpdate frozen sets its D
   // from the case, off leaves it 0), on each line of action of the planar model. Throws
   // InputError for a state that is not dimension() finite numbers, SimulationError from the run.
+  // Its Jacobian and Floquet multipliers are shooting.hpp's: central differences, 2 dimension()
+  // maps (period_map_jacobian), of error ~eps^(2/3) relative to |DP| on a smooth map.
   Eigen::VectorXd operator()(const Eigen::VectorXd& relative) const;
 
   // 2 on rigid bearings; 10 on elastic bearings, 14 with shafts (poincare_state).
@@ -110,7 +113,7 @@ class GearPeriodMap {
   // the rotation along the line of action with X and P / M of the motor and the load too.
   bool planar_ = false;
   PlanarMounting mounting_;
-  double rotation_mass_kg_[4] = {0.0, 0.0, 0.0, 0.0};
+  std::array<double, 4> rotation_mass_kg_{};
   double planar_centre_m_ = 0.0;
   double planar_centre_speed_m_s_ = 0.0;
   double period_s_ = 0.0;
