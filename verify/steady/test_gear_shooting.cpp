@@ -281,5 +281,8 @@ TEST_CASE("the planar model's branch on stiff bearings folds where the torsional
   // resolve the bearings' effect; test_gear_floquet's rigid-limit case does.)
   // A smooth fold: one multiplier at +1 to the accuracy of central differences; the bearings'
   // modes are far inside the unit circle.
+  MESSAGE("the planar fold's multipliers: nearest +1 by "
+          << distance_to_one(fold.floquet_multipliers) << ", largest modulus "
+          << std::abs(fold.floquet_multipliers[0]));
   CHECK(distance_to_one(fold.floquet_multipliers) <= 1e-6);
 }
