@@ -167,8 +167,8 @@ void check_case(const std::string& file) {
   if (c.bearings.kind == BearingKind::elastic || c.shafts.kind == ShaftKind::elastic) {
     std::printf(
         "# note: elastic bearings or shafts are run by `gearimpact simulate`, `sweep` and "
-        "`sweep-friction` (with elastic bearings) and `gearimpact modes`; the library's period "
-        "map of (s, s') (shooting, continuation) is torsional and refuses the case\n");
+        "`sweep-friction` (with elastic bearings) and `gearimpact modes`, and by the library's "
+        "period map (shooting, Floquet multipliers, continuation) on the planar state\n");
   }
 }
 

@@ -360,6 +360,18 @@ TEST_CASE("the spalled example passes check-case without a warning") {
   CHECK(check.err.empty());
 }
 
+TEST_CASE("check-case on a planar example says what runs it: the period map included") {
+  const std::filesystem::path example =
+      std::filesystem::path(GEARIMPACT_PAPER_DATA_DIR) / ".." / "examples" / "rig_17_38.toml";
+  const CommandResult check = run_command(cli("check-case " + example.string()));
+  CHECK(check.exit_code == 0);
+  const std::size_t note = check.out.find("# note: elastic bearings");
+  REQUIRE(note != std::string::npos);
+  const std::string line = check.out.substr(note, check.out.find('\n', note) - note);
+  CHECK(line.find("period map (shooting, Floquet multipliers, continuation)") != std::string::npos);
+  CHECK(line.find("refuses") == std::string::npos);
+}
+
 TEST_CASE("the mesh damper's loss is its own term of the summary, and the ledger closes with it") {
   // The run of the summary's example: no Hertzian damping (damping_loss_J 0),
   // the viscous mesh damper dissipates instead. Its loss is

@@ -7,6 +7,7 @@
 
 #include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
+#include "gearimpact/dynamics/planar.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/paper/table1.hpp"
 
@@ -67,6 +68,25 @@ inline SimulationCase loaded_paper_pair(double w1_rad_per_s) {
   load.damping_reference_speed_m_s = 0.1;
   load.deflection_stiffness_n_per_m = 4e8;
   return gearimpact::loaded_paper_pair(w1_rad_per_s, load);
+}
+
+// The bearings' damping ratio of on_bearings: each centre's mode on its own bearing decays as
+// exp(-zeta_b w_b t), w_b = sqrt(k_b / m).
+inline constexpr double kBearingDamping = 0.05;
+
+// The case on elastic bearings of k_b per direction (the planar model), each damped at
+// kBearingDamping with the gear's mass (the disc's): c = 2 zeta_b sqrt(k_b m).
+inline SimulationCase on_bearings(const SimulationCase& c, double kb) {
+  SimulationCase planar = c;
+  planar.bearings.kind = BearingKind::elastic;
+  planar.bearings.gear1.stiffness_x_n_per_m = kb;
+  planar.bearings.gear2.stiffness_x_n_per_m = kb;
+  const PlanarMounting mounting = planar_mounting(planar);
+  planar.bearings.gear1.damping_x_n_s_per_m =
+      2.0 * kBearingDamping * std::sqrt(kb * mounting.mass_kg[0]);
+  planar.bearings.gear2.damping_x_n_s_per_m =
+      2.0 * kBearingDamping * std::sqrt(kb * mounting.mass_kg[1]);
+  return planar;
 }
 
 }  // namespace gearimpact::steady_test

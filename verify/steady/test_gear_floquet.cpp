@@ -28,14 +28,17 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <iomanip>
 #include <numbers>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "gearimpact/dynamics/mesh.hpp"
+#include "gearimpact/dynamics/planar.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
@@ -43,6 +46,7 @@
 #include "gearimpact/steady/meissner.hpp"
 #include "gearimpact/steady/period_map.hpp"
 #include "gearimpact/steady/shooting.hpp"
+#include "gearimpact/steady/steady_state.hpp"
 #include "gearimpact/stiffness/table.hpp"
 #include "steady_cases.hpp"
 
@@ -280,15 +284,27 @@ TEST_CASE("the gear period map refuses what it cannot map, naming the key") {
   c.model.friction_coefficient = 0.04;
   CHECK(field_of(c) == "model.friction_coefficient");
   CHECK(field_of(h.c, -1) == "steps_per_period");
-  // Its state is the torsional (s, s'): the planar model's centres and shafts are not in it.
+  // A planar case is mapped (its state the planar Poincare sample); what a planar run refuses,
+  // it refuses before any work: a step that does not resolve the bearings.
   c = h.c;
   c.bearings.kind = BearingKind::elastic;
   c.bearings.gear1.stiffness_x_n_per_m = 1e9;
   c.bearings.gear2.stiffness_x_n_per_m = 1e9;
-  CHECK(field_of(c) == "bearings.kind");
+  CHECK(field_of(c).empty());
+  CHECK(field_of(c, 10) == "integrator.step");
+  c.bearings.gear1.mass_kg = -1.0;
+  CHECK(field_of(c) == "bearings.mass1");
   const GearPeriodMap map(h.c, table);
+  CHECK(map.dimension() == 2);
   CHECK_THROWS_AS((void)map(Eigen::VectorXd::Zero(3)), InputError);
   CHECK_THROWS_AS((void)map(Eigen::Vector2d(std::nan(""), 0.0)), InputError);
+  // The torsional map has no planar state.
+  try {
+    (void)map.planar_state(Eigen::Vector2d::Zero());
+    FAIL("a torsional map gave a planar state");
+  } catch (const InputError& e) {
+    CHECK(e.field() == "bearings.kind");
+  }
 }
 
 TEST_CASE(
@@ -490,4 +506,286 @@ TEST_CASE(
       CHECK(point.regime != Regime::no_impact);
     }
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The planar model's period map (elastic bearings): its state is the planar Poincare sample (s,
+// s', the centres x1, y1, x2, y2, their speeds), the rigid rotation reduced as the torsional
+// map's. Against the torsional model in the rigid-bearing limit, and against the closed form of
+// a damped bearing oscillator.
+
+namespace {
+
+// Half the peak-to-peak of the series' s over one period from the map's state x.
+double s_amplitude(const SimulationCase& c, const StiffnessTable& table, const GearPeriodMap& map,
+                   const Eigen::VectorXd& x) {
+  SimulationCase run = c;
+  run.integrator.kind = IntegratorKind::rk4;
+  run.integrator.step_s = map.step_s();
+  run.integrator.end_time_s = map.period_s();
+  run.integrator.output_every = 1;
+  RunControl control;
+  SimulationResult r;
+  if (map.planar()) {
+    r = simulate_planar(run, table, planar_mounting(run), map.planar_state(x), control);
+  } else {
+    run.initial = map.full_state(x[0], x[1]);
+    r = simulate(run, table, control);
+  }
+  double lo = r.series.front().s_m;
+  double hi = lo;
+  for (const SeriesRow& row : r.series) {
+    lo = std::min(lo, row.s_m);
+    hi = std::max(hi, row.s_m);
+  }
+  return 0.5 * (hi - lo);
+}
+
+}  // namespace
+
+TEST_CASE("the planar period map in the rigid-bearing limit: the torsional orbit and multipliers") {
+  // The softening clearance case of test_sweep (F_m = 1, r = 0.5, zeta = 0.05), at Omega = 0.5
+  // (no impact) and 1.0 (single-sided impacts), once on rigid bearings (the torsional map of
+  // (s, s')) and once on bearings of k_b per direction (the planar map of 10 coordinates).
+  const double zeta = 0.05;
+  for (const double omega : {0.5, 1.0}) {
+    CAPTURE(omega);
+    const steady_test::ClearanceCase cc = steady_test::clearance_case(1.0, 0.5, zeta, omega);
+    const StiffnessTable table(cc.c.gears, cc.c.model.stiffness);
+    const double b = cc.c.gears.backlash_m;
+    const double k = cc.stiffness_n_per_m;
+
+    // The torsional orbit: shooting from the steady state's sample.
+    const GearPeriodMap torsional_map(cc.c, table);
+    const SteadyPoint steady = find_steady_state(cc.c, table, SteadySettings{});
+    REQUIRE(steady.converged);
+    ShootingSettings newton;
+    newton.scale = torsional_map.scale();
+    const PeriodicOrbit torsional =
+        find_periodic_orbit(torsional_map, torsional_map.map_state(steady.final_state), newton);
+    const double torsional_amplitude =
+        s_amplitude(cc.c, table, torsional_map, torsional.fixed_point);
+    const Multipliers mu_t{torsional.floquet_multipliers[0], torsional.floquet_multipliers[1]};
+
+    for (const double kb : {1e11, 1e12}) {
+      CAPTURE(kb);
+      const SimulationCase planar = steady_test::on_bearings(cc.c, kb);
+      const GearPeriodMap map(planar, table);
+      REQUIRE(map.dimension() == 10);
+      // From the torsional orbit with the centres at rest on their bearings.
+      Eigen::VectorXd guess = Eigen::VectorXd::Zero(10);
+      guess.head(2) = torsional.fixed_point;
+      newton.scale = map.scale();
+      const PeriodicOrbit orbit = find_periodic_orbit(map, guess, newton);
+      CHECK(orbit.residual <= newton.tolerance);
+      // The bearings add their compliance to the mesh's along the line of action (test_sweep):
+      // k becomes k / (1 + eps), eps = k (1/k_b1 + 1/k_b2), w_n moves by eps / 2, and a linear
+      // oscillator's amplitude by at most eps / (4 zeta) relative; twice that for the contact's
+      // nonlinearity.
+      const double eps = 2.0 * k / kb;
+      const double amplitude = s_amplitude(planar, table, map, orbit.fixed_point);
+      const double amplitude_bound = 2.0 * eps / (4.0 * zeta);
+      const double amplitude_change =
+          std::fabs(amplitude - torsional_amplitude) / torsional_amplitude;
+      CHECK(amplitude_change <= amplitude_bound);
+
+      // The two largest multipliers are the torsional pair: a linear oscillator's are
+      // exp(lambda T), lambda = w_n (-zeta +- i sqrt(1 - zeta^2)); w_n moved by eps / 2 moves
+      // them by |mu| |lambda| T eps / 2 = |mu| w_n T eps / 2 at first order, w_n T = 2 pi /
+      // Omega; twice that bounds the second order and the contact's nonlinearity.
+      const Eigen::VectorXcd& mu = orbit.floquet_multipliers;
+      const Multipliers torsional_pair = matched({mu[0], mu[1]}, mu_t);
+      const double multiplier_bound = std::abs(mu_t[0]) * (2.0 * std::numbers::pi / omega) * eps;
+      double multiplier_change = 0.0;
+      for (std::size_t i = 0; i < 2; ++i) {
+        multiplier_change = std::max(multiplier_change, std::abs(torsional_pair[i] - mu_t[i]));
+      }
+      CHECK(multiplier_change <= multiplier_bound);
+
+      // The other eight are the centres' modes, two per centre and direction: a damped
+      // oscillator on its bearing, w_b = sqrt(k_b / m), decays over a period by
+      // exp(-zeta_b w_b T). The mesh adds its damper c_m = 2 zeta sqrt(k m_e) to the bearing's
+      // c_b = 2 zeta_b sqrt(k_b m) along the line of action, and its stiffness k to k_b (w_b
+      // up by k / (2 k_b)): ln |mu| moves by at most c_m / c_b + k / (2 k_b) relative. The
+      // heavier wheel's modes (lower w_b) are the larger four. Central differences resolve a
+      // multiplier to ~1e-9 of |DP| (shooting.hpp): checked where the closed form is > 1e-6.
+      const PlanarMounting m = planar_mounting(planar);
+      const double mesh_damping =
+          viscous_mesh_damping_n_s_per_m(zeta, k, effective_mass_kg(cc.c.gears));
+      std::ostringstream bearing_report;
+      bearing_report << std::setprecision(4);
+      for (int g = 0; g < 2; ++g) {
+        const double wb = std::sqrt(kb / m.mass_kg[g]);
+        const double closed = std::exp(-steady_test::kBearingDamping * wb * map.period_s());
+        const double bearing_damping =
+            2.0 * steady_test::kBearingDamping * std::sqrt(kb * m.mass_kg[g]);
+        const double bound = mesh_damping / bearing_damping + k / (2.0 * kb);
+        // The wheel's modes are mu[2..5], the pinion's mu[6..9].
+        const Eigen::Index first = g == 1 ? 2 : 6;
+        double change = 0.0;
+        for (Eigen::Index i = first; i < first + 4; ++i) {
+          change = std::max(change, std::fabs(std::log(std::abs(mu[i])) / std::log(closed) - 1.0));
+        }
+        bearing_report << "; gear " << g + 1 << " closed form " << closed << ", ln|mu| within "
+                       << change << " (bound " << bound << ")";
+        if (closed > 1e-6) CHECK(change <= bound);
+      }
+      MESSAGE("Omega " << omega << ", k_b " << kb << " N/m: amplitude " << amplitude / b
+                       << " B against " << torsional_amplitude / b << " B, relative "
+                       << amplitude_change << " (bound " << amplitude_bound
+                       << "); torsional multipliers within " << multiplier_change << " (bound "
+                       << multiplier_bound << ")" << bearing_report.str() << "; Newton "
+                       << orbit.iterations << " iterations, " << orbit.map_evaluations
+                       << " maps of " << map.steps_per_period() << " steps, residual "
+                       << orbit.residual);
+    }
+  }
+}
+
+namespace {
+
+// The loaded paper pair of test_steady_state (1000 N, its time-varying stiffness, constant
+// torques, rolling at 1.5 times the resonance speed, the teeth never separating) on bearings of
+// 1e9 N/m damped at steady_test::kBearingDamping, with a motor and a load behind torsional shafts.
+SimulationCase planar_loaded_pair() {
+  SimulationCase c = steady_test::on_bearings(steady_test::loaded_paper_pair(9512.767), 1e9);
+  c.model.damping_update = DampingUpdate::off;
+  c.initial.theta1_rad = (c.gears.backlash_m + 1000.0 / 1e9) / base_radius(c.gears, Gear::one);
+  c.shafts.kind = ShaftKind::elastic;
+  c.shafts.motor_inertia_kg_m2 = 2e-4;
+  c.shafts.motor_stiffness_n_m_per_rad = 2e5;
+  c.shafts.motor_damping_n_m_s_per_rad = 0.4 * std::sqrt(2e5 * 2e-4);
+  c.shafts.load_inertia_kg_m2 = 8e-4;
+  c.shafts.load_stiffness_n_m_per_rad = 5e5;
+  c.shafts.load_damping_n_m_s_per_rad = 0.4 * std::sqrt(5e5 * 8e-4);
+  return c;
+}
+
+}  // namespace
+
+// The rotation along the line of action, X = sum m_i u_i / M and V = sum m_i u_i' / M over the
+// gears, the motor and the load (period_map.hpp), from the inertias directly.
+std::array<double, 2> rotation_of(const SimulationCase& c, const PlanarState& p) {
+  const double rb1 = base_radius(c.gears, Gear::one);
+  const double rb2 = base_radius(c.gears, Gear::two);
+  const double j[4] = {moment_of_inertia(c.gears, Gear::one), moment_of_inertia(c.gears, Gear::two),
+                       c.shafts.motor_inertia_kg_m2, c.shafts.load_inertia_kg_m2};
+  const double rb[4] = {rb1, rb2, rb1, rb2};
+  const double theta[4] = {p.theta1_rad, p.theta2_rad, p.theta_motor_rad, p.theta_load_rad};
+  const double w[4] = {p.w1_rad_per_s, p.w2_rad_per_s, p.w_motor_rad_per_s, p.w_load_rad_per_s};
+  double mass = 0.0;
+  double x = 0.0;
+  double v = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    const double m = j[i] / (rb[i] * rb[i]);
+    mass += m;
+    x += m * rb[i] * theta[i];
+    v += m * rb[i] * w[i];
+  }
+  return {x / mass, v / mass};
+}
+
+TEST_CASE("the planar period map: its coordinates, two maps are two periods of one run") {
+  // The loaded pair's mesh stiffness follows the pinion's position: the map is a map only if
+  // the rotation X advances exactly one base pitch a period and its speed comes back, with the
+  // motor and the load turning with the gears.
+  const SimulationCase c = planar_loaded_pair();
+  const StiffnessTable table(c.gears, c.model.stiffness);
+  const GearPeriodMap map(c, table);
+  REQUIRE(map.planar());
+  REQUIRE(map.dimension() == 14);
+
+  // The case's own state: its coordinates are those of the Poincare sample and back.
+  // A run's state as a planar run leaves it: the gears' angles and speeds, and the planar state.
+  const auto run_state = [](const PlanarState& p) {
+    RunState r;
+    r.state = InitialState{p.theta1_rad, p.theta2_rad, p.w1_rad_per_s, p.w2_rad_per_s};
+    r.planar = p;
+    return r;
+  };
+  const RunState start = run_state(planar_initial_state(c));
+  const Eigen::VectorXd x0 = map.map_state(start);
+  const PlanarState back = map.planar_state(x0);
+  CHECK(std::fabs(back.theta1_rad - start.planar->theta1_rad) <= 1e-15);
+  CHECK(std::fabs(back.theta_load_rad - start.planar->theta_load_rad) <= 1e-15);
+  CHECK(std::fabs(back.w2_rad_per_s - start.planar->w2_rad_per_s) <=
+        1e-12 * std::fabs(start.planar->w2_rad_per_s));
+
+  // A state off the orbit: every coordinate moved (the centres by 0.1 B, the twists by 0.3 B,
+  // their speeds likewise on B w_n).
+  Eigen::VectorXd x = x0;
+  for (Eigen::Index i = 2; i < x.size(); ++i) x[i] += (i % 2 == 0 ? 0.1 : 0.3) * map.scale()[i];
+  const PlanarState p = map.planar_state(x);
+  const RunState at_p = run_state(p);
+  // map_state of planar_state is the identity to rounding (a few ulps of u ~ 0.3 rad * Rb).
+  const Eigen::VectorXd round_trip = map.map_state(at_p);
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    CAPTURE(i);
+    CHECK(std::fabs(round_trip[i] - x[i]) <= 1e-9 * map.scale()[i]);
+  }
+  const auto rotation0 = rotation_of(c, planar_initial_state(c));
+  const auto rotation_p = rotation_of(c, p);
+  CHECK(std::fabs(rotation_p[0] - rotation0[0]) <= 1e-15 * base_radius(c.gears, Gear::one));
+  CHECK(std::fabs(rotation_p[1] - rotation0[1]) <= 1e-13 * std::fabs(rotation0[1]));
+
+  // One run of two periods from p against two maps.
+  SimulationCase run = c;
+  run.integrator.kind = IntegratorKind::rk4;
+  run.integrator.step_s = map.step_s();
+  run.integrator.end_time_s = map.period_s();
+  RunControl control;
+  control.keep_series = false;
+  const SimulationResult one = simulate_planar(run, table, planar_mounting(c), p, control);
+  // The rotation's closed form: X one base pitch on, V back (P' = T1/Rb1 + T2/Rb2 = 0).
+  const auto rotation1 = rotation_of(c, *one.final_state.planar);
+  const double pitch = base_pitch(c.gears);
+  MESSAGE("after a period X moved " << (rotation1[0] - rotation0[0]) / pitch
+                                    << " base pitches, V by "
+                                    << (rotation1[1] - rotation0[1]) / rotation0[1]);
+  CHECK(std::fabs(rotation1[0] - rotation0[0] - pitch) <= 1e-9 * pitch);
+  CHECK(std::fabs(rotation1[1] - rotation0[1]) <= 1e-12 * std::fabs(rotation0[1]));
+  run.integrator.end_time_s = 2.0 * map.period_s();
+  const SimulationResult two = simulate_planar(run, table, planar_mounting(c), p, control);
+  const Eigen::VectorXd direct = map.map_state(two.final_state);
+  const Eigen::VectorXd twice = map(map(x));
+  double largest = 0.0;
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    largest = std::max(largest, std::fabs(twice[i] - direct[i]) / map.scale()[i]);
+  }
+  MESSAGE("two maps against one run of two periods: within " << largest << " of the scales");
+  // As the torsional map's (above): the restarted run sees the same mesh, rounding apart.
+  CHECK(largest <= 1e-8);
+}
+
+TEST_CASE("a planar shooting from the steady state's sample converges in a few iterations") {
+  const SimulationCase c = planar_loaded_pair();
+  const StiffnessTable table(c.gears, c.model.stiffness);
+  const GearPeriodMap map(c, table);
+  const SteadyPoint point = find_steady_state(c, table, SteadySettings{});
+  REQUIRE(point.verdict == PeriodicityVerdict::periodic);
+  REQUIRE(point.period == 1);
+  ShootingSettings newton;
+  newton.scale = map.scale();
+  const PeriodicOrbit orbit = find_periodic_orbit(map, map.map_state(point.final_state), newton);
+  MESSAGE("steady state after " << point.periods_run
+                                << " periods; shooting from its sample: " << orbit.iterations
+                                << " iterations, " << orbit.map_evaluations << " maps, residual "
+                                << orbit.residual << " (tolerance " << newton.tolerance << ")");
+  // The sample repeats to 1e-6 of the scales (periodicity.hpp): Newton's quadratic convergence
+  // takes it below 1e-10 in one or two steps.
+  CHECK(orbit.iterations <= 2);
+  CHECK(orbit.residual <= newton.tolerance);
+  // Stable: every multiplier inside the unit circle, as the run that settled says.
+  CHECK(std::abs(orbit.floquet_multipliers[0]) < 1.0);
+  // The steady sample is the fixed point to the periodicity tolerance times the contraction
+  // allowance rho / (1 - rho) of periodicity.hpp (rho = 0.97 here: 32).
+  const double rho = std::abs(orbit.floquet_multipliers[0]);
+  const Eigen::VectorXd sample = map.map_state(point.final_state);
+  double largest = 0.0;
+  for (Eigen::Index i = 0; i < sample.size(); ++i) {
+    largest = std::max(largest, std::fabs(sample[i] - orbit.fixed_point[i]) / map.scale()[i]);
+  }
+  MESSAGE("steady sample within " << largest << " of the scales of the fixed point (rho " << rho
+                                  << ")");
+  CHECK(largest <= SteadySettings{}.tolerance * rho / (1.0 - rho));
 }

@@ -200,23 +200,6 @@ void refuse_planar_simulation(const SimulationCase& c) {
   }
 }
 
-void refuse_planar(const SimulationCase& c) {
-  std::vector<Problem> problems;
-  const auto refuse = [&](const char* key, const char* torsional) {
-    problems.push_back(refused_problem(
-        key, "\"elastic\"",
-        "not read by the period map of (s, s') (GearPeriodMap: shooting, Floquet multipliers, "
-        "continuation), whose state is the torsional model's relative motion; the planar "
-        "model's steady state is found period by period (find_steady_state, the steady sweeps)",
-        std::string("\"") + torsional + "\" (the default) for a period map",
-        "leave the key out for the torsional model's period map, or run the steady sweep "
-        "(`gearimpact sweep`) on the planar model"));
-  };
-  if (c.bearings.kind == BearingKind::elastic) refuse("bearings.kind", "rigid");
-  if (c.shafts.kind == ShaftKind::elastic) refuse("shafts.kind", "none");
-  if (!problems.empty()) throw InputError(std::move(problems));
-}
-
 double sample_count(const SimulationCase& c, double sample_rate_hz, double t0_s) {
   const double end = t0_s + c.integrator.end_time_s;
   const double guess = std::floor(c.integrator.end_time_s * sample_rate_hz);

@@ -615,10 +615,6 @@ Eigen::Vector2d state_scale(const SimulationCase& c, const StiffnessTable& table
   return Eigen::Vector2d(length, length * natural_frequency_rad_per_s(c, table));
 }
 
-namespace {
-
-// The Poincare sample's scales, in poincare_state's order: (L, L w_n) of state_scale for (s, s'),
-// then L for each planar displacement and L w_n for each planar speed.
 Eigen::VectorXd poincare_scale(const SimulationCase& c, const StiffnessTable& table) {
   const Eigen::Vector2d relative = state_scale(c, table);
   if (c.bearings.kind != BearingKind::elastic) return relative;
@@ -630,10 +626,6 @@ Eigen::VectorXd poincare_scale(const SimulationCase& c, const StiffnessTable& ta
   return scale;
 }
 
-// The Poincare sample of a state: (s, s') of the gears' turning, and for the planar model its
-// other coordinates (the centres x1, y1, x2, y2 and with shafts the twists Rb1 (theta_m -
-// theta1), Rb2 (theta_l - theta2), as lengths), then their speeds in the same order: a periodic
-// motion repeats every one of them, which the rigid rotation leaves out.
 Eigen::VectorXd poincare_state(const SimulationCase& c, const RunState& state) {
   const GearPair& g = c.gears;
   const double rb1 = base_radius(g, Gear::one);
@@ -661,8 +653,6 @@ Eigen::VectorXd poincare_state(const SimulationCase& c, const RunState& state) {
   }
   return v;
 }
-
-}  // namespace
 
 SteadyPoint find_steady_state(const SimulationCase& c, const StiffnessTable& table,
                               const SteadySettings& settings,

@@ -252,8 +252,8 @@ struct ModelOptions {
 // Elastic bearings let each centre move in the plane on a spring and a damper
 // per direction: the planar model, which simulate() integrates
 // (dynamics/planar.hpp) and of which `gearimpact modes` reads the linearised
-// form; the run pool and the steady sweeps run it too, the period map of
-// (s, s') refuses it (refuse_planar of dynamics/simulate.hpp).
+// form; the run pool, the steady sweeps and the period map (shooting, Floquet
+// multipliers, continuation) run it too.
 enum class BearingKind { rigid, elastic };
 inline constexpr std::array<NamedValue<BearingKind>, 2> kBearingKinds{{
     {BearingKind::rigid, "rigid",

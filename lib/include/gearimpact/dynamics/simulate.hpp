@@ -363,12 +363,6 @@ void validate_gaps(const SimulationCase& c);
 // built from a function must at least cover the contact segment. Throws
 // InputError naming "table".
 void check_table(const SimulationCase& c, const StiffnessTable& table);
-// Throws InputError naming bearings.kind and shafts.kind when they are
-// "elastic": the period map of (s, s') (GearPeriodMap of steady/period_map.hpp,
-// which shooting, the Floquet multipliers and continuation take) is the
-// torsional model's. The planar model runs everywhere else: simulate(), the
-// run pool, the steady state and its sweeps. GearPeriodMap calls it before any work.
-void refuse_planar(const SimulationCase& c);
 // What simulate() refuses of the planar keys: elastic shafts on rigid
 // bearings (the motor and the load belong to the planar model), naming
 // shafts.kind, and a tacho on rigid bearings.

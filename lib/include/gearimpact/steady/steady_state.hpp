@@ -96,6 +96,18 @@ inline constexpr double kLeastStateScalePerModule = 1e-3;
 // Throws as natural_frequency_rad_per_s.
 Eigen::Vector2d state_scale(const SimulationCase& c, const StiffnessTable& table);
 
+// The coordinates a steady state is sampled in (the Poincare sample of find_steady_state) and the
+// period map's state (period_map.hpp): (s, s') of the gears' turning, s = Rb1 theta1 -
+// Rb2 theta2; for a case on elastic bearings whose state holds its planar state, then the
+// centres x1, y1, x2, y2 and with shafts the twists Rb1 (theta_m - theta1), Rb2 (theta_l -
+// theta2), as lengths, then their speeds in the same order: 10 coordinates, 14 with shafts. A
+// periodic motion repeats every one of them; the rigid rotation (the mean angle, which grows,
+// and its speed) is left out.
+Eigen::VectorXd poincare_state(const SimulationCase& c, const RunState& state);
+// Their scales in the same order: (L, L w_n) of state_scale for (s, s'), then L for each planar
+// displacement and L w_n for each planar speed.
+Eigen::VectorXd poincare_scale(const SimulationCase& c, const StiffnessTable& table);
+
 // Throws InputError as require_steady_case, and when the torques' frequencies have no common
 // period, a faulted case's forcing is incommensurate with its teeth (naming the forcing's key
 // and initial.w1), or (without fluctuation) the mean speed is 0.
