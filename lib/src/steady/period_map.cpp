@@ -18,19 +18,19 @@ GearPeriodMap::GearPeriodMap(const SimulationCase& c, const StiffnessTable& tabl
   const SteadyTiming timing = steady_timing(c, table, settings);
   if (resolved_damping_update(c) == DampingUpdate::each_impact) {
     throw InputError("model.damping_update", "each_impact",
-                     "off or frozen for a period map of (s, s'): under each_impact the Hertzian D "
+                     "off or frozen for a period map: under each_impact the Hertzian D "
                      "of the last impact is part of the state");
   }
   if (resolved_damping_update(c) == DampingUpdate::frozen &&
       c.model.damping_stiffness == DampingStiffness::pitch_pair_at_impact) {
     throw InputError("model.damping_stiffness", "pitch_pair_at_impact",
-                     "current_pair or hertz for a period map of (s, s'): the pitch pair's Ke is "
-                     "remembered from the last impact, a state (s, s') does not carry");
+                     "current_pair or hertz for a period map: the pitch pair's Ke is remembered "
+                     "from the last impact, which the map's state does not carry");
   }
   if (c.model.mesh_stiffness == MeshStiffnessMode::time_varying &&
       !forcing_frequencies(c).empty()) {
     throw InputError("torque1, torque2", "a fluctuating torque with a time-varying mesh stiffness",
-                     "constant torques, or model.mesh_stiffness constant: the map of (s, s') "
+                     "constant torques, or model.mesh_stiffness constant: the period map "
                      "starts every period at the same mesh position, which only the mesh "
                      "period of a constant-torque case guarantees");
   }
