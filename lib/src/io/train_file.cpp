@@ -578,6 +578,16 @@ GearTrain read_train(const Reader& reader, const toml::value& root, std::string_
 
 }  // namespace
 
+bool is_train_text(std::string_view toml_text, std::string_view file_name) {
+  const Reader reader{std::string(file_name)};
+  const toml::value root = parse_toml(reader, toml_text, file_name);
+  return root.is_table() && root.as_table().count("bodies") > 0;
+}
+
+bool is_train_file(const std::filesystem::path& path) {
+  return is_train_text(read_text(path), path.string());
+}
+
 GearTrain parse_train(std::string_view toml_text, std::string_view file_name,
                       const std::vector<std::string>& sets) {
   const Reader reader{std::string(file_name)};
