@@ -158,7 +158,9 @@ TEST_CASE("a ring-fixed stage's tooth pairings repeat after lcm(Z_s, Z_p, Z_r) m
     const std::vector<double> psi = equal_angles(planets);
     std::vector<std::vector<int>> states;
     for (long long i = 0; i < 2 * period; ++i) {
-      states.push_back(stage_state(static_cast<double>(i) + 0.5, {0.0, 0.0, 0.0}, psi));
+      // A quarter period in: the planet's sun-mesh crossings of an odd Z_p sit half a period
+      // from its ring-mesh ones, and the sun's at thirds for these N; no sample on a crossing.
+      states.push_back(stage_state(static_cast<double>(i) + 0.25, {0.0, 0.0, 0.0}, psi));
     }
     CHECK(least_period(states) == period);
   }
@@ -221,7 +223,7 @@ TEST_CASE("a faulted tooth's visits over a period give the stage's fault frequen
     long long planet_ring = 0;
     long long ring = 0;
     for (long long i = 0; i < period; ++i) {
-      const std::vector<int> s = stage_state(static_cast<double>(i) + 0.5, {0.0, 0.0, 0.0}, psi);
+      const std::vector<int> s = stage_state(static_cast<double>(i) + 0.25, {0.0, 0.0, 0.0}, psi);
       for (int n = 0; n < planets; ++n) {
         const auto at = static_cast<std::size_t>(4 * n);
         sun += s[at] == 0 ? 1 : 0;

@@ -47,7 +47,10 @@ struct Comb {
 // force the same function `turns` ahead by n / N (it is where planet 0 will be) times scale[n].
 Comb comb_of(int planets, const std::vector<double>& scale, const std::vector<double>& psi) {
   const int turns = 4;
-  const int samples = 1024;  // a turn: the 2nd mesh harmonic (order 160) well below Nyquist
+  // Samples a turn: a multiple of every N here, so that the orders of y above Nyquist (the
+  // window's kinks in its second derivative make them fall only as order^-3) alias onto
+  // multiples of N too; the forces' highest order, 160, is below Nyquist (480).
+  const int samples = 960;
   const std::size_t total = static_cast<std::size_t>(turns * samples);
   std::vector<double> carrier(total);
   std::vector<std::vector<double>> forces(static_cast<std::size_t>(planets),
@@ -114,7 +117,7 @@ TEST_CASE("identical equally spaced planets give only multiples of N f_c; one un
     CAPTURE(alike.on);
     CAPTURE(alike.off);
     REQUIRE(alike.on > 1.0);
-    // Rounding: the DFT of 4096 samples of ~1e3 N, each off-comb bin ~ sqrt(4096) 1e3 1e-16.
+    // Rounding: the DFT of 3840 samples of ~1e3 N, each off-comb bin ~ sqrt(3840) 1e3 1e-16.
     CHECK(alike.off < 1e-11 * alike.on);
     // One planet with 5 % stiffer meshes (its force 5 % larger): lines at every carrier order.
     std::vector<double> scale(static_cast<std::size_t>(planets), 1.0);
