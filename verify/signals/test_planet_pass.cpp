@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <complex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -63,7 +64,7 @@ Comb comb_of(int planets, const std::vector<double>& scale, const std::vector<do
       forces[at][i] = scale[at] * force(t + psi[at] / (2.0 * pi));
     }
   }
-  const std::vector<double> y = ring_sensor_signal(forces, carrier, psi, {0.4, 0.0});
+  const std::vector<double> y = ring_sensor_signal(forces, carrier, psi, {0.4, std::nullopt});
   const std::vector<std::complex<double>> spectrum = real_dft(y);
   Comb c;
   for (std::size_t k = 1; k < spectrum.size(); ++k) {
@@ -95,7 +96,7 @@ TEST_CASE("the default windows of equally spaced planets sum to 1; a constant fo
     CHECK(worst < 1e-14);
     const std::vector<std::vector<double>> constant(static_cast<std::size_t>(planets),
                                                     std::vector<double>(carrier.size(), 250.0));
-    const std::vector<double> y = ring_sensor_signal(constant, carrier, psi, {1.3, 0.0});
+    const std::vector<double> y = ring_sensor_signal(constant, carrier, psi, {1.3, std::nullopt});
     for (double v : y) REQUIRE(std::fabs(v - 250.0) < 250.0 * 1e-14);
   }
   // The window's shape: 1 at the sensor, 1/2 at D/2, 0 from D on, wrapped to (-pi, pi].
@@ -145,6 +146,7 @@ TEST_CASE("the ring sensor refuses bad input by name") {
   };
   CHECK(message(forces, carrier, psi, {0.0, -1.0}).find("half_width") != std::string::npos);
   CHECK(message(forces, carrier, psi, {0.0, 4.0}).find("(0, pi]") != std::string::npos);
+  CHECK(message(forces, carrier, psi, {0.0, 0.0}).find("half_width") != std::string::npos);
   CHECK(message({{1.0, 1.0}}, carrier, psi, {}).find("forces") != std::string::npos);
   CHECK(message(forces, {0.0}, psi, {}).find("forces[0]") != std::string::npos);
   CHECK(message(forces, {0.0, std::nan("")}, psi, {}).find("carrier_angle") != std::string::npos);

@@ -62,12 +62,9 @@ std::vector<double> ring_sensor_signal(const std::vector<std::vector<double>>& f
   if (!std::isfinite(sensor.sensor_angle_rad)) {
     throw InputError("sensor_angle", sensor.sensor_angle_rad, "a finite angle in rad");
   }
-  double d = sensor.half_width_rad;
-  if (d == 0.0) {
-    d = default_planet_pass_half_width(static_cast<int>(planets));
-  } else {
-    check_planet_pass_half_width(d);
-  }
+  if (sensor.half_width_rad) check_planet_pass_half_width(*sensor.half_width_rad);
+  const double d =
+      sensor.half_width_rad.value_or(default_planet_pass_half_width(static_cast<int>(planets)));
   std::vector<double> y(carrier_angle_rad.size(), 0.0);
   for (std::size_t i = 0; i < y.size(); ++i) {
     double sum = 0.0;

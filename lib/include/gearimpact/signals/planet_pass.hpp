@@ -13,6 +13,7 @@
 // function (force to acceleration) is not applied.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "gearimpact/constants.hpp"
@@ -32,8 +33,8 @@ double wrap_to_pi(double x_rad);
 double planet_pass_window(double phi_rad, double half_width_rad);
 
 struct RingSensor {
-  double sensor_angle_rad = 0.0;  // phi_0, counter-clockwise from the fixed x axis
-  double half_width_rad = 0.0;    // D; 0: the default 2 pi / N
+  double sensor_angle_rad = 0.0;         // phi_0, counter-clockwise from the fixed x axis
+  std::optional<double> half_width_rad;  // D; absent: the default 2 pi / N
 };
 
 // y at each sample: forces[n][i] is planet n's F_d,rn - F_c,rn (N) at sample i,
