@@ -300,9 +300,13 @@ std::string train_modes_table(const GearTrain& train, const std::vector<TrainMod
     }
     table += line;
     for (std::size_t c : shares) {
-      std::snprintf(line, sizeof line, "  %*.3f", static_cast<int>(columns[c].name.size()),
-                    columns[c].value(r));
-      table += line;
+      // As wide as its header, which is the file's name of the mesh or shaft: any length.
+      std::string cell(columns[c].name.size() + 32, '\0');
+      const int written =
+          std::snprintf(cell.data(), cell.size(), "  %*.3f",
+                        static_cast<int>(columns[c].name.size()), columns[c].value(r));
+      cell.resize(static_cast<std::size_t>(std::max(written, 0)));
+      table += cell;
     }
     table += "\n";
   }
