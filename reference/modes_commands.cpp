@@ -15,6 +15,7 @@
 #include "commands.hpp"
 #include "gearimpact/case/units.hpp"
 #include "gearimpact/constants.hpp"
+#include "gearimpact/dynamics/train.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
@@ -23,6 +24,7 @@
 #include "gearimpact/io/results.hpp"
 #include "gearimpact/modes/modes.hpp"
 #include "gearimpact/modes/planetary.hpp"
+#include "gearimpact/modes/train_modes.hpp"
 #include "gnuplot.hpp"
 #include "program.hpp"
 
@@ -277,11 +279,84 @@ void write_planetary_modes(ModesOptions& o) {
   std::cerr << "modes: wrote " << (std::filesystem::path(o.out) / "modes.csv").string() << "\n";
 }
 
+// The train's modes as a table on stdout: frequency and the strain-energy shares by spring.
+std::string train_modes_table(const GearTrain& train, const std::vector<TrainModeRow>& rows) {
+  const Columns<TrainModeRow> columns = train_modes_columns(train);
+  std::string table = " mode  frequency_hz";
+  // The share columns follow mode, rigid, frequency_hz and angular_frequency_rad_per_s.
+  std::vector<std::size_t> shares;
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    if (columns[c].name.rfind("share_", 0) != 0) continue;
+    shares.push_back(c);
+    table += "  " + columns[c].name;
+  }
+  table += "\n";
+  for (const TrainModeRow& r : rows) {
+    char line[64];
+    if (r.mode.rigid) {
+      std::snprintf(line, sizeof line, "%5d  %12s", r.number, "rigid");
+    } else {
+      std::snprintf(line, sizeof line, "%5d  %12.3f", r.number, r.mode.frequency_hz);
+    }
+    table += line;
+    for (std::size_t c : shares) {
+      // As wide as its header, which is the file's name of the mesh or shaft: any length.
+      std::string cell(columns[c].name.size() + 32, '\0');
+      const int written =
+          std::snprintf(cell.data(), cell.size(), "  %*.3f",
+                        static_cast<int>(columns[c].name.size()), columns[c].value(r));
+      cell.resize(static_cast<std::size_t>(std::max(written, 0)));
+      table += cell;
+    }
+    table += "\n";
+  }
+  return table;
+}
+
+// `modes` on a train file: the torsional train's modes at each mesh's mean mesh stiffness
+// (docs/planetary.md, "Modes of a torsional train").
+void write_train_modes(ModesOptions& o) {
+  // The pair's options have nothing to act on here: refused, not ignored.
+  if (o.harmonics_option != nullptr && o.harmonics_option->count() > 0) {
+    throw InputError("--harmonics", std::to_string(o.harmonics),
+                     "left out on a train file (no Campbell diagram)");
+  }
+  if (!o.max_speed.empty()) {
+    throw InputError("--max-speed", o.max_speed, "left out on a train file (no Campbell diagram)");
+  }
+  for (const CaseFlag& flag : kCaseFlags) {
+    if ((flag.commands & kModes) == 0) continue;
+    const CLI::Option* given = o.command->get_option_no_throw(flag.flag);
+    if (given != nullptr && given->count() > 0) {
+      throw InputError(flag.flag, given->as<std::string>(),
+                       "left out on a train file: set a mesh's key with --set "
+                       "meshes.NAME.SECTION.KEY=VALUE, or every mesh's with SECTION.KEY=VALUE");
+    }
+  }
+  const GearTrain train = read_train_file(o.case_file, o.keys.sets());
+  const TrainModes modes = train_modes(train);
+  const std::vector<TrainModeRow> rows = train_mode_rows(modes);
+  const std::string csv = csv_of(train_modes_columns(train), rows);
+  const std::string summary =
+      train_modes_summary_json(std::filesystem::path(o.case_file).stem().string(), train, modes);
+  AtomicFolder folder(o.out, o.overwrite, {o.case_file});
+  const std::filesystem::path dir = folder.temporary();
+  write_file_atomically((dir / "modes.csv").string(), csv);
+  write_file_atomically((dir / "summary.json").string(), summary);
+  folder.commit();
+  std::fputs(train_modes_table(train, rows).c_str(), stdout);
+  std::cerr << "modes: wrote " << (std::filesystem::path(o.out) / "modes.csv").string() << "\n";
+}
+
 void write_modes(ModesOptions& o) {
   // Every refusal before any work: the folder, the options, the case.
   require_output_folder(o.out, o.overwrite, {o.case_file});
   if (is_planetary_file(o.case_file)) {
     write_planetary_modes(o);
+    return;
+  }
+  if (is_train_file(o.case_file)) {
+    write_train_modes(o);
     return;
   }
   require_harmonics(o.harmonics);
@@ -326,8 +401,13 @@ void register_modes_commands(CLI::App& app) {
       "cross them), mode_shapes.csv, summary.json and the figures modes_energy.png, "
       "mode_shapes.png and campbell.png. On a planetary file ([planetary], docs/planetary.md): the "
       "linear stage's modes, modes.csv (frequency, multiplicity, type, strain-energy shares by "
-      "spring kind) and summary.json, the table printed");
-  modes->add_option("case", o->case_file, "case file: a pair file, a run file or a planetary file")
+      "spring kind) and summary.json, the table printed. On a train file ([[bodies]], "
+      "docs/planetary.md, \"Modes of a torsional train\"): the torsional train's modes at each "
+      "mesh's mean mesh stiffness, modes.csv (frequency, strain-energy share per mesh and "
+      "torsional shaft, the shape per body) and summary.json, the table printed");
+  modes
+      ->add_option("case", o->case_file,
+                   "case file: a pair file, a run file, a planetary file or a train file")
       ->required();
   modes
       ->add_option("--out", o->out,

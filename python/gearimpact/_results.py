@@ -271,6 +271,20 @@ def planetary_modes(case_file):
     return {"modes": modes, "summary": json.loads(summary)}
 
 
+def train_modes(case_file, sets=()):
+    """The natural modes of a torsional gear train at each mesh's mean mesh stiffness
+    (docs/planetary.md, "Modes of a torsional train"), as ``gearimpact modes FILE`` gives them
+    on a train file, bit for bit. case_file: a str or pathlib.Path; sets: a list of "KEY=VALUE"
+    str as the command's --set. Returns a dict: "modes" (numpy arrays by column of the command's
+    modes.csv: mode int64, rigid bool, frequency_hz, angular_frequency_rad_per_s, share_MESH and
+    share_shaft_A_B per mesh and torsional shaft, theta_BODY_rad_per_sqrt_kg_m per body) and
+    "summary" (summary.json as a dict). Raises CaseError naming a bad key."""
+    path = _arguments.path("case_file", case_file)
+    more = _arguments.strings("sets", sets, ["meshes.stage1.model.mesh_stiffness=constant"])
+    modes, summary = _core.train_modes(path, list(more))
+    return {"modes": modes, "summary": json.loads(summary)}
+
+
 def train(case_file, sets=(), keep_series=True):
     """Runs a gear train's case file (docs/case-files.md, "A gear train"; a two-gear case file
     is the train of its pair) as ``gearimpact train`` does, bit for bit.

@@ -514,6 +514,20 @@ py::tuple planetary_modes_of(const std::string& path) {
   return py::make_tuple(table_arrays(stage_modes_columns(), stage_mode_rows(modes)), summary);
 }
 
+// `gearimpact modes` on a train file: modes.csv's columns as arrays (the library's table of them)
+// and summary.json's text, the file read with `sets` as --set.
+py::tuple train_modes_of(const std::string& path, const std::vector<std::string>& sets) {
+  const GearTrain train = read_train_file(path, sets);
+  TrainModes modes;
+  {
+    py::gil_scoped_release release;
+    modes = train_modes(train);
+  }
+  const std::string summary =
+      train_modes_summary_json(std::filesystem::path(path).stem().string(), train, modes);
+  return py::make_tuple(table_arrays(train_modes_columns(train), train_mode_rows(modes)), summary);
+}
+
 // `gearimpact modes`: modes.csv's, campbell.csv's and mode_shapes.csv's columns as arrays (the
 // library's tables of them) and summary.json's text;
 // `max_speed` a quantity with its unit ("6000 rpm"), absent for the program's default.
@@ -987,6 +1001,7 @@ void define_module(py::module_& m) {
   m.def("ste", &ste_texts_of, py::arg("case"), py::arg("torque"), py::arg("points"));
   m.def("modes", &modes_texts_of, py::arg("case"), py::arg("harmonics"), py::arg("max_speed"));
   m.def("planetary_modes", &planetary_modes_of, py::arg("case_file"));
+  m.def("train_modes", &train_modes_of, py::arg("case_file"), py::arg("sets"));
   m.def(
       "reproduce",
       [](const std::string& out, const std::string& paper_data) {

@@ -14,6 +14,7 @@
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/modes_files.hpp"
 #include "gearimpact/modes/modes.hpp"
+#include "gearimpact/modes/train_modes.hpp"
 #include "run_command.hpp"
 #include "scratch.hpp"
 
@@ -284,5 +285,47 @@ TEST_CASE("modes refuses a planetary file's bad key before any work, naming it")
     CHECK_MESSAGE(r.exit_code == 1, option);
     CHECK_MESSAGE(r.err.find(option.substr(0, option.find(' '))) != std::string::npos, r.err);
     CHECK_FALSE(std::filesystem::exists(out));
+  }
+}
+
+TEST_CASE("modes on a train file writes the library's train modes; the pair's options refused") {
+  Scratch scratch("modes-train");
+  const std::filesystem::path example = paper_data / ".." / "examples" / "two_stage_rig.toml";
+  const std::filesystem::path out = scratch.dir / "out";
+  const CommandResult r = run_command(
+      cli("modes " + example.string() + " --set " + "shafts_do_not_exist=1 --out " + out.string()));
+  // --set goes to the train file's reader, which names the key it does not know.
+  CHECK(r.exit_code != 0);
+  CHECK(r.err.find("shafts_do_not_exist") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(out / "modes.csv"));
+  const CommandResult ok =
+      run_command(cli("modes " + example.string() +
+                      " --set meshes.stage2.gears.backlash=0.1mm --out " + out.string()));
+  REQUIRE_MESSAGE(ok.exit_code == 0, ok.err);
+  const GearTrain train = read_train_file(example, {"meshes.stage2.gears.backlash=0.1mm"});
+  const TrainModes modes = train_modes(train);
+  CHECK(read(out / "modes.csv") == csv_of(train_modes_columns(train), train_mode_rows(modes)));
+  CHECK(read(out / "summary.json") == train_modes_summary_json("two_stage_rig", train, modes));
+  std::stringstream csv(read(out / "modes.csv"));
+  std::string line;
+  std::getline(csv, line);
+  CHECK(line ==
+        "mode,rigid,frequency_hz,angular_frequency_rad_per_s,share_stage1,share_stage2,"
+        "share_shaft_wheel1_pinion2,theta_input_rad_per_sqrt_kg_m,"
+        "theta_wheel1_rad_per_sqrt_kg_m,theta_pinion2_rad_per_sqrt_kg_m,"
+        "theta_output_rad_per_sqrt_kg_m");
+  // One rigid mode, three elastic ones.
+  REQUIRE(modes.modes.size() == 4);
+  CHECK(modes.modes[0].rigid);
+  for (const char* option : {"--harmonics 2", "--max-speed 100", "--mesh-stiffness constant"}) {
+    CAPTURE(option);
+    const std::filesystem::path refused = scratch.dir / "refused";
+    const CommandResult e =
+        run_command(cli("modes " + example.string() + " " + option + " --out " + refused.string()));
+    CHECK(e.exit_code != 0);
+    CHECK(e.err.find(std::string(option).substr(0, std::string(option).find(' '))) !=
+          std::string::npos);
+    CHECK(e.err.find("train file") != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(refused / "modes.csv"));
   }
 }

@@ -315,6 +315,19 @@ TEST_CASE("docs/usage.md lists exactly the columns of each output's table") {
   train.bodies[0].name = "BODY";
   train.meshes.resize(1);
   train.meshes[0].name = "MESH";
+  // A train of bodies A and B, one mesh MESH and a torsional shaft between them: its modes'
+  // columns as the docs write them.
+  gearimpact::GearTrain two_bodies;
+  two_bodies.bodies.resize(2);
+  two_bodies.bodies[0].name = "A";
+  two_bodies.bodies[1].name = "B";
+  two_bodies.meshes.resize(1);
+  two_bodies.meshes[0].name = "MESH";
+  gearimpact::TrainShaft shaft;
+  shaft.kind = gearimpact::TrainShaft::Kind::torsional;
+  shaft.body_a = 0;
+  shaft.body_b = 1;
+  two_bodies.shafts = {shaft};
   const std::vector<std::pair<std::string, std::string>> tables{
       {"series", documented(gearimpact::series_columns())},
       {"samples", documented(gearimpact::sample_columns())},
@@ -322,7 +335,8 @@ TEST_CASE("docs/usage.md lists exactly the columns of each output's table") {
       {"planar-samples", documented(gearimpact::planar_sample_columns())},
       {"train-series", documented(gearimpact::train_series_columns(train))},
       {"rattle-impacts", documented(gearimpact::rattle_impact_columns())},
-      {"planetary-modes", documented(gearimpact::stage_modes_columns())}};
+      {"planetary-modes", documented(gearimpact::stage_modes_columns())},
+      {"train-modes", documented(gearimpact::train_modes_columns(two_bodies))}};
   for (const auto& [name, expected] : tables) {
     INFO("docs/usage.md's block \"<!-- columns " << name << " -->\" should read:\n" << expected);
     CHECK(doc_table(doc, name) == expected);

@@ -411,3 +411,29 @@ def test_planetary_modes_equal_the_program(cli, source_dir, tmp_path):
         bad = tmp_path / "bad.toml"
         bad.write_text(example.read_text().replace("planets = 4", "planets = 0"))
         gearimpact.planetary_modes(bad)
+
+
+def test_train_modes_equal_the_program(cli, source_dir, tmp_path):
+    # The two-stage rig with a --set: modes.csv column by column, bit for bit, the rigid flag as
+    # the program writes it, and summary.json whole; a bad --set key refused by its name.
+    example = Path(source_dir) / "examples" / "two_stage_rig.toml"
+    out = tmp_path / "out"
+    sets = ["shafts_x=1"]
+    with pytest.raises(gearimpact.CaseError, match="shafts_x"):
+        gearimpact.train_modes(example, sets=sets)
+    sets = ["meshes.stage2.gears.backlash=0.1 mm"]
+    cli("modes", example, "--set", sets[0], "--out", out)
+    ours = gearimpact.train_modes(example, sets=sets)
+    assert ours["summary"] == json.loads((out / "summary.json").read_text())
+    lines = (out / "modes.csv").read_text().strip().splitlines()
+    header = lines[0].split(",")
+    cells = [line.split(",") for line in lines[1:]]
+    assert list(ours["modes"]) == header
+    for j, name in enumerate(header):
+        column = [row[j] for row in cells]
+        if name == "rigid":
+            assert list(ours["modes"][name]) == [cell == "true" for cell in column]
+        else:
+            assert_bitwise_equal(ours["modes"][name], [float(cell) for cell in column],
+                                 f"train {name}")
+    assert ours["modes"]["mode"].dtype.kind == "i"

@@ -875,6 +875,14 @@ GearTrain two_gear_train(const SimulationCase& c) {
   return train;
 }
 
+void check_train(const GearTrain& train) {
+  validate_train(train);
+}
+
+std::vector<int> train_degrees_of_freedom(const GearTrain& train) {
+  return degrees_of_freedom(train);
+}
+
 TrainResult simulate_train(const GearTrain& train, const RunControl& control) {
   validate_train(train);
   std::vector<std::shared_ptr<const StiffnessTable>> built;

@@ -213,4 +213,88 @@ std::string stage_modes_summary_json(const std::string& case_name, const Planeta
   return j.dump(2) + "\n";
 }
 
+std::vector<TrainModeRow> train_mode_rows(const TrainModes& modes) {
+  std::vector<TrainModeRow> rows;
+  for (std::size_t i = 0; i < modes.modes.size(); ++i) {
+    rows.push_back(
+        {static_cast<int>(i + 1), modes.modes[i], body_shape(modes.model, modes.modes[i])});
+  }
+  return rows;
+}
+
+Columns<TrainModeRow> train_modes_columns(const GearTrain& train) {
+  Columns<TrainModeRow> columns;
+  columns.push_back(member_column<TrainModeRow>("mode", &TrainModeRow::number));
+  columns.push_back(
+      boolean_column<TrainModeRow>("rigid", [](const TrainModeRow& r) { return r.mode.rigid; }));
+  columns.push_back(computed_column<TrainModeRow>(
+      "frequency_hz", "Hz", [](const TrainModeRow& r) { return r.mode.frequency_hz; }));
+  columns.push_back(computed_column<TrainModeRow>(
+      "angular_frequency_rad_per_s", "rad/s",
+      [](const TrainModeRow& r) { return r.mode.angular_frequency; }));
+  // The springs' order of train_linear_model: the meshes, then the torsional shafts.
+  std::size_t spring = 0;
+  for (const TrainMesh& mesh : train.meshes) {
+    columns.push_back(
+        computed_column<TrainModeRow>("share_" + mesh.name, "", [spring](const TrainModeRow& r) {
+          return r.mode.energy_share.empty() ? 0.0 : r.mode.energy_share[spring];
+        }));
+    ++spring;
+  }
+  for (const TrainShaft& shaft : train.shafts) {
+    if (shaft.kind != TrainShaft::Kind::torsional) continue;
+    const std::string name = "share_shaft_" +
+                             train.bodies[static_cast<std::size_t>(shaft.body_a)].name + "_" +
+                             train.bodies[static_cast<std::size_t>(shaft.body_b)].name;
+    columns.push_back(computed_column<TrainModeRow>(name, "", [spring](const TrainModeRow& r) {
+      return r.mode.energy_share.empty() ? 0.0 : r.mode.energy_share[spring];
+    }));
+    ++spring;
+  }
+  for (std::size_t i = 0; i < train.bodies.size(); ++i) {
+    const auto at = static_cast<Eigen::Index>(i);
+    columns.push_back(computed_column<TrainModeRow>(
+        "theta_" + train.bodies[i].name + "_rad_per_sqrt_kg_m", "rad/(sqrt(kg) m)",
+        [at](const TrainModeRow& r) { return r.body_shape(at); }));
+  }
+  return columns;
+}
+
+std::string train_modes_summary_json(const std::string& case_name, const GearTrain& train,
+                                     const TrainModes& modes) {
+  Json j;
+  j["case"] = case_name;
+  j["angles"] = "each body's forward sense: a mesh deflects by Rb_a theta_a - Rb_b theta_b";
+  Json bodies = Json::array();
+  for (std::size_t i = 0; i < train.bodies.size(); ++i) {
+    Json b;
+    b["name"] = train.bodies[i].name;
+    b["inertia_kg_m2"] = train.bodies[i].inertia_kg_m2;
+    b["dof"] = modes.model.body_dof[i];
+    bodies.push_back(b);
+  }
+  j["bodies"] = bodies;
+  j["dofs"] = modes.model.mass.rows();
+  Json meshes = Json::array();
+  for (std::size_t k = 0; k < train.meshes.size(); ++k) {
+    Json m;
+    m["name"] = train.meshes[k].name;
+    m["mesh_stiffness_n_per_m"] = modes.model.mesh_stiffness_n_per_m[k];
+    meshes.push_back(m);
+  }
+  j["meshes"] = meshes;
+  std::size_t rigid = 0;
+  Json frequencies = Json::array();
+  for (const TrainMode& mode : modes.modes) {
+    if (mode.rigid) {
+      ++rigid;
+    } else {
+      frequencies.push_back(mode.frequency_hz);
+    }
+  }
+  j["rigid_modes"] = rigid;
+  j["frequencies_hz"] = frequencies;
+  return j.dump(2) + "\n";
+}
+
 }  // namespace gearimpact

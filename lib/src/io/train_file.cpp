@@ -27,6 +27,11 @@ namespace {
 
 // ---- A train file (docs/case-files.md, A gear train) ----
 
+// What makes a case file a train's: its [[bodies]].
+bool has_bodies(const toml::value& root) {
+  return root.is_table() && root.as_table().count("bodies") > 0;
+}
+
 std::string train_key_list(std::string_view section) {
   std::string names;
   for (const Field& field : train_schema()) {
@@ -316,7 +321,7 @@ void set_in_file(toml::value& root, const std::string& assignment) {
   }
   const std::string key = assignment.substr(0, equals);
   const std::string_view text = std::string_view(assignment).substr(equals + 1);
-  const bool train = root.as_table().count("bodies") > 0;
+  const bool train = has_bodies(root);
   for (const std::string table_key : {"bodies", "meshes"}) {
     if (key.rfind(table_key + ".", 0) != 0) continue;
     if (!train) {
@@ -578,13 +583,23 @@ GearTrain read_train(const Reader& reader, const toml::value& root, std::string_
 
 }  // namespace
 
+bool is_train_text(std::string_view toml_text, std::string_view file_name) {
+  const Reader reader{std::string(file_name)};
+  const toml::value root = parse_toml(reader, toml_text, file_name);
+  return has_bodies(root);
+}
+
+bool is_train_file(const std::filesystem::path& path) {
+  return is_train_text(read_text(path), path.string());
+}
+
 GearTrain parse_train(std::string_view toml_text, std::string_view file_name,
                       const std::vector<std::string>& sets) {
   const Reader reader{std::string(file_name)};
   toml::value root = parse_toml(reader, toml_text, file_name);
   if (!root.is_table()) root = toml::table{};
   for (const std::string& assignment : sets) set_in_file(root, assignment);
-  if (root.as_table().count("bodies") == 0) {
+  if (!has_bodies(root)) {
     // A two-gear case, read as it always is.
     return two_gear_train(read_case(reader, root, file_name, CaseFileKind::run));
   }

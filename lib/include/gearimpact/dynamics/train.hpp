@@ -121,6 +121,15 @@ struct TrainResult {
   std::vector<std::vector<ImpactRecord>> impacts;
 };
 
+// Refuses what simulate_train refuses (below), before any work: for a caller
+// that reads the train without running it (its modes, modes/train_modes.hpp).
+void check_train(const GearTrain& train);
+
+// Which of the train's degrees of freedom each body is, in the order of
+// GearTrain::bodies: bodies joined by rigid shafts are one, numbered in the
+// order of their first body.
+std::vector<int> train_degrees_of_freedom(const GearTrain& train);
+
 // Validates the train (InputError naming the field: bodies.NAME.inertia,
 // meshes.NAME.gears.teeth1, ...) and runs it; of `control`, keep_series and
 // should_stop are read.

@@ -74,6 +74,11 @@ PairOrRunCase read_pair_or_run_file(const std::filesystem::path& path);
 
 struct GearTrain;
 
+// True when the TOML text has [[bodies]]: a train file. Throws CaseFileError
+// for text that is no TOML.
+bool is_train_text(std::string_view toml_text, std::string_view file_name);
+bool is_train_file(const std::filesystem::path& path);
+
 // A train file (docs/case-files.md, A gear train) read into a GearTrain: its [[bodies]] (by the
 // rows of train_schema()), its [[meshes]], each the pair of the file's pair sections ([gears],
 // [model], [modifications], [bearings], [[faults]]: every mesh's defaults) with the mesh's own

@@ -10,6 +10,7 @@
 #include "gearimpact/io/columns.hpp"
 #include "gearimpact/modes/modes.hpp"
 #include "gearimpact/modes/planetary.hpp"
+#include "gearimpact/modes/train_modes.hpp"
 
 namespace gearimpact {
 
@@ -82,5 +83,23 @@ Columns<StageModeRow> stage_modes_columns();
 // The case's name, the planets and their angles, the dofs, the rigid modes and each
 // distinct frequency with its multiplicity and type.
 std::string stage_modes_summary_json(const std::string& case_name, const PlanetaryModes& modes);
+
+// ---- A torsional train's modes (docs/planetary.md, "Modes of a torsional train") ----
+
+// A row of a train's modes.csv: one mode, numbered from 1, and its shape per body.
+struct TrainModeRow {
+  int number = 0;
+  TrainMode mode;
+  Eigen::VectorXd body_shape;  // body_shape(model, mode)
+};
+std::vector<TrainModeRow> train_mode_rows(const TrainModes& modes);
+// mode, rigid, frequency_hz, angular_frequency_rad_per_s; share_MESH per mesh (by its name);
+// share_shaft_A_B per torsional shaft (by its two bodies' names); theta_BODY_rad_per_sqrt_kg_m
+// per body, the mass-normalised shape in each body's forward sense.
+Columns<TrainModeRow> train_modes_columns(const GearTrain& train);
+// The case's name, the bodies and their degrees of freedom, each mesh's stiffness, the rigid
+// modes and the elastic frequencies.
+std::string train_modes_summary_json(const std::string& case_name, const GearTrain& train,
+                                     const TrainModes& modes);
 
 }  // namespace gearimpact
