@@ -1,0 +1,338 @@
+// The rotational planetary stage as a train (dynamics/planetary_train.hpp,
+// the carrier-frame and internal meshes of dynamics/train.hpp) and the ISO
+// 6336-1 ring table (stiffness/iso6336.hpp). References: the Willis
+// relations written out here from the tooth counts; the static balance of
+// identical planets (each sun mesh carries T_s / (N Rb_s)); conservation of
+// angular momentum (sum J w about +z, the planets' orbits included) in a free
+// stage, which the mesh moments' zero sum and RK4's exactness on linear
+// invariants keep to rounding; the ledger's residual at the integrator's
+// order; c_gamma_alpha = c' (0.75 eps + 0.25) of ISO 6336-1; the internal
+// segment from circle-line intersections computed here.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "gearimpact/constants.hpp"
+#include "gearimpact/dynamics/planetary_train.hpp"
+#include "gearimpact/dynamics/train.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/planetary.hpp"
+#include "gearimpact/stiffness/iso6336.hpp"
+
+using namespace gearimpact;
+
+namespace {
+
+// A steel stage of module 2 mm, 20 deg, 20 mm wide: discs on the pitch
+// circles for the sun and planets, a ring and carrier of the given inertias.
+PlanetaryStage test_stage(int sun, int planet, int ring, int planets) {
+  PlanetaryStage s;
+  s.teeth = {sun, planet, ring};
+  s.mesh.gears.module_m = 2.0e-3;
+  s.mesh.gears.face_width_m = 20.0e-3;
+  s.mesh.gears.backlash_m = 0.05e-3;
+  s.mesh.model.friction_coefficient = 0.0;
+  s.mesh.model.mesh_damping_ratio = 0.1;
+  s.planets = planets;
+  const auto disc = [&](int z) {
+    const double r = 0.5 * s.mesh.gears.module_m * z;
+    return s.mesh.gears.density_kg_m3 * pi * r * r * r * r * s.mesh.gears.face_width_m / 2.0;
+  };
+  s.sun_inertia_kg_m2 = disc(sun);
+  s.planet_inertia_kg_m2 = disc(planet);
+  s.ring_inertia_kg_m2 = 4.0 * disc(ring);
+  s.carrier_inertia_kg_m2 = 2.0e-3;
+  s.planet_mass_kg = 0.3;
+  s.integrator.kind = IntegratorKind::rk4;
+  s.integrator.step_s = 1.0e-6;
+  s.integrator.end_time_s = 0.02;
+  return s;
+}
+
+Torque constant_torque(double t) {
+  Torque q;
+  q.kind = Torque::Kind::constant;
+  q.constant_n_m = t;
+  return q;
+}
+
+Torque driver(double w) {
+  Torque q;
+  q.kind = Torque::Kind::prescribed_speed;
+  q.mean_speed_rad_per_s = w;
+  return q;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "the ISO ring table: c' b in the single zone, 0.875 c' b in the double zones, mean "
+    "c_gamma_alpha b") {
+  const PlanetaryTeeth teeth{24, 24, 72};
+  const PlanetaryToothing toothing{2.0e-3, 20.0 * pi / 180.0, 1.0};
+  const InternalMesh g = internal_mesh(teeth, toothing, 0.5 * 2.0e-3 * (72 - 24));
+  const Iso6336Internal iso =
+      iso6336_internal_method_b(24, g.contact_ratio, 1.25, toothing.pressure_angle_rad);
+  // q' with zn2 infinite: C1 + C2 / zn1, the constants of ISO 6336-1 method B.
+  CHECK(iso.flexibility_mm_um_per_n == doctest::Approx(0.04723 + 0.15551 / 24.0).epsilon(1e-15));
+  const double b = 20.0e-3;
+  const double cb = iso.single_stiffness_n_per_m2 * b;
+  const StiffnessTable table =
+      iso6336_internal_pair_table(g.segment_start_m, g.segment_end_m, g.base_pitch_m, cb);
+  const double zone = (g.contact_ratio - 1.0) * g.base_pitch_m;
+  const double mid = 0.5 * (g.segment_start_m + g.segment_end_m);
+  CHECK(std::fabs(table.stiffness(mid) / cb - 1.0) < 1e-13);
+  CHECK(std::fabs(table.stiffness(g.segment_start_m + 0.5 * zone) / (0.875 * cb) - 1.0) < 1e-13);
+  CHECK(std::fabs(table.stiffness(g.segment_end_m - 0.5 * zone) / (0.875 * cb) - 1.0) < 1e-13);
+  // The mesh over one base pitch: the pairs at X + k t0 in the segment,
+  // sampled at the midpoints of 100000 equal steps (the zones' edges cost
+  // at most one sample each: 2e-5 of the mean).
+  const int samples = 100000;
+  double sum = 0.0;
+  for (int i = 0; i < samples; ++i) {
+    const double x0 = g.segment_start_m + (i + 0.5) / samples * g.base_pitch_m;
+    for (int k = 0; k < 3; ++k) {
+      const double x = x0 + k * g.base_pitch_m;
+      if (x <= g.segment_end_m) sum += table.stiffness(x);
+    }
+  }
+  const double mean = sum / samples;
+  CHECK(std::fabs(mean / (iso.single_stiffness_n_per_m2 * (0.75 * g.contact_ratio + 0.25) * b) -
+                  1.0) < 3e-5);
+  CHECK(iso.mesh_stiffness_n_per_m2 ==
+        doctest::Approx(iso.single_stiffness_n_per_m2 * (0.75 * g.contact_ratio + 0.25)));
+  // Outside ISO's range, refused naming eps_alpha's key.
+  CHECK_THROWS_WITH_AS(iso6336_internal_method_b(24, 1.1, 1.25, toothing.pressure_angle_rad),
+                       doctest::Contains("contact_ratio"), InputError);
+  CHECK_THROWS_WITH_AS(iso6336_internal_method_b(24, 2.0, 1.25, toothing.pressure_angle_rad),
+                       doctest::Contains("contact_ratio"), InputError);
+}
+
+TEST_CASE("the internal segment: the line tangent to both base circles cut by the tip circles") {
+  // Ring centre at the origin, planet centre C = (a, 0). The line of action
+  // touches both base circles on one side: with its unit normal
+  // n = (cos a_w, sin a_w), n . P = Rb_r on the line and n . C = a cos a_w =
+  // Rb_r - Rb_p. Points P = Rb_r n + t u, u = (-sin a_w, cos a_w): T_a (the
+  // ring's foot) at t = 0, T_b (the planet's) at t_b = C . u. A contact's
+  // rho is its distance from T_b counted away from T_a.
+  const double m = 2.0e-3;
+  const double a0 = 20.0 * pi / 180.0;
+  const int zp = 24, zr = 72;
+  const double a = 0.5 * m * (zr - zp);
+  const double rbp = 0.5 * m * zp * std::cos(a0), rbr = 0.5 * m * zr * std::cos(a0);
+  const double aw = std::acos((rbr - rbp) / a);
+  const double nx = std::cos(aw), ny = std::sin(aw), ux = -ny, uy = nx;
+  const double tb = a * ux;
+  const double dir = tb > 0.0 ? 1.0 : -1.0;
+  const auto rho = [&](double t) { return (t - tb) * dir; };
+  // A circle of radius R about (cx, 0) cuts the line where
+  // |Rb_r n + t u - (cx, 0)|^2 = R^2: t = t_c +- sqrt(R^2 - d^2), t_c the
+  // centre's foot and d its distance from the line.
+  const auto farthest_cut = [&](double cx, double radius) {
+    const double tc = cx * ux;
+    const double d = std::fabs(cx * nx - rbr);
+    const double half = std::sqrt(radius * radius - d * d);
+    return std::max(rho(tc - half), rho(tc + half));
+  };
+  const InternalMesh g = internal_mesh({24, zp, zr}, {m, a0, 1.0}, a);
+  // The segment runs from the ring's tip cut on T_b's side to the planet's
+  // tip cut beyond the pitch point; the pitch point is where the line
+  // crosses the centre line (y = 0: t = -Rb_r n_y / u_y).
+  CHECK(std::fabs(g.segment_start_m - farthest_cut(0.0, 0.5 * m * zr - m)) < 1e-15);
+  CHECK(std::fabs(g.segment_end_m - farthest_cut(a, 0.5 * m * zp + m)) < 1e-15);
+  CHECK(std::fabs(g.pitch_point_m - rho(-rbr * ny / uy)) < 1e-15);
+  CHECK(std::fabs(g.contact_ratio -
+                  (g.segment_end_m - g.segment_start_m) / (pi * m * std::cos(a0))) < 1e-12);
+}
+
+namespace {
+
+// Angles of body i at the first row at or after t and at the last row.
+double angle_change(const TrainResult& r, std::size_t body, double from_s) {
+  const auto first = std::find_if(r.series.begin(), r.series.end(),
+                                  [&](const TrainRow& row) { return row.t_s >= from_s; });
+  return r.series.back().theta_rad[body] - first->theta_rad[body];
+}
+
+}  // namespace
+
+TEST_CASE("Willis: a driven stage under a constant load turns at the rigid ratios") {
+  // (w_s - w_c) / (w_r - w_c) = -Z_r / Z_s written out for each held member.
+  const int zs = 24, zp = 24, zr = 72;
+  struct Arrangement {
+    HeldMember held;
+    std::size_t input, output;
+    double ratio;  // output speed over input speed
+  };
+  const Arrangement arrangements[] = {
+      {HeldMember::ring, kSunBody, kCarrierBody, double(zs) / (zs + zr)},
+      {HeldMember::carrier, kSunBody, kRingBody, -double(zs) / zr},
+      {HeldMember::sun, kRingBody, kCarrierBody, double(zr) / (zs + zr)},
+  };
+  for (const Arrangement& a : arrangements) {
+    CAPTURE(static_cast<int>(a.held));
+    PlanetaryStage s = test_stage(zs, zp, zr, 3);
+    s.held = a.held;
+    s.input_speed_rad_per_s = 100.0;
+    // The input member driven at 100 rad/s, the output loaded against its
+    // motion with 20 N m.
+    Torque& in = a.input == kSunBody ? s.sun_torque : s.ring_torque;
+    in = driver(100.0);
+    Torque& out = a.output == kCarrierBody ? s.carrier_torque : s.ring_torque;
+    out = constant_torque(a.ratio > 0 ? -20.0 : 20.0);
+    const TrainResult r = simulate_train(planetary_train(s));
+    const double in_turn = angle_change(r, a.input, 0.01);
+    const double out_turn = angle_change(r, a.output, 0.01);
+    // Over the second half (1 rad of input) the elastic angles change by
+    // what the damped vibration and the varying mesh stiffness leave of the
+    // static deflection (~F / k ~ 1e-6 m over radii of centimetres): the
+    // ratio of the angle changes is Willis's to 3e-5 (measured: 5e-6 at most).
+    CAPTURE(out_turn / in_turn);
+    CHECK(std::fabs(out_turn / in_turn / a.ratio - 1.0) < 3e-5);
+    // Each planet's speed relative to the carrier: -(Z_s / Z_p)(w_s - w_c).
+    const double sun_turn = angle_change(r, kSunBody, 0.01);
+    const double carrier_turn = angle_change(r, kCarrierBody, 0.01);
+    const double planet_turn = angle_change(r, kFirstPlanetBody, 0.01);
+    CHECK(
+        std::fabs((planet_turn - carrier_turn) / (-(double(zs) / zp) * (sun_turn - carrier_turn)) -
+                  1.0) < 1e-4);
+    // The held member stays put.
+    const std::size_t held = a.held == HeldMember::ring      ? kRingBody
+                             : a.held == HeldMember::carrier ? kCarrierBody
+                                                             : kSunBody;
+    CHECK(r.series.back().w_rad_per_s[held] == 0.0);
+    CHECK(r.series.back().theta_rad[held] == 0.0);
+  }
+}
+
+TEST_CASE("identical equally spaced planets share the sun's torque equally at static balance") {
+  // Ring held, sun torque T_s, the carrier loaded by -T_s (1 + Z_r / Z_s):
+  // the rigid mode is unforced and the damped stage settles to its static
+  // balance, where every sun mesh carries T_s / (N Rb_s) (each planet's two
+  // mesh forces equal, their moments on the sun summing to T_s).
+  // N = 3 with 25/23/71 teeth (sun meshes phased by 1/3: equal stiffness
+  // taken constant) and N = 4 with 24/24/72 (all in phase, the tables).
+  struct Case {
+    int zs, zp, zr, n;
+    bool constant;
+  };
+  for (const Case c : {Case{25, 23, 71, 3, true}, Case{24, 24, 72, 4, false}}) {
+    CAPTURE(c.n);
+    PlanetaryStage s = test_stage(c.zs, c.zp, c.zr, c.n);
+    if (c.constant) {
+      s.mesh.model.mesh_stiffness = MeshStiffnessMode::constant;
+      s.mesh.model.constant_mesh_stiffness_n_per_m = 5.0e8;
+    }
+    const double ts = 20.0;
+    s.sun_torque = constant_torque(ts);
+    s.carrier_torque = constant_torque(-ts * (1.0 + double(c.zr) / c.zs));
+    s.integrator.end_time_s = 0.03;
+    const TrainResult r = simulate_train(planetary_train(s));
+    const double rbs =
+        0.5 * s.mesh.gears.module_m * c.zs * std::cos(s.mesh.gears.pressure_angle_rad);
+    const double share = ts / (c.n * rbs);
+    const TrainRow& last = r.series.back();
+    for (int i = 0; i < 2 * c.n; ++i) {
+      CAPTURE(i);
+      CAPTURE(last.meshes[static_cast<std::size_t>(i)].normal_force_n);
+      // Settled: the slowest elastic mode (some kHz) damped at 0.1 of
+      // critical has decayed by e^-100 or more in 30 ms; measured 1e-12, the
+      // bound leaves room for rounding over 30000 steps.
+      if (i < c.n) {
+        CHECK(std::fabs(last.meshes[static_cast<std::size_t>(i)].normal_force_n / share - 1.0) <
+              1e-10);
+      }
+    }
+    // Each ring mesh carries the same force as its planet's sun mesh.
+    for (int i = 0; i < c.n; ++i) {
+      CHECK(std::fabs(last.meshes[static_cast<std::size_t>(c.n + i)].normal_force_n / share - 1.0) <
+            1e-10);
+    }
+  }
+}
+
+TEST_CASE("a free stage keeps its angular momentum; a loaded one closes its ledger") {
+  PlanetaryStage s = test_stage(25, 23, 71, 3);
+  s.held = HeldMember::ring;
+  s.input_speed_rad_per_s = 50.0;
+  s.integrator.end_time_s = 0.005;
+  // No viscous damper (it acts in the backlash too, and would stop the
+  // relative motion before the teeth meet): the meshes act by contacts.
+  s.mesh.model.mesh_damping_ratio = 0.0;
+  GearTrain free = planetary_train(s);
+  // Nothing held and no torques: only the meshes act, and their moments
+  // (on the two gears and the carrier) sum to zero. The ring starts at
+  // rest, the others at their Willis speeds, so the meshes take up load.
+  free.bodies[kRingBody].held = false;
+  free.bodies[kSunBody].w_rad_per_s = 60.0;
+  const TrainResult r = simulate_train(free);
+  const auto momentum = [&](const TrainRow& row) {
+    double l = 0.0, scale = 0.0;
+    for (std::size_t i = 0; i < free.bodies.size(); ++i) {
+      l += free.bodies[i].inertia_kg_m2 * row.w_rad_per_s[i];
+      scale += std::fabs(free.bodies[i].inertia_kg_m2 * row.w_rad_per_s[i]);
+    }
+    return std::array<double, 2>{l, scale};
+  };
+  const double l0 = momentum(r.series.front())[0];
+  double worst = 0.0;
+  for (const TrainRow& row : r.series) {
+    const std::array<double, 2> l = momentum(row);
+    worst = std::max(worst, std::fabs(l[0] - l0) / l[1]);
+  }
+  CAPTURE(worst);
+  double largest_force = 0.0;
+  for (const TrainRow& row : r.series) {
+    for (const TrainMeshRow& m : row.meshes)
+      largest_force = std::max(largest_force, m.normal_force_n);
+  }
+  CHECK(r.summary.impacts_n1 + r.summary.impacts_n2 > 0);
+  CHECK(largest_force > 100.0);  // the meshes did act
+  // RK4 keeps a linear invariant of the right-hand side exactly: rounding,
+  // about 1e-16 per step over 5000 steps.
+  CHECK(worst < 1e-12);
+
+  // Loaded and driven: the ledger (torque work = kinetic + stored energy +
+  // losses) closes at RK4's order: a quarter of the step divides it by far
+  // more than 64.
+  PlanetaryStage d = test_stage(25, 23, 71, 3);
+  d.input_speed_rad_per_s = 100.0;
+  d.sun_torque = driver(100.0);
+  d.carrier_torque = constant_torque(-20.0);
+  d.integrator.end_time_s = 0.004;
+  d.integrator.step_s = 2.0e-6;
+  const TrainResult coarse = simulate_train(planetary_train(d));
+  d.integrator.step_s = 0.5e-6;
+  const TrainResult fine = simulate_train(planetary_train(d));
+  CAPTURE(coarse.summary.ledger_residual_max_j);
+  CAPTURE(fine.summary.ledger_residual_max_j);
+  CAPTURE(coarse.summary.ledger_scale_j);
+  CHECK(coarse.summary.ledger_residual_max_j / coarse.summary.ledger_scale_j < 1e-5);
+  CHECK(fine.summary.ledger_residual_max_j < coarse.summary.ledger_residual_max_j / 64.0);
+}
+
+TEST_CASE("the stage's and its meshes' bad input is refused by name") {
+  PlanetaryStage s = test_stage(24, 24, 72, 3);
+  s.teeth.ring = 73;  // Z_r != Z_s + 2 Z_p
+  CHECK_THROWS_AS(planetary_train(s), InputError);
+  s = test_stage(24, 24, 72, 3);
+  GearTrain t = planetary_train(s);
+  t.meshes[3].pair.model.friction_coefficient = 0.04;
+  CHECK_THROWS_WITH_AS(simulate_train(t),
+                       doctest::Contains("meshes.ring_planet1.model.friction_coefficient"),
+                       InputError);
+  t = planetary_train(s);
+  t.bodies[kRingBody].w_rad_per_s = 1.0;
+  CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("bodies.ring.w"), InputError);
+  t = planetary_train(s);
+  t.meshes[0].carrier = kSunBody;
+  CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("meshes.sun_planet1.carrier"),
+                       InputError);
+  t = planetary_train(s);
+  t.integrator.kind = IntegratorKind::adaptive;
+  CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("integrator.kind"), InputError);
+}
