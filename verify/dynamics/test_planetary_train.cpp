@@ -21,6 +21,7 @@
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/planetary.hpp"
+#include "gearimpact/modes/planetary.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
 
 using namespace gearimpact;
@@ -335,4 +336,89 @@ TEST_CASE("the stage's and its meshes' bad input is refused by name") {
   t = planetary_train(s);
   t.integrator.kind = IntegratorKind::adaptive;
   CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("integrator.kind"), InputError);
+}
+
+TEST_CASE(
+    "small oscillations: the stage's rotational modes are the Lin-Parker model's with "
+    "stiff supports and planet bearings") {
+  // The nonlinear stage made linear: no backlash (contact on one flank or
+  // the other, the same stiffness), a constant mesh stiffness, no damping.
+  // Started from rest at zero deflection with the speeds of one of the Lin
+  // & Parker (1999) model's rotational modes, it must return to those speeds
+  // after one of that mode's periods and reverse them after half of one.
+  // The LP model is an independent formulation (x, y, u of every member,
+  // zeta, eta of the planets, modes/planetary.hpp) whose translations and
+  // planet bearings, at 1e15 N/m, and ring torsional support (the held ring)
+  // leave the rotational coordinates: its frequencies differ from the
+  // rotational model's by about k / 1e15 = 5e-7.
+  PlanetaryStage s = test_stage(25, 23, 71, 3);
+  s.mesh.gears.backlash_m = 0.0;
+  s.mesh.model.mesh_stiffness = MeshStiffnessMode::constant;
+  const double k = 5.0e8;
+  s.mesh.model.constant_mesh_stiffness_n_per_m = k;
+  s.mesh.model.mesh_damping_ratio = 0.0;
+  s.mesh.model.restitution.coefficient = 0.0;  // e = 1: no Hertzian damping
+  s.held = HeldMember::ring;
+  const double a0 = s.mesh.gears.pressure_angle_rad;
+  const double m = s.mesh.gears.module_m;
+  const double rbs = 0.5 * m * 25 * std::cos(a0), rbp = 0.5 * m * 23 * std::cos(a0);
+  const double rbr = 0.5 * m * 71 * std::cos(a0), rc = 0.5 * m * (25 + 23);
+  const double stiff = 1.0e15;
+  PlanetaryParameters p;
+  p.sun = {1.0, s.sun_inertia_kg_m2 / (rbs * rbs), stiff, 0.0};
+  p.ring = {1.0, s.ring_inertia_kg_m2 / (rbr * rbr), stiff, stiff};
+  p.carrier = {1.0, s.carrier_inertia_kg_m2 / (rc * rc), stiff, 0.0};
+  p.planet_mass_kg = *s.planet_mass_kg;
+  p.planet_rotational_mass_kg = s.planet_inertia_kg_m2 / (rbp * rbp);
+  p.planet_angles_rad = {0.0, 2.0 * pi / 3.0, 4.0 * pi / 3.0};
+  p.planet_bearing_stiffness_n_per_m = stiff;
+  p.sun_mesh_stiffness_n_per_m = k;
+  p.ring_mesh_stiffness_n_per_m = k;
+  p.sun_pressure_angle_rad = a0;
+  p.ring_pressure_angle_rad = a0;
+  const PlanetaryModes lp = planetary_modes(planetary_model(p));
+  int checked = 0;
+  for (const StageMode& mode : lp.modes) {
+    // The soft rotational modes: the stiff springs' modes lie near
+    // sqrt(1e15 / 1 kg) = 3e7 rad/s.
+    if (mode.rigid || mode.type != StageModeType::rotational || mode.angular_frequency > 1e6) {
+      continue;
+    }
+    CAPTURE(mode.angular_frequency);
+    ++checked;
+    const Eigen::VectorXd& v = mode.shape;
+    // u = r theta: the angular speeds about +z, the planets' absolute.
+    GearTrain t = planetary_train(s);
+    const double scale = 1.0e-6 * mode.angular_frequency / v.cwiseAbs().maxCoeff();
+    t.bodies[kSunBody].w_rad_per_s = scale * v[central_index(StageMember::sun, 2)] / rbs;
+    t.bodies[kCarrierBody].w_rad_per_s = scale * v[central_index(StageMember::carrier, 2)] / rc;
+    for (int n = 0; n < 3; ++n) {
+      t.bodies[static_cast<std::size_t>(kFirstPlanetBody + n)].w_rad_per_s =
+          scale * v[planet_index(n, 2)] / rbp;
+    }
+    const double period = 2.0 * pi / mode.angular_frequency;
+    t.integrator.step_s = period / 2000.0;
+    t.integrator.end_time_s = period;
+    const TrainResult r = simulate_train(t);
+    const TrainRow& half = r.series[1000];
+    const TrainRow& end = r.series.back();
+    REQUIRE(r.series.size() == 2001);
+    double norm = 0.0, after_half = 0.0, after_one = 0.0;
+    for (std::size_t i = 0; i < t.bodies.size(); ++i) {
+      const double w0 = t.bodies[i].w_rad_per_s;
+      norm = std::max(norm, std::fabs(w0));
+      after_half = std::max(after_half, std::fabs(half.w_rad_per_s[i] + w0));
+      after_one = std::max(after_one, std::fabs(end.w_rad_per_s[i] - w0));
+    }
+    CAPTURE(after_half / norm);
+    CAPTURE(after_one / norm);
+    // The stiff springs' few 1e-7 of frequency and shape (measured: 5.6e-6
+    // at most) and (w h)^4 ~ 1e-10 from RK4; a frequency off by 1e-4 would
+    // leave 6e-4.
+    CHECK(after_half / norm < 2e-5);
+    CHECK(after_one / norm < 2e-5);
+  }
+  // Ring held: the sun, the carrier and the planets together carry two
+  // elastic rotational modes besides the rigid (Willis) one.
+  CHECK(checked == 2);
 }
