@@ -38,32 +38,58 @@ namespace {
 // mesh's own three losses (damping, friction, mesh damper) for its summary.
 // The train's totals are integrated as they were, so that adding the meshes'
 // own changes none of their bits.
-constexpr std::size_t kBodies = kMaxTrainBodies;
-constexpr std::size_t kLedger = 2 * kBodies;
 enum LedgerIndex : std::size_t { kWork, kDamping, kFriction, kParametric, kMeshDamping };
-constexpr std::size_t kMeshLosses = kLedger + 5;
 enum MeshLossIndex : std::size_t { kMeshDampingLoss, kMeshFrictionLoss, kMeshDamperLoss };
-constexpr std::size_t mesh_loss_of(std::size_t mesh, MeshLossIndex loss) {
-  return kMeshLosses + 3 * mesh + loss;
-}
-using TrainState = std::array<double, kMeshLosses + 3 * kMaxTrainMeshes>;
-constexpr std::size_t theta_of(int body) {
-  return static_cast<std::size_t>(body);
-}
-constexpr std::size_t w_of(int body) {
-  return kBodies + static_cast<std::size_t>(body);
-}
+// The state's layout for at most Bodies bodies and Meshes meshes, with or
+// without meshes in a carrier's frame: a train that fits the small layout
+// runs in it, so that the planetary stage's sizes cost today's trains nothing
+// (the integrator sweeps the whole state at every stage).
+template <int Bodies, int Meshes, bool Carriers>
+struct TrainLayout {
+  static constexpr std::size_t kBodies = Bodies;
+  static constexpr std::size_t kMeshes = Meshes;
+  static constexpr bool kCarriers = Carriers;
+  static constexpr std::size_t kLedger = 2 * kBodies;
+  static constexpr std::size_t kMeshLosses = kLedger + 5;
+  static constexpr std::size_t mesh_loss_of(std::size_t mesh, MeshLossIndex loss) {
+    return kMeshLosses + 3 * mesh + loss;
+  }
+  static constexpr std::size_t theta_of(int body) { return static_cast<std::size_t>(body); }
+  static constexpr std::size_t w_of(int body) { return kBodies + static_cast<std::size_t>(body); }
+  using State = std::array<double, kMeshLosses + 3 * kMeshes>;
+  struct ModeSet {
+    std::array<Mode, kMeshes> mesh{};
+  };
+  struct Memory {
+    std::array<ContactMemory, kMeshes> mesh{};
+  };
+  struct Forces {
+    std::array<ContactTotals, kMeshes> mesh{};
+  };
+  using Events = std::array<double, kMeshes * kMaxMeshEvents>;
+};
+// Today's trains (the sizes before planetary stages) and the largest.
+using SmallTrain = TrainLayout<6, 4, false>;
+using LargeTrain = TrainLayout<kMaxTrainBodies, kMaxTrainMeshes, true>;
 
-struct TrainMode {
-  std::array<Mode, kMaxTrainMeshes> mesh{};
-};
-struct TrainMemory {
-  std::array<ContactMemory, kMaxTrainMeshes> mesh{};
-};
-struct TrainForces {
-  std::array<ContactTotals, kMaxTrainMeshes> mesh{};
-};
-using TrainEvents = std::array<double, kMaxTrainMeshes * kMaxMeshEvents>;
+// The layout's names inside the system and the run.
+#define GEARIMPACT_TRAIN_LAYOUT_NAMES                                               \
+  using TrainState = typename L::State;                                             \
+  using TrainMode = typename L::ModeSet;                                            \
+  using TrainMemory = typename L::Memory;                                           \
+  using TrainForces = typename L::Forces;                                           \
+  using TrainEvents = typename L::Events;                                           \
+  static constexpr std::size_t kBodies = L::kBodies;                                \
+  static constexpr std::size_t kLedger = L::kLedger;                                \
+  static constexpr std::size_t theta_of(int body) {                                 \
+    return L::theta_of(body);                                                       \
+  }                                                                                 \
+  static constexpr std::size_t w_of(int body) {                                     \
+    return L::w_of(body);                                                           \
+  }                                                                                 \
+  static constexpr std::size_t mesh_loss_of(std::size_t mesh, MeshLossIndex loss) { \
+    return L::mesh_loss_of(mesh, loss);                                             \
+  }
 
 bool kinematic_driver(const Torque& t) {
   return t.kind == Torque::Kind::prescribed_speed;
@@ -223,9 +249,9 @@ void validate_body_index(const std::string& field, int body, std::size_t bodies)
 
 void validate_train(const GearTrain& train) {
   const std::size_t n = train.bodies.size();
-  if (n < 2 || n > kBodies) {
+  if (n < 2 || n > static_cast<std::size_t>(kMaxTrainBodies)) {
     throw InputError("bodies", std::to_string(n) + " bodies",
-                     "2 to " + std::to_string(kBodies) + " bodies");
+                     "2 to " + std::to_string(kMaxTrainBodies) + " bodies");
   }
   std::vector<std::string> names;
   for (std::size_t i = 0; i < n; ++i) {
@@ -405,8 +431,10 @@ void validate_train(const GearTrain& train) {
 }
 
 // The train as a system of the run loop (the concept of step_methods.hpp).
+template <class L>
 class TrainSystem {
  public:
+  GEARIMPACT_TRAIN_LAYOUT_NAMES
   using StateType = TrainState;
   using ModeType = TrainMode;
   using MemoryType = TrainMemory;
@@ -508,7 +536,9 @@ class TrainSystem {
     const int a = mesh_a_[k];
     const int b = mesh_b_[k];
     const Frame& f = frame_[k];
-    if (f.carrier < 0) return {y[theta_of(a)], y[theta_of(b)], y[w_of(a)], y[w_of(b)]};
+    if (!L::kCarriers || f.carrier < 0) {
+      return {y[theta_of(a)], y[theta_of(b)], y[w_of(a)], y[w_of(b)]};
+    }
     const double theta_c = y[theta_of(f.carrier)];
     const double w_c = y[w_of(f.carrier)];
     return {f.sense_a * (y[theta_of(a)] - theta_c) + f.offset_a,
@@ -567,11 +597,11 @@ class TrainSystem {
     std::array<double, kBodies> moment = torque;
     MeshPowers powers;
     // Each mesh's own powers: what it added to the train's, which keep their order of addition.
-    std::array<MeshPowers, kMaxTrainMeshes> own;
+    std::array<MeshPowers, L::kMeshes> own;
     for (std::size_t k = 0; k < meshes_.size(); ++k) {
       const MeshPowers before = powers;
       const Frame& f = frame_[k];
-      if (f.carrier < 0) {
+      if (!L::kCarriers || f.carrier < 0) {
         meshes_[k].add_forces(motion(k, y), m.mesh[k], d.mesh[k],
                               moment[static_cast<std::size_t>(mesh_a_[k])],
                               moment[static_cast<std::size_t>(mesh_b_[k])], powers,
@@ -786,9 +816,11 @@ class TrainSystem {
 
 // The train's run: the books of run_fixed_grid (step_methods.hpp), as the
 // torsional Run (run.hpp) keeps them, for each mesh.
+template <class L>
 class TrainRun {
  public:
-  using System = TrainSystem;
+  GEARIMPACT_TRAIN_LAYOUT_NAMES
+  using System = TrainSystem<L>;
   static constexpr bool kCountsCutStep = false;
 
   TrainRun(const GearTrain& train, const std::vector<const StiffnessTable*>& tables,
@@ -803,7 +835,7 @@ class TrainRun {
     if (records()) record(0.0);
   }
 
-  const TrainSystem& system() const { return system_; }
+  const System& system() const { return system_; }
   TrainState& y() { return y_; }
   const TrainMode& mode() const { return mode_; }
   const TrainMemory& damping() const { return damping_; }
@@ -965,7 +997,7 @@ class TrainRun {
 
   // The start: the bodies' initial state at t = 0, a driver's closed form on
   // its body, each mesh classified (a contact there counts as an impact).
-  EnergyLedgerOf<TrainSystem> make_ledger() {
+  EnergyLedgerOf<System> make_ledger() {
     result_.meshes.resize(train_.meshes.size());
     for (const TrainMesh& m : train_.meshes) {
       half_base_pitch_m_.push_back(0.5 * base_pitch(m.pair.gears));
@@ -982,7 +1014,7 @@ class TrainRun {
       if (mode_.mesh[k].region != Region::free) begin_contact(k, 0.0);
       system_.mesh(k).classify_forces(q, damping_.mesh[k], mode_.mesh[k]);
     }
-    return EnergyLedgerOf<TrainSystem>(system_, y_, mode_, result_.summary);
+    return EnergyLedgerOf<System>(system_, y_, mode_, result_.summary);
   }
 
   // The Lagrangian mesh force of mesh k: its stored energy jumps by
@@ -1024,7 +1056,7 @@ class TrainRun {
 
   const GearTrain& train_;
   const RunControl& control_;
-  TrainSystem system_;
+  System system_;
   StallWatch stall_;
   std::vector<double> half_base_pitch_m_;
   TrainState y_{};
@@ -1035,7 +1067,7 @@ class TrainRun {
   // Each mesh's contacts (their counts and first and last times the train's summary's).
   std::vector<ImpactBook> impacts_;
   // Last: its construction sets the start state above (make_ledger).
-  EnergyLedgerOf<TrainSystem> ledger_;
+  EnergyLedgerOf<System> ledger_;
   // Under the Lagrangian mesh force: the sum of |dU| of the jumps paid.
   double stored_energy_jumps_ = 0.0;
 };
@@ -1068,6 +1100,21 @@ double largest_resolving_step_s(const GearTrain& train) {
   }
   return largest;
 }
+
+template <class L>
+TrainResult run_train(const GearTrain& train, const std::vector<const StiffnessTable*>& tables,
+                      const RunControl& control) {
+  TrainRun<L> run(train, tables, control);
+  if (train.integrator.kind == IntegratorKind::adaptive) {
+    return run.finish(run_adaptive_loop(run, train.integrator, largest_resolving_step_s(train)),
+                      "adaptive");
+  }
+  FixedStepper<TrainSystem<L>> stepper(run.system(), train.integrator.kind);
+  const double t = run_fixed_grid(run, stepper, train.integrator);
+  return run.finish(t, name_of(kIntegratorKinds, train.integrator.kind).c_str());
+}
+
+#undef GEARIMPACT_TRAIN_LAYOUT_NAMES
 
 }  // namespace
 
@@ -1111,14 +1158,11 @@ TrainResult simulate_train(const GearTrain& train, const RunControl& control) {
     }
     tables.push_back(m.table ? m.table.get() : built.back().get());
   }
-  TrainRun run(train, tables, control);
-  if (train.integrator.kind == IntegratorKind::adaptive) {
-    return run.finish(run_adaptive_loop(run, train.integrator, largest_resolving_step_s(train)),
-                      "adaptive");
-  }
-  FixedStepper<TrainSystem> stepper(run.system(), train.integrator.kind);
-  const double t = run_fixed_grid(run, stepper, train.integrator);
-  return run.finish(t, name_of(kIntegratorKinds, train.integrator.kind).c_str());
+  const bool small = train.bodies.size() <= SmallTrain::kBodies &&
+                     train.meshes.size() <= SmallTrain::kMeshes &&
+                     std::none_of(train.meshes.begin(), train.meshes.end(), carrier_mesh);
+  return small ? run_train<SmallTrain>(train, tables, control)
+               : run_train<LargeTrain>(train, tables, control);
 }
 
 }  // namespace gearimpact
