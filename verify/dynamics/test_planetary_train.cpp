@@ -359,6 +359,10 @@ TEST_CASE("the stage's and its meshes' bad input is refused by name") {
   CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("meshes.sun_planet1.carrier"),
                        InputError);
   t = planetary_train(s);
+  t.meshes[0].pair.model.mesh_force = MeshForce::lagrangian;
+  CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("meshes.sun_planet1.model.mesh_force"),
+                       InputError);
+  t = planetary_train(s);
   t.integrator.kind = IntegratorKind::adaptive;
   CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("integrator.kind"), InputError);
 }

@@ -347,6 +347,12 @@ void validate_train(const GearTrain& train) {
                        "-1 (fixed axes) or the index of one of the train's bodies");
     }
     check_finite_field(prefix + "line_offset", mesh.line_offset_m);
+    if (carrier_mesh(mesh) && mesh.pair.model.mesh_force == MeshForce::lagrangian) {
+      // Its stored energy's jumps would be paid from one gear's absolute
+      // speed, which would break the stage's angular momentum.
+      throw InputError(prefix + "model.mesh_force", "lagrangian",
+                       "newtonian on a mesh in a carrier's frame");
+    }
     if (internal_mesh(mesh)) {
       validate_internal_mesh(prefix, mesh);
       const InternalLine line = ring_line(mesh.pair).line;
