@@ -451,3 +451,71 @@ TEST_CASE(
   // elastic rotational modes besides the rigid (Willis) one.
   CHECK(checked == 2);
 }
+
+TEST_CASE("the meshes' pairs enter at the phases of the tooth counts") {
+  // 26/22/70, N = 3: planet n's sun mesh lags planet 1's by
+  // gamma_sn = frac(Z_s psi_n / 2 pi) = 0, 2/3, 1/3 mesh periods, and with
+  // standard teeth at the standard centre distance a planet's sun mesh
+  // crosses its pitch point gamma_rs = frac((1 - Z_p) / 2) = 1/2 period
+  // after its ring mesh (Z_p (2 theta_bp - inv a_s - inv a_r - pi) / 2 pi
+  // with theta_bp = pi / (2 Z_p) + inv a0 and a_s = a_r = a0), written out
+  // here. Pairs enter at X_start, (X_pitch - X_start) / t0 periods before
+  // their pitch point. Measured at the rows where a mesh's loaded pairs go
+  // from 1 to 2, as a roll over the base pitch modulo 1.
+  const int zs = 26, zp = 22, zr = 70;
+  PlanetaryStage s = test_stage(zs, zp, zr, 3);
+  s.input_speed_rad_per_s = 100.0;
+  s.sun_torque = driver(100.0);
+  s.carrier_torque = constant_torque(-20.0);
+  s.integrator.end_time_s = 0.012;
+  const TrainResult r = simulate_train(planetary_train(s));
+  const GearPair& g = s.mesh.gears;
+  GearPair sun_pair = g;
+  sun_pair.teeth1 = zs;
+  sun_pair.teeth2 = zp;
+  const double t0 = pi * g.module_m * std::cos(g.pressure_angle_rad);
+  const double rbs = 0.5 * g.module_m * zs * std::cos(g.pressure_angle_rad);
+  const double sun_entry =
+      (pitch_point_position(sun_pair) - contact_segment(sun_pair).start_m) / t0;
+  const InternalMesh ring = internal_mesh({zs, zp, zr}, {g.module_m, g.pressure_angle_rad, 1.0},
+                                          0.5 * g.module_m * (zr - zp));
+  const double ring_entry = (ring.pitch_point_m - ring.segment_start_m) / t0;
+  const auto frac = [](double x) { return x - std::floor(x); };
+  // The phase of each mesh's entries, from the settled part of the run: a
+  // sun mesh's pairs roll with the sun, Rb_s (theta_s - theta_c), a ring
+  // mesh's with its planet, -Rb_p (theta_p - theta_c) (the two agree with
+  // the planet centred in its sun mesh's play; loaded, the planet sits the
+  // play B and the deflection further on, 1.4 % of a period here).
+  const double rbp = 0.5 * g.module_m * zp * std::cos(g.pressure_angle_rad);
+  std::vector<std::vector<double>> entries(6);
+  for (std::size_t i = 1; i < r.series.size(); ++i) {
+    const TrainRow& row = r.series[i];
+    if (row.t_s < 0.003) continue;
+    const double carrier = row.theta_rad[kCarrierBody];
+    for (std::size_t k = 0; k < 6; ++k) {
+      if (r.series[i - 1].meshes[k].pairs == 1 && row.meshes[k].pairs == 2) {
+        const double roll =
+            k < 3 ? rbs * (row.theta_rad[kSunBody] - carrier)
+                  : -rbp * (row.theta_rad[static_cast<std::size_t>(kFirstPlanetBody) + k - 3] -
+                            carrier);
+        entries[k].push_back(frac(roll / t0));
+      }
+    }
+  }
+  const auto circular = [&](double a, double b) { return std::fabs(frac(a - b + 0.5) - 0.5); };
+  const double gamma_s[3] = {0.0, 2.0 / 3.0, 1.0 / 3.0};
+  const double gamma_rs = 0.5;
+  for (std::size_t n = 0; n < 3; ++n) {
+    CAPTURE(n);
+    REQUIRE(entries[n].size() >= 2);
+    REQUIRE(entries[3 + n].size() >= 2);
+    // A step rolls the meshes by 3e-4 of a period; the load moves the sun
+    // meshes' pairs relative to one another by far less.
+    for (const double v : entries[n]) CHECK(circular(v, entries[0][0] + gamma_s[n]) < 2e-3);
+    // The sun mesh's pitch crossing follows the ring mesh's by gamma_rs.
+    const double sun_pitch = entries[n][0] + sun_entry;
+    for (const double v : entries[3 + n]) {
+      CHECK(circular(sun_pitch - (v + ring_entry), gamma_rs) < 2e-3);
+    }
+  }
+}
