@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "gearimpact/constants.hpp"
+#include "gearimpact/dynamics/mesh_line.hpp"
 #include "gearimpact/dynamics/planetary_train.hpp"
 #include "gearimpact/dynamics/train.hpp"
 #include "gearimpact/error.hpp"
@@ -518,4 +519,72 @@ TEST_CASE("the meshes' pairs enter at the phases of the tooth counts") {
       CHECK(circular(sun_pitch - (v + ring_entry), gamma_rs) < 2e-3);
     }
   }
+}
+
+TEST_CASE(
+    "an internal mesh's line carries c' b per pair in the single zone, 0.875 c' b in the "
+    "double zones") {
+  // The MeshLine of a ring mesh (planet gear 1, ring gear 2) on its ISO
+  // table, at a fixed penetration delta = 1 um on the drive line, stepped
+  // over one base pitch: its force over delta is the sum over the loaded
+  // pairs (X_k = X_pitch + Rb_p theta_p + k t0 in the segment) of the zone
+  // rule, written out here, and its mean over the pitch c_gamma_alpha b.
+  const PlanetaryTeeth teeth{24, 24, 72};
+  const PlanetaryToothing toothing{2.0e-3, 20.0 * pi / 180.0, 1.0};
+  const double a = 0.5 * 2.0e-3 * (72 - 24);
+  const InternalMesh g = internal_mesh(teeth, toothing, a);
+  const Iso6336Internal iso =
+      iso6336_internal_method_b(24, g.contact_ratio, 1.25, toothing.pressure_angle_rad);
+  SimulationCase c;
+  c.gears.face_width_m = 20.0e-3;
+  c.model.friction_coefficient = 0.0;
+  const double cb = iso.single_stiffness_n_per_m2 * c.gears.face_width_m;
+  const StiffnessTable table =
+      iso6336_internal_pair_table(g.segment_start_m, g.segment_end_m, g.base_pitch_m, cb);
+  InternalLine line;
+  line.planet_base_radius_m = g.planet_base_radius_m;
+  line.ring_base_radius_m = g.ring_base_radius_m;
+  line.pressure_angle_rad = g.working_pressure_angle_rad;
+  line.pitch_point_m = g.pitch_point_m;
+  line.start_m = g.segment_start_m;
+  line.end_m = g.segment_end_m;
+  line.base_pitch_m = g.base_pitch_m;
+  line.tangent_points_m = a * std::sin(g.working_pressure_angle_rad);
+  line.mean_stiffness_n_per_m = iso.mesh_stiffness_n_per_m2 * c.gears.face_width_m;
+  const MeshLine mesh(c, table, line, 1.0);
+  const double zone = (g.contact_ratio - 1.0) * g.base_pitch_m;
+  const double delta = 1.0e-6;
+  const int samples = 2000;
+  double mean = 0.0;
+  int single = 0;
+  for (int i = 0; i < samples; ++i) {
+    const double theta_p = (i + 0.5) / samples * g.base_pitch_m / g.planet_base_radius_m;
+    // s = Rb_p theta_p - Rb_r theta_r = B + delta.
+    const double theta_r =
+        (g.planet_base_radius_m * theta_p - c.gears.backlash_m - delta) / g.ring_base_radius_m;
+    const MeshMotion q{theta_p, theta_r, 0.0, 0.0};
+    const Mode m = mesh.classify_geometry(q);
+    REQUIRE(m.region == Region::n1);
+    double moment_a = 0.0, moment_b = 0.0;
+    MeshPowers powers;
+    ContactTotals totals;
+    mesh.add_forces(q, m, ContactMemory{}, moment_a, moment_b, powers, &totals);
+    double expected = 0.0;
+    int pairs = 0;
+    for (int k = -3; k <= 3; ++k) {
+      const double x = g.pitch_point_m + g.planet_base_radius_m * theta_p + k * g.base_pitch_m;
+      if (x < g.segment_start_m || x > g.segment_end_m) continue;
+      ++pairs;
+      const bool two = x < g.segment_start_m + zone || x > g.segment_end_m - zone;
+      expected += (two ? 0.875 : 1.0) * cb;
+    }
+    if (pairs == 1) ++single;
+    CAPTURE(i);
+    CHECK(std::fabs(totals.normal_force_n / delta / expected - 1.0) < 1e-9);
+    mean += totals.normal_force_n / delta / samples;
+  }
+  CHECK(single > 0);  // the single zone was crossed
+  // 1 - eps of the pitch sampled at 2000 points: each zone edge costs at
+  // most one sample, 5e-4 of the mean.
+  CHECK(std::fabs(mean / line.mean_stiffness_n_per_m - 1.0) < 1e-3);
 }

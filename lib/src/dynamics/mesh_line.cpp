@@ -243,7 +243,9 @@ void MeshLine::set_parts(const Motion& q, Mode& m) const {
   for (int j = 0; j < m.count; ++j) {
     const StiffnessTable* table = pair_table(m.region, m.k_first + j);
     m.table[j] = table;
-    if (!teeth_) continue;
+    // Parts: a faulted tooth's table, or a healthy table cut into parts (an
+    // internal mesh's ISO zones); a table of one part has only part 0.
+    if (!teeth_ && table_->part_count() <= 1) continue;
     m.part[j] = table != nullptr && table->part_count() > 1
                     ? table->part_of(std::clamp(pair_position(m, q, j), xs_, xe_))
                     : 0;
