@@ -20,6 +20,7 @@
 #include "gearimpact/dynamics/mesh_line.hpp"
 #include "gearimpact/dynamics/planar.hpp"
 #include "gearimpact/dynamics/planar_state.hpp"
+#include "gearimpact/dynamics/planetary_train.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/dynamics/system.hpp"

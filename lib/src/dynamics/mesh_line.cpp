@@ -58,6 +58,39 @@ MeshLine::MeshLine(const SimulationCase& c, const StiffnessTable& table, double 
                                 : case_mesh_damping_n_s_per_m(c, table, teeth_.get());
 }
 
+MeshLine::MeshLine(const SimulationCase& c, const StiffnessTable& table, const InternalLine& line,
+                   double mass_kg)
+    : table_(&table),
+      model_(&c.model),
+      gears_(&c.gears),
+      layout_(line.pitch_point_m, line.planet_base_radius_m, line.base_pitch_m, line.start_m,
+              line.end_m, c.model.coast_phase) {
+  rb1_ = line.planet_base_radius_m;
+  rb2_ = line.ring_base_radius_m;
+  backlash_ = c.gears.backlash_m;
+  // The friction's lever arms X and lp - X of an external pair do not hold
+  // here (both tangent points on one side): the caller refuses friction.
+  lp_ = line.tangent_points_m;
+  x_pitch_ = line.pitch_point_m;
+  xs_ = layout_.start_m();
+  xe_ = layout_.end_m();
+  sin_a_ = std::sin(line.pressure_angle_rad);
+  cos_a_ = std::cos(line.pressure_angle_rad);
+  smoothing_speed_ = c.model.friction_smoothing_speed_m_s;
+  face_width_ = c.gears.face_width_m;
+  kh_ = hertz_stiffness(c.gears);
+  constant_k_ = c.model.mesh_stiffness == MeshStiffnessMode::constant
+                    ? c.model.constant_mesh_stiffness_n_per_m
+                    : 0.0;
+  damping_on_current_pair_ = c.model.damping_stiffness == DampingStiffness::current_pair;
+  lagrangian_ = c.model.mesh_force == MeshForce::lagrangian && constant_k_ == 0.0;
+  damping_update_ = resolved_damping_update(c);
+  const double mean_k = constant_k_ > 0.0 ? constant_k_ : line.mean_stiffness_n_per_m;
+  mesh_damping_ = c.model.mesh_damping_ratio > 0.0
+                      ? viscous_mesh_damping_n_s_per_m(c.model.mesh_damping_ratio, mean_k, mass_kg)
+                      : 0.0;
+}
+
 double varying_friction_coefficient(const ModelOptions& model, double face_width_m,
                                     double normal_force_n, double vs, double ve) {
   switch (model.friction_law) {
@@ -210,7 +243,9 @@ void MeshLine::set_parts(const Motion& q, Mode& m) const {
   for (int j = 0; j < m.count; ++j) {
     const StiffnessTable* table = pair_table(m.region, m.k_first + j);
     m.table[j] = table;
-    if (!teeth_) continue;
+    // Parts: a faulted tooth's table, or a healthy table cut into parts (an
+    // internal mesh's ISO zones); a table of one part has only part 0.
+    if (!teeth_ && table_->part_count() <= 1) continue;
     m.part[j] = table != nullptr && table->part_count() > 1
                     ? table->part_of(std::clamp(pair_position(m, q, j), xs_, xe_))
                     : 0;

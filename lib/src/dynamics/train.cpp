@@ -21,6 +21,8 @@
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
+#include "gearimpact/geometry/planetary.hpp"
+#include "gearimpact/stiffness/iso6336.hpp"
 #include "ledger.hpp"
 #include "run_parts.hpp"
 #include "stall.hpp"
@@ -36,40 +38,148 @@ namespace {
 // mesh's own three losses (damping, friction, mesh damper) for its summary.
 // The train's totals are integrated as they were, so that adding the meshes'
 // own changes none of their bits.
-constexpr std::size_t kBodies = kMaxTrainBodies;
-constexpr std::size_t kLedger = 2 * kBodies;
 enum LedgerIndex : std::size_t { kWork, kDamping, kFriction, kParametric, kMeshDamping };
-constexpr std::size_t kMeshLosses = kLedger + 5;
 enum MeshLossIndex : std::size_t { kMeshDampingLoss, kMeshFrictionLoss, kMeshDamperLoss };
-constexpr std::size_t mesh_loss_of(std::size_t mesh, MeshLossIndex loss) {
-  return kMeshLosses + 3 * mesh + loss;
-}
-using TrainState = std::array<double, kMeshLosses + 3 * kMaxTrainMeshes>;
-constexpr std::size_t theta_of(int body) {
-  return static_cast<std::size_t>(body);
-}
-constexpr std::size_t w_of(int body) {
-  return kBodies + static_cast<std::size_t>(body);
-}
+// The state's layout for at most Bodies bodies and Meshes meshes, with or
+// without meshes in a carrier's frame: a train that fits the small layout
+// runs in it, so that the planetary stage's sizes cost today's trains nothing
+// (the integrator sweeps the whole state at every stage).
+template <int Bodies, int Meshes, bool Carriers>
+struct TrainLayout {
+  static constexpr std::size_t kBodies = Bodies;
+  static constexpr std::size_t kMeshes = Meshes;
+  static constexpr bool kCarriers = Carriers;
+  static constexpr std::size_t kLedger = 2 * kBodies;
+  static constexpr std::size_t kMeshLosses = kLedger + 5;
+  static constexpr std::size_t mesh_loss_of(std::size_t mesh, MeshLossIndex loss) {
+    return kMeshLosses + 3 * mesh + loss;
+  }
+  static constexpr std::size_t theta_of(int body) { return static_cast<std::size_t>(body); }
+  static constexpr std::size_t w_of(int body) { return kBodies + static_cast<std::size_t>(body); }
+  using State = std::array<double, kMeshLosses + 3 * kMeshes>;
+  struct ModeSet {
+    std::array<Mode, kMeshes> mesh{};
+  };
+  struct Memory {
+    std::array<ContactMemory, kMeshes> mesh{};
+  };
+  struct Forces {
+    std::array<ContactTotals, kMeshes> mesh{};
+  };
+  using Events = std::array<double, kMeshes * kMaxMeshEvents>;
+};
+// Today's trains (the sizes before planetary stages) and the largest.
+using SmallTrain = TrainLayout<6, 4, false>;
+using LargeTrain = TrainLayout<kMaxTrainBodies, kMaxTrainMeshes, true>;
 
-struct TrainMode {
-  std::array<Mode, kMaxTrainMeshes> mesh{};
-};
-struct TrainMemory {
-  std::array<ContactMemory, kMaxTrainMeshes> mesh{};
-};
-struct TrainForces {
-  std::array<ContactTotals, kMaxTrainMeshes> mesh{};
-};
-using TrainEvents = std::array<double, kMaxTrainMeshes * kMaxMeshEvents>;
+// The layout's names inside the system and the run.
+#define GEARIMPACT_TRAIN_LAYOUT_NAMES                                               \
+  using TrainState = typename L::State;                                             \
+  using TrainMode = typename L::ModeSet;                                            \
+  using TrainMemory = typename L::Memory;                                           \
+  using TrainForces = typename L::Forces;                                           \
+  using TrainEvents = typename L::Events;                                           \
+  static constexpr std::size_t kBodies = L::kBodies;                                \
+  static constexpr std::size_t kLedger = L::kLedger;                                \
+  static constexpr std::size_t theta_of(int body) {                                 \
+    return L::theta_of(body);                                                       \
+  }                                                                                 \
+  static constexpr std::size_t w_of(int body) {                                     \
+    return L::w_of(body);                                                           \
+  }                                                                                 \
+  static constexpr std::size_t mesh_loss_of(std::size_t mesh, MeshLossIndex loss) { \
+    return L::mesh_loss_of(mesh, loss);                                             \
+  }
 
 bool kinematic_driver(const Torque& t) {
   return t.kind == Torque::Kind::prescribed_speed;
 }
 
 const char* name_of_torque(const Torque& t) {
-  return t.kind == Torque::Kind::prescribed_speed ? "prescribed-speed" : "speed-controlled";
+  switch (t.kind) {
+    case Torque::Kind::prescribed_speed:
+      return "prescribed-speed";
+    case Torque::Kind::speed_controlled:
+      return "speed-controlled";
+    default:
+      return "a torque other than none";
+  }
 }
+bool carrier_mesh(const TrainMesh& m) {
+  return m.carrier >= 0;
+}
+bool internal_mesh(const TrainMesh& m) {
+  return m.kind == TrainMesh::Kind::internal;
+}
+
+// An internal mesh's line (planet as gear 1, geometry/planetary.hpp's
+// segment) and its single-pair stiffness c' b by ISO 6336-1 method B.
+struct RingLine {
+  InternalLine line;
+  double single_stiffness_n_per_m = 0.0;
+};
+RingLine ring_line(const SimulationCase& pair) {
+  const GearPair& g = pair.gears;
+  const PlanetaryTeeth teeth{1, g.teeth2, g.teeth1};
+  const PlanetaryToothing toothing{g.module_m, g.pressure_angle_rad, g.addendum_coefficient};
+  const double centre = 0.5 * g.module_m * (g.teeth1 - g.teeth2);
+  const InternalMesh mesh = internal_mesh(teeth, toothing, centre);
+  const Iso6336Internal iso = iso6336_internal_method_b(
+      g.teeth2, mesh.contact_ratio, g.dedendum_coefficient, g.pressure_angle_rad);
+  RingLine r;
+  r.line.planet_base_radius_m = mesh.planet_base_radius_m;
+  r.line.ring_base_radius_m = mesh.ring_base_radius_m;
+  r.line.pressure_angle_rad = mesh.working_pressure_angle_rad;
+  r.line.pitch_point_m = mesh.pitch_point_m;
+  r.line.start_m = mesh.segment_start_m;
+  r.line.end_m = mesh.segment_end_m;
+  r.line.base_pitch_m = mesh.base_pitch_m;
+  r.line.tangent_points_m = centre * std::sin(mesh.working_pressure_angle_rad);
+  r.line.mean_stiffness_n_per_m = iso.mesh_stiffness_n_per_m2 * g.face_width_m;
+  r.single_stiffness_n_per_m = iso.single_stiffness_n_per_m2 * g.face_width_m;
+  return r;
+}
+
+// An internal mesh's pair keys: what it cannot take refused, its geometry
+// checked (the problems named under the mesh, the ring as gears.teeth1).
+void validate_internal_mesh(const std::string& prefix, const TrainMesh& mesh) {
+  const SimulationCase& c = mesh.pair;
+  if (!carrier_mesh(mesh)) {
+    throw InputError(prefix + "kind", "internal",
+                     "external, or an internal mesh in a carrier's frame (carrier >= 0)");
+  }
+  if (c.gears.profile_shift1 != 0.0 || c.gears.profile_shift2 != 0.0) {
+    throw InputError(
+        prefix + "gears.profile_shift" + (c.gears.profile_shift1 != 0.0 ? "1" : "2"),
+        c.gears.profile_shift1 != 0.0 ? c.gears.profile_shift1 : c.gears.profile_shift2,
+        "0: an internal mesh takes unshifted teeth");
+  }
+  if (c.model.friction_law != FrictionLaw::constant || c.model.friction_coefficient != 0.0) {
+    throw InputError(prefix + "model.friction_coefficient", c.model.friction_coefficient,
+                     "0 under the constant law: an internal mesh's friction (lever arms on "
+                     "one side of the pitch point) is not modelled");
+  }
+  if (!c.faults.empty()) {
+    throw InputError(prefix + "faults", std::to_string(c.faults.size()) + " faults",
+                     "none: an internal mesh's teeth are all alike");
+  }
+  if (!is_unmodified(c.modifications)) {
+    throw InputError(prefix + "modifications", "set", "none on an internal mesh");
+  }
+  try {
+    ring_line(c);
+  } catch (const InputError& e) {
+    std::vector<Problem> problems;
+    for (const Problem& p : e.problems()) {
+      const std::string field = p.field == "ring_teeth"     ? "gears.teeth1"
+                                : p.field == "planet_teeth" ? "gears.teeth2"
+                                                            : p.field;
+      problems.push_back(p.renamed(prefix + field, p.value));
+    }
+    throw InputError(std::move(problems));
+  }
+}
+
 // Which of the train's degrees of freedom each body is: bodies joined by
 // rigid shafts are one, numbered in the order of their first body.
 std::vector<int> degrees_of_freedom(const GearTrain& train) {
@@ -139,9 +249,9 @@ void validate_body_index(const std::string& field, int body, std::size_t bodies)
 
 void validate_train(const GearTrain& train) {
   const std::size_t n = train.bodies.size();
-  if (n < 2 || n > kBodies) {
+  if (n < 2 || n > static_cast<std::size_t>(kMaxTrainBodies)) {
     throw InputError("bodies", std::to_string(n) + " bodies",
-                     "2 to " + std::to_string(kBodies) + " bodies");
+                     "2 to " + std::to_string(kMaxTrainBodies) + " bodies");
   }
   std::vector<std::string> names;
   for (std::size_t i = 0; i < n; ++i) {
@@ -157,6 +267,13 @@ void validate_train(const GearTrain& train) {
     }
     check_finite_field("bodies." + b.name + ".theta", b.theta_rad);
     check_finite_field("bodies." + b.name + ".w", b.w_rad_per_s);
+    if (b.held && b.w_rad_per_s != 0.0) {
+      throw InputError("bodies." + b.name + ".w", b.w_rad_per_s, "0: the body is held");
+    }
+    if (b.held && (b.torque.kind != Torque::Kind::constant || b.torque.constant_n_m != 0.0)) {
+      throw InputError("bodies." + b.name + ".torque.kind", name_of_torque(b.torque),
+                       "none (a constant 0): the body is held");
+    }
   }
   for (std::size_t i = 0; i < train.shafts.size(); ++i) {
     const TrainShaft& s = train.shafts[i];
@@ -216,9 +333,49 @@ void validate_train(const GearTrain& train) {
       throw InputError(prefix + "body_b", std::to_string(mesh.body_b),
                        "a body other than body_a, and not on one rigid shaft with it");
     }
+    if (carrier_mesh(mesh)) {
+      validate_body_index(prefix + "carrier", mesh.carrier, n);
+      const int c = dof[static_cast<std::size_t>(mesh.carrier)];
+      if (c == dof[static_cast<std::size_t>(mesh.body_a)] ||
+          c == dof[static_cast<std::size_t>(mesh.body_b)]) {
+        throw InputError(prefix + "carrier", std::to_string(mesh.carrier),
+                         "a body other than body_a and body_b, and not on one rigid shaft with "
+                         "either");
+      }
+    } else if (mesh.carrier != -1) {
+      throw InputError(prefix + "carrier", std::to_string(mesh.carrier),
+                       "-1 (fixed axes) or the index of one of the train's bodies");
+    }
+    check_finite_field(prefix + "line_offset", mesh.line_offset_m);
+    if (carrier_mesh(mesh) && mesh.pair.model.mesh_force == MeshForce::lagrangian) {
+      // Its stored energy's jumps would be paid from one gear's absolute
+      // speed, which would break the stage's angular momentum.
+      throw InputError(prefix + "model.mesh_force", "lagrangian",
+                       "newtonian on a mesh in a carrier's frame");
+    }
+    if (internal_mesh(mesh)) {
+      validate_internal_mesh(prefix, mesh);
+      const InternalLine line = ring_line(mesh.pair).line;
+      if (mesh.table && !(mesh.table->domain_start_m() <= line.start_m &&
+                          mesh.table->domain_end_m() >= line.end_m)) {
+        throw InputError(prefix + "table",
+                         "[" + format_number(mesh.table->domain_start_m()) + ", " +
+                             format_number(mesh.table->domain_end_m()) + "] m",
+                         "a table covering the internal mesh's segment [" +
+                             format_number(line.start_m) + ", " + format_number(line.end_m) +
+                             "] m");
+      }
+    }
     try {
-      validate(mesh.pair);
-      if (mesh.table) check_table(mesh.pair, *mesh.table);
+      // An internal mesh's pair is checked as the planet's with its twin
+      // (its model's keys); its ring's geometry is validate_internal_mesh's.
+      SimulationCase twin;
+      if (internal_mesh(mesh)) {
+        twin = mesh.pair;
+        twin.gears.teeth1 = twin.gears.teeth2;
+      }
+      validate(internal_mesh(mesh) ? twin : mesh.pair);
+      if (mesh.table && !internal_mesh(mesh)) check_table(mesh.pair, *mesh.table);
     } catch (const InputError& e) {
       // The pair's keys, addressed by the mesh's name.
       std::vector<Problem> problems;
@@ -248,23 +405,42 @@ void validate_train(const GearTrain& train) {
                              "prescribes it");
       }
     }
-    if (!kinematic_driver(b.torque) && b.torque.kind != Torque::Kind::speed_controlled) continue;
+    if (b.torque.kind == Torque::Kind::speed_controlled &&
+        std::any_of(train.meshes.begin(), train.meshes.end(), carrier_mesh)) {
+      throw InputError(field + ".kind", name_of_torque(b.torque),
+                       "a torque other than speed-controlled in a train with a carrier's "
+                       "meshes (the controller's reflected inertia assumes fixed axes)");
+    }
+    if (!kinematic_driver(b.torque) && b.torque.kind != Torque::Kind::speed_controlled && !b.held) {
+      continue;
+    }
     // One body's motion is prescribed, or followed by a controller, on a shaft.
     int& first = driven[static_cast<std::size_t>(dof[i])];
     if (first >= 0) {
-      throw InputError(field + ".kind", name_of_torque(b.torque),
-                       "a torque that is neither a driver nor a speed controller: " +
+      throw InputError(b.held ? "bodies." + b.name + ".held" : field + ".kind",
+                       b.held ? "true" : name_of_torque(b.torque),
+                       std::string(b.held ? "a body neither held, driven nor speed-controlled: "
+                                          : "a torque that is neither a driver nor a speed "
+                                            "controller: ") +
                            train.bodies[static_cast<std::size_t>(first)].name +
                            ", on one rigid shaft with it, is driven already");
     }
     first = static_cast<int>(i);
   }
   validate(train.integrator);
+  if (train.integrator.kind == IntegratorKind::adaptive &&
+      std::any_of(train.meshes.begin(), train.meshes.end(), internal_mesh)) {
+    throw InputError("integrator.kind", "adaptive",
+                     "a fixed-step integrator (rk4): the adaptive step bound is an external "
+                     "pair's, and a train with an internal mesh has none yet");
+  }
 }
 
 // The train as a system of the run loop (the concept of step_methods.hpp).
+template <class L>
 class TrainSystem {
  public:
+  GEARIMPACT_TRAIN_LAYOUT_NAMES
   using StateType = TrainState;
   using ModeType = TrainMode;
   using MemoryType = TrainMemory;
@@ -283,27 +459,72 @@ class TrainSystem {
           seen[d] ? inertia_[d] + train.bodies[i].inertia_kg_m2 : train.bodies[i].inertia_kg_m2;
       seen[d] = true;
     }
+    driver_.fill(-1);
+    for (std::size_t i = 0; i < train.bodies.size(); ++i) {
+      const TrainBody& b = train.bodies[i];
+      if (kinematic_driver(b.torque) || b.held) {
+        driver_[static_cast<std::size_t>(body_dof_[i])] = static_cast<int>(i);
+      }
+    }
     for (std::size_t k = 0; k < train.meshes.size(); ++k) {
       const TrainMesh& m = train.meshes[k];
-      mesh_a_.push_back(dof_of(m.body_a));
-      mesh_b_.push_back(dof_of(m.body_b));
-      // The viscous damper's m_e: that of the two bodies as they turn in the
-      // train (a rigid shaft's bodies together), 1/m_e = Rb_a^2/J_a + Rb_b^2/J_b.
-      const double mass = effective_mass_kg(
-          base_radius(m.pair.gears, Gear::one), inertia_[static_cast<std::size_t>(mesh_a_[k])],
-          base_radius(m.pair.gears, Gear::two), inertia_[static_cast<std::size_t>(mesh_b_[k])]);
-      meshes_.emplace_back(m.pair, *tables[k], mass);
+      if (!carrier_mesh(m)) {
+        mesh_a_.push_back(dof_of(m.body_a));
+        mesh_b_.push_back(dof_of(m.body_b));
+        frame_.push_back({});
+        // The viscous damper's m_e: that of the two bodies as they turn in the
+        // train (a rigid shaft's bodies together), 1/m_e = Rb_a^2/J_a + Rb_b^2/J_b.
+        const double mass = effective_mass_kg(
+            base_radius(m.pair.gears, Gear::one), inertia_[static_cast<std::size_t>(mesh_a_[k])],
+            base_radius(m.pair.gears, Gear::two), inertia_[static_cast<std::size_t>(mesh_b_[k])]);
+        meshes_.emplace_back(m.pair, *tables[k], mass);
+        continue;
+      }
+      // In the carrier's frame, angles about +z. The line's gear 1 turns
+      // forward when it drives: an external mesh's sun counter-clockwise and
+      // its planet clockwise (sense -1); an internal mesh's gear 1 is the
+      // planet and its gear 2 the ring, both clockwise (sense -1), so that
+      // the line's s = Rb_1 theta_1' - Rb_2 theta_2' is docs/planetary.md's
+      // Rb_a (theta_a - theta_c) + kappa Rb_b (theta_b - theta_c) either way.
+      const bool internal = internal_mesh(m);
+      const int one = dof_of(internal ? m.body_b : m.body_a);
+      const int two = dof_of(internal ? m.body_a : m.body_b);
+      mesh_a_.push_back(one);
+      mesh_b_.push_back(two);
+      Frame f;
+      f.carrier = dof_of(m.carrier);
+      f.sense_a = internal ? -1.0 : 1.0;
+      f.sense_b = -1.0;
+      const RingLine ring = internal ? ring_line(m.pair) : RingLine{};
+      const double rb1 =
+          internal ? ring.line.planet_base_radius_m : base_radius(m.pair.gears, Gear::one);
+      const double rb2 =
+          internal ? ring.line.ring_base_radius_m : base_radius(m.pair.gears, Gear::two);
+      // The pairs move by line_offset along the line; s is kept.
+      f.offset_a = m.line_offset_m / rb1;
+      f.offset_b = m.line_offset_m / rb2;
+      // 1/m_e of s: each free body's lever squared over its inertia, the
+      // carrier's lever Rb_2 sense_b - Rb_1 sense_a.
+      const auto lever = [&](int dof, double r) {
+        return driven(dof) ? 0.0 : r * r / inertia_[static_cast<std::size_t>(dof)];
+      };
+      const double inverse_mass =
+          lever(one, rb1) + lever(two, rb2) + lever(f.carrier, rb2 * f.sense_b - rb1 * f.sense_a);
+      const double mass = inverse_mass > 0.0 ? 1.0 / inverse_mass : 1.0;
+      frame_.push_back(f);
+      if (internal) {
+        meshes_.emplace_back(m.pair, *tables[k], ring.line, mass);
+      } else {
+        meshes_.emplace_back(m.pair, *tables[k], mass);
+      }
     }
     for (const TrainShaft& s : train.shafts) {
       if (s.kind != TrainShaft::Kind::torsional) continue;
       springs_.push_back({dof_of(s.body_a), dof_of(s.body_b), s.stiffness_n_m_per_rad});
     }
-    driver_.fill(-1);
     for (std::size_t i = 0; i < train.bodies.size(); ++i) {
       const TrainBody& b = train.bodies[i];
-      const auto d = static_cast<std::size_t>(body_dof_[i]);
-      if (kinematic_driver(b.torque)) {
-        driver_[d] = static_cast<int>(i);
+      if (kinematic_driver(b.torque) || b.held) {
         driven_ = true;
       } else if (b.torque.kind == Torque::Kind::speed_controlled) {
         controllers_.push_back({static_cast<int>(i), controller_of(static_cast<int>(i))});
@@ -320,7 +541,15 @@ class TrainSystem {
   MeshMotion motion(std::size_t k, const TrainState& y) const {
     const int a = mesh_a_[k];
     const int b = mesh_b_[k];
-    return {y[theta_of(a)], y[theta_of(b)], y[w_of(a)], y[w_of(b)]};
+    const Frame& f = frame_[k];
+    if (!L::kCarriers || f.carrier < 0) {
+      return {y[theta_of(a)], y[theta_of(b)], y[w_of(a)], y[w_of(b)]};
+    }
+    const double theta_c = y[theta_of(f.carrier)];
+    const double w_c = y[w_of(f.carrier)];
+    return {f.sense_a * (y[theta_of(a)] - theta_c) + f.offset_a,
+            f.sense_b * (y[theta_of(b)] - theta_c) + f.offset_b, f.sense_a * (y[w_of(a)] - w_c),
+            f.sense_b * (y[w_of(b)] - w_c)};
   }
   // Whether a kinematic driver holds the degree of freedom's motion.
   bool driven(int dof) const { return driver_[static_cast<std::size_t>(dof)] >= 0; }
@@ -333,6 +562,11 @@ class TrainSystem {
       const int body = driver_[static_cast<std::size_t>(d)];
       if (body < 0) continue;
       const TrainBody& b = train_.bodies[static_cast<std::size_t>(body)];
+      if (b.held) {
+        y[theta_of(d)] = b.theta_rad;
+        y[w_of(d)] = 0.0;
+        continue;
+      }
       const DriverMotion m = driver_motion(b.torque, b.theta_rad, t);
       y[theta_of(d)] = m.theta_rad;
       y[w_of(d)] = m.speed_rad_per_s;
@@ -369,13 +603,26 @@ class TrainSystem {
     std::array<double, kBodies> moment = torque;
     MeshPowers powers;
     // Each mesh's own powers: what it added to the train's, which keep their order of addition.
-    std::array<MeshPowers, kMaxTrainMeshes> own;
+    std::array<MeshPowers, L::kMeshes> own;
     for (std::size_t k = 0; k < meshes_.size(); ++k) {
       const MeshPowers before = powers;
-      meshes_[k].add_forces(motion(k, y), m.mesh[k], d.mesh[k],
-                            moment[static_cast<std::size_t>(mesh_a_[k])],
-                            moment[static_cast<std::size_t>(mesh_b_[k])], powers,
-                            forces != nullptr ? &forces->mesh[k] : nullptr);
+      const Frame& f = frame_[k];
+      if (!L::kCarriers || f.carrier < 0) {
+        meshes_[k].add_forces(motion(k, y), m.mesh[k], d.mesh[k],
+                              moment[static_cast<std::size_t>(mesh_a_[k])],
+                              moment[static_cast<std::size_t>(mesh_b_[k])], powers,
+                              forces != nullptr ? &forces->mesh[k] : nullptr);
+      } else {
+        // The line's moments in its gears' senses, about +z on the bodies;
+        // the carrier that holds both centres takes minus their sum.
+        double moment_a = 0.0;
+        double moment_b = 0.0;
+        meshes_[k].add_forces(motion(k, y), m.mesh[k], d.mesh[k], moment_a, moment_b, powers,
+                              forces != nullptr ? &forces->mesh[k] : nullptr);
+        moment[static_cast<std::size_t>(mesh_a_[k])] += f.sense_a * moment_a;
+        moment[static_cast<std::size_t>(mesh_b_[k])] += f.sense_b * moment_b;
+        moment[static_cast<std::size_t>(f.carrier)] -= f.sense_a * moment_a + f.sense_b * moment_b;
+      }
       own[k].damping_w = powers.damping_w - before.damping_w;
       own[k].friction_w = powers.friction_w - before.friction_w;
       own[k].mesh_damping_w = powers.mesh_damping_w - before.mesh_damping_w;
@@ -394,9 +641,9 @@ class TrainSystem {
         // acceleration against the rest: J w' = T_driver + moment. Its work is
         // the ledger's torque work.
         const TrainBody& b = train_.bodies[static_cast<std::size_t>(driver_[u])];
-        const double driver =
-            inertia_[u] * driver_motion(b.torque, b.theta_rad, t).acceleration_rad_per_s2 -
-            moment[u];
+        const double acceleration =
+            b.held ? 0.0 : driver_motion(b.torque, b.theta_rad, t).acceleration_rad_per_s2;
+        const double driver = inertia_[u] * acceleration - moment[u];
         moment[u] += driver;
         torque[u] += driver;
       }
@@ -550,12 +797,22 @@ class TrainSystem {
     int body;
     std::shared_ptr<const SpeedController> controller;
   };
+  // A mesh's carrier (its degree of freedom, -1: fixed axes), the senses of
+  // its line's gears 1 and 2 about +z and their angle offsets in the line.
+  struct Frame {
+    int carrier = -1;
+    double sense_a = 1.0;
+    double sense_b = 1.0;
+    double offset_a = 0.0;
+    double offset_b = 0.0;
+  };
   const GearTrain& train_;
   std::vector<int> body_dof_;
   int dofs_ = 0;
   std::array<double, kBodies> inertia_{};
   std::vector<MeshLine> meshes_;
   std::vector<int> mesh_a_, mesh_b_;
+  std::vector<Frame> frame_;
   std::vector<Spring> springs_;
   // Per degree of freedom, the body whose kinematic driver holds it (-1: none).
   std::array<int, kBodies> driver_{};
@@ -565,9 +822,11 @@ class TrainSystem {
 
 // The train's run: the books of run_fixed_grid (step_methods.hpp), as the
 // torsional Run (run.hpp) keeps them, for each mesh.
+template <class L>
 class TrainRun {
  public:
-  using System = TrainSystem;
+  GEARIMPACT_TRAIN_LAYOUT_NAMES
+  using System = TrainSystem<L>;
   static constexpr bool kCountsCutStep = false;
 
   TrainRun(const GearTrain& train, const std::vector<const StiffnessTable*>& tables,
@@ -582,7 +841,7 @@ class TrainRun {
     if (records()) record(0.0);
   }
 
-  const TrainSystem& system() const { return system_; }
+  const System& system() const { return system_; }
   TrainState& y() { return y_; }
   const TrainMode& mode() const { return mode_; }
   const TrainMemory& damping() const { return damping_; }
@@ -744,7 +1003,7 @@ class TrainRun {
 
   // The start: the bodies' initial state at t = 0, a driver's closed form on
   // its body, each mesh classified (a contact there counts as an impact).
-  EnergyLedgerOf<TrainSystem> make_ledger() {
+  EnergyLedgerOf<System> make_ledger() {
     result_.meshes.resize(train_.meshes.size());
     for (const TrainMesh& m : train_.meshes) {
       half_base_pitch_m_.push_back(0.5 * base_pitch(m.pair.gears));
@@ -761,7 +1020,7 @@ class TrainRun {
       if (mode_.mesh[k].region != Region::free) begin_contact(k, 0.0);
       system_.mesh(k).classify_forces(q, damping_.mesh[k], mode_.mesh[k]);
     }
-    return EnergyLedgerOf<TrainSystem>(system_, y_, mode_, result_.summary);
+    return EnergyLedgerOf<System>(system_, y_, mode_, result_.summary);
   }
 
   // The Lagrangian mesh force of mesh k: its stored energy jumps by
@@ -803,7 +1062,7 @@ class TrainRun {
 
   const GearTrain& train_;
   const RunControl& control_;
-  TrainSystem system_;
+  System system_;
   StallWatch stall_;
   std::vector<double> half_base_pitch_m_;
   TrainState y_{};
@@ -814,7 +1073,7 @@ class TrainRun {
   // Each mesh's contacts (their counts and first and last times the train's summary's).
   std::vector<ImpactBook> impacts_;
   // Last: its construction sets the start state above (make_ledger).
-  EnergyLedgerOf<TrainSystem> ledger_;
+  EnergyLedgerOf<System> ledger_;
   // Under the Lagrangian mesh force: the sum of |dU| of the jumps paid.
   double stored_energy_jumps_ = 0.0;
 };
@@ -847,6 +1106,21 @@ double largest_resolving_step_s(const GearTrain& train) {
   }
   return largest;
 }
+
+template <class L>
+TrainResult run_train(const GearTrain& train, const std::vector<const StiffnessTable*>& tables,
+                      const RunControl& control) {
+  TrainRun<L> run(train, tables, control);
+  if (train.integrator.kind == IntegratorKind::adaptive) {
+    return run.finish(run_adaptive_loop(run, train.integrator, largest_resolving_step_s(train)),
+                      "adaptive");
+  }
+  FixedStepper<TrainSystem<L>> stepper(run.system(), train.integrator.kind);
+  const double t = run_fixed_grid(run, stepper, train.integrator);
+  return run.finish(t, name_of(kIntegratorKinds, train.integrator.kind).c_str());
+}
+
+#undef GEARIMPACT_TRAIN_LAYOUT_NAMES
 
 }  // namespace
 
@@ -888,19 +1162,21 @@ TrainResult simulate_train(const GearTrain& train, const RunControl& control) {
   std::vector<std::shared_ptr<const StiffnessTable>> built;
   std::vector<const StiffnessTable*> tables;
   for (const TrainMesh& m : train.meshes) {
-    if (!m.table) {
+    if (!m.table && internal_mesh(m)) {
+      const RingLine ring = ring_line(m.pair);
+      built.push_back(std::make_shared<const StiffnessTable>(
+          iso6336_internal_pair_table(ring.line.start_m, ring.line.end_m, ring.line.base_pitch_m,
+                                      ring.single_stiffness_n_per_m)));
+    } else if (!m.table) {
       built.push_back(std::make_shared<const StiffnessTable>(m.pair.gears, m.pair.model.stiffness));
     }
     tables.push_back(m.table ? m.table.get() : built.back().get());
   }
-  TrainRun run(train, tables, control);
-  if (train.integrator.kind == IntegratorKind::adaptive) {
-    return run.finish(run_adaptive_loop(run, train.integrator, largest_resolving_step_s(train)),
-                      "adaptive");
-  }
-  FixedStepper<TrainSystem> stepper(run.system(), train.integrator.kind);
-  const double t = run_fixed_grid(run, stepper, train.integrator);
-  return run.finish(t, name_of(kIntegratorKinds, train.integrator.kind).c_str());
+  const bool small = train.bodies.size() <= SmallTrain::kBodies &&
+                     train.meshes.size() <= SmallTrain::kMeshes &&
+                     std::none_of(train.meshes.begin(), train.meshes.end(), carrier_mesh);
+  return small ? run_train<SmallTrain>(train, tables, control)
+               : run_train<LargeTrain>(train, tables, control);
 }
 
 }  // namespace gearimpact

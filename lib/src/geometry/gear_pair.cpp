@@ -224,6 +224,15 @@ MeshLayout::MeshLayout(const GearPair& pair, CoastPhase coast_phase)
       end_(contact_segment(pair).end_m),
       coast_offset_(coast_phase == CoastPhase::half_base_pitch ? 0.5 * t0_ : 0.0) {}
 
+MeshLayout::MeshLayout(double pitch_point_m, double base_radius1_m, double base_pitch_m,
+                       double start_m, double end_m, CoastPhase coast_phase)
+    : x_pitch_(pitch_point_m),
+      rb1_(base_radius1_m),
+      t0_(base_pitch_m),
+      start_(start_m),
+      end_(end_m),
+      coast_offset_(coast_phase == CoastPhase::half_base_pitch ? 0.5 * t0_ : 0.0) {}
+
 LoadedRange MeshLayout::loaded(double reference_m) const {
   // The first k whose X reaches X_start, with the same comparisons as the
   // simulation's event functions (X - X_start >= 0, X_end - X >= 0), so that

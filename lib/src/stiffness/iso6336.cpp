@@ -1,7 +1,9 @@
 #include "gearimpact/stiffness/iso6336.hpp"
 
 #include <cmath>
+#include <limits>
 #include <string>
+#include <vector>
 
 #include "../require.hpp"
 #include "gearimpact/constants.hpp"
@@ -192,6 +194,58 @@ double iso6336_face_load_factor(double mismatch_m, double c_gamma_beta, double l
   const double full_contact = 1.0 + mismatch_m * c_gamma_beta / (2.0 * load_per_width);
   if (full_contact <= 2.0) return full_contact;
   return std::sqrt(2.0 * mismatch_m * c_gamma_beta / load_per_width);
+}
+
+Iso6336Internal iso6336_internal_method_b(int planet_teeth, double contact_ratio,
+                                          double rack_dedendum_coefficient,
+                                          double rack_pressure_angle_rad) {
+  if (planet_teeth < 4) {
+    throw InputError("planet_teeth", std::to_string(planet_teeth), "an integer >= 4");
+  }
+  if (!(contact_ratio >= 1.2 && contact_ratio < 2.0)) {
+    throw InputError("contact_ratio", contact_ratio,
+                     "[1.2, 2): the ring-planet mesh's eps_alpha, the range of ISO 6336-1 "
+                     "method B's c_gamma_alpha = c' (0.75 eps_alpha + 0.25)");
+  }
+  Iso6336Gear rack;
+  rack.rack_dedendum_coefficient = rack_dedendum_coefficient;
+  rack.rack_pressure_angle_rad = rack_pressure_angle_rad;
+  Iso6336Internal r{};
+  // zn2 infinite: its two terms vanish (a division by infinity gives 0).
+  r.flexibility_mm_um_per_n =
+      iso6336_flexibility(planet_teeth, std::numeric_limits<double>::infinity(), 0.0, 0.0);
+  constexpr double n_per_mm_um = 1.0e9;
+  constexpr double mesh_factor = 0.8;   // C_M
+  constexpr double blank_factor = 1.0;  // C_R
+  r.single_stiffness_n_per_m2 = n_per_mm_um / r.flexibility_mm_um_per_n * mesh_factor *
+                                blank_factor * basic_rack_factor(rack);
+  r.contact_ratio = contact_ratio;
+  r.mesh_stiffness_n_per_m2 = r.single_stiffness_n_per_m2 * (0.75 * contact_ratio + 0.25);
+  return r;
+}
+
+StiffnessTable iso6336_internal_pair_table(double start_m, double end_m, double base_pitch_m,
+                                           double single_stiffness_n_per_m) {
+  const double double_zone = end_m - start_m - base_pitch_m;  // (eps - 1) t0
+  if (!(double_zone >= 0.0 && double_zone < base_pitch_m)) {
+    throw InputError("contact_ratio", (end_m - start_m) / base_pitch_m,
+                     "[1, 2) for the internal mesh's per-pair table");
+  }
+  const double first_edge = start_m + double_zone;
+  const double second_edge = end_m - double_zone;
+  const ComplianceFunction compliance = [=](double x) {
+    const bool two = x < first_edge || x > second_edge;
+    Compliances c;
+    c.of(Term::bending) = 1.0 / ((two ? 0.875 : 1.0) * single_stiffness_n_per_m);
+    return c;
+  };
+  // A constant on each part: the lowest order and one piece fit it exactly.
+  StiffnessTableOptions options;
+  options.pieces = 1;
+  options.order = 2;
+  std::vector<double> breaks;
+  if (double_zone > 0.0) breaks = {first_edge, second_edge};
+  return StiffnessTable(start_m, end_m, compliance, breaks, options);
 }
 
 }  // namespace gearimpact

@@ -148,6 +148,24 @@ struct MeshPowers {
   double mesh_damping_w = 0.0;
 };
 
+// The line of action of an internal (ring-planet) mesh seen as a MeshLine:
+// gear 1 (body a) is the planet, gear 2 (body b) the ring, each angle positive
+// in the sense it turns when the planet drives (both clockwise seen from +z);
+// s = Rb_p theta_p - Rb_r theta_r. Lengths along the line from the planet's
+// tangent point T_b (geometry/planetary.hpp, InternalMesh).
+struct InternalLine {
+  double planet_base_radius_m = 0.0;
+  double ring_base_radius_m = 0.0;
+  double pressure_angle_rad = 0.0;  // the working one
+  double pitch_point_m = 0.0;       // Rb_p tan a_w'
+  double start_m = 0.0;             // where the ring's tip circle cuts the line
+  double end_m = 0.0;               // where the planet's tip circle cuts it
+  double base_pitch_m = 0.0;
+  double tangent_points_m = 0.0;  // T_b T_a = a_w sin a_w'
+  // The mean mesh stiffness over a mesh period (the viscous damper's k).
+  double mean_stiffness_n_per_m = 0.0;
+};
+
 class MeshLine {
  public:
   // The mesh of c.gears under c.model, with c.faults and c.modifications; the
@@ -160,6 +178,12 @@ class MeshLine {
   // two bodies it joins, mass_kg > 0 (a train's), rather than that
   // of the pair's discs.
   MeshLine(const SimulationCase& c, const StiffnessTable& table, double mass_kg);
+  // An internal mesh on `line`, `table` over [line.start_m, line.end_m]. Of
+  // c, the model (contact, damping; its friction must be 0), the backlash and
+  // the Hertzian stiffness's width and materials (Kh of (4) has no curvature);
+  // c's faults and modifications are not read (the caller refuses them).
+  MeshLine(const SimulationCase& c, const StiffnessTable& table, const InternalLine& line,
+           double mass_kg);
 
   double base_radius_a() const { return rb1_; }
   double base_radius_b() const { return rb2_; }

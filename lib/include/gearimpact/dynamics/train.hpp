@@ -6,7 +6,11 @@
 // runs through the same run loop as the two-gear models (run_fixed_grid of
 // step_methods.hpp); the two-gear torsional case is the train of two bodies
 // and one mesh (two_gear_train), and runs the same numbers bit for bit.
-// docs/architecture.md, section "A gear train".
+// A mesh may also sit in a carrier's frame (a planetary stage's, rotational
+// only: every centre fixed in that frame): it then sees its bodies' angles
+// relative to the carrier's and puts its reaction moment on the carrier
+// (planetary_train.hpp builds such a stage).
+// docs/architecture.md, section "A gear train"; docs/planetary.md.
 #pragma once
 
 #include <memory>
@@ -22,8 +26,10 @@ namespace gearimpact {
 
 // The most bodies (after rigid shafts join them) and meshes of a train: the
 // state and the event values are fixed-size arrays.
-inline constexpr int kMaxTrainBodies = 6;
-inline constexpr int kMaxTrainMeshes = 4;
+// A planetary stage of 5 planets has 8 bodies (sun, ring, carrier, planets)
+// and 10 meshes.
+inline constexpr int kMaxTrainBodies = 8;
+inline constexpr int kMaxTrainMeshes = 10;
 
 // A body turning about its fixed axis. Its angle and speed are positive in the
 // sense it turns when the train runs forward: a mesh's driven body b turns
@@ -36,6 +42,10 @@ struct TrainBody {
   Torque torque;
   double theta_rad = 0.0;    // initial angle
   double w_rad_per_s = 0.0;  // initial speed
+  // Held at its initial angle (a removed coordinate: a planetary stage's
+  // fixed member): its speed stays 0 (w must be 0, its torque a constant 0),
+  // and whatever holds it does no work.
+  bool held = false;
 };
 
 // A mesh between bodies a (its pair's gear 1) and b (gear 2). Of `pair`, the
@@ -43,12 +53,32 @@ struct TrainBody {
 // stiffness, contact, damping and friction), faults and modifications; its
 // torques, initial state and integrator are the train's. `table`: the
 // stiffness table of the pair, built by the run when none is given.
+//
+// A mesh in a carrier's frame (carrier >= 0, the index of the carrier body):
+// the angles of its bodies and of the carrier are all about +z (the stage's
+// one sign rule), and its deflection is that of docs/planetary.md,
+// s = Rb_a (theta_a - theta_c) + kappa Rb_b (theta_b - theta_c): kappa = +1
+// for an external mesh (a the sun, b a planet, pair.gears.teeth1 and teeth2
+// theirs), kappa = -1 for an internal one (a the ring, an internal gear of
+// pair.gears.teeth1 teeth, b the planet of teeth2, at the standard centre
+// distance m (teeth1 - teeth2) / 2; its stiffness table is ISO 6336-1 method
+// B's, iso6336_internal_pair_table, built by the run; unshifted, without
+// friction, faults or modifications). The mesh's force puts the moments
+// -F Rb_a and -kappa F Rb_b on a and b and minus their sum on the carrier.
+// line_offset_m shifts the loaded pairs along the line (the mesh's phase
+// times the base pitch), X measured from the tangent point of the sun (an
+// external mesh) or the planet (an internal one); planetary_train sets it
+// from the stage's geometry.
 struct TrainMesh {
+  enum class Kind { external, internal };
   std::string name;
   int body_a = 0;
   int body_b = 1;
   SimulationCase pair;
   std::shared_ptr<const StiffnessTable> table;
+  int carrier = -1;
+  Kind kind = Kind::external;
+  double line_offset_m = 0.0;
 };
 
 // A shaft between bodies a and b on one axis (both turn in the same sense).

@@ -174,6 +174,11 @@ class MeshLayout {
   static constexpr int capacity = 4;
 
   MeshLayout(const GearPair& pair, CoastPhase coast_phase);
+  // A line given by its numbers (an internal mesh's, geometry/planetary.hpp):
+  // X_pitch, gear 1's base radius, the base pitch t0 and the contact segment
+  // [start, end], all measured from gear 1's tangent point.
+  MeshLayout(double pitch_point_m, double base_radius1_m, double base_pitch_m, double start_m,
+             double end_m, CoastPhase coast_phase);
 
   // X of the pair k = 0 on `line` (Region::n1 or Region::n2) at rotation theta1,
   // (9) with (12): X_pitch + Rb1 theta1 on N1, X_pitch - Rb1 theta1 (+ t0/2) on N2.

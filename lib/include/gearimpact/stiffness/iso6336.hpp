@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/stiffness/table.hpp"
 
 namespace gearimpact {
 
@@ -83,5 +84,35 @@ double iso6336_face_mesh_stiffness(const Iso6336Stiffness& stiffness);
 // naming the argument out of range.
 double iso6336_face_load_factor(double mismatch_m, double face_mesh_stiffness_n_per_m2,
                                 double load_per_width_n_per_m);
+
+// An internal (ring-planet) spur mesh by ISO 6336-1 method B, the documented
+// first version of the ring's stiffness (docs/planetary.md): q' with the
+// internal gear's virtual tooth count taken as infinite (ISO 6336-1's rule for
+// an internal gear: C3/zn2 and C7 x2/zn2 vanish), both gears unshifted,
+// c' = c'_th C_M C_R C_B with C_M = 0.8, C_R = 1 (solid ring rim) and C_B of
+// the rack, c_gamma_alpha = c' (0.75 eps_alpha + 0.25). eps_alpha is the
+// internal mesh's contact ratio (geometry/planetary.hpp). Throws InputError
+// naming contact_ratio unless 1.2 <= eps_alpha < 2 (the range the fit is
+// stated for), and planet_teeth unless >= 4.
+struct Iso6336Internal {
+  double flexibility_mm_um_per_n;    // q'
+  double single_stiffness_n_per_m2;  // c'
+  double contact_ratio;              // eps_alpha
+  double mesh_stiffness_n_per_m2;    // c_gamma_alpha
+};
+Iso6336Internal iso6336_internal_method_b(int planet_teeth, double contact_ratio,
+                                          double rack_dedendum_coefficient,
+                                          double rack_pressure_angle_rad);
+
+// The per-pair stiffness of an internal mesh as a table in the contact
+// position X over its segment [start, end] (base pitch t0, eps = (end -
+// start) / t0 in [1, 2)): 0.875 c' b in the two double-contact zones (X within
+// (eps - 1) t0 of either end) and c' b in the single-contact zone between, so
+// that the mesh is c' b with one pair, 1.75 c' b with two, and its mean over a
+// mesh period is c' b (0.75 eps + 0.25) = c_gamma_alpha b. The table is cut at
+// the zones' edges (StiffnessTable's parts); the whole compliance is booked
+// under the bending term (ISO's fit does not split it).
+StiffnessTable iso6336_internal_pair_table(double start_m, double end_m, double base_pitch_m,
+                                           double single_stiffness_n_per_m);
 
 }  // namespace gearimpact

@@ -1,0 +1,69 @@
+// A planetary stage as a gear train (train.hpp), ROTATIONAL ONLY: the sun's,
+// ring's and carrier's centres and the planet pins are rigid, every centre
+// fixed in the carrier's frame; the state is the angle and speed of the sun,
+// ring, carrier and each planet, all about +z. Each sun-planet mesh is an
+// external mesh and each ring-planet mesh an internal one (ISO 6336-1 method
+// B per-pair stiffness), both in the carrier's frame; their phases come from
+// the stage's geometry (geometry/planetary.hpp), never entered. The planar
+// stage (central translations, planet bearings) is a later step.
+// docs/planetary.md, section "Nonlinear rotational stage".
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/dynamics/train.hpp"
+#include "gearimpact/geometry/planetary.hpp"
+
+namespace gearimpact {
+
+struct PlanetaryStage {
+  PlanetaryTeeth teeth;
+  // The meshes' keys: of its gears the module, pressure angle, addendum and
+  // dedendum coefficients, face width, materials and backlash (the tooth
+  // counts are the stage's; unshifted teeth), and its model (the ring meshes
+  // take it without friction).
+  SimulationCase mesh;
+  // Planet positions psi_n (psi_1 = 0, counter-clockwise); empty: `planets`
+  // equally spaced.
+  std::vector<double> planet_angles_rad;
+  int planets = 3;
+  double sun_inertia_kg_m2 = 0.0;
+  double ring_inertia_kg_m2 = 0.0;
+  double carrier_inertia_kg_m2 = 0.0;
+  double planet_inertia_kg_m2 = 0.0;
+  // Each planet's mass: its orbit adds m_p R_c^2 to the carrier's inertia
+  // (absent: the carrier's inertia is taken as given).
+  std::optional<double> planet_mass_kg;
+  // The member held still (its angle a removed coordinate), and the torques
+  // on the other two (the held member's must stay none).
+  HeldMember held = HeldMember::ring;
+  Torque sun_torque;
+  Torque ring_torque;
+  Torque carrier_torque;
+  // Every body starts at angle 0 turning at the Willis speeds with the input
+  // member (the sun, or the ring when the sun is held) at this speed.
+  double input_speed_rad_per_s = 0.0;
+  IntegratorSettings integrator;
+};
+
+// The bodies' and meshes' order in planetary_train's GearTrain.
+inline constexpr int kSunBody = 0;
+inline constexpr int kRingBody = 1;
+inline constexpr int kCarrierBody = 2;
+inline constexpr int kFirstPlanetBody = 3;
+// Meshes: sun-planet n at n - 1, ring-planet n at N + n - 1 (n = 1..N).
+
+// The stage as a train: bodies sun, ring, carrier, planet1..planetN; meshes
+// sun_planetN (external: the sun's line, its phase -gamma_sn base pitches)
+// and ring_planetN (internal: the planet's line, its phase gamma_rs -
+// gamma_rn, so that each planet's sun mesh crosses its pitch point gamma_rs
+// after its ring mesh). Throws InputError naming the stage's key
+// (sun_teeth, planets, planet_angles[i], held, ...) or the train's.
+GearTrain planetary_train(const PlanetaryStage& stage);
+
+// The rigid speeds (Willis) of the stage's members at its input speed.
+StageSpeeds planetary_rigid_speeds(const PlanetaryStage& stage);
+
+}  // namespace gearimpact

@@ -1,0 +1,590 @@
+// The rotational planetary stage as a train (dynamics/planetary_train.hpp,
+// the carrier-frame and internal meshes of dynamics/train.hpp) and the ISO
+// 6336-1 ring table (stiffness/iso6336.hpp). References: the Willis
+// relations written out here from the tooth counts; the static balance of
+// identical planets (each sun mesh carries T_s / (N Rb_s)); conservation of
+// angular momentum (sum J w about +z, the planets' orbits included) in a free
+// stage, which the mesh moments' zero sum and RK4's exactness on linear
+// invariants keep to rounding; the ledger's residual at the integrator's
+// order; c_gamma_alpha = c' (0.75 eps + 0.25) of ISO 6336-1; the internal
+// segment from circle-line intersections computed here.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "gearimpact/constants.hpp"
+#include "gearimpact/dynamics/mesh_line.hpp"
+#include "gearimpact/dynamics/planetary_train.hpp"
+#include "gearimpact/dynamics/train.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/planetary.hpp"
+#include "gearimpact/modes/planetary.hpp"
+#include "gearimpact/stiffness/iso6336.hpp"
+
+using namespace gearimpact;
+
+namespace {
+
+// A steel stage of module 2 mm, 20 deg, 20 mm wide: discs on the pitch
+// circles for the sun and planets, a ring and carrier of the given inertias.
+PlanetaryStage test_stage(int sun, int planet, int ring, int planets) {
+  PlanetaryStage s;
+  s.teeth = {sun, planet, ring};
+  s.mesh.gears.module_m = 2.0e-3;
+  s.mesh.gears.face_width_m = 20.0e-3;
+  s.mesh.gears.backlash_m = 0.05e-3;
+  s.mesh.model.friction_coefficient = 0.0;
+  s.mesh.model.mesh_damping_ratio = 0.1;
+  s.planets = planets;
+  const auto disc = [&](int z) {
+    const double r = 0.5 * s.mesh.gears.module_m * z;
+    return s.mesh.gears.density_kg_m3 * pi * r * r * r * r * s.mesh.gears.face_width_m / 2.0;
+  };
+  s.sun_inertia_kg_m2 = disc(sun);
+  s.planet_inertia_kg_m2 = disc(planet);
+  s.ring_inertia_kg_m2 = 4.0 * disc(ring);
+  s.carrier_inertia_kg_m2 = 2.0e-3;
+  s.planet_mass_kg = 0.3;
+  s.integrator.kind = IntegratorKind::rk4;
+  s.integrator.step_s = 1.0e-6;
+  s.integrator.end_time_s = 0.02;
+  return s;
+}
+
+Torque constant_torque(double t) {
+  Torque q;
+  q.kind = Torque::Kind::constant;
+  q.constant_n_m = t;
+  return q;
+}
+
+Torque driver(double w) {
+  Torque q;
+  q.kind = Torque::Kind::prescribed_speed;
+  q.mean_speed_rad_per_s = w;
+  return q;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "the ISO ring table: c' b in the single zone, 0.875 c' b in the double zones, mean "
+    "c_gamma_alpha b") {
+  const PlanetaryTeeth teeth{24, 24, 72};
+  const PlanetaryToothing toothing{2.0e-3, 20.0 * pi / 180.0, 1.0};
+  const InternalMesh g = internal_mesh(teeth, toothing, 0.5 * 2.0e-3 * (72 - 24));
+  const Iso6336Internal iso =
+      iso6336_internal_method_b(24, g.contact_ratio, 1.25, toothing.pressure_angle_rad);
+  // q' with zn2 infinite: C1 + C2 / zn1, the constants of ISO 6336-1 method B.
+  CHECK(iso.flexibility_mm_um_per_n == doctest::Approx(0.04723 + 0.15551 / 24.0).epsilon(1e-15));
+  const double b = 20.0e-3;
+  const double cb = iso.single_stiffness_n_per_m2 * b;
+  const StiffnessTable table =
+      iso6336_internal_pair_table(g.segment_start_m, g.segment_end_m, g.base_pitch_m, cb);
+  const double zone = (g.contact_ratio - 1.0) * g.base_pitch_m;
+  const double mid = 0.5 * (g.segment_start_m + g.segment_end_m);
+  CHECK(std::fabs(table.stiffness(mid) / cb - 1.0) < 1e-13);
+  CHECK(std::fabs(table.stiffness(g.segment_start_m + 0.5 * zone) / (0.875 * cb) - 1.0) < 1e-13);
+  CHECK(std::fabs(table.stiffness(g.segment_end_m - 0.5 * zone) / (0.875 * cb) - 1.0) < 1e-13);
+  // The mesh over one base pitch: the pairs at X + k t0 in the segment,
+  // sampled at the midpoints of 100000 equal steps (the zones' edges cost
+  // at most one sample each: 2e-5 of the mean).
+  const int samples = 100000;
+  double sum = 0.0;
+  for (int i = 0; i < samples; ++i) {
+    const double x0 = g.segment_start_m + (i + 0.5) / samples * g.base_pitch_m;
+    for (int k = 0; k < 3; ++k) {
+      const double x = x0 + k * g.base_pitch_m;
+      if (x <= g.segment_end_m) sum += table.stiffness(x);
+    }
+  }
+  const double mean = sum / samples;
+  CHECK(std::fabs(mean / (iso.single_stiffness_n_per_m2 * (0.75 * g.contact_ratio + 0.25) * b) -
+                  1.0) < 3e-5);
+  CHECK(iso.mesh_stiffness_n_per_m2 ==
+        doctest::Approx(iso.single_stiffness_n_per_m2 * (0.75 * g.contact_ratio + 0.25)));
+  // Outside ISO's range, refused naming eps_alpha's key.
+  CHECK_THROWS_WITH_AS(iso6336_internal_method_b(24, 1.1, 1.25, toothing.pressure_angle_rad),
+                       doctest::Contains("contact_ratio"), InputError);
+  CHECK_THROWS_WITH_AS(iso6336_internal_method_b(24, 2.0, 1.25, toothing.pressure_angle_rad),
+                       doctest::Contains("contact_ratio"), InputError);
+}
+
+TEST_CASE("the internal segment: the line tangent to both base circles cut by the tip circles") {
+  // Ring centre at the origin, planet centre C = (a, 0). The line of action
+  // touches both base circles on one side: with its unit normal
+  // n = (cos a_w, sin a_w), n . P = Rb_r on the line and n . C = a cos a_w =
+  // Rb_r - Rb_p. Points P = Rb_r n + t u, u = (-sin a_w, cos a_w): T_a (the
+  // ring's foot) at t = 0, T_b (the planet's) at t_b = C . u. A contact's
+  // rho is its distance from T_b counted away from T_a.
+  const double m = 2.0e-3;
+  const double a0 = 20.0 * pi / 180.0;
+  const int zp = 24, zr = 72;
+  const double a = 0.5 * m * (zr - zp);
+  const double rbp = 0.5 * m * zp * std::cos(a0), rbr = 0.5 * m * zr * std::cos(a0);
+  const double aw = std::acos((rbr - rbp) / a);
+  const double nx = std::cos(aw), ny = std::sin(aw), ux = -ny, uy = nx;
+  const double tb = a * ux;
+  const double dir = tb > 0.0 ? 1.0 : -1.0;
+  const auto rho = [&](double t) { return (t - tb) * dir; };
+  // A circle of radius R about (cx, 0) cuts the line where
+  // |Rb_r n + t u - (cx, 0)|^2 = R^2: t = t_c +- sqrt(R^2 - d^2), t_c the
+  // centre's foot and d its distance from the line.
+  const auto farthest_cut = [&](double cx, double radius) {
+    const double tc = cx * ux;
+    const double d = std::fabs(cx * nx - rbr);
+    const double half = std::sqrt(radius * radius - d * d);
+    return std::max(rho(tc - half), rho(tc + half));
+  };
+  const InternalMesh g = internal_mesh({24, zp, zr}, {m, a0, 1.0}, a);
+  // The segment runs from the ring's tip cut on T_b's side to the planet's
+  // tip cut beyond the pitch point; the pitch point is where the line
+  // crosses the centre line (y = 0: t = -Rb_r n_y / u_y).
+  CHECK(std::fabs(g.segment_start_m - farthest_cut(0.0, 0.5 * m * zr - m)) < 1e-15);
+  CHECK(std::fabs(g.segment_end_m - farthest_cut(a, 0.5 * m * zp + m)) < 1e-15);
+  CHECK(std::fabs(g.pitch_point_m - rho(-rbr * ny / uy)) < 1e-15);
+  CHECK(std::fabs(g.contact_ratio -
+                  (g.segment_end_m - g.segment_start_m) / (pi * m * std::cos(a0))) < 1e-12);
+}
+
+namespace {
+
+// The mean ratio of body `to`'s turning to body `from`'s from from_s on: the
+// least-squares slope of theta_to against theta_from over the rows, which
+// averages the elastic vibration about the rigid motion out.
+double turn_ratio(const TrainResult& r, std::size_t from, std::size_t to, double from_s) {
+  double n = 0.0, mx = 0.0, my = 0.0;
+  for (const TrainRow& row : r.series) {
+    if (row.t_s < from_s) continue;
+    n += 1.0;
+    mx += row.theta_rad[from];
+    my += row.theta_rad[to];
+  }
+  mx /= n;
+  my /= n;
+  double sxy = 0.0, sxx = 0.0;
+  for (const TrainRow& row : r.series) {
+    if (row.t_s < from_s) continue;
+    sxy += (row.theta_rad[from] - mx) * (row.theta_rad[to] - my);
+    sxx += (row.theta_rad[from] - mx) * (row.theta_rad[from] - mx);
+  }
+  return sxy / sxx;
+}
+
+}  // namespace
+
+TEST_CASE("Willis: a driven stage under a constant load turns at the rigid ratios") {
+  // (w_s - w_c) / (w_r - w_c) = -Z_r / Z_s written out for each held member.
+  const int zs = 24, zp = 24, zr = 72;
+  struct Arrangement {
+    HeldMember held;
+    std::size_t input, output;
+    double ratio;  // output speed over input speed
+  };
+  const Arrangement arrangements[] = {
+      {HeldMember::ring, kSunBody, kCarrierBody, double(zs) / (zs + zr)},
+      {HeldMember::carrier, kSunBody, kRingBody, -double(zs) / zr},
+      {HeldMember::sun, kRingBody, kCarrierBody, double(zr) / (zs + zr)},
+  };
+  for (const Arrangement& a : arrangements) {
+    CAPTURE(static_cast<int>(a.held));
+    PlanetaryStage s = test_stage(zs, zp, zr, 3);
+    s.held = a.held;
+    s.input_speed_rad_per_s = 100.0;
+    // The input member driven at 100 rad/s, the output loaded against its
+    // motion with 20 N m.
+    Torque& in = a.input == kSunBody ? s.sun_torque : s.ring_torque;
+    in = driver(100.0);
+    Torque& out = a.output == kCarrierBody ? s.carrier_torque : s.ring_torque;
+    out = constant_torque(a.ratio > 0 ? -20.0 : 20.0);
+    s.integrator.step_s = 2.0e-6;
+    s.integrator.end_time_s = 0.016;
+    const TrainResult r = simulate_train(planetary_train(s));
+    // Over the second half (0.8 rad of input) the elastic angles vibrate
+    // about the static deflection (~F / k ~ 1e-6 m over radii of
+    // centimetres) as the damper lets them: the mean ratio is Willis's to
+    // 5e-6 (measured: 4.8e-7 at most).
+    const double ratio = turn_ratio(r, a.input, a.output, 0.008);
+    CAPTURE(ratio);
+    CHECK(std::fabs(ratio / a.ratio - 1.0) < 5e-6);
+    // Each planet's turning relative to the carrier: -(Z_s / Z_p) times the sun's.
+    if (a.held != HeldMember::carrier) {
+      const double planet = turn_ratio(r, kCarrierBody, kFirstPlanetBody, 0.008);
+      const double sun = turn_ratio(r, kCarrierBody, kSunBody, 0.008);
+      CHECK(std::fabs((planet - 1.0) / (-(double(zs) / zp) * (sun - 1.0)) - 1.0) < 5e-6);
+    } else {
+      CHECK(std::fabs(turn_ratio(r, kSunBody, kFirstPlanetBody, 0.008) / (-double(zs) / zp) - 1.0) <
+            5e-6);
+    }
+    // The held member stays put.
+    const std::size_t held = a.held == HeldMember::ring      ? kRingBody
+                             : a.held == HeldMember::carrier ? kCarrierBody
+                                                             : kSunBody;
+    CHECK(r.series.back().w_rad_per_s[held] == 0.0);
+    CHECK(r.series.back().theta_rad[held] == 0.0);
+  }
+}
+
+TEST_CASE("identical equally spaced planets share the sun's torque equally at static balance") {
+  // Ring held, sun torque T_s, the carrier loaded by -T_s (1 + Z_r / Z_s):
+  // the rigid mode is unforced and the damped stage settles to its static
+  // balance, where every sun mesh carries T_s / (N Rb_s) (each planet's two
+  // mesh forces equal, their moments on the sun summing to T_s).
+  // N = 3 with 25/23/71 teeth (sun meshes phased by 1/3: equal stiffness
+  // taken constant) and N = 4 with 24/24/72 (all in phase, the tables).
+  struct Case {
+    int zs, zp, zr, n;
+    bool constant;
+  };
+  for (const Case c : {Case{25, 23, 71, 3, true}, Case{24, 24, 72, 4, false}}) {
+    CAPTURE(c.n);
+    PlanetaryStage s = test_stage(c.zs, c.zp, c.zr, c.n);
+    if (c.constant) {
+      s.mesh.model.mesh_stiffness = MeshStiffnessMode::constant;
+      s.mesh.model.constant_mesh_stiffness_n_per_m = 5.0e8;
+    }
+    const double ts = 20.0;
+    s.sun_torque = constant_torque(ts);
+    s.carrier_torque = constant_torque(-ts * (1.0 + double(c.zr) / c.zs));
+    s.integrator.step_s = 2.0e-6;
+    s.integrator.end_time_s = 0.006;
+    const TrainResult r = simulate_train(planetary_train(s));
+    const double rbs =
+        0.5 * s.mesh.gears.module_m * c.zs * std::cos(s.mesh.gears.pressure_angle_rad);
+    const double share = ts / (c.n * rbs);
+    const TrainRow& last = r.series.back();
+    for (int i = 0; i < 2 * c.n; ++i) {
+      CAPTURE(i);
+      CAPTURE(last.meshes[static_cast<std::size_t>(i)].normal_force_n);
+      // Settled: the slowest elastic mode (some kHz) damped at 0.1 of
+      // critical has decayed by e^-100 or more in 30 ms; measured 1e-12, the
+      // bound leaves room for rounding over 30000 steps.
+      if (i < c.n) {
+        CHECK(std::fabs(last.meshes[static_cast<std::size_t>(i)].normal_force_n / share - 1.0) <
+              1e-10);
+      }
+    }
+    // Each ring mesh carries the same force as its planet's sun mesh.
+    for (int i = 0; i < c.n; ++i) {
+      CHECK(std::fabs(last.meshes[static_cast<std::size_t>(c.n + i)].normal_force_n / share - 1.0) <
+            1e-10);
+    }
+  }
+}
+
+TEST_CASE("a free stage keeps its angular momentum; a loaded one closes its ledger") {
+  PlanetaryStage s = test_stage(25, 23, 71, 3);
+  s.held = HeldMember::ring;
+  s.input_speed_rad_per_s = 50.0;
+  s.integrator.end_time_s = 0.005;
+  // No viscous damper (it acts in the backlash too, and would stop the
+  // relative motion before the teeth meet): the meshes act by contacts.
+  // Friction on the sun meshes: its forces, too, are internal (the carrier
+  // takes minus the sum of their moments about the gears' centres).
+  s.mesh.model.mesh_damping_ratio = 0.0;
+  s.mesh.model.friction_coefficient = 0.06;
+  GearTrain free = planetary_train(s);
+  // Nothing held and no torques: only the meshes act, and their moments
+  // (on the two gears and the carrier) sum to zero. The ring starts at
+  // rest, the others at their Willis speeds, so the meshes take up load.
+  free.bodies[kRingBody].held = false;
+  free.bodies[kSunBody].w_rad_per_s = 60.0;
+  const TrainResult r = simulate_train(free);
+  const auto momentum = [&](const TrainRow& row) {
+    double l = 0.0, scale = 0.0;
+    for (std::size_t i = 0; i < free.bodies.size(); ++i) {
+      l += free.bodies[i].inertia_kg_m2 * row.w_rad_per_s[i];
+      scale += std::fabs(free.bodies[i].inertia_kg_m2 * row.w_rad_per_s[i]);
+    }
+    return std::array<double, 2>{l, scale};
+  };
+  const double l0 = momentum(r.series.front())[0];
+  double worst = 0.0;
+  for (const TrainRow& row : r.series) {
+    const std::array<double, 2> l = momentum(row);
+    worst = std::max(worst, std::fabs(l[0] - l0) / l[1]);
+  }
+  CAPTURE(worst);
+  double largest_force = 0.0;
+  for (const TrainRow& row : r.series) {
+    for (const TrainMeshRow& m : row.meshes)
+      largest_force = std::max(largest_force, m.normal_force_n);
+  }
+  CHECK(r.summary.impacts_n1 + r.summary.impacts_n2 > 0);
+  CHECK(r.summary.friction_loss_j > 0.0);
+  CHECK(largest_force > 100.0);  // the meshes did act
+  // RK4 keeps a linear invariant of the right-hand side exactly: rounding,
+  // about 1e-16 per step over 5000 steps.
+  CHECK(worst < 1e-12);
+
+  // Loaded and driven: the ledger (torque work = kinetic + stored energy +
+  // losses) closes at RK4's order: a quarter of the step divides it by far
+  // more than 64.
+  PlanetaryStage d = test_stage(25, 23, 71, 3);
+  d.mesh.model.friction_coefficient = 0.06;  // on the sun meshes
+  d.input_speed_rad_per_s = 100.0;
+  d.sun_torque = driver(100.0);
+  d.carrier_torque = constant_torque(-20.0);
+  d.integrator.end_time_s = 0.004;
+  d.integrator.step_s = 2.0e-6;
+  const TrainResult coarse = simulate_train(planetary_train(d));
+  d.integrator.step_s = 0.5e-6;
+  const TrainResult fine = simulate_train(planetary_train(d));
+  CAPTURE(coarse.summary.ledger_residual_max_j);
+  CAPTURE(fine.summary.ledger_residual_max_j);
+  CAPTURE(coarse.summary.ledger_scale_j);
+  CHECK(coarse.summary.friction_loss_j > 0.0);
+  CHECK(coarse.summary.ledger_residual_max_j / coarse.summary.ledger_scale_j < 1e-5);
+  CHECK(fine.summary.ledger_residual_max_j < coarse.summary.ledger_residual_max_j / 64.0);
+}
+
+TEST_CASE("the stage's and its meshes' bad input is refused by name") {
+  PlanetaryStage s = test_stage(24, 24, 72, 3);
+  s.teeth.ring = 73;  // Z_r != Z_s + 2 Z_p
+  CHECK_THROWS_AS(planetary_train(s), InputError);
+  s = test_stage(24, 24, 72, 3);
+  GearTrain t = planetary_train(s);
+  t.meshes[3].pair.model.friction_coefficient = 0.04;
+  CHECK_THROWS_WITH_AS(simulate_train(t),
+                       doctest::Contains("meshes.ring_planet1.model.friction_coefficient"),
+                       InputError);
+  t = planetary_train(s);
+  t.bodies[kRingBody].w_rad_per_s = 1.0;
+  CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("bodies.ring.w"), InputError);
+  t = planetary_train(s);
+  t.meshes[0].carrier = kSunBody;
+  CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("meshes.sun_planet1.carrier"),
+                       InputError);
+  t = planetary_train(s);
+  t.meshes[0].pair.model.mesh_force = MeshForce::lagrangian;
+  CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("meshes.sun_planet1.model.mesh_force"),
+                       InputError);
+  t = planetary_train(s);
+  t.integrator.kind = IntegratorKind::adaptive;
+  CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("integrator.kind"), InputError);
+}
+
+TEST_CASE(
+    "small oscillations: the stage's rotational modes are the Lin-Parker model's with "
+    "stiff supports and planet bearings") {
+  // The nonlinear stage made linear: no backlash (contact on one flank or
+  // the other, the same stiffness), a constant mesh stiffness, no damping.
+  // Started from rest at zero deflection with the speeds of one of the Lin
+  // & Parker (1999) model's rotational modes, it must return to those speeds
+  // after one of that mode's periods and reverse them after half of one.
+  // The LP model is an independent formulation (x, y, u of every member,
+  // zeta, eta of the planets, modes/planetary.hpp) whose translations and
+  // planet bearings, at 1e15 N/m, and ring torsional support (the held ring)
+  // leave the rotational coordinates: its frequencies differ from the
+  // rotational model's by about k / 1e15 = 5e-7.
+  PlanetaryStage s = test_stage(25, 23, 71, 3);
+  s.mesh.gears.backlash_m = 0.0;
+  s.mesh.model.mesh_stiffness = MeshStiffnessMode::constant;
+  const double k = 5.0e8;
+  s.mesh.model.constant_mesh_stiffness_n_per_m = k;
+  s.mesh.model.mesh_damping_ratio = 0.0;
+  s.mesh.model.restitution.coefficient = 0.0;  // e = 1: no Hertzian damping
+  s.held = HeldMember::ring;
+  const double a0 = s.mesh.gears.pressure_angle_rad;
+  const double m = s.mesh.gears.module_m;
+  const double rbs = 0.5 * m * 25 * std::cos(a0), rbp = 0.5 * m * 23 * std::cos(a0);
+  const double rbr = 0.5 * m * 71 * std::cos(a0), rc = 0.5 * m * (25 + 23);
+  const double stiff = 1.0e15;
+  PlanetaryParameters p;
+  p.sun = {1.0, s.sun_inertia_kg_m2 / (rbs * rbs), stiff, 0.0};
+  p.ring = {1.0, s.ring_inertia_kg_m2 / (rbr * rbr), stiff, stiff};
+  p.carrier = {1.0, s.carrier_inertia_kg_m2 / (rc * rc), stiff, 0.0};
+  p.planet_mass_kg = *s.planet_mass_kg;
+  p.planet_rotational_mass_kg = s.planet_inertia_kg_m2 / (rbp * rbp);
+  p.planet_angles_rad = {0.0, 2.0 * pi / 3.0, 4.0 * pi / 3.0};
+  p.planet_bearing_stiffness_n_per_m = stiff;
+  p.sun_mesh_stiffness_n_per_m = k;
+  p.ring_mesh_stiffness_n_per_m = k;
+  p.sun_pressure_angle_rad = a0;
+  p.ring_pressure_angle_rad = a0;
+  const PlanetaryModes lp = planetary_modes(planetary_model(p));
+  int checked = 0;
+  for (const StageMode& mode : lp.modes) {
+    // The soft rotational modes: the stiff springs' modes lie near
+    // sqrt(1e15 / 1 kg) = 3e7 rad/s.
+    if (mode.rigid || mode.type != StageModeType::rotational || mode.angular_frequency > 1e6) {
+      continue;
+    }
+    CAPTURE(mode.angular_frequency);
+    ++checked;
+    const Eigen::VectorXd& v = mode.shape;
+    // u = r theta: the angular speeds about +z, the planets' absolute.
+    GearTrain t = planetary_train(s);
+    const double scale = 1.0e-6 * mode.angular_frequency / v.cwiseAbs().maxCoeff();
+    t.bodies[kSunBody].w_rad_per_s = scale * v[central_index(StageMember::sun, 2)] / rbs;
+    t.bodies[kCarrierBody].w_rad_per_s = scale * v[central_index(StageMember::carrier, 2)] / rc;
+    for (int n = 0; n < 3; ++n) {
+      t.bodies[static_cast<std::size_t>(kFirstPlanetBody + n)].w_rad_per_s =
+          scale * v[planet_index(n, 2)] / rbp;
+    }
+    const double period = 2.0 * pi / mode.angular_frequency;
+    t.integrator.step_s = period / 2000.0;
+    t.integrator.end_time_s = period;
+    const TrainResult r = simulate_train(t);
+    const TrainRow& half = r.series[1000];
+    const TrainRow& end = r.series.back();
+    REQUIRE(r.series.size() == 2001);
+    double norm = 0.0, after_half = 0.0, after_one = 0.0;
+    for (std::size_t i = 0; i < t.bodies.size(); ++i) {
+      const double w0 = t.bodies[i].w_rad_per_s;
+      norm = std::max(norm, std::fabs(w0));
+      after_half = std::max(after_half, std::fabs(half.w_rad_per_s[i] + w0));
+      after_one = std::max(after_one, std::fabs(end.w_rad_per_s[i] - w0));
+    }
+    CAPTURE(after_half / norm);
+    CAPTURE(after_one / norm);
+    // The stiff springs' few 1e-7 of frequency and shape (measured: 5.6e-6
+    // at most) and (w h)^4 ~ 1e-10 from RK4; a frequency off by 1e-4 would
+    // leave 6e-4.
+    CHECK(after_half / norm < 2e-5);
+    CHECK(after_one / norm < 2e-5);
+  }
+  // Ring held: the sun, the carrier and the planets together carry two
+  // elastic rotational modes besides the rigid (Willis) one.
+  CHECK(checked == 2);
+}
+
+TEST_CASE("the meshes' pairs enter at the phases of the tooth counts") {
+  // 26/22/70, N = 3: planet n's sun mesh lags planet 1's by
+  // gamma_sn = frac(Z_s psi_n / 2 pi) = 0, 2/3, 1/3 mesh periods, and with
+  // standard teeth at the standard centre distance a planet's sun mesh
+  // crosses its pitch point gamma_rs = frac((1 - Z_p) / 2) = 1/2 period
+  // after its ring mesh (Z_p (2 theta_bp - inv a_s - inv a_r - pi) / 2 pi
+  // with theta_bp = pi / (2 Z_p) + inv a0 and a_s = a_r = a0), written out
+  // here. Pairs enter at X_start, (X_pitch - X_start) / t0 periods before
+  // their pitch point. Measured at the rows where a mesh's loaded pairs go
+  // from 1 to 2, as a roll over the base pitch modulo 1.
+  const int zs = 26, zp = 22, zr = 70;
+  PlanetaryStage s = test_stage(zs, zp, zr, 3);
+  s.input_speed_rad_per_s = 100.0;
+  s.sun_torque = driver(100.0);
+  s.carrier_torque = constant_torque(-20.0);
+  s.integrator.end_time_s = 0.012;
+  const TrainResult r = simulate_train(planetary_train(s));
+  const GearPair& g = s.mesh.gears;
+  GearPair sun_pair = g;
+  sun_pair.teeth1 = zs;
+  sun_pair.teeth2 = zp;
+  const double t0 = pi * g.module_m * std::cos(g.pressure_angle_rad);
+  const double rbs = 0.5 * g.module_m * zs * std::cos(g.pressure_angle_rad);
+  const double sun_entry =
+      (pitch_point_position(sun_pair) - contact_segment(sun_pair).start_m) / t0;
+  const InternalMesh ring = internal_mesh({zs, zp, zr}, {g.module_m, g.pressure_angle_rad, 1.0},
+                                          0.5 * g.module_m * (zr - zp));
+  const double ring_entry = (ring.pitch_point_m - ring.segment_start_m) / t0;
+  const auto frac = [](double x) { return x - std::floor(x); };
+  // The phase of each mesh's entries, from the settled part of the run: a
+  // sun mesh's pairs roll with the sun, Rb_s (theta_s - theta_c), a ring
+  // mesh's with its planet, -Rb_p (theta_p - theta_c) (the two agree with
+  // the planet centred in its sun mesh's play; loaded, the planet sits the
+  // play B and the deflection further on, 1.4 % of a period here).
+  const double rbp = 0.5 * g.module_m * zp * std::cos(g.pressure_angle_rad);
+  std::vector<std::vector<double>> entries(6);
+  for (std::size_t i = 1; i < r.series.size(); ++i) {
+    const TrainRow& row = r.series[i];
+    if (row.t_s < 0.003) continue;
+    const double carrier = row.theta_rad[kCarrierBody];
+    for (std::size_t k = 0; k < 6; ++k) {
+      if (r.series[i - 1].meshes[k].pairs == 1 && row.meshes[k].pairs == 2) {
+        const double roll =
+            k < 3 ? rbs * (row.theta_rad[kSunBody] - carrier)
+                  : -rbp * (row.theta_rad[static_cast<std::size_t>(kFirstPlanetBody) + k - 3] -
+                            carrier);
+        entries[k].push_back(frac(roll / t0));
+      }
+    }
+  }
+  const auto circular = [&](double a, double b) { return std::fabs(frac(a - b + 0.5) - 0.5); };
+  const double gamma_s[3] = {0.0, 2.0 / 3.0, 1.0 / 3.0};
+  const double gamma_rs = 0.5;
+  for (std::size_t n = 0; n < 3; ++n) {
+    CAPTURE(n);
+    REQUIRE(entries[n].size() >= 2);
+    REQUIRE(entries[3 + n].size() >= 2);
+    // A step rolls the meshes by 3e-4 of a period; the load moves the sun
+    // meshes' pairs relative to one another by far less.
+    for (const double v : entries[n]) CHECK(circular(v, entries[0][0] + gamma_s[n]) < 2e-3);
+    // The sun mesh's pitch crossing follows the ring mesh's by gamma_rs.
+    const double sun_pitch = entries[n][0] + sun_entry;
+    for (const double v : entries[3 + n]) {
+      CHECK(circular(sun_pitch - (v + ring_entry), gamma_rs) < 2e-3);
+    }
+  }
+}
+
+TEST_CASE(
+    "an internal mesh's line carries c' b per pair in the single zone, 0.875 c' b in the "
+    "double zones") {
+  // The MeshLine of a ring mesh (planet gear 1, ring gear 2) on its ISO
+  // table, at a fixed penetration delta = 1 um on the drive line, stepped
+  // over one base pitch: its force over delta is the sum over the loaded
+  // pairs (X_k = X_pitch + Rb_p theta_p + k t0 in the segment) of the zone
+  // rule, written out here, and its mean over the pitch c_gamma_alpha b.
+  const PlanetaryTeeth teeth{24, 24, 72};
+  const PlanetaryToothing toothing{2.0e-3, 20.0 * pi / 180.0, 1.0};
+  const double a = 0.5 * 2.0e-3 * (72 - 24);
+  const InternalMesh g = internal_mesh(teeth, toothing, a);
+  const Iso6336Internal iso =
+      iso6336_internal_method_b(24, g.contact_ratio, 1.25, toothing.pressure_angle_rad);
+  SimulationCase c;
+  c.gears.face_width_m = 20.0e-3;
+  c.model.friction_coefficient = 0.0;
+  const double cb = iso.single_stiffness_n_per_m2 * c.gears.face_width_m;
+  const StiffnessTable table =
+      iso6336_internal_pair_table(g.segment_start_m, g.segment_end_m, g.base_pitch_m, cb);
+  InternalLine line;
+  line.planet_base_radius_m = g.planet_base_radius_m;
+  line.ring_base_radius_m = g.ring_base_radius_m;
+  line.pressure_angle_rad = g.working_pressure_angle_rad;
+  line.pitch_point_m = g.pitch_point_m;
+  line.start_m = g.segment_start_m;
+  line.end_m = g.segment_end_m;
+  line.base_pitch_m = g.base_pitch_m;
+  line.tangent_points_m = a * std::sin(g.working_pressure_angle_rad);
+  line.mean_stiffness_n_per_m = iso.mesh_stiffness_n_per_m2 * c.gears.face_width_m;
+  const MeshLine mesh(c, table, line, 1.0);
+  const double zone = (g.contact_ratio - 1.0) * g.base_pitch_m;
+  const double delta = 1.0e-6;
+  const int samples = 2000;
+  double mean = 0.0;
+  int single = 0;
+  for (int i = 0; i < samples; ++i) {
+    const double theta_p = (i + 0.5) / samples * g.base_pitch_m / g.planet_base_radius_m;
+    // s = Rb_p theta_p - Rb_r theta_r = B + delta.
+    const double theta_r =
+        (g.planet_base_radius_m * theta_p - c.gears.backlash_m - delta) / g.ring_base_radius_m;
+    const MeshMotion q{theta_p, theta_r, 0.0, 0.0};
+    const Mode m = mesh.classify_geometry(q);
+    REQUIRE(m.region == Region::n1);
+    double moment_a = 0.0, moment_b = 0.0;
+    MeshPowers powers;
+    ContactTotals totals;
+    mesh.add_forces(q, m, ContactMemory{}, moment_a, moment_b, powers, &totals);
+    double expected = 0.0;
+    int pairs = 0;
+    for (int k = -3; k <= 3; ++k) {
+      const double x = g.pitch_point_m + g.planet_base_radius_m * theta_p + k * g.base_pitch_m;
+      if (x < g.segment_start_m || x > g.segment_end_m) continue;
+      ++pairs;
+      const bool two = x < g.segment_start_m + zone || x > g.segment_end_m - zone;
+      expected += (two ? 0.875 : 1.0) * cb;
+    }
+    if (pairs == 1) ++single;
+    CAPTURE(i);
+    CHECK(std::fabs(totals.normal_force_n / delta / expected - 1.0) < 1e-9);
+    mean += totals.normal_force_n / delta / samples;
+  }
+  CHECK(single > 0);  // the single zone was crossed
+  // 1 - eps of the pitch sampled at 2000 points: each zone edge costs at
+  // most one sample, 5e-4 of the mean.
+  CHECK(std::fabs(mean / line.mean_stiffness_n_per_m - 1.0) < 1e-3);
+}
