@@ -13,6 +13,7 @@
 #include "gearimpact/io/columns.hpp"
 #include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/stiffness/helical.hpp"
+#include "gearimpact/stiffness/helical_ste.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "gearimpact/stiffness/mesh_tables.hpp"
@@ -168,5 +169,20 @@ std::string ste_summary_json(const StaticTransmissionError& modified,
                              const StaticTransmissionError& unmodified,
                              double quasi_static_force_ratio,
                              double unmodified_quasi_static_force_ratio);
+
+// A helical pair's loaded STE (`ste` on a helical pair, docs/helical.md): one row per angle
+// (theta1_rad, theta1_deg, ste_m, kte_m, effective_stiffness_n_per_m, elements,
+// loaded_elements, load_centre_m, face_load_factor).
+Columns<HelicalStePoint> helical_ste_columns();
+std::string helical_ste_csv(const HelicalStaticTransmissionError& ste);
+// The load across the face, one row per slice: y_m, the mean load per unit face width wbar
+// of the modified and the unmodified pair (N/m, over the true period), and each over F_bt / b.
+std::string helical_face_load_csv(const HelicalStaticTransmissionError& modified,
+                                  const HelicalStaticTransmissionError& unmodified);
+// torque1_n_m, force_n, mesh_periods, period_rad, points, face_slices, route, then for the
+// modified and the unmodified pair the STE's mean, least, largest and peak-to-peak, the KTE's
+// range, K_Hbeta (from wbar), the largest K_Hbeta(theta) and the load centre y_c.
+std::string helical_ste_summary_json(const HelicalStaticTransmissionError& modified,
+                                     const HelicalStaticTransmissionError& unmodified);
 
 }  // namespace gearimpact
