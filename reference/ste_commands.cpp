@@ -57,7 +57,11 @@ SteTexts ste_texts(const SimulationCase& c, double torque1_n_m, int points_per_m
   StaticTransmissionErrorOptions options;
   options.points_per_mesh_period = points_per_mesh_period;
   options.faulted = faulted_teeth(c);
-  // Every refusal before the tables' quadrature.
+  // Every refusal before the tables' quadrature. These are the spur pair's texts (its pairs'
+  // shares and tables); a helical pair's STE is helical_static_transmission_error's.
+  if (c.gears.helix_angle_rad != 0.0) {
+    throw_helical_not_taken(c.gears.helix_angle_rad, "the spur STE's tables (ste_texts)");
+  }
   validate_static_transmission_error(c.gears, c.modifications, torque1_n_m, options);
   check_tooth_faults(c.gears, c.model.stiffness, c.faults);
   const auto healthy = std::make_shared<const StiffnessTable>(c.gears, c.model.stiffness);
