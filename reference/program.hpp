@@ -69,6 +69,10 @@ struct HelicalSteFiles {
   std::string summary_json;
 };
 void check_helical_ste(const SimulationCase& c, double torque1_n_m, int points_per_mesh_period);
+// The STE of both pairs and the summary's JSON, refusing a deflection past half a transverse
+// base pitch naming "torque"; write_helical_ste_files writes them.
+HelicalSteFiles helical_ste_of(const SimulationCase& c, double torque1_n_m,
+                               int points_per_mesh_period);
 HelicalSteFiles write_helical_ste_files(const SimulationCase& c, double torque1_n_m,
                                         int points_per_mesh_period,
                                         const std::filesystem::path& dir, bool plots,

@@ -103,10 +103,8 @@ void check_helical_ste(const SimulationCase& c, double torque1_n_m, int points_p
                                              c.model.stiffness.face_slices, options);
 }
 
-HelicalSteFiles write_helical_ste_files(const SimulationCase& c, double torque1_n_m,
-                                        int points_per_mesh_period,
-                                        const std::filesystem::path& dir, bool plots,
-                                        const std::string& summary_name) {
+HelicalSteFiles helical_ste_of(const SimulationCase& c, double torque1_n_m,
+                               int points_per_mesh_period) {
   check_helical_ste(c, torque1_n_m, points_per_mesh_period);
   StaticTransmissionErrorOptions options;
   options.points_per_mesh_period = points_per_mesh_period;
@@ -133,6 +131,15 @@ HelicalSteFiles write_helical_ste_files(const SimulationCase& c, double torque1_
     }
   }
   files.summary_json = helical_ste_summary_json(files.modified, files.unmodified);
+  return files;
+}
+
+HelicalSteFiles write_helical_ste_files(const SimulationCase& c, double torque1_n_m,
+                                        int points_per_mesh_period,
+                                        const std::filesystem::path& dir, bool plots,
+                                        const std::string& summary_name) {
+  HelicalSteFiles files = helical_ste_of(c, torque1_n_m, points_per_mesh_period);
+  const int slices = c.model.stiffness.face_slices;
   write_file_atomically((dir / "ste.csv").string(), helical_ste_csv(files.modified));
   write_file_atomically((dir / "ste_unmodified.csv").string(), helical_ste_csv(files.unmodified));
   write_file_atomically((dir / "ste_face_load.csv").string(),

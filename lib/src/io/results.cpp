@@ -580,16 +580,18 @@ std::string true_period_mesh_stiffness_summary_json(const TruePeriodMeshStiffnes
   return out;
 }
 
-std::string helical_mesh_stiffness_csv(const HelicalMeshStiffnessCurve& curve) {
+Columns<HelicalMeshStiffnessSample> helical_mesh_stiffness_columns() {
   using S = HelicalMeshStiffnessSample;
-  const Columns<S> columns{
-      member_column("fraction", "", &S::fraction),
-      member_column("theta1_rad", "rad", &S::theta1_rad),
-      member_column("k_slices_n_m", "N/m", &S::slices_n_per_m),
-      member_column("k_face_n_m", "N/m", &S::face_n_per_m),
-      member_column("contact_line_length_m", "m", &S::contact_line_length_m),
-      member_column("contact_line_length_slices_m", "m", &S::contact_line_length_slices_m)};
-  return csv_of(columns, curve.samples);
+  return {member_column("fraction", "", &S::fraction),
+          member_column("theta1_rad", "rad", &S::theta1_rad),
+          member_column("k_slices_n_m", "N/m", &S::slices_n_per_m),
+          member_column("k_face_n_m", "N/m", &S::face_n_per_m),
+          member_column("contact_line_length_m", "m", &S::contact_line_length_m),
+          member_column("contact_line_length_slices_m", "m", &S::contact_line_length_slices_m)};
+}
+
+std::string helical_mesh_stiffness_csv(const HelicalMeshStiffnessCurve& curve) {
+  return csv_of(helical_mesh_stiffness_columns(), curve.samples);
 }
 
 std::string helical_mesh_stiffness_summary_json(const HelicalMeshStiffnessCurve& curve) {

@@ -132,6 +132,8 @@ std::size_t most_pairs_in_contact(const TruePeriodMeshStiffness& tvms);
 // fraction,theta1_rad,k_slices_n_m,k_face_n_m,contact_line_length_m,
 // contact_line_length_slices_m; and its summary (extremes, the exact mean,
 // the contact ratios, ISO's c_gamma_alpha b) as JSON.
+// Its columns, described once (the CSV writer and the Python package's arrays follow them).
+Columns<HelicalMeshStiffnessSample> helical_mesh_stiffness_columns();
 std::string helical_mesh_stiffness_csv(const HelicalMeshStiffnessCurve& curve);
 std::string helical_mesh_stiffness_summary_json(const HelicalMeshStiffnessCurve& curve);
 
