@@ -711,4 +711,15 @@ TEST_CASE("lead keys: a spur pair refuses them by name, an end relief longer tha
   check_refused(
       [&] { helical_static_transmission_error(spur, Modifications{}, 100.0, StiffnessModel{}); },
       "gears.helix_angle", "spur STE");
+  // 4096 slices at 100000 angles would hold 4e8 slice loads: refused before any work, naming
+  // the most points, floor(1e7 / 4096) = 2441.
+  StiffnessModel fine;
+  fine.face_slices = 4096;
+  StaticTransmissionErrorOptions options;
+  options.points_per_mesh_period = 100000;
+  check_refused(
+      [&] {
+        helical_static_transmission_error(h501_pair(), Modifications{}, 100.0, fine, options);
+      },
+      "points", "at most 2441 per mesh period with model.face_slices = 4096");
 }

@@ -13,6 +13,12 @@
 
 namespace gearimpact {
 
+namespace {
+
+constexpr long long kMostSliceLoads = 10'000'000;
+
+}  // namespace
+
 void validate_helical_static_transmission_error(const GearPair& pair, const Modifications& m,
                                                 double torque1_n_m, int face_slices,
                                                 StaticTransmissionErrorOptions options) {
@@ -26,6 +32,20 @@ void validate_helical_static_transmission_error(const GearPair& pair, const Modi
   }
   validate_static_transmission_error(pair, m, torque1_n_m, options);
   validate_modifications(pair, m);
+  // Each angle keeps the load of every slice: the pair with its modifications and the
+  // unmodified one beside it hold 16 bytes per slice and angle, 160 MB at this bound.
+  const long long periods = options.mesh_periods > 0
+                                ? options.mesh_periods
+                                : true_period_mesh_periods(pair, distinct_teeth(m));
+  const long long angles = periods * options.points_per_mesh_period;
+  if (angles * face_slices > kMostSliceLoads) {
+    throw InputError(
+        "points", std::to_string(options.points_per_mesh_period),
+        "at most " + std::to_string(kMostSliceLoads / (periods * face_slices)) +
+            " per mesh period with model.face_slices = " + std::to_string(face_slices) +
+            " over a true period of " + std::to_string(periods) + " mesh periods: at most " +
+            std::to_string(kMostSliceLoads) + " slice loads (angles times slices)");
+  }
 }
 
 HelicalStaticTransmissionError helical_static_transmission_error(

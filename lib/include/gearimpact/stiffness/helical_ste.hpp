@@ -59,7 +59,8 @@ struct HelicalStaticTransmissionError {
 
 // The checks before any work on a helical pair (helix angle > 0): those of
 // validate_static_transmission_error, model.face_slices in [1, kMostFaceSlices],
-// and the modifications (validate_modifications). Throws InputError naming the key.
+// the modifications (validate_modifications), and at most 1e7 slice loads (angles over
+// the true period times slices, naming "points"). Throws InputError naming the key.
 void validate_helical_static_transmission_error(const GearPair& pair, const Modifications& m,
                                                 double torque1_n_m, int face_slices,
                                                 StaticTransmissionErrorOptions options);
