@@ -613,8 +613,11 @@ void write_report(const ReportOptions& o) {
   const PairOrRunCase read = read_pair_or_run_file(o.case_file);
   const SimulationCase& c = read.simulation_case;
   const bool run = read.kind == CaseFileKind::run;
-  // Its sections are the spur pair's; a helical pair's are not written yet.
-  if (c.gears.helix_angle_rad != 0.0) throw_helical_not_taken(c.gears.helix_angle_rad, "report");
+  // A helical pair's sections are its own (its geometry, contact lines, slices).
+  if (c.gears.helix_angle_rad != 0.0) {
+    write_helical_report(c, o.case_file, o.out, o.overwrite, o.samples, o.torque);
+    return;
+  }
   // A modified or faulted pair: its STE and load sharing beside the unmodified, at one load.
   const bool changed = !is_unmodified(c.modifications) || !c.faults.empty();
   if (!changed && !o.torque.empty()) {

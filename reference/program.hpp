@@ -12,6 +12,7 @@
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/modes/modes.hpp"
 #include "gearimpact/stiffness/fillet_foundation.hpp"
+#include "gearimpact/stiffness/helical_ste.hpp"
 #include "gearimpact/stiffness/model.hpp"
 #include "gearimpact/stiffness/static_transmission_error.hpp"
 #include "gearimpact/stiffness/time_varying_stiffness.hpp"
@@ -57,6 +58,31 @@ struct SteTexts {
   bool modified_differs = true;
 };
 SteTexts ste_texts(const SimulationCase& c, double torque1_n_m, int points_per_mesh_period);
+// A helical pair's `ste` (docs/helical.md, "Loaded STE and the load across the face"): the
+// checks before any work (no [[faults]], the torque, the points, the slices, the
+// modifications), then the slice model's STE of the pair with its modifications and
+// unmodified, written into `dir` as ste.csv, ste_unmodified.csv, ste_face_load.csv,
+// `summary_name` and, with `plots`, ste.png and ste_face_load.png.
+struct HelicalSteFiles {
+  HelicalStaticTransmissionError modified;
+  HelicalStaticTransmissionError unmodified;
+  std::string summary_json;
+};
+void check_helical_ste(const SimulationCase& c, double torque1_n_m, int points_per_mesh_period);
+// The STE of both pairs and the summary's JSON, refusing a deflection past half a transverse
+// base pitch naming "torque"; write_helical_ste_files writes them.
+HelicalSteFiles helical_ste_of(const SimulationCase& c, double torque1_n_m,
+                               int points_per_mesh_period);
+HelicalSteFiles write_helical_ste_files(const SimulationCase& c, double torque1_n_m,
+                                        int points_per_mesh_period,
+                                        const std::filesystem::path& dir, bool plots,
+                                        const std::string& summary_name);
+// `report` on a helical pair file `case_file`, read as `c`: its geometry, contact lines, mesh
+// stiffness over a mesh period beside ISO 6336-1 and, with [modifications], the STE and the
+// load across the face.
+void write_helical_report(const SimulationCase& c, const std::string& case_file,
+                          const std::string& out, bool overwrite, int samples,
+                          const std::string& torque);
 // The gears whose teeth differ by the case's faults, known before any table is built (the
 // faulted part of the STE's true period).
 DistinctTeeth faulted_teeth(const SimulationCase& c);

@@ -13,9 +13,11 @@
 #include "gearimpact/case/units.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
+#include "gearimpact/geometry/helical.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/results.hpp"
+#include "gearimpact/stiffness/helical_ste.hpp"
 #include "gearimpact/stiffness/mesh_tables.hpp"
 #include "gearimpact/stiffness/static_transmission_error.hpp"
 #include "gearimpact/stiffness/table.hpp"
@@ -55,7 +57,11 @@ SteTexts ste_texts(const SimulationCase& c, double torque1_n_m, int points_per_m
   StaticTransmissionErrorOptions options;
   options.points_per_mesh_period = points_per_mesh_period;
   options.faulted = faulted_teeth(c);
-  // Every refusal before the tables' quadrature.
+  // Every refusal before the tables' quadrature. These are the spur pair's texts (its pairs'
+  // shares and tables); a helical pair's STE is helical_static_transmission_error's.
+  if (c.gears.helix_angle_rad != 0.0) {
+    throw_helical_not_taken(c.gears.helix_angle_rad, "the spur STE's tables (ste_texts)");
+  }
   validate_static_transmission_error(c.gears, c.modifications, torque1_n_m, options);
   check_tooth_faults(c.gears, c.model.stiffness, c.faults);
   const auto healthy = std::make_shared<const StiffnessTable>(c.gears, c.model.stiffness);
@@ -84,6 +90,94 @@ SteTexts ste_texts(const SimulationCase& c, double torque1_n_m, int points_per_m
   texts.summary_json = ste_summary_json(texts.modified, unmodified, texts.quasi_static_force_ratio,
                                         texts.unmodified_quasi_static_force_ratio);
   return texts;
+}
+
+void check_helical_ste(const SimulationCase& c, double torque1_n_m, int points_per_mesh_period) {
+  if (!c.faults.empty()) {
+    throw InputError("[[faults]]", std::to_string(c.faults.size()) + " faults",
+                     "none on a helical pair: faults on helical teeth are not modelled yet");
+  }
+  StaticTransmissionErrorOptions options;
+  options.points_per_mesh_period = points_per_mesh_period;
+  validate_helical_static_transmission_error(c.gears, c.modifications, torque1_n_m,
+                                             c.model.stiffness.face_slices, options);
+}
+
+HelicalSteFiles helical_ste_of(const SimulationCase& c, double torque1_n_m,
+                               int points_per_mesh_period) {
+  check_helical_ste(c, torque1_n_m, points_per_mesh_period);
+  StaticTransmissionErrorOptions options;
+  options.points_per_mesh_period = points_per_mesh_period;
+  const FaceStiffness face(c.gears, c.model.stiffness, c.model.stiffness.helical_hertz);
+  const int slices = c.model.stiffness.face_slices;
+  HelicalSteFiles files;
+  files.modified = helical_static_transmission_error(c.gears, c.modifications, torque1_n_m, face,
+                                                     slices, options);
+  StaticTransmissionErrorOptions same = options;
+  same.mesh_periods = files.modified.mesh_periods;
+  files.unmodified =
+      helical_static_transmission_error(c.gears, Modifications{}, torque1_n_m, face, slices, same);
+  // A static deflection of half a transverse base pitch has passed the teeth through each other.
+  const double half_pitch = 0.5 * helical_geometry(c.gears).transverse_base_pitch_m;
+  for (const HelicalStaticTransmissionError* ste : {&files.modified, &files.unmodified}) {
+    double largest = 0.0;
+    for (const HelicalStePoint& p : ste->points) largest = std::max(largest, p.ste_m);
+    if (largest > half_pitch) {
+      throw InputError("torque", format_number(torque1_n_m) + " N*m",
+                       "a torque whose static deflection stays below half a transverse base "
+                       "pitch (" +
+                           format_number(half_pitch) + " m; this one reaches " +
+                           format_number(largest) + " m)");
+    }
+  }
+  files.summary_json = helical_ste_summary_json(files.modified, files.unmodified);
+  return files;
+}
+
+HelicalSteFiles write_helical_ste_files(const SimulationCase& c, double torque1_n_m,
+                                        int points_per_mesh_period,
+                                        const std::filesystem::path& dir, bool plots,
+                                        const std::string& summary_name) {
+  HelicalSteFiles files = helical_ste_of(c, torque1_n_m, points_per_mesh_period);
+  const int slices = c.model.stiffness.face_slices;
+  write_file_atomically((dir / "ste.csv").string(), helical_ste_csv(files.modified));
+  write_file_atomically((dir / "ste_unmodified.csv").string(), helical_ste_csv(files.unmodified));
+  write_file_atomically((dir / "ste_face_load.csv").string(),
+                        helical_face_load_csv(files.modified, files.unmodified));
+  write_file_atomically((dir / summary_name).string(), files.summary_json);
+  if (!plots) return files;
+  const double period_deg = files.modified.period_rad * 180.0 / pi;
+  const std::string load = " (" + literal_key(c.name) + ", T_1 = " + format_number(torque1_n_m) +
+                           " N m, " + std::to_string(slices) + " slices)";
+  Figure f;
+  f.name = "ste";
+  f.title = "Loaded static transmission error of the helical pair" + load;
+  f.x_label = "pinion angle {/Symbol q}_1, deg";
+  f.y_label = "transmission error on the transverse line of action, {/Symbol m}m";
+  f.setup = {"set key outside right top vertical",
+             "set xrange [0:" + format_data_number(period_deg) + "]"};
+  f.series = {
+      "'ste_unmodified.csv' using 2:($3 * 1e6) with lines lw 2 lc rgb 'gray50' title "
+      "'STE unmodified'",
+      "'ste.csv' using 2:($3 * 1e6) with lines lw 2 lc rgb '#1f77b4' title 'STE'",
+      "'ste.csv' using 2:($4 * 1e6) with lines lw 1 dt 2 lc rgb '#d62728' title 'KTE "
+      "(min gap)'"};
+  render(dir, f);
+  Figure w;
+  w.name = "ste_face_load";
+  w.title = "Mean load across the face over F_{bt} / b" + load;
+  w.x_label = "y across the face, mm";
+  w.y_label = "w / (F_{bt} / b)";
+  w.setup = {"set key outside right top vertical",
+             "set xrange [0:" + format_data_number(c.gears.face_width_m * 1e3) + "]",
+             "set yrange [0:*]"};
+  w.series = {
+      "'ste_face_load.csv' using ($1 * 1e3):5 with linespoints lw 2 lc rgb 'gray50' "
+      "title 'unmodified'",
+      "'ste_face_load.csv' using ($1 * 1e3):4 with linespoints lw 2 lc rgb '#1f77b4' "
+      "title 'with the modifications'"};
+  render(dir, w);
+  return files;
 }
 
 namespace {
@@ -170,6 +264,31 @@ Figure ste_sharing_figure(const SimulationCase& c, const SteTexts& texts) {
 
 namespace {
 
+// A helical pair (docs/helical.md, "Loaded STE and the load across the face"): its own files
+// and figures beside the same pair unmodified, `summary_name` for its summary.
+void write_helical_ste(const SteOptions& o, const SimulationCase& c, double torque) {
+  try {
+    check_helical_ste(c, torque, o.points);
+  } catch (const InputError& e) {
+    if (e.field() == "points") throw InputError("--points", e.value(), e.allowed());
+    if (e.field() == "torque") throw InputError("--torque", o.torque, e.allowed());
+    throw;
+  }
+  AtomicFolder folder(o.out, o.overwrite, {o.case_file});
+  std::string summary;
+  try {
+    summary = write_helical_ste_files(c, torque, o.points, folder.temporary(), !o.no_plots,
+                                      "summary.json")
+                  .summary_json;
+  } catch (const InputError& e) {
+    if (e.field() != "torque") throw;
+    throw InputError("--torque", o.torque, e.allowed());
+  }
+  folder.commit();
+  std::fputs(summary.c_str(), stdout);
+  std::cerr << "ste: wrote " << (std::filesystem::path(o.out) / "ste.csv").string() << "\n";
+}
+
 void write_ste(const SteOptions& o) {
   // Every refusal before any work: the folder, the torque, the points, the case.
   require_output_folder(o.out, o.overwrite, {o.case_file});
@@ -180,6 +299,10 @@ void write_ste(const SteOptions& o) {
                          "): it loads the drive flanks");
   }
   const SimulationCase c = read_pair_or_run_file(o.case_file).simulation_case;
+  if (c.gears.helix_angle_rad != 0.0) {
+    write_helical_ste(o, c, torque);
+    return;
+  }
   StaticTransmissionErrorOptions options;
   options.points_per_mesh_period = o.points;
   options.faulted = faulted_teeth(c);

@@ -123,13 +123,17 @@ def mesh_stiffness(case=None, model=None, samples=200):
     period), contact_ratio, period, mesh_periods, healthy_mean_n_m, extrapolated. case: a Case
     or None (the paper's pair); model: yang-lin-1987, potential-energy or ross-compatible
     (default: the case's); samples: an int per mesh period, 2 up to the program's --samples
-    bound."""
+    bound. A helical pair (gears.helix_angle > 0, docs/helical.md): one mesh period by the
+    slice model, the table's arrays fraction, theta1_rad, k_slices_n_m (model.face_slices
+    slices), k_face_n_m (the face integral), contact_line_length_m and
+    contact_line_length_slices_m, the summary that of ``mesh-stiffness --summary``."""
     chosen = _case_or_none(case)
     table, summary = _core.mesh_stiffness(
         chosen, None if model is None else _arguments.text("model", model),
         _arguments.integer("samples", samples))
     summary = json.loads(summary)
-    if summary["extrapolated"]:
+    # A helical pair's summary has no fitted tables to extrapolate.
+    if summary.get("extrapolated"):
         _warnings.warn(f"{chosen.name if chosen else 'the paper pair'}: {summary['warning']}")
     return table, summary
 
@@ -144,7 +148,10 @@ def ste(case, torque, points=200):
     gap_1..gap_4 float64 with NaN beyond the pairs in contact, teeth str) and "summary"
     (summary.json). Faulted teeth ([[faults]]) read their own stiffness; "unmodified" is then
     the healthy pair, and where every pair in contact has a missing tooth ste_m and
-    effective_stiffness_n_per_m are NaN (with a warning)."""
+    effective_stiffness_n_per_m are NaN (with a warning). A helical pair takes the slice
+    model with its lead modifications and misalignment (docs/helical.md): the columns
+    theta1_rad, theta1_deg, ste_m, kte_m, effective_stiffness_n_per_m, elements,
+    loaded_elements, load_centre_m, face_load_factor, and its summary."""
     if not isinstance(case, _core.Case):
         raise _arguments.case_error(
             f"case={case!r}: a Case (gearimpact.case, paper_case, read_case), "
@@ -156,7 +163,8 @@ def ste(case, torque, points=200):
     modified, unmodified, summary = _core.ste(case, _arguments.text("torque", torque),
                                               _arguments.integer("points", points))
     summary = json.loads(summary)
-    if summary["uncarried_points"]:
+    # A helical pair's summary has no missing teeth to leave points uncarried.
+    if summary.get("uncarried_points"):
         _warnings.warn(f"{case.name}: at {summary['uncarried_points']} of {summary['points']:.0f} "
                        "angles every pair in the contact segment has a missing tooth: no pair "
                        "carries the load, and ste_m is NaN there")

@@ -466,6 +466,21 @@ py::tuple mesh_stiffness_of(const std::optional<SimulationCase>& c,
                             const std::optional<std::string>& model, long long samples) {
   const int n = sample_count("samples", samples);
   const SimulationCase chosen = stiffness_case(c, model);
+  if (chosen.gears.helix_angle_rad != 0.0) {
+    // A helical pair: one mesh period by both routes of the slice model (docs/helical.md).
+    if (!chosen.faults.empty()) {
+      throw InputError("[[faults]]", std::to_string(chosen.faults.size()) + " faults",
+                       "none on a helical pair: faults on helical teeth are not modelled yet");
+    }
+    HelicalMeshStiffnessCurve curve;
+    {
+      py::gil_scoped_release release;
+      curve = helical_mesh_stiffness(chosen.gears, chosen.model.stiffness, n);
+    }
+    const std::string summary = helical_mesh_stiffness_summary_json(curve);
+    return py::make_tuple(table_arrays(helical_mesh_stiffness_columns(), std::move(curve.samples)),
+                          summary);
+  }
   TruePeriodMeshStiffness tvms;
   {
     py::gil_scoped_release release;
@@ -490,6 +505,19 @@ py::tuple ste_texts_of(const SimulationCase& c, const std::string& torque, long 
   validate(c.gears);
   validate(c.model.stiffness);
   validate_modifications(c.gears, c.modifications);
+  if (c.gears.helix_angle_rad != 0.0) {
+    // A helical pair: the slice model's STE, as `ste` writes it (docs/helical.md).
+    cli::check_helical_ste(c, t, static_cast<int>(points));
+    cli::HelicalSteFiles ste;
+    {
+      py::gil_scoped_release release;
+      ste = cli::helical_ste_of(c, t, static_cast<int>(points));
+    }
+    const Columns<HelicalStePoint> columns = helical_ste_columns();
+    return py::make_tuple(table_arrays(columns, std::move(ste.modified.points)),
+                          table_arrays(columns, std::move(ste.unmodified.points)),
+                          ste.summary_json);
+  }
   cli::SteTexts texts;
   {
     py::gil_scoped_release release;

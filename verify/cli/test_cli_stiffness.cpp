@@ -11,11 +11,14 @@
 #include <vector>
 
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/helical.hpp"
 #include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/stiffness/helical.hpp"
+#include "gearimpact/stiffness/helical_ste.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "paper_data.hpp"
 #include "run_command.hpp"
+#include "scratch.hpp"
 
 using namespace gearimpact;
 using namespace gearimpact::verify;
@@ -154,4 +157,83 @@ TEST_CASE("mesh-stiffness on a helical pair: both routes over a mesh period; a r
       run_command(cli("mesh-stiffness --case-file " + file.string() + " --figure does-not-matter"));
   CHECK(figure.exit_code != 0);
   CHECK(figure.err.find("--figure") != std::string::npos);
+}
+
+TEST_CASE(
+    "ste and report on a helical pair: the library's slice STE, its files; lead keys on spur") {
+  const Scratch scratch("helical-ste");
+  const std::filesystem::path example =
+      std::filesystem::path(GEARIMPACT_PAPER_DATA_DIR) / ".." / "examples" / "helical_h501.toml";
+  std::ifstream in(example);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string toml = text.str();
+  const std::string model = "[model]";
+  toml.replace(toml.find(model), model.size(),
+               "[modifications]\ncrowning1 = \"4 um\"\nmisalignment_y = \"0.01 deg\"\n\n[model]");
+  const std::filesystem::path file = scratch.dir / "crowned.toml";
+  std::ofstream(file) << toml;
+  const CommandResult r = run_command(cli("ste " + file.string() +
+                                          " --torque '150 N*m' --points 7 "
+                                          "--no-plots --out " +
+                                          (scratch.dir / "ste").string()));
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("\"route\": \"slices\"") != std::string::npos);
+  std::ifstream csv_file(scratch.dir / "ste" / "ste.csv");
+  std::stringstream csv;
+  csv << csv_file.rdbuf();
+  const auto rows = csv_rows(csv.str());
+  REQUIRE(rows.size() == 8);
+  CHECK(rows[0][2] == "ste_m");
+  // The example's pair and modifications, built here: the program prints the library's STE.
+  GearPair pair;
+  pair.teeth1 = 20;
+  pair.teeth2 = 30;
+  pair.module_m = 3.5e-3;
+  pair.pressure_angle_rad = 20.0 * std::numbers::pi / 180.0;
+  pair.helix_angle_rad = 15.0 * std::numbers::pi / 180.0;
+  pair.face_width_m = 23e-3;
+  pair.youngs_modulus_pa = 206e9;
+  pair.poisson_ratio = 0.3;
+  pair.profile_shift1 = 0.1809;
+  pair.profile_shift2 = 0.0891;
+  pair.backlash_m = 0.05e-3;
+  Modifications m;
+  m.gear1.lead.crowning_m = 4e-6;
+  m.misalignment.gamma_y_rad = 0.01 * std::numbers::pi / 180.0;
+  StaticTransmissionErrorOptions options;
+  options.points_per_mesh_period = 7;
+  const HelicalStaticTransmissionError ste =
+      helical_static_transmission_error(pair, m, 150.0, StiffnessModel{}, options);
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    CHECK(std::stod(rows[i][2]) == ste.points[i - 1].ste_m);
+    CHECK(std::stod(rows[i][8]) == ste.points[i - 1].face_load_factor);
+  }
+  // report: the helical geometry table, the contact lines, the stiffness and the STE files.
+  const std::filesystem::path report = scratch.dir / "report";
+  const CommandResult rep = run_command(
+      cli("report " + file.string() + " --samples 8 --torque '150 N*m' --out " + report.string()));
+  REQUIRE(rep.exit_code == 0);
+  for (const char* name : {"REPORT.md", "geometry.csv", "contact_lines.png",
+                           "helical_mesh_stiffness.png", "ste_face_load.csv", "ste_summary.json"}) {
+    CHECK(std::filesystem::exists(report / name));
+  }
+  std::ifstream geometry_file(report / "geometry.csv");
+  std::stringstream geometry;
+  geometry << geometry_file.rdbuf();
+  const std::string eps_beta =
+      "overlap_ratio eps_beta,pair," + format_number(helical_geometry(pair).overlap_ratio) + ",1";
+  CHECK(geometry.str().find(eps_beta) != std::string::npos);
+  // A lead key on a spur pair is refused by name before any work.
+  std::string spur = toml;
+  const std::string helix = "helix_angle = \"15 deg\"";
+  spur.replace(spur.find(helix), helix.size(), "helix_angle = \"0 deg\"");
+  const std::filesystem::path spur_file = scratch.dir / "spur.toml";
+  std::ofstream(spur_file) << spur;
+  const CommandResult refused =
+      run_command(cli("ste " + spur_file.string() + " --torque '150 N*m' --out " +
+                      (scratch.dir / "refused").string()));
+  CHECK(refused.exit_code != 0);
+  CHECK(refused.err.find("modifications.crowning1") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(scratch.dir / "refused"));
 }

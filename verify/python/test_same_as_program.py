@@ -437,3 +437,35 @@ def test_train_modes_equal_the_program(cli, source_dir, tmp_path):
             assert_bitwise_equal(ours["modes"][name], [float(cell) for cell in column],
                                  f"train {name}")
     assert ours["modes"]["mode"].dtype.kind == "i"
+
+
+def test_helical_mesh_stiffness_and_ste_equal_the_program(cli, source_dir, tmp_path):
+    # GEARpie's H501 (examples/helical_h501.toml) with crowning and a misalignment.
+    example = Path(source_dir) / "examples" / "helical_h501.toml"
+    case_file = tmp_path / "crowned.toml"
+    case_file.write_text(example.read_text().replace(
+        "[model]", '[modifications]\ncrowning1 = "4 um"\nmisalignment_y = "0.01 deg"\n\n[model]'))
+    case = gearimpact.read_case(case_file)
+    table, summary = gearimpact.mesh_stiffness(case, samples=12)
+    columns = ["fraction", "theta1_rad", "k_slices_n_m", "k_face_n_m", "contact_line_length_m",
+               "contact_line_length_slices_m"]
+    assert_same_table(table, cli("mesh-stiffness", "--case-file", case_file, "--samples", "12"),
+                      columns, "helical mesh-stiffness")
+    assert summary == json.loads(cli("mesh-stiffness", "--case-file", case_file, "--samples", "12",
+                                     "--summary"))
+    ours = gearimpact.ste(case, torque="150 N*m", points=9)
+    out = tmp_path / "out"
+    cli("ste", case_file, "--torque", "150 N*m", "--points", "9", "--out", out, "--no-plots")
+    for key, name in (("ste", "ste.csv"), ("unmodified", "ste_unmodified.csv")):
+        lines = (out / name).read_text().strip().splitlines()
+        header = lines[0].split(",")
+        assert list(ours[key]) == header
+        for j, column_name in enumerate(header):
+            written = [line.split(",")[j] for line in lines[1:]]
+            column = ours[key][column_name]
+            if column.dtype == np.float64:
+                assert_bitwise_equal(column, [float(v) for v in written], f"{name} {column_name}")
+            else:
+                assert [as_written(v) for v in column.tolist()] == written, column_name
+    assert ours["summary"] == json.loads((out / "summary.json").read_text())
+    assert ours["summary"]["route"] == "slices"

@@ -15,8 +15,10 @@
 #include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/helical.hpp"
+#include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/modes/modes.hpp"
 #include "gearimpact/stiffness/helical.hpp"
+#include "gearimpact/stiffness/helical_ste.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "rack_pairs.hpp"
@@ -438,4 +440,286 @@ TEST_CASE("the dynamics refuse a helical pair, naming gears.helix_angle") {
                 "never run as a spur pair");
   // The geometry itself is valid: its transverse section's relations hold.
   CHECK_NOTHROW(validate(c.gears));
+}
+
+// --- Lead modifications, misalignment and the loaded STE by slices ---------------------------
+
+namespace {
+
+// A helical pair whose transverse contact ratio is 2 to rounding (the addendum chosen by
+// bisection on eps_alpha), so that every slice has exactly two pairs on the path at every
+// angle: with a stiffness uniform per unit face width each slice is then a spring of 2 c db,
+// the uncoupled foundation ISO 6336-1's K_Hbeta assumes.
+GearPair integer_eps_alpha_pair() {
+  GearPair p;
+  p.teeth1 = 30;
+  p.teeth2 = 45;
+  p.module_m = 3e-3;
+  p.pressure_angle_rad = 20.0 * degree;
+  p.helix_angle_rad = 15.0 * degree;
+  p.face_width_m = 30e-3;
+  p.youngs_modulus_pa = 206e9;
+  p.poisson_ratio = 0.3;
+  double low = 1.0;
+  double high = 1.4;
+  for (int i = 0; i < 200 && high - low > 0.0; ++i) {
+    p.addendum_coefficient = 0.5 * (low + high);
+    (helical_geometry(p).transverse_contact_ratio < 2.0 ? low : high) = p.addendum_coefficient;
+  }
+  p.dedendum_coefficient = p.addendum_coefficient + 0.25;
+  return p;
+}
+
+// F_bt / b.
+double nominal_load(const GearPair& p, double torque) {
+  return torque / helical_geometry(p).base_radius1_m / p.face_width_m;
+}
+
+}  // namespace
+
+TEST_CASE("K_Hbeta of the slice model under a linear misalignment: ISO 6336-1's two branches") {
+  const GearPair p = integer_eps_alpha_pair();
+  const HelicalGeometry g = helical_geometry(p);
+  REQUIRE(std::abs(g.transverse_contact_ratio - 2.0) < 1e-12);
+  // ISO's c_gamma_beta per unit face width is the slices' 2 kappa (two pairs at every y).
+  const double kappa = 8.5e9;  // N/m^2: c_gamma_beta = 17 N/(mm um)
+  const double c = 2.0 * kappa;
+  const FaceStiffness face = FaceStiffness::uniform(p, kappa);
+  const int slices = 1000;
+  StaticTransmissionErrorOptions options;
+  options.points_per_mesh_period = 5;
+  const double b = p.face_width_m;
+  // gamma_y alone: F_betay = b gamma_y cos(alpha_wt) on N1 (docs/helical.md).
+  struct Case {
+    double torque;
+    double mismatch;
+  };
+  // 200 N/mm and 10 um: the linear branch (1 + 17 * 10 / 400 = 1.425); 30 um at 200 N/mm and
+  // 40 um at 100 N/mm: the square-root branch.
+  const double rb1 = g.base_radius1_m;
+  for (const Case k :
+       {Case{200e3 * b * rb1, 10e-6}, Case{200e3 * b * rb1, 30e-6}, Case{100e3 * b * rb1, 40e-6}}) {
+    Modifications m;
+    m.misalignment.gamma_y_rad = k.mismatch / (b * std::cos(g.working_pressure_angle_rad));
+    const HelicalStaticTransmissionError ste =
+        helical_static_transmission_error(p, m, k.torque, face, slices, options);
+    CHECK_FALSE(ste.face_route);
+    const double load = nominal_load(p, k.torque);
+    const double iso = iso6336_face_load_factor(k.mismatch, c, load);
+    // The slices sample the face at their mid-planes: the most loaded one, db/2 in from the
+    // face end, sits c F_betay / (2 N) below the face end's load (the gap's slope times db/2),
+    // which is exactly the difference in the linear branch and the first-order one in the
+    // square-root branch, where the loaded width's discretisation adds O(1/N^2) (measured
+    // 2e-7 and 7e-7 at N = 1000, below the bound K_Hbeta / N^2).
+    const double first_order = iso - c * k.mismatch / (2.0 * slices) / load;
+    const double second_order = iso > 2.0 ? iso / (1.0 * slices * slices) : 1e-12;
+    CAPTURE(iso);
+    for (const HelicalStePoint& point : ste.points) {
+      CHECK(std::abs(point.face_load_factor - first_order) < second_order);
+    }
+    CHECK(std::abs(ste.face_load_factor - first_order) < second_order);
+    // And so to ISO's own value as N grows: within its 1/N term.
+    CHECK(std::abs(ste.face_load_factor - iso) < 1.01 * c * k.mismatch / (2.0 * slices) / load);
+  }
+}
+
+TEST_CASE("a crowning and end reliefs symmetric about mid-face load the face symmetrically") {
+  const GearPair p = integer_eps_alpha_pair();
+  const FaceStiffness face = FaceStiffness::uniform(p, 8.5e9);
+  Modifications m;
+  m.gear1.lead.crowning_m = 6e-6;
+  m.gear2.lead.crowning_m = 2e-6;
+  for (GearModifications* gear : {&m.gear1, &m.gear2}) {
+    gear->lead.end_relief_i_m = 5e-6;
+    gear->lead.end_relief_ii_m = 5e-6;
+    gear->lead.end_relief_i_length_m = 4e-3;
+    gear->lead.end_relief_ii_length_m = 4e-3;
+    gear->lead.end_relief_shape = ReliefShape::parabolic;
+  }
+  StaticTransmissionErrorOptions options;
+  options.points_per_mesh_period = 16;
+  const int slices = 40;
+  const double torque = 150.0;
+  const HelicalStaticTransmissionError ste =
+      helical_static_transmission_error(p, m, torque, face, slices, options);
+  const double b = p.face_width_m;
+  const double scale = nominal_load(p, torque);
+  for (const HelicalStePoint& point : ste.points) {
+    for (int j = 0; j < slices; ++j) {
+      const double w = point.load_per_width_n_per_m[static_cast<std::size_t>(j)];
+      const double mirrored =
+          point.load_per_width_n_per_m[static_cast<std::size_t>(slices - 1 - j)];
+      CHECK(std::abs(w - mirrored) < 1e-12 * scale);
+    }
+    CHECK(std::abs(point.load_centre_m - 0.5 * b) < 1e-14 * b);
+    // The crowning concentrates the load at mid-face.
+    CHECK(point.face_load_factor > 1.1);
+  }
+}
+
+TEST_CASE("the hand mirrors the face: w(y; right) = w(b - y; left) with mirrored lead gaps") {
+  GearPair right = h501_pair();
+  GearPair left = right;
+  left.helix_hand = HelixHand::left;
+  const StiffnessModel model;  // the default model, not uniform
+  const FaceStiffness face_right(right, model, HelicalHertz::projected);
+  const FaceStiffness face_left(left, model, HelicalHertz::projected);
+  Modifications m;
+  m.gear1.lead.crowning_m = 4e-6;
+  m.gear1.lead.end_relief_i_m = 8e-6;
+  m.gear1.lead.end_relief_i_length_m = 3e-3;
+  Modifications mirrored = m;
+  std::swap(mirrored.gear1.lead.end_relief_i_m, mirrored.gear1.lead.end_relief_ii_m);
+  std::swap(mirrored.gear1.lead.end_relief_i_length_m, mirrored.gear1.lead.end_relief_ii_length_m);
+  StaticTransmissionErrorOptions options;
+  options.points_per_mesh_period = 12;
+  const int slices = 24;
+  const HelicalStaticTransmissionError a =
+      helical_static_transmission_error(right, m, 200.0, face_right, slices, options);
+  const HelicalStaticTransmissionError c =
+      helical_static_transmission_error(left, mirrored, 200.0, face_left, slices, options);
+  const double scale = nominal_load(right, 200.0);
+  REQUIRE(a.points.size() == c.points.size());
+  for (std::size_t i = 0; i < a.points.size(); ++i) {
+    CHECK(relative_difference(a.points[i].ste_m, c.points[i].ste_m) < 1e-13);
+    for (int j = 0; j < slices; ++j) {
+      CHECK(std::abs(a.points[i].load_per_width_n_per_m[static_cast<std::size_t>(j)] -
+                     c.points[i].load_per_width_n_per_m[static_cast<std::size_t>(slices - 1 - j)]) <
+            1e-12 * scale);
+    }
+  }
+}
+
+TEST_CASE("the loaded STE with modifications against a slice sum solved by bisection") {
+  // The elements laid out here from the geometry alone (the plane of action of
+  // docs/helical.md), each gap from the formulas of its "Lead modifications" section and the
+  // profile gap of the spur pair's tip relief, and delta found by bisection on the carried
+  // force, not by the sorted-gap solver.
+  const GearPair p = h501_pair();
+  const HelicalGeometry g = helical_geometry(p);
+  const GearPair t = transverse_pair(p);
+  const StiffnessModel model;
+  const FaceStiffness face(p, model, HelicalHertz::projected);
+  Modifications m;
+  m.gear1.tip = {6e-6, 0.0, ReliefShape::linear};
+  m.gear1.tip.diameter_m = 2.0 * tip_radius(t, Gear::one) - 2e-3;
+  m.gear1.lead.crowning_m = 3e-6;
+  m.gear2.lead.helix_slope_m = -4e-6;
+  m.misalignment.gamma_x_rad = 2e-4;
+  m.misalignment.gamma_y_rad = 1e-4;
+  const int slices = 10;
+  StaticTransmissionErrorOptions options;
+  options.points_per_mesh_period = 9;
+  const double torque = 120.0;
+  const HelicalStaticTransmissionError ste =
+      helical_static_transmission_error(p, m, torque, face, slices, options);
+  const double force = torque / g.base_radius1_m;
+  const double b = p.face_width_m;
+  const double db = b / slices;
+  const double tan_bb = std::tan(g.base_helix_angle_rad);
+  const double alpha = g.working_pressure_angle_rad;
+  const ContactSegment segment = contact_segment(t);
+  const ToothGaps profile(t, m);
+  for (const HelicalStePoint& point : ste.points) {
+    struct Element {
+      double k;
+      double gap;
+      int slice;
+    };
+    std::vector<Element> elements;
+    for (int k = -6; k <= 6; ++k) {
+      for (int j = 0; j < slices; ++j) {
+        const double y = (j + 0.5) * db;
+        const double x = pitch_point_position(t) + g.base_radius1_m * point.theta1_rad +
+                         k * g.transverse_base_pitch_m + (y - 0.5 * b) * tan_bb;
+        if (x < segment.start_m || x > segment.end_m) continue;
+        const double u = y / b - 0.5;
+        const double lead = 3e-6 * 4.0 * u * u + (-4e-6) * u +
+                            b * u * (2e-4 * std::sin(alpha) + 1e-4 * std::cos(alpha));
+        elements.push_back({face.kappa(x) * db, profile.gap_m(Region::n1, k, x) + lead, j});
+      }
+    }
+    const auto carried = [&](double delta) {
+      double f = 0.0;
+      for (const Element& e : elements) f += e.k * std::max(0.0, delta - e.gap);
+      return f;
+    };
+    double low = -1e-3;
+    double high = 1e-3;
+    for (int i = 0; i < 200; ++i) {
+      const double mid = 0.5 * (low + high);
+      (carried(mid) < force ? low : high) = mid;
+    }
+    const double delta = 0.5 * (low + high);
+    CHECK(point.elements == static_cast<int>(elements.size()));
+    // Bisection to the doubles' resolution: the two deltas agree to rounding in the sums.
+    CHECK(relative_difference(point.ste_m, delta) < 1e-12);
+    std::vector<double> w(static_cast<std::size_t>(slices), 0.0);
+    for (const Element& e : elements) {
+      w[static_cast<std::size_t>(e.slice)] += e.k * std::max(0.0, delta - e.gap) / db;
+    }
+    for (int j = 0; j < slices; ++j) {
+      CHECK(std::abs(point.load_per_width_n_per_m[static_cast<std::size_t>(j)] -
+                     w[static_cast<std::size_t>(j)]) < 1e-9 * force / b);
+    }
+  }
+}
+
+TEST_CASE("no modifications: the face integral's F / K_B; equal gaps: F / K_A above the gap") {
+  const GearPair p = h501_pair();
+  const StiffnessModel model;
+  const FaceStiffness face(p, model, HelicalHertz::projected);
+  const HelicalMesh mesh(p, face);
+  StaticTransmissionErrorOptions options;
+  options.points_per_mesh_period = 20;
+  const double torque = 200.0;
+  const double force = torque / mesh.base_radius1_m();
+  const HelicalStaticTransmissionError none =
+      helical_static_transmission_error(p, Modifications{}, torque, face, 32, options);
+  CHECK(none.face_route);
+  for (const HelicalStePoint& point : none.points) {
+    // Bit for bit: the route the dynamics takes without gaps.
+    CHECK(point.ste_m == force / mesh.stiffness_face(Region::n1, point.theta1_rad));
+    CHECK(point.kte_m == 0.0);
+  }
+  // Every tooth of the pinion 3 um thinner on each flank: every element's gap 3 um, all in
+  // contact, delta = 3 um + F / K_A with route A's slice sum.
+  Modifications thinner;
+  thinner.gear1.thickness_m.assign(static_cast<std::size_t>(p.teeth1), 3e-6);
+  const HelicalStaticTransmissionError shifted =
+      helical_static_transmission_error(p, thinner, torque, face, 32, options);
+  CHECK_FALSE(shifted.face_route);
+  for (const HelicalStePoint& point : shifted.points) {
+    const double k_a = mesh.stiffness_slices(Region::n1, point.theta1_rad, 32);
+    CHECK(relative_difference(point.ste_m, 3e-6 + force / k_a) < 1e-13);
+    CHECK(relative_difference(point.effective_stiffness_n_per_m, k_a) < 1e-13);
+  }
+}
+
+TEST_CASE("lead keys: a spur pair refuses them by name, an end relief longer than b is refused") {
+  GearPair spur = h501_pair();
+  spur.helix_angle_rad = 0.0;
+  Modifications m;
+  m.misalignment.gamma_x_rad = 1e-4;
+  check_refused([&] { validate_modifications(spur, m); }, "modifications.misalignment_x",
+                "slice model of a helical pair");
+  Modifications relief;
+  relief.gear2.lead.end_relief_ii_m = 5e-6;
+  relief.gear2.lead.end_relief_ii_length_m = 30e-3;
+  check_refused([&] { validate_modifications(h501_pair(), relief); },
+                "modifications.end_relief_ii_length2", "(0, b]");
+  check_refused(
+      [&] { helical_static_transmission_error(spur, Modifications{}, 100.0, StiffnessModel{}); },
+      "gears.helix_angle", "spur STE");
+  // 4096 slices at 100000 angles would hold 4e8 slice loads: refused before any work, naming
+  // the most points, floor(1e7 / 4096) = 2441.
+  StiffnessModel fine;
+  fine.face_slices = 4096;
+  StaticTransmissionErrorOptions options;
+  options.points_per_mesh_period = 100000;
+  check_refused(
+      [&] {
+        helical_static_transmission_error(h501_pair(), Modifications{}, 100.0, fine, options);
+      },
+      "points", "at most 2441 per mesh period with model.face_slices = 4096");
 }

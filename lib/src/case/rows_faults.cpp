@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <vector>
 
 #include "gearimpact/constants.hpp"
@@ -102,6 +103,56 @@ void add_modifications(std::vector<Field>& rows, int gear, GearSlot of) {
            "(docs/faults.md, \"Errors drawn from a tolerance class\"); 0: none",
        [of](auto& c) -> auto& { return of(c).iso1328_class; })
       .written_at_default = false;
+  // The lead modifications (helical pairs): neither written nor keyed at their defaults, so
+  // that every file without them keeps its bytes and its case key.
+  const auto lead = [&rows](Field& field) {
+    field.written_at_default = false;
+    field.keyed_at_default = false;
+    (void)rows;
+  };
+  lead(r.quantity(
+      one ? "crowning1" : "crowning2", Dimension::length, "um", amount, false,
+      "C_beta, the crowning of gear " + n +
+          " (helical pairs): C_beta (2u)^2 across the face, u = y/b - 1/2, on both flanks of "
+          "every tooth, along the transverse line of action; 0: none",
+      [of](auto& c) -> auto& { return of(c).lead.crowning_m; }));
+  lead(r.quantity(
+      one ? "end_relief_i1" : "end_relief_i2", Dimension::length, "um", amount, false,
+      "C_I, the end relief of gear " + n +
+          " at the face end y = 0 (helical pairs): C_I ((l_I - y) / l_I)^p for y < l_I, both "
+          "flanks; 0: none",
+      [of](auto& c) -> auto& { return of(c).lead.end_relief_i_m; }));
+  lead(r.quantity(
+      one ? "end_relief_i_length1" : "end_relief_i_length2", Dimension::length, "mm", diameter,
+      false,
+      "l_I, the length across the face of the end relief end_relief_i" + n +
+          "; with it > 0 in (0, b]",
+      [of](auto& c) -> auto& { return of(c).lead.end_relief_i_length_m; }));
+  lead(r.quantity(
+      one ? "end_relief_ii1" : "end_relief_ii2", Dimension::length, "um", amount, false,
+      "C_II, the end relief of gear " + n +
+          " at the face end y = b (helical pairs): C_II ((y - b + l_II) / l_II)^p for "
+          "y > b - l_II, both flanks; 0: none",
+      [of](auto& c) -> auto& { return of(c).lead.end_relief_ii_m; }));
+  lead(r.quantity(
+      one ? "end_relief_ii_length1" : "end_relief_ii_length2", Dimension::length, "mm", diameter,
+      false,
+      "l_II, the length across the face of the end relief end_relief_ii" + n +
+          "; with it > 0 in (0, b - l_I]",
+      [of](auto& c) -> auto& { return of(c).lead.end_relief_ii_length_m; }));
+  lead(r.choice(
+      one ? "end_relief_shape1" : "end_relief_shape2", choices_of(kReliefShapes), false,
+      "the shape p of both end reliefs of gear " + n + " across the face", [of](auto& c) -> auto& {
+        return of(c).lead.end_relief_shape;
+      }));
+  lead(r.quantity(
+      one ? "helix_slope_deviation1" : "helix_slope_deviation2", Dimension::length, "um", deviation,
+      false,
+      "f_Hbeta of every tooth of gear " + n +
+          " (helical pairs), a wrong helix angle: a gap f_Hbeta u on the drive flanks (N1) and "
+          "-f_Hbeta u on the coast flanks (N2), u = y/b - 1/2, along the transverse line of "
+          "action (convert ISO 1328's sign and evaluation range first); 0: none",
+      [of](auto& c) -> auto& { return of(c).lead.helix_slope_m; }));
 }
 
 // The rows of one [[faults]] table. Their slots read the first fault of a
@@ -241,6 +292,29 @@ void schema_detail::add_modification_rows(std::vector<Field>& rows) {
           "the same teeth, bit for bit",
           [](auto& c) -> auto& { return c.modifications.error_seed; })
       .written_at_default = false;
+  // A misalignment is milliradians; a degree is a slip of the unit.
+  const Range tilt{closed(-pi / 180.0), closed(pi / 180.0),
+                   "within 1 deg: misalignments are milliradians"};
+  for (const auto& [key, help, slot] :
+       {std::tuple{"misalignment_x",
+                   "gamma_x, the wheel axis tilted against the pinion's in the plane of the axes "
+                   "(helical pairs): the wheel's section centre moves away from the pinion as y "
+                   "grows; gaps b u gamma_x sin(alpha_wt) on both flanks",
+                   &Misalignment::gamma_x_rad},
+        std::tuple{"misalignment_y",
+                   "gamma_y, the wheel axis tilted across the plane of the axes (helical "
+                   "pairs): the wheel's section centre moves along +y as y grows; gaps "
+                   "+b u gamma_y cos(alpha_wt) on the drive flanks, - on the coast flanks",
+                   &Misalignment::gamma_y_rad}}) {
+    Field& field =
+        Rows(rows, "modifications")
+            .quantity(
+                key, Dimension::angle, "deg", tilt, false, help, [slot = slot](auto& c) -> auto& {
+                  return c.modifications.misalignment.*slot;
+                });
+    field.written_at_default = false;
+    field.keyed_at_default = false;
+  }
 }
 
 const std::vector<Field>& fault_schema() {

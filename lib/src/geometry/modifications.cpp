@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include "gearimpact/error.hpp"
+#include "gearimpact/geometry/helical.hpp"
 #include "gearimpact/geometry/iso1328.hpp"
 
 namespace gearimpact {
@@ -59,6 +61,19 @@ double relief_curve_slope(double amount_m, ReliefShape shape, double u) {
   return shape == ReliefShape::parabolic ? 2.0 * amount_m * u : amount_m;
 }
 
+// The case-file key of the first lead modification or misalignment set, for a message.
+std::string first_lead_key(const Modifications& m) {
+  for (const Gear gear : {Gear::one, Gear::two}) {
+    const LeadModifications& l = (gear == Gear::one ? m.gear1 : m.gear2).lead;
+    const std::string n = gear == Gear::one ? "1" : "2";
+    if (l.crowning_m != 0.0) return "crowning" + n;
+    if (l.end_relief_i_m != 0.0) return "end_relief_i" + n;
+    if (l.end_relief_ii_m != 0.0) return "end_relief_ii" + n;
+    if (l.helix_slope_m != 0.0) return "helix_slope_deviation" + n;
+  }
+  return m.misalignment.gamma_x_rad != 0.0 ? "misalignment_x" : "misalignment_y";
+}
+
 std::string mm(double metres) {
   return format_number(metres * 1e3) + " mm";
 }
@@ -102,19 +117,64 @@ void check_tolerance_class(const GearPair& pair, Gear gear, const GearModificati
 
 }  // namespace
 
+bool operator==(const LeadModifications& a, const LeadModifications& b) {
+  return a.crowning_m == b.crowning_m && a.end_relief_i_m == b.end_relief_i_m &&
+         a.end_relief_i_length_m == b.end_relief_i_length_m &&
+         a.end_relief_ii_m == b.end_relief_ii_m &&
+         a.end_relief_ii_length_m == b.end_relief_ii_length_m &&
+         a.end_relief_shape == b.end_relief_shape && a.helix_slope_m == b.helix_slope_m;
+}
+bool operator==(const Misalignment& a, const Misalignment& b) {
+  return a.gamma_x_rad == b.gamma_x_rad && a.gamma_y_rad == b.gamma_y_rad;
+}
 bool operator==(const Relief& a, const Relief& b) {
   return a.amount_m == b.amount_m && a.diameter_m == b.diameter_m && a.shape == b.shape;
 }
 bool operator==(const GearModifications& a, const GearModifications& b) {
   return a.tip == b.tip && a.root == b.root && a.pitch_m == b.pitch_m &&
          a.thickness_m == b.thickness_m && a.profile_slope_m == b.profile_slope_m &&
-         a.iso1328_class == b.iso1328_class;
+         a.iso1328_class == b.iso1328_class && a.lead == b.lead;
 }
 bool operator==(const Modifications& a, const Modifications& b) {
-  return a.gear1 == b.gear1 && a.gear2 == b.gear2 && a.error_seed == b.error_seed;
+  return a.gear1 == b.gear1 && a.gear2 == b.gear2 && a.error_seed == b.error_seed &&
+         a.misalignment == b.misalignment;
+}
+
+bool has_lead_gaps(const Modifications& m) {
+  for (const GearModifications* g : {&m.gear1, &m.gear2}) {
+    const LeadModifications& l = g->lead;
+    if (l.crowning_m != 0.0 || l.end_relief_i_m != 0.0 || l.end_relief_ii_m != 0.0 ||
+        l.helix_slope_m != 0.0) {
+      return true;
+    }
+  }
+  return m.misalignment.gamma_x_rad != 0.0 || m.misalignment.gamma_y_rad != 0.0;
+}
+
+double lead_gap_m(const Modifications& m, Region line, double b, double alpha_wt, double y) {
+  const double u = y / b - 0.5;
+  double gap = 0.0;
+  for (const GearModifications* g : {&m.gear1, &m.gear2}) {
+    const LeadModifications& l = g->lead;
+    gap += l.crowning_m * (4.0 * u * u);
+    if (l.end_relief_i_m > 0.0 && y < l.end_relief_i_length_m) {
+      gap += relief_curve(l.end_relief_i_m, l.end_relief_shape,
+                          (l.end_relief_i_length_m - y) / l.end_relief_i_length_m);
+    }
+    if (l.end_relief_ii_m > 0.0 && y > b - l.end_relief_ii_length_m) {
+      gap += relief_curve(l.end_relief_ii_m, l.end_relief_shape,
+                          (y - b + l.end_relief_ii_length_m) / l.end_relief_ii_length_m);
+    }
+    gap += (line == Region::n1 ? 1.0 : -1.0) * l.helix_slope_m * u;
+  }
+  const double across = std::sin(alpha_wt) * m.misalignment.gamma_x_rad;
+  const double along = std::cos(alpha_wt) * m.misalignment.gamma_y_rad;
+  gap += b * u * (line == Region::n1 ? across + along : across - along);
+  return gap;
 }
 
 bool is_unmodified(const Modifications& m) {
+  if (has_lead_gaps(m)) return false;
   for (const GearModifications* g : {&m.gear1, &m.gear2}) {
     if (g->tip.amount_m != 0.0 || g->root.amount_m != 0.0 || g->iso1328_class > 0 ||
         !all_zero(g->pitch_m) || !all_zero(g->thickness_m) || !all_zero(g->profile_slope_m)) {
@@ -166,9 +226,39 @@ ActiveProfile active_profile(const GearPair& pair, Gear gear) {
           diameter_of_roll(pair, gear, roll.tip - t0), diameter_of_roll(pair, gear, roll.sap + t0)};
 }
 
-void validate_modifications(const GearPair& pair, const Modifications& m,
+void validate_modifications(const GearPair& helical_or_spur, const Modifications& m,
                             const std::string& prefix) {
+  // A helical pair's profile modifications act in its transverse section.
+  const GearPair pair = transverse_pair(helical_or_spur);
   Problems problems;
+  for (const Gear gear : {Gear::one, Gear::two}) {
+    const LeadModifications& l = (gear == Gear::one ? m.gear1 : m.gear2).lead;
+    const std::string n = gear == Gear::one ? "1" : "2";
+    const double b = pair.face_width_m;
+    for (const auto& [amount, length, key] :
+         {std::tuple{l.end_relief_i_m, l.end_relief_i_length_m, "end_relief_i_length"},
+          std::tuple{l.end_relief_ii_m, l.end_relief_ii_length_m, "end_relief_ii_length"}}) {
+      if (amount > 0.0 && !(length > 0.0 && length <= b)) {
+        problems.add(range_problem(
+            prefix + "." + key + n, mm(length),
+            "a length in (0, b] = (0, " + mm(b) + "] with the end relief's amount > 0"));
+      }
+    }
+    if (l.end_relief_i_m > 0.0 && l.end_relief_ii_m > 0.0 &&
+        l.end_relief_i_length_m + l.end_relief_ii_length_m > b) {
+      problems.add(range_problem(prefix + ".end_relief_ii_length" + n, mm(l.end_relief_ii_length_m),
+                                 "at most b - end_relief_i_length" + n + " = " +
+                                     mm(b - l.end_relief_i_length_m) +
+                                     ": the two end reliefs of one face do not overlap"));
+    }
+  }
+  if (helical_or_spur.helix_angle_rad == 0.0 && has_lead_gaps(m)) {
+    problems.add(refused_problem(
+        prefix + "." + first_lead_key(m), "set on a spur pair",
+        "gaps across the face are taken by the slice model of a helical pair only",
+        "no crowning, end relief, helix slope deviation or misalignment on a spur pair",
+        "gears.helix_angle > 0, or remove the [modifications] lead keys"));
+  }
   for (const Gear gear : {Gear::one, Gear::two}) {
     const GearModifications& g = gear == Gear::one ? m.gear1 : m.gear2;
     const std::string n = gear == Gear::one ? "1" : "2";

@@ -580,16 +580,18 @@ std::string true_period_mesh_stiffness_summary_json(const TruePeriodMeshStiffnes
   return out;
 }
 
-std::string helical_mesh_stiffness_csv(const HelicalMeshStiffnessCurve& curve) {
+Columns<HelicalMeshStiffnessSample> helical_mesh_stiffness_columns() {
   using S = HelicalMeshStiffnessSample;
-  const Columns<S> columns{
-      member_column("fraction", "", &S::fraction),
-      member_column("theta1_rad", "rad", &S::theta1_rad),
-      member_column("k_slices_n_m", "N/m", &S::slices_n_per_m),
-      member_column("k_face_n_m", "N/m", &S::face_n_per_m),
-      member_column("contact_line_length_m", "m", &S::contact_line_length_m),
-      member_column("contact_line_length_slices_m", "m", &S::contact_line_length_slices_m)};
-  return csv_of(columns, curve.samples);
+  return {member_column("fraction", "", &S::fraction),
+          member_column("theta1_rad", "rad", &S::theta1_rad),
+          member_column("k_slices_n_m", "N/m", &S::slices_n_per_m),
+          member_column("k_face_n_m", "N/m", &S::face_n_per_m),
+          member_column("contact_line_length_m", "m", &S::contact_line_length_m),
+          member_column("contact_line_length_slices_m", "m", &S::contact_line_length_slices_m)};
+}
+
+std::string helical_mesh_stiffness_csv(const HelicalMeshStiffnessCurve& curve) {
+  return csv_of(helical_mesh_stiffness_columns(), curve.samples);
 }
 
 std::string helical_mesh_stiffness_summary_json(const HelicalMeshStiffnessCurve& curve) {
@@ -748,6 +750,84 @@ std::string ste_summary_json(const StaticTransmissionError& modified,
   json_number(out, "unmodified_quasi_static_force_ratio", unmodified_quasi_static_force_ratio);
   ste_figures(out, "", modified, false);
   ste_figures(out, "unmodified_", unmodified, true);
+  out += "}\n";
+  return out;
+}
+
+Columns<HelicalStePoint> helical_ste_columns() {
+  using P = HelicalStePoint;
+  return {
+      member_column("theta1_rad", "rad", &P::theta1_rad),
+      computed_column<P>("theta1_deg", "deg", [](const P& p) { return p.theta1_rad * 180.0 / pi; }),
+      member_column("ste_m", "m", &P::ste_m),
+      member_column("kte_m", "m", &P::kte_m),
+      member_column("effective_stiffness_n_per_m", "N/m", &P::effective_stiffness_n_per_m),
+      member_column("elements", &P::elements),
+      member_column("loaded_elements", &P::loaded_elements),
+      member_column("load_centre_m", "m", &P::load_centre_m),
+      member_column("face_load_factor", "", &P::face_load_factor)};
+}
+
+std::string helical_ste_csv(const HelicalStaticTransmissionError& ste) {
+  return csv_of(helical_ste_columns(), ste.points);
+}
+
+std::string helical_face_load_csv(const HelicalStaticTransmissionError& modified,
+                                  const HelicalStaticTransmissionError& unmodified) {
+  const double nominal = modified.force_n / modified.face_width_m;  // F_bt / b
+  std::string out =
+      "y_m,mean_load_per_width_n_per_m,unmodified_mean_load_per_width_n_per_m,"
+      "mean_load_ratio,unmodified_mean_load_ratio\n";
+  for (std::size_t j = 0; j < modified.slice_y_m.size(); ++j) {
+    out += format_data_number(modified.slice_y_m[j]) + "," +
+           format_data_number(modified.mean_load_per_width_n_per_m[j]) + "," +
+           format_data_number(unmodified.mean_load_per_width_n_per_m[j]) + "," +
+           format_data_number(modified.mean_load_per_width_n_per_m[j] / nominal) + "," +
+           format_data_number(unmodified.mean_load_per_width_n_per_m[j] / nominal) + "\n";
+  }
+  return out;
+}
+
+namespace {
+
+void helical_ste_figures(std::string& out, const char* prefix,
+                         const HelicalStaticTransmissionError& ste, bool last) {
+  double least = std::numeric_limits<double>::infinity();
+  double most = -least;
+  double kte_least = least;
+  double kte_most = -least;
+  for (const HelicalStePoint& p : ste.points) {
+    least = std::min(least, p.ste_m);
+    most = std::max(most, p.ste_m);
+    kte_least = std::min(kte_least, p.kte_m);
+    kte_most = std::max(kte_most, p.kte_m);
+  }
+  const std::string p = prefix;
+  json_number(out, (p + "ste_mean_m").c_str(), ste.ste_mean_m);
+  json_number(out, (p + "ste_min_m").c_str(), least);
+  json_number(out, (p + "ste_max_m").c_str(), most);
+  json_number(out, (p + "ste_peak_to_peak_m").c_str(), ste.ste_peak_to_peak_m);
+  json_number(out, (p + "kte_min_m").c_str(), kte_least);
+  json_number(out, (p + "kte_max_m").c_str(), kte_most);
+  json_number(out, (p + "face_load_factor").c_str(), ste.face_load_factor);
+  json_number(out, (p + "largest_face_load_factor").c_str(), ste.largest_face_load_factor);
+  json_number(out, (p + "load_centre_m").c_str(), ste.mean_load_centre_m, last);
+}
+
+}  // namespace
+
+std::string helical_ste_summary_json(const HelicalStaticTransmissionError& modified,
+                                     const HelicalStaticTransmissionError& unmodified) {
+  std::string out = "{\n";
+  json_number(out, "torque1_n_m", modified.torque1_n_m);
+  json_number(out, "force_n", modified.force_n);
+  json_number(out, "mesh_periods", static_cast<double>(modified.mesh_periods));
+  json_number(out, "period_rad", modified.period_rad);
+  json_number(out, "points", static_cast<double>(modified.points.size()));
+  out += "  \"face_slices\": " + std::to_string(modified.face_slices) + ",\n";
+  out += std::string("  \"route\": ") + (modified.face_route ? "\"face\"" : "\"slices\"") + ",\n";
+  helical_ste_figures(out, "", modified, false);
+  helical_ste_figures(out, "unmodified_", unmodified, true);
   out += "}\n";
   return out;
 }

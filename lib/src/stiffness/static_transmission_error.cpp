@@ -165,7 +165,8 @@ double solve_deflection_bracketed(const std::vector<PairSpring>& springs, double
 void validate_static_transmission_error(const GearPair& pair, const Modifications& m,
                                         double torque1_n_m,
                                         StaticTransmissionErrorOptions options) {
-  if (pair.helix_angle_rad != 0.0) throw_helical_not_taken(pair.helix_angle_rad, "ste");
+  // Gaps across the face belong to a helical pair's slices: a spur pair refuses them by name.
+  if (pair.helix_angle_rad == 0.0 && has_lead_gaps(m)) validate_modifications(pair, m);
   if (!(torque1_n_m > 0.0) || !std::isfinite(torque1_n_m)) {
     throw InputError("torque", format_number(torque1_n_m) + " N*m",
                      "a finite pinion torque > 0 N*m: it loads the drive flanks (line N1)");

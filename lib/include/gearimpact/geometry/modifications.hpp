@@ -57,28 +57,80 @@ struct Relief {
 // A flank tolerance class of ISO 1328-1:2013 (iso1328_class > 0) draws the
 // pitch and profile slope errors instead (draw_tooth_errors of iso1328.hpp,
 // with the pair's error_seed); their lists are then empty.
+// The lead modifications of one gear (helical pairs, docs/helical.md, "Lead
+// modifications and misalignment"): gaps across the face, along the transverse
+// line of action as the profile gaps are, the same on every tooth, y the
+// position across the face from the face end at smaller z (y = 0) to y = b
+// and u = y / b - 1/2.
+// - crowning: C_beta (2u)^2 on both flanks;
+// - end relief at each face end: C_I ((l_I - y) / l_I)^p for y < l_I and
+//   C_II ((y - b + l_II) / l_II)^p for y > b - l_II, both flanks, p of `shape`;
+// - helix slope: f_Hbeta u on the drive flank (line N1) and -f_Hbeta u on the
+//   coast flank (N2), a wrong helix angle (the tooth's section turned by an
+//   angle growing across the face, as a pitch deviation growing with u).
+struct LeadModifications {
+  double crowning_m = 0.0;
+  double end_relief_i_m = 0.0;  // C_I at y = 0
+  double end_relief_i_length_m = 0.0;
+  double end_relief_ii_m = 0.0;  // C_II at y = b
+  double end_relief_ii_length_m = 0.0;
+  ReliefShape end_relief_shape = ReliefShape::linear;
+  double helix_slope_m = 0.0;  // f_Hbeta
+};
+
 struct GearModifications {
   Relief tip;
   Relief root;
+  LeadModifications lead;
   std::vector<double> pitch_m;
   std::vector<double> thickness_m;
   std::vector<double> profile_slope_m;
   int iso1328_class = 0;  // 0: no class
 };
 
+// The wheel axis tilted against the pinion's (helical pairs): gamma_x in the
+// plane of the axes (the wheel's transverse section centre moves along +x, away
+// from the pinion, as y grows) and gamma_y across it (along +y, the way the
+// pinion's pitch point moves), small angles in rad. The frame of
+// docs/vibration.md: O1 the origin, e_x towards O2, the pinion turning about +z.
+struct Misalignment {
+  double gamma_x_rad = 0.0;
+  double gamma_y_rad = 0.0;
+};
+
 struct Modifications {
   GearModifications gear1;
   GearModifications gear2;
   std::uint32_t error_seed = 0;  // read only with a tolerance class
+  Misalignment misalignment;
 };
 
+bool operator==(const LeadModifications& a, const LeadModifications& b);
+bool operator==(const Misalignment& a, const Misalignment& b);
 bool operator==(const Relief& a, const Relief& b);
 bool operator==(const GearModifications& a, const GearModifications& b);
 bool operator==(const Modifications& a, const Modifications& b);
 
-// True when every relief amount is 0, every error list is empty or all 0 and
-// no gear has a tolerance class: the gaps are 0 everywhere.
+// True when every relief amount is 0, every error list is empty or all 0, no
+// gear has a tolerance class and no lead modification or misalignment is set:
+// the gaps are 0 everywhere.
 bool is_unmodified(const Modifications& m);
+
+// True when a lead modification (crowning, end relief, helix slope) of either
+// gear or a misalignment is set: gaps that vary across the face, which only
+// the slice model of a helical pair takes.
+bool has_lead_gaps(const Modifications& m);
+
+// The gap across the face at y (m from the face end at smaller z) on `line`
+// (Region::n1, the drive flanks, or Region::n2) of a pair of face width b and
+// transverse working pressure angle alpha_wt: both gears' lead modifications
+// and the misalignment's mismatch, along the transverse line of action,
+//   N1: b u (gamma_x sin(alpha_wt) + gamma_y cos(alpha_wt)) = F_beta u,
+//   N2: b u (gamma_x sin(alpha_wt) - gamma_y cos(alpha_wt)),
+// u = y / b - 1/2 (the wheel moved along n1 = (sin, cos)(alpha_wt) opens the
+// drive flanks, along n2 = (sin, -cos)(alpha_wt) the coast flanks).
+double lead_gap_m(const Modifications& m, Region line, double face_width_m,
+                  double working_pressure_angle_rad, double y_m);
 
 // Which gears have teeth that differ from each other (an error list whose
 // values are not all equal, or errors drawn from a tolerance class), for

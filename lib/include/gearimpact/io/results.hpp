@@ -13,6 +13,7 @@
 #include "gearimpact/io/columns.hpp"
 #include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/stiffness/helical.hpp"
+#include "gearimpact/stiffness/helical_ste.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "gearimpact/stiffness/mesh_tables.hpp"
@@ -131,6 +132,8 @@ std::size_t most_pairs_in_contact(const TruePeriodMeshStiffness& tvms);
 // fraction,theta1_rad,k_slices_n_m,k_face_n_m,contact_line_length_m,
 // contact_line_length_slices_m; and its summary (extremes, the exact mean,
 // the contact ratios, ISO's c_gamma_alpha b) as JSON.
+// Its columns, described once (the CSV writer and the Python package's arrays follow them).
+Columns<HelicalMeshStiffnessSample> helical_mesh_stiffness_columns();
 std::string helical_mesh_stiffness_csv(const HelicalMeshStiffnessCurve& curve);
 std::string helical_mesh_stiffness_summary_json(const HelicalMeshStiffnessCurve& curve);
 
@@ -168,5 +171,20 @@ std::string ste_summary_json(const StaticTransmissionError& modified,
                              const StaticTransmissionError& unmodified,
                              double quasi_static_force_ratio,
                              double unmodified_quasi_static_force_ratio);
+
+// A helical pair's loaded STE (`ste` on a helical pair, docs/helical.md): one row per angle
+// (theta1_rad, theta1_deg, ste_m, kte_m, effective_stiffness_n_per_m, elements,
+// loaded_elements, load_centre_m, face_load_factor).
+Columns<HelicalStePoint> helical_ste_columns();
+std::string helical_ste_csv(const HelicalStaticTransmissionError& ste);
+// The load across the face, one row per slice: y_m, the mean load per unit face width wbar
+// of the modified and the unmodified pair (N/m, over the true period), and each over F_bt / b.
+std::string helical_face_load_csv(const HelicalStaticTransmissionError& modified,
+                                  const HelicalStaticTransmissionError& unmodified);
+// torque1_n_m, force_n, mesh_periods, period_rad, points, face_slices, route, then for the
+// modified and the unmodified pair the STE's mean, least, largest and peak-to-peak, the KTE's
+// range, K_Hbeta (from wbar), the largest K_Hbeta(theta) and the load centre y_c.
+std::string helical_ste_summary_json(const HelicalStaticTransmissionError& modified,
+                                     const HelicalStaticTransmissionError& unmodified);
 
 }  // namespace gearimpact
