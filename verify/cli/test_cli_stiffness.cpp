@@ -114,7 +114,7 @@ TEST_CASE("stiffness --case-file: a researcher's own pair, with the file's stiff
   std::filesystem::remove(file);
 }
 
-TEST_CASE("mesh-stiffness on a helical pair: both routes over a mesh period; a run refuses it") {
+TEST_CASE("mesh-stiffness on a helical pair: both routes over a mesh period; simulate runs it") {
   const std::filesystem::path file =
       std::filesystem::path(GEARIMPACT_PAPER_DATA_DIR) / ".." / "examples" / "helical_h501.toml";
   const CommandResult r =
@@ -149,10 +149,23 @@ TEST_CASE("mesh-stiffness on a helical pair: both routes over a mesh period; a r
       run_command(cli("mesh-stiffness --summary --case-file " + file.string()));
   REQUIRE(summary.exit_code == 0);
   CHECK(summary.out.find("\"iso_c_gamma_alpha_b_n_m\"") != std::string::npos);
-  // The dynamics and --figure refuse it, naming the key or the flag.
+  // simulate runs it in the torsional model without friction (the run file
+  // beside the pair file), and refuses friction and the planar model by key;
+  // --figure is refused, naming the flag.
+  const CommandResult runs = run_command(
+      cli("simulate --case-file " + (file.parent_path() / "helical_h501_run.toml").string() +
+          " --set 'integrator.end_time=1 ms'"));
+  CHECK(runs.exit_code == 0);
+  CHECK(runs.out.find("\"ledger_residual_max_J\"") != std::string::npos);
   const CommandResult run = run_command(cli("simulate --case 1 --set 'gears.helix_angle=15 deg'"));
   CHECK(run.exit_code != 0);
-  CHECK(run.err.find("gears.helix_angle") != std::string::npos);
+  CHECK(run.err.find("model.friction_coefficient") != std::string::npos);
+  const CommandResult planar = run_command(
+      cli("simulate --case 1 --set 'gears.helix_angle=15 deg' --set model.friction_coefficient=0 "
+          "--set bearings.kind=elastic --set 'bearings.stiffness_x1=1e9 N/m' --set "
+          "'bearings.stiffness_x2=1e9 N/m'"));
+  CHECK(planar.exit_code != 0);
+  CHECK(planar.err.find("gears.helix_angle") != std::string::npos);
   const CommandResult figure =
       run_command(cli("mesh-stiffness --case-file " + file.string() + " --figure does-not-matter"));
   CHECK(figure.exit_code != 0);

@@ -6,13 +6,18 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <array>
 #include <boost/math/quadrature/gauss.hpp>
 #include <cmath>
 #include <complex>
+#include <memory>
 #include <vector>
 
+#include "gearimpact/batch/pool.hpp"
 #include "gearimpact/case/schema.hpp"
 #include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/dynamics/mesh.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/helical.hpp"
 #include "gearimpact/geometry/modifications.hpp"
@@ -435,7 +440,9 @@ TEST_CASE("the dynamics refuse a helical pair, naming gears.helix_angle") {
   SimulationCase c;
   c.gears = h501_pair();
   check_refused([&] { validate_run_keys(c); }, "gears.helix_angle", "never run as a spur pair");
-  check_refused([&] { natural_modes(c); }, "gears.helix_angle", "never run as a spur pair");
+  SimulationCase planar = c;
+  planar.bearings.kind = BearingKind::elastic;
+  check_refused([&] { natural_modes(planar); }, "gears.helix_angle", "never run as a spur pair");
   check_refused([&] { MeshLayout(c.gears, CoastPhase::half_base_pitch); }, "gears.helix_angle",
                 "never run as a spur pair");
   // The geometry itself is valid: its transverse section's relations hold.
@@ -722,4 +729,222 @@ TEST_CASE("lead keys: a spur pair refuses them by name, an end relief longer tha
         helical_static_transmission_error(h501_pair(), Modifications{}, 100.0, fine, options);
       },
       "points", "at most 2441 per mesh period with model.face_slices = 4096");
+}
+
+namespace {
+
+// A helical run of H501 in the torsional model: no friction (a helical run
+// refuses it), balanced constant torques T1 and T2 = -T1 z2/z1 (Rb2/Rb1 =
+// z2/z1 in every section), rolling at w1, no Hertzian damping unless asked.
+SimulationCase helical_run(const GearPair& pair, double t1_n_m, double w1_rad_s, double end_s) {
+  SimulationCase c;
+  c.name = "helical";
+  c.gears = pair;
+  c.model.friction_coefficient = 0.0;
+  c.torque1.constant_n_m = t1_n_m;
+  c.torque2.constant_n_m = -t1_n_m * pair.teeth2 / pair.teeth1;
+  c.initial.w1_rad_per_s = w1_rad_s;
+  c.initial.w2_rad_per_s = w1_rad_s * pair.teeth1 / pair.teeth2;
+  c.integrator.end_time_s = end_s;
+  return c;
+}
+
+// The summed table of the loaded pairs of `line` at theta1, as the run places them.
+double table_sum(const MeshLayout& layout, const StiffnessTable& table, Region line,
+                 double theta1_rad) {
+  const double reference = layout.reference_m(line, theta1_rad);
+  const LoadedRange range = layout.loaded(reference);
+  double sum = 0.0;
+  for (int j = 0; j < range.count; ++j) {
+    sum += table.stiffness(layout.position_m(reference, range.k_first + j));
+  }
+  return sum;
+}
+
+}  // namespace
+
+TEST_CASE("dynamics: the extended pair table summed over the loaded pairs is route B") {
+  // Route B (HelicalMesh::stiffness_face, C(X) by Gauss-Legendre) is checked
+  // above against the spur pair's window average; here the table a run reads,
+  // one per tooth pair over [X_SAP - W/2, X_EAP + W/2], placed by MeshLayout
+  // on the swept section, must sum to it at every angle on both lines.
+  for (const HelicalHertz hertz : {HelicalHertz::projected, HelicalHertz::face_width}) {
+    for (const HelixHand hand : {HelixHand::right, HelixHand::left}) {
+      GearPair h = h501_pair();
+      h.helix_hand = hand;
+      StiffnessModel model;
+      model.helical_hertz = hertz;
+      const FaceStiffness face(h, model, hertz);
+      const HelicalMesh mesh(h, face);
+      const StiffnessTable table = helical_pair_table(h, model);
+      const GearPair swept = swept_transverse_pair(h);
+      const MeshLayout layout(swept, CoastPhase::half_base_pitch);
+      // The segment is W/2 wider at each end, W = b tan(beta_b).
+      const double w = h.face_width_m * std::tan(mesh.base_helix_angle_rad());
+      CHECK(relative_difference(layout.end_m() - layout.start_m(),
+                                face.end_m() - face.start_m() + w) < 1e-13);
+      const double period = mesh.mesh_period_rad();
+      double worst = 0.0;
+      for (const Region line : {Region::n1, Region::n2}) {
+        for (int i = 0; i < 97; ++i) {
+          const double theta = period * (i / 97.0 - 3.0);
+          worst = std::max(worst, relative_difference(table_sum(layout, table, line, theta),
+                                                      mesh.stiffness_face(line, theta)));
+        }
+      }
+      // Tolerance: the table's degree-7 fit of a smooth K_pair on 64 pieces
+      // per part (the spur table's 1e-12 bound, docs/verification.md).
+      CHECK(worst < 1e-10);
+      // The mean a run's damper sees: b C(X_EAP) / p_bt, exact for route B.
+      SimulationCase c;
+      c.gears = h;
+      c.model.stiffness = model;
+      const double mean = h.face_width_m * face.cumulative(face.end_m()) / mesh.base_pitch_m();
+      CHECK(relative_difference(mean_mesh_stiffness_n_per_m(dynamics_case(c), table), mean) <
+            1e-10);
+    }
+  }
+}
+
+TEST_CASE("dynamics: helix angle 0 runs the spur case itself") {
+  SimulationCase c;
+  CHECK(dynamics_case(c).gears == c.gears);
+  CHECK(swept_transverse_pair(c.gears) == c.gears);
+  CHECK(pair_contact_segment(c.gears).start_m == contact_segment(c.gears).start_m);
+  CHECK(pair_contact_segment(c.gears).end_m == contact_segment(c.gears).end_m);
+}
+
+TEST_CASE("dynamics: eps_beta = 1 holds the static deflection T1 / (Rb1 K) exactly") {
+  // eps_beta an integer: each point of the path is covered by the same number
+  // of contact lines, so K is constant (7.4); balanced constant torques then
+  // hold a pair started at its static deflection there, with no ripple.
+  GearPair h = h501_pair();
+  const HelicalGeometry g0 = helical_geometry(h);
+  const auto run = [&](const GearPair& pair) {
+    const FaceStiffness face(pair, StiffnessModel{}, HelicalHertz::projected);
+    const HelicalMesh mesh(pair, face);
+    // The closed form: K = b C(X_EAP) / p_bt, the mean, at every angle.
+    const double k = pair.face_width_m * face.cumulative(face.end_m()) / mesh.base_pitch_m();
+    const double t1 = 200.0;
+    SimulationCase c = helical_run(pair, t1, 200.0, 2.0 * 2.0 * pi_ / (pair.teeth1 * 200.0));
+    c.model.damping_update = DampingUpdate::off;
+    const double rb1 = mesh.base_radius1_m();
+    const double rb2 = rb1 * pair.teeth2 / pair.teeth1;
+    const double deflection = t1 / (rb1 * k);
+    c.initial.theta2_rad = -(c.gears.backlash_m + deflection) / rb2;
+    RunControl control;
+    control.keep_series = true;
+    const SimulationResult r = simulate(c, control);
+    double lo = 1e300;
+    double hi = -1e300;
+    for (const SeriesRow& row : r.series) {
+      lo = std::min(lo, row.delta_m);
+      hi = std::max(hi, row.delta_m);
+    }
+    // No impact beyond the contact the run starts in.
+    CHECK(struck_impacts(r).empty());
+    return std::array<double, 3>{lo / deflection - 1.0, hi / deflection - 1.0, 0.0};
+  };
+  h.face_width_m = g0.transverse_base_pitch_m / std::tan(g0.base_helix_angle_rad);
+  const std::array<double, 3> integer = run(h);
+  CAPTURE(integer[0]);
+  CAPTURE(integer[1]);
+  // Tolerance: K is constant to the table's fit (1e-10); the run holds the
+  // deflection to 1e-11 until a pair leaves as the next passes its kink
+  // (an integer eps_beta makes the two one instant), whose event rounding
+  // leaves an undamped oscillation of 2.5e-8 of it at h = 1e-7 s (2.5e-8 at
+  // 5e-8 s, 4.9e-9 at 2.5e-8 s: no power of h, the events' rounding).
+  CHECK(std::abs(integer[0]) < 5e-8);
+  CHECK(std::abs(integer[1]) < 5e-8);
+  // H501's own face (eps_beta 0.54) ripples: the check above could fail.
+  const std::array<double, 3> ripple = run(h501_pair());
+  CHECK(ripple[1] - ripple[0] > 1e-3);
+}
+
+TEST_CASE("dynamics: the ledger closes, pairs enter without a stored-energy jump, impacts") {
+  // A light load started in the backlash with the pinion gaining on the
+  // wheel: the teeth strike on N1, bounce, and the mesh ripples. Lagrangian
+  // mesh force: a route-B pair enters and leaves with Ke = 0, so the stored
+  // energy never jumps (7.10), unlike a spur pair's.
+  SimulationCase c = helical_run(h501_pair(), 5.0, 200.0, 3.0 * 2.0 * pi_ / (20 * 200.0));
+  c.model.mesh_force = MeshForce::lagrangian;
+  const GearPair t = transverse_pair(c.gears);
+  c.initial.w1_rad_per_s = 200.0 * (1.0 + 1e-2);
+  c.initial.w2_rad_per_s = 200.0 * c.gears.teeth1 / c.gears.teeth2;
+  const SimulationSummary s = simulate(c).summary;
+  CHECK(s.impacts_n1 >= 1);
+  REQUIRE(s.stored_energy_jumps_j);
+  const double throughput =
+      s.kinetic_energy_initial_j + s.stored_energy_initial_j + std::fabs(s.torque_work_j);
+  MESSAGE("helical: residual " << s.ledger_residual_max_j << " J of " << throughput << " J, jumps "
+                               << *s.stored_energy_jumps_j << " J, impacts " << s.impacts_n1
+                               << " + " << s.impacts_n2);
+  CHECK(*s.stored_energy_jumps_j < 1e-12 * throughput);
+  // As for spur (test_dynamics): RK4 at h w ~ 0.01 closes to ~1e-8 of the throughput.
+  CHECK(s.ledger_residual_max_j < 1e-7 * throughput);
+  CHECK(s.damping_loss_j > 0.0);
+  static_cast<void>(t);
+  // The adaptive integrator takes its first step from the pair table.
+  SimulationCase adaptive = c;
+  adaptive.integrator.kind = IntegratorKind::adaptive;
+  const SimulationSummary a = simulate(adaptive).summary;
+  CHECK(a.impacts_n1 >= 1);
+  CHECK(a.ledger_residual_max_j < 1e-6 * throughput);
+}
+
+TEST_CASE("dynamics: what a helical run refuses, naming the key") {
+  SimulationCase c = helical_run(h501_pair(), 50.0, 100.0, 1e-3);
+  SimulationCase friction = c;
+  friction.model.friction_coefficient = 0.04;
+  check_refused([&] { check_run(friction); }, "model.friction_coefficient", "helical");
+  SimulationCase planar = c;
+  planar.bearings.kind = BearingKind::elastic;
+  planar.bearings.gear1.stiffness_x_n_per_m = 1e9;
+  planar.bearings.gear2.stiffness_x_n_per_m = 1e9;
+  check_refused([&] { check_run(planar); }, "gears.helix_angle", "planar");
+  SimulationCase wide = c;
+  wide.gears.face_width_m = 0.2;  // eps_beta about 4.7
+  check_refused([&] { check_run(wide); }, "gears.face_width", "eps_gamma");
+  // A table for another pair (the spur one of the same fields) is refused.
+  check_refused([&] { check_run(c, std::make_shared<const StiffnessTable>(c.gears)); }, "table",
+                "another gear pair");
+}
+
+TEST_CASE("modes: a helical pair's torsional mode at its mean route-B stiffness") {
+  // By hand: discs of the transverse reference radius r = z m_n / (2 cos beta)
+  // and width b, J = rho pi r^4 b / 2, Rb = r cos(alpha_t), m_e = 1 / (Rb1^2
+  // / J1 + Rb2^2 / J2); the mean stiffness b C(X_EAP) / p_bt of route B.
+  SimulationCase c;
+  c.gears = h501_pair();
+  const GearPair& h = c.gears;
+  const FaceStiffness face(h, StiffnessModel{}, HelicalHertz::projected);
+  const HelicalMesh mesh(h, face);
+  const double k = h.face_width_m * face.cumulative(face.end_m()) / mesh.base_pitch_m();
+  const double cos_beta = std::cos(h.helix_angle_rad);
+  const double alpha_t = std::atan(std::tan(h.pressure_angle_rad) / cos_beta);
+  double inverse_mass = 0.0;
+  for (const int z : {h.teeth1, h.teeth2}) {
+    const double r = z * h.module_m / (2.0 * cos_beta);
+    const double j = h.density_kg_m3 * pi_ * std::pow(r, 4) * h.face_width_m / 2.0;
+    const double rb = r * std::cos(alpha_t);
+    inverse_mass += rb * rb / j;
+  }
+  const Modes modes = natural_modes(c);
+  double highest = 0.0;
+  for (const NaturalMode& m : modes.modes) {
+    if (!m.rigid) highest = std::max(highest, m.angular_frequency);
+  }
+  // Tolerance: the mean's quadrature (1e-12) and the eigen solver's rounding.
+  CHECK(relative_difference(highest, std::sqrt(k * inverse_mass)) < 1e-9);
+}
+
+TEST_CASE("the run pool runs a helical case as simulate does, to the bit") {
+  SimulationCase c = helical_run(h501_pair(), 50.0, 100.0, 0.5e-3);
+  const SimulationSummary direct = simulate(c).summary;
+  RunPool pool(1);
+  const SimulationSummary pooled = pool.submit(c, false).get().summary;
+  CHECK(pooled.steps == direct.steps);
+  CHECK(pooled.damping_loss_j == direct.damping_loss_j);
+  CHECK(pooled.final_w1_rad_per_s == direct.final_w1_rad_per_s);
+  CHECK(pooled.max_penetration_m == direct.max_penetration_m);
 }

@@ -65,7 +65,7 @@ std::shared_ptr<const StiffnessTable> RunPool::table_for(const SimulationCase& c
   }
   // Built outside the lock (it takes milliseconds); a race builds it twice
   // and keeps the first, which is the same table.
-  auto table = std::make_shared<const StiffnessTable>(c.gears, c.model.stiffness);
+  auto table = run_table(c);
   const std::lock_guard lock(mutex_);
   return tables_.emplace(key, std::move(table)).first->second;
 }
@@ -109,8 +109,9 @@ std::shared_future<SimulationResult> RunPool::submit(const SimulationCase& c, bo
     // that need the mesh stiffness use the pool's table, without a quadrature
     // of their own.
     // The fields before the table, which a pair outside its ranges cannot build.
-    validate_run_keys(c);
+    validate_absent_run_keys(c);
     validate_fields(c);
+    refuse_helical_run(c);
     run = std::make_shared<const CheckedRun>(check_run(c, table_for(c), control));
   } catch (...) {
     promise->set_exception(std::current_exception());

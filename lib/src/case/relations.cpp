@@ -460,8 +460,13 @@ void validate_run_keys(const SimulationCase& c) {
   // Before anything else: the dynamics take spur meshes only, and a helical
   // pair run as spur would be silently wrong.
   if (c.gears.helix_angle_rad != 0.0) {
-    throw_helical_not_taken(c.gears.helix_angle_rad, "a run (simulate, steady, sweep)");
+    throw_helical_not_taken(c.gears.helix_angle_rad,
+                            "a run other than simulate's torsional model (steady, sweep, trains)");
   }
+  validate_absent_run_keys(c);
+}
+
+void validate_absent_run_keys(const SimulationCase& c) {
   Problems problems;
   for (const std::string& key : c.run_keys_absent) {
     const Field* field = find_field(key);

@@ -80,11 +80,13 @@ double least_pair_gap_m(const ToothGaps& gaps, const MeshLayout& layout, Region 
 
 namespace {
 
-// Int Ke(X) dX of one table over the contact segment. Ke is smooth between
-// the table's breaks (a fault's edges, where it may jump; none for healthy
-// teeth), so the adaptive rule meets 1e-12 relative on each part.
+// Int Ke(X) dX of one table over the segment a pair is in contact over
+// (pair_contact_segment: a helical pair's, widened). Ke is smooth between
+// the table's breaks (a fault's edges, where it may jump; a helical pair's
+// kinks; none for healthy spur teeth), so the adaptive rule meets 1e-12
+// relative on each part.
 double stiffness_integral(const SimulationCase& c, const StiffnessTable& table) {
-  const ContactSegment segment = contact_segment(c.gears);
+  const ContactSegment segment = pair_contact_segment(c.gears);
   QuadratureTolerance tolerance;
   tolerance.relative = 1e-12;
   std::vector<double> ends{segment.start_m};

@@ -41,6 +41,12 @@ MeshLine::MeshLine(const SimulationCase& c, const StiffnessTable& table, double 
   smoothing_speed_ = c.model.friction_smoothing_speed_m_s;
   face_width_ = g.face_width_m;
   kh_ = hertz_stiffness(g);
+  if (g.face_advance_m > 0.0 && c.model.stiffness.helical_hertz == HelicalHertz::projected) {
+    // A helical pair's Hertzian stiffness per unit face width is c_H
+    // cos(beta_b) (docs/helical.md): cos(beta_b) = b / sqrt(b^2 + W^2).
+    kh_ *= g.face_width_m / std::hypot(g.face_width_m, g.face_advance_m);
+  }
+  swept_ = g.face_advance_m > 0.0;
   constant_k_ = c.model.mesh_stiffness == MeshStiffnessMode::constant
                     ? c.model.constant_mesh_stiffness_n_per_m
                     : 0.0;
@@ -244,7 +250,7 @@ void MeshLine::set_parts(const Motion& q, Mode& m) const {
     const StiffnessTable* table = pair_table(m.region, m.k_first + j);
     m.table[j] = table;
     // Parts: a faulted tooth's table, or a healthy table cut into parts (an
-    // internal mesh's ISO zones); a table of one part has only part 0.
+    // internal mesh's ISO zones, a helical pair's kinks); a table of one part has only part 0.
     if (!teeth_ && table_->part_count() <= 1) continue;
     m.part[j] = table != nullptr && table->part_count() > 1
                     ? table->part_of(std::clamp(pair_position(m, q, j), xs_, xe_))
@@ -370,6 +376,19 @@ void MeshLine::add_stored_energy(const Motion& q, const Mode& m, ElasticEnergy& 
                   std::clamp(x, table->part_start_m(m.part[j]), table->part_end_m(m.part[j])),
                   m.part[j])
             : table->compliance(std::clamp(x, xs_, xe_));
+    if (swept_) {
+      // A helical pair: 1/2 Ke delta^2 with Ke as the force reads it, split
+      // by the terms' shares of the compliance (helical_pair_table), whose
+      // sum has a pole where a contact line enters the face.
+      double ke = 0.0;
+      double dke = 0.0;
+      pair_stiffness(*table, m.part[j], x, m.count, ke, dke);
+      const double total = c.total_m_per_n();
+      for (std::size_t i = 0; i < kTermCount; ++i) {
+        u.j[i] += 0.5 * ke * dl * dl * (c.m_per_n[i] / total);
+      }
+      continue;
+    }
     // (30) F = Ke delta with 1/Ke the total compliance of (29).
     const ElasticEnergy pair = pair_energy(c, dl / c.total_m_per_n());
     for (std::size_t i = 0; i < kTermCount; ++i) u.j[i] += pair.j[i];

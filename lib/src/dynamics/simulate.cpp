@@ -17,6 +17,9 @@
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
+#include "gearimpact/geometry/helical.hpp"
+#include "gearimpact/geometry/modifications.hpp"
+#include "gearimpact/stiffness/helical.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "rk4.hpp"
 
@@ -140,7 +143,7 @@ void check_table(const SimulationCase& c, const StiffnessTable& table) {
     }
     return;
   }
-  const ContactSegment segment = contact_segment(c.gears);
+  const ContactSegment segment = pair_contact_segment(c.gears);
   if (table.domain_start_m() > segment.start_m || table.domain_end_m() < segment.end_m) {
     throw InputError("table",
                      "a table over [" + format_number(table.domain_start_m()) + ", " +
@@ -325,8 +328,10 @@ std::optional<double> equivalent_mesh_damping_ratio(const SimulationCase& c,
 
 std::vector<std::string> run_warnings(const SimulationCase& c) {
   std::vector<std::string> warnings;
-  const double rb1 = base_radius(c.gears, Gear::one);
-  const double rb2 = base_radius(c.gears, Gear::two);
+  // A helical pair's base radii are its transverse section's.
+  const GearPair pair = swept_transverse_pair(c.gears);
+  const double rb1 = base_radius(pair, Gear::one);
+  const double rb2 = base_radius(pair, Gear::two);
   if (known_mean(c.torque1) && known_mean(c.torque2)) {
     const double t1 = mean_torque_n_m(c.torque1, "torque1");
     const double t2 = mean_torque_n_m(c.torque2, "torque2");
@@ -367,44 +372,118 @@ std::vector<std::string> run_warnings(const SimulationCase& c) {
 
 namespace {
 
-// check_run's checks; `table` is called once the case and the controls pass.
+// check_run's checks, on the case as given and then on the case the
+// dynamics run (dynamics_case); `table` is called once the case and the
+// controls pass. Returns the case the dynamics run and its table.
 template <typename Table>
-std::shared_ptr<const StiffnessTable> checked_table(const SimulationCase& c,
-                                                    const RunControl& control,
-                                                    const std::function<void()>& fields_checked,
-                                                    Table table) {
-  validate_run_keys(c);
+std::pair<SimulationCase, std::shared_ptr<const StiffnessTable>> checked_table(
+    const SimulationCase& c, const RunControl& control, const std::function<void()>& fields_checked,
+    Table table) {
+  // A helical pair's keys are checked as the user gave them; the run then
+  // takes its transverse section.
+  validate_absent_run_keys(c);
   validate_fields(c);
-  refuse_planar_simulation(c);
-  validate_gaps(c);
+  refuse_helical_run(c);
+  const SimulationCase d = dynamics_case(c);
+  refuse_planar_simulation(d);
+  validate_gaps(d);
   if (fields_checked) fields_checked();
   // The controls before the table, which may take a while to build.
-  validate_control(c, control);
-  if (c.bearings.kind == BearingKind::elastic) validate_planar(c, planar_mounting(c), control);
+  validate_control(d, control);
+  if (d.bearings.kind == BearingKind::elastic) validate_planar(d, planar_mounting(d), control);
   std::shared_ptr<const StiffnessTable> built = table();
-  check_table(c, *built);
+  check_table(d, *built);
   // The planar system's step bound is the tighter one: first, so that a step
   // refused is refused once, with the step that runs.
-  if (c.bearings.kind == BearingKind::elastic) check_planar_step(c, *built, planar_mounting(c));
-  validate_implied(c, *built);
-  return built;
+  if (d.bearings.kind == BearingKind::elastic) check_planar_step(d, *built, planar_mounting(d));
+  validate_implied(d, *built);
+  return {d, std::move(built)};
 }
 
 }  // namespace
 
+SimulationCase dynamics_case(const SimulationCase& c) {
+  if (c.gears.helix_angle_rad == 0.0) return c;
+  SimulationCase d = c;
+  d.gears = swept_transverse_pair(c.gears);
+  return d;
+}
+
+std::shared_ptr<const StiffnessTable> run_table(const SimulationCase& c) {
+  if (c.gears.helix_angle_rad == 0.0) {
+    return std::make_shared<const StiffnessTable>(c.gears, c.model.stiffness);
+  }
+  return std::make_shared<const StiffnessTable>(helical_pair_table(c.gears, c.model.stiffness));
+}
+
+void refuse_helical_run(const SimulationCase& c) {
+  if (c.gears.helix_angle_rad == 0.0) return;
+  const std::string beta = format_number(c.gears.helix_angle_rad * 180.0 / pi) + " deg";
+  if (c.bearings.kind == BearingKind::elastic) {
+    throw InputError(std::vector<Problem>{refused_problem(
+        "gears.helix_angle", beta,
+        "run in the torsional model only (rigid bearings): the planar model does not take a "
+        "helical pair's transverse forces, nor its axial force and tilting moments, yet",
+        "0 with bearings.kind = \"elastic\"",
+        "bearings.kind = \"rigid\" for the torsional model of the helical pair")});
+  }
+  if (!c.faults.empty()) {
+    throw InputError(std::vector<Problem>{refused_problem(
+        "faults[0]", "a fault on a helical pair (gears.helix_angle = " + beta + ")",
+        "not in a helical pair's dynamics yet: a fault covers some slices of the face and not "
+        "others, which the face-integrated pair table cannot describe",
+        "no [[faults]] with gears.helix_angle > 0", "remove the [[faults]] tables")});
+  }
+  if (!is_unmodified(c.modifications)) {
+    throw InputError(std::vector<Problem>{refused_problem(
+        "modifications",
+        "reliefs or tooth errors on a helical pair (gears.helix_angle = " + beta + ")",
+        "not in a helical pair's dynamics yet: a gap that varies along an inclined contact "
+        "line needs the slices as separate contacts (route A of docs/helical.md)",
+        "no relief and no tooth error with gears.helix_angle > 0",
+        "remove the relief and tooth-error keys")});
+  }
+  if (c.model.friction_law != FrictionLaw::constant) {
+    throw InputError(std::vector<Problem>{refused_problem(
+        "model.friction_law",
+        "\"" + std::string(name_of(kFrictionLaws, c.model.friction_law)) + "\"",
+        "not with a helical pair (gears.helix_angle = " + beta +
+            "): its dynamics run without friction (docs/helical.md, Dynamics)",
+        "\"constant\" with model.friction_coefficient = 0", "model.friction_law = \"constant\"")});
+  }
+  if (c.model.friction_coefficient != 0.0) {
+    throw InputError(std::vector<Problem>{refused_problem(
+        "model.friction_coefficient", format_number(c.model.friction_coefficient),
+        "0 with a helical pair (gears.helix_angle = " + beta +
+            "): friction along its inclined contact lines is not in its dynamics yet "
+            "(docs/helical.md, Dynamics)",
+        "0", "model.friction_coefficient = 0")});
+  }
+  const HelicalGeometry g = helical_geometry(c.gears);
+  const double most = static_cast<double>(MeshLayout::capacity - 1);
+  if (!(g.total_contact_ratio < most)) {
+    throw InputError(std::vector<Problem>{refused_problem(
+        "gears.face_width", format_number(c.gears.face_width_m * 1e3) + " mm",
+        "a face whose total contact ratio eps_gamma = eps_alpha + eps_beta = " +
+            format_number(g.transverse_contact_ratio) + " + " + format_number(g.overlap_ratio) +
+            " stays below " + format_number(most) + ": a line of action holds at most " +
+            std::to_string(MeshLayout::capacity) + " tooth pairs",
+        "eps_gamma < " + format_number(most),
+        "a narrower face or a smaller gears.helix_angle (eps_beta = b sin(beta) / (pi m_n))")});
+  }
+}
+
 CheckedRun check_run(const SimulationCase& c, const RunControl& control,
                      const std::function<void()>& fields_checked) {
-  std::shared_ptr<const StiffnessTable> table = checked_table(c, control, fields_checked, [&c] {
-    return std::make_shared<const StiffnessTable>(c.gears, c.model.stiffness);
-  });
-  return CheckedRun(c, std::move(table), control);
+  auto [d, table] = checked_table(c, control, fields_checked, [&c] { return run_table(c); });
+  return CheckedRun(std::move(d), std::move(table), control);
 }
 
 CheckedRun check_run(const SimulationCase& c, std::shared_ptr<const StiffnessTable> table,
                      const RunControl& control) {
   if (!table) throw InputError("table", "none", "a StiffnessTable");
-  checked_table(c, control, {}, [&table] { return table; });
-  return CheckedRun(c, std::move(table), control);
+  auto [d, checked] = checked_table(c, control, {}, [&table] { return table; });
+  return CheckedRun(std::move(d), std::move(checked), control);
 }
 
 SimulationResult simulate(const CheckedRun& run) {

@@ -13,8 +13,10 @@
 #include "gearimpact/constants.hpp"
 #include "gearimpact/contact/contact.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/stiffness/helical.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 
 namespace gearimpact {
@@ -365,11 +367,11 @@ double largest_mesh_step_s(int teeth, double w_rad_per_s) {
   return 2.0 * pi / (kStepsPerMeshPeriod * teeth * std::fabs(w_rad_per_s));
 }
 
-StepBounds step_bounds(const SimulationCase& c) {
+namespace {
+
+// The bounds of a case whose stiffest summed mesh stiffness is `stiffest`.
+StepBounds step_bounds(const SimulationCase& c, double stiffest) {
   StepBounds b;
-  const double stiffest = total_stiffness_extremes(c, [&](double x) {
-                            return mesh_stiffness(c.gears, x, c.model.stiffness).ke;
-                          }).second;
   b.contact_period_s = largest_step(c, stiffest, 1.0);
   b.rk4_step_s = largest_step(c, stiffest, steps_per_contact_period(IntegratorKind::rk4));
   b.dopri5_step_s = largest_step(c, stiffest, steps_per_contact_period(IntegratorKind::dopri5));
@@ -379,14 +381,36 @@ StepBounds step_bounds(const SimulationCase& c) {
   return b;
 }
 
+}  // namespace
+
+StepBounds step_bounds(const SimulationCase& c) {
+  if (c.gears.helix_angle_rad != 0.0) {
+    // A helical pair's bounds are those of the transverse section it runs
+    // as, with the pair table it reads.
+    const SimulationCase d = dynamics_case(c);
+    const StiffnessTable table = helical_pair_table(c.gears, c.model.stiffness);
+    return step_bounds(
+        d, total_stiffness_extremes(d, [&](double x) { return table.stiffness(x); }).second);
+  }
+  return step_bounds(c, total_stiffness_extremes(c, [&](double x) {
+                          return mesh_stiffness(c.gears, x, c.model.stiffness).ke;
+                        }).second);
+}
+
 double largest_resolving_step_s(const SimulationCase& c, const StiffnessTable& table) {
   return largest_step(
       c, total_stiffness_extremes(c, [&](double x) { return table.stiffness(x); }).second);
 }
 
 void validate_implied(const SimulationCase& c) {
-  // A helical run is refused by name before the spur layout below is built.
-  if (c.gears.helix_angle_rad != 0.0) validate_run_keys(c);
+  if (c.gears.helix_angle_rad != 0.0) {
+    // A helical pair: what its run refuses, by name, then what the fields
+    // imply on the transverse section it runs as, with the table it reads.
+    validate_absent_run_keys(c);
+    refuse_helical_run(c);
+    validate_implied(dynamics_case(c), helical_pair_table(c.gears, c.model.stiffness));
+    return;
+  }
   validate_implied(c, total_stiffness_extremes(c, [&](double x) {
                      return mesh_stiffness(c.gears, x, c.model.stiffness).ke;
                    }));

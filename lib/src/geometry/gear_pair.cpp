@@ -38,7 +38,8 @@ bool operator==(const GearPair& a, const GearPair& b) {
          a.rack_tip_radius_coefficient == b.rack_tip_radius_coefficient &&
          a.bore_diameter1_m == b.bore_diameter1_m && a.bore_diameter2_m == b.bore_diameter2_m &&
          a.youngs_modulus2_pa == b.youngs_modulus2_pa && a.poisson_ratio2 == b.poisson_ratio2 &&
-         a.helix_angle_rad == b.helix_angle_rad && a.helix_hand == b.helix_hand;
+         a.helix_angle_rad == b.helix_angle_rad && a.helix_hand == b.helix_hand &&
+         a.face_advance_m == b.face_advance_m;
 }
 
 GearPair paper_gear_pair() {
@@ -159,6 +160,13 @@ ContactSegment contact_segment(const GearPair& pair) {
           std::sqrt(ra1 * ra1 - rb1 * rb1)};
 }
 
+ContactSegment pair_contact_segment(const GearPair& pair) {
+  const ContactSegment segment = contact_segment(pair);
+  if (pair.face_advance_m == 0.0) return segment;
+  const double half = 0.5 * pair.face_advance_m;
+  return {segment.start_m - half, segment.end_m + half};
+}
+
 std::vector<double> contact_positions(const GearPair& pair, int points) {
   if (points < 2) throw InputError("points", std::to_string(points), "an integer >= 2");
   const ContactSegment segment = contact_segment(pair);
@@ -212,16 +220,16 @@ void throw_helical_not_taken(double helix_angle_rad, std::string_view what) {
   throw InputError(
       "gears.helix_angle", format_number(helix_angle_rad * 180.0 / pi) + " deg",
       "0 for " + std::string(what) +
-          ": a helical pair is taken by mesh-stiffness and iso6336 only (its slices are "
-          "not in the dynamics yet); it is never run as a spur pair");
+          ": a helical pair is taken by mesh-stiffness, iso6336 and simulate's torsional "
+          "model only; it is never run as a spur pair");
 }
 
 MeshLayout::MeshLayout(const GearPair& pair, CoastPhase coast_phase)
     : x_pitch_(pitch_point_position(spur_only(pair))),
       rb1_(base_radius(pair, Gear::one)),
       t0_(base_pitch(pair)),
-      start_(contact_segment(pair).start_m),
-      end_(contact_segment(pair).end_m),
+      start_(pair_contact_segment(pair).start_m),
+      end_(pair_contact_segment(pair).end_m),
       coast_offset_(coast_phase == CoastPhase::half_base_pitch ? 0.5 * t0_ : 0.0) {}
 
 MeshLayout::MeshLayout(double pitch_point_m, double base_radius1_m, double base_pitch_m,

@@ -44,6 +44,15 @@ GearPair transverse_pair(const GearPair& pair) {
   return t;
 }
 
+GearPair swept_transverse_pair(const GearPair& pair) {
+  if (pair.helix_angle_rad == 0.0) return pair;
+  GearPair t = transverse_pair(pair);
+  // tan(beta_b) = tan(beta) cos(alpha_t), alpha_t the section's pressure angle.
+  t.face_advance_m =
+      pair.face_width_m * std::tan(pair.helix_angle_rad) * std::cos(t.pressure_angle_rad);
+  return t;
+}
+
 HelicalGeometry helical_geometry(const HelicalInputs& in) {
   check_helix_angle(in.helix_angle_rad);
   HelicalGeometry g{};

@@ -84,6 +84,18 @@ double FaceStiffness::kappa(double x_m) const {
   return 1.0 / (face_width_ * (beam + hertz / cos_base_helix_));
 }
 
+Compliances FaceStiffness::compliance_per_width(double x_m) const {
+  Compliances c;
+  if (!table_) {
+    c.of(Term::hertz) = 1.0 / kappa(x_m);
+    return c;
+  }
+  c = table_->compliance(x_m);
+  for (double& term : c.m_per_n) term *= face_width_;
+  if (hertz_ == HelicalHertz::projected) c.of(Term::hertz) /= cos_base_helix_;
+  return c;
+}
+
 double FaceStiffness::cumulative(double x_m) const {
   const double x = std::clamp(x_m, start_, end_);
   if (!table_) return uniform_kappa_ * (x - start_);
@@ -211,6 +223,60 @@ double HelicalMesh::contact_line_length_slices(Region line, double theta1_rad, i
     }
   }
   return count * (b_ / slices) / std::cos(beta_b_);
+}
+
+StiffnessTable helical_pair_table(const GearPair& pair, const StiffnessModel& model,
+                                  StiffnessTableOptions options) {
+  if (pair.helix_angle_rad == 0.0) {
+    throw InputError("gears.helix_angle", "0 deg",
+                     "(0, 45] deg for a helical pair's table: a spur pair's is "
+                     "StiffnessTable(pair, model)");
+  }
+  const FaceStiffness face(pair, model, model.helical_hertz, options);
+  const HelicalMesh mesh(pair, face);
+  const GearPair swept = swept_transverse_pair(pair);
+  const ContactSegment domain = pair_contact_segment(swept);
+  const double half_w = 0.5 * swept.face_advance_m;
+  const double path = face.end_m() - face.start_m();
+  const ComplianceFunction compliance = [&](double x) {
+    const double low = std::max(x - half_w, face.start_m());
+    const double high = std::min(x + half_w, face.end_m());
+    Compliances c;
+    const double ke = mesh.pair_stiffness_face(x);
+    if (!(high > low) || !(ke > 0.0)) return c;
+    // Each term's energy share across the line, the integral of
+    // kappa_t^2 c_i: 8-point Gauss-Legendre on pieces of at most a sixteenth
+    // of the path (kappa_t is smooth; the shares split the energy by term
+    // and do not enter Ke).
+    const int pieces = std::max(1, static_cast<int>(std::ceil(16.0 * (high - low) / path)));
+    const double step = (high - low) / pieces;
+    Compliances share;
+    const auto& abscissa = Rule::abscissa();
+    const auto& weights = Rule::weights();
+    const auto add = [&](double s, double weight) {
+      const Compliances per_width = face.compliance_per_width(s);
+      const double kappa = 1.0 / per_width.total_m_per_n();
+      for (std::size_t t = 0; t < kTermCount; ++t) {
+        share.m_per_n[t] += weight * kappa * kappa * per_width.m_per_n[t];
+      }
+    };
+    for (int i = 0; i < pieces; ++i) {
+      const double a = low + i * step;
+      const double b = i + 1 == pieces ? high : low + (i + 1) * step;
+      const double mid = 0.5 * (a + b);
+      const double half = 0.5 * (b - a);
+      // The 8-point rule's nodes come in pairs +-abscissa about the middle.
+      for (std::size_t n = 0; n < abscissa.size(); ++n) {
+        add(mid - half * abscissa[n], half * weights[n]);
+        add(mid + half * abscissa[n], half * weights[n]);
+      }
+    }
+    const double total = share.total_m_per_n();
+    for (std::size_t t = 0; t < kTermCount; ++t) c.m_per_n[t] = share.m_per_n[t] / (total * ke);
+    return c;
+  };
+  return StiffnessTable(domain.start_m, domain.end_m, compliance,
+                        {face.start_m() + half_w, face.end_m() - half_w}, options);
 }
 
 HelicalMeshStiffnessCurve helical_mesh_stiffness(const GearPair& pair, const StiffnessModel& model,

@@ -243,8 +243,13 @@ void validate_relations(const SimulationCase& c);
 
 // Throws one InputError naming every key of c.run_keys_absent (a gear pair
 // alone, without the torques or the end time a run needs), each with what it
-// takes; nothing for a case a run can use. Every run checks it first.
+// takes; nothing for a case a run can use. Every run checks it first. A
+// helical pair is refused naming gears.helix_angle before that, for the runs
+// that take spur pairs only; simulate() (check_run) takes it
+// (validate_absent_run_keys, then refuse_helical_run of dynamics/simulate.hpp).
 void validate_run_keys(const SimulationCase& c);
+// validate_run_keys without the helical refusal.
+void validate_absent_run_keys(const SimulationCase& c);
 
 // Throws one InputError naming (as section.key) every field outside its
 // range, with the relations among the fields that passed (relation_problems):

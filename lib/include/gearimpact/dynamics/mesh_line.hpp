@@ -407,6 +407,9 @@ class MeshLine {
   double mesh_damping_ = 0.0;  // c of the viscous mesh damper, N s/m
   bool damping_on_current_pair_ = true;
   bool lagrangian_ = false;
+  // A helical pair's transverse section (GearPair::face_advance_m > 0): its
+  // table is cut at its kinks, and its energy split by the terms' shares.
+  bool swept_ = false;
   DampingUpdate damping_update_ = DampingUpdate::each_impact;  // resolved
 };
 

@@ -412,15 +412,33 @@ std::vector<std::string> result_warnings(const SimulationCase& c, const Simulati
 
 class CheckedRun;
 
+// The case as the dynamics run it: a helical pair (gears.helix_angle > 0)
+// replaced by its transverse section with its contact lines' sweep
+// (swept_transverse_pair: lengths, radii, masses and the backlash B along the
+// transverse line of action), each tooth pair reading the face-integrated
+// table of run_table; a spur case unchanged.
+SimulationCase dynamics_case(const SimulationCase& c);
+// The table each tooth pair of a run of c reads: StiffnessTable(c.gears,
+// c.model.stiffness), or for a helical pair helical_pair_table (stiffness/helical.hpp).
+std::shared_ptr<const StiffnessTable> run_table(const SimulationCase& c);
+// What a run refuses of a helical pair (none for a spur one), naming the key:
+// gears.helix_angle with elastic bearings (the planar model), faults[0],
+// modifications, model.friction_law other than "constant",
+// model.friction_coefficient other than 0 (docs/helical.md, Dynamics), and
+// gears.face_width where eps_gamma reaches MeshLayout::capacity - 1.
+void refuse_helical_run(const SimulationCase& c);
+
 // Checks a run once (what simulate() checks, in its order): the case's keys and fields
-// (validate_run_keys, validate_fields), the planar keys (refuse_planar_simulation), the gaps of
-// its modifications (validate_gaps); then the run's controls (the series and sample bounds, a
-// resumed state) and the planar mounting (validate_planar); then its stiffness table (built
-// here, or the one given, which check_table checks against the case), the planar step bound
-// (check_planar_step) and what the fields imply with that table (validate_implied). Throws
-// InputError naming the key, before any run. `fields_checked`, when given, is called once the
-// case's keys, fields and gaps pass, before the controls and the table (which may take a
-// while): the program says its warnings there (run_warnings).
+// (validate_absent_run_keys, validate_fields), a helical pair's refusals (refuse_helical_run),
+// then on the case the dynamics run (dynamics_case, which the CheckedRun holds) the planar keys
+// (refuse_planar_simulation), the gaps of its modifications (validate_gaps); then the run's
+// controls (the series and sample bounds, a resumed state) and the planar mounting
+// (validate_planar); then its stiffness table (built here, or the one given, which check_table
+// checks against the case), the planar step bound (check_planar_step) and what the fields imply
+// with that table (validate_implied). Throws InputError naming the key, before any run.
+// `fields_checked`, when given, is called once the case's keys, fields and gaps pass, before the
+// controls and the table (which may take a while): the program says its warnings there
+// (run_warnings).
 CheckedRun check_run(const SimulationCase& c, const RunControl& control = {},
                      const std::function<void()>& fields_checked = {});
 CheckedRun check_run(const SimulationCase& c, std::shared_ptr<const StiffnessTable> table,

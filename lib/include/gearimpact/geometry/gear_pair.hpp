@@ -60,6 +60,14 @@ struct GearPair {
   // refuse it.
   double helix_angle_rad = 0.0;
   HelixHand helix_hand = HelixHand::right;
+  // W = b tan(beta_b), how far a helical tooth pair's contact line reaches
+  // along the transverse path from one face end to the other; 0 for a spur
+  // pair and for every pair a case describes. Set only on the transverse
+  // section the dynamics run a helical pair as (swept_transverse_pair of
+  // geometry/helical.hpp): MeshLayout then places each tooth pair by its
+  // mid-face contact and keeps it loaded while that lies within W/2 of the
+  // path of contact (docs/helical.md, Dynamics).
+  double face_advance_m = 0.0;
 };
 
 bool operator==(const GearPair& a, const GearPair& b);
@@ -122,6 +130,10 @@ struct ContactSegment {
   double end_m;
 };
 ContactSegment contact_segment(const GearPair& pair);
+// The segment over which one tooth pair is in contact: contact_segment, and
+// for a swept transverse section (face_advance_m = W) that widened by W/2 at
+// both ends, where its contact line still crosses part of the face.
+ContactSegment pair_contact_segment(const GearPair& pair);
 
 // `points` (>= 2) evenly spaced positions X1 from X_start to X_end inclusive,
 // the last set exactly so that X_end is not lost to rounding: the positions of
@@ -164,7 +176,9 @@ struct LoadedRange {
 
 // (42): the pairs on a line sit at X = reference + k t0 (k integer), the
 // reference moving with the rotation theta1; a pair is loaded while its X lies
-// in [X_start, X_end] (an end point counts as loaded). On N1 X is measured from
+// in [X_start, X_end] (an end point counts as loaded). For a swept transverse
+// section (GearPair::face_advance_m = W > 0) X is the pair's mid-face contact
+// and the segment [X_start - W/2, X_end + W/2] (pair_contact_segment). On N1 X is measured from
 // C1, on N2 X' from C1' (docs/model.md, Geometry). The one place that places and
 // counts the pairs: the simulation, the energy split of Fig. 8 and the step
 // bound all ask here.

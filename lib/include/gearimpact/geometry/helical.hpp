@@ -15,6 +15,11 @@ namespace gearimpact {
 // or the largest that fits its tip land). helix_angle 0 on the result; a spur
 // pair (beta = 0) comes back unchanged, to the bit.
 GearPair transverse_pair(const GearPair& pair);
+// The transverse section as the dynamics run a helical pair: transverse_pair
+// with face_advance_m = W = b tan(beta_b), so that MeshLayout places each
+// tooth pair by its mid-face contact over the widened segment. A spur pair
+// comes back unchanged, to the bit.
+GearPair swept_transverse_pair(const GearPair& pair);
 
 // What fixes a helical pair's geometry, normal-section values; the tips and
 // the centre distance as given (a published pair prints them rounded).

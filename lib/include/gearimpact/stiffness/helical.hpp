@@ -39,6 +39,11 @@ class FaceStiffness {
   // C(X) = integral of kappa_t from X_SAP to X, clamped to the path, N/m.
   double cumulative(double x_m) const;
   bool is_uniform() const { return !table_.has_value(); }
+  // The terms of 1/kappa_t at X in [X_SAP, X_EAP], each per unit face width
+  // (m^2/N), summing to 1/kappa_t: b times the width-b table's compliances,
+  // the Hertzian one over cos(beta_b) when projected; `uniform` has the
+  // Hertzian term alone.
+  Compliances compliance_per_width(double x_m) const;
 
  private:
   FaceStiffness(double start_m, double end_m) : start_(start_m), end_(end_m) {}
@@ -132,6 +137,21 @@ struct HelicalMeshStiffnessCurve {
 // `samples` in [2, 100000] per mesh period; the model's face_slices and helical_hertz.
 HelicalMeshStiffnessCurve helical_mesh_stiffness(const GearPair& pair, const StiffnessModel& model,
                                                  int samples);
+
+// The table a run reads for each tooth pair of a helical pair (route B, the
+// extended pair table of docs/helical.md, Dynamics): over the widened segment
+// pair_contact_segment(swept_transverse_pair(pair)), X the pair's mid-face
+// contact, Ke(X) = HelicalMesh::pair_stiffness_face(X) by model's
+// helical_hertz, cut at the kinks X_SAP + W/2 and X_EAP - W/2 (where a
+// contact line's end reaches a path end) so that no piece straddles one. A
+// face-wide line of stiffness kappa_t per unit width deflected by delta
+// stores 1/2 delta^2 times the integral of kappa_t^2 c_i over the line in
+// each term i (c_i per unit width, compliance_per_width): each term's
+// compliance is 1/Ke times that term's share, so that the terms sum to 1/Ke
+// and split a pair's energy as the face does. Throws InputError naming
+// gears.helix_angle for a spur pair (its table is StiffnessTable(pair, model)).
+StiffnessTable helical_pair_table(const GearPair& pair, const StiffnessModel& model,
+                                  StiffnessTableOptions options = {});
 
 // The face-load factor of ISO 6336-1 from a slice solution: uniform stiffness
 // c per unit face width, a gap linear across the face e(y) = F_betay (y/b - 1/2),
