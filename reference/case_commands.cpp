@@ -10,6 +10,7 @@
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/helical.hpp"
 #include "gearimpact/geometry/iso1328.hpp"
 #include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/io/case_file.hpp"
@@ -77,8 +78,12 @@ void print_bounds(const SimulationCase& c, bool run) {
         "#   elastic bearings: the planar model's own springs bound the step further (checked "
         "when the run starts)\n");
   }
+  // A helical pair's profile modifications are measured in its transverse
+  // section (docs/helical.md), and its teeth take no fault: no crack reach.
+  const bool helical = c.gears.helix_angle_rad != 0.0;
+  const GearPair transverse = transverse_pair(c.gears);
   for (const Gear gear : {Gear::one, Gear::two}) {
-    const ActiveProfile p = active_profile(c.gears, gear);
+    const ActiveProfile p = active_profile(transverse, gear);
     const char* n = gear == Gear::one ? "1" : "2";
     std::printf(
         "#   gear %s: tip_relief_start%s in [d_SAP, d_a) = [%s, %s) m, root_relief_end%s in "
@@ -88,6 +93,7 @@ void print_bounds(const SimulationCase& c, bool run) {
         shortest_decimal(p.tip_diameter_m).c_str(), n,
         shortest_decimal(p.lowest_single_contact_diameter_m).c_str(),
         shortest_decimal(p.highest_single_contact_diameter_m).c_str());
+    if (helical) continue;
     RootCrack at_default;
     at_default.angle_rad = pi / 4.0;
     CrackReach reach;
@@ -124,7 +130,9 @@ void print_bounds(const SimulationCase& c, bool run) {
 void check_case(const std::string& file) {
   const PairOrRunCase read = read_pair_or_run_file(file);
   const SimulationCase& c = read.simulation_case;
-  const GearPair& g = c.gears;
+  // A helical pair's derived lengths are those of its transverse section; a
+  // spur pair comes back unchanged.
+  const GearPair g = transverse_pair(c.gears);
   if (read.kind == CaseFileKind::pair) {
     std::printf(
         "# %s: a valid pair file ([gears] and [model]: the stiffness commands, report, ste and "
@@ -139,6 +147,21 @@ void check_case(const std::string& file) {
   }
   const ContactSegment segment = contact_segment(g);
   std::printf("\n# Derived (SI):\n");
+  if (c.gears.helix_angle_rad != 0.0) {
+    const HelicalGeometry h = helical_geometry(c.gears);
+    std::printf(
+        "#   helical pair: helix angle beta = %s rad, base helix angle beta_b = %s rad, m_t = %s "
+        "m, alpha_t = %s rad, contact ratios eps_alpha = %s, eps_beta = %s, eps_gamma = %s; the "
+        "lines below are its transverse section's, whose pairs the dynamics load over the contact "
+        "segment widened by W / 2 at each end, W = b tan(beta_b) = %s m\n",
+        shortest_decimal(h.helix_angle_rad).c_str(),
+        shortest_decimal(h.base_helix_angle_rad).c_str(),
+        shortest_decimal(h.transverse_module_m).c_str(),
+        shortest_decimal(h.transverse_pressure_angle_rad).c_str(),
+        shortest_decimal(h.transverse_contact_ratio).c_str(),
+        shortest_decimal(h.overlap_ratio).c_str(), shortest_decimal(h.total_contact_ratio).c_str(),
+        shortest_decimal(swept_transverse_pair(c.gears).face_advance_m).c_str());
+  }
   std::printf("#   pitch radii r1, r2 = %s m, %s m\n",
               shortest_decimal(pitch_radius(g, Gear::one)).c_str(),
               shortest_decimal(pitch_radius(g, Gear::two)).c_str());

@@ -157,6 +157,23 @@ TEST_CASE("mesh-stiffness on a helical pair: both routes over a mesh period; sim
           " --set 'integrator.end_time=1 ms'"));
   CHECK(runs.exit_code == 0);
   CHECK(runs.out.find("\"ledger_residual_max_J\"") != std::string::npos);
+  // check-case derives the transverse section the run uses: r1 = z1 m_n / (2 cos beta), and
+  // the overlap ratio b sin(beta) / (pi m_n) (equal to b tan(beta_b) / p_bt); both printed
+  // with 17 digits, so 1e-14 is the rounding of the two routes.
+  const CommandResult checked =
+      run_command(cli("check-case " + (file.parent_path() / "helical_h501_run.toml").string()));
+  REQUIRE(checked.exit_code == 0);
+  const auto printed = [&](const std::string& label) {
+    const std::size_t at = checked.out.find(label);
+    REQUIRE(at != std::string::npos);
+    return std::stod(checked.out.substr(at + label.size()));
+  };
+  const double beta = pair.helix_angle_rad;
+  const double r1 = 20 * 3.5e-3 / (2.0 * std::cos(beta));
+  CHECK(std::abs(printed("pitch radii r1, r2 = ") - r1) <= 1e-14 * r1);
+  const double eps_beta = 23e-3 * std::sin(beta) / (std::numbers::pi * 3.5e-3);
+  CHECK(std::abs(printed("eps_beta = ") - eps_beta) <= 1e-14 * eps_beta);
+  CHECK(checked.out.find("root crack") == std::string::npos);
   const CommandResult run = run_command(cli("simulate --case 1 --set 'gears.helix_angle=15 deg'"));
   CHECK(run.exit_code != 0);
   CHECK(run.err.find("model.friction_coefficient") != std::string::npos);
