@@ -123,4 +123,32 @@ GearTrain planetary_train(const PlanetaryStage& stage) {
   return train;
 }
 
+std::vector<double> planetary_ring_sensor(const PlanetaryStage& stage, const TrainResult& run,
+                                          const signals::RingSensor& sensor) {
+  const std::vector<double> psi = planet_angles(stage);
+  const std::size_t n = psi.size();
+  std::vector<std::vector<double>> forces(n);
+  std::vector<double> carrier;
+  carrier.reserve(run.series.size());
+  for (std::vector<double>& f : forces) f.reserve(run.series.size());
+  for (const TrainRow& row : run.series) {
+    if (row.meshes.size() != 2 * n || row.theta_rad.size() != kFirstPlanetBody + n) {
+      throw InputError("run",
+                       std::to_string(row.theta_rad.size()) + " bodies and " +
+                           std::to_string(row.meshes.size()) + " meshes",
+                       "the stage's run: " + std::to_string(kFirstPlanetBody + n) + " bodies and " +
+                           std::to_string(2 * n) + " meshes");
+    }
+    carrier.push_back(row.theta_rad[kCarrierBody]);
+    for (std::size_t i = 0; i < n; ++i) {
+      const TrainMeshRow& m = row.meshes[n + i];
+      const double side = m.region == static_cast<int>(Region::n1)   ? 1.0
+                          : m.region == static_cast<int>(Region::n2) ? -1.0
+                                                                     : 0.0;
+      forces[i].push_back(side * m.normal_force_n);
+    }
+  }
+  return signals::ring_sensor_signal(forces, carrier, psi, sensor);
+}
+
 }  // namespace gearimpact

@@ -15,6 +15,7 @@
 #include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/dynamics/train.hpp"
 #include "gearimpact/geometry/planetary.hpp"
+#include "gearimpact/signals/planet_pass.hpp"
 
 namespace gearimpact {
 
@@ -65,5 +66,18 @@ GearTrain planetary_train(const PlanetaryStage& stage);
 
 // The rigid speeds (Willis) of the stage's members at its input speed.
 StageSpeeds planetary_rigid_speeds(const PlanetaryStage& stage);
+
+// The ring-housing sensor's y(t) (signals/planet_pass.hpp, ring_sensor_signal)
+// at each row of `run`, the series of simulate_train(planetary_train(stage)):
+// phi_n = theta_c + psi_n with theta_c the carrier's angle in the row and
+// psi_n the stage's planet positions; planet n's F_d,rn - F_c,rn is its ring
+// mesh's contact force (TrainMeshRow::normal_force_n, summed over the loaded
+// pairs, never negative) signed by the line in contact: + on the drive line
+// (region n1), - on the coast line (n2), 0 in the backlash. The viscous mesh
+// damper's force (c s', acting in the backlash too) is not a tooth contact
+// force and is not in the row, so it is left out. Throws InputError naming
+// `run` when its rows do not hold the stage's bodies and 2 N meshes.
+std::vector<double> planetary_ring_sensor(const PlanetaryStage& stage, const TrainResult& run,
+                                          const signals::RingSensor& sensor = {});
 
 }  // namespace gearimpact
