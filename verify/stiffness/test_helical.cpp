@@ -24,6 +24,7 @@
 #include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/modes/modes.hpp"
 #include "gearimpact/steady/period_map.hpp"
+#include "gearimpact/steady/shooting.hpp"
 #include "gearimpact/steady/steady_state.hpp"
 #include "gearimpact/stiffness/helical.hpp"
 #include "gearimpact/stiffness/helical_ste.hpp"
@@ -1047,4 +1048,41 @@ TEST_CASE("steady state: a helical pair's refusals name the key, as simulate's")
   spec.points = 2;
   spec.threads = 1;
   check_refused([&] { run_steady_sweep(spec); }, "model.friction_coefficient", "helical");
+}
+
+TEST_CASE("period map of H501: Newton's fixed point is the steady state's sample") {
+  // H501 (eps_beta 0.54: a rippling stiffness) loaded by balanced constant torques, zeta =
+  // 0.05, no Hertzian damping: the teeth stay in contact, the steady state is a period-1 orbit
+  // of the mesh period, found by running (find_steady_state) and independently by Newton on
+  // the period map from the mean stiffness's static deflection. They agree to the periodicity
+  // tolerance (1e-6 of B and B w_n) times the contraction factor of periodicity.hpp (below 10
+  // at zeta = 0.05), as for the spur pair (test_steady_state).
+  const GearPair h = h501_pair();
+  SimulationCase c = helical_run(h, 200.0, 150.0, 1e-3);
+  c.model.mesh_damping_ratio = 0.05;
+  c.model.damping_update = DampingUpdate::off;
+  const FaceStiffness face(h, StiffnessModel{}, HelicalHertz::projected);
+  const HelicalMesh mesh(h, face);
+  const double k = h.face_width_m * face.cumulative(face.end_m()) / mesh.base_pitch_m();
+  const double rb1 = helical_geometry(h).base_radius1_m;
+  const double deflection = h.backlash_m + 200.0 / (rb1 * k);
+  c.initial.theta1_rad = deflection / rb1;
+  const std::shared_ptr<const StiffnessTable> table = run_table(c);
+  const SteadyPoint point = find_steady_state(c, *table, SteadySettings{});
+  REQUIRE(point.verdict == PeriodicityVerdict::periodic);
+  CHECK(point.period == 1);
+  CHECK(point.regime == Regime::no_impact);
+  const GearPeriodMap map(c, *table, SteadySettings{});
+  ShootingSettings shooting;
+  shooting.scale = map.scale();
+  const PeriodicOrbit orbit = find_periodic_orbit(map, Eigen::Vector2d(deflection, 0.0), shooting);
+  REQUIRE(point.poincare.size() == 1);
+  const double ds = std::abs(point.poincare[0].s_m - orbit.fixed_point[0]) / map.scale()[0];
+  const double dv = std::abs(point.poincare[0].s_rate_m_s - orbit.fixed_point[1]) / map.scale()[1];
+  MESSAGE("helical steady sample against the shot fixed point: "
+          << ds << " B, " << dv << " B w_n; amplitude " << *point.dte_amplitude_m);
+  CHECK(ds <= 1e-5);
+  CHECK(dv <= 1e-5);
+  // The orbit ripples (the check above compares a moving orbit, not a rest point).
+  CHECK(*point.dte_amplitude_m > 1e-3 * (deflection - h.backlash_m));
 }
