@@ -10,8 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "gearimpact/batch/steady_sweep.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/helical.hpp"
+#include "gearimpact/io/case_file.hpp"
 #include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/stiffness/helical.hpp"
 #include "gearimpact/stiffness/helical_ste.hpp"
@@ -266,4 +268,62 @@ TEST_CASE(
   CHECK(refused.exit_code != 0);
   CHECK(refused.err.find("modifications.crowning1") != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(scratch.dir / "refused"));
+}
+
+TEST_CASE("sweep of the helical example: the program's steady summary is the library's") {
+  // `gearimpact sweep` on examples/helical_h501_run.toml, three speeds up, against
+  // run_steady_sweep on the same file read by the library: the program is glue, so every
+  // figure of sweep.csv (printed to round-trip) is the library's to the bit.
+  const Scratch scratch("helical-sweep");
+  const std::filesystem::path example = std::filesystem::path(GEARIMPACT_PAPER_DATA_DIR) / ".." /
+                                        "examples" / "helical_h501_run.toml";
+  const std::filesystem::path out = scratch.dir / "sweep";
+  const CommandResult r =
+      run_command(cli("sweep " + example.string() +
+                      " --vary initial.w1 --from '100 rad/s' --to '300 rad/s' "
+                      "--points 3 --direction up --threads 1 --no-plots --out " +
+                      out.string()));
+  REQUIRE(r.exit_code == 0);
+  std::ifstream csv_file(out / "sweep.csv");
+  std::stringstream csv;
+  csv << csv_file.rdbuf();
+  const auto rows = csv_rows(csv.str());
+  REQUIRE(rows.size() == 4);
+  const auto column = [&](const std::string& name) {
+    for (std::size_t j = 0; j < rows[0].size(); ++j) {
+      if (rows[0][j] == name) return j;
+    }
+    FAIL("no column " << name);
+    return std::size_t{0};
+  };
+  SteadySweepSpec spec;
+  spec.base = read_case_file(example);
+  spec.vary = "initial.w1";
+  spec.from_si = 100.0;
+  spec.to_si = 300.0;
+  spec.points = 3;
+  spec.directions = {SweepDirection::up};
+  spec.threads = 1;
+  const SteadySweep sweep = run_steady_sweep(spec);
+  REQUIRE(sweep.rows.size() == 3);
+  for (std::size_t i = 0; i < 3; ++i) {
+    CAPTURE(i);
+    const std::vector<std::string>& row = rows[i + 1];
+    const SteadyPoint& p = sweep.rows[i].point;
+    REQUIRE(p.converged);
+    CHECK(row[column("converged")] == "true");
+    CHECK(std::stod(row[column("value_si")]) == sweep.rows[i].value_si);
+    CHECK(std::stoi(row[column("period")]) == p.period);
+    CHECK(std::stod(row[column("dte_mean_m")]) == *p.dte_mean_m);
+    CHECK(std::stod(row[column("dte_amplitude_m")]) == *p.dte_amplitude_m);
+    CHECK(std::stod(row[column("s_min_m")]) == *p.s_min_m);
+    CHECK(std::stod(row[column("s_max_m")]) == *p.s_max_m);
+    CHECK(std::stod(row[column("dynamic_factor")]) == *p.dynamic_factor);
+    CHECK(std::stod(row[column("w1_mean_rad_s")]) == *p.w1_mean_rad_s);
+    CHECK(std::stod(row[column("impacts_drive_per_period")]) == *p.impacts_drive_per_period);
+    // The mesh frequency is the transverse pair's z1 w1 / (2 pi), z1 = 20.
+    CHECK(std::abs(std::stod(row[column("mesh_frequency_hz")]) -
+                   20.0 * *p.w1_mean_rad_s / (2.0 * std::numbers::pi)) <=
+          1e-12 * 20.0 * *p.w1_mean_rad_s);
+  }
 }

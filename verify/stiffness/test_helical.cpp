@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "gearimpact/batch/pool.hpp"
+#include "gearimpact/batch/steady_sweep.hpp"
 #include "gearimpact/case/schema.hpp"
 #include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
@@ -22,6 +23,9 @@
 #include "gearimpact/geometry/helical.hpp"
 #include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/modes/modes.hpp"
+#include "gearimpact/steady/period_map.hpp"
+#include "gearimpact/steady/shooting.hpp"
+#include "gearimpact/steady/steady_state.hpp"
 #include "gearimpact/stiffness/helical.hpp"
 #include "gearimpact/stiffness/helical_ste.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
@@ -947,4 +951,138 @@ TEST_CASE("the run pool runs a helical case as simulate does, to the bit") {
   CHECK(pooled.damping_loss_j == direct.damping_loss_j);
   CHECK(pooled.final_w1_rad_per_s == direct.final_w1_rad_per_s);
   CHECK(pooled.max_penetration_m == direct.max_penetration_m);
+}
+
+TEST_CASE("steady sweep: eps_beta = 1 is the transverse pair at constant K, point by point") {
+  // eps_beta an integer: the helical mesh stiffness is the constant K = b C(X_EAP) / p_bt at
+  // every angle (checked above), so the helical pair's steady states must be those of its
+  // transverse section run with model.mesh_stiffness = "constant" at that K. A sinusoidal
+  // pinion torque at the mesh frequency, swept in amplitude from a linear response to one
+  // that leaves the drive flank and strikes it, the damper zeta = 0.05 and D off in both.
+  GearPair h = h501_pair();
+  const HelicalGeometry g0 = helical_geometry(h);
+  h.face_width_m = g0.transverse_base_pitch_m / std::tan(g0.base_helix_angle_rad);
+  const FaceStiffness face(h, StiffnessModel{}, HelicalHertz::projected);
+  const HelicalMesh mesh(h, face);
+  const double k = h.face_width_m * face.cumulative(face.end_m()) / mesh.base_pitch_m();
+  const double w1 = 150.0;
+  SimulationCase helical = helical_run(h, 0.0, w1, 1e-3);
+  helical.model.mesh_damping_ratio = 0.05;
+  helical.model.damping_update = DampingUpdate::off;
+  helical.torque1 = Torque{};
+  helical.torque1.kind = Torque::Kind::sinusoidal;
+  helical.torque1.mean_n_m = 100.0;
+  helical.torque1.angular_frequency_rad_per_s = h.teeth1 * w1;
+  helical.torque2.constant_n_m = -100.0 * h.teeth2 / h.teeth1;
+  SimulationCase spur = helical;
+  // The transverse section as a spur pair (without the face advance W, which only places the
+  // pairs of a time-varying table).
+  spur.gears = transverse_pair(h);
+  spur.model.mesh_stiffness = MeshStiffnessMode::constant;
+  spur.model.constant_mesh_stiffness_n_per_m = k;
+  SteadySweepSpec spec;
+  spec.vary = "torque1.amplitude";
+  spec.from_si = 20.0;
+  spec.to_si = 400.0;
+  spec.points = 3;
+  spec.directions = {SweepDirection::up};
+  spec.threads = 1;
+  spec.base = helical;
+  const SteadySweep a = run_steady_sweep(spec);
+  spec.base = spur;
+  const SteadySweep b = run_steady_sweep(spec);
+  REQUIRE(a.rows.size() == 3);
+  REQUIRE(b.rows.size() == 3);
+  bool struck = false;
+  for (std::size_t i = 0; i < a.rows.size(); ++i) {
+    const SteadyPoint& p = a.rows[i].point;
+    const SteadyPoint& q = b.rows[i].point;
+    CAPTURE(i);
+    REQUIRE(p.converged);
+    REQUIRE(q.converged);
+    CHECK(p.regime == q.regime);
+    CHECK(p.period == q.period);
+    CHECK(*p.impacts_drive_per_period == *q.impacts_drive_per_period);
+    CHECK(*p.impacts_coast_per_period == *q.impacts_coast_per_period);
+    struck = struck || *p.impacts_drive_per_period > 0.0;
+    // Tolerance: the two runs take different RK4 steps (the helical one also resolves the
+    // mesh period, the constant one its contact period alone) and the helical one cuts its
+    // steps where pairs enter and leave (an integer eps_beta makes the sum constant, not each
+    // pair); RK4 at >= 128 steps a contact period errs by ~1e-7 of the motion, the
+    // periodicity test by 1e-6 B (B = 50 um here): 1e-6 of the amplitude plus 1e-11 m.
+    const double amplitude = *q.dte_amplitude_m;
+    MESSAGE("point " << i << ": amplitude " << amplitude << " m, helical - spur: mean "
+                     << *p.dte_mean_m - *q.dte_mean_m << " m, amplitude "
+                     << *p.dte_amplitude_m - amplitude << " m, s_min " << *p.s_min_m - *q.s_min_m
+                     << " m");
+    const double bound = 1e-6 * amplitude + 1e-11;
+    CHECK(std::abs(*p.dte_mean_m - *q.dte_mean_m) < bound);
+    CHECK(std::abs(*p.dte_amplitude_m - amplitude) < bound);
+    CHECK(std::abs(*p.s_min_m - *q.s_min_m) < bound);
+    CHECK(std::abs(*p.s_max_m - *q.s_max_m) < bound);
+    // The mesh frequency is z1 times the mean speed each run measured over its period, which
+    // the different steps move by ~1e-9 (a constant-torque share of the motion's RK4 error).
+    CHECK(relative_difference(*p.mesh_frequency_hz, *q.mesh_frequency_hz) < 1e-8);
+  }
+  // The last point strikes: the comparison covers the nonlinear regime too.
+  CHECK(struck);
+}
+
+TEST_CASE("steady state: a helical pair's refusals name the key, as simulate's") {
+  SimulationCase c = helical_run(h501_pair(), 50.0, 100.0, 1e-3);
+  const std::shared_ptr<const StiffnessTable> table = run_table(c);
+  SimulationCase planar = c;
+  planar.bearings.kind = BearingKind::elastic;
+  check_refused([&] { find_steady_state(planar, *table, SteadySettings{}); }, "gears.helix_angle",
+                "planar");
+  SimulationCase faulted = c;
+  faulted.faults.emplace_back();
+  check_refused([&] { (void)GearPeriodMap(faulted, *table, SteadySettings{}); }, "faults[0]",
+                "slices");
+  SteadySweepSpec spec;
+  spec.base = c;
+  spec.base.model.friction_coefficient = 0.04;
+  spec.vary = "initial.w1";
+  spec.from_si = 100.0;
+  spec.to_si = 200.0;
+  spec.points = 2;
+  spec.threads = 1;
+  check_refused([&] { run_steady_sweep(spec); }, "model.friction_coefficient", "helical");
+}
+
+TEST_CASE("period map of H501: Newton's fixed point is the steady state's sample") {
+  // H501 (eps_beta 0.54: a rippling stiffness) loaded by balanced constant torques, zeta =
+  // 0.05, no Hertzian damping: the teeth stay in contact, the steady state is a period-1 orbit
+  // of the mesh period, found by running (find_steady_state) and independently by Newton on
+  // the period map from the mean stiffness's static deflection. They agree to the periodicity
+  // tolerance (1e-6 of B and B w_n) times the contraction factor of periodicity.hpp (below 10
+  // at zeta = 0.05), as for the spur pair (test_steady_state).
+  const GearPair h = h501_pair();
+  SimulationCase c = helical_run(h, 200.0, 150.0, 1e-3);
+  c.model.mesh_damping_ratio = 0.05;
+  c.model.damping_update = DampingUpdate::off;
+  const FaceStiffness face(h, StiffnessModel{}, HelicalHertz::projected);
+  const HelicalMesh mesh(h, face);
+  const double k = h.face_width_m * face.cumulative(face.end_m()) / mesh.base_pitch_m();
+  const double rb1 = helical_geometry(h).base_radius1_m;
+  const double deflection = h.backlash_m + 200.0 / (rb1 * k);
+  c.initial.theta1_rad = deflection / rb1;
+  const std::shared_ptr<const StiffnessTable> table = run_table(c);
+  const SteadyPoint point = find_steady_state(c, *table, SteadySettings{});
+  REQUIRE(point.verdict == PeriodicityVerdict::periodic);
+  CHECK(point.period == 1);
+  CHECK(point.regime == Regime::no_impact);
+  const GearPeriodMap map(c, *table, SteadySettings{});
+  ShootingSettings shooting;
+  shooting.scale = map.scale();
+  const PeriodicOrbit orbit = find_periodic_orbit(map, Eigen::Vector2d(deflection, 0.0), shooting);
+  REQUIRE(point.poincare.size() == 1);
+  const double ds = std::abs(point.poincare[0].s_m - orbit.fixed_point[0]) / map.scale()[0];
+  const double dv = std::abs(point.poincare[0].s_rate_m_s - orbit.fixed_point[1]) / map.scale()[1];
+  MESSAGE("helical steady sample against the shot fixed point: "
+          << ds << " B, " << dv << " B w_n; amplitude " << *point.dte_amplitude_m);
+  CHECK(ds <= 1e-5);
+  CHECK(dv <= 1e-5);
+  // The orbit ripples (the check above compares a moving orbit, not a rest point).
+  CHECK(*point.dte_amplitude_m > 1e-3 * (deflection - h.backlash_m));
 }

@@ -18,6 +18,7 @@
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/helical.hpp"
 
 namespace gearimpact {
 
@@ -153,8 +154,10 @@ std::vector<std::string> sweep_warnings(const SteadySweepSpec& spec) {
   // A kinematic driver holds w1 whatever w2 starts at: no momentum mean speed to warn of.
   if (!swept("initial.w1") && !swept("initial.w2") &&
       c.torque1.kind != Torque::Kind::prescribed_speed) {
-    const double rb1 = base_radius(c.gears, Gear::one);
-    const double rb2 = base_radius(c.gears, Gear::two);
+    // A helical pair's base radii are its transverse section's.
+    const GearPair pair = swept_transverse_pair(c.gears);
+    const double rb1 = base_radius(pair, Gear::one);
+    const double rb2 = base_radius(pair, Gear::two);
     const double v1 = rb1 * c.initial.w1_rad_per_s;
     const double v2 = rb2 * c.initial.w2_rad_per_s;
     // The speeds as typed round a rolling pair by a few ulps.
@@ -185,7 +188,10 @@ std::vector<std::string> sweep_warnings(const SteadySweepSpec& spec) {
 
 SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
                              const std::function<void(const SweepPointResult&)>& on_point) {
-  validate_run_keys(spec.base);
+  // A helical pair sweeps as simulate runs it (its transverse section with
+  // its pair table); what its run refuses is refused here, by name.
+  validate_absent_run_keys(spec.base);
+  refuse_helical_run(spec.base);
   sweep_field(spec.vary, "vary");
   if (!spec.vary2.empty()) {
     sweep_field(spec.vary2, "vary2");
@@ -318,7 +324,10 @@ SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
   record.unit2 = spec.unit2;
   if (spec.vary == "initial.w1") record.mesh_teeth = base.gears.teeth1;
   if (spec.vary == "initial.w2") record.mesh_teeth = base.gears.teeth2;
-  if (spec.vary == "initial.w1") record.iso = iso_scale(base, *pool.table_for(base));
+  // ISO 6336's resonance scale is that of a spur pair here: none for a helical one.
+  if (spec.vary == "initial.w1" && base.gears.helix_angle_rad == 0.0) {
+    record.iso = iso_scale(base, *pool.table_for(base));
+  }
   record.tolerance = spec.settings.tolerance;
   record.steps_per_contact_period = spec.settings.steps_per_contact_period;
   record.max_periods = spec.settings.max_periods;

@@ -457,11 +457,14 @@ void validate_relations(const SimulationCase& c) {
 }
 
 void validate_run_keys(const SimulationCase& c) {
-  // Before anything else: the dynamics take spur meshes only, and a helical
-  // pair run as spur would be silently wrong.
+  // Before anything else: the runs that read this take spur meshes only, and
+  // a helical pair run as spur would be silently wrong. (simulate, the steady
+  // state and the sweeps run a helical pair by its pair table, checked by
+  // refuse_helical_run instead.)
   if (c.gears.helix_angle_rad != 0.0) {
     throw_helical_not_taken(c.gears.helix_angle_rad,
-                            "a run other than simulate's torsional model (steady, sweep, trains)");
+                            "a run other than the torsional model's simulate, steady state and "
+                            "sweeps (trains)");
   }
   validate_absent_run_keys(c);
 }

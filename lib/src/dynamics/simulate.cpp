@@ -244,6 +244,19 @@ void validate_sampling(const SimulationCase& c, const RunControl& control) {
 }
 
 void validate(const SimulationCase& c) {
+  if (c.gears.helix_angle_rad != 0.0) {
+    // A helical pair: its keys as given, its refusals by name, then the
+    // transverse section it runs as, with the pair table it reads (what
+    // check_run does).
+    validate_absent_run_keys(c);
+    validate_fields(c);
+    refuse_helical_run(c);
+    const SimulationCase d = dynamics_case(c);
+    refuse_planar_simulation(d);
+    validate_gaps(d);
+    validate_implied(c);
+    return;
+  }
   validate_run_keys(c);
   validate_fields(c);
   refuse_planar_simulation(c);

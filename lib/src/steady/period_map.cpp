@@ -12,9 +12,11 @@
 
 namespace gearimpact {
 
-GearPeriodMap::GearPeriodMap(const SimulationCase& c, const StiffnessTable& table,
+GearPeriodMap::GearPeriodMap(const SimulationCase& given, const StiffnessTable& table,
                              const SteadySettings& settings, long long steps_per_period)
-    : case_(c), table_(&table) {
+    : case_(steady_dynamics_case(given)), table_(&table) {
+  // A helical pair maps as its transverse section (steady_dynamics_case).
+  const SimulationCase c = case_;
   const SteadyTiming timing = steady_timing(c, table, settings);
   if (resolved_damping_update(c) == DampingUpdate::each_impact) {
     throw InputError("model.damping_update", "each_impact",

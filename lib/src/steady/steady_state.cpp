@@ -14,6 +14,7 @@
 #include "gearimpact/constants.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/dynamics/planar.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
@@ -461,8 +462,15 @@ void require_steady_case(const SimulationCase& c) {
   problems.throw_if_any();
 }
 
+SimulationCase steady_dynamics_case(const SimulationCase& c) {
+  refuse_helical_run(c);
+  return dynamics_case(c);
+}
+
 SteadyTiming steady_timing(const SimulationCase& c, const StiffnessTable& table,
                            const SteadySettings& settings) {
+  if (c.gears.helix_angle_rad != 0.0)
+    return steady_timing(steady_dynamics_case(c), table, settings);
   require_steady_case(c);
   if (!(settings.steps_per_contact_period >= kStepsPerContactPeriod) ||
       !std::isfinite(settings.steps_per_contact_period)) {
@@ -610,6 +618,7 @@ SteadyTiming steady_timing(const SimulationCase& c, const StiffnessTable& table,
 }
 
 Eigen::Vector2d state_scale(const SimulationCase& c, const StiffnessTable& table) {
+  if (c.gears.helix_angle_rad != 0.0) return state_scale(steady_dynamics_case(c), table);
   const GearPair& g = c.gears;
   const double length = std::max(g.backlash_m, kLeastStateScalePerModule * g.module_m);
   return Eigen::Vector2d(length, length * natural_frequency_rad_per_s(c, table));
@@ -627,6 +636,7 @@ Eigen::VectorXd poincare_scale(const SimulationCase& c, const StiffnessTable& ta
 }
 
 Eigen::VectorXd poincare_state(const SimulationCase& c, const RunState& state) {
+  if (c.gears.helix_angle_rad != 0.0) return poincare_state(steady_dynamics_case(c), state);
   const GearPair& g = c.gears;
   const double rb1 = base_radius(g, Gear::one);
   const double rb2 = base_radius(g, Gear::two);
@@ -657,6 +667,9 @@ Eigen::VectorXd poincare_state(const SimulationCase& c, const RunState& state) {
 SteadyPoint find_steady_state(const SimulationCase& c, const StiffnessTable& table,
                               const SteadySettings& settings,
                               const std::optional<RunState>& start) {
+  if (c.gears.helix_angle_rad != 0.0) {
+    return find_steady_state(steady_dynamics_case(c), table, settings, start);
+  }
   if (settings.max_periods < 1) {
     throw InputError("max_periods", settings.max_periods, "at least 1");
   }

@@ -14,6 +14,7 @@
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/helical.hpp"
 
 namespace gearimpact {
 
@@ -151,8 +152,10 @@ void set_sweep_value(SimulationCase& c, const std::string& key, double si_value)
 void apply_sweep_value(SimulationCase& c, const SimulationCase& base, const std::string& key,
                        double si_value) {
   set_sweep_value(c, key, si_value);
-  const double rb1 = base_radius(base.gears, Gear::one);
-  const double rb2 = base_radius(base.gears, Gear::two);
+  // A helical pair's base radii are its transverse section's.
+  const GearPair pair = swept_transverse_pair(base.gears);
+  const double rb1 = base_radius(pair, Gear::one);
+  const double rb2 = base_radius(pair, Gear::two);
   // A speed sets the pair rolling at it (Rb1 w1 = Rb2 w2), whatever base's other speed: without
   // fluctuating torques the mean speed follows from the momentum J1 w1/Rb1 + J2 w2/Rb2, so a
   // pair that does not roll would run at another speed than the one set. The other speed is
@@ -268,8 +271,9 @@ std::vector<SweepPointResult> sweep_line(
     const std::vector<double>& grid, SweepDirection direction, int line,
     const SteadySettings& settings, const std::function<void(const SweepPointResult&)>& on_point) {
   sweep_field(key, "--vary");
-  const double rb1 = base_radius(line_case.gears, Gear::one);
-  const double rb2 = base_radius(line_case.gears, Gear::two);
+  const GearPair pair = swept_transverse_pair(line_case.gears);
+  const double rb1 = base_radius(pair, Gear::one);
+  const double rb2 = base_radius(pair, Gear::two);
   std::vector<SweepPointResult> results;
   std::optional<RunState> carried;
   double carried_value = 0.0;

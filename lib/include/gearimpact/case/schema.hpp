@@ -245,8 +245,9 @@ void validate_relations(const SimulationCase& c);
 // alone, without the torques or the end time a run needs), each with what it
 // takes; nothing for a case a run can use. Every run checks it first. A
 // helical pair is refused naming gears.helix_angle before that, for the runs
-// that take spur pairs only; simulate() (check_run) takes it
-// (validate_absent_run_keys, then refuse_helical_run of dynamics/simulate.hpp).
+// that take spur pairs only; simulate() (check_run, validate), the steady state
+// and the steady sweeps take it (validate_absent_run_keys, then
+// refuse_helical_run of dynamics/simulate.hpp).
 void validate_run_keys(const SimulationCase& c);
 // validate_run_keys without the helical refusal.
 void validate_absent_run_keys(const SimulationCase& c);

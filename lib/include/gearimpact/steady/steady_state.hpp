@@ -108,6 +108,13 @@ Eigen::VectorXd poincare_state(const SimulationCase& c, const RunState& state);
 // displacement and L w_n for each planar speed.
 Eigen::VectorXd poincare_scale(const SimulationCase& c, const StiffnessTable& table);
 
+// The case a steady state, a sweep point or a period map runs: a helical pair's transverse
+// section (dynamics_case of dynamics/simulate.hpp), after what its run refuses by name
+// (refuse_helical_run: the planar model, friction, faults, modifications); a spur case
+// unchanged. Every function here taking a helical case runs this case, with the table the
+// caller gives, which for a helical pair must be its pair table (run_table), as in simulate.
+SimulationCase steady_dynamics_case(const SimulationCase& c);
+
 // Throws InputError as require_steady_case, and when the torques' frequencies have no common
 // period, a faulted case's forcing is incommensurate with its teeth (naming the forcing's key
 // and initial.w1), or (without fluctuation) the mean speed is 0.
