@@ -280,7 +280,9 @@ TEST_CASE("train refuses a stage file's bad key and range by name before writing
                                                           "stage.planet"},
         {"planets = 3", "planets = 7", "stage.planets"},
         {"ring_teeth = 81", "ring_teeth = 80", "stage.ring_teeth"},
-        {"kind = \"prescribed-speed\"", "kind = \"prescribed\"", "stage.sun_torque.kind"}}) {
+        {"kind = \"prescribed-speed\"", "kind = \"prescribed\"", "stage.sun_torque.kind"},
+        {"[stage]\n", "[[faults]]\nkind = \"missing\"\ngear = \"pinion\"\ntooth = 0\n[stage]\n",
+         "faults"}}) {
     std::string edited = text;
     const std::size_t at = edited.find(from);
     REQUIRE(at != std::string::npos);

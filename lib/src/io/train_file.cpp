@@ -600,9 +600,9 @@ bool has_stage(const toml::value& root) {
   return root.is_table() && root.as_table().count("stage") > 0;
 }
 
-// A stage file: [stage] by the rows of train_schema() of "stage", the pair sections [gears],
-// [model], [modifications], [bearings] and [[faults]] (the meshes' keys; the tooth counts are the
-// stage's) and [integrator]. Every problem is collected before one CaseFileError.
+// A stage file: [stage] by the rows of train_schema() of "stage", the pair sections [gears] and
+// [model] (the meshes' keys; the tooth counts are the stage's) and [integrator]. Every problem is
+// collected before one CaseFileError.
 PlanetaryStage read_stage(const Reader& reader, const toml::value& root,
                           std::string_view file_name) {
   std::vector<Problem> problems;
@@ -611,17 +611,20 @@ PlanetaryStage read_stage(const Reader& reader, const toml::value& root,
     if (key == "stage") continue;
     const Field* field = find_field(key);
     const bool top_level_key = field != nullptr && field->section.empty();
-    const bool pair_section = std::find(kMeshPairSections.begin(), kMeshPairSections.end(), key) !=
-                              kMeshPairSections.end();
-    if (top_level_key || pair_section || key == "integrator" || key == "faults") {
+    if (top_level_key || key == "gears" || key == "model" || key == "integrator") {
       pair.as_table()[key] = value;
       continue;
     }
+    // planetary_train gives every mesh the same pair: a fault or a modification would land on
+    // the sun and the ring alike, and the stage has no bearings (rotational only).
+    const bool not_yet = key == "faults" || key == "modifications" || key == "bearings";
     problems.push_back(reader.problem(
         key, &value,
-        "[" + key +
-            "] is not read in a stage file: it has name, [stage], [integrator] and the "
-            "pair sections [gears], [model], [modifications], [bearings] and [[faults]] (every "
+        "[" + key + "] is not read in a stage file" +
+            (not_yet ? std::string(": faults, modifications and bearings of a stage's members "
+                                   "are not modelled yet")
+                     : std::string()) +
+            "; a stage file has name, [stage], [integrator], and [gears] and [model] (every "
             "mesh's keys)"));
   }
   const toml::value& stage_value = root.as_table().at("stage");

@@ -101,7 +101,7 @@ GearTrain read_train_file(const std::filesystem::path& path,
                           const std::vector<std::string>& sets = {});
 
 // A stage file (docs/planetary.md, A stage file): [stage] (the rows of train_schema() of
-// "stage"), the pair sections (the meshes' keys; the tooth counts are the stage's) and
+// "stage"), [gears] and [model] (the meshes' keys; the tooth counts are the stage's) and
 // [integrator], read into the nonlinear rotational stage of dynamics/planetary_train.hpp; --set
 // as on a train file (stage.KEY too). is_stage_text: the TOML text has [stage]. Throws
 // CaseFileError naming every key as written (stage.sun_torque.kind, gears.module) with its
