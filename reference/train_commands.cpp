@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "gearimpact/dynamics/planetary_train.hpp"
 #include "gearimpact/dynamics/train.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
@@ -23,9 +24,31 @@ struct TrainOptions {
   std::vector<std::string> sets;
 };
 
+// A stage file ([stage]): the stage's train run, its summary with the Willis residual, and the
+// ring-housing sensor's series beside the train's.
+void run_stage(const TrainOptions& o) {
+  const PlanetaryStage stage = read_stage_file(o.case_file, o.sets);
+  const GearTrain train = planetary_train(stage);
+  const TrainResult result = simulate_train(train);
+  const std::string summary = stage_summary_json(train, result, planetary_willis(stage, result));
+  const std::vector<double> ring = planetary_ring_sensor(stage, result);
+  AtomicFolder folder(o.out, o.overwrite, {o.case_file});
+  const std::filesystem::path dir = folder.temporary();
+  write_file_atomically((dir / "series.csv").string(), train_series_csv(train, result.series));
+  write_file_atomically((dir / "ring_sensor.csv").string(), ring_sensor_csv(result.series, ring));
+  write_file_atomically((dir / "summary.json").string(), summary);
+  folder.commit();
+  std::cout << summary;
+  std::cerr << "train: wrote " << (std::filesystem::path(o.out) / "series.csv").string() << "\n";
+}
+
 void run_train(const TrainOptions& o) {
   // Every refusal before any work: the folder, then the case.
   require_output_folder(o.out, o.overwrite, {o.case_file});
+  if (is_stage_file(o.case_file)) {
+    run_stage(o);
+    return;
+  }
   const GearTrain train = read_train_file(o.case_file, o.sets);
   const TrainResult result = simulate_train(train);
   const std::string summary = train_summary_json(train, result);
@@ -45,19 +68,22 @@ void register_train_commands(CLI::App& app) {
   CLI::App* train = app.add_subcommand(
       "train",
       "Runs a gear train's case file ([[bodies]], [[meshes]], [[shafts]]; a two-gear case file "
-      "is the train of its pair) by the event-cut RK4 and writes series.csv (each body's angle "
+      "is the train of its pair; a [stage] file is a planetary stage's, which adds "
+      "ring_sensor.csv and the Willis residual) by the event-cut RK4 and writes series.csv (each "
+      "body's angle "
       "and speed, each mesh's s, delta, region, pairs and forces, columns named by the bodies "
       "and meshes) and summary.json (the energy ledger and its residual, per mesh its impacts "
       "and largest penetration)");
-  train->add_option("case", o->case_file, "case file of a train")->required();
+  train->add_option("case", o->case_file, "case file of a train or a planetary stage")->required();
   train
       ->add_option("--out", o->out,
                    "output folder: new or empty (else --overwrite), in a folder that exists")
       ->required();
-  train->add_option("--set", o->sets,
-                    "KEY=VALUE (repeatable), as if the file said so: bodies.NAME.KEY, "
-                    "meshes.NAME.SECTION.KEY (a mesh's pair key), or SECTION.KEY of the file "
-                    "(integrator.end_time; gears.module, every mesh's default)");
+  train->add_option(
+      "--set", o->sets,
+      "KEY=VALUE (repeatable), as if the file said so: bodies.NAME.KEY, "
+      "meshes.NAME.SECTION.KEY (a mesh's pair key), or SECTION.KEY of the file "
+      "(integrator.end_time; gears.module, every mesh's default; stage.KEY of a stage)");
   train->add_flag("--overwrite", o->overwrite, "replace a non-empty --out folder whole");
   train->callback([o] { run_train(*o); });
 }

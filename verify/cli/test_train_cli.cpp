@@ -3,13 +3,18 @@
 // and its columns are named by the case file's bodies and meshes.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
+#include "gearimpact/constants.hpp"
+#include "gearimpact/dynamics/planetary_train.hpp"
 #include "gearimpact/dynamics/train.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/results.hpp"
@@ -139,4 +144,156 @@ TEST_CASE("train refuses a bad key by its name before writing anything") {
   CHECK(r.exit_code != 0);
   CHECK(r.err.find("meshes.idler-wheel.body_b") != std::string::npos);
   CHECK(!std::filesystem::exists(out));
+}
+
+// ---- A planetary stage's file ([stage]) through `gearimpact train` ----
+
+namespace {
+
+// examples/planetary_stage.toml written out by hand as the library's PlanetaryStage: the
+// reference the program's run is compared with, bit for bit.
+PlanetaryStage example_stage_by_hand() {
+  PlanetaryStage s;
+  s.teeth = {21, 30, 81};
+  s.planets = 3;
+  s.held = HeldMember::ring;
+  s.mesh.gears.module_m = 2.0e-3;
+  s.mesh.gears.pressure_angle_rad = 20.0 * pi / 180.0;
+  s.mesh.gears.face_width_m = 20.0e-3;
+  s.mesh.gears.youngs_modulus_pa = 206.8e9;
+  s.mesh.gears.poisson_ratio = 0.3;
+  s.mesh.gears.density_kg_m3 = 7800.0;
+  s.mesh.gears.backlash_m = 0.05e-3;
+  s.mesh.model.friction_coefficient = 0.0;
+  s.mesh.model.mesh_damping_ratio = 0.1;
+  s.sun_inertia_kg_m2 = 4.8e-5;
+  s.planet_inertia_kg_m2 = 2.0e-4;
+  s.ring_inertia_kg_m2 = 4.2e-2;
+  s.carrier_inertia_kg_m2 = 2e-3;
+  s.planet_mass_kg = 0.3;
+  s.input_speed_rad_per_s = 100.0;
+  s.carrier_torque.kind = Torque::Kind::constant;
+  s.carrier_torque.constant_n_m = -40.0;
+  s.sun_torque.kind = Torque::Kind::prescribed_speed;
+  s.sun_torque.mean_speed_rad_per_s = 100.0;
+  s.integrator.step_s = 1e-6;
+  s.integrator.end_time_s = 5e-3;
+  return s;
+}
+
+std::vector<std::vector<double>> csv_numbers(const std::string& text, std::string& header) {
+  std::istringstream csv(text);
+  std::getline(csv, header);
+  std::vector<std::vector<double>> rows;
+  std::string line;
+  while (std::getline(csv, line)) {
+    std::vector<double> row;
+    for (const std::string& cell : split(line)) row.push_back(std::stod(cell));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+}  // namespace
+
+TEST_CASE("train runs a stage file: the library's stage run bit for bit, Willis within the play") {
+  Scratch scratch("train-cli-stage");
+  const std::filesystem::path out = scratch.dir / "out";
+  const CommandResult r = run_command(
+      cli("train " + (examples / "planetary_stage.toml").string() + " --out " + out.string()));
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+
+  const PlanetaryStage stage = example_stage_by_hand();
+  const GearTrain train = planetary_train(stage);
+  const TrainResult run = simulate_train(train);
+  const std::vector<TrainColumn> columns = train_series_columns(train);
+  std::string header;
+  const std::vector<std::vector<double>> series = csv_numbers(read(out / "series.csv"), header);
+  CHECK(header.rfind("t_s,theta_sun_rad,w_sun_rad_per_s,theta_ring_rad", 0) == 0);
+  REQUIRE(series.size() == run.series.size());
+  for (std::size_t i = 0; i < series.size(); ++i) {
+    REQUIRE(series[i].size() == columns.size());
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      if (series[i][c] != columns[c].value(run.series[i])) {
+        INFO("row " << i << ", column " << c);
+        REQUIRE(false);
+      }
+    }
+  }
+  // The ring sensor's column: planetary_ring_sensor of the same run.
+  const std::vector<double> y = planetary_ring_sensor(stage, run);
+  const std::vector<std::vector<double>> ring = csv_numbers(read(out / "ring_sensor.csv"), header);
+  CHECK(header == "t_s,ring_sensor_y_N");
+  REQUIRE(ring.size() == y.size());
+  bool nonzero = false;
+  for (std::size_t i = 0; i < y.size(); ++i) {
+    REQUIRE(ring[i][0] == run.series[i].t_s);
+    REQUIRE(ring[i][1] == y[i]);
+    nonzero = nonzero || y[i] != 0.0;
+  }
+  CHECK(nonzero);
+
+  const std::string summary = read(out / "summary.json");
+  CHECK(summary == r.out);
+  const auto number_after = [&summary](const std::string& key) {
+    const std::size_t where = summary.find("\"" + key + "\": ");
+    REQUIRE(where != std::string::npos);
+    return std::stod(summary.substr(where + key.size() + 4));
+  };
+  CHECK(summary.find("{\"name\": \"ring_planet2\", \"impacts\": " +
+                     std::to_string(run.meshes[4].impacts)) != std::string::npos);
+  // The mean speeds from the angles the series holds (first row to last).
+  const double time = run.series.back().t_s - run.series.front().t_s;
+  const auto mean = [&](int body) {
+    const auto b = static_cast<std::size_t>(body);
+    return (run.series.back().theta_rad[b] - run.series.front().theta_rad[b]) / time;
+  };
+  CHECK(number_after("mean_w_sun_rad_per_s") == mean(kSunBody));
+  CHECK(number_after("mean_w_carrier_rad_per_s") == mean(kCarrierBody));
+  const double residual = number_after("willis_residual");
+  CHECK(residual == planetary_willis(stage, run).residual);
+  // The bound: with r_b = m Z cos(a) / 2, T (Z_s (w_s - w_c) + Z_r (w_r - w_c)) =
+  // 2 (Delta s_sp + Delta s_rp) / (m cos a) for planet 1's two meshes, and each s starts at 0
+  // (centred in the play) and stays within [-(B + p), B + p], B the half play (gears.backlash) and
+  // p the largest penetration of any mesh. So the residual is at most
+  // 4 (B + p) / (m cos a T (Z_s |w_s - w_c| + Z_r |w_r - w_c|)): about 6.6e-3 here, as the
+  // meshes take up the play from centred to the drive flanks under the load.
+  double p = 0.0;
+  for (const TrainMeshSummary& m : run.meshes) p = std::max(p, m.max_penetration_m);
+  const double ws = mean(kSunBody), wr = mean(kRingBody), wc = mean(kCarrierBody);
+  const double scale = time * (21.0 * std::fabs(ws - wc) + 81.0 * std::fabs(wr - wc));
+  const double bound = 4.0 * (0.05e-3 + p) / (2.0e-3 * std::cos(20.0 * pi / 180.0) * scale);
+  CAPTURE(bound);
+  CHECK(residual > 0.0);
+  CHECK(residual <= bound);
+  // The Willis carrier speed, w_s Z_s / (Z_s + Z_r), at the run's end (the play taken up).
+  CHECK(std::fabs(run.bodies[kCarrierBody].final_w_rad_per_s / (100.0 * 21.0 / 102.0) - 1.0) <
+        1e-5);
+}
+
+TEST_CASE("train refuses a stage file's bad key and range by name before writing anything") {
+  Scratch scratch("train-cli-stage-refused");
+  const std::string text = read(examples / "planetary_stage.toml");
+  for (const auto& [from, to, named] :
+       {std::tuple<std::string, std::string, std::string>{"planets = 3", "planet = 3",
+                                                          "stage.planet"},
+        {"planets = 3", "planets = 7", "stage.planets"},
+        {"ring_teeth = 81", "ring_teeth = 80", "stage.ring_teeth"},
+        {"kind = \"prescribed-speed\"", "kind = \"prescribed\"", "stage.sun_torque.kind"},
+        {"[stage]\n", "[[faults]]\nkind = \"missing\"\ngear = \"pinion\"\ntooth = 0\n[stage]\n",
+         "faults"}}) {
+    std::string edited = text;
+    const std::size_t at = edited.find(from);
+    REQUIRE(at != std::string::npos);
+    edited.replace(at, from.size(), to);
+    const std::filesystem::path file = scratch.dir / "stage.toml";
+    std::ofstream(file) << edited;
+    const std::filesystem::path out = scratch.dir / "out";
+    const CommandResult r = run_command(cli("train " + file.string() + " --out " + out.string()));
+    INFO(to, "\n", r.err);
+    CHECK(r.exit_code != 0);
+    CHECK(r.err.find(named) != std::string::npos);
+    CHECK(!std::filesystem::exists(out));
+  }
 }

@@ -71,6 +71,51 @@ std::vector<Field> make_train_schema() {
                {closed(1e-3), closed(1e12), {}}, {}, "k, the torsional shaft's stiffness");
   stiffness.required = true;
   stiffness.only_when = FieldCondition{"kind", {"torsional"}};
+  // A nonlinear rotational planetary stage (dynamics/planetary_train.hpp): [stage] beside the
+  // pair sections (every mesh's keys) and [integrator], read into a PlanetaryStage.
+  // Tooth counts from a pinion's fewest to a large ring's; the geometry refuses the rest (a ring
+  // that does not close, planets that overlap) by the key's name.
+  const Range teeth{closed(5.0), closed(1000.0), {}};
+  for (const auto& [key, help] :
+       {std::pair<std::string_view, std::string>{"sun_teeth", "Z_s, the sun's tooth count"},
+        {"planet_teeth", "Z_p, each planet's tooth count"},
+        {"ring_teeth", "Z_r, the ring's (internal) tooth count; Z_r = Z_s + 2 Z_p"}}) {
+    row("stage", key, FieldKind::integer, true, help).range = teeth;
+  }
+  // Up to 5 planets: the nonlinear stage's train takes no more (planetary_train).
+  row("stage", "planets", FieldKind::integer, true, "N, the number of equally spaced planets")
+      .range = {closed(1.0), closed(5.0), {}};
+  Field& held = row("stage", "held", FieldKind::choice, false,
+                    "the member held still (its torque must be absent)");
+  // The codes are the reader's (the case folder comes before the dynamics' HeldMember).
+  held.choices = {{"ring", 0, "the ring is fixed: the sun drives the carrier", true},
+                  {"carrier", 1, "the carrier is fixed: the sun drives the ring", true},
+                  {"sun", 2, "the sun is fixed: the ring drives the carrier", true}};
+  held.when_absent = "ring";
+  // The inertias' range is [[bodies]] inertia's.
+  for (const auto& [key, help] :
+       {std::pair<std::string_view, std::string>{"sun_inertia", "J_s, the sun's moment of inertia"},
+        {"ring_inertia", "J_r, the ring's moment of inertia"},
+        {"carrier_inertia",
+         "J_c, the carrier's moment of inertia (with planet_mass: without the planets' orbit)"},
+        {"planet_inertia", "J_p, each planet's moment of inertia about its pin"}}) {
+    quantity("stage", key, Dimension::moment_of_inertia, "kg*m^2", {closed(1e-12), closed(1e6), {}},
+             {}, help)
+        .required = true;
+  }
+  quantity("stage", "planet_mass", Dimension::mass, "kg", {open(0.0), closed(1e6), {}},
+           "the carrier's inertia is taken as given",
+           "m_p, each planet's mass: its orbit adds m_p R_c^2 to the carrier's inertia");
+  quantity("stage", "input_speed", Dimension::angular_velocity, "rad/s",
+           {closed(-1e5), closed(1e5), {}}, "0",
+           "the input member's speed at t = 0 (the sun's, or the ring's when the sun is held); "
+           "every body starts at angle 0 at the Willis speeds");
+  for (const std::string_view key : {"sun_torque", "ring_torque", "carrier_torque"}) {
+    quantity("stage", key, Dimension::torque, "N*m", {}, "0",
+             "a constant torque on the member, counter-clockwise positive; or a table of "
+             "[torque1]'s keys (with kind = \"drag\", [torque2]'s), as [[bodies]] torque: a "
+             "driver at input_speed, a speed controller, a motor, a drag");
+  }
   return rows;
 }
 

@@ -2,6 +2,7 @@
 #include "gearimpact/dynamics/planetary_train.hpp"
 
 #include <cmath>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -149,6 +150,32 @@ std::vector<double> planetary_ring_sensor(const PlanetaryStage& stage, const Tra
     }
   }
   return signals::ring_sensor_signal(forces, carrier, psi, sensor);
+}
+
+StageWillis planetary_willis(const PlanetaryStage& stage, const TrainResult& run) {
+  const std::size_t bodies = kFirstPlanetBody + static_cast<std::size_t>(stage.planets);
+  if (run.series.size() < 2 || run.series.front().theta_rad.size() != bodies ||
+      run.series.back().theta_rad.size() != bodies) {
+    throw InputError("run", std::to_string(run.series.size()) + " rows",
+                     "the stage's run: two rows or more of " + std::to_string(bodies) + " bodies");
+  }
+  const TrainRow& first = run.series.front();
+  const TrainRow& last = run.series.back();
+  const double time = last.t_s - first.t_s;
+  const auto mean = [&](int body) {
+    const auto b = static_cast<std::size_t>(body);
+    return (last.theta_rad[b] - first.theta_rad[b]) / time;
+  };
+  StageWillis w;
+  w.sun_rad_per_s = mean(kSunBody);
+  w.ring_rad_per_s = mean(kRingBody);
+  w.carrier_rad_per_s = mean(kCarrierBody);
+  const double sun = stage.teeth.sun * (w.sun_rad_per_s - w.carrier_rad_per_s);
+  const double ring = stage.teeth.ring * (w.ring_rad_per_s - w.carrier_rad_per_s);
+  const double scale = std::fabs(sun) + std::fabs(ring);
+  // |sun + ring| <= scale: a stage turning as one block has both zero.
+  w.residual = scale > 0.0 ? std::fabs(sun + ring) / scale : 0.0;
+  return w;
 }
 
 }  // namespace gearimpact

@@ -261,7 +261,11 @@ std::string train_series_csv(const GearTrain& train, const std::vector<TrainRow>
   return csv_of(train_series_columns(train), rows);
 }
 
-std::string train_summary_json(const GearTrain& train, const TrainResult& result) {
+namespace {
+
+// A train's summary; with `willis`, a stage's: "stage" after "bodies".
+std::string train_or_stage_summary_json(const GearTrain& train, const TrainResult& result,
+                                        const StageWillis* willis) {
   const SimulationSummary& s = result.summary;
   std::string out = "{\n";
   out += "  \"integrator\": " + json_string(s.integrator) + ",\n";
@@ -292,7 +296,34 @@ std::string train_summary_json(const GearTrain& train, const TrainResult& result
         std::string(i > 0 ? ",\n" : "\n") + "    {\"name\": " + json_string(train.bodies[i].name) +
         ", \"final_w_rad_per_s\": " + format_data_number(result.bodies[i].final_w_rad_per_s) + "}";
   }
-  out += "\n  ]\n}\n";
+  out += "\n  ]";
+  if (willis != nullptr) {
+    out +=
+        ",\n  \"stage\": {\"mean_w_sun_rad_per_s\": " + format_data_number(willis->sun_rad_per_s) +
+        ", \"mean_w_ring_rad_per_s\": " + format_data_number(willis->ring_rad_per_s) +
+        ", \"mean_w_carrier_rad_per_s\": " + format_data_number(willis->carrier_rad_per_s) +
+        ", \"willis_residual\": " + format_data_number(willis->residual) + "}";
+  }
+  out += "\n}\n";
+  return out;
+}
+
+}  // namespace
+
+std::string train_summary_json(const GearTrain& train, const TrainResult& result) {
+  return train_or_stage_summary_json(train, result, nullptr);
+}
+
+std::string stage_summary_json(const GearTrain& train, const TrainResult& result,
+                               const StageWillis& willis) {
+  return train_or_stage_summary_json(train, result, &willis);
+}
+
+std::string ring_sensor_csv(const std::vector<TrainRow>& rows, const std::vector<double>& y) {
+  std::string out = "t_s,ring_sensor_y_N\n";
+  for (std::size_t i = 0; i < rows.size() && i < y.size(); ++i) {
+    out += format_data_number(rows[i].t_s) + "," + format_data_number(y[i]) + "\n";
+  }
   return out;
 }
 

@@ -14,6 +14,7 @@
 #include "case_reader.hpp"
 #include "gearimpact/case/schema.hpp"
 #include "gearimpact/case/units.hpp"
+#include "gearimpact/dynamics/planetary_train.hpp"
 #include "gearimpact/dynamics/train.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/io/case_file.hpp"
@@ -215,7 +216,8 @@ Problem under_mesh(const Problem& problem, const std::string& prefix) {
 // `label`.w).
 Torque read_body_torque(const Reader& reader, const toml::value& pair, const toml::value& torque,
                         const toml::value* w, const std::string& label, std::string_view file_name,
-                        std::vector<Problem>& problems) {
+                        std::vector<Problem>& problems, const std::string& torque_name = {},
+                        const std::string& w_name = {}) {
   const auto kind = torque.as_table().find("kind");
   const bool drag = kind != torque.as_table().end() && kind->second.is_string() &&
                     kind->second.as_string().str == "drag";
@@ -228,10 +230,11 @@ Torque read_body_torque(const Reader& reader, const toml::value& pair, const tom
     return drag ? c.torque2 : c.torque1;
   } catch (const CaseFileError& e) {
     // The section's names in the texts, the body's: [torque1] -> bodies.NAME.torque.
-    const std::vector<std::pair<std::string, std::string>> names{
-        {"[" + section + "]", label + ".torque"},
-        {section + ".", label + ".torque."},
-        {"initial.w1", label + ".w"}};
+    const std::string torque_key = torque_name.empty() ? label + ".torque" : torque_name;
+    const std::string w_key = w_name.empty() ? label + ".w" : w_name;
+    const std::vector<std::pair<std::string, std::string>> names{{"[" + section + "]", torque_key},
+                                                                 {section + ".", torque_key + "."},
+                                                                 {"initial.w1", w_key}};
     const auto rename = [&](std::string text) {
       for (const auto& [from, to] : names) {
         for (std::size_t at = text.find(from); at != std::string::npos;
@@ -354,6 +357,17 @@ void set_in_file(toml::value& root, const std::string& assignment) {
     toml::value& section = table.as_table()[rest.substr(0, dot)];
     if (!section.is_table()) section = toml::table{};
     section.as_table()[rest.substr(dot + 1)] = toml_of(*row, text, key);
+    return;
+  }
+  if (key.rfind("stage.", 0) == 0) {
+    const Field* stage_row = find_train_field(key);
+    if (stage_row == nullptr) {
+      throw InputError(key, std::string(text),
+                       "stage.KEY with KEY one of " + train_key_list("stage"));
+    }
+    toml::value& section = root.as_table()["stage"];
+    if (!section.is_table()) section = toml::table{};
+    section.as_table()[std::string(stage_row->key)] = toml_of(*stage_row, text, key);
     return;
   }
   const Field* row = find_field(key);
@@ -581,7 +595,180 @@ GearTrain read_train(const Reader& reader, const toml::value& root, std::string_
   return train;
 }
 
+// What makes a case file a planetary stage's: its [stage].
+bool has_stage(const toml::value& root) {
+  return root.is_table() && root.as_table().count("stage") > 0;
+}
+
+// A stage file: [stage] by the rows of train_schema() of "stage", the pair sections [gears] and
+// [model] (the meshes' keys; the tooth counts are the stage's) and [integrator]. Every problem is
+// collected before one CaseFileError.
+PlanetaryStage read_stage(const Reader& reader, const toml::value& root,
+                          std::string_view file_name) {
+  std::vector<Problem> problems;
+  toml::value pair = toml::table{};
+  for (const auto& [key, value] : root.as_table()) {
+    if (key == "stage") continue;
+    const Field* field = find_field(key);
+    const bool top_level_key = field != nullptr && field->section.empty();
+    if (top_level_key || key == "gears" || key == "model" || key == "integrator") {
+      pair.as_table()[key] = value;
+      continue;
+    }
+    // planetary_train gives every mesh the same pair: a fault or a modification would land on
+    // the sun and the ring alike, and the stage has no bearings (rotational only).
+    const bool not_yet = key == "faults" || key == "modifications" || key == "bearings";
+    problems.push_back(reader.problem(
+        key, &value,
+        "[" + key + "] is not read in a stage file" +
+            (not_yet ? std::string(": faults, modifications and bearings of a stage's members "
+                                   "are not modelled yet")
+                     : std::string()) +
+            "; a stage file has name, [stage], [integrator], and [gears] and [model] (every "
+            "mesh's keys)"));
+  }
+  const toml::value& stage_value = root.as_table().at("stage");
+  if (!stage_value.is_table()) {
+    problems.push_back(reader.problem(
+        "stage", &stage_value,
+        "stage = " + toml_written(stage_value) + " is " + toml_type_name(stage_value) +
+            ", not a table: write [stage] with keys " + train_key_list("stage")));
+    throw CaseFileError(reader.file(), std::move(problems));
+  }
+  TrainTable table(reader, stage_value, "stage", problems);
+  table.refuse_unknown("stage", {}, "[stage] has " + train_key_list("stage"));
+  // The tooth counts are the stage's: a pair's teeth1/teeth2 would say them twice.
+  if (const auto gears = pair.as_table().find("gears");
+      gears != pair.as_table().end() && gears->second.is_table()) {
+    for (const std::string teeth : {"teeth1", "teeth2"}) {
+      if (const auto t = gears->second.as_table().find(teeth);
+          t != gears->second.as_table().end()) {
+        problems.push_back(reader.problem("gears." + teeth, &t->second,
+                                          "gears." + teeth +
+                                              " is not read in a stage file: the tooth counts "
+                                              "are stage.sun_teeth, planet_teeth, ring_teeth"));
+      }
+    }
+  }
+  for (const Field& field : case_schema()) {
+    if (field.section != "integrator" || !field.required || field.only_when) continue;
+    const auto section = pair.as_table().find("integrator");
+    const bool given = section != pair.as_table().end() && section->second.is_table() &&
+                       section->second.as_table().count(std::string(field.key)) > 0;
+    if (!given) {
+      problems.push_back(reader.problem(
+          field.name(), section != pair.as_table().end() ? &section->second : nullptr,
+          field.name() + " is missing (required: " + expected_of(field) + ")"));
+    }
+  }
+  PlanetaryStage stage;
+  const auto count = [&](std::string_view key) {
+    return static_cast<int>(table.quantity("stage", key).value_or(0.0));
+  };
+  stage.teeth = {count("sun_teeth"), count("planet_teeth"), count("ring_teeth")};
+  stage.planets = count("planets");
+  // The codes of train_schema()'s stage.held: 0 ring, 1 carrier, 2 sun.
+  const double held = table.quantity("stage", "held").value_or(0.0);
+  stage.held = held == 1.0 ? HeldMember::carrier : held == 2.0 ? HeldMember::sun : HeldMember::ring;
+  stage.sun_inertia_kg_m2 = table.quantity("stage", "sun_inertia").value_or(0.0);
+  stage.ring_inertia_kg_m2 = table.quantity("stage", "ring_inertia").value_or(0.0);
+  stage.carrier_inertia_kg_m2 = table.quantity("stage", "carrier_inertia").value_or(0.0);
+  stage.planet_inertia_kg_m2 = table.quantity("stage", "planet_inertia").value_or(0.0);
+  stage.planet_mass_kg = table.quantity("stage", "planet_mass");
+  stage.input_speed_rad_per_s = table.quantity("stage", "input_speed").value_or(0.0);
+  // The meshes' pair: the file's pair sections with the sun-planet tooth counts (the stage's).
+  std::optional<toml::value> read_pair;
+  {
+    toml::value probe = pair;
+    toml::value& gears = probe.as_table()["gears"];
+    if (!gears.is_table()) gears = toml::table{};
+    gears.as_table()["teeth1"] =
+        toml::value(static_cast<toml::integer>(stage.teeth.sun > 0 ? stage.teeth.sun : 20));
+    gears.as_table()["teeth2"] =
+        toml::value(static_cast<toml::integer>(stage.teeth.planet > 0 ? stage.teeth.planet : 20));
+    try {
+      stage.mesh = read_case(reader, probe, file_name, CaseFileKind::pair);
+      stage.mesh.run_keys_absent.clear();
+      stage.integrator = stage.mesh.integrator;
+      read_pair = probe;
+    } catch (const CaseFileError& e) {
+      for (const Problem& p : e.problems()) {
+        const bool seen = std::any_of(problems.begin(), problems.end(), [&](const Problem& q) {
+          return q.field == p.field && q.message == p.message;
+        });
+        if (!seen) problems.push_back(p);
+      }
+    }
+  }
+  // The input member (the sun, or the ring when the sun is held) starts at input_speed: a
+  // driver's speed at t = 0 is checked against it.
+  const std::string input = stage.held == HeldMember::sun ? "ring_torque" : "sun_torque";
+  for (const auto& [key, torque] :
+       {std::pair<std::string, Torque*>{"sun_torque", &stage.sun_torque},
+        {"ring_torque", &stage.ring_torque},
+        {"carrier_torque", &stage.carrier_torque}}) {
+    const toml::value* value = table.find(key);
+    if (value != nullptr && value->is_table()) {
+      if (read_pair) {
+        *torque = read_body_torque(reader, *read_pair, *value,
+                                   key == input ? table.find("input_speed") : nullptr, "stage",
+                                   file_name, problems, "stage." + key, "stage.input_speed");
+      }
+      continue;
+    }
+    torque->kind = Torque::Kind::constant;
+    torque->constant_n_m = table.quantity("stage", key).value_or(0.0);
+  }
+  if (!problems.empty()) throw CaseFileError(reader.file(), std::move(problems));
+  return stage;
+}
+
 }  // namespace
+
+bool is_stage_text(std::string_view toml_text, std::string_view file_name) {
+  const Reader reader{std::string(file_name)};
+  return has_stage(parse_toml(reader, toml_text, file_name));
+}
+
+bool is_stage_file(const std::filesystem::path& path) {
+  return is_stage_text(read_text(path), path.string());
+}
+
+PlanetaryStage parse_stage(std::string_view toml_text, std::string_view file_name,
+                           const std::vector<std::string>& sets) {
+  const Reader reader{std::string(file_name)};
+  toml::value root = parse_toml(reader, toml_text, file_name);
+  if (!root.is_table()) root = toml::table{};
+  for (const std::string& assignment : sets) set_in_file(root, assignment);
+  if (!has_stage(root)) {
+    throw CaseFileError(reader.file(), {reader.problem("stage", nullptr,
+                                                       "[stage] is missing: a stage file has "
+                                                       "[stage] with keys " +
+                                                           train_key_list("stage"))});
+  }
+  PlanetaryStage stage = read_stage(reader, root, file_name);
+  // What the stage's geometry refuses (a ring that does not close, ...), named by its key,
+  // before any work.
+  try {
+    (void)planetary_train(stage);
+  } catch (const InputError& e) {
+    // The stage's own keys under [stage]; a mesh's (module, ...) as the library names them.
+    const bool own = find_train_field("stage." + e.field()) != nullptr;
+    std::vector<Problem> problems = e.problems();
+    for (Problem& p : problems) {
+      if (!own) continue;
+      if (p.message.rfind(p.field, 0) == 0) p.message = "stage." + p.message;
+      p.field = "stage." + p.field;
+    }
+    throw CaseFileError(reader.file(), std::move(problems));
+  }
+  return stage;
+}
+
+PlanetaryStage read_stage_file(const std::filesystem::path& path,
+                               const std::vector<std::string>& sets) {
+  return parse_stage(read_text(path), path.string(), sets);
+}
 
 bool is_train_text(std::string_view toml_text, std::string_view file_name) {
   const Reader reader{std::string(file_name)};

@@ -67,6 +67,23 @@ GearTrain planetary_train(const PlanetaryStage& stage);
 // The rigid speeds (Willis) of the stage's members at its input speed.
 StageSpeeds planetary_rigid_speeds(const PlanetaryStage& stage);
 
+// The Willis relation Z_s (w_s - w_c) + Z_r (w_r - w_c) = 0 (geometry/planetary.hpp,
+// rigid_speeds) on a run's mean speeds, each the member's angle turned over the run divided by the
+// run's time (first row to last). With r_b = m Z cos(alpha) / 2 the numerator times that time is
+// 2 (s_sp(T) - s_sp(0) + s_rp(T) - s_rp(0)) / (m cos alpha) for any planet's two meshes (r_bs phi_s
+// + r_bp phi_p and r_br phi_r - r_bp phi_p are their displacements along the lines, phi = theta -
+// theta_c): the elastic stage breaks the relation by no more than its meshes' displacements.
+// residual = |Z_s (w_s - w_c) + Z_r (w_r - w_c)| / (Z_s |w_s - w_c| + Z_r |w_r - w_c|), in [0, 1]
+// (0 when the stage turns as one block). Throws InputError naming `run` unless it has two rows
+// or more, of the stage's bodies.
+struct StageWillis {
+  double sun_rad_per_s = 0.0;
+  double ring_rad_per_s = 0.0;
+  double carrier_rad_per_s = 0.0;
+  double residual = 0.0;
+};
+StageWillis planetary_willis(const PlanetaryStage& stage, const TrainResult& run);
+
 // The ring-housing sensor's y(t) (signals/planet_pass.hpp, ring_sensor_signal)
 // at each row of `run`, the series of simulate_train(planetary_train(stage)):
 // phi_n = theta_c + psi_n with theta_c the carrier's angle in the row and

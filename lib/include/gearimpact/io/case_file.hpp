@@ -73,6 +73,7 @@ PairOrRunCase parse_pair_or_run(std::string_view toml_text, std::string_view fil
 PairOrRunCase read_pair_or_run_file(const std::filesystem::path& path);
 
 struct GearTrain;
+struct PlanetaryStage;
 
 // True when the TOML text has [[bodies]]: a train file. Throws CaseFileError
 // for text that is no TOML.
@@ -98,6 +99,19 @@ GearTrain parse_train(std::string_view toml_text, std::string_view file_name,
                       const std::vector<std::string>& sets = {});
 GearTrain read_train_file(const std::filesystem::path& path,
                           const std::vector<std::string>& sets = {});
+
+// A stage file (docs/planetary.md, A stage file): [stage] (the rows of train_schema() of
+// "stage"), [gears] and [model] (the meshes' keys; the tooth counts are the stage's) and
+// [integrator], read into the nonlinear rotational stage of dynamics/planetary_train.hpp; --set
+// as on a train file (stage.KEY too). is_stage_text: the TOML text has [stage]. Throws
+// CaseFileError naming every key as written (stage.sun_torque.kind, gears.module) with its
+// allowed range, and what planetary_train refuses (a ring that does not close), before any work.
+bool is_stage_text(std::string_view toml_text, std::string_view file_name);
+bool is_stage_file(const std::filesystem::path& path);
+PlanetaryStage parse_stage(std::string_view toml_text, std::string_view file_name,
+                           const std::vector<std::string>& sets = {});
+PlanetaryStage read_stage_file(const std::filesystem::path& path,
+                               const std::vector<std::string>& sets = {});
 
 // How write_case_file writes quantities: in the units a person would choose
 // (mm, deg, GPa, N*mm, us, ms) wherever that text reads back to exactly the

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gearimpact/batch/sweep_friction.hpp"
+#include "gearimpact/dynamics/planetary_train.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/dynamics/train.hpp"
 #include "gearimpact/io/columns.hpp"
@@ -75,6 +76,12 @@ std::string train_series_csv(const GearTrain& train, const std::vector<TrainRow>
 // penetration, damping_loss_J and friction_loss_J (and mesh_damper_loss_J for a mesh with a
 // mesh damper), then "bodies": per body its name and final_w_rad_per_s.
 std::string train_summary_json(const GearTrain& train, const TrainResult& result);
+// A planetary stage's summary.json (train_summary_json's keys, then "stage": the mean speeds of
+// the sun, ring and carrier and the Willis residual of planetary_willis).
+std::string stage_summary_json(const GearTrain& train, const TrainResult& result,
+                               const StageWillis& willis);
+// The ring-housing sensor's series (planetary_ring_sensor): t_s and ring_sensor_y_N per row.
+std::string ring_sensor_csv(const std::vector<TrainRow>& rows, const std::vector<double>& y);
 // A tacho's edges, one row each: pulse,t_s,t_emitted_s, the true (jitter-free)
 // time and the emitted one (with the seeded jitter; equal without).
 std::string tacho_csv(const std::vector<double>& true_times_s,
