@@ -22,6 +22,19 @@ constexpr double kSmallestImpactSpeed_m_s = 1e-9;
 
 }  // namespace
 
+// What the model's keys set on either kind of line: the constant stiffness,
+// the damping's stiffness and update, and the mesh force's form.
+void MeshLine::read_model_settings(const SimulationCase& c) {
+  constant_k_ = c.model.mesh_stiffness == MeshStiffnessMode::constant
+                    ? c.model.constant_mesh_stiffness_n_per_m
+                    : 0.0;
+  damping_on_current_pair_ = c.model.damping_stiffness == DampingStiffness::current_pair;
+  // A constant stiffness has neither the extra torque nor jumps: both forms
+  // are then one, bit for bit.
+  lagrangian_ = c.model.mesh_force == MeshForce::lagrangian && constant_k_ == 0.0;
+  damping_update_ = resolved_damping_update(c);
+}
+
 MeshLine::MeshLine(const SimulationCase& c, const StiffnessTable& table)
     : MeshLine(c, table, 0.0) {}
 
@@ -47,14 +60,7 @@ MeshLine::MeshLine(const SimulationCase& c, const StiffnessTable& table, double 
     kh_ *= g.face_width_m / std::hypot(g.face_width_m, g.face_advance_m);
   }
   swept_ = g.face_advance_m > 0.0;
-  constant_k_ = c.model.mesh_stiffness == MeshStiffnessMode::constant
-                    ? c.model.constant_mesh_stiffness_n_per_m
-                    : 0.0;
-  damping_on_current_pair_ = c.model.damping_stiffness == DampingStiffness::current_pair;
-  // A constant stiffness has neither the extra torque nor jumps: both forms
-  // are then one, bit for bit.
-  lagrangian_ = c.model.mesh_force == MeshForce::lagrangian && constant_k_ == 0.0;
-  damping_update_ = resolved_damping_update(c);
+  read_model_settings(c);
   MeshTeeth teeth = mesh_teeth(c, table, constant_k_);
   teeth_ = std::move(teeth.tables);
   gaps_ = std::move(teeth.gaps);
@@ -85,12 +91,7 @@ MeshLine::MeshLine(const SimulationCase& c, const StiffnessTable& table, const I
   smoothing_speed_ = c.model.friction_smoothing_speed_m_s;
   face_width_ = c.gears.face_width_m;
   kh_ = hertz_stiffness(c.gears);
-  constant_k_ = c.model.mesh_stiffness == MeshStiffnessMode::constant
-                    ? c.model.constant_mesh_stiffness_n_per_m
-                    : 0.0;
-  damping_on_current_pair_ = c.model.damping_stiffness == DampingStiffness::current_pair;
-  lagrangian_ = c.model.mesh_force == MeshForce::lagrangian && constant_k_ == 0.0;
-  damping_update_ = resolved_damping_update(c);
+  read_model_settings(c);
   const double mean_k = constant_k_ > 0.0 ? constant_k_ : line.mean_stiffness_n_per_m;
   mesh_damping_ = c.model.mesh_damping_ratio > 0.0
                       ? viscous_mesh_damping_n_s_per_m(c.model.mesh_damping_ratio, mean_k, mass_kg)

@@ -314,6 +314,7 @@ class MeshLine {
   std::optional<std::array<double, kTermCount>> term_energy_bound() const;
 
  private:
+  void read_model_settings(const SimulationCase& c);
   // True for the planar model's motion: the centres move.
   template <typename Motion>
   static constexpr bool kCentres = std::is_same_v<Motion, PlanarMeshMotion>;
