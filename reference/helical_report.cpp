@@ -20,6 +20,7 @@
 #include "gearimpact/io/results.hpp"
 #include "gearimpact/stiffness/helical.hpp"
 #include "gearimpact/stiffness/helical_ste.hpp"
+#include "geometry_table.hpp"
 #include "gnuplot.hpp"
 #include "program.hpp"
 #include "reproduce.hpp"
@@ -33,41 +34,15 @@ constexpr double kNPerMmUm = 1e9;
 // ISO 6336-1's reference line load, 100 N/mm at the reference circle: the load without --torque.
 constexpr double kIsoReferenceLineLoad = 100e3;
 
-// geometry.csv (SI) and the table of REPORT.md (mm and deg).
-struct GeometryRows {
-  std::string csv = "quantity,gear,value,unit\n";
-  std::string md = "| quantity | pinion | wheel | unit |\n|---|---|---|---|\n";
-  void row(const std::string& what, double one, double two, const std::string& unit) {
-    csv += what + ",pinion," + format_number(one) + "," + unit + "\n";
-    csv += what + ",wheel," + format_number(two) + "," + unit + "\n";
-    md += "| " + what + " | " + shown(one, unit) + " | " + shown(two, unit) + " | " +
-          shown_unit(unit) + " |\n";
-  }
-  void pair(const std::string& what, double value, const std::string& unit) {
-    csv += what + ",pair," + format_number(value) + "," + unit + "\n";
-    md += "| " + what + " | " + shown(value, unit) + " | | " + shown_unit(unit) + " |\n";
-  }
-  static std::string shown(double value, const std::string& unit) {
-    if (unit == "m") return number(value * 1e3, 6);
-    if (unit == "rad") return number(value * 180.0 / pi, 6);
-    return number(value, 6);
-  }
-  static std::string shown_unit(const std::string& unit) {
-    if (unit == "m") return "mm";
-    if (unit == "rad") return "deg";
-    return unit;
-  }
-};
-
 std::string geometry_section(const GearPair& pair, const HelicalGeometry& g, double torque,
                              const std::string& origin, const std::filesystem::path& dir) {
-  GeometryRows r;
-  r.row("teeth z", pair.teeth1, pair.teeth2, "1");
-  r.row("profile_shift x (normal section)", pair.profile_shift1, pair.profile_shift2, "1");
-  r.row("pitch_radius r", g.pitch_radius1_m, g.pitch_radius2_m, "m");
-  r.row("base_radius r_b", g.base_radius1_m, g.base_radius2_m, "m");
-  r.row("tip_radius r_a", g.tip_radius1_m, g.tip_radius2_m, "m");
-  r.row("virtual_teeth zn", g.virtual_teeth1, g.virtual_teeth2, "1");
+  GeometryTable r{.angles_in_degrees = true};
+  r.both("teeth z", pair.teeth1, pair.teeth2, "1");
+  r.both("profile_shift x (normal section)", pair.profile_shift1, pair.profile_shift2, "1");
+  r.both("pitch_radius r", g.pitch_radius1_m, g.pitch_radius2_m, "m");
+  r.both("base_radius r_b", g.base_radius1_m, g.base_radius2_m, "m");
+  r.both("tip_radius r_a", g.tip_radius1_m, g.tip_radius2_m, "m");
+  r.both("virtual_teeth zn", g.virtual_teeth1, g.virtual_teeth2, "1");
   r.pair("helix_angle beta", g.helix_angle_rad, "rad");
   r.pair("base_helix_angle beta_b", g.base_helix_angle_rad, "rad");
   r.pair("normal_module m_n", g.normal_module_m, "m");

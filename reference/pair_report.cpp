@@ -29,6 +29,7 @@
 #include "gearimpact/stiffness/static_transmission_error.hpp"
 #include "gearimpact/stiffness/time_varying_stiffness.hpp"
 #include "gearimpact/stiffness/tooth_state.hpp"
+#include "geometry_table.hpp"
 #include "mesh_stiffness_figure.hpp"
 #include "program.hpp"
 #include "reproduce.hpp"
@@ -90,19 +91,6 @@ double mean_torque1(const SimulationCase& c) {
   return mean_torque(c.torque1);
 }
 
-struct Lines {
-  std::string csv = "quantity,gear,value,unit\n";
-  std::string md = "| quantity | pinion | wheel | unit |\n|---|---|---|---|\n";
-  // The CSV in SI `unit`; the table in mm for a length.
-  void both(const std::string& what, double one, double two, const std::string& unit) {
-    csv += what + ",pinion," + format_number(one) + "," + unit + "\n";
-    csv += what + ",wheel," + format_number(two) + "," + unit + "\n";
-    const double scale = unit == "m" ? 1e3 : 1.0;
-    md += "| " + what + " | " + number(one * scale, 6) + " | " + number(two * scale, 6) + " | " +
-          (unit == "m" ? "mm" : unit) + " |\n";
-  }
-};
-
 // The geometry section and geometry.csv (lengths in mm), with the bounds a designer places
 // modifications and faults within and a run's step is held to.
 std::string geometry_section(const SimulationCase& c, bool run, const std::filesystem::path& dir) {
@@ -126,7 +114,7 @@ std::string geometry_section(const SimulationCase& c, bool run, const std::files
           100.0 * 2.0 * (segment.end_m - segment.start_m - t0) / (segment.end_m - segment.start_m),
           4) +
       " % of it, " + number(100.0 * (contact_ratio(pair) - 1.0), 4) + " % of the mesh period.\n\n";
-  Lines lines;
+  GeometryTable lines;
   const RackGearGeometry& a = g.gear1;
   const RackGearGeometry& b = g.gear2;
   lines.both("teeth", a.teeth, b.teeth, "1");
@@ -175,18 +163,17 @@ std::string geometry_section(const SimulationCase& c, bool run, const std::files
   } catch (const InputError&) {
     // A tooth whose model places no crack (its default start off the flank): no rows.
   }
-  lines.csv += "contact_ratio,pair," + format_number(contact_ratio(pair)) + ",1\n";
-  lines.csv +=
-      "operating_pressure_angle,pair," + format_number(g.operating_pressure_angle_rad) + ",rad\n";
-  lines.csv += "centre_distance,pair," + format_number(g.centre_distance_m) + ",m\n";
-  lines.csv += "contact_segment_start_x1,pair," + format_number(segment.start_m) + ",m\n";
-  lines.csv += "contact_segment_end_x1,pair," + format_number(segment.end_m) + ",m\n";
+  lines.pair_csv_only("contact_ratio", contact_ratio(pair), "1");
+  lines.pair_csv_only("operating_pressure_angle", g.operating_pressure_angle_rad, "rad");
+  lines.pair_csv_only("centre_distance", g.centre_distance_m, "m");
+  lines.pair_csv_only("contact_segment_start_x1", segment.start_m, "m");
+  lines.pair_csv_only("contact_segment_end_x1", segment.end_m, "m");
   const StepBounds bounds = step_bounds(c);
-  lines.csv += "contact_period,pair," + format_number(bounds.contact_period_s) + ",s\n";
-  lines.csv += "largest_step_rk4,pair," + format_number(bounds.rk4_step_s) + ",s\n";
-  lines.csv += "largest_step_dopri5,pair," + format_number(bounds.dopri5_step_s) + ",s\n";
+  lines.pair_csv_only("contact_period", bounds.contact_period_s, "s");
+  lines.pair_csv_only("largest_step_rk4", bounds.rk4_step_s, "s");
+  lines.pair_csv_only("largest_step_dopri5", bounds.dopri5_step_s, "s");
   if (run && bounds.mesh_period_s > 0.0) {
-    lines.csv += "largest_step_mesh_period,pair," + format_number(bounds.mesh_step_s) + ",s\n";
+    lines.pair_csv_only("largest_step_mesh_period", bounds.mesh_step_s, "s");
   }
   write_file_atomically((dir / "geometry.csv").string(), lines.csv);
   text += lines.md;
