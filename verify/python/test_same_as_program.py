@@ -151,13 +151,19 @@ def test_iso6336_and_mesh_stiffness_equal_the_program(cli, source_dir, tmp_path)
     assert summary["min_n_m"] <= summary["mean_n_m"] <= summary["max_n_m"]
 
 
-def test_sweep_equals_the_program(cli, tmp_path):
-    # The sharded tests' case (verify/slurm/sharded-sweep.toml), a short line.
-    case_file = Path(__file__).resolve().parent.parent / "slurm" / "sharded-sweep.toml"
+@pytest.mark.parametrize("case_path, start, stop", [
+    # The sharded tests' case, a short line.
+    ("verify/slurm/sharded-sweep.toml", "3000 rad/s", "4000 rad/s"),
+    # A helical pair (GEARpie's H501), run in its transverse section with the slice model's
+    # face-integrated pair table (docs/helical.md, Dynamics).
+    ("examples/helical_h501_run.toml", "100 rad/s", "300 rad/s"),
+])
+def test_sweep_equals_the_program(cli, source_dir, tmp_path, case_path, start, stop):
+    case_file = Path(source_dir) / case_path
     case = gearimpact.read_case(case_file)
-    ours = gearimpact.sweep(case, "initial.w1", "3000 rad/s", "4000 rad/s", 2, direction="up")
+    ours = gearimpact.sweep(case, "initial.w1", start, stop, 2, direction="up")
     out = tmp_path / "out"
-    cli("sweep", case_file, "--vary", "initial.w1", "--from", "3000 rad/s", "--to", "4000 rad/s",
+    cli("sweep", case_file, "--vary", "initial.w1", "--from", start, "--to", stop,
         "--points", "2", "--direction", "up", "--out", out, "--no-plots")
     lines = (out / "sweep.csv").read_text().strip().splitlines()
     header = lines[0].split(",")
