@@ -233,9 +233,11 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
     // and mesh forces of each side (planar_series_csv_header).
     const bool progress = series_rows(c) >= kRowsWorthProgress;
     series_file.emplace(o.out);
-    pending = planar_series_csv_header();
-    control.on_planar_row = [&, progress](const PlanarRow& row) {
-      append_planar_row(pending, row);
+    // A helical pair's rows add its axial forces and tilting moments.
+    const bool helical = c.gears.helix_angle_rad != 0.0;
+    pending = planar_series_csv_header(helical);
+    control.on_planar_row = [&, progress, helical](const PlanarRow& row) {
+      append_planar_row(pending, row, helical);
       flush(row.t_s, progress);
     };
   } else if (!o.out.empty()) {

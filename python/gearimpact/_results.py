@@ -115,7 +115,8 @@ class SimulationResult:
     program's JSON summary; the losses damping_loss_J (Hertzian damping),
     friction_loss_J and, with a viscous mesh damper, mesh_damper_loss_J), .series (a dict of numpy arrays with the columns
     of its time-series CSV, ``gearimpact simulate --out``'s: with [bearings] kind = "elastic"
-    the planar series' (docs/usage.md, "Output columns"); each column a member of the rows is
+    the planar series' (docs/usage.md, "Output columns"; a helical pair's adds axial_force1_N,
+    axial_force2_N, tilting_moment1_N_m, tilting_moment2_N_m); each column a member of the rows is
     a view of it; zero-length when keep_series was False) and .impacts (a
     list of dicts: line "N1" or "N2", start_s, impact_speed_m_s, restitution,
     end_s, end_speed_m_s, the last two None for a contact still on at the end)

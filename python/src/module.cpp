@@ -284,8 +284,10 @@ py::tuple run_simulation(const SimulationCase& c, bool keep_series, long long ma
   });
   // A planar run's series and samples are its own (the torsional columns would be empty).
   const bool planar = c.bearings.kind == BearingKind::elastic;
-  py::dict series = planar ? table_arrays(planar_series_columns(), std::move(result.planar_series))
-                           : table_arrays(series_columns(), std::move(result.series));
+  const bool helical = c.gears.helix_angle_rad != 0.0;
+  py::dict series =
+      planar ? table_arrays(planar_series_columns(helical), std::move(result.planar_series))
+             : table_arrays(series_columns(), std::move(result.series));
   py::dict samples = planar
                          ? table_arrays(planar_sample_columns(), std::move(result.planar_samples))
                          : table_arrays(sample_columns(), std::move(result.samples));

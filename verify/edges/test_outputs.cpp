@@ -332,6 +332,7 @@ TEST_CASE("docs/usage.md lists exactly the columns of each output's table") {
       {"series", documented(gearimpact::series_columns())},
       {"samples", documented(gearimpact::sample_columns())},
       {"planar-series", documented(gearimpact::planar_series_columns())},
+      {"planar-series-helical", documented(gearimpact::planar_series_columns(true))},
       {"planar-samples", documented(gearimpact::planar_sample_columns())},
       {"train-series", documented(gearimpact::train_series_columns(train))},
       {"rattle-impacts", documented(gearimpact::rattle_impact_columns())},

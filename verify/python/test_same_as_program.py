@@ -3,6 +3,7 @@ library behind both, the same sampling, the same case. The program's CSV and
 JSON are parsed at their 17 significant digits, which read back exactly."""
 
 import json
+import os
 from pathlib import Path
 
 import numpy as np
@@ -364,6 +365,22 @@ def test_simulate_planar_series_as_the_program_writes_it(cli, tmp_path):
                       "planar series of case 1")
     assert len(result.series["t_s"]) > 100
     assert np.max(np.abs(result.series["x2_m"])) > 0.0
+
+
+def test_simulate_helical_planar_series_as_the_program_writes_it(cli, tmp_path):
+    # The helical example on elastic bearings: the planar series adds the axial forces and the
+    # tilting moments, reported only, in Python as in the program's --out.
+    case_file = Path(os.environ["GEARIMPACT_SOURCE_DIR"]) / "examples" / "helical_h501_planar.toml"
+    out = tmp_path / "series.csv"
+    summary = json.loads(cli("simulate", "--case-file", case_file, "--t-end", "0.0002",
+                             "--every", "10", "--out", out))
+    result = gearimpact.simulate(case_file, end_time="0.2 ms", output_every=10)
+    assert result.summary == summary
+    columns = PLANAR_SERIES_COLUMNS + ["axial_force1_N", "axial_force2_N",
+                                       "tilting_moment1_N_m", "tilting_moment2_N_m"]
+    assert_same_table(result.series, out.read_text(), columns, "helical planar series")
+    assert summary["axial_force_max_N"] > 0.0
+    assert np.array_equal(result.series["axial_force2_N"], -result.series["axial_force1_N"])
 
 
 @pytest.mark.parametrize("rate", [0, -1.0, float("inf"), True, "fast"])

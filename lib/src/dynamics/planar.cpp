@@ -20,6 +20,7 @@
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/helical.hpp"
 #include "gearimpact/stiffness/energy.hpp"
 #include "rk4_dense.hpp"
 #include "run.hpp"
@@ -723,6 +724,12 @@ class PlanarRun {
     s.step_s = c.integrator.step_s;
     s.stiffness_model = c.model.stiffness.kind;
     s.planar = PlanarEnergies{};
+    // A helical pair's section (face_advance_m = W > 0) reports its axial
+    // force and tilting moments.
+    if (c.gears.face_advance_m > 0.0) {
+      thrust_.emplace(c.gears);
+      s.helical_thrust = HelicalThrustMaxima{};
+    }
     system_.impose_driver(start_time_, y_);
     if (control.keep_samples && clock_.on()) result_.planar_samples.reserve(clock_.reserve_rows());
     // The tacho's shaft and its edges, located on each step's continuous
@@ -755,6 +762,7 @@ class PlanarRun {
     // of the step before (after its events), where its mesh energy serves the ledger.
     system_.rhs(start_time_, y_, mode_, memory_, k1_, &at_start_);
     s.rhs_evaluations += 1;
+    observe_thrust(at_start_);
   }
 
   // The fixed-step method whose last stage may serve as the next step's first.
@@ -860,6 +868,7 @@ class PlanarRun {
       system_.rhs(t, y_, mode_, memory_, k1_, &at_start_);
       s.rhs_evaluations += 1;
     }
+    observe_thrust(at_start_);
     const double mesh = at_start_.mesh_energy_j[0] + at_start_.mesh_energy_j[1];
     // A pair that entered or left, or crossed a fault's edge, takes or
     // releases its stored energy: work of the time-varying stiffness, booked
@@ -923,6 +932,13 @@ class PlanarRun {
     pr.coast_force_n = f.normal_n[1];
     pr.drive_penetration_m = dd;
     pr.coast_penetration_m = dc;
+    if (thrust_) {
+      const HelicalThrust h = (*thrust_)(f.normal_n[0], f.normal_n[1]);
+      pr.axial_force1_n = h.axial_force1_n;
+      pr.axial_force2_n = h.axial_force2_n;
+      pr.tilting_moment1_n_m = h.tilting_moment1_n_m;
+      pr.tilting_moment2_n_m = h.tilting_moment2_n_m;
+    }
     if (control_.on_planar_row) control_.on_planar_row(pr);
     if (control_.keep_series) result_.planar_series.push_back(pr);
   }
@@ -955,6 +971,18 @@ class PlanarRun {
 
  private:
   long long steps_taken() const { return result_.summary.steps; }
+
+  // A helical pair's largest axial force and tilting moments, at a step's end.
+  void observe_thrust(const Forces& f) {
+    if (!thrust_) return;
+    const HelicalThrust h = (*thrust_)(f.normal_n[0], f.normal_n[1]);
+    HelicalThrustMaxima& most = *result_.summary.helical_thrust;
+    most.axial_force_max_n = std::max(most.axial_force_max_n, std::fabs(h.axial_force1_n));
+    most.tilting_moment1_max_n_m =
+        std::max(most.tilting_moment1_max_n_m, std::fabs(h.tilting_moment1_n_m));
+    most.tilting_moment2_max_n_m =
+        std::max(most.tilting_moment2_max_n_m, std::fabs(h.tilting_moment2_n_m));
+  }
 
   // The angle a kinematic driver's body (the motor with shafts, else the
   // pinion) starts from; a continued run carries it on from where it stopped,
@@ -1087,6 +1115,7 @@ class PlanarRun {
   double driver_theta0_;
   std::optional<TachoEdges> tacho_;
   std::optional<SpeedDriftMonitor> drift_;
+  std::optional<HelicalThrustLevers> thrust_;
 };
 
 }  // namespace

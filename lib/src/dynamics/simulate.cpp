@@ -253,6 +253,7 @@ void validate(const SimulationCase& c) {
     refuse_helical_run(c);
     const SimulationCase d = dynamics_case(c);
     refuse_planar_simulation(d);
+    if (d.bearings.kind == BearingKind::elastic) validate_planar(d, planar_mounting(d), {});
     validate_gaps(d);
     validate_implied(c);
     return;
@@ -368,6 +369,13 @@ std::vector<std::string> run_warnings(const SimulationCase& c) {
                          " N*m\" balances T1" + (friction ? " without friction" : ""));
     }
   }
+  if (c.gears.helix_angle_rad != 0.0 && c.bearings.kind == BearingKind::elastic) {
+    warnings.push_back(
+        "a helical pair in the planar model: its transverse forces act on the centres, its "
+        "axial force and tilting moments are reported (axial_force1_N, ..., "
+        "tilting_moment2_N_m) and act on nothing: the model has no axial or tilting freedom "
+        "(docs/helical.md, \"The planar model\")");
+  }
   const double v1 = rb1 * c.initial.w1_rad_per_s;
   const double v2 = rb2 * c.initial.w2_rad_per_s;
   if (std::fabs(v1 - v2) > 1e-9 * std::max(std::fabs(v1), std::fabs(v2))) {
@@ -429,17 +437,23 @@ std::shared_ptr<const StiffnessTable> run_table(const SimulationCase& c) {
   return std::make_shared<const StiffnessTable>(helical_pair_table(c.gears, c.model.stiffness));
 }
 
+void refuse_helical_planar(const SimulationCase& c, const std::string& what) {
+  if (c.gears.helix_angle_rad == 0.0 || c.bearings.kind != BearingKind::elastic) return;
+  throw InputError(std::vector<Problem>{refused_problem(
+      "gears.helix_angle", format_number(c.gears.helix_angle_rad * 180.0 / pi) + " deg",
+      what +
+          " take a helical pair in the torsional model only (rigid bearings): simulate "
+          "runs it on elastic bearings, the planar model's " +
+          what +
+          " are not checked for "
+          "it yet",
+      "0 with bearings.kind = \"elastic\"",
+      "bearings.kind = \"rigid\" for the torsional model of the helical pair")});
+}
+
 void refuse_helical_run(const SimulationCase& c) {
   if (c.gears.helix_angle_rad == 0.0) return;
   const std::string beta = format_number(c.gears.helix_angle_rad * 180.0 / pi) + " deg";
-  if (c.bearings.kind == BearingKind::elastic) {
-    throw InputError(std::vector<Problem>{refused_problem(
-        "gears.helix_angle", beta,
-        "run in the torsional model only (rigid bearings): the planar model does not take a "
-        "helical pair's transverse forces, nor its axial force and tilting moments, yet",
-        "0 with bearings.kind = \"elastic\"",
-        "bearings.kind = \"rigid\" for the torsional model of the helical pair")});
-  }
   if (!c.faults.empty()) {
     throw InputError(std::vector<Problem>{refused_problem(
         "faults[0]", "a fault on a helical pair (gears.helix_angle = " + beta + ")",

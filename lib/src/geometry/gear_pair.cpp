@@ -217,11 +217,10 @@ const GearPair& spur_only(const GearPair& pair) {
 }  // namespace
 
 void throw_helical_not_taken(double helix_angle_rad, std::string_view what) {
-  throw InputError(
-      "gears.helix_angle", format_number(helix_angle_rad * 180.0 / pi) + " deg",
-      "0 for " + std::string(what) +
-          ": a helical pair is taken by mesh-stiffness, iso6336 and simulate's torsional "
-          "model only; it is never run as a spur pair");
+  throw InputError("gears.helix_angle", format_number(helix_angle_rad * 180.0 / pi) + " deg",
+                   "0 for " + std::string(what) +
+                       ": a helical pair is taken only where docs/helical.md says so; it is never "
+                       "run as a spur pair");
 }
 
 MeshLayout::MeshLayout(const GearPair& pair, CoastPhase coast_phase)

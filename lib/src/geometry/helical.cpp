@@ -150,6 +150,32 @@ HelicalForces helical_forces(const HelicalGeometry& g, double pinion_torque_n_m)
   return f;
 }
 
+HelicalThrustLevers::HelicalThrustLevers(const GearPair& section) {
+  if (!(section.face_advance_m > 0.0 && section.face_width_m > 0.0)) {
+    throw InputError("face_advance_m", section.face_advance_m,
+                     "a swept transverse section's W = b tan(beta_b) > 0 (swept_transverse_pair)");
+  }
+  // The flank's normal in the plane of action is perpendicular to its contact
+  // line, inclined at beta_b to the axis: tan(beta_b) axial per unit of
+  // transverse force; its sign by the hand and the side (docs/helical.md).
+  axial_per_transverse_ =
+      hand_sign(section.helix_hand) * section.face_advance_m / section.face_width_m;
+  const double cos_aw = std::cos(operating_pressure_angle(section));
+  pitch_radius1_m_ = base_radius(section, Gear::one) / cos_aw;
+  pitch_radius2_m_ = base_radius(section, Gear::two) / cos_aw;
+}
+
+HelicalThrust HelicalThrustLevers::operator()(double drive_force_n, double coast_force_n) const {
+  HelicalThrust t;
+  t.axial_force1_n = axial_per_transverse_ * (drive_force_n - coast_force_n);
+  t.axial_force2_n = -t.axial_force1_n;
+  // r x F at the pitch point: (r_w1 e_x) x (F_a1 e_z) on the pinion,
+  // (-r_w2 e_x) x (F_a2 e_z) on the wheel, both along e_y.
+  t.tilting_moment1_n_m = -pitch_radius1_m_ * t.axial_force1_n;
+  t.tilting_moment2_n_m = pitch_radius2_m_ * t.axial_force2_n;
+  return t;
+}
+
 double normal_backlash_m(const HelicalGeometry& g, double backlash_m) {
   // The idle flanks' gap along their normal: the transverse play 2B times cos(beta_b).
   return 2.0 * backlash_m * std::cos(g.base_helix_angle_rad);

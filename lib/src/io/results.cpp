@@ -98,7 +98,7 @@ void add_planar_state(Columns<Row>& columns) {
 
 }  // namespace
 
-Columns<PlanarRow> planar_series_columns() {
+Columns<PlanarRow> planar_series_columns(bool helical) {
   Columns<PlanarRow> columns{member_column("t_s", "s", &PlanarRow::t_s)};
   add_planar_state(columns);
   for (auto column : {member_column("bearing_fx1_N", "N", &PlanarRow::bearing_fx1_n),
@@ -111,16 +111,25 @@ Columns<PlanarRow> planar_series_columns() {
                       member_column("coast_penetration_m", "m", &PlanarRow::coast_penetration_m)}) {
     columns.push_back(std::move(column));
   }
+  if (!helical) return columns;
+  for (auto column :
+       {member_column("axial_force1_N", "N", &PlanarRow::axial_force1_n),
+        member_column("axial_force2_N", "N", &PlanarRow::axial_force2_n),
+        member_column("tilting_moment1_N_m", "N*m", &PlanarRow::tilting_moment1_n_m),
+        member_column("tilting_moment2_N_m", "N*m", &PlanarRow::tilting_moment2_n_m)}) {
+    columns.push_back(std::move(column));
+  }
   return columns;
 }
 
-std::string planar_series_csv_header() {
-  return csv_header(planar_series_columns());
+std::string planar_series_csv_header(bool helical) {
+  return csv_header(planar_series_columns(helical));
 }
 
-void append_planar_row(std::string& out, const PlanarRow& r) {
-  static const Columns<PlanarRow> columns = planar_series_columns();
-  append_csv_row(out, columns, r);
+void append_planar_row(std::string& out, const PlanarRow& r, bool helical) {
+  static const Columns<PlanarRow> spur = planar_series_columns(false);
+  static const Columns<PlanarRow> with_thrust = planar_series_columns(true);
+  append_csv_row(out, helical ? with_thrust : spur, r);
 }
 
 Columns<PlanarSample> planar_sample_columns() {
@@ -406,6 +415,13 @@ std::string summary_json(const SimulationSummary& s) {
     json_number(out, "shaft_energy_initial_J", p.shaft_energy_initial_j);
     json_number(out, "shaft_energy_final_J", p.shaft_energy_final_j);
     json_number(out, "shaft_damping_loss_J", p.shaft_damping_loss_j);
+  }
+  if (s.helical_thrust) {
+    // A helical pair on elastic bearings only, so that other runs' summaries keep their bytes.
+    const HelicalThrustMaxima& h = *s.helical_thrust;
+    json_number(out, "axial_force_max_N", h.axial_force_max_n);
+    json_number(out, "tilting_moment1_max_N_m", h.tilting_moment1_max_n_m);
+    json_number(out, "tilting_moment2_max_N_m", h.tilting_moment2_max_n_m);
   }
   out += "  \"steps\": " + std::to_string(s.steps) + ",\n";
   out += "  \"events\": " + std::to_string(s.events) + ",\n";

@@ -245,10 +245,10 @@ Modes natural_modes(const LinearModel& model) {
 Modes natural_modes(const SimulationCase& c) {
   if (c.gears.helix_angle_rad != 0.0) {
     // A helical pair: its transverse section at the mean of the pair table
-    // its torsional run reads (docs/helical.md, Dynamics); the planar model
-    // and faults take no helical pair yet.
-    if (c.bearings.kind == BearingKind::elastic || !c.faults.empty()) {
-      throw_helical_not_taken(c.gears.helix_angle_rad, "modes with elastic bearings or faults");
+    // its run reads, on rigid or elastic bearings (docs/helical.md, Dynamics
+    // and The planar model); faults take no helical pair yet.
+    if (!c.faults.empty()) {
+      throw_helical_not_taken(c.gears.helix_angle_rad, "modes with faults");
     }
     validate_fields(c);
     const SimulationCase d = dynamics_case(c);

@@ -26,6 +26,11 @@ struct PlanarRow {
   // side's penetration delta_d = s_d - B, delta_c = -s_c - B (docs/vibration.md).
   double drive_force_n = 0.0, coast_force_n = 0.0;
   double drive_penetration_m = 0.0, coast_penetration_m = 0.0;
+  // A helical pair's axial forces (along +z) and tilting moments (about +y
+  // at the gears' centres) of those normal forces (HelicalThrust of
+  // geometry/helical.hpp): reported, acting on nothing; 0 for a spur pair.
+  double axial_force1_n = 0.0, axial_force2_n = 0.0;
+  double tilting_moment1_n_m = 0.0, tilting_moment2_n_m = 0.0;
 };
 
 // One sample of a planar run at t = t0 + n / fs exactly (sample_time_s of

@@ -144,6 +144,15 @@ struct PlanarEnergies {
   double shaft_damping_loss_j = 0.0;
 };
 
+// The largest magnitudes, over the ends of a planar run's accepted steps, of
+// a helical pair's axial force (the same on both gears) and tilting moments
+// (PlanarRow's axial_force1_n, ...): reported, not in the planar model.
+struct HelicalThrustMaxima {
+  double axial_force_max_n = 0.0;
+  double tilting_moment1_max_n_m = 0.0;
+  double tilting_moment2_max_n_m = 0.0;
+};
+
 struct SimulationSummary {
   std::string case_name;
   std::string integrator;
@@ -222,6 +231,8 @@ struct SimulationSummary {
   long long rhs_evaluations = 0;
   std::optional<RattleSummary> rattle;   // only under a kinematic driver
   std::optional<PlanarEnergies> planar;  // only with [bearings] kind = "elastic"
+  // Only for a helical pair on elastic bearings.
+  std::optional<HelicalThrustMaxima> helical_thrust;
 };
 
 // What a contact remembers from its onset, (32),(33): with no impact, D keeps
@@ -422,11 +433,14 @@ SimulationCase dynamics_case(const SimulationCase& c);
 // c.model.stiffness), or for a helical pair helical_pair_table (stiffness/helical.hpp).
 std::shared_ptr<const StiffnessTable> run_table(const SimulationCase& c);
 // What a run refuses of a helical pair (none for a spur one), naming the key:
-// gears.helix_angle with elastic bearings (the planar model), faults[0],
-// modifications, model.friction_law other than "constant",
+// faults[0], modifications, model.friction_law other than "constant",
 // model.friction_coefficient other than 0 (docs/helical.md, Dynamics), and
 // gears.face_width where eps_gamma reaches MeshLayout::capacity - 1.
 void refuse_helical_run(const SimulationCase& c);
+// Throws InputError naming gears.helix_angle for a helical pair on elastic
+// bearings: `what` (the steady state and sweeps, say) takes it in the
+// torsional model only. simulate() runs it in the planar model.
+void refuse_helical_planar(const SimulationCase& c, const std::string& what);
 
 // Checks a run once (what simulate() checks, in its order): the case's keys and fields
 // (validate_absent_run_keys, validate_fields), a helical pair's refusals (refuse_helical_run),

@@ -87,6 +87,35 @@ struct HelicalForces {
 };
 HelicalForces helical_forces(const HelicalGeometry& geometry, double pinion_torque_n_m);
 
+// The axial force and the tilting moments that come with a helical pair's
+// transverse mesh forces (docs/helical.md, "The planar model"), on the section
+// the dynamics run (swept_transverse_pair: tan(beta_b) = W / b, the hand
+// kept), in the frame of docs/vibration.md (O1 the origin, e_x towards O2,
+// the pinion turning about +z). From the drive line's force F_d (N1) and the
+// coast line's F_c (N2), both transverse and >= 0:
+//   F_a1 = sigma tan(beta_b) (F_d - F_c) on the pinion along +z, F_a2 = -F_a1,
+//   M1 = -r_w1 F_a1 and M2 = -r_w2 F_a1 about +y at the gears' centres,
+// the axial force taken at the pitch point (r_w = r_b / cos(alpha_wt), the
+// operating pitch radius: both lines of action cross the centre line there).
+// Reported only: the planar model has no axial or tilting freedom.
+struct HelicalThrust {
+  double axial_force1_n = 0.0;
+  double axial_force2_n = 0.0;
+  double tilting_moment1_n_m = 0.0;
+  double tilting_moment2_n_m = 0.0;
+};
+class HelicalThrustLevers {
+ public:
+  // `section` a swept transverse section (face_advance_m > 0).
+  explicit HelicalThrustLevers(const GearPair& section);
+  HelicalThrust operator()(double drive_force_n, double coast_force_n) const;
+
+ private:
+  double axial_per_transverse_;  // sigma tan(beta_b)
+  double pitch_radius1_m_;       // r_w1
+  double pitch_radius2_m_;       // r_w2
+};
+
 // Backlash: B, half the play along the transverse line of action, and the
 // normal backlash between idle flanks j_bn = 2 B cos(beta_b).
 double normal_backlash_m(const HelicalGeometry& geometry, double backlash_m);

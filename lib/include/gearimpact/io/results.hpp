@@ -42,10 +42,12 @@ void append_series_row(std::string& out, const SeriesRow& row);
 // theta1_rad, x2_m, y2_m, theta2_rad, their rates (vx1_m_s, ..., w2_rad_s),
 // the motor's and the load's angles and speeds (their gears' without shafts),
 // the force each bearing exerts on its gear (bearing_fx1_N, ...), the normal
-// forces of each side (drive_force_N, coast_force_N) and their penetrations.
-Columns<PlanarRow> planar_series_columns();
-std::string planar_series_csv_header();
-void append_planar_row(std::string& out, const PlanarRow& row);
+// forces of each side (drive_force_N, coast_force_N) and their penetrations;
+// with `helical` (a helical pair's run) then axial_force1_N, axial_force2_N,
+// tilting_moment1_N_m and tilting_moment2_N_m, reported only.
+Columns<PlanarRow> planar_series_columns(bool helical = false);
+std::string planar_series_csv_header(bool helical = false);
+void append_planar_row(std::string& out, const PlanarRow& row, bool helical = false);
 // The samples of RunControl::sample_rate_hz, in pieces as the series:
 // t_s,theta1_rad,theta2_rad,w1_rad_s,w2_rad_s,w1_dot_rad_s2,w2_dot_rad_s2,s_m,dte_m,
 // normal_force_n1_N,normal_force_n2_N,region,pairs
