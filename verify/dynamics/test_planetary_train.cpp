@@ -13,6 +13,8 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -23,6 +25,7 @@
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/planetary.hpp"
+#include "gearimpact/io/case_file.hpp"
 #include "gearimpact/modes/planetary.hpp"
 #include "gearimpact/signals/fft.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
@@ -185,16 +188,23 @@ TEST_CASE("Willis: a driven stage under a constant load turns at the rigid ratio
   struct Arrangement {
     HeldMember held;
     std::size_t input, output;
-    double ratio;  // output speed over input speed
+    double ratio;                  // output speed over input speed
+    std::vector<double> angles{};  // unequal spacing; empty: equal
   };
+  // The planets at 0, 116.25 and 240 deg (31 and 64 of 96 = Z_s + Z_r assembly steps): unequal
+  // spacing moves the meshes' phases, not the kinematics.
+  const std::vector<double> unequal{0.0, 2.0 * pi * 31 / 96, 2.0 * pi * 64 / 96};
   const Arrangement arrangements[] = {
       {HeldMember::ring, kSunBody, kCarrierBody, double(zs) / (zs + zr)},
       {HeldMember::carrier, kSunBody, kRingBody, -double(zs) / zr},
       {HeldMember::sun, kRingBody, kCarrierBody, double(zr) / (zs + zr)},
+      {HeldMember::ring, kSunBody, kCarrierBody, double(zs) / (zs + zr), unequal},
   };
   for (const Arrangement& a : arrangements) {
     CAPTURE(static_cast<int>(a.held));
+    CAPTURE(a.angles.size());
     PlanetaryStage s = test_stage(zs, zp, zr, 3);
+    s.planet_angles_rad = a.angles;
     s.held = a.held;
     s.input_speed_rad_per_s = 100.0;
     // The input member driven at 100 rad/s, the output loaded against its
@@ -231,20 +241,29 @@ TEST_CASE("Willis: a driven stage under a constant load turns at the rigid ratio
   }
 }
 
-TEST_CASE("identical equally spaced planets share the sun's torque equally at static balance") {
+TEST_CASE(
+    "identical planets share the sun's torque equally at static balance, equally spaced or not") {
   // Ring held, sun torque T_s, the carrier loaded by -T_s (1 + Z_r / Z_s):
   // the rigid mode is unforced and the damped stage settles to its static
   // balance, where every sun mesh carries T_s / (N Rb_s) (each planet's two
   // mesh forces equal, their moments on the sun summing to T_s).
   // N = 3 with 25/23/71 teeth (sun meshes phased by 1/3: equal stiffness
-  // taken constant) and N = 4 with 24/24/72 (all in phase, the tables).
+  // taken constant), the same at 0, 116.25, 240 deg (31 and 64 of the 96
+  // assembly steps: phases 0, 0.729, 0.667; the rotational stage's planets
+  // differ only by their phases, which constant stiffness makes moot) and
+  // N = 4 with 24/24/72 (all in phase, the tables).
   struct Case {
     int zs, zp, zr, n;
     bool constant;
+    std::vector<double> angles;
   };
-  for (const Case c : {Case{25, 23, 71, 3, true}, Case{24, 24, 72, 4, false}}) {
+  for (const Case& c : {Case{25, 23, 71, 3, true, {}},
+                        Case{25, 23, 71, 3, true, {0.0, 2.0 * pi * 31 / 96, 2.0 * pi * 64 / 96}},
+                        Case{24, 24, 72, 4, false, {}}}) {
     CAPTURE(c.n);
+    CAPTURE(c.angles.size());
     PlanetaryStage s = test_stage(c.zs, c.zp, c.zr, c.n);
+    s.planet_angles_rad = c.angles;
     if (c.constant) {
       s.mesh.model.mesh_stiffness = MeshStiffnessMode::constant;
       s.mesh.model.constant_mesh_stiffness_n_per_m = 5.0e8;
@@ -520,6 +539,84 @@ TEST_CASE("the meshes' pairs enter at the phases of the tooth counts") {
     for (const double v : entries[3 + n]) {
       CHECK(circular(sun_pitch - (v + ring_entry), gamma_rs) < 2e-3);
     }
+  }
+}
+
+namespace {
+
+// The least turn phi >= 0, in pitches of a gear of z teeth, that brings one of its tooth centre
+// lines (at phi + 2 pi j / z, turning counter-clockwise with phi) onto the direction psi,
+// scanned over every tooth.
+double scanned_lag(int z, double psi) {
+  double least = 2.0 * pi;
+  for (int j = 0; j < z; ++j) {
+    const double phi = psi - 2.0 * pi * j / z;
+    least = std::min(least, phi - 2.0 * pi * std::floor(phi / (2.0 * pi)));
+  }
+  return least / (2.0 * pi / z);
+}
+
+std::string example_stage_text() {
+  std::ifstream in(std::string(GEARIMPACT_PAPER_DATA_DIR) + "/../examples/planetary_stage.toml");
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+TEST_CASE(
+    "a stage file's planet angles set each mesh's phase: the lags of its tooth centre lines") {
+  // examples/planetary_stage.toml (21/30/81, N = 3) with its planets at 0, 35 and 70 of the
+  // 102 = Z_s + Z_r assembly steps. Relative to the carrier the sun turns counter-clockwise
+  // by phi and the ring clockwise by (Z_s / Z_r) phi: the same number of their own pitches. A
+  // mesh lags planet 1's by the turn, in pitches, that brings a sun (ring) tooth's centre line
+  // onto its planet's direction psi_n, scanned over the teeth; the train's meshes carry it as
+  // line_offset = -lag t0 (sun) and gamma_rs t0 - lag t0 (ring), t0 the base pitch.
+  std::string text = example_stage_text();
+  const std::string planets = "planets = 3\n";
+  const std::size_t at = text.find(planets);
+  REQUIRE(at != std::string::npos);
+  const std::string steps[] = {"0", "123.52941176470588", "247.05882352941177"};  // k 360 / 102
+  text.insert(at + planets.size(), "planet_angles = [\"" + steps[0] + " deg\", \"" + steps[1] +
+                                       " deg\", \"" + steps[2] + " deg\"]\n");
+  const PlanetaryStage stage = parse_stage(text, "unequal.toml");
+  REQUIRE(stage.planet_angles_rad.size() == 3);
+  const GearTrain train = planetary_train(stage);
+  REQUIRE(train.meshes.size() == 6);
+  const double t0 = base_pitch(stage.mesh.gears);
+  const auto circular = [](double a, double b) {
+    const double d = a - b - std::floor(a - b);
+    return std::min(d, 1.0 - d);
+  };
+  const double ring1 = train.meshes[3].line_offset_m / t0;
+  for (std::size_t n = 0; n < 3; ++n) {
+    CAPTURE(n);
+    const double psi = std::stod(steps[n]) * pi / 180.0;
+    // The angle as read: 17 digits of degrees, to rounding.
+    CHECK(std::fabs(stage.planet_angles_rad[n] - psi) <= 1e-15 * 2.0 * pi);
+    const double sun_lag = scanned_lag(21, psi);
+    // The ring's teeth turn clockwise: its lag is the sun's scan mirrored.
+    const double ring_lag = scanned_lag(81, -psi);
+    CAPTURE(sun_lag);
+    CAPTURE(ring_lag);
+    // Unequal spacing: planet 2's and 3's sun meshes not at thirds (7.206 and 14.412 pitches).
+    if (n > 0) CHECK(circular(sun_lag, static_cast<double>(n) / 3.0) > 0.05);
+    // By assembly the ring mesh lags as its sun mesh does.
+    CHECK(circular(sun_lag, ring_lag) < 1e-9);
+    // The train's phases, to the rounding of psi (1e-15 rad times 102 teeth).
+    CHECK(circular(-train.meshes[n].line_offset_m / t0, sun_lag) < 1e-9);
+    CHECK(circular(ring1 - train.meshes[3 + n].line_offset_m / t0, ring_lag) < 1e-9);
+  }
+  // Equal angles written out are the default's: the same phases to rounding.
+  std::string equal = example_stage_text();
+  equal.insert(equal.find(planets) + planets.size(),
+               "planet_angles = [\"0 deg\", \"120 deg\", \"240 deg\"]\n");
+  const GearTrain written = planetary_train(parse_stage(equal, "equal.toml"));
+  const GearTrain absent = planetary_train(parse_stage(example_stage_text(), "absent.toml"));
+  for (std::size_t k = 0; k < 6; ++k) {
+    CHECK(circular(written.meshes[k].line_offset_m / t0, absent.meshes[k].line_offset_m / t0) <
+          1e-9);
   }
 }
 
