@@ -288,7 +288,8 @@ def train_modes(case_file, sets=()):
 
 def train(case_file, sets=(), keep_series=True):
     """Runs a gear train's case file (docs/case-files.md, "A gear train"; a two-gear case file
-    is the train of its pair) as ``gearimpact train`` does, bit for bit.
+    is the train of its pair; a stage file, "A planetary stage", is the stage's train) as
+    ``gearimpact train`` does, bit for bit.
 
     case_file: a str or pathlib.Path. sets: a list of "KEY=VALUE" str, as the command's --set
     (e.g. ["integrator.end_time=2 ms", "meshes.idler-wheel.gears.backlash=0.1 mm"]).
@@ -298,9 +299,16 @@ def train(case_file, sets=(), keep_series=True):
     friction_force_MESH_N per mesh, BODY and MESH the file's names; docs/usage.md, "Output
     columns"; zero-length with keep_series=False) and "summary" (summary.json as a dict: the
     train's counts and energy ledger, "meshes" with each mesh's impacts, largest penetration and
-    losses, "bodies" with each body's final speed). Raises CaseError naming a bad key."""
+    losses, "bodies" with each body's final speed). A stage file's dict has also "ring_sensor"
+    (the command's ring_sensor.csv as arrays: t_s and ring_sensor_y_N) and its summary a
+    "stage" entry (the members' mean speeds and the Willis residual); the stage's run keeps its
+    series for these, keep_series=False only leaves the arrays empty. Raises CaseError naming a
+    bad key (stage.KEY in a stage file)."""
     path = _arguments.path("case_file", case_file)
     more = _arguments.strings("sets", sets, ["integrator.end_time=2 ms"])
     keep = _arguments.flag("keep_series", keep_series)
-    summary, series = _core.train(path, list(more), keep)
-    return {"series": series, "summary": json.loads(summary)}
+    summary, series, ring_sensor = _core.train(path, list(more), keep)
+    result = {"series": series, "summary": json.loads(summary)}
+    if ring_sensor is not None:
+        result["ring_sensor"] = ring_sensor
+    return result

@@ -300,8 +300,38 @@ py::tuple run_simulation(const SimulationCase& c, bool keep_series, long long ma
 // A gear train's case file run as `gearimpact train` runs it: the summary's JSON
 // (train_summary_json) and the series as arrays by train_series_columns, named by the file's
 // bodies and meshes. `sets` as the command's --set.
+// A stage file ([stage]) as the command runs it: the summary with the Willis residual and the
+// ring sensor's y beside the series. Both need the whole series, so the run keeps it and
+// keep_series only decides whether the arrays are returned.
+py::tuple run_stage(const std::string& path, const std::vector<std::string>& sets,
+                    bool keep_series) {
+  const PlanetaryStage stage = read_stage_file(path, sets);
+  const GearTrain train = planetary_train(stage);
+  TrainResult result = interruptible([&](std::function<bool()> should_stop) {
+    RunControl control;
+    control.should_stop = std::move(should_stop);
+    return simulate_train(train, control);
+  });
+  const std::string summary = stage_summary_json(train, result, planetary_willis(stage, result));
+  std::vector<double> ring = planetary_ring_sensor(stage, result);
+  std::vector<double> times;
+  times.reserve(result.series.size());
+  for (const TrainRow& row : result.series) times.push_back(row.t_s);
+  if (!keep_series) {
+    result.series.clear();
+    ring.clear();
+    times.clear();
+  }
+  py::dict sensor;
+  sensor["t_s"] = to_array(times);
+  sensor["ring_sensor_y_N"] = to_array(ring);
+  return py::make_tuple(
+      summary, table_arrays(train_series_columns(train), std::move(result.series)), sensor);
+}
+
 py::tuple run_train(const std::string& path, const std::vector<std::string>& sets,
                     bool keep_series) {
+  if (is_stage_file(path)) return run_stage(path, sets, keep_series);
   const GearTrain train = read_train_file(path, sets);
   TrainResult result = interruptible([&](std::function<bool()> should_stop) {
     RunControl control;
@@ -310,8 +340,8 @@ py::tuple run_train(const std::string& path, const std::vector<std::string>& set
     return simulate_train(train, control);
   });
   const std::string summary = train_summary_json(train, result);
-  return py::make_tuple(summary,
-                        table_arrays(train_series_columns(train), std::move(result.series)));
+  return py::make_tuple(
+      summary, table_arrays(train_series_columns(train), std::move(result.series)), py::none());
 }
 
 // The stiffness columns of `gearimpact stiffness` at the contact positions xs.

@@ -281,6 +281,14 @@ TEST_CASE("train refuses a stage file's bad key and range by name before writing
         {"planets = 3", "planets = 7", "stage.planets"},
         {"ring_teeth = 81", "ring_teeth = 80", "stage.ring_teeth"},
         {"kind = \"prescribed-speed\"", "kind = \"prescribed\"", "stage.sun_torque.kind"},
+        // Unequal spacing: one angle per planet, none shared, each a multiple of 360 / 102 deg
+        // (the assembly condition; 116.4706 is 33 steps cut to 7 digits).
+        {"planets = 3", "planets = 3\nplanet_angles = [\"0 deg\", \"120 deg\"]",
+         "stage.planet_angles = 2 angles"},
+        {"planets = 3", "planets = 3\nplanet_angles = [\"0 deg\", \"120 deg\", \"120 deg\"]",
+         "stage.planet_angles[2] = \"120 deg\""},
+        {"planets = 3", "planets = 3\nplanet_angles = [\"0 deg\", \"116.4706 deg\", \"240 deg\"]",
+         "stage.planet_angles[1] = \"116.4706 deg\""},
         {"[stage]\n", "[[faults]]\nkind = \"missing\"\ngear = \"pinion\"\ntooth = 0\n[stage]\n",
          "faults"}}) {
     std::string edited = text;

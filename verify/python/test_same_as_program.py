@@ -4,6 +4,7 @@ JSON are parsed at their 17 significant digits, which read back exactly."""
 
 import json
 import os
+import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -406,6 +407,47 @@ def test_train_equals_the_program(cli, source_dir, tmp_path):
                                                                "brake-disc"]
     with pytest.raises(gearimpact.CaseError, match="bodies.whel"):
         gearimpact.train(example, sets=["bodies.whel.inertia=1 kg*m^2"])
+
+
+def test_stage_train_equals_the_program(cli, source_dir, tmp_path):
+    # The example stage over 1 ms: series.csv, ring_sensor.csv and summary.json (with the
+    # stage's Willis residual) as the program writes them, bit for bit.
+    example = Path(source_dir) / "examples" / "planetary_stage.toml"
+    out = tmp_path / "out"
+    sets = ["integrator.end_time=1 ms"]
+    cli("train", example, "--set", sets[0], "--out", out)
+    ours = gearimpact.train(example, sets=sets)
+    assert ours["summary"] == json.loads((out / "summary.json").read_text())
+    assert set(ours["summary"]["stage"]) == {"mean_w_sun_rad_per_s", "mean_w_ring_rad_per_s",
+                                             "mean_w_carrier_rad_per_s", "willis_residual"}
+    theirs = parse_csv((out / "series.csv").read_text())
+    assert list(ours["series"]) == list(theirs)
+    assert "w_planet3_rad_per_s" in theirs and "normal_force_ring_planet2_N" in theirs
+    for name in theirs:
+        assert_bitwise_equal(ours["series"][name], theirs[name], f"stage {name}")
+    ring = parse_csv((out / "ring_sensor.csv").read_text())
+    assert list(ours["ring_sensor"]) == list(ring) == ["t_s", "ring_sensor_y_N"]
+    for name in ring:
+        assert_bitwise_equal(ours["ring_sensor"][name], ring[name], f"ring sensor {name}")
+    # keep_series=False: the same summary, the arrays empty.
+    short = gearimpact.train(example, sets=sets, keep_series=False)
+    assert short["summary"] == ours["summary"]
+    assert len(short["series"]["t_s"]) == len(short["ring_sensor"]["ring_sensor_y_N"]) == 0
+    # A train file's dict has no ring sensor.
+    assert "ring_sensor" not in gearimpact.train(
+        Path(source_dir) / "examples" / "pinion_idler_wheel.toml",
+        sets=["integrator.end_time=0.1 ms"])
+    # Bad keys refused by name, as the command refuses them.
+    for bad, key in [(["stage.planet=3"], "stage.planet"),
+                     (["stage.planets=0"], "stage.planets"),
+                     (["stage.ring_teeth=80"], "stage.ring_teeth")]:
+        with pytest.raises(gearimpact.CaseError, match=key) as caught:
+            gearimpact.train(example, sets=sets + bad)
+        program = subprocess.run(
+            [os.environ["GEARIMPACT_CLI"], "train", str(example), "--set", bad[0], "--out",
+             str(tmp_path / "bad")], capture_output=True, text=True)
+        assert program.returncode != 0 and key in program.stderr
+        assert caught.value.field.startswith(key)
 
 
 def test_planetary_modes_equal_the_program(cli, source_dir, tmp_path):

@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "gearimpact/constants.hpp"
 #include "schema_rows.hpp"
 
 namespace gearimpact {
@@ -83,8 +84,21 @@ std::vector<Field> make_train_schema() {
     row("stage", key, FieldKind::integer, true, help).range = teeth;
   }
   // Up to 5 planets: the nonlinear stage's train takes no more (planetary_train).
-  row("stage", "planets", FieldKind::integer, true, "N, the number of equally spaced planets")
-      .range = {closed(1.0), closed(5.0), {}};
+  constexpr double kMostStagePlanets = 5.0;
+  row("stage", "planets", FieldKind::integer, true, "N, the number of planets").range = {
+      closed(1.0), closed(kMostStagePlanets), {}};
+  // Unequal spacing: each angle in [0, 360) deg here; the reader asks one per planet, the first
+  // 0, increasing, and the geometry (planetary_train) the assembly condition and the tips'
+  // clearance.
+  Field& angles = row("stage", "planet_angles", FieldKind::quantity_list, false,
+                      "psi_n, each planet's angle counter-clockwise from planet 1's on the "
+                      "carrier: one per planet, the first 0, increasing, each a multiple of "
+                      "360 deg / (sun_teeth + ring_teeth) (the assembly condition)");
+  angles.dimension = Dimension::angle;
+  angles.unit = "deg";
+  angles.range = {closed(0.0), open(2.0 * pi), {}};
+  angles.most_values = static_cast<std::size_t>(kMostStagePlanets);
+  angles.when_absent = "equally spaced, 360 (n - 1) / N deg";
   Field& held = row("stage", "held", FieldKind::choice, false,
                     "the member held still (its torque must be absent)");
   // The codes are the reader's (the case folder comes before the dynamics' HeldMember).

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 #include <string>
 
 #include "gearimpact/constants.hpp"
@@ -49,6 +51,13 @@ double base_radius_of(int z, const PlanetaryToothing& toothing) {
 // The tip clearance of neighbouring planets dpsi apart: 2 R_c sin(dpsi / 2) > d_a,p.
 bool tips_clear(double carrier_radius_m, double dpsi, double planet_tip_diameter_m) {
   return 2.0 * carrier_radius_m * std::sin(0.5 * dpsi) > planet_tip_diameter_m;
+}
+
+// k 360 / zsr deg to 17 significant digits, which read back to the same double.
+std::string nearest_degrees(double k, int zsr) {
+  std::ostringstream out;
+  out << std::setprecision(17) << k * 360.0 / zsr;
+  return out.str();
 }
 
 }  // namespace
@@ -174,9 +183,13 @@ std::vector<double> checked_planet_angles(const PlanetaryTeeth& teeth,
     // (Z_s + Z_r) psi_n / (2 pi) an integer: the sun and ring teeth both fit.
     const double count = zsr * psi / (2.0 * pi);
     if (std::fabs(count - std::round(count)) > 1e-9 * std::max(1.0, std::fabs(count))) {
-      throw InputError(field, psi,
-                       "a multiple of 2 pi / (sun_teeth + ring_teeth) = 2 pi / " +
-                           std::to_string(zsr) + " (the assembly condition)");
+      throw InputError(field, nearest_degrees(count, zsr) + " deg",
+                       "a multiple of 360 deg / (sun_teeth + ring_teeth) = 360 deg / " +
+                           std::to_string(zsr) +
+                           ", where the sun's and the ring's teeth both fit the planet (the "
+                           "assembly condition)",
+                       "the nearest such angle, " + nearest_degrees(std::round(count), zsr) +
+                           " deg, written to all its digits");
     }
     const double next = n + 1 < angles_rad.size() ? angles_rad[n + 1] : 2.0 * pi;
     if (angles_rad.size() > 1 && !tips_clear(carrier_radius, next - psi, tip_diameter)) {

@@ -157,6 +157,20 @@ class TrainTable {
     }
   }
 
+  // A list row's values in SI, or nothing (absent or refused: a problem).
+  std::optional<std::vector<double>> list(const std::string& label, std::string_view key) {
+    const toml::value* value = find(key);
+    if (value == nullptr) return std::nullopt;
+    Field named = *find_train_field(std::string(section_) + "." + std::string(key));
+    named.section = label;
+    try {
+      return read_list(reader_, named, *value);
+    } catch (const CaseFileError& e) {
+      problems_.insert(problems_.end(), e.problems().begin(), e.problems().end());
+      return std::nullopt;
+    }
+  }
+
   // The body a body_a/body_b key names, or -1 with a problem listing the bodies.
   int body(const std::string& label, std::string_view key, const std::vector<std::string>& bodies) {
     const std::string field = label + "." + std::string(key);
@@ -667,6 +681,43 @@ PlanetaryStage read_stage(const Reader& reader, const toml::value& root,
   };
   stage.teeth = {count("sun_teeth"), count("planet_teeth"), count("ring_teeth")};
   stage.planets = count("planets");
+  // Unequal spacing: one angle per planet, the first 0 (planet 1 sets the carrier's axis), each
+  // further on than the one before (two planets in one place, or out of order, refused); the
+  // assembly condition and the tips' clearance are the geometry's (parse_stage).
+  if (const std::optional<std::vector<double>> psi = table.list("stage", "planet_angles")) {
+    const toml::value& written = *table.find("planet_angles");
+    const auto n = static_cast<std::size_t>(stage.planets);
+    const auto refuse = [&](std::size_t i, const std::string& allowed) {
+      const std::string field = "stage.planet_angles[" + std::to_string(i) + "]";
+      const toml::value& element = written.as_array()[i];
+      Problem problem = range_problem(field, toml_written(element), allowed);
+      problem.where = reader.where(&element);
+      problems.push_back(std::move(problem));
+    };
+    if (stage.planets >= 1 && psi->size() != n) {
+      Problem problem =
+          range_problem("stage.planet_angles", std::to_string(psi->size()) + " angles",
+                        "one angle per planet: stage.planets = " + std::to_string(n));
+      problem.where = reader.where(&written);
+      problems.push_back(std::move(problem));
+    } else if (!psi->empty() && (*psi)[0] != 0.0) {
+      refuse(0, "0 deg: planet 1's angle, from which the others are measured");
+    } else {
+      for (std::size_t i = 1; i < psi->size(); ++i) {
+        if ((*psi)[i] == (*psi)[i - 1]) {
+          refuse(i, "an angle other than stage.planet_angles[" + std::to_string(i - 1) +
+                        "]'s: two planets in one place");
+          break;
+        }
+        if ((*psi)[i] < (*psi)[i - 1]) {
+          refuse(i, "an angle beyond stage.planet_angles[" + std::to_string(i - 1) +
+                        "]'s: increasing angles in [0, 360) deg");
+          break;
+        }
+      }
+    }
+    stage.planet_angles_rad = *psi;
+  }
   // The codes of train_schema()'s stage.held: 0 ring, 1 carrier, 2 sun.
   const double held = table.quantity("stage", "held").value_or(0.0);
   stage.held = held == 1.0 ? HeldMember::carrier : held == 2.0 ? HeldMember::sun : HeldMember::ring;
@@ -756,6 +807,26 @@ PlanetaryStage parse_stage(std::string_view toml_text, std::string_view file_nam
     const bool own = find_train_field("stage." + e.field()) != nullptr;
     std::vector<Problem> problems = e.problems();
     for (Problem& p : problems) {
+      // The geometry's planet_angles[n] counts the planets from 1; the file's array from 0, its
+      // element as written (in its unit).
+      constexpr std::string_view angle = "planet_angles[";
+      if (p.field.rfind(angle, 0) == 0) {
+        const auto& section = root.as_table().at("stage").as_table();
+        const auto written = section.find("planet_angles");
+        const std::size_t n = std::stoul(p.field.substr(angle.size()));
+        if (written == section.end() || !written->second.is_array() || n < 1 ||
+            n > written->second.as_array().size()) {
+          // Equal spacing's angles: the planets' count is what the user wrote.
+          p = p.renamed("stage.planets", std::to_string(stage.planets));
+          continue;
+        }
+        const toml::value& element = written->second.as_array()[n - 1];
+        Problem named =
+            p.renamed("stage.planet_angles[" + std::to_string(n - 1) + "]", toml_written(element));
+        named.where = reader.where(&element);
+        p = named;
+        continue;
+      }
       if (!own) continue;
       if (p.message.rfind(p.field, 0) == 0) p.message = "stage." + p.message;
       p.field = "stage." + p.field;
