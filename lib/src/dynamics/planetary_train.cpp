@@ -93,7 +93,8 @@ MeshNumbering mesh_numbering(const PlanetaryStage& stage, double psi, double gam
   phi = 2.0 * pi * (0.5 - gamma_rs + gamma_rn) / z.sun;
   at = tooth_zero(z, gamma_sn, gamma_rs, phi);
   stage_teeth = stage_mesh_teeth(z, psi, at.sun, at.planet, at.ring);
-  own = mesh_teeth_at(ring_pair, phi * z.sun / z.planet + 2.0 * pi * (gamma_rs - gamma_rn) / z.planet);
+  own = mesh_teeth_at(ring_pair,
+                      phi * z.sun / z.planet + 2.0 * pi * (gamma_rs - gamma_rn) / z.planet);
   m.planet_at_ring_offset = own.pinion_tooth + stage_teeth.planet_at_ring;
   m.ring_offset = own.wheel_tooth + stage_teeth.ring;
   return m;
@@ -125,8 +126,7 @@ void check_stage_faults(const PlanetaryStage& stage, std::size_t planets) {
       if (g.member == f.member && g.tooth == f.tooth &&
           (f.member != FaultMember::planet || g.planet == f.planet)) {
         throw InputError(name + ".tooth", f.tooth,
-                         "a tooth not already faulted: faults[" + std::to_string(j) +
-                             "] is on it");
+                         "a tooth not already faulted: faults[" + std::to_string(j) + "] is on it");
       }
     }
     if (f.member == FaultMember::ring) {

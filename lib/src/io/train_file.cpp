@@ -652,8 +652,9 @@ void read_stage_faults(const Reader& reader, const toml::value& list, const Plan
     named.section = name;
     const auto member = keys.find("member");
     if (member == keys.end()) {
-      problems.push_back(reader.problem(
-          named.name(), &table, named.name() + " is missing (required: " + expected_of(named) + ")"));
+      problems.push_back(
+          reader.problem(named.name(), &table,
+                         named.name() + " is missing (required: " + expected_of(named) + ")"));
       continue;
     }
     double code = 0.0;
@@ -664,7 +665,9 @@ void read_stage_faults(const Reader& reader, const toml::value& list, const Plan
       continue;
     }
     StageFault f;
-    f.member = code == 0.0 ? FaultMember::sun : code == 6.0 ? FaultMember::ring : FaultMember::planet;
+    f.member = code == 0.0   ? FaultMember::sun
+               : code == 6.0 ? FaultMember::ring
+                             : FaultMember::planet;
     f.planet = static_cast<int>(code);
     if (f.member == FaultMember::planet && f.planet > stage.planets) {
       problems.push_back(reader.problem(
@@ -685,15 +688,16 @@ void read_stage_faults(const Reader& reader, const toml::value& list, const Plan
         (tooth->second.as_integer() < 0 || tooth->second.as_integer() >= teeth)) {
       problems.push_back(reader.problem(
           name + ".tooth", &tooth->second,
-          name + ".tooth = " + toml_written(tooth->second) + " is outside the allowed range: 0 ... " +
-              std::to_string(teeth - 1) + ", the teeth of its member (" + count + " = " +
-              std::to_string(teeth) + ")"));
+          name + ".tooth = " + toml_written(tooth->second) +
+              " is outside the allowed range: 0 ... " + std::to_string(teeth - 1) +
+              ", the teeth of its member (" + count + " = " + std::to_string(teeth) + ")"));
       continue;
     }
     if (f.member != FaultMember::ring) {
       toml::value pair_table = table;
       pair_table.as_table().erase("member");
-      pair_table.as_table()["gear"] = toml::value(f.member == FaultMember::sun ? "pinion" : "wheel");
+      pair_table.as_table()["gear"] =
+          toml::value(f.member == FaultMember::sun ? "pinion" : "wheel");
       pair_faults.as_array().push_back(pair_table);
       pair_fault_of.push_back(i);
       faults.back() = f;
@@ -715,13 +719,13 @@ void read_stage_faults(const Reader& reader, const toml::value& list, const Plan
     for (const char* key : {"kind", "tooth"}) {
       if (keys.count(key) > 0) continue;
       read = false;
-      problems.push_back(reader.problem(name + "." + key, &table,
-                                        name + "." + key + " is missing (required: " +
-                                            (std::string(key) == "kind"
-                                                 ? std::string("\"missing\" for a ring tooth")
-                                                 : std::string("an integer 0 ... ") +
-                                                       std::to_string(teeth - 1)) +
-                                            ")"));
+      problems.push_back(
+          reader.problem(name + "." + key, &table,
+                         name + "." + key + " is missing (required: " +
+                             (std::string(key) == "kind"
+                                  ? std::string("\"missing\" for a ring tooth")
+                                  : std::string("an integer 0 ... ") + std::to_string(teeth - 1)) +
+                             ")"));
     }
     if (!read) continue;
     if (!tooth->second.is_integer()) {
