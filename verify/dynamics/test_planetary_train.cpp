@@ -1093,6 +1093,16 @@ TEST_CASE("a stage's faults are refused by name unless the member has the tooth 
   f.member = FaultMember::sun;
   f.state.crack.depth_m = 5.0e-3;
   refused(f, "crack depth q");
+  // The meshes' pair takes none: its faults would land on every mesh alike.
+  PlanetaryStage pair = s;
+  pair.mesh.faults = {ToothFault{}};
+  pair.mesh.faults[0].state.kind = ToothKind::missing;
+  try {
+    static_cast<void>(planetary_train(pair));
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK(e.field() == "mesh.faults");
+  }
   // Two faults on one tooth.
   PlanetaryStage two = s;
   StageFault a;

@@ -180,6 +180,11 @@ GearTrain planetary_train(const PlanetaryStage& stage) {
   if (stage.planet_mass_kg) require_positive("planet_mass", *stage.planet_mass_kg);
   const StageSpeeds w = planetary_rigid_speeds(stage);
   const std::size_t n = psi.size();
+  if (!stage.mesh.faults.empty()) {
+    // One pair's faults would land on every mesh alike: a stage's are its members'.
+    throw InputError("mesh.faults", std::to_string(stage.mesh.faults.size()) + " faults",
+                     "none: a stage's faulted teeth are its faults, by member");
+  }
   check_stage_faults(stage, n);
 
   GearTrain train;

@@ -41,7 +41,8 @@ struct PlanetaryStage {
   // The meshes' keys: of its gears the module, pressure angle, addendum and
   // dedendum coefficients, face width, materials and backlash (the tooth
   // counts are the stage's; unshifted teeth), and its model (the ring meshes
-  // take it without friction).
+  // take it without friction); its faults must be none (the stage's faults
+  // are `faults`, by member).
   SimulationCase mesh;
   // Planet positions psi_n (psi_1 = 0, counter-clockwise); empty: `planets`
   // equally spaced.
