@@ -912,3 +912,217 @@ TEST_CASE(
   CHECK(unequal.sum[0] > 0.03 * unequal.singles[0]);
   CHECK(unequal.carrier[0] > unequal.carrier[1]);
 }
+
+namespace {
+
+// The sun's angle relative to the carrier at each row, and the drop of each
+// mesh's contact force against the healthy run's (healthy - faulted).
+struct FaultedRun {
+  std::vector<double> phi;
+  std::vector<std::vector<double>> drop;  // [mesh][row]
+};
+FaultedRun faulted_run(const PlanetaryStage& healthy, const PlanetaryStage& faulted) {
+  const TrainResult a = simulate_train(planetary_train(healthy));
+  const TrainResult b = simulate_train(planetary_train(faulted));
+  REQUIRE(a.series.size() == b.series.size());
+  FaultedRun r;
+  r.drop.resize(a.series.front().meshes.size());
+  for (std::size_t i = 0; i < a.series.size(); ++i) {
+    const TrainRow& row = b.series[i];
+    r.phi.push_back(row.theta_rad[kSunBody] - row.theta_rad[kCarrierBody]);
+    for (std::size_t k = 0; k < r.drop.size(); ++k) {
+      r.drop[k].push_back(a.series[i].meshes[k].normal_force_n - row.meshes[k].normal_force_n);
+    }
+  }
+  return r;
+}
+
+// The row of a mesh's largest drop.
+std::size_t largest_drop(const std::vector<double>& drop) {
+  return static_cast<std::size_t>(std::max_element(drop.begin(), drop.end()) - drop.begin());
+}
+
+// x wrapped to (-pi, pi].
+double wrapped(double x) {
+  return x - 2.0 * pi * std::ceil((x - pi) / (2.0 * pi));
+}
+
+}  // namespace
+
+TEST_CASE("a stage's faulted tooth sits on the same tooth of every mesh it passes through") {
+  // One tooth of the sun passes planet n when the sun, relative to the
+  // carrier, has turned psi_n further than when it passed planet 1: the
+  // sun's teeth are one rigid ring, whichever mesh numbers them. Each sun
+  // mesh numbers its pairs from its own phase, so the stage must give each
+  // mesh its own tooth number (floor(Z_s psi_n / 2 pi) apart: 8 and 16 of 25
+  // teeth here); a fault on the same number at every mesh would pass planet
+  // n 8 or 16 mesh periods away from psi_n. A missing sun tooth found in the
+  // run, brute force: each sun mesh's largest force drop against the healthy
+  // run (the other meshes take up the load there, so their forces rise),
+  // at sun angles psi_n apart to within a quarter mesh period (each peak
+  // sits where the pair beside the missing one is alone in the same place
+  // of its mesh: measured 0.003 and 0.007 of a period apart).
+  const int zs = 25, zp = 23, zr = 71, n = 3;
+  PlanetaryStage s = test_stage(zs, zp, zr, n);
+  const double wc = 2.0 * pi / (6000 * 4.0e-6);
+  const double ws = wc * (zs + zr) / zs;
+  s.held = HeldMember::ring;
+  s.input_speed_rad_per_s = ws;
+  s.sun_torque = driver(ws);
+  s.carrier_torque = constant_torque(-1000.0);
+  s.mesh.model.damping_update = DampingUpdate::frozen;
+  s.integrator.step_s = 4.0e-6;
+  // 26 mesh periods of the sun relative to the carrier: tooth 6 passes planet 3 at about 22.7.
+  s.integrator.end_time_s = 26.0 * 2.0 * pi / (zs * (ws - wc));
+  PlanetaryStage missing = s;
+  StageFault f;
+  f.member = FaultMember::sun;
+  f.tooth = 6;
+  f.state.kind = ToothKind::missing;
+  missing.faults = {f};
+  const FaultedRun r = faulted_run(s, missing);
+  const double pitch = 2.0 * pi / zs;
+  const double phi1 = r.phi[largest_drop(r.drop[0])];
+  CAPTURE(phi1 / pitch);
+  for (int planet = 2; planet <= n; ++planet) {
+    const double psi = 2.0 * pi * (planet - 1) / n;
+    const double phin = r.phi[largest_drop(r.drop[static_cast<std::size_t>(planet - 1)])];
+    CAPTURE(planet);
+    CAPTURE(phin / pitch);
+    CHECK(std::fabs(wrapped(phin - phi1 - psi)) < 0.25 * pitch);
+  }
+  // The drops are the fault's: planet 1's largest is some per cent of its mesh's load.
+  CHECK(r.drop[0][largest_drop(r.drop[0])] >
+        0.05 * 1000.0 / (n * 0.5 * 2.0e-3 * zs) / std::cos(20.0 * pi / 180.0));
+}
+
+TEST_CASE(
+    "the ring sensor: a cracked sun tooth breaks the comb of N carrier orders, a missing ring "
+    "tooth keeps it") {
+  // The stage of the ring-sensor rule's case above (25/23/71, N = 3, ring
+  // held, the healthy stage's meshes all on their drive lines), at steps of
+  // 8 us, a carrier turn 3000 of them.
+  // A cracked sun tooth meets a planet every 1/N of a turn of the sun
+  // relative to the carrier, every Z_s / (N Z_r) = 25/213 of a carrier turn,
+  // not a multiple of 1/N of it: the planets' forces are no
+  // longer one function shifted by T_c / N, and y gains lines between the
+  // comb's. Measured 4.4e-3 of the comb; the bound 1e-4 sits four decades
+  // above the healthy stage's bound.
+  // A missing ring tooth keeps the rule: with (Z_s + Z_r) / N whole and the
+  // ring held, a carrier turn of 2 pi / N carries the stage into itself with
+  // the planets relabelled (the sun turns a whole number of its pitches, the
+  // ring's fault stays where it is, as does the housing's sensor), so the
+  // steady state still repeats every T_c / N: off the comb, the healthy
+  // rounding level (1e-11 of the comb, bound 1e-8 as above).
+  const int zs = 25, zp = 23, zr = 71, n = 3;
+  const double h = 8.0e-6;
+  const int samples = 3000;
+  const double wc = 2.0 * pi / (samples * h);
+  const double ws = wc * (zs + zr) / zs;
+  PlanetaryStage s = test_stage(zs, zp, zr, n);
+  s.held = HeldMember::ring;
+  s.input_speed_rad_per_s = ws;
+  s.sun_torque = driver(ws);
+  s.carrier_torque = constant_torque(-1000.0);
+  s.mesh.model.damping_update = DampingUpdate::frozen;
+  s.integrator.step_s = h;
+  s.integrator.end_time_s = 0.006 + samples * h;
+
+  PlanetaryStage cracked = s;
+  StageFault crack;
+  crack.member = FaultMember::sun;
+  crack.tooth = 0;
+  crack.state.kind = ToothKind::root_crack;
+  crack.state.crack.depth_m = 1.0e-3;
+  crack.state.crack.angle_rad = 45.0 * pi / 180.0;
+  cracked.faults = {crack};
+  const RingComb c = ring_comb(cracked, planetary_train(cracked), samples);
+  CAPTURE(c.on);
+  CAPTURE(c.off);
+  CHECK(c.drive_contact);
+  CHECK(c.off > 1e-4 * c.on);
+
+  PlanetaryStage gap = s;
+  StageFault missing;
+  missing.member = FaultMember::ring;
+  missing.tooth = 40;
+  missing.state.kind = ToothKind::missing;
+  gap.faults = {missing};
+  const RingComb g = ring_comb(gap, planetary_train(gap), samples);
+  CAPTURE(g.on);
+  CAPTURE(g.off);
+  // The fault acts: with the tooth gone no pair carries over part of each
+  // passage (eps_alpha < 2), and the ring meshes leave their drive lines.
+  CHECK_FALSE(g.drive_contact);
+  // Measured 1.1e-11 of the comb, contact loss and all.
+  CHECK(g.off < 1e-8 * g.on);
+}
+
+TEST_CASE("a stage's faults are refused by name unless the member has the tooth and can take it") {
+  PlanetaryStage s = test_stage(25, 23, 71, 3);
+  const auto refused = [&](StageFault f, const std::string& field) {
+    PlanetaryStage t = s;
+    t.faults = {f};
+    try {
+      static_cast<void>(planetary_train(t));
+      FAIL("no error for " << field);
+    } catch (const InputError& e) {
+      CHECK(e.field() == field);
+    }
+  };
+  StageFault f;
+  f.state.kind = ToothKind::missing;
+  f.member = FaultMember::sun;
+  f.tooth = 25;  // the sun's teeth are 0 ... 24
+  refused(f, "faults[0].tooth");
+  f.member = FaultMember::ring;
+  f.tooth = 71;
+  refused(f, "faults[0].tooth");
+  f.member = FaultMember::planet;
+  f.planet = 4;  // three planets
+  f.tooth = 0;
+  refused(f, "faults[0].member");
+  // A ring tooth can only be missing: its meshes' ISO table has no profile.
+  f.member = FaultMember::ring;
+  f.state.kind = ToothKind::root_crack;
+  f.state.crack.depth_m = 1.0e-3;
+  f.state.crack.angle_rad = 0.25 * pi;
+  refused(f, "faults[0].kind");
+  // A crack that does not fit its sun tooth, by the pair's own check (the
+  // library's name of the quantity; a case file's reader names its key).
+  f.member = FaultMember::sun;
+  f.state.crack.depth_m = 5.0e-3;
+  refused(f, "crack depth q");
+  // The meshes' pair takes none: its faults would land on every mesh alike.
+  PlanetaryStage pair = s;
+  pair.mesh.faults = {ToothFault{}};
+  pair.mesh.faults[0].state.kind = ToothKind::missing;
+  try {
+    static_cast<void>(planetary_train(pair));
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK(e.field() == "mesh.faults");
+  }
+  // Two faults on one tooth.
+  PlanetaryStage two = s;
+  StageFault a;
+  a.member = FaultMember::planet;
+  a.planet = 2;
+  a.tooth = 3;
+  a.state.kind = ToothKind::missing;
+  two.faults = {a, a};
+  two.faults[1].planet = 1;  // another planet's tooth 3: allowed
+  const GearTrain train = planetary_train(two);
+  // Planet 1's and 2's sun and ring meshes each take one missing tooth; planet 3's none.
+  for (std::size_t k = 0; k < train.meshes.size(); ++k) {
+    CAPTURE(train.meshes[k].name);
+    CHECK(train.meshes[k].pair.faults.size() == (k % 3 == 2 ? 0u : 1u));
+  }
+  two.faults[1].planet = 2;
+  try {
+    static_cast<void>(planetary_train(two));
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK(e.field() == "faults[1].tooth");
+  }
+}

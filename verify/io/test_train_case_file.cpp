@@ -288,9 +288,12 @@ TEST_CASE("every row of a train table has its unit, help and range or choices") 
     CAPTURE(row.name());
     CHECK(!row.help.empty());
     if (row.kind == FieldKind::quantity) CHECK(!row.unit.empty());
-    // shafts.kind: rigid, torsional; stage.held: ring, carrier, sun.
+    // shafts.kind: rigid, torsional; stage.held: ring, carrier, sun; faults.member: sun,
+    // planet1 ... planet5, ring.
     if (row.kind == FieldKind::choice) {
-      CHECK(row.choices.size() == (row.name() == "stage.held" ? 3U : 2U));
+      CHECK(row.choices.size() == (row.name() == "stage.held"      ? 3U
+                                   : row.name() == "faults.member" ? 7U
+                                                                   : 2U));
     }
   }
   CHECK(find_train_field("bodies.inertia") != nullptr);

@@ -130,6 +130,21 @@ std::vector<Field> make_train_schema() {
              "[torque1]'s keys (with kind = \"drag\", [torque2]'s), as [[bodies]] torque: a "
              "driver at input_speed, a speed controller, a motor, a drag");
   }
+  // A stage file's [[faults]]: the member whose tooth it is, in place of the pair's gear; the
+  // other keys are [[faults]]'s. Up to 5 planets, as stage.planets.
+  Field& member = row("faults", "member", FieldKind::choice, true,
+                      "in a stage file, the member whose tooth is faulted (in place of gear); its "
+                      "tooth in the stage's count, 0 ... Z - 1 of that member (docs/planetary.md, "
+                      "Faults on a stage's members); a ring tooth can only be missing");
+  // The codes are the reader's: 0 the sun, n planet n, 6 the ring.
+  member.choices = {
+      {"sun", 0, "a sun tooth: every sun-planet mesh it passes through", true},
+      {"planet1", 1, "a tooth of planet 1: its sun mesh (missing: both meshes)", true},
+      {"planet2", 2, "a tooth of planet 2", true},
+      {"planet3", 3, "a tooth of planet 3", true},
+      {"planet4", 4, "a tooth of planet 4", true},
+      {"planet5", 5, "a tooth of planet 5", true},
+      {"ring", 6, "a ring tooth, missing: every ring-planet mesh", true}};
   return rows;
 }
 

@@ -92,6 +92,16 @@ MeshLine::MeshLine(const SimulationCase& c, const StiffnessTable& table, const I
   face_width_ = c.gears.face_width_m;
   kh_ = hertz_stiffness(c.gears);
   read_model_settings(c);
+  if (std::any_of(c.faults.begin(), c.faults.end(),
+                  [](const ToothFault& f) { return f.state.kind == ToothKind::missing; })) {
+    absent_a_.assign(static_cast<std::size_t>(c.gears.teeth2), 0);
+    absent_b_.assign(static_cast<std::size_t>(c.gears.teeth1), 0);
+    for (const ToothFault& f : c.faults) {
+      if (f.state.kind != ToothKind::missing) continue;
+      std::vector<char>& gear = f.gear == Gear::one ? absent_b_ : absent_a_;
+      gear.at(static_cast<std::size_t>(f.tooth)) = 1;
+    }
+  }
   const double mean_k = constant_k_ > 0.0 ? constant_k_ : line.mean_stiffness_n_per_m;
   mesh_damping_ = c.model.mesh_damping_ratio > 0.0
                       ? viscous_mesh_damping_n_s_per_m(c.model.mesh_damping_ratio, mean_k, mass_kg)

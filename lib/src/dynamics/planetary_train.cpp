@@ -6,8 +6,12 @@
 #include <string>
 #include <vector>
 
+#include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/tooth_identity.hpp"
+#include "gearimpact/geometry/train_teeth.hpp"
+#include "gearimpact/stiffness/tooth_state.hpp"
 
 namespace gearimpact {
 
@@ -40,6 +44,117 @@ void require_positive(const char* field, double value) {
   }
 }
 
+// The members' tooth-0 angles relative to the carrier (planetary_train.hpp) on
+// the rigid stage whose sun has turned phi relative to the carrier: the
+// planets and the ring turn -Z_s / Z_p and -Z_s / Z_r times that (Willis).
+struct ToothZero {
+  double sun = 0.0;
+  double planet = 0.0;
+  double ring = 0.0;
+};
+ToothZero tooth_zero(const PlanetaryTeeth& z, double gamma_sn, double gamma_rs, double phi) {
+  return {phi - pi / (2.0 * z.sun),
+          pi - pi / (2.0 * z.planet) + 2.0 * pi * gamma_sn / z.planet - phi * z.sun / z.planet,
+          -pi / (2.0 * z.ring) - 2.0 * pi * gamma_rs / z.ring - phi * z.sun / z.ring};
+}
+
+// How planet n's two meshes number the stage's teeth: each mesh's own count
+// (tooth_identity.hpp) of a member's tooth t is (offset + sense t) mod z.
+struct MeshNumbering {
+  int sun_offset = 0;             // at the sun mesh, sense +1
+  int planet_at_sun_offset = 0;   // sense -1
+  int planet_at_ring_offset = 0;  // sense -1
+  int ring_offset = 0;            // sense -1
+};
+
+// Half a mesh period after a pitch-point crossing of each mesh, where the
+// stage's count (stage_mesh_teeth, the tooth whose centre line crossed the
+// line of centres last, a quarter period before or after) and the mesh's own
+// (mesh_teeth_at) each name one tooth, a quarter period from either's change.
+MeshNumbering mesh_numbering(const PlanetaryStage& stage, double psi, double gamma_sn,
+                             double gamma_rn, double gamma_rs) {
+  const PlanetaryTeeth& z = stage.teeth;
+  MeshNumbering m;
+  GearPair sun_pair = stage.mesh.gears;
+  sun_pair.teeth1 = z.sun;
+  sun_pair.teeth2 = z.planet;
+  // The sun mesh's line sees the sun at phi - 2 pi gamma_sn / Z_s.
+  double phi = 2.0 * pi * (gamma_sn + 0.5) / z.sun;
+  ToothZero at = tooth_zero(z, gamma_sn, gamma_rs, phi);
+  StageMeshTeeth stage_teeth = stage_mesh_teeth(z, psi, at.sun, at.planet, at.ring);
+  TeethInContact own = mesh_teeth_at(sun_pair, phi - 2.0 * pi * gamma_sn / z.sun);
+  m.sun_offset = own.pinion_tooth - stage_teeth.sun;
+  m.planet_at_sun_offset = own.wheel_tooth + stage_teeth.planet_at_sun;
+  // The ring mesh's line sees the planet (its gear 1) at Z_s phi / Z_p + 2 pi (gamma_rs -
+  // gamma_rn) / Z_p, the ring as its gear 2.
+  GearPair ring_pair = stage.mesh.gears;
+  ring_pair.teeth1 = z.planet;
+  ring_pair.teeth2 = z.ring;
+  phi = 2.0 * pi * (0.5 - gamma_rs + gamma_rn) / z.sun;
+  at = tooth_zero(z, gamma_sn, gamma_rs, phi);
+  stage_teeth = stage_mesh_teeth(z, psi, at.sun, at.planet, at.ring);
+  own = mesh_teeth_at(ring_pair,
+                      phi * z.sun / z.planet + 2.0 * pi * (gamma_rs - gamma_rn) / z.planet);
+  m.planet_at_ring_offset = own.pinion_tooth + stage_teeth.planet_at_ring;
+  m.ring_offset = own.wheel_tooth + stage_teeth.ring;
+  return m;
+}
+
+// The stage's faults checked, each by its own key faults[i].KEY, before any mesh is built.
+void check_stage_faults(const PlanetaryStage& stage, std::size_t planets) {
+  const PlanetaryTeeth& z = stage.teeth;
+  GearPair sun_pair = stage.mesh.gears;
+  sun_pair.teeth1 = z.sun;
+  sun_pair.teeth2 = z.planet;
+  for (std::size_t i = 0; i < stage.faults.size(); ++i) {
+    const StageFault& f = stage.faults[i];
+    const std::string name = "faults[" + std::to_string(i) + "]";
+    if (f.member == FaultMember::planet &&
+        (f.planet < 1 || static_cast<std::size_t>(f.planet) > planets)) {
+      throw InputError(name + ".member", "planet" + std::to_string(f.planet),
+                       "sun, ring or planet1 to planet" + std::to_string(planets));
+    }
+    const int teeth = f.member == FaultMember::sun      ? z.sun
+                      : f.member == FaultMember::planet ? z.planet
+                                                        : z.ring;
+    if (f.tooth < 0 || f.tooth >= teeth) {
+      throw InputError(name + ".tooth", f.tooth,
+                       "0 to " + std::to_string(teeth - 1) + ", a tooth of its member");
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      const StageFault& g = stage.faults[j];
+      if (g.member == f.member && g.tooth == f.tooth &&
+          (f.member != FaultMember::planet || g.planet == f.planet)) {
+        throw InputError(name + ".tooth", f.tooth,
+                         "a tooth not already faulted: faults[" + std::to_string(j) + "] is on it");
+      }
+    }
+    if (f.member == FaultMember::ring) {
+      if (f.state.kind != ToothKind::missing) {
+        throw InputError(name + ".kind", "not missing",
+                         "missing: a ring tooth can only be missing (the ring meshes' ISO "
+                         "6336-1 table has no tooth profile for a crack, a spall or a chip)");
+      }
+      continue;
+    }
+    // A sun or a planet tooth on the sun meshes' pair: the pair's own checks (the crack fits its
+    // tooth, ...), named under the stage's fault.
+    try {
+      check_tooth_faults(
+          sun_pair, stage.mesh.model.stiffness,
+          {ToothFault{f.member == FaultMember::sun ? Gear::one : Gear::two, 0, f.state}});
+    } catch (const InputError& e) {
+      std::vector<Problem> problems;
+      for (const Problem& p : e.problems()) {
+        std::string field = p.field;
+        if (field.rfind("faults[0]", 0) == 0) field = name + field.substr(9);
+        problems.push_back(p.renamed(field, p.value));
+      }
+      throw InputError(std::move(problems));
+    }
+  }
+}
+
 }  // namespace
 
 StageSpeeds planetary_rigid_speeds(const PlanetaryStage& stage) {
@@ -65,6 +180,12 @@ GearTrain planetary_train(const PlanetaryStage& stage) {
   if (stage.planet_mass_kg) require_positive("planet_mass", *stage.planet_mass_kg);
   const StageSpeeds w = planetary_rigid_speeds(stage);
   const std::size_t n = psi.size();
+  if (!stage.mesh.faults.empty()) {
+    // One pair's faults would land on every mesh alike: a stage's are its members'.
+    throw InputError("mesh.faults", std::to_string(stage.mesh.faults.size()) + " faults",
+                     "none: a stage's faulted teeth are its faults, by member");
+  }
+  check_stage_faults(stage, n);
 
   GearTrain train;
   const auto body = [](const char* name, double inertia, const Torque& torque, double speed) {
@@ -109,13 +230,44 @@ GearTrain planetary_train(const PlanetaryStage& stage) {
       m.pair = stage.mesh;
       m.pair.gears.teeth1 = internal ? stage.teeth.ring : stage.teeth.sun;
       m.pair.gears.teeth2 = stage.teeth.planet;
+      const double gamma_sn = sun_mesh_phase(stage.teeth.sun, psi[i]);
+      const double gamma_rn = ring_mesh_phase(stage.teeth.ring, psi[i]);
       if (internal) {
         m.kind = TrainMesh::Kind::internal;
         m.pair.model.friction_coefficient = 0.0;
         m.pair.model.friction_law = FrictionLaw::constant;
-        m.line_offset_m = (gamma_rs - ring_mesh_phase(stage.teeth.ring, psi[i])) * t0;
+        m.line_offset_m = (gamma_rs - gamma_rn) * t0;
       } else {
-        m.line_offset_m = -sun_mesh_phase(stage.teeth.sun, psi[i]) * t0;
+        m.line_offset_m = -gamma_sn * t0;
+      }
+      m.pair.faults.clear();
+      if (!stage.faults.empty()) {
+        const MeshNumbering number = mesh_numbering(stage, psi[i], gamma_sn, gamma_rn, gamma_rs);
+        const int planet = static_cast<int>(i) + 1;
+        for (const StageFault& f : stage.faults) {
+          if (f.member == FaultMember::planet && f.planet != planet) continue;
+          const bool missing = f.state.kind == ToothKind::missing;
+          ToothFault t;
+          t.state = f.state;
+          if (!internal && f.member == FaultMember::sun) {
+            t.gear = Gear::one;
+            t.tooth = tooth_number(number.sun_offset + f.tooth, stage.teeth.sun);
+          } else if (!internal && f.member == FaultMember::planet) {
+            t.gear = Gear::two;
+            t.tooth = tooth_number(number.planet_at_sun_offset - f.tooth, stage.teeth.planet);
+          } else if (internal && f.member == FaultMember::ring) {
+            t.gear = Gear::one;
+            t.tooth = tooth_number(number.ring_offset - f.tooth, stage.teeth.ring);
+          } else if (internal && f.member == FaultMember::planet && missing) {
+            // A missing planet tooth is gone from both flanks; its other faults act on the sun
+            // mesh's flank only (the ring mesh's table has no tooth profile).
+            t.gear = Gear::two;
+            t.tooth = tooth_number(number.planet_at_ring_offset - f.tooth, stage.teeth.planet);
+          } else {
+            continue;
+          }
+          m.pair.faults.push_back(t);
+        }
       }
       train.meshes.push_back(m);
     }

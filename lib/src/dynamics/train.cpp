@@ -159,9 +159,21 @@ void validate_internal_mesh(const std::string& prefix, const TrainMesh& mesh) {
                      "0 under the constant law: an internal mesh's friction (lever arms on "
                      "one side of the pitch point) is not modelled");
   }
-  if (!c.faults.empty()) {
-    throw InputError(prefix + "faults", std::to_string(c.faults.size()) + " faults",
-                     "none: an internal mesh's teeth are all alike");
+  // A missing tooth takes its pair out; ISO's table has no tooth profile a crack, a spall or a
+  // chip could change.
+  for (std::size_t i = 0; i < c.faults.size(); ++i) {
+    const ToothFault& f = c.faults[i];
+    const std::string field = prefix + "faults[" + std::to_string(i) + "].";
+    if (f.state.kind != ToothKind::missing) {
+      throw InputError(field + "kind", "not missing",
+                       "missing: an internal mesh's ISO 6336-1 table has no tooth profile for "
+                       "a crack, a spall or a chip to change");
+    }
+    const int teeth = f.gear == Gear::one ? c.gears.teeth1 : c.gears.teeth2;
+    if (f.tooth < 0 || f.tooth >= teeth) {
+      throw InputError(field + "tooth", f.tooth,
+                       "0 to " + std::to_string(teeth - 1) + ", a tooth of its gear");
+    }
   }
   if (!is_unmodified(c.modifications)) {
     throw InputError(prefix + "modifications", "set", "none on an internal mesh");
@@ -373,6 +385,8 @@ void validate_train(const GearTrain& train) {
       if (internal_mesh(mesh)) {
         twin = mesh.pair;
         twin.gears.teeth1 = twin.gears.teeth2;
+        // Its missing teeth, the ring's among them, are validate_internal_mesh's.
+        twin.faults.clear();
       }
       validate(internal_mesh(mesh) ? twin : mesh.pair);
       if (mesh.table && !internal_mesh(mesh)) check_table(mesh.pair, *mesh.table);

@@ -614,6 +614,133 @@ bool has_stage(const toml::value& root) {
   return root.is_table() && root.as_table().count("stage") > 0;
 }
 
+// A stage file's [[faults]] (`list`): each table's member by train_schema()'s faults.member, its
+// tooth checked against that member's count; a ring's tooth read here (missing only), a sun's or a
+// planet's table given to the pair's reader in `pair_faults` with gear = "pinion" (the sun) or
+// "wheel" (a planet), its index in the stage's list in `pair_fault_of`.
+void read_stage_faults(const Reader& reader, const toml::value& list, const PlanetaryStage& stage,
+                       std::vector<std::optional<StageFault>>& faults,
+                       std::vector<std::size_t>& pair_fault_of, toml::value& pair_faults,
+                       std::vector<Problem>& problems) {
+  if (!list.is_array()) {
+    problems.push_back(reader.problem(
+        "faults", &list,
+        "faults = " + toml_written(list) + " is " + toml_type_name(list) +
+            ", not an array of tables: write one [[faults]] table per faulted tooth, with member"));
+    return;
+  }
+  const Field& member_row = *find_train_field("faults.member");
+  for (std::size_t i = 0; i < list.as_array().size(); ++i) {
+    const toml::value& table = list.as_array()[i];
+    const std::string name = "faults[" + std::to_string(i) + "]";
+    faults.emplace_back();
+    if (!table.is_table()) {
+      problems.push_back(reader.problem(name, &table,
+                                        name + " = " + toml_written(table) + " is " +
+                                            toml_type_name(table) + ", not a [[faults]] table"));
+      continue;
+    }
+    const auto& keys = table.as_table();
+    if (const auto gear = keys.find("gear"); gear != keys.end()) {
+      problems.push_back(reader.problem(
+          name + ".gear", &gear->second,
+          name + ".gear is not read in a stage file: member names the tooth's member (sun, "
+                 "planet1 ... planetN, ring)"));
+      continue;
+    }
+    Field named = member_row;
+    named.section = name;
+    const auto member = keys.find("member");
+    if (member == keys.end()) {
+      problems.push_back(
+          reader.problem(named.name(), &table,
+                         named.name() + " is missing (required: " + expected_of(named) + ")"));
+      continue;
+    }
+    double code = 0.0;
+    try {
+      code = read_value(reader, named, member->second);
+    } catch (const CaseFileError& e) {
+      problems.insert(problems.end(), e.problems().begin(), e.problems().end());
+      continue;
+    }
+    StageFault f;
+    f.member = code == 0.0   ? FaultMember::sun
+               : code == 6.0 ? FaultMember::ring
+                             : FaultMember::planet;
+    f.planet = static_cast<int>(code);
+    if (f.member == FaultMember::planet && f.planet > stage.planets) {
+      problems.push_back(reader.problem(
+          named.name(), &member->second,
+          named.name() + " = " + toml_written(member->second) + " names no planet of the stage: " +
+              "sun, ring or planet1 ... planet" + std::to_string(stage.planets) +
+              " (stage.planets = " + std::to_string(stage.planets) + ")"));
+      continue;
+    }
+    const int teeth = f.member == FaultMember::sun      ? stage.teeth.sun
+                      : f.member == FaultMember::planet ? stage.teeth.planet
+                                                        : stage.teeth.ring;
+    const char* count = f.member == FaultMember::sun      ? "stage.sun_teeth"
+                        : f.member == FaultMember::planet ? "stage.planet_teeth"
+                                                          : "stage.ring_teeth";
+    const auto tooth = keys.find("tooth");
+    if (tooth != keys.end() && tooth->second.is_integer() && teeth > 0 &&
+        (tooth->second.as_integer() < 0 || tooth->second.as_integer() >= teeth)) {
+      problems.push_back(reader.problem(
+          name + ".tooth", &tooth->second,
+          name + ".tooth = " + toml_written(tooth->second) +
+              " is outside the allowed range: 0 ... " + std::to_string(teeth - 1) +
+              ", the teeth of its member (" + count + " = " + std::to_string(teeth) + ")"));
+      continue;
+    }
+    if (f.member != FaultMember::ring) {
+      toml::value pair_table = table;
+      pair_table.as_table().erase("member");
+      pair_table.as_table()["gear"] =
+          toml::value(f.member == FaultMember::sun ? "pinion" : "wheel");
+      pair_faults.as_array().push_back(pair_table);
+      pair_fault_of.push_back(i);
+      faults.back() = f;
+      continue;
+    }
+    // A ring tooth: missing, and nothing else to read (its meshes' ISO table has no profile).
+    bool read = true;
+    for (const auto& [key, value] : keys) {
+      if (key == "member" || key == "tooth") continue;
+      if (key == "kind" && value.is_string() && value.as_string().str == "missing") continue;
+      read = false;
+      problems.push_back(reader.problem(
+          name + "." + key, &value,
+          name + "." + key + " = " + toml_written(value) +
+              (key == "kind" ? std::string(" is not a ring tooth's fault") : " is not read") +
+              ": a ring tooth can only be missing (kind = \"missing\"; the ring meshes' ISO "
+              "6336-1 table has no tooth profile for a crack, a spall or a chip)"));
+    }
+    for (const char* key : {"kind", "tooth"}) {
+      if (keys.count(key) > 0) continue;
+      read = false;
+      problems.push_back(
+          reader.problem(name + "." + key, &table,
+                         name + "." + key + " is missing (required: " +
+                             (std::string(key) == "kind"
+                                  ? std::string("\"missing\" for a ring tooth")
+                                  : std::string("an integer 0 ... ") + std::to_string(teeth - 1)) +
+                             ")"));
+    }
+    if (!read) continue;
+    if (!tooth->second.is_integer()) {
+      problems.push_back(reader.problem(name + ".tooth", &tooth->second,
+                                        name + ".tooth = " + toml_written(tooth->second) +
+                                            " is not an integer: 0 ... " +
+                                            std::to_string(teeth - 1)));
+      continue;
+    }
+    f.tooth = static_cast<int>(tooth->second.as_integer());
+    f.state.kind = ToothKind::missing;
+    faults.back() = f;
+  }
+}
+
 // A stage file: [stage] by the rows of train_schema() of "stage", the pair sections [gears] and
 // [model] (the meshes' keys; the tooth counts are the stage's) and [integrator]. Every problem is
 // collected before one CaseFileError.
@@ -629,17 +756,18 @@ PlanetaryStage read_stage(const Reader& reader, const toml::value& root,
       pair.as_table()[key] = value;
       continue;
     }
-    // planetary_train gives every mesh the same pair: a fault or a modification would land on
-    // the sun and the ring alike, and the stage has no bearings (rotational only).
-    const bool not_yet = key == "faults" || key == "modifications" || key == "bearings";
+    if (key == "faults") continue;  // read below, member by member
+    // Modifications would land on every mesh alike, and the stage has no bearings (rotational
+    // only).
+    const bool not_yet = key == "modifications" || key == "bearings";
     problems.push_back(reader.problem(
         key, &value,
         "[" + key + "] is not read in a stage file" +
-            (not_yet ? std::string(": faults, modifications and bearings of a stage's members "
-                                   "are not modelled yet")
+            (not_yet ? std::string(": modifications and bearings of a stage's members are not "
+                                   "modelled yet")
                      : std::string()) +
-            "; a stage file has name, [stage], [integrator], and [gears] and [model] (every "
-            "mesh's keys)"));
+            "; a stage file has name, [stage], [integrator], [gears] and [model] (every mesh's "
+            "keys) and [[faults]] (with member)"));
   }
   const toml::value& stage_value = root.as_table().at("stage");
   if (!stage_value.is_table()) {
@@ -727,10 +855,19 @@ PlanetaryStage read_stage(const Reader& reader, const toml::value& root,
   stage.planet_inertia_kg_m2 = table.quantity("stage", "planet_inertia").value_or(0.0);
   stage.planet_mass_kg = table.quantity("stage", "planet_mass");
   stage.input_speed_rad_per_s = table.quantity("stage", "input_speed").value_or(0.0);
+  // [[faults]]: each table's member (faults.member); a sun's or a planet's tooth is read by the
+  // pair's [[faults]] rows as the sun meshes' pinion or wheel, a ring's as missing only.
+  std::vector<std::optional<StageFault>> faults;
+  std::vector<std::size_t> pair_fault_of;  // the stage's fault of each pair fault
+  toml::value pair_faults = toml::array{};
+  if (const auto found = root.as_table().find("faults"); found != root.as_table().end()) {
+    read_stage_faults(reader, found->second, stage, faults, pair_fault_of, pair_faults, problems);
+  }
   // The meshes' pair: the file's pair sections with the sun-planet tooth counts (the stage's).
   std::optional<toml::value> read_pair;
   {
     toml::value probe = pair;
+    if (!pair_faults.as_array().empty()) probe.as_table()["faults"] = pair_faults;
     toml::value& gears = probe.as_table()["gears"];
     if (!gears.is_table()) gears = toml::table{};
     gears.as_table()["teeth1"] =
@@ -741,9 +878,28 @@ PlanetaryStage read_stage(const Reader& reader, const toml::value& root,
       stage.mesh = read_case(reader, probe, file_name, CaseFileKind::pair);
       stage.mesh.run_keys_absent.clear();
       stage.integrator = stage.mesh.integrator;
+      for (std::size_t k = 0; k < stage.mesh.faults.size(); ++k) {
+        std::optional<StageFault>& f = faults[pair_fault_of[k]];
+        f->tooth = stage.mesh.faults[k].tooth;
+        f->state = stage.mesh.faults[k].state;
+      }
+      stage.mesh.faults.clear();
+      probe.as_table().erase("faults");
       read_pair = probe;
     } catch (const CaseFileError& e) {
-      for (const Problem& p : e.problems()) {
+      for (Problem p : e.problems()) {
+        // A pair fault's problems under the stage's fault: faults[k] is faults[i] of the file.
+        for (std::size_t k = 0; k < pair_fault_of.size(); ++k) {
+          const std::string from = "faults[" + std::to_string(k) + "]";
+          if (p.field.rfind(from, 0) != 0) continue;
+          const std::string to = "faults[" + std::to_string(pair_fault_of[k]) + "]";
+          p.field = to + p.field.substr(from.size());
+          for (std::size_t at = p.message.find(from); at != std::string::npos;
+               at = p.message.find(from, at + to.size())) {
+            p.message.replace(at, from.size(), to);
+          }
+          break;
+        }
         const bool seen = std::any_of(problems.begin(), problems.end(), [&](const Problem& q) {
           return q.field == p.field && q.message == p.message;
         });
@@ -771,6 +927,7 @@ PlanetaryStage read_stage(const Reader& reader, const toml::value& root,
     torque->constant_n_m = table.quantity("stage", key).value_or(0.0);
   }
   if (!problems.empty()) throw CaseFileError(reader.file(), std::move(problems));
+  for (const std::optional<StageFault>& f : faults) stage.faults.push_back(*f);
   return stage;
 }
 

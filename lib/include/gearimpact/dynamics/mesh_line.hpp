@@ -18,6 +18,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <memory>
 #include <optional>
 #include <type_traits>
@@ -180,8 +181,12 @@ class MeshLine {
   MeshLine(const SimulationCase& c, const StiffnessTable& table, double mass_kg);
   // An internal mesh on `line`, `table` over [line.start_m, line.end_m]. Of
   // c, the model (contact, damping; its friction must be 0), the backlash and
-  // the Hertzian stiffness's width and materials (Kh of (4) has no curvature);
-  // c's faults and modifications are not read (the caller refuses them).
+  // the Hertzian stiffness's width and materials (Kh of (4) has no curvature),
+  // and of its faults the missing teeth, numbered as a train's internal mesh
+  // numbers them (gear 1 the ring of c.gears.teeth1 teeth, gear 2 the planet
+  // of teeth2): a pair with one carries nothing. Its other faults and its
+  // modifications are not read (the caller refuses them: ISO's table has no
+  // tooth profile to change).
   MeshLine(const SimulationCase& c, const StiffnessTable& table, const InternalLine& line,
            double mass_kg);
 
@@ -358,7 +363,16 @@ class MeshLine {
   // The table of pair k on `line`: the healthy one, or with faults that of
   // the pair's teeth (nullptr: a missing tooth, the pair carries nothing).
   const StiffnessTable* pair_table(Region line, int k) const {
-    return teeth_ ? teeth_->table(line, k) : table_;
+    if (teeth_) return teeth_->table(line, k);
+    if (!absent_b_.empty()) {
+      // An internal mesh with missing teeth: its planet is the line's gear 1.
+      const TeethInContact t = teeth_of_pair(static_cast<int>(absent_a_.size()),
+                                             static_cast<int>(absent_b_.size()), line, k);
+      const bool gone = absent_a_[static_cast<std::size_t>(t.pinion_tooth)] != 0 ||
+                        absent_b_[static_cast<std::size_t>(t.wheel_tooth)] != 0;
+      return gone ? nullptr : table_;
+    }
+    return table_;
   }
   // Whether a pair on `table` in its part `part` can carry: not with a
   // missing tooth (no table), nor over the extent of a fault across the whole
@@ -392,6 +406,10 @@ class MeshLine {
   const StiffnessTable* table_;
   // With faults: the table of each pair's teeth.
   std::shared_ptr<const MeshTables> teeth_;
+  // An internal mesh with missing teeth: whether each tooth of the line's gear
+  // 1 (the planet) and gear 2 (the ring) is missing; both empty otherwise.
+  std::vector<char> absent_a_;
+  std::vector<char> absent_b_;
   // With modifications: each pair's gap (docs/faults.md); none without, so
   // that an unmodified case runs the code it ran before, bit for bit.
   std::shared_ptr<const ToothGaps> gaps_;

@@ -19,12 +19,30 @@
 
 namespace gearimpact {
 
+// A faulted tooth of a stage's member (docs/planetary.md, "Faults on a stage's
+// members"): the member, for a planet its number n (1 ... N), the tooth's
+// number in the stage's count (geometry/train_teeth.hpp, stage_mesh_teeth;
+// the members' teeth 0 placed as planetary_train says), and its state, of
+// the fault tables (stiffness/tooth_state.hpp). A sun tooth's fault acts on
+// every sun-planet mesh it passes through, a planet's on its sun mesh (and
+// a missing planet tooth on its ring mesh too); a ring tooth can only be
+// missing (the ring meshes' ISO 6336-1 table has no tooth profile), and is
+// missing at every ring-planet mesh.
+enum class FaultMember { sun, planet, ring };
+struct StageFault {
+  FaultMember member = FaultMember::sun;
+  int planet = 1;  // read for member == planet
+  int tooth = 0;
+  ToothState state;
+};
+
 struct PlanetaryStage {
   PlanetaryTeeth teeth;
   // The meshes' keys: of its gears the module, pressure angle, addendum and
   // dedendum coefficients, face width, materials and backlash (the tooth
   // counts are the stage's; unshifted teeth), and its model (the ring meshes
-  // take it without friction).
+  // take it without friction); its faults must be none (the stage's faults
+  // are `faults`, by member).
   SimulationCase mesh;
   // Planet positions psi_n (psi_1 = 0, counter-clockwise); empty: `planets`
   // equally spaced.
@@ -43,6 +61,8 @@ struct PlanetaryStage {
   Torque sun_torque;
   Torque ring_torque;
   Torque carrier_torque;
+  // Faulted teeth, at most one per tooth (none: every tooth healthy).
+  std::vector<StageFault> faults;
   // Every body starts at angle 0 turning at the Willis speeds with the input
   // member (the sun, or the ring when the sun is held) at this speed.
   double input_speed_rad_per_s = 0.0;
@@ -61,7 +81,23 @@ inline constexpr int kFirstPlanetBody = 3;
 // and ring_planetN (internal: the planet's line, its phase gamma_rs -
 // gamma_rn, so that each planet's sun mesh crosses its pitch point gamma_rs
 // after its ring mesh). Throws InputError naming the stage's key
-// (sun_teeth, planets, planet_angles[i], held, ...) or the train's.
+// (sun_teeth, planets, planet_angles[i], held, faults[i].tooth, ...) or the
+// train's.
+//
+// The faults go to each mesh's pair as that mesh numbers its teeth (its
+// pairs' count, tooth_identity.hpp): the stage's tooth of a member is found
+// at each of its meshes by stage_mesh_teeth at a state of the rigid stage
+// half a mesh period after a pitch-point crossing of that mesh, where it
+// and the mesh's own count (mesh_teeth_at) each name one tooth, and the
+// two counts run on from there, the sun's both forward, a planet's and the
+// ring's in opposite senses. The members' teeth 0, relative to the carrier
+// with every body at angle 0: the sun's centre line at -pi / (2 Z_s) from
+// e1, planet n's at pi - pi / (2 Z_p) + 2 pi gamma_sn / Z_p from its
+// e_zeta, the ring's at -pi / (2 Z_r) - 2 pi gamma_rs / Z_r from e1 (each a
+// quarter pitch behind the line of centres where its driven flank meets the
+// pitch point, unshifted teeth: the sun's tooth 0 and planet 1's tooth 0 at
+// planet 1's sun-mesh pitch point at t = 0, the ring's tooth 0 at planet 1's
+// ring-mesh pitch point when that mesh first crosses it).
 GearTrain planetary_train(const PlanetaryStage& stage);
 
 // The rigid speeds (Willis) of the stage's members at its input speed.
