@@ -1255,10 +1255,6 @@ TEST_CASE("steady sweep: eps_beta = 1 is the transverse pair at constant K, poin
 TEST_CASE("steady state: a helical pair's refusals name the key, as simulate's") {
   SimulationCase c = helical_run(h501_pair(), 50.0, 100.0, 1e-3);
   const std::shared_ptr<const StiffnessTable> table = run_table(c);
-  SimulationCase planar = c;
-  planar.bearings.kind = BearingKind::elastic;
-  check_refused([&] { find_steady_state(planar, *table, SteadySettings{}); }, "gears.helix_angle",
-                "planar");
   SimulationCase faulted = c;
   faulted.faults.emplace_back();
   check_refused([&] { (void)GearPeriodMap(faulted, *table, SteadySettings{}); }, "faults[0]",
@@ -1272,6 +1268,71 @@ TEST_CASE("steady state: a helical pair's refusals name the key, as simulate's")
   spec.points = 2;
   spec.threads = 1;
   check_refused([&] { run_steady_sweep(spec); }, "model.friction_coefficient", "helical");
+}
+
+TEST_CASE("planar steady state of H501: stiff bearings approach the torsional one, by eps") {
+  // The steady orbit of the period-map case below (balanced 200 N*m at 150 rad/s, D off: the
+  // rippling stiffness's period-1 response, no impact), found by running, on rigid bearings (the
+  // torsional model) and on bearings of kb each way damped at zeta_b = 0.05 of each centre's mode
+  // (the planar model, its 10-coordinate Poincare state). The bearings are in series with the mesh
+  // along the line of action (eps = k (1/kb1 + 1/kb2), k the mean): k becomes k / (1 + eps), w_n
+  // moves by eps / 2 and a linear oscillator's amplitude by at most eps / (4 zeta) relative; twice
+  // that for the ripple's parametric share (as the spur planar period map's rigid-bearing limit,
+  // test_gear_floquet): a bound falling tenfold per decade. The Poincare sample's s, in the planar
+  // model, adds the bearings' deflections along the line of action, F_b (1/kb1 + 1/kb2): at F_b = F
+  // = T1 / r_b1 that is eps F / k. At the sample the bearing force is the mesh force, F plus the
+  // ripple's dynamic force, about m_e Omega^2 A (Omega the mesh frequency, A the torsional
+  // amplitude; 4 times that for the ripple's harmonics), and the mesh's own deflection moves by the
+  // amplitude's share (the bound above).
+  const GearPair h = h501_pair();
+  SimulationCase c = helical_run(h, 200.0, 150.0, 1e-3);
+  const double zeta = 0.1;  // twice the period map case's: half the periods to converge
+  c.model.mesh_damping_ratio = zeta;
+  c.model.damping_update = DampingUpdate::off;
+  const FaceStiffness face(h, StiffnessModel{}, HelicalHertz::projected);
+  const HelicalMesh mesh(h, face);
+  const double k = h.face_width_m * face.cumulative(face.end_m()) / mesh.base_pitch_m();
+  const double rb1 = helical_geometry(h).base_radius1_m;
+  const double f = 200.0 / rb1;
+  c.initial.theta1_rad = (h.backlash_m + f / k) / rb1;
+  const std::shared_ptr<const StiffnessTable> table = run_table(c);
+  const double m_e = effective_mass_kg(dynamics_case(c).gears);
+  const double omega = h.teeth1 * 150.0;
+  const SteadyPoint rigid = find_steady_state(c, *table, SteadySettings{});
+  REQUIRE(rigid.verdict == PeriodicityVerdict::periodic);
+  const double amplitude_t = *rigid.dte_amplitude_m;
+  std::vector<double> changes;
+  for (const double kb : {1e11, 1e12}) {
+    CAPTURE(kb);
+    SimulationCase planar = c;
+    planar.bearings.kind = BearingKind::elastic;
+    planar.bearings.gear1.stiffness_x_n_per_m = kb;
+    planar.bearings.gear2.stiffness_x_n_per_m = kb;
+    const PlanarMounting mounting = planar_mounting(dynamics_case(planar));
+    planar.bearings.gear1.damping_x_n_s_per_m = 2.0 * 0.05 * std::sqrt(kb * mounting.mass_kg[0]);
+    planar.bearings.gear2.damping_x_n_s_per_m = 2.0 * 0.05 * std::sqrt(kb * mounting.mass_kg[1]);
+    const SteadyPoint p = find_steady_state(planar, *table, SteadySettings{});
+    REQUIRE(p.verdict == PeriodicityVerdict::periodic);
+    CHECK(p.period == 1);
+    CHECK(p.regime == Regime::no_impact);
+    REQUIRE(p.poincare.size() == 1);
+    // The planar Poincare state: s, s', the four centre coordinates and their speeds.
+    CHECK(poincare_state(planar, p.final_state).size() == 10);
+    const double eps = 2.0 * k / kb;
+    const double change = std::fabs(*p.dte_amplitude_m - amplitude_t) / amplitude_t;
+    const double bound = 2.0 * eps / (4.0 * zeta);
+    const double mean_shift = p.poincare[0].s_m - rigid.poincare[0].s_m;
+    MESSAGE("kb " << kb << " N/m: amplitude " << *p.dte_amplitude_m << " m against " << amplitude_t
+                  << " m, relative " << change << " (bound " << bound
+                  << "); sample's s shift over eps F / k " << mean_shift / (eps * f / k)
+                  << " (bound 1 +- " << 4.0 * m_e * omega * omega * amplitude_t / f + bound << ")");
+    CHECK(change <= bound);
+    // A model without the bearings' compliance in series would give a shift of 0.
+    const double dynamic = 4.0 * m_e * omega * omega * amplitude_t / f;
+    CHECK(std::fabs(mean_shift / (eps * f / k) - 1.0) <= dynamic + bound);
+    changes.push_back(change);
+  }
+  MESSAGE("amplitude change at 1e11 over that at 1e12 N/m: " << changes[0] / changes[1]);
 }
 
 TEST_CASE("period map of H501: Newton's fixed point is the steady state's sample") {

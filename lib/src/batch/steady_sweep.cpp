@@ -191,7 +191,6 @@ SteadySweep run_steady_sweep(const SteadySweepSpec& spec, RunPool& pool,
   // A helical pair sweeps as simulate runs it (its transverse section with
   // its pair table); what its run refuses is refused here, by name.
   validate_absent_run_keys(spec.base);
-  refuse_helical_planar(spec.base, "the steady sweeps");
   refuse_helical_run(spec.base);
   sweep_field(spec.vary, "vary");
   if (!spec.vary2.empty()) {

@@ -437,20 +437,6 @@ std::shared_ptr<const StiffnessTable> run_table(const SimulationCase& c) {
   return std::make_shared<const StiffnessTable>(helical_pair_table(c.gears, c.model.stiffness));
 }
 
-void refuse_helical_planar(const SimulationCase& c, const std::string& what) {
-  if (c.gears.helix_angle_rad == 0.0 || c.bearings.kind != BearingKind::elastic) return;
-  throw InputError(std::vector<Problem>{refused_problem(
-      "gears.helix_angle", format_number(c.gears.helix_angle_rad * 180.0 / pi) + " deg",
-      what +
-          " take a helical pair in the torsional model only (rigid bearings): simulate "
-          "runs it on elastic bearings, the planar model's " +
-          what +
-          " are not checked for "
-          "it yet",
-      "0 with bearings.kind = \"elastic\"",
-      "bearings.kind = \"rigid\" for the torsional model of the helical pair")});
-}
-
 void refuse_helical_run(const SimulationCase& c) {
   if (c.gears.helix_angle_rad == 0.0) return;
   const std::string beta = format_number(c.gears.helix_angle_rad * 180.0 / pi) + " deg";

@@ -463,7 +463,6 @@ void require_steady_case(const SimulationCase& c) {
 }
 
 SimulationCase steady_dynamics_case(const SimulationCase& c) {
-  refuse_helical_planar(c, "the steady state and the period map");
   refuse_helical_run(c);
   return dynamics_case(c);
 }

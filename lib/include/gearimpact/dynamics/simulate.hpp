@@ -437,10 +437,6 @@ std::shared_ptr<const StiffnessTable> run_table(const SimulationCase& c);
 // model.friction_coefficient other than 0 (docs/helical.md, Dynamics), and
 // gears.face_width where eps_gamma reaches MeshLayout::capacity - 1.
 void refuse_helical_run(const SimulationCase& c);
-// Throws InputError naming gears.helix_angle for a helical pair on elastic
-// bearings: `what` (the steady state and sweeps, say) takes it in the
-// torsional model only. simulate() runs it in the planar model.
-void refuse_helical_planar(const SimulationCase& c, const std::string& what);
 
 // Checks a run once (what simulate() checks, in its order): the case's keys and fields
 // (validate_absent_run_keys, validate_fields), a helical pair's refusals (refuse_helical_run),

@@ -109,11 +109,10 @@ Eigen::VectorXd poincare_state(const SimulationCase& c, const RunState& state);
 Eigen::VectorXd poincare_scale(const SimulationCase& c, const StiffnessTable& table);
 
 // The case a steady state, a sweep point or a period map runs: a helical pair's transverse
-// section (dynamics_case of dynamics/simulate.hpp), after what its run refuses by name
-// (refuse_helical_planar: elastic bearings; refuse_helical_run: friction, faults,
-// modifications); a spur case unchanged. Every function here taking a helical case runs this
-// case, with the table the caller gives, which for a helical pair must be its pair table
-// (run_table), as in simulate.
+// section (dynamics_case of dynamics/simulate.hpp), on rigid or elastic bearings, after what
+// its run refuses by name (refuse_helical_run: friction, faults, modifications); a spur case
+// unchanged. Every function here taking a helical case runs this case, with the table the
+// caller gives, which for a helical pair must be its pair table (run_table), as in simulate.
 SimulationCase steady_dynamics_case(const SimulationCase& c);
 
 // Throws InputError as require_steady_case, and when the torques' frequencies have no common
