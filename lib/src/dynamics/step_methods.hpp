@@ -34,6 +34,7 @@
 #include <cstddef>
 #include <functional>
 #include <tuple>
+#include <vector>
 
 #include "event_location.hpp"
 #include "gearimpact/case/simulation_case.hpp"
@@ -83,12 +84,28 @@ double earliest_event_of(const System& system, const typename System::ModeType& 
                          const typename System::EventsType& g_a,
                          const typename System::EventsType& g_b, int n,
                          const std::function<void(double, typename System::StateType&)>& state_at) {
+  // Every value at each time tried, kept for the location's other values: the
+  // state at a time is a step taken again from the same start (or the dense
+  // output), the same to the bit each time, so a time tried once (the end of
+  // a bracket, which the next value starts from, or the crossing times of a
+  // train's identical, equally spaced planets, whose meshes' values cross
+  // together) is not stepped to again.
+  // The n values of the k-th time tried are values[k n ... k n + n - 1].
+  std::vector<double> times;
+  std::vector<double> values;
+  const auto count = static_cast<std::size_t>(n);
   return earliest_event(a, b, g_a.data(), g_b.data(), n, [&](double t, int i) {
+    const auto index = static_cast<std::size_t>(i);
+    for (std::size_t k = 0; k < times.size(); ++k) {
+      if (times[k] == t) return values[k * count + index];
+    }
     typename System::StateType x{};
     state_at(t, x);
     typename System::EventsType g{};
     system.event_values(x, m, d, g);
-    return g[static_cast<std::size_t>(i)];
+    times.push_back(t);
+    values.insert(values.end(), g.begin(), g.begin() + n);
+    return g[index];
   });
 }
 

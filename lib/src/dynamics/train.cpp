@@ -544,6 +544,12 @@ class TrainSystem {
         controllers_.push_back({static_cast<int>(i), controller_of(static_cast<int>(i))});
       }
     }
+    // Torques that depend on neither time nor state (constants, and the
+    // kinematic drivers' 0) are summed once here, as torques() sums them.
+    fixed_torques_ = std::all_of(train.bodies.begin(), train.bodies.end(), [](const TrainBody& b) {
+      return b.torque.kind == Torque::Kind::constant || kinematic_driver(b.torque);
+    });
+    if (fixed_torques_) fixed_torque_ = summed_torques(0.0, TrainState{});
   }
 
   int dofs() const { return dofs_; }
@@ -591,6 +597,9 @@ class TrainSystem {
   // summed, a drag's and a motor's from its speed, a controller's from its
   // angle and speed; a kinematic driver's is set by rhs against the rest.
   std::array<double, kBodies> torques(double t, const TrainState& y) const {
+    return fixed_torques_ ? fixed_torque_ : summed_torques(t, y);
+  }
+  std::array<double, kBodies> summed_torques(double t, const TrainState& y) const {
     std::array<double, kBodies> torque{};
     std::array<bool, kBodies> seen{};
     for (std::size_t i = 0; i < train_.bodies.size(); ++i) {
@@ -832,6 +841,9 @@ class TrainSystem {
   std::array<int, kBodies> driver_{};
   bool driven_ = false;
   std::vector<Controlled> controllers_;
+  // Whether every body's torque is fixed (a constant, or a driver's 0), and their sums then.
+  bool fixed_torques_ = false;
+  std::array<double, kBodies> fixed_torque_{};
 };
 
 // The train's run: the books of run_fixed_grid (step_methods.hpp), as the

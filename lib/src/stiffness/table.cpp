@@ -269,14 +269,6 @@ int StiffnessTable::part_of(double x1_m) const {
   return i;
 }
 
-double StiffnessTable::part_start_m(int part) const {
-  return parts_.empty() ? start_ : parts_.at(static_cast<std::size_t>(part)).start_m;
-}
-
-double StiffnessTable::part_end_m(int part) const {
-  return part + 1 < part_count() ? parts_[static_cast<std::size_t>(part + 1)].start_m : end_;
-}
-
 Compliances StiffnessTable::compliance_at(const Local& at) const {
   Compliances c = constant_terms_;
   for (const TermInfo& t : kTerms) {

@@ -97,8 +97,13 @@ class StiffnessTable {
   // falls in (at a break, the one above it, as the look-ups below read it).
   int part_count() const { return parts_.empty() ? 1 : static_cast<int>(parts_.size()); }
   int part_of(double x1_m) const;
-  double part_start_m(int part) const;
-  double part_end_m(int part) const;
+  // Inline: a mesh reads them for every loaded pair at every stage.
+  double part_start_m(int part) const {
+    return parts_.empty() ? start_ : parts_.at(static_cast<std::size_t>(part)).start_m;
+  }
+  double part_end_m(int part) const {
+    return part + 1 < part_count() ? parts_[static_cast<std::size_t>(part + 1)].start_m : end_;
+  }
   // Whether the pair has contact over the part (above); a table without
   // breaks has it everywhere.
   bool part_in_contact(int part) const {
