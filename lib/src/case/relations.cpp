@@ -254,7 +254,8 @@ void fault_problems(const SimulationCase& given, const std::vector<std::string>&
   if (any_failed(failed, "gears.") || any_failed(failed, "model.")) return;
   // A helical tooth's fault is placed on its transverse section, the spur
   // pair its slices are (docs/helical.md, Faults); a spur pair is its own.
-  const bool helical = given.gears.helix_angle_rad != 0.0;
+  // (A swept section, face_advance_m = W > 0, is the helical pair a run takes.)
+  const bool helical = given.gears.helix_angle_rad != 0.0 || given.gears.face_advance_m > 0.0;
   SimulationCase section_case;
   if (helical) {
     section_case = given;
