@@ -1549,6 +1549,12 @@ TEST_CASE("helical faults: what a faulted helical case refuses, naming the key")
   partial.faults[0].state.crack.profile = CrackProfile::partial_width;
   partial.faults[0].state.crack.width_m = 0.01;
   check_refused([&] { check_run(partial); }, "faults[0].profile", "its own depth");
+  SimulationCase planar = c;
+  planar.faults = pinion_tooth0(h501_crack(0.5e-3));
+  planar.bearings.kind = BearingKind::elastic;
+  planar.bearings.gear1.stiffness_x_n_per_m = 1e9;
+  planar.bearings.gear2.stiffness_x_n_per_m = 1e9;
+  check_refused([&] { check_run(planar); }, "faults[0]", "planar");
   SimulationCase beyond = c;
   beyond.faults = pinion_tooth0(h501_spall(0.02, 0.005));
   check_refused([&] { check_run(beyond); }, "faults[0].face_start", "within the face");
