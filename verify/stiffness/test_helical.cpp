@@ -31,6 +31,9 @@
 #include "gearimpact/stiffness/helical_ste.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
+#include "gearimpact/stiffness/mesh_tables.hpp"
+#include "gearimpact/stiffness/surface_faults.hpp"
+#include "gearimpact/stiffness/tooth_state.hpp"
 #include "rack_pairs.hpp"
 #include "relative.hpp"
 
@@ -1257,8 +1260,10 @@ TEST_CASE("steady state: a helical pair's refusals name the key, as simulate's")
   const std::shared_ptr<const StiffnessTable> table = run_table(c);
   SimulationCase faulted = c;
   faulted.faults.emplace_back();
-  check_refused([&] { (void)GearPeriodMap(faulted, *table, SteadySettings{}); }, "faults[0]",
-                "slices");
+  faulted.faults.back().state.kind = ToothKind::root_crack;
+  faulted.faults.back().state.crack.profile = CrackProfile::partial_width;
+  check_refused([&] { (void)GearPeriodMap(faulted, *table, SteadySettings{}); },
+                "faults[0].profile", "its own depth");
   SteadySweepSpec spec;
   spec.base = c;
   spec.base.model.friction_coefficient = 0.04;
@@ -1370,4 +1375,253 @@ TEST_CASE("period map of H501: Newton's fixed point is the steady state's sample
   CHECK(dv <= 1e-5);
   // The orbit ripples (the check above compares a moving orbit, not a rest point).
   CHECK(*point.dte_amplitude_m > 1e-3 * (deflection - h.backlash_m));
+}
+
+// Faults on a helical tooth (docs/helical.md, Faults): a band of the face in
+// the fault's state, the face integral of the slices.
+namespace {
+
+// The pinion's radius at fraction u of H501's transverse path of contact.
+double h501_pinion_radius(double u) {
+  const GearPair t = transverse_pair(h501_pair());
+  const ContactSegment s = contact_segment(t);
+  return radius_at_roll_distance(base_radius(t, Gear::one), s.start_m + u * (s.end_m - s.start_m));
+}
+
+// A 0.2 mm deep spall on the pinion's drive flank over 40 % to 65 % of the
+// path, over [y0, y0 + width) of the face.
+ToothState h501_spall(double y0, double width) {
+  ToothState s;
+  s.kind = ToothKind::spall;
+  s.spall.start_radius_m = h501_pinion_radius(0.40);
+  s.spall.end_radius_m = h501_pinion_radius(0.65);
+  s.spall.width_m = width;
+  s.spall.depth_m = 0.2e-3;
+  s.face_start_m = y0;
+  return s;
+}
+
+ToothState h501_crack(double depth_m) {
+  ToothState s;
+  s.kind = ToothKind::root_crack;
+  s.crack.profile = CrackProfile::uniform;
+  s.crack.depth_m = depth_m;
+  s.crack.angle_rad = 45.0 * degree;
+  return s;
+}
+
+std::vector<ToothFault> pinion_tooth0(const ToothState& state) {
+  ToothFault f;
+  f.gear = Gear::one;
+  f.tooth = 0;
+  f.state = state;
+  return {f};
+}
+
+// The helical tables of a case with these faults, as a run builds them.
+MeshTables helical_tables(const GearPair& h, const std::vector<ToothFault>& faults) {
+  const StiffnessModel model;
+  return MeshTables(swept_transverse_pair(h), model, faults,
+                    std::make_shared<const StiffnessTable>(helical_pair_table(h, model)));
+}
+
+// Pinion tooth 0 meets wheel tooth 0 on N1 and wheel tooth 1 on N2 (gcd(20, 30) = 10).
+const StiffnessTable& tooth0_table(const MeshTables& tables, Region line) {
+  const StiffnessTable* t = tables.table_of_teeth(0, line == Region::n1 ? 0 : 1, line);
+  REQUIRE(t != nullptr);
+  return *t;
+}
+
+}  // namespace
+
+TEST_CASE("helical faults: a crack of depth 0 is the healthy pair, its run bit for bit") {
+  const GearPair h = h501_pair();
+  const MeshTables tables = helical_tables(h, pinion_tooth0(h501_crack(0.0)));
+  for (const Region line : {Region::n1, Region::n2}) {
+    CHECK(&tooth0_table(tables, line) == &tables.healthy());
+  }
+  SimulationCase healthy = helical_run(h, 5.0, 200.0, 2.0 * 2.0 * pi_ / (20 * 200.0));
+  healthy.initial.w1_rad_per_s *= 1.0 + 1e-2;
+  SimulationCase cracked = healthy;
+  cracked.faults = pinion_tooth0(h501_crack(0.0));
+  RunControl control;
+  control.keep_series = true;
+  const SimulationResult a = simulate(healthy, control);
+  const SimulationResult b = simulate(cracked, control);
+  REQUIRE(a.series.size() == b.series.size());
+  bool same = true;
+  for (std::size_t i = 0; i < a.series.size(); ++i) {
+    same = same && a.series[i].delta_m == b.series[i].delta_m &&
+           a.series[i].w1_rad_per_s == b.series[i].w1_rad_per_s &&
+           a.series[i].normal_force_n == b.series[i].normal_force_n;
+  }
+  CHECK(same);
+  CHECK(a.summary.impacts_n1 == b.summary.impacts_n1);
+}
+
+TEST_CASE("helical faults: the losses of two half-face bands add up to the whole face's") {
+  // Uncoupled slices are parallel springs: a band's loss is the integral of
+  // kappa_t - kappa_fault over its slices on the path, so that the bands
+  // [0, b/2) and [b/2, b) lose what the whole face does, at every position.
+  const GearPair h = h501_pair();
+  const double b = h.face_width_m;
+  const MeshTables whole = helical_tables(h, pinion_tooth0(h501_spall(0.0, b)));
+  const MeshTables first = helical_tables(h, pinion_tooth0(h501_spall(0.0, 0.5 * b)));
+  const MeshTables second = helical_tables(h, pinion_tooth0(h501_spall(0.5 * b, 0.5 * b)));
+  TipChip chip;
+  chip.radius_m = h501_pinion_radius(0.8);
+  ToothState chipped;
+  chipped.kind = ToothKind::tip_chip;
+  chipped.chip = chip;
+  chipped.chip.width_m = b;
+  const MeshTables chip_whole = helical_tables(h, pinion_tooth0(chipped));
+  chipped.chip.width_m = 0.3 * b;
+  const MeshTables chip_first = helical_tables(h, pinion_tooth0(chipped));
+  chipped.face_start_m = 0.3 * b;
+  chipped.chip.width_m = 0.7 * b;
+  const MeshTables chip_second = helical_tables(h, pinion_tooth0(chipped));
+  const StiffnessTable& healthy = whole.healthy();
+  const double lo = healthy.domain_start_m();
+  const double hi = healthy.domain_end_m();
+  double k_most = 0.0;
+  for (int i = 0; i <= 400; ++i)
+    k_most = std::max(k_most, healthy.stiffness(lo + (hi - lo) * i / 400.0));
+  double worst = 0.0;
+  double largest_loss = 0.0;
+  for (const Region line : {Region::n1, Region::n2}) {
+    const std::array<const MeshTables*, 3> spall{&whole, &first, &second};
+    const std::array<const MeshTables*, 3> chips{&chip_whole, &chip_first, &chip_second};
+    for (const auto& set : {spall, chips}) {
+      for (int i = 1; i < 1000; ++i) {
+        const double x = lo + (hi - lo) * (i + 0.37) / 1000.0;
+        const double k = healthy.stiffness(x);
+        const double loss_whole = k - tooth0_table(*set[0], line).stiffness(x);
+        const double loss_parts = (k - tooth0_table(*set[1], line).stiffness(x)) +
+                                  (k - tooth0_table(*set[2], line).stiffness(x));
+        worst = std::max(worst, std::abs(loss_whole - loss_parts) / k_most);
+        largest_loss = std::max(largest_loss, loss_whole / k_most);
+      }
+    }
+  }
+  MESSAGE("helical faults: bands add up to " << worst << " of the largest K, loss up to "
+                                             << largest_loss);
+  // Tolerance: each of the four tables fits its function to about 1e-12 of
+  // the largest Ke (the spur table's bound, docs/verification.md); 1e-10 leaves room
+  // for the section tables they integrate.
+  CHECK(worst < 1e-10);
+  // The faults take a visible share of the pair (the check above could fail).
+  CHECK(largest_loss > 0.05);
+}
+
+TEST_CASE("helical faults: a fault across the whole face against a by-hand slice sum") {
+  // Route A by hand: N slices of width b/N, slice j at X + sigma (y_j - b/2)
+  // tan(beta_b) on N1 (its mirror on N2), each with the per-width stiffness of
+  // the transverse spur pair with the same fault across its face (its table
+  // from MeshTables of that spur pair, Hertz projected by cos(beta_b)).
+  const GearPair h = h501_pair();
+  const GearPair t = transverse_pair(h);
+  const HelicalGeometry g = helical_geometry(h);
+  const double b = h.face_width_m;
+  const double tan_bb = std::tan(g.base_helix_angle_rad);
+  const double cos_bb = std::cos(g.base_helix_angle_rad);
+  const ContactSegment path = contact_segment(t);
+  const int n = 4096;
+  const double db = b / n;
+  for (const ToothState& state : {h501_crack(0.6e-3), h501_spall(0.0, b)}) {
+    const MeshTables helical = helical_tables(h, pinion_tooth0(state));
+    const MeshTables spur(t, StiffnessModel{}, pinion_tooth0(state));
+    double worst = 0.0;
+    double bound = 0.0;
+    for (const Region line : {Region::n1, Region::n2}) {
+      const StiffnessTable& section = tooth0_table(spur, line);
+      const auto kappa = [&](double x) {
+        const Compliances c = section.compliance(x);
+        if (!(c.total_m_per_n() > 0.0)) return 0.0;
+        const double hertz = c.of(Term::hertz);
+        return 1.0 / (b * (c.total_m_per_n() - hertz + hertz / cos_bb));
+      };
+      double kappa_most = 0.0;
+      for (int i = 0; i <= 1000; ++i) {
+        kappa_most =
+            std::max(kappa_most, kappa(path.start_m + (path.end_m - path.start_m) * i / 1000.0));
+      }
+      const double sign = line == Region::n1 ? 1.0 : -1.0;
+      // Positions where the whole line lies on the path: the slices' midpoint
+      // rule is second order there but for the spall's two edges, where one
+      // slice at most is on the wrong side of each (kappa_most db apiece).
+      for (int i = 0; i <= 50; ++i) {
+        const double x =
+            path.start_m + 0.5 * b * tan_bb + (path.end_m - path.start_m - b * tan_bb) * i / 50.0;
+        double sum = 0.0;
+        for (int j = 0; j < n; ++j) {
+          const double at = x + sign * ((j + 0.5) * db - 0.5 * b) * tan_bb;
+          if (at >= path.start_m && at <= path.end_m) sum += kappa(at) * db;
+        }
+        const double k = tooth0_table(helical, line).stiffness(x);
+        worst = std::max(worst, std::abs(k - sum) / sum);
+        const double edges = state.kind == ToothKind::spall ? 2.0 * kappa_most * db : 0.0;
+        bound = std::max(bound, (edges + 1e-7 * sum) / sum);
+      }
+    }
+    MESSAGE("helical faults: " << to_string(state.kind) << " against the slice sum: " << worst
+                               << " (bound " << bound << ")");
+    // Tolerance: for the crack (smooth kappa) the midpoint rule's (db / L)^2
+    // ~ 1e-7 of the sum; for the spall one slice per edge, about 2 / N of the
+    // band's share (bound above).
+    CHECK(worst < bound);
+  }
+}
+
+TEST_CASE("helical faults: a run with a cracked and a spalled tooth closes its ledger") {
+  // A light load from the backlash, the pinion gaining: the teeth strike with
+  // pinion tooth 0 cracked across the face and tooth 1 spalled over part of
+  // it. The faulted pairs' Ke is a face integral, continuous: no stored-energy
+  // jump, as for the healthy pair (Lagrangian force).
+  const GearPair h = h501_pair();
+  SimulationCase c = helical_run(h, 5.0, 200.0, 3.0 * 2.0 * pi_ / (20 * 200.0));
+  c.model.mesh_force = MeshForce::lagrangian;
+  c.initial.w1_rad_per_s = 200.0 * (1.0 + 1e-2);
+  c.initial.w2_rad_per_s = 200.0 * c.gears.teeth1 / c.gears.teeth2;
+  SimulationCase faulted = c;
+  faulted.faults = pinion_tooth0(h501_crack(0.6e-3));
+  ToothFault spalled;
+  spalled.tooth = 1;
+  spalled.state = h501_spall(0.3 * h.face_width_m, 0.5 * h.face_width_m);
+  faulted.faults.push_back(spalled);
+  const SimulationSummary healthy = simulate(c).summary;
+  const SimulationSummary s = simulate(faulted).summary;
+  CHECK(s.impacts_n1 >= 1);
+  REQUIRE(s.stored_energy_jumps_j);
+  const double throughput =
+      s.kinetic_energy_initial_j + s.stored_energy_initial_j + std::fabs(s.torque_work_j);
+  MESSAGE("helical faulted: residual " << s.ledger_residual_max_j << " J of " << throughput
+                                       << " J, jumps " << *s.stored_energy_jumps_j);
+  CHECK(*s.stored_energy_jumps_j < 1e-12 * throughput);
+  // As the healthy helical run above: RK4 at h w ~ 0.01 closes to ~1e-8.
+  CHECK(s.ledger_residual_max_j < 1e-7 * throughput);
+  // The faults reach the run (the checks above could pass without them).
+  CHECK(s.max_penetration_m != healthy.max_penetration_m);
+}
+
+TEST_CASE("helical faults: what a faulted helical case refuses, naming the key") {
+  SimulationCase c = helical_run(h501_pair(), 50.0, 100.0, 1e-3);
+  SimulationCase partial = c;
+  partial.faults = pinion_tooth0(h501_crack(0.5e-3));
+  partial.faults[0].state.crack.profile = CrackProfile::partial_width;
+  partial.faults[0].state.crack.width_m = 0.01;
+  check_refused([&] { check_run(partial); }, "faults[0].profile", "its own depth");
+  SimulationCase planar = c;
+  planar.faults = pinion_tooth0(h501_crack(0.5e-3));
+  planar.bearings.kind = BearingKind::elastic;
+  planar.bearings.gear1.stiffness_x_n_per_m = 1e9;
+  planar.bearings.gear2.stiffness_x_n_per_m = 1e9;
+  check_refused([&] { check_run(planar); }, "faults[0]", "planar");
+  SimulationCase beyond = c;
+  beyond.faults = pinion_tooth0(h501_spall(0.02, 0.005));
+  check_refused([&] { check_run(beyond); }, "faults[0].face_start", "within the face");
+  SimulationCase spur;
+  spur.faults = pinion_tooth0(h501_spall(0.001, 0.002));
+  spur.faults[0].state.spall.start_radius_m = 0.0;
+  check_refused([&] { check_tooth_faults(spur.gears, StiffnessModel{}, spur.faults); },
+                "faults[0].face_start", "spur");
 }

@@ -10,6 +10,7 @@
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/helical.hpp"
 #include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/numerics/quadrature.hpp"
 #include "gearimpact/stiffness/model.hpp"
@@ -146,7 +147,7 @@ std::string surface_fault_key_of(const std::string& library_name) {
 // width up to the face width. Then the library's own checks (place_spall,
 // place_chip), should they find more.
 void surface_fault_problems(const SimulationCase& c, const ToothFault& f, const std::string& name,
-                            Problems& problems) {
+                            bool helical, Problems& problems) {
   const GearPair& pair = c.gears;
   const StiffnessModelKind kind = c.model.stiffness.kind;
   const std::string gear = f.gear == Gear::one ? "pinion" : "wheel";
@@ -158,6 +159,16 @@ void surface_fault_problems(const SimulationCase& c, const ToothFault& f, const 
     problems.add(range_problem(name + ".width", in_mm(width),
                                "at most the face width b = " + in_mm(b) +
                                    " (gears.face_width): a fault runs across the face at most"));
+  } else if (f.state.face_start_m != 0.0 && !helical) {
+    problems.add(range_problem(name + ".face_start", in_mm(f.state.face_start_m),
+                               "0 on a spur pair (gears.helix_angle = 0): its sections and its "
+                               "contact line are the same across the face, so that a band's "
+                               "place there changes nothing"));
+  } else if (!(f.state.face_start_m + width <= b)) {
+    problems.add(
+        range_problem(name + ".face_start", in_mm(f.state.face_start_m),
+                      "[0, " + in_mm(b - width) + "]: the band [face_start, face_start + " +
+                          "width) within the face width b = " + in_mm(b) + " (gears.face_width)"));
   }
   const double rb = base_radius(pair, f.gear);
   const double tip = tip_radius(pair, f.gear);
@@ -214,7 +225,11 @@ void surface_fault_problems(const SimulationCase& c, const ToothFault& f, const 
   }
   if (problems.list().size() != before) return;
   try {
-    check_tooth_faults(pair, c.model.stiffness, {f});
+    // The band's place across the face is checked above; the library's
+    // check sees the transverse section, a spur pair.
+    ToothFault placed = f;
+    placed.state.face_start_m = 0.0;
+    check_tooth_faults(pair, c.model.stiffness, {placed});
   } catch (const InputError& e) {
     for (const Problem& p : e.problems()) {
       problems.add(p.renamed(name + "." + surface_fault_key_of(p.field), p.value));
@@ -225,10 +240,10 @@ void surface_fault_problems(const SimulationCase& c, const ToothFault& f, const 
 // The checks of [[faults]] that need the gears and the model: a constant
 // stiffness has no teeth, a tooth number below the gear's teeth, one fault per
 // tooth, and a crack that fits its tooth (place_crack).
-void fault_problems(const SimulationCase& c, const std::vector<std::string>& failed,
+void fault_problems(const SimulationCase& given, const std::vector<std::string>& failed,
                     Problems& problems) {
-  if (c.faults.empty() || any_failed(failed, "faults")) return;
-  if (c.model.mesh_stiffness == MeshStiffnessMode::constant) {
+  if (given.faults.empty() || any_failed(failed, "faults")) return;
+  if (given.model.mesh_stiffness == MeshStiffnessMode::constant) {
     if (!any_failed(failed, "model.mesh_stiffness")) {
       problems.add(range_problem("model.mesh_stiffness", "\"constant\"",
                                  "\"time-varying\" in a case with [[faults]]: a constant "
@@ -237,6 +252,16 @@ void fault_problems(const SimulationCase& c, const std::vector<std::string>& fai
     return;
   }
   if (any_failed(failed, "gears.") || any_failed(failed, "model.")) return;
+  // A helical tooth's fault is placed on its transverse section, the spur
+  // pair its slices are (docs/helical.md, Faults); a spur pair is its own.
+  // (A swept section, face_advance_m = W > 0, is the helical pair a run takes.)
+  const bool helical = given.gears.helix_angle_rad != 0.0 || given.gears.face_advance_m > 0.0;
+  SimulationCase section_case;
+  if (helical) {
+    section_case = given;
+    section_case.gears = transverse_pair(given.gears);
+  }
+  const SimulationCase& c = helical ? section_case : given;
   for (std::size_t i = 0; i < c.faults.size(); ++i) {
     const ToothFault& f = c.faults[i];
     const std::string name = "faults[" + std::to_string(i) + "]";
@@ -260,7 +285,7 @@ void fault_problems(const SimulationCase& c, const std::vector<std::string>& fai
     }
     if (repeated) continue;
     if (f.state.kind == ToothKind::spall || f.state.kind == ToothKind::tip_chip) {
-      surface_fault_problems(c, f, name, problems);
+      surface_fault_problems(c, f, name, helical, problems);
       continue;
     }
     if (f.state.kind != ToothKind::root_crack) continue;
@@ -420,7 +445,8 @@ void relation_problems(const SimulationCase& c, const std::vector<std::string>& 
       }
     }
   }
-  fault_problems(c, failed, problems);
+  // A helical pair's faults are placed on its transverse section, which needs its geometry.
+  if (c.gears.helix_angle_rad == 0.0 || geometry_valid) fault_problems(c, failed, problems);
   if (c.model.friction_law == FrictionLaw::table &&
       !any_failed(failed, "model.friction_table_slide_to_roll") &&
       !any_failed(failed, "model.friction_table_coefficients")) {

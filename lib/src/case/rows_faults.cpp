@@ -249,6 +249,18 @@ std::vector<Field> make_fault_schema() {
                                                            : fault(c).state.spall.width_m;
        })
       .only_when = FieldCondition{"kind", {"spall", "tip-chip"}};
+  // Left out of written files and case keys at 0, so that every file without
+  // it keeps its bytes and its key.
+  Field& face_start = r.quantity(
+      "face_start", Dimension::length, "mm", {closed(0.0), {}, "and face_start + width <= b"},
+      false,
+      "helical pairs: where the spall's or the chip's band across the face begins, from the "
+      "face end at smaller z (y = 0); it covers [face_start, face_start + width) "
+      "(docs/helical.md, Faults); 0 on a spur pair, whose teeth do not depend on it",
+      [fault](auto& c) -> auto& { return fault(c).state.face_start_m; });
+  face_start.only_when = FieldCondition{"kind", {"spall", "tip-chip"}};
+  face_start.written_at_default = false;
+  face_start.keyed_at_default = false;
   r.quantity(
        "start_radius", Dimension::length, "mm", {open(0.0), {}, "and on the active profile"}, true,
        "where the spall begins: the radius of its lower edge on the flank, on the active "

@@ -279,6 +279,141 @@ StiffnessTable helical_pair_table(const GearPair& pair, const StiffnessModel& mo
                         {face.start_m() + half_w, face.end_m() - half_w}, options);
 }
 
+namespace {
+
+// kappa per unit face width at X of a transverse section's table (width b)
+// and its terms per unit width, as FaceStiffness reads them: only Hertz sees
+// the inclined line when projected. 0 and no terms where the table has no
+// contact.
+double per_width(const StiffnessTable& table, double x_m, double face_width_m, double cos_bb,
+                 HelicalHertz hertz, Compliances& terms) {
+  terms = table.compliance(x_m);
+  if (!(terms.total_m_per_n() > 0.0)) return 0.0;
+  for (double& term : terms.m_per_n) term *= face_width_m;
+  if (hertz == HelicalHertz::projected) terms.of(Term::hertz) /= cos_bb;
+  return 1.0 / terms.total_m_per_n();
+}
+
+}  // namespace
+
+StiffnessTable helical_faulted_pair_table(const GearPair& swept, HelicalHertz hertz,
+                                          const StiffnessTable& healthy_pair,
+                                          const StiffnessTable& healthy_section,
+                                          const std::vector<FaceBand>& bands, Region line,
+                                          StiffnessTableOptions options) {
+  if (!(swept.face_advance_m > 0.0)) {
+    throw InputError("gears.helix_angle", "0 deg",
+                     "(0, 45] deg for a helical pair's faulted table: a spur pair's is "
+                     "MeshTables'");
+  }
+  if (line == Region::free) throw InputError("line", "free", "Region::n1 or Region::n2");
+  GearPair section = swept;
+  section.face_advance_m = 0.0;
+  const ContactSegment path = contact_segment(section);
+  const ContactSegment domain = pair_contact_segment(swept);
+  const double b = swept.face_width_m;
+  const double tan_bb = swept.face_advance_m / b;
+  const double cos_bb = 1.0 / std::sqrt(1.0 + tan_bb * tan_bb);
+  // On N1 the section at y sits sigma (y - b/2) tan(beta_b) further along, on N2 that much back.
+  const double sign = (line == Region::n1 ? 1.0 : -1.0) * hand_sign(swept.helix_hand);
+  const double span = path.end_m - path.start_m;
+  struct Extent {
+    double low;  // the band's ends along the line, from the pair's mid-face contact
+    double high;
+    const StiffnessTable* section;
+    std::vector<double> edges;  // where kappa of the band or the healthy one may kink or jump
+  };
+  // The whole face: the given bands and, between them, healthy ones.
+  std::vector<FaceBand> face;
+  {
+    std::vector<FaceBand> given = bands;
+    std::sort(given.begin(), given.end(),
+              [](const FaceBand& p, const FaceBand& q) { return p.start_m < q.start_m; });
+    double y = 0.0;
+    for (const FaceBand& band : given) {
+      if (!(band.end_m > band.start_m)) continue;
+      if (band.start_m < y || band.end_m > b) {
+        throw InputError("bands", "overlapping or beyond the face",
+                         "disjoint bands within [0, b] of the face");
+      }
+      if (band.start_m > y) face.push_back({y, band.start_m, &healthy_section});
+      face.push_back(band);
+      y = band.end_m;
+    }
+    if (b > y) face.push_back({y, b, &healthy_section});
+  }
+  std::vector<Extent> extents;
+  std::vector<double> breaks = healthy_pair.breaks_m();
+  for (const FaceBand& band : face) {
+    if (!(band.end_m > band.start_m)) continue;
+    const double a = sign * (band.start_m - 0.5 * b) * tan_bb;
+    const double c = sign * (band.end_m - 0.5 * b) * tan_bb;
+    Extent e{std::min(a, c), std::max(a, c), band.section, {path.start_m, path.end_m}};
+    for (const StiffnessTable* t : {band.section, &healthy_section}) {
+      if (t == nullptr) continue;
+      for (double x : t->breaks_m()) {
+        if (x > path.start_m && x < path.end_m) e.edges.push_back(x);
+      }
+    }
+    for (double p : e.edges) {
+      breaks.push_back(p - e.low);
+      breaks.push_back(p - e.high);
+    }
+    extents.push_back(std::move(e));
+  }
+  const ComplianceFunction compliance = [&](double x) {
+    // s_i = kappa^2 c_i integrated over the line on the path, over
+    // tan(beta_b), each band's slices in their state: the terms c_i sum to
+    // 1 / kappa, so K = sum of s_i and the pair's c_i = s_i / K^2.
+    std::array<double, kTermCount> s{};
+    const auto& abscissa = Rule::abscissa();
+    const auto& weights = Rule::weights();
+    for (const Extent& e : extents) {
+      const double low = std::max(x + e.low, path.start_m);
+      const double high = std::min(x + e.high, path.end_m);
+      if (!(high > low)) continue;
+      // Pieces cut at the edges inside, each at most a sixteenth of the path:
+      // kappa is smooth on each (8-point Gauss-Legendre, as helical_pair_table).
+      std::vector<double> ends{low, high};
+      for (double p : e.edges) {
+        if (p > low && p < high) ends.push_back(p);
+      }
+      std::sort(ends.begin(), ends.end());
+      for (std::size_t i = 1; i < ends.size(); ++i) {
+        const double from = ends[i - 1];
+        const double to = ends[i];
+        const int pieces = std::max(1, static_cast<int>(std::ceil(16.0 * (to - from) / span)));
+        const double step = (to - from) / pieces;
+        for (int q = 0; q < pieces; ++q) {
+          const double lo = from + q * step;
+          const double hi = q + 1 == pieces ? to : from + (q + 1) * step;
+          const double mid = 0.5 * (lo + hi);
+          const double half = 0.5 * (hi - lo);
+          const auto add = [&](double at, double weight) {
+            Compliances c_band;
+            const double kb = e.section ? per_width(*e.section, at, b, cos_bb, hertz, c_band) : 0.0;
+            if (!(kb > 0.0)) return;
+            for (std::size_t t = 0; t < kTermCount; ++t) {
+              s[t] += weight * kb * kb * c_band.m_per_n[t] / tan_bb;
+            }
+          };
+          for (std::size_t n = 0; n < abscissa.size(); ++n) {
+            add(mid - half * abscissa[n], half * weights[n]);
+            add(mid + half * abscissa[n], half * weights[n]);
+          }
+        }
+      }
+    }
+    double k = 0.0;
+    for (double term : s) k += term;
+    Compliances c;
+    if (!(k > 0.0)) return c;
+    for (std::size_t t = 0; t < kTermCount; ++t) c.m_per_n[t] = s[t] / (k * k);
+    return c;
+  };
+  return StiffnessTable(domain.start_m, domain.end_m, compliance, breaks, options);
+}
+
 HelicalMeshStiffnessCurve helical_mesh_stiffness(const GearPair& pair, const StiffnessModel& model,
                                                  int samples) {
   if (samples < 2 || samples > 100000) {

@@ -1,5 +1,6 @@
 #include "gearimpact/stiffness/mesh_tables.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -7,6 +8,8 @@
 #include <optional>
 #include <utility>
 
+#include "gearimpact/error.hpp"
+#include "gearimpact/stiffness/helical.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "pair_crack_change.hpp"
 
@@ -79,6 +82,64 @@ std::vector<std::unique_ptr<ClassTerms>> class_terms(const GearPair& pair,
   return terms;
 }
 
+// The table of teeth in states s1, s2 on the line whose flank is `flank`
+// over the contact segment of `pair`, cut at the faults' edges and a crack's
+// kinks; across the whole face a spall's or a chip's part beyond its edge has
+// no contact.
+std::shared_ptr<const StiffnessTable> teeth_table(const GearPair& pair, const StiffnessModel& model,
+                                                  const ToothState& s1, const ToothState& s2,
+                                                  ClassTerms& t1, ClassTerms& t2, CrackFlank flank,
+                                                  StiffnessTableOptions options) {
+  std::vector<double> breaks = fault_breaks(pair, Gear::one, s1);
+  const std::vector<double> breaks2 = fault_breaks(pair, Gear::two, s2);
+  breaks.insert(breaks.end(), breaks2.begin(), breaks2.end());
+  // A crack's kinks too: a piece fitted across one misses the 1e-12.
+  for (const ClassTerms* t : {&t1, &t2}) {
+    const std::vector<double> kinks = t->kinks();
+    breaks.insert(breaks.end(), kinks.begin(), kinks.end());
+  }
+  const ContactSegment segment = contact_segment(pair);
+  const ComplianceFunction compliance = [&](double x1_m) {
+    if (!(pair_contact_length_m(pair, x1_m, s1, s2, flank) > 0.0)) {
+      return MeshStiffness{}.included;
+    }
+    return mesh_stiffness_of_teeth(pair, x1_m, model, s1, s2, flank, t1.at(x1_m), t2.at(x1_m))
+        .included;
+  };
+  return breaks.empty() ? std::make_shared<const StiffnessTable>(segment.start_m, segment.end_m,
+                                                                 compliance, options)
+                        : std::make_shared<const StiffnessTable>(segment.start_m, segment.end_m,
+                                                                 compliance, breaks, options);
+}
+
+// The band [y0, y1) across the face a helical tooth's state covers: a spall's
+// or a chip's from face_start over its width, a crack (uniform) the whole
+// face; none for a healthy tooth.
+std::pair<double, double> covered_band(const ToothState& s, double face_width_m) {
+  if (s.kind == ToothKind::spall) return {s.face_start_m, s.face_start_m + s.spall.width_m};
+  if (s.kind == ToothKind::tip_chip) return {s.face_start_m, s.face_start_m + s.chip.width_m};
+  if (s.kind == ToothKind::healthy) return {0.0, 0.0};
+  return {0.0, face_width_m};
+}
+
+// The state across the whole face whose slices are a band's: a spall's or a
+// chip's width the face width.
+ToothState across_face(ToothState s, double face_width_m) {
+  s.face_start_m = 0.0;
+  if (s.kind == ToothKind::spall) s.spall.width_m = face_width_m;
+  if (s.kind == ToothKind::tip_chip) s.chip.width_m = face_width_m;
+  return s;
+}
+
+// A fault that changes no slice of a helical tooth: a uniform crack of depth 0
+// (the healthy tooth exactly, docs/faults.md): its pair reads the healthy
+// table, to the bit.
+bool changes_nothing(const ToothState& s) {
+  return s.kind == ToothKind::healthy ||
+         (s.kind == ToothKind::root_crack && s.crack.profile == CrackProfile::uniform &&
+          s.crack.depth_m == 0.0);
+}
+
 }  // namespace
 
 MeshTables::MeshTables(const GearPair& pair, const StiffnessModel& model,
@@ -86,6 +147,10 @@ MeshTables::MeshTables(const GearPair& pair, const StiffnessModel& model,
                        std::shared_ptr<const StiffnessTable> healthy, StiffnessTableOptions options)
     : pair_(pair), faults_(std::move(faults)), healthy_(std::move(healthy)) {
   check_tooth_faults(pair_, model, faults_);
+  if (!healthy_ && pair_.face_advance_m > 0.0) {
+    throw InputError("healthy", "none",
+                     "a helical pair's section needs its pair table (helical_pair_table)");
+  }
   if (!healthy_) healthy_ = std::make_shared<const StiffnessTable>(pair_, model, options);
   const int z1 = teeth(pair_, Gear::one);
   const int z2 = teeth(pair_, Gear::two);
@@ -104,7 +169,6 @@ MeshTables::MeshTables(const GearPair& pair, const StiffnessModel& model,
     meets[0][combination(teeth_of_pair(pair_, Region::n1, -n))] = true;
     meets[1][combination(teeth_of_pair(pair_, Region::n2, n))] = true;
   }
-  const ContactSegment segment = contact_segment(pair_);
   const std::vector<std::unique_ptr<ClassTerms>> pinion_terms =
       class_terms(pair_, model, Gear::one, pinion);
   const std::vector<std::unique_ptr<ClassTerms>> wheel_terms =
@@ -119,6 +183,78 @@ MeshTables::MeshTables(const GearPair& pair, const StiffnessModel& model,
     }
   }
   for (auto& line : tables_) line.assign(combinations, nullptr);
+  // A helical pair's section (swept_transverse_pair, face_advance_m = W > 0):
+  // each tooth pair reads a table over its widened segment, the healthy one
+  // given (helical_pair_table), a faulted one the face integral of its slices,
+  // each band of the face in its own state (helical_faulted_pair_table). The
+  // bands' states across the whole face are tables of the transverse section.
+  const bool helical = pair_.face_advance_m > 0.0;
+  GearPair section = pair_;
+  section.face_advance_m = 0.0;
+  std::shared_ptr<const StiffnessTable> section_healthy;
+  std::vector<std::unique_ptr<ClassTerms>> pinion_across;
+  std::vector<std::unique_ptr<ClassTerms>> wheel_across;
+  // (pinion class or 0, wheel class or 0, line) -> the section's table.
+  std::map<std::array<std::size_t, 3>, std::shared_ptr<const StiffnessTable>> section_tables;
+  const double b_face = pair_.face_width_m;
+  if (helical) {
+    section_healthy = std::make_shared<const StiffnessTable>(section, model, options);
+    std::vector<ToothState> p_across;
+    std::vector<ToothState> w_across;
+    for (const ToothState& s : pinion) p_across.push_back(across_face(s, b_face));
+    for (const ToothState& s : wheel) w_across.push_back(across_face(s, b_face));
+    pinion_across = class_terms(section, model, Gear::one, p_across);
+    wheel_across = class_terms(section, model, Gear::two, w_across);
+    for (const NodeTeeth& node : section_healthy->node_teeth()) {
+      pinion_across.front()->know(node.x1_m, node.tooth1);
+      wheel_across.front()->know(node.x1_m, node.tooth2);
+    }
+  }
+  const auto add_helical = [&](std::size_t a, std::size_t b, std::size_t c) {
+    const ToothState& s1 = pinion[a];
+    const ToothState& s2 = wheel[b];
+    if (changes_nothing(s1) && changes_nothing(s2)) {
+      for (std::size_t line = 0; line < 2; ++line) {
+        if (meets[line][c]) tables_[line][c] = healthy_;
+      }
+      return;
+    }
+    const std::pair<double, double> band1 =
+        changes_nothing(s1) ? std::pair{0.0, 0.0} : covered_band(s1, b_face);
+    const std::pair<double, double> band2 =
+        changes_nothing(s2) ? std::pair{0.0, 0.0} : covered_band(s2, b_face);
+    std::vector<double> cuts{0.0, b_face, band1.first, band1.second, band2.first, band2.second};
+    std::sort(cuts.begin(), cuts.end());
+    for (std::size_t line = 0; line < 2; ++line) {
+      if (!meets[line][c]) continue;
+      const CrackFlank flank = line == 0 ? CrackFlank::loaded : CrackFlank::unloaded;
+      std::vector<FaceBand> bands;
+      for (std::size_t i = 1; i < cuts.size(); ++i) {
+        const double y0 = std::max(cuts[i - 1], 0.0);
+        const double y1 = std::min(cuts[i], b_face);
+        if (!(y1 > y0)) continue;
+        const double mid = 0.5 * (y0 + y1);
+        const bool in1 = mid > band1.first && mid < band1.second;
+        const bool in2 = mid > band2.first && mid < band2.second;
+        if (!in1 && !in2) continue;
+        const std::array<std::size_t, 3> key{in1 ? a : 0, in2 ? b : 0, line};
+        auto found = section_tables.find(key);
+        if (found == section_tables.end()) {
+          const ToothState q1 = in1 ? across_face(s1, b_face) : ToothState{};
+          const ToothState q2 = in2 ? across_face(s2, b_face) : ToothState{};
+          found = section_tables
+                      .emplace(key, teeth_table(section, model, q1, q2, *pinion_across[key[0]],
+                                                *wheel_across[key[1]], flank, options))
+                      .first;
+        }
+        bands.push_back({y0, y1, found->second.get()});
+      }
+      tables_[line][c] = std::make_shared<const StiffnessTable>(
+          helical_faulted_pair_table(pair_, model.helical_hertz, *healthy_, *section_healthy, bands,
+                                     line == 0 ? Region::n1 : Region::n2, options));
+      ++fault_tables_;
+    }
+  };
   for (std::size_t a = 0; a < pinion.size(); ++a) {
     for (std::size_t b = 0; b < wheel_states_; ++b) {
       const std::size_t c = a * wheel_states_ + b;
@@ -131,13 +267,9 @@ MeshTables::MeshTables(const GearPair& pair, const StiffnessModel& model,
       }
       const ToothState& s1 = pinion[a];
       const ToothState& s2 = wheel[b];
-      std::vector<double> breaks = fault_breaks(pair_, Gear::one, s1);
-      const std::vector<double> breaks2 = fault_breaks(pair_, Gear::two, s2);
-      breaks.insert(breaks.end(), breaks2.begin(), breaks2.end());
-      // A crack's kinks too: a piece fitted across one misses the 1e-12.
-      for (const ClassTerms* t : {pinion_terms[a].get(), wheel_terms[b].get()}) {
-        const std::vector<double> kinks = t->kinks();
-        breaks.insert(breaks.end(), kinks.begin(), kinks.end());
+      if (helical) {
+        add_helical(a, b, c);
+        continue;
       }
       // Only a spall's Hertzian length depends on the flank the contact is on.
       const bool by_line = s1.kind == ToothKind::spall || s2.kind == ToothKind::spall;
@@ -148,21 +280,8 @@ MeshTables::MeshTables(const GearPair& pair, const StiffnessModel& model,
           continue;
         }
         const CrackFlank flank = line == 0 ? CrackFlank::loaded : CrackFlank::unloaded;
-        ClassTerms& t1 = *pinion_terms[a];
-        ClassTerms& t2 = *wheel_terms[b];
-        const ComplianceFunction compliance = [&](double x1_m) {
-          if (!(pair_contact_length_m(pair_, x1_m, s1, s2, flank) > 0.0)) {
-            return MeshStiffness{}.included;
-          }
-          return mesh_stiffness_of_teeth(pair_, x1_m, model, s1, s2, flank, t1.at(x1_m),
-                                         t2.at(x1_m))
-              .included;
-        };
-        tables_[line][c] = breaks.empty()
-                               ? std::make_shared<const StiffnessTable>(
-                                     segment.start_m, segment.end_m, compliance, options)
-                               : std::make_shared<const StiffnessTable>(
-                                     segment.start_m, segment.end_m, compliance, breaks, options);
+        tables_[line][c] =
+            teeth_table(pair_, model, s1, s2, *pinion_terms[a], *wheel_terms[b], flank, options);
         ++fault_tables_;
       }
     }

@@ -26,7 +26,7 @@ std::string to_string(ToothKind kind) {
 }
 
 bool operator==(const ToothState& a, const ToothState& b) {
-  if (a.kind != b.kind) return false;
+  if (a.kind != b.kind || a.face_start_m != b.face_start_m) return false;
   if (a.kind == ToothKind::spall) {
     const Spall& p = a.spall;
     const Spall& q = b.spall;
@@ -64,6 +64,22 @@ void check_tooth_faults(const GearPair& pair, const StiffnessModel& model,
         throw InputError(name + ".tooth", f.tooth,
                          "a tooth not already faulted: faults[" + std::to_string(j) +
                              "] is on the same tooth, and a tooth has one state");
+      }
+    }
+    if (f.state.face_start_m != 0.0) {
+      const bool band = f.state.kind == ToothKind::spall || f.state.kind == ToothKind::tip_chip;
+      const bool helical = pair.helix_angle_rad != 0.0 || pair.face_advance_m > 0.0;
+      const double width =
+          f.state.kind == ToothKind::spall ? f.state.spall.width_m : f.state.chip.width_m;
+      if (!band || !helical) {
+        throw InputError(name + ".face_start", format_number(f.state.face_start_m) + " m",
+                         "0 but for a spall or a chip on a helical pair: a spur pair's teeth "
+                         "are the same across the face");
+      }
+      if (!(f.state.face_start_m > 0.0 && f.state.face_start_m + width <= pair.face_width_m)) {
+        throw InputError(name + ".face_start", format_number(f.state.face_start_m) + " m",
+                         "[0, b - width] = [0, " + format_number(pair.face_width_m - width) +
+                             "] m: the band within the face");
       }
     }
     const bool paper = model.kind == StiffnessModelKind::yang_lin_1987;

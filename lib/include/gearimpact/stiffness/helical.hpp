@@ -153,6 +153,39 @@ HelicalMeshStiffnessCurve helical_mesh_stiffness(const GearPair& pair, const Sti
 StiffnessTable helical_pair_table(const GearPair& pair, const StiffnessModel& model,
                                   StiffnessTableOptions options = {});
 
+// One band [start, end) of a helical tooth pair's face (y from the face end
+// at smaller z) whose slices share one state: `section` the table of the
+// pair's transverse section (swept with face_advance_m 0, width b) with that
+// state across the whole face, so that its compliances per unit width are
+// the band's slices'; nullptr where those slices carry nothing.
+struct FaceBand {
+  double start_m;
+  double end_m;
+  const StiffnessTable* section;
+};
+
+// The table of a helical tooth pair whose slices differ across the face (a
+// spall, a chip or a crack: docs/helical.md, Faults), over the same domain
+// pair_contact_segment(swept) as `healthy_pair` (helical_pair_table of the
+// pair, swept = swept_transverse_pair of it): route B's face integral with
+// each slice in its own state,
+//   Ke(X) = sum over the face's bands of [integral of kappa_band over the
+//           band's extent along `line`, clipped to the path] / tan(beta_b),
+// `bands` (disjoint, within [0, b]) in their states and the rest of the face
+// healthy, kappa_t from `healthy_section` (the section's healthy table); each
+// kappa by `hertz` as FaceStiffness reads it. A band's extent on N1 is X +
+// sigma (y - b/2) tan(beta_b) for y in the band, on N2 its mirror. Each term's
+// compliance splits the line's energy as helical_pair_table's do. Cut at the
+// healthy table's breaks and where a band's end reaches a path end or a
+// break of a section table (a fault's edge), so that no piece straddles a
+// kink; a part where no slice touches carries nothing
+// (StiffnessTable::part_in_contact).
+StiffnessTable helical_faulted_pair_table(const GearPair& swept, HelicalHertz hertz,
+                                          const StiffnessTable& healthy_pair,
+                                          const StiffnessTable& healthy_section,
+                                          const std::vector<FaceBand>& bands, Region line,
+                                          StiffnessTableOptions options = {});
+
 // The face-load factor of ISO 6336-1 from a slice solution: uniform stiffness
 // c per unit face width, a gap linear across the face e(y) = F_betay (y/b - 1/2),
 // transverse load F: the deflection delta with integral of c max(0, delta - e)

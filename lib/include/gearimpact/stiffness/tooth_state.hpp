@@ -33,6 +33,11 @@ struct ToothState {
   RootCrack crack;  // read only when kind == root_crack
   Spall spall;      // read only when kind == spall
   TipChip chip;     // read only when kind == tip_chip
+  // Where a spall's or a chip's band across the face starts on a helical
+  // tooth, y from the face end at smaller z (docs/helical.md, Faults): the
+  // fault covers [face_start, face_start + width). A spur pair's sections
+  // and contact line do not depend on it, which keeps it 0 there.
+  double face_start_m = 0.0;
 };
 
 // Two states load a tooth alike: the same kind and, for a crack, a spall or a
