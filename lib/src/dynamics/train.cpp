@@ -152,8 +152,8 @@ void validate_sliced_mesh(const std::string& prefix, const TrainMesh& mesh,
     refuse("thickness_deviations", g.thickness_m);
     refuse("profile_slope_deviations", g.profile_slope_m);
     if (g.iso1328_class != 0) {
-      throw InputError(prefix + "modifications.iso1328_class" + n,
-                       std::to_string(g.iso1328_class), "0" + why);
+      throw InputError(prefix + "modifications.iso1328_class" + n, std::to_string(g.iso1328_class),
+                       "0" + why);
     }
   }
   if (c.model.damping_stiffness == DampingStiffness::hertz) {
@@ -164,8 +164,8 @@ void validate_sliced_mesh(const std::string& prefix, const TrainMesh& mesh,
   }
   if (integrator.kind == IntegratorKind::adaptive) {
     throw InputError("integrator.kind", "adaptive",
-                     "a fixed-step integrator with a helical mesh run by slices (" +
-                         mesh.name + "): the adaptive step bound is a face-wide pair's");
+                     "a fixed-step integrator with a helical mesh run by slices (" + mesh.name +
+                         "): the adaptive step bound is a face-wide pair's");
   }
   if (mesh.table) {
     throw InputError(prefix + "table", "a table given",
@@ -1321,14 +1321,14 @@ std::vector<TrainMesh> helical_slice_meshes(const TrainMesh& mesh) {
     throw InputError("model.face_slices", std::to_string(n),
                      "an integer in [1, " + std::to_string(kMostFaceSlices) + "]");
   }
-  const auto face = std::make_shared<const FaceStiffness>(g, c.model.stiffness,
-                                                          c.model.stiffness.helical_hertz);
+  const auto face =
+      std::make_shared<const FaceStiffness>(g, c.model.stiffness, c.model.stiffness.helical_hertz);
   const HelicalMesh helical(g, *face, c.model.coast_phase);
   const double db = g.face_width_m / n;
   const double alpha_wt = helical_geometry(g).working_pressure_angle_rad;
   // One table for every slice: each term of 1/kappa_t per unit width over the slice's width.
-  const auto table = std::make_shared<const StiffnessTable>(
-      face->start_m(), face->end_m(), [face, db](double x) {
+  const auto table =
+      std::make_shared<const StiffnessTable>(face->start_m(), face->end_m(), [face, db](double x) {
         Compliances k = face->compliance_per_width(x);
         for (double& term : k.m_per_n) term /= db;
         return k;
