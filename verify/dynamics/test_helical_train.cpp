@@ -285,3 +285,40 @@ TEST_CASE("a slow, damped route-A run with crowning and misalignment sits on the
   REQUIRE(result.meshes.size() == 8);
   CHECK(std::fabs(damper - sum.mesh_damping_loss_j) <= 1e-12 * sum.mesh_damping_loss_j);
 }
+
+TEST_CASE("a helical mesh run by slices refuses what its slices cannot take, naming the key") {
+  SimulationCase c = h501_case();
+  c.modifications.gear1.lead.crowning_m = 5e-6;
+  c.model.stiffness.face_slices = 4;
+  GearTrain train = two_gear_train(c);
+  REQUIRE(runs_by_slices(train.meshes[0]));
+  REQUIRE(dynamics_train(train).meshes.size() == 4);
+  SUBCASE("tooth errors, which a slice's shift would renumber") {
+    train.meshes[0].pair.modifications.gear2.pitch_m.assign(30, 1e-6);
+    CHECK_THROWS_WITH_AS(simulate_train(train),
+                         doctest::Contains("meshes.mesh.modifications.pitch_deviations2"),
+                         InputError);
+  }
+  SUBCASE("the adaptive integrator, whose step bound is a face-wide pair's") {
+    train.integrator.kind = IntegratorKind::adaptive;
+    CHECK_THROWS_WITH_AS(simulate_train(train), doctest::Contains("integrator.kind"), InputError);
+  }
+  SUBCASE("more slices than a run holds lines") {
+    train.meshes[0].pair.model.stiffness.face_slices = 65;
+    CHECK_THROWS_WITH_AS(simulate_train(train), doctest::Contains("meshes.mesh.model.face_slices"),
+                         InputError);
+  }
+  SUBCASE("a misalignment that closes the play across part of the face") {
+    // gamma_x moves the wheel's section towards the pinion at one face end: at the first of 4
+    // slices (u = -3/8) both flanks close by b u gamma_x sin(alpha_wt) = 62 um each, more than
+    // the 50 um of backlash (validate_gaps on each slice).
+    train.meshes[0].pair.modifications.misalignment.gamma_x_rad = 0.02;
+    CHECK_THROWS_WITH_AS(simulate_train(train), doctest::Contains("meshes.mesh.gears.backlash"),
+                         InputError);
+  }
+  SUBCASE("friction, as the two-gear helical run refuses it") {
+    train.meshes[0].pair.model.friction_coefficient = 0.05;
+    CHECK_THROWS_WITH_AS(simulate_train(train),
+                         doctest::Contains("meshes.mesh.model.friction_coefficient"), InputError);
+  }
+}
