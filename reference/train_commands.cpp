@@ -49,8 +49,10 @@ void run_train(const TrainOptions& o) {
     run_stage(o);
     return;
   }
-  const GearTrain train = read_train_file(o.case_file, o.sets);
-  const TrainResult result = simulate_train(train);
+  const GearTrain file = read_train_file(o.case_file, o.sets);
+  const TrainResult result = simulate_train(file);
+  // The outputs name the meshes the run ran (a helical mesh by slices: one per slice).
+  const GearTrain train = dynamics_train(file);
   const std::string summary = train_summary_json(train, result);
   AtomicFolder folder(o.out, o.overwrite, {o.case_file});
   const std::filesystem::path dir = folder.temporary();

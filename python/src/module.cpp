@@ -332,13 +332,15 @@ py::tuple run_stage(const std::string& path, const std::vector<std::string>& set
 py::tuple run_train(const std::string& path, const std::vector<std::string>& sets,
                     bool keep_series) {
   if (is_stage_file(path)) return run_stage(path, sets, keep_series);
-  const GearTrain train = read_train_file(path, sets);
+  const GearTrain file = read_train_file(path, sets);
   TrainResult result = interruptible([&](std::function<bool()> should_stop) {
     RunControl control;
     control.keep_series = keep_series;
     control.should_stop = std::move(should_stop);
-    return simulate_train(train, control);
+    return simulate_train(file, control);
   });
+  // Named by the meshes the run ran (a helical mesh by slices: one per slice).
+  const GearTrain train = dynamics_train(file);
   const std::string summary = train_summary_json(train, result);
   return py::make_tuple(
       summary, table_arrays(train_series_columns(train), std::move(result.series)), py::none());

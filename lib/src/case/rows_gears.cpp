@@ -112,7 +112,8 @@ void schema_detail::add_gear_rows(std::vector<Field>& rows) {
        "beta at the reference cylinder; 0 is the spur pair. Above 0, module, pressure_angle, "
        "the shifts and the rack coefficients are normal-section values; mesh-stiffness, "
        "iso6336, ste, report, simulate and sweep (the torsional and the planar model, without "
-       "friction) and modes (without faults) take a helical pair; trains refuse it",
+       "friction), modes (without faults) and trains (with modifications by its slices) take a "
+       "helical pair",
        [](auto& c) -> auto& { return c.gears.helix_angle_rad; })
       .written_at_default = false;
   rows.back().keyed_at_default = false;

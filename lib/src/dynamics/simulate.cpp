@@ -467,9 +467,11 @@ void refuse_helical_run(const SimulationCase& c) {
     throw InputError(std::vector<Problem>{refused_problem(
         "modifications",
         "reliefs or tooth errors on a helical pair (gears.helix_angle = " + beta + ")",
-        "not in a helical pair's dynamics yet: a gap that varies along an inclined contact "
-        "line needs the slices as separate contacts (route A of docs/helical.md)",
+        "not in the two-gear run of a helical pair: a gap that varies along an inclined contact "
+        "line needs the slices as separate contacts (route A of docs/helical.md), which a "
+        "train runs",
         "no relief and no tooth error with gears.helix_angle > 0",
+        "run the case file with `gearimpact train` (route A: each slice its own contact), or "
         "remove the relief and tooth-error keys")});
   }
   if (c.model.friction_law != FrictionLaw::constant) {

@@ -406,9 +406,13 @@ void validate_implied(const SimulationCase& c) {
   if (c.gears.helix_angle_rad != 0.0) {
     // A helical pair: what its run refuses, by name, then what the fields
     // imply on the transverse section it runs as, with the table it reads.
+    // Its modifications are the run's to refuse: a train runs them by slices
+    // (route A), which `simulate` does not (it refuses them itself).
     validate_absent_run_keys(c);
-    refuse_helical_run(c);
-    validate_implied(dynamics_case(c), helical_pair_table(c.gears, c.model.stiffness));
+    SimulationCase plain = c;
+    plain.modifications = Modifications{};
+    refuse_helical_run(plain);
+    validate_implied(dynamics_case(plain), helical_pair_table(c.gears, c.model.stiffness));
     return;
   }
   validate_implied(c, total_stiffness_extremes(c, [&](double x) {

@@ -21,7 +21,10 @@
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
+#include "gearimpact/geometry/helical.hpp"
+#include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/geometry/planetary.hpp"
+#include "gearimpact/stiffness/helical.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "ledger.hpp"
 #include "run_parts.hpp"
@@ -68,9 +71,14 @@ struct TrainLayout {
   };
   using Events = std::array<double, kMeshes * kMaxMeshEvents>;
 };
-// Today's trains (the sizes before planetary stages) and the largest.
+// The most lines a run holds: a train's meshes after route A cut each
+// helical mesh with modifications into its slices.
+constexpr int kMaxTrainLines = 64;
+// Today's trains (the sizes before planetary stages), the largest, and a
+// train of helical slices.
 using SmallTrain = TrainLayout<6, 4, false>;
 using LargeTrain = TrainLayout<kMaxTrainBodies, kMaxTrainMeshes, true>;
+using SlicedTrain = TrainLayout<kMaxTrainBodies, kMaxTrainLines, true>;
 
 // The layout's names inside the system and the run.
 #define GEARIMPACT_TRAIN_LAYOUT_NAMES                                               \
@@ -110,6 +118,96 @@ bool carrier_mesh(const TrainMesh& m) {
 }
 bool internal_mesh(const TrainMesh& m) {
   return m.kind == TrainMesh::Kind::internal;
+}
+bool helical_mesh(const TrainMesh& m) {
+  return m.pair.gears.helix_angle_rad != 0.0;
+}
+// The lines a mesh runs as: N slices by route A, else one.
+int line_count(const TrainMesh& m) {
+  return runs_by_slices(m) ? m.pair.model.stiffness.face_slices : 1;
+}
+
+// Route A's refusals of a helical mesh with modifications, before its pair's
+// other checks (which see it without them): tooth errors, whose numbering a
+// slice's shift along the line would move by whole teeth; a frozen Hertzian
+// damping stiffness, which a slice would take unprojected; the adaptive step
+// bound, which is a face-wide pair's; then the modifications themselves on
+// the helical pair (validate_modifications, as the helical STE checks them).
+void validate_sliced_mesh(const std::string& prefix, const TrainMesh& mesh,
+                          const IntegratorSettings& integrator) {
+  const SimulationCase& c = mesh.pair;
+  const std::string why =
+      ": a helical mesh with modifications runs by slices (route A of docs/helical.md), whose "
+      "shifts along the line renumber the teeth";
+  for (const Gear gear : {Gear::one, Gear::two}) {
+    const GearModifications& g = gear == Gear::one ? c.modifications.gear1 : c.modifications.gear2;
+    const std::string n = gear == Gear::one ? "1" : "2";
+    const auto refuse = [&](const std::string& key, const std::vector<double>& list) {
+      if (!list.empty()) {
+        throw InputError(prefix + "modifications." + key + n,
+                         std::to_string(list.size()) + " values", "none" + why);
+      }
+    };
+    refuse("pitch_deviations", g.pitch_m);
+    refuse("thickness_deviations", g.thickness_m);
+    refuse("profile_slope_deviations", g.profile_slope_m);
+    if (g.iso1328_class != 0) {
+      throw InputError(prefix + "modifications.iso1328_class" + n, std::to_string(g.iso1328_class),
+                       "0" + why);
+    }
+  }
+  if (c.model.damping_stiffness == DampingStiffness::hertz) {
+    throw InputError(prefix + "model.damping_stiffness", "hertz",
+                     "current-pair or pitch-pair-at-impact with a helical mesh run by slices: a "
+                     "slice's frozen Hertzian stiffness would miss the inclined line's "
+                     "projection");
+  }
+  if (integrator.kind == IntegratorKind::adaptive) {
+    throw InputError("integrator.kind", "adaptive",
+                     "a fixed-step integrator with a helical mesh run by slices (" + mesh.name +
+                         "): the adaptive step bound is a face-wide pair's");
+  }
+  if (mesh.table) {
+    throw InputError(prefix + "table", "a table given",
+                     "none: a helical mesh run by slices builds its slices' table");
+  }
+}
+
+// Slice j's (of n) modifications (helical_slice_meshes): the pair's reliefs,
+// and its lead gaps at y_j on the two flanks as one pitch and thickness
+// deviation on every tooth of gear 1.
+Modifications slice_modifications(const SimulationCase& c, int j, int n,
+                                  double working_pressure_angle_rad) {
+  const double b = c.gears.face_width_m;
+  const double y = (j + 0.5) * (b / n);
+  const double drive = lead_gap_m(c.modifications, Region::n1, b, working_pressure_angle_rad, y);
+  const double coast = lead_gap_m(c.modifications, Region::n2, b, working_pressure_angle_rad, y);
+  Modifications m = c.modifications;
+  m.gear1.lead = {};
+  m.gear2.lead = {};
+  m.misalignment = {};
+  if (drive != 0.0 || coast != 0.0) {
+    // +f pitch is a gap +f on N1 and -f on N2, +f thickness +f on both (modifications.hpp).
+    const auto teeth = static_cast<std::size_t>(c.gears.teeth1);
+    m.gear1.pitch_m.assign(teeth, 0.5 * (drive - coast));
+    m.gear1.thickness_m.assign(teeth, 0.5 * (drive + coast));
+  }
+  return m;
+}
+
+// A sliced mesh's modifications on its helical pair (as the helical STE
+// checks them), then each slice's gaps against the play (validate_gaps),
+// named as the pair's keys.
+void validate_slice_gaps(const SimulationCase& c) {
+  validate_modifications(c.gears, c.modifications);
+  const int n = c.model.stiffness.face_slices;
+  const double alpha_wt = helical_geometry(c.gears).working_pressure_angle_rad;
+  SimulationCase slice = c;
+  slice.gears = transverse_pair(c.gears);
+  for (int j = 0; j < n; ++j) {
+    slice.modifications = slice_modifications(c, j, n, alpha_wt);
+    validate_gaps(slice);
+  }
 }
 
 // An internal mesh's line (planet as gear 1, geometry/planetary.hpp's
@@ -330,6 +428,7 @@ void validate_train(const GearTrain& train) {
                      "1 to " + std::to_string(kMaxTrainMeshes) + " meshes");
   }
   std::vector<std::string> mesh_names;
+  int lines = 0;
   for (std::size_t k = 0; k < m; ++k) {
     const TrainMesh& mesh = train.meshes[k];
     if (mesh.name.empty() ||
@@ -359,6 +458,13 @@ void validate_train(const GearTrain& train) {
                        "-1 (fixed axes) or the index of one of the train's bodies");
     }
     check_finite_field(prefix + "line_offset", mesh.line_offset_m);
+    if (helical_mesh(mesh) && carrier_mesh(mesh)) {
+      throw InputError(prefix + "gears.helix_angle",
+                       format_number(mesh.pair.gears.helix_angle_rad * 180.0 / pi) + " deg",
+                       "0 on a mesh in a carrier's frame: a planetary stage's meshes are spur");
+    }
+    const bool sliced = runs_by_slices(mesh);
+    if (sliced) validate_sliced_mesh(prefix, mesh, train.integrator);
     if (carrier_mesh(mesh) && mesh.pair.model.mesh_force == MeshForce::lagrangian) {
       // Its stored energy's jumps would be paid from one gear's absolute
       // speed, which would break the stage's angular momentum.
@@ -388,8 +494,18 @@ void validate_train(const GearTrain& train) {
         // Its missing teeth, the ring's among them, are validate_internal_mesh's.
         twin.faults.clear();
       }
-      validate(internal_mesh(mesh) ? twin : mesh.pair);
-      if (mesh.table && !internal_mesh(mesh)) check_table(mesh.pair, *mesh.table);
+      // A helical mesh run by slices: its pair's checks without the
+      // modifications (which the slices take), then each slice's gaps
+      // against the play (validate_gaps), named as the pair's.
+      SimulationCase plain;
+      if (sliced) {
+        plain = mesh.pair;
+        plain.modifications = Modifications{};
+      }
+      validate(internal_mesh(mesh) ? twin : sliced ? plain : mesh.pair);
+      if (sliced) validate_slice_gaps(mesh.pair);
+      // A helical pair's table is its transverse section's (dynamics_case).
+      if (mesh.table && !internal_mesh(mesh)) check_table(dynamics_case(mesh.pair), *mesh.table);
     } catch (const InputError& e) {
       // The pair's keys, addressed by the mesh's name.
       std::vector<Problem> problems;
@@ -401,6 +517,14 @@ void validate_train(const GearTrain& train) {
     if (mesh.pair.bearings.kind != BearingKind::rigid) {
       throw InputError(prefix + "bearings.kind", "elastic",
                        "rigid: a train's bodies turn about fixed axes");
+    }
+    lines += line_count(mesh);
+    if (lines > kMaxTrainLines) {
+      throw InputError(prefix + "model.face_slices",
+                       std::to_string(mesh.pair.model.stiffness.face_slices),
+                       "at most " + std::to_string(kMaxTrainLines - (lines - line_count(mesh))) +
+                           ": a train's run holds at most " + std::to_string(kMaxTrainLines) +
+                           " lines, a helical mesh run by slices one per slice");
     }
   }
   // The bodies' torques, once the meshes' pairs (whose rows check them) are valid.
@@ -485,7 +609,15 @@ class TrainSystem {
       if (!carrier_mesh(m)) {
         mesh_a_.push_back(dof_of(m.body_a));
         mesh_b_.push_back(dof_of(m.body_b));
-        frame_.push_back({});
+        Frame fixed;
+        // The pairs move by line_offset along the line (a helical slice's
+        // share of b tan(beta_b)); s is kept.
+        if (m.line_offset_m != 0.0) {
+          fixed.offset_a = m.line_offset_m / base_radius(m.pair.gears, Gear::one);
+          fixed.offset_b = m.line_offset_m / base_radius(m.pair.gears, Gear::two);
+          fixed.shifted = true;
+        }
+        frame_.push_back(fixed);
         // The viscous damper's m_e: that of the two bodies as they turn in the
         // train (a rigid shaft's bodies together), 1/m_e = Rb_a^2/J_a + Rb_b^2/J_b.
         const double mass = effective_mass_kg(
@@ -563,6 +695,9 @@ class TrainSystem {
     const int b = mesh_b_[k];
     const Frame& f = frame_[k];
     if (!L::kCarriers || f.carrier < 0) {
+      if (f.shifted) {
+        return {y[theta_of(a)] + f.offset_a, y[theta_of(b)] + f.offset_b, y[w_of(a)], y[w_of(b)]};
+      }
       return {y[theta_of(a)], y[theta_of(b)], y[w_of(a)], y[w_of(b)]};
     }
     const double theta_c = y[theta_of(f.carrier)];
@@ -828,6 +963,7 @@ class TrainSystem {
     double sense_b = 1.0;
     double offset_a = 0.0;
     double offset_b = 0.0;
+    bool shifted = false;  // a mesh between fixed axes with a line offset
   };
   const GearTrain& train_;
   std::vector<int> body_dof_;
@@ -1152,15 +1288,17 @@ TrainResult run_train(const GearTrain& train, const std::vector<const StiffnessT
 
 GearTrain two_gear_train(const SimulationCase& c) {
   GearTrain train;
+  // A helical pair's discs are those of the section it runs as.
+  const GearPair& discs = dynamics_case(c).gears;
   TrainBody pinion;
   pinion.name = "pinion";
-  pinion.inertia_kg_m2 = moment_of_inertia(c.gears, Gear::one);
+  pinion.inertia_kg_m2 = moment_of_inertia(discs, Gear::one);
   pinion.torque = c.torque1;
   pinion.theta_rad = c.initial.theta1_rad;
   pinion.w_rad_per_s = c.initial.w1_rad_per_s;
   TrainBody wheel;
   wheel.name = "wheel";
-  wheel.inertia_kg_m2 = moment_of_inertia(c.gears, Gear::two);
+  wheel.inertia_kg_m2 = moment_of_inertia(discs, Gear::two);
   wheel.torque = c.torque2;
   wheel.theta_rad = c.initial.theta2_rad;
   wheel.w_rad_per_s = c.initial.w2_rad_per_s;
@@ -1183,26 +1321,97 @@ std::vector<int> train_degrees_of_freedom(const GearTrain& train) {
   return degrees_of_freedom(train);
 }
 
+bool runs_by_slices(const TrainMesh& mesh) {
+  return helical_mesh(mesh) && !is_unmodified(mesh.pair.modifications);
+}
+
+std::vector<TrainMesh> helical_slice_meshes(const TrainMesh& mesh) {
+  const SimulationCase& c = mesh.pair;
+  const GearPair& g = c.gears;
+  const int n = c.model.stiffness.face_slices;
+  if (n < 1 || n > kMostFaceSlices) {
+    throw InputError("model.face_slices", std::to_string(n),
+                     "an integer in [1, " + std::to_string(kMostFaceSlices) + "]");
+  }
+  const auto face =
+      std::make_shared<const FaceStiffness>(g, c.model.stiffness, c.model.stiffness.helical_hertz);
+  const HelicalMesh helical(g, *face, c.model.coast_phase);
+  const double db = g.face_width_m / n;
+  const double alpha_wt = helical_geometry(g).working_pressure_angle_rad;
+  // One table for every slice: each term of 1/kappa_t per unit width over the slice's width.
+  const auto table =
+      std::make_shared<const StiffnessTable>(face->start_m(), face->end_m(), [face, db](double x) {
+        Compliances k = face->compliance_per_width(x);
+        for (double& term : k.m_per_n) term /= db;
+        return k;
+      });
+  SimulationCase slice = c;
+  slice.gears = transverse_pair(g);
+  slice.gears.face_width_m = db;
+  slice.model.mesh_damping_ratio = c.model.mesh_damping_ratio / std::sqrt(static_cast<double>(n));
+  std::vector<TrainMesh> lines;
+  for (int j = 0; j < n; ++j) {
+    slice.modifications = slice_modifications(c, j, n, alpha_wt);
+    TrainMesh line = mesh;
+    line.name = mesh.name + "_slice" + std::to_string(j + 1);
+    line.pair = slice;
+    line.table = table;
+    line.line_offset_m = mesh.line_offset_m + helical.slice_offset_m(Region::n1, j, n);
+    lines.push_back(std::move(line));
+  }
+  return lines;
+}
+
+GearTrain dynamics_train(const GearTrain& train) {
+  GearTrain run = train;
+  run.meshes.clear();
+  for (const TrainMesh& m : train.meshes) {
+    if (runs_by_slices(m)) {
+      for (TrainMesh& line : helical_slice_meshes(m)) run.meshes.push_back(std::move(line));
+      continue;
+    }
+    run.meshes.push_back(m);
+    if (helical_mesh(m)) run.meshes.back().pair = dynamics_case(m.pair);
+  }
+  return run;
+}
+
 TrainResult simulate_train(const GearTrain& train, const RunControl& control) {
   validate_train(train);
+  // The train its dynamics run: a helical mesh's route B table is built from
+  // its helical pair, before the pair becomes its transverse section.
+  GearTrain run = train;
+  run.meshes.clear();
   std::vector<std::shared_ptr<const StiffnessTable>> built;
   std::vector<const StiffnessTable*> tables;
   for (const TrainMesh& m : train.meshes) {
+    if (runs_by_slices(m)) {
+      for (TrainMesh& line : helical_slice_meshes(m)) {
+        tables.push_back(line.table.get());
+        run.meshes.push_back(std::move(line));
+      }
+      continue;
+    }
     if (!m.table && internal_mesh(m)) {
       const RingLine ring = ring_line(m.pair);
       built.push_back(std::make_shared<const StiffnessTable>(
           iso6336_internal_pair_table(ring.line.start_m, ring.line.end_m, ring.line.base_pitch_m,
                                       ring.single_stiffness_n_per_m)));
     } else if (!m.table) {
-      built.push_back(std::make_shared<const StiffnessTable>(m.pair.gears, m.pair.model.stiffness));
+      built.push_back(run_table(m.pair));
     }
     tables.push_back(m.table ? m.table.get() : built.back().get());
+    run.meshes.push_back(m);
+    if (helical_mesh(m)) run.meshes.back().pair = dynamics_case(m.pair);
   }
-  const bool small = train.bodies.size() <= SmallTrain::kBodies &&
-                     train.meshes.size() <= SmallTrain::kMeshes &&
-                     std::none_of(train.meshes.begin(), train.meshes.end(), carrier_mesh);
-  return small ? run_train<SmallTrain>(train, tables, control)
-               : run_train<LargeTrain>(train, tables, control);
+  const bool small = run.bodies.size() <= SmallTrain::kBodies &&
+                     run.meshes.size() <= SmallTrain::kMeshes &&
+                     std::none_of(run.meshes.begin(), run.meshes.end(), carrier_mesh);
+  if (small) return run_train<SmallTrain>(run, tables, control);
+  if (run.meshes.size() <= static_cast<std::size_t>(kMaxTrainMeshes)) {
+    return run_train<LargeTrain>(run, tables, control);
+  }
+  return run_train<SlicedTrain>(run, tables, control);
 }
 
 }  // namespace gearimpact

@@ -14,9 +14,11 @@
 #include "case_reader.hpp"
 #include "gearimpact/case/schema.hpp"
 #include "gearimpact/case/units.hpp"
+#include "gearimpact/constants.hpp"
 #include "gearimpact/dynamics/planetary_train.hpp"
 #include "gearimpact/dynamics/train.hpp"
 #include "gearimpact/error.hpp"
+#include "gearimpact/geometry/helical.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "toml_values.hpp"
 
@@ -535,11 +537,16 @@ GearTrain read_train(const Reader& reader, const toml::value& root, std::string_
     }
     if (!read_pair) read_pair = pair;
     train.integrator = mesh.pair.integrator;
-    // A body's inertia defaults to its gear's disc in the first mesh that names it.
+    // A body's inertia defaults to its gear's disc in the first mesh that names it; a helical
+    // gear's disc is that of the transverse section it runs as (pitch radius m_n z / (2 cos
+    // beta)), as the two-gear run's; a helix angle out of range is the run's refusal.
+    const GearPair& g = mesh.pair.gears;
+    const bool helical = g.helix_angle_rad > 0.0 && g.helix_angle_rad <= pi / 4.0;
+    const GearPair discs = helical ? transverse_pair(g) : g;
     for (const auto& [body, gear] : {std::pair{mesh.body_a, Gear::one}, {mesh.body_b, Gear::two}}) {
       if (body < 0) continue;
       const auto b = static_cast<std::size_t>(body);
-      if (!inertias[b]) inertias[b] = moment_of_inertia(mesh.pair.gears, gear);
+      if (!inertias[b]) inertias[b] = moment_of_inertia(discs, gear);
     }
     train.meshes.push_back(std::move(mesh));
   }

@@ -68,7 +68,15 @@ struct TrainBody {
 // line_offset_m shifts the loaded pairs along the line (the mesh's phase
 // times the base pitch), X measured from the tangent point of the sun (an
 // external mesh) or the planet (an internal one); planetary_train sets it
-// from the stage's geometry.
+// from the stage's geometry. On a mesh between fixed axes it shifts them the
+// same way (a helical mesh's slice by its share of b tan(beta_b)); s is kept.
+//
+// A helical pair (pair.gears.helix_angle > 0) runs as the two-gear model
+// runs it (docs/helical.md, Dynamics): without modifications by route B, its
+// transverse section (dynamics_case) reading the extended pair table
+// (run_table); with modifications (reliefs, lead modifications,
+// misalignment) by route A, as model.face_slices = N slice meshes between
+// the same two bodies (helical_slice_meshes), each with its own gaps.
 struct TrainMesh {
   enum class Kind { external, internal };
   std::string name;
@@ -99,8 +107,37 @@ struct GearTrain {
 };
 
 // The two-gear torsional case as a train: the pinion (J1, torque1, theta1,
-// w1), the wheel (J2, torque2, theta2, w2) and one mesh between them.
+// w1), the wheel (J2, torque2, theta2, w2) and one mesh between them; a
+// helical pair's J1 and J2 those of the transverse section it runs as
+// (dynamics_case), as the two-gear run's.
 GearTrain two_gear_train(const SimulationCase& c);
+
+// Whether a mesh runs by route A (docs/helical.md, Dynamics): a helical pair
+// with modifications (a relief, a lead modification or a misalignment).
+bool runs_by_slices(const TrainMesh& mesh);
+
+// Route A: a helical mesh as N = model.face_slices slice meshes between its
+// two bodies, named NAME_slice1 to NAME_sliceN. Slice j (mid-plane y_j =
+// (j + 1/2) b / N) is the transverse section's spur pair (transverse_pair) of
+// width b / N, shifted along the line by HelicalMesh::slice_offset_m (its
+// share of W = b tan(beta_b)) on top of the mesh's own line_offset_m; its
+// table gives kappa_t(X) b / N (FaceStiffness::compliance_per_width, each
+// term over b / N), one table shared by the slices; its gaps are the profile
+// gaps of the pair's reliefs plus the lead gap lead_gap_m at y_j on each
+// flank (N1 and N2), carried as one pitch and thickness deviation on every
+// tooth of gear 1 (pitch (e1 - e2) / 2, thickness (e1 + e2) / 2: e1 on the
+// drive flank, e2 on the coast flank); its viscous damper's ratio zeta /
+// sqrt(N), so that each slice's damper 2 zeta / sqrt(N) sqrt(k_mean / N m_e)
+// is 1/N of the face's. InputError naming gears.helix_angle for a spur pair.
+std::vector<TrainMesh> helical_slice_meshes(const TrainMesh& mesh);
+
+// The train as its dynamics run it: each helical mesh by route B (its pair
+// the transverse section, dynamics_case) or route A (its slice meshes,
+// helical_slice_meshes, in its place); spur and internal meshes as given. A
+// run's per-mesh rows and summaries (TrainResult) follow this train's meshes:
+// name its outputs by it. The tables are those given (route B: none builds
+// the extended pair table at the run; route A: the slices' own).
+GearTrain dynamics_train(const GearTrain& train);
 
 // One output row: each body's angle and speed (in the order of
 // GearTrain::bodies; bodies on one rigid shaft have the same), and each mesh's
@@ -161,8 +198,9 @@ void check_train(const GearTrain& train);
 std::vector<int> train_degrees_of_freedom(const GearTrain& train);
 
 // Validates the train (InputError naming the field: bodies.NAME.inertia,
-// meshes.NAME.gears.teeth1, ...) and runs it; of `control`, keep_series and
-// should_stop are read.
+// meshes.NAME.gears.teeth1, ...) and runs dynamics_train(train); its rows'
+// and summaries' meshes are that train's (a helical mesh by route A: one per
+// slice). Of `control`, keep_series and should_stop are read.
 TrainResult simulate_train(const GearTrain& train, const RunControl& control = {});
 
 }  // namespace gearimpact

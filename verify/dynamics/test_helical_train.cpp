@@ -1,0 +1,313 @@
+// Helical meshes in a gear train (dynamics/train.hpp; docs/helical.md, Dynamics). References:
+// the two-gear torsional run of the same helical case (route B), which a two-body train must
+// equal bit for bit; route B's face integral, which route A's sum over slices approaches as the
+// slices narrow; the helical loaded STE (stiffness/helical_ste.hpp), a static solver of the same
+// slices and gaps (its sorted-gap solve), which a slow, damped route-A run must sit on; and the
+// energy ledger.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gearimpact/constants.hpp"
+#include "gearimpact/dynamics/mesh_line.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/dynamics/train.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/helical.hpp"
+#include "gearimpact/geometry/modifications.hpp"
+#include "gearimpact/paper/table1.hpp"
+#include "gearimpact/stiffness/helical.hpp"
+#include "gearimpact/stiffness/helical_ste.hpp"
+#include "gearimpact/stiffness/table.hpp"
+
+using namespace gearimpact;
+
+namespace {
+
+// GEARpie's H501 (examples/helical_h501_run.toml): m_n 3.5 mm, alpha_n 20 deg, beta 15 deg,
+// z 20/30, b 23 mm; eps_alpha 1.45, eps_beta 0.54.
+SimulationCase h501_case() {
+  SimulationCase c = paper_case(2);
+  c.name = "h501";
+  GearPair& p = c.gears;
+  p = GearPair{};
+  p.teeth1 = 20;
+  p.teeth2 = 30;
+  p.module_m = 3.5e-3;
+  p.pressure_angle_rad = 20.0 * pi / 180.0;
+  p.helix_angle_rad = 15.0 * pi / 180.0;
+  p.face_width_m = 23e-3;
+  p.profile_shift1 = 0.1809;
+  p.profile_shift2 = 0.0891;
+  p.youngs_modulus_pa = 206e9;
+  p.poisson_ratio = 0.3;
+  p.density_kg_m3 = 7830.0;
+  p.backlash_m = 0.05e-3;
+  c.model.friction_coefficient = 0.0;
+  c.torque1.constant_n_m = 200.0;
+  c.torque2.constant_n_m = -300.0;
+  c.initial.w1_rad_per_s = 6000.0 * 2.0 * pi / 60.0;
+  c.initial.w2_rad_per_s = c.initial.w1_rad_per_s * 20.0 / 30.0;
+  c.integrator.step_s = 0.1e-6;
+  c.integrator.end_time_s = 1e-3;
+  return c;
+}
+
+// The stiffness of a line at rest in contact on N1 with deflection delta, as its run reads it:
+// 2 U / delta^2, U the stored energy of the mode it classifies, the line's pairs shifted by
+// line_offset as the train shifts them.
+double line_stiffness(const TrainMesh& mesh, const StiffnessTable& table, double theta1,
+                      double delta) {
+  const MeshLine line(mesh.pair, table);
+  const double rb1 = line.base_radius_a();
+  const double rb2 = line.base_radius_b();
+  // s = Rb1 theta1 - Rb2 theta2 = B + delta, kept by the shift.
+  const double theta2 = (rb1 * theta1 - mesh.pair.gears.backlash_m - delta) / rb2;
+  const MeshMotion q{theta1 + mesh.line_offset_m / rb1, theta2 + mesh.line_offset_m / rb2, 0.0,
+                     0.0};
+  const Mode m = line.classify_geometry(q);
+  if (m.region == Region::free) return 0.0;
+  return 2.0 * line.stored_energy(q, m).total_j() / (delta * delta);
+}
+
+}  // namespace
+
+TEST_CASE("a two-body train with a helical mesh is the two-gear helical run, bit for bit") {
+  // Route B on both sides: the transverse section reading the extended pair table. The wheel
+  // starts in the backlash and strikes; pairs enter and leave at 6000 rpm.
+  // Each builds its table: the two-gear run by run_table, the train's mesh by simulate_train.
+  const SimulationCase c = h501_case();
+  const SimulationResult two_gear = simulate(c);
+  const TrainResult result = simulate_train(two_gear_train(c));
+  REQUIRE(two_gear.summary.events > 10);
+  REQUIRE(result.series.size() == two_gear.series.size());
+  for (std::size_t i = 0; i < two_gear.series.size(); ++i) {
+    const SeriesRow& a = two_gear.series[i];
+    const TrainRow& b = result.series[i];
+    const TrainMeshRow& m = b.meshes[0];
+    const bool same = a.t_s == b.t_s && a.theta1_rad == b.theta_rad[0] &&
+                      a.theta2_rad == b.theta_rad[1] && a.w1_rad_per_s == b.w_rad_per_s[0] &&
+                      a.w2_rad_per_s == b.w_rad_per_s[1] && a.s_m == m.s_m &&
+                      a.delta_m == m.delta_m && a.region == m.region && a.pairs == m.pairs &&
+                      a.normal_force_n == m.normal_force_n;
+    if (!same) {
+      INFO("row " << i << " at t = " << a.t_s);
+      REQUIRE(same);
+    }
+  }
+  MESSAGE("events " << two_gear.summary.events << ", impacts " << two_gear.summary.impacts_n1);
+  CHECK(result.summary.steps == two_gear.summary.steps);
+  CHECK(result.summary.events == two_gear.summary.events);
+  CHECK(result.summary.impacts_n1 == two_gear.summary.impacts_n1);
+  CHECK(result.summary.damping_loss_j == two_gear.summary.damping_loss_j);
+  CHECK(result.summary.ledger_residual_max_j == two_gear.summary.ledger_residual_max_j);
+  CHECK(result.meshes[0].max_penetration_m == two_gear.summary.max_penetration_m);
+  CHECK(result.bodies[1].final_w_rad_per_s == two_gear.summary.final_w2_rad_per_s);
+}
+
+TEST_CASE("route A's slices sum to route B's stiffness as the slices narrow") {
+  // Without gaps, at rest in contact: the sum over the slice lines of 2 U / delta^2 against the
+  // route-B line's, over one mesh period. Each slice's exact mean over a period is b / N of the
+  // face's (the integral of kappa_t over the path), so only sampling the period at 64 angles
+  // parts the means (measured: 3e-4, 1e-3, 4e-5 for N = 4, 8, 16); the pointwise difference is
+  // the midpoint rule's across a face whose contact lines end at the path's ends: kappa_t jumps
+  // to 0 there, so it falls as 1/N (measured 5.3 %, 2.7 %, 1.25 %), not 1/N^2.
+  const SimulationCase c = h501_case();
+  TrainMesh face;
+  face.name = "h501";
+  face.pair = c;
+  const std::shared_ptr<const StiffnessTable> table_b = run_table(c);
+  TrainMesh route_b = face;
+  route_b.pair = dynamics_case(c);
+  const double delta = 10e-6;
+  const GearPair transverse = transverse_pair(c.gears);
+  const double period = base_pitch(transverse) / base_radius(transverse, Gear::one);
+  constexpr int kAngles = 64;
+  std::vector<double> worst;
+  std::vector<double> mean_gap;
+  for (const int n : {4, 8, 16}) {
+    face.pair.model.stiffness.face_slices = n;
+    const std::vector<TrainMesh> slices = helical_slice_meshes(face);
+    REQUIRE(static_cast<int>(slices.size()) == n);
+    double largest = 0.0;
+    double sum_a = 0.0;
+    double sum_b = 0.0;
+    for (int i = 0; i < kAngles; ++i) {
+      const double theta = period * i / kAngles;
+      double k_a = 0.0;
+      for (const TrainMesh& s : slices) k_a += line_stiffness(s, *s.table, theta, delta);
+      const double k_b = line_stiffness(route_b, *table_b, theta, delta);
+      largest = std::max(largest, std::fabs(k_a - k_b) / k_b);
+      sum_a += k_a;
+      sum_b += k_b;
+    }
+    worst.push_back(largest);
+    mean_gap.push_back(std::fabs(sum_a - sum_b) / sum_b);
+    MESSAGE("N = " << n << ": largest |K_A - K_B| / K_B = " << largest
+                   << ", period means differ by " << mean_gap.back());
+  }
+  for (std::size_t i = 1; i < worst.size(); ++i) {
+    // 1/N: each doubling at least a third off (0.5 for exactly 1/N, slack for the sampling).
+    CHECK(worst[i] < 0.67 * worst[i - 1]);
+  }
+  // The means: sampling 64 angles sees the jumps at different phases for each N, by at most a
+  // sample's share of a jump (1/64 of the largest pointwise difference, with room).
+  for (std::size_t i = 0; i < worst.size(); ++i) CHECK(mean_gap[i] < worst[i] / 16.0);
+  CHECK(worst.back() < 0.05);
+}
+
+TEST_CASE("a slow, damped route-A run with crowning and misalignment sits on the helical STE") {
+  // The pinion driven at a constant 40 rad/s against the wheel's brake of 300 N*m (T1 = 200 N*m
+  // through the ratio), crowning 10 um on the pinion and the wheel's axis tilted across the plane
+  // of the axes (gamma_y: F_beta = b gamma_y cos(alpha_wt) = 8.6 um on the drive flanks), 8
+  // slices. The static solver (helical_static_transmission_error, the same slices and gaps
+  // solved for the deflection that carries F_bt) gives delta_qs(theta1). The run differs from it
+  // by the wheel's inertia force: m_e s'' = F_bt - F(delta, t), so |delta - delta_qs| <= m_e
+  // |s''| / K, K the loaded elements' stiffness, s'' from the rows' second differences; twice
+  // that bound covers the slope of F between its kinks, and the start's transient has decayed
+  // (zeta = 0.3 of the mesh damper, e-folding in 1 / (zeta w_n) = 0.16 ms, rows after 2 ms).
+  SimulationCase c = h501_case();
+  c.name = "h501-crowned-misaligned";
+  c.model.stiffness.face_slices = 8;
+  // A contact that starts at rest would take (32)'s damping at the smallest impact speed, a
+  // stiff damper no fixed step carries: the viscous mesh damper damps this run instead.
+  c.model.damping_update = DampingUpdate::off;
+  c.model.mesh_damping_ratio = 0.3;
+  c.modifications.gear1.lead.crowning_m = 10e-6;
+  c.modifications.misalignment.gamma_y_rad = 4e-4;
+  const double speed = 40.0;
+  c.torque1 = Torque{};
+  c.torque1.kind = Torque::Kind::prescribed_speed;
+  c.torque1.mean_speed_rad_per_s = speed;
+  c.torque2.constant_n_m = -300.0;
+  StaticTransmissionErrorOptions options;
+  options.points_per_mesh_period = 400;
+  options.mesh_periods = 1;
+  const HelicalStaticTransmissionError ste = helical_static_transmission_error(
+      c.gears, c.modifications, 200.0, c.model.stiffness, options);
+  REQUIRE_FALSE(ste.face_route);
+  const GearPair transverse = transverse_pair(c.gears);
+  const double rb1 = base_radius(transverse, Gear::one);
+  const double rb2 = base_radius(transverse, Gear::two);
+  c.initial.w1_rad_per_s = speed;
+  c.initial.w2_rad_per_s = speed * rb1 / rb2;
+  c.initial.theta2_rad = -(c.gears.backlash_m + ste.ste_mean_m) / rb2;
+  c.integrator.step_s = 0.5e-6;
+  // A quarter of a mesh period (2 pi / (z1 w) = 7.9 ms) from 2 ms on.
+  c.integrator.end_time_s = 4e-3;
+  const GearTrain train = two_gear_train(c);
+  const TrainResult result = simulate_train(train);
+  const GearTrain run = dynamics_train(train);
+  REQUIRE(run.meshes.size() == 8);
+  const double m_e = moment_of_inertia(transverse, Gear::two) / (rb2 * rb2);
+  const double h = c.integrator.step_s;
+  const std::vector<TrainRow>& rows = result.series;
+  // Per row: the static deflection at its angle (linear between the solver's 400 points), the
+  // loaded elements' stiffness K there, and the residue's deflection (m_e s'' + c s') / K, c the
+  // damper's 2 zeta sqrt(K m_e).
+  std::vector<double> qs(rows.size(), 0.0);
+  std::vector<double> residue(rows.size(), 0.0);
+  double stiffest = 0.0;
+  for (std::size_t i = 1; i + 1 < rows.size(); ++i) {
+    const double u = rows[i].theta_rad[0] / ste.period_rad * static_cast<double>(ste.points.size());
+    const auto p = static_cast<std::size_t>(u);
+    REQUIRE(p + 1 < ste.points.size());
+    const double f = u - static_cast<double>(p);
+    qs[i] = (1.0 - f) * ste.points[p].ste_m + f * ste.points[p + 1].ste_m;
+    const double k = std::min(ste.points[p].effective_stiffness_n_per_m,
+                              ste.points[p + 1].effective_stiffness_n_per_m);
+    stiffest = std::max(stiffest, k);
+    const double s_d = (rows[i + 1].meshes[0].s_m - rows[i - 1].meshes[0].s_m) / (2.0 * h);
+    const double s_dd =
+        (rows[i + 1].meshes[0].s_m - 2.0 * rows[i].meshes[0].s_m + rows[i - 1].meshes[0].s_m) /
+        (h * h);
+    residue[i] = (m_e * std::fabs(s_dd) + 0.6 * std::sqrt(k * m_e) * std::fabs(s_d)) / k;
+  }
+  // A kink of the STE (an element starting to carry) rings at w_n = sqrt(K / m_e): over one
+  // period of that ringing its deflection r reaches |r| <= max |r''| / w_n^2 = max m_e |s''| / K,
+  // so each row's bound is the residue's largest within a ringing period either side (that of
+  // half the stiffest K, longer than any here: K varies by less than half over a period), and
+  // twice that for the interpolation of the static curve across the kinks.
+  const double ring_period = 2.0 * pi / std::sqrt(0.5 * stiffest / m_e);
+  const auto window = static_cast<std::ptrdiff_t>(std::ceil(ring_period / h));
+  double largest = 0.0;
+  double widest = 0.0;
+  double worst_gap = 0.0;
+  int compared = 0;
+  const auto n = static_cast<std::ptrdiff_t>(rows.size());
+  for (std::ptrdiff_t i = 1; i + 1 < n; ++i) {
+    if (rows[static_cast<std::size_t>(i)].t_s < 2e-3) continue;
+    double bound = 0.0;
+    for (std::ptrdiff_t j = std::max<std::ptrdiff_t>(1, i - window);
+         j <= std::min(n - 2, i + window); ++j) {
+      bound = std::max(bound, residue[static_cast<std::size_t>(j)]);
+    }
+    bound *= 2.0;
+    const auto u = static_cast<std::size_t>(i);
+    const double gap = std::fabs(rows[u].meshes[0].s_m - c.gears.backlash_m - qs[u]);
+    largest = std::max(largest, gap / bound);
+    widest = std::max(widest, bound);
+    worst_gap = std::max(worst_gap, gap);
+    ++compared;
+  }
+  MESSAGE("rows " << compared << ", STE mean " << ste.ste_mean_m << " m, peak-to-peak "
+                  << ste.ste_peak_to_peak_m << " m; largest |delta - delta_qs| " << worst_gap
+                  << " m, largest ratio to its bound " << largest << ", widest bound " << widest
+                  << " m");
+  CHECK(compared > 1000);
+  CHECK(largest < 1.0);
+  // The ledger closes over the eight lines (measured 2.7e-12 J of 1.29 J, RK4 at w_n h = 0.02):
+  // 1e-9 of the energy scale leaves room for rounding elsewhere, and is six orders below one
+  // slice's stored energy (F delta / 16 = 1.4e-3 J), which a line left out of the books would
+  // leave in the residual.
+  const SimulationSummary& sum = result.summary;
+  MESSAGE("ledger residual " << sum.ledger_residual_max_j << " J of " << sum.ledger_scale_j
+                             << " J");
+  CHECK(sum.ledger_residual_max_j < 1e-9 * sum.ledger_scale_j);
+  // Each slice's own losses sum to the train's.
+  double damper = 0.0;
+  for (const TrainMeshSummary& m : result.meshes) damper += m.mesh_damping_loss_j;
+  REQUIRE(result.meshes.size() == 8);
+  CHECK(std::fabs(damper - sum.mesh_damping_loss_j) <= 1e-12 * sum.mesh_damping_loss_j);
+}
+
+TEST_CASE("a helical mesh run by slices refuses what its slices cannot take, naming the key") {
+  SimulationCase c = h501_case();
+  c.modifications.gear1.lead.crowning_m = 5e-6;
+  c.model.stiffness.face_slices = 4;
+  GearTrain train = two_gear_train(c);
+  REQUIRE(runs_by_slices(train.meshes[0]));
+  SUBCASE("tooth errors, which a slice's shift would renumber") {
+    train.meshes[0].pair.modifications.gear2.pitch_m.assign(30, 1e-6);
+    CHECK_THROWS_WITH_AS(simulate_train(train),
+                         doctest::Contains("meshes.mesh.modifications.pitch_deviations2"),
+                         InputError);
+  }
+  SUBCASE("the adaptive integrator, whose step bound is a face-wide pair's") {
+    train.integrator.kind = IntegratorKind::adaptive;
+    CHECK_THROWS_WITH_AS(simulate_train(train), doctest::Contains("integrator.kind"), InputError);
+  }
+  SUBCASE("more slices than a run holds lines") {
+    train.meshes[0].pair.model.stiffness.face_slices = 65;
+    CHECK_THROWS_WITH_AS(simulate_train(train), doctest::Contains("meshes.mesh.model.face_slices"),
+                         InputError);
+  }
+  SUBCASE("a misalignment that closes the play across part of the face") {
+    // gamma_x moves the wheel's section towards the pinion at one face end: at the first of 4
+    // slices (u = -3/8) both flanks close by b u gamma_x sin(alpha_wt) = 62 um each, more than
+    // the 50 um of backlash (validate_gaps on each slice).
+    train.meshes[0].pair.modifications.misalignment.gamma_x_rad = 0.02;
+    CHECK_THROWS_WITH_AS(simulate_train(train), doctest::Contains("meshes.mesh.gears.backlash"),
+                         InputError);
+  }
+  SUBCASE("friction, as the two-gear helical run refuses it") {
+    train.meshes[0].pair.model.friction_coefficient = 0.05;
+    CHECK_THROWS_WITH_AS(simulate_train(train),
+                         doctest::Contains("meshes.mesh.model.friction_coefficient"), InputError);
+  }
+}
