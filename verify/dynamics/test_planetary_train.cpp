@@ -690,6 +690,26 @@ TEST_CASE(
 
 namespace {
 
+// The ring-sensor rule's stage: 25/23/71 teeth, N = 3 identical planets, ring
+// held, the sun driven at the Willis speed that makes one carrier turn
+// `samples` steps of `step_s`, the carrier loaded with 1000 N m so that every
+// mesh stays on its drive line, D of (32) frozen; 6 ms to settle, then the
+// turn analysed.
+PlanetaryStage ring_sensor_stage(double step_s, int samples) {
+  const int zs = 25, zr = 71;
+  const double wc = 2.0 * pi / (samples * step_s);
+  const double ws = wc * (zs + zr) / zs;
+  PlanetaryStage s = test_stage(zs, 23, zr, 3);
+  s.held = HeldMember::ring;
+  s.input_speed_rad_per_s = ws;
+  s.sun_torque = driver(ws);
+  s.carrier_torque = constant_torque(-1000.0);
+  s.mesh.model.damping_update = DampingUpdate::frozen;
+  s.integrator.step_s = step_s;
+  s.integrator.end_time_s = 0.006 + samples * step_s;
+  return s;
+}
+
 struct RingComb {
   double on = 0.0;   // the largest line at a multiple of N carrier orders (the mean left out)
   double off = 0.0;  // the largest line elsewhere
@@ -738,20 +758,9 @@ TEST_CASE(
   // 0.1 of critical. D of (32) frozen: with each-impact D every mesh keeps
   // the D of its own first contact, which differs between the planets, and
   // the rule held only to about 1e-3 of the comb on some loads and speeds.
-  const int zs = 25, zp = 23, zr = 71, n = 3;
-  const double h = 4.0e-6;
+  const int n = 3;
   const int samples = 6000;
-  const double wc = 2.0 * pi / (samples * h);
-  const double ws = wc * (zs + zr) / zs;
-  PlanetaryStage s = test_stage(zs, zp, zr, n);
-  s.held = HeldMember::ring;
-  s.input_speed_rad_per_s = ws;
-  s.sun_torque = driver(ws);
-  s.carrier_torque = constant_torque(-1000.0);
-  s.mesh.model.damping_update = DampingUpdate::frozen;
-  s.integrator.step_s = h;
-  // 6 ms to settle, then the turn analysed.
-  s.integrator.end_time_s = 0.006 + samples * h;
+  const PlanetaryStage s = ring_sensor_stage(4.0e-6, samples);
   const GearTrain train = planetary_train(s);
   const RingComb healthy = ring_comb(s, train, samples);
   CAPTURE(healthy.on);
@@ -1014,19 +1023,8 @@ TEST_CASE(
   // ring's fault stays where it is, as does the housing's sensor), so the
   // steady state still repeats every T_c / N: off the comb, the healthy
   // rounding level (1e-11 of the comb, bound 1e-8 as above).
-  const int zs = 25, zp = 23, zr = 71, n = 3;
-  const double h = 8.0e-6;
   const int samples = 3000;
-  const double wc = 2.0 * pi / (samples * h);
-  const double ws = wc * (zs + zr) / zs;
-  PlanetaryStage s = test_stage(zs, zp, zr, n);
-  s.held = HeldMember::ring;
-  s.input_speed_rad_per_s = ws;
-  s.sun_torque = driver(ws);
-  s.carrier_torque = constant_torque(-1000.0);
-  s.mesh.model.damping_update = DampingUpdate::frozen;
-  s.integrator.step_s = h;
-  s.integrator.end_time_s = 0.006 + samples * h;
+  const PlanetaryStage s = ring_sensor_stage(8.0e-6, samples);
 
   PlanetaryStage cracked = s;
   StageFault crack;
