@@ -42,11 +42,7 @@ std::vector<Field> make_planetary_schema() {
   Field& angles = row("planet_angles", FieldKind::quantity_list, false,
                       "psi_n, each planet's angle counter-clockwise from the carrier axis: the "
                       "first 0, increasing, one per planet");
-  angles.dimension = Dimension::angle;
-  angles.unit = "deg";
-  angles.range = {closed(0.0), open(2.0 * pi), {}};
-  angles.most_values = static_cast<std::size_t>(kMostPlanets);
-  angles.when_absent = "equally spaced, 360 (n - 1) / N deg";
+  planet_angles_field(angles, static_cast<std::size_t>(kMostPlanets));
   // Masses > 0 (M must be positive definite); stiffnesses >= 0 (a member may
   // be free); the pressure angles inside (0, 90) deg, where the mesh lines
   // have both components.

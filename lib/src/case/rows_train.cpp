@@ -94,11 +94,7 @@ std::vector<Field> make_train_schema() {
                       "psi_n, each planet's angle counter-clockwise from planet 1's on the "
                       "carrier: one per planet, the first 0, increasing, each a multiple of "
                       "360 deg / (sun_teeth + ring_teeth) (the assembly condition)");
-  angles.dimension = Dimension::angle;
-  angles.unit = "deg";
-  angles.range = {closed(0.0), open(2.0 * pi), {}};
-  angles.most_values = static_cast<std::size_t>(kMostStagePlanets);
-  angles.when_absent = "equally spaced, 360 (n - 1) / N deg";
+  planet_angles_field(angles, static_cast<std::size_t>(kMostStagePlanets));
   Field& held = row("stage", "held", FieldKind::choice, false,
                     "the member held still (its torque must be absent)");
   // The codes are the reader's (the case folder comes before the dynamics' HeldMember).

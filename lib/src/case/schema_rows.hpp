@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "gearimpact/case/schema.hpp"
+#include "gearimpact/constants.hpp"
 #include "gearimpact/named_values.hpp"
 
 namespace gearimpact::schema_detail {
@@ -88,6 +89,17 @@ inline Field slotless_field(std::string_view section, std::string_view key, Fiel
     throw std::logic_error("a row of [" + std::string(section) + "] has no slot in SimulationCase");
   };
   return f;
+}
+
+// A planetary stage's planet angles psi_n (a planetary file's and a stage
+// file's key): degrees in [0, 360), at most `most` of them, equally spaced
+// when absent.
+inline void planet_angles_field(Field& angles, std::size_t most) {
+  angles.dimension = Dimension::angle;
+  angles.unit = "deg";
+  angles.range = {closed(0.0), open(2.0 * pi), {}};
+  angles.most_values = most;
+  angles.when_absent = "equally spaced, 360 (n - 1) / N deg";
 }
 
 template <typename E>
