@@ -1258,12 +1258,10 @@ TEST_CASE("steady sweep: eps_beta = 1 is the transverse pair at constant K, poin
 TEST_CASE("steady state: a helical pair's refusals name the key, as simulate's") {
   SimulationCase c = helical_run(h501_pair(), 50.0, 100.0, 1e-3);
   const std::shared_ptr<const StiffnessTable> table = run_table(c);
-  SimulationCase faulted = c;
-  faulted.faults.emplace_back();
-  faulted.faults.back().state.kind = ToothKind::root_crack;
-  faulted.faults.back().state.crack.profile = CrackProfile::partial_width;
-  check_refused([&] { (void)GearPeriodMap(faulted, *table, SteadySettings{}); },
-                "faults[0].profile", "its own depth");
+  SimulationCase misaligned = c;
+  misaligned.modifications.misalignment.gamma_x_rad = 1e-4;
+  check_refused([&] { (void)GearPeriodMap(misaligned, *table, SteadySettings{}); },
+                "modifications", "route A");
   SteadySweepSpec spec;
   spec.base = c;
   spec.base.model.friction_coefficient = 0.04;
