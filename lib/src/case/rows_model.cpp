@@ -125,7 +125,8 @@ void schema_detail::add_model_rows(std::vector<Field>& rows) {
   r.integer(
        "face_slices", {closed(1.0), closed(kMostFaceSlices), {}}, false,
        "N, the slices across a helical pair's face (route A, midpoint rule; route B is the "
-       "exact face integral); a spur pair ignores it",
+       "exact face integral), and the sub-bands (at most 64) of uniform depth of a crack "
+       "whose depth varies across a helical face; a spur pair ignores it",
        [](auto& c) -> auto& { return c.model.stiffness.face_slices; })
       .written_at_default = false;
   rows.back().keyed_at_default = false;

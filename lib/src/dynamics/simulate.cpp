@@ -440,29 +440,6 @@ std::shared_ptr<const StiffnessTable> run_table(const SimulationCase& c) {
 void refuse_helical_run(const SimulationCase& c) {
   if (c.gears.helix_angle_rad == 0.0) return;
   const std::string beta = format_number(c.gears.helix_angle_rad * 180.0 / pi) + " deg";
-  if (!c.faults.empty() && c.bearings.kind == BearingKind::elastic) {
-    throw InputError(std::vector<Problem>{refused_problem(
-        "faults[0]", "a fault on a helical pair (gears.helix_angle = " + beta + ")",
-        "in the torsional model only (rigid bearings) yet: the planar model's run with a "
-        "faulted helical tooth is not checked",
-        "no [[faults]] with a helical pair on elastic bearings",
-        "bearings.kind = \"rigid\", or remove the [[faults]] tables")});
-  }
-  for (std::size_t i = 0; i < c.faults.size(); ++i) {
-    const ToothState& state = c.faults[i].state;
-    if (state.kind != ToothKind::root_crack || state.crack.profile == CrackProfile::uniform) {
-      continue;
-    }
-    const std::string profile =
-        state.crack.profile == CrackProfile::partial_width ? "partial-width" : "full-width";
-    throw InputError(std::vector<Problem>{refused_problem(
-        "faults[" + std::to_string(i) + "].profile", "\"" + profile + "\"",
-        "not on a helical pair (gears.helix_angle = " + beta +
-            ") yet: its depth varies across the face, so that each slice would need a table of "
-            "its own depth (docs/helical.md, Faults)",
-        "\"uniform\" with gears.helix_angle > 0",
-        "profile = \"uniform\", or a spall or tip-chip band with face_start and width")});
-  }
   if (!is_unmodified(c.modifications)) {
     throw InputError(std::vector<Problem>{refused_problem(
         "modifications",

@@ -112,16 +112,6 @@ std::shared_ptr<const StiffnessTable> teeth_table(const GearPair& pair, const St
                                                                  compliance, breaks, options);
 }
 
-// The band [y0, y1) across the face a helical tooth's state covers: a spall's
-// or a chip's from face_start over its width, a crack (uniform) the whole
-// face; none for a healthy tooth.
-std::pair<double, double> covered_band(const ToothState& s, double face_width_m) {
-  if (s.kind == ToothKind::spall) return {s.face_start_m, s.face_start_m + s.spall.width_m};
-  if (s.kind == ToothKind::tip_chip) return {s.face_start_m, s.face_start_m + s.chip.width_m};
-  if (s.kind == ToothKind::healthy) return {0.0, 0.0};
-  return {0.0, face_width_m};
-}
-
 // The state across the whole face whose slices are a band's: a spall's or a
 // chip's width the face width.
 ToothState across_face(ToothState s, double face_width_m) {
@@ -129,6 +119,66 @@ ToothState across_face(ToothState s, double face_width_m) {
   if (s.kind == ToothKind::spall) s.spall.width_m = face_width_m;
   if (s.kind == ToothKind::tip_chip) s.chip.width_m = face_width_m;
   return s;
+}
+
+// The most sub-bands a crack whose depth varies across the face is cut into:
+// each builds one table of the transverse section.
+constexpr int kMostCrackSubBands = 64;
+
+// One piece [y0, y1) of the face in which a helical tooth's slices share one
+// state, given across the whole face (the transverse section's state).
+struct FacePiece {
+  double start_m;
+  double end_m;
+  ToothState state;
+};
+
+// The pieces of the face a helical tooth's state covers (none for a healthy
+// tooth): a spall's or a chip's band from face_start over its width; a
+// uniform crack the whole face. A crack whose depth varies across the face
+// (partial-width over [0, W_c), full-width over [0, b), z = y as
+// faults.face_start's y) is cut into n = min(model.face_slices, 64) sub-bands
+// of equal width, each a uniform crack of the profile's depth at its middle
+// (the midpoint rule in y); neighbours of equal depth are one piece, so that
+// a full-width crack with q2 = q0 is the uniform crack's single band.
+std::vector<FacePiece> covered_pieces(const ToothState& s, double face_width_m, int face_slices) {
+  if (s.kind == ToothKind::healthy) return {};
+  if (s.kind == ToothKind::spall) {
+    return {{s.face_start_m, s.face_start_m + s.spall.width_m, across_face(s, face_width_m)}};
+  }
+  if (s.kind == ToothKind::tip_chip) {
+    return {{s.face_start_m, s.face_start_m + s.chip.width_m, across_face(s, face_width_m)}};
+  }
+  if (s.kind != ToothKind::root_crack || s.crack.profile == CrackProfile::uniform) {
+    return {{0.0, face_width_m, across_face(s, face_width_m)}};
+  }
+  const double extent =
+      s.crack.profile == CrackProfile::partial_width ? s.crack.width_m : face_width_m;
+  const int n = std::clamp(face_slices, 1, kMostCrackSubBands);
+  std::vector<FacePiece> pieces;
+  for (int i = 0; i < n; ++i) {
+    const double y0 = extent * i / n;
+    const double y1 = i + 1 == n ? extent : extent * (i + 1) / n;
+    ToothState q = s;
+    q.crack.profile = CrackProfile::uniform;
+    q.crack.depth_m = crack_depth_at(s.crack, 0.5 * (y0 + y1), face_width_m);
+    q.crack.end_depth_m = 0.0;
+    q.crack.width_m = 0.0;
+    if (!pieces.empty() && pieces.back().state.crack.depth_m == q.crack.depth_m) {
+      pieces.back().end_m = y1;
+    } else {
+      pieces.push_back({y0, y1, q});
+    }
+  }
+  return pieces;
+}
+
+// The piece of `pieces` whose interior holds y, or -1.
+int piece_at(const std::vector<FacePiece>& pieces, double y) {
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    if (y > pieces[i].start_m && y < pieces[i].end_m) return static_cast<int>(i);
+  }
+  return -1;
 }
 
 // A fault that changes no slice of a helical tooth: a uniform crack of depth 0
@@ -192,24 +242,54 @@ MeshTables::MeshTables(const GearPair& pair, const StiffnessModel& model,
   GearPair section = pair_;
   section.face_advance_m = 0.0;
   std::shared_ptr<const StiffnessTable> section_healthy;
-  std::vector<std::unique_ptr<ClassTerms>> pinion_across;
-  std::vector<std::unique_ptr<ClassTerms>> wheel_across;
-  // (pinion class or 0, wheel class or 0, line) -> the section's table.
-  std::map<std::array<std::size_t, 3>, std::shared_ptr<const StiffnessTable>> section_tables;
+  // Each class's pieces of the face (covered_pieces), and the section's
+  // teeth in each piece's state, made when first asked for: (class, piece)
+  // -> its terms; the healthy tooth's under (0, 0).
+  std::vector<std::vector<FacePiece>> pinion_pieces;
+  std::vector<std::vector<FacePiece>> wheel_pieces;
+  std::map<std::array<std::size_t, 2>, std::unique_ptr<ClassTerms>> pinion_across;
+  std::map<std::array<std::size_t, 2>, std::unique_ptr<ClassTerms>> wheel_across;
+  // (pinion class or 0, its piece + 1 or 0, wheel class or 0, its piece + 1
+  // or 0, line) -> the section's table.
+  std::map<std::array<std::size_t, 5>, std::shared_ptr<const StiffnessTable>> section_tables;
   const double b_face = pair_.face_width_m;
   if (helical) {
     section_healthy = std::make_shared<const StiffnessTable>(section, model, options);
-    std::vector<ToothState> p_across;
-    std::vector<ToothState> w_across;
-    for (const ToothState& s : pinion) p_across.push_back(across_face(s, b_face));
-    for (const ToothState& s : wheel) w_across.push_back(across_face(s, b_face));
-    pinion_across = class_terms(section, model, Gear::one, p_across);
-    wheel_across = class_terms(section, model, Gear::two, w_across);
+    for (const ToothState& s : pinion) {
+      pinion_pieces.push_back(covered_pieces(s, b_face, model.face_slices));
+    }
+    for (const ToothState& s : wheel) {
+      wheel_pieces.push_back(covered_pieces(s, b_face, model.face_slices));
+    }
+    pinion_across.emplace(
+        std::array<std::size_t, 2>{0, 0},
+        std::make_unique<ClassTerms>(section, model, Gear::one, ToothState{}, nullptr));
+    wheel_across.emplace(
+        std::array<std::size_t, 2>{0, 0},
+        std::make_unique<ClassTerms>(section, model, Gear::two, ToothState{}, nullptr));
     for (const NodeTeeth& node : section_healthy->node_teeth()) {
-      pinion_across.front()->know(node.x1_m, node.tooth1);
-      wheel_across.front()->know(node.x1_m, node.tooth2);
+      pinion_across.at({0, 0})->know(node.x1_m, node.tooth1);
+      wheel_across.at({0, 0})->know(node.x1_m, node.tooth2);
     }
   }
+  // The section's teeth of `gear` in piece p of class k's pieces (the healthy
+  // tooth for p < 0).
+  const auto across_terms = [&](Gear gear, std::size_t k, int p) -> ClassTerms& {
+    auto& terms = gear == Gear::one ? pinion_across : wheel_across;
+    const std::array<std::size_t, 2> key{p < 0 ? 0 : k,
+                                         p < 0 ? 0 : static_cast<std::size_t>(p) + 1};
+    auto found = terms.find(key);
+    if (found == terms.end()) {
+      const auto& pieces = gear == Gear::one ? pinion_pieces : wheel_pieces;
+      found =
+          terms
+              .emplace(key, std::make_unique<ClassTerms>(
+                                section, model, gear, pieces[k][static_cast<std::size_t>(p)].state,
+                                terms.at({0, 0}).get()))
+              .first;
+    }
+    return *found->second;
+  };
   const auto add_helical = [&](std::size_t a, std::size_t b, std::size_t c) {
     const ToothState& s1 = pinion[a];
     const ToothState& s2 = wheel[b];
@@ -219,11 +299,16 @@ MeshTables::MeshTables(const GearPair& pair, const StiffnessModel& model,
       }
       return;
     }
-    const std::pair<double, double> band1 =
-        changes_nothing(s1) ? std::pair{0.0, 0.0} : covered_band(s1, b_face);
-    const std::pair<double, double> band2 =
-        changes_nothing(s2) ? std::pair{0.0, 0.0} : covered_band(s2, b_face);
-    std::vector<double> cuts{0.0, b_face, band1.first, band1.second, band2.first, band2.second};
+    static const std::vector<FacePiece> none;
+    const std::vector<FacePiece>& pieces1 = changes_nothing(s1) ? none : pinion_pieces[a];
+    const std::vector<FacePiece>& pieces2 = changes_nothing(s2) ? none : wheel_pieces[b];
+    std::vector<double> cuts{0.0, b_face};
+    for (const auto* pieces : {&pieces1, &pieces2}) {
+      for (const FacePiece& piece : *pieces) {
+        cuts.push_back(piece.start_m);
+        cuts.push_back(piece.end_m);
+      }
+    }
     std::sort(cuts.begin(), cuts.end());
     for (std::size_t line = 0; line < 2; ++line) {
       if (!meets[line][c]) continue;
@@ -234,20 +319,29 @@ MeshTables::MeshTables(const GearPair& pair, const StiffnessModel& model,
         const double y1 = std::min(cuts[i], b_face);
         if (!(y1 > y0)) continue;
         const double mid = 0.5 * (y0 + y1);
-        const bool in1 = mid > band1.first && mid < band1.second;
-        const bool in2 = mid > band2.first && mid < band2.second;
-        if (!in1 && !in2) continue;
-        const std::array<std::size_t, 3> key{in1 ? a : 0, in2 ? b : 0, line};
+        const int p1 = piece_at(pieces1, mid);
+        const int p2 = piece_at(pieces2, mid);
+        if (p1 < 0 && p2 < 0) continue;
+        const std::array<std::size_t, 5> key{p1 < 0 ? 0 : a, static_cast<std::size_t>(p1 + 1),
+                                             p2 < 0 ? 0 : b, static_cast<std::size_t>(p2 + 1),
+                                             line};
         auto found = section_tables.find(key);
         if (found == section_tables.end()) {
-          const ToothState q1 = in1 ? across_face(s1, b_face) : ToothState{};
-          const ToothState q2 = in2 ? across_face(s2, b_face) : ToothState{};
-          found = section_tables
-                      .emplace(key, teeth_table(section, model, q1, q2, *pinion_across[key[0]],
-                                                *wheel_across[key[1]], flank, options))
-                      .first;
+          const ToothState q1 = p1 < 0 ? ToothState{} : pieces1[static_cast<std::size_t>(p1)].state;
+          const ToothState q2 = p2 < 0 ? ToothState{} : pieces2[static_cast<std::size_t>(p2)].state;
+          found =
+              section_tables
+                  .emplace(key, teeth_table(section, model, q1, q2, across_terms(Gear::one, a, p1),
+                                            across_terms(Gear::two, b, p2), flank, options))
+                  .first;
         }
-        bands.push_back({y0, y1, found->second.get()});
+        // Neighbouring intervals in one piece of each tooth are one band.
+        if (!bands.empty() && bands.back().end_m == y0 &&
+            bands.back().section == found->second.get()) {
+          bands.back().end_m = y1;
+        } else {
+          bands.push_back({y0, y1, found->second.get()});
+        }
       }
       tables_[line][c] = std::make_shared<const StiffnessTable>(
           helical_faulted_pair_table(pair_, model.helical_hertz, *healthy_, *section_healthy, bands,
