@@ -56,7 +56,8 @@ ReportSection reproduce_vibration(const ReproduceContext& context);
 ReportSection reproduce_fe(const ReproduceContext& context);
 // The planetary stage (docs/planetary.md): the modes of Lin & Parker's (1999) example system for
 // N = 3, 4 and 5 against their published frequencies, types and multiplicities; the ring-housing
-// sensor's spectrum of the nonlinear stage healthy and with a cracked sun tooth.
+// sensor's spectrum of the nonlinear stage healthy and with a cracked sun tooth; the phasing rule
+// on a nonlinear run's mesh forces.
 ReportSection reproduce_planetary(const ReproduceContext& context);
 // The text of examples/rig_17_38.toml, compiled in.
 const char* rig_17_38_toml();

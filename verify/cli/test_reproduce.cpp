@@ -280,6 +280,33 @@ void check_planetary_section(const std::filesystem::path& out) {
   }
   CHECK(off[0] < 1e-8 * on[0]);
   CHECK(off[1] > 1e-4 * on[1]);
+  // The phasing rule on the nonlinear 26/22/70 stage with N = 4 (planetary_phasing.csv: harmonic,
+  // type, the sun meshes' summed line over their single lines' sum, the carrier speed's line over
+  // its l = 2 line): l Z_s mod N is 0 for even l (in phase: the sum is the singles' sum) and 2
+  // for odd l (counter-phase: the lines cancel, to rounding and the start's decay).
+  std::ifstream phasing(out / "planetary_phasing.csv");
+  std::getline(phasing, line);
+  int harmonics = 0;
+  while (std::getline(phasing, line)) {
+    std::istringstream fields(line);
+    std::string l, type, sum, carrier;
+    std::getline(fields, l, ',');
+    std::getline(fields, type, ',');
+    std::getline(fields, sum, ',');
+    std::getline(fields, carrier, ',');
+    CAPTURE(line);
+    ++harmonics;
+    REQUIRE(std::stoi(l) == harmonics);
+    if ((harmonics * 26) % 4 == 0) {
+      CHECK(type == "rotational");
+      CHECK(std::fabs(std::stod(sum) - 1.0) < 1e-6);
+    } else {
+      CHECK(type == "planet");
+      CHECK(std::stod(sum) < 1e-8);
+      CHECK(std::stod(carrier) < 1e-8);
+    }
+  }
+  CHECK(harmonics == 6);
 }
 }  // namespace
 
@@ -349,7 +376,8 @@ TEST_CASE("reproduce: every figure, its data, and REPORT.md with no unexplained 
                            "vibration_indicators.csv",
                            "vibration_low_load.csv",
                            "planetary_modes.csv",
-                           "planetary_ring_spectrum.csv"}) {
+                           "planetary_ring_spectrum.csv",
+                           "planetary_phasing.csv"}) {
     CAPTURE(data);
     CHECK(std::filesystem::exists(out / data));
   }
