@@ -348,7 +348,7 @@ ReportSection reproduce_planetary(const ReproduceContext& context) {
                     " carrier turns: healthy stage and a cracked sun tooth",
                 "frequency, carrier orders",
                 "amplitude, N",
-                {"set key below", "set grid", "set logscale y", "set format y '10^{%L}'",
+                {"set key below", "set logscale y", "set format y '10^{%L}'",
                  "set xrange [0:" + number(last_order, 6) + "]",
                  // Ticks on the comb: every 9 N carrier orders.
                  "set xtics 0, " + std::to_string(9 * cracked.planets)},
