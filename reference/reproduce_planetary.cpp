@@ -20,6 +20,7 @@
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/planetary_file.hpp"
 #include "gearimpact/modes/planetary.hpp"
+#include "gearimpact/paper/lin_parker_1999.hpp"
 #include "gearimpact/signals/fft.hpp"
 #include "reproduce.hpp"
 
@@ -27,25 +28,7 @@ namespace gearimpact::cli {
 
 namespace {
 
-// Lin & Parker (1999), J. Vib. Acoust. 121:316-321, Table 2 (Lin's thesis Table C.1), as
-// transcribed in gfsReboucas/Drivetrain-python tests/test_lin_parker_1999.py (the paper itself
-// not read here), Hz: the rotational frequencies (the rigid mode first), the translational ones
-// (each double) and the planet modes' (each N - 3 times, none for N = 3).
-struct PublishedTable {
-  int planets;
-  std::vector<double> rotational;
-  std::vector<double> translational;
-};
-const std::vector<PublishedTable> kPublished{{3,
-                                              {0.0, 1475.7, 1930.3, 2658.3, 7462.8, 11775.3},
-                                              {743.2, 1102.4, 1896.0, 2276.4, 6986.3, 9647.9}},
-                                             {4,
-                                              {0.0, 1536.6, 1970.6, 2625.7, 7773.6, 13071.1},
-                                              {727.0, 1091.0, 1892.8, 2342.5, 7189.9, 10437.6}},
-                                             {5,
-                                              {0.0, 1567.4, 2006.1, 2614.8, 8065.4, 14253.1},
-                                              {710.0, 1072.0, 1888.1, 2425.3, 7382.4, 11172.3}}};
-const std::vector<double> kPublishedPlanet{1808.2, 5963.8, 6981.7};
+// The published table is paper/lin_parker_1999.hpp's; its source, as a row names it.
 constexpr const char* kPublishedSource =
     "Lin & Parker (1999), J. Vib. Acoust. 121:316-321, Table 2, as transcribed in "
     "Drivetrain-python";
@@ -95,7 +78,15 @@ std::string joined(const std::vector<double>& values, int decimals) {
 // The modal part: a row per N and type against the published table, a row per N for the
 // structure, and planetary_modes.csv with every distinct frequency.
 void modal_rows(const PlanetaryParameters& lp99, ReportSection& section, std::string& csv) {
-  for (const PublishedTable& table : kPublished) {
+  const std::vector<double> published_planet(kLinParker1999Planet.begin(),
+                                             kLinParker1999Planet.end());
+  for (const LinParker1999Table& published : kLinParker1999) {
+    struct {
+      int planets;
+      std::vector<double> rotational, translational;
+    } table{published.planets,
+            {published.rotational.begin(), published.rotational.end()},
+            {published.translational.begin(), published.translational.end()}};
     PlanetaryParameters p = lp99;
     p.planet_angles_rad.clear();
     for (int i = 0; i < table.planets; ++i) {
@@ -123,7 +114,7 @@ void modal_rows(const PlanetaryParameters& lp99, ReportSection& section, std::st
         multiplicities = multiplicities && g.multiplicity == planet_multiplicity;
         index = planet.size();
         planet.push_back(g.hz);
-        paper = &kPublishedPlanet;
+        paper = &published_planet;
       } else {
         multiplicities = false;
       }
@@ -163,7 +154,7 @@ void modal_rows(const PlanetaryParameters& lp99, ReportSection& section, std::st
         {"rotational", &rotational, &table.rotational, StageModeType::rotational},
         {"translational", &translational, &table.translational, StageModeType::translational}};
     if (table.planets > 3) {
-      kinds.push_back({"planet", &planet, &kPublishedPlanet, StageModeType::planet});
+      kinds.push_back({"planet", &planet, &published_planet, StageModeType::planet});
     }
     for (const Kind& kind : kinds) {
       ReportRow row;
