@@ -54,7 +54,15 @@ ReportSection reproduce_vibration(const ReproduceContext& context);
 // The finite-element check (fe-check, docs/verification.md), opt-in (`reproduce --fe`, minutes):
 // the paper's wheel healthy and cracked in 2-D, the rig pair's half-face spall in 3-D.
 ReportSection reproduce_fe(const ReproduceContext& context);
+// The planetary stage (docs/planetary.md): the modes of Lin & Parker's (1999) example system for
+// N = 3, 4 and 5 against their published frequencies, types and multiplicities; the ring-housing
+// sensor's spectrum of the nonlinear stage healthy and with a cracked sun tooth; the phasing rule
+// on a nonlinear run's mesh forces.
+ReportSection reproduce_planetary(const ReproduceContext& context);
 // The text of examples/rig_17_38.toml, compiled in.
 const char* rig_17_38_toml();
+// The texts of examples/planetary_lp99.toml and examples/planetary_stage_cracked_sun.toml.
+const char* planetary_lp99_toml();
+const char* planetary_stage_cracked_sun_toml();
 
 }  // namespace gearimpact::cli

@@ -91,7 +91,8 @@ std::filesystem::path reproduce(const std::filesystem::path& out,
                           {"steady state of the loaded pair", reproduce_steady_state},
                           {"rattle map of a loose gear, 512 runs", reproduce_rattle},
                           {"tooth faults and modifications", reproduce_faults},
-                          {"vibration of a healthy and a cracked pinion", reproduce_vibration}};
+                          {"vibration of a healthy and a cracked pinion", reproduce_vibration},
+                          {"planetary stage: modes and the ring sensor", reproduce_planetary}};
   if (with_fe) parts.push_back({"finite-element check of the tooth compliance", reproduce_fe});
   // The parts run side by side: each submits its simulations to the one pool
   // and waits for them, so the cores stay busy until the last run is done.

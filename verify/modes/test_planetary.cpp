@@ -22,6 +22,7 @@
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/planetary.hpp"
 #include "gearimpact/modes/planetary.hpp"
+#include "gearimpact/paper/lin_parker_1999.hpp"
 
 using namespace gearimpact;
 
@@ -301,20 +302,11 @@ TEST_CASE("unequal spacing keeps the planet modes' frequencies and multiplicity 
 }
 
 TEST_CASE("Lin & Parker (1999): the published frequencies for N = 3, 4, 5") {
-  // Lin & Parker (1999) Table 2 (Lin's thesis Table C.1), as transcribed in
-  // gfsReboucas/Drivetrain-python tests/test_lin_parker_1999.py, Hz:
-  // rotational (the rigid mode first), translational (each twice), planet
-  // (each N - 3 times).
-  const std::vector<double> rot3 = {0.0, 1475.7, 1930.3, 2658.3, 7462.8, 11775.3};
-  const std::vector<double> tra3 = {743.2, 1102.4, 1896.0, 2276.4, 6986.3, 9647.9};
-  const std::vector<double> rot4 = {0.0, 1536.6, 1970.6, 2625.7, 7773.6, 13071.1};
-  const std::vector<double> tra4 = {727.0, 1091.0, 1892.8, 2342.5, 7189.9, 10437.6};
-  const std::vector<double> rot5 = {0.0, 1567.4, 2006.1, 2614.8, 8065.4, 14253.1};
-  const std::vector<double> tra5 = {710.0, 1072.0, 1888.1, 2425.3, 7382.4, 11172.3};
-  const std::vector<double> planet = {1808.2, 5963.8, 6981.7};
-  const std::map<int, std::pair<std::vector<double>, std::vector<double>>> table = {
-      {3, {rot3, tra3}}, {4, {rot4, tra4}}, {5, {rot5, tra5}}};
-  for (const auto& [n, published] : table) {
+  // Lin & Parker (1999) Table 2 (paper/lin_parker_1999.hpp, with its source), Hz: rotational
+  // (the rigid mode first), translational (each twice), planet (each N - 3 times).
+  const std::vector<double> planet(kLinParker1999Planet.begin(), kLinParker1999Planet.end());
+  for (const LinParker1999Table& published : kLinParker1999) {
+    const int n = published.planets;
     CAPTURE(n);
     const PlanetaryModes m = planetary_modes(planetary_model(lp99(equal_angles(n))));
     std::vector<double> rot, tra, pla;
@@ -346,8 +338,8 @@ TEST_CASE("Lin & Parker (1999): the published frequencies for N = 3, 4, 5") {
       }
     };
     for (std::size_t i = 0; i < 6; ++i) {
-      printed(rot[i], published.first[i], n == 4 && i == 1);
-      printed(tra[i], published.second[i], n == 4 && (i == 0 || i == 1));
+      printed(rot[i], published.rotational[i], n == 4 && i == 1);
+      printed(tra[i], published.translational[i], n == 4 && (i == 0 || i == 1));
     }
     REQUIRE(pla.size() == (n > 3 ? 3u : 0u));
     for (std::size_t i = 0; i < pla.size(); ++i) printed(pla[i], planet[i], false);

@@ -52,6 +52,7 @@
 #include "gearimpact/modes/train_modes.hpp"
 #include "gearimpact/named_values.hpp"
 #include "gearimpact/numerics/quadrature.hpp"
+#include "gearimpact/paper/lin_parker_1999.hpp"
 #include "gearimpact/paper/statements.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "gearimpact/signals/decimate.hpp"
