@@ -83,7 +83,8 @@ std::vector<Field> make_train_schema() {
   // The accelerometer on a body's bearings ([bearings] sensor_gear and sensor_angle of a pair).
   row("sensor", "body", FieldKind::text, false,
       "the name of the body (with bearings, or on a rigid shaft with one) on whose bearings the "
-      "accelerometer sits: gearimpact train writes its sensor_acceleration column");
+      "accelerometer sits: gearimpact train writes its sensor_acceleration column")
+      .when_absent = "no sensor (required in a [sensor] table)";
   quantity("sensor", "angle", Dimension::angle, "deg", {closed(-2.0 * pi), closed(2.0 * pi), {}},
            "90 deg", "the accelerometer's direction, from the train's x axis towards y");
   Field& kind = row("shafts", "kind", FieldKind::choice, true,
