@@ -1,4 +1,5 @@
-// A torsional gear train: bodies turning on rigid bearings, the meshes
+// A gear train: bodies turning on rigid bearings (or, with a bearing,
+// translating on elastic ones: TrainBody::bearing), the meshes
 // between them (each a MeshLine of its own gear pair, tables and backlash),
 // and shafts joining two bodies, rigid (the two become one body of summed
 // inertia) or a torsional spring. The state is the angle and speed of each
@@ -10,6 +11,11 @@
 // only: every centre fixed in that frame): it then sees its bodies' angles
 // relative to the carrier's and puts its reaction moment on the carrier
 // (planetary_train.hpp builds such a stage).
+// With a body on elastic bearings the train runs the planar dynamics of
+// each mesh between fixed axes (train_planar.cpp): the bodies' centres in
+// the fixed frame, each mesh along its two lines of action in the direction
+// of its line of centres (TrainMesh::centre_angle_rad); the two-gear planar
+// case is the train of two such bodies and runs its numbers bit for bit.
 // docs/architecture.md, section "A gear train"; docs/planetary.md.
 #pragma once
 
@@ -236,7 +242,12 @@ std::vector<int> train_degrees_of_freedom(const GearTrain& train);
 // Validates the train (InputError naming the field: bodies.NAME.inertia,
 // meshes.NAME.gears.teeth1, ...) and runs dynamics_train(train); its rows'
 // and summaries' meshes are that train's (a helical mesh by route A: one per
-// slice). Of `control`, keep_series and should_stop are read.
+// slice). Of `control`, keep_series and should_stop are read. With a body on
+// elastic bearings: the planar train (its refusals and its step bound by
+// name: bodies.NAME.bearings.KEY, integrator.step, ...), its meshes reading
+// model.damping_update = "auto" as the planar model does (frozen), its rows
+// with each body's centre and bearing force and the sensor's acceleration,
+// its summary with the bearings' energies (SimulationSummary::planar).
 TrainResult simulate_train(const GearTrain& train, const RunControl& control = {});
 
 }  // namespace gearimpact
