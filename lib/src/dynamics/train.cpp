@@ -567,7 +567,13 @@ void validate_train(const GearTrain& train) {
     first = static_cast<int>(i);
   }
   validate(train.integrator);
-  if (has_planar_bodies(train)) validate_planar_train(train);
+  if (has_planar_bodies(train)) {
+    validate_planar_train(train);
+  } else if (train.sensor_body != -1) {
+    // The sensor sits on a bearing: without one it would read nothing.
+    throw InputError("sensor_body", std::to_string(train.sensor_body),
+                     "-1 (none) in a train without bodies on elastic bearings");
+  }
   if (train.integrator.kind == IntegratorKind::adaptive &&
       std::any_of(train.meshes.begin(), train.meshes.end(), internal_mesh)) {
     throw InputError("integrator.kind", "adaptive",
