@@ -118,6 +118,50 @@ TEST_CASE("train's series.csv holds the library run's rows, column by named colu
   CHECK(run.bodies[2].final_w_rad_per_s == run.series.back().w_rad_per_s[2]);
 }
 
+TEST_CASE("train runs the two-stage rig on bearings as the library does, its centres' columns") {
+  // The example as a user runs it, over its own 10 ms.
+  Scratch scratch("train-cli-bearings");
+  const std::filesystem::path file = examples / "two_stage_rig_bearings.toml";
+  const std::filesystem::path out = scratch.dir / "out";
+  const CommandResult r = run_command(cli("train " + file.string() + " --out " + out.string()));
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const GearTrain train = read_train_file(file);
+  const TrainResult run = simulate_train(train);
+  const std::vector<TrainColumn> columns = train_series_columns(train);
+  std::istringstream csv(read(out / "series.csv"));
+  std::string line;
+  std::getline(csv, line);
+  const std::vector<std::string> header = split(line);
+  REQUIRE(header.size() == columns.size());
+  // After the meshes' columns: each body with bearings (input, wheel1, output), then the sensor.
+  const auto column = [&header](const std::string& name) {
+    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+  };
+  CHECK(column("x_input_m") < header.size());
+  CHECK(column("bearing_fy_wheel1_N") < header.size());
+  CHECK(column("x_pinion2_m") == header.size());
+  CHECK(header.back() == "sensor_acceleration_m_per_s2");
+  std::size_t rows = 0;
+  for (; std::getline(csv, line); ++rows) {
+    REQUIRE(rows < run.series.size());
+    const std::vector<std::string> cells = split(line);
+    REQUIRE(cells.size() == columns.size());
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      if (std::stod(cells[c]) != columns[c].value(run.series[rows])) {
+        INFO("row " << rows << ", column " << header[c] << ": " << cells[c]);
+        REQUIRE(false);
+      }
+    }
+  }
+  CHECK(rows == run.series.size());
+  // The rig works its bearings: its centres move and their dampers take energy.
+  REQUIRE(run.summary.planar.has_value());
+  CHECK(run.summary.planar->bearing_damping_loss_j > 0.0);
+  const std::string summary = read(out / "summary.json");
+  CHECK(summary.find("\"bearing_damping_loss_J\": ") != std::string::npos);
+}
+
 TEST_CASE("train --set writes the file's series as if the file said so") {
   Scratch scratch("train-cli-set");
   const std::filesystem::path file = short_example(scratch);

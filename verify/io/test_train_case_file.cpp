@@ -375,3 +375,62 @@ TEST_CASE("a body's torque table reads by the rows of [torque1], a drag's by tho
   CHECK(t.bodies[1].torque.kind == Torque::Kind::constant);
   CHECK(t.bodies[1].torque.constant_n_m == 0.0);
 }
+
+TEST_CASE("a train file's bodies on bearings, centre angles and sensor read as written") {
+  const std::string path = std::string(GEARIMPACT_EXAMPLES_DIR) + "/two_stage_rig_bearings.toml";
+  const GearTrain t = read_train_file(path);
+  REQUIRE(t.bodies.size() == 4);
+  // The keys as the file writes them: "200 N/um" is 2e8 N/m, the y values absent (isotropic).
+  REQUIRE(t.bodies[0].bearing.has_value());
+  CHECK(t.bodies[0].bearing->stiffness_x_n_per_m == 200.0 * 1e6);
+  CHECK_FALSE(t.bodies[0].bearing->stiffness_y_n_per_m.has_value());
+  CHECK(t.bodies[0].bearing->damping_x_n_s_per_m == 400.0);
+  CHECK(t.bodies[0].bearing->mass_kg == 1.5);
+  REQUIRE(t.bodies[1].bearing.has_value());
+  CHECK(t.bodies[1].bearing->stiffness_y_n_per_m == 250.0 * 1e6);
+  CHECK(t.bodies[1].bearing->mass_kg == 6.0);
+  CHECK_FALSE(t.bodies[2].bearing.has_value());
+  REQUIRE(t.bodies[3].bearing.has_value());
+  CHECK(t.meshes[0].centre_angle_rad == 0.0);
+  CHECK(t.meshes[1].centre_angle_rad == 60.0 * (pi / 180.0));
+  CHECK(t.sensor_body == 3);
+  CHECK(t.sensor_angle_rad == 150.0 * (pi / 180.0));
+}
+
+TEST_CASE("a body's bearings and the sensor refuse a bad key by its name, at its line") {
+  const std::string path = std::string(GEARIMPACT_EXAMPLES_DIR) + "/two_stage_rig_bearings.toml";
+  std::ifstream in(path, std::ios::binary);
+  REQUIRE(in);
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const auto problem_of = [](const std::string& edited_text) {
+    try {
+      parse_train(edited_text, "edited.toml");
+    } catch (const CaseFileError& e) {
+      return e.problems().front();
+    }
+    return Problem{};
+  };
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    std::string s = text;
+    const std::size_t at = s.find(from);
+    REQUIRE(at != std::string::npos);
+    return s.replace(at, from.size(), to);
+  };
+  SUBCASE("a stiffness below its row's range") {
+    const Problem p =
+        problem_of(replace("stiffness_x = \"200 N/um\"", "stiffness_x = \"-1 N/um\""));
+    CHECK(p.field == "bodies.input.bearings.stiffness_x");
+  }
+  SUBCASE("a bearing without its required mass") {
+    const Problem p = problem_of(replace(", mass = \"1.5 kg\"", ""));
+    CHECK(p.field == "bodies.input.bearings.mass");
+  }
+  SUBCASE("an unknown key of a body's bearings") {
+    const Problem p = problem_of(replace("damping_x = \"400 N*s/m\"", "dampin_x = \"400 N*s/m\""));
+    CHECK(p.field == "bodies.input.bearings.dampin_x");
+  }
+  SUBCASE("a sensor naming no body") {
+    const Problem p = problem_of(replace("body = \"output\"", "body = \"outptu\""));
+    CHECK(p.field == "sensor.body");
+  }
+}

@@ -19,17 +19,8 @@ template <typename BearingSlot>
 void add_bearing(std::vector<Field>& rows, int gear, BearingSlot of) {
   Rows r(rows, "bearings");
   const std::string n = gear == 1 ? "1" : "2";
-  // Stiffer than any rolling or journal bearing (1e8 to 1e10 N/m) by five
-  // orders and more. The eigenproblem's rounding grows as eps k / m: at 1e16
-  // it is still below 1e-8 of a mesh mode's w^2 (the paper's pair meets the
-  // torsional limit to 2e-8 there); stiffer only loses digits, and
-  // kind = "rigid" is that limit exactly.
-  // Softer than 1e-3 N/m is no bearing (the centres then move freely to rounding, and the
-  // modes call near-zero modes elastic). A damper past 1e6 N*s/m is past any bearing or
-  // squeeze-film damper (1e2 to 1e5) and made a run's state NaN mid-run.
-  const Range stiffness{closed(1e-3), closed(1e16),
-                        "softer is no bearing; stiffer is kind = \"rigid\""};
-  const Range damping{closed(0.0), closed(1e6), "more is past any bearing or squeeze-film damper"};
+  const Range stiffness = bearing_stiffness_range();
+  const Range damping = bearing_damping_range();
   const FieldCondition elastic{"kind", {"elastic"}};
   // A row's key is a string_view: the names live in static storage.
   static const std::array<std::array<const char*, 5>, 2> names{{
@@ -64,8 +55,7 @@ void add_bearing(std::vector<Field>& rows, int gear, BearingSlot of) {
   cy.only_when = elastic;
   cy.when_absent = gear == 1 ? "damping_x1 (isotropic)" : "damping_x2 (isotropic)";
   Field& mass = r.quantity(
-      name[4], Dimension::mass, "kg",
-      {closed(1e-4), closed(1e6), "a tenth of a gram (a watch's gear) to a thousand tonnes"}, false,
+      name[4], Dimension::mass, "kg", bearing_mass_range(), false,
       "m, the mass of gear " + n + " with what moves with its centre", [of](auto& c) -> auto& {
         return of(c).mass_kg;
       });

@@ -50,6 +50,23 @@ std::vector<Field> make_train_schema() {
   quantity("bodies", "theta", Dimension::angle, "deg", {}, "0", "the body's initial angle");
   quantity("bodies", "w", Dimension::angular_velocity, "rad/s", {}, "0",
            "the body's initial speed, positive forward");
+  // A body's centre on elastic bearings: the two-gear [bearings] keys of one
+  // gear, without its number, in the body's table `bearings` (absent: the
+  // centre is fixed). The ranges are those rows' (bearing_*_range).
+  quantity("bodies.bearings", "stiffness_x", Dimension::stiffness, "N/um",
+           bearing_stiffness_range(), {}, "k_x of the body's bearings, along the train's x axis")
+      .required = true;
+  quantity("bodies.bearings", "stiffness_y", Dimension::stiffness, "N/um",
+           bearing_stiffness_range(), "stiffness_x (isotropic)",
+           "k_y of the body's bearings, along the train's y axis");
+  quantity("bodies.bearings", "damping_x", Dimension::damping, "N*s/m", bearing_damping_range(),
+           "0", "c_x of the body's bearings");
+  quantity("bodies.bearings", "damping_y", Dimension::damping, "N*s/m", bearing_damping_range(),
+           "damping_x (isotropic)", "c_y of the body's bearings");
+  quantity("bodies.bearings", "mass", Dimension::mass, "kg", bearing_mass_range(), {},
+           "m, the mass the bearings carry: the body's with what moves with its centre (on a "
+           "rigid shaft, the whole shaft's; one body of a shaft has bearings)")
+      .required = true;
   row("meshes", "name", FieldKind::text, true, "the mesh's name, one no other mesh has")
       .range.note = no_dot;
   row("meshes", "body_a", FieldKind::text, true,
@@ -58,6 +75,18 @@ std::vector<Field> make_train_schema() {
   row("meshes", "body_b", FieldKind::text, true,
       "the name of the body that is the pair's gear 2 (teeth2, gear = \"wheel\"); it turns "
       "forward when body_a does");
+  // A full turn either way, as [bearings] sensor_angle.
+  quantity("meshes", "centre_angle", Dimension::angle, "deg",
+           {closed(-2.0 * pi), closed(2.0 * pi), {}}, "0",
+           "the direction of the line of centres, from body_a's centre to body_b's, from the "
+           "train's x axis towards y: where a body on bearings sees the mesh's forces");
+  // The accelerometer on a body's bearings ([bearings] sensor_gear and sensor_angle of a pair).
+  row("sensor", "body", FieldKind::text, false,
+      "the name of the body (with bearings, or on a rigid shaft with one) on whose bearings the "
+      "accelerometer sits: gearimpact train writes its sensor_acceleration column")
+      .when_absent = "no sensor (required in a [sensor] table)";
+  quantity("sensor", "angle", Dimension::angle, "deg", {closed(-2.0 * pi), closed(2.0 * pi), {}},
+           "90 deg", "the accelerometer's direction, from the train's x axis towards y");
   Field& kind = row("shafts", "kind", FieldKind::choice, true,
                     "a rigid shaft makes its two bodies one (their inertias summed); a torsional "
                     "one is a spring T = k (theta_a - theta_b) on body_b");

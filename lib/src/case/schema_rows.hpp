@@ -91,6 +91,26 @@ inline Field slotless_field(std::string_view section, std::string_view key, Fiel
   return f;
 }
 
+// The ranges of an elastic bearing's values: the two-gear [bearings] rows'
+// (stiffness_x1, ..., mass1) and a train body's bearings (bodies.bearings.*).
+// Stiffer than any rolling or journal bearing (1e8 to 1e10 N/m) by five
+// orders and more. The eigenproblem's rounding grows as eps k / m: at 1e16
+// it is still below 1e-8 of a mesh mode's w^2 (the paper's pair meets the
+// torsional limit to 2e-8 there); stiffer only loses digits, and
+// kind = "rigid" is that limit exactly.
+// Softer than 1e-3 N/m is no bearing (the centres then move freely to rounding, and the
+// modes call near-zero modes elastic). A damper past 1e6 N*s/m is past any bearing or
+// squeeze-film damper (1e2 to 1e5) and made a run's state NaN mid-run.
+inline Range bearing_stiffness_range() {
+  return {closed(1e-3), closed(1e16), "softer is no bearing; stiffer is kind = \"rigid\""};
+}
+inline Range bearing_damping_range() {
+  return {closed(0.0), closed(1e6), "more is past any bearing or squeeze-film damper"};
+}
+inline Range bearing_mass_range() {
+  return {closed(1e-4), closed(1e6), "a tenth of a gram (a watch's gear) to a thousand tonnes"};
+}
+
 // A planetary stage's planet angles psi_n (a planetary file's and a stage
 // file's key): degrees in [0, 360), at most `most` of them, equally spaced
 // when absent.

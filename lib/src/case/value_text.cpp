@@ -259,7 +259,11 @@ std::string value_text(const Field& field, const SimulationCase& c, bool readabl
 
 std::string default_text(const Field& field) {
   if (field.required) return "required";
-  if (field.kind == FieldKind::text) return "the file's stem";
+  // A text row: the case's name takes the file's stem; another says its own absence.
+  if (field.kind == FieldKind::text) {
+    return field.when_absent.empty() ? "the file's stem"
+                                     : "absent: " + std::string(field.when_absent);
+  }
   // A [[faults]] row reads the case's first fault: a default one.
   SimulationCase defaults;
   if (field.section == "faults") defaults.faults.resize(1);

@@ -263,6 +263,26 @@ Columns<TrainRow> train_series_columns(const GearTrain& train) {
         computed_column<TrainRow>("friction_force_" + mesh + "_N", "N",
                                   [k](const TrainRow& r) { return r.meshes[k].friction_force_n; }));
   }
+  // A body on elastic bearings: its centre and its bearings' force, after the
+  // meshes' columns, so that a train without bearings keeps its columns.
+  for (std::size_t i = 0; i < train.bodies.size(); ++i) {
+    if (!train.bodies[i].bearing) continue;
+    const std::string& body = train.bodies[i].name;
+    columns.push_back(computed_column<TrainRow>(
+        "x_" + body + "_m", "m", [i](const TrainRow& r) { return r.centres[i].x_m; }));
+    columns.push_back(computed_column<TrainRow>(
+        "y_" + body + "_m", "m", [i](const TrainRow& r) { return r.centres[i].y_m; }));
+    columns.push_back(
+        computed_column<TrainRow>("bearing_fx_" + body + "_N", "N",
+                                  [i](const TrainRow& r) { return r.centres[i].bearing_fx_n; }));
+    columns.push_back(
+        computed_column<TrainRow>("bearing_fy_" + body + "_N", "N",
+                                  [i](const TrainRow& r) { return r.centres[i].bearing_fy_n; }));
+  }
+  if (train.sensor_body >= 0) {
+    columns.push_back(member_column("sensor_acceleration_m_per_s2", "m/s^2",
+                                    &TrainRow::sensor_acceleration_m_per_s2));
+  }
   return columns;
 }
 
@@ -284,6 +304,12 @@ std::string train_or_stage_summary_json(const GearTrain& train, const TrainResul
   out += "  \"events\": " + std::to_string(s.events) + ",\n";
   json_energy_terms(out, s);
   json_ledger_residual(out, s);
+  if (s.planar) {
+    // A train with bodies on bearings only, so that other trains' summaries keep their bytes.
+    json_number(out, "bearing_energy_initial_J", s.planar->bearing_energy_initial_j);
+    json_number(out, "bearing_energy_final_J", s.planar->bearing_energy_final_j);
+    json_number(out, "bearing_damping_loss_J", s.planar->bearing_damping_loss_j);
+  }
   out += "  \"meshes\": [";
   for (std::size_t k = 0; k < train.meshes.size(); ++k) {
     const TrainMeshSummary& m = result.meshes[k];

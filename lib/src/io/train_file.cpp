@@ -280,6 +280,57 @@ Torque read_body_torque(const Reader& reader, const toml::value& pair, const tom
   return Torque{};
 }
 
+// A body's `bearings` table (`label`: bodies.NAME.bearings) by the rows of
+// train_schema()'s bodies.bearings; nothing with a problem.
+std::optional<GearBearing> read_body_bearings(const Reader& reader, const toml::value& value,
+                                              const std::string& label,
+                                              std::vector<Problem>& problems) {
+  if (!value.is_table()) {
+    problems.push_back(reader.problem(label, &value,
+                                      label + " = " + toml_written(value) + " is " +
+                                          toml_type_name(value) +
+                                          ", not a table: write bearings = { stiffness_x = ..., "
+                                          "mass = ... } (keys " +
+                                          train_key_list("bodies.bearings") + ")"));
+    return std::nullopt;
+  }
+  const std::size_t before = problems.size();
+  TrainTable table(reader, value, "bodies.bearings", problems);
+  table.refuse_unknown(label, {},
+                       "the keys of a body's bearings are " + train_key_list("bodies.bearings"));
+  GearBearing b;
+  b.stiffness_x_n_per_m = table.quantity(label, "stiffness_x").value_or(0.0);
+  b.stiffness_y_n_per_m = table.quantity(label, "stiffness_y");
+  b.damping_x_n_s_per_m = table.quantity(label, "damping_x").value_or(0.0);
+  b.damping_y_n_s_per_m = table.quantity(label, "damping_y");
+  b.mass_kg = table.quantity(label, "mass");
+  if (problems.size() != before) return std::nullopt;
+  return b;
+}
+
+// The file's [sensor] by the rows of train_schema()'s sensor: its body named
+// among the train's bodies (the dynamics checks that it has bearings).
+void read_sensor(const Reader& reader, const toml::value& value,
+                 const std::vector<std::string>& bodies, GearTrain& train,
+                 std::vector<Problem>& problems) {
+  if (!value.is_table()) {
+    problems.push_back(reader.problem("sensor", &value,
+                                      "sensor = " + toml_written(value) + " is " +
+                                          toml_type_name(value) + ", not a table: write [sensor]"));
+    return;
+  }
+  TrainTable table(reader, value, "sensor", problems);
+  table.refuse_unknown("sensor", {}, "the keys of [sensor] are " + train_key_list("sensor"));
+  if (table.find("body") == nullptr) {
+    problems.push_back(reader.problem("sensor.body", &value,
+                                      "sensor.body is missing (required in [sensor]: the name of "
+                                      "a body on bearings)"));
+    return;
+  }
+  train.sensor_body = table.body("sensor", "body", bodies);
+  train.sensor_angle_rad = table.quantity("sensor", "angle").value_or(pi / 2.0);
+}
+
 // ---- --set on a train file: KEY=VALUE written into the file's tables before they are read ----
 
 // The TOML value a case file gives `row` for the text of a --set, checked by the row (InputError
@@ -402,7 +453,10 @@ GearTrain read_train(const Reader& reader, const toml::value& root, std::string_
   // The train's keys and every mesh's defaults: the file without its arrays of the train.
   toml::value defaults = toml::table{};
   for (const auto& [key, value] : root.as_table()) {
-    if (key == "bodies" || key == "meshes" || (key == "shafts" && value.is_array())) continue;
+    if (key == "bodies" || key == "meshes" || key == "sensor" ||
+        (key == "shafts" && value.is_array())) {
+      continue;
+    }
     const Field* field = find_field(key);
     const bool top_level_key = field != nullptr && field->section.empty();
     const bool pair = std::find(kMeshPairSections.begin(), kMeshPairSections.end(), key) !=
@@ -457,9 +511,14 @@ GearTrain read_train(const Reader& reader, const toml::value& root, std::string_
     TrainTable table(reader, *bodies[i], "bodies", problems);
     const std::string name = table.name("bodies[" + std::to_string(i) + "]", body_names);
     const std::string label = name.empty() ? "bodies[" + std::to_string(i) + "]" : "bodies." + name;
-    table.refuse_unknown(label, {}, "the keys of [[bodies]] are " + train_key_list("bodies"));
+    table.refuse_unknown(
+        label, {"bearings"},
+        "the keys of [[bodies]] are " + train_key_list("bodies") + " and the sub-table bearings");
     TrainBody body;
     body.name = name;
+    if (const toml::value* bearings = table.find("bearings"); bearings != nullptr) {
+      body.bearing = read_body_bearings(reader, *bearings, label + ".bearings", problems);
+    }
     inertias.push_back(table.quantity(label, "inertia"));
     if (const toml::value* torque = table.find("torque"); torque != nullptr && torque->is_table()) {
       // Read once a mesh's pair has read (below).
@@ -499,6 +558,7 @@ GearTrain read_train(const Reader& reader, const toml::value& root, std::string_
     mesh.name = name;
     mesh.body_a = table.body(label, "body_a", body_names);
     mesh.body_b = table.body(label, "body_b", body_names);
+    mesh.centre_angle_rad = table.quantity(label, "centre_angle").value_or(0.0);
     // The pair: the file's pair sections with the mesh's keys over them.
     toml::value pair = defaults;
     bool tables_ok = true;
@@ -611,6 +671,9 @@ GearTrain read_train(const Reader& reader, const toml::value& root, std::string_
                                             expected_of(*find_train_field("bodies.inertia")) +
                                             ")"));
     }
+  }
+  if (const auto sensor = root.as_table().find("sensor"); sensor != root.as_table().end()) {
+    read_sensor(reader, sensor->second, body_names, train, problems);
   }
   if (!problems.empty()) throw CaseFileError(reader.file(), std::move(problems));
   return train;

@@ -23,11 +23,24 @@ void orient(Eigen::VectorXd& v) {
   if (v(largest) < 0.0) v = -v;
 }
 
+// The modes are those of the bodies' turning about fixed axes: a body on
+// elastic bearings (its translation) is not in them yet, and is refused by
+// name rather than left out.
+void refuse_translating_bodies(const GearTrain& train) {
+  for (const TrainBody& b : train.bodies) {
+    if (!b.bearing) continue;
+    throw InputError("bodies." + b.name + ".bearings", "given",
+                     "none: a train's modes are those of its bodies turning about fixed axes "
+                     "(a body's translation on its bearings is not in them yet)");
+  }
+}
+
 }  // namespace
 
 TrainLinearModel train_linear_model(const GearTrain& train,
                                     const std::vector<double>& mesh_stiffness_n_per_m) {
   check_train(train);
+  refuse_translating_bodies(train);
   if (mesh_stiffness_n_per_m.size() != train.meshes.size()) {
     throw InputError("mesh_stiffness", std::to_string(mesh_stiffness_n_per_m.size()) + " values",
                      "one per mesh, " + std::to_string(train.meshes.size()));

@@ -1,4 +1,5 @@
-// A torsional gear train: bodies turning on rigid bearings, the meshes
+// A gear train: bodies turning on rigid bearings (or, with a bearing,
+// translating on elastic ones: TrainBody::bearing), the meshes
 // between them (each a MeshLine of its own gear pair, tables and backlash),
 // and shafts joining two bodies, rigid (the two become one body of summed
 // inertia) or a torsional spring. The state is the angle and speed of each
@@ -10,14 +11,21 @@
 // only: every centre fixed in that frame): it then sees its bodies' angles
 // relative to the carrier's and puts its reaction moment on the carrier
 // (planetary_train.hpp builds such a stage).
+// With a body on elastic bearings the train runs the planar dynamics of
+// each mesh between fixed axes (train_planar.cpp): the bodies' centres in
+// the fixed frame, each mesh along its two lines of action in the direction
+// of its line of centres (TrainMesh::centre_angle_rad); the two-gear planar
+// case is the train of two such bodies and runs its numbers bit for bit.
 // docs/architecture.md, section "A gear train"; docs/planetary.md.
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/constants.hpp"
 #include "gearimpact/dynamics/mesh_line.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/stiffness/table.hpp"
@@ -46,6 +54,14 @@ struct TrainBody {
   // fixed member): its speed stays 0 (w must be 0, its torque a constant 0),
   // and whatever holds it does no work.
   bool held = false;
+  // Its centre on elastic bearings (docs/architecture.md, "A gear train"):
+  // x and y in the train's fixed (inertial) frame, each with its spring and
+  // damper as the two-gear [bearings] keys mean them (stiffness_y and
+  // damping_y absent: the x ones), and mass_kg, required here (a train's body
+  // has no disc to take it from), the mass the bearings carry. Bodies joined
+  // by rigid shafts share one centre: at most one of them has bearings, and
+  // its mass is the whole shaft's. None: the centre is fixed.
+  std::optional<GearBearing> bearing{};
 };
 
 // A mesh between bodies a (its pair's gear 1) and b (gear 2). Of `pair`, the
@@ -87,6 +103,13 @@ struct TrainMesh {
   int carrier = -1;
   Kind kind = Kind::external;
   double line_offset_m = 0.0;
+  // Between fixed axes: the direction of the line of centres, from body a's
+  // centre to body b's, in the train's fixed frame (from +x towards +y). With
+  // a body on elastic bearings the mesh sees the centres' motion along each
+  // of its lines of action in that direction and puts its forces on them
+  // (docs/vibration.md, "The planar dynamics"); 0 is the two-gear planar
+  // model's frame, x along O1 -> O2.
+  double centre_angle_rad = 0.0;
 };
 
 // A shaft between bodies a and b on one axis (both turn in the same sense).
@@ -102,6 +125,12 @@ struct GearTrain {
   std::vector<TrainBody> bodies;
   std::vector<TrainMesh> meshes;
   std::vector<TrainShaft> shafts;
+  // The accelerometer on a body's bearing (a body with `bearing`): its
+  // centre's acceleration along the direction at sensor_angle_rad from +x
+  // towards +y, as the two-gear [bearings] sensor's (docs/vibration.md).
+  // -1: none.
+  int sensor_body = -1;
+  double sensor_angle_rad = pi / 2.0;
   // kind (rk4: the event-cut RK4 at the fixed step), step, end time, output_every.
   IntegratorSettings integrator;
 };
@@ -150,11 +179,24 @@ struct TrainMeshRow {
   double normal_force_n = 0.0;
   double friction_force_n = 0.0;
 };
+// With bodies on elastic bearings, each body's centre (x, y in the fixed
+// frame, 0 for a fixed centre) and the force its bearings exert on it,
+// -k u - c u' per axis; the sensor's acceleration (GearTrain::sensor_body).
+struct TrainCentreRow {
+  double x_m = 0.0;
+  double y_m = 0.0;
+  double vx_m_s = 0.0;
+  double vy_m_s = 0.0;
+  double bearing_fx_n = 0.0;
+  double bearing_fy_n = 0.0;
+};
 struct TrainRow {
   double t_s = 0.0;
   std::vector<double> theta_rad;
   std::vector<double> w_rad_per_s;
   std::vector<TrainMeshRow> meshes;
+  std::vector<TrainCentreRow> centres;  // empty without bodies on bearings
+  double sensor_acceleration_m_per_s2 = 0.0;
 };
 
 // Per mesh: the contacts begun (a contact at the start counts), the largest
@@ -200,7 +242,12 @@ std::vector<int> train_degrees_of_freedom(const GearTrain& train);
 // Validates the train (InputError naming the field: bodies.NAME.inertia,
 // meshes.NAME.gears.teeth1, ...) and runs dynamics_train(train); its rows'
 // and summaries' meshes are that train's (a helical mesh by route A: one per
-// slice). Of `control`, keep_series and should_stop are read.
+// slice). Of `control`, keep_series and should_stop are read. With a body on
+// elastic bearings: the planar train (its refusals and its step bound by
+// name: bodies.NAME.bearings.KEY, integrator.step, ...), its meshes reading
+// model.damping_update = "auto" as the planar model does (frozen), its rows
+// with each body's centre and bearing force and the sensor's acceleration,
+// its summary with the bearings' energies (SimulationSummary::planar).
 TrainResult simulate_train(const GearTrain& train, const RunControl& control = {});
 
 }  // namespace gearimpact

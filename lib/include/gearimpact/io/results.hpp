@@ -68,13 +68,16 @@ std::string summary_json(const SimulationSummary& summary);
 // The columns of a gear train's series (TrainRow): t_s; per body, in the train's order,
 // theta_BODY_rad and w_BODY_rad_per_s; per mesh, s_MESH_m, delta_MESH_m, region_MESH,
 // pairs_MESH, normal_force_MESH_N and friction_force_MESH_N (BODY and MESH the names of the
-// case file). Integral columns (region, pairs) are written as integers.
+// case file); then per body on elastic bearings x_BODY_m, y_BODY_m, bearing_fx_BODY_N and
+// bearing_fy_BODY_N, and with a sensor (GearTrain::sensor_body) sensor_acceleration_m_per_s2.
+// Integral columns (region, pairs) are written as integers.
 using TrainColumn = Column<TrainRow>;
 Columns<TrainRow> train_series_columns(const GearTrain& train);
 // The series as CSV by those columns: a header line, a row each, numbers at 17 digits.
 std::string train_series_csv(const GearTrain& train, const std::vector<TrainRow>& rows);
 // The run's summary as a JSON object: the train's counts and energy ledger (its residual
-// ledger_residual_max_J among them), then "meshes": per mesh its name, impacts, largest
+// ledger_residual_max_J among them; with bodies on bearings, their stored energy at the start
+// and end and their dampers' loss), then "meshes": per mesh its name, impacts, largest
 // penetration, damping_loss_J and friction_loss_J (and mesh_damper_loss_J for a mesh with a
 // mesh damper), then "bodies": per body its name and final_w_rad_per_s.
 std::string train_summary_json(const GearTrain& train, const TrainResult& result);

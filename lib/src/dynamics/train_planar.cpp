@@ -1,0 +1,954 @@
+// A gear train whose bodies may translate on elastic bearings: the planar
+// dynamics of docs/vibration.md ("The planar dynamics") for any train of
+// meshes between fixed axes. Each degree of freedom of rotation (bodies
+// joined by rigid shafts are one) may carry a centre (x, y in the train's
+// fixed frame) on its bearings; each mesh sees its two centres' motion along
+// each of its two lines of action, in the frame of its line of centres
+// (TrainMesh::centre_angle_rad), through the MeshLine's planar interface
+// (PlanarMeshMotion, add_line_forces, add_damper, line_event_values,
+// classify_line), as the two-gear planar system does, and puts its forces on
+// the centres. A body that turns clockwise (seen from +z) in the train's
+// forward motion sees its meshes mirrored: the mesh's frame then has its y
+// axis reversed. The run's books (each line's mode and contact memory, the
+// impacts, the ledger with the bearings' stored and damped energies) are the
+// planar run's (planar.cpp), per mesh.
+#include "train_planar.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "gearimpact/dynamics/mesh.hpp"
+#include "gearimpact/dynamics/mesh_line.hpp"
+#include "gearimpact/dynamics/step_bound.hpp"
+#include "gearimpact/dynamics/system.hpp"
+#include "gearimpact/error.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/stiffness/energy.hpp"
+#include "run_parts.hpp"
+#include "stall.hpp"
+#include "step_methods.hpp"
+
+namespace gearimpact {
+
+namespace {
+
+constexpr std::array<Region, 2> kLines{Region::n1, Region::n2};
+
+// The state's layout for at most Dofs degrees of freedom and Meshes meshes:
+// the angles, the centres' x and y, the speeds, the centres' vx and vy (a
+// degree of freedom without bearings keeps 0 there), then the ledger's
+// integrals (torque work, Hertzian damping, friction, parametric work, the
+// bearings' dampers, the mesh dampers) and each mesh's own three losses.
+template <int Dofs, int Meshes>
+struct PlanarTrainLayout {
+  static constexpr std::size_t kDofs = Dofs;
+  static constexpr std::size_t kMeshes = Meshes;
+  static constexpr std::size_t theta(std::size_t d) { return d; }
+  static constexpr std::size_t x(std::size_t d) { return kDofs + d; }
+  static constexpr std::size_t y(std::size_t d) { return 2 * kDofs + d; }
+  static constexpr std::size_t w(std::size_t d) { return 3 * kDofs + d; }
+  static constexpr std::size_t vx(std::size_t d) { return 4 * kDofs + d; }
+  static constexpr std::size_t vy(std::size_t d) { return 5 * kDofs + d; }
+  static constexpr std::size_t kWork = 6 * kDofs;
+  static constexpr std::size_t kHertzLoss = kWork + 1;
+  static constexpr std::size_t kSlidingLoss = kWork + 2;
+  static constexpr std::size_t kParametric = kWork + 3;
+  static constexpr std::size_t kBearingLoss = kWork + 4;
+  static constexpr std::size_t kMeshDamperLoss = kWork + 5;
+  // Each mesh's Hertzian damping, friction and mesh damper losses.
+  static constexpr std::size_t mesh_loss(std::size_t k, std::size_t i) {
+    return kWork + 6 + 3 * k + i;
+  }
+  static constexpr std::size_t kSize = kWork + 6 + 3 * kMeshes;
+};
+// A two-stage rig (4 bodies, 3 degrees of freedom, 2 meshes) fits the small
+// layout, so that it does not pay for the largest train's state.
+using SmallPlanarTrain = PlanarTrainLayout<4, 3>;
+using LargePlanarTrain = PlanarTrainLayout<kMaxTrainBodies, kMaxTrainMeshes>;
+
+// Each degree of freedom's sense of turning about +z in the train's forward
+// motion: +1 for the first of each connected set, -1 across an external mesh
+// between fixed axes, the same across a torsional shaft; 0 where a loop of
+// meshes contradicts itself (and `conflict` set to the mesh that does).
+std::vector<int> turning_senses(const GearTrain& train, const std::vector<int>& dof, int dofs,
+                                int& conflict) {
+  std::vector<int> sense(static_cast<std::size_t>(dofs), 0);
+  conflict = -1;
+  for (int start = 0; start < dofs; ++start) {
+    if (sense[static_cast<std::size_t>(start)] != 0) continue;
+    sense[static_cast<std::size_t>(start)] = 1;
+    for (bool grew = true; grew;) {
+      grew = false;
+      const auto join = [&](int a, int b, int factor, int link) {
+        const int sa = sense[static_cast<std::size_t>(a)];
+        int& sb = sense[static_cast<std::size_t>(b)];
+        if (sa == 0) return;
+        if (sb == 0) {
+          sb = sa * factor;
+          grew = true;
+        } else if (sb != sa * factor && conflict < 0) {
+          conflict = link;
+        }
+      };
+      for (std::size_t k = 0; k < train.meshes.size(); ++k) {
+        const TrainMesh& m = train.meshes[k];
+        const int a = dof[static_cast<std::size_t>(m.body_a)];
+        const int b = dof[static_cast<std::size_t>(m.body_b)];
+        join(a, b, -1, static_cast<int>(k));
+        join(b, a, -1, static_cast<int>(k));
+      }
+      for (const TrainShaft& s : train.shafts) {
+        if (s.kind != TrainShaft::Kind::torsional) continue;
+        const int a = dof[static_cast<std::size_t>(s.body_a)];
+        const int b = dof[static_cast<std::size_t>(s.body_b)];
+        join(a, b, 1, -1);
+        join(b, a, 1, -1);
+      }
+    }
+  }
+  return sense;
+}
+
+// The bearings of each degree of freedom (the one body of its rigid shaft
+// that has them), -1 where its centre is fixed.
+std::vector<int> bearing_bodies(const GearTrain& train, const std::vector<int>& dof, int dofs) {
+  std::vector<int> body(static_cast<std::size_t>(dofs), -1);
+  for (std::size_t i = 0; i < train.bodies.size(); ++i) {
+    if (!train.bodies[i].bearing) continue;
+    body[static_cast<std::size_t>(dof[i])] = static_cast<int>(i);
+  }
+  return body;
+}
+
+int count_dofs(const std::vector<int>& dof) {
+  return dof.empty() ? 0 : *std::max_element(dof.begin(), dof.end()) + 1;
+}
+
+// The summed inertia of each degree of freedom, its bodies' in their order.
+std::vector<double> dof_inertias(const GearTrain& train, const std::vector<int>& dof, int dofs) {
+  std::vector<double> inertia(static_cast<std::size_t>(dofs), 0.0);
+  std::vector<bool> seen(static_cast<std::size_t>(dofs), false);
+  for (std::size_t i = 0; i < train.bodies.size(); ++i) {
+    const auto d = static_cast<std::size_t>(dof[i]);
+    inertia[d] =
+        seen[d] ? inertia[d] + train.bodies[i].inertia_kg_m2 : train.bodies[i].inertia_kg_m2;
+    seen[d] = true;
+  }
+  return inertia;
+}
+
+// What each line of each mesh reports beside the derivatives.
+template <class L>
+struct PlanarTrainForces {
+  std::array<double, 2 * L::kMeshes> normal_n{};  // each line's, summed over its pairs
+  std::array<double, L::kMeshes> friction_n{};    // each mesh's, summed over both lines
+  std::array<double, 2 * L::kMeshes> mesh_energy_j{};
+};
+
+// The planar train as a system of the run loop (step_methods.hpp).
+template <class L>
+class PlanarTrainSystem {
+ public:
+  using StateType = std::array<double, L::kSize>;
+  // Each mesh's two lines (drive, coast), each with its own mode.
+  struct ModeType {
+    std::array<Mode, 2 * L::kMeshes> line{};
+  };
+  using MemoryType = std::array<ContactMemory, 2 * L::kMeshes>;
+  using EventsType = std::array<double, 2 * L::kMeshes * kMaxMeshEvents>;
+  using ForcesType = PlanarTrainForces<L>;
+
+  PlanarTrainSystem(const GearTrain& train, const std::vector<const StiffnessTable*>& tables)
+      : train_(train), body_dof_(train_degrees_of_freedom(train)) {
+    dofs_ = count_dofs(body_dof_);
+    const std::vector<double> inertia = dof_inertias(train, body_dof_, dofs_);
+    const std::vector<int> bearing = bearing_bodies(train, body_dof_, dofs_);
+    int conflict = -1;
+    const std::vector<int> sense = turning_senses(train, body_dof_, dofs_, conflict);
+    for (int d = 0; d < dofs_; ++d) {
+      const auto u = static_cast<std::size_t>(d);
+      inertia_[u] = inertia[u];
+      inverse_inertia_[u] = 1.0 / inertia[u];
+      if (bearing[u] < 0) continue;
+      const GearBearing& b = *train.bodies[static_cast<std::size_t>(bearing[u])].bearing;
+      translating_[u] = true;
+      mass_[u] = *b.mass_kg;
+      inverse_mass_[u] = 1.0 / mass_[u];
+      kx_[u] = b.stiffness_x_n_per_m;
+      ky_[u] = stiffness_y(b);
+      cx_[u] = b.damping_x_n_s_per_m;
+      cy_[u] = damping_y(b);
+    }
+    driver_.fill(-1);
+    for (std::size_t i = 0; i < train.bodies.size(); ++i) {
+      if (train.bodies[i].torque.kind == Torque::Kind::prescribed_speed) {
+        driver_[static_cast<std::size_t>(body_dof_[i])] = static_cast<int>(i);
+        driven_ = true;
+      }
+    }
+    for (std::size_t k = 0; k < train.meshes.size(); ++k) {
+      const TrainMesh& m = train.meshes[k];
+      Frame f;
+      f.a = body_dof_[static_cast<std::size_t>(m.body_a)];
+      f.b = body_dof_[static_cast<std::size_t>(m.body_b)];
+      f.cos = std::cos(m.centre_angle_rad);
+      f.sin = std::sin(m.centre_angle_rad);
+      f.sense = sense[static_cast<std::size_t>(f.a)];
+      // The two-gear planar model's frame itself: its arithmetic, bit for bit.
+      f.aligned = m.centre_angle_rad == 0.0 && f.sense == 1;
+      if (m.line_offset_m != 0.0) {
+        f.offset_a = m.line_offset_m / base_radius(m.pair.gears, Gear::one);
+        f.offset_b = m.line_offset_m / base_radius(m.pair.gears, Gear::two);
+      }
+      frames_.push_back(f);
+      // The viscous damper's m_e: the two bodies' as they turn in the train.
+      const double mass = effective_mass_kg(
+          base_radius(m.pair.gears, Gear::one), inertia_[static_cast<std::size_t>(f.a)],
+          base_radius(m.pair.gears, Gear::two), inertia_[static_cast<std::size_t>(f.b)]);
+      meshes_.emplace_back(m.pair, *tables[k], mass);
+    }
+    for (const TrainShaft& s : train.shafts) {
+      if (s.kind != TrainShaft::Kind::torsional) continue;
+      springs_.push_back({dof_of(s.body_a), dof_of(s.body_b), s.stiffness_n_m_per_rad});
+    }
+  }
+
+  int dofs() const { return dofs_; }
+  int dof_of(int body) const { return body_dof_[static_cast<std::size_t>(body)]; }
+  bool translating(int dof) const { return translating_[static_cast<std::size_t>(dof)]; }
+  std::size_t mesh_count() const { return meshes_.size(); }
+  const MeshLine& mesh(std::size_t k) const { return meshes_[k]; }
+  bool driven() const { return driven_; }
+
+  // The mesh's view of y: its bodies' turning (shifted by its line offset)
+  // and its centre a less centre b in the frame of its line of centres.
+  PlanarMeshMotion motion(std::size_t k, const StateType& y) const {
+    const Frame& f = frames_[k];
+    const auto a = static_cast<std::size_t>(f.a);
+    const auto b = static_cast<std::size_t>(f.b);
+    PlanarMeshMotion q;
+    q.theta_a_rad = y[L::theta(a)] + f.offset_a;
+    q.theta_b_rad = y[L::theta(b)] + f.offset_b;
+    q.w_a_rad_per_s = y[L::w(a)];
+    q.w_b_rad_per_s = y[L::w(b)];
+    const double ux = y[L::x(a)] - y[L::x(b)];
+    const double uy = y[L::y(a)] - y[L::y(b)];
+    const double vx = y[L::vx(a)] - y[L::vx(b)];
+    const double vy = y[L::vy(a)] - y[L::vy(b)];
+    if (f.aligned) {
+      q.dx_m = ux;
+      q.dy_m = uy;
+      q.dvx_m_s = vx;
+      q.dvy_m_s = vy;
+    } else {
+      q.dx_m = f.cos * ux + f.sin * uy;
+      q.dy_m = f.sense * (f.cos * uy - f.sin * ux);
+      q.dvx_m_s = f.cos * vx + f.sin * vy;
+      q.dvy_m_s = f.sense * (f.cos * vy - f.sin * vx);
+    }
+    return q;
+  }
+
+  // A prescribed-speed body's closed form written into y at time t.
+  void impose_driver(double t, StateType& y) const {
+    if (!driven_) return;
+    for (int d = 0; d < dofs_; ++d) {
+      const int body = driver_[static_cast<std::size_t>(d)];
+      if (body < 0) continue;
+      const TrainBody& b = train_.bodies[static_cast<std::size_t>(body)];
+      const DriverMotion m = driver_motion(b.torque, b.theta_rad, t);
+      y[L::theta(static_cast<std::size_t>(d))] = m.theta_rad;
+      y[L::w(static_cast<std::size_t>(d))] = m.speed_rad_per_s;
+    }
+  }
+
+  // The equations of motion in the mode: the bearings' forces on the
+  // centres, then each mesh's two lines and its damper (in the order the
+  // two-gear planar system adds them), the torsional shafts, the torques.
+  void rhs(double t, const StateType& y, const ModeType& mode, const MemoryType& memory,
+           StateType& dy, ForcesType* forces = nullptr) const {
+    std::array<double, L::kDofs> fx{};
+    std::array<double, L::kDofs> fy{};
+    std::array<double, L::kDofs> moment{};
+    double bearing_power = 0.0;
+    for (std::size_t d = 0; d < static_cast<std::size_t>(dofs_); ++d) {
+      if (!translating_[d]) continue;
+      const double vx = y[L::vx(d)];
+      const double vy = y[L::vy(d)];
+      fx[d] = -kx_[d] * y[L::x(d)] - cx_[d] * vx;
+      fy[d] = -ky_[d] * y[L::y(d)] - cy_[d] * vy;
+      bearing_power += cx_[d] * vx * vx;
+      bearing_power += cy_[d] * vy * vy;
+    }
+    MeshPowers powers;
+    std::array<MeshPowers, L::kMeshes> own;
+    for (std::size_t k = 0; k < meshes_.size(); ++k) {
+      const MeshPowers before = powers;
+      const Frame& f = frames_[k];
+      const auto a = static_cast<std::size_t>(f.a);
+      const auto b = static_cast<std::size_t>(f.b);
+      const PlanarMeshMotion q = motion(k, y);
+      PlanarLoads loads;
+      loads.moment_a = moment[a];
+      loads.moment_b = moment[b];
+      if (f.aligned) {
+        loads.force_a = {fx[a], fy[a]};
+        loads.force_b = {fx[b], fy[b]};
+      }
+      ContactTotals totals;
+      for (std::size_t i = 0; i < 2; ++i) {
+        meshes_[k].add_line_forces(q, mode.line[2 * k + i], memory[2 * k + i], loads, powers,
+                                   forces != nullptr ? &totals : nullptr);
+        if (forces != nullptr) {
+          forces->normal_n[2 * k + i] = totals.normal_force_n;
+          forces->mesh_energy_j[2 * k + i] = totals.elastic_energy_j;
+          totals.normal_force_n = 0.0;
+          totals.elastic_energy_j = 0.0;
+        }
+      }
+      if (forces != nullptr) forces->friction_n[k] = totals.friction_force_n;
+      meshes_[k].add_damper(q, loads, powers);
+      moment[a] = loads.moment_a;
+      moment[b] = loads.moment_b;
+      if (f.aligned) {
+        fx[a] = loads.force_a[0];
+        fy[a] = loads.force_a[1];
+        fx[b] = loads.force_b[0];
+        fy[b] = loads.force_b[1];
+      } else {
+        // The mesh frame's (x, y) in the fixed frame: e_x = (cos, sin),
+        // e_y = sense (-sin, cos).
+        const auto add = [&](std::size_t d, const std::array<double, 2>& force) {
+          fx[d] += f.cos * force[0] - f.sense * f.sin * force[1];
+          fy[d] += f.sin * force[0] + f.sense * f.cos * force[1];
+        };
+        add(a, loads.force_a);
+        add(b, loads.force_b);
+      }
+      own[k].damping_w = powers.damping_w - before.damping_w;
+      own[k].friction_w = powers.friction_w - before.friction_w;
+      own[k].mesh_damping_w = powers.mesh_damping_w - before.mesh_damping_w;
+    }
+    for (const Spring& s : springs_) {
+      // The shaft twisted by theta_a - theta_b pulls b forward and a back.
+      const auto a = static_cast<std::size_t>(s.a);
+      const auto b = static_cast<std::size_t>(s.b);
+      const double torque_on_b = s.stiffness * (y[L::theta(a)] - y[L::theta(b)]);
+      moment[a] -= torque_on_b;
+      moment[b] += torque_on_b;
+    }
+    dy = StateType{};
+    double work = 0.0;
+    for (std::size_t d = 0; d < static_cast<std::size_t>(dofs_); ++d) {
+      double torque = 0.0;
+      bool seen = false;
+      for (std::size_t i = 0; i < train_.bodies.size(); ++i) {
+        if (static_cast<std::size_t>(body_dof_[i]) != d) continue;
+        const double value = body_torque(i, t, y[L::w(d)]);
+        torque = seen ? torque + value : value;
+        seen = true;
+      }
+      double acceleration = 0.0;
+      if (driver_[d] >= 0) {
+        // The driver applies the torque that gives its body the prescribed
+        // acceleration against the rest; its work is the torque work.
+        const TrainBody& b = train_.bodies[static_cast<std::size_t>(driver_[d])];
+        acceleration = driver_motion(b.torque, b.theta_rad, t).acceleration_rad_per_s2;
+        torque = inertia_[d] * acceleration - moment[d];
+      }
+      const double w = y[L::w(d)];
+      work = d == 0 ? torque * w : work + torque * w;
+      dy[L::theta(d)] = w;
+      dy[L::w(d)] = driver_[d] >= 0 ? acceleration : (torque + moment[d]) * inverse_inertia_[d];
+      if (!translating_[d]) continue;
+      dy[L::x(d)] = y[L::vx(d)];
+      dy[L::y(d)] = y[L::vy(d)];
+      dy[L::vx(d)] = fx[d] * inverse_mass_[d];
+      dy[L::vy(d)] = fy[d] * inverse_mass_[d];
+    }
+    dy[L::kWork] = work;
+    dy[L::kHertzLoss] = powers.damping_w;
+    dy[L::kSlidingLoss] = powers.friction_w;
+    dy[L::kParametric] = powers.parametric_w;
+    dy[L::kBearingLoss] = bearing_power;
+    dy[L::kMeshDamperLoss] = powers.mesh_damping_w;
+    for (std::size_t k = 0; k < meshes_.size(); ++k) {
+      dy[L::mesh_loss(k, 0)] = own[k].damping_w;
+      dy[L::mesh_loss(k, 1)] = own[k].friction_w;
+      dy[L::mesh_loss(k, 2)] = own[k].mesh_damping_w;
+    }
+  }
+
+  int event_values(const StateType& y, const ModeType& mode, const MemoryType& memory,
+                   EventsType& g) const {
+    int n = 0;
+    for (std::size_t k = 0; k < meshes_.size(); ++k) {
+      const PlanarMeshMotion q = motion(k, y);
+      for (std::size_t i = 0; i < 2; ++i) {
+        n += meshes_[k].line_event_values(kLines[i], q, mode.line[2 * k + i], memory[2 * k + i],
+                                          g.data() + n);
+      }
+    }
+    return n;
+  }
+  bool mode_holds(const StateType& y, const ModeType& mode, const MemoryType& memory) const {
+    EventsType g;
+    const int n = event_values(y, mode, memory, g);
+    for (int i = 0; i < n; ++i) {
+      if (g[static_cast<std::size_t>(i)] < 0.0) return false;
+    }
+    return true;
+  }
+
+  // The force the bearings of degree of freedom d exert on its centre, -k u - c u'.
+  std::array<double, 2> bearing_force(std::size_t d, const StateType& y) const {
+    if (!translating_[d]) return {0.0, 0.0};
+    return {-kx_[d] * y[L::x(d)] - cx_[d] * y[L::vx(d)],
+            -ky_[d] * y[L::y(d)] - cy_[d] * y[L::vy(d)]};
+  }
+  double bearing_energy(const StateType& y) const {
+    double e = 0.0;
+    for (std::size_t d = 0; d < static_cast<std::size_t>(dofs_); ++d) {
+      if (!translating_[d]) continue;
+      e += kx_[d] * y[L::x(d)] * y[L::x(d)];
+      e += ky_[d] * y[L::y(d)] * y[L::y(d)];
+    }
+    return 0.5 * e;
+  }
+  double shaft_energy(const StateType& y) const {
+    double e = 0.0;
+    for (const Spring& s : springs_) {
+      const double twist =
+          y[L::theta(static_cast<std::size_t>(s.a))] - y[L::theta(static_cast<std::size_t>(s.b))];
+      e += 0.5 * s.stiffness * twist * twist;
+    }
+    return e;
+  }
+  double kinetic_energy(const StateType& y) const {
+    double e = 0.0;
+    for (std::size_t d = 0; d < static_cast<std::size_t>(dofs_); ++d) {
+      if (translating_[d]) {
+        const double vx = y[L::vx(d)];
+        const double vy = y[L::vy(d)];
+        e += mass_[d] * (vx * vx + vy * vy);
+      }
+      e += inertia_[d] * y[L::w(d)] * y[L::w(d)];
+    }
+    return 0.5 * e;
+  }
+
+ private:
+  struct Frame {
+    int a = 0;
+    int b = 1;
+    double cos = 1.0;
+    double sin = 0.0;
+    int sense = 1;
+    bool aligned = true;
+    double offset_a = 0.0;
+    double offset_b = 0.0;
+  };
+  struct Spring {
+    int a;
+    int b;
+    double stiffness;
+  };
+  // Body i's applied torque at t with its degree of freedom's speed w; 0 for
+  // a kinematic driver (rhs sets it).
+  double body_torque(std::size_t i, double t, double w) const {
+    const Torque& torque = train_.bodies[i].torque;
+    switch (torque.kind) {
+      case Torque::Kind::constant:
+        return torque.constant_n_m;
+      case Torque::Kind::prescribed_speed:
+        return 0.0;
+      case Torque::Kind::drag:
+        return drag_torque_n_m(torque, w);
+      case Torque::Kind::induction_motor:
+        return induction_motor_torque_n_m(torque, w);
+      default:
+        return torque_at(torque, t);
+    }
+  }
+
+  const GearTrain& train_;
+  std::vector<int> body_dof_;
+  int dofs_ = 0;
+  std::array<double, L::kDofs> inertia_{};
+  std::array<double, L::kDofs> inverse_inertia_{};
+  std::array<bool, L::kDofs> translating_{};
+  std::array<double, L::kDofs> mass_{};
+  std::array<double, L::kDofs> inverse_mass_{};
+  std::array<double, L::kDofs> kx_{}, ky_{}, cx_{}, cy_{};
+  std::array<int, L::kDofs> driver_{};
+  bool driven_ = false;
+  std::vector<MeshLine> meshes_;
+  std::vector<Frame> frames_;
+  std::vector<Spring> springs_;
+};
+
+// The planar train's run: the books of run_fixed_grid as the two-gear planar
+// run keeps them (planar.cpp), for each mesh's two lines.
+template <class L>
+class PlanarTrainRun {
+ public:
+  using System = PlanarTrainSystem<L>;
+  using State = typename System::StateType;
+  using ModeSet = typename System::ModeType;
+  using Memory = typename System::MemoryType;
+  using Forces = typename System::ForcesType;
+  static constexpr bool kCountsCutStep = true;
+
+  PlanarTrainRun(const GearTrain& train, const std::vector<const StiffnessTable*>& tables,
+                 const RunControl& control)
+      : train_(train),
+        control_(control),
+        system_(train, tables),
+        stall_(train.integrator.step_s, least_smoothing(train)),
+        impacts_(train.meshes.size()),
+        sensor_cos_(std::cos(train.sensor_angle_rad)),
+        sensor_sin_(std::sin(train.sensor_angle_rad)) {
+    SimulationSummary& s = result_.summary;
+    s.planar = PlanarEnergies{};
+    s.step_s = train.integrator.step_s;
+    result_.meshes.resize(train.meshes.size());
+    for (const TrainMesh& m : train.meshes) {
+      half_base_pitch_m_.push_back(0.5 * base_pitch(m.pair.gears));
+    }
+    for (std::size_t i = 0; i < train.bodies.size(); ++i) {
+      const auto d = static_cast<std::size_t>(system_.dof_of(static_cast<int>(i)));
+      y_[L::theta(d)] = train.bodies[i].theta_rad;
+      y_[L::w(d)] = train.bodies[i].w_rad_per_s;
+    }
+    system_.impose_driver(0.0, y_);
+    classify(0.0);
+    PlanarEnergies& p = *s.planar;
+    const double kinetic0 = system_.kinetic_energy(y_);
+    const double mesh0 = mesh_energy(y_);
+    s.kinetic_energy_initial_j = kinetic0;
+    s.stored_energy_initial_j = mesh0;
+    p.bearing_energy_initial_j = system_.bearing_energy(y_);
+    p.shaft_energy_initial_j = system_.shaft_energy(y_);
+    energy0_ = kinetic0 + mesh0 + p.bearing_energy_initial_j + p.shaft_energy_initial_j;
+    if (records()) record(0.0);
+    system_.rhs(0.0, y_, mode_, memory_, k1_, &at_start_);
+    s.rhs_evaluations += 1;
+  }
+
+  const System& system() const { return system_; }
+  State& y() { return y_; }
+  const ModeSet& mode() const { return mode_; }
+  const Memory& damping() const { return memory_; }
+  long long& steps() { return result_.summary.steps; }
+  long long& rhs_evaluations() { return result_.summary.rhs_evaluations; }
+  double start_time() const { return 0.0; }
+  long long grid_steps() const {
+    return static_cast<long long>(
+        std::ceil(train_.integrator.end_time_s / train_.integrator.step_s - 1e-9));
+  }
+  bool wants_dense() const { return false; }
+  bool records() const { return control_.keep_series; }
+  bool sampling() const { return false; }
+  const State& first_stage(double) const { return k1_; }
+  template <typename StateAt>
+  void emit_samples(double, const State&, const ModeSet&, StateAt) {}
+  template <typename Dense>
+  void observe_step(double, const State&, double, const State&, const Dense&) {}
+  void check_finite(double t, const State& y) const {
+    check_finite_state(t, result_.summary.steps, y);
+  }
+  void poll_stop(double t) const { poll_stop_request(control_, result_.summary.steps, t); }
+
+  // The mode changed at (t, y_): each line classified again; the stored
+  // energy before, for the jump's work.
+  void change_mode(double t) {
+    ++result_.summary.events;
+    before_ = mesh_energy(y_);
+    classify(t);
+    event_ = true;
+  }
+
+  // As the planar run's: the friction signs per stage while a contact sticks.
+  bool check_progress(double t_from, double t_to, bool event) {
+    const bool sticks = stall_.after_step(event, t_from, t_to,
+                                          [&] { return where(t_from, result_.summary.steps); });
+    const std::size_t lines = 2 * system_.mesh_count();
+    stepped_per_stage_ = !event && mode_.line[0].slip_per_stage;
+    if (stepped_per_stage_) {
+      bool sticking = false;
+      for (std::size_t i = 0; i < lines; ++i) {
+        Mode& m = mode_.line[i];
+        const std::array<double, kMaxPairs> slip = m.slip;
+        system_.mesh(i / 2).classify_forces(system_.motion(i / 2, y_), memory_[i], m);
+        sticking = sticking || slip != m.slip;
+      }
+      for (std::size_t i = 0; i < lines; ++i) mode_.line[i].slip_per_stage = sticking;
+    }
+    if (sticks) {
+      for (std::size_t i = 0; i < lines; ++i) mode_.line[i].slip_per_stage = true;
+    }
+    return stepped_per_stage_ || sticks;
+  }
+
+  // After an accepted step ending at t: the next step's first stage, the
+  // jump's work at an event, the largest penetrations and the ledger.
+  void book_keep(double t) {
+    SimulationSummary& s = result_.summary;
+    at_start_ = Forces{};
+    system_.rhs(t, y_, mode_, memory_, k1_, &at_start_);
+    s.rhs_evaluations += 1;
+    double mesh = 0.0;
+    for (std::size_t i = 0; i < 2 * system_.mesh_count(); ++i) mesh += at_start_.mesh_energy_j[i];
+    // A pair that entered or left takes or releases its stored energy: work
+    // of the time-varying stiffness, booked at the event.
+    if (event_) jump_work_ += mesh - before_;
+    event_ = false;
+    stepped_per_stage_ = false;
+    ElasticEnergy terms;
+    for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
+      const MeshLine& line = system_.mesh(k);
+      const PlanarMeshMotion q = system_.motion(k, y_);
+      const double penetration =
+          std::max(line.contact_value(Region::n1, q), line.contact_value(Region::n2, q));
+      s.max_penetration_m = std::max(s.max_penetration_m, penetration);
+      TrainMeshSummary& own = result_.meshes[k];
+      own.max_penetration_m = std::max(own.max_penetration_m, penetration);
+      if (own.max_penetration_m > half_base_pitch_m_[k]) {
+        throw SimulationError("the teeth of mesh " + train_.meshes[k].name + " overlap by " +
+                              format_number(own.max_penetration_m) +
+                              " m on the line of action at " + where(t, s.steps) +
+                              ", more than half a base pitch (" +
+                              format_number(half_base_pitch_m_[k]) +
+                              " m): the model's contact on the line of action no longer holds");
+      }
+      for (std::size_t i = 0; i < 2; ++i) line.add_stored_energy(q, mode_.line[2 * k + i], terms);
+    }
+    for (std::size_t i = 0; i < kTermCount; ++i) {
+      s.energy_max_j[i] = std::max(s.energy_max_j[i], terms.j[i]);
+    }
+    const double energy =
+        system_.kinetic_energy(y_) + mesh + system_.bearing_energy(y_) + system_.shaft_energy(y_);
+    book_ledger_residual(
+        energy, energy0_, y_[L::kWork],
+        {y_[L::kHertzLoss], y_[L::kSlidingLoss], y_[L::kBearingLoss], 0.0, y_[L::kMeshDamperLoss]},
+        y_[L::kParametric], jump_work_, s);
+  }
+
+  void record(double t) { record(t, y_, mode_); }
+  void record(double t, const State& y, const ModeSet& mode) {
+    State dy{};
+    Forces f;
+    system_.rhs(t, y, mode, memory_, dy, &f);
+    TrainRow row;
+    row.t_s = t;
+    for (std::size_t i = 0; i < train_.bodies.size(); ++i) {
+      const auto d = static_cast<std::size_t>(system_.dof_of(static_cast<int>(i)));
+      row.theta_rad.push_back(y[L::theta(d)]);
+      row.w_rad_per_s.push_back(y[L::w(d)]);
+      const std::array<double, 2> bearing = system_.bearing_force(d, y);
+      row.centres.push_back(
+          {y[L::x(d)], y[L::y(d)], y[L::vx(d)], y[L::vy(d)], bearing[0], bearing[1]});
+    }
+    for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
+      const MeshLine& line = system_.mesh(k);
+      const PlanarMeshMotion q = system_.motion(k, y);
+      // As the two-gear planar row: the drive line's s_d, the larger
+      // penetration of a pair, the side in contact (the drive side when both are).
+      const double dd = line.contact_value(Region::n1, q);
+      const double dc = line.contact_value(Region::n2, q);
+      const Mode& drive = mode.line[2 * k];
+      const Mode& coast = mode.line[2 * k + 1];
+      const bool on_drive = drive.region != Region::free;
+      const bool on_coast = coast.region != Region::free;
+      row.meshes.push_back({line.delta(Region::n1, q) + train_.meshes[k].pair.gears.backlash_m,
+                            std::max(dd, dc), on_drive ? 1 : (on_coast ? -1 : 0),
+                            on_drive ? drive.count : (on_coast ? coast.count : 0),
+                            f.normal_n[2 * k] + f.normal_n[2 * k + 1], f.friction_n[k]});
+    }
+    if (train_.sensor_body >= 0) {
+      const auto d = static_cast<std::size_t>(system_.dof_of(train_.sensor_body));
+      row.sensor_acceleration_m_per_s2 = dy[L::vx(d)] * sensor_cos_ + dy[L::vy(d)] * sensor_sin_;
+    }
+    result_.series.push_back(std::move(row));
+  }
+
+  TrainResult finish(double t, const char* integrator) {
+    SimulationSummary& s = result_.summary;
+    PlanarEnergies& p = *s.planar;
+    s.integrator = integrator;
+    s.end_time_s = t;
+    book_ledger_totals(system_.kinetic_energy(y_), mesh_energy(y_), y_[L::kWork], y_[L::kHertzLoss],
+                       y_[L::kSlidingLoss], y_[L::kMeshDamperLoss], y_[L::kParametric], jump_work_,
+                       s);
+    s.mesh_damper = std::any_of(train_.meshes.begin(), train_.meshes.end(), [](const TrainMesh& m) {
+      return m.pair.model.mesh_damping_ratio > 0.0;
+    });
+    p.bearing_energy_final_j = system_.bearing_energy(y_);
+    p.bearing_damping_loss_j = y_[L::kBearingLoss];
+    p.shaft_energy_final_j = system_.shaft_energy(y_);
+    s.final_w1_rad_per_s = y_[L::w(static_cast<std::size_t>(system_.dof_of(0)))];
+    s.final_w2_rad_per_s = y_[L::w(static_cast<std::size_t>(system_.dof_of(1)))];
+    for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
+      TrainMeshSummary& mesh = result_.meshes[k];
+      mesh.damping_loss_j = y_[L::mesh_loss(k, 0)];
+      mesh.friction_loss_j = y_[L::mesh_loss(k, 1)];
+      mesh.mesh_damping_loss_j = y_[L::mesh_loss(k, 2)];
+      mesh.impacts = static_cast<int>(impacts_[k].records().size());
+      result_.impacts.push_back(impacts_[k].take());
+    }
+    result_.bodies.resize(train_.bodies.size());
+    for (std::size_t i = 0; i < train_.bodies.size(); ++i) {
+      result_.bodies[i].final_w_rad_per_s =
+          y_[L::w(static_cast<std::size_t>(system_.dof_of(static_cast<int>(i))))];
+    }
+    return std::move(result_);
+  }
+
+ private:
+  static double least_smoothing(const GearTrain& train) {
+    double least = train.meshes.front().pair.model.friction_smoothing_speed_m_s;
+    for (const TrainMesh& m : train.meshes) {
+      least = std::min(least, m.pair.model.friction_smoothing_speed_m_s);
+    }
+    return least;
+  }
+
+  // The meshes' stored energy at `state` in the run's modes, line by line.
+  double mesh_energy(const State& state) const {
+    double e = 0.0;
+    for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
+      const PlanarMeshMotion q = system_.motion(k, state);
+      for (std::size_t i = 0; i < 2; ++i) {
+        e += system_.mesh(k).elastic_energy_j(q, mode_.line[2 * k + i]);
+      }
+    }
+    return e;
+  }
+
+  // The mode of y_ at t: each line's contact, pairs and parts; an impact
+  // where a line's contact begins (its damping memory then set), its end
+  // where it ends; then the forces' signs.
+  void classify(double t) {
+    for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
+      const MeshLine& line = system_.mesh(k);
+      const PlanarMeshMotion q = system_.motion(k, y_);
+      for (std::size_t i = 0; i < 2; ++i) {
+        const Region side = kLines[i];
+        Mode& m = mode_.line[2 * k + i];
+        const bool before = m.region != Region::free;
+        m = line.classify_line(side, q);
+        const bool now = m.region != Region::free;
+        if (now && !before) {
+          const MeshLine::Onset onset = line.damping_at_onset(q, m);
+          memory_[2 * k + i] = onset.damping;
+          impacts_[k].begin(side, t, onset.impact_speed_m_s, onset.restitution, result_.summary);
+        } else if (!now && before) {
+          impacts_[k].end(side, t, -line_sign(side) * line.s_rate(side, q));
+        }
+        line.classify_forces(q, memory_[2 * k + i], m);
+      }
+    }
+  }
+
+  const GearTrain& train_;
+  const RunControl& control_;
+  const System system_;
+  StallWatch stall_;
+  std::vector<ImpactBook> impacts_;
+  std::vector<double> half_base_pitch_m_;
+  State y_{};
+  State k1_{};
+  Forces at_start_;
+  ModeSet mode_{};
+  Memory memory_{};
+  TrainResult result_;
+  double energy0_ = 0.0;
+  double jump_work_ = 0.0;
+  bool event_ = false;
+  double before_ = 0.0;
+  bool stepped_per_stage_ = false;
+  double sensor_cos_;
+  double sensor_sin_;
+};
+
+template <class L>
+TrainResult run_layout(const GearTrain& train, const std::vector<const StiffnessTable*>& tables,
+                       const RunControl& control) {
+  PlanarTrainRun<L> run(train, tables, control);
+  FixedStepper<PlanarTrainSystem<L>> stepper(run.system(), train.integrator.kind);
+  const double t = run_fixed_grid(run, stepper, train.integrator);
+  return run.finish(t, name_of(kIntegratorKinds, train.integrator.kind).c_str());
+}
+
+void check_bearing_value(const std::string& field, double value, bool positive) {
+  if (!std::isfinite(value) || value < 0.0 || (positive && value == 0.0)) {
+    throw InputError(field, value, positive ? "a finite value > 0" : "a finite value >= 0");
+  }
+}
+
+}  // namespace
+
+bool has_planar_bodies(const GearTrain& train) {
+  return std::any_of(train.bodies.begin(), train.bodies.end(),
+                     [](const TrainBody& b) { return b.bearing.has_value(); });
+}
+
+void validate_planar_train(const GearTrain& train) {
+  const std::vector<int> dof = train_degrees_of_freedom(train);
+  const int dofs = count_dofs(dof);
+  std::vector<int> owner(static_cast<std::size_t>(dofs), -1);
+  std::string named;  // a body with bearings, for the refusals below
+  for (std::size_t i = 0; i < train.bodies.size(); ++i) {
+    const TrainBody& b = train.bodies[i];
+    const std::string prefix = "bodies." + b.name + ".";
+    if (b.held) {
+      throw InputError(prefix + "held", "true",
+                       "false in a train with bodies on elastic bearings (not modelled yet)");
+    }
+    if (b.torque.kind == Torque::Kind::speed_controlled) {
+      throw InputError(prefix + "torque.kind", "speed-controlled",
+                       "a torque other than speed-controlled in a train with bodies on elastic "
+                       "bearings (not modelled yet)");
+    }
+    if (!b.bearing) continue;
+    if (named.empty()) named = b.name;
+    const GearBearing& g = *b.bearing;
+    const std::string field = prefix + "bearings.";
+    if (!g.mass_kg) {
+      throw InputError(field + "mass", "absent",
+                       "a finite mass > 0 kg (a train's body has no disc)");
+    }
+    check_bearing_value(field + "mass", *g.mass_kg, true);
+    check_bearing_value(field + "stiffness_x", g.stiffness_x_n_per_m, false);
+    check_bearing_value(field + "stiffness_y", stiffness_y(g), false);
+    check_bearing_value(field + "damping_x", g.damping_x_n_s_per_m, false);
+    check_bearing_value(field + "damping_y", damping_y(g), false);
+    int& first = owner[static_cast<std::size_t>(dof[i])];
+    if (first >= 0) {
+      throw InputError(field + "mass", "bearings on this body",
+                       "bearings on one body of a rigid shaft only: " +
+                           train.bodies[static_cast<std::size_t>(first)].name +
+                           ", on one rigid shaft with it, has them (their centre is one)");
+    }
+    first = static_cast<int>(i);
+  }
+  const std::string why = " in a train with bodies on elastic bearings (bodies." + named +
+                          ".bearings; not modelled yet)";
+  for (const TrainMesh& m : train.meshes) {
+    const std::string prefix = "meshes." + m.name + ".";
+    if (m.carrier >= 0) {
+      throw InputError(prefix + "carrier", std::to_string(m.carrier),
+                       "-1 (fixed axes)" + why + ": a translating body in a carrier's frame");
+    }
+    if (m.kind == TrainMesh::Kind::internal) {
+      throw InputError(prefix + "kind", "internal", "external" + why);
+    }
+    if (runs_by_slices(m)) {
+      throw InputError(prefix + "modifications", "set on a helical mesh",
+                       "none on a helical mesh (its route A slices)" + why);
+    }
+    if (m.pair.model.mesh_force == MeshForce::lagrangian) {
+      throw InputError(prefix + "model.mesh_force", "lagrangian", "newtonian" + why);
+    }
+    if (!std::isfinite(m.centre_angle_rad)) {
+      throw InputError(prefix + "centre_angle", m.centre_angle_rad, "a finite angle");
+    }
+  }
+  if (train.integrator.kind == IntegratorKind::adaptive) {
+    throw InputError("integrator.kind", "adaptive", "rk4 or dopri5" + why);
+  }
+  int conflict = -1;
+  turning_senses(train, dof, dofs, conflict);
+  if (conflict >= 0) {
+    throw InputError("meshes." + train.meshes[static_cast<std::size_t>(conflict)].name + ".body_b",
+                     std::to_string(train.meshes[static_cast<std::size_t>(conflict)].body_b),
+                     "a body whose sense of turning the train's other meshes do not already "
+                     "fix the other way (a loop of external meshes between fixed axes)");
+  }
+  if (train.sensor_body >= 0) {
+    if (static_cast<std::size_t>(train.sensor_body) >= train.bodies.size() ||
+        owner[static_cast<std::size_t>(dof[static_cast<std::size_t>(train.sensor_body)])] < 0) {
+      throw InputError("sensor_body", std::to_string(train.sensor_body),
+                       "a body on elastic bearings (or on one rigid shaft with one)");
+    }
+  }
+  if (!std::isfinite(train.sensor_angle_rad)) {
+    throw InputError("sensor_angle", train.sensor_angle_rad, "a finite angle");
+  }
+}
+
+void check_planar_train_step(const GearTrain& train,
+                             const std::vector<const StiffnessTable*>& tables) {
+  const std::vector<int> dof = train_degrees_of_freedom(train);
+  const int dofs = count_dofs(dof);
+  // The step must resolve the fastest motion the planar train can have: its
+  // largest w^2 is at most the sum over its springs of k a^T M^-1 a (as
+  // planar.cpp bounds the two-gear system's), each mesh counted on both lines
+  // at its stiffest, with each bearing damper's decay rate c/m counted as a
+  // frequency.
+  const std::vector<double> inertia = dof_inertias(train, dof, dofs);
+  const std::vector<int> bearing = bearing_bodies(train, dof, dofs);
+  const auto inverse_mass = [&](int d) {
+    const int body = bearing[static_cast<std::size_t>(d)];
+    return body < 0 ? 0.0 : 1.0 / *train.bodies[static_cast<std::size_t>(body)].bearing->mass_kg;
+  };
+  double w2 = 0.0;
+  for (std::size_t k = 0; k < train.meshes.size(); ++k) {
+    const TrainMesh& m = train.meshes[k];
+    const GearPair& g = m.pair.gears;
+    // The pair's stiffest contact, from its own bound on its discs.
+    const double torsional = largest_resolving_step_s(m.pair, *tables[k]);
+    const double discs = inverse_effective_mass_per_kg(g);
+    const double w_t = 2.0 * pi / (kStepsPerContactPeriod * torsional);
+    const double stiffest = w_t * w_t / discs;
+    const int a = dof[static_cast<std::size_t>(m.body_a)];
+    const int b = dof[static_cast<std::size_t>(m.body_b)];
+    const double own = inverse_effective_mass_per_kg(
+        base_radius(g, Gear::one), inertia[static_cast<std::size_t>(a)], base_radius(g, Gear::two),
+        inertia[static_cast<std::size_t>(b)]);
+    w2 += 2.0 * stiffest * (own + inverse_mass(a) + inverse_mass(b));
+  }
+  for (int d = 0; d < dofs; ++d) {
+    const int body = bearing[static_cast<std::size_t>(d)];
+    if (body < 0) continue;
+    const GearBearing& g = *train.bodies[static_cast<std::size_t>(body)].bearing;
+    const double im = inverse_mass(d);
+    w2 += (g.stiffness_x_n_per_m + stiffness_y(g)) * im;
+    const double cx = g.damping_x_n_s_per_m * im;
+    const double cy = damping_y(g) * im;
+    w2 += cx * cx + cy * cy;
+  }
+  for (const TrainShaft& s : train.shafts) {
+    if (s.kind != TrainShaft::Kind::torsional) continue;
+    w2 += s.stiffness_n_m_per_rad *
+          (1.0 / inertia[static_cast<std::size_t>(dof[static_cast<std::size_t>(s.body_a)])] +
+           1.0 / inertia[static_cast<std::size_t>(dof[static_cast<std::size_t>(s.body_b)])]);
+  }
+  const double steps = steps_per_contact_period(train.integrator.kind);
+  const double largest = 2.0 * pi / std::sqrt(w2) / steps;
+  if (train.integrator.step_s > largest) {
+    throw InputError("integrator.step", format_number(train.integrator.step_s) + " s",
+                     "at most " + format_number(largest) +
+                         " s with bodies on elastic bearings: 1/" + format_number(steps) +
+                         " of the shortest period the planar train can have (its stiffest "
+                         "springs: each mesh on both lines, the bearings, the shafts, and the "
+                         "bearings' dampers' decay rates c/m)");
+  }
+}
+
+TrainResult run_planar_train(const GearTrain& train,
+                             const std::vector<const StiffnessTable*>& tables,
+                             const RunControl& control) {
+  if (train.bodies.size() <= SmallPlanarTrain::kDofs &&
+      train.meshes.size() <= SmallPlanarTrain::kMeshes) {
+    return run_layout<SmallPlanarTrain>(train, tables, control);
+  }
+  return run_layout<LargePlanarTrain>(train, tables, control);
+}
+
+}  // namespace gearimpact
