@@ -200,7 +200,8 @@ std::vector<int> train_degrees_of_freedom(const GearTrain& train);
 // Validates the train (InputError naming the field: bodies.NAME.inertia,
 // meshes.NAME.gears.teeth1, ...) and runs dynamics_train(train); its rows'
 // and summaries' meshes are that train's (a helical mesh by route A: one per
-// slice). Of `control`, keep_series and should_stop are read.
+// slice). Of `control`, keep_series, on_train_row (each row, kept or not) and
+// should_stop are read.
 TrainResult simulate_train(const GearTrain& train, const RunControl& control = {});
 
 }  // namespace gearimpact
