@@ -27,6 +27,7 @@
 #include "gearimpact/stiffness/helical.hpp"
 #include "gearimpact/stiffness/helical_ste.hpp"
 #include "gearimpact/stiffness/table.hpp"
+#include "gearimpact/stiffness/tooth_state.hpp"
 
 using namespace gearimpact;
 
@@ -415,6 +416,12 @@ TEST_CASE("route A in the two-gear run: refusals name the two-gear keys; route B
     c.bearings.gear1.stiffness_x_n_per_m = 1e9;
     c.bearings.gear2.stiffness_x_n_per_m = 1e9;
     CHECK_THROWS_WITH_AS(simulate(c), doctest::Contains("bearings.kind"), InputError);
+  }
+  SUBCASE("a fault, whose band across the face route A's slices do not place") {
+    ToothFault missing;
+    missing.state.kind = ToothKind::missing;
+    c.faults.push_back(missing);
+    CHECK_THROWS_WITH_AS(simulate(c), doctest::Contains("faults[0]"), InputError);
   }
   SUBCASE("friction, as route B refuses it") {
     c.model.friction_coefficient = 0.05;

@@ -34,7 +34,8 @@ bool runs_by_slices(const SimulationCase& c);
 //   (0); each slice's own summary in `slices`. final_state is left empty (resume is refused).
 // Refused before any work, naming the key as a two-gear case file has it: what the two-gear run
 // refuses of a helical pair but its modifications (refuse_helical_run), elastic bearings
-// (bearings.kind: route A runs in the torsional model), a kinematic driver (torque1.kind: the
+// (bearings.kind: route A runs in the torsional model), [[faults]] (faults[0]: a fault's band
+// across the face is not laid out over route A's slices), a kinematic driver (torque1.kind: the
 // rattle summary is a single contact's), the controls the train's loop has no place for
 // (sample_rate, resume, locate_events = false), the series bound (integrator.end_time), and
 // what the train's run refuses of the mesh (docs/helical.md, "A helical mesh in a train":
