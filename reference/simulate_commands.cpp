@@ -19,6 +19,7 @@
 #include "gearimpact/case/schema.hpp"
 #include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/dynamics/sliced_pair.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
@@ -263,8 +264,14 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
   SimulationResult result;
   try {
     o.keys.naming_options([&] {
-      const CheckedRun run = check_run(
-          c, control, from_file ? std::function<void()>(say_warnings) : std::function<void()>());
+      const std::function<void()> fields_checked =
+          from_file ? std::function<void()>(say_warnings) : std::function<void()>();
+      // A helical pair with modifications runs its slices as a train's meshes (route A).
+      if (runs_by_slices(c)) {
+        result = simulate_by_slices(c, control, fields_checked);
+        return;
+      }
+      const CheckedRun run = check_run(c, control, fields_checked);
       result = simulate(run);
     });
   } catch (const InputError& e) {

@@ -14,6 +14,7 @@
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/helical.hpp"
 #include "gearimpact/io/case_file.hpp"
+#include "gearimpact/io/sweep_files.hpp"
 #include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/stiffness/helical.hpp"
 #include "gearimpact/stiffness/helical_ste.hpp"
@@ -347,4 +348,46 @@ TEST_CASE("sweep of the helical example: the program's steady summary is the lib
                    20.0 * *p.w1_mean_rad_s / (2.0 * std::numbers::pi)) <=
           1e-12 * 20.0 * *p.w1_mean_rad_s);
   }
+}
+
+TEST_CASE(
+    "planar sweep of the helical example: the program's files are the library's, byte for byte") {
+  // `gearimpact sweep` on examples/helical_h501_planar.toml (bearings of 1 GN/m), two speeds,
+  // against run_steady_sweep on the same file read by the library and its own writers
+  // (sweep_csv, poincare_csv): the program is glue, so both files must be the same bytes. The
+  // bearings' damping is raised (--set, the same values in the spec) so that the planar
+  // transient dies within a few mesh periods and the two points take well under a second.
+  const Scratch scratch("helical-planar-sweep");
+  const std::filesystem::path example = std::filesystem::path(GEARIMPACT_PAPER_DATA_DIR) / ".." /
+                                        "examples" / "helical_h501_planar.toml";
+  const std::filesystem::path out = scratch.dir / "sweep";
+  const CommandResult r = run_command(
+      cli("sweep " + example.string() +
+          " --vary initial.w1 --from '150 rad/s' --to '160 rad/s' --points 2 --direction up "
+          "--threads 1 --no-plots --set 'bearings.damping_x1=2e4 N*s/m' --set "
+          "'bearings.damping_x2=2e4 N*s/m' --set model.mesh_damping_ratio=0.1 --out " +
+          out.string()));
+  REQUIRE(r.exit_code == 0);
+  const auto text = [](const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream all;
+    all << in.rdbuf();
+    return all.str();
+  };
+  SteadySweepSpec spec;
+  spec.base = read_case_file(example);
+  spec.base.bearings.gear1.damping_x_n_s_per_m = 2e4;
+  spec.base.bearings.gear2.damping_x_n_s_per_m = 2e4;
+  spec.base.model.mesh_damping_ratio = 0.1;
+  spec.vary = "initial.w1";
+  spec.from_si = 150.0;
+  spec.to_si = 160.0;
+  spec.points = 2;
+  spec.directions = {SweepDirection::up};
+  spec.threads = 1;
+  const SteadySweep sweep = run_steady_sweep(spec);
+  REQUIRE(sweep.rows.size() == 2);
+  for (const SweepPointResult& row : sweep.rows) CHECK(row.point.converged);
+  CHECK(text(out / "sweep.csv") == sweep_csv(sweep.rows));
+  CHECK(text(out / "poincare.csv") == poincare_csv(sweep.rows));
 }

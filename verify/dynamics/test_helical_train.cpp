@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -15,15 +16,18 @@
 #include "gearimpact/constants.hpp"
 #include "gearimpact/dynamics/mesh_line.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/dynamics/sliced_pair.hpp"
 #include "gearimpact/dynamics/train.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/helical.hpp"
 #include "gearimpact/geometry/modifications.hpp"
+#include "gearimpact/io/case_file.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "gearimpact/stiffness/helical.hpp"
 #include "gearimpact/stiffness/helical_ste.hpp"
 #include "gearimpact/stiffness/table.hpp"
+#include "gearimpact/stiffness/tooth_state.hpp"
 
 using namespace gearimpact;
 
@@ -309,5 +313,126 @@ TEST_CASE("a helical mesh run by slices refuses what its slices cannot take, nam
     train.meshes[0].pair.model.friction_coefficient = 0.05;
     CHECK_THROWS_WITH_AS(simulate_train(train),
                          doctest::Contains("meshes.mesh.model.friction_coefficient"), InputError);
+  }
+}
+
+TEST_CASE(
+    "a two-gear helical case with modifications runs route A: the train file's run, bit for bit") {
+  // The same crowned, misaligned H501 as a two-gear case file (simulate) and as a train file
+  // (examples/helical_crowned_train.toml, read by the train reader, its own bodies' inertias and
+  // speeds): both must run the same slices through the same loop, so the bodies' angles and
+  // speeds agree to the bit, row by row, and each slice's contacts and losses. 1 ms of the
+  // examples' 5 ms keeps the test short; the wheel starts in the backlash and strikes.
+  const std::filesystem::path examples = std::filesystem::path(GEARIMPACT_PAPER_DATA_DIR) / "..";
+  SimulationCase c = read_case_file(examples / "examples/helical_crowned_run.toml");
+  c.integrator.end_time_s = 1e-3;
+  REQUIRE(runs_by_slices(c));
+  const SimulationResult pair = simulate(c);
+  const GearTrain file = read_train_file(examples / "examples/helical_crowned_train.toml",
+                                         {"integrator.end_time=1 ms"});
+  const TrainResult train = simulate_train(file);
+  const GearTrain sliced = dynamics_train(file);
+  REQUIRE(sliced.meshes.size() == 8);
+  REQUIRE(pair.series.size() == train.series.size());
+  REQUIRE(pair.series.size() > 1000);
+  for (std::size_t i = 0; i < pair.series.size(); ++i) {
+    const SeriesRow& a = pair.series[i];
+    const TrainRow& b = train.series[i];
+    // The series' choices (sliced_pair.hpp): the force summed over the slices, the pairs
+    // counted over them, delta and region the most pressed slice's, s slice 1's.
+    double force = 0.0;
+    int pairs = 0;
+    double deepest = 0.0;
+    int region = 0;
+    for (const TrainMeshRow& m : b.meshes) {
+      force += m.normal_force_n;
+      pairs += m.pairs;
+      if (m.region != 0 && (region == 0 || m.delta_m > deepest)) {
+        deepest = m.delta_m;
+        region = m.region;
+      }
+    }
+    const bool same = a.t_s == b.t_s && a.theta1_rad == b.theta_rad[0] &&
+                      a.theta2_rad == b.theta_rad[1] && a.w1_rad_per_s == b.w_rad_per_s[0] &&
+                      a.w2_rad_per_s == b.w_rad_per_s[1] && a.s_m == b.meshes[0].s_m &&
+                      a.normal_force_n == force && a.pairs == pairs && a.delta_m == deepest &&
+                      a.region == region;
+    if (!same) {
+      INFO("row " << i << " at t = " << a.t_s);
+      REQUIRE(same);
+    }
+  }
+  const SimulationSummary& s = pair.summary;
+  MESSAGE("events " << s.events << ", impacts N1 " << s.impacts_n1 << ", N2 " << s.impacts_n2);
+  CHECK(s.impacts_n1 > 8);  // every slice strikes at least once
+  CHECK(s.steps == train.summary.steps);
+  CHECK(s.events == train.summary.events);
+  CHECK(s.ledger_residual_max_j == train.summary.ledger_residual_max_j);
+  CHECK(s.final_w2_rad_per_s == train.bodies[1].final_w_rad_per_s);
+  // Impacts per slice, and summed (the train's own count of all its meshes together).
+  REQUIRE(s.slices.size() == 8);
+  int n1 = 0;
+  int n2 = 0;
+  for (std::size_t k = 0; k < s.slices.size(); ++k) {
+    const SliceSummary& slice = s.slices[k];
+    CHECK(slice.name == "mesh_slice" + std::to_string(k + 1));
+    CHECK(slice.impacts_n1 + slice.impacts_n2 == train.meshes[k].impacts);
+    CHECK(slice.max_penetration_m == train.meshes[k].max_penetration_m);
+    CHECK(slice.damping_loss_j == train.meshes[k].damping_loss_j);
+    CHECK(slice.mesh_damping_loss_j == train.meshes[k].mesh_damping_loss_j);
+    n1 += slice.impacts_n1;
+    n2 += slice.impacts_n2;
+  }
+  CHECK(n1 == s.impacts_n1);
+  CHECK(n2 == s.impacts_n2);
+  CHECK(pair.impacts.size() == static_cast<std::size_t>(n1 + n2));
+  CHECK(std::is_sorted(
+      pair.impacts.begin(), pair.impacts.end(),
+      [](const ImpactRecord& x, const ImpactRecord& y) { return x.start_s < y.start_s; }));
+}
+
+TEST_CASE("route A in the two-gear run: refusals name the two-gear keys; route B stays") {
+  SimulationCase c = h501_case();
+  // Without modifications: route B, the section's extended pair table (its run unchanged: the
+  // test above it and the program's byte comparison).
+  CHECK_FALSE(runs_by_slices(c));
+  c.integrator.end_time_s = 1e-5;
+  CHECK(simulate(c).summary.slices.empty());
+  c.modifications.gear1.lead.crowning_m = 5e-6;
+  c.model.stiffness.face_slices = 4;
+  REQUIRE(runs_by_slices(c));
+  SUBCASE("tooth errors, named without the train's mesh") {
+    c.modifications.gear2.pitch_m.assign(30, 1e-6);
+    CHECK_THROWS_WITH_AS(simulate(c), doctest::Contains("modifications.pitch_deviations2"),
+                         InputError);
+    try {
+      (void)simulate(c);
+    } catch (const InputError& e) {
+      CHECK(e.field() == "modifications.pitch_deviations2");
+    }
+  }
+  SUBCASE("elastic bearings: route A is torsional") {
+    c.bearings.kind = BearingKind::elastic;
+    c.bearings.gear1.stiffness_x_n_per_m = 1e9;
+    c.bearings.gear2.stiffness_x_n_per_m = 1e9;
+    CHECK_THROWS_WITH_AS(simulate(c), doctest::Contains("bearings.kind"), InputError);
+  }
+  SUBCASE("a fault, whose band across the face route A's slices do not place") {
+    ToothFault missing;
+    missing.state.kind = ToothKind::missing;
+    c.faults.push_back(missing);
+    CHECK_THROWS_WITH_AS(simulate(c), doctest::Contains("faults[0]"), InputError);
+  }
+  SUBCASE("friction, as route B refuses it") {
+    c.model.friction_coefficient = 0.05;
+    CHECK_THROWS_WITH_AS(simulate(c), doctest::Contains("model.friction_coefficient"), InputError);
+  }
+  SUBCASE("samples, which the train's loop does not take") {
+    RunControl control;
+    control.sample_rate_hz = 1e6;
+    CHECK_THROWS_WITH_AS(simulate(c, control), doctest::Contains("sample_rate"), InputError);
+  }
+  SUBCASE("the run pool and check_run still refuse it, pointing to route A") {
+    CHECK_THROWS_WITH_AS(check_run(c), doctest::Contains("route A"), InputError);
   }
 }

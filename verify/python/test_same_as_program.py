@@ -368,6 +368,18 @@ def test_simulate_planar_series_as_the_program_writes_it(cli, tmp_path):
     assert np.max(np.abs(result.series["x2_m"])) > 0.0
 
 
+def test_simulate_helical_pair_with_modifications_by_slices(cli, tmp_path):
+    # A crowned, misaligned helical pair runs by route A (its slices as a train's meshes,
+    # docs/helical.md "Route A in the two-gear run"): Python's simulate passes through the same
+    # library function as the program, so the series and the summary (its slices included) are
+    # the program's to the bit.
+    case_file = Path(os.environ["GEARIMPACT_SOURCE_DIR"]) / "examples" / "helical_crowned_run.toml"
+    result = simulate_both(cli, tmp_path, ["--case-file", case_file, "--t-end", "0.0005"],
+                           case_file, end_time="0.5 ms")
+    assert len(result.summary["slices"]) == result.summary["face_slices"] == 8
+    assert sum(s["impacts_n1"] for s in result.summary["slices"]) == result.summary["impacts_n1"]
+
+
 def test_simulate_helical_planar_series_as_the_program_writes_it(cli, tmp_path):
     # The helical example on elastic bearings: the planar series adds the axial forces and the
     # tilting moments, reported only, in Python as in the program's --out.

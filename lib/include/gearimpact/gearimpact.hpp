@@ -22,6 +22,7 @@
 #include "gearimpact/dynamics/planar_state.hpp"
 #include "gearimpact/dynamics/planetary_train.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/dynamics/sliced_pair.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/dynamics/train.hpp"

@@ -14,6 +14,7 @@
 #include "gearimpact/contact/contact.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/dynamics/planar.hpp"
+#include "gearimpact/dynamics/sliced_pair.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
@@ -444,12 +445,12 @@ void refuse_helical_run(const SimulationCase& c) {
     throw InputError(std::vector<Problem>{refused_problem(
         "modifications",
         "reliefs or tooth errors on a helical pair (gears.helix_angle = " + beta + ")",
-        "not in the two-gear run of a helical pair: a gap that varies along an inclined contact "
-        "line needs the slices as separate contacts (route A of docs/helical.md), which a "
-        "train runs",
+        "not in this run of a helical pair: a gap that varies along an inclined contact "
+        "line needs the slices as separate contacts (route A of docs/helical.md), which only "
+        "`gearimpact simulate` on rigid bearings and `gearimpact train` run",
         "no relief and no tooth error with gears.helix_angle > 0",
-        "run the case file with `gearimpact train` (route A: each slice its own contact), or "
-        "remove the relief and tooth-error keys")});
+        "run the case file with `gearimpact simulate` or `gearimpact train` (route A: each "
+        "slice its own contact), or remove the relief and tooth-error keys")});
   }
   if (c.model.friction_law != FrictionLaw::constant) {
     throw InputError(std::vector<Problem>{refused_problem(
@@ -498,7 +499,13 @@ SimulationResult simulate(const CheckedRun& run) {
   return simulate_checked(run.simulation_case(), run.table(), run.control());
 }
 
+void validate_run_control(const SimulationCase& c, const RunControl& control) {
+  validate_control(c, control);
+}
+
 SimulationResult simulate(const SimulationCase& c, const RunControl& control) {
+  // A helical pair with modifications runs its slices as a train's meshes (route A).
+  if (runs_by_slices(c)) return simulate_by_slices(c, control);
   return simulate(check_run(c, control));
 }
 

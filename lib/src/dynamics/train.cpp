@@ -1023,7 +1023,7 @@ class TrainRun {
         std::ceil(train_.integrator.end_time_s / train_.integrator.step_s * (1.0 - 1e-12)));
   }
   bool wants_dense() const { return false; }
-  bool records() const { return control_.keep_series; }
+  bool records() const { return control_.keep_series || static_cast<bool>(control_.on_train_row); }
   bool sampling() const { return false; }
   const TrainState& first_stage(double t) {
     system_.rhs(t, y_, mode_, damping_, k1_);
@@ -1127,7 +1127,8 @@ class TrainRun {
                             static_cast<int>(m.region), m.count, forces.mesh[k].normal_force_n,
                             forces.mesh[k].friction_force_n});
     }
-    result_.series.push_back(std::move(row));
+    if (control_.on_train_row) control_.on_train_row(row);
+    if (control_.keep_series) result_.series.push_back(std::move(row));
   }
 
   TrainResult finish(double t, const char* integrator) {

@@ -449,6 +449,24 @@ std::string summary_json(const SimulationSummary& s) {
     json_number(out, "tilting_moment1_max_N_m", h.tilting_moment1_max_n_m);
     json_number(out, "tilting_moment2_max_N_m", h.tilting_moment2_max_n_m);
   }
+  if (!s.slices.empty()) {
+    // A helical pair run by route A only, so that other runs' summaries keep their bytes.
+    out += "  \"face_slices\": " + std::to_string(s.slices.size()) + ",\n";
+    out += "  \"slices\": [";
+    for (std::size_t k = 0; k < s.slices.size(); ++k) {
+      const SliceSummary& slice = s.slices[k];
+      out += std::string(k > 0 ? ",\n" : "\n") + "    {\"name\": " + json_string(slice.name) +
+             ", \"impacts_n1\": " + std::to_string(slice.impacts_n1) +
+             ", \"impacts_n2\": " + std::to_string(slice.impacts_n2) +
+             ", \"max_penetration_m\": " + format_data_number(slice.max_penetration_m) +
+             ", \"damping_loss_J\": " + format_data_number(slice.damping_loss_j);
+      if (s.mesh_damper) {
+        out += ", \"mesh_damper_loss_J\": " + format_data_number(slice.mesh_damping_loss_j);
+      }
+      out += "}";
+    }
+    out += "\n  ],\n";
+  }
   out += "  \"steps\": " + std::to_string(s.steps) + ",\n";
   out += "  \"events\": " + std::to_string(s.events) + ",\n";
   out += "  \"rhs_evaluations\": " + std::to_string(s.rhs_evaluations) + "\n";

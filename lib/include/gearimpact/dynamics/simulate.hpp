@@ -153,6 +153,19 @@ struct HelicalThrustMaxima {
   double tilting_moment2_max_n_m = 0.0;
 };
 
+// One slice of a helical pair's face in a two-gear run by route A (sliced_pair.hpp): its name
+// in the train's run (mesh_slice1, ...), the contacts begun on each line (a contact at the start
+// counts), its largest penetration and its losses (the Hertzian damping's and the viscous mesh
+// damper's).
+struct SliceSummary {
+  std::string name;
+  int impacts_n1 = 0;
+  int impacts_n2 = 0;
+  double max_penetration_m = 0.0;
+  double damping_loss_j = 0.0;
+  double mesh_damping_loss_j = 0.0;
+};
+
 struct SimulationSummary {
   std::string case_name;
   std::string integrator;
@@ -233,6 +246,8 @@ struct SimulationSummary {
   std::optional<PlanarEnergies> planar;  // only with [bearings] kind = "elastic"
   // Only for a helical pair on elastic bearings.
   std::optional<HelicalThrustMaxima> helical_thrust;
+  // Only for a helical pair run by route A (simulate_by_slices): each slice's summary.
+  std::vector<SliceSummary> slices;
 };
 
 // What a contact remembers from its onset, (32),(33): with no impact, D keeps
@@ -316,6 +331,8 @@ inline constexpr std::array<NamedValue<SampleKind>, 2> kSampleKinds{{
     {SampleKind::point, "point", "the acceleration at each sample's instant"},
 }};
 
+struct TrainRow;  // dynamics/train.hpp
+
 // Controls that are not part of the physical case.
 struct RunControl {
   bool keep_series = true;
@@ -327,6 +344,8 @@ struct RunControl {
   std::function<void(const SeriesRow&)> on_row;
   // The same for the planar rows of a case with [bearings] kind = "elastic".
   std::function<void(const PlanarRow&)> on_planar_row;
+  // The same for a gear train's rows (simulate_train), whether or not keep_series.
+  std::function<void(const TrainRow&)> on_train_row;
   // The most rows the series (kept or observed) may have, checked before the
   // run against series_rows(); refused with the estimate, naming
   // integrator.end_time. It bounds the samples too (sample_count()), naming
@@ -475,9 +494,14 @@ class CheckedRun {
   RunControl control_;
 };
 
+// The checks of a run's controls against its case (what check_run checks of them): the series
+// bound (naming integrator.end_time), the samples (validate_sampling) and a resumed state.
+void validate_run_control(const SimulationCase& c, const RunControl& control);
+
 // The run of a checked case, with the controls it was checked with.
 SimulationResult simulate(const CheckedRun& run);
-// check_run, then that run: every check once, in that order.
+// check_run, then that run: every check once, in that order. A helical pair with
+// modifications runs by route A instead (simulate_by_slices, dynamics/sliced_pair.hpp).
 SimulationResult simulate(const SimulationCase& c, const RunControl& control = {});
 // Same, with a stiffness table already built for c.gears and c.model.stiffness
 // (checked when the table knows what it was built for: StiffnessTable::built_for).

@@ -242,7 +242,8 @@ std::vector<int> train_degrees_of_freedom(const GearTrain& train);
 // Validates the train (InputError naming the field: bodies.NAME.inertia,
 // meshes.NAME.gears.teeth1, ...) and runs dynamics_train(train); its rows'
 // and summaries' meshes are that train's (a helical mesh by route A: one per
-// slice). Of `control`, keep_series and should_stop are read. With a body on
+// slice). Of `control`, keep_series, on_train_row (each row, kept or not) and
+// should_stop are read. With a body on
 // elastic bearings: the planar train (its refusals and its step bound by
 // name: bodies.NAME.bearings.KEY, integrator.step, ...), its meshes reading
 // model.damping_update = "auto" as the planar model does (frozen), its rows
