@@ -152,8 +152,9 @@ TEST_CASE("mesh-stiffness on a helical pair: both routes over a mesh period; sim
       run_command(cli("mesh-stiffness --summary --case-file " + file.string()));
   REQUIRE(summary.exit_code == 0);
   CHECK(summary.out.find("\"iso_c_gamma_alpha_b_n_m\"") != std::string::npos);
-  // simulate runs it in the torsional model without friction (the run file
-  // beside the pair file), and refuses friction and the planar model by key;
+  // simulate runs it in the torsional model (the run file beside the pair
+  // file), and refuses by key what it cannot take: here a smoothed friction
+  // sign (the face sum of a helical pair's friction is continuous already);
   // --figure is refused, naming the flag.
   const CommandResult runs = run_command(
       cli("simulate --case-file " + (file.parent_path() / "helical_h501_run.toml").string() +
@@ -177,9 +178,11 @@ TEST_CASE("mesh-stiffness on a helical pair: both routes over a mesh period; sim
   const double eps_beta = 23e-3 * std::sin(beta) / (std::numbers::pi * 3.5e-3);
   CHECK(std::abs(printed("eps_beta = ") - eps_beta) <= 1e-14 * eps_beta);
   CHECK(checked.out.find("root crack") == std::string::npos);
-  const CommandResult run = run_command(cli("simulate --case 1 --set 'gears.helix_angle=15 deg'"));
+  const CommandResult run =
+      run_command(cli("simulate --case 1 --set 'gears.helix_angle=15 deg' --set "
+                      "'model.friction_smoothing_speed=1e-3 m/s'"));
   CHECK(run.exit_code != 0);
-  CHECK(run.err.find("model.friction_coefficient") != std::string::npos);
+  CHECK(run.err.find("model.friction_smoothing_speed") != std::string::npos);
   // On elastic bearings (the planar example) the series adds the axial forces and tilting
   // moments, the summary their largest values, and the run warns that they act on nothing.
   const Scratch scratch("helical-planar");
@@ -196,8 +199,8 @@ TEST_CASE("mesh-stiffness on a helical pair: both routes over a mesh period; sim
   CHECK(header.find("coast_penetration_m,axial_force1_N,axial_force2_N,tilting_moment1_N_m,"
                     "tilting_moment2_N_m") != std::string::npos);
   // The steady sweeps take it on elastic bearings (a sweep of it takes seconds: test_helical
-  // checks the planar steady state); what its run refuses they refuse before any work, by the
-  // key: here friction, the first problem named, and nothing written.
+  // checks the planar steady state); what a steady state refuses they refuse before any work,
+  // by the key: here friction (refused for every pair), and nothing written.
   const std::filesystem::path swept_dir = scratch.dir / "sweep";
   const CommandResult swept =
       run_command(cli("sweep " + (file.parent_path() / "helical_h501_planar.toml").string() +

@@ -309,7 +309,7 @@ TEST_CASE("a helical mesh run by slices refuses what its slices cannot take, nam
     CHECK_THROWS_WITH_AS(simulate_train(train), doctest::Contains("meshes.mesh.gears.backlash"),
                          InputError);
   }
-  SUBCASE("friction, as the two-gear helical run refuses it") {
+  SUBCASE("friction, which a train refuses on a helical mesh (the two-gear run takes it)") {
     train.meshes[0].pair.model.friction_coefficient = 0.05;
     CHECK_THROWS_WITH_AS(simulate_train(train),
                          doctest::Contains("meshes.mesh.model.friction_coefficient"), InputError);

@@ -17,6 +17,7 @@
 #include "gearimpact/batch/steady_sweep.hpp"
 #include "gearimpact/case/schema.hpp"
 #include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/contact/contact.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/dynamics/planar.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
@@ -914,9 +915,13 @@ TEST_CASE("dynamics: the ledger closes, pairs enter without a stored-energy jump
 
 TEST_CASE("dynamics: what a helical run refuses, naming the key") {
   SimulationCase c = helical_run(h501_pair(), 50.0, 100.0, 1e-3);
+  // Friction runs under the constant law (section Friction on a helical pair, below); another
+  // law is refused.
   SimulationCase friction = c;
-  friction.model.friction_coefficient = 0.04;
-  check_refused([&] { check_run(friction); }, "model.friction_coefficient", "helical");
+  friction.model.friction_law = FrictionLaw::benedict_kelley;
+  friction.model.benedict_kelley.viscosity_pa_s = 0.05;
+  friction.model.benedict_kelley.roughness_m = 0.5e-6;
+  check_refused([&] { check_run(friction); }, "model.friction_law", "helical");
   SimulationCase wide = c;
   wide.gears.face_width_m = 0.2;  // eps_beta about 4.7
   check_refused([&] { check_run(wide); }, "gears.face_width", "eps_gamma");
@@ -1282,7 +1287,8 @@ TEST_CASE("steady state: a helical pair's refusals name the key, as simulate's")
   spec.to_si = 200.0;
   spec.points = 2;
   spec.threads = 1;
-  check_refused([&] { run_steady_sweep(spec); }, "model.friction_coefficient", "helical");
+  // A helical pair's friction runs in simulate; a steady state refuses friction for every pair.
+  check_refused([&] { run_steady_sweep(spec); }, "model.friction_coefficient", "steady state");
 }
 
 TEST_CASE("planar steady state of H501: stiff bearings approach the torsional one, by eps") {
@@ -1893,4 +1899,191 @@ TEST_CASE("helical faults on elastic bearings: stiff bearings approach the torsi
   CHECK(scaled < 4.0);
   // The faults move the run by more than the bearings do (the check could pass without them).
   CHECK(fault_most > most);
+}
+
+// --- Friction on a helical pair: route B's face sums ----------------------------------------
+
+TEST_CASE("helical friction: the tabled face sums against a by-hand slice sum of spur frictions") {
+  // Each slice j of a pair whose mid-face contact is at X is the spur pair at X_j = X + (y_j -
+  // b/2) tan(beta_b): its load kappa_t(X_j) db delta, its sliding sign that of Vs(X_j) and its
+  // arm X_j (docs/model.md (35)-(38)). The by-hand sum (midpoint rule, N slices, kappa_t from
+  // FaceStiffness of the helical pair, not the section's table FaceFriction reads) against the
+  // tabled primitives split at the sign change. The midpoint rule's error is first order here:
+  // the line ends at the path's ends and the sign jumps inside a slice, each a step of one
+  // slice's load, 1/N of the line's; bound 2/N.
+  const GearPair h = h501_pair();
+  const StiffnessModel model;
+  const FaceStiffness face(h, model, HelicalHertz::projected);
+  const HelicalMesh mesh(h, face);
+  const GearPair swept = swept_transverse_pair(h);
+  const FaceFriction friction(swept, model);
+  const double lp = line_of_action_length(swept);
+  const double tan_bb = std::tan(mesh.base_helix_angle_rad());
+  const double b = h.face_width_m;
+  const double w = b * tan_bb;
+  const double xs = face.start_m();
+  const double xe = face.end_m();
+  CHECK(relative_difference(friction.start_m(), xs) < 1e-14);
+  CHECK(relative_difference(friction.end_m(), xe) < 1e-14);
+  const double x_pitch = pitch_point_position(swept);
+  const int n = 20000;
+  // (w1, w2, the centres' slide): rolling (Vs = 0 at the pitch point), the wheel lagging, a
+  // slide of the centres, and turning backwards.
+  const std::array<std::array<double, 3>, 4> speeds{{{100.0, 100.0 * 20.0 / 30.0, 0.0},
+                                                     {100.0, 60.0, 0.0},
+                                                     {100.0, 100.0 * 20.0 / 30.0, 0.4},
+                                                     {-50.0, -50.0 * 20.0 / 30.0, 0.0}}};
+  const std::array<double, 7> mids{xs - 0.4 * w,      xs + 0.1 * w, x_pitch - 0.3 * w, x_pitch,
+                                   x_pitch + 0.2 * w, xe - 0.2 * w, xe + 0.45 * w};
+  double worst = 0.0;
+  for (const auto& v : speeds) {
+    const double rate = v[0] + v[1];
+    const double offset = sliding_speed(v[0], v[1], 0.0, lp) + v[2];
+    for (const double x : mids) {
+      double load = 0.0;
+      double slip = 0.0;
+      double arm = 0.0;
+      for (int j = 0; j < n; ++j) {
+        const double xj = x + ((j + 0.5) / n - 0.5) * b * tan_bb;
+        if (xj < xs || xj > xe) continue;
+        const double wj = face.kappa(xj) * b / n;
+        const double sign = sliding_speed(v[0], v[1], xj, lp) + v[2] >= 0.0 ? 1.0 : -1.0;
+        load += wj;
+        slip += wj * sign;
+        arm += wj * sign * xj;
+      }
+      const FaceSlip f = friction.slip(x, rate, offset);
+      CAPTURE(x);
+      CAPTURE(rate);
+      CAPTURE(offset);
+      // The face integral of kappa_t dy is that of kappa_t dX' over tan(beta_b): route B's K_pair.
+      CHECK(relative_difference(f.weight_n_per_m / tan_bb, load) < 2.0 / n);
+      CHECK(relative_difference(f.weight_n_per_m / tan_bb, mesh.pair_stiffness_face(x)) < 1e-9);
+      CHECK(std::abs(f.slip - slip / load) < 2.0 / n);
+      CHECK(std::abs(f.arm_m - arm / load) < 2.0 / n * xe);
+      worst =
+          std::max({worst, std::abs(f.slip - slip / load), std::abs(f.arm_m - arm / load) / xe});
+    }
+  }
+  MESSAGE("helical friction: face sums against " << n << " slices, worst " << worst);
+  // A line whose extent lies off the path: the spur pair's sign and arm at the path's end.
+  const FaceSlip off = friction.slip(xe + 0.6 * w, 1.0, -x_pitch);
+  CHECK(off.weight_n_per_m == 0.0);
+  CHECK(off.slip == 1.0);
+  CHECK(off.arm_m == xe);
+}
+
+namespace {
+
+// A helical pair rolling under load from its static deflection (balanced torques, no Hertzian
+// damping), with friction f, and the spur run of its transverse section: the same discs, the
+// section's Ke. With helical_hertz = "face-width" kappa_t b is that Ke, so as W -> 0 route B's
+// K_pair(X) tends to it and the face sums of friction to the spur pair's terms.
+struct NarrowFace {
+  double helical_friction_loss_j;
+  double spur_friction_loss_j;
+  double helical_w1;
+  double spur_w1;
+};
+NarrowFace narrow_face_runs(double beta_rad, double f) {
+  GearPair h = h501_pair();
+  h.helix_angle_rad = beta_rad;
+  const double t1 = 100.0;
+  SimulationCase c = helical_run(h, t1, 200.0, 2.0 * pi_ / (20.0 * 200.0));
+  c.model.stiffness.helical_hertz = HelicalHertz::face_width;
+  c.model.damping_update = DampingUpdate::off;
+  c.model.friction_coefficient = f;
+  // Both torques unbalanced by friction alone: start at the static deflection of the mean K.
+  const GearPair t = transverse_pair(h);
+  SimulationCase spur = c;
+  spur.gears = t;
+  const double k = mean_mesh_stiffness_n_per_m(spur, StiffnessTable(t));
+  c.initial.theta2_rad =
+      -(h.backlash_m + t1 / (base_radius(t, Gear::one) * k)) / base_radius(t, Gear::two);
+  spur.initial = c.initial;
+  const SimulationSummary a = simulate(c).summary;
+  const SimulationSummary s = simulate(spur).summary;
+  return {a.friction_loss_j, s.friction_loss_j, a.final_w1_rad_per_s, s.final_w1_rad_per_s};
+}
+
+}  // namespace
+
+TEST_CASE("helical friction: a narrow face (eps_beta -> 0) tends to the spur run of its section") {
+  // W = b tan(beta_b) shrinks with beta: the helical run's friction loss and final speed tend
+  // to the spur section's at first order in W (a contact line of length W averages the spur
+  // terms over W). Measured: the friction losses 5.1e-3 apart at 2 deg, 5.2e-4 at 0.5 deg; the
+  // final w1 0.39 and 0.13 rad/s apart (of 200 rad/s; an undamped ringing's phase). The check:
+  // for 4 times smaller W the loss's difference falls at least 3 times and the speed's twice.
+  const NarrowFace wide = narrow_face_runs(2.0 * degree, 0.08);
+  const NarrowFace narrow = narrow_face_runs(0.5 * degree, 0.08);
+  const double d_wide =
+      relative_difference(wide.helical_friction_loss_j, wide.spur_friction_loss_j);
+  const double d_narrow =
+      relative_difference(narrow.helical_friction_loss_j, narrow.spur_friction_loss_j);
+  const double v_wide = std::abs(wide.helical_w1 - wide.spur_w1);
+  const double v_narrow = std::abs(narrow.helical_w1 - narrow.spur_w1);
+  MESSAGE("narrow face: friction loss "
+          << wide.helical_friction_loss_j << " / " << wide.spur_friction_loss_j << " J (2 deg), "
+          << narrow.helical_friction_loss_j << " / " << narrow.spur_friction_loss_j
+          << " J (0.5 deg); w1 " << v_wide << ", " << v_narrow << " rad/s apart");
+  CHECK(wide.spur_friction_loss_j > 0.0);
+  CHECK(d_narrow < d_wide / 3.0);
+  CHECK(d_narrow < 1e-2);
+  CHECK(v_narrow < v_wide / 2.0);
+}
+
+TEST_CASE("helical friction: the ledger closes with the friction loss, impacts included") {
+  // H501 struck from the backlash as the ledger test above, now with f = 0.1: the friction
+  // loss is the power f N times the load-weighted mean |Vs| along each line, which the
+  // moments' arms must match for the ledger to close; without it the residual would be the
+  // whole loss.
+  SimulationCase c = helical_run(h501_pair(), 5.0, 200.0, 3.0 * 2.0 * pi_ / (20 * 200.0));
+  c.model.mesh_force = MeshForce::lagrangian;
+  c.model.friction_coefficient = 0.1;
+  c.initial.w1_rad_per_s = 200.0 * (1.0 + 1e-2);
+  c.initial.w2_rad_per_s = 200.0 * c.gears.teeth1 / c.gears.teeth2;
+  const SimulationSummary s = simulate(c).summary;
+  CHECK(s.impacts_n1 >= 1);
+  const double throughput =
+      s.kinetic_energy_initial_j + s.stored_energy_initial_j + std::fabs(s.torque_work_j);
+  SimulationCase fine = c;
+  fine.integrator.step_s = 0.5 * c.integrator.step_s;
+  const SimulationSummary h2 = simulate(fine).summary;
+  MESSAGE("helical friction: friction loss "
+          << s.friction_loss_j << " J, residual " << s.ledger_residual_max_j << " J (h), "
+          << h2.ledger_residual_max_j << " J (h/2) of " << throughput << " J");
+  CHECK(s.friction_loss_j > 1e3 * s.ledger_residual_max_j);
+  // As the frictionless run above: RK4 at h w ~ 0.01 closes to ~1e-8 of the throughput.
+  CHECK(s.ledger_residual_max_j < 1e-7 * throughput);
+  // The same loss at half the step, to the integrator's order.
+  CHECK(relative_difference(h2.friction_loss_j, s.friction_loss_j) < 1e-6);
+}
+
+TEST_CASE("helical friction: refused with faults, a smoothed sign and in a train, by key") {
+  SimulationCase c = helical_run(h501_pair(), 50.0, 100.0, 1e-3);
+  c.model.friction_coefficient = 0.05;
+  SimulationCase faulted = c;
+  faulted.faults = pinion_tooth0(h501_crack(0.5e-3));
+  check_refused([&] { check_run(faulted); }, "model.friction_coefficient", "[[faults]]");
+  SimulationCase smooth = c;
+  smooth.model.friction_smoothing_speed_m_s = 1e-3;
+  check_refused([&] { check_run(smooth); }, "model.friction_smoothing_speed", "continuously");
+  // The run itself goes through.
+  CHECK_NOTHROW(check_run(c));
+}
+
+TEST_CASE("helical friction: on elastic bearings the planar ledger closes with the friction loss") {
+  // The planar model adds the centres' slide to each point's Vs and the friction force to the
+  // centres; its ledger (bearings' energies included) closes only if the loss is the power of
+  // the moments and the centres' forces together.
+  SimulationCase c = planar_helical(h501_pair(), 1e9, 200.0, 100.0, 1e-3);
+  c.model.friction_coefficient = 0.1;
+  const SimulationSummary s = simulate(c).summary;
+  const double throughput =
+      s.kinetic_energy_initial_j + s.stored_energy_initial_j + std::fabs(s.torque_work_j);
+  MESSAGE("helical planar friction: loss " << s.friction_loss_j << " J, residual "
+                                           << s.ledger_residual_max_j << " J of " << throughput
+                                           << " J");
+  CHECK(s.friction_loss_j > 1e3 * s.ledger_residual_max_j);
+  CHECK(s.ledger_residual_max_j < 1e-7 * throughput);
 }

@@ -60,6 +60,10 @@ MeshLine::MeshLine(const SimulationCase& c, const StiffnessTable& table, double 
     kh_ *= g.face_width_m / std::hypot(g.face_width_m, g.face_advance_m);
   }
   swept_ = g.face_advance_m > 0.0;
+  if (swept_ &&
+      (c.model.friction_coefficient != 0.0 || c.model.friction_law != FrictionLaw::constant)) {
+    face_friction_ = std::make_shared<const FaceFriction>(g, c.model.stiffness);
+  }
   read_model_settings(c);
   MeshTeeth teeth = mesh_teeth(c, table, constant_k_);
   teeth_ = std::move(teeth.tables);
@@ -187,9 +191,11 @@ int MeshLine::contact_event_values(const Motion& q, const Mode& m, const Contact
     if (gaps_ && !append_gap_events(m.touching[j], m.zone[j], kinks_, x, dk, g, n)) {
       continue;
     }
-    // A smoothed sign, or one taken per stage, has no switch to locate: the value stays positive.
-    g[n++] =
-        smoothing_speed_ > 0.0 || m.slip_per_stage ? 1.0 : m.slip[j] * pair_sliding(q, x, slide);
+    // A smoothed sign, one taken per stage, or a helical pair's face sum
+    // (continuous through the pitch point) has no switch to locate: the value stays positive.
+    g[n++] = smoothing_speed_ > 0.0 || m.slip_per_stage || face_friction_
+                 ? 1.0
+                 : m.slip[j] * pair_sliding(q, x, slide);
     const double push = push_sign_function(table, m.part[j], x, m.count, d, dk, dk_rate);
     g[n++] = m.clipped[j] ? -push : push;
   }

@@ -453,20 +453,30 @@ void refuse_helical_run(const SimulationCase& c) {
         "slice its own contact), or remove the relief and tooth-error keys")});
   }
   if (c.model.friction_law != FrictionLaw::constant) {
-    throw InputError(std::vector<Problem>{refused_problem(
-        "model.friction_law",
-        "\"" + std::string(name_of(kFrictionLaws, c.model.friction_law)) + "\"",
-        "not with a helical pair (gears.helix_angle = " + beta +
-            "): its dynamics run without friction (docs/helical.md, Dynamics)",
-        "\"constant\" with model.friction_coefficient = 0", "model.friction_law = \"constant\"")});
+    throw InputError(std::vector<Problem>{
+        refused_problem("model.friction_law",
+                        "\"" + std::string(name_of(kFrictionLaws, c.model.friction_law)) + "\"",
+                        "not with a helical pair (gears.helix_angle = " + beta +
+                            "): its friction is summed over the face under the constant law only "
+                            "(docs/helical.md, Friction on a helical pair)",
+                        "\"constant\"", "model.friction_law = \"constant\"")});
   }
-  if (c.model.friction_coefficient != 0.0) {
+  if (c.model.friction_coefficient != 0.0 && !c.faults.empty()) {
     throw InputError(std::vector<Problem>{refused_problem(
         "model.friction_coefficient", format_number(c.model.friction_coefficient),
-        "0 with a helical pair (gears.helix_angle = " + beta +
-            "): friction along its inclined contact lines is not in its dynamics yet "
-            "(docs/helical.md, Dynamics)",
-        "0", "model.friction_coefficient = 0")});
+        "0 with [[faults]] on a helical pair (gears.helix_angle = " + beta +
+            "): the face sum of friction is a healthy face's, and a fault's slices carry "
+            "other loads (docs/helical.md, Friction on a helical pair)",
+        "0", "model.friction_coefficient = 0, or the pair without [[faults]]")});
+  }
+  if (c.model.friction_coefficient != 0.0 && c.model.friction_smoothing_speed_m_s > 0.0) {
+    throw InputError(std::vector<Problem>{
+        refused_problem("model.friction_smoothing_speed",
+                        format_number(c.model.friction_smoothing_speed_m_s) + " m/s",
+                        "0 with a helical pair (gears.helix_angle = " + beta +
+                            "): its friction, summed over the face, already passes the pitch point "
+                            "continuously (docs/helical.md, Friction on a helical pair)",
+                        "0", "model.friction_smoothing_speed = 0")});
   }
   const HelicalGeometry g = helical_geometry(c.gears);
   const double most = static_cast<double>(MeshLayout::capacity - 1);

@@ -464,6 +464,15 @@ void validate_train(const GearTrain& train) {
                        format_number(mesh.pair.gears.helix_angle_rad * 180.0 / pi) + " deg",
                        "0 on a mesh in a carrier's frame: a planetary stage's meshes are spur");
     }
+    if (helical_mesh(mesh) && (mesh.pair.model.friction_coefficient != 0.0 ||
+                               mesh.pair.model.friction_law != FrictionLaw::constant)) {
+      // The two-gear run sums a helical pair's friction over its face; a
+      // train's helical meshes (route B, or route A's slices) are not checked with it.
+      throw InputError(prefix + "model.friction_coefficient",
+                       format_number(mesh.pair.model.friction_coefficient),
+                       "0 under the constant law on a helical mesh of a train: friction on a "
+                       "helical pair runs in the two-gear simulate only");
+    }
     const bool sliced = runs_by_slices(mesh);
     if (sliced) validate_sliced_mesh(prefix, mesh, train.integrator);
     if (carrier_mesh(mesh) && mesh.pair.model.mesh_force == MeshForce::lagrangian) {

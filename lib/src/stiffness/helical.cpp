@@ -459,6 +459,102 @@ HelicalMeshStiffnessCurve helical_mesh_stiffness(const GearPair& pair, const Sti
   return curve;
 }
 
+FaceFriction::FaceFriction(const GearPair& swept, const StiffnessModel& model,
+                           StiffnessTableOptions options) {
+  if (!(swept.face_advance_m > 0.0)) {
+    throw InputError("gears.helix_angle", "0 deg",
+                     "(0, 45] deg for a helical pair's face friction: a spur pair's friction "
+                     "is the spur mesh's");
+  }
+  GearPair section = swept;
+  section.face_advance_m = 0.0;
+  const ContactSegment path = contact_segment(section);
+  start_ = path.start_m;
+  end_ = path.end_m;
+  half_w_ = 0.5 * swept.face_advance_m;
+  face_width_ = swept.face_width_m;
+  const double tan_bb = swept.face_advance_m / swept.face_width_m;
+  cos_base_helix_ = 1.0 / std::sqrt(1.0 + tan_bb * tan_bb);
+  hertz_ = model.helical_hertz;
+  section_.emplace(section, model, options);
+  // Sixteen intervals to a piece of the section's table (equal pieces of the
+  // path): no interval straddles a piece's end, where kappa_t's series
+  // changes, and the cubic Hermite error, h^4 / 384 times the fourth
+  // derivative, stays far below the table's own fit.
+  const int intervals = 16 * section_->pieces();
+  step_ = (end_ - start_) / intervals;
+  const auto count = static_cast<std::size_t>(intervals) + 1;
+  nodes_m_.resize(count);
+  kappa_.resize(count);
+  for (auto& c : integral_) c.assign(count, 0.0);
+  for (std::size_t i = 0; i < count; ++i) {
+    nodes_m_[i] = i + 1 == count ? end_ : start_ + static_cast<double>(i) * step_;
+    kappa_[i] = kappa(nodes_m_[i]);
+  }
+  for (std::size_t i = 0; i + 1 < count; ++i) {
+    integral_[0][i + 1] = integral_[0][i] + Rule::integrate([this](double x) { return kappa(x); },
+                                                            nodes_m_[i], nodes_m_[i + 1]);
+    integral_[1][i + 1] =
+        integral_[1][i] +
+        Rule::integrate([this](double x) { return kappa(x) * x; }, nodes_m_[i], nodes_m_[i + 1]);
+  }
+}
+
+double FaceFriction::kappa(double x_m) const {
+  if (!(x_m >= start_ && x_m <= end_)) return 0.0;
+  Compliances terms;
+  return per_width(*section_, x_m, face_width_, cos_base_helix_, hertz_, terms);
+}
+
+double FaceFriction::primitive(double x_m, int which) const {
+  const double x = std::clamp(x_m, start_, end_);
+  const std::size_t last = nodes_m_.size() - 2;
+  const auto i =
+      std::min(last, static_cast<std::size_t>(std::max(0.0, std::floor((x - start_) / step_))));
+  const double h = nodes_m_[i + 1] - nodes_m_[i];
+  const double t = (x - nodes_m_[i]) / h;
+  const std::vector<double>& c = integral_[static_cast<std::size_t>(which)];
+  // The slopes: C0' = kappa_t, C1' = kappa_t X.
+  const double slope0 = which == 0 ? kappa_[i] : kappa_[i] * nodes_m_[i];
+  const double slope1 = which == 0 ? kappa_[i + 1] : kappa_[i + 1] * nodes_m_[i + 1];
+  const double u = 1.0 - t;
+  return (1.0 + 2.0 * t) * u * u * c[i] + t * u * u * h * slope0 +
+         t * t * (3.0 - 2.0 * t) * c[i + 1] - t * t * u * h * slope1;
+}
+
+FaceSlip FaceFriction::slip(double x_mid_m, double rate_per_s, double offset_m_s) const {
+  const double low = std::max(x_mid_m - half_w_, start_);
+  const double high = std::min(x_mid_m + half_w_, end_);
+  FaceSlip s;
+  const auto spur = [&] {
+    // No extent on the path: the limit of a line shrinking to the path's end.
+    const double x = std::clamp(x_mid_m, start_, end_);
+    s.weight_n_per_m = 0.0;
+    s.slip = rate_per_s * x + offset_m_s >= 0.0 ? 1.0 : -1.0;
+    s.arm_m = s.slip * x;
+    return s;
+  };
+  if (!(high > low)) return spur();
+  const double w0 = weight_primitive(low);
+  const double w1 = weight_primitive(high);
+  s.weight_n_per_m = w1 - w0;
+  if (!(s.weight_n_per_m > 0.0)) return spur();
+  // Vs = rate X' + offset: one sign above `split`, the other below it.
+  double split = low;
+  double above = offset_m_s >= 0.0 ? 1.0 : -1.0;
+  if (rate_per_s != 0.0) {
+    split = std::clamp(-offset_m_s / rate_per_s, low, high);
+    above = rate_per_s > 0.0 ? 1.0 : -1.0;
+  }
+  const double ws = weight_primitive(split);
+  const double m0 = moment_primitive(low);
+  const double ms = moment_primitive(split);
+  const double m1 = moment_primitive(high);
+  s.slip = std::clamp(above * ((w1 - ws) - (ws - w0)) / s.weight_n_per_m, -1.0, 1.0);
+  s.arm_m = std::clamp(above * ((m1 - ms) - (ms - m0)) / s.weight_n_per_m, -high, high);
+  return s;
+}
+
 double face_load_factor_linear_gap(double c, double b, double force, double mismatch) {
   if (!(c > 0.0) || !(b > 0.0) || !(force > 0.0) || !(mismatch >= 0.0) || !std::isfinite(c) ||
       !std::isfinite(b) || !std::isfinite(force) || !std::isfinite(mismatch)) {

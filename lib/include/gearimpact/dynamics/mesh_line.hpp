@@ -31,6 +31,7 @@
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/stiffness/energy.hpp"
+#include "gearimpact/stiffness/helical.hpp"
 #include "gearimpact/stiffness/mesh_tables.hpp"
 #include "gearimpact/stiffness/table.hpp"
 
@@ -429,6 +430,10 @@ class MeshLine {
   // A helical pair's transverse section (GearPair::face_advance_m > 0): its
   // table is cut at its kinks, and its energy split by the terms' shares.
   bool swept_ = false;
+  // A helical pair with friction: the face sums of its pairs' friction
+  // (route B); none otherwise, so that a spur pair runs the code it ran
+  // before, bit for bit.
+  std::shared_ptr<const FaceFriction> face_friction_;
   DampingUpdate damping_update_ = DampingUpdate::each_impact;  // resolved
 };
 
@@ -499,17 +504,39 @@ inline void MeshLine::add_pair_forces(const Motion& q, const Mode& m, const Cont
     const double f_elastic = elastic_force(ke, dk);
     const double g_damping = hertzian_damping_force(damping_factor(d, ke), dk, dk_rate);
     const double n = normal_force(f_elastic, g_damping, m.clipped[j]);
-    const double vs = pair_sliding(q, x, slide);
-    const double f = friction_coefficient(n, vs, entrainment_speed(w1, w2, x, lp_));
-    const double slip = smoothing_speed_ > 0.0 ? std::tanh(vs / smoothing_speed_)
-                        : m.slip_per_stage     ? (vs >= 0.0 ? 1.0 : -1.0)
-                                               : m.slip[j];
-    const double ff = friction_force(m.region, f, n, slip);
-    // (1),(3) for one pair, (43),(45) summed over the pairs the line carries:
-    // on N1 J1 w1' = T1 - [N Rb1 + Ff X], J2 w2' = T2 + [N Rb2 + Ff (lp - X)];
-    // every sign flips on N2. In free flight, (2),(44): J w' = T.
-    moment_a -= sign * (n * rb1_ + ff * x);
-    moment_b += sign * (n * rb2_ + ff * (lp_ - x));
+    double f = 0.0;
+    double ff = 0.0;
+    if (face_friction_) {
+      // A helical pair: N spread along its contact line as its elastic load,
+      // kappa_t(X'), each point with its own sliding sign and arms X', lp -
+      // X' (docs/helical.md, Friction on a helical pair). Vs(X') = (w1 + w2)
+      // X' - w2 lp plus the centres' slide is linear in X'. The sum of Ff X'
+      // over the line is Ff's with the mean signed arm in place of slip X.
+      // Coulomb's law on the flank's normal force N / cos(beta_b): f / cos(beta_b) of N.
+      const double rate = w1 + w2;
+      const double offset = sliding_speed(w1, w2, 0.0, lp_) + slide;
+      const FaceSlip face = face_friction_->slip(x, rate, offset);
+      f = model_->friction_coefficient * face_friction_->normal_per_transverse();
+      ff = friction_force(m.region, f, n, face.slip);
+      const double ff_arm = friction_force(m.region, f, n, face.arm_m);
+      moment_a -= sign * (n * rb1_ + ff_arm);
+      moment_b += sign * (n * rb2_ + (ff * lp_ - ff_arm));
+      // f N times the load-weighted mean of |Vs| = sign(Vs) (rate X' + offset).
+      powers.friction_w += f * n * (face.arm_m * rate + face.slip * offset);
+    } else {
+      const double vs = pair_sliding(q, x, slide);
+      f = friction_coefficient(n, vs, entrainment_speed(w1, w2, x, lp_));
+      const double slip = smoothing_speed_ > 0.0 ? std::tanh(vs / smoothing_speed_)
+                          : m.slip_per_stage     ? (vs >= 0.0 ? 1.0 : -1.0)
+                                                 : m.slip[j];
+      ff = friction_force(m.region, f, n, slip);
+      // (1),(3) for one pair, (43),(45) summed over the pairs the line carries:
+      // on N1 J1 w1' = T1 - [N Rb1 + Ff X], J2 w2' = T2 + [N Rb2 + Ff (lp - X)];
+      // every sign flips on N2. In free flight, (2),(44): J w' = T.
+      moment_a -= sign * (n * rb1_ + ff * x);
+      moment_b += sign * (n * rb2_ + ff * (lp_ - x));
+      powers.friction_w += f * n * slip * vs;
+    }
     if constexpr (kCentres<Motion>) {
       // On the pinion's centre -sign N n - Ff t, t = e_z x n the flanks'
       // common tangent, on the wheel's the opposite. The friction's sign does
@@ -532,7 +559,6 @@ inline void MeshLine::add_pair_forces(const Motion& q, const Mode& m, const Cont
     // The damping force is what N adds to F; with N clipped it is -F, so the
     // stored energy released while the tooth cannot push counts as damping loss.
     powers.damping_w += (n - f_elastic) * dk_rate;
-    powers.friction_w += f * n * slip * vs;
     // d/dt of 1/2 Ke(X) delta^2 at fixed delta. Newtonian: work of the
     // varying stiffness. Lagrangian: -dV/dtheta1 adds the torque
     // -1/2 dKe/dX (dX/dtheta1) delta^2, dX/dtheta1 = sign Rb1, whose power is

@@ -186,6 +186,62 @@ StiffnessTable helical_faulted_pair_table(const GearPair& swept, HelicalHertz he
                                           const std::vector<FaceBand>& bands, Region line,
                                           StiffnessTableOptions options = {});
 
+// The friction of a helical tooth pair by route B (docs/helical.md, Friction
+// on a helical pair). Each slice of the pair's contact line at X' on the
+// transverse path carries kappa_t(X') delta per unit face width (all slices
+// share the pair's deflection), slides at the spur pair's Vs(X') and has the
+// spur pair's arms X' and lp - X'; y and X' differ by a factor tan(beta_b), so
+// the face sums are integrals over the line's extent on the path,
+//   weight = integral of kappa_t,  slip = integral of kappa_t sign(Vs) / weight,
+//   arm = integral of kappa_t sign(Vs) X' / weight,
+// and Vs is linear in X', so both follow from two primitives from X_SAP,
+// C0(X) = integral of kappa_t and C1(X) = integral of kappa_t X', tabled
+// (cubic Hermite between nodes, whose slopes kappa_t and kappa_t X are exact)
+// and split where Vs changes sign: a look-up, as the stiffness is.
+struct FaceSlip {
+  double weight_n_per_m = 0.0;  // integral of kappa_t over the line on the path: tan(beta_b) K_pair
+  double slip = 0.0;            // the load-weighted mean of sign(Vs), in [-1, 1]
+  double arm_m = 0.0;           // the load-weighted mean of sign(Vs) X'
+};
+class FaceFriction {
+ public:
+  // `swept` a helical pair's swept transverse section (face_advance_m = W >
+  // 0; InputError naming gears.helix_angle otherwise): kappa_t read from its
+  // section's table at width b by `model.helical_hertz`, as the faulted
+  // pair's table reads it.
+  FaceFriction(const GearPair& swept, const StiffnessModel& model,
+               StiffnessTableOptions options = {});
+  double start_m() const { return start_; }  // X_SAP
+  double end_m() const { return end_; }      // X_EAP
+  // 1 / cos(beta_b): the flank's normal force over its transverse part, on
+  // which Coulomb's law acts.
+  double normal_per_transverse() const { return 1.0 / cos_base_helix_; }
+  // kappa_t at X on the path, N/m^2 (0 outside it).
+  double kappa(double x_m) const;
+  // C0 and C1 at X, clamped to the path.
+  double weight_primitive(double x_m) const { return primitive(x_m, 0); }
+  double moment_primitive(double x_m) const { return primitive(x_m, 1); }
+  // The pair whose mid-face contact is at X (its line [X - W/2, X + W/2]
+  // clipped to the path) with the sliding speed Vs(X') = rate X' + offset.
+  // A line with no extent on the path: the weight 0 and the spur pair's sign
+  // and arm at X clamped to the path.
+  FaceSlip slip(double x_mid_m, double rate_per_s, double offset_m_s) const;
+
+ private:
+  double primitive(double x_m, int which) const;
+  std::optional<StiffnessTable> section_;
+  double face_width_ = 0.0;
+  double cos_base_helix_ = 1.0;
+  HelicalHertz hertz_ = HelicalHertz::projected;
+  double start_ = 0.0;
+  double end_ = 0.0;
+  double half_w_ = 0.0;
+  double step_ = 0.0;
+  std::vector<double> nodes_m_;
+  std::vector<double> kappa_;                    // kappa_t at the nodes
+  std::array<std::vector<double>, 2> integral_;  // C0, C1 at the nodes
+};
+
 // The face-load factor of ISO 6336-1 from a slice solution: uniform stiffness
 // c per unit face width, a gap linear across the face e(y) = F_betay (y/b - 1/2),
 // transverse load F: the deflection delta with integral of c max(0, delta - e)
