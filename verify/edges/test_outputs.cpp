@@ -30,6 +30,7 @@ using gearimpact::verify::cli;
 using gearimpact::verify::CommandResult;
 using gearimpact::verify::run_command;
 using gearimpact::verify::Scratch;
+using gearimpact::verify::signal_when_under_way;
 
 namespace {
 
@@ -203,9 +204,10 @@ TEST_CASE("a series run ended by SIGINT, SIGTERM or SIGKILL leaves nothing besid
   const fs::path series = scratch.dir / "series.csv";
   for (const char* signal_name : {"INT", "TERM", "KILL"}) {
     CAPTURE(signal_name);
-    // Some seconds of streaming (2 million rows); the signal comes after 0.5 s.
-    run_command(cli("simulate --case 1 --t-end 200ms --out " + series.string()) +
-                " >/dev/null 2>&1 & sleep 0.5; kill -" + signal_name + " $!; wait");
+    // Some seconds of streaming (2 million rows); the signal comes 0.5 s after the handlers.
+    run_command(signal_when_under_way(
+        cli("simulate --case 1 --t-end 200ms --out " + series.string()) + " >/dev/null 2>&1",
+        signal_name, 0.5));
     // The streamed rows went to an anonymous file, which ends with the process.
     CHECK(fs::is_empty(scratch.dir));
   }

@@ -435,13 +435,15 @@ TEST_CASE("a sweep ended by a signal leaves no output; a rerun is not hindered b
     CAPTURE(signal_name);
     const fs::path out = scratch.dir / "out";
     // Long enough to be under way when the signal comes (some seconds).
-    run_command(cli("sweep 1 --vary initial.w1 --from '2000 rad/s' --to '3000 rad/s' --points 1000 "
-                    "--direction up "
-                    "--threads 1 "
-                    "--set model.friction_coefficient=0 --set 'torque1.mean=3 N*m' "
-                    "--set model.mesh_damping_ratio=0.05 --no-plots --out " +
-                    out.string()) +
-                " 2>/dev/null & sleep 0.5; kill -" + signal_name + " $!; wait");
+    run_command(signal_when_under_way(
+        cli("sweep 1 --vary initial.w1 --from '2000 rad/s' --to '3000 rad/s' --points 1000 "
+            "--direction up "
+            "--threads 1 "
+            "--set model.friction_coefficient=0 --set 'torque1.mean=3 N*m' "
+            "--set model.mesh_damping_ratio=0.05 --no-plots --out " +
+            out.string()) +
+            " 2>/dev/null",
+        signal_name, 0.5));
     CHECK_FALSE(fs::exists(out));
     // SIGKILL cannot be caught: its hidden temporary folder stays until the
     // next run into the same folder removes it.

@@ -46,4 +46,21 @@ inline std::string cli(const std::string& arguments) {
   return std::string(GEARIMPACT_CLI) + " " + arguments;
 }
 
+// A shell command that starts `command` in the background and sends it `signal_name` (INT, TERM,
+// KILL) once it is under way: after it catches SIGINT (bit 2 of SigCgt in /proc/PID/status, the
+// last hexadecimal digit one of 2 3 6 7 a b e f), then `delay_s` more, and waits for it. A
+// background job of a shell without job control starts with SIGINT ignored, so a SIGINT sent
+// before the program sets its handlers (a slow start on a loaded machine, under the sanitizers)
+// would be lost and the run would go on to its end. Gives up waiting after 60 s, or when it has
+// ended.
+inline std::string signal_when_under_way(const std::string& command, const std::string& signal_name,
+                                         double delay_s) {
+  return command +
+         " & p=$!; i=0; while [ $i -lt 1200 ] && [ -e /proc/$p ]; do case \"$(sed -n "
+         "'s/^SigCgt:.*\\(.\\)$/\\1/p' "
+         "/proc/$p/status 2>/dev/null)\" in [2367abef]) break;; esac; sleep 0.05; i=$((i+1)); "
+         "done; sleep " +
+         std::to_string(delay_s) + "; kill -" + signal_name + " $p; wait";
+}
+
 }  // namespace gearimpact::verify
