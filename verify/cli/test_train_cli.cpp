@@ -393,7 +393,7 @@ TEST_CASE("train --set stage.planet_angles takes a list as the file writes it, b
   text.replace(at, 11, "planets = 3\nplanet_angles = " + angles);
   const std::filesystem::path file = scratch.dir / "stage.toml";
   std::ofstream(file) << text;
-  const std::string short_run = " --set 'integrator.end_time=1 ms'";
+  const std::string short_run = " --set 'integrator.end_time=0.2 ms'";
   const std::string example = (examples / "planetary_stage.toml").string();
   const CommandResult written = run_command(
       cli("train " + file.string() + short_run + " --out " + (scratch.dir / "a").string()));
