@@ -74,7 +74,8 @@ void register_train_commands(CLI::App& app) {
       "train",
       "Runs a gear train's case file ([[bodies]], [[meshes]], [[shafts]]; a two-gear case file "
       "is the train of its pair; a [stage] file is a planetary stage's, which adds "
-      "ring_sensor.csv and the Willis residual) by the event-cut RK4 and writes series.csv (each "
+      "ring_sensor.csv, mesh_teeth.csv and the Willis residual) by the event-cut RK4 and writes "
+      "series.csv (each "
       "body's angle "
       "and speed, each mesh's s, delta, region, pairs and forces, columns named by the bodies "
       "and meshes) and summary.json (the energy ledger and its residual, per mesh its impacts "
