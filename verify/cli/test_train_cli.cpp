@@ -233,24 +233,6 @@ TEST_CASE("train runs a stage file: the library's stage run bit for bit, Willis 
     nonzero = nonzero || y[i] != 0.0;
   }
   CHECK(nonzero);
-  // The teeth at each mesh: planetary_mesh_teeth of each row of the same run.
-  const std::vector<std::vector<double>> teeth = csv_numbers(read(out / "mesh_teeth.csv"), header);
-  CHECK(header.rfind("t_s,sun_tooth_at_sun_planet1,planet1_tooth_at_sun_planet1,"
-                     "planet1_tooth_at_ring_planet1,ring_tooth_at_ring_planet1,",
-                     0) == 0);
-  REQUIRE(teeth.size() == run.series.size());
-  for (std::size_t i = 0; i < teeth.size(); ++i) {
-    const std::vector<StageMeshTeeth> at = planetary_mesh_teeth(stage, run.series[i]);
-    REQUIRE(teeth[i].size() == 1 + 4 * at.size());
-    REQUIRE(teeth[i][0] == run.series[i].t_s);
-    for (std::size_t n = 0; n < at.size(); ++n) {
-      REQUIRE(teeth[i][1 + 4 * n] == at[n].sun);
-      REQUIRE(teeth[i][2 + 4 * n] == at[n].planet_at_sun);
-      REQUIRE(teeth[i][3 + 4 * n] == at[n].planet_at_ring);
-      REQUIRE(teeth[i][4 + 4 * n] == at[n].ring);
-    }
-  }
-
   const std::string summary = read(out / "summary.json");
   CHECK(summary == r.out);
   const auto number_after = [&summary](const std::string& key) {
@@ -379,6 +361,37 @@ TEST_CASE("train runs a stage file's faulted teeth: the library's run of the sta
   const std::vector<std::vector<double>> series = csv_numbers(read(out / "series.csv"), header);
   CHECK(series == csv_of(stage));
   CHECK(series != csv_of(healthy));
+}
+
+TEST_CASE("train writes a stage's mesh_teeth.csv: planetary_mesh_teeth of the library's run") {
+  Scratch scratch("train-cli-stage-teeth");
+  const std::filesystem::path out = scratch.dir / "out";
+  const CommandResult r =
+      run_command(cli("train " + (examples / "planetary_stage.toml").string() +
+                      " --set 'integrator.end_time=0.5 ms' --out " + out.string()));
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  PlanetaryStage stage = example_stage_by_hand();
+  stage.integrator.end_time_s = 0.5e-3;
+  const TrainResult run = simulate_train(planetary_train(stage));
+  std::string header;
+  // The teeth at each mesh: planetary_mesh_teeth of each row of the same run.
+  const std::vector<std::vector<double>> teeth = csv_numbers(read(out / "mesh_teeth.csv"), header);
+  CHECK(header.rfind("t_s,sun_tooth_at_sun_planet1,planet1_tooth_at_sun_planet1,"
+                     "planet1_tooth_at_ring_planet1,ring_tooth_at_ring_planet1,",
+                     0) == 0);
+  REQUIRE(teeth.size() == run.series.size());
+  for (std::size_t i = 0; i < teeth.size(); ++i) {
+    const std::vector<StageMeshTeeth> at = planetary_mesh_teeth(stage, run.series[i]);
+    REQUIRE(teeth[i].size() == 1 + 4 * at.size());
+    REQUIRE(teeth[i][0] == run.series[i].t_s);
+    for (std::size_t n = 0; n < at.size(); ++n) {
+      REQUIRE(teeth[i][1 + 4 * n] == at[n].sun);
+      REQUIRE(teeth[i][2 + 4 * n] == at[n].planet_at_sun);
+      REQUIRE(teeth[i][3 + 4 * n] == at[n].planet_at_ring);
+      REQUIRE(teeth[i][4 + 4 * n] == at[n].ring);
+    }
+  }
 }
 
 TEST_CASE("train --set stage.planet_angles takes a list as the file writes it, bit for bit") {
