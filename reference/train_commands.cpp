@@ -25,7 +25,7 @@ struct TrainOptions {
 };
 
 // A stage file ([stage]): the stage's train run, its summary with the Willis residual, and the
-// ring-housing sensor's series beside the train's.
+// ring-housing sensor's series and the teeth at each mesh beside the train's.
 void run_stage(const TrainOptions& o) {
   const PlanetaryStage stage = read_stage_file(o.case_file, o.sets);
   const GearTrain train = planetary_train(stage);
@@ -36,6 +36,9 @@ void run_stage(const TrainOptions& o) {
   const std::filesystem::path dir = folder.temporary();
   write_file_atomically((dir / "series.csv").string(), train_series_csv(train, result.series));
   write_file_atomically((dir / "ring_sensor.csv").string(), ring_sensor_csv(result.series, ring));
+  write_file_atomically((dir / "mesh_teeth.csv").string(),
+                        stage_teeth_csv(train.bodies.size() - kFirstPlanetBody,
+                                        planetary_teeth_series(stage, result)));
   write_file_atomically((dir / "summary.json").string(), summary);
   folder.commit();
   std::cout << summary;
@@ -71,7 +74,8 @@ void register_train_commands(CLI::App& app) {
       "train",
       "Runs a gear train's case file ([[bodies]], [[meshes]], [[shafts]]; a two-gear case file "
       "is the train of its pair; a [stage] file is a planetary stage's, which adds "
-      "ring_sensor.csv and the Willis residual) by the event-cut RK4 and writes series.csv (each "
+      "ring_sensor.csv, mesh_teeth.csv and the Willis residual) by the event-cut RK4 and writes "
+      "series.csv (each "
       "body's angle "
       "and speed, each mesh's s, delta, region, pairs and forces, columns named by the bodies "
       "and meshes) and summary.json (the energy ledger and its residual, per mesh its impacts "

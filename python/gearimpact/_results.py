@@ -300,15 +300,19 @@ def train(case_file, sets=(), keep_series=True):
     columns"; zero-length with keep_series=False) and "summary" (summary.json as a dict: the
     train's counts and energy ledger, "meshes" with each mesh's impacts, largest penetration and
     losses, "bodies" with each body's final speed). A stage file's dict has also "ring_sensor"
-    (the command's ring_sensor.csv as arrays: t_s and ring_sensor_y_N) and its summary a
+    (the command's ring_sensor.csv as arrays: t_s and ring_sensor_y_N), "mesh_teeth" (its
+    mesh_teeth.csv: t_s, then per planet n sun_tooth_at_sun_planetN,
+    planetN_tooth_at_sun_planetN, planetN_tooth_at_ring_planetN and ring_tooth_at_ring_planetN,
+    int64, the teeth at each mesh in the stage's count) and its summary a
     "stage" entry (the members' mean speeds and the Willis residual); the stage's run keeps its
     series for these, keep_series=False only leaves the arrays empty. Raises CaseError naming a
     bad key (stage.KEY in a stage file)."""
     path = _arguments.path("case_file", case_file)
     more = _arguments.strings("sets", sets, ["integrator.end_time=2 ms"])
     keep = _arguments.flag("keep_series", keep_series)
-    summary, series, ring_sensor = _core.train(path, list(more), keep)
+    summary, series, ring_sensor, mesh_teeth = _core.train(path, list(more), keep)
     result = {"series": series, "summary": json.loads(summary)}
     if ring_sensor is not None:
         result["ring_sensor"] = ring_sensor
+        result["mesh_teeth"] = mesh_teeth
     return result

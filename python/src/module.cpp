@@ -300,9 +300,9 @@ py::tuple run_simulation(const SimulationCase& c, bool keep_series, long long ma
 // A gear train's case file run as `gearimpact train` runs it: the summary's JSON
 // (train_summary_json) and the series as arrays by train_series_columns, named by the file's
 // bodies and meshes. `sets` as the command's --set.
-// A stage file ([stage]) as the command runs it: the summary with the Willis residual and the
-// ring sensor's y beside the series. Both need the whole series, so the run keeps it and
-// keep_series only decides whether the arrays are returned.
+// A stage file ([stage]) as the command runs it: the summary with the Willis residual, the
+// ring sensor's y and the teeth at each mesh (mesh_teeth.csv) beside the series. Both need the
+// whole series, so the run keeps it and keep_series only decides whether the arrays are returned.
 py::tuple run_stage(const std::string& path, const std::vector<std::string>& sets,
                     bool keep_series) {
   const PlanetaryStage stage = read_stage_file(path, sets);
@@ -314,6 +314,7 @@ py::tuple run_stage(const std::string& path, const std::vector<std::string>& set
   });
   const std::string summary = stage_summary_json(train, result, planetary_willis(stage, result));
   std::vector<double> ring = planetary_ring_sensor(stage, result);
+  std::vector<StageTeethRow> teeth = planetary_teeth_series(stage, result);
   std::vector<double> times;
   times.reserve(result.series.size());
   for (const TrainRow& row : result.series) times.push_back(row.t_s);
@@ -321,12 +322,15 @@ py::tuple run_stage(const std::string& path, const std::vector<std::string>& set
     result.series.clear();
     ring.clear();
     times.clear();
+    teeth.clear();
   }
   py::dict sensor;
   sensor["t_s"] = to_array(times);
   sensor["ring_sensor_y_N"] = to_array(ring);
-  return py::make_tuple(
-      summary, table_arrays(train_series_columns(train), std::move(result.series)), sensor);
+  const std::size_t planets = train.bodies.size() - kFirstPlanetBody;
+  return py::make_tuple(summary,
+                        table_arrays(train_series_columns(train), std::move(result.series)), sensor,
+                        table_arrays(stage_teeth_columns(planets), std::move(teeth)));
 }
 
 py::tuple run_train(const std::string& path, const std::vector<std::string>& sets,
@@ -342,8 +346,9 @@ py::tuple run_train(const std::string& path, const std::vector<std::string>& set
   // Named by the meshes the run ran (a helical mesh by slices: one per slice).
   const GearTrain train = dynamics_train(file);
   const std::string summary = train_summary_json(train, result);
-  return py::make_tuple(
-      summary, table_arrays(train_series_columns(train), std::move(result.series)), py::none());
+  return py::make_tuple(summary,
+                        table_arrays(train_series_columns(train), std::move(result.series)),
+                        py::none(), py::none());
 }
 
 // The stiffness columns of `gearimpact stiffness` at the contact positions xs.

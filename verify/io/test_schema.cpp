@@ -611,3 +611,31 @@ TEST_CASE("validate(StiffnessModel): the rows' ranges, then at least one term") 
   model.kind = StiffnessModelKind::potential_energy;
   CHECK_NOTHROW(validate(model));
 }
+
+TEST_CASE("a list reads as a case file writes it, in brackets and quotes, as it reads bare") {
+  const Field* frequencies = find_field("torque1.angular_frequencies");
+  REQUIRE(frequencies != nullptr);
+  const std::vector<double> bare = parse_list(*frequencies, "1000 rad/s, 50 Hz, 3000", "a");
+  REQUIRE(bare.size() == 3);
+  CHECK(parse_list(*frequencies, "[\"1000 rad/s\", \"50 Hz\", 3000]", "a") == bare);
+  CHECK(parse_list(*frequencies, " [ \"1000 rad/s\",\"50 Hz\" , \"3000\" ] ", "a") == bare);
+  CHECK(parse_list(*frequencies, "[]", "a").empty());
+  // An element is still checked and named by its index; a bracket left open is no list.
+  try {
+    static_cast<void>(parse_list(*frequencies, "[\"1000 rad/s\", \"-5 Hz\"]", "a"));
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK(e.field() == "a[1]");
+  }
+  CHECK_THROWS_AS(parse_list(*frequencies, "[\"1000 rad/s\", \"5 Hz\"", "a"), InputError);
+  // An angle list's plain number is in rad: 120 is refused, with how to write it in degrees.
+  const Field* angles = find_train_field("stage.planet_angles");
+  REQUIRE(angles != nullptr);
+  try {
+    static_cast<void>(parse_list(*angles, "[0, 120]", "stage.planet_angles"));
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK(e.field() == "stage.planet_angles[1]");
+    CHECK(e.allowed().find("\"120 deg\" gives it in deg") != std::string::npos);
+  }
+}

@@ -441,6 +441,11 @@ def test_stage_train_equals_the_program(cli, source_dir, tmp_path):
     assert list(ours["ring_sensor"]) == list(ring) == ["t_s", "ring_sensor_y_N"]
     for name in ring:
         assert_bitwise_equal(ours["ring_sensor"][name], ring[name], f"ring sensor {name}")
+    teeth = parse_csv((out / "mesh_teeth.csv").read_text())
+    assert list(ours["mesh_teeth"]) == list(teeth)
+    assert ours["mesh_teeth"]["sun_tooth_at_sun_planet2"].dtype == np.int64
+    for name in teeth:
+        assert_bitwise_equal(ours["mesh_teeth"][name], teeth[name], f"mesh teeth {name}")
     # keep_series=False: the same summary, the arrays empty.
     short = gearimpact.train(example, sets=sets, keep_series=False)
     assert short["summary"] == ours["summary"]
@@ -546,3 +551,21 @@ def test_helical_mesh_stiffness_and_ste_equal_the_program(cli, source_dir, tmp_p
                 assert [as_written(v) for v in column.tolist()] == written, column_name
     assert ours["summary"] == json.loads((out / "summary.json").read_text())
     assert ours["summary"]["route"] == "slices"
+
+
+def test_faulted_stage_train_equals_the_program(cli, source_dir, tmp_path):
+    # The cracked-sun example (a [[faults]] table on the sun) over 1 ms: its series.csv,
+    # ring_sensor.csv, mesh_teeth.csv and summary.json as the program writes them, bit for bit.
+    example = Path(source_dir) / "examples" / "planetary_stage_cracked_sun.toml"
+    out = tmp_path / "out"
+    sets = ["integrator.end_time=1 ms"]
+    cli("train", example, "--set", sets[0], "--out", out)
+    ours = gearimpact.train(example, sets=sets)
+    assert ours["summary"] == json.loads((out / "summary.json").read_text())
+    for key, file in [("series", "series.csv"), ("ring_sensor", "ring_sensor.csv"),
+                      ("mesh_teeth", "mesh_teeth.csv")]:
+        theirs = parse_csv((out / file).read_text())
+        assert list(ours[key]) == list(theirs)
+        assert len(theirs["t_s"]) > 1
+        for name in theirs:
+            assert_bitwise_equal(ours[key][name], theirs[name], f"cracked stage {file} {name}")

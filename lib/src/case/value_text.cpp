@@ -391,14 +391,45 @@ void check_list(const Field& field, const std::vector<double>& values, std::stri
   }
 }
 
+namespace {
+
+// `text` without one pair of enclosing `open` and `close` characters (after trimming), or as it
+// is when it has none.
+std::string_view unwrapped(std::string_view text, char open, char close) {
+  const std::string_view t = trim(text);
+  if (t.size() >= 2 && t.front() == open && t.back() == close) return t.substr(1, t.size() - 2);
+  return t;
+}
+
+// For a plain number of a quantity list refused in SI that the range takes in the unit files
+// write (an angle in deg): how to write it in that unit; else empty.
+std::string unit_hint(const Field& field, std::string_view item) {
+  const std::optional<double> number = plain_number(item);
+  if (field.kind != FieldKind::quantity_list || !number) return {};
+  const UnitList units = units_of(field.dimension);
+  const auto readable = std::find_if(units.begin(), units.end(),
+                                     [&](const Unit& u) { return u.symbol == field.unit; });
+  if (readable == units.begin() || readable == units.end() ||
+      !in_range(field.range, *number * readable->factor)) {
+    return {};
+  }
+  return "; a plain number is read in " + std::string(units.front().symbol) + ": \"" +
+         std::string(item) + " " + std::string(field.unit) + "\" gives it in " +
+         std::string(field.unit);
+}
+
+}  // namespace
+
 std::vector<double> parse_list(const Field& field, std::string_view value_text,
                                std::string_view name) {
   std::vector<double> values;
-  if (trim(value_text).empty()) return values;
-  std::string_view rest = value_text;
+  // As a case file writes the list, ["0 deg", "120 deg"], or bare, 0 deg, 120 deg.
+  const std::string_view list = unwrapped(value_text, '[', ']');
+  if (trim(list).empty()) return values;
+  std::string_view rest = list;
   for (;;) {
     const std::size_t comma = rest.find(',');
-    const std::string_view item = trim(rest.substr(0, comma));
+    const std::string_view item = trim(unwrapped(rest.substr(0, comma), '"', '"'));
     const std::string item_name = std::string(name) + "[" + std::to_string(values.size()) + "]";
     double value = 0.0;
     if (const std::optional<double> si = plain_number(item)) {
@@ -410,7 +441,7 @@ std::vector<double> parse_list(const Field& field, std::string_view value_text,
       value = parse_quantity(item, field.dimension, item_name);
     }
     if (!in_range(field.range, value)) {
-      throw InputError(item_name, std::string(item), allowed_text(field));
+      throw InputError(item_name, std::string(item), allowed_text(field) + unit_hint(field, item));
     }
     values.push_back(value);
     if (values.size() > field.most_values) {

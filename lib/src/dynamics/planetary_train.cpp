@@ -304,6 +304,43 @@ std::vector<double> planetary_ring_sensor(const PlanetaryStage& stage, const Tra
   return signals::ring_sensor_signal(forces, carrier, psi, sensor);
 }
 
+std::vector<StageMeshTeeth> planetary_mesh_teeth(const PlanetaryStage& stage, const TrainRow& row) {
+  const std::vector<double> psi = planet_angles(stage);
+  const std::size_t n = psi.size();
+  if (row.theta_rad.size() != kFirstPlanetBody + n) {
+    throw InputError(
+        "row", std::to_string(row.theta_rad.size()) + " bodies",
+        "a row of the stage's run: " + std::to_string(kFirstPlanetBody + n) + " bodies");
+  }
+  const PlanetaryToothing toothing = toothing_of(stage);
+  const double carrier_radius = standard_carrier_radius(stage.teeth, toothing);
+  const WorkingAngles angles = working_angles(stage.teeth, toothing, carrier_radius);
+  const double gamma_rs = sun_ring_phase(stage.teeth, toothing, angles.sun_rad, angles.ring_rad);
+  const double carrier = row.theta_rad[kCarrierBody];
+  std::vector<StageMeshTeeth> teeth;
+  teeth.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    // The teeth 0 where every body is at angle 0 (tooth_zero at phi = 0), carried on by each
+    // body's own turn relative to the carrier in the row, the meshes' deflections included.
+    const ToothZero at =
+        tooth_zero(stage.teeth, sun_mesh_phase(stage.teeth.sun, psi[i]), gamma_rs, 0.0);
+    teeth.push_back(stage_mesh_teeth(stage.teeth, psi[i],
+                                     at.sun + row.theta_rad[kSunBody] - carrier,
+                                     at.planet + row.theta_rad[kFirstPlanetBody + i] - carrier,
+                                     at.ring + row.theta_rad[kRingBody] - carrier));
+  }
+  return teeth;
+}
+
+std::vector<StageTeethRow> planetary_teeth_series(const PlanetaryStage& stage,
+                                                  const TrainResult& run) {
+  std::vector<StageTeethRow> rows;
+  rows.reserve(run.series.size());
+  for (const TrainRow& row : run.series)
+    rows.push_back({row.t_s, planetary_mesh_teeth(stage, row)});
+  return rows;
+}
+
 StageWillis planetary_willis(const PlanetaryStage& stage, const TrainResult& run) {
   const std::size_t bodies = kFirstPlanetBody + static_cast<std::size_t>(stage.planets);
   if (run.series.size() < 2 || run.series.front().theta_rad.size() != bodies ||

@@ -362,6 +362,29 @@ std::string ring_sensor_csv(const std::vector<TrainRow>& rows, const std::vector
   return out;
 }
 
+Columns<StageTeethRow> stage_teeth_columns(std::size_t planets) {
+  Columns<StageTeethRow> columns{member_column("t_s", "s", &StageTeethRow::t_s)};
+  const auto tooth = [&columns](const std::string& name, std::size_t i,
+                                int StageMeshTeeth::*which) {
+    columns.push_back(computed_column<StageTeethRow>(
+        name, "",
+        [i, which](const StageTeethRow& r) { return static_cast<double>(r.planets[i].*which); },
+        true));
+  };
+  for (std::size_t i = 0; i < planets; ++i) {
+    const std::string planet = "planet" + std::to_string(i + 1);
+    tooth("sun_tooth_at_sun_" + planet, i, &StageMeshTeeth::sun);
+    tooth(planet + "_tooth_at_sun_" + planet, i, &StageMeshTeeth::planet_at_sun);
+    tooth(planet + "_tooth_at_ring_" + planet, i, &StageMeshTeeth::planet_at_ring);
+    tooth("ring_tooth_at_ring_" + planet, i, &StageMeshTeeth::ring);
+  }
+  return columns;
+}
+
+std::string stage_teeth_csv(std::size_t planets, const std::vector<StageTeethRow>& rows) {
+  return csv_of(stage_teeth_columns(planets), rows);
+}
+
 std::string tacho_csv(const std::vector<double>& true_times_s,
                       const std::vector<double>& emitted_times_s) {
   std::string out = "pulse,t_s,t_emitted_s\n";

@@ -338,8 +338,19 @@ void read_sensor(const Reader& reader, const toml::value& value,
 // number, an integer, a choice by its name.
 toml::value toml_of(const Field& row, std::string_view text, const std::string& name) {
   if (is_list(row.kind)) {
-    throw InputError(name, std::string(text),
-                     "a single value: a list is set in the case file on a train");
+    // The list as parse_list reads it (["0 deg", "120 deg"] as the file writes it, or bare),
+    // each element checked and named NAME[i]; written back as the file's array, a quantity in
+    // SI units that reads back to the same double.
+    toml::array values;
+    for (const double x : parse_list(row, text, name)) {
+      if (row.kind == FieldKind::number_list) {
+        values.push_back(toml::value(x));
+      } else {
+        values.push_back(toml::value(
+            format_quantity(x, row.dimension, units_of(row.dimension).begin()->symbol)));
+      }
+    }
+    return toml::value(std::move(values));
   }
   if (row.kind == FieldKind::text) {
     check_text(row, std::string(text), name);

@@ -15,6 +15,7 @@
 #include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/dynamics/train.hpp"
 #include "gearimpact/geometry/planetary.hpp"
+#include "gearimpact/geometry/train_teeth.hpp"
 #include "gearimpact/signals/planet_pass.hpp"
 
 namespace gearimpact {
@@ -119,6 +120,27 @@ struct StageWillis {
   double residual = 0.0;
 };
 StageWillis planetary_willis(const PlanetaryStage& stage, const TrainResult& run);
+
+// Tooth identity on a run (docs/planetary.md, "Tooth identity on a run"): the
+// teeth at planet n's two meshes in one row of simulate_train(planetary_train(
+// stage)), element n - 1 of the result: stage_mesh_teeth (the tooth whose
+// centre line crossed the mesh's line of centres last, in the stage's count
+// that the faults use) at the members' teeth 0 placed as planetary_train
+// says, each carried on by its body's angle relative to the carrier's in the
+// row (theta - theta_c, deflections included). A sun tooth at sun mesh n
+// pairs with the planet tooth there; the pairing of a sun mesh repeats after
+// lcm(Z_s, Z_p) mesh periods, of a ring mesh after lcm(Z_p, Z_r)
+// (hunting_period_mesh_periods). Throws InputError naming `row` unless it
+// holds the stage's bodies.
+std::vector<StageMeshTeeth> planetary_mesh_teeth(const PlanetaryStage& stage, const TrainRow& row);
+
+// The same at every row of a run: its time and the teeth at each planet's meshes.
+struct StageTeethRow {
+  double t_s = 0.0;
+  std::vector<StageMeshTeeth> planets;  // planet n at n - 1
+};
+std::vector<StageTeethRow> planetary_teeth_series(const PlanetaryStage& stage,
+                                                  const TrainResult& run);
 
 // The ring-housing sensor's y(t) (signals/planet_pass.hpp, ring_sensor_signal)
 // at each row of `run`, the series of simulate_train(planetary_train(stage)):

@@ -87,6 +87,11 @@ std::string stage_summary_json(const GearTrain& train, const TrainResult& result
                                const StageWillis& willis);
 // The ring-housing sensor's series (planetary_ring_sensor): t_s and ring_sensor_y_N per row.
 std::string ring_sensor_csv(const std::vector<TrainRow>& rows, const std::vector<double>& y);
+// A stage's tooth identity on its run (planetary_teeth_series), one row each: t_s, then per
+// planet n sun_tooth_at_sun_planetN, planetN_tooth_at_sun_planetN, planetN_tooth_at_ring_planetN
+// and ring_tooth_at_ring_planetN, each a tooth number in the stage's count, as an integer.
+Columns<StageTeethRow> stage_teeth_columns(std::size_t planets);
+std::string stage_teeth_csv(std::size_t planets, const std::vector<StageTeethRow>& rows);
 // A tacho's edges, one row each: pulse,t_s,t_emitted_s, the true (jitter-free)
 // time and the emitted one (with the seeded jitter; equal without).
 std::string tacho_csv(const std::vector<double>& true_times_s,
