@@ -19,9 +19,11 @@
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/results.hpp"
 #include "gearimpact/stiffness/helical.hpp"
+#include "gearimpact/stiffness/helical_faults.hpp"
 #include "gearimpact/stiffness/helical_ste.hpp"
 #include "geometry_table.hpp"
 #include "gnuplot.hpp"
+#include "mesh_stiffness_figure.hpp"
 #include "program.hpp"
 #include "reproduce.hpp"
 
@@ -195,7 +197,37 @@ std::string stiffness_section(const GearPair& pair, const StiffnessModel& model,
          " mm (`helical_mesh_stiffness.png`, data `helical_mesh_stiffness.csv`).\n";
 }
 
-std::string ste_section(const HelicalSteFiles& files, double torque, const std::string& origin) {
+// The faulted pair's mesh stiffness over the true period against the healthy one, by the
+// tables a run reads (helical_true_period_mesh_stiffness): `mesh_stiffness.csv` and the figure
+// of a faulted spur pair's report, each faulted tooth's stretch of contact shaded.
+std::string faults_section(const SimulationCase& c, int samples, const std::filesystem::path& dir) {
+  const TruePeriodMeshStiffness tvms = helical_true_period_mesh_stiffness(
+      c.gears, c.model.stiffness, c.faults, static_cast<std::size_t>(samples));
+  write_file_atomically((dir / "mesh_stiffness.csv").string(),
+                        true_period_mesh_stiffness_csv(tvms));
+  Figure f = mesh_stiffness_figure(tvms, c.faults, c.name);
+  f.x_label = "pinion angle {/Symbol q}_1 from pair 0's mid-face contact at the pitch point, deg";
+  render(dir, f);
+  std::string teeth;
+  for (const ToothFault& fault : c.faults) {
+    teeth += std::string(teeth.empty() ? "" : ", ") +
+             (fault.gear == Gear::one ? "pinion tooth " : "wheel tooth ") +
+             std::to_string(fault.tooth) + " " + to_string(fault.state.kind);
+  }
+  return "The faulted teeth (" + teeth +
+         ") cover bands of the face (docs/helical.md, Faults); each pair reads the table of its "
+         "teeth that a run reads. Over the true period (" +
+         tvms.period_kind + ", " + std::to_string(tvms.mesh_periods) +
+         " mesh periods) the mesh stiffness runs from " + number(tvms.min_n_per_m / 1e8, 5) +
+         " to " + number(tvms.max_n_per_m / 1e8, 5) + " x 10^8 N/m, mean " +
+         number(tvms.mean_n_per_m / 1e8, 6) + " x 10^8 N/m against the healthy pair's " +
+         number(tvms.healthy_mean_n_per_m / 1e8, 6) +
+         " x 10^8 N/m (`mesh_stiffness.png`, data `mesh_stiffness.csv`, columns as "
+         "`gearimpact mesh-stiffness`).\n";
+}
+
+std::string ste_section(const HelicalSteFiles& files, double torque, const std::string& origin,
+                        bool faulted) {
   const HelicalStaticTransmissionError& m = files.modified;
   const HelicalStaticTransmissionError& u = files.unmodified;
   const auto um = [](double metres) { return number(metres * 1e6, 4); };
@@ -211,12 +243,13 @@ std::string ste_section(const HelicalSteFiles& files, double torque, const std::
   return "At T_1 = " + number(torque, 6) + " N m (" + origin + "), " +
          std::to_string(m.face_slices) +
          " slices, the slice model's loaded STE (docs/helical.md, \"Loaded STE and the load "
-         "across the face\"): with the modifications " +
-         range(m) + ", K_Hbeta = " + number(m.face_load_factor, 4) +
+         "across the face\"): " +
+         (faulted ? "with the faults " : "with the modifications ") + range(m) +
+         ", K_Hbeta = " + number(m.face_load_factor, 4) +
          " from the mean load across the face (at most " + number(m.largest_face_load_factor, 4) +
          " at one angle), its centre " +
-         number((m.mean_load_centre_m - 0.5 * m.face_width_m) * 1e3, 4) +
-         " mm from mid-face; without them " + range(u) + ", K_Hbeta " +
+         number((m.mean_load_centre_m - 0.5 * m.face_width_m) * 1e3, 4) + " mm from mid-face; " +
+         (faulted ? "the healthy pair " : "without them ") + range(u) + ", K_Hbeta " +
          number(u.face_load_factor, 4) +
          ". Files `ste.csv`, `ste_unmodified.csv`, `ste_face_load.csv`, `ste_summary.json`; "
          "figures `ste.png`, `ste_face_load.png`.\n";
@@ -227,15 +260,12 @@ std::string ste_section(const HelicalSteFiles& files, double torque, const std::
 void write_helical_report(const SimulationCase& c, const std::string& case_file,
                           const std::string& out, bool overwrite, int samples,
                           const std::string& torque_text) {
-  if (!c.faults.empty()) {
-    throw InputError("[[faults]]", std::to_string(c.faults.size()) + " faults",
-                     "none on a helical pair: faults on helical teeth are not modelled yet");
-  }
   const bool modified = !is_unmodified(c.modifications);
-  if (!modified && !torque_text.empty()) {
+  const bool faulted = !c.faults.empty();
+  if (!modified && !faulted && !torque_text.empty()) {
     throw InputError("--torque", torque_text,
-                     "only for a pair with [modifications], whose STE depends on the load; this "
-                     "pair has none");
+                     "only for a pair with [modifications] or [[faults]], whose STE depends on "
+                     "the load; this pair has neither");
   }
   const HelicalGeometry g = helical_geometry(c.gears);
   double torque = kIsoReferenceLineLoad * c.gears.face_width_m * g.pitch_radius1_m;
@@ -251,7 +281,7 @@ void write_helical_report(const SimulationCase& c, const std::string& case_file,
     }
     origin = "the --torque given";
   }
-  if (modified) {
+  if (modified || faulted) {
     try {
       check_helical_ste(c, torque, samples);
     } catch (const InputError& e) {
@@ -281,11 +311,14 @@ void write_helical_report(const SimulationCase& c, const std::string& case_file,
   md += "\n## Contact lines\n\n" + contact_lines_section(c.gears, g, mesh, face, dir);
   md += "\n## Mesh stiffness and ISO 6336-1\n\n" +
         stiffness_section(c.gears, c.model.stiffness, curve, dir);
-  if (modified) {
+  if (faulted) {
+    md += "\n## Faults\n\n" + faults_section(c, samples, dir);
+  }
+  if (modified || faulted) {
     const HelicalSteFiles files =
         write_helical_ste_files(c, torque, samples, dir, true, "ste_summary.json");
     md += "\n## Static transmission error and the load across the face\n\n" +
-          ste_section(files, torque, origin);
+          ste_section(files, torque, origin, faulted);
   }
   write_file_atomically((dir / "REPORT.md").string(), md);
   folder.commit();

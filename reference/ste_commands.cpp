@@ -17,6 +17,7 @@
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/results.hpp"
+#include "gearimpact/stiffness/helical_faults.hpp"
 #include "gearimpact/stiffness/helical_ste.hpp"
 #include "gearimpact/stiffness/mesh_tables.hpp"
 #include "gearimpact/stiffness/static_transmission_error.hpp"
@@ -93,12 +94,19 @@ SteTexts ste_texts(const SimulationCase& c, double torque1_n_m, int points_per_m
 }
 
 void check_helical_ste(const SimulationCase& c, double torque1_n_m, int points_per_mesh_period) {
-  if (!c.faults.empty()) {
-    throw InputError("[[faults]]", std::to_string(c.faults.size()) + " faults",
-                     "none on a helical pair: faults on helical teeth are not modelled yet");
-  }
   StaticTransmissionErrorOptions options;
   options.points_per_mesh_period = points_per_mesh_period;
+  if (!c.faults.empty()) {
+    // A faulted pair reads the run's tables (route B): no gap varies along its lines.
+    if (!is_unmodified(c.modifications)) {
+      throw InputError("[[faults]]", std::to_string(c.faults.size()) + " faults",
+                       "none with modifications on a helical pair: a faulted helical pair's STE "
+                       "is the face integral of its tables (docs/helical.md, Faults), which "
+                       "takes no gap; remove the modification keys or the [[faults]]");
+    }
+    check_tooth_faults(swept_transverse_pair(c.gears), c.model.stiffness, c.faults);
+    options.mesh_periods = true_period_mesh_periods(c.gears, faulted_teeth(c));
+  }
   validate_helical_static_transmission_error(c.gears, c.modifications, torque1_n_m,
                                              c.model.stiffness.face_slices, options);
 }
@@ -108,15 +116,30 @@ HelicalSteFiles helical_ste_of(const SimulationCase& c, double torque1_n_m,
   check_helical_ste(c, torque1_n_m, points_per_mesh_period);
   StaticTransmissionErrorOptions options;
   options.points_per_mesh_period = points_per_mesh_period;
-  const FaceStiffness face(c.gears, c.model.stiffness, c.model.stiffness.helical_hertz);
-  const int slices = c.model.stiffness.face_slices;
   HelicalSteFiles files;
-  files.modified = helical_static_transmission_error(c.gears, c.modifications, torque1_n_m, face,
-                                                     slices, options);
-  StaticTransmissionErrorOptions same = options;
-  same.mesh_periods = files.modified.mesh_periods;
-  files.unmodified =
-      helical_static_transmission_error(c.gears, Modifications{}, torque1_n_m, face, slices, same);
+  if (c.faults.empty()) {
+    const FaceStiffness face(c.gears, c.model.stiffness, c.model.stiffness.helical_hertz);
+    const int slices = c.model.stiffness.face_slices;
+    files.modified = helical_static_transmission_error(c.gears, c.modifications, torque1_n_m, face,
+                                                       slices, options);
+    StaticTransmissionErrorOptions same = options;
+    same.mesh_periods = files.modified.mesh_periods;
+    files.unmodified = helical_static_transmission_error(c.gears, Modifications{}, torque1_n_m,
+                                                         face, slices, same);
+  } else {
+    // The faulted pair by the tables a run reads, beside the healthy pair by the same route
+    // over the same angles.
+    const MeshTables faulted = helical_mesh_tables(c.gears, c.model.stiffness, c.faults);
+    const MeshTables healthy(
+        swept_transverse_pair(c.gears), c.model.stiffness, {},
+        std::shared_ptr<const StiffnessTable>(&faulted.healthy(), [](const StiffnessTable*) {}));
+    files.modified = helical_static_transmission_error(c.gears, torque1_n_m, c.model.stiffness,
+                                                       faulted, options);
+    StaticTransmissionErrorOptions same = options;
+    same.mesh_periods = files.modified.mesh_periods;
+    files.unmodified =
+        helical_static_transmission_error(c.gears, torque1_n_m, c.model.stiffness, healthy, same);
+  }
   // A static deflection of half a transverse base pitch has passed the teeth through each other.
   const double half_pitch = 0.5 * helical_geometry(c.gears).transverse_base_pitch_m;
   for (const HelicalStaticTransmissionError* ste : {&files.modified, &files.unmodified}) {
@@ -146,6 +169,10 @@ HelicalSteFiles write_helical_ste_files(const SimulationCase& c, double torque1_
                         helical_face_load_csv(files.modified, files.unmodified));
   write_file_atomically((dir / summary_name).string(), files.summary_json);
   if (!plots) return files;
+  // A faulted pair's curves: the faulted teeth against the healthy ones.
+  const bool faulted = !c.faults.empty();
+  const std::string own = faulted ? "faulted" : "with the modifications";
+  const std::string reference = faulted ? "healthy" : "unmodified";
   const double period_deg = files.modified.period_rad * 180.0 / pi;
   const std::string load = " (" + literal_key(c.name) + ", T_1 = " + format_number(torque1_n_m) +
                            " N m, " + std::to_string(slices) + " slices)";
@@ -157,9 +184,10 @@ HelicalSteFiles write_helical_ste_files(const SimulationCase& c, double torque1_
   f.setup = {"set key outside right top vertical",
              "set xrange [0:" + format_data_number(period_deg) + "]"};
   f.series = {
-      "'ste_unmodified.csv' using 2:($3 * 1e6) with lines lw 2 lc rgb 'gray50' title "
-      "'STE unmodified'",
-      "'ste.csv' using 2:($3 * 1e6) with lines lw 2 lc rgb '#1f77b4' title 'STE'",
+      "'ste_unmodified.csv' using 2:($3 * 1e6) with lines lw 2 lc rgb 'gray50' title 'STE " +
+          reference + "'",
+      std::string("'ste.csv' using 2:($3 * 1e6) with lines lw 2 lc rgb '#1f77b4' title '") +
+          (faulted ? "STE faulted" : "STE") + "'",
       "'ste.csv' using 2:($4 * 1e6) with lines lw 1 dt 2 lc rgb '#d62728' title 'KTE "
       "(min gap)'"};
   render(dir, f);
@@ -172,10 +200,10 @@ HelicalSteFiles write_helical_ste_files(const SimulationCase& c, double torque1_
              "set xrange [0:" + format_data_number(c.gears.face_width_m * 1e3) + "]",
              "set yrange [0:*]"};
   w.series = {
-      "'ste_face_load.csv' using ($1 * 1e3):5 with linespoints lw 2 lc rgb 'gray50' "
-      "title 'unmodified'",
-      "'ste_face_load.csv' using ($1 * 1e3):4 with linespoints lw 2 lc rgb '#1f77b4' "
-      "title 'with the modifications'"};
+      "'ste_face_load.csv' using ($1 * 1e3):5 with linespoints lw 2 lc rgb 'gray50' title '" +
+          reference + "'",
+      "'ste_face_load.csv' using ($1 * 1e3):4 with linespoints lw 2 lc rgb '#1f77b4' title '" +
+          own + "'"};
   render(dir, w);
   return files;
 }

@@ -15,11 +15,13 @@
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
+#include "gearimpact/geometry/helical.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/results.hpp"
 #include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/stiffness/helical.hpp"
+#include "gearimpact/stiffness/helical_faults.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "gearimpact/stiffness/mesh_tables.hpp"
@@ -123,11 +125,27 @@ void print_helical_mesh_stiffness(const StiffnessOptions& options, const GearPai
                      "absent for a helical pair (gears.helix_angle > 0): its figure is not drawn "
                      "yet; the CSV or --summary goes to standard output");
   }
-  if (!options.case_file.empty() &&
-      !read_pair_or_run_file(options.case_file).simulation_case.faults.empty()) {
-    throw InputError("faults", options.case_file,
-                     "no [[faults]] with a helical pair (gears.helix_angle > 0): faults on "
-                     "helical teeth are not modelled yet");
+  if (!options.case_file.empty()) {
+    const std::vector<ToothFault> faults =
+        read_pair_or_run_file(options.case_file).simulation_case.faults;
+    if (!faults.empty()) {
+      // The faulted pair over the true period, by the tables a run reads.
+      TruePeriodMeshStiffness tvms;
+      try {
+        tvms = helical_true_period_mesh_stiffness(pair, model, faults,
+                                                  static_cast<std::size_t>(options.samples));
+      } catch (const InputError& e) {
+        // The true period's bound on the samples, under the flag that sets them.
+        if (e.field() != "samples") throw;
+        throw InputError("--samples", e.value(), e.allowed());
+      }
+      std::fputs((options.summary ? true_period_mesh_stiffness_summary_json(
+                                        tvms, helical_geometry(pair).total_contact_ratio)
+                                  : true_period_mesh_stiffness_csv(tvms))
+                     .c_str(),
+                 stdout);
+      return;
+    }
   }
   const HelicalMeshStiffnessCurve curve = helical_mesh_stiffness(pair, model, options.samples);
   std::fputs((options.summary ? helical_mesh_stiffness_summary_json(curve)

@@ -126,7 +126,9 @@ def mesh_stiffness(case=None, model=None, samples=200):
     bound. A helical pair (gears.helix_angle > 0, docs/helical.md): one mesh period by the
     slice model, the table's arrays fraction, theta1_rad, k_slices_n_m (model.face_slices
     slices), k_face_n_m (the face integral), contact_line_length_m and
-    contact_line_length_slices_m, the summary that of ``mesh-stiffness --summary``."""
+    contact_line_length_slices_m, the summary that of ``mesh-stiffness --summary``; with the
+    case's faults the true-period table and summary above, each pair reading the faulted table
+    a run reads (docs/helical.md, Faults)."""
     chosen = _case_or_none(case)
     table, summary = _core.mesh_stiffness(
         chosen, None if model is None else _arguments.text("model", model),

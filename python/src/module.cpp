@@ -508,8 +508,18 @@ py::tuple mesh_stiffness_of(const std::optional<SimulationCase>& c,
   if (chosen.gears.helix_angle_rad != 0.0) {
     // A helical pair: one mesh period by both routes of the slice model (docs/helical.md).
     if (!chosen.faults.empty()) {
-      throw InputError("[[faults]]", std::to_string(chosen.faults.size()) + " faults",
-                       "none on a helical pair: faults on helical teeth are not modelled yet");
+      // With faults: over the true period, by the tables a run reads.
+      TruePeriodMeshStiffness tvms;
+      {
+        py::gil_scoped_release release;
+        tvms = helical_true_period_mesh_stiffness(chosen.gears, chosen.model.stiffness,
+                                                  chosen.faults, static_cast<std::size_t>(n));
+      }
+      const std::string summary = true_period_mesh_stiffness_summary_json(
+          tvms, helical_geometry(chosen.gears).total_contact_ratio);
+      const Columns<TruePeriodSample> columns =
+          true_period_mesh_stiffness_columns(most_pairs_in_contact(tvms));
+      return py::make_tuple(table_arrays(columns, std::move(tvms.samples)), summary);
     }
     HelicalMeshStiffnessCurve curve;
     {

@@ -17,6 +17,7 @@
 #include "gearimpact/io/sweep_files.hpp"
 #include "gearimpact/stiffness/energy.hpp"
 #include "gearimpact/stiffness/helical.hpp"
+#include "gearimpact/stiffness/helical_faults.hpp"
 #include "gearimpact/stiffness/helical_ste.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "paper_data.hpp"
@@ -393,4 +394,68 @@ TEST_CASE(
   for (const SweepPointResult& row : sweep.rows) CHECK(row.point.converged);
   CHECK(text(out / "sweep.csv") == sweep_csv(sweep.rows));
   CHECK(text(out / "poincare.csv") == poincare_csv(sweep.rows));
+
+TEST_CASE("mesh-stiffness, ste and report of a faulted helical pair: the library's tables") {
+  // H501 with a spall on pinion tooth 0 over [5, 15) mm of the face: the
+  // program prints the library's true-period stiffness to the bit (17
+  // significant digits); ste and report write their files; faults with
+  // modifications are refused by name before any work.
+  const std::filesystem::path pair_file =
+      std::filesystem::path(GEARIMPACT_PAPER_DATA_DIR) / ".." / "examples" / "helical_h501.toml";
+  const Scratch scratch("helical-faults");
+  const std::filesystem::path file = scratch.dir / "spalled.toml";
+  {
+    std::ifstream in(pair_file);
+    std::ofstream out(file);
+    out << in.rdbuf()
+        << "\n[[faults]]\ngear = \"pinion\"\ntooth = 0\nkind = \"spall\"\n"
+           "start_radius = \"37 mm\"\nend_radius = \"38.5 mm\"\nwidth = \"10 mm\"\n"
+           "depth = \"0.2 mm\"\nface_start = \"5 mm\"\n";
+  }
+  const CommandResult r =
+      run_command(cli("mesh-stiffness --case-file " + file.string() + " --samples 5"));
+  REQUIRE(r.exit_code == 0);
+  const auto rows = csv_rows(r.out);
+  REQUIRE(rows.size() == 1 + 20 * 5);
+  CHECK(rows[0][3] == "ke_n_m");
+  CHECK(rows[0][4] == "healthy_ke_n_m");
+  const SimulationCase c = read_pair_or_run_file(file).simulation_case;
+  const TruePeriodMeshStiffness tvms =
+      helical_true_period_mesh_stiffness(c.gears, c.model.stiffness, c.faults, 5);
+  bool same = true;
+  bool differs = false;
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    same = same && std::stod(rows[i][3]) == tvms.samples[i - 1].ke_n_per_m &&
+           std::stod(rows[i][4]) == tvms.samples[i - 1].healthy_ke_n_per_m;
+    differs = differs || rows[i][3] != rows[i][4];
+  }
+  CHECK(same);
+  CHECK(differs);
+  const CommandResult ste =
+      run_command(cli("ste " + file.string() + " --torque '200 N*m' --points 10 --no-plots --out " +
+                      (scratch.dir / "ste").string()));
+  CHECK(ste.exit_code == 0);
+  CHECK(std::filesystem::exists(scratch.dir / "ste" / "ste_face_load.csv"));
+  const std::filesystem::path crowned = scratch.dir / "spalled_crowned.toml";
+  {
+    std::ifstream in(file);
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string toml = text.str();
+    const std::string model = "[model]";
+    toml.replace(toml.find(model), model.size(),
+                 "[modifications]\ncrowning1 = \"4 um\"\n\n[model]");
+    std::ofstream(crowned) << toml;
+  }
+  const CommandResult modified =
+      run_command(cli("ste " + crowned.string() + " --torque '200 N*m' --out " +
+                      (scratch.dir / "refused").string()));
+  CHECK(modified.exit_code != 0);
+  CHECK(modified.err.find("[[faults]]") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(scratch.dir / "refused"));
+  const CommandResult report = run_command(
+      cli("report " + file.string() + " --samples 10 --out " + (scratch.dir / "report").string()));
+  CHECK(report.exit_code == 0);
+  CHECK(std::filesystem::exists(scratch.dir / "report" / "mesh_stiffness.csv"));
+  CHECK(std::filesystem::exists(scratch.dir / "report" / "ste.csv"));
 }

@@ -29,6 +29,7 @@
 #include "gearimpact/steady/shooting.hpp"
 #include "gearimpact/steady/steady_state.hpp"
 #include "gearimpact/stiffness/helical.hpp"
+#include "gearimpact/stiffness/helical_faults.hpp"
 #include "gearimpact/stiffness/helical_ste.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
@@ -2004,6 +2005,26 @@ NarrowFace narrow_face_runs(double beta_rad, double f) {
   const SimulationSummary a = simulate(c).summary;
   const SimulationSummary s = simulate(spur).summary;
   return {a.friction_loss_j, s.friction_loss_j, a.final_w1_rad_per_s, s.final_w1_rad_per_s};
+
+// The static commands on a faulted helical pair (docs/helical.md, Faults):
+// mesh-stiffness and ste read the tables a run reads.
+namespace {
+
+// X of the pair with pinion tooth `tooth` on N1 at theta1 on the widened
+// segment of `tables`, or NaN: X_k = X_pitch + Rb1 theta1 + k p_bt.
+double pinion_tooth_position(const GearPair& h, const MeshTables& tables, double theta1,
+                             int tooth) {
+  const GearPair swept = swept_transverse_pair(h);
+  const MeshLayout layout(swept, CoastPhase::half_base_pitch);
+  const double reference = layout.reference_m(Region::n1, theta1);
+  for (int k = -swept.teeth1; k <= swept.teeth1; ++k) {
+    const double x = layout.position_m(reference, k);
+    if (x >= tables.healthy().domain_start_m() && x <= tables.healthy().domain_end_m() &&
+        teeth_of_pair(swept, Region::n1, k).pinion_tooth == tooth) {
+      return x;
+    }
+  }
+  return std::nan("");
 }
 
 }  // namespace
@@ -2086,4 +2107,186 @@ TEST_CASE("helical friction: on elastic bearings the planar ledger closes with t
                                            << " J");
   CHECK(s.friction_loss_j > 1e3 * s.ledger_residual_max_j);
   CHECK(s.ledger_residual_max_j < 1e-7 * throughput);
+
+TEST_CASE("helical static commands: a crack of depth 0 gives the healthy stiffness and STE") {
+  // Bit for bit against the healthy pair by the same tables; and those
+  // tables' route against the closed-form route B (helical_mesh_stiffness,
+  // the face integral through C(X)) and its exact mean b C(X_EAP) / p_bt.
+  const GearPair h = h501_pair();
+  const StiffnessModel model;
+  const TruePeriodMeshStiffness cracked =
+      helical_true_period_mesh_stiffness(h, model, pinion_tooth0(h501_crack(0.0)), 10);
+  REQUIRE(cracked.mesh_periods == 20);
+  REQUIRE(cracked.samples.size() == 200);
+  bool same = true;
+  for (const TruePeriodSample& s : cracked.samples)
+    same = same && s.ke_n_per_m == s.healthy_ke_n_per_m;
+  CHECK(same);
+  // The faulted mean adds the healthy integral N times before dividing by N p_bt: to rounding.
+  CHECK(relative_difference(cracked.mean_n_per_m, cracked.healthy_mean_n_per_m) < 1e-14);
+  const HelicalMeshStiffnessCurve curve = helical_mesh_stiffness(h, model, 10);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < curve.samples.size(); ++i) {
+    CHECK(cracked.samples[i].theta1_rad == doctest::Approx(curve.samples[i].theta1_rad));
+    worst = std::max(
+        worst, relative_difference(cracked.samples[i].ke_n_per_m, curve.samples[i].face_n_per_m));
+  }
+  MESSAGE("helical static: tables against route B "
+          << worst << ", mean " << relative_difference(cracked.mean_n_per_m, curve.mean_n_per_m));
+  // Tolerance: the pair table fits route B to about 1e-12 of the largest Ke
+  // (docs/verification.md); 1e-9 leaves room, far below any fault's share.
+  CHECK(worst < 1e-9);
+  CHECK(relative_difference(cracked.mean_n_per_m, curve.mean_n_per_m) < 1e-9);
+
+  const MeshTables zero = helical_mesh_tables(h, model, pinion_tooth0(h501_crack(0.0)));
+  const MeshTables healthy = helical_mesh_tables(h, model, {});
+  StaticTransmissionErrorOptions options;
+  options.points_per_mesh_period = 10;
+  options.mesh_periods = 20;
+  const HelicalStaticTransmissionError a =
+      helical_static_transmission_error(h, 200.0, model, zero, options);
+  const HelicalStaticTransmissionError b =
+      helical_static_transmission_error(h, 200.0, model, healthy, options);
+  const HelicalStaticTransmissionError route_b =
+      helical_static_transmission_error(h, Modifications{}, 200.0, model, options);
+  REQUIRE(a.points.size() == 200);
+  REQUIRE(route_b.points.size() == 200);
+  bool same_ste = true;
+  double worst_ste = 0.0;
+  double worst_load = 0.0;
+  for (std::size_t i = 0; i < a.points.size(); ++i) {
+    same_ste = same_ste && a.points[i].ste_m == b.points[i].ste_m &&
+               a.points[i].load_per_width_n_per_m == b.points[i].load_per_width_n_per_m;
+    worst_ste =
+        std::max(worst_ste, relative_difference(a.points[i].ste_m, route_b.points[i].ste_m));
+    for (std::size_t j = 0; j < a.slice_y_m.size(); ++j) {
+      worst_load =
+          std::max(worst_load, relative_difference(a.points[i].load_per_width_n_per_m[j],
+                                                   route_b.points[i].load_per_width_n_per_m[j]));
+    }
+  }
+  CHECK(same_ste);
+  MESSAGE("helical static STE: tables against route B " << worst_ste << ", load across the face "
+                                                        << worst_load);
+  // The same fit bound as the stiffness above; the load across the face reads
+  // the section's table where route B reads the transverse pair's, the same
+  // pair and model: to rounding.
+  CHECK(worst_ste < 1e-9);
+  CHECK(worst_load < 1e-9);
+}
+
+TEST_CASE("helical static commands: a spall band's loss in mesh-stiffness is a by-hand slice sum") {
+  // Pinion tooth 0 spalled over the middle half of the face [b/4, 3b/4). By
+  // hand: N = 4096 slices, those of the band at X + (y_j - b/2) tan(beta_b),
+  // each losing kappa_t - kappa_spall of the transverse spur pair spalled
+  // across its face (its table from MeshTables of that pair, Hertz projected
+  // by cos(beta_b)), times db. The code's loss is Ke - healthy Ke of the
+  // sample, where only pinion tooth 0's pair differs.
+  const GearPair h = h501_pair();
+  const GearPair t = transverse_pair(h);
+  const HelicalGeometry g = helical_geometry(h);
+  const double b = h.face_width_m;
+  const double tan_bb = std::tan(g.base_helix_angle_rad);
+  const double cos_bb = std::cos(g.base_helix_angle_rad);
+  const ContactSegment path = contact_segment(t);
+  const std::vector<ToothFault> faults = pinion_tooth0(h501_spall(0.25 * b, 0.5 * b));
+  const StiffnessModel model;
+  const TruePeriodMeshStiffness tvms = helical_true_period_mesh_stiffness(h, model, faults, 16);
+  const MeshTables tables = helical_mesh_tables(h, model, faults);
+  const MeshTables spur(t, model, pinion_tooth0(h501_spall(0.0, b)));
+  const StiffnessTable& section = tooth0_table(spur, Region::n1);
+  const auto kappa = [&](const StiffnessTable& table, double x) {
+    const Compliances c = table.compliance(x);
+    if (!(c.total_m_per_n() > 0.0)) return 0.0;
+    const double hertz = c.of(Term::hertz);
+    return 1.0 / (b * (c.total_m_per_n() - hertz + hertz / cos_bb));
+  };
+  double kappa_most = 0.0;
+  for (int i = 0; i <= 1000; ++i) {
+    kappa_most = std::max(
+        kappa_most, kappa(spur.healthy(), path.start_m + (path.end_m - path.start_m) * i / 1000.0));
+  }
+  const int n = 4096;
+  const double db = b / n;
+  double worst = 0.0;
+  double worst_table = 0.0;
+  double most_loss = 0.0;
+  int faulted_samples = 0;
+  for (const TruePeriodSample& s : tvms.samples) {
+    const double x = pinion_tooth_position(h, tables, s.theta1_rad, 0);
+    const double code_loss = s.healthy_ke_n_per_m - s.ke_n_per_m;
+    if (std::isnan(x)) {
+      CHECK(code_loss == 0.0);
+      continue;
+    }
+    ++faulted_samples;
+    double loss = 0.0;
+    for (int j = n / 4; j < 3 * n / 4; ++j) {
+      const double at = x + ((j + 0.5) * db - 0.5 * b) * tan_bb;
+      if (at >= path.start_m && at <= path.end_m) {
+        loss += (kappa(spur.healthy(), at) - kappa(section, at)) * db;
+      }
+    }
+    // The dynamics' table of tooth 0's pair at the same X.
+    const double table_loss =
+        tables.healthy().stiffness(x) - tooth0_table(tables, Region::n1).stiffness(x);
+    // Tolerance: one slice at most on the wrong side of each of the spall's
+    // two radial edges (kappa_most db apiece), and 1e-10 of K for the tables' fit.
+    worst = std::max(worst,
+                     std::abs(code_loss - loss) / (2.0 * kappa_most * db + 1e-10 * s.ke_n_per_m));
+    worst_table = std::max(worst_table, std::abs(code_loss - table_loss) / s.healthy_ke_n_per_m);
+    most_loss = std::max(most_loss, loss / s.healthy_ke_n_per_m);
+  }
+  MESSAGE("helical static spall: |loss - slice sum| up to " << worst << " of the bound; against "
+                                                            << "the run's table " << worst_table
+                                                            << "; loss up to " << most_loss);
+  CHECK(faulted_samples > 0);
+  CHECK(worst < 1.0);
+  // The other pairs read the healthy table in both sums: to rounding of K.
+  CHECK(worst_table < 1e-14);
+  // The spall takes a visible share of K (the checks above could fail).
+  CHECK(most_loss > 0.02);
+}
+
+TEST_CASE("helical static commands: the STE rises only while the spalled tooth is in contact") {
+  // Pinion tooth 0 spalled over part of the face: where no pair of tooth 0
+  // is on the widened segment, every pair reads the healthy table and the
+  // STE is the healthy one to the bit; while it is, the pair is softer and
+  // the STE higher (never lower, to rounding).
+  const GearPair h = h501_pair();
+  const double b = h.face_width_m;
+  const StiffnessModel model;
+  const MeshTables faulted =
+      helical_mesh_tables(h, model, pinion_tooth0(h501_spall(0.2 * b, 0.5 * b)));
+  const MeshTables healthy = helical_mesh_tables(h, model, {});
+  StaticTransmissionErrorOptions options;
+  options.points_per_mesh_period = 16;
+  const HelicalStaticTransmissionError f =
+      helical_static_transmission_error(h, 200.0, model, faulted, options);
+  options.mesh_periods = f.mesh_periods;
+  const HelicalStaticTransmissionError s =
+      helical_static_transmission_error(h, 200.0, model, healthy, options);
+  REQUIRE(f.mesh_periods == 20);
+  REQUIRE(f.points.size() == s.points.size());
+  int outside_differs = 0;
+  int inside = 0;
+  double lowest = 0.0;
+  double rise = 0.0;
+  for (std::size_t i = 0; i < f.points.size(); ++i) {
+    const bool touching = !std::isnan(pinion_tooth_position(h, faulted, f.points[i].theta1_rad, 0));
+    const double ratio = f.points[i].ste_m / s.points[i].ste_m - 1.0;
+    if (!touching) {
+      if (f.points[i].ste_m != s.points[i].ste_m) ++outside_differs;
+      continue;
+    }
+    ++inside;
+    lowest = std::min(lowest, ratio);
+    rise = std::max(rise, ratio);
+  }
+  MESSAGE("helical static STE: " << inside << " points with tooth 0 in contact, rise up to " << rise
+                                 << ", lowest " << lowest);
+  CHECK(outside_differs == 0);
+  CHECK(inside > 0);
+  CHECK(lowest > -1e-12);
+  CHECK(rise > 0.05);
 }

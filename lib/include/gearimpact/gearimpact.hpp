@@ -78,6 +78,7 @@
 #include "gearimpact/stiffness/fillet_foundation.hpp"
 #include "gearimpact/stiffness/finite_element_check.hpp"
 #include "gearimpact/stiffness/helical.hpp"
+#include "gearimpact/stiffness/helical_faults.hpp"
 #include "gearimpact/stiffness/helical_ste.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "gearimpact/stiffness/mesh_models.hpp"

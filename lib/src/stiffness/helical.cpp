@@ -414,6 +414,30 @@ StiffnessTable helical_faulted_pair_table(const GearPair& swept, HelicalHertz he
   return StiffnessTable(domain.start_m, domain.end_m, compliance, breaks, options);
 }
 
+double helical_slice_kappa(const GearPair& swept, HelicalHertz hertz,
+                           const StiffnessTable& healthy_section,
+                           const std::vector<FaceBand>& bands, double y0_m, double y1_m,
+                           double x_m) {
+  const double b = swept.face_width_m;
+  const double tan_bb = swept.face_advance_m / b;
+  const double cos_bb = 1.0 / std::sqrt(1.0 + tan_bb * tan_bb);
+  const double width = y1_m - y0_m;
+  Compliances terms;
+  double healthy_share = 1.0;
+  double sum = 0.0;
+  for (const FaceBand& band : bands) {
+    const double covered = std::min(band.end_m, y1_m) - std::max(band.start_m, y0_m);
+    if (!(covered > 0.0)) continue;
+    const double share = covered / width;
+    healthy_share -= share;
+    if (band.section) sum += share * per_width(*band.section, x_m, b, cos_bb, hertz, terms);
+  }
+  if (healthy_share > 0.0) {
+    sum += healthy_share * per_width(healthy_section, x_m, b, cos_bb, hertz, terms);
+  }
+  return sum;
+}
+
 HelicalMeshStiffnessCurve helical_mesh_stiffness(const GearPair& pair, const StiffnessModel& model,
                                                  int samples) {
   if (samples < 2 || samples > 100000) {

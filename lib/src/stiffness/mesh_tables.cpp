@@ -233,6 +233,9 @@ MeshTables::MeshTables(const GearPair& pair, const StiffnessModel& model,
     }
   }
   for (auto& line : tables_) line.assign(combinations, nullptr);
+  if (pair_.face_advance_m > 0.0) {
+    for (auto& line : face_bands_) line.assign(combinations, {});
+  }
   // A helical pair's section (swept_transverse_pair, face_advance_m = W > 0):
   // each tooth pair reads a table over its widened segment, the healthy one
   // given (helical_pair_table), a faulted one the face integral of its slices,
@@ -343,12 +346,14 @@ MeshTables::MeshTables(const GearPair& pair, const StiffnessModel& model,
           bands.push_back({y0, y1, found->second.get()});
         }
       }
+      face_bands_[line][c] = bands;
       tables_[line][c] = std::make_shared<const StiffnessTable>(
           helical_faulted_pair_table(pair_, model.helical_hertz, *healthy_, *section_healthy, bands,
                                      line == 0 ? Region::n1 : Region::n2, options));
       ++fault_tables_;
     }
   };
+  section_healthy_ = section_healthy;
   for (std::size_t a = 0; a < pinion.size(); ++a) {
     for (std::size_t b = 0; b < wheel_states_; ++b) {
       const std::size_t c = a * wheel_states_ + b;
@@ -380,6 +385,8 @@ MeshTables::MeshTables(const GearPair& pair, const StiffnessModel& model,
       }
     }
   }
+  // The faulted tables' bands point to these (face_bands).
+  for (auto& [key, table] : section_tables) section_tables_.push_back(std::move(table));
 }
 
 std::vector<double> fault_breaks(const GearPair& pair, Gear which, const ToothState& state) {

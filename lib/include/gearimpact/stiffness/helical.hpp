@@ -242,6 +242,17 @@ class FaceFriction {
   std::array<std::vector<double>, 2> integral_;  // C0, C1 at the nodes
 };
 
+// The stiffness per unit face width at X (on the section's path of contact)
+// of the slice [y0, y1) of a helical tooth pair whose face is `bands`
+// (disjoint, as helical_faulted_pair_table takes them) and healthy elsewhere
+// (`healthy_section`): each band's kappa, as helical_faulted_pair_table
+// reads it (Hertz by `hertz`), weighted by the share of the slice it covers,
+// the healthy kappa for the rest. `swept` the pair's swept transverse section.
+double helical_slice_kappa(const GearPair& swept, HelicalHertz hertz,
+                           const StiffnessTable& healthy_section,
+                           const std::vector<FaceBand>& bands, double y0_m, double y1_m,
+                           double x_m);
+
 // The face-load factor of ISO 6336-1 from a slice solution: uniform stiffness
 // c per unit face width, a gap linear across the face e(y) = F_betay (y/b - 1/2),
 // transverse load F: the deflection delta with integral of c max(0, delta - e)

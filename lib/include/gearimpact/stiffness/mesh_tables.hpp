@@ -19,6 +19,7 @@
 
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/tooth_identity.hpp"
+#include "gearimpact/stiffness/helical.hpp"
 #include "gearimpact/stiffness/model.hpp"
 #include "gearimpact/stiffness/table.hpp"
 #include "gearimpact/stiffness/tooth_state.hpp"
@@ -49,6 +50,19 @@ class MeshTables {
     return tables_[line == Region::n2 ? 1 : 0][combination({pinion_tooth, wheel_tooth})].get();
   }
   const StiffnessTable& healthy() const { return *healthy_; }
+  // A helical pair's section (face_advance_m > 0): the bands of the face of
+  // pair k on `line` that are not healthy, each with its section's table as
+  // helical_faulted_pair_table integrated them (empty for a pair that reads
+  // the healthy table, for a missing tooth and for a spur pair), and the
+  // section's healthy table, which the rest of the face reads (nullptr for a
+  // spur pair). Valid while these tables live.
+  const std::vector<FaceBand>& face_bands(Region line, int k) const {
+    static const std::vector<FaceBand> none;
+    if (face_bands_[0].empty()) return none;
+    const TeethInContact t = teeth_of_pair(pair_.teeth1, pair_.teeth2, line, k);
+    return face_bands_[line == Region::n2 ? 1 : 0][combination(t)];
+  }
+  const StiffnessTable* healthy_section() const { return section_healthy_.get(); }
   // How many tables were built beside the healthy one.
   std::size_t fault_table_count() const { return fault_tables_; }
   const std::vector<ToothFault>& faults() const { return faults_; }
@@ -79,6 +93,11 @@ class MeshTables {
   std::array<std::vector<std::shared_ptr<const StiffnessTable>>, 2> tables_;
   std::size_t fault_tables_ = 0;
   DistinctTeeth distinct_;
+  // A helical pair's: the bands of each combination's table as tables_ holds
+  // them, and the section tables they point to.
+  std::array<std::vector<std::vector<FaceBand>>, 2> face_bands_;
+  std::shared_ptr<const StiffnessTable> section_healthy_;
+  std::vector<std::shared_ptr<const StiffnessTable>> section_tables_;
 };
 
 // The positions X1 (from C1) at which the contact meets an edge of the fault
