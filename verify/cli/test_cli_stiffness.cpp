@@ -394,6 +394,7 @@ TEST_CASE(
   for (const SweepPointResult& row : sweep.rows) CHECK(row.point.converged);
   CHECK(text(out / "sweep.csv") == sweep_csv(sweep.rows));
   CHECK(text(out / "poincare.csv") == poincare_csv(sweep.rows));
+}
 
 TEST_CASE("mesh-stiffness, ste and report of a faulted helical pair: the library's tables") {
   // H501 with a spall on pinion tooth 0 over [5, 15) mm of the face: the

@@ -22,6 +22,7 @@ using gearimpact::verify::cli;
 using gearimpact::verify::CommandResult;
 using gearimpact::verify::run_command;
 using gearimpact::verify::Scratch;
+using gearimpact::verify::signal_when_under_way;
 
 namespace {
 

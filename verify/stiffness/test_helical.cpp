@@ -2005,26 +2005,6 @@ NarrowFace narrow_face_runs(double beta_rad, double f) {
   const SimulationSummary a = simulate(c).summary;
   const SimulationSummary s = simulate(spur).summary;
   return {a.friction_loss_j, s.friction_loss_j, a.final_w1_rad_per_s, s.final_w1_rad_per_s};
-
-// The static commands on a faulted helical pair (docs/helical.md, Faults):
-// mesh-stiffness and ste read the tables a run reads.
-namespace {
-
-// X of the pair with pinion tooth `tooth` on N1 at theta1 on the widened
-// segment of `tables`, or NaN: X_k = X_pitch + Rb1 theta1 + k p_bt.
-double pinion_tooth_position(const GearPair& h, const MeshTables& tables, double theta1,
-                             int tooth) {
-  const GearPair swept = swept_transverse_pair(h);
-  const MeshLayout layout(swept, CoastPhase::half_base_pitch);
-  const double reference = layout.reference_m(Region::n1, theta1);
-  for (int k = -swept.teeth1; k <= swept.teeth1; ++k) {
-    const double x = layout.position_m(reference, k);
-    if (x >= tables.healthy().domain_start_m() && x <= tables.healthy().domain_end_m() &&
-        teeth_of_pair(swept, Region::n1, k).pinion_tooth == tooth) {
-      return x;
-    }
-  }
-  return std::nan("");
 }
 
 }  // namespace
@@ -2107,6 +2087,30 @@ TEST_CASE("helical friction: on elastic bearings the planar ledger closes with t
                                            << " J");
   CHECK(s.friction_loss_j > 1e3 * s.ledger_residual_max_j);
   CHECK(s.ledger_residual_max_j < 1e-7 * throughput);
+}
+
+// The static commands on a faulted helical pair (docs/helical.md, Faults):
+// mesh-stiffness and ste read the tables a run reads.
+namespace {
+
+// X of the pair with pinion tooth `tooth` on N1 at theta1 on the widened
+// segment of `tables`, or NaN: X_k = X_pitch + Rb1 theta1 + k p_bt.
+double pinion_tooth_position(const GearPair& h, const MeshTables& tables, double theta1,
+                             int tooth) {
+  const GearPair swept = swept_transverse_pair(h);
+  const MeshLayout layout(swept, CoastPhase::half_base_pitch);
+  const double reference = layout.reference_m(Region::n1, theta1);
+  for (int k = -swept.teeth1; k <= swept.teeth1; ++k) {
+    const double x = layout.position_m(reference, k);
+    if (x >= tables.healthy().domain_start_m() && x <= tables.healthy().domain_end_m() &&
+        teeth_of_pair(swept, Region::n1, k).pinion_tooth == tooth) {
+      return x;
+    }
+  }
+  return std::nan("");
+}
+
+}  // namespace
 
 TEST_CASE("helical static commands: a crack of depth 0 gives the healthy stiffness and STE") {
   // Bit for bit against the healthy pair by the same tables; and those
