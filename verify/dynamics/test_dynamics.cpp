@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "../../lib/src/dynamics/event_location.hpp"
 #include "gearimpact/batch/sweep_friction.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
@@ -677,4 +678,27 @@ TEST_CASE("a run a thousand teeth on is the same run: pairs enter and leave at t
   // ~1e-15 m, and each step rounds the larger angles about as much; a damped, stable motion
   // keeps that below 1e-13 m (5e-8 of the static deflection of 2e-6 m).
   CHECK(largest <= 1e-13);
+}
+
+// The run's event location (lib/src/dynamics/event_location.hpp, not a public
+// header: the systems reach it through step_methods.hpp).
+TEST_CASE("event location ends the step just past the first of several values that cross in it") {
+  // Values falling linearly through zero at 0.7 and 0.3 of the step [0, 1]
+  // (0.3 - t and 0.7 - t are exact near their roots, Sterbenz): the step
+  // must end past 0.3, where the earlier one is negative, by no more than the
+  // location's tolerance (4 eps of the step) and its bump past an exact zero
+  // (4 eps again), whichever value comes first in the list.
+  for (const bool early_first : {true, false}) {
+    const double root[2] = {early_first ? 0.3 : 0.7, early_first ? 0.7 : 0.3};
+    const double g_a[2] = {root[0], root[1]};
+    const double g_b[2] = {root[0] - 1.0, root[1] - 1.0};
+    const auto value = [&](double t, int i) { return root[i] - t; };
+    const double t = gearimpact::earliest_event(0.0, 1.0, g_a, g_b, 2, value);
+    CHECK(0.3 - t < 0.0);
+    CHECK(t - 0.3 <= 8.0 * std::numeric_limits<double>::epsilon());
+  }
+  // A value that stays positive to the step's end is no event: the step is whole.
+  const double g_a[2] = {0.5, 0.2};
+  const double g_b[2] = {0.1, 0.3};
+  CHECK(gearimpact::earliest_event(0.0, 1.0, g_a, g_b, 2, [](double, int) { return 1.0; }) == 1.0);
 }
