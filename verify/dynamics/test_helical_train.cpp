@@ -314,6 +314,13 @@ TEST_CASE("a helical mesh run by slices refuses what its slices cannot take, nam
     CHECK_THROWS_WITH_AS(simulate_train(train),
                          doctest::Contains("meshes.mesh.model.friction_coefficient"), InputError);
   }
+  SUBCASE("a fault, whose band across the face the slices do not place") {
+    ToothFault missing;
+    missing.state.kind = ToothKind::missing;
+    train.meshes[0].pair.faults.push_back(missing);
+    CHECK_THROWS_WITH_AS(simulate_train(train), doctest::Contains("meshes.mesh.faults[0]"),
+                         InputError);
+  }
 }
 
 TEST_CASE(
@@ -423,7 +430,7 @@ TEST_CASE("route A in the two-gear run: refusals name the two-gear keys; route B
     c.faults.push_back(missing);
     CHECK_THROWS_WITH_AS(simulate(c), doctest::Contains("faults[0]"), InputError);
   }
-  SUBCASE("friction, as route B refuses it") {
+  SUBCASE("friction, which the slices do not take (route B does)") {
     c.model.friction_coefficient = 0.05;
     CHECK_THROWS_WITH_AS(simulate(c), doctest::Contains("model.friction_coefficient"), InputError);
   }

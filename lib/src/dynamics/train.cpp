@@ -172,6 +172,15 @@ void validate_sliced_mesh(const std::string& prefix, const TrainMesh& mesh,
     throw InputError(prefix + "table", "a table given",
                      "none: a helical mesh run by slices builds its slices' table");
   }
+  // Each slice would take the fault across its whole width: a fault's band of
+  // the face, a graded crack's depth and a spall's face_start are not laid out
+  // over the slices.
+  if (!c.faults.empty()) {
+    throw InputError(prefix + "faults[0]", "a tooth fault",
+                     "none with modifications on a helical mesh: its slices (route A of "
+                     "docs/helical.md) do not place a fault's band across the face; route B "
+                     "(no modifications) runs faulted helical pairs");
+  }
 }
 
 // Slice j's (of n) modifications (helical_slice_meshes): the pair's reliefs,
