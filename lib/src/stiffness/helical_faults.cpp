@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "face_load_book.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/helical.hpp"
@@ -202,12 +203,7 @@ HelicalStaticTransmissionError helical_static_transmission_error(
   result.slice_y_m.resize(static_cast<std::size_t>(n));
   for (int j = 0; j < n; ++j) result.slice_y_m[static_cast<std::size_t>(j)] = (j + 0.5) * db;
   const long long angles = result.mesh_periods * options.points_per_mesh_period;
-  const double nominal = result.force_n / b;
-  result.points.reserve(static_cast<std::size_t>(angles));
-  result.mean_load_per_width_n_per_m.assign(static_cast<std::size_t>(n), 0.0);
-  double sum = 0.0;
-  double least = std::numeric_limits<double>::infinity();
-  double most = -least;
+  FaceLoadBook book(result, angles);
   for (long long i = 0; i < angles; ++i) {
     HelicalStePoint p;
     p.theta1_rad = result.period_rad * static_cast<double>(i) / static_cast<double>(angles);
@@ -243,38 +239,9 @@ HelicalStaticTransmissionError helical_static_transmission_error(
             p.ste_m;
       }
     }
-    double total = 0.0;
-    double moment = 0.0;
-    double peak = 0.0;
-    for (int j = 0; j < n; ++j) {
-      const double w = p.load_per_width_n_per_m[static_cast<std::size_t>(j)];
-      total += w;
-      moment += w * result.slice_y_m[static_cast<std::size_t>(j)];
-      peak = std::max(peak, w);
-      result.mean_load_per_width_n_per_m[static_cast<std::size_t>(j)] += w;
-    }
-    p.load_centre_m = total > 0.0 ? moment / total : 0.5 * b;
-    p.face_load_factor = peak / nominal;
-    result.largest_face_load_factor = std::max(result.largest_face_load_factor, p.face_load_factor);
-    sum += p.ste_m;
-    least = std::min(least, p.ste_m);
-    most = std::max(most, p.ste_m);
-    result.points.push_back(std::move(p));
+    book.add(std::move(p));
   }
-  double total = 0.0;
-  double moment = 0.0;
-  double peak = 0.0;
-  for (int j = 0; j < n; ++j) {
-    double& w = result.mean_load_per_width_n_per_m[static_cast<std::size_t>(j)];
-    w /= static_cast<double>(angles);
-    total += w;
-    moment += w * result.slice_y_m[static_cast<std::size_t>(j)];
-    peak = std::max(peak, w);
-  }
-  result.face_load_factor = peak / nominal;
-  result.mean_load_centre_m = moment / total;
-  result.ste_mean_m = sum / static_cast<double>(angles);
-  result.ste_peak_to_peak_m = most - least;
+  book.finish();
   return result;
 }
 
