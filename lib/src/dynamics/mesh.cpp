@@ -121,20 +121,8 @@ double mean_mesh_stiffness_n_per_m(const SimulationCase& c, const MeshTables& ta
   // summed in the order the pairs come, so that the sum does not depend on
   // where the tables lie in memory.
   const long long periods = tables.true_period_mesh_periods();
-  std::vector<std::pair<const StiffnessTable*, long long>> count;
-  for (long long n = 0; n < periods; ++n) {
-    const StiffnessTable* t = tables.table(Region::n1, static_cast<int>(-n));
-    if (t == nullptr) continue;
-    auto seen = count.begin();
-    while (seen != count.end() && seen->first != t) ++seen;
-    if (seen == count.end()) {
-      count.emplace_back(t, 1);
-    } else {
-      ++seen->second;
-    }
-  }
   double sum = 0.0;
-  for (const auto& [table, times] : count) {
+  for (const auto& [table, times] : tables.table_repeats(periods)) {
     sum += static_cast<double>(times) * stiffness_integral(c, *table);
   }
   return sum / (static_cast<double>(periods) * base_pitch(c.gears));

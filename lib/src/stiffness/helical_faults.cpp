@@ -146,20 +146,8 @@ TruePeriodMeshStiffness helical_true_period_mesh_stiffness(const GearPair& pair,
   result.max_n_per_m = most;
   // Every pair of the true period crosses the widened segment once: the mean
   // is the sum of its tables' integrals over N p_bt, each table integrated once.
-  std::vector<std::pair<const StiffnessTable*, long long>> times;
-  for (long long m = 0; m < result.mesh_periods; ++m) {
-    const StiffnessTable* t = tables.table(Region::n1, static_cast<int>(-m));
-    if (t == nullptr) continue;
-    auto seen = times.begin();
-    while (seen != times.end() && seen->first != t) ++seen;
-    if (seen == times.end()) {
-      times.emplace_back(t, 1);
-    } else {
-      ++seen->second;
-    }
-  }
   double sum = 0.0;
-  for (const auto& [table, repeats] : times)
+  for (const auto& [table, repeats] : tables.table_repeats(result.mesh_periods))
     sum += static_cast<double>(repeats) * ke_integral(*table);
   const double healthy_integral = ke_integral(healthy);
   result.mean_n_per_m = sum / (static_cast<double>(result.mesh_periods) * pitch);

@@ -411,4 +411,21 @@ long long MeshTables::true_period_mesh_periods() const {
   return gearimpact::true_period_mesh_periods(pair_, distinct_);
 }
 
+std::vector<std::pair<const StiffnessTable*, long long>> MeshTables::table_repeats(
+    long long periods) const {
+  std::vector<std::pair<const StiffnessTable*, long long>> count;
+  for (long long n = 0; n < periods; ++n) {
+    const StiffnessTable* t = table(Region::n1, static_cast<int>(-n));
+    if (t == nullptr) continue;
+    auto seen = count.begin();
+    while (seen != count.end() && seen->first != t) ++seen;
+    if (seen == count.end()) {
+      count.emplace_back(t, 1);
+    } else {
+      ++seen->second;
+    }
+  }
+  return count;
+}
+
 }  // namespace gearimpact

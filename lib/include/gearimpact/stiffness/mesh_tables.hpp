@@ -15,6 +15,7 @@
 #include <array>
 #include <cstddef>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "gearimpact/geometry/gear_pair.hpp"
@@ -71,6 +72,11 @@ class MeshTables {
   // in mesh periods (true_period_mesh_periods).
   DistinctTeeth distinct() const { return distinct_; }
   long long true_period_mesh_periods() const;
+  // The drive line's tables of the pairs 0, -1, ..., -(periods - 1) (one a
+  // mesh period), each once, with how many of those pairs read it, in the
+  // order the pairs come: a sum over them then does not depend on where the
+  // tables lie in memory. A missing tooth's pairs (no table) are left out.
+  std::vector<std::pair<const StiffnessTable*, long long>> table_repeats(long long periods) const;
 
  private:
   std::size_t combination(TeethInContact t) const {
