@@ -447,7 +447,7 @@ void refuse_helical_run(const SimulationCase& c) {
         "reliefs or tooth errors on a helical pair (gears.helix_angle = " + beta + ")",
         "not in this run of a helical pair: a gap that varies along an inclined contact "
         "line needs the slices as separate contacts (route A of docs/helical.md), which only "
-        "`gearimpact simulate` on rigid bearings and `gearimpact train` run",
+        "`gearimpact simulate` and `gearimpact train` run",
         "no relief and no tooth error with gears.helix_angle > 0",
         "run the case file with `gearimpact simulate` or `gearimpact train` (route A: each "
         "slice its own contact), or remove the relief and tooth-error keys")});

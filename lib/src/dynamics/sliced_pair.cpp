@@ -2,13 +2,16 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "gearimpact/case/schema.hpp"
+#include "gearimpact/dynamics/planar.hpp"
 #include "gearimpact/dynamics/train.hpp"
 #include "gearimpact/error.hpp"
+#include "gearimpact/geometry/helical.hpp"
 #include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/named_values.hpp"
 #include "gearimpact/stiffness/fillet_foundation.hpp"
@@ -41,11 +44,30 @@ void refuse_in_sliced_run(const SimulationCase& c, const RunControl& control) {
   const std::string why =
       "a helical pair with modifications runs by slices (route A of "
       "docs/helical.md) as a gear train's meshes";
-  if (c.bearings.kind != BearingKind::rigid) {
-    throw InputError(std::vector<Problem>{refused_problem(
-        "bearings.kind", "\"elastic\"", why + ", which turn about fixed axes (the torsional model)",
-        "\"rigid\" with modifications on a helical pair",
-        "bearings.kind = \"rigid\", or no modifications (route B runs on elastic bearings)")});
+  if (c.bearings.kind == BearingKind::elastic) {
+    // The planar train holds the two gears on their bearings, not a motor and a load behind
+    // shafts, nor a tacho's edges, nor a speed controller.
+    if (c.shafts.kind == ShaftKind::elastic) {
+      throw InputError(std::vector<Problem>{refused_problem(
+          "shafts.kind", "\"elastic\"",
+          why + " on their bearings, without a motor and a load behind shafts",
+          "\"none\" with modifications on a helical pair",
+          "shafts.kind = \"none\", or no modifications (route B runs with shafts)")});
+    }
+    if (c.tacho.pulses_per_revolution > 0) {
+      throw InputError(std::vector<Problem>{refused_problem(
+          "tacho.pulses_per_revolution", std::to_string(c.tacho.pulses_per_revolution),
+          why + ", whose loop locates no tacho edges",
+          "0 (no tacho) with modifications on a helical pair")});
+    }
+    for (const Torque* t : {&c.torque1, &c.torque2}) {
+      if (t->kind != Torque::Kind::speed_controlled) continue;
+      throw InputError(std::vector<Problem>{refused_problem(
+          t == &c.torque1 ? "torque1.kind" : "torque2.kind", "\"speed-controlled\"",
+          why + " on elastic bearings, which take no speed controller yet",
+          "a torque other than speed-controlled with modifications on a helical pair on "
+          "elastic bearings")});
+    }
   }
   if (!c.faults.empty()) {
     // Each slice would take the fault across its whole width: a band of the face, a graded
@@ -100,6 +122,71 @@ SeriesRow pair_row(const TrainRow& r) {
   return row;
 }
 
+// The planar row of the train's row (simulate_by_slices' planar series): the two bodies'
+// centres and bearing forces, each line's force summed over the slices and its penetration the
+// largest of theirs, the thrust of those summed forces as route B reports it.
+PlanarRow planar_row(const TrainRow& r, const HelicalThrustLevers& thrust) {
+  PlanarRow row;
+  row.t_s = r.t_s;
+  PlanarState& p = row.state;
+  const TrainCentreRow& c1 = r.centres[0];
+  const TrainCentreRow& c2 = r.centres[1];
+  p.x1_m = c1.x_m;
+  p.y1_m = c1.y_m;
+  p.theta1_rad = r.theta_rad[0];
+  p.x2_m = c2.x_m;
+  p.y2_m = c2.y_m;
+  p.theta2_rad = r.theta_rad[1];
+  p.theta_motor_rad = p.theta1_rad;
+  p.theta_load_rad = p.theta2_rad;
+  p.vx1_m_s = c1.vx_m_s;
+  p.vy1_m_s = c1.vy_m_s;
+  p.w1_rad_per_s = r.w_rad_per_s[0];
+  p.vx2_m_s = c2.vx_m_s;
+  p.vy2_m_s = c2.vy_m_s;
+  p.w2_rad_per_s = r.w_rad_per_s[1];
+  p.w_motor_rad_per_s = p.w1_rad_per_s;
+  p.w_load_rad_per_s = p.w2_rad_per_s;
+  row.bearing_fx1_n = c1.bearing_fx_n;
+  row.bearing_fy1_n = c1.bearing_fy_n;
+  row.bearing_fx2_n = c2.bearing_fx_n;
+  row.bearing_fy2_n = c2.bearing_fy_n;
+  for (std::size_t k = 0; k < r.meshes.size(); ++k) {
+    const TrainMeshRow& m = r.meshes[k];
+    row.drive_force_n += m.line_force_n[0];
+    row.coast_force_n += m.line_force_n[1];
+    row.drive_penetration_m = k == 0 ? m.line_penetration_m[0]
+                                     : std::max(row.drive_penetration_m, m.line_penetration_m[0]);
+    row.coast_penetration_m = k == 0 ? m.line_penetration_m[1]
+                                     : std::max(row.coast_penetration_m, m.line_penetration_m[1]);
+  }
+  const HelicalThrust h = thrust(row.drive_force_n, row.coast_force_n);
+  row.axial_force1_n = h.axial_force1_n;
+  row.axial_force2_n = h.axial_force2_n;
+  row.tilting_moment1_n_m = h.tilting_moment1_n_m;
+  row.tilting_moment2_n_m = h.tilting_moment2_n_m;
+  return row;
+}
+
+// The pair's train on its mounting: on elastic bearings each body's centre on its gear's
+// bearings, with the planar model's masses (planar_mounting) and its sensor.
+GearTrain mounted_train(const SimulationCase& c, const SimulationCase& d) {
+  GearTrain train = two_gear_train(c);
+  if (c.bearings.kind != BearingKind::elastic) return train;
+  const PlanarMounting m = planar_mounting(d);
+  const GearBearing* bearing[2] = {&c.bearings.gear1, &c.bearings.gear2};
+  for (std::size_t i = 0; i < 2; ++i) {
+    GearBearing b = *bearing[i];
+    b.mass_kg = m.mass_kg[i];
+    train.bodies[i].bearing = b;
+  }
+  // The train's mesh turns about fixed axes; its bodies carry the bearings.
+  train.meshes[0].pair.bearings = Bearings{};
+  train.sensor_body = c.bearings.sensor_gear - 1;
+  train.sensor_angle_rad = c.bearings.sensor_angle_rad;
+  return train;
+}
+
 }  // namespace
 
 bool runs_by_slices(const SimulationCase& c) {
@@ -122,8 +209,10 @@ SimulationResult simulate_by_slices(const SimulationCase& c, const RunControl& c
   refuse_in_sliced_run(c, control);
   const SimulationCase d = dynamics_case(c);
   refuse_planar_simulation(d);
+  const bool planar = c.bearings.kind == BearingKind::elastic;
+  if (planar) validate_planar(d, planar_mounting(d), {});
   validate_run_control(d, control);
-  const GearTrain train = two_gear_train(c);
+  const GearTrain train = mounted_train(c, d);
   named_as_pair([&] {
     check_train(train);
     return 0;
@@ -134,11 +223,17 @@ SimulationResult simulate_by_slices(const SimulationCase& c, const RunControl& c
   RunControl run_control;
   run_control.keep_series = false;
   run_control.should_stop = control.should_stop;
-  if (control.keep_series || control.on_row) {
+  std::optional<HelicalThrustLevers> thrust;
+  if (planar) thrust.emplace(d.gears);
+  if (control.keep_series || control.on_row || (planar && control.on_planar_row)) {
     run_control.on_train_row = [&](const TrainRow& r) {
       const SeriesRow row = pair_row(r);
       if (control.on_row) control.on_row(row);
       if (control.keep_series) result.series.push_back(row);
+      if (!planar) return;
+      const PlanarRow planar_series_row = planar_row(r, *thrust);
+      if (control.on_planar_row) control.on_planar_row(planar_series_row);
+      if (control.keep_series) result.planar_series.push_back(planar_series_row);
     };
   }
   TrainResult run = named_as_pair([&] { return simulate_train(train, run_control); });

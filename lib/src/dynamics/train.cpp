@@ -72,9 +72,6 @@ struct TrainLayout {
   };
   using Events = std::array<double, kMeshes * kMaxMeshEvents>;
 };
-// The most lines a run holds: a train's meshes after route A cut each
-// helical mesh with modifications into its slices.
-constexpr int kMaxTrainLines = 64;
 // Today's trains (the sizes before planetary stages), the largest, and a
 // train of helical slices.
 using SmallTrain = TrainLayout<6, 4, false>;
@@ -1141,9 +1138,14 @@ class TrainRun {
       const Mode& m = mode.mesh[k];
       const MeshMotion q = system_.motion(k, y);
       const MeshLine& mesh = system_.mesh(k);
-      row.meshes.push_back({mesh.s(q), m.region == Region::free ? 0.0 : mesh.delta(m.region, q),
-                            static_cast<int>(m.region), m.count, forces.mesh[k].normal_force_n,
-                            forces.mesh[k].friction_force_n});
+      TrainMeshRow own;
+      own.s_m = mesh.s(q);
+      own.delta_m = m.region == Region::free ? 0.0 : mesh.delta(m.region, q);
+      own.region = static_cast<int>(m.region);
+      own.pairs = m.count;
+      own.normal_force_n = forces.mesh[k].normal_force_n;
+      own.friction_force_n = forces.mesh[k].friction_force_n;
+      row.meshes.push_back(own);
     }
     if (control_.on_train_row) control_.on_train_row(row);
     if (control_.keep_series) result_.series.push_back(std::move(row));

@@ -70,6 +70,8 @@ struct PlanarTrainLayout {
 // layout, so that it does not pay for the largest train's state.
 using SmallPlanarTrain = PlanarTrainLayout<4, 3>;
 using LargePlanarTrain = PlanarTrainLayout<kMaxTrainBodies, kMaxTrainMeshes>;
+// A train whose helical meshes run by slices: each slice a mesh of its own.
+using SlicedPlanarTrain = PlanarTrainLayout<kMaxTrainBodies, kMaxTrainLines>;
 
 // Each degree of freedom's sense of turning about +z in the train's forward
 // motion: +1 for the first of each connected set, -1 across an external mesh
@@ -552,7 +554,7 @@ class PlanarTrainRun {
         std::ceil(train_.integrator.end_time_s / train_.integrator.step_s - 1e-9));
   }
   bool wants_dense() const { return false; }
-  bool records() const { return control_.keep_series; }
+  bool records() const { return control_.keep_series || static_cast<bool>(control_.on_train_row); }
   bool sampling() const { return false; }
   const State& first_stage(double) const { return k1_; }
   template <typename StateAt>
@@ -666,15 +668,20 @@ class PlanarTrainRun {
       const bool on_drive = drive.region != Region::free;
       const bool on_coast = coast.region != Region::free;
       row.meshes.push_back({line.delta(Region::n1, q) + train_.meshes[k].pair.gears.backlash_m,
-                            std::max(dd, dc), on_drive ? 1 : (on_coast ? -1 : 0),
+                            std::max(dd, dc),
+                            on_drive ? 1 : (on_coast ? -1 : 0),
                             on_drive ? drive.count : (on_coast ? coast.count : 0),
-                            f.normal_n[2 * k] + f.normal_n[2 * k + 1], f.friction_n[k]});
+                            f.normal_n[2 * k] + f.normal_n[2 * k + 1],
+                            f.friction_n[k],
+                            {f.normal_n[2 * k], f.normal_n[2 * k + 1]},
+                            {dd, dc}});
     }
     if (train_.sensor_body >= 0) {
       const auto d = static_cast<std::size_t>(system_.dof_of(train_.sensor_body));
       row.sensor_acceleration_m_per_s2 = dy[L::vx(d)] * sensor_cos_ + dy[L::vy(d)] * sensor_sin_;
     }
-    result_.series.push_back(std::move(row));
+    if (control_.on_train_row) control_.on_train_row(row);
+    if (control_.keep_series) result_.series.push_back(std::move(row));
   }
 
   TrainResult finish(double t, const char* integrator) {
@@ -848,10 +855,6 @@ void validate_planar_train(const GearTrain& train) {
     if (m.kind == TrainMesh::Kind::internal) {
       throw InputError(prefix + "kind", "internal", "external" + why);
     }
-    if (runs_by_slices(m)) {
-      throw InputError(prefix + "modifications", "set on a helical mesh",
-                       "none on a helical mesh (its route A slices)" + why);
-    }
     if (m.pair.model.mesh_force == MeshForce::lagrangian) {
       throw InputError(prefix + "model.mesh_force", "lagrangian", "newtonian" + why);
     }
@@ -948,7 +951,10 @@ TrainResult run_planar_train(const GearTrain& train,
       train.meshes.size() <= SmallPlanarTrain::kMeshes) {
     return run_layout<SmallPlanarTrain>(train, tables, control);
   }
-  return run_layout<LargePlanarTrain>(train, tables, control);
+  if (train.meshes.size() <= LargePlanarTrain::kMeshes) {
+    return run_layout<LargePlanarTrain>(train, tables, control);
+  }
+  return run_layout<SlicedPlanarTrain>(train, tables, control);
 }
 
 }  // namespace gearimpact

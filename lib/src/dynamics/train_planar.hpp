@@ -17,9 +17,8 @@ bool has_planar_bodies(const GearTrain& train);
 // The planar train's own checks, after validate_train's (each InputError
 // naming the field as bodies.NAME.bearings.KEY, meshes.NAME.KEY, sensor_body
 // or integrator.step): its bearings' values; what it does not run yet (a
-// carrier's meshes, an internal mesh, a helical mesh by slices, the
-// Lagrangian mesh force, the adaptive integrator, a held or speed-controlled
-// body, two bodies with bearings on one rigid shaft); senses of turning that
+// carrier's meshes, an internal mesh, the Lagrangian mesh force, the adaptive integrator, a held or
+// speed-controlled body, two bodies with bearings on one rigid shaft); senses of turning that
 // contradict each other around a loop of meshes; the sensor's body.
 void validate_planar_train(const GearTrain& train);
 // InputError naming integrator.step unless the step resolves the shortest
@@ -29,7 +28,8 @@ void check_planar_train_step(const GearTrain& train,
                              const std::vector<const StiffnessTable*>& tables);
 
 // The run of a train with bodies on bearings (its dynamics train: route B
-// pairs, tables given), after validate_train and validate_planar_train.
+// pairs and route A's slice meshes, tables given), after validate_train and
+// validate_planar_train.
 TrainResult run_planar_train(const GearTrain& train,
                              const std::vector<const StiffnessTable*>& tables,
                              const RunControl& control);

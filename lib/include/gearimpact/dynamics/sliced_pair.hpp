@@ -32,15 +32,25 @@ bool runs_by_slices(const SimulationCase& c);
 //   impacts_n2 summed over the slices, the first and last impact times over them); the largest
 //   penetration over the slices; the case's name, stiffness model, damping reading and friction
 //   (0); each slice's own summary in `slices`. final_state is left empty (resume is refused).
+// - on elastic bearings ([bearings] kind = "elastic"), the train's two bodies carry the gears'
+//   bearings (the planar model's masses, planar_mounting) and its sensor, and run as a planar
+//   train; the planar series (PlanarRow; to control.on_planar_row and, with keep_series, the
+//   result) gives the bodies' centres, bearing forces, angles and speeds, each line's force
+//   summed over the slices and its penetration the largest of theirs, and the axial forces and
+//   tilting moments of the summed forces (HelicalThrustLevers, as route B); the summary adds the
+//   bearings' energies and losses, without route B's thrust maxima.
 // Refused before any work, naming the key as a two-gear case file has it: what the two-gear run
-// refuses of a helical pair but its modifications (refuse_helical_run), elastic bearings
-// (bearings.kind: route A runs in the torsional model), [[faults]] (faults[0]: a fault's band
+// refuses of a helical pair but its modifications (refuse_helical_run), on elastic bearings
+// elastic shafts (shafts.kind), a tacho (tacho.pulses_per_revolution), a speed controller
+// (torque1.kind, torque2.kind), the bearings' values (validate_planar) and the Lagrangian mesh
+// force (model.mesh_force), [[faults]] (faults[0]: a fault's band
 // across the face is not laid out over route A's slices), a kinematic driver (torque1.kind: the
 // rattle summary is a single contact's), the controls the train's loop has no place for
 // (sample_rate, resume, locate_events = false), the series bound (integrator.end_time), and
 // what the train's run refuses of the mesh (docs/helical.md, "A helical mesh in a train":
 // tooth errors, model.damping_stiffness = "hertz", the adaptive integrator, gaps closing the
-// play on a slice). `fields_checked`, when given, is called once the keys, fields and gaps
+// play on a slice; on bearings the step the planar train's bound lets through,
+// integrator.step). `fields_checked`, when given, is called once the keys, fields and gaps
 // pass, before the run, as check_run calls it.
 SimulationResult simulate_by_slices(const SimulationCase& c, const RunControl& control = {},
                                     const std::function<void()>& fields_checked = {});

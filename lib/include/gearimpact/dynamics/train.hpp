@@ -19,6 +19,7 @@
 // docs/architecture.md, section "A gear train"; docs/planetary.md.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -38,6 +39,9 @@ namespace gearimpact {
 // and 10 meshes.
 inline constexpr int kMaxTrainBodies = 8;
 inline constexpr int kMaxTrainMeshes = 10;
+// The most lines a run holds: a train's meshes after route A cut each helical
+// mesh with modifications into its slices (helical_slice_meshes).
+inline constexpr int kMaxTrainLines = 64;
 
 // A body turning about its fixed axis. Its angle and speed are positive in the
 // sense it turns when the train runs forward: a mesh's driven body b turns
@@ -178,6 +182,12 @@ struct TrainMeshRow {
   int pairs = 0;
   double normal_force_n = 0.0;
   double friction_force_n = 0.0;
+  // With bodies on elastic bearings, each line's own (drive N1, coast N2):
+  // its normal force summed over its pairs (normal_force_n is their sum) and
+  // the larger penetration of its pairs (delta_d = s_d - B, delta_c = -s_c -
+  // B), as PlanarRow has them; 0 in a train on fixed axes.
+  std::array<double, 2> line_force_n{};
+  std::array<double, 2> line_penetration_m{};
 };
 // With bodies on elastic bearings, each body's centre (x, y in the fixed
 // frame, 0 for a fixed centre) and the force its bearings exert on it,
