@@ -1044,9 +1044,9 @@ void validate_planar_train(const GearTrain& train) {
       // that carrier, its central members' supports isotropic (the axes turn).
       const TrainBody& planet = train.bodies[static_cast<std::size_t>(m.body_b)];
       if (!planet.pin || planet.pin->carrier != m.carrier || !planet.bearing) {
-        throw InputError(prefix + "body_b", planet.name,
-                         "a planet on a pin of the mesh's carrier with its bearing (bodies." +
-                             planet.name + ".pin)" + why);
+        throw InputError(prefix + "carrier", std::to_string(m.carrier),
+                         "the body whose pin holds body_b (bodies." + planet.name +
+                             ".pin, with its bearing)" + why);
       }
       for (const int central : {m.body_a, m.carrier}) {
         const TrainBody& c = train.bodies[static_cast<std::size_t>(central)];
