@@ -413,8 +413,8 @@ TEST_CASE("a train on bearings refuses what it does not run, naming the field") 
   t = impacting_train(table, 2e-7);
   t.meshes[1].pair.model.mesh_force = MeshForce::lagrangian;
   CHECK(field_of(t) == "meshes.second.model.mesh_force");
-  // A translating body in a carrier's frame (the idler-wheel mesh held by the pinion as a
-  // carrier) is later work.
+  // A mesh in a carrier's frame whose body_b sits on no pin of that carrier (the idler-wheel
+  // mesh held by the pinion as a carrier): a planetary stage's planet needs its pin.
   t = impacting_train(table, 2e-7);
   t.meshes[1].carrier = 0;
   CHECK(field_of(t) == "meshes.second.carrier");

@@ -145,6 +145,33 @@ std::vector<Field> make_train_schema() {
   quantity("stage", "planet_mass", Dimension::mass, "kg", {open(0.0), closed(1e6), {}},
            "the carrier's inertia is taken as given",
            "m_p, each planet's mass: its orbit adds m_p R_c^2 to the carrier's inertia");
+  // The planar stage (docs/planetary.md, "The planar stage"): the names of the planetary file's
+  // keys of the linear model (rows_planetary.cpp), masses > 0 and stiffnesses >= 0 as there (a
+  // planet bearing > 0: its planet would float free), bounded above as planet_mass and the
+  // bearings' rows are; any of them asks for all (and planet_mass).
+  for (const auto& [key, help] :
+       {std::pair<std::string_view, std::string>{
+            "sun_mass", "m_s, the sun's mass (the planar stage: its centre translates)"},
+        {"ring_mass", "m_r, the ring's mass (the planar stage)"},
+        {"carrier_mass", "m_c, the carrier's own mass (the planar stage)"}}) {
+    quantity("stage", key, Dimension::mass, "kg", {open(0.0), closed(1e6), {}},
+             "the rotational stage (every centre fixed)", help);
+  }
+  for (const auto& [key, help] :
+       {std::pair<std::string_view, std::string>{
+            "sun_support",
+            "k_s, the sun's support stiffness on x and on y of the carrier's axes (0: it "
+            "floats; the planar stage)"},
+        {"ring_support", "k_r, the ring's support stiffness on x and on y (the planar stage)"},
+        {"carrier_support",
+         "k_c, the carrier's support stiffness on x and on y (the planar stage)"}}) {
+    quantity("stage", key, Dimension::stiffness, "N/m", {closed(0.0), closed(1e15), {}},
+             "the rotational stage (every centre fixed)", help);
+  }
+  quantity("stage", "planet_bearing", Dimension::stiffness, "N/m", {open(0.0), closed(1e15), {}},
+           "the rotational stage (every centre fixed)",
+           "k_p, each planet bearing's stiffness, radial and tangential, between the planet "
+           "(of planet_mass) and its pin on the carrier (the planar stage)");
   quantity("stage", "input_speed", Dimension::angular_velocity, "rad/s",
            {closed(-1e5), closed(1e5), {}}, "0",
            "the input member's speed at t = 0 (the sun's, or the ring's when the sun is held); "

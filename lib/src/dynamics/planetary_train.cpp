@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gearimpact/constants.hpp"
@@ -155,6 +156,28 @@ void check_stage_faults(const PlanetaryStage& stage, std::size_t planets) {
   }
 }
 
+// The planar stage's keys, each by its own name.
+void check_supports(const PlanetaryStage& stage) {
+  const StageSupports& k = *stage.supports;
+  if (!stage.planet_mass_kg) {
+    throw InputError("planet_mass", "absent",
+                     "a mass > 0 kg with the stage's supports (each planet's centre translates "
+                     "on its bearing)");
+  }
+  require_positive("sun_mass", k.sun_mass_kg);
+  require_positive("ring_mass", k.ring_mass_kg);
+  require_positive("carrier_mass", k.carrier_mass_kg);
+  require_positive("planet_bearing", k.planet_bearing_n_per_m);
+  for (const auto& [name, value] :
+       {std::pair<const char*, double>{"sun_support", k.sun_support_n_per_m},
+        {"ring_support", k.ring_support_n_per_m},
+        {"carrier_support", k.carrier_support_n_per_m}}) {
+    if (!std::isfinite(value) || value < 0.0) {
+      throw InputError(name, value, "a finite stiffness >= 0 N/m (0: the member floats)");
+    }
+  }
+}
+
 }  // namespace
 
 StageSpeeds planetary_rigid_speeds(const PlanetaryStage& stage) {
@@ -197,7 +220,8 @@ GearTrain planetary_train(const PlanetaryStage& stage) {
     return b;
   };
   double carrier_inertia = stage.carrier_inertia_kg_m2;
-  if (stage.planet_mass_kg) {
+  if (stage.supports) check_supports(stage);
+  if (stage.planet_mass_kg && !stage.supports) {
     // The planets' orbits: m_p R_c^2 each about the housing's centre.
     carrier_inertia +=
         static_cast<double>(n) * *stage.planet_mass_kg * carrier_radius * carrier_radius;
@@ -212,7 +236,25 @@ GearTrain planetary_train(const PlanetaryStage& stage) {
   for (std::size_t i = 0; i < n; ++i) {
     TrainBody p = body("planet", stage.planet_inertia_kg_m2, Torque{}, w.planet);
     p.name += std::to_string(i + 1);
+    if (stage.supports) {
+      p.bearing = GearBearing{};
+      p.bearing->stiffness_x_n_per_m = stage.supports->planet_bearing_n_per_m;
+      p.bearing->mass_kg = *stage.planet_mass_kg;
+      p.pin = TrainBody::Pin{kCarrierBody, carrier_radius, psi[i]};
+    }
     train.bodies.push_back(p);
+  }
+  if (stage.supports) {
+    const StageSupports& k = *stage.supports;
+    const auto support = [&](int member, double mass, double stiffness) {
+      GearBearing b;
+      b.stiffness_x_n_per_m = stiffness;
+      b.mass_kg = mass;
+      train.bodies[static_cast<std::size_t>(member)].bearing = b;
+    };
+    support(kSunBody, k.sun_mass_kg, k.sun_support_n_per_m);
+    support(kRingBody, k.ring_mass_kg, k.ring_support_n_per_m);
+    support(kCarrierBody, k.carrier_mass_kg, k.carrier_support_n_per_m);
   }
 
   // Phases (geometry/planetary.hpp), for the sun turning counter-clockwise

@@ -217,34 +217,6 @@ void validate_slice_gaps(const SimulationCase& c) {
   }
 }
 
-// An internal mesh's line (planet as gear 1, geometry/planetary.hpp's
-// segment) and its single-pair stiffness c' b by ISO 6336-1 method B.
-struct RingLine {
-  InternalLine line;
-  double single_stiffness_n_per_m = 0.0;
-};
-RingLine ring_line(const SimulationCase& pair) {
-  const GearPair& g = pair.gears;
-  const PlanetaryTeeth teeth{1, g.teeth2, g.teeth1};
-  const PlanetaryToothing toothing{g.module_m, g.pressure_angle_rad, g.addendum_coefficient};
-  const double centre = 0.5 * g.module_m * (g.teeth1 - g.teeth2);
-  const InternalMesh mesh = internal_mesh(teeth, toothing, centre);
-  const Iso6336Internal iso = iso6336_internal_method_b(
-      g.teeth2, mesh.contact_ratio, g.dedendum_coefficient, g.pressure_angle_rad);
-  RingLine r;
-  r.line.planet_base_radius_m = mesh.planet_base_radius_m;
-  r.line.ring_base_radius_m = mesh.ring_base_radius_m;
-  r.line.pressure_angle_rad = mesh.working_pressure_angle_rad;
-  r.line.pitch_point_m = mesh.pitch_point_m;
-  r.line.start_m = mesh.segment_start_m;
-  r.line.end_m = mesh.segment_end_m;
-  r.line.base_pitch_m = mesh.base_pitch_m;
-  r.line.tangent_points_m = centre * std::sin(mesh.working_pressure_angle_rad);
-  r.line.mean_stiffness_n_per_m = iso.mesh_stiffness_n_per_m2 * g.face_width_m;
-  r.single_stiffness_n_per_m = iso.single_stiffness_n_per_m2 * g.face_width_m;
-  return r;
-}
-
 // An internal mesh's pair keys: what it cannot take refused, its geometry
 // checked (the problems named under the mesh, the ring as gears.teeth1).
 void validate_internal_mesh(const std::string& prefix, const TrainMesh& mesh) {
@@ -1314,6 +1286,28 @@ TrainResult run_train(const GearTrain& train, const std::vector<const StiffnessT
 #undef GEARIMPACT_TRAIN_LAYOUT_NAMES
 
 }  // namespace
+
+RingLine ring_line(const SimulationCase& pair) {
+  const GearPair& g = pair.gears;
+  const PlanetaryTeeth teeth{1, g.teeth2, g.teeth1};
+  const PlanetaryToothing toothing{g.module_m, g.pressure_angle_rad, g.addendum_coefficient};
+  const double centre = 0.5 * g.module_m * (g.teeth1 - g.teeth2);
+  const InternalMesh mesh = internal_mesh(teeth, toothing, centre);
+  const Iso6336Internal iso = iso6336_internal_method_b(
+      g.teeth2, mesh.contact_ratio, g.dedendum_coefficient, g.pressure_angle_rad);
+  RingLine r;
+  r.line.planet_base_radius_m = mesh.planet_base_radius_m;
+  r.line.ring_base_radius_m = mesh.ring_base_radius_m;
+  r.line.pressure_angle_rad = mesh.working_pressure_angle_rad;
+  r.line.pitch_point_m = mesh.pitch_point_m;
+  r.line.start_m = mesh.segment_start_m;
+  r.line.end_m = mesh.segment_end_m;
+  r.line.base_pitch_m = mesh.base_pitch_m;
+  r.line.tangent_points_m = centre * std::sin(mesh.working_pressure_angle_rad);
+  r.line.mean_stiffness_n_per_m = iso.mesh_stiffness_n_per_m2 * g.face_width_m;
+  r.single_stiffness_n_per_m = iso.single_stiffness_n_per_m2 * g.face_width_m;
+  return r;
+}
 
 GearTrain two_gear_train(const SimulationCase& c) {
   GearTrain train;

@@ -9,9 +9,14 @@
 // classify_line), as the two-gear planar system does, and puts its forces on
 // the centres. A body that turns clockwise (seen from +z) in the train's
 // forward motion sees its meshes mirrored: the mesh's frame then has its y
-// axis reversed. The run's books (each line's mode and contact memory, the
-// impacts, the ledger with the bearings' stored and damped energies) are the
-// planar run's (planar.cpp), per mesh.
+// axis reversed. A planetary stage (meshes in a carrier's frame) runs in the
+// carrier's axes, as Lin & Parker's model (docs/planetary.md, "The planar
+// stage"): each mesh sees its bodies' angles relative to the carrier's and
+// the centres' motion in the direction of its planet; each planet sits on
+// its pin's bearing (TrainBody::pin), its mass orbiting with the carrier;
+// the rotating frame's Coriolis and centripetal terms are neglected. The run's books (each line's
+// mode and contact memory, the impacts, the ledger with the bearings' stored and damped energies)
+// are the planar run's (planar.cpp), per mesh.
 #include "train_planar.hpp"
 
 #include <algorithm>
@@ -99,6 +104,7 @@ std::vector<int> turning_senses(const GearTrain& train, const std::vector<int>& 
       };
       for (std::size_t k = 0; k < train.meshes.size(); ++k) {
         const TrainMesh& m = train.meshes[k];
+        if (m.carrier >= 0) continue;  // in its carrier's frame, its own senses
         const int a = dof[static_cast<std::size_t>(m.body_a)];
         const int b = dof[static_cast<std::size_t>(m.body_b)];
         join(a, b, -1, static_cast<int>(k));
@@ -186,15 +192,30 @@ class PlanarTrainSystem {
       cx_[u] = b.damping_x_n_s_per_m;
       cy_[u] = damping_y(b);
     }
+    pin_carrier_.fill(-1);
+    for (std::size_t i = 0; i < train.bodies.size(); ++i) {
+      if (!train.bodies[i].pin) continue;
+      const TrainBody::Pin& pin = *train.bodies[i].pin;
+      const auto u = static_cast<std::size_t>(body_dof_[i]);
+      pin_carrier_[u] = dof_of(pin.carrier);
+      pin_radius_[u] = pin.radius_m;
+      pin_cos_[u] = std::cos(pin.angle_rad);
+      pin_sin_[u] = std::sin(pin.angle_rad);
+      pinned_ = true;
+    }
     driver_.fill(-1);
     for (std::size_t i = 0; i < train.bodies.size(); ++i) {
-      if (train.bodies[i].torque.kind == Torque::Kind::prescribed_speed) {
+      if (train.bodies[i].torque.kind == Torque::Kind::prescribed_speed || train.bodies[i].held) {
         driver_[static_cast<std::size_t>(body_dof_[i])] = static_cast<int>(i);
         driven_ = true;
       }
     }
     for (std::size_t k = 0; k < train.meshes.size(); ++k) {
       const TrainMesh& m = train.meshes[k];
+      if (m.carrier >= 0) {
+        add_carrier_mesh(m, *tables[k]);
+        continue;
+      }
       Frame f;
       f.a = body_dof_[static_cast<std::size_t>(m.body_a)];
       f.b = body_dof_[static_cast<std::size_t>(m.body_b)];
@@ -234,10 +255,18 @@ class PlanarTrainSystem {
     const auto a = static_cast<std::size_t>(f.a);
     const auto b = static_cast<std::size_t>(f.b);
     PlanarMeshMotion q;
-    q.theta_a_rad = y[L::theta(a)] + f.offset_a;
-    q.theta_b_rad = y[L::theta(b)] + f.offset_b;
-    q.w_a_rad_per_s = y[L::w(a)];
-    q.w_b_rad_per_s = y[L::w(b)];
+    if (f.carrier >= 0) {
+      const auto c = static_cast<std::size_t>(f.carrier);
+      q.theta_a_rad = f.sense_a * (y[L::theta(a)] - y[L::theta(c)]) + f.offset_a;
+      q.theta_b_rad = f.sense_b * (y[L::theta(b)] - y[L::theta(c)]) + f.offset_b;
+      q.w_a_rad_per_s = f.sense_a * (y[L::w(a)] - y[L::w(c)]);
+      q.w_b_rad_per_s = f.sense_b * (y[L::w(b)] - y[L::w(c)]);
+    } else {
+      q.theta_a_rad = y[L::theta(a)] + f.offset_a;
+      q.theta_b_rad = y[L::theta(b)] + f.offset_b;
+      q.w_a_rad_per_s = y[L::w(a)];
+      q.w_b_rad_per_s = y[L::w(b)];
+    }
     const double ux = y[L::x(a)] - y[L::x(b)];
     const double uy = y[L::y(a)] - y[L::y(b)];
     const double vx = y[L::vx(a)] - y[L::vx(b)];
@@ -263,6 +292,11 @@ class PlanarTrainSystem {
       const int body = driver_[static_cast<std::size_t>(d)];
       if (body < 0) continue;
       const TrainBody& b = train_.bodies[static_cast<std::size_t>(body)];
+      if (b.held) {
+        y[L::theta(static_cast<std::size_t>(d))] = b.theta_rad;
+        y[L::w(static_cast<std::size_t>(d))] = 0.0;
+        continue;
+      }
       const DriverMotion m = driver_motion(b.torque, b.theta_rad, t);
       y[L::theta(static_cast<std::size_t>(d))] = m.theta_rad;
       y[L::w(static_cast<std::size_t>(d))] = m.speed_rad_per_s;
@@ -280,10 +314,24 @@ class PlanarTrainSystem {
     double bearing_power = 0.0;
     for (std::size_t d = 0; d < static_cast<std::size_t>(dofs_); ++d) {
       if (!translating_[d]) continue;
+      if (pin_carrier_[d] >= 0) {
+        // The bearing between the planet and its pin: its force on the
+        // planet, the opposite on the carrier's centre.
+        const PinDeflection p = pin_deflection(d, y);
+        const std::array<double, 2> force = pin_force(d, y);
+        const auto c = static_cast<std::size_t>(pin_carrier_[d]);
+        fx[d] += force[0];
+        fy[d] += force[1];
+        fx[c] -= force[0];
+        fy[c] -= force[1];
+        bearing_power += cx_[d] * p.radial_rate * p.radial_rate;
+        bearing_power += cy_[d] * p.tangential_rate * p.tangential_rate;
+        continue;
+      }
       const double vx = y[L::vx(d)];
       const double vy = y[L::vy(d)];
-      fx[d] = -kx_[d] * y[L::x(d)] - cx_[d] * vx;
-      fy[d] = -ky_[d] * y[L::y(d)] - cy_[d] * vy;
+      fx[d] += -kx_[d] * y[L::x(d)] - cx_[d] * vx;
+      fy[d] += -ky_[d] * y[L::y(d)] - cy_[d] * vy;
       bearing_power += cx_[d] * vx * vx;
       bearing_power += cy_[d] * vy * vy;
     }
@@ -296,8 +344,10 @@ class PlanarTrainSystem {
       const auto b = static_cast<std::size_t>(f.b);
       const PlanarMeshMotion q = motion(k, y);
       PlanarLoads loads;
-      loads.moment_a = moment[a];
-      loads.moment_b = moment[b];
+      if (f.carrier < 0) {
+        loads.moment_a = moment[a];
+        loads.moment_b = moment[b];
+      }
       if (f.aligned) {
         loads.force_a = {fx[a], fy[a]};
         loads.force_b = {fx[b], fy[b]};
@@ -315,8 +365,17 @@ class PlanarTrainSystem {
       }
       if (forces != nullptr) forces->friction_n[k] = totals.friction_force_n;
       meshes_[k].add_damper(q, loads, powers);
-      moment[a] = loads.moment_a;
-      moment[b] = loads.moment_b;
+      if (f.carrier >= 0) {
+        // The line's moments in its gears' senses, about +z on the bodies;
+        // the carrier, whose frame the angles are taken in, minus their sum.
+        moment[a] += f.sense_a * loads.moment_a;
+        moment[b] += f.sense_b * loads.moment_b;
+        moment[static_cast<std::size_t>(f.carrier)] -=
+            f.sense_a * loads.moment_a + f.sense_b * loads.moment_b;
+      } else {
+        moment[a] = loads.moment_a;
+        moment[b] = loads.moment_b;
+      }
       if (f.aligned) {
         fx[a] = loads.force_a[0];
         fy[a] = loads.force_a[1];
@@ -355,12 +414,25 @@ class PlanarTrainSystem {
         torque = seen ? torque + value : value;
         seen = true;
       }
+      if (pinned_) {
+        // The planets' masses orbit with the carrier: with each planet's
+        // centre its pin's nominal place plus its displacement u, its speed
+        // is u' + R theta_c' e_eta, and the kinetic energy's cross terms give
+        // J_c theta_c'' = M_c - R sum F_eta (F the force on each planet's
+        // centre, J_c the carrier's own) and m u'' = F - m R theta_c'' e_eta.
+        for (std::size_t p = 0; p < static_cast<std::size_t>(dofs_); ++p) {
+          if (pin_carrier_[p] != static_cast<int>(d)) continue;
+          moment[d] -= pin_radius_[p] * (pin_cos_[p] * fy[p] - pin_sin_[p] * fx[p]);
+        }
+      }
       double acceleration = 0.0;
       if (driver_[d] >= 0) {
         // The driver applies the torque that gives its body the prescribed
-        // acceleration against the rest; its work is the torque work.
+        // acceleration against the rest; its work is the torque work. A held
+        // body's is what holds it still.
         const TrainBody& b = train_.bodies[static_cast<std::size_t>(driver_[d])];
-        acceleration = driver_motion(b.torque, b.theta_rad, t).acceleration_rad_per_s2;
+        acceleration =
+            b.held ? 0.0 : driver_motion(b.torque, b.theta_rad, t).acceleration_rad_per_s2;
         torque = inertia_[d] * acceleration - moment[d];
       }
       const double w = y[L::w(d)];
@@ -372,6 +444,14 @@ class PlanarTrainSystem {
       dy[L::y(d)] = y[L::vy(d)];
       dy[L::vx(d)] = fx[d] * inverse_mass_[d];
       dy[L::vy(d)] = fy[d] * inverse_mass_[d];
+    }
+    if (pinned_) {
+      for (std::size_t p = 0; p < static_cast<std::size_t>(dofs_); ++p) {
+        if (pin_carrier_[p] < 0) continue;
+        const double orbit = pin_radius_[p] * dy[L::w(static_cast<std::size_t>(pin_carrier_[p]))];
+        dy[L::vx(p)] += orbit * pin_sin_[p];
+        dy[L::vy(p)] -= orbit * pin_cos_[p];
+      }
     }
     dy[L::kWork] = work;
     dy[L::kHertzLoss] = powers.damping_w;
@@ -410,6 +490,7 @@ class PlanarTrainSystem {
   // The force the bearings of degree of freedom d exert on its centre, -k u - c u'.
   std::array<double, 2> bearing_force(std::size_t d, const StateType& y) const {
     if (!translating_[d]) return {0.0, 0.0};
+    if (pin_carrier_[d] >= 0) return pin_force(d, y);
     return {-kx_[d] * y[L::x(d)] - cx_[d] * y[L::vx(d)],
             -ky_[d] * y[L::y(d)] - cy_[d] * y[L::vy(d)]};
   }
@@ -417,6 +498,12 @@ class PlanarTrainSystem {
     double e = 0.0;
     for (std::size_t d = 0; d < static_cast<std::size_t>(dofs_); ++d) {
       if (!translating_[d]) continue;
+      if (pin_carrier_[d] >= 0) {
+        const PinDeflection p = pin_deflection(d, y);
+        e += kx_[d] * p.radial * p.radial;
+        e += ky_[d] * p.tangential * p.tangential;
+        continue;
+      }
       e += kx_[d] * y[L::x(d)] * y[L::x(d)];
       e += ky_[d] * y[L::y(d)] * y[L::y(d)];
     }
@@ -435,8 +522,14 @@ class PlanarTrainSystem {
     double e = 0.0;
     for (std::size_t d = 0; d < static_cast<std::size_t>(dofs_); ++d) {
       if (translating_[d]) {
-        const double vx = y[L::vx(d)];
-        const double vy = y[L::vy(d)];
+        double vx = y[L::vx(d)];
+        double vy = y[L::vy(d)];
+        if (pin_carrier_[d] >= 0) {
+          // The planet's orbit with the carrier, R theta_c' e_eta.
+          const double orbit = pin_radius_[d] * y[L::w(static_cast<std::size_t>(pin_carrier_[d]))];
+          vx -= orbit * pin_sin_[d];
+          vy += orbit * pin_cos_[d];
+        }
         e += mass_[d] * (vx * vx + vy * vy);
       }
       e += inertia_[d] * y[L::w(d)] * y[L::w(d)];
@@ -454,12 +547,97 @@ class PlanarTrainSystem {
     bool aligned = true;
     double offset_a = 0.0;
     double offset_b = 0.0;
+    // In a carrier's frame: the carrier's degree of freedom (-1: fixed
+    // axes) and the senses of the line's gears 1 and 2 about +z.
+    int carrier = -1;
+    double sense_a = 1.0;
+    double sense_b = 1.0;
   };
   struct Spring {
     int a;
     int b;
     double stiffness;
   };
+  // A mesh in a carrier's frame, as the rotational stage's (train.cpp): the
+  // line's gear 1 (the sun, or an internal mesh's planet) and gear 2 (the
+  // planet, or the ring) turn relative to the carrier in their senses about
+  // +z, so that s = Rb_a (theta_a - theta_c) + kappa Rb_b (theta_b - theta_c);
+  // its frame's x runs along the planet's direction e_zeta on the carrier
+  // and its y along e_eta = e_z x e_zeta for an external mesh, -e_eta for an
+  // internal one, so that the line's normals are Lin & Parker's (modes/
+  // planetary.hpp): the sun mesh's drive normal sin(a) e_zeta + cos(a)
+  // e_eta, the ring mesh's -sin(a) e_zeta + cos(a) e_eta from the ring.
+  void add_carrier_mesh(const TrainMesh& m, const StiffnessTable& table) {
+    const bool internal = m.kind == TrainMesh::Kind::internal;
+    const int planet = m.body_b;
+    const TrainBody::Pin& pin = *train_.bodies[static_cast<std::size_t>(planet)].pin;
+    Frame f;
+    f.a = dof_of(internal ? m.body_b : m.body_a);
+    f.b = dof_of(internal ? m.body_a : m.body_b);
+    f.carrier = dof_of(m.carrier);
+    f.sense_a = internal ? -1.0 : 1.0;
+    f.sense_b = -1.0;
+    f.cos = std::cos(pin.angle_rad);
+    f.sin = std::sin(pin.angle_rad);
+    f.sense = internal ? -1 : 1;
+    f.aligned = false;
+    const RingLine ring = internal ? ring_line(m.pair) : RingLine{};
+    const double rb1 =
+        internal ? ring.line.planet_base_radius_m : base_radius(m.pair.gears, Gear::one);
+    const double rb2 =
+        internal ? ring.line.ring_base_radius_m : base_radius(m.pair.gears, Gear::two);
+    f.offset_a = m.line_offset_m / rb1;
+    f.offset_b = m.line_offset_m / rb2;
+    frames_.push_back(f);
+    // The viscous damper's m_e as the rotational stage's: each free body's
+    // lever squared over its inertia, the carrier's with the planets' orbits.
+    const auto lever = [&](int dof, double r, double inertia) {
+      return driver_[static_cast<std::size_t>(dof)] >= 0 ? 0.0 : r * r / inertia;
+    };
+    const double inverse_mass =
+        lever(f.a, rb1, inertia_[static_cast<std::size_t>(f.a)]) +
+        lever(f.b, rb2, inertia_[static_cast<std::size_t>(f.b)]) +
+        lever(f.carrier, rb2 * f.sense_b - rb1 * f.sense_a, carrier_inertia_with_orbits(f.carrier));
+    const double mass = inverse_mass > 0.0 ? 1.0 / inverse_mass : 1.0;
+    if (internal) {
+      meshes_.emplace_back(m.pair, table, ring.line, mass);
+    } else {
+      meshes_.emplace_back(m.pair, table, mass);
+    }
+  }
+  // The carrier's inertia with m R^2 of each planet pinned on it.
+  double carrier_inertia_with_orbits(int carrier) const {
+    double inertia = inertia_[static_cast<std::size_t>(carrier)];
+    for (int d = 0; d < dofs_; ++d) {
+      const auto u = static_cast<std::size_t>(d);
+      if (pin_carrier_[u] == carrier) inertia += mass_[u] * pin_radius_[u] * pin_radius_[u];
+    }
+    return inertia;
+  }
+  // A pinned planet's bearing: its deflection from its pin (its centre less
+  // the carrier's) along e_zeta (radial) and e_eta (tangential), and their rates.
+  struct PinDeflection {
+    double radial, tangential, radial_rate, tangential_rate;
+  };
+  PinDeflection pin_deflection(std::size_t d, const StateType& y) const {
+    const auto c = static_cast<std::size_t>(pin_carrier_[d]);
+    const double dx = y[L::x(d)] - y[L::x(c)];
+    const double dy = y[L::y(d)] - y[L::y(c)];
+    const double vx = y[L::vx(d)] - y[L::vx(c)];
+    const double vy = y[L::vy(d)] - y[L::vy(c)];
+    const double co = pin_cos_[d];
+    const double si = pin_sin_[d];
+    return {co * dx + si * dy, co * dy - si * dx, co * vx + si * vy, co * vy - si * vx};
+  }
+  // The force of a pinned planet's bearing on the planet, in the carrier's axes.
+  std::array<double, 2> pin_force(std::size_t d, const StateType& y) const {
+    const PinDeflection p = pin_deflection(d, y);
+    const double radial = -kx_[d] * p.radial - cx_[d] * p.radial_rate;
+    const double tangential = -ky_[d] * p.tangential - cy_[d] * p.tangential_rate;
+    return {pin_cos_[d] * radial - pin_sin_[d] * tangential,
+            pin_sin_[d] * radial + pin_cos_[d] * tangential};
+  }
+
   // Body i's applied torque at t with its degree of freedom's speed w; 0 for
   // a kinematic driver (rhs sets it).
   double body_torque(std::size_t i, double t, double w) const {
@@ -489,6 +667,10 @@ class PlanarTrainSystem {
   std::array<double, L::kDofs> kx_{}, ky_{}, cx_{}, cy_{};
   std::array<int, L::kDofs> driver_{};
   bool driven_ = false;
+  // A pinned planet's carrier (-1: none), its pin's radius and direction.
+  std::array<int, L::kDofs> pin_carrier_{};
+  std::array<double, L::kDofs> pin_radius_{}, pin_cos_{}, pin_sin_{};
+  bool pinned_ = false;
   std::vector<MeshLine> meshes_;
   std::vector<Frame> frames_;
   std::vector<Spring> springs_;
@@ -813,10 +995,6 @@ void validate_planar_train(const GearTrain& train) {
   for (std::size_t i = 0; i < train.bodies.size(); ++i) {
     const TrainBody& b = train.bodies[i];
     const std::string prefix = "bodies." + b.name + ".";
-    if (b.held) {
-      throw InputError(prefix + "held", "true",
-                       "false in a train with bodies on elastic bearings (not modelled yet)");
-    }
     if (b.torque.kind == Torque::Kind::speed_controlled) {
       throw InputError(prefix + "torque.kind", "speed-controlled",
                        "a torque other than speed-controlled in a train with bodies on elastic "
@@ -843,16 +1021,56 @@ void validate_planar_train(const GearTrain& train) {
                            ", on one rigid shaft with it, has them (their centre is one)");
     }
     first = static_cast<int>(i);
+    if (!b.pin) continue;
+    const TrainBody::Pin& pin = *b.pin;
+    if (pin.carrier < 0 || static_cast<std::size_t>(pin.carrier) >= train.bodies.size() ||
+        pin.carrier == static_cast<int>(i) ||
+        train.bodies[static_cast<std::size_t>(pin.carrier)].pin) {
+      throw InputError(prefix + "pin.carrier", std::to_string(pin.carrier),
+                       "the index of another body, itself on no pin");
+    }
+    if (!std::isfinite(pin.radius_m) || pin.radius_m <= 0.0) {
+      throw InputError(prefix + "pin.radius", pin.radius_m, "a finite radius > 0 m");
+    }
+    if (!std::isfinite(pin.angle_rad)) {
+      throw InputError(prefix + "pin.angle", pin.angle_rad, "a finite angle");
+    }
+    for (std::size_t j = 0; j < train.bodies.size(); ++j) {
+      if (j != i && dof[j] == dof[i]) {
+        throw InputError(prefix + "pin", "on a rigid shaft with " + train.bodies[j].name,
+                         "a planet alone on its pin");
+      }
+    }
   }
   const std::string why = " in a train with bodies on elastic bearings (bodies." + named +
                           ".bearings; not modelled yet)";
   for (const TrainMesh& m : train.meshes) {
     const std::string prefix = "meshes." + m.name + ".";
     if (m.carrier >= 0) {
-      throw InputError(prefix + "carrier", std::to_string(m.carrier),
-                       "-1 (fixed axes)" + why + ": a translating body in a carrier's frame");
-    }
-    if (m.kind == TrainMesh::Kind::internal) {
+      // A planetary stage in the carrier's axes: its planet on a pin of
+      // that carrier, its central members' supports isotropic (the axes turn).
+      const TrainBody& planet = train.bodies[static_cast<std::size_t>(m.body_b)];
+      if (!planet.pin || planet.pin->carrier != m.carrier || !planet.bearing) {
+        throw InputError(prefix + "carrier", std::to_string(m.carrier),
+                         "the body whose pin holds body_b (bodies." + planet.name +
+                             ".pin, with its bearing)" + why);
+      }
+      for (const int central : {m.body_a, m.carrier}) {
+        const TrainBody& c = train.bodies[static_cast<std::size_t>(central)];
+        if (!c.bearing) continue;
+        const std::string field = "bodies." + c.name + ".bearings.";
+        if (stiffness_y(*c.bearing) != c.bearing->stiffness_x_n_per_m) {
+          throw InputError(field + "stiffness_y", stiffness_y(*c.bearing),
+                           "stiffness_x: a stage's central member on isotropic supports (its "
+                           "axes are the carrier's, which turn)");
+        }
+        if (damping_y(*c.bearing) != c.bearing->damping_x_n_s_per_m) {
+          throw InputError(field + "damping_y", damping_y(*c.bearing),
+                           "damping_x: a stage's central member on isotropic supports (its "
+                           "axes are the carrier's, which turn)");
+        }
+      }
+    } else if (m.kind == TrainMesh::Kind::internal) {
       throw InputError(prefix + "kind", "internal", "external" + why);
     }
     if (m.pair.model.mesh_force == MeshForce::lagrangian) {
@@ -900,10 +1118,55 @@ void check_planar_train_step(const GearTrain& train,
     const int body = bearing[static_cast<std::size_t>(d)];
     return body < 0 ? 0.0 : 1.0 / *train.bodies[static_cast<std::size_t>(body)].bearing->mass_kg;
   };
+  // A pinned planet's centre moves against its orbit's share of the
+  // carrier's turning too (its tangential inverse mass 1/m + R^2/J_c).
+  const auto orbit = [&](int d) {
+    for (std::size_t i = 0; i < train.bodies.size(); ++i) {
+      const TrainBody& b = train.bodies[i];
+      if (dof[i] != d || !b.pin) continue;
+      const double r = b.pin->radius_m;
+      return r * r /
+             inertia[static_cast<std::size_t>(dof[static_cast<std::size_t>(b.pin->carrier)])];
+    }
+    return 0.0;
+  };
   double w2 = 0.0;
   for (std::size_t k = 0; k < train.meshes.size(); ++k) {
     const TrainMesh& m = train.meshes[k];
     const GearPair& g = m.pair.gears;
+    if (m.carrier >= 0) {
+      // A stage's mesh: its stiffest on a line taken as two pairs at the
+      // table's largest Ke (sampled at 65 points; the constant stiffness
+      // when the model has one), on its bodies' turning relative to the
+      // carrier (each lever squared over its inertia, the carrier's lever
+      // Rb_a + kappa Rb_b) and on both centres.
+      double stiffest = m.pair.model.mesh_stiffness == MeshStiffnessMode::constant
+                            ? m.pair.model.constant_mesh_stiffness_n_per_m
+                            : 0.0;
+      const StiffnessTable& table = *tables[k];
+      for (int i = 0; i <= 64 && stiffest == 0.0; ++i) {
+        const double x =
+            table.domain_start_m() + (table.domain_end_m() - table.domain_start_m()) * i / 64.0;
+        stiffest = std::max(stiffest, 2.0 * table.stiffness(x));
+      }
+      const bool internal = m.kind == TrainMesh::Kind::internal;
+      const RingLine ring = internal ? ring_line(m.pair) : RingLine{};
+      const double ra = internal ? ring.line.ring_base_radius_m : base_radius(g, Gear::one);
+      const double rb = internal ? ring.line.planet_base_radius_m : base_radius(g, Gear::two);
+      const auto turning = [&](int body, double r) {
+        const TrainBody& b = train.bodies[static_cast<std::size_t>(body)];
+        return b.held
+                   ? 0.0
+                   : r * r / inertia[static_cast<std::size_t>(dof[static_cast<std::size_t>(body)])];
+      };
+      const double lever = internal ? ra - rb : ra + rb;
+      const int a = dof[static_cast<std::size_t>(m.body_a)];
+      const int b = dof[static_cast<std::size_t>(m.body_b)];
+      const double own = turning(m.body_a, ra) + turning(m.body_b, rb) + turning(m.carrier, lever) +
+                         inverse_mass(a) + inverse_mass(b) + orbit(b);
+      w2 += 2.0 * stiffest * own;
+      continue;
+    }
     // The pair's stiffest contact, from its own bound on its discs.
     const double torsional = largest_resolving_step_s(m.pair, *tables[k]);
     const double discs = inverse_effective_mass_per_kg(g);
@@ -920,7 +1183,14 @@ void check_planar_train_step(const GearTrain& train,
     const int body = bearing[static_cast<std::size_t>(d)];
     if (body < 0) continue;
     const GearBearing& g = *train.bodies[static_cast<std::size_t>(body)].bearing;
-    const double im = inverse_mass(d);
+    double im = inverse_mass(d);
+    const TrainBody& owner = train.bodies[static_cast<std::size_t>(body)];
+    if (owner.pin) {
+      // The bearing between the planet and its pin: the carrier's centre moves too.
+      const int c = dof[static_cast<std::size_t>(owner.pin->carrier)];
+      im += inverse_mass(c);
+      w2 += stiffness_y(g) * orbit(d);
+    }
     w2 += (g.stiffness_x_n_per_m + stiffness_y(g)) * im;
     const double cx = g.damping_x_n_s_per_m * im;
     const double cy = damping_y(g) * im;

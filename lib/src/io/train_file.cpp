@@ -935,6 +935,41 @@ PlanetaryStage read_stage(const Reader& reader, const toml::value& root,
   stage.carrier_inertia_kg_m2 = table.quantity("stage", "carrier_inertia").value_or(0.0);
   stage.planet_inertia_kg_m2 = table.quantity("stage", "planet_inertia").value_or(0.0);
   stage.planet_mass_kg = table.quantity("stage", "planet_mass");
+  // The planar stage: any of its keys asks for it, and then each is required (planet_mass too).
+  {
+    static constexpr std::array<std::string_view, 7> kPlanar{
+        "sun_mass",     "ring_mass",       "carrier_mass",  "sun_support",
+        "ring_support", "carrier_support", "planet_bearing"};
+    std::array<std::optional<double>, 7> value;
+    bool any = false;
+    for (std::size_t i = 0; i < kPlanar.size(); ++i) {
+      value[i] = table.quantity("stage", kPlanar[i]);
+      any = any || table.find(kPlanar[i]) != nullptr;
+    }
+    if (any) {
+      const auto missing = [&](std::string_view key) {
+        problems.push_back(reader.problem(
+            "stage." + std::string(key), nullptr,
+            "stage." + std::string(key) + " is missing (required with the planar stage's keys: " +
+                "sun_mass, ring_mass, carrier_mass, sun_support, ring_support, carrier_support, "
+                "planet_bearing and planet_mass)"));
+      };
+      // A key written with a bad value is its own problem already.
+      for (std::size_t i = 0; i < kPlanar.size(); ++i) {
+        if (table.find(kPlanar[i]) == nullptr) missing(kPlanar[i]);
+      }
+      if (table.find("planet_mass") == nullptr) missing("planet_mass");
+      StageSupports k;
+      k.sun_mass_kg = value[0].value_or(0.0);
+      k.ring_mass_kg = value[1].value_or(0.0);
+      k.carrier_mass_kg = value[2].value_or(0.0);
+      k.sun_support_n_per_m = value[3].value_or(0.0);
+      k.ring_support_n_per_m = value[4].value_or(0.0);
+      k.carrier_support_n_per_m = value[5].value_or(0.0);
+      k.planet_bearing_n_per_m = value[6].value_or(0.0);
+      stage.supports = k;
+    }
+  }
   stage.input_speed_rad_per_s = table.quantity("stage", "input_speed").value_or(0.0);
   // [[faults]]: each table's member (faults.member); a sun's or a planet's tooth is read by the
   // pair's [[faults]] rows as the sun meshes' pinion or wheel, a ring's as missing only.

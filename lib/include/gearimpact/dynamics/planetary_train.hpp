@@ -1,12 +1,13 @@
-// A planetary stage as a gear train (train.hpp), ROTATIONAL ONLY: the sun's,
-// ring's and carrier's centres and the planet pins are rigid, every centre
-// fixed in the carrier's frame; the state is the angle and speed of the sun,
-// ring, carrier and each planet, all about +z. Each sun-planet mesh is an
-// external mesh and each ring-planet mesh an internal one (ISO 6336-1 method
-// B per-pair stiffness), both in the carrier's frame; their phases come from
-// the stage's geometry (geometry/planetary.hpp), never entered. The planar
-// stage (central translations, planet bearings) is a later step.
-// docs/planetary.md, section "Nonlinear rotational stage".
+// A planetary stage as a gear train (train.hpp): rotational (the sun's,
+// ring's and carrier's centres and the planet pins rigid, every centre
+// fixed in the carrier's frame; the state the angle and speed of the sun,
+// ring, carrier and each planet, all about +z), or planar with `supports`
+// (each central member's centre translating on its supports in the
+// carrier's axes, each planet's on its bearing: Lin & Parker's coordinates). Each sun-planet mesh
+// is an external mesh and each ring-planet mesh an internal one (ISO 6336-1 method B per-pair
+// stiffness), both in the carrier's frame; their phases come from the stage's geometry
+// (geometry/planetary.hpp), never entered. docs/planetary.md, sections "Nonlinear rotational stage"
+// and "The planar stage".
 #pragma once
 
 #include <optional>
@@ -37,6 +38,22 @@ struct StageFault {
   ToothState state;
 };
 
+// The planar stage's members on their springs (docs/planetary.md, "The
+// planar stage"), the keys of the linear model's planetary file
+// (modes/planetary.hpp): each central member's mass and its support's
+// stiffness on x and on y of the carrier's axes (0: it floats), each
+// planet's bearing, radial and tangential (its mass the stage's
+// planet_mass, required). Undamped: the meshes' damping alone.
+struct StageSupports {
+  double sun_mass_kg = 0.0;
+  double ring_mass_kg = 0.0;
+  double carrier_mass_kg = 0.0;
+  double sun_support_n_per_m = 0.0;
+  double ring_support_n_per_m = 0.0;
+  double carrier_support_n_per_m = 0.0;
+  double planet_bearing_n_per_m = 0.0;
+};
+
 struct PlanetaryStage {
   PlanetaryTeeth teeth;
   // The meshes' keys: of its gears the module, pressure angle, addendum and
@@ -62,6 +79,10 @@ struct PlanetaryStage {
   Torque sun_torque;
   Torque ring_torque;
   Torque carrier_torque;
+  // The planar stage's supports and bearings (none: the rotational stage).
+  // The carrier's inertia is then its own: each planet's mass orbits on
+  // its bearing.
+  std::optional<StageSupports> supports;
   // Faulted teeth, at most one per tooth (none: every tooth healthy).
   std::vector<StageFault> faults;
   // Every body starts at angle 0 turning at the Willis speeds with the input
@@ -77,7 +98,10 @@ inline constexpr int kCarrierBody = 2;
 inline constexpr int kFirstPlanetBody = 3;
 // Meshes: sun-planet n at n - 1, ring-planet n at N + n - 1 (n = 1..N).
 
-// The stage as a train: bodies sun, ring, carrier, planet1..planetN; meshes
+// The stage as a train: bodies sun, ring, carrier, planet1..planetN (with
+// `supports`, the central members on bearings of their support stiffness,
+// isotropic, and each planet on a pin of the carrier at R_c and psi_n with
+// its bearing: TrainBody::pin); meshes
 // sun_planetN (external: the sun's line, its phase -gamma_sn base pitches)
 // and ring_planetN (internal: the planet's line, its phase gamma_rs -
 // gamma_rn, so that each planet's sun mesh crosses its pitch point gamma_rs

@@ -10,7 +10,11 @@
 // A mesh may also sit in a carrier's frame (a planetary stage's, rotational
 // only: every centre fixed in that frame): it then sees its bodies' angles
 // relative to the carrier's and puts its reaction moment on the carrier
-// (planetary_train.hpp builds such a stage).
+// (planetary_train.hpp builds such a stage). With bodies on elastic
+// bearings too, such a stage runs planar (train_planar.cpp): the central
+// members' centres translate in the carrier's axes on their supports, each
+// planet on its pin's bearing (TrainBody::pin), and each mesh sees the
+// centres' motion along its lines in the direction of its planet.
 // With a body on elastic bearings the train runs the planar dynamics of
 // each mesh between fixed axes (train_planar.cpp): the bodies' centres in
 // the fixed frame, each mesh along its two lines of action in the direction
@@ -66,6 +70,20 @@ struct TrainBody {
   // by rigid shafts share one centre: at most one of them has bearings, and
   // its mass is the whole shaft's. None: the centre is fixed.
   std::optional<GearBearing> bearing{};
+  // A planet on its pin in a carrier (a planetary stage's planar form,
+  // docs/planetary.md, "The planar stage"): `bearing` then joins its centre
+  // to the pin, stiffness_x radial and stiffness_y tangential, and its centre
+  // is the pin's nominal place (radius_m from the carrier's centre at
+  // angle_rad from the carrier's first axis, turning with the carrier) plus
+  // its displacement in the carrier's axes; its mass orbits with the carrier
+  // (the carrier's inertia is then its own, without the planets' orbits).
+  // None: a body about its own axis.
+  struct Pin {
+    int carrier = -1;
+    double radius_m = 0.0;
+    double angle_rad = 0.0;
+  };
+  std::optional<Pin> pin{};
 };
 
 // A mesh between bodies a (its pair's gear 1) and b (gear 2). Of `pair`, the
