@@ -113,9 +113,9 @@ void schema_detail::add_gear_rows(std::vector<Field>& rows) {
        "the shifts and the rack coefficients are normal-section values; mesh-stiffness, "
        "iso6336, ste and report (with faults too), simulate (the torsional and the planar "
        "model, with friction under the constant law; with modifications, on rigid bearings, by "
-       "its slices) and sweep (the torsional and the planar model), modes (without faults) "
-       "and trains (with modifications by its slices) take a "
-       "helical pair",
+       "its slices, faults laid across them) and sweep (the torsional and the planar model), "
+       "modes (without faults) and trains (with friction under the constant law; with "
+       "modifications by its slices, faults laid across them) take a helical pair",
        [](auto& c) -> auto& { return c.gears.helix_angle_rad; })
       .written_at_default = false;
   rows.back().keyed_at_default = false;
