@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gearimpact/constants.hpp"
@@ -22,10 +23,13 @@
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/helical.hpp"
 #include "gearimpact/geometry/modifications.hpp"
+#include "gearimpact/geometry/tooth_identity.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "gearimpact/stiffness/helical.hpp"
 #include "gearimpact/stiffness/helical_ste.hpp"
+#include "gearimpact/stiffness/mesh_tables.hpp"
+#include "gearimpact/stiffness/surface_faults.hpp"
 #include "gearimpact/stiffness/table.hpp"
 #include "gearimpact/stiffness/tooth_state.hpp"
 
@@ -65,9 +69,7 @@ SimulationCase h501_case() {
 // The stiffness of a line at rest in contact on N1 with deflection delta, as its run reads it:
 // 2 U / delta^2, U the stored energy of the mode it classifies, the line's pairs shifted by
 // line_offset as the train shifts them.
-double line_stiffness(const TrainMesh& mesh, const StiffnessTable& table, double theta1,
-                      double delta) {
-  const MeshLine line(mesh.pair, table);
+double line_stiffness(const MeshLine& line, const TrainMesh& mesh, double theta1, double delta) {
   const double rb1 = line.base_radius_a();
   const double rb2 = line.base_radius_b();
   // s = Rb1 theta1 - Rb2 theta2 = B + delta, kept by the shift.
@@ -77,6 +79,70 @@ double line_stiffness(const TrainMesh& mesh, const StiffnessTable& table, double
   const Mode m = line.classify_geometry(q);
   if (m.region == Region::free) return 0.0;
   return 2.0 * line.stored_energy(q, m).total_j() / (delta * delta);
+}
+double line_stiffness(const TrainMesh& mesh, const StiffnessTable& table, double theta1,
+                      double delta) {
+  return line_stiffness(MeshLine(mesh.pair, table), mesh, theta1, delta);
+}
+
+// The sum of line_stiffness over lines (a route-A mesh's slices, or route B's one line), each
+// line built once with its pairs' tables (TrainMesh::teeth).
+class RestLines {
+ public:
+  explicit RestLines(std::vector<TrainMesh> meshes) : meshes_(std::move(meshes)) {
+    for (const TrainMesh& m : meshes_) {
+      lines_.push_back(std::make_unique<MeshLine>(m.pair, *m.table, 0.0, m.teeth));
+    }
+  }
+  double stiffness(double theta1, double delta) const {
+    double k = 0.0;
+    for (std::size_t i = 0; i < meshes_.size(); ++i) {
+      k += line_stiffness(*lines_[i], meshes_[i], theta1, delta);
+    }
+    return k;
+  }
+
+ private:
+  std::vector<TrainMesh> meshes_;
+  std::vector<std::unique_ptr<MeshLine>> lines_;
+};
+
+// Route B's one line of a helical case: the transverse section reading the extended pair table.
+TrainMesh route_b_line(const SimulationCase& c) {
+  TrainMesh m;
+  m.name = "route-b";
+  m.pair = dynamics_case(c);
+  m.table = run_table(c);
+  return m;
+}
+
+// A 0.2 mm deep spall on pinion tooth `tooth`'s drive flank over 40 % to 65 % of the transverse
+// path of contact, over [y0, y0 + width) of the face.
+ToothFault pinion_spall(const SimulationCase& c, int tooth, double y0, double width) {
+  const GearPair t = transverse_pair(c.gears);
+  const ContactSegment path = contact_segment(t);
+  const auto radius = [&](double u) {
+    return radius_at_roll_distance(base_radius(t, Gear::one),
+                                   path.start_m + u * (path.end_m - path.start_m));
+  };
+  ToothFault f;
+  f.gear = Gear::one;
+  f.tooth = tooth;
+  f.state.kind = ToothKind::spall;
+  f.state.spall.start_radius_m = radius(0.40);
+  f.state.spall.end_radius_m = radius(0.65);
+  f.state.spall.width_m = width;
+  f.state.spall.depth_m = 0.2e-3;
+  f.state.face_start_m = y0;
+  return f;
+}
+
+ToothFault missing_pinion_tooth(int tooth) {
+  ToothFault f;
+  f.gear = Gear::one;
+  f.tooth = tooth;
+  f.state.kind = ToothKind::missing;
+  return f;
 }
 
 }  // namespace
@@ -309,17 +375,23 @@ TEST_CASE("a helical mesh run by slices refuses what its slices cannot take, nam
     CHECK_THROWS_WITH_AS(simulate_train(train), doctest::Contains("meshes.mesh.gears.backlash"),
                          InputError);
   }
-  SUBCASE("friction, which a train refuses on a helical mesh (the two-gear run takes it)") {
+  SUBCASE("a friction smoothing speed, as the two-gear run refuses it") {
     train.meshes[0].pair.model.friction_coefficient = 0.05;
+    train.meshes[0].pair.model.friction_smoothing_speed_m_s = 0.1;
     CHECK_THROWS_WITH_AS(simulate_train(train),
-                         doctest::Contains("meshes.mesh.model.friction_coefficient"), InputError);
+                         doctest::Contains("meshes.mesh.model.friction_smoothing_speed"),
+                         InputError);
   }
-  SUBCASE("a fault, whose band across the face the slices do not place") {
+  SUBCASE("friction with a fault, as the two-gear run refuses it") {
     ToothFault missing;
     missing.state.kind = ToothKind::missing;
     train.meshes[0].pair.faults.push_back(missing);
-    CHECK_THROWS_WITH_AS(simulate_train(train), doctest::Contains("meshes.mesh.faults[0]"),
-                         InputError);
+    train.meshes[0].pair.model.friction_coefficient = 0.05;
+    CHECK_THROWS_WITH_AS(simulate_train(train),
+                         doctest::Contains("meshes.mesh.model.friction_coefficient"), InputError);
+    // Route B's mesh refuses it alike.
+    train.meshes[0].pair.modifications = Modifications{};
+    CHECK_THROWS_WITH_AS(simulate_train(train), doctest::Contains("[[faults]]"), InputError);
   }
 }
 
@@ -429,15 +501,23 @@ TEST_CASE("route A in the two-gear run: refusals name the two-gear keys; route B
     c.shafts.load_stiffness_n_m_per_rad = 1e4;
     CHECK_THROWS_WITH_AS(simulate(c), doctest::Contains("shafts.kind"), InputError);
   }
-  SUBCASE("a fault, whose band across the face route A's slices do not place") {
+  SUBCASE("friction with a fault, named as the two-gear key") {
     ToothFault missing;
     missing.state.kind = ToothKind::missing;
     c.faults.push_back(missing);
-    CHECK_THROWS_WITH_AS(simulate(c), doctest::Contains("faults[0]"), InputError);
-  }
-  SUBCASE("friction, which the slices do not take (route B does)") {
     c.model.friction_coefficient = 0.05;
-    CHECK_THROWS_WITH_AS(simulate(c), doctest::Contains("model.friction_coefficient"), InputError);
+    try {
+      (void)simulate(c);
+      FAIL("no refusal");
+    } catch (const InputError& e) {
+      CHECK(e.field() == "model.friction_coefficient");
+    }
+  }
+  SUBCASE("a friction smoothing speed, which the face's friction does not need") {
+    c.model.friction_coefficient = 0.05;
+    c.model.friction_smoothing_speed_m_s = 0.1;
+    CHECK_THROWS_WITH_AS(simulate(c), doctest::Contains("model.friction_smoothing_speed"),
+                         InputError);
   }
   SUBCASE("samples, which the train's loop does not take") {
     RunControl control;
@@ -446,5 +526,219 @@ TEST_CASE("route A in the two-gear run: refusals name the two-gear keys; route B
   }
   SUBCASE("the run pool and check_run still refuse it, pointing to route A") {
     CHECK_THROWS_WITH_AS(check_run(c), doctest::Contains("route A"), InputError);
+  }
+}
+
+TEST_CASE("route A with a fault over the first half of the face changes only that half's slices") {
+  // A spall on pinion tooth 0 over [0, b/2) and 8 slices: slices 1-4 lie in the band, 5-8 out of
+  // it. Out of it every pair reads the healthy slice's table itself; in it the pairs with pinion
+  // tooth 0 read their own, and every other pair the healthy one. The reference for a slice in
+  // the band: with the face-width Hertz (each slice a plain spur pair of its width) its Ke is
+  // db / b times the transverse section's Ke with the spall across the whole face (that spur
+  // pair's own MeshTables, the fault's table of docs/faults.md).
+  SimulationCase c = h501_case();
+  c.model.stiffness.face_slices = 8;
+  c.model.stiffness.helical_hertz = HelicalHertz::face_width;
+  const double b = c.gears.face_width_m;
+  c.faults = {pinion_spall(c, 0, 0.0, 0.5 * b)};
+  TrainMesh face;
+  face.name = "h501";
+  face.pair = c;
+  const std::vector<TrainMesh> slices = helical_slice_meshes(face);
+  TrainMesh healthy_face = face;
+  healthy_face.pair.faults.clear();
+  const std::vector<TrainMesh> healthy = helical_slice_meshes(healthy_face);
+  REQUIRE(slices.size() == 8);
+  SimulationCase across = c;
+  across.gears = transverse_pair(c.gears);
+  across.faults = {pinion_spall(c, 0, 0.0, b)};
+  const MeshTables section(across.gears, c.model.stiffness, across.faults);
+  const double db = b / 8.0;
+  const StiffnessTable& first = *slices[0].table;
+  const double lo = first.domain_start_m();
+  const double hi = first.domain_end_m();
+  double worst = 0.0;
+  double least_change = 1.0;  // on the drive line N1, the spalled flank's
+  for (std::size_t j = 0; j < slices.size(); ++j) {
+    const TrainMesh& s = slices[j];
+    REQUIRE(s.teeth);
+    // The slice's healthy table is the unfaulted face's, to the bit.
+    for (int i = 0; i <= 50; ++i) {
+      const double x = lo + (hi - lo) * i / 50.0;
+      CHECK(s.table->stiffness(x) == healthy[j].table->stiffness(x));
+    }
+    for (const Region line : {Region::n1, Region::n2}) {
+      // Every pair of a hunting period, lcm(20, 30) = 60.
+      for (int k = 0; k > -60; --k) {
+        const StiffnessTable* t = s.teeth->table(line, k);
+        const bool spalled = teeth_of_pair(20, 30, line, k).pinion_tooth == 0;
+        if (j >= 4 || !spalled) {
+          CHECK(t == s.table.get());
+          continue;
+        }
+        REQUIRE(t != nullptr);
+        CHECK(t != s.table.get());
+        const TeethInContact teeth = teeth_of_pair(20, 30, line, k);
+        const StiffnessTable* reference =
+            section.table_of_teeth(teeth.pinion_tooth, teeth.wheel_tooth, line);
+        REQUIRE(reference != nullptr);
+        double change = 0.0;
+        for (int i = 1; i < 400; ++i) {
+          const double x = lo + (hi - lo) * (i + 0.37) / 400.0;
+          const double want = db / b * reference->stiffness(x);
+          const double k_healthy = s.table->stiffness(x);
+          worst = std::max(worst, std::fabs(t->stiffness(x) - want) / k_healthy);
+          change = std::max(change, (k_healthy - t->stiffness(x)) / k_healthy);
+        }
+        if (line == Region::n1) least_change = std::min(least_change, change);
+      }
+    }
+  }
+  MESSAGE("slices in the band: largest |Ke - db/b Ke_section| / Ke = "
+          << worst << "; the spall takes at least " << least_change << " of a slice's Ke");
+  // Each table is a fit of its function to about 1e-12 (table.hpp): the slice's table fits the
+  // section table's values scaled, so the two agree to a few fits' errors; 1e-9 leaves room.
+  CHECK(worst < 1e-9);
+  // The band matters: on the drive flank the spall removes the contact over its extent.
+  CHECK(least_change > 0.5);
+  CHECK(least_change <= 1.0);
+}
+
+TEST_CASE("route A's faulted slices sum to route B's faulted pair as the slices narrow") {
+  // Pinion tooth 0 missing and tooth 1 spalled over the first half of the face, at rest in
+  // contact on N1 with 10 um of deflection, over the angles in which both teeth pass the
+  // widened segment: route A's lines (each slice's pairs reading its slice of the tables, the
+  // teeth k of the slice's shifted line) against route B's line (the faulted pair tables). As
+  // for the healthy face (the test above), the midpoint rule across jumps of kappa (the path's
+  // ends and the spall's edges) falls as 1/N. A slice reading another pair's teeth would be off
+  // by a whole pair's share of the mesh (a tooth missing or not: a third of K and more).
+  SimulationCase c = h501_case();
+  const double b = c.gears.face_width_m;
+  c.faults = {missing_pinion_tooth(0), pinion_spall(c, 1, 0.0, 0.5 * b)};
+  const RestLines route_b({route_b_line(c)});
+  SimulationCase healthy = c;
+  healthy.faults.clear();
+  const RestLines route_b_healthy({route_b_line(healthy)});
+  const double delta = 10e-6;
+  const GearPair transverse = transverse_pair(c.gears);
+  const double period = base_pitch(transverse) / base_radius(transverse, Gear::one);
+  constexpr int kAngles = 320;
+  TrainMesh face;
+  face.name = "h501";
+  face.pair = c;
+  std::vector<double> worst;
+  double fault_loss = 0.0;
+  for (const int n : {4, 8, 16}) {
+    face.pair.model.stiffness.face_slices = n;
+    const RestLines route_a(helical_slice_meshes(face));
+    double largest = 0.0;
+    for (int i = 0; i < kAngles; ++i) {
+      // Five mesh periods from -2.5: pairs 0 and -1 (teeth 0 and 1) cross the segment.
+      const double theta = period * (-2.5 + 5.0 * (i + 0.5) / kAngles);
+      const double k_b = route_b.stiffness(theta, delta);
+      const double k_a = route_a.stiffness(theta, delta);
+      const double k_h = route_b_healthy.stiffness(theta, delta);
+      largest = std::max(largest, std::fabs(k_a - k_b) / k_h);
+      fault_loss = std::max(fault_loss, (k_h - k_b) / k_h);
+    }
+    worst.push_back(largest);
+    MESSAGE("N = " << n << ": largest |K_A - K_B| / K_healthy = " << largest);
+  }
+  MESSAGE("the faults take up to " << fault_loss << " of the healthy K");
+  CHECK(fault_loss > 0.3);
+  for (std::size_t i = 1; i < worst.size(); ++i) {
+    // 1/N: each doubling at least a third off (0.5 for exactly 1/N, slack for the sampling).
+    CHECK(worst[i] < 0.67 * worst[i - 1]);
+  }
+  CHECK(worst.back() < 0.05);
+}
+
+TEST_CASE("a train's helical mesh with friction is the two-gear helical run, bit for bit") {
+  // Route B on both sides, as the first test, with f = 0.05 summed over the face (FaceFriction):
+  // the same MeshLine forces in either loop, so every row and the friction's loss agree to the
+  // bit.
+  SimulationCase c = h501_case();
+  c.model.friction_coefficient = 0.05;
+  c.integrator.end_time_s = 0.5e-3;
+  const SimulationResult two_gear = simulate(c);
+  const TrainResult result = simulate_train(two_gear_train(c));
+  REQUIRE(two_gear.summary.events > 5);
+  REQUIRE(result.series.size() == two_gear.series.size());
+  for (std::size_t i = 0; i < two_gear.series.size(); ++i) {
+    const SeriesRow& a = two_gear.series[i];
+    const TrainRow& b = result.series[i];
+    const TrainMeshRow& m = b.meshes[0];
+    const bool same = a.t_s == b.t_s && a.theta1_rad == b.theta_rad[0] &&
+                      a.theta2_rad == b.theta_rad[1] && a.w1_rad_per_s == b.w_rad_per_s[0] &&
+                      a.w2_rad_per_s == b.w_rad_per_s[1] && a.delta_m == m.delta_m &&
+                      a.normal_force_n == m.normal_force_n &&
+                      a.friction_force_n == m.friction_force_n;
+    if (!same) {
+      INFO("row " << i << " at t = " << a.t_s);
+      REQUIRE(same);
+    }
+  }
+  MESSAGE("friction loss " << two_gear.summary.friction_loss_j << " J");
+  CHECK(two_gear.summary.friction_loss_j > 0.0);
+  CHECK(result.summary.friction_loss_j == two_gear.summary.friction_loss_j);
+  CHECK(result.meshes[0].friction_loss_j == two_gear.summary.friction_loss_j);
+  CHECK(result.summary.ledger_residual_max_j == two_gear.summary.ledger_residual_max_j);
+}
+
+TEST_CASE("route A's friction and faults on slices run as route B's face sums") {
+  // A crowning of 1 nm makes the pair run by slices (route A, 16 slices) while its gaps stay far
+  // below the 10 um deflections, so route A and route B differ only by the slices' midpoint rule
+  // across the face, which the rest stiffness tests above bound pointwise (1.25 % of K at N =
+  // 16 healthy, 3.3 % with the faults below). Both runs start from h501_case's state in the
+  // backlash and strike; 0.3 ms. Quasi-statically a stiffness off by eps moves the deflection,
+  // a part of s, by eps of it: |s_A - s_B| <= eps max |s|.
+  SimulationCase c = h501_case();
+  c.integrator.end_time_s = 0.3e-3;
+  c.model.stiffness.face_slices = 16;
+  SimulationCase sliced = c;
+  sliced.modifications.gear1.lead.crowning_m = 1e-9;
+  REQUIRE(runs_by_slices(sliced));
+  REQUIRE_FALSE(runs_by_slices(c));
+  const auto compare = [](const SimulationResult& a, const SimulationResult& b) {
+    REQUIRE(a.series.size() == b.series.size());
+    double worst = 0.0;
+    double scale = 0.0;
+    for (std::size_t i = 0; i < a.series.size(); ++i) {
+      worst = std::max(worst, std::fabs(a.series[i].s_m - b.series[i].s_m));
+      scale = std::max(scale, std::fabs(b.series[i].s_m));
+    }
+    return worst / scale;
+  };
+  SUBCASE("friction") {
+    c.model.friction_coefficient = 0.05;
+    sliced.model.friction_coefficient = 0.05;
+    const SimulationResult a = simulate(sliced);
+    const SimulationResult b = simulate(c);
+    const double ds = compare(a, b);
+    const double loss =
+        (a.summary.friction_loss_j - b.summary.friction_loss_j) / b.summary.friction_loss_j;
+    MESSAGE("route A against B: s differs by "
+            << ds << " of its largest; friction loss by " << loss << "; A's ledger residual "
+            << a.summary.ledger_residual_max_j << " J of " << a.summary.ledger_scale_j);
+    CHECK(ds < 0.0125);
+    // The slices' sum of sign(Vs) and sign(Vs) X' over the face is the face sum's within 2 / N
+    // (the midpoint rule's first order, as the by-hand check of FaceFriction bounds it).
+    CHECK(b.summary.friction_loss_j > 0.0);
+    CHECK(std::fabs(loss) < 2.0 / 16.0);
+    // The frictionless runs' bound (docs/helical.md): the slices' friction is in the books.
+    CHECK(a.summary.ledger_residual_max_j < 1e-9 * a.summary.ledger_scale_j);
+  }
+  SUBCASE("a missing tooth and a half-face spall") {
+    const double b = c.gears.face_width_m;
+    c.faults = {missing_pinion_tooth(0), pinion_spall(c, 1, 0.0, 0.5 * b)};
+    sliced.faults = c.faults;
+    const SimulationResult a = simulate(sliced);
+    const SimulationResult r = simulate(c);
+    const double ds = compare(a, r);
+    MESSAGE("route A against B: s differs by " << ds << " of its largest; A's ledger residual "
+                                               << a.summary.ledger_residual_max_j << " J of "
+                                               << a.summary.ledger_scale_j);
+    CHECK(ds < 0.033);
+    CHECK(a.summary.ledger_residual_max_j < 1e-9 * a.summary.ledger_scale_j);
   }
 }

@@ -112,10 +112,11 @@ void schema_detail::add_gear_rows(std::vector<Field>& rows) {
        "beta at the reference cylinder; 0 is the spur pair. Above 0, module, pressure_angle, "
        "the shifts and the rack coefficients are normal-section values; mesh-stiffness, "
        "iso6336, ste and report (with faults too), simulate (the torsional and the planar "
-       "model, with friction under the constant law; with modifications by its slices, on "
-       "rigid or elastic bearings) and sweep (the torsional and the planar model), modes "
-       "(without faults) and trains (with modifications by its slices, bodies on bearings "
-       "too) take a helical pair",
+        "model, with friction under the constant law; with modifications by its slices, faults "
+        "laid across them, on rigid or elastic bearings) and sweep (the torsional and the planar "
+        "model), modes (without faults) and trains (with friction under the constant law; with "
+        "modifications by its slices, faults laid across them, bodies on bearings too) take a "
+        "helical pair",
        [](auto& c) -> auto& { return c.gears.helix_angle_rad; })
       .written_at_default = false;
   rows.back().keyed_at_default = false;

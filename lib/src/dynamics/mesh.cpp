@@ -147,9 +147,12 @@ double natural_frequency_rad_per_s(const SimulationCase& c, const StiffnessTable
   return std::sqrt(mean_mesh_stiffness_n_per_m(c, table) / effective_mass_kg(c.gears));
 }
 
-MeshTeeth mesh_teeth(const SimulationCase& c, const StiffnessTable& table, double constant_k) {
+MeshTeeth mesh_teeth(const SimulationCase& c, const StiffnessTable& table, double constant_k,
+                     std::shared_ptr<const MeshTables> given) {
   MeshTeeth teeth;
-  if (!c.faults.empty() && constant_k == 0.0) {
+  if (given && !c.faults.empty() && constant_k == 0.0) {
+    teeth.tables = std::move(given);
+  } else if (!c.faults.empty() && constant_k == 0.0) {
     teeth.tables = std::make_shared<const MeshTables>(
         c.gears, c.model.stiffness, c.faults,
         std::shared_ptr<const StiffnessTable>(&table, [](const StiffnessTable*) {}));

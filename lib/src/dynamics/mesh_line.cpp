@@ -38,7 +38,8 @@ void MeshLine::read_model_settings(const SimulationCase& c) {
 MeshLine::MeshLine(const SimulationCase& c, const StiffnessTable& table)
     : MeshLine(c, table, 0.0) {}
 
-MeshLine::MeshLine(const SimulationCase& c, const StiffnessTable& table, double mass_kg)
+MeshLine::MeshLine(const SimulationCase& c, const StiffnessTable& table, double mass_kg,
+                   std::shared_ptr<const MeshTables> teeth)
     : table_(&table), model_(&c.model), gears_(&c.gears), layout_(c.gears, c.model.coast_phase) {
   const GearPair& g = c.gears;
   rb1_ = base_radius(g, Gear::one);
@@ -65,10 +66,10 @@ MeshLine::MeshLine(const SimulationCase& c, const StiffnessTable& table, double 
     face_friction_ = std::make_shared<const FaceFriction>(g, c.model.stiffness);
   }
   read_model_settings(c);
-  MeshTeeth teeth = mesh_teeth(c, table, constant_k_);
-  teeth_ = std::move(teeth.tables);
-  gaps_ = std::move(teeth.gaps);
-  kinks_ = std::move(teeth.kinks_m);
+  MeshTeeth built = mesh_teeth(c, table, constant_k_, std::move(teeth));
+  teeth_ = std::move(built.tables);
+  gaps_ = std::move(built.gaps);
+  kinks_ = std::move(built.kinks_m);
   // The damper's m_e is that of the pair's discs (mesh.hpp), or of the train's bodies.
   mesh_damping_ = mass_kg > 0.0 ? case_mesh_damping_n_s_per_m(c, table, teeth_.get(), mass_kg)
                                 : case_mesh_damping_n_s_per_m(c, table, teeth_.get());

@@ -438,20 +438,9 @@ std::shared_ptr<const StiffnessTable> run_table(const SimulationCase& c) {
   return std::make_shared<const StiffnessTable>(helical_pair_table(c.gears, c.model.stiffness));
 }
 
-void refuse_helical_run(const SimulationCase& c) {
+void refuse_helical_friction(const SimulationCase& c) {
   if (c.gears.helix_angle_rad == 0.0) return;
   const std::string beta = format_number(c.gears.helix_angle_rad * 180.0 / pi) + " deg";
-  if (!is_unmodified(c.modifications)) {
-    throw InputError(std::vector<Problem>{refused_problem(
-        "modifications",
-        "reliefs or tooth errors on a helical pair (gears.helix_angle = " + beta + ")",
-        "not in this run of a helical pair: a gap that varies along an inclined contact "
-        "line needs the slices as separate contacts (route A of docs/helical.md), which only "
-        "`gearimpact simulate` and `gearimpact train` run",
-        "no relief and no tooth error with gears.helix_angle > 0",
-        "run the case file with `gearimpact simulate` or `gearimpact train` (route A: each "
-        "slice its own contact), or remove the relief and tooth-error keys")});
-  }
   if (c.model.friction_law != FrictionLaw::constant) {
     throw InputError(std::vector<Problem>{
         refused_problem("model.friction_law",
@@ -478,6 +467,23 @@ void refuse_helical_run(const SimulationCase& c) {
                             "continuously (docs/helical.md, Friction on a helical pair)",
                         "0", "model.friction_smoothing_speed = 0")});
   }
+}
+
+void refuse_helical_run(const SimulationCase& c) {
+  if (c.gears.helix_angle_rad == 0.0) return;
+  const std::string beta = format_number(c.gears.helix_angle_rad * 180.0 / pi) + " deg";
+  if (!is_unmodified(c.modifications)) {
+    throw InputError(std::vector<Problem>{refused_problem(
+        "modifications",
+        "reliefs or tooth errors on a helical pair (gears.helix_angle = " + beta + ")",
+        "not in this run of a helical pair: a gap that varies along an inclined contact "
+        "line needs the slices as separate contacts (route A of docs/helical.md), which only "
+        "`gearimpact simulate` and `gearimpact train` run",
+        "no relief and no tooth error with gears.helix_angle > 0",
+        "run the case file with `gearimpact simulate` or `gearimpact train` (route A: each "
+        "slice its own contact), or remove the relief and tooth-error keys")});
+  }
+  refuse_helical_friction(c);
   const HelicalGeometry g = helical_geometry(c.gears);
   const double most = static_cast<double>(MeshLayout::capacity - 1);
   if (!(g.total_contact_ratio < most)) {

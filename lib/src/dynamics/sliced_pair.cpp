@@ -69,15 +69,6 @@ void refuse_in_sliced_run(const SimulationCase& c, const RunControl& control) {
           "elastic bearings")});
     }
   }
-  if (!c.faults.empty()) {
-    // Each slice would take the fault across its whole width: a band of the face, a graded
-    // crack's depth and a spall's face_start are not laid out over route A's slices yet.
-    throw InputError(std::vector<Problem>{refused_problem(
-        "faults[0]", "a tooth fault",
-        why + ", which do not yet place a fault's band across the face",
-        "no [[faults]] with modifications on a helical pair",
-        "remove the modifications (route B runs faulted helical pairs) or the faults")});
-  }
   if (c.torque1.kind == Torque::Kind::prescribed_speed) {
     throw InputError(std::vector<Problem>{refused_problem(
         "torque1.kind", "\"prescribed-speed\"",

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <memory>
 #include <numeric>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -25,6 +26,7 @@
 #include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/geometry/planetary.hpp"
 #include "gearimpact/stiffness/helical.hpp"
+#include "gearimpact/stiffness/helical_faults.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "ledger.hpp"
 #include "run_parts.hpp"
@@ -168,15 +170,6 @@ void validate_sliced_mesh(const std::string& prefix, const TrainMesh& mesh,
   if (mesh.table) {
     throw InputError(prefix + "table", "a table given",
                      "none: a helical mesh run by slices builds its slices' table");
-  }
-  // Each slice would take the fault across its whole width: a fault's band of
-  // the face, a graded crack's depth and a spall's face_start are not laid out
-  // over the slices.
-  if (!c.faults.empty()) {
-    throw InputError(prefix + "faults[0]", "a tooth fault",
-                     "none with modifications on a helical mesh: its slices (route A of "
-                     "docs/helical.md) do not place a fault's band across the face; route B "
-                     "(no modifications) runs faulted helical pairs");
   }
 }
 
@@ -442,15 +435,6 @@ void validate_train(const GearTrain& train) {
                        format_number(mesh.pair.gears.helix_angle_rad * 180.0 / pi) + " deg",
                        "0 on a mesh in a carrier's frame: a planetary stage's meshes are spur");
     }
-    if (helical_mesh(mesh) && (mesh.pair.model.friction_coefficient != 0.0 ||
-                               mesh.pair.model.friction_law != FrictionLaw::constant)) {
-      // The two-gear run sums a helical pair's friction over its face; a
-      // train's helical meshes (route B, or route A's slices) are not checked with it.
-      throw InputError(prefix + "model.friction_coefficient",
-                       format_number(mesh.pair.model.friction_coefficient),
-                       "0 under the constant law on a helical mesh of a train: friction on a "
-                       "helical pair runs in the two-gear simulate only");
-    }
     const bool sliced = runs_by_slices(mesh);
     if (sliced) validate_sliced_mesh(prefix, mesh, train.integrator);
     if (carrier_mesh(mesh) && mesh.pair.model.mesh_force == MeshForce::lagrangian) {
@@ -491,6 +475,8 @@ void validate_train(const GearTrain& train) {
         plain.modifications = Modifications{};
       }
       validate(internal_mesh(mesh) ? twin : sliced ? plain : mesh.pair);
+      // A helical mesh's friction as the two-gear run takes it (either route).
+      refuse_helical_friction(mesh.pair);
       if (sliced) validate_slice_gaps(mesh.pair);
       // A helical pair's table is its transverse section's (dynamics_case).
       if (mesh.table && !internal_mesh(mesh)) check_table(dynamics_case(mesh.pair), *mesh.table);
@@ -618,7 +604,7 @@ class TrainSystem {
         const double mass = effective_mass_kg(
             base_radius(m.pair.gears, Gear::one), inertia_[static_cast<std::size_t>(mesh_a_[k])],
             base_radius(m.pair.gears, Gear::two), inertia_[static_cast<std::size_t>(mesh_b_[k])]);
-        meshes_.emplace_back(m.pair, *tables[k], mass);
+        meshes_.emplace_back(m.pair, *tables[k], mass, m.teeth);
         continue;
       }
       // In the carrier's frame, angles about +z. The line's gear 1 turns
@@ -1360,7 +1346,8 @@ std::vector<TrainMesh> helical_slice_meshes(const TrainMesh& mesh) {
       std::make_shared<const FaceStiffness>(g, c.model.stiffness, c.model.stiffness.helical_hertz);
   const HelicalMesh helical(g, *face, c.model.coast_phase);
   const double db = g.face_width_m / n;
-  const double alpha_wt = helical_geometry(g).working_pressure_angle_rad;
+  const HelicalGeometry geometry = helical_geometry(g);
+  const double alpha_wt = geometry.working_pressure_angle_rad;
   // One table for every slice: each term of 1/kappa_t per unit width over the slice's width.
   const auto table =
       std::make_shared<const StiffnessTable>(face->start_m(), face->end_m(), [face, db](double x) {
@@ -1372,6 +1359,14 @@ std::vector<TrainMesh> helical_slice_meshes(const TrainMesh& mesh) {
   slice.gears = transverse_pair(g);
   slice.gears.face_width_m = db;
   slice.model.mesh_damping_ratio = c.model.mesh_damping_ratio / std::sqrt(static_cast<double>(n));
+  // Coulomb's law on the flank's normal force, N / cos(beta_b) of a slice's
+  // transverse N, as route B's face sum takes it (FaceFriction).
+  slice.model.friction_coefficient =
+      c.model.friction_coefficient / std::cos(geometry.base_helix_angle_rad);
+  // With faults, each slice's pairs read the pair's tables over the slice: a
+  // fault's band of the face where it reaches into the slice (route B's layout).
+  std::optional<MeshTables> faulted;
+  if (!c.faults.empty()) faulted.emplace(helical_mesh_tables(g, c.model.stiffness, c.faults));
   std::vector<TrainMesh> lines;
   for (int j = 0; j < n; ++j) {
     slice.modifications = slice_modifications(c, j, n, alpha_wt);
@@ -1379,6 +1374,11 @@ std::vector<TrainMesh> helical_slice_meshes(const TrainMesh& mesh) {
     line.name = mesh.name + "_slice" + std::to_string(j + 1);
     line.pair = slice;
     line.table = table;
+    if (faulted) {
+      line.teeth = std::make_shared<const MeshTables>(
+          faulted->slice(j * db, j + 1 == n ? g.face_width_m : (j + 1) * db, table,
+                         c.model.stiffness.helical_hertz));
+    }
     line.line_offset_m = mesh.line_offset_m + helical.slice_offset_m(Region::n1, j, n);
     lines.push_back(std::move(line));
   }

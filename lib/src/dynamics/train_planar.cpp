@@ -233,7 +233,7 @@ class PlanarTrainSystem {
       const double mass = effective_mass_kg(
           base_radius(m.pair.gears, Gear::one), inertia_[static_cast<std::size_t>(f.a)],
           base_radius(m.pair.gears, Gear::two), inertia_[static_cast<std::size_t>(f.b)]);
-      meshes_.emplace_back(m.pair, *tables[k], mass);
+      meshes_.emplace_back(m.pair, *tables[k], mass, m.teeth);
     }
     for (const TrainShaft& s : train.shafts) {
       if (s.kind != TrainShaft::Kind::torsional) continue;

@@ -1,6 +1,7 @@
 #include "gearimpact/stiffness/helical.hpp"
 
 #include <algorithm>
+#include <array>
 #include <boost/math/quadrature/gauss.hpp>
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
@@ -414,28 +415,44 @@ StiffnessTable helical_faulted_pair_table(const GearPair& swept, HelicalHertz he
   return StiffnessTable(domain.start_m, domain.end_m, compliance, breaks, options);
 }
 
-double helical_slice_kappa(const GearPair& swept, HelicalHertz hertz,
-                           const StiffnessTable& healthy_section,
-                           const std::vector<FaceBand>& bands, double y0_m, double y1_m,
-                           double x_m) {
+SliceStiffness helical_slice_stiffness(const GearPair& swept, HelicalHertz hertz,
+                                       const StiffnessTable& healthy_section,
+                                       const std::vector<FaceBand>& bands, double y0_m, double y1_m,
+                                       double x_m) {
   const double b = swept.face_width_m;
   const double tan_bb = swept.face_advance_m / b;
   const double cos_bb = 1.0 / std::sqrt(1.0 + tan_bb * tan_bb);
   const double width = y1_m - y0_m;
   Compliances terms;
+  // s_i: each part's share times kappa^2 c_i; they sum to kappa.
+  std::array<double, kTermCount> s{};
+  const auto add = [&](double share, double kappa) {
+    for (std::size_t t = 0; t < kTermCount; ++t) s[t] += share * kappa * kappa * terms.m_per_n[t];
+  };
   double healthy_share = 1.0;
-  double sum = 0.0;
+  SliceStiffness slice;
   for (const FaceBand& band : bands) {
     const double covered = std::min(band.end_m, y1_m) - std::max(band.start_m, y0_m);
     if (!(covered > 0.0)) continue;
     const double share = covered / width;
     healthy_share -= share;
-    if (band.section) sum += share * per_width(*band.section, x_m, b, cos_bb, hertz, terms);
+    if (!band.section) continue;
+    const double kappa = per_width(*band.section, x_m, b, cos_bb, hertz, terms);
+    slice.kappa_n_per_m2 += share * kappa;
+    if (kappa > 0.0) add(share, kappa);
   }
   if (healthy_share > 0.0) {
-    sum += healthy_share * per_width(healthy_section, x_m, b, cos_bb, hertz, terms);
+    const double kappa = per_width(healthy_section, x_m, b, cos_bb, hertz, terms);
+    slice.kappa_n_per_m2 += healthy_share * kappa;
+    if (kappa > 0.0) add(healthy_share, kappa);
   }
-  return sum;
+  double k = 0.0;
+  for (double term : s) k += term;
+  if (!(k > 0.0)) return slice;
+  for (std::size_t t = 0; t < kTermCount; ++t) {
+    slice.compliance.m_per_n[t] = s[t] / (k * k * width);
+  }
+  return slice;
 }
 
 HelicalMeshStiffnessCurve helical_mesh_stiffness(const GearPair& pair, const StiffnessModel& model,

@@ -222,8 +222,9 @@ HelicalStaticTransmissionError helical_static_transmission_error(
         ++p.elements;
         ++p.loaded_elements;
         p.load_per_width_n_per_m[static_cast<std::size_t>(j)] +=
-            helical_slice_kappa(swept, model.helical_hertz, *section, bands, j * db,
-                                j + 1 == n ? b : (j + 1) * db, x) *
+            helical_slice_stiffness(swept, model.helical_hertz, *section, bands, j * db,
+                                    j + 1 == n ? b : (j + 1) * db, x)
+                .kappa_n_per_m2 *
             p.ste_m;
       }
     }

@@ -389,6 +389,62 @@ MeshTables::MeshTables(const GearPair& pair, const StiffnessModel& model,
   for (auto& [key, table] : section_tables) section_tables_.push_back(std::move(table));
 }
 
+MeshTables MeshTables::slice(double y0_m, double y1_m,
+                             std::shared_ptr<const StiffnessTable> healthy_slice,
+                             HelicalHertz hertz) const {
+  const double b = pair_.face_width_m;
+  if (!section_healthy_) {
+    throw InputError("tables", "a spur pair's", "a helical pair's tables (helical_mesh_tables)");
+  }
+  if (!(y0_m >= 0.0 && y1_m > y0_m && y1_m <= b) || !healthy_slice) {
+    throw InputError(
+        "slice", "[" + format_number(y0_m) + ", " + format_number(y1_m) + ") m",
+        "a slice within the face [0, " + format_number(b) + "] m with its healthy table");
+  }
+  MeshTables s;
+  s.pair_ = pair_;
+  s.pair_.face_advance_m = 0.0;
+  s.pair_.face_width_m = y1_m - y0_m;
+  s.faults_ = faults_;
+  s.healthy_ = healthy_slice;
+  s.pinion_class_ = pinion_class_;
+  s.wheel_class_ = wheel_class_;
+  s.wheel_states_ = wheel_states_;
+  s.distinct_ = distinct_;
+  const StiffnessTable& section = *section_healthy_;
+  const double start = healthy_slice->domain_start_m();
+  const double end = healthy_slice->domain_end_m();
+  for (std::size_t line = 0; line < 2; ++line) {
+    s.tables_[line].assign(tables_[line].size(), nullptr);
+    for (std::size_t c = 0; c < tables_[line].size(); ++c) {
+      if (!tables_[line][c]) continue;
+      const std::vector<FaceBand>& bands = face_bands_[line][c];
+      std::vector<double> breaks = section.breaks_m();
+      bool reaches = false;
+      for (const FaceBand& band : bands) {
+        if (!(std::min(band.end_m, y1_m) - std::max(band.start_m, y0_m) > 0.0)) continue;
+        reaches = true;
+        if (!band.section) continue;
+        // A fault's edges, where its section's Ke jumps or kinks.
+        const std::vector<double> edges = band.section->breaks_m();
+        breaks.insert(breaks.end(), edges.begin(), edges.end());
+      }
+      if (!reaches) {
+        s.tables_[line][c] = healthy_slice;
+        continue;
+      }
+      s.tables_[line][c] = std::make_shared<const StiffnessTable>(
+          start, end,
+          [&](double x) {
+            return helical_slice_stiffness(pair_, hertz, section, bands, y0_m, y1_m, x).compliance;
+          },
+          breaks);
+      ++s.fault_tables_;
+    }
+  }
+  return s;
+}
+
 std::vector<double> fault_breaks(const GearPair& pair, Gear which, const ToothState& state) {
   std::vector<double> radii;
   if (state.kind == ToothKind::spall)

@@ -88,7 +88,10 @@ struct MeshTeeth {
   std::vector<double> kinks_m;               // ToothGaps::kinks_m
 };
 // constant_k: model.constant_mesh_stiffness where the stiffness is constant, else 0.
-MeshTeeth mesh_teeth(const SimulationCase& c, const StiffnessTable& table, double constant_k);
+// `given`: the pairs' tables built by the caller (a helical slice's, MeshTables::slice),
+// taken in place of c.faults' where those would be built.
+MeshTeeth mesh_teeth(const SimulationCase& c, const StiffnessTable& table, double constant_k,
+                     std::shared_ptr<const MeshTables> given = nullptr);
 
 // The event values a loaded pair adds for its table's part and its gap, in
 // the torsional and the planar system alike; each appends to g from g[n] on

@@ -178,8 +178,11 @@ class MeshLine {
   MeshLine(const SimulationCase& c, const StiffnessTable& table);
   // A mesh whose viscous damper (model.mesh_damping_ratio) sees the m_e of the
   // two bodies it joins, mass_kg > 0 (a train's), rather than that
-  // of the pair's discs.
-  MeshLine(const SimulationCase& c, const StiffnessTable& table, double mass_kg);
+  // of the pair's discs. `teeth`, when given (a helical slice's with c.faults,
+  // TrainMesh::teeth), are the tables its pairs read in place of the ones
+  // built from c.faults; `table` must be their healthy one.
+  MeshLine(const SimulationCase& c, const StiffnessTable& table, double mass_kg,
+           std::shared_ptr<const MeshTables> teeth = nullptr);
   // An internal mesh on `line`, `table` over [line.start_m, line.end_m]. Of
   // c, the model (contact, damping; its friction must be 0), the backlash and
   // the Hertzian stiffness's width and materials (Kh of (4) has no curvature),

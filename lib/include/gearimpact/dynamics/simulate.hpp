@@ -452,10 +452,14 @@ SimulationCase dynamics_case(const SimulationCase& c);
 // c.model.stiffness), or for a helical pair helical_pair_table (stiffness/helical.hpp).
 std::shared_ptr<const StiffnessTable> run_table(const SimulationCase& c);
 // What a run refuses of a helical pair (none for a spur one), naming the key:
-// faults[0], modifications, model.friction_law other than "constant",
-// model.friction_coefficient other than 0 (docs/helical.md, Dynamics), and
+// modifications (which route A runs, sliced_pair.hpp), the friction that
+// refuse_helical_friction refuses (docs/helical.md, Dynamics), and
 // gears.face_width where eps_gamma reaches MeshLayout::capacity - 1.
 void refuse_helical_run(const SimulationCase& c);
+// Its refusals of a helical pair's friction (none for a spur pair), which a
+// train's helical mesh meets too: model.friction_law other than "constant",
+// a friction coefficient with [[faults]] or with model.friction_smoothing_speed.
+void refuse_helical_friction(const SimulationCase& c);
 
 // Checks a run once (what simulate() checks, in its order): the case's keys and fields
 // (validate_absent_run_keys, validate_fields), a helical pair's refusals (refuse_helical_run),

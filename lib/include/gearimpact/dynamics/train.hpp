@@ -132,6 +132,10 @@ struct TrainMesh {
   // (docs/vibration.md, "The planar dynamics"); 0 is the two-gear planar
   // model's frame, x along O1 -> O2.
   double centre_angle_rad = 0.0;
+  // A helical slice's (helical_slice_meshes) with the pair's faults: the
+  // tables of its pairs' teeth over the slice (MeshTables::slice); none
+  // otherwise. `table` is their healthy one.
+  std::shared_ptr<const MeshTables> teeth = nullptr;
 };
 
 // A shaft between bodies a and b on one axis (both turn in the same sense).

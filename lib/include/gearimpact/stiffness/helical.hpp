@@ -242,16 +242,26 @@ class FaceFriction {
   std::array<std::vector<double>, 2> integral_;  // C0, C1 at the nodes
 };
 
-// The stiffness per unit face width at X (on the section's path of contact)
-// of the slice [y0, y1) of a helical tooth pair whose face is `bands`
+// The slice [y0, y1) of a helical tooth pair whose face is `bands`
 // (disjoint, as helical_faulted_pair_table takes them) and healthy elsewhere
-// (`healthy_section`): each band's kappa, as helical_faulted_pair_table
-// reads it (Hertz by `hertz`), weighted by the share of the slice it covers,
-// the healthy kappa for the rest. `swept` the pair's swept transverse section.
-double helical_slice_kappa(const GearPair& swept, HelicalHertz hertz,
-                           const StiffnessTable& healthy_section,
-                           const std::vector<FaceBand>& bands, double y0_m, double y1_m,
-                           double x_m);
+// (`healthy_section`), at X on the section's path of contact: its stiffness
+// per unit face width kappa, each band's kappa (as helical_faulted_pair_table
+// reads it, Hertz by `hertz`) weighted by the share of the slice it covers and
+// the healthy kappa for the rest; and the slice's compliance terms over its
+// width y1 - y0, the covered parts in parallel at one deflection, each part's
+// term i weighted by its share times kappa^2 c_i (c_i per unit width), as
+// helical_faulted_pair_table splits a line's energy: they sum to 1 / (kappa
+// (y1 - y0)), and all are 0 where kappa is. The STE's load across the face
+// (route B) and route A's slice tables (MeshTables::slice) both read it.
+// `swept` the pair's swept transverse section.
+struct SliceStiffness {
+  double kappa_n_per_m2 = 0.0;
+  Compliances compliance;
+};
+SliceStiffness helical_slice_stiffness(const GearPair& swept, HelicalHertz hertz,
+                                       const StiffnessTable& healthy_section,
+                                       const std::vector<FaceBand>& bands, double y0_m, double y1_m,
+                                       double x_m);
 
 // The face-load factor of ISO 6336-1 from a slice solution: uniform stiffness
 // c per unit face width, a gap linear across the face e(y) = F_betay (y/b - 1/2),

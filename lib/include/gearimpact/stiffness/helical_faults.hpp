@@ -46,7 +46,7 @@ TruePeriodMeshStiffness helical_true_period_mesh_stiffness(const GearPair& pair,
 // helical_static_transmission_error with each pair's Ke its teeth's table.
 // The load across the face w(y_j) = sum_k kappa_kj delta, kappa_kj the
 // per-width stiffness of slice j of pair k at X_kj in its state
-// (helical_slice_kappa over the pair's face_bands). options.mesh_periods 0:
+// (helical_slice_stiffness over the pair's face_bands). options.mesh_periods 0:
 // the true period of the tables' teeth. Throws as
 // validate_helical_static_transmission_error, and InputError naming
 // [[faults]] when missing teeth leave no pair in contact at an angle.

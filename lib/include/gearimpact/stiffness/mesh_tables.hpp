@@ -64,6 +64,16 @@ class MeshTables {
     return face_bands_[line == Region::n2 ? 1 : 0][combination(t)];
   }
   const StiffnessTable* healthy_section() const { return section_healthy_.get(); }
+  // Route A's slice [y0, y1) of these tables of a helical pair (docs/helical.md,
+  // Faults): one table per pair over the transverse section's path of
+  // contact, for a faulted pair the slice's stiffness from its face bands
+  // (helical_slice_stiffness, Hertz by `hertz`), for a pair none of whose
+  // bands reaches into the slice `healthy_slice` itself (shared, so that such
+  // a slice reads the healthy slice's table bit for bit); the same teeth for
+  // the same k, no bands, no section. Throws InputError for a spur pair's
+  // tables or a slice outside the face.
+  MeshTables slice(double y0_m, double y1_m, std::shared_ptr<const StiffnessTable> healthy_slice,
+                   HelicalHertz hertz) const;
   // How many tables were built beside the healthy one.
   std::size_t fault_table_count() const { return fault_tables_; }
   const std::vector<ToothFault>& faults() const { return faults_; }
@@ -79,6 +89,7 @@ class MeshTables {
   std::vector<std::pair<const StiffnessTable*, long long>> table_repeats(long long periods) const;
 
  private:
+  MeshTables() = default;
   std::size_t combination(TeethInContact t) const {
     return static_cast<std::size_t>(pinion_class_[static_cast<std::size_t>(t.pinion_tooth)]) *
                wheel_states_ +
