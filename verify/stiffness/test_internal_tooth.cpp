@@ -17,7 +17,9 @@
 #include "gearimpact/stiffness/internal_tooth.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "gearimpact/stiffness/mesh_models.hpp"
+#include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "gearimpact/stiffness/time_varying_stiffness.hpp"
+#include "gearimpact/stiffness/tooth_state.hpp"
 #include "rack_pairs.hpp"
 #include "relative.hpp"
 
@@ -117,7 +119,6 @@ TEST_CASE("the ring tooth tends to the basic rack's straight-sided tooth as Z_r 
     for (const int teeth : {100, 1000, 10000}) {
       CAPTURE(teeth);
       const double d = worst(ring_at(teeth, h, StiffnessRoute::tau_form), rack);
-      MESSAGE("Z_r " << teeth << " h " << h << ": " << d);
       CHECK(d < previous / 5.0);
       previous = d;
     }
@@ -210,9 +211,44 @@ TEST_CASE("the ring-planet pair by potential energy over the internal segment") 
   const double pe_sun = path_mean_mesh_stiffness(rack_gear_pair_geometry(sun), model);
   const double iso_sun =
       iso6336_method_b(iso6336_pair(sun, 0.0)).mesh_stiffness_n_per_m2 * g.face_width_m;
-  MESSAGE("ring: PE " << mean << " ISO " << iso_ring << " (" << (mean / iso_ring - 1.0) * 100
-                      << " %); sun: PE " << pe_sun << " ISO " << iso_sun << " ("
-                      << (pe_sun / iso_sun - 1.0) * 100 << " %)");
   CHECK(mean / iso_ring - 1.0 > pe_sun / iso_sun - 1.0);
   CHECK(mean / iso_ring - 1.0 < 0.47);
+}
+
+TEST_CASE("a cracked planet tooth changes its ring pair as it changes its sun pair") {
+  // The crack changes the planet's beam terms only: at one contact radius on
+  // the planet, the pair's compliance grows by the same amount in its sun
+  // mesh (21/30, the planet gear 2) and in its ring mesh, whose ring tooth
+  // and Hertz term differ but do not change. The crack is on the sun mesh's
+  // loaded flank, so on the ring mesh's unloaded one; the cracked section's
+  // A and I do not depend on the side (root_crack.hpp), so the change is
+  // the same either way. Both changes come from one quadrature each, asked
+  // for 1e-12 of the tooth's terms, which are 5 times the change: 1e-9.
+  const GearPair g = ring_planet();
+  const InternalMesh mesh = stage_mesh(g);
+  const StiffnessModel model = potential_energy();
+  GearPair sun = g;
+  sun.teeth1 = 21;
+  sun.bore_diameter1_m = 20.0e-3;
+  const double lp = line_of_action_length(sun);
+  RootCrack crack;
+  crack.depth_m = 1.0e-3;
+  crack.angle_rad = 45.0 * pi / 180.0;
+  ToothState cracked;
+  cracked.kind = ToothKind::root_crack;
+  cracked.crack = crack;
+  const RackGearPairGeometry sun_geometry = rack_gear_pair_geometry(sun);
+  for (const double planet_roll : {9.0e-3, 10.26e-3, 12.0e-3}) {
+    CAPTURE(planet_roll);
+    const double x1 = lp - planet_roll;
+    REQUIRE(x1 >= sun_geometry.start_of_active_profile_m);
+    REQUIRE(x1 <= sun_geometry.end_of_active_profile_m);
+    const double sun_change = 1.0 / mesh_stiffness(sun, x1, model, ToothState{}, cracked).ke -
+                              1.0 / mesh_stiffness(sun, x1, model).ke;
+    const double ring_change =
+        1.0 / internal_mesh_stiffness(g, mesh, planet_roll, model, crack).ke -
+        1.0 / internal_mesh_stiffness(g, mesh, planet_roll, model).ke;
+    CHECK(sun_change > 0.0);
+    CHECK(relative_difference(ring_change, sun_change) < 1e-9);
+  }
 }

@@ -8,6 +8,7 @@
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/stiffness/mesh_models.hpp"
+#include "gearimpact/stiffness/root_crack.hpp"
 
 namespace gearimpact {
 
@@ -126,8 +127,12 @@ void check_planet_form_circle(const GearPair& ring_planet, const InternalMesh& m
   }
 }
 
-MeshStiffness internal_mesh_stiffness(const GearPair& ring_planet, const InternalMesh& mesh,
-                                      double x_m, const StiffnessModel& model) {
+namespace {
+
+// The pair with the planet's tooth healthy (null) or cracked as the ring
+// mesh loads it.
+MeshStiffness ring_planet_pair(const GearPair& ring_planet, const InternalMesh& mesh, double x_m,
+                               const StiffnessModel& model, const RootCrack* crack) {
   if (model.kind != StiffnessModelKind::potential_energy) {
     throw InputError("stiffness_model", "\"" + to_string(model.kind) + "\"",
                      "\"" + to_string(StiffnessModelKind::potential_energy) +
@@ -144,8 +149,11 @@ MeshStiffness internal_mesh_stiffness(const GearPair& ring_planet, const Interna
   StiffnessModel beam_model = model;
   for (Term term : {Term::bending, Term::shear, Term::axial}) beam_model.terms.set(term, true);
   beam_model.terms.set(Term::hertz, false);
+  const ToothContact contact = tooth_contact(planet, x_m);
   const ToothCompliances p =
-      tooth_compliances(planet, Gear::two, tooth_contact(planet, x_m), width, beam_model);
+      crack == nullptr
+          ? tooth_compliances(planet, Gear::two, contact, width, beam_model)
+          : cracked_tooth_compliances(planet, Gear::two, contact, width, beam_model, *crack);
   k.tooth1.of(Term::bending) = p.bending_m_per_n;
   k.tooth1.of(Term::shear) = p.shear_m_per_n;
   k.tooth1.of(Term::axial) = p.axial_m_per_n;
@@ -168,6 +176,21 @@ MeshStiffness internal_mesh_stiffness(const GearPair& ring_planet, const Interna
   // (29) over the terms switched on.
   k.ke = 1.0 / k.included.total_m_per_n();
   return k;
+}
+
+}  // namespace
+
+MeshStiffness internal_mesh_stiffness(const GearPair& ring_planet, const InternalMesh& mesh,
+                                      double x_m, const StiffnessModel& model) {
+  return ring_planet_pair(ring_planet, mesh, x_m, model, nullptr);
+}
+
+MeshStiffness internal_mesh_stiffness(const GearPair& ring_planet, const InternalMesh& mesh,
+                                      double x_m, const StiffnessModel& model,
+                                      const RootCrack& planet_crack) {
+  RootCrack here = planet_crack;
+  here.flank = planet_crack.flank == CrackFlank::loaded ? CrackFlank::unloaded : CrackFlank::loaded;
+  return ring_planet_pair(ring_planet, mesh, x_m, model, &here);
 }
 
 StiffnessTable internal_potential_energy_table(const GearPair& ring_planet,

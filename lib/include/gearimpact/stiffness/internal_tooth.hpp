@@ -10,6 +10,7 @@
 #include "gearimpact/geometry/rack_generation.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"
 #include "gearimpact/stiffness/model.hpp"
+#include "gearimpact/stiffness/root_crack.hpp"
 #include "gearimpact/stiffness/table.hpp"
 #include "gearimpact/stiffness/tooth_beam.hpp"
 
@@ -61,6 +62,15 @@ BeamCompliance ring_tooth_compliance(const RingTooth& tooth, double roll_distanc
 // the model switches on.
 MeshStiffness internal_mesh_stiffness(const GearPair& ring_planet, const InternalMesh& mesh,
                                       double x_m, const StiffnessModel& model);
+
+// The same pair with the planet's tooth cracked at its root (root_crack.hpp,
+// cracked_tooth_compliances), `crack` as the planet's sun mesh sees it: the
+// ring holds the planet tooth's other flank, so the crack's flank is the
+// other one here (loaded <-> unloaded). The ring's tooth and Hertz are the
+// healthy pair's.
+MeshStiffness internal_mesh_stiffness(const GearPair& ring_planet, const InternalMesh& mesh,
+                                      double x_m, const StiffnessModel& model,
+                                      const RootCrack& planet_crack);
 
 // Throws InputError naming rack_tip_radius_coefficient (the value the planet
 // is cut with) when the ring's tip meets the planet below its form circle,
