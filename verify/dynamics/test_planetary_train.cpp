@@ -363,6 +363,43 @@ TEST_CASE("a free stage keeps its angular momentum; a loaded one closes its ledg
   CHECK(fine.summary.ledger_residual_max_j < coarse.summary.ledger_residual_max_j / 64.0);
 }
 
+TEST_CASE(
+    "a stage by potential energy closes its ledger; a ring tip on the planet's fillet is refused") {
+  // docs/planetary.md, The ring mesh by potential energy: the 21/30/81 stage
+  // with every mesh by the model (bores 20 mm, a rack tip round of 0.1 m).
+  PlanetaryStage d = test_stage(21, 30, 81, 3);
+  d.mesh.model.stiffness.kind = StiffnessModelKind::potential_energy;
+  d.mesh.gears.bore_diameter1_m = 20.0e-3;
+  d.mesh.gears.bore_diameter2_m = 20.0e-3;
+  d.mesh.gears.rack_tip_radius_coefficient = 0.1;
+  d.input_speed_rad_per_s = 100.0;
+  d.sun_torque = driver(100.0);
+  d.carrier_torque = constant_torque(-20.0);
+  d.integrator.end_time_s = 0.002;
+  // The ledger closes at RK4's order with the ring meshes' table and its
+  // stored energy: a quarter of the step divides the residual by more than 64.
+  d.integrator.step_s = 2.0e-6;
+  const TrainResult coarse = simulate_train(planetary_train(d));
+  d.integrator.step_s = 0.5e-6;
+  const TrainResult fine = simulate_train(planetary_train(d));
+  CAPTURE(coarse.summary.ledger_residual_max_j);
+  CAPTURE(fine.summary.ledger_residual_max_j);
+  double ring_force = 0.0;
+  for (const TrainRow& row : coarse.series) {
+    for (std::size_t i = 3; i < 6; ++i)
+      ring_force = std::max(ring_force, row.meshes[i].normal_force_n);
+  }
+  CHECK(ring_force > 100.0);  // the ring meshes did act
+  CHECK(coarse.summary.ledger_residual_max_j / coarse.summary.ledger_scale_j < 1e-5);
+  CHECK(fine.summary.ledger_residual_max_j < coarse.summary.ledger_residual_max_j / 64.0);
+  // With the full round the planet's form circle (28.53 mm) lies outside the
+  // ring's first contact (28.43 mm).
+  d.mesh.gears.rack_tip_radius_coefficient.reset();
+  CHECK_THROWS_WITH_AS(simulate_train(planetary_train(d)),
+                       doctest::Contains("meshes.ring_planet1.gears.rack_tip_radius_coefficient"),
+                       InputError);
+}
+
 TEST_CASE("the stage's and its meshes' bad input is refused by name") {
   PlanetaryStage s = test_stage(24, 24, 72, 3);
   s.teeth.ring = 73;  // Z_r != Z_s + 2 Z_p

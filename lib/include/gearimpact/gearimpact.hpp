@@ -80,6 +80,7 @@
 #include "gearimpact/stiffness/helical.hpp"
 #include "gearimpact/stiffness/helical_faults.hpp"
 #include "gearimpact/stiffness/helical_ste.hpp"
+#include "gearimpact/stiffness/internal_tooth.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "gearimpact/stiffness/mesh_models.hpp"
 #include "gearimpact/stiffness/mesh_stiffness.hpp"

@@ -110,7 +110,8 @@ void schema_detail::add_model_rows(std::vector<Field>& rows) {
       [](auto& c) -> auto& { return c.model.coast_phase; });
   r.choice(
       "stiffness_model", choices_of(kStiffnessModels), false,
-      "the mesh-stiffness model (docs/stiffness-models.md, section 3)",
+      "the mesh-stiffness model (docs/stiffness-models.md, section 3); a planetary stage's ring "
+      "meshes take ISO 6336-1's table unless potential-energy (docs/planetary.md)",
       [](auto& c) -> auto& { return c.model.stiffness.kind; });
   r.choice(
       "moment_sign", choices_of(kMomentSigns), false,

@@ -27,6 +27,7 @@
 #include "gearimpact/geometry/planetary.hpp"
 #include "gearimpact/stiffness/helical.hpp"
 #include "gearimpact/stiffness/helical_faults.hpp"
+#include "gearimpact/stiffness/internal_tooth.hpp"
 #include "gearimpact/stiffness/iso6336.hpp"
 #include "ledger.hpp"
 #include "run_parts.hpp"
@@ -118,6 +119,11 @@ bool carrier_mesh(const TrainMesh& m) {
 }
 bool internal_mesh(const TrainMesh& m) {
   return m.kind == TrainMesh::Kind::internal;
+}
+// An internal mesh whose pairs take the potential-energy route
+// (internal_tooth.hpp) rather than ISO 6336-1's table.
+bool ring_by_potential_energy(const TrainMesh& m) {
+  return internal_mesh(m) && m.pair.model.stiffness.kind == StiffnessModelKind::potential_energy;
 }
 bool helical_mesh(const TrainMesh& m) {
   return m.pair.gears.helix_angle_rad != 0.0;
@@ -249,13 +255,23 @@ void validate_internal_mesh(const std::string& prefix, const TrainMesh& mesh) {
     throw InputError(prefix + "modifications", "set", "none on an internal mesh");
   }
   try {
-    ring_line(c);
+    const RingLine ring = ring_line(c);
+    if (ring_by_potential_energy(mesh)) {
+      check_planet_form_circle(c.gears, ring.geometry);
+      // Both ends of the segment on both teeth's flanks (the planet's
+      // involute above its form circle), before any table is built.
+      for (const double x : {ring.line.start_m, ring.line.end_m}) {
+        internal_mesh_stiffness(c.gears, ring.geometry, x, c.model.stiffness);
+      }
+    }
   } catch (const InputError& e) {
     std::vector<Problem> problems;
     for (const Problem& p : e.problems()) {
       const std::string field = p.field == "ring_teeth"     ? "gears.teeth1"
                                 : p.field == "planet_teeth" ? "gears.teeth2"
-                                                            : p.field;
+                                : p.field == "rack_tip_radius_coefficient"
+                                    ? "gears.rack_tip_radius_coefficient"
+                                    : p.field;
       problems.push_back(p.renamed(prefix + field, p.value));
     }
     throw InputError(std::move(problems));
@@ -462,7 +478,7 @@ void validate_train(const GearTrain& train) {
       SimulationCase twin;
       if (internal_mesh(mesh)) {
         twin = mesh.pair;
-        twin.gears.teeth1 = twin.gears.teeth2;
+        twin.gears = planet_twin(mesh.pair.gears);
         // Its missing teeth, the ring's among them, are validate_internal_mesh's.
         twin.faults.clear();
       }
@@ -622,7 +638,7 @@ class TrainSystem {
       f.carrier = dof_of(m.carrier);
       f.sense_a = internal ? -1.0 : 1.0;
       f.sense_b = -1.0;
-      const RingLine ring = internal ? ring_line(m.pair) : RingLine{};
+      const RingLine ring = internal ? ring_line(m, *tables[k]) : RingLine{};
       const double rb1 =
           internal ? ring.line.planet_base_radius_m : base_radius(m.pair.gears, Gear::one);
       const double rb2 =
@@ -1282,6 +1298,7 @@ RingLine ring_line(const SimulationCase& pair) {
   const Iso6336Internal iso = iso6336_internal_method_b(
       g.teeth2, mesh.contact_ratio, g.dedendum_coefficient, g.pressure_angle_rad);
   RingLine r;
+  r.geometry = mesh;
   r.line.planet_base_radius_m = mesh.planet_base_radius_m;
   r.line.ring_base_radius_m = mesh.ring_base_radius_m;
   r.line.pressure_angle_rad = mesh.working_pressure_angle_rad;
@@ -1293,6 +1310,14 @@ RingLine ring_line(const SimulationCase& pair) {
   r.line.mean_stiffness_n_per_m = iso.mesh_stiffness_n_per_m2 * g.face_width_m;
   r.single_stiffness_n_per_m = iso.single_stiffness_n_per_m2 * g.face_width_m;
   return r;
+}
+
+RingLine ring_line(const TrainMesh& mesh, const StiffnessTable& table) {
+  RingLine ring = ring_line(mesh.pair);
+  if (ring_by_potential_energy(mesh)) {
+    ring.line.mean_stiffness_n_per_m = internal_mean_mesh_stiffness(table, ring.line.base_pitch_m);
+  }
+  return ring;
 }
 
 GearTrain two_gear_train(const SimulationCase& c) {
@@ -1415,7 +1440,10 @@ TrainResult simulate_train(const GearTrain& train, const RunControl& control) {
       }
       continue;
     }
-    if (!m.table && internal_mesh(m)) {
+    if (!m.table && ring_by_potential_energy(m)) {
+      built.push_back(std::make_shared<const StiffnessTable>(internal_potential_energy_table(
+          m.pair.gears, ring_line(m.pair).geometry, m.pair.model.stiffness)));
+    } else if (!m.table && internal_mesh(m)) {
       const RingLine ring = ring_line(m.pair);
       built.push_back(std::make_shared<const StiffnessTable>(
           iso6336_internal_pair_table(ring.line.start_m, ring.line.end_m, ring.line.base_pitch_m,

@@ -581,7 +581,7 @@ class PlanarTrainSystem {
     f.sin = std::sin(pin.angle_rad);
     f.sense = internal ? -1 : 1;
     f.aligned = false;
-    const RingLine ring = internal ? ring_line(m.pair) : RingLine{};
+    const RingLine ring = internal ? ring_line(m, table) : RingLine{};
     const double rb1 =
         internal ? ring.line.planet_base_radius_m : base_radius(m.pair.gears, Gear::one);
     const double rb2 =

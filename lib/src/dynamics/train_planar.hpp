@@ -8,18 +8,25 @@
 #include "gearimpact/dynamics/mesh_line.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/dynamics/train.hpp"
+#include "gearimpact/geometry/planetary.hpp"
 #include "gearimpact/stiffness/table.hpp"
 
 namespace gearimpact {
 
 // An internal mesh's line (planet as gear 1, geometry/planetary.hpp's
-// segment) and its single-pair stiffness c' b by ISO 6336-1 method B, from
-// its pair (teeth1 the ring's, teeth2 the planet's, standard centre distance).
+// segment), its geometry and its single-pair stiffness c' b by ISO 6336-1
+// method B, from its pair (teeth1 the ring's, teeth2 the planet's, standard
+// centre distance).
 struct RingLine {
   InternalLine line;
+  InternalMesh geometry;
   double single_stiffness_n_per_m = 0.0;
 };
 RingLine ring_line(const SimulationCase& pair);
+// The line a run gives an internal mesh: ring_line's, its mean stiffness (the
+// damper's) that of the mesh's own table where the potential-energy route
+// builds it, not ISO's.
+RingLine ring_line(const TrainMesh& mesh, const StiffnessTable& table);
 
 // Whether any body of the train has its centre on elastic bearings.
 bool has_planar_bodies(const GearTrain& train);

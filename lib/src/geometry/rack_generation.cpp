@@ -298,8 +298,6 @@ RackGearPairGeometry rack_gear_pair_geometry(const GearPair& pair) {
   return g;
 }
 
-namespace {
-
 ToothContact tooth_contact(const RackGearGeometry& gear, double tangent_length_m) {
   const double rb = gear.base_radius_m;
   const double tau = tangent_length_m / rb - gear.half_tooth_angle_base_rad;
@@ -307,8 +305,6 @@ ToothContact tooth_contact(const RackGearGeometry& gear, double tangent_length_m
   return {std::hypot(rb, tangent_length_m), std::atan2(tangent_length_m, rb), tau, point.x_m,
           point.y_m};
 }
-
-}  // namespace
 
 PairContact pair_contact(const RackGearPairGeometry& pair, double s_m) {
   if (!(s_m >= pair.start_of_active_profile_m && s_m <= pair.end_of_active_profile_m)) {

@@ -117,6 +117,10 @@ struct ToothContact {
   double y_m;
 };
 
+// The contact of one tooth at `tangent_length_m` from its base circle's
+// tangent point along the line of action: tan alpha = length / r_b.
+ToothContact tooth_contact(const RackGearGeometry& gear, double tangent_length_m);
+
 struct PairContact {
   ToothContact gear1;
   ToothContact gear2;
