@@ -75,8 +75,10 @@ struct TrainLayout {
   };
   using Events = std::array<double, kMeshes * kMaxMeshEvents>;
 };
-// Today's trains (the sizes before planetary stages), the largest, and a
-// train of helical slices.
+// A two-gear case's train (two bodies, one mesh: 12 values, against the
+// two-gear model's 9), today's trains (the sizes before planetary stages),
+// the largest, and a train of helical slices.
+using PairTrain = TrainLayout<2, 1, false>;
 using SmallTrain = TrainLayout<6, 4, false>;
 using LargeTrain = TrainLayout<kMaxTrainBodies, kMaxTrainMeshes, true>;
 using SlicedTrain = TrainLayout<kMaxTrainBodies, kMaxTrainLines, true>;
@@ -707,8 +709,11 @@ class TrainSystem {
   bool driven(int dof) const { return driver_[static_cast<std::size_t>(dof)] >= 0; }
 
   // A prescribed-speed body's closed form (driver_motion from its initial
-  // angle) written into y at time t, as the two-gear system writes its pinion's.
-  void impose_driver(double t, TrainState& y) const {
+  // angle) written into y at time t, as the two-gear system writes its pinion's;
+  // with `acceleration`, each driven degree of freedom's acceleration there
+  // (0 for a held body).
+  void impose_driver(double t, TrainState& y,
+                     std::array<double, kBodies>* acceleration = nullptr) const {
     if (!driven_) return;
     for (int d = 0; d < dofs_; ++d) {
       const int body = driver_[static_cast<std::size_t>(d)];
@@ -722,6 +727,8 @@ class TrainSystem {
       const DriverMotion m = driver_motion(b.torque, b.theta_rad, t);
       y[theta_of(d)] = m.theta_rad;
       y[w_of(d)] = m.speed_rad_per_s;
+      if (acceleration != nullptr)
+        (*acceleration)[static_cast<std::size_t>(d)] = m.acceleration_rad_per_s2;
     }
   }
 
@@ -747,11 +754,13 @@ class TrainSystem {
   // J w' = the sum of the moments on each body; the ledger's powers.
   void rhs(double t, const TrainState& y_in, const TrainMode& m, const TrainMemory& d,
            TrainState& dydt, TrainForces* forces = nullptr) const {
-    // A driven body is where its closed form puts it, whatever the stage state.
+    // A driven body is where its closed form puts it, whatever the stage
+    // state; its acceleration, from the same closed form, is kept for below.
     TrainState driven_state;
+    std::array<double, kBodies> acceleration{};
     if (driven_) {
       driven_state = y_in;
-      impose_driver(t, driven_state);
+      impose_driver(t, driven_state, &acceleration);
     }
     const TrainState& y = driven_ ? driven_state : y_in;
     std::array<double, kBodies> torque = torques(t, y);
@@ -795,10 +804,7 @@ class TrainSystem {
         // The driver applies the torque that gives its body the prescribed
         // acceleration against the rest: J w' = T_driver + moment. Its work is
         // the ledger's torque work.
-        const TrainBody& b = train_.bodies[static_cast<std::size_t>(driver_[u])];
-        const double acceleration =
-            b.held ? 0.0 : driver_motion(b.torque, b.theta_rad, t).acceleration_rad_per_s2;
-        const double driver = inertia_[u] * acceleration - moment[u];
+        const double driver = inertia_[u] * acceleration[u] - moment[u];
         moment[u] += driver;
         torque[u] += driver;
       }
@@ -1462,9 +1468,13 @@ TrainResult simulate_train(const GearTrain& train, const RunControl& control) {
     check_planar_train_step(run, tables);
     return run_planar_train(run, tables, control);
   }
+  const bool fixed_axes = std::none_of(run.meshes.begin(), run.meshes.end(), carrier_mesh);
+  if (fixed_axes && run.bodies.size() <= PairTrain::kBodies &&
+      run.meshes.size() <= PairTrain::kMeshes) {
+    return run_train<PairTrain>(run, tables, control);
+  }
   const bool small = run.bodies.size() <= SmallTrain::kBodies &&
-                     run.meshes.size() <= SmallTrain::kMeshes &&
-                     std::none_of(run.meshes.begin(), run.meshes.end(), carrier_mesh);
+                     run.meshes.size() <= SmallTrain::kMeshes && fixed_axes;
   if (small) return run_train<SmallTrain>(run, tables, control);
   if (run.meshes.size() <= static_cast<std::size_t>(kMaxTrainMeshes)) {
     return run_train<LargeTrain>(run, tables, control);
