@@ -47,10 +47,19 @@ double earliest_event(double a, double b, const double* g_a, const double* g_b, 
   const std::pair<double, double> bracket =
       boost::math::tools::toms748_solve(least, a, b, g_start, g_end, close_enough, iterations);
   // The solver may stop on an exact zero; the step must end where the value
-  // is negative, so that the new mode is unambiguous.
+  // is negative, so that the new mode is unambiguous. Nor may another value
+  // that crosses in this step be exactly zero there (two crossings within a
+  // few ulps, as a leaving pair's end and the next pair's kink with an integer
+  // overlap ratio): the next step, starting at zero, would have no bracket for
+  // it and would change its mode only at its own end.
+  const auto settled = [&](double t) {
+    if (!(least(t) < 0.0)) return false;
+    return std::none_of(crossing.begin(), crossing.end(),
+                        [&](int i) { return value_at(t, i) == 0.0; });
+  };
   double after = bracket.second;
   for (double bump = 4.0 * std::numeric_limits<double>::epsilon() * width;
-       after < b && !(least(after) < 0.0); bump *= 2.0) {
+       after < b && !settled(after); bump *= 2.0) {
     after = std::min(after + bump, b);
   }
   return after;
