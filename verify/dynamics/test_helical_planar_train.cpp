@@ -391,11 +391,13 @@ TEST_CASE("route A on elastic bearings refuses what the planar train does not ru
     c.model.mesh_force = MeshForce::lagrangian;
     CHECK(field_of(c) == "model.mesh_force");
   }
-  SUBCASE("a fault") {
+  SUBCASE("friction together with a fault (a fault alone runs: its bands laid across the slices)") {
     ToothFault missing;
     missing.state.kind = ToothKind::missing;
     c.faults.push_back(missing);
-    CHECK(field_of(c) == "faults[0]");
+    CHECK(field_of(c) == "none");
+    c.model.friction_coefficient = 0.05;
+    CHECK(field_of(c) == "model.friction_coefficient");
   }
   SUBCASE("the adaptive integrator") {
     c.integrator.kind = IntegratorKind::adaptive;
