@@ -3,8 +3,11 @@
 The extension gearimpact._core, the program gearimpact/bin/gearimpact and the
 paper's data gearimpact/share/gearimpact/paper_data come from CMake's
 `python` install component; the Python files from python/gearimpact.
-Environment: CMAKE_BUILD_PARALLEL_LEVEL (jobs, default: the cores) and
-GEARIMPACT_CMAKE_ARGS (more configure arguments, space separated).
+Environment: CMAKE_BUILD_PARALLEL_LEVEL (jobs, default: the cores),
+GEARIMPACT_CMAKE_ARGS (more configure arguments, space separated) and
+GEARIMPACT_BUILD_DIR (the CMake build tree, relative to the source tree; default: a folder
+in setuptools' build_temp). A compiler cache such as ccache finds the objects of an earlier
+build of the same sources only where the build tree sits at the same place relative to them.
 """
 
 import os
@@ -60,7 +63,9 @@ class CMakeExtension(Extension):
 class CMakeBuild(build_ext):
     def build_extension(self, ext):
         package_parent = Path(self.get_ext_fullpath(ext.name)).resolve().parent.parent
-        build_dir = Path(self.build_temp).resolve() / "cmake"
+        build_subdir = os.environ.get("GEARIMPACT_BUILD_DIR")
+        build_dir = (ROOT / build_subdir if build_subdir
+                     else Path(self.build_temp).resolve() / "cmake")
         jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL", str(os.cpu_count() or 1))
         configure = configure_command(build_dir) + [
             "-DGEARIMPACT_PYTHON_INSTALL_DIR=.",

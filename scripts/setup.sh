@@ -12,7 +12,7 @@ packages=(
   gnuplot-nox
   gmsh calculix-ccx
   slurm-wlm munge parallel
-  pkg-config
+  pkg-config ccache
   python3-dev pybind11-dev python3-pybind11 python3-numpy python3-venv python3-pip
   python3-setuptools python3-wheel python3-pytest
   jupyter-nbconvert python3-ipykernel python3-matplotlib python3-nbformat
