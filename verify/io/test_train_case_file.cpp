@@ -14,7 +14,9 @@
 #include "gearimpact/case/schema.hpp"
 #include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/constants.hpp"
+#include "gearimpact/dynamics/planetary_train.hpp"
 #include "gearimpact/dynamics/train.hpp"
+#include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/paper/table1.hpp"
@@ -433,4 +435,51 @@ TEST_CASE("a body's bearings and the sensor refuse a bad key by its name, at its
     const Problem p = problem_of(replace("body = \"output\"", "body = \"outptu\""));
     CHECK(p.field == "sensor.body");
   }
+}
+
+TEST_CASE(
+    "a planar stage file's damping keys read in SI, 0 when absent, refused without supports") {
+  const auto text_of = [](const char* name) {
+    std::ifstream in(std::string(GEARIMPACT_EXAMPLES_DIR) + "/" + name, std::ios::binary);
+    REQUIRE(in);
+    return std::string{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  };
+  const std::string planar = text_of("planetary_stage_planar.toml");
+  const PlanetaryStage absent = parse_stage(planar, "planar.toml");
+  REQUIRE(absent.supports.has_value());
+  CHECK(absent.supports->sun_support_damping_n_s_per_m == 0.0);
+  CHECK(absent.supports->ring_support_damping_n_s_per_m == 0.0);
+  CHECK(absent.supports->carrier_support_damping_n_s_per_m == 0.0);
+  CHECK(absent.supports->planet_bearing_damping_n_s_per_m == 0.0);
+  // The units as written: N*s/mm is 1000 N*s/m.
+  const PlanetaryStage set = parse_stage(
+      planar, "planar.toml",
+      {"stage.sun_support_damping=120 N*s/m", "stage.ring_support_damping=0.5 N*s/mm",
+       "stage.carrier_support_damping=7 N*s/m", "stage.planet_bearing_damping=300 N*s/m"});
+  REQUIRE(set.supports.has_value());
+  CHECK(set.supports->sun_support_damping_n_s_per_m == 120.0);
+  CHECK(set.supports->ring_support_damping_n_s_per_m == 500.0);
+  CHECK(set.supports->carrier_support_damping_n_s_per_m == 7.0);
+  CHECK(set.supports->planet_bearing_damping_n_s_per_m == 300.0);
+  const auto refusal = [](const std::string& text, const std::string& assignment) {
+    try {
+      parse_stage(text, "stage.toml", {assignment});
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("(read)");
+  };
+  // Past the row's range (that of a body's bearings' dampers), named with the range.
+  for (const std::string assignment :
+       {"stage.planet_bearing_damping=2e6 N*s/m", "stage.sun_support_damping=-1 N*s/m"}) {
+    const std::string why = refusal(planar, assignment);
+    CAPTURE(why);
+    CHECK(why.find(assignment.substr(0, assignment.find('='))) != std::string::npos);
+    CHECK(why.find("[0, 1000000] N*s/m") != std::string::npos);
+  }
+  // A damper with no support to be in parallel with (the rotational stage's file).
+  const std::string why =
+      refusal(text_of("planetary_stage.toml"), "stage.ring_support_damping=5 N*s/m");
+  CAPTURE(why);
+  CHECK(why.find("stage.ring_support_damping needs the planar stage's keys") != std::string::npos);
 }

@@ -172,6 +172,22 @@ std::vector<Field> make_train_schema() {
            "the rotational stage (every centre fixed)",
            "k_p, each planet bearing's stiffness, radial and tangential, between the planet "
            "(of planet_mass) and its pin on the carrier (the planar stage)");
+  // Viscous dampers in parallel with the supports and bearings (optional with the planar stage's
+  // keys, each 0 when absent), in the range of a body's bearings' dampers.
+  for (const auto& [key, help] :
+       {std::pair<std::string_view, std::string>{
+            "sun_support_damping",
+            "c_s, the damper in parallel with the sun's support, on x and on y (the planar stage)"},
+        {"ring_support_damping",
+         "c_r, the damper in parallel with the ring's support, on x and on y (the planar stage)"},
+        {"carrier_support_damping",
+         "c_c, the damper in parallel with the carrier's support, on x and on y (the planar "
+         "stage)"},
+        {"planet_bearing_damping",
+         "c_p, the damper in parallel with each planet's bearing, radial and tangential (the "
+         "planar stage)"}}) {
+    quantity("stage", key, Dimension::damping, "N*s/m", bearing_damping_range(), "0", help);
+  }
   quantity("stage", "input_speed", Dimension::angular_velocity, "rad/s",
            {closed(-1e5), closed(1e5), {}}, "0",
            "the input member's speed at t = 0 (the sun's, or the ring's when the sun is held); "

@@ -176,6 +176,15 @@ void check_supports(const PlanetaryStage& stage) {
       throw InputError(name, value, "a finite stiffness >= 0 N/m (0: the member floats)");
     }
   }
+  for (const auto& [name, value] :
+       {std::pair<const char*, double>{"sun_support_damping", k.sun_support_damping_n_s_per_m},
+        {"ring_support_damping", k.ring_support_damping_n_s_per_m},
+        {"carrier_support_damping", k.carrier_support_damping_n_s_per_m},
+        {"planet_bearing_damping", k.planet_bearing_damping_n_s_per_m}}) {
+    if (!std::isfinite(value) || value < 0.0) {
+      throw InputError(name, value, "a finite damping >= 0 N*s/m (0: none)");
+    }
+  }
 }
 
 }  // namespace
@@ -239,6 +248,7 @@ GearTrain planetary_train(const PlanetaryStage& stage) {
     if (stage.supports) {
       p.bearing = GearBearing{};
       p.bearing->stiffness_x_n_per_m = stage.supports->planet_bearing_n_per_m;
+      p.bearing->damping_x_n_s_per_m = stage.supports->planet_bearing_damping_n_s_per_m;
       p.bearing->mass_kg = *stage.planet_mass_kg;
       p.pin = TrainBody::Pin{kCarrierBody, carrier_radius, psi[i]};
     }
@@ -246,15 +256,17 @@ GearTrain planetary_train(const PlanetaryStage& stage) {
   }
   if (stage.supports) {
     const StageSupports& k = *stage.supports;
-    const auto support = [&](int member, double mass, double stiffness) {
+    const auto support = [&](int member, double mass, double stiffness, double damping) {
       GearBearing b;
       b.stiffness_x_n_per_m = stiffness;
+      b.damping_x_n_s_per_m = damping;
       b.mass_kg = mass;
       train.bodies[static_cast<std::size_t>(member)].bearing = b;
     };
-    support(kSunBody, k.sun_mass_kg, k.sun_support_n_per_m);
-    support(kRingBody, k.ring_mass_kg, k.ring_support_n_per_m);
-    support(kCarrierBody, k.carrier_mass_kg, k.carrier_support_n_per_m);
+    support(kSunBody, k.sun_mass_kg, k.sun_support_n_per_m, k.sun_support_damping_n_s_per_m);
+    support(kRingBody, k.ring_mass_kg, k.ring_support_n_per_m, k.ring_support_damping_n_s_per_m);
+    support(kCarrierBody, k.carrier_mass_kg, k.carrier_support_n_per_m,
+            k.carrier_support_damping_n_s_per_m);
   }
 
   // Phases (geometry/planetary.hpp), for the sun turning counter-clockwise

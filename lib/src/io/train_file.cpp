@@ -967,7 +967,28 @@ PlanetaryStage read_stage(const Reader& reader, const toml::value& root,
       k.ring_support_n_per_m = value[4].value_or(0.0);
       k.carrier_support_n_per_m = value[5].value_or(0.0);
       k.planet_bearing_n_per_m = value[6].value_or(0.0);
+      k.sun_support_damping_n_s_per_m =
+          table.quantity("stage", "sun_support_damping").value_or(0.0);
+      k.ring_support_damping_n_s_per_m =
+          table.quantity("stage", "ring_support_damping").value_or(0.0);
+      k.carrier_support_damping_n_s_per_m =
+          table.quantity("stage", "carrier_support_damping").value_or(0.0);
+      k.planet_bearing_damping_n_s_per_m =
+          table.quantity("stage", "planet_bearing_damping").value_or(0.0);
       stage.supports = k;
+    } else {
+      // A damper needs the support it is in parallel with.
+      for (const std::string_view key : {"sun_support_damping", "ring_support_damping",
+                                         "carrier_support_damping", "planet_bearing_damping"}) {
+        if (table.find(key) != nullptr) {
+          problems.push_back(reader.problem(
+              "stage." + std::string(key), nullptr,
+              "stage." + std::string(key) +
+                  " needs the planar stage's keys (sun_mass, "
+                  "ring_mass, carrier_mass, sun_support, ring_support, carrier_support, "
+                  "planet_bearing and planet_mass): its damper is in parallel with a support"));
+        }
+      }
     }
   }
   stage.input_speed_rad_per_s = table.quantity("stage", "input_speed").value_or(0.0);

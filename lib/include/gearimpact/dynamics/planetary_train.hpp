@@ -43,7 +43,9 @@ struct StageFault {
 // (modes/planetary.hpp): each central member's mass and its support's
 // stiffness on x and on y of the carrier's axes (0: it floats), each
 // planet's bearing, radial and tangential (its mass the stage's
-// planet_mass, required). Undamped: the meshes' damping alone.
+// planet_mass, required). Each support and bearing may have a viscous damper
+// in parallel (N*s/m, the same on x and on y; 0: none), which the linear
+// model's modes leave out (they are the undamped system's).
 struct StageSupports {
   double sun_mass_kg = 0.0;
   double ring_mass_kg = 0.0;
@@ -52,6 +54,10 @@ struct StageSupports {
   double ring_support_n_per_m = 0.0;
   double carrier_support_n_per_m = 0.0;
   double planet_bearing_n_per_m = 0.0;
+  double sun_support_damping_n_s_per_m = 0.0;
+  double ring_support_damping_n_s_per_m = 0.0;
+  double carrier_support_damping_n_s_per_m = 0.0;
+  double planet_bearing_damping_n_s_per_m = 0.0;
 };
 
 struct PlanetaryStage {
