@@ -830,6 +830,11 @@ class PlanarTrainRun {
     system_.rhs(t, y, mode, memory_, dy, &f);
     TrainRow row;
     row.t_s = t;
+    // One allocation per list, as the rotational train's row (dynamics/train.cpp).
+    row.theta_rad.reserve(train_.bodies.size());
+    row.w_rad_per_s.reserve(train_.bodies.size());
+    row.centres.reserve(train_.bodies.size());
+    row.meshes.reserve(system_.mesh_count());
     for (std::size_t i = 0; i < train_.bodies.size(); ++i) {
       const auto d = static_cast<std::size_t>(system_.dof_of(static_cast<int>(i)));
       row.theta_rad.push_back(y[L::theta(d)]);
