@@ -28,8 +28,9 @@ namespace {
 
 const std::string kExample = std::string(GEARIMPACT_EXAMPLES_DIR) + "/pinion_idler_wheel.toml";
 
-std::string example_text() {
-  std::ifstream in(kExample, std::ios::binary);
+// The text of an example file (by default the train's, kExample).
+std::string example_text(const std::string& path = kExample) {
+  std::ifstream in(path, std::ios::binary);
   REQUIRE(in);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
@@ -439,12 +440,8 @@ TEST_CASE("a body's bearings and the sensor refuse a bad key by its name, at its
 
 TEST_CASE(
     "a planar stage file's damping keys read in SI, 0 when absent, refused without supports") {
-  const auto text_of = [](const char* name) {
-    std::ifstream in(std::string(GEARIMPACT_EXAMPLES_DIR) + "/" + name, std::ios::binary);
-    REQUIRE(in);
-    return std::string{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  };
-  const std::string planar = text_of("planetary_stage_planar.toml");
+  const std::string examples = GEARIMPACT_EXAMPLES_DIR;
+  const std::string planar = example_text(examples + "/planetary_stage_planar.toml");
   const PlanetaryStage absent = parse_stage(planar, "planar.toml");
   REQUIRE(absent.supports.has_value());
   CHECK(absent.supports->sun_support_damping_n_s_per_m == 0.0);
@@ -478,8 +475,8 @@ TEST_CASE(
     CHECK(why.find("[0, 1000000] N*s/m") != std::string::npos);
   }
   // A damper with no support to be in parallel with (the rotational stage's file).
-  const std::string why =
-      refusal(text_of("planetary_stage.toml"), "stage.ring_support_damping=5 N*s/m");
+  const std::string why = refusal(example_text(examples + "/planetary_stage.toml"),
+                                  "stage.ring_support_damping=5 N*s/m");
   CAPTURE(why);
   CHECK(why.find("stage.ring_support_damping needs the planar stage's keys") != std::string::npos);
 }

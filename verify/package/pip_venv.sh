@@ -1,9 +1,9 @@
 #!/bin/sh
 # pip_venv.sh SOURCE_DIR WORK_DIR PYTHON CLI [BUILD_SUBDIR CONFIGURE_ARG...]: the README's
-# Python install, on a copy of the source
-# tree (the build writes into it): a virtual environment over the system's packages,
-# `pip install --no-build-isolation .` with no package index, then what the install lays out and
-# three of the Python suites against the installed package. With the optional arguments (a build
+# Python install, on a copy of the source tree (the build writes into it): a virtual environment
+# over the system's packages, `pip install --no-build-isolation .` with no package index, then
+# what the install lays out and three of the Python suites against the installed package. With
+# the optional arguments (a build
 # through ccache, verify/package/CMakeLists.txt), the package's CMake tree is BUILD_SUBDIR of the
 # copy and is configured with that build's compiler and flags (the CONFIGURE_ARGs), so that its
 # objects come from the cache.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -168,22 +169,17 @@ void check_supports(const PlanetaryStage& stage) {
   require_positive("ring_mass", k.ring_mass_kg);
   require_positive("carrier_mass", k.carrier_mass_kg);
   require_positive("planet_bearing", k.planet_bearing_n_per_m);
-  for (const auto& [name, value] :
-       {std::pair<const char*, double>{"sun_support", k.sun_support_n_per_m},
-        {"ring_support", k.ring_support_n_per_m},
-        {"carrier_support", k.carrier_support_n_per_m}}) {
-    if (!std::isfinite(value) || value < 0.0) {
-      throw InputError(name, value, "a finite stiffness >= 0 N/m (0: the member floats)");
-    }
-  }
-  for (const auto& [name, value] :
-       {std::pair<const char*, double>{"sun_support_damping", k.sun_support_damping_n_s_per_m},
-        {"ring_support_damping", k.ring_support_damping_n_s_per_m},
-        {"carrier_support_damping", k.carrier_support_damping_n_s_per_m},
-        {"planet_bearing_damping", k.planet_bearing_damping_n_s_per_m}}) {
-    if (!std::isfinite(value) || value < 0.0) {
-      throw InputError(name, value, "a finite damping >= 0 N*s/m (0: none)");
-    }
+  const char* const floats = "a finite stiffness >= 0 N/m (0: the member floats)";
+  const char* const none = "a finite damping >= 0 N*s/m (0: none)";
+  for (const auto& [name, value, allowed] :
+       {std::tuple<const char*, double, const char*>{"sun_support", k.sun_support_n_per_m, floats},
+        {"ring_support", k.ring_support_n_per_m, floats},
+        {"carrier_support", k.carrier_support_n_per_m, floats},
+        {"sun_support_damping", k.sun_support_damping_n_s_per_m, none},
+        {"ring_support_damping", k.ring_support_damping_n_s_per_m, none},
+        {"carrier_support_damping", k.carrier_support_damping_n_s_per_m, none},
+        {"planet_bearing_damping", k.planet_bearing_damping_n_s_per_m, none}}) {
+    if (!std::isfinite(value) || value < 0.0) throw InputError(name, value, allowed);
   }
 }
 

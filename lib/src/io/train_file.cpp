@@ -946,13 +946,22 @@ PlanetaryStage read_stage(const Reader& reader, const toml::value& root,
       value[i] = table.quantity("stage", kPlanar[i]);
       any = any || table.find(kPlanar[i]) != nullptr;
     }
+    static constexpr std::string_view kPlanarText =
+        "sun_mass, ring_mass, carrier_mass, sun_support, ring_support, carrier_support, "
+        "planet_bearing and planet_mass";
+    // The dampers in parallel with the supports: optional with the planar stage, 0 when absent.
+    static constexpr std::array<std::pair<std::string_view, double StageSupports::*>, 4> kDampers{
+        {{"sun_support_damping", &StageSupports::sun_support_damping_n_s_per_m},
+         {"ring_support_damping", &StageSupports::ring_support_damping_n_s_per_m},
+         {"carrier_support_damping", &StageSupports::carrier_support_damping_n_s_per_m},
+         {"planet_bearing_damping", &StageSupports::planet_bearing_damping_n_s_per_m}}};
     if (any) {
       const auto missing = [&](std::string_view key) {
-        problems.push_back(reader.problem(
-            "stage." + std::string(key), nullptr,
-            "stage." + std::string(key) + " is missing (required with the planar stage's keys: " +
-                "sun_mass, ring_mass, carrier_mass, sun_support, ring_support, carrier_support, "
-                "planet_bearing and planet_mass)"));
+        const std::string name = "stage." + std::string(key);
+        problems.push_back(
+            reader.problem(name, nullptr,
+                           name + " is missing (required with the planar stage's keys: " +
+                               std::string(kPlanarText) + ")"));
       };
       // A key written with a bad value is its own problem already.
       for (std::size_t i = 0; i < kPlanar.size(); ++i) {
@@ -967,27 +976,19 @@ PlanetaryStage read_stage(const Reader& reader, const toml::value& root,
       k.ring_support_n_per_m = value[4].value_or(0.0);
       k.carrier_support_n_per_m = value[5].value_or(0.0);
       k.planet_bearing_n_per_m = value[6].value_or(0.0);
-      k.sun_support_damping_n_s_per_m =
-          table.quantity("stage", "sun_support_damping").value_or(0.0);
-      k.ring_support_damping_n_s_per_m =
-          table.quantity("stage", "ring_support_damping").value_or(0.0);
-      k.carrier_support_damping_n_s_per_m =
-          table.quantity("stage", "carrier_support_damping").value_or(0.0);
-      k.planet_bearing_damping_n_s_per_m =
-          table.quantity("stage", "planet_bearing_damping").value_or(0.0);
+      for (const auto& [key, field] : kDampers) {
+        k.*field = table.quantity("stage", key).value_or(0.0);
+      }
       stage.supports = k;
     } else {
       // A damper needs the support it is in parallel with.
-      for (const std::string_view key : {"sun_support_damping", "ring_support_damping",
-                                         "carrier_support_damping", "planet_bearing_damping"}) {
-        if (table.find(key) != nullptr) {
-          problems.push_back(reader.problem(
-              "stage." + std::string(key), nullptr,
-              "stage." + std::string(key) +
-                  " needs the planar stage's keys (sun_mass, "
-                  "ring_mass, carrier_mass, sun_support, ring_support, carrier_support, "
-                  "planet_bearing and planet_mass): its damper is in parallel with a support"));
-        }
+      for (const auto& damper : kDampers) {
+        if (table.find(damper.first) == nullptr) continue;
+        const std::string name = "stage." + std::string(damper.first);
+        problems.push_back(reader.problem(name, nullptr,
+                                          name + " needs the planar stage's keys (" +
+                                              std::string(kPlanarText) +
+                                              "): its damper is in parallel with a support"));
       }
     }
   }
