@@ -58,12 +58,20 @@ struct TrainLayout {
   static constexpr bool kCarriers = Carriers;
   static constexpr std::size_t kLedger = 2 * kBodies;
   static constexpr std::size_t kMeshLosses = kLedger + 5;
+  // A train of one mesh: the mesh's own losses are the train's, integrated
+  // from the same powers, so the state holds them once.
+  static constexpr bool kOwnLosses = kMeshes > 1;
   static constexpr std::size_t mesh_loss_of(std::size_t mesh, MeshLossIndex loss) {
+    if (!kOwnLosses) {
+      return kLedger + (loss == kMeshDampingLoss    ? kDamping
+                        : loss == kMeshFrictionLoss ? kFriction
+                                                    : kMeshDamping);
+    }
     return kMeshLosses + 3 * mesh + loss;
   }
   static constexpr std::size_t theta_of(int body) { return static_cast<std::size_t>(body); }
   static constexpr std::size_t w_of(int body) { return kBodies + static_cast<std::size_t>(body); }
-  using State = std::array<double, kMeshLosses + 3 * kMeshes>;
+  using State = std::array<double, kMeshLosses + (kOwnLosses ? 3 * kMeshes : 0)>;
   struct ModeSet {
     std::array<Mode, kMeshes> mesh{};
   };
@@ -75,8 +83,8 @@ struct TrainLayout {
   };
   using Events = std::array<double, kMeshes * kMaxMeshEvents>;
 };
-// A two-gear case's train (two bodies, one mesh: 12 values, against the
-// two-gear model's 9), today's trains (the sizes before planetary stages),
+// A two-gear case's train (two bodies, one mesh: 9 values, as the two-gear
+// model's), today's trains (the sizes before planetary stages),
 // the largest, and a train of helical slices.
 using PairTrain = TrainLayout<2, 1, false>;
 using SmallTrain = TrainLayout<6, 4, false>;
@@ -689,7 +697,7 @@ class TrainSystem {
   std::size_t mesh_count() const { return meshes_.size(); }
   const MeshLine& mesh(std::size_t k) const { return meshes_[k]; }
   int mesh_a(std::size_t k) const { return mesh_a_[k]; }
-  MeshMotion motion(std::size_t k, const TrainState& y) const {
+  [[gnu::always_inline]] MeshMotion motion(std::size_t k, const TrainState& y) const {
     const int a = mesh_a_[k];
     const int b = mesh_b_[k];
     const Frame& f = frame_[k];
@@ -766,8 +774,6 @@ class TrainSystem {
     std::array<double, kBodies> torque = torques(t, y);
     std::array<double, kBodies> moment = torque;
     MeshPowers powers;
-    // Each mesh's own powers: what it added to the train's, which keep their order of addition.
-    std::array<MeshPowers, L::kMeshes> own;
     for (std::size_t k = 0; k < meshes_.size(); ++k) {
       const MeshPowers before = powers;
       const Frame& f = frame_[k];
@@ -787,9 +793,14 @@ class TrainSystem {
         moment[static_cast<std::size_t>(mesh_b_[k])] += f.sense_b * moment_b;
         moment[static_cast<std::size_t>(f.carrier)] -= f.sense_a * moment_a + f.sense_b * moment_b;
       }
-      own[k].damping_w = powers.damping_w - before.damping_w;
-      own[k].friction_w = powers.friction_w - before.friction_w;
-      own[k].mesh_damping_w = powers.mesh_damping_w - before.mesh_damping_w;
+      if constexpr (L::kOwnLosses) {
+        // Each mesh's own powers: what it added to the train's, which keep their order of addition.
+        dydt[mesh_loss_of(k, kMeshDampingLoss)] = powers.damping_w - before.damping_w;
+        dydt[mesh_loss_of(k, kMeshFrictionLoss)] = powers.friction_w - before.friction_w;
+        dydt[mesh_loss_of(k, kMeshDamperLoss)] = powers.mesh_damping_w - before.mesh_damping_w;
+      } else {
+        static_cast<void>(before);
+      }
     }
     for (const Spring& s : springs_) {
       // The shaft twisted by theta_a - theta_b pulls b forward and a back.
@@ -809,7 +820,6 @@ class TrainSystem {
         torque[u] += driver;
       }
     }
-    dydt = TrainState{};
     double work = torque[0] * y[w_of(0)];
     for (int i = 0; i < dofs_; ++i) {
       const auto u = static_cast<std::size_t>(i);
@@ -822,10 +832,15 @@ class TrainSystem {
     dydt[kLedger + kFriction] = powers.friction_w;
     dydt[kLedger + kParametric] = powers.parametric_w;
     dydt[kLedger + kMeshDamping] = powers.mesh_damping_w;
-    for (std::size_t k = 0; k < meshes_.size(); ++k) {
-      dydt[mesh_loss_of(k, kMeshDampingLoss)] = own[k].damping_w;
-      dydt[mesh_loss_of(k, kMeshFrictionLoss)] = own[k].friction_w;
-      dydt[mesh_loss_of(k, kMeshDamperLoss)] = own[k].mesh_damping_w;
+    // The layout's places beyond the train's degrees of freedom and meshes.
+    for (auto i = static_cast<std::size_t>(dofs_); i < kBodies; ++i) {
+      dydt[theta_of(static_cast<int>(i))] = 0.0;
+      dydt[w_of(static_cast<int>(i))] = 0.0;
+    }
+    if constexpr (L::kOwnLosses) {
+      std::fill(dydt.begin() +
+                    static_cast<std::ptrdiff_t>(mesh_loss_of(meshes_.size(), kMeshDampingLoss)),
+                dydt.end(), 0.0);
     }
   }
 
@@ -1283,6 +1298,46 @@ double largest_resolving_step_s(const GearTrain& train) {
   return largest;
 }
 
+// The tables a train's meshes read that the train does not give: built once
+// for each distinct input. A table is a function of its mesh's kind (external
+// or internal), gears and stiffness model alone, so the meshes of a stage's
+// planets, equal in these, read one table, the same one each would build.
+class BuiltTables {
+ public:
+  const StiffnessTable* table_for(const TrainMesh& m) {
+    for (const Built& b : built_) {
+      if (b.internal == internal_mesh(m) && b.gears == m.pair.gears &&
+          b.stiffness == m.pair.model.stiffness) {
+        return b.table.get();
+      }
+    }
+    built_.push_back({internal_mesh(m), m.pair.gears, m.pair.model.stiffness, build(m)});
+    return built_.back().table.get();
+  }
+
+ private:
+  struct Built {
+    bool internal;
+    GearPair gears;
+    StiffnessModel stiffness;
+    std::shared_ptr<const StiffnessTable> table;
+  };
+  static std::shared_ptr<const StiffnessTable> build(const TrainMesh& m) {
+    if (ring_by_potential_energy(m)) {
+      return std::make_shared<const StiffnessTable>(internal_potential_energy_table(
+          m.pair.gears, ring_line(m.pair).geometry, m.pair.model.stiffness));
+    }
+    if (internal_mesh(m)) {
+      const RingLine ring = ring_line(m.pair);
+      return std::make_shared<const StiffnessTable>(
+          iso6336_internal_pair_table(ring.line.start_m, ring.line.end_m, ring.line.base_pitch_m,
+                                      ring.single_stiffness_n_per_m));
+    }
+    return run_table(m.pair);
+  }
+  std::vector<Built> built_;
+};
+
 template <class L>
 TrainResult run_train(const GearTrain& train, const std::vector<const StiffnessTable*>& tables,
                       const RunControl& control) {
@@ -1441,7 +1496,7 @@ TrainResult simulate_train(const GearTrain& train, const RunControl& control) {
   // its helical pair, before the pair becomes its transverse section.
   GearTrain run = train;
   run.meshes.clear();
-  std::vector<std::shared_ptr<const StiffnessTable>> built;
+  BuiltTables built_tables;
   std::vector<const StiffnessTable*> tables;
   for (const TrainMesh& m : train.meshes) {
     if (runs_by_slices(m)) {
@@ -1451,18 +1506,7 @@ TrainResult simulate_train(const GearTrain& train, const RunControl& control) {
       }
       continue;
     }
-    if (!m.table && ring_by_potential_energy(m)) {
-      built.push_back(std::make_shared<const StiffnessTable>(internal_potential_energy_table(
-          m.pair.gears, ring_line(m.pair).geometry, m.pair.model.stiffness)));
-    } else if (!m.table && internal_mesh(m)) {
-      const RingLine ring = ring_line(m.pair);
-      built.push_back(std::make_shared<const StiffnessTable>(
-          iso6336_internal_pair_table(ring.line.start_m, ring.line.end_m, ring.line.base_pitch_m,
-                                      ring.single_stiffness_n_per_m)));
-    } else if (!m.table) {
-      built.push_back(run_table(m.pair));
-    }
-    tables.push_back(m.table ? m.table.get() : built.back().get());
+    tables.push_back(m.table ? m.table.get() : built_tables.table_for(m));
     run.meshes.push_back(m);
     if (helical_mesh(m)) run.meshes.back().pair = dynamics_case(m.pair);
   }

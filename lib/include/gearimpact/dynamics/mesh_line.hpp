@@ -386,8 +386,8 @@ class MeshLine {
   }
   // Ke and dKe/dX of one of `count` loaded pairs at X, read from `table`
   // (from its part `part`, Mode::part).
-  void pair_stiffness(const StiffnessTable& table, int part, double x, int count, double& ke,
-                      double& dke) const;
+  [[gnu::always_inline]] void pair_stiffness(const StiffnessTable& table, int part, double x,
+                                             int count, double& ke, double& dke) const;
   // Mode::table and Mode::part of each pair of m at the motion.
   template <typename Motion>
   void set_parts(const Motion& q, Mode& m) const;
