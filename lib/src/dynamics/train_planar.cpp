@@ -14,9 +14,10 @@
 // stage"): each mesh sees its bodies' angles relative to the carrier's and
 // the centres' motion in the direction of its planet; each planet sits on
 // its pin's bearing (TrainBody::pin), its mass orbiting with the carrier;
-// the rotating frame's Coriolis and centripetal terms are neglected. The run's books (each line's
-// mode and contact memory, the impacts, the ledger with the bearings' stored and damped energies)
-// are the planar run's (planar.cpp), per mesh.
+// the axes turn with the carrier, whose Euler, Coriolis and centrifugal terms
+// act on every centre of the stage. The run's books (each line's mode and
+// contact memory, the impacts, the ledger with the bearings' stored and
+// damped energies) are the planar run's (planar.cpp), per mesh.
 #include "train_planar.hpp"
 
 #include <algorithm>
@@ -214,6 +215,10 @@ class PlanarTrainSystem {
       const TrainMesh& m = train.meshes[k];
       if (m.carrier >= 0) {
         add_carrier_mesh(m, *tables[k]);
+        frame_carrier_ = dof_of(m.carrier);
+        for (const int body : {m.body_a, m.body_b, m.carrier}) {
+          in_frame_[static_cast<std::size_t>(dof_of(body))] = true;
+        }
         continue;
       }
       Frame f;
@@ -425,6 +430,15 @@ class PlanarTrainSystem {
           moment[d] -= pin_radius_[p] * (pin_cos_[p] * fy[p] - pin_sin_[p] * fx[p]);
         }
       }
+      if (static_cast<int>(d) == frame_carrier_) {
+        // In the turning axes each centre's displacement u moves with them
+        // too (its speed u' + Omega e_z x (R e_zeta + u)): the carrier's
+        // equation gains -sum u x F over the stage's centres (docs/planetary.md).
+        for (std::size_t e = 0; e < static_cast<std::size_t>(dofs_); ++e) {
+          if (!in_frame_[e] || !translating_[e]) continue;
+          moment[d] -= y[L::x(e)] * fy[e] - y[L::y(e)] * fx[e];
+        }
+      }
       double acceleration = 0.0;
       if (driver_[d] >= 0) {
         // The driver applies the torque that gives its body the prescribed
@@ -451,6 +465,23 @@ class PlanarTrainSystem {
         const double orbit = pin_radius_[p] * dy[L::w(static_cast<std::size_t>(pin_carrier_[p]))];
         dy[L::vx(p)] += orbit * pin_sin_[p];
         dy[L::vy(p)] -= orbit * pin_cos_[p];
+      }
+    }
+    if (frame_carrier_ >= 0) {
+      // The rest of m r'' in the axes turning at Omega: with r = u (+ R
+      // e_zeta on a pin), u'' = F/m - Omega' e_z x r - 2 Omega e_z x u' +
+      // Omega^2 r, the Euler term's pin part above; e_z x (a, b) = (-b, a).
+      const auto c = static_cast<std::size_t>(frame_carrier_);
+      const double omega = y[L::w(c)];
+      const double omega_rate = dy[L::w(c)];
+      for (std::size_t e = 0; e < static_cast<std::size_t>(dofs_); ++e) {
+        if (!in_frame_[e] || !translating_[e]) continue;
+        const double ux = y[L::x(e)];
+        const double uy = y[L::y(e)];
+        const double rx = pin_carrier_[e] >= 0 ? ux + pin_radius_[e] * pin_cos_[e] : ux;
+        const double ry = pin_carrier_[e] >= 0 ? uy + pin_radius_[e] * pin_sin_[e] : uy;
+        dy[L::vx(e)] += omega_rate * uy + 2.0 * omega * y[L::vy(e)] + omega * omega * rx;
+        dy[L::vy(e)] += -omega_rate * ux - 2.0 * omega * y[L::vx(e)] + omega * omega * ry;
       }
     }
     dy[L::kWork] = work;
@@ -529,6 +560,12 @@ class PlanarTrainSystem {
           const double orbit = pin_radius_[d] * y[L::w(static_cast<std::size_t>(pin_carrier_[d]))];
           vx -= orbit * pin_sin_[d];
           vy += orbit * pin_cos_[d];
+        }
+        if (in_frame_[d]) {
+          // Its displacement carried round by the turning axes, Omega e_z x u.
+          const double omega = y[L::w(static_cast<std::size_t>(frame_carrier_))];
+          vx -= omega * y[L::y(d)];
+          vy += omega * y[L::x(d)];
         }
         e += mass_[d] * (vx * vx + vy * vy);
       }
@@ -671,6 +708,10 @@ class PlanarTrainSystem {
   std::array<int, L::kDofs> pin_carrier_{};
   std::array<double, L::kDofs> pin_radius_{}, pin_cos_{}, pin_sin_{};
   bool pinned_ = false;
+  // The carrier in whose turning axes a stage's members translate (-1: the
+  // train's axes are fixed), and which degrees of freedom are its stage's.
+  int frame_carrier_ = -1;
+  std::array<bool, L::kDofs> in_frame_{};
   std::vector<MeshLine> meshes_;
   std::vector<Frame> frames_;
   std::vector<Spring> springs_;
@@ -1049,11 +1090,19 @@ void validate_planar_train(const GearTrain& train) {
   }
   const std::string why = " in a train with bodies on elastic bearings (bodies." + named +
                           ".bearings; not modelled yet)";
+  int frame_carrier = -1;
   for (const TrainMesh& m : train.meshes) {
     const std::string prefix = "meshes." + m.name + ".";
     if (m.carrier >= 0) {
       // A planetary stage in the carrier's axes: its planet on a pin of
       // that carrier, its central members' supports isotropic (the axes turn).
+      if (frame_carrier >= 0 && m.carrier != frame_carrier) {
+        throw InputError(prefix + "carrier", std::to_string(m.carrier),
+                         std::to_string(frame_carrier) +
+                             ", the other stage meshes' carrier: a train on elastic bearings "
+                             "turns in one carrier's axes");
+      }
+      frame_carrier = m.carrier;
       const TrainBody& planet = train.bodies[static_cast<std::size_t>(m.body_b)];
       if (!planet.pin || planet.pin->carrier != m.carrier || !planet.bearing) {
         throw InputError(prefix + "carrier", std::to_string(m.carrier),
