@@ -194,15 +194,16 @@ class PlanarTrainSystem {
       cy_[u] = damping_y(b);
     }
     pin_carrier_.fill(-1);
+    turning_with_.fill(-1);
     for (std::size_t i = 0; i < train.bodies.size(); ++i) {
       if (!train.bodies[i].pin) continue;
       const TrainBody::Pin& pin = *train.bodies[i].pin;
       const auto u = static_cast<std::size_t>(body_dof_[i]);
       pin_carrier_[u] = dof_of(pin.carrier);
+      turning_with_[u] = pin_carrier_[u];
       pin_radius_[u] = pin.radius_m;
       pin_cos_[u] = std::cos(pin.angle_rad);
       pin_sin_[u] = std::sin(pin.angle_rad);
-      pinned_ = true;
     }
     driver_.fill(-1);
     for (std::size_t i = 0; i < train.bodies.size(); ++i) {
@@ -215,9 +216,8 @@ class PlanarTrainSystem {
       const TrainMesh& m = train.meshes[k];
       if (m.carrier >= 0) {
         add_carrier_mesh(m, *tables[k]);
-        frame_carrier_ = dof_of(m.carrier);
         for (const int body : {m.body_a, m.body_b, m.carrier}) {
-          in_frame_[static_cast<std::size_t>(dof_of(body))] = true;
+          turning_with_[static_cast<std::size_t>(dof_of(body))] = dof_of(m.carrier);
         }
         continue;
       }
@@ -419,25 +419,14 @@ class PlanarTrainSystem {
         torque = seen ? torque + value : value;
         seen = true;
       }
-      if (pinned_) {
-        // The planets' masses orbit with the carrier: with each planet's
-        // centre its pin's nominal place plus its displacement u, its speed
-        // is u' + R theta_c' e_eta, and the kinetic energy's cross terms give
-        // J_c theta_c'' = M_c - R sum F_eta (F the force on each planet's
-        // centre, J_c the carrier's own) and m u'' = F - m R theta_c'' e_eta.
-        for (std::size_t p = 0; p < static_cast<std::size_t>(dofs_); ++p) {
-          if (pin_carrier_[p] != static_cast<int>(d)) continue;
-          moment[d] -= pin_radius_[p] * (pin_cos_[p] * fy[p] - pin_sin_[p] * fx[p]);
-        }
-      }
-      if (static_cast<int>(d) == frame_carrier_) {
-        // In the turning axes each centre's displacement u moves with them
-        // too (its speed u' + Omega e_z x (R e_zeta + u)): the carrier's
-        // equation gains -sum u x F over the stage's centres (docs/planetary.md).
-        for (std::size_t e = 0; e < static_cast<std::size_t>(dofs_); ++e) {
-          if (!in_frame_[e] || !translating_[e]) continue;
-          moment[d] -= y[L::x(e)] * fy[e] - y[L::y(e)] * fx[e];
-        }
+      // The centres in this carrier's turning axes, each at r (its speed
+      // u' + Omega e_z x r): the kinetic energy's cross terms give the carrier
+      // J_c theta_c'' = M_c - sum (r x F)_z, F the force on each centre and
+      // J_c the carrier's own (docs/planetary.md, The turning axes).
+      for (std::size_t e = 0; e < static_cast<std::size_t>(dofs_); ++e) {
+        if (turning_with_[e] != static_cast<int>(d) || !translating_[e]) continue;
+        const std::array<double, 2> r = turning_position(e, y);
+        moment[d] -= r[0] * fy[e] - r[1] * fx[e];
       }
       double acceleration = 0.0;
       if (driver_[d] >= 0) {
@@ -459,30 +448,17 @@ class PlanarTrainSystem {
       dy[L::vx(d)] = fx[d] * inverse_mass_[d];
       dy[L::vy(d)] = fy[d] * inverse_mass_[d];
     }
-    if (pinned_) {
-      for (std::size_t p = 0; p < static_cast<std::size_t>(dofs_); ++p) {
-        if (pin_carrier_[p] < 0) continue;
-        const double orbit = pin_radius_[p] * dy[L::w(static_cast<std::size_t>(pin_carrier_[p]))];
-        dy[L::vx(p)] += orbit * pin_sin_[p];
-        dy[L::vy(p)] -= orbit * pin_cos_[p];
-      }
-    }
-    if (frame_carrier_ >= 0) {
-      // The rest of m r'' in the axes turning at Omega: with r = u (+ R
-      // e_zeta on a pin), u'' = F/m - Omega' e_z x r - 2 Omega e_z x u' +
-      // Omega^2 r, the Euler term's pin part above; e_z x (a, b) = (-b, a).
-      const auto c = static_cast<std::size_t>(frame_carrier_);
+    for (std::size_t e = 0; e < static_cast<std::size_t>(dofs_); ++e) {
+      if (turning_with_[e] < 0 || !translating_[e]) continue;
+      // The rest of m r'' in the axes turning at Omega: u'' = F/m - Omega'
+      // e_z x r - 2 Omega e_z x u' + Omega^2 r, e_z x (a, b) = (-b, a); on a
+      // pin the Euler term's R Omega' e_eta carries the planet round.
+      const auto c = static_cast<std::size_t>(turning_with_[e]);
       const double omega = y[L::w(c)];
       const double omega_rate = dy[L::w(c)];
-      for (std::size_t e = 0; e < static_cast<std::size_t>(dofs_); ++e) {
-        if (!in_frame_[e] || !translating_[e]) continue;
-        const double ux = y[L::x(e)];
-        const double uy = y[L::y(e)];
-        const double rx = pin_carrier_[e] >= 0 ? ux + pin_radius_[e] * pin_cos_[e] : ux;
-        const double ry = pin_carrier_[e] >= 0 ? uy + pin_radius_[e] * pin_sin_[e] : uy;
-        dy[L::vx(e)] += omega_rate * uy + 2.0 * omega * y[L::vy(e)] + omega * omega * rx;
-        dy[L::vy(e)] += -omega_rate * ux - 2.0 * omega * y[L::vx(e)] + omega * omega * ry;
-      }
+      const std::array<double, 2> r = turning_position(e, y);
+      dy[L::vx(e)] += omega_rate * r[1] + 2.0 * omega * y[L::vy(e)] + omega * omega * r[0];
+      dy[L::vy(e)] += -omega_rate * r[0] - 2.0 * omega * y[L::vx(e)] + omega * omega * r[1];
     }
     dy[L::kWork] = work;
     dy[L::kHertzLoss] = powers.damping_w;
@@ -555,17 +531,13 @@ class PlanarTrainSystem {
       if (translating_[d]) {
         double vx = y[L::vx(d)];
         double vy = y[L::vy(d)];
-        if (pin_carrier_[d] >= 0) {
-          // The planet's orbit with the carrier, R theta_c' e_eta.
-          const double orbit = pin_radius_[d] * y[L::w(static_cast<std::size_t>(pin_carrier_[d]))];
-          vx -= orbit * pin_sin_[d];
-          vy += orbit * pin_cos_[d];
-        }
-        if (in_frame_[d]) {
-          // Its displacement carried round by the turning axes, Omega e_z x u.
-          const double omega = y[L::w(static_cast<std::size_t>(frame_carrier_))];
-          vx -= omega * y[L::y(d)];
-          vy += omega * y[L::x(d)];
+        if (turning_with_[d] >= 0) {
+          // Carried round by the turning axes, Omega e_z x r (on a pin, the
+          // planet's orbit R Omega e_eta with it).
+          const double omega = y[L::w(static_cast<std::size_t>(turning_with_[d]))];
+          const std::array<double, 2> r = turning_position(d, y);
+          vx -= omega * r[1];
+          vy += omega * r[0];
         }
         e += mass_[d] * (vx * vx + vy * vy);
       }
@@ -651,6 +623,12 @@ class PlanarTrainSystem {
     }
     return inertia;
   }
+  // A centre's place r in its carrier's turning axes: its displacement u,
+  // from its pin's nominal place R e_zeta on a pin.
+  std::array<double, 2> turning_position(std::size_t d, const StateType& y) const {
+    if (pin_carrier_[d] < 0) return {y[L::x(d)], y[L::y(d)]};
+    return {y[L::x(d)] + pin_radius_[d] * pin_cos_[d], y[L::y(d)] + pin_radius_[d] * pin_sin_[d]};
+  }
   // A pinned planet's bearing: its deflection from its pin (its centre less
   // the carrier's) along e_zeta (radial) and e_eta (tangential), and their rates.
   struct PinDeflection {
@@ -707,11 +685,9 @@ class PlanarTrainSystem {
   // A pinned planet's carrier (-1: none), its pin's radius and direction.
   std::array<int, L::kDofs> pin_carrier_{};
   std::array<double, L::kDofs> pin_radius_{}, pin_cos_{}, pin_sin_{};
-  bool pinned_ = false;
-  // The carrier in whose turning axes a stage's members translate (-1: the
-  // train's axes are fixed), and which degrees of freedom are its stage's.
-  int frame_carrier_ = -1;
-  std::array<bool, L::kDofs> in_frame_{};
+  // The carrier in whose turning axes each degree of freedom's centre moves:
+  // a planet's pin's, and a stage mesh's for its members (-1: fixed axes).
+  std::array<int, L::kDofs> turning_with_{};
   std::vector<MeshLine> meshes_;
   std::vector<Frame> frames_;
   std::vector<Spring> springs_;
