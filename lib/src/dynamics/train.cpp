@@ -614,9 +614,9 @@ class TrainSystem {
     for (std::size_t k = 0; k < train.meshes.size(); ++k) {
       const TrainMesh& m = train.meshes[k];
       if (!carrier_mesh(m)) {
-        mesh_a_.push_back(dof_of(m.body_a));
-        mesh_b_.push_back(dof_of(m.body_b));
         Frame fixed;
+        fixed.a = dof_of(m.body_a);
+        fixed.b = dof_of(m.body_b);
         // The pairs move by line_offset along the line (a helical slice's
         // share of b tan(beta_b)); s is kept.
         if (m.line_offset_m != 0.0) {
@@ -628,8 +628,8 @@ class TrainSystem {
         // The viscous damper's m_e: that of the two bodies as they turn in the
         // train (a rigid shaft's bodies together), 1/m_e = Rb_a^2/J_a + Rb_b^2/J_b.
         const double mass = effective_mass_kg(
-            base_radius(m.pair.gears, Gear::one), inertia_[static_cast<std::size_t>(mesh_a_[k])],
-            base_radius(m.pair.gears, Gear::two), inertia_[static_cast<std::size_t>(mesh_b_[k])]);
+            base_radius(m.pair.gears, Gear::one), inertia_[static_cast<std::size_t>(fixed.a)],
+            base_radius(m.pair.gears, Gear::two), inertia_[static_cast<std::size_t>(fixed.b)]);
         meshes_.emplace_back(m.pair, *tables[k], mass, m.teeth);
         continue;
       }
@@ -642,9 +642,9 @@ class TrainSystem {
       const bool internal = internal_mesh(m);
       const int one = dof_of(internal ? m.body_b : m.body_a);
       const int two = dof_of(internal ? m.body_a : m.body_b);
-      mesh_a_.push_back(one);
-      mesh_b_.push_back(two);
       Frame f;
+      f.a = one;
+      f.b = two;
       f.carrier = dof_of(m.carrier);
       f.sense_a = internal ? -1.0 : 1.0;
       f.sense_b = -1.0;
@@ -689,18 +689,20 @@ class TrainSystem {
       return b.torque.kind == Torque::Kind::constant || kinematic_driver(b.torque);
     });
     if (fixed_torques_) fixed_torque_ = summed_torques(0.0, TrainState{});
+    mesh_count_ = meshes_.size();
+    dof_count_ = static_cast<std::size_t>(dofs_);
   }
 
   int dofs() const { return dofs_; }
   int dof_of(int body) const { return body_dof_[static_cast<std::size_t>(body)]; }
   double inertia_of_dof(int dof) const { return inertia_[static_cast<std::size_t>(dof)]; }
-  std::size_t mesh_count() const { return meshes_.size(); }
+  std::size_t mesh_count() const { return mesh_count_; }
   const MeshLine& mesh(std::size_t k) const { return meshes_[k]; }
-  int mesh_a(std::size_t k) const { return mesh_a_[k]; }
+  int mesh_a(std::size_t k) const { return frame_[k].a; }
   [[gnu::always_inline]] MeshMotion motion(std::size_t k, const TrainState& y) const {
-    const int a = mesh_a_[k];
-    const int b = mesh_b_[k];
     const Frame& f = frame_[k];
+    const int a = f.a;
+    const int b = f.b;
     if (!L::kCarriers || f.carrier < 0) {
       if (f.shifted) {
         return {y[theta_of(a)] + f.offset_a, y[theta_of(b)] + f.offset_b, y[w_of(a)], y[w_of(b)]};
@@ -760,8 +762,13 @@ class TrainSystem {
 
   // (1)-(3), (43)-(45) of each mesh on its two bodies, the shafts' springs,
   // J w' = the sum of the moments on each body; the ledger's powers.
-  void rhs(double t, const TrainState& y_in, const TrainMode& m, const TrainMemory& d,
-           TrainState& dydt, TrainForces* forces = nullptr) const {
+  // Flattened: every call inside is inlined (the tables' Ke reads among
+  // them, which the compiler left out of line here and inlined in the
+  // two-gear model's right-hand side), the same arithmetic in fewer
+  // instructions.
+  [[gnu::flatten]] void rhs(double t, const TrainState& y_in, const TrainMode& m,
+                            const TrainMemory& d, TrainState& dydt,
+                            TrainForces* forces = nullptr) const {
     // A driven body is where its closed form puts it, whatever the stage
     // state; its acceleration, from the same closed form, is kept for below.
     TrainState driven_state;
@@ -774,13 +781,13 @@ class TrainSystem {
     std::array<double, kBodies> torque = torques(t, y);
     std::array<double, kBodies> moment = torque;
     MeshPowers powers;
-    for (std::size_t k = 0; k < meshes_.size(); ++k) {
+    for (std::size_t k = 0; k < L::kMeshes && k < mesh_count_; ++k) {
       const MeshPowers before = powers;
       const Frame& f = frame_[k];
       if (!L::kCarriers || f.carrier < 0) {
         meshes_[k].add_forces(motion(k, y), m.mesh[k], d.mesh[k],
-                              moment[static_cast<std::size_t>(mesh_a_[k])],
-                              moment[static_cast<std::size_t>(mesh_b_[k])], powers,
+                              moment[static_cast<std::size_t>(f.a)],
+                              moment[static_cast<std::size_t>(f.b)], powers,
                               forces != nullptr ? &forces->mesh[k] : nullptr);
       } else {
         // The line's moments in its gears' senses, about +z on the bodies;
@@ -789,8 +796,8 @@ class TrainSystem {
         double moment_b = 0.0;
         meshes_[k].add_forces(motion(k, y), m.mesh[k], d.mesh[k], moment_a, moment_b, powers,
                               forces != nullptr ? &forces->mesh[k] : nullptr);
-        moment[static_cast<std::size_t>(mesh_a_[k])] += f.sense_a * moment_a;
-        moment[static_cast<std::size_t>(mesh_b_[k])] += f.sense_b * moment_b;
+        moment[static_cast<std::size_t>(f.a)] += f.sense_a * moment_a;
+        moment[static_cast<std::size_t>(f.b)] += f.sense_b * moment_b;
         moment[static_cast<std::size_t>(f.carrier)] -= f.sense_a * moment_a + f.sense_b * moment_b;
       }
       if constexpr (L::kOwnLosses) {
@@ -809,8 +816,7 @@ class TrainSystem {
       moment[static_cast<std::size_t>(s.b)] += torque_on_b;
     }
     if (driven_) {
-      for (int i = 0; i < dofs_; ++i) {
-        const auto u = static_cast<std::size_t>(i);
+      for (std::size_t u = 0; u < kBodies && u < dof_count_; ++u) {
         if (driver_[u] < 0) continue;
         // The driver applies the torque that gives its body the prescribed
         // acceleration against the rest: J w' = T_driver + moment. Its work is
@@ -821,8 +827,8 @@ class TrainSystem {
       }
     }
     double work = torque[0] * y[w_of(0)];
-    for (int i = 0; i < dofs_; ++i) {
-      const auto u = static_cast<std::size_t>(i);
+    for (std::size_t u = 0; u < kBodies && u < dof_count_; ++u) {
+      const auto i = static_cast<int>(u);
       dydt[theta_of(i)] = y[w_of(i)];
       dydt[w_of(i)] = moment[u] / inertia_[u];
       if (i > 0) work += torque[u] * y[w_of(i)];
@@ -833,7 +839,7 @@ class TrainSystem {
     dydt[kLedger + kParametric] = powers.parametric_w;
     dydt[kLedger + kMeshDamping] = powers.mesh_damping_w;
     // The layout's places beyond the train's degrees of freedom and meshes.
-    for (auto i = static_cast<std::size_t>(dofs_); i < kBodies; ++i) {
+    for (std::size_t i = dof_count_; i < kBodies; ++i) {
       dydt[theta_of(static_cast<int>(i))] = 0.0;
       dydt[w_of(static_cast<int>(i))] = 0.0;
     }
@@ -847,7 +853,7 @@ class TrainSystem {
   int event_values(const TrainState& y, const TrainMode& m, const TrainMemory& d,
                    TrainEvents& g) const {
     int n = 0;
-    for (std::size_t k = 0; k < meshes_.size(); ++k) {
+    for (std::size_t k = 0; k < L::kMeshes && k < mesh_count_; ++k) {
       n += meshes_[k].event_values(motion(k, y), m.mesh[k], d.mesh[k],
                                    g.data() + static_cast<std::size_t>(n));
     }
@@ -864,15 +870,16 @@ class TrainSystem {
 
   double kinetic_energy(const TrainState& y) const {
     double e = 0.5 * inertia_[0] * y[w_of(0)] * y[w_of(0)];
-    for (int i = 1; i < dofs_; ++i) {
-      e += 0.5 * inertia_[static_cast<std::size_t>(i)] * y[w_of(i)] * y[w_of(i)];
+    for (std::size_t u = 1; u < kBodies && u < dof_count_; ++u) {
+      const std::size_t w = w_of(static_cast<int>(u));
+      e += 0.5 * inertia_[u] * y[w] * y[w];
     }
     return e;
   }
   // The meshes' stored energy by term, and the shafts' springs' 1/2 k twist^2.
   ElasticEnergy stored_energy(const TrainState& y, const TrainMode& m) const {
     ElasticEnergy u = meshes_[0].stored_energy(motion(0, y), m.mesh[0]);
-    for (std::size_t k = 1; k < meshes_.size(); ++k) {
+    for (std::size_t k = 1; k < L::kMeshes && k < mesh_count_; ++k) {
       const ElasticEnergy e = meshes_[k].stored_energy(motion(k, y), m.mesh[k]);
       for (std::size_t i = 0; i < kTermCount; ++i) u.j[i] += e.j[i];
     }
@@ -936,8 +943,8 @@ class TrainSystem {
       for (std::size_t k = 0; k < meshes_.size(); ++k) {
         const double ra = meshes_[k].base_radius_a();
         const double rb = meshes_[k].base_radius_b();
-        join(mesh_a_[k], mesh_b_[k], ra / rb);
-        join(mesh_b_[k], mesh_a_[k], rb / ra);
+        join(frame_[k].a, frame_[k].b, ra / rb);
+        join(frame_[k].b, frame_[k].a, rb / ra);
       }
       for (const Spring& s : springs_) {
         join(s.a, s.b, 1.0);
@@ -973,9 +980,13 @@ class TrainSystem {
     int body;
     std::shared_ptr<const SpeedController> controller;
   };
-  // A mesh's carrier (its degree of freedom, -1: fixed axes), the senses of
-  // its line's gears 1 and 2 about +z and their angle offsets in the line.
+  // A mesh's place in the train: the degrees of freedom of its line's gears
+  // 1 and 2 (a and b), its carrier's (-1: fixed axes), the gears' senses
+  // about +z and their angle offsets in the line. One record a mesh, so that
+  // a right-hand side reads one array for all of them.
   struct Frame {
+    int a = 0;
+    int b = 0;
     int carrier = -1;
     double sense_a = 1.0;
     double sense_b = 1.0;
@@ -988,8 +999,11 @@ class TrainSystem {
   int dofs_ = 0;
   std::array<double, kBodies> inertia_{};
   std::vector<MeshLine> meshes_;
-  std::vector<int> mesh_a_, mesh_b_;
   std::vector<Frame> frame_;
+  // The counts again, read by the hot loops with the layout's bounds beside
+  // them, so that a small layout's loops unroll.
+  std::size_t mesh_count_ = 0;
+  std::size_t dof_count_ = 0;
   std::vector<Spring> springs_;
   // Per degree of freedom, the body whose kinematic driver holds it (-1: none).
   std::array<int, kBodies> driver_{};
@@ -1052,7 +1066,7 @@ class TrainRun {
   // As Run::check_progress, each mesh's friction signs on their own.
   bool check_progress(double t_from, double t_to, bool event) {
     bool changed = false;
-    for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
+    for (std::size_t k = 0; k < L::kMeshes && k < system_.mesh_count(); ++k) {
       changed = classify_stage_signs(event, mode_.mesh[k],
                                      [&](Mode& m) {
                                        system_.mesh(k).classify_forces(system_.motion(k, y_),
@@ -1100,7 +1114,7 @@ class TrainRun {
   void book_keep(double t) {
     SimulationSummary& s = result_.summary;
     ledger_.observe(y_, mode_, s);
-    for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
+    for (std::size_t k = 0; k < L::kMeshes && k < system_.mesh_count(); ++k) {
       const Mode& m = mode_.mesh[k];
       if (m.region == Region::free) continue;
       TrainMeshSummary& mesh = result_.meshes[k];
