@@ -19,6 +19,7 @@
 #include "gearimpact/case/schema.hpp"
 #include "gearimpact/dynamics/drive.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
+#include "gearimpact/dynamics/planar.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
@@ -516,7 +517,7 @@ void validate_train(const GearTrain& train) {
     }
     if (mesh.pair.bearings.kind != BearingKind::rigid) {
       throw InputError(prefix + "bearings.kind", "elastic",
-                       "rigid: a train's bodies turn about fixed axes");
+                       "rigid: a train's bearings are its bodies' (bodies.NAME.bearings)");
     }
     lines += line_count(mesh);
     if (lines > kMaxTrainLines) {
@@ -1424,6 +1425,21 @@ GearTrain two_gear_train(const SimulationCase& c) {
   mesh.pair = c;
   train.meshes = {mesh};
   train.integrator = c.integrator;
+  if (c.bearings.kind == BearingKind::elastic) {
+    // On elastic bearings each gear's centre translates: the bodies carry the
+    // bearings, with the planar model's masses (planar_mounting: a disc's
+    // where none is given), and its sensor; the mesh turns about fixed axes.
+    const PlanarMounting m = planar_mounting(dynamics_case(c));
+    const GearBearing* bearing[2] = {&c.bearings.gear1, &c.bearings.gear2};
+    for (std::size_t i = 0; i < 2; ++i) {
+      GearBearing b = *bearing[i];
+      b.mass_kg = m.mass_kg[i];
+      train.bodies[i].bearing = b;
+    }
+    train.meshes[0].pair.bearings = Bearings{};
+    train.sensor_body = c.bearings.sensor_gear - 1;
+    train.sensor_angle_rad = c.bearings.sensor_angle_rad;
+  }
   return train;
 }
 
