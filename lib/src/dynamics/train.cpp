@@ -370,10 +370,7 @@ void validate_train(const GearTrain& train) {
                        "a name no other body has");
     }
     names.push_back(b.name);
-    if (!std::isfinite(b.inertia_kg_m2) || b.inertia_kg_m2 <= 0.0) {
-      throw InputError("bodies." + b.name + ".inertia", b.inertia_kg_m2,
-                       "a finite value > 0 in kg m^2");
-    }
+    check_train_value("bodies.inertia", b.inertia_kg_m2, "bodies." + b.name + ".inertia");
     check_finite_field("bodies." + b.name + ".theta", b.theta_rad);
     check_finite_field("bodies." + b.name + ".w", b.w_rad_per_s);
     if (b.held && b.w_rad_per_s != 0.0) {
@@ -398,10 +395,7 @@ void validate_train(const GearTrain& train) {
     const TrainShaft& s = train.shafts[i];
     if (s.kind != TrainShaft::Kind::torsional) continue;
     const std::string field = "shafts[" + std::to_string(i) + "]";
-    if (!std::isfinite(s.stiffness_n_m_per_rad) || s.stiffness_n_m_per_rad <= 0.0) {
-      throw InputError(field + ".stiffness", s.stiffness_n_m_per_rad,
-                       "a finite value > 0 in N m/rad");
-    }
+    check_train_value("shafts.stiffness", s.stiffness_n_m_per_rad, field + ".stiffness");
     if (dof[static_cast<std::size_t>(s.body_a)] == dof[static_cast<std::size_t>(s.body_b)]) {
       throw InputError(field + ".body_b", std::to_string(s.body_b),
                        "a body not joined to body_a by rigid shafts");
