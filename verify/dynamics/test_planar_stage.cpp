@@ -410,6 +410,19 @@ TEST_CASE("the planar stage's bad input is refused by its key") {
   t = s;
   t.supports->sun_support_damping_n_s_per_m = std::nan("");
   CHECK(refused(t, "sun_support_damping"));
+  // The ranges are the stage file's rows' (train_schema()), for a stage built
+  // in code too: past a row's upper bound is refused with the row's reason.
+  t = s;
+  t.supports->sun_support_damping_n_s_per_m = 2.0e6;
+  CHECK(refused(t, "squeeze-film"));
+  t.supports->sun_support_damping_n_s_per_m = 1.0e6;
+  CHECK_FALSE(refused(t, "sun_support_damping"));
+  t = s;
+  t.sun_inertia_kg_m2 = 2.0e6;
+  CHECK(refused(t, "sun_inertia"));
+  t = s;
+  t.input_speed_rad_per_s = 2.0e5;
+  CHECK(refused(t, "input_speed"));
   // On bearings a train turns in one carrier's axes: the third planet moved
   // to a carrier of its own, its meshes are refused by their carrier key.
   GearTrain two = planetary_train(s);

@@ -51,18 +51,12 @@ SimulationCase elastic_paper_case() {
   return c;
 }
 
-// The case as a two-body train: its gears' discs, the bearings on the bodies
-// (the mass the planar model takes, the disc's), the pair's own rigid.
+// The case as the library writes it as a train (two_gear_train: the bearings
+// on the bodies with the planar model's masses, the pair's own rigid), with
+// the table lent.
 GearTrain planar_two_gear_train(const SimulationCase& c, const StiffnessTable& table) {
   GearTrain train = two_gear_train(c);
-  train.meshes[0].pair.bearings.kind = BearingKind::rigid;
   train.meshes[0].table = lent(table);
-  GearBearing b1 = c.bearings.gear1;
-  GearBearing b2 = c.bearings.gear2;
-  b1.mass_kg = disc_mass(c.gears, Gear::one);
-  b2.mass_kg = disc_mass(c.gears, Gear::two);
-  train.bodies[0].bearing = b1;
-  train.bodies[1].bearing = b2;
   return train;
 }
 
@@ -219,6 +213,43 @@ std::array<double, 2> turning_s(const PlanarLinearTrain& l, const TrainRow& row)
 }
 
 }  // namespace
+
+TEST_CASE(
+    "a two-gear case on elastic bearings is written as a train with its bearings on its bodies") {
+  SimulationCase c = elastic_paper_case();
+  c.bearings.gear2.mass_kg = 3.5;
+  c.bearings.sensor_gear = 2;
+  c.bearings.sensor_angle_rad = 0.3;
+  const GearTrain train = two_gear_train(c);
+  CHECK(train.meshes[0].pair.bearings.kind == BearingKind::rigid);
+  REQUIRE(train.bodies[0].bearing.has_value());
+  REQUIRE(train.bodies[1].bearing.has_value());
+  const GearBearing& b1 = *train.bodies[0].bearing;
+  const GearBearing& b2 = *train.bodies[1].bearing;
+  // No mass given: the disc's, as the planar model takes it; a mass given: that one.
+  CHECK(b1.mass_kg == disc_mass(c.gears, Gear::one));
+  CHECK(b2.mass_kg == 3.5);
+  CHECK(b1.stiffness_x_n_per_m == 2e8);
+  CHECK(b1.stiffness_y_n_per_m == 3e8);
+  CHECK(b2.damping_y_n_s_per_m == 100.0);
+  CHECK(train.sensor_body == 1);
+  CHECK(train.sensor_angle_rad == 0.3);
+  // The given mass moves the run as the planar model's: the same to the bit.
+  const StiffnessTable table(c.gears, c.model.stiffness);
+  GearTrain lent_train = train;
+  lent_train.meshes[0].table = lent(table);
+  const SimulationResult planar = simulate(c, table);
+  const TrainResult run = simulate_train(lent_train);
+  CHECK(run.summary.final_w2_rad_per_s == planar.summary.final_w2_rad_per_s);
+  REQUIRE(run.summary.planar.has_value());
+  CHECK(run.summary.planar->bearing_energy_final_j ==
+        planar.summary.planar->bearing_energy_final_j);
+  // On rigid bearings the bodies turn about fixed axes.
+  const GearTrain rigid = two_gear_train(paper_case(2));
+  CHECK_FALSE(rigid.bodies[0].bearing.has_value());
+  CHECK_FALSE(rigid.bodies[1].bearing.has_value());
+  CHECK(rigid.sensor_body == -1);
+}
 
 TEST_CASE("a pinion-idler-wheel train on bearings holds its static equilibrium by hand") {
   const PlanarLinearTrain l;

@@ -830,7 +830,11 @@ TEST_CASE("a train's bad input is refused naming its field") {
     t.bodies[1].inertia_kg_m2 = 0.0;
     CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("bodies.idler.inertia"), InputError);
   }
-  SUBCASE("a mesh on elastic bearings (a train's bodies turn about fixed axes)") {
+  SUBCASE("a body's inertia past its row's range (train_schema(), for a train built in code too)") {
+    t.bodies[1].inertia_kg_m2 = 2e6;
+    CHECK_THROWS_WITH_AS(simulate_train(t), doctest::Contains("bodies.idler.inertia"), InputError);
+  }
+  SUBCASE("a mesh on elastic bearings (a train's bearings are its bodies')") {
     Bearings& b = t.meshes[0].pair.bearings;
     b.kind = BearingKind::elastic;
     b.gear1.stiffness_x_n_per_m = 1e8;

@@ -1,11 +1,13 @@
 // The rows of a train file (train_schema): plain Fields without a slot of SimulationCase.
 #include <cstddef>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
 #include "gearimpact/constants.hpp"
+#include "gearimpact/error.hpp"
 #include "schema_rows.hpp"
 
 namespace gearimpact {
@@ -228,6 +230,14 @@ const Field* find_train_field(std::string_view section_dot_key) {
     if (field.name() == section_dot_key) return &field;
   }
   return nullptr;
+}
+
+void check_train_value(std::string_view section_dot_key, double value, std::string_view name) {
+  const Field* row = find_train_field(section_dot_key);
+  if (row == nullptr) {
+    throw std::logic_error("check_train_value: no row " + std::string(section_dot_key));
+  }
+  check_value(*row, value, name, format_number(value));
 }
 
 }  // namespace gearimpact

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <cstddef>
 #include <string>
-#include <tuple>
 #include <utility>
 #include <vector>
 
+#include "gearimpact/case/schema.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/error.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
@@ -40,10 +40,9 @@ std::vector<double> planet_angles(const PlanetaryStage& stage) {
   return checked_planet_angles(stage.teeth, toothing_of(stage), stage.planet_angles_rad);
 }
 
-void require_positive(const char* field, double value) {
-  if (!std::isfinite(value) || value <= 0.0) {
-    throw InputError(field, value, "a finite value > 0");
-  }
+// A stage's number against its row of the stage file ("stage.KEY").
+void check_stage_value(const char* key, double value) {
+  check_train_value(std::string("stage.") + key, value, key);
 }
 
 // The members' tooth-0 angles relative to the carrier (planetary_train.hpp) on
@@ -165,30 +164,26 @@ void check_supports(const PlanetaryStage& stage) {
                      "a mass > 0 kg with the stage's supports (each planet's centre translates "
                      "on its bearing)");
   }
-  require_positive("sun_mass", k.sun_mass_kg);
-  require_positive("ring_mass", k.ring_mass_kg);
-  require_positive("carrier_mass", k.carrier_mass_kg);
-  require_positive("planet_bearing", k.planet_bearing_n_per_m);
-  const char* const floats = "a finite stiffness >= 0 N/m (0: the member floats)";
-  const char* const none = "a finite damping >= 0 N*s/m (0: none)";
-  for (const auto& [name, value, allowed] :
-       {std::tuple<const char*, double, const char*>{"sun_support", k.sun_support_n_per_m, floats},
-        {"ring_support", k.ring_support_n_per_m, floats},
-        {"carrier_support", k.carrier_support_n_per_m, floats},
-        {"sun_support_damping", k.sun_support_damping_n_s_per_m, none},
-        {"ring_support_damping", k.ring_support_damping_n_s_per_m, none},
-        {"carrier_support_damping", k.carrier_support_damping_n_s_per_m, none},
-        {"planet_bearing_damping", k.planet_bearing_damping_n_s_per_m, none}}) {
-    if (!std::isfinite(value) || value < 0.0) throw InputError(name, value, allowed);
+  for (const auto& [key, value] :
+       {std::pair<const char*, double>{"sun_mass", k.sun_mass_kg},
+        {"ring_mass", k.ring_mass_kg},
+        {"carrier_mass", k.carrier_mass_kg},
+        {"planet_bearing", k.planet_bearing_n_per_m},
+        {"sun_support", k.sun_support_n_per_m},
+        {"ring_support", k.ring_support_n_per_m},
+        {"carrier_support", k.carrier_support_n_per_m},
+        {"sun_support_damping", k.sun_support_damping_n_s_per_m},
+        {"ring_support_damping", k.ring_support_damping_n_s_per_m},
+        {"carrier_support_damping", k.carrier_support_damping_n_s_per_m},
+        {"planet_bearing_damping", k.planet_bearing_damping_n_s_per_m}}) {
+    check_stage_value(key, value);
   }
 }
 
 }  // namespace
 
 StageSpeeds planetary_rigid_speeds(const PlanetaryStage& stage) {
-  if (!std::isfinite(stage.input_speed_rad_per_s)) {
-    throw InputError("input_speed", stage.input_speed_rad_per_s, "a finite value in rad/s");
-  }
+  check_stage_value("input_speed", stage.input_speed_rad_per_s);
   return willis_speeds(stage.teeth, stage.held, stage.input_speed_rad_per_s);
 }
 
@@ -201,11 +196,11 @@ GearTrain planetary_train(const PlanetaryStage& stage) {
   const double carrier_radius = standard_carrier_radius(stage.teeth, toothing);
   const WorkingAngles angles = working_angles(stage.teeth, toothing, carrier_radius);
   const std::vector<double> psi = planet_angles(stage);
-  require_positive("sun_inertia", stage.sun_inertia_kg_m2);
-  require_positive("ring_inertia", stage.ring_inertia_kg_m2);
-  require_positive("carrier_inertia", stage.carrier_inertia_kg_m2);
-  require_positive("planet_inertia", stage.planet_inertia_kg_m2);
-  if (stage.planet_mass_kg) require_positive("planet_mass", *stage.planet_mass_kg);
+  check_stage_value("sun_inertia", stage.sun_inertia_kg_m2);
+  check_stage_value("ring_inertia", stage.ring_inertia_kg_m2);
+  check_stage_value("carrier_inertia", stage.carrier_inertia_kg_m2);
+  check_stage_value("planet_inertia", stage.planet_inertia_kg_m2);
+  if (stage.planet_mass_kg) check_stage_value("planet_mass", *stage.planet_mass_kg);
   const StageSpeeds w = planetary_rigid_speeds(stage);
   const std::size_t n = psi.size();
   if (!stage.mesh.faults.empty()) {

@@ -159,25 +159,6 @@ PlanarRow planar_row(const TrainRow& r, const HelicalThrustLevers& thrust) {
   return row;
 }
 
-// The pair's train on its mounting: on elastic bearings each body's centre on its gear's
-// bearings, with the planar model's masses (planar_mounting) and its sensor.
-GearTrain mounted_train(const SimulationCase& c, const SimulationCase& d) {
-  GearTrain train = two_gear_train(c);
-  if (c.bearings.kind != BearingKind::elastic) return train;
-  const PlanarMounting m = planar_mounting(d);
-  const GearBearing* bearing[2] = {&c.bearings.gear1, &c.bearings.gear2};
-  for (std::size_t i = 0; i < 2; ++i) {
-    GearBearing b = *bearing[i];
-    b.mass_kg = m.mass_kg[i];
-    train.bodies[i].bearing = b;
-  }
-  // The train's mesh turns about fixed axes; its bodies carry the bearings.
-  train.meshes[0].pair.bearings = Bearings{};
-  train.sensor_body = c.bearings.sensor_gear - 1;
-  train.sensor_angle_rad = c.bearings.sensor_angle_rad;
-  return train;
-}
-
 }  // namespace
 
 bool runs_by_slices(const SimulationCase& c) {
@@ -203,7 +184,7 @@ SimulationResult simulate_by_slices(const SimulationCase& c, const RunControl& c
   const bool planar = c.bearings.kind == BearingKind::elastic;
   if (planar) validate_planar(d, planar_mounting(d), {});
   validate_run_control(d, control);
-  const GearTrain train = mounted_train(c, d);
+  const GearTrain train = two_gear_train(c);
   named_as_pair([&] {
     check_train(train);
     return 0;

@@ -19,6 +19,7 @@
 #include "gearimpact/case/schema.hpp"
 #include "gearimpact/dynamics/drive.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
+#include "gearimpact/dynamics/planar.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
 #include "gearimpact/dynamics/system.hpp"
 #include "gearimpact/error.hpp"
@@ -369,10 +370,7 @@ void validate_train(const GearTrain& train) {
                        "a name no other body has");
     }
     names.push_back(b.name);
-    if (!std::isfinite(b.inertia_kg_m2) || b.inertia_kg_m2 <= 0.0) {
-      throw InputError("bodies." + b.name + ".inertia", b.inertia_kg_m2,
-                       "a finite value > 0 in kg m^2");
-    }
+    check_train_value("bodies.inertia", b.inertia_kg_m2, "bodies." + b.name + ".inertia");
     check_finite_field("bodies." + b.name + ".theta", b.theta_rad);
     check_finite_field("bodies." + b.name + ".w", b.w_rad_per_s);
     if (b.held && b.w_rad_per_s != 0.0) {
@@ -397,10 +395,7 @@ void validate_train(const GearTrain& train) {
     const TrainShaft& s = train.shafts[i];
     if (s.kind != TrainShaft::Kind::torsional) continue;
     const std::string field = "shafts[" + std::to_string(i) + "]";
-    if (!std::isfinite(s.stiffness_n_m_per_rad) || s.stiffness_n_m_per_rad <= 0.0) {
-      throw InputError(field + ".stiffness", s.stiffness_n_m_per_rad,
-                       "a finite value > 0 in N m/rad");
-    }
+    check_train_value("shafts.stiffness", s.stiffness_n_m_per_rad, field + ".stiffness");
     if (dof[static_cast<std::size_t>(s.body_a)] == dof[static_cast<std::size_t>(s.body_b)]) {
       throw InputError(field + ".body_b", std::to_string(s.body_b),
                        "a body not joined to body_a by rigid shafts");
@@ -516,7 +511,7 @@ void validate_train(const GearTrain& train) {
     }
     if (mesh.pair.bearings.kind != BearingKind::rigid) {
       throw InputError(prefix + "bearings.kind", "elastic",
-                       "rigid: a train's bodies turn about fixed axes");
+                       "rigid: a train's bearings are its bodies' (bodies.NAME.bearings)");
     }
     lines += line_count(mesh);
     if (lines > kMaxTrainLines) {
@@ -1424,6 +1419,21 @@ GearTrain two_gear_train(const SimulationCase& c) {
   mesh.pair = c;
   train.meshes = {mesh};
   train.integrator = c.integrator;
+  if (c.bearings.kind == BearingKind::elastic) {
+    // On elastic bearings each gear's centre translates: the bodies carry the
+    // bearings, with the planar model's masses (planar_mounting: a disc's
+    // where none is given), and its sensor; the mesh turns about fixed axes.
+    const PlanarMounting m = planar_mounting(dynamics_case(c));
+    const GearBearing* bearing[2] = {&c.bearings.gear1, &c.bearings.gear2};
+    for (std::size_t i = 0; i < 2; ++i) {
+      GearBearing b = *bearing[i];
+      b.mass_kg = m.mass_kg[i];
+      train.bodies[i].bearing = b;
+    }
+    train.meshes[0].pair.bearings = Bearings{};
+    train.sensor_body = c.bearings.sensor_gear - 1;
+    train.sensor_angle_rad = c.bearings.sensor_angle_rad;
+  }
   return train;
 }
 

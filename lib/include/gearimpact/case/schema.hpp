@@ -128,6 +128,11 @@ const std::vector<Field>& fault_schema();
 const std::vector<Field>& train_schema();
 // The row of "section.key" of train_schema() ("bodies.inertia"), or nullptr.
 const Field* find_train_field(std::string_view section_dot_key);
+// A train's or a stage's value in SI, built in code or read, against its row
+// of train_schema() (`section_dot_key`: "bodies.inertia", "stage.sun_mass"):
+// check_value, refused as `name` ("bodies.idler.inertia"), so that the range
+// lives in the row alone. std::logic_error for a key without a row.
+void check_train_value(std::string_view section_dot_key, double value, std::string_view name);
 // The rows of a planetary file's [planetary] section (docs/planetary.md): the
 // linear stage's PlanetaryParameters, SI as every row. As train_schema's, not
 // a SimulationCase's: get() gives NaN and set() is never called; the
