@@ -29,6 +29,7 @@
 #include "bench_support.hpp"
 #include "gearimpact/constants.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
+#include "gearimpact/dynamics/train.hpp"
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/geometry/rack_generation.hpp"
 #include "gearimpact/io/case_file.hpp"
@@ -233,6 +234,38 @@ void rig_sample_kinds(benchmark::State& state) {
   state.counters["ratio"] = cpu[1] / cpu[0];
 }
 
+// The cracked rig as a train (two_gear_train: its bearings on the pinion and
+// the wheel) against the planar model, RK4 at the policy's 1.75 us, 0.2 s,
+// no samples (a train's run takes none yet), each a whole run with its own
+// tables; alternated within each iteration so that both see the same machine
+// state; CPU seconds by std::clock. The two give the same numbers to the bit
+// (verify/dynamics/test_planar_train.cpp).
+void rig_as_train(benchmark::State& state) {
+  SimulationCase c = rig_cracked(true);
+  c.integrator.kind = IntegratorKind::rk4;
+  c.integrator.step_s = 1.75e-6;
+  c.integrator.end_time_s = 0.2;
+  const GearTrain train = two_gear_train(c);
+  RunControl control;
+  control.keep_series = false;
+  double cpu_model = 0.0;
+  double cpu_train = 0.0;
+  long long steps = 0;
+  for (auto _ : state) {
+    std::clock_t start = std::clock();
+    steps = simulate(c, control).summary.steps;
+    cpu_model += static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
+    start = std::clock();
+    benchmark::DoNotOptimize(simulate_train(train, control).summary.steps);
+    cpu_train += static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
+  }
+  const auto n = static_cast<double>(state.iterations());
+  state.counters["model_signal_per_cpu_s"] = c.integrator.end_time_s / (cpu_model / n);
+  state.counters["train_signal_per_cpu_s"] = c.integrator.end_time_s / (cpu_train / n);
+  state.counters["steps"] = static_cast<double>(steps);
+  state.counters["ratio"] = cpu_train / cpu_model;
+}
+
 std::string rig_name(const RigRun& run, int signal_ms) {
   return std::string("faults/rig_") + run.name + "_cracked_" + std::to_string(signal_ms) + "ms";
 }
@@ -246,6 +279,9 @@ const bool registered = [] {
       })->Unit(benchmark::kMillisecond);
     }
   }
+  benchmark::RegisterBenchmark("faults/rig_cracked_as_train", rig_as_train)
+      ->Unit(benchmark::kMillisecond)
+      ->Iterations(3);
   benchmark::RegisterBenchmark("faults/rig_sample_kinds", rig_sample_kinds)
       ->Unit(benchmark::kMillisecond)
       ->Iterations(3);

@@ -62,8 +62,10 @@ GearTrain planar_two_gear_train(const SimulationCase& c, const StiffnessTable& t
 
 }  // namespace
 
-TEST_CASE("a two-body train on elastic bearings is the two-gear planar run, bit for bit") {
-  const SimulationCase c = elastic_paper_case();
+namespace {
+
+// The planar run of c and its train (two_gear_train) the same to the bit.
+void require_same_planar_run(const SimulationCase& c) {
   const StiffnessTable table(c.gears, c.model.stiffness);
   const SimulationResult planar = simulate(c, table);
   const TrainResult train = simulate_train(planar_two_gear_train(c, table));
@@ -125,6 +127,33 @@ TEST_CASE("a two-body train on elastic bearings is the two-gear planar run, bit 
     CHECK((a.line == b.line && a.start_s == b.start_s && a.impact_speed_m_s == b.impact_speed_m_s &&
            a.end_s == b.end_s));
   }
+}
+
+}  // namespace
+
+TEST_CASE("a two-body train on elastic bearings is the two-gear planar run, bit for bit") {
+  require_same_planar_run(elastic_paper_case());
+}
+
+TEST_CASE(
+    "a speed-controlled pinion on elastic bearings runs as the two-gear planar run, bit for "
+    "bit") {
+  // The controller's reflected inertia and load are the train's
+  // (train_speed_controller), J1 + J2 (Rb1/Rb2)^2 against T2 Rb1/Rb2 as the
+  // two-gear model's; its torque read at the pinion's angle and speed.
+  SimulationCase c = elastic_paper_case();
+  c.torque1 = Torque{};
+  c.torque1.kind = Torque::Kind::speed_controlled;
+  c.torque1.mean_speed_rad_per_s = c.initial.w1_rad_per_s;
+  c.torque1.controller_bandwidth_rad_per_s = 2.0 * pi * 50.0;
+  c.torque1.controller_damping_ratio = 1.0;
+  require_same_planar_run(c);
+  // The controller acts: the same run with the pinion's torque held at zero differs.
+  SimulationCase free = c;
+  free.torque1 = Torque{};
+  const StiffnessTable table(c.gears, c.model.stiffness);
+  CHECK(simulate(free, table).summary.final_w1_rad_per_s !=
+        simulate(c, table).summary.final_w1_rad_per_s);
 }
 
 namespace {

@@ -64,7 +64,7 @@ void refuse_in_sliced_run(const SimulationCase& c, const RunControl& control) {
       if (t->kind != Torque::Kind::speed_controlled) continue;
       throw InputError(std::vector<Problem>{refused_problem(
           t == &c.torque1 ? "torque1.kind" : "torque2.kind", "\"speed-controlled\"",
-          why + " on elastic bearings, which take no speed controller yet",
+          why + ", which on elastic bearings take no speed controller yet",
           "a torque other than speed-controlled with modifications on a helical pair on "
           "elastic bearings")});
     }

@@ -675,7 +675,8 @@ class TrainSystem {
       if (kinematic_driver(b.torque) || b.held) {
         driven_ = true;
       } else if (b.torque.kind == Torque::Kind::speed_controlled) {
-        controllers_.push_back({static_cast<int>(i), controller_of(static_cast<int>(i))});
+        controllers_.push_back(
+            {static_cast<int>(i), train_speed_controller(train, static_cast<int>(i))});
       }
     }
     // Torques that depend on neither time nor state (constants, and the
@@ -915,60 +916,6 @@ class TrainSystem {
         break;
     }
     return torque_at(torque, t);
-  }
-
-  // Each degree of freedom's speed per unit speed of `dof` when the train
-  // rolls without slip: across a mesh w_b = w_a Rb_a / Rb_b, across a
-  // torsional shaft the same; 0 where no mesh or shaft leads.
-  std::array<double, kBodies> kinematic_ratios(int dof) const {
-    std::array<double, kBodies> ratio{};
-    std::array<bool, kBodies> known{};
-    ratio[static_cast<std::size_t>(dof)] = 1.0;
-    known[static_cast<std::size_t>(dof)] = true;
-    for (bool grew = true; grew;) {
-      grew = false;
-      const auto join = [&](int from, int to, double factor) {
-        const auto f = static_cast<std::size_t>(from);
-        const auto u = static_cast<std::size_t>(to);
-        if (!known[f] || known[u]) return;
-        ratio[u] = ratio[f] * factor;
-        known[u] = true;
-        grew = true;
-      };
-      for (std::size_t k = 0; k < meshes_.size(); ++k) {
-        const double ra = meshes_[k].base_radius_a();
-        const double rb = meshes_[k].base_radius_b();
-        join(frame_[k].a, frame_[k].b, ra / rb);
-        join(frame_[k].b, frame_[k].a, rb / ra);
-      }
-      for (const Spring& s : springs_) {
-        join(s.a, s.b, 1.0);
-        join(s.b, s.a, 1.0);
-      }
-    }
-    return ratio;
-  }
-
-  // A speed controller on body i: the train's inertia reflected to its degree
-  // of freedom, sum J_d ratio_d^2 (its own first), against the other bodies'
-  // torques reflected by their ratios (drive.hpp).
-  std::shared_ptr<const SpeedController> controller_of(int i) const {
-    const int dof = dof_of(i);
-    const std::array<double, kBodies> ratio = kinematic_ratios(dof);
-    double inertia = inertia_[static_cast<std::size_t>(dof)];
-    for (int d = 0; d < dofs_; ++d) {
-      const auto u = static_cast<std::size_t>(d);
-      if (d != dof) inertia += inertia_[u] * ratio[u] * ratio[u];
-    }
-    std::vector<ReflectedLoad> loads;
-    for (std::size_t j = 0; j < train_.bodies.size(); ++j) {
-      const auto u = static_cast<std::size_t>(body_dof_[j]);
-      if (static_cast<int>(j) == i || ratio[u] == 0.0) continue;
-      loads.push_back({&train_.bodies[j].torque, ratio[u]});
-    }
-    const TrainBody& b = train_.bodies[static_cast<std::size_t>(i)];
-    return std::make_shared<const SpeedController>(b.torque, inertia, b.theta_rad,
-                                                   std::move(loads));
   }
 
   struct Controlled {
@@ -1443,6 +1390,69 @@ void check_train(const GearTrain& train) {
 
 std::vector<int> train_degrees_of_freedom(const GearTrain& train) {
   return degrees_of_freedom(train);
+}
+
+std::shared_ptr<const SpeedController> train_speed_controller(const GearTrain& train, int body) {
+  const std::vector<int> dof_of = degrees_of_freedom(train);
+  const int dofs = *std::max_element(dof_of.begin(), dof_of.end()) + 1;
+  const auto count = static_cast<std::size_t>(dofs);
+  // Each degree of freedom's inertia: its bodies' summed in their order.
+  std::vector<double> inertia(count, 0.0);
+  std::vector<bool> seen(count, false);
+  for (std::size_t i = 0; i < train.bodies.size(); ++i) {
+    const auto d = static_cast<std::size_t>(dof_of[i]);
+    inertia[d] =
+        seen[d] ? inertia[d] + train.bodies[i].inertia_kg_m2 : train.bodies[i].inertia_kg_m2;
+    seen[d] = true;
+  }
+  // Each degree of freedom's speed per unit speed of the body's: across a
+  // mesh w_b = w_a Rb_a / Rb_b, across a torsional shaft the same; 0 where no
+  // mesh or shaft leads.
+  const int own = dof_of[static_cast<std::size_t>(body)];
+  std::vector<double> ratio(count, 0.0);
+  std::vector<bool> known(count, false);
+  ratio[static_cast<std::size_t>(own)] = 1.0;
+  known[static_cast<std::size_t>(own)] = true;
+  for (bool grew = true; grew;) {
+    grew = false;
+    const auto join = [&](int from, int to, double factor) {
+      const auto f = static_cast<std::size_t>(from);
+      const auto u = static_cast<std::size_t>(to);
+      if (!known[f] || known[u]) return;
+      ratio[u] = ratio[f] * factor;
+      known[u] = true;
+      grew = true;
+    };
+    for (const TrainMesh& m : train.meshes) {
+      const double ra = base_radius(m.pair.gears, Gear::one);
+      const double rb = base_radius(m.pair.gears, Gear::two);
+      const int a = dof_of[static_cast<std::size_t>(m.body_a)];
+      const int b = dof_of[static_cast<std::size_t>(m.body_b)];
+      join(a, b, ra / rb);
+      join(b, a, rb / ra);
+    }
+    for (const TrainShaft& s : train.shafts) {
+      if (s.kind != TrainShaft::Kind::torsional) continue;
+      const int a = dof_of[static_cast<std::size_t>(s.body_a)];
+      const int b = dof_of[static_cast<std::size_t>(s.body_b)];
+      join(a, b, 1.0);
+      join(b, a, 1.0);
+    }
+  }
+  double reflected = inertia[static_cast<std::size_t>(own)];
+  for (int d = 0; d < dofs; ++d) {
+    const auto u = static_cast<std::size_t>(d);
+    if (d != own) reflected += inertia[u] * ratio[u] * ratio[u];
+  }
+  std::vector<ReflectedLoad> loads;
+  for (std::size_t j = 0; j < train.bodies.size(); ++j) {
+    const auto u = static_cast<std::size_t>(dof_of[j]);
+    if (static_cast<int>(j) == body || ratio[u] == 0.0) continue;
+    loads.push_back({&train.bodies[j].torque, ratio[u]});
+  }
+  const TrainBody& b = train.bodies[static_cast<std::size_t>(body)];
+  return std::make_shared<const SpeedController>(b.torque, reflected, b.theta_rad,
+                                                 std::move(loads));
 }
 
 bool runs_by_slices(const TrainMesh& mesh) {

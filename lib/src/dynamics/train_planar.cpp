@@ -193,6 +193,10 @@ class PlanarTrainSystem {
       cx_[u] = b.damping_x_n_s_per_m;
       cy_[u] = damping_y(b);
     }
+    for (std::size_t i = 0; i < train.bodies.size(); ++i) {
+      if (train.bodies[i].torque.kind != Torque::Kind::speed_controlled) continue;
+      controllers_.emplace_back(i, train_speed_controller(train, static_cast<int>(i)));
+    }
     pin_carrier_.fill(-1);
     turning_with_.fill(-1);
     for (std::size_t i = 0; i < train.bodies.size(); ++i) {
@@ -415,7 +419,7 @@ class PlanarTrainSystem {
       bool seen = false;
       for (std::size_t i = 0; i < train_.bodies.size(); ++i) {
         if (static_cast<std::size_t>(body_dof_[i]) != d) continue;
-        const double value = body_torque(i, t, y[L::w(d)]);
+        const double value = body_torque(i, t, y[L::theta(d)], y[L::w(d)]);
         torque = seen ? torque + value : value;
         seen = true;
       }
@@ -653,11 +657,16 @@ class PlanarTrainSystem {
             pin_sin_[d] * radial + pin_cos_[d] * tangential};
   }
 
-  // Body i's applied torque at t with its degree of freedom's speed w; 0 for
-  // a kinematic driver (rhs sets it).
-  double body_torque(std::size_t i, double t, double w) const {
+  // Body i's applied torque at t with its degree of freedom's angle theta
+  // and speed w; 0 for a kinematic driver (rhs sets it).
+  double body_torque(std::size_t i, double t, double theta, double w) const {
     const Torque& torque = train_.bodies[i].torque;
     switch (torque.kind) {
+      case Torque::Kind::speed_controlled:
+        for (const auto& [body, controller] : controllers_) {
+          if (body == i) return controller->torque_n_m(t, theta, w);
+        }
+        break;
       case Torque::Kind::constant:
         return torque.constant_n_m;
       case Torque::Kind::prescribed_speed:
@@ -667,8 +676,9 @@ class PlanarTrainSystem {
       case Torque::Kind::induction_motor:
         return induction_motor_torque_n_m(torque, w);
       default:
-        return torque_at(torque, t);
+        break;
     }
+    return torque_at(torque, t);
   }
 
   const GearTrain& train_;
@@ -678,6 +688,8 @@ class PlanarTrainSystem {
   std::array<double, L::kDofs> inverse_inertia_{};
   std::array<bool, L::kDofs> translating_{};
   std::array<double, L::kDofs> mass_{};
+  // Each speed-controlled body's controller (train_speed_controller).
+  std::vector<std::pair<std::size_t, std::shared_ptr<const SpeedController>>> controllers_;
   std::array<double, L::kDofs> inverse_mass_{};
   std::array<double, L::kDofs> kx_{}, ky_{}, cx_{}, cy_{};
   std::array<int, L::kDofs> driver_{};
@@ -1017,11 +1029,6 @@ void validate_planar_train(const GearTrain& train) {
   for (std::size_t i = 0; i < train.bodies.size(); ++i) {
     const TrainBody& b = train.bodies[i];
     const std::string prefix = "bodies." + b.name + ".";
-    if (b.torque.kind == Torque::Kind::speed_controlled) {
-      throw InputError(prefix + "torque.kind", "speed-controlled",
-                       "a torque other than speed-controlled in a train with bodies on elastic "
-                       "bearings (not modelled yet)");
-    }
     if (!b.bearing) continue;
     if (named.empty()) named = b.name;
     const GearBearing& g = *b.bearing;

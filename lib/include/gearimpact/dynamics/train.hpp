@@ -31,6 +31,7 @@
 
 #include "gearimpact/case/simulation_case.hpp"
 #include "gearimpact/constants.hpp"
+#include "gearimpact/dynamics/drive.hpp"
 #include "gearimpact/dynamics/mesh_line.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/stiffness/table.hpp"
@@ -270,6 +271,16 @@ void check_train(const GearTrain& train);
 // GearTrain::bodies: bodies joined by rigid shafts are one, numbered in the
 // order of their first body.
 std::vector<int> train_degrees_of_freedom(const GearTrain& train);
+
+// The speed controller of body `body` (torque.kind speed-controlled) in a
+// train about fixed axes, as the torsional and the planar train run it: the
+// train's inertia reflected to the body's degree of freedom, sum J_d
+// ratio_d^2 (its own first; ratio_d the speed of d per unit speed of the body
+// when the train rolls without slip, across a mesh Rb_a / Rb_b, across a
+// torsional shaft 1), against the other bodies' torques reflected by their
+// ratios (drive.hpp). The controller keeps pointers to `train`'s torques:
+// `train` outlives it.
+std::shared_ptr<const SpeedController> train_speed_controller(const GearTrain& train, int body);
 
 // Validates the train (InputError naming the field: bodies.NAME.inertia,
 // meshes.NAME.gears.teeth1, ...) and runs dynamics_train(train); its rows'
