@@ -1,5 +1,7 @@
 #include "bench_support.hpp"
 
+#include <time.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <map>
@@ -89,6 +91,12 @@ std::vector<double> shuffled_spread(double start, double end, std::size_t n) {
   std::mt19937_64 generator(20260122);
   std::shuffle(points.begin(), points.end(), generator);
   return points;
+}
+
+double thread_cpu_s() {
+  timespec t{};
+  ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 }  // namespace gearimpact::bench

@@ -25,6 +25,27 @@ struct Accuracy {
   double compliances = std::numeric_limits<double>::quiet_NaN();
 };
 
+// The calling thread's CPU time in seconds (clock_gettime), which other
+// threads' and processes' load does not count into.
+double thread_cpu_s();
+
+// Two runs alternated within each iteration of `state`, so that both see the
+// same machine state: their CPU seconds (thread_cpu_s), each summed over the
+// iterations.
+template <class First, class Second>
+std::pair<double, double> alternated_cpu_s(benchmark::State& state, First first, Second second) {
+  std::pair<double, double> cpu{0.0, 0.0};
+  for (auto _ : state) {
+    double start = thread_cpu_s();
+    first();
+    cpu.first += thread_cpu_s() - start;
+    start = thread_cpu_s();
+    second();
+    cpu.second += thread_cpu_s() - start;
+  }
+  return cpu;
+}
+
 // Runs over `positions` points and returns the method's worst errors.
 using AccuracyCheck = std::function<Accuracy(std::size_t positions)>;
 

@@ -238,8 +238,8 @@ void rig_sample_kinds(benchmark::State& state) {
 // the wheel) against the planar model, RK4 at the policy's 1.75 us, 0.2 s,
 // no samples (a train's run takes none yet), each a whole run with its own
 // tables; alternated within each iteration so that both see the same machine
-// state; CPU seconds by std::clock. The two give the same numbers to the bit
-// (verify/dynamics/test_planar_train.cpp).
+// state; CPU seconds of the calling thread. The two give the same numbers to
+// the bit (verify/dynamics/test_planar_train.cpp).
 void rig_as_train(benchmark::State& state) {
   SimulationCase c = rig_cracked(true);
   c.integrator.kind = IntegratorKind::rk4;
@@ -248,17 +248,10 @@ void rig_as_train(benchmark::State& state) {
   const GearTrain train = two_gear_train(c);
   RunControl control;
   control.keep_series = false;
-  double cpu_model = 0.0;
-  double cpu_train = 0.0;
   long long steps = 0;
-  for (auto _ : state) {
-    std::clock_t start = std::clock();
-    steps = simulate(c, control).summary.steps;
-    cpu_model += static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
-    start = std::clock();
-    benchmark::DoNotOptimize(simulate_train(train, control).summary.steps);
-    cpu_train += static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
-  }
+  const auto [cpu_model, cpu_train] = alternated_cpu_s(
+      state, [&] { steps = simulate(c, control).summary.steps; },
+      [&] { benchmark::DoNotOptimize(simulate_train(train, control).summary.steps); });
   const auto n = static_cast<double>(state.iterations());
   state.counters["model_signal_per_cpu_s"] = c.integrator.end_time_s / (cpu_model / n);
   state.counters["train_signal_per_cpu_s"] = c.integrator.end_time_s / (cpu_train / n);

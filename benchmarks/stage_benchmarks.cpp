@@ -24,7 +24,6 @@
 // (two_gear_train) against the two-gear model (simulate), the table built
 // beforehand, alternated within each iteration so that both see the same
 // machine state; the ratio of their CPU times.
-#include <time.h>
 
 #include <string>
 
@@ -39,12 +38,6 @@
 namespace gearimpact::bench {
 
 namespace {
-
-double thread_cpu_s() {
-  timespec t{};
-  ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 PlanetaryStage four_planet_stage(double step_s, double end_s) {
   PlanetaryStage s;
@@ -83,18 +76,13 @@ void stage_run(benchmark::State& state, double step_s) {
   control.keep_series = false;
   const GearTrain half = planetary_train(four_planet_stage(step_s, 0.1));
   const GearTrain whole = planetary_train(four_planet_stage(step_s, 0.2));
-  double cpu_half = 0.0;
-  double cpu_whole = 0.0;
   TrainResult r;
-  for (auto _ : state) {
-    double start = thread_cpu_s();
-    benchmark::DoNotOptimize(simulate_train(half, control).summary.steps);
-    cpu_half += thread_cpu_s() - start;
-    start = thread_cpu_s();
-    r = simulate_train(whole, control);
-    cpu_whole += thread_cpu_s() - start;
-    benchmark::DoNotOptimize(r.summary.steps);
-  }
+  const auto [cpu_half, cpu_whole] = alternated_cpu_s(
+      state, [&] { benchmark::DoNotOptimize(simulate_train(half, control).summary.steps); },
+      [&] {
+        r = simulate_train(whole, control);
+        benchmark::DoNotOptimize(r.summary.steps);
+      });
   const auto n = static_cast<double>(state.iterations());
   state.counters["signal_per_cpu_s"] = 0.2 / (cpu_whole / n);
   state.counters["beyond_setup_per_cpu_s"] = 0.1 / ((cpu_whole - cpu_half) / n);
@@ -114,17 +102,10 @@ void two_gear_as_train(benchmark::State& state) {
   train.meshes.front().table = table;
   RunControl control;
   control.keep_series = false;
-  double cpu_model = 0.0;
-  double cpu_train = 0.0;
   long long steps = 0;
-  for (auto _ : state) {
-    double start = thread_cpu_s();
-    steps = simulate(c, *table, control).summary.steps;
-    cpu_model += thread_cpu_s() - start;
-    start = thread_cpu_s();
-    benchmark::DoNotOptimize(simulate_train(train, control).summary.steps);
-    cpu_train += thread_cpu_s() - start;
-  }
+  const auto [cpu_model, cpu_train] = alternated_cpu_s(
+      state, [&] { steps = simulate(c, *table, control).summary.steps; },
+      [&] { benchmark::DoNotOptimize(simulate_train(train, control).summary.steps); });
   const auto n = static_cast<double>(state.iterations());
   state.counters["model_ns_per_step"] = cpu_model / n * 1e9 / static_cast<double>(steps);
   state.counters["train_ns_per_step"] = cpu_train / n * 1e9 / static_cast<double>(steps);
