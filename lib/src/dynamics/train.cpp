@@ -315,6 +315,26 @@ std::vector<int> degrees_of_freedom(const GearTrain& train) {
   return dof;
 }
 
+}  // namespace
+
+int count_dofs(const std::vector<int>& dof) {
+  return dof.empty() ? 0 : *std::max_element(dof.begin(), dof.end()) + 1;
+}
+
+std::vector<double> dof_inertias(const GearTrain& train, const std::vector<int>& dof, int dofs) {
+  std::vector<double> inertia(static_cast<std::size_t>(dofs), 0.0);
+  std::vector<bool> seen(static_cast<std::size_t>(dofs), false);
+  for (std::size_t i = 0; i < train.bodies.size(); ++i) {
+    const auto d = static_cast<std::size_t>(dof[i]);
+    inertia[d] =
+        seen[d] ? inertia[d] + train.bodies[i].inertia_kg_m2 : train.bodies[i].inertia_kg_m2;
+    seen[d] = true;
+  }
+  return inertia;
+}
+
+namespace {
+
 void check_finite_field(const std::string& field, double value) {
   if (!std::isfinite(value)) throw InputError(field, value, "a finite value");
 }
@@ -590,15 +610,9 @@ class TrainSystem {
 
   TrainSystem(const GearTrain& train, const std::vector<const StiffnessTable*>& tables)
       : train_(train), body_dof_(degrees_of_freedom(train)) {
-    dofs_ = *std::max_element(body_dof_.begin(), body_dof_.end()) + 1;
-    // A degree of freedom's inertia: its bodies' summed in their order.
-    std::array<bool, kBodies> seen{};
-    for (std::size_t i = 0; i < train.bodies.size(); ++i) {
-      const auto d = static_cast<std::size_t>(body_dof_[i]);
-      inertia_[d] =
-          seen[d] ? inertia_[d] + train.bodies[i].inertia_kg_m2 : train.bodies[i].inertia_kg_m2;
-      seen[d] = true;
-    }
+    dofs_ = count_dofs(body_dof_);
+    const std::vector<double> inertia = dof_inertias(train, body_dof_, dofs_);
+    std::copy(inertia.begin(), inertia.end(), inertia_.begin());
     driver_.fill(-1);
     for (std::size_t i = 0; i < train.bodies.size(); ++i) {
       const TrainBody& b = train.bodies[i];
@@ -1345,7 +1359,8 @@ RingLine ring_line(const TrainMesh& mesh, const StiffnessTable& table) {
 GearTrain two_gear_train(const SimulationCase& c) {
   GearTrain train;
   // A helical pair's discs are those of the section it runs as.
-  const GearPair& discs = dynamics_case(c).gears;
+  const SimulationCase d = dynamics_case(c);
+  const GearPair& discs = d.gears;
   TrainBody pinion;
   pinion.name = "pinion";
   pinion.inertia_kg_m2 = moment_of_inertia(discs, Gear::one);
@@ -1370,7 +1385,7 @@ GearTrain two_gear_train(const SimulationCase& c) {
     // On elastic bearings each gear's centre translates: the bodies carry the
     // bearings, with the planar model's masses (planar_mounting: a disc's
     // where none is given), and its sensor; the mesh turns about fixed axes.
-    const PlanarMounting m = planar_mounting(dynamics_case(c));
+    const PlanarMounting m = planar_mounting(d);
     const GearBearing* bearing[2] = {&c.bearings.gear1, &c.bearings.gear2};
     for (std::size_t i = 0; i < 2; ++i) {
       GearBearing b = *bearing[i];
@@ -1394,17 +1409,9 @@ std::vector<int> train_degrees_of_freedom(const GearTrain& train) {
 
 std::shared_ptr<const SpeedController> train_speed_controller(const GearTrain& train, int body) {
   const std::vector<int> dof_of = degrees_of_freedom(train);
-  const int dofs = *std::max_element(dof_of.begin(), dof_of.end()) + 1;
+  const int dofs = count_dofs(dof_of);
   const auto count = static_cast<std::size_t>(dofs);
-  // Each degree of freedom's inertia: its bodies' summed in their order.
-  std::vector<double> inertia(count, 0.0);
-  std::vector<bool> seen(count, false);
-  for (std::size_t i = 0; i < train.bodies.size(); ++i) {
-    const auto d = static_cast<std::size_t>(dof_of[i]);
-    inertia[d] =
-        seen[d] ? inertia[d] + train.bodies[i].inertia_kg_m2 : train.bodies[i].inertia_kg_m2;
-    seen[d] = true;
-  }
+  const std::vector<double> inertia = dof_inertias(train, dof_of, dofs);
   // Each degree of freedom's speed per unit speed of the body's: across a
   // mesh w_b = w_a Rb_a / Rb_b, across a torsional shaft the same; 0 where no
   // mesh or shaft leads.

@@ -134,23 +134,6 @@ std::vector<int> bearing_bodies(const GearTrain& train, const std::vector<int>& 
   return body;
 }
 
-int count_dofs(const std::vector<int>& dof) {
-  return dof.empty() ? 0 : *std::max_element(dof.begin(), dof.end()) + 1;
-}
-
-// The summed inertia of each degree of freedom, its bodies' in their order.
-std::vector<double> dof_inertias(const GearTrain& train, const std::vector<int>& dof, int dofs) {
-  std::vector<double> inertia(static_cast<std::size_t>(dofs), 0.0);
-  std::vector<bool> seen(static_cast<std::size_t>(dofs), false);
-  for (std::size_t i = 0; i < train.bodies.size(); ++i) {
-    const auto d = static_cast<std::size_t>(dof[i]);
-    inertia[d] =
-        seen[d] ? inertia[d] + train.bodies[i].inertia_kg_m2 : train.bodies[i].inertia_kg_m2;
-    seen[d] = true;
-  }
-  return inertia;
-}
-
 // What each line of each mesh reports beside the derivatives.
 template <class L>
 struct PlanarTrainForces {
@@ -688,11 +671,11 @@ class PlanarTrainSystem {
   std::array<double, L::kDofs> inverse_inertia_{};
   std::array<bool, L::kDofs> translating_{};
   std::array<double, L::kDofs> mass_{};
-  // Each speed-controlled body's controller (train_speed_controller).
-  std::vector<std::pair<std::size_t, std::shared_ptr<const SpeedController>>> controllers_;
   std::array<double, L::kDofs> inverse_mass_{};
   std::array<double, L::kDofs> kx_{}, ky_{}, cx_{}, cy_{};
   std::array<int, L::kDofs> driver_{};
+  // Each speed-controlled body's controller (train_speed_controller).
+  std::vector<std::pair<std::size_t, std::shared_ptr<const SpeedController>>> controllers_;
   bool driven_ = false;
   // A pinned planet's carrier (-1: none), its pin's radius and direction.
   std::array<int, L::kDofs> pin_carrier_{};

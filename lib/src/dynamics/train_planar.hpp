@@ -28,6 +28,13 @@ RingLine ring_line(const SimulationCase& pair);
 // builds it, not ISO's.
 RingLine ring_line(const TrainMesh& mesh, const StiffnessTable& table);
 
+// The number of degrees of freedom of a train whose bodies are on the
+// degrees of freedom `dof` (degrees_of_freedom).
+int count_dofs(const std::vector<int>& dof);
+// The summed inertia of each of the `dofs` degrees of freedom, its bodies' in
+// their order.
+std::vector<double> dof_inertias(const GearTrain& train, const std::vector<int>& dof, int dofs);
+
 // Whether any body of the train has its centre on elastic bearings.
 bool has_planar_bodies(const GearTrain& train);
 
