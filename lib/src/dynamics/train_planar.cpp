@@ -24,6 +24,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -72,8 +73,10 @@ struct PlanarTrainLayout {
   }
   static constexpr std::size_t kSize = kWork + 6 + 3 * kMeshes;
 };
-// A two-stage rig (4 bodies, 3 degrees of freedom, 2 meshes) fits the small
-// layout, so that it does not pay for the largest train's state.
+// A pair of gears (a two-gear case written as a train) and a two-stage rig
+// (4 bodies, 3 degrees of freedom, 2 meshes) fit layouts of their own, so
+// that neither pays for a larger train's state.
+using PairPlanarTrain = PlanarTrainLayout<2, 1>;
 using SmallPlanarTrain = PlanarTrainLayout<4, 3>;
 using LargePlanarTrain = PlanarTrainLayout<kMaxTrainBodies, kMaxTrainMeshes>;
 // A train whose helical meshes run by slices: each slice a mesh of its own.
@@ -157,12 +160,13 @@ class PlanarTrainSystem {
 
   PlanarTrainSystem(const GearTrain& train, const std::vector<const StiffnessTable*>& tables)
       : train_(train), body_dof_(train_degrees_of_freedom(train)) {
-    dofs_ = count_dofs(body_dof_);
-    const std::vector<double> inertia = dof_inertias(train, body_dof_, dofs_);
-    const std::vector<int> bearing = bearing_bodies(train, body_dof_, dofs_);
+    const int dofs = count_dofs(body_dof_);
+    dofs_ = static_cast<std::size_t>(dofs);
+    const std::vector<double> inertia = dof_inertias(train, body_dof_, dofs);
+    const std::vector<int> bearing = bearing_bodies(train, body_dof_, dofs);
     int conflict = -1;
-    const std::vector<int> sense = turning_senses(train, body_dof_, dofs_, conflict);
-    for (int d = 0; d < dofs_; ++d) {
+    const std::vector<int> sense = turning_senses(train, body_dof_, dofs, conflict);
+    for (int d = 0; d < dofs; ++d) {
       const auto u = static_cast<std::size_t>(d);
       inertia_[u] = inertia[u];
       inverse_inertia_[u] = 1.0 / inertia[u];
@@ -176,9 +180,20 @@ class PlanarTrainSystem {
       cx_[u] = b.damping_x_n_s_per_m;
       cy_[u] = damping_y(b);
     }
+    // Each degree of freedom's bodies in the train's order, so that their
+    // torques add in that order.
+    first_body_.fill(-1);
+    next_body_.fill(-1);
+    for (std::size_t i = train.bodies.size(); i-- > 0;) {
+      const auto d = static_cast<std::size_t>(body_dof_[i]);
+      next_body_[i] = first_body_[d];
+      first_body_[d] = static_cast<int>(i);
+    }
+    controller_.fill(nullptr);
     for (std::size_t i = 0; i < train.bodies.size(); ++i) {
       if (train.bodies[i].torque.kind != Torque::Kind::speed_controlled) continue;
-      controllers_.emplace_back(i, train_speed_controller(train, static_cast<int>(i)));
+      controllers_.push_back(train_speed_controller(train, static_cast<int>(i)));
+      controller_[i] = controllers_.back().get();
     }
     pin_carrier_.fill(-1);
     turning_with_.fill(-1);
@@ -220,7 +235,7 @@ class PlanarTrainSystem {
         f.offset_a = m.line_offset_m / base_radius(m.pair.gears, Gear::one);
         f.offset_b = m.line_offset_m / base_radius(m.pair.gears, Gear::two);
       }
-      frames_.push_back(f);
+      frames_[meshes_.size()] = f;
       // The viscous damper's m_e: the two bodies' as they turn in the train.
       const double mass = effective_mass_kg(
           base_radius(m.pair.gears, Gear::one), inertia_[static_cast<std::size_t>(f.a)],
@@ -231,12 +246,26 @@ class PlanarTrainSystem {
       if (s.kind != TrainShaft::Kind::torsional) continue;
       springs_.push_back({dof_of(s.body_a), dof_of(s.body_b), s.stiffness_n_m_per_rad});
     }
+    mesh_count_ = meshes_.size();
+    for (std::size_t k = 0; k < mesh_count_; ++k) term_bound_[k] = meshes_[k].term_energy_bound();
+    turning_ =
+        std::any_of(turning_with_.begin(), turning_with_.end(), [](int c) { return c >= 0; });
+    // Each degree of freedom's constant torques summed in the train's order,
+    // as rhs would add them.
+    plain_ = !driven_ && !turning_;
+    for (std::size_t d = 0; d < dofs_; ++d) {
+      for (int i = first_body_[d]; i >= 0; i = next_body_[static_cast<std::size_t>(i)]) {
+        const Torque& torque = train.bodies[static_cast<std::size_t>(i)].torque;
+        plain_ = plain_ && torque.kind == Torque::Kind::constant;
+        constant_torque_[d] =
+            i == first_body_[d] ? torque.constant_n_m : constant_torque_[d] + torque.constant_n_m;
+      }
+    }
   }
 
-  int dofs() const { return dofs_; }
   int dof_of(int body) const { return body_dof_[static_cast<std::size_t>(body)]; }
   bool translating(int dof) const { return translating_[static_cast<std::size_t>(dof)]; }
-  std::size_t mesh_count() const { return meshes_.size(); }
+  std::size_t mesh_count() const { return mesh_count_; }
   const MeshLine& mesh(std::size_t k) const { return meshes_[k]; }
   bool driven() const { return driven_; }
 
@@ -277,21 +306,46 @@ class PlanarTrainSystem {
     return q;
   }
 
+  // Whether the meshes' stored energy at y in the mode may exceed an entry
+  // of `most` in some term: not when the sum over the meshes of each one's
+  // bound (MeshLine::term_energy_bound) times its loaded pairs' delta^2 is
+  // below every entry, which spares the terms' sums on most steps.
+  bool terms_may_exceed(const StateType& y, const ModeType& mode,
+                        const std::array<double, kTermCount>& most) const {
+    std::array<double, kTermCount> bound{};
+    for (std::size_t k = 0; k < L::kMeshes && k < mesh_count_; ++k) {
+      if (!term_bound_[k]) return true;
+      const PlanarMeshMotion q = motion(k, y);
+      double squares = 0.0;  // delta^2 summed over the loaded pairs of both lines
+      for (std::size_t i = 0; i < 2; ++i) {
+        const Mode& m = mode.line[2 * k + i];
+        if (m.region == Region::free) continue;
+        const double dl = meshes_[k].delta(kLines[i], q);
+        squares += m.count * dl * dl;
+      }
+      for (std::size_t i = 0; i < kTermCount; ++i) bound[i] += (*term_bound_[k])[i] * squares;
+    }
+    for (std::size_t i = 0; i < kTermCount; ++i) {
+      if (bound[i] > most[i]) return true;
+    }
+    return false;
+  }
+
   // A prescribed-speed body's closed form written into y at time t.
   void impose_driver(double t, StateType& y) const {
     if (!driven_) return;
-    for (int d = 0; d < dofs_; ++d) {
-      const int body = driver_[static_cast<std::size_t>(d)];
+    for (std::size_t d = 0; d < L::kDofs && d < dofs_; ++d) {
+      const int body = driver_[d];
       if (body < 0) continue;
       const TrainBody& b = train_.bodies[static_cast<std::size_t>(body)];
       if (b.held) {
-        y[L::theta(static_cast<std::size_t>(d))] = b.theta_rad;
-        y[L::w(static_cast<std::size_t>(d))] = 0.0;
+        y[L::theta(d)] = b.theta_rad;
+        y[L::w(d)] = 0.0;
         continue;
       }
       const DriverMotion m = driver_motion(b.torque, b.theta_rad, t);
-      y[L::theta(static_cast<std::size_t>(d))] = m.theta_rad;
-      y[L::w(static_cast<std::size_t>(d))] = m.speed_rad_per_s;
+      y[L::theta(d)] = m.theta_rad;
+      y[L::w(d)] = m.speed_rad_per_s;
     }
   }
 
@@ -300,13 +354,28 @@ class PlanarTrainSystem {
   // two-gear planar system adds them), the torsional shafts, the torques.
   void rhs(double t, const StateType& y, const ModeType& mode, const MemoryType& memory,
            StateType& dy, ForcesType* forces = nullptr) const {
+    if (plain_) {
+      equations<true>(t, y, mode, memory, dy, forces);
+    } else {
+      equations<false>(t, y, mode, memory, dy, forces);
+    }
+  }
+
+ private:
+  // rhs; kPlain where the train has no driver, no carrier and only constant
+  // torques (plain_), whose branches it then leaves out of every call.
+  template <bool kPlain>
+  [[gnu::flatten]] void equations(double t, const StateType& y, const ModeType& mode,
+                                  const MemoryType& memory, StateType& dy,
+                                  ForcesType* forces) const {
+    dy = StateType{};
     std::array<double, L::kDofs> fx{};
     std::array<double, L::kDofs> fy{};
     std::array<double, L::kDofs> moment{};
     double bearing_power = 0.0;
-    for (std::size_t d = 0; d < static_cast<std::size_t>(dofs_); ++d) {
+    for (std::size_t d = 0; d < L::kDofs && d < dofs_; ++d) {
       if (!translating_[d]) continue;
-      if (pin_carrier_[d] >= 0) {
+      if (!kPlain && pin_carrier_[d] >= 0) {
         // The bearing between the planet and its pin: its force on the
         // planet, the opposite on the carrier's centre.
         const PinDeflection p = pin_deflection(d, y);
@@ -328,8 +397,7 @@ class PlanarTrainSystem {
       bearing_power += cy_[d] * vy * vy;
     }
     MeshPowers powers;
-    std::array<MeshPowers, L::kMeshes> own;
-    for (std::size_t k = 0; k < meshes_.size(); ++k) {
+    for (std::size_t k = 0; k < L::kMeshes && k < mesh_count_; ++k) {
       const MeshPowers before = powers;
       const Frame& f = frames_[k];
       const auto a = static_cast<std::size_t>(f.a);
@@ -383,9 +451,9 @@ class PlanarTrainSystem {
         add(a, loads.force_a);
         add(b, loads.force_b);
       }
-      own[k].damping_w = powers.damping_w - before.damping_w;
-      own[k].friction_w = powers.friction_w - before.friction_w;
-      own[k].mesh_damping_w = powers.mesh_damping_w - before.mesh_damping_w;
+      dy[L::mesh_loss(k, 0)] = powers.damping_w - before.damping_w;
+      dy[L::mesh_loss(k, 1)] = powers.friction_w - before.friction_w;
+      dy[L::mesh_loss(k, 2)] = powers.mesh_damping_w - before.mesh_damping_w;
     }
     for (const Spring& s : springs_) {
       // The shaft twisted by theta_a - theta_b pulls b forward and a back.
@@ -395,28 +463,26 @@ class PlanarTrainSystem {
       moment[a] -= torque_on_b;
       moment[b] += torque_on_b;
     }
-    dy = StateType{};
     double work = 0.0;
-    for (std::size_t d = 0; d < static_cast<std::size_t>(dofs_); ++d) {
-      double torque = 0.0;
-      bool seen = false;
-      for (std::size_t i = 0; i < train_.bodies.size(); ++i) {
-        if (static_cast<std::size_t>(body_dof_[i]) != d) continue;
-        const double value = body_torque(i, t, y[L::theta(d)], y[L::w(d)]);
-        torque = seen ? torque + value : value;
-        seen = true;
+    for (std::size_t d = 0; d < L::kDofs && d < dofs_; ++d) {
+      double torque = kPlain ? constant_torque_[d] : 0.0;
+      for (int i = first_body_[d]; !kPlain && i >= 0; i = next_body_[static_cast<std::size_t>(i)]) {
+        const double value =
+            body_torque(static_cast<std::size_t>(i), t, y[L::theta(d)], y[L::w(d)]);
+        torque = i == first_body_[d] ? value : torque + value;
       }
       // The centres in this carrier's turning axes, each at r (its speed
       // u' + Omega e_z x r): the kinetic energy's cross terms give the carrier
       // J_c theta_c'' = M_c - sum (r x F)_z, F the force on each centre and
       // J_c the carrier's own (docs/planetary.md, The turning axes).
-      for (std::size_t e = 0; e < static_cast<std::size_t>(dofs_); ++e) {
+      for (std::size_t e = 0; !kPlain && turning_ && e < L::kDofs && e < dofs_; ++e) {
         if (turning_with_[e] != static_cast<int>(d) || !translating_[e]) continue;
         const std::array<double, 2> r = turning_position(e, y);
         moment[d] -= r[0] * fy[e] - r[1] * fx[e];
       }
       double acceleration = 0.0;
-      if (driver_[d] >= 0) {
+      const bool driven = !kPlain && driver_[d] >= 0;
+      if (driven) {
         // The driver applies the torque that gives its body the prescribed
         // acceleration against the rest; its work is the torque work. A held
         // body's is what holds it still.
@@ -428,14 +494,14 @@ class PlanarTrainSystem {
       const double w = y[L::w(d)];
       work = d == 0 ? torque * w : work + torque * w;
       dy[L::theta(d)] = w;
-      dy[L::w(d)] = driver_[d] >= 0 ? acceleration : (torque + moment[d]) * inverse_inertia_[d];
+      dy[L::w(d)] = driven ? acceleration : (torque + moment[d]) * inverse_inertia_[d];
       if (!translating_[d]) continue;
       dy[L::x(d)] = y[L::vx(d)];
       dy[L::y(d)] = y[L::vy(d)];
       dy[L::vx(d)] = fx[d] * inverse_mass_[d];
       dy[L::vy(d)] = fy[d] * inverse_mass_[d];
     }
-    for (std::size_t e = 0; e < static_cast<std::size_t>(dofs_); ++e) {
+    for (std::size_t e = 0; !kPlain && turning_ && e < L::kDofs && e < dofs_; ++e) {
       if (turning_with_[e] < 0 || !translating_[e]) continue;
       // The rest of m r'' in the axes turning at Omega: u'' = F/m - Omega'
       // e_z x r - 2 Omega e_z x u' + Omega^2 r, e_z x (a, b) = (-b, a); on a
@@ -453,17 +519,13 @@ class PlanarTrainSystem {
     dy[L::kParametric] = powers.parametric_w;
     dy[L::kBearingLoss] = bearing_power;
     dy[L::kMeshDamperLoss] = powers.mesh_damping_w;
-    for (std::size_t k = 0; k < meshes_.size(); ++k) {
-      dy[L::mesh_loss(k, 0)] = own[k].damping_w;
-      dy[L::mesh_loss(k, 1)] = own[k].friction_w;
-      dy[L::mesh_loss(k, 2)] = own[k].mesh_damping_w;
-    }
   }
 
+ public:
   int event_values(const StateType& y, const ModeType& mode, const MemoryType& memory,
                    EventsType& g) const {
     int n = 0;
-    for (std::size_t k = 0; k < meshes_.size(); ++k) {
+    for (std::size_t k = 0; k < L::kMeshes && k < mesh_count_; ++k) {
       const PlanarMeshMotion q = motion(k, y);
       for (std::size_t i = 0; i < 2; ++i) {
         n += meshes_[k].line_event_values(kLines[i], q, mode.line[2 * k + i], memory[2 * k + i],
@@ -490,7 +552,7 @@ class PlanarTrainSystem {
   }
   double bearing_energy(const StateType& y) const {
     double e = 0.0;
-    for (std::size_t d = 0; d < static_cast<std::size_t>(dofs_); ++d) {
+    for (std::size_t d = 0; d < L::kDofs && d < dofs_; ++d) {
       if (!translating_[d]) continue;
       if (pin_carrier_[d] >= 0) {
         const PinDeflection p = pin_deflection(d, y);
@@ -514,7 +576,7 @@ class PlanarTrainSystem {
   }
   double kinetic_energy(const StateType& y) const {
     double e = 0.0;
-    for (std::size_t d = 0; d < static_cast<std::size_t>(dofs_); ++d) {
+    for (std::size_t d = 0; d < L::kDofs && d < dofs_; ++d) {
       if (translating_[d]) {
         double vx = y[L::vx(d)];
         double vy = y[L::vy(d)];
@@ -584,7 +646,7 @@ class PlanarTrainSystem {
         internal ? ring.line.ring_base_radius_m : base_radius(m.pair.gears, Gear::two);
     f.offset_a = m.line_offset_m / rb1;
     f.offset_b = m.line_offset_m / rb2;
-    frames_.push_back(f);
+    frames_[meshes_.size()] = f;
     // The viscous damper's m_e as the rotational stage's: each free body's
     // lever squared over its inertia, the carrier's with the planets' orbits.
     const auto lever = [&](int dof, double r, double inertia) {
@@ -604,8 +666,7 @@ class PlanarTrainSystem {
   // The carrier's inertia with m R^2 of each planet pinned on it.
   double carrier_inertia_with_orbits(int carrier) const {
     double inertia = inertia_[static_cast<std::size_t>(carrier)];
-    for (int d = 0; d < dofs_; ++d) {
-      const auto u = static_cast<std::size_t>(d);
+    for (std::size_t u = 0; u < dofs_; ++u) {
       if (pin_carrier_[u] == carrier) inertia += mass_[u] * pin_radius_[u] * pin_radius_[u];
     }
     return inertia;
@@ -646,10 +707,7 @@ class PlanarTrainSystem {
     const Torque& torque = train_.bodies[i].torque;
     switch (torque.kind) {
       case Torque::Kind::speed_controlled:
-        for (const auto& [body, controller] : controllers_) {
-          if (body == i) return controller->torque_n_m(t, theta, w);
-        }
-        break;
+        return controller_[i]->torque_n_m(t, theta, w);
       case Torque::Kind::constant:
         return torque.constant_n_m;
       case Torque::Kind::prescribed_speed:
@@ -666,7 +724,14 @@ class PlanarTrainSystem {
 
   const GearTrain& train_;
   std::vector<int> body_dof_;
-  int dofs_ = 0;
+  std::size_t dofs_ = 0;
+  std::size_t mesh_count_ = 0;
+  // Each degree of freedom's first body and each body's next on the same
+  // degree of freedom (-1: none), in the train's order. Arrays by body are
+  // as long as the layout's degrees of freedom: run_planar_train picks the
+  // layout by the train's bodies.
+  std::array<int, L::kDofs> first_body_{};
+  std::array<int, L::kDofs> next_body_{};
   std::array<double, L::kDofs> inertia_{};
   std::array<double, L::kDofs> inverse_inertia_{};
   std::array<bool, L::kDofs> translating_{};
@@ -674,8 +739,10 @@ class PlanarTrainSystem {
   std::array<double, L::kDofs> inverse_mass_{};
   std::array<double, L::kDofs> kx_{}, ky_{}, cx_{}, cy_{};
   std::array<int, L::kDofs> driver_{};
-  // Each speed-controlled body's controller (train_speed_controller).
-  std::vector<std::pair<std::size_t, std::shared_ptr<const SpeedController>>> controllers_;
+  // Each speed-controlled body's controller (train_speed_controller), and
+  // each body's (null: not speed-controlled).
+  std::vector<std::shared_ptr<const SpeedController>> controllers_;
+  std::array<const SpeedController*, L::kDofs> controller_{};
   bool driven_ = false;
   // A pinned planet's carrier (-1: none), its pin's radius and direction.
   std::array<int, L::kDofs> pin_carrier_{};
@@ -683,8 +750,13 @@ class PlanarTrainSystem {
   // The carrier in whose turning axes each degree of freedom's centre moves:
   // a planet's pin's, and a stage mesh's for its members (-1: fixed axes).
   std::array<int, L::kDofs> turning_with_{};
+  bool turning_ = false;                            // some centre moves in a carrier's turning axes
+  bool plain_ = false;                              // no driver, no carrier, only constant torques
+  std::array<double, L::kDofs> constant_torque_{};  // their sum on each degree of freedom
   std::vector<MeshLine> meshes_;
-  std::vector<Frame> frames_;
+  std::array<Frame, L::kMeshes> frames_{};
+  // Each mesh's MeshLine::term_energy_bound, per term in J/m^2.
+  std::array<std::optional<std::array<double, kTermCount>>, L::kMeshes> term_bound_{};
   std::vector<Spring> springs_;
 };
 
@@ -805,8 +877,7 @@ class PlanarTrainRun {
     if (event_) jump_work_ += mesh - before_;
     event_ = false;
     stepped_per_stage_ = false;
-    ElasticEnergy terms;
-    for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
+    for (std::size_t k = 0; k < L::kMeshes && k < system_.mesh_count(); ++k) {
       const MeshLine& line = system_.mesh(k);
       const PlanarMeshMotion q = system_.motion(k, y_);
       const double penetration =
@@ -822,10 +893,18 @@ class PlanarTrainRun {
                               format_number(half_base_pitch_m_[k]) +
                               " m): the model's contact on the line of action no longer holds");
       }
-      for (std::size_t i = 0; i < 2; ++i) line.add_stored_energy(q, mode_.line[2 * k + i], terms);
     }
-    for (std::size_t i = 0; i < kTermCount; ++i) {
-      s.energy_max_j[i] = std::max(s.energy_max_j[i], terms.j[i]);
+    if (system_.terms_may_exceed(y_, mode_, s.energy_max_j)) {
+      ElasticEnergy terms;
+      for (std::size_t k = 0; k < L::kMeshes && k < system_.mesh_count(); ++k) {
+        const PlanarMeshMotion q = system_.motion(k, y_);
+        for (std::size_t i = 0; i < 2; ++i) {
+          system_.mesh(k).add_stored_energy(q, mode_.line[2 * k + i], terms);
+        }
+      }
+      for (std::size_t i = 0; i < kTermCount; ++i) {
+        s.energy_max_j[i] = std::max(s.energy_max_j[i], terms.j[i]);
+      }
     }
     const double energy =
         system_.kinetic_energy(y_) + mesh + system_.bearing_energy(y_) + system_.shaft_energy(y_);
@@ -855,7 +934,7 @@ class PlanarTrainRun {
       row.centres.push_back(
           {y[L::x(d)], y[L::y(d)], y[L::vx(d)], y[L::vy(d)], bearing[0], bearing[1]});
     }
-    for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
+    for (std::size_t k = 0; k < L::kMeshes && k < system_.mesh_count(); ++k) {
       const MeshLine& line = system_.mesh(k);
       const PlanarMeshMotion q = system_.motion(k, y);
       // As the two-gear planar row: the drive line's s_d, the larger
@@ -899,7 +978,7 @@ class PlanarTrainRun {
     p.shaft_energy_final_j = system_.shaft_energy(y_);
     s.final_w1_rad_per_s = y_[L::w(static_cast<std::size_t>(system_.dof_of(0)))];
     s.final_w2_rad_per_s = y_[L::w(static_cast<std::size_t>(system_.dof_of(1)))];
-    for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
+    for (std::size_t k = 0; k < L::kMeshes && k < system_.mesh_count(); ++k) {
       TrainMeshSummary& mesh = result_.meshes[k];
       mesh.damping_loss_j = y_[L::mesh_loss(k, 0)];
       mesh.friction_loss_j = y_[L::mesh_loss(k, 1)];
@@ -927,7 +1006,7 @@ class PlanarTrainRun {
   // The meshes' stored energy at `state` in the run's modes, line by line.
   double mesh_energy(const State& state) const {
     double e = 0.0;
-    for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
+    for (std::size_t k = 0; k < L::kMeshes && k < system_.mesh_count(); ++k) {
       const PlanarMeshMotion q = system_.motion(k, state);
       for (std::size_t i = 0; i < 2; ++i) {
         e += system_.mesh(k).elastic_energy_j(q, mode_.line[2 * k + i]);
@@ -940,7 +1019,7 @@ class PlanarTrainRun {
   // where a line's contact begins (its damping memory then set), its end
   // where it ends; then the forces' signs.
   void classify(double t) {
-    for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
+    for (std::size_t k = 0; k < L::kMeshes && k < system_.mesh_count(); ++k) {
       const MeshLine& line = system_.mesh(k);
       const PlanarMeshMotion q = system_.motion(k, y_);
       for (std::size_t i = 0; i < 2; ++i) {
@@ -1237,6 +1316,10 @@ void check_planar_train_step(const GearTrain& train,
 TrainResult run_planar_train(const GearTrain& train,
                              const std::vector<const StiffnessTable*>& tables,
                              const RunControl& control) {
+  if (train.bodies.size() <= PairPlanarTrain::kDofs &&
+      train.meshes.size() <= PairPlanarTrain::kMeshes) {
+    return run_layout<PairPlanarTrain>(train, tables, control);
+  }
   if (train.bodies.size() <= SmallPlanarTrain::kDofs &&
       train.meshes.size() <= SmallPlanarTrain::kMeshes) {
     return run_layout<SmallPlanarTrain>(train, tables, control);
