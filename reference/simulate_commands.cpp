@@ -212,7 +212,7 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
     // Samples instead of the integrator's rows, streamed alike. The rate is
     // checked by simulate(), before the run; a bad one gives no count here.
     const bool progress = std::isfinite(*sample_rate) && *sample_rate > 0.0 &&
-                          sample_count(c, *sample_rate) >= kRowsWorthProgress;
+                          sample_count(c.integrator.end_time_s, *sample_rate) >= kRowsWorthProgress;
     series_file.emplace(o.out);
     if (c.bearings.kind == BearingKind::elastic) {
       // The planar model's samples: its state, accelerations, bearing and

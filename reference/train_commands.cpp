@@ -1,17 +1,23 @@
 // `gearimpact train CASE --out DIR`: runs a gear train's case file (docs/case-files.md, A gear
-// train; a two-gear case file is the train of its pair) and writes its series and summary.
+// train; a two-gear case file is the train of its pair) and writes its series and summary, and
+// with --sample-rate its sensor's samples.
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
+#include "gearimpact/case/units.hpp"
 #include "gearimpact/dynamics/planetary_train.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/dynamics/train.hpp"
+#include "gearimpact/error.hpp"
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/results.hpp"
+#include "gearimpact/named_values.hpp"
 
 namespace gearimpact::cli {
 
@@ -22,6 +28,8 @@ struct TrainOptions {
   std::string out;
   bool overwrite = false;
   std::vector<std::string> sets;
+  std::string sample_rate;
+  std::string sample = "interval-average";
 };
 
 // A stage file ([stage]): the stage's train run, its summary with the Willis residual, and the
@@ -45,25 +53,56 @@ void run_stage(const TrainOptions& o) {
   std::cerr << "train: wrote " << (std::filesystem::path(o.out) / "series.csv").string() << "\n";
 }
 
-void run_train(const TrainOptions& o) {
-  // Every refusal before any work: the folder, then the case.
+void run_train(const TrainOptions& o, const CLI::App& command) {
+  // Every refusal before any work: the folder, the flags, then the case.
   require_output_folder(o.out, o.overwrite, {o.case_file});
+  RunControl control;
+  if (command.get_option("--sample-rate")->count() > 0) {
+    control.sample_rate_hz =
+        parse_plain_or_quantity(o.sample_rate, Dimension::frequency, "--sample-rate");
+  }
+  control.sample = value_named(kSampleKinds, o.sample, "--sample");
+  if (command.get_option("--sample")->count() > 0 && !control.sample_rate_hz) {
+    throw InputError(std::vector<Problem>{
+        refused_problem("--sample", o.sample, "needs --sample-rate, whose samples it defines",
+                        "--sample KIND with --sample-rate FS")});
+  }
   if (is_stage_file(o.case_file)) {
+    if (control.sample_rate_hz) {
+      throw InputError(std::vector<Problem>{refused_problem(
+          "--sample-rate", o.sample_rate,
+          "not for a stage file: its ring sensor is written at every step (ring_sensor.csv)",
+          "--sample-rate FS with a train file that has a [sensor]")});
+    }
     run_stage(o);
     return;
   }
   const GearTrain file = read_train_file(o.case_file, o.sets);
-  const TrainResult result = simulate_train(file);
+  const TrainResult result = [&] {
+    try {
+      return simulate_train(file, control);
+    } catch (const InputError& e) {
+      // The library's sample_rate is the user's --sample-rate.
+      if (e.field() != "sample_rate") throw;
+      std::vector<Problem> problems = e.problems();
+      problems.front() = problems.front().renamed("--sample-rate", o.sample_rate);
+      throw InputError(std::move(problems));
+    }
+  }();
   // The outputs name the meshes the run ran (a helical mesh by slices: one per slice).
   const GearTrain train = dynamics_train(file);
   const std::string summary = train_summary_json(train, result);
   AtomicFolder folder(o.out, o.overwrite, {o.case_file});
   const std::filesystem::path dir = folder.temporary();
   write_file_atomically((dir / "series.csv").string(), train_series_csv(train, result.series));
+  if (control.sample_rate_hz) {
+    write_file_atomically((dir / "samples.csv").string(), train_series_csv(train, result.samples));
+  }
   write_file_atomically((dir / "summary.json").string(), summary);
   folder.commit();
   std::cout << summary;
-  std::cerr << "train: wrote " << (std::filesystem::path(o.out) / "series.csv").string() << "\n";
+  std::cerr << "train: wrote " << (std::filesystem::path(o.out) / "series.csv").string()
+            << (control.sample_rate_hz ? " and samples.csv" : "") << "\n";
 }
 
 }  // namespace
@@ -91,7 +130,16 @@ void register_train_commands(CLI::App& app) {
       "meshes.NAME.SECTION.KEY (a mesh's pair key), or SECTION.KEY of the file "
       "(integrator.end_time; gears.module, every mesh's default; stage.KEY of a stage)");
   train->add_flag("--overwrite", o->overwrite, "replace a non-empty --out folder whole");
-  train->callback([o] { run_train(*o); });
+  train->add_option(
+      "--sample-rate", o->sample_rate,
+      "Hz, a plain number or with a unit (\"51.2 kHz\"): also write samples.csv, the series' "
+      "columns at t = n / FS exactly (the steps' continuous extension), its sensor column the "
+      "[sensor]'s acceleration as --sample says; a train with a [sensor] only");
+  train->add_option(
+      "--sample", o->sample,
+      "the sensor's samples: interval-average (default: the mean acceleration over the interval "
+      "ending at each sample, from n = 1 on) or point (the value at each sample's instant)");
+  train->callback([o, train] { run_train(*o, *train); });
 }
 
 }  // namespace gearimpact::cli

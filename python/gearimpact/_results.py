@@ -146,6 +146,15 @@ class SimulationResult:
         )
 
 
+def _sample_rate(sample_rate):
+    """sample_rate as given to simulate and train: None, a number of Hz or a text with a unit."""
+    if sample_rate is None:
+        return None
+    if isinstance(sample_rate, str):
+        return _core.parse_frequency(sample_rate, "sample_rate")
+    return _arguments.real("sample_rate", sample_rate)
+
+
 def simulate(
     case, keep_series=True, max_rows=None, sample_rate=None, sample="interval-average", **changes
 ):
@@ -179,12 +188,7 @@ def simulate(
     rows = _core.most_series_rows if max_rows is None else _arguments.integer("max_rows", max_rows)
     if rows < 1:
         raise _arguments.case_error(f"max_rows={max_rows!r}: a count >= 1, or None", "max_rows")
-    if sample_rate is None:
-        rate = None
-    elif isinstance(sample_rate, str):
-        rate = _core.parse_frequency(sample_rate, "sample_rate")
-    else:
-        rate = _arguments.real("sample_rate", sample_rate)
+    rate = _sample_rate(sample_rate)
     kind = _arguments.text("sample", sample)
     run = _as_case(case)
     if changes:
@@ -286,7 +290,7 @@ def train_modes(case_file, sets=()):
     return {"modes": modes, "summary": json.loads(summary)}
 
 
-def train(case_file, sets=(), keep_series=True):
+def train(case_file, sets=(), keep_series=True, sample_rate=None, sample="interval-average"):
     """Runs a gear train's case file (docs/case-files.md, "A gear train"; a two-gear case file
     is the train of its pair; a stage file, "A planetary stage", is the stage's train) as
     ``gearimpact train`` does, bit for bit.
@@ -305,13 +309,22 @@ def train(case_file, sets=(), keep_series=True):
     planetN_tooth_at_sun_planetN, planetN_tooth_at_ring_planetN and ring_tooth_at_ring_planetN,
     int64, the teeth at each mesh in the stage's count) and its summary a
     "stage" entry (the members' mean speeds and the Willis residual); the stage's run keeps its
-    series for these, keep_series=False only leaves the arrays empty. Raises CaseError naming a
-    bad key (stage.KEY in a stage file)."""
+    series for these, keep_series=False only leaves the arrays empty. sample_rate: None, or Hz
+    (> 0, a number or with a unit, "51.2 kHz") for a train file with a [sensor]: the dict's
+    "samples" has the series' columns at t = n / sample_rate exactly (the steps' continuous
+    extension), the command's samples.csv; its sensor_acceleration_m_per_s2 as sample says,
+    "interval-average" (the mean over the interval ending at each sample, from n = 1 on) or
+    "point". Raises CaseError naming a bad key (stage.KEY in a stage file) or sample_rate."""
     path = _arguments.path("case_file", case_file)
     more = _arguments.strings("sets", sets, ["integrator.end_time=2 ms"])
     keep = _arguments.flag("keep_series", keep_series)
-    summary, series, ring_sensor, mesh_teeth = _core.train(path, list(more), keep)
+    rate = _sample_rate(sample_rate)
+    kind = _arguments.text("sample", sample)
+    summary, series, ring_sensor, mesh_teeth, samples = _core.train(
+        path, list(more), keep, rate, kind)
     result = {"series": series, "summary": json.loads(summary)}
+    if samples is not None:
+        result["samples"] = samples
     if ring_sensor is not None:
         result["ring_sensor"] = ring_sensor
         result["mesh_teeth"] = mesh_teeth

@@ -330,25 +330,40 @@ py::tuple run_stage(const std::string& path, const std::vector<std::string>& set
   const std::size_t planets = train.bodies.size() - kFirstPlanetBody;
   return py::make_tuple(summary,
                         table_arrays(train_series_columns(train), std::move(result.series)), sensor,
-                        table_arrays(stage_teeth_columns(planets), std::move(teeth)));
+                        table_arrays(stage_teeth_columns(planets), std::move(teeth)), py::none());
 }
 
-py::tuple run_train(const std::string& path, const std::vector<std::string>& sets,
-                    bool keep_series) {
-  if (is_stage_file(path)) return run_stage(path, sets, keep_series);
+// With sample_rate_hz, the sensor's samples as arrays by the same columns (the command's
+// samples.csv), else None.
+py::tuple run_train(const std::string& path, const std::vector<std::string>& sets, bool keep_series,
+                    std::optional<double> sample_rate_hz, const std::string& sample) {
+  const SampleKind sample_kind = value_named(kSampleKinds, sample, "sample");
+  if (is_stage_file(path)) {
+    if (sample_rate_hz) {
+      throw InputError("sample_rate", format_number(*sample_rate_hz) + " Hz",
+                       "None for a stage file: its ring sensor is returned at every step "
+                       "(ring_sensor)");
+    }
+    return run_stage(path, sets, keep_series);
+  }
   const GearTrain file = read_train_file(path, sets);
   TrainResult result = interruptible([&](std::function<bool()> should_stop) {
     RunControl control;
     control.keep_series = keep_series;
+    control.sample_rate_hz = sample_rate_hz;
+    control.sample = sample_kind;
     control.should_stop = std::move(should_stop);
     return simulate_train(file, control);
   });
   // Named by the meshes the run ran (a helical mesh by slices: one per slice).
   const GearTrain train = dynamics_train(file);
   const std::string summary = train_summary_json(train, result);
+  py::object samples = py::none();
+  if (sample_rate_hz)
+    samples = table_arrays(train_series_columns(train), std::move(result.samples));
   return py::make_tuple(summary,
                         table_arrays(train_series_columns(train), std::move(result.series)),
-                        py::none(), py::none());
+                        py::none(), py::none(), samples);
 }
 
 // The stiffness columns of `gearimpact stiffness` at the contact positions xs.
@@ -1074,7 +1089,8 @@ void define_module(py::module_& m) {
         dataset::merge(folders, out, overwrite);
       },
       py::arg("folders"), py::arg("out"), py::arg("overwrite"));
-  m.def("train", &run_train, py::arg("case_file"), py::arg("sets"), py::arg("keep_series"));
+  m.def("train", &run_train, py::arg("case_file"), py::arg("sets"), py::arg("keep_series"),
+        py::arg("sample_rate") = py::none(), py::arg("sample") = "interval-average");
   m.def("ste", &ste_texts_of, py::arg("case"), py::arg("torque"), py::arg("points"));
   m.def("modes", &modes_texts_of, py::arg("case"), py::arg("harmonics"), py::arg("max_speed"));
   m.def("planetary_modes", &planetary_modes_of, py::arg("case_file"));

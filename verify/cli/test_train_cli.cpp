@@ -190,6 +190,38 @@ TEST_CASE("train refuses a bad key by its name before writing anything") {
   CHECK(!std::filesystem::exists(out));
 }
 
+TEST_CASE(
+    "train --sample-rate writes the sensor's samples, and refuses them by flag before any work") {
+  Scratch scratch("train-cli-samples");
+  const std::string rig =
+      (examples / "rig_17_38.toml").string() + " --set 'integrator.end_time=2 ms'";
+  const std::filesystem::path out = scratch.dir / "out";
+  const CommandResult r =
+      run_command(cli("train " + rig + " --sample-rate '51.2 kHz' --out " + out.string()));
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  // The series' columns, one row a sample from n = 1 (interval averages) to 2 ms: 102 rows.
+  const std::string samples = read(out / "samples.csv");
+  CHECK(samples.substr(0, samples.find('\n')) ==
+        read(out / "series.csv").substr(0, samples.find('\n')));
+  CHECK(std::count(samples.begin(), samples.end(), '\n') == 1 + 102);
+  // Refused naming the flag, nothing written: a train without a [sensor], --sample alone, a
+  // stage file.
+  const std::vector<std::tuple<std::string, std::string>> refused = {
+      {(examples / "pinion_idler_wheel.toml").string() + " --sample-rate 1000", "--sample-rate"},
+      {rig + " --sample point", "--sample"},
+      {(examples / "planetary_stage.toml").string() + " --sample-rate 1000", "--sample-rate"},
+  };
+  for (const auto& [args, flag] : refused) {
+    const std::filesystem::path none = scratch.dir / "none";
+    const CommandResult bad = run_command(cli("train " + args + " --out " + none.string()));
+    INFO(args << ": " << bad.err);
+    CHECK(bad.exit_code != 0);
+    CHECK(bad.err.find("error: " + flag + " = ") != std::string::npos);
+    CHECK(!std::filesystem::exists(none));
+  }
+}
+
 // ---- A planetary stage's file ([stage]) through `gearimpact train` ----
 
 namespace {

@@ -156,6 +156,77 @@ TEST_CASE(
         simulate(c, table).summary.final_w1_rad_per_s);
 }
 
+TEST_CASE("a train's sensor samples are the two-gear planar run's, bit for bit, of either kind") {
+  // Samples at 51.2 kHz, one every 97.66 steps of 0.2 us: inside steps (the
+  // steps' continuous extension) and cut by the run's events, on the
+  // wheel's sensor at 0.3 rad.
+  SimulationCase c = elastic_paper_case();
+  c.bearings.sensor_gear = 2;
+  c.bearings.sensor_angle_rad = 0.3;
+  const StiffnessTable table(c.gears, c.model.stiffness);
+  const GearTrain train = planar_two_gear_train(c, table);
+  std::vector<double> point;
+  for (const SampleKind kind : {SampleKind::point, SampleKind::interval_average}) {
+    CAPTURE(name_of(kSampleKinds, kind));
+    RunControl control;
+    control.sample_rate_hz = 51200.0;
+    control.sample = kind;
+    const SimulationResult planar = simulate(c, table, control);
+    const TrainResult run = simulate_train(train, control);
+    // Interval averages leave out n = 0 (sample_count).
+    const auto expected = static_cast<std::size_t>(sample_count(c.integrator.end_time_s, 51200.0) -
+                                                   (kind == SampleKind::point ? 0.0 : 1.0));
+    REQUIRE(planar.planar_samples.size() == expected);
+    REQUIRE(run.samples.size() == expected);
+    for (std::size_t i = 0; i < expected; ++i) {
+      const PlanarSample& a = planar.planar_samples[i];
+      const TrainRow& b = run.samples[i];
+      const bool same =
+          a.t_s == b.t_s && a.state.theta1_rad == b.theta_rad[0] &&
+          a.state.w2_rad_per_s == b.w_rad_per_s[1] && a.state.x2_m == b.centres[1].x_m &&
+          a.state.vy1_m_s == b.centres[0].vy_m_s && a.bearing_fy2_n == b.centres[1].bearing_fy_n &&
+          a.sensor_acceleration_m_per_s2 == b.sensor_acceleration_m_per_s2;
+      if (!same) {
+        INFO("sample " << i << " at t = " << a.t_s);
+        REQUIRE(same);
+      }
+    }
+    if (kind == SampleKind::point) {
+      for (const TrainRow& row : run.samples) point.push_back(row.sensor_acceleration_m_per_s2);
+    } else {
+      // The two kinds differ: a mean over 19.5 us is not the value at its end.
+      REQUIRE(point.size() == run.samples.size() + 1);
+      CHECK(point[5] != run.samples[4].sensor_acceleration_m_per_s2);
+    }
+  }
+}
+
+TEST_CASE("a train without a sensor refuses samples, naming sample_rate") {
+  RunControl control;
+  control.sample_rate_hz = 51200.0;
+  // The torsional pair has no centres to sense; the planar one without a [sensor] none chosen.
+  GearTrain torsional = two_gear_train(paper_case(2));
+  GearTrain unsensed = two_gear_train(elastic_paper_case());
+  unsensed.sensor_body = -1;
+  const auto refusal = [&](const GearTrain& t) {
+    try {
+      simulate_train(t, control);
+    } catch (const InputError& e) {
+      return e.problems().front().field + ": " + e.what();
+    }
+    return std::string("none");
+  };
+  for (const GearTrain& train : {torsional, unsensed}) {
+    const std::string text = refusal(train);
+    CHECK(text.rfind("sample_rate: ", 0) == 0);
+    CHECK(text.find("no [sensor]") != std::string::npos);
+  }
+  GearTrain sensed = two_gear_train(elastic_paper_case());
+  sensed.sensor_body = 1;
+  control.sample_rate_hz = -1.0;
+  CHECK(refusal(sensed).rfind("sample_rate: ", 0) == 0);
+}
+
 namespace {
 
 // A pinion (20 teeth), an idler (30) and a wheel (60) of one module, each

@@ -421,6 +421,30 @@ def test_train_equals_the_program(cli, source_dir, tmp_path):
         gearimpact.train(example, sets=["bodies.whel.inertia=1 kg*m^2"])
 
 
+def test_train_samples_equal_the_program(cli, source_dir, tmp_path):
+    # The rig's sensor sampled at 51.2 kHz over 5 ms as a train: samples.csv, bit for bit, of
+    # either kind; the interval averages start at n = 1.
+    example = Path(source_dir) / "examples" / "rig_17_38.toml"
+    sets = ["integrator.end_time=5 ms"]
+    for kind, first in [("interval-average", 1 / 51200), ("point", 0.0)]:
+        out = tmp_path / kind
+        cli("train", example, "--set", sets[0], "--sample-rate", "51.2 kHz", "--sample", kind,
+            "--out", out)
+        ours = gearimpact.train(example, sets=sets, sample_rate="51.2 kHz", sample=kind)
+        theirs = parse_csv((out / "samples.csv").read_text())
+        assert list(ours["samples"]) == list(theirs)
+        assert "sensor_acceleration_m_per_s2" in theirs
+        for name in theirs:
+            assert_bitwise_equal(ours["samples"][name], theirs[name], f"train sample {name}")
+        assert ours["samples"]["t_s"][0] == first
+    # No samples asked, none returned; a train without a [sensor] refuses them by name.
+    assert "samples" not in gearimpact.train(example, sets=["integrator.end_time=0.1 ms"])
+    with pytest.raises(gearimpact.CaseError, match="sample_rate") as caught:
+        gearimpact.train(Path(source_dir) / "examples" / "pinion_idler_wheel.toml",
+                         sets=["integrator.end_time=0.1 ms"], sample_rate=1000.0)
+    assert caught.value.field == "sample_rate"
+
+
 def test_stage_train_equals_the_program(cli, source_dir, tmp_path):
     # The example stage over 1 ms: series.csv, ring_sensor.csv and summary.json (with the
     # stage's Willis residual) as the program writes them, bit for bit.

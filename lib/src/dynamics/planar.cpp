@@ -704,7 +704,7 @@ class PlanarRun {
         start_time_(control.resume ? control.resume->time_s : 0.0),
         system_(c, table, mounting, driver_start(c, mounting, initial, control)),
         y_(to_vector(control.resume ? *control.resume->planar : initial)),
-        clock_(c, control, start_time_),
+        clock_(c.integrator.end_time_s, control, start_time_),
         stall_(c.integrator.step_s, c.model.friction_smoothing_speed_m_s),
         sensor_cos_(std::cos(c.bearings.sensor_angle_rad)),
         sensor_sin_(std::sin(c.bearings.sensor_angle_rad)),
@@ -793,13 +793,7 @@ class PlanarRun {
   // one at t_b is y_b itself, one before it the step's continuous extension.
   template <typename StateAt>
   void emit_samples(double t_b, const Y& y_b, const PlanarMode& m, StateAt state_at) {
-    clock_.emit(
-        t_b, [&](double ts) { sample(ts, y_b, m); },
-        [&](double ts) {
-          Y x{};
-          state_at(ts, x);
-          sample(ts, x, m);
-        });
+    clock_.emit_states(t_b, y_b, state_at, [&](double ts, const Y& y) { sample(ts, y, m); });
   }
 
   // The tacho's edges inside the step from (t_a, y_a) to (t_b, y_b).

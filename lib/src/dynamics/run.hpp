@@ -196,14 +196,13 @@ class Run {
   // t_b = the start time takes the sample there.
   template <typename StateAt>
   void emit_samples(double t_b, const State& y_b, const Mode& m, StateAt state_at) {
-    clock_.emit(
-        t_b, [&](double t) { sample(t, y_b, m); },
-        [&](double t) {
-          State x{};
+    clock_.emit_states(
+        t_b, y_b,
+        [&](double t, State& x) {
           state_at(t, x);
           system_.impose_driver(t, x);
-          sample(t, x, m);
-        });
+        },
+        [&](double t, const State& y) { sample(t, y, m); });
   }
 
   void record(double t) { record(t, y_, mode_); }
@@ -460,7 +459,7 @@ class Run {
   // After ledger_, whose construction sets the start it begins from.
   SpeedDriftMonitor drift_{c_, start_time_, y_[kTheta1], y_[kW1]};
   // The sample grid, from the start time make_ledger set.
-  SampleClock clock_{c_, control_, start_time_};
+  SampleClock clock_{c_.integrator.end_time_s, control_, start_time_};
 };
 
 }  // namespace gearimpact

@@ -166,9 +166,11 @@ inline void book_ledger_totals(double kinetic_j, double stored_j, double work_j,
 // end state, one before it from the step's dense output.
 class SampleClock {
  public:
-  SampleClock(const SimulationCase& c, const RunControl& control, double t0_s)
+  SampleClock(double end_time_s, const RunControl& control, double t0_s)
       : t0_s_(t0_s), rate_hz_(control.sample_rate_hz.value_or(0.0)) {
-    if (control.sample_rate_hz) total_ = static_cast<long long>(sample_count(c, rate_hz_, t0_s));
+    if (control.sample_rate_hz) {
+      total_ = static_cast<long long>(sample_count(end_time_s, rate_hz_, t0_s));
+    }
   }
   bool on() const { return total_ > 0; }
   // The first sample (n = 0) is the one taken now.
@@ -193,6 +195,18 @@ class SampleClock {
       }
       ++next_;
     }
+  }
+  // emit with states: sample(t, y) at each sample up to t_b, y the step's end
+  // state y_b at t_b, else the step's continuous extension state_at(t, x).
+  template <typename State, typename StateAt, typename Sample>
+  void emit_states(double t_b, const State& y_b, StateAt state_at, Sample sample) {
+    emit(
+        t_b, [&](double t) { sample(t, y_b); },
+        [&](double t) {
+          State x{};
+          state_at(t, x);
+          sample(t, x);
+        });
   }
 
  private:

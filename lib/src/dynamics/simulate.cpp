@@ -204,9 +204,9 @@ void refuse_planar_simulation(const SimulationCase& c) {
   }
 }
 
-double sample_count(const SimulationCase& c, double sample_rate_hz, double t0_s) {
-  const double end = t0_s + c.integrator.end_time_s;
-  const double guess = std::floor(c.integrator.end_time_s * sample_rate_hz);
+double sample_count(double end_time_s, double sample_rate_hz, double t0_s) {
+  const double end = t0_s + end_time_s;
+  const double guess = std::floor(end_time_s * sample_rate_hz);
   // Beyond 2^53 samples the count is only an estimate for a refusal.
   if (!(guess < 9007199254740992.0)) return guess + 1.0;
   auto n = static_cast<long long>(guess);
@@ -216,6 +216,12 @@ double sample_count(const SimulationCase& c, double sample_rate_hz, double t0_s)
 }
 
 void validate_sampling(const SimulationCase& c, const RunControl& control) {
+  validate_sampling(
+      c.integrator.end_time_s,
+      c.bearings.kind == BearingKind::elastic ? kPlanarSampleRowBytes : kSampleRowBytes, control);
+}
+
+void validate_sampling(double end_time_s, double row_bytes, const RunControl& control) {
   if (!control.sample_rate_hz) return;
   const double rate = *control.sample_rate_hz;
   const std::string rate_text = format_number(rate) + " Hz";
@@ -229,18 +235,16 @@ void validate_sampling(const SimulationCase& c, const RunControl& control) {
   }
   const double most = static_cast<double>(control.most_series_rows);
   const double t0 = control.resume ? control.resume->time_s : 0.0;
-  const double samples = sample_count(c, rate, t0);
+  const double samples = sample_count(end_time_s, rate, t0);
   if (samples > most) {
-    const double end = c.integrator.end_time_s;
-    throw InputError(
-        "sample_rate", rate_text,
-        "a rate in (0, " + shortest_decimal((most - 1.0) / end) + "] Hz: at most " +
-            shortest_decimal(most) +
-            " samples over integrator.end_time = " + shortest_decimal(end) +
-            " s; this run would have " + shortest_decimal(samples) + " samples, about " +
-            csv_size_text(samples * (c.bearings.kind == BearingKind::elastic ? kPlanarSampleRowBytes
-                                                                             : kSampleRowBytes)) +
-            " as CSV: lower the rate, shorten the run, or lift the bound");
+    const double end = end_time_s;
+    throw InputError("sample_rate", rate_text,
+                     "a rate in (0, " + shortest_decimal((most - 1.0) / end) + "] Hz: at most " +
+                         shortest_decimal(most) +
+                         " samples over integrator.end_time = " + shortest_decimal(end) +
+                         " s; this run would have " + shortest_decimal(samples) +
+                         " samples, about " + csv_size_text(samples * row_bytes) +
+                         " as CSV: lower the rate, shorten the run, or lift the bound");
   }
 }
 

@@ -376,6 +376,22 @@ void validate_body_index(const std::string& field, int body, std::size_t bodies)
   }
 }
 
+// A train's samples are its sensor's (the planar train's): refused without
+// one. A sample's row is about 22 bytes a number as CSV: the time, each
+// body's angle, speed and centre's six, each mesh's ten, the sensor's.
+void validate_train_sampling(const GearTrain& train, const RunControl& control) {
+  if (!control.sample_rate_hz) return;
+  if (train.sensor_body < 0) {
+    throw InputError(std::vector<Problem>{
+        refused_problem("sample_rate", format_number(*control.sample_rate_hz) + " Hz",
+                        "a train's samples are its sensor's, and this train has no [sensor]",
+                        "a rate for a train with a [sensor] (body = NAME, a body on bearings)")});
+  }
+  const double numbers = 2.0 + 8.0 * static_cast<double>(train.bodies.size()) +
+                         10.0 * static_cast<double>(train.meshes.size());
+  validate_sampling(train.integrator.end_time_s, 22.0 * numbers, control);
+}
+
 void validate_train(const GearTrain& train) {
   const std::size_t n = train.bodies.size();
   if (n < 2 || n > static_cast<std::size_t>(kMaxTrainBodies)) {
@@ -1533,6 +1549,7 @@ GearTrain dynamics_train(const GearTrain& train) {
 
 TrainResult simulate_train(const GearTrain& train, const RunControl& control) {
   validate_train(train);
+  validate_train_sampling(train, control);
   // The train its dynamics run: a helical mesh's route B table is built from
   // its helical pair, before the pair becomes its transverse section.
   GearTrain run = train;

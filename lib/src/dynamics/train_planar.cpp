@@ -779,6 +779,7 @@ class PlanarTrainRun {
         system_(train, tables),
         stall_(train.integrator.step_s, least_smoothing(train)),
         impacts_(train.meshes.size()),
+        clock_(train.integrator.end_time_s, control, 0.0),
         sensor_cos_(std::cos(train.sensor_angle_rad)),
         sensor_sin_(std::sin(train.sensor_angle_rad)) {
     SimulationSummary& s = result_.summary;
@@ -795,6 +796,8 @@ class PlanarTrainRun {
     }
     system_.impose_driver(0.0, y_);
     classify(0.0);
+    if (control.keep_samples && clock_.on()) result_.samples.reserve(clock_.reserve_rows());
+    emit_samples(0.0, y_, mode_, [](double, State&) {});
     PlanarEnergies& p = *s.planar;
     const double kinetic0 = system_.kinetic_energy(y_);
     const double mesh0 = mesh_energy(y_);
@@ -819,12 +822,17 @@ class PlanarTrainRun {
     return static_cast<long long>(
         std::ceil(train_.integrator.end_time_s / train_.integrator.step_s - 1e-9));
   }
-  bool wants_dense() const { return false; }
+  bool wants_dense() const { return clock_.on(); }
   bool records() const { return control_.keep_series || static_cast<bool>(control_.on_train_row); }
-  bool sampling() const { return false; }
+  bool sampling() const { return clock_.on(); }
   const State& first_stage(double) const { return k1_; }
+  // The sensor's samples not yet taken up to t_b, the end of a step in mode
+  // m at y_b: one at t_b is y_b itself, one before it the step's continuous
+  // extension (the two-gear planar run's).
   template <typename StateAt>
-  void emit_samples(double, const State&, const ModeSet&, StateAt) {}
+  void emit_samples(double t_b, const State& y_b, const ModeSet& m, StateAt state_at) {
+    clock_.emit_states(t_b, y_b, state_at, [&](double ts, const State& y) { sample(ts, y, m); });
+  }
   template <typename Dense>
   void observe_step(double, const State&, double, const State&, const Dense&) {}
   void check_finite(double t, const State& y) const {
@@ -917,6 +925,46 @@ class PlanarTrainRun {
   void record(double t) { record(t, y_, mode_); }
   void record(double t, const State& y, const ModeSet& mode) {
     State dy{};
+    TrainRow row = row_at(t, y, mode, dy);
+    row.sensor_acceleration_m_per_s2 = sensor_acceleration(dy);
+    if (control_.on_train_row) control_.on_train_row(row);
+    if (control_.keep_series) result_.series.push_back(std::move(row));
+  }
+
+  // A sample of the sensor at ts (SampleKind): its row at the sampled state,
+  // whose sensor acceleration is the point value or the mean over the
+  // interval ending at ts; an interval-average run's first sample only
+  // begins the first interval.
+  void sample(double ts, const State& state, const ModeSet& m) {
+    const auto d = static_cast<std::size_t>(system_.dof_of(train_.sensor_body));
+    const auto v = [&](std::size_t i) { return state[i == 0 ? L::vx(d) : L::vy(d)]; };
+    const bool average = control_.sample == SampleKind::interval_average;
+    if (average && clock_.first()) {
+      average_.start(ts, v);
+      return;
+    }
+    State dy{};
+    TrainRow row = row_at(ts, state, m, dy);
+    if (average) {
+      average_.next(ts, v,
+                    [&](std::size_t i) -> double& { return dy[i == 0 ? L::vx(d) : L::vy(d)]; });
+    }
+    row.sensor_acceleration_m_per_s2 = sensor_acceleration(dy);
+    if (control_.on_train_sample) control_.on_train_sample(row);
+    if (control_.keep_samples) result_.samples.push_back(std::move(row));
+  }
+
+  // The sensor's acceleration from the derivatives dy: its centre's along
+  // the sensor's direction (0 without a sensor).
+  double sensor_acceleration(const State& dy) const {
+    if (train_.sensor_body < 0) return 0.0;
+    const auto d = static_cast<std::size_t>(system_.dof_of(train_.sensor_body));
+    return dy[L::vx(d)] * sensor_cos_ + dy[L::vy(d)] * sensor_sin_;
+  }
+
+  // The row at (t, y) in the mode, its derivatives in dy; the sensor's
+  // acceleration left to the caller.
+  TrainRow row_at(double t, const State& y, const ModeSet& mode, State& dy) const {
     Forces f;
     system_.rhs(t, y, mode, memory_, dy, &f);
     TrainRow row;
@@ -954,12 +1002,7 @@ class PlanarTrainRun {
                             {f.normal_n[2 * k], f.normal_n[2 * k + 1]},
                             {dd, dc}});
     }
-    if (train_.sensor_body >= 0) {
-      const auto d = static_cast<std::size_t>(system_.dof_of(train_.sensor_body));
-      row.sensor_acceleration_m_per_s2 = dy[L::vx(d)] * sensor_cos_ + dy[L::vy(d)] * sensor_sin_;
-    }
-    if (control_.on_train_row) control_.on_train_row(row);
-    if (control_.keep_series) result_.series.push_back(std::move(row));
+    return row;
   }
 
   TrainResult finish(double t, const char* integrator) {
@@ -1057,6 +1100,8 @@ class PlanarTrainRun {
   bool event_ = false;
   double before_ = 0.0;
   bool stepped_per_stage_ = false;
+  SampleClock clock_;
+  IntervalAverage<2> average_;  // the sensor's centre's vx and vy
   double sensor_cos_;
   double sensor_sin_;
 };

@@ -362,6 +362,8 @@ struct RunControl {
   std::function<void(const SampleRow&)> on_sample;
   // The same for the samples of a case with [bearings] kind = "elastic".
   std::function<void(const PlanarSample&)> on_planar_sample;
+  // The same for a gear train's samples (simulate_train: its sensor's).
+  std::function<void(const TrainRow&)> on_train_sample;
   // When set, asked every kStepsBetweenStopChecks steps; true ends the run
   // with SimulationStopped. Lets a caller cancel a long run (an interactive
   // session's Ctrl-C, a time limit); it may also throw its own exception.
@@ -397,15 +399,20 @@ void check_table(const SimulationCase& c, const StiffnessTable& table);
 // bearings (the motor and the load belong to the planar model), naming
 // shafts.kind, and a tacho on rigid bearings.
 void refuse_planar_simulation(const SimulationCase& c);
-// The sample grid of a run of c at sample_rate_hz: the n >= 0 with
-// sample_time_s(t0, n, rate) <= t0 + end_time_s, for t0 = 0 (about
-// floor(end_time_s rate) + 1; a continued run's start moves the end's rounding).
-// Interval averages (SampleKind) leave out n = 0: one sample fewer.
-double sample_count(const SimulationCase& c, double sample_rate_hz, double t0_s = 0.0);
+// The sample grid of a run of end_time_s (integrator.end_time) at
+// sample_rate_hz: the n >= 0 with sample_time_s(t0, n, rate) <= t0 +
+// end_time_s, for t0 = 0 (about floor(end_time_s rate) + 1; a continued run's
+// start moves the end's rounding). Interval averages (SampleKind) leave out
+// n = 0: one sample fewer.
+double sample_count(double end_time_s, double sample_rate_hz, double t0_s = 0.0);
 
 // Throws InputError naming sample_rate unless RunControl::sample_rate_hz is
 // absent, or finite and > 0 with event location and at most most_series_rows
-// samples (sample_count). simulate() and simulate_planar() call it before any work.
+// samples (sample_count) over a run of end_time_s; row_bytes, a sample's row
+// as CSV, sizes the refusal's estimate. simulate(), simulate_planar() and
+// simulate_train() call it before any work.
+void validate_sampling(double end_time_s, double row_bytes, const RunControl& control);
+// The same for a run of c, whose rows are SampleRow's or PlanarSample's.
 void validate_sampling(const SimulationCase& c, const RunControl& control);
 
 // Throws InputError naming the first field outside its range (validate_fields),

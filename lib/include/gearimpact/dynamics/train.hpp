@@ -251,6 +251,12 @@ struct TrainBodySummary {
 
 struct TrainResult {
   std::vector<TrainRow> series;
+  // The sensor's samples (RunControl::sample_rate_hz, keep_samples): each a
+  // row at t = n / sample_rate_hz from the step's continuous extension, its
+  // sensor_acceleration_m_per_s2 the point value or the mean over the
+  // interval ending there (RunControl::sample; an interval-average run's
+  // first sample, n = 0, only begins the first interval).
+  std::vector<TrainRow> samples;
   // steps, rhs_evaluations, events, end_time_s, step_s, the impacts' counts
   // and times, and the energy ledger (docs/model.md, Energies) of the whole
   // train; the shafts' springs count with the stored energy.
@@ -285,8 +291,10 @@ std::shared_ptr<const SpeedController> train_speed_controller(const GearTrain& t
 // Validates the train (InputError naming the field: bodies.NAME.inertia,
 // meshes.NAME.gears.teeth1, ...) and runs dynamics_train(train); its rows'
 // and summaries' meshes are that train's (a helical mesh by route A: one per
-// slice). Of `control`, keep_series, on_train_row (each row, kept or not) and
-// should_stop are read. With a body on
+// slice). Of `control`, keep_series, on_train_row (each row, kept or not),
+// should_stop and the sensor's sampling (sample_rate_hz, sample,
+// keep_samples, on_train_sample; a train with a [sensor] only, refused
+// naming sample_rate before any work otherwise) are read. With a body on
 // elastic bearings: the planar train (its refusals and its step bound by
 // name: bodies.NAME.bearings.KEY, integrator.step, ...), its meshes reading
 // model.damping_update = "auto" as the planar model does (frozen), its rows
