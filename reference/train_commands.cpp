@@ -92,6 +92,9 @@ void run_train(const TrainOptions& o, const CLI::App& command) {
   // The outputs name the meshes the run ran (a helical mesh by slices: one per slice).
   const GearTrain train = dynamics_train(file);
   const std::string summary = train_summary_json(train, result);
+  for (const std::string& w : train_warnings(file, result)) {
+    std::cerr << "gearimpact: warning: " << w << "\n";
+  }
   AtomicFolder folder(o.out, o.overwrite, {o.case_file});
   const std::filesystem::path dir = folder.temporary();
   write_file_atomically((dir / "series.csv").string(), train_series_csv(train, result.series));

@@ -22,6 +22,7 @@
 #include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "gearimpact/stiffness/table.hpp"
+#include "held_speed_case.hpp"
 
 using namespace gearimpact;
 
@@ -98,6 +99,7 @@ void require_same_run(const SimulationResult& two_gear, const TrainResult& train
   CHECK(train.bodies[0].final_w_rad_per_s == s.final_w1_rad_per_s);
   CHECK(train.bodies[static_cast<std::size_t>(wheel_body)].final_w_rad_per_s ==
         s.final_w2_rad_per_s);
+  CHECK(train.summary.speed_drift_max_rel == s.speed_drift_max_rel);
 }
 
 // Both tips relieved linearly (examples/tip_relief_20_80.toml's start diameters).
@@ -200,7 +202,13 @@ TEST_CASE("a two-body train takes every integrator, mesh force, damper and drive
                                   &driven_lagrangian, &controlled, &motor}) {
     require_train_runs_as_two_gear(*c, table);
   }
+  // The drift check over whole revolutions of the pinion (the train's first body): the
+  // controller at 500 rad/s from the start (drive.settle 0), 2.2 revolutions.
+  SimulationCase drift = verify::held_at_speed(controlled, 500.0, 2.2);
+  drift.name = "speed-drift";
+  require_train_runs_as_two_gear(drift, table);
   // Each feature did what it does.
+  REQUIRE(simulate(drift, table).summary.speed_drift_max_rel.has_value());
   CHECK(simulate(lagrangian, table).summary.stored_energy_jumps_j > 0.0);
   CHECK(simulate(damper, table).summary.mesh_damping_loss_j > 0.0);
 }

@@ -196,6 +196,19 @@ TEST_CASE("a train run from the file is the run of the train built by hand, bit 
   CHECK(a.meshes[1].impacts == b.meshes[1].impacts);
 }
 
+TEST_CASE("a train file's [drive] sets its drift check, as a two-gear file's does") {
+  std::string text = example_text();
+  const GearTrain plain = parse_train(text, "train.toml");
+  CHECK(plain.drive.settle_s == Drive{}.settle_s);
+  text += "\n[drive]\nsettle = \"20 ms\"\nspeed_tolerance = 2e-3\n";
+  const GearTrain set = parse_train(text, "train.toml");
+  CHECK(set.drive.settle_s == 20e-3);
+  CHECK(set.drive.speed_tolerance == 2e-3);
+  // Its rows' ranges hold here too.
+  CHECK_THROWS_WITH_AS(parse_train(example_text() + "\n[drive]\nsettle = \"-1 s\"\n", "train.toml"),
+                       doctest::Contains("drive.settle"), CaseFileError);
+}
+
 TEST_CASE("a file without [[bodies]] is the two-gear case it always was") {
   const std::string text = write_case_file(paper_case(2));
   const GearTrain train = parse_train(text, "case2.toml");

@@ -83,11 +83,11 @@ double SpeedController::torque_n_m(double t_s, double theta_rad, double w_rad_pe
          gains_.integral_n_m * (ref.theta_rad - theta_rad);
 }
 
-SpeedDriftMonitor::SpeedDriftMonitor(const SimulationCase& c, double t0_s, double theta0_rad,
-                                     double w0_rad_per_s)
-    : reference_(has_speed_reference(c.torque1) ? &c.torque1 : nullptr),
+SpeedDriftMonitor::SpeedDriftMonitor(const Torque& drive, double settle_s, double t0_s,
+                                     double theta0_rad, double w0_rad_per_s)
+    : reference_(has_speed_reference(drive) ? &drive : nullptr),
       w0_(w0_rad_per_s),
-      settle_s_(c.drive.settle_s),
+      settle_s_(settle_s),
       last_t_(t0_s),
       last_theta_(theta0_rad),
       crossing_t_(t0_s),

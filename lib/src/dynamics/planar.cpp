@@ -737,7 +737,7 @@ class PlanarRun {
     tacho_driven_ =
         system_.driven() && tacho_index_ == (mounting.shafts ? std::size_t{kTm} : std::size_t{kT1});
     tacho_.emplace(tacho_on_ ? c.tacho : Tacho{1}, y_[tacho_index_]);
-    drift_.emplace(c, start_time_, y_[kT1], y_[kVelocity + kT1]);
+    drift_.emplace(c.torque1, c.drive.settle_s, start_time_, y_[kT1], y_[kVelocity + kT1]);
     if (control.resume) {
       memory_ = {control.resume->contact, control.resume->coast_contact};
       for (const Region side : kSides) {

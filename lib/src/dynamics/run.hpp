@@ -457,7 +457,7 @@ class Run {
   // Last: its construction sets the start state above (make_ledger).
   EnergyLedger ledger_;
   // After ledger_, whose construction sets the start it begins from.
-  SpeedDriftMonitor drift_{c_, start_time_, y_[kTheta1], y_[kW1]};
+  SpeedDriftMonitor drift_{c_.torque1, c_.drive.settle_s, start_time_, y_[kTheta1], y_[kW1]};
   // The sample grid, from the start time make_ledger set.
   SampleClock clock_{c_.integrator.end_time_s, control_, start_time_};
 };

@@ -306,22 +306,26 @@ std::vector<std::string> result_warnings(const SimulationCase& c, const Simulati
   // their speed by design and are not checked.
   if (c.bearings.kind == BearingKind::elastic && s.speed_drift_max_rel &&
       *s.speed_drift_max_rel > c.drive.speed_tolerance) {
-    const bool controlled = c.torque1.kind == Torque::Kind::speed_controlled ||
-                            c.torque1.kind == Torque::Kind::prescribed_speed;
-    warnings.push_back(
-        "the pinion's mean speed over a whole revolution drifted from its reference by up to " +
-        six_digits(*s.speed_drift_max_rel * 100.0) +
-        " % (speed_drift_max_rel), more than "
-        "drive.speed_tolerance = " +
-        six_digits(c.drive.speed_tolerance) +
-        (controlled ? std::string(": the controller's start, a profile faster than its bandwidth "
-                                  "or a load beyond it moved it; torque1.bandwidth sets how fast "
-                                  "it holds the reference")
-                    : std::string(": nothing holds the operating point against friction and "
-                                  "the load; torque1.kind = \"speed-controlled\" (a motor with "
-                                  "a speed controller, docs/vibration.md) holds it")));
+    warnings.push_back(speed_drift_warning(*s.speed_drift_max_rel, c.drive.speed_tolerance,
+                                           c.torque1, "the pinion", "torque1"));
   }
   return warnings;
+}
+
+std::string speed_drift_warning(double drift, double tolerance, const Torque& drive,
+                                const std::string& body, const std::string& torque_key) {
+  const bool controlled =
+      drive.kind == Torque::Kind::speed_controlled || drive.kind == Torque::Kind::prescribed_speed;
+  return body + "'s mean speed over a whole revolution drifted from its reference by up to " +
+         six_digits(drift * 100.0) +
+         " % (speed_drift_max_rel), more than drive.speed_tolerance = " + six_digits(tolerance) +
+         (controlled
+              ? ": the controller's start, a profile faster than its bandwidth or a load "
+                "beyond it moved it; " +
+                    torque_key + ".bandwidth sets how fast it holds the reference"
+              : ": nothing holds the operating point against friction and the load; " + torque_key +
+                    ".kind = \"speed-controlled\" (a motor with a speed controller, "
+                    "docs/vibration.md) holds it");
 }
 
 std::optional<double> equivalent_mesh_damping_ratio(const SimulationCase& c,

@@ -626,8 +626,9 @@ class TrainSystem {
 
   TrainSystem(const GearTrain& train, const std::vector<const StiffnessTable*>& tables)
       : train_(train), body_dof_(degrees_of_freedom(train)) {
-    dofs_ = count_dofs(body_dof_);
-    const std::vector<double> inertia = dof_inertias(train, body_dof_, dofs_);
+    const int dofs = count_dofs(body_dof_);
+    dofs_ = static_cast<std::size_t>(dofs);
+    const std::vector<double> inertia = dof_inertias(train, body_dof_, dofs);
     std::copy(inertia.begin(), inertia.end(), inertia_.begin());
     driver_.fill(-1);
     for (std::size_t i = 0; i < train.bodies.size(); ++i) {
@@ -716,10 +717,8 @@ class TrainSystem {
     });
     if (fixed_torques_) fixed_torque_ = summed_torques(0.0, TrainState{});
     mesh_count_ = meshes_.size();
-    dof_count_ = static_cast<std::size_t>(dofs_);
   }
 
-  int dofs() const { return dofs_; }
   int dof_of(int body) const { return body_dof_[static_cast<std::size_t>(body)]; }
   double inertia_of_dof(int dof) const { return inertia_[static_cast<std::size_t>(dof)]; }
   std::size_t mesh_count() const { return mesh_count_; }
@@ -751,7 +750,7 @@ class TrainSystem {
   void impose_driver(double t, TrainState& y,
                      std::array<double, kBodies>* acceleration = nullptr) const {
     if (!driven_) return;
-    for (int d = 0; d < dofs_; ++d) {
+    for (int d = 0; d < static_cast<int>(dofs_); ++d) {
       const int body = driver_[static_cast<std::size_t>(d)];
       if (body < 0) continue;
       const TrainBody& b = train_.bodies[static_cast<std::size_t>(body)];
@@ -842,7 +841,7 @@ class TrainSystem {
       moment[static_cast<std::size_t>(s.b)] += torque_on_b;
     }
     if (driven_) {
-      for (std::size_t u = 0; u < kBodies && u < dof_count_; ++u) {
+      for (std::size_t u = 0; u < kBodies && u < dofs_; ++u) {
         if (driver_[u] < 0) continue;
         // The driver applies the torque that gives its body the prescribed
         // acceleration against the rest: J w' = T_driver + moment. Its work is
@@ -853,7 +852,7 @@ class TrainSystem {
       }
     }
     double work = torque[0] * y[w_of(0)];
-    for (std::size_t u = 0; u < kBodies && u < dof_count_; ++u) {
+    for (std::size_t u = 0; u < kBodies && u < dofs_; ++u) {
       const auto i = static_cast<int>(u);
       dydt[theta_of(i)] = y[w_of(i)];
       dydt[w_of(i)] = moment[u] / inertia_[u];
@@ -865,7 +864,7 @@ class TrainSystem {
     dydt[kLedger + kParametric] = powers.parametric_w;
     dydt[kLedger + kMeshDamping] = powers.mesh_damping_w;
     // The layout's places beyond the train's degrees of freedom and meshes.
-    for (std::size_t i = dof_count_; i < kBodies; ++i) {
+    for (std::size_t i = dofs_; i < kBodies; ++i) {
       dydt[theta_of(static_cast<int>(i))] = 0.0;
       dydt[w_of(static_cast<int>(i))] = 0.0;
     }
@@ -896,7 +895,7 @@ class TrainSystem {
 
   double kinetic_energy(const TrainState& y) const {
     double e = 0.5 * inertia_[0] * y[w_of(0)] * y[w_of(0)];
-    for (std::size_t u = 1; u < kBodies && u < dof_count_; ++u) {
+    for (std::size_t u = 1; u < kBodies && u < dofs_; ++u) {
       const std::size_t w = w_of(static_cast<int>(u));
       e += 0.5 * inertia_[u] * y[w] * y[w];
     }
@@ -968,14 +967,15 @@ class TrainSystem {
   };
   const GearTrain& train_;
   std::vector<int> body_dof_;
-  int dofs_ = 0;
+  // The degrees of freedom's count, read by the hot loops with the layout's
+  // bound beside it, so that a small layout's loops unroll.
+  std::size_t dofs_ = 0;
   std::array<double, kBodies> inertia_{};
   std::vector<MeshLine> meshes_;
   std::vector<Frame> frame_;
-  // The counts again, read by the hot loops with the layout's bounds beside
-  // them, so that a small layout's loops unroll.
+  // The meshes' count again (meshes_.size()), read by the hot loops with the
+  // layout's bound beside it, so that a small layout's loops unroll.
   std::size_t mesh_count_ = 0;
-  std::size_t dof_count_ = 0;
   std::vector<Spring> springs_;
   // Per degree of freedom, the body whose kinematic driver holds it (-1: none).
   std::array<int, kBodies> driver_{};
@@ -1002,7 +1002,9 @@ class TrainRun {
         system_(train, tables),
         stall_(train.integrator.step_s, least_smoothing(train)),
         impacts_(train.meshes.size()),
-        ledger_(make_ledger()) {
+        ledger_(make_ledger()),
+        drift_(train.bodies.front().torque, train.drive.settle_s, 0.0,
+               train.bodies.front().theta_rad, train.bodies.front().w_rad_per_s) {
     book_keep(0.0);
     if (records()) record(0.0);
   }
@@ -1085,6 +1087,7 @@ class TrainRun {
 
   void book_keep(double t) {
     SimulationSummary& s = result_.summary;
+    drift_.observe(t, y_[theta_of(system_.dof_of(0))]);
     ledger_.observe(y_, mode_, s);
     for (std::size_t k = 0; k < L::kMeshes && k < system_.mesh_count(); ++k) {
       const Mode& m = mode_.mesh[k];
@@ -1151,6 +1154,7 @@ class TrainRun {
       lagrangian = lagrangian || system_.mesh(k).lagrangian();
     }
     if (lagrangian) s.stored_energy_jumps_j = stored_energy_jumps_;
+    s.speed_drift_max_rel = drift_.max_relative_drift();
     s.final_w1_rad_per_s = y_[w_of(system_.dof_of(0))];
     s.final_w2_rad_per_s = y_[w_of(system_.dof_of(1))];
     for (std::size_t k = 0; k < system_.mesh_count(); ++k) {
@@ -1249,8 +1253,9 @@ class TrainRun {
   TrainResult result_;
   // Each mesh's contacts (their counts and first and last times the train's summary's).
   std::vector<ImpactBook> impacts_;
-  // Last: its construction sets the start state above (make_ledger).
+  // After the state above: its construction sets it (make_ledger).
   EnergyLedgerOf<System> ledger_;
+  SpeedDriftMonitor drift_;  // of the first body
   // Under the Lagrangian mesh force: the sum of |dU| of the jumps paid.
   double stored_energy_jumps_ = 0.0;
 };
@@ -1260,14 +1265,7 @@ class TrainRun {
 // sqrt(m_e)), with m_e of the mesh's two bodies as they turn in the train.
 double largest_resolving_step_s(const GearTrain& train) {
   const std::vector<int> dof = degrees_of_freedom(train);
-  std::vector<double> inertia(train.bodies.size(), 0.0);
-  std::vector<bool> seen(train.bodies.size(), false);
-  for (std::size_t i = 0; i < train.bodies.size(); ++i) {
-    const auto d = static_cast<std::size_t>(dof[i]);
-    inertia[d] =
-        seen[d] ? inertia[d] + train.bodies[i].inertia_kg_m2 : train.bodies[i].inertia_kg_m2;
-    seen[d] = true;
-  }
+  const std::vector<double> inertia = dof_inertias(train, dof, count_dofs(dof));
   double largest = 0.0;
   for (std::size_t k = 0; k < train.meshes.size(); ++k) {
     const TrainMesh& m = train.meshes[k];
@@ -1397,6 +1395,7 @@ GearTrain two_gear_train(const SimulationCase& c) {
   mesh.pair = c;
   train.meshes = {mesh};
   train.integrator = c.integrator;
+  train.drive = c.drive;
   if (c.bearings.kind == BearingKind::elastic) {
     // On elastic bearings each gear's centre translates: the bodies carry the
     // bearings, with the planar model's masses (planar_mounting: a disc's
@@ -1545,6 +1544,18 @@ GearTrain dynamics_train(const GearTrain& train) {
     if (helical_mesh(m)) run.meshes.back().pair = dynamics_case(m.pair);
   }
   return run;
+}
+
+std::vector<std::string> train_warnings(const GearTrain& train, const TrainResult& result) {
+  std::vector<std::string> warnings;
+  const SimulationSummary& s = result.summary;
+  if (s.planar && s.speed_drift_max_rel && *s.speed_drift_max_rel > train.drive.speed_tolerance) {
+    const TrainBody& first = train.bodies.front();
+    warnings.push_back(speed_drift_warning(*s.speed_drift_max_rel, train.drive.speed_tolerance,
+                                           first.torque, "body " + first.name,
+                                           "bodies." + first.name + ".torque"));
+  }
+  return warnings;
 }
 
 TrainResult simulate_train(const GearTrain& train, const RunControl& control) {

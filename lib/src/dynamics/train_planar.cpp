@@ -29,6 +29,7 @@
 #include <utility>
 #include <vector>
 
+#include "gearimpact/dynamics/drive.hpp"
 #include "gearimpact/dynamics/mesh.hpp"
 #include "gearimpact/dynamics/mesh_line.hpp"
 #include "gearimpact/dynamics/step_bound.hpp"
@@ -780,6 +781,8 @@ class PlanarTrainRun {
         stall_(train.integrator.step_s, least_smoothing(train)),
         impacts_(train.meshes.size()),
         clock_(train.integrator.end_time_s, control, 0.0),
+        drift_(train.bodies.front().torque, train.drive.settle_s, 0.0,
+               train.bodies.front().theta_rad, train.bodies.front().w_rad_per_s),
         sensor_cos_(std::cos(train.sensor_angle_rad)),
         sensor_sin_(std::sin(train.sensor_angle_rad)) {
     SimulationSummary& s = result_.summary;
@@ -875,6 +878,7 @@ class PlanarTrainRun {
   // jump's work at an event, the largest penetrations and the ledger.
   void book_keep(double t) {
     SimulationSummary& s = result_.summary;
+    drift_.observe(t, y_[L::theta(static_cast<std::size_t>(system_.dof_of(0)))]);
     at_start_ = Forces{};
     system_.rhs(t, y_, mode_, memory_, k1_, &at_start_);
     s.rhs_evaluations += 1;
@@ -1019,6 +1023,7 @@ class PlanarTrainRun {
     p.bearing_energy_final_j = system_.bearing_energy(y_);
     p.bearing_damping_loss_j = y_[L::kBearingLoss];
     p.shaft_energy_final_j = system_.shaft_energy(y_);
+    s.speed_drift_max_rel = drift_.max_relative_drift();
     s.final_w1_rad_per_s = y_[L::w(static_cast<std::size_t>(system_.dof_of(0)))];
     s.final_w2_rad_per_s = y_[L::w(static_cast<std::size_t>(system_.dof_of(1)))];
     for (std::size_t k = 0; k < L::kMeshes && k < system_.mesh_count(); ++k) {
@@ -1101,6 +1106,7 @@ class PlanarTrainRun {
   double before_ = 0.0;
   bool stepped_per_stage_ = false;
   SampleClock clock_;
+  SpeedDriftMonitor drift_;     // of the first body
   IntervalAverage<2> average_;  // the sensor's centre's vx and vy
   double sensor_cos_;
   double sensor_sin_;

@@ -310,6 +310,8 @@ std::string train_or_stage_summary_json(const GearTrain& train, const TrainResul
     json_number(out, "bearing_energy_final_J", s.planar->bearing_energy_final_j);
     json_number(out, "bearing_damping_loss_J", s.planar->bearing_damping_loss_j);
   }
+  // Once a revolution after drive.settle is measured, so that shorter runs keep their bytes.
+  if (s.speed_drift_max_rel) json_optional(out, "speed_drift_max_rel", s.speed_drift_max_rel);
   out += "  \"meshes\": [";
   for (std::size_t k = 0; k < train.meshes.size(); ++k) {
     const TrainMeshSummary& m = result.meshes[k];

@@ -472,7 +472,7 @@ GearTrain read_train(const Reader& reader, const toml::value& root, std::string_
     const bool top_level_key = field != nullptr && field->section.empty();
     const bool pair = std::find(kMeshPairSections.begin(), kMeshPairSections.end(), key) !=
                       kMeshPairSections.end();
-    if (top_level_key || pair || key == "integrator" || key == "faults") {
+    if (top_level_key || pair || key == "integrator" || key == "drive" || key == "faults") {
       defaults.as_table()[key] = value;
       continue;
     }
@@ -487,7 +487,7 @@ GearTrain read_train(const Reader& reader, const toml::value& root, std::string_
     problems.push_back(reader.problem(
         key, &value,
         "[" + key + "] is not read in a train file: " + why +
-            "; a train file has name, [integrator], the pair sections [gears], [model], "
+            "; a train file has name, [integrator], [drive], the pair sections [gears], [model], "
             "[modifications], [bearings] and [[faults]] (every mesh's defaults), and [[bodies]], "
             "[[meshes]], [[shafts]]"));
   }
@@ -608,6 +608,7 @@ GearTrain read_train(const Reader& reader, const toml::value& root, std::string_
     }
     if (!read_pair) read_pair = pair;
     train.integrator = mesh.pair.integrator;
+    train.drive = mesh.pair.drive;
     // A body's inertia defaults to its gear's disc in the first mesh that names it; a helical
     // gear's disc is that of the transverse section it runs as (pitch radius m_n z / (2 cos
     // beta)), as the two-gear run's; a helix angle out of range is the run's refusal.

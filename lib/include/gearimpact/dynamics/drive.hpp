@@ -74,14 +74,16 @@ class SpeedController {
 // The gains of a speed controller `drive` on a train of reflected inertia J_eq.
 SpeedControllerGains speed_controller_gains(const Torque& drive, double inertia_kg_m2);
 
-// The drift check: over each whole revolution of the pinion from its start
-// that begins at or after drive.settle, the mean speed 2 pi / dt against the reference's mean over
-// that interval (a speed reference's angle change over dt, else the initial speed under torques).
+// The drift check: over each whole revolution of a body (the pinion, a train's first body)
+// from its start that begins at or after settle_s (drive.settle), the mean speed 2 pi / dt
+// against the reference's mean over that interval (the angle change over dt of the body's
+// torque `drive` where it has a speed reference, else of its initial speed under torques).
 // observe() takes the end of each accepted step, and places each crossing of theta(0) + 2 pi k
 // between two steps' ends by linear interpolation (the step is a small fraction of a revolution).
 class SpeedDriftMonitor {
  public:
-  SpeedDriftMonitor(const SimulationCase& c, double t0_s, double theta0_rad, double w0_rad_per_s);
+  SpeedDriftMonitor(const Torque& drive, double settle_s, double t0_s, double theta0_rad,
+                    double w0_rad_per_s);
   void observe(double t_s, double theta_rad);
   // max |mean / reference mean - 1| over the whole revolutions; none before one.
   std::optional<double> max_relative_drift() const { return max_; }

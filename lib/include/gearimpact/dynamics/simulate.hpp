@@ -446,6 +446,12 @@ std::optional<double> equivalent_mesh_damping_ratio(const SimulationCase& c,
 // have met before it, at the tip's corner, which a line-of-action model does not describe.
 inline constexpr double kMostPlausibleOverlapModules = 0.05;
 std::vector<std::string> result_warnings(const SimulationCase& c, const SimulationSummary& s);
+// The warning of a signal run whose body (`body`: "the pinion", "body NAME") drifted from its
+// speed reference by `drift` (speed_drift_max_rel) over `tolerance` (drive.speed_tolerance),
+// its torque `drive` keyed `torque_key` ("torque1", "bodies.NAME.torque"): what moved it and
+// the key that holds it.
+std::string speed_drift_warning(double drift, double tolerance, const Torque& drive,
+                                const std::string& body, const std::string& torque_key);
 
 class CheckedRun;
 

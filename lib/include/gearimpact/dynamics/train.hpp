@@ -160,6 +160,10 @@ struct GearTrain {
   double sensor_angle_rad = pi / 2.0;
   // kind (rk4: the event-cut RK4 at the fixed step), step, end time, output_every.
   IntegratorSettings integrator;
+  // The drift check's settling time and bound ([drive]): the first body's
+  // speed over each whole revolution after settle_s against its reference
+  // (SpeedDriftMonitor; SimulationSummary::speed_drift_max_rel).
+  Drive drive;
 };
 
 // The two-gear torsional case as a train: the pinion (J1, torque1, theta1,
@@ -301,5 +305,10 @@ std::shared_ptr<const SpeedController> train_speed_controller(const GearTrain& t
 // with each body's centre and bearing force and the sensor's acceleration,
 // its summary with the bearings' energies (SimulationSummary::planar).
 TrainResult simulate_train(const GearTrain& train, const RunControl& control = {});
+
+// What a user should hear about a finished run of the train: on bearings (a signal run, as the
+// two-gear planar run's), its first body's speed drifting beyond drive.speed_tolerance
+// (speed_drift_warning).
+std::vector<std::string> train_warnings(const GearTrain& train, const TrainResult& result);
 
 }  // namespace gearimpact

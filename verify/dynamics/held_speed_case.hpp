@@ -1,0 +1,23 @@
+// A two-gear case held at a pinion speed by its speed controller, for the drift check's whole
+// revolutions (SpeedDriftMonitor), shared by the torsional and the planar train's tests.
+#pragma once
+
+#include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/constants.hpp"
+#include "gearimpact/geometry/gear_pair.hpp"
+
+namespace gearimpact::verify {
+
+// c (its torque1 speed-controlled) from w_rad_per_s, the wheel rolling with the pinion, checked
+// from the start (drive.settle 0) over `revolutions` of the pinion.
+inline SimulationCase held_at_speed(SimulationCase c, double w_rad_per_s, double revolutions) {
+  c.initial.w1_rad_per_s = w_rad_per_s;
+  c.initial.w2_rad_per_s =
+      w_rad_per_s * base_radius(c.gears, Gear::one) / base_radius(c.gears, Gear::two);
+  c.torque1.mean_speed_rad_per_s = w_rad_per_s;
+  c.drive.settle_s = 0.0;
+  c.integrator.end_time_s = revolutions * 2.0 * pi / w_rad_per_s;
+  return c;
+}
+
+}  // namespace gearimpact::verify
