@@ -1,7 +1,10 @@
 #include "case_flags.hpp"
 
+#include <cmath>
 #include <iostream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "gearimpact/case/schema.hpp"
 #include "gearimpact/paper/table1.hpp"
@@ -34,6 +37,25 @@ bool numeric(const Field& field) {
 }
 
 }  // namespace
+
+long long max_rows_flag(double max_rows) {
+  if (!(max_rows >= 1.0 && max_rows <= 9e18) || max_rows != std::floor(max_rows)) {
+    throw InputError("--max-rows", format_number(max_rows), "a whole count in [1, 9e18]");
+  }
+  return static_cast<long long>(max_rows);
+}
+
+void throw_as_sample_rate_flag(const InputError& e, const std::string& typed) {
+  std::vector<Problem> problems = e.problems();
+  Problem& first = problems.front();
+  const std::string lift = "lift the bound";
+  if (first.allowed.size() >= lift.size() &&
+      first.allowed.compare(first.allowed.size() - lift.size(), lift.size(), lift) == 0) {
+    first.allowed += " (--max-rows)";
+  }
+  first = first.renamed("--sample-rate", typed);
+  throw InputError(std::move(problems));
+}
 
 std::string command_names(unsigned commands) {
   static constexpr std::pair<CaseCommand, const char*> kNames[] = {

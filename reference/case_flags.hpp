@@ -32,6 +32,14 @@ enum CaseCommand : unsigned {
 // "simulate, sweep-friction": the commands of a mask, in the order above.
 std::string command_names(unsigned commands);
 
+// --max-rows as a count of rows (RunControl::most_series_rows): a whole count in [1, 9e18],
+// else InputError naming the flag.
+long long max_rows_flag(double max_rows);
+
+// The library's refusal of sample_rate (e) as the program's: --sample-rate as the user typed
+// it (`typed`), the library's bound on the samples named as --max-rows.
+[[noreturn]] void throw_as_sample_rate_flag(const InputError& e, const std::string& typed);
+
 // A flag that sets one key of the case. Its value is read and checked by the
 // key's schema row (a plain number is SI, "20 ms" carries its unit); the
 // default is the case's own. A switch (`switch_value` set) takes no value and

@@ -190,10 +190,7 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
   std::optional<AtomicFile> series_file;
   std::string pending;
   constexpr std::size_t kFlushBytes = std::size_t{1} << 20;
-  if (!(o.max_rows >= 1.0 && o.max_rows <= 9e18) || o.max_rows != std::floor(o.max_rows)) {
-    throw InputError("--max-rows", format_number(o.max_rows), "a whole count in [1, 9e18]");
-  }
-  control.most_series_rows = static_cast<long long>(o.max_rows);
+  control.most_series_rows = max_rows_flag(o.max_rows);
   // A long run says how far it is, a line per tenth, on standard error.
   constexpr double kRowsWorthProgress = 1e7;
   int tenths_done = 0;
@@ -281,16 +278,7 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
       throw InputError(e.field(), e.value(),
                        e.allowed() + " (--every keeps fewer rows, --max-rows lifts the bound)");
     }
-    if (e.field() == "sample_rate") {
-      // The library's bound is the program's --max-rows.
-      std::string allowed = e.allowed();
-      const std::string lift = "lift the bound";
-      if (allowed.size() >= lift.size() &&
-          allowed.compare(allowed.size() - lift.size(), lift.size(), lift) == 0) {
-        allowed += " (--max-rows)";
-      }
-      throw InputError("--sample-rate", o.sample_rate, allowed);
-    }
+    if (e.field() == "sample_rate") throw_as_sample_rate_flag(e, o.sample_rate);
     throw;
   }
   if (series_file) {

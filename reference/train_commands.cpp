@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "case_flags.hpp"
 #include "commands.hpp"
 #include "gearimpact/case/units.hpp"
 #include "gearimpact/dynamics/planetary_train.hpp"
@@ -18,6 +19,7 @@
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/results.hpp"
 #include "gearimpact/named_values.hpp"
+#include "gearimpact/signals/order_tracking.hpp"
 
 namespace gearimpact::cli {
 
@@ -30,6 +32,7 @@ struct TrainOptions {
   std::vector<std::string> sets;
   std::string sample_rate;
   std::string sample = "interval-average";
+  double max_rows = static_cast<double>(kMostSeriesRows);
 };
 
 // A stage file ([stage]): the stage's train run, its summary with the Willis residual, and the
@@ -57,6 +60,7 @@ void run_train(const TrainOptions& o, const CLI::App& command) {
   // Every refusal before any work: the folder, the flags, then the case.
   require_output_folder(o.out, o.overwrite, {o.case_file});
   RunControl control;
+  control.most_series_rows = max_rows_flag(o.max_rows);
   if (command.get_option("--sample-rate")->count() > 0) {
     control.sample_rate_hz =
         parse_plain_or_quantity(o.sample_rate, Dimension::frequency, "--sample-rate");
@@ -82,17 +86,14 @@ void run_train(const TrainOptions& o, const CLI::App& command) {
     try {
       return simulate_train(file, control);
     } catch (const InputError& e) {
-      // The library's sample_rate is the user's --sample-rate.
-      if (e.field() != "sample_rate") throw;
-      std::vector<Problem> problems = e.problems();
-      problems.front() = problems.front().renamed("--sample-rate", o.sample_rate);
-      throw InputError(std::move(problems));
+      if (e.field() == "sample_rate") throw_as_sample_rate_flag(e, o.sample_rate);
+      throw;
     }
   }();
   // The outputs name the meshes the run ran (a helical mesh by slices: one per slice).
   const GearTrain train = dynamics_train(file);
   const std::string summary = train_summary_json(train, result);
-  for (const std::string& w : train_warnings(file, result)) {
+  for (const std::string& w : train_warnings(file, result, !is_train_file(o.case_file))) {
     std::cerr << "gearimpact: warning: " << w << "\n";
   }
   AtomicFolder folder(o.out, o.overwrite, {o.case_file});
@@ -100,6 +101,13 @@ void run_train(const TrainOptions& o, const CLI::App& command) {
   write_file_atomically((dir / "series.csv").string(), train_series_csv(train, result.series));
   if (control.sample_rate_hz) {
     write_file_atomically((dir / "samples.csv").string(), train_series_csv(train, result.samples));
+  }
+  if (file.tacho_body >= 0) {
+    // As simulate --tacho-out writes them: the true times and the emitted, jittered ones.
+    write_file_atomically((dir / "tacho.csv").string(),
+                          tacho_csv(result.tacho_times_s,
+                                    signals::tacho_jitter(result.tacho_times_s, file.tacho.jitter_s,
+                                                          file.tacho.seed)));
   }
   write_file_atomically((dir / "summary.json").string(), summary);
   folder.commit();
@@ -142,6 +150,10 @@ void register_train_commands(CLI::App& app) {
       "--sample", o->sample,
       "the sensor's samples: interval-average (default: the mean acceleration over the interval "
       "ending at each sample, from n = 1 on) or point (the value at each sample's instant)");
+  train->add_option("--max-rows", o->max_rows,
+                    "the most samples samples.csv may have, so that a slip of the rate does not "
+                    "fill a disk (default " +
+                        format_number(static_cast<double>(kMostSeriesRows)) + ")");
   train->callback([o, train] { run_train(*o, *train); });
 }
 

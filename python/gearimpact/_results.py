@@ -314,17 +314,24 @@ def train(case_file, sets=(), keep_series=True, sample_rate=None, sample="interv
     "samples" has the series' columns at t = n / sample_rate exactly (the steps' continuous
     extension), the command's samples.csv; its sensor_acceleration_m_per_s2 as sample says,
     "interval-average" (the mean over the interval ending at each sample, from n = 1 on) or
-    "point". Raises CaseError naming a bad key (stage.KEY in a stage file) or sample_rate."""
+    "point". A train with a [tacho] (or a two-gear file's) adds "tacho", its true edge times in
+    s (tacho.csv's t_s). Raises CaseError naming a bad key (stage.KEY in a stage file) or
+    sample_rate."""
     path = _arguments.path("case_file", case_file)
     more = _arguments.strings("sets", sets, ["integrator.end_time=2 ms"])
     keep = _arguments.flag("keep_series", keep_series)
     rate = _sample_rate(sample_rate)
     kind = _arguments.text("sample", sample)
-    summary, series, ring_sensor, mesh_teeth, samples = _core.train(
+    summary, series, ring_sensor, mesh_teeth, samples, tacho, warnings = _core.train(
         path, list(more), keep, rate, kind)
     result = {"series": series, "summary": json.loads(summary)}
+    # The run's own warnings, as the program prints them (a drifting speed).
+    for warning in warnings:
+        _warnings.warn(f"{path}: {warning}")
     if samples is not None:
         result["samples"] = samples
+    if tacho is not None:
+        result["tacho"] = tacho
     if ring_sensor is not None:
         result["ring_sensor"] = ring_sensor
         result["mesh_teeth"] = mesh_teeth

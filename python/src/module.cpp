@@ -330,7 +330,8 @@ py::tuple run_stage(const std::string& path, const std::vector<std::string>& set
   const std::size_t planets = train.bodies.size() - kFirstPlanetBody;
   return py::make_tuple(summary,
                         table_arrays(train_series_columns(train), std::move(result.series)), sensor,
-                        table_arrays(stage_teeth_columns(planets), std::move(teeth)), py::none());
+                        table_arrays(stage_teeth_columns(planets), std::move(teeth)), py::none(),
+                        py::none(), py::list());
 }
 
 // With sample_rate_hz, the sensor's samples as arrays by the same columns (the command's
@@ -340,9 +341,10 @@ py::tuple run_train(const std::string& path, const std::vector<std::string>& set
   const SampleKind sample_kind = value_named(kSampleKinds, sample, "sample");
   if (is_stage_file(path)) {
     if (sample_rate_hz) {
-      throw InputError("sample_rate", format_number(*sample_rate_hz) + " Hz",
-                       "None for a stage file: its ring sensor is returned at every step "
-                       "(ring_sensor)");
+      throw InputError(std::vector<Problem>{refused_problem(
+          "sample_rate", format_number(*sample_rate_hz) + " Hz",
+          "not for a stage file: its ring sensor is returned at every step (ring_sensor)",
+          "None for a stage file")});
     }
     return run_stage(path, sets, keep_series);
   }
@@ -359,11 +361,19 @@ py::tuple run_train(const std::string& path, const std::vector<std::string>& set
   const GearTrain train = dynamics_train(file);
   const std::string summary = train_summary_json(train, result);
   py::object samples = py::none();
-  if (sample_rate_hz)
+  if (sample_rate_hz) {
     samples = table_arrays(train_series_columns(train), std::move(result.samples));
+  }
+  // The tacho's true edge times, as simulate's (the emitted ones are tacho.csv's jittered column).
+  py::object tacho = py::none();
+  if (file.tacho_body >= 0) tacho = to_array(result.tacho_times_s);
+  py::list warnings;
+  for (const std::string& w : train_warnings(file, result, !is_train_file(path))) {
+    warnings.append(w);
+  }
   return py::make_tuple(summary,
                         table_arrays(train_series_columns(train), std::move(result.series)),
-                        py::none(), py::none(), samples);
+                        py::none(), py::none(), samples, tacho, warnings);
 }
 
 // The stiffness columns of `gearimpact stiffness` at the contact positions xs.

@@ -222,6 +222,24 @@ TEST_CASE(
   }
 }
 
+TEST_CASE("train writes a two-gear file's tacho.csv as simulate --tacho-out writes it") {
+  Scratch scratch("train-cli-tacho");
+  const std::string rig = (examples / "rig_17_38.toml").string() +
+                          " --set 'integrator.end_time=20 ms' --set tacho.pulses_per_revolution=8"
+                          " --set 'tacho.jitter=1 us'";
+  const std::filesystem::path out = scratch.dir / "out";
+  const std::filesystem::path tacho = scratch.dir / "tacho.csv";
+  const CommandResult train = run_command(cli("train " + rig + " --out " + out.string()));
+  const CommandResult simulate =
+      run_command(cli("simulate --case-file " + rig + " --tacho-out " + tacho.string()));
+  INFO(train.err << simulate.err);
+  REQUIRE(train.exit_code == 0);
+  REQUIRE(simulate.exit_code == 0);
+  const std::string written = read(out / "tacho.csv");
+  CHECK(std::count(written.begin(), written.end(), '\n') > 5);
+  CHECK(written == read(tacho));
+}
+
 // ---- A planetary stage's file ([stage]) through `gearimpact train` ----
 
 namespace {

@@ -24,7 +24,7 @@
 #include "gearimpact/geometry/gear_pair.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "gearimpact/stiffness/table.hpp"
-#include "held_speed_case.hpp"
+#include "speed_cases.hpp"
 
 using namespace gearimpact;
 
@@ -171,6 +171,8 @@ TEST_CASE(
   REQUIRE(key != std::string::npos);
   expected.replace(key, std::string("torque1.").size(), "bodies.pinion.torque.");
   CHECK(warned[0] == expected);
+  // Of a two-gear file, the two-gear run's warning word for word.
+  CHECK(train_warnings(drift_train, simulate_train(drift_train), true) == model_warned);
   // The controller acts: the same run with the pinion's torque held at zero differs.
   SimulationCase free = c;
   free.torque1 = Torque{};
@@ -183,9 +185,13 @@ TEST_CASE("a train's sensor samples are the two-gear planar run's, bit for bit, 
   // Samples at 51.2 kHz, one every 97.66 steps of 0.2 us: inside steps (the
   // steps' continuous extension) and cut by the run's events, on the
   // wheel's sensor at 0.3 rad.
+  // The pinion starts half the backlash back, without the mesh damper: the first samples see
+  // no force, and their zero acceleration's sign is the planar run's.
   SimulationCase c = elastic_paper_case();
   c.bearings.sensor_gear = 2;
   c.bearings.sensor_angle_rad = 0.3;
+  c.initial.theta1_rad -= 0.5 * c.gears.backlash_m / base_radius(c.gears, Gear::one);
+  c.model.mesh_damping_ratio = 0.0;
   const StiffnessTable table(c.gears, c.model.stiffness);
   const GearTrain train = planar_two_gear_train(c, table);
   std::vector<double> point;
@@ -201,6 +207,10 @@ TEST_CASE("a train's sensor samples are the two-gear planar run's, bit for bit, 
                                                    (kind == SampleKind::point ? 0.0 : 1.0));
     REQUIRE(planar.planar_samples.size() == expected);
     REQUIRE(run.samples.size() == expected);
+    if (kind == SampleKind::point) {
+      REQUIRE(run.samples[0].meshes[0].region == 0);
+      REQUIRE(run.samples[0].sensor_acceleration_m_per_s2 == 0.0);
+    }
     for (std::size_t i = 0; i < expected; ++i) {
       const PlanarSample& a = planar.planar_samples[i];
       const TrainRow& b = run.samples[i];
@@ -208,7 +218,10 @@ TEST_CASE("a train's sensor samples are the two-gear planar run's, bit for bit, 
           a.t_s == b.t_s && a.state.theta1_rad == b.theta_rad[0] &&
           a.state.w2_rad_per_s == b.w_rad_per_s[1] && a.state.x2_m == b.centres[1].x_m &&
           a.state.vy1_m_s == b.centres[0].vy_m_s && a.bearing_fy2_n == b.centres[1].bearing_fy_n &&
-          a.sensor_acceleration_m_per_s2 == b.sensor_acceleration_m_per_s2;
+          a.sensor_acceleration_m_per_s2 == b.sensor_acceleration_m_per_s2 &&
+          // To the bit: a zero's sign too (before the first contact).
+          std::signbit(a.sensor_acceleration_m_per_s2) ==
+              std::signbit(b.sensor_acceleration_m_per_s2);
       if (!same) {
         INFO("sample " << i << " at t = " << a.t_s);
         REQUIRE(same);
@@ -222,6 +235,38 @@ TEST_CASE("a train's sensor samples are the two-gear planar run's, bit for bit, 
       CHECK(point[5] != run.samples[4].sensor_acceleration_m_per_s2);
     }
   }
+}
+
+TEST_CASE(
+    "a train's tacho is the two-gear planar run's, bit for bit, on either gear and a driver") {
+  // 1e5 pulses a revolution over 2 ms from 50 rad/s (the first impacts soon stop the free
+  // pinion): the pinion's edges on the steps' continuous extension, the wheel's from an offset,
+  // a driven pinion's on its closed form.
+  SimulationCase pinion = elastic_paper_case();
+  pinion.tacho.pulses_per_revolution = 100000;
+  SimulationCase wheel = pinion;
+  wheel.tacho.shaft = TachoShaft::wheel;
+  wheel.tacho.offset_rad = 0.3;
+  SimulationCase driven = verify::driven_with_harmonic(pinion);
+  const StiffnessTable table(pinion.gears, pinion.model.stiffness);
+  for (const SimulationCase* c : {&pinion, &wheel, &driven}) {
+    const SimulationResult planar = simulate(*c, table);
+    const GearTrain train = planar_two_gear_train(*c, table);
+    CHECK(train.tacho_body == (c == &wheel ? 1 : 0));
+    CHECK(train.meshes[0].pair.tacho.pulses_per_revolution == 0);
+    const TrainResult run = simulate_train(train);
+    REQUIRE(planar.tacho_times_s.size() >= 10);
+    CHECK(run.tacho_times_s == planar.tacho_times_s);
+  }
+  // A train on rigid bearings has none, as the two-gear torsional run; nor a body with no pulses.
+  GearTrain rigid = two_gear_train(paper_case(2));
+  rigid.tacho_body = 0;
+  rigid.tacho.pulses_per_revolution = 2;
+  CHECK_THROWS_WITH_AS(simulate_train(rigid), doctest::Contains("tacho.body"), InputError);
+  GearTrain none = planar_two_gear_train(pinion, table);
+  none.tacho.pulses_per_revolution = 0;
+  CHECK_THROWS_WITH_AS(simulate_train(none), doctest::Contains("tacho.pulses_per_revolution"),
+                       InputError);
 }
 
 TEST_CASE("a train without a sensor refuses samples, naming sample_rate") {
@@ -242,7 +287,7 @@ TEST_CASE("a train without a sensor refuses samples, naming sample_rate") {
   for (const GearTrain& train : {torsional, unsensed}) {
     const std::string text = refusal(train);
     CHECK(text.rfind("sample_rate: ", 0) == 0);
-    CHECK(text.find("no [sensor]") != std::string::npos);
+    CHECK(text.find("[sensor] body = NAME") != std::string::npos);
   }
   GearTrain sensed = two_gear_train(elastic_paper_case());
   sensed.sensor_body = 1;

@@ -22,7 +22,7 @@
 #include "gearimpact/geometry/modifications.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "gearimpact/stiffness/table.hpp"
-#include "held_speed_case.hpp"
+#include "speed_cases.hpp"
 
 using namespace gearimpact;
 
@@ -166,15 +166,9 @@ TEST_CASE("a two-body train takes every integrator, mesh force, damper and drive
   damper.name = "mesh-damper";
   damper.model.mesh_damping_ratio = 0.05;
   // A driver with a speed harmonic against a drag: the wheel rattles.
-  SimulationCase driven = paper_case(1);
+  SimulationCase driven = verify::driven_with_harmonic(paper_case(1));
   driven.name = "driver-drag";
   driven.integrator.end_time_s = 2e-3;
-  driven.torque1 = Torque{};
-  driven.torque1.kind = Torque::Kind::prescribed_speed;
-  driven.torque1.mean_speed_rad_per_s = driven.initial.w1_rad_per_s;
-  driven.torque1.driver_orders = {10.0};
-  driven.torque1.driver_speed_amplitudes_rad_per_s = {0.2 * driven.initial.w1_rad_per_s};
-  driven.torque1.harmonic_phases_rad = {0.0};
   driven.torque2 = Torque{};
   driven.torque2.kind = Torque::Kind::drag;
   driven.torque2.drag_constant_n_m = 2.0;

@@ -209,6 +209,37 @@ TEST_CASE("a train file's [drive] sets its drift check, as a two-gear file's doe
                        doctest::Contains("drive.settle"), CaseFileError);
 }
 
+TEST_CASE("a train file's [tacho] names its body, its other keys the pair's [tacho] rows") {
+  const std::string text = example_text() +
+                           "\n[tacho]\nbody = \"wheel\"\npulses_per_revolution = 60\n"
+                           "offset = \"10 deg\"\njitter = \"1 us\"\nseed = 7\n";
+  const GearTrain t = parse_train(text, "train.toml");
+  REQUIRE(t.tacho_body >= 0);
+  CHECK(t.bodies[static_cast<std::size_t>(t.tacho_body)].name == "wheel");
+  CHECK(t.tacho.pulses_per_revolution == 60);
+  CHECK(t.tacho.offset_rad == doctest::Approx(10.0 * pi / 180.0).scale(0).epsilon(1e-15));
+  CHECK(t.tacho.jitter_s == 1e-6);
+  CHECK(t.tacho.seed == 7);
+  // The pairs keep none: the train's bodies carry it.
+  for (const TrainMesh& m : t.meshes) CHECK(m.pair.tacho.pulses_per_revolution == 0);
+  CHECK(parse_train(example_text(), "train.toml").tacho_body == -1);
+  const auto refusal = [](const std::string& tacho) {
+    try {
+      (void)parse_train(example_text() + "\n[tacho]\n" + tacho, "train.toml");
+    } catch (const CaseFileError& e) {
+      return std::string(e.what());
+    }
+    return std::string("none");
+  };
+  CHECK(refusal("pulses_per_revolution = 1\n").find("tacho.body is missing") != std::string::npos);
+  CHECK(refusal("body = \"whel\"\n").find("tacho.body = \"whel\" names no body") !=
+        std::string::npos);
+  CHECK(refusal("body = \"wheel\"\nshaft = \"wheel\"\n").find("tacho.shaft is not read") !=
+        std::string::npos);
+  CHECK(refusal("body = \"wheel\"\npulses_per_revolution = -1\n")
+            .find("tacho.pulses_per_revolution") != std::string::npos);
+}
+
 TEST_CASE("a file without [[bodies]] is the two-gear case it always was") {
   const std::string text = write_case_file(paper_case(2));
   const GearTrain train = parse_train(text, "case2.toml");

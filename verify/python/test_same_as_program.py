@@ -437,6 +437,18 @@ def test_train_samples_equal_the_program(cli, source_dir, tmp_path):
         for name in theirs:
             assert_bitwise_equal(ours["samples"][name], theirs[name], f"train sample {name}")
         assert ours["samples"]["t_s"][0] == first
+    # The tacho's true edges, as tacho.csv's t_s.
+    out = tmp_path / "tacho"
+    tacho_sets = sets + ["tacho.pulses_per_revolution=200"]
+    cli("train", example, "--set", tacho_sets[0], "--set", tacho_sets[1], "--out", out)
+    ours = gearimpact.train(example, sets=tacho_sets)
+    theirs = parse_csv((out / "tacho.csv").read_text())
+    assert len(ours["tacho"]) > 5
+    assert_bitwise_equal(ours["tacho"], theirs["t_s"], "train tacho")
+    # A drift beyond drive.speed_tolerance warns as the program does, naming the two-gear key.
+    with pytest.warns(UserWarning, match="torque1.bandwidth"):
+        gearimpact.train(example, sets=["integrator.end_time=50 ms", "drive.settle=0 s",
+                                        "drive.speed_tolerance=1e-12"])
     # No samples asked, none returned; a train without a [sensor] refuses them by name.
     assert "samples" not in gearimpact.train(example, sets=["integrator.end_time=0.1 ms"])
     with pytest.raises(gearimpact.CaseError, match="sample_rate") as caught:

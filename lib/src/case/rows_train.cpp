@@ -89,6 +89,11 @@ std::vector<Field> make_train_schema() {
       .when_absent = "no sensor (required in a [sensor] table)";
   quantity("sensor", "angle", Dimension::angle, "deg", {closed(-2.0 * pi), closed(2.0 * pi), {}},
            "90 deg", "the accelerometer's direction, from the train's x axis towards y");
+  // A train's tacho reads a body ([tacho] shaft of a pair); its other keys are the pair's rows.
+  row("tacho", "body", FieldKind::text, false,
+      "the name of the body whose angle the tacho reads (a train with a body on bearings), its "
+      "other keys the two-gear [tacho]'s but shaft: gearimpact train writes tacho.csv")
+      .when_absent = "no tacho (required in a train's [tacho] table)";
   Field& kind = row("shafts", "kind", FieldKind::choice, true,
                     "a rigid shaft makes its two bodies one (their inertias summed); a torsional "
                     "one is a spring T = k (theta_a - theta_b) on body_b");

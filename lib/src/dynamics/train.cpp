@@ -384,12 +384,37 @@ void validate_train_sampling(const GearTrain& train, const RunControl& control) 
   if (train.sensor_body < 0) {
     throw InputError(std::vector<Problem>{
         refused_problem("sample_rate", format_number(*control.sample_rate_hz) + " Hz",
-                        "a train's samples are its sensor's, and this train has no [sensor]",
-                        "a rate for a train with a [sensor] (body = NAME, a body on bearings)")});
+                        "a train's samples are its sensor's, and this train has none",
+                        "a rate for a train with a sensor: [sensor] body = NAME (a body on "
+                        "bearings) in a train file, [bearings] kind = \"elastic\" in a two-gear "
+                        "file")});
   }
   const double numbers = 2.0 + 8.0 * static_cast<double>(train.bodies.size()) +
                          10.0 * static_cast<double>(train.meshes.size());
   validate_sampling(train.integrator.end_time_s, 22.0 * numbers, control);
+}
+
+// A tacho reads a body of a train on bearings, as the two-gear tacho reads a
+// gear of the planar run; at least one pulse a revolution.
+void validate_train_tacho(const GearTrain& train) {
+  if (train.tacho_body < 0) return;
+  if (static_cast<std::size_t>(train.tacho_body) >= train.bodies.size()) {
+    throw InputError("tacho_body", std::to_string(train.tacho_body),
+                     "a body of the train, or -1: no tacho");
+  }
+  const std::string body = train.bodies[static_cast<std::size_t>(train.tacho_body)].name;
+  if (!has_planar_bodies(train)) {
+    throw InputError(std::vector<Problem>{refused_problem(
+        "tacho.body", "\"" + body + "\"",
+        "a tacho runs with the planar dynamics, as the two-gear planar run's, and no body of "
+        "this train has bearings",
+        "a tacho in a train with a body on bearings (bodies.NAME.bearings)")});
+  }
+  if (train.tacho.pulses_per_revolution < 1) {
+    throw InputError("tacho.pulses_per_revolution",
+                     std::to_string(train.tacho.pulses_per_revolution),
+                     "at least 1 with tacho.body = \"" + body + "\"");
+  }
 }
 
 void validate_train(const GearTrain& train) {
@@ -1411,6 +1436,13 @@ GearTrain two_gear_train(const SimulationCase& c) {
     train.sensor_body = c.bearings.sensor_gear - 1;
     train.sensor_angle_rad = c.bearings.sensor_angle_rad;
   }
+  if (c.tacho.pulses_per_revolution > 0) {
+    // The train's, on the body its shaft names (without shafts the motor's angle is the
+    // pinion's); the mesh's pair keeps none, as its bearings.
+    train.tacho_body = c.tacho.shaft == TachoShaft::wheel ? 1 : 0;
+    train.tacho = c.tacho;
+    train.meshes[0].pair.tacho = Tacho{};
+  }
   return train;
 }
 
@@ -1546,14 +1578,16 @@ GearTrain dynamics_train(const GearTrain& train) {
   return run;
 }
 
-std::vector<std::string> train_warnings(const GearTrain& train, const TrainResult& result) {
+std::vector<std::string> train_warnings(const GearTrain& train, const TrainResult& result,
+                                        bool two_gear_file) {
   std::vector<std::string> warnings;
   const SimulationSummary& s = result.summary;
   if (s.planar && s.speed_drift_max_rel && *s.speed_drift_max_rel > train.drive.speed_tolerance) {
     const TrainBody& first = train.bodies.front();
-    warnings.push_back(speed_drift_warning(*s.speed_drift_max_rel, train.drive.speed_tolerance,
-                                           first.torque, "body " + first.name,
-                                           "bodies." + first.name + ".torque"));
+    warnings.push_back(
+        speed_drift_warning(*s.speed_drift_max_rel, train.drive.speed_tolerance, first.torque,
+                            two_gear_file ? "the pinion" : "body " + first.name,
+                            two_gear_file ? "torque1" : "bodies." + first.name + ".torque"));
   }
   return warnings;
 }
@@ -1561,6 +1595,7 @@ std::vector<std::string> train_warnings(const GearTrain& train, const TrainResul
 TrainResult simulate_train(const GearTrain& train, const RunControl& control) {
   validate_train(train);
   validate_train_sampling(train, control);
+  validate_train_tacho(train);
   // The train its dynamics run: a helical mesh's route B table is built from
   // its helical pair, before the pair becomes its transverse section.
   GearTrain run = train;

@@ -265,6 +265,8 @@ class PlanarTrainSystem {
   }
 
   int dof_of(int body) const { return body_dof_[static_cast<std::size_t>(body)]; }
+  // The body whose kinematic driver (or hold) sets degree of freedom d (-1: none).
+  int driver_of(std::size_t d) const { return driver_[d]; }
   bool translating(int dof) const { return translating_[static_cast<std::size_t>(dof)]; }
   std::size_t mesh_count() const { return mesh_count_; }
   const MeshLine& mesh(std::size_t k) const { return meshes_[k]; }
@@ -370,8 +372,13 @@ class PlanarTrainSystem {
                                   const MemoryType& memory, StateType& dy,
                                   ForcesType* forces) const {
     dy = StateType{};
-    std::array<double, L::kDofs> fx{};
-    std::array<double, L::kDofs> fy{};
+    // The centres' forces start at -0, the sum's neutral element (-0 + x is x, -0 too), so
+    // that a bearing's force added to them keeps its sign of zero, as the two-gear planar
+    // run's, which sets it.
+    std::array<double, L::kDofs> fx;
+    std::array<double, L::kDofs> fy;
+    fx.fill(-0.0);
+    fy.fill(-0.0);
     std::array<double, L::kDofs> moment{};
     double bearing_power = 0.0;
     for (std::size_t d = 0; d < L::kDofs && d < dofs_; ++d) {
@@ -801,6 +808,14 @@ class PlanarTrainRun {
     classify(0.0);
     if (control.keep_samples && clock_.on()) result_.samples.reserve(clock_.reserve_rows());
     emit_samples(0.0, y_, mode_, [](double, State&) {});
+    if (train.tacho_body >= 0) {
+      // The tacho's body's angle, and its driver, whose closed form it then reads.
+      const auto d = static_cast<std::size_t>(system_.dof_of(train.tacho_body));
+      tacho_index_ = L::theta(d);
+      const int driver = system_.driver_of(d);
+      if (driver >= 0) tacho_driver_ = &train.bodies[static_cast<std::size_t>(driver)];
+      tacho_.emplace(train.tacho, y_[tacho_index_]);
+    }
     PlanarEnergies& p = *s.planar;
     const double kinetic0 = system_.kinetic_energy(y_);
     const double mesh0 = mesh_energy(y_);
@@ -825,7 +840,7 @@ class PlanarTrainRun {
     return static_cast<long long>(
         std::ceil(train_.integrator.end_time_s / train_.integrator.step_s - 1e-9));
   }
-  bool wants_dense() const { return clock_.on(); }
+  bool wants_dense() const { return clock_.on() || tacho_.has_value(); }
   bool records() const { return control_.keep_series || static_cast<bool>(control_.on_train_row); }
   bool sampling() const { return clock_.on(); }
   const State& first_stage(double) const { return k1_; }
@@ -836,8 +851,23 @@ class PlanarTrainRun {
   void emit_samples(double t_b, const State& y_b, const ModeSet& m, StateAt state_at) {
     clock_.emit_states(t_b, y_b, state_at, [&](double ts, const State& y) { sample(ts, y, m); });
   }
+  // The tacho's edges inside the step from (t_a, y_a) to (t_b, y_b), as the
+  // two-gear planar run's: on its continuous extension, or a driver's closed form.
   template <typename Dense>
-  void observe_step(double, const State&, double, const State&, const Dense&) {}
+  void observe_step(double t_a, const State& y_a, double t_b, const State& y_b,
+                    const Dense& dense) {
+    if (!tacho_) return;
+    tacho_->step(t_a, y_a[tacho_index_], t_b, y_b[tacho_index_], [&](double tau) {
+      if (tacho_driver_ != nullptr) {
+        return tacho_driver_->held
+                   ? tacho_driver_->theta_rad
+                   : driver_motion(tacho_driver_->torque, tacho_driver_->theta_rad, tau).theta_rad;
+      }
+      State x{};
+      dense(tau, x);
+      return x[tacho_index_];
+    });
+  }
   void check_finite(double t, const State& y) const {
     check_finite_state(t, result_.summary.steps, y);
   }
@@ -1024,6 +1054,7 @@ class PlanarTrainRun {
     p.bearing_damping_loss_j = y_[L::kBearingLoss];
     p.shaft_energy_final_j = system_.shaft_energy(y_);
     s.speed_drift_max_rel = drift_.max_relative_drift();
+    if (tacho_) result_.tacho_times_s = tacho_->times();
     s.final_w1_rad_per_s = y_[L::w(static_cast<std::size_t>(system_.dof_of(0)))];
     s.final_w2_rad_per_s = y_[L::w(static_cast<std::size_t>(system_.dof_of(1)))];
     for (std::size_t k = 0; k < L::kMeshes && k < system_.mesh_count(); ++k) {
@@ -1106,8 +1137,11 @@ class PlanarTrainRun {
   double before_ = 0.0;
   bool stepped_per_stage_ = false;
   SampleClock clock_;
-  SpeedDriftMonitor drift_;     // of the first body
-  IntervalAverage<2> average_;  // the sensor's centre's vx and vy
+  SpeedDriftMonitor drift_;  // of the first body
+  std::optional<TachoEdges> tacho_;
+  std::size_t tacho_index_ = 0;              // its body's angle in the state
+  const TrainBody* tacho_driver_ = nullptr;  // the driver of its body's degree of freedom
+  IntervalAverage<2> average_;               // the sensor's centre's vx and vy
   double sensor_cos_;
   double sensor_sin_;
 };

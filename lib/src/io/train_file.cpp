@@ -331,6 +331,27 @@ void read_sensor(const Reader& reader, const toml::value& value,
   train.sensor_angle_rad = table.quantity("sensor", "angle").value_or(pi / 2.0);
 }
 
+// The body of the file's [tacho] (train_schema()'s tacho.body) among the train's bodies; the
+// pair's shaft refused, as the body names what it named.
+void read_tacho(const Reader& reader, const toml::value& value,
+                const std::vector<std::string>& bodies, GearTrain& train,
+                std::vector<Problem>& problems) {
+  TrainTable table(reader, value, "tacho", problems);
+  if (const toml::value* shaft = table.find("shaft"); shaft != nullptr) {
+    problems.push_back(reader.problem(
+        "tacho.shaft", shaft,
+        "tacho.shaft is not read in a train file: a train's tacho names its body (tacho.body = "
+        "NAME)"));
+  }
+  if (table.find("body") == nullptr) {
+    problems.push_back(reader.problem("tacho.body", &value,
+                                      "tacho.body is missing (required in a train's [tacho]: the "
+                                      "name of the body whose angle it reads)"));
+    return;
+  }
+  train.tacho_body = table.body("tacho", "body", bodies);
+}
+
 // ---- --set on a train file: KEY=VALUE written into the file's tables before they are read ----
 
 // The TOML value a case file gives `row` for the text of a --set, checked by the row (InputError
@@ -448,6 +469,15 @@ void set_in_file(toml::value& root, const std::string& assignment) {
     section.as_table()[std::string(stage_row->key)] = toml_of(*stage_row, text, key);
     return;
   }
+  // A train's own sections beside the pair's: [sensor], and [tacho]'s body.
+  if (const Field* train_row = find_train_field(key);
+      train && train_row != nullptr &&
+      (train_row->section == "sensor" || train_row->section == "tacho")) {
+    toml::value& section = root.as_table()[std::string(train_row->section)];
+    if (!section.is_table()) section = toml::table{};
+    section.as_table()[std::string(train_row->key)] = toml_of(*train_row, text, key);
+    return;
+  }
   const Field* row = find_field(key);
   if (row == nullptr) throw InputError(key, std::string(text), "a key of the case schema");
   if (row->section.empty()) {
@@ -466,6 +496,15 @@ GearTrain read_train(const Reader& reader, const toml::value& root, std::string_
   for (const auto& [key, value] : root.as_table()) {
     if (key == "bodies" || key == "meshes" || key == "sensor" ||
         (key == "shafts" && value.is_array())) {
+      continue;
+    }
+    if (key == "tacho" && value.is_table()) {
+      // Its keys but body and shaft are the two-gear [tacho]'s, read by their rows with each
+      // mesh's pair; its body is the train's (read_tacho).
+      toml::value rest = value;
+      rest.as_table().erase("body");
+      rest.as_table().erase("shaft");
+      defaults.as_table()[key] = rest;
       continue;
     }
     const Field* field = find_field(key);
@@ -609,6 +648,9 @@ GearTrain read_train(const Reader& reader, const toml::value& root, std::string_
     if (!read_pair) read_pair = pair;
     train.integrator = mesh.pair.integrator;
     train.drive = mesh.pair.drive;
+    // The tacho is the train's (read by its pair's rows): the pairs keep none, as their bearings.
+    train.tacho = mesh.pair.tacho;
+    mesh.pair.tacho = Tacho{};
     // A body's inertia defaults to its gear's disc in the first mesh that names it; a helical
     // gear's disc is that of the transverse section it runs as (pitch radius m_n z / (2 cos
     // beta)), as the two-gear run's; a helix angle out of range is the run's refusal.
@@ -686,6 +728,10 @@ GearTrain read_train(const Reader& reader, const toml::value& root, std::string_
   }
   if (const auto sensor = root.as_table().find("sensor"); sensor != root.as_table().end()) {
     read_sensor(reader, sensor->second, body_names, train, problems);
+  }
+  if (const auto tacho = root.as_table().find("tacho");
+      tacho != root.as_table().end() && tacho->second.is_table()) {
+    read_tacho(reader, tacho->second, body_names, train, problems);
   }
   if (!problems.empty()) throw CaseFileError(reader.file(), std::move(problems));
   return train;

@@ -158,6 +158,14 @@ struct GearTrain {
   // -1: none.
   int sensor_body = -1;
   double sensor_angle_rad = pi / 2.0;
+  // A tacho on body tacho_body's angle (-1: none; [tacho] body = NAME): its
+  // edges where that angle crosses offset + 2 pi k / pulses_per_revolution
+  // upward, located on each step's continuous extension (or a driver's
+  // closed form) as the two-gear planar run locates them (TachoEdges); a
+  // train on bearings only, as the two-gear tacho. tacho.shaft is not read:
+  // the body says which.
+  int tacho_body = -1;
+  Tacho tacho;
   // kind (rk4: the event-cut RK4 at the fixed step), step, end time, output_every.
   IntegratorSettings integrator;
   // The drift check's settling time and bound ([drive]): the first body's
@@ -261,6 +269,9 @@ struct TrainResult {
   // interval ending there (RunControl::sample; an interval-average run's
   // first sample, n = 0, only begins the first interval).
   std::vector<TrainRow> samples;
+  // The tacho's edge times (GearTrain::tacho_body), true: the emitted ones
+  // add tacho.jitter (signals::tacho_jitter).
+  std::vector<double> tacho_times_s;
   // steps, rhs_evaluations, events, end_time_s, step_s, the impacts' counts
   // and times, and the energy ledger (docs/model.md, Energies) of the whole
   // train; the shafts' springs count with the stored energy.
@@ -308,7 +319,9 @@ TrainResult simulate_train(const GearTrain& train, const RunControl& control = {
 
 // What a user should hear about a finished run of the train: on bearings (a signal run, as the
 // two-gear planar run's), its first body's speed drifting beyond drive.speed_tolerance
-// (speed_drift_warning).
-std::vector<std::string> train_warnings(const GearTrain& train, const TrainResult& result);
+// (speed_drift_warning), naming its key as a train file writes it (bodies.NAME.torque), or as a
+// two-gear file does (torque1, the pinion's: the two-gear run's warning word for word).
+std::vector<std::string> train_warnings(const GearTrain& train, const TrainResult& result,
+                                        bool two_gear_file = false);
 
 }  // namespace gearimpact
