@@ -155,8 +155,21 @@ def _sample_rate(sample_rate):
     return _arguments.real("sample_rate", sample_rate)
 
 
+def _sample_kind(sample, rate):
+    """sample as given to simulate and train: None (interval-average) or a kind's name, refused
+    without a sample rate, whose samples it defines (as the program refuses --sample without
+    --sample-rate)."""
+    if sample is None:
+        return "interval-average"
+    kind = _arguments.text("sample", sample)
+    if rate is None:
+        raise _arguments.case_error(
+            f"sample={sample!r}: needs sample_rate, whose samples it defines", "sample")
+    return kind
+
+
 def simulate(
-    case, keep_series=True, max_rows=None, sample_rate=None, sample="interval-average", **changes
+    case, keep_series=True, max_rows=None, sample_rate=None, sample=None, **changes
 ):
     """Runs a case: the same run as ``gearimpact simulate``, bit for bit.
 
@@ -175,8 +188,8 @@ def simulate(
     of them. With [bearings] kind = "elastic" the columns are the planar
     samples' (t_s, the state x1_m ... w_load_rad_s, ax1_m_per_s2 ...
     alpha2_rad_per_s2, bearing_fx1_N ... bearing_fy2_N, dte_m, drive_force_N,
-    coast_force_N, sensor_acceleration_m_per_s2; docs/vibration.md). sample:
-    "interval-average" (default: each acceleration is the mean over the
+    coast_force_N, sensor_acceleration_m_per_s2; docs/vibration.md). sample, with
+    sample_rate only: "interval-average" (the default, None: each acceleration is the mean over the
     interval ending at its sample, the velocity difference over 1 /
     sample_rate, so the samples start at n = 1; transfer sinc(f T), delay
     T / 2; docs/signals.md) or "point" (the value at the instant). The computation runs without the GIL; Ctrl-C stops it
@@ -189,7 +202,7 @@ def simulate(
     if rows < 1:
         raise _arguments.case_error(f"max_rows={max_rows!r}: a count >= 1, or None", "max_rows")
     rate = _sample_rate(sample_rate)
-    kind = _arguments.text("sample", sample)
+    kind = _sample_kind(sample, rate)
     run = _as_case(case)
     if changes:
         run = run.replace(**changes)
@@ -290,7 +303,7 @@ def train_modes(case_file, sets=()):
     return {"modes": modes, "summary": json.loads(summary)}
 
 
-def train(case_file, sets=(), keep_series=True, sample_rate=None, sample="interval-average"):
+def train(case_file, sets=(), keep_series=True, sample_rate=None, sample=None):
     """Runs a gear train's case file (docs/case-files.md, "A gear train"; a two-gear case file
     is the train of its pair; a stage file, "A planetary stage", is the stage's train) as
     ``gearimpact train`` does, bit for bit.
@@ -312,16 +325,16 @@ def train(case_file, sets=(), keep_series=True, sample_rate=None, sample="interv
     series for these, keep_series=False only leaves the arrays empty. sample_rate: None, or Hz
     (> 0, a number or with a unit, "51.2 kHz") for a train file with a [sensor]: the dict's
     "samples" has the series' columns at t = n / sample_rate exactly (the steps' continuous
-    extension), the command's samples.csv; its sensor_acceleration_m_per_s2 as sample says,
-    "interval-average" (the mean over the interval ending at each sample, from n = 1 on) or
-    "point". A train with a [tacho] (or a two-gear file's) adds "tacho", its true edge times in
+    extension), the command's samples.csv; its sensor_acceleration_m_per_s2 as sample says (with
+    sample_rate only), "interval-average" (the default, None: the mean over the interval ending
+    at each sample, from n = 1 on) or "point". A train with a [tacho] (or a two-gear file's) adds "tacho", its true edge times in
     s (tacho.csv's t_s). Raises CaseError naming a bad key (stage.KEY in a stage file) or
     sample_rate."""
     path = _arguments.path("case_file", case_file)
     more = _arguments.strings("sets", sets, ["integrator.end_time=2 ms"])
     keep = _arguments.flag("keep_series", keep_series)
     rate = _sample_rate(sample_rate)
-    kind = _arguments.text("sample", sample)
+    kind = _sample_kind(sample, rate)
     summary, series, ring_sensor, mesh_teeth, samples, tacho, warnings = _core.train(
         path, list(more), keep, rate, kind)
     result = {"series": series, "summary": json.loads(summary)}

@@ -449,6 +449,12 @@ def test_train_samples_equal_the_program(cli, source_dir, tmp_path):
     with pytest.warns(UserWarning, match="torque1.bandwidth"):
         gearimpact.train(example, sets=["integrator.end_time=50 ms", "drive.settle=0 s",
                                         "drive.speed_tolerance=1e-12"])
+    # A kind of sample without a rate is refused by name, as the program refuses --sample alone.
+    for run in (lambda: gearimpact.train(example, sets=sets, sample="point"),
+                lambda: gearimpact.simulate(2, end_time="1 ms", sample="point")):
+        with pytest.raises(gearimpact.CaseError, match="needs sample_rate") as caught:
+            run()
+        assert caught.value.field == "sample"
     # No samples asked, none returned; a train without a [sensor] refuses them by name.
     assert "samples" not in gearimpact.train(example, sets=["integrator.end_time=0.1 ms"])
     with pytest.raises(gearimpact.CaseError, match="sample_rate") as caught:
