@@ -223,6 +223,14 @@ TEST_CASE("a train file's [tacho] names its body, its other keys the pair's [tac
   // The pairs keep none: the train's bodies carry it.
   for (const TrainMesh& m : t.meshes) CHECK(m.pair.tacho.pulses_per_revolution == 0);
   CHECK(parse_train(example_text(), "train.toml").tacho_body == -1);
+  // --set reaches the train's own sections as the file would write them.
+  const GearTrain set = parse_train(example_text(), "train.toml",
+                                    {"tacho.body=wheel", "tacho.pulses_per_revolution=60",
+                                     "tacho.offset=10 deg", "tacho.jitter=1 us", "tacho.seed=7"});
+  CHECK(set.tacho_body == t.tacho_body);
+  CHECK(set.tacho.pulses_per_revolution == 60);
+  CHECK(set.tacho.offset_rad == t.tacho.offset_rad);
+  CHECK(parse_train(example_text(), "train.toml", {"sensor.body=idler"}).sensor_body == 1);
   const auto refusal = [](const std::string& tacho) {
     try {
       (void)parse_train(example_text() + "\n[tacho]\n" + tacho, "train.toml");
