@@ -317,6 +317,11 @@ std::vector<int> degrees_of_freedom(const GearTrain& train) {
 
 }  // namespace
 
+DriverMotion driven_body_motion(const TrainBody& body, double t) {
+  if (body.held) return {body.theta_rad, 0.0, 0.0};
+  return driver_motion(body.torque, body.theta_rad, t);
+}
+
 int count_dofs(const std::vector<int>& dof) {
   return dof.empty() ? 0 : *std::max_element(dof.begin(), dof.end()) + 1;
 }
@@ -778,13 +783,7 @@ class TrainSystem {
     for (int d = 0; d < static_cast<int>(dofs_); ++d) {
       const int body = driver_[static_cast<std::size_t>(d)];
       if (body < 0) continue;
-      const TrainBody& b = train_.bodies[static_cast<std::size_t>(body)];
-      if (b.held) {
-        y[theta_of(d)] = b.theta_rad;
-        y[w_of(d)] = 0.0;
-        continue;
-      }
-      const DriverMotion m = driver_motion(b.torque, b.theta_rad, t);
+      const DriverMotion m = driven_body_motion(train_.bodies[static_cast<std::size_t>(body)], t);
       y[theta_of(d)] = m.theta_rad;
       y[w_of(d)] = m.speed_rad_per_s;
       if (acceleration != nullptr)
