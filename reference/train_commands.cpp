@@ -93,7 +93,7 @@ void run_train(const TrainOptions& o, const CLI::App& command) {
   // The outputs name the meshes the run ran (a helical mesh by slices: one per slice).
   const GearTrain train = dynamics_train(file);
   const std::string summary = train_summary_json(train, result);
-  for (const std::string& w : train_warnings(file, result, !is_train_file(o.case_file))) {
+  for (const std::string& w : train_warnings(file, result)) {
     std::cerr << "gearimpact: warning: " << w << "\n";
   }
   AtomicFolder folder(o.out, o.overwrite, {o.case_file});

@@ -254,6 +254,8 @@ TEST_CASE("a file without [[bodies]] is the two-gear case it always was") {
   const SimulationCase c = parse_case(text, "case2.toml");
   REQUIRE(train.bodies.size() == 2);
   REQUIRE(train.meshes.size() == 1);
+  CHECK(train.two_gear_case);
+  CHECK_FALSE(parse_train(example_text(), "train.toml").two_gear_case);
   CHECK(case_key(train.meshes[0].pair) == case_key(c));
   CHECK(train.bodies[0].w_rad_per_s == c.initial.w1_rad_per_s);
   CHECK(train.bodies[1].inertia_kg_m2 == moment_of_inertia(c.gears, Gear::two));

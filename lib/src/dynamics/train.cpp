@@ -1420,6 +1420,7 @@ GearTrain two_gear_train(const SimulationCase& c) {
   train.meshes = {mesh};
   train.integrator = c.integrator;
   train.drive = c.drive;
+  train.two_gear_case = true;
   if (c.bearings.kind == BearingKind::elastic) {
     // On elastic bearings each gear's centre translates: the bodies carry the
     // bearings, with the planar model's masses (planar_mounting: a disc's
@@ -1577,16 +1578,15 @@ GearTrain dynamics_train(const GearTrain& train) {
   return run;
 }
 
-std::vector<std::string> train_warnings(const GearTrain& train, const TrainResult& result,
-                                        bool two_gear_file) {
+std::vector<std::string> train_warnings(const GearTrain& train, const TrainResult& result) {
   std::vector<std::string> warnings;
   const SimulationSummary& s = result.summary;
   if (s.planar && s.speed_drift_max_rel && *s.speed_drift_max_rel > train.drive.speed_tolerance) {
     const TrainBody& first = train.bodies.front();
     warnings.push_back(
         speed_drift_warning(*s.speed_drift_max_rel, train.drive.speed_tolerance, first.torque,
-                            two_gear_file ? "the pinion" : "body " + first.name,
-                            two_gear_file ? "torque1" : "bodies." + first.name + ".torque"));
+                            train.two_gear_case ? "the pinion" : "body " + first.name,
+                            train.two_gear_case ? "torque1" : "bodies." + first.name + ".torque"));
   }
   return warnings;
 }
