@@ -217,6 +217,7 @@ TEST_CASE("a train file's [tacho] names its body, its other keys the pair's [tac
   REQUIRE(t.tacho_body >= 0);
   CHECK(t.bodies[static_cast<std::size_t>(t.tacho_body)].name == "wheel");
   CHECK(t.tacho.pulses_per_revolution == 60);
+  // The unit's conversion may round its product in another order than this one: a few ulps.
   CHECK(t.tacho.offset_rad == doctest::Approx(10.0 * pi / 180.0).scale(0).epsilon(1e-15));
   CHECK(t.tacho.jitter_s == 1e-6);
   CHECK(t.tacho.seed == 7);
