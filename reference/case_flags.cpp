@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "gearimpact/case/schema.hpp"
+#include "gearimpact/case/units.hpp"
+#include "gearimpact/named_values.hpp"
 #include "gearimpact/paper/table1.hpp"
 #include "gearimpact/steady/sweep.hpp"
 
@@ -37,6 +39,21 @@ bool numeric(const Field& field) {
 }
 
 }  // namespace
+
+SampleFlags read_sample_flags(const CLI::App& command, const std::string& rate,
+                              const std::string& kind) {
+  SampleFlags flags;
+  if (command.get_option("--sample-rate")->count() > 0) {
+    flags.rate_hz = parse_plain_or_quantity(rate, Dimension::frequency, "--sample-rate");
+  }
+  flags.kind = value_named(kSampleKinds, kind, "--sample");
+  if (command.get_option("--sample")->count() > 0 && !flags.rate_hz) {
+    throw InputError(std::vector<Problem>{
+        refused_problem("--sample", kind, "needs --sample-rate, whose samples it defines",
+                        "--sample KIND with --sample-rate FS")});
+  }
+  return flags;
+}
 
 long long max_rows_flag(double max_rows) {
   if (!(max_rows >= 1.0 && max_rows <= 9e18) || max_rows != std::floor(max_rows)) {

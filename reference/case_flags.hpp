@@ -6,10 +6,12 @@
 
 #include <CLI/CLI.hpp>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "gearimpact/case/simulation_case.hpp"
+#include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/error.hpp"
 
 namespace gearimpact::cli {
@@ -31,6 +33,16 @@ enum CaseCommand : unsigned {
 
 // "simulate, sweep-friction": the commands of a mask, in the order above.
 std::string command_names(unsigned commands);
+
+// --sample-rate (absent: none; Hz, a plain number or with a unit) and --sample of a command
+// that samples a run: RunControl's sample_rate_hz and sample. --sample without --sample-rate is
+// refused by name, as is a value neither takes.
+struct SampleFlags {
+  std::optional<double> rate_hz;
+  SampleKind kind = SampleKind::interval_average;
+};
+SampleFlags read_sample_flags(const CLI::App& command, const std::string& rate,
+                              const std::string& kind);
 
 // --max-rows as a count of rows (RunControl::most_series_rows): a whole count in [1, 9e18],
 // else InputError naming the flag.

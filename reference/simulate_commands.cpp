@@ -128,9 +128,9 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
     require_output_file(o.out, o.case_file.empty() ? std::vector<std::string>{}
                                                    : std::vector<std::string>{o.case_file});
   }
-  std::optional<double> sample_rate;
-  if (command.get_option("--sample-rate")->count() > 0) {
-    sample_rate = parse_plain_or_quantity(o.sample_rate, Dimension::frequency, "--sample-rate");
+  const SampleFlags samples = read_sample_flags(command, o.sample_rate, o.sample);
+  const std::optional<double> sample_rate = samples.rate_hz;
+  if (sample_rate) {
     if (command.get_option("--every")->count() > 0) {
       throw InputError(std::vector<Problem>{
           refused_problem("--every", command.get_option("--every")->as<std::string>(),
@@ -142,12 +142,6 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
           refused_problem("--sample-rate", o.sample_rate, "needs --out, the file the samples go to",
                           "--sample-rate FS with --out FILE.csv")});
     }
-  }
-  const SampleKind sample_kind = value_named(kSampleKinds, o.sample, "--sample");
-  if (command.get_option("--sample")->count() > 0 && !sample_rate) {
-    throw InputError(std::vector<Problem>{
-        refused_problem("--sample", o.sample, "needs --sample-rate, whose samples it defines",
-                        "--sample KIND with --sample-rate FS")});
   }
   const SimulationCase c = case_to_run(o, command);
   if (!o.tacho_out.empty()) {
@@ -182,7 +176,7 @@ void run_simulate(SimulateOptions& o, const CLI::App& command) {
   }
   RunControl control;
   control.sample_rate_hz = sample_rate;
-  control.sample = sample_kind;
+  control.sample = samples.kind;
   control.keep_samples = false;
   // The series goes to its file as the run makes it, a megabyte at a time,
   // so that a long run's memory does not grow with its length.

@@ -10,7 +10,6 @@
 
 #include "case_flags.hpp"
 #include "commands.hpp"
-#include "gearimpact/case/units.hpp"
 #include "gearimpact/dynamics/planetary_train.hpp"
 #include "gearimpact/dynamics/simulate.hpp"
 #include "gearimpact/dynamics/train.hpp"
@@ -18,7 +17,6 @@
 #include "gearimpact/io/atomic_file.hpp"
 #include "gearimpact/io/case_file.hpp"
 #include "gearimpact/io/results.hpp"
-#include "gearimpact/named_values.hpp"
 #include "gearimpact/signals/order_tracking.hpp"
 
 namespace gearimpact::cli {
@@ -61,16 +59,9 @@ void run_train(const TrainOptions& o, const CLI::App& command) {
   require_output_folder(o.out, o.overwrite, {o.case_file});
   RunControl control;
   control.most_series_rows = max_rows_flag(o.max_rows);
-  if (command.get_option("--sample-rate")->count() > 0) {
-    control.sample_rate_hz =
-        parse_plain_or_quantity(o.sample_rate, Dimension::frequency, "--sample-rate");
-  }
-  control.sample = value_named(kSampleKinds, o.sample, "--sample");
-  if (command.get_option("--sample")->count() > 0 && !control.sample_rate_hz) {
-    throw InputError(std::vector<Problem>{
-        refused_problem("--sample", o.sample, "needs --sample-rate, whose samples it defines",
-                        "--sample KIND with --sample-rate FS")});
-  }
+  const SampleFlags samples = read_sample_flags(command, o.sample_rate, o.sample);
+  control.sample_rate_hz = samples.rate_hz;
+  control.sample = samples.kind;
   if (is_stage_file(o.case_file)) {
     if (control.sample_rate_hz) {
       throw InputError(std::vector<Problem>{refused_problem(
@@ -93,7 +84,7 @@ void run_train(const TrainOptions& o, const CLI::App& command) {
   // The outputs name the meshes the run ran (a helical mesh by slices: one per slice).
   const GearTrain train = dynamics_train(file);
   const std::string summary = train_summary_json(train, result);
-  for (const std::string& w : train_warnings(file, result, !is_train_file(o.case_file))) {
+  for (const std::string& w : train_warnings(file, result)) {
     std::cerr << "gearimpact: warning: " << w << "\n";
   }
   AtomicFolder folder(o.out, o.overwrite, {o.case_file});

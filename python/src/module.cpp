@@ -368,7 +368,7 @@ py::tuple run_train(const std::string& path, const std::vector<std::string>& set
   py::object tacho = py::none();
   if (file.tacho_body >= 0) tacho = to_array(result.tacho_times_s);
   py::list warnings;
-  for (const std::string& w : train_warnings(file, result, !is_train_file(path))) {
+  for (const std::string& w : train_warnings(file, result)) {
     warnings.append(w);
   }
   return py::make_tuple(summary,

@@ -161,7 +161,11 @@ TEST_CASE(
   const SimulationResult model = simulate(drift, drift_table);
   REQUIRE(model.summary.speed_drift_max_rel.has_value());
   const GearTrain drift_train = planar_two_gear_train(drift, drift_table);
-  const std::vector<std::string> warned = train_warnings(drift_train, simulate_train(drift_train));
+  // Written as a train file would write it, its first body named by its key.
+  GearTrain drift_train_file = drift_train;
+  drift_train_file.two_gear_case = false;
+  const std::vector<std::string> warned =
+      train_warnings(drift_train_file, simulate_train(drift_train_file));
   REQUIRE(warned.size() == 1);
   const std::vector<std::string> model_warned = result_warnings(drift, model.summary);
   REQUIRE(model_warned.size() == 1);
@@ -172,7 +176,7 @@ TEST_CASE(
   expected.replace(key, std::string("torque1.").size(), "bodies.pinion.torque.");
   CHECK(warned[0] == expected);
   // Of a two-gear file, the two-gear run's warning word for word.
-  CHECK(train_warnings(drift_train, simulate_train(drift_train), true) == model_warned);
+  CHECK(train_warnings(drift_train, simulate_train(drift_train)) == model_warned);
   // The controller acts: the same run with the pinion's torque held at zero differs.
   SimulationCase free = c;
   free.torque1 = Torque{};

@@ -217,6 +217,7 @@ TEST_CASE("a train file's [tacho] names its body, its other keys the pair's [tac
   REQUIRE(t.tacho_body >= 0);
   CHECK(t.bodies[static_cast<std::size_t>(t.tacho_body)].name == "wheel");
   CHECK(t.tacho.pulses_per_revolution == 60);
+  // The unit's conversion may round its product in another order than this one: a few ulps.
   CHECK(t.tacho.offset_rad == doctest::Approx(10.0 * pi / 180.0).scale(0).epsilon(1e-15));
   CHECK(t.tacho.jitter_s == 1e-6);
   CHECK(t.tacho.seed == 7);
@@ -254,6 +255,8 @@ TEST_CASE("a file without [[bodies]] is the two-gear case it always was") {
   const SimulationCase c = parse_case(text, "case2.toml");
   REQUIRE(train.bodies.size() == 2);
   REQUIRE(train.meshes.size() == 1);
+  CHECK(train.two_gear_case);
+  CHECK_FALSE(parse_train(example_text(), "train.toml").two_gear_case);
   CHECK(case_key(train.meshes[0].pair) == case_key(c));
   CHECK(train.bodies[0].w_rad_per_s == c.initial.w1_rad_per_s);
   CHECK(train.bodies[1].inertia_kg_m2 == moment_of_inertia(c.gears, Gear::two));

@@ -317,6 +317,11 @@ std::vector<int> degrees_of_freedom(const GearTrain& train) {
 
 }  // namespace
 
+DriverMotion driven_body_motion(const TrainBody& body, double t) {
+  if (body.held) return {body.theta_rad, 0.0, 0.0};
+  return driver_motion(body.torque, body.theta_rad, t);
+}
+
 int count_dofs(const std::vector<int>& dof) {
   return dof.empty() ? 0 : *std::max_element(dof.begin(), dof.end()) + 1;
 }
@@ -778,13 +783,7 @@ class TrainSystem {
     for (int d = 0; d < static_cast<int>(dofs_); ++d) {
       const int body = driver_[static_cast<std::size_t>(d)];
       if (body < 0) continue;
-      const TrainBody& b = train_.bodies[static_cast<std::size_t>(body)];
-      if (b.held) {
-        y[theta_of(d)] = b.theta_rad;
-        y[w_of(d)] = 0.0;
-        continue;
-      }
-      const DriverMotion m = driver_motion(b.torque, b.theta_rad, t);
+      const DriverMotion m = driven_body_motion(train_.bodies[static_cast<std::size_t>(body)], t);
       y[theta_of(d)] = m.theta_rad;
       y[w_of(d)] = m.speed_rad_per_s;
       if (acceleration != nullptr)
@@ -1421,6 +1420,7 @@ GearTrain two_gear_train(const SimulationCase& c) {
   train.meshes = {mesh};
   train.integrator = c.integrator;
   train.drive = c.drive;
+  train.two_gear_case = true;
   if (c.bearings.kind == BearingKind::elastic) {
     // On elastic bearings each gear's centre translates: the bodies carry the
     // bearings, with the planar model's masses (planar_mounting: a disc's
@@ -1578,16 +1578,15 @@ GearTrain dynamics_train(const GearTrain& train) {
   return run;
 }
 
-std::vector<std::string> train_warnings(const GearTrain& train, const TrainResult& result,
-                                        bool two_gear_file) {
+std::vector<std::string> train_warnings(const GearTrain& train, const TrainResult& result) {
   std::vector<std::string> warnings;
   const SimulationSummary& s = result.summary;
   if (s.planar && s.speed_drift_max_rel && *s.speed_drift_max_rel > train.drive.speed_tolerance) {
     const TrainBody& first = train.bodies.front();
     warnings.push_back(
         speed_drift_warning(*s.speed_drift_max_rel, train.drive.speed_tolerance, first.torque,
-                            two_gear_file ? "the pinion" : "body " + first.name,
-                            two_gear_file ? "torque1" : "bodies." + first.name + ".torque"));
+                            train.two_gear_case ? "the pinion" : "body " + first.name,
+                            train.two_gear_case ? "torque1" : "bodies." + first.name + ".torque"));
   }
   return warnings;
 }

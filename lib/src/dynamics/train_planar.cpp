@@ -24,6 +24,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -190,11 +191,9 @@ class PlanarTrainSystem {
       next_body_[i] = first_body_[d];
       first_body_[d] = static_cast<int>(i);
     }
-    controller_.fill(nullptr);
     for (std::size_t i = 0; i < train.bodies.size(); ++i) {
       if (train.bodies[i].torque.kind != Torque::Kind::speed_controlled) continue;
-      controllers_.push_back(train_speed_controller(train, static_cast<int>(i)));
-      controller_[i] = controllers_.back().get();
+      controller_[i] = train_speed_controller(train, static_cast<int>(i));
     }
     pin_carrier_.fill(-1);
     turning_with_.fill(-1);
@@ -340,13 +339,7 @@ class PlanarTrainSystem {
     for (std::size_t d = 0; d < L::kDofs && d < dofs_; ++d) {
       const int body = driver_[d];
       if (body < 0) continue;
-      const TrainBody& b = train_.bodies[static_cast<std::size_t>(body)];
-      if (b.held) {
-        y[L::theta(d)] = b.theta_rad;
-        y[L::w(d)] = 0.0;
-        continue;
-      }
-      const DriverMotion m = driver_motion(b.torque, b.theta_rad, t);
+      const DriverMotion m = driven_body_motion(train_.bodies[static_cast<std::size_t>(body)], t);
       y[L::theta(d)] = m.theta_rad;
       y[L::w(d)] = m.speed_rad_per_s;
     }
@@ -494,9 +487,8 @@ class PlanarTrainSystem {
         // The driver applies the torque that gives its body the prescribed
         // acceleration against the rest; its work is the torque work. A held
         // body's is what holds it still.
-        const TrainBody& b = train_.bodies[static_cast<std::size_t>(driver_[d])];
-        acceleration =
-            b.held ? 0.0 : driver_motion(b.torque, b.theta_rad, t).acceleration_rad_per_s2;
+        acceleration = driven_body_motion(train_.bodies[static_cast<std::size_t>(driver_[d])], t)
+                           .acceleration_rad_per_s2;
         torque = inertia_[d] * acceleration - moment[d];
       }
       const double w = y[L::w(d)];
@@ -747,10 +739,8 @@ class PlanarTrainSystem {
   std::array<double, L::kDofs> inverse_mass_{};
   std::array<double, L::kDofs> kx_{}, ky_{}, cx_{}, cy_{};
   std::array<int, L::kDofs> driver_{};
-  // Each speed-controlled body's controller (train_speed_controller), and
-  // each body's (null: not speed-controlled).
-  std::vector<std::shared_ptr<const SpeedController>> controllers_;
-  std::array<const SpeedController*, L::kDofs> controller_{};
+  // Each body's controller (train_speed_controller; null: not speed-controlled).
+  std::array<std::shared_ptr<const SpeedController>, L::kDofs> controller_{};
   bool driven_ = false;
   // A pinned planet's carrier (-1: none), its pin's radius and direction.
   std::array<int, L::kDofs> pin_carrier_{};
@@ -858,11 +848,7 @@ class PlanarTrainRun {
                     const Dense& dense) {
     if (!tacho_) return;
     tacho_->step(t_a, y_a[tacho_index_], t_b, y_b[tacho_index_], [&](double tau) {
-      if (tacho_driver_ != nullptr) {
-        return tacho_driver_->held
-                   ? tacho_driver_->theta_rad
-                   : driver_motion(tacho_driver_->torque, tacho_driver_->theta_rad, tau).theta_rad;
-      }
+      if (tacho_driver_ != nullptr) return driven_body_motion(*tacho_driver_, tau).theta_rad;
       State x{};
       dense(tau, x);
       return x[tacho_index_];

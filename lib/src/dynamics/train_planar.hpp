@@ -35,14 +35,19 @@ int count_dofs(const std::vector<int>& dof);
 // their order.
 std::vector<double> dof_inertias(const GearTrain& train, const std::vector<int>& dof, int dofs);
 
+// The motion a body's kinematic driver gives it at t (driver_motion from its
+// initial angle), or a held body's: still at its angle.
+DriverMotion driven_body_motion(const TrainBody& body, double t);
+
 // Whether any body of the train has its centre on elastic bearings.
 bool has_planar_bodies(const GearTrain& train);
 
 // The planar train's own checks, after validate_train's (each InputError
 // naming the field as bodies.NAME.bearings.KEY, meshes.NAME.KEY, sensor_body
 // or integrator.step): its bearings' values; what it does not run yet (a
-// carrier's meshes, an internal mesh, the Lagrangian mesh force, the adaptive integrator, a held or
-// speed-controlled body, two bodies with bearings on one rigid shaft); senses of turning that
+// carrier's meshes, an internal mesh, the Lagrangian mesh force, the adaptive integrator, a
+// speed-controlled body in a carrier's frame, two bodies with bearings on one rigid shaft); senses
+// of turning that
 // contradict each other around a loop of meshes; the sensor's body.
 void validate_planar_train(const GearTrain& train);
 // InputError naming integrator.step unless the step resolves the shortest

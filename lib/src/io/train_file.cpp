@@ -343,12 +343,7 @@ void read_tacho(const Reader& reader, const toml::value& value,
         "tacho.shaft is not read in a train file: a train's tacho names its body (tacho.body = "
         "NAME)"));
   }
-  if (table.find("body") == nullptr) {
-    problems.push_back(reader.problem("tacho.body", &value,
-                                      "tacho.body is missing (required in a train's [tacho]: the "
-                                      "name of the body whose angle it reads)"));
-    return;
-  }
+  // Missing or naming no body, refused with the bodies' names.
   train.tacho_body = table.body("tacho", "body", bodies);
 }
 

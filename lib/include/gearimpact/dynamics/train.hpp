@@ -168,6 +168,9 @@ struct GearTrain {
   Tacho tacho;
   // kind (rk4: the event-cut RK4 at the fixed step), step, end time, output_every.
   IntegratorSettings integrator;
+  // Written from a two-gear case (two_gear_train): its keys are the pair's
+  // (torque1 for the pinion's torque), which its messages name.
+  bool two_gear_case = false;
   // The drift check's settling time and bound ([drive]): the first body's
   // speed over each whole revolution after settle_s against its reference
   // (SpeedDriftMonitor; SimulationSummary::speed_drift_max_rel).
@@ -319,9 +322,9 @@ TrainResult simulate_train(const GearTrain& train, const RunControl& control = {
 
 // What a user should hear about a finished run of the train: on bearings (a signal run, as the
 // two-gear planar run's), its first body's speed drifting beyond drive.speed_tolerance
-// (speed_drift_warning), naming its key as a train file writes it (bodies.NAME.torque), or as a
-// two-gear file does (torque1, the pinion's: the two-gear run's warning word for word).
-std::vector<std::string> train_warnings(const GearTrain& train, const TrainResult& result,
-                                        bool two_gear_file = false);
+// (speed_drift_warning), naming its key as a train file writes it (bodies.NAME.torque), or of a
+// two-gear case (GearTrain::two_gear_case) as its file does (torque1, the pinion's: the
+// two-gear run's warning word for word).
+std::vector<std::string> train_warnings(const GearTrain& train, const TrainResult& result);
 
 }  // namespace gearimpact
